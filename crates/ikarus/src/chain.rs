@@ -1,0 +1,438 @@
+//! The chain model: links, joint limits, poses, and their validation.
+//!
+//! A [`Chain`] is a planar serial chain of `N ≥ 1` revolute joints, each followed by a rigid
+//! link. Joint `i` sits at the end of link `i − 1` (joint 0 sits at the base). Its angle is
+//! measured relative to the previous link; the first joint's angle is relative to the +x axis.
+//! Counter-clockwise is positive, and every angle inside the library is in radians.
+//!
+//! A chain is validated once, when it is built; everything downstream may assume valid data.
+
+use nalgebra::Point2;
+use thiserror::Error;
+
+/// A closed range `[min, max]` of allowed joint angles, in radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointLimits {
+    min: f64,
+    max: f64,
+}
+
+impl JointLimits {
+    /// Builds a range, checking that both ends are finite and `min ≤ max`.
+    pub fn new(min: f64, max: f64) -> Result<Self, LimitsError> {
+        if !min.is_finite() {
+            return Err(LimitsError::NonFinite { end: "min", value: min });
+        }
+        if !max.is_finite() {
+            return Err(LimitsError::NonFinite { end: "max", value: max });
+        }
+        if min > max {
+            return Err(LimitsError::Inverted { min, max });
+        }
+        Ok(Self { min, max })
+    }
+
+    /// The lower end, in radians.
+    #[must_use]
+    pub fn min(&self) -> f64 {
+        self.min
+    }
+
+    /// The upper end, in radians.
+    #[must_use]
+    pub fn max(&self) -> f64 {
+        self.max
+    }
+
+    /// Whether `angle` lies in `[min, max]`.
+    #[must_use]
+    pub fn contains(&self, angle: f64) -> bool {
+        self.min <= angle && angle <= self.max
+    }
+
+    /// `angle` moved to the nearest end of the range if it lies outside.
+    #[must_use]
+    pub fn clamp(&self, angle: f64) -> f64 {
+        angle.clamp(self.min, self.max)
+    }
+}
+
+/// Why a [`JointLimits`] could not be built.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum LimitsError {
+    /// One end of the range is NaN or infinite.
+    #[error("{end} must be a finite number, got {value}")]
+    NonFinite {
+        /// `"min"` or `"max"`.
+        end: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// `min > max`.
+    #[error("min must not exceed max, got [{min}, {max}]")]
+    Inverted {
+        /// The lower end given.
+        min: f64,
+        /// The upper end given.
+        max: f64,
+    },
+}
+
+/// One joint and the link that follows it: the link's length, the joint's starting angle
+/// (radians, relative to the previous link) and its optional limits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Link {
+    /// Length of the link, > 0.
+    pub length: f64,
+    /// Starting angle of the joint in radians.
+    pub angle: f64,
+    /// Optional range the joint angle must stay within.
+    pub limits: Option<JointLimits>,
+}
+
+impl Link {
+    /// A link of `length` whose joint starts at `angle` radians, without limits.
+    #[must_use]
+    pub fn new(length: f64, angle: f64) -> Self {
+        Self { length, angle, limits: None }
+    }
+
+    /// The same link with its joint limited to `limits`.
+    #[must_use]
+    pub fn with_limits(mut self, limits: JointLimits) -> Self {
+        self.limits = Some(limits);
+        self
+    }
+}
+
+/// A validated planar chain: base position, links, start pose.
+///
+/// Build one with [`Chain::new`]; the constructor rejects empty chains, non-finite numbers,
+/// non-positive lengths, and start angles outside their limits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chain {
+    base: Point2<f64>,
+    lengths: Vec<f64>,
+    limits: Vec<Option<JointLimits>>,
+    start: Pose,
+    reach: f64,
+}
+
+/// Which number of a link an error is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum LinkField {
+    /// [`Link::length`].
+    Length,
+    /// [`Link::angle`].
+    Angle,
+    /// [`Link::limits`].
+    Limits,
+}
+
+impl std::fmt::Display for LinkField {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            LinkField::Length => "length",
+            LinkField::Angle => "angle",
+            LinkField::Limits => "limits",
+        })
+    }
+}
+
+/// Why a [`Chain`] or a [`Pose`] for it is invalid. Every variant names the field and the value.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum ChainError {
+    /// The chain has no links.
+    #[error("links: a chain needs at least one link, got none")]
+    Empty,
+    /// A base coordinate is NaN or infinite.
+    #[error("base: coordinates must be finite, got ({x}, {y})")]
+    NonFiniteBase {
+        /// x of the base.
+        x: f64,
+        /// y of the base.
+        y: f64,
+    },
+    /// A link's number is NaN or infinite.
+    #[error("links[{index}].{field}: must be a finite number, got {value}")]
+    NonFinite {
+        /// Index of the link, from 0.
+        index: usize,
+        /// Which number.
+        field: LinkField,
+        /// The offending value.
+        value: f64,
+    },
+    /// A link's length is zero or negative.
+    #[error("links[{index}].length: must be greater than 0, got {value}")]
+    NonPositiveLength {
+        /// Index of the link, from 0.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A joint's limits are malformed (for callers that build limits from raw numbers and want
+    /// the error to name the joint).
+    #[error("links[{index}].limits: {source}")]
+    Limits {
+        /// Index of the link, from 0.
+        index: usize,
+        /// What is wrong with them.
+        source: LimitsError,
+    },
+    /// A joint angle lies outside that joint's limits.
+    #[error("links[{index}].angle: {value} rad lies outside the limits [{min}, {max}] rad")]
+    AngleOutsideLimits {
+        /// Index of the joint, from 0.
+        index: usize,
+        /// The offending angle, radians.
+        value: f64,
+        /// Lower limit, radians.
+        min: f64,
+        /// Upper limit, radians.
+        max: f64,
+    },
+    /// A pose has a different number of angles than the chain has joints.
+    #[error("pose: expected {expected} angles (one per joint), got {got}")]
+    PoseLength {
+        /// Number of joints of the chain.
+        expected: usize,
+        /// Number of angles given.
+        got: usize,
+    },
+}
+
+impl Chain {
+    /// Validates and builds a chain with its base at `base`.
+    ///
+    /// Checks, in order: at least one link; a finite base; for each link a finite length > 0,
+    /// well-formed limits, and a finite start angle within them.
+    pub fn new(base: [f64; 2], links: &[Link]) -> Result<Self, ChainError> {
+        if links.is_empty() {
+            return Err(ChainError::Empty);
+        }
+        let [x, y] = base;
+        if !x.is_finite() || !y.is_finite() {
+            return Err(ChainError::NonFiniteBase { x, y });
+        }
+        for (index, link) in links.iter().enumerate() {
+            if !link.length.is_finite() {
+                return Err(ChainError::NonFinite { index, field: LinkField::Length, value: link.length });
+            }
+            if link.length <= 0.0 {
+                return Err(ChainError::NonPositiveLength { index, value: link.length });
+            }
+        }
+        let angles: Vec<f64> = links.iter().map(|l| l.angle).collect();
+        let limits: Vec<Option<JointLimits>> = links.iter().map(|l| l.limits).collect();
+        let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
+        check_angles(&angles, &limits, true)?;
+        let reach = lengths.iter().sum();
+        Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
+    }
+
+    /// Number of joints (equal to the number of links).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.lengths.len()
+    }
+
+    /// Always `false`: a valid chain has at least one link.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Where the first joint sits.
+    #[must_use]
+    pub fn base(&self) -> Point2<f64> {
+        self.base
+    }
+
+    /// Link lengths, base to tip.
+    #[must_use]
+    pub fn lengths(&self) -> &[f64] {
+        &self.lengths
+    }
+
+    /// Per-joint limits, base to tip.
+    #[must_use]
+    pub fn limits(&self) -> &[Option<JointLimits>] {
+        &self.limits
+    }
+
+    /// Whether any joint has limits.
+    #[must_use]
+    pub fn has_limits(&self) -> bool {
+        self.limits.iter().any(Option::is_some)
+    }
+
+    /// The pose the chain was built with.
+    #[must_use]
+    pub fn start_pose(&self) -> &Pose {
+        &self.start
+    }
+
+    /// The links as given to [`Chain::new`], with the start pose's angles.
+    #[must_use]
+    pub fn links(&self) -> Vec<Link> {
+        self.lengths
+            .iter()
+            .zip(&self.limits)
+            .zip(self.start.angles())
+            .map(|((&length, &limits), &angle)| Link { length, angle, limits })
+            .collect()
+    }
+
+    /// Outer radius of the reachable set ignoring limits: Σ lᵢ.
+    #[must_use]
+    pub fn max_reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Inner radius of the reachable set ignoring limits: `max(0, l_max − (Σl − l_max))`.
+    ///
+    /// Points closer to the base than this cannot be reached because the longest link cannot
+    /// be folded back far enough by the others.
+    #[must_use]
+    pub fn min_reach(&self) -> f64 {
+        annulus_inner(&self.lengths)
+    }
+
+    /// Validates `angles` as a pose of this chain: one finite angle per joint, each within its
+    /// limits when `check_limits` is true.
+    pub fn pose(&self, angles: Vec<f64>, check_limits: bool) -> Result<Pose, ChainError> {
+        if angles.len() != self.len() {
+            return Err(ChainError::PoseLength { expected: self.len(), got: angles.len() });
+        }
+        check_angles(&angles, &self.limits, check_limits)?;
+        Ok(Pose { angles })
+    }
+
+    /// `angles` with every limited joint clamped into its range.
+    pub(crate) fn clamp_into(&self, angles: &mut [f64]) {
+        for (a, lim) in angles.iter_mut().zip(&self.limits) {
+            if let Some(lim) = lim {
+                *a = lim.clamp(*a);
+            }
+        }
+    }
+}
+
+/// Inner radius of the annulus reachable by links of `lengths` with free joints.
+pub(crate) fn annulus_inner(lengths: &[f64]) -> f64 {
+    let total: f64 = lengths.iter().sum();
+    let longest = lengths.iter().copied().fold(0.0, f64::max);
+    (longest - (total - longest)).max(0.0)
+}
+
+fn check_angles(angles: &[f64], limits: &[Option<JointLimits>], check_limits: bool) -> Result<(), ChainError> {
+    for (index, (&value, lim)) in angles.iter().zip(limits).enumerate() {
+        if !value.is_finite() {
+            return Err(ChainError::NonFinite { index, field: LinkField::Angle, value });
+        }
+        if let (true, Some(lim)) = (check_limits, lim) {
+            if !lim.contains(value) {
+                return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min, max: lim.max });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Joint angles of a chain, in radians, base to tip.
+///
+/// A `Pose` from [`Chain::pose`] or [`Chain::start_pose`] is valid for that chain.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Pose {
+    angles: Vec<f64>,
+}
+
+impl Pose {
+    /// The angles, radians.
+    #[must_use]
+    pub fn angles(&self) -> &[f64] {
+        &self.angles
+    }
+
+    /// Consumes the pose, giving its angles.
+    #[must_use]
+    pub fn into_angles(self) -> Vec<f64> {
+        self.angles
+    }
+
+    pub(crate) fn angles_mut(&mut self) -> &mut Vec<f64> {
+        &mut self.angles
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seed() -> Vec<Link> {
+        vec![Link::new(3.0, 0.1), Link::new(2.0, 0.1), Link::new(1.0, 0.1)]
+    }
+
+    #[test]
+    fn builds_a_valid_chain() {
+        let c = Chain::new([1.0, -2.0], &seed()).unwrap();
+        assert_eq!(c.len(), 3);
+        assert_eq!(c.max_reach(), 6.0);
+        assert_eq!(c.min_reach(), 0.0);
+        assert_eq!(c.base(), Point2::new(1.0, -2.0));
+        assert_eq!(c.start_pose().angles(), &[0.1, 0.1, 0.1]);
+        assert_eq!(c.links(), seed());
+    }
+
+    #[test]
+    fn inner_radius_of_a_long_first_link() {
+        let c = Chain::new([0.0, 0.0], &[Link::new(5.0, 0.0), Link::new(1.0, 0.0), Link::new(1.5, 0.0)]).unwrap();
+        assert!((c.min_reach() - 2.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rejects_each_kind_of_bad_input_naming_the_field() {
+        let cases: Vec<(Vec<Link>, [f64; 2], &str)> = vec![
+            (vec![], [0.0, 0.0], "links: a chain needs at least one link"),
+            (seed(), [f64::NAN, 0.0], "base: coordinates must be finite, got (NaN, 0)"),
+            (vec![Link::new(1.0, 0.0), Link::new(0.0, 0.0)], [0.0, 0.0], "links[1].length: must be greater than 0, got 0"),
+            (vec![Link::new(-2.0, 0.0)], [0.0, 0.0], "links[0].length: must be greater than 0, got -2"),
+            (vec![Link::new(f64::INFINITY, 0.0)], [0.0, 0.0], "links[0].length: must be a finite number, got inf"),
+            (vec![Link::new(1.0, f64::NAN)], [0.0, 0.0], "links[0].angle: must be a finite number, got NaN"),
+            (
+                vec![Link::new(1.0, 2.0).with_limits(JointLimits::new(-1.0, 1.0).unwrap())],
+                [0.0, 0.0],
+                "links[0].angle: 2 rad lies outside the limits [-1, 1] rad",
+            ),
+        ];
+        for (links, base, want) in cases {
+            let err = Chain::new(base, &links).unwrap_err().to_string();
+            assert!(err.starts_with(want), "got {err:?}, want prefix {want:?}");
+        }
+    }
+
+    #[test]
+    fn limits_validate() {
+        assert_eq!(JointLimits::new(1.0, -1.0), Err(LimitsError::Inverted { min: 1.0, max: -1.0 }));
+        assert!(matches!(JointLimits::new(f64::NAN, 1.0), Err(LimitsError::NonFinite { end: "min", .. })));
+        assert!(matches!(JointLimits::new(0.0, f64::INFINITY), Err(LimitsError::NonFinite { end: "max", .. })));
+        let l = JointLimits::new(-1.0, 1.0).unwrap();
+        assert_eq!(l.clamp(3.0), 1.0);
+        assert_eq!(l.clamp(-3.0), -1.0);
+        assert!(l.contains(1.0) && !l.contains(1.0 + 1e-12));
+    }
+
+    #[test]
+    fn pose_is_validated_against_the_chain() {
+        let c = Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0).with_limits(JointLimits::new(-1.0, 1.0).unwrap())]).unwrap();
+        assert_eq!(c.pose(vec![0.5], true).unwrap().angles(), &[0.5]);
+        assert!(matches!(c.pose(vec![0.5, 0.1], true), Err(ChainError::PoseLength { expected: 1, got: 2 })));
+        assert!(matches!(c.pose(vec![1.5], true), Err(ChainError::AngleOutsideLimits { .. })));
+        assert!(c.pose(vec![1.5], false).is_ok());
+        assert!(c.pose(vec![f64::NAN], false).is_err());
+    }
+}

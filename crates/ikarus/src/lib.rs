@@ -1,0 +1,52 @@
+//! Inverse kinematics for planar chains.
+//!
+//! A [`Chain`] is a planar serial chain of revolute joints, each followed by a rigid link.
+//! Joint angles are radians, each relative to the previous link (the first relative to +x),
+//! counter-clockwise positive. [`kinematics`] gives forward kinematics and the analytic
+//! Jacobian; a [`Solver`] moves the chain's tip to a [`Goal`] with the Jacobian transpose,
+//! pseudoinverse or damped least squares method, clamping joints to their limits, and
+//! reports what happened in an [`Outcome`].
+//!
+//! ```
+//! use ikarus::{Chain, Goal, Link, Method, SolveOptions, Solver, Status};
+//!
+//! // The seed program's arm: lengths 3, 2, 1, every joint at 5°.
+//! let start = 5f64.to_radians();
+//! let chain = Chain::new([0.0, 0.0], &[
+//!     Link::new(3.0, start),
+//!     Link::new(2.0, start),
+//!     Link::new(1.0, start),
+//! ])?;
+//!
+//! let mut solver = Solver::new(SolveOptions {
+//!     method: Method::DampedLeastSquares,
+//!     record_every: Some(20),
+//!     ..SolveOptions::default()
+//! })?;
+//! let outcome = solver.solve(&chain, chain.start_pose(), &Goal::position(2.0, 3.0)?)?;
+//!
+//! assert_eq!(outcome.status, Status::Reached);
+//! assert!(outcome.error <= 1e-6);
+//! let tip = ikarus::kinematics::end_effector(&chain, outcome.pose.angles()).position;
+//! assert!((tip.x - 2.0).abs() <= 1e-6 && (tip.y - 3.0).abs() <= 1e-6);
+//! // The first and the last frame are always recorded.
+//! assert_eq!(outcome.frames.get(0).unwrap().iteration, 0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Nothing here prints, reads files or starts threads; the same input gives the same output,
+//! bit for bit.
+
+pub mod chain;
+pub mod kinematics;
+pub mod solve;
+
+pub use chain::{Chain, ChainError, JointLimits, Link, LinkField, LimitsError, Pose};
+pub use kinematics::EndEffector;
+pub use solve::{
+    Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,
+    StallDetection, Status,
+};
+
+/// Re-exported so that callers can name the point type without depending on nalgebra.
+pub use nalgebra::Point2;
