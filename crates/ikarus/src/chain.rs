@@ -399,7 +399,11 @@ mod tests {
         let cases: Vec<(Vec<Link>, [f64; 2], &str)> = vec![
             (vec![], [0.0, 0.0], "links: a chain needs at least one link"),
             (seed(), [f64::NAN, 0.0], "base: coordinates must be finite, got (NaN, 0)"),
-            (vec![Link::new(1.0, 0.0), Link::new(0.0, 0.0)], [0.0, 0.0], "links[1].length: must be greater than 0, got 0"),
+            (
+                vec![Link::new(1.0, 0.0), Link::new(0.0, 0.0)],
+                [0.0, 0.0],
+                "links[1].length: must be greater than 0, got 0",
+            ),
             (vec![Link::new(-2.0, 0.0)], [0.0, 0.0], "links[0].length: must be greater than 0, got -2"),
             (vec![Link::new(f64::INFINITY, 0.0)], [0.0, 0.0], "links[0].length: must be a finite number, got inf"),
             (vec![Link::new(1.0, f64::NAN)], [0.0, 0.0], "links[0].angle: must be a finite number, got NaN"),
@@ -428,7 +432,8 @@ mod tests {
 
     #[test]
     fn pose_is_validated_against_the_chain() {
-        let c = Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0).with_limits(JointLimits::new(-1.0, 1.0).unwrap())]).unwrap();
+        let c =
+            Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0).with_limits(JointLimits::new(-1.0, 1.0).unwrap())]).unwrap();
         assert_eq!(c.pose(vec![0.5], true).unwrap().angles(), &[0.5]);
         assert!(matches!(c.pose(vec![0.5, 0.1], true), Err(ChainError::PoseLength { expected: 1, got: 2 })));
         assert!(matches!(c.pose(vec![1.5], true), Err(ChainError::AngleOutsideLimits { .. })));

@@ -41,7 +41,7 @@ pub mod chain;
 pub mod kinematics;
 pub mod solve;
 
-pub use chain::{Chain, ChainError, JointLimits, Link, LinkField, LimitsError, Pose};
+pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
 pub use kinematics::EndEffector;
 pub use solve::{
     Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,

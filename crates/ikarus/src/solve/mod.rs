@@ -430,7 +430,13 @@ impl Solver {
     /// call with a chain of this size, no further memory is allocated (frame recording
     /// reuses the frame buffers, which grow only if a solve records more frames than any
     /// before it).
-    pub fn solve_into(&mut self, chain: &Chain, start: &[f64], goal: &Goal, out: &mut Outcome) -> Result<(), SolveError> {
+    pub fn solve_into(
+        &mut self,
+        chain: &Chain,
+        start: &[f64],
+        goal: &Goal,
+        out: &mut Outcome,
+    ) -> Result<(), SolveError> {
         let n = chain.len();
         if start.len() != n {
             return Err(SolveError::PoseLength { expected: n, got: start.len() });

@@ -21,7 +21,11 @@ fn solve(chain: &Chain, goal: Goal, options: SolveOptions) -> Outcome {
 #[test]
 fn every_method_reaches_an_easy_goal() {
     for method in Method::ALL {
-        let o = solve(&seed(false), Goal::position(2.0, 3.0).unwrap(), SolveOptions { method, max_iterations: 10_000, ..Default::default() });
+        let o = solve(
+            &seed(false),
+            Goal::position(2.0, 3.0).unwrap(),
+            SolveOptions { method, max_iterations: 10_000, ..Default::default() },
+        );
         assert_eq!(o.status, Status::Reached, "{method:?}: {o:?}");
         let tip = end_effector(&seed(false), o.pose.angles()).position;
         assert!((tip - Point2::new(2.0, 3.0)).norm() <= 1e-6);
