@@ -1,0 +1,280 @@
+//! Arm files (TOML): a chain in degrees, plus optional solver defaults.
+//!
+//! ```toml
+//! name = "seed"
+//! base = [0.0, 0.0]          # optional
+//! [[links]]
+//! length = 3.0
+//! angle_deg = 5.0
+//! limits_deg = [-45.0, 45.0] # optional
+//! [solver]                   # optional; flags override it
+//! method = "dls"
+//! ```
+//!
+//! Every problem becomes one line naming the file, the field and the value.
+
+use std::path::Path;
+
+use ikarus::{Chain, ChainError, JointLimits, Link};
+use serde::Deserialize;
+
+use crate::error::CliError;
+use crate::options::MethodArg;
+
+/// The built-in default arm: the seed program's, shipped as `examples/arms/seed.toml`.
+pub const DEFAULT_ARM: &str = include_str!("../../../examples/arms/seed.toml");
+
+/// An arm as written in a file: names and units of the edge (degrees).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArmFile {
+    /// A name for the arm, shown in outputs.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Base position; the origin when absent.
+    #[serde(default)]
+    pub base: Option<[f64; 2]>,
+    /// Links, base to tip.
+    #[serde(default)]
+    pub links: Vec<LinkFile>,
+    /// Solver defaults.
+    #[serde(default)]
+    pub solver: SolverTable,
+}
+
+/// One `[[links]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinkFile {
+    /// Link length.
+    pub length: f64,
+    /// Start angle of the joint, degrees, relative to the previous link.
+    #[serde(default)]
+    pub angle_deg: f64,
+    /// Optional `[min, max]` range of the joint angle, degrees.
+    #[serde(default)]
+    pub limits_deg: Option<[f64; 2]>,
+}
+
+/// The optional `[solver]` table: defaults that flags override. Field names match the flags.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverTable {
+    pub method: Option<MethodArg>,
+    pub lambda: Option<f64>,
+    pub tolerance: Option<f64>,
+    pub angle_tolerance_deg: Option<f64>,
+    pub max_iterations: Option<u32>,
+    pub record_every: Option<u32>,
+    pub gain: Option<f64>,
+    pub rates: Option<Vec<f64>>,
+    pub max_step_deg: Option<f64>,
+    pub backtrack: Option<u32>,
+    pub stall_window: Option<u32>,
+    pub stall_epsilon_deg: Option<f64>,
+    pub limits: Option<bool>,
+}
+
+/// A loaded arm: the validated chain, its name, and the file's solver defaults.
+#[derive(Debug, Clone)]
+pub struct Arm {
+    pub name: String,
+    pub chain: Chain,
+    pub solver: SolverTable,
+}
+
+impl Arm {
+    /// Loads `path`, or the built-in seed arm when `None`.
+    pub fn load(path: Option<&Path>) -> Result<Self, CliError> {
+        match path {
+            None => Self::parse(DEFAULT_ARM, "built-in arm"),
+            Some(p) => {
+                let label = format!("arm file {}", p.display());
+                let text = std::fs::read_to_string(p)
+                    .map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
+                Self::parse(&text, &label)
+            }
+        }
+    }
+
+    /// Parses and validates arm-file text; `label` starts every error message.
+    pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
+        let file: ArmFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
+        let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
+        file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
+        Ok(Self { name: file.name.clone().unwrap_or_else(|| "arm".to_owned()), chain, solver: file.solver })
+    }
+}
+
+impl ArmFile {
+    /// Builds the chain, describing any problem in the file's own names and numbers.
+    pub fn to_chain(&self) -> Result<Chain, String> {
+        let mut links = Vec::with_capacity(self.links.len());
+        for (i, l) in self.links.iter().enumerate() {
+            let mut link = Link::new(l.length, l.angle_deg.to_radians());
+            if let Some([lo, hi]) = l.limits_deg {
+                let limits = JointLimits::new(lo.to_radians(), hi.to_radians())
+                    .map_err(|_| format!("links[{i}].limits_deg = [{lo}, {hi}]: {}", limits_problem(lo, hi)))?;
+                link = link.with_limits(limits);
+            }
+            links.push(link);
+        }
+        Chain::new(self.base.unwrap_or([0.0, 0.0]), &links).map_err(|e| self.describe(&e))
+    }
+
+    fn describe(&self, e: &ChainError) -> String {
+        match *e {
+            ChainError::Empty => "links: an arm needs at least one [[links]] entry, got none".to_owned(),
+            ChainError::NonFiniteBase { x, y } => format!("base = [{x}, {y}]: coordinates must be finite"),
+            ChainError::NonPositiveLength { index, value } => {
+                format!("links[{index}].length = {value}: must be greater than 0")
+            }
+            ChainError::NonFinite { index, field: ikarus::LinkField::Length, value } => {
+                format!("links[{index}].length = {value}: must be a finite number")
+            }
+            ChainError::NonFinite { index, .. } => {
+                format!("links[{index}].angle_deg = {}: must be a finite number", self.links[index].angle_deg)
+            }
+            ChainError::AngleOutsideLimits { index, .. } => {
+                let l = &self.links[index];
+                let [lo, hi] = l.limits_deg.unwrap_or([f64::NAN; 2]);
+                format!("links[{index}].angle_deg = {}: outside limits_deg [{lo}, {hi}]", l.angle_deg)
+            }
+            _ => e.to_string(),
+        }
+    }
+}
+
+fn limits_problem(lo: f64, hi: f64) -> &'static str {
+    if !lo.is_finite() || !hi.is_finite() { "both ends must be finite numbers" } else { "min must not exceed max" }
+}
+
+impl SolverTable {
+    /// Range checks, naming the field; the caller prefixes `[solver].`.
+    fn check(&self) -> Result<(), String> {
+        use crate::options::{at_least_one, non_negative, positive};
+        let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
+        if let Some(v) = self.lambda {
+            field("lambda", non_negative(v))?;
+        }
+        if let Some(v) = self.tolerance {
+            field("tolerance", positive(v))?;
+        }
+        if let Some(v) = self.angle_tolerance_deg {
+            field("angle_tolerance_deg", positive(v))?;
+        }
+        if let Some(v) = self.gain {
+            field("gain", positive(v))?;
+        }
+        if let Some(v) = self.max_step_deg {
+            field("max_step_deg", non_negative(v))?;
+        }
+        if let Some(v) = self.stall_epsilon_deg {
+            field("stall_epsilon_deg", non_negative(v))?;
+        }
+        if let Some(v) = self.record_every {
+            at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
+        }
+        if let Some(v) = self.stall_window {
+            at_least_one(v).map_err(|m| format!("stall_window = {m}"))?;
+        }
+        if let Some(rates) = &self.rates {
+            for (i, &r) in rates.iter().enumerate() {
+                field(&format!("rates[{i}]"), non_negative(r))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One line for a TOML error: position and message, without the source excerpt.
+fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
+    let msg = e.message().trim().replace('\n', " ");
+    match e.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!("{label}: line {line}, column {col}: {msg}")
+        }
+        None => format!("{label}: {msg}"),
+    }
+}
+
+/// The OS reason without Rust's "(os error N)" suffix.
+pub fn io_reason(e: &std::io::Error) -> String {
+    let s = e.to_string();
+    match s.find(" (os error") {
+        Some(i) => s[..i].to_owned(),
+        None => s,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> String {
+        match Arm::parse(text, "arm file a.toml") {
+            Ok(_) => panic!("accepted: {text}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn the_default_arm_is_the_seed() {
+        let arm = Arm::load(None).unwrap();
+        assert_eq!(arm.name, "seed");
+        assert_eq!(arm.chain.lengths(), &[3.0, 2.0, 1.0]);
+        for a in arm.chain.start_pose().angles() {
+            assert!((a - 5f64.to_radians()).abs() < 1e-15);
+        }
+        let lim = arm.chain.limits()[1].unwrap();
+        assert!((lim.min() + 90f64.to_radians()).abs() < 1e-15 && (lim.max() - 90f64.to_radians()).abs() < 1e-15);
+        assert_eq!(arm.solver.limits, None);
+    }
+
+    #[test]
+    fn shipped_examples_load() {
+        for (file, n) in [("seed.toml", 3), ("seven.toml", 7), ("tentacle.toml", 20)] {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms").join(file);
+            let arm = Arm::load(Some(&path)).unwrap_or_else(|e| panic!("{file}: {e}"));
+            assert_eq!(arm.chain.len(), n, "{file}");
+        }
+    }
+
+    #[test]
+    fn each_problem_is_one_line_naming_field_and_value() {
+        let cases = [
+            ("[[links]]\nlenght = 1.0\n", "arm file a.toml: line 2, column 1: unknown field `lenght`"),
+            ("[[links]]\nlength = -1.0\n", "arm file a.toml: links[0].length = -1: must be greater than 0"),
+            ("[[links]]\nlength = nan\n", "arm file a.toml: links[0].length = NaN: must be a finite number"),
+            ("[[links]]\nlength = 1\nangle_deg = inf\n", "arm file a.toml: links[0].angle_deg = inf: must be a finite"),
+            (
+                "[[links]]\nlength = 1\nangle_deg = 50\nlimits_deg = [-45, 45]\n",
+                "arm file a.toml: links[0].angle_deg = 50: outside limits_deg [-45, 45]",
+            ),
+            (
+                "[[links]]\nlength = 1\nlimits_deg = [45, -45]\n",
+                "arm file a.toml: links[0].limits_deg = [45, -45]: min must not exceed max",
+            ),
+            ("name = \"x\"\n", "arm file a.toml: links: an arm needs at least one [[links]] entry"),
+            ("base = [nan, 0]\n[[links]]\nlength = 1\n", "arm file a.toml: base = [NaN, 0]: coordinates must be finite"),
+            ("[[links]]\nlength = 1\n[solver]\nlambda = -1\n", "arm file a.toml: [solver].lambda = -1: must be"),
+            ("[[links]]\nlength = 1\n[solver]\nmethod = \"newton\"\n", "arm file a.toml: line 4, column 10: unknown variant"),
+            ("[[links]]\nlength = \"1\"\n", "arm file a.toml: line 2, column 10: invalid type"),
+            ("[[links]\n", "arm file a.toml: line 1"),
+        ];
+        for (text, want) in cases {
+            let got = err(text);
+            assert!(got.starts_with(want), "for {text:?}\n got {got:?}\nwant {want:?}");
+            assert!(!got.contains('\n'), "multi-line: {got:?}");
+        }
+    }
+
+    #[test]
+    fn a_missing_file_is_reported_plainly() {
+        let e = Arm::load(Some(Path::new("/nonexistent/arm.toml"))).unwrap_err().to_string();
+        assert_eq!(e, "arm file /nonexistent/arm.toml: cannot read: No such file or directory");
+    }
+}

@@ -1,0 +1,452 @@
+//! `ikarus solve`: one goal (JSON, CSV or text), or a batch of goals from a CSV file.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use ikarus::{Chain, Goal, Outcome, SolveOptions, Solver, Status};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::arm::{Arm, io_reason};
+use crate::error::CliError;
+use crate::options::{SolverArgs, parse_angle, parse_at_least_one, parse_finite, parse_point};
+use crate::output::{self, PendingFile};
+
+/// Frames recorded by default: every 20 iterations, as the seed program did.
+const DEFAULT_RECORD_EVERY: u32 = 20;
+
+/// Batches at least this large show a progress bar (when stderr is a terminal).
+const PROGRESS_MIN_GOALS: usize = 20_000;
+
+/// Output format of a single solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One JSON object (the default when stdout is not a terminal).
+    Json,
+    /// The recorded frames, one row each.
+    Csv,
+    /// A short report for people (the default on a terminal).
+    Text,
+}
+
+/// Move the arm's tip to a goal and report the pose, or solve a batch of goals.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Goal position of the tip
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point,
+          required_unless_present = "batch")]
+    pub goal: Option<[f64; 2]>,
+    /// Goal orientation of the last link, degrees from +x (counter-clockwise)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle, conflicts_with = "batch")]
+    pub goal_angle: Option<f64>,
+    /// Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    /// Record a frame every K iterations, plus the first and the last [default: 20]
+    #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
+    pub record_every: Option<u32>,
+    /// Output format [default: text on a terminal, json otherwise]
+    #[arg(long, value_enum, conflicts_with = "batch")]
+    pub format: Option<Format>,
+    /// Solve every goal of a CSV file (header `x,y` or `x,y,angle_deg`) from the arm's start
+    /// pose; one CSV row per goal on stdout, a summary on stderr
+    #[arg(long, value_name = "GOALS.csv", conflicts_with = "goal")]
+    pub batch: Option<PathBuf>,
+    /// Threads for --batch [default: all cores]
+    #[arg(long, value_name = "N", requires = "batch", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+    /// Also write the batch summary as JSON to PATH
+    #[arg(long, value_name = "PATH", requires = "batch")]
+    pub summary_json: Option<PathBuf>,
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n = parse_at_least_one(s)? as usize;
+    if n > 1024 { Err(format!("{n}: must be at most 1024")) } else { Ok(n) }
+}
+
+pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+    let arm = Arm::load(args.arm.as_deref())?;
+    match &args.batch {
+        Some(path) => run_batch(args, &arm, path),
+        None => run_single(args, &arm),
+    }
+}
+
+/// Builds the solver, checking what depends on the chain (one rate per joint).
+fn solver_for(chain: &Chain, options: SolveOptions) -> Result<Solver, CliError> {
+    if !options.rates.is_empty() && options.rates.len() != chain.len() {
+        return Err(CliError::input(format!(
+            "--rates: expected {} values (one per joint), got {}",
+            chain.len(),
+            options.rates.len()
+        )));
+    }
+    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
+}
+
+fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
+    let [x, y] = args.goal.expect("clap requires --goal without --batch");
+    let goal = make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
+    let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
+    let options = args.solver.resolve(&arm.solver, Some(every))?;
+    let mut solver = solver_for(&arm.chain, options)?;
+    let started = Instant::now();
+    let outcome = solver
+        .solve(&arm.chain, arm.chain.start_pose(), &goal)
+        .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+    let micros = started.elapsed().as_secs_f64() * 1e6;
+    let report = Report { arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
+    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() { Format::Text } else { Format::Json });
+    output::stdout(|w| match format {
+        Format::Json => {
+            serde_json::to_writer_pretty(&mut *w, &report.json())?;
+            writeln!(w)
+        }
+        Format::Csv => report.csv(w),
+        Format::Text => report.text(w),
+    })
+}
+
+fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
+    match angle_deg {
+        None => Goal::position(x, y),
+        Some(a) => Goal::with_orientation(x, y, a.to_radians()),
+    }
+    .map_err(|e| e.to_string())
+}
+
+/// A finished single solve and what it needs to be described.
+struct Report<'a> {
+    arm: &'a Arm,
+    options: &'a SolveOptions,
+    goal: &'a Goal,
+    outcome: &'a Outcome,
+    micros: f64,
+}
+
+#[derive(Serialize)]
+struct GoalJson {
+    x: f64,
+    y: f64,
+    angle_deg: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct TipJson {
+    x: f64,
+    y: f64,
+    angle_deg: f64,
+}
+
+#[derive(Serialize)]
+struct FrameJson {
+    iteration: u32,
+    angles_deg: Vec<f64>,
+    joints: Vec<[f64; 2]>,
+}
+
+#[derive(Serialize)]
+struct SolveJson<'a> {
+    arm: &'a str,
+    method: &'static str,
+    limits: bool,
+    goal: GoalJson,
+    status: &'static str,
+    iterations: u32,
+    error: f64,
+    angle_error_deg: f64,
+    tolerance: f64,
+    solve_us: f64,
+    end_effector: TipJson,
+    angles_deg: Vec<f64>,
+    joints: Vec<[f64; 2]>,
+    frames: Vec<FrameJson>,
+}
+
+fn degrees(angles: &[f64]) -> Vec<f64> {
+    angles.iter().map(|a| a.to_degrees()).collect()
+}
+
+fn points(joints: &[ikarus::Point2<f64>]) -> Vec<[f64; 2]> {
+    joints.iter().map(|p| [p.x, p.y]).collect()
+}
+
+impl Report<'_> {
+    fn json(&self) -> SolveJson<'_> {
+        let o = self.outcome;
+        let target = self.goal.target();
+        let joints = points(&ikarus::kinematics::joint_positions(&self.arm.chain, o.pose.angles()));
+        SolveJson {
+            arm: &self.arm.name,
+            method: self.options.method.name(),
+            limits: self.options.limits == ikarus::LimitMode::Clamp,
+            goal: GoalJson { x: target.x, y: target.y, angle_deg: self.goal.orientation().map(f64::to_degrees) },
+            status: o.status.as_str(),
+            iterations: o.iterations,
+            error: o.error,
+            angle_error_deg: o.angle_error.to_degrees(),
+            tolerance: self.options.tolerance,
+            solve_us: self.micros,
+            end_effector: TipJson {
+                x: o.end_effector.position.x,
+                y: o.end_effector.position.y,
+                angle_deg: o.end_effector.orientation.to_degrees(),
+            },
+            angles_deg: degrees(o.pose.angles()),
+            joints,
+            frames: o
+                .frames
+                .iter()
+                .map(|f| FrameJson { iteration: f.iteration, angles_deg: degrees(f.angles), joints: points(f.joints) })
+                .collect(),
+        }
+    }
+
+    fn csv(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        let n = self.arm.chain.len();
+        let mut header = vec!["iteration".to_owned()];
+        header.extend((1..=n).map(|i| format!("theta{i}_deg")));
+        for k in 0..=n {
+            header.push(format!("x{k}"));
+            header.push(format!("y{k}"));
+        }
+        writeln!(w, "{}", header.join(","))?;
+        for f in self.outcome.frames.iter() {
+            write!(w, "{}", f.iteration)?;
+            for a in f.angles {
+                write!(w, ",{}", a.to_degrees())?;
+            }
+            for p in f.joints {
+                write!(w, ",{},{}", p.x, p.y)?;
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    }
+
+    fn text(&self, w: &mut dyn Write) -> std::io::Result<()> {
+        let o = self.outcome;
+        let opts = self.options;
+        let target = self.goal.target();
+        let goal_angle = self.goal.orientation().map_or(String::new(), |a| format!(" at {:.3}°", a.to_degrees()));
+        let limits = match (opts.limits == ikarus::LimitMode::Clamp, self.arm.chain.has_limits()) {
+            (true, _) => "on (clamped)",
+            (false, true) => "off (the arm has ranges: --limits enforces them)",
+            (false, false) => "off",
+        };
+        writeln!(w, "arm       {} ({} links, reach {})", self.arm.name, self.arm.chain.len(), self.arm.chain.max_reach())?;
+        writeln!(w, "goal      ({}, {}){goal_angle}", target.x, target.y)?;
+        writeln!(w, "method    {}   limits {limits}", opts.method.name())?;
+        writeln!(w, "status    {} after {} iterations ({:.1} µs)", o.status, o.iterations, self.micros)?;
+        write!(w, "error     {:.3e} (tolerance {:e})", o.error, opts.tolerance)?;
+        if self.goal.orientation().is_some() {
+            write!(w, ", orientation {:.3e}°", o.angle_error.to_degrees())?;
+        }
+        writeln!(w)?;
+        let tip = o.end_effector;
+        writeln!(
+            w,
+            "tip       ({:.6}, {:.6}) pointing {:.3}°",
+            tip.position.x,
+            tip.position.y,
+            tip.orientation.to_degrees()
+        )?;
+        let angles: Vec<String> = o.pose.angles().iter().map(|a| format!("{:.3}°", a.to_degrees())).collect();
+        writeln!(w, "angles    {}", angles.join(", "))?;
+        let joints = ikarus::kinematics::joint_positions(&self.arm.chain, o.pose.angles());
+        let joints: Vec<String> = joints.iter().map(|p| format!("({:.3}, {:.3})", p.x, p.y)).collect();
+        writeln!(w, "joints    {}", joints.join(" → "))?;
+        if let Some(k) = opts.record_every {
+            writeln!(w, "frames    {} recorded (every {k} iterations; --format json or csv lists them)", o.frames.len())?;
+        }
+        Ok(())
+    }
+}
+
+/// One goal of a batch file, as written (for echoing) and as a library goal.
+struct BatchGoal {
+    x: f64,
+    y: f64,
+    goal: Goal,
+}
+
+fn read_goals(path: &Path) -> Result<Vec<BatchGoal>, CliError> {
+    let label = format!("batch file {}", path.display());
+    let text = std::fs::read(path).map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
+    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
+    let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
+    let names: Vec<&str> = headers.iter().collect();
+    let with_angle = match names[..] {
+        ["x", "y"] => false,
+        ["x", "y", "angle_deg"] => true,
+        _ => {
+            return Err(CliError::input(format!(
+                "{label}: header must be `x,y` or `x,y,angle_deg`, got `{}`",
+                names.join(",")
+            )));
+        }
+    };
+    let mut goals = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let field = |i: usize, name: &str| {
+            parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}: {name}: {m}")))
+        };
+        let (x, y) = (field(0, "x")?, field(1, "y")?);
+        let angle = if with_angle { Some(field(2, "angle_deg")?) } else { None };
+        let goal = make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
+        goals.push(BatchGoal { x, y, goal });
+    }
+    if goals.is_empty() {
+        return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
+    }
+    Ok(goals)
+}
+
+/// What one solve of a batch produced.
+struct BatchRow {
+    status: Status,
+    error: f64,
+    iterations: u32,
+    angles: Vec<f64>,
+    micros: f64,
+}
+
+/// The batch summary, also written by `--summary-json`.
+#[derive(Debug, Serialize)]
+struct Summary {
+    goals: usize,
+    reached: usize,
+    reached_percent: f64,
+    median_us: f64,
+    p99_us: f64,
+    threads: usize,
+    method: &'static str,
+}
+
+fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
+    let goals = read_goals(path)?;
+    let options = args.solver.resolve(&arm.solver, None)?;
+    let solver = solver_for(&arm.chain, options)?;
+    let pending = args.summary_json.as_deref().map(|p| PendingFile::create(p, "--summary-json")).transpose()?;
+    let threads = args.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::runtime(format!("cannot start {threads} threads: {e}")))?;
+
+    let progress = if std::io::stderr().is_terminal() && goals.len() >= PROGRESS_MIN_GOALS {
+        let bar = ProgressBar::with_draw_target(Some(goals.len() as u64), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} solving {pos}/{len} goals [{bar:30}] {eta}")
+                .expect("static template")
+                .progress_chars("=> "),
+        );
+        Some(bar)
+    } else {
+        None
+    };
+
+    let chain = &arm.chain;
+    let rows: Vec<BatchRow> = pool.install(|| {
+        goals
+            .par_iter()
+            .map_init(
+                || (solver.clone(), Outcome::default()),
+                |(solver, out), g| {
+                    let started = Instant::now();
+                    let result = solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out);
+                    let micros = started.elapsed().as_secs_f64() * 1e6;
+                    if let Some(bar) = &progress {
+                        bar.inc(1);
+                    }
+                    result.map(|()| BatchRow {
+                        status: out.status,
+                        error: out.error,
+                        iterations: out.iterations,
+                        angles: out.pose.angles().to_vec(),
+                        micros,
+                    })
+                },
+            )
+            .collect::<Result<_, _>>()
+    })
+    .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+
+    output::stdout(|w| {
+        let n = chain.len();
+        let thetas: Vec<String> = (1..=n).map(|i| format!("theta{i}_deg")).collect();
+        writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
+        for (g, r) in goals.iter().zip(&rows) {
+            write!(w, "{},{},{},{},{}", g.x, g.y, r.status, r.error, r.iterations)?;
+            for a in &r.angles {
+                write!(w, ",{}", a.to_degrees())?;
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    })?;
+
+    let summary = summarise(&rows, threads, solver.options().method.name());
+    eprintln!(
+        "batch: {} goals, {} reached ({:.1}%), median {:.2} µs, p99 {:.2} µs per solve, {} threads",
+        summary.goals, summary.reached, summary.reached_percent, summary.median_us, summary.p99_us, summary.threads
+    );
+    if let Some(file) = pending {
+        let mut bytes = serde_json::to_vec_pretty(&summary).expect("summary serialises");
+        bytes.push(b'\n');
+        file.commit(&bytes)?;
+    }
+    Ok(())
+}
+
+fn summarise(rows: &[BatchRow], threads: usize, method: &'static str) -> Summary {
+    let mut micros: Vec<f64> = rows.iter().map(|r| r.micros).collect();
+    micros.sort_by(f64::total_cmp);
+    let reached = rows.iter().filter(|r| r.status == Status::Reached).count();
+    Summary {
+        goals: rows.len(),
+        reached,
+        reached_percent: 100.0 * reached as f64 / rows.len() as f64,
+        median_us: median(&micros),
+        p99_us: nearest_rank(&micros, 0.99),
+        threads,
+        method,
+    }
+}
+
+/// Median of sorted, non-empty `v` (the mean of the middle two for an even count).
+fn median(v: &[f64]) -> f64 {
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
+}
+
+/// The `q` quantile of sorted, non-empty `v` by the nearest-rank method.
+fn nearest_rank(v: &[f64], q: f64) -> f64 {
+    let rank = (q * v.len() as f64).ceil() as usize;
+    v[rank.clamp(1, v.len()) - 1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_and_p99() {
+        assert_eq!(median(&[1.0, 2.0, 3.0]), 2.0);
+        assert_eq!(median(&[1.0, 2.0, 3.0, 10.0]), 2.5);
+        let v: Vec<f64> = (1..=200).map(f64::from).collect();
+        assert_eq!(nearest_rank(&v, 0.99), 198.0);
+        assert_eq!(nearest_rank(&[5.0], 0.99), 5.0);
+    }
+}
