@@ -259,9 +259,15 @@ mod tests {
                 "arm file a.toml: links[0].limits_deg = [45, -45]: min must not exceed max",
             ),
             ("name = \"x\"\n", "arm file a.toml: links: an arm needs at least one [[links]] entry"),
-            ("base = [nan, 0]\n[[links]]\nlength = 1\n", "arm file a.toml: base = [NaN, 0]: coordinates must be finite"),
+            (
+                "base = [nan, 0]\n[[links]]\nlength = 1\n",
+                "arm file a.toml: base = [NaN, 0]: coordinates must be finite",
+            ),
             ("[[links]]\nlength = 1\n[solver]\nlambda = -1\n", "arm file a.toml: [solver].lambda = -1: must be"),
-            ("[[links]]\nlength = 1\n[solver]\nmethod = \"newton\"\n", "arm file a.toml: line 4, column 10: unknown variant"),
+            (
+                "[[links]]\nlength = 1\n[solver]\nmethod = \"newton\"\n",
+                "arm file a.toml: line 4, column 10: unknown variant",
+            ),
             ("[[links]]\nlength = \"1\"\n", "arm file a.toml: line 2, column 10: invalid type"),
             ("[[links]\n", "arm file a.toml: line 1"),
         ];

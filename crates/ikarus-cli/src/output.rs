@@ -33,7 +33,8 @@ pub struct PendingFile {
 impl PendingFile {
     /// Prepares to write `target`; `flag` names the option in error messages.
     pub fn create(target: &Path, flag: &'static str) -> Result<Self, CliError> {
-        let unwritable = |reason: String| CliError::runtime(format!("{flag} {}: cannot write: {reason}", target.display()));
+        let unwritable =
+            |reason: String| CliError::runtime(format!("{flag} {}: cannot write: {reason}", target.display()));
         if target.is_dir() {
             return Err(unwritable("is a directory".to_owned()));
         }
@@ -53,7 +54,8 @@ impl PendingFile {
     pub fn commit(mut self, bytes: &[u8]) -> Result<(), CliError> {
         let target = self.target.clone();
         let flag = self.flag;
-        let fail = |e: io::Error| CliError::runtime(format!("{flag} {}: cannot write: {}", target.display(), io_reason(&e)));
+        let fail =
+            |e: io::Error| CliError::runtime(format!("{flag} {}: cannot write: {}", target.display(), io_reason(&e)));
         self.temp.write_all(bytes).and_then(|()| self.temp.as_file().sync_all()).map_err(fail)?;
         self.temp.persist(&self.target).map_err(|e| fail(e.error))?;
         Ok(())

@@ -58,10 +58,10 @@ pub struct SolveArgs {
     #[arg(long, value_name = "GOALS.csv", conflicts_with = "goal")]
     pub batch: Option<PathBuf>,
     /// Threads for --batch [default: all cores]
-    #[arg(long, value_name = "N", requires = "batch", value_parser = parse_threads)]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Also write the batch summary as JSON to PATH
-    #[arg(long, value_name = "PATH", requires = "batch")]
+    #[arg(long, value_name = "PATH")]
     pub summary_json: Option<PathBuf>,
 }
 
@@ -71,6 +71,14 @@ fn parse_threads(s: &str) -> Result<usize, String> {
 }
 
 pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+    if args.batch.is_none() {
+        if let Some(n) = args.threads {
+            return Err(CliError::input(format!("--threads {n}: only applies with --batch")));
+        }
+        if let Some(p) = &args.summary_json {
+            return Err(CliError::input(format!("--summary-json {}: only applies with --batch", p.display())));
+        }
+    }
     let arm = Arm::load(args.arm.as_deref())?;
     match &args.batch {
         Some(path) => run_batch(args, &arm, path),
@@ -240,7 +248,13 @@ impl Report<'_> {
             (false, true) => "off (the arm has ranges: --limits enforces them)",
             (false, false) => "off",
         };
-        writeln!(w, "arm       {} ({} links, reach {})", self.arm.name, self.arm.chain.len(), self.arm.chain.max_reach())?;
+        writeln!(
+            w,
+            "arm       {} ({} links, reach {})",
+            self.arm.name,
+            self.arm.chain.len(),
+            self.arm.chain.max_reach()
+        )?;
         writeln!(w, "goal      ({}, {}){goal_angle}", target.x, target.y)?;
         writeln!(w, "method    {}   limits {limits}", opts.method.name())?;
         writeln!(w, "status    {} after {} iterations ({:.1} µs)", o.status, o.iterations, self.micros)?;
@@ -263,7 +277,11 @@ impl Report<'_> {
         let joints: Vec<String> = joints.iter().map(|p| format!("({:.3}, {:.3})", p.x, p.y)).collect();
         writeln!(w, "joints    {}", joints.join(" → "))?;
         if let Some(k) = opts.record_every {
-            writeln!(w, "frames    {} recorded (every {k} iterations; --format json or csv lists them)", o.frames.len())?;
+            writeln!(
+                w,
+                "frames    {} recorded (every {k} iterations; --format json or csv lists them)",
+                o.frames.len()
+            )?;
         }
         Ok(())
     }
@@ -355,30 +373,31 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     };
 
     let chain = &arm.chain;
-    let rows: Vec<BatchRow> = pool.install(|| {
-        goals
-            .par_iter()
-            .map_init(
-                || (solver.clone(), Outcome::default()),
-                |(solver, out), g| {
-                    let started = Instant::now();
-                    let result = solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out);
-                    let micros = started.elapsed().as_secs_f64() * 1e6;
-                    if let Some(bar) = &progress {
-                        bar.inc(1);
-                    }
-                    result.map(|()| BatchRow {
-                        status: out.status,
-                        error: out.error,
-                        iterations: out.iterations,
-                        angles: out.pose.angles().to_vec(),
-                        micros,
-                    })
-                },
-            )
-            .collect::<Result<_, _>>()
-    })
-    .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+    let rows: Vec<BatchRow> = pool
+        .install(|| {
+            goals
+                .par_iter()
+                .map_init(
+                    || (solver.clone(), Outcome::default()),
+                    |(solver, out), g| {
+                        let started = Instant::now();
+                        let result = solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out);
+                        let micros = started.elapsed().as_secs_f64() * 1e6;
+                        if let Some(bar) = &progress {
+                            bar.inc(1);
+                        }
+                        result.map(|()| BatchRow {
+                            status: out.status,
+                            error: out.error,
+                            iterations: out.iterations,
+                            angles: out.pose.angles().to_vec(),
+                            micros,
+                        })
+                    },
+                )
+                .collect::<Result<_, _>>()
+        })
+        .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }
