@@ -21,6 +21,9 @@ const DEFAULT_RECORD_EVERY: u32 = 20;
 /// Batches at least this large show a progress bar (when stderr is a terminal).
 const PROGRESS_MIN_GOALS: usize = 20_000;
 
+// Floats in CSV are written with `{:?}`: the shortest text that reads back to the same
+// number, in scientific notation where that is shorter (1.2e-7, not 0.00000012).
+
 /// Output format of a single solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -228,10 +231,10 @@ impl Report<'_> {
         for f in self.outcome.frames.iter() {
             write!(w, "{}", f.iteration)?;
             for a in f.angles {
-                write!(w, ",{}", a.to_degrees())?;
+                write!(w, ",{:?}", a.to_degrees())?;
             }
             for p in f.joints {
-                write!(w, ",{},{}", p.x, p.y)?;
+                write!(w, ",{:?},{:?}", p.x, p.y)?;
             }
             writeln!(w)?;
         }
@@ -407,9 +410,9 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
         let thetas: Vec<String> = (1..=n).map(|i| format!("theta{i}_deg")).collect();
         writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
         for (g, r) in goals.iter().zip(&rows) {
-            write!(w, "{},{},{},{},{}", g.x, g.y, r.status, r.error, r.iterations)?;
+            write!(w, "{:?},{:?},{},{:?},{}", g.x, g.y, r.status, r.error, r.iterations)?;
             for a in &r.angles {
-                write!(w, ",{}", a.to_degrees())?;
+                write!(w, ",{:?}", a.to_degrees())?;
             }
             writeln!(w)?;
         }
@@ -417,9 +420,11 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     })?;
 
     let summary = summarise(&rows, threads, solver.options().method.name());
+    // Truncated, not rounded: 9999 of 10000 must not read as 100%.
+    let percent = (summary.reached_percent * 100.0).floor() / 100.0;
     eprintln!(
-        "batch: {} goals, {} reached ({:.1}%), median {:.2} µs, p99 {:.2} µs per solve, {} threads",
-        summary.goals, summary.reached, summary.reached_percent, summary.median_us, summary.p99_us, summary.threads
+        "batch: {} goals, {} reached ({percent:.2}%), median {:.2} µs, p99 {:.2} µs per solve, {} threads",
+        summary.goals, summary.reached, summary.median_us, summary.p99_us, summary.threads
     );
     if let Some(file) = pending {
         let mut bytes = serde_json::to_vec_pretty(&summary).expect("summary serialises");

@@ -183,13 +183,13 @@ fn batch_mode() {
     assert_eq!(lines[0], "x,y,status,error,iterations,theta1_deg,theta2_deg,theta3_deg");
     assert_eq!(lines.len(), 52, "a header and one row per goal");
     let last: Vec<&str> = lines[51].split(',').collect();
-    assert_eq!(&last[..3], &["10", "0", "unreachable"]);
+    assert_eq!(&last[..3], &["10.0", "0.0", "unreachable"]);
     let reached = lines[1..].iter().filter(|l| l.split(',').nth(2) == Some("reached")).count();
     assert_eq!(reached, 50);
 
     let err = stderr(&o);
     assert_eq!(err.lines().count(), 1, "one summary line: {err}");
-    assert!(err.contains("51 goals, 50 reached (98.0%)") && err.contains("2 threads"), "{err}");
+    assert!(err.contains("51 goals, 50 reached (98.03%)") && err.contains("2 threads"), "{err}");
     let s: Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
     assert_eq!(s["goals"], 51);
     assert_eq!(s["reached"], 50);

@@ -50,3 +50,8 @@ pub use solve::{
 
 /// Re-exported so that callers can name the point type without depending on nalgebra.
 pub use nalgebra::Point2;
+
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

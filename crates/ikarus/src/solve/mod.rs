@@ -341,7 +341,9 @@ impl std::fmt::Display for Status {
 /// The result of a solve.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outcome {
-    /// The final (best) pose.
+    /// The final pose. With backtracking on (the default) every accepted step lowers the
+    /// error, so it is also the best pose of the solve; with `backtrack: 0` it is simply where
+    /// the last step landed.
     pub pose: Pose,
     /// Why the solve ended.
     pub status: Status,

@@ -1,0 +1,154 @@
+//! Hot loops do not allocate: once a [`Solver`] and an [`Outcome`] have been used for a chain of
+//! this size, `solve_into` allocates nothing, however many iterations it runs, and with frame
+//! recording when the outcome's frame buffers are already large enough.
+//!
+//! A counting global allocator (a thin wrapper over the system allocator) counts the calls that
+//! obtain memory, per thread, so tests running in parallel do not disturb each other.
+
+// The one place in the workspace that needs `unsafe`: implementing `GlobalAlloc`.
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use ikarus::{Chain, Goal, Link, Method, Outcome, SolveOptions, Solver, Status};
+
+struct Counting;
+
+thread_local! {
+    // A const-initialised `Cell` needs no allocation and no destructor, so the allocator may
+    // touch it at any time.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: during thread teardown the slot may be gone; those calls are not ours.
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+// SAFETY: every method forwards to `System` with the caller's arguments unchanged, so the
+// `GlobalAlloc` contract is upheld exactly as `System` upholds it; counting touches no memory
+// that the allocator hands out.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: forwarded unchanged.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: forwarded unchanged.
+        unsafe { System.alloc_zeroed(layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: forwarded unchanged.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded unchanged.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by this thread while running `f`.
+fn allocations_in<R>(f: impl FnOnce() -> R) -> (usize, R) {
+    let before = ALLOCATIONS.with(Cell::get);
+    let r = f();
+    (ALLOCATIONS.with(Cell::get) - before, r)
+}
+
+/// A 7-link arm of unit links, folded a little at every joint.
+fn seven_links() -> Chain {
+    let links: Vec<Link> = (0..7).map(|i| Link::new(1.0, if i % 2 == 0 { 0.3 } else { -0.2 })).collect();
+    Chain::new([0.0, 0.0], &links).unwrap()
+}
+
+/// Options that run exactly 500 iterations on a goal out of reach: no stall detection, no line
+/// search (which would stop once no step helps).
+fn long_solve(method: Method, record_every: Option<u32>) -> SolveOptions {
+    SolveOptions {
+        method,
+        tolerance: f64::MIN_POSITIVE,
+        angle_tolerance: f64::MIN_POSITIVE,
+        max_iterations: 500,
+        stall: None,
+        backtrack: 0,
+        record_every,
+        ..SolveOptions::default()
+    }
+}
+
+#[test]
+fn the_counter_sees_allocations() {
+    let (n, v) = allocations_in(|| vec![1u8; 64]);
+    assert_eq!(v.len(), 64);
+    assert!(n >= 1, "the counting allocator is not in use");
+}
+
+/// A warmed-up solver and outcome: 500 iterations on 7 links allocate nothing, for every method.
+#[test]
+fn many_iterations_allocate_nothing() {
+    let chain = seven_links();
+    let goal = Goal::position(9.0, 1.0).unwrap(); // the reach is 7
+    for method in Method::ALL {
+        let mut solver = Solver::new(long_solve(method, None)).unwrap();
+        let mut out = Outcome::default();
+        solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out).unwrap(); // warm-up
+        let (n, r) = allocations_in(|| solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out));
+        r.unwrap();
+        assert_eq!(out.iterations, 500, "{method:?}: {out:?}");
+        assert_eq!(out.status, Status::Unreachable);
+        assert_eq!(n, 0, "{method:?}: {n} allocations in a warmed-up solve");
+
+        // A reachable goal with an orientation, from another start: still nothing.
+        let other = Goal::with_orientation(-2.0, 4.0, 1.0).unwrap();
+        let (n, r) = allocations_in(|| solver.solve_into(&chain, &[0.1; 7], &other, &mut out));
+        r.unwrap();
+        assert_eq!(n, 0, "{method:?}: {n} allocations for another goal");
+    }
+}
+
+/// The line search (on by default) shares the scratch buffers: nothing either.
+#[test]
+fn the_line_search_allocates_nothing() {
+    let chain = seven_links();
+    for method in Method::ALL {
+        let opts = SolveOptions { backtrack: 10, ..long_solve(method, None) };
+        let mut solver = Solver::new(opts).unwrap();
+        let mut out = Outcome::default();
+        // Out of reach, so steps keep failing the sufficient-decrease test and get halved.
+        let goal = Goal::position(9.0, 1.0).unwrap();
+        solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out).unwrap();
+        let (n, r) = allocations_in(|| solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out));
+        r.unwrap();
+        assert!(out.iterations > 0);
+        assert_eq!(n, 0, "{method:?}: {n} allocations with the line search");
+    }
+}
+
+/// Recording frames reuses the outcome's frame buffers: after an identical solve (501 frames),
+/// recording every iteration allocates nothing.
+#[test]
+fn recording_frames_into_grown_buffers_allocates_nothing() {
+    let chain = seven_links();
+    let goal = Goal::position(9.0, 1.0).unwrap();
+    for every in [1, 7] {
+        let mut solver = Solver::new(long_solve(Method::Transpose, Some(every))).unwrap();
+        let mut out = Outcome::default();
+        // The first solve grows the buffers, and the counter sees it.
+        let (cold, r) = allocations_in(|| solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out));
+        r.unwrap();
+        assert!(cold > 0);
+        let (n, r) = allocations_in(|| solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out));
+        r.unwrap();
+        assert_eq!(out.frames.len(), 500 / every as usize + 1 + usize::from(500 % every != 0));
+        assert_eq!(n, 0, "record_every {every}: {n} allocations");
+    }
+}

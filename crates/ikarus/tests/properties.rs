@@ -1,0 +1,221 @@
+//! Invariants of a solve over random valid chains, limits, goals, start poses and options.
+
+use std::f64::consts::PI;
+
+use ikarus::kinematics::{end_effector, joint_positions};
+use ikarus::{
+    Chain, Goal, JointLimits, LimitMode, Link, Method, Outcome, SolveOptions, Solver, StallDetection, Status,
+};
+use proptest::prelude::*;
+use proptest::test_runner::{Config, FileFailurePersistence};
+
+/// One joint: length, start angle, optional limits `[lo, lo + width]`.
+fn link() -> impl Strategy<Value = Link> {
+    (0.01f64..10.0, -2.0 * PI..2.0 * PI, prop::option::of((-4.0f64..4.0, 0.0f64..4.0))).prop_map(
+        |(length, angle, limits)| match limits {
+            None => Link::new(length, angle),
+            Some((lo, width)) => {
+                let lim = JointLimits::new(lo, lo + width).unwrap();
+                Link::new(length, lim.clamp(angle)).with_limits(lim)
+            }
+        },
+    )
+}
+
+fn chain() -> impl Strategy<Value = Chain> {
+    (prop::collection::vec(link(), 1..=20), -5.0f64..5.0, -5.0f64..5.0)
+        .prop_map(|(links, x, y)| Chain::new([x, y], &links).unwrap())
+}
+
+/// A goal relative to the chain's base: near or inside the reach (`radius` in units of the
+/// reach, up to 1.5), or anywhere in a box far beyond it; with or without an orientation.
+#[derive(Debug, Clone)]
+enum GoalSpec {
+    Near { radius: f64, direction: f64 },
+    Far { x: f64, y: f64 },
+}
+
+fn goal_spec() -> impl Strategy<Value = (GoalSpec, Option<f64>)> {
+    let spec = prop_oneof![
+        3 => (0.0f64..1.5, -PI..PI).prop_map(|(radius, direction)| GoalSpec::Near { radius, direction }),
+        1 => (-1e4f64..1e4, -1e4f64..1e4).prop_map(|(x, y)| GoalSpec::Far { x, y }),
+    ];
+    (spec, prop::option::of(-10.0f64..10.0))
+}
+
+fn make_goal(chain: &Chain, (spec, orientation): &(GoalSpec, Option<f64>)) -> Goal {
+    let base = chain.base();
+    let (x, y) = match *spec {
+        GoalSpec::Near { radius, direction } => {
+            let r = radius * chain.max_reach();
+            (base.x + r * direction.cos(), base.y + r * direction.sin())
+        }
+        GoalSpec::Far { x, y } => (x, y),
+    };
+    match orientation {
+        None => Goal::position(x, y).unwrap(),
+        Some(phi) => Goal::with_orientation(x, y, *phi).unwrap(),
+    }
+}
+
+/// Log-uniform in `[10^lo, 10^hi]`.
+fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo..=hi).prop_map(|e| 10f64.powf(e))
+}
+
+prop_compose! {
+    fn options()(
+        method in prop::sample::select(Method::ALL.to_vec()),
+        lambda in 0.0f64..=2.0,
+        tolerance in log_uniform(-9.0, -1.0),
+        angle_tolerance in log_uniform(-9.0, -1.0),
+        orientation_weight in log_uniform(-2.0, 1.0),
+        max_iterations in 0u32..300,
+        gain in 0.1f64..2.0,
+        max_step in prop::option::of(0.01f64..3.0),
+        backtrack in prop_oneof![Just(0u32), 1u32..12],
+        singular_threshold in prop_oneof![Just(0.0), log_uniform(-12.0, -3.0)],
+        stall in prop::option::of((0.0f64..1e-6, 1u32..20)),
+        record_every in prop::option::of(1u32..50),
+        clamp in any::<bool>(),
+    ) -> SolveOptions {
+        SolveOptions {
+            method,
+            lambda,
+            tolerance,
+            angle_tolerance,
+            orientation_weight,
+            max_iterations,
+            gain,
+            max_step,
+            backtrack,
+            singular_threshold,
+            stall: stall.map(|(epsilon, window)| StallDetection { epsilon, window }),
+            record_every,
+            limits: if clamp { LimitMode::Clamp } else { LimitMode::Ignore },
+            ..SolveOptions::default()
+        }
+    }
+}
+
+/// Chain, goal, options, per-joint rates (possibly none) and a start pose that may lie outside
+/// the limits (the solver clamps it).
+fn case() -> impl Strategy<Value = (Chain, Goal, SolveOptions, Vec<f64>)> {
+    chain().prop_flat_map(|chain| {
+        let n = chain.len();
+        (
+            Just(chain),
+            goal_spec(),
+            options(),
+            prop::option::of(prop::collection::vec(0.0f64..2.0, n)),
+            prop::option::of(prop::collection::vec(-10.0f64..10.0, n)),
+        )
+            .prop_map(|(chain, goal, mut opts, rates, start)| {
+                let goal = make_goal(&chain, &goal);
+                opts.rates = rates.unwrap_or_default();
+                let start = start.unwrap_or_else(|| chain.start_pose().angles().to_vec());
+                (chain, goal, opts, start)
+            })
+    })
+}
+
+/// 256 cases (about two seconds in a debug build) unless `PROPTEST_CASES` says otherwise.
+fn config() -> Config {
+    let cases = std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(256);
+    Config { cases, failure_persistence: Some(Box::new(FileFailurePersistence::Off)), ..Config::default() }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn a_solve_keeps_its_promises((chain, goal, opts, start) in case()) {
+        let mut solver = Solver::new(opts.clone()).unwrap();
+        let mut out = Outcome::default();
+        solver.solve_into(&chain, &start, &goal, &mut out).unwrap();
+        let n = chain.len();
+        let scale = 1.0 + chain.max_reach() + (goal.target() - chain.base()).norm();
+
+        // Finite numbers everywhere.
+        prop_assert_eq!(out.pose.angles().len(), n);
+        prop_assert!(out.pose.angles().iter().all(|a| a.is_finite()), "{:?}", out.pose);
+        prop_assert!(out.error.is_finite() && out.error >= 0.0);
+        prop_assert!(out.angle_error.is_finite() && (0.0..=PI).contains(&out.angle_error));
+        prop_assert!(out.end_effector.position.x.is_finite() && out.end_effector.position.y.is_finite());
+        prop_assert!(out.end_effector.orientation.is_finite());
+
+        // Bounded, and the numbers describe the final pose.
+        prop_assert!(out.iterations <= opts.max_iterations);
+        let ee = end_effector(&chain, out.pose.angles());
+        prop_assert!((ee.position - out.end_effector.position).norm() <= 1e-9 * scale);
+        prop_assert!((out.error - (ee.position - goal.target()).norm()).abs() <= 1e-9 * scale);
+        if goal.orientation().is_none() {
+            prop_assert_eq!(out.angle_error, 0.0);
+        }
+
+        // The status tells the truth.
+        let within = out.error <= opts.tolerance && out.angle_error <= opts.angle_tolerance;
+        prop_assert_eq!(out.status == Status::Reached, within, "{:?}", out);
+        if out.status == Status::Unreachable {
+            prop_assert!(goal.is_out_of_reach(&chain, opts.tolerance));
+        }
+
+        // Clamping keeps every joint, final and recorded, within its limits.
+        if opts.limits == LimitMode::Clamp {
+            for frame_angles in std::iter::once(out.pose.angles()).chain(out.frames.iter().map(|f| f.angles)) {
+                for (a, lim) in frame_angles.iter().zip(chain.limits()) {
+                    if let Some(lim) = lim {
+                        prop_assert!(lim.contains(*a), "{} outside {:?}", a, lim);
+                    }
+                }
+            }
+        }
+
+        // Frames: none unless asked; else from 0 to the last iteration, increasing, each one's
+        // joints the forward kinematics of its angles.
+        match opts.record_every {
+            None => prop_assert!(out.frames.is_empty()),
+            Some(k) => {
+                let iterations: Vec<u32> = out.frames.iter().map(|f| f.iteration).collect();
+                prop_assert_eq!(iterations.first(), Some(&0));
+                prop_assert_eq!(iterations.last(), Some(&out.iterations));
+                prop_assert!(iterations.windows(2).all(|w| w[0] < w[1]));
+                prop_assert!(iterations[..iterations.len() - 1].iter().all(|i| i % k == 0));
+                let last = out.frames.get(out.frames.len() - 1).unwrap();
+                prop_assert_eq!(last.angles, out.pose.angles());
+                for f in out.frames.iter() {
+                    prop_assert!(f.angles.iter().all(|a| a.is_finite()));
+                    let fk = joint_positions(&chain, f.angles);
+                    for (p, q) in f.joints.iter().zip(&fk) {
+                        prop_assert!((p - q).norm() <= 1e-9 * scale);
+                    }
+                }
+            }
+        }
+
+        // With the line search on, every accepted step lowers the task error, so the final error
+        // never exceeds the (clamped) start's.
+        if opts.backtrack > 0 {
+            let mut first = start.clone();
+            if opts.limits == LimitMode::Clamp {
+                for (a, lim) in first.iter_mut().zip(chain.limits()) {
+                    if let Some(lim) = lim {
+                        *a = lim.clamp(*a);
+                    }
+                }
+            }
+            let task_error = |angles: &[f64]| {
+                let ee = end_effector(&chain, angles);
+                let d = (ee.position - goal.target()).norm();
+                let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * ikarus::solve::wrap_angle(g - ee.orientation));
+                d * d + turn * turn
+            };
+            let (before, after) = (task_error(&first), task_error(out.pose.angles()));
+            prop_assert!(after <= before * (1.0 + 1e-12) + 1e-18, "{} > {}", after, before);
+        }
+
+        // The same solve again, on the reused solver and outcome, is bit for bit the same.
+        let again = solver.solve(&chain, &chain.pose(start.clone(), false).unwrap(), &goal).unwrap();
+        prop_assert_eq!(&again, &out);
+    }
+}
