@@ -10,24 +10,9 @@ use std::f64::consts::PI;
 use ikarus::kinematics::end_effector;
 use ikarus::{Chain, Goal, Link, Method, Outcome, SolveOptions, Solver, Status};
 
-/// SplitMix64 (Steele, Lea and Flood 2014): a tiny deterministic generator, enough for tests.
-struct SplitMix64(u64);
+mod common;
 
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * unit
-    }
-}
+use common::SplitMix64;
 
 const GOALS: usize = 200;
 
