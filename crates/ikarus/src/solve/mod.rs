@@ -12,11 +12,17 @@
 //!
 //! `Δθ` is then scaled by [`SolveOptions::gain`] and the per-joint [`SolveOptions::rates`],
 //! capped by [`SolveOptions::max_step`], added to the angles, and the result is clamped into the
-//! joint limits ([`LimitMode::Clamp`]). A backtracking line search ([`SolveOptions::backtrack`])
-//! halves the step until the task error `‖e‖²` drops, so every accepted step improves the pose:
-//! the textbook iteration, which takes every step as computed, can jump by whole turns near a
-//! singular pose and oscillate around goals out of reach. The trial pose's forward kinematics
-//! is the next iteration's, so an accepted first try costs nothing extra.
+//! joint limits ([`LimitMode::Clamp`]).
+//!
+//! A step is accepted only if it lowers the task error `‖e‖²` by at least a tenth of what the
+//! linearisation `J Δθ` predicts (an Armijo test). Pinv and DLS try their own full step once;
+//! if it fails, the steepest-descent (transpose) step is tried instead, halved up to
+//! [`SolveOptions::backtrack`] times, since Gauss–Newton directions are poor where `J` is
+//! nearly singular. The transpose method halves its own step. If nothing passes, the pose
+//! cannot improve and the solve ends [`Status::Stalled`]. The textbook iteration
+//! (`backtrack: 0`) takes every step as computed; from a nearly straight arm it turns joints by
+//! whole revolutions, and it oscillates around goals out of reach. The trial pose's forward
+//! kinematics is the next iteration's, so an accepted first try costs nothing extra.
 //!
 //! The loop stops when the goal is reached, when the pose has stopped moving (stall
 //! detection), or at the iteration cap. Not reaching a goal is not an error: the [`Outcome`]
@@ -198,10 +204,10 @@ pub struct SolveOptions {
     /// 300 random 3-link round trips without it, 32 pinv solves travelled more than a turn; with
     /// it none did, for about one iteration more on average). `None` removes the cap.
     pub max_step: Option<f64>,
-    /// Backtracking line search: when a step does not lower the task error by at least a tenth
-    /// of what the linearisation `J Δθ` predicts, halve it, up to this many times; if no halving helps, the solve ends as [`Status::Stalled`]. `0`
-    /// takes every step as computed (the textbook iteration, which can oscillate or jump
-    /// near singular poses and far goals).
+    /// How many times the line search may halve a step that fails the sufficient-decrease
+    /// test (see the [module docs](self)); when none passes, the solve ends
+    /// [`Status::Stalled`]. `0` takes every step as computed: the textbook iteration, which can
+    /// jump by whole turns near singular poses and oscillate around goals out of reach.
     pub backtrack: u32,
     /// Singular values of `J` below this are treated as zero by [`Method::PseudoInverse`].
     pub singular_threshold: f64,
