@@ -38,10 +38,12 @@
 //! bit for bit.
 
 pub mod chain;
+pub mod ease;
 pub mod kinematics;
 pub mod solve;
 
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
+pub use ease::{Ease, EaseError, ParentEase};
 pub use kinematics::EndEffector;
 pub use solve::{
     Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,
