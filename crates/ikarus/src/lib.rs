@@ -40,6 +40,8 @@
 pub mod chain;
 pub mod ease;
 pub mod kinematics;
+pub mod motion;
+pub mod reach;
 pub mod solve;
 
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};

@@ -1,0 +1,1 @@
+//! Keyframe motion in joint space, re-timed by an ease curve.

@@ -1,0 +1,1 @@
+//! The reachable workspace of a chain.
