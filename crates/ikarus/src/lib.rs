@@ -47,6 +47,7 @@ pub mod solve;
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
 pub use ease::{Ease, EaseError, ParentEase};
 pub use kinematics::EndEffector;
+pub use motion::{Animation, AnimationFrame, MotionError, Timing};
 pub use solve::{
     Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,
     StallDetection, Status,

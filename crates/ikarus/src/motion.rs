@@ -1,1 +1,557 @@
 //! Keyframe motion in joint space, re-timed by an ease curve.
+//!
+//! [`animate`] turns keyframe poses into frames evenly spaced in time; [`animate_solve`] does the
+//! same with the frames a solver recorded. Interpolation happens in joint space, as in the seed
+//! program: every angle moves linearly between keyframes, so the links sweep natural arcs
+//! (interpolating joint *positions* instead would cut corners and stretch the links).
+//!
+//! # The path
+//!
+//! Keyframes `q₀ … q_{K−1}` are poses, one angle per joint. First they are **unwrapped**: an
+//! angle of a joint without limits is moved by a whole number of turns so that it continues the
+//! previous (unwrapped) keyframe the short way round,
+//!
+//! ```text
+//! q_k,i ← q_k,i − 2π·m,   m = ⌈(q_k,i − q_{k−1},i − π) / 2π⌉,   so   q_k,i − q_{k−1},i ∈ (−π, π]
+//! ```
+//!
+//! (an exact half turn goes counter-clockwise; an angle that needs no turn keeps its bits; all of
+//! this up to rounding, which swamps a turn only for angles beyond about 10¹⁵ rad).
+//! A joint with limits is used as given: its range is an interval, and a straight line between
+//! two angles inside it never leaves it, so it takes the long way round when the short way would
+//! cross a limit, and never wraps.
+//!
+//! The path is the polyline through the unwrapped keyframes, with segment lengths, cumulative
+//! lengths and total length
+//!
+//! ```text
+//! l_k = ‖q_{k+1} − q_k‖₂,   C₀ = 0,   C_{k+1} = C_k + l_k,   L = C_{K−1}   (radians).
+//! ```
+//!
+//! # Timing
+//!
+//! [`Timing`] gives the frame count `n` and frame times `t_i` over a duration `T`; the normalised
+//! time of frame `i` is `u_i = t_i / T` and the ease maps it to progress `e(u_i) ∈ [0, 1]`.
+//!
+//! * **Arc length** (no explicit times): the frame is the point of the path at arc length
+//!   `s_i = e(u_i)·L`: with `C_k ≤ s_i < C_{k+1}` and `w = (s_i − C_k) / l_k`, the pose is
+//!   `q_k + w·(q_{k+1} − q_k)`. Zero-length segments are skipped, and a path of length 0 gives a
+//!   still animation. The pose moves along the path at joint-space speed
+//!   `ds/dt = L·e′(u)/T`, which is as continuous as the ease's velocity *at every keyframe too*,
+//!   because the ease is applied once to the whole path. (The seed program applied it per
+//!   segment, with times that ignored each segment's length, so the speed dropped or jumped at
+//!   every keyframe: its "spastic" four-keyframe motion.)
+//! * **Explicit times** `τ₀ = 0 < τ₁ < … < τ_{K−1} = T`: the eased time `τ = e(u_i)·T` is
+//!   interpolated piecewise linearly, keyframe `k` being reached at `τ = τ_k`. The speed on
+//!   segment `k` is `l_k / (τ_{k+1} − τ_k)` times the ease's velocity, so it jumps at a keyframe
+//!   unless the times are proportional to the segment lengths: continuity is the caller's
+//!   business.
+//!
+//! # Guarantees
+//!
+//! * Exactly `n` frames; the first at time 0, the last at exactly `T`.
+//! * The first frame's angles are `keyframes[0]`, bit for bit. The last frame's angles are the
+//!   last unwrapped keyframe: exactly the last keyframe for joints with limits and for joints that
+//!   needed no unwrapping, otherwise a whole number of turns away from it — the same pose, with
+//!   the same joint positions up to rounding.
+//! * Every angle of every frame lies between the two keyframe angles it interpolates, so a joint
+//!   with limits stays inside them. Between two keyframes a joint without limits moves steadily
+//!   one way by at most π, so frames never jump by a turn (unless they are so sparse that one
+//!   frame step passes several keyframes).
+//! * The path has corners at the keyframes. A frame step across a corner where the path turns by
+//!   an angle θ is a chord, shorter than the path it stands for: at least `cos(θ/2)` times its
+//!   length when it spans a single corner. The ease controls the speed along the path.
+
+use std::f64::consts::{PI, TAU};
+
+use nalgebra::Point2;
+use thiserror::Error;
+
+use crate::chain::Chain;
+use crate::ease::Ease;
+use crate::kinematics::joint_positions;
+use crate::solve::Frames;
+
+/// The largest number of frames an animation may have.
+pub const MAX_FRAMES: usize = 100_000;
+
+/// How many frames an animation has and when they fall.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Timing {
+    /// `n ≥ 2` frames in normalised time: frame `i` at `t = i / (n − 1)`, duration 1.
+    Frames(usize),
+    /// `seconds` at `fps` frames per second: `n = round(seconds·fps) + 1` frames, frame `i` at
+    /// `t = i / fps` seconds except the last, which is at exactly `seconds` (so the last interval
+    /// lies between `0.5 / fps` and `1.5 / fps`). Both must be finite and > 0, and
+    /// `seconds·fps ≥ 0.5` so that there are at least two frames.
+    Duration {
+        /// Length of the animation in seconds.
+        seconds: f64,
+        /// Frames per second.
+        fps: f64,
+    },
+}
+
+impl Timing {
+    /// The number of frames, after checking the parameters (see the variants) and that there are
+    /// at most [`MAX_FRAMES`].
+    pub fn frame_count(&self) -> Result<usize, MotionError> {
+        match *self {
+            Timing::Frames(n) => {
+                if n < 2 {
+                    return Err(MotionError::FrameCount { value: n });
+                }
+                if n > MAX_FRAMES {
+                    // Lossy above 2⁵³ frames, which is only ever a typo.
+                    return Err(MotionError::TooManyFrames { field: "frames", frames: n as f64 });
+                }
+                Ok(n)
+            }
+            Timing::Duration { seconds, fps } => {
+                if !(seconds.is_finite() && seconds > 0.0) {
+                    return Err(MotionError::Seconds { value: seconds });
+                }
+                if !(fps.is_finite() && fps > 0.0) {
+                    return Err(MotionError::Fps { value: fps });
+                }
+                let frames = (seconds * fps).round() + 1.0;
+                // Never NaN (both factors are finite and positive); an infinite product is caught here.
+                if frames > MAX_FRAMES as f64 {
+                    return Err(MotionError::TooManyFrames { field: "seconds × fps", frames });
+                }
+                if frames < 2.0 {
+                    return Err(MotionError::TooFewFrames { seconds, fps });
+                }
+                // An integer in [2, MAX_FRAMES]: the cast is exact.
+                Ok(frames as usize)
+            }
+        }
+    }
+
+    /// The duration `T`: 1 for [`Timing::Frames`] (normalised time), `seconds` for
+    /// [`Timing::Duration`]. Not validated; see [`Timing::frame_count`].
+    #[must_use]
+    pub fn duration(&self) -> f64 {
+        match *self {
+            Timing::Frames(_) => 1.0,
+            Timing::Duration { seconds, .. } => seconds,
+        }
+    }
+
+    /// Time of frame `i` of `n` (see the variants).
+    fn time(&self, i: usize, n: usize) -> f64 {
+        match *self {
+            Timing::Frames(_) => i as f64 / (n - 1) as f64,
+            Timing::Duration { seconds, .. } if i + 1 == n => seconds,
+            Timing::Duration { fps, .. } => i as f64 / fps,
+        }
+    }
+}
+
+/// One frame of an [`Animation`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnimationFrame {
+    /// When the frame is shown: normalised time in [0, 1] for [`Timing::Frames`], seconds for
+    /// [`Timing::Duration`].
+    pub time: f64,
+    /// Joint angles, radians, base to tip.
+    pub angles: Vec<f64>,
+    /// Joint positions by forward kinematics of `angles`: base first, tip last (`N + 1` points).
+    pub joints: Vec<Point2<f64>>,
+}
+
+/// Timed frames of a motion, from [`animate`] or [`animate_solve`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Animation {
+    /// The frames in time order; the first at time 0, the last at `duration`.
+    pub frames: Vec<AnimationFrame>,
+    /// The time of the last frame: 1 for [`Timing::Frames`], the seconds for
+    /// [`Timing::Duration`].
+    pub duration: f64,
+    /// The ease the frames were timed with.
+    pub ease: Ease,
+}
+
+/// Why an animation could not be made. Every variant names the field and the offending value.
+///
+/// `field` is `"keyframes"` for [`animate`] and `"frames"` (the recorded frames) for
+/// [`animate_solve`].
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum MotionError {
+    /// No keyframe was given.
+    #[error("keyframes: need at least one keyframe, got none")]
+    NoKeyframes,
+    /// The solve recorded no frames.
+    #[error("frames: the solve recorded no frames (record_every was not set)")]
+    NoRecordedFrames,
+    /// A pose has a different number of angles than the chain has joints.
+    #[error("{field}[{index}]: expected {expected} angles (one per joint), got {got}")]
+    AngleCount {
+        /// `"keyframes"` or `"frames"`.
+        field: &'static str,
+        /// Index of the pose, from 0.
+        index: usize,
+        /// Joints in the chain.
+        expected: usize,
+        /// Angles given.
+        got: usize,
+    },
+    /// An angle is NaN or infinite.
+    #[error("{field}[{index}][{joint}]: must be a finite number, got {value}")]
+    NonFiniteAngle {
+        /// `"keyframes"` or `"frames"`.
+        field: &'static str,
+        /// Index of the pose, from 0.
+        index: usize,
+        /// Index of the joint, from 0.
+        joint: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A keyframe angle lies outside its joint's limits.
+    #[error("keyframes[{index}][{joint}]: {value} rad lies outside the limits [{min}, {max}] rad")]
+    OutsideLimits {
+        /// Index of the keyframe, from 0.
+        index: usize,
+        /// Index of the joint, from 0.
+        joint: usize,
+        /// The offending angle, radians.
+        value: f64,
+        /// Lower limit, radians.
+        min: f64,
+        /// Upper limit, radians.
+        max: f64,
+    },
+    /// The joint-space path up to this pose is too long to represent (angles near `f64::MAX`).
+    #[error("{field}[{index}]: the joint-space path up to this pose is too long to represent, got {length} rad")]
+    PathTooLong {
+        /// `"keyframes"` or `"frames"`.
+        field: &'static str,
+        /// Index of the pose, from 0.
+        index: usize,
+        /// The path length up to it.
+        length: f64,
+    },
+    /// There is not one time per keyframe.
+    #[error("times: expected {expected} values (one per keyframe), got {got}")]
+    TimesLength {
+        /// Keyframes given.
+        expected: usize,
+        /// Times given.
+        got: usize,
+    },
+    /// A time is NaN or infinite.
+    #[error("times[{index}]: must be a finite number, got {value}")]
+    NonFiniteTime {
+        /// Index of the time, from 0.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// The first time is not 0.
+    #[error("times[0]: must be 0, got {value}")]
+    FirstTime {
+        /// The offending value.
+        value: f64,
+    },
+    /// A time is not greater than the one before it.
+    #[error("times[{index}]: must be greater than times[{}] = {previous}, got {value}", index - 1)]
+    TimesNotIncreasing {
+        /// Index of the time, from 1.
+        index: usize,
+        /// The offending value.
+        value: f64,
+        /// The time before it.
+        previous: f64,
+    },
+    /// The last time is not the animation's duration.
+    #[error("times[{index}]: the last time must equal the duration, {duration}, got {value}")]
+    LastTime {
+        /// Index of the last time.
+        index: usize,
+        /// The offending value.
+        value: f64,
+        /// The duration ([`Timing::duration`]).
+        duration: f64,
+    },
+    /// [`Timing::Frames`] with fewer than 2 frames.
+    #[error("frames: must be at least 2, got {value}")]
+    FrameCount {
+        /// The offending value.
+        value: usize,
+    },
+    /// [`Timing::Duration`] with seconds not finite and > 0.
+    #[error("seconds: must be a finite number greater than 0, got {value}")]
+    Seconds {
+        /// The offending value.
+        value: f64,
+    },
+    /// [`Timing::Duration`] with fps not finite and > 0.
+    #[error("fps: must be a finite number greater than 0, got {value}")]
+    Fps {
+        /// The offending value.
+        value: f64,
+    },
+    /// [`Timing::Duration`] so short that it gives a single frame (`seconds·fps < 0.5`).
+    #[error("seconds: {seconds} s at {fps} fps gives a single frame; seconds × fps must be at least 0.5")]
+    TooFewFrames {
+        /// The seconds given.
+        seconds: f64,
+        /// The fps given.
+        fps: f64,
+    },
+    /// More than [`MAX_FRAMES`] frames.
+    #[error("{field}: gives {frames} frames, more than the maximum of {MAX_FRAMES}")]
+    TooManyFrames {
+        /// `"frames"` or `"seconds × fps"`.
+        field: &'static str,
+        /// The number of frames asked for (as a float: it may be infinite).
+        frames: f64,
+    },
+}
+
+/// Interpolates `keyframes` in joint space into the frames of `timing`, eased by `ease`.
+///
+/// See the [module docs](self) for the path, the unwrapping of joints without limits, the two
+/// timings and the guarantees. Without `times`, time is shared out by joint-space arc length and
+/// the speed is continuous at every keyframe. With `times` (one per keyframe, in the unit of
+/// [`Timing::duration`]: normalised for [`Timing::Frames`], seconds for [`Timing::Duration`]),
+/// keyframe `k` is reached at eased time `times[k]`; they must be finite, start at 0, increase
+/// strictly and end at exactly the duration.
+///
+/// One keyframe gives a still animation. Checks, in order: the timing; at least one keyframe;
+/// for each keyframe one finite angle per joint, within that joint's limits; the path length;
+/// the times.
+///
+/// ```
+/// use ikarus::motion::{Timing, animate};
+/// use ikarus::{Chain, Ease, Link};
+///
+/// let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.0), Link::new(2.0, 0.0), Link::new(1.0, 0.0)])?;
+/// let keyframes = vec![vec![0.0, 0.0, 0.0], vec![0.8, 0.6, -0.4], vec![1.2, 1.6, 0.2]];
+/// let timing = Timing::Duration { seconds: 2.0, fps: 30.0 };
+/// let animation = animate(&chain, &keyframes, None, timing, Ease::Sine)?;
+///
+/// assert_eq!(animation.frames.len(), 61);
+/// let last = &animation.frames[60];
+/// assert_eq!((last.time, last.angles.as_slice()), (2.0, &keyframes[2][..]));
+/// assert_eq!(last.joints.len(), 4); // base, two elbows, tip
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn animate(
+    chain: &Chain,
+    keyframes: &[Vec<f64>],
+    times: Option<&[f64]>,
+    timing: Timing,
+    ease: Ease,
+) -> Result<Animation, MotionError> {
+    let n = timing.frame_count()?;
+    if keyframes.is_empty() {
+        return Err(MotionError::NoKeyframes);
+    }
+    for (index, key) in keyframes.iter().enumerate() {
+        check_pose(chain, "keyframes", index, key)?;
+        for (joint, (&value, limits)) in key.iter().zip(chain.limits()).enumerate() {
+            if let Some(lim) = limits.filter(|lim| !lim.contains(value)) {
+                return Err(MotionError::OutsideLimits { index, joint, value, min: lim.min(), max: lim.max() });
+            }
+        }
+    }
+    let path = Path::new(chain, keyframes.iter().map(Vec::as_slice), "keyframes")?;
+    if let Some(times) = times {
+        check_times(times, keyframes.len(), timing.duration())?;
+    }
+    Ok(build(chain, &path, times, timing, n, ease))
+}
+
+/// Re-times the frames a solve recorded into the frames of `timing`, eased by `ease`.
+///
+/// The recorded poses are the keyframes of [`animate`], timed by arc length: a solve that took
+/// 2000 small steps becomes, say, 60 frames spread evenly along the path it took (the many
+/// near-identical poses of its final approach take almost no time). The first frame is the
+/// first recorded pose, the last the last recorded pose (up to whole turns of joints without
+/// limits, see the [module docs](self)).
+///
+/// The recorded angles are not checked against the joint limits: with
+/// [`LimitMode::Clamp`](crate::LimitMode::Clamp) they lie inside them and so does every frame;
+/// a solve that ignored the limits is animated as it went. Joints with limits still never wrap.
+///
+/// Errors if nothing was recorded ([`SolveOptions::record_every`](crate::SolveOptions) was
+/// `None`), if the frames were recorded for a chain with a different number of joints, or if an
+/// angle is not finite.
+pub fn animate_solve(chain: &Chain, frames: &Frames, timing: Timing, ease: Ease) -> Result<Animation, MotionError> {
+    let n = timing.frame_count()?;
+    if frames.is_empty() {
+        return Err(MotionError::NoRecordedFrames);
+    }
+    for (index, frame) in frames.iter().enumerate() {
+        check_pose(chain, "frames", index, frame.angles)?;
+    }
+    let path = Path::new(chain, frames.iter().map(|f| f.angles), "frames")?;
+    Ok(build(chain, &path, None, timing, n, ease))
+}
+
+/// One finite angle per joint.
+fn check_pose(chain: &Chain, field: &'static str, index: usize, angles: &[f64]) -> Result<(), MotionError> {
+    if angles.len() != chain.len() {
+        return Err(MotionError::AngleCount { field, index, expected: chain.len(), got: angles.len() });
+    }
+    match angles.iter().position(|a| !a.is_finite()) {
+        Some(joint) => Err(MotionError::NonFiniteAngle { field, index, joint, value: angles[joint] }),
+        None => Ok(()),
+    }
+}
+
+/// Finite, `times[0] = 0`, strictly increasing, last `= duration`.
+fn check_times(times: &[f64], keyframes: usize, duration: f64) -> Result<(), MotionError> {
+    if times.len() != keyframes {
+        return Err(MotionError::TimesLength { expected: keyframes, got: times.len() });
+    }
+    for (index, &value) in times.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(MotionError::NonFiniteTime { index, value });
+        }
+        if index == 0 && value != 0.0 {
+            return Err(MotionError::FirstTime { value });
+        }
+        if index > 0 && value <= times[index - 1] {
+            return Err(MotionError::TimesNotIncreasing { index, value, previous: times[index - 1] });
+        }
+    }
+    let index = times.len() - 1;
+    if times[index] != duration {
+        return Err(MotionError::LastTime { index, value: times[index], duration });
+    }
+    Ok(())
+}
+
+/// The polyline through the unwrapped keyframes.
+struct Path {
+    /// Joints per pose.
+    n: usize,
+    /// Unwrapped keyframes, `n` angles each, stored flat.
+    keys: Vec<f64>,
+    /// Cumulative lengths `C_k`, one per keyframe; `C₀ = 0`.
+    cumulative: Vec<f64>,
+}
+
+impl Path {
+    /// Unwraps validated poses and measures the path.
+    fn new<'a>(
+        chain: &Chain,
+        poses: impl ExactSizeIterator<Item = &'a [f64]>,
+        field: &'static str,
+    ) -> Result<Self, MotionError> {
+        let n = chain.len();
+        let mut keys = Vec::with_capacity(poses.len() * n);
+        let mut cumulative = Vec::with_capacity(poses.len());
+        for (index, pose) in poses.enumerate() {
+            if index == 0 {
+                keys.extend_from_slice(pose);
+                cumulative.push(0.0);
+                continue;
+            }
+            let start = keys.len() - n;
+            for (joint, (&angle, limits)) in pose.iter().zip(chain.limits()).enumerate() {
+                let a = if limits.is_some() { angle } else { unwrap_near(angle, keys[start + joint]) };
+                keys.push(a);
+            }
+            let (previous, current) = keys[start..].split_at(n);
+            let length = cumulative[index - 1] + distance(previous, current);
+            if !length.is_finite() {
+                return Err(MotionError::PathTooLong { field, index, length });
+            }
+            cumulative.push(length);
+        }
+        Ok(Self { n, keys, cumulative })
+    }
+
+    fn key(&self, k: usize) -> &[f64] {
+        &self.keys[k * self.n..(k + 1) * self.n]
+    }
+
+    fn last(&self) -> &[f64] {
+        self.key(self.cumulative.len() - 1)
+    }
+
+    fn length(&self) -> f64 {
+        self.cumulative[self.cumulative.len() - 1]
+    }
+
+    /// The pose at parameter `x` of the piecewise-linear map `marks[k] ↦ key(k)`, where `marks`
+    /// is non-decreasing with one entry per keyframe (the cumulative lengths, or the times).
+    /// Among equal marks the last wins, so zero-length pieces are skipped.
+    fn at(&self, marks: &[f64], x: f64, out: &mut Vec<f64>) {
+        // The first mark greater than x; marks[0] ≤ x for every x ≥ 0, so k ≥ 1 unless x < 0.
+        let k = marks.partition_point(|&m| m <= x);
+        out.clear();
+        if k == 0 {
+            out.extend_from_slice(self.key(0));
+        } else if k >= marks.len() {
+            out.extend_from_slice(self.last());
+        } else {
+            // marks[k − 1] ≤ x < marks[k], so the denominator is positive.
+            let w = (x - marks[k - 1]) / (marks[k] - marks[k - 1]);
+            out.extend(self.key(k - 1).iter().zip(self.key(k)).map(|(&a, &b)| lerp(a, b, w)));
+        }
+    }
+}
+
+/// `a + w·(b − a)` for `w` in [0, 1], exactly `a` at 0 and `b` at 1, and never outside the
+/// interval between `a` and `b` (rounding could otherwise step over a joint limit by an ulp).
+fn lerp(a: f64, b: f64, w: f64) -> f64 {
+    if w <= 0.0 {
+        a
+    } else if w >= 1.0 {
+        b
+    } else {
+        (a + w * (b - a)).clamp(a.min(b), a.max(b))
+    }
+}
+
+/// `angle` moved by whole turns to within `(−π, π]` of `previous` (up to rounding); unchanged,
+/// bit for bit, if it already is.
+fn unwrap_near(angle: f64, previous: f64) -> f64 {
+    let turns = ((angle - previous - PI) / TAU).ceil();
+    if turns == 0.0 { angle } else { angle - turns * TAU }
+}
+
+/// Euclidean distance `‖b − a‖₂`, scaled by the largest difference so that the squares neither
+/// overflow nor underflow.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    let scale = a.iter().zip(b).map(|(x, y)| (y - x).abs()).fold(0.0, f64::max);
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    scale * a.iter().zip(b).map(|(x, y)| ((y - x) / scale).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The frames of a validated path: arc-length timing without `times`, eased time with them.
+fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, timing: Timing, n: usize, ease: Ease) -> Animation {
+    let duration = timing.duration();
+    let mut frames = Vec::with_capacity(n);
+    let mut angles = Vec::with_capacity(chain.len());
+    for i in 0..n {
+        let time = timing.time(i, n);
+        if i == 0 {
+            angles.clear();
+            angles.extend_from_slice(path.key(0));
+        } else if i + 1 == n {
+            angles.clear();
+            angles.extend_from_slice(path.last());
+        } else {
+            let progress = ease.position(time / duration);
+            match times {
+                None => path.at(&path.cumulative, progress * path.length(), &mut angles),
+                Some(times) => path.at(times, progress * duration, &mut angles),
+            }
+        }
+        let joints = joint_positions(chain, &angles);
+        frames.push(AnimationFrame { time, angles: angles.clone(), joints });
+    }
+    Animation { frames, duration, ease }
+}
+
+#[cfg(test)]
+mod tests;
