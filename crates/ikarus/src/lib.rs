@@ -34,8 +34,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! Nothing here prints, reads files or starts threads; the same input gives the same output,
-//! bit for bit.
+//! Nothing here prints or reads files, and nothing starts threads unless asked to (workspace
+//! sampling runs on rayon's pool when [`WorkspaceOptions::parallel`] is set, its default). The
+//! same input gives the same output, bit for bit, whatever the number of threads.
 
 pub mod chain;
 pub mod ease;
@@ -48,6 +49,7 @@ pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Po
 pub use ease::{Ease, EaseError, ParentEase};
 pub use kinematics::EndEffector;
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
+pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{
     Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,
     StallDetection, Status,

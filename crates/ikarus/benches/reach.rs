@@ -1,0 +1,65 @@
+//! Time of one `reach::sample` on the seed arm (lengths 3, 2, 1; limits ±45°, ±90°, ±170°) with
+//! the default options at resolutions 256 and 512: with limits (the default: 4096 exact slices
+//! of the last two joints, sampled over the first) and without (the annulus, rasterised
+//! directly), on rayon's global pool (`parallel`) and on the calling thread (`serial`). The
+//! seven-link arm of `examples/arms/seven.toml` is measured at 256 with limits, to show the cost
+//! of the quasi-random sample of five joints. Groups are named
+//! `reach/<arm>/<resolution>/<limits|free>/<parallel|serial>`; before measuring, each prints to
+//! stderr the number of samples and the area, to read the times against.
+//!
+//! `cargo bench -p ikarus --bench reach`
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use ikarus::reach::{WorkspaceOptions, sample};
+use ikarus::{Chain, JointLimits, Link};
+
+fn arm(spec: &[(f64, f64)]) -> Chain {
+    let links: Vec<Link> = spec
+        .iter()
+        .map(|&(l, m)| {
+            let m = m.to_radians();
+            Link::new(l, 0.0).with_limits(JointLimits::new(-m, m).expect("valid limits"))
+        })
+        .collect();
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
+fn bench(c: &mut Criterion) {
+    let seed = arm(&[(3.0, 45.0), (2.0, 90.0), (1.0, 170.0)]);
+    let seven = arm(&[(2.0, 90.0), (1.7, 120.0), (1.4, 120.0), (1.2, 135.0), (1.0, 135.0), (0.8, 150.0), (0.6, 150.0)]);
+    let mut cases = Vec::new();
+    for resolution in [256, 512] {
+        for limits in [true, false] {
+            for parallel in [true, false] {
+                cases.push(("seed", &seed, resolution, limits, parallel));
+            }
+        }
+    }
+    cases.push(("seven", &seven, 256, true, true));
+    for (name, chain, resolution, limits, parallel) in cases {
+        let options = WorkspaceOptions { resolution, limits, parallel, ..WorkspaceOptions::default() };
+        let ws = sample(chain, &options).expect("valid options");
+        eprintln!(
+            "{name} {resolution} limits={limits}: {} samples, area {:.4} (annulus {:.4})",
+            ws.samples(),
+            ws.area(),
+            ws.annulus().area()
+        );
+        let id = format!(
+            "reach/{name}/{resolution}/{}/{}",
+            if limits { "limits" } else { "free" },
+            if parallel { "parallel" } else { "serial" }
+        );
+        c.bench_function(&id, |b| b.iter(|| sample(black_box(chain), black_box(&options)).expect("valid options")));
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10).measurement_time(Duration::from_secs(5));
+    targets = bench
+}
+criterion_main!(benches);
