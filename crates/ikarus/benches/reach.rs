@@ -3,9 +3,11 @@
 //! of the last two joints, sampled over the first) and without (the annulus, rasterised
 //! directly), on rayon's global pool (`parallel`) and on the calling thread (`serial`). The
 //! seven-link arm of `examples/arms/seven.toml` is measured at 256 with limits, to show the cost
-//! of the quasi-random sample of five joints. Groups are named
-//! `reach/<arm>/<resolution>/<limits|free>/<parallel|serial>`; before measuring, each prints to
-//! stderr the number of samples and the area, to read the times against.
+//! of the quasi-random sample of five joints: with the automatic count (262144 samples, `seven`)
+//! and with 4096 (`seven-4096`, the fixed default before the count adapted to the joints).
+//! Groups are named `reach/<arm>/<resolution>/<limits|free>/<parallel|serial>`; before
+//! measuring, each prints to stderr the number of samples and the area, to read the times
+//! against.
 //!
 //! `cargo bench -p ikarus --bench reach`
 
@@ -34,13 +36,14 @@ fn bench(c: &mut Criterion) {
     for resolution in [256, 512] {
         for limits in [true, false] {
             for parallel in [true, false] {
-                cases.push(("seed", &seed, resolution, limits, parallel));
+                cases.push(("seed", &seed, None, resolution, limits, parallel));
             }
         }
     }
-    cases.push(("seven", &seven, 256, true, true));
-    for (name, chain, resolution, limits, parallel) in cases {
-        let options = WorkspaceOptions { resolution, limits, parallel, ..WorkspaceOptions::default() };
+    cases.push(("seven", &seven, None, 256, true, true));
+    cases.push(("seven-4096", &seven, Some(4096), 256, true, true));
+    for (name, chain, samples, resolution, limits, parallel) in cases {
+        let options = WorkspaceOptions { resolution, limits, samples, parallel, ..WorkspaceOptions::default() };
         let ws = sample(chain, &options).expect("valid options");
         eprintln!(
             "{name} {resolution} limits={limits}: {} samples, area {:.4} (annulus {:.4})",
