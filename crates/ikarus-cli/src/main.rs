@@ -4,11 +4,16 @@
 //! 2 bad input (flags, files, values), each reported in one line that names the field and
 //! the value.
 
+mod animate;
 mod arm;
+mod ease_args;
 mod error;
 mod options;
 mod output;
+mod picture;
+mod render;
 mod solve;
+mod workspace;
 
 use std::process::ExitCode;
 
@@ -30,6 +35,15 @@ enum Command {
     /// Move the arm's tip to a goal and report the pose and the recorded frames
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
+    /// Solve for a goal (through any via points) and turn it into a smooth, eased motion:
+    /// frames on stdout, a picture or an animated GIF with --out
+    #[command(allow_negative_numbers = true)]
+    Animate(animate::AnimateArgs),
+    /// The region the arm's tip can reach: radii, area, occupancy grid, picture
+    Workspace(workspace::WorkspaceArgs),
+    /// Draw figures that stand on their own
+    #[command(subcommand)]
+    Render(render::RenderCommand),
 }
 
 fn main() -> ExitCode {
@@ -51,6 +65,9 @@ fn main() -> ExitCode {
     };
     let result: Result<(), CliError> = match &cli.command {
         Command::Solve(args) => solve::run(args),
+        Command::Animate(args) => animate::run(args),
+        Command::Workspace(args) => workspace::run(args),
+        Command::Render(command) => render::run(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

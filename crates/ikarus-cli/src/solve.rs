@@ -90,7 +90,7 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
 }
 
 /// Builds the solver, checking what depends on the chain (one rate per joint).
-fn solver_for(chain: &Chain, options: SolveOptions) -> Result<Solver, CliError> {
+pub(crate) fn solver_for(chain: &Chain, options: SolveOptions) -> Result<Solver, CliError> {
     if !options.rates.is_empty() && options.rates.len() != chain.len() {
         return Err(CliError::input(format!(
             "--rates: expected {} values (one per joint), got {}",
@@ -124,7 +124,7 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     })
 }
 
-fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
+pub(crate) fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
     match angle_deg {
         None => Goal::position(x, y),
         Some(a) => Goal::with_orientation(x, y, a.to_radians()),

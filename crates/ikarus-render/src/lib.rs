@@ -1,1 +1,33 @@
-//! Pictures of planar arms.
+//! Pictures of planar arms: SVG, PNG and animated GIF of poses, motions, workspaces and ease
+//! curves.
+//!
+//! Every picture is first an SVG document written by this crate (the SVG is the master); PNG
+//! and GIF are that SVG rasterised by resvg. Text is set in DejaVu Sans, embedded in the
+//! binary: system fonts are never loaded, so a picture is the same on every machine.
+//!
+//! - [`arm_svg`] / [`arm_png`]: an [`ArmFigure`] — the arm at a pose over a grid, with the
+//!   reach circle, the shaded workspace, ghosts of earlier poses, the paths of the joints, the
+//!   goal and a caption. [`ArmFigure::of_animation`] overlays a whole motion.
+//! - [`animation_gif`]: an animation as a looping GIF, one frame per animation frame.
+//! - [`ease_svg`] / [`ease_png`]: an ease curve's position and velocity against time.
+//! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
+//!
+//! [`View`] maps world coordinates to pixels, for callers that want to find something on the
+//! picture.
+
+mod animation;
+mod arm;
+mod ease_plot;
+mod error;
+mod raster;
+mod scene;
+mod style;
+mod svg;
+mod view;
+
+pub use animation::{MAX_FPS, Overlay, animation_gif};
+pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
+pub use ease_plot::{ease_png, ease_svg};
+pub use error::RenderError;
+pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use view::{PixelRect, VIEW_PADDING, View};

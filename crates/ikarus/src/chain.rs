@@ -302,6 +302,14 @@ impl Chain {
         annulus_inner(&self.lengths)
     }
 
+    /// The same chain with every joint free: what a solve with
+    /// [`LimitMode::Ignore`](crate::LimitMode::Ignore) sees, for motion and workspaces that must
+    /// agree with it.
+    #[must_use]
+    pub fn without_limits(&self) -> Chain {
+        Chain { limits: vec![None; self.len()], ..self.clone() }
+    }
+
     /// Validates `angles` as a pose of this chain: one finite angle per joint, each within its
     /// limits when `check_limits` is true.
     pub fn pose(&self, angles: Vec<f64>, check_limits: bool) -> Result<Pose, ChainError> {
@@ -417,6 +425,15 @@ mod tests {
             let err = Chain::new(base, &links).unwrap_err().to_string();
             assert!(err.starts_with(want), "got {err:?}, want prefix {want:?}");
         }
+    }
+
+    #[test]
+    fn without_limits_frees_every_joint_and_keeps_the_rest() {
+        let lim = JointLimits::new(-0.5, 0.5).unwrap();
+        let c = Chain::new([1.0, 2.0], &[Link::new(1.0, 0.1).with_limits(lim), Link::new(2.0, 0.2)]).unwrap();
+        let free = c.without_limits();
+        assert!(!free.has_limits());
+        assert_eq!((free.base(), free.lengths(), free.start_pose()), (c.base(), c.lengths(), c.start_pose()));
     }
 
     #[test]

@@ -1,0 +1,60 @@
+//! `--ease`, `--k1`, `--k2`: choosing an ease curve at the edge.
+
+use clap::{Args, ValueEnum};
+use ikarus::Ease;
+
+use crate::error::CliError;
+use crate::options::parse_finite;
+
+/// Ease curves, as named at the edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum EaseArg {
+    /// Constant speed
+    Linear,
+    /// Sine ease-in/ease-out
+    Sine,
+    /// Parent's sine ease with a constant-speed middle between --k1 and --k2
+    Parent,
+    /// Cubic smoothstep
+    Smoothstep,
+}
+
+/// Defaults of Parent's ease: the seed report's Figures 13 and 14 used 0.3 and 0.7.
+pub const DEFAULT_K1: f64 = 0.3;
+pub const DEFAULT_K2: f64 = 0.7;
+
+#[derive(Debug, Clone, Args)]
+pub struct EaseArgs {
+    /// Ease curve of the motion [default: sine; parent when --k1 or --k2 is given]
+    #[arg(long, value_enum)]
+    pub ease: Option<EaseArg>,
+    /// Parent's ease: end of the acceleration, in [0, 1] [default: 0.3]
+    #[arg(long, value_parser = parse_finite, value_name = "A")]
+    pub k1: Option<f64>,
+    /// Parent's ease: start of the deceleration, in [k1, 1] [default: 0.7]
+    #[arg(long, value_parser = parse_finite, value_name = "B")]
+    pub k2: Option<f64>,
+}
+
+impl EaseArgs {
+    /// The ease the flags ask for; `default` when none is named.
+    pub fn resolve(&self, default: EaseArg) -> Result<Ease, CliError> {
+        let has_k = self.k1.is_some() || self.k2.is_some();
+        let kind = match self.ease {
+            Some(kind) => kind,
+            None if has_k => EaseArg::Parent,
+            None => default,
+        };
+        if has_k && kind != EaseArg::Parent {
+            let flag = if self.k1.is_some() { "--k1" } else { "--k2" };
+            return Err(CliError::input(format!("{flag}: only applies with --ease parent")));
+        }
+        Ok(match kind {
+            EaseArg::Linear => Ease::Linear,
+            EaseArg::Sine => Ease::Sine,
+            EaseArg::Smoothstep => Ease::Smoothstep,
+            EaseArg::Parent => Ease::parent(self.k1.unwrap_or(DEFAULT_K1), self.k2.unwrap_or(DEFAULT_K2))
+                .map_err(|e| CliError::input(format!("--{e}")))?,
+        })
+    }
+}

@@ -1,0 +1,174 @@
+//! `ikarus workspace`: the region the arm's tip can reach, as numbers, a grid, and a picture.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use ikarus::reach::{Annulus, Workspace, WorkspaceOptions};
+use serde::Serialize;
+
+use crate::arm::Arm;
+use crate::error::CliError;
+use crate::options::parse_at_least_one;
+use crate::output;
+use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum WorkspaceFormat {
+    /// Radii, areas and the occupancy grid
+    Json,
+    /// A short report for people
+    Text,
+}
+
+/// Compute the reachable region of the arm's tip.
+#[derive(Debug, Args)]
+pub struct WorkspaceArgs {
+    /// Arm file (TOML) [default: the built-in seed arm]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    /// Respect the arm's joint ranges (the built-in arm's are the seed's)
+    #[arg(long, overrides_with = "no_limits")]
+    pub limits: bool,
+    /// Ignore the joint ranges, even if the arm file's [solver] table enforces them
+    #[arg(long, overrides_with = "limits")]
+    pub no_limits: bool,
+    /// Grid cells along each side of the square around the reach, 8 to 4096
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    pub resolution: u32,
+    /// Joint-space samples [default: the library's]
+    #[arg(long, value_parser = parse_at_least_one)]
+    pub samples: Option<u32>,
+    /// Seed of the sampling
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Output format [default: text on a terminal, json otherwise]
+    #[arg(long, value_enum)]
+    pub format: Option<WorkspaceFormat>,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Serialize)]
+struct WorkspaceJson<'a> {
+    arm: &'a str,
+    limits: bool,
+    inner_radius: f64,
+    outer_radius: f64,
+    annulus_area: f64,
+    area: f64,
+    resolution: u32,
+    cell_size: f64,
+    origin: [f64; 2],
+    /// One string per row of cells, bottom row first, `1` for reachable and `0` for not.
+    grid: Vec<String>,
+}
+
+pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
+    let arm = Arm::load(args.arm.as_deref())?;
+    let limits = if args.limits {
+        true
+    } else if args.no_limits {
+        false
+    } else {
+        arm.solver.limits.unwrap_or(false)
+    };
+    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
+    let defaults = WorkspaceOptions::default();
+    let options = WorkspaceOptions {
+        resolution: args.resolution,
+        limits,
+        samples: args.samples.map(u64::from),
+        seed: args.seed,
+        ..defaults
+    };
+
+    let bar = progress_bar(100, "sampling the workspace");
+    let report = |done: u64, total: u64| {
+        if let Some(bar) = &bar {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
+    };
+    let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &report)
+        .map_err(|e| CliError::input(format!("--{e}")))?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+
+    if let Some(out) = picture {
+        let caption = caption(&arm, &workspace);
+        let pose = arm.chain.start_pose().angles();
+        let figure = ikarus_render::ArmFigure {
+            workspace: Some(&workspace),
+            caption: Some(caption),
+            ..ikarus_render::ArmFigure::new(&arm.chain, pose)
+        };
+        let svg =
+            ikarus_render::arm_svg(&figure, args.picture.width, args.picture.height).map_err(|e| render_failed(&e))?;
+        let bytes = match out.format {
+            PictureFormat::Png => ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e))?,
+            _ => svg.into_bytes(),
+        };
+        out.commit(&bytes)?;
+    }
+
+    let annulus = workspace.annulus();
+    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() {
+        WorkspaceFormat::Text
+    } else {
+        WorkspaceFormat::Json
+    });
+    output::stdout(|w| match format {
+        WorkspaceFormat::Json => {
+            let origin = workspace.origin();
+            let json = WorkspaceJson {
+                arm: &arm.name,
+                limits,
+                inner_radius: annulus.inner,
+                outer_radius: annulus.outer,
+                annulus_area: annulus.area(),
+                area: workspace.area(),
+                resolution: workspace.resolution(),
+                cell_size: workspace.cell_size(),
+                origin: [origin.x, origin.y],
+                grid: grid_rows(&workspace),
+            };
+            serde_json::to_writer(&mut *w, &json)?;
+            writeln!(w)
+        }
+        WorkspaceFormat::Text => text(w, &arm, &workspace, &annulus, limits),
+    })
+}
+
+fn grid_rows(ws: &Workspace) -> Vec<String> {
+    (0..ws.resolution())
+        .map(|iy| (0..ws.resolution()).map(|ix| if ws.is_occupied(ix, iy) { '1' } else { '0' }).collect())
+        .collect()
+}
+
+fn caption(arm: &Arm, ws: &Workspace) -> String {
+    let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
+    format!("{} · {limits} · reachable area {:.2} of {:.2}", arm.name, ws.area(), ws.annulus().area())
+}
+
+fn text(w: &mut dyn Write, arm: &Arm, ws: &Workspace, annulus: &Annulus, limits: bool) -> std::io::Result<()> {
+    writeln!(w, "arm          {} ({} links)", arm.name, arm.chain.len())?;
+    writeln!(w, "limits       {}", if limits { "on" } else { "off" })?;
+    writeln!(
+        w,
+        "annulus      inner radius {}, outer radius {}, area {:.4}",
+        annulus.inner,
+        annulus.outer,
+        annulus.area()
+    )?;
+    writeln!(
+        w,
+        "reachable    {:.4} ({:.1}% of the annulus), {} of {} cells of {:.4}",
+        ws.area(),
+        100.0 * ws.area() / annulus.area(),
+        ws.occupied_cells(),
+        u64::from(ws.resolution()).pow(2),
+        ws.cell_size()
+    )
+}

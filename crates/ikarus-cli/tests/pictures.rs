@@ -1,0 +1,192 @@
+//! End-to-end tests of `ikarus animate`, `ikarus workspace` and `ikarus render`: the frames'
+//! contract, the picture files (format and size, read from their headers), and bad input.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn ikarus(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).output().expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> Value {
+    let o = ikarus(args);
+    assert!(o.status.success(), "{args:?} failed: {}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON: {e}"))
+}
+
+fn floats(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// Logical screen size of a GIF and the number of image descriptors (frames).
+fn gif_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..6], b"GIF89a", "not a GIF");
+    let le = |i: usize| u32::from(u16::from_le_bytes([bytes[i], bytes[i + 1]]));
+    (le(6), le(8))
+}
+
+fn fails(args: &[&str], code: i32, want: &str) {
+    let o = ikarus(args);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    assert!(err.starts_with("ikarus: ") && err.contains(want), "{args:?}: {err:?} lacks {want:?}");
+}
+
+#[test]
+fn animate_frames_contract() {
+    let v = json(&["animate", "--goal", "2,3"]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 60, "60 frames by default");
+    assert_eq!(frames[0]["time"], 0.0);
+    assert_eq!(frames[59]["time"], 1.0);
+    assert_eq!(floats(&frames[0]["angles_deg"]), vec![5.0, 5.0, 5.0], "starts at the start pose");
+    let tip = floats(&frames[59]["joints"][3]);
+    assert!((tip[0] - 2.0).hypot(tip[1] - 3.0) <= 1e-6, "ends on the goal: {tip:?}");
+    assert_eq!(v["ease"], "sine");
+    assert_eq!(v["solves"].as_array().unwrap().len(), 1);
+    assert_eq!(v["solves"][0]["status"], "reached");
+    // An eased motion starts slowly: the first step is much shorter than a middle one.
+    let step = |i: usize| {
+        let (a, b) = (floats(&frames[i]["angles_deg"]), floats(&frames[i + 1]["angles_deg"]));
+        a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+    };
+    assert!(step(0) < 0.1 * step(29), "{} vs {}", step(0), step(29));
+}
+
+#[test]
+fn animate_timing_via_points_and_csv() {
+    let v = json(&["animate", "--goal", "2,3", "--duration", "2", "--fps", "30", "--ease", "parent", "--k1", "0.2"]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 61);
+    assert_eq!(frames[60]["time"], 2.0);
+    assert_eq!(v["duration"], 2.0);
+    assert_eq!(v["ease"], "parent");
+
+    let v = json(&["animate", "--goal", "2,3", "--via", "4,-1", "--via=-1,4", "--frames", "90"]);
+    let solves = v["solves"].as_array().unwrap();
+    assert_eq!(solves.len(), 3);
+    assert_eq!(floats(&solves[0]["goal"]), vec![4.0, -1.0]);
+    assert_eq!(floats(&solves[2]["goal"]), vec![2.0, 3.0]);
+    assert_eq!(v["frames"].as_array().unwrap().len(), 90);
+
+    // With --limits the motion stays inside the seed's ranges on every frame.
+    let v = json(&["animate", "--goal", "2,4", "--via", "4,-1", "--limits", "--frames", "40"]);
+    for f in v["frames"].as_array().unwrap() {
+        let a = floats(&f["angles_deg"]);
+        assert!(a[0].abs() <= 45.0 && a[1].abs() <= 90.0 && a[2].abs() <= 170.0, "{a:?}");
+    }
+
+    let v = json(&["animate", "--goal", "-4,1", "--from-solve", "--method", "transpose", "--frames", "30"]);
+    assert_eq!(v["frames"].as_array().unwrap().len(), 30);
+    assert!(v["solves"][0]["iterations"].as_u64().unwrap() > 30, "a long solve, re-timed into 30 frames");
+
+    let o = ikarus(&["animate", "--goal", "2,3", "--format", "csv", "--frames", "10"]);
+    assert!(o.status.success());
+    let text = String::from_utf8(o.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "time,theta1_deg,theta2_deg,theta3_deg,x0,y0,x1,y1,x2,y2,x3,y3");
+    assert_eq!(lines.len(), 11);
+}
+
+#[test]
+fn animate_draws_gif_png_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let gif = dir.path().join("m.gif");
+    let o = ikarus(
+        &["animate", "--goal", "2,3", "--frames", "12", "--width", "320", "--height", "240", "--out"]
+            .into_iter()
+            .chain([gif.to_str().unwrap()])
+            .collect::<Vec<_>>(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(gif_size(&std::fs::read(&gif).unwrap()), (320, 240));
+
+    let png = dir.path().join("m.png");
+    let o = ikarus(&["animate", "--goal", "2,3", "--out", png.to_str().unwrap(), "--width", "300", "--height", "200"]);
+    assert!(o.status.success());
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (300, 200));
+
+    let svg = dir.path().join("m.svg");
+    let o = ikarus(&["animate", "--goal", "2,3", "--out", svg.to_str().unwrap()]);
+    assert!(o.status.success());
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("<svg") && text.trim_end().ends_with("</svg>"));
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names.len(), 3, "no temporary files left: {names:?}");
+}
+
+#[test]
+fn animate_bad_input() {
+    fails(&["animate", "--goal", "2,3", "--k1", "0.8", "--k2", "0.2"], 2, "--k1: must not exceed k2");
+    fails(&["animate", "--goal", "2,3", "--k2", "1.5"], 2, "--k2: must be a number in [0, 1], got 1.5");
+    fails(&["animate", "--goal", "2,3", "--ease", "sine", "--k1", "0.3"], 2, "--k1: only applies with --ease parent");
+    fails(&["animate", "--goal", "2,3", "--frames", "1"], 2, "--frames 1: a motion needs at least 2 frames");
+    fails(&["animate", "--goal", "2,3", "--duration", "-1"], 2, "--duration -1: must be greater than 0");
+    fails(&["animate", "--goal", "2,3", "--duration", "2", "--fps", "0"], 2, "--fps 0: must be greater than 0");
+    fails(&["animate", "--goal", "2,3", "--frames", "5", "--duration", "2"], 2, "cannot be used with");
+    fails(&["animate", "--goal", "2,3", "--via", "1,nan"], 2, "'--via <X,Y>': y: must be a finite number");
+    fails(&["animate", "--goal", "2,3", "--out", "m.jpg"], 2, "--out m.jpg: unsupported picture format");
+    fails(
+        &["animate", "--goal", "2,3", "--out", "/nonexistent/dir/m.gif"],
+        1,
+        "--out /nonexistent/dir/m.gif: cannot write",
+    );
+    fails(&["animate", "--goal", "2,3", "--width", "5"], 2, "'--width <WIDTH>'");
+}
+
+#[test]
+fn workspace_numbers_grid_and_picture() {
+    let v = json(&["workspace", "--resolution", "128"]);
+    assert_eq!(v["inner_radius"], 0.0);
+    assert_eq!(v["outer_radius"], 6.0);
+    let annulus = v["annulus_area"].as_f64().unwrap();
+    assert!((annulus - 36.0 * std::f64::consts::PI).abs() < 1e-9);
+    let free = v["area"].as_f64().unwrap();
+    assert!((free - annulus).abs() / annulus < 0.02, "{free} vs {annulus}");
+    let grid = v["grid"].as_array().unwrap();
+    assert_eq!(grid.len(), 128);
+    assert!(grid.iter().all(|row| row.as_str().unwrap().len() == 128));
+    assert_eq!(v["limits"], false);
+
+    let v = json(&["workspace", "--resolution", "128", "--limits"]);
+    assert_eq!(v["limits"], true);
+    let limited = v["area"].as_f64().unwrap();
+    assert!(limited < 0.9 * free, "the seed's ranges cut the area: {limited} vs {free}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("w.png");
+    let o = ikarus(&["workspace", "--limits", "--resolution", "64", "--out", png.to_str().unwrap(), "--width", "400"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (400, 800));
+
+    fails(&["workspace", "--resolution", "4"], 2, "'--resolution <RESOLUTION>'");
+    fails(&["workspace", "--out", "w.gif"], 2, "--out w.gif: unsupported picture format (use .svg, .png)");
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/seven.toml");
+    let v = json(&["workspace", "--arm", arm.to_str().unwrap(), "--resolution", "64"]);
+    assert_eq!(v["arm"], "seven");
+}
+
+#[test]
+fn render_ease() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("e.png");
+    let o = ikarus(&["render", "ease", "--k1", "0.3", "--k2", "0.75", "--out", png.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (800, 800));
+    let svg = dir.path().join("e.svg");
+    let o = ikarus(&["render", "ease", "--ease", "smoothstep", "--out", svg.to_str().unwrap()]);
+    assert!(o.status.success());
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    fails(&["render", "ease", "--k1", "0.3"], 2, "--out: required");
+    fails(&["render", "ease", "--k1", "0.9", "--k2", "0.3", "--out", "e.png"], 2, "--k1: must not exceed k2");
+}

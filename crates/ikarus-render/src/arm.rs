@@ -1,0 +1,183 @@
+//! Still pictures of an arm: a pose, earlier poses as ghosts, joint paths, goal, workspace.
+
+use ikarus::kinematics::joint_positions;
+use ikarus::{Chain, Point2};
+
+use crate::RenderError;
+use crate::raster::{check_size, svg_to_png};
+use crate::scene::Scene;
+use crate::svg::Svg;
+use crate::view::View;
+use ikarus::motion::Animation;
+use ikarus::reach::Workspace;
+
+/// What a still picture of an arm shows. Build one with [`ArmFigure::new`] or
+/// [`ArmFigure::of_animation`] and adjust the fields:
+///
+/// ```
+/// # use ikarus::{Chain, Link, Point2};
+/// # use ikarus_render::{ArmFigure, arm_svg};
+/// let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.3), Link::new(2.0, 0.3), Link::new(1.0, 0.3)])?;
+/// let figure = ArmFigure {
+///     goal: Some(Point2::new(2.0, 3.0)),
+///     caption: Some("the seed arm".into()),
+///     ..ArmFigure::new(&chain, chain.start_pose().angles())
+/// };
+/// let svg = arm_svg(&figure, 800, 800)?;
+/// assert!(svg.starts_with("<svg"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct ArmFigure<'a> {
+    /// The chain drawn.
+    pub chain: &'a Chain,
+    /// Joint angles of the arm drawn on top, radians, one per joint.
+    pub pose: &'a [f64],
+    /// Earlier poses drawn as thin lines, oldest first; older ones are fainter.
+    pub ghosts: Vec<&'a [f64]>,
+    /// Whether to mark every joint's position in each ghost and in the pose with a small cross,
+    /// joined by a faint line: the path each joint travelled.
+    pub traces: bool,
+    /// The goal, drawn as a red target (an arrow on the edge if it lies beyond the view).
+    pub goal: Option<Point2<f64>>,
+    /// Reachable cells to shade, if any.
+    pub workspace: Option<&'a Workspace>,
+    /// Whether to draw the maximum-reach circle (and the minimum-reach circle when it is > 0).
+    pub show_reach: bool,
+    /// A line of text under the plot, e.g. `dls · reached · 7 iterations · error 1.2e-7`.
+    pub caption: Option<String>,
+}
+
+/// At most this many ghosts are taken from an animation by [`ArmFigure::of_animation`].
+pub const MAX_ANIMATION_GHOSTS: usize = 40;
+
+impl<'a> ArmFigure<'a> {
+    /// The arm at `pose` with its reach circle, and nothing else.
+    #[must_use]
+    pub fn new(chain: &'a Chain, pose: &'a [f64]) -> Self {
+        Self {
+            chain,
+            pose,
+            ghosts: Vec::new(),
+            traces: false,
+            goal: None,
+            workspace: None,
+            show_reach: true,
+            caption: None,
+        }
+    }
+
+    /// A whole motion in one picture: the arm at the last frame, earlier frames as ghosts
+    /// (every k-th frame so that there are at most [`MAX_ANIMATION_GHOSTS`], always including
+    /// the first), and the joint paths through those frames.
+    ///
+    /// Frames are taken at equal steps of frame index, not of distance, so an ease that slows
+    /// in and out shows as ghosts bunched at both ends. An animation without frames gives a
+    /// figure with an empty pose, which [`arm_svg`] rejects.
+    #[must_use]
+    pub fn of_animation(chain: &'a Chain, animation: &'a Animation) -> Self {
+        let frames = &animation.frames;
+        let Some(last) = frames.last() else {
+            return Self::new(chain, &[]);
+        };
+        let earlier = frames.len() - 1;
+        let every = earlier.div_ceil(MAX_ANIMATION_GHOSTS).max(1);
+        let ghosts = frames[..earlier].iter().step_by(every).map(|f| f.angles.as_slice()).collect();
+        Self { ghosts, traces: true, ..Self::new(chain, &last.angles) }
+    }
+
+    /// The view this figure is drawn in at `width` × `height`: use it to find where a world
+    /// point lands on the picture.
+    #[must_use]
+    pub fn view(&self, width: u32, height: u32) -> View {
+        View::new(self.chain, self.goal, width, height)
+    }
+}
+
+/// Checks that `angles` is a pose of `chain` with finite angles; `field` names it in errors.
+pub(crate) fn check_pose(chain: &Chain, angles: &[f64], field: &str) -> Result<(), RenderError> {
+    if angles.len() != chain.len() {
+        return Err(RenderError::Length { field: field.to_string(), expected: chain.len(), got: angles.len() });
+    }
+    check_finite(angles.iter().copied(), field)
+}
+
+pub(crate) fn check_finite(values: impl Iterator<Item = f64>, field: &str) -> Result<(), RenderError> {
+    for (i, v) in values.enumerate() {
+        if !v.is_finite() {
+            return Err(RenderError::NonFinite { field: format!("{field}[{i}]"), value: v });
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn check_point(p: Option<Point2<f64>>, field: &str) -> Result<(), RenderError> {
+    if let Some(p) = p {
+        for (axis, v) in [("x", p.x), ("y", p.y)] {
+            if !v.is_finite() {
+                return Err(RenderError::NonFinite { field: format!("{field}.{axis}"), value: v });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The figure as an SVG document of `width` × `height` pixels.
+///
+/// Layers, bottom to top: grid with tick labels, the shaded workspace, the reach circles, the
+/// ghosts (oldest faintest), the joint paths, the arm, the goal, the caption.
+///
+/// # Errors
+/// [`RenderError::Size`] for a side outside 16..=4096; [`RenderError::Length`] or
+/// [`RenderError::NonFinite`] for a pose or ghost that does not fit the chain or is not
+/// finite, or a goal that is not finite.
+pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, RenderError> {
+    check_size(width, height)?;
+    check_pose(figure.chain, figure.pose, "pose")?;
+    for (i, g) in figure.ghosts.iter().enumerate() {
+        check_pose(figure.chain, g, &format!("ghosts[{i}]"))?;
+    }
+    check_point(figure.goal, "goal")?;
+
+    let scene = Scene {
+        chain: figure.chain,
+        view: figure.view(width, height),
+        goal: figure.goal,
+        workspace: figure.workspace,
+        show_reach: figure.show_reach,
+    };
+    let mut svg = Svg::new(width, height);
+    scene.background(&mut svg);
+
+    let pose = joint_positions(figure.chain, figure.pose);
+    let ghosts: Vec<Vec<Point2<f64>>> = figure.ghosts.iter().map(|g| joint_positions(figure.chain, g)).collect();
+    let n = ghosts.len();
+    let faded: Vec<(&[Point2<f64>], f64)> =
+        ghosts.iter().enumerate().map(|(i, g)| (g.as_slice(), ghost_opacity(i, n))).collect();
+    scene.ghosts(&mut svg, &faded);
+    if figure.traces {
+        let mut frames: Vec<&[Point2<f64>]> = ghosts.iter().map(Vec::as_slice).collect();
+        frames.push(&pose);
+        scene.traces(&mut svg, &frames);
+    }
+    scene.arm(&mut svg, &pose);
+    scene.goal(&mut svg);
+    scene.caption(&mut svg, figure.caption.as_deref(), None);
+    Ok(svg.finish())
+}
+
+/// The figure as PNG bytes: [`arm_svg`] rasterised with [`svg_to_png`].
+///
+/// # Errors
+/// As [`arm_svg`], and [`RenderError::Encode`] if encoding fails.
+pub fn arm_png(figure: &ArmFigure, width: u32, height: u32) -> Result<Vec<u8>, RenderError> {
+    svg_to_png(&arm_svg(figure, width, height)?)
+}
+
+/// Opacity of ghost `i` of `n`, oldest (0) faintest: from 0.10 up to 0.45.
+pub(crate) fn ghost_opacity(i: usize, n: usize) -> f64 {
+    if n <= 1 {
+        return 0.4;
+    }
+    0.10 + 0.35 * (i as f64 / (n - 1) as f64)
+}

@@ -1,0 +1,58 @@
+//! The one error type of the crate.
+
+use thiserror::Error;
+
+/// Why a picture could not be made. Every message is one line and names the field and the
+/// offending value.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// A picture side is outside [`MIN_SIDE`](crate::MIN_SIDE)`..=`[`MAX_SIDE`](crate::MAX_SIDE)
+    /// pixels.
+    #[error("{field}: must be between 16 and 4096 pixels, got {value}")]
+    Size {
+        /// `"width"` or `"height"`.
+        field: &'static str,
+        /// The offending size.
+        value: u64,
+    },
+    /// The frame rate is not a number in (0, 100].
+    #[error("fps: must be a number in (0, 100], got {value}")]
+    Fps {
+        /// The offending frame rate.
+        value: f64,
+    },
+    /// A coordinate or an angle is NaN or infinite.
+    #[error("{field}: must be a finite number, got {value}")]
+    NonFinite {
+        /// Which number, e.g. `goal.x`, `pose[2]`, `animation.frames[4].angles[1]`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A pose has a different number of angles (or a frame a different number of joint
+    /// positions) than the chain needs.
+    #[error("{field}: expected {expected} values for this chain, got {got}")]
+    Length {
+        /// Which list, e.g. `pose`, `ghosts[3]`, `animation.frames[0].joints`.
+        field: String,
+        /// How many the chain needs.
+        expected: usize,
+        /// How many were given.
+        got: usize,
+    },
+    /// An animation without frames.
+    #[error("animation.frames: an animation needs at least one frame, got none")]
+    NoFrames,
+    /// The SVG text could not be parsed.
+    #[error("svg: cannot be parsed: {0}")]
+    Svg(String),
+    /// PNG or GIF encoding failed.
+    #[error("{format}: encoding failed: {message}")]
+    Encode {
+        /// `"png"` or `"gif"`.
+        format: &'static str,
+        /// What the encoder said.
+        message: String,
+    },
+}

@@ -1,0 +1,406 @@
+//! The layers of an arm picture, shared by still figures and animation frames: background
+//! (grid, workspace, reach circles, ticks), ghosts, joint paths, the arm, the goal, the caption.
+
+use ikarus::{Chain, Point2};
+
+use crate::style;
+use crate::svg::{PathData, Svg, num};
+use crate::view::{View, nice_step, tick_label, ticks};
+use ikarus::reach::Workspace;
+
+/// What every picture of one arm shares.
+pub(crate) struct Scene<'a> {
+    pub chain: &'a Chain,
+    pub view: View,
+    pub goal: Option<Point2<f64>>,
+    pub workspace: Option<&'a Workspace>,
+    pub show_reach: bool,
+}
+
+impl Scene<'_> {
+    fn px(&self, p: Point2<f64>) -> (f64, f64) {
+        self.view.world_to_pixel(p)
+    }
+
+    fn u(&self) -> f64 {
+        self.view.layout().unit
+    }
+
+    /// Page, plot area, grid, workspace, reach circles, axes and tick labels.
+    pub(crate) fn background(&self, svg: &mut Svg) {
+        let layout = *self.view.layout();
+        let plot = layout.plot;
+        let u = self.u();
+        svg.rect(0.0, 0.0, layout.width, layout.height, &format!("fill=\"{}\"", style::PAGE));
+        svg.rect(plot.left, plot.top, plot.width(), plot.height(), &format!("fill=\"{}\"", style::PLOT));
+
+        // Tick step: about one grid line per 90 px, from 1, 2, 5 × 10^k.
+        let (lo, hi) = self.view.world_bounds();
+        let step = nice_step(90.0 * u / self.view.scale());
+        let xs = ticks(lo.x, hi.x, step);
+        let ys = ticks(lo.y, hi.y, step);
+
+        svg.comment("grid");
+        let mut minor = PathData::new();
+        let mut major = PathData::new();
+        for x in ticks(lo.x, hi.x, step / 2.0) {
+            let (px, _) = self.px(Point2::new(x, 0.0));
+            let d = if xs.iter().any(|&t| (t - x).abs() < 1e-9 * step) { &mut major } else { &mut minor };
+            d.move_to(px, plot.top).line_to(px, plot.bottom);
+        }
+        for y in ticks(lo.y, hi.y, step / 2.0) {
+            let (_, py) = self.px(Point2::new(0.0, y));
+            let d = if ys.iter().any(|&t| (t - y).abs() < 1e-9 * step) { &mut major } else { &mut minor };
+            d.move_to(plot.left, py).line_to(plot.right, py);
+        }
+        let w = num(u.max(0.6));
+        svg.path(&minor, &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{w}\"", style::GRID_MINOR));
+        svg.path(&major, &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{w}\"", style::GRID));
+
+        if let Some(ws) = self.workspace {
+            self.workspace_cells(svg, ws);
+        }
+
+        // The axes through the origin, when in view, with their names at the positive ends.
+        let (ox, oy) = self.px(Point2::origin());
+        let axis = format!("stroke=\"{}\" stroke-width=\"{}\"", style::AXIS, num(1.2 * u));
+        let name = format!("font-size=\"{}\" fill=\"{}\"", num(layout.tick_font), style::MUTED_TEXT);
+        if plot.left <= ox && ox <= plot.right {
+            svg.line(ox, plot.top, ox, plot.bottom, &axis);
+            svg.text(ox + 6.0 * u, plot.top + layout.tick_font + 2.0 * u, "y", &name);
+        }
+        if plot.top <= oy && oy <= plot.bottom {
+            svg.line(plot.left, oy, plot.right, oy, &axis);
+            svg.text(plot.right - 6.0 * u, oy - 6.0 * u, "x", &format!("{name} text-anchor=\"end\""));
+        }
+
+        if self.show_reach {
+            self.reach_circles(svg);
+        }
+
+        svg.rect(
+            plot.left,
+            plot.top,
+            plot.width(),
+            plot.height(),
+            &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::FRAME, num(u.max(0.6))),
+        );
+
+        svg.comment("tick labels");
+        svg.group(&format!("font-size=\"{}\" fill=\"{}\"", num(layout.tick_font), style::MUTED_TEXT));
+        let below = plot.bottom + layout.tick_font + 6.0 * u;
+        svg.group("text-anchor=\"middle\"");
+        for &x in &xs {
+            let (px, _) = self.px(Point2::new(x, 0.0));
+            svg.text(px, below, &tick_label(x, step), "");
+        }
+        svg.end_group();
+        svg.group("text-anchor=\"end\"");
+        for &y in &ys {
+            let (_, py) = self.px(Point2::new(0.0, y));
+            svg.text(plot.left - 7.0 * u, py + 0.35 * layout.tick_font, &tick_label(y, step), "");
+        }
+        svg.end_group();
+        svg.end_group();
+    }
+
+    /// Occupied cells as one path: runs of a row merged, equal runs of consecutive rows merged
+    /// again, so an annulus of 200² cells takes a few hundred rectangles. One path also means no
+    /// hairline seams where antialiased neighbours meet.
+    fn workspace_cells(&self, svg: &mut Svg, ws: &Workspace) {
+        let n = ws.resolution();
+        let cell = ws.cell_size();
+        let origin = ws.origin();
+        // Open rectangles: (ix0, ix1 exclusive, iy0), keyed by run; extended while the next row
+        // has the same run.
+        let mut open: Vec<(u32, u32, u32)> = Vec::new();
+        let mut d = PathData::new();
+        let emit = |(x0, x1, y0): (u32, u32, u32), y1: u32, d: &mut PathData| {
+            let a = self.px(Point2::new(origin.x + f64::from(x0) * cell, origin.y + f64::from(y1) * cell));
+            let b = self.px(Point2::new(origin.x + f64::from(x1) * cell, origin.y + f64::from(y0) * cell));
+            d.rect(a.0, a.1, b.0 - a.0, b.1 - a.1);
+        };
+        for iy in 0..=n {
+            let mut runs: Vec<(u32, u32)> = Vec::new();
+            if iy < n {
+                let mut ix = 0;
+                while ix < n {
+                    if ws.is_occupied(ix, iy) {
+                        let start = ix;
+                        while ix < n && ws.is_occupied(ix, iy) {
+                            ix += 1;
+                        }
+                        runs.push((start, ix));
+                    } else {
+                        ix += 1;
+                    }
+                }
+            }
+            let mut next_open = Vec::with_capacity(runs.len());
+            for rect in open.drain(..) {
+                if runs.contains(&(rect.0, rect.1)) {
+                    next_open.push(rect);
+                } else {
+                    emit(rect, iy, &mut d);
+                }
+            }
+            for (x0, x1) in runs {
+                if !next_open.iter().any(|r| r.0 == x0 && r.1 == x1) {
+                    next_open.push((x0, x1, iy));
+                }
+            }
+            open = next_open;
+        }
+        svg.comment("reachable workspace");
+        svg.path(&d, &format!("fill=\"{}\"", style::WORKSPACE));
+    }
+
+    fn reach_circles(&self, svg: &mut Svg) {
+        let u = self.u();
+        let (cx, cy) = self.px(self.chain.base());
+        let s = self.view.scale();
+        svg.comment("reach");
+        svg.circle(
+            cx,
+            cy,
+            self.chain.max_reach() * s,
+            &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::REACH, num(1.6 * u)),
+        );
+        let inner = self.chain.min_reach();
+        if inner > 0.0 {
+            svg.circle(
+                cx,
+                cy,
+                inner * s,
+                &format!(
+                    "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-dasharray=\"{} {}\"",
+                    style::REACH,
+                    num(1.4 * u),
+                    num(6.0 * u),
+                    num(4.0 * u)
+                ),
+            );
+        }
+    }
+
+    /// Earlier poses, oldest first, as thin lines fading with age (`opacity[i]` each).
+    pub(crate) fn ghosts(&self, svg: &mut Svg, ghosts: &[(&[Point2<f64>], f64)]) {
+        if ghosts.is_empty() {
+            return;
+        }
+        let u = self.u();
+        svg.comment("ghosts");
+        svg.group(&format!(
+            "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"",
+            style::INK,
+            num(2.2 * u)
+        ));
+        for (joints, opacity) in ghosts {
+            svg.path(&polyline(self, joints), &format!("stroke-opacity=\"{}\"", opacity_str(*opacity)));
+        }
+        svg.end_group();
+    }
+
+    /// The path of every moving joint over `frames` (each base first, tip last): a faint line
+    /// through the positions and a small cross at each.
+    pub(crate) fn traces(&self, svg: &mut Svg, frames: &[&[Point2<f64>]]) {
+        let Some(first) = frames.first() else { return };
+        let n = first.len().saturating_sub(1);
+        let u = self.u();
+        let arm = 3.0 * u;
+        svg.comment("joint paths");
+        svg.group(&format!("fill=\"none\" stroke-linecap=\"round\" stroke-width=\"{}\"", num(1.1 * u)));
+        for k in 1..=n {
+            let hue = style::joint_hue(k, n);
+            let mut line = PathData::new();
+            let mut crosses = PathData::new();
+            for (i, joints) in frames.iter().enumerate() {
+                let (x, y) = self.px(joints[k]);
+                if i == 0 {
+                    line.move_to(x, y);
+                } else {
+                    line.line_to(x, y);
+                }
+                crosses.move_to(x - arm, y - arm).line_to(x + arm, y + arm);
+                crosses.move_to(x - arm, y + arm).line_to(x + arm, y - arm);
+            }
+            svg.path(&line, &format!("stroke=\"{hue}\" stroke-opacity=\"0.35\" stroke-linejoin=\"round\""));
+            svg.path(&crosses, &format!("stroke=\"{hue}\" stroke-opacity=\"0.9\""));
+        }
+        svg.end_group();
+    }
+
+    /// The arm: mount, links as thick round-capped strokes on a white halo, joints as rings,
+    /// the tip as a filled dot.
+    pub(crate) fn arm(&self, svg: &mut Svg, joints: &[Point2<f64>]) {
+        let u = self.u();
+        let (bx, by) = self.px(joints[0]);
+        svg.comment("arm");
+        // The mount: a small trapezoid standing on a hatched ground line.
+        let (hw, h) = (11.0 * u, 13.0 * u);
+        let mut mount = PathData::new();
+        mount
+            .move_to(bx - 0.35 * hw, by)
+            .line_to(bx + 0.35 * hw, by)
+            .line_to(bx + hw, by + h)
+            .line_to(bx - hw, by + h)
+            .close();
+        svg.path(
+            &mount,
+            &format!(
+                "fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
+                style::MOUNT,
+                style::INK,
+                num(1.4 * u)
+            ),
+        );
+        let g = 1.45 * hw;
+        let mut ground = PathData::new();
+        ground.move_to(bx - g, by + h).line_to(bx + g, by + h);
+        let mut hatch = PathData::new();
+        let step = 4.5 * u;
+        let mut x = bx - g + step;
+        while x <= bx + g + 1e-9 {
+            hatch.move_to(x, by + h).line_to(x - step, by + h + step);
+            x += step;
+        }
+        svg.path(
+            &ground,
+            &format!("stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"", style::INK, num(1.6 * u)),
+        );
+        svg.path(
+            &hatch,
+            &format!("stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"", style::INK, num(0.9 * u)),
+        );
+
+        let links = polyline(self, joints);
+        let round = "fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
+        svg.path(&links, &format!("{round} stroke=\"#ffffff\" stroke-width=\"{}\"", num(11.0 * u)));
+        svg.path(&links, &format!("{round} stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(6.5 * u)));
+        let last = joints.len() - 1;
+        for (i, &p) in joints.iter().enumerate() {
+            let (x, y) = self.px(p);
+            if i == last {
+                svg.circle(
+                    x,
+                    y,
+                    4.6 * u,
+                    &format!("fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"{}\"", style::INK, num(1.6 * u)),
+                );
+            } else {
+                svg.circle(
+                    x,
+                    y,
+                    4.6 * u,
+                    &format!("fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(2.2 * u)),
+                );
+            }
+        }
+    }
+
+    /// The goal: a red ring with a red centre on a white halo; an arrow on the plot's edge if
+    /// it lies outside the view.
+    pub(crate) fn goal(&self, svg: &mut Svg) {
+        let Some(goal) = self.goal else { return };
+        let u = self.u();
+        let plot = self.view.plot_area();
+        let (x, y) = self.px(goal);
+        svg.comment("goal");
+        if plot.contains(x, y) {
+            svg.circle(
+                x,
+                y,
+                10.5 * u,
+                &format!("fill=\"none\" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-opacity=\"0.85\"", num(5.0 * u)),
+            );
+            svg.circle(
+                x,
+                y,
+                10.5 * u,
+                &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::GOAL, num(2.4 * u)),
+            );
+            svg.circle(x, y, 4.2 * u, &format!("fill=\"{}\"", style::GOAL));
+            return;
+        }
+        // Outside: walk from the plot's centre towards the goal until 16 px inside the edge.
+        let (cx, cy) = (0.5 * (plot.left + plot.right), 0.5 * (plot.top + plot.bottom));
+        let (dx, dy) = (x - cx, y - cy);
+        let inset = 16.0 * u;
+        let tx = if dx.abs() > 1e-12 { (0.5 * plot.width() - inset) / dx.abs() } else { f64::INFINITY };
+        let ty = if dy.abs() > 1e-12 { (0.5 * plot.height() - inset) / dy.abs() } else { f64::INFINITY };
+        let t = tx.min(ty);
+        let (ax, ay) = (cx + dx * t, cy + dy * t);
+        let len = dx.hypot(dy);
+        let (ux, uy) = (dx / len, dy / len);
+        let (s, w) = (13.0 * u, 7.0 * u);
+        let mut arrow = PathData::new();
+        arrow
+            .move_to(ax + ux * s * 0.5, ay + uy * s * 0.5)
+            .line_to(ax - ux * s * 0.5 - uy * w, ay - uy * s * 0.5 + ux * w)
+            .line_to(ax - ux * s * 0.5 + uy * w, ay - uy * s * 0.5 - ux * w)
+            .close();
+        svg.path(&arrow, &format!("fill=\"{}\"", style::GOAL));
+        let label = format!("goal ({}, {})", short(goal.x), short(goal.y));
+        let anchor = if ux > 0.3 {
+            "end"
+        } else if ux < -0.3 {
+            "start"
+        } else {
+            "middle"
+        };
+        let ly = ay - uy * 16.0 * u + 0.35 * self.view.layout().tick_font;
+        svg.text(
+            ax - ux * 16.0 * u,
+            ly,
+            &label,
+            &format!(
+                "font-size=\"{}\" fill=\"{}\" text-anchor=\"{anchor}\"",
+                num(self.view.layout().tick_font),
+                style::GOAL
+            ),
+        );
+    }
+
+    /// The caption centred below the plot, and an optional note at the right (a clock).
+    pub(crate) fn caption(&self, svg: &mut Svg, caption: Option<&str>, right: Option<&str>) {
+        let layout = self.view.layout();
+        let y = layout.caption_baseline();
+        let font = format!("font-size=\"{}\" fill=\"{}\"", num(layout.caption_font), style::TEXT);
+        if let Some(c) = caption.filter(|c| !c.is_empty()) {
+            svg.text(0.5 * layout.width, y, c, &format!("{font} text-anchor=\"middle\""));
+        }
+        if let Some(r) = right {
+            svg.text(
+                layout.plot.right,
+                y,
+                r,
+                &format!("font-size=\"{}\" fill=\"{}\" text-anchor=\"end\"", num(layout.tick_font), style::MUTED_TEXT),
+            );
+        }
+    }
+}
+
+/// The joints as one open polyline in pixels.
+fn polyline(scene: &Scene, joints: &[Point2<f64>]) -> PathData {
+    let mut d = PathData::new();
+    for (i, &p) in joints.iter().enumerate() {
+        let (x, y) = scene.px(p);
+        if i == 0 {
+            d.move_to(x, y);
+        } else {
+            d.line_to(x, y);
+        }
+    }
+    d
+}
+
+fn opacity_str(o: f64) -> String {
+    format!("{:.3}", o.clamp(0.0, 1.0))
+}
+
+/// A coordinate for a label: up to 3 significant decimals.
+fn short(v: f64) -> String {
+    let s = format!("{v:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.replace('-', "\u{2212}")
+}

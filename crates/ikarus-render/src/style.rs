@@ -1,0 +1,49 @@
+//! The palette: calm neutrals, one dark ink for the arm, soft hues for paths, red for the goal.
+
+/// Behind everything.
+pub(crate) const PAGE: &str = "#fbfaf7";
+/// Inside the plot area.
+pub(crate) const PLOT: &str = "#ffffff";
+/// The plot area's border.
+pub(crate) const FRAME: &str = "#d9dde3";
+/// Grid lines at tick positions.
+pub(crate) const GRID: &str = "#e7eaee";
+/// Grid lines between ticks.
+pub(crate) const GRID_MINOR: &str = "#f3f4f6";
+/// The x = 0 and y = 0 lines.
+pub(crate) const AXIS: &str = "#c3c9d1";
+/// Tick labels and other quiet text.
+pub(crate) const MUTED_TEXT: &str = "#6b7280";
+/// Captions and titles.
+pub(crate) const TEXT: &str = "#374151";
+/// Reachable cells.
+pub(crate) const WORKSPACE: &str = "#e2e8f0";
+/// Reach circles.
+pub(crate) const REACH: &str = "#5f9e77";
+/// The arm, its ghosts and its base.
+pub(crate) const INK: &str = "#26324a";
+/// The mount under the base.
+pub(crate) const MOUNT: &str = "#cdd5e0";
+/// The goal: a clear red (the tests look for it).
+pub(crate) const GOAL: &str = "#d62728";
+/// Paths of the joints between base and tip, cycled.
+pub(crate) const JOINT_HUES: [&str; 5] = ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"];
+/// Path of the tip.
+pub(crate) const TIP_HUE: &str = "#ec7f2d";
+
+/// The colour of the path of joint `k` (1-based; `n` is the tip).
+pub(crate) fn joint_hue(k: usize, n: usize) -> &'static str {
+    if k == n { TIP_HUE } else { JOINT_HUES[(k.saturating_sub(1)) % JOINT_HUES.len()] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hex_parses() {
+        assert_eq!(joint_hue(3, 3), TIP_HUE);
+        assert_eq!(joint_hue(1, 3), JOINT_HUES[0]);
+        assert_eq!(joint_hue(7, 9), JOINT_HUES[1]);
+    }
+}
