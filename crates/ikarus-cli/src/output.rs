@@ -57,6 +57,13 @@ impl PendingFile {
         let fail =
             |e: io::Error| CliError::runtime(format!("{flag} {}: cannot write: {}", target.display(), io_reason(&e)));
         self.temp.write_all(bytes).and_then(|()| self.temp.as_file().sync_all()).map_err(fail)?;
+        // A temporary file is private (0600); the output is an ordinary file like any other.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::Permissions::from_mode(0o644);
+            std::fs::set_permissions(self.temp.path(), mode).map_err(fail)?;
+        }
         self.temp.persist(&self.target).map_err(|e| fail(e.error))?;
         Ok(())
     }

@@ -123,6 +123,12 @@ fn animate_draws_gif_png_and_svg() {
     assert!(text.contains("<svg") && text.trim_end().ends_with("</svg>"));
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 3, "no temporary files left: {names:?}");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&png).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o644, "an ordinary file, not the temporary file's 0600");
+    }
 }
 
 #[test]

@@ -2,8 +2,10 @@
 //!
 //! The static layers (page, grid, workspace, reach circles) are drawn once; each frame draws the
 //! moving layers (the joints' paths so far, the arm, the goal, the caption and a clock) on a
-//! copy of them. Every frame is quantised to its own 256-colour palette (NeuQuant, via the
-//! `gif` crate).
+//! copy of them. Every frame gets its own 256-colour palette: the palette's solid colours
+//! ([`style::key_colours`]) exactly, and the rest learnt from the frame by NeuQuant for the
+//! anti-aliased edges. Without the exact entries, the few pixels of the red goal are merged
+//! into a dull maroon.
 
 use gif::{Encoder, Frame, Repeat};
 use ikarus::kinematics::joint_positions;
@@ -15,6 +17,7 @@ use crate::RenderError;
 use crate::arm::{check_point, check_pose};
 use crate::raster::{check_size, new_pixmap, parse, render_onto};
 use crate::scene::Scene;
+use crate::style;
 use crate::svg::Svg;
 use crate::view::View;
 
@@ -85,6 +88,7 @@ pub fn animation_gif(
 
     let joints: Vec<Vec<Point2<f64>>> = animation.frames.iter().map(|f| joint_positions(chain, &f.angles)).collect();
     let delay = (100.0 / fps).round().max(2.0) as u16;
+    let keys = style::key_colours();
     let total = animation.frames.len();
     let mut bytes = Vec::new();
     {
@@ -106,12 +110,33 @@ pub fn animation_gif(
             let mut pixmap = background.clone();
             render_onto(&parse(&svg.finish())?, &mut pixmap);
             // The background is opaque, so the premultiplied pixels are plain RGBA.
-            let mut rgba = pixmap.take();
-            let mut gif_frame = Frame::from_rgba_speed(w16, h16, &mut rgba, QUANTISER_SPEED);
+            let rgba = pixmap.take();
+            let (palette, indices) = quantise(&rgba, &keys);
+            let mut gif_frame = Frame::from_palette_pixels(w16, h16, indices, palette, None);
             gif_frame.delay = delay;
             encoder.write_frame(&gif_frame).map_err(encode)?;
             progress(i + 1, total);
         }
     }
     Ok(bytes)
+}
+
+/// A 256-colour palette for `rgba` (opaque pixels) and each pixel's index in it: the `keys`
+/// exactly, then colours NeuQuant learns from the frame.
+fn quantise(rgba: &[u8], keys: &[[u8; 3]]) -> (Vec<u8>, Vec<u8>) {
+    let learnt = 256 - keys.len();
+    let nq = color_quant::NeuQuant::new(QUANTISER_SPEED, learnt, rgba);
+    let mut palette: Vec<u8> = nq.color_map_rgb();
+    palette.resize(3 * learnt, 0);
+    let exact: std::collections::HashMap<[u8; 3], u8> =
+        keys.iter().enumerate().map(|(i, &k)| (k, (learnt + i) as u8)).collect();
+    palette.extend(keys.iter().flatten());
+    let indices = rgba
+        .chunks_exact(4)
+        .map(|p| {
+            let colour = [p[0], p[1], p[2]];
+            exact.get(&colour).copied().unwrap_or_else(|| nq.index_of(p) as u8)
+        })
+        .collect();
+    (palette, indices)
 }

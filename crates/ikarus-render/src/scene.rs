@@ -361,7 +361,8 @@ impl Scene<'_> {
         );
     }
 
-    /// The caption centred below the plot, and an optional note at the right (a clock).
+    /// The caption centred below the plot, and an optional note (a clock) in the plot's top
+    /// right corner, where it cannot collide with a long caption.
     pub(crate) fn caption(&self, svg: &mut Svg, caption: Option<&str>, right: Option<&str>) {
         let layout = self.view.layout();
         let y = layout.caption_baseline();
@@ -371,8 +372,8 @@ impl Scene<'_> {
         }
         if let Some(r) = right {
             svg.text(
-                layout.plot.right,
-                y,
+                layout.plot.right - 0.8 * layout.tick_font,
+                layout.plot.top + 1.6 * layout.tick_font,
                 r,
                 &format!("font-size=\"{}\" fill=\"{}\" text-anchor=\"end\"", num(layout.tick_font), style::MUTED_TEXT),
             );

@@ -36,12 +36,34 @@ pub(crate) fn joint_hue(k: usize, n: usize) -> &'static str {
     if k == n { TIP_HUE } else { JOINT_HUES[(k.saturating_sub(1)) % JOINT_HUES.len()] }
 }
 
+/// `#rrggbb` as bytes.
+pub(crate) fn rgb(hex: &str) -> [u8; 3] {
+    let byte = |i: usize| u8::from_str_radix(hex.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
+    [byte(1), byte(3), byte(5)]
+}
+
+/// Every solid colour of the palette: a GIF keeps these exact, whatever the quantiser learns.
+pub(crate) fn key_colours() -> Vec<[u8; 3]> {
+    let mut v: Vec<[u8; 3]> =
+        [PAGE, PLOT, FRAME, GRID, GRID_MINOR, AXIS, MUTED_TEXT, TEXT, WORKSPACE, REACH, INK, MOUNT, GOAL, TIP_HUE]
+            .iter()
+            .chain(JOINT_HUES.iter())
+            .map(|h| rgb(h))
+            .collect();
+    v.push([255, 255, 255]);
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn hex_parses() {
+        assert_eq!(rgb(GOAL), [0xd6, 0x27, 0x28]);
+        assert!(key_colours().contains(&[0xd6, 0x27, 0x28]));
         assert_eq!(joint_hue(3, 3), TIP_HUE);
         assert_eq!(joint_hue(1, 3), JOINT_HUES[0]);
         assert_eq!(joint_hue(7, 9), JOINT_HUES[1]);

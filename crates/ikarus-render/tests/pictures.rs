@@ -146,7 +146,7 @@ fn gif_has_one_frame_per_animation_frame() {
         animate(&chain, &[vec![0.1, 0.1, 0.1], vec![0.5, 1.0, 0.5]], None, Timing::Frames(7), Ease::Sine).unwrap();
     let overlay = Overlay { goal: Some(Point2::new(2.0, 3.0)), show_reach: true, trail: true, ..Overlay::default() };
     let calls = std::cell::Cell::new(0);
-    let bytes = animation_gif(&chain, &animation, &overlay, 200, 160, 25.0, &|done, total| {
+    let bytes = animation_gif(&chain, &animation, &overlay, 420, 420, 25.0, &|done, total| {
         assert_eq!(total, 7);
         calls.set(done);
     })
@@ -156,10 +156,15 @@ fn gif_has_one_frame_per_animation_frame() {
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options.read_info(std::io::Cursor::new(&bytes)).unwrap();
-    assert_eq!((decoder.width(), decoder.height()), (200, 160));
+    assert_eq!((decoder.width(), decoder.height()), (420, 420));
+    // Quantising must not lose the goal's red: the palette keeps the style's colours exact.
+    let goal_px = View::new(&chain, overlay.goal, 420, 420).world_to_pixel(overlay.goal.unwrap());
     let mut frames = 0;
     while let Some(frame) = decoder.read_next_frame().unwrap() {
         assert_eq!(frame.delay, 4, "25 fps is 4 hundredths per frame");
+        assert_eq!((frame.width, frame.height), (420, 420));
+        let goal = pixel(&frame.buffer, 420, goal_px);
+        assert!(is_red(goal), "frame {frames}: goal pixel {goal:?}");
         frames += 1;
     }
     assert_eq!(frames, 7);

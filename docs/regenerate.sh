@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Regenerates the pictures of the README, all drawn by ikarus itself:
+#   bash docs/regenerate.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+ikarus=target/release/ikarus
+
+# The seed arm moving to a goal through a via point, eased with Parent's k1/k2 curve.
+$ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames 40 --fps 20 \
+  --width 420 --height 420 --out docs/motion.gif > /dev/null
+# The same motion as one picture: ghost poses fading in, the path of every joint marked.
+$ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames 24 \
+  --width 560 --height 560 --out docs/motion.png > /dev/null
+# What the seed's ranges leave of the annulus the free arm reaches.
+$ikarus workspace --limits --resolution 320 --width 560 --height 560 --out docs/workspace-limits.png > /dev/null
+# Parent's ease with the errata's corrected formula: position and velocity against time.
+$ikarus render ease --k1 0.3 --k2 0.75 --width 560 --height 420 --out docs/ease.png
+echo "docs/: $(ls docs/*.png docs/*.gif | tr '\n' ' ')"
