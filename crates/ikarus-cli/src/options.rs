@@ -90,13 +90,7 @@ impl SolverArgs {
                 .or(table.stall_epsilon_deg)
                 .map_or(d.stall.unwrap_or_default().epsilon, f64::to_radians),
         };
-        let limits = if self.limits {
-            true
-        } else if self.no_limits {
-            false
-        } else {
-            table.limits.unwrap_or(false)
-        };
+        let limits = limits_enforced(self.limits, self.no_limits, table);
         let options = SolveOptions {
             method: self.method.or(table.method).map_or(d.method, Method::from),
             lambda: self.lambda.or(table.lambda).unwrap_or(d.lambda),
@@ -122,6 +116,12 @@ impl SolverArgs {
         options.validate().map_err(|e| CliError::input(e.to_string()))?;
         Ok(options)
     }
+}
+
+/// Whether joint ranges are enforced: `--limits`, else not with `--no-limits`, else the arm
+/// file's `[solver] limits`, else off.
+pub fn limits_enforced(limits: bool, no_limits: bool, table: &SolverTable) -> bool {
+    limits || (!no_limits && table.limits.unwrap_or(false))
 }
 
 /// Parses a finite float, naming what was wrong with the text.

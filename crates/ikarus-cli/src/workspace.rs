@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use crate::arm::Arm;
 use crate::error::CliError;
-use crate::options::parse_at_least_one;
+use crate::options::{limits_enforced, parse_at_least_one};
 use crate::output;
 use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
 
@@ -66,13 +66,7 @@ struct WorkspaceJson<'a> {
 
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
-    let limits = if args.limits {
-        true
-    } else if args.no_limits {
-        false
-    } else {
-        arm.solver.limits.unwrap_or(false)
-    };
+    let limits = limits_enforced(args.limits, args.no_limits, &arm.solver);
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
     let defaults = WorkspaceOptions::default();
     let options = WorkspaceOptions {

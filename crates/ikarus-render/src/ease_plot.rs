@@ -110,13 +110,7 @@ pub fn ease_svg(ease: &Ease, width: u32, height: u32) -> Result<String, RenderEr
     svg.path(&velocity, &format!("{curve} stroke=\"{VELOCITY}\""));
     svg.path(&position, &format!("{curve} stroke=\"{POSITION}\""));
 
-    svg.rect(
-        plot.left,
-        plot.top,
-        plot.width(),
-        plot.height(),
-        &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::FRAME, num(u.max(0.6))),
-    );
+    style::plot_frame(&mut svg, &plot, u);
 
     svg.comment("axes");
     svg.group(&label_font);

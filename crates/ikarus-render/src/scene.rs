@@ -78,13 +78,7 @@ impl Scene<'_> {
             self.reach_circles(svg);
         }
 
-        svg.rect(
-            plot.left,
-            plot.top,
-            plot.width(),
-            plot.height(),
-            &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::FRAME, num(u.max(0.6))),
-        );
+        style::plot_frame(svg, &plot, u);
 
         svg.comment("tick labels");
         svg.group(&format!("font-size=\"{}\" fill=\"{}\"", num(layout.tick_font), style::MUTED_TEXT));

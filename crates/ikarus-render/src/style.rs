@@ -36,6 +36,12 @@ pub(crate) fn joint_hue(k: usize, n: usize) -> &'static str {
     if k == n { TIP_HUE } else { JOINT_HUES[(k.saturating_sub(1)) % JOINT_HUES.len()] }
 }
 
+/// The thin border around a plot area, drawn over its contents.
+pub(crate) fn plot_frame(svg: &mut crate::svg::Svg, plot: &crate::view::PixelRect, unit: f64) {
+    let attrs = format!("fill=\"none\" stroke=\"{FRAME}\" stroke-width=\"{}\"", crate::svg::num(unit.max(0.6)));
+    svg.rect(plot.left, plot.top, plot.width(), plot.height(), &attrs);
+}
+
 /// `#rrggbb` as bytes.
 pub(crate) fn rgb(hex: &str) -> [u8; 3] {
     let byte = |i: usize| u8::from_str_radix(hex.get(i..i + 2).unwrap_or("00"), 16).unwrap_or(0);
