@@ -5,9 +5,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use ikarus::Goal;
 use ikarus::motion::{Animation, Timing};
-use ikarus::{Goal, Outcome};
-use serde::Serialize;
 
 use crate::arm::Arm;
 use crate::ease_args::{EaseArg, EaseArgs};
@@ -15,6 +14,7 @@ use crate::error::CliError;
 use crate::options::{SolverArgs, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
 use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
+use crate::report::MotionRequest;
 
 /// Frames of a motion when neither --frames nor --duration is given.
 const DEFAULT_FRAMES: u32 = 60;
@@ -71,30 +71,6 @@ pub struct AnimateArgs {
     pub picture: PictureArgs,
 }
 
-#[derive(Serialize)]
-struct SolveJson {
-    goal: [f64; 2],
-    status: &'static str,
-    iterations: u32,
-    error: f64,
-}
-
-#[derive(Serialize)]
-struct FrameJson {
-    time: f64,
-    angles_deg: Vec<f64>,
-    joints: Vec<[f64; 2]>,
-}
-
-#[derive(Serialize)]
-struct AnimateJson<'a> {
-    arm: &'a str,
-    ease: &'static str,
-    duration: f64,
-    solves: Vec<SolveJson>,
-    frames: Vec<FrameJson>,
-}
-
 pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
     let timing = timing(args)?;
@@ -105,53 +81,35 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     // Solve for each via point, then the goal, each from the previous pose.
     let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
     let options = args.solver.resolve(&arm.solver, record)?;
-    let mut solver = crate::solve::solver_for(&arm.chain, options)?;
     let mut goals: Vec<Goal> = Vec::with_capacity(args.via.len() + 1);
     for (i, [x, y]) in args.via.iter().enumerate() {
         goals.push(Goal::position(*x, *y).map_err(|e| CliError::input(format!("--via #{}: {e}", i + 1)))?);
     }
     let [x, y] = args.goal;
     goals.push(crate::solve::make_goal(x, y, args.goal_angle).map_err(CliError::input)?);
-
-    let mut keyframes = vec![arm.chain.start_pose().angles().to_vec()];
-    let mut path: Vec<Vec<f64>> = vec![keyframes[0].clone()];
-    let mut solves = Vec::with_capacity(goals.len());
-    for goal in &goals {
-        let start = keyframes.last().expect("the start pose is a keyframe").clone();
-        let mut outcome = Outcome::default();
-        solver
-            .solve_into(&arm.chain, &start, goal, &mut outcome)
-            .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
-        let target = goal.target();
-        if outcome.status != ikarus::Status::Reached {
+    let motion = MotionRequest {
+        arm: &arm,
+        start: arm.chain.start_pose().angles().to_vec(),
+        goals: goals.clone(),
+        options,
+        timing,
+        ease,
+        from_solve: args.from_solve,
+    }
+    .run()?;
+    for s in &motion.solves {
+        if s.status != ikarus::Status::Reached.as_str() {
             eprintln!(
                 "ikarus: goal ({}, {}) not reached: {}, error {:.3e}; the motion ends at the best pose found",
-                target.x, target.y, outcome.status, outcome.error
+                s.goal[0], s.goal[1], s.status, s.error
             );
         }
-        // The solver's recorded path, without repeating the pose it started from.
-        path.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
-        keyframes.push(outcome.pose.angles().to_vec());
-        solves.push(SolveJson {
-            goal: [target.x, target.y],
-            status: outcome.status.as_str(),
-            iterations: outcome.iterations,
-            error: outcome.error,
-        });
     }
-
-    let poses = if args.from_solve { &path } else { &keyframes };
-    // The motion obeys the same limits as the solve: without --limits every joint is free.
-    let motion_chain = match solver.options().limits {
-        ikarus::LimitMode::Clamp => arm.chain.clone(),
-        _ => arm.chain.without_limits(),
-    };
-    let animation = ikarus::motion::animate(&motion_chain, poses, None, timing, ease)
-        .map_err(|e| CliError::input(e.to_string()))?;
+    let animation = &motion.animation;
 
     if let Some(out) = picture {
         let goal = goals.last().map(Goal::target);
-        let caption = caption(&solver, &animation, &solves);
+        let caption = motion.caption();
         let bytes = match out.format {
             PictureFormat::Gif => {
                 let overlay = ikarus_render::Overlay {
@@ -169,7 +127,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
                     }
                 };
                 let (w, h) = (args.picture.width, args.picture.height);
-                let gif = ikarus_render::animation_gif(&arm.chain, &animation, &overlay, w, h, fps, &report)
+                let gif = ikarus_render::animation_gif(&arm.chain, animation, &overlay, w, h, fps, &report)
                     .map_err(|e| render_failed(&e))?;
                 if let Some(bar) = bar {
                     bar.finish_and_clear();
@@ -180,7 +138,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
                 let figure = ikarus_render::ArmFigure {
                     goal,
                     caption: Some(caption),
-                    ..ikarus_render::ArmFigure::of_animation(&arm.chain, &animation)
+                    ..ikarus_render::ArmFigure::of_animation(&arm.chain, animation)
                 };
                 let svg = ikarus_render::arm_svg(&figure, args.picture.width, args.picture.height)
                     .map_err(|e| render_failed(&e))?;
@@ -196,25 +154,10 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
 
     output::stdout(|w| match args.format {
         AnimateFormat::Json => {
-            let json = AnimateJson {
-                arm: &arm.name,
-                ease: animation.ease.name(),
-                duration: animation.duration,
-                solves,
-                frames: animation
-                    .frames
-                    .iter()
-                    .map(|f| FrameJson {
-                        time: f.time,
-                        angles_deg: f.angles.iter().map(|a| a.to_degrees()).collect(),
-                        joints: f.joints.iter().map(|p| [p.x, p.y]).collect(),
-                    })
-                    .collect(),
-            };
-            serde_json::to_writer_pretty(&mut *w, &json)?;
+            serde_json::to_writer_pretty(&mut *w, &motion.json(&arm))?;
             writeln!(w)
         }
-        AnimateFormat::Csv => csv(w, &animation, arm.chain.len()),
+        AnimateFormat::Csv => csv(w, animation, arm.chain.len()),
     })
 }
 
@@ -233,20 +176,6 @@ fn timing(args: &AnimateArgs) -> Result<Timing, CliError> {
         (None, Some(seconds)) => Ok(Timing::Duration { seconds, fps: args.fps.unwrap_or(DEFAULT_FPS) }),
         (None, None) => Ok(Timing::Frames(DEFAULT_FRAMES as usize)),
     }
-}
-
-fn caption(solver: &ikarus::Solver, animation: &Animation, solves: &[SolveJson]) -> String {
-    let last = solves.last().expect("at least the goal was solved");
-    let iterations: u32 = solves.iter().map(|s| s.iterations).sum();
-    format!(
-        "{} · {} · {} iterations · error {:.1e} · {} frames, {} ease",
-        solver.options().method.name(),
-        last.status,
-        iterations,
-        last.error,
-        animation.frames.len(),
-        animation.ease.name()
-    )
 }
 
 fn csv(w: &mut dyn Write, animation: &Animation, n: usize) -> std::io::Result<()> {

@@ -100,6 +100,12 @@ impl Arm {
     /// Parses and validates arm-file text; `label` starts every error message.
     pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
         let file: ArmFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
+        Self::from_file(file, label)
+    }
+
+    /// Validates an arm already read (from a file or a JSON request); `label` starts every
+    /// error message.
+    pub fn from_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
         let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
         Ok(Self { name: file.name.clone().unwrap_or_else(|| "arm".to_owned()), chain, solver: file.solver })
@@ -151,7 +157,7 @@ fn limits_problem(lo: f64, hi: f64) -> &'static str {
 
 impl SolverTable {
     /// Range checks, naming the field; the caller prefixes `[solver].`.
-    fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), String> {
         use crate::options::{at_least_one, non_negative, positive};
         let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
         if let Some(v) = self.lambda {
@@ -198,6 +204,27 @@ fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
             format!("{label}: line {line}, column {col}: {msg}")
         }
         None => format!("{label}: {msg}"),
+    }
+}
+
+impl SolverTable {
+    /// This table's values, falling back to `base` for each one it leaves out.
+    pub fn over(&self, base: &SolverTable) -> SolverTable {
+        SolverTable {
+            method: self.method.or(base.method),
+            lambda: self.lambda.or(base.lambda),
+            tolerance: self.tolerance.or(base.tolerance),
+            angle_tolerance_deg: self.angle_tolerance_deg.or(base.angle_tolerance_deg),
+            max_iterations: self.max_iterations.or(base.max_iterations),
+            record_every: self.record_every.or(base.record_every),
+            gain: self.gain.or(base.gain),
+            rates: self.rates.clone().or_else(|| base.rates.clone()),
+            max_step_deg: self.max_step_deg.or(base.max_step_deg),
+            backtrack: self.backtrack.or(base.backtrack),
+            stall_window: self.stall_window.or(base.stall_window),
+            stall_epsilon_deg: self.stall_epsilon_deg.or(base.stall_epsilon_deg),
+            limits: self.limits.or(base.limits),
+        }
     }
 }
 

@@ -7,7 +7,8 @@ use crate::error::CliError;
 use crate::options::parse_finite;
 
 /// Ease curves, as named at the edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum EaseArg {
     /// Constant speed
     Linear,

@@ -12,6 +12,8 @@ mod options;
 mod output;
 mod picture;
 mod render;
+mod report;
+mod serve;
 mod solve;
 mod workspace;
 
@@ -44,6 +46,8 @@ enum Command {
     /// Draw figures that stand on their own
     #[command(subcommand)]
     Render(render::RenderCommand),
+    /// Serve the JSON API over HTTP on 127.0.0.1:7878 (the playground page comes later)
+    Serve(serve::ServeArgs),
 }
 
 fn main() -> ExitCode {
@@ -68,6 +72,7 @@ fn main() -> ExitCode {
         Command::Animate(args) => animate::run(args),
         Command::Workspace(args) => workspace::run(args),
         Command::Render(command) => render::run(command),
+        Command::Serve(args) => serve::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

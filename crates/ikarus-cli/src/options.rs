@@ -33,7 +33,7 @@ impl From<MethodArg> for Method {
 }
 
 /// Solver flags. Each overrides the arm file's `[solver]` table.
-#[derive(Debug, Clone, Args)]
+#[derive(Debug, Clone, Default, Args)]
 pub struct SolverArgs {
     /// Solver method [default: dls]
     #[arg(long, value_enum, hide_possible_values = false)]

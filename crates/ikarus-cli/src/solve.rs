@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use ikarus::{Chain, Goal, Outcome, SolveOptions, Solver, Status};
+use ikarus::{Goal, Outcome, SolveOptions, Status};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -14,6 +14,8 @@ use crate::arm::{Arm, io_reason};
 use crate::error::CliError;
 use crate::options::{SolverArgs, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output::{self, PendingFile};
+pub(crate) use crate::report::solver_for;
+use crate::report::{SolveJson, SolveReport};
 
 /// Frames recorded by default: every 20 iterations, as the seed program did.
 const DEFAULT_RECORD_EVERY: u32 = 20;
@@ -89,18 +91,6 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     }
 }
 
-/// Builds the solver, checking what depends on the chain (one rate per joint).
-pub(crate) fn solver_for(chain: &Chain, options: SolveOptions) -> Result<Solver, CliError> {
-    if !options.rates.is_empty() && options.rates.len() != chain.len() {
-        return Err(CliError::input(format!(
-            "--rates: expected {} values (one per joint), got {}",
-            chain.len(),
-            options.rates.len()
-        )));
-    }
-    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
-}
-
 fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     let [x, y] = args.goal.expect("clap requires --goal without --batch");
     let goal = make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
@@ -141,82 +131,16 @@ struct Report<'a> {
     micros: f64,
 }
 
-#[derive(Serialize)]
-struct GoalJson {
-    x: f64,
-    y: f64,
-    angle_deg: Option<f64>,
-}
-
-#[derive(Serialize)]
-struct TipJson {
-    x: f64,
-    y: f64,
-    angle_deg: f64,
-}
-
-#[derive(Serialize)]
-struct FrameJson {
-    iteration: u32,
-    angles_deg: Vec<f64>,
-    joints: Vec<[f64; 2]>,
-}
-
-#[derive(Serialize)]
-struct SolveJson<'a> {
-    arm: &'a str,
-    method: &'static str,
-    limits: bool,
-    goal: GoalJson,
-    status: &'static str,
-    iterations: u32,
-    error: f64,
-    angle_error_deg: f64,
-    tolerance: f64,
-    solve_us: f64,
-    end_effector: TipJson,
-    angles_deg: Vec<f64>,
-    joints: Vec<[f64; 2]>,
-    frames: Vec<FrameJson>,
-}
-
-fn degrees(angles: &[f64]) -> Vec<f64> {
-    angles.iter().map(|a| a.to_degrees()).collect()
-}
-
-fn points(joints: &[ikarus::Point2<f64>]) -> Vec<[f64; 2]> {
-    joints.iter().map(|p| [p.x, p.y]).collect()
-}
-
 impl Report<'_> {
     fn json(&self) -> SolveJson<'_> {
-        let o = self.outcome;
-        let target = self.goal.target();
-        let joints = points(&ikarus::kinematics::joint_positions(&self.arm.chain, o.pose.angles()));
-        SolveJson {
-            arm: &self.arm.name,
-            method: self.options.method.name(),
-            limits: self.options.limits == ikarus::LimitMode::Clamp,
-            goal: GoalJson { x: target.x, y: target.y, angle_deg: self.goal.orientation().map(f64::to_degrees) },
-            status: o.status.as_str(),
-            iterations: o.iterations,
-            error: o.error,
-            angle_error_deg: o.angle_error.to_degrees(),
-            tolerance: self.options.tolerance,
-            solve_us: self.micros,
-            end_effector: TipJson {
-                x: o.end_effector.position.x,
-                y: o.end_effector.position.y,
-                angle_deg: o.end_effector.orientation.to_degrees(),
-            },
-            angles_deg: degrees(o.pose.angles()),
-            joints,
-            frames: o
-                .frames
-                .iter()
-                .map(|f| FrameJson { iteration: f.iteration, angles_deg: degrees(f.angles), joints: points(f.joints) })
-                .collect(),
+        SolveReport {
+            arm: self.arm,
+            options: self.options,
+            goal: self.goal,
+            outcome: self.outcome,
+            micros: self.micros,
         }
+        .json()
     }
 
     fn csv(&self, w: &mut dyn Write) -> std::io::Result<()> {

@@ -5,13 +5,12 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ikarus::reach::{Annulus, Workspace, WorkspaceOptions};
-use serde::Serialize;
 
 use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::{limits_enforced, parse_at_least_one};
-use crate::output;
 use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
+use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum WorkspaceFormat {
@@ -49,21 +48,6 @@ pub struct WorkspaceArgs {
     pub picture: PictureArgs,
 }
 
-#[derive(Serialize)]
-struct WorkspaceJson<'a> {
-    arm: &'a str,
-    limits: bool,
-    inner_radius: f64,
-    outer_radius: f64,
-    annulus_area: f64,
-    area: f64,
-    resolution: u32,
-    cell_size: f64,
-    origin: [f64; 2],
-    /// One string per row of cells, bottom row first, `1` for reachable and `0` for not.
-    grid: Vec<String>,
-}
-
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
     let limits = limits_enforced(args.limits, args.no_limits, &arm.solver);
@@ -91,7 +75,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     }
 
     if let Some(out) = picture {
-        let caption = caption(&arm, &workspace);
+        let caption = report::workspace_caption(&arm, &workspace);
         let pose = arm.chain.start_pose().angles();
         let figure = ikarus_render::ArmFigure {
             workspace: Some(&workspace),
@@ -115,35 +99,11 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     });
     output::stdout(|w| match format {
         WorkspaceFormat::Json => {
-            let origin = workspace.origin();
-            let json = WorkspaceJson {
-                arm: &arm.name,
-                limits,
-                inner_radius: annulus.inner,
-                outer_radius: annulus.outer,
-                annulus_area: annulus.area(),
-                area: workspace.area(),
-                resolution: workspace.resolution(),
-                cell_size: workspace.cell_size(),
-                origin: [origin.x, origin.y],
-                grid: grid_rows(&workspace),
-            };
-            serde_json::to_writer(&mut *w, &json)?;
+            serde_json::to_writer(&mut *w, &report::workspace_json(&arm, limits, &workspace))?;
             writeln!(w)
         }
         WorkspaceFormat::Text => text(w, &arm, &workspace, &annulus, limits),
     })
-}
-
-fn grid_rows(ws: &Workspace) -> Vec<String> {
-    (0..ws.resolution())
-        .map(|iy| (0..ws.resolution()).map(|ix| if ws.is_occupied(ix, iy) { '1' } else { '0' }).collect())
-        .collect()
-}
-
-fn caption(arm: &Arm, ws: &Workspace) -> String {
-    let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
-    format!("{} · {limits} · reachable area {:.2} of {:.2}", arm.name, ws.area(), ws.annulus().area())
 }
 
 fn text(w: &mut dyn Write, arm: &Arm, ws: &Workspace, annulus: &Annulus, limits: bool) -> std::io::Result<()> {

@@ -1,0 +1,88 @@
+//! The API's error: a status code and a JSON body `{"error": "…"}` of one line that names the
+//! field and the value.
+
+use axum::Json;
+use axum::extract::rejection::JsonRejection;
+use axum::extract::{FromRequest, Request};
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use serde::de::DeserializeOwned;
+
+use super::AppState;
+use crate::error::CliError;
+
+/// A failed request.
+#[derive(Debug)]
+pub struct ApiError {
+    pub status: StatusCode,
+    pub message: String,
+}
+
+impl ApiError {
+    /// 422: the request is well-formed JSON but a value is invalid.
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Self { status: StatusCode::UNPROCESSABLE_ENTITY, message: message.into() }
+    }
+
+    /// 500: something failed inside the server.
+    pub fn internal(message: impl Into<String>) -> Self {
+        Self { status: StatusCode::INTERNAL_SERVER_ERROR, message: format!("internal error: {}", message.into()) }
+    }
+}
+
+impl From<CliError> for ApiError {
+    fn from(e: CliError) -> Self {
+        match e {
+            CliError::Input(m) => Self::invalid(m),
+            CliError::Runtime(m) => Self::internal(m),
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let message = self.message.replace(['\n', '\r'], " ");
+        (self.status, Json(serde_json::json!({ "error": message }))).into_response()
+    }
+}
+
+/// A JSON request body whose rejections answer in the API's error shape: malformed JSON or a
+/// missing `Content-Type: application/json` → 400, a value of the wrong type or an unknown
+/// field → 422, a body over `--max-body-bytes` → 413.
+pub struct ApiJson<T>(pub T);
+
+impl<T: DeserializeOwned> FromRequest<AppState> for ApiJson<T> {
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
+        match Json::<T>::from_request(req, state).await {
+            Ok(Json(value)) => Ok(Self(value)),
+            Err(rejection) => Err(rejected(&rejection, state.limits.max_body_bytes)),
+        }
+    }
+}
+
+fn rejected(rejection: &JsonRejection, max_body_bytes: usize) -> ApiError {
+    // axum's text is "Failed to …: <serde's message, with the path of the field>".
+    let detail = || {
+        let text = rejection.body_text();
+        match text.split_once(": ") {
+            Some((_, rest)) => rest.to_owned(),
+            None => text,
+        }
+    };
+    match rejection {
+        JsonRejection::JsonDataError(_) => ApiError::invalid(format!("request body: {}", detail())),
+        JsonRejection::JsonSyntaxError(_) => {
+            ApiError { status: StatusCode::BAD_REQUEST, message: format!("request body: malformed JSON: {}", detail()) }
+        }
+        JsonRejection::MissingJsonContentType(_) => {
+            ApiError { status: StatusCode::BAD_REQUEST, message: "Content-Type: expected application/json".to_owned() }
+        }
+        other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError {
+            status: StatusCode::PAYLOAD_TOO_LARGE,
+            message: format!("request body: larger than the cap of {max_body_bytes} bytes (--max-body-bytes)"),
+        },
+        other => ApiError { status: other.status(), message: format!("request body: {}", other.body_text()) },
+    }
+}

@@ -1,0 +1,389 @@
+//! `ikarus serve` over real HTTP: each endpoint's contract and each class of bad request.
+//! Every test starts its own server on an ephemeral port and kills it when done.
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+
+use serde_json::{Value, json};
+
+/// A running `ikarus serve`, killed on drop.
+struct Server {
+    child: Child,
+    base: String,
+    agent: ureq::Agent,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// An answer: status, content type, body.
+struct Answer {
+    status: u16,
+    content_type: String,
+    body: Vec<u8>,
+}
+
+impl Answer {
+    fn json(&self) -> Value {
+        serde_json::from_slice(&self.body)
+            .unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&self.body)))
+    }
+
+    /// The `error` of a JSON error body, after checking the status.
+    fn error(&self, status: u16) -> String {
+        assert_eq!(self.status, status, "body: {}", String::from_utf8_lossy(&self.body));
+        assert_eq!(self.content_type, "application/json");
+        let v = self.json();
+        let e = v["error"].as_str().unwrap_or_else(|| panic!("no error string: {v}")).to_owned();
+        assert!(!e.contains('\n'), "multi-line error: {e:?}");
+        assert_eq!(v.as_object().unwrap().len(), 1, "only `error`: {v}");
+        e
+    }
+}
+
+fn start(args: &[&str]) -> Server {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["serve", "--port", "0"])
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start ikarus serve");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
+    let base = line
+        .trim()
+        .strip_prefix("ikarus serve: listening on ")
+        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
+        .to_owned();
+    assert!(base.starts_with("http://127.0.0.1:"), "{base}");
+    let config = ureq::Agent::config_builder().http_status_as_error(false).build();
+    Server { child, base, agent: config.into() }
+}
+
+impl Server {
+    fn answer(mut response: ureq::http::Response<ureq::Body>) -> Answer {
+        let content_type =
+            response.headers().get("content-type").map(|v| v.to_str().unwrap().to_owned()).unwrap_or_default();
+        let body = response.body_mut().with_config().limit(64 << 20).read_to_vec().expect("read the body");
+        Answer { status: response.status().as_u16(), content_type, body }
+    }
+
+    fn get(&self, path: &str) -> Answer {
+        Self::answer(self.agent.get(format!("{}{path}", self.base)).call().expect("GET"))
+    }
+
+    fn post_raw(&self, path: &str, content_type: &str, body: &[u8]) -> Answer {
+        let request = self.agent.post(format!("{}{path}", self.base)).header("Content-Type", content_type);
+        Self::answer(request.send(body).expect("POST"))
+    }
+
+    fn post(&self, path: &str, body: &Value) -> Answer {
+        self.post_raw(path, "application/json", body.to_string().as_bytes())
+    }
+
+    fn assert_healthy(&self) {
+        let a = self.get("/api/health");
+        assert_eq!(a.status, 200);
+        assert_eq!(a.json()["status"], "ok");
+    }
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn health_and_the_placeholder_page() {
+    let s = start(&[]);
+    let a = s.get("/api/health");
+    assert_eq!(a.status, 200);
+    assert_eq!(a.json(), json!({ "status": "ok", "version": env!("CARGO_PKG_VERSION") }));
+    let page = s.get("/");
+    assert_eq!(page.status, 200);
+    assert!(page.content_type.starts_with("text/html"), "{}", page.content_type);
+    assert!(String::from_utf8_lossy(&page.body).contains("/api/solve"));
+    let e = s.get("/api/nope").error(404);
+    assert!(e.contains("/api/nope"), "{e}");
+}
+
+#[test]
+fn default_arm_is_the_seed_in_the_arm_file_shape() {
+    let s = start(&[]);
+    let a = s.get("/api/arm/default");
+    assert_eq!(a.status, 200);
+    assert_eq!(
+        a.json(),
+        json!({
+            "name": "seed",
+            "base": [0.0, 0.0],
+            "links": [
+                { "length": 3.0, "angle_deg": 5.0, "limits_deg": [-45.0, 45.0] },
+                { "length": 2.0, "angle_deg": 5.0, "limits_deg": [-90.0, 90.0] },
+                { "length": 1.0, "angle_deg": 5.0, "limits_deg": [-170.0, 170.0] },
+            ]
+        })
+    );
+}
+
+#[test]
+fn solve_reaches_the_goal_like_the_cli() {
+    let s = start(&[]);
+    let a = s.post("/api/solve", &json!({ "goal": { "x": 2, "y": 3 } }));
+    assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+    assert_eq!(a.content_type, "application/json");
+    let v = a.json();
+    assert_eq!(v["status"], "reached");
+    assert_eq!(v["arm"], "seed");
+    assert_eq!(v["method"], "dls");
+    assert!(v["error"].as_f64().unwrap() <= 1e-6);
+    assert_eq!(v["angles_deg"].as_array().unwrap().len(), 3);
+    let joints = v["joints"].as_array().unwrap();
+    assert_eq!(joints.len(), 4);
+    let tip = &joints[3];
+    assert!(close(tip[0].as_f64().unwrap(), 2.0, 1e-5) && close(tip[1].as_f64().unwrap(), 3.0, 1e-5), "{tip}");
+    let frames = v["frames"].as_array().unwrap();
+    assert!(frames.len() >= 2, "first and last at least");
+    assert_eq!(frames[0]["iteration"], 0);
+
+    // The same object as `ikarus solve --format json`, apart from the time it took.
+    let cli = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["solve", "--goal", "2,3", "--format", "json"])
+        .output()
+        .expect("run ikarus solve");
+    let mut cli: Value = serde_json::from_slice(&cli.stdout).expect("CLI JSON");
+    let mut api = v.clone();
+    cli.as_object_mut().unwrap().remove("solve_us");
+    api.as_object_mut().unwrap().remove("solve_us");
+    assert_eq!(api, cli);
+
+    // Options, a start pose and an arm of the request are used.
+    let a = s.post(
+        "/api/solve",
+        &json!({
+            "arm": { "name": "two", "links": [{ "length": 1 }, { "length": 1, "angle_deg": 30 }] },
+            "start_deg": [10, 20],
+            "goal": { "x": 0.5, "y": 1.2 },
+            "options": { "method": "pinv", "record_every": 1, "tolerance": 1e-9 }
+        }),
+    );
+    let v = a.json();
+    assert_eq!(a.status, 200, "{v}");
+    assert_eq!(
+        (v["arm"].as_str(), v["method"].as_str(), v["status"].as_str()),
+        (Some("two"), Some("pinv"), Some("reached"))
+    );
+    assert_eq!(v["frames"][0]["angles_deg"], json!([10.0, 20.0]));
+    assert_eq!(v["frames"].as_array().unwrap().len() as u64, v["iterations"].as_u64().unwrap() + 1);
+}
+
+#[test]
+fn animate_gives_the_eased_frames() {
+    let s = start(&[]);
+    let a = s.post(
+        "/api/animate",
+        &json!({ "goal": { "x": 2, "y": 3 }, "via": [[4, 1]], "frames": 12, "ease": { "kind": "parent", "k1": 0.2, "k2": 0.8 } }),
+    );
+    let v = a.json();
+    assert_eq!(a.status, 200, "{v}");
+    assert_eq!(v["ease"], "parent");
+    assert_eq!(v["frames"].as_array().unwrap().len(), 12);
+    assert_eq!(v["solves"].as_array().unwrap().len(), 2);
+    assert_eq!(v["frames"][0]["time"], 0.0);
+    assert_eq!(v["frames"][11]["time"], v["duration"]);
+    let tip = &v["frames"][11]["joints"][3];
+    assert!(close(tip[0].as_f64().unwrap(), 2.0, 1e-5) && close(tip[1].as_f64().unwrap(), 3.0, 1e-5), "{tip}");
+
+    let v = s.post("/api/animate", &json!({ "goal": { "x": 2, "y": 3 }, "duration": 0.5, "fps": 20 })).json();
+    assert_eq!(v["frames"].as_array().unwrap().len(), 11);
+    assert_eq!(v["duration"], 0.5);
+    assert_eq!(v["ease"], "sine");
+}
+
+#[test]
+fn workspace_gives_radii_area_and_grid() {
+    let s = start(&[]);
+    let a = s.post("/api/workspace", &json!({ "resolution": 32 }));
+    let v = a.json();
+    assert_eq!(a.status, 200, "{v}");
+    assert_eq!(v["limits"], false);
+    assert_eq!(v["inner_radius"], 0.0);
+    assert_eq!(v["outer_radius"], 6.0);
+    assert_eq!(v["resolution"], 32);
+    let grid = v["grid"].as_array().unwrap();
+    assert_eq!(grid.len(), 32);
+    assert!(grid.iter().all(|row| row.as_str().unwrap().len() == 32));
+    let free = v["area"].as_f64().unwrap();
+
+    let v = s.post("/api/workspace", &json!({ "resolution": 32, "limits": true })).json();
+    assert_eq!(v["limits"], true);
+    assert!(v["area"].as_f64().unwrap() < free, "limits shrink the reachable area");
+}
+
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "PNG magic");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+#[test]
+fn render_returns_png_svg_and_gif() {
+    let s = start(&[]);
+    let a = s.post(
+        "/api/render",
+        &json!({ "figure": "arm", "format": "png", "width": 320, "height": 200, "pose_deg": [0, 30, 60], "goal": { "x": 2, "y": 3 } }),
+    );
+    assert_eq!((a.status, a.content_type.as_str()), (200, "image/png"));
+    assert_eq!(png_size(&a.body), (320, 200));
+
+    let a = s.post("/api/render", &json!({ "figure": "ease", "format": "svg", "ease": { "kind": "smoothstep" } }));
+    assert_eq!((a.status, a.content_type.as_str()), (200, "image/svg+xml"));
+    assert!(String::from_utf8_lossy(&a.body).contains("<svg"));
+
+    let a = s.post(
+        "/api/render",
+        &json!({ "figure": "motion", "format": "gif", "width": 120, "height": 100, "goal": { "x": 2, "y": 3 }, "frames": 6 }),
+    );
+    assert_eq!((a.status, a.content_type.as_str()), (200, "image/gif"));
+    assert_eq!(&a.body[..6], b"GIF89a");
+    assert_eq!(u16::from_le_bytes([a.body[6], a.body[7]]), 120);
+    assert_eq!(u16::from_le_bytes([a.body[8], a.body[9]]), 100);
+
+    let a = s.post(
+        "/api/render",
+        &json!({ "figure": "workspace", "format": "png", "width": 64, "height": 64, "resolution": 16 }),
+    );
+    assert_eq!((a.status, a.content_type.as_str()), (200, "image/png"));
+    assert_eq!(png_size(&a.body), (64, 64));
+
+    let a = s.post("/api/render", &json!({ "figure": "motion", "format": "svg", "goal": { "x": 2, "y": 3 } }));
+    assert_eq!((a.status, a.content_type.as_str()), (200, "image/svg+xml"));
+
+    let e = s.post("/api/render", &json!({ "figure": "arm", "width": 5000 })).error(422);
+    assert!(e.starts_with("width = 5000"), "{e}");
+    let e = s.post("/api/render", &json!({ "figure": "arm", "format": "gif" })).error(422);
+    assert!(e.starts_with("format = gif"), "{e}");
+    let e = s.post("/api/render", &json!({ "figure": "motion" })).error(422);
+    assert!(e.starts_with("goal:"), "{e}");
+}
+
+#[test]
+fn malformed_json_and_wrong_content_type_are_400() {
+    let s = start(&[]);
+    let e = s.post_raw("/api/solve", "application/json", b"{\"goal\": {\"x\": 2,").error(400);
+    assert!(e.contains("malformed JSON"), "{e}");
+    let e = s.post_raw("/api/solve", "text/plain", br#"{"goal":{"x":2,"y":3}}"#).error(400);
+    assert!(e.contains("Content-Type"), "{e}");
+    // JSON has no NaN or infinity: 1e999 overflows while parsing, which is named.
+    let e = s.post_raw("/api/solve", "application/json", br#"{"goal":{"x":1e999,"y":3}}"#).error(400);
+    assert!(e.contains("goal.x") && e.contains("out of range"), "{e}");
+    s.assert_healthy();
+}
+
+#[test]
+fn invalid_values_are_422_naming_the_field() {
+    let s = start(&[]);
+    let goal = json!({ "x": 2, "y": 3 });
+    let cases = [
+        ("/api/solve", json!({ "goal": goal, "options": { "lamda": 0.1 } }), "options.lamda: unknown field"),
+        ("/api/solve", json!({ "goal": { "x": 2, "y": "NaN" } }), "goal.y: invalid type"),
+        ("/api/solve", json!({ "goal": goal, "bogus": 1 }), "bogus: unknown field"),
+        (
+            "/api/solve",
+            json!({ "arm": { "links": [{ "length": 0 }] }, "goal": goal }),
+            "arm: links[0].length = 0: must be greater than 0",
+        ),
+        ("/api/solve", json!({ "arm": { "links": [{ "length": -2 }] }, "goal": goal }), "arm: links[0].length = -2"),
+        ("/api/solve", json!({ "goal": goal, "options": { "tolerance": -1 } }), "options.tolerance = -1"),
+        ("/api/solve", json!({ "goal": goal, "options": { "method": "newton" } }), "options.method: unknown variant"),
+        ("/api/solve", json!({ "goal": goal, "options": { "rates": [1, 2] } }), "options.rates: expected 3 values"),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "start_deg": [1, 2] }),
+            "start_deg: expected 3 angles (one per joint), got 2",
+        ),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "options": { "max_iterations": 1_000_000 } }),
+            "options.max_iterations = 1000000: more than the cap of 100000",
+        ),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "arm": { "links": vec![json!({ "length": 1 }); 65] } }),
+            "arm.links: 65 links, more than the cap of 64",
+        ),
+        ("/api/solve", json!({}), "missing field `goal`"),
+        ("/api/animate", json!({ "goal": goal, "frames": 1 }), "frames = 1"),
+        ("/api/animate", json!({ "goal": goal, "frames": 5000 }), "frames: 5000 frames, more than the cap of 2000"),
+        ("/api/animate", json!({ "goal": goal, "ease": { "kind": "sine", "k1": 0.1 } }), "ease.k1: only applies"),
+        ("/api/animate", json!({ "goal": goal, "ease": { "k1": 0.9, "k2": 0.1 } }), "ease.k1"),
+        ("/api/workspace", json!({ "resolution": 2048 }), "resolution = 2048: more than the cap of 1024"),
+        ("/api/workspace", json!({ "resolution": 4 }), "resolution"),
+        ("/api/render", json!({ "figure": "chart" }), "figure: unknown variant"),
+    ];
+    for (path, body, want) in cases {
+        let e = s.post(path, &body).error(422);
+        assert!(e.contains(want), "{path} {body}\n got {e:?}\nwant {want:?}");
+    }
+    s.assert_healthy();
+}
+
+#[test]
+fn caps_follow_the_flags_and_an_oversized_body_is_413() {
+    let s = start(&["--max-body-bytes", "2000", "--max-links", "2", "--max-resolution", "64", "--max-frames", "10"]);
+    let e = s.post_raw("/api/solve", "application/json", &vec![b' '; 5000]).error(413);
+    assert!(e.contains("--max-body-bytes") && e.contains("2000"), "{e}");
+    let e = s
+        .post("/api/solve", &json!({ "goal": { "x": 1, "y": 1 }, "arm": { "links": [{ "length": 1 }, { "length": 1 }, { "length": 1 }] } }))
+        .error(422);
+    assert!(e.contains("more than the cap of 2"), "{e}");
+    let e = s.post("/api/workspace", &json!({ "resolution": 128 })).error(422);
+    assert!(e.contains("cap of 64"), "{e}");
+    let e = s.post("/api/animate", &json!({ "goal": { "x": 1, "y": 1 }, "duration": 1 })).error(422);
+    assert!(e.starts_with("duration: 31 frames, more than the cap of 10"), "{e}");
+    s.assert_healthy();
+}
+
+#[test]
+fn a_non_loopback_host_warns_and_bad_flags_exit_2() {
+    let out = Command::new(env!("CARGO_BIN_EXE_ikarus")).args(["serve", "--port", "70000"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = Command::new(env!("CARGO_BIN_EXE_ikarus")).args(["serve", "--max-resolution", "5000"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["serve", "--host", "0.0.0.0", "--port", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stderr.take().unwrap()).read_line(&mut line).unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(line.starts_with("ikarus serve: warning: listening on 0.0.0.0"), "{line:?}");
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_server_cleanly() {
+    let mut s = start(&[]);
+    s.assert_healthy();
+    let pid = s.child.id().to_string();
+    let sent = Command::new("kill").args(["-INT", &pid]).status().expect("run kill");
+    assert!(sent.success());
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    loop {
+        if let Some(status) = s.child.try_wait().unwrap() {
+            assert_eq!(status.code(), Some(0), "{status:?}");
+            break;
+        }
+        assert!(std::time::Instant::now() < deadline, "still running 5 s after Ctrl-C");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
