@@ -98,7 +98,7 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 }
 
 #[test]
-fn health_and_the_placeholder_page() {
+fn health_and_the_playground_page() {
     let s = start(&[]);
     let a = s.get("/api/health");
     assert_eq!(a.status, 200);
@@ -106,7 +106,13 @@ fn health_and_the_placeholder_page() {
     let page = s.get("/");
     assert_eq!(page.status, 200);
     assert!(page.content_type.starts_with("text/html"), "{}", page.content_type);
-    assert!(String::from_utf8_lossy(&page.body).contains("/api/solve"));
+    assert!(String::from_utf8_lossy(&page.body).contains("<canvas"));
+    for (path, kind, needle) in [("/app.js", "text/javascript", "/api/solve"), ("/app.css", "text/css", "#fbfaf7")] {
+        let asset = s.get(path);
+        assert_eq!(asset.status, 200, "{path}");
+        assert!(asset.content_type.starts_with(kind), "{path}: {}", asset.content_type);
+        assert!(String::from_utf8_lossy(&asset.body).contains(needle), "{path}");
+    }
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
 }

@@ -1,4 +1,4 @@
-//! `ikarus serve`: the JSON API (and, later, the playground page) over HTTP, with axum on tokio.
+//! `ikarus serve`: the playground page and the JSON API over HTTP, with axum on tokio.
 //!
 //! Every CPU-heavy request runs on tokio's blocking pool; a panic there answers 500 and the
 //! server keeps serving. Caps (flags) bound every loop a request can start.
@@ -11,7 +11,7 @@ use std::sync::Arc;
 
 use axum::Router;
 use axum::extract::DefaultBodyLimit;
-use axum::http::{Method, StatusCode, Uri};
+use axum::http::{Method, StatusCode, Uri, header};
 use axum::response::Html;
 use axum::routing::{get, post};
 use clap::Args;
@@ -19,9 +19,10 @@ use clap::Args;
 use crate::error::CliError;
 use errors::ApiError;
 
-/// PLACEHOLDER page: says the playground is coming and lists the endpoints. A later step of
-/// issue 4 replaces it with the real playground (HTML, CSS, JavaScript, embedded the same way).
+/// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
 const INDEX_HTML: &str = include_str!("assets/index.html");
+const APP_CSS: &str = include_str!("assets/app.css");
+const APP_JS: &str = include_str!("assets/app.js");
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)
 #[derive(Debug, Clone, Args)]
@@ -136,6 +137,8 @@ pub fn router(limits: Limits) -> Router {
     let state = AppState { limits: Arc::new(limits) };
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
+        .route("/app.css", get(|| async { ([(header::CONTENT_TYPE, "text/css; charset=utf-8")], APP_CSS) }))
+        .route("/app.js", get(|| async { ([(header::CONTENT_TYPE, "text/javascript; charset=utf-8")], APP_JS) }))
         .route("/api/health", get(api::health))
         .route("/api/arm/default", get(api::default_arm))
         .route("/api/solve", post(api::solve))
