@@ -2,12 +2,14 @@
 //!
 //! The static layers (page, grid, workspace, reach circles) are drawn once; each frame draws the
 //! moving layers (the joints' paths so far, the arm, the goal, the caption and a clock) on a
-//! copy of them. Every frame gets its own 256-colour palette: the palette's solid colours
-//! ([`style::key_colours`]) exactly, and the rest learnt from the frame by NeuQuant for the
-//! anti-aliased edges. Without the exact entries, the few pixels of the red goal are merged
-//! into a dull maroon.
+//! copy of them. The GIF has one global 256-colour palette ([`Palette`]): the style's solid
+//! colours ([`style::key_colours`]) exactly — without them the few pixels of the red goal merge
+//! into a dull maroon — and the rest learnt by NeuQuant from the first, middle and last frames.
+//! After the first frame, each frame stores only the rectangle that changed, with unchanged
+//! pixels transparent, drawn over the previous frame: a still background costs nothing per
+//! frame and cannot flicker between palettes.
 
-use gif::{Encoder, Frame, Repeat};
+use gif::{DisposalMethod, Encoder, Frame, Repeat};
 use ikarus::kinematics::joint_positions;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
@@ -15,6 +17,7 @@ use ikarus::{Chain, Point2};
 
 use crate::RenderError;
 use crate::arm::{check_point, check_pose};
+use crate::palette::{Palette, UNCHANGED};
 use crate::raster::{check_size, new_pixmap, parse, render_onto};
 use crate::scene::Scene;
 use crate::style;
@@ -23,10 +26,6 @@ use crate::view::View;
 
 /// The highest frame rate accepted, frames per second.
 pub const MAX_FPS: f64 = 100.0;
-
-/// NeuQuant's sampling factor: 1 is best and slowest, 30 fastest; 10 is the gif crate's
-/// suggestion for a good balance.
-const QUANTISER_SPEED: i32 = 10;
 
 /// What an animation is drawn with besides the arm.
 #[derive(Debug, Clone, Default)]
@@ -87,56 +86,112 @@ pub fn animation_gif(
     render_onto(&parse(&background_svg.finish())?, &mut background);
 
     let joints: Vec<Vec<Point2<f64>>> = animation.frames.iter().map(|f| joint_positions(chain, &f.angles)).collect();
-    let delay = (100.0 / fps).round().max(2.0) as u16;
-    let keys = style::key_colours();
     let total = animation.frames.len();
+    // The moving layers of frame `i` over a copy of the background, as RGBA (the background is
+    // opaque, so the premultiplied pixels are plain RGBA).
+    let draw = |i: usize| -> Result<Vec<u8>, RenderError> {
+        let mut svg = Svg::new(width, height);
+        if overlay.trail {
+            let path: Vec<&[Point2<f64>]> = joints[..=i].iter().map(Vec::as_slice).collect();
+            scene.traces(&mut svg, &path);
+        }
+        scene.arm(&mut svg, &joints[i]);
+        scene.goal(&mut svg);
+        let clock = format!("t = {:.2}", animation.frames[i].time);
+        scene.caption(&mut svg, overlay.caption.as_deref(), Some(&clock));
+        let mut pixmap = background.clone();
+        render_onto(&parse(&svg.finish())?, &mut pixmap);
+        Ok(pixmap.take())
+    };
+
+    // One palette for the whole GIF, learnt from the first, middle and last frames (the last
+    // holds the whole trail), each thinned to at most SAMPLE_PIXELS pixels.
+    let mut sample: Vec<u8> = Vec::new();
+    let mut sampled: Vec<usize> = vec![0, total / 2, total - 1];
+    sampled.dedup();
+    for &i in &sampled {
+        thin_into(&draw(i)?, width, &mut sample);
+    }
+    let mut palette = Palette::learn(&sample, &style::key_colours());
+    drop(sample);
+
+    let delay = (100.0 / fps).round().max(2.0) as u16;
     let mut bytes = Vec::new();
     {
         let encode = |e: gif::EncodingError| RenderError::Encode { format: "gif", message: e.to_string() };
         // check_size keeps both sides ≤ 4096, so they fit a GIF's 16-bit sizes.
         let (w16, h16) = (width as u16, height as u16);
-        let mut encoder = Encoder::new(&mut bytes, w16, h16, &[]).map_err(encode)?;
+        let mut encoder = Encoder::new(&mut bytes, w16, h16, &palette.rgb_table()).map_err(encode)?;
         encoder.set_repeat(Repeat::Infinite).map_err(encode)?;
-        for (i, frame) in animation.frames.iter().enumerate() {
-            let mut svg = Svg::new(width, height);
-            if overlay.trail {
-                let path: Vec<&[Point2<f64>]> = joints[..=i].iter().map(Vec::as_slice).collect();
-                scene.traces(&mut svg, &path);
-            }
-            scene.arm(&mut svg, &joints[i]);
-            scene.goal(&mut svg);
-            let clock = format!("t = {:.2}", frame.time);
-            scene.caption(&mut svg, overlay.caption.as_deref(), Some(&clock));
-            let mut pixmap = background.clone();
-            render_onto(&parse(&svg.finish())?, &mut pixmap);
-            // The background is opaque, so the premultiplied pixels are plain RGBA.
-            let rgba = pixmap.take();
-            let (palette, indices) = quantise(&rgba, &keys);
-            let mut gif_frame = Frame::from_palette_pixels(w16, h16, indices, palette, None);
-            gif_frame.delay = delay;
-            encoder.write_frame(&gif_frame).map_err(encode)?;
+        let (mut previous, mut current) = (Vec::new(), Vec::new());
+        for i in 0..total {
+            let rgba = draw(i)?;
+            palette.map_into(&rgba, &mut current);
+            let mut frame = if i == 0 {
+                Frame::from_indexed_pixels(w16, h16, current.clone(), None)
+            } else {
+                changes(&previous, &current, w16)
+            };
+            frame.delay = delay;
+            frame.dispose = DisposalMethod::Keep;
+            encoder.write_frame(&frame).map_err(encode)?;
+            std::mem::swap(&mut previous, &mut current);
             progress(i + 1, total);
         }
     }
     Ok(bytes)
 }
 
-/// A 256-colour palette for `rgba` (opaque pixels) and each pixel's index in it: the `keys`
-/// exactly, then colours NeuQuant learns from the frame.
-fn quantise(rgba: &[u8], keys: &[[u8; 3]]) -> (Vec<u8>, Vec<u8>) {
-    let learnt = 256 - keys.len();
-    let nq = color_quant::NeuQuant::new(QUANTISER_SPEED, learnt, rgba);
-    let mut palette: Vec<u8> = nq.color_map_rgb();
-    palette.resize(3 * learnt, 0);
-    let exact: std::collections::HashMap<[u8; 3], u8> =
-        keys.iter().enumerate().map(|(i, &k)| (k, (learnt + i) as u8)).collect();
-    palette.extend(keys.iter().flatten());
-    let indices = rgba
-        .chunks_exact(4)
-        .map(|p| {
-            let colour = [p[0], p[1], p[2]];
-            exact.get(&colour).copied().unwrap_or_else(|| nq.index_of(p) as u8)
-        })
-        .collect();
-    (palette, indices)
+/// At most this many pixels of each sampled frame teach the palette.
+const SAMPLE_PIXELS: usize = 1 << 19;
+
+/// Appends every k-th pixel of `rgba` (a picture `width` wide) to `out`, k the smallest step
+/// that keeps at most [`SAMPLE_PIXELS`], made odd and not a divisor of `width` so that the
+/// picked pixels do not line up in columns.
+fn thin_into(rgba: &[u8], width: u32, out: &mut Vec<u8>) {
+    let pixels = rgba.len() / 4;
+    let mut step = pixels.div_ceil(SAMPLE_PIXELS).max(1);
+    if step > 1 {
+        step |= 1;
+        while (width as usize) % step == 0 {
+            step += 2;
+        }
+    }
+    out.extend(rgba.chunks_exact(4).step_by(step).flatten());
+}
+
+/// The part of `current` that differs from `previous` (palette indices of pictures `width`
+/// wide) as a frame to draw over it: the smallest rectangle holding every changed pixel,
+/// with the unchanged ones inside it transparent. If nothing changed, one transparent pixel
+/// (the frame still has to be there, to take its time).
+fn changes(previous: &[u8], current: &[u8], width: u16) -> Frame<'static> {
+    let w = usize::from(width);
+    let (mut left, mut right, mut top, mut bottom) = (usize::MAX, 0, usize::MAX, 0);
+    for (y, (old, new)) in previous.chunks_exact(w).zip(current.chunks_exact(w)).enumerate() {
+        let Some(first) = old.iter().zip(new).position(|(a, b)| a != b) else { continue };
+        let last = w - 1 - old.iter().rev().zip(new.iter().rev()).position(|(a, b)| a != b).unwrap_or(0);
+        left = left.min(first);
+        right = right.max(last);
+        top = top.min(y);
+        bottom = y;
+    }
+    if top == usize::MAX {
+        return Frame::from_indexed_pixels(1, 1, vec![UNCHANGED], Some(UNCHANGED));
+    }
+    let mut pixels = Vec::with_capacity((right - left + 1) * (bottom - top + 1));
+    for y in top..=bottom {
+        let row = y * w;
+        pixels.extend(
+            previous[row + left..=row + right]
+                .iter()
+                .zip(&current[row + left..=row + right])
+                .map(|(a, b)| if a == b { UNCHANGED } else { *b }),
+        );
+    }
+    // Within the picture, so within u16.
+    let mut frame =
+        Frame::from_indexed_pixels((right - left + 1) as u16, (bottom - top + 1) as u16, pixels, Some(UNCHANGED));
+    frame.left = left as u16;
+    frame.top = top as u16;
+    frame
 }

@@ -19,6 +19,7 @@ mod animation;
 mod arm;
 mod ease_plot;
 mod error;
+mod palette;
 mod raster;
 mod scene;
 mod style;

@@ -157,17 +157,40 @@ fn gif_has_one_frame_per_animation_frame() {
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options.read_info(std::io::Cursor::new(&bytes)).unwrap();
     assert_eq!((decoder.width(), decoder.height()), (420, 420));
-    // Quantising must not lose the goal's red: the palette keeps the style's colours exact.
-    let goal_px = View::new(&chain, overlay.goal, 420, 420).world_to_pixel(overlay.goal.unwrap());
+    let view = View::new(&chain, overlay.goal, 420, 420);
+    let goal_px = view.world_to_pixel(overlay.goal.unwrap());
+    // Frames after the first hold only what changed and are drawn over the previous picture, as
+    // a viewer does: paste each frame's opaque pixels onto a canvas and look at the canvas.
+    let mut canvas = vec![0u8; 420 * 420 * 4];
     let mut frames = 0;
+    let mut partial = 0;
     while let Some(frame) = decoder.read_next_frame().unwrap() {
         assert_eq!(frame.delay, 4, "25 fps is 4 hundredths per frame");
-        assert_eq!((frame.width, frame.height), (420, 420));
-        let goal = pixel(&frame.buffer, 420, goal_px);
+        let (left, top, w) = (usize::from(frame.left), usize::from(frame.top), usize::from(frame.width));
+        if frames == 0 {
+            assert_eq!((frame.width, frame.height), (420, 420), "the first frame is whole");
+        } else if usize::from(frame.width) * usize::from(frame.height) < 420 * 420 / 2 {
+            partial += 1;
+        }
+        for (k, p) in frame.buffer.chunks_exact(4).enumerate() {
+            if p[3] != 0 {
+                let i = 4 * ((top + k / w) * 420 + left + k % w);
+                canvas[i..i + 4].copy_from_slice(p);
+            }
+        }
+        // Quantising must not lose the goal's red: the palette keeps the style's colours exact.
+        let goal = pixel(&canvas, 420, goal_px);
         assert!(is_red(goal), "frame {frames}: goal pixel {goal:?}");
+        // The arm is where this frame puts it.
+        let background = pixel(&canvas, 420, view.world_to_pixel(Point2::new(-4.5, -4.5)));
+        for pair in animation.frames[frames].joints.windows(2) {
+            let (a, b) = (view.world_to_pixel(pair[0]), view.world_to_pixel(pair[1]));
+            assert!(inked_along(&canvas, 420, a, b, background) >= 17, "frame {frames}: link {pair:?} is not drawn");
+        }
         frames += 1;
     }
     assert_eq!(frames, 7);
+    assert!(partial >= 3, "only {partial} frames store less than half the picture");
 }
 
 #[test]
