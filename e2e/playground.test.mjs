@@ -1,0 +1,94 @@
+// The playground in a real browser: load the page, click a goal and see the arm end on it, turn
+// the joint limits on and see the reachable area shrink, with no console errors; save a
+// screenshot. Run by e2e/run (which builds the binary and installs playwright-core).
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { mkdirSync } from "node:fs";
+import { dirname, join } from "node:path";
+import { fileURLToPath } from "node:url";
+import { chromium } from "playwright-core";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
+const browserPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+const artifacts = process.env.E2E_ARTIFACTS ?? join(here, "..", "target", "e2e");
+
+/** Starts `ikarus serve --port 0` and resolves with its URL once it listens. */
+function startServer() {
+  const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
+  return new Promise((resolve, reject) => {
+    let out = "";
+    const timer = setTimeout(() => reject(new Error(`no address from the server: ${out}`)), 15000);
+    child.on("error", reject);
+    child.stdout.on("data", (chunk) => {
+      out += chunk;
+      const m = out.match(/listening on (http:\/\/\S+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, url: m[1] });
+      }
+    });
+  });
+}
+
+test("the playground moves the arm to a clicked goal and shows the reachable area", async () => {
+  const { child, url } = await startServer();
+  const browser = await chromium.launch({
+    executablePath: browserPath,
+    args: [
+      "--no-sandbox",
+      "--disable-gpu",
+      "--disable-quic",
+      "--no-first-run",
+      "--disable-background-networking",
+      "--disable-component-update",
+      "--disable-sync",
+    ],
+  });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    const errors = [];
+    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    page.on("pageerror", (e) => errors.push(e.message));
+
+    await page.goto(url);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+
+    // Click the world point (2, 3): the arm solves, plays the motion, and ends on the goal.
+    const [cx, cy] = await page.evaluate(() => window.ikarus.toClient(2, 3));
+    await page.mouse.click(cx, cy);
+    await page.waitForFunction(
+      () => document.body.dataset.status === "reached" && !window.ikarus.state.playing,
+      null,
+      { timeout: 15000 },
+    );
+    const { goal, tip } = await page.evaluate(() => ({
+      goal: window.ikarus.state.goal,
+      tip: window.ikarus.state.joints[window.ikarus.state.joints.length - 1],
+    }));
+    assert.ok(Math.hypot(goal.x - 2, goal.y - 3) < 0.05, `the click landed at (${goal.x}, ${goal.y})`);
+    const miss = Math.hypot(tip[0] - goal.x, tip[1] - goal.y);
+    assert.ok(miss <= 1e-5, `the tip ended ${miss} from the goal`);
+
+    // The reachable area, then the same with the seed's joint limits: it must shrink.
+    await page.check("#show-workspace");
+    await page.waitForFunction(() => window.ikarus.state.workspace && !window.ikarus.state.workspace.limits, null, {
+      timeout: 15000,
+    });
+    const free = await page.evaluate(() => window.ikarus.state.workspace.area);
+    await page.check("#limits");
+    await page.waitForFunction(() => window.ikarus.state.workspace && window.ikarus.state.workspace.limits, null, {
+      timeout: 15000,
+    });
+    const limited = await page.evaluate(() => window.ikarus.state.workspace.area);
+    assert.ok(limited < 0.9 * free, `limits should shrink the area: ${limited} vs ${free}`);
+
+    mkdirSync(artifacts, { recursive: true });
+    await page.screenshot({ path: join(artifacts, "playground.png") });
+    assert.deepEqual(errors, [], "console errors");
+  } finally {
+    await browser.close();
+    child.kill("SIGINT");
+  }
+});
