@@ -37,25 +37,48 @@ pub struct EaseArgs {
     pub k2: Option<f64>,
 }
 
+/// Why a requested ease cannot be made, for each edge to word in its own field names.
+#[derive(Debug)]
+pub enum EaseProblem {
+    /// k1 (`true`) or k2 (`false`) was given for a curve other than Parent's.
+    KWithoutParent { k1: bool },
+    /// Parent's parameters are invalid.
+    Invalid(ikarus::EaseError),
+}
+
+/// The one rule for choosing an ease, shared by the flags and the API: the named `kind`, else
+/// Parent's when k1 or k2 is given, else `default`; k1/k2 belong to Parent's alone and default
+/// to [`DEFAULT_K1`] and [`DEFAULT_K2`].
+pub fn choose_ease(
+    kind: Option<EaseArg>,
+    k1: Option<f64>,
+    k2: Option<f64>,
+    default: EaseArg,
+) -> Result<Ease, EaseProblem> {
+    let has_k = k1.is_some() || k2.is_some();
+    let kind = kind.unwrap_or(if has_k { EaseArg::Parent } else { default });
+    if has_k && kind != EaseArg::Parent {
+        return Err(EaseProblem::KWithoutParent { k1: k1.is_some() });
+    }
+    Ok(match kind {
+        EaseArg::Linear => Ease::Linear,
+        EaseArg::Sine => Ease::Sine,
+        EaseArg::Smoothstep => Ease::Smoothstep,
+        EaseArg::Parent => {
+            Ease::parent(k1.unwrap_or(DEFAULT_K1), k2.unwrap_or(DEFAULT_K2)).map_err(EaseProblem::Invalid)?
+        }
+    })
+}
+
 impl EaseArgs {
     /// The ease the flags ask for; `default` when none is named.
     pub fn resolve(&self, default: EaseArg) -> Result<Ease, CliError> {
-        let has_k = self.k1.is_some() || self.k2.is_some();
-        let kind = match self.ease {
-            Some(kind) => kind,
-            None if has_k => EaseArg::Parent,
-            None => default,
-        };
-        if has_k && kind != EaseArg::Parent {
-            let flag = if self.k1.is_some() { "--k1" } else { "--k2" };
-            return Err(CliError::input(format!("{flag}: only applies with --ease parent")));
-        }
-        Ok(match kind {
-            EaseArg::Linear => Ease::Linear,
-            EaseArg::Sine => Ease::Sine,
-            EaseArg::Smoothstep => Ease::Smoothstep,
-            EaseArg::Parent => Ease::parent(self.k1.unwrap_or(DEFAULT_K1), self.k2.unwrap_or(DEFAULT_K2))
-                .map_err(|e| CliError::input(format!("--{e}")))?,
+        choose_ease(self.ease, self.k1, self.k2, default).map_err(|p| match p {
+            EaseProblem::KWithoutParent { k1 } => {
+                let flag = if k1 { "--k1" } else { "--k2" };
+                CliError::input(format!("{flag}: only applies with --ease parent"))
+            }
+            EaseProblem::Invalid(e) => CliError::input(format!("--{e}")),
         })
     }
 }

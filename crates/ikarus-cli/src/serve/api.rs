@@ -16,7 +16,7 @@ use serde_json::json;
 use super::errors::{ApiError, ApiJson};
 use super::{AppState, Limits, blocking};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM, SolverTable};
-use crate::ease_args::{DEFAULT_K1, DEFAULT_K2, EaseArg};
+use crate::ease_args::{EaseArg, EaseProblem, choose_ease};
 use crate::options::SolverArgs;
 use crate::report::{self, MotionRequest, SolveReport, solver_for};
 
@@ -328,18 +328,12 @@ fn goal(g: &GoalReq, field: &str) -> Result<Goal, ApiError> {
 
 fn ease(req: Option<&EaseReq>, default: EaseArg) -> Result<Ease, ApiError> {
     let req = req.cloned().unwrap_or_default();
-    let has_k = req.k1.is_some() || req.k2.is_some();
-    let kind = req.kind.unwrap_or(if has_k { EaseArg::Parent } else { default });
-    if has_k && kind != EaseArg::Parent {
-        let field = if req.k1.is_some() { "ease.k1" } else { "ease.k2" };
-        return Err(ApiError::invalid(format!("{field}: only applies with \"kind\": \"parent\"")));
-    }
-    Ok(match kind {
-        EaseArg::Linear => Ease::Linear,
-        EaseArg::Sine => Ease::Sine,
-        EaseArg::Smoothstep => Ease::Smoothstep,
-        EaseArg::Parent => Ease::parent(req.k1.unwrap_or(DEFAULT_K1), req.k2.unwrap_or(DEFAULT_K2))
-            .map_err(|e| ApiError::invalid(format!("ease.{e}")))?,
+    choose_ease(req.kind, req.k1, req.k2, default).map_err(|p| match p {
+        EaseProblem::KWithoutParent { k1 } => {
+            let field = if k1 { "ease.k1" } else { "ease.k2" };
+            ApiError::invalid(format!("{field}: only applies with \"kind\": \"parent\""))
+        }
+        EaseProblem::Invalid(e) => ApiError::invalid(format!("ease.{e}")),
     })
 }
 
