@@ -39,6 +39,7 @@
 //! same input gives the same output, bit for bit, whatever the number of threads.
 
 pub mod chain;
+pub mod closed_form;
 pub mod ease;
 pub mod kinematics;
 pub mod motion;
@@ -51,8 +52,8 @@ pub use kinematics::EndEffector;
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{
-    Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, SolveError, SolveOptions, Solver,
-    StallDetection, Status,
+    Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions,
+    Solver, StallDetection, Status,
 };
 
 /// Re-exported so that callers can name the point type without depending on nalgebra.

@@ -85,6 +85,11 @@ fn long_solve(method: Method, record_every: Option<u32>) -> SolveOptions {
     }
 }
 
+/// Every method that iterates (the closed form has its own shapes).
+fn iterative() -> impl Iterator<Item = Method> {
+    Method::ALL.into_iter().filter(|&m| m != Method::Analytic)
+}
+
 #[test]
 fn the_counter_sees_allocations() {
     let (n, v) = allocations_in(|| vec![1u8; 64]);
@@ -97,7 +102,7 @@ fn the_counter_sees_allocations() {
 fn many_iterations_allocate_nothing() {
     let chain = seven_links();
     let goal = Goal::position(9.0, 1.0).unwrap(); // the reach is 7
-    for method in Method::ALL {
+    for method in iterative() {
         let mut solver = Solver::new(long_solve(method, None)).unwrap();
         let mut out = Outcome::default();
         solver.solve_into(&chain, chain.start_pose().angles(), &goal, &mut out).unwrap(); // warm-up
@@ -119,7 +124,7 @@ fn many_iterations_allocate_nothing() {
 #[test]
 fn the_line_search_allocates_nothing() {
     let chain = seven_links();
-    for method in Method::ALL {
+    for method in iterative() {
         let opts = SolveOptions { backtrack: 10, ..long_solve(method, None) };
         let mut solver = Solver::new(opts).unwrap();
         let mut out = Outcome::default();
@@ -151,4 +156,47 @@ fn recording_frames_into_grown_buffers_allocates_nothing() {
         assert_eq!(out.frames.len(), 500 / every as usize + 1 + usize::from(500 % every != 0));
         assert_eq!(n, 0, "record_every {every}: {n} allocations");
     }
+}
+
+/// Every limit mode, with restarts and the closed form on: a warmed-up solver allocates nothing,
+/// for goals that are reached, reached after restarts, and put out of reach by the limits.
+#[test]
+fn limit_modes_and_restarts_allocate_nothing() {
+    use ikarus::{JointLimits, LimitMode, Restarts};
+    let limited = |n: usize| {
+        let links: Vec<Link> =
+            (0..n).map(|i| Link::new(1.0, 0.1 * i as f64).with_limits(JointLimits::new(-1.5, 1.5).unwrap())).collect();
+        Chain::new([0.0, 0.0], &links).unwrap()
+    };
+    let goals = [
+        Goal::position(1.0, 1.5).unwrap(),
+        Goal::position(-0.5, -1.8).unwrap(),
+        Goal::position(-2.5, -0.1).unwrap(),
+        Goal::with_orientation(1.2, 0.8, 1.0).unwrap(),
+    ];
+    let mut restarted = 0;
+    for chain in [limited(2), limited(3), limited(7)] {
+        for method in iterative() {
+            for limits in LimitMode::ALL {
+                let opts = SolveOptions {
+                    method,
+                    limits,
+                    restarts: Some(Restarts { attempts: 3, ..Restarts::default() }),
+                    max_iterations: 200,
+                    ..SolveOptions::default()
+                };
+                let mut solver = Solver::new(opts).unwrap();
+                let mut out = Outcome::default();
+                for goal in &goals {
+                    solver.solve_into(&chain, chain.start_pose().angles(), goal, &mut out).unwrap();
+                    let (n, r) =
+                        allocations_in(|| solver.solve_into(&chain, chain.start_pose().angles(), goal, &mut out));
+                    r.unwrap();
+                    assert_eq!(n, 0, "{method:?} {limits:?} {goal:?}: {n} allocations ({} restarts)", out.restarts);
+                    restarted += usize::from(out.restarts > 0);
+                }
+            }
+        }
+    }
+    assert!(restarted > 10, "only {restarted} solves restarted");
 }

@@ -6,18 +6,25 @@
 //! not jerk. The price is slower convergence, and with a large λ a goal on the boundary of
 //! the workspace is approached only slowly.
 
-use nalgebra::{Cholesky, Matrix3, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 use super::pinv;
 
-/// `y = (A + λ² I)⁻¹ e`. With λ = 0 this is the pseudoinverse step (and falls back to it when
-/// `A` is singular).
+/// `y = (A + λ² I)⁻¹ e`. With λ = 0 this is the pseudoinverse step.
+///
+/// `A + λ² I` is symmetric positive definite with its smallest eigenvalue at least λ², so the
+/// explicit 3×3 inverse (nalgebra's cofactor formula) is well conditioned whenever λ is not tiny
+/// against `A`'s scale; below `λ² ≤ 1e-12·trace(A)` the pseudoinverse is used instead. The
+/// explicit inverse measured about twice as fast as a Cholesky factorisation here, and this
+/// runs every iteration.
 pub(super) fn task_step(a: &Matrix3<f64>, e: &Vector3<f64>, lambda: f64, threshold: f64) -> Vector3<f64> {
-    let damped = a + Matrix3::from_diagonal_element(lambda * lambda);
-    match Cholesky::new(damped) {
-        Some(ch) if lambda > 0.0 => ch.solve(e),
-        _ => pinv::task_step(a, e, threshold),
+    let damping = lambda * lambda;
+    if damping > 1e-12 * a.trace() {
+        if let Some(inv) = (a + Matrix3::from_diagonal_element(damping)).try_inverse() {
+            return inv * e;
+        }
     }
+    pinv::task_step(a, e, threshold)
 }
 
 #[cfg(test)]

@@ -51,9 +51,14 @@ impl Frames {
         self.points.extend_from_slice(joints);
     }
 
-    /// Records the final state unless it was just recorded.
+    /// Records the final state; a frame already recorded at this iteration is replaced (CCD
+    /// and FABRIK may end on a better pose than the one they last visited).
     pub(super) fn push_final(&mut self, iteration: u32, angles: &[f64], joints: &[Point2<f64>]) {
-        if self.iterations.last() != Some(&iteration) {
+        if self.iterations.last() == Some(&iteration) {
+            let (a, p) = (self.angles.len() - angles.len(), self.points.len() - joints.len());
+            self.angles[a..].copy_from_slice(angles);
+            self.points[p..].copy_from_slice(joints);
+        } else {
             self.push(iteration, angles, joints);
         }
     }

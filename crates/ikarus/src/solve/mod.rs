@@ -28,15 +28,19 @@
 //! detection), or at the iteration cap. Not reaching a goal is not an error: the [`Outcome`]
 //! says why in its [`Status`] and carries the best pose found.
 
+mod ccd;
 mod dls;
+mod fabrik;
 mod frames;
 mod pinv;
+mod sdls;
 mod transpose;
 
 use nalgebra::{Matrix3, Matrix3xX, Point2, Vector3};
 use thiserror::Error;
 
 use crate::chain::{Chain, Pose, annulus_inner};
+use crate::closed_form::{self, ClosedForm};
 use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
 
 pub use frames::{Frame, Frames};
@@ -131,26 +135,71 @@ pub enum Method {
     /// Jacobian pseudoinverse `Jᵀ (J Jᵀ)⁺`, via the eigen-decomposition of `J Jᵀ`.
     PseudoInverse,
     /// Damped least squares `Jᵀ (J Jᵀ + λ² I)⁻¹`, λ = [`SolveOptions::lambda`].
-    #[default]
     DampedLeastSquares,
+    /// Selectively damped least squares (Buss & Kim 2005): each singular direction's joint
+    /// change is clamped by how far it can move the tip.
+    SelectivelyDamped,
+    /// Levenberg–Marquardt: damped least squares whose damping adapts to how well the
+    /// linearisation predicted the last step (Nielsen's update), starting from
+    /// [`SolveOptions::lambda`]. The default: as fast as DLS on reachable goals, and it does
+    /// not crawl near singular poses (goals at or beyond the reach).
+    #[default]
+    LevenbergMarquardt,
+    /// Cyclic coordinate descent: one joint at a time, from the tip to the base, each turned to
+    /// the angle that best brings the tip to the goal.
+    CyclicCoordinateDescent,
+    /// FABRIK (Aristidou & Lasenby 2011): backward and forward reaching on the joint positions,
+    /// with angular limits applied in the forward pass.
+    Fabrik,
+    /// Closed form, for two links with a position goal or three links with an orientation goal;
+    /// other shapes are a [`SolveError::NoClosedForm`].
+    Analytic,
 }
 
 impl Method {
     /// Every method, in a stable order.
-    pub const ALL: [Method; 3] = [Method::Transpose, Method::PseudoInverse, Method::DampedLeastSquares];
+    pub const ALL: [Method; 8] = [
+        Method::Transpose,
+        Method::PseudoInverse,
+        Method::DampedLeastSquares,
+        Method::SelectivelyDamped,
+        Method::LevenbergMarquardt,
+        Method::CyclicCoordinateDescent,
+        Method::Fabrik,
+        Method::Analytic,
+    ];
 
-    /// The short name used at the edges: `transpose`, `pinv`, `dls`.
+    /// The short name used at the edges: `transpose`, `pinv`, `dls`, `sdls`, `lm`, `ccd`,
+    /// `fabrik`, `analytic`.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Method::Transpose => "transpose",
             Method::PseudoInverse => "pinv",
             Method::DampedLeastSquares => "dls",
+            Method::SelectivelyDamped => "sdls",
+            Method::LevenbergMarquardt => "lm",
+            Method::CyclicCoordinateDescent => "ccd",
+            Method::Fabrik => "fabrik",
+            Method::Analytic => "analytic",
         }
+    }
+
+    /// The method called `name` (see [`Method::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Whether the method steps along the Jacobian (and so supports every [`LimitMode`]).
+    #[must_use]
+    pub fn uses_jacobian(self) -> bool {
+        !matches!(self, Method::CyclicCoordinateDescent | Method::Fabrik | Method::Analytic)
     }
 }
 
-/// How joint limits are enforced.
+/// How joint limits are enforced. Every mode except [`LimitMode::Ignore`] also clamps each
+/// step into the limits, so no pose of a solve ever leaves them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum LimitMode {
@@ -158,8 +207,72 @@ pub enum LimitMode {
     Ignore,
     /// After every step, each limited joint is clamped into its range (the seed program's
     /// method). Simple, but a joint pinned at a limit can hold the chain in a dead end.
-    #[default]
     Clamp,
+    /// Clamp and lock: a joint whose step would cross its limit moves only to the limit, its
+    /// Jacobian column is removed, and the step is solved again for the other joints (the way
+    /// Blender's IK treats limits). Each iteration starts with every joint free, so a locked
+    /// joint is released as soon as the task pulls it back inside.
+    #[default]
+    Lock,
+    /// [`LimitMode::Lock`] plus a secondary task pushing every limited joint toward the middle
+    /// of its range, projected into the null space of the Jacobian so that it does not disturb
+    /// the tip (Parent, "adding more control"). It matters only for redundant chains.
+    NullSpace,
+    /// Weighted least norm (Chan & Lawrence 1995): a joint moving toward a limit is slowed by a
+    /// weight `1 / (1 + |∂H/∂θ|)` of the barrier `H = Σ (max − min)² / 4(max − θ)(θ − min)`;
+    /// joints moving away keep weight 1. Steps are clamped as well.
+    Weighted,
+}
+
+impl LimitMode {
+    /// Every mode, in a stable order.
+    pub const ALL: [LimitMode; 5] =
+        [LimitMode::Ignore, LimitMode::Clamp, LimitMode::Lock, LimitMode::NullSpace, LimitMode::Weighted];
+
+    /// The short name used at the edges: `ignore`, `clamp`, `lock`, `nullspace`, `weighted`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            LimitMode::Ignore => "ignore",
+            LimitMode::Clamp => "clamp",
+            LimitMode::Lock => "lock",
+            LimitMode::NullSpace => "nullspace",
+            LimitMode::Weighted => "weighted",
+        }
+    }
+
+    /// The mode called `name` (see [`LimitMode::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// Restarts from other start poses when a solve stalls or runs out of iterations (each attempt
+/// has the full iteration cap).
+///
+/// Attempt `k` (1-based) starts from `start + (k / attempts)·(r − start)`, clamped into the
+/// limits, where `r` is a pose drawn uniformly inside the limits (free joints: [−π, π)) by a
+/// generator seeded with `seed`: early attempts start near the original start pose, so the
+/// first goal reached tends to be near it too and an animation does not jump. The first attempt
+/// that reaches the goal wins; if none does, the outcome is the attempt with the smallest error.
+/// The same `seed` gives the same attempts, bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restarts {
+    /// Most restarts after the first solve, ≥ 1.
+    pub attempts: u32,
+    /// Seed of the start poses.
+    pub seed: u64,
+    /// No new attempt starts once this much time has passed since the solve began. A solve
+    /// stopped by its budget depends on the machine's speed, so it is the one case that is not
+    /// deterministic; `None` (the default) keeps every solve deterministic.
+    pub time_budget: Option<std::time::Duration>,
+}
+
+impl Default for Restarts {
+    fn default() -> Self {
+        Self { attempts: 16, seed: 0, time_budget: None }
+    }
 }
 
 /// Stop when no joint has moved by more than `epsilon` radians for `window` consecutive
@@ -183,7 +296,8 @@ impl Default for StallDetection {
 pub struct SolveOptions {
     /// The step rule.
     pub method: Method,
-    /// Damping λ of [`Method::DampedLeastSquares`], ≥ 0, in length units.
+    /// Damping λ of [`Method::DampedLeastSquares`], and the starting damping of
+    /// [`Method::LevenbergMarquardt`], ≥ 0, in length units.
     pub lambda: f64,
     /// The goal counts as reached when the tip is within this distance, > 0.
     pub tolerance: f64,
@@ -218,12 +332,19 @@ pub struct SolveOptions {
     pub record_every: Option<u32>,
     /// How joint limits are enforced.
     pub limits: LimitMode,
+    /// Restarts when a solve stalls; `None` solves once.
+    pub restarts: Option<Restarts>,
+    /// Use the closed form where it applies (two links with a position goal, three links with
+    /// an orientation goal) instead of iterating: exact, and about a hundred times faster. The
+    /// iteration still runs when the closed form has no answer within the limits or the goal is
+    /// out of reach, to find the best pose.
+    pub closed_form: bool,
 }
 
 impl Default for SolveOptions {
     fn default() -> Self {
         Self {
-            method: Method::DampedLeastSquares,
+            method: Method::LevenbergMarquardt,
             lambda: 0.1,
             tolerance: 1e-6,
             angle_tolerance: 1e-6,
@@ -236,7 +357,9 @@ impl Default for SolveOptions {
             singular_threshold: 1e-6,
             stall: Some(StallDetection::default()),
             record_every: None,
-            limits: LimitMode::Clamp,
+            limits: LimitMode::Lock,
+            restarts: Some(Restarts::default()),
+            closed_form: true,
         }
     }
 }
@@ -297,6 +420,15 @@ impl SolveOptions {
                 return Err(OptionsError::OutOfRange { field: "stall.window", expected: "at least 1", value: 0.0 });
             }
         }
+        if let Some(r) = self.restarts {
+            if r.attempts == 0 {
+                return Err(OptionsError::OutOfRange {
+                    field: "restarts.attempts",
+                    expected: "at least 1",
+                    value: 0.0,
+                });
+            }
+        }
         if self.record_every == Some(0) {
             return Err(OptionsError::OutOfRange { field: "record_every", expected: "at least 1", value: 0.0 });
         }
@@ -353,8 +485,10 @@ pub struct Outcome {
     pub pose: Pose,
     /// Why the solve ended.
     pub status: Status,
-    /// Steps taken.
+    /// Steps taken, over every attempt.
     pub iterations: u32,
+    /// Restarts used (see [`SolveOptions::restarts`]); 0 when the first attempt ended it.
+    pub restarts: u32,
     /// Final distance from the tip to the goal position.
     pub error: f64,
     /// Final absolute orientation error in radians, wrapped to [0, π]; 0 without an
@@ -372,6 +506,7 @@ impl Default for Outcome {
             pose: Pose::default(),
             status: Status::IterationLimit,
             iterations: 0,
+            restarts: 0,
             error: f64::INFINITY,
             angle_error: 0.0,
             end_effector: EndEffector { position: Point2::origin(), orientation: 0.0 },
@@ -400,6 +535,17 @@ pub enum SolveError {
         /// The offending value.
         value: f64,
     },
+    /// [`Method::Analytic`] was asked for a chain and goal without a closed form.
+    #[error(
+        "method analytic: needs 2 links with a position goal or 3 links with an orientation goal, \
+         got {links} links with {goal}"
+    )]
+    NoClosedForm {
+        /// Links in the chain.
+        links: usize,
+        /// `"a position goal"` or `"an orientation goal"`.
+        goal: &'static str,
+    },
     /// [`SolveOptions::rates`] is neither empty nor one per joint.
     #[error("rates: expected {expected} values (one per joint) or none, got {got}")]
     RatesLength {
@@ -413,14 +559,35 @@ pub enum SolveError {
 /// The share of the linearly predicted error decrease a backtracking step must achieve.
 const SUFFICIENT_DECREASE: f64 = 0.1;
 
+/// Per iteration, [`LimitMode::NullSpace`] asks each limited joint to cover this share of its
+/// distance to the middle of its range (before the projection into the null space).
+const NULLSPACE_GAIN: f64 = 0.3;
+
+/// The null-space push fades linearly once the task error is below this share of the reach.
+const NULLSPACE_FADE: f64 = 0.1;
+
 /// Scratch space reused across iterations and solves.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     joints: Vec<Point2<f64>>,
     trial_joints: Vec<Point2<f64>>,
+    /// `J`, its orientation row scaled by the orientation weight (zero without an orientation
+    /// goal).
     jacobian: Matrix3xX<f64>,
+    /// `J` with column `i` scaled by `scale[i]` (zero for a locked joint).
+    weighted: Matrix3xX<f64>,
+    /// Square roots of the joint weights of [`LimitMode::Weighted`]; 1 otherwise.
+    scale: Vec<f64>,
+    /// Joints locked at a limit this iteration ([`LimitMode::Lock`], [`LimitMode::NullSpace`]).
+    locked: Vec<bool>,
+    /// The method's step in weighted coordinates.
+    step: Vec<f64>,
     delta: Vec<f64>,
     trial: Vec<f64>,
+    /// The best pose of a non-descent method (CCD, FABRIK).
+    best: Vec<f64>,
+    /// The start pose of a restart.
+    restart: Vec<f64>,
 }
 
 /// A solver: validated options plus scratch buffers. Reuse one value for many solves; once
@@ -474,183 +641,548 @@ impl Solver {
         if !opts.rates.is_empty() && opts.rates.len() != n {
             return Err(SolveError::RatesLength { expected: n, got: opts.rates.len() });
         }
+        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
 
         let s = &mut self.scratch;
         s.joints.resize(n + 1, Point2::origin());
         s.trial_joints.resize(n + 1, Point2::origin());
-        s.delta.resize(n, 0.0);
-        s.trial.resize(n, 0.0);
+        for v in [&mut s.scale, &mut s.step, &mut s.delta, &mut s.trial, &mut s.best, &mut s.restart] {
+            v.resize(n, 0.0);
+        }
+        s.locked.resize(n, false);
         if s.jacobian.ncols() != n {
             s.jacobian = Matrix3xX::zeros(n);
+            s.weighted = Matrix3xX::zeros(n);
         }
+        let clamp = opts.limits != LimitMode::Ignore && chain.has_limits();
 
-        let angles = out.pose.angles_mut();
-        angles.clear();
-        angles.extend_from_slice(start);
-        let clamp = opts.limits == LimitMode::Clamp && chain.has_limits();
-        if clamp {
-            chain.clamp_into(angles);
-        }
-        out.frames.start(n, opts.record_every, opts.max_iterations);
-
-        let target = goal.target();
-        let weight = opts.orientation_weight;
-        let mut phi = joint_positions_into(chain, angles, &mut s.joints);
-        let mut iteration: u32 = 0;
-        let mut still: u32 = 0;
-        let status;
-        loop {
-            let tip = s.joints[n];
-            let (dx, dy) = (target.x - tip.x, target.y - tip.y);
-            let turn = goal.orientation().map(|g| wrap_angle(g - phi));
-            let error = dx.hypot(dy);
-            let angle_error = turn.map_or(0.0, f64::abs);
-            out.error = error;
-            out.angle_error = angle_error;
-            out.end_effector = EndEffector { position: tip, orientation: phi };
-            if let Some(k) = opts.record_every {
-                if iteration % k == 0 {
-                    out.frames.push(iteration, angles, &s.joints);
+        if opts.closed_form || opts.method == Method::Analytic {
+            match closed_form::solve(chain, goal, start, clamp, &mut s.trial) {
+                ClosedForm::Solved => {
+                    let phi = joint_positions_into(chain, &s.trial, &mut s.trial_joints);
+                    let tip = s.trial_joints[n];
+                    let error = (goal.target() - tip).norm();
+                    let angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
+                    if error <= opts.tolerance && angle_error <= opts.angle_tolerance {
+                        // One step, from the start pose straight to the solution.
+                        out.frames.start(n, opts.record_every, 1);
+                        if opts.record_every.is_some() {
+                            let start_joints = &mut s.joints;
+                            s.restart.copy_from_slice(start);
+                            if clamp {
+                                chain.clamp_into(&mut s.restart);
+                            }
+                            joint_positions_into(chain, &s.restart, start_joints);
+                            out.frames.push(0, &s.restart, start_joints);
+                            out.frames.push(1, &s.trial, &s.trial_joints);
+                        }
+                        let angles = out.pose.angles_mut();
+                        angles.clear();
+                        angles.extend_from_slice(&s.trial);
+                        out.status = Status::Reached;
+                        out.iterations = 1;
+                        out.restarts = 0;
+                        out.error = error;
+                        out.angle_error = angle_error;
+                        out.end_effector = EndEffector { position: tip, orientation: phi };
+                        return Ok(());
+                    }
                 }
-            }
-
-            if error <= opts.tolerance && angle_error <= opts.angle_tolerance {
-                status = Status::Reached;
-                break;
-            }
-            if opts.stall.is_some_and(|st| still >= st.window) {
-                status = Status::Stalled;
-                break;
-            }
-            if iteration >= opts.max_iterations {
-                status = Status::IterationLimit;
-                break;
-            }
-
-            // Task error and A = J Jᵀ, embedded in three dimensions: without an orientation
-            // goal the third row of J and e is zero and A's unused diagonal entry is 1, so the
-            // third component of y is exactly 0 for every rule.
-            jacobian_from_joints(&s.joints, &mut s.jacobian);
-            let e = Vector3::new(dx, dy, turn.map_or(0.0, |t| weight * t));
-            let row_scale = if turn.is_some() { weight } else { 0.0 };
-            let mut a = Matrix3::zeros();
-            for mut col in s.jacobian.column_iter_mut() {
-                col[2] *= row_scale;
-                a.ger(1.0, &col, &col, 1.0);
-            }
-            if turn.is_none() {
-                a[(2, 2)] = 1.0;
-            }
-            // Δθ = Jᵀ y, scaled by gain and rates, capped; then the line search. If the
-            // method's own full step falls short of the sufficient decrease, the steepest-descent
-            // (transpose) step is searched too: Gauss–Newton directions (pinv, DLS with small λ)
-            // are poor where J is nearly singular, as on the way to a goal out of reach.
-            let current = e.norm_squared();
-            let mut accepted;
-            let mut rule = opts.method;
-            loop {
-                let y = match rule {
-                    Method::Transpose => transpose::task_step(&a, &e),
-                    Method::PseudoInverse => pinv::task_step(&a, &e, opts.singular_threshold),
-                    Method::DampedLeastSquares => dls::task_step(&a, &e, opts.lambda, opts.singular_threshold),
-                };
-                let mut largest: f64 = 0.0;
-                for (i, (d, col)) in s.delta.iter_mut().zip(s.jacobian.column_iter()).enumerate() {
-                    let rate = opts.rates.get(i).copied().unwrap_or(1.0);
-                    *d = opts.gain * rate * col.dot(&y);
-                    largest = largest.max(d.abs());
+                ClosedForm::NotApplicable if opts.method == Method::Analytic => {
+                    let goal = if goal.orientation().is_some() { "an orientation goal" } else { "a position goal" };
+                    return Err(SolveError::NoClosedForm { links: n, goal });
                 }
-                let scale = match opts.max_step {
-                    Some(cap) if largest > cap => cap / largest,
-                    _ => 1.0,
-                };
-                let halvings = if rule == opts.method && rule != Method::Transpose { 0 } else { opts.backtrack };
-                accepted = line_search(chain, goal, opts, clamp, &e, current, scale, halvings, angles, s);
-                if accepted.is_some() || rule == Method::Transpose || opts.backtrack == 0 {
-                    break;
-                }
-                rule = Method::Transpose;
-            }
-            let Some(trial_phi) = accepted else {
-                // No step along this direction lowers the error: the pose cannot move, and the
-                // same pose would give the same direction again.
-                status = Status::Stalled;
-                break;
-            };
-            let moved = angles.iter().zip(&s.trial).fold(0.0f64, |m, (a, t)| m.max((t - a).abs()));
-            std::mem::swap(angles, &mut s.trial);
-            std::mem::swap(&mut s.joints, &mut s.trial_joints);
-            phi = trial_phi;
-            iteration += 1;
-            match opts.stall {
-                Some(st) if moved <= st.epsilon => still += 1,
-                _ => still = 0,
+                _ => {}
             }
         }
 
-        out.iterations = iteration;
+        let mut status = attempt(chain, start, goal, opts, clamp, s, out);
+        let mut iterations = out.iterations;
+        let mut restarts = 0;
+        // A solve that stalled or ran out of iterations restarts (one crawling at the cap, as
+        // weighted least norm does against a limit, is as stuck as one standing still); restarts
+        // go on until one reaches the goal. Goals out of reach even without limits do not.
+        let stuck = |st| st != Status::Reached;
+        if let Some(r) = opts.restarts {
+            if stuck(status) && !goal.is_out_of_reach(chain, opts.tolerance) {
+                let mut best = (task_error(opts, out), 0);
+                let mut last = 0;
+                for k in 1..=r.attempts {
+                    if let (Some(began), Some(budget)) = (began, r.time_budget) {
+                        if began.elapsed() >= budget {
+                            break;
+                        }
+                    }
+                    restart_pose(chain, start, clamp, r, k, &mut s.restart);
+                    let from = std::mem::take(&mut s.restart);
+                    status = attempt(chain, &from, goal, opts, clamp, s, out);
+                    s.restart = from;
+                    iterations += out.iterations;
+                    restarts = k;
+                    last = k;
+                    if !stuck(status) {
+                        break;
+                    }
+                    let err = task_error(opts, out);
+                    if err < best.0 {
+                        best = (err, k);
+                    }
+                }
+                if stuck(status) && best.1 != last {
+                    // No attempt reached the goal: run the best one again (solves are
+                    // deterministic, so this reproduces it) to leave its pose in `out`.
+                    if best.1 == 0 {
+                        s.restart.copy_from_slice(start);
+                    } else {
+                        restart_pose(chain, start, clamp, r, best.1, &mut s.restart);
+                    }
+                    let from = std::mem::take(&mut s.restart);
+                    status = attempt(chain, &from, goal, opts, clamp, s, out);
+                    s.restart = from;
+                }
+                if restarts > 0 && opts.record_every.is_some() {
+                    // The frames of a restart begin elsewhere: keep the motion from the
+                    // caller's start pose to the result, without the jump, numbered by the
+                    // iterations of every attempt.
+                    let n_frames = out.frames.len();
+                    let last = out.frames.get(n_frames - 1).expect("the last frame is always recorded");
+                    let (end_angles, end_joints) = (last.angles.to_vec(), last.joints.to_vec());
+                    out.frames.start(n, opts.record_every, 1);
+                    let mut start_angles = start.to_vec();
+                    if clamp {
+                        chain.clamp_into(&mut start_angles);
+                    }
+                    joint_positions_into(chain, &start_angles, &mut s.joints);
+                    out.frames.push(0, &start_angles, &s.joints);
+                    out.frames.push_final(iterations, &end_angles, &end_joints);
+                }
+            }
+        }
+        out.iterations = iterations;
+        out.restarts = restarts;
         out.status = if status != Status::Reached && goal.is_out_of_reach(chain, opts.tolerance) {
             Status::Unreachable
         } else {
             status
         };
-        if opts.record_every.is_some() {
-            out.frames.push_final(iteration, angles, &s.joints);
-        }
         Ok(())
     }
 }
 
-/// Tries `angles + scale·Δθ` (clamped into the limits when `clamp`), halving `scale` up to
-/// `halvings` times until the task error drops below `current` by at least
-/// [`SUFFICIENT_DECREASE`] of the decrease the linearisation `J Δθ` predicts. On success the
-/// trial pose is in `s.trial` and `s.trial_joints`, and its tip orientation is returned.
-/// With `opts.backtrack == 0` the first trial is taken as it is.
+/// The squared task error of an outcome, as the solvers minimise it.
+fn task_error(opts: &SolveOptions, out: &Outcome) -> f64 {
+    out.error * out.error + (opts.orientation_weight * out.angle_error).powi(2)
+}
+
+/// The start pose of restart `k` (see [`Restarts`]).
+fn restart_pose(chain: &Chain, start: &[f64], clamp: bool, r: Restarts, k: u32, out: &mut [f64]) {
+    use std::f64::consts::PI;
+    let mut rng = SplitMix64(r.seed ^ u64::from(k).wrapping_mul(0xA076_1D64_78BD_642F));
+    let f = f64::from(k) / f64::from(r.attempts);
+    for (i, (o, &a)) in out.iter_mut().zip(start).enumerate() {
+        let u = rng.unit();
+        let limits = if clamp { chain.limits()[i] } else { None };
+        let (lo, hi) = limits.map_or((a - PI, a + PI), |l| (l.min(), l.max()));
+        let target = lo + u * (hi - lo);
+        let next = a + f * (target - a);
+        *o = limits.map_or(next, |l| l.clamp(next));
+    }
+}
+
+/// A small, portable, seedable generator (Steele, Lea & Flood's SplitMix64).
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1), 53 bits.
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// One solve from `start` (the loop of the [module docs](self)); writes everything in `out`
+/// except the final status relabelling and the restart count, and returns how it ended.
+fn attempt(
+    chain: &Chain,
+    start: &[f64],
+    goal: &Goal,
+    opts: &SolveOptions,
+    clamp: bool,
+    s: &mut Scratch,
+    out: &mut Outcome,
+) -> Status {
+    let n = chain.len();
+    let angles = out.pose.angles_mut();
+    angles.clear();
+    angles.extend_from_slice(start);
+    if clamp {
+        chain.clamp_into(angles);
+    }
+    out.frames.start(n, opts.record_every, opts.max_iterations);
+
+    let method = if opts.method == Method::Analytic { Method::DampedLeastSquares } else { opts.method };
+    let mode = if clamp { opts.limits } else { LimitMode::Ignore };
+    let target = goal.target();
+    let weight = opts.orientation_weight;
+    let mut phi = joint_positions_into(chain, angles, &mut s.joints);
+    let mut iteration: u32 = 0;
+    let mut still: u32 = 0;
+    // Levenberg–Marquardt's damping μ (= λ²) and its growth factor ν (Nielsen 1999).
+    let mut mu = opts.lambda * opts.lambda;
+    let mut nu = 2.0;
+    let mut best_error = f64::INFINITY;
+    let status;
+    loop {
+        let tip = s.joints[n];
+        let (dx, dy) = (target.x - tip.x, target.y - tip.y);
+        let turn = goal.orientation().map(|g| wrap_angle(g - phi));
+        let error = (dx * dx + dy * dy).sqrt();
+        let angle_error = turn.map_or(0.0, f64::abs);
+        out.error = error;
+        out.angle_error = angle_error;
+        out.end_effector = EndEffector { position: tip, orientation: phi };
+        if let Some(k) = opts.record_every {
+            if iteration % k == 0 {
+                out.frames.push(iteration, angles, &s.joints);
+            }
+        }
+
+        if error <= opts.tolerance && angle_error <= opts.angle_tolerance {
+            status = Status::Reached;
+            break;
+        }
+        if opts.stall.is_some_and(|st| still >= st.window) {
+            status = Status::Stalled;
+            break;
+        }
+        if iteration >= opts.max_iterations {
+            status = Status::IterationLimit;
+            break;
+        }
+
+        let trial_phi = if method.uses_jacobian() {
+            // Task error and J, embedded in three dimensions: without an orientation goal the
+            // third row of J and e is zero.
+            jacobian_from_joints(&s.joints, &mut s.jacobian);
+            let e = Vector3::new(dx, dy, turn.map_or(0.0, |t| weight * t));
+            let row_scale = if turn.is_some() { weight } else { 0.0 };
+            for mut col in s.jacobian.column_iter_mut() {
+                col[2] *= row_scale;
+            }
+            let current = e.norm_squared();
+            let Some(trial_phi) =
+                jacobian_step(chain, goal, opts, method, mode, clamp, &e, current, &mut mu, &mut nu, angles, s)
+            else {
+                // No step along this direction lowers the error: the pose cannot move, and the
+                // same pose would give the same direction again.
+                status = Status::Stalled;
+                break;
+            };
+            trial_phi
+        } else {
+            let e2 = error * error + (weight * angle_error).powi(2);
+            if e2 < best_error {
+                best_error = e2;
+                s.best.copy_from_slice(angles);
+            }
+            match method {
+                Method::Fabrik => {
+                    fabrik::iterate(chain, goal, opts, clamp, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
+                }
+                _ => ccd::sweep(chain, goal, opts, clamp, angles, &s.joints, &mut s.trial, &mut s.trial_joints),
+            }
+        };
+        let moved = angles.iter().zip(&s.trial).fold(0.0f64, |m, (a, t)| m.max((t - a).abs()));
+        std::mem::swap(angles, &mut s.trial);
+        std::mem::swap(&mut s.joints, &mut s.trial_joints);
+        phi = trial_phi;
+        iteration += 1;
+        match opts.stall {
+            Some(st) if moved <= st.epsilon => still += 1,
+            _ => still = 0,
+        }
+    }
+
+    if !method.uses_jacobian() && status != Status::Reached {
+        // CCD and FABRIK do not check for descent; end on the best pose they visited.
+        let final_error = out.error.powi(2) + (weight * out.angle_error).powi(2);
+        if best_error < final_error {
+            angles.copy_from_slice(&s.best);
+            phi = joint_positions_into(chain, angles, &mut s.joints);
+            let tip = s.joints[n];
+            out.error = (target - tip).norm();
+            out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
+            out.end_effector = EndEffector { position: tip, orientation: phi };
+        }
+    }
+    out.iterations = iteration;
+    if opts.record_every.is_some() {
+        out.frames.push_final(iteration, angles, &s.joints);
+    }
+    status
+}
+
+/// One step of a Jacobian method with its line search (see the [module docs](self)). On
+/// success the new pose is in `s.trial` and `s.trial_joints` and its tip orientation is
+/// returned; `None` means no step lowers the error enough.
 #[allow(clippy::too_many_arguments)]
-fn line_search(
+fn jacobian_step(
+    chain: &Chain,
+    goal: &Goal,
+    opts: &SolveOptions,
+    method: Method,
+    mode: LimitMode,
+    clamp: bool,
+    e: &Vector3<f64>,
+    current: f64,
+    mu: &mut f64,
+    nu: &mut f64,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> Option<f64> {
+    let oriented = goal.orientation().is_some();
+    let mut rule = method;
+    loop {
+        if rule == Method::LevenbergMarquardt {
+            // Levenberg–Marquardt: a rejected step raises the damping instead of halving.
+            for _ in 0..=opts.backtrack {
+                let scale = compute_delta(chain, opts, rule, mode, oriented, e, *mu, angles, s);
+                let (trial_error, expected, trial_phi) = try_pose(chain, goal, opts, clamp, e, scale, angles, s);
+                if opts.backtrack == 0 {
+                    return Some(trial_phi);
+                }
+                let decrease = current - trial_error;
+                if trial_error < current && decrease >= SUFFICIENT_DECREASE * expected {
+                    let rho = if expected > 0.0 { decrease / expected } else { 1.0 };
+                    *mu *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
+                    *nu = 2.0;
+                    return Some(trial_phi);
+                }
+                *mu *= *nu;
+                *nu *= 2.0;
+            }
+        } else {
+            let mut scale = compute_delta(chain, opts, rule, mode, oriented, e, *mu, angles, s);
+            // Gauss–Newton directions get one full try; the transpose step is halved.
+            let halvings = if rule == method && rule != Method::Transpose { 0 } else { opts.backtrack };
+            for attempt in 0..=halvings {
+                let (trial_error, expected, trial_phi) = try_pose(chain, goal, opts, clamp, e, scale, angles, s);
+                if opts.backtrack == 0 {
+                    return Some(trial_phi);
+                }
+                if trial_error < current && current - trial_error >= SUFFICIENT_DECREASE * expected {
+                    return Some(trial_phi);
+                }
+                if attempt < halvings {
+                    scale *= 0.5;
+                }
+            }
+        }
+        if rule == Method::Transpose || opts.backtrack == 0 {
+            return None;
+        }
+        // The method's own step falls short: Gauss–Newton directions (pinv, DLS with small λ)
+        // are poor where J is nearly singular, as on the way to a goal out of reach. Search the
+        // steepest-descent (transpose) direction instead.
+        rule = Method::Transpose;
+    }
+}
+
+/// Fills `s.delta` with the joint step of `rule` under the limit `mode`, scaled by the gain
+/// and the rates, and returns the factor that brings it within [`SolveOptions::max_step`].
+#[allow(clippy::too_many_arguments)]
+fn compute_delta(
+    chain: &Chain,
+    opts: &SolveOptions,
+    rule: Method,
+    mode: LimitMode,
+    oriented: bool,
+    e: &Vector3<f64>,
+    mu: f64,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> f64 {
+    let n = chain.len();
+    // Weighted least norm: slow down a joint that the task moves toward a limit.
+    s.scale.fill(1.0);
+    if mode == LimitMode::Weighted {
+        for (i, lim) in chain.limits().iter().enumerate() {
+            if let Some(lim) = lim {
+                let (lo, hi, th) = (lim.min(), lim.max(), angles[i]);
+                let g = s.jacobian.column(i).dot(e);
+                let toward = (g > 0.0 && 2.0 * th > lo + hi) || (g < 0.0 && 2.0 * th < lo + hi);
+                if toward {
+                    let gap = (hi - th) * (th - lo);
+                    let w = if gap > 0.0 {
+                        let dh = (hi - lo).powi(2) * (2.0 * th - hi - lo) / (4.0 * gap * gap);
+                        1.0 / (1.0 + dh.abs())
+                    } else {
+                        0.0
+                    };
+                    s.scale[i] = w.sqrt();
+                }
+            }
+        }
+    }
+    let locking = matches!(mode, LimitMode::Lock | LimitMode::NullSpace);
+    s.locked.fill(false);
+    let mut task = *e;
+    let fade =
+        if mode == LimitMode::NullSpace { (e.norm() / (NULLSPACE_FADE * chain.max_reach())).min(1.0) } else { 0.0 };
+    for round in 0..=n {
+        // Until a joint is locked or weighted, J itself is the weighted Jacobian.
+        let plain = round == 0 && mode != LimitMode::Weighted;
+        if !plain {
+            for (i, (mut w, col)) in s.weighted.column_iter_mut().zip(s.jacobian.column_iter()).enumerate() {
+                let k = if s.locked[i] { 0.0 } else { s.scale[i] };
+                w.copy_from(&(col * k));
+            }
+        }
+        let weighted = if plain { &s.jacobian } else { &s.weighted };
+        let a = gram(weighted, oriented);
+        method_step(rule, opts, &a, weighted, &task, mu, &mut s.step);
+        for i in 0..n {
+            if !s.locked[i] {
+                let rate = opts.rates.get(i).copied().unwrap_or(1.0);
+                s.delta[i] = opts.gain * rate * s.scale[i] * s.step[i];
+            }
+        }
+        if mode == LimitMode::NullSpace {
+            // z pulls limited joints toward the middle; remove what the task would see of it:
+            // Δθ += z − Jᵀ (J Jᵀ)⁺ J z, over the free (unlocked) joints. It fades as the goal
+            // nears, so that it does not slow the final convergence.
+            let mut jz = Vector3::zeros();
+            for (i, lim) in chain.limits().iter().enumerate() {
+                s.step[i] = match lim {
+                    Some(l) if !s.locked[i] => -NULLSPACE_GAIN * fade * (angles[i] - 0.5 * (l.min() + l.max())),
+                    _ => 0.0,
+                };
+                jz += weighted.column(i) * s.step[i];
+            }
+            let y = pinv::task_step(&a, &jz, opts.singular_threshold);
+            for i in 0..n {
+                if !s.locked[i] {
+                    s.delta[i] += s.step[i] - weighted.column(i).dot(&y);
+                }
+            }
+        }
+        if !locking {
+            break;
+        }
+        // Clamp and lock: a free joint whose step crosses its limit goes only to the limit
+        // and is held there; the rest of the task is solved again by the other joints.
+        let mut newly = false;
+        for (i, lim) in chain.limits().iter().enumerate() {
+            let Some(l) = lim else { continue };
+            if s.locked[i] {
+                continue;
+            }
+            let next = angles[i] + s.delta[i];
+            if next > l.max() || next < l.min() {
+                let d = l.clamp(next) - angles[i];
+                s.delta[i] = d;
+                s.locked[i] = true;
+                task -= s.jacobian.column(i) * d;
+                newly = true;
+            }
+        }
+        if !newly {
+            break;
+        }
+    }
+    let largest = s.delta.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    match opts.max_step {
+        Some(cap) if largest > cap => cap / largest,
+        _ => 1.0,
+    }
+}
+
+/// `A = J Jᵀ`, summed column by column (the 3×3 product written out: this runs every iteration
+/// and nalgebra's general product of a 3×N matrix with its transpose is several times slower).
+/// Without an orientation goal the third row of `J` is zero and `A`'s unused diagonal entry is
+/// set to 1, so that every rule's third component of `y` is exactly 0.
+fn gram(j: &Matrix3xX<f64>, oriented: bool) -> Matrix3<f64> {
+    let (mut xx, mut xy, mut xz, mut yy, mut yz, mut zz) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for c in j.column_iter() {
+        let (x, y, z) = (c[0], c[1], c[2]);
+        xx += x * x;
+        xy += x * y;
+        xz += x * z;
+        yy += y * y;
+        yz += y * z;
+        zz += z * z;
+    }
+    if !oriented {
+        zz = 1.0;
+    }
+    Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+}
+
+/// The step of a Jacobian `rule` in weighted joint coordinates: `J_wᵀ y` for the task-space
+/// rules, the selectively damped step for SDLS.
+fn method_step(
+    rule: Method,
+    opts: &SolveOptions,
+    a: &Matrix3<f64>,
+    weighted: &Matrix3xX<f64>,
+    e: &Vector3<f64>,
+    mu: f64,
+    out: &mut [f64],
+) {
+    let y = match rule {
+        Method::Transpose => transpose::task_step(a, e),
+        Method::PseudoInverse => pinv::task_step(a, e, opts.singular_threshold),
+        Method::LevenbergMarquardt => dls::task_step(a, e, mu.sqrt(), opts.singular_threshold),
+        Method::SelectivelyDamped => return sdls::joint_step(a, weighted, e, opts.singular_threshold, out),
+        _ => dls::task_step(a, e, opts.lambda, opts.singular_threshold),
+    };
+    for (o, col) in out.iter_mut().zip(weighted.column_iter()) {
+        *o = col.dot(&y);
+    }
+}
+
+/// Tries `angles + scale·Δθ` (clamped into the limits when `clamp`): the trial pose goes to
+/// `s.trial` and `s.trial_joints`. Returns its squared task error, the decrease the
+/// linearisation `J Δθ` predicts, and its tip orientation.
+#[allow(clippy::too_many_arguments)]
+fn try_pose(
     chain: &Chain,
     goal: &Goal,
     opts: &SolveOptions,
     clamp: bool,
     e: &Vector3<f64>,
-    current: f64,
-    mut scale: f64,
-    halvings: u32,
+    scale: f64,
     angles: &[f64],
     s: &mut Scratch,
-) -> Option<f64> {
+) -> (f64, f64, f64) {
     let n = chain.len();
     let target = goal.target();
-    for attempt in 0..=halvings {
-        let mut predicted = *e;
-        for (i, ((t, a), (d, col))) in
-            s.trial.iter_mut().zip(angles).zip(s.delta.iter().zip(s.jacobian.column_iter())).enumerate()
-        {
-            let mut next = a + scale * d;
-            if clamp {
-                if let Some(lim) = chain.limits()[i] {
-                    next = lim.clamp(next);
-                }
+    let mut predicted = *e;
+    for (i, ((t, a), (d, col))) in
+        s.trial.iter_mut().zip(angles).zip(s.delta.iter().zip(s.jacobian.column_iter())).enumerate()
+    {
+        let mut next = a + scale * d;
+        if clamp {
+            if let Some(lim) = chain.limits()[i] {
+                next = lim.clamp(next);
             }
-            predicted -= col * (next - a);
-            *t = next;
         }
-        let trial_phi = joint_positions_into(chain, &s.trial, &mut s.trial_joints);
-        if opts.backtrack == 0 {
-            return Some(trial_phi);
-        }
-        let tip = s.trial_joints[n];
-        let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * wrap_angle(g - trial_phi));
-        let trial_error = (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn;
-        let expected = (current - predicted.norm_squared()).max(0.0);
-        if trial_error < current && current - trial_error >= SUFFICIENT_DECREASE * expected {
-            return Some(trial_phi);
-        }
-        if attempt < halvings {
-            scale *= 0.5;
-        }
+        predicted -= col * (next - a);
+        *t = next;
     }
-    None
+    let trial_phi = joint_positions_into(chain, &s.trial, &mut s.trial_joints);
+    let tip = s.trial_joints[n];
+    let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * wrap_angle(g - trial_phi));
+    let trial_error = (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn;
+    let expected = (e.norm_squared() - predicted.norm_squared()).max(0.0);
+    (trial_error, expected, trial_phi)
 }
 
 /// `angle` wrapped into [−π, π).
@@ -662,3 +1194,6 @@ pub fn wrap_angle(angle: f64) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod limit_tests;
