@@ -71,18 +71,41 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     const miss = Math.hypot(tip[0] - goal.x, tip[1] - goal.y);
     assert.ok(miss <= 1e-5, `the tip ended ${miss} from the goal`);
 
-    // The reachable area, then the same with the seed's joint limits: it must shrink.
+    // The page starts with the library's robust default: limits on, Levenberg–Marquardt,
+    // clamp and lock, 16 restarts (what `ikarus solve --limits` uses).
+    const start = await page.evaluate(() => ({
+      limits: document.getElementById("limits").checked,
+      method: document.getElementById("method").value,
+      mode: document.getElementById("limit-mode").value,
+      restarts: document.getElementById("restarts").value,
+    }));
+    assert.deepEqual(start, { limits: true, method: "lm", mode: "lock", restarts: "16" });
+
+    // The reachable area with the seed's joint limits, then without: it must grow.
     await page.check("#show-workspace");
-    await page.waitForFunction(() => window.ikarus.state.workspace && !window.ikarus.state.workspace.limits, null, {
-      timeout: 15000,
-    });
-    const free = await page.evaluate(() => window.ikarus.state.workspace.area);
-    await page.check("#limits");
     await page.waitForFunction(() => window.ikarus.state.workspace && window.ikarus.state.workspace.limits, null, {
       timeout: 15000,
     });
     const limited = await page.evaluate(() => window.ikarus.state.workspace.area);
+    await page.uncheck("#limits");
+    await page.waitForFunction(() => window.ikarus.state.workspace && !window.ikarus.state.workspace.limits, null, {
+      timeout: 15000,
+    });
+    const free = await page.evaluate(() => window.ikarus.state.workspace.area);
     assert.ok(limited < 0.9 * free, `limits should shrink the area: ${limited} vs ${free}`);
+
+    // Another method from the list reaches a goal too: FABRIK, clicked at (-2, 1).
+    await page.selectOption("#method", "fabrik");
+    const [fx, fy] = await page.evaluate(() => window.ikarus.toClient(-2, 1));
+    await page.mouse.click(fx, fy);
+    await page.waitForFunction(
+      () =>
+        document.body.dataset.status === "reached" &&
+        !window.ikarus.state.playing &&
+        Math.hypot(window.ikarus.state.goal.x + 2, window.ikarus.state.goal.y - 1) < 0.05,
+      null,
+      { timeout: 15000 },
+    );
 
     mkdirSync(artifacts, { recursive: true });
     await page.screenshot({ path: join(artifacts, "playground.png") });

@@ -73,6 +73,11 @@ pub struct SolverTable {
     pub stall_window: Option<u32>,
     pub stall_epsilon_deg: Option<f64>,
     pub limits: Option<bool>,
+    pub limit_mode: Option<crate::options::LimitModeArg>,
+    pub restarts: Option<u32>,
+    pub restart_seed: Option<u64>,
+    pub time_budget_ms: Option<f64>,
+    pub no_closed_form: Option<bool>,
 }
 
 /// A loaded arm: the validated chain, its name, and the file's solver defaults.
@@ -178,6 +183,9 @@ impl SolverTable {
         if let Some(v) = self.stall_epsilon_deg {
             field("stall_epsilon_deg", non_negative(v))?;
         }
+        if let Some(v) = self.time_budget_ms {
+            field("time_budget_ms", positive(v))?;
+        }
         if let Some(v) = self.record_every {
             at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
         }
@@ -224,6 +232,11 @@ impl SolverTable {
             stall_window: self.stall_window.or(base.stall_window),
             stall_epsilon_deg: self.stall_epsilon_deg.or(base.stall_epsilon_deg),
             limits: self.limits.or(base.limits),
+            limit_mode: self.limit_mode.or(base.limit_mode),
+            restarts: self.restarts.or(base.restarts),
+            restart_seed: self.restart_seed.or(base.restart_seed),
+            time_budget_ms: self.time_budget_ms.or(base.time_budget_ms),
+            no_closed_form: self.no_closed_form.or(base.no_closed_form),
         }
     }
 }

@@ -4,7 +4,7 @@
 //! Precedence: flag, then the arm file's `[solver]` table, then the library default.
 
 use clap::{Args, ValueEnum};
-use ikarus::{LimitMode, Method, SolveOptions, StallDetection};
+use ikarus::{LimitMode, Method, Restarts, SolveOptions, StallDetection};
 use serde::Deserialize;
 
 use crate::arm::SolverTable;
@@ -20,6 +20,16 @@ pub enum MethodArg {
     Pinv,
     /// Damped least squares with damping --lambda.
     Dls,
+    /// Selectively damped least squares (Buss & Kim).
+    Sdls,
+    /// Levenberg–Marquardt: damped least squares with adaptive damping, starting at --lambda.
+    Lm,
+    /// Cyclic coordinate descent, one joint at a time from the tip.
+    Ccd,
+    /// FABRIK, forward and backward reaching on the joint positions.
+    Fabrik,
+    /// Closed form: 2 links with a position goal, 3 links with --goal-angle.
+    Analytic,
 }
 
 impl From<MethodArg> for Method {
@@ -28,6 +38,36 @@ impl From<MethodArg> for Method {
             MethodArg::Transpose => Method::Transpose,
             MethodArg::Pinv => Method::PseudoInverse,
             MethodArg::Dls => Method::DampedLeastSquares,
+            MethodArg::Sdls => Method::SelectivelyDamped,
+            MethodArg::Lm => Method::LevenbergMarquardt,
+            MethodArg::Ccd => Method::CyclicCoordinateDescent,
+            MethodArg::Fabrik => Method::Fabrik,
+            MethodArg::Analytic => Method::Analytic,
+        }
+    }
+}
+
+/// How enforced joint limits are handled, as named at the edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LimitModeArg {
+    /// Clamp every step into the ranges (the seed's method; can get stuck).
+    Clamp,
+    /// Clamp and lock: a joint at its limit is held and the step re-solved for the others.
+    Lock,
+    /// Lock, plus a push toward the middle of the ranges in the null space of the task.
+    Nullspace,
+    /// Weighted least norm: joints slow down as they near a limit.
+    Weighted,
+}
+
+impl From<LimitModeArg> for LimitMode {
+    fn from(m: LimitModeArg) -> Self {
+        match m {
+            LimitModeArg::Clamp => LimitMode::Clamp,
+            LimitModeArg::Lock => LimitMode::Lock,
+            LimitModeArg::Nullspace => LimitMode::NullSpace,
+            LimitModeArg::Weighted => LimitMode::Weighted,
         }
     }
 }
@@ -35,10 +75,10 @@ impl From<MethodArg> for Method {
 /// Solver flags. Each overrides the arm file's `[solver]` table.
 #[derive(Debug, Clone, Default, Args)]
 pub struct SolverArgs {
-    /// Solver method [default: dls]
+    /// Solver method [default: lm]
     #[arg(long, value_enum, hide_possible_values = false)]
     pub method: Option<MethodArg>,
-    /// Damping λ of the dls method, ≥ 0, in length units [default: 0.1]
+    /// Damping λ of dls, and the starting damping of lm, ≥ 0, in length units [default: 0.1]
     #[arg(long, value_parser = parse_non_negative)]
     pub lambda: Option<f64>,
     /// Distance to the goal that counts as reached, > 0 [default: 1e-6]
@@ -70,12 +110,28 @@ pub struct SolverArgs {
     /// Largest joint change, degrees, that counts as no movement [default: 5.7e-8]
     #[arg(long, value_parser = parse_non_negative, value_name = "DEG")]
     pub stall_epsilon_deg: Option<f64>,
-    /// Enforce the arm's joint ranges by clamping (the built-in arm's are the seed's)
+    /// Enforce the arm's joint ranges (the built-in arm's are the seed's), as --limit-mode says
     #[arg(long, overrides_with = "no_limits")]
     pub limits: bool,
     /// Do not enforce joint ranges, even if the arm file's [solver] table asks to
     #[arg(long, overrides_with = "limits")]
     pub no_limits: bool,
+    /// How enforced ranges are handled; implies --limits [default: lock]
+    #[arg(long, value_enum, hide_possible_values = false, conflicts_with = "no_limits")]
+    pub limit_mode: Option<LimitModeArg>,
+    /// Restarts from other start poses when a solve stalls; 0 solves once [default: 16]
+    #[arg(long, value_name = "N")]
+    pub restarts: Option<u32>,
+    /// Seed of the restarts' start poses (the same seed gives the same result) [default: 0]
+    #[arg(long, value_name = "S")]
+    pub restart_seed: Option<u64>,
+    /// Start no restart after this many milliseconds of one solve; results then depend on the
+    /// machine's speed [default: none]
+    #[arg(long, value_parser = parse_positive, value_name = "MS")]
+    pub time_budget_ms: Option<f64>,
+    /// Iterate even where a closed form applies (2 links, or 3 links with --goal-angle)
+    #[arg(long)]
+    pub no_closed_form: bool,
 }
 
 impl SolverArgs {
@@ -90,7 +146,17 @@ impl SolverArgs {
                 .or(table.stall_epsilon_deg)
                 .map_or(d.stall.unwrap_or_default().epsilon, f64::to_radians),
         };
-        let limits = limits_enforced(self.limits, self.no_limits, table);
+        let mode = self.limit_mode.or(table.limit_mode);
+        let limits = limits_enforced(self.limits || self.limit_mode.is_some(), self.no_limits, table);
+        let attempts = self.restarts.or(table.restarts).unwrap_or(Restarts::default().attempts);
+        let restarts = (attempts > 0).then(|| Restarts {
+            attempts,
+            seed: self.restart_seed.or(table.restart_seed).unwrap_or(Restarts::default().seed),
+            time_budget: self
+                .time_budget_ms
+                .or(table.time_budget_ms)
+                .map(|ms| std::time::Duration::from_secs_f64(ms / 1000.0)),
+        });
         let options = SolveOptions {
             method: self.method.or(table.method).map_or(d.method, Method::from),
             lambda: self.lambda.or(table.lambda).unwrap_or(d.lambda),
@@ -110,7 +176,9 @@ impl SolverArgs {
             backtrack: self.backtrack.or(table.backtrack).unwrap_or(d.backtrack),
             stall: Some(stall),
             record_every,
-            limits: if limits { LimitMode::Clamp } else { LimitMode::Ignore },
+            limits: if limits { mode.map_or(d.limits, LimitMode::from) } else { LimitMode::Ignore },
+            restarts,
+            closed_form: !(self.no_closed_form || table.no_closed_form == Some(true)),
             ..d
         };
         options.validate().map_err(|e| CliError::input(e.to_string()))?;

@@ -37,9 +37,13 @@ pub struct SolveJson<'a> {
     pub arm: &'a str,
     pub method: &'static str,
     pub limits: bool,
+    /// `ignore` when limits are off.
+    pub limit_mode: &'static str,
     pub goal: GoalJson,
     pub status: &'static str,
     pub iterations: u32,
+    /// Restarts used (0 when the first attempt ended the solve).
+    pub restarts: u32,
     pub error: f64,
     pub angle_error_deg: f64,
     pub tolerance: f64,
@@ -76,10 +80,12 @@ impl<'a> SolveReport<'a> {
         SolveJson {
             arm: &self.arm.name,
             method: self.options.method.name(),
-            limits: self.options.limits == ikarus::LimitMode::Clamp,
+            limits: self.options.limits != ikarus::LimitMode::Ignore,
+            limit_mode: self.options.limits.name(),
             goal: GoalJson { x: target.x, y: target.y, angle_deg: self.goal.orientation().map(f64::to_degrees) },
             status: o.status.as_str(),
             iterations: o.iterations,
+            restarts: o.restarts,
             error: o.error,
             angle_error_deg: o.angle_error.to_degrees(),
             tolerance: self.options.tolerance,
@@ -171,9 +177,7 @@ impl MotionRequest<'_> {
         for goal in &self.goals {
             let start = keyframes.last().expect("the start pose is a keyframe").clone();
             let mut outcome = Outcome::default();
-            solver
-                .solve_into(&arm.chain, &start, goal, &mut outcome)
-                .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+            solver.solve_into(&arm.chain, &start, goal, &mut outcome).map_err(|e| CliError::input(e.to_string()))?;
             let target = goal.target();
             // The solver's recorded path, without repeating the pose it started from.
             path.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
@@ -188,8 +192,8 @@ impl MotionRequest<'_> {
         let poses = if self.from_solve { &path } else { &keyframes };
         // The motion obeys the same limits as the solve: without limits every joint is free.
         let motion_chain = match solver.options().limits {
-            ikarus::LimitMode::Clamp => arm.chain.clone(),
-            _ => arm.chain.without_limits(),
+            ikarus::LimitMode::Ignore => arm.chain.without_limits(),
+            _ => arm.chain.clone(),
         };
         let animation = ikarus::motion::animate(&motion_chain, poses, None, self.timing, self.ease)
             .map_err(|e| CliError::input(e.to_string()))?;

@@ -98,9 +98,8 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     let options = args.solver.resolve(&arm.solver, Some(every))?;
     let mut solver = solver_for(&arm.chain, options)?;
     let started = Instant::now();
-    let outcome = solver
-        .solve(&arm.chain, arm.chain.start_pose(), &goal)
-        .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+    let outcome =
+        solver.solve(&arm.chain, arm.chain.start_pose(), &goal).map_err(|e| CliError::input(e.to_string()))?;
     let micros = started.elapsed().as_secs_f64() * 1e6;
     let report = Report { arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
     let format = args.format.unwrap_or(if std::io::stdout().is_terminal() { Format::Text } else { Format::Json });
@@ -170,10 +169,10 @@ impl Report<'_> {
         let opts = self.options;
         let target = self.goal.target();
         let goal_angle = self.goal.orientation().map_or(String::new(), |a| format!(" at {:.3}°", a.to_degrees()));
-        let limits = match (opts.limits == ikarus::LimitMode::Clamp, self.arm.chain.has_limits()) {
-            (true, _) => "on (clamped)",
-            (false, true) => "off (the arm has ranges: --limits enforces them)",
-            (false, false) => "off",
+        let limits = match (opts.limits, self.arm.chain.has_limits()) {
+            (ikarus::LimitMode::Ignore, true) => "off (the arm has ranges: --limits enforces them)".to_owned(),
+            (ikarus::LimitMode::Ignore, false) => "off".to_owned(),
+            (mode, _) => format!("on ({})", mode.name()),
         };
         writeln!(
             w,
@@ -184,7 +183,12 @@ impl Report<'_> {
         )?;
         writeln!(w, "goal      ({}, {}){goal_angle}", target.x, target.y)?;
         writeln!(w, "method    {}   limits {limits}", opts.method.name())?;
-        writeln!(w, "status    {} after {} iterations ({:.1} µs)", o.status, o.iterations, self.micros)?;
+        let restarts = match o.restarts {
+            0 => String::new(),
+            1 => ", 1 restart".to_owned(),
+            k => format!(", {k} restarts"),
+        };
+        writeln!(w, "status    {} after {} iterations{restarts} ({:.1} µs)", o.status, o.iterations, self.micros)?;
         write!(w, "error     {:.3e} (tolerance {:e})", o.error, opts.tolerance)?;
         if self.goal.orientation().is_some() {
             write!(w, ", orientation {:.3e}°", o.angle_error.to_degrees())?;
@@ -324,7 +328,7 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
                 )
                 .collect::<Result<_, _>>()
         })
-        .map_err(|e| CliError::runtime(format!("solve failed: {e}")))?;
+        .map_err(|e| CliError::input(e.to_string()))?;
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }

@@ -43,7 +43,10 @@ fn json_contract_of_a_single_solve() {
     // Not a terminal, so JSON is the default format.
     let v = json(&["solve", "--goal", "2,3"]);
     assert_eq!(v["status"], "reached");
-    assert_eq!(v["method"], "dls");
+    assert_eq!(v["method"], "lm");
+    assert_eq!(v["limits"], false);
+    assert_eq!(v["limit_mode"], "ignore");
+    assert_eq!(v["restarts"], 0);
     let iterations = v["iterations"].as_u64().unwrap();
     assert!(iterations > 0 && iterations <= 1000);
     let error = v["error"].as_f64().unwrap();
@@ -98,14 +101,14 @@ fn statuses_reach_the_output() {
     let expected = (10f64.hypot(3.0)) - 6.0;
     assert!((error - expected).abs() <= 1e-6, "{error} vs {expected}");
 
-    // The seed's Figure 9: a goal behind the arm with every range enforced.
+    // A goal behind the arm that no pose within the seed's ranges reaches.
     let v = json(&["solve", "--goal", "-3,-1", "--limits"]);
     assert_eq!(v["status"], "stalled");
     assert_eq!(v["limits"], true);
     let a = floats(&v["angles_deg"]);
     assert!((-45.0..=45.0).contains(&a[0]) && (-90.0..=90.0).contains(&a[1]) && (-170.0..=170.0).contains(&a[2]));
 
-    let v = json(&["solve", "--goal", "-3,-1", "--max-iterations", "2", "--method", "transpose"]);
+    let v = json(&["solve", "--goal", "-3,-1", "--max-iterations", "2", "--method", "transpose", "--restarts", "0"]);
     assert_eq!(v["status"], "iteration_limit");
     assert_eq!(v["iterations"], 2);
 }
@@ -327,4 +330,64 @@ fn help_and_version_succeed() {
     let o = ikarus(&["solve", "--help"]);
     assert!(o.status.success());
     assert!(stdout(&o).contains("--batch <GOALS.csv>"));
+}
+
+/// Every method and limit mode is reachable from the command line, and limits hold.
+#[test]
+fn every_method_and_limit_mode_from_the_command_line() {
+    for method in ["transpose", "pinv", "dls", "sdls", "lm", "ccd", "fabrik"] {
+        let v = json(&["solve", "--goal", "2,3", "--method", method, "--max-iterations", "5000"]);
+        assert_eq!(v["method"], method);
+        assert_eq!(v["status"], "reached", "{method}: {v}");
+    }
+    // The closed form: 3 links with an orientation goal.
+    let v = json(&["solve", "--goal", "4,2", "--goal-angle", "0", "--method", "analytic"]);
+    assert_eq!(
+        (v["method"].as_str(), v["status"].as_str(), v["iterations"].as_u64()),
+        (Some("analytic"), Some("reached"), Some(1))
+    );
+    for mode in ["clamp", "lock", "nullspace", "weighted"] {
+        // (0, −4) is reachable within the seed's ranges; clamping alone sticks there, restarts get
+        // every mode to it.
+        let v = json(&["solve", "--goal", "0,-4", "--limit-mode", mode]);
+        assert_eq!(v["limits"], true, "--limit-mode implies --limits");
+        assert_eq!(v["limit_mode"], mode);
+        assert_eq!(v["status"], "reached", "{mode}: {v}");
+        let a = floats(&v["angles_deg"]);
+        assert!((-45.0..=45.0).contains(&a[0]) && (-90.0..=90.0).contains(&a[1]) && (-170.0..=170.0).contains(&a[2]));
+    }
+    // Without restarts, clamping stalls on it; the default combination reaches it.
+    let v = json(&["solve", "--goal", "0,-4", "--limit-mode", "clamp", "--restarts", "0"]);
+    assert_eq!(v["status"], "stalled");
+    assert_eq!(v["restarts"], 0);
+    let v = json(&["solve", "--goal", "0,-4", "--limits"]);
+    assert_eq!(
+        (v["status"].as_str(), v["limit_mode"].as_str(), v["method"].as_str()),
+        (Some("reached"), Some("lock"), Some("lm"))
+    );
+    // Restarts are deterministic for a seed.
+    let run = |seed: &str| {
+        let mut v = json(&["solve", "--goal", "0,-4", "--limit-mode", "clamp", "--restart-seed", seed]);
+        v["solve_us"] = Value::Null;
+        v
+    };
+    assert_eq!(run("5"), run("5"));
+}
+
+#[test]
+fn bad_solver_flags_name_the_flag() {
+    for (args, needle) in [
+        (&["solve", "--goal", "1,1", "--limit-mode", "sticky"][..], "--limit-mode"),
+        (&["solve", "--goal", "1,1", "--method", "magic"][..], "--method"),
+        (&["solve", "--goal", "1,1", "--restarts", "-1"][..], "--restarts"),
+        (&["solve", "--goal", "1,1", "--time-budget-ms", "0"][..], "--time-budget-ms"),
+        (&["solve", "--goal", "1,1", "--limit-mode", "lock", "--no-limits"][..], "--limit-mode"),
+        (&["solve", "--goal", "1,1", "--method", "analytic"][..], "method analytic"),
+    ] {
+        let o = ikarus(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
 }

@@ -145,8 +145,16 @@ fn solve_reaches_the_goal_like_the_cli() {
     let v = a.json();
     assert_eq!(v["status"], "reached");
     assert_eq!(v["arm"], "seed");
-    assert_eq!(v["method"], "dls");
+    assert_eq!(v["method"], "lm");
     assert!(v["error"].as_f64().unwrap() <= 1e-6);
+    // The new methods and limit modes go through the same options.
+    for (method, mode) in [("ccd", "clamp"), ("fabrik", "lock"), ("sdls", "weighted"), ("dls", "nullspace")] {
+        let body =
+            json!({ "goal": { "x": 0, "y": -4 }, "options": { "method": method, "limits": true, "limit_mode": mode } });
+        let r = s.post("/api/solve", &body).json();
+        assert_eq!((r["method"].as_str(), r["limit_mode"].as_str()), (Some(method), Some(mode)));
+        assert_eq!(r["status"], "reached", "{method} {mode}: {r}");
+    }
     assert_eq!(v["angles_deg"].as_array().unwrap().len(), 3);
     let joints = v["joints"].as_array().unwrap();
     assert_eq!(joints.len(), 4);
@@ -324,6 +332,18 @@ fn invalid_values_are_422_naming_the_field() {
             "arm.links: 65 links, more than the cap of 64",
         ),
         ("/api/solve", json!({}), "missing field `goal`"),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "options": { "restarts": 65 } }),
+            "options.restarts = 65: more than the cap of 64",
+        ),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "options": { "limit_mode": "sticky" } }),
+            "options.limit_mode: unknown variant",
+        ),
+        ("/api/solve", json!({ "goal": goal, "options": { "method": "analytic" } }), "method analytic: needs 2 links"),
+        ("/api/solve", json!({ "goal": goal, "options": { "time_budget_ms": 0 } }), "options.time_budget_ms = 0"),
         ("/api/animate", json!({ "goal": goal, "frames": 1 }), "frames = 1"),
         ("/api/animate", json!({ "goal": goal, "frames": 5000 }), "frames: 5000 frames, more than the cap of 2000"),
         ("/api/animate", json!({ "goal": goal, "ease": { "kind": "sine", "k1": 0.1 } }), "ease.k1: only applies"),

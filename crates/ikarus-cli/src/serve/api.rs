@@ -279,6 +279,9 @@ fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, ApiError> {
     }
 }
 
+/// The most restarts one request may ask for: each restart may run the full iteration cap.
+const MAX_RESTARTS: u32 = 64;
+
 /// Library options from the request's `options` over the arm's `solver` table over the
 /// defaults; `options.max_iterations` at most `--max-iterations`.
 fn options(
@@ -295,6 +298,9 @@ fn options(
             "options.max_iterations = {iterations}: more than the cap of {} (--max-iterations)",
             limits.max_iterations
         )));
+    }
+    if let Some(restarts) = table.restarts.filter(|&r| r > MAX_RESTARTS) {
+        return Err(ApiError::invalid(format!("options.restarts = {restarts}: more than the cap of {MAX_RESTARTS}")));
     }
     if let Some(rates) = &table.rates {
         if !rates.is_empty() && rates.len() != arm.chain.len() {

@@ -381,6 +381,7 @@
   function setStats(s) {
     const parts = [`status ${s.status}`];
     if (s.iterations !== undefined) parts.push(`${s.iterations} iterations`);
+    if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
     if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
     if (s.solve_us !== undefined) parts.push(`${(s.solve_us / 1000).toFixed(3)} ms`);
     $("stats").textContent = parts.join(" · ");
@@ -530,7 +531,9 @@
 
   function readOptions() {
     const o = { method: $("method").value, limits: $("limits").checked };
+    if (o.limits) o.limit_mode = $("limit-mode").value;
     const fields = [
+      ["restarts", "restarts"],
       ["lambda", "lambda"],
       ["tolerance", "tolerance"],
       ["max_iterations", "max-iterations"],
@@ -554,7 +557,8 @@
     }
     const frames = num("frames");
     state.frames = frames === undefined ? 60 : frames;
-    $("lambda").disabled = o.method !== "dls";
+    $("lambda").disabled = o.method !== "dls" && o.method !== "lm";
+    $("limit-mode").disabled = !o.limits;
   }
 
   function cellInput(value, label, onChange, step = "any") {
@@ -776,7 +780,7 @@
   // ---- Wiring -------------------------------------------------------------------------------
 
   function wire() {
-    for (const id of ["method", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
+    for (const id of ["method", "limit-mode", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
       $(id).addEventListener("change", controlsChanged);
     }
     $("limits").addEventListener("change", () => {
