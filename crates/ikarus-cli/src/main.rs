@@ -6,6 +6,7 @@
 
 mod animate;
 mod arm;
+mod bench;
 mod ease_args;
 mod error;
 mod options;
@@ -48,6 +49,8 @@ enum Command {
     Render(render::RenderCommand),
     /// Serve the JSON API over HTTP on 127.0.0.1:7878 (the playground page comes later)
     Serve(serve::ServeArgs),
+    /// Time every solver on seeded goal sets for the shipped arms, optionally beside Orocos KDL
+    Bench(bench::BenchArgs),
 }
 
 fn main() -> ExitCode {
@@ -73,6 +76,7 @@ fn main() -> ExitCode {
         Command::Workspace(args) => workspace::run(args),
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),
+        Command::Bench(args) => bench::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,275 @@
+//! `ikarus bench`: times every solver configuration on seeded goal sets for the shipped arms,
+//! judges every solve the same way, and (with `--kdl`) sets Orocos KDL's solvers beside them.
+//!
+//! - [`sets`]: the goal sets and their generator;
+//! - [`run`](mod@run): the rows, the timing and the judge;
+//! - [`kdl`]: goal files and `kdl_bench`'s output;
+//! - [`table`]: text, Markdown and JSON output.
+
+mod kdl;
+mod run;
+mod sets;
+mod table;
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use clap::builder::PossibleValuesParser;
+use ikarus::{LimitMode, Method, SolveOptions};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::arm::io_reason;
+use crate::error::CliError;
+use crate::options::parse_at_least_one;
+use crate::output::{self, PendingFile};
+use run::{Config, Filter, RowResult};
+use sets::{ArmName, GoalSet, SetName};
+use table::Header;
+
+/// Time the solvers on seeded goal sets for the shipped arms (one thread), optionally beside
+/// Orocos KDL.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Goals per set
+    #[arg(long, value_name = "N", default_value_t = 1000, value_parser = parse_at_least_one)]
+    pub goals: u32,
+    /// Seed of the goal sets (each set mixes in its arm's and its own name)
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Arms to benchmark
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "ARM,…", default_values_t = ArmName::ALL)]
+    pub arms: Vec<ArmName>,
+    /// Goal sets to benchmark
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "SET,…", default_values_t = SetName::ALL)]
+    pub sets: Vec<SetName>,
+    /// Keep only the rows of these methods (`default`: the library's default options) [default: all]
+    #[arg(long, value_delimiter = ',', value_name = "METHOD,…", value_parser = method_names())]
+    pub methods: Option<Vec<String>>,
+    /// Keep only the rows with these limit modes (the `default` rows stay) [default: all]
+    #[arg(long, value_delimiter = ',', value_name = "MODE,…", value_parser = mode_names())]
+    pub limit_modes: Option<Vec<String>>,
+    /// Also run KDL's solvers: PATH is the `kdl_bench` program (`bash bench/kdl/build` builds
+    /// target/kdl/kdl_bench)
+    #[arg(long, value_name = "PATH")]
+    pub kdl: Option<PathBuf>,
+    /// Output JSON: a header object and an array of rows
+    #[arg(long, conflicts_with = "markdown")]
+    pub json: bool,
+    /// Output a Markdown table, headed by the command line
+    #[arg(long)]
+    pub markdown: bool,
+    /// Also write each set's goal file (the format of bench/kdl/README.md) into DIR, an
+    /// existing directory, as ARM-SET.goals
+    #[arg(long, value_name = "DIR")]
+    pub write_goals: Option<PathBuf>,
+}
+
+/// `--methods` accepts every method's name and `default`.
+fn method_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(Method::ALL.iter().map(|m| m.name()).chain(["default"]))
+}
+
+/// `--limit-modes` accepts every limit mode's name.
+fn mode_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(LimitMode::ALL.iter().map(|m| m.name()))
+}
+
+/// Runs `ikarus bench`.
+pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    // Everything that can be checked is checked before the (long) work starts.
+    if let Some(path) = &args.kdl {
+        kdl::check(path)?;
+    }
+    if let Some(dir) = &args.write_goals {
+        check_dir(dir)?;
+    }
+    let arms = unique(&args.arms);
+    let set_names = unique(&args.sets);
+    let filter = Filter { methods: args.methods.clone(), modes: args.limit_modes.clone() };
+    let configs = run::configs();
+    let goals = args.goals as usize;
+
+    let mut plan: Vec<(GoalSet, Vec<&Config>)> = Vec::new();
+    for &arm in &arms {
+        let chain = arm.load()?.chain;
+        for &set in &set_names {
+            let goal_set = sets::generate(arm.name(), &chain, set, goals, args.seed);
+            let rows = configs.iter().filter(|c| c.applies_to(&goal_set) && filter.keeps(c)).collect();
+            plan.push((goal_set, rows));
+        }
+    }
+    if args.kdl.is_none() && plan.iter().all(|(_, rows)| rows.is_empty()) {
+        let mut flags = Vec::new();
+        if let Some(m) = &args.methods {
+            flags.push(format!("--methods {}", m.join(",")));
+        }
+        if let Some(m) = &args.limit_modes {
+            flags.push(format!("--limit-modes {}", m.join(",")));
+        }
+        return Err(CliError::input(format!("{}: no benchmark row matches on the sets chosen", flags.join(" "))));
+    }
+
+    let comment = |set: &GoalSet| {
+        format!(
+            "written by ikarus {} bench --seed {} --goals {goals}: arm {}, set {}",
+            env!("CARGO_PKG_VERSION"),
+            args.seed,
+            set.arm,
+            set.set.name()
+        )
+    };
+    if let Some(dir) = &args.write_goals {
+        // Every file is created (as a temporary file) before any is renamed into place.
+        let pending = plan
+            .iter()
+            .map(|(set, _)| {
+                Ok((PendingFile::create(&dir.join(format!("{}.goals", set.name())), "--write-goals")?, set))
+            })
+            .collect::<Result<Vec<_>, CliError>>()?;
+        for (file, set) in pending {
+            file.commit(kdl::goal_file(set, &comment(set)).as_bytes())?;
+        }
+    }
+
+    let total: u64 = plan.iter().map(|(set, rows)| (set.goals.len() * rows.len()) as u64).sum();
+    let progress = progress_bar(total);
+
+    // KDL first: a broken --kdl is reported in seconds, not after the whole benchmark.
+    let mut kdl_version = None;
+    let mut kdl_rows: Vec<Vec<RowResult>> = Vec::new();
+    if let Some(path) = &args.kdl {
+        let dir = tempfile::tempdir().map_err(|e| {
+            CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
+        })?;
+        for (set, _) in &plan {
+            if let Some(bar) = &progress {
+                bar.set_message(format!("kdl {}", set.name()));
+            }
+            let result = kdl::run(path, set, dir.path(), &comment(set))?;
+            kdl_version.get_or_insert_with(|| result.version.clone());
+            kdl_rows.push(result.rows(set));
+        }
+    }
+
+    let mut rows = Vec::new();
+    for (k, (set, configs)) in plan.iter().enumerate() {
+        let start = rows.len();
+        for config in configs {
+            if let Some(bar) = &progress {
+                bar.set_message(format!("{} {}", set.name(), config.label));
+            }
+            rows.push(run::run_config(set, config, || {
+                if let Some(bar) = &progress {
+                    bar.inc(1);
+                }
+            }));
+        }
+        if let Some(extra) = kdl_rows.get_mut(k) {
+            rows.append(extra);
+            let lma = rows[start..].iter().find(|r| r.label == kdl::LMA_LABEL).map(|r| r.median_us);
+            for r in &mut rows[start..] {
+                r.vs_kdl_lma = lma.map(|m| m / r.median_us);
+            }
+        }
+    }
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+
+    let opts = SolveOptions::default();
+    let header = Header {
+        command: command_line(),
+        ikarus_version: env!("CARGO_PKG_VERSION"),
+        kdl_version,
+        goals,
+        seed: args.seed,
+        arms: arms.iter().map(|a| a.name()).collect(),
+        sets: set_names.iter().map(|s| s.name()).collect(),
+        tolerance: opts.tolerance,
+        angle_tolerance: opts.angle_tolerance,
+        max_iterations: opts.max_iterations,
+        warmup_goals: run::WARMUP_GOALS.min(goals),
+        threads: 1,
+        cpus: std::thread::available_parallelism().map_or(1, usize::from),
+        os: std::env::consts::OS,
+        arch: std::env::consts::ARCH,
+        debug_build: cfg!(debug_assertions),
+    };
+    output::stdout(|w| {
+        if args.json {
+            table::json(w, &header, &rows)
+        } else if args.markdown {
+            table::markdown(w, &header, &rows)
+        } else {
+            table::text(w, &header, &rows)
+        }
+    })
+}
+
+/// `--write-goals DIR` must be an existing directory (bad input, exit 2, otherwise); whether
+/// files can be created in it shows when they are (exit 1, as for every output file).
+fn check_dir(dir: &Path) -> Result<(), CliError> {
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(_) => Err(CliError::input(format!("--write-goals {}: not a directory", dir.display()))),
+        Err(e) => Err(CliError::input(format!("--write-goals {}: {}", dir.display(), io_reason(&e)))),
+    }
+}
+
+/// `items` without repetitions, in their first order.
+fn unique<T: Copy + PartialEq>(items: &[T]) -> Vec<T> {
+    let mut out: Vec<T> = Vec::with_capacity(items.len());
+    for &i in items {
+        if !out.contains(&i) {
+            out.push(i);
+        }
+    }
+    out
+}
+
+/// A progress bar over `total` solves, on stderr, only when stderr is a terminal.
+fn progress_bar(total: u64) -> Option<ProgressBar> {
+    if !std::io::stderr().is_terminal() || total == 0 {
+        return None;
+    }
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} [{bar:25}] {pos}/{len} solves, {eta} left: {wide_msg}")
+            .expect("static template")
+            .progress_chars("=> "),
+    );
+    Some(bar)
+}
+
+/// The command line as `ikarus bench …`, each argument quoted for a POSIX shell if needed.
+fn command_line() -> String {
+    let mut parts = vec!["ikarus".to_owned()];
+    parts.extend(std::env::args().skip(1).map(|a| shell_quote(&a)));
+    parts.join(" ")
+}
+
+/// `arg`, single-quoted unless it consists only of characters a shell leaves alone.
+fn shell_quote(arg: &str) -> String {
+    let plain = !arg.is_empty() && arg.chars().all(|c| c.is_ascii_alphanumeric() || "-_./,=:+@%".contains(c));
+    if plain { arg.to_owned() } else { format!("'{}'", arg.replace('\'', r"'\''")) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arguments_are_quoted_for_the_shell() {
+        assert_eq!(shell_quote("--goals"), "--goals");
+        assert_eq!(shell_quote("seed,seven"), "seed,seven");
+        assert_eq!(shell_quote("a b"), "'a b'");
+        assert_eq!(shell_quote("it's"), r"'it'\''s'");
+        assert_eq!(shell_quote(""), "''");
+    }
+
+    #[test]
+    fn repetitions_are_dropped() {
+        assert_eq!(unique(&[3, 1, 3, 2, 1]), [3, 1, 2]);
+    }
+}
