@@ -16,7 +16,7 @@ $ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames
 $ikarus workspace --limits --resolution 320 --width 560 --height 560 --out docs/workspace-limits.png > /dev/null
 # Parent's ease with the errata's corrected formula: position and velocity against time.
 $ikarus render ease --k1 0.3 --k2 0.75 --width 560 --height 420 --out docs/ease.png
-# The playground, as the browser test leaves it: the arm on a clicked goal, the limited area.
+# The playground, as the browser test leaves it: FABRIK on a clicked goal, the free area.
 bash e2e/run > /dev/null
 cp target/e2e/playground.png docs/playground.png
 echo "docs/: $(ls docs/*.png docs/*.gif | tr '\n' ' ')"

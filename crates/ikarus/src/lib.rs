@@ -3,9 +3,11 @@
 //! A [`Chain`] is a planar serial chain of revolute joints, each followed by a rigid link.
 //! Joint angles are radians, each relative to the previous link (the first relative to +x),
 //! counter-clockwise positive. [`kinematics`] gives forward kinematics and the analytic
-//! Jacobian; a [`Solver`] moves the chain's tip to a [`Goal`] with the Jacobian transpose,
-//! pseudoinverse or damped least squares method, clamping joints to their limits, and
-//! reports what happened in an [`Outcome`].
+//! Jacobian; a [`Solver`] moves the chain's tip to a [`Goal`] with one of eight [`Method`]s
+//! (Jacobian transpose, pseudoinverse, damped least squares, selectively damped least squares,
+//! Levenberg–Marquardt, CCD, FABRIK, and the [`closed_form`]s), keeps joints within their limits
+//! in one of four [`LimitMode`]s, restarts from other poses when a solve stalls ([`Restarts`]),
+//! and reports what happened in an [`Outcome`].
 //!
 //! ```
 //! use ikarus::{Chain, Goal, Link, Method, SolveOptions, Solver, Status};

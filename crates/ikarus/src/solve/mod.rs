@@ -1,32 +1,46 @@
-//! Iterative inverse-kinematics solvers: one shared loop, one step rule per method.
+//! Inverse-kinematics solvers: one shared loop, one step rule per method, limit modes and
+//! restarts.
 //!
 //! Every iteration computes the joint positions, the task error `e` (position, and the
 //! weighted orientation error when the goal has one), the Jacobian `J`, and `A = J Jᵀ`.
-//! The [`Method`] then picks a task-space vector `y` and the joint update is `Δθ = Jᵀ y`:
+//! A Jacobian [`Method`] then picks a task-space vector `y` and the joint update is `Δθ = Jᵀ y`:
 //!
 //! | method | `y` |
 //! | --- | --- |
 //! | [`Method::Transpose`] | `α e`, with `α = ⟨e, A e⟩ / ⟨A e, A e⟩` (Buss 2004) |
 //! | [`Method::PseudoInverse`] | `A⁺ e`, singular directions below [`SolveOptions::singular_threshold`] dropped |
 //! | [`Method::DampedLeastSquares`] | `(A + λ² I)⁻¹ e` |
+//! | [`Method::LevenbergMarquardt`] | `(A + μ I)⁻¹ e`, μ adapted after every step (Nielsen 1999) |
 //!
-//! `Δθ` is then scaled by [`SolveOptions::gain`] and the per-joint [`SolveOptions::rates`],
-//! capped by [`SolveOptions::max_step`], added to the angles, and the result is clamped into the
-//! joint limits ([`LimitMode::Clamp`]).
+//! [`Method::SelectivelyDamped`] (Buss & Kim 2005) clamps the step of each singular direction
+//! separately. [`Method::CyclicCoordinateDescent`] and [`Method::Fabrik`] move one joint, or
+//! one pass of joint positions, at a time, without `J`; [`Method::Analytic`] is the closed form
+//! of [`crate::closed_form`], which every method also takes first where it applies
+//! ([`SolveOptions::closed_form`]).
 //!
-//! A step is accepted only if it lowers the task error `‖e‖²` by at least a tenth of what the
-//! linearisation `J Δθ` predicts (an Armijo test). Pinv and DLS try their own full step once;
-//! if it fails, the steepest-descent (transpose) step is tried instead, halved up to
-//! [`SolveOptions::backtrack`] times, since Gauss–Newton directions are poor where `J` is
-//! nearly singular. The transpose method halves its own step. If nothing passes, the pose
-//! cannot improve and the solve ends [`Status::Stalled`]. The textbook iteration
-//! (`backtrack: 0`) takes every step as computed; from a nearly straight arm it turns joints by
-//! whole revolutions, and it oscillates around goals out of reach. The trial pose's forward
-//! kinematics is the next iteration's, so an accepted first try costs nothing extra.
+//! `Δθ` is scaled by [`SolveOptions::gain`] and the per-joint [`SolveOptions::rates`], capped
+//! by [`SolveOptions::max_step`], added to the angles, and clamped into the joint limits. How a
+//! step treats the limits before that clamp is the [`LimitMode`]: [`LimitMode::Lock`] re-solves
+//! the step without the joints that would cross a limit, [`LimitMode::NullSpace`] adds a push
+//! toward mid-range in the null space of `J`, and [`LimitMode::Weighted`] weights each joint's
+//! column by how near its limit it is moving (the weighted pseudoinverse
+//! `W Jᵀ (J W Jᵀ)⁻¹` with `W` diagonal, computed as the method's rule on `J W^½`).
+//!
+//! A step is accepted only if it lowers the task error `‖e‖²` by at least a tenth of what
+//! the linearisation `J Δθ` predicts (an Armijo test). Pinv, DLS and SDLS try their own full
+//! step once; LM raises its damping and tries again; if that fails, the steepest-descent
+//! (transpose) step is tried instead, halved up to [`SolveOptions::backtrack`] times, since
+//! Gauss–Newton directions are poor where `J` is nearly singular. The transpose method halves
+//! its own step. If nothing passes, the pose cannot improve and the solve ends
+//! [`Status::Stalled`]. The textbook iteration (`backtrack: 0`) takes every step as computed;
+//! from a nearly straight arm it turns joints by whole revolutions, and it oscillates around
+//! goals out of reach. The trial pose's forward kinematics is the next iteration's, so an
+//! accepted first try costs nothing extra.
 //!
 //! The loop stops when the goal is reached, when the pose has stopped moving (stall
-//! detection), or at the iteration cap. Not reaching a goal is not an error: the [`Outcome`]
-//! says why in its [`Status`] and carries the best pose found.
+//! detection), or at the iteration cap; with [`SolveOptions::restarts`] a solve that did not
+//! reach the goal starts again from other poses. Not reaching a goal is not an error: the
+//! [`Outcome`] says why in its [`Status`] and carries the best pose found.
 
 mod ccd;
 mod dls;
