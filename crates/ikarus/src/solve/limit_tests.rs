@@ -371,3 +371,56 @@ fn weighted_least_norm_keeps_a_margin_to_the_limits() {
     assert!(n >= 150, "{n}");
     assert!(weighted_margin > clamp_margin, "clamp {clamp_margin}, weighted {weighted_margin}");
 }
+
+/// The closed forms are ground truth: on two links with position goals and three links with
+/// orientation goals, every iterative method (the closed-form shortcut off) that reaches the
+/// goal ends on one of the two closed-form solutions, modulo 2π.
+#[test]
+fn iterative_methods_agree_with_the_closed_forms() {
+    use crate::closed_form::{three_link_oriented, two_link};
+    use nalgebra::Vector2;
+    let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| wrap_angle(x - y).abs() <= 1e-4);
+    let mut rng = SplitMix64(2024);
+    let mut checked = 0;
+    for _ in 0..40 {
+        let (l1, l2, l3) = (0.5 + 2.0 * rng.unit(), 0.5 + 2.0 * rng.unit(), 0.3 + rng.unit());
+        let q: Vec<f64> = (0..3).map(|_| (2.0 * rng.unit() - 1.0) * std::f64::consts::PI).collect();
+        let two = Chain::new([0.0, 0.0], &[Link::new(l1, 0.1), Link::new(l2, 0.2)]).unwrap();
+        let three = Chain::new([0.0, 0.0], &[Link::new(l1, 0.1), Link::new(l2, 0.2), Link::new(l3, 0.3)]).unwrap();
+        let p2 = end_effector(&two, &q[..2]).position;
+        let e3 = end_effector(&three, &q);
+        let cases: [(&Chain, Goal, Vec<Vec<f64>>); 2] = [
+            (
+                &two,
+                Goal::position(p2.x, p2.y).unwrap(),
+                two_link(l1, l2, Vector2::new(p2.x, p2.y)).unwrap().iter().map(|s| s.to_vec()).collect(),
+            ),
+            (
+                &three,
+                Goal::with_orientation(e3.position.x, e3.position.y, e3.orientation).unwrap(),
+                three_link_oriented([l1, l2, l3], Vector2::new(e3.position.x, e3.position.y), e3.orientation)
+                    .unwrap()
+                    .iter()
+                    .map(|s| s.to_vec())
+                    .collect(),
+            ),
+        ];
+        for (chain, goal, solutions) in &cases {
+            for method in Method::ALL.into_iter().filter(|&m| m != Method::Analytic) {
+                let opts = SolveOptions { method, closed_form: false, max_iterations: 5000, ..Default::default() };
+                let o = Solver::new(opts).unwrap().solve(chain, chain.start_pose(), goal).unwrap();
+                if o.status != Status::Reached {
+                    continue;
+                }
+                checked += 1;
+                assert!(
+                    solutions.iter().any(|s| same(o.pose.angles(), s)),
+                    "{method:?}: {:?} is neither of {solutions:?}",
+                    o.pose.angles()
+                );
+            }
+        }
+    }
+    // 40 chains × 2 shapes × 7 methods; nearly all reach their goal.
+    assert!(checked >= 500, "{checked}");
+}
