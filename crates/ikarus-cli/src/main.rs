@@ -16,6 +16,7 @@ mod render;
 mod report;
 mod serve;
 mod solve;
+mod stats;
 mod workspace;
 
 use std::process::ExitCode;

@@ -16,6 +16,7 @@ use crate::options::{SolverArgs, parse_angle, parse_at_least_one, parse_finite, 
 use crate::output::{self, PendingFile};
 pub(crate) use crate::report::solver_for;
 use crate::report::{SolveJson, SolveReport};
+use crate::stats::{median, nearest_rank};
 
 /// Frames recorded by default: every 20 iterations, as the seed program did.
 const DEFAULT_RECORD_EVERY: u32 = 20;
@@ -374,31 +375,5 @@ fn summarise(rows: &[BatchRow], threads: usize, method: &'static str) -> Summary
         p99_us: nearest_rank(&micros, 0.99),
         threads,
         method,
-    }
-}
-
-/// Median of sorted, non-empty `v` (the mean of the middle two for an even count).
-fn median(v: &[f64]) -> f64 {
-    let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
-}
-
-/// The `q` quantile of sorted, non-empty `v` by the nearest-rank method.
-fn nearest_rank(v: &[f64], q: f64) -> f64 {
-    let rank = (q * v.len() as f64).ceil() as usize;
-    v[rank.clamp(1, v.len()) - 1]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn median_and_p99() {
-        assert_eq!(median(&[1.0, 2.0, 3.0]), 2.0);
-        assert_eq!(median(&[1.0, 2.0, 3.0, 10.0]), 2.5);
-        let v: Vec<f64> = (1..=200).map(f64::from).collect();
-        assert_eq!(nearest_rank(&v, 0.99), 198.0);
-        assert_eq!(nearest_rank(&[5.0], 0.99), 5.0);
     }
 }

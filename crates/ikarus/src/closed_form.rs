@@ -200,23 +200,7 @@ mod tests {
     use crate::chain::Link;
     use crate::kinematics::end_effector;
 
-    /// SplitMix64 (Steele, Lea and Flood 2014), as in `tests/common`.
-    struct SplitMix64(u64);
-
-    impl SplitMix64 {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            lo + (hi - lo) * unit
-        }
-    }
+    use crate::rng::SplitMix64;
 
     fn tip2(l1: f64, l2: f64, [t1, t2]: [f64; 2]) -> Vector2<f64> {
         Vector2::new(l1 * t1.cos() + l2 * (t1 + t2).cos(), l1 * t1.sin() + l2 * (t1 + t2).sin())

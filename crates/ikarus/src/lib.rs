@@ -46,6 +46,7 @@ pub mod ease;
 pub mod kinematics;
 pub mod motion;
 pub mod reach;
+pub mod rng;
 pub mod solve;
 
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};

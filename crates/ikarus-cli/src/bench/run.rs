@@ -11,6 +11,7 @@ use ikarus::solve::wrap_angle;
 use ikarus::{LimitMode, Method, Outcome, Restarts, SolveOptions, Solver};
 
 use super::sets::{BenchGoal, GoalSet, SetName};
+use crate::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first goals of the set.
 pub const WARMUP_GOALS: usize = 50;
@@ -342,18 +343,6 @@ pub fn run_config(set: &GoalSet, config: &Config, mut tick: impl FnMut()) -> Row
     tally.finish(set, config.label.clone(), config.limits())
 }
 
-/// Median of sorted, non-empty `v` (the mean of the middle two for an even count).
-fn median(v: &[f64]) -> f64 {
-    let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { (v[n / 2 - 1] + v[n / 2]) / 2.0 }
-}
-
-/// The `q` quantile of sorted, non-empty `v` by the nearest-rank method.
-fn nearest_rank(v: &[f64], q: f64) -> f64 {
-    let rank = (q * v.len() as f64).ceil() as usize;
-    v[rank.clamp(1, v.len()) - 1]
-}
-
 #[cfg(test)]
 mod tests {
     use std::f64::consts::PI;
@@ -507,10 +496,6 @@ mod tests {
 
     #[test]
     fn statistics() {
-        assert_eq!(median(&[1.0, 2.0, 3.0]), 2.0);
-        assert_eq!(median(&[1.0, 2.0, 3.0, 10.0]), 2.5);
-        let v: Vec<f64> = (1..=200).map(f64::from).collect();
-        assert_eq!(nearest_rank(&v, 0.99), 198.0);
         let set = seed_set(SetName::FreeOriented);
         let mut t = Tally::new(3, true);
         t.add(3000, Some(4), Verdict { reached: true, error: 1e-7, angle_error: Some(2e-7) });

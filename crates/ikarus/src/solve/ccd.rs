@@ -271,57 +271,10 @@ mod tests {
     use crate::closed_form;
     use crate::kinematics::{end_effector, joint_positions, joint_positions_into};
 
-    /// SplitMix64 (Steele, Lea and Flood 2014), as in `tests/common`.
-    struct SplitMix64(u64);
+    use crate::rng::SplitMix64;
+    use crate::solve::test_support::{self, random_chain, random_goal, random_pose};
 
-    impl SplitMix64 {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            lo + (hi - lo) * unit
-        }
-
-        fn chance(&mut self, p: f64) -> bool {
-            self.range(0.0, 1.0) < p
-        }
-    }
-
-    /// A random chain of `n` links of length 0.5..2, each joint limited to a random range
-    /// around 0 when `limited`; and a random pose inside the limits.
-    fn random_chain(rng: &mut SplitMix64, n: usize, limited: bool) -> Chain {
-        let links: Vec<Link> = (0..n)
-            .map(|_| {
-                let l = rng.range(0.5, 2.0);
-                if limited {
-                    let (lo, hi) = (-rng.range(0.3, 2.5), rng.range(0.3, 2.5));
-                    Link::new(l, 0.0).with_limits(JointLimits::new(lo, hi).unwrap())
-                } else {
-                    Link::new(l, 0.0)
-                }
-            })
-            .collect();
-        Chain::new([rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)], &links).unwrap()
-    }
-
-    fn random_pose(rng: &mut SplitMix64, chain: &Chain) -> Vec<f64> {
-        chain
-            .limits()
-            .iter()
-            .map(|l| l.map_or((-PI, PI), |l| (l.min(), l.max())))
-            .map(|(a, b)| rng.range(a, b))
-            .collect()
-    }
-
-    /// Runs sweeps until the tip is within `tol` of the goal (and the orientation within `tol`),
-    /// or `max` sweeps, or until a sweep moves no joint by more than 1e-13. Returns the angles,
-    /// the sweeps taken, and whether it got there.
+    /// Runs sweeps (see [`test_support::drive`]) to the options' tolerance.
     fn drive(
         chain: &Chain,
         goal: &Goal,
@@ -330,29 +283,7 @@ mod tests {
         start: &[f64],
         max: usize,
     ) -> (Vec<f64>, usize, bool) {
-        let n = chain.len();
-        let mut angles = start.to_vec();
-        let mut joints = joint_positions(chain, &angles);
-        let mut phi = angles.iter().sum::<f64>();
-        let (mut trial, mut trial_joints) = (vec![0.0; n], vec![Point2::origin(); n + 1]);
-        for it in 0..=max {
-            let pos = (joints[n] - goal.target()).norm();
-            let ang = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
-            if pos <= opts.tolerance && ang <= opts.tolerance {
-                return (angles, it, true);
-            }
-            if it == max {
-                break;
-            }
-            phi = sweep(chain, goal, opts, clamp, &angles, &joints, &mut trial, &mut trial_joints);
-            // Stuck: nothing moves any more (saves time on the misses).
-            if angles.iter().zip(&trial).all(|(a, t)| (a - t).abs() <= 1e-13) {
-                break;
-            }
-            std::mem::swap(&mut angles, &mut trial);
-            std::mem::swap(&mut joints, &mut trial_joints);
-        }
-        (angles, max, false)
+        test_support::drive(sweep, chain, goal, opts, clamp, start, max, opts.tolerance)
     }
 
     /// The cost a sweep minimises.
@@ -360,16 +291,6 @@ mod tests {
         let ee = end_effector(chain, angles);
         let turn = goal.orientation().map_or(0.0, |g| w * wrap_angle(ee.orientation - g));
         (ee.position - goal.target()).norm_squared() + turn * turn
-    }
-
-    fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal {
-        let truth = random_pose(rng, chain);
-        let ee = end_effector(chain, &truth);
-        if oriented {
-            Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).unwrap()
-        } else {
-            Goal::position(ee.position.x, ee.position.y).unwrap()
-        }
     }
 
     /// The true cost of turning `lever` by `d` against `to_goal`, with orientation error
@@ -565,36 +486,9 @@ mod tests {
         }
     }
 
-    /// Success rates on reachable goals (the tip of a random pose inside the limits), from
-    /// another random pose inside the limits, within 1e-6 (and 1e-6 rad) in 2000 sweeps, for
-    /// chains of 3, 7 and 20 links; asserts each rate is at least its floor.
+    /// See [`test_support::success_rates`].
     fn success_rates(limited: bool, oriented: bool, total: u32, floors: [f64; 3]) {
-        let opts = SolveOptions::default();
-        for (n, floor) in [3, 7, 20].into_iter().zip(floors) {
-            let mut rng = SplitMix64(100 + n as u64);
-            let mut reached = 0;
-            let mut sweeps = 0;
-            for _ in 0..total {
-                let chain = random_chain(&mut rng, n, limited);
-                let goal = random_goal(&mut rng, &chain, oriented);
-                let start = random_pose(&mut rng, &chain);
-                let (angles, it, ok) = drive(&chain, &goal, &opts, true, &start, 2000);
-                for (a, l) in angles.iter().zip(chain.limits()) {
-                    assert!(l.is_none_or(|l| l.contains(*a)));
-                }
-                if ok {
-                    reached += 1;
-                    sweeps += it;
-                }
-            }
-            let rate = f64::from(reached) / f64::from(total);
-            println!(
-                "ccd n={n} limits={limited} orientation={oriented}: {reached}/{total} ({:.1}%), mean {:.0} sweeps",
-                100.0 * rate,
-                sweeps as f64 / f64::from(reached.max(1))
-            );
-            assert!(rate >= floor, "n={n} limits={limited} orientation={oriented}: {rate} < {floor}");
-        }
+        test_support::success_rates("ccd", sweep, 100, limited, oriented, total, floors);
     }
 
     /// Measured: 3 links 99.5%, 7 links 100%, 20 links 100% (mean 47, 29, 14 sweeps).

@@ -159,93 +159,12 @@ mod tests {
     use crate::closed_form;
     use crate::kinematics::{end_effector, joint_positions};
 
-    /// SplitMix64 (Steele, Lea and Flood 2014), as in `tests/common`.
-    struct SplitMix64(u64);
+    use crate::rng::SplitMix64;
+    use crate::solve::test_support::{self, random_chain, random_pose};
 
-    impl SplitMix64 {
-        fn next_u64(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        fn range(&mut self, lo: f64, hi: f64) -> f64 {
-            let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            lo + (hi - lo) * unit
-        }
-
-        fn chance(&mut self, p: f64) -> bool {
-            self.range(0.0, 1.0) < p
-        }
-    }
-
-    /// A random chain of `n` links of length 0.5..2, each joint limited to a random range
-    /// around 0 when `limited`.
-    fn random_chain(rng: &mut SplitMix64, n: usize, limited: bool) -> Chain {
-        let links: Vec<Link> = (0..n)
-            .map(|_| {
-                let l = rng.range(0.5, 2.0);
-                if limited {
-                    let (lo, hi) = (-rng.range(0.3, 2.5), rng.range(0.3, 2.5));
-                    Link::new(l, 0.0).with_limits(JointLimits::new(lo, hi).unwrap())
-                } else {
-                    Link::new(l, 0.0)
-                }
-            })
-            .collect();
-        Chain::new([rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)], &links).unwrap()
-    }
-
-    /// A random pose inside the limits.
-    fn random_pose(rng: &mut SplitMix64, chain: &Chain) -> Vec<f64> {
-        chain
-            .limits()
-            .iter()
-            .map(|l| l.map_or((-PI, PI), |l| (l.min(), l.max())))
-            .map(|(a, b)| rng.range(a, b))
-            .collect()
-    }
-
-    fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal {
-        let truth = random_pose(rng, chain);
-        let ee = end_effector(chain, &truth);
-        if oriented {
-            Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).unwrap()
-        } else {
-            Goal::position(ee.position.x, ee.position.y).unwrap()
-        }
-    }
-
-    /// Runs iterations until the tip is within `tol` of the goal (and the orientation within
-    /// `tol`), or `max` iterations, or until an iteration moves no joint by more than 1e-13.
-    /// Returns the angles, the iterations taken, and whether it got there.
+    /// Runs iterations (see [`test_support::drive`]) to `tol`.
     fn drive(chain: &Chain, goal: &Goal, clamp: bool, start: &[f64], max: usize, tol: f64) -> (Vec<f64>, usize, bool) {
-        let n = chain.len();
-        let opts = SolveOptions::default();
-        let mut angles = start.to_vec();
-        let mut joints = joint_positions(chain, &angles);
-        let mut phi = angles.iter().sum::<f64>();
-        let (mut trial, mut trial_joints) = (vec![0.0; n], vec![Point2::origin(); n + 1]);
-        for it in 0..=max {
-            let pos = (joints[n] - goal.target()).norm();
-            let ang = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
-            if pos <= tol && ang <= tol {
-                return (angles, it, true);
-            }
-            if it == max {
-                break;
-            }
-            phi = iterate(chain, goal, &opts, clamp, &angles, &joints, &mut trial, &mut trial_joints);
-            // Stuck: nothing moves any more (saves time on the misses).
-            if angles.iter().zip(&trial).all(|(a, t)| (a - t).abs() <= 1e-13) {
-                break;
-            }
-            std::mem::swap(&mut angles, &mut trial);
-            std::mem::swap(&mut joints, &mut trial_joints);
-        }
-        (angles, max, false)
+        test_support::drive(iterate, chain, goal, &SolveOptions::default(), clamp, start, max, tol)
     }
 
     #[test]
@@ -331,35 +250,9 @@ mod tests {
         }
     }
 
-    /// Success rates on reachable goals (the tip of a random pose inside the limits), from
-    /// another random pose inside the limits, within 1e-6 (and 1e-6 rad) in 2000 iterations,
-    /// for chains of 3, 7 and 20 links; asserts each rate is at least its floor.
+    /// See [`test_support::success_rates`].
     fn success_rates(limited: bool, oriented: bool, total: u32, floors: [f64; 3]) {
-        for (n, floor) in [3, 7, 20].into_iter().zip(floors) {
-            let mut rng = SplitMix64(200 + n as u64);
-            let mut reached = 0;
-            let mut iterations = 0;
-            for _ in 0..total {
-                let chain = random_chain(&mut rng, n, limited);
-                let goal = random_goal(&mut rng, &chain, oriented);
-                let start = random_pose(&mut rng, &chain);
-                let (angles, it, ok) = drive(&chain, &goal, true, &start, 2000, 1e-6);
-                for (a, l) in angles.iter().zip(chain.limits()) {
-                    assert!(l.is_none_or(|l| l.contains(*a)));
-                }
-                if ok {
-                    reached += 1;
-                    iterations += it;
-                }
-            }
-            let rate = f64::from(reached) / f64::from(total);
-            println!(
-                "fabrik n={n} limits={limited} orientation={oriented}: {reached}/{total} ({:.1}%), mean {:.0} iters",
-                100.0 * rate,
-                iterations as f64 / f64::from(reached.max(1))
-            );
-            assert!(rate >= floor, "n={n} limits={limited} orientation={oriented}: {rate} < {floor}");
-        }
+        test_support::success_rates("fabrik", iterate, 200, limited, oriented, total, floors);
     }
 
     /// Measured: 3 links 100%, 7 links 100%, 20 links 100% (mean 21, 4, 1 iterations).

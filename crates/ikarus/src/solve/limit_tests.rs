@@ -277,7 +277,7 @@ fn null_space_avoidance_keeps_joints_nearer_the_middle() {
     let mut rng = 0x1234_5678_u64;
     let mut unit = || {
         let mut g = SplitMix64(rng);
-        rng = g.next();
+        rng = g.next_u64();
         g.unit()
     };
     let (mut lock_sum, mut ns_sum, mut reached) = (0.0, 0.0, 0);

@@ -56,6 +56,7 @@ use thiserror::Error;
 use crate::chain::{Chain, Pose, annulus_inner};
 use crate::closed_form::{self, ClosedForm};
 use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
+use crate::rng::SplitMix64;
 
 pub use frames::{Frame, Frames};
 
@@ -803,24 +804,6 @@ fn restart_pose(chain: &Chain, start: &[f64], clamp: bool, r: Restarts, k: u32, 
     }
 }
 
-/// A small, portable, seedable generator (Steele, Lea & Flood's SplitMix64).
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1), 53 bits.
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-}
-
 /// One solve from `start` (the loop of the [module docs](self)); writes everything in `out`
 /// except the final status relabelling and the restart count, and returns how it ended.
 fn attempt(
@@ -1211,3 +1194,5 @@ mod tests;
 
 #[cfg(test)]
 mod limit_tests;
+#[cfg(test)]
+mod test_support;
