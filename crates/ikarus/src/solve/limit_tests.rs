@@ -268,9 +268,10 @@ fn a_spent_time_budget_starts_no_restart() {
 }
 
 /// Null-space avoidance keeps a redundant arm nearer the middle of its ranges than plain
-/// clamp-and-lock, on the same goals, and still reaches them. The effect is modest (measured:
-/// Σ of squared normalised offsets 178.2 against 193.9, 8 % less) because the push acts only
-/// while the solve runs, about seven iterations, and fades near the goal.
+/// clamp-and-lock, on the same goals, and still reaches them. The effect is modest (measured
+/// with the default LM: Σ of squared normalised offsets 181.4 against 194.0, 6.5 % less)
+/// because the push acts only while the solve runs, about seven iterations, and fades near the
+/// goal.
 #[test]
 fn null_space_avoidance_keeps_joints_nearer_the_middle() {
     let chain = seven_limited();
