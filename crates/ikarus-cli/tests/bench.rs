@@ -1,47 +1,13 @@
 //! End-to-end tests of `ikarus bench`: the JSON, Markdown and text outputs, reproducible goal
 //! files, KDL's output merged through a fake `kdl_bench`, and bad input. No test asserts a time.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn ikarus(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).output().expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
-}
-
-/// Runs a command that must succeed and returns its stdout.
-fn succeeds(args: &[&str]) -> String {
-    let o = ikarus(args);
-    assert!(o.status.success(), "{args:?} failed: {}", stderr(&o));
-    assert!(stderr(&o).is_empty(), "{args:?} wrote to stderr: {}", stderr(&o));
-    stdout(&o)
-}
-
-fn json(args: &[&str]) -> Value {
-    let out = succeeds(args);
-    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
-}
-
-/// Runs a command that must fail with `code`, and returns its single line of stderr.
-fn fails(args: &[&str], code: i32) -> String {
-    let o = ikarus(args);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?} printed more than one line: {err}");
-    assert!(err.starts_with("ikarus: "), "{err}");
-    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
-    assert!(o.stdout.is_empty(), "{args:?} printed data: {}", stdout(&o));
-    err
-}
+use common::{fails, json, succeeds};
 
 /// The labels of the rows of `set` in a JSON report.
 fn labels(v: &Value, arm: &str, set: &str) -> Vec<String> {

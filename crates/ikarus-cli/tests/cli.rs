@@ -1,28 +1,13 @@
 //! End-to-end tests of the `ikarus` binary: the JSON contract, the formats, batch mode, and
 //! every class of bad input (exit code 2, one line on stderr naming the field and value).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn ikarus(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).output().expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let o = ikarus(args);
-    assert!(o.status.success(), "{args:?} failed: {}", stderr(&o));
-    serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {}", stdout(&o)))
-}
+use common::{fails, floats, ikarus, json, stderr, stdout};
 
 fn arms() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms")
@@ -32,10 +17,6 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p.to_str().unwrap().to_owned()
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
 }
 
 #[test]
@@ -215,18 +196,6 @@ fn batch_with_orientations() {
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
     assert_eq!(out.lines().filter(|l| l.contains(",reached,")).count(), 2, "{out}");
-}
-
-/// Runs a command that must fail with `code`, and returns its single line of stderr.
-fn fails(args: &[&str], code: i32) -> String {
-    let o = ikarus(args);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?} printed more than one line: {err}");
-    assert!(err.starts_with("ikarus: "), "{err}");
-    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
-    assert!(o.stdout.is_empty(), "{args:?} printed data: {}", stdout(&o));
-    err
 }
 
 #[test]

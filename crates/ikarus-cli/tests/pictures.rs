@@ -1,23 +1,16 @@
 //! End-to-end tests of `ikarus animate`, `ikarus workspace` and `ikarus render`: the frames'
 //! contract, the picture files (format and size, read from their headers), and bad input.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-use serde_json::Value;
+use common::{floats, ikarus, json};
 
-fn ikarus(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).output().expect("the binary runs")
-}
-
-fn json(args: &[&str]) -> Value {
-    let o = ikarus(args);
-    assert!(o.status.success(), "{args:?} failed: {}", String::from_utf8_lossy(&o.stderr));
-    serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{args:?}: not JSON: {e}"))
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+/// A command that must fail with `code` and one line on stderr containing `want`.
+fn fails(args: &[&str], code: i32, want: &str) {
+    let err = common::fails(args, code);
+    assert!(err.contains(want), "{args:?}: {err:?} lacks {want:?}");
 }
 
 /// Width and height from a PNG's IHDR chunk.
@@ -32,14 +25,6 @@ fn gif_size(bytes: &[u8]) -> (u32, u32) {
     assert_eq!(&bytes[..6], b"GIF89a", "not a GIF");
     let le = |i: usize| u32::from(u16::from_le_bytes([bytes[i], bytes[i + 1]]));
     (le(6), le(8))
-}
-
-fn fails(args: &[&str], code: i32, want: &str) {
-    let o = ikarus(args);
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
-    assert!(err.starts_with("ikarus: ") && err.contains(want), "{args:?}: {err:?} lacks {want:?}");
 }
 
 #[test]

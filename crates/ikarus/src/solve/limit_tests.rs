@@ -4,6 +4,7 @@
 use super::*;
 use crate::chain::{JointLimits, Link};
 use crate::kinematics::end_effector;
+use crate::solve::test_support::random_goal;
 
 fn d(deg: f64) -> f64 {
     deg.to_radians()
@@ -269,30 +270,16 @@ fn a_spent_time_budget_starts_no_restart() {
 
 /// Null-space avoidance keeps a redundant arm nearer the middle of its ranges than plain
 /// clamp-and-lock, on the same goals, and still reaches them. The effect is modest (measured
-/// with the default LM: Σ of squared normalised offsets 181.4 against 194.0, 6.5 % less)
-/// because the push acts only while the solve runs, about seven iterations, and fades near the
-/// goal.
+/// with the default LM on these 1000 goals: Σ of squared normalised offsets 905.8 against 962.7,
+/// 5.9 % less; 4.9 % on 2000) because the push acts only while the solve runs, about seven
+/// iterations, and fades near the goal.
 #[test]
 fn null_space_avoidance_keeps_joints_nearer_the_middle() {
     let chain = seven_limited();
-    let mut rng = 0x1234_5678_u64;
-    let mut unit = || {
-        let mut g = SplitMix64(rng);
-        rng = g.next_u64();
-        g.unit()
-    };
+    let mut rng = SplitMix64(0x1234_5678);
     let (mut lock_sum, mut ns_sum, mut reached) = (0.0, 0.0, 0);
-    for _ in 0..200 {
-        let q: Vec<f64> = chain
-            .limits()
-            .iter()
-            .map(|l| {
-                let l = l.unwrap();
-                l.min() + unit() * (l.max() - l.min())
-            })
-            .collect();
-        let p = end_effector(&chain, &q).position;
-        let goal = Goal::position(p.x, p.y).unwrap();
+    for _ in 0..1000 {
+        let goal = random_goal(&mut rng, &chain, false);
         let centred = |o: &Outcome| -> f64 {
             o.pose
                 .angles()
@@ -317,10 +304,10 @@ fn null_space_avoidance_keeps_joints_nearer_the_middle() {
         }
     }
     println!(
-        "null space: {reached}/200 reached by both; Σ normalised offset² lock {lock_sum:.2}, null space {ns_sum:.2}"
+        "null space: {reached}/1000 reached by both; Σ normalised offset² lock {lock_sum:.2}, null space {ns_sum:.2}"
     );
-    assert!(reached >= 190, "{reached}");
-    assert!(ns_sum < 0.95 * lock_sum, "lock {lock_sum}, null space {ns_sum}");
+    assert!(reached >= 950, "{reached}");
+    assert!(ns_sum < 0.97 * lock_sum, "lock {lock_sum}, null space {ns_sum}");
 }
 
 /// Weighted least norm slows joints near their limits: on a redundant arm its solutions leave
@@ -331,16 +318,7 @@ fn weighted_least_norm_keeps_a_margin_to_the_limits() {
     let mut rng = SplitMix64(99);
     let (mut clamp_margin, mut weighted_margin, mut n) = (0.0, 0.0, 0);
     for _ in 0..200 {
-        let q: Vec<f64> = chain
-            .limits()
-            .iter()
-            .map(|l| {
-                let l = l.unwrap();
-                l.min() + rng.unit() * (l.max() - l.min())
-            })
-            .collect();
-        let p = end_effector(&chain, &q).position;
-        let goal = Goal::position(p.x, p.y).unwrap();
+        let goal = random_goal(&mut rng, &chain, false);
         let margin = |o: &Outcome| -> f64 {
             o.pose
                 .angles()

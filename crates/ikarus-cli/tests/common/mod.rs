@@ -1,0 +1,51 @@
+//! Running the `ikarus` binary from the integration tests, shared by `cli.rs`, `bench.rs` and
+//! `pictures.rs` (each uses some of it).
+#![allow(dead_code)]
+
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+/// Runs the binary with `args`.
+pub fn ikarus(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).output().expect("the binary runs")
+}
+
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+/// Runs a command that must succeed without a word on stderr, and returns its stdout.
+pub fn succeeds(args: &[&str]) -> String {
+    let o = ikarus(args);
+    assert!(o.status.success(), "{args:?} failed: {}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "{args:?} wrote to stderr: {}", stderr(&o));
+    stdout(&o)
+}
+
+/// Runs a command that must succeed and print JSON.
+pub fn json(args: &[&str]) -> Value {
+    let out = succeeds(args);
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
+}
+
+/// Runs a command that must fail with `code`, and returns its single line of stderr.
+pub fn fails(args: &[&str], code: i32) -> String {
+    let o = ikarus(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args:?} printed more than one line: {err}");
+    assert!(err.starts_with("ikarus: "), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
+    assert!(o.stdout.is_empty(), "{args:?} printed data: {}", stdout(&o));
+    err
+}
+
+/// A JSON array of numbers.
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+}
