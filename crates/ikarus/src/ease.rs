@@ -127,7 +127,102 @@ impl ParentEase {
     }
 }
 
+/// The kinds of [`Ease`], without their parameters: what the edges name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum EaseKind {
+    /// [`Ease::Linear`].
+    Linear,
+    /// [`Ease::Sine`].
+    Sine,
+    /// [`Ease::Parent`], with [`DEFAULT_K1`] and [`DEFAULT_K2`] unless told otherwise.
+    Parent,
+    /// [`Ease::Smoothstep`].
+    Smoothstep,
+}
+
+/// Parent's ease's default end of acceleration: the seed report's Figures 13 and 14 used 0.3.
+pub const DEFAULT_K1: f64 = 0.3;
+/// Parent's ease's default start of deceleration: the seed report's Figures 13 and 14 used 0.7.
+pub const DEFAULT_K2: f64 = 0.7;
+
+impl EaseKind {
+    /// Every kind, in a stable order.
+    pub const ALL: [EaseKind; 4] = [EaseKind::Linear, EaseKind::Sine, EaseKind::Parent, EaseKind::Smoothstep];
+
+    /// The short name used at the edges: `linear`, `sine`, `parent`, `smoothstep`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            EaseKind::Linear => "linear",
+            EaseKind::Sine => "sine",
+            EaseKind::Parent => "parent",
+            EaseKind::Smoothstep => "smoothstep",
+        }
+    }
+
+    /// A label for people.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            EaseKind::Linear => "Linear",
+            EaseKind::Sine => "Sine",
+            EaseKind::Parent => "Parent (k1, k2)",
+            EaseKind::Smoothstep => "Smoothstep",
+        }
+    }
+
+    /// One line saying what the curve does.
+    #[must_use]
+    pub fn summary(self) -> &'static str {
+        match self {
+            EaseKind::Linear => "Constant speed",
+            EaseKind::Sine => "Sine ease-in/ease-out",
+            EaseKind::Parent => "Parent's sine ease with a constant-speed middle between --k1 and --k2",
+            EaseKind::Smoothstep => "Cubic smoothstep",
+        }
+    }
+
+    /// The curve of this kind; `k1`, `k2` (Parent's alone) default to [`DEFAULT_K1`] and
+    /// [`DEFAULT_K2`], and are ignored by the other kinds.
+    pub fn ease(self, k1: Option<f64>, k2: Option<f64>) -> Result<Ease, EaseError> {
+        Ok(match self {
+            EaseKind::Linear => Ease::Linear,
+            EaseKind::Sine => Ease::Sine,
+            EaseKind::Smoothstep => Ease::Smoothstep,
+            EaseKind::Parent => Ease::parent(k1.unwrap_or(DEFAULT_K1), k2.unwrap_or(DEFAULT_K2))?,
+        })
+    }
+}
+
+impl crate::names::Named for EaseKind {
+    const KIND: &'static str = "ease";
+    const ALL: &'static [Self] = &EaseKind::ALL;
+    fn name(self) -> &'static str {
+        EaseKind::name(self)
+    }
+    fn label(self) -> &'static str {
+        EaseKind::label(self)
+    }
+    fn summary(self) -> &'static str {
+        EaseKind::summary(self)
+    }
+}
+
+crate::names::by_name!(EaseKind);
+
 impl Ease {
+    /// The kind of this curve.
+    #[must_use]
+    pub fn kind(&self) -> EaseKind {
+        match self {
+            Ease::Linear => EaseKind::Linear,
+            Ease::Sine => EaseKind::Sine,
+            Ease::Parent(_) => EaseKind::Parent,
+            Ease::Smoothstep => EaseKind::Smoothstep,
+        }
+    }
+
     /// Parent's ease with acceleration until `k1` and deceleration from `k2`.
     pub fn parent(k1: f64, k2: f64) -> Result<Self, EaseError> {
         ParentEase::new(k1, k2).map(Ease::Parent)
@@ -136,12 +231,7 @@ impl Ease {
     /// The short name used at the edges: `linear`, `sine`, `parent`, `smoothstep`.
     #[must_use]
     pub fn name(&self) -> &'static str {
-        match self {
-            Ease::Linear => "linear",
-            Ease::Sine => "sine",
-            Ease::Parent(_) => "parent",
-            Ease::Smoothstep => "smoothstep",
-        }
+        self.kind().name()
     }
 
     /// Position `s(t)` in [0, 1]; `t` is clamped into [0, 1], and `s(0) = 0`, `s(1) = 1` exactly.

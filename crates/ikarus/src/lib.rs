@@ -45,14 +45,16 @@ pub mod closed_form;
 pub mod ease;
 pub mod kinematics;
 pub mod motion;
+pub mod names;
 pub mod reach;
 pub mod rng;
 pub mod solve;
 
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
-pub use ease::{Ease, EaseError, ParentEase};
+pub use ease::{Ease, EaseError, EaseKind, ParentEase};
 pub use kinematics::EndEffector;
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
+pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{
     Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions,

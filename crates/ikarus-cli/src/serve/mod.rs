@@ -5,6 +5,7 @@
 
 mod api;
 mod errors;
+mod meta;
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
@@ -140,6 +141,7 @@ pub fn router(limits: Limits) -> Router {
         .route("/app.css", get(|| async { ([(header::CONTENT_TYPE, "text/css; charset=utf-8")], APP_CSS) }))
         .route("/app.js", get(|| async { ([(header::CONTENT_TYPE, "text/javascript; charset=utf-8")], APP_JS) }))
         .route("/api/health", get(api::health))
+        .route("/api/meta", get(meta::handler))
         .route("/api/arm/default", get(api::default_arm))
         .route("/api/solve", post(api::solve))
         .route("/api/animate", post(api::animate))

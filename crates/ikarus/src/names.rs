@@ -1,0 +1,111 @@
+//! Names at the edges: the one table of short names, labels and summaries of the library's
+//! choice enums ([`Method`](crate::Method), [`LimitMode`](crate::LimitMode),
+//! [`EaseKind`](crate::EaseKind)).
+//!
+//! The command line's value parsers, the arm files, the HTTP API and the playground's select
+//! lists all read these tables, so a new variant is named in exactly one place: its `match` arm
+//! in the enum's [`Named::name`], which fails to compile until it is written.
+
+use thiserror::Error;
+
+/// An enum whose variants are chosen by name at the edges (flags, files, requests).
+pub trait Named: Copy + Sized + 'static {
+    /// What the edges call this kind of choice (`"method"`, `"limit mode"`, `"ease"`).
+    const KIND: &'static str;
+
+    /// Every variant, in a stable order (the order of help texts and select lists).
+    const ALL: &'static [Self];
+
+    /// The short name used at the edges, lowercase ASCII.
+    fn name(self) -> &'static str;
+
+    /// A label for people (a select list's text).
+    fn label(self) -> &'static str;
+
+    /// One line saying what the variant does (a flag's help text).
+    fn summary(self) -> &'static str;
+
+    /// The variant called `name`.
+    #[must_use]
+    fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|v| v.name() == name)
+    }
+
+    /// The short names of [`Named::ALL`], in order.
+    #[must_use]
+    fn names() -> Vec<&'static str> {
+        Self::ALL.iter().map(|v| v.name()).collect()
+    }
+
+    /// Like [`Named::from_name`], with an error that lists the valid names.
+    fn parse_name(name: &str) -> Result<Self, UnknownName> {
+        Self::from_name(name).ok_or_else(|| UnknownName {
+            kind: Self::KIND,
+            got: name.to_owned(),
+            expected: Self::names().join(", "),
+        })
+    }
+}
+
+/// A name that no variant has.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown {kind} '{got}' (expected one of: {expected})")]
+pub struct UnknownName {
+    /// What kind of choice was named (`"method"`, …).
+    pub kind: &'static str,
+    /// The name given.
+    pub got: String,
+    /// The valid names, comma-separated.
+    pub expected: String,
+}
+
+/// `Display`, `FromStr` and (with the `serde` feature) serde by [`Named::name`].
+macro_rules! by_name {
+    ($t:ty) => {
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str($crate::names::Named::name(*self))
+            }
+        }
+
+        impl std::str::FromStr for $t {
+            type Err = $crate::names::UnknownName;
+            fn from_str(s: &str) -> Result<Self, Self::Err> {
+                <$t as $crate::names::Named>::parse_name(s)
+            }
+        }
+
+        #[cfg(feature = "serde")]
+        impl serde::Serialize for $t {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.serialize_str($crate::names::Named::name(*self))
+            }
+        }
+
+        #[cfg(feature = "serde")]
+        impl<'de> serde::Deserialize<'de> for $t {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                struct Visitor;
+                impl serde::de::Visitor<'_> for Visitor {
+                    type Value = $t;
+                    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                        write!(f, "a {} name", <$t as $crate::names::Named>::KIND)
+                    }
+                    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<$t, E> {
+                        <$t as $crate::names::Named>::from_name(v).ok_or_else(|| {
+                            // serde's own wording for an unknown variant.
+                            let names: Vec<String> = <$t as $crate::names::Named>::ALL
+                                .iter()
+                                .map(|m| format!("`{}`", $crate::names::Named::name(*m)))
+                                .collect();
+                            E::custom(format_args!("unknown variant `{v}`, expected one of {}", names.join(", ")))
+                        })
+                    }
+                }
+                d.deserialize_str(Visitor)
+            }
+        }
+    };
+}
+
+pub(crate) use by_name;
