@@ -10,6 +10,9 @@
 use nalgebra::Point2;
 use thiserror::Error;
 
+use crate::angle;
+use crate::bounds::Bounds;
+
 /// A closed range `[min, max]` of allowed joint angles, in radians.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JointLimits {
@@ -54,6 +57,23 @@ impl JointLimits {
     #[must_use]
     pub fn clamp(&self, angle: f64) -> f64 {
         angle.clamp(self.min, self.max)
+    }
+
+    /// The 2π-equivalent of `angle` inside the range nearest `reference` (clamped onto the
+    /// range, since the shift can round a hair past an end), or `None` if no equivalent lies
+    /// inside. See [`angle::nearest_equivalent_in`].
+    #[inline]
+    #[must_use]
+    pub fn nearest_equivalent(&self, angle: f64, reference: f64) -> Option<f64> {
+        angle::nearest_equivalent_in(angle, reference, self.min, self.max).map(|a| self.clamp(a))
+    }
+
+    /// The end of the range nearer `angle` around the circle; `min` on a tie. See
+    /// [`angle::nearer_end`].
+    #[inline]
+    #[must_use]
+    pub fn nearer_end(&self, angle: f64) -> f64 {
+        angle::nearer_end(angle, self.min, self.max)
     }
 }
 
@@ -229,7 +249,7 @@ impl Chain {
         let angles: Vec<f64> = links.iter().map(|l| l.angle).collect();
         let limits: Vec<Option<JointLimits>> = links.iter().map(|l| l.limits).collect();
         let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
-        check_angles(&angles, &limits, true)?;
+        check_angles(&angles, Bounds::of_limits(&limits))?;
         let reach = lengths.iter().sum();
         Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
     }
@@ -310,23 +330,30 @@ impl Chain {
         Chain { limits: vec![None; self.len()], ..self.clone() }
     }
 
+    /// The joint limits as a [`Bounds`] view (free if no joint has limits).
+    #[must_use]
+    pub fn bounds(&self) -> Bounds<'_> {
+        Bounds::of(self)
+    }
+
     /// Validates `angles` as a pose of this chain: one finite angle per joint, each within its
-    /// limits when `check_limits` is true.
-    pub fn pose(&self, angles: Vec<f64>, check_limits: bool) -> Result<Pose, ChainError> {
+    /// limits.
+    pub fn pose(&self, angles: Vec<f64>) -> Result<Pose, ChainError> {
+        self.pose_within(angles, self.bounds())
+    }
+
+    /// Validates `angles` as a pose of this chain ignoring its limits: one finite angle per
+    /// joint (for a solve with [`LimitMode::Ignore`](crate::LimitMode::Ignore)).
+    pub fn pose_ignoring_limits(&self, angles: Vec<f64>) -> Result<Pose, ChainError> {
+        self.pose_within(angles, Bounds::free())
+    }
+
+    fn pose_within(&self, angles: Vec<f64>, bounds: Bounds<'_>) -> Result<Pose, ChainError> {
         if angles.len() != self.len() {
             return Err(ChainError::PoseLength { expected: self.len(), got: angles.len() });
         }
-        check_angles(&angles, &self.limits, check_limits)?;
+        check_angles(&angles, bounds)?;
         Ok(Pose { angles })
-    }
-
-    /// `angles` with every limited joint clamped into its range.
-    pub(crate) fn clamp_into(&self, angles: &mut [f64]) {
-        for (a, lim) in angles.iter_mut().zip(&self.limits) {
-            if let Some(lim) = lim {
-                *a = lim.clamp(*a);
-            }
-        }
     }
 }
 
@@ -337,12 +364,12 @@ pub(crate) fn annulus_inner(lengths: &[f64]) -> f64 {
     (longest - (total - longest)).max(0.0)
 }
 
-fn check_angles(angles: &[f64], limits: &[Option<JointLimits>], check_limits: bool) -> Result<(), ChainError> {
-    for (index, (&value, lim)) in angles.iter().zip(limits).enumerate() {
+fn check_angles(angles: &[f64], bounds: Bounds<'_>) -> Result<(), ChainError> {
+    for (index, &value) in angles.iter().enumerate() {
         if !value.is_finite() {
             return Err(ChainError::NonFinite { index, field: LinkField::Angle, value });
         }
-        if let (true, Some(lim)) = (check_limits, lim) {
+        if let Some(lim) = bounds.get(index) {
             if !lim.contains(value) {
                 return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min, max: lim.max });
             }
@@ -451,10 +478,10 @@ mod tests {
     fn pose_is_validated_against_the_chain() {
         let c =
             Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0).with_limits(JointLimits::new(-1.0, 1.0).unwrap())]).unwrap();
-        assert_eq!(c.pose(vec![0.5], true).unwrap().angles(), &[0.5]);
-        assert!(matches!(c.pose(vec![0.5, 0.1], true), Err(ChainError::PoseLength { expected: 1, got: 2 })));
-        assert!(matches!(c.pose(vec![1.5], true), Err(ChainError::AngleOutsideLimits { .. })));
-        assert!(c.pose(vec![1.5], false).is_ok());
-        assert!(c.pose(vec![f64::NAN], false).is_err());
+        assert_eq!(c.pose(vec![0.5]).unwrap().angles(), &[0.5]);
+        assert!(matches!(c.pose(vec![0.5, 0.1]), Err(ChainError::PoseLength { expected: 1, got: 2 })));
+        assert!(matches!(c.pose(vec![1.5]), Err(ChainError::AngleOutsideLimits { .. })));
+        assert!(c.pose_ignoring_limits(vec![1.5]).is_ok());
+        assert!(c.pose_ignoring_limits(vec![f64::NAN]).is_err());
     }
 }

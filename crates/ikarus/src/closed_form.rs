@@ -19,12 +19,12 @@
 //! Every function takes and returns radians; angles relative to the previous link, as in the
 //! rest of the crate. Nothing here allocates or panics on finite input.
 
-use std::f64::consts::TAU;
-
 use nalgebra::Vector2;
 
+use crate::angle::{self, wrap_angle};
+use crate::bounds::Bounds;
 use crate::chain::{Chain, JointLimits};
-use crate::solve::{Goal, wrap_angle};
+use crate::goal::Goal;
 
 /// Relative slack allowed on the boundary of the reachable annulus, as a share of `l₁ + l₂`.
 const BOUNDARY_SLACK: f64 = 1e-12;
@@ -110,8 +110,8 @@ pub enum ClosedForm {
 /// writes into `out` the exact solution nearest `start` and returns [`ClosedForm::Solved`].
 ///
 /// Each angle of each exact solution is first moved by a multiple of 2π: for a joint without
-/// limits (or any joint when `respect_limits` is false) to the equivalent nearest its start
-/// angle; for a joint with limits, when `respect_limits`, to the equivalent inside the limits
+/// a bound in `bounds` to the equivalent nearest its start angle; for a joint with a bound,
+/// to the equivalent inside the bound
 /// nearest the start angle (a solution within 1e-12 rad of a limit counts as inside and is
 /// clamped onto it). A solution with a limited joint that has no equivalent inside is dropped.
 /// Of the remaining solutions the one with the smallest sum of squared differences from `start`
@@ -120,7 +120,7 @@ pub enum ClosedForm {
 /// `out` is written only when the result is [`ClosedForm::Solved`]. Returns
 /// [`ClosedForm::NotApplicable`] for other shapes, and also when `start` or `out` do not hold
 /// one angle per joint.
-pub fn solve(chain: &Chain, goal: &Goal, start: &[f64], respect_limits: bool, out: &mut [f64]) -> ClosedForm {
+pub fn solve(chain: &Chain, goal: &Goal, start: &[f64], bounds: Bounds<'_>, out: &mut [f64]) -> ClosedForm {
     let n = chain.len();
     if start.len() != n || out.len() != n {
         return ClosedForm::NotApplicable;
@@ -143,14 +143,12 @@ pub fn solve(chain: &Chain, goal: &Goal, start: &[f64], respect_limits: bool, ou
         return ClosedForm::OutOfReach;
     }
 
-    let limits = chain.limits();
     let mut best: Option<(f64, usize)> = None;
     for (index, solution) in solutions.iter_mut().enumerate() {
         let mut distance = 0.0;
         let mut allowed = true;
-        for ((angle, &from), limit) in solution[..n].iter_mut().zip(start).zip(limits) {
-            let limit = if respect_limits { *limit } else { None };
-            match nearest_equivalent(*angle, from, limit) {
+        for (i, (angle, &from)) in solution[..n].iter_mut().zip(start).enumerate() {
+            match nearest_equivalent(*angle, from, bounds.get(i)) {
                 Some(a) => {
                     distance += (a - from) * (a - from);
                     *angle = a;
@@ -174,16 +172,10 @@ pub fn solve(chain: &Chain, goal: &Goal, start: &[f64], respect_limits: bool, ou
 /// `angle + 2πk` nearest `from`, restricted to `limit` (with [`LIMIT_SLACK`], then clamped onto
 /// it) when there is one; `None` if no equivalent lies inside the limit.
 fn nearest_equivalent(angle: f64, from: f64, limit: Option<JointLimits>) -> Option<f64> {
-    let mut k = ((from - angle) / TAU).round();
-    if let Some(lim) = limit {
-        let lowest = ((lim.min() - LIMIT_SLACK - angle) / TAU).ceil();
-        let highest = ((lim.max() + LIMIT_SLACK - angle) / TAU).floor();
-        if lowest > highest || lowest.is_nan() || highest.is_nan() {
-            return None;
-        }
-        k = k.max(lowest).min(highest);
-    }
-    let shifted = angle + TAU * k;
+    let shifted = match limit {
+        Some(lim) => angle::nearest_equivalent_in(angle, from, lim.min() - LIMIT_SLACK, lim.max() + LIMIT_SLACK)?,
+        None => angle::nearest_equivalent(angle, from),
+    };
     // Only a start angle near the end of the f64 range can push the shift out of range.
     let shifted = if shifted.is_finite() { shifted } else { angle };
     Some(match limit {
@@ -194,7 +186,7 @@ fn nearest_equivalent(angle: f64, from: f64, limit: Option<JointLimits>) -> Opti
 
 #[cfg(test)]
 mod tests {
-    use std::f64::consts::PI;
+    use std::f64::consts::{PI, TAU};
 
     use super::*;
     use crate::chain::Link;
@@ -336,12 +328,12 @@ mod tests {
         let mut out = [0.0; 2];
         // Start near the clockwise solution shifted by whole turns.
         let start = [both[1][0] + 2.0 * TAU + 0.1, both[1][1] - TAU - 0.2];
-        assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::Solved);
         assert!((out[0] - (both[1][0] + 2.0 * TAU)).abs() < 1e-12, "{out:?}");
         assert!((out[1] - (both[1][1] - TAU)).abs() < 1e-12, "{out:?}");
         // And near the counter-clockwise one.
         let start = [both[0][0] - TAU, both[0][1] + 0.3];
-        assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::Solved);
         assert!((out[0] - (both[0][0] - TAU)).abs() < 1e-12 && (out[1] - both[0][1]).abs() < 1e-12, "{out:?}");
     }
 
@@ -355,7 +347,7 @@ mod tests {
             let goal = Goal::position(tip.x, tip.y).unwrap();
             let start = [rng.range(-20.0, 20.0), rng.range(-20.0, 20.0)];
             let mut out = [0.0; 2];
-            assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::Solved);
+            assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::Solved);
             // Brute force over both solutions and shifts of −5..=5 turns per joint.
             let both = two_link(c.lengths()[0], c.lengths()[1], tip - c.base()).unwrap();
             let mut best = f64::INFINITY;
@@ -383,18 +375,18 @@ mod tests {
         let goal = Goal::position(0.5 + target.x, -1.0 + target.y).unwrap();
         let mut out = [9.0; 2];
         let start = [both[0][0], both[0][1]];
-        assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::Solved);
         assert!((out[0] - (both[1][0] + TAU)).abs() < 1e-12 && (out[1] - both[1][1]).abs() < 1e-12, "{out:?}");
         // Ignoring limits, the nearer solution wins as it is.
-        assert_eq!(solve(&c, &goal, &start, false, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &start, Bounds::free(), &mut out), ClosedForm::Solved);
         assert_eq!(out, [both[0][0], both[0][1]]);
 
         // Elbow limited to [0.1, 0.2]: neither solution fits, and `out` is left alone.
         let c = chain(&[2.0, 1.5], &[None, Some((0.1, 0.2))]);
         let mut out = [9.0; 2];
-        assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::OutsideLimits);
+        assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::OutsideLimits);
         assert_eq!(out, [9.0; 2]);
-        assert_eq!(solve(&c, &goal, &start, false, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &start, Bounds::free(), &mut out), ClosedForm::Solved);
     }
 
     #[test]
@@ -404,7 +396,7 @@ mod tests {
         let c = chain(&[1.0, 1.0], &[Some((-1.0, 0.0)), Some((0.0, 1.0))]);
         let goal = Goal::position(0.5 + 2.0, -1.0).unwrap();
         let mut out = [9.0; 2];
-        assert_eq!(solve(&c, &goal, &[-0.5, 0.5], true, &mut out), ClosedForm::Solved);
+        assert_eq!(solve(&c, &goal, &[-0.5, 0.5], c.bounds(), &mut out), ClosedForm::Solved);
         assert!(out.iter().zip(c.limits()).all(|(a, l)| l.unwrap().contains(*a)), "{out:?}");
         assert!(out.iter().all(|a| a.abs() < 1e-6), "{out:?}");
     }
@@ -419,7 +411,7 @@ mod tests {
             let goal = Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).unwrap();
             let mut out = [0.0; 3];
             let start = truth.map(|a| a + 0.01);
-            assert_eq!(solve(&c, &goal, &start, true, &mut out), ClosedForm::Solved);
+            assert_eq!(solve(&c, &goal, &start, c.bounds(), &mut out), ClosedForm::Solved);
             // Starting next to a solution gives that solution back.
             for (a, t) in out.iter().zip(truth) {
                 assert!((a - t).abs() < 1e-6, "{out:?} vs {truth:?}");
@@ -435,20 +427,20 @@ mod tests {
         let one = chain(&[1.0], &[None]);
         let pos = Goal::position(1.0, 0.0).unwrap();
         let oriented = Goal::with_orientation(1.0, 0.0, 0.3).unwrap();
-        assert_eq!(solve(&two, &oriented, &[0.0; 2], true, &mut out[..2]), ClosedForm::NotApplicable);
-        assert_eq!(solve(&three, &pos, &[0.0; 3], true, &mut out), ClosedForm::NotApplicable);
-        assert_eq!(solve(&one, &pos, &[0.0], true, &mut out[..1]), ClosedForm::NotApplicable);
-        assert_eq!(solve(&two, &pos, &[0.0; 3], true, &mut out[..2]), ClosedForm::NotApplicable);
-        assert_eq!(solve(&two, &pos, &[0.0; 2], true, &mut out), ClosedForm::NotApplicable);
+        assert_eq!(solve(&two, &oriented, &[0.0; 2], two.bounds(), &mut out[..2]), ClosedForm::NotApplicable);
+        assert_eq!(solve(&three, &pos, &[0.0; 3], three.bounds(), &mut out), ClosedForm::NotApplicable);
+        assert_eq!(solve(&one, &pos, &[0.0], one.bounds(), &mut out[..1]), ClosedForm::NotApplicable);
+        assert_eq!(solve(&two, &pos, &[0.0; 3], two.bounds(), &mut out[..2]), ClosedForm::NotApplicable);
+        assert_eq!(solve(&two, &pos, &[0.0; 2], two.bounds(), &mut out), ClosedForm::NotApplicable);
         let far = Goal::position(0.5 + 2.5, -1.0).unwrap();
-        assert_eq!(solve(&two, &far, &[0.0; 2], true, &mut out[..2]), ClosedForm::OutOfReach);
+        assert_eq!(solve(&two, &far, &[0.0; 2], two.bounds(), &mut out[..2]), ClosedForm::OutOfReach);
         let far = Goal::with_orientation(0.5 + 2.5, -1.0, PI).unwrap();
-        assert_eq!(solve(&three, &far, &[0.0; 3], true, &mut out), ClosedForm::OutOfReach);
+        assert_eq!(solve(&three, &far, &[0.0; 3], three.bounds(), &mut out), ClosedForm::OutOfReach);
         // Huge but finite numbers: no panic, no NaN in `out`.
         let huge = Goal::position(1e300, -1e300).unwrap();
-        assert_eq!(solve(&two, &huge, &[1e300, -1e300], true, &mut out[..2]), ClosedForm::OutOfReach);
+        assert_eq!(solve(&two, &huge, &[1e300, -1e300], two.bounds(), &mut out[..2]), ClosedForm::OutOfReach);
         let at_base = Goal::position(0.5, -1.0).unwrap();
-        assert_eq!(solve(&two, &at_base, &[f64::MAX, -f64::MAX], true, &mut out[..2]), ClosedForm::Solved);
+        assert_eq!(solve(&two, &at_base, &[f64::MAX, -f64::MAX], two.bounds(), &mut out[..2]), ClosedForm::Solved);
         assert!(out[..2].iter().all(|a| a.is_finite()), "{out:?}");
     }
 }

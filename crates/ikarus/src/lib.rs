@@ -40,9 +40,12 @@
 //! sampling runs on rayon's pool when [`WorkspaceOptions::parallel`] is set, its default). The
 //! same input gives the same output, bit for bit, whatever the number of threads.
 
+pub mod angle;
+pub mod bounds;
 pub mod chain;
 pub mod closed_form;
 pub mod ease;
+pub mod goal;
 pub mod kinematics;
 pub mod motion;
 pub mod names;
@@ -50,14 +53,16 @@ pub mod reach;
 pub mod rng;
 pub mod solve;
 
+pub use bounds::Bounds;
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
+pub use goal::{Goal, GoalError};
 pub use ease::{Ease, EaseError, EaseKind, ParentEase};
 pub use kinematics::EndEffector;
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{
-    Frame, Frames, Goal, GoalError, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions,
+    Frame, Frames, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions,
     Solver, StallDetection, Status,
 };
 

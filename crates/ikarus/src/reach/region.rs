@@ -5,12 +5,7 @@
 use std::f64::consts::{PI, TAU};
 
 use super::sampling::{Plan, Range, Reduced};
-
-/// `e^{i angle}` as a vector.
-pub(super) fn dir(angle: f64) -> [f64; 2] {
-    let (s, c) = angle.sin_cos();
-    [c, s]
-}
+use crate::angle::direction as dir;
 
 /// `u × v`, the z component of the 3D cross product.
 fn cross(u: [f64; 2], v: [f64; 2]) -> f64 {

@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use crate::chain::{Chain, JointLimits};
 
-use super::region::dir;
+use crate::angle::direction as dir;
 
 /// The angles a joint may take: `lo + [0, span]`, or a full turn.
 #[derive(Debug, Clone, Copy, PartialEq)]

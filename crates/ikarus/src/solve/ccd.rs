@@ -49,12 +49,13 @@
 //! Each joint's step lowers (never raises) the cost, so a sweep started inside the limits never
 //! increases `|tip − target|² + w² wrap(φ_tip − φ_goal)²`.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 
 use nalgebra::{Point2, Vector2};
 
-use super::{Goal, SolveOptions, wrap_angle};
-use crate::chain::{Chain, JointLimits};
+use super::problem::Problem;
+use crate::angle::{self, wrap_angle};
+use crate::chain::JointLimits;
 
 /// Levers shorter than this share of the chain's reach count as zero.
 const NEGLIGIBLE: f64 = 1e-12;
@@ -66,8 +67,8 @@ const MAX_ROOT_STEPS: usize = 100;
 /// One CCD sweep, from the last joint to the first: each joint turns by the angle that best
 /// brings the tip to the goal (and, with an orientation goal, minimises
 /// `|tip − target|² + w²·(φ_tip − φ_goal)²` over that joint's rotation, `w =
-/// opts.orientation_weight`, the orientation error wrapped into `[−π, π)`), clamped into its
-/// limits when `clamp` (the best turn inside the limits, not the clamped best turn: see the
+/// opts.orientation_weight`, the orientation error wrapped into `[−π, π)`), kept inside its
+/// bound in `p.bounds` if any (the best turn inside the limits, not the clamped best turn: see the
 /// [module docs](self)). Writes the new angles into `trial` and their joint positions into
 /// `trial_joints` (n+1 points), and returns the tip's absolute orientation.
 ///
@@ -78,17 +79,14 @@ const MAX_ROOT_STEPS: usize = 100;
 /// # Panics
 /// If `angles` or `trial` do not hold `chain.len()` angles, or `joints` or `trial_joints` not
 /// `chain.len() + 1` points.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn sweep(
-    chain: &Chain,
-    goal: &Goal,
-    opts: &SolveOptions,
-    clamp: bool,
+    p: &Problem,
     angles: &[f64],
     joints: &[Point2<f64>],
     trial: &mut [f64],
     trial_joints: &mut [Point2<f64>],
 ) -> f64 {
+    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
     let n = chain.len();
     trial.copy_from_slice(angles);
     trial_joints.copy_from_slice(joints);
@@ -97,11 +95,11 @@ pub(super) fn sweep(
     let tiny = NEGLIGIBLE * chain.max_reach();
     let w2 = opts.orientation_weight * opts.orientation_weight;
     for j in (0..n).rev() {
-        let p = trial_joints[j];
-        let lever = trial_joints[n] - p;
-        let to_goal = target - p;
+        let at = trial_joints[j];
+        let lever = trial_joints[n] - at;
+        let to_goal = target - at;
         let turn = goal.orientation().map(|g| wrap_angle(g - phi));
-        let limits = if clamp { chain.limits()[j] } else { None };
+        let limits = p.bounds.get(j);
         let old = trial[j];
         let new = best_angle(lever, to_goal, turn, w2, tiny, old, limits);
         let delta = new - old;
@@ -109,8 +107,8 @@ pub(super) fn sweep(
         if delta != 0.0 {
             let (s, c) = delta.sin_cos();
             for q in &mut trial_joints[j + 1..] {
-                let v = *q - p;
-                *q = p + Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+                let v = *q - at;
+                *q = at + Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y);
             }
             phi += delta;
         }
@@ -188,10 +186,9 @@ fn best_angle(
         return angle + wrap_angle(delta);
     };
     let (lo, hi) = (lim.min() - angle, lim.max() - angle);
-    let nearer_end = |mu: f64| if wrap_angle(lo - mu).abs() <= wrap_angle(hi - mu).abs() { lo } else { hi };
     let delta = match aim {
         Aim::Flat => 0.0f64.max(lo).min(hi),
-        Aim::Unimodal(mu) => equivalent_in(mu, lo, hi).unwrap_or_else(|| nearer_end(mu)),
+        Aim::Unimodal(mu) => equivalent_in(mu, lo, hi).unwrap_or_else(|| angle::nearer_end(mu, lo, hi)),
         Aim::Blend { toward, turn, k } => {
             let (global, second) = blend_minima(toward, turn, k);
             let candidates = [equivalent_in(global, lo, hi), second.and_then(|s| equivalent_in(s, lo, hi))];
@@ -210,11 +207,9 @@ fn best_angle(
 }
 
 /// The equivalent `mu + 2πm` inside `[lo, hi]` nearest 0, if there is one.
+#[inline]
 fn equivalent_in(mu: f64, lo: f64, hi: f64) -> Option<f64> {
-    let lowest = ((lo - mu) / TAU).ceil();
-    let highest = ((hi - mu) / TAU).floor();
-    // Also false for NaN, which only absurdly large angles can produce.
-    if lowest <= highest { Some(mu + TAU * (-mu / TAU).round().max(lowest).min(highest)) } else { None }
+    angle::nearest_equivalent_in(mu, 0.0, lo, hi)
 }
 
 /// The global minimiser of `−cos(δ − toward) + (k/2) wrap(δ − turn)²` over the circle, and the
@@ -266,13 +261,17 @@ fn root(c: f64, k: f64, mut lo: f64, mut hi: f64, start: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::TAU;
+
     use super::*;
-    use crate::chain::Link;
+    use crate::chain::{Chain, Link};
+    use crate::goal::Goal;
+    use crate::solve::SolveOptions;
     use crate::closed_form;
     use crate::kinematics::{end_effector, joint_positions, joint_positions_into};
 
     use crate::rng::SplitMix64;
-    use crate::solve::test_support::{self, random_chain, random_goal, random_pose};
+    use crate::solve::test_support::{self, problem, random_chain, random_goal, random_pose};
 
     /// Runs sweeps (see [`test_support::drive`]) to the options' tolerance.
     fn drive(
@@ -283,7 +282,7 @@ mod tests {
         start: &[f64],
         max: usize,
     ) -> (Vec<f64>, usize, bool) {
-        test_support::drive(sweep, chain, goal, opts, clamp, start, max, opts.tolerance)
+        test_support::drive(sweep, &problem(chain, goal, opts, clamp), start, max, opts.tolerance)
     }
 
     /// The cost a sweep minimises.
@@ -466,7 +465,7 @@ mod tests {
                 if inside { random_pose(&mut rng, &chain) } else { (0..n).map(|_| rng.range(-7.0, 7.0)).collect() };
             let joints = joint_positions(&chain, &angles);
             let (mut trial, mut trial_joints) = (vec![0.0; n], vec![Point2::origin(); n + 1]);
-            let phi = sweep(&chain, &goal, &opts, clamp, &angles, &joints, &mut trial, &mut trial_joints);
+            let phi = sweep(&problem(&chain, &goal, &opts, clamp), &angles, &joints, &mut trial, &mut trial_joints);
             let fk = joint_positions(&chain, &trial);
             let scale = chain.max_reach().max(1.0);
             for (a, b) in fk.iter().zip(&trial_joints) {
@@ -569,12 +568,12 @@ mod tests {
         let mut trial_joints = [Point2::origin(); 2];
         let mut joints = [Point2::origin(); 2];
         joint_positions_into(&one, &[0.0], &mut joints);
-        sweep(&one, &goal, &opts, true, &[0.0], &joints, &mut trial, &mut trial_joints);
+        sweep(&problem(&one, &goal, &opts, true), &[0.0], &joints, &mut trial, &mut trial_joints);
         let a = trial[0];
         assert!((-8.0 * a.cos() + 2.0 * a).abs() < 1e-12 && a > 0.0 && a < PI / 2.0, "{a}");
         let before = trial;
         joint_positions_into(&one, &before, &mut joints);
-        sweep(&one, &goal, &opts, true, &before, &joints, &mut trial, &mut trial_joints);
+        sweep(&problem(&one, &goal, &opts, true), &before, &joints, &mut trial, &mut trial_joints);
         assert!((trial[0] - before[0]).abs() < 1e-12);
     }
 
@@ -641,7 +640,7 @@ mod tests {
             // A new far-off goal every sweep keeps every joint turning.
             let a = f64::from(i) * 2.4;
             let goal = Goal::position(5.0 * a.cos(), 5.0 * a.sin()).unwrap();
-            sweep(&chain, &goal, &opts, true, &angles, &joints, &mut trial, &mut trial_joints);
+            sweep(&problem(&chain, &goal, &opts, true), &angles, &joints, &mut trial, &mut trial_joints);
             std::mem::swap(&mut angles, &mut trial);
             std::mem::swap(&mut joints, &mut trial_joints);
             let fk = joint_positions(&chain, &angles);

@@ -26,20 +26,19 @@
 //! - **Degenerate geometry.** Where a direction is undefined (two points closer than `1e-12` of
 //!   the chain's reach), the link keeps the direction it had in the previous pose.
 
-use std::f64::consts::TAU;
-
 use nalgebra::{Point2, Vector2};
 
-use super::{Goal, SolveOptions};
-use crate::chain::{Chain, JointLimits};
+use super::problem::Problem;
+use crate::angle;
+use crate::chain::JointLimits;
 use crate::kinematics::joint_positions_into;
 
 /// Distances shorter than this share of the chain's reach count as zero.
 const NEGLIGIBLE: f64 = 1e-12;
 
 /// One FABRIK iteration (a backward pass from the goal and a forward pass from the base), then
-/// conversion of the joint positions back to relative angles, each clamped into its limits when
-/// `clamp` (FABRIK's angular constraint: in the forward pass, the direction of link i relative
+/// conversion of the joint positions back to relative angles, each kept inside its bound in
+/// `p.bounds` if any (FABRIK's angular constraint: in the forward pass, the direction of link i relative
 /// to link i−1 (or to +x for the first link) is limited to [min_i, max_i]). Writes `trial` and
 /// `trial_joints` (recomputed by forward kinematics from `trial`, so they are consistent),
 /// returns the tip orientation.
@@ -51,24 +50,20 @@ const NEGLIGIBLE: f64 = 1e-12;
 /// # Panics
 /// If `angles` or `trial` do not hold `chain.len()` angles, or `joints` or `trial_joints` not
 /// `chain.len() + 1` points.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn iterate(
-    chain: &Chain,
-    goal: &Goal,
-    opts: &SolveOptions,
-    clamp: bool,
+    p: &Problem,
     angles: &[f64],
     joints: &[Point2<f64>],
     trial: &mut [f64],
     trial_joints: &mut [Point2<f64>],
 ) -> f64 {
-    // FABRIK meets an orientation exactly through the last link; it has nothing to weigh.
-    let _ = opts;
+    // FABRIK meets an orientation exactly through the last link; it has nothing to weigh, so
+    // it reads no option.
+    let (chain, goal, bounds) = (p.chain, p.goal, p.bounds);
     let n = chain.len();
     let lengths = chain.lengths();
     let base = chain.base();
     let tiny = NEGLIGIBLE * chain.max_reach();
-    let limits = |i: usize| if clamp { chain.limits()[i] } else { None };
     trial.copy_from_slice(angles);
     trial_joints.copy_from_slice(joints);
 
@@ -91,18 +86,18 @@ pub(super) fn iterate(
 
     // Forward pass from the base, towards the backward pass's joints (or straight at the goal
     // when it is out of reach). Only angles are written; positions come from them below.
-    let mut p = base;
+    let mut at = base;
     let mut direction = 0.0;
     for i in 0..m {
         let aim = if reachable { trial_joints[i + 1] } else { end };
-        let d = unit_or(aim - p, joints[i + 1] - joints[i], tiny);
-        let relative = pick(d.y.atan2(d.x) - direction, angles[i], limits(i));
+        let d = unit_or(aim - at, joints[i + 1] - joints[i], tiny);
+        let relative = pick(d.y.atan2(d.x) - direction, angles[i], bounds.get(i));
         trial[i] = relative;
         direction += relative;
-        p += lengths[i] * Vector2::new(direction.cos(), direction.sin());
+        at += lengths[i] * Vector2::new(direction.cos(), direction.sin());
     }
     if let (true, Some(phi)) = (m < n, goal.orientation()) {
-        trial[n - 1] = pick(phi - direction, angles[n - 1], limits(n - 1));
+        trial[n - 1] = pick(phi - direction, angles[n - 1], bounds.get(n - 1));
     }
     joint_positions_into(chain, trial, trial_joints)
 }
@@ -129,42 +124,34 @@ fn unit_or(v: Vector2<f64>, fallback: Vector2<f64>, tiny: f64) -> Vector2<f64> {
 /// any (the equivalent inside nearest `previous`, or the limit nearer `raw` around the circle
 /// if none is inside), else the equivalent nearest `previous`.
 fn pick(raw: f64, previous: f64, limits: Option<JointLimits>) -> f64 {
-    let nearest = |lo: f64, hi: f64| {
-        let lowest = ((lo - raw) / TAU).ceil();
-        let highest = ((hi - raw) / TAU).floor();
-        let k = ((previous - raw) / TAU).round().max(lowest).min(highest);
-        // Also false for NaN, which only absurdly large angles can produce.
-        (lowest <= highest).then_some(raw + TAU * k)
-    };
     match limits {
-        None => nearest(f64::NEG_INFINITY, f64::INFINITY).filter(|a| a.is_finite()).unwrap_or(raw),
-        Some(lim) => {
-            let inside = nearest(lim.min(), lim.max()).unwrap_or_else(|| {
-                let gap = |end: f64| super::wrap_angle(end - raw).abs();
-                if gap(lim.min()) <= gap(lim.max()) { lim.min() } else { lim.max() }
-            });
-            // The shift can round a hair past a limit.
-            lim.clamp(inside)
+        None => {
+            let nearest = angle::nearest_equivalent(raw, previous);
+            if nearest.is_finite() { nearest } else { raw }
         }
+        // The equivalent is clamped onto the limits: the shift can round a hair past one.
+        Some(lim) => lim.nearest_equivalent(raw, previous).unwrap_or_else(|| lim.nearer_end(raw)),
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use std::f64::consts::PI;
+    use std::f64::consts::{PI, TAU};
 
-    use super::super::wrap_angle;
     use super::*;
-    use crate::chain::Link;
+    use crate::angle::wrap_angle;
+    use crate::chain::{Chain, Link};
+    use crate::goal::Goal;
+    use crate::solve::SolveOptions;
     use crate::closed_form;
     use crate::kinematics::{end_effector, joint_positions};
 
     use crate::rng::SplitMix64;
-    use crate::solve::test_support::{self, random_chain, random_pose};
+    use crate::solve::test_support::{self, problem, random_chain, random_pose};
 
     /// Runs iterations (see [`test_support::drive`]) to `tol`.
     fn drive(chain: &Chain, goal: &Goal, clamp: bool, start: &[f64], max: usize, tol: f64) -> (Vec<f64>, usize, bool) {
-        test_support::drive(iterate, chain, goal, &SolveOptions::default(), clamp, start, max, tol)
+        test_support::drive(iterate, &problem(chain, goal, &SolveOptions::default(), clamp), start, max, tol)
     }
 
     #[test]
@@ -234,7 +221,7 @@ mod tests {
             let joints = joint_positions(&chain, &angles);
             let (mut trial, mut trial_joints) = (vec![0.0; n], vec![Point2::origin(); n + 1]);
             let opts = SolveOptions::default();
-            let phi = iterate(&chain, &goal, &opts, clamp, &angles, &joints, &mut trial, &mut trial_joints);
+            let phi = iterate(&problem(&chain, &goal, &opts, clamp), &angles, &joints, &mut trial, &mut trial_joints);
             assert!(trial.iter().all(|a| a.is_finite()), "case {case}: {trial:?}");
             assert_eq!(joint_positions(&chain, &trial), trial_joints, "case {case}");
             assert_eq!(phi, end_effector(&chain, &trial).orientation);

@@ -2,8 +2,10 @@
 //! deterministic.
 
 use super::*;
-use crate::chain::{JointLimits, Link};
+use crate::chain::{Chain, JointLimits, Link};
 use crate::kinematics::end_effector;
+use crate::rng::SplitMix64;
+use crate::solve::restarts::restart_pose;
 use crate::solve::test_support::random_goal;
 
 fn d(deg: f64) -> f64 {
@@ -104,7 +106,7 @@ fn figure_9_is_reached_by_the_new_modes() {
     let goal = Goal::position(tip.x, tip.y).unwrap();
     let solve = |method, limits, restarts| {
         let opts = SolveOptions { method, limits, restarts, closed_form: false, ..Default::default() };
-        Solver::new(opts).unwrap().solve(&chain, &chain.pose(start.to_vec(), true).unwrap(), &goal).unwrap()
+        Solver::new(opts).unwrap().solve(&chain, &chain.pose(start.to_vec()).unwrap(), &goal).unwrap()
     };
     for method in [Method::PseudoInverse, Method::DampedLeastSquares] {
         let o = solve(method, LimitMode::Clamp, None);
@@ -139,7 +141,7 @@ fn figure_9_is_reached_by_the_new_modes() {
     // The defaults reach it.
     let o = Solver::new(SolveOptions::default())
         .unwrap()
-        .solve(&chain, &chain.pose(start.to_vec(), true).unwrap(), &goal)
+        .solve(&chain, &chain.pose(start.to_vec()).unwrap(), &goal)
         .unwrap();
     assert_eq!(o.status, Status::Reached, "{o:?}");
 }
@@ -179,7 +181,7 @@ fn restarts_are_deterministic_for_a_seed() {
             record_every: Some(1),
             ..Default::default()
         };
-        Solver::new(opts).unwrap().solve(&chain, &chain.pose(start.to_vec(), true).unwrap(), &goal).unwrap()
+        Solver::new(opts).unwrap().solve(&chain, &chain.pose(start.to_vec()).unwrap(), &goal).unwrap()
     };
     let a = run(7);
     let b = run(7);
@@ -196,8 +198,8 @@ fn restarts_are_deterministic_for_a_seed() {
     let mut first = vec![0.0; 3];
     let mut other = vec![0.0; 3];
     let r = Restarts::default();
-    restart_pose(&chain, &start, true, Restarts { seed: 7, ..r }, 1, &mut first);
-    restart_pose(&chain, &start, true, Restarts { seed: 8, ..r }, 1, &mut other);
+    restart_pose(chain.bounds(), &start, Restarts { seed: 7, ..r }, 1, &mut first);
+    restart_pose(chain.bounds(), &start, Restarts { seed: 8, ..r }, 1, &mut other);
     assert_ne!(first, other);
 }
 
@@ -211,7 +213,7 @@ fn restart_poses_stay_in_limits_and_spread_out() {
     let mut pose = vec![0.0; 7];
     let mut spread = Vec::new();
     for k in 1..=8 {
-        restart_pose(&chain, &start, true, r, k, &mut pose);
+        restart_pose(chain.bounds(), &start, r, k, &mut pose);
         assert!(in_limits(&chain, &pose), "{pose:?}");
         spread.push(pose.iter().zip(&start).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max));
     }

@@ -5,15 +5,21 @@ use std::f64::consts::PI;
 
 use nalgebra::Point2;
 
+use super::problem::Problem;
 use super::{Goal, SolveOptions, wrap_angle};
+use crate::bounds::Bounds;
 use crate::chain::{Chain, JointLimits, Link};
 use crate::kinematics::{end_effector, joint_positions};
 use crate::rng::SplitMix64;
 
 /// One iteration of a method without the Jacobian: [`super::ccd::sweep`] or
 /// [`super::fabrik::iterate`].
-pub(super) type Step =
-    fn(&Chain, &Goal, &SolveOptions, bool, &[f64], &[Point2<f64>], &mut [f64], &mut [Point2<f64>]) -> f64;
+pub(super) type Step = fn(&Problem, &[f64], &[Point2<f64>], &mut [f64], &mut [Point2<f64>]) -> f64;
+
+/// The problem of `chain`, `goal` and `opts`, with the chain's limits enforced when `clamp`.
+pub(super) fn problem<'a>(chain: &'a Chain, goal: &'a Goal, opts: &'a SolveOptions, clamp: bool) -> Problem<'a> {
+    Problem::with_bounds(chain, goal, opts, if clamp { chain.bounds() } else { Bounds::free() })
+}
 
 /// A random chain of `n` links of length 0.5..2, each joint limited to a random range around 0
 /// when `limited`, based within 1 of the origin.
@@ -51,17 +57,8 @@ pub(super) fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -
 /// Runs `step` until the tip is within `tol` of the goal (and the orientation within `tol`), or
 /// `max` iterations, or until an iteration moves no joint by more than 1e-13. Returns the
 /// angles, the iterations taken, and whether it got there.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn drive(
-    step: Step,
-    chain: &Chain,
-    goal: &Goal,
-    opts: &SolveOptions,
-    clamp: bool,
-    start: &[f64],
-    max: usize,
-    tol: f64,
-) -> (Vec<f64>, usize, bool) {
+pub(super) fn drive(step: Step, p: &Problem, start: &[f64], max: usize, tol: f64) -> (Vec<f64>, usize, bool) {
+    let (chain, goal) = (p.chain, p.goal);
     let n = chain.len();
     let mut angles = start.to_vec();
     let mut joints = joint_positions(chain, &angles);
@@ -76,7 +73,7 @@ pub(super) fn drive(
         if it == max {
             break;
         }
-        phi = step(chain, goal, opts, clamp, &angles, &joints, &mut trial, &mut trial_joints);
+        phi = step(p, &angles, &joints, &mut trial, &mut trial_joints);
         // Stuck: nothing moves any more (saves time on the misses).
         if angles.iter().zip(&trial).all(|(a, t)| (a - t).abs() <= 1e-13) {
             break;
@@ -109,7 +106,7 @@ pub(super) fn success_rates(
             let chain = random_chain(&mut rng, n, limited);
             let goal = random_goal(&mut rng, &chain, oriented);
             let start = random_pose(&mut rng, &chain);
-            let (angles, it, ok) = drive(step, &chain, &goal, &opts, true, &start, 2000, 1e-6);
+            let (angles, it, ok) = drive(step, &problem(&chain, &goal, &opts, true), &start, 2000, 1e-6);
             for (a, l) in angles.iter().zip(chain.limits()) {
                 assert!(l.is_none_or(|l| l.contains(*a)));
             }

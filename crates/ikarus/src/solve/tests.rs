@@ -1,5 +1,7 @@
+use nalgebra::Point2;
+
 use super::*;
-use crate::chain::{JointLimits, Link};
+use crate::chain::{Chain, JointLimits, Link};
 use crate::kinematics::{end_effector, joint_positions};
 
 fn seed(limits: bool) -> Chain {

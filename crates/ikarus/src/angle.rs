@@ -1,0 +1,106 @@
+//! Angle arithmetic, in one place: wrapping into `[−π, π)`, the 2π-equivalent of an angle
+//! nearest a reference (optionally inside a range), the end of a range nearer an angle around
+//! the circle, and the unit vector of a direction.
+//!
+//! A joint angle and every `angle + 2πk` put the link in the same place; the solvers pick the
+//! equivalent that keeps a joint within its limits, or nearest where it was, so that it never
+//! jumps by a whole turn. Every function here is the single home of its formula: the closed
+//! form, CCD, FABRIK, the solver loop and the workspace sampler all call these.
+
+use std::f64::consts::{PI, TAU};
+
+/// `angle` wrapped into [−π, π).
+#[inline]
+#[must_use]
+pub fn wrap_angle(angle: f64) -> f64 {
+    (angle + PI).rem_euclid(TAU) - PI
+}
+
+/// The equivalent `angle + 2πk` (k an integer) nearest `reference`.
+///
+/// Infinite when the shift overflows (only for angles near the end of the f64 range); callers
+/// that must stay finite fall back on `angle` then.
+#[inline]
+#[must_use]
+pub fn nearest_equivalent(angle: f64, reference: f64) -> f64 {
+    angle + TAU * ((reference - angle) / TAU).round()
+}
+
+/// The equivalent `angle + 2πk` inside `[lo, hi]` nearest `reference`, or `None` if no
+/// equivalent lies inside (also for NaN, which only absurdly large angles can produce).
+///
+/// `k` is the integer nearest `(reference − angle) / 2π`, clamped to the integers whose
+/// equivalents lie in the range; the result can round a hair past an end, so callers with a
+/// [`JointLimits`](crate::JointLimits) clamp it (as
+/// [`JointLimits::nearest_equivalent`](crate::JointLimits::nearest_equivalent) does).
+#[inline]
+#[must_use]
+pub fn nearest_equivalent_in(angle: f64, reference: f64, lo: f64, hi: f64) -> Option<f64> {
+    let lowest = ((lo - angle) / TAU).ceil();
+    let highest = ((hi - angle) / TAU).floor();
+    // `lowest <= highest` is also false for NaN.
+    if lowest <= highest {
+        Some(angle + TAU * ((reference - angle) / TAU).round().max(lowest).min(highest))
+    } else {
+        None
+    }
+}
+
+/// The end of `[lo, hi]` nearer `angle` around the circle (each distance wrapped into
+/// `[−π, π)` before comparing); `lo` on a tie.
+///
+/// Where no equivalent of `angle` lies in the range, a cost that grows with the circular
+/// distance from `angle` is lowest at this end.
+#[inline]
+#[must_use]
+pub fn nearer_end(angle: f64, lo: f64, hi: f64) -> f64 {
+    if wrap_angle(lo - angle).abs() <= wrap_angle(hi - angle).abs() { lo } else { hi }
+}
+
+/// The unit vector `(cos angle, sin angle)`.
+#[inline]
+#[must_use]
+pub fn direction(angle: f64) -> [f64; 2] {
+    let (s, c) = angle.sin_cos();
+    [c, s]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_angle_lands_in_half_open_range() {
+        for a in [-10.0, -PI, -1.0, 0.0, 1.0, PI, 10.0, 3.0 * TAU + 0.5] {
+            let w = wrap_angle(a);
+            assert!((-PI..PI).contains(&w), "{a} -> {w}");
+            assert!(((a - w) / TAU - ((a - w) / TAU).round()).abs() < 1e-12, "{a} -> {w}");
+        }
+        assert_eq!(wrap_angle(PI), -PI);
+    }
+
+    #[test]
+    fn nearest_equivalents() {
+        assert!((nearest_equivalent(0.5, 13.0) - (0.5 + 2.0 * TAU)).abs() < 1e-12);
+        assert!((nearest_equivalent(0.5 + TAU, -0.2) - 0.5).abs() < 1e-12);
+        // Inside a range far from [−π, π), and nearest the reference when several are.
+        assert!((nearest_equivalent_in(-0.5, 0.0, 5.0, 6.0).unwrap() - (TAU - 0.5)).abs() < 1e-12);
+        assert!((nearest_equivalent_in(0.5, 6.0, -10.0, 10.0).unwrap() - (0.5 + TAU)).abs() < 1e-12);
+        assert_eq!(nearest_equivalent_in(3.0, 0.0, -3.0, 1.0), None);
+        assert_eq!(nearest_equivalent_in(f64::NAN, 0.0, -3.0, 1.0), None);
+    }
+
+    #[test]
+    fn nearer_end_goes_around_the_circle() {
+        // 3.0 is nearer −3.0 (0.28 apart across ±π) than 1.0.
+        assert_eq!(nearer_end(3.0, -3.0, 1.0), -3.0);
+        assert_eq!(nearer_end(1.5, -3.0, 1.0), 1.0);
+        assert_eq!(nearer_end(-1.0, -2.0, 0.0), -2.0);
+    }
+
+    #[test]
+    fn direction_is_a_unit_vector() {
+        let [x, y] = direction(PI / 2.0);
+        assert!(x.abs() < 1e-15 && (y - 1.0).abs() < 1e-15);
+    }
+}

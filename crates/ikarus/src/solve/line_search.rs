@@ -1,0 +1,132 @@
+//! The line search of the Jacobian methods (see the [module docs](super)): a step is accepted
+//! only if it lowers the task error `‖e‖²` by at least a tenth of what the linearisation
+//! `J Δθ` predicts (an Armijo test). Pinv, DLS and SDLS try their own full step once; LM
+//! raises its damping and tries again; if that fails, the steepest-descent (transpose) step is
+//! tried instead, halved up to [`SolveOptions::backtrack`](super::SolveOptions::backtrack)
+//! times. The trial pose's forward kinematics is the next iteration's, so an accepted first try
+//! costs nothing extra.
+
+use nalgebra::Vector3;
+
+use super::limit_modes::compute_delta;
+use super::lm::Damping;
+use super::problem::Problem;
+use super::solver::Scratch;
+use super::step::Rule;
+use crate::angle::wrap_angle;
+use crate::kinematics::joint_positions_into;
+
+/// The share of the linearly predicted error decrease a backtracking step must achieve.
+const SUFFICIENT_DECREASE: f64 = 0.1;
+
+/// The task error of the current pose: `e` and `‖e‖²`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Residual {
+    pub(super) e: Vector3<f64>,
+    pub(super) current: f64,
+}
+
+/// One step of a Jacobian method with its line search. On success the new pose is in
+/// `s.trial` and `s.trial_joints` and its tip orientation is returned; `None` means no step
+/// lowers the error enough.
+#[inline]
+pub(super) fn jacobian_step(
+    p: &Problem,
+    method: Rule,
+    r: &Residual,
+    damping: &mut Damping,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> Option<f64> {
+    let backtrack = p.opts.backtrack;
+    let mut rule = method;
+    loop {
+        let found = if rule == Rule::LevenbergMarquardt {
+            damped_search(p, r, damping, angles, s)
+        } else {
+            // Gauss–Newton directions get one full try; the transpose step is halved.
+            let halvings = if rule == method && rule != Rule::Transpose { 0 } else { backtrack };
+            halving_search(p, rule, halvings, r, damping.mu(), angles, s)
+        };
+        if found.is_some() {
+            return found;
+        }
+        if rule == Rule::Transpose || backtrack == 0 {
+            return None;
+        }
+        // The method's own step falls short: Gauss–Newton directions (pinv, DLS with small λ)
+        // are poor where J is nearly singular, as on the way to a goal out of reach. Search the
+        // steepest-descent (transpose) direction instead.
+        rule = Rule::Transpose;
+    }
+}
+
+/// Levenberg–Marquardt's search: a rejected step raises the damping instead of halving.
+#[inline]
+fn damped_search(p: &Problem, r: &Residual, damping: &mut Damping, angles: &[f64], s: &mut Scratch) -> Option<f64> {
+    let backtrack = p.opts.backtrack;
+    for _ in 0..=backtrack {
+        let scale = compute_delta(p, Rule::LevenbergMarquardt, &r.e, damping.mu(), angles, s);
+        let (trial_error, expected, trial_phi) = try_pose(p, &r.e, scale, angles, s);
+        if backtrack == 0 {
+            return Some(trial_phi);
+        }
+        let decrease = r.current - trial_error;
+        if trial_error < r.current && decrease >= SUFFICIENT_DECREASE * expected {
+            damping.accept(decrease, expected);
+            return Some(trial_phi);
+        }
+        damping.reject();
+    }
+    None
+}
+
+/// The search of the other rules: the step, then up to `halvings` halvings of it.
+#[inline]
+fn halving_search(
+    p: &Problem,
+    rule: Rule,
+    halvings: u32,
+    r: &Residual,
+    mu: f64,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> Option<f64> {
+    let mut scale = compute_delta(p, rule, &r.e, mu, angles, s);
+    for attempt in 0..=halvings {
+        let (trial_error, expected, trial_phi) = try_pose(p, &r.e, scale, angles, s);
+        if p.opts.backtrack == 0 {
+            return Some(trial_phi);
+        }
+        if trial_error < r.current && r.current - trial_error >= SUFFICIENT_DECREASE * expected {
+            return Some(trial_phi);
+        }
+        if attempt < halvings {
+            scale *= 0.5;
+        }
+    }
+    None
+}
+
+/// Tries `angles + scale·Δθ` (clamped into the problem's bounds): the trial pose goes to
+/// `s.trial` and `s.trial_joints`. Returns its squared task error, the decrease the
+/// linearisation `J Δθ` predicts, and its tip orientation.
+#[inline]
+pub(super) fn try_pose(p: &Problem, e: &Vector3<f64>, scale: f64, angles: &[f64], s: &mut Scratch) -> (f64, f64, f64) {
+    let n = p.chain.len();
+    let target = p.goal.target();
+    let mut predicted = *e;
+    for (i, ((t, a), (d, col))) in
+        s.trial.iter_mut().zip(angles).zip(s.delta.iter().zip(s.jacobian.column_iter())).enumerate()
+    {
+        let next = p.bounds.clamp(i, a + scale * d);
+        predicted -= col * (next - a);
+        *t = next;
+    }
+    let trial_phi = joint_positions_into(p.chain, &s.trial, &mut s.trial_joints);
+    let tip = s.trial_joints[n];
+    let turn = p.goal.orientation().map_or(0.0, |g| p.opts.orientation_weight * wrap_angle(g - trial_phi));
+    let trial_error = (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn;
+    let expected = (e.norm_squared() - predicted.norm_squared()).max(0.0);
+    (trial_error, expected, trial_phi)
+}

@@ -1,0 +1,124 @@
+//! What a solve returns: the [`Outcome`] with its [`Status`], or a [`SolveError`] when it
+//! could not start.
+
+use nalgebra::Point2;
+use thiserror::Error;
+
+use super::Frames;
+use crate::chain::Pose;
+use crate::kinematics::EndEffector;
+
+/// Why a solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Status {
+    /// The tip is within tolerance of the goal (and of its orientation, if any).
+    Reached,
+    /// No pose can reach the goal, even with limits ignored; the pose is the best found
+    /// (for a position goal: the arm stretched towards it).
+    Unreachable,
+    /// The pose stopped moving before reaching the goal: a local minimum, or joints held at
+    /// their limits.
+    Stalled,
+    /// The iteration cap was hit while the pose was still moving.
+    IterationLimit,
+}
+
+impl Status {
+    /// `reached`, `unreachable`, `stalled` or `iteration_limit`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Reached => "reached",
+            Status::Unreachable => "unreachable",
+            Status::Stalled => "stalled",
+            Status::IterationLimit => "iteration_limit",
+        }
+    }
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The result of a solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outcome {
+    /// The final pose. With backtracking on (the default) every accepted step lowers the
+    /// error, so it is also the best pose of the solve; with `backtrack: 0` it is simply where
+    /// the last step landed.
+    pub pose: Pose,
+    /// Why the solve ended.
+    pub status: Status,
+    /// Steps taken, over every attempt.
+    pub iterations: u32,
+    /// Restarts used (see [`SolveOptions::restarts`](super::SolveOptions::restarts)); 0 when the first attempt ended it.
+    pub restarts: u32,
+    /// Final distance from the tip to the goal position.
+    pub error: f64,
+    /// Final absolute orientation error in radians, wrapped to [0, π]; 0 without an
+    /// orientation goal.
+    pub angle_error: f64,
+    /// Final tip position and orientation.
+    pub end_effector: EndEffector,
+    /// Recorded frames (empty unless [`SolveOptions::record_every`](super::SolveOptions::record_every) is set).
+    pub frames: Frames,
+}
+
+impl Default for Outcome {
+    fn default() -> Self {
+        Self {
+            pose: Pose::default(),
+            status: Status::IterationLimit,
+            iterations: 0,
+            restarts: 0,
+            error: f64::INFINITY,
+            angle_error: 0.0,
+            end_effector: EndEffector { position: Point2::origin(), orientation: 0.0 },
+            frames: Frames::default(),
+        }
+    }
+}
+
+/// Why a solve could not start.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// The start pose has a different number of angles than the chain has joints.
+    #[error("start: expected {expected} angles (one per joint), got {got}")]
+    PoseLength {
+        /// Joints in the chain.
+        expected: usize,
+        /// Angles given.
+        got: usize,
+    },
+    /// A start angle is NaN or infinite.
+    #[error("start[{index}]: must be a finite number, got {value}")]
+    NonFiniteAngle {
+        /// Joint index, from 0.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// [`Method::Analytic`](super::Method::Analytic) was asked for a chain and goal without a closed form.
+    #[error(
+        "method analytic: needs 2 links with a position goal or 3 links with an orientation goal, \
+         got {links} links with {goal}"
+    )]
+    NoClosedForm {
+        /// Links in the chain.
+        links: usize,
+        /// `"a position goal"` or `"an orientation goal"`.
+        goal: &'static str,
+    },
+    /// [`SolveOptions::rates`](super::SolveOptions::rates) is neither empty nor one per joint.
+    #[error("rates: expected {expected} values (one per joint) or none, got {got}")]
+    RatesLength {
+        /// Joints in the chain.
+        expected: usize,
+        /// Rates given.
+        got: usize,
+    },
+}
