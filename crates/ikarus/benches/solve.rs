@@ -24,11 +24,7 @@ use common::SplitMix64;
 
 const GOALS: usize = 64;
 
-fn arm(lengths: &[f64]) -> Chain {
-    let start = 5f64.to_radians();
-    let links: Vec<Link> = lengths.iter().map(|&l| Link::new(l, start)).collect();
-    Chain::new([0.0, 0.0], &links).expect("valid arm")
-}
+use common::fixtures::arm;
 
 /// Tips of `GOALS` pseudo-random poses (every joint uniform in (−π, π)): reachable goals.
 fn goals(chain: &Chain, seed: u64) -> Vec<Goal> {

@@ -40,6 +40,9 @@
 //! sampling runs on rayon's pool when [`WorkspaceOptions::parallel`] is set, its default). The
 //! same input gives the same output, bit for bit, whatever the number of threads.
 
+// The library never prints: output belongs to the edges (CLI, server). Tests may print.
+#![cfg_attr(not(test), deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro))]
+
 pub mod angle;
 pub mod bounds;
 pub mod chain;
@@ -68,6 +71,13 @@ pub use solve::{
 
 /// Re-exported so that callers can name the point type without depending on nalgebra.
 pub use nalgebra::Point2;
+
+// The shared test fixtures (see the file), written against the public API.
+#[cfg(test)]
+extern crate self as ikarus;
+#[cfg(test)]
+#[path = "../tests/common/fixtures.rs"]
+mod fixtures;
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -2,7 +2,7 @@
 //! deterministic.
 
 use super::*;
-use crate::chain::{Chain, JointLimits, Link};
+use crate::chain::{Chain, Link};
 use crate::kinematics::end_effector;
 use crate::rng::SplitMix64;
 use crate::solve::restarts::restart_pose;
@@ -12,30 +12,7 @@ fn d(deg: f64) -> f64 {
     deg.to_radians()
 }
 
-fn seed_limited() -> Chain {
-    let lim = |a: f64, b: f64| JointLimits::new(d(a), d(b)).unwrap();
-    Chain::new(
-        [0.0, 0.0],
-        &[
-            Link::new(3.0, d(5.0)).with_limits(lim(-45.0, 45.0)),
-            Link::new(2.0, d(5.0)).with_limits(lim(-90.0, 90.0)),
-            Link::new(1.0, d(5.0)).with_limits(lim(-170.0, 170.0)),
-        ],
-    )
-    .unwrap()
-}
-
-/// A 7-link arm with ranges on every joint, like `examples/arms/seven.toml`.
-fn seven_limited() -> Chain {
-    let lengths = [2.0, 1.7, 1.4, 1.2, 1.0, 0.8, 0.6];
-    let ranges = [90.0, 120.0, 120.0, 135.0, 135.0, 150.0, 150.0];
-    let links: Vec<Link> = lengths
-        .iter()
-        .zip(ranges)
-        .map(|(&l, r)| Link::new(l, d(10.0)).with_limits(JointLimits::new(d(-r), d(r)).unwrap()))
-        .collect();
-    Chain::new([0.0, 0.0], &links).unwrap()
-}
+use crate::fixtures::{seed_arm_limited as seed_limited, seven_link_arm as seven_limited};
 
 const ENFORCING: [LimitMode; 4] = [LimitMode::Clamp, LimitMode::Lock, LimitMode::NullSpace, LimitMode::Weighted];
 

@@ -1,15 +1,13 @@
 //! Test helpers shared by the CCD and FABRIK unit tests: random chains, poses and goals, a
 //! driver that runs one method's iterations, and success-rate checks.
 
-use std::f64::consts::PI;
-
 use nalgebra::Point2;
 
 use super::problem::Problem;
 use super::{Goal, SolveOptions, wrap_angle};
 use crate::bounds::Bounds;
-use crate::chain::{Chain, JointLimits, Link};
-use crate::kinematics::{end_effector, joint_positions};
+use crate::chain::Chain;
+use crate::kinematics::joint_positions;
 use crate::rng::SplitMix64;
 
 /// One iteration of a method without the Jacobian: [`super::ccd::sweep`] or
@@ -21,38 +19,7 @@ pub(super) fn problem<'a>(chain: &'a Chain, goal: &'a Goal, opts: &'a SolveOptio
     Problem::with_bounds(chain, goal, opts, if clamp { chain.bounds() } else { Bounds::free() })
 }
 
-/// A random chain of `n` links of length 0.5..2, each joint limited to a random range around 0
-/// when `limited`, based within 1 of the origin.
-pub(super) fn random_chain(rng: &mut SplitMix64, n: usize, limited: bool) -> Chain {
-    let links: Vec<Link> = (0..n)
-        .map(|_| {
-            let l = rng.range(0.5, 2.0);
-            if limited {
-                let (lo, hi) = (-rng.range(0.3, 2.5), rng.range(0.3, 2.5));
-                Link::new(l, 0.0).with_limits(JointLimits::new(lo, hi).unwrap())
-            } else {
-                Link::new(l, 0.0)
-            }
-        })
-        .collect();
-    Chain::new([rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)], &links).unwrap()
-}
-
-/// A random pose inside the limits (free joints in [−π, π)).
-pub(super) fn random_pose(rng: &mut SplitMix64, chain: &Chain) -> Vec<f64> {
-    chain.limits().iter().map(|l| l.map_or((-PI, PI), |l| (l.min(), l.max()))).map(|(a, b)| rng.range(a, b)).collect()
-}
-
-/// The tip of a random pose inside the limits, with its orientation when `oriented`.
-pub(super) fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal {
-    let truth = random_pose(rng, chain);
-    let ee = end_effector(chain, &truth);
-    if oriented {
-        Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).unwrap()
-    } else {
-        Goal::position(ee.position.x, ee.position.y).unwrap()
-    }
-}
+pub(super) use crate::fixtures::{random_chain, random_goal, random_pose};
 
 /// Runs `step` until the tip is within `tol` of the goal (and the orientation within `tol`), or
 /// `max` iterations, or until an iteration moves no joint by more than 1e-13. Returns the

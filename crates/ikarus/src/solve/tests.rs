@@ -1,19 +1,11 @@
 use nalgebra::Point2;
 
 use super::*;
-use crate::chain::{Chain, JointLimits, Link};
+use crate::chain::{Chain, Link};
 use crate::kinematics::{end_effector, joint_positions};
 
 fn seed(limits: bool) -> Chain {
-    let d = f64::to_radians;
-    let lim = |a: f64, b: f64| JointLimits::new(d(a), d(b)).unwrap();
-    let mut links = vec![Link::new(3.0, d(5.0)), Link::new(2.0, d(5.0)), Link::new(1.0, d(5.0))];
-    if limits {
-        links[0] = links[0].with_limits(lim(-45.0, 45.0));
-        links[1] = links[1].with_limits(lim(-90.0, 90.0));
-        links[2] = links[2].with_limits(lim(-170.0, 170.0));
-    }
-    Chain::new([0.0, 0.0], &links).unwrap()
+    if limits { crate::fixtures::seed_arm_limited() } else { crate::fixtures::seed_arm() }
 }
 
 fn solve(chain: &Chain, goal: Goal, options: SolveOptions) -> Outcome {

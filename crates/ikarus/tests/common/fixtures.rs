@@ -1,0 +1,86 @@
+//! Fixtures shared by the library's unit tests, its integration tests and its benchmarks: the
+//! seed arm, the seven-link arm, and random chains, poses and goals.
+//!
+//! One file, included three ways: as `crate::fixtures` in the unit tests (`lib.rs` includes it
+//! with `#[path]` under `cfg(test)`, and `extern crate self as ikarus` makes the `ikarus::`
+//! paths below resolve inside the crate), as `common::fixtures` in the integration tests, and
+//! through `tests/common/mod.rs` in the benchmarks. Plain inclusion rather than a `pub` module
+//! behind a feature: nothing test-only enters the library's API or its feature set, and every
+//! user sees the same, public-API-only code.
+#![allow(dead_code)]
+
+use std::f64::consts::PI;
+
+use ikarus::kinematics::end_effector;
+use ikarus::rng::SplitMix64;
+use ikarus::{Chain, Goal, JointLimits, Link};
+
+/// Degrees to radians.
+pub fn deg(d: f64) -> f64 {
+    d.to_radians()
+}
+
+/// An arm based at the origin with links of `lengths`, every joint at 5° (the seed's start).
+pub fn arm(lengths: &[f64]) -> Chain {
+    let links: Vec<Link> = lengths.iter().map(|&l| Link::new(l, deg(5.0))).collect();
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
+/// The seed program's arm: lengths 3, 2, 1, every joint at 5°, no limits.
+pub fn seed_arm() -> Chain {
+    arm(&[3.0, 2.0, 1.0])
+}
+
+/// The seed arm with the seed's ranges: ±45°, ±90°, ±170°.
+pub fn seed_arm_limited() -> Chain {
+    let lim = |r: f64| JointLimits::new(deg(-r), deg(r)).expect("valid limits");
+    let links = [(3.0, 45.0), (2.0, 90.0), (1.0, 170.0)].map(|(l, r)| Link::new(l, deg(5.0)).with_limits(lim(r)));
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
+/// A 7-link arm with ranges on every joint, every joint at 10°, like
+/// `examples/arms/seven.toml`.
+pub fn seven_link_arm() -> Chain {
+    let lengths = [2.0, 1.7, 1.4, 1.2, 1.0, 0.8, 0.6];
+    let ranges = [90.0, 120.0, 120.0, 135.0, 135.0, 150.0, 150.0];
+    let links: Vec<Link> = lengths
+        .iter()
+        .zip(ranges)
+        .map(|(&l, r)| Link::new(l, deg(10.0)).with_limits(JointLimits::new(deg(-r), deg(r)).expect("valid limits")))
+        .collect();
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
+/// A random chain of `n` links of length 0.5..2, each joint limited to a random range around 0
+/// when `limited`, based within 1 of the origin.
+pub fn random_chain(rng: &mut SplitMix64, n: usize, limited: bool) -> Chain {
+    let links: Vec<Link> = (0..n)
+        .map(|_| {
+            let l = rng.range(0.5, 2.0);
+            if limited {
+                let (lo, hi) = (-rng.range(0.3, 2.5), rng.range(0.3, 2.5));
+                Link::new(l, 0.0).with_limits(JointLimits::new(lo, hi).expect("valid limits"))
+            } else {
+                Link::new(l, 0.0)
+            }
+        })
+        .collect();
+    Chain::new([rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)], &links).expect("valid chain")
+}
+
+/// A random pose inside the limits (free joints in [−π, π)).
+pub fn random_pose(rng: &mut SplitMix64, chain: &Chain) -> Vec<f64> {
+    chain.limits().iter().map(|l| l.map_or((-PI, PI), |l| (l.min(), l.max()))).map(|(a, b)| rng.range(a, b)).collect()
+}
+
+/// The tip of a random pose inside the limits, with its orientation when `oriented`:
+/// a goal some pose reaches.
+pub fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal {
+    let truth = random_pose(rng, chain);
+    let ee = end_effector(chain, &truth);
+    if oriented {
+        Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).expect("finite tip")
+    } else {
+        Goal::position(ee.position.x, ee.position.y).expect("finite tip")
+    }
+}
