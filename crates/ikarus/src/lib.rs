@@ -58,15 +58,15 @@ pub mod solve;
 
 pub use bounds::Bounds;
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
-pub use goal::{Goal, GoalError};
 pub use ease::{Ease, EaseError, EaseKind, ParentEase};
+pub use goal::{Goal, GoalError};
 pub use kinematics::EndEffector;
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{
-    Frame, Frames, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions,
-    Solver, StallDetection, Status,
+    Frame, Frames, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions, Solver,
+    StallDetection, Status,
 };
 
 /// Re-exported so that callers can name the point type without depending on nalgebra.

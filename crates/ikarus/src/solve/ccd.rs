@@ -265,13 +265,13 @@ mod tests {
 
     use super::*;
     use crate::chain::{Chain, Link};
-    use crate::goal::Goal;
-    use crate::solve::SolveOptions;
     use crate::closed_form;
+    use crate::goal::Goal;
     use crate::kinematics::{end_effector, joint_positions, joint_positions_into};
+    use crate::solve::SolveOptions;
 
     use crate::rng::SplitMix64;
-    use crate::solve::test_support::{self, problem, random_chain, random_goal, random_pose};
+    use crate::solve::test_support::{self, problem, random_chain, random_pose};
 
     /// Runs sweeps (see [`test_support::drive`]) to the options' tolerance.
     fn drive(
@@ -648,40 +648,5 @@ mod tests {
         }
         println!("ccd: drift of rotated joints from FK after 1000 chained sweeps: {worst:e}");
         assert!(worst <= 1e-10 * chain.max_reach(), "{worst:e}");
-    }
-
-    /// Where the misses of [`success_rate_free_orientation`] and
-    /// [`success_rate_limited_orientation`] come from: with up to 50 000 sweeps, how many
-    /// converge late and how close the rest are. Slow in debug builds: run with
-    /// `cargo test --release -p ikarus --lib ccd::tests::late_convergence -- --ignored --nocapture`.
-    #[test]
-    #[ignore]
-    fn late_convergence() {
-        let opts = SolveOptions::default();
-        for (n, limited) in [(3, false), (7, false), (3, true)] {
-            let mut rng = SplitMix64(100 + n as u64);
-            let mut counts = [0usize; 6];
-            for _ in 0..200 {
-                let chain = random_chain(&mut rng, n, limited);
-                let goal = random_goal(&mut rng, &chain, true);
-                let start = random_pose(&mut rng, &chain);
-                let (angles, it, ok) = drive(&chain, &goal, &opts, true, &start, 50_000);
-                let c = cost(&chain, &goal, 1.0, &angles);
-                let bucket = match (ok, it, c) {
-                    (true, ..=2000, _) => 0,
-                    (true, ..=10_000, _) => 1,
-                    (true, ..) => 2,
-                    (false, _, ..1e-6) => 3,
-                    (false, _, ..1e-2) => 4,
-                    _ => 5,
-                };
-                counts[bucket] += 1;
-            }
-            println!(
-                "ccd n={n} limits={limited}, orientation goals: reached in ≤2000 sweeps {}, ≤10 000 {}, ≤50 000 {}; \
-                 missed with cost < 1e-6 {}, < 1e-2 {}, larger {}",
-                counts[0], counts[1], counts[2], counts[3], counts[4], counts[5]
-            );
-        }
     }
 }

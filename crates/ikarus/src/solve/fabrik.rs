@@ -141,10 +141,10 @@ mod tests {
     use super::*;
     use crate::angle::wrap_angle;
     use crate::chain::{Chain, Link};
-    use crate::goal::Goal;
-    use crate::solve::SolveOptions;
     use crate::closed_form;
+    use crate::goal::Goal;
     use crate::kinematics::{end_effector, joint_positions};
+    use crate::solve::SolveOptions;
 
     use crate::rng::SplitMix64;
     use crate::solve::test_support::{self, problem, random_chain, random_pose};

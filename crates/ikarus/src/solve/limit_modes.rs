@@ -14,11 +14,11 @@
 
 use nalgebra::Vector3;
 
+use super::LimitMode;
 use super::pinv;
 use super::problem::Problem;
 use super::solver::Scratch;
 use super::step::{Rule, gram, method_step};
-use super::LimitMode;
 use crate::chain::Chain;
 
 /// Per iteration, [`LimitMode::NullSpace`] asks each limited joint to cover this share of its
@@ -33,7 +33,14 @@ const NULLSPACE_FADE: f64 = 0.1;
 /// [`SolveOptions::max_step`](super::SolveOptions::max_step). `mu` is Levenberg–Marquardt's
 /// damping.
 #[inline]
-pub(super) fn compute_delta(p: &Problem, rule: Rule, e: &Vector3<f64>, mu: f64, angles: &[f64], s: &mut Scratch) -> f64 {
+pub(super) fn compute_delta(
+    p: &Problem,
+    rule: Rule,
+    e: &Vector3<f64>,
+    mu: f64,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> f64 {
     let (chain, opts, mode) = (p.chain, p.opts, p.mode);
     let n = chain.len();
     let oriented = p.goal.orientation().is_some();
@@ -110,7 +117,14 @@ fn weigh(chain: &Chain, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch) {
 /// see of it: `Δθ += z − Jᵀ (J Jᵀ)⁺ J z`, over the free (unlocked) joints. `plain` says whether
 /// this round's weighted Jacobian is `J` itself, `a` is its Gram matrix.
 #[inline]
-fn push_to_the_middle(p: &Problem, fade: f64, plain: bool, a: &nalgebra::Matrix3<f64>, angles: &[f64], s: &mut Scratch) {
+fn push_to_the_middle(
+    p: &Problem,
+    fade: f64,
+    plain: bool,
+    a: &nalgebra::Matrix3<f64>,
+    angles: &[f64],
+    s: &mut Scratch,
+) {
     let n = p.chain.len();
     let weighted = if plain { &s.jacobian } else { &s.weighted };
     let mut jz = Vector3::zeros();

@@ -26,7 +26,13 @@ struct Tally {
 /// Runs the first attempt and, when the options ask for them and the goal is not out of reach,
 /// the restarts; leaves the final outcome in `out` with the iterations of every attempt, the
 /// restart count and the final status.
-pub(super) fn solve_with_restarts(p: &Problem, start: &[f64], began: Option<Instant>, s: &mut Scratch, out: &mut Outcome) {
+pub(super) fn solve_with_restarts(
+    p: &Problem,
+    start: &[f64],
+    began: Option<Instant>,
+    s: &mut Scratch,
+    out: &mut Outcome,
+) {
     let (chain, goal, opts) = (p.chain, p.goal, p.opts);
     let status = attempt(p, start, s, out);
     let mut tally = Tally { status, iterations: out.iterations, restarts: 0 };

@@ -43,7 +43,8 @@ impl Scratch {
     fn fit(&mut self, n: usize) {
         self.joints.resize(n + 1, Point2::origin());
         self.trial_joints.resize(n + 1, Point2::origin());
-        for v in [&mut self.scale, &mut self.step, &mut self.delta, &mut self.trial, &mut self.best, &mut self.restart] {
+        for v in [&mut self.scale, &mut self.step, &mut self.delta, &mut self.trial, &mut self.best, &mut self.restart]
+        {
             v.resize(n, 0.0);
         }
         self.locked.resize(n, false);

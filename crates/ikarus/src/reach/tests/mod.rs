@@ -7,9 +7,9 @@ use std::f64::consts::{PI, TAU};
 use nalgebra::Point2;
 
 use super::region::Sector;
-use crate::angle::direction as dir;
 use super::sampling::{Plan, Range, Reduced, Segment, splitmix64};
 use super::{Annulus, Workspace, WorkspaceOptions, run, sample, sample_with_progress};
+use crate::angle::direction as dir;
 use crate::chain::{Chain, JointLimits, Link};
 use crate::kinematics::end_effector;
 
