@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use ikarus::kinematics::end_effector;
-use ikarus::{Chain, Goal, Link, Method, Outcome, SolveOptions, Solver, Status};
+use ikarus::{Chain, Goal, Method, Outcome, SolveOptions, Solver, Status};
 
 #[path = "../tests/common/mod.rs"]
 mod common;
