@@ -3,7 +3,7 @@
 
 use crate::names::{Named, by_name};
 
-/// The step rule of a solve. See the [module docs](self) for the formulas.
+/// The step rule of a solve. See the [module docs](super) for the formulas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum Method {
@@ -11,14 +11,14 @@ pub enum Method {
     Transpose,
     /// Jacobian pseudoinverse `Jᵀ (J Jᵀ)⁺`, via the eigen-decomposition of `J Jᵀ`.
     PseudoInverse,
-    /// Damped least squares `Jᵀ (J Jᵀ + λ² I)⁻¹`, λ = [`SolveOptions::lambda`].
+    /// Damped least squares `Jᵀ (J Jᵀ + λ² I)⁻¹`, λ = [`SolveOptions::lambda`](super::SolveOptions::lambda).
     DampedLeastSquares,
     /// Selectively damped least squares (Buss & Kim 2005): each singular direction's joint
     /// change is clamped by how far it can move the tip.
     SelectivelyDamped,
     /// Levenberg–Marquardt: damped least squares whose damping adapts to how well the
     /// linearisation predicted the last step (Nielsen's update), starting from
-    /// [`SolveOptions::lambda`]. The default: as fast as DLS on reachable goals, and it does
+    /// [`SolveOptions::lambda`](super::SolveOptions::lambda). The default: as fast as DLS on reachable goals, and it does
     /// not crawl near singular poses (goals at or beyond the reach).
     #[default]
     LevenbergMarquardt,
@@ -29,7 +29,7 @@ pub enum Method {
     /// with angular limits applied in the forward pass.
     Fabrik,
     /// Closed form, for two links with a position goal or three links with an orientation goal;
-    /// other shapes are a [`SolveError::NoClosedForm`].
+    /// other shapes are a [`SolveError::NoClosedForm`](super::SolveError::NoClosedForm).
     Analytic,
 }
 
