@@ -48,6 +48,7 @@ pub mod motion;
 pub mod names;
 pub mod reach;
 pub mod rng;
+mod settings;
 pub mod solve;
 
 pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
