@@ -5,21 +5,18 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::Goal;
+use ikarus::EaseKind;
 use ikarus::motion::{Animation, Timing};
 
 use crate::arm::Arm;
-use crate::ease_args::{EaseArg, EaseArgs};
+use crate::ease_args::EaseArgs;
 use crate::error::CliError;
-use crate::options::{SolverArgs, parse_angle, parse_at_least_one, parse_finite, parse_point};
+use crate::motion::{DEFAULT_FPS, MotionPlan, TimingProblem};
+use crate::options::{parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
-use crate::report::MotionRequest;
-
-/// Frames of a motion when neither --frames nor --duration is given.
-const DEFAULT_FRAMES: u32 = 60;
-/// GIF frame rate when --fps is not given.
-const DEFAULT_FPS: f64 = 30.0;
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
+use crate::report::AnimateJson;
+use crate::settings::{SolverSettings, command_options};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AnimateFormat {
@@ -45,7 +42,7 @@ pub struct AnimateArgs {
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
     #[command(flatten)]
-    pub solver: SolverArgs,
+    pub solver: SolverSettings,
     /// Number of frames of the motion [default: 60]
     #[arg(long, value_name = "N", value_parser = parse_at_least_one, conflicts_with = "duration")]
     pub frames: Option<u32>,
@@ -74,108 +71,69 @@ pub struct AnimateArgs {
 pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
     let timing = timing(args)?;
-    let ease = args.ease.resolve(EaseArg::Sine)?;
-    let fps = args.fps.unwrap_or(DEFAULT_FPS);
+    let ease = args.ease.resolve(EaseKind::Sine)?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
 
     // Solve for each via point, then the goal, each from the previous pose.
     let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
-    let options = args.solver.resolve(&arm.solver, record)?;
-    let mut goals: Vec<Goal> = Vec::with_capacity(args.via.len() + 1);
-    for (i, [x, y]) in args.via.iter().enumerate() {
-        goals.push(Goal::position(*x, *y).map_err(|e| CliError::input(format!("--via #{}: {e}", i + 1)))?);
-    }
+    let options = command_options(&args.solver, &arm, record)?;
     let [x, y] = args.goal;
-    goals.push(crate::solve::make_goal(x, y, args.goal_angle).map_err(CliError::input)?);
-    let motion = MotionRequest {
-        arm: &arm,
-        start: arm.chain.start_pose().angles().to_vec(),
-        goals: goals.clone(),
-        options,
-        timing,
-        ease,
-        from_solve: args.from_solve,
-    }
-    .run()?;
-    for s in &motion.solves {
-        if s.status != ikarus::Status::Reached.as_str() {
+    let goal = crate::solve::make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
+    let goals =
+        crate::motion::goals(&args.via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
+    let start = arm.chain.start_pose().angles().to_vec();
+    let from_solve = args.from_solve;
+    let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, from_solve }.run()?;
+    for s in &motion.motion.solves {
+        if s.status != ikarus::Status::Reached {
+            let target = s.goal.target();
             eprintln!(
                 "ikarus: goal ({}, {}) not reached: {}, error {:.3e}; the motion ends at the best pose found",
-                s.goal[0], s.goal[1], s.status, s.error
+                target.x, target.y, s.status, s.error
             );
         }
     }
-    let animation = &motion.animation;
+    let animation = &motion.motion.animation;
 
     if let Some(out) = picture {
-        let goal = goals.last().map(Goal::target);
-        let caption = motion.caption();
-        let bytes = match out.format {
-            PictureFormat::Gif => {
-                let overlay = ikarus_render::Overlay {
-                    goal,
-                    workspace: None,
-                    show_reach: true,
-                    caption: Some(caption),
-                    trail: true,
-                };
-                let bar = progress_bar(animation.frames.len() as u64, "rendering frames");
-                let report = |done: usize, total: usize| {
-                    if let Some(bar) = &bar {
-                        bar.set_length(total as u64);
-                        bar.set_position(done as u64);
-                    }
-                };
-                let (w, h) = (args.picture.width, args.picture.height);
-                let gif = ikarus_render::animation_gif(&arm.chain, animation, &overlay, w, h, fps, &report)
-                    .map_err(|e| render_failed(&e))?;
-                if let Some(bar) = bar {
-                    bar.finish_and_clear();
-                }
-                gif
-            }
-            format => {
-                let figure = ikarus_render::ArmFigure {
-                    goal,
-                    caption: Some(caption),
-                    ..ikarus_render::ArmFigure::of_animation(&arm.chain, animation)
-                };
-                let svg = ikarus_render::arm_svg(&figure, args.picture.width, args.picture.height)
-                    .map_err(|e| render_failed(&e))?;
-                if format == PictureFormat::Png {
-                    ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e))?
-                } else {
-                    svg.into_bytes()
-                }
+        let drawing = Drawing::Motion {
+            chain: &arm.chain,
+            animation,
+            goal: Some(goal.target()),
+            caption: motion.caption(),
+            fps: args.fps.unwrap_or(DEFAULT_FPS),
+        };
+        let bar = (out.format == PictureFormat::Gif)
+            .then(|| progress_bar(animation.frames.len() as u64, "rendering frames"))
+            .flatten();
+        let report = |done: usize, total: usize| {
+            if let Some(bar) = &bar {
+                bar.set_length(total as u64);
+                bar.set_position(done as u64);
             }
         };
+        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &report)?;
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
         out.commit(&bytes)?;
     }
 
     output::stdout(|w| match args.format {
         AnimateFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, &motion.json(&arm))?;
+            serde_json::to_writer_pretty(&mut *w, &AnimateJson::new(&arm, &motion.motion))?;
             writeln!(w)
         }
         AnimateFormat::Csv => csv(w, animation, arm.chain.len()),
     })
 }
 
+/// The timing the flags ask for ([`crate::motion::timing`]).
 fn timing(args: &AnimateArgs) -> Result<Timing, CliError> {
-    if let Some(fps) = args.fps {
-        if !(fps > 0.0 && fps <= 100.0) {
-            return Err(CliError::input(format!("--fps {fps}: must be greater than 0 and at most 100")));
-        }
-    }
-    match (args.frames, args.duration) {
-        (Some(n), _) if n < 2 => Err(CliError::input(format!("--frames {n}: a motion needs at least 2 frames"))),
-        (Some(n), _) => Ok(Timing::Frames(n as usize)),
-        (None, Some(seconds)) if seconds <= 0.0 => {
-            Err(CliError::input(format!("--duration {seconds}: must be greater than 0")))
-        }
-        (None, Some(seconds)) => Ok(Timing::Duration { seconds, fps: args.fps.unwrap_or(DEFAULT_FPS) }),
-        (None, None) => Ok(Timing::Frames(DEFAULT_FRAMES as usize)),
-    }
+    crate::motion::timing(args.frames, args.duration, args.fps).map_err(|p| match p {
+        TimingProblem::Value { field, value, message } => CliError::input(format!("--{field} {value}: {message}")),
+        TimingProblem::Both => CliError::input("--frames, --duration: give one or the other, not both"),
+    })
 }
 
 fn csv(w: &mut dyn Write, animation: &Animation, n: usize) -> std::io::Result<()> {

@@ -19,7 +19,7 @@ use ikarus::{Chain, ChainError, JointLimits, Link};
 use serde::Deserialize;
 
 use crate::error::CliError;
-use crate::options::MethodArg;
+use crate::settings::SolverSettings;
 
 /// The built-in default arm: the seed program's, shipped as `examples/arms/seed.toml`.
 pub const DEFAULT_ARM: &str = include_str!("../../../examples/arms/seed.toml");
@@ -37,9 +37,9 @@ pub struct ArmFile {
     /// Links, base to tip.
     #[serde(default)]
     pub links: Vec<LinkFile>,
-    /// Solver defaults.
+    /// Solver defaults: the `[solver]` table, which flags override. Field names match the flags.
     #[serde(default)]
-    pub solver: SolverTable,
+    pub solver: SolverSettings,
 }
 
 /// One `[[links]]` entry.
@@ -56,36 +56,12 @@ pub struct LinkFile {
     pub limits_deg: Option<[f64; 2]>,
 }
 
-/// The optional `[solver]` table: defaults that flags override. Field names match the flags.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolverTable {
-    pub method: Option<MethodArg>,
-    pub lambda: Option<f64>,
-    pub tolerance: Option<f64>,
-    pub angle_tolerance_deg: Option<f64>,
-    pub max_iterations: Option<u32>,
-    pub record_every: Option<u32>,
-    pub gain: Option<f64>,
-    pub rates: Option<Vec<f64>>,
-    pub max_step_deg: Option<f64>,
-    pub backtrack: Option<u32>,
-    pub stall_window: Option<u32>,
-    pub stall_epsilon_deg: Option<f64>,
-    pub limits: Option<bool>,
-    pub limit_mode: Option<crate::options::LimitModeArg>,
-    pub restarts: Option<u32>,
-    pub restart_seed: Option<u64>,
-    pub time_budget_ms: Option<f64>,
-    pub no_closed_form: Option<bool>,
-}
-
 /// A loaded arm: the validated chain, its name, and the file's solver defaults.
 #[derive(Debug, Clone)]
 pub struct Arm {
     pub name: String,
     pub chain: Chain,
-    pub solver: SolverTable,
+    pub solver: SolverSettings,
 }
 
 impl Arm {
@@ -160,47 +136,6 @@ fn limits_problem(lo: f64, hi: f64) -> &'static str {
     if !lo.is_finite() || !hi.is_finite() { "both ends must be finite numbers" } else { "min must not exceed max" }
 }
 
-impl SolverTable {
-    /// Range checks, naming the field; the caller prefixes `[solver].`.
-    pub fn check(&self) -> Result<(), String> {
-        use crate::options::{at_least_one, non_negative, positive};
-        let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
-        if let Some(v) = self.lambda {
-            field("lambda", non_negative(v))?;
-        }
-        if let Some(v) = self.tolerance {
-            field("tolerance", positive(v))?;
-        }
-        if let Some(v) = self.angle_tolerance_deg {
-            field("angle_tolerance_deg", positive(v))?;
-        }
-        if let Some(v) = self.gain {
-            field("gain", positive(v))?;
-        }
-        if let Some(v) = self.max_step_deg {
-            field("max_step_deg", non_negative(v))?;
-        }
-        if let Some(v) = self.stall_epsilon_deg {
-            field("stall_epsilon_deg", non_negative(v))?;
-        }
-        if let Some(v) = self.time_budget_ms {
-            field("time_budget_ms", positive(v))?;
-        }
-        if let Some(v) = self.record_every {
-            at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
-        }
-        if let Some(v) = self.stall_window {
-            at_least_one(v).map_err(|m| format!("stall_window = {m}"))?;
-        }
-        if let Some(rates) = &self.rates {
-            for (i, &r) in rates.iter().enumerate() {
-                field(&format!("rates[{i}]"), non_negative(r))?;
-            }
-        }
-        Ok(())
-    }
-}
-
 /// One line for a TOML error: position and message, without the source excerpt.
 fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
     let msg = e.message().trim().replace('\n', " ");
@@ -212,32 +147,6 @@ fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
             format!("{label}: line {line}, column {col}: {msg}")
         }
         None => format!("{label}: {msg}"),
-    }
-}
-
-impl SolverTable {
-    /// This table's values, falling back to `base` for each one it leaves out.
-    pub fn over(&self, base: &SolverTable) -> SolverTable {
-        SolverTable {
-            method: self.method.or(base.method),
-            lambda: self.lambda.or(base.lambda),
-            tolerance: self.tolerance.or(base.tolerance),
-            angle_tolerance_deg: self.angle_tolerance_deg.or(base.angle_tolerance_deg),
-            max_iterations: self.max_iterations.or(base.max_iterations),
-            record_every: self.record_every.or(base.record_every),
-            gain: self.gain.or(base.gain),
-            rates: self.rates.clone().or_else(|| base.rates.clone()),
-            max_step_deg: self.max_step_deg.or(base.max_step_deg),
-            backtrack: self.backtrack.or(base.backtrack),
-            stall_window: self.stall_window.or(base.stall_window),
-            stall_epsilon_deg: self.stall_epsilon_deg.or(base.stall_epsilon_deg),
-            limits: self.limits.or(base.limits),
-            limit_mode: self.limit_mode.or(base.limit_mode),
-            restarts: self.restarts.or(base.restarts),
-            restart_seed: self.restart_seed.or(base.restart_seed),
-            time_budget_ms: self.time_budget_ms.or(base.time_budget_ms),
-            no_closed_form: self.no_closed_form.or(base.no_closed_form),
-        }
     }
 }
 

@@ -1,34 +1,16 @@
 //! `--ease`, `--k1`, `--k2`: choosing an ease curve at the edge.
 
-use clap::{Args, ValueEnum};
-use ikarus::Ease;
+use clap::Args;
+use ikarus::{Ease, EaseKind};
 
 use crate::error::CliError;
-use crate::options::parse_finite;
-
-/// Ease curves, as named at the edges.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum EaseArg {
-    /// Constant speed
-    Linear,
-    /// Sine ease-in/ease-out
-    Sine,
-    /// Parent's sine ease with a constant-speed middle between --k1 and --k2
-    Parent,
-    /// Cubic smoothstep
-    Smoothstep,
-}
-
-/// Defaults of Parent's ease: the seed report's Figures 13 and 14 used 0.3 and 0.7.
-pub const DEFAULT_K1: f64 = 0.3;
-pub const DEFAULT_K2: f64 = 0.7;
+use crate::options::{named, parse_finite};
 
 #[derive(Debug, Clone, Args)]
 pub struct EaseArgs {
     /// Ease curve of the motion [default: sine; parent when --k1 or --k2 is given]
-    #[arg(long, value_enum)]
-    pub ease: Option<EaseArg>,
+    #[arg(long, value_parser = named::<EaseKind>())]
+    pub ease: Option<EaseKind>,
     /// Parent's ease: end of the acceleration, in [0, 1] [default: 0.3]
     #[arg(long, value_parser = parse_finite, value_name = "A")]
     pub k1: Option<f64>,
@@ -48,31 +30,24 @@ pub enum EaseProblem {
 
 /// The one rule for choosing an ease, shared by the flags and the API: the named `kind`, else
 /// Parent's when k1 or k2 is given, else `default`; k1/k2 belong to Parent's alone and default
-/// to [`DEFAULT_K1`] and [`DEFAULT_K2`].
+/// to [`ikarus::ease::DEFAULT_K1`] and [`ikarus::ease::DEFAULT_K2`].
 pub fn choose_ease(
-    kind: Option<EaseArg>,
+    kind: Option<EaseKind>,
     k1: Option<f64>,
     k2: Option<f64>,
-    default: EaseArg,
+    default: EaseKind,
 ) -> Result<Ease, EaseProblem> {
     let has_k = k1.is_some() || k2.is_some();
-    let kind = kind.unwrap_or(if has_k { EaseArg::Parent } else { default });
-    if has_k && kind != EaseArg::Parent {
+    let kind = kind.unwrap_or(if has_k { EaseKind::Parent } else { default });
+    if has_k && kind != EaseKind::Parent {
         return Err(EaseProblem::KWithoutParent { k1: k1.is_some() });
     }
-    Ok(match kind {
-        EaseArg::Linear => Ease::Linear,
-        EaseArg::Sine => Ease::Sine,
-        EaseArg::Smoothstep => Ease::Smoothstep,
-        EaseArg::Parent => {
-            Ease::parent(k1.unwrap_or(DEFAULT_K1), k2.unwrap_or(DEFAULT_K2)).map_err(EaseProblem::Invalid)?
-        }
-    })
+    kind.ease(k1, k2).map_err(EaseProblem::Invalid)
 }
 
 impl EaseArgs {
     /// The ease the flags ask for; `default` when none is named.
-    pub fn resolve(&self, default: EaseArg) -> Result<Ease, CliError> {
+    pub fn resolve(&self, default: EaseKind) -> Result<Ease, CliError> {
         choose_ease(self.ease, self.k1, self.k2, default).map_err(|p| match p {
             EaseProblem::KWithoutParent { k1 } => {
                 let flag = if k1 { "--k1" } else { "--k2" };

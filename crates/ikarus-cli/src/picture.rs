@@ -1,21 +1,108 @@
-//! Picture outputs shared by the commands: the format from the file name, the size flags,
-//! a progress bar for slow renders, and writing the file whole or not at all.
+//! Pictures, shared by the commands and the API: what to draw ([`Drawing`]) and the one path
+//! that draws it ([`draw`]); for the commands also the format from the file name, the size
+//! flags, a progress bar for slow renders, and writing the file whole or not at all.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use ikarus::motion::Animation;
+use ikarus::reach::Workspace;
+use ikarus::{Chain, Ease, Point2};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Deserialize;
 
+use crate::arm::Arm;
 use crate::error::CliError;
 use crate::output::PendingFile;
 
-/// What a picture file holds, from its extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What a picture holds: from a file's extension, or a request's `format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum PictureFormat {
-    Svg,
     Png,
+    Svg,
     Gif,
+}
+
+impl PictureFormat {
+    /// The media type of the bytes.
+    pub fn content_type(self) -> &'static str {
+        match self {
+            PictureFormat::Png => "image/png",
+            PictureFormat::Svg => "image/svg+xml",
+            PictureFormat::Gif => "image/gif",
+        }
+    }
+}
+
+/// What to draw.
+pub enum Drawing<'a> {
+    /// An arm in one pose, with an optional goal, shaded workspace and caption.
+    Arm {
+        chain: &'a Chain,
+        pose: &'a [f64],
+        goal: Option<Point2<f64>>,
+        workspace: Option<&'a Workspace>,
+        caption: Option<String>,
+    },
+    /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`.
+    Motion { chain: &'a Chain, animation: &'a Animation, goal: Option<Point2<f64>>, caption: String, fps: f64 },
+    /// An ease curve's position and velocity.
+    Ease(Ease),
+}
+
+/// Draws `drawing` as `format`, `width` × `height` pixels; `progress(done, total)` hears about
+/// the frames of a GIF. Only a motion animates: a GIF of anything else is the caller's bug.
+pub fn draw(
+    drawing: &Drawing<'_>,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Vec<u8>, CliError> {
+    let svg = match drawing {
+        Drawing::Motion { chain, animation, goal, caption, fps } if format == PictureFormat::Gif => {
+            let overlay = ikarus_render::Overlay {
+                goal: *goal,
+                workspace: None,
+                show_reach: true,
+                caption: Some(caption.clone()),
+                trail: true,
+            };
+            return ikarus_render::animation_gif(chain, animation, &overlay, width, height, *fps, progress)
+                .map_err(|e| render_failed(&e));
+        }
+        Drawing::Motion { chain, animation, goal, caption, .. } => {
+            let figure = ikarus_render::ArmFigure {
+                goal: *goal,
+                caption: Some(caption.clone()),
+                ..ikarus_render::ArmFigure::of_animation(chain, animation)
+            };
+            ikarus_render::arm_svg(&figure, width, height)
+        }
+        Drawing::Arm { chain, pose, goal, workspace, caption } => {
+            let figure = ikarus_render::ArmFigure {
+                goal: *goal,
+                workspace: *workspace,
+                caption: caption.clone(),
+                ..ikarus_render::ArmFigure::new(chain, pose)
+            };
+            ikarus_render::arm_svg(&figure, width, height)
+        }
+        Drawing::Ease(ease) => ikarus_render::ease_svg(ease, width, height),
+    }
+    .map_err(|e| render_failed(&e))?;
+    match format {
+        PictureFormat::Png => ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e)),
+        PictureFormat::Svg | PictureFormat::Gif => Ok(svg.into_bytes()),
+    }
+}
+
+/// The one-line caption of a workspace picture.
+pub fn workspace_caption(arm: &Arm, ws: &Workspace) -> String {
+    let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
+    format!("{} · {limits} · reachable area {:.2} of {:.2}", arm.name, ws.area(), ws.annulus().area())
 }
 
 /// `--out` and the picture size.

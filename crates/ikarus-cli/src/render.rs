@@ -2,9 +2,11 @@
 
 use clap::{Args, Subcommand};
 
-use crate::ease_args::{EaseArg, EaseArgs};
+use ikarus::EaseKind;
+
+use crate::ease_args::EaseArgs;
 use crate::error::CliError;
-use crate::picture::{PictureArgs, PictureFormat, render_failed};
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw};
 
 #[derive(Debug, Subcommand)]
 pub enum RenderCommand {
@@ -26,14 +28,9 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
             if args.picture.out.is_none() {
                 return Err(CliError::input("--out: required: the file to draw to (.svg or .png)"));
             }
-            let ease = args.ease.resolve(EaseArg::Parent)?;
+            let ease = args.ease.resolve(EaseKind::Parent)?;
             let out = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?.expect("--out is set");
-            let svg = ikarus_render::ease_svg(&ease, args.picture.width, args.picture.height)
-                .map_err(|e| render_failed(&e))?;
-            let bytes = match out.format {
-                PictureFormat::Png => ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e))?,
-                _ => svg.into_bytes(),
-            };
+            let bytes = draw(&Drawing::Ease(ease), out.format, args.picture.width, args.picture.height, &|_, _| {})?;
             out.commit(&bytes)
         }
     }

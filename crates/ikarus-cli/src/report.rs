@@ -1,14 +1,13 @@
-//! The JSON objects that `ikarus solve`, `ikarus animate` and `ikarus workspace` print, and
-//! the work behind the last two, shared by the command line and `ikarus serve` so that both
-//! answer with the same shapes (degrees at the edge, names matching the arm files).
+//! The JSON objects that `ikarus solve`, `ikarus animate` and `ikarus workspace` print, shared
+//! by the command line and `ikarus serve` so that both answer with the same shapes (degrees at
+//! the edge, names matching the arm files). Shapes only: the work is done elsewhere.
 
-use ikarus::motion::{Animation, Timing};
+use ikarus::motion::GoalMotion;
 use ikarus::reach::Workspace;
-use ikarus::{Chain, Ease, Goal, Outcome, SolveOptions, Solver};
+use ikarus::{Goal, Outcome, SolveOptions};
 use serde::Serialize;
 
 use crate::arm::Arm;
-use crate::error::CliError;
 
 #[derive(Serialize)]
 pub struct GoalJson {
@@ -106,18 +105,6 @@ impl<'a> SolveReport<'a> {
     }
 }
 
-/// Builds the solver, checking what depends on the chain (one rate per joint).
-pub fn solver_for(chain: &Chain, options: SolveOptions) -> Result<Solver, CliError> {
-    if !options.rates.is_empty() && options.rates.len() != chain.len() {
-        return Err(CliError::input(format!(
-            "--rates: expected {} values (one per joint), got {}",
-            chain.len(),
-            options.rates.len()
-        )));
-    }
-    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
-}
-
 /// One goal of a motion: where it was, and how its solve ended.
 #[derive(Serialize)]
 pub struct MotionSolveJson {
@@ -144,97 +131,33 @@ pub struct AnimateJson<'a> {
     pub frames: Vec<MotionFrameJson>,
 }
 
-/// What a motion request asks for once its values are checked.
-pub struct MotionRequest<'a> {
-    pub arm: &'a Arm,
-    /// The pose the motion starts from, radians.
-    pub start: Vec<f64>,
-    /// Via points, then the final goal.
-    pub goals: Vec<Goal>,
-    pub options: SolveOptions,
-    pub timing: Timing,
-    pub ease: Ease,
-    /// Follow the solver's recorded path instead of moving straight between solved poses.
-    pub from_solve: bool,
-}
-
-/// A computed motion.
-pub struct Motion {
-    pub solver: Solver,
-    pub animation: Animation,
-    pub solves: Vec<MotionSolveJson>,
-}
-
-impl MotionRequest<'_> {
-    /// Solves for each via point, then the goal, each from the previous pose, and eases the
-    /// poses into a motion.
-    pub fn run(self) -> Result<Motion, CliError> {
-        let arm = self.arm;
-        let mut solver = solver_for(&arm.chain, self.options)?;
-        let mut keyframes = vec![self.start];
-        let mut path: Vec<Vec<f64>> = vec![keyframes[0].clone()];
-        let mut solves = Vec::with_capacity(self.goals.len());
-        for goal in &self.goals {
-            let start = keyframes.last().expect("the start pose is a keyframe").clone();
-            let mut outcome = Outcome::default();
-            solver.solve_into(&arm.chain, &start, goal, &mut outcome).map_err(|e| CliError::input(e.to_string()))?;
-            let target = goal.target();
-            // The solver's recorded path, without repeating the pose it started from.
-            path.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
-            keyframes.push(outcome.pose.angles().to_vec());
-            solves.push(MotionSolveJson {
-                goal: [target.x, target.y],
-                status: outcome.status.as_str(),
-                iterations: outcome.iterations,
-                error: outcome.error,
-            });
-        }
-        let poses = if self.from_solve { &path } else { &keyframes };
-        // The motion obeys the same limits as the solve: without limits every joint is free.
-        let motion_chain = match solver.options().limits {
-            ikarus::LimitMode::Ignore => arm.chain.without_limits(),
-            _ => arm.chain.clone(),
-        };
-        let animation = ikarus::motion::animate(&motion_chain, poses, None, self.timing, self.ease)
-            .map_err(|e| CliError::input(e.to_string()))?;
-        Ok(Motion { solver, animation, solves })
-    }
-}
-
-impl Motion {
-    /// The JSON object of the motion.
-    pub fn json<'a>(&'a self, arm: &'a Arm) -> AnimateJson<'a> {
+impl<'a> AnimateJson<'a> {
+    /// The JSON object of a motion of `arm`.
+    pub fn new(arm: &'a Arm, motion: &GoalMotion) -> Self {
         AnimateJson {
             arm: &arm.name,
-            ease: self.animation.ease.name(),
-            duration: self.animation.duration,
-            solves: self
+            ease: motion.animation.ease.name(),
+            duration: motion.animation.duration,
+            solves: motion
                 .solves
                 .iter()
-                .map(|s| MotionSolveJson { goal: s.goal, status: s.status, iterations: s.iterations, error: s.error })
+                .map(|s| {
+                    let target = s.goal.target();
+                    MotionSolveJson {
+                        goal: [target.x, target.y],
+                        status: s.status.as_str(),
+                        iterations: s.iterations,
+                        error: s.error,
+                    }
+                })
                 .collect(),
-            frames: self
+            frames: motion
                 .animation
                 .frames
                 .iter()
                 .map(|f| MotionFrameJson { time: f.time, angles_deg: degrees(&f.angles), joints: points(&f.joints) })
                 .collect(),
         }
-    }
-
-    /// The one-line caption of the motion's pictures.
-    pub fn caption(&self) -> String {
-        let last = self.solves.last().expect("at least the goal was solved");
-        let iterations: u32 = self.solves.iter().map(|s| s.iterations).sum();
-        format!(
-            "{} · {} · {} iterations · error {:.1e} · {} frames, {} ease",
-            self.solver.options().method.name(),
-            last.status,
-            iterations,
-            last.error,
-            self.animation.frames.len(),
-            self.animation.ease.name()
-        )
     }
 }
 
@@ -276,10 +199,4 @@ fn grid_rows(ws: &Workspace) -> Vec<String> {
     (0..ws.resolution())
         .map(|iy| (0..ws.resolution()).map(|ix| if ws.is_occupied(ix, iy) { '1' } else { '0' }).collect())
         .collect()
-}
-
-/// The one-line caption of a workspace picture.
-pub fn workspace_caption(arm: &Arm, ws: &Workspace) -> String {
-    let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
-    format!("{} · {limits} · reachable area {:.2} of {:.2}", arm.name, ws.area(), ws.annulus().area())
 }

@@ -4,12 +4,12 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::reach::{Annulus, Workspace, WorkspaceOptions};
+use ikarus::reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 
 use crate::arm::Arm;
 use crate::error::CliError;
-use crate::options::{limits_enforced, parse_at_least_one};
-use crate::picture::{PictureArgs, PictureFormat, progress_bar, render_failed};
+use crate::options::parse_at_least_one;
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar, workspace_caption};
 use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -48,18 +48,45 @@ pub struct WorkspaceArgs {
     pub picture: PictureArgs,
 }
 
+/// What a workspace request asks for, from the flags or the API: `limits` over the arm file's
+/// `[solver] limits` (off when neither says), and the sampling.
+pub struct WorkspaceRequest {
+    pub limits: Option<bool>,
+    pub resolution: u32,
+    pub samples: Option<u32>,
+    pub seed: u64,
+}
+
+impl WorkspaceRequest {
+    /// Whether `arm`'s joint ranges are respected.
+    pub fn limits(&self, arm: &Arm) -> bool {
+        self.limits.or(arm.solver.limits).unwrap_or(false)
+    }
+
+    /// Samples `arm`'s workspace, telling `progress(done, total)` how far it got.
+    pub fn sample(&self, arm: &Arm, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<Workspace, ReachError> {
+        let options = WorkspaceOptions {
+            resolution: self.resolution,
+            limits: self.limits(arm),
+            samples: self.samples.map(u64::from),
+            seed: self.seed,
+            ..WorkspaceOptions::default()
+        };
+        ikarus::reach::sample_with_progress(&arm.chain, &options, progress)
+    }
+}
+
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
-    let limits = limits_enforced(args.limits, args.no_limits, &arm.solver);
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
-    let defaults = WorkspaceOptions::default();
-    let options = WorkspaceOptions {
-        resolution: args.resolution,
-        limits,
-        samples: args.samples.map(u64::from),
-        seed: args.seed,
-        ..defaults
+    let flags = match (args.limits, args.no_limits) {
+        (true, _) => Some(true),
+        (false, true) => Some(false),
+        (false, false) => None,
     };
+    let request =
+        WorkspaceRequest { limits: flags, resolution: args.resolution, samples: args.samples, seed: args.seed };
+    let limits = request.limits(&arm);
 
     let bar = progress_bar(100, "sampling the workspace");
     let report = |done: u64, total: u64| {
@@ -68,26 +95,20 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
             bar.set_position(done);
         }
     };
-    let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &report)
-        .map_err(|e| CliError::input(format!("--{e}")))?;
+    let workspace = request.sample(&arm, &report).map_err(|e| CliError::input(format!("--{e}")))?;
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
 
     if let Some(out) = picture {
-        let caption = report::workspace_caption(&arm, &workspace);
-        let pose = arm.chain.start_pose().angles();
-        let figure = ikarus_render::ArmFigure {
+        let drawing = Drawing::Arm {
+            chain: &arm.chain,
+            pose: arm.chain.start_pose().angles(),
+            goal: None,
             workspace: Some(&workspace),
-            caption: Some(caption),
-            ..ikarus_render::ArmFigure::new(&arm.chain, pose)
+            caption: Some(workspace_caption(&arm, &workspace)),
         };
-        let svg =
-            ikarus_render::arm_svg(&figure, args.picture.width, args.picture.height).map_err(|e| render_failed(&e))?;
-        let bytes = match out.format {
-            PictureFormat::Png => ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e))?,
-            _ => svg.into_bytes(),
-        };
+        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &|_, _| {})?;
         out.commit(&bytes)?;
     }
 

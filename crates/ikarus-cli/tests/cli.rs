@@ -360,3 +360,70 @@ fn bad_solver_flags_name_the_flag() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// A goal `method` reaches, and the arm file (none: the seed arm) on which it applies: the
+/// closed form needs two links for a position goal.
+fn reachable_case(method: ikarus::Method, dir: &Path) -> (Vec<String>, &'static str) {
+    let mut args: Vec<String> = vec!["solve".into(), "--method".into(), method.name().into()];
+    let goal = if method == ikarus::Method::Analytic {
+        let arm = write(dir, "two.toml", "[[links]]\nlength = 3\n[[links]]\nlength = 2\nangle_deg = 30\n");
+        args.extend(["--arm".into(), arm]);
+        "1,3"
+    } else {
+        args.extend(["--max-iterations".into(), "5000".into()]);
+        "2,3"
+    };
+    args.extend(["--goal".into(), goal.into()]);
+    (args, goal)
+}
+
+/// Every method the library has solves through the command line, named by the library's table.
+#[test]
+fn every_library_method_solves_through_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    for &method in ikarus::Method::ALL.iter() {
+        let (args, goal) = reachable_case(method, dir.path());
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v = json(&args);
+        assert_eq!(v["method"], method.name());
+        assert_eq!(v["status"], "reached", "{method} to {goal}: {v}");
+    }
+}
+
+/// Every limit mode works where the method supports it (and is the mode reported); an
+/// unsupported pair is refused with one line naming both, from a flag or an arm file alike.
+#[test]
+fn every_library_limit_mode_and_unsupported_pairs() {
+    for &mode in ikarus::LimitMode::ALL.iter() {
+        let v = json(&["solve", "--goal", "0,-4", "--limit-mode", mode.name()]);
+        assert_eq!(v["limit_mode"], mode.name());
+        assert_eq!(v["limits"], mode != ikarus::LimitMode::Ignore);
+        assert_eq!(v["status"], "reached", "{mode}: {v}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    for &method in ikarus::Method::ALL.iter() {
+        if method == ikarus::Method::Analytic {
+            continue; // supports every mode; needs its own arm (above)
+        }
+        // With --limits and no mode, the method's default mode.
+        let v = json(&["solve", "--goal", "0,-4", "--method", method.name(), "--limits", "--restarts", "0"]);
+        assert_eq!(v["limit_mode"], method.default_limit_mode().name(), "{method}");
+        for &mode in ikarus::LimitMode::ALL.iter() {
+            let flags = ["solve", "--goal", "0,-4", "--method", method.name(), "--limit-mode", mode.name()];
+            let table = format!(
+                "[[links]]\nlength = 3\n[[links]]\nlength = 2\n[[links]]\nlength = 1\n[solver]\nmethod = \"{method}\"\nlimits = true\nlimit_mode = \"{mode}\"\n"
+            );
+            let arm = write(dir.path(), "arm.toml", &table);
+            let from_file = ["solve", "--goal", "0,-4", "--arm", arm.as_str()];
+            for args in [&flags[..], &from_file[..]] {
+                if method.supports(mode) {
+                    assert_eq!(json(args)["limit_mode"], mode.name(), "{args:?}");
+                } else {
+                    let e = fails(args, 2);
+                    let want = format!("--method {method}: does not support --limit-mode {mode}");
+                    assert!(e.contains(&want), "{args:?}: {e}");
+                }
+            }
+        }
+    }
+}

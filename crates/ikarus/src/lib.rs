@@ -54,6 +54,7 @@ pub mod motion;
 pub mod names;
 pub mod reach;
 pub mod rng;
+mod settings;
 pub mod solve;
 
 pub use bounds::Bounds;

@@ -1,7 +1,8 @@
 //! Keyframe motion in joint space, re-timed by an ease curve.
 //!
 //! [`animate`] turns keyframe poses into frames evenly spaced in time; [`animate_solve`] does the
-//! same with the frames a solver recorded. Interpolation happens in joint space, as in the seed
+//! same with the frames a solver recorded; [`through_goals`] solves for goals in order and
+//! animates the poses it found. Interpolation happens in joint space, as in the seed
 //! program: every angle moves linearly between keyframes, so the links sweep natural arcs
 //! (interpolating joint *positions* instead would cut corners and stretch the links).
 //!
@@ -71,6 +72,10 @@ use crate::chain::Chain;
 use crate::ease::Ease;
 use crate::kinematics::joint_positions;
 use crate::solve::Frames;
+
+mod through;
+
+pub use through::{GoalMotion, GoalMotionError, GoalOutcome, Route, through_goals};
 
 /// The largest number of frames an animation may have.
 pub const MAX_FRAMES: usize = 100_000;

@@ -6,6 +6,7 @@
 mod api;
 mod errors;
 mod meta;
+mod requests;
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;

@@ -1,0 +1,128 @@
+//! The motion workflow shared by `ikarus animate` and `POST /api/animate` / `/api/render`:
+//! the timing rules, via points into goals, and the library's motion through goals.
+
+use ikarus::motion::{GoalMotion, Route, Timing, through_goals};
+use ikarus::{Ease, Goal, GoalError, SolveOptions, Solver};
+
+use crate::arm::Arm;
+use crate::error::CliError;
+
+/// Frames of a motion when neither frames nor a duration is given.
+pub const DEFAULT_FRAMES: u32 = 60;
+/// Frame rate of a motion's duration and its GIF when none is given.
+pub const DEFAULT_FPS: f64 = 30.0;
+
+/// A timing value out of its rules; each edge words it with its own field names.
+#[derive(Debug)]
+pub enum TimingProblem {
+    /// `field` = `value` breaks the rule `message`.
+    Value { field: &'static str, value: String, message: &'static str },
+    /// Both frames and a duration were given.
+    Both,
+}
+
+/// The one rule for a motion's timing: `frames` (at least 2), or `duration` (> 0 seconds) at
+/// `fps` ([`DEFAULT_FPS`]), else [`DEFAULT_FRAMES`] frames; `fps` is in (0, 100].
+pub fn timing(frames: Option<u32>, duration: Option<f64>, fps: Option<f64>) -> Result<Timing, TimingProblem> {
+    if let Some(fps) = fps {
+        if !(fps > 0.0 && fps <= 100.0) {
+            let message = "must be greater than 0 and at most 100";
+            return Err(TimingProblem::Value { field: "fps", value: fps.to_string(), message });
+        }
+    }
+    match (frames, duration) {
+        (Some(_), Some(_)) => Err(TimingProblem::Both),
+        (Some(n), None) if n < 2 => Err(TimingProblem::Value {
+            field: "frames",
+            value: n.to_string(),
+            message: "a motion needs at least 2 frames",
+        }),
+        (Some(n), None) => Ok(Timing::Frames(n as usize)),
+        (None, Some(seconds)) if seconds <= 0.0 => Err(TimingProblem::Value {
+            field: "duration",
+            value: seconds.to_string(),
+            message: "must be greater than 0",
+        }),
+        (None, Some(seconds)) => Ok(Timing::Duration { seconds, fps: fps.unwrap_or(DEFAULT_FPS) }),
+        (None, None) => Ok(Timing::Frames(DEFAULT_FRAMES as usize)),
+    }
+}
+
+/// The goals of a motion: each via point (a position), then the final goal. A bad via point
+/// is reported with its index, from 0.
+pub fn goals(via: &[[f64; 2]], goal: Goal) -> Result<Vec<Goal>, (usize, GoalError)> {
+    let mut goals = Vec::with_capacity(via.len() + 1);
+    for (i, &[x, y]) in via.iter().enumerate() {
+        goals.push(Goal::position(x, y).map_err(|e| (i, e))?);
+    }
+    goals.push(goal);
+    Ok(goals)
+}
+
+/// What a motion request asks for once its values are checked.
+pub struct MotionPlan<'a> {
+    pub arm: &'a Arm,
+    /// The pose the motion starts from, radians.
+    pub start: Vec<f64>,
+    /// Via points, then the final goal.
+    pub goals: Vec<Goal>,
+    pub options: SolveOptions,
+    pub timing: Timing,
+    pub ease: Ease,
+    /// Follow the solver's recorded path instead of moving straight between solved poses.
+    pub from_solve: bool,
+}
+
+/// A computed motion, with the options it was solved with.
+pub struct Motion {
+    pub options: SolveOptions,
+    pub motion: GoalMotion,
+}
+
+impl MotionPlan<'_> {
+    /// Solves for each via point, then the goal, each from the previous pose, and eases the
+    /// poses into a motion ([`ikarus::motion::through_goals`]).
+    pub fn run(self) -> Result<Motion, CliError> {
+        let mut solver = Solver::new(self.options).map_err(|e| CliError::input(e.to_string()))?;
+        let route = if self.from_solve { Route::Recorded } else { Route::Keyframes };
+        let chain = &self.arm.chain;
+        let motion = through_goals(&mut solver, chain, &self.start, &self.goals, route, self.timing, self.ease)
+            .map_err(|e| CliError::input(e.to_string()))?;
+        Ok(Motion { options: solver.options().clone(), motion })
+    }
+}
+
+impl Motion {
+    /// The one-line caption of the motion's pictures.
+    pub fn caption(&self) -> String {
+        let solves = &self.motion.solves;
+        let animation = &self.motion.animation;
+        let last = solves.last().expect("at least the goal was solved");
+        let iterations: u32 = solves.iter().map(|s| s.iterations).sum();
+        format!(
+            "{} · {} · {} iterations · error {:.1e} · {} frames, {} ease",
+            self.options.method.name(),
+            last.status,
+            iterations,
+            last.error,
+            animation.frames.len(),
+            animation.ease.name()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timing_rules() {
+        assert_eq!(timing(None, None, None).unwrap(), Timing::Frames(60));
+        assert_eq!(timing(Some(5), None, Some(10.0)).unwrap(), Timing::Frames(5));
+        assert_eq!(timing(None, Some(2.0), None).unwrap(), Timing::Duration { seconds: 2.0, fps: 30.0 });
+        assert!(matches!(timing(Some(1), None, None), Err(TimingProblem::Value { field: "frames", .. })));
+        assert!(matches!(timing(None, Some(0.0), None), Err(TimingProblem::Value { field: "duration", .. })));
+        assert!(matches!(timing(None, None, Some(101.0)), Err(TimingProblem::Value { field: "fps", .. })));
+        assert!(matches!(timing(Some(3), Some(1.0), None), Err(TimingProblem::Both)));
+    }
+}

@@ -1,0 +1,259 @@
+//! The solver settings of the edges: one type for the flags, an arm file's `[solver]` table
+//! and the API's `options`, combined with [`SolverSettings::over`] and turned into the
+//! library's options with [`SolverSettings::to_options`].
+//!
+//! Precedence: flag, then the arm file's `[solver]` table, then the library default (the API:
+//! the request's `options`, then the arm's `solver` table, then the default).
+
+use clap::Args;
+use clap::builder::ArgPredicate;
+use ikarus::{Chain, LimitMode, Method, OptionsError, Restarts, SolveError, SolveOptions, Solver, StallDetection};
+use serde::Deserialize;
+
+use crate::arm::Arm;
+use crate::error::CliError;
+use crate::options::{named, parse_at_least_one, parse_non_negative, parse_positive};
+
+/// Solver settings; every one is optional and falls back on the next source. Field names are
+/// the arm files' and the API's, and the flags' with `-` for `_`.
+#[derive(Debug, Clone, Default, Args, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSettings {
+    /// Solver method [default: lm]
+    #[arg(long, value_parser = named::<Method>(), hide_possible_values = false)]
+    pub method: Option<Method>,
+    /// Damping λ of dls, and the starting damping of lm, ≥ 0, in length units [default: 0.1]
+    #[arg(long, value_parser = parse_non_negative)]
+    pub lambda: Option<f64>,
+    /// Distance to the goal that counts as reached, > 0 [default: 1e-6]
+    #[arg(long, value_parser = parse_positive)]
+    pub tolerance: Option<f64>,
+    /// With --goal-angle: orientation error that counts as reached, degrees, > 0 [default: 5.7e-5]
+    #[arg(long, value_parser = parse_positive, value_name = "DEG")]
+    pub angle_tolerance_deg: Option<f64>,
+    /// Iteration cap of one solve [default: 1000]
+    #[arg(long, value_name = "N")]
+    pub max_iterations: Option<u32>,
+    /// Record a frame every K iterations (a flag of each command, whose defaults differ)
+    #[arg(skip)]
+    pub record_every: Option<u32>,
+    /// Multiplier of every step, > 0 [default: 1]
+    #[arg(long, value_parser = parse_positive)]
+    pub gain: Option<f64>,
+    /// Per-joint step multipliers, one per joint (the seed's a,b,c) [default: all 1]
+    #[arg(long, value_name = "A,B,…", value_delimiter = ',', value_parser = parse_non_negative)]
+    pub rates: Option<Vec<f64>>,
+    /// Largest change of any joint angle in one iteration, degrees; 0 removes the cap
+    /// [default: 28.65 (0.5 rad)]
+    #[arg(long, value_parser = parse_non_negative, value_name = "DEG")]
+    pub max_step_deg: Option<f64>,
+    /// Halvings of a step that does not lower the error enough; 0 takes every step as computed
+    /// (the textbook iteration) [default: 10]
+    #[arg(long, value_name = "N")]
+    pub backtrack: Option<u32>,
+    /// Stop as stalled after this many iterations without movement [default: 10]
+    #[arg(long, value_parser = parse_at_least_one, value_name = "K")]
+    pub stall_window: Option<u32>,
+    /// Largest joint change, degrees, that counts as no movement [default: 5.7e-8]
+    #[arg(long, value_parser = parse_non_negative, value_name = "DEG")]
+    pub stall_epsilon_deg: Option<f64>,
+    /// Enforce the arm's joint ranges (the built-in arm's are the seed's), as --limit-mode says
+    #[arg(
+        long,
+        num_args = 0,
+        default_missing_value = "true",
+        overrides_with = "no_limits",
+        default_value_if("limit_mode", ArgPredicate::IsPresent, Some("true"))
+    )]
+    pub limits: Option<bool>,
+    /// Do not enforce joint ranges, even if the arm file's [solver] table asks to
+    #[arg(long, overrides_with = "limits")]
+    #[serde(skip)]
+    pub no_limits: bool,
+    /// How enforced ranges are handled; implies --limits [default: lock; clamp for ccd and fabrik]
+    #[arg(long, value_parser = named::<LimitMode>(), hide_possible_values = false, conflicts_with = "no_limits")]
+    pub limit_mode: Option<LimitMode>,
+    /// Restarts from other start poses when a solve stalls; 0 solves once [default: 16]
+    #[arg(long, value_name = "N")]
+    pub restarts: Option<u32>,
+    /// Seed of the restarts' start poses (the same seed gives the same result) [default: 0]
+    #[arg(long, value_name = "S")]
+    pub restart_seed: Option<u64>,
+    /// Start no restart after this many milliseconds of one solve; results then depend on the
+    /// machine's speed [default: none]
+    #[arg(long, value_parser = parse_positive, value_name = "MS")]
+    pub time_budget_ms: Option<f64>,
+    /// Iterate even where a closed form applies (2 links, or 3 links with --goal-angle)
+    #[arg(long, num_args = 0, default_missing_value = "true")]
+    pub no_closed_form: Option<bool>,
+}
+
+/// Why settings do not make options for a chain; each edge words it in its own field names.
+#[derive(Debug)]
+pub enum SettingsError {
+    /// The options are invalid on their own.
+    Options(OptionsError),
+    /// `rates` does not have one value per joint.
+    Rates { expected: usize, got: usize },
+    /// Limits are enforced in a mode the method does not support.
+    Unsupported { method: Method, mode: LimitMode },
+    /// Another mismatch between the options and the chain.
+    Chain(SolveError),
+}
+
+impl SettingsError {
+    /// The problem in one line, `field` naming a setting as this edge does (`--method`,
+    /// `options.method`).
+    pub fn describe(&self, field: impl Fn(&str) -> String) -> String {
+        match self {
+            Self::Options(e) => e.to_string(),
+            Self::Chain(e) => e.to_string(),
+            Self::Rates { expected, got } => {
+                format!("{}: expected {expected} values (one per joint), got {got}", field("rates"))
+            }
+            Self::Unsupported { method, mode } => {
+                let supported: Vec<&str> =
+                    LimitMode::ALL.iter().filter(|&&m| method.supports(m)).map(|m| m.name()).collect();
+                format!(
+                    "{} {method}: does not support {} {mode} (it supports {})",
+                    field("method"),
+                    field("limit_mode"),
+                    supported.join(", ")
+                )
+            }
+        }
+    }
+}
+
+impl SolverSettings {
+    /// These settings, falling back on `base` for each one they leave out. `--no-limits` counts
+    /// as `limits = false`.
+    #[must_use]
+    pub fn over(&self, base: &SolverSettings) -> SolverSettings {
+        SolverSettings {
+            method: self.method.or(base.method),
+            lambda: self.lambda.or(base.lambda),
+            tolerance: self.tolerance.or(base.tolerance),
+            angle_tolerance_deg: self.angle_tolerance_deg.or(base.angle_tolerance_deg),
+            max_iterations: self.max_iterations.or(base.max_iterations),
+            record_every: self.record_every.or(base.record_every),
+            gain: self.gain.or(base.gain),
+            rates: self.rates.clone().or_else(|| base.rates.clone()),
+            max_step_deg: self.max_step_deg.or(base.max_step_deg),
+            backtrack: self.backtrack.or(base.backtrack),
+            stall_window: self.stall_window.or(base.stall_window),
+            stall_epsilon_deg: self.stall_epsilon_deg.or(base.stall_epsilon_deg),
+            limits: if self.no_limits { Some(false) } else { self.limits.or(base.limits) },
+            no_limits: false,
+            limit_mode: self.limit_mode.or(base.limit_mode),
+            restarts: self.restarts.or(base.restarts),
+            restart_seed: self.restart_seed.or(base.restart_seed),
+            time_budget_ms: self.time_budget_ms.or(base.time_budget_ms),
+            no_closed_form: self.no_closed_form.or(base.no_closed_form),
+        }
+    }
+
+    /// The limit mode: [`LimitMode::Ignore`] unless limits are enforced, then the named mode,
+    /// else the method's default ([`Method::default_limit_mode`]). A mode the method does not
+    /// support is an error, whether a flag or a table named it.
+    pub fn limit_mode(&self, method: Method) -> Result<LimitMode, SettingsError> {
+        if self.limits != Some(true) {
+            return Ok(LimitMode::Ignore);
+        }
+        let mode = self.limit_mode.unwrap_or_else(|| method.default_limit_mode());
+        if method.supports(mode) { Ok(mode) } else { Err(SettingsError::Unsupported { method, mode }) }
+    }
+
+    /// The library's options for `chain`, over the defaults. `record_every` is passed in
+    /// because its default differs between commands.
+    pub fn to_options(&self, chain: &Chain, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
+        let d = SolveOptions::default();
+        let stall = d.stall.unwrap_or_default();
+        let stall = StallDetection {
+            window: self.stall_window.unwrap_or(stall.window),
+            epsilon: self.stall_epsilon_deg.map_or(stall.epsilon, f64::to_radians),
+        };
+        let attempts = self.restarts.unwrap_or(Restarts::default().attempts);
+        let restarts = (attempts > 0).then(|| Restarts {
+            attempts,
+            seed: self.restart_seed.unwrap_or(Restarts::default().seed),
+            time_budget: self.time_budget_ms.map(|ms| std::time::Duration::from_secs_f64(ms / 1000.0)),
+        });
+        let method = self.method.unwrap_or(d.method);
+        let options = SolveOptions {
+            method,
+            lambda: self.lambda.unwrap_or(d.lambda),
+            tolerance: self.tolerance.unwrap_or(d.tolerance),
+            angle_tolerance: self.angle_tolerance_deg.map_or(d.angle_tolerance, f64::to_radians),
+            max_iterations: self.max_iterations.unwrap_or(d.max_iterations),
+            gain: self.gain.unwrap_or(d.gain),
+            rates: self.rates.clone().unwrap_or_default(),
+            max_step: match self.max_step_deg {
+                None => d.max_step,
+                Some(0.0) => None,
+                Some(deg) => Some(deg.to_radians()),
+            },
+            backtrack: self.backtrack.unwrap_or(d.backtrack),
+            stall: Some(stall),
+            record_every,
+            limits: self.limit_mode(method)?,
+            restarts,
+            closed_form: self.no_closed_form != Some(true),
+            ..d
+        };
+        options.validate().map_err(SettingsError::Options)?;
+        options.validate_for(chain).map_err(|e| match e {
+            SolveError::RatesLength { expected, got } => SettingsError::Rates { expected, got },
+            other => SettingsError::Chain(other),
+        })?;
+        Ok(options)
+    }
+
+    /// Range checks of values that did not come through the flags' parsers, naming the field;
+    /// the caller prefixes `[solver].` or `options.`.
+    pub fn check(&self) -> Result<(), String> {
+        use crate::options::{at_least_one, non_negative, positive};
+        let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
+        type Rule = fn(f64) -> Result<f64, String>;
+        let checks: [(&str, Option<f64>, Rule); 7] = [
+            ("lambda", self.lambda, non_negative),
+            ("tolerance", self.tolerance, positive),
+            ("angle_tolerance_deg", self.angle_tolerance_deg, positive),
+            ("gain", self.gain, positive),
+            ("max_step_deg", self.max_step_deg, non_negative),
+            ("stall_epsilon_deg", self.stall_epsilon_deg, non_negative),
+            ("time_budget_ms", self.time_budget_ms, positive),
+        ];
+        for (name, value, rule) in checks {
+            if let Some(v) = value {
+                field(name, rule(v))?;
+            }
+        }
+        if let Some(v) = self.record_every {
+            at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
+        }
+        if let Some(v) = self.stall_window {
+            at_least_one(v).map_err(|m| format!("stall_window = {m}"))?;
+        }
+        if let Some(rates) = &self.rates {
+            for (i, &r) in rates.iter().enumerate() {
+                field(&format!("rates[{i}]"), non_negative(r))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The options of a command: `flags` over the arm file's `[solver]` table over the defaults,
+/// for the arm's chain; problems name the flags.
+pub fn command_options(flags: &SolverSettings, arm: &Arm, record_every: Option<u32>) -> Result<SolveOptions, CliError> {
+    flags
+        .over(&arm.solver)
+        .to_options(&arm.chain, record_every)
+        .map_err(|e| CliError::input(e.describe(|field| format!("--{}", field.replace('_', "-")))))
+}
+
+/// A solver for options already checked by [`SolverSettings::to_options`].
+pub fn solver(options: SolveOptions) -> Result<Solver, CliError> {
+    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
+}
