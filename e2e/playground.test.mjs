@@ -1,6 +1,8 @@
-// The playground in a real browser: load the page, click a goal and see the arm end on it, turn
-// the joint limits on and see the reachable area shrink, with no console errors; save a
-// screenshot. Run by e2e/run (which builds the binary and installs playwright-core).
+// The playground in a real browser: load the page and see its select lists filled from
+// /api/meta, click a goal and see the arm play a motion and end on it, pick CCD and see the
+// limit-mode list offer only what CCD supports, turn the joint limits on and see the reachable
+// area shrink, with no console errors; save a screenshot. Run by e2e/run (which builds the
+// binary and installs playwright-core).
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
@@ -52,12 +54,41 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
     page.on("pageerror", (e) => errors.push(e.message));
 
+    const solves = [];
+    page.on("request", (r) => r.url().endsWith("/api/solve") && solves.push(JSON.parse(r.postData())));
+
     await page.goto(url);
     await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+
+    // The select lists come from /api/meta: every method and ease, every limit mode but
+    // "ignore" (the limits checkbox stands for it), each with the server's default selected.
+    const meta = await (await fetch(`${url}/api/meta`)).json();
+    const lists = await page.evaluate(() => {
+      const list = (id) => {
+        const el = document.getElementById(id);
+        return { names: [...el.options].map((o) => o.value), labels: [...el.options].map((o) => o.text), value: el.value };
+      };
+      const k = (id) => document.getElementById(id).value;
+      return { method: list("method"), mode: list("limit-mode"), ease: list("ease"), k1: k("k1"), k2: k("k2") };
+    });
+    assert.equal(lists.method.names.length, 8, `methods: ${lists.method.names}`);
+    assert.deepEqual(lists.method.names, meta.methods.map((m) => m.name));
+    assert.deepEqual(lists.method.labels, meta.methods.map((m) => m.label));
+    assert.equal(lists.method.value, "lm");
+    assert.equal(lists.method.value, meta.default_method);
+    const modes = meta.limit_modes.filter((m) => m.name !== "ignore");
+    assert.deepEqual(lists.mode.names, modes.map((m) => m.name));
+    assert.deepEqual(lists.mode.labels, modes.map((m) => m.label));
+    assert.ok(!lists.mode.names.includes("ignore"));
+    assert.equal(lists.mode.value, meta.default_limit_mode);
+    assert.deepEqual(lists.ease.names, meta.eases.map((e) => e.name));
+    assert.equal(lists.ease.value, meta.default_ease);
+    assert.deepEqual([Number(lists.k1), Number(lists.k2)], [meta.default_k1, meta.default_k2]);
 
     // Click the world point (2, 3): the arm solves, plays the motion, and ends on the goal.
     const [cx, cy] = await page.evaluate(() => window.ikarus.toClient(2, 3));
     await page.mouse.click(cx, cy);
+    await page.waitForFunction(() => window.ikarus.state.playing, null, { timeout: 15000 });
     await page.waitForFunction(
       () => document.body.dataset.status === "reached" && !window.ikarus.state.playing,
       null,
@@ -80,6 +111,50 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
       restarts: document.getElementById("restarts").value,
     }));
     assert.deepEqual(start, { limits: true, method: "lm", mode: "lock", restarts: "16" });
+    assert.deepEqual(
+      { method: solves[0].options.method, limits: solves[0].options.limits, mode: solves[0].options.limit_mode },
+      { method: "lm", limits: true, mode: "lock" },
+    );
+
+    // CCD only clamps: the list switches to clamp and disables the rest, the request says
+    // clamp, and a click still plays a motion. Back on LM, the reader's lock comes back.
+    await page.selectOption("#method", "ccd");
+    const ccdModes = await page.evaluate(() => {
+      const el = document.getElementById("limit-mode");
+      return { value: el.value, enabled: [...el.options].filter((o) => !o.disabled).map((o) => o.value) };
+    });
+    assert.deepEqual(ccdModes, {
+      value: meta.methods.find((m) => m.name === "ccd").default_limit_mode,
+      enabled: modes.map((m) => m.name).filter((m) => meta.methods.find((x) => x.name === "ccd").limit_modes.includes(m)),
+    });
+    assert.equal(ccdModes.value, "clamp");
+    const [kx, ky] = await page.evaluate(() => window.ikarus.toClient(1, 4));
+    await page.mouse.click(kx, ky);
+    await page.waitForFunction(() => window.ikarus.state.playing, null, { timeout: 15000 });
+    await page.waitForFunction(
+      () =>
+        !["solving", "ready"].includes(document.body.dataset.status) &&
+        !window.ikarus.state.playing &&
+        Math.hypot(window.ikarus.state.goal.x - 1, window.ikarus.state.goal.y - 4) < 0.05,
+      null,
+      { timeout: 15000 },
+    );
+    const ccd = await page.evaluate(() => ({
+      status: document.body.dataset.status,
+      error: document.getElementById("error").hidden ? null : document.getElementById("error").textContent,
+      frames: window.ikarus.state.animation.frames.length,
+    }));
+    assert.equal(ccd.error, null);
+    assert.notEqual(ccd.status, "error");
+    assert.ok(ccd.frames > 1, `${ccd.frames} frames`);
+    const last = solves[solves.length - 1].options;
+    assert.deepEqual({ method: last.method, mode: last.limit_mode }, { method: "ccd", mode: "clamp" });
+    await page.selectOption("#method", "lm");
+    const lmModes = await page.evaluate(() => {
+      const el = document.getElementById("limit-mode");
+      return { value: el.value, disabled: [...el.options].filter((o) => o.disabled).length };
+    });
+    assert.deepEqual(lmModes, { value: "lock", disabled: 0 });
 
     // The reachable area with the seed's joint limits, then without: it must grow.
     await page.check("#show-workspace");

@@ -106,15 +106,43 @@ fn health_and_the_playground_page() {
     let page = s.get("/");
     assert_eq!(page.status, 200);
     assert!(page.content_type.starts_with("text/html"), "{}", page.content_type);
-    assert!(String::from_utf8_lossy(&page.body).contains("<canvas"));
-    for (path, kind, needle) in [("/app.js", "text/javascript", "/api/solve"), ("/app.css", "text/css", "#fbfaf7")] {
+    let html = String::from_utf8_lossy(&page.body).into_owned();
+    assert!(html.contains("<canvas"));
+    assert!(html.contains(r#"<script type="module" src="/main.js">"#), "{html}");
+    for (path, kind, needle) in [
+        ("/main.js", "text/javascript", "from \"./view.js\""),
+        ("/api.js", "text/javascript", "/api/solve"),
+        ("/controls.js", "text/javascript", "export function readControls"),
+        ("/draw.js", "text/javascript", "export function drawScene"),
+        ("/files.js", "text/javascript", "export function framesCsv"),
+        ("/view.js", "text/javascript", "export function fitView"),
+        ("/app.css", "text/css", "#fbfaf7"),
+    ] {
         let asset = s.get(path);
         assert_eq!(asset.status, 200, "{path}");
         assert!(asset.content_type.starts_with(kind), "{path}: {}", asset.content_type);
         assert!(String::from_utf8_lossy(&asset.body).contains(needle), "{path}");
     }
+    // The page's modules import each other by relative path: every import is served.
+    let mut modules = vec!["main.js".to_owned()];
+    let mut i = 0;
+    while let Some(name) = modules.get(i).cloned() {
+        let module = s.get(&format!("/{name}"));
+        assert_eq!(module.status, 200, "{name}");
+        assert!(module.content_type.starts_with("text/javascript"), "{name}: {}", module.content_type);
+        for part in String::from_utf8_lossy(&module.body).split("from \"./").skip(1) {
+            let import = part.split('"').next().unwrap_or_default().to_owned();
+            if !modules.contains(&import) {
+                modules.push(import);
+            }
+        }
+        i += 1;
+    }
+    assert_eq!(modules.len(), 6, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
+    let e = s.get("/nope.js").error(404);
+    assert!(e.contains("/nope.js"), "{e}");
 }
 
 #[test]

@@ -12,9 +12,9 @@ use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
 
 use axum::Router;
-use axum::extract::DefaultBodyLimit;
+use axum::extract::{DefaultBodyLimit, Path};
 use axum::http::{Method, StatusCode, Uri, header};
-use axum::response::Html;
+use axum::response::{Html, IntoResponse};
 use axum::routing::{get, post};
 use clap::Args;
 
@@ -23,8 +23,19 @@ use errors::ApiError;
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
 const INDEX_HTML: &str = include_str!("assets/index.html");
-const APP_CSS: &str = include_str!("assets/app.css");
-const APP_JS: &str = include_str!("assets/app.js");
+const CSS: &str = "text/css; charset=utf-8";
+const JS: &str = "text/javascript; charset=utf-8";
+/// The files the page loads, served at `/{name}`: name, content type, text. The scripts are ES
+/// modules; `main.js` imports the others.
+const ASSETS: &[(&str, &str, &str)] = &[
+    ("app.css", CSS, include_str!("assets/app.css")),
+    ("main.js", JS, include_str!("assets/main.js")),
+    ("api.js", JS, include_str!("assets/api.js")),
+    ("controls.js", JS, include_str!("assets/controls.js")),
+    ("draw.js", JS, include_str!("assets/draw.js")),
+    ("files.js", JS, include_str!("assets/files.js")),
+    ("view.js", JS, include_str!("assets/view.js")),
+];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)
 #[derive(Debug, Clone, Args)]
@@ -139,8 +150,7 @@ pub fn router(limits: Limits) -> Router {
     let state = AppState { limits: Arc::new(limits) };
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
-        .route("/app.css", get(|| async { ([(header::CONTENT_TYPE, "text/css; charset=utf-8")], APP_CSS) }))
-        .route("/app.js", get(|| async { ([(header::CONTENT_TYPE, "text/javascript; charset=utf-8")], APP_JS) }))
+        .route("/{asset}", get(asset))
         .route("/api/health", get(api::health))
         .route("/api/meta", get(meta::handler))
         .route("/api/arm/default", get(api::default_arm))
@@ -151,6 +161,14 @@ pub fn router(limits: Limits) -> Router {
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))
         .with_state(state)
+}
+
+/// One of the page's `ASSETS`, by name.
+async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<impl IntoResponse, ApiError> {
+    match ASSETS.iter().find(|(n, ..)| *n == name) {
+        Some(&(_, kind, text)) => Ok(([(header::CONTENT_TYPE, kind)], text)),
+        None => Err(not_found(method, uri).await),
+    }
 }
 
 async fn not_found(method: Method, uri: Uri) -> ApiError {

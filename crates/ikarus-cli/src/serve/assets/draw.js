@@ -1,0 +1,216 @@
+// Canvas drawing: the grid and axes, the reachable area, the reach circle, the motion (ghost
+// poses and joint traces), the base, the arm and the goal. It reads the page's state and never
+// writes it; the geometry comes from view.js.
+
+import { areaPixels, areaRect, decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
+
+export const COLORS = {
+  plot: "#ffffff",
+  grid: "#e7eaee",
+  axis: "#b9c0cb",
+  label: "#5b6478",
+  ink: "#26324a",
+  reach: "#5f9e77",
+  goal: "#d62728",
+  path: "#ec7f2d",
+  trace: "#8a9bb8",
+};
+
+/** Sizes the canvas's backing store to its CSS size times the device pixel ratio; drawing is then in CSS pixels. */
+export function fitCanvas(canvas, ctx) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = Math.max(1, canvas.clientWidth);
+  const h = Math.max(1, canvas.clientHeight);
+  if (canvas.width !== Math.round(w * dpr) || canvas.height !== Math.round(h * dpr)) {
+    canvas.width = Math.round(w * dpr);
+    canvas.height = Math.round(h * dpr);
+  }
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+}
+
+/** An offscreen canvas with one pixel per cell of a /api/workspace answer. */
+export function areaImage(ws) {
+  const n = ws.resolution;
+  const off = document.createElement("canvas");
+  off.width = n;
+  off.height = n;
+  const octx = off.getContext("2d");
+  const img = octx.createImageData(n, n);
+  img.data.set(areaPixels(ws));
+  octx.putImageData(img, 0, 0);
+  return off;
+}
+
+/** Draws everything the state shows in the view `view` (from view.js's fitView). */
+export function drawScene(ctx, view, state) {
+  drawGrid(ctx, view);
+  drawArea(ctx, view, state);
+  drawReach(ctx, view, state.arm);
+  drawMotion(ctx, view, state);
+  drawBase(ctx, view, state.arm);
+  drawArm(ctx, view, state.joints);
+  drawGoal(ctx, view, state.goal);
+}
+
+function drawGrid(ctx, view) {
+  const { w, h } = view;
+  ctx.fillStyle = COLORS.plot;
+  ctx.fillRect(0, 0, w, h);
+  const [x0, y1] = toWorld(view, 0, 0);
+  const [x1, y0] = toWorld(view, w, h);
+  const step = niceStep(Math.min(x1 - x0, y1 - y0));
+  const decimals = decimalsFor(step);
+  const xs = gridValues(x0, x1, step);
+  const ys = gridValues(y0, y1, step);
+  ctx.lineWidth = 1;
+  ctx.strokeStyle = COLORS.grid;
+  ctx.beginPath();
+  for (const gx of xs) {
+    const [px] = toCanvas(view, gx, 0);
+    ctx.moveTo(Math.round(px) + 0.5, 0);
+    ctx.lineTo(Math.round(px) + 0.5, h);
+  }
+  for (const gy of ys) {
+    const [, py] = toCanvas(view, 0, gy);
+    ctx.moveTo(0, Math.round(py) + 0.5);
+    ctx.lineTo(w, Math.round(py) + 0.5);
+  }
+  ctx.stroke();
+  // Axes through the origin (or along the edges when the origin is out of view).
+  const [ox, oy] = toCanvas(view, 0, 0);
+  const ax = Math.min(Math.max(ox, 0), w);
+  const ay = Math.min(Math.max(oy, 0), h);
+  ctx.strokeStyle = COLORS.axis;
+  ctx.beginPath();
+  ctx.moveTo(0, Math.round(ay) + 0.5);
+  ctx.lineTo(w, Math.round(ay) + 0.5);
+  ctx.moveTo(Math.round(ax) + 0.5, 0);
+  ctx.lineTo(Math.round(ax) + 0.5, h);
+  ctx.stroke();
+  ctx.fillStyle = COLORS.label;
+  ctx.font = "11px system-ui, sans-serif";
+  ctx.textAlign = "center";
+  ctx.textBaseline = "top";
+  for (const gx of xs) {
+    if (Math.abs(gx) < step / 2) continue;
+    const [px] = toCanvas(view, gx, 0);
+    ctx.fillText(gx.toFixed(decimals), px, Math.min(ay + 3, h - 14));
+  }
+  ctx.textAlign = "right";
+  ctx.textBaseline = "middle";
+  for (const gy of ys) {
+    if (Math.abs(gy) < step / 2) continue;
+    const [, py] = toCanvas(view, 0, gy);
+    ctx.fillText(gy.toFixed(decimals), Math.max(ax - 4, 28), py);
+  }
+  ctx.textAlign = "left";
+  ctx.textBaseline = "top";
+  ctx.fillText("x", w - 12, ay + 3);
+  ctx.fillText("y", ax + 5, 4);
+}
+
+function drawArea(ctx, view, state) {
+  const ws = state.workspace;
+  if (!state.showWorkspace || !ws || !state.areaImage) return;
+  const [px, py, size] = areaRect(view, ws);
+  ctx.imageSmoothingEnabled = false;
+  ctx.drawImage(state.areaImage, px, py, size, size);
+  ctx.imageSmoothingEnabled = true;
+}
+
+function drawReach(ctx, view, arm) {
+  const [bx, by] = toCanvas(view, ...(arm.base || [0, 0]));
+  ctx.setLineDash([6, 5]);
+  ctx.strokeStyle = COLORS.reach;
+  ctx.lineWidth = 1.5;
+  ctx.beginPath();
+  ctx.arc(bx, by, maxReach(arm) * view.scale, 0, 2 * Math.PI);
+  ctx.stroke();
+  ctx.setLineDash([]);
+}
+
+function polyline(ctx, view, points) {
+  ctx.beginPath();
+  points.forEach(([x, y], i) => {
+    const [px, py] = toCanvas(view, x, y);
+    if (i === 0) ctx.moveTo(px, py);
+    else ctx.lineTo(px, py);
+  });
+}
+
+function drawArm(ctx, view, joints, alpha = 1, width = 7) {
+  ctx.globalAlpha = alpha;
+  ctx.lineCap = "round";
+  ctx.lineJoin = "round";
+  ctx.strokeStyle = COLORS.ink;
+  ctx.lineWidth = width;
+  polyline(ctx, view, joints);
+  ctx.stroke();
+  if (alpha === 1) {
+    joints.forEach(([x, y], i) => {
+      const [px, py] = toCanvas(view, x, y);
+      ctx.beginPath();
+      ctx.arc(px, py, i === joints.length - 1 ? 4 : 5, 0, 2 * Math.PI);
+      ctx.fillStyle = "#fff";
+      ctx.fill();
+      ctx.lineWidth = 2;
+      ctx.strokeStyle = COLORS.ink;
+      ctx.stroke();
+    });
+  }
+  ctx.globalAlpha = 1;
+}
+
+function drawBase(ctx, view, arm) {
+  const [px, py] = toCanvas(view, ...(arm.base || [0, 0]));
+  ctx.fillStyle = COLORS.ink;
+  ctx.beginPath();
+  ctx.moveTo(px, py);
+  ctx.lineTo(px - 11, py + 15);
+  ctx.lineTo(px + 11, py + 15);
+  ctx.closePath();
+  ctx.globalAlpha = 0.85;
+  ctx.fill();
+  ctx.globalAlpha = 1;
+  ctx.fillRect(px - 16, py + 15, 32, 3);
+}
+
+function drawGoal(ctx, view, goal) {
+  if (!goal) return;
+  const [px, py] = toCanvas(view, goal.x, goal.y);
+  ctx.strokeStyle = COLORS.goal;
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.arc(px, py, 8, 0, 2 * Math.PI);
+  ctx.moveTo(px - 13, py);
+  ctx.lineTo(px + 13, py);
+  ctx.moveTo(px, py - 13);
+  ctx.lineTo(px, py + 13);
+  ctx.stroke();
+}
+
+function drawMotion(ctx, view, state) {
+  const anim = state.animation;
+  if (!anim || !anim.frames || anim.frames.length === 0) return;
+  const last = state.playing ? state.playing.index : anim.frames.length - 1;
+  const frames = anim.frames.slice(0, last + 1);
+  if (state.showGhosts) {
+    for (const { index, alpha } of ghostFrames(anim.frames.length, last)) {
+      drawArm(ctx, view, frames[index].joints, alpha, 5);
+    }
+  }
+  if (state.showTraces && frames.length > 1) {
+    const nj = frames[0].joints.length;
+    ctx.lineWidth = 1.5;
+    ctx.lineCap = "round";
+    for (let j = 1; j < nj; j++) {
+      const tip = j === nj - 1;
+      ctx.strokeStyle = tip ? COLORS.path : COLORS.trace;
+      ctx.globalAlpha = tip ? 1 : 0.7;
+      ctx.lineWidth = tip ? 2.5 : 1.5;
+      polyline(ctx, view, frames.map((f) => f.joints[j]));
+      ctx.stroke();
+    }
+    ctx.globalAlpha = 1;
+  }
+}

@@ -1,0 +1,516 @@
+// The ikarus playground: draws the arm on a canvas and asks the JSON API (same origin) to solve,
+// animate, sample the workspace and render pictures. Plain ES modules, no dependencies, no build
+// step. This module wires the page: it owns the one `state` object, and every other module
+// either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
+// reads and fills the form (controls.js) or saves files (files.js).
+
+import * as api from "./api.js";
+import {
+  armForRequest,
+  fillSelects,
+  readControls,
+  renderLinks,
+  syncEnabled,
+  syncLimitModes,
+  withLimit,
+} from "./controls.js";
+import { areaImage, drawScene, fitCanvas } from "./draw.js";
+import { framesCsv, saveBlob } from "./files.js";
+import { fitView, forward, frameIndexAt, isDrag, nudge, toCanvas, toWorld } from "./view.js";
+
+/** Wall-clock length of a motion's playback, whatever its own duration. */
+const PLAYBACK_MS = 1000;
+/** record_every of a follow solve: large, so that the answer carries no intermediate frames. */
+const FOLLOW_RECORD_EVERY = 100000;
+const WORKSPACE_RESOLUTION = 160;
+const WORKSPACE_DEBOUNCE_MS = 120;
+const MAX_LINKS = 64;
+
+const $ = (id) => document.getElementById(id);
+const canvas = $("plot");
+const ctx = canvas.getContext("2d");
+
+/** Everything of the page that changes. */
+const state = {
+  // The arm file as JSON ({name, base, links: [{length, angle_deg, limits_deg, rate}]}), its
+  // current pose (degrees) and joint positions ([[x, y], …], base first), and the goal ({x, y}).
+  arm: null,
+  pose_deg: [],
+  joints: [],
+  goal: null,
+  // The select lists' source (/api/meta) and the limit mode the reader last chose.
+  meta: null,
+  limitModeChoice: null,
+  // The settings of the next requests, read from the controls (controls.js's readControls).
+  options: {},
+  ease: { kind: "sine" },
+  frames: 60,
+  // The View checkboxes.
+  follow: false,
+  showGhosts: true,
+  showTraces: true,
+  showWorkspace: false,
+  // The world <-> canvas transform of the last drawing (view.js's fitView).
+  view: { cx: 0, cy: 0, scale: 1, w: 1, h: 1 },
+  // The last /api/workspace answer and its picture.
+  workspace: null,
+  areaImage: null,
+  // The last /api/animate answer and its request (a GIF renders the same motion).
+  animation: null,
+  animationRequest: null,
+  // The motion being played: {start, index, resolve}.
+  playing: null,
+  // The pointer press on the canvas: {x, y, dragging}.
+  press: null,
+  // Work in flight. A sequence number is bumped by each new request so that a stale answer is
+  // dropped; follow keeps one solve in flight and only the latest goal waiting.
+  jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, drawQueued: false },
+};
+
+// ---- Messages and status ------------------------------------------------------------------
+
+function showError(e) {
+  const el = $("error");
+  if (!e) {
+    el.hidden = true;
+    el.textContent = "";
+    return;
+  }
+  el.textContent = e.message || String(e);
+  el.hidden = false;
+  if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
+}
+
+/** The page's status (loading, ready, solving, reached, …, error), as body[data-status]. */
+function setStatus(status) {
+  document.body.dataset.status = status;
+  if (status === "error") $("stats").textContent = "status error · see the message below";
+}
+
+function setStats(s) {
+  const parts = [`status ${s.status}`];
+  if (s.iterations !== undefined) parts.push(`${s.iterations} iterations`);
+  if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
+  if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
+  if (s.solve_us !== undefined) parts.push(`${(s.solve_us / 1000).toFixed(3)} ms`);
+  $("stats").textContent = parts.join(" · ");
+}
+
+// ---- Drawing ------------------------------------------------------------------------------
+
+function draw() {
+  if (!state.arm) return;
+  fitCanvas(canvas, ctx);
+  state.view = fitView(state.arm, canvas.clientWidth, canvas.clientHeight);
+  drawScene(ctx, state.view, state);
+}
+
+function requestDraw() {
+  if (state.jobs.drawQueued) return;
+  state.jobs.drawQueued = true;
+  requestAnimationFrame(() => {
+    state.jobs.drawQueued = false;
+    draw();
+  });
+}
+
+function setPose(pose, joints) {
+  state.pose_deg = pose.slice();
+  state.joints = joints || forward(state.arm, state.pose_deg);
+}
+
+// ---- Click: solve and animate -------------------------------------------------------------
+
+async function animateTo(x, y) {
+  stopPlayback();
+  state.goal = { x, y };
+  const seq = ++state.jobs.animateSeq;
+  const base = {
+    arm: armForRequest(state.arm),
+    start_deg: state.pose_deg.slice(),
+    goal: { x, y },
+    options: state.options,
+  };
+  const animReq = { ...base, ease: state.ease, frames: state.frames };
+  setStatus("solving");
+  requestDraw();
+  try {
+    const [solved, anim] = await Promise.all([api.solve(base), api.animate(animReq)]);
+    if (seq !== state.jobs.animateSeq) return;
+    showError(null);
+    state.animation = anim;
+    state.animationRequest = animReq;
+    setStats(solved);
+    await play(anim);
+    if (seq !== state.jobs.animateSeq) return;
+    setStatus(solved.status);
+  } catch (e) {
+    if (seq !== state.jobs.animateSeq) return;
+    showError(e);
+    setStatus("error");
+    requestDraw();
+  }
+}
+
+function stopPlayback() {
+  if (state.playing) {
+    state.playing.resolve();
+    state.playing = null;
+  }
+}
+
+/** Plays the frames of `anim` over PLAYBACK_MS; resolves when done or stopped. */
+function play(anim) {
+  const frames = anim.frames || [];
+  if (frames.length === 0) return Promise.resolve();
+  const duration = frames[frames.length - 1].time || 1;
+  return new Promise((resolve) => {
+    const p = { start: performance.now(), index: 0, resolve };
+    state.playing = p;
+    const tick = (now) => {
+      if (state.playing !== p) return;
+      p.index = frameIndexAt(frames, ((now - p.start) / PLAYBACK_MS) * duration, p.index);
+      const f = frames[p.index];
+      setPose(f.angles_deg, f.joints);
+      draw();
+      if (p.index >= frames.length - 1) {
+        state.playing = null;
+        resolve();
+      } else {
+        requestAnimationFrame(tick);
+      }
+    };
+    requestAnimationFrame(tick);
+  });
+}
+
+// ---- Follow: one solve in flight, always the latest goal ----------------------------------
+
+function followTo(x, y) {
+  state.goal = { x, y };
+  state.jobs.followGoal = { x, y };
+  requestDraw();
+  pumpFollow();
+}
+
+async function pumpFollow() {
+  const jobs = state.jobs;
+  if (jobs.followBusy || !jobs.followGoal) return;
+  const goal = jobs.followGoal;
+  jobs.followGoal = null;
+  jobs.followBusy = true;
+  try {
+    const res = await api.solve({
+      arm: armForRequest(state.arm),
+      start_deg: state.pose_deg.slice(),
+      goal,
+      options: { ...state.options, record_every: FOLLOW_RECORD_EVERY },
+    });
+    if (!state.playing) {
+      showError(null);
+      setPose(res.angles_deg, res.joints);
+      setStats(res);
+      setStatus(res.status);
+      draw();
+    }
+  } catch (e) {
+    showError(e);
+    setStatus("error");
+  } finally {
+    jobs.followBusy = false;
+    if (jobs.followGoal) pumpFollow();
+  }
+}
+
+// ---- Workspace ----------------------------------------------------------------------------
+
+function refreshWorkspace() {
+  const jobs = state.jobs;
+  clearTimeout(jobs.workspaceTimer);
+  if (!state.showWorkspace) return;
+  jobs.workspaceTimer = setTimeout(async () => {
+    const seq = ++jobs.workspaceSeq;
+    try {
+      const ws = await api.workspace({
+        arm: armForRequest(state.arm),
+        limits: !!state.options.limits,
+        resolution: WORKSPACE_RESOLUTION,
+      });
+      if (seq !== jobs.workspaceSeq) return;
+      state.workspace = ws;
+      state.areaImage = areaImage(ws);
+      requestDraw();
+    } catch (e) {
+      if (seq === jobs.workspaceSeq) showError(e);
+    }
+  }, WORKSPACE_DEBOUNCE_MS);
+}
+
+// ---- Controls and the arm -----------------------------------------------------------------
+
+/** Brings the fields in line with each other and reads the settings of the next requests. */
+function applyControls() {
+  if (state.meta) syncLimitModes(state.meta, state.limitModeChoice);
+  syncEnabled();
+  Object.assign(state, readControls(state.arm.links));
+}
+
+function controlsChanged() {
+  if (!state.arm) return;
+  applyControls();
+  requestDraw();
+}
+
+/** Edits of the links table, applied to the arm. */
+const linkEdits = {
+  length(i, v) {
+    state.arm.links[i].length = v === "" ? 0 : Number(v);
+    armChanged();
+  },
+  limit(i, k, v) {
+    const link = state.arm.links[i];
+    link.limits_deg = withLimit(link.limits_deg, k, v);
+    showLinks();
+    armChanged();
+  },
+  rate(i, v) {
+    state.arm.links[i].rate = v === "" ? 1 : Number(v);
+    controlsChanged();
+  },
+  remove(i) {
+    state.arm.links.splice(i, 1);
+    state.pose_deg.splice(i, 1);
+    showLinks();
+    armChanged();
+  },
+};
+
+const showLinks = () => renderLinks(state.arm.links, linkEdits);
+
+function addLink() {
+  if (state.arm.links.length >= MAX_LINKS) return;
+  const last = state.arm.links[state.arm.links.length - 1];
+  state.arm.links.push({ length: last ? last.length : 1, angle_deg: 0, limits_deg: [-170, 170] });
+  showLinks();
+  armChanged();
+}
+
+function armChanged() {
+  // The pose keeps one angle per link; a new link starts straight.
+  while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
+  state.pose_deg.length = state.arm.links.length;
+  state.animation = null;
+  state.workspace = null;
+  state.areaImage = null;
+  applyControls();
+  setPose(state.pose_deg);
+  requestDraw();
+  refreshWorkspace();
+}
+
+function resetPose() {
+  stopPlayback();
+  state.jobs.animateSeq++;
+  state.animation = null;
+  setPose(state.arm.links.map((l) => l.angle_deg));
+  setStatus("ready");
+  $("stats").textContent = "—";
+  showError(null);
+  requestDraw();
+}
+
+// ---- Downloads ----------------------------------------------------------------------------
+
+function framesOrSay() {
+  if (state.animation) return state.animation;
+  showError(new api.Notice("No motion yet: click on the canvas to make one."));
+  return null;
+}
+
+async function renderFigure(format) {
+  const button = $(`dl-${format}`);
+  const label = button.textContent;
+  try {
+    let body;
+    if (format === "gif") {
+      if (!framesOrSay()) return;
+      body = { figure: "motion", format, width: 480, height: 480, ...state.animationRequest };
+    } else {
+      body = {
+        figure: "arm",
+        format,
+        width: 800,
+        height: 800,
+        arm: armForRequest(state.arm),
+        pose_deg: state.pose_deg.slice(),
+        ...(state.goal ? { goal: state.goal } : {}),
+        ...(state.showWorkspace ? { workspace: true, limits: !!state.options.limits } : {}),
+      };
+    }
+    button.disabled = true;
+    button.textContent = "Rendering…";
+    const blob = await api.render(body);
+    showError(null);
+    saveBlob(blob, `ikarus-${format === "gif" ? "motion" : "arm"}.${format}`);
+  } catch (e) {
+    showError(e);
+  } finally {
+    button.disabled = false;
+    button.textContent = label;
+  }
+}
+
+// ---- Pointer and keyboard -----------------------------------------------------------------
+
+function eventWorld(ev) {
+  const r = canvas.getBoundingClientRect();
+  return toWorld(state.view, ev.clientX - r.left, ev.clientY - r.top);
+}
+
+function wireCanvas() {
+  canvas.addEventListener("pointerdown", (ev) => {
+    if (!state.arm || ev.button !== 0) return;
+    state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
+    canvas.setPointerCapture(ev.pointerId);
+  });
+
+  canvas.addEventListener("pointermove", (ev) => {
+    if (!state.arm) return;
+    const press = state.press;
+    if (press && !press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
+      press.dragging = true;
+      stopPlayback();
+      state.jobs.animateSeq++;
+    }
+    if (state.follow || (press && press.dragging)) {
+      const [x, y] = eventWorld(ev);
+      followTo(x, y);
+    }
+  });
+
+  canvas.addEventListener("pointerup", (ev) => {
+    if (!state.press) return;
+    const wasDrag = state.press.dragging;
+    state.press = null;
+    if (!wasDrag && !state.follow) {
+      const [x, y] = eventWorld(ev);
+      animateTo(x, y);
+    }
+  });
+
+  canvas.addEventListener("pointercancel", () => {
+    state.press = null;
+  });
+
+  canvas.addEventListener("keydown", (ev) => {
+    if (!state.arm) return;
+    const tip = state.joints[state.joints.length - 1];
+    const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
+    if (g) {
+      ev.preventDefault();
+      if (state.follow) followTo(g.x, g.y);
+      else {
+        state.goal = g;
+        requestDraw();
+      }
+    } else if (ev.key === "Enter" && state.goal) {
+      ev.preventDefault();
+      animateTo(state.goal.x, state.goal.y);
+    }
+  });
+}
+
+// ---- Wiring -------------------------------------------------------------------------------
+
+function wire() {
+  wireCanvas();
+  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
+    $(id).addEventListener("change", controlsChanged);
+  }
+  $("limit-mode").addEventListener("change", (ev) => {
+    state.limitModeChoice = ev.target.value;
+    controlsChanged();
+  });
+  $("limits").addEventListener("change", () => {
+    controlsChanged();
+    refreshWorkspace();
+  });
+  $("follow").addEventListener("change", (ev) => {
+    state.follow = ev.target.checked;
+  });
+  $("show-ghosts").addEventListener("change", (ev) => {
+    state.showGhosts = ev.target.checked;
+    requestDraw();
+  });
+  $("show-traces").addEventListener("change", (ev) => {
+    state.showTraces = ev.target.checked;
+    requestDraw();
+  });
+  $("show-workspace").addEventListener("change", (ev) => {
+    state.showWorkspace = ev.target.checked;
+    if (state.showWorkspace) refreshWorkspace();
+    requestDraw();
+  });
+  $("add-link").addEventListener("click", addLink);
+  $("reset").addEventListener("click", resetPose);
+  $("dl-json").addEventListener("click", () => {
+    const anim = framesOrSay();
+    if (anim) saveBlob(new Blob([JSON.stringify(anim, null, 2)], { type: "application/json" }), "ikarus-frames.json");
+  });
+  $("dl-csv").addEventListener("click", () => {
+    const anim = framesOrSay();
+    if (anim) saveBlob(new Blob([framesCsv(anim)], { type: "text/csv" }), "ikarus-frames.csv");
+  });
+  $("dl-png").addEventListener("click", () => renderFigure("png"));
+  $("dl-svg").addEventListener("click", () => renderFigure("svg"));
+  $("dl-gif").addEventListener("click", () => renderFigure("gif"));
+  const narrow = window.matchMedia("(max-width: 720px)");
+  const toggle = $("panel-toggle");
+  const setCollapsed = (c) => {
+    document.body.classList.toggle("collapsed", c);
+    toggle.setAttribute("aria-expanded", String(!c));
+    toggle.textContent = c ? "Show controls" : "Hide controls";
+    requestDraw();
+  };
+  toggle.addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
+  if (narrow.matches) setCollapsed(true);
+  new ResizeObserver(requestDraw).observe(canvas);
+  window.addEventListener("resize", requestDraw);
+}
+
+async function init() {
+  wire();
+  try {
+    const [meta, arm] = await Promise.all([api.meta(), api.defaultArm()]);
+    state.meta = meta;
+    state.limitModeChoice = meta.default_limit_mode;
+    fillSelects(meta);
+    state.arm = arm;
+    showLinks();
+    applyControls();
+    setPose(arm.links.map((l) => l.angle_deg));
+    setStatus("ready");
+    window.ikarus.ready = true;
+    draw();
+  } catch (e) {
+    showError(e);
+    setStatus("error");
+  }
+}
+
+// For scripts and browser tests: the page's state and a few actions.
+window.ikarus = {
+  state,
+  ready: false,
+  animateTo,
+  followTo,
+  resetPose,
+  /** Client coordinates of a world point, for clicking on it. */
+  toClient(x, y) {
+    const r = canvas.getBoundingClientRect();
+    const [px, py] = toCanvas(state.view, x, y);
+    return [r.left + px, r.top + py];
+  },
+};
+
+init();

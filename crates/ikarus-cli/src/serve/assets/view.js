@@ -1,0 +1,135 @@
+// Pure geometry of the playground: forward kinematics in degrees, the world <-> canvas transform,
+// grid steps, the drag threshold, keyboard nudges, playback and ghost timing, and the pixels of
+// the reachable area. No DOM and no state of its own: every function takes what it reads and
+// returns a new value, so node can test it (e2e/view.test.mjs).
+//
+// World: x to the right, y up, in arm units. Canvas: CSS pixels, x to the right, y down.
+
+export const DEG = Math.PI / 180;
+
+/** A pointer press becomes a drag once it has moved this many CSS pixels. */
+export const DRAG_PIXELS = 4;
+
+/** The view spans the arm's reach times this margin in its shorter direction. */
+export const VIEW_MARGIN = 1.12;
+
+/** Joint positions [[x, y], …], base first, of `pose` (degrees, relative; a missing angle is the link's own). */
+export function forward(arm, pose) {
+  const [bx, by] = arm.base || [0, 0];
+  const joints = [[bx, by]];
+  let x = bx;
+  let y = by;
+  let a = 0;
+  arm.links.forEach((link, i) => {
+    a += (pose[i] ?? link.angle_deg) * DEG;
+    x += link.length * Math.cos(a);
+    y += link.length * Math.sin(a);
+    joints.push([x, y]);
+  });
+  return joints;
+}
+
+/** The sum of the link lengths (a negative or unreadable length counts as 0). */
+export function maxReach(arm) {
+  return arm.links.reduce((s, l) => s + Math.max(0, Number(l.length) || 0), 0);
+}
+
+/**
+ * The transform that centres the arm's base in a `w` × `h` canvas and fits its reach (with a
+ * margin) into the shorter side: canvas = (cx + x·scale, cy − y·scale).
+ */
+export function fitView(arm, w, h) {
+  const [bx, by] = arm.base || [0, 0];
+  const half = Math.max(maxReach(arm), 1e-3) * VIEW_MARGIN;
+  const scale = Math.min(w, h) / (2 * half);
+  return { cx: w / 2 - bx * scale, cy: h / 2 + by * scale, scale, w, h };
+}
+
+/** Canvas pixels of the world point (x, y). */
+export const toCanvas = (view, x, y) => [view.cx + x * view.scale, view.cy - y * view.scale];
+
+/** The world point under the canvas pixel (px, py); the inverse of `toCanvas`. */
+export const toWorld = (view, px, py) => [(px - view.cx) / view.scale, (view.cy - py) / view.scale];
+
+/** A grid step of 1, 2 or 5 times a power of ten giving about eight lines over `span`. */
+export function niceStep(span) {
+  const raw = span / 8;
+  const p = 10 ** Math.floor(Math.log10(raw));
+  const m = raw / p;
+  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
+
+/** The multiples of `step` from `lo` to `hi` (accumulated by addition, as the grid is drawn). */
+export function gridValues(lo, hi, step) {
+  const values = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi; v += step) values.push(v);
+  return values;
+}
+
+/** Decimals needed to print multiples of `step` (0 for steps of 1 and more). */
+export function decimalsFor(step) {
+  return Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+}
+
+/** Whether the pointer at (x, y) has moved far enough from the press to be a drag. */
+export function isDrag(press, x, y) {
+  return Math.hypot(x - press.x, y - press.y) > DRAG_PIXELS;
+}
+
+const NUDGES = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, 1], ArrowDown: [0, -1] };
+
+/** The goal moved by one keyboard step (a 40th of the reach) for an arrow key, else null. */
+export function nudge(arm, goal, key) {
+  const d = NUDGES[key];
+  if (!d) return null;
+  const step = maxReach(arm) / 40;
+  return { x: goal.x + d[0] * step, y: goal.y + d[1] * step };
+}
+
+/** The index of the frame shown at motion time `t`: the last one whose time is not after `t`, from `from` on. */
+export function frameIndexAt(frames, t, from = 0) {
+  let i = from;
+  while (i < frames.length - 1 && frames[i + 1].time <= t) i++;
+  return i;
+}
+
+/**
+ * The ghost poses drawn behind the arm when frames 0..=`last` of `total` have played: about
+ * twelve over the whole motion, older ones fainter. Returns [{index, alpha}].
+ */
+export function ghostFrames(total, last) {
+  const ghosts = [];
+  const every = Math.max(1, Math.round(total / 12));
+  const shown = last + 1;
+  for (let i = 0; i < shown - 1; i += every) {
+    const age = (shown - 1 - i) / Math.max(1, total - 1);
+    ghosts.push({ index: i, alpha: 0.06 + 0.16 * (1 - age) });
+  }
+  return ghosts;
+}
+
+/** The colour (RGBA) of a reachable cell. */
+export const AREA_RGBA = [95, 158, 119, 56];
+
+/**
+ * RGBA pixels, one per cell, top row first, of a /api/workspace answer: `grid[iy]` is a row of
+ * "0"/"1" from the lowest row (y = origin) up.
+ */
+export function areaPixels(ws) {
+  const n = ws.resolution;
+  const data = new Uint8ClampedArray(n * n * 4);
+  ws.grid.forEach((row, iy) => {
+    const py = n - 1 - iy;
+    for (let ix = 0; ix < n; ix++) {
+      if (row.charCodeAt(ix) === 49) data.set(AREA_RGBA, (py * n + ix) * 4);
+    }
+  });
+  return data;
+}
+
+/** Where the workspace picture goes on the canvas: its top-left corner [px, py] and its side in pixels. */
+export function areaRect(view, ws) {
+  const side = ws.resolution * ws.cell_size;
+  const [px, py] = toCanvas(view, ws.origin[0], ws.origin[1] + side);
+  return [px, py, side * view.scale];
+}
