@@ -54,7 +54,6 @@ pub mod motion;
 pub mod names;
 pub mod reach;
 pub mod rng;
-mod settings;
 pub mod solve;
 
 pub use bounds::Bounds;

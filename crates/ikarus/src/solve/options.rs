@@ -1,9 +1,11 @@
 //! The options of a solve ([`SolveOptions`], with [`Restarts`] and [`StallDetection`]) and
-//! their validation ([`OptionsError`]).
+//! their validation: on their own ([`SolveOptions::validate`], [`OptionsError`]) and against
+//! the chain they are used with ([`SolveOptions::validate_for`]).
 
 use thiserror::Error;
 
-use super::{LimitMode, Method};
+use super::{LimitMode, Method, SolveError};
+use crate::chain::Chain;
 
 /// Restarts from other start poses when a solve stalls or runs out of iterations (each attempt
 /// has the full iteration cap).
@@ -195,5 +197,35 @@ impl SolveOptions {
             }
         }
         Ok(())
+    }
+
+    /// Checks the options against `chain`: [`SolveOptions::rates`] is empty or has one value
+    /// per joint ([`SolveError::RatesLength`] otherwise).
+    ///
+    /// [`Solver::solve`](super::Solver::solve) runs this check on every solve; the edges (the
+    /// command line, the HTTP API) also call it once, when they build options, so that a
+    /// mismatch is reported before any work or output starts, in the same words as the solve
+    /// would report it.
+    pub fn validate_for(&self, chain: &Chain) -> Result<(), SolveError> {
+        let n = chain.len();
+        if !self.rates.is_empty() && self.rates.len() != n {
+            return Err(SolveError::RatesLength { expected: n, got: self.rates.len() });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Chain, Link, SolveError, SolveOptions};
+
+    #[test]
+    fn rates_are_none_or_one_per_joint() {
+        let chain = Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0), Link::new(1.0, 0.0)]).unwrap();
+        assert_eq!(SolveOptions::default().validate_for(&chain), Ok(()));
+        let two = SolveOptions { rates: vec![1.0, 0.5], ..SolveOptions::default() };
+        assert_eq!(two.validate_for(&chain), Ok(()));
+        let three = SolveOptions { rates: vec![1.0; 3], ..SolveOptions::default() };
+        assert_eq!(three.validate_for(&chain), Err(SolveError::RatesLength { expected: 2, got: 3 }));
     }
 }

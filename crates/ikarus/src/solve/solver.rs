@@ -120,7 +120,8 @@ impl Solver {
     }
 }
 
-/// The start pose must hold one finite angle per joint, and the rates one per joint or none.
+/// The start pose must hold one finite angle per joint, and the rates one per joint or none
+/// ([`SolveOptions::validate_for`]).
 fn check_input(chain: &Chain, start: &[f64], opts: &SolveOptions) -> Result<(), SolveError> {
     let n = chain.len();
     if start.len() != n {
@@ -129,10 +130,7 @@ fn check_input(chain: &Chain, start: &[f64], opts: &SolveOptions) -> Result<(), 
     if let Some((index, &value)) = start.iter().enumerate().find(|(_, a)| !a.is_finite()) {
         return Err(SolveError::NonFiniteAngle { index, value });
     }
-    if !opts.rates.is_empty() && opts.rates.len() != n {
-        return Err(SolveError::RatesLength { expected: n, got: opts.rates.len() });
-    }
-    Ok(())
+    opts.validate_for(chain)
 }
 
 /// The closed form's answer is in `s.trial`: if it is within the tolerances, writes it into
