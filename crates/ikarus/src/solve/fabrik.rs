@@ -141,7 +141,6 @@ mod tests {
     use super::*;
     use crate::angle::wrap_angle;
     use crate::chain::{Chain, Link};
-    use crate::closed_form;
     use crate::goal::Goal;
     use crate::kinematics::{end_effector, joint_positions};
     use crate::solve::SolveOptions;
@@ -172,27 +171,6 @@ mod tests {
         // Huge numbers: finite.
         assert!(pick(1e300, -1e300, None).is_finite());
         assert!(lim(-1.0, 1.0).unwrap().contains(pick(1e300, -1e300, lim(-1.0, 1.0))));
-    }
-
-    /// Goals at the far ends of the f64 range leave every angle finite, and a far goal is
-    /// still pointed at.
-    #[test]
-    fn extreme_goals_give_finite_angles() {
-        let mut rng = SplitMix64(24);
-        for limited in [false, true] {
-            let chain = random_chain(&mut rng, 5, limited);
-            for (x, y) in [(1e300, -1e300), (-1e-300, 1e-300), (1e154, 1e154), (f64::MAX, f64::MIN)] {
-                for goal in [Goal::position(x, y).unwrap(), Goal::with_orientation(x, y, 1e10).unwrap()] {
-                    let start = random_pose(&mut rng, &chain);
-                    let (angles, _, _) = drive(&chain, &goal, true, &start, 20, 1e-6);
-                    assert!(angles.iter().all(|a| a.is_finite()), "{goal:?}: {angles:?}");
-                    if !limited && goal.orientation().is_none() && x.abs() > 1.0 {
-                        let tip = end_effector(&chain, &angles).position - chain.base();
-                        assert!(wrap_angle(tip.y.atan2(tip.x) - y.atan2(x)).abs() < 1e-12, "{goal:?}: {angles:?}");
-                    }
-                }
-            }
-        }
     }
 
     /// The joint positions are the forward kinematics of the angles, limits hold when clamping
@@ -237,150 +215,14 @@ mod tests {
         }
     }
 
-    /// See [`test_support::success_rates`].
-    fn success_rates(limited: bool, oriented: bool, total: u32, floors: [f64; 3]) {
-        test_support::success_rates("fabrik", iterate, 200, limited, oriented, total, floors);
-    }
-
-    /// Measured: 3 links 100%, 7 links 100%, 20 links 100% (mean 21, 4, 1 iterations).
+    /// Two links, target on the base with an orientation: the wrist is out of reach of the
+    /// first link unless the lengths match; with equal lengths FABRIK gets there. (The other
+    /// targets on the base, and single links, are in `ccd_fabrik_tests.rs`.)
     #[test]
-    fn success_rate_free_position() {
-        success_rates(false, false, 200, [0.97, 0.97, 0.97]);
-    }
-
-    /// Measured: 3 links 78%, 7 links 78%, 20 links 86% (mean 87, 25, 39 iterations). Limits
-    /// applied in the forward pass only can hold the chain where the backward pass keeps
-    /// undoing it.
-    #[test]
-    fn success_rate_limited_position() {
-        success_rates(true, false, 200, [0.72, 0.72, 0.80]);
-    }
-
-    /// Measured: 3 links 97%, 7 links 100%, 20 links 100% (mean 86, 6, 1 iterations).
-    #[test]
-    fn success_rate_free_orientation() {
-        success_rates(false, true, 200, [0.92, 0.97, 0.97]);
-    }
-
-    /// Measured: 3 links 79.5%, 7 links 51.5%, 20 links 48% (mean 136, 25, 26 iterations):
-    /// with the last link fixed, the wrist must be reached by links whose limits the backward
-    /// pass ignores.
-    #[test]
-    fn success_rate_limited_orientation() {
-        success_rates(true, true, 200, [0.73, 0.45, 0.42]);
-    }
-
-    /// A goal out of reach: after one iteration the arm is stretched towards it, the tip on the
-    /// segment from the base to the goal at distance `max_reach`. With an orientation whose
-    /// wrist is out of reach, the other links stretch towards the wrist and the last link
-    /// points along the orientation.
-    #[test]
-    fn stretches_towards_a_goal_out_of_reach() {
-        let mut rng = SplitMix64(22);
-        for _ in 0..200 {
-            let n = 1 + (rng.next_u64() % 8) as usize;
-            let chain = random_chain(&mut rng, n, false);
-            let dir = rng.range(-PI, PI);
-            let unit = Vector2::new(dir.cos(), dir.sin());
-            let target = chain.base() + chain.max_reach() * rng.range(1.001, 3.0) * unit;
-            let goal = Goal::position(target.x, target.y).unwrap();
-            let start = random_pose(&mut rng, &chain);
-            let (angles, _, ok) = drive(&chain, &goal, true, &start, 1, 1e-6);
-            assert!(!ok);
-            let tip = end_effector(&chain, &angles).position;
-            let want = chain.base() + chain.max_reach() * unit;
-            assert!((tip - want).norm() <= 1e-9, "{n} links: tip {tip}, want {want}");
-
-            if n > 1 {
-                let phi = rng.range(-PI, PI);
-                let goal = Goal::with_orientation(target.x, target.y, phi).unwrap();
-                let (angles, _, _) = drive(&chain, &goal, true, &start, 1, 1e-6);
-                let joints = joint_positions(&chain, &angles);
-                let last = chain.lengths()[n - 1];
-                let wrist = target - last * Vector2::new(phi.cos(), phi.sin());
-                let arm: f64 = chain.lengths()[..n - 1].iter().sum();
-                if (wrist - chain.base()).norm() > arm {
-                    let want = chain.base() + arm * (wrist - chain.base()).normalize();
-                    assert!((joints[n - 1] - want).norm() <= 1e-9, "{n} links");
-                }
-                assert!(wrap_angle(angles.iter().sum::<f64>() - phi).abs() < 1e-12);
-            }
-        }
-    }
-
-    #[test]
-    fn target_at_the_base_and_single_links() {
-        // Three equal links can reach their base; nothing is NaN along the way, also from a
-        // straight arm, where every line to the goal runs along the arm.
-        let chain = Chain::new([1.0, 2.0], &[Link::new(1.0, 0.1), Link::new(1.0, 0.2), Link::new(1.0, 0.3)]).unwrap();
-        let goal = Goal::position(1.0, 2.0).unwrap();
-        for start in [chain.start_pose().angles(), &[0.0; 3][..], &[0.0, PI, 0.0][..]] {
-            let (angles, it, ok) = drive(&chain, &goal, true, start, 2000, 1e-6);
-            assert!(angles.iter().all(|a| a.is_finite()), "{angles:?}");
-            println!("fabrik, target at the base of 3 equal links from {start:?}: reached {ok} in {it}");
-        }
-        // A single link points at the target, whatever its distance, with or without an
-        // orientation goal ...
-        let one = Chain::new([0.0, 0.0], &[Link::new(2.0, 0.0)]).unwrap();
-        for (x, y) in [(0.0, 5.0), (-0.5, 0.0), (1.0, 1.0)] {
-            for goal in [Goal::position(x, y).unwrap(), Goal::with_orientation(x, y, 1.0).unwrap()] {
-                let (angles, _, _) = drive(&one, &goal, true, &[0.0], 1, 1e-6);
-                assert!(wrap_angle(angles[0] - y.atan2(x)).abs() < 1e-12, "{angles:?}");
-            }
-        }
-        // ... and keeps its direction when the target is on the base.
-        let (angles, _, _) = drive(&one, &Goal::position(0.0, 0.0).unwrap(), true, &[0.4], 3, 1e-6);
-        assert!((angles[0] - 0.4).abs() < 1e-12, "{angles:?}");
-        // Two links, target on the base with an orientation: the wrist is out of reach of the
-        // first link unless the lengths match.
+    fn two_links_reach_their_base_with_an_orientation() {
         let two = Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0), Link::new(1.0, 0.0)]).unwrap();
         let goal = Goal::with_orientation(0.0, 0.0, 0.7).unwrap();
         let (angles, _, ok) = drive(&two, &goal, true, &[0.0, 0.0], 10, 1e-9);
         assert!(ok, "{angles:?}");
-    }
-
-    /// On two links FABRIK converges to one of the two closed-form solutions (mod 2π); on
-    /// three links with an orientation goal, to one of the two oriented ones.
-    #[test]
-    fn agrees_with_the_closed_forms() {
-        let mut rng = SplitMix64(23);
-        let (mut checked, mut converged) = (0, 0);
-        for case in 0..400 {
-            let n = 2 + case % 2;
-            let oriented = n == 3;
-            let chain = random_chain(&mut rng, n, false);
-            let truth = random_pose(&mut rng, &chain);
-            if truth[1].sin().abs() < 0.2 {
-                continue;
-            }
-            let ee = end_effector(&chain, &truth);
-            let goal = if oriented {
-                Goal::with_orientation(ee.position.x, ee.position.y, ee.orientation).unwrap()
-            } else {
-                Goal::position(ee.position.x, ee.position.y).unwrap()
-            };
-            checked += 1;
-            let start = random_pose(&mut rng, &chain);
-            let (angles, _, ok) = drive(&chain, &goal, true, &start, 20_000, 1e-11);
-            if !ok {
-                continue;
-            }
-            converged += 1;
-            let rel = ee.position - chain.base();
-            let l = chain.lengths();
-            let solutions: Vec<Vec<f64>> = if oriented {
-                closed_form::three_link_oriented([l[0], l[1], l[2]], rel, ee.orientation)
-                    .unwrap()
-                    .iter()
-                    .map(|s| s.to_vec())
-                    .collect()
-            } else {
-                closed_form::two_link(l[0], l[1], rel).unwrap().iter().map(|s| s.to_vec()).collect()
-            };
-            let matches = |s: &Vec<f64>| s.iter().zip(&angles).all(|(a, b)| wrap_angle(a - b).abs() <= 1e-6);
-            assert!(solutions.iter().any(matches), "case {case}: {angles:?} vs {solutions:?}");
-        }
-        println!("fabrik vs closed forms: {converged} of {checked} converged to 1e-11");
-        assert!(converged * 10 >= checked * 9, "{converged} of {checked}");
     }
 }

@@ -81,6 +81,8 @@ pub use solver::Solver;
 mod tests;
 
 #[cfg(test)]
+mod ccd_fabrik_tests;
+#[cfg(test)]
 mod limit_tests;
 #[cfg(test)]
 mod test_support;

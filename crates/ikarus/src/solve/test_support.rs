@@ -1,10 +1,11 @@
 //! Test helpers shared by the CCD and FABRIK unit tests: random chains, poses and goals, a
-//! driver that runs one method's iterations, and success-rate checks.
+//! driver that runs one method's iterations, and success-rate checks (used by the tables of
+//! `ccd_fabrik_tests.rs` and by the tests beside each method).
 
 use nalgebra::Point2;
 
 use super::problem::Problem;
-use super::{Goal, SolveOptions, wrap_angle};
+use super::{Goal, Method, SolveOptions, wrap_angle};
 use crate::bounds::Bounds;
 use crate::chain::Chain;
 use crate::kinematics::joint_positions;
@@ -13,6 +14,23 @@ use crate::rng::SplitMix64;
 /// One iteration of a method without the Jacobian: [`super::ccd::sweep`] or
 /// [`super::fabrik::iterate`].
 pub(super) type Step = fn(&Problem, &[f64], &[Point2<f64>], &mut [f64], &mut [Point2<f64>]) -> f64;
+
+/// The iteration of a method without the Jacobian.
+///
+/// # Panics
+/// For a method that has one (it has no iteration of this shape).
+pub(super) fn step_of(method: Method) -> Step {
+    match method {
+        Method::CyclicCoordinateDescent => super::ccd::sweep,
+        Method::Fabrik => super::fabrik::iterate,
+        Method::Transpose
+        | Method::PseudoInverse
+        | Method::DampedLeastSquares
+        | Method::SelectivelyDamped
+        | Method::LevenbergMarquardt
+        | Method::Analytic => panic!("{method:?} has no Jacobian-free iteration"),
+    }
+}
 
 /// The problem of `chain`, `goal` and `opts`, with the chain's limits enforced when `clamp`.
 pub(super) fn problem<'a>(chain: &'a Chain, goal: &'a Goal, opts: &'a SolveOptions, clamp: bool) -> Problem<'a> {
@@ -51,19 +69,12 @@ pub(super) fn drive(step: Step, p: &Problem, start: &[f64], max: usize, tol: f64
     (angles, max, false)
 }
 
-/// Success rates of `step` on reachable goals (the tip of a random pose inside the limits),
+/// Success rates of `method` on reachable goals (the tip of a random pose inside the limits),
 /// from another random pose inside the limits, within 1e-6 (and 1e-6 rad) in 2000 iterations,
 /// for chains of 3, 7 and 20 links (generator seeded `seed + n`); asserts each rate is at least
 /// its floor, and every final pose within the limits.
-pub(super) fn success_rates(
-    name: &str,
-    step: Step,
-    seed: u64,
-    limited: bool,
-    oriented: bool,
-    total: u32,
-    floors: [f64; 3],
-) {
+pub(super) fn success_rates(method: Method, seed: u64, limited: bool, oriented: bool, total: u32, floors: [f64; 3]) {
+    let (name, step) = (method.name(), step_of(method));
     let opts = SolveOptions::default();
     for (n, floor) in [3, 7, 20].into_iter().zip(floors) {
         let mut rng = SplitMix64(seed + n as u64);
