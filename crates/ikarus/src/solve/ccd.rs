@@ -12,8 +12,9 @@
 //! so the position-only optimum is `δ*`. With an orientation goal the tip's orientation error
 //! after the turn is `wrap(δ − δ_o)`, `δ_o = wrap(φ_goal − φ_tip)`, and the joint minimises the
 //! same cost the solvers measure, `|tip − target|² + w² wrap(δ − δ_o)²` (`w` =
-//! [`SolveOptions::orientation_weight`](super::SolveOptions::orientation_weight)). Writing `δ = δ_o + e` with `e ∈ [−π, π]`,
-//! `c = wrap(δ* − δ_o)` and `k = w²/A`, that is (up to a constant and the factor `2A`)
+//! [`SolveOptions::orientation_weight`](super::SolveOptions::orientation_weight)). Writing
+//! `δ = δ_o + e` with `e ∈ [−π, π]`, `c = wrap(δ* − δ_o)` and `k = w²/A`, that is (up to a
+//! constant and the factor `2A`)
 //!
 //! ```text
 //! F(e) = −cos(e − c) + (k/2) e²,     F'(e) = sin(e − c) + k e.

@@ -17,9 +17,9 @@
 //! - **Orientation goals**: the last link's direction is fixed to `φ_goal`, so FABRIK runs on
 //!   the first `n − 1` links towards the wrist `target − l_n (cos φ, sin φ)`, and the last
 //!   joint's angle is then set so that the last link points along `φ` (clamped into its limits
-//!   when needed). [`SolveOptions::orientation_weight`](super::SolveOptions::orientation_weight) plays no part: the orientation is met
-//!   exactly whenever the last joint's limits allow it. A single link has no wrist to move and
-//!   just points at the target.
+//!   when needed). [`SolveOptions::orientation_weight`](super::SolveOptions::orientation_weight)
+//!   plays no part: the orientation is met exactly whenever the last joint's limits allow it. A
+//!   single link has no wrist to move and just points at the target.
 //! - **Angles.** Joints without limits (or when not clamping) take the 2π-equivalent nearest
 //!   their previous angle, so they never jump by a whole turn; joints with limits take the one
 //!   inside the limits, nearest the previous angle if several are.
