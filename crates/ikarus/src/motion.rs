@@ -62,8 +62,13 @@
 //! * The path has corners at the keyframes. A frame step across a corner where the path turns by
 //!   an angle θ is a chord, shorter than the path it stands for: at least `cos(θ/2)` times its
 //!   length when it spans a single corner. The ease controls the speed along the path.
-
-use std::f64::consts::{PI, TAU};
+//!
+//! # Files
+//!
+//! This file holds the animation types, the errors and the two entry points that check their
+//! input and lay frames along the path; `timing.rs` holds [`Timing`] (frame counts and times),
+//! `path.rs` the path (unwrapping, lengths, the pose at a point of it), and `through.rs`
+//! [`through_goals`].
 
 use nalgebra::Point2;
 use thiserror::Error;
@@ -73,85 +78,13 @@ use crate::ease::Ease;
 use crate::kinematics::joint_positions;
 use crate::solve::Frames;
 
+mod path;
 mod through;
+mod timing;
 
+use path::Path;
 pub use through::{GoalMotion, GoalMotionError, GoalOutcome, Route, through_goals};
-
-/// The largest number of frames an animation may have.
-pub const MAX_FRAMES: usize = 100_000;
-
-/// How many frames an animation has and when they fall.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Timing {
-    /// `n ≥ 2` frames in normalised time: frame `i` at `t = i / (n − 1)`, duration 1.
-    Frames(usize),
-    /// `seconds` at `fps` frames per second: `n = round(seconds·fps) + 1` frames, frame `i` at
-    /// `t = i / fps` seconds except the last, which is at exactly `seconds` (so the last interval
-    /// lies between `0.5 / fps` and `1.5 / fps`). Both must be finite and > 0, and
-    /// `seconds·fps ≥ 0.5` so that there are at least two frames.
-    Duration {
-        /// Length of the animation in seconds.
-        seconds: f64,
-        /// Frames per second.
-        fps: f64,
-    },
-}
-
-impl Timing {
-    /// The number of frames, after checking the parameters (see the variants) and that there are
-    /// at most [`MAX_FRAMES`].
-    pub fn frame_count(&self) -> Result<usize, MotionError> {
-        match *self {
-            Timing::Frames(n) => {
-                if n < 2 {
-                    return Err(MotionError::FrameCount { value: n });
-                }
-                if n > MAX_FRAMES {
-                    // Lossy above 2⁵³ frames, which is only ever a typo.
-                    return Err(MotionError::TooManyFrames { field: "frames", frames: n as f64 });
-                }
-                Ok(n)
-            }
-            Timing::Duration { seconds, fps } => {
-                if !(seconds.is_finite() && seconds > 0.0) {
-                    return Err(MotionError::Seconds { value: seconds });
-                }
-                if !(fps.is_finite() && fps > 0.0) {
-                    return Err(MotionError::Fps { value: fps });
-                }
-                let frames = (seconds * fps).round() + 1.0;
-                // Never NaN (both factors are finite and positive); an infinite product is caught here.
-                if frames > MAX_FRAMES as f64 {
-                    return Err(MotionError::TooManyFrames { field: "seconds × fps", frames });
-                }
-                if frames < 2.0 {
-                    return Err(MotionError::TooFewFrames { seconds, fps });
-                }
-                // An integer in [2, MAX_FRAMES]: the cast is exact.
-                Ok(frames as usize)
-            }
-        }
-    }
-
-    /// The duration `T`: 1 for [`Timing::Frames`] (normalised time), `seconds` for
-    /// [`Timing::Duration`]. Not validated; see [`Timing::frame_count`].
-    #[must_use]
-    pub fn duration(&self) -> f64 {
-        match *self {
-            Timing::Frames(_) => 1.0,
-            Timing::Duration { seconds, .. } => seconds,
-        }
-    }
-
-    /// Time of frame `i` of `n` (see the variants).
-    fn time(&self, i: usize, n: usize) -> f64 {
-        match *self {
-            Timing::Frames(_) => i as f64 / (n - 1) as f64,
-            Timing::Duration { seconds, .. } if i + 1 == n => seconds,
-            Timing::Duration { fps, .. } => i as f64 / fps,
-        }
-    }
-}
+pub use timing::{MAX_FRAMES, Timing};
 
 /// One frame of an [`Animation`].
 #[derive(Debug, Clone, PartialEq)]
@@ -431,107 +364,6 @@ fn check_times(times: &[f64], keyframes: usize, duration: f64) -> Result<(), Mot
     Ok(())
 }
 
-/// The polyline through the unwrapped keyframes.
-struct Path {
-    /// Joints per pose.
-    n: usize,
-    /// Unwrapped keyframes, `n` angles each, stored flat.
-    keys: Vec<f64>,
-    /// Cumulative lengths `C_k`, one per keyframe; `C₀ = 0`.
-    cumulative: Vec<f64>,
-}
-
-impl Path {
-    /// Unwraps validated poses and measures the path.
-    fn new<'a>(
-        chain: &Chain,
-        poses: impl ExactSizeIterator<Item = &'a [f64]>,
-        field: &'static str,
-    ) -> Result<Self, MotionError> {
-        let n = chain.len();
-        let mut keys = Vec::with_capacity(poses.len() * n);
-        let mut cumulative = Vec::with_capacity(poses.len());
-        for (index, pose) in poses.enumerate() {
-            if index == 0 {
-                keys.extend_from_slice(pose);
-                cumulative.push(0.0);
-                continue;
-            }
-            let start = keys.len() - n;
-            for (joint, (&angle, limits)) in pose.iter().zip(chain.limits()).enumerate() {
-                let a = if limits.is_some() { angle } else { unwrap_near(angle, keys[start + joint]) };
-                keys.push(a);
-            }
-            let (previous, current) = keys[start..].split_at(n);
-            let length = cumulative[index - 1] + distance(previous, current);
-            if !length.is_finite() {
-                return Err(MotionError::PathTooLong { field, index, length });
-            }
-            cumulative.push(length);
-        }
-        Ok(Self { n, keys, cumulative })
-    }
-
-    fn key(&self, k: usize) -> &[f64] {
-        &self.keys[k * self.n..(k + 1) * self.n]
-    }
-
-    fn last(&self) -> &[f64] {
-        self.key(self.cumulative.len() - 1)
-    }
-
-    fn length(&self) -> f64 {
-        self.cumulative[self.cumulative.len() - 1]
-    }
-
-    /// The pose at parameter `x` of the piecewise-linear map `marks[k] ↦ key(k)`, where `marks`
-    /// is non-decreasing with one entry per keyframe (the cumulative lengths, or the times).
-    /// Among equal marks the last wins, so zero-length pieces are skipped.
-    fn at(&self, marks: &[f64], x: f64, out: &mut Vec<f64>) {
-        // The first mark greater than x; marks[0] ≤ x for every x ≥ 0, so k ≥ 1 unless x < 0.
-        let k = marks.partition_point(|&m| m <= x);
-        out.clear();
-        if k == 0 {
-            out.extend_from_slice(self.key(0));
-        } else if k >= marks.len() {
-            out.extend_from_slice(self.last());
-        } else {
-            // marks[k − 1] ≤ x < marks[k], so the denominator is positive.
-            let w = (x - marks[k - 1]) / (marks[k] - marks[k - 1]);
-            out.extend(self.key(k - 1).iter().zip(self.key(k)).map(|(&a, &b)| lerp(a, b, w)));
-        }
-    }
-}
-
-/// `a + w·(b − a)` for `w` in [0, 1], exactly `a` at 0 and `b` at 1, and never outside the
-/// interval between `a` and `b` (rounding could otherwise step over a joint limit by an ulp).
-fn lerp(a: f64, b: f64, w: f64) -> f64 {
-    if w <= 0.0 {
-        a
-    } else if w >= 1.0 {
-        b
-    } else {
-        (a + w * (b - a)).clamp(a.min(b), a.max(b))
-    }
-}
-
-/// `angle` moved by whole turns to within `(−π, π]` of `previous` (up to rounding); unchanged,
-/// bit for bit, if it already is.
-fn unwrap_near(angle: f64, previous: f64) -> f64 {
-    let turns = ((angle - previous - PI) / TAU).ceil();
-    if turns == 0.0 { angle } else { angle - turns * TAU }
-}
-
-/// Euclidean distance `‖b − a‖₂`, scaled by the largest difference so that the squares neither
-/// overflow nor underflow.
-fn distance(a: &[f64], b: &[f64]) -> f64 {
-    let scale = a.iter().zip(b).map(|(x, y)| (y - x).abs()).fold(0.0, f64::max);
-    if scale == 0.0 || !scale.is_finite() {
-        return scale;
-    }
-    scale * a.iter().zip(b).map(|(x, y)| ((y - x) / scale).powi(2)).sum::<f64>().sqrt()
-}
-
 /// The frames of a validated path: arc-length timing without `times`, eased time with them.
 fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, timing: Timing, n: usize, ease: Ease) -> Animation {
     let duration = timing.duration();
@@ -548,7 +380,7 @@ fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, timing: Timing, n: u
         } else {
             let progress = ease.position(time / duration);
             match times {
-                None => path.at(&path.cumulative, progress * path.length(), &mut angles),
+                None => path.at(path.cumulative(), progress * path.length(), &mut angles),
                 Some(times) => path.at(times, progress * duration, &mut angles),
             }
         }
