@@ -38,7 +38,6 @@ fn every_method_reaches_an_easy_goal() {
         assert_eq!(o.status, Status::Reached, "{method:?}: {o:?}");
         let tip = end_effector(&seed(false), o.pose.angles()).position;
         assert!((tip - Point2::new(2.0, 3.0)).norm() <= 1e-6);
-        println!("{method:?}: {} iterations", o.iterations);
     }
 }
 
