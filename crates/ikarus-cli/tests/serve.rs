@@ -389,6 +389,35 @@ fn invalid_values_are_422_naming_the_field() {
 }
 
 #[test]
+fn render_errors_name_the_field_of_each_figure() {
+    let s = start(&[]);
+    let cases = [
+        (
+            json!({ "figure": "arm", "format": "bmp" }),
+            "format: unknown variant `bmp`, expected one of `png`, `svg`, `gif`",
+        ),
+        (json!({ "figure": "arm", "width": "wide" }), "width: invalid type: string \"wide\", expected u32"),
+        (json!({ "figure": "arm", "frames": 5 }), "frames: unknown field `frames`, expected one of `figure`, `format`"),
+        (json!({ "figure": "workspace", "resolution": -3 }), "resolution: invalid value: integer `-3`, expected u32"),
+        (json!({ "figure": "workspace", "goal": { "x": 1, "y": 1 } }), "goal: unknown field `goal`"),
+        (json!({ "figure": "ease", "ease": { "k1": "x" } }), "ease.k1: invalid type: string \"x\", expected f64"),
+        (
+            json!({ "figure": "ease", "k1": 0.3 }),
+            "k1: unknown field `k1`, expected one of `figure`, `format`, `width`, `height`, `ease`",
+        ),
+        (json!({ "figure": "motion", "options": { "method": "zz" } }), "options.method: unknown variant `zz`"),
+        (json!({ "figure": "motion", "goal": { "x": 1 } }), "goal: missing field `y`"),
+        (json!({ "format": "png" }), "missing field `figure`"),
+    ];
+    for (body, want) in cases {
+        let e = s.post("/api/render", &body).error(422);
+        assert!(e.starts_with(&format!("request body: {want}")), "{body}\n got {e:?}\nwant {want:?}");
+        assert!(e.contains(" at line 1 column "), "{body}: {e:?}");
+    }
+    s.assert_healthy();
+}
+
+#[test]
 fn caps_follow_the_flags_and_an_oversized_body_is_413() {
     let s = start(&["--max-body-bytes", "2000", "--max-links", "2", "--max-resolution", "64", "--max-frames", "10"]);
     let e = s.post_raw("/api/solve", "application/json", &vec![b' '; 5000]).error(413);
