@@ -115,6 +115,7 @@ fn health_and_the_playground_page() {
         ("/controls.js", "text/javascript", "export function readControls"),
         ("/draw.js", "text/javascript", "export function drawScene"),
         ("/files.js", "text/javascript", "export function framesCsv"),
+        ("/input.js", "text/javascript", "export function wireInput"),
         ("/view.js", "text/javascript", "export function fitView"),
         ("/app.css", "text/css", "#fbfaf7"),
     ] {
@@ -138,7 +139,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 6, "{modules:?}");
+    assert_eq!(modules.len(), 7, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
