@@ -2,10 +2,12 @@
 //! judges every solve the same way, and (with `--kdl`) sets Orocos KDL's solvers beside them.
 //!
 //! - [`sets`]: the goal sets and their generator;
-//! - [`run`](mod@run): the rows, the timing and the judge;
+//! - [`run`](mod@run): the rows and the timing;
+//! - [`judge`](mod@judge): how every solve is judged;
 //! - [`kdl`]: goal files and `kdl_bench`'s output;
 //! - [`table`]: text, Markdown and JSON output.
 
+mod judge;
 mod kdl;
 mod run;
 mod sets;
