@@ -115,6 +115,7 @@ fn health_and_the_playground_page() {
         ("/controls.js", "text/javascript", "export function readControls"),
         ("/draw.js", "text/javascript", "export function drawScene"),
         ("/files.js", "text/javascript", "export function framesCsv"),
+        ("/input.js", "text/javascript", "export function wireInput"),
         ("/view.js", "text/javascript", "export function fitView"),
         ("/app.css", "text/css", "#fbfaf7"),
     ] {
@@ -138,7 +139,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 6, "{modules:?}");
+    assert_eq!(modules.len(), 7, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
@@ -384,6 +385,35 @@ fn invalid_values_are_422_naming_the_field() {
     for (path, body, want) in cases {
         let e = s.post(path, &body).error(422);
         assert!(e.contains(want), "{path} {body}\n got {e:?}\nwant {want:?}");
+    }
+    s.assert_healthy();
+}
+
+#[test]
+fn render_errors_name_the_field_of_each_figure() {
+    let s = start(&[]);
+    let cases = [
+        (
+            json!({ "figure": "arm", "format": "bmp" }),
+            "format: unknown variant `bmp`, expected one of `png`, `svg`, `gif`",
+        ),
+        (json!({ "figure": "arm", "width": "wide" }), "width: invalid type: string \"wide\", expected u32"),
+        (json!({ "figure": "arm", "frames": 5 }), "frames: unknown field `frames`, expected one of `figure`, `format`"),
+        (json!({ "figure": "workspace", "resolution": -3 }), "resolution: invalid value: integer `-3`, expected u32"),
+        (json!({ "figure": "workspace", "goal": { "x": 1, "y": 1 } }), "goal: unknown field `goal`"),
+        (json!({ "figure": "ease", "ease": { "k1": "x" } }), "ease.k1: invalid type: string \"x\", expected f64"),
+        (
+            json!({ "figure": "ease", "k1": 0.3 }),
+            "k1: unknown field `k1`, expected one of `figure`, `format`, `width`, `height`, `ease`",
+        ),
+        (json!({ "figure": "motion", "options": { "method": "zz" } }), "options.method: unknown variant `zz`"),
+        (json!({ "figure": "motion", "goal": { "x": 1 } }), "goal: missing field `y`"),
+        (json!({ "format": "png" }), "missing field `figure`"),
+    ];
+    for (body, want) in cases {
+        let e = s.post("/api/render", &body).error(422);
+        assert!(e.starts_with(&format!("request body: {want}")), "{body}\n got {e:?}\nwant {want:?}");
+        assert!(e.contains(" at line 1 column "), "{body}: {e:?}");
     }
     s.assert_healthy();
 }

@@ -14,6 +14,7 @@ use ikarus::kinematics::joint_positions;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
 use ikarus::{Chain, Point2};
+use resvg::tiny_skia::Pixmap;
 
 use crate::RenderError;
 use crate::arm::{check_point, check_pose};
@@ -73,59 +74,105 @@ pub fn animation_gif(
     }
     check_point(overlay.goal, "goal")?;
 
-    let scene = Scene {
-        chain,
-        view: View::new(chain, overlay.goal, width, height),
-        goal: overlay.goal,
-        workspace: overlay.workspace,
-        show_reach: overlay.show_reach,
-    };
-    let mut background_svg = Svg::new(width, height);
-    scene.background(&mut background_svg);
-    let mut background = new_pixmap(width, height)?;
-    render_onto(&parse(&background_svg.finish())?, &mut background);
+    let painter = Painter::new(chain, animation, overlay, width, height)?;
+    let palette = painter.learn_palette()?;
+    let delay = (100.0 / fps).round().max(2.0) as u16;
+    encode_gif(&painter, palette, delay, progress)
+}
 
-    let joints: Vec<Vec<Point2<f64>>> = animation.frames.iter().map(|f| joint_positions(chain, &f.angles)).collect();
-    let total = animation.frames.len();
-    // The moving layers of frame `i` over a copy of the background, as RGBA (the background is
-    // opaque, so the premultiplied pixels are plain RGBA).
-    let draw = |i: usize| -> Result<Vec<u8>, RenderError> {
-        let mut svg = Svg::new(width, height);
-        if overlay.trail {
-            let path: Vec<&[Point2<f64>]> = joints[..=i].iter().map(Vec::as_slice).collect();
+/// Paints the frames of an animation: the static layers once, the moving ones per frame.
+struct Painter<'a> {
+    scene: Scene<'a>,
+    animation: &'a Animation,
+    overlay: &'a Overlay<'a>,
+    width: u32,
+    height: u32,
+    /// The static layers, painted.
+    background: Pixmap,
+    /// The joints of every frame.
+    joints: Vec<Vec<Point2<f64>>>,
+}
+
+impl<'a> Painter<'a> {
+    fn new(
+        chain: &'a Chain,
+        animation: &'a Animation,
+        overlay: &'a Overlay<'a>,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, RenderError> {
+        let scene = Scene {
+            chain,
+            view: View::new(chain, overlay.goal, width, height),
+            goal: overlay.goal,
+            workspace: overlay.workspace,
+            show_reach: overlay.show_reach,
+        };
+        let mut background_svg = Svg::new(width, height);
+        scene.background(&mut background_svg);
+        let mut background = new_pixmap(width, height)?;
+        render_onto(&parse(&background_svg.finish())?, &mut background);
+        let joints = animation.frames.iter().map(|f| joint_positions(chain, &f.angles)).collect();
+        Ok(Self { scene, animation, overlay, width, height, background, joints })
+    }
+
+    /// The number of frames.
+    fn len(&self) -> usize {
+        self.animation.frames.len()
+    }
+
+    /// The moving layers of frame `i` over a copy of the background, as RGBA (the background
+    /// is opaque, so the premultiplied pixels are plain RGBA).
+    fn rgba(&self, i: usize) -> Result<Vec<u8>, RenderError> {
+        let scene = &self.scene;
+        let mut svg = Svg::new(self.width, self.height);
+        if self.overlay.trail {
+            let path: Vec<&[Point2<f64>]> = self.joints[..=i].iter().map(Vec::as_slice).collect();
             scene.traces(&mut svg, &path);
         }
-        scene.arm(&mut svg, &joints[i]);
+        scene.arm(&mut svg, &self.joints[i]);
         scene.goal(&mut svg);
-        let clock = format!("t = {:.2}", animation.frames[i].time);
-        scene.caption(&mut svg, overlay.caption.as_deref(), Some(&clock));
-        let mut pixmap = background.clone();
+        let clock = format!("t = {:.2}", self.animation.frames[i].time);
+        scene.caption(&mut svg, self.overlay.caption.as_deref(), Some(&clock));
+        let mut pixmap = self.background.clone();
         render_onto(&parse(&svg.finish())?, &mut pixmap);
         Ok(pixmap.take())
-    };
-
-    // One palette for the whole GIF, learnt from the first, middle and last frames (the last
-    // holds the whole trail), each thinned to at most SAMPLE_PIXELS pixels.
-    let mut sample: Vec<u8> = Vec::new();
-    let mut sampled: Vec<usize> = vec![0, total / 2, total - 1];
-    sampled.dedup();
-    for &i in &sampled {
-        thin_into(&draw(i)?, width, &mut sample);
     }
-    let mut palette = Palette::learn(&sample, &style::key_colours());
-    drop(sample);
 
-    let delay = (100.0 / fps).round().max(2.0) as u16;
+    /// One palette for the whole GIF, learnt from the first, middle and last frames (the last
+    /// holds the whole trail), each thinned to at most [`SAMPLE_PIXELS`] pixels.
+    fn learn_palette(&self) -> Result<Palette, RenderError> {
+        let total = self.len();
+        let mut sample: Vec<u8> = Vec::new();
+        let mut sampled: Vec<usize> = vec![0, total / 2, total - 1];
+        sampled.dedup();
+        for &i in &sampled {
+            thin_into(&self.rgba(i)?, self.width, &mut sample);
+        }
+        Ok(Palette::learn(&sample, &style::key_colours()))
+    }
+}
+
+/// The GIF of every frame `painter` paints, `delay` hundredths of a second each, looping:
+/// the first frame whole, each later one as its changes. `progress(done, total)` is called
+/// after each frame.
+fn encode_gif(
+    painter: &Painter,
+    mut palette: Palette,
+    delay: u16,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Vec<u8>, RenderError> {
+    let total = painter.len();
     let mut bytes = Vec::new();
     {
         let encode = |e: gif::EncodingError| RenderError::Encode { format: "gif", message: e.to_string() };
         // check_size keeps both sides ≤ 4096, so they fit a GIF's 16-bit sizes.
-        let (w16, h16) = (width as u16, height as u16);
+        let (w16, h16) = (painter.width as u16, painter.height as u16);
         let mut encoder = Encoder::new(&mut bytes, w16, h16, &palette.rgb_table()).map_err(encode)?;
         encoder.set_repeat(Repeat::Infinite).map_err(encode)?;
         let (mut previous, mut current) = (Vec::new(), Vec::new());
         for i in 0..total {
-            let rgba = draw(i)?;
+            let rgba = painter.rgba(i)?;
             palette.map_into(&rgba, &mut current);
             let mut frame = if i == 0 {
                 Frame::from_indexed_pixels(w16, h16, current.clone(), None)

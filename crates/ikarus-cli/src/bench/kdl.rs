@@ -8,7 +8,8 @@ use std::process::{Command, Stdio};
 
 use ikarus::SolveOptions;
 
-use super::run::{RowResult, Tally, judge};
+use super::judge::judge;
+use super::run::{RowResult, Tally};
 use super::sets::GoalSet;
 use crate::arm::io_reason;
 use crate::error::CliError;

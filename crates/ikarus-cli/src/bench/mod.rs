@@ -2,10 +2,12 @@
 //! judges every solve the same way, and (with `--kdl`) sets Orocos KDL's solvers beside them.
 //!
 //! - [`sets`]: the goal sets and their generator;
-//! - [`run`](mod@run): the rows, the timing and the judge;
+//! - [`run`](mod@run): the rows and the timing;
+//! - [`judge`](mod@judge): how every solve is judged;
 //! - [`kdl`]: goal files and `kdl_bench`'s output;
 //! - [`table`]: text, Markdown and JSON output.
 
+mod judge;
 mod kdl;
 mod run;
 mod sets;
@@ -86,15 +88,53 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     }
     let arms = unique(&args.arms);
     let set_names = unique(&args.sets);
-    let filter = Filter { methods: args.methods.clone(), modes: args.limit_modes.clone() };
     let configs = run::configs();
-    let goals = args.goals as usize;
+    let plan = plan(args, &arms, &set_names, &configs)?;
+    if let Some(dir) = &args.write_goals {
+        write_goal_files(args, dir, &plan)?;
+    }
 
-    let mut plan: Vec<(GoalSet, Vec<&Config>)> = Vec::new();
-    for &arm in &arms {
+    let total: u64 = plan.iter().map(|(set, rows)| (set.goals.len() * rows.len()) as u64).sum();
+    let progress = progress_bar(total);
+    // KDL first: a broken --kdl is reported in seconds, not after the whole benchmark.
+    let (kdl_version, kdl_rows) = match &args.kdl {
+        Some(path) => run_kdl(args, path, &plan, progress.as_ref())?,
+        None => (None, Vec::new()),
+    };
+    let rows = run_rows(&plan, kdl_rows, progress.as_ref());
+    if let Some(bar) = progress {
+        bar.finish_and_clear();
+    }
+
+    let header = header(args, &arms, &set_names, kdl_version);
+    output::stdout(|w| {
+        if args.json {
+            table::json(w, &header, &rows)
+        } else if args.markdown {
+            table::markdown(w, &header, &rows)
+        } else {
+            table::text(w, &header, &rows)
+        }
+    })
+}
+
+/// One goal set and the rows run on it.
+type Planned<'c> = (GoalSet, Vec<&'c Config>);
+
+/// Every goal set of the chosen arms and sets, each with the rows that apply to it and pass
+/// the filters. Refused when no row is left and KDL is not run.
+fn plan<'c>(
+    args: &BenchArgs,
+    arms: &[ArmName],
+    set_names: &[SetName],
+    configs: &'c [Config],
+) -> Result<Vec<Planned<'c>>, CliError> {
+    let filter = Filter { methods: args.methods.clone(), modes: args.limit_modes.clone() };
+    let mut plan: Vec<Planned<'c>> = Vec::new();
+    for &arm in arms {
         let chain = arm.load()?.chain;
-        for &set in &set_names {
-            let goal_set = sets::generate(arm.name(), &chain, set, goals, args.seed);
+        for &set in set_names {
+            let goal_set = sets::generate(arm.name(), &chain, set, args.goals as usize, args.seed);
             let rows = configs.iter().filter(|c| c.applies_to(&goal_set) && filter.keeps(c)).collect();
             plan.push((goal_set, rows));
         }
@@ -109,58 +149,70 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         }
         return Err(CliError::input(format!("{}: no benchmark row matches on the sets chosen", flags.join(" "))));
     }
+    Ok(plan)
+}
 
-    let comment = |set: &GoalSet| {
-        format!(
-            "written by ikarus {} bench --seed {} --goals {goals}: arm {}, set {}",
-            env!("CARGO_PKG_VERSION"),
-            args.seed,
-            set.arm,
-            set.set.name()
-        )
-    };
-    if let Some(dir) = &args.write_goals {
-        // Every file is created (as a temporary file) before any is renamed into place.
-        let pending = plan
-            .iter()
-            .map(|(set, _)| {
-                Ok((PendingFile::create(&dir.join(format!("{}.goals", set.name())), "--write-goals")?, set))
-            })
-            .collect::<Result<Vec<_>, CliError>>()?;
-        for (file, set) in pending {
-            file.commit(kdl::goal_file(set, &comment(set)).as_bytes())?;
-        }
+/// The comment line of `set`'s goal file: what wrote it.
+fn goal_file_comment(args: &BenchArgs, set: &GoalSet) -> String {
+    format!(
+        "written by ikarus {} bench --seed {} --goals {}: arm {}, set {}",
+        env!("CARGO_PKG_VERSION"),
+        args.seed,
+        args.goals,
+        set.arm,
+        set.set.name()
+    )
+}
+
+/// `--write-goals DIR`: every set's goal file. Every file is created (as a temporary file)
+/// before any is renamed into place.
+fn write_goal_files(args: &BenchArgs, dir: &Path, plan: &[Planned]) -> Result<(), CliError> {
+    let pending = plan
+        .iter()
+        .map(|(set, _)| Ok((PendingFile::create(&dir.join(format!("{}.goals", set.name())), "--write-goals")?, set)))
+        .collect::<Result<Vec<_>, CliError>>()?;
+    for (file, set) in pending {
+        file.commit(kdl::goal_file(set, &goal_file_comment(args, set)).as_bytes())?;
     }
+    Ok(())
+}
 
-    let total: u64 = plan.iter().map(|(set, rows)| (set.goals.len() * rows.len()) as u64).sum();
-    let progress = progress_bar(total);
-
-    // KDL first: a broken --kdl is reported in seconds, not after the whole benchmark.
-    let mut kdl_version = None;
-    let mut kdl_rows: Vec<Vec<RowResult>> = Vec::new();
-    if let Some(path) = &args.kdl {
-        let dir = tempfile::tempdir().map_err(|e| {
-            CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
-        })?;
-        for (set, _) in &plan {
-            if let Some(bar) = &progress {
-                bar.set_message(format!("kdl {}", set.name()));
-            }
-            let result = kdl::run(path, set, dir.path(), &comment(set))?;
-            kdl_version.get_or_insert_with(|| result.version.clone());
-            kdl_rows.push(result.rows(set));
+/// `--kdl PATH`: KDL's rows of every set, and the version `kdl_bench` reported.
+fn run_kdl(
+    args: &BenchArgs,
+    path: &Path,
+    plan: &[Planned],
+    progress: Option<&ProgressBar>,
+) -> Result<(Option<String>, Vec<Vec<RowResult>>), CliError> {
+    let dir = tempfile::tempdir().map_err(|e| {
+        CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
+    })?;
+    let mut version = None;
+    let mut rows = Vec::new();
+    for (set, _) in plan {
+        if let Some(bar) = progress {
+            bar.set_message(format!("kdl {}", set.name()));
         }
+        let result = kdl::run(path, set, dir.path(), &goal_file_comment(args, set))?;
+        version.get_or_insert_with(|| result.version.clone());
+        rows.push(result.rows(set));
     }
+    Ok((version, rows))
+}
 
+/// Times every row of the plan, set by set; KDL's rows of a set (`kdl_rows`, one entry per
+/// set, or none) follow the set's ikarus rows, and every row of the set gets its speed
+/// relative to KDL's LMA.
+fn run_rows(plan: &[Planned], mut kdl_rows: Vec<Vec<RowResult>>, progress: Option<&ProgressBar>) -> Vec<RowResult> {
     let mut rows = Vec::new();
     for (k, (set, configs)) in plan.iter().enumerate() {
         let start = rows.len();
         for config in configs {
-            if let Some(bar) = &progress {
+            if let Some(bar) = progress {
                 bar.set_message(format!("{} {}", set.name(), config.label));
             }
             rows.push(run::run_config(set, config, || {
-                if let Some(bar) = &progress {
+                if let Some(bar) = progress {
                     bar.inc(1);
                 }
             }));
@@ -173,12 +225,14 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             }
         }
     }
-    if let Some(bar) = progress {
-        bar.finish_and_clear();
-    }
+    rows
+}
 
+/// What the output says about the run as a whole.
+fn header(args: &BenchArgs, arms: &[ArmName], set_names: &[SetName], kdl_version: Option<String>) -> Header {
     let opts = SolveOptions::default();
-    let header = Header {
+    let goals = args.goals as usize;
+    Header {
         command: command_line(),
         ikarus_version: env!("CARGO_PKG_VERSION"),
         kdl_version,
@@ -195,16 +249,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         os: std::env::consts::OS,
         arch: std::env::consts::ARCH,
         debug_build: cfg!(debug_assertions),
-    };
-    output::stdout(|w| {
-        if args.json {
-            table::json(w, &header, &rows)
-        } else if args.markdown {
-            table::markdown(w, &header, &rows)
-        } else {
-            table::text(w, &header, &rows)
-        }
-    })
+    }
 }
 
 /// `--write-goals DIR` must be an existing directory (bad input, exit 2, otherwise); whether

@@ -115,7 +115,7 @@ pub async fn workspace(
     .await
 }
 
-pub async fn render(State(state): State<AppState>, ApiJson(req): ApiJson<RenderReq>) -> Result<Response, ApiError> {
+pub async fn render(State(state): State<AppState>, req: RenderReq) -> Result<Response, ApiError> {
     blocking(move || {
         let (bytes, format) = render_figure(req, &state.limits)?;
         Ok(([(header::CONTENT_TYPE, format.content_type())], bytes).into_response())

@@ -2,11 +2,12 @@
 //! field and the value.
 
 use axum::Json;
+use axum::body::{Body, Bytes};
 use axum::extract::rejection::JsonRejection;
 use axum::extract::{FromRequest, Request};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use serde::de::DeserializeOwned;
+use serde::de::{DeserializeOwned, IgnoredAny};
 
 use super::AppState;
 use crate::error::CliError;
@@ -55,9 +56,45 @@ impl<T: DeserializeOwned> FromRequest<AppState> for ApiJson<T> {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        match Json::<T>::from_request(req, state).await {
-            Ok(Json(value)) => Ok(Self(value)),
-            Err(rejection) => Err(rejected(&rejection, state.limits.max_body_bytes)),
+        JsonBody::from_request(req, state).await?.parse().map(Self)
+    }
+}
+
+/// A JSON request body read once and parsed as many times as needed (`/api/render` reads its
+/// `figure` first, then that figure's fields), each parse with the rejections of [`ApiJson`]:
+/// the field's path, and the line and column.
+pub struct JsonBody {
+    bytes: Bytes,
+    max_body_bytes: usize,
+}
+
+impl JsonBody {
+    /// The body as a `T`.
+    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ApiError> {
+        match Json::<T>::from_bytes(&self.bytes) {
+            Ok(Json(value)) => Ok(value),
+            Err(rejection) => Err(rejected(&rejection, self.max_body_bytes)),
+        }
+    }
+}
+
+impl FromRequest<AppState> for JsonBody {
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
+        let max_body_bytes = state.limits.max_body_bytes;
+        // The content type before the size, as `Json` checks them, by `Json`'s own rule: an
+        // empty body under the same headers is refused for its type or for being empty.
+        let mut probe = Request::new(Body::empty());
+        *probe.headers_mut() = req.headers().clone();
+        if let Err(rejection @ JsonRejection::MissingJsonContentType(_)) =
+            Json::<IgnoredAny>::from_request(probe, state).await
+        {
+            return Err(rejected(&rejection, max_body_bytes));
+        }
+        match Bytes::from_request(req, state).await {
+            Ok(bytes) => Ok(Self { bytes, max_body_bytes }),
+            Err(rejection) => Err(rejected(&rejection.into(), max_body_bytes)),
         }
     }
 }

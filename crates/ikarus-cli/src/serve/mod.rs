@@ -34,6 +34,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("files.js", JS, include_str!("assets/files.js")),
+    ("input.js", JS, include_str!("assets/input.js")),
     ("view.js", JS, include_str!("assets/view.js")),
 ];
 

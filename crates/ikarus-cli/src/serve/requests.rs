@@ -1,8 +1,13 @@
 //! The JSON requests of the API, in the names of the command line and the arm files (degrees
 //! at the edge). Every field is optional unless said otherwise; unknown fields are refused.
 
+use axum::extract::{FromRequest, Request};
 use ikarus::EaseKind;
 use serde::Deserialize;
+use serde::de::IgnoredAny;
+
+use super::AppState;
+use super::errors::{ApiError, JsonBody};
 
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;
@@ -86,9 +91,11 @@ pub struct WorkspaceReq {
     pub seed: Option<u64>,
 }
 
-/// `POST /api/render`: the figure, and the inputs of that figure.
-#[derive(Debug, Deserialize)]
-#[serde(tag = "figure", rename_all = "lowercase")]
+/// `POST /api/render`: the figure, and the inputs of that figure. Read in two passes, so that an
+/// error names its field like the other endpoints' errors: first `figure` alone ([`FigureTag`]),
+/// then that figure's own struct, which refuses the fields of other figures. Of two faults in
+/// one body, a fault of `figure` or of the JSON syntax is the one reported.
+#[derive(Debug)]
 pub enum RenderReq {
     /// An arm in one pose.
     Arm(ArmFigureReq),
@@ -100,10 +107,46 @@ pub enum RenderReq {
     Ease(EaseFigureReq),
 }
 
+/// The names of the figures.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Figure {
+    Arm,
+    Motion,
+    Workspace,
+    Ease,
+}
+
+/// The first pass over a render request: `figure` (required), other fields skipped. Its
+/// messages speak of the whole request (`expected struct RenderReq`).
+#[derive(Debug, Deserialize)]
+#[serde(expecting = "struct RenderReq")]
+pub struct FigureTag {
+    pub figure: Figure,
+}
+
+impl FromRequest<AppState> for RenderReq {
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
+        let body = JsonBody::from_request(req, state).await?;
+        let FigureTag { figure } = body.parse()?;
+        Ok(match figure {
+            Figure::Arm => RenderReq::Arm(body.parse()?),
+            Figure::Motion => RenderReq::Motion(body.parse()?),
+            Figure::Workspace => RenderReq::Workspace(body.parse()?),
+            Figure::Ease => RenderReq::Ease(body.parse()?),
+        })
+    }
+}
+
 /// Figure `arm`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ArmFigureReq {
+    /// Read by the first pass.
+    #[serde(default, rename = "figure")]
+    pub _figure: IgnoredAny,
     #[serde(default)]
     pub format: Option<PictureFormat>,
     #[serde(default)]
@@ -134,6 +177,9 @@ pub struct ArmFigureReq {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotionFigureReq {
+    /// Read by the first pass.
+    #[serde(default, rename = "figure")]
+    pub _figure: IgnoredAny,
     #[serde(default)]
     pub format: Option<PictureFormat>,
     #[serde(default)]
@@ -167,6 +213,9 @@ pub struct MotionFigureReq {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorkspaceFigureReq {
+    /// Read by the first pass.
+    #[serde(default, rename = "figure")]
+    pub _figure: IgnoredAny,
     #[serde(default)]
     pub format: Option<PictureFormat>,
     #[serde(default)]
@@ -189,6 +238,9 @@ pub struct WorkspaceFigureReq {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EaseFigureReq {
+    /// Read by the first pass.
+    #[serde(default, rename = "figure")]
+    pub _figure: IgnoredAny,
     #[serde(default)]
     pub format: Option<PictureFormat>,
     #[serde(default)]

@@ -2,7 +2,8 @@
 // animate, sample the workspace and render pictures. Plain ES modules, no dependencies, no build
 // step. This module wires the page: it owns the one `state` object, and every other module
 // either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
-// reads and fills the form (controls.js) or saves files (files.js).
+// reads and fills the form (controls.js), turns pointer and keys into actions (input.js) or
+// saves files (files.js).
 
 import * as api from "./api.js";
 import {
@@ -16,7 +17,8 @@ import {
 } from "./controls.js";
 import { areaImage, drawScene, fitCanvas } from "./draw.js";
 import { framesCsv, saveBlob } from "./files.js";
-import { fitView, forward, frameIndexAt, isDrag, nudge, toCanvas, toWorld } from "./view.js";
+import { wireInput } from "./input.js";
+import { fitView, forward, frameIndexAt, toCanvas } from "./view.js";
 
 /** Wall-clock length of a motion's playback, whatever its own duration. */
 const PLAYBACK_MS = 1000;
@@ -157,6 +159,12 @@ function stopPlayback() {
     state.playing.resolve();
     state.playing = null;
   }
+}
+
+/** Stops the motion being played and drops the answers of the one being asked for. */
+function cancelMotion() {
+  stopPlayback();
+  state.jobs.animateSeq++;
 }
 
 /** Plays the frames of `anim` over PLAYBACK_MS; resolves when done or stopped. */
@@ -309,8 +317,7 @@ function armChanged() {
 }
 
 function resetPose() {
-  stopPlayback();
-  state.jobs.animateSeq++;
+  cancelMotion();
   state.animation = null;
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
@@ -360,70 +367,10 @@ async function renderFigure(format) {
   }
 }
 
-// ---- Pointer and keyboard -----------------------------------------------------------------
-
-function eventWorld(ev) {
-  const r = canvas.getBoundingClientRect();
-  return toWorld(state.view, ev.clientX - r.left, ev.clientY - r.top);
-}
-
-function wireCanvas() {
-  canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.arm || ev.button !== 0) return;
-    state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
-    canvas.setPointerCapture(ev.pointerId);
-  });
-
-  canvas.addEventListener("pointermove", (ev) => {
-    if (!state.arm) return;
-    const press = state.press;
-    if (press && !press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
-      press.dragging = true;
-      stopPlayback();
-      state.jobs.animateSeq++;
-    }
-    if (state.follow || (press && press.dragging)) {
-      const [x, y] = eventWorld(ev);
-      followTo(x, y);
-    }
-  });
-
-  canvas.addEventListener("pointerup", (ev) => {
-    if (!state.press) return;
-    const wasDrag = state.press.dragging;
-    state.press = null;
-    if (!wasDrag && !state.follow) {
-      const [x, y] = eventWorld(ev);
-      animateTo(x, y);
-    }
-  });
-
-  canvas.addEventListener("pointercancel", () => {
-    state.press = null;
-  });
-
-  canvas.addEventListener("keydown", (ev) => {
-    if (!state.arm) return;
-    const tip = state.joints[state.joints.length - 1];
-    const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
-    if (g) {
-      ev.preventDefault();
-      if (state.follow) followTo(g.x, g.y);
-      else {
-        state.goal = g;
-        requestDraw();
-      }
-    } else if (ev.key === "Enter" && state.goal) {
-      ev.preventDefault();
-      animateTo(state.goal.x, state.goal.y);
-    }
-  });
-}
-
 // ---- Wiring -------------------------------------------------------------------------------
 
 function wire() {
-  wireCanvas();
+  wireInput(canvas, state, { animateTo, followTo, cancelMotion, requestDraw });
   for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
     $(id).addEventListener("change", controlsChanged);
   }

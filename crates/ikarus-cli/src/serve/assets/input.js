@@ -1,0 +1,68 @@
+// The canvas's pointer and keyboard. A click animates to the point; a drag, or any move in
+// follow mode, solves towards the pointer; the arrow keys nudge the goal (solving at once in
+// follow mode) and Enter animates to it. The state stays main.js's: it is passed in, with
+// main.js's actions.
+
+import { isDrag, nudge, toWorld } from "./view.js";
+
+/**
+ * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `joints` and `goal`; writes
+ * `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
+ * {animateTo(x, y), followTo(x, y), cancelMotion(), requestDraw()}.
+ */
+export function wireInput(canvas, state, act) {
+  const eventWorld = (ev) => {
+    const r = canvas.getBoundingClientRect();
+    return toWorld(state.view, ev.clientX - r.left, ev.clientY - r.top);
+  };
+
+  canvas.addEventListener("pointerdown", (ev) => {
+    if (!state.arm || ev.button !== 0) return;
+    state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
+    canvas.setPointerCapture(ev.pointerId);
+  });
+
+  canvas.addEventListener("pointermove", (ev) => {
+    if (!state.arm) return;
+    const press = state.press;
+    if (press && !press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
+      press.dragging = true;
+      act.cancelMotion();
+    }
+    if (state.follow || (press && press.dragging)) {
+      const [x, y] = eventWorld(ev);
+      act.followTo(x, y);
+    }
+  });
+
+  canvas.addEventListener("pointerup", (ev) => {
+    if (!state.press) return;
+    const wasDrag = state.press.dragging;
+    state.press = null;
+    if (!wasDrag && !state.follow) {
+      const [x, y] = eventWorld(ev);
+      act.animateTo(x, y);
+    }
+  });
+
+  canvas.addEventListener("pointercancel", () => {
+    state.press = null;
+  });
+
+  canvas.addEventListener("keydown", (ev) => {
+    if (!state.arm) return;
+    const tip = state.joints[state.joints.length - 1];
+    const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
+    if (g) {
+      ev.preventDefault();
+      if (state.follow) act.followTo(g.x, g.y);
+      else {
+        state.goal = g;
+        act.requestDraw();
+      }
+    } else if (ev.key === "Enter" && state.goal) {
+      ev.preventDefault();
+      act.animateTo(state.goal.x, state.goal.y);
+    }
+  });
+}
