@@ -16,7 +16,7 @@ use crate::options::{parse_angle, parse_at_least_one, parse_finite, parse_point}
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
 use crate::report::AnimateJson;
-use crate::settings::{SolverSettings, command_options};
+use crate::settings::SolverSettings;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AnimateFormat {
@@ -76,7 +76,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
 
     // Solve for each via point, then the goal, each from the previous pose.
     let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
-    let options = command_options(&args.solver, &arm, record)?;
+    let options = arm.options(&args.solver, record)?;
     let [x, y] = args.goal;
     let goal = crate::solve::make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
     let goals =

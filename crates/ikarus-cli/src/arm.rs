@@ -65,6 +65,15 @@ pub struct Arm {
 }
 
 impl Arm {
+    /// The options of a command: `flags` over this arm file's `[solver]` table over the
+    /// defaults, for the arm's chain; problems name the flags.
+    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
+        flags
+            .over(&self.solver)
+            .to_options(&self.chain, record_every)
+            .map_err(|e| CliError::input(e.describe(|field| format!("--{}", field.replace('_', "-")))))
+    }
+
     /// Loads `path`, or the built-in seed arm when `None`.
     pub fn load(path: Option<&Path>) -> Result<Self, CliError> {
         match path {

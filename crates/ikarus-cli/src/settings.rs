@@ -10,7 +10,6 @@ use clap::builder::ArgPredicate;
 use ikarus::{Chain, LimitMode, Method, OptionsError, Restarts, SolveError, SolveOptions, Solver, StallDetection};
 use serde::Deserialize;
 
-use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::{named, parse_at_least_one, parse_non_negative, parse_positive};
 
@@ -242,15 +241,6 @@ impl SolverSettings {
         }
         Ok(())
     }
-}
-
-/// The options of a command: `flags` over the arm file's `[solver]` table over the defaults,
-/// for the arm's chain; problems name the flags.
-pub fn command_options(flags: &SolverSettings, arm: &Arm, record_every: Option<u32>) -> Result<SolveOptions, CliError> {
-    flags
-        .over(&arm.solver)
-        .to_options(&arm.chain, record_every)
-        .map_err(|e| CliError::input(e.describe(|field| format!("--{}", field.replace('_', "-")))))
 }
 
 /// A solver for options already checked by [`SolverSettings::to_options`].

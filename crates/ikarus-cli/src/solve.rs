@@ -15,7 +15,7 @@ use crate::error::CliError;
 use crate::options::{parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output::{self, PendingFile};
 use crate::report::{SolveJson, SolveReport};
-use crate::settings::{SolverSettings, command_options, solver};
+use crate::settings::{SolverSettings, solver};
 use crate::stats::{median, nearest_rank};
 
 /// Frames recorded by default: every 20 iterations, as the seed program did.
@@ -96,7 +96,7 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     let [x, y] = args.goal.expect("clap requires --goal without --batch");
     let goal = make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
     let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
-    let mut solver = solver(command_options(&args.solver, arm, Some(every))?)?;
+    let mut solver = solver(arm.options(&args.solver, Some(every))?)?;
     let started = Instant::now();
     let outcome =
         solver.solve(&arm.chain, arm.chain.start_pose(), &goal).map_err(|e| CliError::input(e.to_string()))?;
@@ -282,7 +282,7 @@ struct Summary {
 
 fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     let goals = read_goals(path)?;
-    let solver = solver(command_options(&args.solver, arm, None)?)?;
+    let solver = solver(arm.options(&args.solver, None)?)?;
     let pending = args.summary_json.as_deref().map(|p| PendingFile::create(p, "--summary-json")).transpose()?;
     let threads = args.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from));
     let pool = rayon::ThreadPoolBuilder::new()

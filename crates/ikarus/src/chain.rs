@@ -1,4 +1,5 @@
-//! The chain model: links, joint limits, poses, and their validation.
+//! The chain model: links, poses, and their validation (joint limits are in
+//! [`crate::limits`], re-exported here).
 //!
 //! A [`Chain`] is a planar serial chain of `N ≥ 1` revolute joints, each followed by a rigid
 //! link. Joint `i` sits at the end of link `i − 1` (joint 0 sits at the base). Its angle is
@@ -10,94 +11,8 @@
 use nalgebra::Point2;
 use thiserror::Error;
 
-use crate::angle;
-use crate::bounds::Bounds;
-
-/// A closed range `[min, max]` of allowed joint angles, in radians.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JointLimits {
-    min: f64,
-    max: f64,
-}
-
-impl JointLimits {
-    /// Builds a range, checking that both ends are finite and `min ≤ max`.
-    pub fn new(min: f64, max: f64) -> Result<Self, LimitsError> {
-        if !min.is_finite() {
-            return Err(LimitsError::NonFinite { end: "min", value: min });
-        }
-        if !max.is_finite() {
-            return Err(LimitsError::NonFinite { end: "max", value: max });
-        }
-        if min > max {
-            return Err(LimitsError::Inverted { min, max });
-        }
-        Ok(Self { min, max })
-    }
-
-    /// The lower end, in radians.
-    #[must_use]
-    pub fn min(&self) -> f64 {
-        self.min
-    }
-
-    /// The upper end, in radians.
-    #[must_use]
-    pub fn max(&self) -> f64 {
-        self.max
-    }
-
-    /// Whether `angle` lies in `[min, max]`.
-    #[must_use]
-    pub fn contains(&self, angle: f64) -> bool {
-        self.min <= angle && angle <= self.max
-    }
-
-    /// `angle` moved to the nearest end of the range if it lies outside.
-    #[must_use]
-    pub fn clamp(&self, angle: f64) -> f64 {
-        angle.clamp(self.min, self.max)
-    }
-
-    /// The 2π-equivalent of `angle` inside the range nearest `reference` (clamped onto the
-    /// range, since the shift can round a hair past an end), or `None` if no equivalent lies
-    /// inside. See [`angle::nearest_equivalent_in`].
-    #[inline]
-    #[must_use]
-    pub fn nearest_equivalent(&self, angle: f64, reference: f64) -> Option<f64> {
-        angle::nearest_equivalent_in(angle, reference, self.min, self.max).map(|a| self.clamp(a))
-    }
-
-    /// The end of the range nearer `angle` around the circle; `min` on a tie. See
-    /// [`angle::nearer_end`].
-    #[inline]
-    #[must_use]
-    pub fn nearer_end(&self, angle: f64) -> f64 {
-        angle::nearer_end(angle, self.min, self.max)
-    }
-}
-
-/// Why a [`JointLimits`] could not be built.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum LimitsError {
-    /// One end of the range is NaN or infinite.
-    #[error("{end} must be a finite number, got {value}")]
-    NonFinite {
-        /// `"min"` or `"max"`.
-        end: &'static str,
-        /// The offending value.
-        value: f64,
-    },
-    /// `min > max`.
-    #[error("min must not exceed max, got [{min}, {max}]")]
-    Inverted {
-        /// The lower end given.
-        min: f64,
-        /// The upper end given.
-        max: f64,
-    },
-}
+use crate::limits::Bounds;
+pub use crate::limits::{JointLimits, LimitsError};
 
 /// One joint and the link that follows it: the link's length, the joint's starting angle
 /// (radians, relative to the previous link) and its optional limits.
@@ -249,7 +164,7 @@ impl Chain {
         let angles: Vec<f64> = links.iter().map(|l| l.angle).collect();
         let limits: Vec<Option<JointLimits>> = links.iter().map(|l| l.limits).collect();
         let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
-        check_angles(&angles, Bounds::of_limits(&limits))?;
+        check_angles(&angles, Bounds::new(&limits))?;
         let reach = lengths.iter().sum();
         Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
     }
@@ -333,7 +248,7 @@ impl Chain {
     /// The joint limits as a [`Bounds`] view (free if no joint has limits).
     #[must_use]
     pub fn bounds(&self) -> Bounds<'_> {
-        Bounds::of(self)
+        if self.has_limits() { Bounds::new(&self.limits) } else { Bounds::free() }
     }
 
     /// Validates `angles` as a pose of this chain: one finite angle per joint, each within its
@@ -371,7 +286,7 @@ fn check_angles(angles: &[f64], bounds: Bounds<'_>) -> Result<(), ChainError> {
         }
         if let Some(lim) = bounds.get(index) {
             if !lim.contains(value) {
-                return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min, max: lim.max });
+                return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min(), max: lim.max() });
             }
         }
     }

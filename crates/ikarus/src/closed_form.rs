@@ -22,9 +22,9 @@
 use nalgebra::Vector2;
 
 use crate::angle::{self, wrap_angle};
-use crate::bounds::Bounds;
 use crate::chain::{Chain, JointLimits};
 use crate::goal::Goal;
+use crate::limits::Bounds;
 
 /// Relative slack allowed on the boundary of the reachable annulus, as a share of `l₁ + l₂`.
 const BOUNDARY_SLACK: f64 = 1e-12;

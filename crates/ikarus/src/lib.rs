@@ -44,23 +44,23 @@
 #![cfg_attr(not(test), deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro))]
 
 pub mod angle;
-pub mod bounds;
 pub mod chain;
 pub mod closed_form;
 pub mod ease;
 pub mod goal;
 pub mod kinematics;
+pub mod limits;
 pub mod motion;
 pub mod names;
 pub mod reach;
 pub mod rng;
 pub mod solve;
 
-pub use bounds::Bounds;
-pub use chain::{Chain, ChainError, JointLimits, LimitsError, Link, LinkField, Pose};
+pub use chain::{Chain, ChainError, Link, LinkField, Pose};
 pub use ease::{Ease, EaseError, EaseKind, ParentEase};
 pub use goal::{Goal, GoalError};
 pub use kinematics::EndEffector;
+pub use limits::{Bounds, JointLimits, LimitsError};
 pub use motion::{Animation, AnimationFrame, MotionError, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};

@@ -5,7 +5,7 @@ use nalgebra::Vector3;
 use super::line_search::{Residual, jacobian_step};
 use super::lm::Damping;
 use super::problem::Problem;
-use super::solver::Scratch;
+use super::scratch::Scratch;
 use super::step::{Rule, Stepper};
 use super::{Outcome, Status, ccd, fabrik};
 use crate::angle::wrap_angle;

@@ -17,7 +17,7 @@ use nalgebra::Vector3;
 use super::LimitMode;
 use super::pinv;
 use super::problem::Problem;
-use super::solver::Scratch;
+use super::scratch::Scratch;
 use super::step::{Rule, gram, method_step};
 use crate::chain::Chain;
 

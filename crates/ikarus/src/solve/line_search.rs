@@ -11,7 +11,7 @@ use nalgebra::Vector3;
 use super::limit_modes::compute_delta;
 use super::lm::Damping;
 use super::problem::Problem;
-use super::solver::Scratch;
+use super::scratch::Scratch;
 use super::step::Rule;
 use crate::angle::wrap_angle;
 use crate::kinematics::joint_positions_into;

@@ -64,6 +64,7 @@ mod outcome;
 mod pinv;
 mod problem;
 mod restarts;
+mod scratch;
 mod sdls;
 mod solver;
 mod step;

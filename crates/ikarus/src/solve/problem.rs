@@ -2,9 +2,9 @@
 //! once and passed to every part of the loop instead of a dozen parameters.
 
 use super::{LimitMode, SolveOptions};
-use crate::bounds::Bounds;
 use crate::chain::Chain;
 use crate::goal::Goal;
+use crate::limits::Bounds;
 
 /// One solve's borrowed context.
 #[derive(Debug, Clone, Copy)]

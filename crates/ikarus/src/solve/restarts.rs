@@ -6,10 +6,10 @@ use std::time::Instant;
 
 use super::attempt::attempt;
 use super::problem::Problem;
-use super::solver::Scratch;
+use super::scratch::Scratch;
 use super::{Outcome, Restarts, SolveOptions, Status};
-use crate::bounds::Bounds;
 use crate::kinematics::joint_positions_into;
+use crate::limits::Bounds;
 use crate::rng::SplitMix64;
 
 /// How a solve has gone so far, over its attempts.

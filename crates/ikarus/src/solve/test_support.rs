@@ -6,9 +6,9 @@ use nalgebra::Point2;
 
 use super::problem::Problem;
 use super::{Goal, Method, SolveOptions, wrap_angle};
-use crate::bounds::Bounds;
 use crate::chain::Chain;
 use crate::kinematics::joint_positions;
+use crate::limits::Bounds;
 use crate::rng::SplitMix64;
 
 /// One iteration of a method without the Jacobian: [`super::ccd::sweep`] or

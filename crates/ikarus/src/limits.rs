@@ -1,0 +1,173 @@
+//! Joint limits: the range of one joint ([`JointLimits`]) and the limits a solve enforces, as
+//! one borrowed view over a chain's joints ([`Bounds`]).
+//!
+//! A solve decides once whether it respects the chain's limits (it does unless its
+//! [`LimitMode`](crate::LimitMode) is [`Ignore`](crate::LimitMode::Ignore)) and passes the
+//! view to every step: a joint without a bound is free, and an empty view frees them all.
+
+use thiserror::Error;
+
+use crate::angle;
+
+/// A closed range `[min, max]` of allowed joint angles, in radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointLimits {
+    min: f64,
+    max: f64,
+}
+
+impl JointLimits {
+    /// Builds a range, checking that both ends are finite and `min ≤ max`.
+    pub fn new(min: f64, max: f64) -> Result<Self, LimitsError> {
+        if !min.is_finite() {
+            return Err(LimitsError::NonFinite { end: "min", value: min });
+        }
+        if !max.is_finite() {
+            return Err(LimitsError::NonFinite { end: "max", value: max });
+        }
+        if min > max {
+            return Err(LimitsError::Inverted { min, max });
+        }
+        Ok(Self { min, max })
+    }
+
+    /// The lower end, in radians.
+    #[must_use]
+    pub fn min(&self) -> f64 {
+        self.min
+    }
+
+    /// The upper end, in radians.
+    #[must_use]
+    pub fn max(&self) -> f64 {
+        self.max
+    }
+
+    /// Whether `angle` lies in `[min, max]`.
+    #[must_use]
+    pub fn contains(&self, angle: f64) -> bool {
+        self.min <= angle && angle <= self.max
+    }
+
+    /// `angle` moved to the nearest end of the range if it lies outside.
+    #[must_use]
+    pub fn clamp(&self, angle: f64) -> f64 {
+        angle.clamp(self.min, self.max)
+    }
+
+    /// The 2π-equivalent of `angle` inside the range nearest `reference` (clamped onto the
+    /// range, since the shift can round a hair past an end), or `None` if no equivalent lies
+    /// inside. See [`angle::nearest_equivalent_in`].
+    #[inline]
+    #[must_use]
+    pub fn nearest_equivalent(&self, angle: f64, reference: f64) -> Option<f64> {
+        angle::nearest_equivalent_in(angle, reference, self.min, self.max).map(|a| self.clamp(a))
+    }
+
+    /// The end of the range nearer `angle` around the circle; `min` on a tie. See
+    /// [`angle::nearer_end`].
+    #[inline]
+    #[must_use]
+    pub fn nearer_end(&self, angle: f64) -> f64 {
+        angle::nearer_end(angle, self.min, self.max)
+    }
+}
+
+/// Why a [`JointLimits`] could not be built.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum LimitsError {
+    /// One end of the range is NaN or infinite.
+    #[error("{end} must be a finite number, got {value}")]
+    NonFinite {
+        /// `"min"` or `"max"`.
+        end: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// `min > max`.
+    #[error("min must not exceed max, got [{min}, {max}]")]
+    Inverted {
+        /// The lower end given.
+        min: f64,
+        /// The upper end given.
+        max: f64,
+    },
+}
+/// The limits a computation enforces: the chain's [`JointLimits`], or none.
+///
+/// Build it with [`Chain::bounds`](crate::Chain::bounds) (every limited joint enforced) or [`Bounds::free`] (none).
+/// Indexing past the end gives no bound, so the free view works for chains of any length.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Bounds<'a> {
+    limits: &'a [Option<JointLimits>],
+}
+
+impl<'a> Bounds<'a> {
+    /// No joint is bounded.
+    #[must_use]
+    pub fn free() -> Self {
+        Self { limits: &[] }
+    }
+
+    /// A view over per-joint limits (joint `i` bounded by `limits[i]`).
+    #[must_use]
+    pub fn new(limits: &'a [Option<JointLimits>]) -> Self {
+        Self { limits }
+    }
+
+    /// Whether no joint is bounded.
+    #[must_use]
+    pub fn is_free(&self) -> bool {
+        self.limits.is_empty()
+    }
+
+    /// The bound of joint `i`, if any.
+    #[inline]
+    #[must_use]
+    pub fn get(&self, i: usize) -> Option<JointLimits> {
+        self.limits.get(i).copied().flatten()
+    }
+
+    /// `angle` clamped into the bound of joint `i` (unchanged when it has none).
+    #[inline]
+    #[must_use]
+    pub fn clamp(&self, i: usize, angle: f64) -> f64 {
+        match self.get(i) {
+            Some(lim) => lim.clamp(angle),
+            None => angle,
+        }
+    }
+
+    /// Every angle of `angles` clamped into its joint's bound.
+    #[inline]
+    pub fn clamp_into(&self, angles: &mut [f64]) {
+        for (a, lim) in angles.iter_mut().zip(self.limits) {
+            if let Some(lim) = lim {
+                *a = lim.clamp(*a);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::{Chain, Link};
+
+    #[test]
+    fn a_view_of_the_chain_or_nothing() {
+        let lim = JointLimits::new(-0.5, 0.5).unwrap();
+        let chain = Chain::new([0.0, 0.0], &[Link::new(1.0, 0.0).with_limits(lim), Link::new(1.0, 0.0)]).unwrap();
+        let b = chain.bounds();
+        assert!(!b.is_free());
+        assert_eq!((b.get(0), b.get(1), b.get(7)), (Some(lim), None, None));
+        assert_eq!((b.clamp(0, 2.0), b.clamp(1, 2.0)), (0.5, 2.0));
+        let mut angles = [-3.0, -3.0];
+        b.clamp_into(&mut angles);
+        assert_eq!(angles, [-0.5, -3.0]);
+        let free = Bounds::free();
+        assert!(free.is_free() && free.get(0).is_none() && free.clamp(0, 9.0) == 9.0);
+        assert!(chain.without_limits().bounds().is_free());
+    }
+}
