@@ -195,21 +195,7 @@ impl EaseKind {
     }
 }
 
-impl crate::names::Named for EaseKind {
-    const KIND: &'static str = "ease";
-    const ALL: &'static [Self] = &EaseKind::ALL;
-    fn name(self) -> &'static str {
-        EaseKind::name(self)
-    }
-    fn label(self) -> &'static str {
-        EaseKind::label(self)
-    }
-    fn summary(self) -> &'static str {
-        EaseKind::summary(self)
-    }
-}
-
-crate::names::by_name!(EaseKind);
+crate::names::by_name!(EaseKind, "ease");
 
 impl Ease {
     /// The kind of this curve.

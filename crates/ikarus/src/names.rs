@@ -59,9 +59,24 @@ pub struct UnknownName {
     pub expected: String,
 }
 
-/// `Display`, `FromStr` and (with the `serde` feature) serde by [`Named::name`].
+/// [`Named`] for an enum with inherent `ALL`, `name`, `label` and `summary` (its one table),
+/// and `Display`, `FromStr` and (with the `serde` feature) serde by [`Named::name`].
 macro_rules! by_name {
-    ($t:ty) => {
+    ($t:ty, $kind:literal) => {
+        impl $crate::names::Named for $t {
+            const KIND: &'static str = $kind;
+            const ALL: &'static [Self] = &<$t>::ALL;
+            fn name(self) -> &'static str {
+                <$t>::name(self)
+            }
+            fn label(self) -> &'static str {
+                <$t>::label(self)
+            }
+            fn summary(self) -> &'static str {
+                <$t>::summary(self)
+            }
+        }
+
         impl std::fmt::Display for $t {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
                 f.write_str($crate::names::Named::name(*self))

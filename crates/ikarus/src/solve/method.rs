@@ -213,36 +213,8 @@ impl LimitMode {
     }
 }
 
-impl Named for Method {
-    const KIND: &'static str = "method";
-    const ALL: &'static [Self] = &Method::ALL;
-    fn name(self) -> &'static str {
-        Method::name(self)
-    }
-    fn label(self) -> &'static str {
-        Method::label(self)
-    }
-    fn summary(self) -> &'static str {
-        Method::summary(self)
-    }
-}
-
-impl Named for LimitMode {
-    const KIND: &'static str = "limit mode";
-    const ALL: &'static [Self] = &LimitMode::ALL;
-    fn name(self) -> &'static str {
-        LimitMode::name(self)
-    }
-    fn label(self) -> &'static str {
-        LimitMode::label(self)
-    }
-    fn summary(self) -> &'static str {
-        LimitMode::summary(self)
-    }
-}
-
-by_name!(Method);
-by_name!(LimitMode);
+by_name!(Method, "method");
+by_name!(LimitMode, "limit mode");
 
 #[cfg(test)]
 mod tests {
