@@ -6,13 +6,13 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ikarus::EaseKind;
-use ikarus::motion::{Animation, Timing};
+use ikarus::motion::{Animation, Interpolation, Timing};
 
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, MotionPlan, TimingProblem};
-use crate::options::{parse_angle, parse_at_least_one, parse_finite, parse_point};
+use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
 use crate::report::AnimateJson;
@@ -54,8 +54,11 @@ pub struct AnimateArgs {
     pub fps: Option<f64>,
     #[command(flatten)]
     pub ease: EaseArgs,
-    /// Follow the solver's own path (its recorded frames), re-timed, instead of moving
-    /// straight between the solved poses in joint space
+    /// Path through the keyframes in joint space [default: spline]
+    #[arg(long, value_parser = named::<Interpolation>(), hide_possible_values = false)]
+    pub interpolation: Option<Interpolation>,
+    /// Follow the solver's own path (its recorded frames), re-timed and interpolated the same
+    /// way, instead of the path through the solved poses
     #[arg(long)]
     pub from_solve: bool,
     /// Record a solver frame every K iterations for --from-solve [default: 1]
@@ -83,7 +86,8 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         crate::motion::goals(&args.via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
     let start = arm.chain.start_pose().angles().to_vec();
     let from_solve = args.from_solve;
-    let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, from_solve }.run()?;
+    let interpolation = args.interpolation.unwrap_or_default();
+    let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, interpolation, from_solve }.run()?;
     for s in &motion.motion.solves {
         if s.status != ikarus::Status::Reached {
             let target = s.goal.target();

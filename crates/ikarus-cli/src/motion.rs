@@ -1,7 +1,7 @@
 //! The motion workflow shared by `ikarus animate` and `POST /api/animate` / `/api/render`:
 //! the timing rules, via points into goals, and the library's motion through goals.
 
-use ikarus::motion::{GoalMotion, Route, Timing, through_goals};
+use ikarus::motion::{GoalMotion, Interpolation, MotionOptions, Route, Timing, through_goals};
 use ikarus::{Ease, Goal, GoalError, SolveOptions, Solver};
 
 use crate::arm::Arm;
@@ -69,6 +69,8 @@ pub struct MotionPlan<'a> {
     pub options: SolveOptions,
     pub timing: Timing,
     pub ease: Ease,
+    /// The path through the poses: spline (the default) or polyline.
+    pub interpolation: Interpolation,
     /// Follow the solver's recorded path instead of moving straight between solved poses.
     pub from_solve: bool,
 }
@@ -81,12 +83,14 @@ pub struct Motion {
 
 impl MotionPlan<'_> {
     /// Solves for each via point, then the goal, each from the previous pose, and eases the
-    /// poses into a motion ([`ikarus::motion::through_goals`]).
+    /// poses into a motion ([`ikarus::motion::through_goals`]), with the same interpolation
+    /// whether the poses are the solved ones or every pose the solver recorded.
     pub fn run(self) -> Result<Motion, CliError> {
         let mut solver = Solver::new(self.options).map_err(|e| CliError::input(e.to_string()))?;
         let route = if self.from_solve { Route::Recorded } else { Route::Keyframes };
         let chain = &self.arm.chain;
-        let motion = through_goals(&mut solver, chain, &self.start, &self.goals, route, self.timing, self.ease)
+        let options = MotionOptions::new(self.timing, self.ease).with_interpolation(self.interpolation);
+        let motion = through_goals(&mut solver, chain, &self.start, &self.goals, route, options)
             .map_err(|e| CliError::input(e.to_string()))?;
         Ok(Motion { options: solver.options().clone(), motion })
     }

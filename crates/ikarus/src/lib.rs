@@ -61,7 +61,7 @@ pub use ease::{Ease, EaseError, EaseKind, ParentEase};
 pub use goal::{Goal, GoalError};
 pub use kinematics::EndEffector;
 pub use limits::{Bounds, JointLimits, LimitsError};
-pub use motion::{Animation, AnimationFrame, MotionError, Timing};
+pub use motion::{Animation, AnimationFrame, Interpolation, MotionError, MotionOptions, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use solve::{

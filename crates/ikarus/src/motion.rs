@@ -3,8 +3,12 @@
 //! [`animate`] turns keyframe poses into frames evenly spaced in time; [`animate_solve`] does the
 //! same with the frames a solver recorded; [`through_goals`] solves for goals in order and
 //! animates the poses it found. Interpolation happens in joint space, as in the seed
-//! program: every angle moves linearly between keyframes, so the links sweep natural arcs
-//! (interpolating joint *positions* instead would cut corners and stretch the links).
+//! program, so the links sweep natural arcs (interpolating joint *positions* instead would cut
+//! corners and stretch the links). By default every angle follows a monotone cubic spline
+//! through the keyframes ([`Interpolation::Spline`]: velocity continuous at every keyframe, never
+//! past a keyframe value, so never past a limit); [`Interpolation::Linear`] moves every angle
+//! linearly between keyframes, along the polyline described below. Both share the unwrapping,
+//! the knots `C_k` and the timing; the options travel together in [`MotionOptions`].
 //!
 //! # The path
 //!
@@ -59,16 +63,19 @@
 //!   with limits stays inside them. Between two keyframes a joint without limits moves steadily
 //!   one way by at most π, so frames never jump by a turn (unless they are so sparse that one
 //!   frame step passes several keyframes).
-//! * The path has corners at the keyframes. A frame step across a corner where the path turns by
+//! * With [`Interpolation::Spline`] the same holds for every frame (see its docs for why); the
+//!   spline is at keyframe `k` at the moment the polyline is, and it has no corners.
+//! * The polyline has corners at the keyframes. A frame step across a corner where the path turns by
 //!   an angle θ is a chord, shorter than the path it stands for: at least `cos(θ/2)` times its
 //!   length when it spans a single corner. The ease controls the speed along the path.
 //!
 //! # Files
 //!
-//! This file holds the animation types, the errors and the two entry points that check their
+//! This file holds the animation types, the errors and the entry points that check their
 //! input and lay frames along the path; `timing.rs` holds [`Timing`] (frame counts and times),
-//! `path.rs` the path (unwrapping, lengths, the pose at a point of it), and `through.rs`
-//! [`through_goals`].
+//! `options.rs` [`Interpolation`] and [`MotionOptions`], `path.rs` the polyline (unwrapping,
+//! lengths, the pose at a point of it), `spline.rs` the spline through the same keyframes, and
+//! `through.rs` [`through_goals`].
 
 use nalgebra::Point2;
 use thiserror::Error;
@@ -78,11 +85,15 @@ use crate::ease::Ease;
 use crate::kinematics::joint_positions;
 use crate::solve::Frames;
 
+mod options;
 mod path;
+mod spline;
 mod through;
 mod timing;
 
+pub use options::{Interpolation, MotionOptions};
 use path::Path;
+use spline::Spline;
 pub use through::{GoalMotion, GoalMotionError, GoalOutcome, Route, through_goals};
 pub use timing::{MAX_FRAMES, Timing};
 
@@ -284,7 +295,35 @@ pub fn animate(
     timing: Timing,
     ease: Ease,
 ) -> Result<Animation, MotionError> {
-    let n = timing.frame_count()?;
+    animate_with(chain, keyframes, times, MotionOptions::new(timing, ease))
+}
+
+/// [`animate`] with every option: the timing, the ease and the [`Interpolation`].
+///
+/// [`Interpolation::Linear`] gives the polyline of the [module docs](self), bit for bit as
+/// before the spline existed; [`Interpolation::Spline`] (what [`animate`] uses) the monotone
+/// cubic spline through the same unwrapped keyframes, timed the same way.
+///
+/// ```
+/// use ikarus::motion::{Interpolation, MotionOptions, Timing, animate_with};
+/// use ikarus::{Chain, Ease, Link};
+///
+/// let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.0), Link::new(2.0, 0.0), Link::new(1.0, 0.0)])?;
+/// let keyframes = vec![vec![0.0, 0.0, 0.0], vec![0.8, 0.6, -0.4], vec![1.2, 1.6, 0.2]];
+/// let options = MotionOptions::new(Timing::Frames(30), Ease::Sine);
+/// let spline = animate_with(&chain, &keyframes, None, options)?;
+/// let linear = animate_with(&chain, &keyframes, None, options.with_interpolation(Interpolation::Linear))?;
+/// assert_eq!(spline.frames[29].angles, linear.frames[29].angles); // both end on the last keyframe
+/// assert_ne!(spline.frames[10].angles, linear.frames[10].angles); // but round the corner differently
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn animate_with(
+    chain: &Chain,
+    keyframes: &[Vec<f64>],
+    times: Option<&[f64]>,
+    options: MotionOptions,
+) -> Result<Animation, MotionError> {
+    let n = options.timing.frame_count()?;
     if keyframes.is_empty() {
         return Err(MotionError::NoKeyframes);
     }
@@ -298,9 +337,9 @@ pub fn animate(
     }
     let path = Path::new(chain, keyframes.iter().map(Vec::as_slice), "keyframes")?;
     if let Some(times) = times {
-        check_times(times, keyframes.len(), timing.duration())?;
+        check_times(times, keyframes.len(), options.timing.duration())?;
     }
-    Ok(build(chain, &path, times, timing, n, ease))
+    Ok(build(chain, &path, times, options, n))
 }
 
 /// Re-times the frames a solve recorded into the frames of `timing`, eased by `ease`.
@@ -319,7 +358,13 @@ pub fn animate(
 /// `None`), if the frames were recorded for a chain with a different number of joints, or if an
 /// angle is not finite.
 pub fn animate_solve(chain: &Chain, frames: &Frames, timing: Timing, ease: Ease) -> Result<Animation, MotionError> {
-    let n = timing.frame_count()?;
+    animate_solve_with(chain, frames, MotionOptions::new(timing, ease))
+}
+
+/// [`animate_solve`] with every option: the timing, the ease and the [`Interpolation`] of the
+/// path through the recorded poses.
+pub fn animate_solve_with(chain: &Chain, frames: &Frames, options: MotionOptions) -> Result<Animation, MotionError> {
+    let n = options.timing.frame_count()?;
     if frames.is_empty() {
         return Err(MotionError::NoRecordedFrames);
     }
@@ -327,7 +372,7 @@ pub fn animate_solve(chain: &Chain, frames: &Frames, timing: Timing, ease: Ease)
         check_pose(chain, "frames", index, frame.angles)?;
     }
     let path = Path::new(chain, frames.iter().map(|f| f.angles), "frames")?;
-    Ok(build(chain, &path, None, timing, n, ease))
+    Ok(build(chain, &path, None, options, n))
 }
 
 /// One finite angle per joint.
@@ -364,8 +409,16 @@ fn check_times(times: &[f64], keyframes: usize, duration: f64) -> Result<(), Mot
     Ok(())
 }
 
-/// The frames of a validated path: arc-length timing without `times`, eased time with them.
-fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, timing: Timing, n: usize, ease: Ease) -> Animation {
+/// The frames of a validated path: arc-length timing without `times`, eased time with them;
+/// along the spline unless the options ask for the polyline or the spline would be its single
+/// straight segment (then the frames are the polyline's, bit for bit).
+fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, options: MotionOptions, n: usize) -> Animation {
+    let MotionOptions { timing, ease, interpolation } = options;
+    let spline = match (interpolation, times) {
+        (Interpolation::Linear, _) => None,
+        (Interpolation::Spline, None) => Spline::by_length(path),
+        (Interpolation::Spline, Some(times)) => Spline::by_times(path, times),
+    };
     let duration = timing.duration();
     let mut frames = Vec::with_capacity(n);
     let mut angles = Vec::with_capacity(chain.len());
@@ -379,9 +432,15 @@ fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, timing: Timing, n: u
             angles.extend_from_slice(path.last());
         } else {
             let progress = ease.position(time / duration);
-            match times {
-                None => path.at(path.cumulative(), progress * path.length(), &mut angles),
-                Some(times) => path.at(times, progress * duration, &mut angles),
+            // The polyline's arc length without times (the spline's knots are the same `C_k`),
+            // the eased time with them.
+            let (marks, x) = match times {
+                None => (path.cumulative(), progress * path.length()),
+                Some(times) => (times, progress * duration),
+            };
+            match &spline {
+                None => path.at(marks, x, &mut angles),
+                Some(spline) => spline.at(x, &mut angles),
             }
         }
         let joints = joint_positions(chain, &angles);

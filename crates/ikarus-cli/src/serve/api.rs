@@ -9,7 +9,7 @@ use axum::Json;
 use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
-use ikarus::motion::Timing;
+use ikarus::motion::{Interpolation, Timing};
 use ikarus::reach::{Workspace, WorkspaceOptions};
 use ikarus::{Ease, EaseKind, Goal, Outcome, SolveOptions};
 use serde_json::json;
@@ -227,6 +227,7 @@ struct MotionFields<'a> {
     frames: Option<u32>,
     duration: Option<f64>,
     fps: Option<f64>,
+    interpolation: Option<Interpolation>,
     from_solve: bool,
 }
 
@@ -240,6 +241,7 @@ impl<'a> MotionFields<'a> {
             frames: r.frames,
             duration: r.duration,
             fps: r.fps,
+            interpolation: r.interpolation,
             from_solve: r.from_solve,
         }
     }
@@ -253,6 +255,7 @@ impl<'a> MotionFields<'a> {
             frames: r.frames,
             duration: r.duration,
             fps: r.fps,
+            interpolation: r.interpolation,
             from_solve: r.from_solve,
         }
     }
@@ -269,7 +272,8 @@ fn motion(arm: &Arm, req: &MotionFields<'_>, goal_req: &GoalReq, limits: &Limits
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
         .map_err(|(i, e)| ApiError::invalid(format!("via[{i}]: {e}")))?;
-    Ok(MotionPlan { arm, start, goals, options, timing, ease, from_solve: req.from_solve }.run()?)
+    let interpolation = req.interpolation.unwrap_or_default();
+    Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
 }
 
 fn sample_workspace(arm: &Arm, req: &WorkspaceReq, limits: &Limits) -> Result<(Workspace, bool), ApiError> {

@@ -3,6 +3,7 @@
 
 use axum::extract::{FromRequest, Request};
 use ikarus::EaseKind;
+use ikarus::motion::Interpolation;
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
@@ -71,6 +72,8 @@ pub struct AnimateReq {
     pub duration: Option<f64>,
     #[serde(default)]
     pub fps: Option<f64>,
+    #[serde(default)]
+    pub interpolation: Option<Interpolation>,
     #[serde(default)]
     pub from_solve: bool,
 }
@@ -205,6 +208,8 @@ pub struct MotionFigureReq {
     pub duration: Option<f64>,
     #[serde(default)]
     pub fps: Option<f64>,
+    #[serde(default)]
+    pub interpolation: Option<Interpolation>,
     #[serde(default)]
     pub from_solve: bool,
 }

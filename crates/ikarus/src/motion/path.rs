@@ -47,6 +47,11 @@ impl Path {
         Ok(Self { n, keys, cumulative })
     }
 
+    /// Joints per pose.
+    pub(super) fn joints(&self) -> usize {
+        self.n
+    }
+
     pub(super) fn key(&self, k: usize) -> &[f64] {
         &self.keys[k * self.n..(k + 1) * self.n]
     }

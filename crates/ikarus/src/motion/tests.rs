@@ -4,8 +4,9 @@ use super::*;
 use crate::chain::{JointLimits, Link};
 use crate::solve::{Goal, Method, SolveOptions, Solver, Status, wrap_angle};
 
-// Validation errors and the property tests, with the helpers below.
+// Validation errors, the property tests and the spline's tests, with the helpers below.
 mod properties;
+mod spline;
 mod validation;
 
 fn deg(x: f64) -> f64 {
@@ -66,8 +67,11 @@ fn assert_no_jumps(anim: &Animation) {
     }
 }
 
+/// The polyline ([`Interpolation::Linear`]) through `keys`, checked by [`check_frames`] and
+/// [`assert_no_jumps`]: most tests in this file are about the path as a polyline.
 fn animate_ok(chain: &Chain, keys: &[Vec<f64>], times: Option<&[f64]>, timing: Timing, ease: Ease) -> Animation {
-    let anim = animate(chain, keys, times, timing, ease).unwrap();
+    let options = MotionOptions::new(timing, ease).with_interpolation(Interpolation::Linear);
+    let anim = animate_with(chain, keys, times, options).unwrap();
     check_frames(chain, &anim);
     assert_no_jumps(&anim);
     anim
@@ -430,8 +434,9 @@ fn a_long_solve_becomes_sixty_frames() {
     assert_eq!(outcome.status, Status::Reached, "{outcome:?}");
     assert_eq!(recorded.len(), outcome.iterations as usize + 1);
     assert!(recorded.len() > 200, "{} frames", recorded.len());
-    for ease in eases() {
-        let anim = animate_solve(&c, recorded, Timing::Frames(60), ease).unwrap();
+    for (ease, interpolation) in eases().into_iter().flat_map(|e| Interpolation::ALL.map(|i| (e, i))) {
+        let options = MotionOptions::new(Timing::Frames(60), ease).with_interpolation(interpolation);
+        let anim = animate_solve_with(&c, recorded, options).unwrap();
         check_frames(&c, &anim);
         assert_no_jumps(&anim);
         assert_eq!(anim.frames.len(), 60);
@@ -444,7 +449,8 @@ fn a_long_solve_becomes_sixty_frames() {
     }
     // Recorded frames lie on the path, so the linear ease spreads the frames evenly along it.
     let keys: Vec<Vec<f64>> = recorded.iter().map(|f| f.angles.to_vec()).collect();
-    let anim = animate_solve(&c, recorded, Timing::Frames(60), Ease::Linear).unwrap();
+    let linear = MotionOptions::new(Timing::Frames(60), Ease::Linear).with_interpolation(Interpolation::Linear);
+    let anim = animate_solve_with(&c, recorded, linear).unwrap();
     let (d, _) = steps(&arc_positions(&keys, &angles(&anim)));
     let want = d.iter().sum::<f64>() / d.len() as f64;
     assert!(d.iter().all(|s| (s - want).abs() <= 1e-12), "{d:?}");

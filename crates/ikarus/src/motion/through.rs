@@ -3,9 +3,8 @@
 
 use thiserror::Error;
 
-use super::{Animation, MotionError, Timing, animate};
+use super::{Animation, MotionError, MotionOptions, animate_with};
 use crate::chain::Chain;
-use crate::ease::Ease;
 use crate::solve::{Goal, LimitMode, Outcome, SolveError, Solver, Status};
 
 /// Which poses the motion passes through.
@@ -56,7 +55,8 @@ pub enum GoalMotionError {
 
 /// Solves for each of `goals` in order with `solver`, the first from `start` (radians, one
 /// angle per joint) and each later one from the pose the previous solve ended at, then times
-/// the poses `route` names with `ease` and `timing` ([`animate`]).
+/// the poses `route` names with `options`: timing, ease and interpolation ([`animate_with`]).
+/// [`Route::Recorded`] uses the same interpolation through the solver's recorded poses.
 ///
 /// The motion obeys the same limits as the solves: when the solver ignores limits, every joint
 /// moves freely (and so wraps the short way round); otherwise limited joints stay inside their
@@ -68,8 +68,7 @@ pub fn through_goals(
     start: &[f64],
     goals: &[Goal],
     route: Route,
-    timing: Timing,
-    ease: Ease,
+    options: MotionOptions,
 ) -> Result<GoalMotion, GoalMotionError> {
     let mut keyframes = vec![start.to_vec()];
     let mut recorded: Vec<Vec<f64>> = vec![start.to_vec()];
@@ -93,8 +92,8 @@ pub fn through_goals(
         Route::Recorded => &recorded,
     };
     let animation = match solver.options().limits {
-        LimitMode::Ignore => animate(&chain.without_limits(), poses, None, timing, ease)?,
-        _ => animate(chain, poses, None, timing, ease)?,
+        LimitMode::Ignore => animate_with(&chain.without_limits(), poses, None, options)?,
+        _ => animate_with(chain, poses, None, options)?,
     };
     Ok(GoalMotion { solves, animation })
 }
@@ -102,7 +101,12 @@ pub fn through_goals(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Link, SolveOptions};
+    use crate::motion::Timing;
+    use crate::{Ease, Link, SolveOptions};
+
+    fn options(frames: usize, ease: Ease) -> MotionOptions {
+        MotionOptions::new(Timing::Frames(frames), ease)
+    }
 
     fn seed() -> Chain {
         Chain::new([0.0, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.1), Link::new(1.0, 0.1)]).unwrap()
@@ -114,8 +118,7 @@ mod tests {
         let goals = [Goal::position(3.0, -1.0).unwrap(), Goal::position(2.0, 3.0).unwrap()];
         let mut solver = Solver::new(SolveOptions::default()).unwrap();
         let start = chain.start_pose().angles().to_vec();
-        let m = through_goals(&mut solver, &chain, &start, &goals, Route::Keyframes, Timing::Frames(9), Ease::Sine)
-            .unwrap();
+        let m = through_goals(&mut solver, &chain, &start, &goals, Route::Keyframes, options(9, Ease::Sine)).unwrap();
         assert_eq!(m.solves.len(), 2);
         assert!(m.solves.iter().all(|s| s.status == Status::Reached));
         assert_eq!(m.animation.frames.len(), 9);
@@ -131,12 +134,11 @@ mod tests {
         let start = chain.start_pose().angles().to_vec();
         let every = SolveOptions { record_every: Some(1), ..SolveOptions::default() };
         let mut solver = Solver::new(every).unwrap();
-        let m = through_goals(&mut solver, &chain, &start, &goals, Route::Recorded, Timing::Frames(5), Ease::Linear)
-            .unwrap();
+        let m = through_goals(&mut solver, &chain, &start, &goals, Route::Recorded, options(5, Ease::Linear)).unwrap();
         assert_eq!(m.animation.frames.len(), 5);
         let rates = SolveOptions { rates: vec![1.0], ..SolveOptions::default() };
         let mut solver = Solver::new(rates).unwrap();
-        let e = through_goals(&mut solver, &chain, &start, &goals, Route::Keyframes, Timing::Frames(5), Ease::Sine);
+        let e = through_goals(&mut solver, &chain, &start, &goals, Route::Keyframes, options(5, Ease::Sine));
         assert_eq!(e, Err(GoalMotionError::Solve(SolveError::RatesLength { expected: 3, got: 1 })));
     }
 }

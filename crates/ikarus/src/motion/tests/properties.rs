@@ -51,11 +51,12 @@ fn unwrapped(chain: &Chain, keys: &[Vec<f64>]) -> Vec<Vec<f64>> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
-    /// Frame count, exact first frame, last frame a whole number of turns from the last
+    /// The polyline: frame count, exact first frame, last frame a whole number of turns from the last
     /// keyframe, limits respected, every frame on the unwrapped path and never moving backwards.
     #[test]
     fn frames_follow_the_path((c, keys, timing, ease) in scenario()) {
-        let anim = animate(&c, &keys, None, timing, ease).unwrap();
+        let linear = MotionOptions::new(timing, ease).with_interpolation(Interpolation::Linear);
+        let anim = animate_with(&c, &keys, None, linear).unwrap();
         check_frames(&c, &anim);
         let n = timing.frame_count().unwrap();
         prop_assert_eq!(anim.frames.len(), n);
@@ -74,5 +75,40 @@ proptest! {
         for (a, b) in last.iter().zip(&path[path.len() - 1]) {
             prop_assert!((a - b).abs() <= 1e-12, "{} vs {}", a, b);
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// The spline, with and without times: frame count, exact first frame, last frame the
+    /// polyline's (a whole number of turns from the last keyframe, exactly it for limited
+    /// joints), every frame inside the limits and inside the range of its joint's unwrapped
+    /// keyframes, the same bits when run again.
+    #[test]
+    fn the_spline_stays_inside((c, keys, timing, ease) in scenario(), even in any::<bool>()) {
+        let duration = timing.duration();
+        let times: Option<Vec<f64>> = (even && keys.len() > 1).then(|| {
+            let last = keys.len() - 1;
+            (0..=last).map(|k| if k == last { duration } else { duration * k as f64 / last as f64 }).collect()
+        });
+        let options = MotionOptions::new(timing, ease);
+        let anim = animate_with(&c, &keys, times.as_deref(), options).unwrap();
+        check_frames(&c, &anim);
+        let n = timing.frame_count().unwrap();
+        prop_assert_eq!(anim.frames.len(), n);
+        prop_assert_eq!(bits(&anim.frames[0].angles), bits(&keys[0]));
+        let linear = animate_with(&c, &keys, times.as_deref(), options.with_interpolation(Interpolation::Linear)).unwrap();
+        prop_assert_eq!(bits(&anim.frames[n - 1].angles), bits(&linear.frames[n - 1].angles));
+        let path = unwrapped(&c, &keys);
+        for (i, f) in anim.frames.iter().enumerate() {
+            for (j, a) in f.angles.iter().enumerate() {
+                let lo = path.iter().map(|k| k[j]).fold(f64::INFINITY, f64::min);
+                let hi = path.iter().map(|k| k[j]).fold(f64::NEG_INFINITY, f64::max);
+                prop_assert!((lo - 1e-12..=hi + 1e-12).contains(a), "frame {} joint {}: {} outside [{}, {}]", i, j, a, lo, hi);
+            }
+        }
+        let again = animate_with(&c, &keys, times.as_deref(), options).unwrap();
+        prop_assert_eq!(anim, again);
     }
 }
