@@ -242,6 +242,17 @@ fn animate_gives_the_eased_frames() {
     let tip = &v["frames"][11]["joints"][3];
     assert!(close(tip[0].as_f64().unwrap(), 2.0, 1e-5) && close(tip[1].as_f64().unwrap(), 3.0, 1e-5), "{tip}");
 
+    // The spline is the default; "linear" gives the polyline, which differs between the keyframes.
+    let body = |i: &str| json!({ "goal": { "x": 2, "y": 3 }, "via": [[4, 1]], "frames": 12, "interpolation": i });
+    let (spline, linear) =
+        (s.post("/api/animate", &body("spline")).json(), s.post("/api/animate", &body("linear")).json());
+    let default = s.post("/api/animate", &json!({ "goal": { "x": 2, "y": 3 }, "via": [[4, 1]], "frames": 12 })).json();
+    assert_eq!(spline, default);
+    assert_ne!(spline["frames"][3], linear["frames"][3]);
+    assert_eq!(spline["frames"][11], linear["frames"][11]);
+    let e = s.post("/api/animate", &json!({ "goal": { "x": 2, "y": 3 }, "interpolation": "cubic" })).error(422);
+    assert!(e.contains("unknown variant `cubic`, expected one of `spline`, `linear`"), "{e}");
+
     let v = s.post("/api/animate", &json!({ "goal": { "x": 2, "y": 3 }, "duration": 0.5, "fps": 20 })).json();
     assert_eq!(v["frames"].as_array().unwrap().len(), 11);
     assert_eq!(v["duration"], 0.5);
@@ -307,6 +318,11 @@ fn render_returns_png_svg_and_gif() {
 
     let a = s.post("/api/render", &json!({ "figure": "motion", "format": "svg", "goal": { "x": 2, "y": 3 } }));
     assert_eq!((a.status, a.content_type.as_str()), (200, "image/svg+xml"));
+    // The motion figure takes the interpolation of /api/animate.
+    let figure = |i: &str| json!({ "figure": "motion", "format": "svg", "goal": { "x": 2, "y": 3 }, "via": [[4, 1]], "interpolation": i });
+    let (spline, linear) = (s.post("/api/render", &figure("spline")), s.post("/api/render", &figure("linear")));
+    assert_eq!((spline.status, linear.status), (200, 200));
+    assert_ne!(spline.body, linear.body);
 
     let e = s.post("/api/render", &json!({ "figure": "arm", "width": 5000 })).error(422);
     assert!(e.starts_with("width = 5000"), "{e}");
