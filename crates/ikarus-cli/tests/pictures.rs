@@ -86,7 +86,7 @@ fn animate_timing_via_points_and_csv() {
 /// Issue 10's example: at each via point the step of every joint (degrees per frame) changes by
 /// at most 1.5× the most it changes between any other neighbouring frames with the spline (the
 /// default; measured 1.06×), and by far more with the polyline (measured 10.9×: joint 1 goes
-/// from −0.36°/frame to +1.55°/frame in one frame).
+/// from −0.36°/frame to +1.55°/frame within two frames).
 #[test]
 fn animate_spline_has_no_corner_at_via_points() {
     let ratio = |interpolation: &str| {
