@@ -1,6 +1,7 @@
 //! Names at the edges: the one table of short names, labels and summaries of the library's
 //! choice enums ([`Method`](crate::Method), [`LimitMode`](crate::LimitMode),
-//! [`EaseKind`](crate::EaseKind)).
+//! [`EaseKind`](crate::EaseKind),
+//! [`Interpolation`](crate::motion::Interpolation)).
 //!
 //! The command line's value parsers, the arm files, the HTTP API and the playground's select
 //! lists all read these tables, so a new variant is named in exactly one place: its `match` arm

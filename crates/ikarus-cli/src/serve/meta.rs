@@ -1,7 +1,9 @@
-//! `GET /api/meta`: the names the page offers in its select lists (methods, limit modes, eases)
+//! `GET /api/meta`: the names the page offers in its select lists (methods, limit modes, eases,
+//! interpolations)
 //! and their defaults, read from the library's enums so that the page cannot drift from them.
 
 use axum::Json;
+use ikarus::motion::Interpolation;
 use ikarus::{EaseKind, LimitMode, Method, Named, SolveOptions};
 use serde::Serialize;
 
@@ -39,6 +41,8 @@ pub struct Meta {
     pub default_ease: &'static str,
     pub default_k1: f64,
     pub default_k2: f64,
+    pub interpolations: Vec<Choice>,
+    pub default_interpolation: &'static str,
 }
 
 /// The names and defaults, built from the library's tables.
@@ -61,9 +65,39 @@ pub fn meta() -> Meta {
         default_ease: EaseKind::Sine.name(),
         default_k1: ikarus::ease::DEFAULT_K1,
         default_k2: ikarus::ease::DEFAULT_K2,
+        interpolations: Interpolation::ALL.iter().map(|&i| Choice::of(i)).collect(),
+        default_interpolation: Interpolation::default().name(),
     }
 }
 
 pub async fn handler() -> Json<Meta> {
     Json(meta())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_variant_is_listed_with_what_it_supports() {
+        let m = serde_json::to_value(meta()).unwrap();
+        let names = |key: &str| -> Vec<String> {
+            m[key].as_array().unwrap().iter().map(|c| c["name"].as_str().unwrap().to_owned()).collect()
+        };
+        assert_eq!(names("methods"), Method::names());
+        assert_eq!(names("limit_modes"), LimitMode::names());
+        assert_eq!(names("eases"), EaseKind::names());
+        assert_eq!(names("interpolations"), Interpolation::names());
+        for (method, listed) in Method::ALL.iter().zip(m["methods"].as_array().unwrap()) {
+            let modes: Vec<&str> =
+                listed["limit_modes"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+            let supported: Vec<&str> =
+                LimitMode::ALL.iter().filter(|&&l| method.supports(l)).map(|l| l.name()).collect();
+            assert_eq!(modes, supported, "{method}");
+            assert_eq!(listed["default_limit_mode"], method.default_limit_mode().name());
+            assert!(!listed["label"].as_str().unwrap().is_empty());
+        }
+        assert_eq!((m["default_method"].as_str(), m["default_limit_mode"].as_str()), (Some("lm"), Some("lock")));
+        assert_eq!((m["default_ease"].as_str(), m["default_interpolation"].as_str()), (Some("sine"), Some("spline")));
+    }
 }
