@@ -294,6 +294,7 @@ function applyControls() {
 function controlsChanged() {
   if (!state.arm) return;
   applyControls();
+  timeline.sync();
   requestDraw();
 }
 

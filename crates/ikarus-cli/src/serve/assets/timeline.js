@@ -202,6 +202,7 @@ export function wireTimeline(state, act) {
     pb.index = 0;
     pb.solver = false;
     pb.posed = false;
+    pb.ease = null;
     pb.distance = 0;
     sync();
   }
