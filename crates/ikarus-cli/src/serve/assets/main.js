@@ -128,7 +128,7 @@ function setPose(pose, joints) {
   state.joints = joints || forward(state.arm, state.pose_deg);
 }
 
-// ---- Click: solve and animate ------------------------------------------------------------
+// ---- Click: solve and animate -------------------------------------------------------------
 
 /** The stats of a motion through via points: its goals' solves added up (status of the last). */
 function motionStats(anim) {
