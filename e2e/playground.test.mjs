@@ -1,8 +1,11 @@
 // The playground in a real browser: load the page and see its select lists filled from
 // /api/meta, click a goal and see the arm play a motion and end on it, pick CCD and see the
 // limit-mode list offer only what CCD supports, turn the joint limits on and see the reachable
-// area shrink, with no console errors; save a screenshot. Run by e2e/run (which builds the
-// binary and installs playwright-core).
+// area shrink, with no console errors; save a screenshot. Then the timeline: play, pause with
+// Space, scrub and see the drawn pose follow the scrubber, replay over the chosen duration with
+// more poses than frames, shift-click two via points and move through them, replay the solver's
+// iterations; and the timeline fits under the canvas in a narrow window. Run by e2e/run (which
+// builds the binary and installs playwright-core).
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
@@ -10,6 +13,7 @@ import { mkdirSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
+import { autoDuration, forward, freeJoints, jointDistance, poseAt } from "../crates/ikarus-cli/src/serve/assets/view.js";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
@@ -34,9 +38,8 @@ function startServer() {
   });
 }
 
-test("the playground moves the arm to a clicked goal and shows the reachable area", async () => {
-  const { child, url } = await startServer();
-  const browser = await chromium.launch({
+const launch = () =>
+  chromium.launch({
     executablePath: browserPath,
     args: [
       "--no-sandbox",
@@ -48,6 +51,10 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
       "--disable-sync",
     ],
   });
+
+test("the playground moves the arm to a clicked goal and shows the reachable area", async () => {
+  const { child, url } = await startServer();
+  const browser = await launch();
   try {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     const errors = [];
@@ -88,9 +95,9 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     // Click the world point (2, 3): the arm solves, plays the motion, and ends on the goal.
     const [cx, cy] = await page.evaluate(() => window.ikarus.toClient(2, 3));
     await page.mouse.click(cx, cy);
-    await page.waitForFunction(() => window.ikarus.state.playing, null, { timeout: 15000 });
+    await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 15000 });
     await page.waitForFunction(
-      () => document.body.dataset.status === "reached" && !window.ikarus.state.playing,
+      () => document.body.dataset.status === "reached" && document.body.dataset.playback === "ended",
       null,
       { timeout: 15000 },
     );
@@ -130,11 +137,11 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     assert.equal(ccdModes.value, "clamp");
     const [kx, ky] = await page.evaluate(() => window.ikarus.toClient(1, 4));
     await page.mouse.click(kx, ky);
-    await page.waitForFunction(() => window.ikarus.state.playing, null, { timeout: 15000 });
+    await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 15000 });
     await page.waitForFunction(
       () =>
         !["solving", "ready"].includes(document.body.dataset.status) &&
-        !window.ikarus.state.playing &&
+        document.body.dataset.playback === "ended" &&
         Math.hypot(window.ikarus.state.goal.x - 1, window.ikarus.state.goal.y - 4) < 0.05,
       null,
       { timeout: 15000 },
@@ -176,7 +183,7 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     await page.waitForFunction(
       () =>
         document.body.dataset.status === "reached" &&
-        !window.ikarus.state.playing &&
+        document.body.dataset.playback === "ended" &&
         Math.hypot(window.ikarus.state.goal.x + 2, window.ikarus.state.goal.y - 1) < 0.05,
       null,
       { timeout: 15000 },
@@ -190,3 +197,192 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     child.kill("SIGINT");
   }
 });
+
+test("the timeline plays, pauses, scrubs and replays; via points and the solver's iterations", async () => {
+  const { child, url } = await startServer();
+  const browser = await launch();
+  try {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    const errors = [];
+    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+    page.on("pageerror", (e) => errors.push(e.message));
+    const animates = [];
+    page.on("request", (r) => r.url().endsWith("/api/animate") && animates.push(JSON.parse(r.postData())));
+    await page.goto(url);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+    assert.equal(await page.evaluate(() => document.body.dataset.playback), "none");
+    assert.equal(await page.isDisabled("#play"), true);
+
+    const playback = () => page.evaluate(() => document.body.dataset.playback);
+    const u = async () => Number(await page.evaluate(() => document.getElementById("timeline").dataset.u));
+    const drawnPose = async () => (await page.evaluate(() => document.getElementById("plot").dataset.pose)).split(" ").map(Number);
+    const motion = () => page.evaluate(() => ({ anim: window.ikarus.state.animation, req: window.ikarus.state.animationRequest }));
+    /** The pose view.js interpolates at playhead `at` of the motion the page holds. */
+    const expected = async (at) => {
+      const { anim, req } = await motion();
+      return poseAt(anim.frames, at, freeJoints(req.arm, req.options.limits)).angles;
+    };
+    const assertPose = (got, want, what) =>
+      want.forEach((a, i) => assert.ok(Math.abs(got[i] - a) <= 2e-6, `${what}: joint ${i + 1} drawn at ${got[i]}°, expected ${a}°`));
+    const click = async (x, y, shift = false) => {
+      const [cx, cy] = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [x, y]);
+      if (shift) await page.keyboard.down("Shift");
+      await page.mouse.click(cx, cy);
+      if (shift) await page.keyboard.up("Shift");
+    };
+
+    // Five frames over a chosen 3 s: the motion plays, Space pauses it mid-way.
+    await page.fill("#frames", "5");
+    await page.dispatchEvent("#frames", "change");
+    await page.fill("#duration", "3");
+    await page.dispatchEvent("#duration", "change");
+    await click(2, 3);
+    await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 15000 });
+    await page.waitForFunction(() => Number(document.getElementById("timeline").dataset.u) > 0.3, null, { timeout: 15000 });
+    await page.keyboard.press(" ");
+    assert.equal(await playback(), "paused");
+    const paused = await u();
+    assert.ok(paused > 0.3 && paused < 0.95, `paused at ${paused}`);
+    await page.waitForTimeout(300);
+    assert.equal(await u(), paused, "the playhead stays put while paused");
+    assertPose(await drawnPose(), await expected(paused), `paused at ${paused}`);
+    const { anim: five } = await motion();
+    assert.equal(five.frames.length, 5);
+    assert.equal(animates[0].frames, 5);
+
+    // Space in a text field types; it does not play.
+    await page.focus("#duration");
+    await page.keyboard.press(" ");
+    assert.equal(await playback(), "paused");
+
+    // The scrubber moves the pose: typed, then dragged with the mouse, each between two frames.
+    await page.locator("#scrubber").fill("375");
+    assert.equal(await playback(), "paused");
+    assert.equal(await u(), 0.375);
+    assertPose(await drawnPose(), await expected(0.375), "scrubbed to 0.375");
+    assert.equal(await page.textContent("#playtime"), "1.13 / 3.00 s");
+    const between = await drawnPose();
+    five.frames.forEach((f) => assert.ok(f.angles_deg.some((a, i) => Math.abs(a - between[i]) > 1e-3), "a pose between frames"));
+    const box = await page.locator("#scrubber").boundingBox();
+    await page.mouse.click(box.x + box.width * 0.8, box.y + box.height / 2);
+    const dragged = await u();
+    assert.ok(Math.abs(dragged - 0.8) < 0.06, `clicked the scrubber at 80%: playhead ${dragged}`);
+    assertPose(await drawnPose(), await expected(dragged), `scrubbed to ${dragged}`);
+    const [a, b] = [forward(SEED_ARM, between).at(-1), forward(SEED_ARM, await drawnPose()).at(-1)];
+    assert.ok(Math.hypot(a[0] - b[0], a[1] - b[1]) > 0.05, "the tip moved with the scrubber");
+
+    // Replay: from the start, over the 3 s chosen, many more poses drawn than the 5 frames, and
+    // the end exactly on the last frame, the tip on the goal.
+    await page.click("#replay");
+    const replay = await page.evaluate(
+      () =>
+        new Promise((resolve) => {
+          const poses = new Set();
+          const t0 = performance.now();
+          const first = Number(document.getElementById("timeline").dataset.u);
+          const look = () => {
+            poses.add(document.getElementById("plot").dataset.pose);
+            if (document.body.dataset.playback === "ended") resolve({ seconds: (performance.now() - t0) / 1000, poses: poses.size, first });
+            else requestAnimationFrame(look);
+          };
+          look();
+        }),
+    );
+    assert.ok(replay.first < 0.05, `replay starts at the start: ${replay.first}`);
+    assert.ok(replay.seconds > 2.6 && replay.seconds < 8, `the replay took ${replay.seconds} s for a 3 s duration`);
+    assert.ok(replay.poses > 20, `${replay.poses} distinct poses drawn from 5 frames`);
+    assert.equal(await u(), 1);
+    assertPose(await drawnPose(), five.frames[4].angles_deg, "the end");
+    const tip = five.frames[4].joints.at(-1);
+    assert.ok(Math.hypot(tip[0] - 2, tip[1] - 3) < 0.05);
+
+    // An empty duration is the default: 0.6 s + 0.4 s per radian, shown in the time.
+    await page.fill("#duration", "");
+    await page.dispatchEvent("#duration", "change");
+    const auto = autoDuration(jointDistance(five.frames));
+    assert.equal(await page.textContent("#playtime"), `${auto.toFixed(2)} / ${auto.toFixed(2)} s`);
+    // Space plays again from the start when the motion has ended.
+    await page.focus("#plot");
+    await page.keyboard.press(" ");
+    assert.equal(await playback(), "playing");
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 15000 });
+
+    // Keyframes: two shift-clicks add numbered via points, a click moves through them.
+    await page.fill("#frames", "60");
+    await page.dispatchEvent("#frames", "change");
+    const via = [[4, 2], [3, 3.5]];
+    for (const [x, y] of via) await click(x, y, true);
+    assert.equal(await page.textContent("#clear-via"), "Clear 2 via points");
+    assert.equal(animates.length, 1, "a shift-click asks for nothing");
+    await click(0.5, 4);
+    await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 15000 });
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 15000 });
+    const keyed = animates.at(-1);
+    assert.equal(keyed.via.length, 2);
+    keyed.via.forEach(([x, y], i) => assert.ok(Math.hypot(x - via[i][0], y - via[i][1]) < 0.05, `via ${i + 1} at (${x}, ${y})`));
+    const { anim: through } = await motion();
+    assert.equal(through.solves.length, 3);
+    assert.ok(through.solves.every((s) => s.status === "reached"), JSON.stringify(through.solves));
+    for (const [x, y] of via) {
+      const nearest = Math.min(...through.frames.map((f) => Math.hypot(f.joints[3][0] - x, f.joints[3][1] - y)));
+      assert.ok(nearest < 0.3, `the tip passes (${x}, ${y}) within ${nearest}`);
+    }
+    assert.equal(await page.evaluate(() => document.body.dataset.status), "reached");
+    // They stay for the next motion until cleared.
+    assert.equal(await page.textContent("#clear-via"), "Clear 2 via points");
+    await page.click("#clear-via");
+    assert.equal(await page.textContent("#clear-via"), "No via points");
+    assert.equal(await page.isDisabled("#clear-via"), true);
+
+    // The solver's iterations: the last motion's request with from_solve, from its start pose.
+    await page.click("#solver");
+    await page.waitForFunction(() => document.getElementById("timeline").dataset.source === "solver", null, { timeout: 15000 });
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 15000 });
+    const solverReq = animates.at(-1);
+    assert.equal(solverReq.from_solve, true);
+    assert.deepEqual(solverReq.via, keyed.via);
+    assert.deepEqual(solverReq.start_deg, keyed.start_deg);
+    const { anim: recorded } = await motion();
+    assert.ok(recorded.frames.length > 1);
+    assertPose(recorded.frames[0].angles_deg, keyed.start_deg, "the solver starts where the motion did");
+    assert.equal(await page.getAttribute("#solver", "aria-pressed"), "true");
+    // Pressed again: the eased motion.
+    await page.click("#solver");
+    await page.waitForFunction(() => document.getElementById("timeline").dataset.source === "motion", null, { timeout: 15000 });
+    assert.equal(animates.at(-1).from_solve, undefined);
+
+    // A narrow window: the timeline sits under the canvas, inside the window, usable, with the
+    // controls' drawer open and closed.
+    await page.setViewportSize({ width: 400, height: 800 });
+    for (const [drawer, minHeight] of [["open", 250], ["closed", 450]]) {
+      if (drawer === "closed") await page.click("#panel-toggle");
+      await page.waitForTimeout(200);
+      const layout = await page.evaluate(() => {
+        const r = (id) => document.getElementById(id).getBoundingClientRect();
+        return { plot: r("plot"), bar: r("timeline"), scrub: r("scrubber"), solver: r("solver") };
+      });
+      const what = `drawer ${drawer}: ${JSON.stringify(layout)}`;
+      assert.ok(layout.plot.bottom <= layout.bar.top + 1, `the canvas runs under the timeline; ${what}`);
+      assert.ok(layout.bar.bottom <= 800 && layout.bar.right <= 400 && layout.solver.right <= 400, what);
+      assert.ok(layout.scrub.width >= 90, `the scrubber is too narrow; ${what}`);
+      assert.ok(layout.plot.height >= minHeight, `the canvas is too low; ${what}`);
+    }
+    await page.locator("#scrubber").fill("500");
+    assertPose(await drawnPose(), await expected(0.5), "scrubbed at 400 px");
+
+    assert.deepEqual(errors, [], "console errors");
+  } finally {
+    await browser.close();
+    child.kill("SIGINT");
+  }
+});
+
+// The server's seed arm (GET /api/arm/default), for forward kinematics of drawn poses.
+const SEED_ARM = {
+  base: [0, 0],
+  links: [
+    { length: 3, angle_deg: 5 },
+    { length: 2, angle_deg: 5 },
+    { length: 1, angle_deg: 5 },
+  ],
+};

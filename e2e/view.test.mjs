@@ -6,18 +6,26 @@ import assert from "node:assert/strict";
 import {
   AREA_RGBA,
   DRAG_PIXELS,
+  DURATION,
   areaPixels,
   areaRect,
+  autoDuration,
   decimalsFor,
+  easePosition,
   fitView,
   forward,
   frameIndexAt,
+  freeJoints,
   ghostFrames,
   gridValues,
   isDrag,
+  jointDistance,
+  lerpAngle,
   maxReach,
   niceStep,
   nudge,
+  poseAt,
+  shortDelta,
   toCanvas,
   toWorld,
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
@@ -186,4 +194,129 @@ test("frames as CSV: time, angles, then every joint's x and y", () => {
     "time,angle1_deg,angle2_deg,x0,y0,x1,y1,x2,y2\n0,0,90,0,0,1,0,1,1\n0.5,10,80,0,0,0.98,0.17,0.5,1.1\n",
   );
   assert.equal(framesCsv({ frames: [] }), "time,x0,y0\n");
+});
+
+test("angles: the short way round for free joints, the straight line for limited ones", () => {
+  assert.equal(shortDelta(170, -170), 20);
+  assert.equal(shortDelta(-170, 170), -20);
+  assert.equal(shortDelta(0, 180), 180, "an exact half turn goes counter-clockwise");
+  assert.equal(shortDelta(0, -180), 180);
+  assert.equal(shortDelta(10, 730), 0);
+  assert.equal(shortDelta(359, 1), 2);
+  near(lerpAngle(170, -170, 0.5, true), 180);
+  near(lerpAngle(170, -170, 0.25, true), 175);
+  near(lerpAngle(170, -170, 0.5, false), 0, 1e-12);
+  near(lerpAngle(-40, 40, 0.75, false), 20);
+  assert.equal(lerpAngle(12.5, 99, 0, true), 12.5);
+  assert.deepEqual(freeJoints(SEED, true), [false, false, false]);
+  assert.deepEqual(freeJoints(SEED, false), [true, true, true]);
+  assert.deepEqual(freeJoints({ links: [{ limits_deg: [-1, 1] }, {}] }, true), [false, true]);
+});
+
+test("the pose between two frames: linear in time, exact on the frames", () => {
+  // Five frames at 0, .25, .5, .75, 1 (as /api/animate with frames 5 answers).
+  const frames = [0, 10, 40, 70, 80].map((a, k) => ({ time: k / 4, angles_deg: [a, -a, 170 + a / 8] }));
+  const at = (u, free, from) => poseAt(frames, u, free, from);
+  assert.deepEqual(at(0), { angles: [0, -0, 170], index: 0, w: 0 });
+  assert.deepEqual(at(1), { angles: frames[4].angles_deg, index: 4, w: 0 });
+  assert.deepEqual(at(0.5).angles, frames[2].angles_deg);
+  const mid = at(0.125);
+  assert.equal(mid.index, 0);
+  near(mid.w, 0.5);
+  nearAll(mid.angles, [5, -5, 170.625]);
+  // Five frames play as a continuum, not as four steps: every u gives a new pose.
+  const seen = new Set();
+  for (let i = 0; i <= 40; i++) seen.add(at(i / 40).angles[0].toFixed(9));
+  assert.equal(seen.size, 41);
+  // Clamped outside [0, 1]; a hint past the playhead is walked back.
+  assert.deepEqual(at(-1).angles, frames[0].angles_deg);
+  assert.deepEqual(at(2).angles, frames[4].angles_deg);
+  nearAll(at(0.375, [], 4).angles, [25, -25, 173.125]);
+  assert.equal(at(0.375, [], 4).index, 1);
+  // Frames in seconds (Timing::Duration) are scaled the same way.
+  const secs = frames.map((f) => ({ ...f, time: f.time * 3 }));
+  nearAll(poseAt(secs, 0.125).angles, [5, -5, 170.625]);
+  // A free joint crossing ±180 between two frames takes the short way.
+  const wrap = [{ time: 0, angles_deg: [170] }, { time: 1, angles_deg: [-170] }];
+  near(poseAt(wrap, 0.5, [true]).angles[0], 180);
+  near(poseAt(wrap, 0.5, [false]).angles[0], 0, 1e-12);
+  // One frame: a still motion.
+  assert.deepEqual(poseAt([{ time: 0, angles_deg: [3] }], 0.7).angles, [3]);
+});
+
+test("the default duration: 0.6 s plus 0.4 s per radian travelled, from 0.6 s to 4 s", () => {
+  assert.deepEqual(DURATION, { base: 0.6, perRadian: 0.4, min: 0.6, max: 4 });
+  assert.equal(autoDuration(0), 0.6);
+  near(autoDuration(1), 1.0);
+  near(autoDuration(2.5), 1.6);
+  assert.equal(autoDuration(100), 4);
+  assert.equal(autoDuration(-1), 0.6);
+  assert.equal(autoDuration(NaN), 0.6);
+  // The distance is the joint-space path length, in radians, frame to frame.
+  const frames = [[0, 0, 0], [30, 0, 0], [30, 40, 0], [60, 80, 0]].map((a, k) => ({ time: k / 3, angles_deg: a }));
+  near(jointDistance(frames), (30 + 40 + 50) * (Math.PI / 180), 1e-12);
+  assert.equal(jointDistance(frames.slice(0, 1)), 0);
+  // A 90° swing of all three seed joints: √3·π/2 rad, about 1.69 s.
+  const swing = [{ time: 0, angles_deg: [0, 0, 0] }, { time: 1, angles_deg: [90, 90, 90] }];
+  near(autoDuration(jointDistance(swing)), 0.6 + 0.4 * Math.sqrt(3) * (Math.PI / 2), 1e-12);
+});
+
+test("ease s(t) matches the Rust library's curves", () => {
+  // Angles of a one-link arm (no limits, start 0°) animated to 120° in 11 frames by the library:
+  //   ikarus animate --arm one.toml --goal -0.5,0.8660254037844387 --frames 11 --ease E \
+  //     --tolerance 1e-14 --format csv
+  // (one.toml: one link of length 1 at 0°), so s(t_i) = θ_i / 120 at t_i = i / 10.
+  const library = {
+    linear: [{ kind: "linear" }, [0, 12, 24, 36, 48, 60, 72, 84, 96, 108, 120]],
+    sine: [
+      { kind: "sine" },
+      [0, 2.9366090222907877, 11.458980337503153, 24.73288486245161, 41.45898033750315, 59.99999999999999,
+        78.54101966249684, 95.26711513754839, 108.54101966249685, 117.06339097770922, 120],
+    ],
+    smoothstep: [
+      { kind: "smoothstep" },
+      [0, 3.3600000000000003, 12.480000000000002, 25.919999999999998, 42.24000000000001, 59.99999999999999,
+        77.75999999999999, 94.07999999999998, 107.52000000000001, 116.64, 120],
+    ],
+    "parent (defaults 0.3, 0.7)": [
+      { kind: "parent" },
+      [0, 3.9265755120873185, 14.654179310865654, 29.30835862173129, 44.654179310865636, 60.00000000000001,
+        75.34582068913434, 90.69164137826868, 105.34582068913436, 116.07342448791267, 120],
+    ],
+    "parent 0.2, 0.8": [
+      { kind: "parent", k1: 0.2, k2: 0.8 },
+      [0, 5.236166491590897, 17.877390650433178, 31.91826043362211, 45.959130216811054, 59.999999999999986,
+        74.04086978318891, 88.08173956637786, 102.12260934956682, 114.76383350840909, 120],
+    ],
+    "parent 0.3, 0.75": [
+      { kind: "parent", k1: 0.3, k2: 0.75 },
+      [0, 3.8374137189373965, 14.321422968736199, 28.64284593747238, 43.64020499998363, 58.63756406249489,
+        73.63492312500611, 88.63228218751736, 103.50690018705833, 115.44141932767182, 120],
+    ],
+  };
+  for (const [name, [ease, thetas]] of Object.entries(library)) {
+    thetas.forEach((theta, i) => {
+      const s = easePosition(ease, i / 10);
+      assert.ok(Math.abs(s - theta / 120) <= 1e-12, `${name} at ${i / 10}: ${s} vs ${theta / 120}`);
+    });
+  }
+  // ease.rs's own reference values (ERRATA.md) for Parent's ease with k1 = 0.3, k2 = 0.75.
+  for (const [t, want] of [[0.25, 0.176913], [0.5, 0.488646], [0.9, 0.962012]]) {
+    near(easePosition({ kind: "parent", k1: 0.3, k2: 0.75 }, t), want, 5e-7);
+  }
+  // Exact ends, clamping, and the degenerate Parent parameters that must not divide by zero.
+  for (const ease of [{ kind: "sine" }, { kind: "parent", k1: 0, k2: 1 }, { kind: "parent", k1: 0, k2: 0 }, { kind: "parent", k1: 1, k2: 1 }]) {
+    assert.equal(easePosition(ease, 0), 0);
+    assert.equal(easePosition(ease, 1), 1);
+    assert.equal(easePosition(ease, -2), 0);
+    assert.equal(easePosition(ease, 3), 1);
+    assert.equal(easePosition(ease, NaN), 0);
+    let last = 0;
+    for (let i = 0; i <= 200; i++) {
+      const s = easePosition(ease, i / 200);
+      assert.ok(Number.isFinite(s) && s >= last - 1e-15 && s <= 1, `${JSON.stringify(ease)} at ${i / 200}: ${s}`);
+      last = s;
+    }
+  }
+  for (let i = 0; i <= 10; i++) near(easePosition({ kind: "parent", k1: 0, k2: 1 }, i / 10), i / 10, 1e-15);
 });

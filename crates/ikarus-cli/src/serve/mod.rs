@@ -35,6 +35,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("files.js", JS, include_str!("assets/files.js")),
     ("input.js", JS, include_str!("assets/input.js")),
+    ("timeline.js", JS, include_str!("assets/timeline.js")),
     ("view.js", JS, include_str!("assets/view.js")),
 ];
 

@@ -1,5 +1,5 @@
 // Canvas drawing: the grid and axes, the reachable area, the reach circle, the motion (ghost
-// poses and joint traces), the base, the arm and the goal. It reads the page's state and never
+// poses and joint traces up to the playhead), the base, the arm, the via points and the goal. It reads the page's state and never
 // writes it; the geometry comes from view.js.
 
 import { areaPixels, areaRect, decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
@@ -14,6 +14,7 @@ export const COLORS = {
   goal: "#d62728",
   path: "#ec7f2d",
   trace: "#8a9bb8",
+  via: "#7b3fa0",
 };
 
 /** Sizes the canvas's backing store to its CSS size times the device pixel ratio; drawing is then in CSS pixels. */
@@ -49,7 +50,27 @@ export function drawScene(ctx, view, state) {
   drawMotion(ctx, view, state);
   drawBase(ctx, view, state.arm);
   drawArm(ctx, view, state.joints);
+  drawVia(ctx, view, state.via);
   drawGoal(ctx, view, state.goal);
+}
+
+/** The via points, numbered in the order the motion passes them. */
+function drawVia(ctx, view, via) {
+  ctx.font = "bold 11px system-ui, sans-serif";
+  ctx.textAlign = "center";
+  ctx.textBaseline = "middle";
+  via.forEach((p, i) => {
+    const [px, py] = toCanvas(view, p.x, p.y);
+    ctx.beginPath();
+    ctx.arc(px, py, 9, 0, 2 * Math.PI);
+    ctx.fillStyle = "#fff";
+    ctx.fill();
+    ctx.lineWidth = 2;
+    ctx.strokeStyle = COLORS.via;
+    ctx.stroke();
+    ctx.fillStyle = COLORS.via;
+    ctx.fillText(String(i + 1), px, py + 0.5);
+  });
 }
 
 function drawGrid(ctx, view) {
@@ -192,8 +213,10 @@ function drawGoal(ctx, view, goal) {
 function drawMotion(ctx, view, state) {
   const anim = state.animation;
   if (!anim || !anim.frames || anim.frames.length === 0) return;
-  const last = state.playing ? state.playing.index : anim.frames.length - 1;
+  // Up to the playhead: the frames before it, then the pose drawn (between two frames).
+  const last = Math.min(state.playback.index, anim.frames.length - 1);
   const frames = anim.frames.slice(0, last + 1);
+  if (state.playback.posed && state.joints.length === frames[0].joints.length) frames.push({ joints: state.joints });
   if (state.showGhosts) {
     for (const { index, alpha } of ghostFrames(anim.frames.length, last)) {
       drawArm(ctx, view, frames[index].joints, alpha, 5);

@@ -1,4 +1,5 @@
-// The canvas's pointer and keyboard. A click animates to the point; a drag, or any move in
+// The canvas's pointer and keyboard. A click animates to the point (through the via points);
+// a shift-click adds a via point; a drag, or any move in
 // follow mode, solves towards the pointer; the arrow keys nudge the goal (solving at once in
 // follow mode) and Enter animates to it. The state stays main.js's: it is passed in, with
 // main.js's actions.
@@ -8,7 +9,7 @@ import { isDrag, nudge, toWorld } from "./view.js";
 /**
  * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `joints` and `goal`; writes
  * `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
- * {animateTo(x, y), followTo(x, y), cancelMotion(), requestDraw()}.
+ * {animateTo(x, y), followTo(x, y), addVia(x, y), cancelMotion(), requestDraw()}.
  */
 export function wireInput(canvas, state, act) {
   const eventWorld = (ev) => {
@@ -39,10 +40,10 @@ export function wireInput(canvas, state, act) {
     if (!state.press) return;
     const wasDrag = state.press.dragging;
     state.press = null;
-    if (!wasDrag && !state.follow) {
-      const [x, y] = eventWorld(ev);
-      act.animateTo(x, y);
-    }
+    if (wasDrag) return;
+    const [x, y] = eventWorld(ev);
+    if (ev.shiftKey) act.addVia(x, y);
+    else if (!state.follow) act.animateTo(x, y);
   });
 
   canvas.addEventListener("pointercancel", () => {

@@ -2,8 +2,8 @@
 // animate, sample the workspace and render pictures. Plain ES modules, no dependencies, no build
 // step. This module wires the page: it owns the one `state` object, and every other module
 // either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
-// reads and fills the form (controls.js), turns pointer and keys into actions (input.js) or
-// saves files (files.js).
+// reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
+// motions on the timeline (timeline.js, which owns `state.playback`) or saves files (files.js).
 
 import * as api from "./api.js";
 import {
@@ -18,10 +18,9 @@ import {
 import { areaImage, drawScene, fitCanvas } from "./draw.js";
 import { framesCsv, saveBlob } from "./files.js";
 import { wireInput } from "./input.js";
-import { fitView, forward, frameIndexAt, toCanvas } from "./view.js";
+import { newPlayback, wireTimeline } from "./timeline.js";
+import { fitView, forward, toCanvas } from "./view.js";
 
-/** Wall-clock length of a motion's playback, whatever its own duration. */
-const PLAYBACK_MS = 1000;
 /** record_every of a follow solve: large, so that the answer carries no intermediate frames. */
 const FOLLOW_RECORD_EVERY = 100000;
 const WORKSPACE_RESOLUTION = 160;
@@ -60,14 +59,20 @@ const state = {
   // The last /api/animate answer and its request (a GIF renders the same motion).
   animation: null,
   animationRequest: null,
-  // The motion being played: {start, index, resolve}.
-  playing: null,
+  // The timeline's playhead, clock and duration (timeline.js's newPlayback documents the fields).
+  playback: newPlayback(),
+  // The via points ({x, y}, in order) the next click's motion passes through. They stay after the
+  // motion, as an animator's keyframes do, until "Clear via points".
+  via: [],
   // The pointer press on the canvas: {x, y, dragging}.
   press: null,
   // Work in flight. A sequence number is bumped by each new request so that a stale answer is
   // dropped; follow keeps one solve in flight and only the latest goal waiting.
   jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, drawQueued: false },
 };
+
+/** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
+const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia });
 
 // ---- Messages and status ------------------------------------------------------------------
 
@@ -105,6 +110,8 @@ function draw() {
   fitCanvas(canvas, ctx);
   state.view = fitView(state.arm, canvas.clientWidth, canvas.clientHeight);
   drawScene(ctx, state.view, state);
+  // The pose drawn, for scripts and tests: joint angles in degrees.
+  canvas.dataset.pose = state.pose_deg.map((a) => a.toFixed(6)).join(" ");
 }
 
 function requestDraw() {
@@ -123,73 +130,93 @@ function setPose(pose, joints) {
 
 // ---- Click: solve and animate -------------------------------------------------------------
 
+/** The stats of a motion through via points: its goals' solves added up (status of the last). */
+function motionStats(anim) {
+  const solves = anim.solves || [];
+  const last = solves[solves.length - 1] || {};
+  return { status: last.status, iterations: solves.reduce((n, s) => n + s.iterations, 0), error: last.error };
+}
+
+/** Solves for the goal (x, y) through the via points and plays the motion there. */
 async function animateTo(x, y) {
-  stopPlayback();
+  cancelMotion();
   state.goal = { x, y };
-  const seq = ++state.jobs.animateSeq;
+  const seq = state.jobs.animateSeq;
   const base = {
     arm: armForRequest(state.arm),
     start_deg: state.pose_deg.slice(),
     goal: { x, y },
     options: state.options,
   };
-  const animReq = { ...base, ease: state.ease, frames: state.frames };
+  const via = state.via.map((p) => [p.x, p.y]);
+  const animReq = { ...base, ...(via.length ? { via } : {}), ease: state.ease, frames: state.frames };
   setStatus("solving");
   requestDraw();
   try {
-    const [solved, anim] = await Promise.all([api.solve(base), api.animate(animReq)]);
+    // Through via points the stats are the motion's own solves; straight there, /api/solve's.
+    const [solved, anim] = await Promise.all([via.length ? null : api.solve(base), api.animate(animReq)]);
     if (seq !== state.jobs.animateSeq) return;
-    showError(null);
-    state.animation = anim;
-    state.animationRequest = animReq;
-    setStats(solved);
-    await play(anim);
-    if (seq !== state.jobs.animateSeq) return;
-    setStatus(solved.status);
+    showMotion(anim, animReq, solved || motionStats(anim));
   } catch (e) {
-    if (seq !== state.jobs.animateSeq) return;
-    showError(e);
-    setStatus("error");
-    requestDraw();
+    failed(e, seq);
   }
 }
 
-function stopPlayback() {
-  if (state.playing) {
-    state.playing.resolve();
-    state.playing = null;
+/**
+ * Plays the solver's recorded iterations of the last motion (`from_solve`), from its start pose
+ * through its via points; pressed again, the eased motion.
+ */
+async function toggleSolver() {
+  if (!state.animationRequest) return;
+  cancelMotion();
+  const seq = state.jobs.animateSeq;
+  const req = { ...state.animationRequest, from_solve: !state.playback.solver };
+  if (!req.from_solve) delete req.from_solve;
+  setStatus("solving");
+  try {
+    const anim = await api.animate(req);
+    if (seq !== state.jobs.animateSeq) return;
+    showMotion(anim, req, motionStats(anim));
+  } catch (e) {
+    failed(e, seq);
   }
+}
+
+function showMotion(anim, req, stats) {
+  showError(null);
+  state.animation = anim;
+  state.animationRequest = req;
+  setStats(stats);
+  setStatus(stats.status);
+  timeline.load(req, !!req.from_solve);
+  timeline.play();
+}
+
+function failed(e, seq) {
+  if (seq !== state.jobs.animateSeq) return;
+  showError(e);
+  setStatus("error");
+  requestDraw();
 }
 
 /** Stops the motion being played and drops the answers of the one being asked for. */
 function cancelMotion() {
-  stopPlayback();
+  timeline.pause();
   state.jobs.animateSeq++;
 }
 
-/** Plays the frames of `anim` over PLAYBACK_MS; resolves when done or stopped. */
-function play(anim) {
-  const frames = anim.frames || [];
-  if (frames.length === 0) return Promise.resolve();
-  const duration = frames[frames.length - 1].time || 1;
-  return new Promise((resolve) => {
-    const p = { start: performance.now(), index: 0, resolve };
-    state.playing = p;
-    const tick = (now) => {
-      if (state.playing !== p) return;
-      p.index = frameIndexAt(frames, ((now - p.start) / PLAYBACK_MS) * duration, p.index);
-      const f = frames[p.index];
-      setPose(f.angles_deg, f.joints);
-      draw();
-      if (p.index >= frames.length - 1) {
-        state.playing = null;
-        resolve();
-      } else {
-        requestAnimationFrame(tick);
-      }
-    };
-    requestAnimationFrame(tick);
-  });
+// ---- Via points ---------------------------------------------------------------------------
+
+function addVia(x, y) {
+  state.via.push({ x, y });
+  timeline.sync();
+  requestDraw();
+}
+
+function clearVia() {
+  state.via = [];
+  timeline.sync();
+  requestDraw();
 }
 
 // ---- Follow: one solve in flight, always the latest goal ----------------------------------
@@ -214,7 +241,8 @@ async function pumpFollow() {
       goal,
       options: { ...state.options, record_every: FOLLOW_RECORD_EVERY },
     });
-    if (!state.playing) {
+    if (!state.playback.playing) {
+      timeline.detach();
       showError(null);
       setPose(res.angles_deg, res.joints);
       setStats(res);
@@ -266,6 +294,7 @@ function applyControls() {
 function controlsChanged() {
   if (!state.arm) return;
   applyControls();
+  timeline.sync();
   requestDraw();
 }
 
@@ -308,6 +337,7 @@ function armChanged() {
   while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
   state.pose_deg.length = state.arm.links.length;
   state.animation = null;
+  timeline.unload();
   state.workspace = null;
   state.areaImage = null;
   applyControls();
@@ -319,6 +349,7 @@ function armChanged() {
 function resetPose() {
   cancelMotion();
   state.animation = null;
+  timeline.unload();
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
   $("stats").textContent = "—";
@@ -370,7 +401,7 @@ async function renderFigure(format) {
 // ---- Wiring -------------------------------------------------------------------------------
 
 function wire() {
-  wireInput(canvas, state, { animateTo, followTo, cancelMotion, requestDraw });
+  wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw });
   for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
     $(id).addEventListener("change", controlsChanged);
   }
@@ -437,6 +468,7 @@ async function init() {
     applyControls();
     setPose(arm.links.map((l) => l.angle_deg));
     setStatus("ready");
+    timeline.sync();
     window.ikarus.ready = true;
     draw();
   } catch (e) {

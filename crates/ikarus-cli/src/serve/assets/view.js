@@ -1,6 +1,6 @@
 // Pure geometry of the playground: forward kinematics in degrees, the world <-> canvas transform,
-// grid steps, the drag threshold, keyboard nudges, playback and ghost timing, and the pixels of
-// the reachable area. No DOM and no state of its own: every function takes what it reads and
+// grid steps, the drag threshold, keyboard nudges, playback (the pose between two frames, the
+// default duration, the ease curves), ghost timing, and the pixels of the reachable area. No DOM and no state of its own: every function takes what it reads and
 // returns a new value, so node can test it (e2e/view.test.mjs).
 //
 // World: x to the right, y up, in arm units. Canvas: CSS pixels, x to the right, y down.
@@ -91,6 +91,115 @@ export function frameIndexAt(frames, t, from = 0) {
   let i = from;
   while (i < frames.length - 1 && frames[i + 1].time <= t) i++;
   return i;
+}
+
+/**
+ * `b − a` (degrees) moved by whole turns into (−180, 180]: the short way from a to b, an exact
+ * half turn counter-clockwise (as the library unwraps free joints).
+ */
+export function shortDelta(a, b) {
+  const d = b - a;
+  return d - 360 * Math.ceil((d - 180) / 360);
+}
+
+/**
+ * The angle a fraction `w` of the way from `a` to `b` (degrees): along the straight line for a
+ * joint with limits (its range is an interval, the line stays inside it), the short way round
+ * for a free one.
+ */
+export function lerpAngle(a, b, w, free) {
+  return a + w * (free ? shortDelta(a, b) : b - a);
+}
+
+/**
+ * Which joints of a motion's request are free (no limits to respect): every one when the
+ * request ignores the limits, else those without `limits_deg`.
+ */
+export function freeJoints(arm, limits) {
+  return arm.links.map((l) => !limits || !l.limits_deg);
+}
+
+/**
+ * The pose at normalised playback time `u` in [0, 1] of `frames` (a /api/animate answer's): the
+ * frames around motion time u·T (T the last frame's time) interpolated linearly, joint by joint
+ * (`free[i]` the short way round). Returns {angles, index, w}: the frame before the playhead and
+ * how far past it; at w = 0 the angles are that frame's own. `from` is a frame index to search
+ * from (a hint; the search goes back when the playhead did).
+ */
+export function poseAt(frames, u, free = [], from = 0) {
+  const last = frames.length - 1;
+  const T = frames[last].time;
+  const t = Math.min(Math.max(u, 0), 1) * T;
+  let index = frameIndexAt(frames, t, Math.min(from, last));
+  while (index > 0 && frames[index].time > t) index--;
+  const f = frames[index];
+  if (index === last || t <= f.time) return { angles: f.angles_deg.slice(), index, w: 0 };
+  const g = frames[index + 1];
+  const span = g.time - f.time;
+  const w = span > 0 ? (t - f.time) / span : 0;
+  const angles = f.angles_deg.map((a, i) => lerpAngle(a, g.angles_deg[i], w, !!free[i]));
+  return { angles, index, w };
+}
+
+/** The joint-space distance travelled through `frames`, in radians: Σ ‖q_{k+1} − q_k‖₂. */
+export function jointDistance(frames) {
+  let sum = 0;
+  for (let k = 1; k < frames.length; k++) {
+    const a = frames[k - 1].angles_deg;
+    const b = frames[k].angles_deg;
+    sum += Math.hypot(...b.map((v, i) => (v - a[i]) * DEG));
+  }
+  return sum;
+}
+
+/**
+ * The default playback duration in seconds: 0.6 s plus 0.4 s per radian of joint-space distance,
+ * from 0.6 s to 4 s. A small correction takes just over half a second, a 90° swing of the seed
+ * arm's three joints (2.7 rad) about 1.7 s, and a long path through via points at most 4 s.
+ */
+export const DURATION = { base: 0.6, perRadian: 0.4, min: 0.6, max: 4 };
+
+export function autoDuration(distance) {
+  const d = DURATION.base + DURATION.perRadian * (Number.isFinite(distance) ? Math.max(0, distance) : 0);
+  return Math.min(Math.max(d, DURATION.min), DURATION.max);
+}
+
+const HALF_PI = Math.PI / 2;
+const TWO_OVER_PI = 2 / Math.PI;
+
+/**
+ * Progress s(t) in [0, 1] of an ease ({kind, k1, k2}, as a request sends it) at normalised time
+ * t, clamped: the formulas of crates/ikarus/src/ease.rs (linear t; sine (sin(πt − π/2) + 1)/2;
+ * smoothstep 3t² − 2t³; Parent's sine pieces around a constant-speed middle, k1 and k2
+ * defaulting to 0.3 and 0.7). s(0) = 0 and s(1) = 1 exactly.
+ */
+export function easePosition(ease, t) {
+  if (!(t > 0)) return 0;
+  if (t >= 1) return 1;
+  let s;
+  switch (ease && ease.kind) {
+    case "linear":
+      s = t;
+      break;
+    case "smoothstep":
+      s = t * t * (3 - 2 * t);
+      break;
+    case "parent":
+      s = parentPosition(ease.k1 ?? 0.3, ease.k2 ?? 0.7, t);
+      break;
+    default:
+      s = (Math.sin(Math.PI * t - HALF_PI) + 1) / 2;
+  }
+  return Math.min(Math.max(s, 0), 1);
+}
+
+function parentPosition(k1, k2, t) {
+  const total = (2 * k1) / Math.PI + (k2 - k1) + (2 * (1 - k2)) / Math.PI;
+  let s;
+  if (t < k1) s = k1 * TWO_OVER_PI * (Math.sin((t / k1) * HALF_PI - HALF_PI) + 1);
+  else if (t <= k2) s = (2 * k1) / Math.PI + t - k1;
+  else s = (2 * k1) / Math.PI + k2 - k1 + (1 - k2) * TWO_OVER_PI * Math.sin(((t - k2) / (1 - k2)) * HALF_PI);
+  return s / total;
 }
 
 /**

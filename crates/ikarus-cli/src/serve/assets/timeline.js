@@ -1,0 +1,230 @@
+// The timeline under the canvas: plays the last motion at the display's rate, interpolating
+// between its frames (view.js's poseAt), over a duration the reader sets or one proportional to
+// the joint-space distance; play, pause, replay, a scrubber, the time, a small plot of the
+// ease's s(t) with the playhead, and the buttons of the solver's iterations and the via points.
+// Space plays and pauses when focus is not in a field or on a button.
+//
+// It owns `state.playback` (below) and reads `state.animation` and `state.animationRequest`;
+// everything else goes through main.js's actions.
+
+import { fitCanvas } from "./draw.js";
+import { autoDuration, easePosition, freeJoints, jointDistance, poseAt } from "./view.js";
+
+const $ = (id) => document.getElementById(id);
+
+/** Steps of the scrubber over the whole motion. */
+export const SCRUB_STEPS = 1000;
+
+/**
+ * A fresh `state.playback`:
+ *   u         the playhead, normalised motion time in [0, 1]
+ *   playing   whether the clock runs
+ *   clock     while playing, the anchor {wall (ms), u}: u grows by elapsed seconds / duration
+ *   raf       the pending animation frame's id
+ *   index     the frame at or before the playhead (draw.js draws ghosts and traces up to it)
+ *   free      per joint, whether it interpolates the short way round (no limits to respect)
+ *   distance  the motion's joint-space distance in radians (for the default duration)
+ *   chosen    the duration the reader typed, in seconds, or null for the default
+ *   ease      the ease the motion was made with ({kind, k1, k2}), for the s(t) plot
+ *   solver    whether the motion is the solver's recorded iterations (from_solve)
+ *   posed     whether the arm shows the playhead's pose (false once something else moved it)
+ */
+export function newPlayback() {
+  return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, ease: null, solver: false, posed: false };
+}
+
+/** Whether a key press belongs to the focused element rather than to the page. */
+function ownsKeys(el) {
+  if (!el || el === document.body) return false;
+  if (el.isContentEditable) return true;
+  const tag = el.tagName;
+  if (tag === "INPUT") return el.type !== "range";
+  return tag === "TEXTAREA" || tag === "SELECT" || tag === "BUTTON";
+}
+
+/**
+ * Wires the timeline's controls. `act` is {showPose(angles, joints?), draw(), toggleSolver(),
+ * clearVia()}. Returns {load(), unload(), detach(), play(), pause(), toggle(), replay(),
+ * seek(u), duration(), sync()}.
+ */
+export function wireTimeline(state, act) {
+  const pb = state.playback;
+  const frames = () => (state.animation && state.animation.frames) || [];
+  const loaded = () => frames().length > 0;
+  const duration = () => pb.chosen ?? autoDuration(pb.distance);
+
+  function phase() {
+    if (!loaded()) return "none";
+    if (pb.playing) return "playing";
+    return pb.u >= 1 ? "ended" : "paused";
+  }
+
+  /** The bar shows the playhead, the time, what can be pressed, and the s(t) plot. */
+  function sync() {
+    const has = loaded();
+    const p = phase();
+    document.body.dataset.playback = p;
+    $("timeline").dataset.u = String(pb.u);
+    $("timeline").dataset.source = pb.solver ? "solver" : "motion";
+    const play = $("play");
+    play.textContent = pb.playing ? "❚❚ Pause" : "▶ Play";
+    play.setAttribute("aria-label", pb.playing ? "Pause" : "Play");
+    for (const id of ["play", "replay", "scrubber"]) $(id).disabled = !has;
+    $("solver").disabled = !state.animationRequest;
+    $("solver").setAttribute("aria-pressed", String(pb.solver));
+    const scrub = $("scrubber");
+    if (document.activeElement !== scrub || pb.playing) scrub.value = String(Math.round(pb.u * SCRUB_STEPS));
+    const d = duration();
+    $("playtime").textContent = has ? `${(pb.u * d).toFixed(2)} / ${d.toFixed(2)} s` : "– / – s";
+    $("duration").placeholder = `auto ${autoDuration(pb.distance).toFixed(1)}`;
+    const via = state.via.length;
+    const clear = $("clear-via");
+    clear.disabled = via === 0;
+    clear.textContent = via === 0 ? "No via points" : `Clear ${via} via point${via === 1 ? "" : "s"}`;
+    drawEase();
+  }
+
+  /** The ease's s(t) over [0, 1], the playhead's time as a line and its progress as a dot. */
+  function drawEase() {
+    const canvas = $("ease-plot");
+    const ctx = canvas.getContext("2d");
+    fitCanvas(canvas, ctx);
+    const w = canvas.clientWidth;
+    const h = canvas.clientHeight;
+    const m = 4;
+    const X = (t) => m + t * (w - 2 * m);
+    const Y = (s) => h - m - s * (h - 2 * m);
+    ctx.clearRect(0, 0, w, h);
+    ctx.strokeStyle = "#e7eaee";
+    ctx.lineWidth = 1;
+    ctx.strokeRect(m + 0.5, m + 0.5, w - 2 * m - 1, h - 2 * m - 1);
+    const ease = pb.ease || state.ease;
+    ctx.strokeStyle = "#26324a";
+    ctx.lineWidth = 1.5;
+    ctx.beginPath();
+    for (let i = 0; i <= 48; i++) {
+      const t = i / 48;
+      if (i === 0) ctx.moveTo(X(t), Y(easePosition(ease, t)));
+      else ctx.lineTo(X(t), Y(easePosition(ease, t)));
+    }
+    ctx.stroke();
+    if (!loaded()) return;
+    ctx.strokeStyle = "#ec7f2d";
+    ctx.beginPath();
+    ctx.moveTo(X(pb.u), m);
+    ctx.lineTo(X(pb.u), h - m);
+    ctx.stroke();
+    ctx.fillStyle = "#ec7f2d";
+    ctx.beginPath();
+    ctx.arc(X(pb.u), Y(easePosition(ease, pb.u)), 3, 0, 2 * Math.PI);
+    ctx.fill();
+  }
+
+  /** Moves the playhead to `u` and shows the pose there. */
+  function show(u) {
+    const f = frames();
+    pb.u = Math.min(Math.max(u, 0), 1);
+    const r = poseAt(f, pb.u, pb.free, pb.index);
+    pb.index = r.index;
+    pb.posed = true;
+    act.showPose(r.angles, r.w === 0 ? f[r.index].joints : undefined);
+    act.draw();
+    sync();
+  }
+
+  function tick(now) {
+    pb.raf = 0;
+    if (!pb.playing) return;
+    const u = pb.clock.u + Math.max(0, now - pb.clock.wall) / 1000 / duration();
+    if (u >= 1) {
+      pb.playing = false;
+      pb.clock = null;
+    }
+    show(u);
+    if (pb.playing) pb.raf = requestAnimationFrame(tick);
+  }
+
+  function play() {
+    if (!loaded() || pb.playing) return;
+    if (pb.u >= 1) pb.u = 0;
+    pb.playing = true;
+    pb.clock = { wall: performance.now(), u: pb.u };
+    pb.raf = requestAnimationFrame(tick);
+    sync();
+  }
+
+  function pause() {
+    if (!pb.playing) return;
+    pb.playing = false;
+    pb.clock = null;
+    cancelAnimationFrame(pb.raf);
+    pb.raf = 0;
+    sync();
+  }
+
+  const toggle = () => (pb.playing ? pause() : play());
+
+  function replay() {
+    pause();
+    pb.u = 0;
+    pb.index = 0;
+    play();
+  }
+
+  function seek(u) {
+    pause();
+    if (loaded()) show(u);
+  }
+
+  /** Takes `state.animation` (made by `request`) as the motion to play, the playhead at 0. */
+  function load(request, solver = false) {
+    pause();
+    pb.u = 0;
+    pb.index = 0;
+    pb.solver = solver;
+    pb.ease = request.ease;
+    pb.free = freeJoints(request.arm, !!(request.options && request.options.limits));
+    pb.distance = jointDistance(frames());
+    if (loaded()) show(0);
+    else sync();
+  }
+
+  /** Something else moved the arm (following the pointer): the playhead no longer shows it. */
+  function detach() {
+    pause();
+    pb.posed = false;
+  }
+
+  /** No motion any more (the arm changed, the pose was reset). */
+  function unload() {
+    pause();
+    pb.u = 0;
+    pb.index = 0;
+    pb.solver = false;
+    pb.posed = false;
+    pb.ease = null;
+    pb.distance = 0;
+    sync();
+  }
+
+  $("play").addEventListener("click", toggle);
+  $("replay").addEventListener("click", replay);
+  $("scrubber").addEventListener("input", (ev) => seek(Number(ev.target.value) / SCRUB_STEPS));
+  $("duration").addEventListener("change", (ev) => {
+    const v = Number(ev.target.value);
+    pb.chosen = ev.target.value.trim() !== "" && v > 0 ? v : null;
+    if (pb.playing) pb.clock = { wall: performance.now(), u: pb.u };
+    sync();
+  });
+  $("solver").addEventListener("click", () => act.toggleSolver());
+  $("clear-via").addEventListener("click", () => act.clearVia());
+  document.addEventListener("keydown", (ev) => {
+    if (ev.key !== " " || ev.repeat || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target)) return;
+    if (!loaded()) return;
+    ev.preventDefault();
+    toggle();
+  });
+  new ResizeObserver(drawEase).observe($("ease-plot"));
+
+  return { load, unload, detach, play, pause, toggle, replay, seek, duration, sync };
+}
