@@ -19,6 +19,7 @@ mod serve;
 mod settings;
 mod solve;
 mod stats;
+mod track;
 mod workspace;
 
 use std::process::ExitCode;
@@ -45,6 +46,10 @@ enum Command {
     /// frames on stdout, a picture or an animated GIF with --out
     #[command(allow_negative_numbers = true)]
     Animate(animate::AnimateArgs),
+    /// The tip follows a path (a CSV file, a line, a circle or a figure-8) without flips:
+    /// planned over the whole path, or followed online with every joint step bounded
+    #[command(allow_negative_numbers = true)]
+    Track(track::TrackArgs),
     /// The region the arm's tip can reach: radii, area, occupancy grid, picture
     Workspace(workspace::WorkspaceArgs),
     /// Draw figures that stand on their own
@@ -76,6 +81,7 @@ fn main() -> ExitCode {
     let result: Result<(), CliError> = match &cli.command {
         Command::Solve(args) => solve::run(args),
         Command::Animate(args) => animate::run(args),
+        Command::Track(args) => track::run(args),
         Command::Workspace(args) => workspace::run(args),
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),

@@ -48,6 +48,9 @@ pub enum Drawing<'a> {
     },
     /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`.
     Motion { chain: &'a Chain, animation: &'a Animation, goal: Option<Point2<f64>>, caption: String, fps: f64 },
+    /// A tracked path: the wanted path, the tip's trace, flips, and the poses as ghosts (SVG,
+    /// PNG) or animated one per sample (GIF) at `fps`.
+    Track { chain: &'a Chain, poses: &'a [Vec<f64>], layer: &'a ikarus_render::PathLayer, caption: String, fps: f64 },
     /// An ease curve's position and velocity.
     Ease(Ease),
 }
@@ -69,6 +72,7 @@ pub fn draw(
                 show_reach: true,
                 caption: Some(caption.clone()),
                 trail: true,
+                path: None,
             };
             return ikarus_render::animation_gif(chain, animation, &overlay, width, height, *fps, progress)
                 .map_err(|e| render_failed(&e));
@@ -78,6 +82,28 @@ pub fn draw(
                 goal: *goal,
                 caption: Some(caption.clone()),
                 ..ikarus_render::ArmFigure::of_animation(chain, animation)
+            };
+            ikarus_render::arm_svg(&figure, width, height)
+        }
+        Drawing::Track { chain, poses, layer, caption, fps } if format == PictureFormat::Gif => {
+            let animation = track_animation(chain, poses);
+            let overlay = ikarus_render::Overlay {
+                show_reach: true,
+                caption: Some(caption.clone()),
+                path: Some(layer),
+                ..ikarus_render::Overlay::default()
+            };
+            return ikarus_render::animation_gif(chain, &animation, &overlay, width, height, *fps, progress)
+                .map_err(|e| render_failed(&e));
+        }
+        Drawing::Track { chain, poses, layer, caption, .. } => {
+            let Some(last) = poses.last() else { return Err(render_failed(&"a track without samples")) };
+            let every = poses.len().div_ceil(ikarus_render::MAX_ANIMATION_GHOSTS).max(1);
+            let figure = ikarus_render::ArmFigure {
+                ghosts: poses[..poses.len() - 1].iter().step_by(every).map(Vec::as_slice).collect(),
+                caption: Some(caption.clone()),
+                path: Some(layer),
+                ..ikarus_render::ArmFigure::new(chain, last)
             };
             ikarus_render::arm_svg(&figure, width, height)
         }
@@ -97,6 +123,21 @@ pub fn draw(
         PictureFormat::Png => ikarus_render::svg_to_png(&svg).map_err(|e| render_failed(&e)),
         PictureFormat::Svg | PictureFormat::Gif => Ok(svg.into_bytes()),
     }
+}
+
+/// One animation frame per pose, evenly timed over [0, 1].
+fn track_animation(chain: &Chain, poses: &[Vec<f64>]) -> Animation {
+    let last = poses.len().saturating_sub(1).max(1) as f64;
+    let frames = poses
+        .iter()
+        .enumerate()
+        .map(|(k, q)| ikarus::AnimationFrame {
+            time: k as f64 / last,
+            angles: q.clone(),
+            joints: ikarus::kinematics::joint_positions(chain, q),
+        })
+        .collect();
+    Animation { frames, duration: 1.0, ease: Ease::Linear }
 }
 
 /// The one-line caption of a workspace picture.

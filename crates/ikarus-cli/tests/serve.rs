@@ -527,3 +527,55 @@ fn every_library_method_and_limit_mode_through_the_api() {
     }
     s.assert_healthy();
 }
+
+#[test]
+fn track_endpoint_and_its_bad_requests() {
+    let s = start(&["--max-samples", "50"]);
+    let a = s.post("/api/track", &json!({ "figure8": [2.0, 1.0, 2.0], "samples": 40 }));
+    assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+    let v = a.json();
+    assert_eq!(v["mode"], "plan");
+    assert_eq!(v["samples"].as_array().unwrap().len(), 40);
+    // 40 samples are coarse near the base: the flips the plan could not avoid are listed.
+    assert_eq!(v["summary"]["reached"], 40);
+    assert_eq!(
+        v["summary"]["flips"].as_u64().unwrap() as usize,
+        v["summary"]["flip_samples"].as_array().unwrap().len()
+    );
+    // The same answer as the command line.
+    let cli = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["track", "--figure8", "2,1,2", "--samples", "40", "--format", "json"])
+        .output()
+        .unwrap();
+    assert_eq!(v, serde_json::from_slice::<Value>(&cli.stdout).unwrap());
+    let f = s.post(
+        "/api/track",
+        &json!({ "path": [[4.0, 1.0], [1.0, 4.5], [1.0, 4.5]], "mode": "follow", "max_step_deg": 5.0 }),
+    );
+    let f = f.json();
+    assert_eq!(f["samples"][1]["status"], "limited");
+    assert!(f["samples"][1]["step_deg"].as_f64().unwrap() <= 5.0 + 1e-9);
+    let bad: &[(Value, &str)] = &[
+        (json!({ "path": [] }), "path: needs at least one sample, got none"),
+        (json!({ "circle": [1.0, 1.0, 1.0], "samples": 1 }), "samples = 1: must be at least 2"),
+        (json!({ "circle": [1.0, 1.0, 1.0], "samples": 51 }), "samples = 51: more than the cap of 50 (--max-samples)"),
+        (json!({ "circle": [1.0, 1.0, -1.0], "samples": 10 }), "circle: radius: must be a finite number > 0, got -1"),
+        (json!({ "circle": [1.0, 1.0, 1.0], "line": [0, 0, 1, 1] }), "give exactly one, got 2"),
+        (json!({}), "give exactly one, got 0"),
+        (json!({ "path": [[1.0, 1.0]], "samples": 4 }), "samples: only applies with line, circle or figure8"),
+        (
+            json!({ "circle": [1.0, 1.0, 1.0], "samples": 10, "max_step_deg": 0.0 }),
+            "max_step_deg = 0: must be a finite number > 0",
+        ),
+        (
+            json!({ "circle": [1.0, 1.0, 1.0], "mode": "jump" }),
+            "mode: unknown variant `jump`, expected one of `follow`, `plan`",
+        ),
+        (json!({ "circle": [1.0, 1.0, 1.0], "samples": 10, "start_deg": [1.0] }), "start_deg: expected 3 angles"),
+    ];
+    for (body, want) in bad {
+        let e = s.post("/api/track", body).error(422);
+        assert!(e.contains(want), "{body}: {e}");
+    }
+    s.assert_healthy();
+}

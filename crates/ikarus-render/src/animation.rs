@@ -19,6 +19,7 @@ use resvg::tiny_skia::Pixmap;
 use crate::RenderError;
 use crate::arm::{check_point, check_pose};
 use crate::palette::{Palette, UNCHANGED};
+use crate::path::PathLayer;
 use crate::raster::{check_size, new_pixmap, parse, render_onto};
 use crate::scene::Scene;
 use crate::style;
@@ -41,6 +42,8 @@ pub struct Overlay<'a> {
     pub caption: Option<String>,
     /// Whether to draw the path every joint has travelled so far.
     pub trail: bool,
+    /// A tracked path: frame `i` shows its trace up to point `i`.
+    pub path: Option<&'a PathLayer>,
 }
 
 /// `animation` as a looping GIF of `width` × `height` pixels at `fps` frames per second, one
@@ -73,6 +76,9 @@ pub fn animation_gif(
         check_pose(chain, &f.angles, &format!("animation.frames[{i}].angles"))?;
     }
     check_point(overlay.goal, "goal")?;
+    if let Some(layer) = overlay.path {
+        layer.check("path")?;
+    }
 
     let painter = Painter::new(chain, animation, overlay, width, height)?;
     let palette = painter.learn_palette()?;
@@ -129,6 +135,9 @@ impl<'a> Painter<'a> {
         if self.overlay.trail {
             let path: Vec<&[Point2<f64>]> = self.joints[..=i].iter().map(Vec::as_slice).collect();
             scene.traces(&mut svg, &path);
+        }
+        if let Some(layer) = self.overlay.path {
+            layer.draw(scene, &mut svg, Some(i));
         }
         scene.arm(&mut svg, &self.joints[i]);
         scene.goal(&mut svg);

@@ -4,6 +4,7 @@ use ikarus::kinematics::joint_positions;
 use ikarus::{Chain, Point2};
 
 use crate::RenderError;
+use crate::path::PathLayer;
 use crate::raster::{check_size, svg_to_png};
 use crate::scene::Scene;
 use crate::svg::Svg;
@@ -46,6 +47,8 @@ pub struct ArmFigure<'a> {
     pub show_reach: bool,
     /// A line of text under the plot, e.g. `dls · reached · 7 iterations · error 1.2e-7`.
     pub caption: Option<String>,
+    /// A tracked path, drawn under the arm.
+    pub path: Option<&'a PathLayer>,
 }
 
 /// At most this many ghosts are taken from an animation by [`ArmFigure::of_animation`].
@@ -64,6 +67,7 @@ impl<'a> ArmFigure<'a> {
             workspace: None,
             show_reach: true,
             caption: None,
+            path: None,
         }
     }
 
@@ -138,6 +142,9 @@ pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, Re
         check_pose(figure.chain, g, &format!("ghosts[{i}]"))?;
     }
     check_point(figure.goal, "goal")?;
+    if let Some(layer) = figure.path {
+        layer.check("path")?;
+    }
 
     let scene = Scene {
         chain: figure.chain,
@@ -159,6 +166,9 @@ pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, Re
         let mut frames: Vec<&[Point2<f64>]> = ghosts.iter().map(Vec::as_slice).collect();
         frames.push(&pose);
         scene.traces(&mut svg, &frames);
+    }
+    if let Some(layer) = figure.path {
+        layer.draw(&scene, &mut svg, None);
     }
     scene.arm(&mut svg, &pose);
     scene.goal(&mut svg);

@@ -10,6 +10,7 @@
 //!   goal and a caption. [`ArmFigure::of_animation`] overlays a whole motion.
 //! - [`animation_gif`]: an animation as a looping GIF, one frame per animation frame.
 //! - [`ease_svg`] / [`ease_png`]: an ease curve's position and velocity against time.
+//! - [`PathLayer`]: a tracked path over either (the wanted path, the tip's trace, flips).
 //! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
 //!
 //! [`View`] maps world coordinates to pixels, for callers that want to find something on the
@@ -20,6 +21,7 @@ mod arm;
 mod ease_plot;
 mod error;
 mod palette;
+mod path;
 mod raster;
 mod scene;
 mod style;
@@ -30,5 +32,6 @@ pub use animation::{MAX_FPS, Overlay, animation_gif};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
+pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
 pub use view::{PixelRect, VIEW_PADDING, View};

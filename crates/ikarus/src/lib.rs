@@ -55,6 +55,7 @@ pub mod names;
 pub mod reach;
 pub mod rng;
 pub mod solve;
+pub mod track;
 
 pub use chain::{Chain, ChainError, Link, LinkField, Pose};
 pub use ease::{Ease, EaseError, EaseKind, ParentEase};
@@ -68,6 +69,7 @@ pub use solve::{
     Frame, Frames, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions, Solver,
     StallDetection, Status,
 };
+pub use track::{Follower, Path, PathError, SampleStatus, Track, TrackError, TrackMode, TrackOptions};
 
 /// Re-exported so that callers can name the point type without depending on nalgebra.
 pub use nalgebra::Point2;

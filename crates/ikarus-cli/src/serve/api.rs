@@ -15,7 +15,9 @@ use ikarus::{Ease, EaseKind, Goal, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
-use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, SolveReq, WorkspaceReq};
+use super::requests::{
+    AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, SolveReq, TrackReq, WorkspaceReq,
+};
 use super::{AppState, Limits, blocking};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
@@ -23,6 +25,7 @@ use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::picture::{Drawing, PictureFormat, draw, workspace_caption};
 use crate::report::{self, AnimateJson, SolveReport};
 use crate::settings::{SolverSettings, solver};
+use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape, TrackJob, TrackJson};
 use crate::workspace::WorkspaceRequest;
 
 /// Frames recorded by a solve when `options.record_every` is not given (as `ikarus solve`).
@@ -101,6 +104,57 @@ pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<Animat
         json_response(&AnimateJson::new(&arm, &motion.motion))
     })
     .await
+}
+
+/// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
+pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq>) -> Result<Response, ApiError> {
+    blocking(move || {
+        let limits = &state.limits;
+        let arm = load_arm(req.arm.clone(), limits)?;
+        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits)?;
+        let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
+        let path = track_path(&req, limits)?;
+        let max_step_deg = req.max_step_deg.unwrap_or(DEFAULT_MAX_STEP_DEG);
+        if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
+            return Err(ApiError::invalid(format!("max_step_deg = {max_step_deg}: must be a finite number > 0")));
+        }
+        let mode = req.mode.unwrap_or(ikarus::TrackMode::Plan);
+        let job = TrackJob { arm: &arm, start, path, mode, options: TrackJob::options(solve, max_step_deg) };
+        let t = job.run().map_err(ApiError::invalid)?;
+        json_response(&TrackJson::new(&job, &t))
+    })
+    .await
+}
+
+/// The path of a track request: its `path`, or its shape sampled at `samples` points.
+fn track_path(req: &TrackReq, limits: &Limits) -> Result<ikarus::Path, ApiError> {
+    let cap = limits.max_samples;
+    let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
+    let given = usize::from(req.path.is_some()) + shapes.iter().flatten().count();
+    if given != 1 {
+        return Err(ApiError::invalid(format!("path, line, circle, figure8: give exactly one, got {given}")));
+    }
+    if let Some(points) = &req.path {
+        if req.samples.is_some() {
+            return Err(ApiError::invalid("samples: only applies with line, circle or figure8"));
+        }
+        if points.len() > cap {
+            return Err(ApiError::invalid(format!(
+                "path: {} samples, more than the cap of {cap} (--max-samples)",
+                points.len()
+            )));
+        }
+        return ikarus::Path::from_points(points).map_err(|e| ApiError::invalid(e.to_string()));
+    }
+    let shape = shapes.into_iter().flatten().next().expect("one shape, counted above");
+    let samples = req.samples.unwrap_or(DEFAULT_SAMPLES);
+    if samples > cap {
+        return Err(ApiError::invalid(format!("samples = {samples}: more than the cap of {cap} (--max-samples)")));
+    }
+    shape.path(samples).map_err(|e| match e {
+        ikarus::PathError::Samples { value } => ApiError::invalid(format!("samples = {value}: must be at least 2")),
+        other => ApiError::invalid(format!("{}: {other}", shape.name())),
+    })
 }
 
 pub async fn workspace(

@@ -60,6 +60,9 @@ pub struct ServeArgs {
     /// Most frames of a motion
     #[arg(long, default_value_t = 2000, value_name = "N", value_parser = clap::value_parser!(u64).range(2..=1_000_000))]
     pub max_frames: u64,
+    /// Most samples of a path (POST /api/track)
+    #[arg(long, default_value_t = 5000, value_name = "N", value_parser = clap::value_parser!(u64).range(2..=1_000_000))]
+    pub max_samples: u64,
     /// Largest workspace resolution (cells per side, at most 4096)
     #[arg(long, default_value_t = 1024, value_name = "N", value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub max_resolution: u32,
@@ -72,6 +75,7 @@ pub struct Limits {
     pub max_links: usize,
     pub max_iterations: u32,
     pub max_frames: usize,
+    pub max_samples: usize,
     pub max_resolution: u32,
 }
 
@@ -87,6 +91,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         max_links: usize::try_from(args.max_links).unwrap_or(usize::MAX),
         max_iterations: args.max_iterations,
         max_frames: usize::try_from(args.max_frames).unwrap_or(usize::MAX),
+        max_samples: usize::try_from(args.max_samples).unwrap_or(usize::MAX),
         max_resolution: args.max_resolution,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -158,6 +163,7 @@ pub fn router(limits: Limits) -> Router {
         .route("/api/arm/default", get(api::default_arm))
         .route("/api/solve", post(api::solve))
         .route("/api/animate", post(api::animate))
+        .route("/api/track", post(api::track))
         .route("/api/workspace", post(api::workspace))
         .route("/api/render", post(api::render))
         .fallback(not_found)

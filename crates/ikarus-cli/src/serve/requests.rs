@@ -78,6 +78,39 @@ pub struct AnimateReq {
     pub from_solve: bool,
 }
 
+/// `POST /api/track`: exactly one of `path`, `line`, `circle`, `figure8`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrackReq {
+    #[serde(default)]
+    pub arm: Option<ArmFile>,
+    #[serde(default)]
+    pub start_deg: Option<Vec<f64>>,
+    /// The samples, `[[x, y], …]`, used as given.
+    #[serde(default)]
+    pub path: Option<Vec<[f64; 2]>>,
+    /// `[x0, y0, x1, y1]`.
+    #[serde(default)]
+    pub line: Option<[f64; 4]>,
+    /// `[cx, cy, r]`.
+    #[serde(default)]
+    pub circle: Option<[f64; 3]>,
+    /// `[cx, cy, a]`.
+    #[serde(default)]
+    pub figure8: Option<[f64; 3]>,
+    /// Samples of a shape [default: 100].
+    #[serde(default)]
+    pub samples: Option<usize>,
+    /// `follow` or `plan` [default: plan].
+    #[serde(default)]
+    pub mode: Option<ikarus::TrackMode>,
+    /// The bound on a joint's change between samples, degrees [default: 10].
+    #[serde(default)]
+    pub max_step_deg: Option<f64>,
+    #[serde(default)]
+    pub options: Option<SolverSettings>,
+}
+
 /// `POST /api/workspace`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,0 +1,391 @@
+//! `ikarus track`: the tip follows a path (a CSV file, a line, a circle or a figure-8), online
+//! (`--mode follow`) or planned over the whole path (`--mode plan`, the default); per-sample
+//! JSON, CSV or text on stdout, and a picture or GIF with `--out`. The job, its JSON shape and
+//! its picture are shared with `POST /api/track`.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+use clap::{ArgGroup, Args, ValueEnum};
+use ikarus::track::{self, Path, PathError, Track, TrackMode, TrackOptions};
+use ikarus::{Goal, SolveOptions};
+use serde::Serialize;
+
+use crate::arm::{Arm, io_reason};
+use crate::error::CliError;
+use crate::options::{named, parse_finite, parse_positive};
+use crate::output;
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
+use crate::report::{degrees, points};
+use crate::settings::SolverSettings;
+
+/// Samples of a shape unless `--samples` says otherwise.
+pub const DEFAULT_SAMPLES: usize = 100;
+/// The default bound on a joint's change between samples, degrees.
+pub const DEFAULT_MAX_STEP_DEG: f64 = 10.0;
+/// Frames per second of a track's GIF: one frame per sample.
+pub const TRACK_FPS: f64 = 25.0;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TrackFormat {
+    /// One JSON object: every sample and a summary (the default when stdout is not a terminal)
+    Json,
+    /// One row per sample
+    Csv,
+    /// A short summary for people (the default on a terminal)
+    Text,
+}
+
+/// The tip follows a path.
+///
+/// `--max-step-deg` is the tracking bound here (a joint's largest change between samples, and
+/// the flip threshold), as in the API's `max_step_deg`; the solver's per-iteration cap, which
+/// other commands call `--max-step-deg`, is `--solver-max-step-deg` in this command.
+#[derive(Debug, Args)]
+#[command(group(ArgGroup::new("shape").required(true).multiple(false)))]
+#[command(mut_arg("max_step_deg", |a| a.long("solver-max-step-deg")))]
+pub struct TrackArgs {
+    /// Arm file (TOML) [default: the built-in seed arm]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    #[command(flatten)]
+    pub solver: SolverSettings,
+    /// The path as a CSV file: header `x,y` or `x,y,angle_deg`, one sample per row, used as given
+    #[arg(long, value_name = "FILE.csv", group = "shape")]
+    pub path: Option<PathBuf>,
+    /// A straight line from (X0, Y0) to (X1, Y1)
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true, value_parser = parse_numbers::<4>, group = "shape")]
+    pub line: Option<[f64; 4]>,
+    /// A circle around (CX, CY) of radius R, counter-clockwise from (CX + R, CY), closed
+    #[arg(long, value_name = "CX,CY,R", allow_hyphen_values = true, value_parser = parse_numbers::<3>, group = "shape")]
+    pub circle: Option<[f64; 3]>,
+    /// A figure-8 (lemniscate of Gerono) around (CX, CY), 2A wide and A high, closed
+    #[arg(long, value_name = "CX,CY,A", allow_hyphen_values = true, value_parser = parse_numbers::<3>, group = "shape")]
+    pub figure8: Option<[f64; 3]>,
+    /// Samples of a --line, --circle or --figure8, at least 2 [default: 100]
+    #[arg(long, value_name = "N", conflicts_with = "path")]
+    pub samples: Option<usize>,
+    /// follow: online, every joint step within the bound; plan: a global search for the joint
+    /// path with the fewest flips and least motion
+    #[arg(long, value_parser = named::<TrackMode>(), default_value = "plan", hide_possible_values = false)]
+    pub mode: TrackMode,
+    /// The bound on any joint's change between consecutive samples, degrees: follow never
+    /// exceeds it, and a larger step is a flip
+    #[arg(long = "max-step-deg", id = "track_max_step_deg", value_name = "DEG", value_parser = parse_positive,
+          default_value_t = DEFAULT_MAX_STEP_DEG)]
+    pub max_step_deg: f64,
+    /// Output format [default: text on a terminal, json otherwise]
+    #[arg(long, value_enum)]
+    pub format: Option<TrackFormat>,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+/// `N` comma-separated finite numbers.
+fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != N {
+        return Err(format!("expected {N} comma-separated numbers, got {} part(s)", parts.len()));
+    }
+    let mut out = [0.0; N];
+    for (i, (o, p)) in out.iter_mut().zip(parts).enumerate() {
+        *o = parse_finite(p).map_err(|m| format!("number {}: {m}", i + 1))?;
+    }
+    Ok(out)
+}
+
+/// A shape sampled into a path.
+#[derive(Debug, Clone, Copy)]
+pub enum Shape {
+    Line([f64; 4]),
+    Circle([f64; 3]),
+    Figure8([f64; 3]),
+}
+
+impl Shape {
+    /// The shape's name, as the flag and the API field.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Line(_) => "line",
+            Shape::Circle(_) => "circle",
+            Shape::Figure8(_) => "figure8",
+        }
+    }
+
+    /// The path of `samples` points on the shape.
+    pub fn path(self, samples: usize) -> Result<Path, PathError> {
+        match self {
+            Shape::Line([x0, y0, x1, y1]) => Path::line([x0, y0], [x1, y1], samples),
+            Shape::Circle([cx, cy, r]) => Path::circle([cx, cy], r, samples),
+            Shape::Figure8([cx, cy, a]) => Path::figure8([cx, cy], a, samples),
+        }
+    }
+}
+
+/// One track: the workflow of `ikarus track` and `POST /api/track`.
+pub struct TrackJob<'a> {
+    pub arm: &'a Arm,
+    pub start: Vec<f64>,
+    pub path: Path,
+    pub mode: TrackMode,
+    pub options: TrackOptions,
+}
+
+impl TrackJob<'_> {
+    /// The tracking options: the solver's `solve` and the bound in degrees.
+    pub fn options(solve: SolveOptions, max_step_deg: f64) -> TrackOptions {
+        TrackOptions { max_step: max_step_deg.to_radians(), solve, ..TrackOptions::default() }
+    }
+
+    /// Tracks the path; a problem is bad input, in the library's words.
+    pub fn run(&self) -> Result<Track, String> {
+        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| e.to_string())
+    }
+
+    /// The picture's layer: the wanted path, the tip's trace, the flips.
+    pub fn layer(&self, t: &Track) -> ikarus_render::PathLayer {
+        let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.arm.chain, &s.angles).position;
+        ikarus_render::PathLayer {
+            goals: self.path.goals().iter().map(Goal::target).collect(),
+            trace: t.samples.iter().map(tip).collect(),
+            flips: t.summary.flips.iter().map(|&k| tip(&t.samples[k])).collect(),
+        }
+    }
+
+    /// A one-line caption for pictures.
+    pub fn caption(&self, t: &Track) -> String {
+        let s = &t.summary;
+        format!(
+            "{} · {} · {} of {} reached · {} flips · largest step {:.1}°",
+            self.arm.name,
+            self.mode.name(),
+            s.reached,
+            s.samples,
+            s.flips.len(),
+            s.max_step.to_degrees()
+        )
+    }
+}
+
+#[derive(Serialize)]
+pub struct TrackSampleJson {
+    pub goal: [f64; 2],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_deg: Option<f64>,
+    pub status: &'static str,
+    pub error: f64,
+    pub angles_deg: Vec<f64>,
+    pub joints: Vec<[f64; 2]>,
+    pub step_deg: f64,
+}
+
+#[derive(Serialize)]
+pub struct TrackSummaryJson {
+    pub samples: usize,
+    pub reached: usize,
+    pub limited: usize,
+    pub unreachable: usize,
+    /// Stalled or at the iteration cap.
+    pub stalled: usize,
+    pub flips: usize,
+    pub flip_samples: Vec<usize>,
+    /// The bound: a larger step is a flip.
+    pub step_bound_deg: f64,
+    pub max_step_deg: f64,
+    pub max_error: f64,
+    pub max_velocity_deg_per_sample: f64,
+    pub max_acceleration_deg_per_sample2: f64,
+    pub max_jerk_deg_per_sample3: f64,
+}
+
+/// A track: `ikarus track --format json` and `POST /api/track`.
+#[derive(Serialize)]
+pub struct TrackJson<'a> {
+    pub arm: &'a str,
+    pub mode: &'static str,
+    pub samples: Vec<TrackSampleJson>,
+    pub summary: TrackSummaryJson,
+}
+
+impl<'a> TrackJson<'a> {
+    pub fn new(job: &TrackJob<'a>, t: &Track) -> Self {
+        let chain = &job.arm.chain;
+        let samples = t
+            .samples
+            .iter()
+            .map(|s| {
+                let p = s.goal.target();
+                TrackSampleJson {
+                    goal: [p.x, p.y],
+                    angle_deg: s.goal.orientation().map(f64::to_degrees),
+                    status: s.status.as_str(),
+                    error: s.error,
+                    angles_deg: degrees(&s.angles),
+                    joints: points(&ikarus::kinematics::joint_positions(chain, &s.angles)),
+                    step_deg: s.step.to_degrees(),
+                }
+            })
+            .collect();
+        let s = &t.summary;
+        let summary = TrackSummaryJson {
+            samples: s.samples,
+            reached: s.reached,
+            limited: s.limited,
+            unreachable: s.unreachable,
+            stalled: s.stalled,
+            flips: s.flips.len(),
+            flip_samples: s.flips.clone(),
+            step_bound_deg: job.options.max_step.to_degrees(),
+            max_step_deg: s.max_step.to_degrees(),
+            max_error: s.max_error,
+            max_velocity_deg_per_sample: s.max_velocity.to_degrees(),
+            max_acceleration_deg_per_sample2: s.max_acceleration.to_degrees(),
+            max_jerk_deg_per_sample3: s.max_jerk.to_degrees(),
+        };
+        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
+    }
+}
+
+pub fn run(args: &TrackArgs) -> Result<(), CliError> {
+    let arm = Arm::load(args.arm.as_deref())?;
+    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
+    let path = cli_path(args)?;
+    let solve = arm.options(&args.solver, None)?;
+    let start = arm.chain.start_pose().angles().to_vec();
+    let job =
+        TrackJob { arm: &arm, start, path, mode: args.mode, options: TrackJob::options(solve, args.max_step_deg) };
+    let t = job.run().map_err(CliError::input)?;
+    if let Some(out) = picture {
+        let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
+        let layer = job.layer(&t);
+        let drawing = Drawing::Track {
+            chain: &arm.chain,
+            poses: &poses,
+            layer: &layer,
+            caption: job.caption(&t),
+            fps: TRACK_FPS,
+        };
+        let bar =
+            (out.format == PictureFormat::Gif).then(|| progress_bar(poses.len() as u64, "rendering frames")).flatten();
+        let report = |done: usize, total: usize| {
+            if let Some(bar) = &bar {
+                bar.set_length(total as u64);
+                bar.set_position(done as u64);
+            }
+        };
+        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &report)?;
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+        out.commit(&bytes)?;
+    }
+    let format =
+        args.format.unwrap_or(if std::io::stdout().is_terminal() { TrackFormat::Text } else { TrackFormat::Json });
+    output::stdout(|w| match format {
+        TrackFormat::Json => {
+            serde_json::to_writer_pretty(&mut *w, &TrackJson::new(&job, &t))?;
+            writeln!(w)
+        }
+        TrackFormat::Csv => csv(w, &t),
+        TrackFormat::Text => text(w, &job, &t),
+    })
+}
+
+/// The path the flags ask for: a CSV file or a sampled shape.
+fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
+    if let Some(file) = &args.path {
+        return read_path(file);
+    }
+    let shape = match (args.line, args.circle, args.figure8) {
+        (Some(l), _, _) => Shape::Line(l),
+        (_, Some(c), _) => Shape::Circle(c),
+        (_, _, Some(f)) => Shape::Figure8(f),
+        _ => unreachable!("clap requires one of --path, --line, --circle, --figure8"),
+    };
+    let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
+    shape.path(samples).map_err(|e| match e {
+        PathError::Samples { value } => CliError::input(format!("--samples {value}: must be at least 2")),
+        other => CliError::input(format!("--{} {other}", shape.name())),
+    })
+}
+
+/// A path CSV: header `x,y` or `x,y,angle_deg`, one sample per row; errors name the line and
+/// the column.
+fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
+    let label = format!("--path {}", file.display());
+    let text = std::fs::read(file).map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
+    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
+    let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
+    let names: Vec<&str> = headers.iter().collect();
+    let with_angle = match names[..] {
+        ["x", "y"] => false,
+        ["x", "y", "angle_deg"] => true,
+        _ => {
+            return Err(CliError::input(format!(
+                "{label}: line 1: header must be `x,y` or `x,y,angle_deg`, got `{}`",
+                names.join(",")
+            )));
+        }
+    };
+    let mut goals = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let field = |i: usize, name: &str| {
+            parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}, column {name}: {m}")))
+        };
+        let (x, y) = (field(0, "x")?, field(1, "y")?);
+        let angle = if with_angle { Some(field(2, "angle_deg")?) } else { None };
+        let goal =
+            crate::solve::make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
+        goals.push(goal);
+    }
+    Path::new(goals)
+        .map_err(|_| CliError::input(format!("{label}: no samples (expected a header and one sample per row)")))
+}
+
+fn csv(w: &mut dyn Write, t: &Track) -> std::io::Result<()> {
+    let n = t.samples.first().map_or(0, |s| s.angles.len());
+    let oriented = t.samples.iter().any(|s| s.goal.orientation().is_some());
+    let mut header = vec!["sample", "x", "y"].into_iter().map(str::to_owned).collect::<Vec<_>>();
+    if oriented {
+        header.push("angle_deg".to_owned());
+    }
+    header.extend(["status", "error", "step_deg"].map(str::to_owned));
+    header.extend((1..=n).map(|i| format!("theta{i}_deg")));
+    writeln!(w, "{}", header.join(","))?;
+    for (k, s) in t.samples.iter().enumerate() {
+        let p = s.goal.target();
+        write!(w, "{k},{:?},{:?}", p.x, p.y)?;
+        if oriented {
+            write!(w, ",{}", s.goal.orientation().map_or(String::new(), |a| format!("{:?}", a.to_degrees())))?;
+        }
+        write!(w, ",{},{:?},{:?}", s.status, s.error, s.step.to_degrees())?;
+        for a in &s.angles {
+            write!(w, ",{:?}", a.to_degrees())?;
+        }
+        writeln!(w)?;
+    }
+    Ok(())
+}
+
+fn text(w: &mut dyn Write, job: &TrackJob, t: &Track) -> std::io::Result<()> {
+    let s = &t.summary;
+    writeln!(w, "arm       {} ({} links)", job.arm.name, job.arm.chain.len())?;
+    writeln!(w, "mode      {} (bound {}° per sample)", job.mode.name(), job.options.max_step.to_degrees())?;
+    writeln!(
+        w,
+        "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
+        s.samples, s.reached, s.limited, s.unreachable, s.stalled
+    )?;
+    let which = if s.flips.is_empty() { String::new() } else { format!(" at samples {:?}", s.flips) };
+    writeln!(w, "flips     {}{which}", s.flips.len())?;
+    writeln!(
+        w,
+        "steps     largest {:.3}°; acceleration {:.3}°, jerk {:.3}° per sample",
+        s.max_step.to_degrees(),
+        s.max_acceleration.to_degrees(),
+        s.max_jerk.to_degrees()
+    )?;
+    writeln!(w, "error     largest {:.3e}", s.max_error)
+}

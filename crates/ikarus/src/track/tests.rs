@@ -1,0 +1,67 @@
+//! Unit tests of the search: the plan's cost against brute force on two-link chains.
+
+use crate::closed_form::two_link;
+use crate::rng::SplitMix64;
+use crate::{Chain, Goal, LimitMode, Link, SolveOptions};
+
+use super::{Path, TrackOptions, is_flip, joint_distance2, joint_step, plan};
+use crate::limits::Bounds;
+
+/// The search's cost of a joint path from `start`: (flips, Σ‖Δq‖², the move from `start`
+/// included as motion but not as a flip).
+fn cost(poses: &[Vec<f64>], start: &[f64], max_step: f64) -> (u32, f64) {
+    let b = Bounds::free();
+    let mut flips = 0;
+    let mut motion = joint_distance2(b, &poses[0], start);
+    for w in poses.windows(2) {
+        flips += u32::from(is_flip(joint_step(b, &w[1], &w[0]), max_step));
+        motion += joint_distance2(b, &w[1], &w[0]);
+    }
+    (flips, motion)
+}
+
+#[test]
+fn plan_matches_brute_force_on_two_links() {
+    let mut rng = SplitMix64(7);
+    for case in 0..40 {
+        let chain = Chain::new([0.0, 0.0], &[Link::new(rng.range(0.8, 2.0), 0.3), Link::new(rng.range(0.5, 1.5), 0.4)])
+            .unwrap();
+        let n = 2 + case % 11;
+        let reach = chain.max_reach();
+        let inner = chain.min_reach();
+        // Random goals inside the annulus, close enough that some steps are small and some flip.
+        let mut goals = Vec::new();
+        let (mut r, mut a) = (rng.range(inner, reach), rng.range(-3.0, 3.0));
+        for _ in 0..n {
+            r = (r + rng.range(-0.3, 0.3)).clamp(inner + 0.05, reach - 0.05);
+            a += rng.range(-0.5, 0.5);
+            goals.push(Goal::position(r * a.cos(), r * a.sin()).unwrap());
+        }
+        let path = Path::new(goals.clone()).unwrap();
+        let options = TrackOptions {
+            solve: SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() },
+            ..TrackOptions::default()
+        };
+        let start = chain.start_pose().angles().to_vec();
+        let track = plan(&chain, &start, &path, &options).unwrap();
+        let poses: Vec<Vec<f64>> = track.samples.iter().map(|s| s.angles.clone()).collect();
+        let got = cost(&poses, &start, options.max_step);
+
+        let branches: Vec<[[f64; 2]; 2]> = goals
+            .iter()
+            .map(|g| two_link(chain.lengths()[0], chain.lengths()[1], g.target().coords).unwrap())
+            .collect();
+        let mut best = (u32::MAX, f64::INFINITY);
+        for mask in 0..(1u32 << n) {
+            let poses: Vec<Vec<f64>> =
+                branches.iter().enumerate().map(|(k, b)| b[((mask >> k) & 1) as usize].to_vec()).collect();
+            let c = cost(&poses, &start, options.max_step);
+            if c.0 < best.0 || (c.0 == best.0 && c.1 < best.1) {
+                best = c;
+            }
+        }
+        assert_eq!(got.0, best.0, "case {case}: flips {got:?} vs brute force {best:?}");
+        assert!((got.1 - best.1).abs() <= 1e-9 * (1.0 + best.1), "case {case}: {got:?} vs brute force {best:?}");
+        assert_eq!(track.summary.flips.len() as u32, got.0);
+    }
+}
