@@ -12,6 +12,8 @@ $ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames
 # The same motion as one picture: ghost poses fading in, the path of every joint marked.
 $ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames 24 \
   --width 560 --height 560 --out docs/motion.png > /dev/null
+# The seed arm tracing a figure-8 (plan mode): the dashed path, the tip's trace, the ghost poses.
+$ikarus track --figure8 0.5,2.5,3 --samples 80 --width 560 --height 560 --out docs/track.png > /dev/null
 # What the seed's ranges leave of the annulus the free arm reaches.
 $ikarus workspace --limits --resolution 320 --width 560 --height 560 --out docs/workspace-limits.png > /dev/null
 # Parent's ease with the errata's corrected formula: position and velocity against time.
