@@ -14,7 +14,7 @@ use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command};
 use crate::report::AnimateJson;
 use crate::settings::SolverSettings;
 
@@ -81,7 +81,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
     let options = arm.options(&args.solver, record)?;
     let [x, y] = args.goal;
-    let goal = crate::solve::make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
+    let goal = crate::goals::make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
     let goals =
         crate::motion::goals(&args.via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
     let start = arm.chain.start_pose().angles().to_vec();
@@ -107,19 +107,8 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
             caption: motion.caption(),
             fps: args.fps.unwrap_or(DEFAULT_FPS),
         };
-        let bar = (out.format == PictureFormat::Gif)
-            .then(|| progress_bar(animation.frames.len() as u64, "rendering frames"))
-            .flatten();
-        let report = |done: usize, total: usize| {
-            if let Some(bar) = &bar {
-                bar.set_length(total as u64);
-                bar.set_position(done as u64);
-            }
-        };
-        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &report)?;
-        if let Some(bar) = bar {
-            bar.finish_and_clear();
-        }
+        let bytes =
+            draw_for_command(&drawing, out.format, args.picture.width, args.picture.height, animation.frames.len())?;
         out.commit(&bytes)?;
     }
 

@@ -9,6 +9,7 @@ mod arm;
 mod bench;
 mod ease_args;
 mod error;
+mod goals;
 mod motion;
 mod options;
 mod output;

@@ -210,6 +210,29 @@ fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, Cl
     }
 }
 
+/// [`draw`] for a command: a GIF of `frames` frames shows a progress bar on stderr while it
+/// renders, when stderr is a terminal.
+pub fn draw_for_command(
+    drawing: &Drawing<'_>,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    frames: usize,
+) -> Result<Vec<u8>, CliError> {
+    let bar = (format == PictureFormat::Gif).then(|| progress_bar(frames as u64, "rendering frames")).flatten();
+    let report = |done: usize, total: usize| {
+        if let Some(bar) = &bar {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        }
+    };
+    let bytes = draw(drawing, format, width, height, &report)?;
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    Ok(bytes)
+}
+
 /// A progress bar on stderr when it is a terminal, for `total` steps of `what`.
 pub fn progress_bar(total: u64, what: &str) -> Option<ProgressBar> {
     if !std::io::stderr().is_terminal() {

@@ -10,9 +10,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::arm::{Arm, io_reason};
+use crate::arm::Arm;
 use crate::error::CliError;
-use crate::options::{parse_angle, parse_at_least_one, parse_finite, parse_point};
+use crate::goals::{self, GoalRow, make_goal};
+use crate::options::{parse_angle, parse_at_least_one, parse_point};
 use crate::output::{self, PendingFile};
 use crate::report::{SolveJson, SolveReport};
 use crate::settings::{SolverSettings, solver};
@@ -113,14 +114,6 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     })
 }
 
-pub(crate) fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
-    match angle_deg {
-        None => Goal::position(x, y),
-        Some(a) => Goal::with_orientation(x, y, a.to_radians()),
-    }
-    .map_err(|e| e.to_string())
-}
-
 /// A finished single solve and what it needs to be described.
 struct Report<'a> {
     arm: &'a Arm,
@@ -218,41 +211,9 @@ impl Report<'_> {
     }
 }
 
-/// One goal of a batch file, as written (for echoing) and as a library goal.
-struct BatchGoal {
-    x: f64,
-    y: f64,
-    goal: Goal,
-}
-
-fn read_goals(path: &Path) -> Result<Vec<BatchGoal>, CliError> {
+fn read_goals(path: &Path) -> Result<Vec<GoalRow>, CliError> {
     let label = format!("batch file {}", path.display());
-    let text = std::fs::read(path).map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
-    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
-    let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
-    let names: Vec<&str> = headers.iter().collect();
-    let with_angle = match names[..] {
-        ["x", "y"] => false,
-        ["x", "y", "angle_deg"] => true,
-        _ => {
-            return Err(CliError::input(format!(
-                "{label}: header must be `x,y` or `x,y,angle_deg`, got `{}`",
-                names.join(",")
-            )));
-        }
-    };
-    let mut goals = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
-        let line = record.position().map_or(0, csv::Position::line);
-        let field = |i: usize, name: &str| {
-            parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}: {name}: {m}")))
-        };
-        let (x, y) = (field(0, "x")?, field(1, "y")?);
-        let angle = if with_angle { Some(field(2, "angle_deg")?) } else { None };
-        let goal = make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
-        goals.push(BatchGoal { x, y, goal });
-    }
+    let goals = goals::read(path, &label)?;
     if goals.is_empty() {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }

@@ -11,11 +11,11 @@ use ikarus::track::{self, Path, PathError, Track, TrackMode, TrackOptions};
 use ikarus::{Goal, SolveOptions};
 use serde::Serialize;
 
-use crate::arm::{Arm, io_reason};
+use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::{named, parse_finite, parse_positive};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar};
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command};
 use crate::report::{degrees, points};
 use crate::settings::SolverSettings;
 
@@ -265,18 +265,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
             caption: job.caption(&t),
             fps: TRACK_FPS,
         };
-        let bar =
-            (out.format == PictureFormat::Gif).then(|| progress_bar(poses.len() as u64, "rendering frames")).flatten();
-        let report = |done: usize, total: usize| {
-            if let Some(bar) = &bar {
-                bar.set_length(total as u64);
-                bar.set_position(done as u64);
-            }
-        };
-        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &report)?;
-        if let Some(bar) = bar {
-            bar.finish_and_clear();
-        }
+        let bytes = draw_for_command(&drawing, out.format, args.picture.width, args.picture.height, poses.len())?;
         out.commit(&bytes)?;
     }
     let format =
@@ -313,34 +302,8 @@ fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
 /// the column.
 fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
     let label = format!("--path {}", file.display());
-    let text = std::fs::read(file).map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
-    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
-    let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
-    let names: Vec<&str> = headers.iter().collect();
-    let with_angle = match names[..] {
-        ["x", "y"] => false,
-        ["x", "y", "angle_deg"] => true,
-        _ => {
-            return Err(CliError::input(format!(
-                "{label}: line 1: header must be `x,y` or `x,y,angle_deg`, got `{}`",
-                names.join(",")
-            )));
-        }
-    };
-    let mut goals = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
-        let line = record.position().map_or(0, csv::Position::line);
-        let field = |i: usize, name: &str| {
-            parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}, column {name}: {m}")))
-        };
-        let (x, y) = (field(0, "x")?, field(1, "y")?);
-        let angle = if with_angle { Some(field(2, "angle_deg")?) } else { None };
-        let goal =
-            crate::solve::make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
-        goals.push(goal);
-    }
-    Path::new(goals)
+    let rows = crate::goals::read(file, &label)?;
+    Path::new(rows.into_iter().map(|r| r.goal).collect())
         .map_err(|_| CliError::input(format!("{label}: no samples (expected a header and one sample per row)")))
 }
 

@@ -116,7 +116,7 @@ fn bad_input_exits_2_with_one_line_naming_the_field() {
     let cases: &[(&[&str], &str)] = &[
         (&["track", "--path", &no_header], "line 1: header must be `x,y` or `x,y,angle_deg`, got `1,2`"),
         (&["track", "--path", &empty], "no samples"),
-        (&["track", "--path", &nan], "line 3, column x: must be a finite number, got NaN"),
+        (&["track", "--path", &nan], "line 3: x: must be a finite number, got NaN"),
         (&["track", "--circle", "2,2,1", "--samples", "1"], "--samples 1: must be at least 2"),
         (&["track", "--line", "0,0,1,1", "--samples", "0"], "--samples 0: must be at least 2"),
         (&["track", "--circle", "2,2,0"], "--circle radius: must be a finite number > 0, got 0"),

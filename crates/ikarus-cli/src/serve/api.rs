@@ -241,7 +241,7 @@ fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Result<Vec<f64
 }
 
 fn goal(g: &GoalReq, field: &str) -> Result<Goal, ApiError> {
-    crate::solve::make_goal(g.x, g.y, g.angle_deg).map_err(|m| ApiError::invalid(format!("{field}: {m}")))
+    crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| ApiError::invalid(format!("{field}: {m}")))
 }
 
 fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, ApiError> {
