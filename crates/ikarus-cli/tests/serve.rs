@@ -116,7 +116,9 @@ fn health_and_the_playground_page() {
         ("/draw.js", "text/javascript", "export function drawScene"),
         ("/files.js", "text/javascript", "export function framesCsv"),
         ("/input.js", "text/javascript", "export function wireInput"),
+        ("/paths.js", "text/javascript", "export function resampleStroke"),
         ("/timeline.js", "text/javascript", "export function wireTimeline"),
+        ("/track.js", "text/javascript", "export function wireTrack"),
         ("/view.js", "text/javascript", "export function fitView"),
         ("/app.css", "text/css", "#fbfaf7"),
     ] {
@@ -140,7 +142,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 8, "{modules:?}");
+    assert_eq!(modules.len(), 10, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
