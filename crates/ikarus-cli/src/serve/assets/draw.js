@@ -1,6 +1,6 @@
-// Canvas drawing: the grid and axes, the reachable area, the reach circle, the wanted path of a
-// traced path (or the stroke being drawn), the motion (ghost poses and joint traces up to the
-// playhead), the base, the arm, the flips, the via points and the goal. It reads the page's
+// Canvas drawing: the grid and axes, the reachable area, the reach circle, the motion (ghost
+// poses and joint traces up to the playhead), the wanted path of a traced path (or the stroke
+// being drawn), the base, the arm, the flips, the via points and the goal. It reads the page's
 // state and never writes it; the geometry comes from view.js.
 
 import { areaPixels, areaRect, decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
@@ -49,8 +49,8 @@ export function drawScene(ctx, view, state) {
   drawGrid(ctx, view);
   drawArea(ctx, view, state);
   drawReach(ctx, view, state.arm);
-  drawWanted(ctx, view, state);
   drawMotion(ctx, view, state);
+  drawWanted(ctx, view, state);
   drawBase(ctx, view, state.arm);
   drawArm(ctx, view, state.joints);
   drawFlips(ctx, view, state.track);
@@ -58,13 +58,16 @@ export function drawScene(ctx, view, state) {
   drawGoal(ctx, view, state.goal);
 }
 
-/** The path the tip should follow, dashed: the stroke being drawn, else the traced path's goals. */
+/**
+ * The path the tip should follow, dashed over the tip's trace (where the tip follows it, the
+ * dashes lie on the trace): the stroke being drawn, else the traced path's goals.
+ */
 function drawWanted(ctx, view, state) {
   const points = state.stroke || (state.track && state.track.goals);
   if (!points || points.length < 2) return;
-  ctx.setLineDash([7, 5]);
+  ctx.setLineDash([6, 6]);
   ctx.strokeStyle = COLORS.wanted;
-  ctx.lineWidth = 2;
+  ctx.lineWidth = 1.5;
   ctx.lineCap = "round";
   polyline(ctx, view, points);
   ctx.stroke();
