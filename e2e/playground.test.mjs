@@ -5,52 +5,14 @@
 // Space, scrub and see the drawn pose follow the scrubber, replay over the chosen duration with
 // more poses than frames, shift-click two via points and move through them, replay the solver's
 // iterations; and the timeline fits under the canvas in a narrow window. Run by e2e/run (which
-// builds the binary and installs playwright-core).
+// builds the binary and installs playwright-core); paths.test.mjs drives the traced paths and
+// following.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
 import { mkdirSync } from "node:fs";
-import { dirname, join } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { artifacts, launch, startServer } from "./browser.mjs";
 import { autoDuration, forward, freeJoints, jointDistance, poseAt } from "../crates/ikarus-cli/src/serve/assets/view.js";
-
-const here = dirname(fileURLToPath(import.meta.url));
-const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
-const browserPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
-const artifacts = process.env.E2E_ARTIFACTS ?? join(here, "..", "target", "e2e");
-
-/** Starts `ikarus serve --port 0` and resolves with its URL once it listens. */
-function startServer() {
-  const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
-  return new Promise((resolve, reject) => {
-    let out = "";
-    const timer = setTimeout(() => reject(new Error(`no address from the server: ${out}`)), 15000);
-    child.on("error", reject);
-    child.stdout.on("data", (chunk) => {
-      out += chunk;
-      const m = out.match(/listening on (http:\/\/\S+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolve({ child, url: m[1] });
-      }
-    });
-  });
-}
-
-const launch = () =>
-  chromium.launch({
-    executablePath: browserPath,
-    args: [
-      "--no-sandbox",
-      "--disable-gpu",
-      "--disable-quic",
-      "--no-first-run",
-      "--disable-background-networking",
-      "--disable-component-update",
-      "--disable-sync",
-    ],
-  });
 
 test("the playground moves the arm to a clicked goal and shows the reachable area", async () => {
   const { child, url } = await startServer();

@@ -1,5 +1,6 @@
 // Unit tests of the playground's pure modules (no browser, no server): the geometry of view.js,
-// and the small pure helpers of controls.js and files.js. Run by e2e/run and .ci/run:
+// the paths of paths.js (stroke resampling, default shapes, a track as frames), and the small
+// pure helpers of controls.js and files.js. Run by e2e/run and .ci/run:
 //   node --test e2e/view.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -31,6 +32,17 @@ import {
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
 import { armForRequest, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
 import { framesCsv } from "../crates/ikarus-cli/src/serve/assets/files.js";
+import {
+  STROKE_MAX_SAMPLES,
+  flipTips,
+  polylineLength,
+  resampleStroke,
+  shapeDefaults,
+  trackMotion,
+  trackSeconds,
+  trackStatus,
+  trackSummaryText,
+} from "../crates/ikarus-cli/src/serve/assets/paths.js";
 
 const near = (a, b, tol = 1e-12) => assert.ok(Math.abs(a - b) <= tol, `${a} vs ${b} (tolerance ${tol})`);
 const nearAll = (a, b, tol = 1e-12) => {
@@ -319,4 +331,78 @@ test("ease s(t) matches the Rust library's curves", () => {
     }
   }
   for (let i = 0; i <= 10; i++) near(easePosition({ kind: "parent", k1: 0, k2: 1 }, i / 10), i / 10, 1e-15);
+});
+
+test("a stroke is resampled at even arc lengths, ends kept, at most 200 samples", () => {
+  // An L: 3 along x, then 1 up, drawn with uneven pointer spacing and a repeated point.
+  const stroke = [[0, 0], [0.1, 0], [0.1, 0], [2.5, 0], [3, 0], [3, 0.2], [3, 1]];
+  const path = resampleStroke(stroke, 0.5);
+  assert.equal(path.length, 9, "4 / 0.5 + 1 samples");
+  assert.deepEqual(path[0], [0, 0]);
+  assert.deepEqual(path.at(-1), [3, 1]);
+  for (let k = 1; k < path.length; k++) {
+    near(Math.hypot(path[k][0] - path[k - 1][0], path[k][1] - path[k - 1][1]), 0.5, 1e-12);
+  }
+  nearAll(path[6], [3, 0]);
+  nearAll(path[7], [3, 0.5]);
+  // A long stroke is capped, evenly still; the input is not changed.
+  const long = Array.from({ length: 1000 }, (_, i) => [i / 100, Math.sin(i / 100)]);
+  const capped = resampleStroke(long, 0.001);
+  assert.equal(capped.length, STROKE_MAX_SAMPLES);
+  const spacing = polylineLength(long) / (STROKE_MAX_SAMPLES - 1);
+  for (let k = 1; k < capped.length; k++) {
+    const d = Math.hypot(capped[k][0] - capped[k - 1][0], capped[k][1] - capped[k - 1][1]);
+    assert.ok(d <= spacing + 1e-12 && d > 0.97 * spacing, `step ${k}: ${d} vs ${spacing}`);
+  }
+  assert.equal(resampleStroke(long, 0.001, 10).length, 10);
+  assert.deepEqual(long[0], [0, 0]);
+  // A click, a stroke shorter than the spacing, and non-finite points are not paths.
+  assert.equal(resampleStroke([[1, 1]], 0.1), null);
+  assert.equal(resampleStroke([[1, 1], [1.05, 1]], 0.1), null);
+  assert.equal(resampleStroke([[1, 1], [2, 1]], 0), null);
+  assert.equal(resampleStroke([[1, 1], [NaN, 0], [2, 1]], 0.5).length, 3);
+});
+
+test("the default shapes sit in front of the arm, inside its reach", () => {
+  const seed = { base: [0, 0], links: [{ length: 3, limits_deg: [-45, 45] }, { length: 2 }, { length: 1 }] };
+  const d = shapeDefaults(seed);
+  nearAll(d.figure8, [4.08, 0, 1.2]);
+  nearAll(d.circle, [4.08, 0, 0.96]);
+  nearAll(d.line, [4.08, -1.5, 4.08, 1.5]);
+  // Every point of every shape is inside the reach, outside the base's neighbourhood.
+  const reach = maxReach(seed);
+  const [cx, cy, a] = d.figure8;
+  for (let i = 0; i < 64; i++) {
+    const t = (2 * Math.PI * i) / 64;
+    const r = Math.hypot(cx + a * Math.cos(t), cy + a * Math.sin(t) * Math.cos(t));
+    assert.ok(r < 0.9 * reach && r > 0.4 * reach, `figure-8 at ${r}`);
+  }
+  // The middle of the first joint's range sets the direction; without limits, along x.
+  const up = { base: [1, 2], links: [{ length: 2, limits_deg: [60, 120] }, { length: 2 }] };
+  nearAll(shapeDefaults(up).circle, [1, 2 + 0.68 * 4, 0.64]);
+  nearAll(shapeDefaults(up, false).circle, [1 + 0.68 * 4, 2, 0.64]);
+  const [x0, y0, x1, y1] = shapeDefaults(up).line;
+  near(y0, y1);
+  near(Math.hypot(x1 - x0, y1 - y0), 2);
+});
+
+test("a /api/track answer becomes frames, flips, a status and a summary", () => {
+  const sample = (status, a, tip) => ({ goal: tip, status, error: 0, angles_deg: [a, 0], joints: [[0, 0], [1, 0], tip], step_deg: 0 });
+  const answer = {
+    arm: "two",
+    mode: "plan",
+    samples: [sample("reached", 0, [2, 0]), sample("reached", 30, [1.7, 1]), sample("unreachable", 180, [-2, 0])],
+    summary: { samples: 3, reached: 2, limited: 0, flips: 1, flip_samples: [2], max_step_deg: 150, max_error: 0.5 },
+  };
+  const m = trackMotion(answer);
+  assert.deepEqual(m.frames.map((f) => f.time), [0, 0.5, 1]);
+  assert.deepEqual(m.frames[1].angles_deg, [30, 0]);
+  assert.deepEqual(m.frames[2].joints.at(-1), [-2, 0]);
+  assert.deepEqual(flipTips(answer), [[-2, 0]]);
+  assert.equal(trackStatus(answer), "unreachable");
+  assert.equal(trackStatus({ samples: answer.samples.slice(0, 2) }), "reached");
+  assert.equal(trackSummaryText(answer), "plan · 2 of 3 reached · 1 flip · largest step 150.0° · error 5.00e-1");
+  near(trackSeconds(answer), 1);
+  near(trackSeconds({ samples: new Array(120) }), 4.8);
+  assert.deepEqual(trackMotion({ ...answer, samples: answer.samples.slice(0, 1) }).frames.map((f) => f.time), [0]);
 });

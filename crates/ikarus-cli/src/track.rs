@@ -142,6 +142,36 @@ impl TrackJob<'_> {
         track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| e.to_string())
     }
 
+    /// Follows the path with its first sample bounded too (the API's `bound_first`): every
+    /// sample, the first included, is a step of at most the bound from the pose before it, the
+    /// start pose counting as sample −1, so that a pointer followed one request at a time never
+    /// jumps. `follow` places the first sample (unbounded); here the start pose's own tip goes
+    /// first (placed: the arm stays where it is), then the path, and that extra sample is
+    /// dropped: the first sample's `step` is its step from the start pose, and the rates count
+    /// the start pose as sample −1.
+    pub fn run_bound_first(&self) -> Result<Track, String> {
+        let chain = &self.arm.chain;
+        let tip = ikarus::kinematics::end_effector(chain, &self.start).position;
+        let here = Goal::position(tip.x, tip.y).map_err(|e| e.to_string())?;
+        let goals = std::iter::once(here).chain(self.path.goals().iter().copied()).collect();
+        let path = Path::new(goals).map_err(|e| e.to_string())?;
+        let mut t = track::follow(chain, &self.start, &path, &self.options).map_err(|e| e.to_string())?;
+        t.samples.remove(0);
+        let samples = &t.samples;
+        let count = |status: track::SampleStatus| samples.iter().filter(|s| s.status == status).count();
+        let s = &mut t.summary;
+        s.samples = samples.len();
+        s.reached = count(track::SampleStatus::Reached);
+        s.limited = count(track::SampleStatus::Limited);
+        s.unreachable = count(track::SampleStatus::Unreachable);
+        s.stalled = count(track::SampleStatus::Stalled) + count(track::SampleStatus::IterationLimit);
+        let bound = self.options.max_step;
+        s.flips = samples.iter().enumerate().filter(|(_, x)| track::is_flip(x.step, bound)).map(|(k, _)| k).collect();
+        s.max_step = samples.iter().map(|x| x.step).fold(0.0, f64::max);
+        s.max_error = samples.iter().map(|x| x.error).fold(0.0, f64::max);
+        Ok(t)
+    }
+
     /// The picture's layer: the wanted path, the tip's trace, the flips.
     pub fn layer(&self, t: &Track) -> ikarus_render::PathLayer {
         let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.arm.chain, &s.angles).position;

@@ -116,7 +116,9 @@ fn health_and_the_playground_page() {
         ("/draw.js", "text/javascript", "export function drawScene"),
         ("/files.js", "text/javascript", "export function framesCsv"),
         ("/input.js", "text/javascript", "export function wireInput"),
+        ("/paths.js", "text/javascript", "export function resampleStroke"),
         ("/timeline.js", "text/javascript", "export function wireTimeline"),
+        ("/track.js", "text/javascript", "export function wireTrack"),
         ("/view.js", "text/javascript", "export function fitView"),
         ("/app.css", "text/css", "#fbfaf7"),
     ] {
@@ -140,7 +142,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 8, "{modules:?}");
+    assert_eq!(modules.len(), 10, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
@@ -555,7 +557,31 @@ fn track_endpoint_and_its_bad_requests() {
     let f = f.json();
     assert_eq!(f["samples"][1]["status"], "limited");
     assert!(f["samples"][1]["step_deg"].as_f64().unwrap() <= 5.0 + 1e-9);
+    // bound_first: the first sample is a bounded step from start_deg too (a followed pointer),
+    // where follow alone places it on the path.
+    let far = |bound_first: bool| {
+        let body = json!({ "path": [[-2.0, 3.0], [-2.0, 3.1]], "mode": "follow", "max_step_deg": 5.0,
+                           "start_deg": [5.0, 5.0, 5.0], "bound_first": bound_first });
+        s.post("/api/track", &body).json()
+    };
+    let (placed, bounded) = (far(false), far(true));
+    let moved = |v: &Value, k: usize, from: &[f64]| {
+        let angles = v["samples"][k]["angles_deg"].as_array().unwrap();
+        angles.iter().zip(from).map(|(a, b)| (a.as_f64().unwrap() - b).abs()).fold(0.0, f64::max)
+    };
+    assert!(moved(&placed, 0, &[5.0; 3]) > 30.0, "follow places the first sample: {placed}");
+    assert_eq!(placed["samples"][0]["step_deg"], 0.0);
+    assert_eq!(bounded["summary"]["samples"], 2);
+    assert_eq!(bounded["samples"][0]["goal"], json!([-2.0, 3.0]));
+    assert_eq!(bounded["samples"][0]["status"], "limited");
+    let first = moved(&bounded, 0, &[5.0; 3]);
+    assert!((first - 5.0).abs() < 1e-9, "the first step is the bound: {first}");
+    assert!((bounded["samples"][0]["step_deg"].as_f64().unwrap() - 5.0).abs() < 1e-9);
+    assert_eq!(bounded["summary"]["limited"], 2);
+    assert_eq!(bounded["summary"]["flips"], 0);
+    assert!(bounded["summary"]["max_step_deg"].as_f64().unwrap() <= 5.0 + 1e-9);
     let bad: &[(Value, &str)] = &[
+        (json!({ "path": [[1.0, 1.0]], "bound_first": true }), "bound_first: only applies with mode follow"),
         (json!({ "path": [] }), "path: needs at least one sample, got none"),
         (json!({ "circle": [1.0, 1.0, 1.0], "samples": 1 }), "samples = 1: must be at least 2"),
         (json!({ "circle": [1.0, 1.0, 1.0], "samples": 51 }), "samples = 51: more than the cap of 50 (--max-samples)"),

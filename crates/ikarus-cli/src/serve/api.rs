@@ -119,8 +119,11 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
             return Err(ApiError::invalid(format!("max_step_deg = {max_step_deg}: must be a finite number > 0")));
         }
         let mode = req.mode.unwrap_or(ikarus::TrackMode::Plan);
+        if req.bound_first && mode != ikarus::TrackMode::Follow {
+            return Err(ApiError::invalid("bound_first: only applies with mode follow"));
+        }
         let job = TrackJob { arm: &arm, start, path, mode, options: TrackJob::options(solve, max_step_deg) };
-        let t = job.run().map_err(ApiError::invalid)?;
+        let t = if req.bound_first { job.run_bound_first() } else { job.run() }.map_err(ApiError::invalid)?;
         json_response(&TrackJson::new(&job, &t))
     })
     .await

@@ -35,7 +35,9 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("files.js", JS, include_str!("assets/files.js")),
     ("input.js", JS, include_str!("assets/input.js")),
+    ("paths.js", JS, include_str!("assets/paths.js")),
     ("timeline.js", JS, include_str!("assets/timeline.js")),
+    ("track.js", JS, include_str!("assets/track.js")),
     ("view.js", JS, include_str!("assets/view.js")),
 ];
 

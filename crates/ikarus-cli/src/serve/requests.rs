@@ -107,6 +107,11 @@ pub struct TrackReq {
     /// The bound on a joint's change between samples, degrees [default: 10].
     #[serde(default)]
     pub max_step_deg: Option<f64>,
+    /// With `mode: "follow"`: bound the first sample's step from `start_deg` too, as every
+    /// later one (a pointer followed one request at a time) [default: false, the first sample
+    /// is placed on the path].
+    #[serde(default)]
+    pub bound_first: bool,
     #[serde(default)]
     pub options: Option<SolverSettings>,
 }

@@ -51,5 +51,7 @@ export const defaultArm = () => get("/api/arm/default");
 export const solve = (body) => post("/api/solve", body);
 export const animate = (body) => post("/api/animate", body);
 export const workspace = (body) => post("/api/workspace", body);
+/** The tip along a path (`ikarus track`): per-sample poses and a summary with the flips. */
+export const track = (body) => post("/api/track", body);
 /** A picture (PNG, SVG or GIF) as a Blob. */
 export const render = (body) => post("/api/render", body, "blob");

@@ -67,8 +67,9 @@ const NUMBER_OPTIONS = [
 
 /**
  * The settings of the next requests, read from the fields: `options` (a request's solver
- * options; an empty field is left to the server's default), `ease` and `frames`. The joint rates
- * come from the links.
+ * options; an empty field is left to the server's default), `ease`, `frames` and `maxStepDeg`
+ * (the step bound of following and traced paths, 10° when empty). The joint rates come from
+ * the links.
  */
 export function readControls(links) {
   const options = { method: $("method").value, limits: $("limits").checked };
@@ -86,7 +87,8 @@ export function readControls(links) {
     if (k2 !== undefined) ease.k2 = k2;
   }
   const frames = num("frames");
-  return { options, ease, frames: frames === undefined ? 60 : frames };
+  const maxStep = num("max-step");
+  return { options, ease, frames: frames === undefined ? 60 : frames, maxStepDeg: maxStep === undefined ? 10 : maxStep };
 }
 
 /** The arm as a request sends it: the arm file's fields only (no rates). */

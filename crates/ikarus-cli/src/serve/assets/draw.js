@@ -1,6 +1,7 @@
 // Canvas drawing: the grid and axes, the reachable area, the reach circle, the motion (ghost
-// poses and joint traces up to the playhead), the base, the arm, the via points and the goal. It reads the page's state and never
-// writes it; the geometry comes from view.js.
+// poses and joint traces up to the playhead), the wanted path of a traced path (or the stroke
+// being drawn), the base, the arm, the flips, the via points and the goal. It reads the page's
+// state and never writes it; the geometry comes from view.js.
 
 import { areaPixels, areaRect, decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
 
@@ -15,6 +16,7 @@ export const COLORS = {
   path: "#ec7f2d",
   trace: "#8a9bb8",
   via: "#7b3fa0",
+  wanted: "#2f6fd6",
 };
 
 /** Sizes the canvas's backing store to its CSS size times the device pixel ratio; drawing is then in CSS pixels. */
@@ -48,10 +50,41 @@ export function drawScene(ctx, view, state) {
   drawArea(ctx, view, state);
   drawReach(ctx, view, state.arm);
   drawMotion(ctx, view, state);
+  drawWanted(ctx, view, state);
   drawBase(ctx, view, state.arm);
   drawArm(ctx, view, state.joints);
+  drawFlips(ctx, view, state.track);
   drawVia(ctx, view, state.via);
   drawGoal(ctx, view, state.goal);
+}
+
+/**
+ * The path the tip should follow, dashed over the tip's trace (where the tip follows it, the
+ * dashes lie on the trace): the stroke being drawn, else the traced path's goals.
+ */
+function drawWanted(ctx, view, state) {
+  const points = state.stroke || (state.track && state.track.goals);
+  if (!points || points.length < 2) return;
+  ctx.setLineDash([6, 6]);
+  ctx.strokeStyle = COLORS.wanted;
+  ctx.lineWidth = 1.5;
+  ctx.lineCap = "round";
+  polyline(ctx, view, points);
+  ctx.stroke();
+  ctx.setLineDash([]);
+}
+
+/** Red rings where the traced path flips (a joint steps more than the bound between samples). */
+function drawFlips(ctx, view, track) {
+  if (!track) return;
+  ctx.strokeStyle = COLORS.goal;
+  ctx.lineWidth = 2.5;
+  for (const [x, y] of track.flips) {
+    const [px, py] = toCanvas(view, x, y);
+    ctx.beginPath();
+    ctx.arc(px, py, 11, 0, 2 * Math.PI);
+    ctx.stroke();
+  }
 }
 
 /** The via points, numbered in the order the motion passes them. */

@@ -1,15 +1,16 @@
 // The canvas's pointer and keyboard. A click animates to the point (through the via points);
-// a shift-click adds a via point; a drag, or any move in
-// follow mode, solves towards the pointer; the arrow keys nudge the goal (solving at once in
-// follow mode) and Enter animates to it. The state stays main.js's: it is passed in, with
-// main.js's actions.
+// a shift-click adds a via point; a drag, or any move in follow mode, follows the pointer; in
+// draw-path mode a drag draws a stroke that the tip then traces. The arrow keys nudge the goal
+// (following at once in follow mode) and Enter animates to it. The state stays main.js's: it is
+// passed in, with main.js's actions.
 
 import { isDrag, nudge, toWorld } from "./view.js";
 
 /**
- * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `joints` and `goal`; writes
- * `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
- * {animateTo(x, y), followTo(x, y), addVia(x, y), cancelMotion(), requestDraw()}.
+ * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `drawPath`, `joints` and `goal`;
+ * writes `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
+ * {animateTo(x, y), followTo(x, y), addVia(x, y), cancelMotion(), requestDraw(),
+ * startStroke(x, y), extendStroke(x, y), endStroke(trace = true)}.
  */
 export function wireInput(canvas, state, act) {
   const eventWorld = (ev) => {
@@ -21,11 +22,16 @@ export function wireInput(canvas, state, act) {
     if (!state.arm || ev.button !== 0) return;
     state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
+    if (state.drawPath) act.startStroke(...eventWorld(ev));
   });
 
   canvas.addEventListener("pointermove", (ev) => {
     if (!state.arm) return;
     const press = state.press;
+    if (state.drawPath) {
+      if (press) act.extendStroke(...eventWorld(ev));
+      return;
+    }
     if (press && !press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
       press.dragging = true;
       act.cancelMotion();
@@ -40,6 +46,11 @@ export function wireInput(canvas, state, act) {
     if (!state.press) return;
     const wasDrag = state.press.dragging;
     state.press = null;
+    if (state.drawPath) {
+      act.extendStroke(...eventWorld(ev));
+      act.endStroke();
+      return;
+    }
     if (wasDrag) return;
     const [x, y] = eventWorld(ev);
     if (ev.shiftKey) act.addVia(x, y);
@@ -48,6 +59,7 @@ export function wireInput(canvas, state, act) {
 
   canvas.addEventListener("pointercancel", () => {
     state.press = null;
+    if (state.drawPath) act.endStroke(false);
   });
 
   canvas.addEventListener("keydown", (ev) => {

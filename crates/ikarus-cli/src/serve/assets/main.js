@@ -3,7 +3,8 @@
 // step. This module wires the page: it owns the one `state` object, and every other module
 // either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
 // reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
-// motions on the timeline (timeline.js, which owns `state.playback`) or saves files (files.js).
+// motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
+// traces paths (track.js, with the pure parts in paths.js) or saves files (files.js).
 
 import * as api from "./api.js";
 import {
@@ -16,13 +17,12 @@ import {
   withLimit,
 } from "./controls.js";
 import { areaImage, drawScene, fitCanvas } from "./draw.js";
-import { framesCsv, saveBlob } from "./files.js";
+import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
+import { wireTrack } from "./track.js";
 import { fitView, forward, toCanvas } from "./view.js";
 
-/** record_every of a follow solve: large, so that the answer carries no intermediate frames. */
-const FOLLOW_RECORD_EVERY = 100000;
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
 const MAX_LINKS = 64;
@@ -46,6 +46,8 @@ const state = {
   options: {},
   ease: { kind: "sine" },
   frames: 60,
+  // The step bound of following and traced paths, degrees (max_step_deg of /api/track).
+  maxStepDeg: 10,
   // The View checkboxes.
   follow: false,
   showGhosts: true,
@@ -56,9 +58,15 @@ const state = {
   // The last /api/workspace answer and its picture.
   workspace: null,
   areaImage: null,
-  // The last /api/animate answer and its request (a GIF renders the same motion).
+  // The motion the timeline plays: the last /api/animate answer and its request (a GIF renders
+  // the same motion), or a traced path's frames (paths.js's trackMotion; no request then).
   animation: null,
   animationRequest: null,
+  // Paths (track.js): whether a drag draws a path, the stroke being drawn ([[x, y], …]), and the
+  // last traced path, {request, answer (/api/track's), goals (the wanted path), flips (tips)}.
+  drawPath: false,
+  stroke: null,
+  track: null,
   // The timeline's playhead, clock and duration (timeline.js's newPlayback documents the fields).
   playback: newPlayback(),
   // The via points ({x, y}, in order) the next click's motion passes through. They stay after the
@@ -66,13 +74,26 @@ const state = {
   via: [],
   // The pointer press on the canvas: {x, y, dragging}.
   press: null,
-  // Work in flight. A sequence number is bumped by each new request so that a stale answer is
-  // dropped; follow keeps one solve in flight and only the latest goal waiting.
-  jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, drawQueued: false },
+  // Work in flight. A sequence number is bumped by each new motion so that a stale answer is
+  // dropped; following keeps one request in flight and only the latest goal waiting, asked again
+  // (followChases times) while the bound holds the arm back.
+  jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, followChases: 0, drawQueued: false },
 };
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
 const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia });
+
+/** Following and traced paths (track.js). */
+const paths = wireTrack(state, {
+  timeline,
+  setPose,
+  draw,
+  requestDraw,
+  cancelMotion,
+  showError,
+  setStatus,
+  say: (text) => ($("stats").textContent = text),
+});
 
 // ---- Messages and status ------------------------------------------------------------------
 
@@ -184,6 +205,7 @@ async function toggleSolver() {
 
 function showMotion(anim, req, stats) {
   showError(null);
+  paths.clear();
   state.animation = anim;
   state.animationRequest = req;
   setStats(stats);
@@ -219,43 +241,15 @@ function clearVia() {
   requestDraw();
 }
 
-// ---- Follow: one solve in flight, always the latest goal ----------------------------------
-
-function followTo(x, y) {
-  state.goal = { x, y };
-  state.jobs.followGoal = { x, y };
+/** Draw-path mode on or off: a drag on the canvas draws a stroke for the tip to trace. */
+function setDrawPath(on) {
+  state.drawPath = on;
+  state.stroke = null;
+  $("draw-path").setAttribute("aria-pressed", String(on));
+  document.body.classList.toggle("drawing", on);
+  const hint = $("hint");
+  hint.textContent = on ? hint.dataset.drawing : hint.dataset.normal;
   requestDraw();
-  pumpFollow();
-}
-
-async function pumpFollow() {
-  const jobs = state.jobs;
-  if (jobs.followBusy || !jobs.followGoal) return;
-  const goal = jobs.followGoal;
-  jobs.followGoal = null;
-  jobs.followBusy = true;
-  try {
-    const res = await api.solve({
-      arm: armForRequest(state.arm),
-      start_deg: state.pose_deg.slice(),
-      goal,
-      options: { ...state.options, record_every: FOLLOW_RECORD_EVERY },
-    });
-    if (!state.playback.playing) {
-      timeline.detach();
-      showError(null);
-      setPose(res.angles_deg, res.joints);
-      setStats(res);
-      setStatus(res.status);
-      draw();
-    }
-  } catch (e) {
-    showError(e);
-    setStatus("error");
-  } finally {
-    jobs.followBusy = false;
-    if (jobs.followGoal) pumpFollow();
-  }
 }
 
 // ---- Workspace ----------------------------------------------------------------------------
@@ -336,8 +330,7 @@ function armChanged() {
   // The pose keeps one angle per link; a new link starts straight.
   while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
   state.pose_deg.length = state.arm.links.length;
-  state.animation = null;
-  timeline.unload();
+  paths.clear();
   state.workspace = null;
   state.areaImage = null;
   applyControls();
@@ -348,8 +341,7 @@ function armChanged() {
 
 function resetPose() {
   cancelMotion();
-  state.animation = null;
-  timeline.unload();
+  paths.clear();
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
   $("stats").textContent = "—";
@@ -357,52 +349,13 @@ function resetPose() {
   requestDraw();
 }
 
-// ---- Downloads ----------------------------------------------------------------------------
-
-function framesOrSay() {
-  if (state.animation) return state.animation;
-  showError(new api.Notice("No motion yet: click on the canvas to make one."));
-  return null;
-}
-
-async function renderFigure(format) {
-  const button = $(`dl-${format}`);
-  const label = button.textContent;
-  try {
-    let body;
-    if (format === "gif") {
-      if (!framesOrSay()) return;
-      body = { figure: "motion", format, width: 480, height: 480, ...state.animationRequest };
-    } else {
-      body = {
-        figure: "arm",
-        format,
-        width: 800,
-        height: 800,
-        arm: armForRequest(state.arm),
-        pose_deg: state.pose_deg.slice(),
-        ...(state.goal ? { goal: state.goal } : {}),
-        ...(state.showWorkspace ? { workspace: true, limits: !!state.options.limits } : {}),
-      };
-    }
-    button.disabled = true;
-    button.textContent = "Rendering…";
-    const blob = await api.render(body);
-    showError(null);
-    saveBlob(blob, `ikarus-${format === "gif" ? "motion" : "arm"}.${format}`);
-  } catch (e) {
-    showError(e);
-  } finally {
-    button.disabled = false;
-    button.textContent = label;
-  }
-}
-
 // ---- Wiring -------------------------------------------------------------------------------
 
 function wire() {
-  wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw });
-  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames"]) {
+  const { followTo, startStroke, extendStroke, endStroke } = paths;
+  wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
+  wireDownloads(state, showError);
+  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames", "max-step"]) {
     $(id).addEventListener("change", controlsChanged);
   }
   $("limit-mode").addEventListener("change", (ev) => {
@@ -416,6 +369,10 @@ function wire() {
   $("follow").addEventListener("change", (ev) => {
     state.follow = ev.target.checked;
   });
+  $("draw-path").addEventListener("click", () => setDrawPath(!state.drawPath));
+  for (const kind of ["line", "circle", "figure8"]) {
+    $(`trace-${kind}`).addEventListener("click", () => state.arm && paths.traceShape(kind));
+  }
   $("show-ghosts").addEventListener("change", (ev) => {
     state.showGhosts = ev.target.checked;
     requestDraw();
@@ -431,17 +388,6 @@ function wire() {
   });
   $("add-link").addEventListener("click", addLink);
   $("reset").addEventListener("click", resetPose);
-  $("dl-json").addEventListener("click", () => {
-    const anim = framesOrSay();
-    if (anim) saveBlob(new Blob([JSON.stringify(anim, null, 2)], { type: "application/json" }), "ikarus-frames.json");
-  });
-  $("dl-csv").addEventListener("click", () => {
-    const anim = framesOrSay();
-    if (anim) saveBlob(new Blob([framesCsv(anim)], { type: "text/csv" }), "ikarus-frames.csv");
-  });
-  $("dl-png").addEventListener("click", () => renderFigure("png"));
-  $("dl-svg").addEventListener("click", () => renderFigure("svg"));
-  $("dl-gif").addEventListener("click", () => renderFigure("gif"));
   const narrow = window.matchMedia("(max-width: 720px)");
   const toggle = $("panel-toggle");
   const setCollapsed = (c) => {
@@ -482,7 +428,8 @@ window.ikarus = {
   state,
   ready: false,
   animateTo,
-  followTo,
+  followTo: (x, y) => paths.followTo(x, y),
+  traceShape: (kind) => paths.traceShape(kind),
   resetPose,
   /** Client coordinates of a world point, for clicking on it. */
   toClient(x, y) {

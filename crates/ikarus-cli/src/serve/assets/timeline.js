@@ -25,12 +25,14 @@ export const SCRUB_STEPS = 1000;
  *   free      per joint, whether it interpolates the short way round (no limits to respect)
  *   distance  the motion's joint-space distance in radians (for the default duration)
  *   chosen    the duration the reader typed, in seconds, or null for the default
+ *   auto      the default duration of this motion in seconds (a traced path's), or null for
+ *             the one proportional to the joint-space distance
  *   ease      the ease the motion was made with ({kind, k1, k2}), for the s(t) plot
  *   solver    whether the motion is the solver's recorded iterations (from_solve)
  *   posed     whether the arm shows the playhead's pose (false once something else moved it)
  */
 export function newPlayback() {
-  return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, ease: null, solver: false, posed: false };
+  return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, auto: null, ease: null, solver: false, posed: false };
 }
 
 /** Whether a key press belongs to the focused element rather than to the page. */
@@ -51,7 +53,8 @@ export function wireTimeline(state, act) {
   const pb = state.playback;
   const frames = () => (state.animation && state.animation.frames) || [];
   const loaded = () => frames().length > 0;
-  const duration = () => pb.chosen ?? autoDuration(pb.distance);
+  const auto = () => pb.auto ?? autoDuration(pb.distance);
+  const duration = () => pb.chosen ?? auto();
 
   function phase() {
     if (!loaded()) return "none";
@@ -76,7 +79,7 @@ export function wireTimeline(state, act) {
     if (document.activeElement !== scrub || pb.playing) scrub.value = String(Math.round(pb.u * SCRUB_STEPS));
     const d = duration();
     $("playtime").textContent = has ? `${(pb.u * d).toFixed(2)} / ${d.toFixed(2)} s` : "– / – s";
-    $("duration").placeholder = `auto ${autoDuration(pb.distance).toFixed(1)}`;
+    $("duration").placeholder = `auto ${auto().toFixed(1)}`;
     const via = state.via.length;
     const clear = $("clear-via");
     clear.disabled = via === 0;
@@ -176,12 +179,16 @@ export function wireTimeline(state, act) {
     if (loaded()) show(u);
   }
 
-  /** Takes `state.animation` (made by `request`) as the motion to play, the playhead at 0. */
-  function load(request, solver = false) {
+  /**
+   * Takes `state.animation` (made by `request`) as the motion to play, the playhead at 0;
+   * `seconds` is its default duration (else one proportional to its joint-space distance).
+   */
+  function load(request, solver = false, seconds = null) {
     pause();
     pb.u = 0;
     pb.index = 0;
     pb.solver = solver;
+    pb.auto = seconds;
     pb.ease = request.ease;
     pb.free = freeJoints(request.arm, !!(request.options && request.options.limits));
     pb.distance = jointDistance(frames());
@@ -203,6 +210,7 @@ export function wireTimeline(state, act) {
     pb.solver = false;
     pb.posed = false;
     pb.ease = null;
+    pb.auto = null;
     pb.distance = 0;
     sync();
   }

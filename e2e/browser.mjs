@@ -1,0 +1,43 @@
+// What the browser tests share: the ikarus server on a free port, headless Chromium, and where
+// the screenshots go.
+import { spawn } from "node:child_process";
+import { dirname, join } from "node:path";
+import { fileURLToPath } from "node:url";
+import { chromium } from "playwright-core";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
+const browserPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+export const artifacts = process.env.E2E_ARTIFACTS ?? join(here, "..", "target", "e2e");
+
+/** Starts `ikarus serve --port 0` and resolves with its URL once it listens. */
+export function startServer() {
+  const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
+  return new Promise((resolve, reject) => {
+    let out = "";
+    const timer = setTimeout(() => reject(new Error(`no address from the server: ${out}`)), 15000);
+    child.on("error", reject);
+    child.stdout.on("data", (chunk) => {
+      out += chunk;
+      const m = out.match(/listening on (http:\/\/\S+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, url: m[1] });
+      }
+    });
+  });
+}
+
+export const launch = () =>
+  chromium.launch({
+    executablePath: browserPath,
+    args: [
+      "--no-sandbox",
+      "--disable-gpu",
+      "--disable-quic",
+      "--no-first-run",
+      "--disable-background-networking",
+      "--disable-component-update",
+      "--disable-sync",
+    ],
+  });
