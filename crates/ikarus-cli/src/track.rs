@@ -69,6 +69,10 @@ pub struct TrackArgs {
     /// path with the fewest flips and least motion
     #[arg(long, value_parser = named::<TrackMode>(), default_value = "plan", hide_possible_values = false)]
     pub mode: TrackMode,
+    /// With --mode follow: bound the first sample too, a step of at most the bound from the start
+    /// pose (by default it is placed at the solution nearest the start pose)
+    #[arg(long)]
+    pub bound_first: bool,
     /// The bound on any joint's change between consecutive samples, degrees: follow never
     /// exceeds it, and a larger step is a flip
     #[arg(long = "max-step-deg", id = "track_max_step_deg", value_name = "DEG", value_parser = parse_positive,
@@ -132,44 +136,15 @@ pub struct TrackJob<'a> {
 }
 
 impl TrackJob<'_> {
-    /// The tracking options: the solver's `solve` and the bound in degrees.
-    pub fn options(solve: SolveOptions, max_step_deg: f64) -> TrackOptions {
-        TrackOptions { max_step: max_step_deg.to_radians(), solve, ..TrackOptions::default() }
+    /// The tracking options: the solver's `solve`, the bound in degrees, and whether follow
+    /// bounds the first sample too.
+    pub fn options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) -> TrackOptions {
+        TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
     }
 
     /// Tracks the path; a problem is bad input, in the library's words.
     pub fn run(&self) -> Result<Track, String> {
         track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| e.to_string())
-    }
-
-    /// Follows the path with its first sample bounded too (the API's `bound_first`): every
-    /// sample, the first included, is a step of at most the bound from the pose before it, the
-    /// start pose counting as sample −1, so that a pointer followed one request at a time never
-    /// jumps. `follow` places the first sample (unbounded); here the start pose's own tip goes
-    /// first (placed: the arm stays where it is), then the path, and that extra sample is
-    /// dropped: the first sample's `step` is its step from the start pose, and the rates count
-    /// the start pose as sample −1.
-    pub fn run_bound_first(&self) -> Result<Track, String> {
-        let chain = &self.arm.chain;
-        let tip = ikarus::kinematics::end_effector(chain, &self.start).position;
-        let here = Goal::position(tip.x, tip.y).map_err(|e| e.to_string())?;
-        let goals = std::iter::once(here).chain(self.path.goals().iter().copied()).collect();
-        let path = Path::new(goals).map_err(|e| e.to_string())?;
-        let mut t = track::follow(chain, &self.start, &path, &self.options).map_err(|e| e.to_string())?;
-        t.samples.remove(0);
-        let samples = &t.samples;
-        let count = |status: track::SampleStatus| samples.iter().filter(|s| s.status == status).count();
-        let s = &mut t.summary;
-        s.samples = samples.len();
-        s.reached = count(track::SampleStatus::Reached);
-        s.limited = count(track::SampleStatus::Limited);
-        s.unreachable = count(track::SampleStatus::Unreachable);
-        s.stalled = count(track::SampleStatus::Stalled) + count(track::SampleStatus::IterationLimit);
-        let bound = self.options.max_step;
-        s.flips = samples.iter().enumerate().filter(|(_, x)| track::is_flip(x.step, bound)).map(|(k, _)| k).collect();
-        s.max_step = samples.iter().map(|x| x.step).fold(0.0, f64::max);
-        s.max_error = samples.iter().map(|x| x.error).fold(0.0, f64::max);
-        Ok(t)
     }
 
     /// The picture's layer: the wanted path, the tip's trace, the flips.
@@ -282,8 +257,11 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     let path = cli_path(args)?;
     let solve = arm.options(&args.solver, None)?;
     let start = arm.chain.start_pose().angles().to_vec();
-    let job =
-        TrackJob { arm: &arm, start, path, mode: args.mode, options: TrackJob::options(solve, args.max_step_deg) };
+    if args.bound_first && args.mode != TrackMode::Follow {
+        return Err(CliError::input("--bound-first: only applies with --mode follow"));
+    }
+    let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
+    let job = TrackJob { arm: &arm, start, path, mode: args.mode, options };
     let t = job.run().map_err(CliError::input)?;
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();

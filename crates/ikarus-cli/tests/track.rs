@@ -127,6 +127,7 @@ fn bad_input_exits_2_with_one_line_naming_the_field() {
         (&["track", "--circle", "1,1,1", "--line", "0,0,1,1"], "cannot be used with"),
         (&["track", "--path", &empty, "--samples", "5"], "cannot be used with"),
         (&["track", "--circle", "1,1,1", "--out", "/tmp/x.bmp"], "unsupported picture format"),
+        (&["track", "--circle", "1,1,1", "--bound-first"], "--bound-first: only applies with --mode follow"),
     ];
     for (args, want) in cases {
         let err = fails(args, 2);

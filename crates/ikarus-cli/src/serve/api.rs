@@ -122,8 +122,9 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
         if req.bound_first && mode != ikarus::TrackMode::Follow {
             return Err(ApiError::invalid("bound_first: only applies with mode follow"));
         }
-        let job = TrackJob { arm: &arm, start, path, mode, options: TrackJob::options(solve, max_step_deg) };
-        let t = if req.bound_first { job.run_bound_first() } else { job.run() }.map_err(ApiError::invalid)?;
+        let options = TrackJob::options(solve, max_step_deg, req.bound_first);
+        let job = TrackJob { arm: &arm, start, path, mode, options };
+        let t = job.run().map_err(ApiError::invalid)?;
         json_response(&TrackJson::new(&job, &t))
     })
     .await

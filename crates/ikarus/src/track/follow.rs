@@ -165,14 +165,15 @@ pub fn follow(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions)
     let mut follower = Follower::new(chain, start, options)?;
     let mut samples = Vec::with_capacity(path.len());
     for (k, goal) in path.goals().iter().enumerate() {
-        let step = if k == 0 { follower.place(goal) } else { follower.step(goal) };
+        let placed = k == 0 && !options.bound_first;
+        let step = if placed { follower.place(goal) } else { follower.step(goal) };
         samples.push(TrackSample {
             goal: *goal,
             status: step.status,
             error: step.error,
             angle_error: step.angle_error,
             angles: follower.pose().to_vec(),
-            step: if k == 0 { 0.0 } else { step.step },
+            step: if placed { 0.0 } else { step.step },
         });
     }
     Ok(Track::new(samples, bounds(chain, &options.solve), options.max_step))

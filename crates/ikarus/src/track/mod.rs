@@ -145,6 +145,11 @@ pub struct TrackOptions {
     pub seeds: usize,
     /// [`plan`]: smoothing passes over the chosen path (default 2).
     pub polish_passes: u32,
+    /// [`follow`]: bound the first sample too, as a step of at most `max_step` from the start
+    /// pose (its `step` is then measured from the start pose). Off by default: the first sample
+    /// is placed at the solution nearest the start pose, however far. On for a goal streamed one
+    /// sample at a time from the arm's current pose (a followed pointer), so that it never jumps.
+    pub bound_first: bool,
 }
 
 impl Default for TrackOptions {
@@ -156,6 +161,7 @@ impl Default for TrackOptions {
             candidates: 8,
             seeds: 2,
             polish_passes: 2,
+            bound_first: false,
         }
     }
 }

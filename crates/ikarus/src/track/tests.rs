@@ -65,3 +65,27 @@ fn plan_matches_brute_force_on_two_links() {
         assert_eq!(track.summary.flips.len() as u32, got.0);
     }
 }
+
+#[test]
+fn bound_first_makes_the_first_sample_a_bounded_step_from_the_start() {
+    let chain = crate::fixtures::seed_arm();
+    let start = chain.start_pose().angles().to_vec();
+    // Far from the start pose: placed, the first sample jumps; bounded, it moves by the bound.
+    let path = Path::new(vec![Goal::position(-2.0, 3.0).unwrap(), Goal::position(-2.0, 3.1).unwrap()]).unwrap();
+    let bound = 5f64.to_radians();
+    let placed =
+        super::follow(&chain, &start, &path, &TrackOptions { max_step: bound, ..TrackOptions::default() }).unwrap();
+    let options = TrackOptions { max_step: bound, bound_first: true, ..TrackOptions::default() };
+    let bounded = super::follow(&chain, &start, &path, &options).unwrap();
+    let from_start = |t: &super::Track| joint_step(Bounds::free(), &t.samples[0].angles, &start);
+    assert!(from_start(&placed) > 6.0 * bound, "placed: {}", from_start(&placed).to_degrees());
+    assert_eq!(placed.samples[0].step, 0.0);
+    assert!((from_start(&bounded) - bound).abs() < 1e-9, "bounded: {}", from_start(&bounded).to_degrees());
+    assert!((bounded.samples[0].step - bound).abs() < 1e-9);
+    assert_eq!(bounded.samples[0].status, super::SampleStatus::Limited);
+    assert!(bounded.summary.flips.is_empty() && bounded.summary.max_step <= bound * (1.0 + 1e-9));
+    // Every later sample stays within the bound of the one before.
+    for w in bounded.samples.windows(2) {
+        assert!(joint_step(Bounds::free(), &w[1].angles, &w[0].angles) <= bound * (1.0 + 1e-9));
+    }
+}
