@@ -143,7 +143,8 @@ fn text_and_markdown_show_the_blocks_and_the_targets() {
     let args = ["bench", "--paths", "--arms", "seed", "--path-count", "3", "--samples", "5"];
     let text = succeeds(&args);
     assert!(text.starts_with("ikarus bench --paths: ikarus "), "{text}");
-    assert!(text.contains("\nseed · limits off · 3 paths\n") && text.contains("\nseed · limits on · 3 paths\n"));
+    assert!(text.contains("\nseed · limits off · 3 paths, 0 samples beyond the reach\n"), "{text}");
+    assert!(text.contains("\nseed · limits on · 3 paths, 0 samples beyond the reach\n"), "{text}");
     assert!(text.contains("\ntargets: "), "{text}");
     let md = succeeds(&[&args[..], &["--markdown", "--by-kind"]].concat());
     assert!(md.starts_with("`ikarus bench --paths --arms seed --path-count 3 --samples 5 --markdown --by-kind`\n"));

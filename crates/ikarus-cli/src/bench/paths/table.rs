@@ -135,7 +135,8 @@ pub fn text(w: &mut dyn Write, header: &PathsHeader, rows: &[PathRow], targets: 
         let (arm, on) = (rows[i].arm, rows[i].limits);
         let end = rows[i..].iter().position(|r| r.arm != arm || r.limits != on).map_or(rows.len(), |k| i + k);
         writeln!(w)?;
-        writeln!(w, "{arm} · {} · {} paths", limits(on), rows[i].paths)?;
+        let beyond = rows[i].beyond_samples;
+        writeln!(w, "{arm} · {} · {} paths, {beyond} samples beyond the reach", limits(on), rows[i].paths)?;
         for c in std::iter::once(HEADINGS.map(str::to_owned)).chain(all[i..end].iter().cloned()) {
             let mut s = String::from(" ");
             for (k, (cell, width)) in c.iter().zip(widths).enumerate() {
