@@ -6,7 +6,8 @@
 // Output (stdout): a first line `kdl <version>`, then one line per solve:
 //   <solver> <goal_index> <nanoseconds> <iterations> <return_code> <q_0> ... <q_{n-1}>
 // all `lma` lines first, then all `nr_jl` lines (only for sets with joint
-// limits). A malformed or unreadable goal file gives one line on stderr and
+// limits). A file with a `paths` field is a path file: LMA only, each sample
+// warm-started from the previous sample's answer. A malformed or unreadable goal file gives one line on stderr and
 // exit status 2. See README.md next to this file for the details.
 
 #include <kdl/chain.hpp>
@@ -74,6 +75,9 @@ struct GoalSet {
     double angle_tolerance = 0.0;  // read, but KDL has no separate angle tolerance
     unsigned max_iterations = 0;
     std::vector<Goal> goals;
+    // Path mode: each path's sample count, in order (they sum to goals.size()); empty for a
+    // goal set.
+    std::vector<std::size_t> paths;
 };
 
 // Thrown on any problem with the goal file; main() prints it and exits 2.
@@ -253,6 +257,13 @@ GoalSet parse_goal_file(const std::string& path) {
             const unsigned long v = uint_at(l, 1);
             if (v == 0 || v > 100000000UL) fail(path, l.number, key, "must be in 1..1e8");
             set.max_iterations = static_cast<unsigned>(v);
+        } else if (key == "paths") {
+            if (l.tokens.size() < 2) fail(path, l.number, key, "expected at least 1 value, got 0");
+            for (std::size_t j = 1; j < l.tokens.size(); ++j) {
+                const unsigned long v = uint_at(l, j);
+                if (v == 0) fail(path, l.number, key, "every path needs at least 1 sample");
+                set.paths.push_back(v);
+            }
         } else if (key == "goals") {
             break;  // goal lines follow
         } else {
@@ -278,6 +289,14 @@ GoalSet parse_goal_file(const std::string& path) {
         fail(path, where, "goals",
              "header says " + std::to_string(n_goals) + " goal line(s), file has " +
                  std::to_string(lines.size() - i - 1));
+    }
+    if (!set.paths.empty()) {
+        std::size_t sum = 0;
+        for (std::size_t v : set.paths) sum += v;
+        if (sum != n_goals) {
+            fail(path, header.number, "paths",
+                 "sample counts sum to " + std::to_string(sum) + ", goals is " + std::to_string(n_goals));
+        }
     }
     set.goals.reserve(n_goals);
     for (std::size_t g = i + 1; g < lines.size(); ++g) {
@@ -362,6 +381,45 @@ std::vector<SolveRecord> run_solver(const GoalSet& set, const std::vector<KDL::F
     return records;
 }
 
+// Path mode: the first sample of each path is solved from the start pose, every later one
+// from the previous sample's answer (a warm start, as a tracking user would do). Only the
+// solve is timed. The untimed warm-up is a separate pass over the first samples.
+template <class Solve, class Iterations>
+std::vector<SolveRecord> run_paths(const GoalSet& set, const std::vector<KDL::Frame>& frames,
+                                   Solve solve, Iterations iterations) {
+    const std::size_t n = set.links;
+    KDL::JntArray start(n);
+    for (std::size_t j = 0; j < n; ++j) start(j) = set.start[j];
+    KDL::JntArray q_init(n), q_out(n);
+
+    q_init = start;
+    const std::size_t warmup = std::min(kWarmupGoals, frames.size());
+    for (std::size_t g = 0; g < warmup; ++g) {
+        solve(q_init, frames[g], q_out);
+        q_init = q_out;
+    }
+
+    std::vector<SolveRecord> records;
+    records.reserve(frames.size());
+    std::size_t g = 0;
+    for (std::size_t samples : set.paths) {
+        q_init = start;
+        for (std::size_t k = 0; k < samples; ++k, ++g) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const int rc = solve(q_init, frames[g], q_out);
+            const auto t1 = std::chrono::steady_clock::now();
+            SolveRecord r;
+            r.nanoseconds = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+            r.iterations = iterations();
+            r.return_code = rc;
+            r.q.assign(q_out.data.data(), q_out.data.data() + n);
+            records.push_back(std::move(r));
+            q_init = q_out;
+        }
+    }
+    return records;
+}
+
 void print_records(const char* solver, const std::vector<SolveRecord>& records) {
     for (std::size_t g = 0; g < records.size(); ++g) {
         const SolveRecord& r = records[g];
@@ -404,16 +462,19 @@ int main(int argc, char** argv) {
         // eps: stop when the weighted error norm is below the file's tolerance;
         // eps_joints: KDL's default (1e-15).
         KDL::ChainIkSolverPos_LMA lma(chain, L, set.tolerance, static_cast<int>(set.max_iterations));
-        const auto records = run_solver(
-            set, frames,
-            [&](const KDL::JntArray& q0, const KDL::Frame& f, KDL::JntArray& q) { return lma.CartToJnt(q0, f, q); },
-            [&] { return lma.lastNrOfIter; });
+        auto solve = [&](const KDL::JntArray& q0, const KDL::Frame& f, KDL::JntArray& q) {
+            return lma.CartToJnt(q0, f, q);
+        };
+        auto iterations = [&] { return lma.lastNrOfIter; };
+        const auto records =
+            set.paths.empty() ? run_solver(set, frames, solve, iterations) : run_paths(set, frames, solve, iterations);
         print_records("lma", records);
     }
 
     // --- NR_JL: Newton-Raphson with a pseudo-inverse Jacobian, clamping to the
-    // joint limits after every step. Only for sets that have limits. ---------
-    if (set.has_limits) {
+    // joint limits after every step. Only for goal sets that have limits (not in
+    // path mode). ------------------------------------------------------------
+    if (set.has_limits && set.paths.empty()) {
         KDL::JntArray q_min(set.links), q_max(set.links);
         for (std::size_t j = 0; j < set.links; ++j) {
             const bool free_joint = std::isnan(set.lim_min[j]);

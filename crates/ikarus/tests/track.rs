@@ -245,3 +245,34 @@ fn bad_paths_and_options_name_the_field_and_value() {
         "start: expected 3 angles (one per joint), got 2"
     );
 }
+
+#[test]
+fn plan_does_not_steepen_the_first_steps_toward_the_start_pose() {
+    // Slow trajectories far from the start pose (5°, 5°, 5°): the path's first steps must be as
+    // gentle as the trajectory's, not steepened to shorten the approach from the start, which
+    // is not on the path (found by `ikarus bench --paths`: seed arm, limits on, seed 1, path 20,
+    // first step 5.3° where the trajectory's largest is 1.2°).
+    let chain = seed_arm_limited();
+    for (centre, phase) in [([-30.0, 50.0, 15.0], 0.0), ([15.0, -35.0, -50.0], 2.0), ([5.0, -40.0, -50.0], 4.0)] {
+        let truth: Vec<Vec<f64>> = (0..100)
+            .map(|k| {
+                let t = k as f64 / 99.0;
+                (0..3)
+                    .map(|i| deg(centre[i] + 10.0 * (TAU * t * (0.7 + 0.3 * i as f64) + phase + i as f64).sin()))
+                    .collect()
+            })
+            .collect();
+        let goals = truth.iter().map(|q| end_effector(&chain, q).position).map(|p| Goal::position(p.x, p.y).unwrap());
+        let path = Path::new(goals.collect()).unwrap();
+        let t = track::plan(&chain, chain.start_pose().angles(), &path, &options(true)).unwrap();
+        assert!(t.summary.flips.is_empty() && t.summary.reached == 100, "{centre:?}: {:?}", t.summary);
+        let first = t.samples[..10].iter().map(|s| s.step).fold(0.0, f64::max);
+        let want = largest_step(&truth);
+        assert!(
+            first <= 2.0 * want,
+            "{centre:?}: first steps up to {:.2}° vs the trajectory's {:.2}°",
+            first.to_degrees(),
+            want.to_degrees()
+        );
+    }
+}

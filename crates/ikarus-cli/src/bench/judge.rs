@@ -59,7 +59,7 @@ pub fn judge(set: &GoalSet, goal: &BenchGoal, angles: &[f64]) -> Verdict {
 }
 
 /// Whether `angle + 2πk` lies in `[min − slack, max + slack]` for some whole `k`.
-fn within(angle: f64, min: f64, max: f64) -> bool {
+pub(in crate::bench) fn within(angle: f64, min: f64, max: f64) -> bool {
     if !angle.is_finite() {
         return false;
     }

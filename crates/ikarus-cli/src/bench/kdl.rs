@@ -108,8 +108,18 @@ fn expects_nr_jl(set: &GoalSet) -> bool {
 /// line per goal in order, then (for limits sets) one `nr_jl` line per goal. The error names
 /// the output line.
 pub fn parse_output(text: &str, set: &GoalSet) -> Result<KdlRun, String> {
-    let n = set.chain.len();
-    let goals = set.goals.len();
+    parse_solves(text, &set.name(), set.chain.len(), set.goals.len(), expects_nr_jl(set))
+}
+
+/// Parses `kdl_bench`'s output for the set `name` of `goals` goals on `n` joints: the version
+/// line, `goals` `lma` lines, then `goals` `nr_jl` lines if `nr_jl`.
+pub(in crate::bench) fn parse_solves(
+    text: &str,
+    name: &str,
+    n: usize,
+    goals: usize,
+    nr_jl: bool,
+) -> Result<KdlRun, String> {
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let version = match lines.next() {
         None => return Err("no output".to_owned()),
@@ -119,7 +129,6 @@ pub fn parse_output(text: &str, set: &GoalSet) -> Result<KdlRun, String> {
         },
     };
     let mut run = KdlRun { version, lma: Vec::with_capacity(goals), nr_jl: Vec::new() };
-    let nr_jl = expects_nr_jl(set);
     for (k, line) in lines {
         let fail = |what: String| Err(format!("line {k}: {what}"));
         let tokens: Vec<&str> = line.split_whitespace().collect();
@@ -127,7 +136,7 @@ pub fn parse_output(text: &str, set: &GoalSet) -> Result<KdlRun, String> {
         let list = match solver {
             "lma" if run.nr_jl.is_empty() => &mut run.lma,
             "lma" => return fail("an `lma` line after the `nr_jl` lines".to_owned()),
-            "nr_jl" if !nr_jl => return fail(format!("an `nr_jl` line for set {}, which has no limits", set.name())),
+            "nr_jl" if !nr_jl => return fail(format!("an `nr_jl` line for set {name}, which has no limits")),
             "nr_jl" if run.lma.len() < goals => {
                 return fail(format!("an `nr_jl` line after {} of {goals} `lma` lines", run.lma.len()));
             }
@@ -200,23 +209,28 @@ pub fn check(path: &Path) -> Result<(), CliError> {
 /// Writes the goal file of `set` into `dir`, runs `path` on it and parses its output. Any
 /// failure is one line naming `--kdl` and the path (exit 1).
 pub fn run(path: &Path, set: &GoalSet, dir: &Path, comment: &str) -> Result<KdlRun, CliError> {
+    let text = run_file(path, &dir.join(format!("{}.goals", set.name())), &goal_file(set, comment), &set.name())?;
+    parse_output(&text, set)
+        .map_err(|m| CliError::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
+}
+
+/// Writes `contents` to `file`, runs `path` on it and returns its stdout. Any failure is one
+/// line naming `--kdl`, the path and the set `name` (exit 1).
+pub(in crate::bench) fn run_file(path: &Path, file: &Path, contents: &str, name: &str) -> Result<String, CliError> {
     let fail = |what: String| CliError::runtime(format!("--kdl {}: {what}", path.display()));
-    let file = dir.join(format!("{}.goals", set.name()));
-    std::fs::write(&file, goal_file(set, comment))
+    std::fs::write(file, contents)
         .map_err(|e| fail(format!("cannot write the goal file {}: {}", file.display(), io_reason(&e))))?;
     let output = Command::new(path)
-        .arg(&file)
+        .arg(file)
         .stdin(Stdio::null())
         .output()
         .map_err(|e| fail(format!("cannot run: {}", io_reason(&e))))?;
     if !output.status.success() {
         let stderr = String::from_utf8_lossy(&output.stderr);
         let why = stderr.lines().find(|l| !l.trim().is_empty()).map_or(String::new(), |l| format!(": {}", l.trim()));
-        return Err(fail(format!("failed on set {} ({}){why}", set.name(), output.status)));
+        return Err(fail(format!("failed on set {name} ({}){why}", output.status)));
     }
-    let text =
-        String::from_utf8(output.stdout).map_err(|_| fail(format!("set {}: output is not UTF-8", set.name())))?;
-    parse_output(&text, set).map_err(|m| fail(format!("set {}: output {m}", set.name())))
+    String::from_utf8(output.stdout).map_err(|_| fail(format!("set {name}: output is not UTF-8")))
 }
 
 #[cfg(test)]

@@ -5,10 +5,12 @@
 //! - [`run`](mod@run): the rows and the timing;
 //! - [`judge`](mod@judge): how every solve is judged;
 //! - [`kdl`]: goal files and `kdl_bench`'s output;
-//! - [`table`]: text, Markdown and JSON output.
+//! - [`table`]: text, Markdown and JSON output;
+//! - [`paths`]: `--paths`, the path benchmark (`follow`, `plan`, from scratch, KDL warm).
 
 mod judge;
 mod kdl;
+mod paths;
 mod run;
 mod sets;
 mod table;
@@ -36,6 +38,20 @@ pub struct BenchArgs {
     /// Goals per set
     #[arg(long, value_name = "N", default_value_t = 1000, value_parser = parse_at_least_one)]
     pub goals: u32,
+    /// Benchmark path tracking instead of single goals: `follow`, `plan`, every sample from
+    /// scratch, and (with --kdl) KDL's LMA warm-started, on seeded paths for each arm with the
+    /// limits off and on
+    #[arg(long, conflicts_with_all = ["goals", "sets", "methods", "limit_modes", "write_goals"])]
+    pub paths: bool,
+    /// With --paths: paths per arm and limits setting
+    #[arg(long, value_name = "N", default_value_t = 40, requires = "paths", value_parser = parse_at_least_one)]
+    pub path_count: u32,
+    /// With --paths: samples per path (at least 3)
+    #[arg(long, value_name = "N", default_value_t = 100, requires = "paths", value_parser = parse_samples)]
+    pub samples: u32,
+    /// With --paths: also show a row per kind of path (JSON always has them)
+    #[arg(long, requires = "paths")]
+    pub by_kind: bool,
     /// Seed of the goal sets (each set mixes in its arm's and its own name)
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
@@ -67,6 +83,12 @@ pub struct BenchArgs {
     pub write_goals: Option<PathBuf>,
 }
 
+/// `--samples`: a whole number, at least 3 (a jerk needs four samples, a step two).
+fn parse_samples(s: &str) -> Result<u32, String> {
+    let v: u32 = s.trim().parse().map_err(|_| format!("'{s}' is not a whole number"))?;
+    if v < 3 { Err(format!("{v}: must be at least 3")) } else { Ok(v) }
+}
+
 /// `--methods` accepts every method's name and `default`.
 fn method_names() -> PossibleValuesParser {
     PossibleValuesParser::new(Method::ALL.iter().map(|m| m.name()).chain(["default"]))
@@ -79,6 +101,9 @@ fn mode_names() -> PossibleValuesParser {
 
 /// Runs `ikarus bench`.
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    if args.paths {
+        return paths::run(args);
+    }
     // Everything that can be checked is checked before the (long) work starts.
     if let Some(path) = &args.kdl {
         kdl::check(path)?;

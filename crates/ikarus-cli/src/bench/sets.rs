@@ -226,7 +226,7 @@ fn unreachable_goal(chain: &Chain, index: usize, rng: &mut SplitMix64) -> BenchG
 
 /// FNV-1a (64 bits) of `arm`, a zero byte and `set`: a hash that does not change between
 /// Rust versions or machines.
-fn stable_hash(arm: &str, set: &str) -> u64 {
+pub(in crate::bench) fn stable_hash(arm: &str, set: &str) -> u64 {
     let mut h: u64 = 0xCBF2_9CE4_8422_2325;
     for &b in arm.as_bytes().iter().chain(&[0u8]).chain(set.as_bytes()) {
         h ^= u64::from(b);

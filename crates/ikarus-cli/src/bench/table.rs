@@ -195,7 +195,7 @@ pub fn text(w: &mut dyn Write, header: &Header, rows: &[RowResult]) -> io::Resul
 }
 
 /// `text` broken into lines of at most `width` characters, at spaces.
-fn wrap(text: &str, width: usize) -> Vec<String> {
+pub(super) fn wrap(text: &str, width: usize) -> Vec<String> {
     let mut lines = vec![String::new()];
     for word in text.split(' ') {
         let last = lines.last_mut().expect("never empty");

@@ -29,10 +29,11 @@
 //!   apart (largest joint difference) are one.
 //!
 //! Only candidates that reach the goal are kept when any does. The polish is a few Gauss–Seidel
-//! passes ([`TrackOptions::polish_passes`]) that re-solve each sample warm-started from the
-//! midpoint of its neighbours on the chosen path and keep the new pose only if it reaches the
-//! goal, adds no flip and lowers the local joint motion: it smooths the self-motion and never
-//! raises the path's cost. Where every path through the candidates has a flip, the flips the
+//! passes ([`TrackOptions::polish_passes`]) that re-solve each sample but the first and the last
+//! warm-started from the midpoint of its neighbours on the chosen path and keep the new pose
+//! only if it reaches the goal, adds no flip and lowers the local joint motion: it smooths the
+//! self-motion and never raises the path's cost. (The first sample is left as the search chose
+//! it: pulling it toward the start pose would steepen the path's first steps.) Where every path through the candidates has a flip, the flips the
 //! search could not avoid are reported in [`TrackSummary::flips`], not hidden.
 //!
 //! ## Flips

@@ -66,7 +66,7 @@ pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -
     let mut status: Vec<SampleStatus> = chosen.iter().zip(&ladder).map(|(&j, r)| r.status[j]).collect();
     unwrap_path(bounds, &mut poses, start);
     for _ in 0..options.polish_passes {
-        builder.polish(path.goals(), &mut poses, &mut status, start);
+        builder.polish(path.goals(), &mut poses, &mut status);
     }
     unwrap_path(bounds, &mut poses, start);
     let samples = samples(chain, path.goals(), poses, &status, bounds);
@@ -171,21 +171,23 @@ impl Builder<'_> {
         rung.status.push(status);
     }
 
-    /// One smoothing pass: each reached sample with a successor re-solved from the midpoint of
-    /// its neighbours, kept if it reaches the goal, adds no flip and lowers the local motion.
-    fn polish(&mut self, goals: &[Goal], poses: &mut [Vec<f64>], status: &mut [SampleStatus], start: &[f64]) {
+    /// One smoothing pass: each reached sample with a predecessor and a successor on the path
+    /// re-solved from the midpoint of its neighbours, kept if it reaches the goal, adds no flip
+    /// and lowers the local motion. The first sample stays the search's choice: pulling it
+    /// toward the start pose (which is not on the path) would only steepen the path's first
+    /// steps.
+    fn polish(&mut self, goals: &[Goal], poses: &mut [Vec<f64>], status: &mut [SampleStatus]) {
         let (bounds, max_step) = (self.bounds, self.options.max_step);
-        let local = |prev: &[f64], q: &[f64], next: &[f64], first: bool| {
-            let flips = u32::from(!first && is_flip(joint_step(bounds, q, prev), max_step))
+        let local = |prev: &[f64], q: &[f64], next: &[f64]| {
+            let flips = u32::from(is_flip(joint_step(bounds, q, prev), max_step))
                 + u32::from(is_flip(joint_step(bounds, next, q), max_step));
             (flips, joint_distance2(bounds, q, prev) + joint_distance2(bounds, next, q))
         };
-        for k in 0..poses.len().saturating_sub(1) {
+        for k in 1..poses.len().saturating_sub(1) {
             if status[k] != SampleStatus::Reached {
                 continue;
             }
-            let prev: &[f64] = if k == 0 { start } else { &poses[k - 1] };
-            let next = &poses[k + 1];
+            let (prev, next) = (&poses[k - 1], &poses[k + 1]);
             let mut seed = std::mem::take(&mut self.seed_pose);
             for (i, s) in seed.iter_mut().enumerate() {
                 *s = prev[i] + 0.5 * joint_delta(bounds, i, next[i], prev[i]);
@@ -197,9 +199,8 @@ impl Builder<'_> {
             }
             let mut candidate = self.out.pose.angles().to_vec();
             unwrap_free(bounds, &mut candidate, &poses[k]);
-            let prev: &[f64] = if k == 0 { start } else { &poses[k - 1] };
-            let (old_flips, old_motion) = local(prev, &poses[k], &poses[k + 1], k == 0);
-            let (new_flips, new_motion) = local(prev, &candidate, &poses[k + 1], k == 0);
+            let (old_flips, old_motion) = local(&poses[k - 1], &poses[k], &poses[k + 1]);
+            let (new_flips, new_motion) = local(&poses[k - 1], &candidate, &poses[k + 1]);
             if new_flips <= old_flips && new_motion < old_motion {
                 poses[k] = candidate;
             }
