@@ -139,6 +139,19 @@ fn plan_has_no_flips_on_fk_paths_of_the_seed_arm() {
 }
 
 #[test]
+fn plan_has_no_flips_on_fk_paths_of_the_tentacle() {
+    // Path 30 of seed 1 (a wave, limits on) is where a ladder of 8 candidates lost the
+    // continuous track of the 20-link chain (one flip of 101.9°); one candidate per joint
+    // keeps it.
+    let v = run(&["bench", "--paths", "--arms", "tentacle", "--path-count", "31", "--json"].map(str::to_owned));
+    let plans: Vec<&Value> = all_rows(&v).into_iter().filter(|r| r["solver"] == "plan").collect();
+    assert_eq!(plans.len(), 2);
+    for r in plans {
+        assert_eq!((r["fk_paths_with_flips"].as_u64(), r["fk_samples_missed"].as_u64()), (Some(0), Some(0)), "{r}");
+    }
+}
+
+#[test]
 fn text_and_markdown_show_the_blocks_and_the_targets() {
     let args = ["bench", "--paths", "--arms", "seed", "--path-count", "3", "--samples", "5"];
     let text = succeeds(&args);

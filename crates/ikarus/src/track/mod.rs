@@ -15,7 +15,8 @@
 //!
 //! ## Plan (offline)
 //!
-//! A ladder graph: at most [`TrackOptions::candidates`] solutions per sample, searched by
+//! A ladder graph: at most [`TrackOptions::candidates`] solutions per sample (and never fewer
+//! than the chain has joints), searched by
 //! dynamic programming for the joint path with the fewest flips and then the least joint
 //! motion, `Σ_k Σ_i Δq_{k,i}²` (the start pose counts as sample −1; free joints the short way
 //! round), then polished. Candidates of a sample are
@@ -33,8 +34,8 @@
 //! warm-started from the midpoint of its neighbours on the chosen path and keep the new pose
 //! only if it reaches the goal, adds no flip and lowers the local joint motion: it smooths the
 //! self-motion and never raises the path's cost. (The first sample is left as the search chose
-//! it: pulling it toward the start pose would steepen the path's first steps.) Where every path through the candidates has a flip, the flips the
-//! search could not avoid are reported in [`TrackSummary::flips`], not hidden.
+//! it: pulling it toward the start pose would steepen the path's first steps.) Where every path
+//! through the candidates has a flip, the flips the search could not avoid are reported in [`TrackSummary::flips`], not hidden.
 //!
 //! ## Flips
 //!
@@ -139,7 +140,9 @@ pub struct TrackOptions {
     /// [`follow`] restarts from poses within ±`radius` radians of the previous pose on every
     /// joint, ≥ 0 (default 0.5, about 29°).
     pub radius: f64,
-    /// [`plan`]: at most this many candidate solutions per sample, ≥ 1 (default 8).
+    /// [`plan`]: at most this many candidate solutions per sample, ≥ 1 (default 8), and never
+    /// fewer than the chain has joints: each joint adds a dimension of self-motion to keep track
+    /// of (with 8 on a 20-link chain the search lost the continuous track of a path that has one).
     pub candidates: usize,
     /// [`plan`]: solves from seeded poses per sample, to find solutions the continuations miss
     /// (default 2; the first sample gets `candidates` of them).

@@ -74,6 +74,11 @@ pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -
 }
 
 impl Builder<'_> {
+    /// Candidates kept per sample: [`TrackOptions::candidates`], and at least one per joint.
+    fn cap(&self) -> usize {
+        self.options.candidates.max(self.chain.len())
+    }
+
     /// The candidates of sample `k`: the closed form's branches, or the continuations of the
     /// previous sample's candidates (of `start` for the first) and seeded solves.
     fn rung(&mut self, k: usize, goal: &Goal, previous: Option<&Rung>, start: &[f64]) -> Rung {
@@ -93,9 +98,10 @@ impl Builder<'_> {
                 }
             }
         }
-        let seeds = if k == 0 { self.options.candidates } else { self.options.seeds };
+        let cap = self.cap();
+        let seeds = if k == 0 { cap } else { self.options.seeds };
         for j in 0..seeds {
-            if reached(&rung) >= self.options.candidates {
+            if reached(&rung) >= cap {
                 break;
             }
             let mut pose = std::mem::take(&mut self.seed_pose);
@@ -103,7 +109,7 @@ impl Builder<'_> {
             self.solve_from(goal, &pose, &mut rung);
             self.seed_pose = pose;
         }
-        keep_best(&mut rung, n, self.options.candidates);
+        keep_best(&mut rung, n, cap);
         if rung.len() == 0 {
             // Only a solver error (ruled out when the solver was built) leaves nothing.
             rung.angles.extend_from_slice(previous.map_or(start, |p| p.pose(0, n)));
