@@ -66,7 +66,7 @@ pub struct TrackArgs {
     #[arg(long, value_name = "N", conflicts_with = "path")]
     pub samples: Option<usize>,
     /// follow: online, every joint step within the bound; plan: a global search for the joint
-    /// path with the fewest flips and least motion
+    /// path without flips (or with the smallest) and least motion
     #[arg(long, value_parser = named::<TrackMode>(), default_value = "plan", hide_possible_values = false)]
     pub mode: TrackMode,
     /// With --mode follow: bound the first sample too, a step of at most the bound from the start

@@ -276,3 +276,21 @@ fn plan_does_not_steepen_the_first_steps_toward_the_start_pose() {
         );
     }
 }
+
+#[test]
+fn a_path_sampled_too_coarsely_is_followed_continuously_and_its_flips_reported() {
+    // 40 samples of this figure-8 need about 17° per sample somewhere: more than the 10° bound,
+    // so some steps must be flips. Counting flips alone, the search preferred 8 flips with two
+    // branch jumps of 141° and 160° to 12 flips of at most 17°; the flip cost makes it take the
+    // continuous path and report each step over the bound.
+    let chain = seed_arm();
+    let path = Path::figure8([0.5, 2.5], 3.0, 40).unwrap();
+    let t = track::plan(&chain, chain.start_pose().angles(), &path, &TrackOptions::default()).unwrap();
+    assert_eq!(t.summary.reached, 40);
+    assert!(!t.summary.flips.is_empty());
+    assert!(t.summary.max_step < deg(20.0), "largest step {}°", t.summary.max_step.to_degrees());
+    // The same figure-8 sampled finely enough has no flip at all.
+    let fine = Path::figure8([0.5, 2.5], 3.0, 80).unwrap();
+    let t = track::plan(&chain, chain.start_pose().angles(), &fine, &TrackOptions::default()).unwrap();
+    assert!(t.summary.flips.is_empty() && t.summary.reached == 80, "{:?}", t.summary);
+}

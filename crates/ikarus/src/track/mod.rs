@@ -16,10 +16,12 @@
 //! ## Plan (offline)
 //!
 //! A ladder graph: at most [`TrackOptions::candidates`] solutions per sample (and never fewer
-//! than the chain has joints), searched by
-//! dynamic programming for the joint path with the fewest flips and then the least joint
-//! motion, `Σ_k Σ_i Δq_{k,i}²` (the start pose counts as sample −1; free joints the short way
-//! round), then polished. Candidates of a sample are
+//! than the chain has joints), searched by dynamic programming for the joint path with the least
+//! flip cost, `Σ (step − max_step)²` over the steps that are flips (so a path without flips
+//! always wins, and where the bound must be exceeded, as on a path sampled too coarsely, many
+//! steps a little over it cost less than one branch jump), and then the least joint motion,
+//! `Σ_k Σ_i Δq_{k,i}²` (the start pose counts as sample −1; free joints the short way round),
+//! then polished. Candidates of a sample are
 //!
 //! - both branches of the closed form where it applies (two links with a position goal, three
 //!   with an orientation goal), or else
@@ -120,7 +122,9 @@ impl TrackMode {
     pub fn summary(self) -> &'static str {
         match self {
             TrackMode::Follow => "Online: each sample from the previous pose, no joint step over the bound",
-            TrackMode::Plan => "Offline: a global search for the joint path with the fewest flips and least motion",
+            TrackMode::Plan => {
+                "Offline: a global search for the joint path without flips (or the smallest ones) and least motion"
+            }
         }
     }
 }

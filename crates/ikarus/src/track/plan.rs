@@ -46,7 +46,7 @@ struct Builder<'a> {
 }
 
 /// Tracks `path` offline from `start` (radians): the joint path through the candidates with
-/// the fewest flips and then the least joint motion, polished (see the [module docs](super)).
+/// the least flip cost and then the least joint motion, polished (see the [module docs](super)).
 ///
 /// The work is bounded: at most `candidates + seeds` solves per sample (`2·candidates` for the
 /// first), `candidates²` transitions per sample in the search, and `polish_passes` solves per
@@ -185,8 +185,8 @@ impl Builder<'_> {
     fn polish(&mut self, goals: &[Goal], poses: &mut [Vec<f64>], status: &mut [SampleStatus]) {
         let (bounds, max_step) = (self.bounds, self.options.max_step);
         let local = |prev: &[f64], q: &[f64], next: &[f64]| {
-            let flips = u32::from(is_flip(joint_step(bounds, q, prev), max_step))
-                + u32::from(is_flip(joint_step(bounds, next, q), max_step));
+            let flips =
+                flip_cost(joint_step(bounds, q, prev), max_step) + flip_cost(joint_step(bounds, next, q), max_step);
             (flips, joint_distance2(bounds, q, prev) + joint_distance2(bounds, next, q))
         };
         for k in 1..poses.len().saturating_sub(1) {
@@ -212,6 +212,15 @@ impl Builder<'_> {
             }
         }
     }
+}
+
+/// What a step of `step` radians costs the search under the flip bound `max_step`: 0 unless
+/// it is a flip ([`is_flip`]), else `(step − max_step)²`. A path with no flip always wins; among
+/// paths that must exceed the bound (a path sampled too coarsely for it, or one that leaves what
+/// the arm can follow), many steps a little over the bound cost less than one branch jump of
+/// half a turn, which counting flips alone would prefer.
+pub(super) fn flip_cost(step: f64, max_step: f64) -> f64 {
+    if is_flip(step, max_step) { (step - max_step).powi(2) } else { 0.0 }
 }
 
 /// How many candidates of `rung` reach their goal.
@@ -243,32 +252,30 @@ fn seeded_pose(bounds: Bounds<'_>, start: &[f64], seed: u64, k: usize, j: usize,
     }
 }
 
-/// The candidate index per sample of the path through `ladder` with the fewest flips, then
-/// the least `Σ‖Δq‖²`, counting the move from `start` to the first sample as motion but never
-/// as a flip; ties go to the lower index.
+/// The candidate index per sample of the path through `ladder` with the least flip cost
+/// ([`flip_cost`]: no flip costs 0, and a branch jump costs far more than a step just over the
+/// bound), then the least `Σ‖Δq‖²`, counting the move from `start` to the first sample as
+/// motion but never as a flip; ties go to the lower index.
 fn search(ladder: &[Rung], start: &[f64], bounds: Bounds<'_>, max_step: f64, n: usize) -> Vec<usize> {
-    let better = |a: (u32, f64), b: (u32, f64)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
+    let better = |a: (f64, f64), b: (f64, f64)| a.0 < b.0 || (a.0 == b.0 && a.1 < b.1);
     let mut parents: Vec<Vec<usize>> = Vec::with_capacity(ladder.len());
-    let mut cost: Vec<(u32, f64)> = Vec::new();
+    let mut cost: Vec<(f64, f64)> = Vec::new();
     for (k, rung) in ladder.iter().enumerate() {
         let mut next = Vec::with_capacity(rung.len());
         let mut parent = Vec::with_capacity(rung.len());
         for j in 0..rung.len() {
             let q = rung.pose(j, n);
             if k == 0 {
-                next.push((0, joint_distance2(bounds, q, start)));
+                next.push((0.0, joint_distance2(bounds, q, start)));
                 parent.push(0);
                 continue;
             }
             let prev = &ladder[k - 1];
-            let mut best = (u32::MAX, f64::INFINITY);
+            let mut best = (f64::INFINITY, f64::INFINITY);
             let mut from = 0;
             for (i, &(flips, motion)) in cost.iter().enumerate() {
                 let p = prev.pose(i, n);
-                let c = (
-                    flips + u32::from(is_flip(joint_step(bounds, q, p), max_step)),
-                    motion + joint_distance2(bounds, q, p),
-                );
+                let c = (flips + flip_cost(joint_step(bounds, q, p), max_step), motion + joint_distance2(bounds, q, p));
                 if better(c, best) {
                     (best, from) = (c, i);
                 }
