@@ -17,7 +17,8 @@ use ikarus::{Chain, Point2};
 use resvg::tiny_skia::Pixmap;
 
 use crate::RenderError;
-use crate::arm::{check_point, check_pose};
+use crate::arm::check_pose;
+use crate::error::check_point;
 use crate::palette::{Palette, UNCHANGED};
 use crate::path::PathLayer;
 use crate::raster::{check_size, new_pixmap, parse, render_onto};

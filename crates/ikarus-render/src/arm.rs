@@ -4,6 +4,7 @@ use ikarus::kinematics::joint_positions;
 use ikarus::{Chain, Point2};
 
 use crate::RenderError;
+use crate::error::{check_finite, check_point};
 use crate::path::PathLayer;
 use crate::raster::{check_size, svg_to_png};
 use crate::scene::Scene;
@@ -104,26 +105,6 @@ pub(crate) fn check_pose(chain: &Chain, angles: &[f64], field: &str) -> Result<(
         return Err(RenderError::Length { field: field.to_string(), expected: chain.len(), got: angles.len() });
     }
     check_finite(angles.iter().copied(), field)
-}
-
-pub(crate) fn check_finite(values: impl Iterator<Item = f64>, field: &str) -> Result<(), RenderError> {
-    for (i, v) in values.enumerate() {
-        if !v.is_finite() {
-            return Err(RenderError::NonFinite { field: format!("{field}[{i}]"), value: v });
-        }
-    }
-    Ok(())
-}
-
-pub(crate) fn check_point(p: Option<Point2<f64>>, field: &str) -> Result<(), RenderError> {
-    if let Some(p) = p {
-        for (axis, v) in [("x", p.x), ("y", p.y)] {
-            if !v.is_finite() {
-                return Err(RenderError::NonFinite { field: format!("{field}.{axis}"), value: v });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The figure as an SVG document of `width` × `height` pixels.

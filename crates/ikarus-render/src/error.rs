@@ -1,5 +1,6 @@
 //! The one error type of the crate.
 
+use ikarus::Point2;
 use thiserror::Error;
 
 /// Why a picture could not be made. Every message is one line and names the field and the
@@ -55,4 +56,26 @@ pub enum RenderError {
         /// What the encoder said.
         message: String,
     },
+}
+
+/// `Ok` if every value is finite, else the first that is not, named `field[i]`.
+pub(crate) fn check_finite(values: impl Iterator<Item = f64>, field: &str) -> Result<(), RenderError> {
+    for (i, v) in values.enumerate() {
+        if !v.is_finite() {
+            return Err(RenderError::NonFinite { field: format!("{field}[{i}]"), value: v });
+        }
+    }
+    Ok(())
+}
+
+/// `Ok` if the point (when given) is finite, else the bad coordinate, named `field.x` or `field.y`.
+pub(crate) fn check_point(p: Option<Point2<f64>>, field: &str) -> Result<(), RenderError> {
+    if let Some(p) = p {
+        for (axis, v) in [("x", p.x), ("y", p.y)] {
+            if !v.is_finite() {
+                return Err(RenderError::NonFinite { field: format!("{field}.{axis}"), value: v });
+            }
+        }
+    }
+    Ok(())
 }

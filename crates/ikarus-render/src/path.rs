@@ -4,7 +4,7 @@
 use ikarus::Point2;
 
 use crate::RenderError;
-use crate::arm::check_finite;
+use crate::error::check_finite;
 use crate::scene::Scene;
 use crate::style;
 use crate::svg::{PathData, Svg, num};

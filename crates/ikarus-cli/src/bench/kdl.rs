@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use ikarus::SolveOptions;
+use ikarus::{Chain, SolveOptions};
 
 use super::judge::judge;
 use super::run::{RowResult, Tally};
@@ -23,14 +23,27 @@ pub const NR_JL_LABEL: &str = "kdl nr_jl";
 /// first. Floats are written with Rust's `{}`, which reads back to the same number; limits in
 /// radians, `nan nan` for a free joint, and for every joint of the sets whose limits are off.
 pub fn goal_file(set: &GoalSet, comment: &str) -> String {
+    let mut s = header(comment, &set.name(), &set.chain, set.set.limited(), &set.start, set.set.oriented());
+    // Writing to a String cannot fail.
+    let _ = writeln!(s, "goals {}", set.goals.len());
+    for g in &set.goals {
+        let _ = writeln!(s, "{} {} {}", g.x, g.y, g.phi);
+    }
+    s
+}
+
+/// The fields a goal file starts with, up to (not including) `goals`: the first line, the
+/// `comment` line, the set's `name`, the chain (its limits only when `limited`), the `start`
+/// pose, whether the goals carry an orientation, and the library's default tolerances and
+/// iteration cap.
+pub fn header(comment: &str, name: &str, chain: &Chain, limited: bool, start: &[f64], oriented: bool) -> String {
     let opts = SolveOptions::default();
-    let chain = &set.chain;
     let join = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
     let limits: Vec<String> = chain
         .limits()
         .iter()
         .map(|lim| match lim {
-            Some(l) if set.set.limited() => format!("{} {}", l.min(), l.max()),
+            Some(l) if limited => format!("{} {}", l.min(), l.max()),
             _ => "nan nan".to_owned(),
         })
         .collect();
@@ -38,20 +51,16 @@ pub fn goal_file(set: &GoalSet, comment: &str) -> String {
     // Writing to a String cannot fail.
     let _ = writeln!(s, "ikarus-goals 1");
     let _ = writeln!(s, "# {}", comment.replace('\n', " "));
-    let _ = writeln!(s, "name {}", set.name());
+    let _ = writeln!(s, "name {name}");
     let _ = writeln!(s, "links {}", chain.len());
     let _ = writeln!(s, "base {} {}", chain.base().x, chain.base().y);
     let _ = writeln!(s, "lengths {}", join(&mut chain.lengths().iter().copied()));
     let _ = writeln!(s, "limits {}", limits.join(" "));
-    let _ = writeln!(s, "start {}", join(&mut set.start.iter().copied()));
-    let _ = writeln!(s, "orientation {}", u8::from(set.set.oriented()));
+    let _ = writeln!(s, "start {}", join(&mut start.iter().copied()));
+    let _ = writeln!(s, "orientation {}", u8::from(oriented));
     let _ = writeln!(s, "tolerance {}", opts.tolerance);
     let _ = writeln!(s, "angle_tolerance {}", opts.angle_tolerance);
     let _ = writeln!(s, "max_iterations {}", opts.max_iterations);
-    let _ = writeln!(s, "goals {}", set.goals.len());
-    for g in &set.goals {
-        let _ = writeln!(s, "{} {} {}", g.x, g.y, g.phi);
-    }
     s
 }
 

@@ -4,43 +4,19 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use ikarus::SolveOptions;
-
 use super::measure::Answer;
 use super::set::{PathSet, points};
-use crate::bench::kdl::{parse_solves, run_file};
+use crate::bench::kdl::{header, parse_solves, run_file};
 use crate::error::CliError;
 
 /// The path file of `set`: format `ikarus-goals 1` with `orientation 0`, every sample of every
 /// path as a goal line `x y 0`, and `paths L₀ L₁ …`, each path's sample count in order.
 /// `comment` goes in a `#` line after the first.
 pub fn path_file(set: &PathSet, comment: &str) -> String {
-    let opts = SolveOptions::default();
-    let chain = &set.chain;
-    let join = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
-    let limits: Vec<String> = chain
-        .limits()
-        .iter()
-        .map(|lim| match lim {
-            Some(l) if set.limited => format!("{} {}", l.min(), l.max()),
-            _ => "nan nan".to_owned(),
-        })
-        .collect();
+    let mut s = header(comment, &set.name(), &set.chain, set.limited, &set.start, false);
     let lengths: Vec<String> = set.paths.iter().map(|p| p.path.len().to_string()).collect();
     let total: usize = set.paths.iter().map(|p| p.path.len()).sum();
-    let mut s = String::new();
     // Writing to a String cannot fail.
-    let _ = writeln!(s, "ikarus-goals 1");
-    let _ = writeln!(s, "# {}", comment.replace('\n', " "));
-    let _ = writeln!(s, "name {}", set.name());
-    let _ = writeln!(s, "links {}", chain.len());
-    let _ = writeln!(s, "base {} {}", chain.base().x, chain.base().y);
-    let _ = writeln!(s, "lengths {}", join(&mut chain.lengths().iter().copied()));
-    let _ = writeln!(s, "limits {}", limits.join(" "));
-    let _ = writeln!(s, "start {}", join(&mut set.start.iter().copied()));
-    let _ = writeln!(s, "orientation 0");
-    let _ = writeln!(s, "tolerance {}", opts.tolerance);
-    let _ = writeln!(s, "max_iterations {}", opts.max_iterations);
     let _ = writeln!(s, "paths {}", lengths.join(" "));
     let _ = writeln!(s, "goals {total}");
     for p in &set.paths {
@@ -93,7 +69,7 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(&lines[..3], ["ikarus-goals 1", "# test", "name seed-limits"]);
         assert!(text.contains("\norientation 0\n") && text.contains("\npaths 4 4 4\ngoals 12\n"), "{text}");
-        assert_eq!(lines.len(), 13 + 12);
+        assert_eq!(lines.len(), 14 + 12);
         let mut out = "kdl 1.5.1\n".to_owned();
         for g in 0..12 {
             out += &format!("lma {g} {} 5 0 0.1 0.2 {g}\n", 1000 * (g + 1));
