@@ -41,3 +41,12 @@ export const launch = () =>
       "--disable-sync",
     ],
   });
+
+/** A new page of `browser` at `viewport`, and the console and page errors it logs from then on. */
+export async function openPage(browser, viewport = { width: 1280, height: 800 }) {
+  const page = await browser.newPage({ viewport });
+  const errors = [];
+  page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+  page.on("pageerror", (e) => errors.push(e.message));
+  return { page, errors };
+}

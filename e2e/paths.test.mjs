@@ -6,16 +6,13 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, launch, startServer } from "./browser.mjs";
+import { artifacts, launch, openPage, startServer } from "./browser.mjs";
 
 test("paths: a figure-8 and a drawn stroke traced without flips; following never jumps over the bound", async () => {
   const { child, url } = await startServer();
   const browser = await launch();
   try {
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    const errors = [];
-    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-    page.on("pageerror", (e) => errors.push(e.message));
+    const { page, errors } = await openPage(browser);
     const tracks = [];
     page.on("response", async (r) => {
       if (!r.url().endsWith("/api/track")) return;

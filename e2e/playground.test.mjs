@@ -11,17 +11,14 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, launch, startServer } from "./browser.mjs";
+import { artifacts, launch, openPage, startServer } from "./browser.mjs";
 import { autoDuration, forward, freeJoints, jointDistance, poseAt } from "../crates/ikarus-cli/src/serve/assets/view.js";
 
 test("the playground moves the arm to a clicked goal and shows the reachable area", async () => {
   const { child, url } = await startServer();
   const browser = await launch();
   try {
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    const errors = [];
-    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-    page.on("pageerror", (e) => errors.push(e.message));
+    const { page, errors } = await openPage(browser);
 
     const solves = [];
     page.on("request", (r) => r.url().endsWith("/api/solve") && solves.push(JSON.parse(r.postData())));
@@ -164,10 +161,7 @@ test("the timeline plays, pauses, scrubs and replays; via points and the solver'
   const { child, url } = await startServer();
   const browser = await launch();
   try {
-    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    const errors = [];
-    page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-    page.on("pageerror", (e) => errors.push(e.message));
+    const { page, errors } = await openPage(browser);
     const animates = [];
     page.on("request", (r) => r.url().endsWith("/api/animate") && animates.push(JSON.parse(r.postData())));
     await page.goto(url);
