@@ -46,7 +46,7 @@ pub struct SolverSettings {
     /// [default: 28.65 (0.5 rad)]
     #[arg(long, value_parser = parse_non_negative, value_name = "DEG")]
     pub max_step_deg: Option<f64>,
-    /// Halvings of a step that does not lower the error enough; 0 takes every step as computed
+    /// Halvings of a step that does not lower the error enough, at most 64; 0 takes every step as computed
     /// (the textbook iteration) [default: 10]
     #[arg(long, value_name = "N")]
     pub backtrack: Option<u32>,
@@ -173,10 +173,21 @@ impl SolverSettings {
             epsilon: self.stall_epsilon_deg.map_or(stall.epsilon, f64::to_radians),
         };
         let attempts = self.restarts.unwrap_or(Restarts::default().attempts);
+        // A duration holds at most about 1.8e22 s: a larger budget is an error, not a panic.
+        let time_budget = match self.time_budget_ms {
+            None => None,
+            Some(ms) => Some(std::time::Duration::try_from_secs_f64(ms / 1000.0).map_err(|_| {
+                SettingsError::Options(OptionsError::OutOfRange {
+                    field: "time_budget_ms",
+                    expected: "a finite number > 0 below 1.8e22",
+                    value: ms,
+                })
+            })?),
+        };
         let restarts = (attempts > 0).then(|| Restarts {
             attempts,
             seed: self.restart_seed.unwrap_or(Restarts::default().seed),
-            time_budget: self.time_budget_ms.map(|ms| std::time::Duration::from_secs_f64(ms / 1000.0)),
+            time_budget,
         });
         let method = self.method.unwrap_or(d.method);
         let options = SolveOptions {

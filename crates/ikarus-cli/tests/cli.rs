@@ -350,6 +350,9 @@ fn bad_solver_flags_name_the_flag() {
         (&["solve", "--goal", "1,1", "--method", "magic"][..], "--method"),
         (&["solve", "--goal", "1,1", "--restarts", "-1"][..], "--restarts"),
         (&["solve", "--goal", "1,1", "--time-budget-ms", "0"][..], "--time-budget-ms"),
+        // Past what a duration holds: an error, not a panic.
+        (&["solve", "--goal", "1,1", "--time-budget-ms", "1e300"][..], "time_budget_ms: must be"),
+        (&["solve", "--goal", "1,1", "--backtrack", "4294967295"][..], "backtrack: must be at most 64"),
         (&["solve", "--goal", "1,1", "--limit-mode", "lock", "--no-limits"][..], "--limit-mode"),
         (&["solve", "--goal", "1,1", "--method", "analytic"][..], "method analytic"),
     ] {

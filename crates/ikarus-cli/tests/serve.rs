@@ -365,6 +365,19 @@ fn invalid_values_are_422_naming_the_field() {
         ("/api/solve", json!({ "goal": goal, "options": { "tolerance": -1 } }), "options.tolerance = -1"),
         ("/api/solve", json!({ "goal": goal, "options": { "method": "newton" } }), "options.method: unknown variant"),
         ("/api/solve", json!({ "goal": goal, "options": { "rates": [1, 2] } }), "options.rates: expected 3 values"),
+        // Past what a duration holds (a 500 with a panic message before), and a line search
+        // that could halve a step four billion times.
+        ("/api/solve", json!({ "goal": goal, "options": { "time_budget_ms": 1e300 } }), "time_budget_ms: must be"),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "options": { "backtrack": 4294967295u64 } }),
+            "backtrack: must be at most 64",
+        ),
+        (
+            "/api/solve",
+            json!({ "goal": goal, "arm": { "links": [{ "length": 1e308 }, { "length": 1e308 }] } }),
+            "not a finite number",
+        ),
         (
             "/api/solve",
             json!({ "goal": goal, "start_deg": [1, 2] }),

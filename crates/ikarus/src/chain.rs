@@ -130,6 +130,13 @@ pub enum ChainError {
         /// Upper limit, radians.
         max: f64,
     },
+    /// The chain's reach (the sum of its lengths, from the base) is not a finite number, so
+    /// nothing about it could be computed or drawn.
+    #[error("links: the lengths add up to {reach} from the base, which is not a finite number")]
+    ReachNotFinite {
+        /// The sum of the lengths plus the base's distance from the origin.
+        reach: f64,
+    },
     /// A pose has a different number of angles than the chain has joints.
     #[error("pose: expected {expected} angles (one per joint), got {got}")]
     PoseLength {
@@ -165,7 +172,11 @@ impl Chain {
         let limits: Vec<Option<JointLimits>> = links.iter().map(|l| l.limits).collect();
         let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
         check_angles(&angles, Bounds::new(&limits))?;
-        let reach = lengths.iter().sum();
+        let reach: f64 = lengths.iter().sum();
+        let extent = x.hypot(y) + reach;
+        if !extent.is_finite() {
+            return Err(ChainError::ReachNotFinite { reach: extent });
+        }
         Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
     }
 
@@ -362,6 +373,13 @@ mod tests {
                 [0.0, 0.0],
                 "links[0].angle: 2 rad lies outside the limits [-1, 1] rad",
             ),
+            // Each length is finite but the reach is not: nothing about it could be drawn.
+            (
+                vec![Link::new(1e308, 0.0), Link::new(1e308, 0.0)],
+                [0.0, 0.0],
+                "links: the lengths add up to inf from the base, which is not a finite number",
+            ),
+            (vec![Link::new(1.0, 0.0)], [f64::MAX, f64::MAX], "links: the lengths add up to inf from the base"),
         ];
         for (links, base, want) in cases {
             let err = Chain::new(base, &links).unwrap_err().to_string();

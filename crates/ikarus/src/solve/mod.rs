@@ -74,7 +74,7 @@ pub use crate::angle::wrap_angle;
 pub use crate::goal::{Goal, GoalError};
 pub use frames::{Frame, Frames};
 pub use method::{LimitMode, Method};
-pub use options::{OptionsError, Restarts, SolveOptions, StallDetection};
+pub use options::{MAX_BACKTRACK, OptionsError, Restarts, SolveOptions, StallDetection};
 pub use outcome::{Outcome, SolveError, Status};
 pub use solver::Solver;
 

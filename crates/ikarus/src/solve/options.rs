@@ -50,6 +50,9 @@ impl Default for StallDetection {
     }
 }
 
+/// The largest [`SolveOptions::backtrack`].
+pub const MAX_BACKTRACK: u32 = 64;
+
 /// Options of a solve. Start from [`SolveOptions::default`] and change what you need.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolveOptions {
@@ -80,7 +83,9 @@ pub struct SolveOptions {
     /// How many times the line search may halve a step that fails the sufficient-decrease
     /// test (see the [module docs](super)); when none passes, the solve ends
     /// [`Status::Stalled`](super::Status::Stalled). `0` takes every step as computed: the textbook iteration, which can
-    /// jump by whole turns near singular poses and oscillate around goals out of reach.
+    /// jump by whole turns near singular poses and oscillate around goals out of reach. At
+    /// most [`MAX_BACKTRACK`]: every halving costs a forward-kinematics pass, and past 64 the
+    /// step is below any tolerance.
     pub backtrack: u32,
     /// Singular values of `J` below this are treated as zero by [`Method::PseudoInverse`].
     pub singular_threshold: f64,
@@ -172,6 +177,13 @@ impl SolveOptions {
         non_negative("singular_threshold", self.singular_threshold)?;
         if let Some(m) = self.max_step {
             positive("max_step", m)?;
+        }
+        if self.backtrack > MAX_BACKTRACK {
+            return Err(OptionsError::OutOfRange {
+                field: "backtrack",
+                expected: "at most 64 (a step halved 64 times is 5e-20 of itself)",
+                value: f64::from(self.backtrack),
+            });
         }
         if let Some(s) = self.stall {
             non_negative("stall.epsilon", s.epsilon)?;

@@ -370,6 +370,8 @@ fn each_bad_option_is_named_in_its_error() {
         (SolveOptions { stall: stall(f64::NAN, 10), ..d() }, "stall.epsilon: "),
         (SolveOptions { stall: stall(1e-9, 0), ..d() }, "stall.window: "),
         (SolveOptions { record_every: Some(0), ..d() }, "record_every: "),
+        (SolveOptions { backtrack: 65, ..d() }, "backtrack: must be at most 64"),
+        (SolveOptions { backtrack: u32::MAX, ..d() }, "backtrack: "),
         (SolveOptions { rates: vec![1.0, -0.5, 1.0], ..d() }, "rates[1]: "),
         (SolveOptions { rates: vec![f64::NAN], ..d() }, "rates[0]: "),
     ];
