@@ -1,7 +1,7 @@
 //! The step rules ([`Method`]) and the ways of enforcing joint limits ([`LimitMode`]), with
 //! their names at the edges and which rule supports which mode.
 
-use crate::names::{Named, by_name};
+use crate::names::by_name;
 
 /// The step rule of a solve. See the [module docs](super) for the formulas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -60,12 +60,6 @@ impl Method {
             Method::Fabrik => "fabrik",
             Method::Analytic => "analytic",
         }
-    }
-
-    /// The method called `name` (see [`Method::name`]).
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        <Self as Named>::from_name(name)
     }
 
     /// A label for people: `Levenberg–Marquardt`, …
@@ -182,12 +176,6 @@ impl LimitMode {
         }
     }
 
-    /// The mode called `name` (see [`LimitMode::name`]).
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        <Self as Named>::from_name(name)
-    }
-
     /// A label for people: `Clamp and lock`, …
     #[must_use]
     pub fn label(self) -> &'static str {
@@ -219,6 +207,7 @@ by_name!(LimitMode, "limit mode");
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::names::Named;
 
     #[test]
     fn names_round_trip_and_are_unique() {
