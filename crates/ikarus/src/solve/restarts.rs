@@ -64,8 +64,10 @@ fn restart(
     tally: &mut Tally,
 ) {
     let stuck = |st| st != Status::Reached;
-    let mut best = (task_error(p.opts, out), 0);
-    let mut last = 0;
+    // The best attempt so far: its task error, status and final pose (in `s.best_attempt`).
+    let mut best = (task_error(p.opts, out), tally.status);
+    s.best_attempt.copy_from_slice(out.pose.angles());
+    let mut last_is_best = true;
     for k in 1..=r.attempts {
         if let (Some(began), Some(budget)) = (began, r.time_budget) {
             if began.elapsed() >= budget {
@@ -76,25 +78,28 @@ fn restart(
         tally.status = attempt_from_restart(p, s, out);
         tally.iterations += out.iterations;
         tally.restarts = k;
-        last = k;
         if !stuck(tally.status) {
-            break;
+            return join(p, start, tally, s, out);
         }
         let err = task_error(p.opts, out);
-        if err < best.0 {
-            best = (err, k);
+        last_is_best = err < best.0;
+        if last_is_best {
+            best = (err, tally.status);
+            s.best_attempt.copy_from_slice(out.pose.angles());
         }
     }
-    if stuck(tally.status) && best.1 != last {
-        // No attempt reached the goal: run the best one again (solves are deterministic, so
-        // this reproduces it) to leave its pose in `out`.
-        if best.1 == 0 {
-            s.restart.copy_from_slice(start);
-        } else {
-            restart_pose(p.bounds, start, r, best.1, &mut s.restart);
-        }
-        tally.status = attempt_from_restart(p, s, out);
+    if !last_is_best {
+        // No attempt reached the goal: end on the best one's pose, kept when it ended (not
+        // run again, so that `iterations` counts every step taken).
+        out.pose.angles_mut().copy_from_slice(&s.best_attempt);
+        tally.status = best.1;
     }
+    join(p, start, tally, s, out);
+}
+
+/// With frames recorded and restarts taken, the frames run from the caller's start pose to the
+/// outcome's pose ([`join_frames`]).
+fn join(p: &Problem, start: &[f64], tally: &Tally, s: &mut Scratch, out: &mut Outcome) {
     if tally.restarts > 0 && p.opts.record_every.is_some() {
         join_frames(p, start, tally.iterations, s, out);
     }
@@ -109,17 +114,16 @@ fn attempt_from_restart(p: &Problem, s: &mut Scratch, out: &mut Outcome) -> Stat
 }
 
 /// The frames of a restart begin elsewhere: keep the motion from the caller's start pose to
-/// the result, without the jump, numbered by the `iterations` of every attempt.
+/// the result (the outcome's pose), without the jump, numbered by the `iterations` of every
+/// attempt.
 fn join_frames(p: &Problem, start: &[f64], iterations: u32, s: &mut Scratch, out: &mut Outcome) {
-    let n_frames = out.frames.len();
-    let last = out.frames.get(n_frames - 1).expect("the last frame is always recorded");
-    let (end_angles, end_joints) = (last.angles.to_vec(), last.joints.to_vec());
     out.frames.start(p.chain.len(), p.opts.record_every, 1);
-    let mut start_angles = start.to_vec();
-    p.bounds.clamp_into(&mut start_angles);
-    joint_positions_into(p.chain, &start_angles, &mut s.joints);
-    out.frames.push(0, &start_angles, &s.joints);
-    out.frames.push_final(iterations, &end_angles, &end_joints);
+    s.restart.copy_from_slice(start);
+    p.bounds.clamp_into(&mut s.restart);
+    joint_positions_into(p.chain, &s.restart, &mut s.joints);
+    out.frames.push(0, &s.restart, &s.joints);
+    joint_positions_into(p.chain, out.pose.angles(), &mut s.joints);
+    out.frames.push_final(iterations, out.pose.angles(), &s.joints);
 }
 
 /// The squared task error of an outcome, as the solvers minimise it.
