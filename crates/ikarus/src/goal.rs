@@ -2,6 +2,7 @@
 //! orientation of the last link. A description of the problem, shared by the closed forms, the
 //! iterative solvers and the reachability checks.
 
+use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
@@ -20,7 +21,7 @@ pub struct Goal {
 #[non_exhaustive]
 pub enum GoalError {
     /// A coordinate or the angle is NaN or infinite.
-    #[error("goal.{field}: must be a finite number, got {value}")]
+    #[error("goal.{field}: must be a finite number, got {}", Num(*.value))]
     NonFinite {
         /// `"x"`, `"y"` or `"angle"`.
         field: &'static str,
