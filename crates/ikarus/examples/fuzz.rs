@@ -240,6 +240,40 @@ fn check(case: &Case) -> Result<Option<Outcome>, String> {
             return Err(format!("frame {}: its joints are not the forward kinematics of its angles", f.iteration));
         }
     }
+    // Never worse than where it started (every accepted step of the line search lowers the
+    // task error; CCD and FABRIK end on the best pose they visited, the start included), and
+    // never worse than its first attempt (restarts end on the best attempt).
+    let task_error = |angles: &[f64]| {
+        let ee = end_effector(chain, angles);
+        let d = distance(goal.target() - ee.position);
+        let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * wrap_angle(g - ee.orientation));
+        d * d + turn * turn
+    };
+    let final_error = task_error(out.pose.angles());
+    let no_worse = |before: f64| final_error <= before * (1.0 + 1e-12) || final_error <= f64::MIN_POSITIVE;
+    let descends = opts.backtrack > 0 || matches!(opts.method, Method::CyclicCoordinateDescent | Method::Fabrik);
+    if out.status != Status::Reached && descends {
+        let mut first = start.clone();
+        if opts.limits != LimitMode::Ignore {
+            chain.bounds().clamp_into(&mut first);
+        }
+        let before = task_error(&first);
+        if before.is_finite() && !no_worse(before) {
+            return Err(format!("ended worse than it started: task error {before:e} -> {final_error:e}"));
+        }
+    }
+    if out.status != Status::Reached && opts.restarts.is_some() {
+        let once = SolveOptions { restarts: None, ..opts.clone() };
+        let first = Solver::new(once).expect("valid").solve(
+            chain,
+            &chain.pose_ignoring_limits(start.clone()).expect("finite"),
+            goal,
+        );
+        let before = task_error(first.expect("solved with restarts").pose.angles());
+        if !no_worse(before) {
+            return Err(format!("ended worse than its first attempt: task error {before:e} -> {final_error:e}"));
+        }
+    }
     let mut again = Outcome::default();
     Solver::new(opts.clone()).expect("valid").solve_into(chain, start, goal, &mut again).expect("solved once");
     if again != out {

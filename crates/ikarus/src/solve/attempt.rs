@@ -149,14 +149,20 @@ fn jacobian_iteration(
 }
 
 /// CCD and FABRIK: if the pose they end on is worse than the best they visited (squared task
-/// error `best_error`, pose in `s.best`), end on that one. Its error and tip are measured again
-/// when the solve ends (see `Solver::solve_into`).
+/// error `best_error`, pose in `s.best`), end on that one, with its error and tip (the
+/// restarts compare attempts by them).
 fn end_on_best(p: &Problem, best_error: f64, s: &mut Scratch, out: &mut Outcome) {
+    let (chain, goal) = (p.chain, p.goal);
     let weight = p.opts.orientation_weight;
     let final_error = out.error.powi(2) + (weight * out.angle_error).powi(2);
     if best_error < final_error {
-        out.pose.angles_mut().copy_from_slice(&s.best);
-        joint_positions_into(p.chain, out.pose.angles(), &mut s.joints);
+        let angles = out.pose.angles_mut();
+        angles.copy_from_slice(&s.best);
+        let phi = joint_positions_into(chain, angles, &mut s.joints);
+        let tip = s.joints[chain.len()];
+        out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
+        out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
+        out.end_effector = EndEffector { position: tip, orientation: phi };
     }
 }
 
