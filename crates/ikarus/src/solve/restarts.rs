@@ -147,3 +147,60 @@ pub(super) fn restart_pose(bounds: Bounds<'_>, start: &[f64], r: Restarts, k: u3
         *o = limits.map_or(next, |l| l.clamp(next));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::goal::Goal;
+    use crate::solve::{LimitMode, Method, Solver};
+
+    /// When no attempt reaches the goal, the outcome is the best attempt's pose, kept when it
+    /// ended (it used to be run a second time, whose steps `iterations` left out): every
+    /// attempt's steps are counted once, and the pose, status and error are the best one's.
+    #[test]
+    fn failed_restarts_end_on_the_best_attempt_counting_every_step() {
+        let chain = crate::fixtures::seed_arm_limited();
+        let goal = Goal::position(-3.0, -1.0).unwrap();
+        let mut best_was_not_last = 0;
+        for seed in 0..40 {
+            let r = Restarts { attempts: 4, seed, time_budget: None };
+            let opts = SolveOptions {
+                method: Method::LevenbergMarquardt,
+                limits: LimitMode::Lock,
+                restarts: Some(r),
+                record_every: Some(5),
+                ..SolveOptions::default()
+            };
+            let out = Solver::new(opts.clone()).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+            // Each attempt alone, from its start pose.
+            let once = SolveOptions { restarts: None, record_every: None, ..opts.clone() };
+            let start = chain.start_pose().angles().to_vec();
+            let attempts: Vec<Outcome> = (0..=r.attempts)
+                .map(|k| {
+                    let mut from = start.clone();
+                    if k > 0 {
+                        restart_pose(chain.bounds(), &start, r, k, &mut from);
+                    }
+                    Solver::new(once.clone()).unwrap().solve(&chain, &chain.pose(from).unwrap(), &goal).unwrap()
+                })
+                .collect();
+            if attempts.iter().any(|a| a.status == Status::Reached) {
+                continue;
+            }
+            assert_ne!(out.status, Status::Reached, "seed {seed}");
+            assert_eq!(out.iterations, attempts.iter().map(|a| a.iterations).sum::<u32>(), "seed {seed}");
+            assert_eq!(out.restarts, r.attempts);
+            let err = |o: &Outcome| task_error(&opts, o);
+            let best = attempts.iter().min_by(|a, b| err(a).total_cmp(&err(b))).unwrap();
+            assert_eq!(out.pose, best.pose, "seed {seed}");
+            assert_eq!((out.error, out.status), (best.error, best.status), "seed {seed}");
+            // The frames run from the start to the outcome's pose.
+            let last = out.frames.get(out.frames.len() - 1).unwrap();
+            assert_eq!((last.iteration, last.angles), (out.iterations, out.pose.angles()));
+            if best.pose != attempts[attempts.len() - 1].pose {
+                best_was_not_last += 1;
+            }
+        }
+        assert!(best_was_not_last > 0, "no case where the best attempt was not the last");
+    }
+}
