@@ -334,6 +334,22 @@ fn extreme_chain() -> impl Strategy<Value = Chain> {
     })
 }
 
+/// A chain of 1 to 4 links of lengths up to 1e150 (so that its area, of order reach², is
+/// still a finite number), some with limits.
+fn huge_chain() -> impl Strategy<Value = Chain> {
+    let link = (50.0f64..150.0, -PI..PI, prop::option::of(-2.0f64..0.0)).prop_map(|(exponent, angle, lo)| {
+        let length = 10f64.powf(exponent) / 4.0;
+        match lo {
+            None => Link::new(length, angle),
+            Some(lo) => {
+                let lim = JointLimits::new(lo, lo + 3.0).unwrap();
+                Link::new(length, lim.clamp(angle)).with_limits(lim)
+            }
+        }
+    });
+    prop::collection::vec(link, 1..=4).prop_map(|links| Chain::new([0.0, 0.0], &links).unwrap())
+}
+
 /// A method and a limit mode it supports ([`Method::supports`]), every pair equally likely.
 fn method_and_mode() -> impl Strategy<Value = (Method, LimitMode)> {
     let pairs: Vec<(Method, LimitMode)> = Method::ALL
@@ -386,7 +402,7 @@ prop_compose! {
 /// maybe with an orientation (up to 1e6 rad), options, and a start pose: the chain's, one
 /// outside the limits, or one of huge angles.
 fn extreme_case() -> impl Strategy<Value = (Chain, Goal, SolveOptions, Vec<f64>)> {
-    extreme_chain().prop_flat_map(|chain| {
+    prop_oneof![3 => extreme_chain(), 1 => huge_chain()].prop_flat_map(|chain| {
         let n = chain.len();
         let reach = chain.max_reach();
         let goal = (
@@ -429,5 +445,36 @@ proptest! {
     fn ordinary_solves_are_measured_on_their_pose((chain, goal, mut opts, start) in case(), pair in method_and_mode()) {
         (opts.method, opts.limits) = pair;
         check_at_any_scale(&chain, &goal, &opts, &start)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The workspace of any valid chain, ordinary or of extreme magnitudes, with or without its
+    /// limits: no panic, finite numbers, an area within the grid, the same bits twice (and on
+    /// rayon's pool as on one thread).
+    #[test]
+    fn any_workspace_is_finite_and_deterministic(
+        chain in prop_oneof![chain(), extreme_chain(), huge_chain()],
+        resolution in 8u32..=48,
+        limits in any::<bool>(),
+        samples in prop::option::of(1u64..=64),
+        seed in any::<u64>(),
+    ) {
+        use ikarus::reach::{WorkspaceOptions, sample};
+        let options = WorkspaceOptions { resolution, limits, samples: samples.or(Some(64)), seed, parallel: false };
+        let ws = sample(&chain, &options).unwrap();
+        let h = ws.cell_size();
+        prop_assert!(h.is_finite() && h > 0.0, "{}", h);
+        prop_assert!(ws.origin().x.is_finite() && ws.origin().y.is_finite());
+        prop_assert!(ws.occupied_cells() <= u64::from(resolution).pow(2));
+        let grid_area = (h * f64::from(resolution)).powi(2);
+        prop_assert!(ws.area().is_finite() && ws.area() >= 0.0 && ws.area() <= grid_area * (1.0 + 1e-12));
+        let annulus = ws.annulus();
+        prop_assert!(annulus.outer.is_finite() && annulus.inner.is_finite() && annulus.area().is_finite());
+        prop_assert_eq!(&sample(&chain, &options).unwrap(), &ws);
+        let parallel = WorkspaceOptions { parallel: true, ..options };
+        prop_assert_eq!(&sample(&chain, &parallel).unwrap(), &ws);
     }
 }
