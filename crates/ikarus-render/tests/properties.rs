@@ -90,7 +90,7 @@ proptest! {
     #![proptest_config(config())]
 
     #[test]
-    fn any_valid_arm_draws((p) in picture()) {
+    fn any_valid_arm_draws(p in picture()) {
         let workspace = p.workspace.map(|(resolution, limits)| {
             let options = WorkspaceOptions { resolution, limits, samples: Some(16), parallel: false, ..WorkspaceOptions::default() };
             sample(&p.chain, &options).unwrap()
