@@ -316,6 +316,9 @@ fn run(seed: u64, from: u64, to: u64, step: u64, verbose: bool) -> Counts {
             }
             Err(why) => {
                 counts.failed[m] += 1;
+                if verbose {
+                    println!("{case:#?}");
+                }
                 println!(
                     "FAIL {}: {why}\n  reproduce: cargo run --release -p ikarus --example fuzz -- --seed {seed} --case {k}",
                     case.opts.method.name()

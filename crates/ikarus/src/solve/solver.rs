@@ -245,6 +245,16 @@ mod tests {
             assert!(out.error.is_finite() && out.end_effector.position.x.is_finite(), "{method:?}: {out:?}");
             assert_eq!(out.status, Status::Unreachable, "{method:?}");
         }
+        // Found by the fuzz (seed 1, case 926): one link of 1.6e67, DLS with λ = 7e66 and no
+        // line search took a NaN step; the outcome was NaN. The step is refused: stalled.
+        let chain = Chain::new([0.0, 0.0], &[Link::new(1.6e67, -0.36)]).unwrap();
+        let goal = Goal::position(-7.3e66, 5.9e66).unwrap();
+        for method in [Method::DampedLeastSquares, Method::LevenbergMarquardt] {
+            let opts =
+                SolveOptions { method, lambda: 7e66, backtrack: 0, closed_form: false, ..SolveOptions::default() };
+            let out = Solver::new(opts).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+            assert!(out.pose.angles()[0].is_finite() && out.error.is_finite(), "{method:?}: {out:?}");
+        }
         for scale in [1e52, 1e100] {
             let chain = Chain::new([0.0, 0.0], &[Link::new(scale, 0.3), Link::new(scale, 0.3)]).unwrap();
             let goal = Goal::position(0.5 * scale, 1.2 * scale).unwrap();
