@@ -52,6 +52,7 @@ pub mod kinematics;
 pub mod limits;
 pub mod motion;
 pub mod names;
+pub mod number;
 pub mod reach;
 pub mod rng;
 pub mod solve;
