@@ -9,14 +9,22 @@
 import * as api from "./api.js";
 import {
   armForRequest,
+  clampInto,
+  clearProblem,
   fillSelects,
+  firstProblem,
+  numberProblem,
   readControls,
   renderLinks,
+  setProblem,
   syncEnabled,
   syncLimitModes,
+  syncMethods,
   withLimit,
 } from "./controls.js";
-import { areaImage, drawScene, fitCanvas } from "./draw.js";
+import { loadArmFile, saveArmFile, storeArm, storedArm } from "./armfile.js";
+import { drawScene, fitCanvas, usePalette } from "./draw.js";
+import { areaOutline } from "./view.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
@@ -46,6 +54,10 @@ const state = {
   options: {},
   ease: { kind: "sine" },
   frames: 60,
+  // The orientation goal (degrees), when "Goal angle" is on; else undefined.
+  goalAngle: undefined,
+  // Iterations between two poses of the solver's replay ("Replay every").
+  recordEvery: 1,
   // The step bound of following and traced paths, degrees (max_step_deg of /api/track).
   maxStepDeg: 10,
   // The View checkboxes.
@@ -55,13 +67,19 @@ const state = {
   showWorkspace: false,
   // The world <-> canvas transform of the last drawing (view.js's fitView).
   view: { cx: 0, cy: 0, scale: 1, w: 1, h: 1 },
-  // The last /api/workspace answer and its picture.
+  // The last /api/workspace answer and its edge (view.js's areaOutline), kept until the next
+  // answer arrives so that the area does not blink while it recomputes.
   workspace: null,
-  areaImage: null,
+  areaOutline: null,
   // The motion the timeline plays: the last /api/animate answer and its request (a GIF renders
   // the same motion), or a traced path's frames (paths.js's trackMotion; no request then).
   animation: null,
   animationRequest: null,
+  // The stats of the motion being played: shown (and its status, "reached" or not) once the
+  // playback ends; until then the chip says the arm is moving.
+  pendingStats: null,
+  // Whether the message shown is a bad field's (cleared when the field is fixed).
+  fieldShown: false,
   // Paths (track.js): whether a drag draws a path, the stroke being drawn ([[x, y], …]), and the
   // last traced path, {request, answer (/api/track's), goals (the wanted path), flips (tips)}.
   drawPath: false,
@@ -81,7 +99,7 @@ const state = {
 };
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
-const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia });
+const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded });
 
 /** Following and traced paths (track.js). */
 const paths = wireTrack(state, {
@@ -96,23 +114,68 @@ const paths = wireTrack(state, {
 });
 
 // ---- Messages and status ------------------------------------------------------------------
+//
+// The chip on the canvas (#chip) holds the status line and the message: visible at every width
+// and whatever the panel shows, neutral while the page works or the arm moves, red for an error,
+// a bad field, or a goal not reached.
+
+/** Statuses that are not trouble: the chip stays neutral. */
+const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "following", "tracing", "traced"]);
+
+function syncChip() {
+  const bad = !$("error").hidden || !CALM.has(document.body.dataset.status);
+  $("chip").dataset.kind = bad ? "bad" : "neutral";
+}
 
 function showError(e) {
   const el = $("error");
   if (!e) {
     el.hidden = true;
     el.textContent = "";
-    return;
+  } else {
+    el.textContent = e.message || String(e);
+    el.hidden = false;
+    if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
   }
-  el.textContent = e.message || String(e);
-  el.hidden = false;
-  if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
+  syncChip();
 }
 
-/** The page's status (loading, ready, solving, reached, …, error), as body[data-status]. */
+/** The page's status (loading, ready, solving, moving, reached, …, error), as body[data-status]. */
 function setStatus(status) {
   document.body.dataset.status = status;
-  if (status === "error") $("stats").textContent = "status error · see the message below";
+  if (status === "error") $("stats").textContent = "status error";
+  if (status === "moving") $("stats").textContent = "moving…";
+  syncChip();
+}
+
+/**
+ * Whether every field holds a good value. If not, the first bad one is named on the chip, and
+ * when `point` is set (the reader tried to act) it is shown: the panel opens, the field scrolls
+ * into view and takes the focus.
+ */
+function fieldsOk(point = true) {
+  const p = firstProblem();
+  if (!p) return true;
+  showError(new api.Notice(p.message));
+  state.fieldShown = true;
+  if (point) {
+    setCollapsed(false);
+    p.el.scrollIntoView({ block: "nearest" });
+    p.el.focus({ preventScroll: true });
+  }
+  return false;
+}
+
+/** After an edit: the message of the first bad field, or none (a fixed field clears it). */
+function recheck() {
+  const p = firstProblem();
+  if (p) {
+    showError(new api.Notice(p.message));
+    state.fieldShown = true;
+  } else if (state.fieldShown) {
+    showError(null);
+    state.fieldShown = false;
+  }
 }
 
 function setStats(s) {
@@ -160,13 +223,15 @@ function motionStats(anim) {
 
 /** Solves for the goal (x, y) through the via points and plays the motion there. */
 async function animateTo(x, y) {
+  if (!fieldsOk()) return;
   cancelMotion();
   state.goal = { x, y };
   const seq = state.jobs.animateSeq;
+  const goal = state.goalAngle === undefined ? { x, y } : { x, y, angle_deg: state.goalAngle };
   const base = {
     arm: armForRequest(state.arm),
     start_deg: state.pose_deg.slice(),
-    goal: { x, y },
+    goal,
     options: state.options,
   };
   const via = state.via.map((p) => [p.x, p.y]);
@@ -187,12 +252,17 @@ async function animateTo(x, y) {
  * Plays the solver's recorded iterations of the last motion (`from_solve`), from its start pose
  * through its via points; pressed again, the eased motion.
  */
-async function toggleSolver() {
-  if (!state.animationRequest) return;
+async function toggleSolver(solver = !state.playback.solver) {
+  if (!state.animationRequest || !fieldsOk()) return;
   cancelMotion();
   const seq = state.jobs.animateSeq;
-  const req = { ...state.animationRequest, from_solve: !state.playback.solver };
-  if (!req.from_solve) delete req.from_solve;
+  const req = { ...state.animationRequest, from_solve: solver };
+  // The replay records one pose every "Replay every" iterations; the eased motion does not use it.
+  req.options = { ...req.options, record_every: state.recordEvery };
+  if (!req.from_solve) {
+    delete req.from_solve;
+    delete req.options.record_every;
+  }
   setStatus("solving");
   try {
     const anim = await api.animate(req);
@@ -208,10 +278,21 @@ function showMotion(anim, req, stats) {
   paths.clear();
   state.animation = anim;
   state.animationRequest = req;
-  setStats(stats);
-  setStatus(stats.status);
+  state.pendingStats = stats;
+  setStatus("moving");
   timeline.load(req, !!req.from_solve);
   timeline.play();
+}
+
+/** The playback reached the end: the motion's stats and status ("reached" only now). */
+function motionEnded() {
+  const stats = state.pendingStats;
+  if (!stats) return;
+  state.pendingStats = null;
+  const frames = state.playback.solver && state.animation ? ` · ${state.animation.frames.length} poses replayed` : "";
+  setStats(stats);
+  if (frames) $("stats").textContent += frames;
+  setStatus(stats.status);
 }
 
 function failed(e, seq) {
@@ -268,7 +349,7 @@ function refreshWorkspace() {
       });
       if (seq !== jobs.workspaceSeq) return;
       state.workspace = ws;
-      state.areaImage = areaImage(ws);
+      state.areaOutline = areaOutline(ws);
       requestDraw();
     } catch (e) {
       if (seq === jobs.workspaceSeq) showError(e);
@@ -280,7 +361,10 @@ function refreshWorkspace() {
 
 /** Brings the fields in line with each other and reads the settings of the next requests. */
 function applyControls() {
-  if (state.meta) syncLimitModes(state.meta, state.limitModeChoice);
+  if (state.meta) {
+    syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked);
+    syncLimitModes(state.meta, state.limitModeChoice);
+  }
   syncEnabled();
   Object.assign(state, readControls(state.arm.links));
 }
@@ -288,24 +372,69 @@ function applyControls() {
 function controlsChanged() {
   if (!state.arm) return;
   applyControls();
+  recheck();
   timeline.sync();
   requestDraw();
 }
 
+/** A cell's text checked by `rule`; marks the cell and returns the number, or null when bad. */
+function cellNumber(el, text, label, rule) {
+  const why = numberProblem(text, rule);
+  if (why) {
+    setProblem(el, `${label}: ${why}`);
+    recheck();
+    return null;
+  }
+  clearProblem(el);
+  return Number(text);
+}
+
 /** Edits of the links table, applied to the arm. */
 const linkEdits = {
-  length(i, v) {
-    state.arm.links[i].length = v === "" ? 0 : Number(v);
+  length(i, v, el) {
+    const length = cellNumber(el, v, `Link ${i + 1} length`, { above: 0, max: 1e6 });
+    if (length === null) return;
+    state.arm.links[i].length = length;
     armChanged();
   },
-  limit(i, k, v) {
+  start(i, v, el) {
     const link = state.arm.links[i];
-    link.limits_deg = withLimit(link.limits_deg, k, v);
+    const angle = cellNumber(el, v, `Link ${i + 1} start angle`, { min: -360, max: 360 });
+    if (angle === null) return;
+    if (link.limits_deg && clampInto(angle, link.limits_deg) !== angle) {
+      const [lo, hi] = link.limits_deg;
+      setProblem(el, `Link ${i + 1} start angle: ${angle}° is outside its range [${lo}°, ${hi}°]`);
+      recheck();
+      return;
+    }
+    // The arm takes its new start pose at once (Reset pose goes back to it too).
+    link.angle_deg = angle;
+    state.pose_deg[i] = angle;
+    armChanged();
+  },
+  limit(i, k, v, el) {
+    const link = state.arm.links[i];
+    const which = k === 0 ? "minimum" : "maximum";
+    if (v !== "" && cellNumber(el, v, `Link ${i + 1} ${which} angle`, { min: -360, max: 360 }) === null) return;
+    const limits = withLimit(link.limits_deg, k, v);
+    if (limits && limits[0] > limits[1]) {
+      setProblem(el, `Link ${i + 1} range: the minimum ${limits[0]}° is more than the maximum ${limits[1]}°`);
+      recheck();
+      return;
+    }
+    clearProblem(el);
+    link.limits_deg = limits;
+    // The start angle and the current pose move into the new range rather than fail.
+    link.angle_deg = clampInto(link.angle_deg, limits);
+    state.pose_deg[i] = clampInto(state.pose_deg[i], limits);
     showLinks();
     armChanged();
   },
-  rate(i, v) {
-    state.arm.links[i].rate = v === "" ? 1 : Number(v);
+  rate(i, v, el) {
+    const rate = v === "" ? 1 : cellNumber(el, v, `Joint ${i + 1} rate`, { above: 0, max: 1e6 });
+    if (rate === null) return;
+    clearProblem(el);
+    state.arm.links[i].rate = rate;
     controlsChanged();
   },
   remove(i) {
@@ -331,17 +460,57 @@ function armChanged() {
   while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
   state.pose_deg.length = state.arm.links.length;
   paths.clear();
-  state.workspace = null;
-  state.areaImage = null;
+  // The reachable area of the old arm stays drawn until the new one arrives.
   applyControls();
+  recheck();
   setPose(state.pose_deg);
+  showBase();
+  storeArm(state.arm);
   requestDraw();
   refreshWorkspace();
+}
+
+/** The base fields show the arm's base. */
+function showBase() {
+  const [x, y] = state.arm.base || [0, 0];
+  for (const [id, v] of [["base-x", x], ["base-y", y]]) {
+    const el = $(id);
+    if (document.activeElement !== el || el.getAttribute("aria-invalid") !== "true") el.value = String(v);
+  }
+}
+
+function baseEdited(k, el) {
+  const v = cellNumber(el, el.value.trim(), `Base ${k === 0 ? "x" : "y"}`, { min: -1e6, max: 1e6 });
+  if (v === null) return;
+  const base = (state.arm.base || [0, 0]).slice();
+  base[k] = v;
+  state.arm.base = base;
+  armChanged();
+}
+
+/** A new arm (loaded from a file, the default, or kept from the last visit): its start pose, no motion. */
+function useArm(arm) {
+  cancelMotion();
+  paths.clear();
+  state.arm = arm;
+  state.goal = null;
+  state.animation = null;
+  state.animationRequest = null;
+  state.pendingStats = null;
+  state.via = [];
+  state.pose_deg = arm.links.map((l) => l.angle_deg);
+  timeline.unload();
+  showLinks();
+  armChanged();
+  setStatus("ready");
+  $("stats").textContent = "—";
 }
 
 function resetPose() {
   cancelMotion();
   paths.clear();
+  state.goal = null;
+  state.pendingStats = null;
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
   $("stats").textContent = "—";
@@ -351,13 +520,58 @@ function resetPose() {
 
 // ---- Wiring -------------------------------------------------------------------------------
 
+/** The panel hidden (the canvas takes the whole width) or shown. */
+function setCollapsed(c) {
+  const toggle = $("panel-toggle");
+  if (document.body.classList.contains("collapsed") === c) return;
+  document.body.classList.toggle("collapsed", c);
+  toggle.setAttribute("aria-expanded", String(!c));
+  toggle.textContent = c ? "Show controls" : "Hide controls";
+  requestDraw();
+}
+
 function wire() {
-  const { followTo, startStroke, extendStroke, endStroke } = paths;
+  const { startStroke, extendStroke, endStroke } = paths;
+  const followTo = (x, y) => fieldsOk(false) && paths.followTo(x, y);
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
-  wireDownloads(state, showError);
-  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames", "max-step"]) {
+  wireDownloads(state, showError, () => timeline.duration());
+  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle"]) {
     $(id).addEventListener("change", controlsChanged);
   }
+  // A new "Replay every" shows at once when the solver's replay is on.
+  $("record-every").addEventListener("change", () => {
+    controlsChanged();
+    if (state.playback.solver && !firstProblem()) toggleSolver(true);
+  });
+  $("base-x").addEventListener("change", (ev) => baseEdited(0, ev.target));
+  $("base-y").addEventListener("change", (ev) => baseEdited(1, ev.target));
+  $("load-arm").addEventListener("click", () => $("arm-file").click());
+  $("arm-file").addEventListener("change", async (ev) => {
+    const file = ev.target.files[0];
+    ev.target.value = "";
+    if (!file) return;
+    try {
+      useArm(await loadArmFile(file));
+      showError(null);
+    } catch (e) {
+      showError(e);
+    }
+  });
+  $("save-arm").addEventListener("click", async () => {
+    try {
+      await saveArmFile(state.arm);
+    } catch (e) {
+      showError(e);
+    }
+  });
+  $("default-arm").addEventListener("click", async () => {
+    try {
+      useArm(await api.defaultArm());
+      showError(null);
+    } catch (e) {
+      showError(e);
+    }
+  });
   $("limit-mode").addEventListener("change", (ev) => {
     state.limitModeChoice = ev.target.value;
     controlsChanged();
@@ -371,7 +585,7 @@ function wire() {
   });
   $("draw-path").addEventListener("click", () => setDrawPath(!state.drawPath));
   for (const kind of ["line", "circle", "figure8"]) {
-    $(`trace-${kind}`).addEventListener("click", () => state.arm && paths.traceShape(kind));
+    $(`trace-${kind}`).addEventListener("click", () => state.arm && fieldsOk() && paths.traceShape(kind));
   }
   $("show-ghosts").addEventListener("change", (ev) => {
     state.showGhosts = ev.target.checked;
@@ -389,14 +603,7 @@ function wire() {
   $("add-link").addEventListener("click", addLink);
   $("reset").addEventListener("click", resetPose);
   const narrow = window.matchMedia("(max-width: 720px)");
-  const toggle = $("panel-toggle");
-  const setCollapsed = (c) => {
-    document.body.classList.toggle("collapsed", c);
-    toggle.setAttribute("aria-expanded", String(!c));
-    toggle.textContent = c ? "Show controls" : "Hide controls";
-    requestDraw();
-  };
-  toggle.addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
+  $("panel-toggle").addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
   if (narrow.matches) setCollapsed(true);
   new ResizeObserver(requestDraw).observe(canvas);
   window.addEventListener("resize", requestDraw);
@@ -407,12 +614,15 @@ async function init() {
   try {
     const [meta, arm] = await Promise.all([api.meta(), api.defaultArm()]);
     state.meta = meta;
+    usePalette(meta.palette);
     state.limitModeChoice = meta.default_limit_mode;
     fillSelects(meta);
-    state.arm = arm;
+    // The arm of the last visit, else the server's default.
+    state.arm = storedArm() || arm;
     showLinks();
     applyControls();
-    setPose(arm.links.map((l) => l.angle_deg));
+    showBase();
+    setPose(state.arm.links.map((l) => l.angle_deg));
     setStatus("ready");
     timeline.sync();
     window.ikarus.ready = true;
@@ -428,9 +638,11 @@ window.ikarus = {
   state,
   ready: false,
   animateTo,
-  followTo: (x, y) => paths.followTo(x, y),
-  traceShape: (kind) => paths.traceShape(kind),
+  followTo: (x, y) => fieldsOk() && paths.followTo(x, y),
+  traceShape: (kind) => fieldsOk() && paths.traceShape(kind),
   resetPose,
+  /** The timeline's playback duration, seconds. */
+  duration: () => timeline.duration(),
   /** Client coordinates of a world point, for clicking on it. */
   toClient(x, y) {
     const r = canvas.getBoundingClientRect();
