@@ -20,6 +20,9 @@ test("paths: a figure-8 and a drawn stroke traced without flips; following never
     });
     await page.goto(url);
     await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+    // The paths below are planned with the seed's ranges: limits on (the page starts without,
+    // as `ikarus solve` does).
+    await page.check("#limits");
     const traced = (what) =>
       page.waitForFunction(
         (what) => {

@@ -66,7 +66,7 @@ export function syncLimitModes(meta, preferred) {
   if (!method) return select.value;
   for (const option of select.options) option.disabled = !method.limit_modes.includes(option.value);
   // A method with one way of handling limits (CCD and FABRIK clamp) offers no choice.
-  select.dataset.only = String(method.limit_modes.length <= 1);
+  select.dataset.only = String(method.limit_modes.filter((m) => m !== "ignore").length <= 1);
   if (method.limit_modes.includes(preferred)) select.value = preferred;
   else if (!method.limit_modes.includes(select.value)) select.value = method.default_limit_mode;
   return select.value;

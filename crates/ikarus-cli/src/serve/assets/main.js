@@ -160,7 +160,7 @@ function fieldsOk(point = true) {
   state.fieldShown = true;
   if (point) {
     setCollapsed(false);
-    p.el.scrollIntoView({ block: "nearest" });
+    p.el.scrollIntoView({ block: "center" });
     p.el.focus({ preventScroll: true });
   }
   return false;
@@ -259,9 +259,16 @@ async function toggleSolver(solver = !state.playback.solver) {
   const req = { ...state.animationRequest, from_solve: solver };
   // The replay records one pose every "Replay every" iterations; the eased motion does not use it.
   req.options = { ...req.options, record_every: state.recordEvery };
-  if (!req.from_solve) {
+  if (req.from_solve) {
+    // One frame per recorded pose: the eased motion's solves tell how many iterations each goal
+    // took (the replay's own solves say the same: they are deterministic), and a pose is recorded every "Replay every".
+    const solves = (state.animation && state.animation.solves) || [];
+    const poses = solves.reduce((n, s) => n + Math.ceil(s.iterations / state.recordEvery), 1);
+    req.frames = Math.min(Math.max(poses, 2), 2000);
+  } else {
     delete req.from_solve;
     delete req.options.record_every;
+    req.frames = state.frames;
   }
   setStatus("solving");
   try {
