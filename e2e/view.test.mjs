@@ -480,11 +480,12 @@ test("methods: the closed form only for two links, or three with a goal angle", 
   assert.ok(methodApplies(lm, 7, true));
 });
 
-test("the GIF asks for the page's playback duration at 4 hundredths a frame", () => {
+test("the GIF asks for the page's playback duration (less the last frame's delay) at 4 hundredths a frame", () => {
   assert.equal(100 / GIF_FPS, 4, "a whole number of hundredths per frame");
   const req = gifRequest({ arm: {}, goal: { x: 1, y: 2 }, frames: 60, ease: { kind: "sine" } }, 1.35);
   assert.equal(req.frames, undefined);
-  assert.deepEqual([req.figure, req.format, req.duration, req.fps], ["motion", "gif", 1.35, GIF_FPS]);
+  // The last frame is shown for a delay too: the motion takes one delay less than the playback.
+  assert.deepEqual([req.figure, req.format, req.duration, req.fps], ["motion", "gif", 1.35 - 0.04, GIF_FPS]);
 });
 
 test("the SVG download records the canvas calls: paths, arcs, text, alpha and dashes", () => {

@@ -1,5 +1,8 @@
 //! Arm files for the page: `POST /api/arm/parse` reads arm-file text (TOML, the format of
-//! `--arm` and `examples/arms/`) into the arm the page edits, with the CLI's one-line errors;
+//! `--arm` and `examples/arms/`) into the arm the page edits, or says why it is not an arm file
+//! with the CLI's one-line error. That answer is a 200 either way (`{"arm": …}` or
+//! `{"problem": "…"}`): a bad file is the reader's to fix, not a failed request, and a browser
+//! logs every 4xx answer as a console error;
 //! `POST /api/arm/toml` writes the page's arm back as arm-file text. The page's per-joint rates
 //! are the file's `[solver].rates`; the file's other `[solver]` settings are the page's controls'
 //! business and are not carried.
@@ -126,9 +129,20 @@ impl<'a> FileOut<'a> {
     }
 }
 
+/// The answer of `POST /api/arm/parse`: the arm, or why the text is not an arm file.
+#[derive(Debug, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Parsed {
+    Arm(PageArm),
+    Problem(String),
+}
+
 /// `POST /api/arm/parse`: the body is the file's text.
-pub async fn parse_handler(body: String) -> Result<Json<PageArm>, ApiError> {
-    parse(&body).map(Json).map_err(ApiError::invalid)
+pub async fn parse_handler(body: String) -> Json<Parsed> {
+    Json(match parse(&body) {
+        Ok(arm) => Parsed::Arm(arm),
+        Err(problem) => Parsed::Problem(problem),
+    })
 }
 
 /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.

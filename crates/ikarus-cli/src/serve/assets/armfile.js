@@ -2,7 +2,7 @@
 // POST /api/arm/parse, save the page's arm as one through POST /api/arm/toml, and keep the last
 // arm across reloads (localStorage).
 
-import { Notice } from "./api.js";
+import { Notice, forPeople } from "./api.js";
 import { saveBlob } from "./files.js";
 
 const KEY = "ikarus.arm";
@@ -18,12 +18,14 @@ async function postText(path, body, type) {
   } catch (_) {
     /* not JSON: keep the status line */
   }
-  throw new Notice(message);
+  throw new Notice(forPeople(message));
 }
 
-/** The page's arm from arm-file text (the CLI's one-line error when the file is bad). */
+/** The page's arm from arm-file text; a bad file rejects with a Notice of the CLI's one-line error. */
 export async function parseArm(text) {
-  return JSON.parse(await postText("/api/arm/parse", text, "application/toml"));
+  const answer = JSON.parse(await postText("/api/arm/parse", text, "application/toml"));
+  if (answer.problem) throw new Notice(forPeople(answer.problem));
+  return answer.arm;
 }
 
 /** The arm read from a File the reader picked. */

@@ -38,10 +38,14 @@ export function saveBlob(blob, name) {
 
 /**
  * The /api/render request of the motion's GIF: the motion the page plays, sampled at GIF_FPS
- * over the page's playback duration (`seconds`), so that the GIF lasts as long as the playback.
+ * over the page's playback duration (`seconds`), so that the GIF lasts as long as the playback
+ * (to within half a frame's delay: the frame count is whole).
  */
 export function gifRequest(animationRequest, seconds) {
-  const req = { figure: "motion", format: "gif", width: 480, height: 480, ...animationRequest, duration: seconds, fps: GIF_FPS };
+  // Every frame of a GIF is shown for its delay, the last one too, so frames 0..n span n + 1
+  // delays: the motion itself takes one delay less than the playback.
+  const duration = Math.max(seconds - 1 / GIF_FPS, 1 / GIF_FPS);
+  const req = { figure: "motion", format: "gif", width: 480, height: 480, ...animationRequest, duration, fps: GIF_FPS };
   delete req.frames;
   return req;
 }
