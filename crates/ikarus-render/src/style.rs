@@ -35,8 +35,11 @@ pub(crate) const TIP_HUE: &str = "#ec7f2d";
 /// them from `GET /api/meta`, so its screen, its downloads and the CLI's pictures agree).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Colours {
+    /// Inside the plot area.
     pub plot: &'static str,
+    /// Grid lines.
     pub grid: &'static str,
+    /// The x = 0 and y = 0 lines.
     pub axis: &'static str,
     /// Tick labels.
     pub label: &'static str,
@@ -46,6 +49,7 @@ pub struct Colours {
     pub reach: &'static str,
     /// Reachable cells.
     pub workspace: &'static str,
+    /// The goal.
     pub goal: &'static str,
     /// The tip's path.
     pub path: &'static str,

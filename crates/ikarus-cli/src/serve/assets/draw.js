@@ -177,7 +177,7 @@ function drawArea(ctx, view, state) {
     });
     ctx.closePath();
   }
-  ctx.globalAlpha = 0.85;
+  ctx.globalAlpha = 0.75;
   ctx.fillStyle = COLORS.workspace;
   ctx.fill("evenodd");
   ctx.globalAlpha = 0.6;
