@@ -129,6 +129,43 @@ impl Scene<'_> {
         );
     }
 
+    /// Each limited joint's range as a wedge at the joint: from the previous link's direction
+    /// (the sum of the angles before it in `pose`) turned by the minimum to the maximum. `joints`
+    /// are the pose's joint positions, base first.
+    pub(crate) fn ranges(&self, svg: &mut Svg, joints: &[Point2<f64>], pose: &[f64]) {
+        let u = self.u();
+        let scale = self.view.scale();
+        let lengths = self.chain.lengths();
+        let mut heading = 0.0;
+        let mut d = PathData::new();
+        for (i, limits) in self.chain.limits().iter().enumerate() {
+            if let (Some(l), Some(&joint)) = (limits, joints.get(i)) {
+                let r = (lengths.get(i).copied().unwrap_or(0.0) * scale * 0.4).clamp(14.0 * u, 46.0 * u);
+                let (cx, cy) = self.px(joint);
+                let (lo, hi) = (heading + l.min(), heading + l.max());
+                // World angles turn counter-clockwise; pixels have y down.
+                let at = |a: f64| (cx + r * a.cos(), cy - r * a.sin());
+                let ((x0, y0), (x1, y1)) = (at(lo), at(hi));
+                d.move_to(cx, cy).line_to(x0, y0);
+                d.arc_to(r, hi - lo > std::f64::consts::PI, false, x1, y1).close();
+            }
+            heading += pose.get(i).copied().unwrap_or(0.0);
+        }
+        if d.is_empty() {
+            return;
+        }
+        svg.comment("joint ranges");
+        svg.path(
+            &d,
+            &format!(
+                "fill=\"{}\" fill-opacity=\"0.1\" stroke=\"{}\" stroke-opacity=\"0.45\" stroke-width=\"{}\"",
+                style::INK,
+                style::INK,
+                num(u)
+            ),
+        );
+    }
+
     fn reach_circles(&self, svg: &mut Svg) {
         let u = self.u();
         let (cx, cy) = self.px(self.chain.base());
