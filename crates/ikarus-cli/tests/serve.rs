@@ -116,6 +116,7 @@ fn health_and_the_playground_page() {
         ("/draw.js", "text/javascript", "export function drawScene"),
         ("/armfile.js", "text/javascript", "export async function parseArm"),
         ("/export.js", "text/javascript", "export function svgContext"),
+        ("/links.js", "text/javascript", "export function wireArm"),
         ("/files.js", "text/javascript", "export function framesCsv"),
         ("/input.js", "text/javascript", "export function wireInput"),
         ("/paths.js", "text/javascript", "export function resampleStroke"),
@@ -144,7 +145,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 12, "{modules:?}");
+    assert_eq!(modules.len(), 13, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);

@@ -38,6 +38,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("export.js", JS, include_str!("assets/export.js")),
     ("files.js", JS, include_str!("assets/files.js")),
     ("input.js", JS, include_str!("assets/input.js")),
+    ("links.js", JS, include_str!("assets/links.js")),
     ("paths.js", JS, include_str!("assets/paths.js")),
     ("timeline.js", JS, include_str!("assets/timeline.js")),
     ("track.js", JS, include_str!("assets/track.js")),

@@ -4,25 +4,13 @@
 // either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
 // reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
 // motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
-// traces paths (track.js, with the pure parts in paths.js) or saves files (files.js).
+// traces paths (track.js, with the pure parts in paths.js), edits the arm (links.js, with arm
+// files in armfile.js) or saves files (files.js, with the figures drawn by export.js).
 
 import * as api from "./api.js";
-import {
-  armForRequest,
-  clampInto,
-  clearProblem,
-  fillSelects,
-  firstProblem,
-  numberProblem,
-  readControls,
-  renderLinks,
-  setProblem,
-  syncEnabled,
-  syncLimitModes,
-  syncMethods,
-  withLimit,
-} from "./controls.js";
-import { loadArmFile, saveArmFile, storeArm, storedArm } from "./armfile.js";
+import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
+import { storedArm } from "./armfile.js";
+import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { areaOutline } from "./view.js";
 import { wireDownloads } from "./files.js";
@@ -33,7 +21,6 @@ import { fitView, forward, toCanvas } from "./view.js";
 
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
-const MAX_LINKS = 64;
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("plot");
@@ -111,6 +98,19 @@ const paths = wireTrack(state, {
   showError,
   setStatus,
   say: (text) => ($("stats").textContent = text),
+});
+
+/** The links table, the base and arm files (links.js). */
+const armEditor = wireArm(state, {
+  applyControls,
+  recheck,
+  controlsChanged,
+  setPose,
+  requestDraw,
+  refreshWorkspace,
+  clearPaths: () => paths.clear(),
+  forgetMotion,
+  showError,
 });
 
 // ---- Messages and status ------------------------------------------------------------------
@@ -384,131 +384,16 @@ function controlsChanged() {
   requestDraw();
 }
 
-/** A cell's text checked by `rule`; marks the cell and returns the number, or null when bad. */
-function cellNumber(el, text, label, rule) {
-  const why = numberProblem(text, rule);
-  if (why) {
-    setProblem(el, `${label}: ${why}`);
-    recheck();
-    return null;
-  }
-  clearProblem(el);
-  return Number(text);
-}
-
-/** Edits of the links table, applied to the arm. */
-const linkEdits = {
-  length(i, v, el) {
-    const length = cellNumber(el, v, `Link ${i + 1} length`, { above: 0, max: 1e6 });
-    if (length === null) return;
-    state.arm.links[i].length = length;
-    armChanged();
-  },
-  start(i, v, el) {
-    const link = state.arm.links[i];
-    const angle = cellNumber(el, v, `Link ${i + 1} start angle`, { min: -360, max: 360 });
-    if (angle === null) return;
-    if (link.limits_deg && clampInto(angle, link.limits_deg) !== angle) {
-      const [lo, hi] = link.limits_deg;
-      setProblem(el, `Link ${i + 1} start angle: ${angle}° is outside its range [${lo}°, ${hi}°]`);
-      recheck();
-      return;
-    }
-    // The arm takes its new start pose at once (Reset pose goes back to it too).
-    link.angle_deg = angle;
-    state.pose_deg[i] = angle;
-    armChanged();
-  },
-  limit(i, k, v, el) {
-    const link = state.arm.links[i];
-    const which = k === 0 ? "minimum" : "maximum";
-    if (v !== "" && cellNumber(el, v, `Link ${i + 1} ${which} angle`, { min: -360, max: 360 }) === null) return;
-    const limits = withLimit(link.limits_deg, k, v);
-    if (limits && limits[0] > limits[1]) {
-      setProblem(el, `Link ${i + 1} range: the minimum ${limits[0]}° is more than the maximum ${limits[1]}°`);
-      recheck();
-      return;
-    }
-    clearProblem(el);
-    link.limits_deg = limits;
-    // The start angle and the current pose move into the new range rather than fail.
-    link.angle_deg = clampInto(link.angle_deg, limits);
-    state.pose_deg[i] = clampInto(state.pose_deg[i], limits);
-    showLinks();
-    armChanged();
-  },
-  rate(i, v, el) {
-    const rate = v === "" ? 1 : cellNumber(el, v, `Joint ${i + 1} rate`, { above: 0, max: 1e6 });
-    if (rate === null) return;
-    clearProblem(el);
-    state.arm.links[i].rate = rate;
-    controlsChanged();
-  },
-  remove(i) {
-    state.arm.links.splice(i, 1);
-    state.pose_deg.splice(i, 1);
-    showLinks();
-    armChanged();
-  },
-};
-
-const showLinks = () => renderLinks(state.arm.links, linkEdits);
-
-function addLink() {
-  if (state.arm.links.length >= MAX_LINKS) return;
-  const last = state.arm.links[state.arm.links.length - 1];
-  state.arm.links.push({ length: last ? last.length : 1, angle_deg: 0, limits_deg: [-170, 170] });
-  showLinks();
-  armChanged();
-}
-
-function armChanged() {
-  // The pose keeps one angle per link; a new link starts straight.
-  while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
-  state.pose_deg.length = state.arm.links.length;
-  paths.clear();
-  // The reachable area of the old arm stays drawn until the new one arrives.
-  applyControls();
-  recheck();
-  setPose(state.pose_deg);
-  showBase();
-  storeArm(state.arm);
-  requestDraw();
-  refreshWorkspace();
-}
-
-/** The base fields show the arm's base. */
-function showBase() {
-  const [x, y] = state.arm.base || [0, 0];
-  for (const [id, v] of [["base-x", x], ["base-y", y]]) {
-    const el = $(id);
-    if (document.activeElement !== el || el.getAttribute("aria-invalid") !== "true") el.value = String(v);
-  }
-}
-
-function baseEdited(k, el) {
-  const v = cellNumber(el, el.value.trim(), `Base ${k === 0 ? "x" : "y"}`, { min: -1e6, max: 1e6 });
-  if (v === null) return;
-  const base = (state.arm.base || [0, 0]).slice();
-  base[k] = v;
-  state.arm.base = base;
-  armChanged();
-}
-
-/** A new arm (loaded from a file, the default, or kept from the last visit): its start pose, no motion. */
-function useArm(arm) {
+/** A new arm: no motion, goal, via points or replay of the old one. */
+function forgetMotion() {
   cancelMotion();
   paths.clear();
-  state.arm = arm;
   state.goal = null;
   state.animation = null;
   state.animationRequest = null;
   state.pendingStats = null;
   state.via = [];
-  state.pose_deg = arm.links.map((l) => l.angle_deg);
   timeline.unload();
-  showLinks();
-  armChanged();
   setStatus("ready");
   $("stats").textContent = "—";
 }
@@ -550,35 +435,6 @@ function wire() {
     controlsChanged();
     if (state.playback.solver && !firstProblem()) toggleSolver(true);
   });
-  $("base-x").addEventListener("change", (ev) => baseEdited(0, ev.target));
-  $("base-y").addEventListener("change", (ev) => baseEdited(1, ev.target));
-  $("load-arm").addEventListener("click", () => $("arm-file").click());
-  $("arm-file").addEventListener("change", async (ev) => {
-    const file = ev.target.files[0];
-    ev.target.value = "";
-    if (!file) return;
-    try {
-      useArm(await loadArmFile(file));
-      showError(null);
-    } catch (e) {
-      showError(e);
-    }
-  });
-  $("save-arm").addEventListener("click", async () => {
-    try {
-      await saveArmFile(state.arm);
-    } catch (e) {
-      showError(e);
-    }
-  });
-  $("default-arm").addEventListener("click", async () => {
-    try {
-      useArm(await api.defaultArm());
-      showError(null);
-    } catch (e) {
-      showError(e);
-    }
-  });
   $("limit-mode").addEventListener("change", (ev) => {
     state.limitModeChoice = ev.target.value;
     controlsChanged();
@@ -607,7 +463,6 @@ function wire() {
     if (state.showWorkspace) refreshWorkspace();
     requestDraw();
   });
-  $("add-link").addEventListener("click", addLink);
   $("reset").addEventListener("click", resetPose);
   const narrow = window.matchMedia("(max-width: 720px)");
   $("panel-toggle").addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
@@ -626,9 +481,9 @@ async function init() {
     fillSelects(meta);
     // The arm of the last visit, else the server's default.
     state.arm = storedArm() || arm;
-    showLinks();
+    armEditor.showLinks();
     applyControls();
-    showBase();
+    armEditor.showBase();
     setPose(state.arm.links.map((l) => l.angle_deg));
     setStatus("ready");
     timeline.sync();
