@@ -217,6 +217,20 @@ test("the reachable area's edge: closed loops around it and its holes, smooth, w
   for (const [x, y] of low) assert.ok(y <= -1 + 1e-9 && y >= -3 && Math.abs(x) <= 1, `${x}, ${y}`);
 });
 
+test("the reachable area's edge: the very points of the library's Workspace::outline (reach/outline.rs)", () => {
+  // The same grid and the same numbers as outline.rs's test the_same_points_as_the_playground.
+  const ws = { resolution: 3, cell_size: 0.5, origin: [1, -1], grid: ["010", "111", "010"] };
+  const raw = areaOutline(ws, 0);
+  assert.equal(raw.length, 1);
+  assert.deepEqual(raw[0], [
+    [1.5, -0.75], [1.75, -1], [2, -0.75], [2.25, -0.5], [2.5, -0.25], [2.25, 0],
+    [2, 0.25], [1.75, 0.5], [1.5, 0.25], [1.25, 0], [1, -0.25], [1.25, -0.5],
+  ]);
+  const smooth = areaOutline(ws, 2);
+  assert.equal(smooth[0].length, 48);
+  assert.deepEqual(smooth[0].slice(0, 3), [[1.5986328125, -0.716796875], [1.6591796875, -0.736328125], [1.7197265625, -0.74609375]]);
+});
+
 test("links: an empty limit field opens that side and keeps the other; requests carry the arm file's fields only", () => {
   assert.deepEqual(withLimit([-45, 45], 0, ""), [-180, 45]);
   assert.deepEqual(withLimit([-45, 45], 1, ""), [-45, 180]);

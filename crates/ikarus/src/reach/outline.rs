@@ -200,6 +200,48 @@ mod tests {
         assert_eq!(ws.outline(2), loops);
     }
 
+    /// The page draws the same edge: e2e/view.test.mjs asserts these very points for the same
+    /// grid (a plus of five cells), so the two implementations cannot drift apart.
+    #[test]
+    fn the_same_points_as_the_playground() {
+        use crate::reach::{Annulus, Workspace};
+        use nalgebra::Point2;
+        // Rows bottom first: "010", "111", "010"; cells of 0.5 from (1, -1).
+        let cells: Vec<bool> = "010111010".chars().map(|c| c == '1').collect();
+        let ws = Workspace {
+            annulus: Annulus { center: Point2::origin(), inner: 0.0, outer: 1.0 },
+            resolution: 3,
+            origin: Point2::new(1.0, -1.0),
+            cell_size: 0.5,
+            limits: false,
+            samples: 0,
+            exact: false,
+            occupied: 5,
+            cells,
+        };
+        let raw = ws.outline(0);
+        let want = [
+            (1.5, -0.75),
+            (1.75, -1.0),
+            (2.0, -0.75),
+            (2.25, -0.5),
+            (2.5, -0.25),
+            (2.25, 0.0),
+            (2.0, 0.25),
+            (1.75, 0.5),
+            (1.5, 0.25),
+            (1.25, 0.0),
+            (1.0, -0.25),
+            (1.25, -0.5),
+        ];
+        assert_eq!(raw.len(), 1);
+        assert_eq!(raw[0].iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(), want);
+        let smooth = ws.outline(2);
+        assert_eq!(smooth[0].len(), 48);
+        let head: Vec<(f64, f64)> = smooth[0][..3].iter().map(|p| (p.x, p.y)).collect();
+        assert_eq!(head, [(1.5986328125, -0.716796875), (1.6591796875, -0.736328125), (1.7197265625, -0.74609375)]);
+    }
+
     #[test]
     fn a_limited_arm_gives_one_counter_clockwise_loop() {
         let chain = Chain::new(
