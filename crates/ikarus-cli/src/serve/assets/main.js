@@ -98,6 +98,10 @@ const paths = wireTrack(state, {
   showError,
   setStatus,
   say: (text) => ($("stats").textContent = text),
+  showWhenEnded: (status, text) => {
+    state.pendingStats = { status, text };
+    setStatus("moving");
+  },
 });
 
 /** The links table, the base and arm files (links.js). */
@@ -120,7 +124,7 @@ const armEditor = wireArm(state, {
 // a bad field, or a goal not reached.
 
 /** Statuses that are not trouble: the chip stays neutral. */
-const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "following", "tracing", "traced"]);
+const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "limited"]);
 
 function syncChip() {
   const bad = !$("error").hidden || !CALM.has(document.body.dataset.status);
@@ -297,7 +301,8 @@ function motionEnded() {
   if (!stats) return;
   state.pendingStats = null;
   const frames = state.playback.solver && state.animation ? ` · ${state.animation.frames.length} poses replayed` : "";
-  setStats(stats);
+  if (stats.text) $("stats").textContent = stats.text;
+  else setStats(stats);
   if (frames) $("stats").textContent += frames;
   setStatus(stats.status);
 }
@@ -313,6 +318,12 @@ function failed(e, seq) {
 function cancelMotion() {
   timeline.pause();
   state.jobs.animateSeq++;
+  // A motion stopped before its end did not reach anything: its outcome is not shown.
+  if (state.pendingStats) {
+    state.pendingStats = null;
+    setStatus("ready");
+    $("stats").textContent = "stopped";
+  }
 }
 
 // ---- Via points ---------------------------------------------------------------------------
@@ -395,7 +406,7 @@ function forgetMotion() {
   state.via = [];
   timeline.unload();
   setStatus("ready");
-  $("stats").textContent = "—";
+  $("stats").textContent = "ready";
 }
 
 function resetPose() {
@@ -405,7 +416,7 @@ function resetPose() {
   state.pendingStats = null;
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
-  $("stats").textContent = "—";
+  $("stats").textContent = "ready";
   showError(null);
   requestDraw();
 }
@@ -486,6 +497,7 @@ async function init() {
     armEditor.showBase();
     setPose(state.arm.links.map((l) => l.angle_deg));
     setStatus("ready");
+    $("stats").textContent = "ready";
     timeline.sync();
     window.ikarus.ready = true;
     draw();

@@ -177,7 +177,10 @@ export function wireTimeline(state, act) {
 
   function seek(u) {
     pause();
-    if (loaded()) show(u);
+    if (!loaded()) return;
+    show(u);
+    // Scrubbed to the end: the motion has been seen to its end.
+    if (pb.u >= 1 && act.ended) act.ended();
   }
 
   /**
