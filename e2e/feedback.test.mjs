@@ -99,6 +99,9 @@ test("errors: a chip on the canvas at every width, the field marked and focused,
         };
       });
       assert.deepEqual(field, { invalid: "true", focused: true, inView: true }, `${viewport.width} px`);
+      // Nor from tracing a shape or following the pointer.
+      await page.evaluate(() => document.getElementById("trace-circle").click());
+      await page.evaluate(() => window.ikarus.followTo(1, 4));
       assert.equal(requests.length, before, `no request with a bad field: ${requests.slice(before)}`);
       assert.notEqual(await page.evaluate(() => window.ikarus.state.goal), "moved");
 

@@ -23,8 +23,8 @@ export const COLORS = {
   goal: "#d62728",
   path: "#ec7f2d",
   joints: ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"],
+  // The via points: the pictures have none, so this one is the page's own.
   via: "#7b3fa0",
-  wanted: "#2f6fd6",
 };
 
 /** Takes the colours of /api/meta's `palette` (names as in COLORS). */
@@ -67,7 +67,8 @@ function drawWanted(ctx, view, state) {
   const points = state.stroke || (state.track && state.track.goals);
   if (!points || points.length < 2) return;
   ctx.setLineDash([6, 6]);
-  ctx.strokeStyle = COLORS.wanted;
+  // The wanted path in the pictures' colour of it (ikarus-render's path.rs: the first joint hue).
+  ctx.strokeStyle = COLORS.joints[0];
   ctx.lineWidth = 1.5;
   ctx.lineCap = "round";
   polyline(ctx, view, points);

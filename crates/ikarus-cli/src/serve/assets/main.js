@@ -434,8 +434,10 @@ function setCollapsed(c) {
 }
 
 function wire() {
-  const { startStroke, extendStroke, endStroke } = paths;
+  const { extendStroke, endStroke } = paths;
+  // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
   const followTo = (x, y) => fieldsOk(false) && paths.followTo(x, y);
+  const startStroke = (x, y) => fieldsOk() && paths.startStroke(x, y);
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
   wireDownloads(state, showError, () => timeline.duration());
   for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle"]) {
