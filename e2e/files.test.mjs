@@ -125,7 +125,9 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
     assert.ok(strokes(meta.palette.path) >= 1, "the tip's trace");
     assert.ok(strokes(meta.palette.joints[0]) >= 1, "joint 1's trace");
     assert.ok(svg.includes(`fill="${meta.palette.workspace}" fill-rule="evenodd"`), "the reachable area");
-    assert.ok((svg.match(/A\d/g) || []).length >= 3, "arcs: the ranges and the reach circle");
+    // The ranges: one wedge per limited joint (the seed's three) with the limits on, as on screen.
+    const wedges = (text) => (text.match(new RegExp(`<path d="M[^"]*A[^"]*Z" fill="${meta.palette.ink}" fill-rule="nonzero" opacity="0.1"/>`, "g")) || []).length;
+    assert.equal(wedges(svg), 3);
     assert.ok(svg.includes(`stroke="${meta.palette.goal}"`), "the goal");
     // With the ghosts and traces hidden on screen, the download has none either.
     await page.uncheck("#show-ghosts");
@@ -135,6 +137,9 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
     assert.ok(!/stroke-width="5"[^>]*opacity/.test(bare), "no ghosts");
     await page.check("#show-ghosts");
     await page.check("#show-traces");
+    await page.uncheck("#limits");
+    assert.equal(wedges((await download(page, "#dl-svg")).body), 0, "no ranges with the limits off");
+    await page.check("#limits");
 
     // PNG: the screen's picture at 800 × 800, with the tip's trace colour in it.
     const png = await download(page, "#dl-png", true);
