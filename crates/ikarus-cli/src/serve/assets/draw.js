@@ -277,9 +277,25 @@ function drawBase(ctx, view, arm) {
   ctx.fillRect(px - 16, py + 15, 32, 3);
 }
 
+/** The goal: a red target, with an arrow along the wanted heading when a goal angle is set. */
 function drawGoal(ctx, view, goal) {
   if (!goal) return;
+  const angleDeg = goal.angle_deg;
   const [px, py] = toCanvas(view, goal.x, goal.y);
+  if (angleDeg !== undefined) {
+    const a = (angleDeg * Math.PI) / 180;
+    const [dx, dy] = [Math.cos(a), -Math.sin(a)];
+    const [ex, ey] = [px + 30 * dx, py + 30 * dy];
+    ctx.strokeStyle = COLORS.goal;
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.moveTo(px, py);
+    ctx.lineTo(ex, ey);
+    ctx.moveTo(ex - 8 * dx - 5 * dy, ey - 8 * dy + 5 * dx);
+    ctx.lineTo(ex, ey);
+    ctx.lineTo(ex - 8 * dx + 5 * dy, ey - 8 * dy - 5 * dx);
+    ctx.stroke();
+  }
   ctx.strokeStyle = COLORS.goal;
   ctx.lineWidth = 2;
   ctx.beginPath();

@@ -29,7 +29,7 @@ const ctx = canvas.getContext("2d");
 /** Everything of the page that changes. */
 const state = {
   // The arm file as JSON ({name, base, links: [{length, angle_deg, limits_deg, rate}]}), its
-  // current pose (degrees) and joint positions ([[x, y], …], base first), and the goal ({x, y}).
+  // current pose (degrees) and joint positions ([[x, y], …], base first), and the goal ({x, y}, and angle_deg with a goal angle).
   arm: null,
   pose_deg: [],
   joints: [],
@@ -229,9 +229,10 @@ function motionStats(anim) {
 async function animateTo(x, y) {
   if (!fieldsOk()) return;
   cancelMotion();
-  state.goal = { x, y };
-  const seq = state.jobs.animateSeq;
   const goal = state.goalAngle === undefined ? { x, y } : { x, y, angle_deg: state.goalAngle };
+  // The goal drawn: with its heading, an arrow.
+  state.goal = goal;
+  const seq = state.jobs.animateSeq;
   const base = {
     arm: armForRequest(state.arm),
     start_deg: state.pose_deg.slice(),
