@@ -6,7 +6,7 @@ import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 
 const here = dirname(fileURLToPath(import.meta.url));
-const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
+export const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
 const browserPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 export const artifacts = process.env.E2E_ARTIFACTS ?? join(here, "..", "target", "e2e");
 

@@ -20,6 +20,9 @@ test("paths: a figure-8 and a drawn stroke traced without flips; following never
     });
     await page.goto(url);
     await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+    // The paths below are planned with the seed's ranges: limits on (the page starts without,
+    // as `ikarus solve` does).
+    await page.check("#limits");
     const traced = (what) =>
       page.waitForFunction(
         (what) => {
@@ -45,6 +48,10 @@ test("paths: a figure-8 and a drawn stroke traced without flips; following never
     // The figure-8 button: planned with the seed's limits, played on the timeline, no flips,
     // every sample reached, the tip on the path at the end.
     await page.click("#trace-figure8");
+    // While the tip traces it the chip says so; the summary comes at the end.
+    await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 20000 });
+    assert.equal(await page.evaluate(() => document.body.dataset.status), "moving");
+    assert.equal(await page.textContent("#stats"), "moving…");
     await traced("figure8");
     const eight = tracks.at(-1);
     assert.equal(eight.req.mode, "plan");

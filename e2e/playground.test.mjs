@@ -68,19 +68,23 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
     const miss = Math.hypot(tip[0] - goal.x, tip[1] - goal.y);
     assert.ok(miss <= 1e-5, `the tip ended ${miss} from the goal`);
 
-    // The page starts with the library's robust default: limits on, Levenberg–Marquardt,
-    // clamp and lock, 16 restarts (what `ikarus solve --limits` uses).
+    // The page starts with the CLI's defaults (/api/meta's): limits off, Levenberg–Marquardt,
+    // 16 restarts (what `ikarus solve` uses; defaults.test.mjs compares the angles).
     const start = await page.evaluate(() => ({
       limits: document.getElementById("limits").checked,
       method: document.getElementById("method").value,
       mode: document.getElementById("limit-mode").value,
       restarts: document.getElementById("restarts").value,
     }));
-    assert.deepEqual(start, { limits: true, method: "lm", mode: "lock", restarts: "16" });
+    assert.deepEqual(start, { limits: meta.defaults.limits, method: "lm", mode: "lock", restarts: String(meta.defaults.restarts) });
+    assert.deepEqual(start, { limits: false, method: "lm", mode: "lock", restarts: "16" });
     assert.deepEqual(
       { method: solves[0].options.method, limits: solves[0].options.limits, mode: solves[0].options.limit_mode },
-      { method: "lm", limits: true, mode: "lock" },
+      { method: "lm", limits: false, mode: undefined },
     );
+
+    // With the limits on, the limit mode is the method's choice.
+    await page.check("#limits");
 
     // CCD only clamps: the list switches to clamp and disables the rest, the request says
     // clamp, and a click still plays a motion. Back on LM, the reader's lock comes back.
@@ -94,6 +98,8 @@ test("the playground moves the arm to a clicked goal and shows the reachable are
       enabled: modes.map((m) => m.name).filter((m) => meta.methods.find((x) => x.name === "ccd").limit_modes.includes(m)),
     });
     assert.equal(ccdModes.value, "clamp");
+    // CCD has one way of keeping joints in range: the list offers no choice.
+    assert.equal(await page.isDisabled("#limit-mode"), true);
     const [kx, ky] = await page.evaluate(() => window.ikarus.toClient(1, 4));
     await page.mouse.click(kx, ky);
     await page.waitForFunction(() => document.body.dataset.playback === "playing", null, { timeout: 15000 });

@@ -5,11 +5,9 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import {
-  AREA_RGBA,
   DRAG_PIXELS,
   DURATION,
-  areaPixels,
-  areaRect,
+  areaOutline,
   autoDuration,
   decimalsFor,
   easePosition,
@@ -30,8 +28,10 @@ import {
   toCanvas,
   toWorld,
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
-import { armForRequest, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
-import { framesCsv } from "../crates/ikarus-cli/src/serve/assets/files.js";
+import { armForRequest, clampInto, methodApplies, numberProblem, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
+import { GIF_FPS, framesCsv, gifRequest } from "../crates/ikarus-cli/src/serve/assets/files.js";
+import { forPeople } from "../crates/ikarus-cli/src/serve/assets/api.js";
+import { svgContext } from "../crates/ikarus-cli/src/serve/assets/export.js";
 import {
   STROKE_MAX_SAMPLES,
   flipTips,
@@ -161,28 +161,87 @@ test("ghosts: about twelve over the motion, older ones fainter, none at the curr
   assert.deepEqual(ghostFrames(3, 2).map((g) => g.index), [0, 1]);
 });
 
-test("the reachable area: one pixel per cell, the lowest row at the bottom", () => {
-  const ws = { resolution: 3, cell_size: 2, origin: [-3, -3], grid: ["100", "000", "011"] };
-  const px = areaPixels(ws);
-  assert.equal(px.length, 3 * 3 * 4);
-  const at = (ix, py) => Array.from(px.slice((py * 3 + ix) * 4, (py * 3 + ix) * 4 + 4));
-  assert.deepEqual(at(0, 2), AREA_RGBA); // grid[0][0]: bottom-left
-  assert.deepEqual(at(1, 0), AREA_RGBA); // grid[2][1]: top row
-  assert.deepEqual(at(2, 0), AREA_RGBA);
-  assert.deepEqual(at(0, 0), [0, 0, 0, 0]);
-  assert.deepEqual(at(1, 1), [0, 0, 0, 0]);
-  assert.equal(px.filter((_, i) => i % 4 === 3 && px[i] > 0).length, 3);
-  // Its picture covers [origin, origin + side] in world units, top-left corner first.
-  const v = fitView(SEED, 800, 800);
-  const [x, y, size] = areaRect(v, ws);
-  nearAll([x, y], toCanvas(v, -3, 3));
-  near(size, 6 * v.scale);
+/** A grid of `n` × `n` unit cells centred on the origin, reachable where `inside(x, y)` holds at the cell's centre. */
+function gridOf(n, inside) {
+  const grid = [];
+  for (let j = 0; j < n; j++) {
+    let row = "";
+    for (let i = 0; i < n; i++) row += inside(i + 0.5 - n / 2, j + 0.5 - n / 2) ? "1" : "0";
+    grid.push(row);
+  }
+  return { resolution: n, cell_size: 1, origin: [-n / 2, -n / 2], grid };
+}
+
+/** The area of a closed loop (shoelace), positive counter-clockwise. */
+const loopArea = (loop) => loop.reduce((s, [x0, y0], k) => {
+  const [x1, y1] = loop[(k + 1) % loop.length];
+  return s + (x0 * y1 - x1 * y0) / 2;
+}, 0);
+
+/** The largest turn between two consecutive segments of a closed loop, degrees. */
+function sharpestTurn(loop) {
+  let worst = 0;
+  for (let k = 0; k < loop.length; k++) {
+    const [a, b, c] = [loop[k], loop[(k + 1) % loop.length], loop[(k + 2) % loop.length]];
+    const t = Math.abs(Math.atan2((b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]), (b[0] - a[0]) * (c[0] - b[0]) + (b[1] - a[1]) * (c[1] - b[1])));
+    worst = Math.max(worst, (t * 180) / Math.PI);
+  }
+  return worst;
+}
+
+test("the reachable area's edge: closed loops around it and its holes, smooth, where the cells end", () => {
+  // A ring of radii 5 and 15 on a 40 × 40 grid: two loops, the outer one counter-clockwise
+  // (the inside on its left) and the hole clockwise.
+  const ws = gridOf(40, (x, y) => Math.hypot(x, y) < 15 && Math.hypot(x, y) > 5);
+  const cells = ws.grid.join("").split("").filter((c) => c === "1").length;
+  const loops = areaOutline(ws);
+  assert.equal(loops.length, 2);
+  const [outer, hole] = loops[0].length > loops[1].length ? loops : [loops[1], loops[0]];
+  assert.ok(loopArea(outer) > 0 && loopArea(hole) < 0);
+  for (const [x, y] of outer) assert.ok(Math.abs(Math.hypot(x, y) - 15) < 0.5, `outer edge at r = ${Math.hypot(x, y)}`);
+  for (const [x, y] of hole) assert.ok(Math.abs(Math.hypot(x, y) - 5) < 0.5, `hole's edge at r = ${Math.hypot(x, y)}`);
+  // Filled even-odd, the loops cover the cells' area (within the half cell the edge may move).
+  const area = loopArea(outer) + loopArea(hole);
+  assert.ok(Math.abs(area - cells) / cells < 0.03, `area ${area} of ${cells} cells`);
+  // No staircase: the raw marching-squares edge turns by 45° at every cell corner; the drawn one
+  // by far less.
+  assert.ok(sharpestTurn(areaOutline(ws, 0)[0]) >= 45);
+  assert.ok(sharpestTurn(outer) < 25, `a turn of ${sharpestTurn(outer)}°`);
+  // Cells on the grid's border still close their loop; an empty grid has no edge.
+  const full = areaOutline(gridOf(4, () => true));
+  assert.equal(full.length, 1);
+  for (const [x, y] of full[0]) assert.ok(Math.abs(x) <= 2 && Math.abs(y) <= 2);
+  assert.deepEqual(areaOutline(gridOf(4, () => false)), []);
+  // Rows go up: a cell of the lowest row gives an edge near the bottom.
+  const low = areaOutline({ resolution: 3, cell_size: 2, origin: [-3, -3], grid: ["010", "000", "000"] }, 0)[0];
+  for (const [x, y] of low) assert.ok(y <= -1 + 1e-9 && y >= -3 && Math.abs(x) <= 1, `${x}, ${y}`);
 });
 
-test("links: an empty limit field removes the limits; requests carry the arm file's fields only", () => {
-  assert.equal(withLimit([-45, 45], 0, ""), null);
+test("the reachable area's edge: the very points of the library's Workspace::outline (reach/outline.rs)", () => {
+  // The same grid and the same numbers as outline.rs's test the_same_points_as_the_playground.
+  const ws = { resolution: 3, cell_size: 0.5, origin: [1, -1], grid: ["010", "111", "010"] };
+  const raw = areaOutline(ws, 0);
+  assert.equal(raw.length, 1);
+  assert.deepEqual(raw[0], [
+    [1.5, -0.75], [1.75, -1], [2, -0.75], [2.25, -0.5], [2.5, -0.25], [2.25, 0],
+    [2, 0.25], [1.75, 0.5], [1.5, 0.25], [1.25, 0], [1, -0.25], [1.25, -0.5],
+  ]);
+  const smooth = areaOutline(ws, 2);
+  assert.equal(smooth[0].length, 48);
+  assert.deepEqual(smooth[0].slice(0, 3), [[1.5986328125, -0.716796875], [1.6591796875, -0.736328125], [1.7197265625, -0.74609375]]);
+});
+
+test("links: an empty limit field opens that side and keeps the other; requests carry the arm file's fields only", () => {
+  assert.deepEqual(withLimit([-45, 45], 0, ""), [-180, 45]);
+  assert.deepEqual(withLimit([-45, 45], 1, ""), [-45, 180]);
+  assert.equal(withLimit([-180, 45], 1, ""), null, "both sides open: no limits");
   assert.deepEqual(withLimit([-45, 45], 1, "30"), [-45, 30]);
   assert.deepEqual(withLimit(null, 0, "-10"), [-10, 180]);
+  // A pose moves into a new range.
+  assert.equal(clampInto(5, [10, 45]), 10);
+  assert.equal(clampInto(50, [10, 45]), 45);
+  assert.equal(clampInto(20, [10, 45]), 20);
+  assert.equal(clampInto(200, null), 200);
   const lim = [-1, 1];
   withLimit(lim, 0, "5");
   assert.deepEqual(lim, [-1, 1], "the old limits are not changed in place");
@@ -203,7 +262,7 @@ test("frames as CSV: time, angles, then every joint's x and y", () => {
   };
   assert.equal(
     framesCsv(anim),
-    "time,angle1_deg,angle2_deg,x0,y0,x1,y1,x2,y2\n0,0,90,0,0,1,0,1,1\n0.5,10,80,0,0,0.98,0.17,0.5,1.1\n",
+    "time,theta1_deg,theta2_deg,x0,y0,x1,y1,x2,y2\n0,0,90,0,0,1,0,1,1\n0.5,10,80,0,0,0.98,0.17,0.5,1.1\n",
   );
   assert.equal(framesCsv({ frames: [] }), "time,x0,y0\n");
 });
@@ -405,4 +464,72 @@ test("a /api/track answer becomes frames, flips, a status and a summary", () => 
   near(trackSeconds(answer), 1);
   near(trackSeconds({ samples: new Array(120) }), 4.8);
   assert.deepEqual(trackMotion({ ...answer, samples: answer.samples.slice(0, 1) }).frames.map((f) => f.time), [0]);
+});
+
+test("fields: a bad value is named with its rule; server messages number links from 1", () => {
+  const restarts = { whole: true, min: 0, max: 64 };
+  assert.equal(numberProblem("-3", restarts), "must be a whole number from 0 to 64");
+  assert.equal(numberProblem("2.5", restarts), "must be a whole number from 0 to 64");
+  assert.equal(numberProblem("", restarts), "must be a whole number from 0 to 64");
+  assert.equal(numberProblem("abc", { above: 0 }), "must be a number > 0");
+  assert.equal(numberProblem("0", { above: 0 }), "must be a number > 0");
+  assert.equal(numberProblem("16", restarts), null);
+  assert.equal(numberProblem("1e-6", { above: 0 }), null);
+  assert.equal(
+    forPeople("arm: links[0].angle_deg = 5: outside limits_deg [10, 45]"),
+    "arm: link 1 angle_deg = 5: outside limits_deg [10, 45]",
+  );
+  assert.equal(forPeople("start_deg[2]: not a number"), "joint 3 angle: not a number");
+  assert.equal(forPeople("options.rates[1] = -1: must be > 0"), "options.joint 2 rate = -1: must be > 0");
+});
+
+test("methods: the closed form only for two links, or three with a goal angle", () => {
+  const analytic = { name: "analytic", shapes: [[2, false], [3, true]] };
+  const lm = { name: "lm" };
+  assert.ok(methodApplies(analytic, 2, false));
+  assert.ok(methodApplies(analytic, 3, true));
+  assert.ok(!methodApplies(analytic, 3, false));
+  assert.ok(!methodApplies(analytic, 2, true));
+  assert.ok(!methodApplies(analytic, 7, false));
+  assert.ok(methodApplies(lm, 7, true));
+});
+
+test("the GIF asks for the page's playback duration (less the last frame's delay) at 4 hundredths a frame", () => {
+  assert.equal(100 / GIF_FPS, 4, "a whole number of hundredths per frame");
+  const req = gifRequest({ arm: {}, goal: { x: 1, y: 2 }, frames: 60, ease: { kind: "sine" } }, 1.35);
+  assert.equal(req.frames, undefined);
+  // The last frame is shown for a delay too: the motion takes one delay less than the playback.
+  assert.deepEqual([req.figure, req.format, req.duration, req.fps], ["motion", "gif", 1.35 - 0.04, GIF_FPS]);
+});
+
+test("the SVG download records the canvas calls: paths, arcs, text, alpha and dashes", () => {
+  const ctx = svgContext(100, 50);
+  ctx.fillStyle = "#ffffff";
+  ctx.fillRect(0, 0, 100, 50);
+  ctx.beginPath();
+  ctx.moveTo(10, 10);
+  ctx.lineTo(20, 30);
+  ctx.setLineDash([6, 5]);
+  ctx.strokeStyle = "#5f9e77";
+  ctx.lineWidth = 1.5;
+  ctx.stroke();
+  ctx.setLineDash([]);
+  ctx.beginPath();
+  ctx.arc(50, 25, 10, 0, 2 * Math.PI);
+  ctx.globalAlpha = 0.5;
+  ctx.fillStyle = "#d62728";
+  ctx.fill("evenodd");
+  ctx.globalAlpha = 1;
+  ctx.beginPath();
+  ctx.arc(0, 0, 10, 0, Math.PI / 2);
+  ctx.stroke();
+  ctx.textAlign = "center";
+  ctx.fillText("a<b", 5, 5);
+  const svg = ctx.svg();
+  assert.match(svg, /^<svg xmlns="http:\/\/www.w3.org\/2000\/svg" width="100" height="50"/);
+  assert.match(svg, /<rect x="0" y="0" width="100" height="50" fill="#ffffff"\/>/);
+  assert.match(svg, /<path d="M10 10L20 30" fill="none" stroke="#5f9e77" stroke-width="1.5"[^>]*stroke-dasharray="6 5"\/>/);
+  assert.match(svg, /<path d="M60 25A10 10 0 1 1 40 25A10 10 0 1 1 60 25" fill="#d62728" fill-rule="evenodd" opacity="0.5"\/>/);
+  assert.match(svg, /<path d="M10 0A10 10 0 0 1 0 10" fill="none"/);
+  assert.match(svg, /text-anchor="middle"[^>]*>a&lt;b<\/text>/);
 });

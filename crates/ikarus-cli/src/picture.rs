@@ -112,6 +112,8 @@ pub fn draw(
                 goal: *goal,
                 workspace: *workspace,
                 caption: caption.clone(),
+                // A reachable area sampled with the limits shows the ranges that shape it.
+                ranges: workspace.is_some_and(|w| w.limits()),
                 ..ikarus_render::ArmFigure::new(chain, pose)
             };
             ikarus_render::arm_svg(&figure, width, height)

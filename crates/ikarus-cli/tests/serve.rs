@@ -114,6 +114,9 @@ fn health_and_the_playground_page() {
         ("/api.js", "text/javascript", "/api/solve"),
         ("/controls.js", "text/javascript", "export function readControls"),
         ("/draw.js", "text/javascript", "export function drawScene"),
+        ("/armfile.js", "text/javascript", "export async function parseArm"),
+        ("/export.js", "text/javascript", "export function svgContext"),
+        ("/links.js", "text/javascript", "export function wireArm"),
         ("/files.js", "text/javascript", "export function framesCsv"),
         ("/input.js", "text/javascript", "export function wireInput"),
         ("/paths.js", "text/javascript", "export function resampleStroke"),
@@ -142,7 +145,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 10, "{modules:?}");
+    assert_eq!(modules.len(), 13, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
@@ -617,4 +620,32 @@ fn track_endpoint_and_its_bad_requests() {
         assert!(e.contains(want), "{body}: {e}");
     }
     s.assert_healthy();
+}
+
+#[test]
+fn arm_files_read_into_the_page_and_written_back_in_the_clis_format() {
+    let s = start(&[]);
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/arms/seven.toml")).unwrap();
+    let a = s.post_raw("/api/arm/parse", "application/toml", text.as_bytes());
+    assert_eq!(a.status, 200);
+    let arm = a.json()["arm"].clone();
+    assert_eq!(arm["name"], "seven");
+    assert_eq!(arm["links"].as_array().unwrap().len(), 7);
+    assert_eq!(arm["links"][0], json!({"length": 2.0, "angle_deg": 30.0, "limits_deg": [-90.0, 90.0]}));
+    // Written back, the CLI reads the same arm.
+    let t = s.post("/api/arm/toml", &json!({"arm": arm}));
+    assert_eq!(t.status, 200);
+    assert!(t.content_type.starts_with("application/toml"), "{}", t.content_type);
+    let again = s.post_raw("/api/arm/parse", "application/toml", &t.body);
+    assert_eq!(again.json()["arm"], arm);
+    // A bad file is an answer, not a failed request: the CLI's one-line error.
+    let bad = s.post_raw("/api/arm/parse", "application/toml", b"[[links]]\nlength = 0.0\n");
+    assert_eq!(bad.status, 200);
+    let problem = bad.json()["problem"].as_str().unwrap().to_owned();
+    assert!(problem.starts_with("arm file: links[0].length"), "{problem}");
+    // A bad arm to write is a 422 naming the field.
+    let e = s
+        .post("/api/arm/toml", &json!({"arm": {"name": "x", "base": [0, 0], "links": [{"length": 1, "angle_deg": 50, "limits_deg": [10, 45]}]}}))
+        .error(422);
+    assert!(e.contains("links[0]"), "{e}");
 }

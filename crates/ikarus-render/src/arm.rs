@@ -50,6 +50,10 @@ pub struct ArmFigure<'a> {
     pub caption: Option<String>,
     /// A tracked path, drawn under the arm.
     pub path: Option<&'a PathLayer>,
+    /// Whether to draw each limited joint's range as a wedge at the joint (from the previous
+    /// link's direction turned by the minimum to the maximum), as the playground does when the
+    /// limits are on.
+    pub ranges: bool,
 }
 
 /// At most this many ghosts are taken from an animation by [`ArmFigure::of_animation`].
@@ -69,6 +73,7 @@ impl<'a> ArmFigure<'a> {
             show_reach: true,
             caption: None,
             path: None,
+            ranges: false,
         }
     }
 
@@ -138,6 +143,9 @@ pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, Re
     scene.background(&mut svg);
 
     let pose = joint_positions(figure.chain, figure.pose);
+    if figure.ranges {
+        scene.ranges(&mut svg, &pose, figure.pose);
+    }
     let ghosts: Vec<Vec<Point2<f64>>> = figure.ghosts.iter().map(|g| joint_positions(figure.chain, g)).collect();
     let n = ghosts.len();
     let faded: Vec<(&[Point2<f64>], f64)> =
@@ -171,4 +179,52 @@ pub(crate) fn ghost_opacity(i: usize, n: usize) -> f64 {
         return 0.4;
     }
     0.10 + 0.35 * (i as f64 / (n - 1) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ikarus::reach::{WorkspaceOptions, sample};
+    use ikarus::{JointLimits, Link};
+
+    fn limited() -> Chain {
+        let lim = |d: f64| JointLimits::new(-d.to_radians(), d.to_radians()).unwrap();
+        Chain::new(
+            [0.0, 0.0],
+            &[
+                Link::new(3.0, 0.0).with_limits(lim(45.0)),
+                Link::new(2.0, 0.0),
+                Link::new(1.0, 0.0).with_limits(lim(170.0)),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn ranges_are_wedges_at_the_limited_joints_only_when_asked() {
+        let chain = limited();
+        let pose = [0.0, 0.5, 0.0];
+        let plain = arm_svg(&ArmFigure::new(&chain, &pose), 400, 400).unwrap();
+        assert!(!plain.contains("joint ranges"));
+        let with = arm_svg(&ArmFigure { ranges: true, ..ArmFigure::new(&chain, &pose) }, 400, 400).unwrap();
+        let wedges = with.split("joint ranges").nth(1).unwrap().split("/>").next().unwrap();
+        // Two limited joints, two wedges: ±45° a small arc, ±170° a large one.
+        assert_eq!(wedges.matches('A').count(), 2, "{wedges}");
+        assert!(wedges.contains(" 0 0 0 ") && wedges.contains(" 0 1 0 "), "{wedges}");
+    }
+
+    #[test]
+    fn the_reachable_area_is_one_smooth_even_odd_path() {
+        let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.0), Link::new(1.0, 0.0)]).unwrap();
+        let ws =
+            sample(&chain, &WorkspaceOptions { resolution: 64, limits: false, ..WorkspaceOptions::default() }).unwrap();
+        let svg =
+            arm_svg(&ArmFigure { workspace: Some(&ws), ..ArmFigure::new(&chain, &[0.0, 0.0]) }, 400, 400).unwrap();
+        let area = svg.split("reachable workspace").nth(1).unwrap().split("/>").next().unwrap();
+        assert!(area.contains("fill-rule=\"evenodd\""), "{area}");
+        assert!(area.contains(crate::style::WORKSPACE));
+        // The annulus: an outer edge and a hole, two subpaths; no cell rectangles.
+        assert_eq!(area.matches('M').count(), 2);
+        assert_eq!(area.matches('Z').count(), 2);
+    }
 }

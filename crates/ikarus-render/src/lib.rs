@@ -34,4 +34,5 @@ pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use style::{COLOURS, Colours};
 pub use view::{PixelRect, VIEW_PADDING, View};

@@ -98,55 +98,72 @@ impl Scene<'_> {
         svg.end_group();
     }
 
-    /// Occupied cells as one path: runs of a row merged, equal runs of consecutive rows merged
-    /// again, so an annulus of 200² cells takes a few hundred rectangles. One path also means no
-    /// hairline seams where antialiased neighbours meet.
+    /// The reachable area as one path: the smooth edge of the occupied cells
+    /// ([`Workspace::outline`], the playground's edge too), filled with the even-odd rule so that
+    /// holes stay empty, and traced thinly in the reach colour.
     fn workspace_cells(&self, svg: &mut Svg, ws: &Workspace) {
-        let n = ws.resolution();
-        let cell = ws.cell_size();
-        let origin = ws.origin();
-        // Open rectangles: (ix0, ix1 exclusive, iy0), keyed by run; extended while the next row
-        // has the same run.
-        let mut open: Vec<(u32, u32, u32)> = Vec::new();
         let mut d = PathData::new();
-        let emit = |(x0, x1, y0): (u32, u32, u32), y1: u32, d: &mut PathData| {
-            let a = self.px(Point2::new(origin.x + f64::from(x0) * cell, origin.y + f64::from(y1) * cell));
-            let b = self.px(Point2::new(origin.x + f64::from(x1) * cell, origin.y + f64::from(y0) * cell));
-            d.rect(a.0, a.1, b.0 - a.0, b.1 - a.1);
-        };
-        for iy in 0..=n {
-            let mut runs: Vec<(u32, u32)> = Vec::new();
-            if iy < n {
-                let mut ix = 0;
-                while ix < n {
-                    if ws.is_occupied(ix, iy) {
-                        let start = ix;
-                        while ix < n && ws.is_occupied(ix, iy) {
-                            ix += 1;
-                        }
-                        runs.push((start, ix));
-                    } else {
-                        ix += 1;
-                    }
-                }
-            }
-            let mut next_open = Vec::with_capacity(runs.len());
-            for rect in open.drain(..) {
-                if runs.contains(&(rect.0, rect.1)) {
-                    next_open.push(rect);
+        for ring in ws.outline(ikarus::reach::OUTLINE_SMOOTHING) {
+            for (k, p) in ring.iter().enumerate() {
+                let (x, y) = self.px(*p);
+                if k == 0 {
+                    d.move_to(x, y);
                 } else {
-                    emit(rect, iy, &mut d);
+                    d.line_to(x, y);
                 }
             }
-            for (x0, x1) in runs {
-                if !next_open.iter().any(|r| r.0 == x0 && r.1 == x1) {
-                    next_open.push((x0, x1, iy));
-                }
-            }
-            open = next_open;
+            d.close();
+        }
+        if d.is_empty() {
+            return;
         }
         svg.comment("reachable workspace");
-        svg.path(&d, &format!("fill=\"{}\"", style::WORKSPACE));
+        svg.path(
+            &d,
+            &format!(
+                "fill=\"{}\" fill-rule=\"evenodd\" stroke=\"{}\" stroke-opacity=\"0.6\" stroke-width=\"{}\"",
+                style::WORKSPACE,
+                style::REACH,
+                num(0.8 * self.u())
+            ),
+        );
+    }
+
+    /// Each limited joint's range as a wedge at the joint: from the previous link's direction
+    /// (the sum of the angles before it in `pose`) turned by the minimum to the maximum. `joints`
+    /// are the pose's joint positions, base first.
+    pub(crate) fn ranges(&self, svg: &mut Svg, joints: &[Point2<f64>], pose: &[f64]) {
+        let u = self.u();
+        let scale = self.view.scale();
+        let lengths = self.chain.lengths();
+        let mut heading = 0.0;
+        let mut d = PathData::new();
+        for (i, limits) in self.chain.limits().iter().enumerate() {
+            if let (Some(l), Some(&joint)) = (limits, joints.get(i)) {
+                let r = (lengths.get(i).copied().unwrap_or(0.0) * scale * 0.4).clamp(14.0 * u, 46.0 * u);
+                let (cx, cy) = self.px(joint);
+                let (lo, hi) = (heading + l.min(), heading + l.max());
+                // World angles turn counter-clockwise; pixels have y down.
+                let at = |a: f64| (cx + r * a.cos(), cy - r * a.sin());
+                let ((x0, y0), (x1, y1)) = (at(lo), at(hi));
+                d.move_to(cx, cy).line_to(x0, y0);
+                d.arc_to(r, hi - lo > std::f64::consts::PI, false, x1, y1).close();
+            }
+            heading += pose.get(i).copied().unwrap_or(0.0);
+        }
+        if d.is_empty() {
+            return;
+        }
+        svg.comment("joint ranges");
+        svg.path(
+            &d,
+            &format!(
+                "fill=\"{}\" fill-opacity=\"0.1\" stroke=\"{}\" stroke-opacity=\"0.45\" stroke-width=\"{}\"",
+                style::INK,
+                style::INK,
+                num(u)
+            ),
+        );
     }
 
     fn reach_circles(&self, svg: &mut Svg) {

@@ -16,8 +16,8 @@ pub(crate) const AXIS: &str = "#c3c9d1";
 pub(crate) const MUTED_TEXT: &str = "#6b7280";
 /// Captions and titles.
 pub(crate) const TEXT: &str = "#374151";
-/// Reachable cells.
-pub(crate) const WORKSPACE: &str = "#e2e8f0";
+/// Reachable cells: the playground's green at a fifth of its strength.
+pub(crate) const WORKSPACE: &str = "#dceae1";
 /// Reach circles.
 pub(crate) const REACH: &str = "#5f9e77";
 /// The arm, its ghosts and its base.
@@ -30,6 +30,46 @@ pub(crate) const GOAL: &str = "#d62728";
 pub(crate) const JOINT_HUES: [&str; 5] = ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"];
 /// Path of the tip.
 pub(crate) const TIP_HUE: &str = "#ec7f2d";
+
+/// The palette's colours by role, for callers that draw with it too (the playground page gets
+/// them from `GET /api/meta`, so its screen, its downloads and the CLI's pictures agree).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Colours {
+    /// Inside the plot area.
+    pub plot: &'static str,
+    /// Grid lines.
+    pub grid: &'static str,
+    /// The x = 0 and y = 0 lines.
+    pub axis: &'static str,
+    /// Tick labels.
+    pub label: &'static str,
+    /// The arm, its ghosts and its base.
+    pub ink: &'static str,
+    /// Reach circles.
+    pub reach: &'static str,
+    /// Reachable cells.
+    pub workspace: &'static str,
+    /// The goal.
+    pub goal: &'static str,
+    /// The tip's path.
+    pub path: &'static str,
+    /// The paths of the other joints, cycled from the first joint after the base.
+    pub joints: [&'static str; 5],
+}
+
+/// The palette.
+pub const COLOURS: Colours = Colours {
+    plot: PLOT,
+    grid: GRID,
+    axis: AXIS,
+    label: MUTED_TEXT,
+    ink: INK,
+    reach: REACH,
+    workspace: WORKSPACE,
+    goal: GOAL,
+    path: TIP_HUE,
+    joints: JOINT_HUES,
+};
 
 /// The colour of the path of joint `k` (1-based; `n` is the tip).
 pub(crate) fn joint_hue(k: usize, n: usize) -> &'static str {

@@ -84,9 +84,22 @@ impl PathData {
         self.cmd('L', x, y)
     }
 
-    /// A closed axis-aligned rectangle as one subpath.
-    pub(crate) fn rect(&mut self, x: f64, y: f64, w: f64, h: f64) -> &mut Self {
-        self.move_to(x, y).line_to(x + w, y).line_to(x + w, y + h).line_to(x, y + h).close()
+    /// A circular arc of radius `r` from the current point to (x, y): the large one or the small
+    /// one, clockwise on screen (`sweep`) or not.
+    pub(crate) fn arc_to(&mut self, r: f64, large: bool, sweep: bool, x: f64, y: f64) -> &mut Self {
+        if !self.d.is_empty() {
+            self.d.push(' ');
+        }
+        self.d.push('A');
+        push_num(&mut self.d, r);
+        self.d.push(' ');
+        push_num(&mut self.d, r);
+        self.d.push_str(if large { " 0 1 " } else { " 0 0 " });
+        self.d.push_str(if sweep { "1 " } else { "0 " });
+        push_num(&mut self.d, x);
+        self.d.push(' ');
+        push_num(&mut self.d, y);
+        self
     }
 
     pub(crate) fn close(&mut self) -> &mut Self {
@@ -231,7 +244,7 @@ mod tests {
     fn path_data() {
         let mut d = PathData::new();
         d.move_to(0.0, 0.0).line_to(1.256, 2.0);
-        d.rect(1.0, 1.0, 2.0, 3.0);
-        assert_eq!(d.as_str(), "M0 0 L1.26 2 M1 1 L3 1 L3 4 L1 4Z");
+        d.arc_to(5.0, true, false, 3.0, 4.0).close();
+        assert_eq!(d.as_str(), "M0 0 L1.26 2 A5 5 0 1 0 3 4Z");
     }
 }

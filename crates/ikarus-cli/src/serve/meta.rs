@@ -28,6 +28,23 @@ pub struct MethodChoice {
     pub choice: Choice,
     pub limit_modes: Vec<&'static str>,
     pub default_limit_mode: &'static str,
+    /// The arm shapes the method solves, when it does not solve every arm: `[links, orientation
+    /// goal]` pairs (the closed form: two links with a position goal, three with an orientation
+    /// goal). Absent: any arm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shapes: Option<Vec<(usize, bool)>>,
+}
+
+/// The settings a solve uses when a request (or `ikarus solve`) names none: the page starts
+/// with these, so that its first click gives what the CLI gives for the same goal.
+#[derive(Debug, Serialize)]
+pub struct Defaults {
+    /// `ikarus solve` enforces no joint limits unless `--limits` is given.
+    pub limits: bool,
+    pub restarts: u32,
+    pub lambda: f64,
+    pub tolerance: f64,
+    pub max_iterations: u32,
 }
 
 /// The answer of `GET /api/meta`.
@@ -43,6 +60,37 @@ pub struct Meta {
     pub default_k2: f64,
     pub interpolations: Vec<Choice>,
     pub default_interpolation: &'static str,
+    pub defaults: Defaults,
+    /// The colours of the pictures (ikarus-render's palette), which the page draws with too.
+    pub palette: Palette,
+}
+
+/// [`ikarus_render::Colours`] by name, as the page's `COLORS` names them.
+#[derive(Debug, Serialize)]
+pub struct Palette {
+    pub plot: &'static str,
+    pub grid: &'static str,
+    pub axis: &'static str,
+    pub label: &'static str,
+    pub ink: &'static str,
+    pub reach: &'static str,
+    pub workspace: &'static str,
+    pub goal: &'static str,
+    pub path: &'static str,
+    pub joints: [&'static str; 5],
+}
+
+impl Palette {
+    fn of(c: ikarus_render::Colours) -> Self {
+        let ikarus_render::Colours { plot, grid, axis, label, ink, reach, workspace, goal, path, joints } = c;
+        Self { plot, grid, axis, label, ink, reach, workspace, goal, path, joints }
+    }
+}
+
+/// The arm shapes `method` applies to, when not every arm (see [`MethodChoice::shapes`]).
+fn shapes(method: Method) -> Option<Vec<(usize, bool)>> {
+    // `Method` is non-exhaustive: a new closed form must be added here (the test lists them).
+    (method == Method::Analytic).then(|| vec![(2, false), (3, true)])
 }
 
 /// The names and defaults, built from the library's tables.
@@ -56,6 +104,7 @@ pub fn meta() -> Meta {
                 choice: Choice::of(m),
                 limit_modes: LimitMode::ALL.iter().filter(|&&l| m.supports(l)).map(|l| l.name()).collect(),
                 default_limit_mode: m.default_limit_mode().name(),
+                shapes: shapes(m),
             })
             .collect(),
         default_method: d.method.name(),
@@ -67,6 +116,14 @@ pub fn meta() -> Meta {
         default_k2: ikarus::ease::DEFAULT_K2,
         interpolations: Interpolation::ALL.iter().map(|&i| Choice::of(i)).collect(),
         default_interpolation: Interpolation::default().name(),
+        defaults: Defaults {
+            limits: !matches!(crate::settings::SolverSettings::default().limit_mode(d.method), Ok(LimitMode::Ignore)),
+            restarts: d.restarts.map_or(0, |r| r.attempts),
+            lambda: d.lambda,
+            tolerance: d.tolerance,
+            max_iterations: d.max_iterations,
+        },
+        palette: Palette::of(ikarus_render::COLOURS),
     }
 }
 
@@ -98,6 +155,19 @@ mod tests {
             assert!(!listed["label"].as_str().unwrap().is_empty());
         }
         assert_eq!((m["default_method"].as_str(), m["default_limit_mode"].as_str()), (Some("lm"), Some("lock")));
+        // The page starts as `ikarus solve` does: limits off, 16 restarts; only the closed form
+        // is limited to some arms.
+        assert_eq!(m["defaults"]["limits"], false);
+        assert_eq!(m["defaults"]["restarts"], 16);
+        let shaped: Vec<&str> = m["methods"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c.get("shapes").is_some())
+            .map(|c| c["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(shaped, ["analytic"]);
+        assert_eq!(m["methods"][7]["shapes"], serde_json::json!([[2, false], [3, true]]));
         assert_eq!((m["default_ease"].as_str(), m["default_interpolation"].as_str()), (Some("sine"), Some("spline")));
     }
 }

@@ -4,6 +4,7 @@
 //! server keeps serving. Caps (flags) bound every loop a request can start.
 
 mod api;
+mod arm_files;
 mod errors;
 mod meta;
 mod requests;
@@ -31,10 +32,13 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("app.css", CSS, include_str!("assets/app.css")),
     ("main.js", JS, include_str!("assets/main.js")),
     ("api.js", JS, include_str!("assets/api.js")),
+    ("armfile.js", JS, include_str!("assets/armfile.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
+    ("export.js", JS, include_str!("assets/export.js")),
     ("files.js", JS, include_str!("assets/files.js")),
     ("input.js", JS, include_str!("assets/input.js")),
+    ("links.js", JS, include_str!("assets/links.js")),
     ("paths.js", JS, include_str!("assets/paths.js")),
     ("timeline.js", JS, include_str!("assets/timeline.js")),
     ("track.js", JS, include_str!("assets/track.js")),
@@ -163,6 +167,8 @@ pub fn router(limits: Limits) -> Router {
         .route("/api/health", get(api::health))
         .route("/api/meta", get(meta::handler))
         .route("/api/arm/default", get(api::default_arm))
+        .route("/api/arm/parse", post(arm_files::parse_handler))
+        .route("/api/arm/toml", post(arm_files::toml_handler))
         .route("/api/solve", post(api::solve))
         .route("/api/animate", post(api::animate))
         .route("/api/track", post(api::track))

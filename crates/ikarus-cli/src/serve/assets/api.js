@@ -21,7 +21,19 @@ async function failure(path, res) {
   } catch (_) {
     /* not JSON: keep the status line */
   }
-  return new Notice(message);
+  return new Notice(forPeople(message));
+}
+
+/**
+ * A server message with its indices numbered from 1, as the page's tables and labels number
+ * links and joints: `links[0].angle_deg` → `link 1 angle_deg`, `start_deg[2]` → `joint 3 start`.
+ */
+export function forPeople(message) {
+  return message
+    .replace(/\blinks\[(\d+)\]\.?/g, (_, i) => `link ${Number(i) + 1} `)
+    .replace(/\b(start_deg|pose_deg|rates)\[(\d+)\]/g, (_, f, i) => `joint ${Number(i) + 1} ${f === "rates" ? "rate" : "angle"}`)
+    .replace(/ {2,}/g, " ")
+    .replace(/ :/g, ":");
 }
 
 /** GETs `path` and resolves with its JSON; rejects with a Notice on an error answer. */

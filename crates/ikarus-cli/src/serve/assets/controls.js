@@ -17,13 +17,42 @@ function fillSelect(select, choices, selected) {
   }
 }
 
-/** Fills the method, limit-mode and ease lists and the k1/k2 fields from a /api/meta answer. */
+/**
+ * Fills the method, limit-mode and ease lists, the k1/k2 fields and the solver's fields from a
+ * /api/meta answer: the page starts with the settings `ikarus solve` uses (limits off).
+ */
 export function fillSelects(meta) {
   fillSelect($("method"), meta.methods, meta.default_method);
   fillSelect($("limit-mode"), offeredLimitModes(meta), meta.default_limit_mode);
   fillSelect($("ease"), meta.eases, meta.default_ease);
   $("k1").value = String(meta.default_k1);
   $("k2").value = String(meta.default_k2);
+  const d = meta.defaults;
+  $("limits").checked = d.limits;
+  $("restarts").value = String(d.restarts);
+  $("lambda").value = String(d.lambda);
+  $("tolerance").value = String(d.tolerance);
+  $("max-iterations").value = String(d.max_iterations);
+}
+
+/** Whether `method` (a /api/meta method) solves an arm of `links` links, with or without an orientation goal. */
+export const methodApplies = (method, links, orientation) =>
+  !method.shapes || method.shapes.some(([n, o]) => n === links && o === orientation);
+
+/**
+ * Offers only the methods that solve this arm (the closed form: two links, or three with a goal
+ * angle); a method that no longer applies gives way to the default. Returns the method shown.
+ */
+export function syncMethods(meta, links, orientation) {
+  const select = $("method");
+  for (const option of select.options) {
+    const m = meta.methods.find((x) => x.name === option.value);
+    const ok = methodApplies(m, links, orientation);
+    option.hidden = !ok;
+    option.disabled = !ok;
+  }
+  if (select.selectedOptions[0] && select.selectedOptions[0].disabled) select.value = meta.default_method;
+  return select.value;
 }
 
 /**
@@ -36,6 +65,8 @@ export function syncLimitModes(meta, preferred) {
   const select = $("limit-mode");
   if (!method) return select.value;
   for (const option of select.options) option.disabled = !method.limit_modes.includes(option.value);
+  // A method with one way of handling limits (CCD and FABRIK clamp) offers no choice.
+  select.dataset.only = String(method.limit_modes.filter((m) => m !== "ignore").length <= 1);
   if (method.limit_modes.includes(preferred)) select.value = preferred;
   else if (!method.limit_modes.includes(select.value)) select.value = method.default_limit_mode;
   return select.value;
@@ -45,10 +76,93 @@ export function syncLimitModes(meta, preferred) {
 export function syncEnabled() {
   const method = $("method").value;
   $("lambda").disabled = method !== "dls" && method !== "lm";
-  $("limit-mode").disabled = !$("limits").checked;
+  const modes = $("limit-mode");
+  modes.disabled = !$("limits").checked || modes.dataset.only === "true";
+  modes.title = modes.dataset.only === "true" ? "This method has one way of keeping joints in range" : "";
+  $("goal-angle").disabled = !$("use-goal-angle").checked;
   const parent = $("ease").value === "parent";
   $("k1").disabled = !parent;
   $("k2").disabled = !parent;
+}
+
+// ---- Checking the fields ---------------------------------------------------------------------
+//
+// The page checks every field before it asks the server, so that a bad value is named by its
+// control ("Restarts: must be a whole number from 0 to 64") and no request is rejected. A field
+// with a problem is marked (aria-invalid) until it is fixed; `firstProblem()` is the one shown.
+
+/** Problems by field: element -> message. */
+const problems = new Map();
+
+/** Marks `el` as holding a bad value, with the message for people. */
+export function setProblem(el, message) {
+  problems.set(el, message);
+  el.setAttribute("aria-invalid", "true");
+  el.title = message;
+}
+
+/** The value of `el` is fine again. */
+export function clearProblem(el) {
+  if (!problems.delete(el)) return;
+  el.removeAttribute("aria-invalid");
+  el.title = "";
+}
+
+/** The first field with a bad value, in the page's order: {el, message}, or null. */
+export function firstProblem() {
+  for (const [el, message] of problems) {
+    if (!el.isConnected) problems.delete(el);
+  }
+  const els = [...problems.keys()].sort((a, b) => (a.compareDocumentPosition(b) & Node.DOCUMENT_POSITION_FOLLOWING ? -1 : 1));
+  return els.length ? { el: els[0], message: problems.get(els[0]) } : null;
+}
+
+/**
+ * The rule of a number: `whole` (an integer), `min`/`max` (inclusive), `above` (exclusive).
+ * Returns the reason a value breaks it, or null.
+ */
+export function numberProblem(text, rule) {
+  const v = Number(text);
+  const range = () => {
+    const lo = rule.above !== undefined ? `> ${rule.above}` : rule.min !== undefined ? `≥ ${rule.min}` : "";
+    if (rule.max !== undefined && rule.min !== undefined) return `from ${rule.min} to ${rule.max}`;
+    return [lo, rule.max !== undefined ? `≤ ${rule.max}` : ""].filter(Boolean).join(" and ");
+  };
+  const what = `must be a ${rule.whole ? "whole number" : "number"}${range() ? " " + range() : ""}`;
+  if (text === "" || !Number.isFinite(v)) return what;
+  if (rule.whole && !Number.isInteger(v)) return what;
+  if (rule.min !== undefined && v < rule.min) return what;
+  if (rule.max !== undefined && v > rule.max) return what;
+  if (rule.above !== undefined && !(v > rule.above)) return what;
+  return null;
+}
+
+/** The solver's and motion's number fields: id, request key, label, rule, whether it may be empty. */
+const NUMBER_FIELDS = [
+  ["restarts", "restarts", "Restarts", { whole: true, min: 0, max: 64 }],
+  ["lambda", "lambda", "λ (damping)", { min: 0 }],
+  ["tolerance", "tolerance", "Tolerance", { above: 0 }],
+  ["max-iterations", "max_iterations", "Max iterations", { whole: true, min: 1, max: 100000 }],
+  ["record-every", "record_every", "Replay every", { whole: true, min: 1 }, true],
+  ["goal-angle", null, "Goal angle", { min: -1e6, max: 1e6 }],
+  ["k1", null, "k1", { min: 0, max: 1 }],
+  ["k2", null, "k2", { min: 0, max: 1 }],
+  ["frames", null, "Frames", { whole: true, min: 2, max: 2000 }],
+  ["max-step", null, "Step bound", { above: 0, max: 180 }, true],
+];
+
+/** Checks the form's number fields (enabled ones only); marks and unmarks them. */
+function checkFields() {
+  for (const [id, , label, rule, optional] of NUMBER_FIELDS) {
+    const el = $(id);
+    const text = el.value.trim();
+    const why = el.disabled || (optional && text === "") ? null : numberProblem(text, rule);
+    if (why) setProblem(el, `${label}: ${why}`);
+    else clearProblem(el);
+  }
+  if (!$("k1").disabled && problems.get($("k1")) === undefined && problems.get($("k2")) === undefined && Number($("k1").value) > Number($("k2").value)) {
+    setProblem($("k1"), "k1: must not exceed k2");
+  }
 }
 
 /** A number field's value, or undefined when it is empty. */
@@ -57,14 +171,6 @@ function num(id) {
   return v === "" ? undefined : Number(v);
 }
 
-const NUMBER_OPTIONS = [
-  ["restarts", "restarts"],
-  ["lambda", "lambda"],
-  ["tolerance", "tolerance"],
-  ["max_iterations", "max-iterations"],
-  ["record_every", "record-every"],
-];
-
 /**
  * The settings of the next requests, read from the fields: `options` (a request's solver
  * options; an empty field is left to the server's default), `ease`, `frames` and `maxStepDeg`
@@ -72,11 +178,13 @@ const NUMBER_OPTIONS = [
  * the links.
  */
 export function readControls(links) {
+  checkFields();
   const options = { method: $("method").value, limits: $("limits").checked };
   if (options.limits) options.limit_mode = $("limit-mode").value;
-  for (const [key, id] of NUMBER_OPTIONS) {
+  for (const [id, key] of NUMBER_FIELDS) {
     const v = num(id);
-    if (v !== undefined) options[key] = v;
+    // "Replay every" shapes the solver's replay only (timeline), not the clicked motion.
+    if (key && key !== "record_every" && v !== undefined) options[key] = v;
   }
   options.rates = links.map((l) => (l.rate === undefined ? 1 : l.rate));
   const ease = { kind: $("ease").value };
@@ -88,7 +196,16 @@ export function readControls(links) {
   }
   const frames = num("frames");
   const maxStep = num("max-step");
-  return { options, ease, frames: frames === undefined ? 60 : frames, maxStepDeg: maxStep === undefined ? 10 : maxStep };
+  const recordEvery = num("record-every");
+  const goalAngle = $("use-goal-angle").checked ? num("goal-angle") : undefined;
+  return {
+    options,
+    ease,
+    frames: frames === undefined ? 60 : frames,
+    maxStepDeg: maxStep === undefined ? 10 : maxStep,
+    recordEvery: recordEvery === undefined ? 1 : recordEvery,
+    goalAngle,
+  };
 }
 
 /** The arm as a request sends it: the arm file's fields only (no rates). */
@@ -105,15 +222,19 @@ export function armForRequest(arm) {
 }
 
 /**
- * The limits after setting bound `k` (0 min, 1 max) to the field's text `v`: an empty field
- * removes the limits; a link without limits starts from [-180, 180].
+ * The limits after setting bound `k` (0 min, 1 max) to the field's text `v`. An empty field is
+ * the open end of that side (−180 for the min, 180 for the max) and the other bound stays; both
+ * ends open (−180 and 180) is no limits at all (null). A link without limits starts from
+ * [-180, 180].
  */
 export function withLimit(limits, k, v) {
-  if (v === "") return null;
   const cur = limits ? limits.slice() : [-180, 180];
-  cur[k] = Number(v);
-  return cur;
+  cur[k] = v === "" ? (k === 0 ? -180 : 180) : Number(v);
+  return cur[0] === -180 && cur[1] === 180 ? null : cur;
 }
+
+/** `angle` moved into `limits` ([min, max] degrees, or null for none). */
+export const clampInto = (angle, limits) => (limits ? Math.min(Math.max(angle, limits[0]), limits[1]) : angle);
 
 function cellInput(value, label, onChange, step = "any") {
   const input = document.createElement("input");
@@ -121,7 +242,7 @@ function cellInput(value, label, onChange, step = "any") {
   input.step = step;
   input.value = value === undefined || value === null ? "" : String(value);
   input.setAttribute("aria-label", label);
-  input.addEventListener("change", () => onChange(input.value.trim()));
+  input.addEventListener("change", () => onChange(input.value.trim(), input));
   const td = document.createElement("td");
   td.append(input);
   return td;
@@ -129,7 +250,8 @@ function cellInput(value, label, onChange, step = "any") {
 
 /**
  * Rebuilds the links table for `links`. Edits are reported, not applied: `edit.length(i, text)`,
- * `edit.limit(i, k, text)`, `edit.rate(i, text)` and `edit.remove(i)`.
+ * `edit.start(i, text)`, `edit.limit(i, k, text)`, `edit.rate(i, text)` and `edit.remove(i)`;
+ * each gets the cell too (`edit.length(i, text, input)`) to mark a bad value.
  */
 export function renderLinks(links, edit) {
   const body = $("links-body");
@@ -141,10 +263,11 @@ export function renderLinks(links, edit) {
     tr.append(n);
     const lim = link.limits_deg || [null, null];
     tr.append(
-      cellInput(link.length, `Link ${i + 1} length`, (v) => edit.length(i, v), "0.1"),
-      cellInput(lim[0], `Link ${i + 1} minimum angle, degrees`, (v) => edit.limit(i, 0, v), "1"),
-      cellInput(lim[1], `Link ${i + 1} maximum angle, degrees`, (v) => edit.limit(i, 1, v), "1"),
-      cellInput(link.rate === undefined ? 1 : link.rate, `Joint ${i + 1} rate`, (v) => edit.rate(i, v), "0.1"),
+      cellInput(link.length, `Link ${i + 1} length`, (v, el) => edit.length(i, v, el), "0.1"),
+      cellInput(link.angle_deg, `Link ${i + 1} start angle, degrees`, (v, el) => edit.start(i, v, el), "1"),
+      cellInput(lim[0], `Link ${i + 1} minimum angle, degrees`, (v, el) => edit.limit(i, 0, v, el), "1"),
+      cellInput(lim[1], `Link ${i + 1} maximum angle, degrees`, (v, el) => edit.limit(i, 1, v, el), "1"),
+      cellInput(link.rate === undefined ? 1 : link.rate, `Joint ${i + 1} rate`, (v, el) => edit.rate(i, v, el), "0.1"),
     );
     const td = document.createElement("td");
     const rm = document.createElement("button");

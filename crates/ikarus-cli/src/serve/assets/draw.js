@@ -1,23 +1,36 @@
-// Canvas drawing: the grid and axes, the reachable area, the reach circle, the motion (ghost
-// poses and joint traces up to the playhead), the wanted path of a traced path (or the stroke
-// being drawn), the base, the arm, the flips, the via points and the goal. It reads the page's
-// state and never writes it; the geometry comes from view.js.
+// Drawing on a 2D context: the grid and axes, the reachable area (its smooth edge), the reach
+// circle, the joints' ranges (wedges) when limits are on, the motion (ghost poses and joint
+// traces up to the playhead), the wanted path of a traced path (or the stroke being drawn), the
+// base, the arm, the flips, the via points and the goal. It reads the page's state and never
+// writes it; the geometry comes from view.js. The screen and the PNG and SVG downloads
+// (export.js) are drawn by the same drawScene.
 
-import { areaPixels, areaRect, decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
+import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
 
+/**
+ * The colours, the render crate's palette (`ikarus-render`'s style.rs, given by /api/meta's
+ * `palette`, see usePalette) so that the page, its downloads and the CLI's pictures agree. The
+ * values here are that palette too, for the moment before /api/meta answers.
+ */
 export const COLORS = {
   plot: "#ffffff",
   grid: "#e7eaee",
-  axis: "#b9c0cb",
-  label: "#5b6478",
+  axis: "#c3c9d1",
+  label: "#6b7280",
   ink: "#26324a",
   reach: "#5f9e77",
+  workspace: "#dceae1",
   goal: "#d62728",
   path: "#ec7f2d",
-  trace: "#8a9bb8",
+  joints: ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"],
+  // The via points: the pictures have none, so this one is the page's own.
   via: "#7b3fa0",
-  wanted: "#2f6fd6",
 };
+
+/** Takes the colours of /api/meta's `palette` (names as in COLORS). */
+export function usePalette(palette) {
+  for (const [name, value] of Object.entries(palette || {})) if (name in COLORS) COLORS[name] = value;
+}
 
 /** Sizes the canvas's backing store to its CSS size times the device pixel ratio; drawing is then in CSS pixels. */
 export function fitCanvas(canvas, ctx) {
@@ -31,24 +44,12 @@ export function fitCanvas(canvas, ctx) {
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
 }
 
-/** An offscreen canvas with one pixel per cell of a /api/workspace answer. */
-export function areaImage(ws) {
-  const n = ws.resolution;
-  const off = document.createElement("canvas");
-  off.width = n;
-  off.height = n;
-  const octx = off.getContext("2d");
-  const img = octx.createImageData(n, n);
-  img.data.set(areaPixels(ws));
-  octx.putImageData(img, 0, 0);
-  return off;
-}
-
 /** Draws everything the state shows in the view `view` (from view.js's fitView). */
 export function drawScene(ctx, view, state) {
   drawGrid(ctx, view);
   drawArea(ctx, view, state);
   drawReach(ctx, view, state.arm);
+  drawRanges(ctx, view, state);
   drawMotion(ctx, view, state);
   drawWanted(ctx, view, state);
   drawBase(ctx, view, state.arm);
@@ -66,7 +67,8 @@ function drawWanted(ctx, view, state) {
   const points = state.stroke || (state.track && state.track.goals);
   if (!points || points.length < 2) return;
   ctx.setLineDash([6, 6]);
-  ctx.strokeStyle = COLORS.wanted;
+  // The wanted path in the pictures' colour of it (ikarus-render's path.rs: the first joint hue).
+  ctx.strokeStyle = COLORS.joints[0];
   ctx.lineWidth = 1.5;
   ctx.lineCap = "round";
   polyline(ctx, view, points);
@@ -163,13 +165,59 @@ function drawGrid(ctx, view) {
   ctx.fillText("y", ax + 5, 4);
 }
 
+/** The reachable area: its outline's loops filled (even-odd: holes stay empty) and stroked. */
 function drawArea(ctx, view, state) {
-  const ws = state.workspace;
-  if (!state.showWorkspace || !ws || !state.areaImage) return;
-  const [px, py, size] = areaRect(view, ws);
-  ctx.imageSmoothingEnabled = false;
-  ctx.drawImage(state.areaImage, px, py, size, size);
-  ctx.imageSmoothingEnabled = true;
+  const loops = state.areaOutline;
+  if (!state.showWorkspace || !loops) return;
+  ctx.beginPath();
+  for (const loop of loops) {
+    loop.forEach(([x, y], i) => {
+      const [px, py] = toCanvas(view, x, y);
+      if (i === 0) ctx.moveTo(px, py);
+      else ctx.lineTo(px, py);
+    });
+    ctx.closePath();
+  }
+  ctx.globalAlpha = 0.75;
+  ctx.fillStyle = COLORS.workspace;
+  ctx.fill("evenodd");
+  ctx.globalAlpha = 0.6;
+  ctx.strokeStyle = COLORS.reach;
+  ctx.lineWidth = 1;
+  ctx.stroke();
+  ctx.globalAlpha = 1;
+}
+
+/**
+ * Each limited joint's range as a wedge at the joint when limits are on: from the previous
+ * link's direction turned by the minimum to the maximum, with a line at the joint's angle.
+ */
+function drawRanges(ctx, view, state) {
+  if (!state.options.limits || state.joints.length !== state.arm.links.length + 1) return;
+  let heading = 0;
+  state.arm.links.forEach((link, i) => {
+    const angle = state.pose_deg[i] ?? link.angle_deg;
+    if (link.limits_deg) {
+      const [px, py] = toCanvas(view, ...state.joints[i]);
+      const r = Math.min(Math.max(link.length * view.scale * 0.4, 14), 46);
+      const lo = ((heading + link.limits_deg[0]) * Math.PI) / 180;
+      const hi = ((heading + link.limits_deg[1]) * Math.PI) / 180;
+      // World angles turn counter-clockwise; the canvas's y points down, so they are negated.
+      ctx.beginPath();
+      ctx.moveTo(px, py);
+      ctx.arc(px, py, r, -hi, -lo);
+      ctx.closePath();
+      ctx.globalAlpha = 0.1;
+      ctx.fillStyle = COLORS.ink;
+      ctx.fill();
+      ctx.globalAlpha = 0.45;
+      ctx.strokeStyle = COLORS.ink;
+      ctx.lineWidth = 1;
+      ctx.stroke();
+      ctx.globalAlpha = 1;
+    }
+    heading += angle;
+  });
 }
 
 function drawReach(ctx, view, arm) {
@@ -229,9 +277,25 @@ function drawBase(ctx, view, arm) {
   ctx.fillRect(px - 16, py + 15, 32, 3);
 }
 
+/** The goal: a red target, with an arrow along the wanted heading when a goal angle is set. */
 function drawGoal(ctx, view, goal) {
   if (!goal) return;
+  const angleDeg = goal.angle_deg;
   const [px, py] = toCanvas(view, goal.x, goal.y);
+  if (angleDeg !== undefined) {
+    const a = (angleDeg * Math.PI) / 180;
+    const [dx, dy] = [Math.cos(a), -Math.sin(a)];
+    const [ex, ey] = [px + 30 * dx, py + 30 * dy];
+    ctx.strokeStyle = COLORS.goal;
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.moveTo(px, py);
+    ctx.lineTo(ex, ey);
+    ctx.moveTo(ex - 8 * dx - 5 * dy, ey - 8 * dy + 5 * dx);
+    ctx.lineTo(ex, ey);
+    ctx.lineTo(ex - 8 * dx + 5 * dy, ey - 8 * dy - 5 * dx);
+    ctx.stroke();
+  }
   ctx.strokeStyle = COLORS.goal;
   ctx.lineWidth = 2;
   ctx.beginPath();
@@ -261,7 +325,7 @@ function drawMotion(ctx, view, state) {
     ctx.lineCap = "round";
     for (let j = 1; j < nj; j++) {
       const tip = j === nj - 1;
-      ctx.strokeStyle = tip ? COLORS.path : COLORS.trace;
+      ctx.strokeStyle = tip ? COLORS.path : COLORS.joints[(j - 1) % COLORS.joints.length];
       ctx.globalAlpha = tip ? 1 : 0.7;
       ctx.lineWidth = tip ? 2.5 : 1.5;
       polyline(ctx, view, frames.map((f) => f.joints[j]));

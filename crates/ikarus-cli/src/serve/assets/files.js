@@ -1,17 +1,24 @@
-// Downloads: the frames of the last motion or traced path (JSON, CSV), the figure (PNG, SVG)
-// and the motion (GIF, rendered by /api/render), and saving a Blob under a file name. It reads
-// the page's state and never writes it.
+// Downloads: the frames of the last motion or traced path (JSON, CSV, with the CLI's column
+// names), the figure (PNG, SVG: drawn by export.js as the screen is) and the motion (GIF,
+// rendered by /api/render at the page's playback duration), and saving a Blob under a file
+// name. It reads the page's state and never writes it.
 
 import * as api from "./api.js";
-import { armForRequest } from "./controls.js";
+import { figurePng, figureSvg } from "./export.js";
+
+/** Frames per second of a downloaded GIF: a GIF's delays are hundredths of a second, so 25 fps is 4 each. */
+export const GIF_FPS = 25;
 
 const $ = (id) => document.getElementById(id);
 
-/** The frames of a /api/animate answer as CSV: time, every angle, every joint's x and y. */
+/**
+ * The frames of a /api/animate answer as CSV: time, every angle, every joint's x and y, in the
+ * columns of `ikarus animate --format csv` (time, theta1_deg…, x0, y0, …).
+ */
 export function framesCsv(anim) {
   const nj = anim.frames[0] ? anim.frames[0].angles_deg.length : 0;
   const head = ["time"];
-  for (let i = 0; i < nj; i++) head.push(`angle${i + 1}_deg`);
+  for (let i = 0; i < nj; i++) head.push(`theta${i + 1}_deg`);
   for (let i = 0; i <= nj; i++) head.push(`x${i}`, `y${i}`);
   const rows = anim.frames.map((f) => [f.time, ...f.angles_deg, ...f.joints.flat()].join(","));
   return [head.join(","), ...rows].join("\n") + "\n";
@@ -29,8 +36,25 @@ export function saveBlob(blob, name) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
-/** Wires the download buttons; `showError(e)` shows a failure or a hint (null clears it). */
-export function wireDownloads(state, showError) {
+/**
+ * The /api/render request of the motion's GIF: the motion the page plays, sampled at GIF_FPS
+ * over the page's playback duration (`seconds`), so that the GIF lasts as long as the playback
+ * (to within half a frame's delay: the frame count is whole).
+ */
+export function gifRequest(animationRequest, seconds) {
+  // Every frame of a GIF is shown for its delay, the last one too, so frames 0..n span n + 1
+  // delays: the motion itself takes one delay less than the playback.
+  const duration = Math.max(seconds - 1 / GIF_FPS, 1 / GIF_FPS);
+  const req = { figure: "motion", format: "gif", width: 480, height: 480, ...animationRequest, duration, fps: GIF_FPS };
+  delete req.frames;
+  return req;
+}
+
+/**
+ * Wires the download buttons; `showError(e)` shows a failure or a hint (null clears it), and
+ * `duration()` is the timeline's playback duration in seconds.
+ */
+export function wireDownloads(state, showError, duration) {
   function framesOrSay() {
     if (state.animation) return state.animation;
     showError(new api.Notice("No motion yet: click on the canvas to make one."));
@@ -41,29 +65,21 @@ export function wireDownloads(state, showError) {
     const button = $(`dl-${format}`);
     const label = button.textContent;
     try {
-      let body;
+      let blob;
       if (format === "gif") {
         if (!framesOrSay()) return;
         if (!state.animationRequest) {
           showError(new api.Notice("The GIF is of a clicked motion; for a traced path, `ikarus track --out path.gif` draws one."));
           return;
         }
-        body = { figure: "motion", format, width: 480, height: 480, ...state.animationRequest };
+        button.disabled = true;
+        button.textContent = "Rendering…";
+        blob = await api.render(gifRequest(state.animationRequest, duration()));
+      } else if (format === "png") {
+        blob = await figurePng(state);
       } else {
-        body = {
-          figure: "arm",
-          format,
-          width: 800,
-          height: 800,
-          arm: armForRequest(state.arm),
-          pose_deg: state.pose_deg.slice(),
-          ...(state.goal ? { goal: state.goal } : {}),
-          ...(state.showWorkspace ? { workspace: true, limits: !!state.options.limits } : {}),
-        };
+        blob = new Blob([figureSvg(state)], { type: "image/svg+xml" });
       }
-      button.disabled = true;
-      button.textContent = "Rendering…";
-      const blob = await api.render(body);
       showError(null);
       saveBlob(blob, `ikarus-${format === "gif" ? "motion" : "arm"}.${format}`);
     } catch (e) {

@@ -4,19 +4,15 @@
 // either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
 // reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
 // motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
-// traces paths (track.js, with the pure parts in paths.js) or saves files (files.js).
+// traces paths (track.js, with the pure parts in paths.js), edits the arm (links.js, with arm
+// files in armfile.js) or saves files (files.js, with the figures drawn by export.js).
 
 import * as api from "./api.js";
-import {
-  armForRequest,
-  fillSelects,
-  readControls,
-  renderLinks,
-  syncEnabled,
-  syncLimitModes,
-  withLimit,
-} from "./controls.js";
-import { areaImage, drawScene, fitCanvas } from "./draw.js";
+import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
+import { storedArm } from "./armfile.js";
+import { wireArm } from "./links.js";
+import { drawScene, fitCanvas, usePalette } from "./draw.js";
+import { areaOutline } from "./view.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
@@ -25,7 +21,6 @@ import { fitView, forward, toCanvas } from "./view.js";
 
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
-const MAX_LINKS = 64;
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("plot");
@@ -34,7 +29,7 @@ const ctx = canvas.getContext("2d");
 /** Everything of the page that changes. */
 const state = {
   // The arm file as JSON ({name, base, links: [{length, angle_deg, limits_deg, rate}]}), its
-  // current pose (degrees) and joint positions ([[x, y], …], base first), and the goal ({x, y}).
+  // current pose (degrees) and joint positions ([[x, y], …], base first), and the goal ({x, y}, and angle_deg with a goal angle).
   arm: null,
   pose_deg: [],
   joints: [],
@@ -46,6 +41,10 @@ const state = {
   options: {},
   ease: { kind: "sine" },
   frames: 60,
+  // The orientation goal (degrees), when "Goal angle" is on; else undefined.
+  goalAngle: undefined,
+  // Iterations between two poses of the solver's replay ("Replay every").
+  recordEvery: 1,
   // The step bound of following and traced paths, degrees (max_step_deg of /api/track).
   maxStepDeg: 10,
   // The View checkboxes.
@@ -55,13 +54,19 @@ const state = {
   showWorkspace: false,
   // The world <-> canvas transform of the last drawing (view.js's fitView).
   view: { cx: 0, cy: 0, scale: 1, w: 1, h: 1 },
-  // The last /api/workspace answer and its picture.
+  // The last /api/workspace answer and its edge (view.js's areaOutline), kept until the next
+  // answer arrives so that the area does not blink while it recomputes.
   workspace: null,
-  areaImage: null,
+  areaOutline: null,
   // The motion the timeline plays: the last /api/animate answer and its request (a GIF renders
   // the same motion), or a traced path's frames (paths.js's trackMotion; no request then).
   animation: null,
   animationRequest: null,
+  // The stats of the motion being played: shown (and its status, "reached" or not) once the
+  // playback ends; until then the chip says the arm is moving.
+  pendingStats: null,
+  // Whether the message shown is a bad field's (cleared when the field is fixed).
+  fieldShown: false,
   // Paths (track.js): whether a drag draws a path, the stroke being drawn ([[x, y], …]), and the
   // last traced path, {request, answer (/api/track's), goals (the wanted path), flips (tips)}.
   drawPath: false,
@@ -81,7 +86,7 @@ const state = {
 };
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
-const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia });
+const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded });
 
 /** Following and traced paths (track.js). */
 const paths = wireTrack(state, {
@@ -93,26 +98,88 @@ const paths = wireTrack(state, {
   showError,
   setStatus,
   say: (text) => ($("stats").textContent = text),
+  showWhenEnded: (status, text) => {
+    state.pendingStats = { status, text };
+    setStatus("moving");
+  },
+});
+
+/** The links table, the base and arm files (links.js). */
+const armEditor = wireArm(state, {
+  applyControls,
+  recheck,
+  controlsChanged,
+  setPose,
+  requestDraw,
+  refreshWorkspace,
+  clearPaths: () => paths.clear(),
+  forgetMotion,
+  showError,
 });
 
 // ---- Messages and status ------------------------------------------------------------------
+//
+// The chip on the canvas (#chip) holds the status line and the message: visible at every width
+// and whatever the panel shows, neutral while the page works or the arm moves, red for an error,
+// a bad field, or a goal not reached.
+
+/** Statuses that are not trouble: the chip stays neutral. */
+const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "limited"]);
+
+function syncChip() {
+  const bad = !$("error").hidden || !CALM.has(document.body.dataset.status);
+  $("chip").dataset.kind = bad ? "bad" : "neutral";
+}
 
 function showError(e) {
   const el = $("error");
   if (!e) {
     el.hidden = true;
     el.textContent = "";
-    return;
+  } else {
+    el.textContent = e.message || String(e);
+    el.hidden = false;
+    if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
   }
-  el.textContent = e.message || String(e);
-  el.hidden = false;
-  if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
+  syncChip();
 }
 
-/** The page's status (loading, ready, solving, reached, …, error), as body[data-status]. */
+/** The page's status (loading, ready, solving, moving, reached, …, error), as body[data-status]. */
 function setStatus(status) {
   document.body.dataset.status = status;
-  if (status === "error") $("stats").textContent = "status error · see the message below";
+  if (status === "error") $("stats").textContent = "status error";
+  if (status === "moving") $("stats").textContent = "moving…";
+  syncChip();
+}
+
+/**
+ * Whether every field holds a good value. If not, the first bad one is named on the chip, and
+ * when `point` is set (the reader tried to act) it is shown: the panel opens, the field scrolls
+ * into view and takes the focus.
+ */
+function fieldsOk(point = true) {
+  const p = firstProblem();
+  if (!p) return true;
+  showError(new api.Notice(p.message));
+  state.fieldShown = true;
+  if (point) {
+    setCollapsed(false);
+    p.el.scrollIntoView({ block: "center" });
+    p.el.focus({ preventScroll: true });
+  }
+  return false;
+}
+
+/** After an edit: the message of the first bad field, or none (a fixed field clears it). */
+function recheck() {
+  const p = firstProblem();
+  if (p) {
+    showError(new api.Notice(p.message));
+    state.fieldShown = true;
+  } else if (state.fieldShown) {
+    showError(null);
+    state.fieldShown = false;
+  }
 }
 
 function setStats(s) {
@@ -160,13 +227,16 @@ function motionStats(anim) {
 
 /** Solves for the goal (x, y) through the via points and plays the motion there. */
 async function animateTo(x, y) {
+  if (!fieldsOk()) return;
   cancelMotion();
-  state.goal = { x, y };
+  const goal = state.goalAngle === undefined ? { x, y } : { x, y, angle_deg: state.goalAngle };
+  // The goal drawn: with its heading, an arrow.
+  state.goal = goal;
   const seq = state.jobs.animateSeq;
   const base = {
     arm: armForRequest(state.arm),
     start_deg: state.pose_deg.slice(),
-    goal: { x, y },
+    goal,
     options: state.options,
   };
   const via = state.via.map((p) => [p.x, p.y]);
@@ -187,12 +257,24 @@ async function animateTo(x, y) {
  * Plays the solver's recorded iterations of the last motion (`from_solve`), from its start pose
  * through its via points; pressed again, the eased motion.
  */
-async function toggleSolver() {
-  if (!state.animationRequest) return;
+async function toggleSolver(solver = !state.playback.solver) {
+  if (!state.animationRequest || !fieldsOk()) return;
   cancelMotion();
   const seq = state.jobs.animateSeq;
-  const req = { ...state.animationRequest, from_solve: !state.playback.solver };
-  if (!req.from_solve) delete req.from_solve;
+  const req = { ...state.animationRequest, from_solve: solver };
+  // The replay records one pose every "Replay every" iterations; the eased motion does not use it.
+  req.options = { ...req.options, record_every: state.recordEvery };
+  if (req.from_solve) {
+    // One frame per recorded pose: the eased motion's solves tell how many iterations each goal
+    // took (the replay's own solves say the same: they are deterministic), and a pose is recorded every "Replay every".
+    const solves = (state.animation && state.animation.solves) || [];
+    const poses = solves.reduce((n, s) => n + Math.ceil(s.iterations / state.recordEvery), 1);
+    req.frames = Math.min(Math.max(poses, 2), 2000);
+  } else {
+    delete req.from_solve;
+    delete req.options.record_every;
+    req.frames = state.frames;
+  }
   setStatus("solving");
   try {
     const anim = await api.animate(req);
@@ -208,10 +290,22 @@ function showMotion(anim, req, stats) {
   paths.clear();
   state.animation = anim;
   state.animationRequest = req;
-  setStats(stats);
-  setStatus(stats.status);
+  state.pendingStats = stats;
+  setStatus("moving");
   timeline.load(req, !!req.from_solve);
   timeline.play();
+}
+
+/** The playback reached the end: the motion's stats and status ("reached" only now). */
+function motionEnded() {
+  const stats = state.pendingStats;
+  if (!stats) return;
+  state.pendingStats = null;
+  const frames = state.playback.solver && state.animation ? ` · ${state.animation.frames.length} poses replayed` : "";
+  if (stats.text) $("stats").textContent = stats.text;
+  else setStats(stats);
+  if (frames) $("stats").textContent += frames;
+  setStatus(stats.status);
 }
 
 function failed(e, seq) {
@@ -225,6 +319,12 @@ function failed(e, seq) {
 function cancelMotion() {
   timeline.pause();
   state.jobs.animateSeq++;
+  // A motion stopped before its end did not reach anything: its outcome is not shown.
+  if (state.pendingStats) {
+    state.pendingStats = null;
+    setStatus("ready");
+    $("stats").textContent = "stopped";
+  }
 }
 
 // ---- Via points ---------------------------------------------------------------------------
@@ -268,7 +368,7 @@ function refreshWorkspace() {
       });
       if (seq !== jobs.workspaceSeq) return;
       state.workspace = ws;
-      state.areaImage = areaImage(ws);
+      state.areaOutline = areaOutline(ws);
       requestDraw();
     } catch (e) {
       if (seq === jobs.workspaceSeq) showError(e);
@@ -280,7 +380,10 @@ function refreshWorkspace() {
 
 /** Brings the fields in line with each other and reads the settings of the next requests. */
 function applyControls() {
-  if (state.meta) syncLimitModes(state.meta, state.limitModeChoice);
+  if (state.meta) {
+    syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked);
+    syncLimitModes(state.meta, state.limitModeChoice);
+  }
   syncEnabled();
   Object.assign(state, readControls(state.arm.links));
 }
@@ -288,76 +391,64 @@ function applyControls() {
 function controlsChanged() {
   if (!state.arm) return;
   applyControls();
+  recheck();
   timeline.sync();
   requestDraw();
 }
 
-/** Edits of the links table, applied to the arm. */
-const linkEdits = {
-  length(i, v) {
-    state.arm.links[i].length = v === "" ? 0 : Number(v);
-    armChanged();
-  },
-  limit(i, k, v) {
-    const link = state.arm.links[i];
-    link.limits_deg = withLimit(link.limits_deg, k, v);
-    showLinks();
-    armChanged();
-  },
-  rate(i, v) {
-    state.arm.links[i].rate = v === "" ? 1 : Number(v);
-    controlsChanged();
-  },
-  remove(i) {
-    state.arm.links.splice(i, 1);
-    state.pose_deg.splice(i, 1);
-    showLinks();
-    armChanged();
-  },
-};
-
-const showLinks = () => renderLinks(state.arm.links, linkEdits);
-
-function addLink() {
-  if (state.arm.links.length >= MAX_LINKS) return;
-  const last = state.arm.links[state.arm.links.length - 1];
-  state.arm.links.push({ length: last ? last.length : 1, angle_deg: 0, limits_deg: [-170, 170] });
-  showLinks();
-  armChanged();
-}
-
-function armChanged() {
-  // The pose keeps one angle per link; a new link starts straight.
-  while (state.pose_deg.length < state.arm.links.length) state.pose_deg.push(0);
-  state.pose_deg.length = state.arm.links.length;
+/** A new arm: no motion, goal, via points or replay of the old one. */
+function forgetMotion() {
+  cancelMotion();
   paths.clear();
-  state.workspace = null;
-  state.areaImage = null;
-  applyControls();
-  setPose(state.pose_deg);
-  requestDraw();
-  refreshWorkspace();
+  state.goal = null;
+  state.animation = null;
+  state.animationRequest = null;
+  state.pendingStats = null;
+  state.via = [];
+  timeline.unload();
+  setStatus("ready");
+  $("stats").textContent = "ready";
 }
 
 function resetPose() {
   cancelMotion();
   paths.clear();
+  state.goal = null;
+  state.pendingStats = null;
   setPose(state.arm.links.map((l) => l.angle_deg));
   setStatus("ready");
-  $("stats").textContent = "—";
+  $("stats").textContent = "ready";
   showError(null);
   requestDraw();
 }
 
 // ---- Wiring -------------------------------------------------------------------------------
 
+/** The panel hidden (the canvas takes the whole width) or shown. */
+function setCollapsed(c) {
+  const toggle = $("panel-toggle");
+  if (document.body.classList.contains("collapsed") === c) return;
+  document.body.classList.toggle("collapsed", c);
+  toggle.setAttribute("aria-expanded", String(!c));
+  toggle.textContent = c ? "Show controls" : "Hide controls";
+  requestDraw();
+}
+
 function wire() {
-  const { followTo, startStroke, extendStroke, endStroke } = paths;
+  const { extendStroke, endStroke } = paths;
+  // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
+  const followTo = (x, y) => fieldsOk(false) && paths.followTo(x, y);
+  const startStroke = (x, y) => fieldsOk() && paths.startStroke(x, y);
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
-  wireDownloads(state, showError);
-  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "ease", "k1", "k2", "frames", "max-step"]) {
+  wireDownloads(state, showError, () => timeline.duration());
+  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle"]) {
     $(id).addEventListener("change", controlsChanged);
   }
+  // A new "Replay every" shows at once when the solver's replay is on.
+  $("record-every").addEventListener("change", () => {
+    controlsChanged();
+    if (state.playback.solver && !firstProblem()) toggleSolver(true);
+  });
   $("limit-mode").addEventListener("change", (ev) => {
     state.limitModeChoice = ev.target.value;
     controlsChanged();
@@ -371,7 +462,7 @@ function wire() {
   });
   $("draw-path").addEventListener("click", () => setDrawPath(!state.drawPath));
   for (const kind of ["line", "circle", "figure8"]) {
-    $(`trace-${kind}`).addEventListener("click", () => state.arm && paths.traceShape(kind));
+    $(`trace-${kind}`).addEventListener("click", () => state.arm && fieldsOk() && paths.traceShape(kind));
   }
   $("show-ghosts").addEventListener("change", (ev) => {
     state.showGhosts = ev.target.checked;
@@ -386,17 +477,9 @@ function wire() {
     if (state.showWorkspace) refreshWorkspace();
     requestDraw();
   });
-  $("add-link").addEventListener("click", addLink);
   $("reset").addEventListener("click", resetPose);
   const narrow = window.matchMedia("(max-width: 720px)");
-  const toggle = $("panel-toggle");
-  const setCollapsed = (c) => {
-    document.body.classList.toggle("collapsed", c);
-    toggle.setAttribute("aria-expanded", String(!c));
-    toggle.textContent = c ? "Show controls" : "Hide controls";
-    requestDraw();
-  };
-  toggle.addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
+  $("panel-toggle").addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
   if (narrow.matches) setCollapsed(true);
   new ResizeObserver(requestDraw).observe(canvas);
   window.addEventListener("resize", requestDraw);
@@ -407,13 +490,17 @@ async function init() {
   try {
     const [meta, arm] = await Promise.all([api.meta(), api.defaultArm()]);
     state.meta = meta;
+    usePalette(meta.palette);
     state.limitModeChoice = meta.default_limit_mode;
     fillSelects(meta);
-    state.arm = arm;
-    showLinks();
+    // The arm of the last visit, else the server's default.
+    state.arm = storedArm() || arm;
+    armEditor.showLinks();
     applyControls();
-    setPose(arm.links.map((l) => l.angle_deg));
+    armEditor.showBase();
+    setPose(state.arm.links.map((l) => l.angle_deg));
     setStatus("ready");
+    $("stats").textContent = "ready";
     timeline.sync();
     window.ikarus.ready = true;
     draw();
@@ -428,9 +515,11 @@ window.ikarus = {
   state,
   ready: false,
   animateTo,
-  followTo: (x, y) => paths.followTo(x, y),
-  traceShape: (kind) => paths.traceShape(kind),
+  followTo: (x, y) => fieldsOk() && paths.followTo(x, y),
+  traceShape: (kind) => fieldsOk() && paths.traceShape(kind),
   resetPose,
+  /** The timeline's playback duration, seconds. */
+  duration: () => timeline.duration(),
   /** Client coordinates of a world point, for clicking on it. */
   toClient(x, y) {
     const r = canvas.getBoundingClientRect();

@@ -46,7 +46,7 @@ function ownsKeys(el) {
 
 /**
  * Wires the timeline's controls. `act` is {showPose(angles, joints?), draw(), toggleSolver(),
- * clearVia()}. Returns {load(), unload(), detach(), play(), pause(), toggle(), replay(),
+ * clearVia(), ended()} (ended: the playback reached the end of the motion). Returns {load(), unload(), detach(), play(), pause(), toggle(), replay(),
  * seek(u), duration(), sync()}.
  */
 export function wireTimeline(state, act) {
@@ -145,6 +145,7 @@ export function wireTimeline(state, act) {
     }
     show(u);
     if (pb.playing) pb.raf = requestAnimationFrame(tick);
+    else if (act.ended) act.ended();
   }
 
   function play() {
@@ -176,7 +177,10 @@ export function wireTimeline(state, act) {
 
   function seek(u) {
     pause();
-    if (loaded()) show(u);
+    if (!loaded()) return;
+    show(u);
+    // Scrubbed to the end: the motion has been seen to its end.
+    if (pb.u >= 1 && act.ended) act.ended();
   }
 
   /**

@@ -20,7 +20,7 @@ const MAX_CHASES = 200;
 
 /**
  * Wires the paths. `act` is {timeline, setPose(angles, joints), draw(), requestDraw(),
- * cancelMotion(), showError(e), setStatus(s), say(text)}. Returns {followTo(x, y),
+ * cancelMotion(), showError(e), setStatus(s), say(text), showWhenEnded(status, text)}. Returns {followTo(x, y),
  * startStroke(x, y), extendStroke(x, y), endStroke(go), traceShape(kind), clear()}.
  */
 export function wireTrack(state, act) {
@@ -128,8 +128,8 @@ export function wireTrack(state, act) {
       state.animation = trackMotion(answer);
       state.animationRequest = null;
       state.goal = null;
-      act.say(trackSummaryText(answer));
-      act.setStatus(trackStatus(answer));
+      // Its summary and status show once the tip has traced it (the chip says "moving…" until then).
+      act.showWhenEnded(trackStatus(answer), trackSummaryText(answer));
       document.body.dataset.flips = String(answer.summary.flips);
       // The timeline plays it as any motion: linearly, one sample per 1/25 s unless a duration is set.
       act.timeline.load({ arm: req.arm, options: req.options, ease: { kind: "linear" } }, false, trackSeconds(answer));

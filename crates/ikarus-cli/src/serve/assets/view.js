@@ -1,6 +1,6 @@
 // Pure geometry of the playground: forward kinematics in degrees, the world <-> canvas transform,
 // grid steps, the drag threshold, keyboard nudges, playback (the pose between two frames, the
-// default duration, the ease curves), ghost timing, and the pixels of the reachable area. No DOM and no state of its own: every function takes what it reads and
+// default duration, the ease curves), ghost timing, and the smooth edge of the reachable area. No DOM and no state of its own: every function takes what it reads and
 // returns a new value, so node can test it (e2e/view.test.mjs).
 //
 // World: x to the right, y up, in arm units. Canvas: CSS pixels, x to the right, y down.
@@ -217,28 +217,107 @@ export function ghostFrames(total, last) {
   return ghosts;
 }
 
-/** The colour (RGBA) of a reachable cell. */
-export const AREA_RGBA = [95, 158, 119, 56];
+// ---- The edge of the reachable area -------------------------------------------------------
 
 /**
- * RGBA pixels, one per cell, top row first, of a /api/workspace answer: `grid[iy]` is a row of
- * "0"/"1" from the lowest row (y = origin) up.
+ * Marching squares: the edges a square crosses, per case (corners inside: bl 1, br 2, tr 4,
+ * tl 8), each walked with the inside on its left so that the pieces join into loops.
  */
-export function areaPixels(ws) {
-  const n = ws.resolution;
-  const data = new Uint8ClampedArray(n * n * 4);
-  ws.grid.forEach((row, iy) => {
-    const py = n - 1 - iy;
-    for (let ix = 0; ix < n; ix++) {
-      if (row.charCodeAt(ix) === 49) data.set(AREA_RGBA, (py * n + ix) * 4);
-    }
+const CROSSINGS = [
+  [],
+  [["b", "l"]],
+  [["r", "b"]],
+  [["r", "l"]],
+  [["t", "r"]],
+  [["b", "l"], ["t", "r"]],
+  [["t", "b"]],
+  [["t", "l"]],
+  [["l", "t"]],
+  [["b", "t"]],
+  [["r", "b"], ["l", "t"]],
+  [["r", "t"]],
+  [["l", "r"]],
+  [["b", "r"]],
+  [["l", "b"]],
+  [],
+];
+
+/** Rounds of corner cutting (Chaikin) that turn the chamfered cell edges into a smooth curve. */
+export const OUTLINE_SMOOTHING = 2;
+
+/** Rounds of neighbour averaging before the corner cutting: they iron out the cells' ripple. */
+export const OUTLINE_AVERAGING = 3;
+
+/** One round of averaging each point of a closed loop with its two neighbours (¼, ½, ¼). */
+function average(loop) {
+  const m = loop.length;
+  return loop.map(([x, y], k) => {
+    const [ax, ay] = loop[(k + m - 1) % m];
+    const [bx, by] = loop[(k + 1) % m];
+    return [0.25 * ax + 0.5 * x + 0.25 * bx, 0.25 * ay + 0.5 * y + 0.25 * by];
   });
-  return data;
 }
 
-/** Where the workspace picture goes on the canvas: its top-left corner [px, py] and its side in pixels. */
-export function areaRect(view, ws) {
-  const side = ws.resolution * ws.cell_size;
-  const [px, py] = toCanvas(view, ws.origin[0], ws.origin[1] + side);
-  return [px, py, side * view.scale];
+/** One round of Chaikin's corner cutting on a closed loop. */
+function chaikin(loop) {
+  const out = [];
+  for (let k = 0; k < loop.length; k++) {
+    const [x0, y0] = loop[k];
+    const [x1, y1] = loop[(k + 1) % loop.length];
+    out.push([0.75 * x0 + 0.25 * x1, 0.75 * y0 + 0.25 * y1], [0.25 * x0 + 0.75 * x1, 0.25 * y0 + 0.75 * y1]);
+  }
+  return out;
+}
+
+/**
+ * The edge of the reachable area of a /api/workspace answer as closed loops of world points
+ * ([[[x, y], …], …]; holes are loops too, so fill them with the even-odd rule): marching
+ * squares over the cell centres, crossing each edge half-way, then smoothed (neighbour averaging,
+ * then `smoothing` rounds of corner cutting; 0: the raw marching-squares edge) instead of the
+ * cells' staircase.
+ */
+export function areaOutline(ws, smoothing = OUTLINE_SMOOTHING) {
+  const n = ws.resolution;
+  const inside = (i, j) => i >= 0 && j >= 0 && i < n && j < n && ws.grid[j].charCodeAt(i) === 49;
+  // Squares between the centres of cells (i, j) .. (i + 1, j + 1), one ring beyond the grid.
+  const next = new Map();
+  const key = (edge, i, j) => {
+    switch (edge) {
+      case "b":
+        return `h${i},${j}`;
+      case "t":
+        return `h${i},${j + 1}`;
+      case "l":
+        return `v${i},${j}`;
+      default:
+        return `v${i + 1},${j}`;
+    }
+  };
+  for (let j = -1; j < n; j++) {
+    for (let i = -1; i < n; i++) {
+      const c = (inside(i, j) ? 1 : 0) | (inside(i + 1, j) ? 2 : 0) | (inside(i + 1, j + 1) ? 4 : 0) | (inside(i, j + 1) ? 8 : 0);
+      for (const [a, b] of CROSSINGS[c]) next.set(key(a, i, j), key(b, i, j));
+    }
+  }
+  const point = (k) => {
+    const [i, j] = k.slice(1).split(",").map(Number);
+    // h(i, j): between the centres of cells (i, j) and (i + 1, j); v(i, j): (i, j) and (i, j + 1).
+    const cx = k[0] === "h" ? i + 1 : i + 0.5;
+    const cy = k[0] === "h" ? j + 0.5 : j + 1;
+    return [ws.origin[0] + cx * ws.cell_size, ws.origin[1] + cy * ws.cell_size];
+  };
+  const loops = [];
+  const seen = new Set();
+  for (const start of next.keys()) {
+    if (seen.has(start)) continue;
+    let loop = [];
+    for (let k = start; k !== undefined && !seen.has(k); k = next.get(k)) {
+      seen.add(k);
+      loop.push(point(k));
+    }
+    if (smoothing > 0) for (let r = 0; r < OUTLINE_AVERAGING && loop.length > 2; r++) loop = average(loop);
+    for (let r = 0; r < smoothing && loop.length > 2; r++) loop = chaikin(loop);
+    if (loop.length > 2) loops.push(loop);
+  }
+  return loops;
 }
