@@ -379,7 +379,7 @@ fn invalid_values_are_422_naming_the_field() {
         (
             "/api/solve",
             json!({ "goal": goal, "arm": { "links": [{ "length": 1e308 }, { "length": 1e308 }] } }),
-            "not a finite number",
+            "beyond 1e152, the largest reach ikarus computes with",
         ),
         (
             "/api/solve",

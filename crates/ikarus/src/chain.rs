@@ -131,10 +131,15 @@ pub enum ChainError {
         /// Upper limit, radians.
         max: f64,
     },
-    /// The chain's reach (the sum of its lengths, from the base) is not a finite number, so
-    /// nothing about it could be computed or drawn.
-    #[error("links: the lengths add up to {} from the base, which is not a finite number", Num(*.reach))]
-    ReachNotFinite {
+    /// The chain's reach (the sum of its lengths, plus the base's distance from the origin)
+    /// is beyond [`MAX_REACH`] or not a finite number: its squares (areas, `J Jᵀ`) would
+    /// overflow, so nothing about it could be computed or drawn.
+    #[error(
+        "links: the lengths add up to {} from the base, beyond {}, the largest reach ikarus computes with",
+        Num(*.reach),
+        Num(MAX_REACH)
+    )]
+    ReachTooLarge {
         /// The sum of the lengths plus the base's distance from the origin.
         reach: f64,
     },
@@ -147,6 +152,11 @@ pub enum ChainError {
         got: usize,
     },
 }
+
+/// The largest reach (sum of the lengths plus the base's distance from the origin) a chain may
+/// have: its square, and so the areas of workspaces and the entries of `J Jᵀ`, stay far inside
+/// the f64 range (a workspace's area overflowed from a reach of about 1.3e154).
+pub const MAX_REACH: f64 = 1e152;
 
 impl Chain {
     /// Validates and builds a chain with its base at `base`.
@@ -175,8 +185,8 @@ impl Chain {
         check_angles(&angles, Bounds::new(&limits))?;
         let reach: f64 = lengths.iter().sum();
         let extent = x.hypot(y) + reach;
-        if !extent.is_finite() {
-            return Err(ChainError::ReachNotFinite { reach: extent });
+        if !(extent <= MAX_REACH) {
+            return Err(ChainError::ReachTooLarge { reach: extent });
         }
         Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
     }
@@ -378,9 +388,15 @@ mod tests {
             (
                 vec![Link::new(1e308, 0.0), Link::new(1e308, 0.0)],
                 [0.0, 0.0],
-                "links: the lengths add up to inf from the base, which is not a finite number",
+                "links: the lengths add up to inf from the base, beyond 1e152, the largest reach ikarus computes with",
             ),
             (vec![Link::new(1.0, 0.0)], [f64::MAX, f64::MAX], "links: the lengths add up to inf from the base"),
+            // Finite, but its square (an area, J Jᵀ) would be near the end of the f64 range.
+            (
+                vec![Link::new(1e152, 0.0), Link::new(1e152, 0.0)],
+                [0.0, 0.0],
+                "links: the lengths add up to 2e152 from the base, beyond 1e152, the largest reach ikarus computes with",
+            ),
         ];
         for (links, base, want) in cases {
             let err = Chain::new(base, &links).unwrap_err().to_string();

@@ -58,7 +58,7 @@ pub mod rng;
 pub mod solve;
 pub mod track;
 
-pub use chain::{Chain, ChainError, Link, LinkField, Pose};
+pub use chain::{Chain, ChainError, Link, LinkField, MAX_REACH, Pose};
 pub use ease::{Ease, EaseError, EaseKind, ParentEase};
 pub use goal::{Goal, GoalError};
 pub use kinematics::EndEffector;
