@@ -273,7 +273,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
             caption: job.caption(&t),
             fps: TRACK_FPS,
         };
-        let bytes = draw_for_command(&drawing, out.format, args.picture.width, args.picture.height, poses.len())?;
+        let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
         out.commit(&bytes)?;
     }
     let format =
