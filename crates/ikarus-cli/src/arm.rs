@@ -68,7 +68,8 @@ pub struct Arm {
 
 impl Arm {
     /// The options of a command: `flags` over this arm file's `[solver]` table over the
-    /// defaults, for the arm's chain; problems name the flags.
+    /// defaults, for the arm's chain; problems name the flag, or the arm file's `[solver]`
+    /// field a setting came from.
     pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
         let restarts = flags.restarts.or(self.solver.restarts);
         if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
@@ -83,14 +84,18 @@ impl Arm {
             )));
         }
         flags.over(&self.solver).to_options(&self.chain, record_every).map_err(|e| {
-            CliError::input(e.describe(|field| {
-                // A setting the flags left out came from the arm file's [solver] table.
+            // A setting the flags left out came from the arm file's [solver] table: named as
+            // that, after the file.
+            let from_file = std::cell::Cell::new(false);
+            let message = e.describe(|field| {
                 if flags.is_set(field) || !self.solver.is_set(field) {
                     format!("--{}", field.replace('_', "-"))
                 } else {
-                    format!("{}: [solver].{field}", self.label)
+                    from_file.set(true);
+                    format!("[solver].{field}")
                 }
-            }))
+            });
+            CliError::input(if from_file.get() { format!("{}: {message}", self.label) } else { message })
         })
     }
 

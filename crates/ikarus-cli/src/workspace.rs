@@ -44,8 +44,9 @@ pub struct SamplingArgs {
     pub seed: u64,
 }
 
-/// The default cap of `--samples`: ten times the library's largest default, a few seconds.
-pub const DEFAULT_MAX_SAMPLES: u32 = 10_000_000;
+/// The default cap of `--samples`: about four times the library's largest default (262 144),
+/// the server's cap too; 10⁷ samples of a seven-link arm with limits take most of a minute.
+pub const DEFAULT_MAX_SAMPLES: u32 = 1_000_000;
 
 impl SamplingArgs {
     /// The request of these flags, or an error if `--samples` is over its cap.

@@ -423,7 +423,12 @@ fn every_library_limit_mode_and_unsupported_pairs() {
                     assert_eq!(json(args)["limit_mode"], mode.name(), "{args:?}");
                 } else {
                     let e = fails(args, 2);
-                    let want = format!("--method {method}: does not support --limit-mode {mode}");
+                    let want = if args[3] == "--arm" {
+                        // Named where they came from: the arm file's [solver] table.
+                        format!("{arm}: [solver].method {method}: does not support [solver].limit_mode {mode}")
+                    } else {
+                        format!("--method {method}: does not support --limit-mode {mode}")
+                    };
                     assert!(e.contains(&want), "{args:?}: {e}");
                 }
             }

@@ -199,7 +199,7 @@ fn cost_caps_name_the_flag_that_raises_them() {
     );
 
     let e = fails(&["workspace", "--samples", "1000000000"], 2);
-    assert_eq!(e, "ikarus: --samples 1000000000: more than the cap of 10000000 (raise it with --max-samples N)\n");
+    assert_eq!(e, "ikarus: --samples 1000000000: more than the cap of 1000000 (raise it with --max-samples N)\n");
     fails(&["render", "workspace", "--samples", "20000000", "--out", "w.png"], 2);
 
     let e = fails(
