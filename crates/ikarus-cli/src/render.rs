@@ -25,7 +25,7 @@ pub enum RenderCommand {
     /// Draw a motion as `ikarus animate` computes it: every frame as a ghost (.svg, .png), or
     /// animated (.gif)
     #[command(allow_negative_numbers = true)]
-    Motion(RenderMotionArgs),
+    Motion(Box<RenderMotionArgs>),
     /// Draw the arm over the region its tip can reach, as `ikarus workspace --out` does
     Workspace(RenderWorkspaceArgs),
     /// Plot an ease curve: position and velocity against time (the seed's Figure 10)

@@ -299,6 +299,15 @@ fn help_and_version_succeed() {
     let o = ikarus(&["solve", "--help"]);
     assert!(o.status.success());
     assert!(stdout(&o).contains("--batch <GOALS.csv>"));
+    // The help says what serve does today (it once said the page "comes later"), and lists
+    // every figure of render.
+    let help = stdout(&ikarus(&["--help"]));
+    assert!(!help.contains("later"), "{help}");
+    assert!(help.contains("Serve the playground page and the JSON API"), "{help}");
+    let render = stdout(&ikarus(&["render", "--help"]));
+    for figure in ["arm", "motion", "workspace", "ease"] {
+        assert!(render.lines().any(|l| l.trim_start().starts_with(figure)), "{figure}: {render}");
+    }
 }
 
 /// Every method and limit mode is reachable from the command line, and limits hold.
