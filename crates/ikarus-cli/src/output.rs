@@ -189,7 +189,8 @@ mod cleanup {
         for p in pending.iter() {
             let _ = std::fs::remove_file(p);
         }
-        eprintln!("ikarus: interrupted; no output written");
+        let removed = if pending.is_empty() { "" } else { "; the unfinished output file is removed" };
+        eprintln!("ikarus: interrupted{removed}");
         std::process::exit(i32::from(code))
     }
 
