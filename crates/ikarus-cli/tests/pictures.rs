@@ -357,3 +357,29 @@ fn render_draws_the_apis_figures() {
     assert_eq!(std::fs::read(&w1).unwrap(), std::fs::read(&w2).unwrap());
     fails(&["render", "workspace"], 2, "--out: required");
 }
+
+/// On a terminal (a pseudo-terminal from util-linux `script`, where it is installed): text
+/// without `--format`, and nothing at all with `--out`.
+#[cfg(unix)]
+#[test]
+fn animate_on_a_terminal_prints_text_or_nothing_with_out() {
+    let on_terminal = |args: &str| {
+        // stderr (the GIF's progress bar, on a terminal) is left out: stdout is the subject.
+        let command = format!("{} {args} 2>/dev/null", env!("CARGO_BIN_EXE_ikarus"));
+        std::process::Command::new("script").args(["-q", "-e", "-c", &command, "/dev/null"]).output()
+    };
+    let Ok(o) = on_terminal("animate --goal 2,3 --frames 5") else {
+        eprintln!("skipped: `script` is not installed");
+        return;
+    };
+    let text = String::from_utf8_lossy(&o.stdout).replace('\r', "");
+    assert!(o.status.success(), "{text}");
+    assert!(text.starts_with("arm       seed (3 links, reach 6)\n"), "{text}");
+    assert!(text.contains("motion    5 frames over 1 s, sine ease"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    let gif = dir.path().join("m.gif");
+    let o = on_terminal(&format!("animate --goal 2,3 --frames 4 --width 64 --out {}", gif.display())).unwrap();
+    assert!(o.status.success());
+    assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "", "nothing but the GIF");
+    assert!(gif.exists());
+}
