@@ -205,6 +205,13 @@ fn cost_caps_name_the_flag_that_raises_them() {
         )
     );
 
+    let e = fails(&["track", "--line", "1,1,2,2", "--samples", "1000000000"], 2);
+    assert_eq!(e, "ikarus: --samples 1000000000: more than the cap of 1000000 (raise it with --max-samples N)\n");
+    let path = dir.path().join("path.csv");
+    std::fs::write(&path, "x,y\n2,3\n2,3.1\n2,3.2\n").unwrap();
+    let e = fails(&["track", "--path", path.to_str().unwrap(), "--max-samples", "2"], 2);
+    assert!(e.ends_with("3 samples, more than the cap of 2 (raise it with --max-samples N)\n"), "{e}");
+
     let e = fails(&["workspace", "--samples", "1000000000"], 2);
     assert_eq!(e, "ikarus: --samples 1000000000: more than the cap of 1000000 (raise it with --max-samples N)\n");
     fails(&["render", "workspace", "--samples", "20000000", "--out", "w.png"], 2);
