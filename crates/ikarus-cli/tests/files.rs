@@ -78,6 +78,10 @@ fn a_device_is_written_through_not_replaced() {
         std::thread::spawn(move || std::fs::read(fifo).unwrap())
     };
     let o = ikarus(&["render", "ease", "--out", fifo.to_str().unwrap()]);
+    if !o.status.success() {
+        // Release the reader, which would wait for a writer forever.
+        drop(std::fs::OpenOptions::new().write(true).open(&fifo));
+    }
     assert!(o.status.success(), "{}", stderr(&o));
     let bytes = reader.join().unwrap();
     assert!(String::from_utf8(bytes).unwrap().contains("<svg"));
@@ -134,6 +138,16 @@ fn sigint_during_out_leaves_no_temporary_file() {
         assert!(temp[0].starts_with(".ikarus-") && temp[0].ends_with(".tmp"), "{temp:?}");
         std::thread::sleep(Duration::from_millis(200));
         assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
+        // A generous bound: a process that ignores the signal would otherwise run for hours.
+        let mut child = child;
+        let signalled = Instant::now();
+        while child.try_wait().unwrap().is_none() {
+            if signalled.elapsed() > Duration::from_secs(60) {
+                let _ = child.kill();
+                panic!("{signal}: the process kept running");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let o = child.wait_with_output().unwrap();
         let want = if signal == "-INT" { 130 } else { 143 };
         assert_eq!(o.status.code(), Some(want), "{signal}: {}", String::from_utf8_lossy(&o.stderr));
