@@ -81,7 +81,7 @@ pub struct TrackArgs {
     #[arg(long = "max-step-deg", id = "track_max_step_deg", value_name = "DEG", value_parser = parse_positive,
           default_value_t = DEFAULT_MAX_STEP_DEG)]
     pub max_step_deg: f64,
-    /// Output format [default: text on a terminal, json otherwise]
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum)]
     pub format: Option<TrackFormat>,
     #[command(flatten)]
@@ -270,6 +270,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
     let job = TrackJob { arm: &arm, start, path, mode: args.mode, options };
     let t = job.run().map_err(CliError::input)?;
+    let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
         let layer = job.layer(&t);
@@ -283,8 +284,13 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
         let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
         out.commit(&bytes)?;
     }
-    let format =
-        args.format.unwrap_or(if std::io::stdout().is_terminal() { TrackFormat::Text } else { TrackFormat::Json });
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let format = match (args.format, drew) {
+        (Some(f), _) => f,
+        (None, true) => return Ok(()),
+        (None, false) if std::io::stdout().is_terminal() => TrackFormat::Text,
+        (None, false) => TrackFormat::Json,
+    };
     output::stdout(|w| match format {
         TrackFormat::Json => {
             serde_json::to_writer_pretty(&mut *w, &TrackJson::new(&job, &t))?;

@@ -93,7 +93,7 @@ pub struct WorkspaceArgs {
     pub arm: Option<PathBuf>,
     #[command(flatten)]
     pub sampling: SamplingArgs,
-    /// Output format [default: text on a terminal, json otherwise]
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum)]
     pub format: Option<WorkspaceFormat>,
     #[command(flatten)]
@@ -134,6 +134,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let workspace = args.sampling.sample(&arm)?;
     let limits = workspace.limits();
 
+    let drew = picture.is_some();
     if let Some(out) = picture {
         let bytes = draw(
             &workspace_drawing(&arm, &workspace),
@@ -146,11 +147,13 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     }
 
     let annulus = workspace.annulus();
-    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() {
-        WorkspaceFormat::Text
-    } else {
-        WorkspaceFormat::Json
-    });
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let format = match (args.format, drew) {
+        (Some(f), _) => f,
+        (None, true) => return Ok(()),
+        (None, false) if std::io::stdout().is_terminal() => WorkspaceFormat::Text,
+        (None, false) => WorkspaceFormat::Json,
+    };
     output::stdout(|w| match format {
         WorkspaceFormat::Json => {
             serde_json::to_writer(&mut *w, &report::workspace_json(&arm, limits, &workspace))?;

@@ -352,7 +352,10 @@ fn render_draws_the_apis_figures() {
     // The workspace figure is what workspace --out draws.
     let w1 = path("w1.svg");
     let w2 = path("w2.svg");
-    common::succeeds(&["workspace", "--limits", "--resolution", "32", "--out", &w1]);
+    let quiet = common::succeeds(&["workspace", "--limits", "--resolution", "32", "--out", &w1]);
+    assert_eq!(quiet, "", "nothing on stdout with --out unless --format asks");
+    let quiet = common::succeeds(&["track", "--circle", "2,2,1", "--samples", "8", "--out", &path("t.svg")]);
+    assert_eq!(quiet, "", "nothing on stdout with --out unless --format asks");
     common::succeeds(&["render", "workspace", "--limits", "--resolution", "32", "--out", &w2]);
     assert_eq!(std::fs::read(&w1).unwrap(), std::fs::read(&w2).unwrap());
     fails(&["render", "workspace"], 2, "--out: required");
