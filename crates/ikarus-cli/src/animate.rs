@@ -1,34 +1,37 @@
 //! `ikarus animate`: solve for a goal (through any via points), then turn the poses into an
 //! eased motion: frames on stdout, and a picture or an animated GIF with `--out`.
 
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::EaseKind;
 use ikarus::motion::{Animation, Interpolation, Timing};
+use ikarus::{EaseKind, Goal};
 
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
-use crate::motion::{DEFAULT_FPS, MotionPlan, TimingProblem};
+use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command};
-use crate::report::AnimateJson;
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
+use crate::report::{AnimateJson, deg_text};
 use crate::settings::SolverSettings;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AnimateFormat {
-    /// One JSON object with the frames
+    /// One JSON object with the frames (the default when stdout is not a terminal)
     Json,
     /// One row per frame
     Csv,
+    /// A short report for people (the default on a terminal)
+    Text,
 }
 
-/// Solve for a goal and turn the result into a smooth, eased motion.
+/// What a motion is made of: the goal, the via points, the arm, the solver, the timing and
+/// the ease. Shared by `ikarus animate` and `ikarus render motion`.
 #[derive(Debug, Args)]
-pub struct AnimateArgs {
+pub struct MotionArgs {
     /// Goal position of the tip
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point)]
     pub goal: [f64; 2],
@@ -64,65 +67,133 @@ pub struct AnimateArgs {
     /// Record a solver frame every K iterations for --from-solve [default: 1]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
-    /// Output format of the frames on stdout
-    #[arg(long, value_enum, default_value = "json")]
-    pub format: AnimateFormat,
+}
+
+/// Solve for a goal and turn the result into a smooth, eased motion.
+#[derive(Debug, Args)]
+pub struct AnimateArgs {
+    #[command(flatten)]
+    pub motion: MotionArgs,
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
+    #[arg(long, value_enum)]
+    pub format: Option<AnimateFormat>,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
 
-pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
-    let arm = Arm::load(args.arm.as_deref())?;
-    let timing = timing(args)?;
-    let ease = args.ease.resolve(EaseKind::Sine)?;
-    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
+/// A motion computed from the flags, with what its report and pictures need.
+pub struct MotionRun {
+    pub arm: Arm,
+    pub goal: Goal,
+    pub motion: Motion,
+    /// Frames per second of a GIF.
+    pub fps: f64,
+}
 
-    // Solve for each via point, then the goal, each from the previous pose.
-    let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
-    let options = arm.options(&args.solver, record)?;
-    let [x, y] = args.goal;
-    let goal = crate::goals::make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
-    let goals =
-        crate::motion::goals(&args.via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
-    let start = arm.chain.start_pose().angles().to_vec();
-    let from_solve = args.from_solve;
-    let interpolation = args.interpolation.unwrap_or_default();
-    let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, interpolation, from_solve }.run()?;
-    for s in &motion.motion.solves {
-        if s.status != ikarus::Status::Reached {
-            let target = s.goal.target();
-            eprintln!(
-                "ikarus: goal ({}, {}) not reached: {}, error {:.3e}; the motion ends at the best pose found",
-                target.x, target.y, s.status, s.error
-            );
+impl MotionArgs {
+    /// Loads the arm, solves for each via point and the goal, and eases the poses into a
+    /// motion; an unreached goal is reported on stderr (the motion ends at the best pose).
+    pub fn run(&self) -> Result<MotionRun, CliError> {
+        let arm = Arm::load(self.arm.as_deref())?;
+        let timing = timing(self)?;
+        let ease = self.ease.resolve(EaseKind::Sine)?;
+        // Solve for each via point, then the goal, each from the previous pose.
+        let record = if self.from_solve { Some(self.record_every.unwrap_or(1)) } else { None };
+        let options = arm.options(&self.solver, record)?;
+        let [x, y] = self.goal;
+        let goal = crate::goals::make_goal(x, y, self.goal_angle).map_err(CliError::input)?;
+        let goals = crate::motion::goals(&self.via, goal)
+            .map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
+        let start = arm.chain.start_pose().angles().to_vec();
+        let interpolation = self.interpolation.unwrap_or_default();
+        let from_solve = self.from_solve;
+        let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, interpolation, from_solve }.run()?;
+        for s in &motion.motion.solves {
+            if s.status != ikarus::Status::Reached {
+                let target = s.goal.target();
+                eprintln!(
+                    "ikarus: goal ({}, {}) not reached: {}, error {:.3e}; the motion ends at the best pose found",
+                    target.x, target.y, s.status, s.error
+                );
+            }
         }
+        Ok(MotionRun { arm, goal, motion, fps: self.fps.unwrap_or(DEFAULT_FPS) })
     }
-    let animation = &motion.motion.animation;
+}
 
+impl MotionRun {
+    /// The drawing of the motion (the one the API's figure `motion` draws).
+    pub fn drawing(&self) -> Drawing<'_> {
+        motion_drawing(&self.arm, &self.motion, Some(self.goal.target()), self.fps)
+    }
+}
+
+pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
+    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
+    let run = args.motion.run()?;
+    let animation = &run.motion.motion.animation;
+
+    let drew = picture.is_some();
     if let Some(out) = picture {
-        let drawing = Drawing::Motion {
-            chain: &arm.chain,
-            animation,
-            goal: Some(goal.target()),
-            caption: motion.caption(),
-            fps: args.fps.unwrap_or(DEFAULT_FPS),
-        };
-        let bytes =
-            draw_for_command(&drawing, out.format, args.picture.width, args.picture.height, animation.frames.len())?;
+        let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, animation.frames.len())?;
         out.commit(&bytes)?;
     }
 
-    output::stdout(|w| match args.format {
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let format = match (args.format, drew) {
+        (Some(f), _) => f,
+        (None, true) => return Ok(()),
+        (None, false) if std::io::stdout().is_terminal() => AnimateFormat::Text,
+        (None, false) => AnimateFormat::Json,
+    };
+    let arm = &run.arm;
+    output::stdout(|w| match format {
         AnimateFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, &AnimateJson::new(&arm, &motion.motion))?;
+            serde_json::to_writer_pretty(&mut *w, &AnimateJson::new(arm, &run.motion.motion))?;
             writeln!(w)
         }
         AnimateFormat::Csv => csv(w, animation, arm.chain.len()),
+        AnimateFormat::Text => text(w, &run),
     })
 }
 
+/// The short report: the arm, each solve, the motion's timing, and its first and last pose.
+fn text(w: &mut dyn Write, run: &MotionRun) -> std::io::Result<()> {
+    let arm = &run.arm;
+    let options = &run.motion.options;
+    let motion = &run.motion.motion;
+    let animation = &motion.animation;
+    writeln!(w, "arm       {} ({} links, reach {})", arm.name, arm.chain.len(), arm.chain.max_reach())?;
+    let limits = match options.limits {
+        ikarus::LimitMode::Ignore => "off".to_owned(),
+        mode => format!("on ({})", mode.name()),
+    };
+    writeln!(w, "method    {}   limits {limits}", options.method.name())?;
+    for (i, s) in motion.solves.iter().enumerate() {
+        let what = if i + 1 == motion.solves.len() { "goal" } else { "via" };
+        let target = s.goal.target();
+        let angle = s.goal.orientation().map_or(String::new(), |a| format!(" at {}", deg_text(a, 3)));
+        writeln!(
+            w,
+            "{what:<9} ({}, {}){angle}: {} after {} iterations, error {:.3e}",
+            target.x, target.y, s.status, s.iterations, s.error
+        )?;
+    }
+    let frames = animation.frames.len();
+    writeln!(w, "motion    {frames} frames over {} s, {} ease", animation.duration, animation.ease.name())?;
+    let pose = |angles: &[f64]| angles.iter().map(|&a| deg_text(a, 3)).collect::<Vec<_>>().join(", ");
+    if let (Some(first), Some(last)) = (animation.frames.first(), animation.frames.last()) {
+        writeln!(w, "start     {}", pose(&first.angles))?;
+        writeln!(w, "end       {}", pose(&last.angles))?;
+        if let Some(tip) = last.joints.last() {
+            writeln!(w, "tip       ({:.6}, {:.6})", tip.x, tip.y)?;
+        }
+    }
+    writeln!(w, "frames    --format json or csv lists them; --out draws them (.svg, .png, .gif)")
+}
+
 /// The timing the flags ask for ([`crate::motion::timing`]).
-fn timing(args: &AnimateArgs) -> Result<Timing, CliError> {
+fn timing(args: &MotionArgs) -> Result<Timing, CliError> {
     crate::motion::timing(args.frames, args.duration, args.fps).map_err(|p| match p {
         TimingProblem::Value { field, value, message } => CliError::input(format!("--{field} {value}: {message}")),
         TimingProblem::Both => CliError::input("--frames, --duration: give one or the other, not both"),

@@ -61,18 +61,43 @@ pub struct LinkFile {
 #[derive(Debug, Clone)]
 pub struct Arm {
     pub name: String,
+    /// Where the arm came from, as error messages start (`arm file a.toml`, `built-in arm`).
+    pub label: String,
     pub chain: Chain,
     pub solver: SolverSettings,
 }
 
 impl Arm {
     /// The options of a command: `flags` over this arm file's `[solver]` table over the
-    /// defaults, for the arm's chain; problems name the flags.
+    /// defaults, for the arm's chain; problems name the flag, or the arm file's `[solver]`
+    /// field a setting came from.
     pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
-        flags
-            .over(&self.solver)
-            .to_options(&self.chain, record_every)
-            .map_err(|e| CliError::input(e.describe(|field| format!("--{}", field.replace('_', "-")))))
+        let restarts = flags.restarts.or(self.solver.restarts);
+        if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
+            let field = if flags.restarts.is_some() {
+                "--restarts".to_owned()
+            } else {
+                format!("{}: [solver].restarts", self.label)
+            };
+            return Err(CliError::input(format!(
+                "{field} {n}: more than the cap of {} (raise it with --max-restarts N)",
+                flags.max_restarts
+            )));
+        }
+        flags.over(&self.solver).to_options(&self.chain, record_every).map_err(|e| {
+            // A setting the flags left out came from the arm file's [solver] table: named as
+            // that, after the file.
+            let from_file = std::cell::Cell::new(false);
+            let message = e.describe(|field| {
+                if flags.is_set(field) || !self.solver.is_set(field) {
+                    format!("--{}", field.replace('_', "-"))
+                } else {
+                    from_file.set(true);
+                    format!("[solver].{field}")
+                }
+            });
+            CliError::input(if from_file.get() { format!("{}: {message}", self.label) } else { message })
+        })
     }
 
     /// Loads `path`, or the built-in seed arm when `None`.
@@ -81,8 +106,7 @@ impl Arm {
             None => Self::parse(DEFAULT_ARM, "built-in arm"),
             Some(p) => {
                 let label = format!("arm file {}", p.display());
-                let text = std::fs::read_to_string(p)
-                    .map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
+                let text = crate::input::read_text(p, &label)?;
                 Self::parse(&text, &label)
             }
         }
@@ -99,7 +123,8 @@ impl Arm {
     pub fn from_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
         let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
-        Ok(Self { name: file.name.clone().unwrap_or_else(|| "arm".to_owned()), chain, solver: file.solver })
+        let name = file.name.clone().unwrap_or_else(|| "arm".to_owned());
+        Ok(Self { name, label: label.to_owned(), chain, solver: file.solver })
     }
 }
 

@@ -7,7 +7,6 @@ use std::path::Path;
 
 use ikarus::Goal;
 
-use crate::arm::io_reason;
 use crate::error::CliError;
 use crate::options::parse_finite;
 
@@ -32,7 +31,7 @@ pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String>
 /// Reads the goal file `file`; errors start with `label` (e.g. `batch file goals.csv`). An empty
 /// file (a header and no row) is an empty list: the caller says what it needs.
 pub fn read(file: &Path, label: &str) -> Result<Vec<GoalRow>, CliError> {
-    let text = std::fs::read(file).map_err(|e| CliError::input(format!("{label}: cannot read: {}", io_reason(&e))))?;
+    let text = crate::input::read(file, label)?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
     let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
     let names: Vec<&str> = headers.iter().collect();

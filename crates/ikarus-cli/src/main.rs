@@ -10,6 +10,7 @@ mod bench;
 mod ease_args;
 mod error;
 mod goals;
+mod input;
 mod motion;
 mod options;
 mod output;
@@ -34,6 +35,9 @@ use crate::error::CliError;
 #[derive(Debug, Parser)]
 #[command(name = "ikarus", version, about, propagate_version = true)]
 struct Cli {
+    /// Largest input file read (--arm, --batch, --path), in bytes
+    #[arg(long, global = true, value_name = "BYTES", default_value_t = input::DEFAULT_MAX_INPUT_BYTES)]
+    max_input_bytes: u64,
     #[command(subcommand)]
     command: Command,
 }
@@ -56,7 +60,7 @@ enum Command {
     /// Draw figures that stand on their own
     #[command(subcommand)]
     Render(render::RenderCommand),
-    /// Serve the JSON API over HTTP on 127.0.0.1:7878 (the playground page comes later)
+    /// Serve the playground page and the JSON API over HTTP on 127.0.0.1:7878
     Serve(serve::ServeArgs),
     /// Time every solver on seeded goal sets for the shipped arms, optionally beside Orocos KDL
     Bench(bench::BenchArgs),
@@ -79,6 +83,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
     };
+    input::set_max_bytes(cli.max_input_bytes);
     let result: Result<(), CliError> = match &cli.command {
         Command::Solve(args) => solve::run(args),
         Command::Animate(args) => animate::run(args),

@@ -14,6 +14,7 @@ use serde::Deserialize;
 
 use crate::arm::Arm;
 use crate::error::CliError;
+use crate::motion::Motion;
 use crate::output::PendingFile;
 
 /// What a picture holds: from a file's extension, or a request's `format`.
@@ -32,6 +33,15 @@ impl PictureFormat {
             PictureFormat::Png => "image/png",
             PictureFormat::Svg => "image/svg+xml",
             PictureFormat::Gif => "image/gif",
+        }
+    }
+
+    /// The file extension, with its dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            PictureFormat::Png => ".png",
+            PictureFormat::Svg => ".svg",
+            PictureFormat::Gif => ".gif",
         }
     }
 }
@@ -142,6 +152,35 @@ fn track_animation(chain: &Chain, poses: &[Vec<f64>]) -> Animation {
     Animation { frames, duration: 1.0, ease: Ease::Linear }
 }
 
+/// The figure `arm`: the arm in `pose`, with an optional goal and shaded workspace (the
+/// API's figure `arm` and `ikarus render arm`).
+pub fn arm_drawing<'a>(
+    arm: &'a Arm,
+    pose: &'a [f64],
+    goal: Option<Point2<f64>>,
+    workspace: Option<&'a Workspace>,
+) -> Drawing<'a> {
+    Drawing::Arm { chain: &arm.chain, pose, goal, workspace, caption: None }
+}
+
+/// The figure `workspace`: the arm in its start pose over its reachable area, with a caption
+/// (the API's figure `workspace`, `ikarus workspace --out` and `ikarus render workspace`).
+pub fn workspace_drawing<'a>(arm: &'a Arm, workspace: &'a Workspace) -> Drawing<'a> {
+    Drawing::Arm {
+        chain: &arm.chain,
+        pose: arm.chain.start_pose().angles(),
+        goal: None,
+        workspace: Some(workspace),
+        caption: Some(workspace_caption(arm, workspace)),
+    }
+}
+
+/// The figure `motion`: a computed motion towards `goal`, animated at `fps` in a GIF (the
+/// API's figure `motion`, `ikarus animate --out` and `ikarus render motion`).
+pub fn motion_drawing<'a>(arm: &'a Arm, motion: &'a Motion, goal: Option<Point2<f64>>, fps: f64) -> Drawing<'a> {
+    Drawing::Motion { chain: &arm.chain, animation: &motion.motion.animation, goal, caption: motion.caption(), fps }
+}
+
 /// The one-line caption of a workspace picture.
 pub fn workspace_caption(arm: &Arm, ws: &Workspace) -> String {
     let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
@@ -160,7 +199,14 @@ pub struct PictureArgs {
     /// Picture height in pixels
     #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
     pub height: u32,
+    /// Largest GIF drawn, in frames × width × height pixels (about 6 s of rendering at the cap)
+    #[arg(long, value_name = "PIXELS", default_value_t = DEFAULT_MAX_GIF_PIXELS)]
+    pub max_gif_pixels: u64,
 }
+
+/// The default cap of `--max-gif-pixels`: 1000 frames of 800 × 800 and more (10⁹ pixels;
+/// 100 frames at 4096 × 4096, 1.7·10⁹ pixels, took 11 s).
+pub const DEFAULT_MAX_GIF_PIXELS: u64 = 1_000_000_000;
 
 /// A picture to be written: its format, and the file prepared up front so that an unwritable
 /// path fails before any work is done.
@@ -194,14 +240,7 @@ fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, Cl
         Some("gif") => Some(PictureFormat::Gif),
         _ => None,
     };
-    let names: Vec<&str> = allowed
-        .iter()
-        .map(|f| match f {
-            PictureFormat::Svg => ".svg",
-            PictureFormat::Png => ".png",
-            PictureFormat::Gif => ".gif",
-        })
-        .collect();
+    let names: Vec<&str> = allowed.iter().map(|f| f.extension()).collect();
     match format {
         Some(f) if allowed.contains(&f) => Ok(f),
         _ => Err(CliError::input(format!(
@@ -212,15 +251,25 @@ fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, Cl
     }
 }
 
-/// [`draw`] for a command: a GIF of `frames` frames shows a progress bar on stderr while it
+/// [`draw`] for a command, at the size of the flags: a GIF of more than `--max-gif-pixels`
+/// pixels is refused; a GIF of `frames` frames shows a progress bar on stderr while it
 /// renders, when stderr is a terminal.
 pub fn draw_for_command(
     drawing: &Drawing<'_>,
     format: PictureFormat,
-    width: u32,
-    height: u32,
+    picture: &PictureArgs,
     frames: usize,
 ) -> Result<Vec<u8>, CliError> {
+    let (width, height) = (picture.width, picture.height);
+    if format == PictureFormat::Gif {
+        let pixels = (frames as u64).saturating_mul(u64::from(width) * u64::from(height));
+        if pixels > picture.max_gif_pixels {
+            return Err(CliError::input(format!(
+                "--out: a GIF of {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {} (fewer --frames, a smaller --width/--height, or raise it with --max-gif-pixels N)",
+                picture.max_gif_pixels
+            )));
+        }
+    }
     let bar = (format == PictureFormat::Gif).then(|| progress_bar(frames as u64, "rendering frames")).flatten();
     let report = |done: usize, total: usize| {
         if let Some(bar) = &bar {

@@ -1,17 +1,74 @@
-//! `ikarus render`: figures that stand on their own, such as the plot of an ease curve.
+//! `ikarus render`: the figures of `POST /api/render` from the command line: `arm`, `motion`,
+//! `workspace` and `ease`, with the flags of the other commands and the same drawings
+//! ([`crate::picture`] builds each figure for both).
+
+use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-
 use ikarus::EaseKind;
 
+use crate::animate::MotionArgs;
+use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw};
+use crate::options::{parse_finite, parse_point};
+use crate::picture::{
+    Drawing, PictureArgs, PictureFormat, PictureOut, arm_drawing, draw, draw_for_command, workspace_drawing,
+};
+use crate::workspace::SamplingArgs;
 
 #[derive(Debug, Subcommand)]
 pub enum RenderCommand {
+    /// Draw the arm in a pose (its start pose by default), with a goal and its reachable area
+    #[command(allow_negative_numbers = true)]
+    Arm(RenderArmArgs),
+    /// Draw a motion as `ikarus animate` computes it: every frame as a ghost (.svg, .png), or
+    /// animated (.gif)
+    #[command(allow_negative_numbers = true)]
+    Motion(Box<RenderMotionArgs>),
+    /// Draw the arm over the region its tip can reach, as `ikarus workspace --out` does
+    Workspace(RenderWorkspaceArgs),
     /// Plot an ease curve: position and velocity against time (the seed's Figure 10)
     Ease(RenderEaseArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArmArgs {
+    /// Arm file (TOML) [default: the built-in seed arm]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    /// The pose drawn, one angle per joint, degrees [default: the arm's start angles]
+    #[arg(long, value_name = "A,B,…", value_delimiter = ',', allow_hyphen_values = true, value_parser = parse_finite)]
+    pub pose_deg: Option<Vec<f64>>,
+    /// A goal to mark
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point)]
+    pub goal: Option<[f64; 2]>,
+    /// Also shade the reachable area, sampled as the flags below say
+    #[arg(long)]
+    pub workspace: bool,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderMotionArgs {
+    #[command(flatten)]
+    pub motion: MotionArgs,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderWorkspaceArgs {
+    /// Arm file (TOML) [default: the built-in seed arm]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+    #[command(flatten)]
+    pub picture: PictureArgs,
 }
 
 #[derive(Debug, Args)]
@@ -23,15 +80,58 @@ pub struct RenderEaseArgs {
 }
 
 pub fn run(command: &RenderCommand) -> Result<(), CliError> {
+    let still = [PictureFormat::Svg, PictureFormat::Png];
     match command {
-        RenderCommand::Ease(args) => {
-            if args.picture.out.is_none() {
-                return Err(CliError::input("--out: required: the file to draw to (.svg or .png)"));
-            }
-            let ease = args.ease.resolve(EaseKind::Parent)?;
-            let out = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?.expect("--out is set");
-            let bytes = draw(&Drawing::Ease(ease), out.format, args.picture.width, args.picture.height, &|_, _| {})?;
+        RenderCommand::Arm(args) => {
+            let out = required_out(&args.picture, &still)?;
+            let arm = Arm::load(args.arm.as_deref())?;
+            let pose = pose(&arm, args.pose_deg.as_deref())?;
+            let workspace = if args.workspace { Some(args.sampling.sample(&arm)?) } else { None };
+            let goal = args.goal.map(|[x, y]| ikarus::Point2::new(x, y));
+            let drawing = arm_drawing(&arm, &pose, goal, workspace.as_ref());
+            still_picture(&drawing, out, &args.picture)
+        }
+        RenderCommand::Motion(args) => {
+            let out = required_out(&args.picture, &[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
+            let run = args.motion.run()?;
+            let frames = run.motion.motion.animation.frames.len();
+            let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, frames)?;
             out.commit(&bytes)
         }
+        RenderCommand::Workspace(args) => {
+            let out = required_out(&args.picture, &still)?;
+            let arm = Arm::load(args.arm.as_deref())?;
+            let workspace = args.sampling.sample(&arm)?;
+            still_picture(&workspace_drawing(&arm, &workspace), out, &args.picture)
+        }
+        RenderCommand::Ease(args) => {
+            let out = required_out(&args.picture, &still)?;
+            let ease = args.ease.resolve(EaseKind::Parent)?;
+            still_picture(&Drawing::Ease(ease), out, &args.picture)
+        }
     }
+}
+
+/// `--out`, which every figure needs, checked against the formats it can be drawn in.
+fn required_out(picture: &PictureArgs, allowed: &[PictureFormat]) -> Result<PictureOut, CliError> {
+    let names: Vec<&str> = allowed.iter().map(|f| f.extension()).collect();
+    picture
+        .prepare(allowed)?
+        .ok_or_else(|| CliError::input(format!("--out: required: the file to draw to ({})", names.join(", "))))
+}
+
+fn still_picture(drawing: &Drawing<'_>, out: PictureOut, picture: &PictureArgs) -> Result<(), CliError> {
+    let bytes = draw(drawing, out.format, picture.width, picture.height, &|_, _| {})?;
+    out.commit(&bytes)
+}
+
+/// The pose of `--pose-deg` in radians (one angle per joint, within any ranges the arm has),
+/// or the arm's start pose.
+fn pose(arm: &Arm, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, CliError> {
+    let Some(deg) = pose_deg else { return Ok(arm.chain.start_pose().angles().to_vec()) };
+    let n = arm.chain.len();
+    if deg.len() != n {
+        return Err(CliError::input(format!("--pose-deg: expected {n} angles (one per joint), got {}", deg.len())));
+    }
+    Ok(deg.iter().map(|a| a.to_radians()).collect())
 }

@@ -200,3 +200,47 @@ fn grid_rows(ws: &Workspace) -> Vec<String> {
         .map(|iy| (0..ws.resolution()).map(|ix| if ws.is_occupied(ix, iy) { '1' } else { '0' }).collect())
         .collect()
 }
+
+/// An angle in radians as degrees for people: normalised into (−180°, 180°], with `decimals`
+/// decimals and the `°` sign, and never `-0.000°` (a value that rounds to zero, or to −180°,
+/// prints as 0 or 180).
+pub fn deg_text(radians: f64, decimals: usize) -> String {
+    let deg = ikarus::angle::wrap_angle(radians).to_degrees();
+    let deg = if deg <= -180.0 { deg + 360.0 } else { deg };
+    let text = format!("{deg:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(abs) if abs.parse::<f64>().is_ok_and(|v| v == 0.0 || v == 180.0) => format!("{abs}°"),
+        _ => format!("{text}°"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::deg_text;
+
+    #[test]
+    fn angles_for_people_are_in_the_half_open_circle_without_negative_zero() {
+        let cases = [
+            (0.0, "0.000°"),
+            (-0.0, "0.000°"),
+            (-1e-9, "0.000°"),
+            (-214.371, "145.629°"),
+            (180.0, "180.000°"),
+            (-180.0, "180.000°"),
+            (-179.99999, "180.000°"),
+            (540.0, "180.000°"),
+            (-90.0, "-90.000°"),
+            (359.9996, "0.000°"),
+            (1e20, "-" /* any value, but one in range */),
+        ];
+        for (deg, want) in cases {
+            let got = deg_text(f64::to_radians(deg), 3);
+            if want == "-" {
+                let v: f64 = got.trim_end_matches('°').parse().unwrap();
+                assert!(v > -180.0 && v <= 180.0, "{deg} -> {got}");
+            } else {
+                assert_eq!(got, want, "{deg}");
+            }
+        }
+    }
+}

@@ -15,7 +15,7 @@ use crate::error::CliError;
 use crate::goals::{self, GoalRow, make_goal};
 use crate::options::{parse_angle, parse_at_least_one, parse_point};
 use crate::output::{self, PendingFile};
-use crate::report::{SolveJson, SolveReport};
+use crate::report::{SolveJson, SolveReport, deg_text};
 use crate::settings::{SolverSettings, solver};
 use crate::stats::{median, nearest_rank};
 
@@ -161,7 +161,7 @@ impl Report<'_> {
         let o = self.outcome;
         let opts = self.options;
         let target = self.goal.target();
-        let goal_angle = self.goal.orientation().map_or(String::new(), |a| format!(" at {:.3}°", a.to_degrees()));
+        let goal_angle = self.goal.orientation().map_or(String::new(), |a| format!(" at {}", deg_text(a, 3)));
         let limits = match (opts.limits, self.arm.chain.has_limits()) {
             (ikarus::LimitMode::Ignore, true) => "off (the arm has ranges: --limits enforces them)".to_owned(),
             (ikarus::LimitMode::Ignore, false) => "off".to_owned(),
@@ -190,12 +190,12 @@ impl Report<'_> {
         let tip = o.end_effector;
         writeln!(
             w,
-            "tip       ({:.6}, {:.6}) pointing {:.3}°",
+            "tip       ({:.6}, {:.6}) pointing {}",
             tip.position.x,
             tip.position.y,
-            tip.orientation.to_degrees()
+            deg_text(tip.orientation, 3)
         )?;
-        let angles: Vec<String> = o.pose.angles().iter().map(|a| format!("{:.3}°", a.to_degrees())).collect();
+        let angles: Vec<String> = o.pose.angles().iter().map(|&a| deg_text(a, 3)).collect();
         writeln!(w, "angles    {}", angles.join(", "))?;
         let joints = ikarus::kinematics::joint_positions(&self.arm.chain, o.pose.angles());
         let joints: Vec<String> = joints.iter().map(|p| format!("({:.3}, {:.3})", p.x, p.y)).collect();

@@ -65,6 +65,9 @@ pub struct TrackArgs {
     /// Samples of a --line, --circle or --figure8, at least 2 [default: 100]
     #[arg(long, value_name = "N", conflicts_with = "path")]
     pub samples: Option<usize>,
+    /// Largest number of samples tracked, of a shape or a --path file
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SAMPLES)]
+    pub max_samples: usize,
     /// follow: online, every joint step within the bound; plan: a global search for the joint
     /// path without flips (or with the smallest) and least motion
     #[arg(long, value_parser = named::<TrackMode>(), default_value = "plan", hide_possible_values = false)]
@@ -78,12 +81,16 @@ pub struct TrackArgs {
     #[arg(long = "max-step-deg", id = "track_max_step_deg", value_name = "DEG", value_parser = parse_positive,
           default_value_t = DEFAULT_MAX_STEP_DEG)]
     pub max_step_deg: f64,
-    /// Output format [default: text on a terminal, json otherwise]
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum)]
     pub format: Option<TrackFormat>,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
+
+/// The default cap of `--samples` (and of a `--path` file's rows): 10⁶ samples, about ten
+/// seconds of planning on the built-in arm.
+pub const DEFAULT_MAX_SAMPLES: usize = 1_000_000;
 
 /// `N` comma-separated finite numbers.
 fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
@@ -263,6 +270,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
     let job = TrackJob { arm: &arm, start, path, mode: args.mode, options };
     let t = job.run().map_err(CliError::input)?;
+    let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
         let layer = job.layer(&t);
@@ -273,11 +281,16 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
             caption: job.caption(&t),
             fps: TRACK_FPS,
         };
-        let bytes = draw_for_command(&drawing, out.format, args.picture.width, args.picture.height, poses.len())?;
+        let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
         out.commit(&bytes)?;
     }
-    let format =
-        args.format.unwrap_or(if std::io::stdout().is_terminal() { TrackFormat::Text } else { TrackFormat::Json });
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let format = match (args.format, drew) {
+        (Some(f), _) => f,
+        (None, true) => return Ok(()),
+        (None, false) if std::io::stdout().is_terminal() => TrackFormat::Text,
+        (None, false) => TrackFormat::Json,
+    };
     output::stdout(|w| match format {
         TrackFormat::Json => {
             serde_json::to_writer_pretty(&mut *w, &TrackJson::new(&job, &t))?;
@@ -291,7 +304,16 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
 /// The path the flags ask for: a CSV file or a sampled shape.
 fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
     if let Some(file) = &args.path {
-        return read_path(file);
+        let path = read_path(file)?;
+        if path.len() > args.max_samples {
+            return Err(CliError::input(format!(
+                "--path {}: {} samples, more than the cap of {} (raise it with --max-samples N)",
+                file.display(),
+                path.len(),
+                args.max_samples
+            )));
+        }
+        return Ok(path);
     }
     let shape = match (args.line, args.circle, args.figure8) {
         (Some(l), _, _) => Shape::Line(l),
@@ -300,6 +322,12 @@ fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
         _ => unreachable!("clap requires one of --path, --line, --circle, --figure8"),
     };
     let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
+    if samples > args.max_samples {
+        return Err(CliError::input(format!(
+            "--samples {samples}: more than the cap of {} (raise it with --max-samples N)",
+            args.max_samples
+        )));
+    }
     shape.path(samples).map_err(|e| match e {
         PathError::Samples { value } => CliError::input(format!("--samples {value}: must be at least 2")),
         other => CliError::input(format!("--{} {other}", shape.name())),

@@ -9,7 +9,7 @@ use ikarus::reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::parse_at_least_one;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw, progress_bar, workspace_caption};
+use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, workspace_drawing};
 use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -20,12 +20,10 @@ pub enum WorkspaceFormat {
     Text,
 }
 
-/// Compute the reachable region of the arm's tip.
+/// The sampling flags of a workspace: `ikarus workspace`, `ikarus render workspace` and
+/// `ikarus render arm --workspace`.
 #[derive(Debug, Args)]
-pub struct WorkspaceArgs {
-    /// Arm file (TOML) [default: the built-in seed arm]
-    #[arg(long, value_name = "FILE")]
-    pub arm: Option<PathBuf>,
+pub struct SamplingArgs {
     /// Respect the arm's joint ranges (the built-in arm's are the seed's)
     #[arg(long, overrides_with = "no_limits")]
     pub limits: bool,
@@ -35,13 +33,67 @@ pub struct WorkspaceArgs {
     /// Grid cells along each side of the square around the reach, 8 to 4096
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub resolution: u32,
-    /// Joint-space samples [default: the library's]
+    /// Joint-space samples, at most --max-samples [default: the library's]
     #[arg(long, value_parser = parse_at_least_one)]
     pub samples: Option<u32>,
+    /// Largest --samples accepted
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SAMPLES)]
+    pub max_samples: u32,
     /// Seed of the sampling
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Output format [default: text on a terminal, json otherwise]
+}
+
+/// The default cap of `--samples`: about four times the library's largest default (262 144),
+/// the server's cap too; 10⁷ samples of a seven-link arm with limits take most of a minute.
+pub const DEFAULT_MAX_SAMPLES: u32 = 1_000_000;
+
+impl SamplingArgs {
+    /// The request of these flags, or an error if `--samples` is over its cap.
+    pub fn request(&self) -> Result<WorkspaceRequest, CliError> {
+        if let Some(n) = self.samples {
+            if n > self.max_samples {
+                return Err(CliError::input(format!(
+                    "--samples {n}: more than the cap of {} (raise it with --max-samples N)",
+                    self.max_samples
+                )));
+            }
+        }
+        let limits = match (self.limits, self.no_limits) {
+            (true, _) => Some(true),
+            (false, true) => Some(false),
+            (false, false) => None,
+        };
+        Ok(WorkspaceRequest { limits, resolution: self.resolution, samples: self.samples, seed: self.seed })
+    }
+
+    /// Samples `arm`'s workspace as the flags say, with a progress bar on a terminal.
+    pub fn sample(&self, arm: &Arm) -> Result<Workspace, CliError> {
+        let request = self.request()?;
+        let bar = progress_bar(100, "sampling the workspace");
+        let report = |done: u64, total: u64| {
+            if let Some(bar) = &bar {
+                bar.set_length(total);
+                bar.set_position(done);
+            }
+        };
+        let workspace = request.sample(arm, &report).map_err(|e| CliError::input(format!("--{e}")))?;
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
+        Ok(workspace)
+    }
+}
+
+/// Compute the reachable region of the arm's tip.
+#[derive(Debug, Args)]
+pub struct WorkspaceArgs {
+    /// Arm file (TOML) [default: the built-in seed arm]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum)]
     pub format: Option<WorkspaceFormat>,
     #[command(flatten)]
@@ -79,45 +131,29 @@ impl WorkspaceRequest {
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
-    let flags = match (args.limits, args.no_limits) {
-        (true, _) => Some(true),
-        (false, true) => Some(false),
-        (false, false) => None,
-    };
-    let request =
-        WorkspaceRequest { limits: flags, resolution: args.resolution, samples: args.samples, seed: args.seed };
-    let limits = request.limits(&arm);
+    let workspace = args.sampling.sample(&arm)?;
+    let limits = workspace.limits();
 
-    let bar = progress_bar(100, "sampling the workspace");
-    let report = |done: u64, total: u64| {
-        if let Some(bar) = &bar {
-            bar.set_length(total);
-            bar.set_position(done);
-        }
-    };
-    let workspace = request.sample(&arm, &report).map_err(|e| CliError::input(format!("--{e}")))?;
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
-    }
-
+    let drew = picture.is_some();
     if let Some(out) = picture {
-        let drawing = Drawing::Arm {
-            chain: &arm.chain,
-            pose: arm.chain.start_pose().angles(),
-            goal: None,
-            workspace: Some(&workspace),
-            caption: Some(workspace_caption(&arm, &workspace)),
-        };
-        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &|_, _| {})?;
+        let bytes = draw(
+            &workspace_drawing(&arm, &workspace),
+            out.format,
+            args.picture.width,
+            args.picture.height,
+            &|_, _| {},
+        )?;
         out.commit(&bytes)?;
     }
 
     let annulus = workspace.annulus();
-    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() {
-        WorkspaceFormat::Text
-    } else {
-        WorkspaceFormat::Json
-    });
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let format = match (args.format, drew) {
+        (Some(f), _) => f,
+        (None, true) => return Ok(()),
+        (None, false) if std::io::stdout().is_terminal() => WorkspaceFormat::Text,
+        (None, false) => WorkspaceFormat::Json,
+    };
     output::stdout(|w| match format {
         WorkspaceFormat::Json => {
             serde_json::to_writer(&mut *w, &report::workspace_json(&arm, limits, &workspace))?;

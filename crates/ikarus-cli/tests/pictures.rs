@@ -237,3 +237,152 @@ fn render_ease() {
     fails(&["render", "ease", "--k1", "0.3"], 2, "--out: required");
     fails(&["render", "ease", "--k1", "0.9", "--k2", "0.3", "--out", "e.png"], 2, "--k1: must not exceed k2");
 }
+
+#[test]
+fn animate_prints_as_solve_does() {
+    // Piped: JSON; --format text: the short report; --format csv: rows.
+    let v = json(&["animate", "--goal", "2,3", "--frames", "5"]);
+    assert_eq!(v["frames"].as_array().unwrap().len(), 5);
+    let text = common::succeeds(&["animate", "--goal", "2,3", "--frames", "5", "--format", "text"]);
+    assert!(text.starts_with("arm       seed (3 links, reach 6)\n"), "{text}");
+    assert!(text.contains("goal      (2, 3): reached after"), "{text}");
+    assert!(text.contains("motion    5 frames over 1 s, sine ease"), "{text}");
+    assert!(text.contains("start     5.000°, 5.000°, 5.000°"), "{text}");
+    assert!(text.lines().count() < 12, "short: {text}");
+    let csv = common::succeeds(&["animate", "--goal", "2,3", "--frames", "5", "--format", "csv"]);
+    assert_eq!(csv.lines().count(), 6);
+
+    // With --out, stdout stays empty unless a format is asked for.
+    let dir = tempfile::tempdir().unwrap();
+    let gif = dir.path().join("m.gif");
+    let gif = gif.to_str().unwrap();
+    let quiet = common::succeeds(&["animate", "--goal", "2,3", "--frames", "4", "--width", "64", "--out", gif]);
+    assert_eq!(quiet, "", "nothing on stdout after writing the GIF");
+    let asked = common::succeeds(&[
+        "animate", "--goal", "2,3", "--frames", "4", "--width", "64", "--out", gif, "--format", "json",
+    ]);
+    assert_eq!(serde_json::from_str::<serde_json::Value>(&asked).unwrap()["frames"].as_array().unwrap().len(), 4);
+}
+
+#[test]
+fn text_angles_are_normalised_without_negative_zero() {
+    // The tip of this pose points at -200° = 160°; its first joint is at -88.872°.
+    let text = common::succeeds(&["solve", "--goal", "-2,-1", "--goal-angle", "-200", "--format", "text"]);
+    assert!(text.contains("goal      (-2, -1) at 160.000°"), "{text}");
+    assert!(text.contains("pointing 160.000°"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    let arm = dir.path().join("arm.toml");
+    // Start angles whose sum winds past a turn, and one that is a tiny negative number.
+    std::fs::write(&arm, "[[links]]\nlength = 1\nangle_deg = -1e-9\n[[links]]\nlength = 1\nangle_deg = -300\n")
+        .unwrap();
+    let arm = arm.to_str().unwrap();
+    for args in [
+        &["solve", "--arm", arm, "--goal", "7,0", "--format", "text", "--restarts", "0"][..],
+        &["animate", "--arm", arm, "--goal", "0.5,1", "--frames", "3", "--format", "text"],
+        &["solve", "--goal", "-5.5,-1", "--format", "text"],
+    ] {
+        let text = common::succeeds(args);
+        assert!(!text.contains("-0.000°"), "{args:?}: {text}");
+        // Every angle printed as a number of degrees (not an error in scientific notation).
+        let angles: Vec<f64> = text
+            .split([' ', ',', '(', ')', '\n'])
+            .filter_map(|t| t.strip_suffix('°'))
+            .filter(|t| !t.contains('e'))
+            .map(|t| t.parse().unwrap_or_else(|_| panic!("{t} in {text}")))
+            .collect();
+        assert!(angles.len() >= 2, "{args:?}: {text}");
+        for v in angles {
+            assert!(v > -180.0 && v <= 180.0, "{args:?}: {v} in {text}");
+        }
+    }
+}
+
+#[test]
+fn render_draws_the_apis_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/seven.toml");
+    let arm = arm.to_str().unwrap();
+
+    let png = path("arm.png");
+    common::succeeds(&["render", "arm", "--goal", "2,3", "--width", "640", "--height", "480", "--out", &png]);
+    assert_eq!(png_size(&std::fs::read(&png).unwrap()), (640, 480));
+    let plain = std::fs::read(path("arm.png")).unwrap();
+    let shaded = path("shaded.png");
+    common::succeeds(&[
+        "render",
+        "arm",
+        "--goal",
+        "2,3",
+        "--width",
+        "640",
+        "--height",
+        "480",
+        "--workspace",
+        "--limits",
+        "--resolution",
+        "32",
+        "--out",
+        &shaded,
+    ]);
+    assert_ne!(std::fs::read(&shaded).unwrap(), plain, "the reachable area is shaded");
+    let posed = path("posed.svg");
+    common::succeeds(&["render", "arm", "--arm", arm, "--pose-deg", "0,10,-20,30,-40,50,-60", "--out", &posed]);
+    assert!(std::fs::read_to_string(&posed).unwrap().contains("<svg"));
+    fails(
+        &["render", "arm", "--pose-deg", "1,2", "--out", &path("x.png")],
+        2,
+        "--pose-deg: expected 3 angles (one per joint), got 2",
+    );
+    fails(&["render", "arm", "--out", &path("x.gif")], 2, "unsupported picture format (use .svg, .png)");
+
+    // The motion figure is what animate draws, for the same flags.
+    let a = path("a.svg");
+    let r = path("r.svg");
+    common::succeeds(&["animate", "--goal", "2,3", "--via", "4,1", "--frames", "8", "--out", &a]);
+    common::succeeds(&["render", "motion", "--goal", "2,3", "--via", "4,1", "--frames", "8", "--out", &r]);
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&r).unwrap());
+    let gif = path("m.gif");
+    common::succeeds(&[
+        "render", "motion", "--goal", "2,3", "--frames", "6", "--width", "100", "--height", "80", "--out", &gif,
+    ]);
+    assert_eq!(gif_size(&std::fs::read(&gif).unwrap()), (100, 80));
+    fails(&["render", "motion", "--goal", "2,3"], 2, "--out: required: the file to draw to (.svg, .png, .gif)");
+
+    // The workspace figure is what workspace --out draws.
+    let w1 = path("w1.svg");
+    let w2 = path("w2.svg");
+    let quiet = common::succeeds(&["workspace", "--limits", "--resolution", "32", "--out", &w1]);
+    assert_eq!(quiet, "", "nothing on stdout with --out unless --format asks");
+    let quiet = common::succeeds(&["track", "--circle", "2,2,1", "--samples", "8", "--out", &path("t.svg")]);
+    assert_eq!(quiet, "", "nothing on stdout with --out unless --format asks");
+    common::succeeds(&["render", "workspace", "--limits", "--resolution", "32", "--out", &w2]);
+    assert_eq!(std::fs::read(&w1).unwrap(), std::fs::read(&w2).unwrap());
+    fails(&["render", "workspace"], 2, "--out: required");
+}
+
+/// On a terminal (a pseudo-terminal from util-linux `script`, where it is installed): text
+/// without `--format`, and nothing at all with `--out`.
+#[cfg(unix)]
+#[test]
+fn animate_on_a_terminal_prints_text_or_nothing_with_out() {
+    let on_terminal = |args: &str| {
+        // stderr (the GIF's progress bar, on a terminal) is left out: stdout is the subject.
+        let command = format!("{} {args} 2>/dev/null", env!("CARGO_BIN_EXE_ikarus"));
+        std::process::Command::new("script").args(["-q", "-e", "-c", &command, "/dev/null"]).output()
+    };
+    let Ok(o) = on_terminal("animate --goal 2,3 --frames 5") else {
+        eprintln!("skipped: `script` is not installed");
+        return;
+    };
+    let text = String::from_utf8_lossy(&o.stdout).replace('\r', "");
+    assert!(o.status.success(), "{text}");
+    assert!(text.starts_with("arm       seed (3 links, reach 6)\n"), "{text}");
+    assert!(text.contains("motion    5 frames over 1 s, sine ease"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    let gif = dir.path().join("m.gif");
+    let o = on_terminal(&format!("animate --goal 2,3 --frames 4 --width 64 --out {}", gif.display())).unwrap();
+    assert!(o.status.success());
+    assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "", "nothing but the GIF");
+    assert!(gif.exists());
+}
