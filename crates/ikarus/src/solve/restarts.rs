@@ -40,17 +40,15 @@ pub(super) fn solve_with_restarts(
     // weighted least norm does against a limit, is as stuck as one standing still); restarts
     // go on until one reaches the goal. Goals out of reach even without limits do not.
     if let Some(r) = opts.restarts {
-        if tally.status != Status::Reached && !goal.is_out_of_reach(chain, opts.tolerance) {
+        let go_on = !matches!(tally.status, Status::Reached | Status::Interrupted);
+        if go_on && !goal.is_out_of_reach(chain, opts.tolerance) {
             restart(p, r, began, start, s, out, &mut tally);
         }
     }
     out.iterations = tally.iterations;
     out.restarts = tally.restarts;
-    out.status = if tally.status != Status::Reached && goal.is_out_of_reach(chain, opts.tolerance) {
-        Status::Unreachable
-    } else {
-        tally.status
-    };
+    let judged = !matches!(tally.status, Status::Reached | Status::Interrupted);
+    out.status = if judged && goal.is_out_of_reach(chain, opts.tolerance) { Status::Unreachable } else { tally.status };
 }
 
 /// The restarts after a first attempt that did not reach the goal, counted into `tally`.
@@ -77,7 +75,9 @@ fn restart(
         tally.iterations += out.iterations;
         tally.restarts = k;
         last = k;
-        if !stuck(tally.status) {
+        // An interrupted solve ends at once, on the pose it has (running the best attempt
+        // again would be interrupted too).
+        if !stuck(tally.status) || tally.status == Status::Interrupted {
             break;
         }
         let err = task_error(p.opts, out);
@@ -85,7 +85,7 @@ fn restart(
             best = (err, k);
         }
     }
-    if stuck(tally.status) && best.1 != last {
+    if stuck(tally.status) && tally.status != Status::Interrupted && best.1 != last {
         // No attempt reached the goal: run the best one again (solves are deterministic, so
         // this reproduces it) to leave its pose in `out`.
         if best.1 == 0 {
