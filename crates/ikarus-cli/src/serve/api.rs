@@ -11,14 +11,14 @@ use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use ikarus::motion::{Interpolation, Timing};
 use ikarus::reach::{Workspace, WorkspaceOptions};
-use ikarus::{Ease, EaseKind, Goal, Outcome, SolveOptions};
+use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
 use super::requests::{
     AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, SolveReq, TrackReq, WorkspaceReq,
 };
-use super::{AppState, Limits, blocking};
+use super::{AppState, Limits};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
@@ -79,10 +79,11 @@ pub async fn default_arm() -> Result<Response, ApiError> {
 }
 
 pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm, limits)?;
-        let options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits)?;
+        let options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let goal = goal(&req.goal, "goal")?;
         let mut solver = solver(options)?;
@@ -97,10 +98,11 @@ pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq
 }
 
 pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<AnimateReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
         let fields = MotionFields::of_animate(&req);
-        let motion = motion(&arm, &fields, &req.goal, &state.limits)?;
+        let motion = motion(&arm, &fields, &req.goal, &state.limits, interrupt)?;
         json_response(&AnimateJson::new(&arm, &motion.motion))
     })
     .await
@@ -108,10 +110,11 @@ pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<Animat
 
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
 pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm.clone(), limits)?;
-        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits)?;
+        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let path = track_path(&req, limits)?;
         let max_step_deg = req.max_step_deg.unwrap_or(DEFAULT_MAX_STEP_DEG);
@@ -165,17 +168,19 @@ pub async fn workspace(
     State(state): State<AppState>,
     ApiJson(req): ApiJson<WorkspaceReq>,
 ) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
-        let (workspace, limits) = sample_workspace(&arm, &req, &state.limits)?;
+        let (workspace, limits) = sample_workspace(&arm, &req, &state.limits, interrupt)?;
         json_response(&report::workspace_json(&arm, limits, &workspace))
     })
     .await
 }
 
 pub async fn render(State(state): State<AppState>, req: RenderReq) -> Result<Response, ApiError> {
-    blocking(move || {
-        let (bytes, format) = render_figure(req, &state.limits)?;
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
+        let (bytes, format) = render_figure(req, &state.limits, interrupt)?;
         Ok(([(header::CONTENT_TYPE, format.content_type())], bytes).into_response())
     })
     .await
@@ -208,6 +213,7 @@ fn options(
     table: Option<&SolverSettings>,
     record_every: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<SolveOptions, ApiError> {
     let table = table.map_or_else(|| arm.solver.clone(), |t| t.over(&arm.solver));
     table.check().map_err(|m| ApiError::invalid(format!("options.{m}")))?;
@@ -222,13 +228,15 @@ fn options(
         return Err(ApiError::invalid(format!("options.restarts = {restarts}: more than the cap of {MAX_RESTARTS}")));
     }
     let every = table.record_every.unwrap_or(record_every);
-    table.to_options(&arm.chain, Some(every)).map_err(|e| {
+    let mut options = table.to_options(&arm.chain, Some(every)).map_err(|e| {
         let message = e.describe(|field| format!("options.{field}"));
         match e {
             crate::settings::SettingsError::Options(_) => ApiError::invalid(format!("options: {message}")),
             _ => ApiError::invalid(message),
         }
-    })
+    })?;
+    options.interrupt = Some(interrupt.clone());
+    Ok(options)
 }
 
 /// A pose in radians from degrees, one angle per joint; the arm's start pose when absent.
@@ -319,14 +327,20 @@ impl<'a> MotionFields<'a> {
     }
 }
 
-fn motion(arm: &Arm, req: &MotionFields<'_>, goal_req: &GoalReq, limits: &Limits) -> Result<Motion, ApiError> {
+fn motion(
+    arm: &Arm,
+    req: &MotionFields<'_>,
+    goal_req: &GoalReq,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Motion, ApiError> {
     if req.via.len() > MAX_VIA {
         return Err(ApiError::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
     }
     let timing = timing(req.frames, req.duration, req.fps, limits)?;
     let ease = ease(req.ease, EaseKind::Sine)?;
     let record = if req.from_solve { 1 } else { SOLVE_RECORD_EVERY };
-    let options = options(arm, req.options, record, limits)?;
+    let options = options(arm, req.options, record, limits, interrupt)?;
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
         .map_err(|(i, e)| ApiError::invalid(format!("via[{i}]: {e}")))?;
@@ -334,7 +348,12 @@ fn motion(arm: &Arm, req: &MotionFields<'_>, goal_req: &GoalReq, limits: &Limits
     Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
 }
 
-fn sample_workspace(arm: &Arm, req: &WorkspaceReq, limits: &Limits) -> Result<(Workspace, bool), ApiError> {
+fn sample_workspace(
+    arm: &Arm,
+    req: &WorkspaceReq,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<(Workspace, bool), ApiError> {
     let resolution = req.resolution.unwrap_or(WorkspaceOptions::default().resolution);
     if resolution > limits.max_resolution {
         return Err(ApiError::invalid(format!(
@@ -349,7 +368,18 @@ fn sample_workspace(arm: &Arm, req: &WorkspaceReq, limits: &Limits) -> Result<(W
     }
     let request =
         WorkspaceRequest { limits: req.limits, resolution, samples: req.samples, seed: req.seed.unwrap_or(0) };
-    let workspace = request.sample(arm, &|_, _| {}).map_err(|e| ApiError::invalid(e.to_string()))?;
+    // Sequential on its worker: rayon's global pool is shared by every request, so a small
+    // request would wait behind a large one; the server's workers give the parallelism.
+    let options = WorkspaceOptions {
+        resolution,
+        limits: request.limits(arm),
+        samples: req.samples.map(u64::from),
+        seed: request.seed,
+        parallel: false,
+        interrupt: Some(interrupt.clone()),
+    };
+    let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &|_, _| {})
+        .map_err(|e| ApiError::invalid(e.to_string()))?;
     Ok((workspace, request.limits(arm)))
 }
 
@@ -366,7 +396,7 @@ fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
     }
 }
 
-fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFormat), ApiError> {
+fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<(Vec<u8>, PictureFormat), ApiError> {
     let (format, width, height) = req.picture();
     let (width, height) = (side(width, "width")?, side(height, "height")?);
     let format = format.unwrap_or(PictureFormat::Png);
@@ -377,7 +407,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
         RenderReq::Ease(r) => {
             draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {})?
         }
-        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits)?,
+        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
             let ws_req = WorkspaceReq {
@@ -387,7 +417,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
                 samples: r.samples,
                 seed: r.seed,
             };
-            let (workspace, _) = sample_workspace(&arm, &ws_req, limits)?;
+            let (workspace, _) = sample_workspace(&arm, &ws_req, limits, interrupt)?;
             let drawing = Drawing::Arm {
                 chain: &arm.chain,
                 pose: arm.chain.start_pose().angles(),
@@ -397,7 +427,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
             };
             draw(&drawing, format, width, height, &|_, _| {})?
         }
-        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits)?,
+        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
     };
     Ok((bytes, format))
 }
@@ -408,6 +438,7 @@ fn arm_figure(
     width: u32,
     height: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<Vec<u8>, ApiError> {
     let arm = load_arm(r.arm, limits)?;
     let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
@@ -415,7 +446,7 @@ fn arm_figure(
     let workspace = if r.workspace {
         let ws_req =
             WorkspaceReq { arm: None, limits: r.limits, resolution: r.resolution, samples: r.samples, seed: r.seed };
-        Some(sample_workspace(&arm, &ws_req, limits)?.0)
+        Some(sample_workspace(&arm, &ws_req, limits, interrupt)?.0)
     } else {
         None
     };
@@ -435,12 +466,13 @@ fn motion_figure(
     width: u32,
     height: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<Vec<u8>, ApiError> {
     let arm = load_arm(r.arm.clone(), limits)?;
     let Some(goal_req) = &r.goal else {
         return Err(ApiError::invalid("goal: required for the figure motion"));
     };
-    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits)?;
+    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
         let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);

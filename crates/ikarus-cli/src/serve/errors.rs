@@ -25,9 +25,14 @@ impl ApiError {
         Self { status: StatusCode::UNPROCESSABLE_ENTITY, message: message.into() }
     }
 
-    /// 500: something failed inside the server.
+    /// 500: something failed inside the server. The detail goes to the server's stderr, not
+    /// to the client (it may hold paths or panic text).
     pub fn internal(message: impl Into<String>) -> Self {
-        Self { status: StatusCode::INTERNAL_SERVER_ERROR, message: format!("internal error: {}", message.into()) }
+        eprintln!("ikarus serve: internal error: {}", message.into().replace(['\n', '\r'], " "));
+        Self {
+            status: StatusCode::INTERNAL_SERVER_ERROR,
+            message: "internal error (the details are in the server's log)".to_owned(),
+        }
     }
 }
 
@@ -92,9 +97,15 @@ impl FromRequest<AppState> for JsonBody {
         {
             return Err(rejected(&rejection, max_body_bytes));
         }
-        match Bytes::from_request(req, state).await {
-            Ok(bytes) => Ok(Self { bytes, max_body_bytes }),
-            Err(rejection) => Err(rejected(&rejection.into(), max_body_bytes)),
+        // A client trickling its body holds a connection and a buffer: bounded in time.
+        let timeout = state.limits.body_timeout;
+        match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
+            Ok(Ok(bytes)) => Ok(Self { bytes, max_body_bytes }),
+            Ok(Err(rejection)) => Err(rejected(&rejection.into(), max_body_bytes)),
+            Err(_) => Err(ApiError {
+                status: StatusCode::REQUEST_TIMEOUT,
+                message: format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
+            }),
         }
     }
 }
