@@ -341,11 +341,35 @@ fn motion(
     let ease = ease(req.ease, EaseKind::Sine)?;
     let record = if req.from_solve { 1 } else { SOLVE_RECORD_EVERY };
     let options = options(arm, req.options, record, limits, interrupt)?;
+    if req.from_solve {
+        recorded_cap(arm, &options, req.via.len() + 1)?;
+    }
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
         .map_err(|(i, e)| ApiError::invalid(format!("via[{i}]: {e}")))?;
     let interpolation = req.interpolation.unwrap_or_default();
     Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
+}
+
+/// Most values (frames × (joints + 4)) a motion `from_solve` may record over all its solves:
+/// each recorded pose is kept until the motion is timed. 4 million is about 100 MB at most.
+const MAX_RECORDED_VALUES: u64 = 4_000_000;
+
+/// Refuses, before any solve, a motion `from_solve` whose solves could record more than
+/// [`MAX_RECORDED_VALUES`]: `solves` solves of up to `max_iterations / record_every + 2` frames.
+fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize) -> Result<(), ApiError> {
+    let every = options.record_every.unwrap_or(1).max(1);
+    let per_solve = u64::from(options.max_iterations / every) + 2;
+    let frames = per_solve.saturating_mul(solves as u64);
+    let values = frames.saturating_mul(arm.chain.len() as u64 + 4);
+    if values > MAX_RECORDED_VALUES {
+        return Err(ApiError::invalid(format!(
+            "options.max_iterations = {}, options.record_every = {every}: with from_solve, {solves} solves could record {frames} frames of {} joints, more than the cap of {MAX_RECORDED_VALUES} values; raise record_every, lower max_iterations or give fewer via points",
+            options.max_iterations,
+            arm.chain.len()
+        )));
+    }
+    Ok(())
 }
 
 fn sample_workspace(
