@@ -251,25 +251,49 @@ fn ffff_mapped_loopback_is_loopback() {
 
 #[test]
 fn health_answers_while_heavy_requests_run_and_beyond_the_queue_is_busy() {
-    let s = std::sync::Arc::new(start(&["--workers", "1", "--max-queued", "2", "--request-budget-ms", "3000"]));
-    let heavy: Vec<_> = (0..3)
-        .map(|_| {
-            let s = std::sync::Arc::clone(&s);
-            std::thread::spawn(move || s.post("/api/solve", &endless_solve()))
-        })
-        .collect();
-    std::thread::sleep(Duration::from_millis(300));
-    // One running and two waiting: a fourth is answered 503 at once.
+    let s = start(&["--workers", "1", "--max-queued", "2", "--request-budget-ms", "3000"]);
+    // Scoped threads: the server is killed (dropped) even if an assertion fails.
+    std::thread::scope(|scope| {
+        let heavy: Vec<_> = (0..3).map(|_| scope.spawn(|| s.post("/api/solve", &endless_solve()))).collect();
+        std::thread::sleep(Duration::from_millis(300));
+        // One running and two waiting: a fourth is answered 503 at once.
+        let e = error(&s.post("/api/solve", &endless_solve()), 503);
+        assert!(e.contains("server busy") && e.contains("--max-queued"), "{e}");
+        for _ in 0..20 {
+            let (status, v) = s.get("/api/health");
+            assert_eq!(status, 200, "{v}");
+        }
+        for h in heavy {
+            let e = error(&h.join().unwrap(), 503);
+            assert!(e.contains("--request-budget-ms"), "{e}");
+        }
+    });
+}
+
+#[test]
+fn a_second_long_computation_is_stopped_while_quick_ones_still_run() {
+    let s = start(&["--workers", "2", "--long-workers", "1", "--request-budget-ms", "60000"]);
+    let _first = send_raw(&s, &endless_solve());
+    std::thread::sleep(Duration::from_millis(1000));
+    // The second long one is stopped once it counts as long, not at the budget.
     let e = error(&s.post("/api/solve", &endless_solve()), 503);
-    assert!(e.contains("server busy") && e.contains("--max-queued"), "{e}");
-    for _ in 0..20 {
-        let (status, v) = s.get("/api/health");
-        assert_eq!(status, 200, "{v}");
-    }
-    for h in heavy {
-        let e = error(&h.join().unwrap(), 503);
-        assert!(e.contains("--request-budget-ms"), "{e}");
-    }
+    assert!(e.contains("--long-workers"), "{e}");
+    // A quick request still gets the other worker.
+    let (status, v) = s.post("/api/workspace", &json!({ "resolution": 64 }));
+    assert_eq!(status, 200, "{v}");
+}
+
+/// Sends a POST of `body` to /api/solve on a raw connection, without reading the answer.
+fn send_raw(s: &Server, body: &Value) -> TcpStream {
+    let body = body.to_string();
+    let mut c = s.connect();
+    write!(
+        c,
+        "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    c
 }
 
 #[test]

@@ -76,8 +76,11 @@ pub struct ServeArgs {
     /// Computations (solve, animate, track, workspace, render) run at once [default: the number of CPUs]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     pub workers: Option<u64>,
+    /// Computations that may run longer than half a second at once; one more is stopped with 503 [default: half the workers, at least 1]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    pub long_workers: Option<u64>,
     /// Computations that may wait for a worker; beyond that a request is answered 503 at once
-    #[arg(long, default_value_t = 32, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=100_000))]
+    #[arg(long, default_value_t = 256, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=100_000))]
     pub max_queued: u64,
     /// Time budget of each computation, waiting included; past it the work stops and the answer is 503
     #[arg(long, default_value_t = 10_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..=86_400_000))]
@@ -130,6 +133,9 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
     let settings = Settings {
         pool: pool::PoolConfig {
             workers,
+            long_workers: args
+                .long_workers
+                .map_or((workers / 2).max(1), |w| usize::try_from(w).unwrap_or(usize::MAX).min(workers)),
             max_queued: usize::try_from(args.max_queued).unwrap_or(usize::MAX),
             budget: Duration::from_millis(args.request_budget_ms),
         },

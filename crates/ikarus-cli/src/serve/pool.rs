@@ -8,6 +8,10 @@
 //! - Every request has a time budget (`--request-budget-ms`) covering its wait in the queue and
 //!   its work. At the deadline its [`Interrupt`] is set, the computation stops at its next check
 //!   (every solve iteration, every workspace sample), and the answer is 503 naming the budget.
+//! - A computation still running after [`LONG_AFTER`] is *long*: at most `--long-workers` long
+//!   ones run at once (by default half the workers), so the other workers stay free for the
+//!   page's quick requests. One that would exceed that is stopped and answered 503 ("server
+//!   busy") at once, rather than holding a worker until its budget runs out.
 //! - When the handler's future is dropped (hyper drops it when the client closes the
 //!   connection) a drop guard sets the interrupt too, so nobody's work runs on for nobody.
 //! - When the server stops (Ctrl-C), every request's interrupt is set and it answers 503.
@@ -22,10 +26,15 @@ use tokio::time::Instant;
 
 use super::errors::ApiError;
 
+/// How long a computation runs before it counts as long.
+pub const LONG_AFTER: Duration = Duration::from_millis(500);
+
 /// How many computations run and wait, and for how long.
 #[derive(Debug, Clone, Copy)]
 pub struct PoolConfig {
     pub workers: usize,
+    /// Computations that may run longer than [`LONG_AFTER`] at once.
+    pub long_workers: usize,
     pub max_queued: usize,
     pub budget: Duration,
 }
@@ -38,6 +47,8 @@ pub struct Pool {
     workers: Arc<Semaphore>,
     /// One permit per admitted request, running or waiting: `workers + max_queued`.
     admitted: Arc<Semaphore>,
+    /// One permit per long computation.
+    long: Arc<Semaphore>,
     /// Becomes `true` when the server stops.
     stopping: watch::Receiver<bool>,
 }
@@ -58,6 +69,7 @@ impl Pool {
             config,
             workers: Arc::new(Semaphore::new(config.workers.min(Semaphore::MAX_PERMITS))),
             admitted: Arc::new(Semaphore::new(admitted)),
+            long: Arc::new(Semaphore::new(config.long_workers.clamp(1, Semaphore::MAX_PERMITS))),
             stopping,
         }
     }
@@ -99,15 +111,28 @@ impl Pool {
             let _permit = permit;
             work(&worker_token)
         });
-        let result = tokio::select! {
-            joined = &mut handle => joined,
-            () = tokio::time::sleep_until(deadline) => {
-                token.interrupt();
-                return Err(self.over_budget());
-            }
-            _ = stopping.wait_for(|&s| s) => {
-                token.interrupt();
-                return Err(stopping_error());
+        let long_from = (Instant::now() + LONG_AFTER).min(deadline);
+        let mut long = None;
+        let result = loop {
+            tokio::select! {
+                joined = &mut handle => break joined,
+                () = tokio::time::sleep_until(deadline) => {
+                    token.interrupt();
+                    return Err(self.over_budget());
+                }
+                () = tokio::time::sleep_until(long_from), if long.is_none() => {
+                    match Arc::clone(&self.long).try_acquire_owned() {
+                        Ok(permit) => long = Some(permit),
+                        Err(_) => {
+                            token.interrupt();
+                            return Err(self.too_many_long());
+                        }
+                    }
+                }
+                _ = stopping.wait_for(|&s| s) => {
+                    token.interrupt();
+                    return Err(stopping_error());
+                }
             }
         };
         if token.is_interrupted() {
@@ -126,6 +151,17 @@ impl Pool {
                 Err(ApiError::internal(what))
             }
             Err(e) => Err(ApiError::internal(e.to_string())),
+        }
+    }
+
+    fn too_many_long(&self) -> ApiError {
+        ApiError {
+            status: StatusCode::SERVICE_UNAVAILABLE,
+            message: format!(
+                "server busy: {} long computations already running (--long-workers); this one was stopped after {} ms, try again later or ask for less work",
+                self.config.long_workers,
+                LONG_AFTER.as_millis()
+            ),
         }
     }
 
@@ -150,7 +186,8 @@ mod tests {
 
     fn pool(workers: usize, max_queued: usize, budget_ms: u64) -> (Pool, watch::Sender<bool>) {
         let (tx, rx) = watch::channel(false);
-        (Pool::new(PoolConfig { workers, max_queued, budget: Duration::from_millis(budget_ms) }, rx), tx)
+        let config = PoolConfig { workers, long_workers: 1, max_queued, budget: Duration::from_millis(budget_ms) };
+        (Pool::new(config, rx), tx)
     }
 
     /// Waits (a bounded number of times) until `token` is set.
@@ -210,6 +247,35 @@ mod tests {
         tx.send(true).unwrap();
         let e = running.await.unwrap().unwrap_err();
         assert_eq!(e.message, "server stopping");
+    }
+
+    #[tokio::test]
+    async fn a_second_long_computation_is_stopped_busy() {
+        let (pool, _tx) = pool(2, 0, 60_000);
+        let first = pool.clone();
+        let long = tokio::spawn(async move {
+            first
+                .run::<()>(|token| {
+                    wait_interrupted(token);
+                    Ok(())
+                })
+                .await
+        });
+        while pool.long.available_permits() > 0 {
+            tokio::time::sleep(Duration::from_millis(5)).await;
+        }
+        let e = pool
+            .run::<()>(|token| {
+                wait_interrupted(token);
+                Ok(())
+            })
+            .await
+            .unwrap_err();
+        assert_eq!(e.status, StatusCode::SERVICE_UNAVAILABLE);
+        assert!(e.message.contains("--long-workers"), "{}", e.message);
+        // Quick work still runs beside the long one.
+        assert_eq!(pool.run(|_| Ok(5)).await.unwrap(), 5);
+        long.abort();
     }
 
     #[tokio::test]
