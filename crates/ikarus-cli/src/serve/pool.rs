@@ -21,7 +21,7 @@ use std::time::Duration;
 
 use axum::http::StatusCode;
 use ikarus::Interrupt;
-use tokio::sync::{Semaphore, watch};
+use tokio::sync::{OwnedSemaphorePermit, Semaphore, watch};
 use tokio::time::Instant;
 
 use super::errors::ApiError;
@@ -105,14 +105,19 @@ impl Pool {
             _ = stopping.wait_for(|&s| s) => return Err(stopping_error()),
         };
         let worker_token = token.clone();
-        // The worker keeps its permit until the computation really ends, even when the answer
-        // (503) has already gone: the interrupt makes that soon.
+        // The long permit, once taken, is held here and by the computation: it is given back
+        // when both are done.
+        let long: Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>> = Arc::default();
+        let long_held = Arc::clone(&long);
+        // The worker keeps its permits until the computation really ends, even when the answer
+        // (503) has already gone: the interrupt makes that soon (a picture being encoded does
+        // not check it, but its size is capped).
         let mut handle = tokio::task::spawn_blocking(move || {
-            let _permit = permit;
+            let _permits = (permit, long_held);
             work(&worker_token)
         });
         let long_from = (Instant::now() + LONG_AFTER).min(deadline);
-        let mut long = None;
+        let mut is_long = false;
         let result = loop {
             tokio::select! {
                 joined = &mut handle => break joined,
@@ -120,9 +125,12 @@ impl Pool {
                     token.interrupt();
                     return Err(self.over_budget());
                 }
-                () = tokio::time::sleep_until(long_from), if long.is_none() => {
+                () = tokio::time::sleep_until(long_from), if !is_long => {
                     match Arc::clone(&self.long).try_acquire_owned() {
-                        Ok(permit) => long = Some(permit),
+                        Ok(permit) => {
+                            is_long = true;
+                            *long.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(permit);
+                        }
                         Err(_) => {
                             token.interrupt();
                             return Err(self.too_many_long());
