@@ -173,6 +173,14 @@ fn a_from_solve_motion_that_could_record_gigabytes_is_refused() {
     });
     let e = error(&s.post("/api/animate", &request), 422);
     assert!(e.contains("record_every") && e.contains("max_iterations"), "{e}");
+    // One solve recording every iteration of 64 links: hundreds of MB of JSON.
+    let solve = json!({
+        "arm": { "links": links(64) },
+        "goal": { "x": 3.0, "y": 3.0 },
+        "options": { "record_every": 1, "max_iterations": 100000 }
+    });
+    let e = error(&s.post("/api/solve", &solve), 422);
+    assert!(e.contains("record_every") && e.contains("the solve could record"), "{e}");
     // The page's own from_solve motion still works.
     let (status, v) =
         s.post("/api/animate", &json!({ "goal": { "x": 2.0, "y": 3.0 }, "from_solve": true, "frames": 20 }));

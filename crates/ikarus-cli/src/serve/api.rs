@@ -40,6 +40,16 @@ const MAX_GIF_PIXELS: u64 = 100_000_000;
 const DEFAULT_SIDE: u32 = 800;
 const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
 
+/// Ends a computation whose interrupt was set before it writes its answer (the pool answers
+/// 503 for it; writing a large answer nobody reads would only hold the worker).
+fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
+    if interrupt.is_interrupted() {
+        Err(ApiError { status: axum::http::StatusCode::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
+    } else {
+        Ok(())
+    }
+}
+
 fn json_response(value: &impl serde::Serialize) -> Result<Response, ApiError> {
     let bytes = serde_json::to_vec(value).map_err(|e| ApiError::internal(format!("cannot write JSON: {e}")))?;
     Ok(([(header::CONTENT_TYPE, "application/json")], bytes).into_response())
@@ -83,13 +93,19 @@ pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq
     pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm, limits)?;
-        let options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
+        let mut options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
+        let asked = req.options.as_ref().and_then(|o| o.record_every).or(arm.solver.record_every);
+        if asked.is_none() {
+            options.record_every = Some(default_record_every(&arm, options.max_iterations));
+        }
+        recorded_cap(&arm, &options, 1, MAX_SOLVE_RECORDED_VALUES)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let goal = goal(&req.goal, "goal")?;
         let mut solver = solver(options)?;
         let mut outcome = Outcome::default();
         let started = Instant::now();
         solver.solve_into(&arm.chain, &start, &goal, &mut outcome).map_err(|e| ApiError::invalid(e.to_string()))?;
+        stopped(interrupt)?;
         let micros = started.elapsed().as_secs_f64() * 1e6;
         let report = SolveReport { arm: &arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
         json_response(&report.json())
@@ -103,6 +119,7 @@ pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<Animat
         let arm = load_arm(req.arm.clone(), &state.limits)?;
         let fields = MotionFields::of_animate(&req);
         let motion = motion(&arm, &fields, &req.goal, &state.limits, interrupt)?;
+        stopped(interrupt)?;
         json_response(&AnimateJson::new(&arm, &motion.motion))
     })
     .await
@@ -128,6 +145,7 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
         let options = TrackJob::options(solve, max_step_deg, req.bound_first);
         let job = TrackJob { arm: &arm, start, path, mode, options };
         let t = job.run().map_err(ApiError::invalid)?;
+        stopped(interrupt)?;
         json_response(&TrackJson::new(&job, &t))
     })
     .await
@@ -342,7 +360,7 @@ fn motion(
     let record = if req.from_solve { 1 } else { SOLVE_RECORD_EVERY };
     let options = options(arm, req.options, record, limits, interrupt)?;
     if req.from_solve {
-        recorded_cap(arm, &options, req.via.len() + 1)?;
+        recorded_cap(arm, &options, req.via.len() + 1, MAX_RECORDED_VALUES)?;
     }
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
@@ -354,17 +372,31 @@ fn motion(
 /// Most values (frames × (joints + 4)) a motion `from_solve` may record over all its solves:
 /// each recorded pose is kept until the motion is timed. 4 million is about 100 MB at most.
 const MAX_RECORDED_VALUES: u64 = 4_000_000;
+/// Most values (frames × (joints + 4)) one `/api/solve` may record: every frame goes into the
+/// answer, about 60 bytes of JSON per value (1 million: about 60 MB of JSON at most).
+const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;
 
-/// Refuses, before any solve, a motion `from_solve` whose solves could record more than
-/// [`MAX_RECORDED_VALUES`]: `solves` solves of up to `max_iterations / record_every + 2` frames.
-fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize) -> Result<(), ApiError> {
-    let every = options.record_every.unwrap_or(1).max(1);
+/// The frame interval of a solve whose request gives none: [`SOLVE_RECORD_EVERY`], or more
+/// when that would record more than [`MAX_SOLVE_RECORDED_VALUES`].
+fn default_record_every(arm: &Arm, max_iterations: u32) -> u32 {
+    let per_frame = arm.chain.len() as u64 + 4;
+    let frames = (MAX_SOLVE_RECORDED_VALUES / per_frame).saturating_sub(2).max(1);
+    let every = u64::from(max_iterations).div_ceil(frames);
+    u32::try_from(every).unwrap_or(u32::MAX).max(SOLVE_RECORD_EVERY)
+}
+
+/// Refuses, before any solve, a request whose `solves` solves could record more than `cap`
+/// values: each up to `max_iterations / record_every + 2` frames.
+fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), ApiError> {
+    let Some(every) = options.record_every else { return Ok(()) };
+    let every = every.max(1);
     let per_solve = u64::from(options.max_iterations / every) + 2;
     let frames = per_solve.saturating_mul(solves as u64);
     let values = frames.saturating_mul(arm.chain.len() as u64 + 4);
-    if values > MAX_RECORDED_VALUES {
+    if values > cap {
+        let what = if solves == 1 { "the solve".to_owned() } else { format!("with from_solve, {solves} solves") };
         return Err(ApiError::invalid(format!(
-            "options.max_iterations = {}, options.record_every = {every}: with from_solve, {solves} solves could record {frames} frames of {} joints, more than the cap of {MAX_RECORDED_VALUES} values; raise record_every, lower max_iterations or give fewer via points",
+            "options.max_iterations = {}, options.record_every = {every}: {what} could record {frames} frames of {} joints, more than the cap of {cap} values; raise record_every, lower max_iterations or give fewer via points",
             options.max_iterations,
             arm.chain.len()
         )));
@@ -497,6 +529,7 @@ fn motion_figure(
         return Err(ApiError::invalid("goal: required for the figure motion"));
     };
     let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
+    stopped(interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
         let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);
