@@ -406,3 +406,25 @@ fn ctrl_c_stops_the_server_promptly_with_work_running() {
         assert!(reply.contains("server stopping"), "{reply}");
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn a_second_ctrl_c_exits_at_once() {
+    let mut s = start(&[]);
+    // A client trickling its body keeps the first stop draining for a while.
+    let mut trickle = s.connect();
+    trickle
+        .write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(200));
+    let pid = s.child.id().to_string();
+    for _ in 0..2 {
+        assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    // Generous bound: a hang is the bug.
+    let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after two Ctrl-C");
+    // 130: the second signal ended it, while the first was still waiting for the trickling
+    // client (for up to 0.6 s).
+    assert_eq!(status.code(), Some(130), "{status:?}");
+}
