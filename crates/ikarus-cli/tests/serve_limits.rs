@@ -428,3 +428,28 @@ fn a_second_ctrl_c_exits_at_once() {
     // client (for up to 0.6 s).
     assert_eq!(status.code(), Some(130), "{status:?}");
 }
+
+#[test]
+fn slow_bodies_cannot_hold_more_than_the_body_memory() {
+    // 64 MB of body memory: two unfinished bodies declaring 32 MB each take all of it.
+    let s = start(&["--max-body-bytes", "33554432"]);
+    let head = "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 33554432\r\n\r\n{";
+    let mut held: Vec<TcpStream> = (0..2)
+        .map(|_| {
+            let mut c = s.connect();
+            c.write_all(head.as_bytes()).unwrap();
+            c
+        })
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    let mut third = s.connect();
+    third.write_all(head.as_bytes()).unwrap();
+    let reply = read_all(&mut third);
+    assert!(reply.starts_with("HTTP/1.1 503"), "{reply}");
+    assert!(reply.contains("too many request bodies"), "{reply}");
+    // Once the slow clients are gone, their memory is given back.
+    held.clear();
+    std::thread::sleep(Duration::from_millis(300));
+    let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    assert_eq!(status, 200, "{v}");
+}

@@ -116,7 +116,13 @@ pub struct Limits {
 pub struct AppState {
     pub limits: Arc<Limits>,
     pub pool: pool::Pool,
+    /// Bytes of request bodies being received or held, at most [`BODY_MEMORY`] (or one body
+    /// at the cap, if larger): so that many slow clients cannot fill the memory with bodies.
+    pub bodies: Arc<tokio::sync::Semaphore>,
 }
+
+/// Bytes all the request bodies being received may hold at once.
+pub const BODY_MEMORY: usize = 64 << 20;
 
 pub fn run(args: &ServeArgs) -> Result<(), CliError> {
     let limits = Limits {
@@ -243,7 +249,8 @@ impl Signals {
 /// The routes, with the body cap and the request checks.
 fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
     let body_cap = limits.max_body_bytes;
-    let state = AppState { limits: Arc::new(limits), pool };
+    let bodies = Arc::new(tokio::sync::Semaphore::new(BODY_MEMORY.max(body_cap)));
+    let state = AppState { limits: Arc::new(limits), pool, bodies };
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
         .route("/{asset}", get(asset))
