@@ -15,6 +15,7 @@
 
 use std::path::Path;
 
+use ikarus::number::Num;
 use ikarus::{Chain, ChainError, JointLimits, Link};
 use serde::Deserialize;
 
@@ -107,10 +108,11 @@ impl ArmFile {
     pub fn to_chain(&self) -> Result<Chain, String> {
         let mut links = Vec::with_capacity(self.links.len());
         for (i, l) in self.links.iter().enumerate() {
-            let mut link = Link::new(l.length, l.angle_deg.to_radians());
+            let mut link = Link::new(l.length, start_angle(l.angle_deg, l.limits_deg).to_radians());
             if let Some([lo, hi]) = l.limits_deg {
-                let limits = JointLimits::new(lo.to_radians(), hi.to_radians())
-                    .map_err(|_| format!("links[{i}].limits_deg = [{lo}, {hi}]: {}", limits_problem(lo, hi)))?;
+                let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
+                    format!("links[{i}].limits_deg = [{}, {}]: {}", Num(lo), Num(hi), limits_problem(lo, hi))
+                })?;
                 link = link.with_limits(limits);
             }
             links.push(link);
@@ -121,23 +123,45 @@ impl ArmFile {
     fn describe(&self, e: &ChainError) -> String {
         match *e {
             ChainError::Empty => "links: an arm needs at least one [[links]] entry, got none".to_owned(),
-            ChainError::NonFiniteBase { x, y } => format!("base = [{x}, {y}]: coordinates must be finite"),
+            ChainError::NonFiniteBase { x, y } => {
+                format!("base = [{}, {}]: coordinates must be finite", Num(x), Num(y))
+            }
             ChainError::NonPositiveLength { index, value } => {
-                format!("links[{index}].length = {value}: must be greater than 0")
+                format!("links[{index}].length = {}: must be greater than 0", Num(value))
             }
             ChainError::NonFinite { index, field: ikarus::LinkField::Length, value } => {
-                format!("links[{index}].length = {value}: must be a finite number")
+                format!("links[{index}].length = {}: must be a finite number", Num(value))
             }
             ChainError::NonFinite { index, .. } => {
-                format!("links[{index}].angle_deg = {}: must be a finite number", self.links[index].angle_deg)
+                format!("links[{index}].angle_deg = {}: must be a finite number", Num(self.links[index].angle_deg))
             }
             ChainError::AngleOutsideLimits { index, .. } => {
                 let l = &self.links[index];
                 let [lo, hi] = l.limits_deg.unwrap_or([f64::NAN; 2]);
-                format!("links[{index}].angle_deg = {}: outside limits_deg [{lo}, {hi}]", l.angle_deg)
+                format!(
+                    "links[{index}].angle_deg = {}: outside limits_deg [{}, {}]",
+                    Num(l.angle_deg),
+                    Num(lo),
+                    Num(hi)
+                )
             }
             _ => e.to_string(),
         }
+    }
+}
+
+/// A start angle in degrees as the chain takes it: with limits, the angle itself if it lies
+/// inside them, else its 360°-equivalent inside them nearest it (so `angle_deg = 370` with
+/// `limits_deg = [0, 45]` starts at 10°; none inside is reported as outside the limits);
+/// without limits, wrapped into (−180°, 180°] exactly (`angle_deg = 1e300` is a direction, not
+/// a number no step could change). See [`ikarus::angle::degrees_within`].
+fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
+    if !angle_deg.is_finite() {
+        return angle_deg;
+    }
+    match limits_deg {
+        Some([lo, hi]) => ikarus::angle::degrees_within(angle_deg, lo, hi).unwrap_or(angle_deg),
+        None => ikarus::angle::wrap_degrees(angle_deg),
     }
 }
 
@@ -233,6 +257,50 @@ mod tests {
             let got = err(text);
             assert!(got.starts_with(want), "for {text:?}\n got {got:?}\nwant {want:?}");
             assert!(!got.contains('\n'), "multi-line: {got:?}");
+        }
+    }
+
+    /// Issue 11: `angle_deg = 1e300` was taken as 1.7e298 rad, which no step can change (the
+    /// solve stalled after 0 iterations). Start angles are normalised: wrapped without limits,
+    /// moved onto the equivalent inside the limits with them.
+    #[test]
+    fn start_angles_are_normalised() {
+        let angles = |text: &str| -> Vec<f64> {
+            let arm = Arm::parse(text, "a").unwrap();
+            arm.chain.start_pose().angles().iter().map(|a| a.to_degrees()).collect()
+        };
+        let got = angles(
+            "[[links]]\nlength = 1\nangle_deg = 1e20\n\
+             [[links]]\nlength = 1\nangle_deg = 370\nlimits_deg = [0, 45]\n\
+             [[links]]\nlength = 1\nangle_deg = 400\nlimits_deg = [-720, 720]\n\
+             [[links]]\nlength = 1\nangle_deg = -190\n",
+        );
+        let want = [-80.0, 10.0, 400.0, 170.0];
+        for (g, w) in got.iter().zip(want) {
+            assert!((g - w).abs() < 1e-12, "{got:?}");
+        }
+        let big = angles("[[links]]\nlength = 1\nangle_deg = 1e300\n")[0];
+        assert!(big.abs() <= 180.0, "{big}");
+    }
+
+    /// Issue 11: numbers in error lines were written with every digit (1e300: 301 of them).
+    #[test]
+    fn numbers_in_errors_are_short() {
+        let cases = [
+            ("[[links]]\nlength = -1e300\n", "arm file a.toml: links[0].length = -1e300: must be greater than 0"),
+            (
+                "[[links]]\nlength = 1\nangle_deg = 5e-324\nlimits_deg = [1, 2]\n",
+                "arm file a.toml: links[0].angle_deg = 5e-324: outside limits_deg [1, 2]",
+            ),
+            (
+                "[[links]]\nlength = 1\nlimits_deg = [1e300, 5e-324]\n",
+                "arm file a.toml: links[0].limits_deg = [1e300, 5e-324]: min must not exceed max",
+            ),
+            ("[[links]]\nlength = 1\n[solver]\ngain = -1e300\n", "arm file a.toml: [solver].gain = -1e300: must be"),
+        ];
+        for (text, want) in cases {
+            let got = err(text);
+            assert!(got.starts_with(want), "got {got:?}, want {want:?}");
         }
     }
 

@@ -18,11 +18,13 @@ pub struct GoalRow {
     pub goal: Goal,
 }
 
-/// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given.
+/// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
+/// into (−180°, 180°] exactly before it becomes radians: 1e20° is the direction it names).
 pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
     match angle_deg {
         None => Goal::position(x, y),
-        Some(a) => Goal::with_orientation(x, y, a.to_radians()),
+        Some(a) if !a.is_finite() => Goal::with_orientation(x, y, a),
+        Some(a) => Goal::with_orientation(x, y, ikarus::angle::radians_from_degrees(a)),
     }
     .map_err(|e| e.to_string())
 }
@@ -57,4 +59,21 @@ pub fn read(file: &Path, label: &str) -> Result<Vec<GoalRow>, CliError> {
         rows.push(GoalRow { x, y, goal });
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::make_goal;
+
+    /// Issue 11: `--goal-angle 1e20` became 1.7e18 rad, which the solver wraps by an inexact
+    /// 2π: it aimed 3.7° away from the direction asked for. Degrees are wrapped exactly first
+    /// (1e20 = 360 · 277777777777777777 + 280, that is −80°).
+    #[test]
+    fn goal_angles_are_wrapped_exactly() {
+        let phi = make_goal(1.0, 2.0, Some(1e20)).unwrap().orientation().unwrap();
+        assert_eq!(phi, (-80f64).to_radians());
+        assert_eq!(make_goal(1.0, 2.0, Some(-180.0)).unwrap().orientation(), Some(std::f64::consts::PI));
+        let e = make_goal(1.0, 2.0, Some(f64::INFINITY)).unwrap_err();
+        assert_eq!(e, "goal.angle: must be a finite number, got inf");
+    }
 }

@@ -27,7 +27,7 @@ pub fn timing(frames: Option<u32>, duration: Option<f64>, fps: Option<f64>) -> R
     if let Some(fps) = fps {
         if !(fps > 0.0 && fps <= 100.0) {
             let message = "must be greater than 0 and at most 100";
-            return Err(TimingProblem::Value { field: "fps", value: fps.to_string(), message });
+            return Err(TimingProblem::Value { field: "fps", value: ikarus::number::Num(fps).to_string(), message });
         }
     }
     match (frames, duration) {
@@ -40,7 +40,7 @@ pub fn timing(frames: Option<u32>, duration: Option<f64>, fps: Option<f64>) -> R
         (Some(n), None) => Ok(Timing::Frames(n as usize)),
         (None, Some(seconds)) if seconds <= 0.0 => Err(TimingProblem::Value {
             field: "duration",
-            value: seconds.to_string(),
+            value: ikarus::number::Num(seconds).to_string(),
             message: "must be greater than 0",
         }),
         (None, Some(seconds)) => Ok(Timing::Duration { seconds, fps: fps.unwrap_or(DEFAULT_FPS) }),

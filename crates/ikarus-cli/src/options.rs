@@ -18,11 +18,19 @@ pub fn parse_finite(s: &str) -> Result<f64, String> {
 }
 
 pub fn positive(v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 { Ok(v) } else { Err(format!("{v}: must be a finite number greater than 0")) }
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{}: must be a finite number greater than 0", ikarus::number::Num(v)))
+    }
 }
 
 pub fn non_negative(v: f64) -> Result<f64, String> {
-    if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(format!("{v}: must be a finite number ≥ 0")) }
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{}: must be a finite number ≥ 0", ikarus::number::Num(v)))
+    }
 }
 
 pub fn at_least_one(v: u32) -> Result<u32, String> {

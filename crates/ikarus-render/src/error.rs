@@ -1,6 +1,7 @@
 //! The one error type of the crate.
 
 use ikarus::Point2;
+use ikarus::number::Num;
 use thiserror::Error;
 
 /// Why a picture could not be made. Every message is one line and names the field and the
@@ -18,13 +19,13 @@ pub enum RenderError {
         value: u64,
     },
     /// The frame rate is not a number in (0, 100].
-    #[error("fps: must be a number in (0, 100], got {value}")]
+    #[error("fps: must be a number in (0, 100], got {}", Num(*.value))]
     Fps {
         /// The offending frame rate.
         value: f64,
     },
     /// A coordinate or an angle is NaN or infinite.
-    #[error("{field}: must be a finite number, got {value}")]
+    #[error("{field}: must be a finite number, got {}", Num(*.value))]
     NonFinite {
         /// Which number, e.g. `goal.x`, `pose[2]`, `animation.frames[4].angles[1]`.
         field: String,

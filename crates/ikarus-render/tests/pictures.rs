@@ -214,4 +214,7 @@ fn bad_input_is_an_error_naming_the_field() {
     let animation = animate(&chain, &[vec![0.0; 3]], None, Timing::Frames(2), Ease::Linear).unwrap();
     let e = animation_gif(&chain, &animation, &Overlay::default(), 100, 100, 0.0, &|_, _| {}).unwrap_err();
     assert_eq!(e.to_string(), "fps: must be a number in (0, 100], got 0");
+    // Numbers are written short (issue 11: 1e300 was 301 digits).
+    let e = animation_gif(&chain, &animation, &Overlay::default(), 100, 100, 1e300, &|_, _| {}).unwrap_err();
+    assert_eq!(e.to_string(), "fps: must be a number in (0, 100], got 1e300");
 }

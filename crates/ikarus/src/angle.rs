@@ -1,6 +1,7 @@
 //! Angle arithmetic, in one place: wrapping into `[−π, π)`, the 2π-equivalent of an angle
 //! nearest a reference (optionally inside a range), the end of a range nearer an angle around
-//! the circle, and the unit vector of a direction.
+//! the circle, the unit vector of a direction, and degrees from the edges turned into radians
+//! without losing the angle ([`radians_from_degrees`], [`degrees_within`]).
 //!
 //! A joint angle and every `angle + 2πk` put the link in the same place; the solvers pick the
 //! equivalent that keeps a joint within its limits, or nearest where it was, so that it never
@@ -65,9 +66,100 @@ pub fn direction(angle: f64) -> [f64; 2] {
     [c, s]
 }
 
+/// `degrees` wrapped into (−180°, 180°], exactly.
+///
+/// The remainder `degrees % 360` of two floats is exact, and so is the one shift by 360 that
+/// may follow (Sterbenz), so every finite angle keeps its direction: 1e20° is 1e20 − 360k for
+/// the right integer k, which a reduction in radians by an inexact 2π would miss by far more
+/// than a degree. NaN and infinities stay NaN.
+#[inline]
+#[must_use]
+pub fn wrap_degrees(degrees: f64) -> f64 {
+    let r = degrees % 360.0;
+    if r > 180.0 {
+        r - 360.0
+    } else if r <= -180.0 {
+        r + 360.0
+    } else {
+        r
+    }
+}
+
+/// An angle from the edges (flags, files, requests), in degrees, as radians in (−π, π]:
+/// [`wrap_degrees`] first, exactly, then the conversion. For angles whose turn means nothing
+/// (orientations of a goal, joints without limits); a joint with limits takes
+/// [`degrees_within`] first.
+#[inline]
+#[must_use]
+pub fn radians_from_degrees(degrees: f64) -> f64 {
+    wrap_degrees(degrees).to_radians()
+}
+
+/// The angle, in degrees, that a joint limited to `[lo, hi]` degrees takes for `degrees`:
+/// `degrees` itself if it lies inside (the range says which turn it is on), else its
+/// 360°-equivalent inside the range nearest it, or `None` if no equivalent lies inside.
+///
+/// Computed from [`wrap_degrees`] plus a whole number of turns, so it is exact for any
+/// `degrees` and ranges of ordinary size (1e20° with limits [0°, 45°] is its own 1e20 mod 360).
+#[must_use]
+pub fn degrees_within(degrees: f64, lo: f64, hi: f64) -> Option<f64> {
+    if lo <= degrees && degrees <= hi {
+        return Some(degrees);
+    }
+    let w = wrap_degrees(degrees);
+    let lowest = ((lo - w) / 360.0).ceil();
+    let highest = ((hi - w) / 360.0).floor();
+    // `lowest <= highest` is also false for NaN.
+    if lowest <= highest {
+        let k = ((degrees - w) / 360.0).round().max(lowest).min(highest);
+        Some((w + 360.0 * k).clamp(lo, hi))
+    } else {
+        None
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn degrees_wrap_exactly() {
+        for (d, want) in [
+            (0.0, 0.0),
+            (180.0, 180.0),
+            (-180.0, 180.0),
+            (190.0, -170.0),
+            (-190.0, 170.0),
+            (360.0, 0.0),
+            (725.5, 5.5),
+            (-725.5, -5.5),
+            // 1e20 = 360 · 277777777777777777 + 280, and 280° is −80°.
+            (1e20, -80.0),
+            (-1e20, 80.0),
+        ] {
+            assert_eq!(wrap_degrees(d), want, "{d}");
+        }
+        let w = wrap_degrees(1e300);
+        assert!(w > -180.0 && w <= 180.0, "{w}");
+        assert!(wrap_degrees(f64::NAN).is_nan() && wrap_degrees(f64::INFINITY).is_nan());
+        assert_eq!(radians_from_degrees(-180.0), PI);
+        assert_eq!(radians_from_degrees(1e20), (-80f64).to_radians());
+    }
+
+    #[test]
+    fn degrees_within_a_range_keep_their_turn_or_take_the_one_inside() {
+        // Inside: as written, even on another turn.
+        assert_eq!(degrees_within(400.0, -720.0, 720.0), Some(400.0));
+        assert_eq!(degrees_within(5.0, 10.0, 45.0), None);
+        // Outside: the equivalent inside, nearest the angle as written.
+        assert_eq!(degrees_within(370.0, 0.0, 45.0), Some(10.0));
+        assert_eq!(degrees_within(-350.0, 0.0, 45.0), Some(10.0));
+        assert_eq!(degrees_within(1e20, -90.0, 0.0), Some(-80.0));
+        assert_eq!(degrees_within(1e20, 200.0, 300.0), Some(280.0));
+        assert_eq!(degrees_within(1000.0, -720.0, 720.0), Some(640.0));
+        assert_eq!(degrees_within(1e300, 10.0, 20.0).is_some(), (10.0..=20.0).contains(&wrap_degrees(1e300)));
+        assert_eq!(degrees_within(f64::NAN, 0.0, 45.0), None);
+    }
 
     #[test]
     fn wrap_angle_lands_in_half_open_range() {

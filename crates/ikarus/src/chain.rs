@@ -8,6 +8,7 @@
 //!
 //! A chain is validated once, when it is built; everything downstream may assume valid data.
 
+use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
@@ -84,7 +85,7 @@ pub enum ChainError {
     #[error("links: a chain needs at least one link, got none")]
     Empty,
     /// A base coordinate is NaN or infinite.
-    #[error("base: coordinates must be finite, got ({x}, {y})")]
+    #[error("base: coordinates must be finite, got ({}, {})", Num(*.x), Num(*.y))]
     NonFiniteBase {
         /// x of the base.
         x: f64,
@@ -92,7 +93,7 @@ pub enum ChainError {
         y: f64,
     },
     /// A link's number is NaN or infinite.
-    #[error("links[{index}].{field}: must be a finite number, got {value}")]
+    #[error("links[{index}].{field}: must be a finite number, got {}", Num(*.value))]
     NonFinite {
         /// Index of the link, from 0.
         index: usize,
@@ -102,7 +103,7 @@ pub enum ChainError {
         value: f64,
     },
     /// A link's length is zero or negative.
-    #[error("links[{index}].length: must be greater than 0, got {value}")]
+    #[error("links[{index}].length: must be greater than 0, got {}", Num(*.value))]
     NonPositiveLength {
         /// Index of the link, from 0.
         index: usize,
@@ -119,7 +120,7 @@ pub enum ChainError {
         source: LimitsError,
     },
     /// A joint angle lies outside that joint's limits.
-    #[error("links[{index}].angle: {value} rad lies outside the limits [{min}, {max}] rad")]
+    #[error("links[{index}].angle: {} rad lies outside the limits [{}, {}] rad", Num(*.value), Num(*.min), Num(*.max))]
     AngleOutsideLimits {
         /// Index of the joint, from 0.
         index: usize,
@@ -132,7 +133,7 @@ pub enum ChainError {
     },
     /// The chain's reach (the sum of its lengths, from the base) is not a finite number, so
     /// nothing about it could be computed or drawn.
-    #[error("links: the lengths add up to {reach} from the base, which is not a finite number")]
+    #[error("links: the lengths add up to {} from the base, which is not a finite number", Num(*.reach))]
     ReachNotFinite {
         /// The sum of the lengths plus the base's distance from the origin.
         reach: f64,

@@ -11,6 +11,7 @@
 //! | [`Ease::Smoothstep`] | 3t² − 2t³ | 0, 0 | C¹ |
 //! | [`Ease::Parent`] | sine pieces around a constant-velocity middle (below) | 0, 0 (if k1 > 0, k2 < 1) | C¹ |
 
+use crate::number::Num;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
 use thiserror::Error;
@@ -58,7 +59,7 @@ pub struct ParentEase {
 #[non_exhaustive]
 pub enum EaseError {
     /// A parameter is NaN, infinite or outside [0, 1].
-    #[error("{field}: must be a number in [0, 1], got {value}")]
+    #[error("{field}: must be a number in [0, 1], got {}", Num(*.value))]
     OutOfRange {
         /// `"k1"` or `"k2"`.
         field: &'static str,
@@ -66,7 +67,7 @@ pub enum EaseError {
         value: f64,
     },
     /// `k1 > k2`.
-    #[error("k1: must not exceed k2, got k1 = {k1}, k2 = {k2}")]
+    #[error("k1: must not exceed k2, got k1 = {}, k2 = {}", Num(*.k1), Num(*.k2))]
     Order {
         /// The acceleration end given.
         k1: f64,

@@ -2,6 +2,7 @@
 //! orientation of the last link. A description of the problem, shared by the closed forms, the
 //! iterative solvers and the reachability checks.
 
+use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
@@ -20,7 +21,7 @@ pub struct Goal {
 #[non_exhaustive]
 pub enum GoalError {
     /// A coordinate or the angle is NaN or infinite.
-    #[error("goal.{field}: must be a finite number, got {value}")]
+    #[error("goal.{field}: must be a finite number, got {}", Num(*.value))]
     NonFinite {
         /// `"x"`, `"y"` or `"angle"`.
         field: &'static str,
@@ -68,20 +69,27 @@ impl Goal {
         let base = chain.base();
         match self.orientation {
             None => {
-                let d = (self.position - base).norm();
+                let d = length(self.position - base);
                 d > chain.max_reach() + tolerance || d < chain.min_reach() - tolerance
             }
             Some(phi) => {
                 let lengths = chain.lengths();
                 let (last, rest) = lengths.split_last().expect("a chain has at least one link");
                 let wrist = self.position - *last * nalgebra::Vector2::new(phi.cos(), phi.sin());
-                let d = (wrist - base).norm();
+                let d = length(wrist - base);
                 let outer: f64 = rest.iter().sum();
                 let inner = if rest.is_empty() { 0.0 } else { annulus_inner(rest) };
                 d > outer + tolerance || d < inner - tolerance
             }
         }
     }
+}
+
+/// `|v|`, by `hypot` where the sum of squares overflows (a goal 1e200 away from the base of a
+/// chain of reach 3e200 is within reach, not infinitely far) or is subnormal.
+fn length(v: nalgebra::Vector2<f64>) -> f64 {
+    let squared = v.norm_squared();
+    if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { v.x.hypot(v.y) }
 }
 
 fn finite(field: &'static str, value: f64) -> Result<(), GoalError> {

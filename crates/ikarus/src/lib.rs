@@ -53,6 +53,7 @@ pub mod kinematics;
 pub mod limits;
 pub mod motion;
 pub mod names;
+pub mod number;
 pub mod reach;
 pub mod rng;
 pub mod solve;

@@ -5,6 +5,7 @@
 //! [`LimitMode`](crate::LimitMode) is [`Ignore`](crate::LimitMode::Ignore)) and passes the
 //! view to every step: a joint without a bound is free, and an empty view frees them all.
 
+use crate::number::Num;
 use thiserror::Error;
 
 use crate::angle;
@@ -78,7 +79,7 @@ impl JointLimits {
 #[non_exhaustive]
 pub enum LimitsError {
     /// One end of the range is NaN or infinite.
-    #[error("{end} must be a finite number, got {value}")]
+    #[error("{end} must be a finite number, got {}", Num(*.value))]
     NonFinite {
         /// `"min"` or `"max"`.
         end: &'static str,
@@ -86,7 +87,7 @@ pub enum LimitsError {
         value: f64,
     },
     /// `min > max`.
-    #[error("min must not exceed max, got [{min}, {max}]")]
+    #[error("min must not exceed max, got [{}, {}]", Num(*.min), Num(*.max))]
     Inverted {
         /// The lower end given.
         min: f64,

@@ -77,6 +77,7 @@
 //! lengths, the pose at a point of it), `spline.rs` the spline through the same keyframes, and
 //! `through.rs` [`through_goals`].
 
+use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
@@ -147,7 +148,7 @@ pub enum MotionError {
         got: usize,
     },
     /// An angle is NaN or infinite.
-    #[error("{field}[{index}][{joint}]: must be a finite number, got {value}")]
+    #[error("{field}[{index}][{joint}]: must be a finite number, got {}", Num(*.value))]
     NonFiniteAngle {
         /// `"keyframes"` or `"frames"`.
         field: &'static str,
@@ -159,7 +160,7 @@ pub enum MotionError {
         value: f64,
     },
     /// A keyframe angle lies outside its joint's limits.
-    #[error("keyframes[{index}][{joint}]: {value} rad lies outside the limits [{min}, {max}] rad")]
+    #[error("keyframes[{index}][{joint}]: {} rad lies outside the limits [{}, {}] rad", Num(*.value), Num(*.min), Num(*.max))]
     OutsideLimits {
         /// Index of the keyframe, from 0.
         index: usize,
@@ -173,7 +174,7 @@ pub enum MotionError {
         max: f64,
     },
     /// The joint-space path up to this pose is too long to represent (angles near `f64::MAX`).
-    #[error("{field}[{index}]: the joint-space path up to this pose is too long to represent, got {length} rad")]
+    #[error("{field}[{index}]: the joint-space path up to this pose is too long to represent, got {} rad", Num(*.length))]
     PathTooLong {
         /// `"keyframes"` or `"frames"`.
         field: &'static str,
@@ -191,7 +192,7 @@ pub enum MotionError {
         got: usize,
     },
     /// A time is NaN or infinite.
-    #[error("times[{index}]: must be a finite number, got {value}")]
+    #[error("times[{index}]: must be a finite number, got {}", Num(*.value))]
     NonFiniteTime {
         /// Index of the time, from 0.
         index: usize,
@@ -199,13 +200,13 @@ pub enum MotionError {
         value: f64,
     },
     /// The first time is not 0.
-    #[error("times[0]: must be 0, got {value}")]
+    #[error("times[0]: must be 0, got {}", Num(*.value))]
     FirstTime {
         /// The offending value.
         value: f64,
     },
     /// A time is not greater than the one before it.
-    #[error("times[{index}]: must be greater than times[{}] = {previous}, got {value}", index - 1)]
+    #[error("times[{index}]: must be greater than times[{}] = {}, got {}", index - 1, Num(*.previous), Num(*.value))]
     TimesNotIncreasing {
         /// Index of the time, from 1.
         index: usize,
@@ -215,7 +216,7 @@ pub enum MotionError {
         previous: f64,
     },
     /// The last time is not the animation's duration.
-    #[error("times[{index}]: the last time must equal the duration, {duration}, got {value}")]
+    #[error("times[{index}]: the last time must equal the duration, {}, got {}", Num(*.duration), Num(*.value))]
     LastTime {
         /// Index of the last time.
         index: usize,
@@ -231,19 +232,19 @@ pub enum MotionError {
         value: usize,
     },
     /// [`Timing::Duration`] with seconds not finite and > 0.
-    #[error("seconds: must be a finite number greater than 0, got {value}")]
+    #[error("seconds: must be a finite number greater than 0, got {}", Num(*.value))]
     Seconds {
         /// The offending value.
         value: f64,
     },
     /// [`Timing::Duration`] with fps not finite and > 0.
-    #[error("fps: must be a finite number greater than 0, got {value}")]
+    #[error("fps: must be a finite number greater than 0, got {}", Num(*.value))]
     Fps {
         /// The offending value.
         value: f64,
     },
     /// [`Timing::Duration`] so short that it gives a single frame (`seconds·fps < 0.5`).
-    #[error("seconds: {seconds} s at {fps} fps gives a single frame; seconds × fps must be at least 0.5")]
+    #[error("seconds: {} s at {} fps gives a single frame; seconds × fps must be at least 0.5", Num(*.seconds), Num(*.fps))]
     TooFewFrames {
         /// The seconds given.
         seconds: f64,
@@ -251,7 +252,7 @@ pub enum MotionError {
         fps: f64,
     },
     /// More than [`MAX_FRAMES`] frames.
-    #[error("{field}: gives {frames} frames, more than the maximum of {MAX_FRAMES}")]
+    #[error("{field}: gives {} frames, more than the maximum of {MAX_FRAMES}", Num(*.frames))]
     TooManyFrames {
         /// `"frames"` or `"seconds × fps"`.
         field: &'static str,

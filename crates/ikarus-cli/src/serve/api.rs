@@ -136,7 +136,10 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
         let path = track_path(&req, limits)?;
         let max_step_deg = req.max_step_deg.unwrap_or(DEFAULT_MAX_STEP_DEG);
         if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
-            return Err(ApiError::invalid(format!("max_step_deg = {max_step_deg}: must be a finite number > 0")));
+            return Err(ApiError::invalid(format!(
+                "max_step_deg = {}: must be a finite number > 0",
+                ikarus::number::Num(max_step_deg)
+            )));
         }
         let mode = req.mode.unwrap_or(ikarus::TrackMode::Plan);
         if req.bound_first && mode != ikarus::TrackMode::Follow {
@@ -266,7 +269,18 @@ fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Result<Vec<f64
             arm.chain.len(),
             d.len()
         ))),
-        Some(d) => Ok(d.iter().map(|a| a.to_radians()).collect()),
+        // Normalised like an arm file's start angles (`arm.rs`), the limits being the chain's.
+        Some(d) => Ok(d
+            .iter()
+            .zip(arm.chain.limits())
+            .map(|(&a, lim)| match lim {
+                _ if !a.is_finite() => a.to_radians(),
+                Some(l) => ikarus::angle::degrees_within(a, l.min().to_degrees(), l.max().to_degrees())
+                    .unwrap_or(a)
+                    .to_radians(),
+                None => ikarus::angle::radians_from_degrees(a),
+            })
+            .collect()),
     }
 }
 

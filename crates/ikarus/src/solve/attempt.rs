@@ -17,7 +17,10 @@ use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into}
 /// Every iteration measures the tip against the goal, records a frame when due, stops when the
 /// goal is reached, the pose has stood still for the stall window, or at the iteration cap,
 /// and otherwise takes one step of the method. CCD and FABRIK do not check for descent: they
-/// end on the best pose they visited.
+/// end on the best pose they visited. A step that would leave a non-finite angle (the tip
+/// orientation, their sum, is then not finite either: an overflow on a chain or goal near the
+/// end of the f64 range) is not taken: the attempt keeps its last finite pose and ends
+/// [`Status::Stalled`].
 pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> Status {
     let (chain, goal, opts) = (p.chain, p.goal, p.opts);
     let n = chain.len();
@@ -39,7 +42,7 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
         let tip = s.joints[n];
         let (dx, dy) = (target.x - tip.x, target.y - tip.y);
         let turn = goal.orientation().map(|g| wrap_angle(g - phi));
-        let error = (dx * dx + dy * dy).sqrt();
+        let error = distance(dx, dy);
         let angle_error = turn.map_or(0.0, f64::abs);
         out.error = error;
         out.angle_error = angle_error;
@@ -72,6 +75,10 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
                 fabrik::iterate(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
             }
         };
+        if !trial_phi.is_finite() {
+            // Some angle of the step is NaN or infinite: keep the last finite pose.
+            break Status::Stalled;
+        }
         let moved = angles.iter().zip(&s.trial).fold(0.0f64, |m, (a, t)| m.max((t - a).abs()));
         std::mem::swap(angles, &mut s.trial);
         std::mem::swap(&mut s.joints, &mut s.trial_joints);
@@ -144,7 +151,8 @@ fn jacobian_iteration(
 }
 
 /// CCD and FABRIK: if the pose they end on is worse than the best they visited (squared task
-/// error `best_error`, pose in `s.best`), end on that one.
+/// error `best_error`, pose in `s.best`), end on that one, with its error and tip (the
+/// restarts compare attempts by them).
 fn end_on_best(p: &Problem, best_error: f64, s: &mut Scratch, out: &mut Outcome) {
     let (chain, goal) = (p.chain, p.goal);
     let weight = p.opts.orientation_weight;
@@ -154,8 +162,19 @@ fn end_on_best(p: &Problem, best_error: f64, s: &mut Scratch, out: &mut Outcome)
         angles.copy_from_slice(&s.best);
         let phi = joint_positions_into(chain, angles, &mut s.joints);
         let tip = s.joints[chain.len()];
-        out.error = (goal.target() - tip).norm();
+        out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
         out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
         out.end_effector = EndEffector { position: tip, orientation: phi };
     }
+}
+
+/// The length of `(dx, dy)`: `√(dx² + dy²)`, or `hypot` where the sum of squares would overflow
+/// or lose precision below the smallest normal number (so that a goal 1e200 away is 1e200
+/// away, not infinitely far, and 1e-170 away is not 0). Saturates at `f64::MAX` if the length
+/// itself is beyond the f64 range, so that it is always a finite number.
+#[inline]
+pub(super) fn distance(dx: f64, dy: f64) -> f64 {
+    let squared = dx * dx + dy * dy;
+    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { dx.hypot(dy) };
+    d.min(f64::MAX)
 }

@@ -2,6 +2,7 @@
 //! their validation: on their own ([`SolveOptions::validate`], [`OptionsError`]) and against
 //! the chain they are used with ([`SolveOptions::validate_for`]).
 
+use crate::number::Num;
 use thiserror::Error;
 
 use super::{LimitMode, Method, SolveError};
@@ -138,7 +139,7 @@ impl Default for SolveOptions {
 #[non_exhaustive]
 pub enum OptionsError {
     /// A number is out of its range (the message says which range).
-    #[error("{field}: must be {expected}, got {value}")]
+    #[error("{field}: must be {expected}, got {}", Num(*.value))]
     OutOfRange {
         /// The option's name.
         field: &'static str,
@@ -148,7 +149,7 @@ pub enum OptionsError {
         value: f64,
     },
     /// A per-joint rate is out of range.
-    #[error("rates[{index}]: must be a finite number ≥ 0, got {value}")]
+    #[error("rates[{index}]: must be a finite number ≥ 0, got {}", Num(*.value))]
     Rate {
         /// Joint index, from 0.
         index: usize,

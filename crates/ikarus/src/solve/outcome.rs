@@ -1,6 +1,7 @@
 //! What a solve returns: the [`Outcome`] with its [`Status`], or a [`SolveError`] when it
 //! could not start.
 
+use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
@@ -99,7 +100,7 @@ pub enum SolveError {
         got: usize,
     },
     /// A start angle is NaN or infinite.
-    #[error("start[{index}]: must be a finite number, got {value}")]
+    #[error("start[{index}]: must be a finite number, got {}", Num(*.value))]
     NonFiniteAngle {
         /// Joint index, from 0.
         index: usize,

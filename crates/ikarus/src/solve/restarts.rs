@@ -62,8 +62,10 @@ fn restart(
     tally: &mut Tally,
 ) {
     let stuck = |st| st != Status::Reached;
-    let mut best = (task_error(p.opts, out), 0);
-    let mut last = 0;
+    // The best attempt so far: its task error, status and final pose (in `s.best_attempt`).
+    let mut best = (task_error(p.opts, out), tally.status);
+    s.best_attempt.copy_from_slice(out.pose.angles());
+    let mut last_is_best = true;
     for k in 1..=r.attempts {
         if let (Some(began), Some(budget)) = (began, r.time_budget) {
             if began.elapsed() >= budget {
@@ -74,27 +76,33 @@ fn restart(
         tally.status = attempt_from_restart(p, s, out);
         tally.iterations += out.iterations;
         tally.restarts = k;
-        last = k;
-        // An interrupted solve ends at once, on the pose it has (running the best attempt
-        // again would be interrupted too).
-        if !stuck(tally.status) || tally.status == Status::Interrupted {
-            break;
+        if !stuck(tally.status) {
+            return join(p, start, tally, s, out);
         }
         let err = task_error(p.opts, out);
-        if err < best.0 {
-            best = (err, k);
+        last_is_best = err < best.0;
+        if last_is_best {
+            best = (err, tally.status);
+            s.best_attempt.copy_from_slice(out.pose.angles());
+        }
+        // An interrupted solve ends at once, on the best pose so far.
+        if tally.status == Status::Interrupted {
+            break;
         }
     }
-    if stuck(tally.status) && tally.status != Status::Interrupted && best.1 != last {
-        // No attempt reached the goal: run the best one again (solves are deterministic, so
-        // this reproduces it) to leave its pose in `out`.
-        if best.1 == 0 {
-            s.restart.copy_from_slice(start);
-        } else {
-            restart_pose(p.bounds, start, r, best.1, &mut s.restart);
-        }
-        tally.status = attempt_from_restart(p, s, out);
+    let interrupted = tally.status == Status::Interrupted;
+    if !last_is_best {
+        // No attempt reached the goal: end on the best one's pose, kept when it ended (not
+        // run again, so that `iterations` counts every step taken).
+        out.pose.angles_mut().copy_from_slice(&s.best_attempt);
+        tally.status = if interrupted { Status::Interrupted } else { best.1 };
     }
+    join(p, start, tally, s, out);
+}
+
+/// With frames recorded and restarts taken, the frames run from the caller's start pose to the
+/// outcome's pose ([`join_frames`]).
+fn join(p: &Problem, start: &[f64], tally: &Tally, s: &mut Scratch, out: &mut Outcome) {
     if tally.restarts > 0 && p.opts.record_every.is_some() {
         join_frames(p, start, tally.iterations, s, out);
     }
@@ -109,17 +117,16 @@ fn attempt_from_restart(p: &Problem, s: &mut Scratch, out: &mut Outcome) -> Stat
 }
 
 /// The frames of a restart begin elsewhere: keep the motion from the caller's start pose to
-/// the result, without the jump, numbered by the `iterations` of every attempt.
+/// the result (the outcome's pose), without the jump, numbered by the `iterations` of every
+/// attempt.
 fn join_frames(p: &Problem, start: &[f64], iterations: u32, s: &mut Scratch, out: &mut Outcome) {
-    let n_frames = out.frames.len();
-    let last = out.frames.get(n_frames - 1).expect("the last frame is always recorded");
-    let (end_angles, end_joints) = (last.angles.to_vec(), last.joints.to_vec());
     out.frames.start(p.chain.len(), p.opts.record_every, 1);
-    let mut start_angles = start.to_vec();
-    p.bounds.clamp_into(&mut start_angles);
-    joint_positions_into(p.chain, &start_angles, &mut s.joints);
-    out.frames.push(0, &start_angles, &s.joints);
-    out.frames.push_final(iterations, &end_angles, &end_joints);
+    s.restart.copy_from_slice(start);
+    p.bounds.clamp_into(&mut s.restart);
+    joint_positions_into(p.chain, &s.restart, &mut s.joints);
+    out.frames.push(0, &s.restart, &s.joints);
+    joint_positions_into(p.chain, out.pose.angles(), &mut s.joints);
+    out.frames.push_final(iterations, out.pose.angles(), &s.joints);
 }
 
 /// The squared task error of an outcome, as the solvers minimise it.
@@ -141,5 +148,62 @@ pub(super) fn restart_pose(bounds: Bounds<'_>, start: &[f64], r: Restarts, k: u3
         let target = lo + u * (hi - lo);
         let next = a + f * (target - a);
         *o = limits.map_or(next, |l| l.clamp(next));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::goal::Goal;
+    use crate::solve::{LimitMode, Method, Solver};
+
+    /// When no attempt reaches the goal, the outcome is the best attempt's pose, kept when it
+    /// ended (it used to be run a second time, whose steps `iterations` left out): every
+    /// attempt's steps are counted once, and the pose, status and error are the best one's.
+    #[test]
+    fn failed_restarts_end_on_the_best_attempt_counting_every_step() {
+        let chain = crate::fixtures::seed_arm_limited();
+        let goal = Goal::position(-3.0, -1.0).unwrap();
+        let mut best_was_not_last = 0;
+        for seed in 0..40 {
+            let r = Restarts { attempts: 4, seed, time_budget: None };
+            let opts = SolveOptions {
+                method: Method::LevenbergMarquardt,
+                limits: LimitMode::Lock,
+                restarts: Some(r),
+                record_every: Some(5),
+                ..SolveOptions::default()
+            };
+            let out = Solver::new(opts.clone()).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+            // Each attempt alone, from its start pose.
+            let once = SolveOptions { restarts: None, record_every: None, ..opts.clone() };
+            let start = chain.start_pose().angles().to_vec();
+            let attempts: Vec<Outcome> = (0..=r.attempts)
+                .map(|k| {
+                    let mut from = start.clone();
+                    if k > 0 {
+                        restart_pose(chain.bounds(), &start, r, k, &mut from);
+                    }
+                    Solver::new(once.clone()).unwrap().solve(&chain, &chain.pose(from).unwrap(), &goal).unwrap()
+                })
+                .collect();
+            if attempts.iter().any(|a| a.status == Status::Reached) {
+                continue;
+            }
+            assert_ne!(out.status, Status::Reached, "seed {seed}");
+            assert_eq!(out.iterations, attempts.iter().map(|a| a.iterations).sum::<u32>(), "seed {seed}");
+            assert_eq!(out.restarts, r.attempts);
+            let err = |o: &Outcome| task_error(&opts, o);
+            let best = attempts.iter().min_by(|a, b| err(a).total_cmp(&err(b))).unwrap();
+            assert_eq!(out.pose, best.pose, "seed {seed}");
+            assert_eq!((out.error, out.status), (best.error, best.status), "seed {seed}");
+            // The frames run from the start to the outcome's pose.
+            let last = out.frames.get(out.frames.len() - 1).unwrap();
+            assert_eq!((last.iteration, last.angles), (out.iterations, out.pose.angles()));
+            if best.pose != attempts[attempts.len() - 1].pose {
+                best_was_not_last += 1;
+            }
+        }
+        assert!(best_was_not_last > 0, "no case where the best attempt was not the last");
     }
 }

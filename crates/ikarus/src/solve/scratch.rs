@@ -26,6 +26,8 @@ pub(super) struct Scratch {
     pub(super) best: Vec<f64>,
     /// The start pose of a restart.
     pub(super) restart: Vec<f64>,
+    /// The final pose of the best attempt so far, when a solve restarts.
+    pub(super) best_attempt: Vec<f64>,
 }
 
 impl Scratch {
@@ -33,8 +35,15 @@ impl Scratch {
     pub(super) fn fit(&mut self, n: usize) {
         self.joints.resize(n + 1, Point2::origin());
         self.trial_joints.resize(n + 1, Point2::origin());
-        for v in [&mut self.scale, &mut self.step, &mut self.delta, &mut self.trial, &mut self.best, &mut self.restart]
-        {
+        for v in [
+            &mut self.scale,
+            &mut self.step,
+            &mut self.delta,
+            &mut self.trial,
+            &mut self.best,
+            &mut self.restart,
+            &mut self.best_attempt,
+        ] {
             v.resize(n, 0.0);
         }
         self.locked.resize(n, false);

@@ -73,6 +73,7 @@ mod result;
 #[cfg(test)]
 mod tests;
 
+use crate::number::Num;
 use thiserror::Error;
 
 use crate::angle::{nearest_equivalent, wrap_angle};
@@ -179,7 +180,7 @@ impl Default for TrackOptions {
 #[non_exhaustive]
 pub enum TrackError {
     /// A tracking option is out of range.
-    #[error("{field}: must be {expected}, got {value}")]
+    #[error("{field}: must be {expected}, got {}", Num(*.value))]
     OutOfRange {
         /// The option's name.
         field: &'static str,

@@ -1,6 +1,7 @@
 //! [`Path`]: the goals a tip should pass through, in order, with constructors for lines,
 //! circles and figure-8s.
 
+use crate::number::Num;
 use std::f64::consts::TAU;
 
 use thiserror::Error;
@@ -31,7 +32,7 @@ pub enum PathError {
         value: usize,
     },
     /// A shape's parameter is out of range.
-    #[error("{field}: must be {expected}, got {value}")]
+    #[error("{field}: must be {expected}, got {}", Num(*.value))]
     Parameter {
         /// The parameter's name (`x0`, `radius`, `a`, …).
         field: &'static str,
@@ -52,7 +53,7 @@ pub enum PathError {
 
 /// Which coordinate of a point is not finite (see [`PathError::Point`]).
 #[derive(Debug, Clone, PartialEq, Error)]
-#[error("{field}: must be a finite number, got {value}")]
+#[error("{field}: must be a finite number, got {}", Num(*.value))]
 pub struct PointError {
     /// `"x"`, `"y"` or `"angle"`.
     pub field: &'static str,

@@ -29,8 +29,18 @@ impl Aim {
     fn new(lever: Vector2<f64>, to_goal: Vector2<f64>, turn: Option<f64>, w2: f64, tiny: f64) -> Self {
         // `hypot` rather than `norm`: no overflow for far-off goals.
         let (lt, lg) = (lever.x.hypot(lever.y), to_goal.x.hypot(to_goal.y));
-        let toward =
-            (lt > tiny && lg > tiny).then(|| lever.perp(&to_goal).atan2(lever.dot(&to_goal))).filter(|t| t.is_finite());
+        // The angle from one lever to the other; where their cross or dot product overflows
+        // (lengths beyond 1e154, and atan2(∞, ∞) is π/4), on the levers scaled to order one.
+        let angle = |a: Vector2<f64>, b: Vector2<f64>| {
+            let (cross, dot) = (a.perp(&b), a.dot(&b));
+            if cross.is_finite() && dot.is_finite() {
+                cross.atan2(dot)
+            } else {
+                let (a, b) = (a / a.amax(), b / b.amax());
+                a.perp(&b).atan2(a.dot(&b))
+            }
+        };
+        let toward = (lt > tiny && lg > tiny).then(|| angle(lever, to_goal)).filter(|t| t.is_finite());
         match (toward, turn) {
             (None, None) => Aim::Flat,
             (Some(mu), None) | (None, Some(mu)) => Aim::Unimodal(mu),
