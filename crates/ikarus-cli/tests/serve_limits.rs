@@ -453,3 +453,28 @@ fn slow_bodies_cannot_hold_more_than_the_body_memory() {
     let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
     assert_eq!(status, 200, "{v}");
 }
+
+#[test]
+fn a_gif_over_its_budget_stops_and_frees_its_worker() {
+    let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "1000"]);
+    // The largest GIF within the caps: 2000 frames of 223 × 223 pixels, 64 links (9 s to
+    // encode in a release build).
+    let gif = json!({
+        "figure": "motion", "arm": { "links": links(64) }, "goal": { "x": 3.0, "y": 3.0 },
+        "frames": 2000, "format": "gif", "width": 223, "height": 223
+    });
+    let e = error(&s.post("/api/render", &gif), 503);
+    assert!(e.contains("--request-budget-ms"), "{e}");
+    // The encoder saw the interrupt: the only worker is free again well before the GIF could
+    // have been finished.
+    let began = Instant::now();
+    loop {
+        let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        if status == 200 {
+            break;
+        }
+        assert_eq!(status, 503, "{v}");
+        assert!(began.elapsed() < Duration::from_secs(5), "the worker was not freed: {v}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}

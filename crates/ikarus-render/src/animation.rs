@@ -13,7 +13,7 @@ use gif::{DisposalMethod, Encoder, Frame, Repeat};
 use ikarus::kinematics::joint_positions;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
-use ikarus::{Chain, Point2};
+use ikarus::{Chain, Interrupt, Point2};
 use resvg::tiny_skia::Pixmap;
 
 use crate::RenderError;
@@ -26,6 +26,37 @@ use crate::scene::Scene;
 use crate::style;
 use crate::svg::Svg;
 use crate::view::View;
+
+thread_local! {
+    /// The interrupt of [`with_interrupt`] on this thread.
+    static INTERRUPT: std::cell::RefCell<Option<Interrupt>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` with `interrupt` checked before every frame of every GIF this thread encodes
+/// meanwhile ([`animation_gif`]): once it is set, the GIF ends with [`RenderError::Encode`]
+/// ("interrupted"). A server stops a picture nobody waits for any more this way, without a
+/// parameter through every drawing function.
+pub fn with_interrupt<T>(interrupt: &Interrupt, f: impl FnOnce() -> T) -> T {
+    /// Puts the previous interrupt back, even if `f` panics.
+    struct Restore(Option<Interrupt>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let previous = self.0.take();
+            INTERRUPT.with(|slot| *slot.borrow_mut() = previous);
+        }
+    }
+    let _restore = Restore(INTERRUPT.with(|slot| slot.replace(Some(interrupt.clone()))));
+    f()
+}
+
+/// Fails when this thread's [`with_interrupt`] token is set.
+fn check_interrupt() -> Result<(), RenderError> {
+    if INTERRUPT.with(|slot| slot.borrow().as_ref().is_some_and(Interrupt::is_interrupted)) {
+        Err(RenderError::Encode { format: "gif", message: "interrupted".to_owned() })
+    } else {
+        Ok(())
+    }
+}
 
 /// The highest frame rate accepted, frames per second.
 pub const MAX_FPS: f64 = 100.0;
@@ -142,6 +173,7 @@ impl<'a> Painter<'a> {
             *trail = self.trail();
         }
         while trail.next <= i {
+            check_interrupt()?;
             let j = trail.next;
             let mut svg = Svg::new(self.width, self.height);
             let from = j.checked_sub(1).map(|p| self.joints[p].as_slice());
@@ -205,6 +237,7 @@ fn encode_gif(
         let (mut previous, mut current) = (Vec::new(), Vec::new());
         let mut trail = painter.trail();
         for i in 0..total {
+            check_interrupt()?;
             let rgba = painter.rgba(i, &mut trail)?;
             palette.map_into(&rgba, &mut current);
             let mut frame = if i == 0 {
@@ -287,6 +320,22 @@ mod tests {
     use super::*;
     use ikarus::motion::{Timing, animate};
     use ikarus::{Ease, Link};
+
+    #[test]
+    fn a_gif_stops_when_its_interrupt_is_set() {
+        let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.1)]).unwrap();
+        let keyframes = [vec![0.1, 0.1], vec![0.9, 1.2]];
+        let animation = animate(&chain, &keyframes, None, Timing::Frames(5), Ease::Sine).unwrap();
+        let overlay = Overlay { trail: true, ..Overlay::default() };
+        let token = Interrupt::new();
+        let gif = || animation_gif(&chain, &animation, &overlay, 64, 64, 25.0, &|_, _| {});
+        assert!(with_interrupt(&token, gif).is_ok(), "an unset token changes nothing");
+        token.interrupt();
+        let e = with_interrupt(&token, gif).unwrap_err();
+        assert_eq!(e.to_string(), "gif: encoding failed: interrupted");
+        // Outside `with_interrupt` the token does not apply.
+        assert!(gif().is_ok());
+    }
 
     /// The trail grown one step per frame looks like the trail drawn at once (as the still
     /// figures draw it, and as every GIF frame drew it before, at a cost quadratic in the

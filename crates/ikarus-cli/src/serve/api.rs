@@ -201,7 +201,9 @@ pub async fn workspace(
 pub async fn render(State(state): State<AppState>, req: RenderReq) -> Result<Response, ApiError> {
     let pool = state.pool.clone();
     pool.run(move |interrupt| {
-        let (bytes, format) = render_figure(req, &state.limits, interrupt)?;
+        // A GIF being encoded checks the interrupt before each frame.
+        let (bytes, format) =
+            ikarus_render::with_interrupt(interrupt, || render_figure(req, &state.limits, interrupt))?;
         Ok(([(header::CONTENT_TYPE, format.content_type())], bytes).into_response())
     })
     .await

@@ -110,8 +110,7 @@ impl Pool {
         let long: Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>> = Arc::default();
         let long_held = Arc::clone(&long);
         // The worker keeps its permits until the computation really ends, even when the answer
-        // (503) has already gone: the interrupt makes that soon (a picture being encoded does
-        // not check it, but its size is capped).
+        // (503) has already gone: the interrupt makes that soon.
         let mut handle = tokio::task::spawn_blocking(move || {
             let _permits = (permit, long_held);
             work(&worker_token)
