@@ -1,18 +1,37 @@
-// Load check: 200 concurrent clients solving random goals against `ikarus serve` on loopback for
-// 10 seconds. Reports requests, errors and the server's resident memory (from /proc) at the
-// start, the middle and the end; exits 1 on any error or if memory grew by more than half.
-//   node e2e/load.mjs            (builds nothing: run `cargo build --release` first)
+// Load check of `ikarus serve` on loopback, run by hand (about 15 seconds; not part of .ci/run):
+//   cargo build --release && node e2e/load.mjs
+// Environment: LOAD_SECONDS (default 10), LOAD_HEAVY (how many of the four heavy kinds, default
+// 4), LOAD_SERVER_ARGS (extra `ikarus serve` flags, e.g. "--workers 4"), IKARUS_BIN.
+//
+// For SECONDS seconds a mixed load runs against one server:
+//   - 100 clients solving random goals (the old check: 200 of them and nothing else);
+//   - 10 clients animating, 5 sampling workspaces, 5 rendering (PNG arms, small GIF motions);
+//   - 4 clients sending the expensive requests of issue 11 in a loop: a solve that runs for
+//     hours, a 64-link animate with 100 via points, 64 restarts and gain 1e-9, a workspace at
+//     resolution 1024 with 10⁶ samples, a 2000-frame GIF of a 64-link arm. These are expected
+//     to end 503 at the server's time budget (or be refused 503 "busy" when the queue is full);
+//   - one prober asking GET /api/health every 10 ms, timing each answer.
+// It reports, per kind, the answers by status; the health latency (p50, p99, max); and the
+// server's resident memory at the start, midway and at the end. It exits 1 if a health check
+// fails or its p99 reaches 50 ms, if any answer is neither 200 nor an expected 503, or if the
+// server's memory ends above MAX_RSS_KB (bounded memory; it varies with the heavy requests'
+// timing, so no growth ratio is checked).
 import { spawn } from "node:child_process";
 import { readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
+import { Worker } from "node:worker_threads";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
-const CLIENTS = 200;
-const SECONDS = 10;
+const SECONDS = Number(process.env.LOAD_SECONDS ?? 10);
+const HEALTH_P99_GOAL_MS = 50;
+const MAX_RSS_KB = 512 * 1024;
+/** How many of the four heavy kinds run (from the first): LOAD_HEAVY=1 runs only the solve. */
+const HEAVY_KINDS = Number(process.env.LOAD_HEAVY ?? 4);
+const serverArgs = (process.env.LOAD_SERVER_ARGS ?? "").split(" ").filter(Boolean);
 
-const server = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
+const server = spawn(binary, ["serve", "--port", "0", ...serverArgs], { stdio: ["ignore", "pipe", "inherit"] });
 const url = await new Promise((resolve, reject) => {
   let out = "";
   server.on("error", reject);
@@ -24,43 +43,173 @@ const url = await new Promise((resolve, reject) => {
 });
 const rss = () => Number(readFileSync(`/proc/${server.pid}/status`, "utf8").match(/VmRSS:\s+(\d+)/)[1]);
 
-let requests = 0;
-let errors = 0;
-let firstError = null;
 const deadline = Date.now() + SECONDS * 1000;
-async function client(seed) {
-  let s = seed;
-  const random = () => ((s = (s * 1103515245 + 12345) % 2147483648) / 2147483648);
-  while (Date.now() < deadline) {
-    const r = 5.5 * Math.sqrt(random());
-    const a = 2 * Math.PI * random();
-    try {
-      const res = await fetch(`${url}/api/solve`, {
-        method: "POST",
-        headers: { "content-type": "application/json" },
-        body: JSON.stringify({ goal: { x: r * Math.cos(a), y: r * Math.sin(a) }, options: { record_every: 50 } }),
-      });
-      const body = await res.json();
-      if (res.status !== 200 || !body.status) throw new Error(`${res.status} ${JSON.stringify(body)}`);
-      requests += 1;
-    } catch (e) {
-      errors += 1;
-      firstError ??= e.message;
+/** answers[kind][status] = count; "network" for a failed fetch. */
+const answers = {};
+/** The first 503 message of each kind. */
+const busy = {};
+const unexpected = [];
+const count = (kind, status) => {
+  answers[kind] ??= {};
+  answers[kind][status] = (answers[kind][status] ?? 0) + 1;
+};
+
+async function post(kind, path, body, expected) {
+  try {
+    const res = await fetch(`${url}${path}`, {
+      method: "POST",
+      headers: { "content-type": "application/json" },
+      body: JSON.stringify(body),
+    });
+    const bytes = await res.arrayBuffer();
+    count(kind, res.status);
+    if (res.status === 503) busy[kind] ??= new TextDecoder().decode(bytes).slice(0, 160);
+    if (!expected.includes(res.status)) {
+      unexpected.push(`${kind}: ${res.status} ${new TextDecoder().decode(bytes).slice(0, 200)}`);
     }
+  } catch (e) {
+    count(kind, "network");
+    unexpected.push(`${kind}: ${e.message}`);
   }
+}
+
+function rng(seed) {
+  let s = seed;
+  return () => (s = (s * 1103515245 + 12345) % 2147483648) / 2147483648;
+}
+
+const goal = (random) => {
+  const r = 5.5 * Math.sqrt(random());
+  const a = 2 * Math.PI * random();
+  return { x: r * Math.cos(a), y: r * Math.sin(a) };
+};
+
+// Light requests: 200 normally; 503 only if the server is saturated by the heavy ones.
+const LIGHT = [200, 503];
+async function loop(kind, seed, request) {
+  const random = rng(seed);
+  while (Date.now() < deadline) {
+    const [path, body, expected] = request(random);
+    await post(kind, path, body, expected);
+  }
+}
+
+const links64 = Array.from({ length: 64 }, () => ({ length: 0.1, angle_deg: 5 }));
+const via100 = Array.from({ length: 100 }, (_, i) => [(i % 7) * 0.5, 1]);
+const HEAVY = [
+  // Hours: a 64-link arm held within ±1° of straight, asked for a goal it cannot reach so.
+  () => [
+    "/api/solve",
+    {
+      arm: { links: Array.from({ length: 64 }, () => ({ length: 0.1, angle_deg: 0, limits_deg: [-1, 1] })) },
+      goal: { x: -3, y: -1 },
+      options: {
+        limits: true, restarts: 64, backtrack: 0, max_iterations: 100000, stall_window: 4294967295,
+        tolerance: 5e-324, gain: 1e-9,
+      },
+    },
+    [503],
+  ],
+  () => [
+    "/api/animate",
+    { arm: { links: links64 }, goal: { x: 3, y: 3 }, via: via100, options: { restarts: 64, max_iterations: 100000, gain: 1e-9 } },
+    [503],
+  ],
+  () => [
+    "/api/workspace",
+    {
+      arm: { links: [{ length: 1, angle_deg: 0, limits_deg: [-90, 90] }, { length: 100, angle_deg: 0 }, { length: 100, angle_deg: 0 }] },
+      limits: true, resolution: 1024, samples: 1000000,
+    },
+    [503],
+  ],
+  () => [
+    "/api/render",
+    { figure: "motion", arm: { links: links64 }, goal: { x: 3, y: 3 }, frames: 2000, format: "gif", width: 223, height: 223 },
+    [200, 503],
+  ],
+];
+
+// The prober runs on its own thread (its own event loop), so that its timings are the server's
+// answers and not the wait behind the other clients' callbacks in this one.
+const PROBER = `
+const { parentPort, workerData } = require("node:worker_threads");
+(async () => {
+  const latencies = [];
+  let failures = 0;
+  while (Date.now() < workerData.deadline) {
+    const began = performance.now();
+    try {
+      const res = await fetch(workerData.url + "/api/health");
+      await res.arrayBuffer();
+      if (res.status !== 200) failures += 1;
+    } catch {
+      failures += 1;
+    }
+    latencies.push(performance.now() - began);
+    await new Promise((r) => setTimeout(r, 10));
+  }
+  parentPort.postMessage({ latencies, failures });
+})();
+`;
+let latencies = [];
+let healthFailures = 0;
+function prober() {
+  return new Promise((resolve, reject) => {
+    const worker = new Worker(PROBER, { eval: true, workerData: { url, deadline } });
+    worker.on("message", (m) => {
+      latencies = m.latencies;
+      healthFailures = m.failures;
+      resolve();
+    });
+    worker.on("error", reject);
+  });
 }
 
 const before = rss();
 let middle = 0;
 const sampler = setTimeout(() => (middle = rss()), (SECONDS * 1000) / 2);
-await Promise.all(Array.from({ length: CLIENTS }, (_, i) => client(i + 1)));
+const clients = [prober()];
+for (let i = 0; i < 100; i++) {
+  clients.push(loop("solve", i + 1, (r) => ["/api/solve", { goal: goal(r), options: { record_every: 50 } }, LIGHT]));
+}
+for (let i = 0; i < 10; i++) {
+  clients.push(loop("animate", 1000 + i, (r) => ["/api/animate", { goal: goal(r), frames: 60 }, LIGHT]));
+}
+for (let i = 0; i < 5; i++) {
+  clients.push(loop("workspace", 2000 + i, () => ["/api/workspace", { resolution: 256 }, LIGHT]));
+}
+for (let i = 0; i < 5; i++) {
+  clients.push(
+    loop("render", 3000 + i, (r) =>
+      i % 2 === 0
+        ? ["/api/render", { figure: "arm", goal: goal(r), width: 400, height: 400 }, LIGHT]
+        : ["/api/render", { figure: "motion", goal: goal(r), frames: 30, format: "gif", width: 200, height: 200 }, LIGHT],
+    ),
+  );
+}
+HEAVY.slice(0, HEAVY_KINDS).forEach((request, i) => clients.push(loop(`heavy ${request()[0]}`, 4000 + i, request)));
+await Promise.all(clients);
 clearTimeout(sampler);
 const after = rss();
 server.kill("SIGINT");
 
+latencies.sort((a, b) => a - b);
+const pct = (p) => latencies[Math.min(latencies.length - 1, Math.floor((p / 100) * latencies.length))];
+const p50 = pct(50);
+const p99 = pct(99);
+const max = latencies[latencies.length - 1];
+console.log(`load: ${SECONDS} s of mixed load (${HEAVY_KINDS} heavy kinds) on ${url} ${serverArgs.join(" ")}`);
+for (const [kind, by] of Object.entries(answers)) {
+  const parts = Object.entries(by).map(([status, n]) => `${n}× ${status}`);
+  console.log(`  ${kind}: ${parts.join(", ")}${busy[kind] ? ` (first 503: ${busy[kind]})` : ""}`);
+}
 console.log(
-  `load: ${CLIENTS} clients, ${SECONDS} s: ${requests} solves (${Math.round(requests / SECONDS)}/s), ${errors} errors; ` +
-    `server RSS ${before} kB at start, ${middle} kB midway, ${after} kB at the end`,
+  `  /api/health: ${latencies.length} checks, ${healthFailures} failed; latency p50 ${p50.toFixed(1)} ms, ` +
+    `p99 ${p99.toFixed(1)} ms, max ${max.toFixed(1)} ms (goal: p99 < ${HEALTH_P99_GOAL_MS} ms)`,
 );
-if (errors > 0) console.log(`first error: ${firstError}`);
-process.exit(errors > 0 || after > 1.5 * Math.max(middle, before) ? 1 : 0);
+console.log(`  server RSS ${before} kB at start, ${middle} kB midway, ${after} kB at the end`);
+if (unexpected.length > 0) console.log(`  ${unexpected.length} unexpected answers; first: ${unexpected[0]}`);
+const failed =
+  healthFailures > 0 || p99 >= HEALTH_P99_GOAL_MS || unexpected.length > 0 || Math.max(middle, after) > MAX_RSS_KB;
+process.exit(failed ? 1 : 0);

@@ -1,8 +1,8 @@
 //! Animations as looping GIFs.
 //!
-//! The static layers (page, grid, workspace, reach circles) are drawn once; each frame draws the
-//! moving layers (the joints' paths so far, the arm, the goal, the caption and a clock) on a
-//! copy of them. The GIF has one global 256-colour palette ([`Palette`]): the style's solid
+//! The static layers (page, grid, workspace, reach circles) are drawn once; the joints' paths
+//! grow by one step per frame on a copy of them (so a GIF costs time linear in its frames); each
+//! frame draws the moving layers (the arm, the goal, the caption and a clock) on a copy of that. The GIF has one global 256-colour palette ([`Palette`]): the style's solid
 //! colours ([`style::key_colours`]) exactly — without them the few pixels of the red goal merge
 //! into a dull maroon — and the rest learnt by NeuQuant from the first, middle and last frames.
 //! After the first frame, each frame stores only the rectangle that changed, with unchanged
@@ -13,7 +13,7 @@ use gif::{DisposalMethod, Encoder, Frame, Repeat};
 use ikarus::kinematics::joint_positions;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
-use ikarus::{Chain, Point2};
+use ikarus::{Chain, Interrupt, Point2};
 use resvg::tiny_skia::Pixmap;
 
 use crate::RenderError;
@@ -26,6 +26,37 @@ use crate::scene::Scene;
 use crate::style;
 use crate::svg::Svg;
 use crate::view::View;
+
+thread_local! {
+    /// The interrupt of [`with_interrupt`] on this thread.
+    static INTERRUPT: std::cell::RefCell<Option<Interrupt>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Runs `f` with `interrupt` checked before every frame of every GIF this thread encodes
+/// meanwhile ([`animation_gif`]): once it is set, the GIF ends with [`RenderError::Encode`]
+/// ("interrupted"). A server stops a picture nobody waits for any more this way, without a
+/// parameter through every drawing function.
+pub fn with_interrupt<T>(interrupt: &Interrupt, f: impl FnOnce() -> T) -> T {
+    /// Puts the previous interrupt back, even if `f` panics.
+    struct Restore(Option<Interrupt>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let previous = self.0.take();
+            INTERRUPT.with(|slot| *slot.borrow_mut() = previous);
+        }
+    }
+    let _restore = Restore(INTERRUPT.with(|slot| slot.replace(Some(interrupt.clone()))));
+    f()
+}
+
+/// Fails when this thread's [`with_interrupt`] token is set.
+fn check_interrupt() -> Result<(), RenderError> {
+    if INTERRUPT.with(|slot| slot.borrow().as_ref().is_some_and(Interrupt::is_interrupted)) {
+        Err(RenderError::Encode { format: "gif", message: "interrupted".to_owned() })
+    } else {
+        Ok(())
+    }
+}
 
 /// The highest frame rate accepted, frames per second.
 pub const MAX_FPS: f64 = 100.0;
@@ -128,15 +159,37 @@ impl<'a> Painter<'a> {
         self.animation.frames.len()
     }
 
-    /// The moving layers of frame `i` over a copy of the background, as RGBA (the background
-    /// is opaque, so the premultiplied pixels are plain RGBA).
-    fn rgba(&self, i: usize) -> Result<Vec<u8>, RenderError> {
-        let scene = &self.scene;
-        let mut svg = Svg::new(self.width, self.height);
-        if self.overlay.trail {
-            let path: Vec<&[Point2<f64>]> = self.joints[..=i].iter().map(Vec::as_slice).collect();
-            scene.traces(&mut svg, &path);
+    /// A trail before its first step: the background.
+    fn trail(&self) -> Trail {
+        Trail { pixmap: self.background.clone(), next: 0 }
+    }
+
+    /// Draws the trail's steps up to frame `i` (from the start again if it is past `i`).
+    fn advance(&self, trail: &mut Trail, i: usize) -> Result<(), RenderError> {
+        if !self.overlay.trail {
+            return Ok(());
         }
+        if trail.next > i + 1 {
+            *trail = self.trail();
+        }
+        while trail.next <= i {
+            check_interrupt()?;
+            let j = trail.next;
+            let mut svg = Svg::new(self.width, self.height);
+            let from = j.checked_sub(1).map(|p| self.joints[p].as_slice());
+            self.scene.trace_step(&mut svg, from, &self.joints[j]);
+            render_onto(&parse(&svg.finish())?, &mut trail.pixmap);
+            trail.next += 1;
+        }
+        Ok(())
+    }
+
+    /// The moving layers of frame `i` over the background and the trail so far, as RGBA (the
+    /// background is opaque, so the premultiplied pixels are plain RGBA).
+    fn rgba(&self, i: usize, trail: &mut Trail) -> Result<Vec<u8>, RenderError> {
+        let scene = &self.scene;
+        self.advance(trail, i)?;
+        let mut svg = Svg::new(self.width, self.height);
         if let Some(layer) = self.overlay.path {
             layer.draw(scene, &mut svg, Some(i));
         }
@@ -144,7 +197,7 @@ impl<'a> Painter<'a> {
         scene.goal(&mut svg);
         let clock = format!("t = {:.2}", self.animation.frames[i].time);
         scene.caption(&mut svg, self.overlay.caption.as_deref(), Some(&clock));
-        let mut pixmap = self.background.clone();
+        let mut pixmap = trail.pixmap.clone();
         render_onto(&parse(&svg.finish())?, &mut pixmap);
         Ok(pixmap.take())
     }
@@ -156,8 +209,9 @@ impl<'a> Painter<'a> {
         let mut sample: Vec<u8> = Vec::new();
         let mut sampled: Vec<usize> = vec![0, total / 2, total - 1];
         sampled.dedup();
+        let mut trail = self.trail();
         for &i in &sampled {
-            thin_into(&self.rgba(i)?, self.width, &mut sample);
+            thin_into(&self.rgba(i, &mut trail)?, self.width, &mut sample);
         }
         Ok(Palette::learn(&sample, &style::key_colours()))
     }
@@ -181,8 +235,10 @@ fn encode_gif(
         let mut encoder = Encoder::new(&mut bytes, w16, h16, &palette.rgb_table()).map_err(encode)?;
         encoder.set_repeat(Repeat::Infinite).map_err(encode)?;
         let (mut previous, mut current) = (Vec::new(), Vec::new());
+        let mut trail = painter.trail();
         for i in 0..total {
-            let rgba = painter.rgba(i)?;
+            check_interrupt()?;
+            let rgba = painter.rgba(i, &mut trail)?;
             palette.map_into(&rgba, &mut current);
             let mut frame = if i == 0 {
                 Frame::from_indexed_pixels(w16, h16, current.clone(), None)
@@ -197,6 +253,12 @@ fn encode_gif(
         }
     }
     Ok(bytes)
+}
+
+/// The background with the joints' paths drawn up to (not including) frame `next`.
+struct Trail {
+    pixmap: Pixmap,
+    next: usize,
 }
 
 /// At most this many pixels of each sampled frame teach the palette.
@@ -251,4 +313,68 @@ fn changes(previous: &[u8], current: &[u8], width: u16) -> Frame<'static> {
     frame.left = left as u16;
     frame.top = top as u16;
     frame
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ikarus::motion::{Timing, animate};
+    use ikarus::{Ease, Link};
+
+    #[test]
+    fn a_gif_stops_when_its_interrupt_is_set() {
+        let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.1)]).unwrap();
+        let keyframes = [vec![0.1, 0.1], vec![0.9, 1.2]];
+        let animation = animate(&chain, &keyframes, None, Timing::Frames(5), Ease::Sine).unwrap();
+        let overlay = Overlay { trail: true, ..Overlay::default() };
+        let token = Interrupt::new();
+        let gif = || animation_gif(&chain, &animation, &overlay, 64, 64, 25.0, &|_, _| {});
+        assert!(with_interrupt(&token, gif).is_ok(), "an unset token changes nothing");
+        token.interrupt();
+        let e = with_interrupt(&token, gif).unwrap_err();
+        assert_eq!(e.to_string(), "gif: encoding failed: interrupted");
+        // Outside `with_interrupt` the token does not apply.
+        assert!(gif().is_ok());
+    }
+
+    /// The trail grown one step per frame looks like the trail drawn at once (as the still
+    /// figures draw it, and as every GIF frame drew it before, at a cost quadratic in the
+    /// frames): few pixels differ, and by little.
+    #[test]
+    fn the_incremental_trail_matches_the_whole_trail() {
+        let links = [Link::new(3.0, 0.1), Link::new(2.0, 0.1), Link::new(1.0, 0.1)];
+        let chain = Chain::new([0.0, 0.0], &links).unwrap();
+        let keyframes = [vec![0.1, 0.1, 0.1], vec![0.9, 1.2, -0.6], vec![1.6, 0.4, 0.8]];
+        let animation = animate(&chain, &keyframes, None, Timing::Frames(40), Ease::Sine).unwrap();
+        let overlay = Overlay { goal: Some(Point2::new(2.0, 3.0)), trail: true, ..Overlay::default() };
+        let painter = Painter::new(&chain, &animation, &overlay, 300, 300).unwrap();
+        let last = painter.len() - 1;
+        let mut trail = painter.trail();
+        // Out of order, as the palette asks for frames: the trail starts again when needed.
+        painter.rgba(last, &mut trail).unwrap();
+        painter.rgba(3, &mut trail).unwrap();
+        let incremental = painter.rgba(last, &mut trail).unwrap();
+
+        let mut svg = Svg::new(300, 300);
+        let path: Vec<&[Point2<f64>]> = painter.joints.iter().map(Vec::as_slice).collect();
+        painter.scene.traces(&mut svg, &path);
+        let mut whole = painter.background.clone();
+        render_onto(&parse(&svg.finish()).unwrap(), &mut whole);
+        let mut svg = Svg::new(300, 300);
+        painter.scene.arm(&mut svg, &painter.joints[last]);
+        painter.scene.goal(&mut svg);
+        let clock = format!("t = {:.2}", animation.frames[last].time);
+        painter.scene.caption(&mut svg, None, Some(&clock));
+        render_onto(&parse(&svg.finish()).unwrap(), &mut whole);
+        let whole = whole.take();
+
+        let background = painter.background.data();
+        let differs = |a: &[u8], b: &[u8]| a.iter().zip(b).any(|(x, y)| x.abs_diff(*y) > 24);
+        let pixels = |v: &[u8]| v.chunks_exact(4).map(<[u8]>::to_vec).collect::<Vec<_>>();
+        let (inc, wh, bg) = (pixels(&incremental), pixels(&whole), pixels(background));
+        let drawn = wh.iter().zip(&bg).filter(|(w, b)| differs(w, b)).count();
+        let off = inc.iter().zip(&wh).filter(|(i, w)| differs(i, w)).count();
+        assert!(drawn > 1000, "the trail and arm are drawn: {drawn} pixels");
+        assert!(off * 20 < drawn, "{off} of {drawn} drawn pixels differ");
+    }
 }

@@ -28,7 +28,7 @@ mod style;
 mod svg;
 mod view;
 
-pub use animation::{MAX_FPS, Overlay, animation_gif};
+pub use animation::{MAX_FPS, Overlay, animation_gif, with_interrupt};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;

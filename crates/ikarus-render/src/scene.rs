@@ -241,6 +241,33 @@ impl Scene<'_> {
         svg.end_group();
     }
 
+    /// One step of the joint paths, to draw over the steps before it: every joint's line from
+    /// `from` to `to` (none for the first frame) and its cross at `to`. The steps together
+    /// draw what [`Scene::traces`] draws at once, in time linear in the frames (an animation
+    /// redrawing the whole trail every frame is quadratic); the pieces are butt-capped so the
+    /// translucent line does not darken where they meet.
+    pub(crate) fn trace_step(&self, svg: &mut Svg, from: Option<&[Point2<f64>]>, to: &[Point2<f64>]) {
+        let n = to.len().saturating_sub(1);
+        let u = self.u();
+        let arm = 3.0 * u;
+        svg.group(&format!("fill=\"none\" stroke-width=\"{}\"", num(1.1 * u)));
+        for k in 1..=n {
+            let hue = style::joint_hue(k, n);
+            let (x, y) = self.px(to[k]);
+            if let Some(from) = from {
+                let (x0, y0) = self.px(from[k]);
+                let mut line = PathData::new();
+                line.move_to(x0, y0).line_to(x, y);
+                svg.path(&line, &format!("stroke=\"{hue}\" stroke-opacity=\"0.35\" stroke-linecap=\"butt\""));
+            }
+            let mut cross = PathData::new();
+            cross.move_to(x - arm, y - arm).line_to(x + arm, y + arm);
+            cross.move_to(x - arm, y + arm).line_to(x + arm, y - arm);
+            svg.path(&cross, &format!("stroke=\"{hue}\" stroke-opacity=\"0.9\" stroke-linecap=\"round\""));
+        }
+        svg.end_group();
+    }
+
     /// The arm: mount, links as thick round-capped strokes on a white halo, joints as rings,
     /// the tip as a filled dot.
     pub(crate) fn arm(&self, svg: &mut Svg, joints: &[Point2<f64>]) {

@@ -159,6 +159,7 @@ fn random_case(rng: &mut SplitMix64) -> Case {
             time_budget: None,
         }),
         closed_form: rng.chance(0.5),
+        interrupt: None,
     };
     opts.validate().expect("options within their ranges");
 

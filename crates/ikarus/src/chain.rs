@@ -185,7 +185,7 @@ impl Chain {
         check_angles(&angles, Bounds::new(&limits))?;
         let reach: f64 = lengths.iter().sum();
         let extent = x.hypot(y) + reach;
-        if !(extent <= MAX_REACH) {
+        if extent.is_nan() || extent > MAX_REACH {
             return Err(ChainError::ReachTooLarge { reach: extent });
         }
         Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })

@@ -463,7 +463,8 @@ proptest! {
         seed in any::<u64>(),
     ) {
         use ikarus::reach::{WorkspaceOptions, sample};
-        let options = WorkspaceOptions { resolution, limits, samples: samples.or(Some(64)), seed, parallel: false };
+        let options =
+            WorkspaceOptions { resolution, limits, samples: samples.or(Some(64)), seed, parallel: false, interrupt: None };
         let ws = sample(&chain, &options).unwrap();
         let h = ws.cell_size();
         prop_assert!(h.is_finite() && h > 0.0, "{}", h);

@@ -11,14 +11,14 @@ use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use ikarus::motion::{Interpolation, Timing};
 use ikarus::reach::{Workspace, WorkspaceOptions};
-use ikarus::{Ease, EaseKind, Goal, Outcome, SolveOptions};
+use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
 use super::requests::{
     AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, SolveReq, TrackReq, WorkspaceReq,
 };
-use super::{AppState, Limits, blocking};
+use super::{AppState, Limits};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
@@ -39,6 +39,16 @@ const MAX_GIF_PIXELS: u64 = 100_000_000;
 /// Picture size when the request gives none, and its range (as the command line's).
 const DEFAULT_SIDE: u32 = 800;
 const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
+
+/// Ends a computation whose interrupt was set before it writes its answer (the pool answers
+/// 503 for it; writing a large answer nobody reads would only hold the worker).
+fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
+    if interrupt.is_interrupted() {
+        Err(ApiError { status: axum::http::StatusCode::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
+    } else {
+        Ok(())
+    }
+}
 
 fn json_response(value: &impl serde::Serialize) -> Result<Response, ApiError> {
     let bytes = serde_json::to_vec(value).map_err(|e| ApiError::internal(format!("cannot write JSON: {e}")))?;
@@ -79,16 +89,23 @@ pub async fn default_arm() -> Result<Response, ApiError> {
 }
 
 pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm, limits)?;
-        let options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits)?;
+        let mut options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
+        let asked = req.options.as_ref().and_then(|o| o.record_every).or(arm.solver.record_every);
+        if asked.is_none() {
+            options.record_every = Some(default_record_every(&arm, options.max_iterations));
+        }
+        recorded_cap(&arm, &options, 1, MAX_SOLVE_RECORDED_VALUES)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let goal = goal(&req.goal, "goal")?;
         let mut solver = solver(options)?;
         let mut outcome = Outcome::default();
         let started = Instant::now();
         solver.solve_into(&arm.chain, &start, &goal, &mut outcome).map_err(|e| ApiError::invalid(e.to_string()))?;
+        stopped(interrupt)?;
         let micros = started.elapsed().as_secs_f64() * 1e6;
         let report = SolveReport { arm: &arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
         json_response(&report.json())
@@ -97,10 +114,12 @@ pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq
 }
 
 pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<AnimateReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
         let fields = MotionFields::of_animate(&req);
-        let motion = motion(&arm, &fields, &req.goal, &state.limits)?;
+        let motion = motion(&arm, &fields, &req.goal, &state.limits, interrupt)?;
+        stopped(interrupt)?;
         json_response(&AnimateJson::new(&arm, &motion.motion))
     })
     .await
@@ -108,10 +127,11 @@ pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<Animat
 
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
 pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq>) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm.clone(), limits)?;
-        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits)?;
+        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let path = track_path(&req, limits)?;
         let max_step_deg = req.max_step_deg.unwrap_or(DEFAULT_MAX_STEP_DEG);
@@ -128,6 +148,7 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
         let options = TrackJob::options(solve, max_step_deg, req.bound_first);
         let job = TrackJob { arm: &arm, start, path, mode, options };
         let t = job.run().map_err(ApiError::invalid)?;
+        stopped(interrupt)?;
         json_response(&TrackJson::new(&job, &t))
     })
     .await
@@ -168,17 +189,21 @@ pub async fn workspace(
     State(state): State<AppState>,
     ApiJson(req): ApiJson<WorkspaceReq>,
 ) -> Result<Response, ApiError> {
-    blocking(move || {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
-        let (workspace, limits) = sample_workspace(&arm, &req, &state.limits)?;
+        let (workspace, limits) = sample_workspace(&arm, &req, &state.limits, interrupt)?;
         json_response(&report::workspace_json(&arm, limits, &workspace))
     })
     .await
 }
 
 pub async fn render(State(state): State<AppState>, req: RenderReq) -> Result<Response, ApiError> {
-    blocking(move || {
-        let (bytes, format) = render_figure(req, &state.limits)?;
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
+        // A GIF being encoded checks the interrupt before each frame.
+        let (bytes, format) =
+            ikarus_render::with_interrupt(interrupt, || render_figure(req, &state.limits, interrupt))?;
         Ok(([(header::CONTENT_TYPE, format.content_type())], bytes).into_response())
     })
     .await
@@ -211,6 +236,7 @@ fn options(
     table: Option<&SolverSettings>,
     record_every: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<SolveOptions, ApiError> {
     let table = table.map_or_else(|| arm.solver.clone(), |t| t.over(&arm.solver));
     table.check().map_err(|m| ApiError::invalid(format!("options.{m}")))?;
@@ -225,13 +251,15 @@ fn options(
         return Err(ApiError::invalid(format!("options.restarts = {restarts}: more than the cap of {MAX_RESTARTS}")));
     }
     let every = table.record_every.unwrap_or(record_every);
-    table.to_options(&arm.chain, Some(every)).map_err(|e| {
+    let mut options = table.to_options(&arm.chain, Some(every)).map_err(|e| {
         let message = e.describe(|field| format!("options.{field}"));
         match e {
             crate::settings::SettingsError::Options(_) => ApiError::invalid(format!("options: {message}")),
             _ => ApiError::invalid(message),
         }
-    })
+    })?;
+    options.interrupt = Some(interrupt.clone());
+    Ok(options)
 }
 
 /// A pose in radians from degrees, one angle per joint; the arm's start pose when absent.
@@ -333,14 +361,23 @@ impl<'a> MotionFields<'a> {
     }
 }
 
-fn motion(arm: &Arm, req: &MotionFields<'_>, goal_req: &GoalReq, limits: &Limits) -> Result<Motion, ApiError> {
+fn motion(
+    arm: &Arm,
+    req: &MotionFields<'_>,
+    goal_req: &GoalReq,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Motion, ApiError> {
     if req.via.len() > MAX_VIA {
         return Err(ApiError::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
     }
     let timing = timing(req.frames, req.duration, req.fps, limits)?;
     let ease = ease(req.ease, EaseKind::Sine)?;
     let record = if req.from_solve { 1 } else { SOLVE_RECORD_EVERY };
-    let options = options(arm, req.options, record, limits)?;
+    let options = options(arm, req.options, record, limits, interrupt)?;
+    if req.from_solve {
+        recorded_cap(arm, &options, req.via.len() + 1, MAX_RECORDED_VALUES)?;
+    }
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
         .map_err(|(i, e)| ApiError::invalid(format!("via[{i}]: {e}")))?;
@@ -348,7 +385,47 @@ fn motion(arm: &Arm, req: &MotionFields<'_>, goal_req: &GoalReq, limits: &Limits
     Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
 }
 
-fn sample_workspace(arm: &Arm, req: &WorkspaceReq, limits: &Limits) -> Result<(Workspace, bool), ApiError> {
+/// Most values (frames × (joints + 4)) a motion `from_solve` may record over all its solves:
+/// each recorded pose is kept until the motion is timed. 4 million is about 100 MB at most.
+const MAX_RECORDED_VALUES: u64 = 4_000_000;
+/// Most values (frames × (joints + 4)) one `/api/solve` may record: every frame goes into the
+/// answer, about 60 bytes of JSON per value (1 million: about 60 MB of JSON at most).
+const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;
+
+/// The frame interval of a solve whose request gives none: [`SOLVE_RECORD_EVERY`], or more
+/// when that would record more than [`MAX_SOLVE_RECORDED_VALUES`].
+fn default_record_every(arm: &Arm, max_iterations: u32) -> u32 {
+    let per_frame = arm.chain.len() as u64 + 4;
+    let frames = (MAX_SOLVE_RECORDED_VALUES / per_frame).saturating_sub(2).max(1);
+    let every = u64::from(max_iterations).div_ceil(frames);
+    u32::try_from(every).unwrap_or(u32::MAX).max(SOLVE_RECORD_EVERY)
+}
+
+/// Refuses, before any solve, a request whose `solves` solves could record more than `cap`
+/// values: each up to `max_iterations / record_every + 2` frames.
+fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), ApiError> {
+    let Some(every) = options.record_every else { return Ok(()) };
+    let every = every.max(1);
+    let per_solve = u64::from(options.max_iterations / every) + 2;
+    let frames = per_solve.saturating_mul(solves as u64);
+    let values = frames.saturating_mul(arm.chain.len() as u64 + 4);
+    if values > cap {
+        let what = if solves == 1 { "the solve".to_owned() } else { format!("with from_solve, {solves} solves") };
+        return Err(ApiError::invalid(format!(
+            "options.max_iterations = {}, options.record_every = {every}: {what} could record {frames} frames of {} joints, more than the cap of {cap} values; raise record_every, lower max_iterations or give fewer via points",
+            options.max_iterations,
+            arm.chain.len()
+        )));
+    }
+    Ok(())
+}
+
+fn sample_workspace(
+    arm: &Arm,
+    req: &WorkspaceReq,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<(Workspace, bool), ApiError> {
     let resolution = req.resolution.unwrap_or(WorkspaceOptions::default().resolution);
     if resolution > limits.max_resolution {
         return Err(ApiError::invalid(format!(
@@ -363,7 +440,18 @@ fn sample_workspace(arm: &Arm, req: &WorkspaceReq, limits: &Limits) -> Result<(W
     }
     let request =
         WorkspaceRequest { limits: req.limits, resolution, samples: req.samples, seed: req.seed.unwrap_or(0) };
-    let workspace = request.sample(arm, &|_, _| {}).map_err(|e| ApiError::invalid(e.to_string()))?;
+    // Sequential on its worker: rayon's global pool is shared by every request, so a small
+    // request would wait behind a large one; the server's workers give the parallelism.
+    let options = WorkspaceOptions {
+        resolution,
+        limits: request.limits(arm),
+        samples: req.samples.map(u64::from),
+        seed: request.seed,
+        parallel: false,
+        interrupt: Some(interrupt.clone()),
+    };
+    let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &|_, _| {})
+        .map_err(|e| ApiError::invalid(e.to_string()))?;
     Ok((workspace, request.limits(arm)))
 }
 
@@ -380,7 +468,7 @@ fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
     }
 }
 
-fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFormat), ApiError> {
+fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<(Vec<u8>, PictureFormat), ApiError> {
     let (format, width, height) = req.picture();
     let (width, height) = (side(width, "width")?, side(height, "height")?);
     let format = format.unwrap_or(PictureFormat::Png);
@@ -391,7 +479,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
         RenderReq::Ease(r) => {
             draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {})?
         }
-        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits)?,
+        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
             let ws_req = WorkspaceReq {
@@ -401,7 +489,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
                 samples: r.samples,
                 seed: r.seed,
             };
-            let (workspace, _) = sample_workspace(&arm, &ws_req, limits)?;
+            let (workspace, _) = sample_workspace(&arm, &ws_req, limits, interrupt)?;
             let drawing = Drawing::Arm {
                 chain: &arm.chain,
                 pose: arm.chain.start_pose().angles(),
@@ -411,7 +499,7 @@ fn render_figure(req: RenderReq, limits: &Limits) -> Result<(Vec<u8>, PictureFor
             };
             draw(&drawing, format, width, height, &|_, _| {})?
         }
-        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits)?,
+        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
     };
     Ok((bytes, format))
 }
@@ -422,6 +510,7 @@ fn arm_figure(
     width: u32,
     height: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<Vec<u8>, ApiError> {
     let arm = load_arm(r.arm, limits)?;
     let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
@@ -429,7 +518,7 @@ fn arm_figure(
     let workspace = if r.workspace {
         let ws_req =
             WorkspaceReq { arm: None, limits: r.limits, resolution: r.resolution, samples: r.samples, seed: r.seed };
-        Some(sample_workspace(&arm, &ws_req, limits)?.0)
+        Some(sample_workspace(&arm, &ws_req, limits, interrupt)?.0)
     } else {
         None
     };
@@ -449,12 +538,14 @@ fn motion_figure(
     width: u32,
     height: u32,
     limits: &Limits,
+    interrupt: &Interrupt,
 ) -> Result<Vec<u8>, ApiError> {
     let arm = load_arm(r.arm.clone(), limits)?;
     let Some(goal_req) = &r.goal else {
         return Err(ApiError::invalid("goal: required for the figure motion"));
     };
-    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits)?;
+    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
+    stopped(interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
         let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);

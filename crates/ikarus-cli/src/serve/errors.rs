@@ -25,9 +25,14 @@ impl ApiError {
         Self { status: StatusCode::UNPROCESSABLE_ENTITY, message: message.into() }
     }
 
-    /// 500: something failed inside the server.
+    /// 500: something failed inside the server. The detail goes to the server's stderr, not
+    /// to the client (it may hold paths or panic text).
     pub fn internal(message: impl Into<String>) -> Self {
-        Self { status: StatusCode::INTERNAL_SERVER_ERROR, message: format!("internal error: {}", message.into()) }
+        eprintln!("ikarus serve: internal error: {}", message.into().replace(['\n', '\r'], " "));
+        Self {
+            status: StatusCode::INTERNAL_SERVER_ERROR,
+            message: "internal error (the details are in the server's log)".to_owned(),
+        }
     }
 }
 
@@ -66,6 +71,8 @@ impl<T: DeserializeOwned> FromRequest<AppState> for ApiJson<T> {
 pub struct JsonBody {
     bytes: Bytes,
     max_body_bytes: usize,
+    /// The body's share of the server's body memory, given back when the body is dropped.
+    _memory: tokio::sync::OwnedSemaphorePermit,
 }
 
 impl JsonBody {
@@ -92,9 +99,32 @@ impl FromRequest<AppState> for JsonBody {
         {
             return Err(rejected(&rejection, max_body_bytes));
         }
-        match Bytes::from_request(req, state).await {
-            Ok(bytes) => Ok(Self { bytes, max_body_bytes }),
-            Err(rejection) => Err(rejected(&rejection.into(), max_body_bytes)),
+        // The memory the body may take (its declared length, or the cap) is reserved before
+        // it is read: past the server's body memory the answer is 503 at once.
+        let declared = req
+            .headers()
+            .get(axum::http::header::CONTENT_LENGTH)
+            .and_then(|v| v.to_str().ok()?.trim().parse::<usize>().ok())
+            .map_or(max_body_bytes, |n| n.min(max_body_bytes));
+        let share = u32::try_from(declared.max(1)).unwrap_or(u32::MAX);
+        let Ok(memory) = std::sync::Arc::clone(&state.bodies).try_acquire_many_owned(share) else {
+            return Err(ApiError {
+                status: StatusCode::SERVICE_UNAVAILABLE,
+                message: format!(
+                    "server busy: receiving too many request bodies at once (at most {} MB); try again later",
+                    super::BODY_MEMORY >> 20
+                ),
+            });
+        };
+        // A client trickling its body holds a connection and a buffer: bounded in time.
+        let timeout = state.limits.body_timeout;
+        match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
+            Ok(Ok(bytes)) => Ok(Self { bytes, max_body_bytes, _memory: memory }),
+            Ok(Err(rejection)) => Err(rejected(&rejection.into(), max_body_bytes)),
+            Err(_) => Err(ApiError {
+                status: StatusCode::REQUEST_TIMEOUT,
+                message: format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
+            }),
         }
     }
 }

@@ -1,16 +1,21 @@
 //! `ikarus serve`: the playground page and the JSON API over HTTP, with axum on tokio.
 //!
-//! Every CPU-heavy request runs on tokio's blocking pool; a panic there answers 500 and the
-//! server keeps serving. Caps (flags) bound every loop a request can start.
+//! Every CPU-heavy request runs in a bounded pool under a time budget ([`pool`]); a panic there
+//! answers 500 and the server keeps serving. Caps (flags) bound every loop a request can start,
+//! [`conn`] bounds connections, [`guard`] checks the Host and the declared body size.
 
 mod api;
 mod arm_files;
+mod conn;
 mod errors;
+mod guard;
 mod meta;
+mod pool;
 mod requests;
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
+use std::time::Duration;
 
 use axum::Router;
 use axum::extract::{DefaultBodyLimit, Path};
@@ -72,6 +77,30 @@ pub struct ServeArgs {
     /// Largest workspace resolution (cells per side, at most 4096)
     #[arg(long, default_value_t = 1024, value_name = "N", value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub max_resolution: u32,
+    /// Computations (solve, animate, track, workspace, render) run at once [default: the number of CPUs]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    pub workers: Option<u64>,
+    /// Computations that may run longer than half a second at once; one more is stopped with 503 [default: half the workers, at least 1]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    pub long_workers: Option<u64>,
+    /// Computations that may wait for a worker; beyond that a request is answered 503 at once
+    #[arg(long, default_value_t = 256, value_name = "N", value_parser = clap::value_parser!(u64).range(0..=100_000))]
+    pub max_queued: u64,
+    /// Time budget of each computation, waiting included; past it the work stops and the answer is 503
+    #[arg(long, default_value_t = 10_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..=86_400_000))]
+    pub request_budget_ms: u64,
+    /// Open connections at most; one more gets 503 and is closed
+    #[arg(long, default_value_t = 512, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub max_connections: u64,
+    /// Time a connection has to send a request's headers, idle keep-alive time included
+    #[arg(long, default_value_t = 5_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..=3_600_000))]
+    pub header_timeout_ms: u64,
+    /// Time a request has to send its body (408 after it)
+    #[arg(long, default_value_t = 10_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..=3_600_000))]
+    pub body_timeout_ms: u64,
+    /// Host name accepted besides localhost, 127.0.0.1 and [::1] while listening on loopback (repeatable)
+    #[arg(long, value_name = "NAME")]
+    pub allow_host: Vec<String>,
 }
 
 /// The caps of every request, from the flags.
@@ -83,13 +112,21 @@ pub struct Limits {
     pub max_frames: usize,
     pub max_samples: usize,
     pub max_resolution: u32,
+    pub body_timeout: Duration,
 }
 
 /// What every handler shares.
 #[derive(Debug, Clone)]
 pub struct AppState {
     pub limits: Arc<Limits>,
+    pub pool: pool::Pool,
+    /// Bytes of request bodies being received or held, at most [`BODY_MEMORY`] (or one body
+    /// at the cap, if larger): so that many slow clients cannot fill the memory with bodies.
+    pub bodies: Arc<tokio::sync::Semaphore>,
 }
+
+/// Bytes all the request bodies being received may hold at once.
+pub const BODY_MEMORY: usize = 64 << 20;
 
 pub fn run(args: &ServeArgs) -> Result<(), CliError> {
     let limits = Limits {
@@ -99,16 +136,47 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         max_frames: usize::try_from(args.max_frames).unwrap_or(usize::MAX),
         max_samples: usize::try_from(args.max_samples).unwrap_or(usize::MAX),
         max_resolution: args.max_resolution,
+        body_timeout: Duration::from_millis(args.body_timeout_ms),
+    };
+    let parallelism = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let workers = args.workers.map_or(parallelism, |w| usize::try_from(w).unwrap_or(usize::MAX));
+    let settings = Settings {
+        pool: pool::PoolConfig {
+            workers,
+            long_workers: args
+                .long_workers
+                .map_or((workers / 2).max(1), |w| usize::try_from(w).unwrap_or(usize::MAX).min(workers)),
+            max_queued: usize::try_from(args.max_queued).unwrap_or(usize::MAX),
+            budget: Duration::from_millis(args.request_budget_ms),
+        },
+        conn: conn::ConnConfig {
+            max_connections: usize::try_from(args.max_connections).unwrap_or(usize::MAX),
+            header_timeout: Duration::from_millis(args.header_timeout_ms),
+        },
+        allowed_hosts: args.allow_host.iter().map(|h| h.to_ascii_lowercase()).collect(),
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
         .map_err(|e| CliError::runtime(format!("cannot start the server's runtime: {e}")))?;
-    runtime.block_on(serve(SocketAddr::new(args.host, args.port), limits))
+    let result = runtime.block_on(serve(SocketAddr::new(args.host, args.port), limits, settings));
+    // Computations still running were interrupted; do not wait for them (a blocking task is
+    // not cancellable), the process ends here.
+    runtime.shutdown_timeout(Duration::from_millis(200));
+    result
 }
 
-async fn serve(addr: SocketAddr, limits: Limits) -> Result<(), CliError> {
-    if !addr.ip().is_loopback() {
+/// The server's settings besides the request caps.
+struct Settings {
+    pool: pool::PoolConfig,
+    conn: conn::ConnConfig,
+    allowed_hosts: Vec<String>,
+}
+
+async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(), CliError> {
+    // `::ffff:127.0.0.1` is loopback too.
+    let loopback = addr.ip().to_canonical().is_loopback();
+    if !loopback {
         eprintln!(
             "ikarus serve: warning: listening on {}, beyond this machine: anyone who can reach it can use the server",
             addr.ip()
@@ -120,47 +188,73 @@ async fn serve(addr: SocketAddr, limits: Limits) -> Result<(), CliError> {
     let bound = listener.local_addr().map_err(|e| CliError::runtime(format!("cannot read the bound address: {e}")))?;
     // The Ctrl-C handler is installed before the address is printed, so that a Ctrl-C sent
     // as soon as the server says it listens stops it cleanly.
-    let stop = shutdown_signal()?;
+    let mut signals = Signals::install()?;
+    let (stop_tx, stop_rx) = tokio::sync::watch::channel(false);
+    let guard = guard::Guard {
+        any_host: !loopback,
+        allowed_hosts: settings.allowed_hosts,
+        max_body_bytes: limits.max_body_bytes,
+    };
+    let pool = pool::Pool::new(settings.pool, stop_rx.clone());
     println!("ikarus serve: listening on http://{bound}");
-    axum::serve(listener, router(limits))
-        .with_graceful_shutdown(stop)
-        .await
-        .map_err(|e| CliError::runtime(format!("server failed: {e}")))?;
+    let server = tokio::spawn(conn::serve(listener, router(limits, pool, guard), settings.conn, stop_rx));
+    signals.next().await;
+    eprintln!("ikarus serve: stopping (Ctrl-C again to quit at once)");
+    // A second signal ends the process whatever is still running.
+    tokio::spawn(async move {
+        signals.next().await;
+        eprintln!("ikarus serve: stopped at once");
+        std::process::exit(130);
+    });
+    // Stops accepting, interrupts every computation, closes the connections.
+    let _ = stop_tx.send(true);
+    let _ = server.await;
     eprintln!("ikarus serve: stopped");
     Ok(())
 }
 
-/// A future that completes on Ctrl-C (SIGINT), or SIGTERM on Unix; the handlers are
-/// installed when this returns.
-fn shutdown_signal() -> Result<impl std::future::Future<Output = ()>, CliError> {
-    let failed = |e: std::io::Error| CliError::runtime(format!("cannot install the Ctrl-C handler: {e}"));
+/// Ctrl-C (SIGINT), or SIGTERM on Unix; the handlers are installed by [`Signals::install`].
+struct Signals {
     #[cfg(unix)]
-    {
-        use tokio::signal::unix::{SignalKind, signal};
-        let mut interrupt = signal(SignalKind::interrupt()).map_err(failed)?;
-        let mut terminate = signal(SignalKind::terminate()).map_err(failed)?;
-        Ok(async move {
-            tokio::select! {
-                _ = interrupt.recv() => {}
-                _ = terminate.recv() => {}
-            }
-        })
+    interrupt: tokio::signal::unix::Signal,
+    #[cfg(unix)]
+    terminate: tokio::signal::unix::Signal,
+}
+
+impl Signals {
+    fn install() -> Result<Self, CliError> {
+        #[cfg(unix)]
+        {
+            use tokio::signal::unix::{SignalKind, signal};
+            let failed = |e: std::io::Error| CliError::runtime(format!("cannot install the Ctrl-C handler: {e}"));
+            Ok(Self {
+                interrupt: signal(SignalKind::interrupt()).map_err(failed)?,
+                terminate: signal(SignalKind::terminate()).map_err(failed)?,
+            })
+        }
+        #[cfg(not(unix))]
+        Ok(Self {})
     }
-    #[cfg(not(unix))]
-    {
-        let _ = failed;
-        Ok(async {
-            if tokio::signal::ctrl_c().await.is_err() {
-                std::future::pending::<()>().await;
-            }
-        })
+
+    /// The next signal.
+    async fn next(&mut self) {
+        #[cfg(unix)]
+        tokio::select! {
+            _ = self.interrupt.recv() => {}
+            _ = self.terminate.recv() => {}
+        }
+        #[cfg(not(unix))]
+        if tokio::signal::ctrl_c().await.is_err() {
+            std::future::pending::<()>().await;
+        }
     }
 }
 
-/// The routes, with the body cap.
-pub fn router(limits: Limits) -> Router {
+/// The routes, with the body cap and the request checks.
+fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
     let body_cap = limits.max_body_bytes;
-    let state = AppState { limits: Arc::new(limits) };
+    let bodies = Arc::new(tokio::sync::Semaphore::new(BODY_MEMORY.max(body_cap)));
+    let state = AppState { limits: Arc::new(limits), pool, bodies };
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
         .route("/{asset}", get(asset))
@@ -176,6 +270,7 @@ pub fn router(limits: Limits) -> Router {
         .route("/api/render", post(api::render))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))
+        .layer(axum::middleware::from_fn_with_state(Arc::new(guard), guard::check))
         .with_state(state)
 }
 
@@ -189,37 +284,4 @@ async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<imp
 
 async fn not_found(method: Method, uri: Uri) -> ApiError {
     ApiError { status: StatusCode::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) }
-}
-
-/// Runs `work` on the blocking pool; a panic becomes a 500 and the server keeps serving.
-pub async fn blocking<T: Send + 'static>(
-    work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
-) -> Result<T, ApiError> {
-    match tokio::task::spawn_blocking(work).await {
-        Ok(result) => result,
-        Err(e) if e.is_panic() => {
-            let payload = e.into_panic();
-            let what = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_owned())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "a request handler panicked".to_owned());
-            Err(ApiError::internal(what))
-        }
-        Err(e) => Err(ApiError::internal(e.to_string())),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[tokio::test]
-    async fn a_panic_in_a_handler_becomes_a_500() {
-        let e = blocking::<()>(|| panic!("boom")).await.unwrap_err();
-        assert_eq!(e.status, StatusCode::INTERNAL_SERVER_ERROR);
-        assert_eq!(e.message, "internal error: boom");
-        // The pool still works afterwards.
-        assert_eq!(blocking(|| Ok(7)).await.unwrap(), 7);
-    }
 }

@@ -77,8 +77,11 @@ pub fn through_goals(
     for goal in goals {
         let from = keyframes.last().expect("the start pose is a keyframe").clone();
         solver.solve_into(chain, &from, goal, &mut outcome)?;
-        // The solver's recorded path, without repeating the pose it started from.
-        recorded.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
+        // The solver's recorded path, without repeating the pose it started from (kept only
+        // when the motion follows it: it can be large).
+        if matches!(route, Route::Recorded) {
+            recorded.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
+        }
         keyframes.push(outcome.pose.angles().to_vec());
         solves.push(GoalOutcome {
             goal: *goal,

@@ -169,6 +169,9 @@ pub struct WorkspaceOptions {
     /// Spread the samples over rayon's global thread pool; `false` stays on the calling
     /// thread. The result is identical either way. Default `true`.
     pub parallel: bool,
+    /// Stops the sampling when set (checked before every joint-space sample): [`sample`]
+    /// returns [`ReachError::Interrupted`]. Default `None`.
+    pub interrupt: Option<crate::Interrupt>,
 }
 
 impl WorkspaceOptions {
@@ -232,7 +235,7 @@ impl WorkspaceOptions {
 
 impl Default for WorkspaceOptions {
     fn default() -> Self {
-        Self { resolution: 256, limits: true, samples: None, seed: 0, parallel: true }
+        Self { resolution: 256, limits: true, samples: None, seed: 0, parallel: true, interrupt: None }
     }
 }
 
@@ -250,6 +253,9 @@ pub enum ReachError {
         /// The offending value.
         value: u64,
     },
+    /// [`WorkspaceOptions::interrupt`] was set before the sampling was done.
+    #[error("interrupted")]
+    Interrupted,
 }
 
 /// The reachable region of a chain as an occupancy grid; see the [module docs](self) for what a
@@ -440,6 +446,9 @@ fn run(
             let start = k as u64 * chunk;
             let end = (start + chunk).min(total);
             for i in start..end {
+                if crate::interrupt::is_set(options.interrupt.as_ref()) {
+                    return;
+                }
                 raster.paint(&sampler.slice(i));
             }
             let now = done.fetch_add(end - start, Ordering::Relaxed) + (end - start);
@@ -452,6 +461,9 @@ fn run(
         } else {
             (0..chunks).for_each(run);
         }
+    }
+    if crate::interrupt::is_set(options.interrupt.as_ref()) {
+        return Err(ReachError::Interrupted);
     }
     progress(total, total);
     Ok(Workspace::new(annulus, raster, options.limits, total, exact))

@@ -110,6 +110,8 @@ fn stop(p: &Problem, error: f64, angle_error: f64, still: u32, iteration: u32) -
         Some(Status::Stalled)
     } else if iteration >= opts.max_iterations {
         Some(Status::IterationLimit)
+    } else if crate::interrupt::is_set(opts.interrupt.as_ref()) {
+        Some(Status::Interrupted)
     } else {
         None
     }

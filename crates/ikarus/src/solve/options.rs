@@ -104,6 +104,10 @@ pub struct SolveOptions {
     /// iteration still runs when the closed form has no answer within the limits or the goal is
     /// out of reach, to find the best pose.
     pub closed_form: bool,
+    /// Stops the solve when set (checked every iteration and between restarts): it ends
+    /// [`Status::Interrupted`](super::Status::Interrupted) with the pose it has. `None` never
+    /// stops early.
+    pub interrupt: Option<crate::Interrupt>,
 }
 
 impl Default for SolveOptions {
@@ -125,6 +129,7 @@ impl Default for SolveOptions {
             limits: LimitMode::Lock,
             restarts: Some(Restarts::default()),
             closed_form: true,
+            interrupt: None,
         }
     }
 }

@@ -23,10 +23,13 @@ pub enum Status {
     Stalled,
     /// The iteration cap was hit while the pose was still moving.
     IterationLimit,
+    /// The solve's [`interrupt`](super::SolveOptions::interrupt) was set; the pose is where
+    /// it stopped.
+    Interrupted,
 }
 
 impl Status {
-    /// `reached`, `unreachable`, `stalled` or `iteration_limit`.
+    /// `reached`, `unreachable`, `stalled`, `iteration_limit` or `interrupted`.
     #[must_use]
     pub fn as_str(self) -> &'static str {
         match self {
@@ -34,6 +37,7 @@ impl Status {
             Status::Unreachable => "unreachable",
             Status::Stalled => "stalled",
             Status::IterationLimit => "iteration_limit",
+            Status::Interrupted => "interrupted",
         }
     }
 }

@@ -40,17 +40,15 @@ pub(super) fn solve_with_restarts(
     // weighted least norm does against a limit, is as stuck as one standing still); restarts
     // go on until one reaches the goal. Goals out of reach even without limits do not.
     if let Some(r) = opts.restarts {
-        if tally.status != Status::Reached && !goal.is_out_of_reach(chain, opts.tolerance) {
+        let go_on = !matches!(tally.status, Status::Reached | Status::Interrupted);
+        if go_on && !goal.is_out_of_reach(chain, opts.tolerance) {
             restart(p, r, began, start, s, out, &mut tally);
         }
     }
     out.iterations = tally.iterations;
     out.restarts = tally.restarts;
-    out.status = if tally.status != Status::Reached && goal.is_out_of_reach(chain, opts.tolerance) {
-        Status::Unreachable
-    } else {
-        tally.status
-    };
+    let judged = !matches!(tally.status, Status::Reached | Status::Interrupted);
+    out.status = if judged && goal.is_out_of_reach(chain, opts.tolerance) { Status::Unreachable } else { tally.status };
 }
 
 /// The restarts after a first attempt that did not reach the goal, counted into `tally`.
@@ -87,12 +85,17 @@ fn restart(
             best = (err, tally.status);
             s.best_attempt.copy_from_slice(out.pose.angles());
         }
+        // An interrupted solve ends at once, on the best pose so far.
+        if tally.status == Status::Interrupted {
+            break;
+        }
     }
+    let interrupted = tally.status == Status::Interrupted;
     if !last_is_best {
         // No attempt reached the goal: end on the best one's pose, kept when it ended (not
         // run again, so that `iterations` counts every step taken).
         out.pose.angles_mut().copy_from_slice(&s.best_attempt);
-        tally.status = best.1;
+        tally.status = if interrupted { Status::Interrupted } else { best.1 };
     }
     join(p, start, tally, s, out);
 }

@@ -84,7 +84,8 @@ impl Solver {
 /// returned angles by a fresh forward-kinematics pass, and the status judged from them, so that
 /// an outcome always describes its own pose. `reached` exactly when both errors are within
 /// their tolerances; a pose that is not, though the loop stopped there as reached, is
-/// `stalled`; a goal out of reach even without limits, not reached, is `unreachable`.
+/// `stalled`; a goal out of reach even without limits, not reached, is `unreachable`; an
+/// interrupted solve not within them stays `interrupted`.
 ///
 /// The loops measure their poses with the same forward kinematics, so today this changes
 /// nothing but guards against any step rule that tracks the tip by itself (as CCD's sweep
@@ -99,6 +100,7 @@ fn measure(p: &Problem, s: &mut Scratch, out: &mut Outcome) {
     let within = out.error <= opts.tolerance && out.angle_error <= opts.angle_tolerance;
     out.status = match out.status {
         _ if within => Status::Reached,
+        Status::Interrupted => Status::Interrupted,
         _ if goal.is_out_of_reach(chain, opts.tolerance) => Status::Unreachable,
         Status::Reached => Status::Stalled,
         other @ (Status::Unreachable | Status::Stalled | Status::IterationLimit) => other,

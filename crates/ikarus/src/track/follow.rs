@@ -165,6 +165,9 @@ pub fn follow(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions)
     let mut follower = Follower::new(chain, start, options)?;
     let mut samples = Vec::with_capacity(path.len());
     for (k, goal) in path.goals().iter().enumerate() {
+        if crate::interrupt::is_set(options.solve.interrupt.as_ref()) {
+            return Err(TrackError::Interrupted);
+        }
         let placed = k == 0 && !options.bound_first;
         let step = if placed { follower.place(goal) } else { follower.step(goal) };
         samples.push(TrackSample {

@@ -195,6 +195,10 @@ pub enum TrackError {
     /// The start pose or the options do not fit the chain.
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// The solver options' [`interrupt`](SolveOptions::interrupt) was set before the path was
+    /// done.
+    #[error("interrupted")]
+    Interrupted,
 }
 
 impl TrackOptions {

@@ -57,7 +57,11 @@ pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -
     let n = chain.len();
     let mut builder = Builder { chain, options, bounds, solver, out: Outcome::default(), seed_pose: vec![0.0; n] };
     let mut ladder: Vec<Rung> = Vec::with_capacity(path.len());
+    let interrupted = || crate::interrupt::is_set(options.solve.interrupt.as_ref());
     for (k, goal) in path.goals().iter().enumerate() {
+        if interrupted() {
+            return Err(TrackError::Interrupted);
+        }
         let rung = builder.rung(k, goal, ladder.last(), start);
         ladder.push(rung);
     }
@@ -66,6 +70,9 @@ pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -
     let mut status: Vec<SampleStatus> = chosen.iter().zip(&ladder).map(|(&j, r)| r.status[j]).collect();
     unwrap_path(bounds, &mut poses, start);
     for _ in 0..options.polish_passes {
+        if interrupted() {
+            return Err(TrackError::Interrupted);
+        }
         builder.polish(path.goals(), &mut poses, &mut status);
     }
     unwrap_path(bounds, &mut poses, start);

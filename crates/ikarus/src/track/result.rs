@@ -23,10 +23,12 @@ pub enum SampleStatus {
     Stalled,
     /// The solver's iteration cap was hit while the pose was still moving.
     IterationLimit,
+    /// The solve was interrupted ([`SolveOptions::interrupt`](crate::SolveOptions::interrupt)).
+    Interrupted,
 }
 
 impl SampleStatus {
-    /// `reached`, `limited`, `unreachable`, `stalled` or `iteration_limit`.
+    /// `reached`, `limited`, `unreachable`, `stalled`, `iteration_limit` or `interrupted`.
     #[must_use]
     pub fn as_str(self) -> &'static str {
         match self {
@@ -35,6 +37,7 @@ impl SampleStatus {
             SampleStatus::Unreachable => "unreachable",
             SampleStatus::Stalled => "stalled",
             SampleStatus::IterationLimit => "iteration_limit",
+            SampleStatus::Interrupted => "interrupted",
         }
     }
 
@@ -46,6 +49,7 @@ impl SampleStatus {
             Status::Unreachable => SampleStatus::Unreachable,
             Status::Stalled => SampleStatus::Stalled,
             Status::IterationLimit => SampleStatus::IterationLimit,
+            Status::Interrupted => SampleStatus::Interrupted,
         }
     }
 }

@@ -1,0 +1,480 @@
+//! `ikarus serve` under hostile load: every request bounded in time and memory, the server
+//! answering `/api/health` while heavy work runs, connections that time out, Ctrl-C that stops
+//! it. Each test starts its own server on an ephemeral port and kills it when done.
+//!
+//! The only wall-clock bounds here are generous "it answers / it ends at all" bounds, where a
+//! hang is the bug (before these fixes each of these requests ran for minutes to hours).
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+/// A running `ikarus serve`, killed on drop.
+struct Server {
+    child: Child,
+    base: String,
+    addr: String,
+    agent: ureq::Agent,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn start(args: &[&str]) -> Server {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["serve", "--port", "0", "--max-iterations", "100000000"])
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start ikarus serve");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
+    let base = line
+        .trim()
+        .strip_prefix("ikarus serve: listening on ")
+        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
+        .to_owned();
+    let addr = base.strip_prefix("http://").expect("http address").to_owned();
+    // Generous: a hang is the bug.
+    let config =
+        ureq::Agent::config_builder().http_status_as_error(false).timeout_global(Some(Duration::from_secs(60))).build();
+    Server { child, base, addr, agent: config.into() }
+}
+
+/// Status and JSON body.
+fn answer(mut response: ureq::http::Response<ureq::Body>) -> (u16, Value) {
+    let status = response.status().as_u16();
+    let body = response.body_mut().with_config().limit(64 << 20).read_to_vec().expect("read the body");
+    let value =
+        serde_json::from_slice(&body).unwrap_or_else(|e| panic!("not JSON ({e}): {}", String::from_utf8_lossy(&body)));
+    (status, value)
+}
+
+impl Server {
+    fn get(&self, path: &str) -> (u16, Value) {
+        answer(self.agent.get(format!("{}{path}", self.base)).call().expect("GET"))
+    }
+
+    fn post(&self, path: &str, body: &Value) -> (u16, Value) {
+        let request = self.agent.post(format!("{}{path}", self.base)).header("Content-Type", "application/json");
+        answer(request.send(body.to_string().as_bytes()).expect("POST"))
+    }
+
+    /// A raw connection, with a read timeout that bounds every read.
+    fn connect(&self) -> TcpStream {
+        let stream = TcpStream::connect(&self.addr).expect("connect");
+        stream.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+        stream
+    }
+
+    /// The process ends within `limit`; its exit status.
+    fn wait_exit(&mut self, limit: Duration) -> Option<std::process::ExitStatus> {
+        let began = Instant::now();
+        while began.elapsed() < limit {
+            if let Some(status) = self.child.try_wait().expect("try_wait") {
+                return Some(status);
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        None
+    }
+}
+
+/// Everything the server sends on `stream` until it closes it (or the read timeout).
+fn read_all(stream: &mut TcpStream) -> String {
+    let mut out = Vec::new();
+    let _ = stream.read_to_end(&mut out);
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The `error` of an answer, after checking the status.
+fn error(a: &(u16, Value), status: u16) -> String {
+    let text = a.1.to_string();
+    assert_eq!(a.0, status, "{}", &text[..text.len().min(400)]);
+    a.1["error"].as_str().unwrap_or_else(|| panic!("no error string: {}", a.1)).to_owned()
+}
+
+/// A 64-link arm whose joints may turn by 1° only, and a goal within its reach without limits
+/// but not with them: every attempt runs to its iteration cap (no stall detection, a tolerance
+/// no tip meets, steps scaled by 1e-9). With 10⁵ iterations it takes 10 s (release build);
+/// with 10⁸ (servers here start with `--max-iterations 100000000`) about three hours.
+fn endless_solve() -> Value {
+    const ENDLESS_ITERATIONS: u32 = 100_000_000;
+    let link = json!({ "length": 0.1, "angle_deg": 0.0, "limits_deg": [-1.0, 1.0] });
+    json!({
+        "arm": { "links": vec![link; 64] },
+        "goal": { "x": -3.0, "y": -1.0 },
+        "options": {
+            "limits": true, "restarts": 64, "backtrack": 0, "max_iterations": ENDLESS_ITERATIONS,
+            "stall_window": 4294967295u64, "tolerance": 5e-324, "gain": 1e-9
+        }
+    })
+}
+
+fn links(n: usize) -> Vec<Value> {
+    (0..n).map(|_| json!({ "length": 0.1, "angle_deg": 5.0 })).collect()
+}
+
+#[test]
+fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
+    let s = start(&["--request-budget-ms", "1000"]);
+    let began = Instant::now();
+    let e = error(&s.post("/api/solve", &endless_solve()), 503);
+    assert!(e.contains("budget of 1000 ms (--request-budget-ms)"), "{e}");
+    // The 21-minute animate: 64 links, 100 via points, 64 restarts, 10⁵ iterations.
+    let via: Vec<[f64; 2]> = (0..100).map(|i| [f64::from(i % 7) * 0.5, 1.0]).collect();
+    let animate = json!({
+        "arm": { "links": links(64) },
+        "goal": { "x": 3.0, "y": 3.0 },
+        "via": via,
+        "options": { "restarts": 64, "max_iterations": 100000, "gain": 1e-9 }
+    });
+    let e = error(&s.post("/api/animate", &animate), 503);
+    assert!(e.contains("--request-budget-ms"), "{e}");
+    // The 980-CPU-second workspace.
+    let workspace = json!({
+        "arm": { "links": [
+            { "length": 1.0, "angle_deg": 0.0, "limits_deg": [-90.0, 90.0] },
+            { "length": 100.0, "angle_deg": 0.0 }, { "length": 100.0, "angle_deg": 0.0 }
+        ] },
+        "limits": true, "resolution": 1024, "samples": 1000000
+    });
+    let e = error(&s.post("/api/workspace", &workspace), 503);
+    assert!(e.contains("--request-budget-ms"), "{e}");
+    // Generous: three budgets of a second each, not hours.
+    assert!(began.elapsed() < Duration::from_secs(30), "{:?}", began.elapsed());
+    // The workers were freed: an ordinary solve answers.
+    let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    assert_eq!(status, 200, "{v}");
+    assert_eq!(v["status"], "reached");
+}
+
+#[test]
+fn a_from_solve_motion_that_could_record_gigabytes_is_refused() {
+    let s = start(&[]);
+    let via: Vec<[f64; 2]> = (0..100).map(|i| [f64::from(i % 5) * 0.5, 1.0]).collect();
+    let request = json!({
+        "arm": { "links": links(64) },
+        "goal": { "x": 3.0, "y": 3.0 },
+        "via": via,
+        "from_solve": true,
+        "options": {
+            "restarts": 0, "backtrack": 0, "stall_window": 4294967295u64, "tolerance": 5e-324,
+            "max_iterations": 100000
+        }
+    });
+    let e = error(&s.post("/api/animate", &request), 422);
+    assert!(e.contains("record_every") && e.contains("max_iterations"), "{e}");
+    // One solve recording every iteration of 64 links: hundreds of MB of JSON.
+    let solve = json!({
+        "arm": { "links": links(64) },
+        "goal": { "x": 3.0, "y": 3.0 },
+        "options": { "record_every": 1, "max_iterations": 100000 }
+    });
+    let e = error(&s.post("/api/solve", &solve), 422);
+    assert!(e.contains("record_every") && e.contains("the solve could record"), "{e}");
+    // The page's own from_solve motion still works.
+    let (status, v) =
+        s.post("/api/animate", &json!({ "goal": { "x": 2.0, "y": 3.0 }, "from_solve": true, "frames": 20 }));
+    assert_eq!(status, 200, "{v}");
+}
+
+#[test]
+fn expect_100_continue_over_the_body_cap_gets_413_and_no_continue() {
+    let s = start(&[]);
+    let mut c = s.connect();
+    write!(
+        c,
+        "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nExpect: 100-continue\r\nContent-Length: 100000000000\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let reply = read_all(&mut c);
+    assert!(reply.starts_with("HTTP/1.1 413"), "{reply}");
+    assert!(!reply.contains("100 Continue"), "{reply}");
+    assert!(reply.contains("--max-body-bytes"), "{reply}");
+}
+
+#[test]
+fn a_wrong_method_gets_405_with_a_json_error() {
+    let s = start(&[]);
+    let e = error(&answer(s.agent.delete(format!("{}/api/solve", s.base)).call().unwrap()), 405);
+    assert!(e.contains("DELETE /api/solve"), "{e}");
+    let e = error(&answer(s.agent.get(format!("{}/api/solve", s.base)).call().unwrap()), 405);
+    assert!(e.contains("method not allowed"), "{e}");
+}
+
+/// A request with a given Host header; the first line of the answer and its body.
+fn with_host(s: &Server, host: &str) -> String {
+    let mut c = s.connect();
+    write!(c, "GET /api/health HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n").unwrap();
+    read_all(&mut c)
+}
+
+#[test]
+fn only_loopback_host_names_are_answered() {
+    let s = start(&["--allow-host", "ikarus.test"]);
+    let port = s.addr.rsplit(':').next().unwrap();
+    for ok in [
+        format!("localhost:{port}"),
+        format!("127.0.0.1:{port}"),
+        "127.0.0.2".to_owned(),
+        format!("[::1]:{port}"),
+        "ikarus.test".to_owned(),
+    ] {
+        let reply = with_host(&s, &ok);
+        assert!(reply.starts_with("HTTP/1.1 200"), "{ok}: {reply}");
+    }
+    for bad in [format!("evil.example:{port}"), "attacker.test".to_owned(), "10.0.0.1".to_owned()] {
+        let reply = with_host(&s, &bad);
+        assert!(reply.starts_with("HTTP/1.1 403"), "{bad}: {reply}");
+        assert!(reply.contains("--allow-host"), "{reply}");
+    }
+}
+
+#[test]
+fn ffff_mapped_loopback_is_loopback() {
+    // `--host ::ffff:127.0.0.1` is not warned about as reaching beyond the machine.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["serve", "--port", "0", "--host", "::ffff:127.0.0.1"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start ikarus serve");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    assert!(line.contains("listening on"), "{line}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("warning"), "{stderr}");
+}
+
+#[test]
+fn health_answers_while_heavy_requests_run_and_beyond_the_queue_is_busy() {
+    let s = start(&["--workers", "1", "--max-queued", "2", "--request-budget-ms", "3000"]);
+    // Scoped threads: the server is killed (dropped) even if an assertion fails.
+    std::thread::scope(|scope| {
+        let heavy: Vec<_> = (0..3).map(|_| scope.spawn(|| s.post("/api/solve", &endless_solve()))).collect();
+        std::thread::sleep(Duration::from_millis(300));
+        // One running and two waiting: a fourth is answered 503 at once.
+        let e = error(&s.post("/api/solve", &endless_solve()), 503);
+        assert!(e.contains("server busy") && e.contains("--max-queued"), "{e}");
+        for _ in 0..20 {
+            let (status, v) = s.get("/api/health");
+            assert_eq!(status, 200, "{v}");
+        }
+        for h in heavy {
+            let e = error(&h.join().unwrap(), 503);
+            assert!(e.contains("--request-budget-ms"), "{e}");
+        }
+    });
+}
+
+#[test]
+fn a_second_long_computation_is_stopped_while_quick_ones_still_run() {
+    let s = start(&["--workers", "2", "--long-workers", "1", "--request-budget-ms", "60000"]);
+    let _first = send_raw(&s, &endless_solve());
+    std::thread::sleep(Duration::from_millis(1000));
+    // The second long one is stopped once it counts as long, not at the budget.
+    let e = error(&s.post("/api/solve", &endless_solve()), 503);
+    assert!(e.contains("--long-workers"), "{e}");
+    // A quick request still gets the other worker.
+    let (status, v) = s.post("/api/workspace", &json!({ "resolution": 64 }));
+    assert_eq!(status, 200, "{v}");
+}
+
+/// Sends a POST of `body` to /api/solve on a raw connection, without reading the answer.
+fn send_raw(s: &Server, body: &Value) -> TcpStream {
+    let body = body.to_string();
+    let mut c = s.connect();
+    write!(
+        c,
+        "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    c
+}
+
+#[test]
+fn a_client_that_goes_away_frees_its_worker() {
+    let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "600000"]);
+    let body = endless_solve().to_string();
+    let mut c = s.connect();
+    write!(
+        c,
+        "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    // The only worker is taken.
+    let e = error(&s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } })), 503);
+    assert!(e.contains("server busy"), "{e}");
+    drop(c);
+    // hyper notices the closed connection and drops the handler, whose guard interrupts the
+    // solve: the worker is free again soon (the solve alone would run for hours).
+    let began = Instant::now();
+    loop {
+        let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        if status == 200 {
+            break;
+        }
+        assert_eq!(status, 503, "{v}");
+        assert!(began.elapsed() < Duration::from_secs(30), "the worker was never freed");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn idle_and_half_sent_connections_are_closed() {
+    let s = start(&["--header-timeout-ms", "300", "--body-timeout-ms", "300"]);
+    // Idle: nothing sent.
+    let mut idle = s.connect();
+    assert_eq!(read_all(&mut idle), "", "closed without an answer");
+    // Half-sent headers.
+    let mut half = s.connect();
+    half.write_all(b"POST /api/solve HTTP/1.1\r\nHost: localh").unwrap();
+    let _ = read_all(&mut half);
+    // Idle after a request on a kept-alive connection.
+    let mut kept = s.connect();
+    kept.write_all(b"GET /api/health HTTP/1.1\r\nHost: localhost\r\n\r\n").unwrap();
+    assert!(read_all(&mut kept).starts_with("HTTP/1.1 200"));
+    // A body that never arrives: 408.
+    let mut slow = s.connect();
+    slow.write_all(
+        b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{",
+    )
+    .unwrap();
+    let reply = read_all(&mut slow);
+    assert!(reply.starts_with("HTTP/1.1 408"), "{reply}");
+    assert!(reply.contains("--body-timeout-ms"), "{reply}");
+}
+
+#[test]
+fn connections_beyond_the_cap_are_refused() {
+    let s = start(&["--max-connections", "2"]);
+    let _a = s.connect();
+    let _b = s.connect();
+    std::thread::sleep(Duration::from_millis(200));
+    let mut c = s.connect();
+    let reply = read_all(&mut c);
+    assert!(reply.starts_with("HTTP/1.1 503"), "{reply}");
+    assert!(reply.contains("--max-connections"), "{reply}");
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_server_promptly_with_work_running() {
+    let mut s = start(&["--request-budget-ms", "600000"]);
+    let body = endless_solve().to_string();
+    let mut busy: Vec<TcpStream> = (0..2)
+        .map(|_| {
+            let mut c = s.connect();
+            write!(
+                c,
+                "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+                body.len()
+            )
+            .unwrap();
+            c
+        })
+        .collect();
+    // And a client trickling its body.
+    let mut trickle = s.connect();
+    trickle
+        .write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    let pid = s.child.id().to_string();
+    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+    // Generous: the server aims at one second; before, it ran until the solves ended (hours).
+    let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after Ctrl-C");
+    assert!(status.success(), "{status:?}");
+    // The running requests were answered.
+    for c in &mut busy {
+        let reply = read_all(c);
+        assert!(reply.starts_with("HTTP/1.1 503"), "{reply}");
+        assert!(reply.contains("server stopping"), "{reply}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn a_second_ctrl_c_exits_at_once() {
+    let mut s = start(&[]);
+    // A client trickling its body keeps the first stop draining for a while.
+    let mut trickle = s.connect();
+    trickle
+        .write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(200));
+    let pid = s.child.id().to_string();
+    for _ in 0..2 {
+        assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    // Generous bound: a hang is the bug.
+    let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after two Ctrl-C");
+    // 130: the second signal ended it, while the first was still waiting for the trickling
+    // client (for up to 0.6 s).
+    assert_eq!(status.code(), Some(130), "{status:?}");
+}
+
+#[test]
+fn slow_bodies_cannot_hold_more_than_the_body_memory() {
+    // 64 MB of body memory: two unfinished bodies declaring 32 MB each take all of it.
+    let s = start(&["--max-body-bytes", "33554432"]);
+    let head = "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 33554432\r\n\r\n{";
+    let mut held: Vec<TcpStream> = (0..2)
+        .map(|_| {
+            let mut c = s.connect();
+            c.write_all(head.as_bytes()).unwrap();
+            c
+        })
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    let mut third = s.connect();
+    third.write_all(head.as_bytes()).unwrap();
+    let reply = read_all(&mut third);
+    assert!(reply.starts_with("HTTP/1.1 503"), "{reply}");
+    assert!(reply.contains("too many request bodies"), "{reply}");
+    // Once the slow clients are gone, their memory is given back.
+    held.clear();
+    std::thread::sleep(Duration::from_millis(300));
+    let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    assert_eq!(status, 200, "{v}");
+}
+
+#[test]
+fn a_gif_over_its_budget_stops_and_frees_its_worker() {
+    let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "1000"]);
+    // The largest GIF within the caps: 2000 frames of 223 × 223 pixels, 64 links (9 s to
+    // encode in a release build).
+    let gif = json!({
+        "figure": "motion", "arm": { "links": links(64) }, "goal": { "x": 3.0, "y": 3.0 },
+        "frames": 2000, "format": "gif", "width": 223, "height": 223
+    });
+    let e = error(&s.post("/api/render", &gif), 503);
+    assert!(e.contains("--request-budget-ms"), "{e}");
+    // The encoder saw the interrupt: the only worker is free again well before the GIF could
+    // have been finished.
+    let began = Instant::now();
+    loop {
+        let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        if status == 200 {
+            break;
+        }
+        assert_eq!(status, 503, "{v}");
+        assert!(began.elapsed() < Duration::from_secs(5), "the worker was not freed: {v}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
