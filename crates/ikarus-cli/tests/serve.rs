@@ -649,3 +649,43 @@ fn arm_files_read_into_the_page_and_written_back_in_the_clis_format() {
         .error(422);
     assert!(e.contains("links[0]"), "{e}");
 }
+
+/// The API's figures and `ikarus render` are one workflow: the same request gives the same SVG.
+#[test]
+fn render_figures_equal_the_clis() {
+    let s = start(&[]);
+    let cli = |args: &[&str]| {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("f.svg");
+        let run = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+            .args(args)
+            .args(["--out", out.to_str().unwrap(), "--width", "300", "--height", "200"])
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        std::fs::read(out).unwrap()
+    };
+    let api = |body: Value| {
+        let a = s.post("/api/render", &body);
+        assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
+        a.body
+    };
+    let size = json!({ "format": "svg", "width": 300, "height": 200 });
+    let with = |extra: Value| {
+        let mut v = size.clone();
+        v.as_object_mut().unwrap().extend(extra.as_object().unwrap().clone());
+        v
+    };
+    assert_eq!(
+        api(with(json!({ "figure": "arm", "pose_deg": [10, 20, 30], "goal": { "x": 2, "y": 3 } }))),
+        cli(&["render", "arm", "--pose-deg", "10,20,30", "--goal", "2,3"])
+    );
+    assert_eq!(
+        api(with(json!({ "figure": "workspace", "limits": true, "resolution": 64 }))),
+        cli(&["render", "workspace", "--limits", "--resolution", "64"])
+    );
+    assert_eq!(
+        api(with(json!({ "figure": "motion", "goal": { "x": 2, "y": 3 }, "frames": 8 }))),
+        cli(&["render", "motion", "--goal", "2,3", "--frames", "8"])
+    );
+}

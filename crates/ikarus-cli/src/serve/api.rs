@@ -22,7 +22,7 @@ use super::{AppState, Limits};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
-use crate::picture::{Drawing, PictureFormat, draw, workspace_caption};
+use crate::picture::{Drawing, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
 use crate::report::{self, AnimateJson, SolveReport};
 use crate::settings::{SolverSettings, solver};
 use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape, TrackJob, TrackJson};
@@ -490,14 +490,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
                 seed: r.seed,
             };
             let (workspace, _) = sample_workspace(&arm, &ws_req, limits, interrupt)?;
-            let drawing = Drawing::Arm {
-                chain: &arm.chain,
-                pose: arm.chain.start_pose().angles(),
-                goal: None,
-                workspace: Some(&workspace),
-                caption: Some(workspace_caption(&arm, &workspace)),
-            };
-            draw(&drawing, format, width, height, &|_, _| {})?
+            draw(&workspace_drawing(&arm, &workspace), format, width, height, &|_, _| {})?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
     };
@@ -522,13 +515,7 @@ fn arm_figure(
     } else {
         None
     };
-    let drawing = Drawing::Arm {
-        chain: &arm.chain,
-        pose: &pose,
-        goal: goal.map(|g| g.target()),
-        workspace: workspace.as_ref(),
-        caption: None,
-    };
+    let drawing = arm_drawing(&arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
     Ok(draw(&drawing, format, width, height, &|_, _| {})?)
 }
 
@@ -556,12 +543,7 @@ fn motion_figure(
             )));
         }
     }
-    let drawing = Drawing::Motion {
-        chain: &arm.chain,
-        animation,
-        goal: Some(ikarus::Point2::new(goal_req.x, goal_req.y)),
-        caption: motion.caption(),
-        fps: r.fps.unwrap_or(DEFAULT_FPS),
-    };
+    let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
+    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS));
     Ok(draw(&drawing, format, width, height, &|_, _| {})?)
 }
