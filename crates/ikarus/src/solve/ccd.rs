@@ -54,7 +54,6 @@ use nalgebra::{Point2, Vector2};
 
 use super::problem::Problem;
 use crate::angle::wrap_angle;
-use crate::kinematics::joint_positions_into;
 
 mod turn;
 
@@ -71,11 +70,11 @@ const NEGLIGIBLE: f64 = 1e-12;
 /// [module docs](self)). Writes the new angles into `trial` and their joint positions into
 /// `trial_joints` (n+1 points), and returns the tip's absolute orientation.
 ///
-/// `joints` must be the positions for `angles` (n+1). Within the sweep, joint positions are
-/// updated by rotating the points beyond each joint; at its end they are recomputed by forward
-/// kinematics from `trial`, so that the loop judges the pose it returns: the rotated points
-/// drift from it by about ε·reach per joint and sweep, which on a chain of lengths from 1e-9 to
-/// 1e9 is more than a tolerance of 1e-6 (a solve reported `reached` 3.9e-6 away). Allocates
+/// `joints` must be the positions for `angles` (n+1). Joint positions are updated by rotating
+/// the points beyond each joint, not recomputed, so they agree with the forward kinematics of
+/// `trial` to rounding (about ε·reach per joint and sweep, which adds up over sweeps: on a chain
+/// of lengths from 1e-9 to 1e9, more than a tolerance of 1e-6). The loop therefore measures a
+/// pose again by forward kinematics before it calls it reached ([`super::attempt`]). Allocates
 /// nothing.
 ///
 /// # Panics
@@ -115,7 +114,7 @@ pub(super) fn sweep(
             phi += delta;
         }
     }
-    joint_positions_into(chain, trial, trial_joints)
+    phi
 }
 
 #[cfg(test)]

@@ -9,11 +9,29 @@ use nalgebra::{Matrix3, Vector3};
 /// `y = α e` with the error-minimising α; `y = 0` when `A e = 0` (the error is orthogonal to
 /// every direction the tip can move in) or when `A` or `e` is not finite.
 ///
-/// Computed scale-free: with `s` the largest entry of `|A|` and `m` the largest of `|e|`,
+/// Computed scale-free where it must be: with `s` the largest entry of `|A|` and `m` the largest of `|e|`,
 /// `Â = A / s` and `ê = e / m` are of order one and `α = ⟨ê, Â ê⟩ / (s ‖Â ê‖²)`, so that
 /// `‖A e‖²`, of order `reach⁴ · error²`, never overflows (it did for lengths of 1e52, and the
 /// step was then 0: a reachable goal stalled after 0 iterations).
 pub(super) fn task_step(a: &Matrix3<f64>, e: &Vector3<f64>) -> Vector3<f64> {
+    // The plain formula where `‖A e‖²` is a normal finite number (every chain of ordinary
+    // size), the scaled one only where it overflowed or underflowed.
+    let ae = a * e;
+    let denom = ae.norm_squared();
+    if denom.is_finite() && denom >= f64::MIN_POSITIVE {
+        let alpha = e.dot(&ae) / denom;
+        if alpha.is_finite() {
+            return e * alpha;
+        }
+    }
+    scaled_step(a, e)
+}
+
+/// [`task_step`] on `A` and `e` scaled to order one, for the rare chain where `‖A e‖²` leaves
+/// the range of normal f64 numbers.
+#[cold]
+#[inline(never)]
+fn scaled_step(a: &Matrix3<f64>, e: &Vector3<f64>) -> Vector3<f64> {
     let s = a.amax();
     let m = e.amax();
     if !(s > 0.0 && s.is_finite() && m > 0.0 && m.is_finite()) {
