@@ -40,21 +40,10 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
     let mut best_error = f64::INFINITY;
     let status = loop {
         let tip = s.joints[n];
-        let (mut dx, mut dy) = (target.x - tip.x, target.y - tip.y);
-        let mut turn = goal.orientation().map(|g| wrap_angle(g - phi));
-        let mut error = distance(dx, dy);
-        let mut angle_error = turn.map_or(0.0, f64::abs);
-        if stepper == Stepper::Ccd && error <= opts.tolerance && angle_error <= opts.angle_tolerance {
-            // CCD tracks its joints by rotating them, which drifts from the forward kinematics
-            // of its angles by rounding: measure the pose afresh before calling it reached.
-            phi = joint_positions_into(chain, angles, &mut s.joints);
-            let tip = s.joints[n];
-            (dx, dy) = (target.x - tip.x, target.y - tip.y);
-            turn = goal.orientation().map(|g| wrap_angle(g - phi));
-            error = distance(dx, dy);
-            angle_error = turn.map_or(0.0, f64::abs);
-        }
-        let tip = s.joints[n];
+        let (dx, dy) = (target.x - tip.x, target.y - tip.y);
+        let turn = goal.orientation().map(|g| wrap_angle(g - phi));
+        let error = distance(dx, dy);
+        let angle_error = turn.map_or(0.0, f64::abs);
         out.error = error;
         out.angle_error = angle_error;
         out.end_effector = EndEffector { position: tip, orientation: phi };
