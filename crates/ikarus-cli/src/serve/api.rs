@@ -42,6 +42,12 @@ const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
 
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
 /// 503 for it; writing a large answer nobody reads would only hold the worker).
+/// A picture, or the interruption that stopped its drawing (not an internal error).
+fn picture(drawn: Result<Vec<u8>, crate::error::CliError>, interrupt: &Interrupt) -> Result<Vec<u8>, ApiError> {
+    stopped(interrupt)?;
+    Ok(drawn?)
+}
+
 fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
     if interrupt.is_interrupted() {
         Err(ApiError { status: axum::http::StatusCode::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
@@ -476,9 +482,10 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
         return Err(ApiError::invalid("format = gif: only the figure motion animates (use png or svg)"));
     }
     let bytes = match req {
-        RenderReq::Ease(r) => {
-            draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {})?
-        }
+        RenderReq::Ease(r) => picture(
+            draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {}),
+            interrupt,
+        )?,
         RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
@@ -490,7 +497,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
                 seed: r.seed,
             };
             let (workspace, _) = sample_workspace(&arm, &ws_req, limits, interrupt)?;
-            draw(&workspace_drawing(&arm, &workspace), format, width, height, &|_, _| {})?
+            picture(draw(&workspace_drawing(&arm, &workspace), format, width, height, &|_, _| {}), interrupt)?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
     };
@@ -516,7 +523,7 @@ fn arm_figure(
         None
     };
     let drawing = arm_drawing(&arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
-    Ok(draw(&drawing, format, width, height, &|_, _| {})?)
+    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
 }
 
 fn motion_figure(
@@ -545,5 +552,5 @@ fn motion_figure(
     }
     let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
     let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS));
-    Ok(draw(&drawing, format, width, height, &|_, _| {})?)
+    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
 }
