@@ -56,6 +56,7 @@ pub mod names;
 pub mod number;
 pub mod reach;
 pub mod rng;
+pub mod skeleton;
 pub mod solve;
 pub mod track;
 
@@ -68,6 +69,7 @@ pub use limits::{Bounds, JointLimits, LimitsError};
 pub use motion::{Animation, AnimationFrame, Interpolation, MotionError, MotionOptions, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
+pub use skeleton::{Bone, BoneField, Effector, Skeleton, SkeletonError};
 pub use solve::{
     Frame, Frames, LimitMode, Method, OptionsError, Outcome, Restarts, SolveError, SolveOptions, Solver,
     StallDetection, Status,

@@ -1,0 +1,482 @@
+//! The skeleton model: a tree of named bones, validated once (errors in [`error`]; forward
+//! kinematics and the stacked effector Jacobian in [`kinematics`]).
+//!
+//! A [`Skeleton`] is a planar tree of `N ≥ 1` bones. Each bone is a revolute joint at its start
+//! followed by a rigid segment of its length. A bone with a parent starts at its parent's tip,
+//! and its angle is measured from the parent's direction; a bone without a parent (a root;
+//! there may be several) starts at the base and its angle is measured from +x.
+//! Counter-clockwise is positive, and every angle inside the library is in radians.
+//!
+//! A chain is a skeleton with one branch: [`Skeleton::from_chain`] builds it, and its forward
+//! kinematics and Jacobian equal the chain's bit for bit.
+//!
+//! # Orders
+//!
+//! Everything a caller passes or receives per bone — angles, limits, lengths, names, the
+//! positions of forward kinematics, the Jacobian's columns — is in the order the bones were
+//! given to [`Skeleton::new`] (a rig file's order), and a bone's index is its place in that
+//! order. Callers never permute anything: they keep the order they wrote, and an error, an
+//! output or a column `i` means the `i`-th bone they gave. Internally the skeleton also keeps a
+//! topological order ([`Skeleton::topological_order`]: every parent before its children, a
+//! depth-first walk from the roots, siblings in the order given), which forward kinematics
+//! walks; it is a list of indices, not a second layout of the data, so nothing is copied or
+//! translated between the two. A chain's order is already topological, so its walk is the
+//! chain's own.
+
+use std::collections::HashMap;
+
+use nalgebra::Point2;
+
+use crate::chain::{Chain, MAX_REACH};
+use crate::limits::{Bounds, JointLimits};
+
+pub mod error;
+pub mod kinematics;
+
+pub use error::{BoneField, SkeletonError};
+pub use kinematics::Effector;
+
+/// One bone: its name, its parent's name (`None` for a root, which starts at the base), its
+/// length, its starting angle (radians, relative to the parent's direction; a root's relative
+/// to +x) and its optional limits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bone {
+    /// Name, unique within the skeleton and not empty.
+    pub name: String,
+    /// The parent's name, or `None` for a bone that starts at the base.
+    pub parent: Option<String>,
+    /// Length, > 0.
+    pub length: f64,
+    /// Starting angle in radians, relative to the parent's direction (a root's to +x).
+    pub angle: f64,
+    /// Optional range the angle must stay within.
+    pub limits: Option<JointLimits>,
+}
+
+impl Bone {
+    /// A root bone called `name` of `length` starting at `angle` radians from +x, without
+    /// limits; [`Bone::with_parent`] hangs it on another bone.
+    #[must_use]
+    pub fn new(name: impl Into<String>, length: f64, angle: f64) -> Self {
+        Self { name: name.into(), parent: None, length, angle, limits: None }
+    }
+
+    /// The same bone starting at the tip of the bone called `parent`, its angle measured from
+    /// that bone's direction.
+    #[must_use]
+    pub fn with_parent(mut self, parent: impl Into<String>) -> Self {
+        self.parent = Some(parent.into());
+        self
+    }
+
+    /// The same bone with its angle limited to `limits`.
+    #[must_use]
+    pub fn with_limits(mut self, limits: JointLimits) -> Self {
+        self.limits = Some(limits);
+        self
+    }
+}
+
+/// A validated planar tree of bones: base, bones, start angles, and the tree's structure
+/// (parents, children, root-to-bone paths) computed once.
+///
+/// Build one with [`Skeleton::new`]. Per-bone data is in the order the bones were given (see
+/// the [module docs](self)).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skeleton {
+    base: Point2<f64>,
+    names: Vec<String>,
+    index: HashMap<String, usize>,
+    parents: Vec<Option<usize>>,
+    lengths: Vec<f64>,
+    limits: Vec<Option<JointLimits>>,
+    start: Vec<f64>,
+    /// Every bone once, every parent before its children.
+    order: Vec<usize>,
+    /// The children of bone `i` are `children[child_start[i]..child_start[i + 1]]`, in the
+    /// order given.
+    children: Vec<usize>,
+    child_start: Vec<usize>,
+    /// The bones from a root down to bone `i` (its ancestors, then itself) are
+    /// `paths[path_start[i]..path_start[i + 1]]`.
+    paths: Vec<usize>,
+    path_start: Vec<usize>,
+    reach: f64,
+}
+
+impl Skeleton {
+    /// Validates and builds a skeleton with its base at `base`.
+    ///
+    /// Checks, in order: at least one bone; a finite base; for each bone a non-empty name not
+    /// used before and a finite length > 0; every parent names a bone; no bone is its own
+    /// ancestor; each start angle finite and within its limits; the reach (the longest
+    /// root-to-tip path plus the base's distance from the origin) at most [`MAX_REACH`].
+    pub fn new(base: [f64; 2], bones: &[Bone]) -> Result<Self, SkeletonError> {
+        if bones.is_empty() {
+            return Err(SkeletonError::Empty);
+        }
+        let [x, y] = base;
+        if !x.is_finite() || !y.is_finite() {
+            return Err(SkeletonError::NonFiniteBase { x, y });
+        }
+        let n = bones.len();
+        let mut index = HashMap::with_capacity(n);
+        for (i, bone) in bones.iter().enumerate() {
+            if bone.name.is_empty() {
+                return Err(SkeletonError::EmptyName { index: i });
+            }
+            if let Some(&first) = index.get(&bone.name) {
+                return Err(SkeletonError::DuplicateName { index: i, name: bone.name.clone(), first });
+            }
+            index.insert(bone.name.clone(), i);
+            let named = |field| (i, bone.name.clone(), field);
+            if !bone.length.is_finite() {
+                let (index, name, field) = named(BoneField::Length);
+                return Err(SkeletonError::NonFinite { index, name, field, value: bone.length });
+            }
+            if bone.length <= 0.0 {
+                return Err(SkeletonError::NonPositiveLength { index: i, name: bone.name.clone(), value: bone.length });
+            }
+        }
+        let mut parents = Vec::with_capacity(n);
+        for (i, bone) in bones.iter().enumerate() {
+            parents.push(match &bone.parent {
+                None => None,
+                Some(p) => Some(*index.get(p).ok_or_else(|| SkeletonError::UnknownParent {
+                    index: i,
+                    name: bone.name.clone(),
+                    parent: p.clone(),
+                })?),
+            });
+        }
+        let (children, child_start) = children_of(&parents);
+        let order = depth_first(&parents, &children, &child_start);
+        if order.len() < n {
+            return Err(cycle_error(bones, &parents, &order));
+        }
+        let limits: Vec<Option<JointLimits>> = bones.iter().map(|b| b.limits).collect();
+        let start: Vec<f64> = bones.iter().map(|b| b.angle).collect();
+        let lengths: Vec<f64> = bones.iter().map(|b| b.length).collect();
+        let names: Vec<String> = bones.iter().map(|b| b.name.clone()).collect();
+        check_angles(&names, &start, Bounds::new(&limits))?;
+        let (paths, path_start) = paths_of(&parents, &order);
+        // The length of the path to each tip, summed root first in the order of a chain's
+        // `Σ lᵢ` (so that a chain's reach is its own, bit for bit).
+        let mut to_tip = vec![0.0; n];
+        for &i in &order {
+            to_tip[i] = parents[i].map_or(0.0, |p| to_tip[p]) + lengths[i];
+        }
+        let reach = to_tip.iter().copied().fold(0.0, f64::max);
+        let extent = x.hypot(y) + reach;
+        if extent.is_nan() || extent > MAX_REACH {
+            return Err(SkeletonError::ReachTooLarge { reach: extent });
+        }
+        Ok(Self {
+            base: Point2::new(x, y),
+            names,
+            index,
+            parents,
+            lengths,
+            limits,
+            start,
+            order,
+            children,
+            child_start,
+            paths,
+            path_start,
+            reach,
+        })
+    }
+
+    /// The chain as a skeleton of one branch: bone `i` is link `i`, named `link{i}`, the
+    /// parent of bone `i + 1`; same base, lengths, limits and start angles.
+    #[must_use]
+    pub fn from_chain(chain: &Chain) -> Skeleton {
+        let bones: Vec<Bone> = chain
+            .links()
+            .iter()
+            .enumerate()
+            .map(|(i, link)| Bone {
+                name: format!("link{i}"),
+                parent: i.checked_sub(1).map(|p| format!("link{p}")),
+                length: link.length,
+                angle: link.angle,
+                limits: link.limits,
+            })
+            .collect();
+        let base = chain.base();
+        // A valid chain passes every check of a skeleton: the names are distinct, the parents
+        // exist and form a path, and the reach is the chain's own sum (the same additions).
+        Skeleton::new([base.x, base.y], &bones).expect("ikarus: a valid chain is a valid skeleton")
+    }
+
+    /// Number of bones.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Always `false`: a valid skeleton has at least one bone.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Where every root bone starts.
+    #[must_use]
+    pub fn base(&self) -> Point2<f64> {
+        self.base
+    }
+
+    /// The bones' names.
+    #[must_use]
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The name of bone `i`.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[must_use]
+    pub fn name(&self, i: usize) -> &str {
+        &self.names[i]
+    }
+
+    /// The index of the bone called `name`.
+    #[must_use]
+    pub fn index_of(&self, name: &str) -> Option<usize> {
+        self.index.get(name).copied()
+    }
+
+    /// The parent of bone `i`, `None` for a root.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[must_use]
+    pub fn parent(&self, i: usize) -> Option<usize> {
+        self.parents[i]
+    }
+
+    /// The parents of every bone.
+    #[must_use]
+    pub fn parents(&self) -> &[Option<usize>] {
+        &self.parents
+    }
+
+    /// The children of bone `i`, in the order given.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    pub fn children(&self, i: usize) -> impl ExactSizeIterator<Item = usize> + '_ {
+        self.children[self.child_start[i]..self.child_start[i + 1]].iter().copied()
+    }
+
+    /// The roots (bones that start at the base), in the order given.
+    pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.len()).filter(|&i| self.parents[i].is_none())
+    }
+
+    /// The bones from a root down to bone `i`: its ancestors, root first, then `i` itself.
+    /// These are the bones whose turning moves bone `i`'s tip.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[must_use]
+    pub fn path(&self, i: usize) -> &[usize] {
+        &self.paths[self.path_start[i]..self.path_start[i + 1]]
+    }
+
+    /// Every bone once, every parent before its children: a depth-first walk from the roots,
+    /// roots and siblings in the order given.
+    #[must_use]
+    pub fn topological_order(&self) -> &[usize] {
+        &self.order
+    }
+
+    /// Bone lengths.
+    #[must_use]
+    pub fn lengths(&self) -> &[f64] {
+        &self.lengths
+    }
+
+    /// Per-bone limits.
+    #[must_use]
+    pub fn limits(&self) -> &[Option<JointLimits>] {
+        &self.limits
+    }
+
+    /// Whether any bone has limits.
+    #[must_use]
+    pub fn has_limits(&self) -> bool {
+        self.limits.iter().any(Option::is_some)
+    }
+
+    /// The limits as a [`Bounds`] view, bone `i` bounded by its limits (free if no bone has
+    /// limits).
+    #[must_use]
+    pub fn bounds(&self) -> Bounds<'_> {
+        if self.has_limits() { Bounds::new(&self.limits) } else { Bounds::free() }
+    }
+
+    /// The angles the skeleton was built with (its start pose), radians.
+    #[must_use]
+    pub fn start_angles(&self) -> &[f64] {
+        &self.start
+    }
+
+    /// The bones as given to [`Skeleton::new`], with the start angles.
+    #[must_use]
+    pub fn bones(&self) -> Vec<Bone> {
+        (0..self.len())
+            .map(|i| Bone {
+                name: self.names[i].clone(),
+                parent: self.parents[i].map(|p| self.names[p].clone()),
+                length: self.lengths[i],
+                angle: self.start[i],
+                limits: self.limits[i],
+            })
+            .collect()
+    }
+
+    /// The longest path of lengths from the base to a tip: no tip is ever farther from the
+    /// base. For a one-branch skeleton, its chain's [`Chain::max_reach`].
+    #[must_use]
+    pub fn max_reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// Checks `angles` as a pose of this skeleton: one finite angle per bone, each within its
+    /// limits.
+    pub fn check_angles(&self, angles: &[f64]) -> Result<(), SkeletonError> {
+        self.check_angles_within(angles, self.bounds())
+    }
+
+    /// Checks `angles` as a pose of this skeleton ignoring its limits: one finite angle per
+    /// bone.
+    pub fn check_angles_ignoring_limits(&self, angles: &[f64]) -> Result<(), SkeletonError> {
+        self.check_angles_within(angles, Bounds::free())
+    }
+
+    fn check_angles_within(&self, angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
+        if angles.len() != self.len() {
+            return Err(SkeletonError::AnglesLength { expected: self.len(), got: angles.len() });
+        }
+        check_angles(&self.names, angles, bounds)
+    }
+}
+
+fn check_angles(names: &[String], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
+    for (index, (&value, name)) in angles.iter().zip(names).enumerate() {
+        if !value.is_finite() {
+            return Err(SkeletonError::NonFinite { index, name: name.clone(), field: BoneField::Angle, value });
+        }
+        if let Some(lim) = bounds.get(index) {
+            if !lim.contains(value) {
+                let (min, max) = (lim.min(), lim.max());
+                return Err(SkeletonError::AngleOutsideLimits { index, name: name.clone(), value, min, max });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The children of every bone, flat, with offsets: a counting sort by parent, stable.
+fn children_of(parents: &[Option<usize>]) -> (Vec<usize>, Vec<usize>) {
+    let n = parents.len();
+    let mut start = vec![0; n + 1];
+    for p in parents.iter().flatten() {
+        start[p + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut next = start.clone();
+    let mut children = vec![0; parents.iter().flatten().count()];
+    for (i, p) in parents.iter().enumerate() {
+        if let Some(p) = *p {
+            children[next[p]] = i;
+            next[p] += 1;
+        }
+    }
+    (children, start)
+}
+
+/// The bones reachable from the roots, depth first, roots and siblings in the order given.
+/// Bones on a cycle (or below one) are never reached, so the walk is shorter than `parents`.
+fn depth_first(parents: &[Option<usize>], children: &[usize], child_start: &[usize]) -> Vec<usize> {
+    let n = parents.len();
+    let mut order = Vec::with_capacity(n);
+    let mut stack: Vec<usize> = (0..n).rev().filter(|&i| parents[i].is_none()).collect();
+    // Each bone is pushed at most once (by its only parent, or as a root), so this ends.
+    while let Some(i) = stack.pop() {
+        order.push(i);
+        stack.extend(children[child_start[i]..child_start[i + 1]].iter().rev());
+    }
+    order
+}
+
+/// The cycle through the first bone (in the order given) that lies on one. Called only when
+/// the walk from the roots missed a bone: following parents from a missed bone never reaches a
+/// root, so within `n` steps it enters a cycle.
+fn cycle_error(bones: &[Bone], parents: &[Option<usize>], reached: &[usize]) -> SkeletonError {
+    let n = bones.len();
+    let mut missed = vec![true; n];
+    for &i in reached {
+        missed[i] = false;
+    }
+    let on_cycle = |i: usize| {
+        let mut j = i;
+        for _ in 0..n {
+            match parents[j] {
+                Some(p) if p == i => return true,
+                Some(p) => j = p,
+                None => return false,
+            }
+        }
+        false
+    };
+    let first = (0..n).find(|&i| missed[i] && on_cycle(i)).expect("ikarus: a missed bone lies below a cycle");
+    let mut cycle = vec![bones[first].name.clone()];
+    let mut j = first;
+    while let Some(p) = parents[j] {
+        cycle.push(bones[p].name.clone());
+        if p == first {
+            break;
+        }
+        j = p;
+    }
+    SkeletonError::Cycle {
+        index: first,
+        name: bones[first].name.clone(),
+        parent: bones[first].parent.clone().unwrap_or_default(),
+        cycle,
+    }
+}
+
+/// Every bone's root-to-bone path, flat, with offsets (`order` topological, so a parent's path
+/// is known before its children's).
+fn paths_of(parents: &[Option<usize>], order: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let n = parents.len();
+    let mut depth = vec![0usize; n];
+    for &i in order {
+        depth[i] = parents[i].map_or(1, |p| depth[p] + 1);
+    }
+    let mut start = vec![0; n + 1];
+    for i in 0..n {
+        start[i + 1] = start[i] + depth[i];
+    }
+    let mut paths = vec![0; start[n]];
+    for &i in order {
+        let (s, e) = (start[i], start[i + 1]);
+        if let Some(p) = parents[i] {
+            let (ps, pe) = (start[p], start[p + 1]);
+            paths.copy_within(ps..pe, s);
+        }
+        paths[e - 1] = i;
+    }
+    (paths, start)
+}
+
+#[cfg(test)]
+mod tests;

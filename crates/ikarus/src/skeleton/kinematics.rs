@@ -1,0 +1,343 @@
+//! Forward kinematics of a skeleton and the stacked Jacobian of its effectors.
+//!
+//! With angles θ (one per bone, each relative to its parent's direction; a root's to +x), the
+//! absolute direction of bone i is its parent's plus its own angle, and its tip follows from
+//! its start (its parent's tip, or the base for a root):
+//!
+//! ```text
+//! φ_i = φ_parent(i) + θ_i   (φ of a root's parent = 0),
+//! start_i = tip_parent(i)   (the base for a root),
+//! tip_i = start_i + l_i (cos φ_i, sin φ_i).
+//! ```
+//!
+//! These are the operations of [`crate::kinematics::joint_positions_into`], in the same order
+//! (`0 + θ` for a root, then `x += l cos φ`, `y += l sin φ`), so a one-branch skeleton's
+//! positions equal its chain's bit for bit.
+//!
+//! Turning bone j by dθ rotates everything below it about `start_j`: an effector at the tip of
+//! bone e moves when j lies on e's path from the root (an ancestor of e, or e itself), and
+//! then
+//!
+//! ```text
+//! ∂tip_e/∂θ_j = (−(y_e − y_j), x_e − x_j)   with (x_j, y_j) = start_j,   ∂φ_e/∂θ_j = 1,
+//! ```
+//!
+//! and both are 0 otherwise. The stacked Jacobian puts each effector's rows (x, y, and φ when
+//! it has an orientation) below the previous effector's, one column per bone.
+//!
+//! The functions panic if a slice or the Jacobian's shape does not fit the skeleton: that is a
+//! programming error, not bad input ([`Skeleton::check_angles`] checks angles).
+
+use nalgebra::{DMatrix, Point2};
+
+use super::Skeleton;
+
+/// One effector of the stacked Jacobian: the tip of a bone, its position and optionally its
+/// direction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Effector {
+    /// Index of the bone whose tip it is.
+    pub bone: usize,
+    /// Whether it has an orientation row too.
+    pub orientation: bool,
+}
+
+impl Effector {
+    /// The position of bone `bone`'s tip: two rows, x and y.
+    #[must_use]
+    pub fn position(bone: usize) -> Self {
+        Self { bone, orientation: false }
+    }
+
+    /// The position and direction of bone `bone`'s tip: three rows, x, y and φ.
+    #[must_use]
+    pub fn with_orientation(bone: usize) -> Self {
+        Self { bone, orientation: true }
+    }
+
+    /// How many rows of the stacked Jacobian it takes: 2, or 3 with an orientation.
+    #[must_use]
+    pub fn rows(self) -> usize {
+        if self.orientation { 3 } else { 2 }
+    }
+}
+
+/// The number of rows of the stacked Jacobian of `effectors`.
+#[must_use]
+pub fn task_rows(effectors: &[Effector]) -> usize {
+    effectors.iter().map(|e| e.rows()).sum()
+}
+
+impl Skeleton {
+    /// Writes every bone's start, tip and absolute direction (radians from +x, not wrapped)
+    /// for `angles` into the caller's buffers, one entry per bone in the order given.
+    /// Allocates nothing. See the [module docs](self) for the formulas.
+    ///
+    /// # Panics
+    /// If any slice's length differs from [`Skeleton::len`].
+    pub fn forward_into(
+        &self,
+        angles: &[f64],
+        starts: &mut [Point2<f64>],
+        tips: &mut [Point2<f64>],
+        directions: &mut [f64],
+    ) {
+        let n = self.len();
+        assert!(
+            angles.len() == n && starts.len() == n && tips.len() == n && directions.len() == n,
+            "ikarus: forward kinematics of {n} bones given {} angles and buffers of {}, {}, {}",
+            angles.len(),
+            starts.len(),
+            tips.len(),
+            directions.len()
+        );
+        for &i in &self.order {
+            let (mut p, mut phi) = match self.parents[i] {
+                Some(q) => (tips[q], directions[q]),
+                None => (self.base, 0.0),
+            };
+            starts[i] = p;
+            phi += angles[i];
+            let (s, c) = phi.sin_cos();
+            let l = self.lengths[i];
+            p.x += l * c;
+            p.y += l * s;
+            tips[i] = p;
+            directions[i] = phi;
+        }
+    }
+
+    /// Fills the stacked Jacobian of `effectors` from the starts and tips computed by
+    /// [`Skeleton::forward_into`]: [`task_rows`] rows (each effector's x, y and, with an
+    /// orientation, φ, in the order of `effectors`) and one column per bone. Allocates nothing
+    /// if `out` already has that shape; otherwise it is resized first.
+    ///
+    /// # Panics
+    /// If `starts` or `tips` does not hold one point per bone, or an effector's bone is not a
+    /// bone of this skeleton.
+    pub fn jacobian_into(
+        &self,
+        starts: &[Point2<f64>],
+        tips: &[Point2<f64>],
+        effectors: &[Effector],
+        out: &mut DMatrix<f64>,
+    ) {
+        let n = self.len();
+        assert!(starts.len() == n && tips.len() == n, "ikarus: the Jacobian of {n} bones needs {n} starts and tips");
+        let rows = task_rows(effectors);
+        if out.shape() != (rows, n) {
+            *out = DMatrix::zeros(rows, n);
+        } else {
+            out.fill(0.0);
+        }
+        let mut row = 0;
+        for e in effectors {
+            let tip = tips[e.bone];
+            for &j in self.path(e.bone) {
+                let p = starts[j];
+                out[(row, j)] = -(tip.y - p.y);
+                out[(row + 1, j)] = tip.x - p.x;
+                if e.orientation {
+                    out[(row + 2, j)] = 1.0;
+                }
+            }
+            row += e.rows();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinematics::{jacobian_from_joints, joint_positions_into};
+    use crate::skeleton::Bone;
+    use crate::{Chain, JointLimits, Link};
+    use nalgebra::Matrix3xX;
+    use proptest::prelude::*;
+    use std::f64::consts::PI;
+
+    fn forward(s: &Skeleton, angles: &[f64]) -> (Vec<Point2<f64>>, Vec<Point2<f64>>, Vec<f64>) {
+        let n = s.len();
+        let (mut starts, mut tips, mut dirs) = (vec![Point2::origin(); n], vec![Point2::origin(); n], vec![0.0; n]);
+        s.forward_into(angles, &mut starts, &mut tips, &mut dirs);
+        (starts, tips, dirs)
+    }
+
+    #[test]
+    fn a_fork_by_hand() {
+        // A trunk up from (1, 0), two branches: one straight on, one turned right by 90°.
+        let s = Skeleton::new(
+            [1.0, 0.0],
+            &[
+                Bone::new("left", 1.0, PI / 2.0).with_parent("trunk"),
+                Bone::new("trunk", 2.0, PI / 2.0),
+                Bone::new("right", 0.5, -PI / 2.0).with_parent("trunk"),
+            ],
+        )
+        .unwrap();
+        let (starts, tips, dirs) = forward(&s, s.start_angles());
+        let near = |p: Point2<f64>, x: f64, y: f64| (p.x - x).abs() < 1e-12 && (p.y - y).abs() < 1e-12;
+        assert!(near(starts[1], 1.0, 0.0) && near(tips[1], 1.0, 2.0));
+        assert!(near(starts[0], 1.0, 2.0) && near(tips[0], 0.0, 2.0), "{tips:?}");
+        assert!(near(starts[2], 1.0, 2.0) && near(tips[2], 1.5, 2.0), "{tips:?}");
+        assert!((dirs[0] - PI).abs() < 1e-15 && dirs[2].abs() < 1e-15);
+        let mut j = DMatrix::zeros(0, 0);
+        s.jacobian_into(&starts, &tips, &[Effector::with_orientation(0), Effector::position(2)], &mut j);
+        // Left tip (0, 2): trunk from (1, 0) → (−2, −1); left from (1, 2) → (0, −1); right: 0.
+        #[rustfmt::skip]
+        let want = DMatrix::from_row_slice(5, 3, &[
+            0.0, -2.0, 0.0,
+            -1.0, -1.0, 0.0,
+            1.0, 1.0, 0.0,
+            // Right tip (1.5, 2): trunk → (−2, 0.5); right from (1, 2) → (0, 0.5).
+            0.0, -2.0, 0.0,
+            0.0, 0.5, 0.5,
+        ]);
+        assert!((&j - &want).abs().max() < 1e-12, "{j}");
+    }
+
+    #[test]
+    fn forward_kinematics_do_not_depend_on_the_order_given() {
+        let bones = [
+            Bone::new("a", 1.0, 0.3),
+            Bone::new("b", 0.7, -0.4).with_parent("a"),
+            Bone::new("c", 0.5, 1.1).with_parent("b"),
+            Bone::new("d", 0.9, 0.2).with_parent("a"),
+            Bone::new("e", 0.4, 2.0),
+        ];
+        let s = Skeleton::new([0.5, -0.5], &bones).unwrap();
+        let (_, tips, _) = forward(&s, s.start_angles());
+        let reversed: Vec<Bone> = bones.iter().rev().cloned().collect();
+        let r = Skeleton::new([0.5, -0.5], &reversed).unwrap();
+        let (_, rtips, _) = forward(&r, r.start_angles());
+        for (i, b) in bones.iter().enumerate() {
+            assert_eq!(tips[i], rtips[r.index_of(&b.name).unwrap()]);
+        }
+    }
+
+    /// Random chains: base, lengths, angles (some limited).
+    fn chains() -> impl Strategy<Value = (Chain, Vec<f64>)> {
+        (1usize..=12).prop_flat_map(|n| {
+            (
+                (-10.0f64..10.0, -10.0f64..10.0),
+                prop::collection::vec((0.01f64..5.0, -2.0 * PI..2.0 * PI, any::<bool>()), n),
+                prop::collection::vec(-7.0f64..7.0, n),
+            )
+                .prop_map(|((x, y), links, angles)| {
+                    let links: Vec<Link> = links
+                        .iter()
+                        .map(|&(l, a, limited)| {
+                            let link = Link::new(l, a);
+                            if limited { link.with_limits(JointLimits::new(a - 1.0, a + 1.0).unwrap()) } else { link }
+                        })
+                        .collect();
+                    (Chain::new([x, y], &links).unwrap(), angles)
+                })
+        })
+    }
+
+    /// Random trees: each bone hangs on an earlier one or starts at the base, then the order
+    /// is shuffled (so the order given is not topological).
+    fn trees() -> impl Strategy<Value = (Skeleton, Vec<f64>)> {
+        (1usize..=14).prop_flat_map(|n| {
+            (
+                prop::collection::vec((0.05f64..3.0, any::<u32>(), any::<u64>()), n),
+                prop::collection::vec(-2.0 * PI..2.0 * PI, n),
+            )
+                .prop_map(|(raw, angles)| {
+                    let mut bones: Vec<(u64, Bone)> = raw
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &(l, p, key))| {
+                            // About one bone in four is a root.
+                            let parent = (i > 0 && p % 4 != 0).then(|| format!("b{}", p as usize % i));
+                            (key, Bone { name: format!("b{i}"), parent, length: l, angle: 0.0, limits: None })
+                        })
+                        .collect();
+                    bones.sort_by_key(|(key, _)| *key);
+                    let bones: Vec<Bone> = bones.into_iter().map(|(_, b)| b).collect();
+                    (Skeleton::new([0.3, -0.2], &bones).unwrap(), angles)
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+        /// A chain as a skeleton: the same positions, direction and Jacobian, bit for bit.
+        #[test]
+        fn a_chain_is_a_skeleton_of_one_branch_bit_for_bit((chain, angles) in chains()) {
+            let s = Skeleton::from_chain(&chain);
+            prop_assert_eq!(s.max_reach().to_bits(), chain.max_reach().to_bits());
+            prop_assert_eq!(s.start_angles(), chain.start_pose().angles());
+            prop_assert_eq!(s.limits(), chain.limits());
+            let n = chain.len();
+            let mut joints = vec![Point2::origin(); n + 1];
+            let phi = joint_positions_into(&chain, &angles, &mut joints);
+            let (starts, tips, dirs) = forward(&s, &angles);
+            for i in 0..n {
+                prop_assert_eq!(starts[i].x.to_bits(), joints[i].x.to_bits());
+                prop_assert_eq!(starts[i].y.to_bits(), joints[i].y.to_bits());
+                prop_assert_eq!(tips[i].x.to_bits(), joints[i + 1].x.to_bits());
+                prop_assert_eq!(tips[i].y.to_bits(), joints[i + 1].y.to_bits());
+            }
+            prop_assert_eq!(dirs[n - 1].to_bits(), phi.to_bits());
+            let mut want = Matrix3xX::zeros(n);
+            jacobian_from_joints(&joints, &mut want);
+            let mut got = DMatrix::zeros(0, 0);
+            s.jacobian_into(&starts, &tips, &[Effector::with_orientation(n - 1)], &mut got);
+            prop_assert_eq!(got.shape(), (3, n));
+            for r in 0..3 {
+                for c in 0..n {
+                    prop_assert_eq!(got[(r, c)].to_bits(), want[(r, c)].to_bits(), "({}, {})", r, c);
+                }
+            }
+        }
+
+        /// The stacked Jacobian of every tip (orientation on every other one) matches central
+        /// finite differences of forward kinematics.
+        #[test]
+        fn the_jacobian_matches_central_differences((s, angles) in trees()) {
+            let n = s.len();
+            let effectors: Vec<Effector> =
+                (0..n).map(|b| if b % 2 == 0 { Effector::with_orientation(b) } else { Effector::position(b) }).collect();
+            let (starts, tips, _) = forward(&s, &angles);
+            let mut j = DMatrix::zeros(0, 0);
+            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+            // Built again into the same buffer: the same matrix (the buffer is cleared first).
+            let first = j.clone();
+            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+            prop_assert_eq!(&first, &j);
+            let h = 1e-6;
+            for c in 0..n {
+                let (mut plus, mut minus) = (angles.clone(), angles.clone());
+                plus[c] += h;
+                minus[c] -= h;
+                let (_, tp, dp) = forward(&s, &plus);
+                let (_, tm, dm) = forward(&s, &minus);
+                let mut row = 0;
+                for e in &effectors {
+                    let mut fd = vec![(tp[e.bone].x - tm[e.bone].x) / (2.0 * h), (tp[e.bone].y - tm[e.bone].y) / (2.0 * h)];
+                    if e.orientation {
+                        fd.push((dp[e.bone] - dm[e.bone]) / (2.0 * h));
+                    }
+                    for (k, d) in fd.iter().enumerate() {
+                        let a = j[(row + k, c)];
+                        // Relative to the column's scale (the lever arm, at least 1): central
+                        // differences are O(h²), rounding ~ε·reach/h.
+                        let scale = a.abs().max(1.0);
+                        prop_assert!((a - d).abs() <= 1e-6 * scale, "row {} col {}: {} vs {}", row + k, c, a, d);
+                    }
+                    // Zero exactly off the path.
+                    if !s.path(e.bone).contains(&c) {
+                        prop_assert!(fd.iter().all(|d| *d == 0.0));
+                        for k in 0..e.rows() {
+                            prop_assert_eq!(j[(row + k, c)], 0.0);
+                        }
+                    }
+                    row += e.rows();
+                }
+            }
+        }
+    }
+}

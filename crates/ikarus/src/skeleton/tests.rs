@@ -1,0 +1,167 @@
+use super::*;
+use crate::Link;
+
+fn lim(a: f64, b: f64) -> JointLimits {
+    JointLimits::new(a, b).unwrap()
+}
+
+/// A small figure: a pelvis with a spine and head above, two legs from the base.
+fn figure() -> Vec<Bone> {
+    vec![
+        Bone::new("pelvis", 0.2, 1.5),
+        Bone::new("head", 0.3, 0.0).with_parent("spine"),
+        Bone::new("spine", 0.5, 0.1).with_parent("pelvis").with_limits(lim(-0.5, 0.5)),
+        Bone::new("left", 0.9, -1.5),
+        Bone::new("right", 0.9, -1.6),
+        Bone::new("left_foot", 0.2, 1.5).with_parent("left"),
+    ]
+}
+
+#[test]
+fn builds_a_tree_and_answers_questions_about_it() {
+    let s = Skeleton::new([1.0, 2.0], &figure()).unwrap();
+    assert_eq!(s.len(), 6);
+    assert!(!s.is_empty());
+    assert_eq!(s.base(), Point2::new(1.0, 2.0));
+    assert_eq!(s.names()[1], "head");
+    assert_eq!((s.index_of("spine"), s.index_of("tail")), (Some(2), None));
+    assert_eq!(s.parents(), &[None, Some(2), Some(0), None, None, Some(3)]);
+    assert_eq!(s.parent(5), Some(3));
+    assert_eq!(s.children(0).collect::<Vec<_>>(), [2]);
+    assert_eq!(s.children(1).len(), 0);
+    assert_eq!(s.roots().collect::<Vec<_>>(), [0, 3, 4]);
+    // Depth first from the roots in the order given.
+    assert_eq!(s.topological_order(), &[0, 2, 1, 3, 5, 4]);
+    assert_eq!((s.path(1), s.path(5), s.path(4)), (&[0, 2, 1][..], &[3, 5][..], &[4][..]));
+    assert_eq!(s.start_angles(), &[1.5, 0.0, 0.1, -1.5, -1.6, 1.5]);
+    assert_eq!(s.lengths(), &[0.2, 0.3, 0.5, 0.9, 0.9, 0.2]);
+    assert!(s.has_limits() && s.bounds().get(2) == Some(lim(-0.5, 0.5)) && s.bounds().get(0).is_none());
+    // The longest path: left + left_foot = 1.1 (pelvis + spine + head = 1.0).
+    assert!((s.max_reach() - 1.1).abs() < 1e-15);
+    assert_eq!(s.bones(), figure());
+    assert_eq!(s.name(4), "right");
+}
+
+#[test]
+fn every_parent_comes_before_its_children() {
+    let s = Skeleton::new([0.0, 0.0], &figure()).unwrap();
+    let order = s.topological_order();
+    let mut seen = vec![false; s.len()];
+    for &i in order {
+        assert!(s.parent(i).is_none_or(|p| seen[p]), "{order:?}");
+        seen[i] = true;
+    }
+    assert!(seen.iter().all(|&b| b));
+}
+
+#[test]
+fn a_chain_becomes_one_branch() {
+    let chain =
+        Chain::new([0.5, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.2).with_limits(lim(-1.0, 1.0))]).unwrap();
+    let s = Skeleton::from_chain(&chain);
+    assert_eq!(s.names(), &["link0", "link1"]);
+    assert_eq!(s.parents(), &[None, Some(0)]);
+    assert_eq!(s.topological_order(), &[0, 1]);
+    assert_eq!(
+        (s.base(), s.lengths(), s.limits(), s.start_angles()),
+        (chain.base(), chain.lengths(), chain.limits(), chain.start_pose().angles())
+    );
+    assert_eq!(s.max_reach(), chain.max_reach());
+}
+
+#[test]
+fn rejects_each_kind_of_bad_input_naming_the_bone_and_the_value() {
+    let b = |name: &str, parent: Option<&str>| {
+        let bone = Bone::new(name, 1.0, 0.0);
+        match parent {
+            Some(p) => bone.with_parent(p),
+            None => bone,
+        }
+    };
+    let cases: Vec<(Vec<Bone>, [f64; 2], &str)> = vec![
+        (vec![], [0.0, 0.0], "bones: a skeleton needs at least one bone, got none"),
+        (vec![b("a", None)], [f64::NAN, 1.0], "base: coordinates must be finite, got (NaN, 1)"),
+        (vec![b("a", None), b("", None)], [0.0, 0.0], "bones[1].name: must not be empty"),
+        (
+            vec![b("a", None), b("b", Some("a")), b("a", Some("b"))],
+            [0.0, 0.0],
+            "bones[2] (\"a\").name: the name of bones[0] already; names must be unique",
+        ),
+        (
+            vec![b("a", None), Bone::new("b", 0.0, 0.0)],
+            [0.0, 0.0],
+            "bones[1] (\"b\").length: must be greater than 0, got 0",
+        ),
+        (vec![Bone::new("a", -1e300, 0.0)], [0.0, 0.0], "bones[0] (\"a\").length: must be greater than 0, got -1e300"),
+        (
+            vec![Bone::new("a", f64::INFINITY, 0.0)],
+            [0.0, 0.0],
+            "bones[0] (\"a\").length: must be a finite number, got inf",
+        ),
+        (
+            vec![b("pelvis", None), b("spine", Some("pelvs"))],
+            [0.0, 0.0],
+            "bones[1] (\"spine\").parent = \"pelvs\": no bone of that name",
+        ),
+        (
+            vec![b("a", Some("a"))],
+            [0.0, 0.0],
+            "bones[0] (\"a\").parent = \"a\": a cycle (a → a); a bone cannot be its own ancestor",
+        ),
+        // The root is fine; c → d → e → c is a cycle, and f hangs below it.
+        (
+            vec![b("r", None), b("f", Some("d")), b("c", Some("e")), b("d", Some("c")), b("e", Some("d"))],
+            [0.0, 0.0],
+            "bones[2] (\"c\").parent = \"e\": a cycle (c → e → d → c); a bone cannot be its own ancestor",
+        ),
+        (
+            vec![b("a", None), Bone::new("b", 1.0, f64::NAN).with_parent("a")],
+            [0.0, 0.0],
+            "bones[1] (\"b\").angle: must be a finite number, got NaN",
+        ),
+        (
+            vec![b("a", None), Bone::new("b", 1.0, 2.0).with_parent("a").with_limits(lim(-1.0, 1.0))],
+            [0.0, 0.0],
+            "bones[1] (\"b\").angle: 2 rad lies outside the limits [-1, 1] rad",
+        ),
+        // Each path is within the reach, but the longest is not.
+        (
+            vec![Bone::new("a", 1e152, 0.0), Bone::new("b", 1e152, 0.0), Bone::new("c", 1e140, 0.0).with_parent("a")],
+            [0.0, 0.0],
+            "bones: the longest path of lengths reaches 1.0000000000010001e152 from the origin, beyond 1e152",
+        ),
+        (
+            vec![Bone::new("a", 1e152, 0.0), Bone::new("b", 1e152, 0.0).with_parent("a")],
+            [0.0, 0.0],
+            "bones: the longest path of lengths reaches 2e152 from the origin, beyond 1e152, the largest reach",
+        ),
+        (vec![b("a", None)], [f64::MAX, f64::MAX], "bones: the longest path of lengths reaches inf"),
+    ];
+    for (bones, base, want) in cases {
+        let err = Skeleton::new(base, &bones).unwrap_err().to_string();
+        assert!(err.starts_with(want), "got {err:?}, want prefix {want:?}");
+    }
+}
+
+#[test]
+fn siblings_share_the_reach_of_the_longest() {
+    // Two branches of 1e152 each from the base: each path is 1e152, within the cap.
+    let s = Skeleton::new([0.0, 0.0], &[Bone::new("a", 1e152, 0.0), Bone::new("b", 1e152, 0.0)]).unwrap();
+    assert_eq!(s.max_reach(), 1e152);
+}
+
+#[test]
+fn angles_are_checked_against_the_skeleton() {
+    let s = Skeleton::new([0.0, 0.0], &figure()).unwrap();
+    assert!(s.check_angles(&[0.0; 6]).is_ok());
+    assert_eq!(s.check_angles(&[0.0; 5]), Err(SkeletonError::AnglesLength { expected: 6, got: 5 }));
+    let mut bad = [0.0; 6];
+    bad[2] = 0.6;
+    assert_eq!(
+        s.check_angles(&bad).unwrap_err().to_string(),
+        "bones[2] (\"spine\").angle: 0.6 rad lies outside the limits [-0.5, 0.5] rad"
+    );
+    assert!(s.check_angles_ignoring_limits(&bad).is_ok());
+    bad[3] = f64::INFINITY;
+    assert!(s.check_angles_ignoring_limits(&bad).is_err());
+}
