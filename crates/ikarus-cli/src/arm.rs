@@ -180,7 +180,7 @@ impl ArmFile {
 /// `limits_deg = [0, 45]` starts at 10°; none inside is reported as outside the limits);
 /// without limits, wrapped into (−180°, 180°] exactly (`angle_deg = 1e300` is a direction, not
 /// a number no step could change). See [`ikarus::angle::degrees_within`].
-fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
+pub(crate) fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
     if !angle_deg.is_finite() {
         return angle_deg;
     }
@@ -190,12 +190,12 @@ fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
     }
 }
 
-fn limits_problem(lo: f64, hi: f64) -> &'static str {
+pub(crate) fn limits_problem(lo: f64, hi: f64) -> &'static str {
     if !lo.is_finite() || !hi.is_finite() { "both ends must be finite numbers" } else { "min must not exceed max" }
 }
 
 /// One line for a TOML error: position and message, without the source excerpt.
-fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
+pub(crate) fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String {
     let msg = e.message().trim().replace('\n', " ");
     match e.span() {
         Some(span) => {

@@ -17,6 +17,7 @@ mod output;
 mod picture;
 mod render;
 mod report;
+mod rig;
 mod serve;
 mod settings;
 mod solve;

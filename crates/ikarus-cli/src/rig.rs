@@ -1,0 +1,380 @@
+//! Rig files (TOML): a skeleton in degrees, plus optional solver defaults.
+//!
+//! ```toml
+//! name = "puppet"
+//! base = [0.0, 0.0]              # optional
+//! [[bones]]
+//! name = "pelvis"
+//! length = 0.4
+//! angle_deg = 90.0
+//! [[bones]]
+//! name = "spine"
+//! parent = "pelvis"              # absent: starts at the base
+//! length = 1.0
+//! angle_deg = 0.0                # relative to the parent's direction (a root's to +x)
+//! limits_deg = [-30.0, 30.0]     # optional
+//! [solver]                       # optional, as in arm files; flags override it
+//! method = "dls"
+//! ```
+//!
+//! Bones are kept in the order written: a bone's index (in messages, in angles) is its place in
+//! the file, and a parent may come after its children. Every problem becomes one line naming
+//! the file, the bone (index and name), the field and the value, as arm files do.
+
+// Nothing reads rigs yet: the `--rig` commands (solve, animate, track, render, bench, the API)
+// come next in issue 12; until then only the tests use this module.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use ikarus::number::Num;
+use ikarus::{Bone, BoneField, JointLimits, Skeleton, SkeletonError};
+use serde::Deserialize;
+
+use crate::arm::{limits_problem, start_angle, toml_error};
+use crate::error::CliError;
+use crate::settings::SolverSettings;
+
+/// A rig as written in a file: names and units of the edge (degrees).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigFile {
+    /// A name for the rig, shown in outputs.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Base position, where every root bone starts; the origin when absent.
+    #[serde(default)]
+    pub base: Option<[f64; 2]>,
+    /// Bones, in any order that names existing parents.
+    #[serde(default)]
+    pub bones: Vec<BoneFile>,
+    /// Solver defaults: the `[solver]` table, which flags override (as in arm files).
+    #[serde(default)]
+    pub solver: SolverSettings,
+}
+
+/// One `[[bones]]` entry.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoneFile {
+    /// Name, unique in the rig.
+    pub name: String,
+    /// The parent's name; absent for a bone that starts at the base.
+    #[serde(default)]
+    pub parent: Option<String>,
+    /// Bone length.
+    pub length: f64,
+    /// Start angle, degrees, relative to the parent's direction (a root's to +x).
+    #[serde(default)]
+    pub angle_deg: f64,
+    /// Optional `[min, max]` range of the angle, degrees.
+    #[serde(default)]
+    pub limits_deg: Option<[f64; 2]>,
+}
+
+/// A loaded rig: the validated skeleton, its name, and the file's solver defaults.
+#[derive(Debug, Clone)]
+pub struct Rig {
+    pub name: String,
+    /// Where the rig came from, as error messages start (`rig file puppet.toml`).
+    pub label: String,
+    pub skeleton: Skeleton,
+    pub solver: SolverSettings,
+}
+
+impl Rig {
+    /// Loads the rig file `path` (a regular file within the input cap, as every input file).
+    pub fn load(path: &Path) -> Result<Self, CliError> {
+        let label = format!("rig file {}", path.display());
+        let text = crate::input::read_text(path, &label)?;
+        Self::parse(&text, &label)
+    }
+
+    /// Parses and validates rig-file text; `label` starts every error message.
+    pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
+        let file: RigFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
+        Self::from_file(file, label)
+    }
+
+    /// Validates a rig already read (from a file or a JSON request); `label` starts every
+    /// error message.
+    pub fn from_file(file: RigFile, label: &str) -> Result<Self, CliError> {
+        let skeleton = file.to_skeleton().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
+        file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
+        let name = file.name.clone().unwrap_or_else(|| "rig".to_owned());
+        Ok(Self { name, label: label.to_owned(), skeleton, solver: file.solver })
+    }
+}
+
+impl RigFile {
+    /// Builds the skeleton, describing any problem in the file's own names and numbers.
+    pub fn to_skeleton(&self) -> Result<Skeleton, String> {
+        let mut bones = Vec::with_capacity(self.bones.len());
+        for (i, b) in self.bones.iter().enumerate() {
+            let mut bone = Bone::new(b.name.clone(), b.length, start_angle(b.angle_deg, b.limits_deg).to_radians());
+            bone.parent.clone_from(&b.parent);
+            if let Some([lo, hi]) = b.limits_deg {
+                let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
+                    format!("{}.limits_deg = [{}, {}]: {}", self.bone(i), Num(lo), Num(hi), limits_problem(lo, hi))
+                })?;
+                bone = bone.with_limits(limits);
+            }
+            bones.push(bone);
+        }
+        Skeleton::new(self.base.unwrap_or([0.0, 0.0]), &bones).map_err(|e| self.describe(&e))
+    }
+
+    /// `bones[i] ("name")`, as every message about a bone starts.
+    fn bone(&self, i: usize) -> String {
+        format!("bones[{i}] ({:?})", self.bones[i].name)
+    }
+
+    fn describe(&self, e: &SkeletonError) -> String {
+        match e {
+            SkeletonError::Empty => "bones: a rig needs at least one [[bones]] entry, got none".to_owned(),
+            SkeletonError::NonFiniteBase { x, y } => {
+                format!("base = [{}, {}]: coordinates must be finite", Num(*x), Num(*y))
+            }
+            SkeletonError::EmptyName { index } => format!("bones[{index}].name = \"\": must not be empty"),
+            SkeletonError::DuplicateName { index, name, first } => {
+                format!(
+                    "{}.name = {name:?}: the name of bones[{first}] already; names must be unique",
+                    self.bone(*index)
+                )
+            }
+            SkeletonError::NonPositiveLength { index, value, .. } => {
+                format!("{}.length = {}: must be greater than 0", self.bone(*index), Num(*value))
+            }
+            SkeletonError::NonFinite { index, field: BoneField::Length, value, .. } => {
+                format!("{}.length = {}: must be a finite number", self.bone(*index), Num(*value))
+            }
+            SkeletonError::NonFinite { index, .. } => {
+                format!(
+                    "{}.angle_deg = {}: must be a finite number",
+                    self.bone(*index),
+                    Num(self.bones[*index].angle_deg)
+                )
+            }
+            SkeletonError::AngleOutsideLimits { index, .. } => {
+                let b = &self.bones[*index];
+                let [lo, hi] = b.limits_deg.unwrap_or([f64::NAN; 2]);
+                format!(
+                    "{}.angle_deg = {}: outside limits_deg [{}, {}]",
+                    self.bone(*index),
+                    Num(b.angle_deg),
+                    Num(lo),
+                    Num(hi)
+                )
+            }
+            // Already in the file's terms: `bones[i] ("name").parent = "p": …`, the reach.
+            _ => e.to_string(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ikarus::Point2;
+
+    fn err(text: &str) -> String {
+        match Rig::parse(text, "rig file r.toml") {
+            Ok(_) => panic!("accepted: {text}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    fn shipped(file: &str) -> Rig {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rigs").join(file);
+        Rig::load(&path).unwrap_or_else(|e| panic!("{file}: {e}"))
+    }
+
+    #[test]
+    fn the_issues_example_reads() {
+        let rig = Rig::parse(
+            "name = \"puppet\"\nbase = [0.0, 0.0]\n\
+             [[bones]]\nname = \"pelvis\"\nlength = 0.4\nangle_deg = 90.0\n\
+             [[bones]]\nname = \"spine\"\nparent = \"pelvis\"\nlength = 1.0\nangle_deg = 0.0\nlimits_deg = [-30.0, 30.0]\n\
+             [solver]\nmethod = \"dls\"\n",
+            "r",
+        )
+        .unwrap();
+        assert_eq!(rig.name, "puppet");
+        let s = &rig.skeleton;
+        assert_eq!(s.names(), &["pelvis", "spine"]);
+        assert_eq!(s.parents(), &[None, Some(0)]);
+        assert!((s.start_angles()[0] - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        let lim = s.limits()[1].unwrap();
+        assert!((lim.min() + 30f64.to_radians()).abs() < 1e-15 && (lim.max() - 30f64.to_radians()).abs() < 1e-15);
+        assert_eq!(rig.solver.method, Some(ikarus::Method::DampedLeastSquares));
+    }
+
+    #[test]
+    fn each_problem_is_one_line_naming_the_bone_field_and_value() {
+        let a = "[[bones]]\nname = \"a\"\nlength = 1\n";
+        let cases = [
+            // Duplicate names.
+            (
+                format!(
+                    "{a}[[bones]]\nname = \"neck\"\nparent = \"a\"\nlength = 1\n[[bones]]\nname = \"neck\"\nlength = 1\n"
+                ),
+                "rig file r.toml: bones[2] (\"neck\").name = \"neck\": the name of bones[1] already; names must be unique",
+            ),
+            (
+                format!("{a}[[bones]]\nname = \"\"\nlength = 1\n"),
+                "rig file r.toml: bones[1].name = \"\": must not be empty",
+            ),
+            // A missing parent.
+            (
+                format!("{a}[[bones]]\nname = \"spine\"\nparent = \"pelvs\"\nlength = 1\n"),
+                "rig file r.toml: bones[1] (\"spine\").parent = \"pelvs\": no bone of that name",
+            ),
+            // A cycle, and a bone its own parent.
+            (
+                format!(
+                    "{a}[[bones]]\nname = \"b\"\nparent = \"c\"\nlength = 1\n[[bones]]\nname = \"c\"\nparent = \"b\"\nlength = 1\n"
+                ),
+                "rig file r.toml: bones[1] (\"b\").parent = \"c\": a cycle (b → c → b); a bone cannot be its own ancestor",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nparent = \"a\"\nlength = 1\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").parent = \"a\": a cycle (a → a)",
+            ),
+            // Bad lengths.
+            (
+                format!("{a}[[bones]]\nname = \"b\"\nlength = -1\n"),
+                "rig file r.toml: bones[1] (\"b\").length = -1: must be greater than 0",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nlength = nan\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").length = NaN: must be a finite",
+            ),
+            ("[[bones]]\nname = \"a\"\n".to_owned(), "rig file r.toml: line 1, column 1: missing field `length`"),
+            ("[[bones]]\nlength = 1\n".to_owned(), "rig file r.toml: line 1, column 1: missing field `name`"),
+            // Angles outside their limits, malformed limits, a non-finite angle.
+            (
+                format!(
+                    "{a}[[bones]]\nname = \"neck\"\nparent = \"a\"\nlength = 1\nangle_deg = 50\nlimits_deg = [-45, 45]\n"
+                ),
+                "rig file r.toml: bones[1] (\"neck\").angle_deg = 50: outside limits_deg [-45, 45]",
+            ),
+            (
+                format!("{a}[[bones]]\nname = \"neck\"\nparent = \"a\"\nlength = 1\nlimits_deg = [45, -45]\n"),
+                "rig file r.toml: bones[1] (\"neck\").limits_deg = [45, -45]: min must not exceed max",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1\nangle_deg = inf\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").angle_deg = inf: must be a finite number",
+            ),
+            // Unknown keys, at the top, in a bone, in the solver table.
+            (
+                "[[bones]]\nname = \"a\"\nlenght = 1\n".to_owned(),
+                "rig file r.toml: line 3, column 1: unknown field `lenght`",
+            ),
+            (format!("{a}links = []\n"), "rig file r.toml: line 4, column 1: unknown field `links`"),
+            (format!("{a}[solver]\nspeed = 1\n"), "rig file r.toml: line 5, column 1: unknown field `speed`"),
+            (format!("{a}[solver]\nlambda = -1\n"), "rig file r.toml: [solver].lambda = -1: must be"),
+            // The rest of a rig.
+            ("name = \"x\"\n".to_owned(), "rig file r.toml: bones: a rig needs at least one [[bones]] entry, got none"),
+            (format!("base = [inf, 0]\n{a}"), "rig file r.toml: base = [inf, 0]: coordinates must be finite"),
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1e300\n".to_owned(),
+                "rig file r.toml: bones: the longest path of lengths reaches 1e300 from the origin, beyond 1e152",
+            ),
+            ("[[bones]\n".to_owned(), "rig file r.toml: line 1"),
+        ];
+        for (text, want) in cases {
+            let got = err(&text);
+            assert!(got.starts_with(want), "for {text:?}\n got {got:?}\nwant {want:?}");
+            assert!(!got.contains('\n'), "multi-line: {got:?}");
+        }
+    }
+
+    /// Start angles are normalised as in arm files: onto the turn inside the limits, or
+    /// wrapped without limits.
+    #[test]
+    fn start_angles_are_normalised() {
+        let rig = Rig::parse(
+            "[[bones]]\nname = \"a\"\nlength = 1\nangle_deg = 1e20\n\
+             [[bones]]\nname = \"b\"\nparent = \"a\"\nlength = 1\nangle_deg = 370\nlimits_deg = [0, 45]\n",
+            "r",
+        )
+        .unwrap();
+        let got: Vec<f64> = rig.skeleton.start_angles().iter().map(|a| a.to_degrees()).collect();
+        assert!((got[0] + 80.0).abs() < 1e-12 && (got[1] - 10.0).abs() < 1e-12, "{got:?}");
+    }
+
+    #[test]
+    fn a_missing_or_special_file_is_reported_plainly() {
+        let e = Rig::load(Path::new("/nonexistent/rig.toml")).unwrap_err().to_string();
+        assert_eq!(e, "rig file /nonexistent/rig.toml: cannot read: No such file or directory");
+        let e = Rig::load(Path::new("/dev/zero")).unwrap_err().to_string();
+        assert!(e.starts_with("rig file /dev/zero: cannot read: not a regular file"), "{e}");
+    }
+
+    #[test]
+    fn the_shipped_rigs_load() {
+        let puppet = shipped("puppet.toml");
+        assert_eq!(puppet.name, "puppet");
+        assert!(puppet.skeleton.len() >= 16, "{}", puppet.skeleton.len());
+        for name in [
+            "pelvis",
+            "spine",
+            "neck",
+            "head",
+            "left_upper_arm",
+            "left_forearm",
+            "left_hand",
+            "right_upper_arm",
+            "right_forearm",
+            "right_hand",
+            "left_thigh",
+            "left_shin",
+            "left_foot",
+            "right_thigh",
+            "right_shin",
+            "right_foot",
+        ] {
+            let i = puppet.skeleton.index_of(name).unwrap_or_else(|| panic!("no {name}"));
+            assert!(puppet.skeleton.limits()[i].is_some(), "{name} has no limits");
+        }
+        let hand = shipped("hand.toml");
+        let s = &hand.skeleton;
+        assert_eq!(s.len(), 16);
+        let palm = s.index_of("palm").unwrap();
+        // Five fingers of three bones each: five tips, each three bones below the palm or the base.
+        let tips: Vec<usize> = (0..s.len()).filter(|&i| s.children(i).len() == 0).collect();
+        assert_eq!(tips.len(), 5, "{:?}", tips.iter().map(|&i| s.name(i)).collect::<Vec<_>>());
+        for &t in &tips {
+            let path = s.path(t);
+            let finger: Vec<usize> = path.iter().copied().filter(|&b| b != palm).collect();
+            assert_eq!(finger.len(), 3, "{}", s.name(t));
+            // Flexion mostly one way: every finger joint bends further one way than the other.
+            for &b in &finger[1..] {
+                let lim = s.limits()[b].unwrap_or_else(|| panic!("{} has no limits", s.name(b)));
+                assert!(lim.min().abs() > 2.0 * lim.max().abs(), "{}: {lim:?}", s.name(b));
+            }
+        }
+    }
+
+    #[test]
+    fn the_puppet_stands_upright() {
+        let rig = shipped("puppet.toml");
+        let s = &rig.skeleton;
+        let n = s.len();
+        let (mut starts, mut tips, mut dirs) = (vec![Point2::origin(); n], vec![Point2::origin(); n], vec![0.0; n]);
+        s.forward_into(s.start_angles(), &mut starts, &mut tips, &mut dirs);
+        let at = |name: &str| tips[s.index_of(name).unwrap()];
+        let (pelvis, head) = (at("pelvis"), at("head"));
+        assert!(head.y > pelvis.y + 0.5, "head {head:?}, pelvis {pelvis:?}");
+        for foot in ["left_foot", "right_foot"] {
+            assert!(at(foot).y < s.base().y - 0.7, "{foot} at {:?}", at(foot));
+        }
+        for hand in ["left_hand", "right_hand"] {
+            assert!(at(hand).y < pelvis.y && at(hand).y > at("left_foot").y, "{hand} at {:?}", at(hand));
+        }
+        // About 1.8 tall, from the soles to the top of the head.
+        let height = head.y - at("left_foot").y.min(at("right_foot").y);
+        assert!((1.7..=1.9).contains(&height), "height {height}");
+    }
+}
