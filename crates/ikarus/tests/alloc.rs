@@ -200,3 +200,32 @@ fn limit_modes_and_restarts_allocate_nothing() {
     }
     assert!(restarted > 10, "only {restarted} solves restarted");
 }
+
+/// Issue 12: a skeleton's forward kinematics and stacked Jacobian, into buffers of the right
+/// shape, allocate nothing (the solver's iterations will call both).
+#[test]
+fn skeleton_kinematics_allocate_nothing() {
+    use ikarus::{Bone, Effector, Point2, Skeleton};
+    let bones = [
+        Bone::new("pelvis", 0.2, 1.5),
+        Bone::new("spine", 0.5, 0.1).with_parent("pelvis"),
+        Bone::new("arm", 0.6, -2.5).with_parent("spine"),
+        Bone::new("hand", 0.2, 0.3).with_parent("arm"),
+        Bone::new("leg", 0.9, -1.5),
+        Bone::new("foot", 0.2, 1.5).with_parent("leg"),
+    ];
+    let s = Skeleton::new([0.0, 0.0], &bones).unwrap();
+    let n = s.len();
+    let (mut starts, mut tips, mut dirs) = (vec![Point2::origin(); n], vec![Point2::origin(); n], vec![0.0; n]);
+    let effectors = [Effector::with_orientation(3), Effector::position(5)];
+    let mut j = nalgebra::DMatrix::zeros(5, n);
+    let angles = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+    let (count, ()) = allocations_in(|| {
+        for _ in 0..100 {
+            s.forward_into(&angles, &mut starts, &mut tips, &mut dirs);
+            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+        }
+    });
+    assert_eq!(count, 0, "{count} allocations");
+    assert!(j[(0, 0)] != 0.0 && j[(3, 4)] != 0.0 && j[(3, 0)] == 0.0);
+}
