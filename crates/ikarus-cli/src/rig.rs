@@ -17,7 +17,9 @@
 //! method = "dls"
 //! ```
 //!
-//! Bones are kept in the order written: a bone's index (in messages, in angles) is its place in
+//! A bone's name is unique and holds no whitespace, control characters, commas, `=` or quotes
+//! (it is written in `--goal NAME=X,Y` and in CSV headers `NAME.x`). Bones are kept in the
+//! order written: a bone's index (in messages, in angles) is its place in
 //! the file, and a parent may come after its children. Every problem becomes one line naming
 //! the file, the bone (index and name), the field and the value, as arm files do.
 
@@ -111,6 +113,14 @@ impl RigFile {
     pub fn to_skeleton(&self) -> Result<Skeleton, String> {
         let mut bones = Vec::with_capacity(self.bones.len());
         for (i, b) in self.bones.iter().enumerate() {
+            if let Some(c) = b.name.chars().find(|&c| !name_char(c)) {
+                return Err(format!(
+                    "{}.name = {:?}: must not contain {c:?} (no spaces, control characters, commas, '=' or quotes: \
+                     names are written in --goal NAME=X,Y and in CSV headers NAME.x)",
+                    self.bone(i),
+                    b.name
+                ));
+            }
             let mut bone = Bone::new(b.name.clone(), b.length, start_angle(b.angle_deg, b.limits_deg).to_radians());
             bone.parent.clone_from(&b.parent);
             if let Some([lo, hi]) = b.limits_deg {
@@ -172,6 +182,13 @@ impl RigFile {
     }
 }
 
+/// Whether `c` may appear in a bone's name: a name goes into `--goal NAME=X,Y`, into CSV
+/// headers `NAME.x` (split at the last `.`) and into JSON keys, so it holds no whitespace or
+/// control characters, commas, `=` or quotes.
+fn name_char(c: char) -> bool {
+    !(c.is_whitespace() || c.is_control() || matches!(c, ',' | '=' | '"' | '\''))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,6 +240,19 @@ mod tests {
             (
                 format!("{a}[[bones]]\nname = \"\"\nlength = 1\n"),
                 "rig file r.toml: bones[1].name = \"\": must not be empty",
+            ),
+            // Names that --goal NAME=X,Y or a CSV header could not carry.
+            (
+                format!("{a}[[bones]]\nname = \"left hand\"\nlength = 1\n"),
+                "rig file r.toml: bones[1] (\"left hand\").name = \"left hand\": must not contain ' ' (no spaces",
+            ),
+            (
+                format!("{a}[[bones]]\nname = \"a=b\"\nlength = 1\n"),
+                "rig file r.toml: bones[1] (\"a=b\").name = \"a=b\": must not contain '='",
+            ),
+            (
+                format!("{a}[[bones]]\nname = \"x,y\"\nlength = 1\n"),
+                "rig file r.toml: bones[1] (\"x,y\").name = \"x,y\": must not contain ','",
             ),
             // A missing parent.
             (
@@ -288,6 +318,13 @@ mod tests {
             assert!(got.starts_with(want), "for {text:?}\n got {got:?}\nwant {want:?}");
             assert!(!got.contains('\n'), "multi-line: {got:?}");
         }
+    }
+
+    /// Names may hold any other character: letters of any script, digits, `.`, `-`, `_`.
+    #[test]
+    fn names_beyond_ascii_and_with_dots_are_fine() {
+        let rig = Rig::parse("[[bones]]\nname = \"Hüfte.links-1_a\"\nlength = 1\n", "r").unwrap();
+        assert_eq!(rig.skeleton.names(), &["Hüfte.links-1_a"]);
     }
 
     /// Start angles are normalised as in arm files: onto the turn inside the limits, or
