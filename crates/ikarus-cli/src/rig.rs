@@ -377,14 +377,16 @@ mod tests {
         }
         let hand = shipped("hand.toml");
         let s = &hand.skeleton;
-        assert_eq!(s.len(), 16);
-        let palm = s.index_of("palm").unwrap();
-        // Five fingers of three bones each: five tips, each three bones below the palm or the base.
+        assert_eq!(s.len(), 17);
+        let (wrist, palm) = (s.index_of("wrist").unwrap(), s.index_of("palm").unwrap());
+        assert_eq!((s.parent(wrist), s.parent(palm)), (None, Some(wrist)));
+        // Five fingers of three bones each: five tips, each three bones below the palm or the
+        // wrist (the thumb).
         let tips: Vec<usize> = (0..s.len()).filter(|&i| s.children(i).len() == 0).collect();
         assert_eq!(tips.len(), 5, "{:?}", tips.iter().map(|&i| s.name(i)).collect::<Vec<_>>());
         for &t in &tips {
             let path = s.path(t);
-            let finger: Vec<usize> = path.iter().copied().filter(|&b| b != palm).collect();
+            let finger: Vec<usize> = path.iter().copied().filter(|&b| b != palm && b != wrist).collect();
             assert_eq!(finger.len(), 3, "{}", s.name(t));
             // Flexion mostly one way: every finger joint bends further one way than the other.
             for &b in &finger[1..] {
