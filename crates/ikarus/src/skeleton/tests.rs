@@ -67,6 +67,9 @@ fn a_chain_becomes_one_branch() {
         (chain.base(), chain.lengths(), chain.limits(), chain.start_pose().angles())
     );
     assert_eq!(s.max_reach(), chain.max_reach());
+    // A chain at the largest reach is a skeleton too (the same sum, the same check).
+    let widest = Chain::new([0.0, 0.0], &[Link::new(5e151, 0.0), Link::new(5e151, 0.0)]).unwrap();
+    assert_eq!(Skeleton::from_chain(&widest).max_reach(), MAX_REACH);
 }
 
 #[test]
