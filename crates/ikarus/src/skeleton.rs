@@ -131,10 +131,9 @@ impl Skeleton {
                 return Err(SkeletonError::DuplicateName { index: i, name: bone.name.clone(), first });
             }
             index.insert(bone.name.clone(), i);
-            let named = |field| (i, bone.name.clone(), field);
             if !bone.length.is_finite() {
-                let (index, name, field) = named(BoneField::Length);
-                return Err(SkeletonError::NonFinite { index, name, field, value: bone.length });
+                let (name, field, value) = (bone.name.clone(), BoneField::Length, bone.length);
+                return Err(SkeletonError::NonFinite { index: i, name, field, value });
             }
             if bone.length <= 0.0 {
                 return Err(SkeletonError::NonPositiveLength { index: i, name: bone.name.clone(), value: bone.length });

@@ -61,7 +61,9 @@ pub(super) fn cycle_error(bones: &[Bone], parents: &[Option<usize>], reached: &[
     let first = (0..n).find(|&i| missed[i] && on_cycle(i)).expect("ikarus: a missed bone lies below a cycle");
     let mut cycle = vec![bones[first].name.clone()];
     let mut j = first;
-    while let Some(p) = parents[j] {
+    // Back to `first` within `n` steps, since it lies on the cycle.
+    for _ in 0..n {
+        let Some(p) = parents[j] else { break };
         cycle.push(bones[p].name.clone());
         if p == first {
             break;
