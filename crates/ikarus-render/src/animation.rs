@@ -139,13 +139,8 @@ impl<'a> Painter<'a> {
         width: u32,
         height: u32,
     ) -> Result<Self, RenderError> {
-        let scene = Scene {
-            chain,
-            view: View::new(chain, overlay.goal, width, height),
-            goal: overlay.goal,
-            workspace: overlay.workspace,
-            show_reach: overlay.show_reach,
-        };
+        let view = View::new(chain, overlay.goal, width, height);
+        let scene = Scene::of_chain(chain, view, overlay.goal, overlay.workspace, overlay.show_reach);
         let mut background_svg = Svg::new(width, height);
         scene.background(&mut background_svg);
         let mut background = new_pixmap(width, height)?;

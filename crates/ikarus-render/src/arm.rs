@@ -7,7 +7,7 @@ use crate::RenderError;
 use crate::error::{check_finite, check_point};
 use crate::path::PathLayer;
 use crate::raster::{check_size, svg_to_png};
-use crate::scene::Scene;
+use crate::scene::{Scene, chain_wedges};
 use crate::svg::Svg;
 use crate::view::View;
 use ikarus::motion::Animation;
@@ -132,19 +132,14 @@ pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, Re
         layer.check("path")?;
     }
 
-    let scene = Scene {
-        chain: figure.chain,
-        view: figure.view(width, height),
-        goal: figure.goal,
-        workspace: figure.workspace,
-        show_reach: figure.show_reach,
-    };
+    let scene =
+        Scene::of_chain(figure.chain, figure.view(width, height), figure.goal, figure.workspace, figure.show_reach);
     let mut svg = Svg::new(width, height);
     scene.background(&mut svg);
 
     let pose = joint_positions(figure.chain, figure.pose);
     if figure.ranges {
-        scene.ranges(&mut svg, &pose, figure.pose);
+        scene.ranges(&mut svg, &chain_wedges(figure.chain, &pose, figure.pose));
     }
     let ghosts: Vec<Vec<Point2<f64>>> = figure.ghosts.iter().map(|g| joint_positions(figure.chain, g)).collect();
     let n = ghosts.len();

@@ -1,23 +1,72 @@
 //! The layers of an arm picture, shared by still figures and animation frames: background
 //! (grid, workspace, reach circles, ticks), ghosts, joint paths, the arm, the goal, the caption.
 
-use ikarus::{Chain, Point2};
+use ikarus::{Chain, JointLimits, Point2};
 
 use crate::style;
 use crate::svg::{PathData, Svg, num};
 use crate::view::{View, nice_step, tick_label, ticks};
 use ikarus::reach::Workspace;
 
-/// What every picture of one arm shares.
+/// What every picture of one arm or skeleton shares.
 pub(crate) struct Scene<'a> {
-    pub chain: &'a Chain,
+    /// Where the arm's or skeleton's roots start.
+    pub base: Point2<f64>,
+    /// The farthest any tip can be from the base.
+    pub max_reach: f64,
+    /// The nearest the tip can come to the base (0 for a skeleton: no inner circle).
+    pub min_reach: f64,
     pub view: View,
     pub goal: Option<Point2<f64>>,
     pub workspace: Option<&'a Workspace>,
     pub show_reach: bool,
 }
 
+/// One joint's range drawn as a wedge: at `at`, from `heading + limits.min()` to
+/// `heading + limits.max()` (world angles), its radius scaled from `length`, the joint's link.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Wedge {
+    pub at: Point2<f64>,
+    pub heading: f64,
+    pub limits: JointLimits,
+    pub length: f64,
+}
+
+/// The wedges of a chain's limited joints at a pose: `joints` are the pose's joint positions
+/// (base first), `pose` its angles; joint i's heading is the sum of the angles before it.
+pub(crate) fn chain_wedges(chain: &Chain, joints: &[Point2<f64>], pose: &[f64]) -> Vec<Wedge> {
+    let lengths = chain.lengths();
+    let mut heading = 0.0;
+    let mut out = Vec::new();
+    for (i, limits) in chain.limits().iter().enumerate() {
+        if let (Some(l), Some(&at)) = (limits, joints.get(i)) {
+            out.push(Wedge { at, heading, limits: *l, length: lengths.get(i).copied().unwrap_or(0.0) });
+        }
+        heading += pose.get(i).copied().unwrap_or(0.0);
+    }
+    out
+}
+
 impl Scene<'_> {
+    /// The layers shared by every picture of `chain`, in `view`.
+    pub(crate) fn of_chain<'w>(
+        chain: &Chain,
+        view: View,
+        goal: Option<Point2<f64>>,
+        workspace: Option<&'w Workspace>,
+        show_reach: bool,
+    ) -> Scene<'w> {
+        Scene {
+            base: chain.base(),
+            max_reach: chain.max_reach(),
+            min_reach: chain.min_reach(),
+            view,
+            goal,
+            workspace,
+            show_reach,
+        }
+    }
+
     fn px(&self, p: Point2<f64>) -> (f64, f64) {
         self.view.world_to_pixel(p)
     }
@@ -129,27 +178,21 @@ impl Scene<'_> {
         );
     }
 
-    /// Each limited joint's range as a wedge at the joint: from the previous link's direction
-    /// (the sum of the angles before it in `pose`) turned by the minimum to the maximum. `joints`
-    /// are the pose's joint positions, base first.
-    pub(crate) fn ranges(&self, svg: &mut Svg, joints: &[Point2<f64>], pose: &[f64]) {
+    /// Each limited joint's range as a wedge at the joint, from the direction of the link
+    /// before it turned by the minimum to the maximum ([`chain_wedges`] for an arm).
+    pub(crate) fn ranges(&self, svg: &mut Svg, wedges: &[Wedge]) {
         let u = self.u();
         let scale = self.view.scale();
-        let lengths = self.chain.lengths();
-        let mut heading = 0.0;
         let mut d = PathData::new();
-        for (i, limits) in self.chain.limits().iter().enumerate() {
-            if let (Some(l), Some(&joint)) = (limits, joints.get(i)) {
-                let r = (lengths.get(i).copied().unwrap_or(0.0) * scale * 0.4).clamp(14.0 * u, 46.0 * u);
-                let (cx, cy) = self.px(joint);
-                let (lo, hi) = (heading + l.min(), heading + l.max());
-                // World angles turn counter-clockwise; pixels have y down.
-                let at = |a: f64| (cx + r * a.cos(), cy - r * a.sin());
-                let ((x0, y0), (x1, y1)) = (at(lo), at(hi));
-                d.move_to(cx, cy).line_to(x0, y0);
-                d.arc_to(r, hi - lo > std::f64::consts::PI, false, x1, y1).close();
-            }
-            heading += pose.get(i).copied().unwrap_or(0.0);
+        for w in wedges {
+            let r = (w.length * scale * 0.4).clamp(14.0 * u, 46.0 * u);
+            let (cx, cy) = self.px(w.at);
+            let (lo, hi) = (w.heading + w.limits.min(), w.heading + w.limits.max());
+            // World angles turn counter-clockwise; pixels have y down.
+            let at = |a: f64| (cx + r * a.cos(), cy - r * a.sin());
+            let ((x0, y0), (x1, y1)) = (at(lo), at(hi));
+            d.move_to(cx, cy).line_to(x0, y0);
+            d.arc_to(r, hi - lo > std::f64::consts::PI, false, x1, y1).close();
         }
         if d.is_empty() {
             return;
@@ -168,16 +211,16 @@ impl Scene<'_> {
 
     fn reach_circles(&self, svg: &mut Svg) {
         let u = self.u();
-        let (cx, cy) = self.px(self.chain.base());
+        let (cx, cy) = self.px(self.base);
         let s = self.view.scale();
         svg.comment("reach");
         svg.circle(
             cx,
             cy,
-            self.chain.max_reach() * s,
+            self.max_reach * s,
             &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::REACH, num(1.6 * u)),
         );
-        let inner = self.chain.min_reach();
+        let inner = self.min_reach;
         if inner > 0.0 {
             svg.circle(
                 cx,
@@ -271,10 +314,25 @@ impl Scene<'_> {
     /// The arm: mount, links as thick round-capped strokes on a white halo, joints as rings,
     /// the tip as a filled dot.
     pub(crate) fn arm(&self, svg: &mut Svg, joints: &[Point2<f64>]) {
-        let u = self.u();
-        let (bx, by) = self.px(joints[0]);
         svg.comment("arm");
-        // The mount: a small trapezoid standing on a hatched ground line.
+        self.mount(svg, joints[0]);
+        let links = polyline(self, joints);
+        self.link_halo(svg, &links);
+        self.link_ink(svg, &links, "");
+        let last = joints.len() - 1;
+        for (i, &p) in joints.iter().enumerate() {
+            if i == last {
+                self.tip_dot(svg, p);
+            } else {
+                self.joint_ring(svg, p);
+            }
+        }
+    }
+
+    /// The mount at `base`: a small trapezoid standing on a hatched ground line.
+    pub(crate) fn mount(&self, svg: &mut Svg, base: Point2<f64>) {
+        let u = self.u();
+        let (bx, by) = self.px(base);
         let (hw, h) = (11.0 * u, 13.0 * u);
         let mut mount = PathData::new();
         mount
@@ -310,36 +368,53 @@ impl Scene<'_> {
             &hatch,
             &format!("stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"", style::INK, num(0.9 * u)),
         );
+    }
 
-        let links = polyline(self, joints);
-        let round = "fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
-        svg.path(&links, &format!("{round} stroke=\"#ffffff\" stroke-width=\"{}\"", num(11.0 * u)));
-        svg.path(&links, &format!("{round} stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(6.5 * u)));
-        let last = joints.len() - 1;
-        for (i, &p) in joints.iter().enumerate() {
-            let (x, y) = self.px(p);
-            if i == last {
-                svg.circle(
-                    x,
-                    y,
-                    4.6 * u,
-                    &format!("fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"{}\"", style::INK, num(1.6 * u)),
-                );
-            } else {
-                svg.circle(
-                    x,
-                    y,
-                    4.6 * u,
-                    &format!("fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(2.2 * u)),
-                );
-            }
+    /// The white halo under links (`d`, in pixels), so that crossing links stay apart.
+    pub(crate) fn link_halo(&self, svg: &mut Svg, d: &PathData) {
+        svg.path(d, &format!("{ROUND} stroke=\"#ffffff\" stroke-width=\"{}\"", num(11.0 * self.u())));
+    }
+
+    /// Links (`d`, in pixels) as thick ink strokes; `extra` adds attributes (an id).
+    pub(crate) fn link_ink(&self, svg: &mut Svg, d: &PathData, extra: &str) {
+        let sep = if extra.is_empty() { "" } else { " " };
+        svg.path(d, &format!("{ROUND} stroke=\"{}\" stroke-width=\"{}\"{sep}{extra}", style::INK, num(6.5 * self.u())));
+    }
+
+    /// A joint: a white ring with an ink border.
+    pub(crate) fn joint_ring(&self, svg: &mut Svg, p: Point2<f64>) {
+        let u = self.u();
+        let (x, y) = self.px(p);
+        svg.circle(
+            x,
+            y,
+            4.6 * u,
+            &format!("fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(2.2 * u)),
+        );
+    }
+
+    /// A tip: a filled ink dot with a white border.
+    pub(crate) fn tip_dot(&self, svg: &mut Svg, p: Point2<f64>) {
+        let u = self.u();
+        let (x, y) = self.px(p);
+        svg.circle(
+            x,
+            y,
+            4.6 * u,
+            &format!("fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"{}\"", style::INK, num(1.6 * u)),
+        );
+    }
+
+    /// The goal, if any: see [`Scene::goal_at`].
+    pub(crate) fn goal(&self, svg: &mut Svg) {
+        if let Some(goal) = self.goal {
+            self.goal_at(svg, goal);
         }
     }
 
-    /// The goal: a red ring with a red centre on a white halo; an arrow on the plot's edge if
-    /// it lies outside the view.
-    pub(crate) fn goal(&self, svg: &mut Svg) {
-        let Some(goal) = self.goal else { return };
+    /// A goal at `goal`: a red ring with a red centre on a white halo; an arrow on the plot's
+    /// edge if it lies outside the view. Returns whether it was drawn inside the plot.
+    pub(crate) fn goal_at(&self, svg: &mut Svg, goal: Point2<f64>) -> bool {
         let u = self.u();
         let plot = self.view.plot_area();
         let (x, y) = self.px(goal);
@@ -358,7 +433,7 @@ impl Scene<'_> {
                 &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::GOAL, num(2.4 * u)),
             );
             svg.circle(x, y, 4.2 * u, &format!("fill=\"{}\"", style::GOAL));
-            return;
+            return true;
         }
         // Outside: walk from the plot's centre towards the goal until 16 px inside the edge.
         let (cx, cy) = (0.5 * (plot.left + plot.right), 0.5 * (plot.top + plot.bottom));
@@ -397,6 +472,7 @@ impl Scene<'_> {
                 style::GOAL
             ),
         );
+        false
     }
 
     /// The caption centred below the plot, and an optional note (a clock) in the plot's top
@@ -418,6 +494,9 @@ impl Scene<'_> {
         }
     }
 }
+
+/// The stroke attributes of links and bones.
+const ROUND: &str = "fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
 
 /// The joints as one open polyline in pixels.
 fn polyline(scene: &Scene, joints: &[Point2<f64>]) -> PathData {

@@ -105,11 +105,21 @@ impl View {
     /// Sizes are not validated here; the rendering functions check them.
     #[must_use]
     pub fn new(chain: &Chain, goal: Option<Point2<f64>>, width: u32, height: u32) -> Self {
+        Self::around(chain.base(), chain.max_reach(), goal, width, height)
+    }
+
+    /// The view centred on `base` that fits `base ± 1.12 · reach` and the farthest of `goals`
+    /// (up to three reaches), as [`View::new`] does for a chain; a skeleton's view.
+    pub(crate) fn around(
+        base: Point2<f64>,
+        reach: f64,
+        goals: impl IntoIterator<Item = Point2<f64>>,
+        width: u32,
+        height: u32,
+    ) -> Self {
         let layout = Layout::new(width, height, 0.0);
-        let base = chain.base();
-        let reach = chain.max_reach();
         let mut half = VIEW_PADDING * reach;
-        if let Some(g) = goal.filter(|g| g.x.is_finite() && g.y.is_finite()) {
+        for g in goals.into_iter().filter(|g| g.x.is_finite() && g.y.is_finite()) {
             let d = (g - base).norm();
             half = half.max((1.08 * d).min(MAX_GOAL_ZOOM_OUT * reach));
         }
