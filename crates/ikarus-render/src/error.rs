@@ -34,14 +34,24 @@ pub enum RenderError {
     },
     /// A pose has a different number of angles (or a frame a different number of joint
     /// positions) than the chain needs.
-    #[error("{field}: expected {expected} values for this chain, got {got}")]
+    #[error("{field}: expected {expected} values for this arm or skeleton, got {got}")]
     Length {
         /// Which list, e.g. `pose`, `ghosts[3]`, `animation.frames[0].joints`.
         field: String,
-        /// How many the chain needs.
+        /// How many the arm or skeleton needs.
         expected: usize,
         /// How many were given.
         got: usize,
+    },
+    /// A goal or pin names a bone the skeleton does not have.
+    #[error("{field}: no bone {index} in a skeleton of {bones} bones")]
+    UnknownBone {
+        /// Which entry, e.g. `goals[1].bone`, `pins[0]`.
+        field: String,
+        /// The offending bone index.
+        index: usize,
+        /// How many bones the skeleton has.
+        bones: usize,
     },
     /// An animation without frames.
     #[error("animation.frames: an animation needs at least one frame, got none")]

@@ -1,4 +1,4 @@
-//! Pictures of planar arms: SVG, PNG and animated GIF of poses, motions, workspaces and ease
+//! Pictures of planar arms and skeletons: SVG, PNG and animated GIF of poses, motions, workspaces and ease
 //! curves.
 //!
 //! Every picture is first an SVG document written by this crate (the SVG is the master); PNG
@@ -8,6 +8,8 @@
 //! - [`arm_svg`] / [`arm_png`]: an [`ArmFigure`] — the arm at a pose over a grid, with the
 //!   reach circle, the shaded workspace, ghosts of earlier poses, the paths of the joints, the
 //!   goal and a caption. [`ArmFigure::of_animation`] overlays a whole motion.
+//! - [`skeleton_svg`] / [`skeleton_png`]: a [`SkeletonFigure`] — a skeleton (a tree of bones)
+//!   at a pose, with the limits as wedges, goals for bone tips ([`BoneGoal`]), pins and names.
 //! - [`animation_gif`]: an animation as a looping GIF, one frame per animation frame.
 //! - [`ease_svg`] / [`ease_png`]: an ease curve's position and velocity against time.
 //! - [`PathLayer`]: a tracked path over either (the wanted path, the tip's trace, flips).
@@ -24,6 +26,7 @@ mod palette;
 mod path;
 mod raster;
 mod scene;
+mod skeleton;
 mod style;
 mod svg;
 mod view;
@@ -34,5 +37,6 @@ pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use style::{COLOURS, Colours};
 pub use view::{PixelRect, VIEW_PADDING, View};

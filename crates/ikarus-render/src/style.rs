@@ -26,6 +26,8 @@ pub(crate) const INK: &str = "#26324a";
 pub(crate) const MOUNT: &str = "#cdd5e0";
 /// The goal: a clear red (the tests look for it).
 pub(crate) const GOAL: &str = "#d62728";
+/// A pinned effector (held where it is): a filled square.
+pub(crate) const PIN: &str = "#2b6cb0";
 /// Paths of the joints between base and tip, cycled.
 pub(crate) const JOINT_HUES: [&str; 5] = ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"];
 /// Path of the tip.

@@ -206,7 +206,7 @@ fn bad_input_is_an_error_naming_the_field() {
     let chain = seed_arm();
     let pose = [0.0, 0.0];
     let e = arm_svg(&ArmFigure::new(&chain, &pose), 100, 100).unwrap_err();
-    assert_eq!(e.to_string(), "pose: expected 3 values for this chain, got 2");
+    assert_eq!(e.to_string(), "pose: expected 3 values for this arm or skeleton, got 2");
     let pose = [0.0, 0.0, 0.0];
     assert!(matches!(arm_svg(&ArmFigure::new(&chain, &pose), 8, 100), Err(RenderError::Size { field: "width", .. })));
     let nan_goal = ArmFigure { goal: Some(Point2::new(f64::NAN, 0.0)), ..ArmFigure::new(&chain, &pose) };

@@ -1,0 +1,549 @@
+//! Still pictures of a skeleton: its bones at a pose, joints, base, limit wedges, effector
+//! goals, pins and bone names, drawn with the same layers as an arm.
+
+use ikarus::{Point2, Skeleton};
+
+use crate::RenderError;
+use crate::error::{check_finite, check_point};
+use crate::raster::{check_size, svg_to_png};
+use crate::scene::{Scene, Wedge};
+use crate::style;
+use crate::svg::{PathData, Svg, num};
+use crate::view::{PixelRect, View};
+
+/// A goal for the tip of one bone: a position and optionally a direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoneGoal {
+    /// Index of the bone whose tip should reach the goal, in the skeleton's order.
+    pub bone: usize,
+    /// Where the tip should be.
+    pub position: Point2<f64>,
+    /// The direction the bone should point at its tip, radians from +x (counter-clockwise),
+    /// if the goal has one: drawn as an arrow from the goal.
+    pub angle: Option<f64>,
+}
+
+impl BoneGoal {
+    /// A position goal for the tip of bone `bone`.
+    #[must_use]
+    pub fn at(bone: usize, position: Point2<f64>) -> Self {
+        Self { bone, position, angle: None }
+    }
+
+    /// The same goal with a direction, radians from +x.
+    #[must_use]
+    pub fn with_angle(mut self, angle: f64) -> Self {
+        self.angle = Some(angle);
+        self
+    }
+}
+
+/// What a still picture of a skeleton shows. Build one with [`SkeletonFigure::new`] and adjust
+/// the fields:
+///
+/// ```
+/// # use ikarus::{Bone, Point2, Skeleton};
+/// # use ikarus_render::{BoneGoal, SkeletonFigure, skeleton_svg};
+/// let skeleton = Skeleton::new(
+///     [0.0, 0.0],
+///     &[
+///         Bone::new("trunk", 1.0, 1.5),
+///         Bone::new("left", 0.8, 0.9).with_parent("trunk"),
+///         Bone::new("right", 0.8, -0.9).with_parent("trunk"),
+///     ],
+/// )?;
+/// let figure = SkeletonFigure {
+///     goals: vec![BoneGoal::at(1, Point2::new(-0.5, 1.2))],
+///     pins: vec![2],
+///     labels: true,
+///     caption: Some("a fork".into()),
+///     ..SkeletonFigure::new(&skeleton, skeleton.start_angles())
+/// };
+/// let svg = skeleton_svg(&figure, 600, 600)?;
+/// assert!(svg.starts_with("<svg"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct SkeletonFigure<'a> {
+    /// The skeleton drawn.
+    pub skeleton: &'a Skeleton,
+    /// Its angles, radians, one per bone in the skeleton's order (as
+    /// [`Skeleton::forward_into`] takes them).
+    pub pose: &'a [f64],
+    /// Goals for bone tips: red targets (an arrow shows a goal's direction, a dashed red line
+    /// joins it to its bone's tip).
+    pub goals: Vec<BoneGoal>,
+    /// Bones whose tips are pinned (held where they are): a blue square on each tip.
+    pub pins: Vec<usize>,
+    /// Whether to draw each limited bone's range as a wedge at its joint (from the parent's
+    /// direction — +x for a root — turned by the minimum to the maximum), as the arm figure does.
+    pub ranges: bool,
+    /// Whether to write each bone's name beside it.
+    pub labels: bool,
+    /// Whether to draw the maximum-reach circle around the base (off by default: the reach of
+    /// a whole rig says little).
+    pub show_reach: bool,
+    /// A line of text under the plot.
+    pub caption: Option<String>,
+}
+
+impl<'a> SkeletonFigure<'a> {
+    /// The skeleton at `pose` and nothing else.
+    #[must_use]
+    pub fn new(skeleton: &'a Skeleton, pose: &'a [f64]) -> Self {
+        Self {
+            skeleton,
+            pose,
+            goals: Vec::new(),
+            pins: Vec::new(),
+            ranges: false,
+            labels: false,
+            show_reach: false,
+            caption: None,
+        }
+    }
+
+    /// The view this figure is drawn in at `width` × `height`: centred on the base, fitting
+    /// `base ± 1.12 · max_reach` and the farthest goal (up to three reaches), as an arm's.
+    #[must_use]
+    pub fn view(&self, width: u32, height: u32) -> View {
+        View::around(
+            self.skeleton.base(),
+            self.skeleton.max_reach(),
+            self.goals.iter().map(|g| g.position),
+            width,
+            height,
+        )
+    }
+
+    fn check(&self) -> Result<(), RenderError> {
+        let n = self.skeleton.len();
+        if self.pose.len() != n {
+            return Err(RenderError::Length { field: "pose".into(), expected: n, got: self.pose.len() });
+        }
+        check_finite(self.pose.iter().copied(), "pose")?;
+        let bone = |field: String, index: usize| {
+            if index < n { Ok(()) } else { Err(RenderError::UnknownBone { field, index, bones: n }) }
+        };
+        for (i, g) in self.goals.iter().enumerate() {
+            bone(format!("goals[{i}].bone"), g.bone)?;
+            check_point(Some(g.position), &format!("goals[{i}].position"))?;
+            if let Some(a) = g.angle.filter(|a| !a.is_finite()) {
+                return Err(RenderError::NonFinite { field: format!("goals[{i}].angle"), value: a });
+            }
+        }
+        for (i, &p) in self.pins.iter().enumerate() {
+            bone(format!("pins[{i}]"), p)?;
+        }
+        Ok(())
+    }
+}
+
+/// Where every bone is at a pose: starts, tips and absolute directions, in the skeleton's order.
+struct Bones {
+    starts: Vec<Point2<f64>>,
+    tips: Vec<Point2<f64>>,
+    directions: Vec<f64>,
+}
+
+impl Bones {
+    fn at(skeleton: &Skeleton, pose: &[f64]) -> Self {
+        let n = skeleton.len();
+        let mut b =
+            Self { starts: vec![Point2::origin(); n], tips: vec![Point2::origin(); n], directions: vec![0.0; n] };
+        skeleton.forward_into(pose, &mut b.starts, &mut b.tips, &mut b.directions);
+        b
+    }
+}
+
+/// The figure as an SVG document of `width` × `height` pixels.
+///
+/// Layers, bottom to top: grid with tick labels (and the reach circle if asked), the limit
+/// wedges, dashed lines from each goal's bone tip to the goal, the base's mount, the bones (in
+/// the skeleton's topological order, each on a white halo, so a bone drawn later stands out
+/// where it crosses one drawn earlier: each bone is one `<path id="bone{i}">`, `i` its index),
+/// the joints (a white ring where a bone starts), the free tips (ink dots), the pins (blue
+/// squares), the goals (red targets, an arrow for a direction), a legend for goals and pins, the
+/// bone names, the caption.
+///
+/// # Errors
+/// [`RenderError::Size`] for a side outside 16..=4096; [`RenderError::Length`] or
+/// [`RenderError::NonFinite`] for a pose that does not fit the skeleton or is not finite, or a
+/// goal that is not finite; [`RenderError::UnknownBone`] for a goal or pin on a bone the
+/// skeleton does not have.
+pub fn skeleton_svg(figure: &SkeletonFigure, width: u32, height: u32) -> Result<String, RenderError> {
+    check_size(width, height)?;
+    figure.check()?;
+    let skeleton = figure.skeleton;
+    let scene = Scene {
+        base: skeleton.base(),
+        max_reach: skeleton.max_reach(),
+        min_reach: 0.0,
+        view: figure.view(width, height),
+        goal: None,
+        workspace: None,
+        show_reach: figure.show_reach,
+    };
+    let bones = Bones::at(skeleton, figure.pose);
+    let mut svg = Svg::new(width, height);
+    scene.background(&mut svg);
+    if figure.ranges {
+        scene.ranges(&mut svg, &wedges(skeleton, &bones));
+    }
+    goal_leads(&scene, &mut svg, figure, &bones);
+    draw_bones(&scene, &mut svg, skeleton, &bones);
+    pins(&scene, &mut svg, figure, &bones);
+    goals(&scene, &mut svg, figure);
+    let key = legend(&scene, &mut svg, !figure.goals.is_empty(), !figure.pins.is_empty());
+    if figure.labels {
+        labels(&scene, &mut svg, skeleton, &bones, key);
+    }
+    scene.caption(&mut svg, figure.caption.as_deref(), None);
+    Ok(svg.finish())
+}
+
+/// The figure as PNG bytes: [`skeleton_svg`] rasterised with [`svg_to_png`].
+///
+/// # Errors
+/// As [`skeleton_svg`], and [`RenderError::Encode`] if encoding fails.
+pub fn skeleton_png(figure: &SkeletonFigure, width: u32, height: u32) -> Result<Vec<u8>, RenderError> {
+    svg_to_png(&skeleton_svg(figure, width, height)?)
+}
+
+/// The wedge of every limited bone: at its start, from its parent's direction (+x for a root).
+fn wedges(skeleton: &Skeleton, bones: &Bones) -> Vec<Wedge> {
+    let mut out = Vec::new();
+    for (i, limits) in skeleton.limits().iter().enumerate() {
+        if let Some(limits) = limits {
+            let heading = skeleton.parent(i).map_or(0.0, |p| bones.directions[p]);
+            out.push(Wedge { at: bones.starts[i], heading, limits: *limits, length: skeleton.lengths()[i] });
+        }
+    }
+    out
+}
+
+/// The base's mount, then each bone on its halo in topological order, then the joints and tips.
+fn draw_bones(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones) {
+    svg.comment("skeleton");
+    scene.mount(svg, skeleton.base());
+    for &i in skeleton.topological_order() {
+        let (x0, y0) = scene.view.world_to_pixel(bones.starts[i]);
+        let (x1, y1) = scene.view.world_to_pixel(bones.tips[i]);
+        let mut d = PathData::new();
+        d.move_to(x0, y0).line_to(x1, y1);
+        scene.link_halo(svg, &d);
+        scene.link_ink(svg, &d, &format!("id=\"bone{i}\""));
+    }
+    if skeleton.roots().next().is_some() {
+        scene.joint_ring(svg, skeleton.base());
+    }
+    for &i in skeleton.topological_order() {
+        if skeleton.children(i).len() > 0 {
+            scene.joint_ring(svg, bones.tips[i]);
+        } else {
+            scene.tip_dot(svg, bones.tips[i]);
+        }
+    }
+}
+
+/// A thin dashed red line from each goal's bone tip to the goal, so that one can tell which
+/// bone a goal belongs to.
+fn goal_leads(scene: &Scene, svg: &mut Svg, figure: &SkeletonFigure, bones: &Bones) {
+    let u = scene.view.layout().unit;
+    let mut d = PathData::new();
+    for g in &figure.goals {
+        let (x0, y0) = scene.view.world_to_pixel(bones.tips[g.bone]);
+        let (x1, y1) = scene.view.world_to_pixel(g.position);
+        if (x1 - x0).hypot(y1 - y0) > 6.0 * u {
+            d.move_to(x0, y0).line_to(x1, y1);
+        }
+    }
+    if d.is_empty() {
+        return;
+    }
+    svg.comment("goal leads");
+    svg.path(
+        &d,
+        &format!(
+            "fill=\"none\" stroke=\"{}\" stroke-opacity=\"0.7\" stroke-width=\"{}\" stroke-dasharray=\"{} {}\"",
+            style::GOAL,
+            num(1.3 * u),
+            num(4.0 * u),
+            num(3.0 * u)
+        ),
+    );
+}
+
+/// The goals as the arm's goal, with an arrow from the target in the goal's direction.
+fn goals(scene: &Scene, svg: &mut Svg, figure: &SkeletonFigure) {
+    let u = scene.view.layout().unit;
+    for g in &figure.goals {
+        let inside = scene.goal_at(svg, g.position);
+        let Some(angle) = g.angle.filter(|_| inside) else { continue };
+        let (x, y) = scene.view.world_to_pixel(g.position);
+        let (dx, dy) = (angle.cos(), -angle.sin());
+        let (from, to, head, half) = (10.5 * u, 34.0 * u, 8.0 * u, 4.5 * u);
+        let (ex, ey) = (x + dx * to, y + dy * to);
+        let mut shaft = PathData::new();
+        shaft.move_to(x + dx * from, y + dy * from).line_to(ex - dx * head, ey - dy * head);
+        let mut tip = PathData::new();
+        tip.move_to(ex, ey)
+            .line_to(ex - dx * head - dy * half, ey - dy * head + dx * half)
+            .line_to(ex - dx * head + dy * half, ey - dy * head - dx * half)
+            .close();
+        svg.path(
+            &shaft,
+            &format!(
+                "stroke=\"#ffffff\" stroke-opacity=\"0.85\" stroke-width=\"{}\" stroke-linecap=\"round\"",
+                num(5.0 * u)
+            ),
+        );
+        svg.path(
+            &shaft,
+            &format!("stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"", style::GOAL, num(2.4 * u)),
+        );
+        svg.path(
+            &tip,
+            &format!(
+                "class=\"goal-direction\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
+                style::GOAL,
+                num(u)
+            ),
+        );
+    }
+}
+
+/// A pin: a blue square with a white border centred at `(x, y)`, `half` its half side.
+fn pin_square(svg: &mut Svg, x: f64, y: f64, half: f64, u: f64) {
+    svg.rect(
+        x - half,
+        y - half,
+        2.0 * half,
+        2.0 * half,
+        &format!("class=\"pin\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"{}\"", style::PIN, num(1.6 * u)),
+    );
+}
+
+/// Every pinned tip as a blue square over the tip's dot.
+fn pins(scene: &Scene, svg: &mut Svg, figure: &SkeletonFigure, bones: &Bones) {
+    if figure.pins.is_empty() {
+        return;
+    }
+    let u = scene.view.layout().unit;
+    svg.comment("pins");
+    for &p in &figure.pins {
+        let (x, y) = scene.view.world_to_pixel(bones.tips[p]);
+        pin_square(svg, x, y, 6.5 * u, u);
+    }
+}
+
+/// A rough box for text of `chars` characters in DejaVu Sans at `font` px, centred at (x, y).
+fn text_box(x: f64, y: f64, chars: usize, font: f64) -> PixelRect {
+    let half_w = 0.5 * 0.62 * font * chars as f64;
+    PixelRect { left: x - half_w, top: y - 0.6 * font, right: x + half_w, bottom: y + 0.6 * font }
+}
+
+fn overlaps(a: &PixelRect, b: &PixelRect) -> bool {
+    a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom
+}
+
+/// Whether the segment (x0, y0)–(x1, y1) passes through `r` (Liang–Barsky clipping).
+fn crosses(r: &PixelRect, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) -> bool {
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [(-dx, x0 - r.left), (dx, r.right - x0), (-dy, y0 - r.top), (dy, r.bottom - y0)] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    t0 <= t1
+}
+
+/// Each bone's name beside it, in topological order. Places are tried along the bone (the
+/// middle first, then towards either end), on either side, at two distances; a name is set at
+/// the first place whose box stays in the plot and clear of the names already set, the legend,
+/// every bone (widened by its stroke) and every joint; if there is none, at the first place
+/// clear of the other names, else beside the bone's middle.
+fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones, legend: Option<PixelRect>) {
+    let layout = *scene.view.layout();
+    let u = layout.unit;
+    let font = (0.85 * layout.tick_font).max(9.0);
+    let plot = layout.plot;
+    let px = |p: Point2<f64>| scene.view.world_to_pixel(p);
+    let segments: Vec<((f64, f64), (f64, f64))> =
+        (0..skeleton.len()).map(|i| (px(bones.starts[i]), px(bones.tips[i]))).collect();
+    let mut placed: Vec<PixelRect> = Vec::with_capacity(skeleton.len() + 1);
+    placed.extend(legend);
+    let mut texts = Vec::with_capacity(skeleton.len());
+    let grow = |b: &PixelRect, by: f64| PixelRect {
+        left: b.left - by,
+        top: b.top - by,
+        right: b.right + by,
+        bottom: b.bottom + by,
+    };
+    for &i in skeleton.topological_order() {
+        let name = skeleton.name(i);
+        let chars = name.chars().count();
+        let ((x0, y0), (x1, y1)) = segments[i];
+        let len = (x1 - x0).hypot(y1 - y0).max(1e-9);
+        // The unit normal to the bone, in pixels.
+        let (nx, ny) = (-(y1 - y0) / len, (x1 - x0) / len);
+        // Half the box's extent along the normal: far enough for the box to clear the bone.
+        let half_extent = 0.5 * 0.62 * font * chars as f64 * nx.abs() + 0.6 * font * ny.abs();
+        let (mut clear, mut apart, mut first) = (None, None, None);
+        'search: for extra in [0.0, 1.2 * font] {
+            for t in [0.5, 0.35, 0.65, 0.2, 0.8] {
+                for side in [1.0, -1.0] {
+                    let off = 7.0 * u + half_extent + extra;
+                    let (cx, cy) = (x0 + t * (x1 - x0) + side * nx * off, y0 + t * (y1 - y0) + side * ny * off);
+                    let b = text_box(cx, cy, chars, font);
+                    first.get_or_insert((cx, cy, b));
+                    let inside = plot.contains(b.left, b.top) && plot.contains(b.right, b.bottom);
+                    if !inside || placed.iter().any(|p| overlaps(p, &b)) {
+                        continue;
+                    }
+                    apart.get_or_insert((cx, cy, b));
+                    let wide = grow(&b, 5.5 * u);
+                    if segments.iter().all(|&(a, z)| !crosses(&wide, a, z)) {
+                        clear = Some((cx, cy, b));
+                        break 'search;
+                    }
+                }
+            }
+        }
+        if let Some((cx, cy, b)) = clear.or(apart).or(first) {
+            placed.push(b);
+            texts.push((cx, cy + 0.35 * font, name));
+        }
+    }
+    svg.comment("bone names");
+    svg.group(&format!("font-size=\"{}\" text-anchor=\"middle\"", num(font)));
+    let halo =
+        format!("fill=\"#ffffff\" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\"", num(3.0 * u));
+    for &(x, y, name) in &texts {
+        svg.text(x, y, name, &halo);
+        svg.text(x, y, name, &format!("fill=\"{}\"", style::TEXT));
+    }
+    svg.end_group();
+}
+
+/// A small key in the plot's top left corner for the markers that appear (goal, pinned);
+/// returns the box it takes, if any.
+fn legend(scene: &Scene, svg: &mut Svg, goals: bool, pins: bool) -> Option<PixelRect> {
+    if !goals && !pins {
+        return None;
+    }
+    let layout = *scene.view.layout();
+    let u = layout.unit;
+    let font = layout.tick_font;
+    let plot = layout.plot;
+    let mut x = plot.left + 14.0 * u;
+    let y = plot.top + 16.0 * u;
+    svg.comment("legend");
+    let text = format!("font-size=\"{}\" fill=\"{}\"", num(font), style::TEXT);
+    if goals {
+        svg.circle(
+            x,
+            y,
+            5.5 * u,
+            &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"", style::GOAL, num(1.6 * u)),
+        );
+        svg.circle(x, y, 2.2 * u, &format!("fill=\"{}\"", style::GOAL));
+        svg.text(x + 10.0 * u, y + 0.35 * font, "goal", &text);
+        x += 10.0 * u + 4.0 * 0.62 * font + 18.0 * u;
+    }
+    if pins {
+        pin_square(svg, x, y, 5.0 * u, u);
+        svg.text(x + 10.0 * u, y + 0.35 * font, "pinned", &text);
+        x += 10.0 * u + 6.0 * 0.62 * font;
+    }
+    Some(PixelRect { left: plot.left, top: plot.top, right: x + 8.0 * u, bottom: y + 12.0 * u })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ikarus::{Bone, JointLimits};
+
+    fn fork() -> Skeleton {
+        let lim = JointLimits::new(-0.5, 0.5).unwrap();
+        Skeleton::new(
+            [0.0, 0.0],
+            &[
+                Bone::new("trunk", 1.0, 1.5),
+                Bone::new("left", 0.8, 0.4).with_parent("trunk").with_limits(lim),
+                Bone::new("right", 0.8, -0.4).with_parent("trunk"),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn wedges_only_at_limited_bones_and_only_when_asked() {
+        let s = fork();
+        let plain = skeleton_svg(&SkeletonFigure::new(&s, s.start_angles()), 300, 300).unwrap();
+        assert!(!plain.contains("joint ranges"));
+        let with =
+            skeleton_svg(&SkeletonFigure { ranges: true, ..SkeletonFigure::new(&s, s.start_angles()) }, 300, 300)
+                .unwrap();
+        let wedges = with.split("joint ranges").nth(1).unwrap().split("/>").next().unwrap();
+        assert_eq!(wedges.matches('A').count(), 1, "{wedges}");
+    }
+
+    #[test]
+    fn a_wedge_turns_from_the_parents_direction() {
+        let s = fork();
+        let b = Bones::at(&s, s.start_angles());
+        let w = wedges(&s, &b);
+        assert_eq!(w.len(), 1);
+        assert!((w[0].heading - 1.5).abs() < 1e-15);
+        assert_eq!(w[0].at, b.tips[0]);
+    }
+
+    #[test]
+    fn labels_are_off_by_default_and_every_name_is_written_when_on() {
+        let s = fork();
+        let plain = skeleton_svg(&SkeletonFigure::new(&s, s.start_angles()), 300, 300).unwrap();
+        assert!(!plain.contains(">trunk<"));
+        let with =
+            skeleton_svg(&SkeletonFigure { labels: true, ..SkeletonFigure::new(&s, s.start_angles()) }, 300, 300)
+                .unwrap();
+        for name in ["trunk", "left", "right"] {
+            // Halo and text.
+            assert_eq!(with.matches(&format!(">{name}</text>")).count(), 2, "{name}");
+        }
+    }
+
+    #[test]
+    fn bad_input_names_the_field() {
+        let s = fork();
+        let pose = [0.0, 0.0, 0.0];
+        let err = |f: SkeletonFigure| skeleton_svg(&f, 200, 200).unwrap_err().to_string();
+        assert_eq!(err(SkeletonFigure::new(&s, &pose[..2])), "pose: expected 3 values for this arm or skeleton, got 2");
+        assert_eq!(
+            err(SkeletonFigure { pins: vec![0, 3], ..SkeletonFigure::new(&s, &pose) }),
+            "pins[1]: no bone 3 in a skeleton of 3 bones"
+        );
+        let g = BoneGoal::at(1, Point2::new(0.0, f64::NAN));
+        assert_eq!(
+            err(SkeletonFigure { goals: vec![g], ..SkeletonFigure::new(&s, &pose) }),
+            "goals[0].position.y: must be a finite number, got NaN"
+        );
+        let g = BoneGoal::at(1, Point2::new(0.0, 1.0)).with_angle(f64::INFINITY);
+        assert!(err(SkeletonFigure { goals: vec![g], ..SkeletonFigure::new(&s, &pose) }).starts_with("goals[0].angle"));
+        let g = BoneGoal::at(9, Point2::new(0.0, 1.0));
+        assert_eq!(
+            err(SkeletonFigure { goals: vec![g], ..SkeletonFigure::new(&s, &pose) }),
+            "goals[0].bone: no bone 9 in a skeleton of 3 bones"
+        );
+    }
+}

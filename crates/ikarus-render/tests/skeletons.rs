@@ -1,0 +1,182 @@
+//! Pictures of skeletons: the SVG parses and holds what the figure asks for (one path per bone,
+//! one marker per goal and per pin), the PNG decodes at its size, a one-branch skeleton draws
+//! the arm's links, every tip lies in the view, and the shipped rigs draw.
+
+use ikarus::{Bone, Chain, JointLimits, Link, Point2, Skeleton};
+use ikarus_render::{ArmFigure, BoneGoal, SkeletonFigure, arm_svg, skeleton_png, skeleton_svg};
+use resvg::usvg;
+
+/// A rig file of `examples/rigs/` as a skeleton, read with the toml crate the way the CLI's
+/// reader does (the render crate cannot use the CLI): `base`, then `[[bones]]` with `name`,
+/// `parent`, `length`, `angle_deg` and `limits_deg`.
+fn rig(name: &str) -> Skeleton {
+    let path = format!("{}/../../examples/rigs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("the shipped rig");
+    let table: toml::Table = text.parse().expect("TOML");
+    let float = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)).expect("a number");
+    let base = table.get("base").and_then(|b| b.as_array()).map_or([0.0, 0.0], |b| [float(&b[0]), float(&b[1])]);
+    let bones: Vec<Bone> = table["bones"]
+        .as_array()
+        .expect("[[bones]]")
+        .iter()
+        .map(|b| {
+            let mut bone = Bone::new(
+                b["name"].as_str().expect("a name"),
+                float(&b["length"]),
+                float(&b["angle_deg"]).to_radians(),
+            );
+            if let Some(p) = b.get("parent") {
+                bone = bone.with_parent(p.as_str().expect("a parent's name"));
+            }
+            if let Some(l) = b.get("limits_deg").and_then(|l| l.as_array()) {
+                bone =
+                    bone.with_limits(JointLimits::new(float(&l[0]).to_radians(), float(&l[1]).to_radians()).unwrap());
+            }
+            bone
+        })
+        .collect();
+    Skeleton::new(base, &bones).expect("a valid rig")
+}
+
+fn parse(svg: &str) -> usvg::Tree {
+    usvg::Tree::from_str(svg, &usvg::Options::default()).expect("the SVG parses")
+}
+
+/// Ids of every node below `group`.
+fn ids(group: &usvg::Group, out: &mut Vec<String>) {
+    for node in group.children() {
+        if !node.id().is_empty() {
+            out.push(node.id().to_string());
+        }
+        if let usvg::Node::Group(g) = node {
+            ids(g, out);
+        }
+    }
+}
+
+fn decode_png(bytes: &[u8]) -> (u32, u32) {
+    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    let reader = decoder.read_info().expect("a PNG header");
+    let info = reader.info();
+    (info.width, info.height)
+}
+
+#[test]
+fn the_svg_has_one_path_per_bone_and_one_marker_per_goal_and_pin() {
+    let puppet = rig("puppet");
+    let hand_of = |n: &str| puppet.index_of(n).unwrap();
+    let figure = SkeletonFigure {
+        goals: vec![
+            BoneGoal::at(hand_of("left_hand"), Point2::new(0.6, 0.9)),
+            BoneGoal::at(hand_of("right_hand"), Point2::new(0.5, 0.2)).with_angle(-0.3),
+            BoneGoal::at(hand_of("head"), Point2::new(0.1, 1.0)),
+        ],
+        pins: vec![hand_of("left_foot"), hand_of("right_foot")],
+        ranges: true,
+        labels: true,
+        caption: Some("puppet".into()),
+        ..SkeletonFigure::new(&puppet, puppet.start_angles())
+    };
+    let svg = skeleton_svg(&figure, 640, 480).unwrap();
+    let tree = parse(&svg);
+    assert_eq!((tree.size().width(), tree.size().height()), (640.0, 480.0));
+    let mut found = Vec::new();
+    ids(tree.root(), &mut found);
+    let mut bones: Vec<&str> = found.iter().map(String::as_str).filter(|id| id.starts_with("bone")).collect();
+    bones.sort_unstable();
+    let mut want: Vec<String> = (0..puppet.len()).map(|i| format!("bone{i}")).collect();
+    want.sort_unstable();
+    assert_eq!(bones, want);
+    // Goals: the red centre dot (r = 4.2 px at this size's unit), one per goal inside the plot.
+    let goal_dots = svg.matches("fill=\"#d62728\"/>").count();
+    assert_eq!(goal_dots, 3 + 1, "three goals and the legend's dot");
+    // Pins: one blue square per pin, and one in the legend.
+    assert_eq!(svg.matches("class=\"pin\"").count(), 2 + 1);
+    // One direction arrow, for the one goal with an angle.
+    assert_eq!(svg.matches("class=\"goal-direction\"").count(), 1);
+}
+
+#[test]
+fn the_png_decodes_at_its_size() {
+    let hand = rig("hand");
+    let figure = SkeletonFigure { ranges: true, labels: true, ..SkeletonFigure::new(&hand, hand.start_angles()) };
+    let png = skeleton_png(&figure, 333, 517).unwrap();
+    assert_eq!(decode_png(&png), (333, 517));
+}
+
+/// The `M x y L x y` segments of a path's `d`, as pairs of points (strings as written).
+fn segments(d: &str) -> Vec<[(String, String); 2]> {
+    let nums: Vec<&str> = d.split(['M', 'L', ' ']).filter(|s| !s.is_empty()).collect();
+    let points: Vec<(String, String)> = nums.chunks(2).map(|c| (c[0].to_string(), c[1].to_string())).collect();
+    points.windows(2).map(|w| [w[0].clone(), w[1].clone()]).collect()
+}
+
+#[test]
+fn a_one_branch_skeleton_draws_the_arms_links() {
+    let lim = |d: f64| JointLimits::new(-d.to_radians(), d.to_radians()).unwrap();
+    let chain = Chain::new(
+        [0.5, -1.0],
+        &[Link::new(3.0, 0.3).with_limits(lim(60.0)), Link::new(2.0, 0.5), Link::new(1.5, -0.7)],
+    )
+    .unwrap();
+    let skeleton = Skeleton::from_chain(&chain);
+    let pose = [0.4, 1.1, -0.6];
+    let arm = arm_svg(&ArmFigure { show_reach: false, ..ArmFigure::new(&chain, &pose) }, 500, 400).unwrap();
+    let skel = skeleton_svg(&SkeletonFigure::new(&skeleton, &pose), 500, 400).unwrap();
+    // The arm's links: the ink polyline (round-joined, in ink) after the comment "arm".
+    let arm_part = arm.split("<!-- arm -->").nth(1).unwrap();
+    let ink = arm_part.lines().find(|l| l.contains("stroke-linejoin=\"round\" stroke=\"#26324a\"")).unwrap();
+    let d = ink.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
+    let arm_segments = segments(d);
+    assert_eq!(arm_segments.len(), 3);
+    let bone_segments: Vec<_> = (0..3)
+        .map(|i| {
+            let line = skel.lines().find(|l| l.contains(&format!("id=\"bone{i}\""))).unwrap();
+            let d = line.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
+            let s = segments(d);
+            assert_eq!(s.len(), 1);
+            s[0].clone()
+        })
+        .collect();
+    assert_eq!(bone_segments, arm_segments);
+    // The same view: the same grid and ticks, so everything else lines up too.
+    let grid = |s: &str| s.split("<!-- grid -->").nth(1).unwrap().split("<!--").next().unwrap().to_string();
+    assert_eq!(grid(&arm), grid(&skel));
+}
+
+#[test]
+fn every_tip_lies_inside_the_view() {
+    for name in ["puppet", "hand"] {
+        let s = rig(name);
+        // The start pose, and every bone stretched straight out from its parent.
+        let straight = vec![0.0; s.len()];
+        for pose in [s.start_angles().to_vec(), straight] {
+            for (w, h) in [(800, 800), (300, 700), (900, 200)] {
+                let figure = SkeletonFigure::new(&s, &pose);
+                let view = figure.view(w, h);
+                let plot = view.plot_area();
+                let n = s.len();
+                let (mut starts, mut tips, mut dirs) =
+                    (vec![Point2::origin(); n], vec![Point2::origin(); n], vec![0.0; n]);
+                s.forward_into(&pose, &mut starts, &mut tips, &mut dirs);
+                for (i, t) in tips.iter().enumerate() {
+                    let (x, y) = view.world_to_pixel(*t);
+                    assert!(plot.contains(x, y), "{name} {w}×{h}: {} at ({x}, {y}) outside {plot:?}", s.name(i));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_shipped_rigs_draw() {
+    for name in ["puppet", "hand"] {
+        let s = rig(name);
+        for (ranges, labels) in [(false, false), (true, true)] {
+            let figure = SkeletonFigure { ranges, labels, ..SkeletonFigure::new(&s, s.start_angles()) };
+            let svg = skeleton_svg(&figure, 400, 400).unwrap();
+            parse(&svg);
+            skeleton_png(&figure, 64, 64).unwrap();
+        }
+    }
+}
