@@ -30,6 +30,7 @@ mod skeleton;
 mod style;
 mod svg;
 mod view;
+mod wedge;
 
 pub use animation::{MAX_FPS, Overlay, animation_gif, with_interrupt};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};

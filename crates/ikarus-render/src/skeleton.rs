@@ -10,6 +10,9 @@ use crate::scene::{Scene, Wedge};
 use crate::style;
 use crate::svg::{PathData, Svg, num};
 use crate::view::{PixelRect, View};
+use labels::labels;
+
+mod labels;
 
 /// A goal for the tip of one bone: a position and optionally a direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -335,105 +338,6 @@ fn pins(scene: &Scene, svg: &mut Svg, figure: &SkeletonFigure, bones: &Bones) {
         let (x, y) = scene.view.world_to_pixel(bones.tips[p]);
         pin_square(svg, x, y, 6.5 * u, u);
     }
-}
-
-/// A rough box for text of `chars` characters in DejaVu Sans at `font` px, centred at (x, y).
-fn text_box(x: f64, y: f64, chars: usize, font: f64) -> PixelRect {
-    let half_w = 0.5 * 0.62 * font * chars as f64;
-    PixelRect { left: x - half_w, top: y - 0.6 * font, right: x + half_w, bottom: y + 0.6 * font }
-}
-
-fn overlaps(a: &PixelRect, b: &PixelRect) -> bool {
-    a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom
-}
-
-/// Whether the segment (x0, y0)–(x1, y1) passes through `r` (Liang–Barsky clipping).
-fn crosses(r: &PixelRect, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) -> bool {
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (p, q) in [(-dx, x0 - r.left), (dx, r.right - x0), (-dy, y0 - r.top), (dy, r.bottom - y0)] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    t0 <= t1
-}
-
-/// Each bone's name beside it, in topological order. Places are tried along the bone (the
-/// middle first, then towards either end), on either side, at two distances; a name is set at
-/// the first place whose box stays in the plot and clear of the names already set, the legend,
-/// every bone (widened by its stroke) and every joint; if there is none, at the first place
-/// clear of the other names, else beside the bone's middle.
-fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones, legend: Option<PixelRect>) {
-    let layout = *scene.view.layout();
-    let u = layout.unit;
-    let font = (0.85 * layout.tick_font).max(9.0);
-    let plot = layout.plot;
-    let px = |p: Point2<f64>| scene.view.world_to_pixel(p);
-    let segments: Vec<((f64, f64), (f64, f64))> =
-        (0..skeleton.len()).map(|i| (px(bones.starts[i]), px(bones.tips[i]))).collect();
-    let mut placed: Vec<PixelRect> = Vec::with_capacity(skeleton.len() + 1);
-    placed.extend(legend);
-    let mut texts = Vec::with_capacity(skeleton.len());
-    let grow = |b: &PixelRect, by: f64| PixelRect {
-        left: b.left - by,
-        top: b.top - by,
-        right: b.right + by,
-        bottom: b.bottom + by,
-    };
-    for &i in skeleton.topological_order() {
-        let name = skeleton.name(i);
-        let chars = name.chars().count();
-        let ((x0, y0), (x1, y1)) = segments[i];
-        let len = (x1 - x0).hypot(y1 - y0).max(1e-9);
-        // The unit normal to the bone, in pixels.
-        let (nx, ny) = (-(y1 - y0) / len, (x1 - x0) / len);
-        // Half the box's extent along the normal: far enough for the box to clear the bone.
-        let half_extent = 0.5 * 0.62 * font * chars as f64 * nx.abs() + 0.6 * font * ny.abs();
-        let (mut clear, mut apart, mut first) = (None, None, None);
-        'search: for extra in [0.0, 1.2 * font] {
-            for t in [0.5, 0.35, 0.65, 0.2, 0.8] {
-                for side in [1.0, -1.0] {
-                    let off = 7.0 * u + half_extent + extra;
-                    let (cx, cy) = (x0 + t * (x1 - x0) + side * nx * off, y0 + t * (y1 - y0) + side * ny * off);
-                    let b = text_box(cx, cy, chars, font);
-                    first.get_or_insert((cx, cy, b));
-                    let inside = plot.contains(b.left, b.top) && plot.contains(b.right, b.bottom);
-                    if !inside || placed.iter().any(|p| overlaps(p, &b)) {
-                        continue;
-                    }
-                    apart.get_or_insert((cx, cy, b));
-                    let wide = grow(&b, 5.5 * u);
-                    if segments.iter().all(|&(a, z)| !crosses(&wide, a, z)) {
-                        clear = Some((cx, cy, b));
-                        break 'search;
-                    }
-                }
-            }
-        }
-        if let Some((cx, cy, b)) = clear.or(apart).or(first) {
-            placed.push(b);
-            texts.push((cx, cy + 0.35 * font, name));
-        }
-    }
-    svg.comment("bone names");
-    svg.group(&format!("font-size=\"{}\" text-anchor=\"middle\"", num(font)));
-    let halo =
-        format!("fill=\"#ffffff\" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\"", num(3.0 * u));
-    for &(x, y, name) in &texts {
-        svg.text(x, y, name, &halo);
-        svg.text(x, y, name, &format!("fill=\"{}\"", style::TEXT));
-    }
-    svg.end_group();
 }
 
 /// A small key in the plot's top left corner for the markers that appear (goal, pinned);
