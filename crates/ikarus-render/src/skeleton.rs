@@ -162,7 +162,8 @@ impl Bones {
 /// The figure as an SVG document of `width` × `height` pixels.
 ///
 /// Layers, bottom to top: grid with tick labels (and the reach circle if asked), the limit
-/// wedges, dashed lines from each goal's bone tip to the goal, the base's mount, the bones (in
+/// wedges, dashed lines from each goal's bone tip to the goal, the base (the arm's mount, or a
+/// socket when a root points down), the bones (in
 /// the skeleton's topological order, each on a white halo, so a bone drawn later stands out
 /// where it crosses one drawn earlier: each bone is one `<path id="bone{i}">`, `i` its index),
 /// the joints (a white ring where a bone starts), the free tips (ink dots), the pins (blue
@@ -225,10 +226,18 @@ fn wedges(skeleton: &Skeleton, bones: &Bones) -> Vec<Wedge> {
     out
 }
 
-/// The base's mount, then each bone on its halo in topological order, then the joints and tips.
+/// The base, each bone on its halo in topological order, the joints and the tips.
+///
+/// The base is the arm's mount (a trapezoid on hatched ground, below the base, under the
+/// bones) when no root bone points below the horizontal; otherwise the mount would sit among
+/// the bones (a puppet's legs hang from its base), and the base is a socket instead: a disc in
+/// the mount's colour over the roots' starts, under the base's joint ring.
 fn draw_bones(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones) {
     svg.comment("skeleton");
-    scene.mount(svg, skeleton.base());
+    let mount = skeleton.roots().all(|r| bones.directions[r].sin() >= -0.05);
+    if mount {
+        scene.mount(svg, skeleton.base());
+    }
     for &i in skeleton.topological_order() {
         let (x0, y0) = scene.view.world_to_pixel(bones.starts[i]);
         let (x1, y1) = scene.view.world_to_pixel(bones.tips[i]);
@@ -237,9 +246,10 @@ fn draw_bones(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones) 
         scene.link_halo(svg, &d);
         scene.link_ink(svg, &d, &format!("id=\"bone{i}\""));
     }
-    if skeleton.roots().next().is_some() {
-        scene.joint_ring(svg, skeleton.base());
+    if !mount {
+        socket(scene, svg, skeleton.base());
     }
+    scene.joint_ring(svg, skeleton.base());
     for &i in skeleton.topological_order() {
         if skeleton.children(i).len() > 0 {
             scene.joint_ring(svg, bones.tips[i]);
@@ -247,6 +257,24 @@ fn draw_bones(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones) 
             scene.tip_dot(svg, bones.tips[i]);
         }
     }
+}
+
+/// A base that is not a mount: a disc in the mount's colour over the bones' starts, under
+/// the base's joint ring (a hub where the roots meet).
+fn socket(scene: &Scene, svg: &mut Svg, base: Point2<f64>) {
+    let u = scene.view.layout().unit;
+    let (x, y) = scene.view.world_to_pixel(base);
+    svg.circle(
+        x,
+        y,
+        8.5 * u,
+        &format!(
+            "class=\"socket\" fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"",
+            style::MOUNT,
+            style::INK,
+            num(1.6 * u)
+        ),
+    );
 }
 
 /// A thin dashed red line from each goal's bone tip to the goal, so that one can tell which
@@ -425,6 +453,19 @@ mod tests {
             // Halo and text.
             assert_eq!(with.matches(&format!(">{name}</text>")).count(), 2, "{name}");
         }
+    }
+
+    #[test]
+    fn the_base_is_a_mount_unless_a_root_points_down() {
+        let up = fork();
+        let svg = skeleton_svg(&SkeletonFigure::new(&up, up.start_angles()), 300, 300).unwrap();
+        assert!(!svg.contains("class=\"socket\""));
+        assert_eq!(svg.matches(&format!("fill=\"{}\"", style::MOUNT)).count(), 1, "the mount");
+        let legs = Skeleton::new([0.0, 0.0], &[Bone::new("body", 1.0, 1.5), Bone::new("leg", 1.0, -1.6)]).unwrap();
+        let svg = skeleton_svg(&SkeletonFigure::new(&legs, legs.start_angles()), 300, 300).unwrap();
+        assert_eq!(svg.matches("class=\"socket\"").count(), 1);
+        // The socket replaces the mount: one shape in the mount's colour, the socket.
+        assert_eq!(svg.matches(&format!("fill=\"{}\"", style::MOUNT)).count(), 1);
     }
 
     #[test]
