@@ -200,7 +200,7 @@ pub fn skeleton_svg(figure: &SkeletonFigure, width: u32, height: u32) -> Result<
     goals(&scene, &mut svg, figure);
     let key = legend(&scene, &mut svg, !figure.goals.is_empty(), !figure.pins.is_empty());
     if figure.labels {
-        labels(&scene, &mut svg, skeleton, &bones, key);
+        labels(&scene, &mut svg, skeleton, &bones, &obstacles(&scene, figure, &bones, key));
     }
     scene.caption(&mut svg, figure.caption.as_deref(), None);
     Ok(svg.finish())
@@ -366,6 +366,21 @@ fn pins(scene: &Scene, svg: &mut Svg, figure: &SkeletonFigure, bones: &Bones) {
         let (x, y) = scene.view.world_to_pixel(bones.tips[p]);
         pin_square(svg, x, y, 6.5 * u, u);
     }
+}
+
+/// What bone names must not cover: the legend, the mount's ground (the socket lies under a
+/// joint, which the names avoid anyway), the goals and the pins.
+fn obstacles(scene: &Scene, figure: &SkeletonFigure, bones: &Bones, legend: Option<PixelRect>) -> Vec<PixelRect> {
+    let u = scene.view.layout().unit;
+    let around = |p: Point2<f64>, left: f64, top: f64, right: f64, bottom: f64| {
+        let (x, y) = scene.view.world_to_pixel(p);
+        PixelRect { left: x - left, top: y - top, right: x + right, bottom: y + bottom }
+    };
+    let mut out: Vec<PixelRect> = legend.into_iter().collect();
+    out.push(around(figure.skeleton.base(), 21.0 * u, 0.0, 17.0 * u, 19.0 * u));
+    out.extend(figure.goals.iter().map(|g| around(g.position, 13.0 * u, 13.0 * u, 13.0 * u, 13.0 * u)));
+    out.extend(figure.pins.iter().map(|&p| around(bones.tips[p], 8.0 * u, 8.0 * u, 8.0 * u, 8.0 * u)));
+    out
 }
 
 /// A small key in the plot's top left corner for the markers that appear (goal, pinned);

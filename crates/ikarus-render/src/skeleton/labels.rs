@@ -41,10 +41,11 @@ fn crosses(r: &PixelRect, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) -> bool {
 
 /// Each bone's name beside it, in topological order. Places are tried along the bone (the
 /// middle first, then towards either end), on either side, at two distances; a name is set at
-/// the first place whose box stays in the plot and clear of the names already set, the legend,
-/// every bone (widened by its stroke) and every joint; if there is none, at the first place
-/// clear of the other names, else beside the bone's middle.
-pub(super) fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones, legend: Option<PixelRect>) {
+/// the first place whose box stays in the plot and clear of the names already set, the `obstacles`
+/// (legend, mount, goals, pins),
+/// every bone (widened by its stroke) and every joint; if there is none, at the place clear
+/// of the other names that crosses the fewest bones, else beside the bone's middle.
+pub(super) fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones, obstacles: &[PixelRect]) {
     let layout = *scene.view.layout();
     let u = layout.unit;
     let font = (0.85 * layout.tick_font).max(9.0);
@@ -53,7 +54,7 @@ pub(super) fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &
     let segments: Vec<((f64, f64), (f64, f64))> =
         (0..skeleton.len()).map(|i| (px(bones.starts[i]), px(bones.tips[i]))).collect();
     let mut placed: Vec<PixelRect> = Vec::with_capacity(skeleton.len() + 1);
-    placed.extend(legend);
+    placed.extend_from_slice(obstacles);
     let mut texts = Vec::with_capacity(skeleton.len());
     let grow = |b: &PixelRect, by: f64| PixelRect {
         left: b.left - by,
@@ -70,8 +71,9 @@ pub(super) fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &
         let (nx, ny) = (-(y1 - y0) / len, (x1 - x0) / len);
         // Half the box's extent along the normal: far enough for the box to clear the bone.
         let half_extent = 0.5 * 0.62 * font * chars as f64 * nx.abs() + 0.6 * font * ny.abs();
-        let (mut clear, mut apart, mut first) = (None, None, None);
-        'search: for extra in [0.0, 1.2 * font] {
+        // The best place so far clear of the other names: (bones crossed, x, y, box).
+        let (mut best, mut first): (Option<(usize, f64, f64, PixelRect)>, _) = (None, None);
+        'search: for extra in [0.0, 1.2 * font, 2.4 * font] {
             for t in [0.5, 0.35, 0.65, 0.2, 0.8] {
                 for side in [1.0, -1.0] {
                     let off = 7.0 * u + half_extent + extra;
@@ -82,16 +84,18 @@ pub(super) fn labels(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &
                     if !inside || placed.iter().any(|p| overlaps(p, &b)) {
                         continue;
                     }
-                    apart.get_or_insert((cx, cy, b));
                     let wide = grow(&b, 5.5 * u);
-                    if segments.iter().all(|&(a, z)| !crosses(&wide, a, z)) {
-                        clear = Some((cx, cy, b));
+                    let crossed = segments.iter().filter(|&&(a, z)| crosses(&wide, a, z)).count();
+                    if best.is_none_or(|(c, ..)| crossed < c) {
+                        best = Some((crossed, cx, cy, b));
+                    }
+                    if crossed == 0 {
                         break 'search;
                     }
                 }
             }
         }
-        if let Some((cx, cy, b)) = clear.or(apart).or(first) {
+        if let Some((cx, cy, b)) = best.map(|(_, x, y, b)| (x, y, b)).or(first) {
             placed.push(b);
             texts.push((cx, cy + 0.35 * font, name));
         }
