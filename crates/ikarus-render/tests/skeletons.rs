@@ -180,3 +180,55 @@ fn the_shipped_rigs_draw() {
         }
     }
 }
+
+/// The boxes of the texts that are bone names, one per name, as laid out by usvg in the
+/// embedded font.
+fn name_boxes(svg: &str, skeleton: &Skeleton) -> Vec<(String, usvg::Rect)> {
+    let mut options = usvg::Options { font_family: "DejaVu Sans".into(), ..usvg::Options::default() };
+    options.fontdb_mut().load_font_data(dejavu::sans::regular().to_vec());
+    let tree = usvg::Tree::from_str(svg, &options).expect("the SVG parses");
+    fn walk(group: &usvg::Group, names: &[String], out: &mut Vec<(String, usvg::Rect)>) {
+        for node in group.children() {
+            match node {
+                usvg::Node::Group(g) => walk(g, names, out),
+                usvg::Node::Text(t) => {
+                    let text: String = t.chunks().iter().map(|c| c.text()).collect();
+                    if names.contains(&text) && !out.iter().any(|(n, _)| *n == text) {
+                        out.push((text, t.abs_bounding_box()));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(tree.root(), skeleton.names(), &mut out);
+    out
+}
+
+#[test]
+fn bone_names_do_not_cover_each_other() {
+    let puppet = rig("puppet");
+    let i = |n: &str| puppet.index_of(n).unwrap();
+    let mut reaching = puppet.start_angles().to_vec();
+    for (bone, deg) in
+        [("spine", -20.0), ("left_upper_arm", -80.0), ("right_upper_arm", -110.0), ("right_forearm", 40.0)]
+    {
+        reaching[i(bone)] = f64::to_radians(deg);
+    }
+    let hand = rig("hand");
+    for (s, pose) in [(&puppet, puppet.start_angles()), (&puppet, &reaching[..]), (&hand, hand.start_angles())] {
+        let figure = SkeletonFigure { labels: true, ranges: true, ..SkeletonFigure::new(s, pose) };
+        let boxes = name_boxes(&skeleton_svg(&figure, 800, 800).unwrap(), s);
+        assert_eq!(boxes.len(), s.len(), "every bone is named");
+        for (k, (a, ra)) in boxes.iter().enumerate() {
+            for (b, rb) in &boxes[k + 1..] {
+                let apart = ra.right() <= rb.left()
+                    || rb.right() <= ra.left()
+                    || ra.bottom() <= rb.top()
+                    || rb.bottom() <= ra.top();
+                assert!(apart, "{a} {ra:?} and {b} {rb:?} overlap");
+            }
+        }
+    }
+}
