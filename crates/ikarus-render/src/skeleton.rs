@@ -22,7 +22,8 @@ pub struct BoneGoal {
     /// Where the tip should be.
     pub position: Point2<f64>,
     /// The direction the bone should point at its tip, radians from +x (counter-clockwise),
-    /// if the goal has one: drawn as an arrow from the goal.
+    /// if the goal has one: drawn as an arrow from the goal (when the goal is in view; one
+    /// beyond it is an arrow on the plot's edge, as an arm's).
     pub angle: Option<f64>,
 }
 
@@ -481,6 +482,27 @@ mod tests {
         assert_eq!(svg.matches("class=\"socket\"").count(), 1);
         // The socket replaces the mount: one shape in the mount's colour, the socket.
         assert_eq!(svg.matches(&format!("fill=\"{}\"", style::MOUNT)).count(), 1);
+    }
+
+    #[test]
+    fn a_goal_direction_points_the_way_of_its_angle() {
+        let s = fork();
+        let goal = Point2::new(0.5, 1.0);
+        for angle in [0.0, std::f64::consts::FRAC_PI_2, 3.0, -2.0] {
+            let figure = SkeletonFigure {
+                goals: vec![BoneGoal::at(1, goal).with_angle(angle)],
+                ..SkeletonFigure::new(&s, s.start_angles())
+            };
+            let svg = skeleton_svg(&figure, 400, 400).unwrap();
+            let (gx, gy) = figure.view(400, 400).world_to_pixel(goal);
+            let head = svg.split("class=\"goal-direction\"").next().unwrap().rsplit("d=\"M").next().unwrap();
+            let mut xy = head.split([' ', 'L']).map(|v| v.parse::<f64>().unwrap());
+            let (x, y) = (xy.next().unwrap() - gx, xy.next().unwrap() - gy);
+            // The head's point is 34 px × unit (0.5 here) from the goal along the direction,
+            // y pointing down; the SVG's numbers are rounded to 1/100 px.
+            let (ex, ey) = (17.0 * angle.cos(), -17.0 * angle.sin());
+            assert!((x - ex).abs() <= 0.006 && (y - ey).abs() <= 0.006, "{angle}: ({x}, {y}) vs ({ex}, {ey})");
+        }
     }
 
     #[test]
