@@ -4,12 +4,13 @@ use nalgebra::Vector3;
 
 use super::line_search::{Residual, jacobian_step};
 use super::lm::Damping;
+use super::model::Model;
 use super::problem::Problem;
 use super::scratch::Scratch;
 use super::step::{Rule, Stepper};
-use super::{Outcome, Status, ccd, fabrik};
+use super::{Outcome, Status};
 use crate::angle::wrap_angle;
-use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
+use crate::kinematics::EndEffector;
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
@@ -21,9 +22,9 @@ use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into}
 /// orientation, their sum, is then not finite either: an overflow on a chain or goal near the
 /// end of the f64 range) is not taken: the attempt keeps its last finite pose and ends
 /// [`Status::Stalled`].
-pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> Status {
-    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
-    let n = chain.len();
+pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> Status {
+    let (model, goal, opts) = (p.model, p.goal, p.opts);
+    let n = model.len();
     let angles = out.pose.angles_mut();
     angles.clear();
     angles.extend_from_slice(start);
@@ -33,13 +34,13 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
     let stepper = Stepper::of(opts.method);
     let target = goal.target();
     let weight = opts.orientation_weight;
-    let mut phi = joint_positions_into(chain, angles, &mut s.joints);
+    let mut phi = model.forward_into(angles, &mut s.joints);
     let mut iteration: u32 = 0;
     let mut still: u32 = 0;
     let mut damping = Damping::new(opts.lambda);
     let mut best_error = f64::INFINITY;
     let status = loop {
-        let tip = s.joints[n];
+        let tip = model.tip(&s.joints);
         let (dx, dy) = (target.x - tip.x, target.y - tip.y);
         let turn = goal.orientation().map(|g| wrap_angle(g - phi));
         let error = distance(dx, dy);
@@ -68,11 +69,11 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
             }
             Stepper::Ccd => {
                 remember_best(weight, error, angle_error, &mut best_error, angles, &mut s.best);
-                ccd::sweep(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
+                M::ccd_sweep(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
             }
             Stepper::Fabrik => {
                 remember_best(weight, error, angle_error, &mut best_error, angles, &mut s.best);
-                fabrik::iterate(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
+                M::fabrik_iterate(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
             }
         };
         if !trial_phi.is_finite() {
@@ -102,7 +103,7 @@ pub(super) fn attempt(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Out
 
 /// Why the loop stops at this iteration, if it does.
 #[inline]
-fn stop(p: &Problem, error: f64, angle_error: f64, still: u32, iteration: u32) -> Option<Status> {
+fn stop<M: Model>(p: &Problem<'_, M>, error: f64, angle_error: f64, still: u32, iteration: u32) -> Option<Status> {
     let opts = p.opts;
     if error <= opts.tolerance && angle_error <= opts.angle_tolerance {
         Some(Status::Reached)
@@ -132,8 +133,8 @@ fn remember_best(weight: f64, error: f64, angle_error: f64, best_error: &mut f64
 /// like `e` (without an orientation goal the third row of `J` and `e` is zero), then the step
 /// with its line search.
 #[inline]
-fn jacobian_iteration(
-    p: &Problem,
+fn jacobian_iteration<M: Model>(
+    p: &Problem<'_, M>,
     rule: Rule,
     e: Vector3<f64>,
     damping: &mut Damping,
@@ -141,7 +142,7 @@ fn jacobian_iteration(
     s: &mut Scratch,
 ) -> Option<f64> {
     let weight = p.opts.orientation_weight;
-    jacobian_from_joints(&s.joints, &mut s.jacobian);
+    p.model.jacobian_into(&s.joints, &mut s.jacobian);
     let row_scale = if p.goal.orientation().is_some() { weight } else { 0.0 };
     for mut col in s.jacobian.column_iter_mut() {
         col[2] *= row_scale;
@@ -153,15 +154,15 @@ fn jacobian_iteration(
 /// CCD and FABRIK: if the pose they end on is worse than the best they visited (squared task
 /// error `best_error`, pose in `s.best`), end on that one, with its error and tip (the
 /// restarts compare attempts by them).
-fn end_on_best(p: &Problem, best_error: f64, s: &mut Scratch, out: &mut Outcome) {
-    let (chain, goal) = (p.chain, p.goal);
+fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut Scratch, out: &mut Outcome) {
+    let (model, goal) = (p.model, p.goal);
     let weight = p.opts.orientation_weight;
     let final_error = out.error.powi(2) + (weight * out.angle_error).powi(2);
     if best_error < final_error {
         let angles = out.pose.angles_mut();
         angles.copy_from_slice(&s.best);
-        let phi = joint_positions_into(chain, angles, &mut s.joints);
-        let tip = s.joints[chain.len()];
+        let phi = model.forward_into(angles, &mut s.joints);
+        let tip = model.tip(&s.joints);
         out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
         out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
         out.end_effector = EndEffector { position: tip, orientation: phi };

@@ -88,7 +88,7 @@ pub(super) fn sweep(
     trial: &mut [f64],
     trial_joints: &mut [Point2<f64>],
 ) -> f64 {
-    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
+    let (chain, goal, opts) = (p.model, p.goal, p.opts);
     let n = chain.len();
     trial.copy_from_slice(angles);
     trial_joints.copy_from_slice(joints);

@@ -59,7 +59,7 @@ pub(super) fn iterate(
 ) -> f64 {
     // FABRIK meets an orientation exactly through the last link; it has nothing to weigh, so
     // it reads no option.
-    let (chain, goal, bounds) = (p.chain, p.goal, p.bounds);
+    let (chain, goal, bounds) = (p.model, p.goal, p.bounds);
     let n = chain.len();
     let lengths = chain.lengths();
     let base = chain.base();

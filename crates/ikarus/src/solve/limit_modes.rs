@@ -15,11 +15,11 @@
 use nalgebra::Vector3;
 
 use super::LimitMode;
+use super::model::Model;
 use super::pinv;
 use super::problem::Problem;
 use super::scratch::Scratch;
 use super::step::{Rule, gram, method_step};
-use crate::chain::Chain;
 
 /// Per iteration, [`LimitMode::NullSpace`] asks each limited joint to cover this share of its
 /// distance to the middle of its range (before the projection into the null space).
@@ -33,16 +33,16 @@ const NULLSPACE_FADE: f64 = 0.1;
 /// [`SolveOptions::max_step`](super::SolveOptions::max_step). `mu` is Levenberg–Marquardt's
 /// damping.
 #[inline]
-pub(super) fn compute_delta(
-    p: &Problem,
+pub(super) fn compute_delta<M: Model>(
+    p: &Problem<'_, M>,
     rule: Rule,
     e: &Vector3<f64>,
     mu: f64,
     angles: &[f64],
     s: &mut Scratch,
 ) -> f64 {
-    let (chain, opts, mode) = (p.chain, p.opts, p.mode);
-    let n = chain.len();
+    let (model, opts, mode) = (p.model, p.opts, p.mode);
+    let n = model.len();
     let oriented = p.goal.orientation().is_some();
     s.scale.fill(1.0);
     let (locking, weighing, pushing) = match mode {
@@ -52,11 +52,11 @@ pub(super) fn compute_delta(
         LimitMode::Weighted => (false, true, false),
     };
     if weighing {
-        weigh(chain, e, angles, s);
+        weigh(model, e, angles, s);
     }
     s.locked.fill(false);
     let mut task = *e;
-    let fade = if pushing { (e.norm() / (NULLSPACE_FADE * chain.max_reach())).min(1.0) } else { 0.0 };
+    let fade = if pushing { (e.norm() / (NULLSPACE_FADE * model.max_reach())).min(1.0) } else { 0.0 };
     for round in 0..=n {
         // Until a joint is locked or weighted, J itself is the weighted Jacobian.
         let plain = round == 0 && !weighing;
@@ -78,7 +78,7 @@ pub(super) fn compute_delta(
         if pushing {
             push_to_the_middle(p, fade, plain, &a, angles, s);
         }
-        if !locking || !lock_crossing(chain, angles, &mut task, s) {
+        if !locking || !lock_crossing(model, angles, &mut task, s) {
             break;
         }
     }
@@ -93,8 +93,8 @@ pub(super) fn compute_delta(
 /// limit, with `wᵢ = 1 / (1 + |∂H/∂θᵢ|)` of the joint-limit measure
 /// `H = Σ (max − min)² / (4 (max − θ)(θ − min))`, and 0 at or beyond a limit.
 #[inline]
-fn weigh(chain: &Chain, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch) {
-    for (i, lim) in chain.limits().iter().enumerate() {
+fn weigh<M: Model>(model: &M, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch) {
+    for (i, lim) in model.limits().iter().enumerate() {
         if let Some(lim) = lim {
             let (lo, hi, th) = (lim.min(), lim.max(), angles[i]);
             let g = s.jacobian.column(i).dot(e);
@@ -117,18 +117,18 @@ fn weigh(chain: &Chain, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch) {
 /// see of it: `Δθ += z − Jᵀ (J Jᵀ)⁺ J z`, over the free (unlocked) joints. `plain` says whether
 /// this round's weighted Jacobian is `J` itself, `a` is its Gram matrix.
 #[inline]
-fn push_to_the_middle(
-    p: &Problem,
+fn push_to_the_middle<M: Model>(
+    p: &Problem<'_, M>,
     fade: f64,
     plain: bool,
     a: &nalgebra::Matrix3<f64>,
     angles: &[f64],
     s: &mut Scratch,
 ) {
-    let n = p.chain.len();
+    let n = p.model.len();
     let weighted = if plain { &s.jacobian } else { &s.weighted };
     let mut jz = Vector3::zeros();
-    for (i, lim) in p.chain.limits().iter().enumerate() {
+    for (i, lim) in p.model.limits().iter().enumerate() {
         s.step[i] = match lim {
             Some(l) if !s.locked[i] => -NULLSPACE_GAIN * fade * (angles[i] - 0.5 * (l.min() + l.max())),
             _ => 0.0,
@@ -146,9 +146,9 @@ fn push_to_the_middle(
 /// Clamp and lock: a free joint whose step crosses its limit goes only to the limit and is
 /// held there, and what it no longer does is taken out of `task`. Whether any joint locked.
 #[inline]
-fn lock_crossing(chain: &Chain, angles: &[f64], task: &mut Vector3<f64>, s: &mut Scratch) -> bool {
+fn lock_crossing<M: Model>(model: &M, angles: &[f64], task: &mut Vector3<f64>, s: &mut Scratch) -> bool {
     let mut newly = false;
-    for (i, lim) in chain.limits().iter().enumerate() {
+    for (i, lim) in model.limits().iter().enumerate() {
         let Some(l) = lim else { continue };
         if s.locked[i] {
             continue;

@@ -10,11 +10,11 @@ use nalgebra::Vector3;
 
 use super::limit_modes::compute_delta;
 use super::lm::Damping;
+use super::model::Model;
 use super::problem::Problem;
 use super::scratch::Scratch;
 use super::step::Rule;
 use crate::angle::wrap_angle;
-use crate::kinematics::joint_positions_into;
 
 /// The share of the linearly predicted error decrease a backtracking step must achieve.
 const SUFFICIENT_DECREASE: f64 = 0.1;
@@ -30,8 +30,8 @@ pub(super) struct Residual {
 /// `s.trial` and `s.trial_joints` and its tip orientation is returned; `None` means no step
 /// lowers the error enough.
 #[inline]
-pub(super) fn jacobian_step(
-    p: &Problem,
+pub(super) fn jacobian_step<M: Model>(
+    p: &Problem<'_, M>,
     method: Rule,
     r: &Residual,
     damping: &mut Damping,
@@ -63,7 +63,13 @@ pub(super) fn jacobian_step(
 
 /// Levenberg–Marquardt's search: a rejected step raises the damping instead of halving.
 #[inline]
-fn damped_search(p: &Problem, r: &Residual, damping: &mut Damping, angles: &[f64], s: &mut Scratch) -> Option<f64> {
+fn damped_search<M: Model>(
+    p: &Problem<'_, M>,
+    r: &Residual,
+    damping: &mut Damping,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> Option<f64> {
     let backtrack = p.opts.backtrack;
     for _ in 0..=backtrack {
         let scale = compute_delta(p, Rule::LevenbergMarquardt, &r.e, damping.mu(), angles, s);
@@ -83,8 +89,8 @@ fn damped_search(p: &Problem, r: &Residual, damping: &mut Damping, angles: &[f64
 
 /// The search of the other rules: the step, then up to `halvings` halvings of it.
 #[inline]
-fn halving_search(
-    p: &Problem,
+fn halving_search<M: Model>(
+    p: &Problem<'_, M>,
     rule: Rule,
     halvings: u32,
     r: &Residual,
@@ -112,8 +118,13 @@ fn halving_search(
 /// `s.trial` and `s.trial_joints`. Returns its squared task error, the decrease the
 /// linearisation `J Δθ` predicts, and its tip orientation.
 #[inline]
-pub(super) fn try_pose(p: &Problem, e: &Vector3<f64>, scale: f64, angles: &[f64], s: &mut Scratch) -> (f64, f64, f64) {
-    let n = p.chain.len();
+pub(super) fn try_pose<M: Model>(
+    p: &Problem<'_, M>,
+    e: &Vector3<f64>,
+    scale: f64,
+    angles: &[f64],
+    s: &mut Scratch,
+) -> (f64, f64, f64) {
     let target = p.goal.target();
     let mut predicted = *e;
     for (i, ((t, a), (d, col))) in
@@ -123,8 +134,8 @@ pub(super) fn try_pose(p: &Problem, e: &Vector3<f64>, scale: f64, angles: &[f64]
         predicted -= col * (next - a);
         *t = next;
     }
-    let trial_phi = joint_positions_into(p.chain, &s.trial, &mut s.trial_joints);
-    let tip = s.trial_joints[n];
+    let trial_phi = p.model.forward_into(&s.trial, &mut s.trial_joints);
+    let tip = p.model.tip(&s.trial_joints);
     let turn = p.goal.orientation().map_or(0.0, |g| p.opts.orientation_weight * wrap_angle(g - trial_phi));
     let trial_error = (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn;
     let expected = (e.norm_squared() - predicted.norm_squared()).max(0.0);

@@ -59,6 +59,7 @@ mod limit_modes;
 mod line_search;
 mod lm;
 mod method;
+mod model;
 mod options;
 mod outcome;
 mod pinv;

@@ -5,10 +5,10 @@
 use std::time::Instant;
 
 use super::attempt::attempt;
+use super::model::Model;
 use super::problem::Problem;
 use super::scratch::Scratch;
 use super::{Outcome, Restarts, SolveOptions, Status};
-use crate::kinematics::joint_positions_into;
 use crate::limits::Bounds;
 use crate::rng::SplitMix64;
 
@@ -26,14 +26,14 @@ struct Tally {
 /// Runs the first attempt and, when the options ask for them and the goal is not out of reach,
 /// the restarts; leaves the final outcome in `out` with the iterations of every attempt, the
 /// restart count and the final status.
-pub(super) fn solve_with_restarts(
-    p: &Problem,
+pub(super) fn solve_with_restarts<M: Model>(
+    p: &Problem<'_, M>,
     start: &[f64],
     began: Option<Instant>,
     s: &mut Scratch,
     out: &mut Outcome,
 ) {
-    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
+    let (model, goal, opts) = (p.model, p.goal, p.opts);
     let status = attempt(p, start, s, out);
     let mut tally = Tally { status, iterations: out.iterations, restarts: 0 };
     // A solve that stalled or ran out of iterations restarts (one crawling at the cap, as
@@ -41,19 +41,19 @@ pub(super) fn solve_with_restarts(
     // go on until one reaches the goal. Goals out of reach even without limits do not.
     if let Some(r) = opts.restarts {
         let go_on = !matches!(tally.status, Status::Reached | Status::Interrupted);
-        if go_on && !goal.is_out_of_reach(chain, opts.tolerance) {
+        if go_on && !model.is_out_of_reach(goal, opts.tolerance) {
             restart(p, r, began, start, s, out, &mut tally);
         }
     }
     out.iterations = tally.iterations;
     out.restarts = tally.restarts;
     let judged = !matches!(tally.status, Status::Reached | Status::Interrupted);
-    out.status = if judged && goal.is_out_of_reach(chain, opts.tolerance) { Status::Unreachable } else { tally.status };
+    out.status = if judged && model.is_out_of_reach(goal, opts.tolerance) { Status::Unreachable } else { tally.status };
 }
 
 /// The restarts after a first attempt that did not reach the goal, counted into `tally`.
-fn restart(
-    p: &Problem,
+fn restart<M: Model>(
+    p: &Problem<'_, M>,
     r: Restarts,
     began: Option<Instant>,
     start: &[f64],
@@ -102,14 +102,14 @@ fn restart(
 
 /// With frames recorded and restarts taken, the frames run from the caller's start pose to the
 /// outcome's pose ([`join_frames`]).
-fn join(p: &Problem, start: &[f64], tally: &Tally, s: &mut Scratch, out: &mut Outcome) {
+fn join<M: Model>(p: &Problem<'_, M>, start: &[f64], tally: &Tally, s: &mut Scratch, out: &mut Outcome) {
     if tally.restarts > 0 && p.opts.record_every.is_some() {
         join_frames(p, start, tally.iterations, s, out);
     }
 }
 
 /// One attempt from the pose in `s.restart`.
-fn attempt_from_restart(p: &Problem, s: &mut Scratch, out: &mut Outcome) -> Status {
+fn attempt_from_restart<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) -> Status {
     let from = std::mem::take(&mut s.restart);
     let status = attempt(p, &from, s, out);
     s.restart = from;
@@ -119,13 +119,13 @@ fn attempt_from_restart(p: &Problem, s: &mut Scratch, out: &mut Outcome) -> Stat
 /// The frames of a restart begin elsewhere: keep the motion from the caller's start pose to
 /// the result (the outcome's pose), without the jump, numbered by the `iterations` of every
 /// attempt.
-fn join_frames(p: &Problem, start: &[f64], iterations: u32, s: &mut Scratch, out: &mut Outcome) {
-    out.frames.start(p.chain.len(), p.opts.record_every, 1);
+fn join_frames<M: Model>(p: &Problem<'_, M>, start: &[f64], iterations: u32, s: &mut Scratch, out: &mut Outcome) {
+    out.frames.start(p.model.len(), p.opts.record_every, 1);
     s.restart.copy_from_slice(start);
     p.bounds.clamp_into(&mut s.restart);
-    joint_positions_into(p.chain, &s.restart, &mut s.joints);
+    p.model.forward_into(&s.restart, &mut s.joints);
     out.frames.push(0, &s.restart, &s.joints);
-    joint_positions_into(p.chain, out.pose.angles(), &mut s.joints);
+    p.model.forward_into(out.pose.angles(), &mut s.joints);
     out.frames.push_final(iterations, out.pose.angles(), &s.joints);
 }
 

@@ -31,10 +31,11 @@ pub(super) struct Scratch {
 }
 
 impl Scratch {
-    /// Sizes every buffer for an `n`-joint chain (no allocation once they have grown to it).
-    pub(super) fn fit(&mut self, n: usize) {
-        self.joints.resize(n + 1, Point2::origin());
-        self.trial_joints.resize(n + 1, Point2::origin());
+    /// Sizes every buffer for a model of `n` joints whose forward kinematics writes `points`
+    /// points (`n + 1` for a chain); no allocation once they have grown to it.
+    pub(super) fn fit(&mut self, n: usize, points: usize) {
+        self.joints.resize(points, Point2::origin());
+        self.trial_joints.resize(points, Point2::origin());
         for v in [
             &mut self.scale,
             &mut self.step,

@@ -3,6 +3,7 @@
 //! to the restart driver.
 
 use super::attempt::distance;
+use super::model::Model;
 use super::problem::Problem;
 use super::restarts::solve_with_restarts;
 use super::scratch::Scratch;
@@ -57,7 +58,7 @@ impl Solver {
         check_input(chain, start, opts)?;
         let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
         let s = &mut self.scratch;
-        s.fit(chain.len());
+        s.fit(chain.len(), Model::points(chain));
         let p = Problem::new(chain, goal, opts);
         if opts.closed_form || opts.method == Method::Analytic {
             match closed_form::solve(chain, goal, start, p.bounds, &mut s.trial) {
@@ -87,7 +88,7 @@ impl Solver {
 /// solve. Debug builds, and so every test, check that claim after every solve. Any other
 /// outcome (a stalled, limited or interrupted one, which ran its whole budget anyway, or the best of
 /// several attempts) is measured again by [`measure`].
-fn finish(p: &Problem, s: &mut Scratch, out: &mut Outcome) {
+pub(super) fn finish<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) {
     if out.status == Status::Reached {
         #[cfg(debug_assertions)]
         {
@@ -111,10 +112,10 @@ fn finish(p: &Problem, s: &mut Scratch, out: &mut Outcome) {
 /// The loops measure their poses with the same forward kinematics, so today this changes
 /// nothing but guards against any step rule that tracks the tip by itself (as CCD's sweep
 /// once did, and reported `reached` 3.9e-6 away with a tolerance of 1e-6).
-fn measure(p: &Problem, s: &mut Scratch, out: &mut Outcome) {
-    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
-    let phi = joint_positions_into(chain, out.pose.angles(), &mut s.joints);
-    let tip = s.joints[chain.len()];
+fn measure<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) {
+    let (model, goal, opts) = (p.model, p.goal, p.opts);
+    let phi = model.forward_into(out.pose.angles(), &mut s.joints);
+    let tip = model.tip(&s.joints);
     out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
     out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
     out.end_effector = EndEffector { position: tip, orientation: phi };
@@ -122,7 +123,7 @@ fn measure(p: &Problem, s: &mut Scratch, out: &mut Outcome) {
     out.status = match out.status {
         _ if within => Status::Reached,
         Status::Interrupted => Status::Interrupted,
-        _ if goal.is_out_of_reach(chain, opts.tolerance) => Status::Unreachable,
+        _ if model.is_out_of_reach(goal, opts.tolerance) => Status::Unreachable,
         Status::Reached => Status::Stalled,
         other @ (Status::Unreachable | Status::Stalled | Status::IterationLimit) => other,
     };
@@ -145,7 +146,7 @@ fn check_input(chain: &Chain, start: &[f64], opts: &SolveOptions) -> Result<(), 
 /// `out` as a one-step solve (frames: the start pose, clamped into the bounds, and the answer)
 /// and returns `true`.
 fn reached_in_closed_form(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> bool {
-    let (chain, goal, opts) = (p.chain, p.goal, p.opts);
+    let (chain, goal, opts) = (p.model, p.goal, p.opts);
     let n = chain.len();
     let phi = joint_positions_into(chain, &s.trial, &mut s.trial_joints);
     let tip = s.trial_joints[n];

@@ -43,7 +43,7 @@ pub(super) use crate::fixtures::{random_chain, random_goal, random_pose};
 /// `max` iterations, or until an iteration moves no joint by more than 1e-13. Returns the
 /// angles, the iterations taken, and whether it got there.
 pub(super) fn drive(step: Step, p: &Problem, start: &[f64], max: usize, tol: f64) -> (Vec<f64>, usize, bool) {
-    let (chain, goal) = (p.chain, p.goal);
+    let (chain, goal) = (p.model, p.goal);
     let n = chain.len();
     let mut angles = start.to_vec();
     let mut joints = joint_positions(chain, &angles);
