@@ -107,6 +107,45 @@ impl Skeleton {
         }
     }
 
+    /// Forward kinematics into one buffer of `len() + 1` points — the base, then every bone's
+    /// tip in the skeleton's order (bone `i`'s tip at `points[i + 1]`; its start is its
+    /// parent's tip, or the base) — and every bone's absolute direction. The same operations
+    /// as [`Skeleton::forward_into`], so the same bits. Allocates nothing.
+    ///
+    /// # Panics
+    /// If `angles` or `directions` does not hold one entry per bone or `points` not `len() + 1`.
+    pub fn points_into(&self, angles: &[f64], points: &mut [Point2<f64>], directions: &mut [f64]) {
+        let n = self.len();
+        assert!(
+            angles.len() == n && points.len() == n + 1 && directions.len() == n,
+            "ikarus: forward kinematics of {n} bones given {} angles, {} points and {} directions",
+            angles.len(),
+            points.len(),
+            directions.len()
+        );
+        points[0] = self.base;
+        for &i in &self.order {
+            let (mut p, mut phi) = match self.parents[i] {
+                Some(q) => (points[q + 1], directions[q]),
+                None => (self.base, 0.0),
+            };
+            phi += angles[i];
+            let (s, c) = phi.sin_cos();
+            let l = self.lengths[i];
+            p.x += l * c;
+            p.y += l * s;
+            points[i + 1] = p;
+            directions[i] = phi;
+        }
+    }
+
+    /// The absolute direction of bone `bone` for `angles`: the sum of the angles from its root
+    /// down to it, in that order (the same bits as [`Skeleton::forward_into`]'s).
+    #[must_use]
+    pub fn direction(&self, angles: &[f64], bone: usize) -> f64 {
+        self.path(bone).iter().fold(0.0, |phi, &j| phi + angles[j])
+    }
+
     /// Fills the stacked Jacobian of `effectors` from the starts and tips computed by
     /// [`Skeleton::forward_into`]: [`task_rows`] rows (each effector's x, y and, with an
     /// orientation, φ, in the order of `effectors`) and one column per bone. Allocates nothing

@@ -62,6 +62,20 @@ impl Method {
         }
     }
 
+    /// Whether it solves skeletons (rigs): the Jacobian methods do; CCD, FABRIK and the
+    /// closed form solve chains only.
+    #[must_use]
+    pub fn solves_rigs(self) -> bool {
+        match self {
+            Method::Transpose
+            | Method::PseudoInverse
+            | Method::DampedLeastSquares
+            | Method::SelectivelyDamped
+            | Method::LevenbergMarquardt => true,
+            Method::CyclicCoordinateDescent | Method::Fabrik | Method::Analytic => false,
+        }
+    }
+
     /// A label for people: `Levenberg–Marquardt`, …
     #[must_use]
     pub fn label(self) -> &'static str {

@@ -65,6 +65,8 @@ mod outcome;
 mod pinv;
 mod problem;
 mod restarts;
+mod rig;
+mod rig_solver;
 mod scratch;
 mod sdls;
 mod solver;
@@ -77,6 +79,7 @@ pub use frames::{Frame, Frames};
 pub use method::{LimitMode, Method};
 pub use options::{MAX_BACKTRACK, OptionsError, Restarts, SolveOptions, StallDetection};
 pub use outcome::{Outcome, SolveError, Status};
+pub use rig::{Bend, EffectorOutcome, Pin, Priority, RigGoal, RigTask, RigTaskError};
 pub use solver::Solver;
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use nalgebra::Point2;
 use thiserror::Error;
 
 use super::Frames;
+use super::rig::{EffectorOutcome, RigTaskError};
 use crate::chain::Pose;
 use crate::kinematics::EndEffector;
 
@@ -69,7 +70,12 @@ pub struct Outcome {
     /// Final tip position and orientation.
     pub end_effector: EndEffector,
     /// Recorded frames (empty unless [`SolveOptions::record_every`](super::SolveOptions::record_every) is set).
+    /// A skeleton's frames hold the base and then every bone's tip, in the skeleton's order.
     pub frames: Frames,
+    /// A skeleton solve's effectors: its goals in the task's order, then its pins. Empty for a
+    /// chain. `error` and `angle_error` above are then the largest of theirs, and
+    /// `end_effector` the first one's tip.
+    pub effectors: Vec<EffectorOutcome>,
 }
 
 impl Default for Outcome {
@@ -83,6 +89,7 @@ impl Default for Outcome {
             angle_error: 0.0,
             end_effector: EndEffector { position: Point2::origin(), orientation: 0.0 },
             frames: Frames::default(),
+            effectors: Vec::new(),
         }
     }
 }
@@ -117,6 +124,15 @@ pub enum SolveError {
         links: usize,
         /// `"a position goal"` or `"an orientation goal"`.
         goal: &'static str,
+    },
+    /// A skeleton solve's task does not fit its skeleton.
+    #[error(transparent)]
+    Rig(#[from] RigTaskError),
+    /// A method that does not solve skeletons was asked to.
+    #[error("method {method}: solves chains only; a rig needs transpose, pinv, dls, sdls or lm")]
+    ChainOnly {
+        /// The method's name.
+        method: &'static str,
     },
     /// [`SolveOptions::rates`](super::SolveOptions::rates) is neither empty nor one per joint.
     #[error("rates: expected {expected} values (one per joint) or none, got {got}")]
