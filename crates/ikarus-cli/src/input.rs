@@ -1,4 +1,4 @@
-//! Reading the files that flags name (`--arm`, `solve --batch`, `track --path`): only regular
+//! Reading the files that flags name (`--arm`, `--rig`, `solve --batch`, `track --path`): only regular
 //! files (a device such as `/dev/zero` would be read until memory runs out, a FIFO would block
 //! until a writer comes), and at most [`max_bytes`] of them (64 MiB unless
 //! `ikarus --max-input-bytes N` says otherwise).
