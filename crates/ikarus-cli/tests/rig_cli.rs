@@ -518,3 +518,17 @@ fn mix_blends_the_start_pose_and_the_solution() {
         assert!((half[i] - (start[i] + full[i]) / 2.0).abs() < 1e-9, "{half:?} vs {full:?}");
     }
 }
+
+/// `--bend NAME=cw|ccw` picks which of a two-bone limb's two solutions the solve ends in: the
+/// sign of the bone's own angle.
+#[test]
+fn bend_picks_the_side_of_the_joint() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = write(dir.path(), "fork.toml", DOTTED);
+    for (side, sign) in [("cw", -1.0), ("ccw", 1.0)] {
+        let v = json(&["solve", "--rig", &rig, "--goal", "arm.l=1.2,0.8", "--bend", &format!("arm.l={side}")]);
+        assert_eq!(v["status"], "reached", "{side}: {v}");
+        let a = v["angles_deg"]["arm.l"].as_f64().unwrap();
+        assert!(a * sign > 0.0, "{side}: arm.l at {a}°");
+    }
+}
