@@ -6,6 +6,7 @@
 
 mod animate;
 mod arm;
+mod batch;
 mod bench;
 mod ease_args;
 mod error;
@@ -18,6 +19,11 @@ mod picture;
 mod render;
 mod report;
 mod rig;
+mod rig_args;
+mod rig_batch;
+mod rig_report;
+mod rig_solve;
+mod rig_task;
 mod serve;
 mod settings;
 mod solve;
@@ -36,7 +42,7 @@ use crate::error::CliError;
 #[derive(Debug, Parser)]
 #[command(name = "ikarus", version, about, propagate_version = true)]
 struct Cli {
-    /// Largest input file read (--arm, --batch, --path), in bytes
+    /// Largest input file read (--arm, --rig, --batch, --path), in bytes
     #[arg(long, global = true, value_name = "BYTES", default_value_t = input::DEFAULT_MAX_INPUT_BYTES)]
     max_input_bytes: u64,
     #[command(subcommand)]
@@ -45,7 +51,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Move the arm's tip to a goal and report the pose and the recorded frames
+    /// Move the arm's tip to a goal and report the pose and the recorded frames; with --rig,
+    /// goals on a rig's bones and pins, solved together
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
     /// Solve for a goal (through any via points) and turn it into a smooth, eased motion:

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
-use ikarus::{Chain, Ease, Point2};
+use ikarus::{Chain, Ease, Point2, RigTask};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Deserialize;
 
@@ -16,6 +16,7 @@ use crate::arm::Arm;
 use crate::error::CliError;
 use crate::motion::Motion;
 use crate::output::PendingFile;
+use crate::rig::Rig;
 
 /// What a picture holds: from a file's extension, or a request's `format`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -63,6 +64,8 @@ pub enum Drawing<'a> {
     Track { chain: &'a Chain, poses: &'a [Vec<f64>], layer: &'a ikarus_render::PathLayer, caption: String, fps: f64 },
     /// An ease curve's position and velocity.
     Ease(Ease),
+    /// A rig in one pose, with its goals, pins and (optionally) limit wedges.
+    Skeleton(ikarus_render::SkeletonFigure<'a>),
 }
 
 /// Draws `drawing` as `format`, `width` × `height` pixels; `progress(done, total)` hears about
@@ -129,6 +132,7 @@ pub fn draw(
             ikarus_render::arm_svg(&figure, width, height)
         }
         Drawing::Ease(ease) => ikarus_render::ease_svg(ease, width, height),
+        Drawing::Skeleton(figure) => ikarus_render::skeleton_svg(figure, width, height),
     }
     .map_err(|e| render_failed(&e))?;
     match format {
@@ -181,6 +185,29 @@ pub fn motion_drawing<'a>(arm: &'a Arm, motion: &'a Motion, goal: Option<Point2<
     Drawing::Motion { chain: &arm.chain, animation: &motion.motion.animation, goal, caption: motion.caption(), fps }
 }
 
+/// The figure of a rig at `pose` with the goals and pins of `task`, the limit wedges when
+/// `ranges` (`ikarus solve --rig --out`, `ikarus render rig` and the API's figure `rig`).
+pub fn rig_figure<'a>(
+    rig: &'a Rig,
+    pose: &'a [f64],
+    task: &RigTask,
+    ranges: bool,
+    caption: Option<String>,
+) -> ikarus_render::SkeletonFigure<'a> {
+    let goals = task
+        .goals
+        .iter()
+        .map(|g| ikarus_render::BoneGoal { bone: g.bone, position: g.goal.target(), angle: g.goal.orientation() })
+        .collect();
+    ikarus_render::SkeletonFigure {
+        goals,
+        pins: task.pins.iter().map(|p| p.bone).collect(),
+        ranges,
+        caption,
+        ..ikarus_render::SkeletonFigure::new(&rig.skeleton, pose)
+    }
+}
+
 /// The one-line caption of a workspace picture.
 pub fn workspace_caption(arm: &Arm, ws: &Workspace) -> String {
     let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
@@ -202,6 +229,31 @@ pub struct PictureArgs {
     /// Largest GIF drawn, in frames × width × height pixels (about 6 s of rendering at the cap)
     #[arg(long, value_name = "PIXELS", default_value_t = DEFAULT_MAX_GIF_PIXELS)]
     pub max_gif_pixels: u64,
+}
+
+/// `--out` and the picture size of a command that draws one still picture (.svg, .png):
+/// `ikarus solve`.
+#[derive(Debug, Clone, Args)]
+pub struct StillArgs {
+    /// Draw the solved pose to FILE (.svg or .png): the goal and, for a rig, its pins
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Picture width in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub width: u32,
+    /// Picture height in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub height: u32,
+}
+
+impl StillArgs {
+    /// Checks the extension and prepares the file; `None` without `--out`.
+    pub fn prepare(&self) -> Result<Option<PictureOut>, CliError> {
+        let Some(path) = &self.out else { return Ok(None) };
+        let format = format_of(path, &[PictureFormat::Svg, PictureFormat::Png])?;
+        let file = PendingFile::create(path, "--out")?;
+        Ok(Some(PictureOut { format, file }))
+    }
 }
 
 /// The default cap of `--max-gif-pixels`: 1000 frames of 800 × 800 and more (10⁹ pixels;
