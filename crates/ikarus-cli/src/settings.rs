@@ -189,6 +189,17 @@ impl SolverSettings {
     /// The library's options for `chain`, over the defaults. `record_every` is passed in
     /// because its default differs between commands.
     pub fn to_options(&self, chain: &Chain, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
+        let options = self.to_options_for(chain.len(), record_every)?;
+        options.validate_for(chain).map_err(|e| match e {
+            SolveError::RatesLength { expected, got } => SettingsError::Rates { expected, got },
+            other => SettingsError::Chain(other),
+        })?;
+        Ok(options)
+    }
+
+    /// The library's options for a body of `joints` joints (a chain's links, a skeleton's
+    /// bones): as [`SolverSettings::to_options`], `rates` one per joint.
+    pub fn to_options_for(&self, joints: usize, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
         let d = SolveOptions::default();
         let stall = d.stall.unwrap_or_default();
         let stall = StallDetection {
@@ -235,10 +246,9 @@ impl SolverSettings {
             ..d
         };
         options.validate().map_err(SettingsError::Options)?;
-        options.validate_for(chain).map_err(|e| match e {
-            SolveError::RatesLength { expected, got } => SettingsError::Rates { expected, got },
-            other => SettingsError::Chain(other),
-        })?;
+        if !options.rates.is_empty() && options.rates.len() != joints {
+            return Err(SettingsError::Rates { expected: joints, got: options.rates.len() });
+        }
         Ok(options)
     }
 
@@ -275,6 +285,41 @@ impl SolverSettings {
         }
         Ok(())
     }
+}
+
+/// The options of a command: `flags` over a file's `[solver]` table `file` over the defaults,
+/// for a body of `joints` joints; problems name the flag, or the `[solver]` field of the file
+/// (`label`, as its error messages start) a setting came from. Arm and rig files share it.
+pub fn command_options(
+    flags: &SolverSettings,
+    file: &SolverSettings,
+    label: &str,
+    joints: usize,
+    record_every: Option<u32>,
+) -> Result<SolveOptions, CliError> {
+    let restarts = flags.restarts.or(file.restarts);
+    if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
+        let field =
+            if flags.restarts.is_some() { "--restarts".to_owned() } else { format!("{label}: [solver].restarts") };
+        return Err(CliError::input(format!(
+            "{field} {n}: more than the cap of {} (raise it with --max-restarts N)",
+            flags.max_restarts
+        )));
+    }
+    flags.over(file).to_options_for(joints, record_every).map_err(|e| {
+        // A setting the flags left out came from the file's [solver] table: named as that,
+        // after the file.
+        let from_file = std::cell::Cell::new(false);
+        let message = e.describe(|field| {
+            if flags.is_set(field) || !file.is_set(field) {
+                format!("--{}", field.replace('_', "-"))
+            } else {
+                from_file.set(true);
+                format!("[solver].{field}")
+            }
+        });
+        CliError::input(if from_file.get() { format!("{label}: {message}") } else { message })
+    })
 }
 
 /// A solver for options already checked by [`SolverSettings::to_options`].
