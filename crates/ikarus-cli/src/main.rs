@@ -26,6 +26,7 @@ mod rig_motion;
 mod rig_report;
 mod rig_solve;
 mod rig_task;
+mod rig_track;
 mod serve;
 mod settings;
 mod solve;
