@@ -1,13 +1,13 @@
 //! The solver settings of the edges: one type for the flags, an arm file's `[solver]` table
 //! and the API's `options`, combined with [`SolverSettings::over`] and turned into the
-//! library's options with [`SolverSettings::to_options`].
+//! library's options with [`SolverSettings::to_options_for`].
 //!
 //! Precedence: flag, then the arm file's `[solver]` table, then the library default (the API:
 //! the request's `options`, then the arm's `solver` table, then the default).
 
 use clap::Args;
 use clap::builder::ArgPredicate;
-use ikarus::{Chain, LimitMode, Method, OptionsError, Restarts, SolveError, SolveOptions, Solver, StallDetection};
+use ikarus::{LimitMode, Method, OptionsError, Restarts, SolveOptions, Solver, StallDetection};
 use serde::Deserialize;
 
 use crate::error::CliError;
@@ -108,8 +108,6 @@ pub enum SettingsError {
     Rates { expected: usize, got: usize },
     /// Limits are enforced in a mode the method does not support.
     Unsupported { method: Method, mode: LimitMode },
-    /// Another mismatch between the options and the chain.
-    Chain(SolveError),
 }
 
 impl SettingsError {
@@ -118,7 +116,6 @@ impl SettingsError {
     pub fn describe(&self, field: impl Fn(&str) -> String) -> String {
         match self {
             Self::Options(e) => e.to_string(),
-            Self::Chain(e) => e.to_string(),
             Self::Rates { expected, got } => {
                 format!("{}: expected {expected} values (one per joint), got {got}", field("rates"))
             }
@@ -186,19 +183,9 @@ impl SolverSettings {
         if method.supports(mode) { Ok(mode) } else { Err(SettingsError::Unsupported { method, mode }) }
     }
 
-    /// The library's options for `chain`, over the defaults. `record_every` is passed in
-    /// because its default differs between commands.
-    pub fn to_options(&self, chain: &Chain, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
-        let options = self.to_options_for(chain.len(), record_every)?;
-        options.validate_for(chain).map_err(|e| match e {
-            SolveError::RatesLength { expected, got } => SettingsError::Rates { expected, got },
-            other => SettingsError::Chain(other),
-        })?;
-        Ok(options)
-    }
-
     /// The library's options for a body of `joints` joints (a chain's links, a skeleton's
-    /// bones): as [`SolverSettings::to_options`], `rates` one per joint.
+    /// bones), over the defaults; `rates` one per joint. `record_every` is passed in because
+    /// its default differs between commands.
     pub fn to_options_for(&self, joints: usize, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
         let d = SolveOptions::default();
         let stall = d.stall.unwrap_or_default();
@@ -322,7 +309,7 @@ pub fn command_options(
     })
 }
 
-/// A solver for options already checked by [`SolverSettings::to_options`].
+/// A solver for options already checked by [`SolverSettings::to_options_for`].
 pub fn solver(options: SolveOptions) -> Result<Solver, CliError> {
     Solver::new(options).map_err(|e| CliError::input(e.to_string()))
 }
