@@ -13,6 +13,7 @@ mod meta;
 mod pool;
 mod requests;
 mod rig_requests;
+mod rig_motion;
 mod rigs;
 
 use std::net::{IpAddr, SocketAddr};
