@@ -13,10 +13,10 @@ use crate::ease_args::EaseArgs;
 use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
-use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
 use crate::report::{AnimateJson, deg_text};
+use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -151,7 +151,9 @@ impl MotionArgs {
             .iter()
             .map(|v| match v {
                 ViaArg::Point(p) => Ok(*p),
-                ViaArg::Set(_) => Err(CliError::input(format!("{}: a goal set on named bones needs --rig FILE", v.text()))),
+                ViaArg::Set(_) => {
+                    Err(CliError::input(format!("{}: a goal set on named bones needs --rig FILE", v.text())))
+                }
             })
             .collect::<Result<Vec<_>, _>>()?;
         let goals =

@@ -141,9 +141,11 @@ pub fn draw(
                 .map_err(|e| render_failed(&e));
         }
         Drawing::RigMotion { figure, animation, .. } => match animation.frames.last() {
-            Some(last) => {
-                ikarus_render::skeleton_svg(&ikarus_render::SkeletonFigure { pose: &last.angles, ..figure.clone() }, width, height)
-            }
+            Some(last) => ikarus_render::skeleton_svg(
+                &ikarus_render::SkeletonFigure { pose: &last.angles, ..figure.clone() },
+                width,
+                height,
+            ),
             None => return Err(render_failed(&"a motion without frames")),
         },
     }

@@ -161,7 +161,13 @@ fn text(w: &mut dyn Write, run: &RigMotionRun) -> std::io::Result<()> {
             solve.error
         )?;
     }
-    writeln!(w, "motion    {} frames over {} s, {} ease", animation.frames.len(), animation.duration, animation.ease.name())?;
+    writeln!(
+        w,
+        "motion    {} frames over {} s, {} ease",
+        animation.frames.len(),
+        animation.duration,
+        animation.ease.name()
+    )?;
     let pose = |angles: &[f64]| {
         s.names().iter().zip(angles).map(|(n, &a)| format!("{n} {}", deg_text(a, 3))).collect::<Vec<_>>().join(", ")
     };

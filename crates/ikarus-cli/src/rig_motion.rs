@@ -74,8 +74,13 @@ impl RigMotion {
     pub fn drawing<'a>(&'a self, rig: &'a Rig, fps: f64) -> Drawing<'a> {
         let last = self.motion.animation.frames.last().expect("an animation has frames");
         let task = self.tasks.last().expect("at least the final goal set");
-        let mut figure =
-            rig_figure(rig, &last.angles, task, self.options.limits != ikarus::LimitMode::Ignore, Some(self.caption(rig)));
+        let mut figure = rig_figure(
+            rig,
+            &last.angles,
+            task,
+            self.options.limits != ikarus::LimitMode::Ignore,
+            Some(self.caption(rig)),
+        );
         // The via sets' goals too, where the final set has none on the same bone.
         for via in &self.tasks[..self.tasks.len() - 1] {
             for g in &via.goals {

@@ -39,8 +39,22 @@ fn a_rig_motion_runs_from_the_start_pose_to_the_solved_pose_in_json() {
     let rig = puppet();
     let goals = hand_goals();
     let args = [
-        "animate", "--rig", &rig, "--goal", &goals[0], "--goal", &goals[1], "--pin", "left_foot", "--pin",
-        "right_foot", "--limits", "--frames", "20", "--format", "json",
+        "animate",
+        "--rig",
+        &rig,
+        "--goal",
+        &goals[0],
+        "--goal",
+        &goals[1],
+        "--pin",
+        "left_foot",
+        "--pin",
+        "right_foot",
+        "--limits",
+        "--frames",
+        "20",
+        "--format",
+        "json",
     ];
     let v = json(&args);
     assert_eq!(v["rig"], "puppet");
@@ -48,7 +62,8 @@ fn a_rig_motion_runs_from_the_start_pose_to_the_solved_pose_in_json() {
     assert_eq!(v["duration"], 1.0);
     let solves = v["solves"].as_array().unwrap();
     assert_eq!(solves.len(), 1);
-    let effectors: Vec<&str> = solves[0]["effectors"].as_array().unwrap().iter().map(|e| e["name"].as_str().unwrap()).collect();
+    let effectors: Vec<&str> =
+        solves[0]["effectors"].as_array().unwrap().iter().map(|e| e["name"].as_str().unwrap()).collect();
     assert_eq!(effectors, ["right_hand", "left_hand", "left_foot", "right_foot"]);
     assert_eq!(solves[0]["status"], "reached", "{}", solves[0]);
     let frames = v["frames"].as_array().unwrap();
@@ -83,8 +98,20 @@ fn a_rig_motion_passes_through_each_via_goal_set() {
     let [x, y] = rigs::puppet_hand_targets()[0].1;
     let via = format!("right_hand={},{}", x - 0.1, y - 0.2);
     let args = [
-        "animate", "--rig", &rig, "--via", &via, "--goal", &goals[0], "--pin", "left_foot", "--limits", "--frames",
-        "9", "--format", "json",
+        "animate",
+        "--rig",
+        &rig,
+        "--via",
+        &via,
+        "--goal",
+        &goals[0],
+        "--pin",
+        "left_foot",
+        "--limits",
+        "--frames",
+        "9",
+        "--format",
+        "json",
     ];
     let v = json(&args);
     let solves = v["solves"].as_array().unwrap();
@@ -93,8 +120,20 @@ fn a_rig_motion_passes_through_each_via_goal_set() {
     assert!(solves.iter().all(|s| s["status"] == "reached"), "{solves:?}");
     assert_eq!(v["frames"].as_array().unwrap().len(), 9);
     let text = succeeds(&[
-        "animate", "--rig", &rig, "--via", &via, "--goal", &goals[0], "--pin", "left_foot", "--limits", "--frames",
-        "9", "--format", "text",
+        "animate",
+        "--rig",
+        &rig,
+        "--via",
+        &via,
+        "--goal",
+        &goals[0],
+        "--pin",
+        "left_foot",
+        "--limits",
+        "--frames",
+        "9",
+        "--format",
+        "text",
     ]);
     assert!(text.starts_with("rig       puppet (16 bones)\n"), "{text}");
     assert!(text.contains("\nvia       right_hand ("), "{text}");
@@ -139,8 +178,22 @@ fn a_rig_motion_draws_the_skeleton() {
     for (ext, magic) in [("svg", &b"<svg"[..]), ("png", &b"\x89PNG"[..]), ("gif", &b"GIF89a"[..])] {
         let out = dir.join(format!("motion.{ext}"));
         let o = ikarus(&[
-            "animate", "--rig", &rig, "--goal", &goals[0], "--pin", "left_foot", "--limits", "--frames", "6",
-            "--width", "200", "--height", "200", "--out", out.to_str().unwrap(),
+            "animate",
+            "--rig",
+            &rig,
+            "--goal",
+            &goals[0],
+            "--pin",
+            "left_foot",
+            "--limits",
+            "--frames",
+            "6",
+            "--width",
+            "200",
+            "--height",
+            "200",
+            "--out",
+            out.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         assert!(o.stdout.is_empty(), "with --out stdout stays quiet");
@@ -169,14 +222,26 @@ fn bad_rig_motions_are_one_line_errors() {
         (vec!["--rig", &rig, "--goal", "1,2"], "--goal 1,2: a rig's goal names its bone: --goal NAME=X,Y[,DEG]"),
         (vec!["--rig", &rig, "--goal", "nose=1,2"], "--goal nose=1,2: no bone named \"nose\" in the rig"),
         (vec!["--rig", &rig, "--goal", "left_hand=1,2", "--via", "1,1"], "--via 1,1: a rig's via is a goal set"),
-        (vec!["--rig", &rig, "--goal", "left_hand=1,2", "--via", "left_hand=1,1;nose=0,1"], "--via left_hand=1,1;nose=0,1: no bone named \"nose\""),
+        (
+            vec!["--rig", &rig, "--goal", "left_hand=1,2", "--via", "left_hand=1,1;nose=0,1"],
+            "--via left_hand=1,1;nose=0,1: no bone named \"nose\"",
+        ),
         (vec!["--rig", &rig, "--goal", "left_hand=1,2", "--method", "ccd"], "method ccd: solves chains only"),
         (vec!["--rig", &rig, "--goal", "left_hand=1,2", "--pin", "left_hand"], "bone \"left_hand\" already has a goal"),
-        (vec!["--rig", &rig, "--goal", "left_hand=1,2", "--goal-angle", "30"], "the argument '--rig <FILE>' cannot be used with '--goal-angle <DEG>'"),
+        (
+            vec!["--rig", &rig, "--goal", "left_hand=1,2", "--goal-angle", "30"],
+            "the argument '--rig <FILE>' cannot be used with '--goal-angle <DEG>'",
+        ),
         (vec!["--goal", "left_hand=1,2"], "--goal left_hand=1,2: a goal on a named bone needs --rig FILE"),
         (vec!["--goal", "1,2", "--goal", "2,1"], "--goal: an arm has one tip, so one --goal X,Y, got 2"),
-        (vec!["--goal", "1,2", "--via", "left_hand=1,1"], "--via left_hand=1,1: a goal set on named bones needs --rig FILE"),
-        (vec!["--goal", "1,2", "--pin", "left_hand"], "the following required arguments were not provided: --rig <FILE>"),
+        (
+            vec!["--goal", "1,2", "--via", "left_hand=1,1"],
+            "--via left_hand=1,1: a goal set on named bones needs --rig FILE",
+        ),
+        (
+            vec!["--goal", "1,2", "--pin", "left_hand"],
+            "the following required arguments were not provided: --rig <FILE>",
+        ),
     ];
     for (args, want) in cases {
         let mut all = vec!["animate"];
@@ -192,11 +257,28 @@ fn a_rig_effector_follows_a_path_while_the_feet_stay_planted() {
     let [x, y] = rigs::puppet_hand_targets()[0].1;
     let circle = format!("{},{},0.08", x - 0.08, y);
     let args = [
-        "track", "--rig", &rig, "--effector", "right_hand", "--circle", &circle, "--samples", "24", "--pin",
-        "left_foot", "--pin", "right_foot", "--limits", "--format", "json",
+        "track",
+        "--rig",
+        &rig,
+        "--effector",
+        "right_hand",
+        "--circle",
+        &circle,
+        "--samples",
+        "24",
+        "--pin",
+        "left_foot",
+        "--pin",
+        "right_foot",
+        "--limits",
+        "--format",
+        "json",
     ];
     let v = json(&args);
-    assert_eq!((v["rig"].as_str(), v["effector"].as_str(), v["mode"].as_str()), (Some("puppet"), Some("right_hand"), Some("follow")));
+    assert_eq!(
+        (v["rig"].as_str(), v["effector"].as_str(), v["mode"].as_str()),
+        (Some("puppet"), Some("right_hand"), Some("follow"))
+    );
     let samples = v["samples"].as_array().unwrap();
     assert_eq!(samples.len(), 24);
     assert_eq!(v["summary"]["reached"], 24, "{}", v["summary"]);
@@ -228,11 +310,23 @@ fn a_rig_track_in_csv_and_text_and_its_bad_input() {
     assert!(text.starts_with("rig       puppet (16 bones)\neffector  left_hand; held: right_foot pinned\n"), "{text}");
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (vec!["--rig", &rig, "--circle", "0,1,0.1"], "--effector: required with --rig"),
-        (vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--mode", "plan"], "--mode plan: a rig's effector is followed online only"),
-        (vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--pin", "left_hand"], "--effector left_hand: the bone is also pinned"),
-        (vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--goal", "left_hand=0,1"], "--effector left_hand: the bone also has a goal"),
+        (
+            vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--mode", "plan"],
+            "--mode plan: a rig's effector is followed online only",
+        ),
+        (
+            vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--pin", "left_hand"],
+            "--effector left_hand: the bone is also pinned",
+        ),
+        (
+            vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--goal", "left_hand=0,1"],
+            "--effector left_hand: the bone also has a goal",
+        ),
         (vec!["--rig", &rig, "--effector", "tail", "--circle", "0,1,0.1"], "--effector tail: no bone named \"tail\""),
-        (vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--method", "fabrik"], "method fabrik: solves chains only"),
+        (
+            vec!["--rig", &rig, "--effector", "left_hand", "--circle", "0,1,0.1", "--method", "fabrik"],
+            "method fabrik: solves chains only",
+        ),
         (vec!["--effector", "left_hand", "--circle", "0,1,0.1"], "required arguments were not provided: --rig <FILE>"),
         (vec!["--goal", "left_hand=0,1", "--circle", "0,1,0.1"], "required arguments were not provided: --rig <FILE>"),
     ];
@@ -258,8 +352,21 @@ fn a_rig_track_draws_the_skeleton_one_frame_per_sample() {
     let out = dir.join("track.gif");
     let rig = puppet();
     let o = ikarus(&[
-        "track", "--rig", &rig, "--effector", "right_hand", "--circle", "0.5,1.2,0.1", "--samples", "5", "--width",
-        "160", "--height", "160", "--out", out.to_str().unwrap(),
+        "track",
+        "--rig",
+        &rig,
+        "--effector",
+        "right_hand",
+        "--circle",
+        "0.5,1.2,0.1",
+        "--samples",
+        "5",
+        "--width",
+        "160",
+        "--height",
+        "160",
+        "--out",
+        out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let bytes = std::fs::read(&out).unwrap();

@@ -47,7 +47,8 @@ fn a_rig_animates_through_a_via_set_to_its_goals_with_the_feet_planted() {
     assert_eq!(v["rig"], "puppet");
     let solves = v["solves"].as_array().unwrap();
     assert_eq!(solves.len(), 2);
-    let names: Vec<&str> = solves[1]["effectors"].as_array().unwrap().iter().map(|e| e["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> =
+        solves[1]["effectors"].as_array().unwrap().iter().map(|e| e["name"].as_str().unwrap()).collect();
     assert_eq!(names, ["right_hand", "left_hand", "left_foot", "right_foot"]);
     assert!(solves.iter().all(|s| s["status"] == "reached"), "{solves:?}");
     let frames = v["frames"].as_array().unwrap();
@@ -94,7 +95,8 @@ fn rig_motion_and_track_answer_in_the_shapes_of_the_command_line() {
     // Shapes only (no solve needs to reach anything): bones by name, in the rig's order.
     let s = start(&[]);
     let rig = rigs::json("puppet");
-    let a = s.post("/api/animate", &json!({"rig": rig, "goals": [{"bone": "left_hand", "x": 0.0, "y": 1.0}], "frames": 3}));
+    let a =
+        s.post("/api/animate", &json!({"rig": rig, "goals": [{"bone": "left_hand", "x": 0.0, "y": 1.0}], "frames": 3}));
     assert_eq!(a.status, 200, "{}", a.text());
     let v = a.json();
     // (serde_json's objects here sort their keys: the sets are compared.)
@@ -123,21 +125,65 @@ fn bad_rig_motion_and_track_requests_are_422s_naming_the_field() {
     let mut many: Vec<String> = (0..4).flat_map(|_| rigs::names(&rig)).collect();
     many.push("pelvis".to_owned());
     let cases = [
-        ("/api/animate", json!({"rig": rig, "arm": {"links": [{"length": 1}]}, "goals": goal}), "arm, rig: give one or the other"),
+        (
+            "/api/animate",
+            json!({"rig": rig, "arm": {"links": [{"length": 1}]}, "goals": goal}),
+            "arm, rig: give one or the other",
+        ),
         ("/api/animate", json!({"rig": rig, "goal": {"x": 0, "y": 1}}), "goal: a rig takes goals"),
         ("/api/animate", json!({"goals": goal}), "goals: only with rig"),
-        ("/api/animate", json!({"rig": rig, "goals": [{"bone": "nose", "x": 0, "y": 1}]}), "goals[0]: no bone named \"nose\""),
-        ("/api/animate", json!({"rig": rig, "goals": goal, "via": [goal, [{"bone": "tail", "x": 0, "y": 1}]]}), "via[1][0]: no bone named \"tail\""),
-        ("/api/animate", json!({"rig": rig, "goals": goal, "options": {"method": "ccd"}}), "method ccd: solves chains only"),
+        (
+            "/api/animate",
+            json!({"rig": rig, "goals": [{"bone": "nose", "x": 0, "y": 1}]}),
+            "goals[0]: no bone named \"nose\"",
+        ),
+        (
+            "/api/animate",
+            json!({"rig": rig, "goals": goal, "via": [goal, [{"bone": "tail", "x": 0, "y": 1}]]}),
+            "via[1][0]: no bone named \"tail\"",
+        ),
+        (
+            "/api/animate",
+            json!({"rig": rig, "goals": goal, "options": {"method": "ccd"}}),
+            "method ccd: solves chains only",
+        ),
         ("/api/animate", json!({"rig": rig, "goals": goal, "frames": 1}), "frames = 1"),
         ("/api/track", json!({"rig": rig, "circle": [0, 1, 0.1]}), "effector: required with rig"),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "mode": "plan"}), "mode = plan: a rig's effector is followed online only"),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "pins": ["left_hand"]}), "effector left_hand: the bone is also pinned"),
-        ("/api/track", json!({"rig": rig, "effector": "nose", "circle": [0, 1, 0.1]}), "effector nose: no bone named \"nose\""),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand"}), "path, line, circle, figure8: give exactly one, got 0"),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "mix": 2}), "mix: must be from 0 to 1, got 2"),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "pins": many}), "more than the cap of 64"),
-        ("/api/track", json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "sample": 3}), "unknown field `sample`"),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "mode": "plan"}),
+            "mode = plan: a rig's effector is followed online only",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "pins": ["left_hand"]}),
+            "effector left_hand: the bone is also pinned",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "nose", "circle": [0, 1, 0.1]}),
+            "effector nose: no bone named \"nose\"",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand"}),
+            "path, line, circle, figure8: give exactly one, got 0",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "mix": 2}),
+            "mix: must be from 0 to 1, got 2",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "pins": many}),
+            "more than the cap of 64",
+        ),
+        (
+            "/api/track",
+            json!({"rig": rig, "effector": "left_hand", "circle": [0, 1, 0.1], "sample": 3}),
+            "unknown field `sample`",
+        ),
     ];
     for (path, body, want) in cases {
         let e = s.post(path, &body).error(422);

@@ -97,8 +97,8 @@ mod timing;
 pub use body::Body;
 pub use options::{Interpolation, MotionOptions};
 use path::Path;
-use spline::Spline;
 pub use rig::{RigMotion, RigSolveOutcome, through_rig_tasks};
+use spline::Spline;
 pub use through::{GoalMotion, GoalMotionError, GoalOutcome, Route, through_goals};
 pub use timing::{MAX_FRAMES, Timing};
 

@@ -128,7 +128,7 @@ pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Res
 
 pub async fn animate(State(state): State<AppState>, body: AnimateBody) -> Result<Response, ApiError> {
     let req = match body {
-        AnimateBody::Arm(req) => req,
+        AnimateBody::Arm(req) => *req,
         AnimateBody::Rig(req) => return super::rig_motion::animate(state, *req).await,
     };
     let pool = state.pool.clone();
@@ -145,7 +145,7 @@ pub async fn animate(State(state): State<AppState>, body: AnimateBody) -> Result
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
 pub async fn track(State(state): State<AppState>, body: TrackBody) -> Result<Response, ApiError> {
     let req = match body {
-        TrackBody::Arm(req) => req,
+        TrackBody::Arm(req) => *req,
         TrackBody::Rig(req) => return super::rig_motion::track(state, *req).await,
     };
     let pool = state.pool.clone();
@@ -360,7 +360,12 @@ pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, Api
 }
 
 /// The motion's timing ([`crate::motion::timing`]); at most `--max-frames` frames.
-pub(super) fn timing(frames: Option<u32>, duration: Option<f64>, fps: Option<f64>, limits: &Limits) -> Result<Timing, ApiError> {
+pub(super) fn timing(
+    frames: Option<u32>,
+    duration: Option<f64>,
+    fps: Option<f64>,
+    limits: &Limits,
+) -> Result<Timing, ApiError> {
     let timing = crate::motion::timing(frames, duration, fps).map_err(|p| match p {
         TimingProblem::Value { field, value, message } => ApiError::invalid(format!("{field} = {value}: {message}")),
         TimingProblem::Both => ApiError::invalid("frames, duration: give one or the other, not both"),

@@ -12,8 +12,8 @@ mod guard;
 mod meta;
 mod pool;
 mod requests;
-mod rig_requests;
 mod rig_motion;
+mod rig_requests;
 mod rigs;
 
 use std::net::{IpAddr, SocketAddr};

@@ -102,14 +102,14 @@ pub struct RigTrackReq {
 /// The body of `POST /api/animate`: an arm's request or a rig's.
 #[derive(Debug)]
 pub enum AnimateBody {
-    Arm(AnimateReq),
+    Arm(Box<AnimateReq>),
     Rig(Box<RigAnimateReq>),
 }
 
 /// The body of `POST /api/track`: an arm's request or a rig's.
 #[derive(Debug)]
 pub enum TrackBody {
-    Arm(TrackReq),
+    Arm(Box<TrackReq>),
     Rig(Box<RigTrackReq>),
 }
 
@@ -119,7 +119,7 @@ impl FromRequest<AppState> for AnimateBody {
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
         let body = JsonBody::from_request(req, state).await?;
         let keys: Keys = body.parse()?;
-        Ok(if keys.rig()? { AnimateBody::Rig(body.parse()?) } else { AnimateBody::Arm(body.parse()?) })
+        Ok(if keys.rig()? { AnimateBody::Rig(body.parse()?) } else { AnimateBody::Arm(Box::new(body.parse()?)) })
     }
 }
 
@@ -129,7 +129,7 @@ impl FromRequest<AppState> for TrackBody {
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
         let body = JsonBody::from_request(req, state).await?;
         let keys: Keys = body.parse()?;
-        Ok(if keys.rig()? { TrackBody::Rig(body.parse()?) } else { TrackBody::Arm(body.parse()?) })
+        Ok(if keys.rig()? { TrackBody::Rig(body.parse()?) } else { TrackBody::Arm(Box::new(body.parse()?)) })
     }
 }
 
@@ -146,10 +146,8 @@ fn tasks(rig: &Rig, req: &RigAnimateReq) -> Result<Vec<RigTask>, ApiError> {
     }
     let mut tasks = Vec::with_capacity(req.via.len() + 1);
     for (i, set) in req.via.iter().enumerate() {
-        let t = task(rig, set, &req.pins, req.mix, true).map_err(|e| ApiError {
-            message: prefix_goals(&e.message, &format!("via[{i}]")),
-            ..e
-        })?;
+        let t = task(rig, set, &req.pins, req.mix, true)
+            .map_err(|e| ApiError { message: prefix_goals(&e.message, &format!("via[{i}]")), ..e })?;
         tasks.push(t);
     }
     tasks.push(task(rig, &req.goals, &req.pins, req.mix, true)?);

@@ -8,8 +8,8 @@ use crate::skeleton::Skeleton;
 use crate::solve::{Outcome, RigTask, Solver, Status};
 
 use super::{
-    Path, RigEffector, SampleStatus, Track, TrackBody, TrackError, TrackOptions, TrackSample, joint_delta,
-    joint_step, unwrap_free,
+    Path, RigEffector, SampleStatus, Track, TrackBody, TrackError, TrackOptions, TrackSample, joint_delta, joint_step,
+    unwrap_free,
 };
 
 /// What one [`Follower`] step did; the pose is [`Follower::pose`].
@@ -211,7 +211,11 @@ pub fn follow_rig(
 }
 
 /// The samples of `path` followed by `follower`, from its pose.
-fn follow_with<B: TrackBody>(mut follower: Follower<B>, path: &Path, options: &TrackOptions) -> Result<Track, TrackError> {
+fn follow_with<B: TrackBody>(
+    mut follower: Follower<B>,
+    path: &Path,
+    options: &TrackOptions,
+) -> Result<Track, TrackError> {
     let mut samples = Vec::with_capacity(path.len());
     for (k, goal) in path.goals().iter().enumerate() {
         if crate::interrupt::is_set(options.solve.interrupt.as_ref()) {

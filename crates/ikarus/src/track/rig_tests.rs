@@ -5,11 +5,11 @@ use std::f64::consts::FRAC_PI_2;
 use nalgebra::Point2;
 
 use super::{Follower, Path, SampleStatus, TrackError, TrackOptions, follow_rig, is_flip};
+use crate::Goal;
 use crate::limits::JointLimits;
 use crate::motion::Body;
 use crate::skeleton::{Bone, Skeleton};
 use crate::solve::{Method, Pin, RigGoal, RigTask, SolveError, SolveOptions};
-use crate::Goal;
 
 /// A trunk standing up from the base with two arms of two bones each, the elbows limited.
 fn fork() -> Skeleton {

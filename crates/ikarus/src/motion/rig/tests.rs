@@ -126,7 +126,8 @@ fn a_rig_motion_through_several_tasks_passes_through_every_solved_pose() {
 fn a_chain_only_method_and_a_bad_task_are_errors() {
     let s = fork();
     let start = s.start_angles().to_vec();
-    let mut ccd = Solver::new(SolveOptions { method: Method::CyclicCoordinateDescent, ..SolveOptions::default() }).unwrap();
+    let mut ccd =
+        Solver::new(SolveOptions { method: Method::CyclicCoordinateDescent, ..SolveOptions::default() }).unwrap();
     let e = through_rig_tasks(&mut ccd, &s, &start, &[reach_left(0.0, 2.0)], Route::Keyframes, options(5));
     assert!(matches!(e, Err(GoalMotionError::Solve(SolveError::ChainOnly { .. }))), "{e:?}");
     let mut solver = Solver::new(SolveOptions::default()).unwrap();
