@@ -296,3 +296,21 @@ fn csv(w: &mut dyn Write, animation: &Animation, n: usize) -> std::io::Result<()
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_via_is_a_point_or_a_goal_set() {
+        assert_eq!(parse_via("1,-2"), Ok(ViaArg::Point([1.0, -2.0])));
+        let named = |bone: &str, x, y, angle_deg| GoalArg::Named { bone: bone.into(), x, y, angle_deg };
+        assert_eq!(parse_via("hand=1,2"), Ok(ViaArg::Set(vec![named("hand", 1.0, 2.0, None)])));
+        let set = parse_via("hand=1,2; foot=0,-1,90").unwrap();
+        assert_eq!(set, ViaArg::Set(vec![named("hand", 1.0, 2.0, None), named("foot", 0.0, -1.0, Some(90.0))]));
+        assert_eq!(set.text(), "--via hand=1,2;foot=0,-1,90");
+        assert_eq!(parse_via("1,2,3"), Err("expected two numbers X,Y, got 3 part(s)".into()));
+        assert_eq!(parse_via("hand=1,2;3,4"), Err("'3,4': expected NAME=X,Y[,DEG] in a goal set".into()));
+        assert_eq!(parse_via("hand=1,x"), Err("hand: y: 'x' is not a number".into()));
+    }
+}

@@ -212,6 +212,29 @@ fn a_rig_motion_draws_the_skeleton() {
             assert_eq!(frames, 6, "one GIF frame per motion frame");
         }
     }
+    // `ikarus render motion` draws the same motion.
+    let out = dir.join("render.svg");
+    let o = ikarus(&[
+        "render",
+        "motion",
+        "--rig",
+        &rig,
+        "--goal",
+        &goals[0],
+        "--pin",
+        "left_foot",
+        "--frames",
+        "4",
+        "--width",
+        "200",
+        "--height",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("id=\"bone15\""), "render motion --rig draws the skeleton");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
