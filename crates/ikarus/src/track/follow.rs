@@ -30,14 +30,14 @@ pub struct Step {
 /// current pose, the solution nearest it taken, and no joint moved more than
 /// [`TrackOptions::max_step`] per call of [`Follower::step`].
 ///
-/// It owns its chain, solver and buffers: after the first step, a step allocates nothing.
+/// It owns its body, solver and buffers: after the first step, a step allocates nothing.
 /// The same goals from the same pose give the same poses, bit for bit.
 ///
 /// The body is a [`Chain`] (the default: its tip follows) or a [`RigEffector`] (one bone tip
 /// of a skeleton follows while the rest of a rig task holds; [`Follower::rig`]).
 #[derive(Debug, Clone)]
 pub struct Follower<B: TrackBody = Chain> {
-    chain: B,
+    body: B,
     options: TrackOptions,
     solver: Solver,
     pose: Vec<f64>,
@@ -67,17 +67,18 @@ impl Follower<Chain> {
     /// The chain followed.
     #[must_use]
     pub fn chain(&self) -> &Chain {
-        &self.chain
+        &self.body
     }
 }
 
 impl<B: TrackBody> Follower<B> {
-    /// A follower of `chain` at the pose `start` (radians, one per joint).
-    pub fn new(chain: &B, start: &[f64], options: &TrackOptions) -> Result<Self, TrackError> {
-        let solver = chain.track_solver(options, start)?;
-        let n = chain.angle_count();
+    /// A follower of `body` (a chain, or a [`RigEffector`]) at the pose `start` (radians, one
+    /// per joint).
+    pub fn new(body: &B, start: &[f64], options: &TrackOptions) -> Result<Self, TrackError> {
+        let solver = body.track_solver(options, start)?;
+        let n = body.angle_count();
         Ok(Self {
-            chain: chain.clone(),
+            body: body.clone(),
             options: options.clone(),
             solver,
             pose: start.to_vec(),
@@ -97,7 +98,7 @@ impl<B: TrackBody> Follower<B> {
     /// The body followed.
     #[must_use]
     pub fn body(&self) -> &B {
-        &self.chain
+        &self.body
     }
 
     /// Moves the arm toward `goal`: to the solution nearest the current pose if no joint
@@ -115,7 +116,7 @@ impl<B: TrackBody> Follower<B> {
 
     fn advance(&mut self, goal: &Goal, bounded: bool) -> Step {
         let status = self.solve_near(goal);
-        let bounds = self.chain.track_bounds(&self.options.solve);
+        let bounds = self.body.track_bounds(&self.options.solve);
         unwrap_free(bounds, &mut self.best, &self.pose);
         let largest = joint_step(bounds, &self.best, &self.pose);
         let max_step = self.options.max_step;
@@ -131,35 +132,35 @@ impl<B: TrackBody> Follower<B> {
             (status, largest)
         };
         self.count += 1;
-        let (error, angle_error) = self.chain.errors(&self.pose, goal);
+        let (error, angle_error) = self.body.errors(&self.pose, goal);
         Step { status, error, angle_error, step }
     }
 
     /// Solves for `goal` from the current pose and, if that does not reach it, from seeded
     /// poses near it; leaves the best solution in `self.best` and returns its status.
     fn solve_near(&mut self, goal: &Goal) -> SampleStatus {
-        let chain = &mut self.chain;
+        let body = &mut self.body;
         let opts = &self.options;
-        if chain.solve_from(&mut self.solver, &self.pose, goal, &mut self.out).is_err() {
-            // The chain, pose and options were checked when the follower was built.
+        if body.solve_from(&mut self.solver, &self.pose, goal, &mut self.out).is_err() {
+            // The body, pose and options were checked when the follower was built.
             self.best.copy_from_slice(&self.pose);
             return SampleStatus::Stalled;
         }
         self.best.copy_from_slice(self.out.pose.angles());
         let mut status = self.out.status;
         let tolerance = opts.solve.tolerance;
-        if status == Status::Reached || chain.out_of_reach(goal, tolerance) {
+        if status == Status::Reached || body.out_of_reach(goal, tolerance) {
             return SampleStatus::from_solve(status);
         }
         let mut best_error = task_error(opts, &self.out);
         let (attempts, seed) = (opts.solve.restarts.map_or(0, |r| r.attempts), opts.seed());
         for k in 1..=attempts {
             let mut rng = SplitMix64(seed ^ self.count.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ u64::from(k) << 32);
-            let bounds = chain.track_bounds(&opts.solve);
+            let bounds = body.track_bounds(&opts.solve);
             for (i, (s, &q)) in self.seed_pose.iter_mut().zip(&self.pose).enumerate() {
                 *s = bounds.clamp(i, q + opts.radius * (2.0 * rng.unit() - 1.0));
             }
-            if chain.solve_from(&mut self.solver, &self.seed_pose, goal, &mut self.out).is_err() {
+            if body.solve_from(&mut self.solver, &self.seed_pose, goal, &mut self.out).is_err() {
                 break;
             }
             let error = task_error(opts, &self.out);
@@ -232,5 +233,5 @@ fn follow_with<B: TrackBody>(
             step: if placed { 0.0 } else { step.step },
         });
     }
-    Ok(Track::new(samples, follower.chain.track_bounds(&options.solve), options.max_step))
+    Ok(Track::new(samples, follower.body.track_bounds(&options.solve), options.max_step))
 }
