@@ -15,7 +15,7 @@ use crate::goal::Goal;
 use crate::kinematics::end_effector;
 use crate::limits::Bounds;
 use crate::skeleton::Skeleton;
-use crate::solve::{Outcome, RigGoal, RigTask, SolveError, SolveOptions, Solver};
+use crate::solve::{LimitMode, Outcome, RigGoal, RigTask, SolveError, SolveOptions, Solver};
 
 mod sealed {
     pub trait Sealed {}
@@ -189,8 +189,8 @@ impl TrackBody for RigEffector {
 
     fn track_bounds(&self, options: &SolveOptions) -> Bounds<'_> {
         match options.limits {
-            crate::solve::LimitMode::Ignore => Bounds::free(),
-            _ => self.skeleton.bounds(),
+            LimitMode::Ignore => Bounds::free(),
+            LimitMode::Clamp | LimitMode::Lock | LimitMode::NullSpace | LimitMode::Weighted => self.skeleton.bounds(),
         }
     }
 
