@@ -45,7 +45,7 @@ use crate::error::CliError;
 #[derive(Debug, Parser)]
 #[command(name = "ikarus", version, about, propagate_version = true)]
 struct Cli {
-    /// Largest input file read (--arm, --batch, --path), in bytes
+    /// Largest input file read (--arm, --rig, --batch, --path), in bytes
     #[arg(long, global = true, value_name = "BYTES", default_value_t = input::DEFAULT_MAX_INPUT_BYTES)]
     max_input_bytes: u64,
     #[command(subcommand)]
@@ -54,7 +54,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Move the arm's tip to a goal and report the pose and the recorded frames
+    /// Move the arm's tip to a goal and report the pose and the recorded frames; with --rig,
+    /// goals on a rig's bones and pins, solved together
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
     /// Solve for a goal (through any via points) and turn it into a smooth, eased motion:
