@@ -17,9 +17,10 @@ use crate::error::CliError;
 pub const TREE_LABEL: &str = "kdl tree nr_jl";
 
 /// The damping of KDL's `TreeIkSolverVel_wdls` that ikarus writes into rig goal files. KDL's
-/// default is 0, which divides by zero on the planar rigs' zero singular values (each bone
-/// moves its tips only in the plane): a small damping keeps the steps finite. Of 1e-4, 1e-3,
-/// 1e-2 and 0.1 this one reached the most of the puppet's and the hand's target sets.
+/// default is 0, which divides 0 by 0 on the planar rigs' zero singular values (a bone moves
+/// its tips only in the plane): the steps turn NaN and a solve runs its 1000 iterations for
+/// over a second. On 60 target sets of each set, KDL reached as many with 1e-5, 1e-4 and 1e-3
+/// and fewer with 1e-2 and 0.1; its time varied within noise.
 pub const KDL_LAMBDA: f64 = 1e-3;
 
 /// The rig goal file of `set`. `comment` goes in a `#` line after the first. Floats are written
