@@ -135,22 +135,27 @@ mod tests {
         let s = generate(RigSetName::Puppet, 60, 1).unwrap();
         let mut seq = Sequential::new(&s, SolveOptions::default());
         let mut judge = Judge::default();
-        let (mut missed, mut legs) = (0, 0);
+        let (mut missed, mut right_missed, mut rest) = (0, 0, 0);
+        let within = |points: &[ikarus::Point2<f64>], k: usize, c: &crate::bench::rigs::set::RigCase| {
+            (points[s.goals[k] + 1] - c.targets[k]).norm() <= 1e-6
+        };
         for c in &s.cases {
             let (angles, _) = seq.solve(&s.start, c).unwrap();
             let angles = angles.to_vec();
             missed += usize::from(!judge.judge(&s, c, &angles).reached);
             let (points, _) = forward(&s.skeleton, &angles);
-            legs +=
-                usize::from(s.goals[2..].iter().zip(&c.targets[2..]).all(|(&g, t)| (points[g + 1] - t).norm() <= 1e-6));
+            // The left hand (the last limb on the pelvis and spine) and the feet (limbs of
+            // their own) are where their solves put them; the right hand was pulled away.
+            right_missed += usize::from(!within(&points, 0, c));
+            rest += usize::from((1..4).all(|k| within(&points, k, c)));
             // The bones outside the four limbs keep their start angles.
             for b in ["neck", "head"] {
                 let i = s.skeleton.index_of(b).unwrap();
                 assert_eq!(angles[i], s.start[i]);
             }
         }
-        assert!(missed > 0, "the right hand is never pulled away");
-        assert!(legs > 50, "the legs are independent chains: {legs} of 60 reached");
+        assert!(right_missed > 50 && missed >= right_missed, "right hand missed {right_missed} of 60");
+        assert!(rest > 50, "the last limbs' solves reach: {rest} of 60");
     }
 
     #[test]

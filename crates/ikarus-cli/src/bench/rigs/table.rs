@@ -102,9 +102,9 @@ pub fn targets(rows: &[RigRow]) -> Vec<Target> {
             kdl.iter()
                 .map(|(d, k)| {
                     format!(
-                        "{} {:.1}× ({:.1}% vs {:.1}%)",
+                        "{} {}× ({:.1}% vs {:.1}%)",
                         d.set,
-                        k.median_us / d.median_us,
+                        ratio(k.median_us / d.median_us),
                         d.reached_percent,
                         k.reached_percent
                     )
@@ -145,7 +145,7 @@ fn cells(r: &RigRow) -> [String; 8] {
         micros(r.p99_us),
         r.mean_iterations.map_or("—".to_owned(), |i| format!("{i:.1}")),
         r.worst_error.map_or("inf".to_owned(), error),
-        r.vs_kdl_tree.map_or(String::new(), |v| format!("{v:.2}")),
+        r.vs_kdl_tree.map_or(String::new(), ratio),
     ]
 }
 
@@ -156,6 +156,17 @@ fn micros(v: f64) -> String {
         format!("{v:.1}")
     } else {
         format!("{v:.0}")
+    }
+}
+
+/// A speed ratio with three significant digits (a whole number from 100 on).
+fn ratio(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.2}")
     }
 }
 
@@ -314,7 +325,7 @@ mod tests {
         assert_eq!((t[1].met, t[1].figure.as_str()), (Some(true), "puppet 8.00 µs"));
         // The hand is only 3.3× faster than KDL.
         assert_eq!(t[2].met, Some(false));
-        assert_eq!(t[2].figure, "puppet 6.0× (100.0% vs 90.0%), hand 3.3× (99.9% vs 99.0%)");
+        assert_eq!(t[2].figure, "puppet 6.00× (100.0% vs 90.0%), hand 3.33× (99.9% vs 99.0%)");
         assert_eq!((t[3].met, t[3].figure.as_str()), (Some(true), "puppet 40.0%"));
         // 998 of 1000 misses; without KDL, the KDL target is not measured.
         let t = targets(&[row("hand", "default", 998, 1.0)]);
@@ -330,6 +341,8 @@ mod tests {
             cells(&r),
             ["lm lock", "lock", "99.9% (999)", "12.3", "24.7", "7.0", "1.0e-7", "7.12"].map(str::to_owned)
         );
+        r.vs_kdl_tree = Some(132_732.05);
+        assert_eq!(cells(&r)[7], "132732");
         r.worst_error = None;
         r.mean_iterations = None;
         assert_eq!((cells(&r)[5].as_str(), cells(&r)[6].as_str()), ("—", "inf"));
