@@ -6,8 +6,10 @@
 //!   `127.x.y.z`, `[::1]`, with or without a port) plus the names given with `--allow-host`;
 //!   anything else is answered 403. A request without a Host header (HTTP/1.0) cannot come
 //!   from a rebinding page and is accepted. Listening beyond loopback accepts any host.
-//! - **Content-Length** over `--max-body-bytes` is answered 413 before the body is touched, so
-//!   a client sending `Expect: 100-continue` gets no "100 Continue" and sends nothing.
+//! - **Content-Length** over `--max-body-bytes` is answered 413 before the body is used, so a
+//!   client sending `Expect: 100-continue` gets no "100 Continue" and sends nothing; a client
+//!   that sends at once gets its 413 after its body (up to 1 MiB, 2 s) is read and dropped, not
+//!   a reset connection.
 //! - **405** answers (a known path with another method) get the API's `{"error": …}` body,
 //!   keeping axum's `Allow` header.
 
@@ -21,6 +23,12 @@ use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 
 use super::errors::ApiError;
+
+/// The largest oversized body read and dropped before its 413 (see [`check`]).
+const DRAIN_BYTES: u64 = 1 << 20;
+
+/// How long reading such a body may take.
+const DRAIN_TIME: std::time::Duration = std::time::Duration::from_secs(2);
 
 /// What the checks need to know.
 #[derive(Debug, Clone)]
@@ -48,6 +56,15 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
     }
     if let Some(length) = content_length(req.headers()) {
         if length > guard.max_body_bytes as u64 {
+            // A client that does not wait for "100 Continue" is sending the body already: when
+            // it is small, read it and drop it first, so that the 413 reaches the client rather
+            // than a reset of a connection closed on its unread bytes (a client that waits gets
+            // its 413 at once and sends nothing).
+            let expects = req.headers().contains_key(header::EXPECT);
+            if !expects && length <= DRAIN_BYTES {
+                let drain = axum::body::to_bytes(req.into_body(), DRAIN_BYTES as usize);
+                let _ = tokio::time::timeout(DRAIN_TIME, drain).await;
+            }
             return ApiError {
                 status: StatusCode::PAYLOAD_TOO_LARGE,
                 message: format!(
