@@ -1,24 +1,14 @@
 //! `ikarus serve` over real HTTP: each endpoint's contract and each class of bad request.
 //! Every test starts its own server on an ephemeral port and kills it when done.
 
+mod common;
+
 use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
+
+use common::server::Server;
 
 use serde_json::{Value, json};
-
-/// A running `ikarus serve`, killed on drop.
-struct Server {
-    child: Child,
-    base: String,
-    agent: ureq::Agent,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
 
 /// An answer: status, content type, body.
 struct Answer {
@@ -46,23 +36,9 @@ impl Answer {
 }
 
 fn start(args: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(["serve", "--port", "0"])
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start ikarus serve");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
-    let base = line
-        .trim()
-        .strip_prefix("ikarus serve: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_owned();
-    assert!(base.starts_with("http://127.0.0.1:"), "{base}");
-    let config = ureq::Agent::config_builder().http_status_as_error(false).build();
-    Server { child, base, agent: config.into() }
+    let server = Server::start(args, None);
+    assert!(server.base.starts_with("http://127.0.0.1:"), "{}", server.base);
+    server
 }
 
 impl Server {

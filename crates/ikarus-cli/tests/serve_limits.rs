@@ -5,48 +5,21 @@
 //! The only wall-clock bounds here are generous "it answers / it ends at all" bounds, where a
 //! hang is the bug (before these fixes each of these requests ran for minutes to hours).
 
+mod common;
+
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+
+use common::server::Server;
 
 use serde_json::{Value, json};
 
-/// A running `ikarus serve`, killed on drop.
-struct Server {
-    child: Child,
-    base: String,
-    addr: String,
-    agent: ureq::Agent,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 fn start(args: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(["serve", "--port", "0", "--max-iterations", "100000000"])
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start ikarus serve");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
-    let base = line
-        .trim()
-        .strip_prefix("ikarus serve: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_owned();
-    let addr = base.strip_prefix("http://").expect("http address").to_owned();
     // Generous: a hang is the bug.
-    let config =
-        ureq::Agent::config_builder().http_status_as_error(false).timeout_global(Some(Duration::from_secs(60))).build();
-    Server { child, base, addr, agent: config.into() }
+    let args: Vec<&str> = ["--max-iterations", "100000000"].iter().chain(args).copied().collect();
+    Server::start(&args, Some(Duration::from_secs(60)))
 }
 
 /// Status and JSON body.
