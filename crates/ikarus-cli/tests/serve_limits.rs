@@ -5,48 +5,21 @@
 //! The only wall-clock bounds here are generous "it answers / it ends at all" bounds, where a
 //! hang is the bug (before these fixes each of these requests ran for minutes to hours).
 
+mod common;
+
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+
+use common::server::Server;
 
 use serde_json::{Value, json};
 
-/// A running `ikarus serve`, killed on drop.
-struct Server {
-    child: Child,
-    base: String,
-    addr: String,
-    agent: ureq::Agent,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 fn start(args: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(["serve", "--port", "0", "--max-iterations", "100000000"])
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start ikarus serve");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
-    let base = line
-        .trim()
-        .strip_prefix("ikarus serve: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_owned();
-    let addr = base.strip_prefix("http://").expect("http address").to_owned();
     // Generous: a hang is the bug.
-    let config =
-        ureq::Agent::config_builder().http_status_as_error(false).timeout_global(Some(Duration::from_secs(60))).build();
-    Server { child, base, addr, agent: config.into() }
+    let args: Vec<&str> = ["--max-iterations", "100000000"].iter().chain(args).copied().collect();
+    Server::start(&args, Some(Duration::from_secs(60)))
 }
 
 /// Status and JSON body.
@@ -59,11 +32,11 @@ fn answer(mut response: ureq::http::Response<ureq::Body>) -> (u16, Value) {
 }
 
 impl Server {
-    fn get(&self, path: &str) -> (u16, Value) {
+    fn get_json(&self, path: &str) -> (u16, Value) {
         answer(self.agent.get(format!("{}{path}", self.base)).call().expect("GET"))
     }
 
-    fn post(&self, path: &str, body: &Value) -> (u16, Value) {
+    fn post_json(&self, path: &str, body: &Value) -> (u16, Value) {
         let request = self.agent.post(format!("{}{path}", self.base)).header("Content-Type", "application/json");
         answer(request.send(body.to_string().as_bytes()).expect("POST"))
     }
@@ -127,7 +100,7 @@ fn links(n: usize) -> Vec<Value> {
 fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
     let s = start(&["--request-budget-ms", "1000"]);
     let began = Instant::now();
-    let e = error(&s.post("/api/solve", &endless_solve()), 503);
+    let e = error(&s.post_json("/api/solve", &endless_solve()), 503);
     assert!(e.contains("budget of 1000 ms (--request-budget-ms)"), "{e}");
     // The 21-minute animate: 64 links, 100 via points, 64 restarts, 10⁵ iterations.
     let via: Vec<[f64; 2]> = (0..100).map(|i| [f64::from(i % 7) * 0.5, 1.0]).collect();
@@ -137,7 +110,7 @@ fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
         "via": via,
         "options": { "restarts": 64, "max_iterations": 100000, "gain": 1e-9 }
     });
-    let e = error(&s.post("/api/animate", &animate), 503);
+    let e = error(&s.post_json("/api/animate", &animate), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
     // The 980-CPU-second workspace.
     let workspace = json!({
@@ -147,12 +120,12 @@ fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
         ] },
         "limits": true, "resolution": 1024, "samples": 1000000
     });
-    let e = error(&s.post("/api/workspace", &workspace), 503);
+    let e = error(&s.post_json("/api/workspace", &workspace), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
     // Generous: three budgets of a second each, not hours.
     assert!(began.elapsed() < Duration::from_secs(30), "{:?}", began.elapsed());
     // The workers were freed: an ordinary solve answers.
-    let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
     assert_eq!(status, 200, "{v}");
     assert_eq!(v["status"], "reached");
 }
@@ -171,7 +144,7 @@ fn a_from_solve_motion_that_could_record_gigabytes_is_refused() {
             "max_iterations": 100000
         }
     });
-    let e = error(&s.post("/api/animate", &request), 422);
+    let e = error(&s.post_json("/api/animate", &request), 422);
     assert!(e.contains("record_every") && e.contains("max_iterations"), "{e}");
     // One solve recording every iteration of 64 links: hundreds of MB of JSON.
     let solve = json!({
@@ -179,11 +152,11 @@ fn a_from_solve_motion_that_could_record_gigabytes_is_refused() {
         "goal": { "x": 3.0, "y": 3.0 },
         "options": { "record_every": 1, "max_iterations": 100000 }
     });
-    let e = error(&s.post("/api/solve", &solve), 422);
+    let e = error(&s.post_json("/api/solve", &solve), 422);
     assert!(e.contains("record_every") && e.contains("the solve could record"), "{e}");
     // The page's own from_solve motion still works.
     let (status, v) =
-        s.post("/api/animate", &json!({ "goal": { "x": 2.0, "y": 3.0 }, "from_solve": true, "frames": 20 }));
+        s.post_json("/api/animate", &json!({ "goal": { "x": 2.0, "y": 3.0 }, "from_solve": true, "frames": 20 }));
     assert_eq!(status, 200, "{v}");
 }
 
@@ -262,13 +235,13 @@ fn health_answers_while_heavy_requests_run_and_beyond_the_queue_is_busy() {
     let s = start(&["--workers", "1", "--max-queued", "2", "--request-budget-ms", "3000"]);
     // Scoped threads: the server is killed (dropped) even if an assertion fails.
     std::thread::scope(|scope| {
-        let heavy: Vec<_> = (0..3).map(|_| scope.spawn(|| s.post("/api/solve", &endless_solve()))).collect();
+        let heavy: Vec<_> = (0..3).map(|_| scope.spawn(|| s.post_json("/api/solve", &endless_solve()))).collect();
         std::thread::sleep(Duration::from_millis(300));
         // One running and two waiting: a fourth is answered 503 at once.
-        let e = error(&s.post("/api/solve", &endless_solve()), 503);
+        let e = error(&s.post_json("/api/solve", &endless_solve()), 503);
         assert!(e.contains("server busy") && e.contains("--max-queued"), "{e}");
         for _ in 0..20 {
-            let (status, v) = s.get("/api/health");
+            let (status, v) = s.get_json("/api/health");
             assert_eq!(status, 200, "{v}");
         }
         for h in heavy {
@@ -284,10 +257,10 @@ fn a_second_long_computation_is_stopped_while_quick_ones_still_run() {
     let _first = send_raw(&s, &endless_solve());
     std::thread::sleep(Duration::from_millis(1000));
     // The second long one is stopped once it counts as long, not at the budget.
-    let e = error(&s.post("/api/solve", &endless_solve()), 503);
+    let e = error(&s.post_json("/api/solve", &endless_solve()), 503);
     assert!(e.contains("--long-workers"), "{e}");
     // A quick request still gets the other worker.
-    let (status, v) = s.post("/api/workspace", &json!({ "resolution": 64 }));
+    let (status, v) = s.post_json("/api/workspace", &json!({ "resolution": 64 }));
     assert_eq!(status, 200, "{v}");
 }
 
@@ -317,14 +290,14 @@ fn a_client_that_goes_away_frees_its_worker() {
     .unwrap();
     std::thread::sleep(Duration::from_millis(300));
     // The only worker is taken.
-    let e = error(&s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } })), 503);
+    let e = error(&s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } })), 503);
     assert!(e.contains("server busy"), "{e}");
     drop(c);
     // hyper notices the closed connection and drops the handler, whose guard interrupts the
     // solve: the worker is free again soon (the solve alone would run for hours).
     let began = Instant::now();
     loop {
-        let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
         if status == 200 {
             break;
         }
@@ -450,7 +423,7 @@ fn slow_bodies_cannot_hold_more_than_the_body_memory() {
     // Once the slow clients are gone, their memory is given back.
     held.clear();
     std::thread::sleep(Duration::from_millis(300));
-    let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
     assert_eq!(status, 200, "{v}");
 }
 
@@ -463,13 +436,13 @@ fn a_gif_over_its_budget_stops_and_frees_its_worker() {
         "figure": "motion", "arm": { "links": links(64) }, "goal": { "x": 3.0, "y": 3.0 },
         "frames": 2000, "format": "gif", "width": 223, "height": 223
     });
-    let e = error(&s.post("/api/render", &gif), 503);
+    let e = error(&s.post_json("/api/render", &gif), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
     // The encoder saw the interrupt: the only worker is free again well before the GIF could
     // have been finished.
     let began = Instant::now();
     loop {
-        let (status, v) = s.post("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
         if status == 200 {
             break;
         }

@@ -7,43 +7,16 @@
 //! type says. The server still answers `/api/health` at the end. Valid values are kept cheap
 //! (small arms, iteration caps, grids and pictures), so that the cases run in seconds.
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+mod common;
+
+use common::server::Server;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, TestCaseError, TestRunner};
 use serde_json::{Map, Value, json};
 
-/// A running `ikarus serve`, killed on drop.
-struct Server {
-    child: Child,
-    base: String,
-    agent: ureq::Agent,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 fn start() -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(["serve", "--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start ikarus serve");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
-    let base = line
-        .trim()
-        .strip_prefix("ikarus serve: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_owned();
-    let config = ureq::Agent::config_builder().http_status_as_error(false).build();
-    Server { child, base, agent: config.into() }
+    Server::start(&[], None)
 }
 
 /// Status, content type and body of an answer.

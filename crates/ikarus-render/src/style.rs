@@ -34,8 +34,9 @@ pub(crate) const JOINT_HUES: [&str; 5] = ["#4e79a7", "#76b7b2", "#b07aa1", "#9c7
 pub(crate) const TIP_HUE: &str = "#ec7f2d";
 
 /// The palette's colours by role, for callers that draw with it too (the playground page gets
-/// them from `GET /api/meta`, so its screen, its downloads and the CLI's pictures agree).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// them from `GET /api/meta`, so its screen, its downloads and the CLI's pictures agree; it
+/// serialises by these field names, which the page's `COLORS` uses).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Colours {
     /// Inside the plot area.
     pub plot: &'static str,

@@ -62,29 +62,7 @@ pub struct Meta {
     pub default_interpolation: &'static str,
     pub defaults: Defaults,
     /// The colours of the pictures (ikarus-render's palette), which the page draws with too.
-    pub palette: Palette,
-}
-
-/// [`ikarus_render::Colours`] by name, as the page's `COLORS` names them.
-#[derive(Debug, Serialize)]
-pub struct Palette {
-    pub plot: &'static str,
-    pub grid: &'static str,
-    pub axis: &'static str,
-    pub label: &'static str,
-    pub ink: &'static str,
-    pub reach: &'static str,
-    pub workspace: &'static str,
-    pub goal: &'static str,
-    pub path: &'static str,
-    pub joints: [&'static str; 5],
-}
-
-impl Palette {
-    fn of(c: ikarus_render::Colours) -> Self {
-        let ikarus_render::Colours { plot, grid, axis, label, ink, reach, workspace, goal, path, joints } = c;
-        Self { plot, grid, axis, label, ink, reach, workspace, goal, path, joints }
-    }
+    pub palette: ikarus_render::Colours,
 }
 
 /// The arm shapes `method` applies to, when not every arm (see [`MethodChoice::shapes`]).
@@ -123,7 +101,7 @@ pub fn meta() -> Meta {
             tolerance: d.tolerance,
             max_iterations: d.max_iterations,
         },
-        palette: Palette::of(ikarus_render::COLOURS),
+        palette: ikarus_render::COLOURS,
     }
 }
 

@@ -2,6 +2,8 @@
 //! `pictures.rs` (each uses some of it).
 #![allow(dead_code)]
 
+pub mod server;
+
 use std::process::{Command, Output};
 
 use serde_json::Value;

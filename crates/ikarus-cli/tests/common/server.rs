@@ -1,24 +1,53 @@
-//! A running `ikarus serve` for the API tests, on an ephemeral port, killed on drop. Use it
-//! with `#[path = "common/server.rs"] mod server;` (it is not part of `common`, so that the
-//! tests that do not start a server do not compile it).
+//! A running `ikarus serve` for the API tests (`serve.rs`, `serve_limits.rs`, `serve_props.rs`
+//! through `common`, the rig tests with `#[path = "common/server.rs"] mod server;`): started
+//! on an ephemeral port, its address read from its first line, killed on drop; and its answers.
 #![allow(dead_code)]
 
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
+use std::time::Duration;
 
 use serde_json::Value;
 
 /// A running `ikarus serve`, killed on drop.
 pub struct Server {
-    child: Child,
+    pub child: Child,
+    /// `http://127.0.0.1:PORT`
     pub base: String,
-    agent: ureq::Agent,
+    /// `127.0.0.1:PORT`
+    pub addr: String,
+    /// An agent that returns 4xx and 5xx answers instead of failing on them.
+    pub agent: ureq::Agent,
 }
 
 impl Drop for Server {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+    }
+}
+
+impl Server {
+    /// `ikarus serve --port 0 ARGS…`; `timeout` bounds each request of the agent (where a hang
+    /// is the bug).
+    pub fn start(args: &[&str], timeout: Option<Duration>) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+            .args(["serve", "--port", "0"])
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start ikarus serve");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
+        let base = line
+            .trim()
+            .strip_prefix("ikarus serve: listening on ")
+            .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
+            .to_owned();
+        let addr = base.strip_prefix("http://").expect("http address").to_owned();
+        let config = ureq::Agent::config_builder().http_status_as_error(false).timeout_global(timeout).build();
+        Self { child, base, addr, agent: config.into() }
     }
 }
 
@@ -51,24 +80,11 @@ impl Answer {
     }
 }
 
-/// Starts `ikarus serve --port 0` with `args` and waits for its address.
+/// `ikarus serve --port 0 ARGS…` on loopback, without a request timeout.
 pub fn start(args: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(["serve", "--port", "0"])
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start ikarus serve");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().expect("stdout")).read_line(&mut line).expect("read the address line");
-    let base = line
-        .trim()
-        .strip_prefix("ikarus serve: listening on ")
-        .unwrap_or_else(|| panic!("unexpected first line: {line:?}"))
-        .to_owned();
-    let config = ureq::Agent::config_builder().http_status_as_error(false).build();
-    Server { child, base, agent: config.into() }
+    let server = Server::start(args, None);
+    assert!(server.base.starts_with("http://127.0.0.1:"), "{}", server.base);
+    server
 }
 
 impl Server {
@@ -90,5 +106,11 @@ impl Server {
 
     pub fn post(&self, path: &str, body: &Value) -> Answer {
         self.post_raw(path, "application/json", body.to_string().as_bytes())
+    }
+
+    pub fn assert_healthy(&self) {
+        let a = self.get("/api/health");
+        assert_eq!(a.status, 200);
+        assert_eq!(a.json()["status"], "ok");
     }
 }
