@@ -28,6 +28,9 @@ pub struct MethodChoice {
     pub choice: Choice,
     pub limit_modes: Vec<&'static str>,
     pub default_limit_mode: &'static str,
+    /// Whether it solves rigs (skeletons) too: CCD, FABRIK and the closed form solve chains
+    /// only.
+    pub solves_rigs: bool,
     /// The arm shapes the method solves, when it does not solve every arm: `[links, orientation
     /// goal]` pairs (the closed form: two links with a position goal, three with an orientation
     /// goal). Absent: any arm.
@@ -82,6 +85,7 @@ pub fn meta() -> Meta {
                 choice: Choice::of(m),
                 limit_modes: LimitMode::ALL.iter().filter(|&&l| m.supports(l)).map(|l| l.name()).collect(),
                 default_limit_mode: m.default_limit_mode().name(),
+                solves_rigs: m.solves_rigs(),
                 shapes: shapes(m),
             })
             .collect(),
@@ -130,6 +134,7 @@ mod tests {
                 LimitMode::ALL.iter().filter(|&&l| method.supports(l)).map(|l| l.name()).collect();
             assert_eq!(modes, supported, "{method}");
             assert_eq!(listed["default_limit_mode"], method.default_limit_mode().name());
+            assert_eq!(listed["solves_rigs"], method.solves_rigs(), "{method}");
             assert!(!listed["label"].as_str().unwrap().is_empty());
         }
         assert_eq!((m["default_method"].as_str(), m["default_limit_mode"].as_str()), (Some("lm"), Some("lock")));
