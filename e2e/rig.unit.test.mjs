@@ -68,13 +68,15 @@ test("forward kinematics: angles relative to the parent, a root's to +x, from th
   closePoint(g.tips[1], [3, 0]);
 });
 
-test("the reach is the longest path of lengths, and the view fits it around the base", () => {
+test("the reach is the longest path of lengths; the view fits the start pose with room around it", () => {
   assert.equal(rigReach(tree), 4);
+  // The start pose spans x 0..3, y 2..4 (the base at (1, 2)); the room is 0.35 × 4 = 1.4 on each side.
   const v = fitRigView(tree, 800, 600);
-  const [bx, by] = toCanvas(v, 1, 2);
-  assert.ok(close(bx, 400) && close(by, 300));
-  // The reach fits in the shorter side with the arm's margin, whatever the pose.
-  assert.ok(close(v.scale * 2 * 4 * 1.12, 600, 1e-9));
+  const [mx, my] = toCanvas(v, 1.5, 3);
+  assert.ok(close(mx, 400) && close(my, 300), `${mx}, ${my}`);
+  assert.ok(close(v.scale, Math.min(800 / (3 + 2.8), 600 / (2 + 2.8))), `${v.scale}`);
+  // The view is the rig's, whatever the pose shown: it is computed from the file alone.
+  assert.deepEqual(fitRigView(tree, 800, 600), v);
 });
 
 test("effectors: the leaves, then any grabbed (goal) or pinned inner tip", () => {

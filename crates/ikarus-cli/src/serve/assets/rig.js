@@ -5,7 +5,7 @@
 // an answer's one-line summary naming the effectors that failed. No DOM and no state of its own:
 // node tests it (e2e/rig.unit.test.mjs). The page's wiring is rigs.js.
 
-import { DEG, VIEW_MARGIN } from "./view.js";
+import { DEG } from "./view.js";
 
 /**
  * The methods that solve rigs (the library's `Method::solves_rigs`): the Jacobian ones. CCD,
@@ -97,16 +97,27 @@ export function rigReach(rig) {
   return most;
 }
 
+/** The margin around a rig's start pose in its view, as a share of its reach (room to drag in). */
+export const RIG_VIEW_ROOM = 0.35;
+
 /**
- * The transform that centres the rig's base in a `w` × `h` canvas and fits its reach (with the
- * arm's margin) into the shorter side, as view.js's fitView does for an arm: it depends on the
- * rig only, never on the pose, so the view stays still while the rig moves.
+ * The transform that fits the rig's start pose (its bounding box, the base included, with
+ * RIG_VIEW_ROOM of its reach around it) into a `w` × `h` canvas, centred: canvas = (cx + x·scale,
+ * cy − y·scale). It depends on the rig only, never on the pose shown, so the view stays still
+ * while the rig moves.
  */
 export function fitRigView(rig, w, h) {
-  const [bx, by] = rig.base || [0, 0];
-  const half = Math.max(rigReach(rig), 1e-3) * VIEW_MARGIN;
-  const scale = Math.min(w, h) / (2 * half);
-  return { cx: w / 2 - bx * scale, cy: h / 2 + by * scale, scale, w, h };
+  const { tips } = rigForward(rig, []);
+  const base = rig.base || [0, 0];
+  const xs = [base[0], ...tips.map((t) => t[0])];
+  const ys = [base[1], ...tips.map((t) => t[1])];
+  const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
+  const room = Math.max(rigReach(rig), 1e-3) * RIG_VIEW_ROOM;
+  const halfW = (x1 - x0) / 2 + room;
+  const halfH = (y1 - y0) / 2 + room;
+  const scale = Math.min(w / (2 * halfW), h / (2 * halfH));
+  const [mx, my] = [(x0 + x1) / 2, (y0 + y1) / 2];
+  return { cx: w / 2 - mx * scale, cy: h / 2 + my * scale, scale, w, h };
 }
 
 /** The names of the bones whose tips have no children: the rig's effectors (file order). */
