@@ -72,32 +72,7 @@ impl Arm {
     /// defaults, for the arm's chain; problems name the flag, or the arm file's `[solver]`
     /// field a setting came from.
     pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
-        let restarts = flags.restarts.or(self.solver.restarts);
-        if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
-            let field = if flags.restarts.is_some() {
-                "--restarts".to_owned()
-            } else {
-                format!("{}: [solver].restarts", self.label)
-            };
-            return Err(CliError::input(format!(
-                "{field} {n}: more than the cap of {} (raise it with --max-restarts N)",
-                flags.max_restarts
-            )));
-        }
-        flags.over(&self.solver).to_options(&self.chain, record_every).map_err(|e| {
-            // A setting the flags left out came from the arm file's [solver] table: named as
-            // that, after the file.
-            let from_file = std::cell::Cell::new(false);
-            let message = e.describe(|field| {
-                if flags.is_set(field) || !self.solver.is_set(field) {
-                    format!("--{}", field.replace('_', "-"))
-                } else {
-                    from_file.set(true);
-                    format!("[solver].{field}")
-                }
-            });
-            CliError::input(if from_file.get() { format!("{}: {message}", self.label) } else { message })
-        })
+        crate::settings::command_options(flags, &self.solver, &self.label, self.chain.len(), record_every)
     }
 
     /// Loads `path`, or the built-in seed arm when `None`.

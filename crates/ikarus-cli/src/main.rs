@@ -6,6 +6,7 @@
 
 mod animate;
 mod arm;
+mod batch;
 mod bench;
 mod ease_args;
 mod error;
@@ -18,6 +19,11 @@ mod picture;
 mod render;
 mod report;
 mod rig;
+mod rig_args;
+mod rig_batch;
+mod rig_report;
+mod rig_solve;
+mod rig_task;
 mod serve;
 mod settings;
 mod solve;

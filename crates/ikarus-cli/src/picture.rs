@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use ikarus::motion::Animation;
 use ikarus::reach::Workspace;
-use ikarus::{Chain, Ease, Point2};
+use ikarus::{Chain, Ease, Point2, RigTask};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Deserialize;
 
@@ -16,6 +16,7 @@ use crate::arm::Arm;
 use crate::error::CliError;
 use crate::motion::Motion;
 use crate::output::PendingFile;
+use crate::rig::Rig;
 
 /// What a picture holds: from a file's extension, or a request's `format`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -63,6 +64,8 @@ pub enum Drawing<'a> {
     Track { chain: &'a Chain, poses: &'a [Vec<f64>], layer: &'a ikarus_render::PathLayer, caption: String, fps: f64 },
     /// An ease curve's position and velocity.
     Ease(Ease),
+    /// A rig in one pose, with its goals, pins and (optionally) limit wedges.
+    Skeleton(ikarus_render::SkeletonFigure<'a>),
 }
 
 /// Draws `drawing` as `format`, `width` × `height` pixels; `progress(done, total)` hears about
@@ -129,6 +132,7 @@ pub fn draw(
             ikarus_render::arm_svg(&figure, width, height)
         }
         Drawing::Ease(ease) => ikarus_render::ease_svg(ease, width, height),
+        Drawing::Skeleton(figure) => ikarus_render::skeleton_svg(figure, width, height),
     }
     .map_err(|e| render_failed(&e))?;
     match format {
@@ -179,6 +183,29 @@ pub fn workspace_drawing<'a>(arm: &'a Arm, workspace: &'a Workspace) -> Drawing<
 /// API's figure `motion`, `ikarus animate --out` and `ikarus render motion`).
 pub fn motion_drawing<'a>(arm: &'a Arm, motion: &'a Motion, goal: Option<Point2<f64>>, fps: f64) -> Drawing<'a> {
     Drawing::Motion { chain: &arm.chain, animation: &motion.motion.animation, goal, caption: motion.caption(), fps }
+}
+
+/// The figure of a rig at `pose` with the goals and pins of `task`, the limit wedges when
+/// `ranges` (`ikarus solve --rig --out`, `ikarus render rig` and the API's figure `rig`).
+pub fn rig_figure<'a>(
+    rig: &'a Rig,
+    pose: &'a [f64],
+    task: &RigTask,
+    ranges: bool,
+    caption: Option<String>,
+) -> ikarus_render::SkeletonFigure<'a> {
+    let goals = task
+        .goals
+        .iter()
+        .map(|g| ikarus_render::BoneGoal { bone: g.bone, position: g.goal.target(), angle: g.goal.orientation() })
+        .collect();
+    ikarus_render::SkeletonFigure {
+        goals,
+        pins: task.pins.iter().map(|p| p.bone).collect(),
+        ranges,
+        caption,
+        ..ikarus_render::SkeletonFigure::new(&rig.skeleton, pose)
+    }
 }
 
 /// The one-line caption of a workspace picture.

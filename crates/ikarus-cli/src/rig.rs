@@ -23,10 +23,6 @@
 //! the file, and a parent may come after its children. Every problem becomes one line naming
 //! the file, the bone (index and name), the field and the value, as arm files do.
 
-// Nothing reads rigs yet: the `--rig` commands (solve, animate, track, render, bench, the API)
-// come next in issue 12; until then only the tests use this module.
-#![allow(dead_code)]
-
 use std::path::Path;
 
 use ikarus::number::Num;
@@ -85,6 +81,13 @@ pub struct Rig {
 }
 
 impl Rig {
+    /// The options of a command: `flags` over this rig file's `[solver]` table over the
+    /// defaults, `rates` one per bone; problems name the flag, or the file's `[solver]` field a
+    /// setting came from (as [`crate::arm::Arm::options`]).
+    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
+        crate::settings::command_options(flags, &self.solver, &self.label, self.skeleton.len(), record_every)
+    }
+
     /// Loads the rig file `path` (a regular file within the input cap, as every input file).
     pub fn load(path: &Path) -> Result<Self, CliError> {
         let label = format!("rig file {}", path.display());

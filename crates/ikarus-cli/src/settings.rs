@@ -1,13 +1,13 @@
 //! The solver settings of the edges: one type for the flags, an arm file's `[solver]` table
 //! and the API's `options`, combined with [`SolverSettings::over`] and turned into the
-//! library's options with [`SolverSettings::to_options`].
+//! library's options with [`SolverSettings::to_options_for`].
 //!
 //! Precedence: flag, then the arm file's `[solver]` table, then the library default (the API:
 //! the request's `options`, then the arm's `solver` table, then the default).
 
 use clap::Args;
 use clap::builder::ArgPredicate;
-use ikarus::{Chain, LimitMode, Method, OptionsError, Restarts, SolveError, SolveOptions, Solver, StallDetection};
+use ikarus::{LimitMode, Method, OptionsError, Restarts, SolveOptions, Solver, StallDetection};
 use serde::Deserialize;
 
 use crate::error::CliError;
@@ -108,8 +108,6 @@ pub enum SettingsError {
     Rates { expected: usize, got: usize },
     /// Limits are enforced in a mode the method does not support.
     Unsupported { method: Method, mode: LimitMode },
-    /// Another mismatch between the options and the chain.
-    Chain(SolveError),
 }
 
 impl SettingsError {
@@ -118,7 +116,6 @@ impl SettingsError {
     pub fn describe(&self, field: impl Fn(&str) -> String) -> String {
         match self {
             Self::Options(e) => e.to_string(),
-            Self::Chain(e) => e.to_string(),
             Self::Rates { expected, got } => {
                 format!("{}: expected {expected} values (one per joint), got {got}", field("rates"))
             }
@@ -186,9 +183,10 @@ impl SolverSettings {
         if method.supports(mode) { Ok(mode) } else { Err(SettingsError::Unsupported { method, mode }) }
     }
 
-    /// The library's options for `chain`, over the defaults. `record_every` is passed in
-    /// because its default differs between commands.
-    pub fn to_options(&self, chain: &Chain, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
+    /// The library's options for a body of `joints` joints (a chain's links, a skeleton's
+    /// bones), over the defaults; `rates` one per joint. `record_every` is passed in because
+    /// its default differs between commands.
+    pub fn to_options_for(&self, joints: usize, record_every: Option<u32>) -> Result<SolveOptions, SettingsError> {
         let d = SolveOptions::default();
         let stall = d.stall.unwrap_or_default();
         let stall = StallDetection {
@@ -235,10 +233,9 @@ impl SolverSettings {
             ..d
         };
         options.validate().map_err(SettingsError::Options)?;
-        options.validate_for(chain).map_err(|e| match e {
-            SolveError::RatesLength { expected, got } => SettingsError::Rates { expected, got },
-            other => SettingsError::Chain(other),
-        })?;
+        if !options.rates.is_empty() && options.rates.len() != joints {
+            return Err(SettingsError::Rates { expected: joints, got: options.rates.len() });
+        }
         Ok(options)
     }
 
@@ -277,7 +274,42 @@ impl SolverSettings {
     }
 }
 
-/// A solver for options already checked by [`SolverSettings::to_options`].
+/// The options of a command: `flags` over a file's `[solver]` table `file` over the defaults,
+/// for a body of `joints` joints; problems name the flag, or the `[solver]` field of the file
+/// (`label`, as its error messages start) a setting came from. Arm and rig files share it.
+pub fn command_options(
+    flags: &SolverSettings,
+    file: &SolverSettings,
+    label: &str,
+    joints: usize,
+    record_every: Option<u32>,
+) -> Result<SolveOptions, CliError> {
+    let restarts = flags.restarts.or(file.restarts);
+    if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
+        let field =
+            if flags.restarts.is_some() { "--restarts".to_owned() } else { format!("{label}: [solver].restarts") };
+        return Err(CliError::input(format!(
+            "{field} {n}: more than the cap of {} (raise it with --max-restarts N)",
+            flags.max_restarts
+        )));
+    }
+    flags.over(file).to_options_for(joints, record_every).map_err(|e| {
+        // A setting the flags left out came from the file's [solver] table: named as that,
+        // after the file.
+        let from_file = std::cell::Cell::new(false);
+        let message = e.describe(|field| {
+            if flags.is_set(field) || !file.is_set(field) {
+                format!("--{}", field.replace('_', "-"))
+            } else {
+                from_file.set(true);
+                format!("[solver].{field}")
+            }
+        });
+        CliError::input(if from_file.get() { format!("{label}: {message}") } else { message })
+    })
+}
+
+/// A solver for options already checked by [`SolverSettings::to_options_for`].
 pub fn solver(options: SolveOptions) -> Result<Solver, CliError> {
     Solver::new(options).map_err(|e| CliError::input(e.to_string()))
 }

@@ -1,29 +1,26 @@
-//! `ikarus solve`: one goal (JSON, CSV or text), or a batch of goals from a CSV file.
+//! `ikarus solve`: one goal (JSON, CSV or text), or a batch of goals from a CSV file; with
+//! `--rig`, goals on a rig's bones ([`crate::rig_solve`]).
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use ikarus::{Goal, Outcome, SolveOptions, Status};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rayon::prelude::*;
-use serde::Serialize;
+use ikarus::{Goal, Outcome, SolveOptions};
 
 use crate::arm::Arm;
+use crate::batch::Batch;
 use crate::error::CliError;
 use crate::goals::{self, GoalRow, make_goal};
-use crate::options::{parse_angle, parse_at_least_one, parse_point};
-use crate::output::{self, PendingFile};
+use crate::options::{parse_angle, parse_at_least_one};
+use crate::output;
+use crate::picture::{PictureArgs, PictureFormat, arm_drawing, draw};
 use crate::report::{SolveJson, SolveReport, deg_text};
+use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::{SolverSettings, solver};
-use crate::stats::{median, nearest_rank};
 
 /// Frames recorded by default: every 20 iterations, as the seed program did.
 const DEFAULT_RECORD_EVERY: u32 = 20;
-
-/// Batches at least this large show a progress bar (when stderr is a terminal).
-const PROGRESS_MIN_GOALS: usize = 20_000;
 
 // Floats in CSV are written with `{:?}`: the shortest text that reads back to the same
 // number, in scientific notation where that is shorter (1.2e-7, not 0.00000012).
@@ -39,29 +36,40 @@ pub enum Format {
     Text,
 }
 
-/// Move the arm's tip to a goal and report the pose, or solve a batch of goals.
+/// Move the arm's tip to a goal and report the pose, or solve a batch of goals; with `--rig`,
+/// the same for goals on the tips of a rig's bones, solved together.
 #[derive(Debug, Args)]
 pub struct SolveArgs {
-    /// Goal position of the tip
-    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point,
-          required_unless_present = "batch")]
-    pub goal: Option<[f64; 2]>,
+    /// Goal position of the tip; with --rig, NAME=X,Y[,DEG]: the tip of bone NAME at X,Y (and
+    /// pointing DEG degrees from +x), repeatable
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_goal,
+          required_unless_present_any = ["batch", "rig"])]
+    pub goal: Vec<GoalArg>,
     /// Goal orientation of the last link, degrees from +x (counter-clockwise)
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle, conflicts_with = "batch")]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle,
+          conflicts_with_all = ["batch", "rig"])]
     pub goal_angle: Option<f64>,
     /// Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
+    /// Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin
+    /// NAME) are solved together
+    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
+    pub rig: Option<PathBuf>,
+    #[command(flatten)]
+    pub rig_task: RigTaskArgs,
     #[command(flatten)]
     pub solver: SolverSettings,
-    /// Record a frame every K iterations, plus the first and the last [default: 20]
+    /// Record a frame every K iterations, plus the first and the last [default: 20; with
+    /// --rig, none]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
     /// Output format [default: text on a terminal, json otherwise]
     #[arg(long, value_enum, conflicts_with = "batch")]
     pub format: Option<Format>,
-    /// Solve every goal of a CSV file (header `x,y` or `x,y,angle_deg`) from the arm's start
-    /// pose; one CSV row per goal on stdout, a summary on stderr
+    /// Solve every goal of a CSV file (header `x,y` or `x,y,angle_deg`; with --rig, `NAME.x,NAME.y`
+    /// and optionally `NAME.angle_deg` per goal) from the start pose; one CSV row per goal (or
+    /// target set) on stdout, a summary on stderr
     #[arg(long, value_name = "GOALS.csv", conflicts_with = "goal")]
     pub batch: Option<PathBuf>,
     /// Threads for --batch [default: all cores]
@@ -70,6 +78,8 @@ pub struct SolveArgs {
     /// Also write the batch summary as JSON to PATH
     #[arg(long, value_name = "PATH")]
     pub summary_json: Option<PathBuf>,
+    #[command(flatten)]
+    pub picture: PictureArgs,
 }
 
 fn parse_threads(s: &str) -> Result<usize, String> {
@@ -85,6 +95,11 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
         if let Some(p) = &args.summary_json {
             return Err(CliError::input(format!("--summary-json {}: only applies with --batch", p.display())));
         }
+    } else if let Some(p) = &args.picture.out {
+        return Err(CliError::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
+    }
+    if let Some(path) = &args.rig {
+        return crate::rig_solve::run(args, path);
     }
     let arm = Arm::load(args.arm.as_deref())?;
     match &args.batch {
@@ -93,9 +108,23 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     }
 }
 
+/// The one goal of an arm: `--goal X,Y` given once.
+fn arm_goal(args: &SolveArgs) -> Result<Goal, CliError> {
+    match &args.goal[..] {
+        [GoalArg::Point([x, y])] => make_goal(*x, *y, args.goal_angle).map_err(CliError::input),
+        [named @ GoalArg::Named { .. }] => {
+            Err(CliError::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
+        }
+        goals => Err(CliError::input(format!(
+            "--goal: an arm has one tip, so one --goal X,Y, got {} (several goals need --rig FILE)",
+            goals.len()
+        ))),
+    }
+}
+
 fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
-    let [x, y] = args.goal.expect("clap requires --goal without --batch");
-    let goal = make_goal(x, y, args.goal_angle).map_err(CliError::input)?;
+    let goal = arm_goal(args)?;
+    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
     let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
     let mut solver = solver(arm.options(&args.solver, Some(every))?)?;
     let started = Instant::now();
@@ -111,7 +140,13 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
         }
         Format::Csv => report.csv(w),
         Format::Text => report.text(w),
-    })
+    })?;
+    if let Some(out) = picture {
+        let drawing = arm_drawing(arm, outcome.pose.angles(), Some(goal.target()), None);
+        let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &|_, _| {})?;
+        out.commit(&bytes)?;
+    }
+    Ok(())
 }
 
 /// A finished single solve and what it needs to be described.
@@ -220,119 +255,32 @@ fn read_goals(path: &Path) -> Result<Vec<GoalRow>, CliError> {
     Ok(goals)
 }
 
-/// What one solve of a batch produced.
-struct BatchRow {
-    status: Status,
-    error: f64,
-    iterations: u32,
-    angles: Vec<f64>,
-    micros: f64,
-}
-
-/// The batch summary, also written by `--summary-json`.
-#[derive(Debug, Serialize)]
-struct Summary {
-    goals: usize,
-    reached: usize,
-    reached_percent: f64,
-    median_us: f64,
-    p99_us: f64,
-    threads: usize,
-    method: &'static str,
-}
-
 fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     let goals = read_goals(path)?;
     let solver = solver(arm.options(&args.solver, None)?)?;
-    let pending = args.summary_json.as_deref().map(|p| PendingFile::create(p, "--summary-json")).transpose()?;
-    let threads = args.threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| CliError::runtime(format!("cannot start {threads} threads: {e}")))?;
-
-    let progress = if std::io::stderr().is_terminal() && goals.len() >= PROGRESS_MIN_GOALS {
-        let bar = ProgressBar::with_draw_target(Some(goals.len() as u64), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} solving {pos}/{len} goals [{bar:30}] {eta}")
-                .expect("static template")
-                .progress_chars("=> "),
-        );
-        Some(bar)
-    } else {
-        None
-    };
-
+    let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
     let chain = &arm.chain;
-    let rows: Vec<BatchRow> = pool
-        .install(|| {
-            goals
-                .par_iter()
-                .map_init(
-                    || (solver.clone(), Outcome::default()),
-                    |(solver, out), g| {
-                        let started = Instant::now();
-                        let result = solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out);
-                        let micros = started.elapsed().as_secs_f64() * 1e6;
-                        if let Some(bar) = &progress {
-                            bar.inc(1);
-                        }
-                        result.map(|()| BatchRow {
-                            status: out.status,
-                            error: out.error,
-                            iterations: out.iterations,
-                            angles: out.pose.angles().to_vec(),
-                            micros,
-                        })
-                    },
-                )
-                .collect::<Result<_, _>>()
-        })
-        .map_err(|e| CliError::input(e.to_string()))?;
-    if let Some(bar) = progress {
-        bar.finish_and_clear();
-    }
-
+    let rows = batch.solve_all(
+        &goals,
+        || (solver.clone(), Outcome::default()),
+        |(solver, out), g: &GoalRow| {
+            solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out)?;
+            Ok::<_, ikarus::SolveError>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
+        },
+    )?;
     output::stdout(|w| {
         let n = chain.len();
         let thetas: Vec<String> = (1..=n).map(|i| format!("theta{i}_deg")).collect();
         writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
         for (g, r) in goals.iter().zip(&rows) {
-            write!(w, "{:?},{:?},{},{:?},{}", g.x, g.y, r.status, r.error, r.iterations)?;
-            for a in &r.angles {
+            let (error, iterations, angles) = &r.row;
+            write!(w, "{:?},{:?},{},{:?},{}", g.x, g.y, r.status, error, iterations)?;
+            for a in angles {
                 write!(w, ",{:?}", a.to_degrees())?;
             }
             writeln!(w)?;
         }
         Ok(())
     })?;
-
-    let summary = summarise(&rows, threads, solver.options().method.name());
-    // Truncated, not rounded: 9999 of 10000 must not read as 100%.
-    let percent = (summary.reached_percent * 100.0).floor() / 100.0;
-    eprintln!(
-        "batch: {} goals, {} reached ({percent:.2}%), median {:.2} µs, p99 {:.2} µs per solve, {} threads",
-        summary.goals, summary.reached, summary.median_us, summary.p99_us, summary.threads
-    );
-    if let Some(file) = pending {
-        let mut bytes = serde_json::to_vec_pretty(&summary).expect("summary serialises");
-        bytes.push(b'\n');
-        file.commit(&bytes)?;
-    }
-    Ok(())
-}
-
-fn summarise(rows: &[BatchRow], threads: usize, method: &'static str) -> Summary {
-    let mut micros: Vec<f64> = rows.iter().map(|r| r.micros).collect();
-    micros.sort_by(f64::total_cmp);
-    let reached = rows.iter().filter(|r| r.status == Status::Reached).count();
-    Summary {
-        goals: rows.len(),
-        reached,
-        reached_percent: 100.0 * reached as f64 / rows.len() as f64,
-        median_us: median(&micros),
-        p99_us: nearest_rank(&micros, 0.99),
-        threads,
-        method,
-    }
+    batch.finish(&rows, solver.options().method.name())
 }

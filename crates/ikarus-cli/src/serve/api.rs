@@ -15,9 +15,8 @@ use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
-use super::requests::{
-    AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, SolveReq, TrackReq, WorkspaceReq,
-};
+use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, TrackReq, WorkspaceReq};
+use super::rig_requests::SolveBody;
 use super::{AppState, Limits};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
@@ -43,12 +42,15 @@ const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
 /// 503 for it; writing a large answer nobody reads would only hold the worker).
 /// A picture, or the interruption that stopped its drawing (not an internal error).
-fn picture(drawn: Result<Vec<u8>, crate::error::CliError>, interrupt: &Interrupt) -> Result<Vec<u8>, ApiError> {
+pub(super) fn picture(
+    drawn: Result<Vec<u8>, crate::error::CliError>,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, ApiError> {
     stopped(interrupt)?;
     Ok(drawn?)
 }
 
-fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
+pub(super) fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
     if interrupt.is_interrupted() {
         Err(ApiError { status: axum::http::StatusCode::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
     } else {
@@ -56,7 +58,7 @@ fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
     }
 }
 
-fn json_response(value: &impl serde::Serialize) -> Result<Response, ApiError> {
+pub(super) fn json_response(value: &impl serde::Serialize) -> Result<Response, ApiError> {
     let bytes = serde_json::to_vec(value).map_err(|e| ApiError::internal(format!("cannot write JSON: {e}")))?;
     Ok(([(header::CONTENT_TYPE, "application/json")], bytes).into_response())
 }
@@ -94,7 +96,11 @@ pub async fn default_arm() -> Result<Response, ApiError> {
     })
 }
 
-pub async fn solve(State(state): State<AppState>, ApiJson(req): ApiJson<SolveReq>) -> Result<Response, ApiError> {
+pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Response, ApiError> {
+    let req = match body {
+        SolveBody::Arm(req) => req,
+        SolveBody::Rig(req) => return super::rigs::solve(state, *req).await,
+    };
     let pool = state.pool.clone();
     pool.run(move |interrupt| {
         let limits = &state.limits;
@@ -244,7 +250,21 @@ fn options(
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<SolveOptions, ApiError> {
-    let table = table.map_or_else(|| arm.solver.clone(), |t| t.over(&arm.solver));
+    options_for(&arm.solver, arm.chain.len(), table, Some(record_every), limits, interrupt)
+}
+
+/// [`options`] for a body of `joints` joints whose file's `solver` table is `base` (an arm's or
+/// a rig's); frames every `record_every` iterations unless the request or the table says
+/// otherwise (none when both are `None`).
+pub(super) fn options_for(
+    base: &SolverSettings,
+    joints: usize,
+    table: Option<&SolverSettings>,
+    record_every: Option<u32>,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<SolveOptions, ApiError> {
+    let table = table.map_or_else(|| base.clone(), |t| t.over(base));
     table.check().map_err(|m| ApiError::invalid(format!("options.{m}")))?;
     let iterations = table.max_iterations.unwrap_or(SolveOptions::default().max_iterations);
     if iterations > limits.max_iterations {
@@ -256,8 +276,8 @@ fn options(
     if let Some(restarts) = table.restarts.filter(|&r| r > MAX_RESTARTS) {
         return Err(ApiError::invalid(format!("options.restarts = {restarts}: more than the cap of {MAX_RESTARTS}")));
     }
-    let every = table.record_every.unwrap_or(record_every);
-    let mut options = table.to_options(&arm.chain, Some(every)).map_err(|e| {
+    let every = table.record_every.or(record_every);
+    let mut options = table.to_options_for(joints, every).map_err(|e| {
         let message = e.describe(|field| format!("options.{field}"));
         match e {
             crate::settings::SettingsError::Options(_) => ApiError::invalid(format!("options: {message}")),
@@ -270,17 +290,28 @@ fn options(
 
 /// A pose in radians from degrees, one angle per joint; the arm's start pose when absent.
 fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Result<Vec<f64>, ApiError> {
+    pose_from_degrees(arm.chain.start_pose().angles(), arm.chain.limits(), degrees, field)
+}
+
+/// A pose in radians from degrees, one angle per joint (`limits` has one entry per joint);
+/// `default` when absent.
+pub(super) fn pose_from_degrees(
+    default: &[f64],
+    limits: &[Option<ikarus::JointLimits>],
+    degrees: Option<&[f64]>,
+    field: &str,
+) -> Result<Vec<f64>, ApiError> {
     match degrees {
-        None => Ok(arm.chain.start_pose().angles().to_vec()),
-        Some(d) if d.len() != arm.chain.len() => Err(ApiError::invalid(format!(
+        None => Ok(default.to_vec()),
+        Some(d) if d.len() != default.len() => Err(ApiError::invalid(format!(
             "{field}: expected {} angles (one per joint), got {}",
-            arm.chain.len(),
+            default.len(),
             d.len()
         ))),
         // Normalised like an arm file's start angles (`arm.rs`), the limits being the chain's.
         Some(d) => Ok(d
             .iter()
-            .zip(arm.chain.limits())
+            .zip(limits)
             .map(|(&a, lim)| match lim {
                 _ if !a.is_finite() => a.to_radians(),
                 Some(l) => ikarus::angle::degrees_within(a, l.min().to_degrees(), l.max().to_degrees())
@@ -396,7 +427,7 @@ fn motion(
 const MAX_RECORDED_VALUES: u64 = 4_000_000;
 /// Most values (frames × (joints + 4)) one `/api/solve` may record: every frame goes into the
 /// answer, about 60 bytes of JSON per value (1 million: about 60 MB of JSON at most).
-const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;
+pub(super) const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;
 
 /// The frame interval of a solve whose request gives none: [`SOLVE_RECORD_EVERY`], or more
 /// when that would record more than [`MAX_SOLVE_RECORDED_VALUES`].
@@ -410,17 +441,27 @@ fn default_record_every(arm: &Arm, max_iterations: u32) -> u32 {
 /// Refuses, before any solve, a request whose `solves` solves could record more than `cap`
 /// values: each up to `max_iterations / record_every + 2` frames.
 fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), ApiError> {
+    recorded_values_cap(arm.chain.len(), arm.chain.len() as u64 + 4, options, solves, cap)
+}
+
+/// [`recorded_cap`] for a body of `joints` joints whose frames hold `per_frame` values each.
+pub(super) fn recorded_values_cap(
+    joints: usize,
+    per_frame: u64,
+    options: &SolveOptions,
+    solves: usize,
+    cap: u64,
+) -> Result<(), ApiError> {
     let Some(every) = options.record_every else { return Ok(()) };
     let every = every.max(1);
     let per_solve = u64::from(options.max_iterations / every) + 2;
     let frames = per_solve.saturating_mul(solves as u64);
-    let values = frames.saturating_mul(arm.chain.len() as u64 + 4);
+    let values = frames.saturating_mul(per_frame);
     if values > cap {
         let what = if solves == 1 { "the solve".to_owned() } else { format!("with from_solve, {solves} solves") };
         return Err(ApiError::invalid(format!(
             "options.max_iterations = {}, options.record_every = {every}: {what} could record {frames} frames of {} joints, more than the cap of {cap} values; raise record_every, lower max_iterations or give fewer via points",
-            options.max_iterations,
-            arm.chain.len()
+            options.max_iterations, joints
         )));
     }
     Ok(())
@@ -461,7 +502,7 @@ fn sample_workspace(
     Ok((workspace, request.limits(arm)))
 }
 
-fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
+pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
     let v = value.unwrap_or(DEFAULT_SIDE);
     if SIDE_RANGE.contains(&v) {
         Ok(v)
@@ -500,6 +541,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
             picture(draw(&workspace_drawing(&arm, &workspace), format, width, height, &|_, _| {}), interrupt)?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
+        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, interrupt)?,
     };
     Ok((bytes, format))
 }

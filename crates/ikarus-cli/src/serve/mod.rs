@@ -12,6 +12,8 @@ mod guard;
 mod meta;
 mod pool;
 mod requests;
+mod rig_requests;
+mod rigs;
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
@@ -65,7 +67,7 @@ pub struct ServeArgs {
     /// Largest request body, in bytes (413 above it)
     #[arg(long, default_value_t = 1 << 20, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..=1 << 30))]
     pub max_body_bytes: u64,
-    /// Most links an arm of a request may have
+    /// Most links an arm of a request may have (a rig: at most 256 bones, 64 goals and pins)
     #[arg(long, default_value_t = 64, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub max_links: u64,
     /// Largest options.max_iterations of a request
@@ -266,6 +268,8 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
         .route("/api/arm/default", get(api::default_arm))
         .route("/api/arm/parse", post(arm_files::parse_handler))
         .route("/api/arm/toml", post(arm_files::toml_handler))
+        .route("/api/rigs", get(rigs::list))
+        .route("/api/rig/parse", post(rigs::parse_handler))
         .route("/api/solve", post(api::solve))
         .route("/api/animate", post(api::animate))
         .route("/api/track", post(api::track))

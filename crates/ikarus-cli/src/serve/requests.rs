@@ -10,6 +10,7 @@ use serde::de::IgnoredAny;
 use super::AppState;
 use super::errors::{ApiError, JsonBody};
 
+use super::rig_requests::RigFigureReq;
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;
 use crate::settings::SolverSettings;
@@ -146,6 +147,8 @@ pub enum RenderReq {
     Workspace(WorkspaceFigureReq),
     /// An ease curve.
     Ease(EaseFigureReq),
+    /// A rig in one pose (figure `rig`, or `arm` with `rig` in place of `arm`).
+    Rig(Box<RigFigureReq>),
 }
 
 /// The names of the figures.
@@ -156,6 +159,7 @@ pub enum Figure {
     Motion,
     Workspace,
     Ease,
+    Rig,
 }
 
 /// The first pass over a render request: `figure` (required), other fields skipped. Its
@@ -164,6 +168,9 @@ pub enum Figure {
 #[serde(expecting = "struct RenderReq")]
 pub struct FigureTag {
     pub figure: Figure,
+    /// Whether the body has a `rig` (figure `arm` then draws it).
+    #[serde(default)]
+    pub rig: Option<IgnoredAny>,
 }
 
 impl FromRequest<AppState> for RenderReq {
@@ -171,8 +178,10 @@ impl FromRequest<AppState> for RenderReq {
 
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
         let body = JsonBody::from_request(req, state).await?;
-        let FigureTag { figure } = body.parse()?;
+        let FigureTag { figure, rig } = body.parse()?;
         Ok(match figure {
+            Figure::Arm if rig.is_some() => RenderReq::Rig(body.parse()?),
+            Figure::Rig => RenderReq::Rig(body.parse()?),
             Figure::Arm => RenderReq::Arm(body.parse()?),
             Figure::Motion => RenderReq::Motion(body.parse()?),
             Figure::Workspace => RenderReq::Workspace(body.parse()?),
@@ -302,6 +311,7 @@ impl RenderReq {
             RenderReq::Motion(r) => (r.format, r.width, r.height),
             RenderReq::Workspace(r) => (r.format, r.width, r.height),
             RenderReq::Ease(r) => (r.format, r.width, r.height),
+            RenderReq::Rig(r) => (r.format, r.width, r.height),
         }
     }
 }

@@ -1,0 +1,205 @@
+//! The API's rigs: `POST /api/solve` with `rig`, `GET /api/rigs` (the shipped rig files,
+//! embedded in the binary), `POST /api/rig/parse` (rig-file text → `{"rig": …}` or
+//! `{"problem": "…"}`, as `/api/arm/parse`) and the figure `rig` of `POST /api/render`. The work
+//! and the answers are the command line's (`crate::rig_task`, `crate::rig_report`,
+//! `crate::picture`), under the server's caps and time budget.
+
+use std::time::Instant;
+
+use axum::Json;
+use axum::response::Response;
+use ikarus::{Bend, Interrupt, Outcome, Priority, RigTask};
+use serde::Serialize;
+
+use super::api::{
+    MAX_SOLVE_RECORDED_VALUES, json_response, options_for, picture, pose_from_degrees, recorded_values_cap, stopped,
+};
+use super::errors::ApiError;
+use super::rig_requests::{BendReq, PriorityReq, RigFigureReq, RigGoalReq, RigSolveReq};
+use super::{AppState, Limits};
+use crate::picture::{Drawing, PictureFormat, draw, rig_figure};
+use crate::rig::{Rig, RigFile};
+use crate::rig_report::{RigJson, RigSolveReport};
+use crate::rig_task::{self, Field, NamedGoal};
+use crate::settings::solver;
+
+/// Most bones of a request's rig.
+pub const MAX_BONES: usize = 256;
+/// Most effectors (goals and pins together) of a request.
+pub const MAX_EFFECTORS: usize = 64;
+
+/// The shipped rigs (`examples/rigs/`), by name, as rig-file text.
+pub const SHIPPED: &[(&str, &str)] = &[
+    ("puppet", include_str!("../../../../examples/rigs/puppet.toml")),
+    ("hand", include_str!("../../../../examples/rigs/hand.toml")),
+];
+
+/// The request's rig, checked as a rig file is (errors start with `rig:`); at most
+/// [`MAX_BONES`] bones.
+pub fn load_rig(file: RigFile) -> Result<Rig, ApiError> {
+    if file.bones.len() > MAX_BONES {
+        return Err(ApiError::invalid(format!(
+            "rig.bones: {} bones, more than the cap of {MAX_BONES}",
+            file.bones.len()
+        )));
+    }
+    Ok(Rig::from_file(file, "rig")?)
+}
+
+/// The task of a request's `goals`, `pins` and `mix` on `rig`; problems name the field
+/// (`goals[1].bone`, `pins[0]`); at most [`MAX_EFFECTORS`] goals and pins together. `need_one`:
+/// a solve needs a goal or a pin, a picture does not.
+pub fn task(
+    rig: &Rig,
+    goals: &[RigGoalReq],
+    pins: &[String],
+    mix: Option<f64>,
+    need_one: bool,
+) -> Result<RigTask, ApiError> {
+    let effectors = goals.len() + pins.len();
+    if effectors > MAX_EFFECTORS {
+        return Err(ApiError::invalid(format!(
+            "goals, pins: {effectors} effectors (goals and pins together), more than the cap of {MAX_EFFECTORS}"
+        )));
+    }
+    if !need_one && effectors == 0 {
+        return Ok(RigTask::default());
+    }
+    let goals: Vec<NamedGoal> = goals
+        .iter()
+        .map(|g| NamedGoal {
+            weight: g.weight.unwrap_or(1.0),
+            priority: match g.priority {
+                None | Some(PriorityReq::Primary) => Priority::Primary,
+                Some(PriorityReq::Secondary) => Priority::Secondary,
+            },
+            bend: g.bend.map(|b| match b {
+                BendReq::Ccw => Bend::Positive,
+                BendReq::Cw => Bend::Negative,
+            }),
+            softness: g.softness.unwrap_or(0.0),
+            ..NamedGoal::new(g.bone.clone(), g.x, g.y, g.angle_deg)
+        })
+        .collect();
+    let field = |f: Field| match f {
+        Field::Goal(i) => format!("goals[{i}]"),
+        Field::Weight(i) => format!("goals[{i}].weight"),
+        Field::Softness(i) => format!("goals[{i}].softness"),
+        Field::Bend(i) => format!("goals[{i}].bend"),
+        Field::Pin(i) => format!("pins[{i}]"),
+    };
+    rig_task::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(ApiError::invalid)
+}
+
+/// `POST /api/solve` with `rig`: the JSON of `ikarus solve --rig --format json`.
+pub async fn solve(state: AppState, req: RigSolveReq) -> Result<Response, ApiError> {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
+        let limits: &Limits = &state.limits;
+        let rig = load_rig(req.rig)?;
+        let task = task(&rig, &req.goals, &req.pins, req.mix, true)?;
+        let n = rig.skeleton.len();
+        // No frames unless `options.record_every` (or the rig's table) asks.
+        let options = options_for(&rig.solver, n, req.options.as_ref(), None, limits, interrupt)?;
+        // Each frame: n angles and n + 1 points.
+        recorded_values_cap(n, 3 * n as u64 + 2, &options, 1, MAX_SOLVE_RECORDED_VALUES)?;
+        let start = pose_from_degrees(
+            rig.skeleton.start_angles(),
+            rig.skeleton.limits(),
+            req.start_deg.as_deref(),
+            "start_deg",
+        )?;
+        let mut solver = solver(options)?;
+        let mut outcome = Outcome::default();
+        let started = Instant::now();
+        solver
+            .solve_rig_into(&rig.skeleton, &start, &task, &mut outcome)
+            .map_err(|e| ApiError::invalid(e.to_string()))?;
+        stopped(interrupt)?;
+        let micros = started.elapsed().as_secs_f64() * 1e6;
+        json_response(&RigSolveReport { rig: &rig, options: solver.options(), outcome: &outcome, micros }.json())
+    })
+    .await
+}
+
+/// One shipped rig.
+#[derive(Serialize)]
+pub struct Shipped {
+    name: &'static str,
+    rig: RigJson,
+}
+
+#[derive(Serialize)]
+struct Rigs {
+    rigs: Vec<Shipped>,
+}
+
+/// `GET /api/rigs`: `{"rigs": [{"name", "rig"}, …]}`.
+pub async fn list() -> Result<Response, ApiError> {
+    let rigs = SHIPPED
+        .iter()
+        .map(|(name, text)| {
+            let rig = RigJson::parse(text, &format!("examples/rigs/{name}.toml")).map_err(ApiError::internal)?;
+            Ok(Shipped { name, rig })
+        })
+        .collect::<Result<Vec<_>, ApiError>>()?;
+    json_response(&Rigs { rigs })
+}
+
+/// The answer of `POST /api/rig/parse`: the rig, or why the text is not a rig file (a 200
+/// either way, as `/api/arm/parse`).
+#[derive(Debug, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Parsed {
+    Rig(RigJson),
+    Problem(String),
+}
+
+/// `POST /api/rig/parse`: the body is the file's text.
+pub async fn parse_handler(body: String) -> Json<Parsed> {
+    Json(match RigJson::parse(&body, "rig file") {
+        Ok(rig) => Parsed::Rig(rig),
+        Err(problem) => Parsed::Problem(problem),
+    })
+}
+
+/// The figure `rig`: the rig at `pose_deg` (its start pose by default) with goals and pins.
+pub fn figure(
+    r: RigFigureReq,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, ApiError> {
+    let rig = load_rig(r.rig)?;
+    let task = task(&rig, &r.goals, &r.pins, None, false)?;
+    let pose =
+        pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), r.pose_deg.as_deref(), "pose_deg")?;
+    let figure = ikarus_render::SkeletonFigure { labels: r.labels, ..rig_figure(&rig, &pose, &task, r.limits, None) };
+    picture(draw(&Drawing::Skeleton(figure), format, width, height, &|_, _| {}), interrupt)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every rig file in `examples/rigs/` is shipped, and reads.
+    #[test]
+    fn every_example_rig_is_shipped() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/rigs");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .map(|p| p.file_stem().unwrap().to_str().unwrap().to_owned())
+            .collect();
+        files.sort();
+        let mut shipped: Vec<String> = SHIPPED.iter().map(|(n, _)| (*n).to_owned()).collect();
+        shipped.sort();
+        assert_eq!(files, shipped);
+        for (name, text) in SHIPPED {
+            let rig = RigJson::parse(text, name).unwrap();
+            assert_eq!(rig.name, *name);
+        }
+    }
+}
