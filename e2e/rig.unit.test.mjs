@@ -174,3 +174,13 @@ test("the methods that solve rigs: the Jacobian ones, or what /api/meta says", (
   for (const name of RIG_METHODS) assert.equal(solvesRigs({ name }), true, name);
   assert.equal(solvesRigs({ name: "lm", solves_rigs: false }), false);
 });
+
+test("the method list of a rig: the methods that solve rigs, whatever the closed form's shapes", async () => {
+  const { methodApplies } = await import("../crates/ikarus-cli/src/serve/assets/controls.js");
+  const analytic = { name: "analytic", shapes: [[2, false], [3, true]] };
+  assert.equal(methodApplies(analytic, 2, false), true);
+  assert.equal(methodApplies(analytic, 2, false, true), false);
+  assert.equal(methodApplies({ name: "ccd" }, 17, false, true), false);
+  assert.equal(methodApplies({ name: "ccd" }, 17, false), true);
+  assert.equal(methodApplies({ name: "sdls" }, 17, false, true), true);
+});
