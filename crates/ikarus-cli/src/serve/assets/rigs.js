@@ -74,6 +74,7 @@ export function wireRigs(state, canvas, act) {
       if (!state.rig) return;
       state.rig = null;
       document.body.classList.remove("rig");
+      delete document.body.dataset.failed;
       if (armLimits !== null) $("limits").checked = armLimits;
       armLimits = null;
       const hint = $("hint");
@@ -95,6 +96,7 @@ export function wireRigs(state, canvas, act) {
     }
     state.rig = newRigState(rig, value);
     document.body.classList.add("rig");
+    delete document.body.dataset.failed;
     $("hint").textContent = $("hint").dataset.rig;
     select.value = value;
     act.showError(null);
