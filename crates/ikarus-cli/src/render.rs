@@ -1,11 +1,11 @@
 //! `ikarus render`: the figures of `POST /api/render` from the command line: `arm`, `motion`,
-//! `workspace` and `ease`, with the flags of the other commands and the same drawings
+//! `workspace`, `ease` and `rig`, with the flags of the other commands and the same drawings
 //! ([`crate::picture`] builds each figure for both).
 
 use std::path::PathBuf;
 
 use clap::{Args, Subcommand};
-use ikarus::EaseKind;
+use ikarus::{EaseKind, RigTask};
 
 use crate::animate::MotionArgs;
 use crate::arm::Arm;
@@ -13,8 +13,10 @@ use crate::ease_args::EaseArgs;
 use crate::error::CliError;
 use crate::options::{parse_finite, parse_point};
 use crate::picture::{
-    Drawing, PictureArgs, PictureFormat, PictureOut, arm_drawing, draw, draw_for_command, workspace_drawing,
+    Drawing, PictureArgs, PictureFormat, PictureOut, arm_drawing, draw, draw_for_command, rig_figure, workspace_drawing,
 };
+use crate::rig::Rig;
+use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::workspace::SamplingArgs;
 
 #[derive(Debug, Subcommand)]
@@ -30,6 +32,9 @@ pub enum RenderCommand {
     Workspace(RenderWorkspaceArgs),
     /// Plot an ease curve: position and velocity against time (the seed's Figure 10)
     Ease(RenderEaseArgs),
+    /// Draw a rig in a pose (its start pose by default), with goals, pins and limit wedges
+    #[command(allow_negative_numbers = true)]
+    Rig(RenderRigArgs),
 }
 
 #[derive(Debug, Args)]
@@ -48,6 +53,31 @@ pub struct RenderArmArgs {
     pub workspace: bool,
     #[command(flatten)]
     pub sampling: SamplingArgs,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderRigArgs {
+    /// Rig file (TOML)
+    #[arg(long, value_name = "FILE")]
+    pub rig: PathBuf,
+    /// The angle of bone NAME, degrees, relative to its parent (repeatable); the other bones
+    /// keep their start angles
+    #[arg(long, value_name = "NAME=DEG", allow_hyphen_values = true, value_parser = parse_bone_angle)]
+    pub pose_deg: Vec<(String, f64)>,
+    /// A goal to mark: the tip of bone NAME at X,Y, pointing DEG degrees from +x (repeatable)
+    #[arg(long, value_name = "NAME=X,Y[,DEG]", allow_hyphen_values = true, value_parser = parse_goal)]
+    pub goal: Vec<GoalArg>,
+    /// A pinned tip to mark (repeatable)
+    #[arg(long, value_name = "NAME")]
+    pub pin: Vec<String>,
+    /// Draw each limited bone's range as a wedge at its joint
+    #[arg(long)]
+    pub limits: bool,
+    /// Write each bone's name beside it
+    #[arg(long)]
+    pub labels: bool,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
@@ -109,6 +139,22 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
             let ease = args.ease.resolve(EaseKind::Parent)?;
             still_picture(&Drawing::Ease(ease), out, &args.picture)
         }
+        RenderCommand::Rig(args) => {
+            let out = required_out(&args.picture, &still)?;
+            let rig = Rig::load(&args.rig)?;
+            let pose = rig_pose(&rig, &args.pose_deg)?;
+            let targets = args.goal.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+            let task = if targets.is_empty() && args.pin.is_empty() {
+                RigTask::default()
+            } else {
+                RigTaskArgs { pin: args.pin.clone(), ..RigTaskArgs::default() }.task(&rig.skeleton, &targets)?
+            };
+            let figure = ikarus_render::SkeletonFigure {
+                labels: args.labels,
+                ..rig_figure(&rig, &pose, &task, args.limits, None)
+            };
+            still_picture(&Drawing::Skeleton(figure), out, &args.picture)
+        }
     }
 }
 
@@ -123,6 +169,24 @@ fn required_out(picture: &PictureArgs, allowed: &[PictureFormat]) -> Result<Pict
 fn still_picture(drawing: &Drawing<'_>, out: PictureOut, picture: &PictureArgs) -> Result<(), CliError> {
     let bytes = draw(drawing, out.format, picture.width, picture.height, &|_, _| {})?;
     out.commit(&bytes)
+}
+
+/// The rig's start pose with the angles of `--pose-deg NAME=DEG` (normalised as a rig file's
+/// start angles), in radians.
+fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
+    let s = &rig.skeleton;
+    let mut pose = s.start_angles().to_vec();
+    let mut given = vec![false; s.len()];
+    for (name, deg) in angles {
+        let flag = format!("--pose-deg {name}={deg}");
+        let i = crate::rig_task::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
+        if std::mem::replace(&mut given[i], true) {
+            return Err(CliError::input(format!("{flag}: bone {name:?} given twice")));
+        }
+        let limits = s.limits()[i].map(|l| [l.min().to_degrees(), l.max().to_degrees()]);
+        pose[i] = crate::arm::start_angle(*deg, limits).to_radians();
+    }
+    Ok(pose)
 }
 
 /// The pose of `--pose-deg` in radians (one angle per joint, within any ranges the arm has),

@@ -75,6 +75,11 @@ fn parse_bend(s: &str) -> Result<(String, Bend), String> {
     })
 }
 
+/// `NAME=DEG`: a bone's angle, degrees.
+pub fn parse_bone_angle(s: &str) -> Result<(String, f64), String> {
+    named(s, parse_finite)
+}
+
 fn parse_mix(s: &str) -> Result<f64, String> {
     let v = parse_finite(s)?;
     if (0.0..=1.0).contains(&v) { Ok(v) } else { Err(format!("{}: must be from 0 to 1", ikarus::number::Num(v))) }

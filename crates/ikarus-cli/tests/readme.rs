@@ -9,8 +9,8 @@
 //! - `ikarus …` runs the binary built for the tests, from the repository root, with the
 //!   arguments split as a shell would split them (single and double quotes). The commands whose
 //!   output is text on a terminal (`solve`, `animate`, `track`, `workspace`) print JSON when
-//!   piped, as here: when the command names no `--format`, the test adds `--format text`, which
-//!   is what a terminal gets.
+//!   piped, as here: when the command names no `--format` (and is no `--batch`), the test adds
+//!   `--format text`, which is what a terminal gets.
 //! - `curl -s [-o FILE] localhost:7878/PATH [-H …] [-d 'BODY']` is sent to an `ikarus serve`
 //!   started for the test on a free port (GET without `-d`, POST with it). With `-o` the block
 //!   shows no output, and the answer must be a picture.
@@ -240,7 +240,9 @@ const TERMINAL_TEXT: [&str; 4] = ["solve", "animate", "track", "workspace"];
 
 fn run_ikarus(args: &[String]) -> String {
     let mut args = args.to_vec();
-    if args.first().is_some_and(|c| TERMINAL_TEXT.contains(&c.as_str())) && !args.iter().any(|a| a == "--format") {
+    // A batch prints CSV wherever it goes (and takes no --format).
+    let chooses = |a: &String| a == "--format" || a == "--batch";
+    if args.first().is_some_and(|c| TERMINAL_TEXT.contains(&c.as_str())) && !args.iter().any(chooses) {
         args.extend(["--format".to_owned(), "text".to_owned()]);
     }
     let o = Command::new(env!("CARGO_BIN_EXE_ikarus")).args(&args).current_dir(root()).output().unwrap();

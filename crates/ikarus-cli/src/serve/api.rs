@@ -98,7 +98,7 @@ pub async fn default_arm() -> Result<Response, ApiError> {
 
 pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Response, ApiError> {
     let req = match body {
-        SolveBody::Arm(req) => req,
+        SolveBody::Arm(req) => *req,
         SolveBody::Rig(req) => return super::rigs::solve(state, *req).await,
     };
     let pool = state.pool.clone();

@@ -135,7 +135,7 @@ impl Keys {
 /// The body of `POST /api/solve`: an arm's request or a rig's.
 #[derive(Debug)]
 pub enum SolveBody {
-    Arm(SolveReq),
+    Arm(Box<SolveReq>),
     Rig(Box<RigSolveReq>),
 }
 
