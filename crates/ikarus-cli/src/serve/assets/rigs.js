@@ -286,6 +286,14 @@ export function wireRigs(state, canvas, act) {
     act.requestDraw();
   });
 
+  // The pointer left the canvas: no tip is under it (nor ringed on the screen or in a download).
+  canvas.addEventListener("pointerleave", () => {
+    if (!state.rig || press || !state.rig.hover) return;
+    state.rig.hover = null;
+    canvas.style.cursor = "";
+    act.requestDraw();
+  });
+
   canvas.addEventListener("pointercancel", () => {
     if (!state.rig) return;
     press = null;
