@@ -169,6 +169,8 @@ test("the puppet: both feet pinned, both hands dragged to reachable points, all 
     assert.equal(d.suggestedFilename(), "ikarus-rig.svg");
     const svg = readFileSync(await d.path(), "utf8");
     assert.equal(svg.match(/fill="#2b6cb0"/g).length, 2);
+    // The pointer left the canvas for the button: no effector is ringed and named any more.
+    assert.ok(!/>(left|right)_hand</.test(svg), "the hover ring of the last drag is in the download");
 
     mkdirSync(artifacts, { recursive: true });
     await page.screenshot({ path: join(artifacts, "rig-puppet.png") });
