@@ -1,16 +1,12 @@
 //! One solve from one start pose: the iteration loop of the [module docs](super).
 
-use nalgebra::Vector3;
-
-use super::line_search::{Residual, jacobian_step};
+use super::algebra::Algebra;
+use super::line_search::jacobian_step;
 use super::lm::Damping;
-use super::model::Model;
+use super::model::{Model, ScratchOf};
 use super::problem::Problem;
-use super::scratch::Scratch;
-use super::step::{Rule, Stepper};
+use super::step::Stepper;
 use super::{Outcome, Status};
-use crate::angle::wrap_angle;
-use crate::kinematics::EndEffector;
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
@@ -22,45 +18,39 @@ use crate::kinematics::EndEffector;
 /// orientation, their sum, is then not finite either: an overflow on a chain or goal near the
 /// end of the f64 range) is not taken: the attempt keeps its last finite pose and ends
 /// [`Status::Stalled`].
-pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> Status {
+pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
     let (model, goal, opts) = (p.model, p.goal, p.opts);
     let n = model.len();
-    let angles = out.pose.angles_mut();
+    // The pose is moved out of `out` while the loop measures into `out`, and moved back after.
+    let mut pose = std::mem::take(out.pose.angles_mut());
+    let angles = &mut pose;
     angles.clear();
     angles.extend_from_slice(start);
     p.bounds.clamp_into(angles);
     out.frames.start(n, opts.record_every, opts.max_iterations);
 
     let stepper = Stepper::of(opts.method);
-    let target = goal.target();
-    let weight = opts.orientation_weight;
     let mut phi = model.forward_into(angles, &mut s.joints);
     let mut iteration: u32 = 0;
     let mut still: u32 = 0;
     let mut damping = Damping::new(opts.lambda);
     let mut best_error = f64::INFINITY;
     let status = loop {
-        let tip = model.tip(&s.joints);
-        let (dx, dy) = (target.x - tip.x, target.y - tip.y);
-        let turn = goal.orientation().map(|g| wrap_angle(g - phi));
-        let error = distance(dx, dy);
-        let angle_error = turn.map_or(0.0, f64::abs);
-        out.error = error;
-        out.angle_error = angle_error;
-        out.end_effector = EndEffector { position: tip, orientation: phi };
+        model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);
         if let Some(k) = opts.record_every {
             if iteration % k == 0 {
-                out.frames.push(iteration, angles, &s.joints);
+                out.frames.push(iteration, angles, M::frame_points(&s.joints));
             }
         }
-        if let Some(status) = stop(p, error, angle_error, still, iteration) {
+        if let Some(status) = stop(p, out.error, out.angle_error, still, iteration) {
             break status;
         }
 
         let trial_phi = match stepper {
             Stepper::Jacobian(rule) => {
-                let e = Vector3::new(dx, dy, turn.map_or(0.0, |t| weight * t));
-                let Some(trial_phi) = jacobian_iteration(p, rule, e, &mut damping, angles, s) else {
+                model.jacobian(goal, opts, &s.joints, &mut s.alg);
+                let current = s.alg.e_norm_squared();
+                let Some(trial_phi) = jacobian_step(p, rule, current, &mut damping, angles, s) else {
                     // No step along this direction lowers the error: the pose cannot move, and
                     // the same pose would give the same direction again.
                     break Status::Stalled;
@@ -68,11 +58,11 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
                 trial_phi
             }
             Stepper::Ccd => {
-                remember_best(weight, error, angle_error, &mut best_error, angles, &mut s.best);
+                remember_best(model.best_key(opts, out, &s.alg), &mut best_error, angles, &mut s.best);
                 M::ccd_sweep(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
             }
             Stepper::Fabrik => {
-                remember_best(weight, error, angle_error, &mut best_error, angles, &mut s.best);
+                remember_best(model.best_key(opts, out, &s.alg), &mut best_error, angles, &mut s.best);
                 M::fabrik_iterate(p, angles, &s.joints, &mut s.trial, &mut s.trial_joints)
             }
         };
@@ -90,13 +80,14 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
             _ => still = 0,
         }
     };
+    *out.pose.angles_mut() = pose;
 
     if !matches!(stepper, Stepper::Jacobian(_)) && status != Status::Reached {
         end_on_best(p, best_error, s, out);
     }
     out.iterations = iteration;
     if opts.record_every.is_some() {
-        out.frames.push_final(iteration, out.pose.angles(), &s.joints);
+        out.frames.push_final(iteration, out.pose.angles(), M::frame_points(&s.joints));
     }
     status
 }
@@ -118,54 +109,27 @@ fn stop<M: Model>(p: &Problem<'_, M>, error: f64, angle_error: f64, still: u32, 
     }
 }
 
-/// CCD and FABRIK keep the best pose they visit: `angles`, if its squared task error (from
-/// `error` and `angle_error`, weighted by `weight`) is below `best_error`.
+/// CCD and FABRIK keep the best pose they visit: `angles`, if its squared task error `key` is
+/// below `best_error`.
 #[inline]
-fn remember_best(weight: f64, error: f64, angle_error: f64, best_error: &mut f64, angles: &[f64], best: &mut [f64]) {
-    let e2 = error * error + (weight * angle_error).powi(2);
-    if e2 < *best_error {
-        *best_error = e2;
+fn remember_best(key: f64, best_error: &mut f64, angles: &[f64], best: &mut [f64]) {
+    if key < *best_error {
+        *best_error = key;
         best.copy_from_slice(angles);
     }
-}
-
-/// One iteration of a Jacobian rule for the task error `e`: `J`, embedded in three dimensions
-/// like `e` (without an orientation goal the third row of `J` and `e` is zero), then the step
-/// with its line search.
-#[inline]
-fn jacobian_iteration<M: Model>(
-    p: &Problem<'_, M>,
-    rule: Rule,
-    e: Vector3<f64>,
-    damping: &mut Damping,
-    angles: &[f64],
-    s: &mut Scratch,
-) -> Option<f64> {
-    let weight = p.opts.orientation_weight;
-    p.model.jacobian_into(&s.joints, &mut s.jacobian);
-    let row_scale = if p.goal.orientation().is_some() { weight } else { 0.0 };
-    for mut col in s.jacobian.column_iter_mut() {
-        col[2] *= row_scale;
-    }
-    let current = e.norm_squared();
-    jacobian_step(p, rule, &Residual { e, current }, damping, angles, s)
 }
 
 /// CCD and FABRIK: if the pose they end on is worse than the best they visited (squared task
 /// error `best_error`, pose in `s.best`), end on that one, with its error and tip (the
 /// restarts compare attempts by them).
-fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut Scratch, out: &mut Outcome) {
-    let (model, goal) = (p.model, p.goal);
-    let weight = p.opts.orientation_weight;
-    let final_error = out.error.powi(2) + (weight * out.angle_error).powi(2);
+fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut ScratchOf<M>, out: &mut Outcome) {
+    let model = p.model;
+    let final_error = model.best_key(p.opts, out, &s.alg);
     if best_error < final_error {
         let angles = out.pose.angles_mut();
         angles.copy_from_slice(&s.best);
         let phi = model.forward_into(angles, &mut s.joints);
-        let tip = model.tip(&s.joints);
-        out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
-        out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
-        out.end_effector = EndEffector { position: tip, orientation: phi };
+        model.measure(p.goal, p.opts, &s.joints, phi, out, &mut s.alg);
     }
 }
 

@@ -12,14 +12,11 @@
 //!   weighted by how near its limit the task moves it, `W Jᵀ (J W Jᵀ)⁻¹` with `W` diagonal,
 //!   computed as the rule's step on `J W^½`.
 
-use nalgebra::Vector3;
-
 use super::LimitMode;
-use super::model::Model;
-use super::pinv;
+use super::algebra::Algebra;
+use super::model::{Model, ScratchOf};
 use super::problem::Problem;
-use super::scratch::Scratch;
-use super::step::{Rule, gram, method_step};
+use super::step::Rule;
 
 /// Per iteration, [`LimitMode::NullSpace`] asks each limited joint to cover this share of its
 /// distance to the middle of its range (before the projection into the null space).
@@ -31,19 +28,17 @@ const NULLSPACE_FADE: f64 = 0.1;
 /// Fills `s.delta` with the joint step of `rule` under the problem's limit mode, scaled by the
 /// gain and the rates, and returns the factor that brings it within
 /// [`SolveOptions::max_step`](super::SolveOptions::max_step). `mu` is Levenberg–Marquardt's
-/// damping.
+/// damping; the task error `e` and `J` are in `s.alg`.
 #[inline]
 pub(super) fn compute_delta<M: Model>(
     p: &Problem<'_, M>,
     rule: Rule,
-    e: &Vector3<f64>,
     mu: f64,
     angles: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
 ) -> f64 {
     let (model, opts, mode) = (p.model, p.opts, p.mode);
     let n = model.len();
-    let oriented = p.goal.orientation().is_some();
     s.scale.fill(1.0);
     let (locking, weighing, pushing) = match mode {
         LimitMode::Ignore | LimitMode::Clamp => (false, false, false),
@@ -52,23 +47,22 @@ pub(super) fn compute_delta<M: Model>(
         LimitMode::Weighted => (false, true, false),
     };
     if weighing {
-        weigh(model, e, angles, s);
+        weigh(model, angles, s);
     }
     s.locked.fill(false);
-    let mut task = *e;
-    let fade = if pushing { (e.norm() / (NULLSPACE_FADE * model.max_reach())).min(1.0) } else { 0.0 };
+    s.alg.reset_task();
+    let fade = if pushing { (s.alg.e_norm() / (NULLSPACE_FADE * model.max_reach())).min(1.0) } else { 0.0 };
     for round in 0..=n {
         // Until a joint is locked or weighted, J itself is the weighted Jacobian.
         let plain = round == 0 && !weighing;
         if !plain {
-            for (i, (mut w, col)) in s.weighted.column_iter_mut().zip(s.jacobian.column_iter()).enumerate() {
+            for i in 0..n {
                 let k = if s.locked[i] { 0.0 } else { s.scale[i] };
-                w.copy_from(&(col * k));
+                s.alg.set_weighted(i, k);
             }
         }
-        let weighted = if plain { &s.jacobian } else { &s.weighted };
-        let a = gram(weighted, oriented);
-        method_step(rule, opts, &a, weighted, &task, mu, &mut s.step);
+        s.alg.gram(plain);
+        s.alg.method_step(plain, rule, opts, mu, &mut s.step);
         for i in 0..n {
             if !s.locked[i] {
                 let rate = opts.rates.get(i).copied().unwrap_or(1.0);
@@ -76,9 +70,9 @@ pub(super) fn compute_delta<M: Model>(
             }
         }
         if pushing {
-            push_to_the_middle(p, fade, plain, &a, angles, s);
+            push_to_the_middle(p, fade, plain, angles, s);
         }
-        if !locking || !lock_crossing(model, angles, &mut task, s) {
+        if !locking || !lock_crossing(model, angles, s) {
             break;
         }
     }
@@ -93,11 +87,11 @@ pub(super) fn compute_delta<M: Model>(
 /// limit, with `wᵢ = 1 / (1 + |∂H/∂θᵢ|)` of the joint-limit measure
 /// `H = Σ (max − min)² / (4 (max − θ)(θ − min))`, and 0 at or beyond a limit.
 #[inline]
-fn weigh<M: Model>(model: &M, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch) {
+fn weigh<M: Model>(model: &M, angles: &[f64], s: &mut ScratchOf<M>) {
     for (i, lim) in model.limits().iter().enumerate() {
         if let Some(lim) = lim {
             let (lo, hi, th) = (lim.min(), lim.max(), angles[i]);
-            let g = s.jacobian.column(i).dot(e);
+            let g = s.alg.column_dot_e(i);
             let toward = (g > 0.0 && 2.0 * th > lo + hi) || (g < 0.0 && 2.0 * th < lo + hi);
             if toward {
                 let gap = (hi - th) * (th - lo);
@@ -115,38 +109,22 @@ fn weigh<M: Model>(model: &M, e: &Vector3<f64>, angles: &[f64], s: &mut Scratch)
 
 /// The null-space push: `z` pulls limited joints toward the middle; remove what the task would
 /// see of it: `Δθ += z − Jᵀ (J Jᵀ)⁺ J z`, over the free (unlocked) joints. `plain` says whether
-/// this round's weighted Jacobian is `J` itself, `a` is its Gram matrix.
+/// this round's weighted Jacobian is `J` itself, whose Gram matrix the algebra holds.
 #[inline]
-fn push_to_the_middle<M: Model>(
-    p: &Problem<'_, M>,
-    fade: f64,
-    plain: bool,
-    a: &nalgebra::Matrix3<f64>,
-    angles: &[f64],
-    s: &mut Scratch,
-) {
-    let n = p.model.len();
-    let weighted = if plain { &s.jacobian } else { &s.weighted };
-    let mut jz = Vector3::zeros();
+fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
     for (i, lim) in p.model.limits().iter().enumerate() {
         s.step[i] = match lim {
             Some(l) if !s.locked[i] => -NULLSPACE_GAIN * fade * (angles[i] - 0.5 * (l.min() + l.max())),
             _ => 0.0,
         };
-        jz += weighted.column(i) * s.step[i];
     }
-    let y = pinv::task_step(a, &jz, p.opts.singular_threshold);
-    for i in 0..n {
-        if !s.locked[i] {
-            s.delta[i] += s.step[i] - weighted.column(i).dot(&y);
-        }
-    }
+    s.alg.project_push(plain, p.opts.singular_threshold, &s.step, &s.locked, &mut s.delta);
 }
 
 /// Clamp and lock: a free joint whose step crosses its limit goes only to the limit and is
-/// held there, and what it no longer does is taken out of `task`. Whether any joint locked.
+/// held there, and what it no longer does is taken out of the task. Whether any joint locked.
 #[inline]
-fn lock_crossing<M: Model>(model: &M, angles: &[f64], task: &mut Vector3<f64>, s: &mut Scratch) -> bool {
+fn lock_crossing<M: Model>(model: &M, angles: &[f64], s: &mut ScratchOf<M>) -> bool {
     let mut newly = false;
     for (i, lim) in model.limits().iter().enumerate() {
         let Some(l) = lim else { continue };
@@ -158,7 +136,7 @@ fn lock_crossing<M: Model>(model: &M, angles: &[f64], task: &mut Vector3<f64>, s
             let d = l.clamp(next) - angles[i];
             s.delta[i] = d;
             s.locked[i] = true;
-            *task -= s.jacobian.column(i) * d;
+            s.alg.task_sub_column(i, d);
             newly = true;
         }
     }

@@ -6,47 +6,38 @@
 //! times. The trial pose's forward kinematics is the next iteration's, so an accepted first try
 //! costs nothing extra.
 
-use nalgebra::Vector3;
-
+use super::algebra::Algebra;
 use super::limit_modes::compute_delta;
 use super::lm::Damping;
-use super::model::Model;
+use super::model::{Model, ScratchOf};
 use super::problem::Problem;
-use super::scratch::Scratch;
 use super::step::Rule;
-use crate::angle::wrap_angle;
 
 /// The share of the linearly predicted error decrease a backtracking step must achieve.
 const SUFFICIENT_DECREASE: f64 = 0.1;
 
-/// The task error of the current pose: `e` and `‖e‖²`.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Residual {
-    pub(super) e: Vector3<f64>,
-    pub(super) current: f64,
-}
-
-/// One step of a Jacobian method with its line search. On success the new pose is in
+/// One step of a Jacobian method with its line search, from the pose whose task error `e` (in
+/// `s.alg`) has `‖e‖² = current`. On success the new pose is in
 /// `s.trial` and `s.trial_joints` and its tip orientation is returned; `None` means no step
 /// lowers the error enough.
 #[inline]
 pub(super) fn jacobian_step<M: Model>(
     p: &Problem<'_, M>,
     method: Rule,
-    r: &Residual,
+    current: f64,
     damping: &mut Damping,
     angles: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
 ) -> Option<f64> {
     let backtrack = p.opts.backtrack;
     let mut rule = method;
     loop {
         let found = if rule == Rule::LevenbergMarquardt {
-            damped_search(p, r, damping, angles, s)
+            damped_search(p, current, damping, angles, s)
         } else {
             // Gauss–Newton directions get one full try; the transpose step is halved.
             let halvings = if rule == method && rule != Rule::Transpose { 0 } else { backtrack };
-            halving_search(p, rule, halvings, r, damping.mu(), angles, s)
+            halving_search(p, rule, halvings, current, damping.mu(), angles, s)
         };
         if found.is_some() {
             return found;
@@ -65,20 +56,20 @@ pub(super) fn jacobian_step<M: Model>(
 #[inline]
 fn damped_search<M: Model>(
     p: &Problem<'_, M>,
-    r: &Residual,
+    current: f64,
     damping: &mut Damping,
     angles: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
 ) -> Option<f64> {
     let backtrack = p.opts.backtrack;
     for _ in 0..=backtrack {
-        let scale = compute_delta(p, Rule::LevenbergMarquardt, &r.e, damping.mu(), angles, s);
-        let (trial_error, expected, trial_phi) = try_pose(p, &r.e, scale, angles, s);
+        let scale = compute_delta(p, Rule::LevenbergMarquardt, damping.mu(), angles, s);
+        let (trial_error, expected, trial_phi) = try_pose(p, scale, angles, s);
         if backtrack == 0 {
             return Some(trial_phi);
         }
-        let decrease = r.current - trial_error;
-        if trial_error < r.current && decrease >= SUFFICIENT_DECREASE * expected {
+        let decrease = current - trial_error;
+        if trial_error < current && decrease >= SUFFICIENT_DECREASE * expected {
             damping.accept(decrease, expected);
             return Some(trial_phi);
         }
@@ -93,18 +84,18 @@ fn halving_search<M: Model>(
     p: &Problem<'_, M>,
     rule: Rule,
     halvings: u32,
-    r: &Residual,
+    current: f64,
     mu: f64,
     angles: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
 ) -> Option<f64> {
-    let mut scale = compute_delta(p, rule, &r.e, mu, angles, s);
+    let mut scale = compute_delta(p, rule, mu, angles, s);
     for attempt in 0..=halvings {
-        let (trial_error, expected, trial_phi) = try_pose(p, &r.e, scale, angles, s);
+        let (trial_error, expected, trial_phi) = try_pose(p, scale, angles, s);
         if p.opts.backtrack == 0 {
             return Some(trial_phi);
         }
-        if trial_error < r.current && r.current - trial_error >= SUFFICIENT_DECREASE * expected {
+        if trial_error < current && current - trial_error >= SUFFICIENT_DECREASE * expected {
             return Some(trial_phi);
         }
         if attempt < halvings {
@@ -120,24 +111,18 @@ fn halving_search<M: Model>(
 #[inline]
 pub(super) fn try_pose<M: Model>(
     p: &Problem<'_, M>,
-    e: &Vector3<f64>,
     scale: f64,
     angles: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
 ) -> (f64, f64, f64) {
-    let target = p.goal.target();
-    let mut predicted = *e;
-    for (i, ((t, a), (d, col))) in
-        s.trial.iter_mut().zip(angles).zip(s.delta.iter().zip(s.jacobian.column_iter())).enumerate()
-    {
+    s.alg.predict_from_e();
+    for (i, ((t, a), d)) in s.trial.iter_mut().zip(angles).zip(&s.delta).enumerate() {
         let next = p.bounds.clamp(i, a + scale * d);
-        predicted -= col * (next - a);
+        s.alg.predict_sub_column(i, next - a);
         *t = next;
     }
     let trial_phi = p.model.forward_into(&s.trial, &mut s.trial_joints);
-    let tip = p.model.tip(&s.trial_joints);
-    let turn = p.goal.orientation().map_or(0.0, |g| p.opts.orientation_weight * wrap_angle(g - trial_phi));
-    let trial_error = (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn;
-    let expected = (e.norm_squared() - predicted.norm_squared()).max(0.0);
+    let trial_error = p.model.trial_error(p.goal, p.opts, &s.trial_joints, trial_phi);
+    let expected = (s.alg.e_norm_squared() - s.alg.predicted_norm_squared()).max(0.0);
     (trial_error, expected, trial_phi)
 }

@@ -50,6 +50,7 @@
 //! rules), one file per step rule (`transpose`, `pinv`, `dls`, `sdls`, `lm`), `ccd`, `fabrik`,
 //! `frames`, and `method` (the [`Method`] and [`LimitMode`] names).
 
+mod algebra;
 mod attempt;
 mod ccd;
 mod dls;
@@ -66,6 +67,7 @@ mod pinv;
 mod problem;
 mod restarts;
 mod rig;
+mod rig_model;
 mod rig_solver;
 mod scratch;
 mod sdls;
@@ -89,5 +91,7 @@ mod tests;
 mod ccd_fabrik_tests;
 #[cfg(test)]
 mod limit_tests;
+#[cfg(test)]
+mod rig_tests;
 #[cfg(test)]
 mod test_support;

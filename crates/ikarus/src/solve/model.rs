@@ -6,65 +6,108 @@
 //! method is today's chain function, inlined, so the chain path is the same machine code as
 //! before the abstraction (no dynamic dispatch, no branch on the kind of body).
 
-use nalgebra::{Matrix3xX, Point2};
+use nalgebra::{Point2, Vector3};
 
+use super::algebra::{Algebra, Fixed3};
+use super::attempt::distance;
 use super::problem::Problem;
-use super::{ccd, fabrik};
+use super::scratch::Scratch;
+use super::{Outcome, SolveOptions, ccd, fabrik};
+use crate::angle::wrap_angle;
 use crate::chain::{Chain, JointLimits};
 use crate::goal::Goal;
-use crate::kinematics::{jacobian_from_joints, joint_positions_into};
+use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
 use crate::limits::Bounds;
 
-/// A kinematic body the solver core can move: angles in, joint points and a Jacobian out.
-///
-/// `points` is the model's point buffer (for a chain: the `len() + 1` joint positions, base
-/// first, tip last); the core sizes it with [`Model::points`] and only passes it back.
+/// The scratch of a model's solves.
+pub(super) type ScratchOf<M> = Scratch<<M as Model>::Points, <M as Model>::Alg>;
+
+/// A kinematic body the solver core can move, with what it is asked to reach: angles in,
+/// points, the task error and the Jacobian out.
 pub(super) trait Model: Sized {
+    /// What the body is asked to reach ([`Goal`] for a chain).
+    type Goal;
+    /// What its forward kinematics writes (a chain's `len() + 1` joint points).
+    type Points: Default + Clone + std::fmt::Debug;
+    /// Its task-space algebra.
+    type Alg: Algebra;
     /// The number of angles (joints).
     fn len(&self) -> usize;
-    /// The number of points [`Model::forward_into`] writes.
-    fn points(&self) -> usize;
+    /// Sizes the scratch for this body.
+    fn fit(&self, s: &mut ScratchOf<Self>);
     /// The largest distance from the base any point can reach.
     fn max_reach(&self) -> f64;
     /// The joint limits, one entry per angle.
     fn limits(&self) -> &[Option<JointLimits>];
     /// The limits as [`Bounds`].
     fn bounds(&self) -> Bounds<'_>;
-    /// Forward kinematics of `angles` into `points`; returns the end effector's orientation.
-    fn forward_into(&self, angles: &[f64], points: &mut [Point2<f64>]) -> f64;
-    /// The end effector's position among `points` written by [`Model::forward_into`].
-    fn tip(&self, points: &[Point2<f64>]) -> Point2<f64>;
-    /// The 3×N Jacobian (x, y, orientation) at the pose whose `points` are given.
-    fn jacobian_into(&self, points: &[Point2<f64>], out: &mut Matrix3xX<f64>);
+    /// Forward kinematics of `angles` into `points`; returns the end effector's orientation
+    /// (a chain's; for other bodies some number that is finite exactly when every angle is).
+    fn forward_into(&self, angles: &[f64], points: &mut Self::Points) -> f64;
+    /// The points a recorded frame keeps: the base, then every joint's tip.
+    fn frame_points(points: &Self::Points) -> &[Point2<f64>];
+    /// Measures the pose whose `points` and `phi` are given against `goal`: writes
+    /// `out.error`, `out.angle_error` (the largest over the effectors) and `out.end_effector`
+    /// (and a skeleton's effectors), and the task error `e` into `alg`.
+    fn measure(
+        &self,
+        goal: &Self::Goal,
+        opts: &SolveOptions,
+        points: &Self::Points,
+        phi: f64,
+        out: &mut Outcome,
+        alg: &mut Self::Alg,
+    );
+    /// The task Jacobian at the pose whose `points` are given, rows scaled as `e`'s, into `alg`.
+    fn jacobian(&self, goal: &Self::Goal, opts: &SolveOptions, points: &Self::Points, alg: &mut Self::Alg);
+    /// `‖e‖²` of the pose whose `points` and `phi` are given.
+    fn trial_error(&self, goal: &Self::Goal, opts: &SolveOptions, points: &Self::Points, phi: f64) -> f64;
+    /// The squared task error that CCD, FABRIK and the restarts compare poses by, of the pose
+    /// `out` was measured on.
+    fn best_key(&self, opts: &SolveOptions, out: &Outcome, alg: &Self::Alg) -> f64;
     /// Whether `goal` is out of reach even without limits (by more than `tolerance`).
-    fn is_out_of_reach(&self, goal: &Goal, tolerance: f64) -> bool;
+    fn is_out_of_reach(&self, goal: &Self::Goal, tolerance: f64) -> bool;
+    /// After the final measurement and status: each effector's own status (a skeleton's).
+    fn judge(&self, goal: &Self::Goal, opts: &SolveOptions, out: &mut Outcome);
+    /// Restart `k`'s start pose `restart`, drawn for every joint by [`restart_pose`], after an
+    /// attempt that ended in `out`: a body with several effectors redraws it its own way
+    /// (`scratch`: one flag per joint, as work space). A chain keeps it.
+    ///
+    /// [`restart_pose`]: super::restarts::restart_pose
+    fn settle_restart(&self, p: &Problem<'_, Self>, k: u32, out: &Outcome, restart: &mut [f64], scratch: &mut [bool]);
     /// One CCD sweep (see [`ccd::sweep`]); returns the trial pose's end orientation.
     fn ccd_sweep(
         p: &Problem<'_, Self>,
         angles: &[f64],
-        points: &[Point2<f64>],
+        points: &Self::Points,
         trial: &mut [f64],
-        trial_points: &mut [Point2<f64>],
+        trial_points: &mut Self::Points,
     ) -> f64;
     /// One FABRIK iteration (see [`fabrik::iterate`]); returns the trial pose's end orientation.
     fn fabrik_iterate(
         p: &Problem<'_, Self>,
         angles: &[f64],
-        points: &[Point2<f64>],
+        points: &Self::Points,
         trial: &mut [f64],
-        trial_points: &mut [Point2<f64>],
+        trial_points: &mut Self::Points,
     ) -> f64;
 }
 
 impl Model for Chain {
+    type Goal = Goal;
+    type Points = Vec<Point2<f64>>;
+    type Alg = Fixed3;
+
     #[inline]
     fn len(&self) -> usize {
         Chain::len(self)
     }
 
-    #[inline]
-    fn points(&self) -> usize {
-        Chain::len(self) + 1
+    fn fit(&self, s: &mut ScratchOf<Self>) {
+        let points = Chain::len(self) + 1;
+        s.joints.resize(points, Point2::origin());
+        s.trial_joints.resize(points, Point2::origin());
+        s.fit_joints(Chain::len(self));
     }
 
     #[inline]
@@ -83,18 +126,57 @@ impl Model for Chain {
     }
 
     #[inline]
-    fn forward_into(&self, angles: &[f64], points: &mut [Point2<f64>]) -> f64 {
+    fn forward_into(&self, angles: &[f64], points: &mut Self::Points) -> f64 {
         joint_positions_into(self, angles, points)
     }
 
     #[inline]
-    fn tip(&self, points: &[Point2<f64>]) -> Point2<f64> {
-        points[Chain::len(self)]
+    fn frame_points(points: &Self::Points) -> &[Point2<f64>] {
+        points
     }
 
     #[inline]
-    fn jacobian_into(&self, points: &[Point2<f64>], out: &mut Matrix3xX<f64>) {
-        jacobian_from_joints(points, out);
+    fn measure(
+        &self,
+        goal: &Goal,
+        opts: &SolveOptions,
+        points: &Self::Points,
+        phi: f64,
+        out: &mut Outcome,
+        alg: &mut Fixed3,
+    ) {
+        let tip = points[Chain::len(self)];
+        let target = goal.target();
+        let (dx, dy) = (target.x - tip.x, target.y - tip.y);
+        let turn = goal.orientation().map(|g| wrap_angle(g - phi));
+        out.error = distance(dx, dy);
+        out.angle_error = turn.map_or(0.0, f64::abs);
+        out.end_effector = EndEffector { position: tip, orientation: phi };
+        alg.e = Vector3::new(dx, dy, turn.map_or(0.0, |t| opts.orientation_weight * t));
+    }
+
+    #[inline]
+    fn jacobian(&self, goal: &Goal, opts: &SolveOptions, points: &Self::Points, alg: &mut Fixed3) {
+        jacobian_from_joints(points, &mut alg.jacobian);
+        let oriented = goal.orientation().is_some();
+        alg.oriented = oriented;
+        let row_scale = if oriented { opts.orientation_weight } else { 0.0 };
+        for mut col in alg.jacobian.column_iter_mut() {
+            col[2] *= row_scale;
+        }
+    }
+
+    #[inline]
+    fn trial_error(&self, goal: &Goal, opts: &SolveOptions, points: &Self::Points, phi: f64) -> f64 {
+        let target = goal.target();
+        let tip = points[Chain::len(self)];
+        let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * wrap_angle(g - phi));
+        (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn
+    }
+
+    #[inline]
+    fn best_key(&self, opts: &SolveOptions, out: &Outcome, _alg: &Fixed3) -> f64 {
+        out.error * out.error + (opts.orientation_weight * out.angle_error).powi(2)
     }
 
     #[inline]
@@ -103,12 +185,18 @@ impl Model for Chain {
     }
 
     #[inline]
+    fn judge(&self, _goal: &Goal, _opts: &SolveOptions, _out: &mut Outcome) {}
+
+    #[inline]
+    fn settle_restart(&self, _: &Problem<'_, Self>, _: u32, _: &Outcome, _: &mut [f64], _: &mut [bool]) {}
+
+    #[inline]
     fn ccd_sweep(
         p: &Problem<'_, Self>,
         angles: &[f64],
-        points: &[Point2<f64>],
+        points: &Self::Points,
         trial: &mut [f64],
-        trial_points: &mut [Point2<f64>],
+        trial_points: &mut Self::Points,
     ) -> f64 {
         ccd::sweep(p, angles, points, trial, trial_points)
     }
@@ -117,9 +205,9 @@ impl Model for Chain {
     fn fabrik_iterate(
         p: &Problem<'_, Self>,
         angles: &[f64],
-        points: &[Point2<f64>],
+        points: &Self::Points,
         trial: &mut [f64],
-        trial_points: &mut [Point2<f64>],
+        trial_points: &mut Self::Points,
     ) -> f64 {
         fabrik::iterate(p, angles, points, trial, trial_points)
     }
@@ -139,16 +227,19 @@ mod tests {
     struct Delegate<'a>(&'a Chain);
 
     /// The chain problem of a delegate's problem: same goal, options and bounds.
-    fn inner<'a>(p: &Problem<'a, Delegate<'a>>) -> Problem<'a, Chain> {
+    fn inner<'p>(p: &Problem<'p, Delegate<'_>>) -> Problem<'p, Chain> {
         Problem::with_bounds(p.model.0, p.goal, p.opts, p.bounds)
     }
 
     impl<'a> Model for Delegate<'a> {
+        type Goal = Goal;
+        type Points = Vec<Point2<f64>>;
+        type Alg = Fixed3;
         fn len(&self) -> usize {
             Model::len(self.0)
         }
-        fn points(&self) -> usize {
-            Model::points(self.0)
+        fn fit(&self, s: &mut ScratchOf<Self>) {
+            Model::fit(self.0, s);
         }
         fn max_reach(&self) -> f64 {
             Model::max_reach(self.0)
@@ -159,33 +250,63 @@ mod tests {
         fn bounds(&self) -> Bounds<'_> {
             Model::bounds(self.0)
         }
-        fn forward_into(&self, angles: &[f64], points: &mut [Point2<f64>]) -> f64 {
+        fn forward_into(&self, angles: &[f64], points: &mut Self::Points) -> f64 {
             self.0.forward_into(angles, points)
         }
-        fn tip(&self, points: &[Point2<f64>]) -> Point2<f64> {
-            self.0.tip(points)
+        fn frame_points(points: &Self::Points) -> &[Point2<f64>] {
+            points
         }
-        fn jacobian_into(&self, points: &[Point2<f64>], out: &mut Matrix3xX<f64>) {
-            self.0.jacobian_into(points, out);
+        fn measure(
+            &self,
+            goal: &Goal,
+            opts: &SolveOptions,
+            points: &Self::Points,
+            phi: f64,
+            out: &mut Outcome,
+            alg: &mut Fixed3,
+        ) {
+            self.0.measure(goal, opts, points, phi, out, alg);
+        }
+        fn jacobian(&self, goal: &Goal, opts: &SolveOptions, points: &Self::Points, alg: &mut Fixed3) {
+            self.0.jacobian(goal, opts, points, alg);
+        }
+        fn trial_error(&self, goal: &Goal, opts: &SolveOptions, points: &Self::Points, phi: f64) -> f64 {
+            self.0.trial_error(goal, opts, points, phi)
+        }
+        fn best_key(&self, opts: &SolveOptions, out: &Outcome, alg: &Fixed3) -> f64 {
+            self.0.best_key(opts, out, alg)
         }
         fn is_out_of_reach(&self, goal: &Goal, tolerance: f64) -> bool {
             self.0.is_out_of_reach(goal, tolerance)
         }
+        fn judge(&self, goal: &Goal, opts: &SolveOptions, out: &mut Outcome) {
+            self.0.judge(goal, opts, out);
+        }
+        fn settle_restart(
+            &self,
+            p: &Problem<'_, Self>,
+            k: u32,
+            out: &Outcome,
+            restart: &mut [f64],
+            scratch: &mut [bool],
+        ) {
+            self.0.settle_restart(&inner(p), k, out, restart, scratch);
+        }
         fn ccd_sweep(
             p: &Problem<'_, Self>,
             angles: &[f64],
-            points: &[Point2<f64>],
+            points: &Self::Points,
             trial: &mut [f64],
-            trial_points: &mut [Point2<f64>],
+            trial_points: &mut Self::Points,
         ) -> f64 {
             Chain::ccd_sweep(&inner(p), angles, points, trial, trial_points)
         }
         fn fabrik_iterate(
             p: &Problem<'_, Self>,
             angles: &[f64],
-            points: &[Point2<f64>],
+            points: &Self::Points,
             trial: &mut [f64],
-            trial_points: &mut [Point2<f64>],
+            trial_points: &mut Self::Points,
         ) -> f64 {
             Chain::fabrik_iterate(&inner(p), angles, points, trial, trial_points)
         }
@@ -222,7 +343,7 @@ mod tests {
                     let model = Delegate(&chain);
                     let p = Problem::new(&model, goal, &opts);
                     let mut s = Scratch::default();
-                    s.fit(model.len(), model.points());
+                    Model::fit(&model, &mut s);
                     let mut out = Outcome::default();
                     solve_with_restarts(&p, start.angles(), None, &mut s, &mut out);
                     finish(&p, &mut s, &mut out);

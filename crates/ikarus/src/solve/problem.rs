@@ -4,13 +4,12 @@
 use super::model::Model;
 use super::{LimitMode, SolveOptions};
 use crate::chain::Chain;
-use crate::goal::Goal;
 use crate::limits::Bounds;
 
 /// One solve's borrowed context, for a body of type `M` (a [`Chain`] unless said otherwise).
 pub(super) struct Problem<'a, M: Model = Chain> {
     pub(super) model: &'a M,
-    pub(super) goal: &'a Goal,
+    pub(super) goal: &'a M::Goal,
     pub(super) opts: &'a SolveOptions,
     /// The limits the solve enforces: the model's, or none when the options ignore them or
     /// the model has none.
@@ -30,7 +29,7 @@ impl<M: Model> Copy for Problem<'_, M> {}
 
 impl<'a, M: Model> Problem<'a, M> {
     /// The context of a solve of `model` for `goal` under `opts`.
-    pub(super) fn new(model: &'a M, goal: &'a Goal, opts: &'a SolveOptions) -> Self {
+    pub(super) fn new(model: &'a M, goal: &'a M::Goal, opts: &'a SolveOptions) -> Self {
         let bounds = match opts.limits {
             LimitMode::Ignore => Bounds::free(),
             LimitMode::Clamp | LimitMode::Lock | LimitMode::NullSpace | LimitMode::Weighted => model.bounds(),
@@ -39,7 +38,7 @@ impl<'a, M: Model> Problem<'a, M> {
     }
 
     /// The context with explicit `bounds` (the mode of `opts` applies unless they are free).
-    pub(super) fn with_bounds(model: &'a M, goal: &'a Goal, opts: &'a SolveOptions, bounds: Bounds<'a>) -> Self {
+    pub(super) fn with_bounds(model: &'a M, goal: &'a M::Goal, opts: &'a SolveOptions, bounds: Bounds<'a>) -> Self {
         let mode = if bounds.is_free() { LimitMode::Ignore } else { opts.limits };
         Self { model, goal, opts, bounds, mode }
     }

@@ -5,10 +5,9 @@
 use std::time::Instant;
 
 use super::attempt::attempt;
-use super::model::Model;
+use super::model::{Model, ScratchOf};
 use super::problem::Problem;
-use super::scratch::Scratch;
-use super::{Outcome, Restarts, SolveOptions, Status};
+use super::{Outcome, Restarts, Status};
 use crate::limits::Bounds;
 use crate::rng::SplitMix64;
 
@@ -30,7 +29,7 @@ pub(super) fn solve_with_restarts<M: Model>(
     p: &Problem<'_, M>,
     start: &[f64],
     began: Option<Instant>,
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
     out: &mut Outcome,
 ) {
     let (model, goal, opts) = (p.model, p.goal, p.opts);
@@ -57,13 +56,13 @@ fn restart<M: Model>(
     r: Restarts,
     began: Option<Instant>,
     start: &[f64],
-    s: &mut Scratch,
+    s: &mut ScratchOf<M>,
     out: &mut Outcome,
     tally: &mut Tally,
 ) {
     let stuck = |st| st != Status::Reached;
     // The best attempt so far: its task error, status and final pose (in `s.best_attempt`).
-    let mut best = (task_error(p.opts, out), tally.status);
+    let mut best = (p.model.best_key(p.opts, out, &s.alg), tally.status);
     s.best_attempt.copy_from_slice(out.pose.angles());
     let mut last_is_best = true;
     for k in 1..=r.attempts {
@@ -73,13 +72,14 @@ fn restart<M: Model>(
             }
         }
         restart_pose(p.bounds, start, r, k, &mut s.restart);
+        p.model.settle_restart(p, k, out, &mut s.restart, &mut s.locked);
         tally.status = attempt_from_restart(p, s, out);
         tally.iterations += out.iterations;
         tally.restarts = k;
         if !stuck(tally.status) {
             return join(p, start, tally, s, out);
         }
-        let err = task_error(p.opts, out);
+        let err = p.model.best_key(p.opts, out, &s.alg);
         last_is_best = err < best.0;
         if last_is_best {
             best = (err, tally.status);
@@ -102,14 +102,14 @@ fn restart<M: Model>(
 
 /// With frames recorded and restarts taken, the frames run from the caller's start pose to the
 /// outcome's pose ([`join_frames`]).
-fn join<M: Model>(p: &Problem<'_, M>, start: &[f64], tally: &Tally, s: &mut Scratch, out: &mut Outcome) {
+fn join<M: Model>(p: &Problem<'_, M>, start: &[f64], tally: &Tally, s: &mut ScratchOf<M>, out: &mut Outcome) {
     if tally.restarts > 0 && p.opts.record_every.is_some() {
         join_frames(p, start, tally.iterations, s, out);
     }
 }
 
 /// One attempt from the pose in `s.restart`.
-fn attempt_from_restart<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) -> Status {
+fn attempt_from_restart<M: Model>(p: &Problem<'_, M>, s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
     let from = std::mem::take(&mut s.restart);
     let status = attempt(p, &from, s, out);
     s.restart = from;
@@ -119,19 +119,14 @@ fn attempt_from_restart<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut
 /// The frames of a restart begin elsewhere: keep the motion from the caller's start pose to
 /// the result (the outcome's pose), without the jump, numbered by the `iterations` of every
 /// attempt.
-fn join_frames<M: Model>(p: &Problem<'_, M>, start: &[f64], iterations: u32, s: &mut Scratch, out: &mut Outcome) {
+fn join_frames<M: Model>(p: &Problem<'_, M>, start: &[f64], iterations: u32, s: &mut ScratchOf<M>, out: &mut Outcome) {
     out.frames.start(p.model.len(), p.opts.record_every, 1);
     s.restart.copy_from_slice(start);
     p.bounds.clamp_into(&mut s.restart);
     p.model.forward_into(&s.restart, &mut s.joints);
-    out.frames.push(0, &s.restart, &s.joints);
+    out.frames.push(0, &s.restart, M::frame_points(&s.joints));
     p.model.forward_into(out.pose.angles(), &mut s.joints);
-    out.frames.push_final(iterations, out.pose.angles(), &s.joints);
-}
-
-/// The squared task error of an outcome, as the solvers minimise it.
-fn task_error(opts: &SolveOptions, out: &Outcome) -> f64 {
-    out.error * out.error + (opts.orientation_weight * out.angle_error).powi(2)
+    out.frames.push_final(iterations, out.pose.angles(), M::frame_points(&s.joints));
 }
 
 /// The start pose of restart `k` (see [`Restarts`]): `start + (k / attempts)·(r − start)`,
@@ -155,7 +150,7 @@ pub(super) fn restart_pose(bounds: Bounds<'_>, start: &[f64], r: Restarts, k: u3
 mod tests {
     use super::*;
     use crate::goal::Goal;
-    use crate::solve::{LimitMode, Method, Solver};
+    use crate::solve::{LimitMode, Method, SolveOptions, Solver};
 
     /// When no attempt reaches the goal, the outcome is the best attempt's pose, kept when it
     /// ended (it used to be run a second time, whose steps `iterations` left out): every
@@ -193,7 +188,7 @@ mod tests {
             assert_ne!(out.status, Status::Reached, "seed {seed}");
             assert_eq!(out.iterations, attempts.iter().map(|a| a.iterations).sum::<u32>(), "seed {seed}");
             assert_eq!(out.restarts, r.attempts);
-            let err = |o: &Outcome| task_error(&opts, o);
+            let err = |o: &Outcome| o.error * o.error + (opts.orientation_weight * o.angle_error).powi(2);
             let best = attempts.iter().min_by(|a, b| err(a).total_cmp(&err(b))).unwrap();
             assert_eq!(out.pose, best.pose, "seed {seed}");
             assert_eq!((out.error, out.status), (best.error, best.status), "seed {seed}");

@@ -252,6 +252,12 @@ pub enum RigTaskError {
         /// The bone's name.
         name: String,
     },
+    /// A bend whose side of the joint lies outside the joint's limits.
+    #[error("goal {name:?}.bend: the joint's limits leave no angle on that side")]
+    BendOutsideLimits {
+        /// The bone's name.
+        name: String,
+    },
     /// A mix outside [0, 1].
     #[error("mix: must be from 0 to 1, got {}", Num(*.value))]
     Mix {

@@ -1,25 +1,33 @@
-//! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors and targets,
-//! and the per-effector outcome.
+//! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors, the core's
+//! loop and restarts on the [`Rig`] model, and the mix.
 
-use nalgebra::Point2;
-
-use super::attempt::distance;
-use super::rig::{EffectorOutcome, RigTask};
+use super::model::Model;
+use super::problem::Problem;
+use super::restarts::solve_with_restarts;
+use super::rig::RigTask;
+use super::rig_model::Rig;
+use super::solver::{finish, measure};
 use super::{Outcome, SolveError, Solver, Status};
-use crate::angle::wrap_angle;
-use crate::kinematics::EndEffector;
 use crate::skeleton::Skeleton;
 
 impl Solver {
     /// Solves every goal and pin of `task` on `skeleton` together, starting from `start` (one
-    /// angle per bone, radians, in the skeleton's order). See [`RigTask`].
+    /// finite angle per bone, radians, in the skeleton's order; clamped into the limits), with
+    /// this solver's options: the same loop, step rule, line search, limit mode and restarts as
+    /// a chain's solve, on the stacked task of every effector (see [`RigTask`]).
+    ///
+    /// The outcome's `status` is `Reached` only if every effector is; `error` and
+    /// `angle_error` are the largest over them; `effectors` says how each ended. When the
+    /// goals cannot all be met, the pose is the weighted least-squares best the solve found.
+    /// CCD, FABRIK and the closed form solve chains only ([`SolveError::ChainOnly`]).
     pub fn solve_rig(&mut self, skeleton: &Skeleton, start: &[f64], task: &RigTask) -> Result<Outcome, SolveError> {
         let mut out = Outcome::default();
         self.solve_rig_into(skeleton, start, task, &mut out)?;
         Ok(out)
     }
 
-    /// Like [`Solver::solve_rig`], writing into `out` and reusing its buffers.
+    /// Like [`Solver::solve_rig`], writing into `out` and reusing its buffers: once they have
+    /// grown to the skeleton and task, a solve allocates nothing (frames aside, as for chains).
     pub fn solve_rig_into(
         &mut self,
         skeleton: &Skeleton,
@@ -27,59 +35,55 @@ impl Solver {
         task: &RigTask,
         out: &mut Outcome,
     ) -> Result<(), SolveError> {
-        let opts = self.options();
+        let opts = &self.options;
         if !opts.method.solves_rigs() {
             return Err(SolveError::ChainOnly { method: opts.method.name() });
         }
         check_rig_input(skeleton, start, opts.rates.len())?;
         task.validate(skeleton)?;
-        // Placeholder until the core solves skeletons: the start pose, measured.
-        let angles = out.pose.angles_mut();
-        angles.clear();
-        angles.extend_from_slice(start);
-        let mut points = vec![Point2::origin(); skeleton.len() + 1];
-        let mut directions = vec![0.0; skeleton.len()];
-        skeleton.points_into(start, &mut points, &mut directions);
-        out.effectors.clear();
-        for g in &task.goals {
-            let tip = points[g.bone + 1];
-            let phi = directions[g.bone];
-            let target = g.goal.target();
-            let error = distance(target.x - tip.x, target.y - tip.y);
-            let angle_error = g.goal.orientation().map_or(0.0, |o| wrap_angle(o - phi).abs());
-            out.effectors.push(EffectorOutcome {
-                bone: g.bone,
-                pinned: false,
-                status: Status::IterationLimit,
-                error,
-                angle_error,
-                tip,
-                orientation: phi,
-                target,
-            });
+        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
+        let work = &mut self.rig_work;
+        work.setup(skeleton, start, task, opts, out)?;
+        let rig = Rig {
+            skeleton,
+            effs: &work.effs,
+            limits: &work.limits,
+            primary_rows: work.primary_rows,
+            tolerance: opts.tolerance,
+        };
+        let s = &mut self.rig_scratch;
+        Model::fit(&rig, s);
+        let p = Problem::with_bounds(&rig, &(), opts, rig.bounds());
+        solve_with_restarts(&p, &work.start, began, s, out);
+        finish(&p, s, out);
+        let first_level = work.effs.iter().take_while(|e| e.primary).count();
+        let missed =
+            |out: &Outcome| work.effs[..first_level].iter().any(|e| out.effectors[e.slot].status != Status::Reached);
+        if rig.levels() && out.status != Status::Interrupted && missed(out) {
+            // Strict priority: where the secondary goals kept a primary goal or pin from its
+            // tolerance (pulling against a singular pose, say), the first level is solved
+            // again alone from where the solve ended, and every effector measured on that.
+            let (iterations, restarts) = (out.iterations, out.restarts);
+            let first = Rig { effs: &work.effs[..first_level], ..rig };
+            Model::fit(&first, s);
+            let q = Problem::with_bounds(&first, &(), opts, p.bounds);
+            s.restart.copy_from_slice(out.pose.angles());
+            let from = std::mem::take(&mut s.restart);
+            solve_with_restarts(&q, &from, began, s, out);
+            s.restart = from;
+            finish(&q, s, out);
+            out.iterations += iterations;
+            out.restarts += restarts;
+            Model::fit(&rig, s);
+            measure(&p, s, out);
         }
-        for p in &task.pins {
-            let tip = points[p.bone + 1];
-            let phi = directions[p.bone];
-            out.effectors.push(EffectorOutcome {
-                bone: p.bone,
-                pinned: true,
-                status: Status::Reached,
-                error: 0.0,
-                angle_error: 0.0,
-                tip,
-                orientation: phi,
-                target: tip,
-            });
+        if task.mix < 1.0 {
+            for (a, &from) in out.pose.angles_mut().iter_mut().zip(start) {
+                *a = from + task.mix * (*a - from);
+            }
+            p.bounds.clamp_into(out.pose.angles_mut());
+            measure(&p, s, out);
         }
-        out.status = Status::IterationLimit;
-        out.iterations = 0;
-        out.restarts = 0;
-        out.error = out.effectors.iter().fold(0.0, |m, e| m.max(e.error));
-        out.angle_error = out.effectors.iter().fold(0.0, |m, e| m.max(e.angle_error));
-        let first = out.effectors[0];
-        out.end_effector = EndEffector { position: first.tip, orientation: first.orientation };
-        out.frames = super::Frames::default();
         Ok(())
     }
 }

@@ -1,18 +1,14 @@
 //! [`Scratch`]: the buffers one [`Solver`](super::Solver) reuses across iterations and
 //! solves, so that the loop does not allocate.
 
-use nalgebra::{Matrix3xX, Point2};
-
-/// Scratch space reused across iterations and solves.
+/// Scratch space reused across iterations and solves, for a body whose forward kinematics
+/// writes a `P` (a chain's joint points) and whose task space is the algebra `A`.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Scratch {
-    pub(super) joints: Vec<Point2<f64>>,
-    pub(super) trial_joints: Vec<Point2<f64>>,
-    /// `J`, its orientation row scaled by the orientation weight (zero without an orientation
-    /// goal).
-    pub(super) jacobian: Matrix3xX<f64>,
-    /// `J` with column `i` scaled by `scale[i]` (zero for a locked joint).
-    pub(super) weighted: Matrix3xX<f64>,
+pub(super) struct Scratch<P, A> {
+    pub(super) joints: P,
+    pub(super) trial_joints: P,
+    /// The task error, Jacobian and their products (see [`super::algebra`]).
+    pub(super) alg: A,
     /// Square roots of the joint weights of [`LimitMode::Weighted`](super::LimitMode::Weighted);
     /// 1 otherwise.
     pub(super) scale: Vec<f64>,
@@ -30,12 +26,10 @@ pub(super) struct Scratch {
     pub(super) best_attempt: Vec<f64>,
 }
 
-impl Scratch {
-    /// Sizes every buffer for a model of `n` joints whose forward kinematics writes `points`
-    /// points (`n + 1` for a chain); no allocation once they have grown to it.
-    pub(super) fn fit(&mut self, n: usize, points: usize) {
-        self.joints.resize(points, Point2::origin());
-        self.trial_joints.resize(points, Point2::origin());
+impl<P, A: super::algebra::Algebra> Scratch<P, A> {
+    /// Sizes the joint-indexed buffers for `n` joints and the algebra's; the caller sizes the
+    /// points. No allocation once they have grown to it.
+    pub(super) fn fit_joints(&mut self, n: usize) {
         for v in [
             &mut self.scale,
             &mut self.step,
@@ -48,9 +42,6 @@ impl Scratch {
             v.resize(n, 0.0);
         }
         self.locked.resize(n, false);
-        if self.jacobian.ncols() != n {
-            self.jacobian = Matrix3xX::zeros(n);
-            self.weighted = Matrix3xX::zeros(n);
-        }
+        self.alg.fit(n);
     }
 }

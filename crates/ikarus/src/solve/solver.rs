@@ -2,10 +2,13 @@
 //! solves; checks a solve's input, takes the closed form where it applies, and hands the rest
 //! to the restart driver.
 
+use super::algebra::Fixed3;
+use super::algebra::dynamic::Dynamic;
 use super::attempt::distance;
-use super::model::Model;
+use super::model::{Model, ScratchOf};
 use super::problem::Problem;
 use super::restarts::solve_with_restarts;
+use super::rig_model::RigPoints;
 use super::scratch::Scratch;
 use super::{Method, OptionsError, Outcome, SolveError, SolveOptions, Status};
 use crate::angle::wrap_angle;
@@ -19,15 +22,19 @@ use crate::kinematics::{EndEffector, joint_positions_into};
 /// only its [`Outcome`] (and nothing with [`Solver::solve_into`]).
 #[derive(Debug, Clone)]
 pub struct Solver {
-    options: SolveOptions,
-    scratch: Scratch,
+    pub(super) options: SolveOptions,
+    scratch: Scratch<Vec<nalgebra::Point2<f64>>, Fixed3>,
+    /// A skeleton's scratch, sized by its first skeleton solve.
+    pub(super) rig_scratch: Scratch<RigPoints, Dynamic>,
+    /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
+    pub(super) rig_work: super::rig_model::RigWork,
 }
 
 impl Solver {
     /// Validates `options` and builds a solver.
     pub fn new(options: SolveOptions) -> Result<Self, OptionsError> {
         options.validate()?;
-        Ok(Self { options, scratch: Scratch::default() })
+        Ok(Self { options, scratch: Scratch::default(), rig_scratch: Scratch::default(), rig_work: Default::default() })
     }
 
     /// The options this solver runs with.
@@ -58,7 +65,7 @@ impl Solver {
         check_input(chain, start, opts)?;
         let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
         let s = &mut self.scratch;
-        s.fit(chain.len(), Model::points(chain));
+        Model::fit(chain, s);
         let p = Problem::new(chain, goal, opts);
         if opts.closed_form || opts.method == Method::Analytic {
             match closed_form::solve(chain, goal, start, p.bounds, &mut s.trial) {
@@ -88,7 +95,7 @@ impl Solver {
 /// solve. Debug builds, and so every test, check that claim after every solve. Any other
 /// outcome (a stalled, limited or interrupted one, which ran its whole budget anyway, or the best of
 /// several attempts) is measured again by [`measure`].
-pub(super) fn finish<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) {
+pub(super) fn finish<M: Model>(p: &Problem<'_, M>, s: &mut ScratchOf<M>, out: &mut Outcome) {
     if out.status == Status::Reached {
         #[cfg(debug_assertions)]
         {
@@ -112,13 +119,10 @@ pub(super) fn finish<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Ou
 /// The loops measure their poses with the same forward kinematics, so today this changes
 /// nothing but guards against any step rule that tracks the tip by itself (as CCD's sweep
 /// once did, and reported `reached` 3.9e-6 away with a tolerance of 1e-6).
-fn measure<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) {
+pub(super) fn measure<M: Model>(p: &Problem<'_, M>, s: &mut ScratchOf<M>, out: &mut Outcome) {
     let (model, goal, opts) = (p.model, p.goal, p.opts);
     let phi = model.forward_into(out.pose.angles(), &mut s.joints);
-    let tip = model.tip(&s.joints);
-    out.error = distance(goal.target().x - tip.x, goal.target().y - tip.y);
-    out.angle_error = goal.orientation().map_or(0.0, |g| wrap_angle(g - phi).abs());
-    out.end_effector = EndEffector { position: tip, orientation: phi };
+    model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);
     let within = out.error <= opts.tolerance && out.angle_error <= opts.angle_tolerance;
     out.status = match out.status {
         _ if within => Status::Reached,
@@ -127,6 +131,7 @@ fn measure<M: Model>(p: &Problem<'_, M>, s: &mut Scratch, out: &mut Outcome) {
         Status::Reached => Status::Stalled,
         other @ (Status::Unreachable | Status::Stalled | Status::IterationLimit) => other,
     };
+    model.judge(goal, opts, out);
 }
 
 /// The start pose must hold one finite angle per joint, and the rates one per joint or none
@@ -145,7 +150,7 @@ fn check_input(chain: &Chain, start: &[f64], opts: &SolveOptions) -> Result<(), 
 /// The closed form's answer is in `s.trial`: if it is within the tolerances, writes it into
 /// `out` as a one-step solve (frames: the start pose, clamped into the bounds, and the answer)
 /// and returns `true`.
-fn reached_in_closed_form(p: &Problem, start: &[f64], s: &mut Scratch, out: &mut Outcome) -> bool {
+fn reached_in_closed_form(p: &Problem, start: &[f64], s: &mut ScratchOf<Chain>, out: &mut Outcome) -> bool {
     let (chain, goal, opts) = (p.model, p.goal, p.opts);
     let n = chain.len();
     let phi = joint_positions_into(chain, &s.trial, &mut s.trial_joints);

@@ -13,7 +13,7 @@ use std::f64::consts::PI;
 
 use ikarus::kinematics::end_effector;
 use ikarus::rng::SplitMix64;
-use ikarus::{Chain, Goal, JointLimits, Link};
+use ikarus::{Bone, Chain, Goal, JointLimits, Link, Skeleton};
 
 /// Degrees to radians.
 pub fn deg(d: f64) -> f64 {
@@ -83,4 +83,50 @@ pub fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal 
     } else {
         Goal::position(ee.position.x, ee.position.y).expect("finite tip")
     }
+}
+
+/// A shipped rig, `examples/rigs/{name}.toml`, read with `toml` (the CLI's reader, with its
+/// error messages, is not available to the library's tests): bones' name, parent, length,
+/// angle and limits in degrees, and the base.
+pub fn rig(name: &str) -> Skeleton {
+    let path = format!("{}/../../examples/rigs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("a shipped rig");
+    let doc: toml::Table = text.parse().expect("valid TOML");
+    let base = doc
+        .get("base")
+        .and_then(|b| b.as_array())
+        .map_or([0.0, 0.0], |b| [b[0].as_float().expect("base x"), b[1].as_float().expect("base y")]);
+    let number = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)).expect("a number");
+    let bones: Vec<Bone> = doc["bones"]
+        .as_array()
+        .expect("bones")
+        .iter()
+        .map(|b| {
+            let mut bone =
+                Bone::new(b["name"].as_str().expect("name"), number(&b["length"]), deg(number(&b["angle_deg"])));
+            if let Some(parent) = b.get("parent") {
+                bone = bone.with_parent(parent.as_str().expect("parent"));
+            }
+            if let Some(l) = b.get("limits_deg") {
+                let l = l.as_array().expect("limits");
+                bone = bone.with_limits(JointLimits::new(deg(number(&l[0])), deg(number(&l[1]))).expect("limits"));
+            }
+            bone
+        })
+        .collect();
+    Skeleton::new(base, &bones).expect("a valid rig")
+}
+
+/// A pose of `skeleton` drawn uniformly inside its limits (±π around the start angle for a
+/// free bone).
+pub fn random_rig_pose(skeleton: &Skeleton, rng: &mut SplitMix64) -> Vec<f64> {
+    skeleton
+        .limits()
+        .iter()
+        .zip(skeleton.start_angles())
+        .map(|(l, &a)| match l {
+            Some(l) => rng.range(l.min(), l.max()),
+            None => rng.range(a - PI, a + PI),
+        })
+        .collect()
 }

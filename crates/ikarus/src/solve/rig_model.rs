@@ -1,0 +1,416 @@
+//! A skeleton with its effectors as a [`Model`] of the solver core: forward kinematics into
+//! the base and every bone's tip, the stacked task error and Jacobian of every effector (pins
+//! and primary goals first, secondary goals after), and per-effector measurement and status.
+
+use nalgebra::Point2;
+
+use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
+use super::attempt::distance;
+use super::model::{Model, ScratchOf};
+use super::problem::Problem;
+use super::rig::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
+use super::{Outcome, SolveOptions, Status};
+use crate::angle::wrap_angle;
+use crate::chain::{JointLimits, annulus_inner};
+use crate::kinematics::EndEffector;
+use crate::limits::Bounds;
+use crate::rng::SplitMix64;
+use crate::skeleton::Skeleton;
+use std::f64::consts::PI;
+
+/// The longest secondary error one step works on, as a share of the skeleton's reach.
+const SECONDARY_REACH: f64 = 0.1;
+
+/// What a skeleton's forward kinematics writes: the base and every bone's tip (bone `i`'s at
+/// `points[i + 1]`), and every bone's absolute direction.
+#[derive(Debug, Clone, Default)]
+pub(super) struct RigPoints {
+    pub(super) points: Vec<Point2<f64>>,
+    pub(super) directions: Vec<f64>,
+}
+
+/// One effector as the core sees it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Eff {
+    bone: usize,
+    target: Point2<f64>,
+    orientation: Option<f64>,
+    /// `√weight`: the scale of its rows.
+    root_weight: f64,
+    /// Whether its target is out of the reach of the bones from the base to it, limits ignored.
+    out_of_reach: bool,
+    /// Whether it is in the first priority level (a pin or a primary goal).
+    pub(super) primary: bool,
+    /// Its place in [`Outcome::effectors`].
+    pub(super) slot: usize,
+}
+
+impl Eff {
+    fn rows(&self) -> usize {
+        if self.orientation.is_some() { 3 } else { 2 }
+    }
+}
+
+/// A skeleton solve's data, rebuilt per solve in buffers reused across solves.
+#[derive(Debug, Clone, Default)]
+pub(super) struct RigWork {
+    /// The effectors in row order: pins and primary goals, then secondary goals.
+    pub(super) effs: Vec<Eff>,
+    /// The limits the solve enforces: the skeleton's (unless ignored), narrowed by bends.
+    pub(super) limits: Vec<Option<JointLimits>>,
+    /// The start pose, with bent joints turned to their side.
+    pub(super) start: Vec<f64>,
+    /// Rows of the first priority level.
+    pub(super) primary_rows: usize,
+    fk: RigPoints,
+    lengths: Vec<f64>,
+}
+
+impl RigWork {
+    /// Builds the solve's effectors, limits and start from `task` (already validated) and the
+    /// start pose `start`; writes the effectors' identities into `out.effectors`.
+    pub(super) fn setup(
+        &mut self,
+        skeleton: &Skeleton,
+        start: &[f64],
+        task: &RigTask,
+        opts: &SolveOptions,
+        out: &mut Outcome,
+    ) -> Result<(), RigTaskError> {
+        let n = skeleton.len();
+        self.fk.points.resize(n + 1, Point2::origin());
+        self.fk.directions.resize(n, 0.0);
+        skeleton.points_into(start, &mut self.fk.points, &mut self.fk.directions);
+        let ignore = opts.limits == super::LimitMode::Ignore;
+        self.limits.clear();
+        self.limits.extend(skeleton.limits().iter().map(|l| if ignore { None } else { *l }));
+        self.start.clear();
+        self.start.extend_from_slice(start);
+        for g in &task.goals {
+            let Some(bend) = g.bend else { continue };
+            let (lo, hi) = match bend {
+                Bend::Positive => (0.0, std::f64::consts::PI),
+                Bend::Negative => (-std::f64::consts::PI, 0.0),
+            };
+            let (lo, hi) = match self.limits[g.bone] {
+                Some(l) => (l.min().max(lo), l.max().min(hi)),
+                None => (lo, hi),
+            };
+            let name = || skeleton.name(g.bone).to_owned();
+            let lim = JointLimits::new(lo, hi).map_err(|_| RigTaskError::BendOutsideLimits { name: name() })?;
+            self.limits[g.bone] = Some(lim);
+            let a = self.start[g.bone];
+            let turned = if (a < 0.0 && lo >= 0.0) || (a > 0.0 && hi <= 0.0) { -a } else { a };
+            self.start[g.bone] = lim.clamp(turned);
+        }
+        if self.limits.iter().all(Option::is_none) {
+            self.limits.clear();
+        }
+
+        out.effectors.clear();
+        self.effs.clear();
+        for (slot, g) in task.goals.iter().enumerate() {
+            let target = match skeleton.parent(g.bone) {
+                Some(parent) if g.softness > 0.0 => {
+                    let root = match skeleton.parent(parent) {
+                        Some(q) => self.fk.points[q + 1],
+                        None => skeleton.base(),
+                    };
+                    let reach = skeleton.lengths()[g.bone] + skeleton.lengths()[parent];
+                    g.softened_target(root, reach)
+                }
+                _ => g.goal.target(),
+            };
+            out.effectors.push(placeholder(g.bone, false, target));
+            let eff = Eff {
+                bone: g.bone,
+                target,
+                orientation: g.goal.orientation(),
+                root_weight: g.weight.sqrt(),
+                slot,
+                out_of_reach: false,
+                primary: g.priority == Priority::Primary,
+            };
+            let out_of_reach = self.out_of_reach(skeleton, &eff, opts.tolerance);
+            self.effs.push(Eff { out_of_reach, ..eff });
+        }
+        for (k, pin) in task.pins.iter().enumerate() {
+            let target = self.fk.points[pin.bone + 1];
+            let orientation = pin.orientation.then_some(self.fk.directions[pin.bone]);
+            out.effectors.push(placeholder(pin.bone, true, target));
+            let slot = task.goals.len() + k;
+            let eff =
+                Eff { bone: pin.bone, target, orientation, root_weight: 1.0, slot, out_of_reach: false, primary: true };
+            self.effs.push(eff);
+        }
+        // Row order: the first level (pins, primary goals), then the secondary goals; stable.
+        self.effs.sort_by_key(|e| !e.primary);
+        self.primary_rows = self.effs.iter().filter(|e| e.primary).map(Eff::rows).sum();
+        Ok(())
+    }
+
+    /// Whether `eff`'s target is beyond the reach of the bones from the base to it (by more
+    /// than `tolerance`), limits ignored: the annulus of their lengths, or with an orientation
+    /// the wrist's annulus of all but the last.
+    fn out_of_reach(&mut self, skeleton: &Skeleton, eff: &Eff, tolerance: f64) -> bool {
+        self.lengths.clear();
+        self.lengths.extend(skeleton.path(eff.bone).iter().map(|&j| skeleton.lengths()[j]));
+        let base = skeleton.base();
+        let (point, lengths) = match eff.orientation {
+            None => (eff.target, &self.lengths[..]),
+            Some(phi) => {
+                let (last, rest) = self.lengths.split_last().expect("a path holds its bone");
+                (eff.target - *last * nalgebra::Vector2::new(phi.cos(), phi.sin()), rest)
+            }
+        };
+        let d = distance(point.x - base.x, point.y - base.y);
+        if lengths.is_empty() {
+            return d > tolerance;
+        }
+        let outer: f64 = lengths.iter().sum();
+        d > outer + tolerance || d < annulus_inner(lengths) - tolerance
+    }
+}
+
+/// An effector's outcome before the solve measures it.
+fn placeholder(bone: usize, pinned: bool, target: Point2<f64>) -> EffectorOutcome {
+    EffectorOutcome {
+        bone,
+        pinned,
+        status: Status::IterationLimit,
+        error: f64::INFINITY,
+        angle_error: 0.0,
+        tip: Point2::origin(),
+        orientation: 0.0,
+        target,
+    }
+}
+
+/// A skeleton and its effectors, borrowed for one solve.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rig<'a> {
+    pub(super) skeleton: &'a Skeleton,
+    pub(super) effs: &'a [Eff],
+    pub(super) limits: &'a [Option<JointLimits>],
+    pub(super) primary_rows: usize,
+    /// The solve's tolerance (the merit's weight of the first level comes from it).
+    pub(super) tolerance: f64,
+}
+
+impl Rig<'_> {
+    /// Whether the task has two priority levels.
+    pub(super) fn levels(&self) -> bool {
+        self.primary_rows > 0 && self.primary_rows < self.effs.iter().map(Eff::rows).sum()
+    }
+
+    /// Where bone `j` starts, from the points of forward kinematics.
+    #[inline]
+    fn start_of(&self, points: &[Point2<f64>], j: usize) -> Point2<f64> {
+        match self.skeleton.parent(j) {
+            Some(q) => points[q + 1],
+            None => points[0],
+        }
+    }
+}
+
+impl Model for Rig<'_> {
+    type Goal = ();
+    type Points = RigPoints;
+    type Alg = Dynamic;
+
+    #[inline]
+    fn len(&self) -> usize {
+        self.skeleton.len()
+    }
+
+    fn fit(&self, s: &mut ScratchOf<Self>) {
+        let n = self.skeleton.len();
+        for p in [&mut s.joints, &mut s.trial_joints] {
+            p.points.resize(n + 1, Point2::origin());
+            p.directions.resize(n, 0.0);
+        }
+        s.fit_joints(n);
+        let rows = self.effs.iter().map(Eff::rows).sum();
+        s.alg.shape(n, rows, self.primary_rows);
+        s.alg.secondary_reach = SECONDARY_REACH * self.skeleton.max_reach();
+        s.alg.primary_merit = primary_merit(self.tolerance);
+        s.alg.blocks.clear();
+        s.alg.blocks.extend(self.effs.iter().map(Eff::rows));
+    }
+
+    fn max_reach(&self) -> f64 {
+        self.skeleton.max_reach()
+    }
+
+    fn limits(&self) -> &[Option<JointLimits>] {
+        self.limits
+    }
+
+    fn bounds(&self) -> Bounds<'_> {
+        if self.limits.is_empty() { Bounds::free() } else { Bounds::new(self.limits) }
+    }
+
+    #[inline]
+    fn forward_into(&self, angles: &[f64], points: &mut RigPoints) -> f64 {
+        self.skeleton.points_into(angles, &mut points.points, &mut points.directions);
+        angles.iter().sum()
+    }
+
+    #[inline]
+    fn frame_points(points: &RigPoints) -> &[Point2<f64>] {
+        &points.points
+    }
+
+    fn measure(
+        &self,
+        _: &(),
+        opts: &SolveOptions,
+        points: &RigPoints,
+        _phi: f64,
+        out: &mut Outcome,
+        alg: &mut Dynamic,
+    ) {
+        let w_o = opts.orientation_weight;
+        let (mut error, mut angle_error) = (0.0f64, 0.0f64);
+        let mut row = 0;
+        for eff in self.effs {
+            let tip = points.points[eff.bone + 1];
+            let phi = points.directions[eff.bone];
+            let (dx, dy) = (eff.target.x - tip.x, eff.target.y - tip.y);
+            let turn = eff.orientation.map(|g| wrap_angle(g - phi));
+            let o = &mut out.effectors[eff.slot];
+            o.error = distance(dx, dy);
+            o.angle_error = turn.map_or(0.0, f64::abs);
+            o.tip = tip;
+            o.orientation = phi;
+            error = error.max(o.error);
+            angle_error = angle_error.max(o.angle_error);
+            let rw = eff.root_weight;
+            alg.e[row] = rw * dx;
+            alg.e[row + 1] = rw * dy;
+            if let Some(t) = turn {
+                alg.e[row + 2] = rw * w_o * t;
+            }
+            row += eff.rows();
+        }
+        out.error = error;
+        out.angle_error = angle_error;
+        let first = &out.effectors[0];
+        out.end_effector = EndEffector { position: first.tip, orientation: first.orientation };
+    }
+
+    fn jacobian(&self, _: &(), opts: &SolveOptions, points: &RigPoints, alg: &mut Dynamic) {
+        let w_o = opts.orientation_weight;
+        alg.jacobian.fill(0.0);
+        let mut row = 0;
+        for eff in self.effs {
+            let tip = points.points[eff.bone + 1];
+            let rw = eff.root_weight;
+            for &j in self.skeleton.path(eff.bone) {
+                let p = self.start_of(&points.points, j);
+                alg.jacobian[(row, j)] = rw * -(tip.y - p.y);
+                alg.jacobian[(row + 1, j)] = rw * (tip.x - p.x);
+                if eff.orientation.is_some() {
+                    alg.jacobian[(row + 2, j)] = rw * w_o;
+                }
+            }
+            row += eff.rows();
+        }
+    }
+
+    fn trial_error(&self, _: &(), opts: &SolveOptions, points: &RigPoints, _phi: f64) -> f64 {
+        let w_o = opts.orientation_weight;
+        let (mut first, mut second, mut row) = (0.0, 0.0, 0);
+        for eff in self.effs {
+            let tip = points.points[eff.bone + 1];
+            let rw = eff.root_weight;
+            let turn = eff.orientation.map_or(0.0, |g| rw * w_o * wrap_angle(g - points.directions[eff.bone]));
+            let sq = (rw * (eff.target.x - tip.x)).powi(2) + (rw * (eff.target.y - tip.y)).powi(2) + turn * turn;
+            if row < self.primary_rows {
+                first += sq;
+            } else {
+                second += sq;
+            }
+            row += eff.rows();
+        }
+        merit_of(first, second, self.levels(), primary_merit(opts.tolerance))
+    }
+
+    fn best_key(&self, opts: &SolveOptions, out: &Outcome, _alg: &Dynamic) -> f64 {
+        let (mut first, mut second, mut row) = (0.0, 0.0, 0);
+        for eff in self.effs {
+            let o = &out.effectors[eff.slot];
+            let w = eff.root_weight * eff.root_weight;
+            let sq = w * (o.error * o.error + (opts.orientation_weight * o.angle_error).powi(2));
+            if row < self.primary_rows {
+                first += sq;
+            } else {
+                second += sq;
+            }
+            row += eff.rows();
+        }
+        merit_of(first, second, self.levels(), primary_merit(opts.tolerance))
+    }
+
+    fn is_out_of_reach(&self, _: &(), _tolerance: f64) -> bool {
+        self.effs.iter().any(|e| e.out_of_reach)
+    }
+
+    fn judge(&self, _: &(), opts: &SolveOptions, out: &mut Outcome) {
+        let overall = out.status;
+        for eff in self.effs {
+            let o = &mut out.effectors[eff.slot];
+            let within = o.error <= opts.tolerance && o.angle_error <= opts.angle_tolerance;
+            o.status = if within {
+                Status::Reached
+            } else if eff.out_of_reach {
+                Status::Unreachable
+            } else {
+                match overall {
+                    Status::Reached | Status::Unreachable => Status::Stalled,
+                    other @ (Status::Stalled | Status::IterationLimit | Status::Interrupted) => other,
+                }
+            };
+        }
+    }
+
+    /// The joints on the path of an effector the attempt missed are drawn anew, uniformly
+    /// inside their bounds (±π around the start for a free joint); the others keep the
+    /// attempt's angles, so that a restart does not undo the limbs that were reached. (Drawing
+    /// every joint, a rig of four limbs would need every limb to succeed in the same attempt;
+    /// and a chain's restarts begin near the start pose, which suits one limb but leaves every
+    /// limb of a rig in the basin it failed in for most of its attempts.)
+    fn settle_restart(&self, p: &Problem<'_, Self>, k: u32, out: &Outcome, restart: &mut [f64], free: &mut [bool]) {
+        let opts = p.opts;
+        free.fill(false);
+        for eff in self.effs {
+            let o = &out.effectors[eff.slot];
+            if !(o.error <= opts.tolerance && o.angle_error <= opts.angle_tolerance) {
+                for &j in self.skeleton.path(eff.bone) {
+                    free[j] = true;
+                }
+            }
+        }
+        let seed = opts.restarts.map_or(0, |r| r.seed);
+        let mut rng = SplitMix64(seed ^ 0x005E_ED0F_B0E5 ^ u64::from(k).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let start = self.skeleton.start_angles();
+        for (i, ((r, &f), &a)) in restart.iter_mut().zip(free.iter()).zip(out.pose.angles()).enumerate() {
+            let u = rng.unit();
+            *r = if f {
+                let (lo, hi) = p.bounds.get(i).map_or((start[i] - PI, start[i] + PI), |l| (l.min(), l.max()));
+                lo + u * (hi - lo)
+            } else {
+                a
+            };
+        }
+    }
+
+    fn ccd_sweep(_: &Problem<'_, Self>, _: &[f64], _: &RigPoints, _: &mut [f64], _: &mut RigPoints) -> f64 {
+        // Refused before the solve starts (`Method::solves_rigs`); a NaN would stall it.
+        f64::NAN
+    }
+
+    fn fabrik_iterate(_: &Problem<'_, Self>, _: &[f64], _: &RigPoints, _: &mut [f64], _: &mut RigPoints) -> f64 {
+        f64::NAN
+    }
+}

@@ -1,0 +1,373 @@
+//! Skeleton solves (issue 12): jointly reachable target sets on the shipped rigs are reached with
+//! limits on, pins hold, priorities, the animator's controls, per-effector statuses, and the
+//! one-branch skeleton against the chain. Every claim is checked by a fresh forward-kinematics
+//! pass of the returned angles, not taken from the solver.
+
+use nalgebra::Point2;
+
+use crate::fixtures::{deg, random_rig_pose, rig};
+use crate::rng::SplitMix64;
+use crate::skeleton::Skeleton;
+use crate::{
+    Bend, Goal, LimitMode, Method, Outcome, Pin, Priority, RigGoal, RigTask, RigTaskError, SolveError, SolveOptions,
+    Solver, Status,
+};
+
+/// Tips and directions of `angles` by the skeleton's own forward kinematics.
+fn fk(skeleton: &Skeleton, angles: &[f64]) -> (Vec<Point2<f64>>, Vec<f64>) {
+    let n = skeleton.len();
+    let (mut starts, mut tips, mut dirs) = (vec![Point2::origin(); n], vec![Point2::origin(); n], vec![0.0; n]);
+    skeleton.forward_into(angles, &mut starts, &mut tips, &mut dirs);
+    (tips, dirs)
+}
+
+fn bone(skeleton: &Skeleton, name: &str) -> usize {
+    skeleton.index_of(name).unwrap_or_else(|| panic!("no bone {name}"))
+}
+
+/// The bones without children: the fingertips, hands, feet and head.
+fn leaves(skeleton: &Skeleton) -> Vec<usize> {
+    (0..skeleton.len()).filter(|&i| skeleton.children(i).len() == 0).collect()
+}
+
+/// Checks an outcome against its task by forward kinematics: every effector within the
+/// tolerances of its target (a pin's: where it started), angles inside the limits. Returns
+/// whether all are, and asserts the outcome says the same.
+fn verify(skeleton: &Skeleton, start: &[f64], task: &RigTask, opts: &SolveOptions, out: &Outcome) -> bool {
+    let (tips, dirs) = fk(skeleton, out.pose.angles());
+    let (start_tips, start_dirs) = fk(skeleton, start);
+    let mut all = true;
+    let targets = task
+        .goals
+        .iter()
+        .map(|g| (g.bone, g.goal.target(), g.goal.orientation()))
+        .chain(task.pins.iter().map(|p| (p.bone, start_tips[p.bone], p.orientation.then_some(start_dirs[p.bone]))));
+    for (k, (b, target, orientation)) in targets.enumerate() {
+        let error = (tips[b] - target).norm();
+        let angle_error = orientation.map_or(0.0, |o| crate::angle::wrap_angle(o - dirs[b]).abs());
+        let within = error <= opts.tolerance * (1.0 + 1e-9) && angle_error <= opts.angle_tolerance * (1.0 + 1e-9);
+        let reported = out.effectors[k];
+        assert_eq!(reported.bone, b);
+        assert_eq!(reported.tip, tips[b], "the reported tip is the pose's");
+        if reported.status == Status::Reached {
+            assert!(within, "effector {k} reported reached at {error:e}");
+        }
+        all &= within;
+    }
+    let inside = skeleton.limits().iter().zip(out.pose.angles()).all(|(l, a)| l.is_none_or(|l| l.contains(*a)));
+    assert!(inside || opts.limits == LimitMode::Ignore, "angles outside the limits: {:?}", out.pose.angles());
+    assert_eq!(out.status == Status::Reached, all, "{:?}", out.status);
+    all
+}
+
+/// Targets at `bones`' tips for a random pose inside the limits: jointly reachable.
+fn reachable_task(skeleton: &Skeleton, bones: &[usize], rng: &mut SplitMix64) -> RigTask {
+    let truth = random_rig_pose(skeleton, rng);
+    let (tips, _) = fk(skeleton, &truth);
+    let goals = bones.iter().map(|&b| RigGoal::new(b, Goal::position(tips[b].x, tips[b].y).unwrap())).collect();
+    RigTask::new(goals, Vec::new())
+}
+
+#[test]
+fn puppet_hands_and_feet_are_reached_together_within_the_limits() {
+    let puppet = rig("puppet");
+    let bones: Vec<usize> = ["right_hand", "left_hand", "right_foot", "left_foot"].map(|n| bone(&puppet, n)).to_vec();
+    let mut rng = SplitMix64(12);
+    for limits in [LimitMode::Lock, LimitMode::Clamp, LimitMode::NullSpace, LimitMode::Weighted] {
+        let opts = SolveOptions { limits, ..SolveOptions::default() };
+        let mut solver = Solver::new(opts.clone()).unwrap();
+        let (mut reached, total) = (0, 100);
+        for _ in 0..total {
+            let task = reachable_task(&puppet, &bones, &mut rng);
+            let out = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+            reached += usize::from(verify(&puppet, puppet.start_angles(), &task, &opts, &out));
+        }
+        println!("puppet 4 effectors, {limits:?}: {reached}/{total}");
+        assert!(reached >= total * 98 / 100, "{limits:?}: {reached}/{total}");
+    }
+}
+
+#[test]
+fn the_hand_reaches_five_fingertips() {
+    let hand = rig("hand");
+    let tips = leaves(&hand);
+    assert_eq!(tips.len(), 5);
+    let opts = SolveOptions::default();
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let mut rng = SplitMix64(5);
+    let (mut reached, total) = (0, 100);
+    for _ in 0..total {
+        let task = reachable_task(&hand, &tips, &mut rng);
+        let out = solver.solve_rig(&hand, hand.start_angles(), &task).unwrap();
+        reached += usize::from(verify(&hand, hand.start_angles(), &task, &opts, &out));
+    }
+    println!("hand 5 fingertips: {reached}/{total}");
+    assert!(reached >= total * 98 / 100, "{reached}/{total}");
+}
+
+/// Feet pinned (position and direction), hands sent to targets that the upper body can reach:
+/// the feet do not move.
+#[test]
+fn pins_hold_while_the_hands_reach() {
+    let puppet = rig("puppet");
+    let hands = ["right_hand", "left_hand"].map(|n| bone(&puppet, n));
+    let feet = ["right_foot", "left_foot"].map(|n| bone(&puppet, n));
+    let legs: Vec<usize> = feet.iter().flat_map(|&f| puppet.path(f).to_vec()).collect();
+    let opts = SolveOptions::default();
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let mut rng = SplitMix64(77);
+    let start = puppet.start_angles();
+    let (mut reached, total) = (0, 100);
+    for _ in 0..total {
+        let mut truth = random_rig_pose(&puppet, &mut rng);
+        for &j in &legs {
+            truth[j] = start[j];
+        }
+        let (tips, _) = fk(&puppet, &truth);
+        let goals = hands.iter().map(|&b| RigGoal::new(b, Goal::position(tips[b].x, tips[b].y).unwrap())).collect();
+        let task = RigTask::new(goals, feet.iter().map(|&f| Pin::new(f)).collect());
+        let out = solver.solve_rig(&puppet, start, &task).unwrap();
+        reached += usize::from(verify(&puppet, start, &task, &opts, &out));
+        for e in &out.effectors[2..] {
+            assert!(e.pinned && e.error <= opts.tolerance, "a pin slid by {:e}", e.error);
+        }
+    }
+    assert!(reached >= total * 98 / 100, "{reached}/{total}");
+}
+
+fn three_bones() -> Skeleton {
+    let bones = [
+        crate::Bone::new("a", 1.0, 0.3),
+        crate::Bone::new("b", 1.0, 0.3).with_parent("a"),
+        crate::Bone::new("c", 1.0, 0.3).with_parent("b"),
+    ];
+    Skeleton::new([0.0, 0.0], &bones).unwrap()
+}
+
+/// A three-bone arm: the primary goal puts the tip at (1.5, 0), which leaves one degree of
+/// freedom; the secondary goal asks the first joint's tip (always 1 from the base) for a point
+/// it cannot reach. The primary goal is met to the tolerance whatever the secondary asks.
+/// Where the secondary's best place on its circle is compatible with the primary, the solve
+/// finds it (checked by brute force over the free angle). Where it is not (the best compatible
+/// place is where the last two bones are straight, a singular pose), the primary still wins,
+/// and with equal priority instead the two trade and the primary is missed.
+#[test]
+fn a_secondary_goal_moves_only_in_what_the_primary_leaves_free() {
+    let arm = three_bones();
+    let opts = SolveOptions { restarts: None, ..SolveOptions::default() };
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let tip = Point2::new(1.5, 0.0);
+    let task_for = |want: Point2<f64>, priority| {
+        let primary = RigGoal::new(2, Goal::position(tip.x, tip.y).unwrap());
+        let secondary = RigGoal::new(0, Goal::position(want.x, want.y).unwrap()).with_priority(priority);
+        RigTask::new(vec![primary, secondary], vec![])
+    };
+    for want in [Point2::new(0.0, 2.0), Point2::new(0.3, -3.0)] {
+        let out = solver.solve_rig(&arm, arm.start_angles(), &task_for(want, Priority::Secondary)).unwrap();
+        assert_eq!(out.effectors[0].status, Status::Reached, "{want}: {out:?}");
+        // Brute force: the first joint's tip at angle a is feasible when the other two bones
+        // reach from it to the tip (distance ≤ 2).
+        let best = (0..200_000)
+            .map(|k| -std::f64::consts::PI + 2.0 * std::f64::consts::PI * f64::from(k) / 200_000.0)
+            .map(|a| Point2::new(a.cos(), a.sin()))
+            .filter(|e| (tip - e).norm() <= 2.0)
+            .map(|e| (want - e).norm())
+            .fold(f64::INFINITY, f64::min);
+        let got = out.effectors[1].error;
+        assert!(got >= best - 1e-6 && got <= best + 1e-6, "{want}: secondary {got} vs best {best}");
+    }
+    let want = Point2::new(-2.0, 1.0);
+    let before = (want - Point2::new(0.3f64.cos(), 0.3f64.sin())).norm();
+    let out = solver.solve_rig(&arm, arm.start_angles(), &task_for(want, Priority::Secondary)).unwrap();
+    assert_eq!(out.effectors[0].status, Status::Reached, "{out:?}");
+    assert!(out.effectors[1].error < before, "{out:?}");
+    let traded = solver.solve_rig(&arm, arm.start_angles(), &task_for(want, Priority::Primary)).unwrap();
+    assert!(traded.effectors[0].error > 1e-3, "{traded:?}");
+}
+
+/// Bend: the elbow's sign picks which of the two solutions; both reach the same target.
+#[test]
+fn bend_picks_the_side_of_a_two_bone_limb() {
+    let arm = Skeleton::new(
+        [0.0, 0.0],
+        &[crate::Bone::new("upper", 1.0, 0.3), crate::Bone::new("fore", 1.0, 0.3).with_parent("upper")],
+    )
+    .unwrap();
+    let opts = SolveOptions::default();
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    for (bend, sign) in [(Bend::Positive, 1.0), (Bend::Negative, -1.0)] {
+        let goal = RigGoal::new(1, Goal::position(1.2, 0.4).unwrap()).with_bend(bend);
+        let task = RigTask::new(vec![goal], vec![]);
+        let out = solver.solve_rig(&arm, arm.start_angles(), &task).unwrap();
+        assert!(verify(&arm, arm.start_angles(), &task, &opts, &out), "{bend:?}: {out:?}");
+        assert!(sign * out.pose.angles()[1] > 0.1, "{bend:?}: {:?}", out.pose.angles());
+    }
+    // A bend the joint's limits exclude is refused.
+    let limited = Skeleton::new(
+        [0.0, 0.0],
+        &[
+            crate::Bone::new("upper", 1.0, 0.3),
+            crate::Bone::new("fore", 1.0, 0.3)
+                .with_parent("upper")
+                .with_limits(crate::JointLimits::new(0.1, 2.0).unwrap()),
+        ],
+    )
+    .unwrap();
+    let task = RigTask::new(vec![RigGoal::new(1, Goal::position(1.2, 0.4).unwrap()).with_bend(Bend::Negative)], vec![]);
+    let err = solver.solve_rig(&limited, limited.start_angles(), &task).unwrap_err();
+    assert!(matches!(err, SolveError::Rig(RigTaskError::BendOutsideLimits { .. })), "{err}");
+    assert_eq!(err.to_string(), "goal \"fore\".bend: the joint's limits leave no angle on that side");
+}
+
+/// Mix 0 keeps the pose before; mix ½ is halfway, joint by joint.
+#[test]
+fn mix_blends_the_pose_before_and_the_result() {
+    let puppet = rig("puppet");
+    let hand = bone(&puppet, "right_hand");
+    let mut rng = SplitMix64(3);
+    let task = reachable_task(&puppet, &[hand], &mut rng);
+    let mut solver = Solver::new(SolveOptions::default()).unwrap();
+    let full = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+    assert_eq!(full.status, Status::Reached);
+    let none = solver.solve_rig(&puppet, puppet.start_angles(), &RigTask { mix: 0.0, ..task.clone() }).unwrap();
+    assert_eq!(none.pose.angles(), puppet.start_angles());
+    let half = solver.solve_rig(&puppet, puppet.start_angles(), &RigTask { mix: 0.5, ..task.clone() }).unwrap();
+    for ((h, f), s) in half.pose.angles().iter().zip(full.pose.angles()).zip(puppet.start_angles()) {
+        assert!((h - (s + 0.5 * (f - s))).abs() < 1e-15);
+    }
+    let (tips, _) = fk(&puppet, half.pose.angles());
+    assert_eq!(half.effectors[0].tip, tips[hand]);
+    let err = solver.solve_rig(&puppet, puppet.start_angles(), &RigTask { mix: 1.5, ..task }).unwrap_err();
+    assert_eq!(err.to_string(), "mix: must be from 0 to 1, got 1.5");
+}
+
+/// Softness: a goal at full stretch is drawn in, so the limb stops short of straight; goals
+/// well inside are untouched.
+#[test]
+fn softness_keeps_the_limb_from_snapping_straight() {
+    let arm = Skeleton::new(
+        [0.0, 0.0],
+        &[crate::Bone::new("upper", 1.0, 0.3), crate::Bone::new("fore", 1.0, 0.3).with_parent("upper")],
+    )
+    .unwrap();
+    let mut solver = Solver::new(SolveOptions::default()).unwrap();
+    let mut last = 0.0;
+    for d in [1.5, 1.8, 1.95, 2.0, 2.5] {
+        let goal = RigGoal::new(1, Goal::position(d, 0.0).unwrap()).with_softness(0.3);
+        let out = solver.solve_rig(&arm, arm.start_angles(), &RigTask::new(vec![goal], vec![])).unwrap();
+        let target = out.effectors[0].target;
+        assert_eq!(out.effectors[0].status, Status::Reached, "{d}");
+        if d <= 1.7 {
+            assert_eq!(target, Point2::new(d, 0.0));
+        } else {
+            assert!(target.x < d && target.x < 2.0 && target.x > last, "{d}: {target}");
+        }
+        // The elbow never straightens.
+        assert!(out.pose.angles()[1].abs() > 1e-3, "{d}");
+        last = target.x;
+    }
+}
+
+/// One goal out of every pose's reach. With equal priority the answer is the weighted
+/// least-squares best of both (the spine leans toward the unreachable goal, and the other hand
+/// may miss its own); made secondary, it no longer costs the reachable goal anything: that one
+/// is reached, the unreachable one is named and stretched toward.
+#[test]
+fn an_unreachable_goal_is_named_and_as_secondary_costs_the_others_nothing() {
+    let puppet = rig("puppet");
+    let (right, left) = (bone(&puppet, "right_hand"), bone(&puppet, "left_hand"));
+    let mut rng = SplitMix64(8);
+    let mut task = reachable_task(&puppet, &[left], &mut rng);
+    task.goals.insert(0, RigGoal::new(right, Goal::position(50.0, 0.0).unwrap()));
+    let opts = SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() };
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let equal = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+    assert_eq!(equal.status, Status::Unreachable);
+    assert_eq!(equal.effectors[0].status, Status::Unreachable);
+    task.goals[0].priority = Priority::Secondary;
+    let out = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+    assert_eq!(out.status, Status::Unreachable);
+    assert_eq!(out.effectors[0].status, Status::Unreachable);
+    assert_eq!(out.effectors[1].status, Status::Reached, "{out:?}");
+    assert!(verify(&puppet, puppet.start_angles(), &RigTask::new(vec![task.goals[1].clone()], vec![]), &opts, &{
+        let mut one = out.clone();
+        one.effectors.remove(0);
+        one.status = Status::Reached;
+        one
+    }));
+    // Stretched toward (50, 0) as far as the left hand's goal allows.
+    assert!(out.effectors[0].tip.x > 0.5, "{:?}", out.effectors[0]);
+    assert!(out.effectors[0].error < equal.effectors[0].error + 1.0, "{out:?}");
+}
+
+/// A skeleton with one branch solves a chain's goals like the chain solver: the same statuses,
+/// poses reaching the same targets.
+#[test]
+fn a_one_branch_skeleton_solves_like_its_chain() {
+    let chain = crate::fixtures::seed_arm_limited();
+    let skeleton = Skeleton::from_chain(&chain);
+    let mut rng = SplitMix64(21);
+    let opts = SolveOptions { closed_form: false, ..SolveOptions::default() };
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let mut agree = 0;
+    for _ in 0..200 {
+        let (x, y) = (rng.range(-6.5, 6.5), rng.range(-6.5, 6.5));
+        let goal = Goal::position(x, y).unwrap();
+        let c = solver.solve(&chain, chain.start_pose(), &goal).unwrap();
+        let task = RigTask::new(vec![RigGoal::new(chain.len() - 1, goal)], vec![]);
+        let s = solver.solve_rig(&skeleton, chain.start_pose().angles(), &task).unwrap();
+        agree += usize::from(c.status == s.status);
+        if s.status == Status::Reached {
+            assert!(s.error <= opts.tolerance);
+        }
+    }
+    assert!(agree >= 196, "{agree}/200");
+}
+
+#[test]
+fn methods_without_a_rig_solver_and_bad_tasks_are_refused_in_one_line() {
+    let puppet = rig("puppet");
+    let hand = bone(&puppet, "right_hand");
+    let task = RigTask::new(vec![RigGoal::new(hand, Goal::position(0.5, 1.0).unwrap())], vec![]);
+    for method in Method::ALL {
+        let mut solver = Solver::new(SolveOptions { method, ..SolveOptions::default() }).unwrap();
+        let result = solver.solve_rig(&puppet, puppet.start_angles(), &task);
+        assert_eq!(result.is_ok(), method.solves_rigs(), "{method:?}");
+        if let Err(e) = result {
+            assert_eq!(
+                e.to_string(),
+                format!("method {}: solves chains only; a rig needs transpose, pinv, dls, sdls or lm", method.name())
+            );
+        }
+    }
+    let mut solver = Solver::new(SolveOptions::default()).unwrap();
+    let cases: Vec<(RigTask, &str)> = vec![
+        (RigTask::default(), "goals: a rig solve needs at least one goal or pin, got none"),
+        (
+            RigTask::new(vec![RigGoal::new(99, Goal::position(0.0, 0.0).unwrap())], vec![]),
+            "goal: bone 99 does not exist (the rig has 16 bones)",
+        ),
+        (
+            RigTask::new(vec![task.goals[0].clone()], vec![Pin::new(hand)]),
+            "pin \"right_hand\": the bone already has a goal; one goal or pin per bone",
+        ),
+        (
+            RigTask::new(vec![task.goals[0].clone().with_weight(0.0)], vec![]),
+            "goal \"right_hand\".weight: must be a finite number > 0, got 0",
+        ),
+        (
+            RigTask::new(vec![task.goals[0].clone().with_softness(-1.0)], vec![]),
+            "goal \"right_hand\".softness: must be a finite number >= 0, got -1",
+        ),
+        (
+            RigTask::new(vec![RigGoal::new(0, Goal::position(0.0, 0.0).unwrap()).with_bend(Bend::Positive)], vec![]),
+            "goal \"pelvis\".bend: the bone has no parent, so no two-bone limb to bend",
+        ),
+    ];
+    for (task, message) in cases {
+        assert_eq!(solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap_err().to_string(), message);
+    }
+    let err = solver.solve_rig(&puppet, &[0.0; 3], &task).unwrap_err();
+    assert_eq!(err.to_string(), "start: expected 16 angles (one per joint), got 3");
+    let _ = deg(0.0);
+}
