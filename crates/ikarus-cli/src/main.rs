@@ -51,7 +51,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Move the arm's tip to a goal and report the pose and the recorded frames
+    /// Move the arm's tip to a goal and report the pose and the recorded frames; with --rig,
+    /// goals on a rig's bones and pins, solved together
     #[command(allow_negative_numbers = true)]
     Solve(solve::SolveArgs),
     /// Solve for a goal (through any via points) and turn it into a smooth, eased motion:

@@ -231,6 +231,31 @@ pub struct PictureArgs {
     pub max_gif_pixels: u64,
 }
 
+/// `--out` and the picture size of a command that draws one still picture (.svg, .png):
+/// `ikarus solve`.
+#[derive(Debug, Clone, Args)]
+pub struct StillArgs {
+    /// Draw the solved pose to FILE (.svg or .png): the goal and, for a rig, its pins
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Picture width in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub width: u32,
+    /// Picture height in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub height: u32,
+}
+
+impl StillArgs {
+    /// Checks the extension and prepares the file; `None` without `--out`.
+    pub fn prepare(&self) -> Result<Option<PictureOut>, CliError> {
+        let Some(path) = &self.out else { return Ok(None) };
+        let format = format_of(path, &[PictureFormat::Svg, PictureFormat::Png])?;
+        let file = PendingFile::create(path, "--out")?;
+        Ok(Some(PictureOut { format, file }))
+    }
+}
+
 /// The default cap of `--max-gif-pixels`: 1000 frames of 800 × 800 and more (10⁹ pixels;
 /// 100 frames at 4096 × 4096, 1.7·10⁹ pixels, took 11 s).
 pub const DEFAULT_MAX_GIF_PIXELS: u64 = 1_000_000_000;

@@ -10,7 +10,7 @@ use ikarus::{LimitMode, Outcome, RigTask, SolveOptions};
 
 use crate::error::CliError;
 use crate::output;
-use crate::picture::{Drawing, PictureFormat, draw, rig_figure};
+use crate::picture::{Drawing, draw, rig_figure};
 use crate::report::deg_text;
 use crate::rig::Rig;
 use crate::rig_args::Target;
@@ -28,7 +28,7 @@ pub fn run(args: &SolveArgs, path: &Path) -> Result<(), CliError> {
     // No frames unless asked for: a rig's frames are one point per bone each.
     let every = args.record_every.or(rig.solver.record_every);
     let mut solver = solver(rig.options(&args.solver, every)?)?;
-    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
+    let picture = args.picture.prepare()?;
     let started = Instant::now();
     let outcome = solver
         .solve_rig(&rig.skeleton, rig.skeleton.start_angles(), &task)

@@ -14,7 +14,7 @@ use crate::error::CliError;
 use crate::goals::{self, GoalRow, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::output;
-use crate::picture::{PictureArgs, PictureFormat, arm_drawing, draw};
+use crate::picture::{StillArgs, arm_drawing, draw};
 use crate::report::{SolveJson, SolveReport, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::{SolverSettings, solver};
@@ -79,7 +79,7 @@ pub struct SolveArgs {
     #[arg(long, value_name = "PATH")]
     pub summary_json: Option<PathBuf>,
     #[command(flatten)]
-    pub picture: PictureArgs,
+    pub picture: StillArgs,
 }
 
 fn parse_threads(s: &str) -> Result<usize, String> {
@@ -124,7 +124,7 @@ fn arm_goal(args: &SolveArgs) -> Result<Goal, CliError> {
 
 fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     let goal = arm_goal(args)?;
-    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
+    let picture = args.picture.prepare()?;
     let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
     let mut solver = solver(arm.options(&args.solver, Some(every))?)?;
     let started = Instant::now();

@@ -486,3 +486,17 @@ fn bad_batch_files_name_the_column_or_line() {
     let err = fails(&["solve", "--rig", &rig, "--batch", &goals, "--out", "x.svg"], 2);
     assert!(err.contains("--out x.svg: only applies to a single solve, not --batch"), "{err}");
 }
+
+/// A rig file's `[solver]` table applies as an arm file's does, and flags override it.
+#[test]
+fn the_rig_files_solver_table_applies_and_flags_override_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = write(dir.path(), "fork.toml", &format!("{DOTTED}[solver]\nmethod = \"dls\"\ntolerance = 0.001\n"));
+    let v = json(&["solve", "--rig", &rig, "--goal", "arm.l=-1,1.5"]);
+    assert_eq!((v["method"].as_str(), v["tolerance"].as_f64()), (Some("dls"), Some(0.001)));
+    let v = json(&["solve", "--rig", &rig, "--goal", "arm.l=-1,1.5", "--method", "sdls", "--tolerance", "0.01"]);
+    assert_eq!((v["method"].as_str(), v["tolerance"].as_f64()), (Some("sdls"), Some(0.01)));
+    let bad = write(dir.path(), "rates.toml", &format!("{DOTTED}[solver]\nrates = [1, 2]\n"));
+    let err = fails(&["solve", "--rig", &bad, "--goal", "arm.l=-1,1.5"], 2);
+    assert_eq!(err, format!("ikarus: rig file {bad}: [solver].rates: expected 3 values (one per joint), got 2\n"));
+}

@@ -214,6 +214,10 @@ fn bad_rig_requests_are_422_naming_the_field() {
             puppet_solve(json!({"options": {"max_iterations": 1_000_000}})),
             "options.max_iterations = 1000000: more than the cap",
         ),
+        (
+            puppet_solve(json!({"options": {"max_iterations": 100_000, "record_every": 1}})),
+            "options.max_iterations = 100000, options.record_every = 1: the solve could record 100002 frames of 16 joints",
+        ),
         (puppet_solve(json!({"arm": {"links": [{"length": 1}]}})), "arm, rig: give one or the other, not both"),
         (puppet_solve(json!({"goal": {"x": 1, "y": 1}})), "goal: a rig takes goals"),
         (json!({"goals": [{"bone": "a", "x": 1, "y": 1}]}), "goals: only with rig"),
