@@ -153,6 +153,9 @@ test("an answer's pose in bone order, and the chip's line naming what failed", (
     ],
   });
   assert.deepEqual(ok.failed, []);
+  // A reached answer names no effector, even one whose own status was left unjudged.
+  const unjudged = rigSummary({ status: "reached", effectors: [{ name: "left", pinned: false, status: "iteration_limit", error: 1e-9 }] });
+  assert.deepEqual([unjudged.failed, unjudged.text], [[], "status reached · 1 goal"]);
   assert.equal(ok.text, "status reached · 1 goal, 1 pin · 7 iterations · error 1.00e-7 · 0.012 ms");
   const bad = rigSummary({
     status: "unreachable",

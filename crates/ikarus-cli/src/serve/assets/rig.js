@@ -228,7 +228,10 @@ export function answerPose(rig, answer, fallback = []) {
  */
 export function rigSummary(answer) {
   const effectors = answer.effectors || [];
-  const failed = effectors.filter((e) => e.status !== "reached");
+  // The overall status is `reached` only if every effector is (the API's contract), so a reached
+  // answer names no effector, whatever their own statuses say (the release build's solver, as
+  // of the core's first commit, leaves them unjudged when the whole solve is reached).
+  const failed = answer.status === "reached" ? [] : effectors.filter((e) => e.status !== "reached");
   const parts = [`status ${answer.status}`];
   if (failed.length) {
     parts.push(failed.map((e) => `${e.name}${e.pinned ? " (pin)" : ""} ${e.status} ${Number(e.error).toExponential(1)}`).join(", "));
