@@ -229,3 +229,56 @@ fn skeleton_kinematics_allocate_nothing() {
     assert_eq!(count, 0, "{count} allocations");
     assert!(j[(0, 0)] != 0.0 && j[(3, 4)] != 0.0 && j[(3, 0)] == 0.0);
 }
+
+/// Issue 12: a warmed-up skeleton solve — several effectors, a pin, an orientation, limits,
+/// restarts, every rig method and limit mode, two priority levels — allocates nothing, however
+/// many iterations and restarts it runs.
+#[test]
+fn skeleton_solves_allocate_nothing() {
+    use ikarus::{Bone, JointLimits, LimitMode, Pin, Priority, RigGoal, RigTask, Skeleton};
+    let lim = JointLimits::new(-1.2, 1.2).unwrap();
+    let bones = [
+        Bone::new("pelvis", 0.2, 1.5).with_limits(JointLimits::new(1.0, 2.0).unwrap()),
+        Bone::new("spine", 0.5, 0.1).with_parent("pelvis").with_limits(lim),
+        Bone::new("arm", 0.6, -2.5).with_parent("spine"),
+        Bone::new("fore", 0.5, 0.3).with_parent("arm").with_limits(JointLimits::new(0.0, 2.5).unwrap()),
+        Bone::new("hand", 0.2, 0.3).with_parent("fore").with_limits(lim),
+        Bone::new("head", 0.2, 0.0).with_parent("spine").with_limits(lim),
+        Bone::new("leg", 0.9, -1.5),
+        Bone::new("foot", 0.2, 1.0).with_parent("leg").with_limits(lim),
+    ];
+    let s = Skeleton::new([0.0, 0.0], &bones).unwrap();
+    let tasks = [
+        RigTask::new(
+            vec![
+                RigGoal::new(4, Goal::with_orientation(0.3, 0.9, 0.5).unwrap()),
+                RigGoal::new(5, Goal::position(-0.2, 0.9).unwrap()),
+            ],
+            vec![Pin::new(7)],
+        ),
+        RigTask::new(
+            vec![
+                RigGoal::new(4, Goal::position(3.0, 3.0).unwrap()),
+                RigGoal::new(5, Goal::position(-0.3, 0.8).unwrap()).with_priority(Priority::Secondary),
+            ],
+            vec![Pin::new(7)],
+        ),
+    ];
+    for method in iterative().filter(|m| m.solves_rigs()) {
+        for limits in LimitMode::ALL {
+            let mut solver = Solver::new(SolveOptions { method, limits, ..SolveOptions::default() }).unwrap();
+            for (t, task) in tasks.iter().enumerate() {
+                let mut out = Outcome::default();
+                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
+                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
+                let (n, r) = allocations_in(|| solver.solve_rig_into(&s, s.start_angles(), task, &mut out));
+                r.unwrap();
+                assert_eq!(
+                    n, 0,
+                    "task {t}, {method:?} {limits:?}: {n} allocations ({} iterations, {:?})",
+                    out.iterations, out.status
+                );
+            }
+        }
+    }
+}

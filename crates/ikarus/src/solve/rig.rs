@@ -176,16 +176,16 @@ impl RigTask {
         if !(0.0..=1.0).contains(&self.mix) {
             return Err(RigTaskError::Mix { value: self.mix });
         }
-        let mut taken: Vec<Option<&'static str>> = vec![None; n];
-        let bones = self.goals.iter().map(|g| (g.bone, "goal")).chain(self.pins.iter().map(|p| (p.bone, "pin")));
-        for (bone, what) in bones {
+        // Pairwise, without a table: tasks hold a handful of effectors, and a solve that
+        // validates its task allocates nothing.
+        let bones = || self.goals.iter().map(|g| (g.bone, "goal")).chain(self.pins.iter().map(|p| (p.bone, "pin")));
+        for (k, (bone, what)) in bones().enumerate() {
             if bone >= n {
                 return Err(RigTaskError::NoSuchBone { what, bone, bones: n });
             }
-            if let Some(first) = taken[bone] {
+            if let Some((_, first)) = bones().take(k).find(|&(b, _)| b == bone) {
                 return Err(RigTaskError::Twice { name: skeleton.name(bone).to_owned(), first, second: what });
             }
-            taken[bone] = Some(what);
         }
         for g in &self.goals {
             let name = || skeleton.name(g.bone).to_owned();

@@ -236,6 +236,21 @@ impl Model for Rig<'_> {
         s.alg.primary_merit = primary_merit(self.tolerance);
         s.alg.blocks.clear();
         s.alg.blocks.extend(self.effs.iter().map(Eff::rows));
+        // Column j's nonzero rows: those of the effectors below bone j.
+        let (start, rows) = (&mut s.alg.nz_start, &mut s.alg.nz_rows);
+        start.clear();
+        rows.clear();
+        for j in 0..n {
+            start.push(rows.len());
+            let mut row = 0;
+            for eff in self.effs {
+                if self.skeleton.path(eff.bone).contains(&j) {
+                    rows.extend(row..row + eff.rows());
+                }
+                row += eff.rows();
+            }
+        }
+        start.push(rows.len());
     }
 
     fn max_reach(&self) -> f64 {
@@ -300,8 +315,9 @@ impl Model for Rig<'_> {
     }
 
     fn jacobian(&self, _: &(), opts: &SolveOptions, points: &RigPoints, alg: &mut Dynamic) {
+        // Only the entries of each effector's path are written; the rest stay the zeros of
+        // `Dynamic::shape`.
         let w_o = opts.orientation_weight;
-        alg.jacobian.fill(0.0);
         let mut row = 0;
         for eff in self.effs {
             let tip = points.points[eff.bone + 1];

@@ -65,16 +65,16 @@ impl Solver {
             // again alone from where the solve ended, and every effector measured on that.
             let (iterations, restarts) = (out.iterations, out.restarts);
             let first = Rig { effs: &work.effs[..first_level], ..rig };
-            Model::fit(&first, s);
+            let t = &mut self.first_level_scratch;
+            Model::fit(&first, t);
             let q = Problem::with_bounds(&first, &(), opts, p.bounds);
-            s.restart.copy_from_slice(out.pose.angles());
-            let from = std::mem::take(&mut s.restart);
-            solve_with_restarts(&q, &from, began, s, out);
-            s.restart = from;
-            finish(&q, s, out);
+            t.restart.copy_from_slice(out.pose.angles());
+            let from = std::mem::take(&mut t.restart);
+            solve_with_restarts(&q, &from, began, t, out);
+            t.restart = from;
+            finish(&q, t, out);
             out.iterations += iterations;
             out.restarts += restarts;
-            Model::fit(&rig, s);
             measure(&p, s, out);
         }
         if task.mix < 1.0 {

@@ -26,6 +26,9 @@ pub struct Solver {
     scratch: Scratch<Vec<nalgebra::Point2<f64>>, Fixed3>,
     /// A skeleton's scratch, sized by its first skeleton solve.
     pub(super) rig_scratch: Scratch<RigPoints, Dynamic>,
+    /// The scratch of a skeleton's first priority level solved again alone (its own, so that
+    /// neither is resized back and forth).
+    pub(super) first_level_scratch: Scratch<RigPoints, Dynamic>,
     /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
     pub(super) rig_work: super::rig_model::RigWork,
 }
@@ -34,7 +37,13 @@ impl Solver {
     /// Validates `options` and builds a solver.
     pub fn new(options: SolveOptions) -> Result<Self, OptionsError> {
         options.validate()?;
-        Ok(Self { options, scratch: Scratch::default(), rig_scratch: Scratch::default(), rig_work: Default::default() })
+        Ok(Self {
+            options,
+            scratch: Scratch::default(),
+            rig_scratch: Scratch::default(),
+            first_level_scratch: Scratch::default(),
+            rig_work: Default::default(),
+        })
     }
 
     /// The options this solver runs with.

@@ -58,6 +58,10 @@ pub(in crate::solve) struct Dynamic {
     pub(in crate::solve) secondary_reach: f64,
     /// The first level's weight in the merit ([`primary_merit`]).
     pub(in crate::solve) primary_merit: f64,
+    /// The rows where column `j` of `J` may be nonzero (the rows of the effectors whose path
+    /// holds bone `j`), ascending: `nz_rows[nz_start[j]..nz_start[j + 1]]`.
+    pub(in crate::solve) nz_start: Vec<usize>,
+    pub(in crate::solve) nz_rows: Vec<usize>,
 }
 
 /// The weight of the first level's squared error in the line search's merit when a task has
@@ -76,11 +80,16 @@ pub(in crate::solve) fn merit_of(first: f64, second: f64, levels: bool, weight: 
 }
 
 impl Dynamic {
-    /// Sizes every buffer for `n` joints and `m` rows, the first `primary` of the first level.
+    /// Sizes every buffer for `n` joints and `m` rows, the first `primary` of the first level,
+    /// and zeroes `J` and the weighted `J` (only the rows of [`Dynamic::nz_rows`] are written
+    /// after that).
     pub(in crate::solve) fn shape(&mut self, n: usize, m: usize, primary: usize) {
         if self.jacobian.shape() != (m, n) {
             self.jacobian = DMatrix::zeros(m, n);
             self.weighted = DMatrix::zeros(m, n);
+        } else {
+            self.jacobian.fill(0.0);
+            self.weighted.fill(0.0);
         }
         for v in [&mut self.e, &mut self.task, &mut self.predicted] {
             if v.len() != m {
@@ -305,8 +314,10 @@ impl Algebra for Dynamic {
     #[inline]
     fn set_weighted(&mut self, i: usize, k: f64) {
         let m = self.e.len();
-        for r in 0..m {
-            self.weighted[(r, i)] = self.jacobian[(r, i)] * k;
+        let (w, j) =
+            (&mut self.weighted.as_mut_slice()[i * m..(i + 1) * m], &self.jacobian.as_slice()[i * m..(i + 1) * m]);
+        for &r in &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]] {
+            w[r] = j[r] * k;
         }
     }
 
@@ -315,14 +326,12 @@ impl Algebra for Dynamic {
         let a = &mut self.a;
         a.fill(0.0);
         let w = if plain { &self.jacobian } else { &self.weighted };
-        for col in w.column_iter() {
+        for (i, col) in w.column_iter().enumerate() {
             let col = col.as_slice();
-            for c in 0..m {
+            let rows = &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]];
+            for (k, &c) in rows.iter().enumerate() {
                 let x = col[c];
-                if x == 0.0 {
-                    continue;
-                }
-                for r in c..m {
+                for &r in &rows[k..] {
                     a[r + c * m] += col[r] * x;
                 }
             }
@@ -341,8 +350,13 @@ impl Algebra for Dynamic {
         } else {
             self.task_step(p, rule, opts, mu, true);
             let w = self.w(plain);
-            for (o, col) in out.iter_mut().zip(w.column_iter()) {
-                *o = dot(&col.as_slice()[..p], &self.y[..p]);
+            for (i, (o, col)) in out.iter_mut().zip(w.column_iter()).enumerate() {
+                let col = col.as_slice();
+                *o = self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]]
+                    .iter()
+                    .take_while(|&&r| r < p)
+                    .map(|&r| col[r] * self.y[r])
+                    .sum();
             }
         }
         if p < self.e.len() {

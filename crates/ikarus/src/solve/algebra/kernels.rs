@@ -3,42 +3,43 @@
 //! size allocate their results, and these run every iteration of a skeleton solve.
 
 /// Solves `(A + shift·I) y = v` for symmetric `A` by a Cholesky factorisation into `l`
-/// (`k × k`, overwritten). Returns `false`, leaving `y` unspecified, if `A + shift·I` is not
+/// (`k × k`, overwritten; the factor is stored by rows, so that every inner product runs over
+/// contiguous memory). Returns `false`, leaving `y` unspecified, if `A + shift·I` is not
 /// positive definite (to rounding).
 pub(super) fn cholesky_solve(k: usize, a: &[f64], shift: f64, v: &[f64], l: &mut [f64], y: &mut [f64]) -> bool {
-    // L Lᵀ = A + shift I, lower triangle of `l` (column-major: l[r + c k]).
-    for c in 0..k {
-        let mut d = a[c + c * k] + shift;
-        for p in 0..c {
-            d -= l[c + p * k] * l[c + p * k];
-        }
-        if !(d > 0.0 && d.is_finite()) {
-            return false;
-        }
-        let d = d.sqrt();
-        l[c + c * k] = d;
-        for r in c + 1..k {
+    let (a, l, v, y) = (&a[..k * k], &mut l[..k * k], &v[..k], &mut y[..k]);
+    // L Lᵀ = A + shift I: row r of L in l[r k .. r k + r + 1].
+    for r in 0..k {
+        for c in 0..=r {
             let mut s = a[r + c * k];
             for p in 0..c {
-                s -= l[r + p * k] * l[c + p * k];
+                s -= l[r * k + p] * l[c * k + p];
             }
-            l[r + c * k] = s / d;
+            if c < r {
+                l[r * k + c] = s / l[c * k + c];
+            } else {
+                let d = s + shift;
+                if !(d > 0.0 && d.is_finite()) {
+                    return false;
+                }
+                l[r * k + r] = d.sqrt();
+            }
         }
     }
     // L z = v, then Lᵀ y = z.
     for r in 0..k {
         let mut s = v[r];
         for p in 0..r {
-            s -= l[r + p * k] * y[p];
+            s -= l[r * k + p] * y[p];
         }
-        y[r] = s / l[r + r * k];
+        y[r] = s / l[r * k + r];
     }
     for r in (0..k).rev() {
         let mut s = y[r];
         for p in r + 1..k {
-            s -= l[p + r * k] * y[p];
+            s -= l[p * k + r] * y[p];
         }
-        y[r] = s / l[r + r * k];
+        y[r] = s / l[r * k + r];
     }
     true
 }
