@@ -1,5 +1,5 @@
-//! Reading the files that flags name (`--arm`, `solve --batch`, `track --path`): only regular
-//! files (a device such as `/dev/zero` would be read until memory runs out, a FIFO would block
+//! Reading the files that flags name (`--arm`, `--rig`, `solve --batch`, `track --path`): only
+//! regular files (a device such as `/dev/zero` would be read until memory runs out, a FIFO would block
 //! until a writer comes), and at most [`max_bytes`] of them (64 MiB unless
 //! `ikarus --max-input-bytes N` says otherwise).
 

@@ -42,7 +42,7 @@ use crate::error::CliError;
 #[derive(Debug, Parser)]
 #[command(name = "ikarus", version, about, propagate_version = true)]
 struct Cli {
-    /// Largest input file read (--arm, --batch, --path), in bytes
+    /// Largest input file read (--arm, --rig, --batch, --path), in bytes
     #[arg(long, global = true, value_name = "BYTES", default_value_t = input::DEFAULT_MAX_INPUT_BYTES)]
     max_input_bytes: u64,
     #[command(subcommand)]

@@ -115,7 +115,17 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
         .collect();
     let template = args.rig_task.task(&rig.skeleton, &targets)?;
 
-    let mut rows: Vec<(Vec<f64>, RigTask)> = Vec::new();
+    // Each row's values, checked as targets here (so that a bad one is named by its line); each
+    // worker fills its own copy of the task with a row's targets.
+    let targets = |task: &mut RigTask, values: &[f64]| -> Result<(), (String, String)> {
+        for (goal, c) in task.goals.iter_mut().zip(&columns) {
+            goal.goal =
+                make_goal(values[c.x], values[c.y], c.angle.map(|a| values[a])).map_err(|m| (c.bone.clone(), m))?;
+        }
+        Ok(())
+    };
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut check = template.clone();
     for record in reader.records() {
         let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
         let line = record.position().map_or(0, csv::Position::line);
@@ -125,12 +135,9 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
                     .map_err(|m| CliError::input(format!("{label}: line {line}: {}: {m}", cells[i])))
             })
             .collect::<Result<Vec<f64>, _>>()?;
-        let mut task = template.clone();
-        for (goal, c) in task.goals.iter_mut().zip(&columns) {
-            goal.goal = make_goal(values[c.x], values[c.y], c.angle.map(|a| values[a]))
-                .map_err(|m| CliError::input(format!("{label}: line {line}: {}: {m}", c.bone)))?;
-        }
-        rows.push((values, task));
+        targets(&mut check, &values)
+            .map_err(|(bone, m)| CliError::input(format!("{label}: line {line}: {bone}: {m}")))?;
+        rows.push(values);
     }
     if rows.is_empty() {
         return Err(CliError::input(format!("{label}: no target sets (expected a header and one target set per row)")));
@@ -141,15 +148,16 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
     let skeleton = &rig.skeleton;
     let solved = batch.solve_all(
         &rows,
-        || (solver.clone(), Outcome::default()),
-        |(solver, out), (_, task)| {
-            solver.solve_rig_into(skeleton, skeleton.start_angles(), task, out)?;
-            Ok::<_, ikarus::SolveError>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
+        || (solver.clone(), Outcome::default(), template.clone()),
+        |(solver, out, task), values| {
+            targets(task, values).map_err(|(bone, m)| format!("{bone}: {m}"))?;
+            solver.solve_rig_into(skeleton, skeleton.start_angles(), task, out).map_err(|e| e.to_string())?;
+            Ok::<_, String>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
         },
     )?;
     output::stdout(|w| {
         writeln!(w, "{},status,error,iterations,{}", cells.join(","), angle_columns(rig))?;
-        for ((values, _), r) in rows.iter().zip(&solved) {
+        for (values, r) in rows.iter().zip(&solved) {
             let (error, iterations, angles) = &r.row;
             let values: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             write!(w, "{},{},{:?},{}", values.join(","), r.status, error, iterations)?;

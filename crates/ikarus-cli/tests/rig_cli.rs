@@ -500,3 +500,35 @@ fn the_rig_files_solver_table_applies_and_flags_override_it() {
     let err = fails(&["solve", "--rig", &bad, "--goal", "arm.l=-1,1.5"], 2);
     assert_eq!(err, format!("ikarus: rig file {bad}: [solver].rates: expected 3 values (one per joint), got 2\n"));
 }
+
+/// `--mix M` takes M of the way from the start pose to the solution, every bone alike.
+#[test]
+fn mix_blends_the_start_pose_and_the_solution() {
+    let p = puppet();
+    let angles = |mix: &str| -> Vec<f64> {
+        let v = json(&["solve", "--rig", &p, "--goal", "right_hand=0.3,0.8", "--pin", "left_foot", "--mix", mix]);
+        let names = rigs::names(&rigs::json("puppet"));
+        names.iter().map(|n| v["angles_deg"][n].as_f64().unwrap()).collect()
+    };
+    let start = rigs::start_deg(&rigs::json("puppet"));
+    let (none, half, full) = (angles("0"), angles("0.5"), angles("1"));
+    assert_ne!(full, start);
+    for i in 0..start.len() {
+        assert!((none[i] - start[i]).abs() < 1e-9, "{none:?}");
+        assert!((half[i] - (start[i] + full[i]) / 2.0).abs() < 1e-9, "{half:?} vs {full:?}");
+    }
+}
+
+/// `--bend NAME=cw|ccw` picks which of a two-bone limb's two solutions the solve ends in: the
+/// sign of the bone's own angle.
+#[test]
+fn bend_picks_the_side_of_the_joint() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = write(dir.path(), "fork.toml", DOTTED);
+    for (side, sign) in [("cw", -1.0), ("ccw", 1.0)] {
+        let v = json(&["solve", "--rig", &rig, "--goal", "arm.l=1.2,0.8", "--bend", &format!("arm.l={side}")]);
+        assert_eq!(v["status"], "reached", "{side}: {v}");
+        let a = v["angles_deg"]["arm.l"].as_f64().unwrap();
+        assert!(a * sign > 0.0, "{side}: arm.l at {a}°");
+    }
+}

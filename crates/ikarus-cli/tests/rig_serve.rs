@@ -298,3 +298,27 @@ fn the_figure_rig() {
         assert!(e.contains(want), "{e:?} lacks {want:?}");
     }
 }
+
+/// A rig solve runs under the request budget like every computation: a heavy one (256 bones,
+/// 64 goals out of reach, 10⁵ iterations and 64 restarts each) answers 503 at the budget and
+/// gives its only worker back, so that the next solve is answered.
+#[test]
+fn a_heavy_rig_solve_stops_at_its_budget() {
+    let s = start(&["--workers", "1", "--request-budget-ms", "1000"]);
+    let bones: Vec<Value> = (0..256)
+        .map(|i| json!({"name": format!("b{i}"), "length": 1.0, "parent": (i > 0).then(|| format!("b{}", i - 1))}))
+        .collect();
+    let goals: Vec<Value> =
+        (0..64).map(|i| json!({"bone": format!("b{}", 4 * i + 3), "x": f64::from(i % 9) * 50.0, "y": 500.0})).collect();
+    let began = std::time::Instant::now();
+    let heavy =
+        json!({"rig": {"bones": bones}, "goals": goals, "options": {"max_iterations": 100_000, "restarts": 64}});
+    let e = s.post("/api/solve", &heavy).error(503);
+    assert!(e.contains("budget of 1000 ms (--request-budget-ms)"), "{e}");
+    // The worker is free again: an ordinary rig solve answers (it would wait past its own
+    // budget behind a solve that ignored the interrupt).
+    let a = s.post("/api/solve", &puppet_solve(json!({})));
+    assert_eq!(a.status, 200, "{}", a.text());
+    // Generous: two budgets of a second, not the minutes the heavy solve would take.
+    assert!(began.elapsed() < std::time::Duration::from_secs(30), "{:?}", began.elapsed());
+}
