@@ -33,6 +33,8 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     let mut phi = model.forward_into(angles, &mut s.joints);
     let mut iteration: u32 = 0;
     let mut still: u32 = 0;
+    let mut prev_merit = f64::INFINITY;
+    let mut flat = false;
     let mut damping = Damping::new(opts.lambda);
     let mut best_error = f64::INFINITY;
     let status = loop {
@@ -50,6 +52,10 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
             Stepper::Jacobian(rule) => {
                 model.jacobian(goal, opts, &s.joints, &mut s.alg);
                 let current = s.alg.e_norm_squared();
+                if let Some(floor) = M::PROGRESS_FLOOR {
+                    flat = prev_merit - current <= floor * prev_merit;
+                    prev_merit = current;
+                }
                 let Some(trial_phi) = jacobian_step(p, rule, current, &mut damping, angles, s) else {
                     // No step along this direction lowers the error: the pose cannot move, and
                     // the same pose would give the same direction again.
@@ -76,7 +82,7 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
         phi = trial_phi;
         iteration += 1;
         match opts.stall {
-            Some(st) if moved <= st.epsilon => still += 1,
+            Some(st) if moved <= st.epsilon || flat => still += 1,
             _ => still = 0,
         }
     };

@@ -31,6 +31,10 @@ pub(super) trait Model: Sized {
     type Points: Default + Clone + std::fmt::Debug;
     /// Its task-space algebra.
     type Alg: Algebra;
+    /// A body whose accepted steps lower the task's merit by no more than this share of it
+    /// counts as standing still (as a pose that moves by less than the stall's epsilon does);
+    /// `None`: only the pose's movement counts.
+    const PROGRESS_FLOOR: Option<f64>;
     /// The number of angles (joints).
     fn len(&self) -> usize;
     /// Sizes the scratch for this body.
@@ -97,6 +101,7 @@ impl Model for Chain {
     type Goal = Goal;
     type Points = Vec<Point2<f64>>;
     type Alg = Fixed3;
+    const PROGRESS_FLOOR: Option<f64> = None;
 
     #[inline]
     fn len(&self) -> usize {
@@ -235,6 +240,7 @@ mod tests {
         type Goal = Goal;
         type Points = Vec<Point2<f64>>;
         type Alg = Fixed3;
+        const PROGRESS_FLOOR: Option<f64> = None;
         fn len(&self) -> usize {
             Model::len(self.0)
         }

@@ -18,6 +18,12 @@ use crate::rng::SplitMix64;
 use crate::skeleton::Skeleton;
 use std::f64::consts::PI;
 
+/// A rig's step that lowers the merit by less than this share of it counts toward the stall
+/// window: against its limits a rig creeps for many iterations with steps that change nothing
+/// (each accepted by the line search for a decrease in the fifteenth digit) before its pose
+/// stands still, where a restart does better.
+const PROGRESS_FLOOR: f64 = 1e-6;
+
 /// The longest secondary error one step works on, as a share of the skeleton's reach.
 const SECONDARY_REACH: f64 = 0.1;
 
@@ -144,7 +150,10 @@ impl RigWork {
             self.effs.push(eff);
         }
         // Row order: the first level (pins, primary goals), then the secondary goals; stable.
-        self.effs.sort_by_key(|e| !e.primary);
+        // Within a level, limbs of one root together: effectors on different roots share no
+        // bone, so the task's matrices are then block-diagonal in row order, which the
+        // factorisations skip over.
+        self.effs.sort_by_key(|e| (!e.primary, skeleton.path(e.bone)[0]));
         self.primary_rows = self.effs.iter().filter(|e| e.primary).map(Eff::rows).sum();
         Ok(())
     }
@@ -217,6 +226,7 @@ impl Model for Rig<'_> {
     type Goal = ();
     type Points = RigPoints;
     type Alg = Dynamic;
+    const PROGRESS_FLOOR: Option<f64> = Some(PROGRESS_FLOOR);
 
     #[inline]
     fn len(&self) -> usize {
@@ -318,6 +328,7 @@ impl Model for Rig<'_> {
         // Only the entries of each effector's path are written; the rest stay the zeros of
         // `Dynamic::shape`.
         let w_o = opts.orientation_weight;
+        alg.gram_valid = false;
         let mut row = 0;
         for eff in self.effs {
             let tip = points.points[eff.bone + 1];

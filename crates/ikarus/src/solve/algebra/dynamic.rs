@@ -50,6 +50,7 @@ pub(in crate::solve) struct Dynamic {
     values: Vec<f64>,
     /// Work vectors of `m`.
     y: Vec<f64>,
+    first: Vec<usize>,
     t: Vec<f64>,
     r: Vec<f64>,
     /// `P₁ W₂ᵀ`, `n × (m − primary)` column-major.
@@ -62,6 +63,10 @@ pub(in crate::solve) struct Dynamic {
     /// holds bone `j`), ascending: `nz_rows[nz_start[j]..nz_start[j + 1]]`.
     pub(in crate::solve) nz_start: Vec<usize>,
     pub(in crate::solve) nz_rows: Vec<usize>,
+    /// Whether `a` holds `Σ gram_kᵢ² Jᵢ Jᵢᵀ` for the current `J` (cleared with each new `J`).
+    pub(in crate::solve) gram_valid: bool,
+    gram_k: Vec<f64>,
+    pending_k: Vec<f64>,
 }
 
 /// The weight of the first level's squared error in the line search's merit when a task has
@@ -102,6 +107,10 @@ impl Dynamic {
         for v in [&mut self.values, &mut self.y, &mut self.t, &mut self.r] {
             v.resize(m, 0.0);
         }
+        self.first.resize(m, 0);
+        self.gram_k.resize(n, 1.0);
+        self.pending_k.resize(n, 1.0);
+        self.gram_valid = false;
         self.k.resize(n * m, 0.0);
         self.primary = if primary == 0 { m } else { primary };
     }
@@ -141,7 +150,7 @@ impl Dynamic {
         };
         let trace: f64 = (0..k).map(|i| block[i + i * k]).sum();
         if let Some(shift) = shift {
-            if shift > 1e-12 * trace && cholesky_solve(k, block, shift, v, &mut self.factor, y) {
+            if shift > 1e-12 * trace && cholesky_solve(k, block, shift, v, &mut self.factor, &mut self.first, y) {
                 return;
             }
         }
@@ -272,7 +281,7 @@ impl Dynamic {
         };
         if let Some(shift) = shift {
             let trace: f64 = (0..m2).map(|i| g[i + i * m2]).sum();
-            if !(shift > 1e-12 * trace && cholesky_solve(m2, g, shift, &self.r, &mut self.factor, y)) {
+            if !(shift > 1e-12 * trace && cholesky_solve(m2, g, shift, &self.r, &mut self.factor, &mut self.first, y)) {
                 symmetric_eigen(m2, g, &mut self.factor, &mut self.values, &mut self.vectors);
                 pinv_apply(m2, &self.values, &self.vectors, floor, &self.r, y);
             }
@@ -319,10 +328,40 @@ impl Algebra for Dynamic {
         for &r in &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]] {
             w[r] = j[r] * k;
         }
+        self.pending_k[i] = k;
     }
 
+    /// `A = Σ kᵢ² Jᵢ Jᵢᵀ` for the column factors `kᵢ` (1 for `plain`, else those of
+    /// [`Algebra::set_weighted`]). `A` is kept between calls for the same `J`: a call whose
+    /// factors differ from the last ones in a few columns (a limit mode's next round, which
+    /// locks a joint or two) only adds those columns' change, and one with the same factors
+    /// (Levenberg–Marquardt's retry) costs nothing.
     fn gram(&mut self, plain: bool) {
         let m = self.e.len();
+        if plain {
+            self.pending_k.fill(1.0);
+        }
+        if self.gram_valid {
+            for i in 0..self.pending_k.len() {
+                let (new, old) = (self.pending_k[i], self.gram_k[i]);
+                if new != old {
+                    let f = new * new - old * old;
+                    let col = &self.jacobian.as_slice()[i * m..(i + 1) * m];
+                    let rows = &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]];
+                    for (k, &c) in rows.iter().enumerate() {
+                        let x = f * col[c];
+                        for &r in &rows[k..] {
+                            self.a[r + c * m] += col[r] * x;
+                            if r != c {
+                                self.a[c + r * m] = self.a[r + c * m];
+                            }
+                        }
+                    }
+                    self.gram_k[i] = new;
+                }
+            }
+            return;
+        }
         let a = &mut self.a;
         a.fill(0.0);
         let w = if plain { &self.jacobian } else { &self.weighted };
@@ -341,6 +380,8 @@ impl Algebra for Dynamic {
                 a[c + r * m] = a[r + c * m];
             }
         }
+        self.gram_k.copy_from_slice(&self.pending_k);
+        self.gram_valid = true;
     }
 
     fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {

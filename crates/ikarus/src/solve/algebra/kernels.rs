@@ -3,16 +3,31 @@
 //! size allocate their results, and these run every iteration of a skeleton solve.
 
 /// Solves `(A + shift·I) y = v` for symmetric `A` by a Cholesky factorisation into `l`
-/// (`k × k`, overwritten; the factor is stored by rows, so that every inner product runs over
-/// contiguous memory). Returns `false`, leaving `y` unspecified, if `A + shift·I` is not
-/// positive definite (to rounding).
-pub(super) fn cholesky_solve(k: usize, a: &[f64], shift: f64, v: &[f64], l: &mut [f64], y: &mut [f64]) -> bool {
-    let (a, l, v, y) = (&a[..k * k], &mut l[..k * k], &v[..k], &mut y[..k]);
-    // L Lᵀ = A + shift I: row r of L in l[r k .. r k + r + 1].
+/// (`k × k`, overwritten; the factor is stored by rows). Returns `false`, leaving `y`
+/// unspecified, if `A + shift·I` is not positive definite (to rounding).
+///
+/// The factorisation works on `A`'s envelope: row `r` of the factor is zero left of row `r`'s
+/// first nonzero entry of `A` (`first`, work space of `k`), so a block-diagonal `A` — a rig's
+/// limbs that share no bone — costs only its blocks.
+pub(super) fn cholesky_solve(
+    k: usize,
+    a: &[f64],
+    shift: f64,
+    v: &[f64],
+    l: &mut [f64],
+    first: &mut [usize],
+    y: &mut [f64],
+) -> bool {
+    let (a, l, v, y, first) = (&a[..k * k], &mut l[..k * k], &v[..k], &mut y[..k], &mut first[..k]);
+    for (r, f) in first.iter_mut().enumerate() {
+        *f = (0..r).find(|&c| a[r + c * k] != 0.0).unwrap_or(r);
+    }
+    // L Lᵀ = A + shift I: row r of L in l[r k .. r k + r + 1], zero before first[r].
     for r in 0..k {
-        for c in 0..=r {
+        let fr = first[r];
+        for c in fr..=r {
             let mut s = a[r + c * k];
-            for p in 0..c {
+            for p in fr.max(first[c])..c {
                 s -= l[r * k + p] * l[c * k + p];
             }
             if c < r {
@@ -29,17 +44,17 @@ pub(super) fn cholesky_solve(k: usize, a: &[f64], shift: f64, v: &[f64], l: &mut
     // L z = v, then Lᵀ y = z.
     for r in 0..k {
         let mut s = v[r];
-        for p in 0..r {
+        for p in first[r]..r {
             s -= l[r * k + p] * y[p];
         }
         y[r] = s / l[r * k + r];
     }
     for r in (0..k).rev() {
-        let mut s = y[r];
-        for p in r + 1..k {
-            s -= l[p * k + r] * y[p];
+        y[r] /= l[r * k + r];
+        let yr = y[r];
+        for p in first[r]..r {
+            y[p] -= l[r * k + p] * yr;
         }
-        y[r] = s / l[r * k + r];
     }
     true
 }
@@ -167,14 +182,38 @@ mod tests {
             let a = random_spd(&mut rng, k, k);
             let v: Vec<f64> = (0..k).map(|_| rng.range(-1.0, 1.0)).collect();
             let (mut l, mut y) = (vec![0.0; k * k], vec![0.0; k]);
-            assert!(cholesky_solve(k, a.as_slice(), 0.1, &v, &mut l, &mut y));
+            let mut first = vec![0; k];
+            assert!(cholesky_solve(k, a.as_slice(), 0.1, &v, &mut l, &mut first, &mut y));
             let shifted = &a + DMatrix::identity(k, k) * 0.1;
             let r = shifted * nalgebra::DVector::from_column_slice(&y) - nalgebra::DVector::from_column_slice(&v);
             assert!(r.norm() < 1e-12, "k {k}: {}", r.norm());
         }
         // Not positive definite: refused.
         let a = [-1.0];
-        assert!(!cholesky_solve(1, &a, 0.0, &[1.0], &mut [0.0], &mut [0.0]));
+        assert!(!cholesky_solve(1, &a, 0.0, &[1.0], &mut [0.0], &mut [0], &mut [0.0]));
+    }
+
+    /// A block-diagonal matrix (its blocks interleaved with zeros) is solved as exactly as a
+    /// dense one.
+    #[test]
+    fn cholesky_on_an_envelope() {
+        let mut rng = SplitMix64(4);
+        let k = 9;
+        let mut a = random_spd(&mut rng, k, k);
+        for r in 0..k {
+            for c in 0..k {
+                if (r < 4) != (c < 4) || (r >= 4 && c >= 4 && (r < 6) != (c < 6)) {
+                    a[(r, c)] = 0.0;
+                }
+            }
+        }
+        let v: Vec<f64> = (0..k).map(|_| rng.range(-1.0, 1.0)).collect();
+        let (mut l, mut y, mut first) = (vec![f64::NAN; k * k], vec![0.0; k], vec![0; k]);
+        assert!(cholesky_solve(k, a.as_slice(), 0.01, &v, &mut l, &mut first, &mut y));
+        assert_eq!(&first[..], &[0, 0, 0, 0, 4, 4, 6, 6, 6]);
+        let shifted = &a + DMatrix::identity(k, k) * 0.01;
+        let r = shifted * nalgebra::DVector::from_column_slice(&y) - nalgebra::DVector::from_column_slice(&v);
+        assert!(r.norm() < 1e-12, "{}", r.norm());
     }
 
     #[test]
