@@ -7,8 +7,10 @@
 //   <solver> <goal_index> <nanoseconds> <iterations> <return_code> <q_0> ... <q_{n-1}>
 // all `lma` lines first, then all `nr_jl` lines (only for sets with joint
 // limits). A file with a `paths` field is a path file: LMA only, each sample
-// warm-started from the previous sample's answer. A malformed or unreadable goal file gives one line on stderr and
-// exit status 2. See README.md next to this file for the details.
+// warm-started from the previous sample's answer. A rig goal file (first line
+// `ikarus-rig-goals 1`) is solved by KDL's tree solver, one `tree` line per
+// target set (kdl_bench_tree.inc). A malformed or unreadable goal file gives one
+// line on stderr and exit status 2. See README.md next to this file for the details.
 
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -19,6 +21,10 @@
 #include <kdl/frames.hpp>
 #include <kdl/jntarray.hpp>
 #include <kdl/segment.hpp>
+#include <kdl/tree.hpp>
+#include <kdl/treefksolverpos_recursive.hpp>
+#include <kdl/treeiksolverpos_nr_jl.hpp>
+#include <kdl/treeiksolvervel_wdls.hpp>
 
 #include <Eigen/Core>
 
@@ -431,9 +437,17 @@ void print_records(const char* solver, const std::vector<SolveRecord>& records) 
 
 }  // namespace
 
+#include "kdl_bench_tree.inc"
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOALFILE\n", argv[0]);
+        return 2;
+    }
+    try {
+        if (is_rig_file(argv[1])) return run_rig(argv[1]);
+    } catch (const FormatError& e) {
+        std::fprintf(stderr, "kdl_bench: %s\n", e.message.c_str());
         return 2;
     }
 

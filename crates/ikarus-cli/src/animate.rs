@@ -16,6 +16,7 @@ use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
 use crate::report::{AnimateJson, deg_text};
+use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -28,22 +29,31 @@ pub enum AnimateFormat {
     Text,
 }
 
-/// What a motion is made of: the goal, the via points, the arm, the solver, the timing and
-/// the ease. Shared by `ikarus animate` and `ikarus render motion`.
+/// What a motion is made of: the goal, the via points, the arm (or rig), the solver, the
+/// timing and the ease. Shared by `ikarus animate` and `ikarus render motion`.
 #[derive(Debug, Args)]
 pub struct MotionArgs {
-    /// Goal position of the tip
-    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point)]
-    pub goal: [f64; 2],
+    /// Goal position of the tip; with --rig, NAME=X,Y[,DEG]: the tip of bone NAME at X,Y (and
+    /// pointing DEG degrees from +x), repeatable: the final goal set
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_goal,
+          required_unless_present = "rig")]
+    pub goal: Vec<GoalArg>,
     /// Goal orientation of the last link at the final goal, degrees from +x
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle)]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle, conflicts_with = "rig")]
     pub goal_angle: Option<f64>,
-    /// A point to pass through on the way, in order (repeat the flag for more)
-    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point)]
-    pub via: Vec<[f64; 2]>,
+    /// A point to pass through on the way, in order (repeat the flag for more); with --rig, a
+    /// goal set to pass through, NAME=X,Y[,DEG] goals separated by ';' (the pins hold in each)
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_via)]
+    pub via: Vec<ViaArg>,
     /// Arm file (TOML) [default: the built-in seed arm]
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
+    /// Rig file (TOML): a tree of named bones; the motion solves its goal sets (--via, then
+    /// --goal NAME=X,Y …, with --pin NAME held) in turn and eases the pose through them
+    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
+    pub rig: Option<PathBuf>,
+    #[command(flatten)]
+    pub rig_task: RigTaskArgs,
     #[command(flatten)]
     pub solver: SolverSettings,
     /// Number of frames of the motion [default: 60]
@@ -67,6 +77,41 @@ pub struct MotionArgs {
     /// Record a solver frame every K iterations for --from-solve [default: 1]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
+}
+
+/// A `--via`: an arm's point `X,Y`, or a rig's goal set `NAME=X,Y[,DEG][;NAME=X,Y[,DEG]…]`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ViaArg {
+    Point([f64; 2]),
+    Set(Vec<GoalArg>),
+}
+
+impl ViaArg {
+    /// The flag as written, for messages.
+    pub fn text(&self) -> String {
+        match self {
+            ViaArg::Point([x, y]) => format!("--via {x},{y}"),
+            ViaArg::Set(goals) => {
+                let parts: Vec<String> =
+                    goals.iter().map(|g| g.text().trim_start_matches("--goal ").to_owned()).collect();
+                format!("--via {}", parts.join(";"))
+            }
+        }
+    }
+}
+
+/// Parses `X,Y`, or goals `NAME=X,Y[,DEG]` separated by `;`.
+pub fn parse_via(s: &str) -> Result<ViaArg, String> {
+    if !s.contains('=') {
+        return parse_point(s).map(ViaArg::Point);
+    }
+    s.split(';')
+        .map(|part| match parse_goal(part.trim())? {
+            g @ GoalArg::Named { .. } => Ok(g),
+            GoalArg::Point(_) => Err(format!("'{}': expected NAME=X,Y[,DEG] in a goal set", part.trim())),
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(ViaArg::Set)
 }
 
 /// Solve for a goal and turn the result into a smooth, eased motion.
@@ -100,10 +145,19 @@ impl MotionArgs {
         // Solve for each via point, then the goal, each from the previous pose.
         let record = if self.from_solve { Some(self.record_every.unwrap_or(1)) } else { None };
         let options = arm.options(&self.solver, record)?;
-        let [x, y] = self.goal;
-        let goal = crate::goals::make_goal(x, y, self.goal_angle).map_err(CliError::input)?;
-        let goals = crate::motion::goals(&self.via, goal)
-            .map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
+        let goal = self.arm_goal()?;
+        let via = self
+            .via
+            .iter()
+            .map(|v| match v {
+                ViaArg::Point(p) => Ok(*p),
+                ViaArg::Set(_) => {
+                    Err(CliError::input(format!("{}: a goal set on named bones needs --rig FILE", v.text())))
+                }
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let goals =
+            crate::motion::goals(&via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))?;
         let start = arm.chain.start_pose().angles().to_vec();
         let interpolation = self.interpolation.unwrap_or_default();
         let from_solve = self.from_solve;
@@ -119,6 +173,25 @@ impl MotionArgs {
         }
         Ok(MotionRun { arm, goal, motion, fps: self.fps.unwrap_or(DEFAULT_FPS) })
     }
+
+    /// The one goal of an arm: `--goal X,Y` given once (with `--goal-angle`).
+    fn arm_goal(&self) -> Result<Goal, CliError> {
+        match &self.goal[..] {
+            [GoalArg::Point([x, y])] => crate::goals::make_goal(*x, *y, self.goal_angle).map_err(CliError::input),
+            [named @ GoalArg::Named { .. }] => {
+                Err(CliError::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
+            }
+            goals => Err(CliError::input(format!(
+                "--goal: an arm has one tip, so one --goal X,Y, got {} (points on the way are --via X,Y; several goals need --rig FILE)",
+                goals.len()
+            ))),
+        }
+    }
+
+    /// The timing the flags ask for.
+    pub fn timing(&self) -> Result<Timing, CliError> {
+        timing(self)
+    }
 }
 
 impl MotionRun {
@@ -129,6 +202,9 @@ impl MotionRun {
 }
 
 pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
+    if let Some(path) = &args.motion.rig {
+        return crate::rig_animate::run(args, path);
+    }
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let run = args.motion.run()?;
     let animation = &run.motion.motion.animation;
@@ -219,4 +295,22 @@ fn csv(w: &mut dyn Write, animation: &Animation, n: usize) -> std::io::Result<()
         writeln!(w)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_via_is_a_point_or_a_goal_set() {
+        assert_eq!(parse_via("1,-2"), Ok(ViaArg::Point([1.0, -2.0])));
+        let named = |bone: &str, x, y, angle_deg| GoalArg::Named { bone: bone.into(), x, y, angle_deg };
+        assert_eq!(parse_via("hand=1,2"), Ok(ViaArg::Set(vec![named("hand", 1.0, 2.0, None)])));
+        let set = parse_via("hand=1,2; foot=0,-1,90").unwrap();
+        assert_eq!(set, ViaArg::Set(vec![named("hand", 1.0, 2.0, None), named("foot", 0.0, -1.0, Some(90.0))]));
+        assert_eq!(set.text(), "--via hand=1,2;foot=0,-1,90");
+        assert_eq!(parse_via("1,2,3"), Err("expected two numbers X,Y, got 3 part(s)".into()));
+        assert_eq!(parse_via("hand=1,2;3,4"), Err("'3,4': expected NAME=X,Y[,DEG] in a goal set".into()));
+        assert_eq!(parse_via("hand=1,x"), Err("hand: y: 'x' is not a number".into()));
+    }
 }

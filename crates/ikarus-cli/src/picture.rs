@@ -66,6 +66,9 @@ pub enum Drawing<'a> {
     Ease(Ease),
     /// A rig in one pose, with its goals, pins and (optionally) limit wedges.
     Skeleton(ikarus_render::SkeletonFigure<'a>),
+    /// A rig's motion or track: the figure (its goals, pins, ranges) at the last frame's pose
+    /// (SVG, PNG), or at every frame's (GIF) at `fps`.
+    RigMotion { figure: ikarus_render::SkeletonFigure<'a>, animation: &'a Animation, fps: f64 },
 }
 
 /// Draws `drawing` as `format`, `width` × `height` pixels; `progress(done, total)` hears about
@@ -133,6 +136,18 @@ pub fn draw(
         }
         Drawing::Ease(ease) => ikarus_render::ease_svg(ease, width, height),
         Drawing::Skeleton(figure) => ikarus_render::skeleton_svg(figure, width, height),
+        Drawing::RigMotion { figure, animation, fps } if format == PictureFormat::Gif => {
+            return ikarus_render::skeleton_gif(figure, animation, width, height, *fps, progress)
+                .map_err(|e| render_failed(&e));
+        }
+        Drawing::RigMotion { figure, animation, .. } => match animation.frames.last() {
+            Some(last) => ikarus_render::skeleton_svg(
+                &ikarus_render::SkeletonFigure { pose: &last.angles, ..figure.clone() },
+                width,
+                height,
+            ),
+            None => return Err(render_failed(&"a motion without frames")),
+        },
     }
     .map_err(|e| render_failed(&e))?;
     match format {

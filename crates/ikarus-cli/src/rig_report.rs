@@ -38,6 +38,21 @@ pub struct EffectorJson<'a> {
     pub target: [f64; 2],
 }
 
+impl<'a> EffectorJson<'a> {
+    /// The JSON of effector `e` of a solve on `skeleton`.
+    pub fn of(skeleton: &'a ikarus::Skeleton, e: &ikarus::EffectorOutcome) -> Self {
+        EffectorJson {
+            name: skeleton.name(e.bone),
+            pinned: e.pinned,
+            status: e.status.as_str(),
+            error: e.error,
+            angle_error_deg: e.angle_error.to_degrees(),
+            tip: [e.tip.x, e.tip.y],
+            target: [e.target.x, e.target.y],
+        }
+    }
+}
+
 /// One rig solve: `ikarus solve --rig … --format json` and `POST /api/solve` with `rig`.
 #[derive(serde::Serialize)]
 pub struct RigSolveJson<'a> {
@@ -93,19 +108,7 @@ impl<'a> RigSolveReport<'a> {
             angle_error_deg: o.angle_error.to_degrees(),
             tolerance: self.options.tolerance,
             solve_us: self.micros,
-            effectors: o
-                .effectors
-                .iter()
-                .map(|e| EffectorJson {
-                    name: s.name(e.bone),
-                    pinned: e.pinned,
-                    status: e.status.as_str(),
-                    error: e.error,
-                    angle_error_deg: e.angle_error.to_degrees(),
-                    tip: [e.tip.x, e.tip.y],
-                    target: [e.target.x, e.target.y],
-                })
-                .collect(),
+            effectors: o.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
             angles_deg: ByName { names, values: degrees(o.pose.angles()) },
             joints: ByName { names, values: points(&tips(self.rig, o.pose.angles())) },
             frames: o

@@ -17,6 +17,7 @@ use crate::options::{named, parse_finite, parse_positive};
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command};
 use crate::report::{degrees, points};
+use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
 
 /// Samples of a shape unless `--samples` says otherwise.
@@ -48,6 +49,19 @@ pub struct TrackArgs {
     /// Arm file (TOML) [default: the built-in seed arm]
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
+    /// Rig file (TOML): the tip of bone --effector NAME follows the path, online (--mode
+    /// follow), while the rig's other --goal NAME=X,Y hold and its --pin NAME stay where they
+    /// start
+    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
+    pub rig: Option<PathBuf>,
+    /// With --rig: the bone whose tip follows the path
+    #[arg(long, value_name = "NAME", requires = "rig")]
+    pub effector: Option<String>,
+    /// With --rig: a goal held while the effector follows the path, NAME=X,Y[,DEG] (repeatable)
+    #[arg(long, value_name = "NAME=X,Y[,DEG]", allow_hyphen_values = true, value_parser = parse_goal, requires = "rig")]
+    pub goal: Vec<GoalArg>,
+    #[command(flatten)]
+    pub rig_task: RigTaskArgs,
     #[command(flatten)]
     pub solver: SolverSettings,
     /// The path as a CSV file: header `x,y` or `x,y,angle_deg`, one sample per row, used as given
@@ -69,9 +83,10 @@ pub struct TrackArgs {
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SAMPLES)]
     pub max_samples: usize,
     /// follow: online, every joint step within the bound; plan: a global search for the joint
-    /// path without flips (or with the smallest) and least motion
-    #[arg(long, value_parser = named::<TrackMode>(), default_value = "plan", hide_possible_values = false)]
-    pub mode: TrackMode,
+    /// path without flips (or with the smallest) and least motion [default: plan; with --rig,
+    /// follow, the only mode for a rig]
+    #[arg(long, value_parser = named::<TrackMode>(), hide_possible_values = false)]
+    pub mode: Option<TrackMode>,
     /// With --mode follow: bound the first sample too, a step of at most the bound from the start
     /// pose (by default it is placed at the solution nearest the start pose)
     #[arg(long)]
@@ -238,8 +253,15 @@ impl<'a> TrackJson<'a> {
                 }
             })
             .collect();
-        let s = &t.summary;
-        let summary = TrackSummaryJson {
+        let summary = TrackSummaryJson::new(&t.summary, job.options.max_step);
+        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
+    }
+}
+
+impl TrackSummaryJson {
+    /// The summary of a track whose flip bound was `max_step` radians.
+    pub fn new(s: &track::TrackSummary, max_step: f64) -> Self {
+        TrackSummaryJson {
             samples: s.samples,
             reached: s.reached,
             limited: s.limited,
@@ -247,28 +269,31 @@ impl<'a> TrackJson<'a> {
             stalled: s.stalled,
             flips: s.flips.len(),
             flip_samples: s.flips.clone(),
-            step_bound_deg: job.options.max_step.to_degrees(),
+            step_bound_deg: max_step.to_degrees(),
             max_step_deg: s.max_step.to_degrees(),
             max_error: s.max_error,
             max_velocity_deg_per_sample: s.max_velocity.to_degrees(),
             max_acceleration_deg_per_sample2: s.max_acceleration.to_degrees(),
             max_jerk_deg_per_sample3: s.max_jerk.to_degrees(),
-        };
-        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
+        }
     }
 }
 
 pub fn run(args: &TrackArgs) -> Result<(), CliError> {
+    if let Some(rig) = &args.rig {
+        return crate::rig_track::run(args, rig);
+    }
     let arm = Arm::load(args.arm.as_deref())?;
+    let mode = args.mode.unwrap_or(TrackMode::Plan);
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let path = cli_path(args)?;
     let solve = arm.options(&args.solver, None)?;
     let start = arm.chain.start_pose().angles().to_vec();
-    if args.bound_first && args.mode != TrackMode::Follow {
+    if args.bound_first && mode != TrackMode::Follow {
         return Err(CliError::input("--bound-first: only applies with --mode follow"));
     }
     let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
-    let job = TrackJob { arm: &arm, start, path, mode: args.mode, options };
+    let job = TrackJob { arm: &arm, start, path, mode, options };
     let t = job.run().map_err(CliError::input)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
@@ -302,7 +327,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
 }
 
 /// The path the flags ask for: a CSV file or a sampled shape.
-fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
+pub fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
     if let Some(file) = &args.path {
         let path = read_path(file)?;
         if path.len() > args.max_samples {
@@ -345,13 +370,18 @@ fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
 
 fn csv(w: &mut dyn Write, t: &Track) -> std::io::Result<()> {
     let n = t.samples.first().map_or(0, |s| s.angles.len());
+    csv_with(w, t, (1..=n).map(|i| format!("theta{i}_deg")).collect())
+}
+
+/// One row per sample, the angles under `angle_columns` (one per angle).
+pub fn csv_with(w: &mut dyn Write, t: &Track, angle_columns: Vec<String>) -> std::io::Result<()> {
     let oriented = t.samples.iter().any(|s| s.goal.orientation().is_some());
     let mut header = vec!["sample", "x", "y"].into_iter().map(str::to_owned).collect::<Vec<_>>();
     if oriented {
         header.push("angle_deg".to_owned());
     }
     header.extend(["status", "error", "step_deg"].map(str::to_owned));
-    header.extend((1..=n).map(|i| format!("theta{i}_deg")));
+    header.extend(angle_columns);
     writeln!(w, "{}", header.join(","))?;
     for (k, s) in t.samples.iter().enumerate() {
         let p = s.goal.target();

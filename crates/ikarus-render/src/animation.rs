@@ -50,7 +50,7 @@ pub fn with_interrupt<T>(interrupt: &Interrupt, f: impl FnOnce() -> T) -> T {
 }
 
 /// Fails when this thread's [`with_interrupt`] token is set.
-fn check_interrupt() -> Result<(), RenderError> {
+pub(crate) fn check_interrupt() -> Result<(), RenderError> {
     if INTERRUPT.with(|slot| slot.borrow().as_ref().is_some_and(Interrupt::is_interrupted)) {
         Err(RenderError::Encode { format: "gif", message: "interrupted".to_owned() })
     } else {
@@ -114,8 +114,15 @@ pub fn animation_gif(
 
     let painter = Painter::new(chain, animation, overlay, width, height)?;
     let palette = painter.learn_palette()?;
-    let delay = (100.0 / fps).round().max(2.0) as u16;
-    encode_gif(&painter, palette, delay, progress)
+    let delay = gif_delay(fps);
+    let mut trail = painter.trail();
+    let (width, height) = (painter.width, painter.height);
+    encode_gif(width, height, painter.len(), palette, delay, &mut |i| painter.rgba(i, &mut trail), progress)
+}
+
+/// The delay of a GIF frame at `fps`, in hundredths of a second: `round(100 / fps)`, at least 2.
+pub(crate) fn gif_delay(fps: f64) -> u16 {
+    (100.0 / fps).round().max(2.0) as u16
 }
 
 /// Paints the frames of an animation: the static layers once, the moving ones per frame.
@@ -212,28 +219,30 @@ impl<'a> Painter<'a> {
     }
 }
 
-/// The GIF of every frame `painter` paints, `delay` hundredths of a second each, looping:
-/// the first frame whole, each later one as its changes. `progress(done, total)` is called
-/// after each frame.
-fn encode_gif(
-    painter: &Painter,
+/// The GIF of `total` frames of `width` × `height` pixels, frame `i` painted as RGBA by
+/// `rgba(i)` (in order), `delay` hundredths of a second each, looping: the first frame whole,
+/// each later one as its changes. `progress(done, total)` is called after each frame. Shared
+/// by the arm's animations and the skeleton's ([`crate::skeleton_gif`]).
+pub(crate) fn encode_gif(
+    width: u32,
+    height: u32,
+    total: usize,
     mut palette: Palette,
     delay: u16,
+    rgba: &mut dyn FnMut(usize) -> Result<Vec<u8>, RenderError>,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Vec<u8>, RenderError> {
-    let total = painter.len();
     let mut bytes = Vec::new();
     {
         let encode = |e: gif::EncodingError| RenderError::Encode { format: "gif", message: e.to_string() };
         // check_size keeps both sides ≤ 4096, so they fit a GIF's 16-bit sizes.
-        let (w16, h16) = (painter.width as u16, painter.height as u16);
+        let (w16, h16) = (width as u16, height as u16);
         let mut encoder = Encoder::new(&mut bytes, w16, h16, &palette.rgb_table()).map_err(encode)?;
         encoder.set_repeat(Repeat::Infinite).map_err(encode)?;
         let (mut previous, mut current) = (Vec::new(), Vec::new());
-        let mut trail = painter.trail();
         for i in 0..total {
             check_interrupt()?;
-            let rgba = painter.rgba(i, &mut trail)?;
+            let rgba = rgba(i)?;
             palette.map_into(&rgba, &mut current);
             let mut frame = if i == 0 {
                 Frame::from_indexed_pixels(w16, h16, current.clone(), None)
@@ -262,7 +271,7 @@ const SAMPLE_PIXELS: usize = 1 << 19;
 /// Appends every k-th pixel of `rgba` (a picture `width` wide) to `out`, k the smallest step
 /// that keeps at most [`SAMPLE_PIXELS`], made odd and not a divisor of `width` so that the
 /// picked pixels do not line up in columns.
-fn thin_into(rgba: &[u8], width: u32, out: &mut Vec<u8>) {
+pub(crate) fn thin_into(rgba: &[u8], width: u32, out: &mut Vec<u8>) {
     let pixels = rgba.len() / 4;
     let mut step = pixels.div_ceil(SAMPLE_PIXELS).max(1);
     if step > 1 {

@@ -10,7 +10,8 @@
 //!   goal and a caption. [`ArmFigure::of_animation`] overlays a whole motion.
 //! - [`skeleton_svg`] / [`skeleton_png`]: a [`SkeletonFigure`] — a skeleton (a tree of bones)
 //!   at a pose, with the limits as wedges, goals for bone tips ([`BoneGoal`]), pins and names.
-//! - [`animation_gif`]: an animation as a looping GIF, one frame per animation frame.
+//! - [`animation_gif`]: an animation as a looping GIF, one frame per animation frame;
+//!   [`skeleton_gif`] the same for a skeleton's motion.
 //! - [`ease_svg`] / [`ease_png`]: an ease curve's position and velocity against time.
 //! - [`PathLayer`]: a tracked path over either (the wanted path, the tip's trace, flips).
 //! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
@@ -27,6 +28,7 @@ mod path;
 mod raster;
 mod scene;
 mod skeleton;
+mod skeleton_gif;
 mod style;
 mod svg;
 mod view;
@@ -39,5 +41,6 @@ pub use error::RenderError;
 pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
+pub use skeleton_gif::skeleton_gif;
 pub use style::{COLOURS, Colours};
 pub use view::{PixelRect, VIEW_PADDING, View};

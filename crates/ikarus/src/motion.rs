@@ -81,19 +81,23 @@ use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
 
-use crate::chain::Chain;
+#[cfg(test)]
+use crate::chain::Chain; // the tests below name it through `super::*`
 use crate::ease::Ease;
-use crate::kinematics::joint_positions;
 use crate::solve::Frames;
 
+mod body;
 mod options;
 mod path;
+mod rig;
 mod spline;
 mod through;
 mod timing;
 
+pub use body::Body;
 pub use options::{Interpolation, MotionOptions};
 use path::Path;
+pub use rig::{RigMotion, RigSolveOutcome, through_rig_tasks};
 use spline::Spline;
 pub use through::{GoalMotion, GoalMotionError, GoalOutcome, Route, through_goals};
 pub use timing::{MAX_FRAMES, Timing};
@@ -104,9 +108,11 @@ pub struct AnimationFrame {
     /// When the frame is shown: normalised time in [0, 1] for [`Timing::Frames`], seconds for
     /// [`Timing::Duration`].
     pub time: f64,
-    /// Joint angles, radians, base to tip.
+    /// Joint angles, radians, base to tip (a skeleton's: one per bone, in its order).
     pub angles: Vec<f64>,
-    /// Joint positions by forward kinematics of `angles`: base first, tip last (`N + 1` points).
+    /// Points by forward kinematics of `angles`, `N + 1` of them ([`Body::frame_points`]): a
+    /// chain's joint positions, base first, tip last; a skeleton's base, then every bone's tip
+    /// in the skeleton's order.
     pub joints: Vec<Point2<f64>>,
 }
 
@@ -289,14 +295,14 @@ pub enum MotionError {
 /// assert_eq!(last.joints.len(), 4); // base, two elbows, tip
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn animate(
-    chain: &Chain,
+pub fn animate<B: Body + ?Sized>(
+    body: &B,
     keyframes: &[Vec<f64>],
     times: Option<&[f64]>,
     timing: Timing,
     ease: Ease,
 ) -> Result<Animation, MotionError> {
-    animate_with(chain, keyframes, times, MotionOptions::new(timing, ease))
+    animate_with(body, keyframes, times, MotionOptions::new(timing, ease))
 }
 
 /// [`animate`] with every option: the timing, the ease and the [`Interpolation`].
@@ -318,8 +324,8 @@ pub fn animate(
 /// assert_ne!(spline.frames[10].angles, linear.frames[10].angles); // but round the corner differently
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn animate_with(
-    chain: &Chain,
+pub fn animate_with<B: Body + ?Sized>(
+    body: &B,
     keyframes: &[Vec<f64>],
     times: Option<&[f64]>,
     options: MotionOptions,
@@ -329,18 +335,18 @@ pub fn animate_with(
         return Err(MotionError::NoKeyframes);
     }
     for (index, key) in keyframes.iter().enumerate() {
-        check_pose(chain, "keyframes", index, key)?;
-        for (joint, (&value, limits)) in key.iter().zip(chain.limits()).enumerate() {
+        check_pose(body, "keyframes", index, key)?;
+        for (joint, (&value, limits)) in key.iter().zip(body.angle_limits()).enumerate() {
             if let Some(lim) = limits.filter(|lim| !lim.contains(value)) {
                 return Err(MotionError::OutsideLimits { index, joint, value, min: lim.min(), max: lim.max() });
             }
         }
     }
-    let path = Path::new(chain, keyframes.iter().map(Vec::as_slice), "keyframes")?;
+    let path = Path::new(body.angle_limits(), keyframes.iter().map(Vec::as_slice), "keyframes")?;
     if let Some(times) = times {
         check_times(times, keyframes.len(), options.timing.duration())?;
     }
-    Ok(build(chain, &path, times, options, n))
+    Ok(build(body, &path, times, options, n))
 }
 
 /// Re-times the frames a solve recorded into the frames of `timing`, eased by `ease`.
@@ -358,28 +364,42 @@ pub fn animate_with(
 /// Errors if nothing was recorded ([`SolveOptions::record_every`](crate::SolveOptions) was
 /// `None`), if the frames were recorded for a chain with a different number of joints, or if an
 /// angle is not finite.
-pub fn animate_solve(chain: &Chain, frames: &Frames, timing: Timing, ease: Ease) -> Result<Animation, MotionError> {
-    animate_solve_with(chain, frames, MotionOptions::new(timing, ease))
+pub fn animate_solve<B: Body + ?Sized>(
+    body: &B,
+    frames: &Frames,
+    timing: Timing,
+    ease: Ease,
+) -> Result<Animation, MotionError> {
+    animate_solve_with(body, frames, MotionOptions::new(timing, ease))
 }
 
 /// [`animate_solve`] with every option: the timing, the ease and the [`Interpolation`] of the
 /// path through the recorded poses.
-pub fn animate_solve_with(chain: &Chain, frames: &Frames, options: MotionOptions) -> Result<Animation, MotionError> {
+pub fn animate_solve_with<B: Body + ?Sized>(
+    body: &B,
+    frames: &Frames,
+    options: MotionOptions,
+) -> Result<Animation, MotionError> {
     let n = options.timing.frame_count()?;
     if frames.is_empty() {
         return Err(MotionError::NoRecordedFrames);
     }
     for (index, frame) in frames.iter().enumerate() {
-        check_pose(chain, "frames", index, frame.angles)?;
+        check_pose(body, "frames", index, frame.angles)?;
     }
-    let path = Path::new(chain, frames.iter().map(|f| f.angles), "frames")?;
-    Ok(build(chain, &path, None, options, n))
+    let path = Path::new(body.angle_limits(), frames.iter().map(|f| f.angles), "frames")?;
+    Ok(build(body, &path, None, options, n))
 }
 
 /// One finite angle per joint.
-fn check_pose(chain: &Chain, field: &'static str, index: usize, angles: &[f64]) -> Result<(), MotionError> {
-    if angles.len() != chain.len() {
-        return Err(MotionError::AngleCount { field, index, expected: chain.len(), got: angles.len() });
+fn check_pose<B: Body + ?Sized>(
+    body: &B,
+    field: &'static str,
+    index: usize,
+    angles: &[f64],
+) -> Result<(), MotionError> {
+    if angles.len() != body.angle_count() {
+        return Err(MotionError::AngleCount { field, index, expected: body.angle_count(), got: angles.len() });
     }
     match angles.iter().position(|a| !a.is_finite()) {
         Some(joint) => Err(MotionError::NonFiniteAngle { field, index, joint, value: angles[joint] }),
@@ -413,7 +433,13 @@ fn check_times(times: &[f64], keyframes: usize, duration: f64) -> Result<(), Mot
 /// The frames of a validated path: arc-length timing without `times`, eased time with them;
 /// along the spline unless the options ask for the polyline or the spline would be its single
 /// straight segment (then the frames are the polyline's, bit for bit).
-fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, options: MotionOptions, n: usize) -> Animation {
+fn build<B: Body + ?Sized>(
+    body: &B,
+    path: &Path,
+    times: Option<&[f64]>,
+    options: MotionOptions,
+    n: usize,
+) -> Animation {
     let MotionOptions { timing, ease, interpolation } = options;
     let spline = match (interpolation, times) {
         (Interpolation::Linear, _) => None,
@@ -422,7 +448,7 @@ fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, options: MotionOptio
     };
     let duration = timing.duration();
     let mut frames = Vec::with_capacity(n);
-    let mut angles = Vec::with_capacity(chain.len());
+    let mut angles = Vec::with_capacity(body.angle_count());
     for i in 0..n {
         let time = timing.time(i, n);
         if i == 0 {
@@ -444,7 +470,7 @@ fn build(chain: &Chain, path: &Path, times: Option<&[f64]>, options: MotionOptio
                 Some(spline) => spline.at(x, &mut angles),
             }
         }
-        let joints = joint_positions(chain, &angles);
+        let joints = body.frame_points(&angles);
         frames.push(AnimationFrame { time, angles: angles.clone(), joints });
     }
     Animation { frames, duration, ease }

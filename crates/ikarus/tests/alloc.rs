@@ -282,3 +282,31 @@ fn skeleton_solves_allocate_nothing() {
         }
     }
 }
+
+/// Issue 12: a skeleton's effector following a path — one rig solve per sample from the
+/// previous pose (and restarts near it), the step bounded, every effector measured —
+/// allocates nothing once its follower has taken a step, as a chain's follower.
+#[test]
+fn a_rig_follower_step_allocates_nothing() {
+    use ikarus::track::{Follower, Path, TrackOptions};
+    use ikarus::{Bone, Pin, RigTask, Skeleton};
+    let bones = [
+        Bone::new("trunk", 1.0, 1.5),
+        Bone::new("left_upper", 1.0, 1.2).with_parent("trunk"),
+        Bone::new("left_lower", 1.0, 0.3).with_parent("left_upper"),
+        Bone::new("right_upper", 1.0, -1.2).with_parent("trunk"),
+        Bone::new("right_lower", 1.0, -0.3).with_parent("right_upper"),
+    ];
+    let s = Skeleton::new([0.0, 0.0], &bones).unwrap();
+    let task = RigTask::new(vec![], vec![Pin::new(4)]);
+    let mut f = Follower::rig(&s, s.start_angles(), 2, &task, &TrackOptions::default()).unwrap();
+    let path = Path::circle([-1.3, 1.8], 0.3, 40).unwrap();
+    f.place(&path.goals()[0]); // warm-up
+    let (count, ()) = allocations_in(|| {
+        for goal in &path.goals()[1..] {
+            let step = f.step(goal);
+            assert!(step.error < 1e-5, "{step:?}");
+        }
+    });
+    assert_eq!(count, 0, "{count} allocations in 39 steps");
+}

@@ -6,11 +6,14 @@
 //! - [`judge`](mod@judge): how every solve is judged;
 //! - [`kdl`]: goal files and `kdl_bench`'s output;
 //! - [`table`]: text, Markdown and JSON output;
-//! - [`paths`]: `--paths`, the path benchmark (`follow`, `plan`, from scratch, KDL warm).
+//! - [`paths`]: `--paths`, the path benchmark (`follow`, `plan`, from scratch, KDL warm);
+//! - [`rigs`]: `--rigs`, whole rigs (the library's rig solve, the sequential-limb baseline,
+//!   KDL's tree solver).
 
 mod judge;
 mod kdl;
 mod paths;
+mod rigs;
 mod run;
 mod sets;
 mod table;
@@ -43,6 +46,15 @@ pub struct BenchArgs {
     /// limits off and on
     #[arg(long, conflicts_with_all = ["goals", "sets", "methods", "limit_modes", "write_goals"])]
     pub paths: bool,
+    /// Benchmark whole rigs instead of chains: seeded target sets made by forward kinematics of
+    /// random configurations inside the limits (the puppet's hands and feet; its hands with its
+    /// feet pinned; the hand's fingertips), solved by the library's rig solve, each limb in turn
+    /// as a chain, and (with --kdl) KDL's tree solver; --goals target sets per set
+    #[arg(long, conflicts_with_all = ["paths", "arms", "sets", "methods", "limit_modes", "write_goals"])]
+    pub rigs: bool,
+    /// With --rigs: the rig sets to benchmark
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "SET,…", default_values_t = rigs::set::RigSetName::ALL, requires = "rigs")]
+    pub rig_sets: Vec<rigs::set::RigSetName>,
     /// With --paths: paths per arm and limits setting
     #[arg(long, value_name = "N", default_value_t = 40, requires = "paths", value_parser = parse_at_least_one)]
     pub path_count: u32,
@@ -103,6 +115,9 @@ fn mode_names() -> PossibleValuesParser {
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     if args.paths {
         return paths::run(args);
+    }
+    if args.rigs {
+        return rigs::run(args);
     }
     // Everything that can be checked is checked before the (long) work starts.
     if let Some(path) = &args.kdl {

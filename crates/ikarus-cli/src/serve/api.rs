@@ -15,7 +15,8 @@ use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
-use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, TrackReq, WorkspaceReq};
+use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, WorkspaceReq};
+use super::rig_motion::{AnimateBody, TrackBody};
 use super::rig_requests::SolveBody;
 use super::{AppState, Limits};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
@@ -30,7 +31,7 @@ use crate::workspace::WorkspaceRequest;
 /// Frames recorded by a solve when `options.record_every` is not given (as `ikarus solve`).
 const SOLVE_RECORD_EVERY: u32 = 20;
 /// Most via points of a motion: each is one more solve of up to `--max-iterations`.
-const MAX_VIA: usize = 100;
+pub(super) const MAX_VIA: usize = 100;
 /// Most joint-space samples of a workspace.
 const MAX_SAMPLES: u32 = 1_000_000;
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
@@ -125,7 +126,11 @@ pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Res
     .await
 }
 
-pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<AnimateReq>) -> Result<Response, ApiError> {
+pub async fn animate(State(state): State<AppState>, body: AnimateBody) -> Result<Response, ApiError> {
+    let req = match body {
+        AnimateBody::Arm(req) => *req,
+        AnimateBody::Rig(req) => return super::rig_motion::animate(state, *req).await,
+    };
     let pool = state.pool.clone();
     pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
@@ -138,21 +143,20 @@ pub async fn animate(State(state): State<AppState>, ApiJson(req): ApiJson<Animat
 }
 
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
-pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq>) -> Result<Response, ApiError> {
+pub async fn track(State(state): State<AppState>, body: TrackBody) -> Result<Response, ApiError> {
+    let req = match body {
+        TrackBody::Arm(req) => *req,
+        TrackBody::Rig(req) => return super::rig_motion::track(state, *req).await,
+    };
     let pool = state.pool.clone();
     pool.run(move |interrupt| {
         let limits = &state.limits;
         let arm = load_arm(req.arm.clone(), limits)?;
         let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
-        let path = track_path(&req, limits)?;
-        let max_step_deg = req.max_step_deg.unwrap_or(DEFAULT_MAX_STEP_DEG);
-        if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
-            return Err(ApiError::invalid(format!(
-                "max_step_deg = {}: must be a finite number > 0",
-                ikarus::number::Num(max_step_deg)
-            )));
-        }
+        let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
+        let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
+        let max_step_deg = max_step_deg(req.max_step_deg)?;
         let mode = req.mode.unwrap_or(ikarus::TrackMode::Plan);
         if req.bound_first && mode != ikarus::TrackMode::Follow {
             return Err(ApiError::invalid("bound_first: only applies with mode follow"));
@@ -166,16 +170,33 @@ pub async fn track(State(state): State<AppState>, ApiJson(req): ApiJson<TrackReq
     .await
 }
 
-/// The path of a track request: its `path`, or its shape sampled at `samples` points.
-fn track_path(req: &TrackReq, limits: &Limits) -> Result<ikarus::Path, ApiError> {
+/// A track's `max_step_deg` (10 by default), > 0.
+pub(super) fn max_step_deg(value: Option<f64>) -> Result<f64, ApiError> {
+    let max_step_deg = value.unwrap_or(DEFAULT_MAX_STEP_DEG);
+    if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
+        return Err(ApiError::invalid(format!(
+            "max_step_deg = {}: must be a finite number > 0",
+            ikarus::number::Num(max_step_deg)
+        )));
+    }
+    Ok(max_step_deg)
+}
+
+/// The path of a track request: its `path`, or its shape (`line`, `circle`, `figure8`: one
+/// given) sampled at `samples` points.
+pub(super) fn track_path(
+    path: Option<&[[f64; 2]]>,
+    shapes: [Option<Shape>; 3],
+    samples: Option<usize>,
+    limits: &Limits,
+) -> Result<ikarus::Path, ApiError> {
     let cap = limits.max_samples;
-    let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
-    let given = usize::from(req.path.is_some()) + shapes.iter().flatten().count();
+    let given = usize::from(path.is_some()) + shapes.iter().flatten().count();
     if given != 1 {
         return Err(ApiError::invalid(format!("path, line, circle, figure8: give exactly one, got {given}")));
     }
-    if let Some(points) = &req.path {
-        if req.samples.is_some() {
+    if let Some(points) = path {
+        if samples.is_some() {
             return Err(ApiError::invalid("samples: only applies with line, circle or figure8"));
         }
         if points.len() > cap {
@@ -187,7 +208,7 @@ fn track_path(req: &TrackReq, limits: &Limits) -> Result<ikarus::Path, ApiError>
         return ikarus::Path::from_points(points).map_err(|e| ApiError::invalid(e.to_string()));
     }
     let shape = shapes.into_iter().flatten().next().expect("one shape, counted above");
-    let samples = req.samples.unwrap_or(DEFAULT_SAMPLES);
+    let samples = samples.unwrap_or(DEFAULT_SAMPLES);
     if samples > cap {
         return Err(ApiError::invalid(format!("samples = {samples}: more than the cap of {cap} (--max-samples)")));
     }
@@ -327,7 +348,7 @@ fn goal(g: &GoalReq, field: &str) -> Result<Goal, ApiError> {
     crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| ApiError::invalid(format!("{field}: {m}")))
 }
 
-fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, ApiError> {
+pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, ApiError> {
     let req = req.cloned().unwrap_or_default();
     choose_ease(req.kind, req.k1, req.k2, default).map_err(|p| match p {
         EaseProblem::KWithoutParent { k1 } => {
@@ -339,7 +360,12 @@ fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, ApiError> {
 }
 
 /// The motion's timing ([`crate::motion::timing`]); at most `--max-frames` frames.
-fn timing(frames: Option<u32>, duration: Option<f64>, fps: Option<f64>, limits: &Limits) -> Result<Timing, ApiError> {
+pub(super) fn timing(
+    frames: Option<u32>,
+    duration: Option<f64>,
+    fps: Option<f64>,
+    limits: &Limits,
+) -> Result<Timing, ApiError> {
     let timing = crate::motion::timing(frames, duration, fps).map_err(|p| match p {
         TimingProblem::Value { field, value, message } => ApiError::invalid(format!("{field} = {value}: {message}")),
         TimingProblem::Both => ApiError::invalid("frames, duration: give one or the other, not both"),
@@ -424,7 +450,7 @@ fn motion(
 
 /// Most values (frames × (joints + 4)) a motion `from_solve` may record over all its solves:
 /// each recorded pose is kept until the motion is timed. 4 million is about 100 MB at most.
-const MAX_RECORDED_VALUES: u64 = 4_000_000;
+pub(super) const MAX_RECORDED_VALUES: u64 = 4_000_000;
 /// Most values (frames × (joints + 4)) one `/api/solve` may record: every frame goes into the
 /// answer, about 60 bytes of JSON per value (1 million: about 60 MB of JSON at most).
 pub(super) const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;

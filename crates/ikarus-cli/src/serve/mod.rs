@@ -12,6 +12,7 @@ mod guard;
 mod meta;
 mod pool;
 mod requests;
+mod rig_motion;
 mod rig_requests;
 mod rigs;
 

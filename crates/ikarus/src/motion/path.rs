@@ -4,7 +4,7 @@
 use std::f64::consts::{PI, TAU};
 
 use super::MotionError;
-use crate::chain::Chain;
+use crate::limits::JointLimits;
 
 /// The polyline through the unwrapped keyframes.
 pub(super) struct Path {
@@ -17,13 +17,13 @@ pub(super) struct Path {
 }
 
 impl Path {
-    /// Unwraps validated poses and measures the path.
+    /// Unwraps validated poses (one angle per entry of `limits`) and measures the path.
     pub(super) fn new<'a>(
-        chain: &Chain,
+        limits: &[Option<JointLimits>],
         poses: impl ExactSizeIterator<Item = &'a [f64]>,
         field: &'static str,
     ) -> Result<Self, MotionError> {
-        let n = chain.len();
+        let n = limits.len();
         let mut keys = Vec::with_capacity(poses.len() * n);
         let mut cumulative = Vec::with_capacity(poses.len());
         for (index, pose) in poses.enumerate() {
@@ -33,7 +33,7 @@ impl Path {
                 continue;
             }
             let start = keys.len() - n;
-            for (joint, (&angle, limits)) in pose.iter().zip(chain.limits()).enumerate() {
+            for (joint, (&angle, limits)) in pose.iter().zip(limits).enumerate() {
                 let a = if limits.is_some() { angle } else { unwrap_near(angle, keys[start + joint]) };
                 keys.push(a);
             }

@@ -70,35 +70,48 @@ pub fn through_goals(
     route: Route,
     options: MotionOptions,
 ) -> Result<GoalMotion, GoalMotionError> {
+    let mut solves = Vec::with_capacity(goals.len());
+    let solve = |from: &[f64], goal: &Goal, out: &mut Outcome| solver.solve_into(chain, from, goal, out);
+    let record = |goal: &Goal, out: &Outcome| {
+        solves.push(GoalOutcome { goal: *goal, status: out.status, iterations: out.iterations, error: out.error });
+    };
+    let poses = solve_in_turn(start, goals, route, solve, record)?;
+    let animation = match solver.options().limits {
+        LimitMode::Ignore => animate_with(&chain.without_limits(), &poses, None, options)?,
+        _ => animate_with(chain, &poses, None, options)?,
+    };
+    Ok(GoalMotion { solves, animation })
+}
+
+/// Solves for each of `steps` in order, the first from `start` and each later one from the
+/// pose the previous solve ended at, telling `record` how each ended; returns the poses
+/// `route` names (the start and every solved pose, or the start and every recorded pose). The
+/// one loop of [`through_goals`] and [`through_rig_tasks`](super::through_rig_tasks).
+pub(super) fn solve_in_turn<T>(
+    start: &[f64],
+    steps: &[T],
+    route: Route,
+    mut solve: impl FnMut(&[f64], &T, &mut Outcome) -> Result<(), SolveError>,
+    mut record: impl FnMut(&T, &Outcome),
+) -> Result<Vec<Vec<f64>>, SolveError> {
     let mut keyframes = vec![start.to_vec()];
     let mut recorded: Vec<Vec<f64>> = vec![start.to_vec()];
-    let mut solves = Vec::with_capacity(goals.len());
     let mut outcome = Outcome::default();
-    for goal in goals {
+    for step in steps {
         let from = keyframes.last().expect("the start pose is a keyframe").clone();
-        solver.solve_into(chain, &from, goal, &mut outcome)?;
+        solve(&from, step, &mut outcome)?;
         // The solver's recorded path, without repeating the pose it started from (kept only
         // when the motion follows it: it can be large).
         if matches!(route, Route::Recorded) {
             recorded.extend(outcome.frames.iter().skip(1).map(|f| f.angles.to_vec()));
         }
         keyframes.push(outcome.pose.angles().to_vec());
-        solves.push(GoalOutcome {
-            goal: *goal,
-            status: outcome.status,
-            iterations: outcome.iterations,
-            error: outcome.error,
-        });
+        record(step, &outcome);
     }
-    let poses = match route {
-        Route::Keyframes => &keyframes,
-        Route::Recorded => &recorded,
-    };
-    let animation = match solver.options().limits {
-        LimitMode::Ignore => animate_with(&chain.without_limits(), poses, None, options)?,
-        _ => animate_with(chain, poses, None, options)?,
-    };
-    Ok(GoalMotion { solves, animation })
+    Ok(match route {
+        Route::Keyframes => keyframes,
+        Route::Recorded => recorded,
+    })
 }
 
 #[cfg(test)]

@@ -3,12 +3,13 @@
 
 use crate::chain::Chain;
 use crate::goal::Goal;
-use crate::kinematics::end_effector;
 use crate::rng::SplitMix64;
-use crate::solve::{Outcome, Solver, Status};
+use crate::skeleton::Skeleton;
+use crate::solve::{Outcome, RigTask, Solver, Status};
 
 use super::{
-    Path, SampleStatus, Track, TrackError, TrackOptions, TrackSample, bounds, joint_delta, joint_step, unwrap_free,
+    Path, RigEffector, SampleStatus, Track, TrackBody, TrackError, TrackOptions, TrackSample, joint_delta, joint_step,
+    unwrap_free,
 };
 
 /// What one [`Follower`] step did; the pose is [`Follower::pose`].
@@ -29,11 +30,14 @@ pub struct Step {
 /// current pose, the solution nearest it taken, and no joint moved more than
 /// [`TrackOptions::max_step`] per call of [`Follower::step`].
 ///
-/// It owns its chain, solver and buffers: after the first step, a step allocates nothing.
+/// It owns its body, solver and buffers: after the first step, a step allocates nothing.
 /// The same goals from the same pose give the same poses, bit for bit.
+///
+/// The body is a [`Chain`] (the default: its tip follows) or a [`RigEffector`] (one bone tip
+/// of a skeleton follows while the rest of a rig task holds; [`Follower::rig`]).
 #[derive(Debug, Clone)]
-pub struct Follower {
-    chain: Chain,
+pub struct Follower<B: TrackBody = Chain> {
+    body: B,
     options: TrackOptions,
     solver: Solver,
     pose: Vec<f64>,
@@ -45,13 +49,36 @@ pub struct Follower {
     count: u64,
 }
 
-impl Follower {
-    /// A follower of `chain` at the pose `start` (radians, one per joint).
-    pub fn new(chain: &Chain, start: &[f64], options: &TrackOptions) -> Result<Self, TrackError> {
-        let solver = options.solver(chain, start)?;
-        let n = chain.len();
+impl Follower<RigEffector> {
+    /// A follower of the tip of `bone` of `skeleton` at the pose `start` (radians, one per
+    /// bone), the goals and pins of `task` held (see [`RigEffector`]).
+    pub fn rig(
+        skeleton: &Skeleton,
+        start: &[f64],
+        bone: usize,
+        task: &RigTask,
+        options: &TrackOptions,
+    ) -> Result<Self, TrackError> {
+        Follower::new(&RigEffector::new(skeleton, start, bone, task)?, start, options)
+    }
+}
+
+impl Follower<Chain> {
+    /// The chain followed.
+    #[must_use]
+    pub fn chain(&self) -> &Chain {
+        &self.body
+    }
+}
+
+impl<B: TrackBody> Follower<B> {
+    /// A follower of `body` (a chain, or a [`RigEffector`]) at the pose `start` (radians, one
+    /// per joint).
+    pub fn new(body: &B, start: &[f64], options: &TrackOptions) -> Result<Self, TrackError> {
+        let solver = body.track_solver(options, start)?;
+        let n = body.angle_count();
         Ok(Self {
-            chain: chain.clone(),
+            body: body.clone(),
             options: options.clone(),
             solver,
             pose: start.to_vec(),
@@ -68,10 +95,10 @@ impl Follower {
         &self.pose
     }
 
-    /// The chain followed.
+    /// The body followed.
     #[must_use]
-    pub fn chain(&self) -> &Chain {
-        &self.chain
+    pub fn body(&self) -> &B {
+        &self.body
     }
 
     /// Moves the arm toward `goal`: to the solution nearest the current pose if no joint
@@ -89,7 +116,7 @@ impl Follower {
 
     fn advance(&mut self, goal: &Goal, bounded: bool) -> Step {
         let status = self.solve_near(goal);
-        let bounds = bounds(&self.chain, &self.options.solve);
+        let bounds = self.body.track_bounds(&self.options.solve);
         unwrap_free(bounds, &mut self.best, &self.pose);
         let largest = joint_step(bounds, &self.best, &self.pose);
         let max_step = self.options.max_step;
@@ -105,37 +132,35 @@ impl Follower {
             (status, largest)
         };
         self.count += 1;
-        let tip = end_effector(&self.chain, &self.pose);
-        let error = (goal.target() - tip.position).norm();
-        let angle_error = goal.orientation().map_or(0.0, |g| crate::angle::wrap_angle(g - tip.orientation).abs());
+        let (error, angle_error) = self.body.errors(&self.pose, goal);
         Step { status, error, angle_error, step }
     }
 
     /// Solves for `goal` from the current pose and, if that does not reach it, from seeded
     /// poses near it; leaves the best solution in `self.best` and returns its status.
     fn solve_near(&mut self, goal: &Goal) -> SampleStatus {
-        let chain = &self.chain;
+        let body = &mut self.body;
         let opts = &self.options;
-        if self.solver.solve_into(chain, &self.pose, goal, &mut self.out).is_err() {
-            // The chain, pose and options were checked when the follower was built.
+        if body.solve_from(&mut self.solver, &self.pose, goal, &mut self.out).is_err() {
+            // The body, pose and options were checked when the follower was built.
             self.best.copy_from_slice(&self.pose);
             return SampleStatus::Stalled;
         }
         self.best.copy_from_slice(self.out.pose.angles());
         let mut status = self.out.status;
         let tolerance = opts.solve.tolerance;
-        if status == Status::Reached || goal.is_out_of_reach(chain, tolerance) {
+        if status == Status::Reached || body.out_of_reach(goal, tolerance) {
             return SampleStatus::from_solve(status);
         }
         let mut best_error = task_error(opts, &self.out);
         let (attempts, seed) = (opts.solve.restarts.map_or(0, |r| r.attempts), opts.seed());
-        let bounds = bounds(chain, &opts.solve);
         for k in 1..=attempts {
             let mut rng = SplitMix64(seed ^ self.count.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ u64::from(k) << 32);
+            let bounds = body.track_bounds(&opts.solve);
             for (i, (s, &q)) in self.seed_pose.iter_mut().zip(&self.pose).enumerate() {
                 *s = bounds.clamp(i, q + opts.radius * (2.0 * rng.unit() - 1.0));
             }
-            if self.solver.solve_into(chain, &self.seed_pose, goal, &mut self.out).is_err() {
+            if body.solve_from(&mut self.solver, &self.seed_pose, goal, &mut self.out).is_err() {
                 break;
             }
             let error = task_error(opts, &self.out);
@@ -162,7 +187,36 @@ fn task_error(opts: &TrackOptions, out: &Outcome) -> f64 {
 /// by [`Follower::step`]. No step after the first exceeds [`TrackOptions::max_step`], so a
 /// follow has no flips.
 pub fn follow(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -> Result<Track, TrackError> {
-    let mut follower = Follower::new(chain, start, options)?;
+    follow_with(Follower::new(chain, start, options)?, path, options)
+}
+
+/// [`follow`] for one effector of a skeleton: the tip of `bone` follows `path` from `start`
+/// (radians, one per bone), each sample solved from the previous pose, while the goals of
+/// `task` hold and its pins stay where they are at `start` (see [`RigEffector`]). The same
+/// method as a chain's: warm-started, restarts near the previous pose, no bone turning more
+/// than [`TrackOptions::max_step`] per sample after the first. A sample's `error` is the
+/// largest effector error, and its status the whole solve's.
+///
+/// # Errors
+/// As [`follow`], and a task that does not fit the skeleton, or a method that solves chains
+/// only ([`SolveError::ChainOnly`](crate::SolveError::ChainOnly)).
+pub fn follow_rig(
+    skeleton: &Skeleton,
+    start: &[f64],
+    bone: usize,
+    task: &RigTask,
+    path: &Path,
+    options: &TrackOptions,
+) -> Result<Track, TrackError> {
+    follow_with(Follower::rig(skeleton, start, bone, task, options)?, path, options)
+}
+
+/// The samples of `path` followed by `follower`, from its pose.
+fn follow_with<B: TrackBody>(
+    mut follower: Follower<B>,
+    path: &Path,
+    options: &TrackOptions,
+) -> Result<Track, TrackError> {
     let mut samples = Vec::with_capacity(path.len());
     for (k, goal) in path.goals().iter().enumerate() {
         if crate::interrupt::is_set(options.solve.interrupt.as_ref()) {
@@ -179,5 +233,5 @@ pub fn follow(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions)
             step: if placed { 0.0 } else { step.step },
         });
     }
-    Ok(Track::new(samples, bounds(chain, &options.solve), options.max_step))
+    Ok(Track::new(samples, follower.body.track_bounds(&options.solve), options.max_step))
 }

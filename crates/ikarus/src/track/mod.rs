@@ -65,11 +65,14 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod body;
 mod follow;
 mod path;
 mod plan;
 mod result;
 
+#[cfg(test)]
+mod rig_tests;
 #[cfg(test)]
 mod tests;
 
@@ -81,7 +84,8 @@ use crate::chain::Chain;
 use crate::limits::Bounds;
 use crate::solve::{LimitMode, OptionsError, SolveError, SolveOptions, Solver};
 
-pub use follow::{Follower, Step, follow};
+pub use body::{RigEffector, TrackBody};
+pub use follow::{Follower, Step, follow, follow_rig};
 pub use path::{Path, PathError, PointError};
 pub use plan::plan;
 pub use result::{SampleStatus, Track, TrackSample, TrackSummary, is_flip};
