@@ -8,7 +8,7 @@ import { saveBlob } from "./files.js";
 const KEY = "ikarus.arm";
 
 /** POSTs `body` to `path` and resolves with the answer's text; a refusal is a Notice with the server's message. */
-async function postText(path, body, type) {
+export async function postText(path, body, type) {
   const res = await fetch(path, { method: "POST", headers: { "content-type": type }, body });
   if (res.ok) return res.text();
   let message = `${path}: HTTP ${res.status}`;

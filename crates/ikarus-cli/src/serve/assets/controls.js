@@ -3,6 +3,8 @@
 // fields, the links table, and the arm as a request sends it. It owns no state: the page's state
 // lives in main.js, and the links table reports its edits through callbacks.
 
+import { solvesRigs } from "./rig.js";
+
 const $ = (id) => document.getElementById(id);
 
 /** Limit modes the select offers: every one but "ignore", which is the limits checkbox turned off. */
@@ -35,19 +37,23 @@ export function fillSelects(meta) {
   $("max-iterations").value = String(d.max_iterations);
 }
 
-/** Whether `method` (a /api/meta method) solves an arm of `links` links, with or without an orientation goal. */
-export const methodApplies = (method, links, orientation) =>
-  !method.shapes || method.shapes.some(([n, o]) => n === links && o === orientation);
+/**
+ * Whether `method` (a /api/meta method) solves an arm of `links` links, with or without an
+ * orientation goal; with `rig`, whether it solves rigs (rig.js's solvesRigs).
+ */
+export const methodApplies = (method, links, orientation, rig = false) =>
+  rig ? solvesRigs(method) : !method.shapes || method.shapes.some(([n, o]) => n === links && o === orientation);
 
 /**
  * Offers only the methods that solve this arm (the closed form: two links, or three with a goal
- * angle); a method that no longer applies gives way to the default. Returns the method shown.
+ * angle), or with `rig` those that solve rigs; a method that no longer applies gives way to the
+ * default. Returns the method shown.
  */
-export function syncMethods(meta, links, orientation) {
+export function syncMethods(meta, links, orientation, rig = false) {
   const select = $("method");
   for (const option of select.options) {
     const m = meta.methods.find((x) => x.name === option.value);
-    const ok = methodApplies(m, links, orientation);
+    const ok = methodApplies(m, links, orientation, rig);
     option.hidden = !ok;
     option.disabled = !ok;
   }

@@ -25,6 +25,8 @@ export const COLORS = {
   joints: ["#4e79a7", "#76b7b2", "#b07aa1", "#9c755f", "#8cb369"],
   // The via points: the pictures have none, so this one is the page's own.
   via: "#7b3fa0",
+  // A pinned effector of a rig (ikarus-render's style.rs PIN).
+  pin: "#2b6cb0",
 };
 
 /** Takes the colours of /api/meta's `palette` (names as in COLORS). */
@@ -108,7 +110,7 @@ function drawVia(ctx, view, via) {
   });
 }
 
-function drawGrid(ctx, view) {
+export function drawGrid(ctx, view) {
   const { w, h } = view;
   ctx.fillStyle = COLORS.plot;
   ctx.fillRect(0, 0, w, h);
@@ -197,27 +199,34 @@ function drawRanges(ctx, view, state) {
   let heading = 0;
   state.arm.links.forEach((link, i) => {
     const angle = state.pose_deg[i] ?? link.angle_deg;
-    if (link.limits_deg) {
-      const [px, py] = toCanvas(view, ...state.joints[i]);
-      const r = Math.min(Math.max(link.length * view.scale * 0.4, 14), 46);
-      const lo = ((heading + link.limits_deg[0]) * Math.PI) / 180;
-      const hi = ((heading + link.limits_deg[1]) * Math.PI) / 180;
-      // World angles turn counter-clockwise; the canvas's y points down, so they are negated.
-      ctx.beginPath();
-      ctx.moveTo(px, py);
-      ctx.arc(px, py, r, -hi, -lo);
-      ctx.closePath();
-      ctx.globalAlpha = 0.1;
-      ctx.fillStyle = COLORS.ink;
-      ctx.fill();
-      ctx.globalAlpha = 0.45;
-      ctx.strokeStyle = COLORS.ink;
-      ctx.lineWidth = 1;
-      ctx.stroke();
-      ctx.globalAlpha = 1;
-    }
+    if (link.limits_deg) drawWedge(ctx, view, state.joints[i], heading, link.limits_deg, link.length);
     heading += angle;
   });
+}
+
+/**
+ * A joint's range as a wedge at `at` (world): from the direction `heading` (degrees, the
+ * parent's) turned by `limits` [min, max], its radius a share of the link's `length` on screen,
+ * at most `most` pixels.
+ */
+export function drawWedge(ctx, view, at, heading, limits, length, most = 46) {
+  const [px, py] = toCanvas(view, ...at);
+  const r = Math.min(Math.max(length * view.scale * 0.4, 14), most);
+  const lo = ((heading + limits[0]) * Math.PI) / 180;
+  const hi = ((heading + limits[1]) * Math.PI) / 180;
+  // World angles turn counter-clockwise; the canvas's y points down, so they are negated.
+  ctx.beginPath();
+  ctx.moveTo(px, py);
+  ctx.arc(px, py, r, -hi, -lo);
+  ctx.closePath();
+  ctx.globalAlpha = 0.1;
+  ctx.fillStyle = COLORS.ink;
+  ctx.fill();
+  ctx.globalAlpha = 0.45;
+  ctx.strokeStyle = COLORS.ink;
+  ctx.lineWidth = 1;
+  ctx.stroke();
+  ctx.globalAlpha = 1;
 }
 
 function drawReach(ctx, view, arm) {
@@ -263,7 +272,7 @@ function drawArm(ctx, view, joints, alpha = 1, width = 7) {
   ctx.globalAlpha = 1;
 }
 
-function drawBase(ctx, view, arm) {
+export function drawBase(ctx, view, arm) {
   const [px, py] = toCanvas(view, ...(arm.base || [0, 0]));
   ctx.fillStyle = COLORS.ink;
   ctx.beginPath();
@@ -278,7 +287,7 @@ function drawBase(ctx, view, arm) {
 }
 
 /** The goal: a red target, with an arrow along the wanted heading when a goal angle is set. */
-function drawGoal(ctx, view, goal) {
+export function drawGoal(ctx, view, goal) {
   if (!goal) return;
   const angleDeg = goal.angle_deg;
   const [px, py] = toCanvas(view, goal.x, goal.y);

@@ -5,6 +5,7 @@
 // same calls as SVG elements.
 
 import { drawScene } from "./draw.js";
+import { drawRigScene, rigView } from "./drawrig.js";
 import { fitView } from "./view.js";
 
 /** The side of a downloaded figure, CSS pixels. */
@@ -102,9 +103,10 @@ export function svgContext(w, h) {
   return ctx;
 }
 
-/** The scene of `state` drawn on `ctx` at `side` × `side` (the view fitted to that size). */
+/** The scene of `state` (the rig when one is shown, else the arm) drawn on `ctx` at `side` × `side` (the view fitted to that size). */
 function drawFigure(ctx, state, side) {
-  drawScene(ctx, fitView(state.arm, side, side), state);
+  if (state.rig) drawRigScene(ctx, rigView(state, side, side), state);
+  else drawScene(ctx, fitView(state.arm, side, side), state);
 }
 
 /** The figure as SVG text. */

@@ -18,15 +18,16 @@ export function wireInput(canvas, state, act) {
     return toWorld(state.view, ev.clientX - r.left, ev.clientY - r.top);
   };
 
+  // A rig on the canvas has its own pointer (rigs.js): these are the arm's.
   canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.arm || ev.button !== 0) return;
+    if (!state.arm || state.rig || ev.button !== 0) return;
     state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
     if (state.drawPath) act.startStroke(...eventWorld(ev));
   });
 
   canvas.addEventListener("pointermove", (ev) => {
-    if (!state.arm) return;
+    if (!state.arm || state.rig) return;
     const press = state.press;
     if (state.drawPath) {
       if (press) act.extendStroke(...eventWorld(ev));
@@ -63,7 +64,7 @@ export function wireInput(canvas, state, act) {
   });
 
   canvas.addEventListener("keydown", (ev) => {
-    if (!state.arm) return;
+    if (!state.arm || state.rig) return;
     const tip = state.joints[state.joints.length - 1];
     const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
     if (g) {

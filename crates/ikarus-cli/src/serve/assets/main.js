@@ -5,13 +5,17 @@
 // reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
 // motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
 // traces paths (track.js, with the pure parts in paths.js), edits the arm (links.js, with arm
-// files in armfile.js) or saves files (files.js, with the figures drawn by export.js).
+// files in armfile.js), shows and solves a rig instead of the arm (rigs.js, with the pure parts
+// in rig.js and the drawing in drawrig.js) or saves files (files.js, with the figures drawn by
+// export.js).
 
 import * as api from "./api.js";
 import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
 import { storedArm } from "./armfile.js";
 import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
+import { drawRigScene, rigView } from "./drawrig.js";
+import { wireRigs } from "./rigs.js";
 import { areaOutline } from "./view.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
@@ -79,6 +83,9 @@ const state = {
   via: [],
   // The pointer press on the canvas: {x, y, dragging}.
   press: null,
+  // The rig the canvas shows and solves instead of the arm, or null (rigs.js's newRigState
+  // documents its fields). The arm stays in `arm` meanwhile and comes back as it was.
+  rig: null,
   // Work in flight. A sequence number is bumped by each new motion so that a stale answer is
   // dropped; following keeps one request in flight and only the latest goal waiting, asked again
   // (followChases times) while the bound holds the arm back.
@@ -115,6 +122,18 @@ const armEditor = wireArm(state, {
   clearPaths: () => paths.clear(),
   forgetMotion,
   showError,
+});
+
+/** The Body list and the rig's pointer (rigs.js). */
+const rigs = wireRigs(state, canvas, {
+  forgetMotion,
+  controlsChanged,
+  fieldsOk,
+  draw,
+  requestDraw,
+  showError,
+  setStatus,
+  say: (text) => ($("stats").textContent = text),
 });
 
 // ---- Messages and status ------------------------------------------------------------------
@@ -196,6 +215,12 @@ function setStats(s) {
 function draw() {
   if (!state.arm) return;
   fitCanvas(canvas, ctx);
+  if (state.rig) {
+    state.view = rigView(state, canvas.clientWidth, canvas.clientHeight);
+    drawRigScene(ctx, state.view, state);
+    canvas.dataset.pose = state.rig.pose_deg.map((a) => a.toFixed(6)).join(" ");
+    return;
+  }
   state.view = fitView(state.arm, canvas.clientWidth, canvas.clientHeight);
   drawScene(ctx, state.view, state);
   // The pose drawn, for scripts and tests: joint angles in degrees.
@@ -381,7 +406,7 @@ function refreshWorkspace() {
 /** Brings the fields in line with each other and reads the settings of the next requests. */
 function applyControls() {
   if (state.meta) {
-    syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked);
+    syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked, !!state.rig);
     syncLimitModes(state.meta, state.limitModeChoice);
   }
   syncEnabled();
@@ -394,6 +419,8 @@ function controlsChanged() {
   recheck();
   timeline.sync();
   requestDraw();
+  // A rig's goals are solved again with the new settings.
+  if (state.rig) rigs.resolve();
 }
 
 /** A new arm: no motion, goal, via points or replay of the old one. */
@@ -411,6 +438,10 @@ function forgetMotion() {
 }
 
 function resetPose() {
+  if (state.rig) {
+    rigs.reset();
+    return;
+  }
   cancelMotion();
   paths.clear();
   state.goal = null;
@@ -488,7 +519,7 @@ function wire() {
 async function init() {
   wire();
   try {
-    const [meta, arm] = await Promise.all([api.meta(), api.defaultArm()]);
+    const [meta, arm] = await Promise.all([api.meta(), api.defaultArm(), rigs.load()]);
     state.meta = meta;
     usePalette(meta.palette);
     state.limitModeChoice = meta.default_limit_mode;
@@ -518,6 +549,8 @@ window.ikarus = {
   followTo: (x, y) => fieldsOk() && paths.followTo(x, y),
   traceShape: (kind) => fieldsOk() && paths.traceShape(kind),
   resetPose,
+  /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
+  rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },
   /** The timeline's playback duration, seconds. */
   duration: () => timeline.duration(),
   /** Client coordinates of a world point, for clicking on it. */

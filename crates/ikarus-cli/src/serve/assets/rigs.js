@@ -1,0 +1,322 @@
+// Rigs on the page: choosing what the canvas solves (the arm, a shipped rig from GET /api/rigs,
+// or a rig file read by POST /api/rig/parse), and the rig's pointer: a press on a bone's tip
+// grabs it, a drag moves its goal and the whole rig follows (POST /api/solve with `rig`, one
+// request in flight, always from the pose shown, and only the latest goals wait: latest wins),
+// a click (no drag) pins or unpins the tip. Goals stay where they were dragged, so several
+// effectors hold their goals at once, until "Clear goals" (or Esc on the canvas) drops them;
+// pins stay until clicked again or "Unpin all". The pure parts are rig.js; the drawing is
+// drawrig.js. It writes `state.rig` (below) and tells main.js through `act`.
+
+import * as api from "./api.js";
+import { postText } from "./armfile.js";
+import { dragGoal, answerPose, rigForward, rigSolveRequest, rigSummary, shownEffectors, tipAt, togglePin } from "./rig.js";
+import { isDrag, toCanvas, toWorld } from "./view.js";
+
+const $ = (id) => document.getElementById(id);
+
+/**
+ * A fresh `state.rig` for `rig` (a rig file's JSON: {name, base, bones: [{name, parent, length,
+ * angle_deg, limits_deg}]}):
+ *   rig        the rig;  source  where it came from ("rig:puppet", "file")
+ *   pose_deg   the pose shown (degrees, bone order); starts, tips, headings, parentHeadings: its
+ *              forward kinematics (rig.js's rigForward)
+ *   goals      Map bone name -> {x, y}, in the order they were made;  pins  Set of bone names
+ *   grabbed    the bone being dragged, or null;  hover  the effector under the pointer, or null
+ *   busy       a solve is in flight;  pending  the goals changed since it left (ask again)
+ *   answer     the last /api/solve answer;  request  its request;  solves  answers received
+ */
+function newRigState(rig, source) {
+  const r = {
+    rig,
+    source,
+    pose_deg: rig.bones.map((b) => b.angle_deg),
+    goals: new Map(),
+    pins: new Set(),
+    grabbed: null,
+    hover: null,
+    busy: false,
+    pending: false,
+    answer: null,
+    request: null,
+    solves: 0,
+  };
+  return Object.assign(r, rigForward(rig, r.pose_deg));
+}
+
+/**
+ * Wires the Body fieldset and the rig's pointer on `canvas`. `act` is {forgetMotion(),
+ * controlsChanged(), fieldsOk(point), draw(), requestDraw(), showError(e), setStatus(s),
+ * say(text)}. Returns {load() (the shipped rigs into the list), use(value), reset(), resolve(),
+ * settled()}.
+ */
+export function wireRigs(state, canvas, act) {
+  /** The rigs the list offers by value ("rig:puppet", "file"). */
+  const rigs = new Map();
+  /** The limits checkbox of the arm, given back when the arm returns (a rig turns limits on). */
+  let armLimits = null;
+
+  const names = () => state.rig.rig.bones.map((b) => b.name);
+
+  function show(text) {
+    act.say(text);
+  }
+
+  function idle() {
+    const r = state.rig;
+    act.setStatus("ready");
+    show(`rig ${r.rig.name || "rig"} · ${r.rig.bones.length} bones · drag an effector, click one to pin it`);
+  }
+
+  /** The rig `value` of the list (or the arm): the canvas solves it from its start pose. */
+  function use(value) {
+    const select = $("body-kind");
+    if (value === "arm") {
+      if (!state.rig) return;
+      state.rig = null;
+      document.body.classList.remove("rig");
+      delete document.body.dataset.failed;
+      if (armLimits !== null) $("limits").checked = armLimits;
+      armLimits = null;
+      const hint = $("hint");
+      hint.textContent = state.drawPath ? hint.dataset.drawing : hint.dataset.normal;
+      select.value = "arm";
+      act.forgetMotion();
+      act.showError(null);
+      act.controlsChanged();
+      act.requestDraw();
+      return;
+    }
+    const rig = rigs.get(value);
+    if (!rig) return;
+    act.forgetMotion();
+    if (!state.rig) {
+      // A rig is a body with joint ranges: it is solved with them unless the reader turns them off.
+      armLimits = $("limits").checked;
+      $("limits").checked = true;
+    }
+    state.rig = newRigState(rig, value);
+    document.body.classList.add("rig");
+    delete document.body.dataset.failed;
+    $("hint").textContent = $("hint").dataset.rig;
+    select.value = value;
+    act.showError(null);
+    act.controlsChanged();
+    idle();
+    act.requestDraw();
+  }
+
+  /** The shipped rigs (GET /api/rigs) into the list. */
+  async function load() {
+    try {
+      const answer = await api.get("/api/rigs");
+      const select = $("body-kind");
+      for (const { name, rig } of answer.rigs || []) {
+        const value = `rig:${name}`;
+        rigs.set(value, rig);
+        select.append(new Option(`Rig: ${name}`, value));
+      }
+    } catch (e) {
+      // The list keeps the arm and "Load rig…"; the reason is said, not thrown.
+      act.showError(e);
+    }
+  }
+
+  /** A rig file the reader picked: read by the server; a bad one is its one-line problem. */
+  async function loadFile(file) {
+    try {
+      const answer = JSON.parse(await postText("/api/rig/parse", await file.text(), "application/toml"));
+      if (answer.problem) throw new api.Notice(api.forPeople(answer.problem));
+      const select = $("body-kind");
+      let option = [...select.options].find((o) => o.value === "file");
+      if (!option) {
+        option = new Option("", "file");
+        select.append(option);
+      }
+      option.textContent = `Rig file: ${answer.rig.name || file.name}`;
+      rigs.set("file", answer.rig);
+      use("file");
+    } catch (e) {
+      act.showError(e);
+    }
+  }
+
+  // ---- Solving ---------------------------------------------------------------------------
+
+  /** The goals or pins changed: solve (now, or when the solve in flight is back). */
+  function solveSoon() {
+    state.rig.pending = true;
+    pump();
+  }
+
+  async function pump() {
+    const r = state.rig;
+    if (!r || r.busy || !r.pending) return;
+    r.pending = false;
+    if (r.goals.size === 0 || !act.fieldsOk(false)) return;
+    r.busy = true;
+    const req = rigSolveRequest(r.rig, r.pose_deg, r.goals, r.pins, state.options);
+    try {
+      const answer = await api.solve(req);
+      // Dropped when another rig (or the arm) took the canvas meanwhile.
+      if (state.rig === r) apply(r, req, answer);
+    } catch (e) {
+      if (state.rig === r) {
+        act.showError(e);
+        act.setStatus("error");
+      }
+    }
+    // One answer per displayed frame: the next request leaves on the next one.
+    requestAnimationFrame(() => {
+      r.busy = false;
+      if (state.rig === r) pump();
+    });
+  }
+
+  function apply(r, req, answer) {
+    r.pose_deg = answerPose(r.rig, answer, r.pose_deg);
+    Object.assign(r, rigForward(r.rig, r.pose_deg));
+    r.answer = answer;
+    r.request = req;
+    r.solves++;
+    const s = rigSummary(answer);
+    act.showError(null);
+    show(s.text);
+    document.body.dataset.failed = s.failed.join(" ");
+    act.setStatus(answer.status);
+    act.draw();
+  }
+
+  /** Whether no solve is in flight or waiting (for tests and scripts). */
+  const settled = () => !!state.rig && !state.rig.busy && !state.rig.pending;
+
+  /** Solves again with the current goals (the solver's settings changed). */
+  function resolve() {
+    if (state.rig && state.rig.goals.size) solveSoon();
+  }
+
+  function setGoalsAndPins({ goals, pins }) {
+    state.rig.goals = goals;
+    state.rig.pins = pins;
+  }
+
+  function clearGoals() {
+    const r = state.rig;
+    if (!r) return;
+    r.goals = new Map();
+    r.pending = false;
+    delete document.body.dataset.failed;
+    act.showError(null);
+    idle();
+    act.requestDraw();
+  }
+
+  function unpinAll() {
+    if (!state.rig) return;
+    state.rig.pins = new Set();
+    act.requestDraw();
+  }
+
+  /** Back to the start pose, with no goals (the pins stay: they hold the tips where they are). */
+  function reset() {
+    const r = state.rig;
+    r.pose_deg = r.rig.bones.map((b) => b.angle_deg);
+    Object.assign(r, rigForward(r.rig, r.pose_deg));
+    clearGoals();
+  }
+
+  // ---- The pointer -----------------------------------------------------------------------
+
+  /** The bone whose tip is under the event, effectors first. */
+  function tipUnder(ev) {
+    const r = state.rig;
+    const rect = canvas.getBoundingClientRect();
+    const tipsPx = r.tips.map(([x, y]) => toCanvas(state.view, x, y));
+    return tipAt(r.rig, tipsPx, ev.clientX - rect.left, ev.clientY - rect.top, new Set(shownEffectors(r.rig, r.goals, r.pins)));
+  }
+
+  let press = null;
+
+  canvas.addEventListener("pointerdown", (ev) => {
+    if (!state.rig || ev.button !== 0) return;
+    const bone = tipUnder(ev);
+    if (!bone) return;
+    press = { x: ev.clientX, y: ev.clientY, bone, dragging: false };
+    canvas.setPointerCapture(ev.pointerId);
+  });
+
+  canvas.addEventListener("pointermove", (ev) => {
+    const r = state.rig;
+    if (!r) return;
+    if (!press) {
+      const hover = tipUnder(ev);
+      canvas.style.cursor = hover ? "grab" : "";
+      if (hover !== r.hover) {
+        r.hover = hover;
+        act.requestDraw();
+      }
+      return;
+    }
+    if (!press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
+      press.dragging = true;
+      r.grabbed = press.bone;
+      canvas.style.cursor = "grabbing";
+    }
+    if (!press.dragging) return;
+    const rect = canvas.getBoundingClientRect();
+    const [x, y] = toWorld(state.view, ev.clientX - rect.left, ev.clientY - rect.top);
+    setGoalsAndPins(dragGoal(r.goals, r.pins, press.bone, x, y));
+    act.requestDraw();
+    solveSoon();
+  });
+
+  canvas.addEventListener("pointerup", (ev) => {
+    const r = state.rig;
+    if (!r || !press) return;
+    const { bone, dragging } = press;
+    press = null;
+    r.grabbed = null;
+    r.hover = tipUnder(ev);
+    canvas.style.cursor = r.hover ? "grab" : "";
+    if (!dragging) {
+      setGoalsAndPins(togglePin(r.goals, r.pins, bone));
+      show(`${bone} ${r.pins.has(bone) ? "pinned" : "unpinned"} · ${r.pins.size} pin${r.pins.size === 1 ? "" : "s"}, ${r.goals.size} goal${r.goals.size === 1 ? "" : "s"}`);
+      // A pin dropped a goal: the others are solved again without it.
+      if (r.goals.size) solveSoon();
+    }
+    act.requestDraw();
+  });
+
+  // The pointer left the canvas: no tip is under it (nor ringed on the screen or in a download).
+  canvas.addEventListener("pointerleave", () => {
+    if (!state.rig || press || !state.rig.hover) return;
+    state.rig.hover = null;
+    canvas.style.cursor = "";
+    act.requestDraw();
+  });
+
+  canvas.addEventListener("pointercancel", () => {
+    if (!state.rig) return;
+    press = null;
+    state.rig.grabbed = null;
+    act.requestDraw();
+  });
+
+  canvas.addEventListener("keydown", (ev) => {
+    if (state.rig && ev.key === "Escape") {
+      ev.preventDefault();
+      clearGoals();
+    }
+  });
+
+  $("body-kind").addEventListener("change", (ev) => use(ev.target.value));
+  $("load-rig").addEventListener("click", () => $("rig-file").click());
+  $("rig-file").addEventListener("change", (ev) => {
+    const file = ev.target.files[0];
+    ev.target.value = "";
+    if (file) loadFile(file);
+  });
+  $("clear-goals").addEventListener("click", clearGoals);
+  $("unpin-all").addEventListener("click", unpinAll);
+
+  return { load, use, reset, resolve, settled, names };
+}
