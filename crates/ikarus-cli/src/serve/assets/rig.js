@@ -8,14 +8,11 @@
 import { DEG } from "./view.js";
 
 /**
- * The methods that solve rigs (the library's `Method::solves_rigs`): the Jacobian ones. CCD,
- * FABRIK and the closed form solve chains only. A /api/meta method carrying `solves_rigs` says
- * so itself; this list is for a meta that does not.
+ * Whether `method` (a /api/meta method) solves rigs: its `solves_rigs`, the library's
+ * `Method::solves_rigs` (the Jacobian methods; CCD, FABRIK and the closed form solve chains
+ * only).
  */
-export const RIG_METHODS = ["transpose", "pinv", "dls", "sdls", "lm"];
-
-/** Whether `method` (a /api/meta method) solves rigs. */
-export const solvesRigs = (method) => (typeof method.solves_rigs === "boolean" ? method.solves_rigs : RIG_METHODS.includes(method.name));
+export const solvesRigs = (method) => method.solves_rigs === true;
 
 /** A pointer press within this many CSS pixels of a bone's tip grabs it. */
 export const GRAB_PIXELS = 14;
