@@ -93,6 +93,8 @@
 //! cell while sampling (shared by all threads) and one `bool` per cell in the result. Both are
 //! bounded by the validated options.
 
+mod exact;
+pub use exact::{BoundarySegment, Membership, Region, Verdict};
 mod outline;
 pub use outline::{OUTLINE_AVERAGING, OUTLINE_SMOOTHING};
 mod raster;
