@@ -1,0 +1,103 @@
+//! The reachable area of an arm as the edges ask for it, one workflow for the command line and
+//! the server: the exact region ([`Region::of`], the default) or, when asked, a sampled
+//! occupancy grid (`--grid`, `"grid": true`).
+
+use ikarus::reach::{Region, Workspace, WorkspaceOptions};
+
+use crate::arm::Arm;
+
+/// The default of `--resolution` and of a request's `resolution`: the library's.
+pub fn default_resolution() -> u32 {
+    WorkspaceOptions::default().resolution
+}
+
+/// A computed reachable area.
+pub enum ReachableArea {
+    /// The exact region: loops of lines and arcs.
+    Exact(Region),
+    /// The occupancy grid sampled from joint space.
+    Grid(Workspace),
+}
+
+impl ReachableArea {
+    /// Whether the joint ranges were respected.
+    pub fn limits(&self) -> bool {
+        match self {
+            ReachableArea::Exact(r) => r.limits(),
+            ReachableArea::Grid(w) => w.limits(),
+        }
+    }
+
+    /// The area: exact, or the occupied cells'.
+    pub fn area(&self) -> f64 {
+        match self {
+            ReachableArea::Exact(r) => r.area(),
+            ReachableArea::Grid(w) => w.area(),
+        }
+    }
+
+    /// What a picture shades.
+    pub fn layer(&self) -> ikarus_render::Reachable<'_> {
+        match self {
+            ReachableArea::Exact(r) => ikarus_render::Reachable::Exact(r),
+            ReachableArea::Grid(w) => ikarus_render::Reachable::Grid(w),
+        }
+    }
+}
+
+/// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).
+#[derive(Debug, Clone, Copy)]
+pub struct GridRequest {
+    pub resolution: u32,
+    pub samples: Option<u32>,
+    pub seed: u64,
+}
+
+impl GridRequest {
+    /// The grid of `grid` (`--grid` or `"grid": true`) with its fields; the fields without the
+    /// grid are refused (`name` words a field as the edge does: `--resolution`, `resolution`),
+    /// since the exact region is not sampled.
+    pub fn of(
+        grid: bool,
+        resolution: Option<u32>,
+        samples: Option<u32>,
+        seed: Option<u64>,
+        name: impl Fn(&str, String) -> String,
+        grid_name: &str,
+    ) -> Result<Option<GridRequest>, String> {
+        if !grid {
+            let given = [
+                resolution.map(|v| name("resolution", v.to_string())),
+                samples.map(|v| name("samples", v.to_string())),
+                seed.map(|v| name("seed", v.to_string())),
+            ];
+            if let Some(field) = given.into_iter().flatten().next() {
+                return Err(format!(
+                    "{field}: only applies with {grid_name} (the exact region is computed, not sampled)"
+                ));
+            }
+            return Ok(None);
+        }
+        Ok(Some(GridRequest {
+            resolution: resolution.unwrap_or_else(default_resolution),
+            samples,
+            seed: seed.unwrap_or(0),
+        }))
+    }
+
+    /// The library's sampling options for these fields.
+    pub fn options(&self, limits: bool) -> WorkspaceOptions {
+        WorkspaceOptions {
+            resolution: self.resolution,
+            limits,
+            samples: self.samples.map(u64::from),
+            seed: self.seed,
+            ..WorkspaceOptions::default()
+        }
+    }
+}
+
+/// The exact region of `arm`, within its ranges if `limits`.
+pub fn exact(arm: &Arm, limits: bool) -> ReachableArea {
+    ReachableArea::Exact(Region::of(&arm.chain, limits))
+}
