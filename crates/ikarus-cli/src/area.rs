@@ -54,35 +54,34 @@ pub struct GridRequest {
 }
 
 impl GridRequest {
-    /// The grid of `grid` (`--grid` or `"grid": true`) with its fields; the fields without the
-    /// grid are refused (`name` words a field as the edge does: `--resolution`, `resolution`),
-    /// since the exact region is not sampled.
+    /// The grid asked for, if any: `grid` (`--grid`, `"grid": true`), or any of its fields
+    /// given (asking how to sample is asking for the samples: scripts and pages written before
+    /// the exact region keep their grid). `"grid": false` with a sampling field is refused
+    /// (`name` words a field as the edge does: `resolution = 64`).
     pub fn of(
-        grid: bool,
+        grid: Option<bool>,
         resolution: Option<u32>,
         samples: Option<u32>,
         seed: Option<u64>,
         name: impl Fn(&str, String) -> String,
-        grid_name: &str,
     ) -> Result<Option<GridRequest>, String> {
-        if !grid {
-            let given = [
-                resolution.map(|v| name("resolution", v.to_string())),
-                samples.map(|v| name("samples", v.to_string())),
-                seed.map(|v| name("seed", v.to_string())),
-            ];
-            if let Some(field) = given.into_iter().flatten().next() {
-                return Err(format!(
-                    "{field}: only applies with {grid_name} (the exact region is computed, not sampled)"
-                ));
+        let given = [
+            resolution.map(|v| name("resolution", v.to_string())),
+            samples.map(|v| name("samples", v.to_string())),
+            seed.map(|v| name("seed", v.to_string())),
+        ];
+        let sampling = given.iter().flatten().next();
+        match (grid, sampling) {
+            (Some(false), Some(field)) => {
+                Err(format!("{field}: only applies to the sampled grid, and grid = false asks for the exact region"))
             }
-            return Ok(None);
+            (Some(true), _) | (None, Some(_)) => Ok(Some(GridRequest {
+                resolution: resolution.unwrap_or_else(default_resolution),
+                samples,
+                seed: seed.unwrap_or(0),
+            })),
+            (Some(false) | None, None) => Ok(None),
         }
-        Ok(Some(GridRequest {
-            resolution: resolution.unwrap_or_else(default_resolution),
-            samples,
-            seed: seed.unwrap_or(0),
-        }))
     }
 
     /// The library's sampling options for these fields.

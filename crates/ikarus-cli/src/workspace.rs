@@ -28,8 +28,8 @@ pub enum WorkspaceFormat {
 pub struct AreaArgs {
     #[command(flatten)]
     pub limits: LimitsArgs,
-    /// Sample an occupancy grid of the region instead of computing it exactly (the flags below
-    /// apply to the grid only)
+    /// Sample an occupancy grid of the region instead of computing it exactly (any of the
+    /// flags below asks for the grid too)
     #[arg(long)]
     pub grid: bool,
     /// With --grid: cells along each side of the square around the reach, 8 to 4096 [default: 256]
@@ -51,18 +51,14 @@ pub struct AreaArgs {
 pub const DEFAULT_MAX_SAMPLES: u32 = 1_000_000;
 
 impl AreaArgs {
-    /// The grid the flags ask for (`None`: the exact region), or an error for a sampling flag
-    /// without `--grid` or `--samples` over its cap.
+    /// The grid the flags ask for (`None`: the exact region): `--grid`, or any sampling flag;
+    /// an error for `--samples` over its cap.
     pub fn grid(&self) -> Result<Option<GridRequest>, CliError> {
-        let grid = GridRequest::of(
-            self.grid,
-            self.resolution,
-            self.samples,
-            self.seed,
-            |field, value| format!("--{field} {value}"),
-            "--grid",
-        )
-        .map_err(CliError::input)?;
+        let grid =
+            GridRequest::of(self.grid.then_some(true), self.resolution, self.samples, self.seed, |field, value| {
+                format!("--{field} {value}")
+            })
+            .map_err(CliError::input)?;
         if let Some(n) = self.samples.filter(|&n| n > self.max_samples) {
             return Err(CliError::input(format!(
                 "--samples {n}: more than the cap of {} (raise it with --max-samples N)",

@@ -536,8 +536,8 @@ pub(super) fn recorded_values_cap(
     Ok(())
 }
 
-/// The reachable area a workspace request asks for: the exact region, or with `grid` the grid
-/// sampled under `--max-resolution` and the samples' cap.
+/// The reachable area a workspace request asks for: the exact region, or the grid
+/// ([`GridRequest::of`]) sampled under `--max-resolution` and the samples' cap.
 fn reachable_area(
     arm: &Arm,
     req: &WorkspaceReq,
@@ -545,15 +545,9 @@ fn reachable_area(
     interrupt: &Interrupt,
 ) -> Result<ReachableArea, ApiError> {
     let on = arm.limits(req.limits);
-    let grid = GridRequest::of(
-        req.grid,
-        req.resolution,
-        req.samples,
-        req.seed,
-        |field, value| format!("{field} = {value}"),
-        "\"grid\": true",
-    )
-    .map_err(ApiError::invalid)?;
+    let grid =
+        GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
+            .map_err(ApiError::invalid)?;
     let Some(grid) = grid else { return Ok(area::exact(arm, on)) };
     if grid.resolution > limits.max_resolution {
         return Err(ApiError::invalid(format!(

@@ -117,8 +117,8 @@ pub struct TrackReq {
     pub options: Option<SolverSettings>,
 }
 
-/// `POST /api/workspace`: the exact region, or with `grid: true` the sampled grid
-/// (`resolution`, `samples` and `seed` apply to the grid only).
+/// `POST /api/workspace`: the exact region, or with `grid: true` (or any of `resolution`,
+/// `samples`, `seed`) the sampled grid.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorkspaceReq {
@@ -127,7 +127,7 @@ pub struct WorkspaceReq {
     #[serde(default)]
     pub limits: Option<bool>,
     #[serde(default)]
-    pub grid: bool,
+    pub grid: Option<bool>,
     #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]
@@ -233,13 +233,13 @@ pub struct ArmFigureReq {
     #[serde(default)]
     pub goal: Option<GoalReq>,
     /// Also shade the reachable area with the workspace fields below: the exact region, or
-    /// the sampled grid with `grid: true`.
+    /// the sampled grid (as `/api/workspace`).
     #[serde(default)]
     pub workspace: bool,
     #[serde(default)]
     pub limits: Option<bool>,
     #[serde(default)]
-    pub grid: bool,
+    pub grid: Option<bool>,
     #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]
@@ -304,7 +304,7 @@ pub struct WorkspaceFigureReq {
     #[serde(default)]
     pub limits: Option<bool>,
     #[serde(default)]
-    pub grid: bool,
+    pub grid: Option<bool>,
     #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]
