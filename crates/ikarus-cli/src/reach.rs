@@ -69,9 +69,9 @@ impl ReachRequest {
         self.tolerance.or(arm.solver.tolerance).unwrap_or(ikarus::SolveOptions::default().tolerance)
     }
 
-    /// The exact region of `arm` the verdicts are read from.
-    pub fn region(&self, arm: &Arm) -> Region {
-        Region::of(&arm.chain, arm.limits(self.limits))
+    /// The exact region of `arm` the verdicts are read from ([`crate::area::exact_region`]).
+    pub fn region(&self, arm: &Arm) -> Result<Region, CliError> {
+        crate::area::exact_region(arm, arm.limits(self.limits))
     }
 }
 
@@ -98,7 +98,7 @@ pub fn run(args: &ReachArgs) -> Result<(), CliError> {
     };
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
     let request = ReachRequest { limits: args.limits.asked(), tolerance: args.tolerance };
-    let region = request.region(&arm);
+    let region = request.region(&arm)?;
     let tolerance = request.tolerance(&arm);
     let verdicts: Vec<Verdict> = points.iter().map(|&p| verdict(&region, p, tolerance)).collect();
     let write = |w: &mut dyn Write| write(w, format, single, &points, &verdicts);

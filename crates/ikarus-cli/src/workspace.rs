@@ -72,7 +72,7 @@ impl AreaArgs {
     /// parallel with a progress bar on a terminal.
     pub fn area(&self, arm: &Arm) -> Result<ReachableArea, CliError> {
         let limits = arm.limits(self.limits.asked());
-        let Some(grid) = self.grid()? else { return Ok(area::exact(arm, limits)) };
+        let Some(grid) = self.grid()? else { return area::exact(arm, limits) };
         let bar = progress_bar(100, "sampling the workspace");
         let report = |done: u64, total: u64| {
             if let Some(bar) = &bar {

@@ -404,3 +404,44 @@ fn help_lists_reach() {
     let o = ikarus(&["--help"]);
     assert!(stdout(&o).contains("reach"));
 }
+
+/// An arm whose exact region the library could not build (its union lost every boundary
+/// piece, at the time of writing): the edges answer a failure in one line (exit 1), never a
+/// panic nor an empty region; whatever the library does, the answer is one of those two.
+#[test]
+fn a_region_the_library_cannot_build_is_a_failure_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let arm = dir.path().join("r85.toml");
+    let links = [
+        (1.03053, -53.4661, 146.802),
+        (2.35434, -9.74987, 39.8313),
+        (0.74521, -27.4461, 61.9628),
+        (1.65765, -111.596, 152.043),
+        (1.7568, -39.9121, 104.896),
+    ];
+    let text: String =
+        links.iter().map(|(l, lo, hi)| format!("[[links]]\nlength = {l}\nlimits_deg = [{lo}, {hi}]\n")).collect();
+    std::fs::write(&arm, text).unwrap();
+    let arm = arm.to_str().unwrap();
+    for args in [
+        vec!["reach", "--arm", arm, "--limits", "--point", "1,1", "--format", "json"],
+        vec!["workspace", "--arm", arm, "--limits", "--format", "json"],
+    ] {
+        let o = ikarus(&args);
+        match o.status.code() {
+            Some(0) => {
+                let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+                if args[0] == "workspace" {
+                    assert!(v["area"].as_f64().unwrap() > 0.0 && !v["boundary"].as_array().unwrap().is_empty());
+                }
+            }
+            Some(1) => {
+                let e = common::stderr(&o);
+                assert_eq!(e.lines().count(), 1, "{e}");
+                assert!(e.contains("could not build the exact region"), "{e}");
+                assert!(o.stdout.is_empty());
+            }
+            other => panic!("{args:?}: exit {other:?}: {}", common::stderr(&o)),
+        }
+    }
+}

@@ -246,7 +246,7 @@ pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq
         let request = ReachRequest { limits: req.limits, tolerance: req.tolerance };
         match (req.point, req.points) {
             (Some(p), None) => {
-                let region = request.region(&arm);
+                let region = request.region(&arm)?;
                 json_response(&VerdictJson::of(&crate::reach::verdict(&region, p, request.tolerance(&arm))))
             }
             (None, Some(points)) => {
@@ -257,7 +257,7 @@ pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq
                         limits.max_samples
                     )));
                 }
-                let region = request.region(&arm);
+                let region = request.region(&arm)?;
                 let tolerance = request.tolerance(&arm);
                 let mut answers = Vec::with_capacity(points.len());
                 for chunk in points.chunks(1024) {
@@ -548,7 +548,7 @@ fn reachable_area(
     let grid =
         GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
             .map_err(ApiError::invalid)?;
-    let Some(grid) = grid else { return Ok(area::exact(arm, on)) };
+    let Some(grid) = grid else { return Ok(area::exact(arm, on)?) };
     if grid.resolution > limits.max_resolution {
         return Err(ApiError::invalid(format!(
             "resolution = {}: more than the cap of {} (--max-resolution)",
