@@ -54,10 +54,12 @@ pub fn read_points(file: &Path, label: &str) -> Result<Vec<[f64; 2]>, CliError> 
     Ok(rows.into_iter().map(|(_, v)| [v[0], v[1]]).collect())
 }
 
-/// Reads a CSV file of finite numbers whose header is one of `headers`: which one, and each
-/// row's line and values (one per column). Errors start with `label` and name the line and the
-/// column.
-fn read_numbers(file: &Path, label: &str, headers: &[&[&str]]) -> Result<(usize, Vec<(u64, Vec<f64>)>), CliError> {
+/// The rows of a CSV file of numbers: each row's line, and its values (one per column).
+type NumberRows = Vec<(u64, Vec<f64>)>;
+
+/// Reads a CSV file of finite numbers whose header is one of `headers`: which one, and its rows.
+/// Errors start with `label` and name the line and the column.
+fn read_numbers(file: &Path, label: &str, headers: &[&[&str]]) -> Result<(usize, NumberRows), CliError> {
     let text = crate::input::read(file, label)?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
     let found = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
