@@ -83,7 +83,7 @@ pub struct ServeArgs {
     /// Largest workspace resolution (cells per side, at most 4096)
     #[arg(long, default_value_t = 1024, value_name = "N", value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub max_resolution: u32,
-    /// Computations (solve, animate, track, workspace, render) run at once [default: the number of CPUs]
+    /// Computations (solve, animate, track, workspace, reach, render) run at once [default: the number of CPUs]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     pub workers: Option<u64>,
     /// Computations that may run longer than half a second at once; one more is stopped with 503 [default: half the workers, at least 1]
@@ -275,6 +275,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
         .route("/api/animate", post(api::animate))
         .route("/api/track", post(api::track))
         .route("/api/workspace", post(api::workspace))
+        .route("/api/reach", post(api::reach))
         .route("/api/render", post(api::render))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))
