@@ -153,17 +153,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
         let inside = |q: P| child.kind == Kind::Region && winding(&moved, q) != 0;
         return (Level::region(annuli(&parts, shift, inside, tol)), true);
     }
-    let mut pieces: Vec<Piece> = Vec::with_capacity(parts.len() + 2);
-    if child.kind == Kind::Region {
-        for theta in [lo, lo + span] {
-            pieces.push(Piece::new(copy(child, shift, theta)));
-        }
-    }
-    for &(j, s) in &parts {
-        if norm(s.a) < norm(s.b) {
-            pieces.push(Piece::new(quad(&s, j, shift, lo, span)));
-        }
-    }
+    let pieces = pieces(child, &parts, shift, lo, span);
     // The side test looks 1e-8 of the reach off each part; where curves run closer than that
     // without meeting (they touch, or cross at a glancing angle) it can misjudge a part, and a
     // chain of kept parts then fails to close. Looking farther off settles those; the first
@@ -179,6 +169,23 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
         }
     }
     (Level::region(best.map(|b| b.0).unwrap_or_default()), false)
+}
+
+/// The pieces whose union is a limited joint's level: the child's two end copies (if it has
+/// area) and the quadrilateral of each outward part.
+pub(crate) fn pieces(child: &Level, parts: &[(usize, Seg)], shift: P, lo: f64, span: f64) -> Vec<Piece> {
+    let mut pieces: Vec<Piece> = Vec::with_capacity(parts.len() + 2);
+    if child.kind == Kind::Region {
+        for theta in [lo, lo + span] {
+            pieces.push(Piece::new(copy(child, shift, theta)));
+        }
+    }
+    for &(j, s) in parts {
+        if norm(s.a) < norm(s.b) {
+            pieces.push(Piece::new(quad(&s, j, shift, lo, span)));
+        }
+    }
+    pieces
 }
 
 /// The child moved out along the link and turned by `theta`.

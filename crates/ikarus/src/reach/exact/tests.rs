@@ -243,21 +243,76 @@ fn wide_limits_turn_freely_and_their_angles_stay_within_them() {
     }
 }
 
-/// Random arms of two to eight links with random ranges: the exact area is at least the
-/// sampled grid's (which is sound: every counted cell's centre is reachable) less its edge
-/// cells, and within 2 % of it above (the grid falls short near corners for many joints); the
-/// loops close. Includes the five-link arm whose union once failed to close.
+/// A pose reaching `p` (within 1e-4 of the reach), found without the solver's search: joint by joint, the angle whose
+/// turn puts the rest of the goal nearest the region of the rest of the chain (scanned over the
+/// range), then a polish by Levenberg–Marquardt from that pose. The oracle for "every point of
+/// the region is reachable", where the solver's random restarts can miss thin families of poses.
+fn witness(links: &[(f64, f64, f64)], p: Point2<f64>) -> Option<Vec<f64>> {
+    let n = links.len();
+    let rests: Vec<Region> = (1..n).map(|k| Region::of(&chain(&links[k..]), true)).collect();
+    let mut angles = Vec::with_capacity(n);
+    let mut q = p;
+    for k in 0..n {
+        let (lo, hi) = (links[k].1.to_radians(), links[k].2.to_radians());
+        let at = |t: f64| {
+            let (s, c) = t.sin_cos();
+            Point2::new(c * q.x + s * q.y - links[k].0, -s * q.x + c * q.y)
+        };
+        let t = if k + 1 == n {
+            let a = q.y.atan2(q.x);
+            crate::angle::nearest_equivalent_in(a, 0.5 * (lo + hi), lo, hi)
+                .unwrap_or_else(|| crate::angle::nearer_end(a, lo, hi))
+        } else {
+            let m = 4000;
+            (0..=m)
+                .map(|i| lo + (hi - lo) * f64::from(i) / f64::from(m))
+                .min_by(|&a, &b| rests[k].distance(at(a)).total_cmp(&rests[k].distance(at(b))))
+                .unwrap()
+        };
+        angles.push(t);
+        q = at(t);
+    }
+    // The scan's step leaves the tip a little off (1e-5 here); the polish closes the gap unless
+    // the joints sit on their limits, where a tip within 1e-4 of the reach is taken as the
+    // witness (the points tried are 1e-3 of the reach inside the region).
+    let c = chain(links);
+    let tip = end_effector(&c, &angles).position;
+    if (tip - p).norm() <= 1e-4 * c.max_reach() {
+        return Some(angles);
+    }
+    let mut polish =
+        crate::Solver::new(crate::SolveOptions { reach_verdict: false, restarts: None, ..Default::default() }).unwrap();
+    let out = polish.solve(&c, &c.pose(angles).ok()?, &crate::Goal::position(p.x, p.y).unwrap()).unwrap();
+    (out.status == crate::Status::Reached).then(|| out.pose.angles().to_vec())
+}
+
+/// Random arms of two to eight links with random ranges: the exact area is at least that of the
+/// sampled grid (which is sound: every counted cell's centre is reachable) less its edge cells;
+/// every sampled tip is inside; every point drawn inside, away from the boundary, is reached
+/// (by the solver, or else by the joint-by-joint witness). The five-link arm whose union once
+/// failed to close, and the seven-link arm where 64 restarts miss a thin family of poses, are in.
 #[test]
-#[ignore = "known fault: on some random arms (one in about forty here) the union keeps a region larger than the reachable set; to be fixed (see the README's Certified reach notes)"]
-fn random_arms_agree_with_the_sampled_grid() {
+fn random_arms_agree_with_sampling_and_with_poses() {
     let mut rng = Rng(77);
-    let mut arms = vec![chain(&[
-        (1.03053, -53.4661, 146.802),
-        (2.35434, -9.74987, 39.8313),
-        (0.74521, -27.4461, 61.9628),
-        (1.65765, -111.596, 152.043),
-        (1.7568, -39.9121, 104.896),
-    ])];
+    let deg = |t: f64| t.to_degrees();
+    let mut arms: Vec<Vec<(f64, f64, f64)>> = vec![
+        vec![
+            (1.03053, -53.4661, 146.802),
+            (2.35434, -9.74987, 39.8313),
+            (0.74521, -27.4461, 61.9628),
+            (1.65765, -111.596, 152.043),
+            (1.7568, -39.9121, 104.896),
+        ],
+        vec![
+            (1.0546966377347726, deg(-1.236460575121601), deg(0.15348095717171498)),
+            (1.5080328621115573, deg(-2.8555456218882904), deg(-0.14926581901666466)),
+            (0.9782913919247787, deg(-2.5864934557195998), deg(-2.257512979122097)),
+            (0.32475171134480385, deg(-1.4561840637061723), deg(2.962283653022996)),
+            (0.38853711304497196, deg(-0.8170843301953803), deg(2.5020141097976696)),
+            (2.3778581876686977, deg(0.4678112626522594), deg(1.2852163589317191)),
+            (1.7037902624447885, deg(-1.3343687357485456), deg(0.46039055167380954)),
+        ],
+    ];
     for _ in 0..40 {
         let n = 2 + (rng.next_u64() % 7) as usize;
         let links: Vec<(f64, f64, f64)> = (0..n)
@@ -266,40 +321,42 @@ fn random_arms_agree_with_the_sampled_grid() {
                 (rng.range(0.3, 2.5), lo, rng.range(lo, 175.0))
             })
             .collect();
-        arms.push(chain(&links));
+        arms.push(links);
     }
-    for c in arms {
+    let mut solver = crate::Solver::new(crate::SolveOptions { reach_verdict: false, ..Default::default() }).unwrap();
+    let mut by_witness = 0;
+    for links in arms {
+        let c = chain(&links);
         let r = Region::of(&c, true);
         assert_closed(&r);
-        // Sound sampling: every grid cell counted has a reachable centre, so the exact area
-        // is at least the grid's, less the cells straddling the boundary.
+        assert!(r.is_checked(), "{c:?}");
         let opts = crate::WorkspaceOptions { resolution: 256, samples: Some(16384), ..Default::default() };
         let grid = crate::reach::sample(&c, &opts).unwrap();
         let slack = 2.0 * std::f64::consts::PI * c.max_reach() * 8.0 * grid.cell_size();
         assert!(r.area() >= grid.area() - slack, "{c:?}: exact {} < grid {}", r.area(), grid.area());
-        // Not too much: points drawn inside the region, away from its boundary, are reached
-        // by searching (the verdict off, restarts on).
-        let mut solver = crate::Solver::new(crate::SolveOptions {
-            reach_verdict: false,
-            restarts: Some(crate::Restarts { attempts: 64, ..Default::default() }),
-            ..Default::default()
-        })
-        .unwrap();
+        for p in tips(&c, 2000, 3) {
+            assert!(r.contains(p, 1e-7 * c.max_reach()), "{c:?}: tip {p} outside");
+        }
+        if !r.has_area() {
+            continue;
+        }
         let (lo, hi) = r.bounds();
         let mut tried = 0;
-        while tried < 60 {
+        while tried < 25 {
             let p = Point2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y));
             if r.classify(p, 1e-3 * c.max_reach()) != Membership::Inside {
                 continue;
             }
             tried += 1;
-            let goal = crate::Goal::position(p.x, p.y).unwrap();
-            let out = solver.solve(&c, c.start_pose(), &goal).unwrap();
-            assert_eq!(out.status, crate::Status::Reached, "{c:?}: {p} inside the region, {out:?}");
-        }
-        // Sampled tips lie inside.
-        for p in tips(&c, 2000, 3) {
-            assert!(r.contains(p, 1e-7 * c.max_reach()), "{c:?}: tip {p} outside");
+            let out = solver.solve(&c, c.start_pose(), &crate::Goal::position(p.x, p.y).unwrap()).unwrap();
+            if out.status != crate::Status::Reached {
+                assert!(
+                    witness(&links, p).is_some(),
+                    "{c:?}: {p} inside the region, reached neither by the solver ({out:?}) nor by the witness"
+                );
+                by_witness += 1;
+            }
         }
     }
+    println!("{by_witness} points reached only by the witness");
 }
