@@ -221,7 +221,7 @@ function drawReachMiss(ctx, view, state) {
   ctx.lineTo(nx, ny);
   ctx.stroke();
   ctx.setLineDash([]);
-  const r = 8;
+  const r = 9;
   ctx.beginPath();
   ctx.moveTo(nx, ny - r);
   ctx.lineTo(nx + r, ny);
@@ -232,8 +232,12 @@ function drawReachMiss(ctx, view, state) {
   ctx.fillStyle = COLORS.reach;
   ctx.fill();
   ctx.globalAlpha = 1;
-  ctx.lineWidth = 2.5;
   ctx.lineJoin = "miter";
+  // A white halo first, so that the diamond stands out on the area's edge and the arm.
+  ctx.lineWidth = 5;
+  ctx.strokeStyle = COLORS.plot;
+  ctx.stroke();
+  ctx.lineWidth = 2.5;
   ctx.strokeStyle = COLORS.reach;
   ctx.stroke();
 }
