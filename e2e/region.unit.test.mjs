@@ -14,6 +14,7 @@ import {
   nearestOnBoundary,
   regionArea,
   regionOf,
+  traceCurves,
   traceRegion,
   unreachableText,
   verdict,
@@ -159,6 +160,34 @@ test("the path: one subpath per loop, arcs as arc() with the canvas's angles, dr
   assert.equal((d.match(/A/g) || []).length, 4, d);
   assert.equal((d.match(/Z/g) || []).length, 2, d);
   assert.ok(!d.includes("NaN"), d);
+});
+
+test("a region without area (one link with limits): only its curve is reachable, stroked as arcs", () => {
+  // One link of length 2 turning from −45° to 90°: the arc it traces.
+  const r = regionOf([], [arc([0, 0], 2, -45, 90)]);
+  near(regionArea(r), 0);
+  assert.equal(winding(r, [1, 0]), 0);
+  const on = verdict(r, [0, 2], 1e-9);
+  assert.equal(on.reachable, true);
+  near(on.distance, 0, 1e-12);
+  const off = verdict(r, [1, 0]);
+  assert.equal(off.reachable, false);
+  near(off.distance, 1);
+  nearPoint(off.nearest, [2, 0]);
+  // Past the arc's end: its end point.
+  const past = verdict(r, [-3, 0]);
+  nearPoint(past.nearest, [0, 2], 1e-12);
+  near(past.distance, Math.hypot(3, 2));
+  // Its box: from the top end (0, 2) and the start (√2, −√2) to the rightmost point (2, 0).
+  near(r.bbox.x0, 0, 1e-12);
+  near(r.bbox.y0, -Math.SQRT2, 1e-12);
+  near(r.bbox.x1, 2, 1e-12);
+  near(r.bbox.y1, 2, 1e-12);
+  const calls = [];
+  const pen = new Proxy({}, { get: (_, name) => (...args) => calls.push(name) });
+  traceCurves(pen, { cx: 0, cy: 0, scale: 1 }, r);
+  traceRegion(pen, { cx: 0, cy: 0, scale: 1 }, r);
+  assert.deepEqual(calls, ["moveTo", "arc"]);
 });
 
 test("the chip's words for a goal out of reach", () => {

@@ -6,7 +6,7 @@
 // page's state and never writes it; the geometry comes from view.js and region.js. The screen
 // and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
 
-import { traceRegion } from "./region.js";
+import { traceCurves, traceRegion } from "./region.js";
 import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
 
 /**
@@ -172,15 +172,17 @@ export function drawGrid(ctx, view) {
 
 /**
  * The reachable area: the exact region (region.js, from the answer's `boundary`: arcs and lines,
- * filled with the nonzero rule, holes running the other way) when the server sent one, else the
- * sampled grid's smoothed outline (filled even-odd: holes stay empty); filled and outlined.
+ * filled with the nonzero rule, holes running the other way, and the curves of a region without
+ * area stroked) when the server sent one, else the sampled grid's smoothed outline (filled
+ * even-odd: holes stay empty); filled and outlined.
  */
 function drawArea(ctx, view, state) {
-  if (!state.showWorkspace) return;
+  const region = state.region;
+  if (!state.showWorkspace || !(region || state.areaOutline)) return;
   ctx.beginPath();
-  if (state.region) {
-    traceRegion(ctx, view, state.region);
-  } else if (state.areaOutline) {
+  if (region) {
+    traceRegion(ctx, view, region);
+  } else {
     for (const loop of state.areaOutline) {
       loop.forEach(([x, y], i) => {
         const [px, py] = toCanvas(view, x, y);
@@ -189,16 +191,21 @@ function drawArea(ctx, view, state) {
       });
       ctx.closePath();
     }
-  } else {
-    return;
   }
   ctx.globalAlpha = 0.75;
   ctx.fillStyle = COLORS.workspace;
-  ctx.fill(state.region ? "nonzero" : "evenodd");
-  ctx.globalAlpha = state.region ? 0.9 : 0.6;
+  ctx.fill(region ? "nonzero" : "evenodd");
+  ctx.globalAlpha = region ? 0.9 : 0.6;
   ctx.strokeStyle = COLORS.reach;
-  ctx.lineWidth = state.region ? 1.5 : 1;
+  ctx.lineWidth = region ? 1.5 : 1;
   ctx.stroke();
+  if (region && region.curves.length > 0) {
+    ctx.beginPath();
+    traceCurves(ctx, view, region);
+    ctx.lineWidth = 3;
+    ctx.lineCap = "round";
+    ctx.stroke();
+  }
   ctx.globalAlpha = 1;
 }
 

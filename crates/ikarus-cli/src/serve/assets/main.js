@@ -490,7 +490,7 @@ function refreshWorkspace() {
       if (seq !== jobs.workspaceSeq) return;
       state.workspace = ws;
       // The exact region when the server sends its boundary; else the sampled grid's edge.
-      state.region = regionOf(ws.boundary);
+      state.region = regionOf(ws.boundary, ws.curves);
       state.regionFor = state.region ? key : null;
       state.areaOutline = state.region ? null : areaOutline(ws);
       requestDraw();

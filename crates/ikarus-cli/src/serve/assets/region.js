@@ -5,6 +5,9 @@
 // (a winding number with arcs), the nearest point and the area. Pure: no DOM and no state, so
 // node can test it (e2e/region.unit.test.mjs).
 //
+// A region without area (fewer than two joints move) is a set of curves instead (the answer's
+// `curves`, segments in the same form): reachable are only the points on them.
+//
 // A segment as the server sends it: {"line": [[x0, y0], [x1, y1]]} or {"arc": {"center":
 // [cx, cy], "radius": r, "from_deg": a0, "to_deg": a1}} (counter-clockwise when a1 > a0,
 // clockwise otherwise, a full circle when they differ by 360).
@@ -14,11 +17,12 @@ import { DEG, toCanvas } from "./view.js";
 const TAU = 2 * Math.PI;
 
 /**
- * The region of `boundary` in the form the functions below read: loops of segments
+ * The region of `boundary` (and `curves`, for a region without area) in the form the functions
+ * below read: {loops, curves, bbox}, loops of segments and curves a list of them, a segment being
  * {a, b (ends), arc: null | {c, r, t0, dt (radians, signed)}}, and the bounding box
  * {x0, y0, x1, y1}. Null when the boundary is missing (an older server's answer).
  */
-export function regionOf(boundary) {
+export function regionOf(boundary, curves = []) {
   if (!Array.isArray(boundary)) return null;
   const bbox = { x0: Infinity, y0: Infinity, x1: -Infinity, y1: -Infinity };
   const grow = ([x, y]) => {
@@ -27,24 +31,23 @@ export function regionOf(boundary) {
     bbox.x1 = Math.max(bbox.x1, x);
     bbox.y1 = Math.max(bbox.y1, y);
   };
-  const loops = boundary.map((loop) =>
-    loop.map((seg) => {
-      let s;
-      if (seg.line) {
-        s = { a: seg.line[0].slice(), b: seg.line[1].slice(), arc: null };
-      } else {
-        const { center, radius, from_deg, to_deg } = seg.arc;
-        const arc = { c: center.slice(), r: radius, t0: from_deg * DEG, dt: (to_deg - from_deg) * DEG };
-        s = { a: onCircle(arc, arc.t0), b: onCircle(arc, arc.t0 + arc.dt), arc };
-        // The arc's extreme points: where it crosses the circle's four axis directions.
-        for (let k = 0; k < 4; k++) if (onArc(arc, (k * Math.PI) / 2)) grow(onCircle(arc, (k * Math.PI) / 2));
-      }
-      grow(s.a);
-      grow(s.b);
-      return s;
-    }),
-  );
-  return { loops, bbox };
+  const segment = (seg) => {
+    let s;
+    if (seg.line) {
+      s = { a: seg.line[0].slice(), b: seg.line[1].slice(), arc: null };
+    } else {
+      const { center, radius, from_deg, to_deg } = seg.arc;
+      const arc = { c: center.slice(), r: radius, t0: from_deg * DEG, dt: (to_deg - from_deg) * DEG };
+      s = { a: onCircle(arc, arc.t0), b: onCircle(arc, arc.t0 + arc.dt), arc };
+      // The arc's extreme points: where it crosses the circle's four axis directions.
+      for (let k = 0; k < 4; k++) if (onArc(arc, (k * Math.PI) / 2)) grow(onCircle(arc, (k * Math.PI) / 2));
+    }
+    grow(s.a);
+    grow(s.b);
+    return s;
+  };
+  const loops = boundary.map((loop) => loop.map(segment));
+  return { loops, curves: (Array.isArray(curves) ? curves : []).map(segment), bbox };
 }
 
 const onCircle = (arc, t) => [arc.c[0] + arc.r * Math.cos(t), arc.c[1] + arc.r * Math.sin(t)];
@@ -70,15 +73,25 @@ export function traceRegion(pen, view, region) {
   for (const loop of region.loops) {
     if (loop.length === 0) continue;
     pen.moveTo(...toCanvas(view, ...loop[0].a));
-    for (const s of loop) {
-      if (s.arc) {
-        const [cx, cy] = toCanvas(view, ...s.arc.c);
-        pen.arc(cx, cy, s.arc.r * view.scale, -s.arc.t0, -(s.arc.t0 + s.arc.dt), s.arc.dt > 0);
-      } else {
-        pen.lineTo(...toCanvas(view, ...s.b));
-      }
-    }
+    for (const s of loop) traceSegment(pen, view, s);
     pen.closePath();
+  }
+}
+
+/** Adds the curves of a region without area to the path of `pen`, each its own open subpath (stroke them). */
+export function traceCurves(pen, view, region) {
+  for (const s of region.curves) {
+    pen.moveTo(...toCanvas(view, ...s.a));
+    traceSegment(pen, view, s);
+  }
+}
+
+function traceSegment(pen, view, s) {
+  if (s.arc) {
+    const [cx, cy] = toCanvas(view, ...s.arc.c);
+    pen.arc(cx, cy, s.arc.r * view.scale, -s.arc.t0, -(s.arc.t0 + s.arc.dt), s.arc.dt > 0);
+  } else {
+    pen.lineTo(...toCanvas(view, ...s.b));
   }
 }
 
@@ -133,15 +146,13 @@ export function nearestOnSegment(s, [px, py]) {
   return [ax + w * ux, ay + w * uy];
 }
 
-/** The boundary point nearest `p` and its distance: {point, distance}. */
+/** The point nearest `p` on the boundary (or the curves) and its distance: {point, distance}. */
 export function nearestOnBoundary(region, p) {
   let best = { point: null, distance: Infinity };
-  for (const loop of region.loops) {
-    for (const s of loop) {
-      const q = nearestOnSegment(s, p);
-      const d = Math.hypot(q[0] - p[0], q[1] - p[1]);
-      if (d < best.distance) best = { point: q, distance: d };
-    }
+  for (const s of [...region.loops.flat(), ...region.curves]) {
+    const q = nearestOnSegment(s, p);
+    const d = Math.hypot(q[0] - p[0], q[1] - p[1]);
+    if (d < best.distance) best = { point: q, distance: d };
   }
   return best;
 }
@@ -149,7 +160,8 @@ export function nearestOnBoundary(region, p) {
 /**
  * The verdict for the point `p`, as `POST /api/reach` answers it: {reachable (inside, or within
  * `tolerance` of the region), distance (0 inside, else to the nearest boundary point), nearest
- * (the nearest reachable point: `p` itself inside)}. A region without loops reaches nothing.
+ * (the nearest reachable point: `p` itself inside)}. A region without area reaches its curves
+ * only; one with neither reaches nothing (distance Infinity, nearest null).
  */
 export function verdict(region, p, tolerance = 0) {
   if (winding(region, p) !== 0) return { reachable: true, distance: 0, nearest: [p[0], p[1]] };
