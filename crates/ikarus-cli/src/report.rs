@@ -46,6 +46,9 @@ pub struct SolveJson<'a> {
     pub error: f64,
     pub angle_error_deg: f64,
     pub tolerance: f64,
+    /// With limits on: the distance from the goal to the exact reachable region (0 inside);
+    /// `null` when no verdict was made.
+    pub reach_distance: Option<f64>,
     pub solve_us: f64,
     pub end_effector: TipJson,
     pub angles_deg: Vec<f64>,
@@ -88,6 +91,7 @@ impl<'a> SolveReport<'a> {
             error: o.error,
             angle_error_deg: o.angle_error.to_degrees(),
             tolerance: self.options.tolerance,
+            reach_distance: o.reach_distance,
             solve_us: self.micros,
             end_effector: TipJson {
                 x: o.end_effector.position.x,

@@ -216,7 +216,18 @@ impl Report<'_> {
             1 => ", 1 restart".to_owned(),
             k => format!(", {k} restarts"),
         };
-        writeln!(w, "status    {} after {} iterations{restarts} ({:.1} µs)", o.status, o.iterations, self.micros)?;
+        match o.reach_distance {
+            Some(d) if o.status == ikarus::Status::Unreachable && d > 0.0 => writeln!(
+                w,
+                "status    unreachable: {d:.6} outside the reachable region, the tip at its nearest point ({:.1} µs)",
+                self.micros
+            )?,
+            _ => writeln!(
+                w,
+                "status    {} after {} iterations{restarts} ({:.1} µs)",
+                o.status, o.iterations, self.micros
+            )?,
+        }
         write!(w, "error     {:.3e} (tolerance {:e})", o.error, opts.tolerance)?;
         if self.goal.orientation().is_some() {
             write!(w, ", orientation {:.3e}°", o.angle_error.to_degrees())?;

@@ -158,6 +158,7 @@ fn random_case(rng: &mut SplitMix64) -> Case {
             seed: rng.next_u64(),
             time_budget: None,
         }),
+        reach_verdict: rng.chance(0.8),
         closed_form: rng.chance(0.5),
         interrupt: None,
     };
@@ -218,7 +219,8 @@ fn check(case: &Case) -> Result<Option<Outcome>, String> {
             out.status, opts.tolerance
         ));
     }
-    if out.status == Status::Unreachable && !goal.is_out_of_reach(chain, opts.tolerance) {
+    let outside_region = out.reach_distance.is_some_and(|d| d > opts.tolerance);
+    if out.status == Status::Unreachable && !goal.is_out_of_reach(chain, opts.tolerance) && !outside_region {
         return Err("unreachable, but the goal is within reach".to_owned());
     }
     let attempts = 1 + opts.restarts.map_or(0, |r| r.attempts);

@@ -81,6 +81,8 @@ mod tests {
             restarts: Some(Restarts { attempts: 64, ..Restarts::default() }),
             closed_form: false,
             interrupt: Some(token.clone()),
+            // The search itself is what is interrupted (the verdict would answer at once).
+            reach_verdict: false,
             ..SolveOptions::default()
         };
         let mut solver = Solver::new(options).expect("valid options");

@@ -216,7 +216,8 @@ fn goals_the_limits_put_out_of_reach_end_within_the_caps() {
     for ((x, y), closest) in [((-3.0, -1.0), 3.4913), ((-4.0, 0.5), 4.6010), ((-4.0, 2.0), 3.9512)] {
         let goal = Goal::position(x, y).unwrap();
         for mode in ENFORCING {
-            let opts = SolveOptions { limits: mode, ..Default::default() };
+            // The search (the verdict answers these at once; see `solve::verdict`).
+            let opts = SolveOptions { limits: mode, reach_verdict: false, ..Default::default() };
             let attempts = opts.restarts.unwrap().attempts;
             let o = Solver::new(opts.clone()).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
             println!(
@@ -246,6 +247,7 @@ fn a_spent_time_budget_starts_no_restart() {
     let goal = Goal::position(-3.0, -1.0).unwrap();
     let opts = SolveOptions {
         restarts: Some(Restarts { time_budget: Some(std::time::Duration::ZERO), ..Restarts::default() }),
+        reach_verdict: false,
         ..Default::default()
     };
     let o = Solver::new(opts).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();

@@ -74,6 +74,7 @@ mod sdls;
 mod solver;
 mod step;
 mod transpose;
+mod verdict;
 
 pub use crate::angle::wrap_angle;
 pub use crate::goal::{Goal, GoalError};

@@ -340,6 +340,7 @@ mod tests {
                     closed_form: false,
                     record_every: Some(3),
                     restarts: Some(Restarts { attempts: 3, ..Restarts::default() }),
+                    reach_verdict: false,
                     ..SolveOptions::default()
                 };
                 let Ok(mut solver) = Solver::new(opts.clone()) else { continue };

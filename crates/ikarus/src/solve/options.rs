@@ -108,6 +108,13 @@ pub struct SolveOptions {
     /// [`Status::Interrupted`](super::Status::Interrupted) with the pose it has. `None` never
     /// stops early.
     pub interrupt: Option<crate::Interrupt>,
+    /// With limits enforced, judge the goal against the exact reachable region first
+    /// ([`Region`](crate::reach::Region)): a goal outside it by more than the tolerance ends
+    /// [`Status::Unreachable`](super::Status::Unreachable) at once, with the pose reaching the
+    /// nearest reachable point and [`Outcome::reach_distance`](super::Outcome::reach_distance)
+    /// set (see the `verdict` notes in the [module docs](super)). `false` searches as if no
+    /// region were known (for comparison). Default `true`.
+    pub reach_verdict: bool,
 }
 
 impl Default for SolveOptions {
@@ -130,6 +137,7 @@ impl Default for SolveOptions {
             restarts: Some(Restarts::default()),
             closed_form: true,
             interrupt: None,
+            reach_verdict: true,
         }
     }
 }

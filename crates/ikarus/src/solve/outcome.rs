@@ -16,8 +16,11 @@ use crate::kinematics::EndEffector;
 pub enum Status {
     /// The tip is within tolerance of the goal (and of its orientation, if any).
     Reached,
-    /// No pose can reach the goal, even with limits ignored; the pose is the best found
-    /// (for a position goal: the arm stretched towards it).
+    /// No pose can reach the goal: it is out of reach even with limits ignored (the pose is
+    /// then the best found: for a position goal, the arm stretched towards it), or, with limits
+    /// enforced, outside the exact reachable region (the pose then reaches the nearest
+    /// reachable point, found at once without a search; see
+    /// [`SolveOptions::reach_verdict`](super::SolveOptions::reach_verdict)).
     Unreachable,
     /// The pose stopped moving before reaching the goal: a local minimum, or joints held at
     /// their limits.
@@ -76,6 +79,11 @@ pub struct Outcome {
     /// chain. `error` and `angle_error` above are then the largest of theirs, and
     /// `end_effector` the first one's tip.
     pub effectors: Vec<EffectorOutcome>,
+    /// With limits enforced and [`reach_verdict`](super::SolveOptions::reach_verdict) on: the
+    /// distance from the goal to the exact reachable region (0 inside; for an orientation
+    /// goal, from its wrist point to the wrist's region). `None` when no verdict was made
+    /// (limits ignored or absent, a skeleton, or the verdict turned off).
+    pub reach_distance: Option<f64>,
 }
 
 impl Default for Outcome {
@@ -90,6 +98,7 @@ impl Default for Outcome {
             end_effector: EndEffector { position: Point2::origin(), orientation: 0.0 },
             frames: Frames::default(),
             effectors: Vec::new(),
+            reach_distance: None,
         }
     }
 }

@@ -167,6 +167,7 @@ mod tests {
                 limits: LimitMode::Lock,
                 restarts: Some(r),
                 record_every: Some(5),
+                reach_verdict: false,
                 ..SolveOptions::default()
             };
             let out = Solver::new(opts.clone()).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();

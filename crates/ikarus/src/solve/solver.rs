@@ -10,6 +10,7 @@ use super::problem::Problem;
 use super::restarts::solve_with_restarts;
 use super::rig_model::RigPoints;
 use super::scratch::Scratch;
+use super::verdict::ReachCache;
 use super::{Method, OptionsError, Outcome, SolveError, SolveOptions, Status};
 use crate::angle::wrap_angle;
 use crate::chain::{Chain, Pose};
@@ -31,6 +32,8 @@ pub struct Solver {
     pub(super) first_level_scratch: Scratch<RigPoints, Dynamic>,
     /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
     pub(super) rig_work: super::rig_model::RigWork,
+    /// The exact regions of the last chain solved with limits, for the verdict.
+    reach: ReachCache,
 }
 
 impl Solver {
@@ -43,6 +46,7 @@ impl Solver {
             rig_scratch: Scratch::default(),
             first_level_scratch: Scratch::default(),
             rig_work: Default::default(),
+            reach: ReachCache::default(),
         })
     }
 
@@ -76,6 +80,18 @@ impl Solver {
         let s = &mut self.scratch;
         Model::fit(chain, s);
         let p = Problem::new(chain, goal, opts);
+        out.reach_distance = None;
+        // (A solve interrupted before it starts ends interrupted, as it always has.)
+        if opts.reach_verdict && !p.bounds.is_free() && !crate::interrupt::is_set(opts.interrupt.as_ref()) {
+            let found = self.reach.judge(chain, goal, opts.tolerance, opts.angle_tolerance, &mut s.trial);
+            if let Some(found) = found {
+                out.reach_distance = Some(found.distance);
+                if found.unreachable {
+                    out_of_reach(&p, start, s, out);
+                    return Ok(());
+                }
+            }
+        }
         if opts.closed_form || opts.method == Method::Analytic {
             match closed_form::solve(chain, goal, start, p.bounds, &mut s.trial) {
                 ClosedForm::Solved => {
@@ -149,6 +165,45 @@ fn measure_pose<M: Model>(p: &Problem<'_, M>, s: &mut ScratchOf<M>, out: &mut Ou
         Status::Reached => Status::Stalled,
         other @ (Status::Unreachable | Status::Stalled | Status::IterationLimit) => other,
     };
+}
+
+/// A goal the verdict found out of reach: the pose reaching the nearest reachable point (in
+/// `s.trial`) is the answer, as one step without a search (as the closed form's answers are);
+/// frames, if recorded, are the start pose (clamped into the bounds) and the answer.
+///
+/// The start pose stays the answer if its task error (distance and weighted orientation
+/// error, squared and summed, as the line search measures) is lower: for a position goal only
+/// where rounding puts the region's nearest point a hair beyond the start's tip, for an
+/// orientation goal where the start trades distance for orientation more cheaply than the
+/// pose that points the last link exactly as asked.
+fn out_of_reach(p: &Problem, start: &[f64], s: &mut ScratchOf<Chain>, out: &mut Outcome) {
+    let chain = p.model;
+    let n = chain.len();
+    s.restart.copy_from_slice(start);
+    p.bounds.clamp_into(&mut s.restart);
+    let task_error = |angles: &[f64], joints: &mut Vec<nalgebra::Point2<f64>>| {
+        let phi = joint_positions_into(chain, angles, joints);
+        let tip = joints[n];
+        let d = distance(p.goal.target().x - tip.x, p.goal.target().y - tip.y);
+        let turn = p.goal.orientation().map_or(0.0, |g| p.opts.orientation_weight * wrap_angle(g - phi));
+        d * d + turn * turn
+    };
+    if task_error(&s.restart, &mut s.joints) < task_error(&s.trial, &mut s.trial_joints) {
+        s.trial.copy_from_slice(&s.restart);
+        joint_positions_into(chain, &s.trial, &mut s.trial_joints);
+    }
+    out.frames.start(n, p.opts.record_every, 1);
+    if p.opts.record_every.is_some() {
+        out.frames.push(0, &s.restart, &s.joints);
+        out.frames.push(1, &s.trial, &s.trial_joints);
+    }
+    let angles = out.pose.angles_mut();
+    angles.clear();
+    angles.extend_from_slice(&s.trial);
+    out.status = Status::Unreachable;
+    out.iterations = 1;
+    out.restarts = 0;
+    measure(p, s, out);
 }
 
 /// The start pose must hold one finite angle per joint, and the rates one per joint or none

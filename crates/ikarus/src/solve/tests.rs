@@ -217,7 +217,13 @@ fn goals_the_limits_put_behind_the_arm_stall_with_clamping() {
         let goal = Goal::position(x, y).unwrap();
         assert!(!goal.is_out_of_reach(&chain, 1e-6));
         for method in [Method::Transpose, Method::PseudoInverse, Method::DampedLeastSquares] {
-            let opts = SolveOptions { method, limits: LimitMode::Clamp, restarts: None, ..Default::default() };
+            let opts = SolveOptions {
+                method,
+                limits: LimitMode::Clamp,
+                restarts: None,
+                reach_verdict: false,
+                ..Default::default()
+            };
             let cap = opts.max_iterations;
             let o = solve(&chain, goal, opts);
             println!(

@@ -106,6 +106,8 @@ pub struct Region {
     base: P,
     lengths: Vec<f64>,
     ranges: Vec<Range>,
+    /// The limits respected (none where a joint is free or `limits` is off).
+    bounds: Vec<Option<crate::chain::JointLimits>>,
     limits: bool,
     levels: Vec<Level>,
     /// Level 0's pieces moved to the base, with their boxes.
@@ -135,7 +137,8 @@ impl Region {
         let mut bbox = Bbox::EMPTY;
         boxes.iter().for_each(|b| bbox.union(b));
         let area = if top.kind == Kind::Region { world.iter().map(Seg::area_term).sum::<f64>().max(0.0) } else { 0.0 };
-        Region { base, lengths, ranges, limits, levels, world, boxes, bbox, area }
+        let bounds = chain.limits().iter().map(|&l| l.filter(|_| limits)).collect();
+        Region { base, lengths, ranges, bounds, limits, levels, world, boxes, bbox, area }
     }
 
     /// The region of the wrist (the tip of `chain` without its last link) when the last link
@@ -263,8 +266,18 @@ impl Region {
     /// boundary piece the point lies on, so the tip lands on it up to rounding.
     #[must_use]
     pub fn pose_reaching(&self, p: Point2<f64>) -> (Vec<f64>, Point2<f64>) {
+        let mut angles = Vec::with_capacity(self.lengths.len());
+        let point = self.pose_reaching_into(p, &mut angles);
+        (angles, point)
+    }
+
+    /// [`Region::pose_reaching`] into `angles` (cleared first; no allocation once it has room
+    /// for one angle per joint); returns the boundary point.
+    pub fn pose_reaching_into(&self, p: Point2<f64>, angles: &mut Vec<f64>) -> Point2<f64> {
         let (i, point, _) = self.nearest_on_boundary([p.x, p.y]);
-        (self.pose_on(i, sub(point, self.base)), Point2::new(point[0], point[1]))
+        angles.clear();
+        self.pose_on(i, sub(point, self.base), angles);
+        Point2::new(point[0], point[1])
     }
 
     /// The boundary piece nearest `q`, the nearest point on it, and its distance.
@@ -285,9 +298,8 @@ impl Region {
 
     /// The pose whose tip is at `q` (relative to the base) on level 0's piece `i`, following
     /// each piece's provenance down the levels.
-    fn pose_on(&self, i: usize, q: P) -> Vec<f64> {
+    fn pose_on(&self, i: usize, q: P, angles: &mut Vec<f64>) {
         let n = self.lengths.len();
-        let mut angles = Vec::with_capacity(n);
         let (mut seg, mut q) = (Some(i), q);
         for k in 0..n {
             let level = &self.levels[k];
@@ -313,14 +325,17 @@ impl Region {
         for k in angles.len()..n {
             angles.push(self.ranges[k].lo);
         }
-        angles
     }
 
     /// `theta` turned into joint `k`'s range (its nearer end if it falls outside by rounding).
     fn in_range(&self, k: usize, theta: f64) -> f64 {
         let r = self.ranges[k];
         if r.full {
-            return crate::angle::wrap_angle(theta);
+            // A free joint, or limits a turn or more apart: the equivalent inside them.
+            return match self.bounds[k] {
+                Some(l) => l.nearest_equivalent(theta, 0.5 * (l.min() + l.max())).unwrap_or_else(|| l.clamp(theta)),
+                None => crate::angle::wrap_angle(theta),
+            };
         }
         let off = turn(theta - r.lo);
         if off <= r.span {

@@ -92,7 +92,22 @@ pub(crate) fn levels(lengths: &[f64], ranges: &[Range], tol: Tol) -> Vec<Level> 
 }
 
 /// Level `k` from level `k + 1` (`child`), link `k` as `shift` and joint `k`'s range.
+///
+/// Where rounding leaves nothing with area (a link far shorter than the rounding of the next:
+/// the curves it draws are constant in their distance from the joint to the last bit, and a
+/// turn moves them along themselves), the child's two end copies stand for the level, so that
+/// no level is ever empty.
 fn sweep(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
+    let level = sweep_exactly(child, shift, range, tol);
+    if level.segs.is_empty() && child.kind != Kind::Point {
+        let mut ends = copy(child, shift, range.lo);
+        ends.extend(copy(child, shift, range.lo + range.span));
+        return Level::curve(ends);
+    }
+    level
+}
+
+fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
     let lo = range.lo;
     let span = if range.full { TAU } else { range.span };
     if child.kind == Kind::Point {

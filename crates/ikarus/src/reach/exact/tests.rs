@@ -199,3 +199,14 @@ fn a_region_without_area_is_its_curve() {
     let (angles, _) = r.pose_reaching(Point2::new(0.0, 5.0));
     assert!((end_effector(&c, &angles).position - corner).norm() < 1e-12);
 }
+
+#[test]
+fn a_chain_with_every_joint_fixed_reaches_one_point() {
+    let c = chain(&[(1.0, -49.0, -49.0)]);
+    let r = Region::of(&c, true);
+    let tip = end_effector(&c, &[-49f64.to_radians()]).position;
+    assert_eq!(r.classify(tip, 1e-9), Membership::Boundary);
+    let v = r.verdict(Point2::new(0.3, -0.7), 0.1);
+    assert!(!v.reachable && (v.nearest - tip).norm() < 1e-12, "{v:?}");
+    assert_eq!(r.pose_reaching(Point2::new(5.0, 5.0)).0, vec![-49f64.to_radians()]);
+}

@@ -1,0 +1,274 @@
+//! The certified-reach verdict before a solve: with limits enforced, a goal the exact region
+//! ([`Region`]) does not hold cannot be reached by any pose, so the solve ends at once as
+//! [`Status::Unreachable`](super::Status::Unreachable) with the pose that reaches the nearest
+//! reachable point, instead of searching with every restart first.
+//!
+//! A position goal is judged against the chain's region, within the tolerance. An orientation
+//! goal is judged by its wrist point (the goal moved back along the last link) against the
+//! region of the chain without its last link ([`Region::wrist`]), within the tolerance plus the
+//! last link's length times the angle tolerance (how far the wrist moves over the orientations
+//! that count as reached). That region is exact when the last joint turns freely and holds the
+//! true one otherwise, so the verdict `unreachable` is always right; a goal it lets through may
+//! still be out of reach, and is then searched for as before.
+//!
+//! The regions are built on the first solve of a chain with limits (0.2 ms for the seed arm,
+//! about 1 ms for eight links) and kept by the [`Solver`](super::Solver) until it solves for a
+//! chain with other lengths, limits or base.
+
+use nalgebra::{Point2, Vector2};
+
+use crate::chain::Chain;
+use crate::goal::Goal;
+use crate::reach::Region;
+
+/// The regions of the last chain checked, and what identifies that chain.
+#[derive(Debug, Clone, Default)]
+pub(super) struct ReachCache {
+    key: Vec<f64>,
+    position: Option<Region>,
+    /// `Some(None)`: built, and the chain has one link (no wrist region).
+    wrist: Option<Option<Region>>,
+}
+
+/// What the verdict found: the distance from the goal to the region (0 inside), and whether it
+/// is farther than the tolerance (the pose reaching the nearest point is then in `pose`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Found {
+    pub(super) distance: f64,
+    pub(super) unreachable: bool,
+}
+
+impl ReachCache {
+    /// Forgets the regions if `chain` is not the chain they were built for.
+    fn fit(&mut self, chain: &Chain) {
+        let base = chain.base();
+        let mut same = self.key.len() == 2 + 3 * chain.len() && self.key[0] == base.x && self.key[1] == base.y;
+        let entries = chain.lengths().iter().zip(chain.limits()).map(|(&l, lim)| {
+            let (lo, hi) = lim.map_or((f64::NEG_INFINITY, f64::INFINITY), |lim| (lim.min(), lim.max()));
+            [l, lo, hi]
+        });
+        if same {
+            same = entries.clone().enumerate().all(|(k, e)| self.key[2 + 3 * k..5 + 3 * k] == e);
+        }
+        if !same {
+            self.key.clear();
+            self.key.extend([base.x, base.y]);
+            self.key.extend(entries.flatten());
+            self.position = None;
+            self.wrist = None;
+        }
+    }
+
+    /// Judges `goal` for `chain` with its limits; writes the pose reaching the nearest
+    /// reachable point into `pose` when the goal is out of reach. `None` when there is nothing
+    /// to judge by (an orientation goal on a one-link chain).
+    pub(super) fn judge(
+        &mut self,
+        chain: &Chain,
+        goal: &Goal,
+        tolerance: f64,
+        angle_tolerance: f64,
+        pose: &mut Vec<f64>,
+    ) -> Option<Found> {
+        self.fit(chain);
+        let target = goal.target();
+        match goal.orientation() {
+            None => {
+                let region = self.position.get_or_insert_with(|| Region::of(chain, true));
+                let v = region.verdict(target, tolerance);
+                if !v.reachable {
+                    region.pose_reaching_into(target, pose);
+                }
+                Some(Found { distance: v.distance, unreachable: !v.reachable })
+            }
+            Some(direction) => {
+                let region = self.wrist.get_or_insert_with(|| Region::wrist(chain, true)).as_ref()?;
+                let n = chain.len();
+                let last = chain.lengths()[n - 1];
+                let wrist: Point2<f64> = target - last * Vector2::new(direction.cos(), direction.sin());
+                let v = region.verdict(wrist, tolerance + last * angle_tolerance);
+                if !v.reachable {
+                    region.pose_reaching_into(wrist, pose);
+                    // The last joint points the last link as the goal asks, within its range.
+                    let before: f64 = pose.iter().sum();
+                    let wanted = direction - before;
+                    let angle = match chain.limits()[n - 1] {
+                        Some(l) => l
+                            .nearest_equivalent(wanted, 0.5 * (l.min() + l.max()))
+                            .unwrap_or_else(|| l.nearer_end(wanted)),
+                        None => crate::angle::wrap_angle(wanted),
+                    };
+                    pose.push(angle);
+                }
+                Some(Found { distance: v.distance, unreachable: !v.reachable })
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use nalgebra::Point2;
+
+    use crate::chain::{Chain, JointLimits, Link};
+    use crate::goal::Goal;
+    use crate::kinematics::end_effector;
+    use crate::reach::Region;
+    use crate::rng::SplitMix64;
+    use crate::solve::{LimitMode, Method, SolveOptions, Solver, Status};
+
+    fn limited(links: &[(f64, f64, f64)]) -> Chain {
+        let links: Vec<Link> = links
+            .iter()
+            .map(|&(l, lo, hi)| {
+                let (lo, hi): (f64, f64) = (lo.to_radians(), hi.to_radians());
+                Link::new(l, 0.5 * (lo + hi)).with_limits(JointLimits::new(lo, hi).unwrap())
+            })
+            .collect();
+        Chain::new([0.0, 0.0], &links).unwrap()
+    }
+
+    fn seed() -> Chain {
+        limited(&[(3.0, -45.0, 45.0), (2.0, -90.0, 90.0), (1.0, -170.0, 170.0)])
+    }
+
+    fn seven() -> Chain {
+        limited(&[
+            (2.0, -90.0, 90.0),
+            (1.7, -120.0, 120.0),
+            (1.4, -120.0, 120.0),
+            (1.2, -135.0, 135.0),
+            (1.0, -135.0, 135.0),
+            (0.8, -150.0, 150.0),
+            (0.6, -150.0, 150.0),
+        ])
+    }
+
+    #[test]
+    fn a_goal_outside_the_region_is_answered_at_once_with_the_nearest_pose() {
+        let chain = seed();
+        let region = Region::of(&chain, true);
+        let goal = Goal::position(-3.0, -1.0).unwrap();
+        let out = Solver::new(SolveOptions::default()).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+        assert_eq!(out.status, Status::Unreachable);
+        assert_eq!((out.iterations, out.restarts), (1, 0));
+        let d = region.distance(goal.target());
+        assert_eq!(out.reach_distance, Some(d));
+        assert!((out.error - d).abs() < 1e-9, "{} vs {d}", out.error);
+        assert!((out.end_effector.position - region.nearest(goal.target())).norm() < 1e-9);
+        for (a, l) in out.pose.angles().iter().zip(chain.limits()) {
+            assert!(l.unwrap().contains(*a));
+        }
+        // Without the verdict the search runs every restart and ends no closer.
+        let searched = SolveOptions { reach_verdict: false, ..SolveOptions::default() };
+        let slow = Solver::new(searched).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+        assert_ne!(slow.status, Status::Reached);
+        assert!(slow.iterations > 1 && slow.reach_distance.is_none());
+        assert!(slow.error >= d - 1e-9, "{} < {d}", slow.error);
+    }
+
+    /// The closest poses the searches found behind the seed arm (`solve::limit_tests`,
+    /// measured there by the search with restarts) are the verdict's distances.
+    #[test]
+    fn the_verdict_finds_the_closest_poses_the_searches_found() {
+        let chain = seed();
+        let mut solver = Solver::new(SolveOptions::default()).unwrap();
+        for ((x, y), closest) in [((-3.0, -1.0), 3.4913), ((-4.0, 0.5), 4.6010), ((-4.0, 2.0), 3.9512)] {
+            let out = solver.solve(&chain, chain.start_pose(), &Goal::position(x, y).unwrap()).unwrap();
+            assert_eq!(out.status, Status::Unreachable);
+            assert!((out.error - closest).abs() < 1e-4, "({x}, {y}): {} vs {closest}", out.error);
+        }
+    }
+
+    #[test]
+    fn no_verdict_without_limits() {
+        let chain = seed();
+        let goal = Goal::position(-3.0, -1.0).unwrap();
+        for opts in [
+            SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() },
+            SolveOptions { reach_verdict: false, ..SolveOptions::default() },
+        ] {
+            let out = Solver::new(opts).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+            assert_eq!(out.reach_distance, None);
+        }
+        let free = chain.without_limits();
+        let out = Solver::new(SolveOptions::default()).unwrap().solve(&free, free.start_pose(), &goal).unwrap();
+        assert_eq!((out.status, out.reach_distance), (Status::Reached, None));
+    }
+
+    /// Random goals: every one the verdict passes (away from the boundary) is reached by the
+    /// default solver; for every one it stops, no method, searching with restarts, gets closer
+    /// than the verdict's distance.
+    #[test]
+    fn the_verdict_agrees_with_solving() {
+        for (name, chain, n) in [("seed", seed(), 1500), ("seven", seven(), 600)] {
+            let region = Region::of(&chain, true);
+            let reach = chain.max_reach();
+            let mut rng = SplitMix64(21);
+            let mut solver = Solver::new(SolveOptions::default()).unwrap();
+            let mut searchers: Vec<Solver> = Method::ALL
+                .iter()
+                .filter(|m| m.solves_rigs() || **m == Method::LevenbergMarquardt)
+                .map(|&method| {
+                    Solver::new(SolveOptions { method, reach_verdict: false, ..SolveOptions::default() }).unwrap()
+                })
+                .collect();
+            let (mut inside, mut outside) = (0, 0);
+            for i in 0..n {
+                let p = Point2::new(rng.range(-reach, reach), rng.range(-reach, reach));
+                let goal = Goal::position(p.x, p.y).unwrap();
+                let out = solver.solve(&chain, chain.start_pose(), &goal).unwrap();
+                let d = region.distance(p);
+                assert_eq!(out.reach_distance, Some(d), "{name} {p}");
+                if d == 0.0 {
+                    inside += 1;
+                    assert_eq!(out.status, Status::Reached, "{name}: {p} inside, {out:?}");
+                } else {
+                    outside += 1;
+                    assert_eq!(out.status, Status::Unreachable, "{name} {p}");
+                    let k = i % searchers.len();
+                    let searcher = &mut searchers[k];
+                    let method = searcher.options().method;
+                    let s = searcher.solve(&chain, chain.start_pose(), &goal).unwrap();
+                    assert_ne!(s.status, Status::Reached, "{name}: {p} reached by {method:?}");
+                    assert!(s.error >= d - 1e-9, "{name}: {p} {method:?} got within {} < {d}", s.error);
+                }
+            }
+            assert!(inside > n / 8 && outside > n / 8, "{name}: {inside} inside, {outside} outside");
+        }
+    }
+
+    #[test]
+    fn orientation_goals_are_judged_by_their_wrist() {
+        // The last joint turns freely, so the wrist region is exact.
+        let c = limited(&[(3.0, -45.0, 45.0), (2.0, -90.0, 90.0)]);
+        let links: Vec<Link> = c.links().into_iter().chain(std::iter::once(Link::new(1.0, 0.0))).collect();
+        let chain = Chain::new([0.0, 0.0], &links).unwrap();
+        let wrist = Region::wrist(&chain, true).unwrap();
+        let mut rng = SplitMix64(5);
+        let mut solver = Solver::new(SolveOptions::default()).unwrap();
+        let mut searcher = Solver::new(SolveOptions { reach_verdict: false, ..SolveOptions::default() }).unwrap();
+        let mut stopped = 0;
+        for _ in 0..400 {
+            let (x, y, a) = (rng.range(-6.0, 6.0), rng.range(-6.0, 6.0), rng.range(-PI, PI));
+            let goal = Goal::with_orientation(x, y, a).unwrap();
+            let out = solver.solve(&chain, chain.start_pose(), &goal).unwrap();
+            let w = Point2::new(x - a.cos(), y - a.sin());
+            assert_eq!(out.reach_distance, Some(wrist.distance(w)));
+            if out.status == Status::Unreachable && out.reach_distance > Some(0.0) {
+                stopped += 1;
+                // The last link points as asked; the wrist is at its region's nearest point.
+                assert!(out.angle_error < 1e-9, "{out:?}");
+                let tip = end_effector(&chain, out.pose.angles()).position;
+                assert!((tip - (wrist.nearest(w) + nalgebra::Vector2::new(a.cos(), a.sin()))).norm() < 1e-9);
+                let s = searcher.solve(&chain, chain.start_pose(), &goal).unwrap();
+                assert_ne!(s.status, Status::Reached, "({x}, {y}, {a}) reached by searching");
+            } else {
+                assert_eq!(out.status, Status::Reached, "({x}, {y}, {a}): {out:?}");
+            }
+        }
+        assert!(stopped > 50, "{stopped}");
+    }
+}
