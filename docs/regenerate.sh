@@ -14,8 +14,8 @@ $ikarus animate --goal -2,3 --via 4,1.5 --ease parent --k1 0.3 --k2 0.7 --frames
   --width 560 --height 560 --out docs/motion.png > /dev/null
 # The seed arm tracing a figure-8 (plan mode): the dashed path, the tip's trace, the ghost poses.
 $ikarus track --figure8 0.5,2.5,3 --samples 80 --width 560 --height 560 --out docs/track.png > /dev/null
-# What the seed's ranges leave of the annulus the free arm reaches.
-$ikarus workspace --limits --resolution 320 --width 560 --height 560 --out docs/workspace-limits.png > /dev/null
+# What the seed's ranges leave of the annulus the free arm reaches: the exact region, seven arcs.
+$ikarus workspace --limits --width 560 --height 560 --out docs/workspace-limits.png > /dev/null
 # The puppet reaching with both hands while its feet stay planted (limits on, wedges drawn).
 $ikarus solve --rig examples/rigs/puppet.toml --goal right_hand=0.6451,1.0024 --goal left_hand=0.8118,0.5652 \
   --pin left_foot --pin right_foot --limits --width 560 --height 560 --out docs/puppet.png > /dev/null

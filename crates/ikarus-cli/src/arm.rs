@@ -15,6 +15,7 @@
 
 use std::path::Path;
 
+use clap::Args;
 use ikarus::number::Num;
 use ikarus::{Chain, ChainError, JointLimits, Link};
 use serde::Deserialize;
@@ -24,6 +25,29 @@ use crate::settings::SolverSettings;
 
 /// The built-in default arm: the seed program's, shipped as `examples/arms/seed.toml`.
 pub const DEFAULT_ARM: &str = include_str!("../../../examples/arms/seed.toml");
+
+/// `--limits` / `--no-limits` of the commands that look at the reachable region (`workspace`,
+/// `reach`, `render arm`, `render workspace`): over the arm file's `[solver] limits`.
+#[derive(Debug, Clone, Args)]
+pub struct LimitsArgs {
+    /// Respect the arm's joint ranges (the built-in arm's are the seed's)
+    #[arg(long, overrides_with = "no_limits")]
+    pub limits: bool,
+    /// Ignore the joint ranges, even if the arm file's [solver] table enforces them
+    #[arg(long, overrides_with = "limits")]
+    pub no_limits: bool,
+}
+
+impl LimitsArgs {
+    /// What the flags ask: `Some(true)`, `Some(false)`, or `None` (the arm file decides).
+    pub fn asked(&self) -> Option<bool> {
+        match (self.limits, self.no_limits) {
+            (true, _) => Some(true),
+            (false, true) => Some(false),
+            (false, false) => None,
+        }
+    }
+}
 
 /// An arm as written in a file: names and units of the edge (degrees).
 #[derive(Debug, Clone, Deserialize)]
@@ -73,6 +97,12 @@ impl Arm {
     /// field a setting came from.
     pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
         crate::settings::command_options(flags, &self.solver, &self.label, self.chain.len(), record_every)
+    }
+
+    /// Whether the arm's joint ranges are respected: `asked` (a flag, a request's `limits`) over
+    /// the arm file's `[solver] limits`, off when neither says.
+    pub fn limits(&self, asked: Option<bool>) -> bool {
+        asked.or(self.solver.limits).unwrap_or(false)
     }
 
     /// Loads `path`, or the built-in seed arm when `None`.

@@ -1,7 +1,8 @@
 //! Goals at the edges: one from flags or a request ([`make_goal`], degrees), and goal files
 //! (CSV: a header `x,y` or `x,y,angle_deg`, then one goal per row). The batch input of
-//! `ikarus solve --batch` and the path of `ikarus track --path` read them with one reader, so
-//! both word their errors alike: the file, the line, the column, what is wrong.
+//! `ikarus solve --batch`, the path of `ikarus track --path` and the points of
+//! `ikarus reach --batch` (header `x,y`) are read with one reader, so they word their errors
+//! alike: the file, the line, the column, what is wrong.
 
 use std::path::Path;
 
@@ -31,33 +32,61 @@ pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String>
 /// Reads the goal file `file`; errors start with `label` (e.g. `batch file goals.csv`). An empty
 /// file (a header and no row) is an empty list: the caller says what it needs.
 pub fn read(file: &Path, label: &str) -> Result<Vec<GoalRow>, CliError> {
+    let (header, rows) = read_numbers(file, label, &[&["x", "y"], &["x", "y", "angle_deg"]])?;
+    let with_angle = header == 1;
+    rows.into_iter()
+        .map(|(line, v)| {
+            let (x, y) = (v[0], v[1]);
+            let angle = if with_angle { Some(v[2]) } else { None };
+            let goal = make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
+            Ok(GoalRow { x, y, goal })
+        })
+        .collect()
+}
+
+/// Reads the point file `file` (header `x,y`, then one point per row: `ikarus reach --batch`);
+/// errors start with `label`. A file without points is an error.
+pub fn read_points(file: &Path, label: &str) -> Result<Vec<[f64; 2]>, CliError> {
+    let (_, rows) = read_numbers(file, label, &[&["x", "y"]])?;
+    if rows.is_empty() {
+        return Err(CliError::input(format!("{label}: no points (expected a header `x,y` and one point per row)")));
+    }
+    Ok(rows.into_iter().map(|(_, v)| [v[0], v[1]]).collect())
+}
+
+/// The rows of a CSV file of numbers: each row's line, and its values (one per column).
+type NumberRows = Vec<(u64, Vec<f64>)>;
+
+/// Reads a CSV file of finite numbers whose header is one of `headers`: which one, and its rows.
+/// Errors start with `label` and name the line and the column.
+fn read_numbers(file: &Path, label: &str, headers: &[&[&str]]) -> Result<(usize, NumberRows), CliError> {
     let text = crate::input::read(file, label)?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_slice());
-    let headers = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
-    let names: Vec<&str> = headers.iter().collect();
-    let with_angle = match names[..] {
-        ["x", "y"] => false,
-        ["x", "y", "angle_deg"] => true,
-        _ => {
-            return Err(CliError::input(format!(
-                "{label}: line 1: header must be `x,y` or `x,y,angle_deg`, got `{}`",
-                names.join(",")
-            )));
-        }
+    let found = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
+    let names: Vec<&str> = found.iter().collect();
+    let Some(header) = headers.iter().position(|h| *h == names.as_slice()) else {
+        let wanted: Vec<String> = headers.iter().map(|h| format!("`{}`", h.join(","))).collect();
+        return Err(CliError::input(format!(
+            "{label}: line 1: header must be {}, got `{}`",
+            wanted.join(" or "),
+            names.join(",")
+        )));
     };
+    let columns = headers[header];
     let mut rows = Vec::new();
     for record in reader.records() {
         let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
         let line = record.position().map_or(0, csv::Position::line);
-        let field = |i: usize, name: &str| {
-            parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}: {name}: {m}")))
-        };
-        let (x, y) = (field(0, "x")?, field(1, "y")?);
-        let angle = if with_angle { Some(field(2, "angle_deg")?) } else { None };
-        let goal = make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
-        rows.push(GoalRow { x, y, goal });
+        let values = columns
+            .iter()
+            .enumerate()
+            .map(|(i, name)| {
+                parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}: {name}: {m}")))
+            })
+            .collect::<Result<Vec<f64>, CliError>>()?;
+        rows.push((line, values));
     }
-    Ok(rows)
+    Ok((header, rows))
 }
 
 #[cfg(test)]

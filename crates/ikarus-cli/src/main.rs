@@ -5,6 +5,7 @@
 //! the value.
 
 mod animate;
+mod area;
 mod arm;
 mod batch;
 mod bench;
@@ -16,6 +17,7 @@ mod motion;
 mod options;
 mod output;
 mod picture;
+mod reach;
 mod render;
 mod report;
 mod rig;
@@ -66,8 +68,13 @@ enum Command {
     /// planned over the whole path, or followed online with every joint step bounded
     #[command(allow_negative_numbers = true)]
     Track(track::TrackArgs),
-    /// The region the arm's tip can reach: radii, area, occupancy grid, picture
+    /// The region the arm's tip can reach, exactly: radii, area, boundary loops, picture (the
+    /// sampled occupancy grid with --grid)
     Workspace(workspace::WorkspaceArgs),
+    /// Whether the arm's tip can reach a point (or every point of a CSV file), how far it is
+    /// from the reachable region and the nearest reachable point
+    #[command(allow_negative_numbers = true)]
+    Reach(reach::ReachArgs),
     /// Draw figures that stand on their own
     #[command(subcommand)]
     Render(render::RenderCommand),
@@ -100,6 +107,7 @@ fn main() -> ExitCode {
         Command::Animate(args) => animate::run(args),
         Command::Track(args) => track::run(args),
         Command::Workspace(args) => workspace::run(args),
+        Command::Reach(args) => reach::run(args),
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),
         Command::Bench(args) => bench::run(args),

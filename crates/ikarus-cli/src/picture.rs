@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use ikarus::motion::Animation;
-use ikarus::reach::Workspace;
 use ikarus::{Chain, Ease, Point2, RigTask};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Deserialize;
 
+use crate::area::ReachableArea;
 use crate::arm::Arm;
 use crate::error::CliError;
 use crate::motion::Motion;
@@ -49,12 +49,12 @@ impl PictureFormat {
 
 /// What to draw.
 pub enum Drawing<'a> {
-    /// An arm in one pose, with an optional goal, shaded workspace and caption.
+    /// An arm in one pose, with an optional goal, shaded reachable area and caption.
     Arm {
         chain: &'a Chain,
         pose: &'a [f64],
         goal: Option<Point2<f64>>,
-        workspace: Option<&'a Workspace>,
+        workspace: Option<ikarus_render::Reachable<'a>>,
         caption: Option<String>,
     },
     /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`.
@@ -128,7 +128,7 @@ pub fn draw(
                 goal: *goal,
                 workspace: *workspace,
                 caption: caption.clone(),
-                // A reachable area sampled with the limits shows the ranges that shape it.
+                // A reachable area within the limits shows the ranges that shape it.
                 ranges: workspace.is_some_and(|w| w.limits()),
                 ..ikarus_render::ArmFigure::new(chain, pose)
             };
@@ -177,20 +177,20 @@ pub fn arm_drawing<'a>(
     arm: &'a Arm,
     pose: &'a [f64],
     goal: Option<Point2<f64>>,
-    workspace: Option<&'a Workspace>,
+    workspace: Option<&'a ReachableArea>,
 ) -> Drawing<'a> {
-    Drawing::Arm { chain: &arm.chain, pose, goal, workspace, caption: None }
+    Drawing::Arm { chain: &arm.chain, pose, goal, workspace: workspace.map(ReachableArea::layer), caption: None }
 }
 
 /// The figure `workspace`: the arm in its start pose over its reachable area, with a caption
 /// (the API's figure `workspace`, `ikarus workspace --out` and `ikarus render workspace`).
-pub fn workspace_drawing<'a>(arm: &'a Arm, workspace: &'a Workspace) -> Drawing<'a> {
+pub fn workspace_drawing<'a>(arm: &'a Arm, area: &'a ReachableArea) -> Drawing<'a> {
     Drawing::Arm {
         chain: &arm.chain,
         pose: arm.chain.start_pose().angles(),
         goal: None,
-        workspace: Some(workspace),
-        caption: Some(workspace_caption(arm, workspace)),
+        workspace: Some(area.layer()),
+        caption: Some(workspace_caption(arm, area)),
     }
 }
 
@@ -224,9 +224,14 @@ pub fn rig_figure<'a>(
 }
 
 /// The one-line caption of a workspace picture.
-pub fn workspace_caption(arm: &Arm, ws: &Workspace) -> String {
-    let limits = if ws.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
-    format!("{} · {limits} · reachable area {:.2} of {:.2}", arm.name, ws.area(), ws.annulus().area())
+pub fn workspace_caption(arm: &Arm, area: &ReachableArea) -> String {
+    let limits = if area.limits() && arm.chain.has_limits() { "with limits" } else { "no limits" };
+    let how = match area {
+        ReachableArea::Exact(_) => "exact",
+        ReachableArea::Grid(_) => "sampled",
+    };
+    let annulus = ikarus::reach::Annulus::of(&arm.chain).area();
+    format!("{} · {limits} · reachable area {:.2} of {annulus:.2} ({how})", arm.name, area.area())
 }
 
 /// `--out` and the picture size.

@@ -17,7 +17,7 @@ use crate::picture::{
 };
 use crate::rig::Rig;
 use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
-use crate::workspace::SamplingArgs;
+use crate::workspace::AreaArgs;
 
 #[derive(Debug, Subcommand)]
 pub enum RenderCommand {
@@ -48,11 +48,11 @@ pub struct RenderArmArgs {
     /// A goal to mark
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_point)]
     pub goal: Option<[f64; 2]>,
-    /// Also shade the reachable area, sampled as the flags below say
+    /// Also shade the reachable area: the exact region, or the grid the flags below sample
     #[arg(long)]
     pub workspace: bool,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub area: AreaArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
@@ -96,7 +96,7 @@ pub struct RenderWorkspaceArgs {
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub area: AreaArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
@@ -116,7 +116,7 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
             let out = required_out(&args.picture, &still)?;
             let arm = Arm::load(args.arm.as_deref())?;
             let pose = pose(&arm, args.pose_deg.as_deref())?;
-            let workspace = if args.workspace { Some(args.sampling.sample(&arm)?) } else { None };
+            let workspace = if args.workspace { Some(args.area.area(&arm)?) } else { None };
             let goal = args.goal.map(|[x, y]| ikarus::Point2::new(x, y));
             let drawing = arm_drawing(&arm, &pose, goal, workspace.as_ref());
             still_picture(&drawing, out, &args.picture)
@@ -137,8 +137,8 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
         RenderCommand::Workspace(args) => {
             let out = required_out(&args.picture, &still)?;
             let arm = Arm::load(args.arm.as_deref())?;
-            let workspace = args.sampling.sample(&arm)?;
-            still_picture(&workspace_drawing(&arm, &workspace), out, &args.picture)
+            let area = args.area.area(&arm)?;
+            still_picture(&workspace_drawing(&arm, &area), out, &args.picture)
         }
         RenderCommand::Ease(args) => {
             let out = required_out(&args.picture, &still)?;

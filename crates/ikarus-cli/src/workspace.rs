@@ -1,12 +1,14 @@
-//! `ikarus workspace`: the region the arm's tip can reach, as numbers, a grid, and a picture.
+//! `ikarus workspace`: the region the arm's tip can reach, as numbers, boundary loops (or a
+//! sampled grid with `--grid`), and a picture.
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
+use ikarus::reach::{Annulus, BoundarySegment};
 
-use crate::arm::Arm;
+use crate::area::{self, GridRequest, ReachableArea};
+use crate::arm::{Arm, LimitsArgs};
 use crate::error::CliError;
 use crate::options::parse_at_least_one;
 use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, workspace_drawing};
@@ -14,62 +16,63 @@ use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum WorkspaceFormat {
-    /// Radii, areas and the occupancy grid
+    /// Radii, the area and the boundary loops (the occupancy grid with --grid)
     Json,
     /// A short report for people
     Text,
 }
 
-/// The sampling flags of a workspace: `ikarus workspace`, `ikarus render workspace` and
-/// `ikarus render arm --workspace`.
+/// The flags of a reachable area: `ikarus workspace`, `ikarus render workspace` and
+/// `ikarus render arm --workspace`. The exact region unless `--grid` asks for the sampled grid.
 #[derive(Debug, Args)]
-pub struct SamplingArgs {
-    /// Respect the arm's joint ranges (the built-in arm's are the seed's)
-    #[arg(long, overrides_with = "no_limits")]
-    pub limits: bool,
-    /// Ignore the joint ranges, even if the arm file's [solver] table enforces them
-    #[arg(long, overrides_with = "limits")]
-    pub no_limits: bool,
-    /// Grid cells along each side of the square around the reach, 8 to 4096
-    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
-    pub resolution: u32,
-    /// Joint-space samples, at most --max-samples [default: the library's]
+pub struct AreaArgs {
+    #[command(flatten)]
+    pub limits: LimitsArgs,
+    /// Sample an occupancy grid of the region instead of computing it exactly (any of the
+    /// flags below asks for the grid too)
+    #[arg(long)]
+    pub grid: bool,
+    /// With --grid: cells along each side of the square around the reach, 8 to 4096 [default: 256]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    pub resolution: Option<u32>,
+    /// With --grid: joint-space samples, at most --max-samples [default: the library's]
     #[arg(long, value_parser = parse_at_least_one)]
     pub samples: Option<u32>,
     /// Largest --samples accepted
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_SAMPLES)]
     pub max_samples: u32,
-    /// Seed of the sampling
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// With --grid: seed of the sampling [default: 0]
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// The default cap of `--samples`: about four times the library's largest default (262 144),
 /// the server's cap too; 10⁷ samples of a seven-link arm with limits take most of a minute.
 pub const DEFAULT_MAX_SAMPLES: u32 = 1_000_000;
 
-impl SamplingArgs {
-    /// The request of these flags, or an error if `--samples` is over its cap.
-    pub fn request(&self) -> Result<WorkspaceRequest, CliError> {
-        if let Some(n) = self.samples {
-            if n > self.max_samples {
-                return Err(CliError::input(format!(
-                    "--samples {n}: more than the cap of {} (raise it with --max-samples N)",
-                    self.max_samples
-                )));
-            }
+impl AreaArgs {
+    /// The grid the flags ask for (`None`: the exact region): `--grid`, or any sampling flag;
+    /// an error for `--samples` over its cap.
+    pub fn grid(&self) -> Result<Option<GridRequest>, CliError> {
+        let grid =
+            GridRequest::of(self.grid.then_some(true), self.resolution, self.samples, self.seed, |field, value| {
+                format!("--{field} {value}")
+            })
+            .map_err(CliError::input)?;
+        if let Some(n) = self.samples.filter(|&n| n > self.max_samples) {
+            return Err(CliError::input(format!(
+                "--samples {n}: more than the cap of {} (raise it with --max-samples N)",
+                self.max_samples
+            )));
         }
-        let limits = match (self.limits, self.no_limits) {
-            (true, _) => Some(true),
-            (false, true) => Some(false),
-            (false, false) => None,
-        };
-        Ok(WorkspaceRequest { limits, resolution: self.resolution, samples: self.samples, seed: self.seed })
+        Ok(grid)
     }
 
-    /// Samples `arm`'s workspace as the flags say, with a progress bar on a terminal.
-    pub fn sample(&self, arm: &Arm) -> Result<Workspace, CliError> {
-        let request = self.request()?;
+    /// `arm`'s reachable area as the flags say: the exact region, or the grid sampled in
+    /// parallel with a progress bar on a terminal.
+    pub fn area(&self, arm: &Arm) -> Result<ReachableArea, CliError> {
+        let limits = arm.limits(self.limits.asked());
+        let Some(grid) = self.grid()? else { return area::exact(arm, limits) };
         let bar = progress_bar(100, "sampling the workspace");
         let report = |done: u64, total: u64| {
             if let Some(bar) = &bar {
@@ -77,11 +80,12 @@ impl SamplingArgs {
                 bar.set_position(done);
             }
         };
-        let workspace = request.sample(arm, &report).map_err(|e| CliError::input(format!("--{e}")))?;
+        let workspace = ikarus::reach::sample_with_progress(&arm.chain, &grid.options(limits), &report)
+            .map_err(|e| CliError::input(format!("--{e}")))?;
         if let Some(bar) = bar {
             bar.finish_and_clear();
         }
-        Ok(workspace)
+        Ok(ReachableArea::Grid(workspace))
     }
 }
 
@@ -92,7 +96,7 @@ pub struct WorkspaceArgs {
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub area: AreaArgs,
     /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum)]
     pub format: Option<WorkspaceFormat>,
@@ -100,53 +104,18 @@ pub struct WorkspaceArgs {
     pub picture: PictureArgs,
 }
 
-/// What a workspace request asks for, from the flags or the API: `limits` over the arm file's
-/// `[solver] limits` (off when neither says), and the sampling.
-pub struct WorkspaceRequest {
-    pub limits: Option<bool>,
-    pub resolution: u32,
-    pub samples: Option<u32>,
-    pub seed: u64,
-}
-
-impl WorkspaceRequest {
-    /// Whether `arm`'s joint ranges are respected.
-    pub fn limits(&self, arm: &Arm) -> bool {
-        self.limits.or(arm.solver.limits).unwrap_or(false)
-    }
-
-    /// Samples `arm`'s workspace, telling `progress(done, total)` how far it got.
-    pub fn sample(&self, arm: &Arm, progress: &(dyn Fn(u64, u64) + Sync)) -> Result<Workspace, ReachError> {
-        let options = WorkspaceOptions {
-            resolution: self.resolution,
-            limits: self.limits(arm),
-            samples: self.samples.map(u64::from),
-            seed: self.seed,
-            ..WorkspaceOptions::default()
-        };
-        ikarus::reach::sample_with_progress(&arm.chain, &options, progress)
-    }
-}
-
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let arm = Arm::load(args.arm.as_deref())?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
-    let workspace = args.sampling.sample(&arm)?;
-    let limits = workspace.limits();
+    let area = args.area.area(&arm)?;
 
     let drew = picture.is_some();
     if let Some(out) = picture {
-        let bytes = draw(
-            &workspace_drawing(&arm, &workspace),
-            out.format,
-            args.picture.width,
-            args.picture.height,
-            &|_, _| {},
-        )?;
+        let bytes =
+            draw(&workspace_drawing(&arm, &area), out.format, args.picture.width, args.picture.height, &|_, _| {})?;
         out.commit(&bytes)?;
     }
 
-    let annulus = workspace.annulus();
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
     let format = match (args.format, drew) {
         (Some(f), _) => f,
@@ -156,16 +125,17 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     };
     output::stdout(|w| match format {
         WorkspaceFormat::Json => {
-            serde_json::to_writer(&mut *w, &report::workspace_json(&arm, limits, &workspace))?;
+            serde_json::to_writer(&mut *w, &report::workspace_json(&arm, &area))?;
             writeln!(w)
         }
-        WorkspaceFormat::Text => text(w, &arm, &workspace, &annulus, limits),
+        WorkspaceFormat::Text => text(w, &arm, &area),
     })
 }
 
-fn text(w: &mut dyn Write, arm: &Arm, ws: &Workspace, annulus: &Annulus, limits: bool) -> std::io::Result<()> {
+fn text(w: &mut dyn Write, arm: &Arm, area: &ReachableArea) -> std::io::Result<()> {
+    let annulus = Annulus::of(&arm.chain);
     writeln!(w, "arm          {} ({} links)", arm.name, arm.chain.len())?;
-    writeln!(w, "limits       {}", if limits { "on" } else { "off" })?;
+    writeln!(w, "limits       {}", if area.limits() { "on" } else { "off" })?;
     writeln!(
         w,
         "annulus      inner radius {}, outer radius {}, area {:.4}",
@@ -173,13 +143,39 @@ fn text(w: &mut dyn Write, arm: &Arm, ws: &Workspace, annulus: &Annulus, limits:
         annulus.outer,
         annulus.area()
     )?;
-    writeln!(
-        w,
-        "reachable    {:.4} ({:.1}% of the annulus), {} of {} cells of {:.4}",
-        ws.area(),
-        100.0 * ws.area() / annulus.area(),
-        ws.occupied_cells(),
-        u64::from(ws.resolution()).pow(2),
-        ws.cell_size()
-    )
+    let share = 100.0 * area.area() / annulus.area();
+    match area {
+        ReachableArea::Exact(region) if region.has_area() => {
+            let loops = region.boundary();
+            let segments = loops.iter().flatten();
+            let arcs = segments.clone().filter(|s| matches!(s, BoundarySegment::Arc { .. })).count();
+            let lines = segments.count() - arcs;
+            writeln!(
+                w,
+                "reachable    {:.4} ({share:.1}% of the annulus), exact: {}, {}{}",
+                region.area(),
+                plural(loops.len(), "boundary loop", "boundary loops"),
+                plural(arcs, "arc", "arcs"),
+                if lines > 0 { format!(" and {}", plural(lines, "line", "lines")) } else { String::new() },
+            )
+        }
+        ReachableArea::Exact(region) => writeln!(
+            w,
+            "reachable    no area: a curve of {} (fewer than two joints move)",
+            plural(region.pieces(), "piece", "pieces")
+        ),
+        ReachableArea::Grid(ws) => writeln!(
+            w,
+            "reachable    {:.4} ({share:.1}% of the annulus), {} of {} cells of {:.4}",
+            ws.area(),
+            ws.occupied_cells(),
+            u64::from(ws.resolution()).pow(2),
+            ws.cell_size()
+        ),
+    }
+}
+
+/// `n` and the noun that goes with it.
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }

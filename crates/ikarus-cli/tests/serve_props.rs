@@ -238,6 +238,20 @@ fn request() -> impl Strategy<Value = (&'static str, Value)> {
                 object(vec![("arm", arm), ("limits", limits), ("resolution", resolution), ("samples", samples)], extra),
             )
         });
+    let point = || or_bad((-8.0f64..8.0, -8.0f64..8.0).prop_map(|(x, y)| json!([x, y])));
+    let reach = (
+        arm(),
+        prop::option::of(or_bad(any::<bool>().prop_map(|b| json!(b)))),
+        prop::option::of(or_bad(magnitude().prop_map(|v| json!(v.abs())))),
+        prop::option::of(point()),
+        prop::option::of(or_bad(prop::collection::vec(point(), 0..20).prop_map(|p| json!(p)))),
+        extra(),
+    )
+        .prop_map(|(arm, limits, tolerance, point, points, extra)| {
+            let fields =
+                vec![("arm", arm), ("limits", limits), ("tolerance", tolerance), ("point", point), ("points", points)];
+            ("/api/reach", object(fields, extra))
+        });
     let picture = (
         prop::option::of(name(&["png", "svg", "gif"])),
         prop::option::of(whole(16, 128)),
@@ -286,7 +300,7 @@ fn request() -> impl Strategy<Value = (&'static str, Value)> {
             ];
             ("/api/render", object(fields, None))
         });
-    prop_oneof![3 => solve, 2 => animate, 1 => track, 1 => workspace, 1 => render_arm, 1 => render_motion, 1 => render_workspace]
+    prop_oneof![3 => solve, 2 => animate, 1 => track, 1 => workspace, 1 => reach, 1 => render_arm, 1 => render_motion, 1 => render_workspace]
 }
 
 /// Where a `null` may stand: an absent orientation.

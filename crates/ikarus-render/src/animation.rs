@@ -9,10 +9,10 @@
 //! pixels transparent, drawn over the previous frame: a still background costs nothing per
 //! frame and cannot flicker between palettes.
 
+use crate::reachable::Reachable;
 use gif::{DisposalMethod, Encoder, Frame, Repeat};
 use ikarus::kinematics::joint_positions;
 use ikarus::motion::Animation;
-use ikarus::reach::Workspace;
 use ikarus::{Chain, Interrupt, Point2};
 use resvg::tiny_skia::Pixmap;
 
@@ -66,8 +66,8 @@ pub const MAX_FPS: f64 = 100.0;
 pub struct Overlay<'a> {
     /// The goal, drawn as a red target.
     pub goal: Option<Point2<f64>>,
-    /// Reachable cells to shade, if any.
-    pub workspace: Option<&'a Workspace>,
+    /// The reachable area to shade, if any.
+    pub workspace: Option<Reachable<'a>>,
     /// Whether to draw the reach circles.
     pub show_reach: bool,
     /// A line of text under the plot.

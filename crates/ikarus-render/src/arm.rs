@@ -7,11 +7,11 @@ use crate::RenderError;
 use crate::error::{check_finite, check_point};
 use crate::path::PathLayer;
 use crate::raster::{check_size, svg_to_png};
+use crate::reachable::Reachable;
 use crate::scene::{Scene, chain_wedges};
 use crate::svg::Svg;
 use crate::view::View;
 use ikarus::motion::Animation;
-use ikarus::reach::Workspace;
 
 /// What a still picture of an arm shows. Build one with [`ArmFigure::new`] or
 /// [`ArmFigure::of_animation`] and adjust the fields:
@@ -42,8 +42,8 @@ pub struct ArmFigure<'a> {
     pub traces: bool,
     /// The goal, drawn as a red target (an arrow on the edge if it lies beyond the view).
     pub goal: Option<Point2<f64>>,
-    /// Reachable cells to shade, if any.
-    pub workspace: Option<&'a Workspace>,
+    /// The reachable area to shade, if any: the exact region or a sampled grid.
+    pub workspace: Option<Reachable<'a>>,
     /// Whether to draw the maximum-reach circle (and the minimum-reach circle when it is > 0).
     pub show_reach: bool,
     /// A line of text under the plot, e.g. `dls · reached · 7 iterations · error 1.2e-7`.
@@ -214,7 +214,8 @@ mod tests {
         let ws =
             sample(&chain, &WorkspaceOptions { resolution: 64, limits: false, ..WorkspaceOptions::default() }).unwrap();
         let svg =
-            arm_svg(&ArmFigure { workspace: Some(&ws), ..ArmFigure::new(&chain, &[0.0, 0.0]) }, 400, 400).unwrap();
+            arm_svg(&ArmFigure { workspace: Some((&ws).into()), ..ArmFigure::new(&chain, &[0.0, 0.0]) }, 400, 400)
+                .unwrap();
         let area = svg.split("reachable workspace").nth(1).unwrap().split("/>").next().unwrap();
         assert!(area.contains("fill-rule=\"evenodd\""), "{area}");
         assert!(area.contains(crate::style::WORKSPACE));

@@ -6,7 +6,8 @@
 //! binary: system fonts are never loaded, so a picture is the same on every machine.
 //!
 //! - [`arm_svg`] / [`arm_png`]: an [`ArmFigure`] — the arm at a pose over a grid, with the
-//!   reach circle, the shaded workspace, ghosts of earlier poses, the paths of the joints, the
+//!   reach circle, the shaded reachable area ([`Reachable`]: the exact region with true arcs,
+//!   or a sampled grid), ghosts of earlier poses, the paths of the joints, the
 //!   goal and a caption. [`ArmFigure::of_animation`] overlays a whole motion.
 //! - [`skeleton_svg`] / [`skeleton_png`]: a [`SkeletonFigure`] — a skeleton (a tree of bones)
 //!   at a pose, with the limits as wedges, goals for bone tips ([`BoneGoal`]), pins and names.
@@ -26,6 +27,7 @@ mod error;
 mod palette;
 mod path;
 mod raster;
+mod reachable;
 mod scene;
 mod skeleton;
 mod skeleton_gif;
@@ -40,6 +42,7 @@ pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use reachable::Reachable;
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use skeleton_gif::skeleton_gif;
 pub use style::{COLOURS, Colours};

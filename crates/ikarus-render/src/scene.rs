@@ -3,11 +3,11 @@
 
 use ikarus::{Chain, Point2};
 
+use crate::reachable::Reachable;
 use crate::style;
 use crate::svg::{PathData, Svg, num};
 use crate::view::{View, nice_step, tick_label, ticks};
 pub(crate) use crate::wedge::{Wedge, chain_wedges};
-use ikarus::reach::Workspace;
 
 /// What every picture of one arm or skeleton shares.
 pub(crate) struct Scene<'a> {
@@ -19,7 +19,7 @@ pub(crate) struct Scene<'a> {
     pub min_reach: f64,
     pub view: View,
     pub goal: Option<Point2<f64>>,
-    pub workspace: Option<&'a Workspace>,
+    pub workspace: Option<Reachable<'a>>,
     pub show_reach: bool,
 }
 
@@ -29,7 +29,7 @@ impl Scene<'_> {
         chain: &Chain,
         view: View,
         goal: Option<Point2<f64>>,
-        workspace: Option<&'w Workspace>,
+        workspace: Option<Reachable<'w>>,
         show_reach: bool,
     ) -> Scene<'w> {
         Scene {
@@ -82,8 +82,8 @@ impl Scene<'_> {
         svg.path(&minor, &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{w}\"", style::GRID_MINOR));
         svg.path(&major, &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{w}\"", style::GRID));
 
-        if let Some(ws) = self.workspace {
-            self.workspace_cells(svg, ws);
+        if let Some(area) = self.workspace {
+            self.reachable(svg, area);
         }
 
         // The axes through the origin, when in view, with their names at the positive ends.
@@ -121,37 +121,6 @@ impl Scene<'_> {
         }
         svg.end_group();
         svg.end_group();
-    }
-
-    /// The reachable area as one path: the smooth edge of the occupied cells
-    /// ([`Workspace::outline`], the playground's edge too), filled with the even-odd rule so that
-    /// holes stay empty, and traced thinly in the reach colour.
-    fn workspace_cells(&self, svg: &mut Svg, ws: &Workspace) {
-        let mut d = PathData::new();
-        for ring in ws.outline(ikarus::reach::OUTLINE_SMOOTHING) {
-            for (k, p) in ring.iter().enumerate() {
-                let (x, y) = self.px(*p);
-                if k == 0 {
-                    d.move_to(x, y);
-                } else {
-                    d.line_to(x, y);
-                }
-            }
-            d.close();
-        }
-        if d.is_empty() {
-            return;
-        }
-        svg.comment("reachable workspace");
-        svg.path(
-            &d,
-            &format!(
-                "fill=\"{}\" fill-rule=\"evenodd\" stroke=\"{}\" stroke-opacity=\"0.6\" stroke-width=\"{}\"",
-                style::WORKSPACE,
-                style::REACH,
-                num(0.8 * self.u())
-            ),
-        );
     }
 
     fn reach_circles(&self, svg: &mut Svg) {

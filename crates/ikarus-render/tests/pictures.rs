@@ -127,7 +127,7 @@ fn svg_parses_with_the_requested_size() {
     let ws = sample(&chain, &WorkspaceOptions { resolution: 64, ..WorkspaceOptions::default() }).unwrap();
     let pose = [0.1, 0.2, 0.3];
     let figure = ArmFigure {
-        workspace: Some(&ws),
+        workspace: Some((&ws).into()),
         traces: true,
         ghosts: vec![&[0.0, 0.0, 0.0]],
         ..ArmFigure::new(&chain, &pose)

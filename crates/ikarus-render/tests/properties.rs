@@ -99,7 +99,7 @@ proptest! {
             ghosts: p.ghosts.iter().map(Vec::as_slice).collect(),
             traces: p.traces,
             goal: p.goal.map(|(x, y)| Point2::new(x, y)),
-            workspace: workspace.as_ref(),
+            workspace: workspace.as_ref().map(Into::into),
             show_reach: p.show_reach,
             caption: p.caption.clone(),
             ..ArmFigure::new(&p.chain, &p.pose)

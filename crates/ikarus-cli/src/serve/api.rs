@@ -1,7 +1,7 @@
 //! The handlers of the JSON API. Requests (`super::requests`) use the names of the command
 //! line and the arm files (degrees at the edge); answers are the same objects the commands print
 //! (`crate::report`), made by the same workflows (`crate::settings`, `crate::motion`,
-//! `crate::picture`, `crate::workspace`).
+//! `crate::picture`, `crate::area`, `crate::reach`).
 
 use std::time::Instant;
 
@@ -10,23 +10,24 @@ use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use ikarus::motion::{Interpolation, Timing};
-use ikarus::reach::{Workspace, WorkspaceOptions};
+use ikarus::reach::WorkspaceOptions;
 use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use serde_json::json;
 
 use super::errors::{ApiError, ApiJson};
-use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, RenderReq, WorkspaceReq};
+use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, ReachReq, RenderReq, WorkspaceReq};
 use super::rig_motion::{AnimateBody, TrackBody};
 use super::rig_requests::SolveBody;
 use super::{AppState, Limits};
+use crate::area::{self, GridRequest, ReachableArea};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::picture::{Drawing, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
-use crate::report::{self, AnimateJson, SolveReport};
+use crate::reach::ReachRequest;
+use crate::report::{self, AnimateJson, SolveReport, VerdictJson};
 use crate::settings::{SolverSettings, solver};
 use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape, TrackJob, TrackJson};
-use crate::workspace::WorkspaceRequest;
 
 /// Frames recorded by a solve when `options.record_every` is not given (as `ikarus solve`).
 const SOLVE_RECORD_EVERY: u32 = 20;
@@ -225,8 +226,50 @@ pub async fn workspace(
     let pool = state.pool.clone();
     pool.run(move |interrupt| {
         let arm = load_arm(req.arm.clone(), &state.limits)?;
-        let (workspace, limits) = sample_workspace(&arm, &req, &state.limits, interrupt)?;
-        json_response(&report::workspace_json(&arm, limits, &workspace))
+        let area = reachable_area(&arm, &req, &state.limits, interrupt)?;
+        stopped(interrupt)?;
+        json_response(&report::workspace_json(&arm, &area))
+    })
+    .await
+}
+
+/// `POST /api/reach`: the verdict on `point`, or on each of `points` (at most `--max-samples`),
+/// read off the exact region built once, as `ikarus reach --format json` prints them.
+pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq>) -> Result<Response, ApiError> {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| {
+        let limits = &state.limits;
+        let arm = load_arm(req.arm, limits)?;
+        if let Some(t) = req.tolerance {
+            crate::options::positive(t).map_err(|m| ApiError::invalid(format!("tolerance = {m}")))?;
+        }
+        let request = ReachRequest { limits: req.limits, tolerance: req.tolerance };
+        match (req.point, req.points) {
+            (Some(p), None) => {
+                let region = request.region(&arm)?;
+                json_response(&VerdictJson::of(&crate::reach::verdict(&region, p, request.tolerance(&arm))))
+            }
+            (None, Some(points)) => {
+                if points.len() > limits.max_samples {
+                    return Err(ApiError::invalid(format!(
+                        "points: {} points, more than the cap of {} (--max-samples)",
+                        points.len(),
+                        limits.max_samples
+                    )));
+                }
+                let region = request.region(&arm)?;
+                let tolerance = request.tolerance(&arm);
+                let mut answers = Vec::with_capacity(points.len());
+                for chunk in points.chunks(1024) {
+                    stopped(interrupt)?;
+                    answers
+                        .extend(chunk.iter().map(|&p| VerdictJson::of(&crate::reach::verdict(&region, p, tolerance))));
+                }
+                json_response(&answers)
+            }
+            (Some(_), Some(_)) => Err(ApiError::invalid("point, points: give one or the other, not both")),
+            (None, None) => Err(ApiError::invalid("point or points: required (a point [x, y], or [[x, y], …])")),
+        }
     })
     .await
 }
@@ -493,39 +536,36 @@ pub(super) fn recorded_values_cap(
     Ok(())
 }
 
-fn sample_workspace(
+/// The reachable area a workspace request asks for: the exact region, or the grid
+/// ([`GridRequest::of`]) sampled under `--max-resolution` and the samples' cap.
+fn reachable_area(
     arm: &Arm,
     req: &WorkspaceReq,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<(Workspace, bool), ApiError> {
-    let resolution = req.resolution.unwrap_or(WorkspaceOptions::default().resolution);
-    if resolution > limits.max_resolution {
+) -> Result<ReachableArea, ApiError> {
+    let on = arm.limits(req.limits);
+    let grid =
+        GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
+            .map_err(ApiError::invalid)?;
+    let Some(grid) = grid else { return Ok(area::exact(arm, on)?) };
+    if grid.resolution > limits.max_resolution {
         return Err(ApiError::invalid(format!(
-            "resolution = {resolution}: more than the cap of {} (--max-resolution)",
-            limits.max_resolution
+            "resolution = {}: more than the cap of {} (--max-resolution)",
+            grid.resolution, limits.max_resolution
         )));
     }
-    if let Some(n) = req.samples {
+    if let Some(n) = grid.samples {
         if n == 0 || n > MAX_SAMPLES {
             return Err(ApiError::invalid(format!("samples = {n}: must be between 1 and {MAX_SAMPLES}")));
         }
     }
-    let request =
-        WorkspaceRequest { limits: req.limits, resolution, samples: req.samples, seed: req.seed.unwrap_or(0) };
     // Sequential on its worker: rayon's global pool is shared by every request, so a small
     // request would wait behind a large one; the server's workers give the parallelism.
-    let options = WorkspaceOptions {
-        resolution,
-        limits: request.limits(arm),
-        samples: req.samples.map(u64::from),
-        seed: request.seed,
-        parallel: false,
-        interrupt: Some(interrupt.clone()),
-    };
+    let options = WorkspaceOptions { parallel: false, interrupt: Some(interrupt.clone()), ..grid.options(on) };
     let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &|_, _| {})
         .map_err(|e| ApiError::invalid(e.to_string()))?;
-    Ok((workspace, request.limits(arm)))
+    Ok(ReachableArea::Grid(workspace))
 }
 
 pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
@@ -559,12 +599,13 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
             let ws_req = WorkspaceReq {
                 arm: None,
                 limits: r.limits,
+                grid: r.grid,
                 resolution: r.resolution,
                 samples: r.samples,
                 seed: r.seed,
             };
-            let (workspace, _) = sample_workspace(&arm, &ws_req, limits, interrupt)?;
-            picture(draw(&workspace_drawing(&arm, &workspace), format, width, height, &|_, _| {}), interrupt)?
+            let area = reachable_area(&arm, &ws_req, limits, interrupt)?;
+            picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
         RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, interrupt)?,
@@ -584,9 +625,15 @@ fn arm_figure(
     let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
     let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
     let workspace = if r.workspace {
-        let ws_req =
-            WorkspaceReq { arm: None, limits: r.limits, resolution: r.resolution, samples: r.samples, seed: r.seed };
-        Some(sample_workspace(&arm, &ws_req, limits, interrupt)?.0)
+        let ws_req = WorkspaceReq {
+            arm: None,
+            limits: r.limits,
+            grid: r.grid,
+            resolution: r.resolution,
+            samples: r.samples,
+            seed: r.seed,
+        };
+        Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
     } else {
         None
     };

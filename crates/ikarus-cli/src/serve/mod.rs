@@ -276,6 +276,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
         .route("/api/animate", post(api::animate))
         .route("/api/track", post(api::track))
         .route("/api/workspace", post(api::workspace))
+        .route("/api/reach", post(api::reach))
         .route("/api/render", post(api::render))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))

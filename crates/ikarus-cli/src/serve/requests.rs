@@ -117,7 +117,8 @@ pub struct TrackReq {
     pub options: Option<SolverSettings>,
 }
 
-/// `POST /api/workspace`.
+/// `POST /api/workspace`: the exact region, or with `grid: true` (or any of `resolution`,
+/// `samples`, `seed`) the sampled grid.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorkspaceReq {
@@ -126,11 +127,32 @@ pub struct WorkspaceReq {
     #[serde(default)]
     pub limits: Option<bool>,
     #[serde(default)]
+    pub grid: Option<bool>,
+    #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]
     pub samples: Option<u32>,
     #[serde(default)]
     pub seed: Option<u64>,
+}
+
+/// `POST /api/reach`: exactly one of `point` and `points`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReachReq {
+    #[serde(default)]
+    pub arm: Option<ArmFile>,
+    #[serde(default)]
+    pub limits: Option<bool>,
+    /// Distance that still counts as reachable [default: the arm's `solver.tolerance`, else 1e-6].
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// One point: the answer is one object.
+    #[serde(default)]
+    pub point: Option<[f64; 2]>,
+    /// Many points: the answer is an array of objects, in order.
+    #[serde(default)]
+    pub points: Option<Vec<[f64; 2]>>,
 }
 
 /// `POST /api/render`: the figure, and the inputs of that figure. Read in two passes, so that an
@@ -210,11 +232,14 @@ pub struct ArmFigureReq {
     pub pose_deg: Option<Vec<f64>>,
     #[serde(default)]
     pub goal: Option<GoalReq>,
-    /// Also shade the reachable area, sampled with the workspace fields below.
+    /// Also shade the reachable area with the workspace fields below: the exact region, or
+    /// the sampled grid (as `/api/workspace`).
     #[serde(default)]
     pub workspace: bool,
     #[serde(default)]
     pub limits: Option<bool>,
+    #[serde(default)]
+    pub grid: Option<bool>,
     #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]
@@ -278,6 +303,8 @@ pub struct WorkspaceFigureReq {
     pub arm: Option<ArmFile>,
     #[serde(default)]
     pub limits: Option<bool>,
+    #[serde(default)]
+    pub grid: Option<bool>,
     #[serde(default)]
     pub resolution: Option<u32>,
     #[serde(default)]

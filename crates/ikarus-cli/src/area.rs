@@ -1,0 +1,128 @@
+//! The reachable area of an arm as the edges ask for it, one workflow for the command line and
+//! the server: the exact region ([`Region::of`], the default) or, when asked, a sampled
+//! occupancy grid (`--grid`, `"grid": true`).
+
+use ikarus::reach::{Region, Workspace, WorkspaceOptions};
+
+use crate::arm::Arm;
+use crate::error::CliError;
+
+/// The default of `--resolution` and of a request's `resolution`: the library's.
+pub fn default_resolution() -> u32 {
+    WorkspaceOptions::default().resolution
+}
+
+/// A computed reachable area.
+pub enum ReachableArea {
+    /// The exact region: loops of lines and arcs.
+    Exact(Region),
+    /// The occupancy grid sampled from joint space.
+    Grid(Workspace),
+}
+
+impl ReachableArea {
+    /// Whether the joint ranges were respected.
+    pub fn limits(&self) -> bool {
+        match self {
+            ReachableArea::Exact(r) => r.limits(),
+            ReachableArea::Grid(w) => w.limits(),
+        }
+    }
+
+    /// The area: exact, or the occupied cells'.
+    pub fn area(&self) -> f64 {
+        match self {
+            ReachableArea::Exact(r) => r.area(),
+            ReachableArea::Grid(w) => w.area(),
+        }
+    }
+
+    /// What a picture shades.
+    pub fn layer(&self) -> ikarus_render::Reachable<'_> {
+        match self {
+            ReachableArea::Exact(r) => ikarus_render::Reachable::Exact(r),
+            ReachableArea::Grid(w) => ikarus_render::Reachable::Grid(w),
+        }
+    }
+}
+
+/// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).
+#[derive(Debug, Clone, Copy)]
+pub struct GridRequest {
+    pub resolution: u32,
+    pub samples: Option<u32>,
+    pub seed: u64,
+}
+
+impl GridRequest {
+    /// The grid asked for, if any: `grid` (`--grid`, `"grid": true`), or any of its fields
+    /// given (asking how to sample is asking for the samples: scripts and pages written before
+    /// the exact region keep their grid). `"grid": false` with a sampling field is refused
+    /// (`name` words a field as the edge does: `resolution = 64`).
+    pub fn of(
+        grid: Option<bool>,
+        resolution: Option<u32>,
+        samples: Option<u32>,
+        seed: Option<u64>,
+        name: impl Fn(&str, String) -> String,
+    ) -> Result<Option<GridRequest>, String> {
+        let given = [
+            resolution.map(|v| name("resolution", v.to_string())),
+            samples.map(|v| name("samples", v.to_string())),
+            seed.map(|v| name("seed", v.to_string())),
+        ];
+        let sampling = given.iter().flatten().next();
+        match (grid, sampling) {
+            (Some(false), Some(field)) => {
+                Err(format!("{field}: only applies to the sampled grid, and grid = false asks for the exact region"))
+            }
+            (Some(true), _) | (None, Some(_)) => Ok(Some(GridRequest {
+                resolution: resolution.unwrap_or_else(default_resolution),
+                samples,
+                seed: seed.unwrap_or(0),
+            })),
+            (Some(false) | None, None) => Ok(None),
+        }
+    }
+
+    /// The library's sampling options for these fields.
+    pub fn options(&self, limits: bool) -> WorkspaceOptions {
+        WorkspaceOptions {
+            resolution: self.resolution,
+            limits,
+            samples: self.samples.map(u64::from),
+            seed: self.seed,
+            ..WorkspaceOptions::default()
+        }
+    }
+}
+
+/// The exact region of `arm`, within its ranges if `limits`, or a run-time error when the
+/// library could not build it: a region that lost every boundary piece, or no area although two
+/// joints move (a fault of the library's union, seen on a few random arms of 5 and 11 links;
+/// the edges answer it as a failure, never as an empty region).
+pub fn exact_region(arm: &Arm, limits: bool) -> Result<Region, CliError> {
+    let region = Region::of(&arm.chain, limits);
+    let moving = arm
+        .chain
+        .limits()
+        .iter()
+        .filter(|l| match l {
+            Some(l) if limits => l.max() > l.min(),
+            _ => true,
+        })
+        .count();
+    if region.pieces() == 0 || (moving >= 2 && !region.has_area()) {
+        return Err(CliError::runtime(format!(
+            "{}: the library could not build the exact region{} (a bug: its boundary came out empty); `--grid` (\"grid\": true) samples it instead",
+            arm.label,
+            if limits { " within the joint ranges" } else { "" }
+        )));
+    }
+    Ok(region)
+}
+
+/// [`exact_region`] as a reachable area.
+pub fn exact(arm: &Arm, limits: bool) -> Result<ReachableArea, CliError> {
+    exact_region(arm, limits).map(ReachableArea::Exact)
+}
