@@ -24,6 +24,7 @@ import { newPlayback, wireTimeline } from "./timeline.js";
 import { wireTrack } from "./track.js";
 import { fitView, forward, toCanvas } from "./view.js";
 
+/** The grid's resolution when the exact region cannot be had (the server could not build it). */
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
 
@@ -226,7 +227,7 @@ function setStats(s) {
   const miss = missShown();
   const distance = s.status === "unreachable" && Number.isFinite(s.reach_distance) ? s.reach_distance : miss && miss.distance;
   if (Number.isFinite(distance)) parts.push(missNote(s.status, distance));
-  if (s.iterations !== undefined) parts.push(`${s.iterations} iterations`);
+  if (s.iterations !== undefined) parts.push(`${s.iterations} iteration${s.iterations === 1 ? "" : "s"}`);
   if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
   if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
   if (s.solve_us !== undefined) parts.push(`${(s.solve_us / 1000).toFixed(3)} ms`);
@@ -481,12 +482,18 @@ function refreshWorkspace() {
   jobs.workspaceTimer = setTimeout(async () => {
     const seq = ++jobs.workspaceSeq;
     const key = regionKey();
+    const body = { arm: armForRequest(state.arm), limits: !!state.options.limits };
     try {
-      const ws = await api.workspace({
-        arm: armForRequest(state.arm),
-        limits: !!state.options.limits,
-        resolution: WORKSPACE_RESOLUTION,
-      });
+      // The exact region (no sampling fields: they would ask for the grid); where the server
+      // cannot build it (a failure at run time), the sampled grid instead.
+      let ws;
+      try {
+        ws = await api.workspace(body);
+      } catch (e) {
+        if (seq !== jobs.workspaceSeq) return;
+        console.info("ikarus: no exact region, the sampled grid instead:", e.message);
+        ws = await api.workspace({ ...body, grid: true, resolution: WORKSPACE_RESOLUTION });
+      }
       if (seq !== jobs.workspaceSeq) return;
       state.workspace = ws;
       // The exact region when the server sends its boundary; else the sampled grid's edge.
