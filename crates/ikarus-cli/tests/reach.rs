@@ -11,7 +11,6 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use common::server::start;
 use common::{fails, ikarus, json, stdout, succeeds};
@@ -344,33 +343,7 @@ fn the_cli_and_the_api_answer_the_same_bytes() {
     let answer = post("/api/workspace", json!({"arm": arm, "limits": true}));
     assert_eq!(answer, cli(&["workspace", "--arm", seven.to_str().unwrap(), "--limits", "--format", "json"]));
     assert_eq!(serde_json::from_str::<Value>(&answer).unwrap()["exact"], true);
-
-    // The figures: the exact region drawn alike.
-    let svg = |args: &[&str]| {
-        let out = dir.path().join("f.svg");
-        let run = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-            .args(args)
-            .args(["--out", out.to_str().unwrap(), "--width", "300", "--height", "200"])
-            .output()
-            .unwrap();
-        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-        std::fs::read(out).unwrap()
-    };
-    let figure = |body: Value| {
-        let a = s.post("/api/render", &body);
-        assert_eq!(a.status, 200, "{}", a.text());
-        a.body
-    };
-    let workspace =
-        figure(json!({"figure": "workspace", "limits": true, "format": "svg", "width": 300, "height": 200}));
-    assert!(String::from_utf8_lossy(&workspace).contains(" A"), "arcs in the exact region");
-    assert_eq!(workspace, svg(&["render", "workspace", "--limits"]));
-    assert_eq!(
-        figure(
-            json!({"figure": "arm", "workspace": true, "limits": true, "format": "svg", "width": 300, "height": 200})
-        ),
-        svg(&["render", "arm", "--workspace", "--limits"])
-    );
+    // The figures: `render_figures_equal_the_clis` in serve.rs.
 }
 
 #[test]

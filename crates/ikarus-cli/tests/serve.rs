@@ -602,6 +602,14 @@ fn render_figures_equal_the_clis() {
         api(with(json!({ "figure": "workspace", "limits": true, "resolution": 64 }))),
         cli(&["render", "workspace", "--limits", "--resolution", "64"])
     );
+    // The exact region (the default), drawn with arcs.
+    let exact = api(with(json!({ "figure": "workspace", "limits": true })));
+    assert!(String::from_utf8_lossy(&exact).contains(" A"), "arcs in the exact region");
+    assert_eq!(exact, cli(&["render", "workspace", "--limits"]));
+    assert_eq!(
+        api(with(json!({ "figure": "arm", "workspace": true, "limits": true }))),
+        cli(&["render", "arm", "--workspace", "--limits"])
+    );
     assert_eq!(
         api(with(json!({ "figure": "motion", "goal": { "x": 2, "y": 3 }, "frames": 8 }))),
         cli(&["render", "motion", "--goal", "2,3", "--frames", "8"])

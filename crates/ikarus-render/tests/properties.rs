@@ -1,15 +1,15 @@
 //! Any finite, valid arm draws: over random chains (ordinary lengths, lengths from 1e-9 to 1e9
 //! mixed in one chain, lengths up to 1e150), poses (huge angles too), goals (near, far, on the
-//! base), ghosts, traces, workspaces, captions with markup characters and picture sizes, the
+//! base), ghosts, traces, workspaces (sampled grids and exact regions), captions with markup characters and picture sizes, the
 //! SVG is made without a panic and parses as SVG, and the PNG decodes at the size asked for;
 //! or the picture is refused with a one-line error. The same figure twice gives the same
 //! bytes.
 
 use std::f64::consts::PI;
 
-use ikarus::reach::{WorkspaceOptions, sample};
+use ikarus::reach::{Region, WorkspaceOptions, sample};
 use ikarus::{Chain, JointLimits, Link, Point2};
-use ikarus_render::{ArmFigure, arm_png, arm_svg};
+use ikarus_render::{ArmFigure, Reachable, arm_png, arm_svg};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence};
 
@@ -50,7 +50,8 @@ struct Picture {
     ghosts: Vec<Vec<f64>>,
     traces: bool,
     goal: Option<(f64, f64)>,
-    workspace: Option<(u32, bool)>,
+    /// A grid's resolution (`None`: the exact region), and whether within the limits.
+    workspace: Option<(Option<u32>, bool)>,
     show_reach: bool,
     caption: Option<String>,
     size: (u32, u32),
@@ -66,7 +67,7 @@ fn picture() -> impl Strategy<Value = Picture> {
             any::<bool>(),
             // Goal: a radius in reaches (0: on the base) and a direction.
             prop::option::of((prop_oneof![Just(0.0), 0.0f64..1.5, 1.0f64..1e6], -PI..PI)),
-            prop::option::of((8u32..=32, any::<bool>())),
+            prop::option::of((prop::option::of(8u32..=32), any::<bool>())),
             any::<bool>(),
             prop::option::of("[a-z <>&\"'é°·]{0,30}"),
             (16u32..=400, 16u32..=400),
@@ -91,15 +92,17 @@ proptest! {
 
     #[test]
     fn any_valid_arm_draws(p in picture()) {
-        let workspace = p.workspace.map(|(resolution, limits)| {
+        let grid = p.workspace.and_then(|(resolution, limits)| resolution.map(|resolution| {
             let options = WorkspaceOptions { resolution, limits, samples: Some(16), parallel: false, ..WorkspaceOptions::default() };
             sample(&p.chain, &options).unwrap()
-        });
+        }));
+        let exact = p.workspace.and_then(|(resolution, limits)| resolution.is_none().then(|| Region::of(&p.chain, limits)));
+        let workspace: Option<Reachable> = grid.as_ref().map(Into::into).or(exact.as_ref().map(Into::into));
         let figure = ArmFigure {
             ghosts: p.ghosts.iter().map(Vec::as_slice).collect(),
             traces: p.traces,
             goal: p.goal.map(|(x, y)| Point2::new(x, y)),
-            workspace: workspace.as_ref().map(Into::into),
+            workspace,
             show_reach: p.show_reach,
             caption: p.caption.clone(),
             ..ArmFigure::new(&p.chain, &p.pose)

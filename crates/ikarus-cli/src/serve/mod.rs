@@ -84,7 +84,7 @@ pub struct ServeArgs {
     /// Largest workspace resolution (cells per side, at most 4096)
     #[arg(long, default_value_t = 1024, value_name = "N", value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub max_resolution: u32,
-    /// Computations (solve, animate, track, workspace, render) run at once [default: the number of CPUs]
+    /// Computations (solve, animate, track, workspace, reach, render) run at once [default: the number of CPUs]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     pub workers: Option<u64>,
     /// Computations that may run longer than half a second at once; one more is stopped with 503 [default: half the workers, at least 1]

@@ -1,5 +1,5 @@
-//! The bounded pool that runs the heavy requests (solve, animate, track, workspace, render) off
-//! the async runtime's threads, each under a time budget.
+//! The bounded pool that runs the heavy requests (solve, animate, track, workspace, reach,
+//! render) off the async runtime's threads, each under a time budget.
 //!
 //! - At most `--workers` computations run at once, each on a thread of tokio's blocking pool;
 //!   at most `--max-queued` more wait for a worker. A request beyond that is answered 503
