@@ -1,13 +1,14 @@
 // The ikarus playground: draws the arm on a canvas and asks the JSON API (same origin) to solve,
-// animate, sample the workspace and render pictures. Plain ES modules, no dependencies, no build
-// step. This module wires the page: it owns the one `state` object, and every other module
-// either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
-// reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
-// motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
-// traces paths (track.js, with the pure parts in paths.js), edits the arm (links.js, with arm
-// files in armfile.js), shows and solves a rig instead of the arm (rigs.js, with the pure parts
-// in rig.js and the drawing in drawrig.js) or saves files (files.js, with the figures drawn by
-// export.js).
+// animate, get the reachable region and render pictures. Plain ES modules, no dependencies, no
+// build step. This module wires the page: it owns the one `state` object, and every other module
+// either computes (view.js; region.js, the exact reachable region: its path, which goals it
+// holds and the nearest reachable point), talks to the server (api.js), draws what the state
+// shows (draw.js), reads and fills the form (controls.js), turns pointer and keys into actions
+// (input.js), plays motions on the timeline (timeline.js, which owns `state.playback`), follows
+// the pointer and traces paths (track.js, with the pure parts in paths.js), edits the arm
+// (links.js, with arm files in armfile.js), shows and solves a rig instead of the arm (rigs.js,
+// with the pure parts in rig.js and the drawing in drawrig.js) or saves files (files.js, with
+// the figures drawn by export.js).
 
 import * as api from "./api.js";
 import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
