@@ -82,9 +82,13 @@ fn statuses_reach_the_output() {
     let expected = (10f64.hypot(3.0)) - 6.0;
     assert!((error - expected).abs() <= 1e-6, "{error} vs {expected}");
 
-    // A goal behind the arm that no pose within the seed's ranges reaches.
+    // A goal behind the arm that no pose within the seed's ranges reaches: the exact region
+    // says so at once, with the distance, and the tip at the region's nearest point.
     let v = json(&["solve", "--goal", "-3,-1", "--limits"]);
-    assert_eq!(v["status"], "stalled");
+    assert_eq!(v["status"], "unreachable");
+    assert_eq!((v["iterations"].as_u64(), v["restarts"].as_u64()), (Some(1), Some(0)));
+    let d = v["reach_distance"].as_f64().unwrap();
+    assert!((d - 3.491277).abs() < 1e-6 && (v["error"].as_f64().unwrap() - d).abs() < 1e-9, "{v}");
     assert_eq!(v["limits"], true);
     let a = floats(&v["angles_deg"]);
     assert!((-45.0..=45.0).contains(&a[0]) && (-90.0..=90.0).contains(&a[1]) && (-170.0..=170.0).contains(&a[2]));

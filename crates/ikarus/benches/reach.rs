@@ -9,14 +9,23 @@
 //! measuring, each prints to stderr the number of samples and the area, to read the times
 //! against.
 //!
+//! The exact region ([`Region`]) of the same two arms with their limits: its build
+//! (`region/<arm>/build`, one `Region::of`) and its verdict (`region/<arm>/verdict`: one pass of
+//! `Region::verdict` within 1e-6 over 1024 fixed points spread uniformly over the square of side
+//! 2·reach about the base, inside and outside the region alike; criterion reports the pass and
+//! its throughput in points per second, so one verdict takes the pass's time / 1024). `ikarus
+//! bench --reach` reports the same figures as medians over a million points, with the 8-link
+//! build.
+//!
 //! `cargo bench -p ikarus --bench reach`
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use ikarus::reach::{WorkspaceOptions, sample};
-use ikarus::{Chain, JointLimits, Link};
+use ikarus::reach::{Region, WorkspaceOptions, sample};
+use ikarus::rng::SplitMix64;
+use ikarus::{Chain, JointLimits, Link, Point2};
 
 fn arm(spec: &[(f64, f64)]) -> Chain {
     let links: Vec<Link> = spec
@@ -58,6 +67,38 @@ fn bench(c: &mut Criterion) {
         );
         c.bench_function(&id, |b| b.iter(|| sample(black_box(chain), black_box(&options)).expect("valid options")));
     }
+    for (name, chain) in [("seed", &seed), ("seven", &seven)] {
+        region(c, name, chain);
+    }
+}
+
+/// Points of the verdict benchmark.
+const POINTS: usize = 1024;
+
+/// `region/<name>/build` and `region/<name>/verdict` (per point, over [`POINTS`] points).
+fn region(c: &mut Criterion, name: &str, chain: &Chain) {
+    let region = Region::of(chain, true);
+    let reach = chain.max_reach();
+    let mut rng = SplitMix64(7);
+    let points: Vec<Point2<f64>> =
+        (0..POINTS).map(|_| Point2::new(rng.range(-reach, reach), rng.range(-reach, reach))).collect();
+    let inside = points.iter().filter(|&&p| region.verdict(p, 1e-6).reachable).count();
+    eprintln!(
+        "{name} region: {} boundary pieces, area {:.4}; {inside} of {POINTS} verdict points reachable",
+        region.pieces(),
+        region.area()
+    );
+    c.bench_function(&format!("region/{name}/build"), |b| b.iter(|| Region::of(black_box(chain), true)));
+    let mut group = c.benchmark_group(format!("region/{name}"));
+    group.throughput(criterion::Throughput::Elements(POINTS as u64));
+    group.bench_function("verdict", |b| {
+        b.iter(|| {
+            for &p in &points {
+                black_box(region.verdict(black_box(p), 1e-6));
+            }
+        })
+    });
+    group.finish();
 }
 
 criterion_group! {

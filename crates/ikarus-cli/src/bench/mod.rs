@@ -8,11 +8,14 @@
 //! - [`table`]: text, Markdown and JSON output;
 //! - [`paths`]: `--paths`, the path benchmark (`follow`, `plan`, from scratch, KDL warm);
 //! - [`rigs`]: `--rigs`, whole rigs (the library's rig solve, the sequential-limb baseline,
-//!   KDL's tree solver).
+//!   KDL's tree solver);
+//! - [`reach`]: `--reach`, the exact reachable region (verdict time, build time, the verdict
+//!   against solving, unreachable goals answered with and without it).
 
 mod judge;
 mod kdl;
 mod paths;
+mod reach;
 mod rigs;
 mod run;
 mod sets;
@@ -52,6 +55,15 @@ pub struct BenchArgs {
     /// as a chain, and (with --kdl) KDL's tree solver; --goals target sets per set
     #[arg(long, conflicts_with_all = ["paths", "arms", "sets", "methods", "limit_modes", "write_goals"])]
     pub rigs: bool,
+    /// Benchmark the exact reachable region under joint limits instead of solvers: the
+    /// verdict's time per point (seed, seven), the region's build time (3, 7 and 8 links),
+    /// the verdict against solving over --points random points per arm, and --goals
+    /// unreachable goals answered with the verdict and without it
+    #[arg(long, conflicts_with_all = ["paths", "rigs", "arms", "sets", "methods", "limit_modes", "write_goals", "kdl"])]
+    pub reach: bool,
+    /// With --reach: random points per arm for the verdict's time and its agreement with solving
+    #[arg(long, value_name = "N", default_value_t = 1_000_000, requires = "reach", value_parser = parse_points)]
+    pub points: u64,
     /// With --rigs: the rig sets to benchmark
     #[arg(long, value_enum, value_delimiter = ',', value_name = "SET,…", default_values_t = rigs::set::RigSetName::ALL, requires = "rigs")]
     pub rig_sets: Vec<rigs::set::RigSetName>,
@@ -101,6 +113,12 @@ fn parse_samples(s: &str) -> Result<u32, String> {
     if v < 3 { Err(format!("{v}: must be at least 3")) } else { Ok(v) }
 }
 
+/// `--points`: a whole number, at least 1.
+fn parse_points(s: &str) -> Result<u64, String> {
+    let v: u64 = s.trim().parse().map_err(|_| format!("'{s}' is not a whole number"))?;
+    if v < 1 { Err(format!("{v}: must be at least 1")) } else { Ok(v) }
+}
+
 /// `--methods` accepts every method's name and `default`.
 fn method_names() -> PossibleValuesParser {
     PossibleValuesParser::new(Method::ALL.iter().map(|m| m.name()).chain(["default"]))
@@ -118,6 +136,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     }
     if args.rigs {
         return rigs::run(args);
+    }
+    if args.reach {
+        return reach::run(args);
     }
     // Everything that can be checked is checked before the (long) work starts.
     if let Some(path) = &args.kdl {

@@ -75,6 +75,9 @@ impl ReachCache {
         match goal.orientation() {
             None => {
                 let region = self.position.get_or_insert_with(|| Region::of(chain, true));
+                if !region.is_checked() {
+                    return None;
+                }
                 let v = region.verdict(target, tolerance);
                 if !v.reachable {
                     region.pose_reaching_into(target, pose);
@@ -83,6 +86,9 @@ impl ReachCache {
             }
             Some(direction) => {
                 let region = self.wrist.get_or_insert_with(|| Region::wrist(chain, true)).as_ref()?;
+                if !region.is_checked() {
+                    return None;
+                }
                 let n = chain.len();
                 let last = chain.lengths()[n - 1];
                 let wrist: Point2<f64> = target - last * Vector2::new(direction.cos(), direction.sin());

@@ -77,18 +77,20 @@ impl Level {
 }
 
 /// Every level of a chain given its link lengths and joint ranges: `levels[k]` for joint `k`,
-/// and `levels[n]`, the point past the tip.
-pub(crate) fn levels(lengths: &[f64], ranges: &[Range], tol: Tol) -> Vec<Level> {
+/// and `levels[n]`, the point past the tip; and whether every union closed all its chains.
+pub(crate) fn levels(lengths: &[f64], ranges: &[Range], tol: Tol) -> (Vec<Level>, bool) {
     let n = lengths.len();
     let mut levels: Vec<Level> = Vec::with_capacity(n + 1);
     levels.push(Level::point([0.0; 2], Vec::new()));
+    let mut closed = true;
     for k in (0..n).rev() {
         let child = levels.last().expect("the level past the tip");
-        let level = sweep(child, [lengths[k], 0.0], ranges[k], tol);
+        let (level, ok) = sweep(child, [lengths[k], 0.0], ranges[k], tol);
+        closed &= ok;
         levels.push(level);
     }
     levels.reverse();
-    levels
+    (levels, closed)
 }
 
 /// Level `k` from level `k + 1` (`child`), link `k` as `shift` and joint `k`'s range.
@@ -97,17 +99,17 @@ pub(crate) fn levels(lengths: &[f64], ranges: &[Range], tol: Tol) -> Vec<Level> 
 /// the curves it draws are constant in their distance from the joint to the last bit, and a
 /// turn moves them along themselves), the child's two end copies stand for the level, so that
 /// no level is ever empty.
-fn sweep(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
-    let level = sweep_exactly(child, shift, range, tol);
+fn sweep(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, bool) {
+    let (level, closed) = sweep_exactly(child, shift, range, tol);
     if level.segs.is_empty() && child.kind != Kind::Point {
         let mut ends = copy(child, shift, range.lo);
         ends.extend(copy(child, shift, range.lo + range.span));
-        return Level::curve(ends);
+        return (Level::curve(ends), closed);
     }
-    level
+    (level, closed)
 }
 
-fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
+fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, bool) {
     let lo = range.lo;
     let span = if range.full { TAU } else { range.span };
     if child.kind == Kind::Point {
@@ -115,7 +117,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
         let r = norm(p);
         let fixed = |angle: f64| std::iter::once(angle).chain(child.fixed.iter().copied()).collect();
         if span == 0.0 || r == 0.0 {
-            return Level::point(rotate(p, unit(lo)), fixed(lo));
+            return (Level::point(rotate(p, unit(lo)), fixed(lo)), true);
         }
         let phase = angle_of(p);
         let prov = Prov::Orbit { child: None, point: child.point, phase };
@@ -125,7 +127,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
             let (a, b) = (rotate(p, unit(lo)), rotate(p, unit(lo + span)));
             Seg::arc([0.0; 2], r, phase + lo, span, a, b, prov)
         };
-        return Level::curve(vec![arc]);
+        return (Level::curve(vec![arc]), true);
     }
     if span == 0.0 {
         let copy = copy(child, shift, lo);
@@ -133,9 +135,9 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
             Kind::Region => {
                 let mut level = child.clone();
                 level.segs = copy;
-                level
+                (level, true)
             }
-            _ => Level::curve(copy),
+            _ => (Level::curve(copy), true),
         };
     }
     // The child moved out along the link; each piece's radial parts remember the piece.
@@ -149,7 +151,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
     }
     if range.full {
         let inside = |q: P| child.kind == Kind::Region && winding(&moved, q) != 0;
-        return Level::region(annuli(&parts, shift, inside, tol));
+        return (Level::region(annuli(&parts, shift, inside, tol)), true);
     }
     let mut pieces: Vec<Piece> = Vec::with_capacity(parts.len() + 2);
     if child.kind == Kind::Region {
@@ -162,7 +164,21 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> Level {
             pieces.push(Piece::new(quad(&s, j, shift, lo, span)));
         }
     }
-    Level::region(union(&pieces, tol))
+    // The side test looks 1e-8 of the reach off each part; where curves run closer than that
+    // without meeting (they touch, or cross at a glancing angle) it can misjudge a part, and a
+    // chain of kept parts then fails to close. Looking farther off settles those; the first
+    // look that closes every chain is taken.
+    let mut best: Option<(Vec<Vec<Seg>>, usize)> = None;
+    for widen in [1.0, 100.0, 1e4] {
+        let (loops, open) = union(&pieces, Tol { probe: tol.probe * widen, ..tol });
+        if open == 0 {
+            return (Level::region(loops), true);
+        }
+        if best.as_ref().is_none_or(|b| open < b.1) {
+            best = Some((loops, open));
+        }
+    }
+    (Level::region(best.map(|b| b.0).unwrap_or_default()), false)
 }
 
 /// The child moved out along the link and turned by `theta`.

@@ -74,6 +74,23 @@ fn assert_closed(r: &Region) {
 }
 
 #[test]
+fn the_example_arms_pass_the_self_check() {
+    let eight = chain(&[
+        (2.0, -90.0, 90.0),
+        (1.7, -120.0, 120.0),
+        (1.4, -120.0, 120.0),
+        (1.2, -135.0, 135.0),
+        (1.0, -135.0, 135.0),
+        (0.8, -150.0, 150.0),
+        (0.6, -150.0, 150.0),
+        (0.5, -100.0, 100.0),
+    ]);
+    for c in [seed(), seven(), eight] {
+        assert!(Region::of(&c, true).is_checked(), "{c:?}");
+    }
+}
+
+#[test]
 fn with_limits_off_the_region_is_the_annulus() {
     for lengths in [vec![3.0, 2.0, 1.0], vec![5.0, 1.0, 1.0], vec![1.0, 1.0], vec![0.5; 7], vec![2.0, 0.3, 0.4, 0.2]] {
         let links: Vec<Link> = lengths.iter().map(|&l| Link::new(l, 0.1)).collect();
@@ -209,4 +226,80 @@ fn a_chain_with_every_joint_fixed_reaches_one_point() {
     let v = r.verdict(Point2::new(0.3, -0.7), 0.1);
     assert!(!v.reachable && (v.nearest - tip).norm() < 1e-12, "{v:?}");
     assert_eq!(r.pose_reaching(Point2::new(5.0, 5.0)).0, vec![-49f64.to_radians()]);
+}
+
+/// Limits a turn or more apart let the joint turn freely, and every angle the region gives
+/// lies within them, also where a level is a single point (the tip folded back onto a joint).
+#[test]
+fn wide_limits_turn_freely_and_their_angles_stay_within_them() {
+    let c = chain(&[(1.0, 141.5, 1186.0), (1.0, 180.0, 180.0), (0.5, 10.0, 30.0)]);
+    let r = Region::of(&c, true);
+    for p in [Point2::new(3.0, 0.0), Point2::new(-0.2, 0.1), Point2::new(0.0, -2.0)] {
+        let (angles, q) = r.pose_reaching(p);
+        for (a, l) in angles.iter().zip(c.limits()) {
+            assert!(l.unwrap().contains(*a), "{a} outside {l:?}");
+        }
+        assert!((end_effector(&c, &angles).position - q).norm() < 1e-9);
+    }
+}
+
+/// Random arms of two to eight links with random ranges: the exact area is at least the
+/// sampled grid's (which is sound: every counted cell's centre is reachable) less its edge
+/// cells, and within 2 % of it above (the grid falls short near corners for many joints); the
+/// loops close. Includes the five-link arm whose union once failed to close.
+#[test]
+#[ignore = "known fault: on some random arms (one in about forty here) the union keeps a region larger than the reachable set; to be fixed (see the README's Certified reach notes)"]
+fn random_arms_agree_with_the_sampled_grid() {
+    let mut rng = Rng(77);
+    let mut arms = vec![chain(&[
+        (1.03053, -53.4661, 146.802),
+        (2.35434, -9.74987, 39.8313),
+        (0.74521, -27.4461, 61.9628),
+        (1.65765, -111.596, 152.043),
+        (1.7568, -39.9121, 104.896),
+    ])];
+    for _ in 0..40 {
+        let n = 2 + (rng.next_u64() % 7) as usize;
+        let links: Vec<(f64, f64, f64)> = (0..n)
+            .map(|_| {
+                let lo = rng.range(-170.0, 60.0);
+                (rng.range(0.3, 2.5), lo, rng.range(lo, 175.0))
+            })
+            .collect();
+        arms.push(chain(&links));
+    }
+    for c in arms {
+        let r = Region::of(&c, true);
+        assert_closed(&r);
+        // Sound sampling: every grid cell counted has a reachable centre, so the exact area
+        // is at least the grid's, less the cells straddling the boundary.
+        let opts = crate::WorkspaceOptions { resolution: 256, samples: Some(16384), ..Default::default() };
+        let grid = crate::reach::sample(&c, &opts).unwrap();
+        let slack = 2.0 * std::f64::consts::PI * c.max_reach() * 8.0 * grid.cell_size();
+        assert!(r.area() >= grid.area() - slack, "{c:?}: exact {} < grid {}", r.area(), grid.area());
+        // Not too much: points drawn inside the region, away from its boundary, are reached
+        // by searching (the verdict off, restarts on).
+        let mut solver = crate::Solver::new(crate::SolveOptions {
+            reach_verdict: false,
+            restarts: Some(crate::Restarts { attempts: 64, ..Default::default() }),
+            ..Default::default()
+        })
+        .unwrap();
+        let (lo, hi) = r.bounds();
+        let mut tried = 0;
+        while tried < 60 {
+            let p = Point2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y));
+            if r.classify(p, 1e-3 * c.max_reach()) != Membership::Inside {
+                continue;
+            }
+            tried += 1;
+            let goal = crate::Goal::position(p.x, p.y).unwrap();
+            let out = solver.solve(&c, c.start_pose(), &goal).unwrap();
+            assert_eq!(out.status, crate::Status::Reached, "{c:?}: {p} inside the region, {out:?}");
+        }
+        // Sampled tips lie inside.
+        for p in tips(&c, 2000, 3) {
+            assert!(r.contains(p, 1e-7 * c.max_reach()), "{c:?}: tip {p} outside");
+        }
+    }
 }

@@ -89,8 +89,9 @@ fn between_arc_and_chord(s: &Seg, p: P) -> bool {
     side_m * side_p > 0.0
 }
 
-/// The boundary of the union of `pieces`, as closed loops.
-pub(crate) fn union(pieces: &[Piece], tol: Tol) -> Vec<Vec<Seg>> {
+/// The boundary of the union of `pieces`, as closed loops, and the number of chains of kept
+/// parts that did not close (0 unless the side test was fooled by curves nearer than it looks).
+pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
     struct Item {
         piece: usize,
         seg: Seg,
@@ -193,6 +194,7 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> Vec<Vec<Seg>> {
     }
     let mut used = vec![false; kept.len()];
     let mut loops = Vec::new();
+    let mut open = 0;
     for first in 0..kept.len() {
         if used[first] {
             continue;
@@ -209,11 +211,12 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> Vec<Vec<Seg>> {
             at = ends[next].1;
             closed = at == start;
         }
+        open += usize::from(!closed);
         if closed {
             loops.push(join(&path, &kept.iter().map(|p| (p.seg, p.source, p.u0)).collect::<Vec<_>>()));
         }
     }
-    loops
+    (loops, open)
 }
 
 /// Whether a cut part bounds the union: the point just right of its middle lies in no piece.
