@@ -234,7 +234,8 @@ test("controls: methods that apply, a goal angle, limit modes, reached at the en
 
     // The reachable area stays drawn while the next one is computed.
     await page.check("#show-workspace");
-    await page.waitForFunction(() => window.ikarus.state.areaOutline, null, { timeout: 15000 });
+    // The area drawn: the exact region (a server that sends its boundary) or the grid's edge.
+    await page.waitForFunction(() => window.ikarus.state.region || window.ikarus.state.areaOutline, null, { timeout: 15000 });
     let release;
     const held = new Promise((r) => (release = r));
     await page.route("**/api/workspace", async (route) => {
@@ -243,7 +244,10 @@ test("controls: methods that apply, a goal angle, limit modes, reached at the en
     });
     await page.check("#limits");
     await page.waitForTimeout(400);
-    assert.ok(await page.evaluate(() => window.ikarus.state.areaOutline && window.ikarus.state.areaOutline.length > 0), "the old area is kept");
+    assert.ok(
+      await page.evaluate(() => (window.ikarus.state.region || { loops: window.ikarus.state.areaOutline || [] }).loops.length > 0),
+      "the old area is kept",
+    );
     const old = await page.evaluate(() => window.ikarus.state.workspace.limits);
     assert.equal(old, false);
     release();

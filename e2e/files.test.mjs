@@ -113,7 +113,8 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
 
     await page.check("#limits");
     await page.check("#show-workspace");
-    await page.waitForFunction(() => window.ikarus.state.areaOutline, null, { timeout: 15000 });
+    await page.waitForFunction(() => window.ikarus.state.region || window.ikarus.state.areaOutline, null, { timeout: 15000 });
+    const exact = await page.evaluate(() => !!window.ikarus.state.region);
     await page.evaluate(() => window.ikarus.animateTo(2, 3));
     await ended(page);
 
@@ -124,7 +125,12 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
     assert.ok(ghosts >= 10, `${ghosts} ghosts in the SVG`);
     assert.ok(strokes(meta.palette.path) >= 1, "the tip's trace");
     assert.ok(strokes(meta.palette.joints[0]) >= 1, "joint 1's trace");
-    assert.ok(svg.includes(`fill="${meta.palette.workspace}" fill-rule="evenodd"`), "the reachable area");
+    // The reachable area: the exact region's loops (arcs, nonzero) or the sampled grid's edge.
+    assert.ok(svg.includes(`fill="${meta.palette.workspace}" fill-rule="${exact ? "nonzero" : "evenodd"}"`), "the reachable area");
+    if (exact) {
+      const area = new RegExp(`<path d="([^"]*)" fill="${meta.palette.workspace}" fill-rule="nonzero"`).exec(svg)[1];
+      assert.match(area, /^M[^A]*A/, "the region's arcs are SVG arcs");
+    }
     // The ranges: one wedge per limited joint (the seed's three) with the limits on, as on screen.
     const wedges = (text) => (text.match(new RegExp(`<path d="M[^"]*A[^"]*Z" fill="${meta.palette.ink}" fill-rule="nonzero" opacity="0.1"/>`, "g")) || []).length;
     assert.equal(wedges(svg), 3);

@@ -1,7 +1,7 @@
 // The playground's paths in a real browser: the figure-8 button and a dragged stroke traced
 // (plan) with 0 flips, every sample reached and the tip on the path at the end; following the
 // pointer with the seed's limits across the region they cannot reach, no joint moving more than
-// the bound between two drawn frames. Run by e2e/run, beside playground.test.mjs.
+// the bound between two drawn frames, the arm ending at the last goal's nearest reachable point. Run by e2e/run, beside playground.test.mjs.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync } from "node:fs";
@@ -142,8 +142,23 @@ test("paths: a figure-8 and a drawn stroke traced without flips; following never
     console.log(`follow: ${follows.length} requests, ${drawnPoses.length} frames, largest frame-to-frame step ${largest.toFixed(6)}°, statuses ${[...statuses]}`);
     assert.ok(largest <= 10 + 1e-5, `a joint jumped ${largest}° between two frames`);
     assert.ok(Math.abs(last[0] - first[0]) > 20, `the arm followed: from ${first} to ${last}`);
-    // Where the limits cannot reach, the arm waits at its nearest pose, first joint at +45°.
-    assert.ok(Math.abs(last[0] - 45) < 1e-6, `ended at ${last}`);
+    // Where the limits cannot reach, the arm waits at the pose reaching the nearest reachable
+    // point of the last goal (the solver's certified verdict): /api/reach's nearest point, in the
+    // region's lower lobe (first joint at −45°), and the page says how far the goal is.
+    const goal = await page.evaluate(() => window.ikarus.state.goal);
+    const arm = await page.evaluate(() => window.ikarus.state.arm);
+    const reach = await (
+      await fetch(`${url}/api/reach`, {
+        method: "POST",
+        headers: { "content-type": "application/json" },
+        body: JSON.stringify({ arm, limits: true, point: [goal.x, goal.y] }),
+      })
+    ).json();
+    assert.equal(reach.reachable, false);
+    const waits = await tip();
+    assert.ok(Math.hypot(waits[0] - reach.nearest[0], waits[1] - reach.nearest[1]) < 1e-6, `ended at ${last}, tip ${waits}, nearest ${reach.nearest}`);
+    assert.ok(Math.abs(last[0] + 45) < 1e-6, `ended at ${last}`);
+    assert.match(await page.textContent("#stats"), new RegExp(`${reach.distance.toFixed(2)} from the reachable region`));
     assert.equal(await page.evaluate(() => window.ikarus.state.animation || window.ikarus.state.track), null);
     assert.match(await page.textContent("#stats"), /^status (stalled|unreachable|limited)/);
     await page.screenshot({ path: join(artifacts, "follow.png") });

@@ -49,6 +49,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("input.js", JS, include_str!("assets/input.js")),
     ("links.js", JS, include_str!("assets/links.js")),
     ("paths.js", JS, include_str!("assets/paths.js")),
+    ("region.js", JS, include_str!("assets/region.js")),
     ("rig.js", JS, include_str!("assets/rig.js")),
     ("rigs.js", JS, include_str!("assets/rigs.js")),
     ("timeline.js", JS, include_str!("assets/timeline.js")),

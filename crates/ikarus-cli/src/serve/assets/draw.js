@@ -1,10 +1,12 @@
-// Drawing on a 2D context: the grid and axes, the reachable area (its smooth edge), the reach
-// circle, the joints' ranges (wedges) when limits are on, the motion (ghost poses and joint
-// traces up to the playhead), the wanted path of a traced path (or the stroke being drawn), the
-// base, the arm, the flips, the via points and the goal. It reads the page's state and never
-// writes it; the geometry comes from view.js. The screen and the PNG and SVG downloads
-// (export.js) are drawn by the same drawScene.
+// Drawing on a 2D context: the grid and axes, the reachable area (the exact region of
+// region.js, or the sampled grid's smooth edge), the reach circle, the joints' ranges (wedges)
+// when limits are on, the motion (ghost poses and joint traces up to the playhead), the wanted
+// path of a traced path (or the stroke being drawn), the base, the arm, the flips, the via
+// points, the goal and, for a goal out of reach, the nearest reachable point. It reads the
+// page's state and never writes it; the geometry comes from view.js and region.js. The screen
+// and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
 
+import { traceCurves, traceRegion } from "./region.js";
 import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
 
 /**
@@ -59,6 +61,7 @@ export function drawScene(ctx, view, state) {
   drawFlips(ctx, view, state.track);
   drawVia(ctx, view, state.via);
   drawGoal(ctx, view, state.goal);
+  drawReachMiss(ctx, view, state);
 }
 
 /**
@@ -167,27 +170,83 @@ export function drawGrid(ctx, view) {
   ctx.fillText("y", ax + 5, 4);
 }
 
-/** The reachable area: its outline's loops filled (even-odd: holes stay empty) and stroked. */
+/**
+ * The reachable area: the exact region (region.js, from the answer's `boundary`: arcs and lines,
+ * filled with the nonzero rule, holes running the other way, and the curves of a region without
+ * area stroked) when the server sent one, else the sampled grid's smoothed outline (filled
+ * even-odd: holes stay empty); filled and outlined.
+ */
 function drawArea(ctx, view, state) {
-  const loops = state.areaOutline;
-  if (!state.showWorkspace || !loops) return;
+  const region = state.region;
+  if (!state.showWorkspace || !(region || state.areaOutline)) return;
   ctx.beginPath();
-  for (const loop of loops) {
-    loop.forEach(([x, y], i) => {
-      const [px, py] = toCanvas(view, x, y);
-      if (i === 0) ctx.moveTo(px, py);
-      else ctx.lineTo(px, py);
-    });
-    ctx.closePath();
+  if (region) {
+    traceRegion(ctx, view, region);
+  } else {
+    for (const loop of state.areaOutline) {
+      loop.forEach(([x, y], i) => {
+        const [px, py] = toCanvas(view, x, y);
+        if (i === 0) ctx.moveTo(px, py);
+        else ctx.lineTo(px, py);
+      });
+      ctx.closePath();
+    }
   }
   ctx.globalAlpha = 0.75;
   ctx.fillStyle = COLORS.workspace;
-  ctx.fill("evenodd");
-  ctx.globalAlpha = 0.6;
+  ctx.fill(region ? "nonzero" : "evenodd");
+  ctx.globalAlpha = region ? 0.9 : 0.6;
   ctx.strokeStyle = COLORS.reach;
-  ctx.lineWidth = 1;
+  ctx.lineWidth = region ? 1.5 : 1;
   ctx.stroke();
+  if (region && region.curves.length > 0) {
+    ctx.beginPath();
+    traceCurves(ctx, view, region);
+    ctx.lineWidth = 3;
+    ctx.lineCap = "round";
+    ctx.stroke();
+  }
   ctx.globalAlpha = 1;
+}
+
+/**
+ * A goal out of the reachable region (state.reachMiss, for the goal shown): a dashed line from
+ * the goal to the nearest reachable point, and there a diamond in the reach colour, drawn over
+ * the arm (whose tip ends on it).
+ */
+function drawReachMiss(ctx, view, state) {
+  const miss = state.reachMiss;
+  if (!miss || miss.goal !== state.goal || !miss.nearest) return;
+  const [gx, gy] = toCanvas(view, miss.goal.x, miss.goal.y);
+  const [nx, ny] = toCanvas(view, ...miss.nearest);
+  ctx.setLineDash([5, 4]);
+  ctx.strokeStyle = COLORS.goal;
+  ctx.lineWidth = 1.5;
+  ctx.lineCap = "butt";
+  ctx.beginPath();
+  ctx.moveTo(gx, gy);
+  ctx.lineTo(nx, ny);
+  ctx.stroke();
+  ctx.setLineDash([]);
+  const r = 9;
+  ctx.beginPath();
+  ctx.moveTo(nx, ny - r);
+  ctx.lineTo(nx + r, ny);
+  ctx.lineTo(nx, ny + r);
+  ctx.lineTo(nx - r, ny);
+  ctx.closePath();
+  ctx.globalAlpha = 0.35;
+  ctx.fillStyle = COLORS.reach;
+  ctx.fill();
+  ctx.globalAlpha = 1;
+  ctx.lineJoin = "miter";
+  // A white halo first, so that the diamond stands out on the area's edge and the arm.
+  ctx.lineWidth = 5;
+  ctx.strokeStyle = COLORS.plot;
+  ctx.stroke();
+  ctx.lineWidth = 2.5;
+  ctx.strokeStyle = COLORS.reach;
+  ctx.stroke();
 }
 
 /**

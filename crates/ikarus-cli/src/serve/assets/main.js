@@ -1,13 +1,14 @@
 // The ikarus playground: draws the arm on a canvas and asks the JSON API (same origin) to solve,
-// animate, sample the workspace and render pictures. Plain ES modules, no dependencies, no build
-// step. This module wires the page: it owns the one `state` object, and every other module
-// either computes (view.js), talks to the server (api.js), draws what the state shows (draw.js),
-// reads and fills the form (controls.js), turns pointer and keys into actions (input.js), plays
-// motions on the timeline (timeline.js, which owns `state.playback`), follows the pointer and
-// traces paths (track.js, with the pure parts in paths.js), edits the arm (links.js, with arm
-// files in armfile.js), shows and solves a rig instead of the arm (rigs.js, with the pure parts
-// in rig.js and the drawing in drawrig.js) or saves files (files.js, with the figures drawn by
-// export.js).
+// animate, get the reachable region and render pictures. Plain ES modules, no dependencies, no
+// build step. This module wires the page: it owns the one `state` object, and every other module
+// either computes (view.js; region.js, the exact reachable region: its path, which goals it
+// holds and the nearest reachable point), talks to the server (api.js), draws what the state
+// shows (draw.js), reads and fills the form (controls.js), turns pointer and keys into actions
+// (input.js), plays motions on the timeline (timeline.js, which owns `state.playback`), follows
+// the pointer and traces paths (track.js, with the pure parts in paths.js), edits the arm
+// (links.js, with arm files in armfile.js), shows and solves a rig instead of the arm (rigs.js,
+// with the pure parts in rig.js and the drawing in drawrig.js) or saves files (files.js, with
+// the figures drawn by export.js).
 
 import * as api from "./api.js";
 import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
@@ -17,12 +18,14 @@ import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
 import { wireRigs } from "./rigs.js";
 import { areaOutline } from "./view.js";
+import { formatDistance, regionOf, unreachableText, verdict } from "./region.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
 import { wireTrack } from "./track.js";
 import { fitView, forward, toCanvas } from "./view.js";
 
+/** The grid's resolution when the exact region cannot be had (the server could not build it). */
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
 
@@ -58,10 +61,18 @@ const state = {
   showWorkspace: false,
   // The world <-> canvas transform of the last drawing (view.js's fitView).
   view: { cx: 0, cy: 0, scale: 1, w: 1, h: 1 },
-  // The last /api/workspace answer and its edge (view.js's areaOutline), kept until the next
-  // answer arrives so that the area does not blink while it recomputes.
+  // The last /api/workspace answer and what is drawn of it, kept until the next answer arrives
+  // so that the area does not blink while it recomputes: the exact region (region.js's regionOf
+  // of its `boundary`) and the arm and limits it belongs to (regionKey), or, from a server that
+  // sends no boundary, the sampled grid's edge (view.js's areaOutline).
   workspace: null,
+  region: null,
+  regionFor: null,
   areaOutline: null,
+  // A goal out of the reachable region: {goal (the state.goal it is about), nearest ([x, y], the
+  // nearest reachable point), distance}, from the page's region at once and then from the
+  // solve's answer (the authority); drawn and told while that goal is the one shown.
+  reachMiss: null,
   // The motion the timeline plays: the last /api/animate answer and its request (a GIF renders
   // the same motion), or a traced path's frames (paths.js's trackMotion; no request then).
   animation: null,
@@ -104,7 +115,12 @@ const paths = wireTrack(state, {
   cancelMotion,
   showError,
   setStatus,
-  say: (text) => ($("stats").textContent = text),
+  // A followed goal out of the region says so after the status of each answer.
+  say: (text) => {
+    const miss = missShown();
+    const status = /^status (\S+)/.exec(text);
+    $("stats").textContent = miss && status ? text.replace(status[0], `${status[0]} · ${missNote(status[1], miss.distance)}`) : text;
+  },
   showWhenEnded: (status, text) => {
     state.pendingStats = { status, text };
     setStatus("moving");
@@ -146,7 +162,10 @@ const rigs = wireRigs(state, canvas, {
 const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "limited"]);
 
 function syncChip() {
-  const bad = !$("error").hidden || !CALM.has(document.body.dataset.status);
+  const bad = !$("error").hidden || !CALM.has(document.body.dataset.status) || !!missShown();
+  // For scripts and tests: "outside" while the goal shown is out of the reachable region.
+  if (missShown()) document.body.dataset.reach = "outside";
+  else delete document.body.dataset.reach;
   $("chip").dataset.kind = bad ? "bad" : "neutral";
 }
 
@@ -167,7 +186,10 @@ function showError(e) {
 function setStatus(status) {
   document.body.dataset.status = status;
   if (status === "error") $("stats").textContent = "status error";
-  if (status === "moving") $("stats").textContent = "moving…";
+  if (status === "moving") {
+    const miss = missShown();
+    $("stats").textContent = miss ? `${unreachableText(miss.distance)} · moving to the nearest reachable point…` : "moving…";
+  }
   syncChip();
 }
 
@@ -203,11 +225,66 @@ function recheck() {
 
 function setStats(s) {
   const parts = [`status ${s.status}`];
-  if (s.iterations !== undefined) parts.push(`${s.iterations} iterations`);
+  const miss = missShown();
+  const distance = s.status === "unreachable" && Number.isFinite(s.reach_distance) ? s.reach_distance : miss && miss.distance;
+  if (Number.isFinite(distance)) parts.push(missNote(s.status, distance));
+  if (s.iterations !== undefined) parts.push(`${s.iterations} iteration${s.iterations === 1 ? "" : "s"}`);
   if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
   if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
   if (s.solve_us !== undefined) parts.push(`${(s.solve_us / 1000).toFixed(3)} ms`);
   $("stats").textContent = parts.join(" · ");
+}
+
+// ---- Reach: a goal out of the reachable region ---------------------------------------------
+
+/** Which arm and limits a region is of: the workspace request's arm and limits. */
+const regionKey = () => JSON.stringify([armForRequest(state.arm), !!state.options.limits]);
+
+/** The exact region of the current arm and limits (the last workspace answer's), or null. */
+function currentRegion() {
+  return state.region && state.regionFor === regionKey() ? state.region : null;
+}
+
+/** The miss of the goal shown, or null. */
+function missShown() {
+  const miss = state.reachMiss;
+  return miss && state.goal && miss.goal === state.goal ? miss : null;
+}
+
+/** "0.83 from the reachable region" after a status that says unreachable already, else "unreachable · 0.83 …". */
+function missNote(status, distance) {
+  return status === "unreachable" ? `${formatDistance(distance)} from the reachable region` : unreachableText(distance);
+}
+
+/**
+ * The page's own verdict on `goal` with limits on, from the region of the current arm: a goal
+ * outside it (farther than the solver's tolerance) becomes state.reachMiss, with the nearest
+ * reachable point. None for an orientation goal (its region is another) or without a region.
+ */
+function judge(goal) {
+  state.reachMiss = null;
+  const region = state.options.limits && goal.angle_deg === undefined ? currentRegion() : null;
+  if (region) {
+    const tolerance = state.options.tolerance ?? (state.meta && state.meta.defaults && state.meta.defaults.tolerance) ?? 1e-6;
+    const v = verdict(region, [goal.x, goal.y], tolerance);
+    if (!v.reachable) state.reachMiss = { goal, nearest: v.nearest, distance: v.distance };
+  }
+  syncChip();
+  return state.reachMiss;
+}
+
+/**
+ * The solve's word on `goal`, which overrides the page's: `unreachable` with its
+ * `reach_distance`, the nearest point being where its pose puts the tip (`tip`); `reached`
+ * clears a miss.
+ */
+function solvedVerdict(goal, status, reachDistance, tip) {
+  if (status === "unreachable" && Number.isFinite(reachDistance) && tip) {
+    state.reachMiss = { goal, nearest: tip, distance: reachDistance };
+  } else if (status === "reached") {
+    state.reachMiss = null;
+  }
+  syncChip();
 }
 
 // ---- Drawing ------------------------------------------------------------------------------
@@ -247,7 +324,7 @@ function setPose(pose, joints) {
 function motionStats(anim) {
   const solves = anim.solves || [];
   const last = solves[solves.length - 1] || {};
-  return { status: last.status, iterations: solves.reduce((n, s) => n + s.iterations, 0), error: last.error };
+  return { status: last.status, iterations: solves.reduce((n, s) => n + s.iterations, 0), error: last.error, reach_distance: last.reach_distance };
 }
 
 /** Solves for the goal (x, y) through the via points and plays the motion there. */
@@ -266,13 +343,21 @@ async function animateTo(x, y) {
   };
   const via = state.via.map((p) => [p.x, p.y]);
   const animReq = { ...base, ...(via.length ? { via } : {}), ease: state.ease, frames: state.frames };
-  setStatus("solving");
+  // Out of the region: said at once, the nearest reachable point drawn, while the solve runs.
+  const miss = judge(goal);
+  setStatus(miss ? "unreachable" : "solving");
+  if (miss) $("stats").textContent = unreachableText(miss.distance);
   requestDraw();
   try {
     // Through via points the stats are the motion's own solves; straight there, /api/solve's.
     const [solved, anim] = await Promise.all([via.length ? null : api.solve(base), api.animate(animReq)]);
     if (seq !== state.jobs.animateSeq) return;
-    showMotion(anim, animReq, solved || motionStats(anim));
+    const stats = solved || motionStats(anim);
+    const end = solved ? solved.end_effector : null;
+    const lastFrame = anim.frames && anim.frames[anim.frames.length - 1];
+    const tip = end ? [end.x, end.y] : lastFrame && lastFrame.joints[lastFrame.joints.length - 1];
+    solvedVerdict(goal, stats.status, stats.reach_distance, tip);
+    showMotion(anim, animReq, stats);
   } catch (e) {
     failed(e, seq);
   }
@@ -366,6 +451,14 @@ function clearVia() {
   requestDraw();
 }
 
+/** Follows the pointer to (x, y) (track.js), judging the goal first (a miss shows at once). */
+function followGoal(x, y) {
+  paths.followTo(x, y);
+  judge(state.goal);
+  const miss = missShown();
+  if (miss) $("stats").textContent = unreachableText(miss.distance);
+}
+
 /** Draw-path mode on or off: a drag on the canvas draws a stroke for the tip to trace. */
 function setDrawPath(on) {
   state.drawPath = on;
@@ -379,21 +472,35 @@ function setDrawPath(on) {
 
 // ---- Workspace ----------------------------------------------------------------------------
 
+/**
+ * Asks for the reachable area of the arm when it is shown, or when limits are on (its exact
+ * region then judges each goal at once, shown or not).
+ */
 function refreshWorkspace() {
   const jobs = state.jobs;
   clearTimeout(jobs.workspaceTimer);
-  if (!state.showWorkspace) return;
+  if (!state.arm || !(state.showWorkspace || state.options.limits)) return;
   jobs.workspaceTimer = setTimeout(async () => {
     const seq = ++jobs.workspaceSeq;
+    const key = regionKey();
+    const body = { arm: armForRequest(state.arm), limits: !!state.options.limits };
     try {
-      const ws = await api.workspace({
-        arm: armForRequest(state.arm),
-        limits: !!state.options.limits,
-        resolution: WORKSPACE_RESOLUTION,
-      });
+      // The exact region (no sampling fields: they would ask for the grid); where the server
+      // cannot build it (a failure at run time), the sampled grid instead.
+      let ws;
+      try {
+        ws = await api.workspace(body);
+      } catch (e) {
+        if (seq !== jobs.workspaceSeq) return;
+        console.info("ikarus: no exact region, the sampled grid instead:", e.message);
+        ws = await api.workspace({ ...body, grid: true, resolution: WORKSPACE_RESOLUTION });
+      }
       if (seq !== jobs.workspaceSeq) return;
       state.workspace = ws;
-      state.areaOutline = areaOutline(ws);
+      // The exact region when the server sends its boundary; else the sampled grid's edge.
+      state.region = regionOf(ws.boundary, ws.curves);
+      state.regionFor = state.region ? key : null;
+      state.areaOutline = state.region ? null : areaOutline(ws);
       requestDraw();
     } catch (e) {
       if (seq === jobs.workspaceSeq) showError(e);
@@ -468,7 +575,7 @@ function setCollapsed(c) {
 function wire() {
   const { extendStroke, endStroke } = paths;
   // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
-  const followTo = (x, y) => fieldsOk(false) && paths.followTo(x, y);
+  const followTo = (x, y) => fieldsOk(false) && followGoal(x, y);
   const startStroke = (x, y) => fieldsOk() && paths.startStroke(x, y);
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
   wireDownloads(state, showError, () => timeline.duration());
@@ -485,6 +592,7 @@ function wire() {
     controlsChanged();
   });
   $("limits").addEventListener("change", () => {
+    state.reachMiss = null;
     controlsChanged();
     refreshWorkspace();
   });
@@ -546,7 +654,7 @@ window.ikarus = {
   state,
   ready: false,
   animateTo,
-  followTo: (x, y) => fieldsOk() && paths.followTo(x, y),
+  followTo: (x, y) => fieldsOk() && followGoal(x, y),
   traceShape: (kind) => fieldsOk() && paths.traceShape(kind),
   resetPose,
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */

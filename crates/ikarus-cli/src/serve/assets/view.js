@@ -270,11 +270,12 @@ function chaikin(loop) {
 }
 
 /**
- * The edge of the reachable area of a /api/workspace answer as closed loops of world points
- * ([[[x, y], …], …]; holes are loops too, so fill them with the even-odd rule): marching
- * squares over the cell centres, crossing each edge half-way, then smoothed (neighbour averaging,
- * then `smoothing` rounds of corner cutting; 0: the raw marching-squares edge) instead of the
- * cells' staircase.
+ * The edge of the sampled reachable area of a /api/workspace answer with a grid (a server that
+ * sends no exact `boundary`, or a `grid: true` request; region.js draws the exact region) as
+ * closed loops of world points ([[[x, y], …], …]; holes are loops too, so fill them with the
+ * even-odd rule): marching squares over the cell centres, crossing each edge half-way, then
+ * smoothed (neighbour averaging, then `smoothing` rounds of corner cutting; 0: the raw
+ * marching-squares edge) instead of the cells' staircase.
  */
 export function areaOutline(ws, smoothing = OUTLINE_SMOOTHING) {
   const n = ws.resolution;
