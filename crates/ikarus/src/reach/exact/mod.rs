@@ -154,13 +154,13 @@ impl Region {
         region
     }
 
-    /// The self-check: 2048 poses drawn uniformly within the ranges (a fixed sequence), their
+    /// The self-check: 256 poses drawn uniformly within the ranges (a fixed sequence), their
     /// tips all inside or within `1e-9` of the reach of the region.
     fn holds_sampled_tips(&self, chain: &Chain) -> bool {
         let mut rng = crate::rng::SplitMix64(0x5eed);
         let mut angles = vec![0.0; chain.len()];
         let tol = 1e-9 * chain.max_reach();
-        (0..2048).all(|_| {
+        (0..256).all(|_| {
             for (a, r) in angles.iter_mut().zip(&self.ranges) {
                 *a = r.lo + rng.unit() * if r.full { TAU } else { r.span };
             }
@@ -170,7 +170,7 @@ impl Region {
     }
 
     /// Whether the region passed its self-check: every union closed all its loops, and the
-    /// tips of 2048 poses drawn within the ranges lie in it. No region in the tests fails it
+    /// tips of 256 poses drawn within the ranges lie in it. No region in the tests fails it
     /// (the union retries with a wider side test where a chain does not close); should one, it
     /// might miss reachable points, and the solver's verdict does not trust its `unreachable`.
     #[must_use]
