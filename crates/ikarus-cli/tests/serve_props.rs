@@ -303,8 +303,9 @@ fn request() -> impl Strategy<Value = (&'static str, Value)> {
     prop_oneof![3 => solve, 2 => animate, 1 => track, 1 => workspace, 1 => reach, 1 => render_arm, 1 => render_motion, 1 => render_workspace]
 }
 
-/// Where a `null` may stand: an absent orientation.
-const NULLABLE: &[&str] = &["angle_deg"];
+/// Where a `null` may stand: an absent orientation, and the region's distance of a solve made
+/// without limits (no verdict).
+const NULLABLE: &[&str] = &["angle_deg", "reach_distance"];
 
 /// The path of a `null` that stands where a number belongs, if any.
 fn misplaced_null(v: &Value, key: &str, path: &str) -> Option<String> {
