@@ -1,5 +1,8 @@
 //! The reachable workspace of a chain: where its tip can go.
 //!
+//! [`exact`] computes the region exactly, as arcs, under the limits ([`Region`]); the rest of
+//! this module samples it onto a grid ([`sample`], [`Workspace`]).
+//!
 //! Orientation is ignored throughout: a point is reachable when some pose within the joint
 //! ranges puts the tip there, whichever way the last link points.
 //!
@@ -93,7 +96,7 @@
 //! cell while sampling (shared by all threads) and one `bool` per cell in the result. Both are
 //! bounded by the validated options.
 
-mod exact;
+pub mod exact;
 pub use exact::{BoundarySegment, Membership, Region, Verdict};
 mod outline;
 pub use outline::{OUTLINE_AVERAGING, OUTLINE_SMOOTHING};
