@@ -68,6 +68,9 @@ pub(super) struct RigWork {
     pub(super) start: Vec<f64>,
     /// Rows of the first priority level.
     pub(super) primary_rows: usize,
+    /// Where the first level, solved again alone, starts from (the pose the whole solve
+    /// ended on): its own buffer, since that solve's restarts draw into its scratch's.
+    pub(super) resume: Vec<f64>,
     fk: RigPoints,
     lengths: Vec<f64>,
 }

@@ -68,10 +68,11 @@ impl Solver {
             let t = &mut self.first_level_scratch;
             Model::fit(&first, t);
             let q = Problem::with_bounds(&first, &(), opts, p.bounds);
-            t.restart.copy_from_slice(out.pose.angles());
-            let from = std::mem::take(&mut t.restart);
-            solve_with_restarts(&q, &from, began, t, out);
-            t.restart = from;
+            // (Its restarts draw their poses into `t.restart`, so the start is kept apart: it
+            // once shared that buffer, emptied for the solve, and a restart there panicked.)
+            work.resume.clear();
+            work.resume.extend_from_slice(out.pose.angles());
+            solve_with_restarts(&q, &work.resume, began, t, out);
             finish(&q, t, out);
             out.iterations += iterations;
             out.restarts += restarts;

@@ -372,3 +372,41 @@ fn methods_without_a_rig_solver_and_bad_tasks_are_refused_in_one_line() {
     assert_eq!(err.to_string(), "start: expected 16 angles (one per joint), got 3");
     let _ = deg(0.0);
 }
+
+/// The first level solved again alone, when it needs a restart, draws the restart into its own
+/// buffer: it once drew into the buffer its start had been taken from, found it empty, and
+/// panicked (found by the API's random rig requests: two roots, a secondary soft goal, one
+/// restart, 15 iterations).
+#[test]
+fn the_first_level_solved_again_may_restart() {
+    use crate::chain::JointLimits;
+    use crate::skeleton::Bone;
+    let bones = [
+        Bone::new("b0", 1.7414475684369994, 0.0).with_limits(JointLimits::new(0.0, 0.0).unwrap()),
+        Bone::new("arm.1", 0.1, 0.0).with_parent("b0"),
+        Bone::new("b2", 0.1, 0.0).with_parent("b0"),
+        Bone::new("b3", 1.4046011522229889, 0.0).with_parent("b0"),
+        Bone::new("arm.4", 0.1, 0.0).with_parent("b0"),
+        Bone::new("b5", 1.9432073648833526, 0.0)
+            .with_parent("b0")
+            .with_limits(JointLimits::new(deg(-38.31447409962215), deg(15.642333156647858)).unwrap()),
+        Bone::new("b6", 1.251218630032371, deg(-64.90466514678133)),
+    ];
+    let skeleton = Skeleton::new([0.0, 0.0], &bones).unwrap();
+    let mut soft = RigGoal::new(2, Goal::position(2.033754016391833, -2.2348167489170563).unwrap())
+        .with_priority(Priority::Secondary);
+    soft.softness = 1.0006867376073978;
+    let task = RigTask::new(
+        vec![RigGoal::new(3, Goal::position(1.9749846143471854, -1.7456543883997504).unwrap()), soft],
+        vec![],
+    );
+    let opts = SolveOptions {
+        max_iterations: 15,
+        record_every: Some(17),
+        restarts: Some(crate::Restarts { attempts: 1, ..crate::Restarts::default() }),
+        ..SolveOptions::default()
+    };
+    let out = Solver::new(opts).unwrap().solve_rig(&skeleton, skeleton.start_angles(), &task).unwrap();
+    assert_eq!(out.pose.angles().len(), 7);
+    assert!(out.restarts >= 1, "{out:?}");
+}
