@@ -50,7 +50,7 @@ use crate::chain::Chain;
 use crate::reach::sampling::Range;
 use seg::{Bbox, P, Prov, Seg, add, angle_of, dist, rotate, sub, turn, unit};
 use sweep::{Kind, Level};
-use union::{Tol, winding};
+use union::{Prepared, Tol, winding_prepared};
 
 /// A piece of a region's boundary, in world coordinates (radians).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,6 +113,8 @@ pub struct Region {
     /// Level 0's pieces moved to the base, with their boxes.
     world: Vec<Seg>,
     boxes: Vec<Bbox>,
+    /// The same pieces prepared for the winding number.
+    prepared: Vec<Prepared>,
     bbox: Bbox,
     area: f64,
     checked: bool,
@@ -148,8 +150,21 @@ impl Region {
         boxes.iter().for_each(|b| bbox.union(b));
         let area = if top.kind == Kind::Region { world.iter().map(Seg::area_term).sum::<f64>().max(0.0) } else { 0.0 };
         let bounds = chain.limits().iter().map(|&l| l.filter(|_| limits)).collect();
-        let mut region =
-            Region { base, lengths, ranges, bounds, limits, levels, world, boxes, bbox, area, checked: false };
+        let prepared = world.iter().map(Prepared::of).collect();
+        let mut region = Region {
+            base,
+            lengths,
+            ranges,
+            bounds,
+            limits,
+            levels,
+            world,
+            boxes,
+            prepared,
+            bbox,
+            area,
+            checked: false,
+        };
         region.checked = closed && region.holds_sampled_tips(chain);
         region
     }
@@ -261,7 +276,7 @@ impl Region {
             .any(|(s, b)| b.distance(q) <= tolerance && dist(s.nearest(q), q) <= tolerance);
         if near {
             Membership::Boundary
-        } else if self.has_area() && winding(&self.world, q) != 0 {
+        } else if self.has_area() && winding_prepared(&self.prepared, q) != 0 {
             Membership::Inside
         } else {
             Membership::Outside
@@ -279,7 +294,7 @@ impl Region {
     #[must_use]
     pub fn verdict(&self, p: Point2<f64>, tolerance: f64) -> Verdict {
         let q = [p.x, p.y];
-        if self.has_area() && q[0].is_finite() && q[1].is_finite() && winding(&self.world, q) != 0 {
+        if self.has_area() && self.bbox.contains(q, 0.0) && winding_prepared(&self.prepared, q) != 0 {
             return Verdict { reachable: true, distance: 0.0, nearest: p };
         }
         let (_, nearest, distance) = self.nearest_on_boundary(q);
