@@ -118,39 +118,13 @@ mod tests {
 
     use nalgebra::Point2;
 
-    use crate::chain::{Chain, JointLimits, Link};
+    use crate::chain::{Chain, Link};
+    use crate::fixtures::{limited_arm as limited, seed_arm_limited as seed, seven_link_arm as seven};
     use crate::goal::Goal;
     use crate::kinematics::end_effector;
     use crate::reach::Region;
     use crate::rng::SplitMix64;
     use crate::solve::{LimitMode, Method, SolveOptions, Solver, Status};
-
-    fn limited(links: &[(f64, f64, f64)]) -> Chain {
-        let links: Vec<Link> = links
-            .iter()
-            .map(|&(l, lo, hi)| {
-                let (lo, hi): (f64, f64) = (lo.to_radians(), hi.to_radians());
-                Link::new(l, 0.5 * (lo + hi)).with_limits(JointLimits::new(lo, hi).unwrap())
-            })
-            .collect();
-        Chain::new([0.0, 0.0], &links).unwrap()
-    }
-
-    fn seed() -> Chain {
-        limited(&[(3.0, -45.0, 45.0), (2.0, -90.0, 90.0), (1.0, -170.0, 170.0)])
-    }
-
-    fn seven() -> Chain {
-        limited(&[
-            (2.0, -90.0, 90.0),
-            (1.7, -120.0, 120.0),
-            (1.4, -120.0, 120.0),
-            (1.2, -135.0, 135.0),
-            (1.0, -135.0, 135.0),
-            (0.8, -150.0, 150.0),
-            (0.6, -150.0, 150.0),
-        ])
-    }
 
     #[test]
     fn a_goal_outside_the_region_is_answered_at_once_with_the_nearest_pose() {

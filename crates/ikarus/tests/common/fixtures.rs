@@ -51,6 +51,19 @@ pub fn seven_link_arm() -> Chain {
     Chain::new([0.0, 0.0], &links).expect("valid arm")
 }
 
+/// An arm based at the origin with links of `(length, min°, max°)`, every joint at the middle
+/// of its range.
+pub fn limited_arm(links: &[(f64, f64, f64)]) -> Chain {
+    let links: Vec<Link> = links
+        .iter()
+        .map(|&(l, lo, hi)| {
+            let limits = JointLimits::new(deg(lo), deg(hi)).expect("valid limits");
+            Link::new(l, 0.5 * (deg(lo) + deg(hi))).with_limits(limits)
+        })
+        .collect();
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
 /// A random chain of `n` links of length 0.5..2, each joint limited to a random range around 0
 /// when `limited`, based within 1 of the origin.
 pub fn random_chain(rng: &mut SplitMix64, n: usize, limited: bool) -> Chain {

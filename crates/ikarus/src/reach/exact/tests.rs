@@ -6,36 +6,11 @@ use std::f64::consts::PI;
 use nalgebra::Point2;
 
 use super::{BoundarySegment, Membership, Region};
-use crate::chain::{Chain, JointLimits, Link};
+use crate::chain::{Chain, Link};
 use crate::kinematics::end_effector;
 use crate::rng::SplitMix64 as Rng;
 
-fn chain(links: &[(f64, f64, f64)]) -> Chain {
-    let links: Vec<Link> = links
-        .iter()
-        .map(|&(l, lo, hi)| {
-            let (lo, hi) = (lo.to_radians(), hi.to_radians());
-            Link::new(l, 0.5 * (lo + hi)).with_limits(JointLimits::new(lo, hi).unwrap())
-        })
-        .collect();
-    Chain::new([0.0, 0.0], &links).unwrap()
-}
-
-fn seed() -> Chain {
-    chain(&[(3.0, -45.0, 45.0), (2.0, -90.0, 90.0), (1.0, -170.0, 170.0)])
-}
-
-fn seven() -> Chain {
-    chain(&[
-        (2.0, -90.0, 90.0),
-        (1.7, -120.0, 120.0),
-        (1.4, -120.0, 120.0),
-        (1.2, -135.0, 135.0),
-        (1.0, -135.0, 135.0),
-        (0.8, -150.0, 150.0),
-        (0.6, -150.0, 150.0),
-    ])
-}
+use crate::fixtures::{limited_arm as chain, seed_arm_limited as seed, seven_link_arm as seven};
 
 /// Tips of `n` uniformly random poses within the limits.
 fn tips(c: &Chain, n: usize, seed: u64) -> Vec<Point2<f64>> {
