@@ -393,3 +393,34 @@ mod tests {
         assert!(out.contains("| seed | free-position | dls | — | 1.0% (10) |"));
     }
 }
+
+/// One of an issue's targets, checked on a mode's rows (`--rigs`, `--reach`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Target {
+    /// What is promised.
+    pub target: String,
+    /// Whether it holds; `None` when it was not measured.
+    pub met: Option<bool>,
+    /// The figures it was judged by.
+    pub figure: String,
+}
+
+/// `targets: M of N measured met`, then one line per target (`bullet` before each, a blank
+/// line first when there is a bullet).
+pub(crate) fn write_targets(w: &mut dyn std::io::Write, targets: &[Target], bullet: &str) -> std::io::Result<()> {
+    let met = targets.iter().filter(|t| t.met == Some(true)).count();
+    let measured = targets.iter().filter(|t| t.met.is_some()).count();
+    writeln!(w, "targets: {met} of {measured} measured met")?;
+    if !bullet.is_empty() {
+        writeln!(w)?;
+    }
+    for t in targets {
+        let mark = match t.met {
+            Some(true) => "met",
+            Some(false) => "MISSED",
+            None => "not measured",
+        };
+        writeln!(w, "{bullet}{mark} {}: {}", t.target, t.figure)?;
+    }
+    Ok(())
+}

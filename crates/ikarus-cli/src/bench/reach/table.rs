@@ -6,6 +6,9 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
+pub use crate::bench::table::Target;
+use crate::bench::table::write_targets;
+
 use super::agree::Agreement;
 use super::timing::{BuildRow, GoalKind, SpeedupRow, VerdictRow};
 
@@ -46,16 +49,6 @@ pub struct ReachReport {
     pub agreement: Vec<Agreement>,
     pub speedup: Vec<SpeedupRow>,
     pub targets: Vec<Target>,
-}
-
-/// One of the targets, checked on the rows.
-#[derive(Debug, Clone, Serialize)]
-pub struct Target {
-    pub target: String,
-    /// Whether it holds; `None` when it was not measured.
-    pub met: Option<bool>,
-    /// The figures it was judged by.
-    pub figure: String,
 }
 
 /// The targets: 100 % agreement on every arm; a verdict median ≤ 1 µs on every arm;
@@ -341,24 +334,6 @@ fn write_disagreements(w: &mut dyn Write, r: &ReachReport, bullet: &str) -> io::
     }
     if all.len() > LISTED {
         writeln!(w, "{bullet}… and {} more (--json lists every one)", all.len() - LISTED)?;
-    }
-    Ok(())
-}
-
-fn write_targets(w: &mut dyn Write, targets: &[Target], bullet: &str) -> io::Result<()> {
-    let met = targets.iter().filter(|t| t.met == Some(true)).count();
-    let measured = targets.iter().filter(|t| t.met.is_some()).count();
-    writeln!(w, "targets: {met} of {measured} measured met")?;
-    if !bullet.is_empty() {
-        writeln!(w)?;
-    }
-    for t in targets {
-        let mark = match t.met {
-            Some(true) => "met",
-            Some(false) => "MISSED",
-            None => "not measured",
-        };
-        writeln!(w, "{bullet}{mark} {}: {}", t.target, t.figure)?;
     }
     Ok(())
 }

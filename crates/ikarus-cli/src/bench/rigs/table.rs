@@ -5,6 +5,9 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
+pub use crate::bench::table::Target;
+use crate::bench::table::write_targets;
+
 use super::kdl::TREE_LABEL;
 use super::rows::{RigRow, SEQUENTIAL_LABEL};
 
@@ -51,17 +54,6 @@ pub struct SetInfo {
     pub rig: &'static str,
     pub goals: Vec<String>,
     pub pins: Vec<String>,
-}
-
-/// One of the targets, checked on the rows.
-#[derive(Debug, Clone, Serialize)]
-pub struct Target {
-    /// What is promised.
-    pub target: String,
-    /// Whether it holds; `None` when it was not measured (KDL's without `--kdl`).
-    pub met: Option<bool>,
-    /// The figures it was judged by.
-    pub figure: String,
 }
 
 /// The targets, on the `default` rows: ≥ 99.9 % reached on every set; a median of at
@@ -258,24 +250,6 @@ pub fn markdown(w: &mut dyn Write, header: &RigsHeader, rows: &[RigRow], targets
     write_targets(w, targets, "- ")?;
     writeln!(w)?;
     writeln!(w, "{LEGEND}")
-}
-
-fn write_targets(w: &mut dyn Write, targets: &[Target], bullet: &str) -> io::Result<()> {
-    let met = targets.iter().filter(|t| t.met == Some(true)).count();
-    let measured = targets.iter().filter(|t| t.met.is_some()).count();
-    writeln!(w, "targets: {met} of {measured} measured met")?;
-    if !bullet.is_empty() {
-        writeln!(w)?;
-    }
-    for t in targets {
-        let mark = match t.met {
-            Some(true) => "met",
-            Some(false) => "MISSED",
-            None => "not measured",
-        };
-        writeln!(w, "{bullet}{mark} {}: {}", t.target, t.figure)?;
-    }
-    Ok(())
 }
 
 fn facts(h: &RigsHeader) -> String {
