@@ -22,7 +22,11 @@ def _palette() -> dict:
         palette = call("meta").get("palette", {})
     except Exception:  # the picture does not depend on it
         palette = {}
-    return {**_FALLBACK, **{k: v for k, v in palette.items() if isinstance(v, str)}}
+    out = {**_FALLBACK, **{k: v for k, v in palette.items() if isinstance(v, str)}}
+    joints = palette.get("joints")
+    if isinstance(joints, list) and joints and isinstance(joints[0], str):
+        out["joints"] = joints[0]
+    return out
 
 
 def _segment_points(segment: dict) -> np.ndarray:
@@ -86,10 +90,10 @@ def plot(chain: Any, pose: Any = None, goal: Any = None, ax: Any = None, workspa
     if workspace:
         region = chain.workspace(limits=limits)
         if region["boundary"]:
-            ax.add_patch(PathPatch(_region_path(region["boundary"]), facecolor=colours["workspace"], edgecolor=colours["joints"], alpha=0.35, lw=1.0, label="reachable"))
+            ax.add_patch(PathPatch(_region_path(region["boundary"]), facecolor=colours["workspace"], edgecolor=colours["reach"], lw=1.2, zorder=1, label="reachable"))
         for segment in region.get("curves", []):
             pts = _segment_points(segment)
-            ax.plot(pts[:, 0], pts[:, 1], color=colours["joints"], lw=1.0)
+            ax.plot(pts[:, 0], pts[:, 1], color=colours["reach"], lw=1.2)
     ax.add_patch(plt.Circle((bx, by), reach, fill=False, ls=":", color=colours["reach"], lw=1.0))
 
     ax.plot(joints[:, 0], joints[:, 1], "-", color=colours["ink"], lw=3, solid_capstyle="round", zorder=3)
