@@ -129,3 +129,33 @@ def test_plot_returns_axes_and_draws(tmp_path):
     ax = arm.plot(pose=[0, 45, 90], goal=(1, 4))
     assert ax.lines
     plt.close("all")
+
+
+def test_a_rig_solve_equals_the_cli():
+    want = cli_json("solve", "--rig", "examples/rigs/puppet.toml", "--goal", "right_hand=0.6451,1.0024", "--goal", "left_hand=0.8118,0.5652", "--pin", "left_foot", "--pin", "right_foot", "--limits")
+    rig = ikarus.Rig.from_toml(ROOT / "examples/rigs/puppet.toml")
+    assert rig.name == "puppet" and len(rig) == 16 and rig.bones[0] == "pelvis"
+    got = rig.solve({"right_hand": (0.6451, 1.0024), "left_hand": (0.8118, 0.5652)}, pins=["left_foot", "right_foot"], limits=True)
+    want.pop("solve_us"), got.pop("solve_us")
+    assert got == want
+    assert ikarus.Rig.shipped("puppet").rig == rig.rig
+    assert "<svg" in rig._repr_svg_()
+
+
+def test_rig_errors():
+    rig = ikarus.Rig.shipped("puppet")
+    with pytest.raises(ValueError, match='no bone named "right_hnd"'):
+        rig.solve({"right_hnd": (0.3, 0.8)})
+    with pytest.raises(ValueError, match="unknown rig 'robot'"):
+        ikarus.Rig.shipped("robot")
+
+
+def test_a_bad_rig_file_gives_the_cli_line(tmp_path):
+    from conftest import cli_error
+
+    path = tmp_path / "bad.toml"
+    path.write_text('bones = [{name = "a", parent = "b", length = 1}]\n')
+    want = cli_error("solve", "--rig", str(path), "--goal", "a=1,1")
+    with pytest.raises(ValueError) as e:
+        ikarus.Rig.from_toml(path)
+    assert str(e.value) == want

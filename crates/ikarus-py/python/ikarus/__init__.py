@@ -27,7 +27,7 @@ import numpy as np
 from . import _ikarus
 from ._ikarus import Outcome, ease
 
-__all__ = ["Chain", "Outcome", "ease", "plot", "call", "__version__"]
+__all__ = ["Chain", "Rig", "Outcome", "ease", "plot", "call", "__version__"]
 __version__ = _ikarus.__version__
 
 
@@ -298,6 +298,100 @@ class Chain(_ikarus.Chain):
         from .plot import plot as _plot
 
         return _plot(self, pose=pose, goal=goal, ax=ax, **kwargs)
+
+
+class Rig:
+    """A skeleton (a *rig*): a tree of named bones, solved for goals on any bones' tips with
+    others pinned, through the API (``POST /api/solve`` with ``rig``), as
+    ``ikarus solve --rig FILE``.
+
+    ``Rig(rig)`` takes a rig file's fields as a dict (``{"name", "base", "bones": [{"name",
+    "parent", "length", "angle_deg", "limits_deg"}], "solver"}``); ``Rig.from_toml(path)``
+    reads a rig file; ``Rig.shipped("puppet")`` (or ``"hand"``) is one of
+    ``examples/rigs/``."""
+
+    def __init__(self, rig: dict) -> None:
+        self.rig = _plain(rig, "rig")
+
+    @classmethod
+    def from_toml(cls, path: "os.PathLike[str] | str") -> "Rig":
+        """Reads a rig file (TOML, ``ikarus solve --rig FILE``); a bad one raises
+        ``ValueError`` with the CLI's line."""
+        path = os.fspath(path)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        answer = json.loads(_ikarus._call("rig/parse", text))
+        if "problem" in answer:
+            problem = answer["problem"]
+            if problem.startswith("rig file: "):
+                problem = f"rig file {path}: " + problem[len("rig file: "):]
+            raise ValueError(problem)
+        return cls(answer["rig"])
+
+    @classmethod
+    def shipped(cls, name: str) -> "Rig":
+        """A shipped rig (``GET /api/rigs``): ``"puppet"`` or ``"hand"``."""
+        rigs = call("rigs")["rigs"]
+        for r in rigs:
+            if r["name"] == name:
+                return cls(r["rig"])
+        raise ValueError(f"unknown rig '{name}' (expected one of: {', '.join(r['name'] for r in rigs)})")
+
+    @property
+    def name(self) -> str:
+        return self.rig.get("name", "rig")
+
+    @property
+    def bones(self) -> list:
+        """The bones' names, in the file's order."""
+        return [b["name"] for b in self.rig["bones"]]
+
+    def __len__(self) -> int:
+        return len(self.rig["bones"])
+
+    def __repr__(self) -> str:
+        return f"<ikarus.Rig {self.name!r}: {len(self)} bones>"
+
+    def solve(
+        self,
+        goals: dict,
+        pins: Sequence[str] = (),
+        *,
+        mix: Optional[float] = None,
+        start_deg: Optional[Sequence[float]] = None,
+        **options: Any,
+    ) -> dict:
+        """Solves every goal and pin together from the rig's start pose (or ``start_deg``, one
+        angle per bone). ``goals`` maps a bone's name to ``(x, y)``, ``(x, y, angle_deg)`` or a
+        dict with ``x``, ``y`` and optionally ``angle_deg``, ``weight``, ``priority``
+        (``"primary"``/``"secondary"``), ``bend`` (``"ccw"``/``"cw"``), ``softness``;
+        ``pins`` names bones held where they start. Options are the solver's keywords, as for
+        :meth:`Chain.solve`. Returns the object of ``ikarus solve --rig --format json``:
+        ``status``, ``effectors`` (goals in order, then pins), ``angles_deg`` and ``joints``
+        keyed by bone name."""
+        listed = []
+        for bone, goal in goals.items():
+            g = dict(goal) if isinstance(goal, dict) else _goal(goal, f"goals[{len(listed)}]")
+            listed.append({"bone": bone, **g})
+        request = {
+            "rig": self.rig,
+            "goals": listed,
+            "pins": list(pins) or None,
+            "mix": mix,
+            "start_deg": start_deg,
+            "options": _options(options) or None,
+        }
+        return call("solve", {k: v for k, v in request.items() if v is not None})
+
+    def render(self, format: str = "svg", *, width: Optional[int] = None, height: Optional[int] = None, **fields: Any) -> bytes:
+        """A picture of the rig by ikarus's renderer (``"figure": "rig"``): ``pose_deg``,
+        ``goals`` (as the API's list), ``pins``, ``limits``, ``labels``."""
+        request = {"figure": "rig", "format": format, "width": width, "height": height, "rig": self.rig, **fields}
+        body = json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
+        return bytes(_ikarus._call("render", body))
+
+    def _repr_svg_(self) -> str:
+        return self.render("svg", width=480, height=480).decode()
 
 
 def plot(chain: Chain, pose: Any = None, goal: Any = None, ax: Any = None, **kwargs: Any) -> Any:
