@@ -169,6 +169,8 @@ struct ChainData {
     /// The API's `arm` object (the arm file as JSON).
     arm_json: Value,
     name: String,
+    /// The arm file's text it was made from (None for the built-in arm), for pickling.
+    toml: Option<String>,
     /// The options of a solve without keywords, and a solver with them (taken while in use).
     options: SolveOptions,
     solver: Mutex<Option<Solver>>,
@@ -246,14 +248,14 @@ impl ChainData {
         let name = arm.name().to_owned();
         let options = edge::solve_options(&arm, "{}", limits()).map_err(problem)?;
         let solver = Solver::new(options.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Self { arm, arm_json, name, options, solver: Mutex::new(Some(solver)) })
+        Ok(Self { arm, arm_json, name, toml: None, options, solver: Mutex::new(Some(solver)) })
     }
 
     fn from_toml(text: &str, label: &str) -> PyResult<Self> {
         let arm = edge::arm_from_toml(text, label).map_err(problem)?;
         // The arm is valid, so its numbers are finite and the file is JSON as well.
         let json: Value = toml::from_str(text).map_err(|e| PyRuntimeError::new_err(format!("{label}: {e}")))?;
-        Self::new(arm, json)
+        Ok(Self { toml: Some(text.to_owned()), ..Self::new(arm, json)? })
     }
 
     fn options(&self, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<SolveOptions> {
@@ -377,6 +379,12 @@ impl PyChain {
         &self.data.name
     }
 
+    /// The arm file's text the chain was made from (None for the built-in arm).
+    #[getter]
+    fn _toml(&self) -> Option<&str> {
+        self.data.toml.as_deref()
+    }
+
     /// Number of links (and joints).
     fn __len__(&self) -> usize {
         self.data.arm.chain().len()
@@ -456,8 +464,9 @@ impl PyChain {
     /// ``max_iterations``, ``gain``, ``rates``, ``max_step_deg``, ``backtrack``,
     /// ``stall_window``, ``stall_epsilon_deg``, ``limits`` (bool), ``limit_mode``, ``restarts``,
     /// ``restart_seed``, ``time_budget_ms``, ``no_closed_form``, ``record_every``. They go over
-    /// the arm file's ``[solver]`` table, over the defaults. An unknown name or a bad value
-    /// raises ``ValueError`` with the CLI's one-line message.
+    /// the arm file's ``[solver]`` table, over the defaults. As in the API, ``limit_mode`` does
+    /// not imply ``limits=True`` (the CLI's ``--limit-mode`` does). An unknown name or a bad
+    /// value raises ``ValueError`` with one line naming it (the API's, less ``options.``).
     ///
     /// Returns an :class:`Outcome` whose fields equal ``ikarus solve --format json``'s for the
     /// same inputs, bit for bit. Not reaching the goal is a status, not an exception.

@@ -125,3 +125,12 @@ def test_chain_properties():
     assert arm.limits_deg[0] == pytest.approx((-45.0, 45.0))
     assert arm.joints([0, 0, 0]).tolist() == [[0.0, 0.0], [3.0, 0.0], [5.0, 0.0], [6.0, 0.0]]
     assert "seed" in repr(arm)
+
+
+def test_a_chain_pickles(tmp_path):
+    import pickle
+
+    for chain in (ikarus.Chain(), ikarus.Chain([2.0, 1.5], limits_deg=[(-90, 90), None], name="two"), ikarus.Chain.from_toml(ROOT / "examples/arms/seven.toml")):
+        back = pickle.loads(pickle.dumps(chain))
+        assert type(back) is ikarus.Chain and back.name == chain.name
+        assert back.solve((1.0, 1.5), limits=True).angles_deg.tolist() == chain.solve((1.0, 1.5), limits=True).angles_deg.tolist()

@@ -119,6 +119,10 @@ def _columns(rows: Sequence[dict]) -> dict:
     return out
 
 
+def _rebuild_chain(cls: type, toml: Optional[str]) -> "Chain":
+    return cls() if toml is None else cls(toml=toml)
+
+
 class Chain(_ikarus.Chain):
     __doc__ = _ikarus.Chain.__doc__
 
@@ -136,6 +140,10 @@ class Chain(_ikarus.Chain):
     def seed(cls) -> "Chain":
         """The built-in seed arm (the CLI's arm without ``--arm``)."""
         return cls()
+
+    def __reduce__(self):
+        # Picklable (for Dask, multiprocessing): rebuilt from the arm file's text.
+        return (_rebuild_chain, (type(self), self._toml))
 
     def _arm(self) -> dict:
         return json.loads(self._arm_json)
