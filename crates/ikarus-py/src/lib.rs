@@ -487,7 +487,7 @@ impl PyChain {
                 py.detach(|| solver.solve(chain, chain.start_pose(), &goal).map(|o| (o, solver.options().clone())))
             }
             _ => data.with_default_solver(|solver| {
-                solver.solve(chain, chain.start_pose(), &goal).map(|o| (o, data.options.clone()))
+                py.detach(|| solver.solve(chain, chain.start_pose(), &goal)).map(|o| (o, data.options.clone()))
             })?,
         };
         let (outcome, options) = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
