@@ -172,8 +172,8 @@ struct ChainData {
     /// The arm file's text it was made from (None for the built-in arm), for pickling.
     toml: Option<String>,
     /// The options of a solve without keywords, and a solver with them (taken while in use).
-    options: SolveOptions,
-    solver: Mutex<Option<Solver>>,
+    options: Arc<SolveOptions>,
+    solver: Mutex<Solver>,
 }
 
 /// A planar chain: links joined by revolute joints, with optional joint ranges.
@@ -248,7 +248,7 @@ impl ChainData {
         let name = arm.name().to_owned();
         let options = edge::solve_options(&arm, "{}", limits()).map_err(problem)?;
         let solver = Solver::new(options.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Self { arm, arm_json, name, toml: None, options, solver: Mutex::new(Some(solver)) })
+        Ok(Self { arm, arm_json, name, toml: None, options: Arc::new(options), solver: Mutex::new(solver) })
     }
 
     fn from_toml(text: &str, label: &str) -> PyResult<Self> {
@@ -263,22 +263,19 @@ impl ChainData {
             Some(k) if !k.is_empty() => {
                 edge::solve_options(&self.arm, &options_json(Some(k))?, limits()).map_err(option_problem)
             }
-            _ => Ok(self.options.clone()),
+            _ => Ok(SolveOptions::clone(&self.options)),
         }
     }
 
-    /// Runs `f` with the cached default solver (or a fresh one if another thread holds it).
+    /// Runs `f` with the cached default solver, in place (or with a fresh one while another
+    /// thread holds it).
     fn with_default_solver<T>(&self, f: impl FnOnce(&mut Solver) -> T) -> PyResult<T> {
-        let taken = self.solver.lock().ok().and_then(|mut s| s.take());
-        let mut solver = match taken {
-            Some(s) => s,
-            None => Solver::new(self.options.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?,
-        };
-        let out = f(&mut solver);
-        if let Ok(mut slot) = self.solver.lock() {
-            *slot = Some(solver);
+        if let Ok(mut cached) = self.solver.try_lock() {
+            return Ok(f(&mut cached));
         }
-        Ok(out)
+        let mut solver =
+            Solver::new(SolveOptions::clone(&self.options)).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(f(&mut solver))
     }
 }
 
@@ -484,7 +481,9 @@ impl PyChain {
             Some(k) if !k.is_empty() => {
                 let opts = data.options(Some(k))?;
                 let mut solver = Solver::new(opts).map_err(|e| PyValueError::new_err(e.to_string()))?;
-                py.detach(|| solver.solve(chain, chain.start_pose(), &goal).map(|o| (o, solver.options().clone())))
+                py.detach(|| {
+                    solver.solve(chain, chain.start_pose(), &goal).map(|o| (o, Arc::new(solver.options().clone())))
+                })
             }
             _ => data.with_default_solver(|solver| {
                 py.detach(|| solver.solve(chain, chain.start_pose(), &goal)).map(|o| (o, data.options.clone()))
@@ -638,7 +637,7 @@ struct PyOutcome {
     outcome: Outcome,
     goal: Goal,
     chain: Arc<ChainData>,
-    options: SolveOptions,
+    options: Arc<SolveOptions>,
 }
 
 #[pymethods]
