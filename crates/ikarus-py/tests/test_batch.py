@@ -82,3 +82,15 @@ def test_batch_equals_the_cli_batch(tmp_path, angle, args):
 def test_an_empty_batch():
     out = ikarus.Chain().solve_batch(np.zeros((0, 2)))
     assert out["angles_deg"].shape == (0, 3) and out["status"].shape == (0,)
+
+
+def test_python_threads_sharing_a_chain_get_the_same_bits():
+    # solve releases the GIL; a thread that finds the cached solver busy uses a fresh one.
+    from concurrent.futures import ThreadPoolExecutor
+
+    chain = ikarus.Chain()
+    g = [tuple(row) for row in goals(400, 12).tolist()]
+    want = [chain.solve(x).angles_deg.tolist() for x in g]
+    with ThreadPoolExecutor(4) as pool:
+        got = list(pool.map(lambda x: chain.solve(x).angles_deg.tolist(), g * 3))
+    assert got == want * 3
