@@ -196,7 +196,7 @@ mod cleanup {
 
     /// A thread that waits for SIGINT or SIGTERM (tokio's signal handling, already a dependency
     /// for `ikarus serve`; only installed once a file is pending, so serve keeps its own).
-    #[cfg(unix)]
+    #[cfg(all(unix, feature = "server"))]
     fn install() {
         let (ready, installed) = std::sync::mpsc::channel::<()>();
         let spawned = std::thread::Builder::new().name("ikarus-signals".to_owned()).spawn(move || {
@@ -224,6 +224,7 @@ mod cleanup {
         }
     }
 
-    #[cfg(not(unix))]
+    /// Without the command line (the edges' library), no files are written by a command.
+    #[cfg(not(all(unix, feature = "server")))]
     fn install() {}
 }

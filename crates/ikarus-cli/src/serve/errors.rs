@@ -7,82 +7,26 @@ use axum::extract::rejection::JsonRejection;
 use axum::extract::{FromRequest, Request};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use serde::de::{DeserializeOwned, IgnoredAny};
+use serde::de::IgnoredAny;
 
 use super::AppState;
-use crate::error::CliError;
-
-/// A failed request.
-#[derive(Debug)]
-pub struct ApiError {
-    pub status: StatusCode,
-    pub message: String,
-}
-
-impl ApiError {
-    /// 422: the request is well-formed JSON but a value is invalid.
-    pub fn invalid(message: impl Into<String>) -> Self {
-        Self { status: StatusCode::UNPROCESSABLE_ENTITY, message: message.into() }
-    }
-
-    /// 500: something failed inside the server. The detail goes to the server's stderr, not
-    /// to the client (it may hold paths or panic text).
-    pub fn internal(message: impl Into<String>) -> Self {
-        eprintln!("ikarus serve: internal error: {}", message.into().replace(['\n', '\r'], " "));
-        Self {
-            status: StatusCode::INTERNAL_SERVER_ERROR,
-            message: "internal error (the details are in the server's log)".to_owned(),
-        }
-    }
-}
-
-impl From<CliError> for ApiError {
-    fn from(e: CliError) -> Self {
-        match e {
-            CliError::Input(m) => Self::invalid(m),
-            CliError::Runtime(m) => Self::internal(m),
-        }
-    }
-}
+pub use crate::api::Problem as ApiError;
+use crate::api::status;
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        let message = self.message.replace(['\n', '\r'], " ");
-        (self.status, Json(serde_json::json!({ "error": message }))).into_response()
+        let status = StatusCode::from_u16(self.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+        (status, Json(serde_json::json!({ "error": self.one_line() }))).into_response()
     }
 }
 
-/// A JSON request body whose rejections answer in the API's error shape: malformed JSON or a
-/// missing `Content-Type: application/json` → 400, a value of the wrong type or an unknown
-/// field → 422, a body over `--max-body-bytes` → 413.
-pub struct ApiJson<T>(pub T);
-
-impl<T: DeserializeOwned> FromRequest<AppState> for ApiJson<T> {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        JsonBody::from_request(req, state).await?.parse().map(Self)
-    }
-}
-
-/// A JSON request body read once and parsed as many times as needed (`/api/render` reads its
-/// `figure` first, then that figure's fields), each parse with the rejections of [`ApiJson`]:
-/// the field's path, and the line and column.
+/// A JSON request body, read within the server's caps: its content type checked, its size at
+/// most `--max-body-bytes`, its memory reserved from the server's body memory, its arrival
+/// bounded in time. [`crate::api::call`] parses it.
 pub struct JsonBody {
-    bytes: Bytes,
-    max_body_bytes: usize,
+    pub bytes: Bytes,
     /// The body's share of the server's body memory, given back when the body is dropped.
     _memory: tokio::sync::OwnedSemaphorePermit,
-}
-
-impl JsonBody {
-    /// The body as a `T`.
-    pub fn parse<T: DeserializeOwned>(&self) -> Result<T, ApiError> {
-        match Json::<T>::from_bytes(&self.bytes) {
-            Ok(Json(value)) => Ok(value),
-            Err(rejection) => Err(rejected(&rejection, self.max_body_bytes)),
-        }
-    }
 }
 
 impl FromRequest<AppState> for JsonBody {
@@ -109,7 +53,7 @@ impl FromRequest<AppState> for JsonBody {
         let share = u32::try_from(declared.max(1)).unwrap_or(u32::MAX);
         let Ok(memory) = std::sync::Arc::clone(&state.bodies).try_acquire_many_owned(share) else {
             return Err(ApiError {
-                status: StatusCode::SERVICE_UNAVAILABLE,
+                status: status::SERVICE_UNAVAILABLE,
                 message: format!(
                     "server busy: receiving too many request bodies at once (at most {} MB); try again later",
                     super::BODY_MEMORY >> 20
@@ -119,10 +63,10 @@ impl FromRequest<AppState> for JsonBody {
         // A client trickling its body holds a connection and a buffer: bounded in time.
         let timeout = state.limits.body_timeout;
         match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
-            Ok(Ok(bytes)) => Ok(Self { bytes, max_body_bytes, _memory: memory }),
+            Ok(Ok(bytes)) => Ok(Self { bytes, _memory: memory }),
             Ok(Err(rejection)) => Err(rejected(&rejection.into(), max_body_bytes)),
             Err(_) => Err(ApiError {
-                status: StatusCode::REQUEST_TIMEOUT,
+                status: status::REQUEST_TIMEOUT,
                 message: format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
             }),
         }
@@ -141,15 +85,15 @@ fn rejected(rejection: &JsonRejection, max_body_bytes: usize) -> ApiError {
     match rejection {
         JsonRejection::JsonDataError(_) => ApiError::invalid(format!("request body: {}", detail())),
         JsonRejection::JsonSyntaxError(_) => {
-            ApiError { status: StatusCode::BAD_REQUEST, message: format!("request body: malformed JSON: {}", detail()) }
+            ApiError { status: status::BAD_REQUEST, message: format!("request body: malformed JSON: {}", detail()) }
         }
         JsonRejection::MissingJsonContentType(_) => {
-            ApiError { status: StatusCode::BAD_REQUEST, message: "Content-Type: expected application/json".to_owned() }
+            ApiError { status: status::BAD_REQUEST, message: "Content-Type: expected application/json".to_owned() }
         }
         other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError {
-            status: StatusCode::PAYLOAD_TOO_LARGE,
+            status: status::PAYLOAD_TOO_LARGE,
             message: format!("request body: larger than the cap of {max_body_bytes} bytes (--max-body-bytes)"),
         },
-        other => ApiError { status: other.status(), message: format!("request body: {}", other.body_text()) },
+        other => ApiError { status: other.status().as_u16(), message: format!("request body: {}", other.body_text()) },
     }
 }

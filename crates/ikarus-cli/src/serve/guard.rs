@@ -46,7 +46,7 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
         let host = String::from_utf8_lossy(host.as_bytes()).into_owned();
         if !guard.any_host && !guard.host_allowed(&host) {
             return ApiError {
-                status: StatusCode::FORBIDDEN,
+                status: crate::api::status::FORBIDDEN,
                 message: format!(
                     "Host: {host:?} is not a loopback name; this server answers only localhost, 127.0.0.1 and [::1] (add names with --allow-host)"
                 ),
@@ -66,7 +66,7 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
                 let _ = tokio::time::timeout(DRAIN_TIME, drain).await;
             }
             return ApiError {
-                status: StatusCode::PAYLOAD_TOO_LARGE,
+                status: crate::api::status::PAYLOAD_TOO_LARGE,
                 message: format!(
                     "request body: Content-Length {length} is larger than the cap of {} bytes (--max-body-bytes)",
                     guard.max_body_bytes

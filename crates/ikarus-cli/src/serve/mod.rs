@@ -4,31 +4,29 @@
 //! answers 500 and the server keeps serving. Caps (flags) bound every loop a request can start,
 //! [`conn`] bounds connections, [`guard`] checks the Host and the declared body size.
 
-mod api;
-mod arm_files;
 mod conn;
 mod errors;
 mod guard;
-mod meta;
+mod handlers;
 mod pool;
-mod requests;
-mod rig_motion;
-mod rig_requests;
-mod rigs;
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
 use std::time::Duration;
 
 use axum::Router;
-use axum::extract::{DefaultBodyLimit, Path};
-use axum::http::{Method, StatusCode, Uri, header};
+use axum::body::Bytes;
+use axum::extract::{DefaultBodyLimit, Path, State};
+use axum::http::{Method, Uri, header};
 use axum::response::{Html, IntoResponse};
 use axum::routing::{get, post};
 use clap::Args;
 
+pub use crate::api::Limits;
+use crate::api::{Endpoint, status};
 use crate::error::CliError;
-use errors::ApiError;
+use errors::{ApiError, JsonBody};
+use handlers::{at_once, compute, file_text};
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -110,18 +108,6 @@ pub struct ServeArgs {
     pub allow_host: Vec<String>,
 }
 
-/// The caps of every request, from the flags.
-#[derive(Debug, Clone)]
-pub struct Limits {
-    pub max_body_bytes: usize,
-    pub max_links: usize,
-    pub max_iterations: u32,
-    pub max_frames: usize,
-    pub max_samples: usize,
-    pub max_resolution: u32,
-    pub body_timeout: Duration,
-}
-
 /// What every handler shares.
 #[derive(Debug, Clone)]
 pub struct AppState {
@@ -143,6 +129,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         max_frames: usize::try_from(args.max_frames).unwrap_or(usize::MAX),
         max_samples: usize::try_from(args.max_samples).unwrap_or(usize::MAX),
         max_resolution: args.max_resolution,
+        max_restarts: Limits::default().max_restarts,
         body_timeout: Duration::from_millis(args.body_timeout_ms),
     };
     let parallelism = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
@@ -265,19 +252,25 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
         .route("/{asset}", get(asset))
-        .route("/api/health", get(api::health))
-        .route("/api/meta", get(meta::handler))
-        .route("/api/arm/default", get(api::default_arm))
-        .route("/api/arm/parse", post(arm_files::parse_handler))
-        .route("/api/arm/toml", post(arm_files::toml_handler))
-        .route("/api/rigs", get(rigs::list))
-        .route("/api/rig/parse", post(rigs::parse_handler))
-        .route("/api/solve", post(api::solve))
-        .route("/api/animate", post(api::animate))
-        .route("/api/track", post(api::track))
-        .route("/api/workspace", post(api::workspace))
-        .route("/api/reach", post(api::reach))
-        .route("/api/render", post(api::render))
+        .route("/api/health", get(handlers::health))
+        .route("/api/meta", get(|State(s): State<AppState>| async move { at_once(Endpoint::Meta, &s, b"") }))
+        .route(
+            "/api/arm/default",
+            get(|State(s): State<AppState>| async move { at_once(Endpoint::ArmDefault, &s, b"") }),
+        )
+        .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
+        .route("/api/arm/parse", post(|State(s), b: Bytes| file_text(Endpoint::ArmParse, s, b)))
+        .route("/api/rig/parse", post(|State(s), b: Bytes| file_text(Endpoint::RigParse, s, b)))
+        .route(
+            "/api/arm/toml",
+            post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),
+        )
+        .route("/api/solve", post(|State(s), b| compute(Endpoint::Solve, s, b)))
+        .route("/api/animate", post(|State(s), b| compute(Endpoint::Animate, s, b)))
+        .route("/api/track", post(|State(s), b| compute(Endpoint::Track, s, b)))
+        .route("/api/workspace", post(|State(s), b| compute(Endpoint::Workspace, s, b)))
+        .route("/api/reach", post(|State(s), b| compute(Endpoint::Reach, s, b)))
+        .route("/api/render", post(|State(s), b| compute(Endpoint::Render, s, b)))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))
         .layer(axum::middleware::from_fn_with_state(Arc::new(guard), guard::check))
@@ -293,5 +286,5 @@ async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<imp
 }
 
 async fn not_found(method: Method, uri: Uri) -> ApiError {
-    ApiError { status: StatusCode::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) }
+    ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) }
 }

@@ -19,7 +19,6 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::http::StatusCode;
 use ikarus::Interrupt;
 use tokio::sync::{OwnedSemaphorePermit, Semaphore, watch};
 use tokio::time::Instant;
@@ -90,7 +89,7 @@ impl Pool {
         }
         let Ok(_admitted) = Arc::clone(&self.admitted).try_acquire_owned() else {
             return Err(ApiError {
-                status: StatusCode::SERVICE_UNAVAILABLE,
+                status: crate::api::status::SERVICE_UNAVAILABLE,
                 message: format!(
                     "server busy: {} computations running and {} waiting (--workers, --max-queued); try again later",
                     self.config.workers, self.config.max_queued
@@ -163,7 +162,7 @@ impl Pool {
 
     fn too_many_long(&self) -> ApiError {
         ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
+            status: crate::api::status::SERVICE_UNAVAILABLE,
             message: format!(
                 "server busy: {} long computations already running (--long-workers); this one was stopped after {} ms, try again later or ask for less work",
                 self.config.long_workers,
@@ -174,7 +173,7 @@ impl Pool {
 
     fn over_budget(&self) -> ApiError {
         ApiError {
-            status: StatusCode::SERVICE_UNAVAILABLE,
+            status: crate::api::status::SERVICE_UNAVAILABLE,
             message: format!(
                 "request stopped: it took longer than the budget of {} ms (--request-budget-ms); ask for less work (fewer iterations, restarts, samples, frames)",
                 self.config.budget.as_millis()
@@ -184,7 +183,7 @@ impl Pool {
 }
 
 fn stopping_error() -> ApiError {
-    ApiError { status: StatusCode::SERVICE_UNAVAILABLE, message: "server stopping".to_owned() }
+    ApiError { status: crate::api::status::SERVICE_UNAVAILABLE, message: "server stopping".to_owned() }
 }
 
 #[cfg(test)]
@@ -212,7 +211,7 @@ mod tests {
     async fn a_panic_in_a_handler_becomes_a_500_with_a_generic_body() {
         let (pool, _tx) = pool(2, 2, 10_000);
         let e = pool.run::<()>(|_| panic!("boom at /home/someone/src/x.rs:1")).await.unwrap_err();
-        assert_eq!(e.status, StatusCode::INTERNAL_SERVER_ERROR);
+        assert_eq!(e.status, crate::api::status::INTERNAL_SERVER_ERROR);
         assert!(!e.message.contains("boom") && !e.message.contains("/home"), "{}", e.message);
         // The pool still works afterwards.
         assert_eq!(pool.run(|_| Ok(7)).await.unwrap(), 7);
@@ -228,7 +227,7 @@ mod tests {
             })
             .await
             .unwrap_err();
-        assert_eq!(e.status, StatusCode::SERVICE_UNAVAILABLE);
+        assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
         assert!(e.message.contains("budget of 50 ms (--request-budget-ms)"), "{}", e.message);
     }
 
@@ -248,7 +247,7 @@ mod tests {
             tokio::time::sleep(Duration::from_millis(5)).await;
         }
         let e = pool.run(|_| Ok(())).await.unwrap_err();
-        assert_eq!(e.status, StatusCode::SERVICE_UNAVAILABLE);
+        assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
         assert!(e.message.starts_with("server busy"), "{}", e.message);
         // Stopping the server interrupts the running one.
         tx.send(true).unwrap();
@@ -278,7 +277,7 @@ mod tests {
             })
             .await
             .unwrap_err();
-        assert_eq!(e.status, StatusCode::SERVICE_UNAVAILABLE);
+        assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
         assert!(e.message.contains("--long-workers"), "{}", e.message);
         // Quick work still runs beside the long one.
         assert_eq!(pool.run(|_| Ok(5)).await.unwrap(), 5);

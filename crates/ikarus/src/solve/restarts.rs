@@ -2,7 +2,7 @@
 //! poses (see [`Restarts`]), and the outcome is relabelled [`Status::Unreachable`] when no pose
 //! could reach the goal.
 
-use std::time::Instant;
+use web_time::Instant;
 
 use super::attempt::attempt;
 use super::model::{Model, ScratchOf};

@@ -41,7 +41,7 @@ impl Solver {
         }
         check_rig_input(skeleton, start, opts.rates.len())?;
         task.validate(skeleton)?;
-        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
+        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| web_time::Instant::now());
         let work = &mut self.rig_work;
         work.setup(skeleton, start, task, opts, out)?;
         let rig = Rig {

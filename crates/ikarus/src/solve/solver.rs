@@ -76,7 +76,7 @@ impl Solver {
     ) -> Result<(), SolveError> {
         let opts = &self.options;
         check_input(chain, start, opts)?;
-        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| std::time::Instant::now());
+        let began = opts.restarts.and_then(|r| r.time_budget).map(|_| web_time::Instant::now());
         let s = &mut self.scratch;
         Model::fit(chain, s);
         let p = Problem::new(chain, goal, opts);

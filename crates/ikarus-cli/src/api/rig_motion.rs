@@ -5,21 +5,18 @@
 //! server's caps and time budget. The bodies are told apart as `POST /api/solve`'s are: `rig`
 //! and `goals` make a rig's request.
 
-use axum::extract::{FromRequest, Request};
-use axum::response::Response;
 use ikarus::motion::Interpolation;
-use ikarus::{EaseKind, RigTask, TrackMode};
+use ikarus::{EaseKind, Interrupt, RigTask, TrackMode};
 use serde::Deserialize;
 
-use super::api::{
+use super::jobs::{
     MAX_RECORDED_VALUES, MAX_VIA, ease, json_response, max_step_deg, options_for, pose_from_degrees,
     recorded_values_cap, stopped, timing, track_path,
 };
-use super::errors::{ApiError, JsonBody};
 use super::requests::{AnimateReq, EaseReq, TrackReq};
 use super::rig_requests::{Keys, RigGoalReq};
 use super::rigs::{MAX_EFFECTORS, load_rig, task};
-use super::{AppState, Limits};
+use super::{Limits, Problem, Reply, parse_json};
 use crate::rig::{Rig, RigFile};
 use crate::rig_motion::RigMotionPlan;
 use crate::rig_track::{RigTrackJob, effector_index};
@@ -113,41 +110,41 @@ pub enum TrackBody {
     Rig(Box<RigTrackReq>),
 }
 
-impl FromRequest<AppState> for AnimateBody {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        let body = JsonBody::from_request(req, state).await?;
-        let keys: Keys = body.parse()?;
-        Ok(if keys.rig()? { AnimateBody::Rig(body.parse()?) } else { AnimateBody::Arm(Box::new(body.parse()?)) })
+impl AnimateBody {
+    /// The body as an arm's request or a rig's, told apart by its keys.
+    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
+        let keys: Keys = parse_json(body)?;
+        Ok(if keys.rig()? {
+            AnimateBody::Rig(parse_json(body)?)
+        } else {
+            AnimateBody::Arm(Box::new(parse_json(body)?))
+        })
     }
 }
 
-impl FromRequest<AppState> for TrackBody {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        let body = JsonBody::from_request(req, state).await?;
-        let keys: Keys = body.parse()?;
-        Ok(if keys.rig()? { TrackBody::Rig(body.parse()?) } else { TrackBody::Arm(Box::new(body.parse()?)) })
+impl TrackBody {
+    /// The body as an arm's request or a rig's, told apart by its keys.
+    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
+        let keys: Keys = parse_json(body)?;
+        Ok(if keys.rig()? { TrackBody::Rig(parse_json(body)?) } else { TrackBody::Arm(Box::new(parse_json(body)?)) })
     }
 }
 
 /// The start pose of a rig request: `start_deg`, or the rig's start angles.
-fn start(rig: &Rig, start_deg: Option<&[f64]>) -> Result<Vec<f64>, ApiError> {
+fn start(rig: &Rig, start_deg: Option<&[f64]>) -> Result<Vec<f64>, Problem> {
     pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), start_deg, "start_deg")
 }
 
 /// The tasks of a rig motion: each `via[i]` set with the pins and the mix, then `goals`; a
 /// problem names the field in the request's words (`via[1][0].bone`).
-fn tasks(rig: &Rig, req: &RigAnimateReq) -> Result<Vec<RigTask>, ApiError> {
+fn tasks(rig: &Rig, req: &RigAnimateReq) -> Result<Vec<RigTask>, Problem> {
     if req.via.len() > MAX_VIA {
-        return Err(ApiError::invalid(format!("via: {} goal sets, more than the cap of {MAX_VIA}", req.via.len())));
+        return Err(Problem::invalid(format!("via: {} goal sets, more than the cap of {MAX_VIA}", req.via.len())));
     }
     let mut tasks = Vec::with_capacity(req.via.len() + 1);
     for (i, set) in req.via.iter().enumerate() {
         let t = task(rig, set, &req.pins, req.mix, true)
-            .map_err(|e| ApiError { message: prefix_goals(&e.message, &format!("via[{i}]")), ..e })?;
+            .map_err(|e| Problem { message: prefix_goals(&e.message, &format!("via[{i}]")), ..e })?;
         tasks.push(t);
     }
     tasks.push(task(rig, &req.goals, &req.pins, req.mix, true)?);
@@ -160,10 +157,8 @@ fn prefix_goals(message: &str, set: &str) -> String {
 }
 
 /// `POST /api/animate` with `rig`: the JSON of `ikarus animate --rig --format json`.
-pub async fn animate(state: AppState, req: RigAnimateReq) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits: &Limits = &state.limits;
+pub fn animate(req: RigAnimateReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    {
         let rig = load_rig(req.rig.clone())?;
         let tasks = tasks(&rig, &req)?;
         let timing = timing(req.frames, req.duration, req.fps, limits)?;
@@ -181,34 +176,31 @@ pub async fn animate(state: AppState, req: RigAnimateReq) -> Result<Response, Ap
         let motion = plan.run()?;
         stopped(interrupt)?;
         json_response(&motion.json(&rig))
-    })
-    .await
+    }
 }
 
 /// `POST /api/track` with `rig`: the JSON of `ikarus track --rig --format json`.
-pub async fn track(state: AppState, req: RigTrackReq) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits: &Limits = &state.limits;
+pub fn track(req: RigTrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    {
         let rig = load_rig(req.rig.clone())?;
         let Some(name) = &req.effector else {
-            return Err(ApiError::invalid("effector: required with rig: the bone whose tip follows the path"));
+            return Err(Problem::invalid("effector: required with rig: the bone whose tip follows the path"));
         };
         if let Some(mode) = req.mode.filter(|&m| m != TrackMode::Follow) {
-            return Err(ApiError::invalid(format!(
+            return Err(Problem::invalid(format!(
                 "mode = {}: a rig's effector is followed online only (mode follow, the default with rig)",
                 mode.name()
             )));
         }
         if req.goals.len() + req.pins.len() + 1 > MAX_EFFECTORS {
-            return Err(ApiError::invalid(format!(
+            return Err(Problem::invalid(format!(
                 "goals, pins: {} effectors with the effector, more than the cap of {MAX_EFFECTORS}",
                 req.goals.len() + req.pins.len() + 1
             )));
         }
         let task = task(&rig, &req.goals, &req.pins, req.mix, false)?;
         let task = RigTask { mix: req.mix.unwrap_or(1.0), ..task };
-        let bone = effector_index(&rig, name, &task, "effector").map_err(ApiError::invalid)?;
+        let bone = effector_index(&rig, name, &task, "effector").map_err(Problem::invalid)?;
         let n = rig.skeleton.len();
         let solve = options_for(&rig.solver, n, req.options.as_ref(), None, limits, interrupt)?;
         let start = start(&rig, req.start_deg.as_deref())?;
@@ -216,9 +208,8 @@ pub async fn track(state: AppState, req: RigTrackReq) -> Result<Response, ApiErr
         let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
         let options = TrackJob::options(solve, max_step_deg(req.max_step_deg)?, req.bound_first);
         let job = RigTrackJob { rig: &rig, start, bone, task, path, options };
-        let t = job.run().map_err(ApiError::invalid)?;
+        let t = job.run().map_err(Problem::invalid)?;
         stopped(interrupt)?;
         json_response(&job.json(&t))
-    })
-    .await
+    }
 }

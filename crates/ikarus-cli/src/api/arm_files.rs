@@ -7,12 +7,9 @@
 //! are the file's `[solver].rates`; the file's other `[solver]` settings are the page's controls'
 //! business and are not carried.
 
-use axum::Json;
-use axum::http::header;
-use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
 
-use super::errors::{ApiError, ApiJson};
+use super::{Problem, Reply, parse_json};
 use crate::arm::{Arm, ArmFile, LinkFile};
 use crate::settings::SolverSettings;
 
@@ -138,17 +135,18 @@ pub enum Parsed {
 }
 
 /// `POST /api/arm/parse`: the body is the file's text.
-pub async fn parse_handler(body: String) -> Json<Parsed> {
-    Json(match parse(&body) {
+pub fn parsed(text: &str) -> Parsed {
+    match parse(text) {
         Ok(arm) => Parsed::Arm(arm),
         Err(problem) => Parsed::Problem(problem),
-    })
+    }
 }
 
 /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.
-pub async fn toml_handler(ApiJson(req): ApiJson<TomlReq>) -> Result<Response, ApiError> {
-    let text = to_toml(&req.arm).map_err(ApiError::invalid)?;
-    Ok(([(header::CONTENT_TYPE, "application/toml; charset=utf-8")], text).into_response())
+pub fn toml(body: &[u8]) -> Result<Reply, Problem> {
+    let req: TomlReq = parse_json(body)?;
+    let text = to_toml(&req.arm).map_err(Problem::invalid)?;
+    Ok(Reply { content_type: "application/toml; charset=utf-8", body: text.into_bytes() })
 }
 
 #[cfg(test)]

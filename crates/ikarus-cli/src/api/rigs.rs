@@ -4,19 +4,20 @@
 //! and the answers are the command line's (`crate::rig_task`, `crate::rig_report`,
 //! `crate::picture`), under the server's caps and time budget.
 
-use std::time::Instant;
-
-use axum::Json;
-use axum::response::Response;
 use ikarus::{Bend, Interrupt, Outcome, Priority, RigTask};
 use serde::Serialize;
+use web_time::Instant;
 
-use super::api::{
-    MAX_SOLVE_RECORDED_VALUES, json_response, options_for, picture, pose_from_degrees, recorded_values_cap, stopped,
+use super::jobs::{
+    MAX_SOLVE_RECORDED_VALUES, json_response, options_for, pose_from_degrees, recorded_values_cap, stopped,
 };
-use super::errors::ApiError;
-use super::rig_requests::{BendReq, PriorityReq, RigFigureReq, RigGoalReq, RigSolveReq};
-use super::{AppState, Limits};
+#[cfg(feature = "render")]
+use super::render::picture;
+#[cfg(feature = "render")]
+use super::rig_requests::RigFigureReq;
+use super::rig_requests::{BendReq, PriorityReq, RigGoalReq, RigSolveReq};
+use super::{Limits, Problem, Reply};
+#[cfg(feature = "render")]
 use crate::picture::{Drawing, PictureFormat, draw, rig_figure};
 use crate::rig::{Rig, RigFile};
 use crate::rig_report::{RigJson, RigSolveReport};
@@ -36,9 +37,9 @@ pub const SHIPPED: &[(&str, &str)] = &[
 
 /// The request's rig, checked as a rig file is (errors start with `rig:`); at most
 /// [`MAX_BONES`] bones.
-pub fn load_rig(file: RigFile) -> Result<Rig, ApiError> {
+pub fn load_rig(file: RigFile) -> Result<Rig, Problem> {
     if file.bones.len() > MAX_BONES {
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "rig.bones: {} bones, more than the cap of {MAX_BONES}",
             file.bones.len()
         )));
@@ -55,10 +56,10 @@ pub fn task(
     pins: &[String],
     mix: Option<f64>,
     need_one: bool,
-) -> Result<RigTask, ApiError> {
+) -> Result<RigTask, Problem> {
     let effectors = goals.len() + pins.len();
     if effectors > MAX_EFFECTORS {
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "goals, pins: {effectors} effectors (goals and pins together), more than the cap of {MAX_EFFECTORS}"
         )));
     }
@@ -88,14 +89,12 @@ pub fn task(
         Field::Bend(i) => format!("goals[{i}].bend"),
         Field::Pin(i) => format!("pins[{i}]"),
     };
-    rig_task::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(ApiError::invalid)
+    rig_task::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(Problem::invalid)
 }
 
 /// `POST /api/solve` with `rig`: the JSON of `ikarus solve --rig --format json`.
-pub async fn solve(state: AppState, req: RigSolveReq) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits: &Limits = &state.limits;
+pub fn solve(req: RigSolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    {
         let rig = load_rig(req.rig)?;
         let task = task(&rig, &req.goals, &req.pins, req.mix, true)?;
         let n = rig.skeleton.len();
@@ -114,12 +113,11 @@ pub async fn solve(state: AppState, req: RigSolveReq) -> Result<Response, ApiErr
         let started = Instant::now();
         solver
             .solve_rig_into(&rig.skeleton, &start, &task, &mut outcome)
-            .map_err(|e| ApiError::invalid(e.to_string()))?;
+            .map_err(|e| Problem::invalid(e.to_string()))?;
         stopped(interrupt)?;
         let micros = started.elapsed().as_secs_f64() * 1e6;
         json_response(&RigSolveReport { rig: &rig, options: solver.options(), outcome: &outcome, micros }.json())
-    })
-    .await
+    }
 }
 
 /// One shipped rig.
@@ -135,14 +133,14 @@ struct Rigs {
 }
 
 /// `GET /api/rigs`: `{"rigs": [{"name", "rig"}, …]}`.
-pub async fn list() -> Result<Response, ApiError> {
+pub fn list() -> Result<Reply, Problem> {
     let rigs = SHIPPED
         .iter()
         .map(|(name, text)| {
-            let rig = RigJson::parse(text, &format!("examples/rigs/{name}.toml")).map_err(ApiError::internal)?;
+            let rig = RigJson::parse(text, &format!("examples/rigs/{name}.toml")).map_err(Problem::internal)?;
             Ok(Shipped { name, rig })
         })
-        .collect::<Result<Vec<_>, ApiError>>()?;
+        .collect::<Result<Vec<_>, Problem>>()?;
     json_response(&Rigs { rigs })
 }
 
@@ -156,13 +154,14 @@ pub enum Parsed {
 }
 
 /// `POST /api/rig/parse`: the body is the file's text.
-pub async fn parse_handler(body: String) -> Json<Parsed> {
-    Json(match RigJson::parse(&body, "rig file") {
+pub fn parsed(text: &str) -> Parsed {
+    match RigJson::parse(text, "rig file") {
         Ok(rig) => Parsed::Rig(rig),
         Err(problem) => Parsed::Problem(problem),
-    })
+    }
 }
 
+#[cfg(feature = "render")]
 /// The figure `rig`: the rig at `pose_deg` (its start pose by default) with goals and pins.
 pub fn figure(
     r: RigFigureReq,
@@ -170,7 +169,7 @@ pub fn figure(
     width: u32,
     height: u32,
     interrupt: &Interrupt,
-) -> Result<Vec<u8>, ApiError> {
+) -> Result<Vec<u8>, Problem> {
     let rig = load_rig(r.rig)?;
     let task = task(&rig, &r.goals, &r.pins, None, false)?;
     let pose =

@@ -3,27 +3,19 @@
 //! (`crate::report`), made by the same workflows (`crate::settings`, `crate::motion`,
 //! `crate::picture`, `crate::area`, `crate::reach`).
 
-use std::time::Instant;
-
-use axum::Json;
-use axum::extract::State;
-use axum::http::header;
-use axum::response::{IntoResponse, Response};
 use ikarus::motion::{Interpolation, Timing};
 use ikarus::reach::WorkspaceOptions;
 use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
-use serde_json::json;
+use web_time::Instant;
 
-use super::errors::{ApiError, ApiJson};
-use super::requests::{AnimateReq, ArmFigureReq, EaseReq, GoalReq, MotionFigureReq, ReachReq, RenderReq, WorkspaceReq};
+use super::requests::{AnimateReq, EaseReq, GoalReq, ReachReq, WorkspaceReq};
 use super::rig_motion::{AnimateBody, TrackBody};
 use super::rig_requests::SolveBody;
-use super::{AppState, Limits};
+use super::{Limits, Problem, Reply, parse_json, status};
 use crate::area::{self, GridRequest, ReachableArea};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::ease_args::{EaseProblem, choose_ease};
-use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
-use crate::picture::{Drawing, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
+use crate::motion::{Motion, MotionPlan, TimingProblem};
 use crate::reach::ReachRequest;
 use crate::report::{self, AnimateJson, SolveReport, VerdictJson};
 use crate::settings::{SolverSettings, solver};
@@ -35,38 +27,19 @@ const SOLVE_RECORD_EVERY: u32 = 20;
 pub(super) const MAX_VIA: usize = 100;
 /// Most joint-space samples of a workspace.
 const MAX_SAMPLES: u32 = 1_000_000;
-/// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
-const MAX_GIF_PIXELS: u64 = 100_000_000;
-/// Picture size when the request gives none, and its range (as the command line's).
-const DEFAULT_SIDE: u32 = 800;
-const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
 
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
 /// 503 for it; writing a large answer nobody reads would only hold the worker).
-/// A picture, or the interruption that stopped its drawing (not an internal error).
-pub(super) fn picture(
-    drawn: Result<Vec<u8>, crate::error::CliError>,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, ApiError> {
-    stopped(interrupt)?;
-    Ok(drawn?)
-}
-
-pub(super) fn stopped(interrupt: &Interrupt) -> Result<(), ApiError> {
+pub(super) fn stopped(interrupt: &Interrupt) -> Result<(), Problem> {
     if interrupt.is_interrupted() {
-        Err(ApiError { status: axum::http::StatusCode::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
+        Err(Problem { status: status::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
     } else {
         Ok(())
     }
 }
 
-pub(super) fn json_response(value: &impl serde::Serialize) -> Result<Response, ApiError> {
-    let bytes = serde_json::to_vec(value).map_err(|e| ApiError::internal(format!("cannot write JSON: {e}")))?;
-    Ok(([(header::CONTENT_TYPE, "application/json")], bytes).into_response())
-}
-
-pub async fn health() -> Json<serde_json::Value> {
-    Json(json!({ "status": "ok", "version": env!("CARGO_PKG_VERSION") }))
+pub(super) fn json_response(value: &impl serde::Serialize) -> Result<Reply, Problem> {
+    Reply::json(value)
 }
 
 #[derive(serde::Serialize)]
@@ -84,9 +57,9 @@ struct ArmJson {
     links: Vec<LinkJson>,
 }
 
-pub async fn default_arm() -> Result<Response, ApiError> {
-    let file: ArmFile =
-        toml::from_str(DEFAULT_ARM).map_err(|e| ApiError::internal(format!("the built-in arm: {e}")))?;
+/// `GET /api/arm/default`: the built-in arm.
+pub fn default_arm() -> Result<Reply, Problem> {
+    let file: ArmFile = toml::from_str(DEFAULT_ARM).map_err(|e| Problem::internal(format!("the built-in arm: {e}")))?;
     json_response(&ArmJson {
         name: file.name.clone().unwrap_or_else(|| "arm".to_owned()),
         base: file.base.unwrap_or([0.0, 0.0]),
@@ -98,14 +71,13 @@ pub async fn default_arm() -> Result<Response, ApiError> {
     })
 }
 
-pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Response, ApiError> {
-    let req = match body {
+/// `POST /api/solve`: the JSON of `ikarus solve --format json` (with `rig`, of `--rig`).
+pub fn solve(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req = match SolveBody::parse(body)? {
         SolveBody::Arm(req) => *req,
-        SolveBody::Rig(req) => return super::rigs::solve(state, *req).await,
+        SolveBody::Rig(req) => return super::rigs::solve(*req, limits, interrupt),
     };
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits = &state.limits;
+    {
         let arm = load_arm(req.arm, limits)?;
         let mut options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let asked = req.options.as_ref().and_then(|o| o.record_every).or(arm.solver.record_every);
@@ -118,40 +90,34 @@ pub async fn solve(State(state): State<AppState>, body: SolveBody) -> Result<Res
         let mut solver = solver(options)?;
         let mut outcome = Outcome::default();
         let started = Instant::now();
-        solver.solve_into(&arm.chain, &start, &goal, &mut outcome).map_err(|e| ApiError::invalid(e.to_string()))?;
+        solver.solve_into(&arm.chain, &start, &goal, &mut outcome).map_err(|e| Problem::invalid(e.to_string()))?;
         stopped(interrupt)?;
         let micros = started.elapsed().as_secs_f64() * 1e6;
         let report = SolveReport { arm: &arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
         json_response(&report.json())
-    })
-    .await
+    }
 }
 
-pub async fn animate(State(state): State<AppState>, body: AnimateBody) -> Result<Response, ApiError> {
-    let req = match body {
+/// `POST /api/animate`: the JSON of `ikarus animate --format json` (with `rig`, of `--rig`).
+pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req = match AnimateBody::parse(body)? {
         AnimateBody::Arm(req) => *req,
-        AnimateBody::Rig(req) => return super::rig_motion::animate(state, *req).await,
+        AnimateBody::Rig(req) => return super::rig_motion::animate(*req, limits, interrupt),
     };
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let arm = load_arm(req.arm.clone(), &state.limits)?;
-        let fields = MotionFields::of_animate(&req);
-        let motion = motion(&arm, &fields, &req.goal, &state.limits, interrupt)?;
-        stopped(interrupt)?;
-        json_response(&AnimateJson::new(&arm, &motion.motion))
-    })
-    .await
+    let arm = load_arm(req.arm.clone(), limits)?;
+    let fields = MotionFields::of_animate(&req);
+    let motion = motion(&arm, &fields, &req.goal, limits, interrupt)?;
+    stopped(interrupt)?;
+    json_response(&AnimateJson::new(&arm, &motion.motion))
 }
 
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
-pub async fn track(State(state): State<AppState>, body: TrackBody) -> Result<Response, ApiError> {
-    let req = match body {
+pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req = match TrackBody::parse(body)? {
         TrackBody::Arm(req) => *req,
-        TrackBody::Rig(req) => return super::rig_motion::track(state, *req).await,
+        TrackBody::Rig(req) => return super::rig_motion::track(*req, limits, interrupt),
     };
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits = &state.limits;
+    {
         let arm = load_arm(req.arm.clone(), limits)?;
         let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
@@ -160,22 +126,21 @@ pub async fn track(State(state): State<AppState>, body: TrackBody) -> Result<Res
         let max_step_deg = max_step_deg(req.max_step_deg)?;
         let mode = req.mode.unwrap_or(ikarus::TrackMode::Plan);
         if req.bound_first && mode != ikarus::TrackMode::Follow {
-            return Err(ApiError::invalid("bound_first: only applies with mode follow"));
+            return Err(Problem::invalid("bound_first: only applies with mode follow"));
         }
         let options = TrackJob::options(solve, max_step_deg, req.bound_first);
         let job = TrackJob { arm: &arm, start, path, mode, options };
-        let t = job.run().map_err(ApiError::invalid)?;
+        let t = job.run().map_err(Problem::invalid)?;
         stopped(interrupt)?;
         json_response(&TrackJson::new(&job, &t))
-    })
-    .await
+    }
 }
 
 /// A track's `max_step_deg` (10 by default), > 0.
-pub(super) fn max_step_deg(value: Option<f64>) -> Result<f64, ApiError> {
+pub(super) fn max_step_deg(value: Option<f64>) -> Result<f64, Problem> {
     let max_step_deg = value.unwrap_or(DEFAULT_MAX_STEP_DEG);
     if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "max_step_deg = {}: must be a finite number > 0",
             ikarus::number::Num(max_step_deg)
         )));
@@ -190,58 +155,52 @@ pub(super) fn track_path(
     shapes: [Option<Shape>; 3],
     samples: Option<usize>,
     limits: &Limits,
-) -> Result<ikarus::Path, ApiError> {
+) -> Result<ikarus::Path, Problem> {
     let cap = limits.max_samples;
     let given = usize::from(path.is_some()) + shapes.iter().flatten().count();
     if given != 1 {
-        return Err(ApiError::invalid(format!("path, line, circle, figure8: give exactly one, got {given}")));
+        return Err(Problem::invalid(format!("path, line, circle, figure8: give exactly one, got {given}")));
     }
     if let Some(points) = path {
         if samples.is_some() {
-            return Err(ApiError::invalid("samples: only applies with line, circle or figure8"));
+            return Err(Problem::invalid("samples: only applies with line, circle or figure8"));
         }
         if points.len() > cap {
-            return Err(ApiError::invalid(format!(
+            return Err(Problem::invalid(format!(
                 "path: {} samples, more than the cap of {cap} (--max-samples)",
                 points.len()
             )));
         }
-        return ikarus::Path::from_points(points).map_err(|e| ApiError::invalid(e.to_string()));
+        return ikarus::Path::from_points(points).map_err(|e| Problem::invalid(e.to_string()));
     }
     let shape = shapes.into_iter().flatten().next().expect("one shape, counted above");
     let samples = samples.unwrap_or(DEFAULT_SAMPLES);
     if samples > cap {
-        return Err(ApiError::invalid(format!("samples = {samples}: more than the cap of {cap} (--max-samples)")));
+        return Err(Problem::invalid(format!("samples = {samples}: more than the cap of {cap} (--max-samples)")));
     }
     shape.path(samples).map_err(|e| match e {
-        ikarus::PathError::Samples { value } => ApiError::invalid(format!("samples = {value}: must be at least 2")),
-        other => ApiError::invalid(format!("{}: {other}", shape.name())),
+        ikarus::PathError::Samples { value } => Problem::invalid(format!("samples = {value}: must be at least 2")),
+        other => Problem::invalid(format!("{}: {other}", shape.name())),
     })
 }
 
-pub async fn workspace(
-    State(state): State<AppState>,
-    ApiJson(req): ApiJson<WorkspaceReq>,
-) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let arm = load_arm(req.arm.clone(), &state.limits)?;
-        let area = reachable_area(&arm, &req, &state.limits, interrupt)?;
-        stopped(interrupt)?;
-        json_response(&report::workspace_json(&arm, &area))
-    })
-    .await
+/// `POST /api/workspace`: the JSON of `ikarus workspace --format json`.
+pub fn workspace(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req: WorkspaceReq = parse_json(body)?;
+    let arm = load_arm(req.arm.clone(), limits)?;
+    let area = reachable_area(&arm, &req, limits, interrupt)?;
+    stopped(interrupt)?;
+    json_response(&report::workspace_json(&arm, &area))
 }
 
 /// `POST /api/reach`: the verdict on `point`, or on each of `points` (at most `--max-samples`),
 /// read off the exact region built once, as `ikarus reach --format json` prints them.
-pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq>) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        let limits = &state.limits;
+pub fn reach(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req: ReachReq = parse_json(body)?;
+    {
         let arm = load_arm(req.arm, limits)?;
         if let Some(t) = req.tolerance {
-            crate::options::positive(t).map_err(|m| ApiError::invalid(format!("tolerance = {m}")))?;
+            crate::options::positive(t).map_err(|m| Problem::invalid(format!("tolerance = {m}")))?;
         }
         let request = ReachRequest { limits: req.limits, tolerance: req.tolerance };
         match (req.point, req.points) {
@@ -251,7 +210,7 @@ pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq
             }
             (None, Some(points)) => {
                 if points.len() > limits.max_samples {
-                    return Err(ApiError::invalid(format!(
+                    return Err(Problem::invalid(format!(
                         "points: {} points, more than the cap of {} (--max-samples)",
                         points.len(),
                         limits.max_samples
@@ -267,31 +226,19 @@ pub async fn reach(State(state): State<AppState>, ApiJson(req): ApiJson<ReachReq
                 }
                 json_response(&answers)
             }
-            (Some(_), Some(_)) => Err(ApiError::invalid("point, points: give one or the other, not both")),
-            (None, None) => Err(ApiError::invalid("point or points: required (a point [x, y], or [[x, y], …])")),
+            (Some(_), Some(_)) => Err(Problem::invalid("point, points: give one or the other, not both")),
+            (None, None) => Err(Problem::invalid("point or points: required (a point [x, y], or [[x, y], …])")),
         }
-    })
-    .await
-}
-
-pub async fn render(State(state): State<AppState>, req: RenderReq) -> Result<Response, ApiError> {
-    let pool = state.pool.clone();
-    pool.run(move |interrupt| {
-        // A GIF being encoded checks the interrupt before each frame.
-        let (bytes, format) =
-            ikarus_render::with_interrupt(interrupt, || render_figure(req, &state.limits, interrupt))?;
-        Ok(([(header::CONTENT_TYPE, format.content_type())], bytes).into_response())
-    })
-    .await
+    }
 }
 
 /// The request's arm, or the built-in seed arm; at most `--max-links` links.
-fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, ApiError> {
+pub(super) fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, Problem> {
     match file {
         None => Ok(Arm::load(None)?),
         Some(file) => {
             if file.links.len() > limits.max_links {
-                return Err(ApiError::invalid(format!(
+                return Err(Problem::invalid(format!(
                     "arm.links: {} links, more than the cap of {} (--max-links)",
                     file.links.len(),
                     limits.max_links
@@ -302,9 +249,6 @@ fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, ApiError> {
     }
 }
 
-/// The most restarts one request may ask for: each restart may run the full iteration cap.
-const MAX_RESTARTS: u32 = 64;
-
 /// Library options from the request's `options` over the arm's `solver` table over the
 /// defaults; `options.max_iterations` at most `--max-iterations`.
 fn options(
@@ -313,13 +257,13 @@ fn options(
     record_every: u32,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<SolveOptions, ApiError> {
+) -> Result<SolveOptions, Problem> {
     options_for(&arm.solver, arm.chain.len(), table, Some(record_every), limits, interrupt)
 }
 
 /// [`options`] for a body of `joints` joints whose file's `solver` table is `base` (an arm's or
 /// a rig's); frames every `record_every` iterations unless the request or the table says
-/// otherwise (none when both are `None`).
+/// otherwise (none when both are `None`). Problems name the field `options.…`.
 pub(super) fn options_for(
     base: &SolverSettings,
     joints: usize,
@@ -327,33 +271,51 @@ pub(super) fn options_for(
     record_every: Option<u32>,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<SolveOptions, ApiError> {
-    let table = table.map_or_else(|| base.clone(), |t| t.over(base));
-    table.check().map_err(|m| ApiError::invalid(format!("options.{m}")))?;
-    let iterations = table.max_iterations.unwrap_or(SolveOptions::default().max_iterations);
-    if iterations > limits.max_iterations {
-        return Err(ApiError::invalid(format!(
-            "options.max_iterations = {iterations}: more than the cap of {} (--max-iterations)",
-            limits.max_iterations
-        )));
-    }
-    if let Some(restarts) = table.restarts.filter(|&r| r > MAX_RESTARTS) {
-        return Err(ApiError::invalid(format!("options.restarts = {restarts}: more than the cap of {MAX_RESTARTS}")));
-    }
-    let every = table.record_every.or(record_every);
-    let mut options = table.to_options_for(joints, every).map_err(|e| {
-        let message = e.describe(|field| format!("options.{field}"));
-        match e {
-            crate::settings::SettingsError::Options(_) => ApiError::invalid(format!("options: {message}")),
-            _ => ApiError::invalid(message),
-        }
-    })?;
+) -> Result<SolveOptions, Problem> {
+    let mut options = settings_options(base, joints, table, record_every, limits, "options.")?;
     options.interrupt = Some(interrupt.clone());
     Ok(options)
 }
 
+/// The options of `table` over `base` over the defaults, under the caps of `limits`; problems
+/// name a field `{prefix}field` (`options.lambda` for a request, `lambda` for Python's keywords).
+pub(crate) fn settings_options(
+    base: &SolverSettings,
+    joints: usize,
+    table: Option<&SolverSettings>,
+    record_every: Option<u32>,
+    limits: &Limits,
+    prefix: &str,
+) -> Result<SolveOptions, Problem> {
+    let table = table.map_or_else(|| base.clone(), |t| t.over(base));
+    table.check().map_err(|m| Problem::invalid(format!("{prefix}{m}")))?;
+    let iterations = table.max_iterations.unwrap_or(SolveOptions::default().max_iterations);
+    if iterations > limits.max_iterations {
+        return Err(Problem::invalid(format!(
+            "{prefix}max_iterations = {iterations}: more than the cap of {} (--max-iterations)",
+            limits.max_iterations
+        )));
+    }
+    if let Some(restarts) = table.restarts.filter(|&r| r > limits.max_restarts) {
+        return Err(Problem::invalid(format!(
+            "{prefix}restarts = {restarts}: more than the cap of {}",
+            limits.max_restarts
+        )));
+    }
+    let every = table.record_every.or(record_every);
+    table.to_options_for(joints, every).map_err(|e| {
+        let message = e.describe(|field| format!("{prefix}{field}"));
+        match e {
+            crate::settings::SettingsError::Options(_) if !prefix.is_empty() => {
+                Problem::invalid(format!("{}: {message}", prefix.trim_end_matches('.')))
+            }
+            _ => Problem::invalid(message),
+        }
+    })
+}
+
 /// A pose in radians from degrees, one angle per joint; the arm's start pose when absent.
-fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Result<Vec<f64>, ApiError> {
+pub(super) fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Result<Vec<f64>, Problem> {
     pose_from_degrees(arm.chain.start_pose().angles(), arm.chain.limits(), degrees, field)
 }
 
@@ -364,10 +326,10 @@ pub(super) fn pose_from_degrees(
     limits: &[Option<ikarus::JointLimits>],
     degrees: Option<&[f64]>,
     field: &str,
-) -> Result<Vec<f64>, ApiError> {
+) -> Result<Vec<f64>, Problem> {
     match degrees {
         None => Ok(default.to_vec()),
-        Some(d) if d.len() != default.len() => Err(ApiError::invalid(format!(
+        Some(d) if d.len() != default.len() => Err(Problem::invalid(format!(
             "{field}: expected {} angles (one per joint), got {}",
             default.len(),
             d.len()
@@ -387,18 +349,18 @@ pub(super) fn pose_from_degrees(
     }
 }
 
-fn goal(g: &GoalReq, field: &str) -> Result<Goal, ApiError> {
-    crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| ApiError::invalid(format!("{field}: {m}")))
+pub(super) fn goal(g: &GoalReq, field: &str) -> Result<Goal, Problem> {
+    crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| Problem::invalid(format!("{field}: {m}")))
 }
 
-pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, ApiError> {
+pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, Problem> {
     let req = req.cloned().unwrap_or_default();
     choose_ease(req.kind, req.k1, req.k2, default).map_err(|p| match p {
         EaseProblem::KWithoutParent { k1 } => {
             let field = if k1 { "ease.k1" } else { "ease.k2" };
-            ApiError::invalid(format!("{field}: only applies with \"kind\": \"parent\""))
+            Problem::invalid(format!("{field}: only applies with \"kind\": \"parent\""))
         }
-        EaseProblem::Invalid(e) => ApiError::invalid(format!("ease.{e}")),
+        EaseProblem::Invalid(e) => Problem::invalid(format!("ease.{e}")),
     })
 }
 
@@ -408,15 +370,15 @@ pub(super) fn timing(
     duration: Option<f64>,
     fps: Option<f64>,
     limits: &Limits,
-) -> Result<Timing, ApiError> {
+) -> Result<Timing, Problem> {
     let timing = crate::motion::timing(frames, duration, fps).map_err(|p| match p {
-        TimingProblem::Value { field, value, message } => ApiError::invalid(format!("{field} = {value}: {message}")),
-        TimingProblem::Both => ApiError::invalid("frames, duration: give one or the other, not both"),
+        TimingProblem::Value { field, value, message } => Problem::invalid(format!("{field} = {value}: {message}")),
+        TimingProblem::Both => Problem::invalid("frames, duration: give one or the other, not both"),
     })?;
-    let n = timing.frame_count().map_err(|e| ApiError::invalid(e.to_string()))?;
+    let n = timing.frame_count().map_err(|e| Problem::invalid(e.to_string()))?;
     if n > limits.max_frames {
         let field = if frames.is_some() { "frames" } else { "duration" };
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "{field}: {n} frames, more than the cap of {} (--max-frames)",
             limits.max_frames
         )));
@@ -425,7 +387,7 @@ pub(super) fn timing(
 }
 
 /// The fields of a motion, from `/api/animate` or the figure `motion` of `/api/render`.
-struct MotionFields<'a> {
+pub(super) struct MotionFields<'a> {
     start_deg: Option<&'a [f64]>,
     via: &'a [[f64; 2]],
     options: Option<&'a SolverSettings>,
@@ -452,7 +414,8 @@ impl<'a> MotionFields<'a> {
         }
     }
 
-    fn of_figure(r: &'a MotionFigureReq) -> Self {
+    #[cfg(feature = "render")]
+    pub(super) fn of_figure(r: &'a super::requests::MotionFigureReq) -> Self {
         Self {
             start_deg: r.start_deg.as_deref(),
             via: &r.via,
@@ -467,15 +430,15 @@ impl<'a> MotionFields<'a> {
     }
 }
 
-fn motion(
+pub(super) fn motion(
     arm: &Arm,
     req: &MotionFields<'_>,
     goal_req: &GoalReq,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<Motion, ApiError> {
+) -> Result<Motion, Problem> {
     if req.via.len() > MAX_VIA {
-        return Err(ApiError::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
+        return Err(Problem::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
     }
     let timing = timing(req.frames, req.duration, req.fps, limits)?;
     let ease = ease(req.ease, EaseKind::Sine)?;
@@ -486,7 +449,7 @@ fn motion(
     }
     let start = start_pose(arm, req.start_deg, "start_deg")?;
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
-        .map_err(|(i, e)| ApiError::invalid(format!("via[{i}]: {e}")))?;
+        .map_err(|(i, e)| Problem::invalid(format!("via[{i}]: {e}")))?;
     let interpolation = req.interpolation.unwrap_or_default();
     Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
 }
@@ -509,7 +472,7 @@ fn default_record_every(arm: &Arm, max_iterations: u32) -> u32 {
 
 /// Refuses, before any solve, a request whose `solves` solves could record more than `cap`
 /// values: each up to `max_iterations / record_every + 2` frames.
-fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), ApiError> {
+fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), Problem> {
     recorded_values_cap(arm.chain.len(), arm.chain.len() as u64 + 4, options, solves, cap)
 }
 
@@ -520,7 +483,7 @@ pub(super) fn recorded_values_cap(
     options: &SolveOptions,
     solves: usize,
     cap: u64,
-) -> Result<(), ApiError> {
+) -> Result<(), Problem> {
     let Some(every) = options.record_every else { return Ok(()) };
     let every = every.max(1);
     let per_solve = u64::from(options.max_iterations / every) + 2;
@@ -528,7 +491,7 @@ pub(super) fn recorded_values_cap(
     let values = frames.saturating_mul(per_frame);
     if values > cap {
         let what = if solves == 1 { "the solve".to_owned() } else { format!("with from_solve, {solves} solves") };
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "options.max_iterations = {}, options.record_every = {every}: {what} could record {frames} frames of {} joints, more than the cap of {cap} values; raise record_every, lower max_iterations or give fewer via points",
             options.max_iterations, joints
         )));
@@ -538,134 +501,32 @@ pub(super) fn recorded_values_cap(
 
 /// The reachable area a workspace request asks for: the exact region, or the grid
 /// ([`GridRequest::of`]) sampled under `--max-resolution` and the samples' cap.
-fn reachable_area(
+pub(super) fn reachable_area(
     arm: &Arm,
     req: &WorkspaceReq,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<ReachableArea, ApiError> {
+) -> Result<ReachableArea, Problem> {
     let on = arm.limits(req.limits);
     let grid =
         GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
-            .map_err(ApiError::invalid)?;
+            .map_err(Problem::invalid)?;
     let Some(grid) = grid else { return Ok(area::exact(arm, on)?) };
     if grid.resolution > limits.max_resolution {
-        return Err(ApiError::invalid(format!(
+        return Err(Problem::invalid(format!(
             "resolution = {}: more than the cap of {} (--max-resolution)",
             grid.resolution, limits.max_resolution
         )));
     }
     if let Some(n) = grid.samples {
         if n == 0 || n > MAX_SAMPLES {
-            return Err(ApiError::invalid(format!("samples = {n}: must be between 1 and {MAX_SAMPLES}")));
+            return Err(Problem::invalid(format!("samples = {n}: must be between 1 and {MAX_SAMPLES}")));
         }
     }
     // Sequential on its worker: rayon's global pool is shared by every request, so a small
     // request would wait behind a large one; the server's workers give the parallelism.
     let options = WorkspaceOptions { parallel: false, interrupt: Some(interrupt.clone()), ..grid.options(on) };
     let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &|_, _| {})
-        .map_err(|e| ApiError::invalid(e.to_string()))?;
+        .map_err(|e| Problem::invalid(e.to_string()))?;
     Ok(ReachableArea::Grid(workspace))
-}
-
-pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, ApiError> {
-    let v = value.unwrap_or(DEFAULT_SIDE);
-    if SIDE_RANGE.contains(&v) {
-        Ok(v)
-    } else {
-        Err(ApiError::invalid(format!(
-            "{field} = {v}: must be between {} and {} pixels",
-            SIDE_RANGE.start(),
-            SIDE_RANGE.end()
-        )))
-    }
-}
-
-fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<(Vec<u8>, PictureFormat), ApiError> {
-    let (format, width, height) = req.picture();
-    let (width, height) = (side(width, "width")?, side(height, "height")?);
-    let format = format.unwrap_or(PictureFormat::Png);
-    if format == PictureFormat::Gif && !matches!(req, RenderReq::Motion(_)) {
-        return Err(ApiError::invalid("format = gif: only the figure motion animates (use png or svg)"));
-    }
-    let bytes = match req {
-        RenderReq::Ease(r) => picture(
-            draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {}),
-            interrupt,
-        )?,
-        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
-        RenderReq::Workspace(r) => {
-            let arm = load_arm(r.arm, limits)?;
-            let ws_req = WorkspaceReq {
-                arm: None,
-                limits: r.limits,
-                grid: r.grid,
-                resolution: r.resolution,
-                samples: r.samples,
-                seed: r.seed,
-            };
-            let area = reachable_area(&arm, &ws_req, limits, interrupt)?;
-            picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
-        }
-        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
-        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, interrupt)?,
-    };
-    Ok((bytes, format))
-}
-
-fn arm_figure(
-    r: ArmFigureReq,
-    format: PictureFormat,
-    width: u32,
-    height: u32,
-    limits: &Limits,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, ApiError> {
-    let arm = load_arm(r.arm, limits)?;
-    let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
-    let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
-    let workspace = if r.workspace {
-        let ws_req = WorkspaceReq {
-            arm: None,
-            limits: r.limits,
-            grid: r.grid,
-            resolution: r.resolution,
-            samples: r.samples,
-            seed: r.seed,
-        };
-        Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
-    } else {
-        None
-    };
-    let drawing = arm_drawing(&arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
-    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
-}
-
-fn motion_figure(
-    r: &MotionFigureReq,
-    format: PictureFormat,
-    width: u32,
-    height: u32,
-    limits: &Limits,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, ApiError> {
-    let arm = load_arm(r.arm.clone(), limits)?;
-    let Some(goal_req) = &r.goal else {
-        return Err(ApiError::invalid("goal: required for the figure motion"));
-    };
-    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
-    stopped(interrupt)?;
-    let animation = &motion.motion.animation;
-    if format == PictureFormat::Gif {
-        let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);
-        if pixels > MAX_GIF_PIXELS {
-            return Err(ApiError::invalid(format!(
-                "frames, width, height: {} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF",
-                animation.frames.len()
-            )));
-        }
-    }
-    let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
-    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS));
-    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
 }

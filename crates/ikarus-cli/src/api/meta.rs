@@ -2,7 +2,6 @@
 //! interpolations)
 //! and their defaults, read from the library's enums so that the page cannot drift from them.
 
-use axum::Json;
 use ikarus::motion::Interpolation;
 use ikarus::{EaseKind, LimitMode, Method, Named, SolveOptions};
 use serde::Serialize;
@@ -107,10 +106,6 @@ pub fn meta() -> Meta {
         },
         palette: ikarus_render::COLOURS,
     }
-}
-
-pub async fn handler() -> Json<Meta> {
-    Json(meta())
 }
 
 #[cfg(test)]

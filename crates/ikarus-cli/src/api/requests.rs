@@ -1,16 +1,13 @@
 //! The JSON requests of the API, in the names of the command line and the arm files (degrees
 //! at the edge). Every field is optional unless said otherwise; unknown fields are refused.
 
-use axum::extract::{FromRequest, Request};
 use ikarus::EaseKind;
 use ikarus::motion::Interpolation;
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
-use super::AppState;
-use super::errors::{ApiError, JsonBody};
-
 use super::rig_requests::RigFigureReq;
+use super::{Problem, parse_json};
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;
 use crate::settings::SolverSettings;
@@ -195,19 +192,17 @@ pub struct FigureTag {
     pub rig: Option<IgnoredAny>,
 }
 
-impl FromRequest<AppState> for RenderReq {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        let body = JsonBody::from_request(req, state).await?;
-        let FigureTag { figure, rig } = body.parse()?;
+impl RenderReq {
+    /// The body read in two passes: `figure`, then that figure's fields.
+    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
+        let FigureTag { figure, rig } = parse_json(body)?;
         Ok(match figure {
-            Figure::Arm if rig.is_some() => RenderReq::Rig(body.parse()?),
-            Figure::Rig => RenderReq::Rig(body.parse()?),
-            Figure::Arm => RenderReq::Arm(body.parse()?),
-            Figure::Motion => RenderReq::Motion(body.parse()?),
-            Figure::Workspace => RenderReq::Workspace(body.parse()?),
-            Figure::Ease => RenderReq::Ease(body.parse()?),
+            Figure::Arm if rig.is_some() => RenderReq::Rig(parse_json(body)?),
+            Figure::Rig => RenderReq::Rig(parse_json(body)?),
+            Figure::Arm => RenderReq::Arm(parse_json(body)?),
+            Figure::Motion => RenderReq::Motion(parse_json(body)?),
+            Figure::Workspace => RenderReq::Workspace(parse_json(body)?),
+            Figure::Ease => RenderReq::Ease(parse_json(body)?),
         })
     }
 }

@@ -6,13 +6,11 @@
 //! looks at which of `arm`/`rig` (and `goal`/`goals`) it has, then reads it as that request,
 //! so that an error names the field in the words of the request it is.
 
-use axum::extract::{FromRequest, Request};
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
-use super::AppState;
-use super::errors::{ApiError, JsonBody};
 use super::requests::SolveReq;
+use super::{Problem, parse_json};
 use crate::picture::PictureFormat;
 use crate::rig::RigFile;
 use crate::settings::SolverSettings;
@@ -117,15 +115,15 @@ pub struct Keys {
 
 impl Keys {
     /// Whether the body is a rig's request: it has `rig`, and no field of an arm's.
-    pub fn rig(&self) -> Result<bool, ApiError> {
+    pub fn rig(&self) -> Result<bool, Problem> {
         match (self.arm.is_some(), self.rig.is_some()) {
-            (true, true) => Err(ApiError::invalid("arm, rig: give one or the other, not both")),
+            (true, true) => Err(Problem::invalid("arm, rig: give one or the other, not both")),
             (_, true) if self.goal.is_some() => {
-                Err(ApiError::invalid("goal: a rig takes goals, a list of {\"bone\", \"x\", \"y\"}"))
+                Err(Problem::invalid("goal: a rig takes goals, a list of {\"bone\", \"x\", \"y\"}"))
             }
             (_, true) => Ok(true),
             (_, false) if self.goals.is_some() => {
-                Err(ApiError::invalid("goals: only with rig (an arm takes one goal, {\"x\", \"y\"})"))
+                Err(Problem::invalid("goals: only with rig (an arm takes one goal, {\"x\", \"y\"})"))
             }
             (_, false) => Ok(false),
         }
@@ -139,12 +137,10 @@ pub enum SolveBody {
     Rig(Box<RigSolveReq>),
 }
 
-impl FromRequest<AppState> for SolveBody {
-    type Rejection = ApiError;
-
-    async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
-        let body = JsonBody::from_request(req, state).await?;
-        let keys: Keys = body.parse()?;
-        Ok(if keys.rig()? { SolveBody::Rig(body.parse()?) } else { SolveBody::Arm(body.parse()?) })
+impl SolveBody {
+    /// The body as an arm's request or a rig's, told apart by its keys.
+    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
+        let keys: Keys = parse_json(body)?;
+        Ok(if keys.rig()? { SolveBody::Rig(parse_json(body)?) } else { SolveBody::Arm(parse_json(body)?) })
     }
 }

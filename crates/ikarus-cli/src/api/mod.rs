@@ -1,0 +1,279 @@
+//! The JSON API without HTTP: every endpoint of `ikarus serve` as a function from a request's
+//! bytes to an answer's bytes ([`call`]). The server's handlers call it on a worker of their
+//! pool; Python and WebAssembly call it directly (through [`crate::edge`]), so the four edges
+//! answer the same request with the same bytes, the same status and the same message.
+//!
+//! Requests ([`requests`], [`rig_requests`]) use the names of the command line and the arm files
+//! (degrees at the edge); answers are the objects the commands print (`crate::report`), made
+//! by the same workflows (`crate::settings`, `crate::motion`, `crate::picture`, `crate::area`,
+//! `crate::reach`).
+
+pub mod arm_files;
+pub mod jobs;
+pub mod meta;
+#[cfg(feature = "render")]
+pub mod render;
+pub mod requests;
+pub mod rig_motion;
+pub mod rig_requests;
+pub mod rigs;
+
+use std::fmt;
+
+use ikarus::Interrupt;
+use serde::de::DeserializeOwned;
+
+use crate::error::CliError;
+
+/// The caps of every request: the server's flags, and the same defaults for the edges that
+/// have no flags (Python, WebAssembly).
+#[derive(Debug, Clone)]
+pub struct Limits {
+    /// Largest request body, in bytes (413 above it).
+    pub max_body_bytes: usize,
+    /// Most links an arm of a request may have.
+    pub max_links: usize,
+    /// Largest `options.max_iterations` of a request.
+    pub max_iterations: u32,
+    /// Most frames of a motion.
+    pub max_frames: usize,
+    /// Most samples of a path, or points of a reach request.
+    pub max_samples: usize,
+    /// Largest workspace resolution (cells per side).
+    pub max_resolution: u32,
+    /// Most restarts a request may ask for (each may run the full iteration cap).
+    pub max_restarts: u32,
+    /// Time a request has to send its body (the server's; unused elsewhere).
+    pub body_timeout: std::time::Duration,
+}
+
+impl Default for Limits {
+    /// The defaults of `ikarus serve`'s flags.
+    fn default() -> Self {
+        Self {
+            max_body_bytes: 1 << 20,
+            max_links: 64,
+            max_iterations: 100_000,
+            max_frames: 2000,
+            max_samples: 5000,
+            max_resolution: 1024,
+            max_restarts: 64,
+            body_timeout: std::time::Duration::from_millis(10_000),
+        }
+    }
+}
+
+/// A refused request: the HTTP status the server answers with, and the one-line message of
+/// its `{"error": …}` body, which names the field and the value.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    /// 400 malformed JSON, 413 too large, 422 a bad value, 500 internal, 503 interrupted or busy.
+    pub status: u16,
+    /// One line.
+    pub message: String,
+}
+
+/// Status codes the API answers with.
+pub mod status {
+    /// Malformed JSON, a body that is not text.
+    pub const BAD_REQUEST: u16 = 400;
+    /// The request's host is not accepted.
+    pub const FORBIDDEN: u16 = 403;
+    /// No such endpoint or file.
+    pub const NOT_FOUND: u16 = 404;
+    /// The body did not arrive in time.
+    pub const REQUEST_TIMEOUT: u16 = 408;
+    /// The body is over the cap.
+    pub const PAYLOAD_TOO_LARGE: u16 = 413;
+    /// Well-formed JSON with a bad value.
+    pub const UNPROCESSABLE_ENTITY: u16 = 422;
+    /// A fault of ikarus.
+    pub const INTERNAL_SERVER_ERROR: u16 = 500;
+    /// Interrupted, over the time budget, or too busy.
+    pub const SERVICE_UNAVAILABLE: u16 = 503;
+}
+
+impl Problem {
+    /// 422: the request is well-formed JSON but a value is invalid.
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Self { status: status::UNPROCESSABLE_ENTITY, message: message.into() }
+    }
+
+    /// 500: something failed inside ikarus. The detail goes to stderr, not to the client (it
+    /// may hold paths or panic text).
+    pub fn internal(message: impl Into<String>) -> Self {
+        eprintln!("ikarus: internal error: {}", message.into().replace(['\n', '\r'], " "));
+        Self {
+            status: status::INTERNAL_SERVER_ERROR,
+            message: "internal error (the details are in the server's log)".to_owned(),
+        }
+    }
+
+    /// The message on one line.
+    pub fn one_line(&self) -> String {
+        self.message.replace(['\n', '\r'], " ")
+    }
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.one_line())
+    }
+}
+
+impl std::error::Error for Problem {}
+
+impl From<CliError> for Problem {
+    fn from(e: CliError) -> Self {
+        match e {
+            CliError::Input(m) => Self::invalid(m),
+            CliError::Runtime(m) => Self::internal(m),
+        }
+    }
+}
+
+/// A JSON body as a `T`, refused as the server refuses it: malformed JSON (or anything after
+/// the value) → 400, a value of the wrong type or an unknown field → 422, each message with the
+/// field's path (`links[0].length: invalid type: …`) and the line and column.
+pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
+    let malformed = |e: &dyn fmt::Display| Problem {
+        status: status::BAD_REQUEST,
+        message: format!("request body: malformed JSON: {e}"),
+    };
+    let mut de = serde_json::Deserializer::from_slice(bytes);
+    match serde_path_to_error::deserialize(&mut de) {
+        Ok(value) => de.end().map(|()| value).map_err(|e| malformed(&e)),
+        Err(e) => match e.inner().classify() {
+            serde_json::error::Category::Data => Err(Problem::invalid(format!("request body: {e}"))),
+            _ => Err(malformed(&e)),
+        },
+    }
+}
+
+/// An answer: its content type and bytes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Reply {
+    /// `application/json`, `image/png`, `image/svg+xml`, `image/gif` or `application/toml; charset=utf-8`.
+    pub content_type: &'static str,
+    /// The body.
+    pub body: Vec<u8>,
+}
+
+impl Reply {
+    /// `value` as JSON.
+    pub fn json(value: &impl serde::Serialize) -> Result<Reply, Problem> {
+        let body = serde_json::to_vec(value).map_err(|e| Problem::internal(format!("cannot write JSON: {e}")))?;
+        Ok(Reply { content_type: "application/json", body })
+    }
+}
+
+/// The endpoints of the API (`/api/<path>`), without HTTP.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Endpoint {
+    /// `GET /api/meta`: the methods, limit modes, eases and defaults the page offers.
+    Meta,
+    /// `GET /api/arm/default`: the built-in arm.
+    ArmDefault,
+    /// `POST /api/arm/parse`: an arm file's text → `{arm}` or `{problem}`.
+    ArmParse,
+    /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.
+    ArmToml,
+    /// `GET /api/rigs`: the shipped rigs.
+    Rigs,
+    /// `POST /api/rig/parse`: a rig file's text → `{rig}` or `{problem}`.
+    RigParse,
+    /// `POST /api/solve`: an arm's or a rig's solve.
+    Solve,
+    /// `POST /api/animate`: a motion.
+    Animate,
+    /// `POST /api/track`: a path followed or planned.
+    Track,
+    /// `POST /api/workspace`: the reachable region.
+    Workspace,
+    /// `POST /api/reach`: the verdict on points.
+    Reach,
+    /// `POST /api/render`: a picture (PNG, SVG or GIF).
+    #[cfg(feature = "render")]
+    Render,
+}
+
+impl Endpoint {
+    /// Every endpoint.
+    pub const ALL: &[Endpoint] = &[
+        Endpoint::Meta,
+        Endpoint::ArmDefault,
+        Endpoint::ArmParse,
+        Endpoint::ArmToml,
+        Endpoint::Rigs,
+        Endpoint::RigParse,
+        Endpoint::Solve,
+        Endpoint::Animate,
+        Endpoint::Track,
+        Endpoint::Workspace,
+        Endpoint::Reach,
+        #[cfg(feature = "render")]
+        Endpoint::Render,
+    ];
+
+    /// Its path, `/api/solve`.
+    #[must_use]
+    pub fn path(self) -> &'static str {
+        match self {
+            Endpoint::Meta => "/api/meta",
+            Endpoint::ArmDefault => "/api/arm/default",
+            Endpoint::ArmParse => "/api/arm/parse",
+            Endpoint::ArmToml => "/api/arm/toml",
+            Endpoint::Rigs => "/api/rigs",
+            Endpoint::RigParse => "/api/rig/parse",
+            Endpoint::Solve => "/api/solve",
+            Endpoint::Animate => "/api/animate",
+            Endpoint::Track => "/api/track",
+            Endpoint::Workspace => "/api/workspace",
+            Endpoint::Reach => "/api/reach",
+            #[cfg(feature = "render")]
+            Endpoint::Render => "/api/render",
+        }
+    }
+
+    /// The endpoint at `path`: `/api/solve`, `api/solve` or `solve`.
+    #[must_use]
+    pub fn from_path(path: &str) -> Option<Endpoint> {
+        let path = path.trim_start_matches('/');
+        let path = path.strip_prefix("api/").unwrap_or(path);
+        Self::ALL.iter().copied().find(|e| &e.path()["/api/".len()..] == path)
+    }
+
+    /// Whether the endpoint reads a body (`POST`); the others ignore it (`GET`).
+    #[must_use]
+    pub fn takes_body(self) -> bool {
+        !matches!(self, Endpoint::Meta | Endpoint::ArmDefault | Endpoint::Rigs)
+    }
+}
+
+/// Exactly what `ikarus serve` answers for `endpoint` with this body (the `GET` endpoints
+/// ignore it): the same bytes, or the same status and message. Computations check `interrupt`
+/// and stop with 503 when it is set.
+pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    match endpoint {
+        Endpoint::Meta => Reply::json(&meta::meta()),
+        Endpoint::ArmDefault => jobs::default_arm(),
+        Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
+        Endpoint::ArmToml => arm_files::toml(body),
+        Endpoint::Rigs => rigs::list(),
+        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?)),
+        Endpoint::Solve => jobs::solve(body, limits, interrupt),
+        Endpoint::Animate => jobs::animate(body, limits, interrupt),
+        Endpoint::Track => jobs::track(body, limits, interrupt),
+        Endpoint::Workspace => jobs::workspace(body, limits, interrupt),
+        Endpoint::Reach => jobs::reach(body, limits, interrupt),
+        #[cfg(feature = "render")]
+        Endpoint::Render => render::render(body, limits, interrupt),
+    }
+}
+
+/// A body that is a file's text.
+fn text(body: &[u8]) -> Result<&str, Problem> {
+    std::str::from_utf8(body)
+        .map_err(|e| Problem { status: status::BAD_REQUEST, message: format!("request body: not UTF-8 text ({e})") })
+}

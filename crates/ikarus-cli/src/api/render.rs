@@ -1,0 +1,136 @@
+//! `POST /api/render`: pictures of arms, motions, workspaces, ease curves and rigs, drawn by
+//! `crate::picture` as the command line draws them.
+
+use ikarus::{EaseKind, Interrupt};
+
+use super::jobs::{MotionFields, ease, goal, load_arm, motion, reachable_area, start_pose, stopped};
+use super::requests::{ArmFigureReq, MotionFigureReq, RenderReq, WorkspaceReq};
+use super::{Limits, Problem, Reply};
+use crate::motion::DEFAULT_FPS;
+use crate::picture::{Drawing, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
+
+/// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
+const MAX_GIF_PIXELS: u64 = 100_000_000;
+/// Picture size when the request gives none, and its range (as the command line's).
+const DEFAULT_SIDE: u32 = 800;
+const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
+
+/// `POST /api/render`: a picture of `figure` (PNG, SVG or a GIF).
+#[cfg(feature = "render")]
+pub fn render(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    let req = RenderReq::parse(body)?;
+    // A GIF being encoded checks the interrupt before each frame.
+    let (bytes, format) = ikarus_render::with_interrupt(interrupt, || render_figure(req, limits, interrupt))?;
+    Ok(Reply { content_type: format.content_type(), body: bytes })
+}
+
+/// A picture, or the interruption that stopped its drawing (not an internal error).
+pub(super) fn picture(
+    drawn: Result<Vec<u8>, crate::error::CliError>,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    stopped(interrupt)?;
+    Ok(drawn?)
+}
+
+pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, Problem> {
+    let v = value.unwrap_or(DEFAULT_SIDE);
+    if SIDE_RANGE.contains(&v) {
+        Ok(v)
+    } else {
+        Err(Problem::invalid(format!(
+            "{field} = {v}: must be between {} and {} pixels",
+            SIDE_RANGE.start(),
+            SIDE_RANGE.end()
+        )))
+    }
+}
+
+fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<(Vec<u8>, PictureFormat), Problem> {
+    let (format, width, height) = req.picture();
+    let (width, height) = (side(width, "width")?, side(height, "height")?);
+    let format = format.unwrap_or(PictureFormat::Png);
+    if format == PictureFormat::Gif && !matches!(req, RenderReq::Motion(_)) {
+        return Err(Problem::invalid("format = gif: only the figure motion animates (use png or svg)"));
+    }
+    let bytes = match req {
+        RenderReq::Ease(r) => picture(
+            draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {}),
+            interrupt,
+        )?,
+        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
+        RenderReq::Workspace(r) => {
+            let arm = load_arm(r.arm, limits)?;
+            let ws_req = WorkspaceReq {
+                arm: None,
+                limits: r.limits,
+                grid: r.grid,
+                resolution: r.resolution,
+                samples: r.samples,
+                seed: r.seed,
+            };
+            let area = reachable_area(&arm, &ws_req, limits, interrupt)?;
+            picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
+        }
+        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
+        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, interrupt)?,
+    };
+    Ok((bytes, format))
+}
+
+fn arm_figure(
+    r: ArmFigureReq,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    let arm = load_arm(r.arm, limits)?;
+    let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
+    let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
+    let workspace = if r.workspace {
+        let ws_req = WorkspaceReq {
+            arm: None,
+            limits: r.limits,
+            grid: r.grid,
+            resolution: r.resolution,
+            samples: r.samples,
+            seed: r.seed,
+        };
+        Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
+    } else {
+        None
+    };
+    let drawing = arm_drawing(&arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
+    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
+}
+
+fn motion_figure(
+    r: &MotionFigureReq,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    let arm = load_arm(r.arm.clone(), limits)?;
+    let Some(goal_req) = &r.goal else {
+        return Err(Problem::invalid("goal: required for the figure motion"));
+    };
+    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
+    stopped(interrupt)?;
+    let animation = &motion.motion.animation;
+    if format == PictureFormat::Gif {
+        let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);
+        if pixels > MAX_GIF_PIXELS {
+            return Err(Problem::invalid(format!(
+                "frames, width, height: {} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF",
+                animation.frames.len()
+            )));
+        }
+    }
+    let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
+    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS));
+    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
+}

@@ -1,0 +1,155 @@
+//! What the edges of ikarus share: the HTTP API's endpoints without HTTP ([`call`]), and the
+//! typed pieces a fast edge needs (an arm, its options, a goal), all read and checked by the
+//! command line's own code. `ikarus serve` answers through [`call`]; the Python package and the
+//! WebAssembly build call it too, so a request gets the same bytes — or the same status and
+//! one-line message — on every edge.
+//!
+//! ```
+//! use ikarus_cli::edge::{self, Endpoint, Limits};
+//!
+//! let body = br#"{"goal": {"x": 2.0, "y": 1.0}}"#;
+//! let reply = edge::call(Endpoint::Solve, body, &Limits::default(), &ikarus::Interrupt::new()).unwrap();
+//! let answer: serde_json::Value = serde_json::from_slice(&reply.body).unwrap();
+//! assert_eq!(answer["status"], "reached");
+//!
+//! let refused = edge::call(Endpoint::Solve, br#"{"goal": {"x": "a"}}"#, &Limits::default(), &ikarus::Interrupt::new());
+//! assert_eq!(refused.unwrap_err().status, 422);
+//! ```
+
+use ikarus::{Chain, Goal, SolveOptions, Status};
+
+pub use crate::api::{Endpoint, Limits, Problem, Reply, call, status};
+use crate::arm::{ArmFile, DEFAULT_ARM};
+use crate::settings::SolverSettings;
+
+/// Frames a solve records when its options give no `record_every`, as `ikarus solve`.
+pub const DEFAULT_RECORD_EVERY: u32 = 20;
+
+/// A validated arm: its chain (start pose and joint ranges included) and its file's `[solver]`
+/// settings, read as `--arm FILE` or the API's `arm` reads it.
+#[derive(Debug, Clone)]
+pub struct Arm(crate::arm::Arm);
+
+impl Arm {
+    /// The chain.
+    #[must_use]
+    pub fn chain(&self) -> &Chain {
+        &self.0.chain
+    }
+
+    /// The start pose, radians, one angle per joint.
+    #[must_use]
+    pub fn start(&self) -> &[f64] {
+        self.0.chain.start_pose().angles()
+    }
+
+    /// The arm's name (its file's `name`, else `arm`).
+    #[must_use]
+    pub fn name(&self) -> &str {
+        &self.0.name
+    }
+
+    /// Whether the arm's joint ranges are enforced: `asked` over the file's `[solver] limits`,
+    /// off when neither says (as `--limits`).
+    #[must_use]
+    pub fn limits_on(&self, asked: Option<bool>) -> bool {
+        self.0.limits(asked)
+    }
+}
+
+/// An arm file's text, as `--arm FILE` reads it; `label` starts every message (`arm file a.toml`).
+pub fn arm_from_toml(text: &str, label: &str) -> Result<Arm, Problem> {
+    Ok(Arm(crate::arm::Arm::parse(text, label)?))
+}
+
+/// The API's `arm` object (`{"links": [{"length", "angle_deg", "limits_deg"}], "solver": {…}}`);
+/// messages start with `arm:` and name the field (`arm: links[0].length = -1: …`).
+pub fn arm_from_json(arm: &str) -> Result<Arm, Problem> {
+    let file: ArmFile = crate::api::parse_json(arm.as_bytes())
+        .map_err(|p| Problem { message: p.message.replacen("request body: ", "arm: ", 1), ..p })?;
+    Ok(Arm(crate::arm::Arm::from_file(file, "arm")?))
+}
+
+/// The built-in seed arm (`examples/arms/seed.toml`).
+#[must_use]
+pub fn default_arm() -> Arm {
+    Arm(crate::arm::Arm::parse(DEFAULT_ARM, "built-in arm").expect("the built-in arm is valid (a test reads it)"))
+}
+
+/// The options `ikarus solve` uses for `arm`: `options`, a JSON object of settings with the
+/// command line's names (`method`, `lambda`, `tolerance`, `max_iterations`, `limits`,
+/// `limit_mode`, `restarts`, `record_every`, `rates`, … — the API's `options`), over the arm
+/// file's `[solver]` table, over the defaults; frames every [`DEFAULT_RECORD_EVERY`] iterations
+/// unless they say otherwise. `max_iterations` and `restarts` are held to `limits`. A bad value
+/// is a 422 whose message names the setting and the value (`lambda = -1: …`).
+pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveOptions, Problem> {
+    let table: SolverSettings = crate::api::parse_json(options.as_bytes())
+        .map_err(|p| Problem { message: p.message.replacen("request body: ", "options: ", 1), ..p })?;
+    let arm = &arm.0;
+    crate::api::jobs::settings_options(
+        &arm.solver,
+        arm.chain.len(),
+        Some(&table),
+        Some(DEFAULT_RECORD_EVERY),
+        limits,
+        "",
+    )
+}
+
+/// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
+/// --goal-angle DEG` makes it.
+pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
+    crate::goals::make_goal(x, y, angle_deg).map_err(|m| Problem::invalid(format!("goal: {m}")))
+}
+
+/// The command line's name of a status: `reached`, `unreachable`, `stalled`,
+/// `iteration_limit` or `interrupted`.
+#[must_use]
+pub fn status_name(status: Status) -> &'static str {
+    status.as_str()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_endpoint_is_found_by_its_path() {
+        for &e in Endpoint::ALL {
+            assert_eq!(Endpoint::from_path(e.path()), Some(e));
+            assert_eq!(Endpoint::from_path(&e.path()["/api/".len()..]), Some(e));
+        }
+        assert_eq!(Endpoint::from_path("/api/nothing"), None);
+    }
+
+    #[test]
+    fn the_default_arm_is_the_seed_arm() {
+        let arm = default_arm();
+        assert_eq!(arm.chain().len(), 3);
+        assert_eq!(arm.start().len(), 3);
+    }
+
+    #[test]
+    fn options_name_the_setting_and_the_value() {
+        let arm = default_arm();
+        let limits = Limits::default();
+        let e = solve_options(&arm, r#"{"lambda": -1}"#, &limits).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.starts_with("lambda = -1"), "{}", e.message);
+        let e = solve_options(&arm, r#"{"lambada": 1}"#, &limits).unwrap_err();
+        assert!(e.message.contains("lambada"), "{}", e.message);
+        let e = solve_options(&arm, r#"{"rates": [1, 2]}"#, &limits).unwrap_err();
+        assert!(e.message.starts_with("rates: expected 3 values"), "{}", e.message);
+        let ok = solve_options(&arm, "{}", &limits).unwrap();
+        assert_eq!(ok.record_every, Some(DEFAULT_RECORD_EVERY));
+    }
+
+    #[test]
+    fn an_arm_from_json_names_its_field() {
+        let e = arm_from_json(r#"{"links": [{"length": -1}]}"#).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.starts_with("arm: links[0].length = -1"), "{}", e.message);
+        let e = arm_from_json(r#"{"links": [{"length": "x"}]}"#).unwrap_err();
+        assert!(e.message.starts_with("arm: links[0].length"), "{}", e.message);
+    }
+}

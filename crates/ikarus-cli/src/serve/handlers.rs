@@ -1,0 +1,43 @@
+//! The routes' handlers: each reads its request (a JSON body bounded in size, memory and time
+//! by [`JsonBody`]), runs [`api::call`] — the same function Python and WebAssembly call — on a
+//! worker of the pool for the computations, and answers its bytes.
+
+use axum::body::Bytes;
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+use ikarus::Interrupt;
+
+use super::AppState;
+use super::errors::{ApiError, JsonBody};
+use crate::api::{self, Endpoint, Reply};
+
+impl IntoResponse for Reply {
+    fn into_response(self) -> Response {
+        ([(header::CONTENT_TYPE, self.content_type)], self.body).into_response()
+    }
+}
+
+/// A computation (`/api/solve`, `animate`, `track`, `workspace`, `reach`, `render`): its JSON
+/// body answered by [`api::call`] on a worker of the pool, under the time budget.
+pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, ApiError> {
+    let pool = state.pool.clone();
+    pool.run(move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
+        .await
+        .map(Reply::into_response)
+}
+
+/// A quick answer (`/api/meta`, `arm/default`, `rigs`, `arm/parse`, `rig/parse`, `arm/toml`):
+/// no solve, no loop a request can lengthen, answered on the spot.
+pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Response, ApiError> {
+    api::call(endpoint, body, &state.limits, &Interrupt::new()).map(Reply::into_response)
+}
+
+/// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, whatever its content type.
+pub async fn file_text(endpoint: Endpoint, state: AppState, body: Bytes) -> Result<Response, ApiError> {
+    at_once(endpoint, &state, &body)
+}
+
+/// `GET /api/health`.
+pub async fn health() -> axum::Json<serde_json::Value> {
+    axum::Json(serde_json::json!({ "status": "ok", "version": env!("CARGO_PKG_VERSION") }))
+}
