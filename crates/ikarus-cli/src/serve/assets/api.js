@@ -2,11 +2,11 @@
 // WebAssembly module of the static build (`bash web/build DIR`), which runs the server's own
 // code in the page: the same requests, the same answers, the same one-line messages. The static
 // build's index.html says so (<meta name="ikarus-backend" content="wasm">, written by web/build);
-// the page then imports ./ikarus.js, and if it loads and initialises, every JSON endpoint goes
-// through it (no network round trip); otherwise, and always under `ikarus serve` (whose page has
-// no such tag, so nothing asks it for a file it does not have), requests are fetched. Pictures
-// (/api/render) need the server. The other modules see only the functions below; an error
-// answer becomes a Notice carrying the one-line message.
+// the page then starts ./ikarus-worker.js, a module worker running ./ikarus.js, and if it loads
+// and initialises, every JSON endpoint goes through it (no network round trip); otherwise, and
+// always under `ikarus serve` (whose page has no such tag, so nothing asks it for a file it does
+// not have), requests are fetched. Pictures (/api/render) need the server. The other modules
+// see only the functions below; an error answer becomes a Notice carrying the one-line message.
 
 /**
  * A failure meant for the reader rather than a fault of the page: the server's error message
@@ -43,19 +43,50 @@ export function forPeople(message) {
     .replace(/ :/g, ":");
 }
 
-/** The WebAssembly module (ikarus.js, initialised) when the page is the static build and it loads; else null. */
+/**
+ * The WebAssembly solver when the page is the static build and its module loads: a module Web
+ * Worker (ikarus-worker.js, which imports ikarus.js) answering `ask(path, body)` with
+ * {status, text}, one request at a time in order, off the page's thread so that a long job does
+ * not freeze the page. Else null: the server answers.
+ */
 const wasm =
-  typeof document !== "undefined" && document.querySelector('meta[name="ikarus-backend"][content="wasm"]')
-    ? import("./ikarus.js")
-        .then(async (m) => {
-          await m.init();
-          return m;
-        })
-        .catch((e) => {
-          console.warn("ikarus: the WebAssembly module did not load; asking the server instead:", e);
-          return null;
-        })
-    : Promise.resolve(null);
+  typeof document !== "undefined" && document.querySelector('meta[name="ikarus-backend"][content="wasm"]') ? startWorker() : Promise.resolve(null);
+
+function startWorker() {
+  return new Promise((resolve) => {
+    const fail = (why) => {
+      console.warn("ikarus: the WebAssembly module did not load; asking the server instead:", why);
+      resolve(null);
+    };
+    let worker;
+    try {
+      worker = new Worker(new URL("./ikarus-worker.js", import.meta.url), { type: "module" });
+    } catch (e) {
+      fail(e);
+      return;
+    }
+    const waiting = new Map();
+    let next = 0;
+    worker.onerror = (e) => fail(e.message || e);
+    worker.onmessage = ({ data }) => {
+      if ("ready" in data) {
+        worker.onerror = null;
+        if (!data.ready) return fail(data.error);
+        resolve({
+          ask: (path, body) =>
+            new Promise((done) => {
+              const id = next++;
+              waiting.set(id, done);
+              worker.postMessage({ id, path, body });
+            }),
+        });
+        return;
+      }
+      waiting.get(data.id)(data);
+      waiting.delete(data.id);
+    };
+  });
+}
 
 const PICTURES_NEED_SERVER = "Pictures (PNG and GIF from /api/render) are drawn by `ikarus serve`; this page runs without it";
 
@@ -63,21 +94,17 @@ const PICTURES_NEED_SERVER = "Pictures (PNG and GIF from /api/render) are drawn 
  * The module's answer to `path` as a fetch Response: 200 with the answer's text, or the status
  * and `{"error": message}` body the server answers for a refused request.
  */
-function wasmResponse(m, path, body) {
+async function wasmResponse(m, path, body) {
   const answer = (status, text, type = "application/json") => new Response(text, { status, headers: { "content-type": type } });
   if (path === "/api/render") return answer(501, JSON.stringify({ error: PICTURES_NEED_SERVER }));
-  try {
-    return answer(200, m.call(path, body), path === "/api/arm/toml" ? "application/toml" : "application/json");
-  } catch (e) {
-    if (e instanceof m.IkarusError) return answer(e.status, JSON.stringify({ error: e.message }));
-    throw e;
-  }
+  const { status, text } = await m.ask(path, typeof body === "string" ? body : "");
+  return answer(status, text, status === 200 && path === "/api/arm/toml" ? "application/toml" : "application/json");
 }
 
 /** fetch(path, init) through the backend: the module in the static build, else the server. */
 async function send(path, init = {}) {
   const m = await wasm;
-  return m ? wasmResponse(m, path, init.body ?? "") : fetch(path, init);
+  return m ? wasmResponse(m, path, init.body) : fetch(path, init);
 }
 
 /**
