@@ -81,6 +81,11 @@ const requests = [
   ["solve", { goal: { x: 3.3, y: -1.7 }, options: { method: "ccd", limits: true } }],
   ["solve", { goal: { x: 4, y: 2 }, options: { method: "dls", lambda: 0.3, limits: true, limit_mode: "clamp" } }],
   ["solve", { arm: limited, goal: { x: 2.5, y: 4.1 }, start_deg: [5, 5, 5, 5], options: { limits: true, restarts: 8, restart_seed: 7 } }],
+  // A time budget reads the clock (web-time's in WebAssembly: std's would panic); unreachable,
+  // so every restart runs, well within the budget.
+  ["solve", { goal: { x: -3, y: -1 }, options: { limits: true, restarts: 8, time_budget_ms: 10000, no_closed_form: true } }],
+  // A rig: the fork of the README, and the shipped puppet with both hands on goals and its feet pinned.
+  ["solve", { rig: { name: "fork", bones: [{ name: "trunk", length: 1, angle_deg: 90 }, { name: "arm.l", parent: "trunk", length: 1, angle_deg: 45 }] }, goals: [{ bone: "arm.l", x: -1, y: 1 }], pins: ["trunk"] }],
   ["animate", { goal: { x: 2, y: 3 }, frames: 5, ease: { kind: "smoothstep" } }],
   ["animate", { goal: { x: -1, y: 4 }, via: [[3, 3], [1, 5]], duration: 1.5, fps: 20, ease: { kind: "parent", k1: 0.4, k2: 0.6 } }],
   ["animate", { goal: { x: 3, y: 1 }, from_solve: true, options: { record_every: 1 } }],
