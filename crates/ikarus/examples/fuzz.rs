@@ -44,7 +44,7 @@ struct Case {
 }
 
 fn log_uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
-    10f64.powf(rng.range(lo, hi))
+    libm::pow(10.0, rng.range(lo, hi))
 }
 
 fn pick<T: Copy>(rng: &mut SplitMix64, items: &[T]) -> T {
@@ -62,7 +62,7 @@ fn random_case(rng: &mut SplitMix64) -> Case {
     let n = if rng.chance(0.7) { 1 + (rng.next_u64() % 8) as usize } else { 1 + (rng.next_u64() % 64) as usize };
     // Lengths: ordinary, mixed magnitudes in one chain, one magnitude, or huge.
     let kind = rng.unit();
-    let magnitude = 10f64.powi(pick(rng, &[-9, -6, -3, 0, 3, 6, 9]));
+    let magnitude = libm::pow(10.0, f64::from(pick(rng, &[-9, -6, -3, 0, 3, 6, 9])));
     let huge = log_uniform(rng, 50.0, 150.0) / n as f64; // reach ≤ MAX_REACH
     let length = |rng: &mut SplitMix64| {
         if kind < 0.3 {
@@ -108,15 +108,15 @@ fn random_case(rng: &mut SplitMix64) -> Case {
         0 => (b.x, b.y),
         1 => {
             let far = log_uniform(rng, 0.5, 99.0);
-            (b.x + far * reach * dir.cos(), b.y + far * reach * dir.sin())
+            (b.x + far * reach * libm::cos(dir), b.y + far * reach * libm::sin(dir))
         }
         2 => {
             let r = chain.lengths()[(rng.next_u64() % n as u64) as usize] * rng.range(0.0, 2.0);
-            (b.x + r * dir.cos(), b.y + r * dir.sin())
+            (b.x + r * libm::cos(dir), b.y + r * libm::sin(dir))
         }
         _ => {
             let r = rng.range(0.0, 1.5) * reach;
-            (b.x + r * dir.cos(), b.y + r * dir.sin())
+            (b.x + r * libm::cos(dir), b.y + r * libm::sin(dir))
         }
     };
     let (x, y) = if x.is_finite() && y.is_finite() { (x, y) } else { (b.x, b.y) };
@@ -176,10 +176,11 @@ fn random_case(rng: &mut SplitMix64) -> Case {
 }
 
 /// The library's distance (`attempt.rs`): `√(dx² + dy²)`, by `hypot` where the sum of squares
-/// overflows or is subnormal, saturated at `f64::MAX`.
+/// overflows or is subnormal, saturated at `f64::MAX`. `libm`'s `hypot`, as the library's
+/// `math` module calls it, so that the two agree bit for bit on every target.
 fn distance(d: nalgebra::Vector2<f64>) -> f64 {
     let squared = d.x * d.x + d.y * d.y;
-    let r = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { d.x.hypot(d.y) };
+    let r = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { libm::hypot(d.x, d.y) };
     r.min(f64::MAX)
 }
 

@@ -10,6 +10,8 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::math;
+
 /// `angle` wrapped into [−π, π).
 #[inline]
 #[must_use]
@@ -62,7 +64,7 @@ pub fn nearer_end(angle: f64, lo: f64, hi: f64) -> f64 {
 #[inline]
 #[must_use]
 pub fn direction(angle: f64) -> [f64; 2] {
-    let (s, c) = angle.sin_cos();
+    let (s, c) = math::sin_cos(angle);
     [c, s]
 }
 

@@ -8,6 +8,7 @@
 //!
 //! A chain is validated once, when it is built; everything downstream may assume valid data.
 
+use crate::math;
 use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
@@ -184,7 +185,7 @@ impl Chain {
         let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
         check_angles(&angles, Bounds::new(&limits))?;
         let reach: f64 = lengths.iter().sum();
-        let extent = x.hypot(y) + reach;
+        let extent = math::hypot(x, y) + reach;
         if extent.is_nan() || extent > MAX_REACH {
             return Err(ChainError::ReachTooLarge { reach: extent });
         }

@@ -25,6 +25,7 @@ use crate::angle::{self, wrap_angle};
 use crate::chain::{Chain, JointLimits};
 use crate::goal::Goal;
 use crate::limits::Bounds;
+use crate::math;
 
 /// Relative slack allowed on the boundary of the reachable annulus, as a share of `l₁ + l₂`.
 const BOUNDARY_SLACK: f64 = 1e-12;
@@ -47,7 +48,7 @@ pub fn two_link(l1: f64, l2: f64, target: Vector2<f64>) -> Option<[[f64; 2]; 2]>
     if !(l1.is_finite() && l2.is_finite() && l1 > 0.0 && l2 > 0.0 && target.x.is_finite() && target.y.is_finite()) {
         return None;
     }
-    let d = target.x.hypot(target.y);
+    let d = math::hypot(target.x, target.y);
     let slack = BOUNDARY_SLACK * (l1 + l2);
     if d > l1 + l2 + slack || d < (l1 - l2).abs() - slack {
         return None;
@@ -61,11 +62,11 @@ pub fn two_link(l1: f64, l2: f64, target: Vector2<f64>) -> Option<[[f64; 2]; 2]>
     let (u, v) = (d / total, (l1 - l2).abs() / total);
     let outer = ((1.0 - u) * (1.0 + u)).max(0.0);
     let inner = ((u - v) * (u + v)).max(0.0);
-    let theta2 = 2.0 * outer.sqrt().atan2(inner.sqrt());
-    let towards = target.y.atan2(target.x);
+    let theta2 = 2.0 * math::atan2(outer.sqrt(), inner.sqrt());
+    let towards = math::atan2(target.y, target.x);
     let solve = |t2: f64| {
-        let (s, c) = t2.sin_cos();
-        let t1 = wrap_angle(towards - (l2 * s).atan2(l1 + l2 * c));
+        let (s, c) = math::sin_cos(t2);
+        let t1 = wrap_angle(towards - math::atan2(l2 * s, l1 + l2 * c));
         [t1, t2]
     };
     Some([solve(theta2), solve(-theta2)])
@@ -84,7 +85,7 @@ pub fn three_link_oriented(lengths: [f64; 3], target: Vector2<f64>, phi: f64) ->
     if !(phi.is_finite() && l3.is_finite() && l3 > 0.0) {
         return None;
     }
-    let wrist = target - l3 * Vector2::new(phi.cos(), phi.sin());
+    let wrist = target - l3 * Vector2::new(math::cos(phi), math::sin(phi));
     let both = two_link(l1, l2, wrist)?;
     Some(both.map(|[t1, t2]| [t1, t2, wrap_angle(phi - t1 - t2)]))
 }
@@ -195,7 +196,7 @@ mod tests {
     use crate::rng::SplitMix64;
 
     fn tip2(l1: f64, l2: f64, [t1, t2]: [f64; 2]) -> Vector2<f64> {
-        Vector2::new(l1 * t1.cos() + l2 * (t1 + t2).cos(), l1 * t1.sin() + l2 * (t1 + t2).sin())
+        Vector2::new(l1 * math::cos(t1) + l2 * math::cos(t1 + t2), l1 * math::sin(t1) + l2 * math::sin(t1 + t2))
     }
 
     fn chain(lengths: &[f64], limits: &[Option<(f64, f64)>]) -> Chain {
@@ -224,7 +225,7 @@ mod tests {
                 _ => rng.range(inner, outer),
             };
             let a = rng.range(-PI, PI);
-            let target = Vector2::new(d * a.cos(), d * a.sin());
+            let target = Vector2::new(d * math::cos(a), d * math::sin(a));
             let both = two_link(l1, l2, target).expect("inside the annulus");
             for s in both {
                 assert!(s.iter().all(|x| x.is_finite()));
@@ -281,7 +282,7 @@ mod tests {
             let l2 = l1 * (1.0 + rng.range(-1e-6, 1e-6));
             let d = (l1 - l2).abs() + rng.range(0.0, 2e-6) * l1;
             let a = rng.range(-PI, PI);
-            let target = Vector2::new(d * a.cos(), d * a.sin());
+            let target = Vector2::new(d * math::cos(a), d * math::sin(a));
             for s in two_link(l1, l2, target).unwrap() {
                 let miss = (tip2(l1, l2, s) - target).norm();
                 assert!(miss <= 1e-12 * (l1 + l2), "{l1} {l2} {d:e}: miss {miss:e}");
@@ -354,11 +355,11 @@ mod tests {
             for s in both {
                 let mut d = 0.0;
                 for (a, from) in s.iter().zip(start) {
-                    d += (-5..=5).map(|k| (a + TAU * f64::from(k) - from).powi(2)).fold(f64::INFINITY, f64::min);
+                    d += (-5..=5).map(|k| math::square(a + TAU * f64::from(k) - from)).fold(f64::INFINITY, f64::min);
                 }
                 best = best.min(d);
             }
-            let got: f64 = out.iter().zip(start).map(|(a, s)| (a - s).powi(2)).sum();
+            let got: f64 = out.iter().zip(start).map(|(a, s)| math::square(a - s)).sum();
             assert!(got <= best + 1e-9, "{got} vs {best}");
             assert!((end_effector(&c, &out).position - tip).norm() < 1e-12 * c.max_reach().max(1.0) * 10.0);
         }

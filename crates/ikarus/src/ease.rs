@@ -11,6 +11,7 @@
 //! | [`Ease::Smoothstep`] | 3t² − 2t³ | 0, 0 | C¹ |
 //! | [`Ease::Parent`] | sine pieces around a constant-velocity middle (below) | 0, 0 (if k1 > 0, k2 < 1) | C¹ |
 
+use crate::math;
 use crate::number::Num;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
@@ -106,11 +107,11 @@ impl ParentEase {
     fn position(&self, t: f64) -> f64 {
         let (k1, k2) = (self.k1, self.k2);
         let s = if t < k1 {
-            k1 * FRAC_2_PI * ((t / k1 * FRAC_PI_2 - FRAC_PI_2).sin() + 1.0)
+            k1 * FRAC_2_PI * (math::sin(t / k1 * FRAC_PI_2 - FRAC_PI_2) + 1.0)
         } else if t <= k2 {
             2.0 * k1 / PI + t - k1
         } else {
-            2.0 * k1 / PI + k2 - k1 + (1.0 - k2) * FRAC_2_PI * ((t - k2) / (1.0 - k2) * FRAC_PI_2).sin()
+            2.0 * k1 / PI + k2 - k1 + (1.0 - k2) * FRAC_2_PI * math::sin((t - k2) / (1.0 - k2) * FRAC_PI_2)
         };
         s / self.total
     }
@@ -118,11 +119,11 @@ impl ParentEase {
     fn velocity(&self, t: f64) -> f64 {
         let (k1, k2) = (self.k1, self.k2);
         let v = if t < k1 {
-            (t / k1 * FRAC_PI_2).sin()
+            math::sin(t / k1 * FRAC_PI_2)
         } else if t <= k2 {
             1.0
         } else {
-            ((t - k2) / (1.0 - k2) * FRAC_PI_2).cos()
+            math::cos((t - k2) / (1.0 - k2) * FRAC_PI_2)
         };
         v / self.total
     }
@@ -232,7 +233,7 @@ impl Ease {
         }
         let s = match self {
             Ease::Linear => t,
-            Ease::Sine => ((PI * t - FRAC_PI_2).sin() + 1.0) / 2.0,
+            Ease::Sine => (math::sin(PI * t - FRAC_PI_2) + 1.0) / 2.0,
             Ease::Parent(p) => p.position(t),
             Ease::Smoothstep => t * t * (3.0 - 2.0 * t),
         };
@@ -245,7 +246,7 @@ impl Ease {
         let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
         match self {
             Ease::Linear => 1.0,
-            Ease::Sine => FRAC_PI_2 * (PI * t).sin(),
+            Ease::Sine => FRAC_PI_2 * math::sin(PI * t),
             Ease::Parent(p) => p.velocity(t),
             Ease::Smoothstep => 6.0 * t * (1.0 - t),
         }

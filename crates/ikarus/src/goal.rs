@@ -2,6 +2,7 @@
 //! orientation of the last link. A description of the problem, shared by the closed forms, the
 //! iterative solvers and the reachability checks.
 
+use crate::math;
 use crate::number::Num;
 use nalgebra::Point2;
 use thiserror::Error;
@@ -75,7 +76,7 @@ impl Goal {
             Some(phi) => {
                 let lengths = chain.lengths();
                 let (last, rest) = lengths.split_last().expect("a chain has at least one link");
-                let wrist = self.position - *last * nalgebra::Vector2::new(phi.cos(), phi.sin());
+                let wrist = self.position - *last * nalgebra::Vector2::new(math::cos(phi), math::sin(phi));
                 let d = length(wrist - base);
                 let outer: f64 = rest.iter().sum();
                 let inner = if rest.is_empty() { 0.0 } else { annulus_inner(rest) };
@@ -89,7 +90,7 @@ impl Goal {
 /// chain of reach 3e200 is within reach, not infinitely far) or is subnormal.
 fn length(v: nalgebra::Vector2<f64>) -> f64 {
     let squared = v.norm_squared();
-    if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { v.x.hypot(v.y) }
+    if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { math::hypot(v.x, v.y) }
 }
 
 fn finite(field: &'static str, value: f64) -> Result<(), GoalError> {

@@ -51,6 +51,7 @@ pub mod goal;
 pub mod interrupt;
 pub mod kinematics;
 pub mod limits;
+mod math;
 pub mod motion;
 pub mod names;
 pub mod number;

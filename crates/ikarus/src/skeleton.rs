@@ -29,6 +29,7 @@ use nalgebra::Point2;
 
 use crate::chain::{Chain, MAX_REACH};
 use crate::limits::{Bounds, JointLimits};
+use crate::math;
 use tree::{children_of, cycle_error, depth_first, paths_of};
 
 pub mod error;
@@ -168,7 +169,7 @@ impl Skeleton {
             to_tip[i] = parents[i].map_or(0.0, |p| to_tip[p]) + lengths[i];
         }
         let reach = to_tip.iter().copied().fold(0.0, f64::max);
-        let extent = x.hypot(y) + reach;
+        let extent = math::hypot(x, y) + reach;
         if extent.is_nan() || extent > MAX_REACH {
             return Err(SkeletonError::ReachTooLarge { reach: extent });
         }

@@ -54,7 +54,7 @@ fn make_goal(chain: &Chain, (spec, orientation): &(GoalSpec, Option<f64>)) -> Go
     let (x, y) = match *spec {
         GoalSpec::Near { radius, direction } => {
             let r = radius * chain.max_reach();
-            (base.x + r * direction.cos(), base.y + r * direction.sin())
+            (base.x + r * libm::cos(direction), base.y + r * libm::sin(direction))
         }
         GoalSpec::Far { x, y } => (x, y),
     };
@@ -66,7 +66,7 @@ fn make_goal(chain: &Chain, (spec, orientation): &(GoalSpec, Option<f64>)) -> Go
 
 /// Log-uniform in `[10^lo, 10^hi]`.
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    (lo..=hi).prop_map(|e| 10f64.powf(e))
+    (lo..=hi).prop_map(|e| libm::pow(10.0, e))
 }
 
 prop_compose! {
@@ -245,10 +245,11 @@ proptest! {
 }
 
 /// The library's distance (`solve/attempt.rs`): `√(dx² + dy²)`, by `hypot` where the sum of
-/// squares overflows or is subnormal, saturated at `f64::MAX`.
+/// squares overflows or is subnormal, saturated at `f64::MAX`. `libm`'s `hypot`, as the
+/// library's `math` module calls it, so that the two agree bit for bit on every target.
 fn distance(dx: f64, dy: f64) -> f64 {
     let squared = dx * dx + dy * dy;
-    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { dx.hypot(dy) };
+    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { libm::hypot(dx, dy) };
     d.min(f64::MAX)
 }
 
@@ -323,7 +324,7 @@ fn extreme_chain() -> impl Strategy<Value = Chain> {
     let link =
         (-9.0f64..=9.0, -PI..PI, prop::option::of((-4.0f64..4.0, prop_oneof![Just(0.0), 0.0f64..4.0, 6.3f64..20.0])))
             .prop_map(|(exponent, angle, limits)| {
-                let length = 10f64.powf(exponent);
+                let length = libm::pow(10.0, exponent);
                 match limits {
                     None => Link::new(length, angle),
                     Some((lo, width)) => {
@@ -342,7 +343,7 @@ fn extreme_chain() -> impl Strategy<Value = Chain> {
 /// still a finite number), some with limits.
 fn huge_chain() -> impl Strategy<Value = Chain> {
     let link = (50.0f64..150.0, -PI..PI, prop::option::of(-2.0f64..0.0)).prop_map(|(exponent, angle, lo)| {
-        let length = 10f64.powf(exponent) / 4.0;
+        let length = libm::pow(10.0, exponent) / 4.0;
         match lo {
             None => Link::new(length, angle),
             Some(lo) => {
@@ -422,7 +423,7 @@ fn extreme_case() -> impl Strategy<Value = (Chain, Goal, SolveOptions, Vec<f64>)
         (Just(chain), goal, extreme_options(reach), start).prop_map(|(chain, (radius, direction, phi), opts, start)| {
             let b = chain.base();
             let r = radius * chain.max_reach();
-            let (x, y) = (b.x + r * direction.cos(), b.y + r * direction.sin());
+            let (x, y) = (b.x + r * libm::cos(direction), b.y + r * libm::sin(direction));
             let goal = match phi {
                 None => Goal::position(x, y).unwrap(),
                 Some(phi) => Goal::with_orientation(x, y, phi).unwrap(),
@@ -474,7 +475,8 @@ proptest! {
         prop_assert!(h.is_finite() && h > 0.0, "{}", h);
         prop_assert!(ws.origin().x.is_finite() && ws.origin().y.is_finite());
         prop_assert!(ws.occupied_cells() <= u64::from(resolution).pow(2));
-        let grid_area = (h * f64::from(resolution)).powi(2);
+        let side = h * f64::from(resolution);
+        let grid_area = side * side;
         prop_assert!(ws.area().is_finite() && ws.area() >= 0.0 && ws.area() <= grid_area * (1.0 + 1e-12));
         let annulus = ws.annulus();
         prop_assert!(annulus.outer.is_finite() && annulus.inner.is_finite() && annulus.area().is_finite());

@@ -24,7 +24,7 @@ fn generated(chain: &Chain, n: usize, phase: f64) -> (Vec<Vec<f64>>, Path) {
                 .enumerate()
                 .map(|(i, l)| {
                     let (mid, amp) = l.map_or((0.3, 1.0), |l| (0.5 * (l.min() + l.max()), 0.35 * (l.max() - l.min())));
-                    mid + amp * (TAU * t * (1.0 + 0.3 * i as f64) + phase + i as f64).sin()
+                    mid + amp * libm::sin(TAU * t * (1.0 + 0.3 * i as f64) + phase + i as f64)
                 })
                 .collect()
         })
@@ -125,11 +125,11 @@ fn a_path_across_the_unreachable_region_is_reported_sample_by_sample_without_a_t
         let opts = options(false);
         let t = track::track(&chain, chain.start_pose().angles(), &path, mode, &opts).unwrap();
         for (k, (s, p)) in t.samples.iter().zip(&points).enumerate() {
-            let out = p[0].hypot(p[1]) > chain.max_reach() + 1e-6;
+            let out = libm::hypot(p[0], p[1]) > chain.max_reach() + 1e-6;
             assert_eq!(s.status == SampleStatus::Unreachable, out, "{mode:?} sample {k}: {s:?}");
             if out {
                 // The best pose: stretched toward the goal (follow may still be on its way).
-                let gap = p[0].hypot(p[1]) - chain.max_reach();
+                let gap = libm::hypot(p[0], p[1]) - chain.max_reach();
                 assert!(s.error >= gap - 1e-9, "{mode:?} {k}: {s:?}");
                 if mode == track::TrackMode::Plan {
                     assert!(s.error - gap < 1e-6, "{mode:?} {k}: {s:?}");
@@ -149,7 +149,7 @@ fn a_path_across_the_unreachable_region_is_reported_sample_by_sample_without_a_t
         // the arm must straighten faster than the samples allow (reported, not hidden).
         for &k in &t.summary.flips {
             assert_eq!(mode, track::TrackMode::Plan);
-            let d = points[k][0].hypot(points[k][1]);
+            let d = libm::hypot(points[k][0], points[k][1]);
             assert!((d - chain.max_reach()).abs() < 0.5, "flip at sample {k}, {d} from the base");
         }
     }
@@ -163,7 +163,7 @@ fn follow_with_limits_across_what_the_limits_cannot_reach_never_jumps() {
     let points: Vec<[f64; 2]> = (0..=120)
         .map(|k| {
             let a = deg(90.0) + deg(180.0) * k as f64 / 120.0;
-            [4.0 * a.cos(), 4.0 * a.sin()]
+            [4.0 * libm::cos(a), 4.0 * libm::sin(a)]
         })
         .collect();
     let path = Path::from_points(&points).unwrap();
@@ -258,7 +258,7 @@ fn plan_does_not_steepen_the_first_steps_toward_the_start_pose() {
             .map(|k| {
                 let t = k as f64 / 99.0;
                 (0..3)
-                    .map(|i| deg(centre[i] + 10.0 * (TAU * t * (0.7 + 0.3 * i as f64) + phase + i as f64).sin()))
+                    .map(|i| deg(centre[i] + 10.0 * libm::sin(TAU * t * (0.7 + 0.3 * i as f64) + phase + i as f64)))
                     .collect()
             })
             .collect();

@@ -8,9 +8,7 @@ use ikarus::reach::WorkspaceOptions;
 use ikarus::{Ease, EaseKind, Goal, Interrupt, Outcome, SolveOptions};
 use web_time::Instant;
 
-use super::requests::{AnimateReq, EaseReq, GoalReq, ReachReq, WorkspaceReq};
-use super::rig_motion::{AnimateBody, TrackBody};
-use super::rig_requests::SolveBody;
+use super::requests::{AnimateReq, EaseReq, GoalReq, ReachReq, SolveReq, TrackReq, WorkspaceReq};
 use super::{Limits, Problem, Reply, parse_json, status};
 use crate::area::{self, GridRequest, ReachableArea};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
@@ -27,6 +25,16 @@ const SOLVE_RECORD_EVERY: u32 = 20;
 pub(super) const MAX_VIA: usize = 100;
 /// Most joint-space samples of a workspace.
 const MAX_SAMPLES: u32 = 1_000_000;
+
+#[cfg(feature = "render")]
+/// A picture, or the interruption that stopped its drawing (not an internal error).
+pub(super) fn picture(
+    drawn: Result<Vec<u8>, crate::error::CliError>,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    stopped(interrupt)?;
+    Ok(drawn?)
+}
 
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
 /// 503 for it; writing a large answer nobody reads would only hold the worker).
@@ -71,12 +79,8 @@ pub fn default_arm() -> Result<Reply, Problem> {
     })
 }
 
-/// `POST /api/solve`: the JSON of `ikarus solve --format json` (with `rig`, of `--rig`).
-pub fn solve(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req = match SolveBody::parse(body)? {
-        SolveBody::Arm(req) => *req,
-        SolveBody::Rig(req) => return super::rigs::solve(*req, limits, interrupt),
-    };
+/// `POST /api/solve` with `arm`: the JSON of `ikarus solve --format json`.
+pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
         let arm = load_arm(req.arm, limits)?;
         let mut options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
@@ -98,12 +102,8 @@ pub fn solve(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Repl
     }
 }
 
-/// `POST /api/animate`: the JSON of `ikarus animate --format json` (with `rig`, of `--rig`).
-pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req = match AnimateBody::parse(body)? {
-        AnimateBody::Arm(req) => *req,
-        AnimateBody::Rig(req) => return super::rig_motion::animate(*req, limits, interrupt),
-    };
+/// `POST /api/animate` with `arm`: the JSON of `ikarus animate --format json`.
+pub fn animate(req: AnimateReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let arm = load_arm(req.arm.clone(), limits)?;
     let fields = MotionFields::of_animate(&req);
     let motion = motion(&arm, &fields, &req.goal, limits, interrupt)?;
@@ -112,11 +112,7 @@ pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Re
 }
 
 /// `POST /api/track`: the work of `ikarus track`, under `--max-samples` and the solver caps.
-pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req = match TrackBody::parse(body)? {
-        TrackBody::Arm(req) => *req,
-        TrackBody::Rig(req) => return super::rig_motion::track(*req, limits, interrupt),
-    };
+pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
         let arm = load_arm(req.arm.clone(), limits)?;
         let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;

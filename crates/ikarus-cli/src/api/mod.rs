@@ -9,6 +9,7 @@
 //! `crate::reach`).
 
 pub mod arm_files;
+pub mod bodies;
 pub mod jobs;
 pub mod meta;
 #[cfg(feature = "render")]
@@ -24,6 +25,7 @@ use ikarus::Interrupt;
 use serde::de::DeserializeOwned;
 
 use crate::error::CliError;
+use bodies::{AnimateBody, SolveBody, TrackBody};
 
 /// The caps of every request: the server's flags, and the same defaults for the edges that
 /// have no flags (Python, WebAssembly).
@@ -262,9 +264,18 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
         Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?)),
-        Endpoint::Solve => jobs::solve(body, limits, interrupt),
-        Endpoint::Animate => jobs::animate(body, limits, interrupt),
-        Endpoint::Track => jobs::track(body, limits, interrupt),
+        Endpoint::Solve => match SolveBody::parse(body)? {
+            SolveBody::Arm(req) => jobs::solve(*req, limits, interrupt),
+            SolveBody::Rig(req) => rigs::solve(*req, limits, interrupt),
+        },
+        Endpoint::Animate => match AnimateBody::parse(body)? {
+            AnimateBody::Arm(req) => jobs::animate(*req, limits, interrupt),
+            AnimateBody::Rig(req) => rig_motion::animate(*req, limits, interrupt),
+        },
+        Endpoint::Track => match TrackBody::parse(body)? {
+            TrackBody::Arm(req) => jobs::track(*req, limits, interrupt),
+            TrackBody::Rig(req) => rig_motion::track(*req, limits, interrupt),
+        },
         Endpoint::Workspace => jobs::workspace(body, limits, interrupt),
         Endpoint::Reach => jobs::reach(body, limits, interrupt),
         #[cfg(feature = "render")]

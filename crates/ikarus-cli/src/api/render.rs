@@ -3,7 +3,7 @@
 
 use ikarus::{EaseKind, Interrupt};
 
-use super::jobs::{MotionFields, ease, goal, load_arm, motion, reachable_area, start_pose, stopped};
+use super::jobs::{MotionFields, ease, goal, load_arm, motion, picture, reachable_area, start_pose, stopped};
 use super::requests::{ArmFigureReq, MotionFigureReq, RenderReq, WorkspaceReq};
 use super::{Limits, Problem, Reply};
 use crate::motion::DEFAULT_FPS;
@@ -22,15 +22,6 @@ pub fn render(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Rep
     // A GIF being encoded checks the interrupt before each frame.
     let (bytes, format) = ikarus_render::with_interrupt(interrupt, || render_figure(req, limits, interrupt))?;
     Ok(Reply { content_type: format.content_type(), body: bytes })
-}
-
-/// A picture, or the interruption that stopped its drawing (not an internal error).
-pub(super) fn picture(
-    drawn: Result<Vec<u8>, crate::error::CliError>,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, Problem> {
-    stopped(interrupt)?;
-    Ok(drawn?)
 }
 
 pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, Problem> {

@@ -13,10 +13,10 @@ use super::jobs::{
     MAX_RECORDED_VALUES, MAX_VIA, ease, json_response, max_step_deg, options_for, pose_from_degrees,
     recorded_values_cap, stopped, timing, track_path,
 };
-use super::requests::{AnimateReq, EaseReq, TrackReq};
-use super::rig_requests::{Keys, RigGoalReq};
+use super::requests::EaseReq;
+use super::rig_requests::RigGoalReq;
 use super::rigs::{MAX_EFFECTORS, load_rig, task};
-use super::{Limits, Problem, Reply, parse_json};
+use super::{Limits, Problem, Reply};
 use crate::rig::{Rig, RigFile};
 use crate::rig_motion::RigMotionPlan;
 use crate::rig_track::{RigTrackJob, effector_index};
@@ -94,40 +94,6 @@ pub struct RigTrackReq {
     pub bound_first: bool,
     #[serde(default)]
     pub options: Option<SolverSettings>,
-}
-
-/// The body of `POST /api/animate`: an arm's request or a rig's.
-#[derive(Debug)]
-pub enum AnimateBody {
-    Arm(Box<AnimateReq>),
-    Rig(Box<RigAnimateReq>),
-}
-
-/// The body of `POST /api/track`: an arm's request or a rig's.
-#[derive(Debug)]
-pub enum TrackBody {
-    Arm(Box<TrackReq>),
-    Rig(Box<RigTrackReq>),
-}
-
-impl AnimateBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? {
-            AnimateBody::Rig(parse_json(body)?)
-        } else {
-            AnimateBody::Arm(Box::new(parse_json(body)?))
-        })
-    }
-}
-
-impl TrackBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? { TrackBody::Rig(parse_json(body)?) } else { TrackBody::Arm(Box::new(parse_json(body)?)) })
-    }
 }
 
 /// The start pose of a rig request: `start_deg`, or the rig's start angles.

@@ -9,8 +9,6 @@
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
-use super::requests::SolveReq;
-use super::{Problem, parse_json};
 use crate::picture::PictureFormat;
 use crate::rig::RigFile;
 use crate::settings::SolverSettings;
@@ -97,50 +95,4 @@ pub struct RigFigureReq {
     /// Write each bone's name beside it.
     #[serde(default)]
     pub labels: bool,
-}
-
-/// What a body has, read without judging anything else.
-#[derive(Debug, Deserialize)]
-#[serde(expecting = "struct SolveReq")]
-pub struct Keys {
-    #[serde(default)]
-    pub arm: Option<IgnoredAny>,
-    #[serde(default)]
-    pub rig: Option<IgnoredAny>,
-    #[serde(default)]
-    pub goal: Option<IgnoredAny>,
-    #[serde(default)]
-    pub goals: Option<IgnoredAny>,
-}
-
-impl Keys {
-    /// Whether the body is a rig's request: it has `rig`, and no field of an arm's.
-    pub fn rig(&self) -> Result<bool, Problem> {
-        match (self.arm.is_some(), self.rig.is_some()) {
-            (true, true) => Err(Problem::invalid("arm, rig: give one or the other, not both")),
-            (_, true) if self.goal.is_some() => {
-                Err(Problem::invalid("goal: a rig takes goals, a list of {\"bone\", \"x\", \"y\"}"))
-            }
-            (_, true) => Ok(true),
-            (_, false) if self.goals.is_some() => {
-                Err(Problem::invalid("goals: only with rig (an arm takes one goal, {\"x\", \"y\"})"))
-            }
-            (_, false) => Ok(false),
-        }
-    }
-}
-
-/// The body of `POST /api/solve`: an arm's request or a rig's.
-#[derive(Debug)]
-pub enum SolveBody {
-    Arm(Box<SolveReq>),
-    Rig(Box<RigSolveReq>),
-}
-
-impl SolveBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? { SolveBody::Rig(parse_json(body)?) } else { SolveBody::Arm(parse_json(body)?) })
-    }
 }

@@ -8,11 +8,11 @@ use ikarus::{Bend, Interrupt, Outcome, Priority, RigTask};
 use serde::Serialize;
 use web_time::Instant;
 
+#[cfg(feature = "render")]
+use super::jobs::picture;
 use super::jobs::{
     MAX_SOLVE_RECORDED_VALUES, json_response, options_for, pose_from_degrees, recorded_values_cap, stopped,
 };
-#[cfg(feature = "render")]
-use super::render::picture;
 #[cfg(feature = "render")]
 use super::rig_requests::RigFigureReq;
 use super::rig_requests::{BendReq, PriorityReq, RigGoalReq, RigSolveReq};

@@ -5,6 +5,7 @@ use std::f64::consts::{PI, TAU};
 
 use super::MotionError;
 use crate::limits::JointLimits;
+use crate::math;
 
 /// The polyline through the unwrapped keyframes.
 pub(super) struct Path {
@@ -114,7 +115,7 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
     if scale == 0.0 || !scale.is_finite() {
         return scale;
     }
-    scale * a.iter().zip(b).map(|(x, y)| ((y - x) / scale).powi(2)).sum::<f64>().sqrt()
+    scale * a.iter().zip(b).map(|(x, y)| math::square((y - x) / scale)).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@ use std::f64::consts::{PI, TAU};
 
 use super::*;
 use crate::chain::{JointLimits, Link};
+use crate::math;
 use crate::solve::{Goal, Method, SolveOptions, Solver, Status, wrap_angle};
 
 // Validation errors, the property tests and the spline's tests, with the helpers below.
@@ -78,7 +79,7 @@ fn animate_ok(chain: &Chain, keys: &[Vec<f64>], times: Option<&[f64]>, timing: T
 }
 
 fn dist(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (y - x).powi(2)).sum::<f64>().sqrt()
+    a.iter().zip(b).map(|(x, y)| math::square(y - x)).sum::<f64>().sqrt()
 }
 
 /// Path length travelled up to each frame: locates every frame on the polyline through `keys`

@@ -147,6 +147,7 @@ fn chaikin(ring: &[Point2<f64>]) -> Vec<Point2<f64>> {
 
 #[cfg(test)]
 mod tests {
+    use crate::math;
     use crate::reach::WorkspaceOptions;
     use crate::{Chain, JointLimits, Link};
 
@@ -167,7 +168,7 @@ mod tests {
             .map(|k| {
                 let (a, b, c) = (ring[k], ring[(k + 1) % m], ring[(k + 2) % m]);
                 let (u, v) = (b - a, c - b);
-                (u.x * v.y - u.y * v.x).atan2(u.dot(&v)).abs().to_degrees()
+                math::atan2(u.x * v.y - u.y * v.x, u.dot(&v)).abs().to_degrees()
             })
             .fold(0.0, f64::max)
     }

@@ -6,6 +6,7 @@ use std::f64::consts::{PI, TAU};
 
 use super::sampling::{Plan, Range, Reduced};
 use crate::angle::direction as dir;
+use crate::math;
 
 /// `u × v`, the z component of the 3D cross product.
 fn cross(u: [f64; 2], v: [f64; 2]) -> f64 {
@@ -81,15 +82,15 @@ impl<'a> Sampler<'a> {
             return None;
         }
         let (j, k) = (&reduced.segments[n - 2], &reduced.segments[n - 1]);
-        let a = j.w[0].hypot(j.w[1]);
-        let b = k.w[0].hypot(k.w[1]);
+        let a = math::hypot(j.w[0], j.w[1]);
+        let b = math::hypot(k.w[0], k.w[1]);
         if !(a > 0.0 && b > 0.0) {
             return None;
         }
-        let alpha = j.w[1].atan2(j.w[0]);
-        let beta = j.gamma + k.w[1].atan2(k.w[0]);
+        let alpha = math::atan2(j.w[1], j.w[0]);
+        let beta = j.gamma + math::atan2(k.w[1], k.w[0]);
         let elbow = Sector::of(k.range, beta - alpha);
-        let spread = (b < a).then(|| (b / a).asin() + 1e-9);
+        let spread = (b < a).then(|| math::asin(b / a) + 1e-9);
         Some(Sampler { reduced, plan: Plan::new(&reduced.segments, samples, seed), a, b, alpha, elbow, spread })
     }
 
@@ -106,7 +107,7 @@ impl<'a> Sampler<'a> {
         let mut phi = self.reduced.phi0;
         for (k, seg) in sampled.iter().enumerate() {
             phi += self.plan.angle(seg.range, k, i);
-            let (s, c) = phi.sin_cos();
+            let (s, c) = math::sin_cos(phi);
             x += c * seg.w[0] - s * seg.w[1];
             y += s * seg.w[0] + c * seg.w[1];
             phi += seg.gamma;
@@ -124,10 +125,10 @@ impl<'a> Sampler<'a> {
                 let extreme = |axis: [f64; 2], f: fn(f64) -> f64| {
                     if cone.contains(axis) { 1.0 } else { f(lo).max(f(hi)) }
                 };
-                let right = extreme([1.0, 0.0], f64::cos).max(0.0);
-                let left = extreme([-1.0, 0.0], |t| -t.cos()).max(0.0);
-                let up = extreme([0.0, 1.0], f64::sin).max(0.0);
-                let down = extreme([0.0, -1.0], |t| -t.sin()).max(0.0);
+                let right = extreme([1.0, 0.0], math::cos).max(0.0);
+                let left = extreme([-1.0, 0.0], |t| -math::cos(t)).max(0.0);
+                let up = extreme([0.0, 1.0], math::sin).max(0.0);
+                let down = extreme([0.0, -1.0], |t| -math::sin(t)).max(0.0);
                 (cone, [x - reach * left, x + reach * right, y - reach * down, y + reach * up])
             }
             _ => (Sector::Full, [x - reach, x + reach, y - reach, y + reach]),

@@ -5,6 +5,7 @@
 use std::f64::consts::TAU;
 
 use crate::chain::{Chain, JointLimits};
+use crate::math;
 
 use crate::angle::direction as dir;
 
@@ -144,10 +145,11 @@ impl Plan {
                 let exponent = 1.0 / (m as f64 + 1.0);
                 let mut g = 2.0_f64;
                 for _ in 0..128 {
-                    g = (1.0 + g).powf(exponent);
+                    g = math::powf(1.0 + g, exponent);
                 }
                 // α < 1, so α·2⁶⁴ < 2⁶⁴ and the cast keeps the fraction's bits.
-                let steps = (0..m).map(|k| (g.powi(-(k as i32 + 1)) * 18_446_744_073_709_551_616.0) as u64).collect();
+                let steps =
+                    (0..m).map(|k| (math::powf(g, -(k as f64 + 1.0)) * 18_446_744_073_709_551_616.0) as u64).collect();
                 let shifts = (0..m as u64).map(|k| splitmix64(seed ^ splitmix64(k))).collect();
                 Plan::Kronecker { n: samples, steps, shifts, special: (2.0 / m as f64).min(0.5) }
             }

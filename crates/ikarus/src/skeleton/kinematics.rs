@@ -31,6 +31,7 @@
 use nalgebra::{DMatrix, Point2};
 
 use super::Skeleton;
+use crate::math;
 
 /// One effector of the stacked Jacobian: the tip of a bone, its position and optionally its
 /// direction.
@@ -98,7 +99,7 @@ impl Skeleton {
             };
             starts[i] = p;
             phi += angles[i];
-            let (s, c) = phi.sin_cos();
+            let (s, c) = math::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
             p.y += l * s;
@@ -130,7 +131,7 @@ impl Skeleton {
                 None => (self.base, 0.0),
             };
             phi += angles[i];
-            let (s, c) = phi.sin_cos();
+            let (s, c) = math::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
             p.y += l * s;

@@ -7,6 +7,7 @@ use super::model::{Model, ScratchOf};
 use super::problem::Problem;
 use super::step::Stepper;
 use super::{Outcome, Status};
+use crate::math;
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
@@ -146,6 +147,6 @@ fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut ScratchOf<
 #[inline]
 pub(super) fn distance(dx: f64, dy: f64) -> f64 {
     let squared = dx * dx + dy * dy;
-    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { dx.hypot(dy) };
+    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { math::hypot(dx, dy) };
     d.min(f64::MAX)
 }

@@ -55,6 +55,7 @@ use nalgebra::{Point2, Vector2};
 use super::problem::Problem;
 use crate::angle::wrap_angle;
 use crate::kinematics::joint_positions_into;
+use crate::math;
 
 mod turn;
 
@@ -109,7 +110,7 @@ pub(super) fn sweep(
         if delta != 0.0 {
             // Only the tip is read again in this sweep (the joints below j do not move when j
             // turns, and those above it are not read): turn it about joint j.
-            let (s, c) = delta.sin_cos();
+            let (s, c) = math::sin_cos(delta);
             let v = trial_joints[n] - at;
             trial_joints[n] = at + Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y);
             phi += delta;
@@ -200,7 +201,7 @@ mod tests {
         joint_positions_into(&one, &[0.0], &mut joints);
         sweep(&problem(&one, &goal, &opts, true), &[0.0], &joints, &mut trial, &mut trial_joints);
         let a = trial[0];
-        assert!((-8.0 * a.cos() + 2.0 * a).abs() < 1e-12 && a > 0.0 && a < PI / 2.0, "{a}");
+        assert!((-8.0 * math::cos(a) + 2.0 * a).abs() < 1e-12 && a > 0.0 && a < PI / 2.0, "{a}");
         let before = trial;
         joint_positions_into(&one, &before, &mut joints);
         sweep(&problem(&one, &goal, &opts, true), &before, &joints, &mut trial, &mut trial_joints);
@@ -222,7 +223,7 @@ mod tests {
         for i in 0..1000 {
             // A new far-off goal every sweep keeps every joint turning.
             let a = f64::from(i) * 2.4;
-            let goal = Goal::position(5.0 * a.cos(), 5.0 * a.sin()).unwrap();
+            let goal = Goal::position(5.0 * math::cos(a), 5.0 * math::sin(a)).unwrap();
             sweep(&problem(&chain, &goal, &opts, true), &angles, &joints, &mut trial, &mut trial_joints);
             std::mem::swap(&mut angles, &mut trial);
             std::mem::swap(&mut joints, &mut trial_joints);

@@ -11,6 +11,7 @@ use super::{Goal, Method, SolveOptions, wrap_angle};
 use crate::chain::{Chain, Link};
 use crate::closed_form;
 use crate::kinematics::{end_effector, joint_positions};
+use crate::math;
 use crate::rng::SplitMix64;
 
 const CCD: Method = Method::CyclicCoordinateDescent;
@@ -127,7 +128,7 @@ fn extreme_goals_give_finite_angles() {
                     assert!(angles.iter().all(|a| a.is_finite()), "{method:?} {goal:?}: {angles:?}");
                     if points_at_far_goals && !limited && goal.orientation().is_none() && x.abs() > 1.0 {
                         let tip = end_effector(&chain, &angles).position - chain.base();
-                        let off = wrap_angle(tip.y.atan2(tip.x) - y.atan2(x));
+                        let off = wrap_angle(math::atan2(tip.y, tip.x) - math::atan2(y, x));
                         assert!(off.abs() < 1e-12, "{method:?} {goal:?}: {angles:?}");
                     }
                 }
@@ -186,7 +187,7 @@ fn stretches_towards_a_goal_out_of_reach() {
             let n = 1 + (rng.next_u64() % 8) as usize;
             let chain = random_chain(&mut rng, n, false);
             let dir = rng.range(-PI, PI);
-            let unit = Vector2::new(dir.cos(), dir.sin());
+            let unit = Vector2::new(math::cos(dir), math::sin(dir));
             let target = chain.base() + chain.max_reach() * rng.range(row.beyond.0, row.beyond.1) * unit;
             let goal = Goal::position(target.x, target.y).unwrap();
             let start = random_pose(&mut rng, &chain);
@@ -202,7 +203,7 @@ fn stretches_towards_a_goal_out_of_reach() {
                 let (angles, _, _) = drive(method, &chain, &goal, &opts, &start, row.max, 1e-6);
                 let joints = joint_positions(&chain, &angles);
                 let last = chain.lengths()[n - 1];
-                let wrist = target - last * Vector2::new(phi.cos(), phi.sin());
+                let wrist = target - last * Vector2::new(math::cos(phi), math::sin(phi));
                 let arm: f64 = chain.lengths()[..n - 1].iter().sum();
                 if (wrist - chain.base()).norm() > arm {
                     let want = chain.base() + arm * (wrist - chain.base()).normalize();
@@ -285,7 +286,7 @@ fn target_at_the_base_and_single_links() {
             let goals = [Goal::position(x, y).unwrap(), Goal::with_orientation(x, y, 1.0).unwrap()];
             for goal in &goals[..if row.single_link_oriented { 2 } else { 1 }] {
                 let (angles, _, _) = drive(method, &one, goal, &opts, &[0.0], row.single_link, 1e-6);
-                assert!(wrap_angle(angles[0] - y.atan2(x)).abs() < 1e-12, "{method:?}: {angles:?}");
+                assert!(wrap_angle(angles[0] - math::atan2(y, x)).abs() < 1e-12, "{method:?}: {angles:?}");
             }
         }
         let (angles, _, _) = drive(method, &one, &Goal::position(0.0, 0.0).unwrap(), &opts, &[0.4], 3, 1e-6);
@@ -316,7 +317,7 @@ fn agrees_with_the_closed_forms() {
             let chain = random_chain(&mut rng, n, false);
             let truth = random_pose(&mut rng, &chain);
             // Keep away from the elbow singularity, where angles are ill-conditioned.
-            if truth[1].sin().abs() < 0.2 {
+            if math::sin(truth[1]).abs() < 0.2 {
                 continue;
             }
             let ee = end_effector(&chain, &truth);

@@ -32,6 +32,7 @@ use super::problem::Problem;
 use crate::angle;
 use crate::chain::JointLimits;
 use crate::kinematics::joint_positions_into;
+use crate::math;
 
 /// Distances shorter than this share of the chain's reach count as zero.
 const NEGLIGIBLE: f64 = 1e-12;
@@ -69,10 +70,10 @@ pub(super) fn iterate(
 
     // The links FABRIK moves, and where their end must go.
     let (m, end) = match goal.orientation() {
-        Some(phi) if n > 1 => (n - 1, goal.target() - lengths[n - 1] * Vector2::new(phi.cos(), phi.sin())),
+        Some(phi) if n > 1 => (n - 1, goal.target() - lengths[n - 1] * Vector2::new(math::cos(phi), math::sin(phi))),
         _ => (n, goal.target()),
     };
-    let reachable = (end - base).x.hypot((end - base).y) <= lengths[..m].iter().sum::<f64>();
+    let reachable = math::hypot((end - base).x, (end - base).y) <= lengths[..m].iter().sum::<f64>();
 
     if reachable {
         // Backward pass: q_m = end, then each joint on the line to where it was.
@@ -91,10 +92,10 @@ pub(super) fn iterate(
     for i in 0..m {
         let aim = if reachable { trial_joints[i + 1] } else { end };
         let d = unit_or(aim - at, joints[i + 1] - joints[i], tiny);
-        let relative = pick(d.y.atan2(d.x) - direction, angles[i], bounds.get(i));
+        let relative = pick(math::atan2(d.y, d.x) - direction, angles[i], bounds.get(i));
         trial[i] = relative;
         direction += relative;
-        at += lengths[i] * Vector2::new(direction.cos(), direction.sin());
+        at += lengths[i] * Vector2::new(math::cos(direction), math::sin(direction));
     }
     if let (true, Some(phi)) = (m < n, goal.orientation()) {
         trial[n - 1] = pick(phi - direction, angles[n - 1], bounds.get(n - 1));
@@ -108,12 +109,12 @@ pub(super) fn iterate(
 fn unit_or(v: Vector2<f64>, fallback: Vector2<f64>, tiny: f64) -> Vector2<f64> {
     let unit = |v: Vector2<f64>| {
         let scaled = v / v.x.abs().max(v.y.abs());
-        scaled / scaled.x.hypot(scaled.y)
+        scaled / math::hypot(scaled.x, scaled.y)
     };
-    if v.x.hypot(v.y) > tiny && v.iter().all(|c| c.is_finite()) {
+    if math::hypot(v.x, v.y) > tiny && v.iter().all(|c| c.is_finite()) {
         return unit(v);
     }
-    if fallback.x.hypot(fallback.y) > 0.0 && fallback.iter().all(|c| c.is_finite()) {
+    if math::hypot(fallback.x, fallback.y) > 0.0 && fallback.iter().all(|c| c.is_finite()) {
         unit(fallback)
     } else {
         Vector2::new(1.0, 0.0)

@@ -17,6 +17,7 @@ use super::algebra::Algebra;
 use super::model::{Model, ScratchOf};
 use super::problem::Problem;
 use super::step::Rule;
+use crate::math;
 
 /// Per iteration, [`LimitMode::NullSpace`] asks each limited joint to cover this share of its
 /// distance to the middle of its range (before the projection into the null space).
@@ -96,7 +97,7 @@ fn weigh<M: Model>(model: &M, angles: &[f64], s: &mut ScratchOf<M>) {
             if toward {
                 let gap = (hi - th) * (th - lo);
                 let w = if gap > 0.0 {
-                    let dh = (hi - lo).powi(2) * (2.0 * th - hi - lo) / (4.0 * gap * gap);
+                    let dh = math::square(hi - lo) * (2.0 * th - hi - lo) / (4.0 * gap * gap);
                     1.0 / (1.0 + dh.abs())
                 } else {
                     0.0

@@ -4,6 +4,7 @@
 use super::*;
 use crate::chain::{Chain, Link};
 use crate::kinematics::end_effector;
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::solve::restarts::restart_pose;
 use crate::solve::test_support::random_goal;
@@ -274,7 +275,7 @@ fn null_space_avoidance_keeps_joints_nearer_the_middle() {
                 .zip(chain.limits())
                 .map(|(a, l)| {
                     let l = l.unwrap();
-                    ((a - 0.5 * (l.min() + l.max())) / (0.5 * (l.max() - l.min()))).powi(2)
+                    math::square((a - 0.5 * (l.min() + l.max())) / (0.5 * (l.max() - l.min())))
                 })
                 .sum()
         };

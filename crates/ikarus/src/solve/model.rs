@@ -18,6 +18,7 @@ use crate::chain::{Chain, JointLimits};
 use crate::goal::Goal;
 use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
 use crate::limits::Bounds;
+use crate::math;
 
 /// The scratch of a model's solves.
 pub(super) type ScratchOf<M> = Scratch<<M as Model>::Points, <M as Model>::Alg>;
@@ -176,12 +177,12 @@ impl Model for Chain {
         let target = goal.target();
         let tip = points[Chain::len(self)];
         let turn = goal.orientation().map_or(0.0, |g| opts.orientation_weight * wrap_angle(g - phi));
-        (target.x - tip.x).powi(2) + (target.y - tip.y).powi(2) + turn * turn
+        math::square(target.x - tip.x) + math::square(target.y - tip.y) + turn * turn
     }
 
     #[inline]
     fn best_key(&self, opts: &SolveOptions, out: &Outcome, _alg: &Fixed3) -> f64 {
-        out.error * out.error + (opts.orientation_weight * out.angle_error).powi(2)
+        out.error * out.error + math::square(opts.orientation_weight * out.angle_error)
     }
 
     #[inline]

@@ -150,6 +150,7 @@ pub(super) fn restart_pose(bounds: Bounds<'_>, start: &[f64], r: Restarts, k: u3
 mod tests {
     use super::*;
     use crate::goal::Goal;
+    use crate::math;
     use crate::solve::{LimitMode, Method, SolveOptions, Solver};
 
     /// When no attempt reaches the goal, the outcome is the best attempt's pose, kept when it
@@ -189,7 +190,7 @@ mod tests {
             assert_ne!(out.status, Status::Reached, "seed {seed}");
             assert_eq!(out.iterations, attempts.iter().map(|a| a.iterations).sum::<u32>(), "seed {seed}");
             assert_eq!(out.restarts, r.attempts);
-            let err = |o: &Outcome| o.error * o.error + (opts.orientation_weight * o.angle_error).powi(2);
+            let err = |o: &Outcome| o.error * o.error + math::square(opts.orientation_weight * o.angle_error);
             let best = attempts.iter().min_by(|a, b| err(a).total_cmp(&err(b))).unwrap();
             assert_eq!(out.pose, best.pose, "seed {seed}");
             assert_eq!((out.error, out.status), (best.error, best.status), "seed {seed}");

@@ -12,6 +12,7 @@ use thiserror::Error;
 
 use super::Status;
 use crate::goal::Goal;
+use crate::math;
 use crate::number::Num;
 use crate::skeleton::Skeleton;
 use nalgebra::Point2;
@@ -110,7 +111,7 @@ impl RigGoal {
         if !(d > knee && d > 0.0) {
             return target;
         }
-        let soft = reach - s * (-(d - knee) / s).exp();
+        let soft = reach - s * math::exp(-(d - knee) / s);
         root + v * (soft / d)
     }
 }

@@ -14,6 +14,7 @@ use crate::angle::wrap_angle;
 use crate::chain::{JointLimits, annulus_inner};
 use crate::kinematics::EndEffector;
 use crate::limits::Bounds;
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::skeleton::Skeleton;
 use std::f64::consts::PI;
@@ -172,7 +173,7 @@ impl RigWork {
             None => (eff.target, &self.lengths[..]),
             Some(phi) => {
                 let (last, rest) = self.lengths.split_last().expect("a path holds its bone");
-                (eff.target - *last * nalgebra::Vector2::new(phi.cos(), phi.sin()), rest)
+                (eff.target - *last * nalgebra::Vector2::new(math::cos(phi), math::sin(phi)), rest)
             }
         };
         let d = distance(point.x - base.x, point.y - base.y);
@@ -355,7 +356,8 @@ impl Model for Rig<'_> {
             let tip = points.points[eff.bone + 1];
             let rw = eff.root_weight;
             let turn = eff.orientation.map_or(0.0, |g| rw * w_o * wrap_angle(g - points.directions[eff.bone]));
-            let sq = (rw * (eff.target.x - tip.x)).powi(2) + (rw * (eff.target.y - tip.y)).powi(2) + turn * turn;
+            let sq =
+                math::square(rw * (eff.target.x - tip.x)) + math::square(rw * (eff.target.y - tip.y)) + turn * turn;
             if row < self.primary_rows {
                 first += sq;
             } else {
@@ -371,7 +373,7 @@ impl Model for Rig<'_> {
         for eff in self.effs {
             let o = &out.effectors[eff.slot];
             let w = eff.root_weight * eff.root_weight;
-            let sq = w * (o.error * o.error + (opts.orientation_weight * o.angle_error).powi(2));
+            let sq = w * (o.error * o.error + math::square(opts.orientation_weight * o.angle_error));
             if row < self.primary_rows {
                 first += sq;
             } else {

@@ -6,6 +6,7 @@
 use nalgebra::Point2;
 
 use crate::fixtures::{deg, random_rig_pose, rig};
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::skeleton::Skeleton;
 use crate::{
@@ -169,7 +170,7 @@ fn a_secondary_goal_moves_only_in_what_the_primary_leaves_free() {
         // reach from it to the tip (distance ≤ 2).
         let best = (0..200_000)
             .map(|k| -std::f64::consts::PI + 2.0 * std::f64::consts::PI * f64::from(k) / 200_000.0)
-            .map(|a| Point2::new(a.cos(), a.sin()))
+            .map(|a| Point2::new(math::cos(a), math::sin(a)))
             .filter(|e| (tip - e).norm() <= 2.0)
             .map(|e| (want - e).norm())
             .fold(f64::INFINITY, f64::min);
@@ -177,7 +178,7 @@ fn a_secondary_goal_moves_only_in_what_the_primary_leaves_free() {
         assert!(got >= best - 1e-6 && got <= best + 1e-6, "{want}: secondary {got} vs best {best}");
     }
     let want = Point2::new(-2.0, 1.0);
-    let before = (want - Point2::new(0.3f64.cos(), 0.3f64.sin())).norm();
+    let before = (want - Point2::new(math::cos(0.3f64), math::sin(0.3f64))).norm();
     let out = solver.solve_rig(&arm, arm.start_angles(), &task_for(want, Priority::Secondary)).unwrap();
     assert_eq!(out.effectors[0].status, Status::Reached, "{out:?}");
     assert!(out.effectors[1].error < before, "{out:?}");

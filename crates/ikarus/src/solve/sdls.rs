@@ -17,6 +17,8 @@
 
 use nalgebra::{Matrix3, Matrix3xX, SymmetricEigen, Vector3};
 
+use crate::math;
+
 /// The paper's bound on any joint change in one step, radians.
 const GAMMA_MAX: f64 = std::f64::consts::FRAC_PI_4;
 
@@ -27,7 +29,7 @@ pub(super) fn joint_step(a: &Matrix3<f64>, j: &Matrix3xX<f64>, e: &Vector3<f64>,
     out.fill(0.0);
     let eig = SymmetricEigen::new(*a);
     let floor = threshold * threshold;
-    let block_norm = |v: nalgebra::VectorView3<f64>| v[0].hypot(v[1]) + v[2].abs();
+    let block_norm = |v: nalgebra::VectorView3<f64>| math::hypot(v[0], v[1]) + v[2].abs();
     for (k, &mu) in eig.eigenvalues.iter().enumerate() {
         if mu <= floor {
             continue;
@@ -47,7 +49,7 @@ pub(super) fn joint_step(a: &Matrix3<f64>, j: &Matrix3xX<f64>, e: &Vector3<f64>,
             largest = largest.max((alpha * v / sigma).abs());
         }
         m /= sigma;
-        let n = u[0].hypot(u[1]) + u[2].abs();
+        let n = math::hypot(u[0], u[1]) + u[2].abs();
         let gamma = if m > n { GAMMA_MAX * n / m } else { GAMMA_MAX };
         let shrink = if largest > gamma { gamma / largest } else { 1.0 };
         for (o, col) in out.iter_mut().zip(j.column_iter()) {

@@ -259,6 +259,7 @@ mod tests {
     use super::*;
     use crate::chain::Link;
     use crate::kinematics::end_effector;
+    use crate::math;
     use crate::rng::SplitMix64;
     use crate::solve::{LimitMode, Restarts};
 
@@ -266,7 +267,7 @@ mod tests {
     /// of random poses (reachable, a tolerance of 1e-6 being a relative 1e-15 of the reach).
     fn mixed_chain(rng: &mut SplitMix64, n: usize) -> Chain {
         let links: Vec<Link> =
-            (0..n).map(|_| Link::new(10f64.powf(rng.range(-9.0, 9.0)), rng.range(-3.0, 3.0))).collect();
+            (0..n).map(|_| Link::new(math::powf(10.0, rng.range(-9.0, 9.0)), rng.range(-3.0, 3.0))).collect();
         Chain::new([0.0, 0.0], &links).unwrap()
     }
 
@@ -322,7 +323,7 @@ mod tests {
     fn distance_neither_overflows_nor_underflows() {
         assert_eq!(distance(3.0, 4.0), 5.0);
         // Powers of two keep the 3-4-5 triangle exact.
-        let (big, small) = (2f64.powi(700), 2f64.powi(-600));
+        let (big, small) = (math::powf(2.0, 700.0), math::powf(2.0, -600.0));
         assert_eq!(distance(3.0 * big, 4.0 * big), 5.0 * big);
         assert_eq!(distance(3.0 * small, 4.0 * small), 5.0 * small);
         assert_eq!(distance(f64::MAX, f64::MAX), f64::MAX);

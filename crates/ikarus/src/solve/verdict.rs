@@ -19,6 +19,7 @@ use nalgebra::{Point2, Vector2};
 
 use crate::chain::Chain;
 use crate::goal::Goal;
+use crate::math;
 use crate::reach::Region;
 
 /// The regions of the last chain checked, and what identifies that chain.
@@ -91,7 +92,7 @@ impl ReachCache {
                 }
                 let n = chain.len();
                 let last = chain.lengths()[n - 1];
-                let wrist: Point2<f64> = target - last * Vector2::new(direction.cos(), direction.sin());
+                let wrist: Point2<f64> = target - last * Vector2::new(math::cos(direction), math::sin(direction));
                 let v = region.verdict(wrist, tolerance + last * angle_tolerance);
                 if !v.reachable {
                     region.pose_reaching_into(wrist, pose);
@@ -122,6 +123,7 @@ mod tests {
     use crate::fixtures::{limited_arm as limited, seed_arm_limited as seed, seven_link_arm as seven};
     use crate::goal::Goal;
     use crate::kinematics::end_effector;
+    use crate::math;
     use crate::reach::Region;
     use crate::rng::SplitMix64;
     use crate::solve::{LimitMode, Method, SolveOptions, Solver, Status};
@@ -235,14 +237,14 @@ mod tests {
             let (x, y, a) = (rng.range(-6.0, 6.0), rng.range(-6.0, 6.0), rng.range(-PI, PI));
             let goal = Goal::with_orientation(x, y, a).unwrap();
             let out = solver.solve(&chain, chain.start_pose(), &goal).unwrap();
-            let w = Point2::new(x - a.cos(), y - a.sin());
+            let w = Point2::new(x - math::cos(a), y - math::sin(a));
             assert_eq!(out.reach_distance, Some(wrist.distance(w)));
             if out.status == Status::Unreachable && out.reach_distance > Some(0.0) {
                 stopped += 1;
                 // The last link points as asked; the wrist is at its region's nearest point.
                 assert!(out.angle_error < 1e-9, "{out:?}");
                 let tip = end_effector(&chain, out.pose.angles()).position;
-                assert!((tip - (wrist.nearest(w) + nalgebra::Vector2::new(a.cos(), a.sin()))).norm() < 1e-9);
+                assert!((tip - (wrist.nearest(w) + nalgebra::Vector2::new(math::cos(a), math::sin(a)))).norm() < 1e-9);
                 let s = searcher.solve(&chain, chain.start_pose(), &goal).unwrap();
                 assert_ne!(s.status, Status::Reached, "({x}, {y}, {a}) reached by searching");
             } else {

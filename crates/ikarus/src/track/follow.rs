@@ -3,6 +3,7 @@
 
 use crate::chain::Chain;
 use crate::goal::Goal;
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::skeleton::Skeleton;
 use crate::solve::{Outcome, RigTask, Solver, Status};
@@ -179,7 +180,7 @@ impl<B: TrackBody> Follower<B> {
 
 /// The squared task error of an outcome, as the solvers minimise it.
 fn task_error(opts: &TrackOptions, out: &Outcome) -> f64 {
-    out.error * out.error + (opts.solve.orientation_weight * out.angle_error).powi(2)
+    out.error * out.error + math::square(opts.solve.orientation_weight * out.angle_error)
 }
 
 /// Tracks `path` online from `start` (radians): the first sample is solved from `start`

@@ -76,6 +76,7 @@ mod rig_tests;
 #[cfg(test)]
 mod tests;
 
+use crate::math;
 use crate::number::Num;
 use thiserror::Error;
 
@@ -281,7 +282,7 @@ fn joint_step(bounds: Bounds<'_>, to: &[f64], from: &[f64]) -> f64 {
 /// The squared joint distance from `from` to `to`, radians².
 #[inline]
 fn joint_distance2(bounds: Bounds<'_>, to: &[f64], from: &[f64]) -> f64 {
-    to.iter().zip(from).enumerate().map(|(i, (&a, &b))| joint_delta(bounds, i, a, b).powi(2)).sum()
+    to.iter().zip(from).enumerate().map(|(i, (&a, &b))| math::square(joint_delta(bounds, i, a, b))).sum()
 }
 
 /// Moves every free joint of `angles` to its 2π-equivalent nearest `reference`, so that

@@ -1,6 +1,7 @@
 //! [`Path`]: the goals a tip should pass through, in order, with constructors for lines,
 //! circles and figure-8s.
 
+use crate::math;
 use crate::number::Num;
 use std::f64::consts::TAU;
 
@@ -93,7 +94,7 @@ impl Path {
         finite("cy", centre[1])?;
         positive("radius", radius)?;
         Self::sampled(samples, |t| {
-            let (s, c) = (TAU * t).sin_cos();
+            let (s, c) = math::sin_cos(TAU * t);
             [centre[0] + radius * c, centre[1] + radius * s]
         })
     }
@@ -109,7 +110,7 @@ impl Path {
         finite("cy", centre[1])?;
         positive("a", a)?;
         Self::sampled(samples, |t| {
-            let (s, c) = (TAU * t).sin_cos();
+            let (s, c) = math::sin_cos(TAU * t);
             [centre[0] + a * s, centre[1] + a * s * c]
         })
     }

@@ -10,6 +10,7 @@ use crate::closed_form;
 use crate::goal::Goal;
 use crate::kinematics::end_effector;
 use crate::limits::Bounds;
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::solve::{Outcome, Solver, Status};
 
@@ -227,7 +228,7 @@ impl Builder<'_> {
 /// the arm can follow), many steps a little over the bound cost less than one branch jump of
 /// half a turn, which counting flips alone would prefer.
 pub(super) fn flip_cost(step: f64, max_step: f64) -> f64 {
-    if is_flip(step, max_step) { (step - max_step).powi(2) } else { 0.0 }
+    if is_flip(step, max_step) { math::square(step - max_step) } else { 0.0 }
 }
 
 /// How many candidates of `rung` reach their goal.

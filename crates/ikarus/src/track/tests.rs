@@ -1,6 +1,7 @@
 //! Unit tests of the search: the plan's cost against brute force on two-link chains.
 
 use crate::closed_form::two_link;
+use crate::math;
 use crate::rng::SplitMix64;
 use crate::{Chain, Goal, LimitMode, Link, SolveOptions};
 
@@ -38,7 +39,7 @@ fn plan_matches_brute_force_on_two_links() {
         for _ in 0..n {
             r = (r + rng.range(-0.3, 0.3)).clamp(inner + 0.05, reach - 0.05);
             a += rng.range(-0.5, 0.5);
-            goals.push(Goal::position(r * a.cos(), r * a.sin()).unwrap());
+            goals.push(Goal::position(r * math::cos(a), r * math::sin(a)).unwrap());
         }
         let path = Path::new(goals.clone()).unwrap();
         let options = TrackOptions {

@@ -9,6 +9,8 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::math;
+
 /// A point or vector.
 pub(crate) type P = [f64; 2];
 
@@ -34,7 +36,7 @@ pub(crate) fn cross(a: P, b: P) -> f64 {
 }
 #[inline]
 pub(crate) fn norm(a: P) -> f64 {
-    a[0].hypot(a[1])
+    math::hypot(a[0], a[1])
 }
 #[inline]
 pub(crate) fn dist(a: P, b: P) -> f64 {
@@ -42,7 +44,7 @@ pub(crate) fn dist(a: P, b: P) -> f64 {
 }
 #[inline]
 pub(crate) fn unit(t: f64) -> P {
-    let (s, c) = t.sin_cos();
+    let (s, c) = math::sin_cos(t);
     [c, s]
 }
 /// `a` turned by the angle whose cosine and sine are `cs`.
@@ -52,7 +54,7 @@ pub(crate) fn rotate(a: P, cs: P) -> P {
 }
 #[inline]
 pub(crate) fn angle_of(a: P) -> f64 {
-    a[1].atan2(a[0])
+    math::atan2(a[1], a[0])
 }
 
 /// Where a boundary piece came from: the pose family whose tip traces it, one level down.
@@ -128,7 +130,7 @@ impl Bbox {
     pub(crate) fn distance(&self, p: P) -> f64 {
         let dx = (self.x0 - p[0]).max(p[0] - self.x1).max(0.0);
         let dy = (self.y0 - p[1]).max(p[1] - self.y1).max(0.0);
-        dx.hypot(dy)
+        math::hypot(dx, dy)
     }
 }
 

@@ -8,6 +8,7 @@ use nalgebra::Point2;
 use super::{BoundarySegment, Membership, Region};
 use crate::chain::{Chain, Link};
 use crate::kinematics::end_effector;
+use crate::math;
 use crate::rng::SplitMix64 as Rng;
 
 use crate::fixtures::{limited_arm as chain, seed_arm_limited as seed, seven_link_arm as seven};
@@ -35,8 +36,8 @@ fn assert_closed(r: &Region) {
     let ends = |s: &BoundarySegment| match *s {
         BoundarySegment::Line { from, to } => (from, to),
         BoundarySegment::Arc { center, radius, from_angle, to_angle } => (
-            center + radius * nalgebra::Vector2::new(from_angle.cos(), from_angle.sin()),
-            center + radius * nalgebra::Vector2::new(to_angle.cos(), to_angle.sin()),
+            center + radius * nalgebra::Vector2::new(math::cos(from_angle), math::sin(from_angle)),
+            center + radius * nalgebra::Vector2::new(math::cos(to_angle), math::sin(to_angle)),
         ),
     };
     for l in r.boundary() {
@@ -186,7 +187,7 @@ fn a_region_without_area_is_its_curve() {
     assert_eq!(r.classify(Point2::new(3.0, 0.0), 1e-9), Membership::Boundary);
     assert_eq!(r.classify(Point2::new(2.0, 0.0), 1e-9), Membership::Outside);
     let v = r.verdict(Point2::new(0.0, 5.0), 1e-9);
-    let corner = Point2::new(3.0 * (PI / 4.0).cos(), 3.0 * (PI / 4.0).sin());
+    let corner = Point2::new(3.0 * math::cos(PI / 4.0), 3.0 * math::sin(PI / 4.0));
     assert!((v.nearest - corner).norm() < 1e-12, "{v:?}");
     let (angles, _) = r.pose_reaching(Point2::new(0.0, 5.0));
     assert!((end_effector(&c, &angles).position - corner).norm() < 1e-12);
@@ -230,11 +231,11 @@ fn witness(links: &[(f64, f64, f64)], p: Point2<f64>) -> Option<Vec<f64>> {
     for k in 0..n {
         let (lo, hi) = (links[k].1.to_radians(), links[k].2.to_radians());
         let at = |t: f64| {
-            let (s, c) = t.sin_cos();
+            let (s, c) = math::sin_cos(t);
             Point2::new(c * q.x + s * q.y - links[k].0, -s * q.x + c * q.y)
         };
         let t = if k + 1 == n {
-            let a = q.y.atan2(q.x);
+            let a = math::atan2(q.y, q.x);
             crate::angle::nearest_equivalent_in(a, 0.5 * (lo + hi), lo, hi)
                 .unwrap_or_else(|| crate::angle::nearer_end(a, lo, hi))
         } else {

@@ -2,6 +2,7 @@
 //! options and geometry.
 
 use super::*;
+use crate::math;
 
 /// For two joints the grid is exactly the set of cells whose centre is reachable.
 #[test]
@@ -62,7 +63,7 @@ fn three_links_match_a_brute_force_reference() {
             let mut margin = f64::INFINITY;
             for j in 0..n {
                 let t1 = lo + (hi - lo) * j as f64 / (n - 1) as f64;
-                let p = [3.0 * t1.cos(), 3.0 * t1.sin()];
+                let p = [3.0 * math::cos(t1), 3.0 * math::sin(t1)];
                 let (hit, m) = reference(p, 2.0, 1.0, (t1 + r2.0, t1 + r2.1), r3, [c.x, c.y]);
                 want |= hit;
                 margin = margin.min(m);
@@ -162,7 +163,7 @@ fn known_reachable_points_are_marked() {
                 let fine = 16 * n;
                 let robust = (0..=fine).any(|j| {
                     let t1 = -PI / 4.0 + (PI / 2.0) * j as f64 / fine as f64;
-                    let p = [3.0 * t1.cos(), 3.0 * t1.sin()];
+                    let p = [3.0 * math::cos(t1), 3.0 * math::sin(t1)];
                     let (hit, margin) = reference(p, 2.0, 1.0, (t1 + r2.0, t1 + r2.1), r3, [c.x, c.y]);
                     hit && margin > step
                 });
@@ -321,8 +322,8 @@ fn degenerate_and_locked_chains() {
     .unwrap();
     let ws = sample(&locked, &options(256)).unwrap();
     // Two free joints with links 2 and |1 + e^{i 28°}|: an annulus.
-    let w = (1.0 + 28f64.to_radians().cos()).hypot(28f64.to_radians().sin());
-    let want = PI * ((2.0 + w).powi(2) - (2.0 - w).powi(2));
+    let w = math::hypot(1.0 + math::cos(28f64.to_radians()), math::sin(28f64.to_radians()));
+    let want = PI * (math::square(2.0 + w) - math::square(2.0 - w));
     assert!(((ws.area() - want) / want).abs() < 0.01, "{} vs {want}", ws.area());
     assert_eq!(ws.samples(), 1);
     assert!(ws.is_exact());

@@ -12,6 +12,7 @@ use super::{Annulus, Workspace, WorkspaceOptions, run, sample, sample_with_progr
 use crate::angle::direction as dir;
 use crate::chain::{Chain, JointLimits, Link};
 use crate::kinematics::end_effector;
+use crate::math;
 
 mod grid;
 mod parts;
@@ -90,16 +91,16 @@ fn in_range(angle: f64, lo: f64, hi: f64) -> (bool, f64) {
 /// its lever.
 fn reference(p: [f64; 2], a: f64, b: f64, r1: (f64, f64), r2: (f64, f64), q: [f64; 2]) -> (bool, f64) {
     let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-    let r = dx.hypot(dy);
+    let r = math::hypot(dx, dy);
     let rim = (r - (a + b)).abs().min((r - (a - b).abs()).abs());
     if r > a + b || r < (a - b).abs() {
         return (false, rim);
     }
-    let t = ((r * r - a * a - b * b) / (2.0 * a * b)).clamp(-1.0, 1.0).acos();
+    let t = math::acos(((r * r - a * a - b * b) / (2.0 * a * b)).clamp(-1.0, 1.0));
     let (mut hit, mut margin) = (false, rim);
     for theta in [t, -t] {
         let (in2, m2) = in_range(theta, r2.0, r2.1);
-        let psi = dy.atan2(dx) - (b * theta.sin()).atan2(a + b * theta.cos());
+        let psi = math::atan2(dy, dx) - math::atan2(b * math::sin(theta), a + b * math::cos(theta));
         let (in1, m1) = in_range(psi, r1.0, r1.1);
         margin = margin.min(m2 * b).min(m1 * r);
         hit |= in1 && in2;

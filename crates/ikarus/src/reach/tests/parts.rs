@@ -1,6 +1,7 @@
 //! The pieces: sample plans, sectors, the reduced chain, the annulus.
 
 use super::*;
+use crate::math;
 
 /// The joint-space samples: grids with both ends of a limited range, balanced 2D grids, and
 /// the warped R_d sequence within its ranges with the special angles at the intended rate.
@@ -69,7 +70,7 @@ fn sectors_agree_with_atan2() {
             let sector = Sector::new(lo, span);
             let v = dir(rng.range(-PI, PI));
             let scale = rng.range(0.1, 10.0);
-            let (want, margin) = in_range(v[1].atan2(v[0]), lo, lo + span);
+            let (want, margin) = in_range(math::atan2(v[1], v[0]), lo, lo + span);
             if margin < 1e-9 {
                 continue;
             }
@@ -109,7 +110,7 @@ fn reduced_chain_matches_forward_kinematics() {
         let mut phi = reduced.phi0;
         for (seg, theta) in reduced.segments.iter().zip(movable) {
             phi += theta;
-            let (s, c) = phi.sin_cos();
+            let (s, c) = math::sin_cos(phi);
             x += c * seg.w[0] - s * seg.w[1];
             y += s * seg.w[0] + c * seg.w[1];
             phi += seg.gamma;

@@ -21,6 +21,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::Algebra;
 use super::kernels::{cholesky_solve, dot, pinv_apply, symmetric_eigen, transpose_apply};
+use crate::math;
 use crate::solve::SolveOptions;
 use crate::solve::step::Rule;
 
@@ -179,7 +180,7 @@ impl Dynamic {
                 if row + 2 > k {
                     break;
                 }
-                sum += v(row).hypot(v(row + 1));
+                sum += math::hypot(v(row), v(row + 1));
                 if b == 3 && row + 2 < k {
                     sum += v(row + 2).abs();
                 }

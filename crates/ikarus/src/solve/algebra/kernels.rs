@@ -2,6 +2,8 @@
 //! the [`Dynamic`](super::dynamic::Dynamic) task space: nalgebra's decompositions of dynamic
 //! size allocate their results, and these run every iteration of a skeleton solve.
 
+use crate::math;
+
 /// Solves `(A + shift·I) y = v` for symmetric `A` by a Cholesky factorisation into `l`
 /// (`k × k`, overwritten; the factor is stored by rows). Returns `false`, leaving `y`
 /// unspecified, if `A + shift·I` is not positive definite (to rounding).
@@ -92,9 +94,9 @@ pub(super) fn symmetric_eigen(k: usize, a: &[f64], w: &mut [f64], values: &mut [
                     }
                     let (app, aqq) = (w[p + p * k], w[q + q * k]);
                     let theta = (aqq - app) / (2.0 * apq);
-                    let t = theta.signum() / (theta.abs() + theta.hypot(1.0));
+                    let t = theta.signum() / (theta.abs() + math::hypot(theta, 1.0));
                     let t = if theta == 0.0 { 1.0 } else { t };
-                    let c = 1.0 / t.hypot(1.0);
+                    let c = 1.0 / math::hypot(t, 1.0);
                     let s = t * c;
                     // W ← Jᵀ W J on rows/columns p and q.
                     for i in 0..k {

@@ -8,6 +8,7 @@ use nalgebra::Vector2;
 
 use crate::angle::{self, wrap_angle};
 use crate::chain::JointLimits;
+use crate::math;
 
 /// Newton/bisection steps in the one-dimensional minimisation; bisection alone shrinks a
 /// bracket of 2π below 4ε in about 55.
@@ -28,16 +29,16 @@ enum Aim {
 impl Aim {
     fn new(lever: Vector2<f64>, to_goal: Vector2<f64>, turn: Option<f64>, w2: f64, tiny: f64) -> Self {
         // `hypot` rather than `norm`: no overflow for far-off goals.
-        let (lt, lg) = (lever.x.hypot(lever.y), to_goal.x.hypot(to_goal.y));
+        let (lt, lg) = (math::hypot(lever.x, lever.y), math::hypot(to_goal.x, to_goal.y));
         // The angle from one lever to the other; where their cross or dot product overflows
         // (lengths beyond 1e154, and atan2(∞, ∞) is π/4), on the levers scaled to order one.
         let angle = |a: Vector2<f64>, b: Vector2<f64>| {
             let (cross, dot) = (a.perp(&b), a.dot(&b));
             if cross.is_finite() && dot.is_finite() {
-                cross.atan2(dot)
+                math::atan2(cross, dot)
             } else {
                 let (a, b) = (a / a.amax(), b / b.amax());
-                a.perp(&b).atan2(a.dot(&b))
+                math::atan2(a.perp(&b), a.dot(&b))
             }
         };
         let toward = (lt > tiny && lg > tiny).then(|| angle(lever, to_goal)).filter(|t| t.is_finite());
@@ -65,7 +66,7 @@ impl Aim {
             Aim::Unimodal(mu) => wrap_angle(delta - mu).abs(),
             Aim::Blend { toward, turn, k } => {
                 let e = wrap_angle(delta - turn);
-                -(delta - toward).cos() + 0.5 * k * e * e
+                -math::cos(delta - toward) + 0.5 * k * e * e
             }
         }
     }
@@ -126,12 +127,12 @@ fn blend_minima(toward: f64, turn: f64, k: f64) -> (f64, Option<f64>) {
     let c = wrap_angle(toward - turn);
     // Solve the mirror image for c < 0.
     let (sign, c) = if c < 0.0 { (-1.0, -c) } else { (1.0, c) };
-    let slope = |e: f64| (e - c).sin() + k * e;
+    let slope = |e: f64| math::sin(e - c) + k * e;
     let global = root(c, k, 0.0, c, c / (1.0 + k));
     // F' is concave on [−π, c − π] and peaks at c − π − acos k (when that is inside): a second
     // minimum is where F' crosses zero upwards left of the peak.
-    let second = if k < 1.0 && k.acos() < c {
-        let peak = c - PI - k.acos();
+    let second = if k < 1.0 && math::acos(k) < c {
+        let peak = c - PI - math::acos(k);
         (slope(-PI) < 0.0 && slope(peak) > 0.0).then(|| root(c, k, -PI, peak, 0.5 * (peak - PI)))
     } else {
         None
@@ -145,7 +146,7 @@ fn blend_minima(toward: f64, turn: f64, k: f64) -> (f64, Option<f64>) {
 fn root(c: f64, k: f64, mut lo: f64, mut hi: f64, start: f64) -> f64 {
     let mut e = start;
     for _ in 0..MAX_ROOT_STEPS {
-        let (s, co) = (e - c).sin_cos();
+        let (s, co) = math::sin_cos(e - c);
         let g = s + k * e;
         if g == 0.0 {
             return e;
@@ -177,7 +178,7 @@ mod tests {
     /// `d − turn` weighted by `w` (plain arithmetic: the grids below evaluate it millions of
     /// times in debug builds).
     fn turn_cost(lever: Vector2<f64>, to_goal: Vector2<f64>, turn: Option<f64>, w: f64, d: f64) -> f64 {
-        let (s, c) = d.sin_cos();
+        let (s, c) = math::sin_cos(d);
         let (x, y) = (c * lever.x - s * lever.y - to_goal.x, s * lever.x + c * lever.y - to_goal.y);
         let o = turn.map_or(0.0, |t| w * wrap_angle(d - t));
         x * x + y * y + o * o
@@ -219,7 +220,7 @@ mod tests {
         for case in 0..total {
             let lever = Vector2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
             let to_goal = Vector2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
-            let toward = lever.perp(&to_goal).atan2(lever.dot(&to_goal));
+            let toward = math::atan2(lever.perp(&to_goal), lever.dot(&to_goal));
             let turn = match case % 3 {
                 0 => None,
                 1 => Some(rng.range(-PI, PI)),
