@@ -46,8 +46,8 @@ impl Problem {
 /// endpoints), under the server's default limits: the answer's text (JSON; the arm file's TOML
 /// for `arm/toml`), or the [`Problem`] the server would answer.
 pub fn answer(path: &str, body: &str) -> Result<String, Problem> {
-    let endpoint = Endpoint::from_path(path)
-        .ok_or_else(|| Problem { status: 404, message: format!("no endpoint {path:?}") })?;
+    let endpoint =
+        Endpoint::from_path(path).ok_or_else(|| Problem { status: 404, message: format!("no endpoint {path:?}") })?;
     let reply = edge::call(endpoint, body.as_bytes(), &Limits::default(), &Interrupt::new())
         .map_err(|p| Problem { status: p.status, message: p.message })?;
     String::from_utf8(reply.body)
@@ -93,7 +93,8 @@ mod tests {
 
     #[test]
     fn answers_are_the_servers_and_refusals_keep_status_and_message() {
-        let solved: serde_json::Value = serde_json::from_str(&answer("solve", r#"{"goal":{"x":2,"y":3}}"#).unwrap()).unwrap();
+        let solved: serde_json::Value =
+            serde_json::from_str(&answer("solve", r#"{"goal":{"x":2,"y":3}}"#).unwrap()).unwrap();
         assert_eq!(solved["status"], "reached");
         assert_eq!(answer("/api/arm/default", "").unwrap(), answer("arm/default", "ignored").unwrap());
 
