@@ -132,12 +132,14 @@ test("the files: arm and rig files read and written as the server does", async (
     ["rig/parse", puppet, "application/toml"],
     ["rig/parse", hand, "application/toml"],
     ["rig/parse", "[[bones]]\nname = 3\n", "application/toml"],
-    ["arm/toml", JSON.stringify({ arm: limited }), "application/json"],
+    ["arm/toml", JSON.stringify({ arm: { base: [0.5, -1], ...limited } }), "application/json"],
+    ["arm/toml", JSON.stringify({ arm: limited }), "application/json"], // no base: refused
   ];
   for (const [path, body, type] of cases) {
     const [n, w] = [await native(path, body, type), wasm(path, body)];
     assert.deepEqual(w, n, `${path} ${body.slice(0, 40)}`);
   }
+  assert.equal(wasm("arm/toml", JSON.stringify({ arm: { base: [0.5, -1], ...limited } })).status, 200);
   // A bad file is the answer's `problem`, not a refusal.
   assert.match(ikarus.parseArm("[[links]]\nlength = -1\n").problem, /length/);
   assert.equal(ikarus.parseArm(seven).arm.links.length, 7);
@@ -207,6 +209,6 @@ test("the JS API's functions return the API's objects; the CLI gives the same an
   assert.ok(ikarus.rigs().rigs.some((r) => r.name === "puppet"));
   assert.ok(ikarus.meta().methods.length >= 1);
   assert.equal(ikarus.parseRig(puppet).rig.name, "puppet");
-  assert.match(ikarus.armToml(limited), /\[\[links\]\]/);
+  assert.match(ikarus.armToml({ base: [0, 0], ...limited }), /\[\[links\]\]/);
   assert.equal(ikarus.version(), JSON.parse((await native("health")).text).version);
 });
