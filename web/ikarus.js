@@ -13,8 +13,8 @@
 //
 // A refused request throws an IkarusError: `.status` is the HTTP status the server answers for
 // it (400 malformed JSON, 422 a bad value) and `.message` its one-line message, naming the field
-// and the value (`goal.x: must be a finite number, got "a"`). Calls are synchronous once
-// `init()` has resolved; they run on the calling thread.
+// and the value (`request body: goal.y: invalid type: string "a", expected f64 at line 1 column
+// 22`). Calls are synchronous once `init()` has resolved; they run on the calling thread.
 
 import wasmInit, * as wasm from "./ikarus_wasm.js";
 
@@ -75,9 +75,10 @@ export function call(path, body = "") {
 const json = (path, request) => JSON.parse(call(path, request === undefined ? "" : JSON.stringify(request)));
 
 /**
- * Solves a goal: `{goal: {x, y, angle_deg?}, arm?, options?}` → `{status, angles_deg, joints,
- * tip, error, iterations, restarts, solve_us, frames, …}` (POST /api/solve). With `rig` instead
- * of `arm` it solves a skeleton (README: "The API with rigs").
+ * Solves a goal: `{goal: {x, y, angle_deg?}, arm?, start_deg?, options?}` → `{status,
+ * iterations, restarts, error, end_effector, angles_deg, joints, frames, solve_us, …}` (POST
+ * /api/solve). With `rig` and `goals` instead of `arm` and `goal` it solves a skeleton (README:
+ * "The API with rigs").
  * @param {object} request
  * @returns {object}
  */
@@ -100,16 +101,17 @@ export const animate = (request) => json("animate", request);
 export const track = (request) => json("track", request);
 
 /**
- * Where the tip can go: `{arm?, options?, grid?, resolution?, samples?}` → the exact region's
- * `boundary` (and the sampled grid when asked) (POST /api/workspace).
+ * Where the tip can go: `{arm?, limits?}` → the exact region (`area`, `boundary`, `exact:
+ * true`); with `grid: true` or any of `resolution`, `samples`, `seed`, the sampled grid instead
+ * (POST /api/workspace).
  * @param {object} request
  * @returns {object}
  */
 export const workspace = (request) => json("workspace", request);
 
 /**
- * Whether a goal can be reached: `{goal, arm?, options?}` → `{reachable, distance, nearest, …}`
- * (POST /api/reach).
+ * Whether a point can be reached: `{point: [x, y], arm?, limits?, tolerance?}` → `{reachable,
+ * distance, nearest}`; with `points: [[x, y], …]`, an array of those (POST /api/reach).
  * @param {object} request
  * @returns {object}
  */
