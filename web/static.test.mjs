@@ -2,7 +2,8 @@
 // by a plain static file server (python3 -m http.server on loopback) with no ikarus server
 // running: the page says it runs in the browser, asks no /api/ path of anyone, and the solver
 // answers in the page: a clicked goal moves the arm there, following the pointer answers every
-// move, a drawn path is traced, the reachable area is shaded; the motion-GIF button says it needs
+// move, a drawn path is traced, the reachable area is shaded, the shipped puppet follows a dragged
+// hand; the motion-GIF button says it needs
 // `ikarus serve`. Afterwards a native `ikarus serve` answers the page's own requests, and its
 // answers must equal the page's, number for number (the WebAssembly module runs the server's
 // code). Prints the solves per second measured in the page. Screenshots: target/e2e/static-*.png.
@@ -144,6 +145,26 @@ test("the static build runs the playground with no ikarus server", async () => {
     });
     await page.screenshot({ path: join(artifacts, "static-workspace.png") });
 
+    // A shipped rig (GET /api/rigs, answered by the module): the puppet, its right hand dragged
+    // up a little; the rig follows, solved in the page.
+    const bodies = await page.evaluate(() => [...document.getElementById("body-kind").options].map((o) => o.value));
+    assert.ok(bodies.includes("rig:puppet") && bodies.includes("rig:hand"), `the Body list: ${bodies}`);
+    await page.evaluate(() => window.ikarus.rigs.use("rig:puppet"));
+    const hand = await page.evaluate(() => {
+      const r = window.ikarus.state.rig;
+      const tip = r.tips[r.rig.bones.findIndex((b) => b.name === "right_hand")];
+      return { from: window.ikarus.toClient(...tip), to: window.ikarus.toClient(tip[0] + 0.05, tip[1] + 0.1) };
+    });
+    await page.mouse.move(...hand.from);
+    await page.mouse.down();
+    await page.mouse.move(...hand.to, { steps: 6 });
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.rigs.settled() && window.ikarus.state.rig.answer, null, { timeout: 15000 });
+    seen.rig = await page.evaluate(() => ({ request: window.ikarus.state.rig.request, answer: window.ikarus.state.rig.answer }));
+    assert.equal(seen.rig.answer.status, "reached", JSON.stringify(seen.rig.answer.effectors));
+    await page.screenshot({ path: join(artifacts, "static-rig.png") });
+    await page.evaluate(() => window.ikarus.rigs.use("arm"));
+
     // Solves per second in the page: the seed arm's solves through the JS API on the page's
     // thread (JSON in, JSON out), and through api.js, the page's own way (the worker: a message
     // each way). Timed over the whole run: the page's clock is coarse (100 µs) in Chromium.
@@ -201,6 +222,7 @@ test("the static build runs the playground with no ikarus server", async () => {
     same("the click's pose (solve)", solved.angles_deg, seen.click.pose);
     same("the drawn path (track)", await post("track", seen.traced.request), seen.traced.answer);
     same("the reachable area (workspace)", await post("workspace", seen.workspace.request), seen.workspace.answer);
+    same("the dragged rig (solve)", { ...(await post("solve", seen.rig.request)), solve_us: 0 }, { ...seen.rig.answer, solve_us: 0 });
     assert.ok(differ.length === 0, differ.join("\n"));
   } finally {
     child.kill();
