@@ -83,8 +83,13 @@ pub fn default_arm() -> Arm {
 /// unless they say otherwise. `max_iterations` and `restarts` are held to `limits`. A bad value
 /// is a 422 whose message names the setting and the value (`lambda = -1: …`).
 pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveOptions, Problem> {
-    let table: SolverSettings = crate::api::parse_json(options.as_bytes())
-        .map_err(|p| Problem { message: p.message.replacen("request body: ", "options: ", 1), ..p })?;
+    // A value of the wrong kind is named by its path (`method: unknown variant …`), without
+    // the position in a JSON text the caller did not write.
+    let table: SolverSettings = crate::api::parse_json(options.as_bytes()).map_err(|p| {
+        let message = p.message.strip_prefix("request body: ").unwrap_or(&p.message);
+        let message = message.rfind(" at line ").map_or(message, |at| &message[..at]);
+        Problem { message: message.to_owned(), ..p }
+    })?;
     let arm = &arm.0;
     crate::api::jobs::settings_options(
         &arm.solver,
@@ -99,7 +104,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
 /// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
 /// --goal-angle DEG` makes it.
 pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
-    crate::goals::make_goal(x, y, angle_deg).map_err(|m| Problem::invalid(format!("goal: {m}")))
+    crate::goals::make_goal(x, y, angle_deg).map_err(Problem::invalid)
 }
 
 /// The command line's name of a status: `reached`, `unreachable`, `stalled`,
@@ -137,7 +142,12 @@ mod tests {
         assert_eq!(e.status, 422);
         assert!(e.message.starts_with("lambda = -1"), "{}", e.message);
         let e = solve_options(&arm, r#"{"lambada": 1}"#, &limits).unwrap_err();
-        assert!(e.message.contains("lambada"), "{}", e.message);
+        assert!(e.message.starts_with("lambada: unknown field `lambada`"), "{}", e.message);
+        let e = solve_options(&arm, r#"{"method": "nope"}"#, &limits).unwrap_err();
+        assert!(e.message.starts_with("method: unknown variant `nope`"), "{}", e.message);
+        assert!(!e.message.contains("line 1"), "{}", e.message);
+        let e = goal(1.0, f64::NAN, None).unwrap_err();
+        assert!(e.message.starts_with("goal.y"), "{}", e.message);
         let e = solve_options(&arm, r#"{"rates": [1, 2]}"#, &limits).unwrap_err();
         assert!(e.message.starts_with("rates: expected 3 values"), "{}", e.message);
         let ok = solve_options(&arm, "{}", &limits).unwrap();
