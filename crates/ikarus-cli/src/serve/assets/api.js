@@ -1,5 +1,12 @@
-// The JSON API of `ikarus serve` (same origin): fetch wrappers that turn an error answer into a
-// Notice carrying the server's one-line message.
+// The JSON API of ikarus, from one of two backends: `ikarus serve` (same origin, fetch), or the
+// WebAssembly module of the static build (`bash web/build DIR`), which runs the server's own
+// code in the page: the same requests, the same answers, the same one-line messages. The static
+// build's index.html says so (<meta name="ikarus-backend" content="wasm">, written by web/build);
+// the page then starts ./ikarus-worker.js, a module worker running ./ikarus.js, and if it loads
+// and initialises, every JSON endpoint goes through it (no network round trip); otherwise, and
+// always under `ikarus serve` (whose page has no such tag, so nothing asks it for a file it does
+// not have), requests are fetched. Pictures (/api/render) need the server. The other modules
+// see only the functions below; an error answer becomes a Notice carrying the one-line message.
 
 /**
  * A failure meant for the reader rather than a fault of the page: the server's error message
@@ -36,16 +43,90 @@ export function forPeople(message) {
     .replace(/ :/g, ":");
 }
 
+/**
+ * The WebAssembly solver when the page is the static build and its module loads: a module Web
+ * Worker (ikarus-worker.js, which imports ikarus.js) answering `ask(path, body)` with
+ * {status, text}, one request at a time in order, off the page's thread so that a long job does
+ * not freeze the page. Else null: the server answers.
+ */
+const wasm =
+  typeof document !== "undefined" && document.querySelector('meta[name="ikarus-backend"][content="wasm"]') ? startWorker() : Promise.resolve(null);
+
+function startWorker() {
+  return new Promise((resolve) => {
+    const fail = (why) => {
+      console.warn("ikarus: the WebAssembly module did not load; asking the server instead:", why);
+      resolve(null);
+    };
+    let worker;
+    try {
+      worker = new Worker(new URL("./ikarus-worker.js", import.meta.url), { type: "module" });
+    } catch (e) {
+      fail(e);
+      return;
+    }
+    const waiting = new Map();
+    let next = 0;
+    worker.onerror = (e) => fail(e.message || e);
+    worker.onmessage = ({ data }) => {
+      if ("ready" in data) {
+        worker.onerror = null;
+        if (!data.ready) return fail(data.error);
+        resolve({
+          ask: (path, body) =>
+            new Promise((done) => {
+              const id = next++;
+              waiting.set(id, done);
+              worker.postMessage({ id, path, body });
+            }),
+        });
+        return;
+      }
+      waiting.get(data.id)(data);
+      waiting.delete(data.id);
+    };
+  });
+}
+
+const PICTURES_NEED_SERVER = "Pictures (PNG and GIF from /api/render) are drawn by `ikarus serve`; this page runs without it";
+
+/**
+ * The module's answer to `path` as a fetch Response: 200 with the answer's text, or the status
+ * and `{"error": message}` body the server answers for a refused request.
+ */
+async function wasmResponse(m, path, body) {
+  const answer = (status, text, type = "application/json") => new Response(text, { status, headers: { "content-type": type } });
+  if (path === "/api/render") return answer(501, JSON.stringify({ error: PICTURES_NEED_SERVER }));
+  const { status, text } = await m.ask(path, typeof body === "string" ? body : "");
+  return answer(status, text, status === 200 && path === "/api/arm/toml" ? "application/toml" : "application/json");
+}
+
+/** fetch(path, init) through the backend: the module in the static build, else the server. */
+async function send(path, init = {}) {
+  const m = await wasm;
+  return m ? wasmResponse(m, path, init.body) : fetch(path, init);
+}
+
+/**
+ * Which backend answers: `{kind: "wasm" | "server", label, pictures}` (pictures: whether
+ * /api/render can be asked).
+ */
+export async function backend() {
+  return (await wasm)
+    ? { kind: "wasm", label: "running in your browser (WebAssembly)", pictures: false }
+    : { kind: "server", label: "running on ikarus serve", pictures: true };
+}
+
 /** GETs `path` and resolves with its JSON; rejects with a Notice on an error answer. */
 export async function get(path) {
-  const res = await fetch(path);
+  const res = await send(path);
   if (!res.ok) throw await failure(path, res);
   return res.json();
 }
 
 /** POSTs `body` as JSON to `path`; resolves with the JSON answer, or a Blob when `as` is "blob". */
 export async function post(path, body, as = "json") {
-  const res = await fetch(path, {
+  const res = await send(path, {
     method: "POST",
     headers: { "content-type": "application/json" },
     body: JSON.stringify(body),
@@ -54,10 +135,17 @@ export async function post(path, body, as = "json") {
   return as === "blob" ? res.blob() : res.json();
 }
 
+/** POSTs `body` (text of content type `type`) to `path` and resolves with the answer's text; a refusal is a Notice with the server's message. */
+export async function postText(path, body, type) {
+  const res = await send(path, { method: "POST", headers: { "content-type": type }, body });
+  if (res.ok) return res.text();
+  throw await failure(path, res);
+}
+
 /** The names and defaults of the select lists: methods (with their limit modes), limit modes, eases. */
 export const meta = () => get("/api/meta");
 
-/** The server's default arm, in the arm file's shape. */
+/** The default arm (the seed arm), in the arm file's shape. */
 export const defaultArm = () => get("/api/arm/default");
 
 export const solve = (body) => post("/api/solve", body);
@@ -65,5 +153,5 @@ export const animate = (body) => post("/api/animate", body);
 export const workspace = (body) => post("/api/workspace", body);
 /** The tip along a path (`ikarus track`): per-sample poses and a summary with the flips. */
 export const track = (body) => post("/api/track", body);
-/** A picture (PNG, SVG or GIF) as a Blob. */
+/** A picture (PNG, SVG or GIF) as a Blob; only from `ikarus serve` (backend().pictures). */
 export const render = (body) => post("/api/render", body, "blob");

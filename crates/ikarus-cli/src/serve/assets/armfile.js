@@ -2,24 +2,12 @@
 // POST /api/arm/parse, save the page's arm as one through POST /api/arm/toml, and keep the last
 // arm across reloads (localStorage).
 
-import { Notice, forPeople } from "./api.js";
+import { Notice, forPeople, postText } from "./api.js";
 import { saveBlob } from "./files.js";
 
-const KEY = "ikarus.arm";
+export { postText };
 
-/** POSTs `body` to `path` and resolves with the answer's text; a refusal is a Notice with the server's message. */
-export async function postText(path, body, type) {
-  const res = await fetch(path, { method: "POST", headers: { "content-type": type }, body });
-  if (res.ok) return res.text();
-  let message = `${path}: HTTP ${res.status}`;
-  try {
-    const e = JSON.parse(await res.text());
-    if (e && e.error) message = e.error;
-  } catch (_) {
-    /* not JSON: keep the status line */
-  }
-  throw new Notice(forPeople(message));
-}
+const KEY = "ikarus.arm";
 
 /** The page's arm from arm-file text; a bad file rejects with a Notice of the CLI's one-line error. */
 export async function parseArm(text) {

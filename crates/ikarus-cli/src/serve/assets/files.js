@@ -102,4 +102,11 @@ export function wireDownloads(state, showError, duration) {
     if (anim) saveBlob(new Blob([framesCsv(anim)], { type: "text/csv" }), "ikarus-frames.csv");
   });
   for (const format of ["png", "svg", "gif"]) $(`dl-${format}`).addEventListener("click", () => renderFigure(format));
+  // The GIF is rendered by the server: without one (the static build) the button says so.
+  api.backend().then((b) => {
+    if (b.pictures) return;
+    const gif = $("dl-gif");
+    gif.disabled = true;
+    gif.title = "needs `ikarus serve`: the GIF is rendered by the server (PNG and SVG are drawn here)";
+  });
 }

@@ -626,6 +626,11 @@ function wire() {
 
 async function init() {
   wire();
+  // Where the solver runs, under the controls and as body[data-backend] ("server" or "wasm").
+  api.backend().then((b) => {
+    $("backend").textContent = b.label;
+    document.body.dataset.backend = b.kind;
+  });
   try {
     const [meta, arm] = await Promise.all([api.meta(), api.defaultArm(), rigs.load()]);
     state.meta = meta;

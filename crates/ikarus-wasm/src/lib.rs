@@ -1,0 +1,110 @@
+//! ikarus in the browser: the JSON API of `ikarus serve` compiled to WebAssembly.
+//!
+//! There is one entry point, [`call`], and it is the server's: it hands the endpoint and the
+//! request body to [`ikarus_cli::edge::call`], the function behind `ikarus serve`'s handlers, so
+//! every answer is the server's bytes for the same request (the same shapes, the same numbers,
+//! the same one-line message and status for a bad request). Nothing here parses requests or
+//! shapes answers. `web/build` compiles this crate for `wasm32-unknown-unknown` and runs
+//! `wasm-bindgen --target web`; `web/ikarus.js` is the small JavaScript API over it.
+//!
+//! Natively the crate is an ordinary library (so that `cargo test --workspace` checks it on a
+//! machine without the wasm target); its tests call [`answer`], which [`call`] wraps.
+
+use std::sync::Mutex;
+
+use ikarus::Interrupt;
+use ikarus_cli::edge::{self, Endpoint, Limits};
+use wasm_bindgen::prelude::*;
+
+/// A refused request, as thrown to JavaScript: the HTTP status `ikarus serve` answers for it
+/// (400 malformed JSON, 404 no such endpoint, 422 a bad value, 500 internal) and its one-line
+/// message, the text of the server's `{"error": …}`.
+#[wasm_bindgen]
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    status: u16,
+    message: String,
+}
+
+#[wasm_bindgen]
+impl Problem {
+    /// The HTTP status the server answers for this request.
+    #[wasm_bindgen(getter)]
+    pub fn status(&self) -> u16 {
+        self.status
+    }
+
+    /// The one-line message (the server's `{"error": …}`).
+    #[wasm_bindgen(getter)]
+    pub fn message(&self) -> String {
+        self.message.clone()
+    }
+}
+
+/// The answer of `path` (`"solve"`, `"/api/solve"`, `"arm/default"`, …) to `body` (the request's
+/// JSON, or an arm or rig file's TOML text for `arm/parse` and `rig/parse`; ignored by the GET
+/// endpoints), under the server's default limits: the answer's text (JSON; the arm file's TOML
+/// for `arm/toml`), or the [`Problem`] the server would answer.
+pub fn answer(path: &str, body: &str) -> Result<String, Problem> {
+    let endpoint =
+        Endpoint::from_path(path).ok_or_else(|| Problem { status: 404, message: format!("no endpoint {path:?}") })?;
+    let reply = edge::call(endpoint, body.as_bytes(), &Limits::default(), &Interrupt::new())
+        .map_err(|p| Problem { status: p.status, message: p.message })?;
+    String::from_utf8(reply.body)
+        .map_err(|e| Problem { status: 500, message: format!("{}: the answer is not text: {e}", endpoint.path()) })
+}
+
+/// [`answer`] for JavaScript: returns the answer's text, throws a [`Problem`].
+#[wasm_bindgen]
+pub fn call(path: &str, body: &str) -> Result<String, Problem> {
+    answer(path, body)
+}
+
+/// The version of ikarus this module was built from (the crate version, as `/api/health` says).
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_owned()
+}
+
+/// The message of the last panic, kept by the hook that [`start`] installs: on wasm32 a panic
+/// aborts (the JavaScript side sees only `RuntimeError: unreachable`), so `web/ikarus.js` asks
+/// for it to say what went wrong.
+static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
+
+/// Run once when the module is initialised: keep each panic's message for [`last_panic`].
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| {
+        if let Ok(mut last) = LAST_PANIC.lock() {
+            *last = Some(info.to_string());
+        }
+    }));
+}
+
+/// The message of the last panic (with its place in the source), if there was one.
+#[wasm_bindgen]
+pub fn last_panic() -> Option<String> {
+    LAST_PANIC.lock().ok().and_then(|last| last.clone())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn answers_are_the_servers_and_refusals_keep_status_and_message() {
+        let solved: serde_json::Value =
+            serde_json::from_str(&answer("solve", r#"{"goal":{"x":2,"y":3}}"#).unwrap()).unwrap();
+        assert_eq!(solved["status"], "reached");
+        assert_eq!(answer("/api/arm/default", "").unwrap(), answer("arm/default", "ignored").unwrap());
+
+        let malformed = answer("solve", "{").unwrap_err();
+        assert_eq!(malformed.status, 400, "{malformed:?}");
+        let bad = answer("solve", r#"{"goal":{"x":2,"y":3},"options":{"tolerance":0}}"#).unwrap_err();
+        assert_eq!(bad.status, 422);
+        assert_eq!(bad.message, "options.tolerance = 0: must be a finite number greater than 0");
+
+        let nowhere = answer("nowhere", "{}").unwrap_err();
+        assert_eq!((nowhere.status, nowhere.message.as_str()), (404, r#"no endpoint "nowhere""#));
+    }
+}

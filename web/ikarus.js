@@ -1,0 +1,150 @@
+// ikarus in the browser (or in node): the JSON API of `ikarus serve` without a server. A plain
+// ES module, no bundler: it wraps the module that `wasm-bindgen --target web` writes
+// (ikarus_wasm.js and ikarus_wasm_bg.wasm, beside this file in the directory `bash web/build DIR`
+// fills). Every function takes and returns plain objects in the API's JSON shapes (README:
+// "`ikarus serve` (API)"); the answers are the server's bytes for the same request, because the
+// module runs the server's own code (`ikarus_cli::edge::call`).
+//
+//   import * as ikarus from "./ikarus.js";
+//   await ikarus.init();
+//   const answer = ikarus.solve({ goal: { x: 2, y: 3 } });   // the seed arm, `ikarus solve`'s settings
+//   answer.status;                                            // "reached"
+//   answer.angles_deg;                                        // [8.4…, 85.7…, 51.4…]
+//
+// A refused request throws an IkarusError: `.status` is the HTTP status the server answers for
+// it (400 malformed JSON, 422 a bad value) and `.message` its one-line message, naming the field
+// and the value (`request body: goal.y: invalid type: string "a", expected f64 at line 1 column
+// 22`). Calls are synchronous once `init()` has resolved; they run on the calling thread.
+
+import wasmInit, * as wasm from "./ikarus_wasm.js";
+
+/** A request the module refused, or a failure inside it: the server's status and one-line message. */
+export class IkarusError extends Error {
+  /**
+   * @param {number} status  the HTTP status `ikarus serve` answers for the same request
+   * @param {string} message the one-line message (the server's `{"error": …}`)
+   */
+  constructor(status, message) {
+    super(message);
+    this.name = "IkarusError";
+    this.status = status;
+  }
+}
+
+let ready = null;
+
+/**
+ * Loads and instantiates the WebAssembly module; call (and await) once before anything else.
+ * In a page it fetches `ikarus_wasm_bg.wasm` beside this file; elsewhere (node) pass the module's
+ * bytes, a `WebAssembly.Module`, a URL or a Response.
+ * @param {BufferSource | WebAssembly.Module | URL | string | Response} [source]
+ * @returns {Promise<void>}
+ */
+export function init(source) {
+  ready ??= wasmInit(source === undefined ? undefined : { module_or_path: source }).then(() => undefined);
+  return ready;
+}
+
+/** The version of ikarus the module was built from. */
+export const version = () => wasm.version();
+
+/**
+ * The raw call: the answer's text for endpoint `path` ("solve", "/api/solve", "arm/default", …)
+ * and request `body` (JSON text; TOML text for "arm/parse" and "rig/parse"; "" for the GET
+ * endpoints). Throws an IkarusError.
+ * @param {string} path
+ * @param {string} [body]
+ * @returns {string}
+ */
+export function call(path, body = "") {
+  if (!ready) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+  try {
+    return wasm.call(path, body);
+  } catch (e) {
+    if (e instanceof wasm.Problem) {
+      const error = new IkarusError(e.status, e.message);
+      e.free();
+      throw error;
+    }
+    // A trap (a panic aborts on wasm32): say the panic's message if the module kept one.
+    const panic = e instanceof WebAssembly.RuntimeError ? wasm.last_panic() : undefined;
+    throw new IkarusError(500, panic ? `internal error: ${panic}` : `internal error: ${e && e.message ? e.message : e}`);
+  }
+}
+
+const json = (path, request) => JSON.parse(call(path, request === undefined ? "" : JSON.stringify(request)));
+
+/**
+ * Solves a goal: `{goal: {x, y, angle_deg?}, arm?, start_deg?, options?}` → `{status,
+ * iterations, restarts, error, end_effector, angles_deg, joints, frames, solve_us, …}` (POST
+ * /api/solve). With `rig` and `goals` instead of `arm` and `goal` it solves a skeleton (README:
+ * "The API with rigs").
+ * @param {object} request
+ * @returns {object}
+ */
+export const solve = (request) => json("solve", request);
+
+/**
+ * A motion to a goal: `{goal, arm?, options?, ease?, frames?, duration?, via?, …}` → `{frames:
+ * [{time, angles_deg, joints}], …}` (POST /api/animate).
+ * @param {object} request
+ * @returns {object}
+ */
+export const animate = (request) => json("animate", request);
+
+/**
+ * The tip along a path: `{path: [[x, y], …] | shape, mode: "plan" | "follow", arm?, options?,
+ * max_step_deg?, …}` → per-sample poses and a summary with the flips (POST /api/track).
+ * @param {object} request
+ * @returns {object}
+ */
+export const track = (request) => json("track", request);
+
+/**
+ * Where the tip can go: `{arm?, limits?}` → the exact region (`area`, `boundary`, `exact:
+ * true`); with `grid: true` or any of `resolution`, `samples`, `seed`, the sampled grid instead
+ * (POST /api/workspace).
+ * @param {object} request
+ * @returns {object}
+ */
+export const workspace = (request) => json("workspace", request);
+
+/**
+ * Whether a point can be reached: `{point: [x, y], arm?, limits?, tolerance?}` → `{reachable,
+ * distance, nearest}`; with `points: [[x, y], …]`, an array of those (POST /api/reach).
+ * @param {object} request
+ * @returns {object}
+ */
+export const reach = (request) => json("reach", request);
+
+/** The methods, limit modes, eases, defaults and palette the page's lists use (GET /api/meta). */
+export const meta = () => json("meta");
+
+/** The built-in seed arm, an `arm` object (GET /api/arm/default). */
+export const defaultArm = () => json("arm/default");
+
+/** The shipped rigs: `{rigs: [{name, rig}, …]}` (GET /api/rigs). */
+export const rigs = () => json("rigs");
+
+/**
+ * Reads an arm file (TOML, the format of `ikarus --arm`): `{arm}`, or `{problem}` with the
+ * CLI's one-line error for a bad file (POST /api/arm/parse).
+ * @param {string} text
+ * @returns {{arm?: object, problem?: string}}
+ */
+export const parseArm = (text) => JSON.parse(call("arm/parse", text));
+
+/**
+ * Reads a rig file (TOML, the format of `ikarus --rig`): `{rig}`, or `{problem}` (POST
+ * /api/rig/parse).
+ * @param {string} text
+ * @returns {{rig?: object, problem?: string}}
+ */
+export const parseRig = (text) => JSON.parse(call("rig/parse", text));
+
+/**
+ * The arm file (TOML text) of an `arm` object (POST /api/arm/toml).
+ * @param {object} arm
+ * @returns {string}
+ */
+export const armToml = (arm) => call("arm/toml", JSON.stringify({ arm }));

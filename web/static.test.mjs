@@ -1,0 +1,230 @@
+// The static playground (the directory `bash web/build DIR` writes) in headless Chromium, served
+// by a plain static file server (python3 -m http.server on loopback) with no ikarus server
+// running: the page says it runs in the browser, asks no /api/ path of anyone, and the solver
+// answers in the page: a clicked goal moves the arm there, following the pointer answers every
+// move, a drawn path is traced, the reachable area is shaded, the shipped puppet follows a dragged
+// hand; the motion-GIF button says it needs
+// `ikarus serve`. Afterwards a native `ikarus serve` answers the page's own requests, and its
+// answers must equal the page's, number for number (the WebAssembly module runs the server's
+// code). Prints the solves per second measured in the page. Screenshots: target/e2e/static-*.png.
+//
+//   IKARUS_WEB_DIR=DIR node --test web/static.test.mjs    (web/test runs it after web/build)
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { mkdirSync } from "node:fs";
+import { join } from "node:path";
+import { artifacts, binary, launch, openPage, startServer } from "../e2e/browser.mjs";
+
+const dir = process.env.IKARUS_WEB_DIR;
+if (!dir) throw new Error("IKARUS_WEB_DIR: the directory `bash web/build DIR` wrote (web/test sets it)");
+
+/** `python3 -m http.server` on a free loopback port serving `dir`: {child, url}. */
+function staticServer() {
+  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], {
+    stdio: ["ignore", "pipe", "pipe"],
+  });
+  child.stderr.on("data", () => {}); // its request log
+  return new Promise((resolve, reject) => {
+    let out = "";
+    const timer = setTimeout(() => reject(new Error(`no address from http.server: ${out}`)), 15000);
+    child.on("error", reject);
+    child.stdout.on("data", (chunk) => {
+      out += chunk;
+      const m = out.match(/port (\d+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, url: `http://127.0.0.1:${m[1]}` });
+      }
+    });
+  });
+}
+
+test("the static build runs the playground with no ikarus server", async () => {
+  mkdirSync(artifacts, { recursive: true });
+  const host = await staticServer();
+  const browser = await launch();
+  const seen = {}; // what the page did, checked against the native server after the browser is closed
+  try {
+    const { page, errors } = await openPage(browser);
+    const requests = [];
+    const wasmTypes = [];
+    page.on("request", (r) => requests.push(r.url()));
+    page.on("response", (r) => r.url().endsWith(".wasm") && wasmTypes.push(r.headers()["content-type"]));
+    await page.goto(`${host.url}/`);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 20000 });
+
+    // The page says where it runs; the GIF (rendered by the server) says it needs one.
+    await page.waitForFunction(() => document.body.dataset.backend, null, { timeout: 5000 });
+    assert.equal(await page.evaluate(() => document.body.dataset.backend), "wasm");
+    assert.equal(await page.textContent("#backend"), "running in your browser (WebAssembly)");
+    assert.equal(await page.isDisabled("#dl-gif"), true);
+    assert.match(await page.getAttribute("#dl-gif", "title"), /needs `ikarus serve`/);
+    assert.deepEqual(wasmTypes, ["application/wasm"]);
+    await page.locator("#backend").scrollIntoViewIfNeeded();
+    await page.screenshot({ path: join(artifacts, "static-panel.png") });
+    await page.evaluate(() => document.getElementById("panel").scrollTo(0, 0));
+    const methods = await page.evaluate(() => [...document.getElementById("method").options].map((o) => o.value));
+    assert.ok(methods.includes("lm") && methods.includes("fabrik"), `methods from meta: ${methods}`);
+
+    // Click (2, 3): the arm solves in the page and plays its motion to the goal.
+    const [cx, cy] = await page.evaluate(() => window.ikarus.toClient(2, 3));
+    await page.mouse.click(cx, cy);
+    await page.waitForFunction(() => document.body.dataset.status === "reached" && document.body.dataset.playback === "ended", null, {
+      timeout: 15000,
+    });
+    const click = await page.evaluate(() => {
+      const s = window.ikarus.state;
+      return { goal: s.goal, tip: s.joints.at(-1), pose: s.pose_deg, request: s.animationRequest, answer: s.animation, stats: document.getElementById("stats").textContent };
+    });
+    assert.ok(Math.hypot(click.goal.x - 2, click.goal.y - 3) < 0.05, `the click landed at ${JSON.stringify(click.goal)}`);
+    assert.ok(Math.hypot(click.tip[0] - click.goal.x, click.tip[1] - click.goal.y) <= 1e-5, `tip ${click.tip}`);
+    assert.match(click.stats, /^status reached · \d+ iterations?/);
+    await page.screenshot({ path: join(artifacts, "static-click.png") });
+    seen.click = click;
+
+    // Follow the pointer: a dozen moves along an arc, each answered (the pose moves each time)
+    // and the tip ends on the last point.
+    await page.check("#follow");
+    const poses = [];
+    const arc = Array.from({ length: 12 }, (_, k) => [4 * Math.cos(0.3 + 0.12 * k), 4 * Math.sin(0.3 + 0.12 * k)]);
+    for (const [x, y] of arc) {
+      const before = JSON.stringify(await page.evaluate(() => window.ikarus.state.pose_deg));
+      const [px, py] = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [x, y]);
+      await page.mouse.move(px, py);
+      await page.waitForFunction((b) => JSON.stringify(window.ikarus.state.pose_deg) !== b, before, { timeout: 5000 });
+      poses.push(await page.evaluate(() => window.ikarus.state.pose_deg.slice()));
+    }
+    await page.waitForFunction(() => !window.ikarus.state.jobs.followBusy && !window.ikarus.state.jobs.followGoal, null, { timeout: 5000 });
+    const followed = await page.evaluate(() => ({ tip: window.ikarus.state.joints.at(-1), goal: window.ikarus.state.goal, stats: document.getElementById("stats").textContent }));
+    assert.equal(poses.length, arc.length);
+    assert.ok(Math.hypot(followed.tip[0] - followed.goal.x, followed.tip[1] - followed.goal.y) < 1e-4, `followed to ${followed.tip}, goal ${JSON.stringify(followed.goal)}`);
+    assert.match(followed.stats, /^status reached · step /);
+    await page.uncheck("#follow");
+
+    // Draw a path: a stroke dragged in front of the arm, traced with plan, no flips.
+    await page.click("#draw-path");
+    const stroke = Array.from({ length: 41 }, (_, k) => [3.2 + 1.2 * Math.sin((Math.PI * k) / 20), -1.5 + (3 * k) / 40]);
+    const points = await page.evaluate((p) => p.map(([x, y]) => window.ikarus.toClient(x, y)), stroke);
+    await page.mouse.move(...points[0]);
+    await page.mouse.down();
+    for (const p of points.slice(1)) await page.mouse.move(...p);
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.state.track && "path" in window.ikarus.state.track.request && document.body.dataset.playback === "ended", null, {
+      timeout: 20000,
+    });
+    const traced = await page.evaluate(() => ({ request: window.ikarus.state.track.request, answer: window.ikarus.state.track.answer, tip: window.ikarus.state.joints.at(-1) }));
+    assert.equal(traced.request.mode, "plan");
+    assert.equal(traced.answer.summary.flips, 0);
+    assert.equal(traced.answer.summary.reached, traced.answer.summary.samples);
+    const last = traced.answer.samples.at(-1).goal;
+    assert.ok(Math.hypot(traced.tip[0] - last[0], traced.tip[1] - last[1]) < 1e-4, `tip ${traced.tip}, last goal ${last}`);
+    await page.screenshot({ path: join(artifacts, "static-path.png") });
+    seen.traced = traced;
+    await page.click("#draw-path");
+
+    // The reachable area: shaded where the canvas was blank (a point behind the base, in reach).
+    const pixel = () =>
+      page.evaluate(() => {
+        const canvas = document.getElementById("plot");
+        const [px, py] = window.ikarus.toClient(-3.5, -3.5);
+        const r = canvas.getBoundingClientRect();
+        const k = canvas.width / r.width;
+        return [...canvas.getContext("2d").getImageData(Math.round((px - r.left) * k), Math.round((py - r.top) * k), 1, 1).data];
+      });
+    const blank = await pixel();
+    await page.check("#show-workspace");
+    await page.waitForFunction(() => window.ikarus.state.workspace && window.ikarus.state.region, null, { timeout: 15000 });
+    await page.waitForTimeout(200);
+    const shaded = await pixel();
+    assert.notDeepEqual(shaded, blank, `the pixel at (-3.5, -3.5) is ${shaded} with the area shown, ${blank} without`);
+    seen.workspace = await page.evaluate(async () => {
+      const { armForRequest } = await import("./controls.js");
+      const s = window.ikarus.state;
+      return { request: { arm: armForRequest(s.arm), limits: !!s.options.limits }, answer: s.workspace };
+    });
+    await page.screenshot({ path: join(artifacts, "static-workspace.png") });
+
+    // A shipped rig (GET /api/rigs, answered by the module): the puppet, its right hand dragged
+    // up a little; the rig follows, solved in the page.
+    const bodies = await page.evaluate(() => [...document.getElementById("body-kind").options].map((o) => o.value));
+    assert.ok(bodies.includes("rig:puppet") && bodies.includes("rig:hand"), `the Body list: ${bodies}`);
+    await page.evaluate(() => window.ikarus.rigs.use("rig:puppet"));
+    const hand = await page.evaluate(() => {
+      const r = window.ikarus.state.rig;
+      const tip = r.tips[r.rig.bones.findIndex((b) => b.name === "right_hand")];
+      return { from: window.ikarus.toClient(...tip), to: window.ikarus.toClient(tip[0] + 0.05, tip[1] + 0.1) };
+    });
+    await page.mouse.move(...hand.from);
+    await page.mouse.down();
+    await page.mouse.move(...hand.to, { steps: 6 });
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.rigs.settled() && window.ikarus.state.rig.answer, null, { timeout: 15000 });
+    seen.rig = await page.evaluate(() => ({ request: window.ikarus.state.rig.request, answer: window.ikarus.state.rig.answer }));
+    assert.equal(seen.rig.answer.status, "reached", JSON.stringify(seen.rig.answer.effectors));
+    await page.screenshot({ path: join(artifacts, "static-rig.png") });
+    await page.evaluate(() => window.ikarus.rigs.use("arm"));
+
+    // Solves per second in the page: the seed arm's solves through the JS API on the page's
+    // thread (JSON in, JSON out), and through api.js, the page's own way (the worker: a message
+    // each way). Timed over the whole run: the page's clock is coarse (100 µs) in Chromium.
+    const speed = await page.evaluate(async () => {
+      const ikarus = await import("./ikarus.js");
+      const api = await import("./api.js");
+      await ikarus.init();
+      const goal = (k) => {
+        const a = (k * 2.399963) % (2 * Math.PI);
+        const r = 1.5 + (k % 7) * 0.55;
+        return { x: r * Math.cos(a), y: r * Math.sin(a) };
+      };
+      const run = async (solve, n) => {
+        const t = performance.now();
+        for (let k = 0; k < n; k++) await solve({ goal: goal(k), options: { record_every: 1000000 } });
+        const ms = performance.now() - t;
+        return { per_second: Math.round((n / ms) * 1000), call_us: (ms * 1000) / n };
+      };
+      await run(ikarus.solve, 50); // warm up
+      return { direct: await run(ikarus.solve, 2000), worker: await run(api.solve, 2000) };
+    });
+    console.log(
+      `in-page solves, seed arm (LM, up to 16 restarts), 2000 goals: on the page's thread ${speed.direct.per_second}/s (${speed.direct.call_us.toFixed(1)} µs a call); through api.js and the worker ${speed.worker.per_second}/s (${speed.worker.call_us.toFixed(1)} µs a call)`,
+    );
+    assert.ok(speed.direct.per_second > 0 && speed.worker.per_second > 0);
+
+    // Nothing but the static files was asked for: no /api/, no other host.
+    assert.deepEqual(requests.filter((u) => !u.startsWith(`${host.url}/`) && !u.startsWith("data:")), []);
+    assert.deepEqual(requests.filter((u) => new URL(u).pathname.startsWith("/api/")), []);
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    host.child.kill();
+  }
+
+  // The native server's answers to the page's requests equal the page's (parsed: deepStrictEqual
+  // compares numbers with Object.is, so every double is the same; the solve time aside).
+  const { child, url } = await startServer();
+  try {
+    const post = async (path, body) => {
+      const res = await fetch(`${url}/api/${path}`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) });
+      assert.equal(res.status, 200, `${path}: ${res.status}`);
+      return res.json();
+    };
+    const differ = [];
+    const same = (what, native, page) => {
+      try {
+        assert.deepStrictEqual(page, native);
+      } catch (e) {
+        differ.push(`${what}: the page's answer is not the native one:\n${e.message.split("\n").slice(0, 24).join("\n")}`);
+      }
+    };
+    same("the click's motion (animate)", await post("animate", seen.click.request), seen.click.answer);
+    const solved = await post("solve", { ...seen.click.request, frames: undefined, ease: undefined });
+    same("the click's pose (solve)", solved.angles_deg, seen.click.pose);
+    same("the drawn path (track)", await post("track", seen.traced.request), seen.traced.answer);
+    same("the reachable area (workspace)", await post("workspace", seen.workspace.request), seen.workspace.answer);
+    same("the dragged rig (solve)", { ...(await post("solve", seen.rig.request)), solve_us: 0 }, { ...seen.rig.answer, solve_us: 0 });
+    assert.ok(differ.length === 0, differ.join("\n"));
+  } finally {
+    child.kill();
+  }
+});
