@@ -150,12 +150,28 @@ test("the static build runs the playground with no ikarus server", async () => {
     const bodies = await page.evaluate(() => [...document.getElementById("body-kind").options].map((o) => o.value));
     assert.ok(bodies.includes("rig:puppet") && bodies.includes("rig:hand"), `the Body list: ${bodies}`);
     await page.evaluate(() => window.ikarus.rigs.use("rig:puppet"));
-    const hand = await page.evaluate(() => {
-      const r = window.ikarus.state.rig;
-      const tip = r.tips[r.rig.bones.findIndex((b) => b.name === "right_hand")];
-      return { from: window.ikarus.toClient(...tip), to: window.ikarus.toClient(tip[0] + 0.05, tip[1] + 0.1) };
+    // Showing a rig changes the panel (the rig's controls replace the arm's), and the canvas is
+    // laid out and fitted again in the frames after: the hand is found where it is drawn once the
+    // layout has settled (its place the same two frames running), and grabbed once the page
+    // says the pointer is over it.
+    const hand = await page.evaluate(async () => {
+      const frame = () => new Promise((done) => requestAnimationFrame(() => done()));
+      const where = () => {
+        const r = window.ikarus.state.rig;
+        const tip = r.tips[r.rig.bones.findIndex((b) => b.name === "right_hand")];
+        return { from: window.ikarus.toClient(...tip), to: window.ikarus.toClient(tip[0] + 0.05, tip[1] + 0.1) };
+      };
+      let last = null;
+      for (let k = 0; k < 60; k++) {
+        await frame();
+        const now = where();
+        if (last && JSON.stringify(now) === JSON.stringify(last)) return now;
+        last = now;
+      }
+      return last;
     });
     await page.mouse.move(...hand.from);
+    await page.waitForFunction(() => window.ikarus.state.rig.hover, null, { timeout: 5000 });
     await page.mouse.down();
     await page.mouse.move(...hand.to, { steps: 6 });
     await page.mouse.up();
