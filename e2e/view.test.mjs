@@ -27,6 +27,7 @@ import {
   shortDelta,
   toCanvas,
   toWorld,
+  solveTime,
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
 import { armForRequest, clampInto, methodApplies, numberProblem, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
 import { GIF_FPS, framesCsv, gifRequest } from "../crates/ikarus-cli/src/serve/assets/files.js";
@@ -532,4 +533,18 @@ test("the SVG download records the canvas calls: paths, arcs, text, alpha and da
   assert.match(svg, /<path d="M60 25A10 10 0 1 1 40 25A10 10 0 1 1 60 25" fill="#d62728" fill-rule="evenodd" opacity="0.5"\/>/);
   assert.match(svg, /<path d="M10 0A10 10 0 0 1 0 10" fill="none"/);
   assert.match(svg, /text-anchor="middle"[^>]*>a&lt;b<\/text>/);
+});
+
+test("a solve's time: three places of ms; under the static build's coarse clock a zero reads < 0.1 ms", () => {
+  assert.equal(solveTime(12), "0.012 ms");
+  assert.equal(solveTime(0), "0.000 ms");
+  const before = globalThis.document;
+  globalThis.document = { body: { dataset: { backend: "wasm" } } };
+  try {
+    assert.equal(solveTime(0), "< 0.1 ms");
+    assert.equal(solveTime(200), "0.200 ms");
+  } finally {
+    if (before === undefined) delete globalThis.document;
+    else globalThis.document = before;
+  }
 });

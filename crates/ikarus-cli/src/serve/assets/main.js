@@ -17,7 +17,7 @@ import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
 import { wireRigs } from "./rigs.js";
-import { areaOutline } from "./view.js";
+import { areaOutline, solveTime } from "./view.js";
 import { formatDistance, regionOf, unreachableText, verdict } from "./region.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
@@ -231,7 +231,7 @@ function setStats(s) {
   if (s.iterations !== undefined) parts.push(`${s.iterations} iteration${s.iterations === 1 ? "" : "s"}`);
   if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
   if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
-  if (s.solve_us !== undefined) parts.push(`${(s.solve_us / 1000).toFixed(3)} ms`);
+  if (s.solve_us !== undefined) parts.push(solveTime(s.solve_us));
   $("stats").textContent = parts.join(" · ");
 }
 

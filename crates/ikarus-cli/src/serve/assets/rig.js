@@ -5,7 +5,7 @@
 // an answer's one-line summary naming the effectors that failed. No DOM and no state of its own:
 // node tests it (e2e/rig.unit.test.mjs). The page's wiring is rigs.js.
 
-import { DEG } from "./view.js";
+import { DEG, solveTime } from "./view.js";
 
 /**
  * Whether `method` (a /api/meta method) solves rigs: its `solves_rigs`, the library's
@@ -239,6 +239,6 @@ export function rigSummary(answer) {
   }
   if (answer.iterations !== undefined) parts.push(`${answer.iterations} iterations`);
   if (answer.error !== undefined) parts.push(`error ${Number(answer.error).toExponential(2)}`);
-  if (answer.solve_us !== undefined) parts.push(`${(answer.solve_us / 1000).toFixed(3)} ms`);
+  if (answer.solve_us !== undefined) parts.push(solveTime(answer.solve_us));
   return { status: answer.status, failed: failed.map((e) => e.name), text: parts.join(" · ") };
 }
