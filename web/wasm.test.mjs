@@ -10,15 +10,15 @@
 // IKARUS_BIN is the native binary (target/release/ikarus by default).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { execFileSync, spawn } from "node:child_process";
+import { execFileSync } from "node:child_process";
 import { readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
+import { binary, startServer } from "../e2e/browser.mjs";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "..");
 const dir = process.env.IKARUS_WEB_DIR;
 if (!dir) throw new Error("IKARUS_WEB_DIR: the directory `bash web/build DIR` wrote (web/test sets it)");
-const binary = process.env.IKARUS_BIN ?? join(root, "target", "release", "ikarus");
 const ikarus = await import(pathToFileURL(join(dir, "ikarus.js")).href);
 
 /** The answer's text with the timing fields' values (the only ones that may differ) set to 0. */
@@ -44,21 +44,7 @@ function wasm(path, body) {
 
 before(async () => {
   await ikarus.init(readFileSync(join(dir, "ikarus_wasm_bg.wasm")));
-  const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
-  const url = await new Promise((resolve, reject) => {
-    let out = "";
-    const timer = setTimeout(() => reject(new Error(`no address from ${binary} serve: ${out}`)), 15000);
-    child.on("error", reject);
-    child.stdout.on("data", (chunk) => {
-      out += chunk;
-      const m = out.match(/listening on (http:\/\/\S+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolve(m[1]);
-      }
-    });
-  });
-  server = { child, url };
+  server = await startServer();
 });
 
 after(() => server && server.child.kill());
