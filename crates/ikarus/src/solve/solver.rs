@@ -111,6 +111,28 @@ impl Solver {
         finish(&p, s, out);
         Ok(())
     }
+
+    /// Solves every goal of `goals` from `start` on one chain: `out` is resized to
+    /// `goals.len()` and `out[i]` is the outcome of `goals[i]`, the same, bit for bit, as
+    /// [`Solver::solve_into`] gives for it alone. The outcomes' buffers are reused, so a
+    /// caller that keeps `out` across batches allocates nothing once it has grown.
+    ///
+    /// The start pose and the options are checked once, as [`Solver::solve_into`] checks them;
+    /// an error leaves `out` as it was.
+    pub fn solve_batch(
+        &mut self,
+        chain: &Chain,
+        start: &[f64],
+        goals: &[Goal],
+        out: &mut Vec<Outcome>,
+    ) -> Result<(), SolveError> {
+        check_input(chain, start, &self.options)?;
+        out.resize_with(goals.len(), Outcome::default);
+        for (goal, o) in goals.iter().zip(out.iter_mut()) {
+            self.solve_into(chain, start, goal, o)?;
+        }
+        Ok(())
+    }
 }
 
 /// The end of every solve: an outcome that the loop ended as `reached` was measured by it on
