@@ -21,7 +21,6 @@
 use nalgebra::{Matrix2xX, Matrix3xX, Point2};
 
 use crate::chain::Chain;
-use crate::math;
 
 /// Where the tip of a chain is and which way its last link points.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,7 +53,7 @@ pub fn end_effector(chain: &Chain, angles: &[f64]) -> EndEffector {
     let mut phi = 0.0;
     for (&l, &a) in chain.lengths().iter().zip(angles) {
         phi += a;
-        let (s, c) = math::sin_cos(phi);
+        let (s, c) = crate::lanes::sin_cos(phi);
         p.x += l * c;
         p.y += l * s;
     }
@@ -74,7 +73,7 @@ pub fn joint_positions_into(chain: &Chain, angles: &[f64], out: &mut [Point2<f64
     out[0] = p;
     for ((&l, &a), slot) in chain.lengths().iter().zip(angles).zip(&mut out[1..]) {
         phi += a;
-        let (s, c) = math::sin_cos(phi);
+        let (s, c) = crate::lanes::sin_cos(phi);
         p.x += l * c;
         p.y += l * s;
         *slot = p;

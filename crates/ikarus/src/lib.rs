@@ -50,6 +50,7 @@ pub mod ease;
 pub mod goal;
 pub mod interrupt;
 pub mod kinematics;
+mod lanes;
 pub mod limits;
 mod math;
 pub mod motion;

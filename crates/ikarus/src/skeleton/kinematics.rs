@@ -31,7 +31,6 @@
 use nalgebra::{DMatrix, Point2};
 
 use super::Skeleton;
-use crate::math;
 
 /// One effector of the stacked Jacobian: the tip of a bone, its position and optionally its
 /// direction.
@@ -99,7 +98,7 @@ impl Skeleton {
             };
             starts[i] = p;
             phi += angles[i];
-            let (s, c) = math::sin_cos(phi);
+            let (s, c) = crate::lanes::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
             p.y += l * s;
@@ -131,7 +130,7 @@ impl Skeleton {
                 None => (self.base, 0.0),
             };
             phi += angles[i];
-            let (s, c) = math::sin_cos(phi);
+            let (s, c) = crate::lanes::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
             p.y += l * s;

@@ -121,7 +121,7 @@ impl Algebra for Fixed3 {
 
     #[inline]
     fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
-        method_step(rule, opts, &self.a, self.j(plain), &self.task, mu, out);
+        method_step(rule, opts, self.oriented, &self.a, self.j(plain), &self.task, mu, out);
     }
 
     #[inline]

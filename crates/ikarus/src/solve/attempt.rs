@@ -1,6 +1,7 @@
 //! One solve from one start pose: the iteration loop of the [module docs](super).
 
 use super::algebra::Algebra;
+use super::fast::Taken;
 use super::line_search::jacobian_step;
 use super::lm::Damping;
 use super::model::{Model, ScratchOf};
@@ -20,23 +21,30 @@ use crate::math;
 /// end of the f64 range) is not taken: the attempt keeps its last finite pose and ends
 /// [`Status::Stalled`].
 pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
+    let resume = match M::fast_attempt(p, start, s, out) {
+        Taken::Done(status) => return status,
+        Taken::Resume(r) => Some(r),
+        Taken::No => None,
+    };
     let (model, goal, opts) = (p.model, p.goal, p.opts);
     let n = model.len();
     // The pose is moved out of `out` while the loop measures into `out`, and moved back after.
     let mut pose = std::mem::take(out.pose.angles_mut());
     let angles = &mut pose;
     angles.clear();
-    angles.extend_from_slice(start);
+    // Where the fast path left off, the pose it stood on is in `s.best`.
+    angles.extend_from_slice(if resume.is_some() { &s.best } else { start });
     p.bounds.clamp_into(angles);
     out.frames.start(n, opts.record_every, opts.max_iterations);
 
     let stepper = Stepper::of(opts.method);
     let mut phi = model.forward_into(angles, &mut s.joints);
-    let mut iteration: u32 = 0;
-    let mut still: u32 = 0;
+    let r = resume.unwrap_or_default();
+    let mut iteration: u32 = r.iteration;
+    let mut still: u32 = r.still;
     let mut prev_merit = f64::INFINITY;
     let mut flat = false;
-    let mut damping = Damping::new(opts.lambda);
+    let mut damping = if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) };
     let mut best_error = f64::INFINITY;
     let status = loop {
         model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);

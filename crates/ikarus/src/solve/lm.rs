@@ -27,6 +27,12 @@ impl Damping {
         Self { mu: lambda * lambda, nu: 2.0 }
     }
 
+    /// The damping `mu` with growth factor `nu`, where an attempt left off.
+    #[inline]
+    pub(super) fn resume(mu: f64, nu: f64) -> Self {
+        Self { mu, nu }
+    }
+
     /// The damping μ.
     #[inline]
     pub(super) fn mu(&self) -> f64 {

@@ -55,6 +55,7 @@ mod attempt;
 mod ccd;
 mod dls;
 mod fabrik;
+mod fast;
 mod frames;
 mod limit_modes;
 mod line_search;

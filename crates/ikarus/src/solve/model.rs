@@ -12,7 +12,7 @@ use super::algebra::{Algebra, Fixed3};
 use super::attempt::distance;
 use super::problem::Problem;
 use super::scratch::Scratch;
-use super::{Outcome, SolveOptions, ccd, fabrik};
+use super::{Outcome, SolveOptions, ccd, fabrik, fast};
 use crate::angle::wrap_angle;
 use crate::chain::{Chain, JointLimits};
 use crate::goal::Goal;
@@ -80,6 +80,18 @@ pub(super) trait Model: Sized {
     ///
     /// [`restart_pose`]: super::restarts::restart_pose
     fn settle_restart(&self, p: &Problem<'_, Self>, k: u32, out: &Outcome, restart: &mut [f64], scratch: &mut [bool]);
+    /// The attempt on the position-only fast path ([`super::fast`]), where it applies and
+    /// runs: to the end (it wrote what [`attempt`](super::attempt::attempt) writes), or to
+    /// the iteration where the general loop takes over. None but a chain's has one.
+    #[inline]
+    fn fast_attempt(
+        _p: &Problem<'_, Self>,
+        _start: &[f64],
+        _s: &mut ScratchOf<Self>,
+        _out: &mut Outcome,
+    ) -> fast::Taken {
+        fast::Taken::No
+    }
     /// One CCD sweep (see [`ccd::sweep`]); returns the trial pose's end orientation.
     fn ccd_sweep(
         p: &Problem<'_, Self>,
@@ -195,6 +207,38 @@ impl Model for Chain {
 
     #[inline]
     fn settle_restart(&self, _: &Problem<'_, Self>, _: u32, _: &Outcome, _: &mut [f64], _: &mut [bool]) {}
+
+    #[inline]
+    fn fast_attempt(p: &Problem<'_, Self>, start: &[f64], s: &mut ScratchOf<Self>, out: &mut Outcome) -> fast::Taken {
+        let (chain, opts) = (p.model, p.opts);
+        if !p.bounds.is_free() || !fast::applies(chain, opts, p.goal.orientation().is_some()) {
+            return fast::Taken::No;
+        }
+        let target = p.goal.target();
+        let mut taken = fast::Taken::No;
+        let best = &mut s.best;
+        fast::run::<f64>(chain, opts, start, &mut s.fast, std::iter::once((0, target.x, target.y)), |_, end| {
+            taken = match end.status {
+                Some(status) => {
+                    out.frames.start(chain.len(), None, opts.max_iterations);
+                    let angles = out.pose.angles_mut();
+                    angles.clear();
+                    angles.extend_from_slice(end.angles);
+                    out.iterations = end.iterations;
+                    out.error = end.error;
+                    out.angle_error = 0.0;
+                    out.end_effector =
+                        EndEffector { position: Point2::new(end.tip.0, end.tip.1), orientation: end.phi };
+                    fast::Taken::Done(status)
+                }
+                None => {
+                    best.copy_from_slice(end.angles);
+                    fast::Taken::Resume(end.resume)
+                }
+            };
+        });
+        taken
+    }
 
     #[inline]
     fn ccd_sweep(
@@ -361,5 +405,117 @@ mod tests {
             }
         }
         assert!(compared >= 40, "{compared}");
+    }
+
+    /// The options the position-only fast path takes, in several variants.
+    fn fast_variants() -> Vec<SolveOptions> {
+        let base = SolveOptions { limits: LimitMode::Ignore, reach_verdict: false, ..SolveOptions::default() };
+        vec![
+            base.clone(),
+            SolveOptions { max_step: None, ..base.clone() },
+            SolveOptions { stall: None, max_iterations: 40, ..base.clone() },
+            SolveOptions { gain: 0.7, lambda: 1.0, ..base.clone() },
+            SolveOptions { tolerance: 1e-12, backtrack: 1, ..base.clone() },
+            SolveOptions { lambda: 0.0, max_iterations: 7, restarts: None, ..base },
+        ]
+    }
+
+    /// The fast path against the general loop (the delegating model has none, so it runs the
+    /// general loop): every outcome the same bit for bit, on reachable goals, goals out of
+    /// reach, goals at the base and near the outer rim, for 3-, 7- and 20-link chains and every
+    /// option variant the fast path takes — through restarts, stalls and iteration caps.
+    #[test]
+    fn the_fast_path_gives_the_general_loops_outcome_bit_for_bit() {
+        let mut rng = crate::rng::SplitMix64(2026);
+        let chains = [
+            crate::fixtures::seed_arm(),
+            crate::fixtures::random_chain(&mut rng, 7, false),
+            crate::fixtures::random_chain(&mut rng, 20, false),
+        ];
+        let mut compared = 0;
+        for opts in fast_variants() {
+            let mut solver = Solver::new(opts.clone()).unwrap();
+            for chain in &chains {
+                let reach = chain.max_reach();
+                for k in 0..150 {
+                    let goal = match k % 5 {
+                        0 => Goal::position(1.5 * reach * (rng.unit() - 0.5), 1.5 * reach * (rng.unit() - 0.5)),
+                        1 => Goal::position(0.0, 0.0),
+                        2 => Goal::position(reach * (1.0 + 1e-9), 0.0),
+                        _ => Ok(crate::fixtures::random_goal(&mut rng, chain, false)),
+                    }
+                    .unwrap();
+                    let start = chain.start_pose();
+                    let expected = {
+                        let model = Delegate(chain);
+                        let p = Problem::new(&model, &goal, &opts);
+                        let mut s = Scratch::default();
+                        Model::fit(&model, &mut s);
+                        let mut out = Outcome::default();
+                        solve_with_restarts(&p, start.angles(), None, &mut s, &mut out);
+                        finish(&p, &mut s, &mut out);
+                        out
+                    };
+                    let got = solver.solve(chain, start, &goal).unwrap();
+                    assert_eq!(got, expected, "{opts:?} {goal:?}");
+                    compared += 1;
+                }
+            }
+        }
+        assert_eq!(compared, 6 * 3 * 150);
+    }
+
+    /// `solve_batch` gives what `solve_into` gives goal by goal, bit for bit, whichever path a
+    /// goal takes (lanes, or the scalar solver after them): reachable, unreachable and oriented
+    /// goals mixed, batches of every size around the lane count, the outcomes reused across
+    /// batches, with limits on and off, a two-link chain (the closed form) and non-default
+    /// options.
+    #[test]
+    fn a_batch_gives_every_goal_its_single_solve() {
+        let mut rng = crate::rng::SplitMix64(99);
+        let chains = [
+            crate::fixtures::seed_arm(),
+            crate::fixtures::seed_arm_limited(),
+            crate::fixtures::arm(&[2.0, 1.0]),
+            crate::fixtures::random_chain(&mut rng, 9, false),
+        ];
+        let mut out = Vec::new();
+        let mut variants = fast_variants();
+        variants.push(SolveOptions::default());
+        variants.push(SolveOptions { method: Method::DampedLeastSquares, ..SolveOptions::default() });
+        for opts in variants {
+            let mut solver = Solver::new(opts.clone()).unwrap();
+            let mut alone = Solver::new(opts.clone()).unwrap();
+            for chain in &chains {
+                let reach = chain.max_reach();
+                for size in [0, 1, 3, 4, 5, 9, 64] {
+                    let goals: Vec<Goal> = (0..size)
+                        .map(|k| match k % 7 {
+                            0 => Goal::position(2.0 * reach * (rng.unit() - 0.5), 2.0 * reach * (rng.unit() - 0.5))
+                                .unwrap(),
+                            1 => crate::fixtures::random_goal(&mut rng, chain, true),
+                            _ => crate::fixtures::random_goal(&mut rng, chain, false),
+                        })
+                        .collect();
+                    let start = chain.start_pose().angles();
+                    solver.solve_batch(chain, start, &goals, &mut out).unwrap();
+                    assert_eq!(out.len(), size);
+                    for (goal, got) in goals.iter().zip(&out) {
+                        let mut expected = Outcome::default();
+                        alone.solve_into(chain, start, goal, &mut expected).unwrap();
+                        assert_eq!(got, &expected, "{opts:?} {goal:?}");
+                    }
+                }
+            }
+        }
+        // Bad input is refused before anything is written.
+        let chain = crate::fixtures::seed_arm();
+        let mut solver = Solver::new(SolveOptions::default()).unwrap();
+        let before = out.clone();
+        assert!(
+            solver.solve_batch(&chain, &[0.0, f64::NAN, 0.0], &[Goal::position(1.0, 1.0).unwrap()], &mut out).is_err()
+        );
+        assert!(solver.solve_batch(&chain, &[0.0], &[], &mut out).is_err());
+        assert_eq!(out, before);
     }
 }

@@ -24,6 +24,8 @@ pub(super) struct Scratch<P, A> {
     pub(super) restart: Vec<f64>,
     /// The final pose of the best attempt so far, when a solve restarts.
     pub(super) best_attempt: Vec<f64>,
+    /// The position-only fast path's state (a chain's; see [`super::fast`]).
+    pub(super) fast: super::fast::Buffers<f64>,
 }
 
 impl<P, A: super::algebra::Algebra> Scratch<P, A> {

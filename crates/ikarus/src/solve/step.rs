@@ -75,15 +75,31 @@ pub(super) fn gram(j: &Matrix3xX<f64>, oriented: bool) -> Matrix3<f64> {
 /// The step of a Jacobian `rule` in weighted joint coordinates: `J_wᵀ y` for the task-space
 /// rules, the selectively damped step for SDLS. `mu` is Levenberg–Marquardt's damping.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub(super) fn method_step(
     rule: Rule,
     opts: &SolveOptions,
+    oriented: bool,
     a: &Matrix3<f64>,
     weighted: &Matrix3xX<f64>,
     e: &Vector3<f64>,
     mu: f64,
     out: &mut [f64],
 ) {
+    // A position goal: the damped rules solve the 2×2 system of the x and y rows.
+    let damping = match rule {
+        Rule::DampedLeastSquares => Some(opts.lambda * opts.lambda),
+        Rule::LevenbergMarquardt => Some(mu),
+        _ => None,
+    };
+    if let (false, Some(damping)) = (oriented, damping) {
+        if let Some((y0, y1)) = damped_2x2(a[(0, 0)], a[(0, 1)], a[(1, 1)], e[0], e[1], damping) {
+            for (o, col) in out.iter_mut().zip(weighted.column_iter()) {
+                *o = col[0] * y0 + col[1] * y1;
+            }
+            return;
+        }
+    }
     let y = match rule {
         Rule::Transpose => transpose::task_step(a, e),
         Rule::PseudoInverse => pinv::task_step(a, e, opts.singular_threshold),
@@ -94,4 +110,25 @@ pub(super) fn method_step(
     for (o, col) in out.iter_mut().zip(weighted.column_iter()) {
         *o = col.dot(&y);
     }
+}
+
+/// `y = (A + d I)⁻¹ e` for a position goal's 2×2 `A = [[xx, xy], [xy, yy]]`, by Cramer's rule,
+/// or `None` where the damped least-squares rule takes the pseudoinverse instead: `d` at most
+/// `1e-12·trace(A)` (the damping is then no damping at all), or a zero determinant.
+///
+/// The position-only fast path of every damped solve (the 3×3 system with the orientation row
+/// set to the identity has the same solution in exact arithmetic; this one is a third of the
+/// work and rounds differently in the last bits). [`super::fast`] runs these same operations.
+#[inline(always)]
+pub(super) fn damped_2x2(xx: f64, xy: f64, yy: f64, e0: f64, e1: f64, d: f64) -> Option<(f64, f64)> {
+    // (Written so that a NaN declines too.)
+    if d.partial_cmp(&(1e-12 * (xx + yy))) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let (a, c) = (xx + d, yy + d);
+    let det = a * c - xy * xy;
+    if det == 0.0 {
+        return None;
+    }
+    Some(((c * e0 - xy * e1) / det, (a * e1 - xy * e0) / det))
 }

@@ -1,0 +1,474 @@
+//! The position-only fast path: Levenberg–Marquardt on a chain, for a goal without an
+//! orientation, with no limits to enforce and no per-joint rates — the commonest solve — as
+//! one lean loop, written once over [`Lanes`] so that the same code solves one goal (`f64`,
+//! inside [`attempt`](super::attempt::attempt)) or four side by side (`f64x4`, in
+//! [`Solver::solve_batch`](super::Solver::solve_batch)).
+//!
+//! It runs exactly the arithmetic of the general loop for that case (the loop in `attempt.rs`,
+//! the line search, `compute_delta`, the 2×2 [`damped_2x2`](super::step::damped_2x2) and Nielsen's damping update), in
+//! the same order, so it returns the general loop's result bit for bit; the tests run both on
+//! thousands of goals and compare. Where the general loop would leave the common case (the
+//! damped step falls back to the pseudoinverse, every damped try fails and the line search
+//! turns to the transpose direction, a step or a distance leaves the normal numbers) the fast
+//! path gives the attempt up and the general loop runs it from the start, reaching the same
+//! point by the same arithmetic and going on from there.
+//!
+//! Per iteration it keeps, per goal, only the angles, the joint points and the task error: no
+//! Jacobian matrix (its columns are differences of joint points, formed where they are used),
+//! no temporary vectors, no dynamic dispatch.
+
+use super::{LimitMode, Method, SolveOptions, Status};
+use crate::chain::Chain;
+use crate::lanes::{Lanes, sin_cos};
+
+/// The share of the linearly predicted decrease a step must achieve (the line search's).
+const SUFFICIENT_DECREASE: f64 = 0.1;
+
+/// Whether a solve of `chain` under `opts` for a goal with (`oriented`) or without an
+/// orientation can take the fast path: Levenberg–Marquardt, a position goal, no limits
+/// enforced, no rates, no frames, a line search.
+pub(super) fn applies(chain: &Chain, opts: &SolveOptions, oriented: bool) -> bool {
+    opts.method == Method::LevenbergMarquardt
+        && !oriented
+        && (opts.limits == LimitMode::Ignore || !chain.has_limits())
+        && opts.rates.is_empty()
+        && opts.record_every.is_none()
+        && opts.backtrack > 0
+}
+
+/// How one goal's attempt ended on the fast path.
+pub(super) struct End<'a> {
+    /// The status the loop stopped with, or `None`: the general loop must run this attempt.
+    pub(super) status: Option<Status>,
+    /// The final angles.
+    pub(super) angles: &'a [f64],
+    /// Iterations taken.
+    pub(super) iterations: u32,
+    /// Distance from the tip to the goal.
+    pub(super) error: f64,
+    /// The tip.
+    pub(super) tip: (f64, f64),
+    /// The tip's orientation (the sum of the angles).
+    pub(super) phi: f64,
+    /// Where the general loop takes over when `status` is `None`: the iteration's start (the
+    /// pose in `angles`), the stall count and the damping there.
+    pub(super) resume: Resume,
+}
+
+/// The state of an attempt at the start of an iteration, from which the general loop goes on
+/// exactly as if it had run the attempt from its start.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Resume {
+    pub(super) iteration: u32,
+    pub(super) still: u32,
+    pub(super) mu: f64,
+    pub(super) nu: f64,
+}
+
+/// What the fast path did with an attempt.
+pub(super) enum Taken {
+    /// It does not apply: the general loop runs the attempt.
+    No,
+    /// It ran the attempt to its end, with this status.
+    Done(Status),
+    /// It left the common case at the start of an iteration: the general loop goes on from
+    /// there (the pose is in the scratch's `best`).
+    Resume(Resume),
+}
+
+/// The state of the goals in the lanes, struct of arrays (one `L` per joint), kept between
+/// solves so that the fast path allocates nothing once it has grown.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Buffers<L> {
+    angles: Vec<L>,
+    trial: Vec<L>,
+    /// Joint points x and y, base first: `n + 1` each.
+    xs: Vec<L>,
+    ys: Vec<L>,
+    trial_xs: Vec<L>,
+    trial_ys: Vec<L>,
+    delta: Vec<L>,
+    /// One lane's angles, handed to `emit`.
+    lane_angles: Vec<f64>,
+}
+
+impl<L: Lanes> Buffers<L> {
+    fn fit(&mut self, n: usize) {
+        let zero = L::splat(0.0);
+        for v in [&mut self.angles, &mut self.trial, &mut self.delta] {
+            v.resize(n, zero);
+        }
+        for v in [&mut self.xs, &mut self.ys, &mut self.trial_xs, &mut self.trial_ys] {
+            v.resize(n + 1, zero);
+        }
+        self.lane_angles.resize(n, 0.0);
+    }
+}
+
+/// Per-lane bookkeeping that is not arithmetic.
+#[derive(Clone, Copy, Default)]
+struct Slot {
+    /// The goal in this lane, if any.
+    goal: Option<usize>,
+    iteration: u32,
+    still: u32,
+    /// Damped tries at this iteration (each rejection raises the damping).
+    tries: u32,
+    /// The pose was just measured and not yet stepped from.
+    measured: bool,
+    /// The damping μ and its growth ν at the start of this iteration.
+    mu: f64,
+    nu: f64,
+}
+
+/// Forward kinematics of every lane's `angles` into the points; returns the tips' orientation.
+#[inline(always)]
+fn forward<L: Lanes>(chain: &Chain, angles: &[L], xs: &mut [L], ys: &mut [L]) -> L {
+    let base = chain.base();
+    let (mut x, mut y, mut phi) = (L::splat(base.x), L::splat(base.y), L::splat(0.0));
+    xs[0] = x;
+    ys[0] = y;
+    for (((&l, &a), px), py) in chain.lengths().iter().zip(angles).zip(&mut xs[1..]).zip(&mut ys[1..]) {
+        phi = phi + a;
+        let (s, c) = sin_cos(phi);
+        x = x + L::splat(l) * c;
+        y = y + L::splat(l) * s;
+        *px = x;
+        *py = y;
+    }
+    phi
+}
+
+/// Runs the fast path on `goals` (index, target x, target y), each from `start`, `L::LANES` at
+/// a time (a lane that finishes takes the next goal), and hands every goal's end to `emit`.
+#[inline(always)]
+pub(super) fn run<L: Lanes>(
+    chain: &Chain,
+    opts: &SolveOptions,
+    start: &[f64],
+    st: &mut Buffers<L>,
+    mut goals: impl Iterator<Item = (usize, f64, f64)>,
+    mut emit: impl FnMut(usize, End<'_>),
+) {
+    let n = chain.len();
+    let zero = L::splat(0.0);
+    st.fit(n);
+    let mut lane_angles = std::mem::take(&mut st.lane_angles);
+    let mut slots = [Slot::default(); 16];
+    let slots = &mut slots[..L::LANES];
+    let (mut tx, mut ty) = (zero, zero);
+    let mut phi = zero;
+    let lambda_sq = opts.lambda * opts.lambda;
+    let mut mu = L::splat(lambda_sq);
+    let mut nu = L::splat(2.0);
+    let gain = L::splat(opts.gain);
+    let cap = opts.max_step;
+    let stall = opts.stall;
+    let (tolerance, max_iterations) = (opts.tolerance, opts.max_iterations);
+
+    // Fill every lane with a goal, at the start pose.
+    let mut starting = [false; 16];
+    loop {
+        // Lanes without a goal take the next one, at the start pose.
+        let mut any_new = false;
+        for (k, slot) in slots.iter_mut().enumerate() {
+            starting[k] = false;
+            if slot.goal.is_none() {
+                if let Some((i, x, y)) = goals.next() {
+                    *slot = Slot { goal: Some(i), mu: lambda_sq, nu: 2.0, ..Slot::default() };
+                    for (a, &s0) in st.angles.iter_mut().zip(start) {
+                        *a = a.with_lane(k, s0);
+                    }
+                    tx = tx.with_lane(k, x);
+                    ty = ty.with_lane(k, y);
+                    mu = mu.with_lane(k, lambda_sq);
+                    nu = nu.with_lane(k, 2.0);
+                    starting[k] = true;
+                    any_new = true;
+                }
+            }
+        }
+        if slots.iter().all(|s| s.goal.is_none()) {
+            st.lane_angles = lane_angles;
+            return;
+        }
+        if any_new {
+            // Forward kinematics of the fresh lanes (the others' points are already there:
+            // recomputing them gives the same bits).
+            let p = forward(chain, &st.angles, &mut st.xs, &mut st.ys);
+            for (k, &fresh) in starting.iter().enumerate() {
+                if fresh {
+                    phi = phi.with_lane(k, p.lane(k));
+                }
+            }
+        }
+
+        // Measure the lanes standing on a new pose, and stop those that are done.
+        let tip_x = st.xs[n];
+        let tip_y = st.ys[n];
+        let dx = tx - tip_x;
+        let dy = ty - tip_y;
+        let current = dx * dx + dy * dy;
+        let mut finished = false;
+        for (k, slot) in slots.iter_mut().enumerate() {
+            let Some(goal) = slot.goal else { continue };
+            if slot.measured {
+                continue;
+            }
+            slot.measured = true;
+            let squared = current.lane(k);
+            if !(squared.is_finite() && squared >= f64::MIN_POSITIVE) {
+                // The general loop measures this with `hypot`: leave it to it.
+                finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+                finished = true;
+                continue;
+            }
+            let error = squared.sqrt();
+            let status = if error <= tolerance {
+                Some(Status::Reached)
+            } else if stall.is_some_and(|s| slot.still >= s.window) {
+                Some(Status::Stalled)
+            } else if slot.iteration >= max_iterations {
+                Some(Status::IterationLimit)
+            } else if crate::interrupt::is_set(opts.interrupt.as_ref()) {
+                Some(Status::Interrupted)
+            } else {
+                None
+            };
+            if let Some(status) = status {
+                finish(st, k, goal, Some(status), slot, &mut lane_angles, tip_x, tip_y, phi, error, &mut emit);
+                finished = true;
+            }
+        }
+        if finished {
+            continue;
+        }
+
+        // One damped try in every lane: the step, the trial pose, its error.
+        let mut xx = zero;
+        let mut xy = zero;
+        let mut yy = zero;
+        for (&px, &py) in st.xs[..n].iter().zip(&st.ys[..n]) {
+            let cx = -(tip_y - py);
+            let cy = tip_x - px;
+            xx = xx + cx * cx;
+            xy = xy + cx * cy;
+            yy = yy + cy * cy;
+        }
+        // (A + μI)⁻¹ e, lane by lane exactly as `damped_2x2`; a lane where that declines
+        // leaves the fast path.
+        let d = mu;
+        let a = xx + d;
+        let c = yy + d;
+        let det = a * c - xy * xy;
+        let y0 = (c * dx - xy * dy) / det;
+        let y1 = (a * dy - xy * dx) / det;
+        let damped = d.gt(L::splat(1e-12) * (xx + yy));
+        let mut largest = zero;
+        for ((&px, &py), delta) in st.xs[..n].iter().zip(&st.ys[..n]).zip(&mut st.delta) {
+            let cx = -(tip_y - py);
+            let cy = tip_x - px;
+            let step = cx * y0 + cy * y1;
+            let dj = gain * L::splat(1.0) * L::splat(1.0) * step;
+            *delta = dj;
+            let m = dj.abs();
+            largest = L::select(m.gt(largest), m, largest);
+        }
+        let scale = match cap {
+            Some(cap) => L::select(largest.gt(L::splat(cap)), L::splat(cap) / largest, L::splat(1.0)),
+            None => L::splat(1.0),
+        };
+        let mut p0 = dx;
+        let mut p1 = dy;
+        for ((((&px, &py), &a), &delta), trial) in
+            st.xs[..n].iter().zip(&st.ys[..n]).zip(&st.angles).zip(&st.delta).zip(&mut st.trial)
+        {
+            let cx = -(tip_y - py);
+            let cy = tip_x - px;
+            let next = a + scale * delta;
+            let moved = next - a;
+            p0 = p0 - cx * moved;
+            p1 = p1 - cy * moved;
+            *trial = next;
+        }
+        let trial_phi = forward(chain, &st.trial, &mut st.trial_xs, &mut st.trial_ys);
+        let ex = tx - st.trial_xs[n];
+        let ey = ty - st.trial_ys[n];
+        let trial_error = ex * ex + ey * ey;
+        let predicted = p0 * p0 + p1 * p1;
+        let expected = current - predicted;
+        let expected = L::select(expected.gt(zero), expected, zero);
+        let decrease = current - trial_error;
+        let accepted = L::and(trial_error.lt(current), L::le(L::splat(SUFFICIENT_DECREASE) * expected, decrease));
+        // Nielsen's update, as `Damping::accept` and `Damping::reject`.
+        let rho = L::select(expected.gt(zero), decrease / expected, L::splat(1.0));
+        let r = L::splat(2.0) * rho - L::splat(1.0);
+        let shrink = L::splat(1.0) - r * r * r;
+        let third = L::splat(1.0 / 3.0);
+        let shrink = L::select(shrink.gt(third), shrink, third);
+        let accepted_mu = mu * shrink;
+        let rejected_mu = mu * nu;
+
+        // Lanes whose step the fast path cannot take as the general loop would: the damped
+        // step declined (the general loop takes the pseudoinverse), or a step accepted onto a
+        // pose that is not finite (the general loop ends it stalled there).
+        let step_ok = L::and(damped, L::or(det.lt(zero), det.gt(zero)));
+        let finite = trial_phi.abs().le(L::splat(f64::MAX));
+        // (Lanes without a goal are left alone: their stale numbers would drift to infinity.)
+        let active = L::mask_from(|k| slots[k].goal.is_some());
+        let take = L::and(L::and(L::and(accepted, finite), step_ok), active);
+        let reject = L::and(L::and(step_ok, L::select_mask(accepted, L::no(), L::yes())), active);
+        let mut moved = zero;
+        for (a, &t) in st.angles.iter_mut().zip(&st.trial) {
+            let m = (t - *a).abs();
+            moved = L::select(m.gt(moved), m, moved);
+            *a = L::select(take, t, *a);
+        }
+        for (x, &t) in st.xs.iter_mut().zip(&st.trial_xs) {
+            *x = L::select(take, t, *x);
+        }
+        for (y, &t) in st.ys.iter_mut().zip(&st.trial_ys) {
+            *y = L::select(take, t, *y);
+        }
+        phi = L::select(take, trial_phi, phi);
+        let two = L::splat(2.0);
+        mu = L::select(take, accepted_mu, L::select(reject, rejected_mu, mu));
+        nu = L::select(take, two, L::select(reject, nu * two, nu));
+
+        for (k, slot) in slots.iter_mut().enumerate() {
+            let Some(goal) = slot.goal else { continue };
+            if L::mask_lane(take, k) {
+                slot.iteration += 1;
+                slot.tries = 0;
+                slot.measured = false;
+                (slot.mu, slot.nu) = (accepted_mu.lane(k), 2.0);
+                match stall {
+                    Some(s) if moved.lane(k) <= s.epsilon => slot.still += 1,
+                    _ => slot.still = 0,
+                }
+            } else if L::mask_lane(reject, k) {
+                slot.tries += 1;
+                if slot.tries > opts.backtrack {
+                    // Every damped try failed: the general loop turns to the transpose step.
+                    finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+                }
+            } else {
+                finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+            }
+        }
+    }
+}
+
+/// Hands lane `k`'s goal to `emit` and frees the lane.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn finish<L: Lanes>(
+    st: &Buffers<L>,
+    k: usize,
+    goal: usize,
+    status: Option<Status>,
+    slot: &mut Slot,
+    angles: &mut [f64],
+    tip_x: L,
+    tip_y: L,
+    phi: L,
+    error: f64,
+    emit: &mut impl FnMut(usize, End<'_>),
+) {
+    for (o, a) in angles.iter_mut().zip(&st.angles) {
+        *o = a.lane(k);
+    }
+    emit(
+        goal,
+        End {
+            status,
+            angles,
+            iterations: slot.iteration,
+            error,
+            tip: (tip_x.lane(k), tip_y.lane(k)),
+            phi: phi.lane(k),
+            resume: Resume { iteration: slot.iteration, still: slot.still, mu: slot.mu, nu: slot.nu },
+        },
+    );
+    *slot = Slot::default();
+}
+
+/// The lanes of a batch: four (one AVX2 instruction; eight lanes for AVX-512 measured no faster).
+pub(super) type Batch = crate::lanes::Quad;
+
+/// [`run`] on [`Batch`] lanes, compiled for AVX2 where the processor has it
+/// (checked at run time), else for the target's baseline (SSE2 on x86-64). Every variant runs
+/// the same IEEE operations per lane, so the results do not depend on which one runs.
+pub(super) fn run_lanes(
+    chain: &Chain,
+    opts: &SolveOptions,
+    start: &[f64],
+    st: &mut Buffers<Batch>,
+    goals: impl Iterator<Item = (usize, f64, f64)>,
+    emit: impl FnMut(usize, End<'_>),
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx2")]
+        fn avx2(
+            chain: &Chain,
+            opts: &SolveOptions,
+            start: &[f64],
+            st: &mut Buffers<Batch>,
+            goals: impl Iterator<Item = (usize, f64, f64)>,
+            emit: impl FnMut(usize, End<'_>),
+        ) {
+            run(chain, opts, start, st, goals, emit);
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            #[allow(unsafe_code)]
+            unsafe {
+                avx2(chain, opts, start, st, goals, emit);
+            }
+            return;
+        }
+    }
+    run(chain, opts, start, st, goals, emit);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The goals the bit-for-bit tests (in `model.rs`) use exercise every way out of the fast
+    /// path: reached, at the iteration cap, and handed to the general loop mid-attempt.
+    #[test]
+    fn every_way_out_is_taken() {
+        let mut rng = crate::rng::SplitMix64(5);
+        let chain = crate::fixtures::random_chain(&mut rng, 20, false);
+        let reach = chain.max_reach();
+        let opts = SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() };
+        let goals: Vec<(usize, f64, f64)> = (0..400)
+            .map(|i| match i % 4 {
+                0 => (i, 3.0 * reach * (rng.unit() - 0.5), 3.0 * reach * (rng.unit() - 0.5)),
+                _ => {
+                    let g = crate::fixtures::random_goal(&mut rng, &chain, false);
+                    (i, g.target().x, g.target().y)
+                }
+            })
+            .collect();
+        let mut seen = std::collections::BTreeMap::new();
+        let mut buffers = Buffers::<Batch>::default();
+        let mut emitted = vec![0; goals.len()];
+        let start = chain.start_pose().angles().to_vec();
+        run(&chain, &opts, &start, &mut buffers, goals.iter().copied(), |i, end| {
+            emitted[i] += 1;
+            *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
+        });
+        assert!(emitted.iter().all(|&e| e == 1), "every goal once");
+        assert!(seen.get("reached").copied().unwrap_or(0) >= 290, "{seen:?}");
+        assert!(seen.contains_key("resume"), "{seen:?}");
+        let capped = SolveOptions { max_iterations: 3, ..opts };
+        seen.clear();
+        run(&chain, &capped, &start, &mut buffers, goals.iter().copied(), |_, end| {
+            *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
+        });
+        assert!(seen.contains_key("iteration_limit"), "{seen:?}");
+    }
+}
