@@ -33,7 +33,7 @@ pub struct Header {
     pub max_iterations: u32,
     /// Untimed warm-up solves before each row.
     pub warmup_goals: usize,
-    /// Threads the solves ran on (always one).
+    /// Threads the per-solve rows ran on (always one; the batched measurement runs on one and two).
     pub threads: usize,
     /// Logical CPUs of the machine.
     pub cpus: usize,
