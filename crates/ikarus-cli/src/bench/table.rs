@@ -112,8 +112,8 @@ than KDL LMA).";
 
 /// What the batched table's columns mean.
 const BATCH_LEGEND: &str = "batched: the goals of each `default` row solved again with Solver::solve_batch (the \
-same options, from the start pose). µs/solve: wall time of a pass over all the goals / goals, median of at least 5 \
-samples of about 0.04 s, 0.2 s in all; M solves/s: millions of solves per second; 2 thr: the goals split in two halves, one \
+same options, from the start pose). µs/solve: wall time of a pass over all the goals / goals (a mean: slow goals count \
+in full, unlike in the per-solve median), median of at least 5 samples of about 0.04 s, 0.2 s in all; M solves/s: millions of solves per second; 2 thr: the goals split in two halves, one \
 thread each; × 2 thr: 2 threads' throughput / 1 thread's. reached: the batched outcomes judged as above; \
 ≠ per-solve: goals judged otherwise than in the per-solve row, or whose 2-thread outcome differs from the \
 1-thread one (0 when the batch returns what solve_into does).";
