@@ -72,6 +72,8 @@ const requests = [
   ["solve", { goal: { x: -3, y: -1 }, options: { limits: true, restarts: 8, time_budget_ms: 10000, no_closed_form: true } }],
   // A rig: the fork of the README, and the shipped puppet with both hands on goals and its feet pinned.
   ["solve", { rig: { name: "fork", bones: [{ name: "trunk", length: 1, angle_deg: 90 }, { name: "arm.l", parent: "trunk", length: 1, angle_deg: 45 }] }, goals: [{ bone: "arm.l", x: -1, y: 1 }], pins: ["trunk"] }],
+  ["solve_batch", { goals: [[2, 3], [1.5, 2.5, 90], [9, 9]] }],
+  ["solve_batch", { arm: limited, goals: [[2.5, 4.1], [-3, -1]], start_deg: [5, 5, 5, 5], options: { limits: true, restarts: 8, restart_seed: 7 } }],
   ["animate", { goal: { x: 2, y: 3 }, frames: 5, ease: { kind: "smoothstep" } }],
   ["animate", { goal: { x: -1, y: 4 }, via: [[3, 3], [1, 5]], duration: 1.5, fps: 20, ease: { kind: "parent", k1: 0.4, k2: 0.6 } }],
   ["animate", { goal: { x: 3, y: 1 }, from_solve: true, options: { record_every: 1 } }],

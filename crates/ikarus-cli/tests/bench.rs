@@ -144,6 +144,41 @@ fn json_has_a_header_and_the_expected_rows() {
 }
 
 #[test]
+fn default_rows_carry_the_batched_measurement() {
+    let v = json(&["bench", "--goals", "20", "--arms", "seed", "--methods", "dls,default", "--json"]);
+    let mut batched = 0;
+    for r in v["rows"].as_array().unwrap() {
+        if r["solver"] != "default" {
+            assert_eq!(r["batch"], Value::Null, "{r}");
+            continue;
+        }
+        batched += 1;
+        let b = &r["batch"];
+        assert_eq!(b["error"], Value::Null, "{r}");
+        assert_eq!(b["goals"], 20, "{r}");
+        // The batch returns what the solves one by one return.
+        assert_eq!(b["reached"], r["reached"], "{r}");
+        assert_eq!(b["mismatches"], 0, "{r}");
+        for k in ["us_1thr", "solves_per_s_1thr", "us_2thr", "solves_per_s_2thr", "speedup_2thr"] {
+            assert!(b[k].as_f64().is_some_and(|x| x > 0.0 && x.is_finite()), "{k}: {r}");
+        }
+    }
+    assert_eq!(batched, 5, "one default row per set");
+
+    // The text and Markdown tables show them below the main table.
+    let args = ["bench", "--goals", "3", "--arms", "seed", "--sets", "free-position", "--methods", "default"];
+    let out = succeeds(&args);
+    assert!(out.contains("batched · Solver::solve_batch"), "{out}");
+    assert!(out.lines().any(|l| l.trim_start().starts_with("seed  free-position")), "{out}");
+    let out = succeeds(&[&args[..], &["--markdown"]].concat());
+    assert!(out.contains("| arm | set | reached | ≠ per-solve | µs/solve 1 thr | M solves/s 1 thr |"), "{out}");
+    assert!(out.contains("| seed | free-position | "), "{out}");
+    // Without a default row there is no batched table.
+    let out = succeeds(&["bench", "--goals", "3", "--arms", "seed", "--sets", "free-position", "--methods", "dls"]);
+    assert!(!out.contains("batched"), "{out}");
+}
+
+#[test]
 fn markdown_starts_with_the_command_line() {
     let args = ["bench", "--goals", "3", "--arms", "seed", "--sets", "free-position,limits-oriented", "--markdown"];
     let out = succeeds(&args);

@@ -615,3 +615,23 @@ fn render_figures_equal_the_clis() {
         cli(&["render", "motion", "--goal", "2,3", "--frames", "8"])
     );
 }
+
+#[test]
+fn solve_batch_answers_each_goal_as_solve_does() {
+    let s = start(&[]);
+    let goals = json!([[2, 3], [1.5, 2.5, 90], [9, 9], [-3, -1]]);
+    let options = json!({ "limits": true, "restarts": 4 });
+    let v = s.post("/api/solve_batch", &json!({ "goals": goals, "options": options })).json();
+    for (i, g) in goals.as_array().unwrap().iter().enumerate() {
+        let goal = json!({ "x": g[0], "y": g[1], "angle_deg": g.get(2) });
+        let one = s.post("/api/solve", &json!({ "goal": goal, "options": options })).json();
+        let bits = |a: &Value| a.as_array().unwrap().iter().map(|x| x.as_f64().unwrap().to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&v["angles_deg"][i]), bits(&one["angles_deg"]), "{goal}");
+        assert_eq!((&v["status"][i], &v["iterations"][i]), (&one["status"], &one["iterations"]), "{goal}");
+    }
+    let e = s.post("/api/solve_batch", &json!({ "goals": [[1, 2, 3, 4]] })).error(422);
+    assert_eq!(e, "goals[0]: expected [x, y] or [x, y, angle_deg], got 4 numbers");
+    let many = vec![json!([1, 1]); 100_001];
+    let e = s.post("/api/solve_batch", &json!({ "goals": many })).error(422);
+    assert_eq!(e, "goals: 100001 goals, more than the cap of 100000");
+}

@@ -493,7 +493,8 @@ impl PyChain {
         Ok(PyOutcome { outcome, goal, chain: self.data.clone(), options })
     }
 
-    /// Solves many goals in parallel, each from the chain's start pose (``ikarus solve --batch``).
+    /// Solves many goals in parallel, each from the chain's start pose (``ikarus solve --batch``),
+    /// in blocks through the library's batch path.
     ///
     /// ``goals`` is a float64 array [N, 2] (x, y) or [N, 3] (x, y, angle_deg). ``threads``: the
     /// number of worker threads (``None``: all cores). Options are those of :meth:`solve`.
@@ -549,18 +550,22 @@ impl PyChain {
         let mut iterations = vec![0u32; count];
         let mut codes = vec![0u8; count];
         let mut run = || -> Result<(), ikarus::SolveError> {
-            const CHUNK: usize = 256;
+            // Blocks of goals, each solved by one call of the library's batch path (fastest on
+            // many goals at once) on a rayon worker with its own solver and outcomes; about four
+            // blocks per worker, so that a block of slow goals does not leave the others idle.
+            let block = count.div_ceil(4 * rayon::current_num_threads()).clamp(16, 1024);
+            let start = chain.start_pose().angles();
             angles
-                .par_chunks_mut(CHUNK * n.max(1))
-                .zip(error.par_chunks_mut(CHUNK))
-                .zip(iterations.par_chunks_mut(CHUNK))
-                .zip(codes.par_chunks_mut(CHUNK))
-                .zip(parsed.par_chunks(CHUNK))
+                .par_chunks_mut(block * n.max(1))
+                .zip(error.par_chunks_mut(block))
+                .zip(iterations.par_chunks_mut(block))
+                .zip(codes.par_chunks_mut(block))
+                .zip(parsed.par_chunks(block))
                 .try_for_each_init(
-                    || (solver.clone(), Outcome::default()),
-                    |(solver, out), ((((a, e), it), c), g)| {
-                        for (k, goal) in g.iter().enumerate() {
-                            solver.solve_into(chain, chain.start_pose().angles(), goal, out)?;
+                    || (solver.clone(), Vec::<Outcome>::new()),
+                    |(solver, outs), ((((a, e), it), c), g)| {
+                        solver.solve_batch(chain, start, g, outs)?;
+                        for (k, out) in outs.iter().enumerate() {
                             for (dst, src) in a[k * n..(k + 1) * n].iter_mut().zip(out.pose.angles()) {
                                 *dst = src.to_degrees();
                             }

@@ -18,6 +18,7 @@ pub mod requests;
 pub mod rig_motion;
 pub mod rig_requests;
 pub mod rigs;
+pub mod solve_batch;
 
 use std::fmt;
 
@@ -45,6 +46,8 @@ pub struct Limits {
     pub max_resolution: u32,
     /// Most restarts a request may ask for (each may run the full iteration cap).
     pub max_restarts: u32,
+    /// Most goals of one `/api/solve_batch` request.
+    pub max_goals: usize,
     /// Time a request has to send its body (the server's; unused elsewhere).
     pub body_timeout: std::time::Duration,
 }
@@ -60,6 +63,7 @@ impl Default for Limits {
             max_samples: 5000,
             max_resolution: 1024,
             max_restarts: 64,
+            max_goals: 100_000,
             body_timeout: std::time::Duration::from_millis(10_000),
         }
     }
@@ -187,6 +191,8 @@ pub enum Endpoint {
     RigParse,
     /// `POST /api/solve`: an arm's or a rig's solve.
     Solve,
+    /// `POST /api/solve_batch`: many goals for one arm, through the library's batch path.
+    SolveBatch,
     /// `POST /api/animate`: a motion.
     Animate,
     /// `POST /api/track`: a path followed or planned.
@@ -210,6 +216,7 @@ impl Endpoint {
         Endpoint::Rigs,
         Endpoint::RigParse,
         Endpoint::Solve,
+        Endpoint::SolveBatch,
         Endpoint::Animate,
         Endpoint::Track,
         Endpoint::Workspace,
@@ -229,6 +236,7 @@ impl Endpoint {
             Endpoint::Rigs => "/api/rigs",
             Endpoint::RigParse => "/api/rig/parse",
             Endpoint::Solve => "/api/solve",
+            Endpoint::SolveBatch => "/api/solve_batch",
             Endpoint::Animate => "/api/animate",
             Endpoint::Track => "/api/track",
             Endpoint::Workspace => "/api/workspace",
@@ -268,6 +276,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
             SolveBody::Arm(req) => jobs::solve(*req, limits, interrupt),
             SolveBody::Rig(req) => rigs::solve(*req, limits, interrupt),
         },
+        Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
         Endpoint::Animate => match AnimateBody::parse(body)? {
             AnimateBody::Arm(req) => jobs::animate(*req, limits, interrupt),
             AnimateBody::Rig(req) => rig_motion::animate(*req, limits, interrupt),

@@ -3,6 +3,8 @@
 //!
 //! - [`sets`]: the goal sets and their generator;
 //! - [`run`](mod@run): the rows and the timing;
+//! - [`batch`]: the batched measurement beside each `default` row (`Solver::solve_batch`
+//!   on one thread and two);
 //! - [`judge`](mod@judge): how every solve is judged;
 //! - [`kdl`]: goal files and `kdl_bench`'s output;
 //! - [`table`]: text, Markdown and JSON output;
@@ -12,6 +14,7 @@
 //! - [`reach`]: `--reach`, the exact reachable region (verdict time, build time, the verdict
 //!   against solving, unreachable goals answered with and without it).
 
+mod batch;
 mod judge;
 mod kdl;
 mod paths;
@@ -272,11 +275,18 @@ fn run_rows(plan: &[Planned], mut kdl_rows: Vec<Vec<RowResult>>, progress: Optio
             if let Some(bar) = progress {
                 bar.set_message(format!("{} {}", set.name(), config.label));
             }
-            rows.push(run::run_config(set, config, || {
+            let mut row = run::run_config(set, config, || {
                 if let Some(bar) = progress {
                     bar.inc(1);
                 }
-            }));
+            });
+            if config.method == "default" {
+                if let Some(bar) = progress {
+                    bar.set_message(format!("{} {} batched", set.name(), config.label));
+                }
+                row.batch = Some(batch::run(set, config, &row.reached_each));
+            }
+            rows.push(row);
         }
         if let Some(extra) = kdl_rows.get_mut(k) {
             rows.append(extra);

@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use ikarus::{LimitMode, Method, Outcome, Restarts, SolveOptions, Solver};
 
+use super::batch::Batched;
 use super::judge::{Verdict, judge};
 use super::sets::{GoalSet, SetName};
 use crate::stats::{median, nearest_rank};
@@ -172,6 +173,10 @@ pub struct RowResult {
     pub first_solve_error: Option<String>,
     /// KDL LMA's median on the same set divided by this row's median; `None` without `--kdl`.
     pub vs_kdl_lma: Option<f64>,
+    /// Each goal's verdict, in the set's order (a solve that returned an error: not reached).
+    pub reached_each: Vec<bool>,
+    /// The batched measurement (`default` rows only): its figures, or the batch's error.
+    pub batch: Option<Result<Batched, String>>,
 }
 
 /// Collects the solves of a row.
@@ -191,6 +196,8 @@ pub struct Tally {
     solve_errors: usize,
     /// The first such error's message.
     first_solve_error: Option<String>,
+    /// Each solve's verdict, in order.
+    reached_each: Vec<bool>,
 }
 
 impl Tally {
@@ -204,6 +211,7 @@ impl Tally {
             worst_angle_error: oriented.then_some(0.0),
             solve_errors: 0,
             first_solve_error: None,
+            reached_each: Vec::with_capacity(goals),
         }
     }
 
@@ -212,6 +220,7 @@ impl Tally {
     pub fn add(&mut self, nanos: u64, iterations: Option<u64>, verdict: Verdict) {
         self.nanos.push(nanos);
         self.reached += usize::from(verdict.reached);
+        self.reached_each.push(verdict.reached);
         self.iterations = self.iterations.zip(iterations).map(|(a, b)| a + b);
         self.worst_error = self.worst_error.max(verdict.error);
         if let (Some(w), Some(a)) = (&mut self.worst_angle_error, verdict.angle_error) {
@@ -227,6 +236,7 @@ impl Tally {
             *w = f64::INFINITY;
         }
         self.solve_errors += 1;
+        self.reached_each.push(false);
         self.first_solve_error.get_or_insert(message);
     }
 
@@ -250,6 +260,8 @@ impl Tally {
             solve_errors: self.solve_errors,
             first_solve_error: self.first_solve_error,
             vs_kdl_lma: None,
+            reached_each: self.reached_each,
+            batch: None,
         }
     }
 }

@@ -5,6 +5,7 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
+use super::batch::{self, Batched};
 use super::run::RowResult;
 
 /// What the output says about the run as a whole.
@@ -32,7 +33,7 @@ pub struct Header {
     pub max_iterations: u32,
     /// Untimed warm-up solves before each row.
     pub warmup_goals: usize,
-    /// Threads the solves ran on (always one).
+    /// Threads the per-solve rows ran on (always one; the batched measurement runs on one and two).
     pub threads: usize,
     /// Logical CPUs of the machine.
     pub cpus: usize,
@@ -77,6 +78,18 @@ struct RowJson<'a> {
     solve_errors: usize,
     /// The first such error's message.
     solve_error: Option<&'a str>,
+    /// The batched measurement (`default` rows); `None` on the other rows.
+    batch: Option<BatchJson<'a>>,
+}
+
+/// A `default` row's batched measurement as the JSON output writes it.
+#[derive(Debug, Serialize)]
+struct BatchJson<'a> {
+    /// The figures, when the batch ran.
+    #[serde(flatten)]
+    figures: Option<&'a Batched>,
+    /// The batch's error, when it returned one.
+    error: Option<&'a str>,
 }
 
 /// The JSON document: the header, then the rows.
@@ -96,6 +109,126 @@ solve, µs, one thread. iter: mean iterations per solve (— unknown; KDL LMA co
 worst final position error and orientation error (rad) over all goals (unreachable set: distance beyond the \
 closest reachable point). × KDL LMA: KDL LMA's median on the same set / the row's median (above 1: faster \
 than KDL LMA).";
+
+/// What the batched table's columns mean.
+const BATCH_LEGEND: &str = "batched: the goals of each `default` row solved again with Solver::solve_batch (the \
+same options, from the start pose). µs/solve: wall time of a pass over all the goals / goals (a mean: slow goals count \
+in full, unlike in the per-solve median), median of at least 5 samples of about 0.04 s, 0.2 s in all; M solves/s: millions of solves per second; 2 thr: the goals split in two halves, one \
+thread each; × 2 thr: 2 threads' throughput / 1 thread's. reached: the batched outcomes judged as above; \
+≠ per-solve: goals judged otherwise than in the per-solve row, or whose 2-thread outcome differs from the \
+1-thread one (0 when the batch returns what solve_into does).";
+
+/// The headings of the batched table, after arm and set.
+const BATCH_HEADINGS: [&str; 7] =
+    ["reached", "≠ per-solve", "µs/solve 1 thr", "M solves/s 1 thr", "µs/solve 2 thr", "M solves/s 2 thr", "× 2 thr"];
+
+/// The batched table's rows: arm, set, then the cells under [`BATCH_HEADINGS`].
+fn batch_rows(rows: &[RowResult]) -> Vec<Vec<String>> {
+    rows.iter()
+        .filter_map(|r| {
+            let mut c = vec![r.arm.to_owned(), r.set.name().to_owned()];
+            match r.batch.as_ref()? {
+                Ok(b) => c.extend([
+                    format!(
+                        "{:.1}% ({})",
+                        (1000.0 * b.reached as f64 / b.goals.max(1) as f64).floor() / 10.0,
+                        b.reached
+                    ),
+                    b.mismatches.to_string(),
+                    micros(b.us_1thr),
+                    significant_any(b.solves_per_s_1thr / 1e6),
+                    micros(b.us_2thr),
+                    significant_any(b.solves_per_s_2thr / 1e6),
+                    ratio(b.speedup_2thr),
+                ]),
+                Err(_) => {
+                    c.push("error".to_owned());
+                    c.extend(std::iter::repeat_n("—".to_owned(), 6));
+                }
+            }
+            Some(c)
+        })
+        .collect()
+}
+
+/// Notes on batches that returned an error.
+fn batch_notes(rows: &[RowResult]) -> Vec<String> {
+    rows.iter()
+        .filter_map(|r| match r.batch.as_ref()? {
+            Err(e) => Some(format!("{} {}: the batch returned an error: {e}", r.arm, r.set.name())),
+            Ok(_) => None,
+        })
+        .collect()
+}
+
+/// Writes the batched table as aligned text (nothing when no row was batched).
+fn batch_text(w: &mut dyn Write, rows: &[RowResult]) -> io::Result<()> {
+    {
+        let body = batch_rows(rows);
+        if body.is_empty() {
+            return Ok(());
+        }
+        writeln!(w)?;
+        writeln!(
+            w,
+            "batched · Solver::solve_batch, default options, 1 and 2 threads (median of at least {} samples, {} s in all)",
+            batch::SAMPLES,
+            batch::MIN_SECONDS
+        )?;
+        let mut head = vec!["arm".to_owned(), "set".to_owned()];
+        head.extend(BATCH_HEADINGS.map(str::to_owned));
+        let mut widths: Vec<usize> = head.iter().map(|h| h.chars().count()).collect();
+        for c in &body {
+            for (w, cell) in widths.iter_mut().zip(c) {
+                *w = (*w).max(cell.chars().count());
+            }
+        }
+        for cells in std::iter::once(&head).chain(&body) {
+            let mut s = String::from(" ");
+            for (k, (cell, width)) in cells.iter().zip(&widths).enumerate() {
+                let pad = " ".repeat(width - cell.chars().count());
+                s.push_str("  ");
+                if k < 2 {
+                    s.push_str(cell);
+                    s.push_str(&pad);
+                } else {
+                    s.push_str(&pad);
+                    s.push_str(cell);
+                }
+            }
+            writeln!(w, "{}", s.trim_end())?;
+        }
+        for n in batch_notes(rows) {
+            writeln!(w, "   note: {n}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes the batched table in Markdown (nothing when no row was batched).
+fn batch_markdown(w: &mut dyn Write, rows: &[RowResult]) -> io::Result<()> {
+    let body = batch_rows(rows);
+    if body.is_empty() {
+        return Ok(());
+    }
+    writeln!(w)?;
+    let mut head = vec!["arm", "set"];
+    head.extend(BATCH_HEADINGS);
+    writeln!(w, "| {} |", head.join(" | "))?;
+    let rule: Vec<&str> = (0..head.len()).map(|k| if k < 2 { "---" } else { "--:" }).collect();
+    writeln!(w, "|{}|", rule.join("|"))?;
+    for c in body {
+        writeln!(w, "| {} |", c.join(" | "))?;
+    }
+    let notes = batch_notes(rows);
+    if !notes.is_empty() {
+        writeln!(w)?;
+        for n in notes {
+            writeln!(w, "- {n}")?;
+        }
+    }
+    Ok(())
+}
 
 /// Writes the report as JSON.
 pub fn json(w: &mut dyn Write, header: &Header, rows: &[RowResult]) -> io::Result<()> {
@@ -117,6 +250,10 @@ pub fn json(w: &mut dyn Write, header: &Header, rows: &[RowResult]) -> io::Resul
             vs_kdl_lma: r.vs_kdl_lma,
             solve_errors: r.solve_errors,
             solve_error: r.first_solve_error.as_deref(),
+            batch: r
+                .batch
+                .as_ref()
+                .map(|b| BatchJson { figures: b.as_ref().ok(), error: b.as_ref().err().map(String::as_str) }),
         })
         .collect();
     serde_json::to_writer_pretty(&mut *w, &Json { header, rows })?;
@@ -187,9 +324,15 @@ pub fn text(w: &mut dyn Write, header: &Header, rows: &[RowResult]) -> io::Resul
         }
         i = end;
     }
+    batch_text(w, rows)?;
     writeln!(w)?;
     for l in wrap(LEGEND, 100) {
         writeln!(w, "{l}")?;
+    }
+    if rows.iter().any(|r| r.batch.is_some()) {
+        for l in wrap(BATCH_LEGEND, 100) {
+            writeln!(w, "{l}")?;
+        }
     }
     Ok(())
 }
@@ -235,8 +378,14 @@ pub fn markdown(w: &mut dyn Write, header: &Header, rows: &[RowResult]) -> io::R
             writeln!(w, "- {n}")?;
         }
     }
+    batch_markdown(w, rows)?;
     writeln!(w)?;
-    writeln!(w, "{LEGEND}")
+    writeln!(w, "{LEGEND}")?;
+    if rows.iter().any(|r| r.batch.is_some()) {
+        writeln!(w)?;
+        writeln!(w, "{BATCH_LEGEND}")?;
+    }
+    Ok(())
 }
 
 /// The heading line: versions, goals, seed, machine.
@@ -294,6 +443,11 @@ fn ratio(v: f64) -> String {
     if v >= 1e-3 { significant(v) } else { format!("{v:.1e}") }
 }
 
+/// A positive figure with three significant digits (scientific notation outside 0.001..10000).
+fn significant_any(v: f64) -> String {
+    if (1e-3..1e4).contains(&v) { significant(v) } else { format!("{v:.2e}") }
+}
+
 /// `v` (between 0.001 and 10000) with three significant digits, or a whole number.
 fn significant(v: f64) -> String {
     let decimals = (2 - v.abs().log10().floor() as i32).clamp(0, 5) as usize;
@@ -321,6 +475,8 @@ mod tests {
             solve_errors: 0,
             first_solve_error: None,
             vs_kdl_lma: Some(2.5),
+            reached_each: Vec::new(),
+            batch: None,
         }
     }
 
@@ -381,6 +537,43 @@ mod tests {
         let lines = wrap(LEGEND, 100);
         assert!(lines.len() > 3 && lines.iter().all(|l| l.chars().count() <= 100));
         assert_eq!(lines.join(" "), LEGEND);
+    }
+
+    #[test]
+    fn batched_rows_get_a_table_of_their_own() {
+        let mut d = row("default", SetName::FreePosition, 1000);
+        d.batch = Some(Ok(Batched {
+            goals: 1000,
+            reached: 999,
+            mismatches: 0,
+            us_1thr: 2.0,
+            solves_per_s_1thr: 5e5,
+            us_2thr: 1.25,
+            solves_per_s_2thr: 8e5,
+            speedup_2thr: 1.6,
+        }));
+        let mut e = row("default", SetName::LimitsPosition, 1000);
+        e.batch = Some(Err("bad start".to_owned()));
+        let rows = [row("dls", SetName::FreePosition, 10), d, e];
+        let mut out = Vec::new();
+        markdown(&mut out, &header(), &rows).unwrap();
+        let out = String::from_utf8(out).unwrap();
+        assert!(out.contains("| arm | set | reached | ≠ per-solve | µs/solve 1 thr |"), "{out}");
+        assert!(
+            out.contains("| seed | free-position | 99.9% (999) | 0 | 2.00 | 0.500 | 1.25 | 0.800 | 1.60 |"),
+            "{out}"
+        );
+        assert!(out.contains("| seed | limits-position | error | — |"), "{out}");
+        assert!(out.contains("- seed limits-position: the batch returned an error: bad start"), "{out}");
+        let mut out = Vec::new();
+        text(&mut out, &header(), &rows).unwrap();
+        let out = String::from_utf8(out).unwrap();
+        assert!(out.contains("\nbatched · Solver::solve_batch"), "{out}");
+        assert!(out.contains("M solves/s 2 thr"), "{out}");
+        // No batched row, no batched table.
+        let mut out = Vec::new();
+        text(&mut out, &header(), &rows[..1]).unwrap();
+        assert!(!String::from_utf8(out).unwrap().contains("batched"));
     }
 
     #[test]

@@ -17,7 +17,7 @@ impl IntoResponse for Reply {
     }
 }
 
-/// A computation (`/api/solve`, `animate`, `track`, `workspace`, `reach`, `render`): its JSON
+/// A computation (`/api/solve`, `solve_batch`, `animate`, `track`, `workspace`, `reach`, `render`): its JSON
 /// body answered by [`api::call`] on a worker of the pool, under the time budget.
 pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, ApiError> {
     let pool = state.pool.clone();

@@ -130,6 +130,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         max_samples: usize::try_from(args.max_samples).unwrap_or(usize::MAX),
         max_resolution: args.max_resolution,
         max_restarts: Limits::default().max_restarts,
+        max_goals: Limits::default().max_goals,
         body_timeout: Duration::from_millis(args.body_timeout_ms),
     };
     let parallelism = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
@@ -266,6 +267,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),
         )
         .route("/api/solve", post(|State(s), b| compute(Endpoint::Solve, s, b)))
+        .route("/api/solve_batch", post(|State(s), b| compute(Endpoint::SolveBatch, s, b)))
         .route("/api/animate", post(|State(s), b| compute(Endpoint::Animate, s, b)))
         .route("/api/track", post(|State(s), b| compute(Endpoint::Track, s, b)))
         .route("/api/workspace", post(|State(s), b| compute(Endpoint::Workspace, s, b)))
