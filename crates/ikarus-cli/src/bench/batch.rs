@@ -5,11 +5,10 @@
 
 use std::time::Instant;
 
-use ikarus::{Outcome, Solver};
+use ikarus::{Outcome, SolveOptions, Solver};
 use serde::Serialize;
 
 use super::judge::judge;
-use super::run::Config;
 use super::sets::GoalSet;
 use crate::stats::median;
 
@@ -42,10 +41,10 @@ pub struct Batched {
     pub speedup_2thr: f64,
 }
 
-/// Runs the batched measurement of `config` (a `default` row) on `set`; `reached_each` is the
+/// Runs the batched measurement of a `default` row's `options` on `set`; `reached_each` is the
 /// per-solve row's verdict on each goal. A batch that returns an error gives its message.
-pub fn run(set: &GoalSet, config: &Config, reached_each: &[bool]) -> Result<Batched, String> {
-    let new_solver = || Solver::new(config.options.clone()).expect("the benchmark's options are valid");
+pub fn run(set: &GoalSet, options: &SolveOptions, reached_each: &[bool]) -> Result<Batched, String> {
+    let new_solver = || Solver::new(options.clone()).expect("the benchmark's options are valid");
     let (chain, start, goals) = (&set.chain, set.start.as_slice(), set.targets.as_slice());
 
     // One thread: also the untimed first pass, whose error (if any) is reported.
@@ -150,13 +149,13 @@ mod tests {
         let set = generate("seed", &ArmName::Seed.load().unwrap().chain, SetName::FreeOriented, 9, 1);
         let config = configs().into_iter().find(|c| c.method == "default" && c.applies_to(&set)).unwrap();
         let row = run_config(&set, &config, || {});
-        let b = run(&set, &config, &row.reached_each).unwrap();
+        let b = run(&set, &config.options, &row.reached_each).unwrap();
         assert_eq!((b.goals, b.reached, b.mismatches), (9, row.reached, 0));
         assert!(b.us_1thr > 0.0 && b.us_2thr > 0.0 && b.speedup_2thr > 0.0);
         assert!((b.solves_per_s_1thr * b.us_1thr - 1e6).abs() < 1e-3);
         // A per-solve verdict that differs is counted.
         let mut other = row.reached_each.clone();
         other[0] = !other[0];
-        assert_eq!(run(&set, &config, &other).unwrap().mismatches, 1);
+        assert_eq!(run(&set, &config.options, &other).unwrap().mismatches, 1);
     }
 }

@@ -284,7 +284,7 @@ fn run_rows(plan: &[Planned], mut kdl_rows: Vec<Vec<RowResult>>, progress: Optio
                 if let Some(bar) = progress {
                     bar.set_message(format!("{} {} batched", set.name(), config.label));
                 }
-                row.batch = Some(batch::run(set, config, &row.reached_each));
+                row.batch = Some(batch::run(set, &config.options, &row.reached_each));
             }
             rows.push(row);
         }
