@@ -17,6 +17,12 @@ use crate::chain::Chain;
 /// first goal reached tends to be near it too and an animation does not jump. The first attempt
 /// that reaches the goal wins; if none does, the outcome is the attempt with the smallest error.
 /// The same `seed` gives the same attempts, bit for bit.
+///
+/// A goal that the certified-reach verdict ([`SolveOptions::reach_verdict`]) judged reachable
+/// also gets a start pose from the region: the first attempt is a probe of at most 12 iterations,
+/// restart 1 starts from the pose the exact region reads off for the goal (it reached every
+/// goal of the bench's `limits-*` sets that the probe did not), restart 2 runs the first
+/// attempt again with the whole cap if the probe was cut short, and the poses above follow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restarts {
     /// Most restarts after the first solve, ≥ 1.
