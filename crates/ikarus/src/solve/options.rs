@@ -19,10 +19,11 @@ use crate::chain::Chain;
 /// The same `seed` gives the same attempts, bit for bit.
 ///
 /// A goal that the certified-reach verdict ([`SolveOptions::reach_verdict`]) judged reachable
-/// also gets a start pose from the region: the first attempt is a probe of at most 12 iterations,
+/// also gets a start pose from the region: the first attempt (with Levenberg–Marquardt or damped
+/// least squares) is a probe of at most 12 iterations,
 /// restart 1 starts from the pose the exact region reads off for the goal (it reached every
-/// goal of the bench's `limits-*` sets that the probe did not), restart 2 runs the first
-/// attempt again with the whole cap if the probe was cut short, and the poses above follow.
+/// goal of the bench's `limits-*` sets that the probe did not) with the cap less the probe's 12,
+/// then, if the probe was cut short, runs the first attempt again whole; the poses above follow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restarts {
     /// Most restarts after the first solve, ≥ 1.
