@@ -21,9 +21,12 @@ use crate::chain::Chain;
 /// A goal that the certified-reach verdict ([`SolveOptions::reach_verdict`]) judged reachable
 /// also gets a start pose from the region: the first attempt (with Levenberg–Marquardt or damped
 /// least squares) is a probe of at most 12 iterations,
-/// restart 1 starts from the pose the exact region reads off for the goal (it reached every
-/// goal of the bench's `limits-*` sets that the probe did not) with the cap less the probe's 12,
-/// then, if the probe was cut short, runs the first attempt again whole; the poses above follow.
+/// and one cut short with a joint held at a limit is followed by restart 1 from the pose the
+/// exact region reads off for the goal (with the cap less the probe's 12; it reached every goal
+/// of the bench's `limits-*` sets whose probe did not), which then runs the first attempt again
+/// whole if it did not reach; a probe cut short with no joint at a limit runs again whole at
+/// once. Restart 1 of any other seeded solve starts from the region's pose; the poses above
+/// follow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restarts {
     /// Most restarts after the first solve, ≥ 1.
