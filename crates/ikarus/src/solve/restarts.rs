@@ -125,6 +125,12 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
             tally.iterations += out.iterations;
         }
     }
+    if spent > 0 && tally.restarts == 0 && opts.record_every.is_some() {
+        // The first attempt ran whole after its probe, from the start pose again: as after
+        // restarts, the frames run from the start pose to the outcome's, numbered by every
+        // iteration.
+        join_frames(p, start, tally.iterations, s, out);
+    }
     out.iterations = tally.iterations;
     out.restarts = tally.restarts;
     let judged = !matches!(tally.status, Status::Reached | Status::Interrupted);
