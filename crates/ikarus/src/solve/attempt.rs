@@ -115,7 +115,7 @@ fn stop<M: Model>(p: &Problem<'_, M>, error: f64, angle_error: f64, still: u32, 
         Some(Status::Reached)
     } else if opts.stall.is_some_and(|st| still >= st.window) {
         Some(Status::Stalled)
-    } else if iteration >= opts.max_iterations {
+    } else if iteration >= p.max_iterations {
         Some(Status::IterationLimit)
     } else if crate::interrupt::is_set(opts.interrupt.as_ref()) {
         Some(Status::Interrupted)

@@ -17,6 +17,16 @@ use crate::chain::Chain;
 /// first goal reached tends to be near it too and an animation does not jump. The first attempt
 /// that reaches the goal wins; if none does, the outcome is the attempt with the smallest error.
 /// The same `seed` gives the same attempts, bit for bit.
+///
+/// A goal that the certified-reach verdict ([`SolveOptions::reach_verdict`]) judged reachable
+/// also gets a start pose from the region: the first attempt (with Levenberg–Marquardt or damped
+/// least squares) is a probe of at most 12 iterations,
+/// and one cut short with a joint held at a limit is followed by restart 1 from the pose the
+/// exact region reads off for the goal (with the cap less the probe's 12; it reached every goal
+/// of the bench's `limits-*` sets whose probe did not), which then runs the first attempt again
+/// whole if it did not reach; a probe cut short with no joint at a limit runs again whole at
+/// once. Restart 1 of any other seeded solve starts from the region's pose; the poses above
+/// follow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restarts {
     /// Most restarts after the first solve, ≥ 1.

@@ -16,6 +16,9 @@ pub(super) struct Problem<'a, M: Model = Chain> {
     pub(super) bounds: Bounds<'a>,
     /// The limit mode in effect: [`LimitMode::Ignore`] whenever `bounds` is free.
     pub(super) mode: LimitMode,
+    /// The iteration cap of an attempt: [`SolveOptions::max_iterations`], or less for the
+    /// probe of a seeded solve (see `restarts`).
+    pub(super) max_iterations: u32,
 }
 
 // By hand: derived impls would ask `M: Clone`/`M: Copy`, and only references are copied.
@@ -40,6 +43,6 @@ impl<'a, M: Model> Problem<'a, M> {
     /// The context with explicit `bounds` (the mode of `opts` applies unless they are free).
     pub(super) fn with_bounds(model: &'a M, goal: &'a M::Goal, opts: &'a SolveOptions, bounds: Bounds<'a>) -> Self {
         let mode = if bounds.is_free() { LimitMode::Ignore } else { opts.limits };
-        Self { model, goal, opts, bounds, mode }
+        Self { model, goal, opts, bounds, mode, max_iterations: opts.max_iterations }
     }
 }

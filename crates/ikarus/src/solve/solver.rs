@@ -7,7 +7,7 @@ use super::algebra::dynamic::Dynamic;
 use super::attempt::distance;
 use super::model::{Model, ScratchOf};
 use super::problem::Problem;
-use super::restarts::solve_with_restarts;
+use super::restarts::solve_with_restarts_seeded;
 use super::rig_model::RigPoints;
 use super::scratch::Scratch;
 use super::verdict::ReachCache;
@@ -88,10 +88,12 @@ impl Solver {
         Model::fit(chain, s);
         let p = Problem::new(chain, goal, opts);
         out.reach_distance = None;
+        let mut judged = false;
         // (A solve interrupted before it starts ends interrupted, as it always has.)
         if opts.reach_verdict && !p.bounds.is_free() && !crate::interrupt::is_set(opts.interrupt.as_ref()) {
             let found = self.reach.judge(chain, goal, opts.tolerance, opts.angle_tolerance, &mut s.trial);
             if let Some(found) = found {
+                judged = true;
                 out.reach_distance = Some(found.distance);
                 if found.unreachable {
                     out_of_reach(&p, start, s, out);
@@ -114,7 +116,10 @@ impl Solver {
                 ClosedForm::NotApplicable | ClosedForm::OutOfReach | ClosedForm::OutsideLimits => {}
             }
         }
-        solve_with_restarts(&p, start, began, s, out);
+        // A goal the region judged reachable restarts first from the pose it reads off.
+        let reach = &self.reach;
+        let seed = |pose: &mut Vec<f64>| reach.seed_pose(chain, goal, pose);
+        solve_with_restarts_seeded(&p, start, began, judged.then_some(&seed), s, out);
         finish(&p, s, out);
         Ok(())
     }

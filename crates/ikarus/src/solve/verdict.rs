@@ -95,22 +95,74 @@ impl ReachCache {
                 let wrist: Point2<f64> = target - last * Vector2::new(math::cos(direction), math::sin(direction));
                 let v = region.verdict(wrist, tolerance + last * angle_tolerance);
                 if !v.reachable {
-                    region.pose_reaching_into(wrist, pose);
-                    // The last joint points the last link as the goal asks, within its range.
-                    let before: f64 = pose.iter().sum();
-                    let wanted = direction - before;
-                    let angle = match chain.limits()[n - 1] {
-                        Some(l) => l
-                            .nearest_equivalent(wanted, 0.5 * (l.min() + l.max()))
-                            .unwrap_or_else(|| l.nearer_end(wanted)),
-                        None => crate::angle::wrap_angle(wanted),
-                    };
-                    pose.push(angle);
+                    wrist_pose(chain, region, wrist, direction, pose);
                 }
                 Some(Found { distance: v.distance, unreachable: !v.reachable })
             }
         }
     }
+
+    /// A start pose for the first restart of a solve that [`ReachCache::judge`] let through
+    /// (so the regions are built, for this chain): the pose the region reads off for the
+    /// boundary point nearest the goal (for an orientation goal, nearest its wrist, with the
+    /// last link pointed as asked), moved a share [`SEED_INSET`] of the way toward the middle
+    /// of every limited joint's range. `false` (and `pose` untouched) when there is no region
+    /// to read it from.
+    ///
+    /// Why: a lock-mode solve that stalls against a limit from the arm's start pose stalls
+    /// there again from the first restarts, which start near the start pose: on the bench's
+    /// seed arm (`limits-position`) the 42 goals of 1000 that restarted stalled in the same
+    /// corner from their first two (20 goals) or nine (22) attempts. The boundary pose lies on
+    /// the branch of poses that reaches the goal's side of the region: from it, every goal of
+    /// every `limits-*` bench set (seed, seven, tentacle) that restarts is reached by restart 1,
+    /// where they took up to 10 restarts before. It is only a start: a boundary pose is often
+    /// singular (links in line, or joints at their limits: on the tentacle about a third of
+    /// those starts stalled within two iterations), so the inset moves it inside.
+    pub(super) fn seed_pose(&self, chain: &Chain, goal: &Goal, pose: &mut Vec<f64>) -> bool {
+        let target = goal.target();
+        match goal.orientation() {
+            None => match &self.position {
+                Some(region) if region.is_checked() => {
+                    region.pose_reaching_into(target, pose);
+                }
+                _ => return false,
+            },
+            Some(direction) => match &self.wrist {
+                Some(Some(region)) if region.is_checked() => {
+                    let last = chain.lengths()[chain.len() - 1];
+                    let wrist = target - last * Vector2::new(math::cos(direction), math::sin(direction));
+                    wrist_pose(chain, region, wrist, direction, pose);
+                }
+                _ => return false,
+            },
+        }
+        for (a, lim) in pose.iter_mut().zip(chain.limits()) {
+            if let Some(l) = lim {
+                *a = l.clamp(*a + SEED_INSET * (0.5 * (l.min() + l.max()) - *a));
+            }
+        }
+        true
+    }
+}
+
+/// How far [`ReachCache::seed_pose`] moves each limited joint toward the middle of its range,
+/// as a share of the way.
+const SEED_INSET: f64 = 0.05;
+
+/// The pose putting the wrist (the chain without its last link) on the point of `region`
+/// nearest `wrist`, and the last link pointing along `direction` (the nearest it can within
+/// its range), into `pose`.
+fn wrist_pose(chain: &Chain, region: &Region, wrist: Point2<f64>, direction: f64, pose: &mut Vec<f64>) {
+    let n = chain.len();
+    region.pose_reaching_into(wrist, pose);
+    // The last joint points the last link as the goal asks, within its range.
+    let before: f64 = pose.iter().sum();
+    let wanted = direction - before;
+    let angle = match chain.limits()[n - 1] {
+        Some(l) => l.nearest_equivalent(wanted, 0.5 * (l.min() + l.max())).unwrap_or_else(|| l.nearer_end(wanted)),
+        None => crate::angle::wrap_angle(wanted),
+    };
+    pose.push(angle);
 }
 
 #[cfg(test)]
