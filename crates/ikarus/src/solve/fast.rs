@@ -139,12 +139,13 @@ fn forward<L: Lanes>(chain: &Chain, angles: &[L], xs: &mut [L], ys: &mut [L]) ->
     phi
 }
 
-/// Runs the fast path on `goals` (index, target x, target y), each from `start`, `L::LANES` at
-/// a time (a lane that finishes takes the next goal), and hands every goal's end to `emit`.
+/// Runs the fast path on `goals` (index, target x, target y), each from `start` with an
+/// iteration cap of `max_iterations`, `L::LANES` at a time (a lane that finishes takes the next goal), and hands every goal's end to `emit`.
 #[inline(always)]
 pub(super) fn run<L: Lanes>(
     chain: &Chain,
     opts: &SolveOptions,
+    max_iterations: u32,
     start: &[f64],
     st: &mut Buffers<L>,
     mut goals: impl Iterator<Item = (usize, f64, f64)>,
@@ -164,7 +165,7 @@ pub(super) fn run<L: Lanes>(
     let gain = L::splat(opts.gain);
     let cap = opts.max_step;
     let stall = opts.stall;
-    let (tolerance, max_iterations) = (opts.tolerance, opts.max_iterations);
+    let tolerance = opts.tolerance;
 
     // Fill every lane with a goal, at the start pose.
     let mut starting = [false; 16];
@@ -418,7 +419,7 @@ pub(super) fn run_lanes(
             goals: impl Iterator<Item = (usize, f64, f64)>,
             emit: impl FnMut(usize, End<'_>),
         ) {
-            run(chain, opts, start, st, goals, emit);
+            run(chain, opts, opts.max_iterations, start, st, goals, emit);
         }
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the processor has AVX2 (checked just above).
@@ -429,7 +430,7 @@ pub(super) fn run_lanes(
             return;
         }
     }
-    run(chain, opts, start, st, goals, emit);
+    run(chain, opts, opts.max_iterations, start, st, goals, emit);
 }
 
 #[cfg(test)]
@@ -457,7 +458,7 @@ mod tests {
         let mut buffers = Buffers::<Batch>::default();
         let mut emitted = vec![0; goals.len()];
         let start = chain.start_pose().angles().to_vec();
-        run(&chain, &opts, &start, &mut buffers, goals.iter().copied(), |i, end| {
+        run(&chain, &opts, opts.max_iterations, &start, &mut buffers, goals.iter().copied(), |i, end| {
             emitted[i] += 1;
             *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
         });
@@ -466,7 +467,7 @@ mod tests {
         assert!(seen.contains_key("resume"), "{seen:?}");
         let capped = SolveOptions { max_iterations: 3, ..opts };
         seen.clear();
-        run(&chain, &capped, &start, &mut buffers, goals.iter().copied(), |_, end| {
+        run(&chain, &capped, capped.max_iterations, &start, &mut buffers, goals.iter().copied(), |_, end| {
             *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
         });
         assert!(seen.contains_key("iteration_limit"), "{seen:?}");

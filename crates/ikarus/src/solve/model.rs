@@ -217,26 +217,34 @@ impl Model for Chain {
         let target = p.goal.target();
         let mut taken = fast::Taken::No;
         let best = &mut s.best;
-        fast::run::<f64>(chain, opts, start, &mut s.fast, std::iter::once((0, target.x, target.y)), |_, end| {
-            taken = match end.status {
-                Some(status) => {
-                    out.frames.start(chain.len(), None, opts.max_iterations);
-                    let angles = out.pose.angles_mut();
-                    angles.clear();
-                    angles.extend_from_slice(end.angles);
-                    out.iterations = end.iterations;
-                    out.error = end.error;
-                    out.angle_error = 0.0;
-                    out.end_effector =
-                        EndEffector { position: Point2::new(end.tip.0, end.tip.1), orientation: end.phi };
-                    fast::Taken::Done(status)
-                }
-                None => {
-                    best.copy_from_slice(end.angles);
-                    fast::Taken::Resume(end.resume)
-                }
-            };
-        });
+        fast::run::<f64>(
+            chain,
+            opts,
+            p.max_iterations,
+            start,
+            &mut s.fast,
+            std::iter::once((0, target.x, target.y)),
+            |_, end| {
+                taken = match end.status {
+                    Some(status) => {
+                        out.frames.start(chain.len(), None, opts.max_iterations);
+                        let angles = out.pose.angles_mut();
+                        angles.clear();
+                        angles.extend_from_slice(end.angles);
+                        out.iterations = end.iterations;
+                        out.error = end.error;
+                        out.angle_error = 0.0;
+                        out.end_effector =
+                            EndEffector { position: Point2::new(end.tip.0, end.tip.1), orientation: end.phi };
+                        fast::Taken::Done(status)
+                    }
+                    None => {
+                        best.copy_from_slice(end.angles);
+                        fast::Taken::Resume(end.resume)
+                    }
+                };
+            },
+        );
         taken
     }
 
