@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use ikarus::{Goal, Outcome, SolveOptions};
+use ikarus::{Goal, Outcome, SolveOptions, Status};
 
 use crate::arm::Arm;
-use crate::batch::Batch;
+use crate::batch::{BLOCK_GOALS, Batch};
 use crate::error::CliError;
-use crate::goals::{self, GoalRow, make_goal};
+use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::output;
 use crate::picture::{StillArgs, arm_drawing, draw};
@@ -257,41 +257,55 @@ impl Report<'_> {
     }
 }
 
-fn read_goals(path: &Path) -> Result<Vec<GoalRow>, CliError> {
+fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
+    // The threads first, to parse the goals on; then the errors in the order of the work: the
+    // goals, the options, the summary file.
+    let mut batch = Batch::threads(args.threads)?;
     let label = format!("batch file {}", path.display());
-    let goals = goals::read(path, &label)?;
+    let Goals { xy, goals } = batch.install(|| goals::read_goals(path, &label, true))?;
     if goals.is_empty() {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
-    Ok(goals)
-}
-
-fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
-    let goals = read_goals(path)?;
     let solver = solver(arm.options(&args.solver, None)?)?;
-    let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
+    batch.summary_json(args.summary_json.as_deref())?;
     let chain = &arm.chain;
-    let rows = batch.solve_all(
-        &goals,
-        || (solver.clone(), Outcome::default()),
-        |(solver, out), g: &GoalRow| {
-            solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out)?;
-            Ok::<_, ikarus::SolveError>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
+    let start = chain.start_pose().angles();
+    let (rows, tally) = batch.solve_blocks(
+        goals.len(),
+        || (solver.clone(), Vec::<Outcome>::with_capacity(BLOCK_GOALS)),
+        |(solver, out), block| {
+            solver.solve_batch(chain, start, &goals[block], out)?;
+            Ok::<_, ikarus::SolveError>(out.iter().filter(|o| o.status == Status::Reached).count())
+        },
+        |(_, out), block, buf| {
+            for ([x, y], o) in xy[block].iter().zip(out.iter()) {
+                row(buf, *x, *y, o);
+            }
         },
     )?;
     output::stdout(|w| {
-        let n = chain.len();
-        let thetas: Vec<String> = (1..=n).map(|i| format!("theta{i}_deg")).collect();
+        let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
         writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
-        for (g, r) in goals.iter().zip(&rows) {
-            let (error, iterations, angles) = &r.row;
-            write!(w, "{:?},{:?},{},{:?},{}", g.x, g.y, r.status, error, iterations)?;
-            for a in angles {
-                write!(w, ",{:?}", a.to_degrees())?;
-            }
-            writeln!(w)?;
-        }
-        Ok(())
+        rows.iter().try_for_each(|bytes| w.write_all(bytes))
     })?;
-    batch.finish(&rows, solver.options().method.name())
+    batch.finish(tally, solver.options().method.name())
+}
+
+/// Appends the CSV row of the goal at `(x, y)` solved as `o`:
+/// `x,y,status,error,iterations,theta1_deg…`, floats as `{:?}` writes them.
+fn row(buf: &mut Vec<u8>, x: f64, y: f64, o: &Outcome) {
+    output::push_f64(buf, x);
+    buf.push(b',');
+    output::push_f64(buf, y);
+    buf.push(b',');
+    buf.extend_from_slice(o.status.as_str().as_bytes());
+    buf.push(b',');
+    output::push_f64(buf, o.error);
+    buf.push(b',');
+    let _ = write!(buf, "{}", o.iterations);
+    for a in o.pose.angles() {
+        buf.push(b',');
+        output::push_f64(buf, a.to_degrees());
+    }
+    buf.push(b'\n');
 }
