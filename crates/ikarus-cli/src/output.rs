@@ -25,7 +25,11 @@ use crate::error::CliError;
 pub fn stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
     let out = io::stdout();
     let mut w = io::BufWriter::new(out.lock());
-    let result = write(&mut w).and_then(|()| w.flush());
+    written(write(&mut w).and_then(|()| w.flush()))
+}
+
+/// The outcome of writing stdout: a reader that went away (`| head`) is not an error.
+pub fn written(result: io::Result<()>) -> Result<(), CliError> {
     match result {
         Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
             Err(CliError::runtime(format!("cannot write to stdout: {}", io_reason(&e))))

@@ -270,7 +270,12 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     batch.summary_json(args.summary_json.as_deref())?;
     let chain = &arm.chain;
     let start = chain.start_pose().angles();
-    let (rows, tally) = batch.solve_blocks(
+    // What can fail in a solve (the start pose, the options) fails here, before any row.
+    solver.clone().solve_batch(chain, start, &[], &mut Vec::new()).map_err(|e| CliError::input(e.to_string()))?;
+    let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
+    let header = format!("x,y,status,error,iterations,{}\n", thetas.join(","));
+    let stdout = std::io::stdout();
+    let tally = batch.solve_blocks(
         goals.len(),
         || (solver.clone(), Vec::<Outcome>::with_capacity(BLOCK_GOALS)),
         |(solver, out), block| {
@@ -282,12 +287,9 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
                 row(buf, *x, *y, o);
             }
         },
+        header.as_bytes(),
+        &mut std::io::BufWriter::new(stdout.lock()),
     )?;
-    output::stdout(|w| {
-        let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
-        writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
-        rows.iter().try_for_each(|bytes| w.write_all(bytes))
-    })?;
     batch.finish(tally, solver.options().method.name())
 }
 
