@@ -70,11 +70,12 @@ pub struct Tally {
 }
 
 /// An arm's goals are solved in blocks of this many, each by one call of `Solver::solve_batch`
-/// (which will solve several goals at a time in SIMD lanes, so wants them in blocks). On a
-/// 100,000-goal batch of the seed arm, blocks of 16 to 1024 goals all ran at the same speed
-/// (the library's batch is still a loop); 64 is small enough that the median over the blocks
-/// still means something for a batch of a few thousand goals, large enough that timing a
-/// block costs nothing next to it.
+/// (which will solve several goals at a time in SIMD lanes, so wants them in blocks). Measured
+/// on 100,000 goals of the seed arm, one thread, 7 interleaved runs on a busy machine (load 6 on
+/// 2 cores), median solves/s: blocks of 1 goal 0.35 M, of 16 0.41 M, 64 0.42 M, 256 0.39 M,
+/// 1024 0.44 M: past one goal, the same within the noise (the library's batch is still a loop).
+/// 64 is small enough that the median over the blocks still means something for a batch of a
+/// few thousand goals, and a multiple of any SIMD width to come.
 pub const BLOCK_GOALS: usize = 64;
 
 /// Blocks per task of [`Batch::solve_blocks`]: 16 blocks (1,024 goals, about 1.3 ms of the
