@@ -78,10 +78,10 @@ pub struct Tally {
 /// few thousand goals, and a multiple of any SIMD width to come.
 pub const BLOCK_GOALS: usize = 64;
 
-/// Blocks per task of [`Batch::solve_blocks`]: 16 blocks (1,024 goals, about 1.3 ms of the
-/// seed arm's solving) per task, so 100,000 goals make about 100 tasks, for the threads to
-/// share evenly, each formatting its rows into one buffer of about 100 KB.
-const TASK_BLOCKS: usize = 16;
+/// Goals per task of [`Batch::solve_blocks`] at most: 16 blocks (1,024 goals, about 1.3 ms of
+/// the seed arm's solving), so 100,000 goals make over 100 tasks, for the threads to share
+/// evenly, each formatting its rows into one buffer of about 100 KB.
+pub const TASK_GOALS: usize = 16 * BLOCK_GOALS;
 
 /// What one task of [`Batch::solve_blocks`] made: its rows' bytes (until they are written)
 /// and its measures.
@@ -176,53 +176,54 @@ impl Batch {
         Ok((rows, tally))
     }
 
-    /// Solves goals `0..goals` in blocks of [`BLOCK_GOALS`], tasks of [`TASK_BLOCKS`] blocks in
-    /// parallel, each thread with its state from `init` (a solver and its outcomes): `solve`
-    /// solves a block (a range of goals) and says how many it reached, then `format` appends
-    /// its rows to the task's buffer. Each block is timed.
+    /// Solves `tasks` runs of goals (task `t` has `size(t)` goals, at most [`TASK_GOALS`]) in
+    /// parallel, each in blocks of [`BLOCK_GOALS`], each thread with its state from `init` (a
+    /// solver and its outcomes): `solve` solves a block (task `t`, a range of its goals) and
+    /// says how many it reached, then `format` appends its rows to the task's buffer. Each
+    /// block is timed.
     ///
-    /// The threads take the tasks in the goals' order (the next one not taken), so they finish
-    /// nearly in order, and this thread writes each task's rows to `out` as soon as the rows
-    /// before them are written: writing overlaps solving instead of following it (writing
-    /// 100,000 rows, 10 MB, to a file took 10 to 20 ms, a tenth of a 2-thread batch). `out`
-    /// gets `header` first and is flushed at the end. A reader that goes away is not an error
-    /// (the batch still finishes, for its summary). The first error ends the batch as bad
-    /// input; the caller checks what can fail (the options) before, so that no row is written
-    /// when it does.
+    /// The threads take the tasks in order (the next one not taken), so they finish nearly in
+    /// order, and this thread writes each task's rows to `out` as soon as the rows before them
+    /// are written: writing overlaps solving instead of following it (writing 100,000 rows, 10
+    /// MB, to a file took 10 to 20 ms, a tenth of a 2-thread batch). `out` gets `header` first
+    /// and is flushed at the end. A reader that goes away is not an error (the batch still
+    /// finishes, for its summary). The first error ends the batch as bad input; the caller
+    /// checks what can fail (the options) before, so that no row is written when it does.
+    #[allow(clippy::too_many_arguments)]
     pub fn solve_blocks<S, E>(
         &self,
-        goals: usize,
+        tasks: usize,
+        size: impl Fn(usize) -> usize + Sync + Send,
         init: impl Fn() -> S + Sync + Send,
-        solve: impl Fn(&mut S, Range<usize>) -> Result<usize, E> + Sync + Send,
-        format: impl Fn(&mut S, Range<usize>, &mut Vec<u8>) + Sync + Send,
+        solve: impl Fn(&mut S, usize, Range<usize>) -> Result<usize, E> + Sync + Send,
+        format: impl Fn(&mut S, usize, Range<usize>, &mut Vec<u8>) + Sync + Send,
         header: &[u8],
         out: &mut dyn Write,
     ) -> Result<Tally, CliError>
     where
         E: std::fmt::Display + Send,
     {
+        let goals: usize = (0..tasks).map(&size).sum();
         let progress = progress_bar(goals);
-        let task = BLOCK_GOALS * TASK_BLOCKS;
-        let tasks = goals.div_ceil(task);
         let run = |state: &mut S, t: usize| -> Result<Run, E> {
-            let goals = t * task..goals.min((t + 1) * task);
+            let n = size(t);
             let mut run = Run {
-                bytes: Vec::with_capacity(goals.len() * 128),
+                bytes: Vec::with_capacity(n * 128),
                 reached: 0,
-                micros: Vec::with_capacity(TASK_BLOCKS),
+                micros: Vec::with_capacity(n.div_ceil(BLOCK_GOALS)),
                 first: Instant::now(),
                 last: Instant::now(),
             };
-            for start in goals.clone().step_by(BLOCK_GOALS) {
-                let block = start..goals.end.min(start + BLOCK_GOALS);
+            for start in (0..n).step_by(BLOCK_GOALS) {
+                let block = start..n.min(start + BLOCK_GOALS);
                 let started = Instant::now();
-                run.reached += solve(state, block.clone())?;
+                run.reached += solve(state, t, block.clone())?;
                 run.last = Instant::now();
-                if start == goals.start {
+                if start == 0 {
                     run.first = started;
                 }
                 run.micros.push((run.last - started).as_secs_f64() * 1e6 / block.len() as f64);
-                format(state, block.clone(), &mut run.bytes);
+                format(state, t, block.clone(), &mut run.bytes);
                 if let Some(bar) = &progress {
                     bar.inc(block.len() as u64);
                 }

@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 use ikarus::{Goal, Outcome, SolveOptions, Status};
 
 use crate::arm::Arm;
-use crate::batch::{BLOCK_GOALS, Batch};
+use crate::batch::{BLOCK_GOALS, Batch, TASK_GOALS};
 use crate::error::CliError;
 use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
@@ -262,8 +262,8 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     // goals, the options, the summary file.
     let mut batch = Batch::threads(args.threads)?;
     let label = format!("batch file {}", path.display());
-    let Goals { xy, goals } = batch.install(|| goals::read_goals(path, &label, true))?;
-    if goals.is_empty() {
+    let pieces = batch.install(|| goals::read_pieces(path, &label))?;
+    if pieces.iter().all(|p| p.goals.is_empty()) {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
     let solver = solver(arm.options(&args.solver, None)?)?;
@@ -275,15 +275,19 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
     let header = format!("x,y,status,error,iterations,{}\n", thetas.join(","));
     let stdout = std::io::stdout();
+    // Tasks of at most TASK_GOALS goals, each within one piece of the file.
+    let tasks: Vec<(&[[f64; 2]], &[Goal])> =
+        pieces.iter().flat_map(|p: &Goals| p.xy.chunks(TASK_GOALS).zip(p.goals.chunks(TASK_GOALS))).collect();
     let tally = batch.solve_blocks(
-        goals.len(),
+        tasks.len(),
+        |t| tasks[t].1.len(),
         || (solver.clone(), Vec::<Outcome>::with_capacity(BLOCK_GOALS)),
-        |(solver, out), block| {
-            solver.solve_batch(chain, start, &goals[block], out)?;
+        |(solver, out), t, block| {
+            solver.solve_batch(chain, start, &tasks[t].1[block], out)?;
             Ok::<_, ikarus::SolveError>(out.iter().filter(|o| o.status == Status::Reached).count())
         },
-        |(_, out), block, buf| {
-            for ([x, y], o) in xy[block].iter().zip(out.iter()) {
+        |(_, out), t, block, buf| {
+            for ([x, y], o) in tasks[t].0[block].iter().zip(out.iter()) {
                 row(buf, *x, *y, o);
             }
         },
