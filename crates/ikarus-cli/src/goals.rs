@@ -157,7 +157,9 @@ mod plain {
         for line in piece.split('\n') {
             let mut fields = line.split(',');
             let mut number = || {
-                let v: f64 = fields.next()?.trim().parse().ok()?;
+                // ASCII whitespace only: a field with other (Unicode) whitespace fails here and
+                // goes to the csv reader, which trims it.
+                let v: f64 = fields.next()?.trim_ascii().parse().ok()?;
                 v.is_finite().then_some(v)
             };
             let (x, y) = (number()?, number()?);
@@ -261,6 +263,7 @@ mod tests {
             "y,x\n1,2\n",
             "x,y,angle\n1,2,3\n",
             "\nx,y\n1,2\n",
+            "x,y\n\u{a0}1,2\n",
         ];
         for text in left {
             assert_eq!(plain(text, false), None, "{text:?}");
