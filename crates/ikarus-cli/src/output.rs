@@ -25,12 +25,111 @@ use crate::error::CliError;
 pub fn stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
     let out = io::stdout();
     let mut w = io::BufWriter::new(out.lock());
-    let result = write(&mut w).and_then(|()| w.flush());
+    written(write(&mut w).and_then(|()| w.flush()))
+}
+
+/// The outcome of writing stdout: a reader that went away (`| head`) is not an error.
+pub fn written(result: io::Result<()>) -> Result<(), CliError> {
     match result {
         Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
             Err(CliError::runtime(format!("cannot write to stdout: {}", io_reason(&e))))
         }
         _ => Ok(()),
+    }
+}
+
+/// Appends `v` as `{v:?}` writes it (the shortest text that reads back to the same number, in
+/// scientific notation below 1e-4 and from 1e16 up: `3.0`, `0.0001`, `1e-5`, `1.5e16`), about
+/// four times faster. The digits come from `ryu`, which writes the same text but for two cases:
+/// - magnitudes in [1e-5, 1e-4): ryu writes `0.0000ddd`, `{:?}` `d.dde-5`; rewritten here.
+/// - an exact tie (the number exactly halfway between the two nearest shortest texts, as
+///   1299689300638963.25 is between …63.2 and …63.3): ryu rounds to the even digit, `{:?}` up;
+///   such a number is written by `{:?}` itself ([`halfway`] finds it).
+///
+/// Not finite: `{:?}`'s own text (`NaN`, `inf`, `-inf`).
+pub fn push_f64(buf: &mut Vec<u8>, v: f64) {
+    let mut ryu = ryu::Buffer::new();
+    let text = if v.is_finite() { ryu.format_finite(v).as_bytes() } else { b"" };
+    if text.is_empty() || halfway(v, text) {
+        buf.extend_from_slice(format!("{v:?}").as_bytes());
+        return;
+    }
+    let (sign, magnitude) = match text {
+        [b'-', rest @ ..] => (&b"-"[..], rest),
+        _ => (&b""[..], text),
+    };
+    match magnitude.strip_prefix(b"0.0000") {
+        // [1e-5, 1e-4): `0.0000` and the significant digits.
+        Some(digits) if v != 0.0 => {
+            buf.extend_from_slice(sign);
+            buf.push(digits[0]);
+            if digits.len() > 1 {
+                buf.push(b'.');
+                buf.extend_from_slice(&digits[1..]);
+            }
+            buf.extend_from_slice(b"e-5");
+        }
+        _ => buf.extend_from_slice(text),
+    }
+}
+
+/// Whether finite `v`, which ryu wrote as `text` (digits `D` times `10^E`, `D` without trailing
+/// zeros), is exactly `(D + ½)·10^E`: a tie between `D` and `D + 1`, which ryu breaks to the
+/// even one and `{:?}` upwards. With `|v| = m·2^e` (`m` odd), `(2D + 1)·5^E·2^(E−1)` is that
+/// value exactly when `e = E − 1` and `m = (2D + 1)·5^E` (for `E ≥ 0`), `m·5^(−E) = 2D + 1`
+/// (for `E < 0`).
+///
+/// `D` has at most 17 digits, so `2D + 1 < 2·10^17 < 5^25`: with `E < 0` that needs `E ≥ −24`,
+/// so `e ≥ −25`, which most numbers fail (any with more than 25 bits after the binary point,
+/// as every angle and error of a batch but round ones): they are done without reading `text`.
+fn halfway(v: f64, text: &[u8]) -> bool {
+    if v == 0.0 {
+        return false;
+    }
+    // m and e of |v|, m odd.
+    let bits = v.to_bits();
+    let (fraction, biased) = (bits & ((1 << 52) - 1), ((bits >> 52) & 0x7ff) as i32);
+    let (mut m, mut e) = if biased == 0 { (fraction, -1074) } else { (fraction | (1 << 52), biased - 1075) };
+    let zeros = m.trailing_zeros();
+    m >>= zeros;
+    e += zeros as i32;
+    if e < -25 {
+        return false;
+    }
+    // D and E from the text: `[-]digits[.digits][e[-]exponent]`.
+    let (mantissa, exponent) = match text.iter().position(|&c| c == b'e') {
+        Some(i) => (&text[..i], std::str::from_utf8(&text[i + 1..]).ok().and_then(|t| t.parse::<i32>().ok())),
+        None => (text, Some(0)),
+    };
+    let Some(mut big_e) = exponent else { return false };
+    let mut d: u64 = 0;
+    let mut after_point = false;
+    for &c in mantissa {
+        match c {
+            b'.' => after_point = true,
+            b'0'..=b'9' => {
+                d = d * 10 + u64::from(c - b'0');
+                big_e -= i32::from(after_point);
+            }
+            _ => {}
+        }
+    }
+    if d == 0 {
+        return false;
+    }
+    while d % 10 == 0 {
+        d /= 10;
+        big_e += 1;
+    }
+    if e != big_e - 1 {
+        return false;
+    }
+    let twice = u128::from(d) * 2 + 1;
+    let five = 5u128.checked_pow(big_e.unsigned_abs());
+    match five {
+        Some(p) if big_e >= 0 => p.checked_mul(twice) == Some(u128::from(m)),
+        Some(p) => p.checked_mul(u128::from(m)) == Some(twice),
+        None => false,
     }
 }
 
@@ -227,4 +326,82 @@ mod cleanup {
     /// Without the command line (the edges' library), no files are written by a command.
     #[cfg(not(all(unix, feature = "server")))]
     fn install() {}
+}
+
+#[cfg(test)]
+mod tests {
+    use super::push_f64;
+
+    fn text(v: f64) -> String {
+        let mut buf = Vec::new();
+        push_f64(&mut buf, v);
+        String::from_utf8(buf).unwrap()
+    }
+
+    /// The edges of `{:?}`'s notations, and of ryu's: the same bytes.
+    #[test]
+    fn floats_are_written_as_debug_writes_them() {
+        let edges = [
+            0.0,
+            -0.0,
+            3.0,
+            -3.0,
+            0.1,
+            1e-4,
+            0.00012,
+            9.999999999999999e-5,
+            1e-5,
+            -1e-5,
+            1.2345e-5,
+            f64::from_bits(1e-5f64.to_bits() + 1),
+            9.99999999999e-6,
+            1e-7,
+            1.5e-7,
+            1e15,
+            1e16,
+            -1e16,
+            9999999999999998.0,
+            123456789012345680.0,
+            1e21,
+            1e22,
+            5e-324,
+            -5e-324,
+            2.2250738585072014e-308,
+            f64::MAX,
+            f64::MIN,
+            f64::EPSILON,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1299689300638963.2,
+            1299689300638963.3,
+            1299689300638963.5,
+            0.25,
+            0.5,
+            2.5,
+        ];
+        for v in edges {
+            assert_eq!(text(v), format!("{v:?}"), "{v:e}");
+        }
+    }
+
+    /// Random bit patterns (every exponent), and random numbers around the notations' edges.
+    #[test]
+    fn random_floats_are_written_as_debug_writes_them() {
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..200_000 {
+            let bits = f64::from_bits(next());
+            let unit = (next() >> 11) as f64 / (1u64 << 53) as f64;
+            let near = [1e-5, 1e-4, 1e15, 1e16][(next() % 4) as usize] * (0.5 + unit);
+            for v in [bits, near, -near] {
+                assert_eq!(text(v), format!("{v:?}"), "{:x}", v.to_bits());
+            }
+        }
+    }
 }

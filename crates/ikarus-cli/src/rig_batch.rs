@@ -146,7 +146,7 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
     let solver = solver(rig.options(&args.solver, None)?)?;
     let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
     let skeleton = &rig.skeleton;
-    let solved = batch.solve_all(
+    let (solved, tally) = batch.solve_all(
         &rows,
         || (solver.clone(), Outcome::default(), template.clone()),
         |(solver, out, task), values| {
@@ -168,7 +168,7 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
         }
         Ok(())
     })?;
-    batch.finish(&solved, solver.options().method.name())
+    batch.finish(tally, solver.options().method.name())
 }
 
 #[cfg(test)]

@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use ikarus::{Goal, Outcome, SolveOptions};
+use ikarus::{Goal, Outcome, SolveOptions, Status};
 
 use crate::arm::Arm;
-use crate::batch::Batch;
+use crate::batch::{BLOCK_GOALS, Batch, TASK_GOALS};
 use crate::error::CliError;
-use crate::goals::{self, GoalRow, make_goal};
+use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::output;
 use crate::picture::{StillArgs, arm_drawing, draw};
@@ -257,41 +257,61 @@ impl Report<'_> {
     }
 }
 
-fn read_goals(path: &Path) -> Result<Vec<GoalRow>, CliError> {
+fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
+    // The threads first, to parse the goals on; then the errors in the order of the work: the
+    // goals, the options, the summary file.
+    let mut batch = Batch::threads(args.threads)?;
     let label = format!("batch file {}", path.display());
-    let goals = goals::read(path, &label)?;
-    if goals.is_empty() {
+    let pieces = batch.install(|| goals::read_pieces(path, &label))?;
+    if pieces.iter().all(|p| p.goals.is_empty()) {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
-    Ok(goals)
+    let solver = solver(arm.options(&args.solver, None)?)?;
+    batch.summary_json(args.summary_json.as_deref())?;
+    let chain = &arm.chain;
+    let start = chain.start_pose().angles();
+    // What can fail in a solve (the start pose, the options) fails here, before any row.
+    solver.clone().solve_batch(chain, start, &[], &mut Vec::new()).map_err(|e| CliError::input(e.to_string()))?;
+    let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
+    let header = format!("x,y,status,error,iterations,{}\n", thetas.join(","));
+    let stdout = std::io::stdout();
+    // Tasks of at most TASK_GOALS goals, each within one piece of the file.
+    let tasks: Vec<(&[[f64; 2]], &[Goal])> =
+        pieces.iter().flat_map(|p: &Goals| p.xy.chunks(TASK_GOALS).zip(p.goals.chunks(TASK_GOALS))).collect();
+    let tally = batch.solve_blocks(
+        tasks.len(),
+        |t| tasks[t].1.len(),
+        || (solver.clone(), Vec::<Outcome>::with_capacity(BLOCK_GOALS)),
+        |(solver, out), t, block| {
+            solver.solve_batch(chain, start, &tasks[t].1[block], out)?;
+            Ok::<_, ikarus::SolveError>(out.iter().filter(|o| o.status == Status::Reached).count())
+        },
+        |(_, out), t, block, buf| {
+            for ([x, y], o) in tasks[t].0[block].iter().zip(out.iter()) {
+                row(buf, *x, *y, o);
+            }
+        },
+        header.as_bytes(),
+        &mut std::io::BufWriter::new(stdout.lock()),
+    )?;
+    batch.finish(tally, solver.options().method.name())
 }
 
-fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
-    let goals = read_goals(path)?;
-    let solver = solver(arm.options(&args.solver, None)?)?;
-    let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
-    let chain = &arm.chain;
-    let rows = batch.solve_all(
-        &goals,
-        || (solver.clone(), Outcome::default()),
-        |(solver, out), g: &GoalRow| {
-            solver.solve_into(chain, chain.start_pose().angles(), &g.goal, out)?;
-            Ok::<_, ikarus::SolveError>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
-        },
-    )?;
-    output::stdout(|w| {
-        let n = chain.len();
-        let thetas: Vec<String> = (1..=n).map(|i| format!("theta{i}_deg")).collect();
-        writeln!(w, "x,y,status,error,iterations,{}", thetas.join(","))?;
-        for (g, r) in goals.iter().zip(&rows) {
-            let (error, iterations, angles) = &r.row;
-            write!(w, "{:?},{:?},{},{:?},{}", g.x, g.y, r.status, error, iterations)?;
-            for a in angles {
-                write!(w, ",{:?}", a.to_degrees())?;
-            }
-            writeln!(w)?;
-        }
-        Ok(())
-    })?;
-    batch.finish(&rows, solver.options().method.name())
+/// Appends the CSV row of the goal at `(x, y)` solved as `o`:
+/// `x,y,status,error,iterations,theta1_deg…`, floats as `{:?}` writes them.
+fn row(buf: &mut Vec<u8>, x: f64, y: f64, o: &Outcome) {
+    output::push_f64(buf, x);
+    buf.push(b',');
+    output::push_f64(buf, y);
+    buf.push(b',');
+    buf.extend_from_slice(o.status.as_str().as_bytes());
+    buf.push(b',');
+    output::push_f64(buf, o.error);
+    buf.push(b',');
+    let _ = write!(buf, "{}", o.iterations);
+    for a in o.pose.angles() {
+        buf.push(b',');
+        output::push_f64(buf, a.to_degrees());
+    }
+    buf.push(b'\n');
 }

@@ -363,8 +363,7 @@ pub fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
 /// the column.
 fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
     let label = format!("--path {}", file.display());
-    let rows = crate::goals::read(file, &label)?;
-    Path::new(rows.into_iter().map(|r| r.goal).collect())
+    Path::new(crate::goals::read(file, &label)?.goals)
         .map_err(|_| CliError::input(format!("{label}: no samples (expected a header and one sample per row)")))
 }
 

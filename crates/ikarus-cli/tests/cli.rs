@@ -184,12 +184,93 @@ fn batch_mode() {
     assert_eq!(s["threads"], 2);
     assert!(s["median_us"].as_f64().unwrap() > 0.0);
     assert!(s["p99_us"].as_f64().unwrap() >= s["median_us"].as_f64().unwrap());
+    let mut keys: Vec<&str> = s.as_object().unwrap().keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        ["goals", "median_us", "method", "p99_us", "reached", "reached_percent", "solves_per_s", "threads", "wall_s"]
+    );
+    let (wall, rate) = (s["wall_s"].as_f64().unwrap(), s["solves_per_s"].as_f64().unwrap());
+    assert!(wall > 0.0 && wall < 60.0, "{s}");
+    assert!((rate * wall / 51.0 - 1.0).abs() < 1e-9, "solves_per_s is goals / wall_s: {s}");
+    assert!(err.contains(" ms wall, ") && err.ends_with(" solves/s\n"), "{err}");
     let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(leftovers.len(), 2, "only the goals and the summary: {leftovers:?}");
 
     // Results do not depend on the number of threads.
     let one = ikarus(&["solve", "--batch", &goals, "--threads", "1"]);
     assert_eq!(stdout(&one), out);
+}
+
+/// `n` goals spread over the seed arm's reach and beyond it (one in eight out of reach), with
+/// long digits, and some that `{:?}` writes in scientific notation.
+fn many_goals(n: u32) -> String {
+    let mut text = String::from("x,y\n");
+    for i in 0..n {
+        let a = f64::from(i) * 0.618_033_988_749_894_9;
+        let r = if i % 8 == 7 { 6.5 + f64::from(i % 5) } else { 0.3 + 5.6 * f64::from(i % 97) / 97.0 };
+        match i % 50 {
+            // Tiny and huge coordinates: `1.2345e-5`, `1e-7`, a tie that `{:?}` rounds up.
+            3 => text.push_str("1.2345e-5,-1e-7\n"),
+            13 => text.push_str(&format!("{:?},{:?}\n", 1.2345e-5 * f64::from(i), -1e-7 * f64::from(i))),
+            4 => text.push_str("1299689300638963.25,1e16\n"),
+            _ => text.push_str(&format!("{:?},{:?}\n", r * a.cos(), r * a.sin())),
+        }
+    }
+    text
+}
+
+/// Every float of a batch's rows is `{:?}`'s text of the number it reads back as.
+fn floats_as_debug(out: &str) {
+    for line in out.lines().skip(1) {
+        for (i, field) in line.split(',').enumerate() {
+            if i == 2 || i == 4 {
+                continue; // status, iterations
+            }
+            let v: f64 = field.parse().unwrap_or_else(|_| panic!("{field} in {line}"));
+            assert_eq!(field, format!("{v:?}"), "{line}");
+        }
+    }
+}
+
+/// The rows do not depend on the threads, nor on the reader (a plain file is read by the fast
+/// reader, in pieces on the batch's threads; the same goals with CRLF line ends by the csv
+/// crate); a bad row is reported the same (the first one, by its line) and nothing is written.
+#[test]
+fn batch_rows_do_not_depend_on_the_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    // 3000 goals: about 120 KB, so two pieces of the parallel reader and 47 blocks of solves.
+    let text = many_goals(3000);
+    let goals = write(dir.path(), "g.csv", &text);
+    let crlf = write(dir.path(), "crlf.csv", &text.replace('\n', "\r\n"));
+    let runs: Vec<String> = [(&goals, "1"), (&goals, "2"), (&goals, "3"), (&crlf, "2")]
+        .iter()
+        .map(|(file, threads)| {
+            let o = ikarus(&["solve", "--batch", file, "--threads", threads]);
+            assert!(o.status.success(), "{}", stderr(&o));
+            stdout(&o)
+        })
+        .collect();
+    for r in &runs[1..] {
+        assert!(r == &runs[0], "the same bytes");
+    }
+    let out = &runs[0];
+    assert_eq!(out.lines().count(), 3001);
+    let unreachable = out.lines().filter(|l| l.split(',').nth(2) == Some("unreachable")).count();
+    assert!(unreachable > 300, "{unreachable} unreachable");
+    assert!(out.contains("\n1.2345e-5,-1e-7,") && out.contains("\n1299689300638963.3,1e16,unreachable,"));
+    floats_as_debug(out);
+
+    let mut lines: Vec<&str> = text.lines().collect();
+    lines[2500] = "0.5,abc";
+    lines[2900] = "1,2,3";
+    let bad = write(dir.path(), "bad.csv", &(lines.join("\n") + "\n"));
+    for threads in ["1", "2"] {
+        let o = ikarus(&["solve", "--batch", &bad, "--threads", threads]);
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(stdout(&o), "");
+        assert_eq!(stderr(&o), format!("ikarus: batch file {bad}: line 2501: y: 'abc' is not a number\n"));
+    }
 }
 
 #[test]
