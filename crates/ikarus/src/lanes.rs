@@ -359,14 +359,20 @@ pub(crate) fn sin_cos<L: Lanes>(x: L) -> (L, L) {
     let q = round(x * L::splat(std::f64::consts::FRAC_2_PI));
     let r = ((x - q * L::splat(P1)) - q * L::splat(P2)) - q * L::splat(P3);
     let z = r * r;
-    let mut ps = L::splat(SIN[0]);
-    let mut pc = L::splat(COS[0]);
-    for k in 1..6 {
-        ps = ps * z + L::splat(SIN[k]);
-        pc = pc * z + L::splat(COS[k]);
-    }
+    // The degree-5 polynomials by Estrin's scheme, (k₅ + k₄z) + z²(k₃ + k₂z) + z⁴(k₁ + k₀z):
+    // half the dependent operations of Horner's, which matters in a solve, where each
+    // iteration waits for its sines.
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let estrin = |k: &[f64; 6]| {
+        let lo = L::splat(k[5]) + L::splat(k[4]) * z;
+        let mid = L::splat(k[3]) + L::splat(k[2]) * z;
+        let hi = L::splat(k[1]) + L::splat(k[0]) * z;
+        (lo + z2 * mid) + z4 * hi
+    };
+    let (ps, pc) = (estrin(&SIN), estrin(&COS));
     let s = r + r * z * ps;
-    let c = (L::splat(1.0) - L::splat(0.5) * z) + z * z * pc;
+    let c = (L::splat(1.0) - L::splat(0.5) * z) + z2 * pc;
     L::place(s, c, q)
 }
 

@@ -38,7 +38,7 @@ pub(super) fn applies(chain: &Chain, opts: &SolveOptions, oriented: bool) -> boo
 
 /// How one goal's attempt ended on the fast path.
 pub(super) struct End<'a> {
-    /// The status the loop stopped with, or `None`: the general loop must run this attempt.
+    /// The status the loop stopped with, or `None`: the fast path left the common case.
     pub(super) status: Option<Status>,
     /// The final angles.
     pub(super) angles: &'a [f64],
@@ -50,9 +50,6 @@ pub(super) struct End<'a> {
     pub(super) tip: (f64, f64),
     /// The tip's orientation (the sum of the angles).
     pub(super) phi: f64,
-    /// Where the general loop takes over when `status` is `None`: the iteration's start (the
-    /// pose in `angles`), the stall count and the damping there.
-    pub(super) resume: Resume,
 }
 
 /// The state of an attempt at the start of an iteration, from which the general loop goes on
@@ -116,9 +113,6 @@ struct Slot {
     tries: u32,
     /// The pose was just measured and not yet stepped from.
     measured: bool,
-    /// The damping μ and its growth ν at the start of this iteration.
-    mu: f64,
-    nu: f64,
 }
 
 /// Forward kinematics of every lane's `angles` into the points; returns the tips' orientation.
@@ -176,7 +170,7 @@ pub(super) fn run<L: Lanes>(
             starting[k] = false;
             if slot.goal.is_none() {
                 if let Some((i, x, y)) = goals.next() {
-                    *slot = Slot { goal: Some(i), mu: lambda_sq, nu: 2.0, ..Slot::default() };
+                    *slot = Slot { goal: Some(i), ..Slot::default() };
                     for (a, &s0) in st.angles.iter_mut().zip(start) {
                         *a = a.with_lane(k, s0);
                     }
@@ -246,69 +240,9 @@ pub(super) fn run<L: Lanes>(
         }
 
         // One damped try in every lane: the step, the trial pose, its error.
-        let mut xx = zero;
-        let mut xy = zero;
-        let mut yy = zero;
-        for (&px, &py) in st.xs[..n].iter().zip(&st.ys[..n]) {
-            let cx = -(tip_y - py);
-            let cy = tip_x - px;
-            xx = xx + cx * cx;
-            xy = xy + cx * cy;
-            yy = yy + cy * cy;
-        }
-        // (A + μI)⁻¹ e, lane by lane exactly as `damped_2x2`; a lane where that declines
-        // leaves the fast path.
-        let d = mu;
-        let a = xx + d;
-        let c = yy + d;
-        let det = a * c - xy * xy;
-        let y0 = (c * dx - xy * dy) / det;
-        let y1 = (a * dy - xy * dx) / det;
-        let damped = d.gt(L::splat(1e-12) * (xx + yy));
-        let mut largest = zero;
-        for ((&px, &py), delta) in st.xs[..n].iter().zip(&st.ys[..n]).zip(&mut st.delta) {
-            let cx = -(tip_y - py);
-            let cy = tip_x - px;
-            let step = cx * y0 + cy * y1;
-            let dj = gain * L::splat(1.0) * L::splat(1.0) * step;
-            *delta = dj;
-            let m = dj.abs();
-            largest = L::select(m.gt(largest), m, largest);
-        }
-        let scale = match cap {
-            Some(cap) => L::select(largest.gt(L::splat(cap)), L::splat(cap) / largest, L::splat(1.0)),
-            None => L::splat(1.0),
-        };
-        let mut p0 = dx;
-        let mut p1 = dy;
-        for ((((&px, &py), &a), &delta), trial) in
-            st.xs[..n].iter().zip(&st.ys[..n]).zip(&st.angles).zip(&st.delta).zip(&mut st.trial)
-        {
-            let cx = -(tip_y - py);
-            let cy = tip_x - px;
-            let next = a + scale * delta;
-            let moved = next - a;
-            p0 = p0 - cx * moved;
-            p1 = p1 - cy * moved;
-            *trial = next;
-        }
-        let trial_phi = forward(chain, &st.trial, &mut st.trial_xs, &mut st.trial_ys);
-        let ex = tx - st.trial_xs[n];
-        let ey = ty - st.trial_ys[n];
-        let trial_error = ex * ex + ey * ey;
-        let predicted = p0 * p0 + p1 * p1;
-        let expected = current - predicted;
-        let expected = L::select(expected.gt(zero), expected, zero);
-        let decrease = current - trial_error;
-        let accepted = L::and(trial_error.lt(current), L::le(L::splat(SUFFICIENT_DECREASE) * expected, decrease));
-        // Nielsen's update, as `Damping::accept` and `Damping::reject`.
-        let rho = L::select(expected.gt(zero), decrease / expected, L::splat(1.0));
-        let r = L::splat(2.0) * rho - L::splat(1.0);
-        let shrink = L::splat(1.0) - r * r * r;
-        let third = L::splat(1.0 / 3.0);
-        let shrink = L::select(shrink.gt(third), shrink, third);
-        let accepted_mu = mu * shrink;
-        let rejected_mu = mu * nu;
+        let t = try_step(chain, st, n, (tx, ty), (dx, dy), current, (mu, nu), gain, cap);
+        let (trial_phi, accepted, damped, det) = (t.trial_phi, t.accepted, t.damped, t.det);
+        let (accepted_mu, rejected_mu) = (t.accepted_mu, t.rejected_mu);
 
         // Lanes whose step the fast path cannot take as the general loop would: the damped
         // step declined (the general loop takes the pseudoinverse), or a step accepted onto a
@@ -342,7 +276,6 @@ pub(super) fn run<L: Lanes>(
                 slot.iteration += 1;
                 slot.tries = 0;
                 slot.measured = false;
-                (slot.mu, slot.nu) = (accepted_mu.lane(k), 2.0);
                 match stall {
                     Some(s) if moved.lane(k) <= s.epsilon => slot.still += 1,
                     _ => slot.still = 0,
@@ -357,6 +290,194 @@ pub(super) fn run<L: Lanes>(
                 finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
             }
         }
+    }
+}
+
+/// One damped try of every lane, from the pose in `st` (angles and points) whose tip misses
+/// the target `(tx, ty)` by `e = (dx, dy)`, `current = ‖e‖²`, with damping `(μ, ν)`: the step
+/// into `st.delta`, the trial pose into `st.trial` and its points, and what the line search
+/// decides from them. The arithmetic of `compute_delta`, `damped_2x2`, `try_pose` and
+/// `damped_search`, operation for operation; [`run`] and [`run_one`] share it.
+struct Try<L: Lanes> {
+    trial_phi: L,
+    /// The sufficient-decrease test passed.
+    accepted: L::Mask,
+    /// The damped step was taken (not the pseudoinverse's case).
+    damped: L::Mask,
+    det: L,
+    /// μ after an accepted and after a rejected try.
+    accepted_mu: L,
+    rejected_mu: L,
+}
+
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn try_step<L: Lanes>(
+    chain: &Chain,
+    st: &mut Buffers<L>,
+    n: usize,
+    (tx, ty): (L, L),
+    (dx, dy): (L, L),
+    current: L,
+    (mu, nu): (L, L),
+    gain: L,
+    cap: Option<f64>,
+) -> Try<L> {
+    let zero = L::splat(0.0);
+    let (tip_x, tip_y) = (st.xs[n], st.ys[n]);
+    let mut xx = zero;
+    let mut xy = zero;
+    let mut yy = zero;
+    for (&px, &py) in st.xs[..n].iter().zip(&st.ys[..n]) {
+        let cx = -(tip_y - py);
+        let cy = tip_x - px;
+        xx = xx + cx * cx;
+        xy = xy + cx * cy;
+        yy = yy + cy * cy;
+    }
+    // (A + μI)⁻¹ e, exactly as `damped_2x2`; where that declines the fast path is left.
+    let d = mu;
+    let a = xx + d;
+    let c = yy + d;
+    let det = a * c - xy * xy;
+    let y0 = (c * dx - xy * dy) / det;
+    let y1 = (a * dy - xy * dx) / det;
+    let damped = d.gt(L::splat(1e-12) * (xx + yy));
+    let mut largest = zero;
+    for ((&px, &py), delta) in st.xs[..n].iter().zip(&st.ys[..n]).zip(&mut st.delta) {
+        let cx = -(tip_y - py);
+        let cy = tip_x - px;
+        let step = cx * y0 + cy * y1;
+        let dj = gain * L::splat(1.0) * L::splat(1.0) * step;
+        *delta = dj;
+        let m = dj.abs();
+        largest = L::select(m.gt(largest), m, largest);
+    }
+    let scale = match cap {
+        Some(cap) => L::select(largest.gt(L::splat(cap)), L::splat(cap) / largest, L::splat(1.0)),
+        None => L::splat(1.0),
+    };
+    let mut p0 = dx;
+    let mut p1 = dy;
+    for ((((&px, &py), &a), &delta), trial) in
+        st.xs[..n].iter().zip(&st.ys[..n]).zip(&st.angles).zip(&st.delta).zip(&mut st.trial)
+    {
+        let cx = -(tip_y - py);
+        let cy = tip_x - px;
+        let next = a + scale * delta;
+        let moved = next - a;
+        p0 = p0 - cx * moved;
+        p1 = p1 - cy * moved;
+        *trial = next;
+    }
+    let trial_phi = forward(chain, &st.trial, &mut st.trial_xs, &mut st.trial_ys);
+    let ex = tx - st.trial_xs[n];
+    let ey = ty - st.trial_ys[n];
+    let trial_error = ex * ex + ey * ey;
+    let predicted = p0 * p0 + p1 * p1;
+    let expected = current - predicted;
+    let expected = L::select(expected.gt(zero), expected, zero);
+    let decrease = current - trial_error;
+    let accepted = L::and(trial_error.lt(current), L::le(L::splat(SUFFICIENT_DECREASE) * expected, decrease));
+    // Nielsen's update, as `Damping::accept` and `Damping::reject`.
+    let rho = L::select(expected.gt(zero), decrease / expected, L::splat(1.0));
+    let r = L::splat(2.0) * rho - L::splat(1.0);
+    let shrink = L::splat(1.0) - r * r * r;
+    let third = L::splat(1.0 / 3.0);
+    let shrink = L::select(shrink.gt(third), shrink, third);
+    Try { trial_phi, accepted, damped, det, accepted_mu: mu * shrink, rejected_mu: mu * nu }
+}
+
+/// How [`run_one`] ended: the status, or `None` with where the general loop takes over.
+pub(super) struct OneEnd {
+    pub(super) status: Option<Status>,
+    pub(super) iterations: u32,
+    pub(super) error: f64,
+    pub(super) phi: f64,
+    pub(super) resume: Resume,
+}
+
+/// One goal's attempt on the fast path: [`run`]'s arithmetic (the same [`try_step`] and
+/// forward kinematics) without its lanes' bookkeeping. The final angles and points are in
+/// `st` (`angles()`, `tip()`).
+pub(super) fn run_one(
+    chain: &Chain,
+    opts: &SolveOptions,
+    max_iterations: u32,
+    start: &[f64],
+    st: &mut Buffers<f64>,
+    (tx, ty): (f64, f64),
+) -> OneEnd {
+    let n = chain.len();
+    st.fit(n);
+    st.angles.copy_from_slice(start);
+    let mut phi = forward(chain, &st.angles, &mut st.xs, &mut st.ys);
+    let (mut iteration, mut still) = (0u32, 0u32);
+    let (mut mu, mut nu) = (opts.lambda * opts.lambda, 2.0);
+    loop {
+        let (dx, dy) = (tx - st.xs[n], ty - st.ys[n]);
+        let current = dx * dx + dy * dy;
+        let resume = Resume { iteration, still, mu, nu };
+        let leave = OneEnd { status: None, iterations: iteration, error: f64::NAN, phi, resume };
+        if !(current.is_finite() && current >= f64::MIN_POSITIVE) {
+            return leave;
+        }
+        let error = current.sqrt();
+        let status = if error <= opts.tolerance {
+            Some(Status::Reached)
+        } else if opts.stall.is_some_and(|s| still >= s.window) {
+            Some(Status::Stalled)
+        } else if iteration >= max_iterations {
+            Some(Status::IterationLimit)
+        } else if crate::interrupt::is_set(opts.interrupt.as_ref()) {
+            Some(Status::Interrupted)
+        } else {
+            None
+        };
+        if status.is_some() {
+            return OneEnd { status, iterations: iteration, error, phi, resume };
+        }
+        let mut tries = 0;
+        loop {
+            let t = try_step(chain, st, n, (tx, ty), (dx, dy), current, (mu, nu), opts.gain, opts.max_step);
+            if !t.damped || t.det == 0.0 {
+                return leave;
+            }
+            if t.accepted {
+                if !t.trial_phi.is_finite() {
+                    return leave;
+                }
+                let moved = st.angles.iter().zip(&st.trial).fold(0.0f64, |m, (a, t)| m.max((t - a).abs()));
+                std::mem::swap(&mut st.angles, &mut st.trial);
+                std::mem::swap(&mut st.xs, &mut st.trial_xs);
+                std::mem::swap(&mut st.ys, &mut st.trial_ys);
+                phi = t.trial_phi;
+                (mu, nu) = (t.accepted_mu, 2.0);
+                iteration += 1;
+                match opts.stall {
+                    Some(s) if moved <= s.epsilon => still += 1,
+                    _ => still = 0,
+                }
+                break;
+            }
+            (mu, nu) = (t.rejected_mu, nu * 2.0);
+            tries += 1;
+            if tries > opts.backtrack {
+                return leave;
+            }
+        }
+    }
+}
+
+impl Buffers<f64> {
+    /// The angles [`run_one`] ended on.
+    pub(super) fn angles(&self) -> &[f64] {
+        &self.angles
+    }
+
+    /// The tip [`run_one`] ended on.
+    pub(super) fn tip(&self) -> (f64, f64) {
+        (self.xs[self.xs.len() - 1], self.ys[self.ys.len() - 1])
     }
 }
 
@@ -388,7 +509,6 @@ fn finish<L: Lanes>(
             error,
             tip: (tip_x.lane(k), tip_y.lane(k)),
             phi: phi.lane(k),
-            resume: Resume { iteration: slot.iteration, still: slot.still, mu: slot.mu, nu: slot.nu },
         },
     );
     *slot = Slot::default();

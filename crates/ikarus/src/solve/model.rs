@@ -215,37 +215,25 @@ impl Model for Chain {
             return fast::Taken::No;
         }
         let target = p.goal.target();
-        let mut taken = fast::Taken::No;
-        let best = &mut s.best;
-        fast::run::<f64>(
-            chain,
-            opts,
-            p.max_iterations,
-            start,
-            &mut s.fast,
-            std::iter::once((0, target.x, target.y)),
-            |_, end| {
-                taken = match end.status {
-                    Some(status) => {
-                        out.frames.start(chain.len(), None, opts.max_iterations);
-                        let angles = out.pose.angles_mut();
-                        angles.clear();
-                        angles.extend_from_slice(end.angles);
-                        out.iterations = end.iterations;
-                        out.error = end.error;
-                        out.angle_error = 0.0;
-                        out.end_effector =
-                            EndEffector { position: Point2::new(end.tip.0, end.tip.1), orientation: end.phi };
-                        fast::Taken::Done(status)
-                    }
-                    None => {
-                        best.copy_from_slice(end.angles);
-                        fast::Taken::Resume(end.resume)
-                    }
-                };
-            },
-        );
-        taken
+        let end = fast::run_one(chain, opts, p.max_iterations, start, &mut s.fast, (target.x, target.y));
+        match end.status {
+            Some(status) => {
+                out.frames.start(chain.len(), None, opts.max_iterations);
+                let angles = out.pose.angles_mut();
+                angles.clear();
+                angles.extend_from_slice(s.fast.angles());
+                let (x, y) = s.fast.tip();
+                out.iterations = end.iterations;
+                out.error = end.error;
+                out.angle_error = 0.0;
+                out.end_effector = EndEffector { position: Point2::new(x, y), orientation: end.phi };
+                fast::Taken::Done(status)
+            }
+            None => {
+                s.best.copy_from_slice(s.fast.angles());
+                fast::Taken::Resume(end.resume)
+            }
+        }
     }
 
     #[inline]
