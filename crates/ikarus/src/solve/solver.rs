@@ -132,7 +132,7 @@ impl Solver {
     /// Where the position-only fast path applies (Levenberg–Marquardt, the default; position
     /// goals; no limits enforced; no rates; no frames) the goals are solved four at a time in
     /// SIMD lanes, a lane taking the next goal as soon as its own is reached; a goal that is
-    /// not reached on its first attempt (it needs restarts, or is out of reach) and every
+    /// not reached on its first attempt (it needs restarts), a goal out of reach and every
     /// other goal is solved by [`Solver::solve_into`]. The lanes run the scalar solver's
     /// arithmetic operation for operation, so which path a goal takes does not change its
     /// outcome; the tests compare the two on thousands of goals.
@@ -177,12 +177,14 @@ impl Solver {
         rest.clear();
         if lanes {
             let n = chain.len();
-            let position_goals = goals
-                .iter()
-                .enumerate()
-                .filter(|(_, g)| g.orientation().is_none())
-                .map(|(i, g)| (i, g.target().x, g.target().y));
-            rest.extend(goals.iter().enumerate().filter(|(_, g)| g.orientation().is_some()).map(|(i, _)| i));
+            // The lanes take the position goals within reach; the others (oriented, or out of
+            // reach, which the lanes could only hand back after a whole attempt) go straight
+            // to the scalar solver.
+            let tolerance = opts.tolerance;
+            let in_lanes = |g: &Goal| g.orientation().is_none() && !g.is_out_of_reach(chain, tolerance);
+            let position_goals =
+                goals.iter().enumerate().filter(|(_, g)| in_lanes(g)).map(|(i, g)| (i, g.target().x, g.target().y));
+            rest.extend(goals.iter().enumerate().filter(|(_, g)| !in_lanes(g)).map(|(i, _)| i));
             let max_iterations = opts.max_iterations;
             fast::run_lanes(chain, opts, start, &mut self.lanes, position_goals, |i, end| {
                 if end.status == Some(Status::Reached) {
