@@ -45,6 +45,7 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     let mut prev_merit = f64::INFINITY;
     let mut flat = false;
     let mut damping = if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) };
+    let mut skip_damped = r.damped_failed;
     let mut best_error = f64::INFINITY;
     let status = loop {
         model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);
@@ -65,7 +66,10 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
                     flat = prev_merit - current <= floor * prev_merit;
                     prev_merit = current;
                 }
-                let Some(trial_phi) = jacobian_step(p, rule, current, &mut damping, angles, s) else {
+                // Where the fast path handed over after every damped try of this iteration
+                // failed, the line search goes on from there, with the transpose step.
+                let damped_failed = std::mem::take(&mut skip_damped);
+                let Some(trial_phi) = jacobian_step(p, rule, damped_failed, current, &mut damping, angles, s) else {
                     // No step along this direction lowers the error: the pose cannot move, and
                     // the same pose would give the same direction again.
                     break Status::Stalled;

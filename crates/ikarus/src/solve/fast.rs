@@ -60,6 +60,9 @@ pub(super) struct Resume {
     pub(super) still: u32,
     pub(super) mu: f64,
     pub(super) nu: f64,
+    /// This iteration's damped tries were all rejected (μ and ν are as they left them): the
+    /// general loop goes on with the line search's transpose step.
+    pub(super) damped_failed: bool,
 }
 
 /// What the fast path did with an attempt.
@@ -417,7 +420,7 @@ pub(super) fn run_one(
     loop {
         let (dx, dy) = (tx - st.xs[n], ty - st.ys[n]);
         let current = dx * dx + dy * dy;
-        let resume = Resume { iteration, still, mu, nu };
+        let resume = Resume { iteration, still, mu, nu, damped_failed: false };
         let leave = OneEnd { status: None, iterations: iteration, error: f64::NAN, phi, resume };
         if !(current.is_finite() && current >= f64::MIN_POSITIVE) {
             return leave;
@@ -463,7 +466,8 @@ pub(super) fn run_one(
             (mu, nu) = (t.rejected_mu, nu * 2.0);
             tries += 1;
             if tries > opts.backtrack {
-                return leave;
+                let resume = Resume { mu, nu, damped_failed: true, ..resume };
+                return OneEnd { resume, ..leave };
             }
         }
     }

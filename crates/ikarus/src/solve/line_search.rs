@@ -17,20 +17,23 @@ use super::step::Rule;
 const SUFFICIENT_DECREASE: f64 = 0.1;
 
 /// One step of a Jacobian method with its line search, from the pose whose task error `e` (in
-/// `s.alg`) has `‖e‖² = current`. On success the new pose is in
+/// `s.alg`) has `‖e‖² = current` (`damped_failed`: see the body). On success the new pose is in
 /// `s.trial` and `s.trial_joints` and its tip orientation is returned; `None` means no step
 /// lowers the error enough.
 #[inline]
 pub(super) fn jacobian_step<M: Model>(
     p: &Problem<'_, M>,
     method: Rule,
+    damped_failed: bool,
     current: f64,
     damping: &mut Damping,
     angles: &[f64],
     s: &mut ScratchOf<M>,
 ) -> Option<f64> {
     let backtrack = p.opts.backtrack;
-    let mut rule = method;
+    // `damped_failed`: Levenberg–Marquardt's tries of this iteration were already made and all
+    // rejected (by the fast path, which hands over here): on to the transpose step.
+    let mut rule = if damped_failed { Rule::Transpose } else { method };
     loop {
         let found = if rule == Rule::LevenbergMarquardt {
             damped_search(p, current, damping, angles, s)
