@@ -252,16 +252,7 @@ fn a_batch_of_target_sets_with_dotted_names() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.starts_with("batch: 3 goals, "), "{err}");
     assert!(err.contains(" µs per solve, 2 threads"), "{err}");
-    let s: Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
-    let mut keys: Vec<&str> = s.as_object().unwrap().keys().map(String::as_str).collect();
-    keys.sort_unstable();
-    assert_eq!(
-        keys,
-        ["goals", "median_us", "method", "p99_us", "reached", "reached_percent", "solves_per_s", "threads", "wall_s"]
-    );
-    let (wall, rate) = (s["wall_s"].as_f64().unwrap(), s["solves_per_s"].as_f64().unwrap());
-    assert!(wall > 0.0 && (rate * wall / 3.0 - 1.0).abs() < 1e-9, "solves_per_s is goals / wall_s: {s}");
-    assert!(err.contains(" ms wall, ") && err.ends_with(" solves/s\n"), "{err}");
+    let s = common::batch_summary(&summary, &err, 3.0);
     assert_eq!(s["goals"], 3);
     assert_eq!(s["threads"], 2);
     assert_eq!(s["method"], "lm");

@@ -51,3 +51,22 @@ pub fn fails(args: &[&str], code: i32) -> String {
 pub fn floats(v: &Value) -> Vec<f64> {
     v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
 }
+
+/// The checks every batch summary passes, a chain's or a rig's: the JSON's keys, `wall_s` > 0,
+/// `solves_per_s = goals / wall_s`, and the stderr line's wall time and rate. The summary
+/// JSON is returned for the caller's own checks.
+#[allow(dead_code)]
+pub fn batch_summary(summary_json: &std::path::Path, err: &str, goals: f64) -> Value {
+    let s: Value = serde_json::from_str(&std::fs::read_to_string(summary_json).unwrap()).unwrap();
+    let mut keys: Vec<&str> = s.as_object().unwrap().keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(
+        keys,
+        ["goals", "median_us", "method", "p99_us", "reached", "reached_percent", "solves_per_s", "threads", "wall_s"]
+    );
+    let (wall, rate) = (s["wall_s"].as_f64().unwrap(), s["solves_per_s"].as_f64().unwrap());
+    assert!(wall > 0.0 && wall < 60.0, "{s}");
+    assert!((rate * wall / goals - 1.0).abs() < 1e-9, "solves_per_s is goals / wall_s: {s}");
+    assert!(err.contains(" ms wall, ") && err.ends_with(" solves/s\n"), "{err}");
+    s
+}
