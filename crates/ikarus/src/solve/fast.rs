@@ -1,17 +1,18 @@
 //! The position-only fast path: Levenberg–Marquardt on a chain, for a goal without an
 //! orientation, with no limits to enforce and no per-joint rates — the commonest solve — as
-//! one lean loop, written once over [`Lanes`] so that the same code solves one goal (`f64`,
-//! inside [`attempt`](super::attempt::attempt)) or four side by side (`f64x4`, in
+//! one lean loop. Its arithmetic ([`try_step`] and the forward kinematics) is written once over
+//! [`Lanes`]: [`run_one`] drives it for one goal (`f64`, inside
+//! [`attempt`](super::attempt::attempt)), [`run`] for four side by side (`Quad`, in
 //! [`Solver::solve_batch`](super::Solver::solve_batch)).
 //!
 //! It runs exactly the arithmetic of the general loop for that case (the loop in `attempt.rs`,
-//! the line search, `compute_delta`, the 2×2 [`damped_2x2`](super::step::damped_2x2) and Nielsen's damping update), in
-//! the same order, so it returns the general loop's result bit for bit; the tests run both on
-//! thousands of goals and compare. Where the general loop would leave the common case (the
-//! damped step falls back to the pseudoinverse, every damped try fails and the line search
-//! turns to the transpose direction, a step or a distance leaves the normal numbers) the fast
-//! path gives the attempt up and the general loop runs it from the start, reaching the same
-//! point by the same arithmetic and going on from there.
+//! the line search, `compute_delta`, the 2×2 [`damped_2x2`](super::step::damped_2x2) and
+//! Nielsen's damping update), in the same order, so it returns the general loop's result bit
+//! for bit; the tests run both on thousands of goals and compare. Where the general loop would
+//! leave the common case (the damped step falls back to the pseudoinverse, every damped try
+//! fails and the line search turns to the transpose direction, a step or a distance leaves the
+//! normal numbers), [`run_one`] hands the attempt to the general loop at the start of that
+//! iteration ([`Resume`]), and [`run`] gives the goal back for `solve_into` to solve whole.
 //!
 //! Per iteration it keeps, per goal, only the angles, the joint points and the task error: no
 //! Jacobian matrix (its columns are differences of joint points, formed where they are used),
