@@ -1,0 +1,25 @@
+//! `ikarus-bindgen IN.wasm OUT_DIR`: what `wasm-bindgen --target web --no-typescript --out-dir
+//! OUT_DIR IN.wasm` does, for `web/build`, which checks that this crate's Cargo.lock pins
+//! wasm-bindgen-cli-support to the root Cargo.lock's wasm-bindgen (glue and module must agree).
+
+use std::process::ExitCode;
+
+use wasm_bindgen_cli_support::Bindgen;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let [input, out_dir] = args.as_slice() else {
+        eprintln!("usage: ikarus-bindgen IN.wasm OUT_DIR");
+        return ExitCode::from(2);
+    };
+    // Bindings for the web target (an ES module whose default export loads the module), no
+    // TypeScript declarations.
+    let made = Bindgen::new().input_path(input).web(true).and_then(|b| b.typescript(false).generate(out_dir));
+    match made {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("ikarus-bindgen: {input}: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
