@@ -36,6 +36,9 @@ pub struct Limits {
     pub max_body_bytes: usize,
     /// Most links an arm of a request may have.
     pub max_links: usize,
+    /// Most bones a rig of a request may have (`/api/rig/parse` included), counted before any
+    /// bone is checked.
+    pub max_bones: usize,
     /// Largest `options.max_iterations` of a request.
     pub max_iterations: u32,
     /// Most frames of a motion.
@@ -58,6 +61,7 @@ impl Default for Limits {
         Self {
             max_body_bytes: 1 << 20,
             max_links: 64,
+            max_bones: 256,
             max_iterations: 100_000,
             max_frames: 2000,
             max_samples: 5000,
@@ -271,7 +275,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
-        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?)),
+        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?, limits)),
         Endpoint::Solve => match SolveBody::parse(body)? {
             SolveBody::Arm(req) => jobs::solve(*req, limits, interrupt),
             SolveBody::Rig(req) => rigs::solve(*req, limits, interrupt),
