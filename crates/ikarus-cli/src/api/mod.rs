@@ -77,7 +77,8 @@ impl Default for Limits {
 /// its `{"error": …}` body, which names the field and the value.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Problem {
-    /// 400 malformed JSON, 413 too large, 422 a bad value, 500 internal, 503 interrupted or busy.
+    /// 400 malformed JSON, 413 too large, 415 not the endpoint's content type, 422 a bad value,
+    /// 500 internal, 503 interrupted or busy.
     pub status: u16,
     /// One line.
     pub message: String,
@@ -95,6 +96,8 @@ pub mod status {
     pub const REQUEST_TIMEOUT: u16 = 408;
     /// The body is over the cap.
     pub const PAYLOAD_TOO_LARGE: u16 = 413;
+    /// The body's `Content-Type` is not the endpoint's (or is missing).
+    pub const UNSUPPORTED_MEDIA_TYPE: u16 = 415;
     /// Well-formed JSON with a bad value.
     pub const UNPROCESSABLE_ENTITY: u16 = 422;
     /// A fault of ikarus.
