@@ -214,7 +214,10 @@ fn a_cycle_below_a_long_tail_is_named() {
     bones.push(Bone::new("x", 1.0, 0.0).with_parent(format!("t{n}")));
     bones.push(Bone::new("root", 1.0, 0.0));
     let e = Skeleton::new([0.0, 0.0], &bones).unwrap_err().to_string();
-    assert_eq!(e, format!("bones[{n}] (\"t{n}\").parent = \"x\": a cycle (t{n} → x → t{n}); a bone cannot be its own ancestor"));
+    assert_eq!(
+        e,
+        format!("bones[{n}] (\"t{n}\").parent = \"x\": a cycle (t{n} → x → t{n}); a bone cannot be its own ancestor")
+    );
 }
 
 /// Random forests, in a shuffled order.
