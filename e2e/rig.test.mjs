@@ -202,7 +202,7 @@ test("a bad rig file is its one-line problem; the hand loads and follows a finge
     await ready(page);
 
     const bad = 'name = "broken"\n[[bones]]\nname = "a"\nlength = 1.0\n[[bones]]\nname = "b"\nparent = "nope"\nlength = 1.0\n';
-    const problem = (await (await fetch(`${url}/api/rig/parse`, { method: "POST", body: bad })).json()).problem;
+    const problem = (await (await fetch(`${url}/api/rig/parse`, { method: "POST", headers: { "content-type": "application/toml" }, body: bad })).json()).problem;
     assert.ok(problem && !problem.includes("\n"), `the server's problem: ${problem}`);
     await page.setInputFiles("#rig-file", { name: "broken.toml", mimeType: "application/toml", buffer: Buffer.from(bad) });
     await page.waitForFunction(() => !document.getElementById("error").hidden, null, { timeout: 15000 });

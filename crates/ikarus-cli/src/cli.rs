@@ -10,7 +10,7 @@ use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 
 use crate::error::CliError;
-use crate::{animate, bench, input, reach, render, serve, solve, track, workspace};
+use crate::{animate, bench, input, reach, render, rig, serve, solve, track, workspace};
 
 /// Inverse kinematics for planar chains: move an arm's tip to a goal.
 #[derive(Debug, Parser)]
@@ -19,6 +19,9 @@ struct Cli {
     /// Largest input file read (--arm, --rig, --batch, --path), in bytes
     #[arg(long, global = true, value_name = "BYTES", default_value_t = input::DEFAULT_MAX_INPUT_BYTES)]
     max_input_bytes: u64,
+    /// Most bones of a rig read (--rig of solve, animate, track, render rig), counted before anything else is checked
+    #[arg(long, global = true, value_name = "N", default_value_t = rig::DEFAULT_MAX_BONES as u64, value_parser = clap::value_parser!(u64).range(1..))]
+    max_bones: u64,
     #[command(subcommand)]
     command: Command,
 }
@@ -72,6 +75,7 @@ pub fn main() -> ExitCode {
         Err(e) => return usage_error(&e),
     };
     input::set_max_bytes(cli.max_input_bytes);
+    rig::set_max_bones(usize::try_from(cli.max_bones).unwrap_or(usize::MAX));
     let result: Result<(), CliError> = match &cli.command {
         Command::Solve(args) => solve::run(args),
         Command::Animate(args) => animate::run(args),

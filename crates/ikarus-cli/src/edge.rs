@@ -20,6 +20,7 @@ use ikarus::{Chain, Goal, SolveOptions, Status};
 
 pub use crate::api::{Endpoint, Limits, Problem, Reply, call, status};
 use crate::arm::{ArmFile, DEFAULT_ARM};
+pub use crate::rig::DEFAULT_MAX_BONES;
 use crate::settings::SolverSettings;
 
 /// Frames a solve records when its options give no `record_every`, as `ikarus solve`.

@@ -22,8 +22,13 @@
 //! order written: a bone's index (in messages, in angles) is its place in
 //! the file, and a parent may come after its children. Every problem becomes one line naming
 //! the file, the bone (index and name), the field and the value, as arm files do.
+//!
+//! A rig has at most a capped number of bones ([`BoneCap`]: the command line's
+//! [`DEFAULT_MAX_BONES`] unless `ikarus --max-bones N` says otherwise, the server's
+//! `--max-bones`), counted in the file as read, before any bone is checked or built.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use ikarus::number::Num;
 use ikarus::{Bone, BoneField, JointLimits, Skeleton, SkeletonError};
@@ -70,6 +75,48 @@ pub struct BoneFile {
     pub limits_deg: Option<[f64; 2]>,
 }
 
+/// The most bones of a rig the command line (and Python) reads unless `ikarus --max-bones N`
+/// raises it: far beyond any character (the puppet has 16), and a rig this size is read and
+/// solved in well under a second.
+pub const DEFAULT_MAX_BONES: usize = 10_000;
+
+static MAX_BONES: AtomicUsize = AtomicUsize::new(DEFAULT_MAX_BONES);
+
+/// Sets the command line's cap (from `--max-bones`).
+pub fn set_max_bones(bones: usize) {
+    MAX_BONES.store(bones, Ordering::Relaxed);
+}
+
+/// The most bones a rig may have, and how to raise the cap (said in the message).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BoneCap {
+    pub max: usize,
+    /// How the cap is raised, in the message's parentheses (`--max-bones`).
+    pub raise: &'static str,
+}
+
+impl BoneCap {
+    /// The command line's: [`DEFAULT_MAX_BONES`], or `ikarus --max-bones N`.
+    #[must_use]
+    pub fn cli() -> Self {
+        Self { max: MAX_BONES.load(Ordering::Relaxed), raise: "raise it with --max-bones N" }
+    }
+
+    /// A server's (or an edge's), set by its `--max-bones` flag.
+    #[must_use]
+    pub fn flag(max: usize) -> Self {
+        Self { max, raise: "--max-bones" }
+    }
+
+    /// `bones: N bones exceed the cap of MAX (…)` when `count` is over the cap.
+    pub fn check(self, count: usize) -> Result<(), String> {
+        if count > self.max {
+            return Err(format!("bones: {count} bones exceed the cap of {} ({})", self.max, self.raise));
+        }
+        Ok(())
+    }
+}
+
 /// A loaded rig: the validated skeleton, its name, and the file's solver defaults.
 #[derive(Debug, Clone)]
 pub struct Rig {
@@ -88,22 +135,30 @@ impl Rig {
         crate::settings::command_options(flags, &self.solver, &self.label, self.skeleton.len(), record_every)
     }
 
-    /// Loads the rig file `path` (a regular file within the input cap, as every input file).
+    /// Loads the rig file `path` (a regular file within the input cap, as every input file)
+    /// under the command line's cap on bones.
     pub fn load(path: &Path) -> Result<Self, CliError> {
         let label = format!("rig file {}", path.display());
         let text = crate::input::read_text(path, &label)?;
         Self::parse(&text, &label)
     }
 
-    /// Parses and validates rig-file text; `label` starts every error message.
+    /// Parses and validates rig-file text under the command line's cap on bones
+    /// ([`BoneCap::cli`]); `label` starts every error message.
     pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
-        let file: RigFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
-        Self::from_file(file, label)
+        Self::parse_within(text, label, BoneCap::cli())
     }
 
-    /// Validates a rig already read (from a file or a JSON request); `label` starts every
-    /// error message.
-    pub fn from_file(file: RigFile, label: &str) -> Result<Self, CliError> {
+    /// Parses and validates rig-file text of at most `cap` bones; `label` starts every error
+    /// message.
+    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {
+        Self::from_file(RigFile::read(text, label, cap)?, label, cap)
+    }
+
+    /// Validates a rig already read (from a file or a JSON request) of at most `cap` bones (the
+    /// first check, before any bone is looked at); `label` starts every error message.
+    pub fn from_file(file: RigFile, label: &str, cap: BoneCap) -> Result<Self, CliError> {
+        cap.check(file.bones.len()).map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         let skeleton = file.to_skeleton().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
         let name = file.name.clone().unwrap_or_else(|| "rig".to_owned());
@@ -112,6 +167,20 @@ impl Rig {
 }
 
 impl RigFile {
+    /// Reads rig-file text (TOML) of at most `cap` bones, unchecked otherwise; `label` starts
+    /// every error message.
+    pub fn read(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {
+        let over = |count: usize| cap.check(count).map_err(|msg| CliError::input(format!("{label}: {msg}")));
+        // Bones written as `[[bones]]` tables are counted on the text first, so that a file far
+        // over the cap is refused before the TOML parser holds it (some 40 times its size in
+        // memory, seconds for a few MB); bones in an inline array are counted once parsed. (A
+        // `[[bones]]` line inside a multi-line string would be counted too: no rig has one.)
+        over(text.lines().filter(|l| is_bones_header(l)).count())?;
+        let file: RigFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
+        over(file.bones.len())?;
+        Ok(file)
+    }
+
     /// Builds the skeleton, describing any problem in the file's own names and numbers.
     pub fn to_skeleton(&self) -> Result<Skeleton, String> {
         let mut bones = Vec::with_capacity(self.bones.len());
@@ -183,6 +252,12 @@ impl RigFile {
             _ => e.to_string(),
         }
     }
+}
+
+/// Whether `line` is a `[[bones]]` header (spaces and a comment aside).
+fn is_bones_header(line: &str) -> bool {
+    let line = line.split('#').next().unwrap_or_default().trim();
+    line.strip_prefix("[[").and_then(|l| l.strip_suffix("]]")).is_some_and(|key| key.trim() == "bones")
 }
 
 /// Whether `c` may appear in a bone's name: a name goes into `--goal NAME=X,Y`, into CSV
@@ -321,6 +396,24 @@ mod tests {
             assert!(got.starts_with(want), "for {text:?}\n got {got:?}\nwant {want:?}");
             assert!(!got.contains('\n'), "multi-line: {got:?}");
         }
+    }
+
+    /// The bones are counted before the file is parsed, as `[[bones]]` headers, and after, in
+    /// an inline array; one line either way.
+    #[test]
+    fn a_rig_over_the_cap_is_refused_however_its_bones_are_written() {
+        let cap = BoneCap { max: 2, raise: "--max-bones" };
+        let tables = "[[bones]]\nname = \"a\"\nlength = 1\n[[ bones ]] # b\nname = \"b\"\nparent = \"a\"\nlength = 1\n";
+        assert_eq!(Rig::parse_within(tables, "r", cap).unwrap().skeleton.len(), 2);
+        let three = format!("{tables}[[bones]]\nname = \"c\"\nlength = 1\n");
+        let want = "r: bones: 3 bones exceed the cap of 2 (--max-bones)";
+        assert_eq!(Rig::parse_within(&three, "r", cap).unwrap_err().to_string(), want);
+        // Refused on the count although the rest of the file is not TOML.
+        assert_eq!(Rig::parse_within(&format!("{three}[[[ not toml"), "r", cap).unwrap_err().to_string(), want);
+        let inline = "bones = [{name = \"a\", length = 1}, {name = \"b\", length = 1}, {name = \"c\", length = 1}]\n";
+        assert_eq!(Rig::parse_within(inline, "r", cap).unwrap_err().to_string(), want);
+        let e = Rig::parse_within(inline, "rig file x.toml", BoneCap::cli()).map(|r| r.skeleton.len());
+        assert_eq!(e.unwrap(), 3);
     }
 
     /// Names may hold any other character: letters of any script, digits, `.`, `-`, `_`.

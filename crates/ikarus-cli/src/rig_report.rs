@@ -7,7 +7,7 @@ use ikarus::{Outcome, Point2, SolveOptions};
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
 use crate::report::{FrameJson, degrees, points};
-use crate::rig::{Rig, RigFile};
+use crate::rig::{BoneCap, Rig, RigFile};
 
 /// Values keyed by bone name, written as a JSON object in the rig's order (a map type would
 /// sort the names).
@@ -154,11 +154,16 @@ pub struct BoneJson {
 
 impl RigJson {
     /// The rig of rig-file `text` as JSON, after the CLI's checks (whose one-line message it
-    /// returns for a bad file, starting with `label`). The `[solver]` table is carried as
-    /// written.
+    /// returns for a bad file, starting with `label`), under the command line's cap on bones.
+    /// The `[solver]` table is carried as written.
     pub fn parse(text: &str, label: &str) -> Result<Self, String> {
-        Rig::parse(text, label).map_err(|e| e.to_string())?;
-        let file: RigFile = toml::from_str(text).map_err(|e| format!("{label}: {e}"))?;
+        Self::parse_within(text, label, BoneCap::cli())
+    }
+
+    /// [`RigJson::parse`] of a rig of at most `cap` bones (counted before anything else).
+    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, String> {
+        let file = RigFile::read(text, label, cap).map_err(|e| e.to_string())?;
+        Rig::from_file(file.clone(), label, cap).map_err(|e| e.to_string())?;
         let table: toml::Table = toml::from_str(text).map_err(|e| format!("{label}: {e}"))?;
         let solver = match table.get("solver") {
             Some(t) => Some(serde_json::to_value(t).map_err(|e| format!("{label}: [solver]: {e}"))?),
@@ -201,7 +206,7 @@ mod tests {
                 "solver": {"method": "dls", "rates": [1, 0.5]}})
         );
         let file: RigFile = serde_json::from_value(json).unwrap();
-        let rig = Rig::from_file(file, "r").unwrap();
+        let rig = Rig::from_file(file, "r", BoneCap::cli()).unwrap();
         assert_eq!(rig.skeleton.names(), &["a.b", "c"]);
         assert_eq!(rig.solver.rates, Some(vec![1.0, 0.5]));
         let e = RigJson::parse("[[bones]]\nname = \"a\"\nparent = \"b\"\nlength = 1\n", "rig file").unwrap_err();

@@ -529,3 +529,69 @@ fn bend_picks_the_side_of_the_joint() {
         assert!(a * sign > 0.0, "{side}: arm.l at {a}°");
     }
 }
+
+/// A rig file of one chain of `n` bones (`b0` at the base, `b{n-1}` the tip).
+fn chain_rig(dir: &Path, n: usize) -> String {
+    let mut text = String::with_capacity(n * 48);
+    for i in 0..n {
+        let parent = if i == 0 { String::new() } else { format!("parent = \"b{}\"\n", i - 1) };
+        text.push_str(&format!("[[bones]]\nname = \"b{i}\"\n{parent}length = 0.001\n"));
+    }
+    write(dir, &format!("chain{n}.toml"), &text)
+}
+
+/// Issue 24: a 100 000-bone chain (6.9 MB, under the input cap) made `ikarus solve --rig` ask for
+/// 40 GB and abort (exit 134). Every command that reads a rig counts its bones first and
+/// refuses it in one line, before a bone is checked or built; `--max-bones N` raises the cap.
+#[test]
+fn every_rig_command_refuses_a_rig_over_the_bone_cap_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = chain_rig(dir.path(), 100_000);
+    let out = dir.path().join("x.svg");
+    let out = out.to_str().unwrap();
+    let commands: [&[&str]; 4] = [
+        &["solve", "--rig", &rig, "--goal", "b99999=1,0"],
+        &["animate", "--rig", &rig, "--goal", "b99999=1,0", "--frames", "3"],
+        &["track", "--rig", &rig, "--effector", "b99999", "--line", "0,0,1,1", "--samples", "3"],
+        &["render", "rig", "--rig", &rig, "--out", out],
+    ];
+    for args in commands {
+        let e = fails(args, 2);
+        assert_eq!(
+            e,
+            format!(
+                "ikarus: rig file {rig}: bones: 100000 bones exceed the cap of 10000 (raise it with --max-bones N)\n"
+            )
+        );
+        let raised: Vec<&str> = ["--max-bones", "99999"].iter().chain(args).copied().collect();
+        let e = fails(&raised, 2);
+        assert!(e.contains(": bones: 100000 bones exceed the cap of 99999 (raise it with --max-bones N)"), "{e}");
+    }
+    assert!(!Path::new(out).exists());
+}
+
+/// With the cap raised, the same chain is read and solved: the skeleton's memory is linear in
+/// its bones (before, its root-to-bone paths held n²/2 entries).
+#[test]
+fn a_chain_of_100000_bones_solves_once_the_cap_allows_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = chain_rig(dir.path(), 100_000);
+    let v = json(&[
+        "solve",
+        "--rig",
+        &rig,
+        "--max-bones",
+        "100000",
+        "--goal",
+        "b99999=50,50",
+        "--max-iterations",
+        "3",
+        "--restarts",
+        "0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["angles_deg"].as_object().unwrap().len(), 100_000);
+    // The chain is 100 long: (50, 50) is within reach, and 3 iterations move the tip toward it.
+    assert!(v["error"].as_f64().unwrap() < 100.0, "{}", v["error"]);
+}

@@ -67,6 +67,7 @@ fn limits() -> &'static Limits {
     LIMITS.get_or_init(|| Limits {
         max_body_bytes: 1 << 30,
         max_links: 100_000,
+        max_bones: edge::DEFAULT_MAX_BONES,
         max_iterations: u32::MAX,
         max_frames: 100_000,
         max_samples: 1_000_000,

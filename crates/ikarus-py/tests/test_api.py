@@ -159,3 +159,18 @@ def test_a_bad_rig_file_gives_the_cli_line(tmp_path):
     with pytest.raises(ValueError) as e:
         ikarus.Rig.from_toml(path)
     assert str(e.value) == want
+
+
+def test_a_rig_over_the_bone_cap_is_refused_before_it_is_built(tmp_path):
+    """Issue 24: a rig's bones are counted first (the command line's cap, 10 000), in a file and in a dict."""
+    n = 10_001
+    bones = [{"name": f"b{i}", "length": 0.001, **({"parent": f"b{i - 1}"} if i else {})} for i in range(n)]
+    with pytest.raises(ValueError, match=r"^rig: bones: 10001 bones exceed the cap of 10000"):
+        ikarus.Rig({"bones": bones}).solve({f"b{n - 1}": (1.0, 0.0)})
+    path = tmp_path / "chain.toml"
+    path.write_text("".join(f'[[bones]]\nname = "b{i}"\n' + (f'parent = "b{i - 1}"\n' if i else "") + "length = 0.001\n" for i in range(n)))
+    with pytest.raises(ValueError, match=rf"^rig file {path}: bones: 10001 bones exceed the cap of 10000"):
+        ikarus.Rig.from_toml(path)
+    # At the cap, a long chain is solved (its memory is linear in its bones).
+    out = ikarus.Rig({"bones": bones[:10_000]}).solve({"b9999": (5.0, 5.0)}, max_iterations=3, restarts=0)
+    assert len(out["angles_deg"]) == 10_000

@@ -30,7 +30,7 @@ use nalgebra::Point2;
 use crate::chain::{Chain, MAX_REACH};
 use crate::limits::{Bounds, JointLimits};
 use crate::math;
-use tree::{children_of, cycle_error, depth_first, paths_of};
+use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
 
 pub mod error;
 pub mod kinematics;
@@ -81,7 +81,10 @@ impl Bone {
 }
 
 /// A validated planar tree of bones: base, bones, start angles, and the tree's structure
-/// (parents, children, root-to-bone paths) computed once.
+/// (parents, children, a depth-first order with each subtree's span in it, roots) computed
+/// once. Its memory is linear in the bones: a bone's path from the root is walked along the
+/// parents ([`Skeleton::path_to_root`]) or tested in constant time ([`Skeleton::is_on_path`]),
+/// never stored.
 ///
 /// Build one with [`Skeleton::new`]. Per-bone data is in the order the bones were given (see
 /// the [module docs](self)).
@@ -100,10 +103,11 @@ pub struct Skeleton {
     /// order given.
     children: Vec<usize>,
     child_start: Vec<usize>,
-    /// The bones from a root down to bone `i` (its ancestors, then itself) are
-    /// `paths[path_start[i]..path_start[i + 1]]`.
-    paths: Vec<usize>,
-    path_start: Vec<usize>,
+    /// Bone `i` is `order[enter[i]]`; its descendants follow it, up to `order[leave[i]]`.
+    enter: Vec<usize>,
+    leave: Vec<usize>,
+    /// The root above each bone (a root's is itself).
+    root: Vec<usize>,
     reach: f64,
 }
 
@@ -161,7 +165,8 @@ impl Skeleton {
         let lengths: Vec<f64> = bones.iter().map(|b| b.length).collect();
         let names: Vec<String> = bones.iter().map(|b| b.name.clone()).collect();
         check_angles(&names, &start, Bounds::new(&limits))?;
-        let (paths, path_start) = paths_of(&parents, &order);
+        let (enter, leave) = subtrees_of(&parents, &order);
+        let root = roots_of(&parents, &order);
         // The length of the path to each tip, summed root first in the order of a chain's
         // `Σ lᵢ` (so that a chain's reach is its own, bit for bit).
         let mut to_tip = vec![0.0; n];
@@ -184,8 +189,9 @@ impl Skeleton {
             order,
             children,
             child_start,
-            paths,
-            path_start,
+            enter,
+            leave,
+            root,
             reach,
         })
     }
@@ -280,13 +286,49 @@ impl Skeleton {
     }
 
     /// The bones from a root down to bone `i`: its ancestors, root first, then `i` itself.
-    /// These are the bones whose turning moves bone `i`'s tip.
+    /// These are the bones whose turning moves bone `i`'s tip. Built on each call (its
+    /// length is `i`'s depth): a loop that only visits them walks [`Skeleton::path_to_root`],
+    /// a test of one bone asks [`Skeleton::is_on_path`].
     ///
     /// # Panics
     /// If `i >= self.len()`.
     #[must_use]
-    pub fn path(&self, i: usize) -> &[usize] {
-        &self.paths[self.path_start[i]..self.path_start[i + 1]]
+    pub fn path(&self, i: usize) -> Vec<usize> {
+        let mut path: Vec<usize> = self.path_to_root(i).collect();
+        path.reverse();
+        path
+    }
+
+    /// The bones of [`Skeleton::path`] the other way round, without allocating: bone `i`, its
+    /// parent, and so on up to its root.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    pub fn path_to_root(&self, i: usize) -> impl Iterator<Item = usize> + '_ {
+        assert!(i < self.len(), "ikarus: bone {i} of a skeleton of {} bones", self.len());
+        std::iter::successors(Some(i), |&j| self.parents[j])
+    }
+
+    /// Whether bone `j` lies on bone `i`'s path from its root (`j` is `i` or one of its
+    /// ancestors), that is whether turning bone `j` moves bone `i`'s tip. Constant time: `j`'s
+    /// descendants follow it in the depth-first order, so `i` is among them exactly when its
+    /// place there falls within `j`'s subtree.
+    ///
+    /// # Panics
+    /// If `i` or `j` is not below [`Skeleton::len`].
+    #[must_use]
+    pub fn is_on_path(&self, j: usize, i: usize) -> bool {
+        let at = self.enter[i];
+        self.enter[j] <= at && at < self.leave[j]
+    }
+
+    /// The root above bone `i` (the first bone of its [`Skeleton::path`]; a root's is itself).
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[must_use]
+    pub fn root_of(&self, i: usize) -> usize {
+        self.root[i]
     }
 
     /// Every bone once, every parent before its children: a depth-first walk from the roots,

@@ -36,6 +36,9 @@ pub struct Limits {
     pub max_body_bytes: usize,
     /// Most links an arm of a request may have.
     pub max_links: usize,
+    /// Most bones a rig of a request may have (`/api/rig/parse` included), counted before any
+    /// bone is checked.
+    pub max_bones: usize,
     /// Largest `options.max_iterations` of a request.
     pub max_iterations: u32,
     /// Most frames of a motion.
@@ -58,6 +61,7 @@ impl Default for Limits {
         Self {
             max_body_bytes: 1 << 20,
             max_links: 64,
+            max_bones: 256,
             max_iterations: 100_000,
             max_frames: 2000,
             max_samples: 5000,
@@ -73,7 +77,8 @@ impl Default for Limits {
 /// its `{"error": …}` body, which names the field and the value.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Problem {
-    /// 400 malformed JSON, 413 too large, 422 a bad value, 500 internal, 503 interrupted or busy.
+    /// 400 malformed JSON, 413 too large, 415 not the endpoint's content type, 422 a bad value,
+    /// 500 internal, 503 interrupted or busy.
     pub status: u16,
     /// One line.
     pub message: String,
@@ -91,6 +96,8 @@ pub mod status {
     pub const REQUEST_TIMEOUT: u16 = 408;
     /// The body is over the cap.
     pub const PAYLOAD_TOO_LARGE: u16 = 413;
+    /// The body's `Content-Type` is not the endpoint's (or is missing).
+    pub const UNSUPPORTED_MEDIA_TYPE: u16 = 415;
     /// Well-formed JSON with a bad value.
     pub const UNPROCESSABLE_ENTITY: u16 = 422;
     /// A fault of ikarus.
@@ -271,7 +278,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
-        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?)),
+        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?, limits)),
         Endpoint::Solve => match SolveBody::parse(body)? {
             SolveBody::Arm(req) => jobs::solve(*req, limits, interrupt),
             SolveBody::Rig(req) => rigs::solve(*req, limits, interrupt),

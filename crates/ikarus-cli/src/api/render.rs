@@ -64,7 +64,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
             picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
-        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, interrupt)?,
+        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, limits, interrupt)?,
     };
     Ok((bytes, format))
 }

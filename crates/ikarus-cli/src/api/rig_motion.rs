@@ -125,7 +125,7 @@ fn prefix_goals(message: &str, set: &str) -> String {
 /// `POST /api/animate` with `rig`: the JSON of `ikarus animate --rig --format json`.
 pub fn animate(req: RigAnimateReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
-        let rig = load_rig(req.rig.clone())?;
+        let rig = load_rig(req.rig.clone(), limits)?;
         let tasks = tasks(&rig, &req)?;
         let timing = timing(req.frames, req.duration, req.fps, limits)?;
         let ease = ease(req.ease.as_ref(), EaseKind::Sine)?;
@@ -148,7 +148,7 @@ pub fn animate(req: RigAnimateReq, limits: &Limits, interrupt: &Interrupt) -> Re
 /// `POST /api/track` with `rig`: the JSON of `ikarus track --rig --format json`.
 pub fn track(req: RigTrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
-        let rig = load_rig(req.rig.clone())?;
+        let rig = load_rig(req.rig.clone(), limits)?;
         let Some(name) = &req.effector else {
             return Err(Problem::invalid("effector: required with rig: the bone whose tip follows the path"));
         };

@@ -19,13 +19,11 @@ use super::rig_requests::{BendReq, PriorityReq, RigGoalReq, RigSolveReq};
 use super::{Limits, Problem, Reply};
 #[cfg(feature = "render")]
 use crate::picture::{Drawing, PictureFormat, draw, rig_figure};
-use crate::rig::{Rig, RigFile};
+use crate::rig::{BoneCap, Rig, RigFile};
 use crate::rig_report::{RigJson, RigSolveReport};
 use crate::rig_task::{self, Field, NamedGoal};
 use crate::settings::solver;
 
-/// Most bones of a request's rig.
-pub const MAX_BONES: usize = 256;
 /// Most effectors (goals and pins together) of a request.
 pub const MAX_EFFECTORS: usize = 64;
 
@@ -36,15 +34,9 @@ pub const SHIPPED: &[(&str, &str)] = &[
 ];
 
 /// The request's rig, checked as a rig file is (errors start with `rig:`); at most
-/// [`MAX_BONES`] bones.
-pub fn load_rig(file: RigFile) -> Result<Rig, Problem> {
-    if file.bones.len() > MAX_BONES {
-        return Err(Problem::invalid(format!(
-            "rig.bones: {} bones, more than the cap of {MAX_BONES}",
-            file.bones.len()
-        )));
-    }
-    Ok(Rig::from_file(file, "rig")?)
+/// `--max-bones` bones (counted first).
+pub fn load_rig(file: RigFile, limits: &Limits) -> Result<Rig, Problem> {
+    Ok(Rig::from_file(file, "rig", BoneCap::flag(limits.max_bones))?)
 }
 
 /// The task of a request's `goals`, `pins` and `mix` on `rig`; problems name the field
@@ -95,7 +87,7 @@ pub fn task(
 /// `POST /api/solve` with `rig`: the JSON of `ikarus solve --rig --format json`.
 pub fn solve(req: RigSolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
-        let rig = load_rig(req.rig)?;
+        let rig = load_rig(req.rig, limits)?;
         let task = task(&rig, &req.goals, &req.pins, req.mix, true)?;
         let n = rig.skeleton.len();
         // No frames unless `options.record_every` (or the rig's table) asks.
@@ -153,9 +145,10 @@ pub enum Parsed {
     Problem(String),
 }
 
-/// `POST /api/rig/parse`: the body is the file's text.
-pub fn parsed(text: &str) -> Parsed {
-    match RigJson::parse(text, "rig file") {
+/// `POST /api/rig/parse`: the body is the file's text, of at most `--max-bones` bones (a
+/// bigger one is a problem, found before any bone is checked).
+pub fn parsed(text: &str, limits: &Limits) -> Parsed {
+    match RigJson::parse_within(text, "rig file", BoneCap::flag(limits.max_bones)) {
         Ok(rig) => Parsed::Rig(rig),
         Err(problem) => Parsed::Problem(problem),
     }
@@ -168,9 +161,10 @@ pub fn figure(
     format: PictureFormat,
     width: u32,
     height: u32,
+    limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
-    let rig = load_rig(r.rig)?;
+    let rig = load_rig(r.rig, limits)?;
     let task = task(&rig, &r.goals, &r.pins, None, false)?;
     let pose =
         pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), r.pose_deg.as_deref(), "pose_deg")?;
@@ -181,6 +175,32 @@ pub fn figure(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What WebAssembly and Python call: the edges' cap on bones (the server's default for
+    /// WebAssembly), counted before a bone is checked, for a file's text and a request's rig.
+    #[test]
+    fn the_edges_count_a_rigs_bones_first() {
+        let chain = |n: usize| -> String {
+            (0..n)
+                .map(|i| format!("[[bones]]\nname = \"b{i}\"\nparent = \"b{}\"\nlength = 1\n", i.max(1) - 1))
+                .collect()
+        };
+        // Bone 0 names itself its parent: a cycle, had the bones been checked.
+        let limits = Limits::default();
+        let interrupt = Interrupt::new();
+        let reply = super::super::call(super::super::Endpoint::RigParse, chain(257).as_bytes(), &limits, &interrupt);
+        let answer: serde_json::Value = serde_json::from_slice(&reply.unwrap().body).unwrap();
+        assert_eq!(
+            answer,
+            serde_json::json!({"problem": "rig file: bones: 257 bones exceed the cap of 256 (--max-bones)"})
+        );
+        let reply = super::super::call(super::super::Endpoint::RigParse, chain(256).as_bytes(), &limits, &interrupt);
+        let answer: serde_json::Value = serde_json::from_slice(&reply.unwrap().body).unwrap();
+        assert!(answer["problem"].as_str().unwrap().contains("a cycle (b0 → b0)"), "{answer}");
+        let file: RigFile = toml::from_str(&chain(300)).unwrap();
+        let e = load_rig(file, &Limits { max_bones: 299, ..Limits::default() }).unwrap_err();
+        assert_eq!((e.status, e.message.as_str()), (422, "rig: bones: 300 bones exceed the cap of 299 (--max-bones)"));
+    }
 
     /// Every rig file in `examples/rigs/` is shipped, and reads.
     #[test]

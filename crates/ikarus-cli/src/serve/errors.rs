@@ -1,13 +1,21 @@
 //! The API's error: a status code and a JSON body `{"error": "…"}` of one line that names the
-//! field and the value.
+//! field and the value; and the request bodies, read within the server's caps.
+//!
+//! A body is taken only with its endpoint's content type — `application/json` (or a
+//! `application/…+json` type), or `application/toml` for the arm and rig files' text — and
+//! refused 415 otherwise, a missing type included. None of these is a CORS "simple request"
+//! type (`text/plain`, `application/x-www-form-urlencoded`, `multipart/form-data`), so a page
+//! on another site cannot post a body without a preflight, and the server answers no
+//! preflight: a browser never sends it.
+
+use std::marker::PhantomData;
 
 use axum::Json;
-use axum::body::{Body, Bytes};
+use axum::body::Bytes;
 use axum::extract::rejection::JsonRejection;
 use axum::extract::{FromRequest, Request};
-use axum::http::StatusCode;
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use serde::de::IgnoredAny;
 
 use super::AppState;
 pub use crate::api::Problem as ApiError;
@@ -20,29 +28,68 @@ impl IntoResponse for ApiError {
     }
 }
 
-/// A JSON request body, read within the server's caps: its content type checked, its size at
-/// most `--max-body-bytes`, its memory reserved from the server's body memory, its arrival
-/// bounded in time. [`crate::api::call`] parses it.
-pub struct JsonBody {
+/// The media type of an endpoint's body.
+pub trait MediaType {
+    /// What a refused request is told to send.
+    const NAME: &'static str;
+    /// Whether `essence` (the type without parameters, lowercase) is this type.
+    fn accepts(essence: &str) -> bool;
+}
+
+/// JSON: `application/json`, or `application/…+json` (axum's `Json` rule).
+pub struct JsonType;
+
+impl MediaType for JsonType {
+    const NAME: &'static str = "application/json";
+    fn accepts(essence: &str) -> bool {
+        essence == "application/json" || (essence.starts_with("application/") && essence.ends_with("+json"))
+    }
+}
+
+/// An arm or rig file's text: `application/toml`.
+pub struct TomlType;
+
+impl MediaType for TomlType {
+    const NAME: &'static str = "application/toml";
+    fn accepts(essence: &str) -> bool {
+        essence == "application/toml"
+    }
+}
+
+/// 415 unless the request's `Content-Type` is `T` (parameters such as `charset` aside).
+fn check_content_type<T: MediaType>(headers: &HeaderMap) -> Result<(), ApiError> {
+    let refused = |what: String| ApiError {
+        status: status::UNSUPPORTED_MEDIA_TYPE,
+        message: format!("Content-Type{what}: expected {}", T::NAME),
+    };
+    let Some(value) = headers.get(header::CONTENT_TYPE) else { return Err(refused(": missing".to_owned())) };
+    let text = String::from_utf8_lossy(value.as_bytes());
+    let essence = text.split(';').next().unwrap_or_default().trim().to_ascii_lowercase();
+    if T::accepts(&essence) { Ok(()) } else { Err(refused(format!(" = {text:?}"))) }
+}
+
+/// A request body of media type `T`, read within the server's caps: its content type checked
+/// (415), its size at most `--max-body-bytes`, its memory reserved from the server's body
+/// memory, its arrival bounded in time. [`crate::api::call`] parses it.
+pub struct ApiBody<T> {
     pub bytes: Bytes,
     /// The body's share of the server's body memory, given back when the body is dropped.
     _memory: tokio::sync::OwnedSemaphorePermit,
+    _type: PhantomData<T>,
 }
 
-impl FromRequest<AppState> for JsonBody {
+/// A JSON body (every computation, `/api/arm/toml`).
+pub type JsonBody = ApiBody<JsonType>;
+/// An arm or rig file's text (`/api/arm/parse`, `/api/rig/parse`).
+pub type TomlBody = ApiBody<TomlType>;
+
+impl<T: MediaType> FromRequest<AppState> for ApiBody<T> {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
         let max_body_bytes = state.limits.max_body_bytes;
-        // The content type before the size, as `Json` checks them, by `Json`'s own rule: an
-        // empty body under the same headers is refused for its type or for being empty.
-        let mut probe = Request::new(Body::empty());
-        *probe.headers_mut() = req.headers().clone();
-        if let Err(rejection @ JsonRejection::MissingJsonContentType(_)) =
-            Json::<IgnoredAny>::from_request(probe, state).await
-        {
-            return Err(rejected(&rejection, max_body_bytes));
-        }
+        // The content type before the size and before the body is read.
+        check_content_type::<T>(req.headers())?;
         // The memory the body may take (its declared length, or the cap) is reserved before
         // it is read: past the server's body memory the answer is 503 at once.
         let declared = req
@@ -63,7 +110,7 @@ impl FromRequest<AppState> for JsonBody {
         // A client trickling its body holds a connection and a buffer: bounded in time.
         let timeout = state.limits.body_timeout;
         match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
-            Ok(Ok(bytes)) => Ok(Self { bytes, _memory: memory }),
+            Ok(Ok(bytes)) => Ok(Self { bytes, _memory: memory, _type: PhantomData }),
             Ok(Err(rejection)) => Err(rejected(&rejection.into(), max_body_bytes)),
             Err(_) => Err(ApiError {
                 status: status::REQUEST_TIMEOUT,
@@ -87,9 +134,10 @@ fn rejected(rejection: &JsonRejection, max_body_bytes: usize) -> ApiError {
         JsonRejection::JsonSyntaxError(_) => {
             ApiError { status: status::BAD_REQUEST, message: format!("request body: malformed JSON: {}", detail()) }
         }
-        JsonRejection::MissingJsonContentType(_) => {
-            ApiError { status: status::BAD_REQUEST, message: "Content-Type: expected application/json".to_owned() }
-        }
+        JsonRejection::MissingJsonContentType(_) => ApiError {
+            status: status::UNSUPPORTED_MEDIA_TYPE,
+            message: format!("Content-Type: expected {}", JsonType::NAME),
+        },
         other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError {
             status: status::PAYLOAD_TOO_LARGE,
             message: format!("request body: larger than the cap of {max_body_bytes} bytes (--max-body-bytes)"),

@@ -2,13 +2,12 @@
 //! by [`JsonBody`]), runs [`api::call`] — the same function Python and WebAssembly call — on a
 //! worker of the pool for the computations, and answers its bytes.
 
-use axum::body::Bytes;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use ikarus::Interrupt;
 
 use super::AppState;
-use super::errors::{ApiError, JsonBody};
+use super::errors::{ApiError, JsonBody, TomlBody};
 use crate::api::{self, Endpoint, Reply};
 
 impl IntoResponse for Reply {
@@ -32,9 +31,9 @@ pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Resp
     api::call(endpoint, body, &state.limits, &Interrupt::new()).map(Reply::into_response)
 }
 
-/// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, whatever its content type.
-pub async fn file_text(endpoint: Endpoint, state: AppState, body: Bytes) -> Result<Response, ApiError> {
-    at_once(endpoint, &state, &body)
+/// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, sent as `application/toml`.
+pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, ApiError> {
+    at_once(endpoint, &state, &body.bytes)
 }
 
 /// `GET /api/health`.

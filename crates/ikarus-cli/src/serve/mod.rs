@@ -15,7 +15,6 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use axum::Router;
-use axum::body::Bytes;
 use axum::extract::{DefaultBodyLimit, Path, State};
 use axum::http::{Method, Uri, header};
 use axum::response::{Html, IntoResponse};
@@ -67,9 +66,12 @@ pub struct ServeArgs {
     /// Largest request body, in bytes (413 above it)
     #[arg(long, default_value_t = 1 << 20, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..=1 << 30))]
     pub max_body_bytes: u64,
-    /// Most links an arm of a request may have (a rig: at most 256 bones, 64 goals and pins)
+    /// Most links an arm of a request may have
     #[arg(long, default_value_t = 64, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub max_links: u64,
+    /// Most bones a rig of a request may have (/api/rig/parse included; a rig has at most 64 goals and pins)
+    #[arg(long, default_value_t = 256, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub max_bones: u64,
     /// Largest options.max_iterations of a request
     #[arg(long, default_value_t = 100_000, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_iterations: u32,
@@ -125,6 +127,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
     let limits = Limits {
         max_body_bytes: usize::try_from(args.max_body_bytes).unwrap_or(usize::MAX),
         max_links: usize::try_from(args.max_links).unwrap_or(usize::MAX),
+        max_bones: usize::try_from(args.max_bones).unwrap_or(usize::MAX),
         max_iterations: args.max_iterations,
         max_frames: usize::try_from(args.max_frames).unwrap_or(usize::MAX),
         max_samples: usize::try_from(args.max_samples).unwrap_or(usize::MAX),
@@ -260,8 +263,8 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
             get(|State(s): State<AppState>| async move { at_once(Endpoint::ArmDefault, &s, b"") }),
         )
         .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
-        .route("/api/arm/parse", post(|State(s), b: Bytes| file_text(Endpoint::ArmParse, s, b)))
-        .route("/api/rig/parse", post(|State(s), b: Bytes| file_text(Endpoint::RigParse, s, b)))
+        .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)))
+        .route("/api/rig/parse", post(|State(s), b| file_text(Endpoint::RigParse, s, b)))
         .route(
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),

@@ -140,7 +140,8 @@ impl Skeleton {
     }
 
     /// The absolute direction of bone `bone` for `angles`: the sum of the angles from its root
-    /// down to it, in that order (the same bits as [`Skeleton::forward_into`]'s).
+    /// down to it, in that order (the same bits as [`Skeleton::forward_into`]'s). Allocates
+    /// the path (as long as the bone's depth).
     #[must_use]
     pub fn direction(&self, angles: &[f64], bone: usize) -> f64 {
         self.path(bone).iter().fold(0.0, |phi, &j| phi + angles[j])
@@ -172,7 +173,7 @@ impl Skeleton {
         let mut row = 0;
         for e in effectors {
             let tip = tips[e.bone];
-            for &j in self.path(e.bone) {
+            for j in self.path_to_root(e.bone) {
                 let p = starts[j];
                 out[(row, j)] = -(tip.y - p.y);
                 out[(row + 1, j)] = tip.x - p.x;

@@ -32,7 +32,7 @@ fn builds_a_tree_and_answers_questions_about_it() {
     assert_eq!(s.roots().collect::<Vec<_>>(), [0, 3, 4]);
     // Depth first from the roots in the order given.
     assert_eq!(s.topological_order(), &[0, 2, 1, 3, 5, 4]);
-    assert_eq!((s.path(1), s.path(5), s.path(4)), (&[0, 2, 1][..], &[3, 5][..], &[4][..]));
+    assert_eq!((s.path(1), s.path(5), s.path(4)), (vec![0, 2, 1], vec![3, 5], vec![4]));
     assert_eq!(s.start_angles(), &[1.5, 0.0, 0.1, -1.5, -1.6, 1.5]);
     assert_eq!(s.lengths(), &[0.2, 0.3, 0.5, 0.9, 0.9, 0.2]);
     assert!(s.has_limits() && s.bounds().get(2) == Some(lim(-0.5, 0.5)) && s.bounds().get(0).is_none());
@@ -167,4 +167,92 @@ fn angles_are_checked_against_the_skeleton() {
     assert!(s.check_angles_ignoring_limits(&bad).is_ok());
     bad[3] = f64::INFINITY;
     assert!(s.check_angles_ignoring_limits(&bad).is_err());
+}
+
+/// A chain of `n` bones, each hanging on the one before, written last bone first (so that the
+/// order given is not topological).
+fn long_chain(n: usize) -> Vec<Bone> {
+    (0..n)
+        .rev()
+        .map(|i| {
+            let bone = Bone::new(format!("b{i}"), 1e-3, 0.01);
+            if i == 0 { bone } else { bone.with_parent(format!("b{}", i - 1)) }
+        })
+        .collect()
+}
+
+/// Issue 24: a skeleton kept every bone's path from the root, n²/2 entries: a chain of 100 000
+/// bones asked for 40 GB and aborted. Its structure is linear in the bones now, and answers
+/// the same questions.
+#[test]
+fn a_long_chain_is_built_in_memory_linear_in_its_bones() {
+    let n = 100_000;
+    let s = Skeleton::new([0.0, 0.0], &long_chain(n)).unwrap();
+    let (first, last) = (s.index_of("b0").unwrap(), s.index_of(&format!("b{}", n - 1)).unwrap());
+    assert_eq!((first, last), (n - 1, 0));
+    assert_eq!(s.root_of(last), first);
+    assert!(s.is_on_path(first, last) && !s.is_on_path(last, first) && s.is_on_path(last, last));
+    let path = s.path(last);
+    assert_eq!((path.len(), path[0], path[n - 1]), (n, first, last));
+    assert!(path.windows(2).all(|w| s.parent(w[1]) == Some(w[0])));
+    assert!((s.max_reach() - n as f64 * 1e-3).abs() < 1e-9);
+    // Forward kinematics walks it: the tip of a slowly curling chain.
+    let mut tips = vec![Point2::origin(); n];
+    let (mut starts, mut dirs) = (tips.clone(), vec![0.0; n]);
+    s.forward_into(s.start_angles(), &mut starts, &mut tips, &mut dirs);
+    assert!((dirs[last] - s.direction(s.start_angles(), last)).abs() < 1e-9);
+}
+
+/// A long tail hanging below a cycle, tail first: found in one walk per bone, not one per
+/// bone per bone, and named as before (the first bone on the cycle in the order given).
+#[test]
+fn a_cycle_below_a_long_tail_is_named() {
+    let n = 50_000;
+    let mut bones: Vec<Bone> =
+        (0..n).map(|i| Bone::new(format!("t{i}"), 1.0, 0.0).with_parent(format!("t{}", i + 1))).collect();
+    bones.push(Bone::new(format!("t{n}"), 1.0, 0.0).with_parent("x"));
+    bones.push(Bone::new("x", 1.0, 0.0).with_parent(format!("t{n}")));
+    bones.push(Bone::new("root", 1.0, 0.0));
+    let e = Skeleton::new([0.0, 0.0], &bones).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!("bones[{n}] (\"t{n}\").parent = \"x\": a cycle (t{n} → x → t{n}); a bone cannot be its own ancestor")
+    );
+}
+
+/// Random forests, in a shuffled order.
+fn forests() -> impl proptest::strategy::Strategy<Value = Skeleton> {
+    use proptest::prelude::*;
+    (1usize..=30, any::<u64>()).prop_map(|(n, seed)| {
+        let mut rng = crate::rng::SplitMix64(seed);
+        let mut bones: Vec<(f64, Bone)> = (0..n)
+            .map(|i| {
+                let bone = Bone::new(format!("b{i}"), 1.0, 0.0);
+                // About one bone in five is a root.
+                let parent = (i > 0 && rng.unit() > 0.2).then(|| format!("b{}", (rng.unit() * i as f64) as usize % i));
+                (rng.unit(), Bone { parent, ..bone })
+            })
+            .collect();
+        bones.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Skeleton::new([0.0, 0.0], &bones.into_iter().map(|(_, b)| b).collect::<Vec<_>>()).unwrap()
+    })
+}
+
+proptest::proptest! {
+    /// The constant-time answers agree with the path walked along the parents.
+    #[test]
+    fn paths_roots_and_ancestry_agree(s in forests()) {
+        for i in 0..s.len() {
+            let path = s.path(i);
+            let mut up: Vec<usize> = s.path_to_root(i).collect();
+            up.reverse();
+            proptest::prop_assert_eq!(&path, &up);
+            proptest::prop_assert_eq!(*path.last().unwrap(), i);
+            proptest::prop_assert!(s.parent(path[0]).is_none());
+            proptest::prop_assert_eq!(s.root_of(i), path[0]);
+            for j in 0..s.len() {
+                proptest::prop_assert_eq!(s.is_on_path(j, i), path.contains(&j), "bone {} on the path of {}", j, i);
+            }
+        }
+    }
 }

@@ -1,5 +1,7 @@
 //! The tree's structure, computed once when a skeleton is built: children, a topological
-//! walk, root-to-bone paths, and the cycle that stops a walk.
+//! walk, each bone's place in it and the end of its subtree there, each bone's root, and the
+//! cycle that stops a walk. Everything here is linear in the bones, in time and memory: no
+//! bone's path from the root is stored (a chain of n bones would hold n²/2 entries).
 
 use super::{Bone, SkeletonError};
 
@@ -40,25 +42,45 @@ pub(super) fn depth_first(parents: &[Option<usize>], children: &[usize], child_s
 
 /// The cycle through the first bone (in the order given) that lies on one. Called only when
 /// the walk from the roots missed a bone: following parents from a missed bone never reaches a
-/// root, so within `n` steps it enters a cycle.
+/// root, so it enters a cycle.
+///
+/// Linear: each missed bone is walked from once, up to the first bone an earlier walk (or this
+/// one) has seen; a walk that meets itself has found a cycle, and marks its bones.
 pub(super) fn cycle_error(bones: &[Bone], parents: &[Option<usize>], reached: &[usize]) -> SkeletonError {
+    const UNSEEN: usize = usize::MAX;
     let n = bones.len();
-    let mut missed = vec![true; n];
+    // `walk[i]`: the walk that first saw bone i (`UNSEEN` for none; reached bones count as seen).
+    let mut walk = vec![UNSEEN; n];
     for &i in reached {
-        missed[i] = false;
+        walk[i] = n;
     }
-    let on_cycle = |i: usize| {
-        let mut j = i;
-        for _ in 0..n {
+    let mut on_cycle = vec![false; n];
+    for start in 0..n {
+        let mut j = start;
+        let closed = loop {
+            if walk[j] != UNSEEN {
+                break walk[j] == start;
+            }
+            walk[j] = start;
             match parents[j] {
-                Some(p) if p == i => return true,
                 Some(p) => j = p,
-                None => return false,
+                // A root (always reached, so not met here).
+                None => break false,
+            }
+        };
+        if closed {
+            // This walk came back to a bone of its own: j lies on a cycle; mark it round.
+            let mut k = j;
+            loop {
+                on_cycle[k] = true;
+                k = parents[k].expect("a bone on a cycle has a parent");
+                if k == j {
+                    break;
+                }
             }
         }
-        false
-    };
-    let first = (0..n).find(|&i| missed[i] && on_cycle(i)).expect("ikarus: a missed bone lies below a cycle");
+    }
+    let first = (0..n).find(|&i| on_cycle[i]).expect("ikarus: a missed bone lies below a cycle");
     let mut cycle = vec![bones[first].name.clone()];
     let mut j = first;
     // Back to `first` within `n` steps, since it lies on the cycle.
@@ -78,26 +100,33 @@ pub(super) fn cycle_error(bones: &[Bone], parents: &[Option<usize>], reached: &[
     }
 }
 
-/// Every bone's root-to-bone path, flat, with offsets (`order` topological, so a parent's path
-/// is known before its children's).
-pub(super) fn paths_of(parents: &[Option<usize>], order: &[usize]) -> (Vec<usize>, Vec<usize>) {
+/// Where each bone's subtree lies in the depth-first `order`: bone `i` at `order[enter[i]]`,
+/// its descendants right after it, up to (not including) `order[leave[i]]`. Bone `j` lies on
+/// bone `i`'s path from the root exactly when `enter[j] <= enter[i] < leave[j]`.
+pub(super) fn subtrees_of(parents: &[Option<usize>], order: &[usize]) -> (Vec<usize>, Vec<usize>) {
     let n = parents.len();
-    let mut depth = vec![0usize; n];
-    for &i in order {
-        depth[i] = parents[i].map_or(1, |p| depth[p] + 1);
+    let mut enter = vec![0; n];
+    for (k, &i) in order.iter().enumerate() {
+        enter[i] = k;
     }
-    let mut start = vec![0; n + 1];
-    for i in 0..n {
-        start[i + 1] = start[i] + depth[i];
-    }
-    let mut paths = vec![0; start[n]];
-    for &i in order {
-        let (s, e) = (start[i], start[i + 1]);
+    // Subtree sizes, children before parents.
+    let mut size = vec![1usize; n];
+    for &i in order.iter().rev() {
         if let Some(p) = parents[i] {
-            let (ps, pe) = (start[p], start[p + 1]);
-            paths.copy_within(ps..pe, s);
+            size[p] += size[i];
         }
-        paths[e - 1] = i;
     }
-    (paths, start)
+    let leave = (0..n).map(|i| enter[i] + size[i]).collect();
+    (enter, leave)
+}
+
+/// The root above every bone (a root's is itself); `order` topological.
+pub(super) fn roots_of(parents: &[Option<usize>], order: &[usize]) -> Vec<usize> {
+    let mut root: Vec<usize> = (0..parents.len()).collect();
+    for &i in order {
+        if let Some(p) = parents[i] {
+            root[i] = root[p];
+        }
+    }
+    root
 }

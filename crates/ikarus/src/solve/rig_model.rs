@@ -157,7 +157,7 @@ impl RigWork {
         // Within a level, limbs of one root together: effectors on different roots share no
         // bone, so the task's matrices are then block-diagonal in row order, which the
         // factorisations skip over.
-        self.effs.sort_by_key(|e| (!e.primary, skeleton.path(e.bone)[0]));
+        self.effs.sort_by_key(|e| (!e.primary, skeleton.root_of(e.bone)));
         self.primary_rows = self.effs.iter().filter(|e| e.primary).map(Eff::rows).sum();
         Ok(())
     }
@@ -166,8 +166,10 @@ impl RigWork {
     /// than `tolerance`), limits ignored: the annulus of their lengths, or with an orientation
     /// the wrist's annulus of all but the last.
     fn out_of_reach(&mut self, skeleton: &Skeleton, eff: &Eff, tolerance: f64) -> bool {
+        // Root first, as a chain of these bones would sum them.
         self.lengths.clear();
-        self.lengths.extend(skeleton.path(eff.bone).iter().map(|&j| skeleton.lengths()[j]));
+        self.lengths.extend(skeleton.path_to_root(eff.bone).map(|j| skeleton.lengths()[j]));
+        self.lengths.reverse();
         let base = skeleton.base();
         let (point, lengths) = match eff.orientation {
             None => (eff.target, &self.lengths[..]),
@@ -258,7 +260,7 @@ impl Model for Rig<'_> {
             start.push(rows.len());
             let mut row = 0;
             for eff in self.effs {
-                if self.skeleton.path(eff.bone).contains(&j) {
+                if self.skeleton.is_on_path(j, eff.bone) {
                     rows.extend(row..row + eff.rows());
                 }
                 row += eff.rows();
@@ -337,7 +339,7 @@ impl Model for Rig<'_> {
         for eff in self.effs {
             let tip = points.points[eff.bone + 1];
             let rw = eff.root_weight;
-            for &j in self.skeleton.path(eff.bone) {
+            for j in self.skeleton.path_to_root(eff.bone) {
                 let p = self.start_of(&points.points, j);
                 alg.jacobian[(row, j)] = rw * -(tip.y - p.y);
                 alg.jacobian[(row + 1, j)] = rw * (tip.x - p.x);
@@ -418,7 +420,7 @@ impl Model for Rig<'_> {
         for eff in self.effs {
             let o = &out.effectors[eff.slot];
             if !(o.error <= opts.tolerance && o.angle_error <= opts.angle_tolerance) {
-                for &j in self.skeleton.path(eff.bone) {
+                for j in self.skeleton.path_to_root(eff.bone) {
                     free[j] = true;
                 }
             }

@@ -139,7 +139,7 @@ mod tests {
         let v = j.judge(&s, c, &moved);
         assert!(!v.reached && v.angle_error > 9e-4, "{v:?}");
         // The hands reaching but the legs moved away from the start: not reached.
-        let thigh = s.skeleton.path(foot)[0];
+        let thigh = s.skeleton.root_of(foot);
         let mut walked = c.config.clone();
         walked[thigh] += 0.1;
         assert!(!j.judge(&s, c, &walked).reached);

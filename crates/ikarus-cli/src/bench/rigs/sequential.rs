@@ -43,7 +43,7 @@ impl Sequential {
         let limbs = set
             .effectors()
             .map(|e| {
-                let bones = s.path(e).to_vec();
+                let bones = s.path(e);
                 let links: Vec<Link> = bones
                     .iter()
                     .map(|&b| {

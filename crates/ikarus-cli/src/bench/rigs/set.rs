@@ -148,7 +148,7 @@ pub fn generate_on(set: RigSetName, skeleton: Skeleton, count: usize, seed: u64)
     // start.
     let mut frozen = vec![false; skeleton.len()];
     for &p in &pins {
-        for &b in skeleton.path(p) {
+        for b in skeleton.path_to_root(p) {
             frozen[b] = true;
         }
     }
