@@ -31,7 +31,7 @@ use tokio::sync::{Notify, OwnedSemaphorePermit, Semaphore, watch};
 use tokio::task::JoinSet;
 
 /// How long connections may take to finish after the server is told to stop.
-const DRAIN: Duration = Duration::from_millis(600);
+const DRAIN: Duration = Duration::from_millis(250);
 
 /// How long the accept loop waits for a closed idle connection's slot.
 const ROOM_TIME: Duration = Duration::from_secs(1);

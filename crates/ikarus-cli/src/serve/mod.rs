@@ -157,9 +157,9 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::runtime(format!("cannot start the server's runtime: {e}")))?;
     let result = runtime.block_on(serve(SocketAddr::new(args.host, args.port), limits, settings));
-    // Computations still running were interrupted; do not wait for them (a blocking task is
-    // not cancellable), the process ends here.
-    runtime.shutdown_timeout(Duration::from_millis(200));
+    // Computations still running were interrupted and answered; do not wait for them (a
+    // blocking task is not cancellable), the process ends here.
+    runtime.shutdown_background();
     result
 }
 
