@@ -307,20 +307,35 @@ mod tests {
         assert!(e.message.contains("budget of 50 ms (--request-budget-ms)"), "{}", e.message);
     }
 
+    /// Fills `lane`'s admissions with two computations that end only when interrupted, and
+    /// checks that one more is answered busy, naming `flag`.
+    async fn two_fill_the_lane(
+        pool: &Pool,
+        lane: Lane,
+        flag: &str,
+    ) -> [tokio::task::JoinHandle<Result<(), ApiError>>; 2] {
+        let requests = [endless(pool, lane), endless(pool, lane)];
+        until_taken(match lane {
+            Quick => &pool.lanes.quick_admitted,
+            Long => &pool.lanes.long_admitted,
+        })
+        .await;
+        let e = pool.run(lane, |_| Ok(())).await.unwrap_err();
+        assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
+        assert!(e.message.starts_with("server busy") && e.message.contains(flag), "{}", e.message);
+        requests
+    }
+
     #[tokio::test]
     async fn beyond_the_long_queue_long_ones_are_busy_and_quick_ones_still_run() {
+        // One long worker and one waiting.
         let (pool, tx) = pool(1, 1, 60_000);
-        let running = endless(&pool, Long);
-        let waiting = endless(&pool, Long);
-        until_taken(&pool.lanes.long_admitted).await;
-        let e = pool.run(Long, |_| Ok(())).await.unwrap_err();
-        assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
-        assert!(e.message.starts_with("server busy") && e.message.contains("--long-workers"), "{}", e.message);
+        let requests = two_fill_the_lane(&pool, Long, "--long-workers").await;
         // The quick lane has a worker of its own, even with --workers 1.
         assert_eq!(pool.run(Quick, |_| Ok(5)).await.unwrap(), 5);
         // Stopping the server interrupts the running one and the waiting one.
         tx.send(true).unwrap();
-        for request in [running, waiting] {
+        for request in requests {
             assert_eq!(request.await.unwrap().unwrap_err().message, "server stopping");
         }
     }
@@ -329,13 +344,9 @@ mod tests {
     async fn beyond_the_quick_queue_quick_ones_are_busy() {
         // One quick worker, one long one (free, so a quick computation takes it too), no queue.
         let (pool, _tx) = pool(2, 0, 60_000);
-        let first = endless(&pool, Quick);
-        let second = endless(&pool, Quick);
-        until_taken(&pool.lanes.quick_admitted).await;
-        let e = pool.run(Quick, |_| Ok(())).await.unwrap_err();
-        assert!(e.message.starts_with("server busy") && e.message.contains("--workers"), "{}", e.message);
-        first.abort();
-        second.abort();
+        for request in two_fill_the_lane(&pool, Quick, "--workers").await {
+            request.abort();
+        }
     }
 
     #[tokio::test]
