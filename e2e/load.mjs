@@ -1,21 +1,28 @@
 // Load check of `ikarus serve` on loopback, run by hand (about 15 seconds; not part of .ci/run):
 //   cargo build --release && node e2e/load.mjs
-// Environment: LOAD_SECONDS (default 10), LOAD_HEAVY (how many of the four heavy kinds, default
-// 4), LOAD_SERVER_ARGS (extra `ikarus serve` flags, e.g. "--workers 4"), IKARUS_BIN.
+// Environment: LOAD_SECONDS (default 10), LOAD_MIX (`issue11`, the default, or `issue24`),
+// LOAD_HEAVY (how many of the mix's heavy kinds, default all), LOAD_LIGHT (0 leaves out the light
+// clients), LOAD_SERVER_ARGS (extra `ikarus serve` flags, e.g. "--workers 4"), IKARUS_BIN.
 //
 // For SECONDS seconds a mixed load runs against one server:
 //   - 100 clients solving random goals (the old check: 200 of them and nothing else);
 //   - 10 clients animating, 5 sampling workspaces, 5 rendering (PNG arms, small GIF motions);
-//   - 4 clients sending the expensive requests of issue 11 in a loop: a solve that runs for
-//     hours, a 64-link animate with 100 via points, 64 restarts and gain 1e-9, a workspace at
-//     resolution 1024 with 10⁶ samples, a 2000-frame GIF of a 64-link arm. These are expected
-//     to end 503 at the server's time budget (or be refused 503 "busy" when the queue is full);
-//   - one prober asking GET /api/health every 10 ms, timing each answer.
-// It reports, per kind, the answers by status; the health latency (p50, p99, max); and the
-// server's resident memory at the start, midway and at the end. It exits 1 if a health check
-// fails or its p99 reaches 50 ms, if any answer is neither 200 nor an expected 503, or if the
-// server's memory ends above MAX_RSS_KB (bounded memory; it varies with the heavy requests'
-// timing, so no growth ratio is checked).
+//   - the heavy clients of the mix, in a loop. LOAD_MIX=issue11: 4 clients sending the
+//     expensive requests of issue 11: a solve that runs for hours, a 64-link animate with 100
+//     via points, 64 restarts and gain 1e-9, a workspace at resolution 1024 with 10⁶ samples, a
+//     2000-frame GIF of a 64-link arm, expected to end 503 at the server's time budget (or be
+//     refused 503 "busy" when their queue is full). LOAD_MIX=issue24: 8 clients, two each of
+//     requests of issue 24's kinds that take 0.5 to 3.5 s alone: solve_batch of 100,000 goals
+//     out of reach, animate of 64 links through 100 via points out of reach with 64 restarts, a
+//     planned track of 4000 samples on 24 links, the exact workspace of 64 limited links (200, or
+//     503 at the budget or busy);
+//   - one prober asking GET /api/health every 10 ms, and one posting a small /api/solve every
+//     100 ms, each on its own thread, timing each answer.
+// It reports, per kind, the answers by status; the latency (p50, p99, max) of health and of the
+// small solves; and the server's resident memory at the start, midway and at the end. It exits 1
+// if a health check fails or its p99 reaches 50 ms, if a small solve is not 200 or takes 2 s, if
+// any answer is neither 200 nor an expected 503, or if the server's memory ends above MAX_RSS_KB
+// (bounded memory; it varies with the heavy requests' timing, so no growth ratio is checked).
 import { spawn } from "node:child_process";
 import { readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
@@ -26,9 +33,10 @@ const here = dirname(fileURLToPath(import.meta.url));
 const binary = process.env.IKARUS_BIN ?? join(here, "..", "target", "release", "ikarus");
 const SECONDS = Number(process.env.LOAD_SECONDS ?? 10);
 const HEALTH_P99_GOAL_MS = 50;
+const SMALL_SOLVE_MAX_MS = 2000;
 const MAX_RSS_KB = 512 * 1024;
-/** How many of the four heavy kinds run (from the first): LOAD_HEAVY=1 runs only the solve. */
-const HEAVY_KINDS = Number(process.env.LOAD_HEAVY ?? 4);
+const MIX = process.env.LOAD_MIX ?? "issue11";
+const LIGHT_CLIENTS = process.env.LOAD_LIGHT !== "0";
 const serverArgs = (process.env.LOAD_SERVER_ARGS ?? "").split(" ").filter(Boolean);
 
 const server = spawn(binary, ["serve", "--port", "0", ...serverArgs], { stdio: ["ignore", "pipe", "inherit"] });
@@ -96,7 +104,7 @@ async function loop(kind, seed, request) {
 
 const links64 = Array.from({ length: 64 }, () => ({ length: 0.1, angle_deg: 5 }));
 const via100 = Array.from({ length: 100 }, (_, i) => [(i % 7) * 0.5, 1]);
-const HEAVY = [
+const ISSUE11 = [
   // Hours: a 64-link arm held within ±1° of straight, asked for a goal it cannot reach so.
   () => [
     "/api/solve",
@@ -131,38 +139,57 @@ const HEAVY = [
   ],
 ];
 
-// The prober runs on its own thread (its own event loop), so that its timings are the server's
-// answers and not the wait behind the other clients' callbacks in this one.
+// Each of these takes about 0.5 to 3.5 s alone (release build, 2 cores).
+const farGoals = Array.from({ length: 100000 }, (_, i) => [10 + (i % 5), 1 + (i % 3)]);
+const farVia = Array.from({ length: 100 }, (_, i) => [20 + (i % 7) * 0.5, 1]);
+const links24 = links64.slice(0, 24);
+const limited64 = Array.from({ length: 64 }, () => ({ length: 0.1, angle_deg: 5, limits_deg: [-30, 30] }));
+const ISSUE24_KINDS = [
+  () => ["/api/solve_batch", { goals: farGoals }, [200, 503]],
+  () => ["/api/animate", { arm: { links: links64 }, goal: { x: 30, y: 3 }, via: farVia, options: { restarts: 64 } }, [200, 503]],
+  () => ["/api/track", { arm: { links: links24 }, circle: [0, 0, 1], samples: 4000, mode: "plan" }, [200, 503]],
+  () => ["/api/workspace", { arm: { links: limited64 }, limits: true }, [200, 503]],
+];
+const MIXES = { issue11: ISSUE11, issue24: [...ISSUE24_KINDS, ...ISSUE24_KINDS] };
+if (!MIXES[MIX]) throw new Error(`LOAD_MIX=${MIX}: expected issue11 or issue24`);
+/** How many of the mix's heavy kinds run (from the first): LOAD_HEAVY=1 runs only the first. */
+const HEAVY_KINDS = Number(process.env.LOAD_HEAVY ?? MIXES[MIX].length);
+const HEAVY = MIXES[MIX];
+
+// The probers run on their own threads (their own event loops), so that their timings are the
+// server's answers and not the wait behind the other clients' callbacks in this one.
 const PROBER = `
 const { parentPort, workerData } = require("node:worker_threads");
 (async () => {
   const latencies = [];
   let failures = 0;
-  while (Date.now() < workerData.deadline) {
+  let firstFailure = null;
+  const { url, deadline, path, body, every } = workerData;
+  const init = body ? { method: "POST", headers: { "content-type": "application/json" }, body } : undefined;
+  while (Date.now() < deadline) {
     const began = performance.now();
     try {
-      const res = await fetch(workerData.url + "/api/health");
-      await res.arrayBuffer();
-      if (res.status !== 200) failures += 1;
-    } catch {
+      const res = await fetch(url + path, init);
+      const text = await res.text();
+      if (res.status !== 200) {
+        failures += 1;
+        firstFailure ??= res.status + " " + text.slice(0, 160);
+      }
+    } catch (e) {
       failures += 1;
+      firstFailure ??= e.message;
     }
     latencies.push(performance.now() - began);
-    await new Promise((r) => setTimeout(r, 10));
+    await new Promise((r) => setTimeout(r, every));
   }
-  parentPort.postMessage({ latencies, failures });
+  parentPort.postMessage({ latencies, failures, firstFailure });
 })();
 `;
-let latencies = [];
-let healthFailures = 0;
-function prober() {
+/** Times `path` (a POST of `body`, if given) every `every` ms until the deadline, on its own thread. */
+function prober(path, body, every) {
   return new Promise((resolve, reject) => {
-    const worker = new Worker(PROBER, { eval: true, workerData: { url, deadline } });
-    worker.on("message", (m) => {
-      latencies = m.latencies;
-      healthFailures = m.failures;
-      resolve();
-    });
+    const worker = new Worker(PROBER, { eval: true, workerData: { url, deadline, path, body, every } });
+    worker.on("message", (m) => resolve({ ...m, latencies: m.latencies.sort((a, b) => a - b) }));
     worker.on("error", reject);
   });
 }
@@ -170,24 +197,28 @@ function prober() {
 const before = rss();
 let middle = 0;
 const sampler = setTimeout(() => (middle = rss()), (SECONDS * 1000) / 2);
-const clients = [prober()];
-for (let i = 0; i < 100; i++) {
-  clients.push(loop("solve", i + 1, (r) => ["/api/solve", { goal: goal(r), options: { record_every: 50 } }, LIGHT]));
-}
-for (let i = 0; i < 10; i++) {
-  clients.push(loop("animate", 1000 + i, (r) => ["/api/animate", { goal: goal(r), frames: 60 }, LIGHT]));
-}
-for (let i = 0; i < 5; i++) {
-  clients.push(loop("workspace", 2000 + i, () => ["/api/workspace", { resolution: 256 }, LIGHT]));
-}
-for (let i = 0; i < 5; i++) {
-  clients.push(
-    loop("render", 3000 + i, (r) =>
-      i % 2 === 0
-        ? ["/api/render", { figure: "arm", goal: goal(r), width: 400, height: 400 }, LIGHT]
-        : ["/api/render", { figure: "motion", goal: goal(r), frames: 30, format: "gif", width: 200, height: 200 }, LIGHT],
-    ),
-  );
+const health = prober("/api/health", null, 10);
+const small = prober("/api/solve", JSON.stringify({ goal: { x: 2, y: 3 } }), 100);
+const clients = [health, small];
+if (LIGHT_CLIENTS) {
+  for (let i = 0; i < 100; i++) {
+    clients.push(loop("solve", i + 1, (r) => ["/api/solve", { goal: goal(r), options: { record_every: 50 } }, LIGHT]));
+  }
+  for (let i = 0; i < 10; i++) {
+    clients.push(loop("animate", 1000 + i, (r) => ["/api/animate", { goal: goal(r), frames: 60 }, LIGHT]));
+  }
+  for (let i = 0; i < 5; i++) {
+    clients.push(loop("workspace", 2000 + i, () => ["/api/workspace", { resolution: 256 }, LIGHT]));
+  }
+  for (let i = 0; i < 5; i++) {
+    clients.push(
+      loop("render", 3000 + i, (r) =>
+        i % 2 === 0
+          ? ["/api/render", { figure: "arm", goal: goal(r), width: 400, height: 400 }, LIGHT]
+          : ["/api/render", { figure: "motion", goal: goal(r), frames: 30, format: "gif", width: 200, height: 200 }, LIGHT],
+      ),
+    );
+  }
 }
 HEAVY.slice(0, HEAVY_KINDS).forEach((request, i) => clients.push(loop(`heavy ${request()[0]}`, 4000 + i, request)));
 await Promise.all(clients);
@@ -195,22 +226,27 @@ clearTimeout(sampler);
 const after = rss();
 server.kill("SIGINT");
 
-latencies.sort((a, b) => a - b);
-const pct = (p) => latencies[Math.min(latencies.length - 1, Math.floor((p / 100) * latencies.length))];
-const p50 = pct(50);
-const p99 = pct(99);
-const max = latencies[latencies.length - 1];
-console.log(`load: ${SECONDS} s of mixed load (${HEAVY_KINDS} heavy kinds) on ${url} ${serverArgs.join(" ")}`);
+const pct = (sorted, p) => sorted[Math.min(sorted.length - 1, Math.floor((p / 100) * sorted.length))];
+const summary = (name, { latencies, failures, firstFailure }, goal) =>
+  `  ${name}: ${latencies.length} answers, ${failures} failed${firstFailure ? ` (first: ${firstFailure})` : ""}; ` +
+  `latency p50 ${pct(latencies, 50).toFixed(1)} ms, p99 ${pct(latencies, 99).toFixed(1)} ms, ` +
+  `max ${latencies[latencies.length - 1].toFixed(1)} ms (goal: ${goal})`;
+const [h, sm] = [await health, await small];
+const light = LIGHT_CLIENTS ? "with" : "without";
+console.log(`load: ${SECONDS} s of the ${MIX} mix (${HEAVY_KINDS} heavy clients, ${light} the light ones) on ${url} ${serverArgs.join(" ")}`);
 for (const [kind, by] of Object.entries(answers)) {
   const parts = Object.entries(by).map(([status, n]) => `${n}× ${status}`);
   console.log(`  ${kind}: ${parts.join(", ")}${busy[kind] ? ` (first 503: ${busy[kind]})` : ""}`);
 }
-console.log(
-  `  /api/health: ${latencies.length} checks, ${healthFailures} failed; latency p50 ${p50.toFixed(1)} ms, ` +
-    `p99 ${p99.toFixed(1)} ms, max ${max.toFixed(1)} ms (goal: p99 < ${HEALTH_P99_GOAL_MS} ms)`,
-);
+console.log(summary("GET /api/health", h, `p99 < ${HEALTH_P99_GOAL_MS} ms`));
+console.log(summary("small POST /api/solve", sm, `all 200, max < ${SMALL_SOLVE_MAX_MS} ms`));
 console.log(`  server RSS ${before} kB at start, ${middle} kB midway, ${after} kB at the end`);
 if (unexpected.length > 0) console.log(`  ${unexpected.length} unexpected answers; first: ${unexpected[0]}`);
 const failed =
-  healthFailures > 0 || p99 >= HEALTH_P99_GOAL_MS || unexpected.length > 0 || Math.max(middle, after) > MAX_RSS_KB;
+  h.failures > 0 ||
+  pct(h.latencies, 99) >= HEALTH_P99_GOAL_MS ||
+  sm.failures > 0 ||
+  sm.latencies[sm.latencies.length - 1] >= SMALL_SOLVE_MAX_MS ||
+  unexpected.length > 0 ||
+  Math.max(middle, after) > MAX_RSS_KB;
 process.exit(failed ? 1 : 0);

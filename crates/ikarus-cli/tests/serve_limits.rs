@@ -251,26 +251,122 @@ fn health_answers_while_heavy_requests_run_and_beyond_the_queue_is_busy() {
     });
 }
 
+/// The issue's heavy mix (as `LOAD_MIX=issue24 node e2e/load.mjs`): eight clients, two each of
+/// a solve_batch of 100,000 goals out of reach, an animate of 64 links through 100 via points
+/// out of reach with 64 restarts, a planned track of 4000 samples on 24 links, the exact
+/// workspace of 64 limited links; each takes 0.5 to 3.5 s alone in a release build.
+fn heavy_mix() -> Vec<(&'static str, Value)> {
+    let goals: Vec<[i32; 2]> = (0..100_000).map(|i| [10 + i % 5, 1 + i % 3]).collect();
+    let via: Vec<[f64; 2]> = (0..100).map(|i| [20.0 + f64::from(i % 7) * 0.5, 1.0]).collect();
+    let limited = json!({ "length": 0.1, "angle_deg": 5.0, "limits_deg": [-30.0, 30.0] });
+    let kinds = [
+        ("/api/solve_batch", json!({ "goals": goals })),
+        (
+            "/api/animate",
+            json!({ "arm": { "links": links(64) }, "goal": { "x": 30.0, "y": 3.0 }, "via": via, "options": { "restarts": 64 } }),
+        ),
+        (
+            "/api/track",
+            json!({ "arm": { "links": links(24) }, "circle": [0.0, 0.0, 1.0], "samples": 4000, "mode": "plan" }),
+        ),
+        ("/api/workspace", json!({ "arm": { "links": vec![limited; 64] }, "limits": true })),
+    ];
+    kinds.iter().chain(kinds.iter()).cloned().collect()
+}
+
 #[test]
-fn a_second_long_computation_is_stopped_while_quick_ones_still_run() {
-    let s = start(&["--workers", "2", "--long-workers", "1", "--request-budget-ms", "60000"]);
+fn a_small_solve_answers_within_2_s_under_a_heavy_mix() {
+    let s = start(&["--workers", "2"]);
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let mix = heavy_mix();
+    let small = json!({ "goal": { "x": 2.0, "y": 3.0 } });
+    std::thread::scope(|scope| {
+        let heavy: Vec<_> = mix
+            .iter()
+            .map(|(path, body)| {
+                let (s, stop) = (&s, &stop);
+                scope.spawn(move || {
+                    let mut statuses = Vec::new();
+                    while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                        statuses.push(s.post_json(path, body).0);
+                    }
+                    statuses
+                })
+            })
+            .collect();
+        // Let the heavy clients fill the workers and the queue.
+        std::thread::sleep(Duration::from_millis(1500));
+        let mut slowest = Duration::ZERO;
+        for _ in 0..10 {
+            let began = Instant::now();
+            let (status, v) = s.post_json("/api/solve", &small);
+            let took = began.elapsed();
+            assert_eq!(status, 200, "{v}");
+            slowest = slowest.max(took);
+            std::thread::sleep(Duration::from_millis(200));
+        }
+        stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        // Before the lanes: 503, or 200 after seconds behind the heavy requests.
+        assert!(slowest < Duration::from_secs(2), "a small solve took {slowest:?}");
+        for h in heavy {
+            for status in h.join().unwrap() {
+                assert!(status == 200 || status == 503, "{status}");
+            }
+        }
+    });
+}
+
+#[test]
+fn long_requests_wait_in_their_lane_while_quick_ones_run() {
+    let s = start(&["--workers", "2", "--long-workers", "1", "--request-budget-ms", "3000"]);
     let _first = send_raw(&s, &endless_solve());
-    std::thread::sleep(Duration::from_millis(1000));
-    // The second long one is stopped once it counts as long, not at the budget.
-    let e = error(&s.post_json("/api/solve", &endless_solve()), 503);
-    assert!(e.contains("--long-workers"), "{e}");
-    // A quick request still gets the other worker.
-    let (status, v) = s.post_json("/api/workspace", &json!({ "resolution": 64 }));
-    assert_eq!(status, 200, "{v}");
+    std::thread::sleep(Duration::from_millis(300));
+    std::thread::scope(|scope| {
+        // The second long one waits for the only long worker, until its budget.
+        let second = scope.spawn(|| s.post_json("/api/solve", &endless_solve()));
+        // Quick requests meanwhile get the other worker, at once.
+        for _ in 0..5 {
+            let (status, v) = s.post_json("/api/workspace", &json!({ "resolution": 64 }));
+            assert_eq!(status, 200, "{v}");
+        }
+        let e = error(&second.join().unwrap(), 503);
+        assert!(e.contains("--request-budget-ms"), "{e}");
+    });
+}
+
+/// A solve whose worst case is long (10⁸ iterations, 16 restarts) but that reaches its goal at
+/// once: it runs in the long lane, and answers as soon as it has a long worker.
+fn long_but_brief_solve() -> Value {
+    json!({ "goal": { "x": 2.0, "y": 3.0 }, "options": { "max_iterations": 100_000_000 } })
+}
+
+/// The answer to a brief request of the long lane within `limit` (it is 503 "busy" until the
+/// long worker is free).
+fn long_lane_frees_within(s: &Server, limit: Duration) {
+    let began = Instant::now();
+    loop {
+        let (status, v) = s.post_json("/api/solve", &long_but_brief_solve());
+        if status == 200 {
+            return;
+        }
+        assert_eq!(status, 503, "{v}");
+        assert!(began.elapsed() < limit, "the long worker was not freed: {v}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
 }
 
 /// Sends a POST of `body` to /api/solve on a raw connection, without reading the answer.
 fn send_raw(s: &Server, body: &Value) -> TcpStream {
+    send_raw_to(s, "/api/solve", body)
+}
+
+/// Sends a POST of `body` to `path` on a raw connection, without reading the answer.
+fn send_raw_to(s: &Server, path: &str, body: &Value) -> TcpStream {
     let body = body.to_string();
     let mut c = s.connect();
     write!(
         c,
-        "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        "POST {path} HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
         body.len()
     )
     .unwrap();
@@ -289,22 +385,15 @@ fn a_client_that_goes_away_frees_its_worker() {
     )
     .unwrap();
     std::thread::sleep(Duration::from_millis(300));
-    // The only worker is taken.
-    let e = error(&s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } })), 503);
+    // The only long worker is taken, and no long request may wait; quick ones still run.
+    let e = error(&s.post_json("/api/solve", &long_but_brief_solve()), 503);
     assert!(e.contains("server busy"), "{e}");
+    let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+    assert_eq!(status, 200, "{v}");
     drop(c);
     // hyper notices the closed connection and drops the handler, whose guard interrupts the
     // solve: the worker is free again soon (the solve alone would run for hours).
-    let began = Instant::now();
-    loop {
-        let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
-        if status == 200 {
-            break;
-        }
-        assert_eq!(status, 503, "{v}");
-        assert!(began.elapsed() < Duration::from_secs(30), "the worker was never freed");
-        std::thread::sleep(Duration::from_millis(50));
-    }
+    long_lane_frees_within(&s, Duration::from_secs(30));
 }
 
 #[test]
@@ -332,11 +421,19 @@ fn idle_and_half_sent_connections_are_closed() {
     assert!(reply.contains("--body-timeout-ms"), "{reply}");
 }
 
+/// A connection inside a request: its head sent, its body (declared 1000 bytes) not.
+fn sending_a_body(s: &Server) -> TcpStream {
+    let mut c = s.connect();
+    c.write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
+        .unwrap();
+    c
+}
+
 #[test]
-fn connections_beyond_the_cap_are_refused() {
+fn connections_beyond_the_cap_are_refused_when_all_are_inside_requests() {
     let s = start(&["--max-connections", "2"]);
-    let _a = s.connect();
-    let _b = s.connect();
+    let _a = sending_a_body(&s);
+    let _b = sending_a_body(&s);
     std::thread::sleep(Duration::from_millis(200));
     let mut c = s.connect();
     let reply = read_all(&mut c);
@@ -344,34 +441,56 @@ fn connections_beyond_the_cap_are_refused() {
     assert!(reply.contains("--max-connections"), "{reply}");
 }
 
+#[test]
+fn idle_sockets_at_the_cap_make_room_for_requests() {
+    // Idle sockets would be closed only after a minute; the cap is reached at once.
+    let s = start(&["--max-connections", "32", "--header-timeout-ms", "60000"]);
+    let idle: Vec<TcpStream> = (0..32).map(|_| s.connect()).collect();
+    // One more, half-sent headers.
+    let mut half = s.connect();
+    half.write_all(b"GET /api/health HTTP/1.1\r\nHost: loc").unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    // Before: 503 "too many open connections" until the idle sockets timed out. Now each new
+    // connection closes the one that has waited longest for a request.
+    for _ in 0..5 {
+        let (status, v) = s.get_json("/api/health");
+        assert_eq!(status, 200, "{v}");
+        let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+        assert_eq!(status, 200, "{v}");
+    }
+    // The oldest idle sockets were the ones closed, without an answer.
+    let mut byte = [0u8; 1];
+    idle[0].set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    assert_eq!((&idle[0]).read(&mut byte).ok(), Some(0), "closed without an answer");
+    // The half-sent one is among the newest: still open.
+    half.set_read_timeout(Some(Duration::from_millis(200))).unwrap();
+    assert!(half.read(&mut byte).is_err(), "still open, waiting for the rest of its headers");
+}
+
 #[cfg(unix)]
 #[test]
 fn ctrl_c_stops_the_server_promptly_with_work_running() {
-    let mut s = start(&["--request-budget-ms", "600000"]);
-    let body = endless_solve().to_string();
-    let mut busy: Vec<TcpStream> = (0..2)
-        .map(|_| {
-            let mut c = s.connect();
-            write!(
-                c,
-                "POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
-                body.len()
-            )
-            .unwrap();
-            c
-        })
-        .collect();
+    let mut s = start(&["--request-budget-ms", "600000", "--workers", "4", "--long-workers", "3"]);
+    // Two solves of hours, which stop at their next iteration, and the largest still picture,
+    // which is not interrupted (seconds of drawing and encoding).
+    let mut busy = vec![send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
+    let picture =
+        json!({ "figure": "arm", "arm": { "links": links(64) }, "width": 4096, "height": 4096, "format": "png" });
+    let _drawing = send_raw_to(&s, "/api/render", &picture);
     // And a client trickling its body.
-    let mut trickle = s.connect();
-    trickle
-        .write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(300));
+    let _trickle = sending_a_body(&s);
+    std::thread::sleep(Duration::from_millis(500));
     let pid = s.child.id().to_string();
+    let began = Instant::now();
     assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
-    // Generous: the server aims at one second; before, it ran until the solves ended (hours).
+    // Before issue 11, it ran until the solves ended (hours); before issue 24, it took 0.9 to
+    // 1.9 s (waiting 0.6 s for the trickling client, then 0.2 s for the picture). Now it waits
+    // a quarter of a second for the client and not for the picture (0.3 to 0.4 s in a debug
+    // build on a loaded machine): bound of a second, which the README promises.
     let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after Ctrl-C");
+    let took = began.elapsed();
     assert!(status.success(), "{status:?}");
+    assert!(took < Duration::from_secs(1), "stopping took {took:?}");
     // The running requests were answered.
     for c in &mut busy {
         let reply = read_all(c);
@@ -385,20 +504,17 @@ fn ctrl_c_stops_the_server_promptly_with_work_running() {
 fn a_second_ctrl_c_exits_at_once() {
     let mut s = start(&[]);
     // A client trickling its body keeps the first stop draining for a while.
-    let mut trickle = s.connect();
-    trickle
-        .write_all(b"POST /api/solve HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: 1000\r\n\r\n{")
-        .unwrap();
+    let _trickle = sending_a_body(&s);
     std::thread::sleep(Duration::from_millis(200));
     let pid = s.child.id().to_string();
     for _ in 0..2 {
         assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
-        std::thread::sleep(Duration::from_millis(50));
+        std::thread::sleep(Duration::from_millis(10));
     }
     // Generous bound: a hang is the bug.
     let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after two Ctrl-C");
     // 130: the second signal ended it, while the first was still waiting for the trickling
-    // client (for up to 0.6 s).
+    // client (for up to 0.25 s).
     assert_eq!(status.code(), Some(130), "{status:?}");
 }
 
@@ -438,16 +554,7 @@ fn a_gif_over_its_budget_stops_and_frees_its_worker() {
     });
     let e = error(&s.post_json("/api/render", &gif), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
-    // The encoder saw the interrupt: the only worker is free again well before the GIF could
-    // have been finished.
-    let began = Instant::now();
-    loop {
-        let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
-        if status == 200 {
-            break;
-        }
-        assert_eq!(status, 503, "{v}");
-        assert!(began.elapsed() < Duration::from_secs(5), "the worker was not freed: {v}");
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    // The encoder saw the interrupt: the only long worker is free again well before the GIF
+    // could have been finished.
+    long_lane_frees_within(&s, Duration::from_secs(5));
 }

@@ -17,10 +17,12 @@ impl IntoResponse for Reply {
 }
 
 /// A computation (`/api/solve`, `solve_batch`, `animate`, `track`, `workspace`, `reach`, `render`): its JSON
-/// body answered by [`api::call`] on a worker of the pool, under the time budget.
+/// body answered by [`api::call`] on a worker of the pool, in the lane its cost estimate says,
+/// under the time budget.
 pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, ApiError> {
     let pool = state.pool.clone();
-    pool.run(move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
+    let lane = super::cost::lane(endpoint, &body.bytes);
+    pool.run(lane, move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
         .await
         .map(Reply::into_response)
 }

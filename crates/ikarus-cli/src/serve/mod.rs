@@ -1,10 +1,12 @@
 //! `ikarus serve`: the playground page and the JSON API over HTTP, with axum on tokio.
 //!
-//! Every CPU-heavy request runs in a bounded pool under a time budget ([`pool`]); a panic there
-//! answers 500 and the server keeps serving. Caps (flags) bound every loop a request can start,
+//! Every CPU-heavy request runs in a bounded pool under a time budget ([`pool`]), in a quick or
+//! a long lane by the worst case its request allows ([`cost`]), so that quick requests never
+//! wait behind long ones; a panic there answers 500 and the server keeps serving. Caps (flags) bound every loop a request can start,
 //! [`conn`] bounds connections, [`guard`] checks the Host and the declared body size.
 
 mod conn;
+mod cost;
 mod errors;
 mod guard;
 mod handlers;
@@ -84,10 +86,10 @@ pub struct ServeArgs {
     /// Largest workspace resolution (cells per side, at most 4096)
     #[arg(long, default_value_t = 1024, value_name = "N", value_parser = clap::value_parser!(u32).range(8..=4096))]
     pub max_resolution: u32,
-    /// Computations (solve, animate, track, workspace, reach, render) run at once [default: the number of CPUs]
+    /// Computations (solve, animate, track, workspace, reach, render) run at once, long ones on at most --long-workers of them [default: the number of CPUs]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     pub workers: Option<u64>,
-    /// Computations that may run longer than half a second at once; one more is stopped with 503 [default: half the workers, at least 1]
+    /// Workers for long computations (a request whose worst case is long, or a quick one still running after half a second); the others are kept for quick requests [default: half the workers, at least 1]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
     pub long_workers: Option<u64>,
     /// Computations that may wait for a worker; beyond that a request is answered 503 at once
@@ -158,9 +160,9 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::runtime(format!("cannot start the server's runtime: {e}")))?;
     let result = runtime.block_on(serve(SocketAddr::new(args.host, args.port), limits, settings));
-    // Computations still running were interrupted; do not wait for them (a blocking task is
-    // not cancellable), the process ends here.
-    runtime.shutdown_timeout(Duration::from_millis(200));
+    // Computations still running were interrupted and answered; do not wait for them (a
+    // blocking task is not cancellable), the process ends here.
+    runtime.shutdown_background();
     result
 }
 

@@ -1,17 +1,23 @@
-//! The bounded pool that runs the heavy requests (solve, animate, track, workspace, reach,
-//! render) off the async runtime's threads, each under a time budget.
+//! The bounded pool that runs the computations (solve, animate, track, workspace, reach,
+//! render) off the async runtime's threads, each under a time budget, in two lanes so that
+//! quick requests never wait behind long ones.
 //!
-//! - At most `--workers` computations run at once, each on a thread of tokio's blocking pool;
-//!   at most `--max-queued` more wait for a worker. A request beyond that is answered 503
-//!   ("server busy") at once, so tokio's blocking pool never fills and the runtime's own
-//!   threads stay free for `/api/health` and the page.
+//! - Every computation is *quick* or *long* by the worst case its request allows
+//!   ([`super::cost`]), before it runs. Long ones run on at most `--long-workers` workers (by
+//!   default half the workers, at least 1) and wait in their own queue; the other workers are
+//!   kept for quick ones (at least one, even with `--workers 1`), which may also take a long
+//!   worker left free. So a quick request finds a worker no matter how many long ones run or
+//!   wait, and waits only behind other quick ones.
+//! - Each lane admits its workers plus at most `--max-queued` waiting computations; a request
+//!   beyond that is answered 503 ("server busy") at once, so tokio's blocking pool never fills
+//!   and the runtime's own threads stay free for `/api/health` and the page. Long requests
+//!   filling their queue do not make quick ones busy.
 //! - Every request has a time budget (`--request-budget-ms`) covering its wait in the queue and
 //!   its work. At the deadline its [`Interrupt`] is set, the computation stops at its next check
 //!   (every solve iteration, every workspace sample), and the answer is 503 naming the budget.
-//! - A computation still running after [`LONG_AFTER`] is *long*: at most `--long-workers` long
-//!   ones run at once (by default half the workers), so the other workers stay free for the
-//!   page's quick requests. One that would exceed that is stopped and answered 503 ("server
-//!   busy") at once, rather than holding a worker until its budget runs out.
+//! - A quick computation still running after [`LONG_AFTER`] (the estimate was wrong) moves to a
+//!   long worker, giving its quick one back; when none is free it is stopped and answered 503
+//!   ("server busy") at once, rather than holding a quick worker.
 //! - When the handler's future is dropped (hyper drops it when the client closes the
 //!   connection) a drop guard sets the interrupt too, so nobody's work runs on for nobody.
 //! - When the server stops (Ctrl-C), every request's interrupt is set and it answers 503.
@@ -25,29 +31,46 @@ use tokio::time::Instant;
 
 use super::errors::ApiError;
 
-/// How long a computation runs before it counts as long.
+/// How long a quick computation may run before it must move to a long worker.
 pub const LONG_AFTER: Duration = Duration::from_millis(500);
+
+/// The lane of a computation, chosen by [`super::cost::lane`] before it runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lane {
+    /// Quick at worst: runs on a quick worker, or a long one left free.
+    Quick,
+    /// Possibly long: runs only on a long worker.
+    Long,
+}
 
 /// How many computations run and wait, and for how long.
 #[derive(Debug, Clone, Copy)]
 pub struct PoolConfig {
     pub workers: usize,
-    /// Computations that may run longer than [`LONG_AFTER`] at once.
+    /// Workers that run long computations (the others are kept for quick ones).
     pub long_workers: usize,
     pub max_queued: usize,
     pub budget: Duration,
+}
+
+/// The workers and admissions of the two lanes.
+#[derive(Debug, Clone)]
+struct Lanes {
+    /// Workers kept for quick computations.
+    quick: Arc<Semaphore>,
+    /// Workers for long computations (and quick ones, when free).
+    long: Arc<Semaphore>,
+    /// Quick computations admitted, running or waiting.
+    quick_admitted: Arc<Semaphore>,
+    /// Long computations admitted, running or waiting.
+    long_admitted: Arc<Semaphore>,
 }
 
 /// The pool; cheap to clone (the clones share the permits).
 #[derive(Debug, Clone)]
 pub struct Pool {
     config: PoolConfig,
-    /// One permit per running computation.
-    workers: Arc<Semaphore>,
-    /// One permit per admitted request, running or waiting: `workers + max_queued`.
-    admitted: Arc<Semaphore>,
-    /// One permit per long computation.
-    long: Arc<Semaphore>,
+    lanes: Lanes,
     /// Becomes `true` when the server stops.
     stopping: watch::Receiver<bool>,
 }
@@ -61,23 +84,34 @@ impl Drop for InterruptOnDrop {
     }
 }
 
+/// The worker a computation holds, shared by the handler (which may swap a quick worker for a
+/// long one) and the computation (which gives it back when it really ends).
+type Held = Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>>;
+
+fn semaphore(permits: usize) -> Arc<Semaphore> {
+    Arc::new(Semaphore::new(permits.min(Semaphore::MAX_PERMITS)))
+}
+
 impl Pool {
     pub fn new(config: PoolConfig, stopping: watch::Receiver<bool>) -> Self {
-        let admitted = config.workers.saturating_add(config.max_queued).min(Semaphore::MAX_PERMITS);
-        Self {
-            config,
-            workers: Arc::new(Semaphore::new(config.workers.min(Semaphore::MAX_PERMITS))),
-            admitted: Arc::new(Semaphore::new(admitted)),
-            long: Arc::new(Semaphore::new(config.long_workers.clamp(1, Semaphore::MAX_PERMITS))),
-            stopping,
-        }
+        let long = config.long_workers.max(1);
+        let quick = config.workers.saturating_sub(long).max(1);
+        let lanes = Lanes {
+            quick: semaphore(quick),
+            long: semaphore(long),
+            // A quick computation may run on any worker.
+            quick_admitted: semaphore(quick.saturating_add(long).saturating_add(config.max_queued)),
+            long_admitted: semaphore(long.saturating_add(config.max_queued)),
+        };
+        Self { config, lanes, stopping }
     }
 
-    /// Runs `work` on a worker under the request's budget; `work` gets the request's interrupt
-    /// to pass to the library (solve options, workspace options). A panic in `work` becomes a
-    /// 500 and the server keeps serving.
+    /// Runs `work` on a worker of its `lane` under the request's budget; `work` gets the
+    /// request's interrupt to pass to the library (solve options, workspace options). A panic
+    /// in `work` becomes a 500 and the server keeps serving.
     pub async fn run<T: Send + 'static>(
         &self,
+        lane: Lane,
         work: impl FnOnce(&Interrupt) -> Result<T, ApiError> + Send + 'static,
     ) -> Result<T, ApiError> {
         let deadline = Instant::now() + self.config.budget;
@@ -87,35 +121,28 @@ impl Pool {
         if *stopping.borrow() {
             return Err(stopping_error());
         }
-        let Ok(_admitted) = Arc::clone(&self.admitted).try_acquire_owned() else {
-            return Err(ApiError {
-                status: crate::api::status::SERVICE_UNAVAILABLE,
-                message: format!(
-                    "server busy: {} computations running and {} waiting (--workers, --max-queued); try again later",
-                    self.config.workers, self.config.max_queued
-                ),
-            });
+        let admitted = match lane {
+            Lane::Quick => &self.lanes.quick_admitted,
+            Lane::Long => &self.lanes.long_admitted,
         };
-        let permit = tokio::select! {
-            permit = Arc::clone(&self.workers).acquire_owned() => {
-                permit.map_err(|_| stopping_error())?
-            }
+        let Ok(_admitted) = Arc::clone(admitted).try_acquire_owned() else {
+            return Err(self.busy(lane));
+        };
+        let (permit, mut on_long) = tokio::select! {
+            permit = self.worker(lane) => permit.map_err(|_| stopping_error())?,
             () = tokio::time::sleep_until(deadline) => return Err(self.over_budget()),
             _ = stopping.wait_for(|&s| s) => return Err(stopping_error()),
         };
+        let held: Held = Arc::new(std::sync::Mutex::new(Some(permit)));
+        let worker_held = Arc::clone(&held);
         let worker_token = token.clone();
-        // The long permit, once taken, is held here and by the computation: it is given back
-        // when both are done.
-        let long: Arc<std::sync::Mutex<Option<OwnedSemaphorePermit>>> = Arc::default();
-        let long_held = Arc::clone(&long);
-        // The worker keeps its permits until the computation really ends, even when the answer
-        // (503) has already gone: the interrupt makes that soon.
+        // The worker is held until the computation really ends, even when the answer (503)
+        // has already gone: the interrupt makes that soon.
         let mut handle = tokio::task::spawn_blocking(move || {
-            let _permits = (permit, long_held);
+            let _worker = worker_held;
             work(&worker_token)
         });
         let long_from = (Instant::now() + LONG_AFTER).min(deadline);
-        let mut is_long = false;
         let result = loop {
             tokio::select! {
                 joined = &mut handle => break joined,
@@ -123,17 +150,15 @@ impl Pool {
                     token.interrupt();
                     return Err(self.over_budget());
                 }
-                () = tokio::time::sleep_until(long_from), if !is_long => {
-                    match Arc::clone(&self.long).try_acquire_owned() {
-                        Ok(permit) => {
-                            is_long = true;
-                            *long.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(permit);
-                        }
-                        Err(_) => {
-                            token.interrupt();
-                            return Err(self.too_many_long());
-                        }
-                    }
+                () = tokio::time::sleep_until(long_from), if !on_long => {
+                    // A quick computation that runs long: onto a long worker, or stopped.
+                    let Ok(permit) = Arc::clone(&self.lanes.long).try_acquire_owned() else {
+                        token.interrupt();
+                        return Err(self.too_many_long());
+                    };
+                    on_long = true;
+                    // The quick worker is given back here.
+                    *held.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(permit);
                 }
                 _ = stopping.wait_for(|&s| s) => {
                     token.interrupt();
@@ -157,6 +182,35 @@ impl Pool {
                 Err(ApiError::internal(what))
             }
             Err(e) => Err(ApiError::internal(e.to_string())),
+        }
+    }
+
+    /// A worker of `lane`, and whether it is a long one: a quick computation takes whichever
+    /// is free first.
+    async fn worker(&self, lane: Lane) -> Result<(OwnedSemaphorePermit, bool), tokio::sync::AcquireError> {
+        let long = Arc::clone(&self.lanes.long).acquire_owned();
+        match lane {
+            Lane::Long => Ok((long.await?, true)),
+            // The quick worker first, keeping the long ones for long work.
+            Lane::Quick => tokio::select! {
+                biased;
+                permit = Arc::clone(&self.lanes.quick).acquire_owned() => Ok((permit?, false)),
+                permit = long => Ok((permit?, true)),
+            },
+        }
+    }
+
+    fn busy(&self, lane: Lane) -> ApiError {
+        let (what, running, flag) = match lane {
+            Lane::Quick => ("computations", self.config.workers, "--workers"),
+            Lane::Long => ("long computations", self.config.long_workers, "--long-workers"),
+        };
+        ApiError {
+            status: crate::api::status::SERVICE_UNAVAILABLE,
+            message: format!(
+                "server busy: {running} {what} running and {} waiting ({flag}, --max-queued); try again later",
+                self.config.max_queued
+            ),
         }
     }
 
@@ -189,6 +243,7 @@ fn stopping_error() -> ApiError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use Lane::{Long, Quick};
 
     fn pool(workers: usize, max_queued: usize, budget_ms: u64) -> (Pool, watch::Sender<bool>) {
         let (tx, rx) = watch::channel(false);
@@ -207,21 +262,42 @@ mod tests {
         panic!("never interrupted");
     }
 
+    /// Runs, in the background, a computation of `lane` that ends only when interrupted.
+    fn endless(pool: &Pool, lane: Lane) -> tokio::task::JoinHandle<Result<(), ApiError>> {
+        let pool = pool.clone();
+        tokio::spawn(async move {
+            pool.run(lane, |token| {
+                wait_interrupted(token);
+                Ok(())
+            })
+            .await
+        })
+    }
+
+    /// Waits until `semaphore` has no permit left.
+    async fn until_taken(semaphore: &Semaphore) {
+        while semaphore.available_permits() > 0 {
+            tokio::time::sleep(Duration::from_millis(5)).await;
+        }
+    }
+
     #[tokio::test]
     async fn a_panic_in_a_handler_becomes_a_500_with_a_generic_body() {
         let (pool, _tx) = pool(2, 2, 10_000);
-        let e = pool.run::<()>(|_| panic!("boom at /home/someone/src/x.rs:1")).await.unwrap_err();
-        assert_eq!(e.status, crate::api::status::INTERNAL_SERVER_ERROR);
-        assert!(!e.message.contains("boom") && !e.message.contains("/home"), "{}", e.message);
-        // The pool still works afterwards.
-        assert_eq!(pool.run(|_| Ok(7)).await.unwrap(), 7);
+        for lane in [Quick, Long] {
+            let e = pool.run::<()>(lane, |_| panic!("boom at /home/someone/src/x.rs:1")).await.unwrap_err();
+            assert_eq!(e.status, crate::api::status::INTERNAL_SERVER_ERROR);
+            assert!(!e.message.contains("boom") && !e.message.contains("/home"), "{}", e.message);
+            // The pool still works afterwards.
+            assert_eq!(pool.run(lane, |_| Ok(7)).await.unwrap(), 7);
+        }
     }
 
     #[tokio::test]
     async fn the_deadline_interrupts_the_work_and_answers_503() {
         let (pool, _tx) = pool(1, 0, 50);
         let e = pool
-            .run::<()>(|token| {
+            .run::<()>(Long, |token| {
                 wait_interrupted(token);
                 Ok(())
             })
@@ -231,47 +307,58 @@ mod tests {
         assert!(e.message.contains("budget of 50 ms (--request-budget-ms)"), "{}", e.message);
     }
 
-    #[tokio::test]
-    async fn beyond_the_queue_the_answer_is_busy_at_once() {
-        let (pool, tx) = pool(1, 0, 60_000);
-        let busy = pool.clone();
-        let running = tokio::spawn(async move {
-            busy.run::<()>(|token| {
-                wait_interrupted(token);
-                Ok(())
-            })
-            .await
-        });
-        // Until the first request holds the only slot.
-        while pool.admitted.available_permits() > 0 {
-            tokio::time::sleep(Duration::from_millis(5)).await;
-        }
-        let e = pool.run(|_| Ok(())).await.unwrap_err();
+    /// Fills `lane`'s admissions with two computations that end only when interrupted, and
+    /// checks that one more is answered busy, naming `flag`.
+    async fn two_fill_the_lane(
+        pool: &Pool,
+        lane: Lane,
+        flag: &str,
+    ) -> [tokio::task::JoinHandle<Result<(), ApiError>>; 2] {
+        let requests = [endless(pool, lane), endless(pool, lane)];
+        until_taken(match lane {
+            Quick => &pool.lanes.quick_admitted,
+            Long => &pool.lanes.long_admitted,
+        })
+        .await;
+        let e = pool.run(lane, |_| Ok(())).await.unwrap_err();
         assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
-        assert!(e.message.starts_with("server busy"), "{}", e.message);
-        // Stopping the server interrupts the running one.
-        tx.send(true).unwrap();
-        let e = running.await.unwrap().unwrap_err();
-        assert_eq!(e.message, "server stopping");
+        assert!(e.message.starts_with("server busy") && e.message.contains(flag), "{}", e.message);
+        requests
     }
 
     #[tokio::test]
-    async fn a_second_long_computation_is_stopped_busy() {
-        let (pool, _tx) = pool(2, 0, 60_000);
-        let first = pool.clone();
-        let long = tokio::spawn(async move {
-            first
-                .run::<()>(|token| {
-                    wait_interrupted(token);
-                    Ok(())
-                })
-                .await
-        });
-        while pool.long.available_permits() > 0 {
-            tokio::time::sleep(Duration::from_millis(5)).await;
+    async fn beyond_the_long_queue_long_ones_are_busy_and_quick_ones_still_run() {
+        // One long worker and one waiting.
+        let (pool, tx) = pool(1, 1, 60_000);
+        let requests = two_fill_the_lane(&pool, Long, "--long-workers").await;
+        // The quick lane has a worker of its own, even with --workers 1.
+        assert_eq!(pool.run(Quick, |_| Ok(5)).await.unwrap(), 5);
+        // Stopping the server interrupts the running one and the waiting one.
+        tx.send(true).unwrap();
+        for request in requests {
+            assert_eq!(request.await.unwrap().unwrap_err().message, "server stopping");
         }
+    }
+
+    #[tokio::test]
+    async fn beyond_the_quick_queue_quick_ones_are_busy() {
+        // One quick worker, one long one (free, so a quick computation takes it too), no queue.
+        let (pool, _tx) = pool(2, 0, 60_000);
+        for request in two_fill_the_lane(&pool, Quick, "--workers").await {
+            request.abort();
+        }
+    }
+
+    #[tokio::test]
+    async fn a_quick_one_that_runs_long_moves_to_a_long_worker_or_is_stopped() {
+        let (pool, _tx) = pool(2, 4, 60_000);
+        // The first takes the quick worker and, after LONG_AFTER, moves to the long one.
+        let first = endless(&pool, Quick);
+        until_taken(&pool.lanes.long).await;
+        assert_eq!(pool.lanes.quick.available_permits(), 1, "the quick worker was given back");
+        // The second has no long worker to move to: stopped once it runs long.
         let e = pool
-            .run::<()>(|token| {
+            .run::<()>(Quick, |token| {
                 wait_interrupted(token);
                 Ok(())
             })
@@ -280,15 +367,15 @@ mod tests {
         assert_eq!(e.status, crate::api::status::SERVICE_UNAVAILABLE);
         assert!(e.message.contains("--long-workers"), "{}", e.message);
         // Quick work still runs beside the long one.
-        assert_eq!(pool.run(|_| Ok(5)).await.unwrap(), 5);
-        long.abort();
+        assert_eq!(pool.run(Quick, |_| Ok(5)).await.unwrap(), 5);
+        first.abort();
     }
 
     #[tokio::test]
     async fn dropping_the_request_interrupts_its_work() {
         let (pool, _tx) = pool(1, 0, 60_000);
         let (seen_tx, seen_rx) = std::sync::mpsc::channel();
-        let request = pool.run::<()>(move |token| {
+        let request = pool.run::<()>(Long, move |token| {
             wait_interrupted(token);
             seen_tx.send(()).unwrap();
             Ok(())
@@ -301,6 +388,6 @@ mod tests {
             .unwrap()
             .expect("the work saw the interrupt");
         // And the worker is free again.
-        assert_eq!(pool.run(|_| Ok(3)).await.unwrap(), 3);
+        assert_eq!(pool.run(Long, |_| Ok(3)).await.unwrap(), 3);
     }
 }
