@@ -481,6 +481,10 @@ test("fields: a bad value is named with its rule; server messages number links f
     "arm: link 1 angle_deg = 5: outside limits_deg [10, 45]",
   );
   assert.equal(forPeople("start_deg[2]: not a number"), "joint 3 angle: not a number");
+  assert.equal(
+    forPeople("start_deg: joint 1 at 73.6° lies outside its limits [-45°, 45°]"),
+    "start pose: joint 1 at 73.6° lies outside its limits [-45°, 45°]",
+  );
   assert.equal(forPeople("options.rates[1] = -1: must be > 0"), "options.joint 2 rate = -1: must be > 0");
 });
 
