@@ -134,7 +134,7 @@ fn limit_degrees(radians: f64) -> f64 {
 /// outside 45, not 45.0); huge angles in [`Num`]'s short form.
 fn outside_degrees(radians: f64, lo: f64, hi: f64) -> String {
     let d = radians.to_degrees();
-    if !(d.abs() < 1e9) {
+    if !d.is_finite() || d.abs() >= 1e9 {
         return Num(d).to_string();
     }
     for places in 1..=6 {
