@@ -1,6 +1,7 @@
 // What the browser tests share: the ikarus server on a free port, headless Chromium, and where
 // the screenshots go.
 import { spawn } from "node:child_process";
+import { readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
@@ -49,4 +50,35 @@ export async function openPage(browser, viewport = { width: 1280, height: 800 })
   page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
   page.on("pageerror", (e) => errors.push(e.message));
   return { page, errors };
+}
+
+/** Resolves once the page has loaded its settings and drawn the arm. */
+export const ready = (page) => page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+
+/** Resolves once the motion played has ended and the page has settled (not solving or moving). */
+export const ended = (page, timeout = 15000) =>
+  page.waitForFunction(() => document.body.dataset.playback === "ended" && !["solving", "moving"].includes(document.body.dataset.status), null, { timeout });
+
+/** Types `value` into the field `selector` and commits it, as leaving the field does. */
+export async function setField(page, selector, value) {
+  await page.fill(selector, value);
+  await page.dispatchEvent(selector, "change");
+}
+
+/** Clicks `button` and resolves with the text of the file it downloads. */
+export async function downloadText(page, button) {
+  const [d] = await Promise.all([page.waitForEvent("download"), page.click(button)]);
+  return readFileSync(await d.path(), "utf8");
+}
+
+/** Runs `fn({url, browser})` with a fresh server and browser, and stops both afterwards. */
+export async function withBrowser(fn) {
+  const { child, url } = await startServer();
+  const browser = await launch();
+  try {
+    await fn({ url, browser });
+  } finally {
+    await browser.close();
+    child.kill("SIGINT");
+  }
 }

@@ -9,6 +9,7 @@ import {
   DURATION,
   areaOutline,
   autoDuration,
+  boxesOverlap,
   decimalsFor,
   easePosition,
   fitView,
@@ -16,21 +17,25 @@ import {
   frameIndexAt,
   freeJoints,
   ghostFrames,
+  glideFrames,
   gridValues,
+  intoRange,
   isDrag,
   jointDistance,
   lerpAngle,
   maxReach,
   niceStep,
   nudge,
+  placeLabels,
   poseAt,
+  poseIntoLimits,
   shortDelta,
   toCanvas,
   toWorld,
   solveTime,
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
-import { armForRequest, clampInto, methodApplies, numberProblem, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
-import { GIF_FPS, framesCsv, gifRequest } from "../crates/ikarus-cli/src/serve/assets/files.js";
+import { CHOSEN_DURATION, armForRequest, clampInto, methodApplies, numberProblem, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
+import { GIF_FPS, framesCsv, gifRequest, playedMotion, playedTrack, timesInSeconds } from "../crates/ikarus-cli/src/serve/assets/files.js";
 import { forPeople } from "../crates/ikarus-cli/src/serve/assets/api.js";
 import { svgContext } from "../crates/ikarus-cli/src/serve/assets/export.js";
 import {
@@ -481,6 +486,10 @@ test("fields: a bad value is named with its rule; server messages number links f
     "arm: link 1 angle_deg = 5: outside limits_deg [10, 45]",
   );
   assert.equal(forPeople("start_deg[2]: not a number"), "joint 3 angle: not a number");
+  assert.equal(
+    forPeople("start_deg: joint 1 at 73.6° lies outside its limits [-45°, 45°]"),
+    "start pose: joint 1 at 73.6° lies outside its limits [-45°, 45°]",
+  );
   assert.equal(forPeople("options.rates[1] = -1: must be > 0"), "options.joint 2 rate = -1: must be > 0");
 });
 
@@ -547,4 +556,99 @@ test("a solve's time: three places of ms; under the static build's coarse clock 
     if (before === undefined) delete globalThis.document;
     else globalThis.document = before;
   }
+});
+
+test("limits turned on: each joint to the nearest angle its range allows, on the circle", () => {
+  assert.equal(intoRange(73.6, [-45, 45]), 45);
+  assert.equal(intoRange(-50, [-45, 45]), -45);
+  assert.equal(intoRange(30, [-45, 45]), 30);
+  assert.equal(intoRange(30, null), 30);
+  // A 360°-equivalent inside is the same place: 370° in [0°, 45°] is 10°.
+  assert.equal(intoRange(370, [0, 45]), 10);
+  assert.equal(intoRange(-350, [0, 45]), 10);
+  // The bound the shorter way round: 170° is 125° from 45° and 145° from −45°.
+  assert.equal(intoRange(170, [-45, 45]), 45);
+  assert.equal(intoRange(-170, [-45, 45]), -45);
+  assert.equal(intoRange(-100, [10, 45]), 10);
+  // The seed arm after a click on (−2, 3) without limits: joints 1 and 2 move, joint 3 does not.
+  const { pose, moved } = poseIntoLimits(SEED, [73.6, 97.4, 23.8]);
+  assert.deepEqual(pose, [45, 90, 23.8]);
+  assert.deepEqual(moved, [
+    { joint: 1, from: 73.6, to: 45 },
+    { joint: 2, from: 97.4, to: 90 },
+  ]);
+  assert.deepEqual(poseIntoLimits(SEED, [5, 5, 365]), { pose: [5, 5, 5], moved: [] });
+});
+
+test("the glide into range: eased frames from the pose to the pose in range, the joints' positions with them", () => {
+  const frames = glideFrames(SEED, [73.6, 97.4, 23.8], [45, 90, 23.8], { kind: "sine" }, 5);
+  assert.equal(frames.length, 5);
+  nearAll(frames.map((f) => f.time), [0, 0.25, 0.5, 0.75, 1]);
+  nearAll(frames[0].angles_deg, [73.6, 97.4, 23.8], 1e-12);
+  assert.deepEqual(frames[4].angles_deg, [45, 90, 23.8]);
+  near(frames[2].angles_deg[0], (73.6 + 45) / 2, 1e-12);
+  // Sine: slow at the ends.
+  assert.ok(frames[1].angles_deg[0] > 73.6 - (73.6 - 45) / 4);
+  assert.deepEqual(frames[4].joints, forward(SEED, [45, 90, 23.8]));
+  // The short way round for a free joint: 170° to −170° through 180°.
+  const free = { links: [{ length: 1, angle_deg: 0 }] };
+  near(glideFrames(free, [170], [-170], { kind: "linear" }, 3)[1].angles_deg[0], -180, 1e-12);
+});
+
+test("downloads carry the seconds played: times scaled to the playback's duration", () => {
+  const frames = [0, 0.5, 1].map((time, k) => ({ time, angles_deg: [k], joints: [[0, 0], [1, k]] }));
+  nearAll(timesInSeconds(frames, 1.25), [0, 0.625, 1.25]);
+  assert.deepEqual(timesInSeconds([{ time: 0 }], 2), [0]);
+  const anim = { arm: "seed", duration: 1, frames };
+  const played = playedMotion(anim, 1.25);
+  assert.equal(played.duration, 1.25);
+  assert.equal(played.frames.at(-1).time, 1.25);
+  assert.equal(anim.frames.at(-1).time, 1, "the motion itself is left as it is");
+  assert.equal(framesCsv(played).trim().split("\n").at(-1).split(",")[0], "1.25");
+  // A traced path of 200 samples at 25 a second: 8 s, each sample's time first.
+  const samples = Array.from({ length: 200 }, (_, k) => ({ goal: [k, 0], status: "reached" }));
+  const track = playedTrack({ mode: "plan", samples }, samples.map((_, k) => ({ time: k / 199 })), 8);
+  assert.equal(track.duration, 8);
+  assert.deepEqual(Object.keys(track.samples[0]), ["time", "goal", "status"]);
+  assert.equal(track.samples.at(-1).time, 8);
+  near(track.samples[1].time, 8 / 199);
+});
+
+test("the duration field: a tenth of a second to a minute", () => {
+  const rule = { min: CHOSEN_DURATION.min, max: CHOSEN_DURATION.max };
+  assert.equal(numberProblem("-2", rule), "must be a number from 0.1 to 60");
+  assert.equal(numberProblem("1000", rule), "must be a number from 0.1 to 60");
+  assert.equal(numberProblem("0", rule), "must be a number from 0.1 to 60");
+  assert.equal(numberProblem("2.5", rule), null);
+  assert.equal(numberProblem("60", rule), null);
+});
+
+test("axis labels: the first place clear of the page's boxes and of the labels before, or none", () => {
+  assert.ok(boxesOverlap({ x: 0, y: 0, w: 10, h: 10 }, { x: 9, y: 9, w: 5, h: 5 }));
+  assert.ok(!boxesOverlap({ x: 0, y: 0, w: 10, h: 10 }, { x: 10, y: 0, w: 5, h: 5 }));
+  assert.ok(boxesOverlap({ x: 0, y: 0, w: 10, h: 10 }, { x: 11, y: 0, w: 5, h: 5 }, 2));
+  const chip = { x: 8, y: 8, w: 300, h: 40 };
+  const placed = placeLabels(
+    [
+      { text: "x", places: [{ x: 590, y: 280, w: 7, h: 12 }] },
+      // Under the x name: left out.
+      { text: "8", places: [{ x: 588, y: 284, w: 7, h: 12 }] },
+      // Under the chip: its next place.
+      { text: "6", places: [{ x: 290, y: 20, w: 7, h: 12 }, { x: 300, y: 20, w: 7, h: 12 }, { x: 310, y: 20, w: 7, h: 12 }] },
+      // Off the canvas: left out.
+      { text: "-8", places: [{ x: -3, y: 300, w: 11, h: 12 }] },
+      { text: "2", places: [{ x: 400, y: 300, w: 7, h: 12 }] },
+    ],
+    [chip],
+    600,
+    600,
+  );
+  assert.deepEqual(
+    placed.map((l) => [l.text, l.x]),
+    [
+      ["x", 590],
+      ["6", 310],
+      ["2", 400],
+    ],
+  );
 });

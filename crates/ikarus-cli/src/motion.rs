@@ -1,7 +1,10 @@
 //! The motion workflow shared by `ikarus animate` and `POST /api/animate` / `/api/render`:
 //! the timing rules, via points into goals, and the library's motion through goals.
 
-use ikarus::motion::{GoalMotion, Interpolation, MotionOptions, Route, Timing, through_goals};
+use ikarus::motion::{
+    GoalMotion, GoalMotionError, Interpolation, MotionError, MotionOptions, Route, Timing, through_goals,
+};
+use ikarus::number::Num;
 use ikarus::{Ease, Goal, GoalError, SolveOptions, Solver};
 
 use crate::arm::Arm;
@@ -91,9 +94,58 @@ impl MotionPlan<'_> {
         let chain = &self.arm.chain;
         let options = MotionOptions::new(self.timing, self.ease).with_interpolation(self.interpolation);
         let motion = through_goals(&mut solver, chain, &self.start, &self.goals, route, options)
-            .map_err(|e| CliError::input(e.to_string()))?;
+            .map_err(|e| CliError::input(describe(&e, |joint| format!("joint {}", joint + 1))))?;
         Ok(Motion { options: solver.options().clone(), motion })
     }
+}
+
+/// A motion's problem in the words of the edges: a pose outside its joint's limits in degrees,
+/// the joint named by `joint` (from its index: `joint 1`, `bone 2 ("spine")`), the start pose
+/// (keyframe 0, the only one a request gives: the others are solved inside the limits) as
+/// `start_deg`; every other problem in the library's words.
+///
+/// `start_deg: joint 1 at 73.6° lies outside its limits [-45°, 45°]`
+pub fn describe(e: &GoalMotionError, joint: impl Fn(usize) -> String) -> String {
+    match e {
+        GoalMotionError::Motion(MotionError::OutsideLimits { index, joint: j, value, min, max }) => {
+            let pose = if *index == 0 { "start_deg".to_owned() } else { format!("keyframes[{index}]") };
+            let [lo, hi] = [limit_degrees(*min), limit_degrees(*max)];
+            format!(
+                "{pose}: {} at {}° lies outside its limits [{}°, {}°]",
+                joint(*j),
+                outside_degrees(*value, lo, hi),
+                Num(lo),
+                Num(hi)
+            )
+        }
+        other => other.to_string(),
+    }
+}
+
+/// A limit (radians) in degrees to a millionth of a degree: a limit given in degrees reads back
+/// as given (−45, not −45.00000000000001).
+fn limit_degrees(radians: f64) -> f64 {
+    let d = radians.to_degrees();
+    if d.abs() < 1e9 { (d * 1e6).round() / 1e6 } else { d }
+}
+
+/// An angle (radians) outside the limits `[lo, hi]` (degrees) in degrees: to a tenth of a
+/// degree (73.6), or as many more places as it takes not to read as one of the limits (45.04
+/// outside 45, not 45.0); huge angles in [`Num`]'s short form.
+fn outside_degrees(radians: f64, lo: f64, hi: f64) -> String {
+    let d = radians.to_degrees();
+    if !d.is_finite() || d.abs() >= 1e9 {
+        return Num(d).to_string();
+    }
+    for places in 1..=6 {
+        let text = format!("{d:.places$}");
+        let shown: f64 = text.parse().unwrap_or(d);
+        if shown < lo || shown > hi {
+            let text = text.trim_end_matches('0').trim_end_matches('.');
+            return if text == "-0" { "0".to_owned() } else { text.to_owned() };
+        }
+    }
+    Num(d).to_string()
 }
 
 impl Motion {

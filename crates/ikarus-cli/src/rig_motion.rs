@@ -44,8 +44,11 @@ impl RigMotionPlan<'_> {
         let route = if self.from_solve { Route::Recorded } else { Route::Keyframes };
         let options = MotionOptions::new(self.timing, self.ease).with_interpolation(self.interpolation);
         let skeleton = &self.rig.skeleton;
-        let motion = through_rig_tasks(&mut solver, skeleton, &self.start, &self.tasks, route, options)
-            .map_err(|e| CliError::input(e.to_string()))?;
+        let names = skeleton.names();
+        let motion =
+            through_rig_tasks(&mut solver, skeleton, &self.start, &self.tasks, route, options).map_err(|e| {
+                CliError::input(crate::motion::describe(&e, |b| format!("bone {} ({:?})", b + 1, names[b])))
+            })?;
         Ok(RigMotion { options: solver.options().clone(), tasks: self.tasks, motion })
     }
 }

@@ -124,7 +124,15 @@ fn bad_rig_motion_and_track_requests_are_422s_naming_the_field() {
     // 65 pins: every bone's name, four times over, and one more.
     let mut many: Vec<String> = (0..4).flat_map(|_| rigs::names(&rig)).collect();
     many.push("pelvis".to_owned());
+    // The spine bent back 50°, past its 30° (issue 24: in degrees, the bone named).
+    let mut bent = rigs::start_deg(&rig);
+    bent[1] = 50.0;
     let cases = [
+        (
+            "/api/animate",
+            json!({"rig": rig, "goals": goal, "start_deg": bent, "options": {"limits": true}}),
+            "start_deg: bone 2 (\"spine\") at 50° lies outside its limits [-45°, 30°]",
+        ),
         (
             "/api/animate",
             json!({"rig": rig, "arm": {"links": [{"length": 1}]}, "goals": goal}),

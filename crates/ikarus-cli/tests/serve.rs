@@ -343,6 +343,33 @@ fn invalid_values_are_422_naming_the_field() {
     s.assert_healthy();
 }
 
+/// Issue 24: a start pose outside the limits (one made without them, as the playground's after
+/// a click with the limits off) was refused as `keyframes[0][0]: 1.2844726962861905 rad lies
+/// outside the limits [-0.785…, 0.785…] rad`. It is named as the request names it: the field,
+/// the joint from 1, degrees (to a tenth, or the places it takes not to read as the limit).
+#[test]
+fn a_start_pose_outside_the_limits_is_named_in_degrees() {
+    let s = start(&[]);
+    let body = |start: [f64; 3]| json!({ "goal": { "x": 3, "y": 2 }, "start_deg": start, "options": { "limits": true }, "frames": 5 });
+    let cases = [
+        ([73.595_324, 97.4, 23.8], "start_deg: joint 1 at 73.6° lies outside its limits [-45°, 45°]"),
+        ([5.0, -120.0, 5.0], "start_deg: joint 2 at -120° lies outside its limits [-90°, 90°]"),
+        ([45.04, 5.0, 5.0], "start_deg: joint 1 at 45.04° lies outside its limits [-45°, 45°]"),
+        ([5.0, 5.0, -175.0], "start_deg: joint 3 at -175° lies outside its limits [-170°, 170°]"),
+    ];
+    for (start_deg, want) in cases {
+        assert_eq!(s.post("/api/animate", &body(start_deg)).error(422), want, "{start_deg:?}");
+    }
+    // The motion figure of /api/render says the same.
+    let mut render = body([73.595_324, 97.4, 23.8]);
+    render["figure"] = json!("motion");
+    assert_eq!(s.post("/api/render", &render).error(422), cases[0].1);
+    // A 360°-equivalent inside the range is that angle, and the same pose inside is fine.
+    assert_eq!(s.post("/api/animate", &body([365.0, 5.0, 5.0])).status, 200);
+    assert_eq!(s.post("/api/animate", &body([45.0, 90.0, 23.8])).status, 200);
+    s.assert_healthy();
+}
+
 #[test]
 fn render_errors_name_the_field_of_each_figure() {
     let s = start(&[]);

@@ -33,12 +33,14 @@ async function failure(path, res) {
 
 /**
  * A server message with its indices numbered from 1, as the page's tables and labels number
- * links and joints: `links[0].angle_deg` → `link 1 angle_deg`, `start_deg[2]` → `joint 3 start`.
+ * links and joints: `links[0].angle_deg` → `link 1 angle_deg`, `start_deg[2]` → `joint 3 angle`,
+ * and the start pose by name (`start_deg: joint 1 at 73.6° …` → `start pose: joint 1 at 73.6° …`).
  */
 export function forPeople(message) {
   return message
     .replace(/\blinks\[(\d+)\]\.?/g, (_, i) => `link ${Number(i) + 1} `)
     .replace(/\b(start_deg|pose_deg|rates)\[(\d+)\]/g, (_, f, i) => `joint ${Number(i) + 1} ${f === "rates" ? "rate" : "angle"}`)
+    .replace(/\bstart_deg: /g, "start pose: ")
     .replace(/ {2,}/g, " ")
     .replace(/ :/g, ":");
 }

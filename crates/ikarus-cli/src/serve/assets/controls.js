@@ -114,6 +114,9 @@ export function clearProblem(el) {
   el.title = "";
 }
 
+/** The message of `el`'s bad value, or undefined when it holds a good one. */
+export const problemOf = (el) => problems.get(el);
+
 /** The first field with a bad value, in the page's order: {el, message}, or null. */
 export function firstProblem() {
   for (const [el, message] of problems) {
@@ -143,6 +146,12 @@ export function numberProblem(text, rule) {
   return null;
 }
 
+/**
+ * The playback durations the *Duration* field takes, seconds: a tenth of a second to a minute
+ * (a minute's GIF at 25 frames a second is 1500 frames, under the server's cap of 2000).
+ */
+export const CHOSEN_DURATION = { min: 0.1, max: 60 };
+
 /** The solver's and motion's number fields: id, request key, label, rule, whether it may be empty. */
 const NUMBER_FIELDS = [
   ["restarts", "restarts", "Restarts", { whole: true, min: 0, max: 64 }],
@@ -155,6 +164,7 @@ const NUMBER_FIELDS = [
   ["k2", null, "k2", { min: 0, max: 1 }],
   ["frames", null, "Frames", { whole: true, min: 2, max: 2000 }],
   ["max-step", null, "Step bound", { above: 0, max: 180 }, true],
+  ["duration", null, "Duration", { min: CHOSEN_DURATION.min, max: CHOSEN_DURATION.max }, true],
 ];
 
 /** Checks the form's number fields (enabled ones only); marks and unmarks them. */
@@ -179,8 +189,9 @@ function num(id) {
 
 /**
  * The settings of the next requests, read from the fields: `options` (a request's solver
- * options; an empty field is left to the server's default), `ease`, `frames` and `maxStepDeg`
- * (the step bound of following and traced paths, 10° when empty). The joint rates come from
+ * options; an empty field is left to the server's default), `ease`, `frames`, `maxStepDeg`
+ * (the step bound of following and traced paths, 10° when empty) and `duration` (the playback's
+ * seconds the reader chose; null when the field is empty or bad: the default). The joint rates come from
  * the links.
  */
 export function readControls(links) {
@@ -204,7 +215,9 @@ export function readControls(links) {
   const maxStep = num("max-step");
   const recordEvery = num("record-every");
   const goalAngle = $("use-goal-angle").checked ? num("goal-angle") : undefined;
+  const duration = problemOf($("duration")) ? undefined : num("duration");
   return {
+    duration: duration === undefined ? null : duration,
     options,
     ease,
     frames: frames === undefined ? 60 : frames,

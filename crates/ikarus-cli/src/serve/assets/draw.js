@@ -7,7 +7,7 @@
 // and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
 
 import { traceCurves, traceRegion } from "./region.js";
-import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, toCanvas, toWorld } from "./view.js";
+import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, placeLabels, toCanvas, toWorld } from "./view.js";
 
 /**
  * The colours, the render crate's palette (`ikarus-render`'s style.rs, given by /api/meta's
@@ -148,26 +148,54 @@ export function drawGrid(ctx, view) {
   ctx.moveTo(Math.round(ax) + 0.5, 0);
   ctx.lineTo(Math.round(ax) + 0.5, h);
   ctx.stroke();
+  drawLabels(ctx, view, { ax, ay, xs, ys, decimals, step });
+}
+
+/** The height of an axis label's box, pixels (11 px text). */
+const LABEL_HEIGHT = 12;
+
+/**
+ * The axis labels: the axes' names ("x" above the x axis at the right end, "y" right of the y
+ * axis at the top, or under the chip when that covers the top), then the x ticks' values under the x axis and the y ticks' left of the y
+ * axis (or right of it where that is covered), each only where it is clear of the others and of
+ * what the page lays over the canvas (`view.keepOut`, boxes in canvas pixels: the status chip,
+ * the hint). The labels drawn are kept as `view.labels` ([{text, x, y, w, h}]).
+ */
+function drawLabels(ctx, view, { ax, ay, xs, ys, decimals, step }) {
+  const { w, h } = view;
   ctx.fillStyle = COLORS.label;
   ctx.font = "11px system-ui, sans-serif";
-  ctx.textAlign = "center";
-  ctx.textBaseline = "top";
-  for (const gx of xs) {
-    if (Math.abs(gx) < step / 2) continue;
-    const [px] = toCanvas(view, gx, 0);
-    ctx.fillText(gx.toFixed(decimals), px, Math.min(ay + 3, h - 14));
-  }
-  ctx.textAlign = "right";
-  ctx.textBaseline = "middle";
-  for (const gy of ys) {
-    if (Math.abs(gy) < step / 2) continue;
-    const [, py] = toCanvas(view, 0, gy);
-    ctx.fillText(gy.toFixed(decimals), Math.max(ax - 4, 28), py);
-  }
   ctx.textAlign = "left";
   ctx.textBaseline = "top";
-  ctx.fillText("x", w - 12, ay + 3);
-  ctx.fillText("y", ax + 5, 4);
+  const width = (text) => ctx.measureText(text).width;
+  const at = (text, x, y) => ({ x, y, w: width(text), h: LABEL_HEIGHT });
+  const candidates = [];
+  const keepOut = view.keepOut || [];
+  const xName = at("x", 0, 0);
+  xName.x = w - 4 - xName.w;
+  candidates.push({ text: "x", places: [{ ...xName, y: ay - 3 - LABEL_HEIGHT }, { ...xName, y: ay + 3 }] });
+  // The y name at the top, either side of the axis, or just under what covers the top.
+  const yName = at("y", ax + 5, 4);
+  const tops = [4, ...keepOut.map((k) => k.y + k.h + 4)];
+  candidates.push({ text: "y", places: tops.flatMap((y) => [{ ...yName, y }, { ...yName, y, x: ax - 5 - yName.w }]) });
+  for (const gx of xs) {
+    if (Math.abs(gx) < step / 2) continue;
+    const text = gx.toFixed(decimals);
+    const [px] = toCanvas(view, gx, 0);
+    const box = at(text, 0, Math.min(ay + 3, h - 14));
+    box.x = px - box.w / 2;
+    candidates.push({ text, places: [box] });
+  }
+  for (const gy of ys) {
+    if (Math.abs(gy) < step / 2) continue;
+    const text = gy.toFixed(decimals);
+    const [, py] = toCanvas(view, 0, gy);
+    const box = at(text, 0, py - LABEL_HEIGHT / 2);
+    box.x = Math.max(ax - 4, 28) - box.w;
+    candidates.push({ text, places: [box, { ...box, x: ax + 4 }] });
+  }
+  view.labels = placeLabels(candidates, keepOut, w, h);
+  for (const l of view.labels) ctx.fillText(l.text, l.x, l.y);
 }
 
 /**

@@ -86,6 +86,11 @@ export function svgContext(w, h) {
       out.push(`<rect x="${n(x)}" y="${n(y)}" width="${n(rw)}" height="${n(rh)}" fill="${esc(ctx.fillStyle)}"${opacity()}/>`);
     },
     clearRect() {},
+    // The text's width as the browser's system-ui roughly sets it (0.6 of the size a character).
+    measureText(text) {
+      const size = Number((/(\d+(?:\.\d+)?)px/.exec(ctx.font) || [0, 10])[1]);
+      return { width: String(text).length * size * 0.6 };
+    },
     fillText(text, x, y) {
       const size = (/(\d+(?:\.\d+)?)px/.exec(ctx.font) || [0, 10])[1];
       const bold = /bold/.test(ctx.font) ? ` font-weight="bold"` : "";

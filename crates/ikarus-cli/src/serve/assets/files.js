@@ -1,5 +1,5 @@
 // Downloads: the frames of the last motion or traced path (JSON, CSV, with the CLI's column
-// names), the figure (PNG, SVG: drawn by export.js as the screen is) and the motion (GIF,
+// names, timed in the seconds the timeline played them), the figure (PNG, SVG: drawn by export.js as the screen is) and the motion (GIF,
 // rendered by /api/render at the page's playback duration), and saving a Blob under a file
 // name. It reads the page's state and never writes it.
 
@@ -12,8 +12,40 @@ export const GIF_FPS = 25;
 const $ = (id) => document.getElementById(id);
 
 /**
+ * `time` of each frame (the motion's own: 0 to 1 for a clicked motion of N frames or a traced
+ * path) in seconds of the playback, the last frame at `seconds` (the timeline's duration):
+ * what was played is what is saved. Frames without a span (one frame) stay at 0.
+ */
+export function timesInSeconds(frames, seconds) {
+  const end = frames.length ? frames[frames.length - 1].time : 0;
+  const k = end > 0 && Number.isFinite(seconds) ? seconds / end : 0;
+  // The last frame exactly at `seconds` (a product could miss it by a bit).
+  return frames.map((f, i) => (i === frames.length - 1 && k > 0 ? seconds : f.time * k));
+}
+
+/**
+ * The motion `anim` (a /api/animate answer, or the frames of a traced path or a glide) as the
+ * playback showed it: its frames' `time` and its `duration` in seconds of a playback lasting
+ * `seconds`.
+ */
+export function playedMotion(anim, seconds) {
+  const times = timesInSeconds(anim.frames, seconds);
+  return { ...anim, duration: times.length ? times[times.length - 1] : 0, frames: anim.frames.map((f, i) => ({ ...f, time: times[i] })) };
+}
+
+/**
+ * A /api/track answer as the playback showed it: `duration` (seconds) and each sample's `time`
+ * (seconds, first), one sample per frame of `frames` (paths.js's trackMotion of it).
+ */
+export function playedTrack(answer, frames, seconds) {
+  const times = timesInSeconds(frames, seconds);
+  return { ...answer, duration: times.length ? times[times.length - 1] : 0, samples: answer.samples.map((s, i) => ({ time: times[i], ...s })) };
+}
+
+/**
  * The frames of a /api/animate answer as CSV: time, every angle, every joint's x and y, in the
- * columns of `ikarus animate --format csv` (time, theta1_deg…, x0, y0, …).
+ * columns of `ikarus animate --format csv` (time, theta1_deg…, x0, y0, …). Give it the
+ * motion as played (playedMotion) for times in seconds of the playback.
  */
 export function framesCsv(anim) {
   const nj = anim.frames[0] ? anim.frames[0].angles_deg.length : 0;
@@ -90,16 +122,20 @@ export function wireDownloads(state, showError, duration) {
     }
   }
 
+  // The frames are saved in the playback's seconds (the timeline's duration), not the motion's
+  // own 0 to 1.
   $("dl-json").addEventListener("click", () => {
     const anim = framesOrSay();
     if (!anim) return;
     // A traced path saves the /api/track answer (every sample's status and the flips).
-    const [body, name] = state.track ? [state.track.answer, "ikarus-track.json"] : [anim, "ikarus-frames.json"];
+    const [body, name] = state.track
+      ? [playedTrack(state.track.answer, anim.frames, duration()), "ikarus-track.json"]
+      : [playedMotion(anim, duration()), "ikarus-frames.json"];
     saveBlob(new Blob([JSON.stringify(body, null, 2)], { type: "application/json" }), name);
   });
   $("dl-csv").addEventListener("click", () => {
     const anim = framesOrSay();
-    if (anim) saveBlob(new Blob([framesCsv(anim)], { type: "text/csv" }), "ikarus-frames.csv");
+    if (anim) saveBlob(new Blob([framesCsv(playedMotion(anim, duration()))], { type: "text/csv" }), "ikarus-frames.csv");
   });
   for (const format of ["png", "svg", "gif"]) $(`dl-${format}`).addEventListener("click", () => renderFigure(format));
   // The GIF is rendered by the server: without one (the static build) the button says so.

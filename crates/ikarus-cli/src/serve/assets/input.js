@@ -1,8 +1,9 @@
 // The canvas's pointer and keyboard. A click animates to the point (through the via points);
 // a shift-click adds a via point; a drag, or any move in follow mode, follows the pointer; in
 // draw-path mode a drag draws a stroke that the tip then traces. The arrow keys nudge the goal
-// (following at once in follow mode) and Enter animates to it. The state stays main.js's: it is
-// passed in, with main.js's actions.
+// (following at once in follow mode) and Enter animates to it, wherever the focus is but in a
+// field or on a button (ownsKeys). The state stays main.js's: it is passed in, with main.js's
+// actions.
 
 import { isDrag, nudge, toWorld } from "./view.js";
 
@@ -63,8 +64,9 @@ export function wireInput(canvas, state, act) {
     if (state.drawPath) act.endStroke(false);
   });
 
-  canvas.addEventListener("keydown", (ev) => {
-    if (!state.arm || state.rig) return;
+  // The keys act anywhere on the page but in a field or on a button (which own them).
+  document.addEventListener("keydown", (ev) => {
+    if (!state.arm || state.rig || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
     const tip = state.joints[state.joints.length - 1];
     const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
     if (g) {
@@ -79,4 +81,20 @@ export function wireInput(canvas, state, act) {
       act.animateTo(state.goal.x, state.goal.y);
     }
   });
+}
+
+/** Keys a range input (the timeline's scrubber) moves itself with. */
+const RANGE_KEYS = new Set(["ArrowLeft", "ArrowRight", "ArrowUp", "ArrowDown", "Home", "End", "PageUp", "PageDown"]);
+
+/**
+ * Whether a press of `key` belongs to the focused element `el` rather than to the page: a field
+ * (text, number, check box, list), a button, or for the keys that move it, a slider. Elsewhere
+ * (the canvas, the page itself, a label) the page's keys act.
+ */
+export function ownsKeys(el, key) {
+  if (!el || el === document.body || el === document.documentElement) return false;
+  if (el.isContentEditable) return true;
+  const tag = el.tagName;
+  if (tag === "INPUT") return el.type !== "range" || RANGE_KEYS.has(key);
+  return tag === "TEXTAREA" || tag === "SELECT" || tag === "BUTTON";
 }

@@ -11,7 +11,7 @@
 // the figures drawn by export.js).
 
 import * as api from "./api.js";
-import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
+import { armForRequest, fillSelects, firstProblem, problemOf, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
 import { storedArm } from "./armfile.js";
 import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
@@ -23,7 +23,7 @@ import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
 import { wireTrack } from "./track.js";
-import { fitView, forward, toCanvas } from "./view.js";
+import { fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.js";
 
 /** The grid's resolution when the exact region cannot be had (the server could not build it). */
 const WORKSPACE_RESOLUTION = 160;
@@ -54,6 +54,8 @@ const state = {
   recordEvery: 1,
   // The step bound of following and traced paths, degrees (max_step_deg of /api/track).
   maxStepDeg: 10,
+  // The playback duration the reader chose ("Duration", seconds), or null for the default.
+  duration: null,
   // The View checkboxes.
   follow: false,
   showGhosts: true,
@@ -104,7 +106,7 @@ const state = {
 };
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
-const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded });
+const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded, canPlay: durationOk });
 
 /** Following and traced paths (track.js). */
 const paths = wireTrack(state, {
@@ -201,14 +203,28 @@ function setStatus(status) {
 function fieldsOk(point = true) {
   const p = firstProblem();
   if (!p) return true;
+  showProblem(p, point);
+  return false;
+}
+
+/** Names the bad field `p` ({el, message}) on the chip; with `point`, shows and focuses it. */
+function showProblem(p, point) {
   showError(new api.Notice(p.message));
   state.fieldShown = true;
   if (point) {
-    setCollapsed(false);
+    // A field of the panel opens it (the timeline's Duration is always in view).
+    if (p.el.closest("#panel")) setCollapsed(false);
     p.el.scrollIntoView({ block: "center" });
     p.el.focus({ preventScroll: true });
   }
-  return false;
+}
+
+/** Whether the Duration field allows playing; if not, it is named and shown instead. */
+function durationOk() {
+  const el = $("duration");
+  const message = problemOf(el);
+  if (message) showProblem({ el, message }, true);
+  return !message;
 }
 
 /** After an edit: the message of the first bad field, or none (a fixed field clears it). */
@@ -289,16 +305,33 @@ function solvedVerdict(goal, status, reachDistance, tip) {
 
 // ---- Drawing ------------------------------------------------------------------------------
 
+/**
+ * What the page lays over the canvas (the status chip, the hint, the collapsed panel's button)
+ * as boxes in canvas pixels: the axis labels keep clear of them.
+ */
+function overlays() {
+  const c = canvas.getBoundingClientRect();
+  const boxes = [];
+  for (const el of [$("chip"), $("hint"), document.body.classList.contains("collapsed") ? $("panel") : null]) {
+    if (!el) continue;
+    const r = el.getBoundingClientRect();
+    if (r.width > 0 && r.height > 0) boxes.push({ x: r.left - c.left, y: r.top - c.top, w: r.width, h: r.height });
+  }
+  return boxes;
+}
+
 function draw() {
   if (!state.arm) return;
   fitCanvas(canvas, ctx);
   if (state.rig) {
     state.view = rigView(state, canvas.clientWidth, canvas.clientHeight);
+    state.view.keepOut = overlays();
     drawRigScene(ctx, state.view, state);
     canvas.dataset.pose = state.rig.pose_deg.map((a) => a.toFixed(6)).join(" ");
     return;
   }
   state.view = fitView(state.arm, canvas.clientWidth, canvas.clientHeight);
+  state.view.keepOut = overlays();
   drawScene(ctx, state.view, state);
   // The pose drawn, for scripts and tests: joint angles in degrees.
   canvas.dataset.pose = state.pose_deg.map((a) => a.toFixed(6)).join(" ");
@@ -331,6 +364,7 @@ function motionStats(anim) {
 async function animateTo(x, y) {
   if (!fieldsOk()) return;
   cancelMotion();
+  settleIntoRange();
   const goal = state.goalAngle === undefined ? { x, y } : { x, y, angle_deg: state.goalAngle };
   // The goal drawn: with its heading, an arrow.
   state.goal = goal;
@@ -437,6 +471,62 @@ function cancelMotion() {
   }
 }
 
+// ---- Limits turned on: the pose into range ------------------------------------------------
+
+/**
+ * Limits turned on with the pose outside them (a motion made without them): each joint goes to
+ * the nearest angle its range allows (view.js's poseIntoLimits), played as a short motion, and
+ * the chip says which joints moved and where. Nothing to do for a pose inside, or for a rig
+ * (its solve takes the pose in).
+ */
+function glideIntoRange() {
+  if (state.rig || !state.options.limits || !state.arm) return;
+  const { pose, moved } = poseIntoLimits(state.arm, state.pose_deg);
+  if (moved.length === 0) {
+    setPose(pose);
+    return;
+  }
+  cancelMotion();
+  paths.clear();
+  const from = state.pose_deg.slice();
+  const frames = glideFrames(state.arm, from, pose, state.ease);
+  state.goal = null;
+  state.animation = { arm: state.arm.name, ease: state.ease.kind, duration: 1, frames };
+  state.animationRequest = null;
+  state.pendingStats = { status: "ready", text: intoRangeText(moved) };
+  showError(null);
+  timeline.load({ arm: armForRequest(state.arm), options: state.options, ease: state.ease });
+  setStatus("moving");
+  $("stats").textContent = `${state.pendingStats.text}…`;
+  timeline.play();
+}
+
+/**
+ * Before a solve, follow or trace from the pose: with the limits on, a pose still outside them
+ * (its glide into range stopped by this very action) takes the in-range angles at once, so that
+ * no request starts outside the limits.
+ */
+function settleIntoRange() {
+  if (state.rig || !state.options.limits) return;
+  const { pose, moved } = poseIntoLimits(state.arm, state.pose_deg);
+  if (moved.length > 0) setPose(pose);
+}
+
+/** "limits on: joint 1 moved into its range, 73.6° → 45°" (several: "joints 1 and 3 … their ranges, …"). */
+function intoRangeText(moved) {
+  const deg = (a) => `${Number(a.toFixed(1))}°`;
+  const joints = moved.map((m) => m.joint);
+  const which = joints.length === 1 ? `joint ${joints[0]}` : `joints ${joints.slice(0, -1).join(", ")} and ${joints.at(-1)}`;
+  const steps = moved.map((m) => `${deg(m.from)} → ${deg(m.to)}`).join(", ");
+  return `limits on: ${which} moved into ${joints.length === 1 ? "its range" : "their ranges"}, ${steps}`;
+}
+
+/** Traces a default shape (track.js) from the pose, taken into range first. */
+function traceShape(kind) {
+  settleIntoRange();
+  paths.traceShape(kind);
+}
+
 // ---- Via points ---------------------------------------------------------------------------
 
 function addVia(x, y) {
@@ -453,6 +543,7 @@ function clearVia() {
 
 /** Follows the pointer to (x, y) (track.js), judging the goal first (a miss shows at once). */
 function followGoal(x, y) {
+  settleIntoRange();
   paths.followTo(x, y);
   judge(state.goal);
   const miss = missShown();
@@ -518,6 +609,7 @@ function applyControls() {
   }
   syncEnabled();
   Object.assign(state, readControls(state.arm.links));
+  timeline.choose(state.duration);
 }
 
 function controlsChanged() {
@@ -576,10 +668,10 @@ function wire() {
   const { extendStroke, endStroke } = paths;
   // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
   const followTo = (x, y) => fieldsOk(false) && followGoal(x, y);
-  const startStroke = (x, y) => fieldsOk() && paths.startStroke(x, y);
+  const startStroke = (x, y) => fieldsOk() && (settleIntoRange(), paths.startStroke(x, y));
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
   wireDownloads(state, showError, () => timeline.duration());
-  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle"]) {
+  for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle", "duration"]) {
     $(id).addEventListener("change", controlsChanged);
   }
   // A new "Replay every" shows at once when the solver's replay is on.
@@ -594,6 +686,7 @@ function wire() {
   $("limits").addEventListener("change", () => {
     state.reachMiss = null;
     controlsChanged();
+    glideIntoRange();
     refreshWorkspace();
   });
   $("follow").addEventListener("change", (ev) => {
@@ -601,7 +694,7 @@ function wire() {
   });
   $("draw-path").addEventListener("click", () => setDrawPath(!state.drawPath));
   for (const kind of ["line", "circle", "figure8"]) {
-    $(`trace-${kind}`).addEventListener("click", () => state.arm && fieldsOk() && paths.traceShape(kind));
+    $(`trace-${kind}`).addEventListener("click", () => state.arm && fieldsOk() && traceShape(kind));
   }
   $("show-ghosts").addEventListener("change", (ev) => {
     state.showGhosts = ev.target.checked;
@@ -621,6 +714,8 @@ function wire() {
   $("panel-toggle").addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
   if (narrow.matches) setCollapsed(true);
   new ResizeObserver(requestDraw).observe(canvas);
+  // The labels keep clear of the chip: a chip that grows or shrinks redraws them.
+  new ResizeObserver(requestDraw).observe($("chip"));
   window.addEventListener("resize", requestDraw);
 }
 
@@ -660,7 +755,7 @@ window.ikarus = {
   ready: false,
   animateTo,
   followTo: (x, y) => fieldsOk() && followGoal(x, y),
-  traceShape: (kind) => fieldsOk() && paths.traceShape(kind),
+  traceShape: (kind) => fieldsOk() && traceShape(kind),
   resetPose,
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
   rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },

@@ -8,6 +8,7 @@
 // everything else goes through main.js's actions.
 
 import { fitCanvas } from "./draw.js";
+import { ownsKeys } from "./input.js";
 import { autoDuration, easePosition, freeJoints, jointDistance, poseAt } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
@@ -35,19 +36,11 @@ export function newPlayback() {
   return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, auto: null, ease: null, solver: false, posed: false };
 }
 
-/** Whether a key press belongs to the focused element rather than to the page. */
-function ownsKeys(el) {
-  if (!el || el === document.body) return false;
-  if (el.isContentEditable) return true;
-  const tag = el.tagName;
-  if (tag === "INPUT") return el.type !== "range";
-  return tag === "TEXTAREA" || tag === "SELECT" || tag === "BUTTON";
-}
-
 /**
  * Wires the timeline's controls. `act` is {showPose(angles, joints?), draw(), toggleSolver(),
- * clearVia(), ended()} (ended: the playback reached the end of the motion). Returns {load(), unload(), detach(), play(), pause(), toggle(), replay(),
- * seek(u), duration(), sync()}.
+ * clearVia(), ended(), canPlay()} (ended: the playback reached the end of the motion; canPlay:
+ * whether the fields allow playing, else it has said why). Returns {load(), unload(), detach(),
+ * play(), pause(), toggle(), replay(), seek(u), choose(seconds), duration(), sync()}.
  */
 export function wireTimeline(state, act) {
   const pb = state.playback;
@@ -149,7 +142,7 @@ export function wireTimeline(state, act) {
   }
 
   function play() {
-    if (!loaded() || pb.playing) return;
+    if (!loaded() || pb.playing || (act.canPlay && !act.canPlay())) return;
     if (pb.u >= 1) pb.u = 0;
     pb.playing = true;
     pb.clock = { wall: performance.now(), u: pb.u };
@@ -200,6 +193,17 @@ export function wireTimeline(state, act) {
     else sync();
   }
 
+  /**
+   * The duration the reader chose (seconds, the *Duration* field once checked), or null for the
+   * default; a motion playing goes on from its playhead at the new pace.
+   */
+  function choose(seconds) {
+    if (pb.chosen === seconds) return;
+    pb.chosen = seconds;
+    if (pb.playing) pb.clock = { wall: performance.now(), u: pb.u };
+    sync();
+  }
+
   /** Something else moved the arm (following the pointer): the playhead no longer shows it. */
   function detach() {
     pause();
@@ -222,21 +226,15 @@ export function wireTimeline(state, act) {
   $("play").addEventListener("click", toggle);
   $("replay").addEventListener("click", replay);
   $("scrubber").addEventListener("input", (ev) => seek(Number(ev.target.value) / SCRUB_STEPS));
-  $("duration").addEventListener("change", (ev) => {
-    const v = Number(ev.target.value);
-    pb.chosen = ev.target.value.trim() !== "" && v > 0 ? v : null;
-    if (pb.playing) pb.clock = { wall: performance.now(), u: pb.u };
-    sync();
-  });
   $("solver").addEventListener("click", () => act.toggleSolver());
   $("clear-via").addEventListener("click", () => act.clearVia());
   document.addEventListener("keydown", (ev) => {
-    if (ev.key !== " " || ev.repeat || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target)) return;
+    if (ev.key !== " " || ev.repeat || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
     if (!loaded()) return;
     ev.preventDefault();
     toggle();
   });
   new ResizeObserver(drawEase).observe($("ease-plot"));
 
-  return { load, unload, detach, play, pause, toggle, replay, seek, duration, sync };
+  return { load, unload, detach, play, pause, toggle, replay, seek, choose, duration, sync };
 }

@@ -81,6 +81,32 @@ export function decimalsFor(step) {
   return Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
 }
 
+/** Whether two boxes {x, y, w, h} (canvas pixels) overlap, each grown by `pad` pixels. */
+export function boxesOverlap(a, b, pad = 0) {
+  return a.x - pad < b.x + b.w && b.x - pad < a.x + a.w && a.y - pad < b.y + b.h && b.y - pad < a.y + a.h;
+}
+
+/** The room kept between two labels, pixels. */
+export const LABEL_GAP = 2;
+
+/**
+ * Places the axis labels: each candidate ({text, places}: boxes {x, y, w, h} where it may go,
+ * the preferred first) goes in the first of its places that lies inside the `w` × `h` canvas and
+ * clear of `keepOut` (boxes the page lays over the canvas: the status chip, the hint) and of
+ * the labels placed before it (earlier candidates win: the axis names first), else is left
+ * out. Returns the labels placed, [{text, x, y, w, h}].
+ */
+export function placeLabels(candidates, keepOut, w, h) {
+  const placed = [];
+  const free = (b) =>
+    b.x >= 0 && b.y >= 0 && b.x + b.w <= w && b.y + b.h <= h && !keepOut.some((k) => boxesOverlap(b, k)) && !placed.some((p) => boxesOverlap(b, p, LABEL_GAP));
+  for (const c of candidates) {
+    const box = c.places.find(free);
+    if (box) placed.push({ text: c.text, ...box });
+  }
+  return placed;
+}
+
 /** Whether the pointer at (x, y) has moved far enough from the press to be a drag. */
 export function isDrag(press, x, y) {
   return Math.hypot(x - press.x, y - press.y) > DRAG_PIXELS;
@@ -119,6 +145,55 @@ export function shortDelta(a, b) {
  */
 export function lerpAngle(a, b, w, free) {
   return a + w * (free ? shortDelta(a, b) : b - a);
+}
+
+/**
+ * The angle nearest `angle` (degrees) that `limits` ([min, max] degrees, or null for none)
+ * allows, on the circle: `angle` itself if it lies inside, else its 360°-equivalent inside
+ * nearest it (370° in [0°, 45°] is 10°), else the bound it is the shorter way round from (73.6°
+ * in [−45°, 45°] is 45°; 170° is 45°, 125° away, not −45°, 145° away the other way).
+ */
+export function intoRange(angle, limits) {
+  if (!limits || !Number.isFinite(angle)) return angle;
+  const [lo, hi] = limits;
+  if (lo <= angle && angle <= hi) return angle;
+  // The equivalent just above lo (every equivalent inside lies from there on).
+  const first = lo + (((angle - lo) % 360) + 360) % 360;
+  if (first <= hi) return first;
+  return Math.abs(shortDelta(angle, lo)) <= Math.abs(shortDelta(angle, hi)) ? lo : hi;
+}
+
+/**
+ * `pose` (degrees, one per link) brought inside the links' limits (intoRange per joint):
+ * {pose, moved}, `moved` listing each joint that had to move, {joint (from 1), from, to}, where
+ * `from` is the angle as it stood. A joint whose 360°-equivalent lies inside is not moved (the
+ * arm stands the same) but takes that equivalent, as the server would.
+ */
+export function poseIntoLimits(arm, pose) {
+  const moved = [];
+  const inside = arm.links.map((link, i) => {
+    const a = pose[i] ?? link.angle_deg;
+    const b = intoRange(a, link.limits_deg);
+    if (Math.abs(shortDelta(a, b)) > 1e-9) moved.push({ joint: i + 1, from: a, to: b });
+    return b;
+  });
+  return { pose: inside, moved };
+}
+
+/**
+ * A short motion from pose `a` to pose `b` (degrees) as frames the timeline plays: `n` frames
+ * at times 0 to 1 along the ease (`ease`, as a request sends it), each joint turning the short
+ * way from its angle in `a` to its angle in `b`, with the joints' positions.
+ */
+export function glideFrames(arm, a, b, ease, n = 24) {
+  const frames = [];
+  for (let k = 0; k < n; k++) {
+    const t = k / (n - 1);
+    const s = easePosition(ease, t);
+    const angles = b.map((to, i) => (k === n - 1 ? to : to - (1 - s) * shortDelta(a[i], to)));
+    frames.push({ time: t, angles_deg: angles, joints: forward(arm, angles) });
+  }
+  return frames;
 }
 
 /**
