@@ -168,3 +168,69 @@ test("paths: a figure-8 and a drawn stroke traced without flips; following never
     child.kill("SIGINT");
   }
 });
+
+test("paths: a stroke the limits cut in two is traced without a jump, and the page shows where the arm left it", async () => {
+  const { child, url } = await startServer();
+  const browser = await launch();
+  try {
+    const { page, errors } = await openPage(browser);
+    const tracks = [];
+    page.on("response", async (r) => {
+      if (r.url().endsWith("/api/track")) tracks.push({ req: JSON.parse(r.request().postData()), res: await r.json() });
+    });
+    await page.goto(url);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
+    await page.check("#limits");
+    // The issue's stroke: a circle of radius 4 from 0° to 216°; the seed's limits reach its
+    // start and its end, not the part behind the base.
+    await page.click("#draw-path");
+    const stroke = Array.from({ length: 217 }, (_, k) => {
+      const a = (k * Math.PI) / 180;
+      return [4 * Math.cos(a), 4 * Math.sin(a)];
+    });
+    const points = await page.evaluate((p) => p.map(([x, y]) => window.ikarus.toClient(x, y)), stroke);
+    await page.mouse.move(...points[0]);
+    await page.mouse.down();
+    for (const p of points.slice(1)) await page.mouse.move(...p);
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.state.track && document.body.dataset.playback === "ended", null, { timeout: 30000 });
+    const { res } = tracks.at(-1);
+    const s = res.summary;
+    assert.equal(s.samples, 200);
+    assert.ok(s.reached < 200 && s.off_path > 0, JSON.stringify(s));
+    assert.equal(s.flips, 0);
+    assert.ok(s.max_step_deg <= 10 + 1e-9, JSON.stringify(s));
+    // Every frame played is within the bound of the one before: no jump from top to bottom.
+    const frames = await page.evaluate(() => window.ikarus.state.animation.frames.map((f) => f.angles_deg));
+    assert.equal(frames.length, 200 + s.off_path);
+    let largest = 0;
+    for (let k = 1; k < frames.length; k++) for (let i = 0; i < 3; i++) largest = Math.max(largest, Math.abs(frames[k][i] - frames[k - 1][i]));
+    assert.ok(largest <= 10 + 1e-6, `a joint moved ${largest}° between two frames`);
+    // The page says it and shows it: the stats line, and the tip's way off the path drawn in red.
+    assert.equal(await page.evaluate(() => document.body.dataset.offPath), String(s.off_path));
+    assert.match(await page.textContent("#stats"), new RegExp(`^plan · ${s.reached} of 200 reached · ${s.off_path} off path · 0 flips · largest step 10\\.0°`));
+    const red = await page.evaluate(() => {
+      const { state, toClient } = window.ikarus;
+      const canvas = document.getElementById("plot");
+      const rect = canvas.getBoundingClientRect();
+      const dpr = canvas.width / rect.width;
+      const ctx = canvas.getContext("2d");
+      let n = 0;
+      for (const run of state.track.offPath) {
+        for (const [x, y] of run) {
+          const [cx, cy] = toClient(x, y);
+          const d = ctx.getImageData(Math.round((cx - rect.left) * dpr) - 6, Math.round((cy - rect.top) * dpr) - 6, 13, 13).data;
+          for (let i = 0; i < d.length; i += 4) if (d[i] > 190 && d[i + 1] < 80 && d[i + 2] < 80) n++;
+        }
+      }
+      return { runs: state.track.offPath.length, n };
+    });
+    assert.ok(red.runs >= 1 && red.n > 20, `the off-path run drawn in red: ${JSON.stringify(red)}`);
+    mkdirSync(artifacts, { recursive: true });
+    await page.screenshot({ path: join(artifacts, "off-path.png") });
+    assert.deepEqual(errors, [], "console errors");
+  } finally {
+    await browser.close();
+    child.kill("SIGINT");
+  }
+});

@@ -35,12 +35,13 @@ import {
   solveTime,
 } from "../crates/ikarus-cli/src/serve/assets/view.js";
 import { CHOSEN_DURATION, armForRequest, clampInto, methodApplies, numberProblem, withLimit } from "../crates/ikarus-cli/src/serve/assets/controls.js";
-import { GIF_FPS, framesCsv, gifRequest, playedMotion, playedTrack, timesInSeconds } from "../crates/ikarus-cli/src/serve/assets/files.js";
+import { GIF_FPS, GIF_MAX_PIXELS, framesCsv, gifRequest, playedMotion, playedTrack, timesInSeconds } from "../crates/ikarus-cli/src/serve/assets/files.js";
 import { forPeople } from "../crates/ikarus-cli/src/serve/assets/api.js";
 import { svgContext } from "../crates/ikarus-cli/src/serve/assets/export.js";
 import {
   STROKE_MAX_SAMPLES,
   flipTips,
+  offPathRuns,
   polylineLength,
   resampleStroke,
   shapeDefaults,
@@ -506,10 +507,45 @@ test("methods: the closed form only for two links, or three with a goal angle", 
 
 test("the GIF asks for the page's playback duration (less the last frame's delay) at 4 hundredths a frame", () => {
   assert.equal(100 / GIF_FPS, 4, "a whole number of hundredths per frame");
-  const req = gifRequest({ arm: {}, goal: { x: 1, y: 2 }, frames: 60, ease: { kind: "sine" } }, 1.35);
+  const look = { width: 900, height: 620, workspace: true, grid: null, traces: true, ghosts: false };
+  const req = gifRequest({ arm: {}, goal: { x: 1, y: 2 }, frames: 60, ease: { kind: "sine" } }, 1.35, look);
   assert.equal(req.frames, undefined);
   // The last frame is shown for a delay too: the motion takes one delay less than the playback.
   assert.deepEqual([req.figure, req.format, req.duration, req.fps], ["motion", "gif", 1.35 - 0.04, GIF_FPS]);
+});
+
+test("the GIF asks for the screen's picture: the canvas's size, scaled to the pixel cap, and its layers", () => {
+  const motion = { arm: {}, goal: { x: 1, y: 2 }, options: { limits: true } };
+  const look = { width: 900, height: 620, workspace: true, grid: null, traces: true, ghosts: false };
+  const req = gifRequest(motion, 1.25, look);
+  assert.deepEqual([req.width, req.height, req.workspace, req.traces, req.ghosts], [900, 620, true, true, false]);
+  assert.equal(req.grid, undefined, "the exact region: no grid fields");
+  // The sampled grid the screen shows, at its resolution.
+  const grid = gifRequest(motion, 1.25, { ...look, grid: 160 });
+  assert.deepEqual([grid.grid, grid.resolution], [true, 160]);
+  // A long motion: scaled down to the server's cap, the aspect kept.
+  const long = gifRequest(motion, 400, look);
+  const frames = Math.round(long.duration * GIF_FPS) + 1;
+  assert.ok(frames * long.width * long.height <= GIF_MAX_PIXELS, `${frames} × ${long.width} × ${long.height}`);
+  near(long.width / long.height, 900 / 620, 0.02); // within a pixel of rounding
+  // Never outside the server's sides.
+  const huge = gifRequest(motion, 1, { ...look, width: 9000, height: 100 });
+  assert.ok(huge.width <= 4096 && huge.height >= 16, `${huge.width} × ${huge.height}`);
+});
+
+test("a plan's off-path poses: runs from the sample before to the sample after, in the summary, not the status", () => {
+  const pose = (status, tip) => ({ goal: [0, 0], status, error: 0, angles_deg: [0, 0], joints: [[0, 0], [1, 0], tip], step_deg: 0 });
+  const answer = {
+    arm: "two",
+    mode: "plan",
+    samples: [pose("reached", [2, 0]), pose("off_path", [1, 1]), pose("off_path", [0, 2]), pose("reached", [-2, 0]), pose("unreachable", [-1, -1])],
+    summary: { samples: 3, reached: 2, limited: 0, off_path: 2, flips: 0, flip_samples: [], max_step_deg: 10, max_error: 0.5 },
+  };
+  assert.deepEqual(offPathRuns(answer), [[[2, 0], [1, 1], [0, 2], [-2, 0]]]);
+  assert.deepEqual(offPathRuns({ samples: answer.samples.slice(0, 1) }), []);
+  assert.equal(trackStatus(answer), "unreachable");
+  assert.equal(trackStatus({ samples: answer.samples.slice(0, 4) }), "reached");
+  assert.equal(trackSummaryText(answer), "plan · 2 of 3 reached · 2 off path · 0 flips · largest step 10.0° · error 5.00e-1");
 });
 
 test("the SVG download records the canvas calls: paths, arcs, text, alpha and dashes", () => {

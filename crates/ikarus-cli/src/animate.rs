@@ -14,7 +14,7 @@ use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
+use crate::picture::{Drawing, MotionLayers, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
 use crate::report::{AnimateJson, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
@@ -197,7 +197,7 @@ impl MotionArgs {
 impl MotionRun {
     /// The drawing of the motion (the one the API's figure `motion` draws).
     pub fn drawing(&self) -> Drawing<'_> {
-        motion_drawing(&self.arm, &self.motion, Some(self.goal.target()), self.fps)
+        motion_drawing(&self.arm, &self.motion, Some(self.goal.target()), self.fps, MotionLayers::default())
     }
 }
 

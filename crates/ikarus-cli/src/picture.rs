@@ -57,8 +57,15 @@ pub enum Drawing<'a> {
         workspace: Option<ikarus_render::Reachable<'a>>,
         caption: Option<String>,
     },
-    /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`.
-    Motion { chain: &'a Chain, animation: &'a Animation, goal: Option<Point2<f64>>, caption: String, fps: f64 },
+    /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`, with `layers`.
+    Motion {
+        chain: &'a Chain,
+        animation: &'a Animation,
+        goal: Option<Point2<f64>>,
+        caption: String,
+        fps: f64,
+        layers: MotionLayers<'a>,
+    },
     /// A tracked path: the wanted path, the tip's trace, flips, and the poses as ghosts (SVG,
     /// PNG) or animated one per sample (GIF) at `fps`.
     Track { chain: &'a Chain, poses: &'a [Vec<f64>], layer: &'a ikarus_render::PathLayer, caption: String, fps: f64 },
@@ -71,6 +78,38 @@ pub enum Drawing<'a> {
     RigMotion { figure: ikarus_render::SkeletonFigure<'a>, animation: &'a Animation, fps: f64 },
 }
 
+/// What a motion's picture shows besides the arm and the goal. The command line's: no area,
+/// the joints' traces with a cross per frame, no ghosts in a GIF ([`MotionLayers::default`]);
+/// the playground's screen ([`MotionLayers::screen`], its GIF from `POST /api/render`): the
+/// area it shades, the traces as lines, the ghosts, each as shown.
+#[derive(Debug, Clone, Copy)]
+pub struct MotionLayers<'a> {
+    /// The reachable area to shade.
+    pub workspace: Option<ikarus_render::Reachable<'a>>,
+    /// The joints' traces, in this style; none when `None`.
+    pub traces: Option<ikarus_render::TrailStyle>,
+    /// Earlier poses as ghosts in a GIF, as the screen draws them.
+    pub ghosts: bool,
+}
+
+impl Default for MotionLayers<'_> {
+    fn default() -> Self {
+        Self { workspace: None, traces: Some(ikarus_render::TrailStyle::Marks), ghosts: false }
+    }
+}
+
+impl<'a> MotionLayers<'a> {
+    /// The screen's layers: the area when it is shaded, the traces (as lines) and the ghosts
+    /// when they are shown.
+    pub fn screen(workspace: Option<&'a ReachableArea>, traces: bool, ghosts: bool) -> Self {
+        Self {
+            workspace: workspace.map(ReachableArea::layer),
+            traces: traces.then_some(ikarus_render::TrailStyle::Lines),
+            ghosts,
+        }
+    }
+}
+
 /// Draws `drawing` as `format`, `width` × `height` pixels; `progress(done, total)` hears about
 /// the frames of a GIF. Only a motion animates: a GIF of anything else is the caller's bug.
 pub fn draw(
@@ -81,22 +120,26 @@ pub fn draw(
     progress: &dyn Fn(usize, usize),
 ) -> Result<Vec<u8>, CliError> {
     let svg = match drawing {
-        Drawing::Motion { chain, animation, goal, caption, fps } if format == PictureFormat::Gif => {
+        Drawing::Motion { chain, animation, goal, caption, fps, layers } if format == PictureFormat::Gif => {
             let overlay = ikarus_render::Overlay {
                 goal: *goal,
-                workspace: None,
+                workspace: layers.workspace,
                 show_reach: true,
                 caption: Some(caption.clone()),
-                trail: true,
+                trail: layers.traces.is_some(),
+                trail_style: layers.traces.unwrap_or_default(),
+                ghosts: layers.ghosts,
                 path: None,
             };
             return ikarus_render::animation_gif(chain, animation, &overlay, width, height, *fps, progress)
                 .map_err(|e| render_failed(&e));
         }
-        Drawing::Motion { chain, animation, goal, caption, .. } => {
+        Drawing::Motion { chain, animation, goal, caption, layers, .. } => {
             let figure = ikarus_render::ArmFigure {
                 goal: *goal,
                 caption: Some(caption.clone()),
+                workspace: layers.workspace,
+                traces: layers.traces.is_some(),
                 ..ikarus_render::ArmFigure::of_animation(chain, animation)
             };
             ikarus_render::arm_svg(&figure, width, height)
@@ -194,10 +237,23 @@ pub fn workspace_drawing<'a>(arm: &'a Arm, area: &'a ReachableArea) -> Drawing<'
     }
 }
 
-/// The figure `motion`: a computed motion towards `goal`, animated at `fps` in a GIF (the
-/// API's figure `motion`, `ikarus animate --out` and `ikarus render motion`).
-pub fn motion_drawing<'a>(arm: &'a Arm, motion: &'a Motion, goal: Option<Point2<f64>>, fps: f64) -> Drawing<'a> {
-    Drawing::Motion { chain: &arm.chain, animation: &motion.motion.animation, goal, caption: motion.caption(), fps }
+/// The figure `motion`: a computed motion towards `goal`, animated at `fps` in a GIF, with
+/// `layers` (the API's figure `motion`, `ikarus animate --out` and `ikarus render motion`).
+pub fn motion_drawing<'a>(
+    arm: &'a Arm,
+    motion: &'a Motion,
+    goal: Option<Point2<f64>>,
+    fps: f64,
+    layers: MotionLayers<'a>,
+) -> Drawing<'a> {
+    Drawing::Motion {
+        chain: &arm.chain,
+        animation: &motion.motion.animation,
+        goal,
+        caption: motion.caption(),
+        fps,
+        layers,
+    }
 }
 
 /// The figure of a rig at `pose` with the goals and pins of `task`, the limit wedges when

@@ -7,7 +7,8 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, ValueEnum};
-use ikarus::track::{self, Path, PathError, Track, TrackMode, TrackOptions};
+use ikarus::number::Num;
+use ikarus::track::{self, Path, PathError, Track, TrackError, TrackMode, TrackOptions};
 use ikarus::{Goal, SolveOptions};
 use serde::Serialize;
 
@@ -164,9 +165,17 @@ impl TrackJob<'_> {
         TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
     }
 
-    /// Tracks the path; a problem is bad input, in the library's words.
+    /// Tracks the path; a problem is bad input, in the library's words (the bound in the edge's
+    /// degrees, `max_step_deg`).
     pub fn run(&self) -> Result<Track, String> {
-        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| e.to_string())
+        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| match e {
+            TrackError::OffPathCap { max_step, needed, cap } => format!(
+                "max_step_deg = {}: bridging the plan's gaps in steps this small needs {needed} poses off the path, more than the cap of {cap} ({} per sample); raise it or sample the path more finely",
+                Num(max_step.to_degrees()),
+                track::MAX_OFF_PATH_PER_SAMPLE
+            ),
+            other => other.to_string(),
+        })
     }
 
     /// The picture's layer: the wanted path, the tip's trace, the flips.
@@ -182,8 +191,9 @@ impl TrackJob<'_> {
     /// A one-line caption for pictures.
     pub fn caption(&self, t: &Track) -> String {
         let s = &t.summary;
+        let off = if s.off_path > 0 { format!(" · {} off path", s.off_path) } else { String::new() };
         format!(
-            "{} · {} · {} of {} reached · {} flips · largest step {:.1}°",
+            "{} · {} · {} of {} reached{off} · {} flips · largest step {:.1}°",
             self.arm.name,
             self.mode.name(),
             s.reached,
@@ -214,6 +224,9 @@ pub struct TrackSummaryJson {
     pub unreachable: usize,
     /// Stalled or at the iteration cap.
     pub stalled: usize,
+    /// Poses plan inserted off the path, between two samples whose poses lie further apart
+    /// than the bound (status `off_path`; not counted in `samples`).
+    pub off_path: usize,
     pub flips: usize,
     pub flip_samples: Vec<usize>,
     /// The bound: a larger step is a flip.
@@ -267,6 +280,7 @@ impl TrackSummaryJson {
             limited: s.limited,
             unreachable: s.unreachable,
             stalled: s.stalled,
+            off_path: s.off_path,
             flips: s.flips.len(),
             flip_samples: s.flips.clone(),
             step_bound_deg: max_step.to_degrees(),
@@ -406,6 +420,9 @@ fn text(w: &mut dyn Write, job: &TrackJob, t: &Track) -> std::io::Result<()> {
         "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
         s.samples, s.reached, s.limited, s.unreachable, s.stalled
     )?;
+    if s.off_path > 0 {
+        writeln!(w, "off path  {} poses between samples, within the bound", s.off_path)?;
+    }
     let which = if s.flips.is_empty() { String::new() } else { format!(" at samples {:?}", s.flips) };
     writeln!(w, "flips     {}{which}", s.flips.len())?;
     writeln!(

@@ -386,3 +386,79 @@ fn animate_on_a_terminal_prints_text_or_nothing_with_out() {
     assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "", "nothing but the GIF");
     assert!(gif.exists());
 }
+
+/// Every frame of a GIF as it is shown (RGBA, each drawn over the one before: a frame stores only
+/// the rectangle that changed, its unchanged pixels transparent), with the GIF's size.
+fn gif_frames(bytes: &[u8]) -> ((u32, u32), Vec<Vec<u8>>) {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options.read_info(bytes).unwrap();
+    let (w, h) = (usize::from(decoder.width()), usize::from(decoder.height()));
+    let mut shown = vec![0u8; w * h * 4];
+    let mut frames = Vec::new();
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        let (left, top, fw) = (usize::from(frame.left), usize::from(frame.top), usize::from(frame.width));
+        for (i, px) in frame.buffer.chunks_exact(4).enumerate() {
+            if px[3] != 0 {
+                let at = ((top + i / fw) * w + left + i % fw) * 4;
+                shown[at..at + 4].copy_from_slice(px);
+            }
+        }
+        frames.push(shown.clone());
+    }
+    ((w as u32, h as u32), frames)
+}
+
+/// How many opaque pixels of `frame` (RGBA) lie within `tolerance` of `rgb` on every channel.
+fn pixels_near(frame: &[u8], rgb: [u8; 3], tolerance: u8) -> usize {
+    frame.chunks_exact(4).filter(|p| p[3] == 255 && (0..3).all(|c| p[c].abs_diff(rgb[c]) <= tolerance)).count()
+}
+
+/// How many opaque pixels of `frame` (RGBA) are `rgb` exactly.
+fn pixels_of(frame: &[u8], rgb: [u8; 3]) -> usize {
+    pixels_near(frame, rgb, 0)
+}
+
+#[test]
+fn the_playgrounds_gif_is_the_screens_picture() {
+    // What the page sends for its GIF (files.js gifRequest): the motion, the canvas's size, and
+    // the layers the screen shows: the area (the exact region with the limits on), the traces,
+    // the ghosts.
+    // (A debug build rasterises slowly on a busy machine: a generous budget.)
+    let s = common::server::start(&["--request-budget-ms", "300000"]);
+    let base = serde_json::json!({
+        "figure": "motion", "format": "gif", "width": 480, "height": 330,
+        "goal": { "x": 2, "y": 3 }, "options": { "limits": true }, "duration": 0.4, "fps": 25,
+    });
+    let with = |extra: serde_json::Value| {
+        let mut body = base.clone();
+        body.as_object_mut().unwrap().extend(extra.as_object().unwrap().clone());
+        let a = s.post("/api/render", &body);
+        assert_eq!((a.status, a.content_type.as_str()), (200, "image/gif"), "{}", a.text());
+        gif_frames(&a.body)
+    };
+    const AREA: [u8; 3] = [0xdc, 0xea, 0xe1];
+    const TIP: [u8; 3] = [0xec, 0x7f, 0x2d];
+    let (size, screen) = with(serde_json::json!({ "workspace": true, "traces": true, "ghosts": true }));
+    assert_eq!(size, (480, 330));
+    assert_eq!(screen.len(), 11);
+    assert_eq!(screen[0].len(), 480 * 330 * 4, "the first frame is whole");
+    let area = pixels_of(&screen[0], AREA);
+    assert!(area > 5_000, "the shaded area: {area} pixels of its colour");
+    // The tip's trace in the path colour (antialiased thin lines: near it), on the last frame.
+    let tip = pixels_near(screen.last().unwrap(), TIP, 40);
+    assert!(tip > 60, "the tip's trace in the path colour: {tip} pixels");
+
+    // Hidden on the screen, not in the GIF either.
+    let (_, bare) = with(serde_json::json!({ "workspace": false, "traces": false, "ghosts": false }));
+    // (A few antialiased edge pixels may round to a key colour: far fewer than the layers paint.)
+    let (bare_area, bare_tip) = (pixels_of(&bare[0], AREA), pixels_near(bare.last().unwrap(), TIP, 40));
+    assert!(bare_area * 100 < area, "{bare_area} pixels of the area's colour without the area, {area} with it");
+    assert!(bare_tip * 4 < tip, "{bare_tip} pixels of the trace's colour without traces, {tip} with them");
+    // The ghosts change the frames after the first (which has none yet).
+    let (_, no_ghosts) = with(serde_json::json!({ "workspace": true, "traces": true, "ghosts": false }));
+    assert_ne!(no_ghosts[1..], screen[1..]);
+    // The area follows the options' limits: without them it is the whole disc, more of it.
+    let (_, free) = with(serde_json::json!({ "workspace": true, "options": { "limits": false } }));
+    assert!(pixels_of(&free[0], AREA) > area, "{} vs {area}", pixels_of(&free[0], AREA));
+}

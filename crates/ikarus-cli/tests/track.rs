@@ -142,3 +142,73 @@ fn the_solvers_step_cap_is_still_a_flag() {
     let v = json(&["track", "--circle", "2,2,1", "--samples", "10", "--solver-max-step-deg", "5", "--format", "json"]);
     assert_eq!(v["summary"]["reached"], 10);
 }
+
+/// The stroke: a circle of radius 4 from 0° to 216°, 200 samples, as a path file.
+fn arc_216(dir: &Path) -> (String, Vec<[f64; 2]>) {
+    let points: Vec<[f64; 2]> = (0..200)
+        .map(|k| {
+            let a = (216.0f64 * k as f64 / 199.0).to_radians();
+            [4.0 * a.cos(), 4.0 * a.sin()]
+        })
+        .collect();
+    let rows: Vec<String> = points.iter().map(|p| format!("{:?},{:?}", p[0], p[1])).collect();
+    (write(dir, "arc.csv", &format!("x,y\n{}\n", rows.join("\n"))), points)
+}
+
+/// Checks a plan's answer on [`arc_216`] with the limits on: no step over the bound, the arm
+/// off the path between the two reachable pieces, every path sample there in order.
+fn check_off_path_plan(v: &serde_json::Value, points: &[[f64; 2]]) {
+    let s = &v["summary"];
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(s["samples"], 200, "{s}");
+    assert_eq!(s["flips"], 0, "{s}");
+    assert!(s["max_step_deg"].as_f64().unwrap() <= 10.0 + 1e-6, "{s}");
+    let off = s["off_path"].as_u64().unwrap() as usize;
+    assert!(off >= 3, "the arm leaves the path to cross over: {s}");
+    assert_eq!(samples.len(), 200 + off);
+    let reached = s["reached"].as_u64().unwrap();
+    assert!(reached > 40 && reached < 200, "{s}");
+    for (k, w) in samples.windows(2).enumerate() {
+        let (a, b) = (floats(&w[0]["angles_deg"]), floats(&w[1]["angles_deg"]));
+        let step = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        assert!(step <= 10.0 + 1e-6, "poses {k}→{}: a joint moved {step}°", k + 1);
+        assert!(b[0].abs() <= 45.0 + 1e-9, "pose {}: joint 1 at {}° outside its limits", k + 1, b[0]);
+    }
+    let on_path: Vec<Vec<f64>> =
+        samples.iter().filter(|x| x["status"] != "off_path").map(|x| floats(&x["goal"])).collect();
+    assert_eq!(on_path, points.iter().map(|p| p.to_vec()).collect::<Vec<_>>());
+    // The off-path poses come in runs, each between two samples of the path.
+    assert_ne!(samples[0]["status"], "off_path");
+    assert_ne!(samples.last().unwrap()["status"], "off_path");
+}
+
+#[test]
+fn a_plan_with_limits_crosses_between_reachable_pieces_off_the_path_within_the_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, points) = arc_216(dir.path());
+    let v = json(&["track", "--path", &file, "--limits", "--format", "json"]);
+    check_off_path_plan(&v, &points);
+    let text = succeeds(&["track", "--path", &file, "--limits", "--format", "text"]);
+    let off = v["summary"]["off_path"].as_u64().unwrap();
+    assert!(text.contains(&format!("off path  {off} poses between samples, within the bound")), "{text}");
+    assert!(text.contains("flips     0\n"), "{text}");
+    let csv = succeeds(&["track", "--path", &file, "--limits", "--format", "csv"]);
+    assert_eq!(csv.lines().filter(|l| l.contains(",off_path,")).count() as u64, off);
+
+    // The API answers the same.
+    let s = common::server::start(&[]);
+    let rows: Vec<serde_json::Value> = points.iter().map(|p| serde_json::json!(p)).collect();
+    let body = serde_json::json!({ "path": rows, "mode": "plan", "options": { "limits": true } });
+    let api = s.post("/api/track", &body).json();
+    check_off_path_plan(&api, &points);
+    assert_eq!(api["summary"], v["summary"]);
+}
+
+#[test]
+fn a_bound_too_small_for_a_plans_gaps_is_one_line_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = arc_216(dir.path());
+    let err = fails(&["track", "--path", &file, "--limits", "--max-step-deg", "0.01"], 2);
+    assert!(err.starts_with("ikarus: max_step_deg = 0.01: bridging the plan's gaps"), "{err}");
+    assert!(err.contains("more than the cap of 12800 (64 per sample)"), "{err}");
+}

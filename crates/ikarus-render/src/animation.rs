@@ -22,7 +22,7 @@ use crate::error::check_point;
 use crate::palette::{Palette, UNCHANGED};
 use crate::path::PathLayer;
 use crate::raster::{check_size, new_pixmap, parse, render_onto};
-use crate::scene::Scene;
+use crate::scene::{Scene, TrailStyle};
 use crate::style;
 use crate::svg::Svg;
 use crate::view::View;
@@ -74,8 +74,24 @@ pub struct Overlay<'a> {
     pub caption: Option<String>,
     /// Whether to draw the path every joint has travelled so far.
     pub trail: bool,
+    /// How the trail is drawn: with a cross at every frame (the still pictures' style, the
+    /// default), or as the playground's screen draws it, lines only.
+    pub trail_style: TrailStyle,
+    /// Whether to draw earlier poses as ghosts, as the playground's screen does: about a dozen
+    /// of the frames before the current one, evenly spread, fading with age ([`ghost_frames`]).
+    pub ghosts: bool,
     /// A tracked path: frame `i` shows its trace up to point `i`.
     pub path: Option<&'a PathLayer>,
+}
+
+/// The ghosts at frame `current` of `total`, as the playground's screen draws them (view.js's
+/// `ghostFrames`): frames `0, e, 2e, …` before `current`, `e = max(1, round(total / 12))`, each
+/// with the opacity `0.06 + 0.16 · (1 − age)`, `age = (current − i) / max(1, total − 1)`.
+#[must_use]
+pub fn ghost_frames(total: usize, current: usize) -> Vec<(usize, f64)> {
+    let every = ((total as f64 / 12.0).round() as usize).max(1);
+    let span = total.saturating_sub(1).max(1) as f64;
+    (0..current).step_by(every).map(|i| (i, 0.06 + 0.16 * (1.0 - (current - i) as f64 / span))).collect()
 }
 
 /// `animation` as a looping GIF of `width` × `height` pixels at `fps` frames per second, one
@@ -179,7 +195,7 @@ impl<'a> Painter<'a> {
             let j = trail.next;
             let mut svg = Svg::new(self.width, self.height);
             let from = j.checked_sub(1).map(|p| self.joints[p].as_slice());
-            self.scene.trace_step(&mut svg, from, &self.joints[j]);
+            self.scene.trace_step(&mut svg, from, &self.joints[j], self.overlay.trail_style);
             render_onto(&parse(&svg.finish())?, &mut trail.pixmap);
             trail.next += 1;
         }
@@ -192,6 +208,11 @@ impl<'a> Painter<'a> {
         let scene = &self.scene;
         self.advance(trail, i)?;
         let mut svg = Svg::new(self.width, self.height);
+        if self.overlay.ghosts {
+            let ghosts: Vec<(&[Point2<f64>], f64)> =
+                ghost_frames(self.len(), i).into_iter().map(|(k, o)| (self.joints[k].as_slice(), o)).collect();
+            scene.ghosts(&mut svg, &ghosts);
+        }
         if let Some(layer) = self.overlay.path {
             layer.draw(scene, &mut svg, Some(i));
         }
@@ -339,6 +360,15 @@ mod tests {
         assert_eq!(e.to_string(), "gif: encoding failed: interrupted");
         // Outside `with_interrupt` the token does not apply.
         assert!(gif().is_ok());
+    }
+
+    #[test]
+    fn ghosts_are_the_screens() {
+        // view.js's ghostFrames(25, 24): every 2nd frame before the 24th, the oldest faintest.
+        let g = ghost_frames(25, 24);
+        assert_eq!(g.iter().map(|&(i, _)| i).collect::<Vec<_>>(), (0..24).step_by(2).collect::<Vec<_>>());
+        assert!((g[0].1 - 0.06).abs() < 1e-12 && (g[11].1 - (0.06 + 0.16 * (1.0 - 2.0 / 24.0))).abs() < 1e-12);
+        assert!(ghost_frames(25, 0).is_empty() && ghost_frames(1, 0).is_empty());
     }
 
     /// The trail grown one step per frame looks like the trail drawn at once (as the still

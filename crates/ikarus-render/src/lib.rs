@@ -36,13 +36,14 @@ mod svg;
 mod view;
 mod wedge;
 
-pub use animation::{MAX_FPS, Overlay, animation_gif, with_interrupt};
+pub use animation::{MAX_FPS, Overlay, animation_gif, ghost_frames, with_interrupt};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
 pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
 pub use reachable::Reachable;
+pub use scene::TrailStyle;
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use skeleton_gif::skeleton_gif;
 pub use style::{COLOURS, Colours};

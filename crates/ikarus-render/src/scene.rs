@@ -9,6 +9,17 @@ use crate::svg::{PathData, Svg, num};
 use crate::view::{View, nice_step, tick_label, ticks};
 pub(crate) use crate::wedge::{Wedge, chain_wedges};
 
+/// How the joints' paths of an animation are drawn.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum TrailStyle {
+    /// A faint line through the positions and a small cross at each (as the still figures).
+    #[default]
+    Marks,
+    /// Lines only, as the playground's screen: the joints' paths in their hues at 0.7 opacity,
+    /// the tip's opaque and wider in the path colour.
+    Lines,
+}
+
 /// What every picture of one arm or skeleton shares.
 pub(crate) struct Scene<'a> {
     /// Where the arm's or skeleton's roots start.
@@ -203,7 +214,16 @@ impl Scene<'_> {
     /// draw what [`Scene::traces`] draws at once, in time linear in the frames (an animation
     /// redrawing the whole trail every frame is quadratic); the pieces are butt-capped so the
     /// translucent line does not darken where they meet.
-    pub(crate) fn trace_step(&self, svg: &mut Svg, from: Option<&[Point2<f64>]>, to: &[Point2<f64>]) {
+    ///
+    /// With [`TrailStyle::Lines`] (the playground's screen) there are no crosses, the lines are
+    /// the joints' hues at 0.7 opacity, 1.5 units wide, and the tip's is opaque and 2.5 wide.
+    pub(crate) fn trace_step(
+        &self,
+        svg: &mut Svg,
+        from: Option<&[Point2<f64>]>,
+        to: &[Point2<f64>],
+        trail: TrailStyle,
+    ) {
         let n = to.len().saturating_sub(1);
         let u = self.u();
         let arm = 3.0 * u;
@@ -211,11 +231,24 @@ impl Scene<'_> {
         for k in 1..=n {
             let hue = style::joint_hue(k, n);
             let (x, y) = self.px(to[k]);
+            let line_attrs = match (trail, k == n) {
+                (TrailStyle::Marks, _) => format!("stroke=\"{hue}\" stroke-opacity=\"0.35\" stroke-linecap=\"butt\""),
+                (TrailStyle::Lines, false) => format!(
+                    "stroke=\"{hue}\" stroke-opacity=\"0.7\" stroke-linecap=\"butt\" stroke-width=\"{}\"",
+                    num(1.5 * u)
+                ),
+                (TrailStyle::Lines, true) => {
+                    format!("stroke=\"{hue}\" stroke-linecap=\"round\" stroke-width=\"{}\"", num(2.5 * u))
+                }
+            };
             if let Some(from) = from {
                 let (x0, y0) = self.px(from[k]);
                 let mut line = PathData::new();
                 line.move_to(x0, y0).line_to(x, y);
-                svg.path(&line, &format!("stroke=\"{hue}\" stroke-opacity=\"0.35\" stroke-linecap=\"butt\""));
+                svg.path(&line, &line_attrs);
+            }
+            if trail == TrailStyle::Lines {
+                continue;
             }
             let mut cross = PathData::new();
             cross.move_to(x - arm, y - arm).line_to(x + arm, y + arm);

@@ -7,7 +7,7 @@ use super::jobs::{MotionFields, ease, goal, load_arm, motion, picture, reachable
 use super::requests::{ArmFigureReq, MotionFigureReq, RenderReq, WorkspaceReq};
 use super::{Limits, Problem, Reply};
 use crate::motion::DEFAULT_FPS;
-use crate::picture::{Drawing, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
+use crate::picture::{Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
@@ -52,14 +52,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
         RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
-            let ws_req = WorkspaceReq {
-                arm: None,
-                limits: r.limits,
-                grid: r.grid,
-                resolution: r.resolution,
-                samples: r.samples,
-                seed: r.seed,
-            };
+            let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
             let area = reachable_area(&arm, &ws_req, limits, interrupt)?;
             picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
         }
@@ -81,14 +74,7 @@ fn arm_figure(
     let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
     let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
     let workspace = if r.workspace {
-        let ws_req = WorkspaceReq {
-            arm: None,
-            limits: r.limits,
-            grid: r.grid,
-            resolution: r.resolution,
-            samples: r.samples,
-            seed: r.seed,
-        };
+        let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
         Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
     } else {
         None
@@ -121,7 +107,15 @@ fn motion_figure(
             )));
         }
     }
+    let area = if r.workspace {
+        let on = r.limits.or_else(|| r.options.as_ref().and_then(|o| o.limits));
+        let ws_req = WorkspaceReq::area(on, r.grid, r.resolution, r.samples, r.seed);
+        Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
+    } else {
+        None
+    };
     let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
-    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS));
+    let layers = MotionLayers::screen(area.as_ref(), r.traces.unwrap_or(true), r.ghosts);
+    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS), layers);
     picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
 }

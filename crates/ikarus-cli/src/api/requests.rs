@@ -133,6 +133,20 @@ pub struct WorkspaceReq {
     pub seed: Option<u64>,
 }
 
+impl WorkspaceReq {
+    /// The area a picture shades (figures `arm`, `motion`, `workspace`): the arm is the
+    /// picture's, so none here.
+    pub fn area(
+        limits: Option<bool>,
+        grid: Option<bool>,
+        resolution: Option<u32>,
+        samples: Option<u32>,
+        seed: Option<u64>,
+    ) -> Self {
+        Self { arm: None, limits, grid, resolution, samples, seed }
+    }
+}
+
 /// `POST /api/reach`: exactly one of `point` and `points`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -279,6 +293,27 @@ pub struct MotionFigureReq {
     pub interpolation: Option<Interpolation>,
     #[serde(default)]
     pub from_solve: bool,
+    /// Also shade the reachable area, as the playground shows it: the exact region, or the
+    /// sampled grid with the workspace fields below (as `/api/workspace`).
+    #[serde(default)]
+    pub workspace: bool,
+    /// The area's limits [default: the options' `limits`].
+    #[serde(default)]
+    pub limits: Option<bool>,
+    #[serde(default)]
+    pub grid: Option<bool>,
+    #[serde(default)]
+    pub resolution: Option<u32>,
+    #[serde(default)]
+    pub samples: Option<u32>,
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// Draw the joints' traces, as lines as the playground's screen does [default: true].
+    #[serde(default)]
+    pub traces: Option<bool>,
+    /// Draw earlier poses as ghosts in a GIF, as the playground's screen does [default: false].
+    #[serde(default)]
+    pub ghosts: bool,
 }
 
 /// Figure `workspace`.

@@ -37,7 +37,12 @@
 //! only if it reaches the goal, adds no flip and lowers the local joint motion: it smooths the
 //! self-motion and never raises the path's cost. (The first sample is left as the search chose
 //! it: pulling it toward the start pose would steepen the path's first steps.) Where every path
-//! through the candidates has a flip, the flips the search could not avoid are reported in [`TrackSummary::flips`], not hidden.
+//! through the candidates has a flip (the path leaves what the arm can reach with its limits and
+//! comes back elsewhere, or the arm must change branch), the plan never jumps: between the two
+//! samples the arm leaves the path and moves by a straight line in joint space, in equal steps
+//! within the bound (continuous, and inside the limits), the inserted poses marked
+//! [`SampleStatus::OffPath`] and counted in [`TrackSummary::off_path`]. So no step of a plan
+//! exceeds the bound either, and its [`TrackSummary::flips`] stay empty.
 //!
 //! ## Flips
 //!
@@ -66,6 +71,7 @@
 //! ```
 
 mod body;
+mod bridge;
 mod follow;
 mod path;
 mod plan;
@@ -86,6 +92,7 @@ use crate::limits::Bounds;
 use crate::solve::{LimitMode, OptionsError, SolveError, SolveOptions, Solver};
 
 pub use body::{RigEffector, TrackBody};
+pub use bridge::MAX_OFF_PATH_PER_SAMPLE;
 pub use follow::{Follower, Step, follow, follow_rig};
 pub use path::{Path, PathError, PointError};
 pub use plan::plan;
@@ -200,6 +207,20 @@ pub enum TrackError {
     /// The start pose or the options do not fit the chain.
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// [`plan`] would need more off-path poses to bridge the gaps of the path than
+    /// [`MAX_OFF_PATH_PER_SAMPLE`] per sample: `max_step` is far smaller than the gaps.
+    #[error(
+        "max_step = {} rad: bridging the plan's gaps in steps this small needs {needed} off-path poses, more than the cap of {cap} ({MAX_OFF_PATH_PER_SAMPLE} per sample); raise max_step or sample the path more finely",
+        Num(*.max_step)
+    )]
+    OffPathCap {
+        /// The bound, radians.
+        max_step: f64,
+        /// The off-path poses the gaps need.
+        needed: usize,
+        /// The most allowed for this path.
+        cap: usize,
+    },
     /// The solver options' [`interrupt`](SolveOptions::interrupt) was set before the path was
     /// done.
     #[error("interrupted")]

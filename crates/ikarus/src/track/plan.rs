@@ -14,6 +14,7 @@ use crate::math;
 use crate::rng::SplitMix64;
 use crate::solve::{Outcome, Solver, Status};
 
+use super::bridge::{Bridged, bridge};
 use super::{
     Path, SampleStatus, Track, TrackError, TrackOptions, TrackSample, bounds, is_flip, joint_delta, joint_distance2,
     joint_step, unwrap_free,
@@ -47,11 +48,18 @@ struct Builder<'a> {
 }
 
 /// Tracks `path` offline from `start` (radians): the joint path through the candidates with
-/// the least flip cost and then the least joint motion, polished (see the [module docs](super)).
+/// the least flip cost and then the least joint motion, polished, and its gaps over the bound
+/// bridged off the path (see the [module docs](super)): no step exceeds
+/// [`TrackOptions::max_step`].
 ///
 /// The work is bounded: at most `candidates + seeds` solves per sample (`2·candidates` for the
 /// first), `candidates²` transitions per sample in the search, and `polish_passes` solves per
-/// sample in the polish, each solve under the solver's iteration cap.
+/// sample in the polish, each solve under the solver's iteration cap, and at most
+/// [`MAX_OFF_PATH_PER_SAMPLE`](super::MAX_OFF_PATH_PER_SAMPLE) off-path poses per sample.
+///
+/// # Errors
+/// [`TrackError::OffPathCap`] when the bound is so small that the gaps would need more
+/// off-path poses; the option and solver errors of [`TrackOptions::validate`].
 pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -> Result<Track, TrackError> {
     let solver = options.solver(chain, start)?;
     let bounds = bounds(chain, &options.solve);
@@ -77,7 +85,8 @@ pub fn plan(chain: &Chain, start: &[f64], path: &Path, options: &TrackOptions) -
         builder.polish(path.goals(), &mut poses, &mut status);
     }
     unwrap_path(bounds, &mut poses, start);
-    let samples = samples(chain, path.goals(), poses, &status, bounds);
+    let bridged = bridge(poses, &status, bounds, options.max_step)?;
+    let samples = samples(chain, path.goals(), bridged, bounds);
     Ok(Track::new(samples, bounds, options.max_step))
 }
 
@@ -313,18 +322,14 @@ fn unwrap_path(bounds: Bounds<'_>, poses: &mut [Vec<f64>], start: &[f64]) {
     }
 }
 
-/// The samples of the chosen poses: errors by forward kinematics, steps from the previous.
-fn samples(
-    chain: &Chain,
-    goals: &[Goal],
-    poses: Vec<Vec<f64>>,
-    status: &[SampleStatus],
-    bounds: Bounds<'_>,
-) -> Vec<TrackSample> {
+/// The samples of the chosen poses (and the off-path ones between them): errors by forward
+/// kinematics, steps from the previous.
+fn samples(chain: &Chain, goals: &[Goal], bridged: Bridged, bounds: Bounds<'_>) -> Vec<TrackSample> {
+    let Bridged { poses, status, goal: goal_of } = bridged;
     let mut out: Vec<TrackSample> = Vec::with_capacity(poses.len());
     for (k, angles) in poses.into_iter().enumerate() {
         let tip = end_effector(chain, &angles);
-        let goal = goals[k];
+        let goal = goals[goal_of[k]];
         let step = out.last().map_or(0.0, |p| joint_step(bounds, &angles, &p.angles));
         out.push(TrackSample {
             goal,

@@ -25,10 +25,18 @@ pub enum SampleStatus {
     IterationLimit,
     /// The solve was interrupted ([`SolveOptions::interrupt`](crate::SolveOptions::interrupt)).
     Interrupted,
+    /// [`plan`](super::plan) only: not one of the path's samples but a pose it inserted on the
+    /// way to the next one, where the chosen poses of two consecutive samples lie further apart
+    /// than [`TrackOptions::max_step`](super::TrackOptions::max_step) (where the path leaves
+    /// what the arm can follow, or the arm must change branch): the arm leaves the path there
+    /// and moves by a straight line in joint space, in steps within the bound. Its goal is the
+    /// next sample's.
+    OffPath,
 }
 
 impl SampleStatus {
-    /// `reached`, `limited`, `unreachable`, `stalled`, `iteration_limit` or `interrupted`.
+    /// `reached`, `limited`, `unreachable`, `stalled`, `iteration_limit`, `interrupted` or
+    /// `off_path`.
     #[must_use]
     pub fn as_str(self) -> &'static str {
         match self {
@@ -38,6 +46,7 @@ impl SampleStatus {
             SampleStatus::Stalled => "stalled",
             SampleStatus::IterationLimit => "iteration_limit",
             SampleStatus::Interrupted => "interrupted",
+            SampleStatus::OffPath => "off_path",
         }
     }
 
@@ -60,7 +69,8 @@ impl std::fmt::Display for SampleStatus {
     }
 }
 
-/// One sample of a tracked path.
+/// One sample of a tracked path, or a pose [`plan`](super::plan) inserted between two
+/// ([`SampleStatus::OffPath`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrackSample {
     /// The sample's goal.
@@ -84,7 +94,7 @@ pub struct TrackSample {
 /// of accelerations; each maximum is over every joint and sample where it is defined.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrackSummary {
-    /// Samples in the path.
+    /// Samples in the path (the off-path poses not counted).
     pub samples: usize,
     /// Samples [`SampleStatus::Reached`].
     pub reached: usize,
@@ -94,12 +104,15 @@ pub struct TrackSummary {
     pub unreachable: usize,
     /// Samples [`SampleStatus::Stalled`] or [`SampleStatus::IterationLimit`].
     pub stalled: usize,
+    /// Poses [`SampleStatus::OffPath`]: inserted by [`plan`](super::plan) where the arm leaves
+    /// the path to move between two samples within the bound.
+    pub off_path: usize,
     /// The samples whose step is a flip: some joint moved more than the bound
     /// ([`is_flip`]) since the previous sample.
     pub flips: Vec<usize>,
     /// The largest step, radians.
     pub max_step: f64,
-    /// The largest position error.
+    /// The largest position error of the path's samples (the off-path poses not counted).
     pub max_error: f64,
     /// The largest joint velocity, radians per sample.
     pub max_velocity: f64,
@@ -109,10 +122,13 @@ pub struct TrackSummary {
     pub max_jerk: f64,
 }
 
-/// A tracked path: every sample, and their summary.
+/// A tracked path: every sample (and the poses [`plan`](super::plan) inserted between them), and
+/// their summary.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Track {
-    /// One per sample of the path, in order.
+    /// One per sample of the path, in order, and [`SampleStatus::OffPath`] poses between two
+    /// samples where [`plan`](super::plan) left the path to stay within the bound (see
+    /// [`Track::on_path`] for the path's samples alone).
     pub samples: Vec<TrackSample>,
     /// Flips, errors and rates.
     pub summary: TrackSummary,
@@ -131,6 +147,12 @@ impl Track {
     pub(super) fn new(samples: Vec<TrackSample>, bounds: Bounds<'_>, max_step: f64) -> Self {
         let summary = summarise(&samples, bounds, max_step);
         Self { samples, summary }
+    }
+
+    /// The path's samples, one per goal in order: [`Track::samples`] without the off-path
+    /// poses.
+    pub fn on_path(&self) -> impl Iterator<Item = &TrackSample> {
+        self.samples.iter().filter(|s| s.status != SampleStatus::OffPath)
     }
 }
 
@@ -156,15 +178,17 @@ fn summarise(samples: &[TrackSample], bounds: Bounds<'_>, max_step: f64) -> Trac
             velocity[i] = Some(v);
         }
     }
+    let off_path = count(&[SampleStatus::OffPath]);
     TrackSummary {
-        samples: samples.len(),
+        samples: samples.len() - off_path,
         reached: count(&[SampleStatus::Reached]),
         limited: count(&[SampleStatus::Limited]),
         unreachable: count(&[SampleStatus::Unreachable]),
         stalled: count(&[SampleStatus::Stalled, SampleStatus::IterationLimit]),
+        off_path,
         flips: samples.iter().enumerate().filter(|(_, s)| is_flip(s.step, max_step)).map(|(k, _)| k).collect(),
         max_step: samples.iter().map(|s| s.step).fold(0.0, f64::max),
-        max_error: samples.iter().map(|s| s.error).fold(0.0, f64::max),
+        max_error: samples.iter().filter(|s| s.status != SampleStatus::OffPath).map(|s| s.error).fold(0.0, f64::max),
         max_velocity,
         max_acceleration,
         max_jerk,

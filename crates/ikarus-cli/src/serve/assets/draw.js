@@ -1,7 +1,8 @@
 // Drawing on a 2D context: the grid and axes, the reachable area (the exact region of
 // region.js, or the sampled grid's smooth edge), the reach circle, the joints' ranges (wedges)
 // when limits are on, the motion (ghost poses and joint traces up to the playhead), the wanted
-// path of a traced path (or the stroke being drawn), the base, the arm, the flips, the via
+// path of a traced path (or the stroke being drawn), the base, the arm, the flips and where a plan
+// left the path, the via
 // points, the goal and, for a goal out of reach, the nearest reachable point. It reads the
 // page's state and never writes it; the geometry comes from view.js and region.js. The screen
 // and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
@@ -59,6 +60,7 @@ export function drawScene(ctx, view, state) {
   drawBase(ctx, view, state.arm);
   drawArm(ctx, view, state.joints);
   drawFlips(ctx, view, state.track);
+  drawOffPath(ctx, view, state.track);
   drawVia(ctx, view, state.via);
   drawGoal(ctx, view, state.goal);
   drawReachMiss(ctx, view, state);
@@ -91,6 +93,37 @@ function drawFlips(ctx, view, track) {
     ctx.beginPath();
     ctx.arc(px, py, 11, 0, 2 * Math.PI);
     ctx.stroke();
+  }
+}
+
+/**
+ * Where a traced path's plan left the path (the tip's way through its off-path poses, from the
+ * sample before to the sample after): a dashed line in the goal's red on a white halo, with a
+ * small red ring where the tip leaves the path and where it comes back.
+ */
+function drawOffPath(ctx, view, track) {
+  if (!track || !track.offPath) return;
+  ctx.lineCap = "round";
+  ctx.lineJoin = "round";
+  for (const run of track.offPath) {
+    ctx.setLineDash([]);
+    ctx.strokeStyle = COLORS.plot;
+    ctx.lineWidth = 5;
+    polyline(ctx, view, run);
+    ctx.stroke();
+    ctx.setLineDash([4, 4]);
+    ctx.strokeStyle = COLORS.goal;
+    ctx.lineWidth = 2;
+    polyline(ctx, view, run);
+    ctx.stroke();
+    ctx.setLineDash([]);
+    for (const [x, y] of [run[0], run.at(-1)]) {
+      const [px, py] = toCanvas(view, x, y);
+      ctx.beginPath();
+      ctx.arc(px, py, 5, 0, 2 * Math.PI);
+      ctx.lineWidth = 2;
+      ctx.stroke();
+    }
   }
 }
 

@@ -68,16 +68,47 @@ export function saveBlob(blob, name) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
+/** The server's cap on a GIF, frames × width × height pixels (api/render.rs MAX_GIF_PIXELS). */
+export const GIF_MAX_PIXELS = 100_000_000;
+
+/** The sides a picture may have, pixels (the server's range). */
+const GIF_SIDES = [16, 4096];
+
+/**
+ * What the screen shows of a motion, for its GIF: the canvas's size (CSS pixels), the shaded
+ * reachable area (the exact region, or the sampled grid at its resolution) when it is shown,
+ * and whether the traces and the ghosts are.
+ */
+export function screenLook(state, canvas) {
+  const ws = state.showWorkspace && (state.region || state.areaOutline) ? state.workspace : null;
+  return {
+    width: canvas.clientWidth,
+    height: canvas.clientHeight,
+    workspace: !!ws,
+    grid: ws && !ws.exact ? ws.resolution : null,
+    traces: !!state.showTraces,
+    ghosts: !!state.showGhosts,
+  };
+}
+
 /**
  * The /api/render request of the motion's GIF: the motion the page plays, sampled at GIF_FPS
  * over the page's playback duration (`seconds`), so that the GIF lasts as long as the playback
- * (to within half a frame's delay: the frame count is whole).
+ * (to within half a frame's delay: the frame count is whole), and drawn as the screen `look`
+ * (screenLook) shows it: at the canvas's size (scaled down, keeping its aspect, where the frames
+ * would pass the server's pixel cap), with the area, traces and ghosts the screen shows.
  */
-export function gifRequest(animationRequest, seconds) {
+export function gifRequest(animationRequest, seconds, look) {
   // Every frame of a GIF is shown for its delay, the last one too, so frames 0..n span n + 1
   // delays: the motion itself takes one delay less than the playback.
   const duration = Math.max(seconds - 1 / GIF_FPS, 1 / GIF_FPS);
-  const req = { figure: "motion", format: "gif", width: 480, height: 480, ...animationRequest, duration, fps: GIF_FPS };
+  const frames = Math.round(duration * GIF_FPS) + 1;
+  const [w, h] = [Math.max(1, look.width), Math.max(1, look.height)];
+  const fit = Math.min(1, Math.sqrt(GIF_MAX_PIXELS / (frames * w * h)), GIF_SIDES[1] / Math.max(w, h));
+  const side = (v) => Math.min(Math.max(Math.floor(v * fit), GIF_SIDES[0]), GIF_SIDES[1]);
+  const req = { figure: "motion", format: "gif", ...animationRequest, duration, fps: GIF_FPS };
+  Object.assign(req, { width: side(w), height: side(h), workspace: look.workspace, traces: look.traces, ghosts: look.ghosts });
+  if (look.workspace && look.grid) Object.assign(req, { grid: true, resolution: look.grid });
   delete req.frames;
   return req;
 }
@@ -106,7 +137,7 @@ export function wireDownloads(state, showError, duration) {
         }
         button.disabled = true;
         button.textContent = "Rendering…";
-        blob = await api.render(gifRequest(state.animationRequest, duration()));
+        blob = await api.render(gifRequest(state.animationRequest, duration(), screenLook(state, $("plot"))));
       } else if (format === "png") {
         blob = await figurePng(state);
       } else {

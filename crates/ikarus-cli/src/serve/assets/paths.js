@@ -95,16 +95,40 @@ export function flipTips(answer) {
   return (answer.summary.flip_samples || []).map((k) => answer.samples[k].joints.at(-1));
 }
 
+/**
+ * Where a plan left the path: for each run of `off_path` poses (inserted where two samples' poses
+ * lie further apart than the bound, so that the arm moves between them within it), the tip's
+ * positions from the sample before the run to the sample after it, [[x, y], …].
+ */
+export function offPathRuns(answer) {
+  const runs = [];
+  const samples = answer.samples;
+  samples.forEach((s, k) => {
+    if (s.status !== "off_path") return;
+    const tip = s.joints.at(-1);
+    if (k > 0 && samples[k - 1].status === "off_path") runs.at(-1).push(tip);
+    else runs.push(k > 0 ? [samples[k - 1].joints.at(-1), tip] : [tip]);
+    if (k + 1 < samples.length && samples[k + 1].status !== "off_path") runs.at(-1).push(samples[k + 1].joints.at(-1));
+  });
+  return runs;
+}
+
 /** The default playback length of a traced path, seconds: TRACK_FPS samples a second, at least 1 s. */
 export const trackSeconds = (answer) => Math.max(1, answer.samples.length / TRACK_FPS);
 
-/** The page's status for a traced path: reached when every sample is, else the first other status met. */
+/**
+ * The page's status for a traced path: reached when every sample is, else the first other status
+ * met (the poses off the path between samples are not samples).
+ */
 export function trackStatus(answer) {
-  const other = answer.samples.find((s) => s.status !== "reached");
+  const other = answer.samples.find((s) => s.status !== "reached" && s.status !== "off_path");
   return other ? other.status : "reached";
 }
 
-/** One line about a traced path: mode, samples reached, flips, the largest step and error. */
+/**
+ * One line about a traced path: mode, samples reached, the poses off the path (where a plan left
+ * it to move between two samples within the bound), flips, the largest step and error.
+ */
 export function trackSummaryText(answer) {
   const s = answer.summary;
   const parts = [
@@ -113,6 +137,7 @@ export function trackSummaryText(answer) {
     `largest step ${s.max_step_deg.toFixed(1)}°`,
     `error ${Number(s.max_error).toExponential(2)}`,
   ];
+  if (s.off_path) parts.splice(1, 0, `${s.off_path} off path`);
   if (s.limited) parts.splice(1, 0, `${s.limited} limited`);
   return parts.join(" · ");
 }

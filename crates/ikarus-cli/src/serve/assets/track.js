@@ -12,7 +12,7 @@
 
 import * as api from "./api.js";
 import { armForRequest } from "./controls.js";
-import { flipTips, resampleStroke, SHAPE_SAMPLES, shapeDefaults, STROKE_SPACING, trackMotion, trackSeconds, trackStatus, trackSummaryText } from "./paths.js";
+import { flipTips, offPathRuns, resampleStroke, SHAPE_SAMPLES, shapeDefaults, STROKE_SPACING, trackMotion, trackSeconds, trackStatus, trackSummaryText } from "./paths.js";
 import { maxReach } from "./view.js";
 
 /** At most this many repeated asks for one goal (36 of them turn a joint a full turn at 10°). */
@@ -124,13 +124,16 @@ export function wireTrack(state, act) {
       const answer = await api.track(req);
       if (seq !== jobs.animateSeq) return;
       act.showError(null);
-      state.track = { request: req, answer, goals: answer.samples.map((s) => s.goal), flips: flipTips(answer) };
+      // The wanted path is the samples' goals (an off-path pose repeats the next sample's goal).
+      const goals = answer.samples.filter((s) => s.status !== "off_path").map((s) => s.goal);
+      state.track = { request: req, answer, goals, flips: flipTips(answer), offPath: offPathRuns(answer) };
       state.animation = trackMotion(answer);
       state.animationRequest = null;
       state.goal = null;
       // Its summary and status show once the tip has traced it (the chip says "moving…" until then).
       act.showWhenEnded(trackStatus(answer), trackSummaryText(answer));
       document.body.dataset.flips = String(answer.summary.flips);
+      document.body.dataset.offPath = String(answer.summary.off_path || 0);
       // The timeline plays it as any motion: linearly, one sample per 1/25 s unless a duration is set.
       act.timeline.load({ arm: req.arm, options: req.options, ease: { kind: "linear" } }, false, trackSeconds(answer));
       act.timeline.play();
@@ -149,6 +152,7 @@ export function wireTrack(state, act) {
     state.animationRequest = null;
     state.track = null;
     delete document.body.dataset.flips;
+    delete document.body.dataset.offPath;
     act.timeline.unload();
   }
 
