@@ -247,3 +247,52 @@ test("a bad rig file is its one-line problem; the hand loads and follows a finge
     child.kill("SIGINT");
   }
 });
+
+/**
+ * Issue 24, point 11: natural rig poses. With both feet pinned, the right hand dragged forward
+ * and up (within reach of the arm alone) moves the arm and leaves the torso upright; the same
+ * puppet without its rest-pose preference (every `stiffness` removed, loaded as a rig file)
+ * leans the whole torso back. Screenshots of both land beside the others (rest-after.png,
+ * rest-before.png).
+ */
+test("the puppet reaches with its arm and keeps its torso upright; without stiffness it leaned back", async () => {
+  const { child, url } = await startServer();
+  const browser = await launch();
+  const torso = ["pelvis", "spine", "neck", "head"];
+  /** Pins both feet, drags the right hand forward and up; the torso's largest turn from rest, degrees. */
+  async function reach(page) {
+    await settled(page);
+    for (const foot of ["left_foot", "right_foot"]) await page.mouse.click(...(await tipClient(page, foot)));
+    const solves = await drag(page, "right_hand", [0.45, 0.9]);
+    const last = solves[solves.length - 1].answer;
+    assert.equal(last.status, "reached", JSON.stringify(last.effectors));
+    const rig = await page.evaluate(() => window.ikarus.state.rig.rig);
+    return Math.max(...torso.map((n) => Math.abs(last.angles_deg[n] - rig.bones.find((b) => b.name === n).angle_deg)));
+  }
+  try {
+    const { page, errors } = await openPage(browser);
+    await watchSolves(page);
+    await page.goto(url);
+    await ready(page);
+    mkdirSync(artifacts, { recursive: true });
+
+    await page.selectOption("#body-kind", "rig:puppet");
+    await page.waitForFunction(() => window.ikarus.state.rig && window.ikarus.state.rig.rig.name === "puppet");
+    assert.ok((await page.evaluate(() => window.ikarus.state.rig.rig.bones.find((b) => b.name === "spine").stiffness)) > 1);
+    const upright = await reach(page);
+    assert.ok(upright < 3, `the shipped puppet turned its torso ${upright}°`);
+    await page.screenshot({ path: join(artifacts, "rest-after.png") });
+
+    const text = readFileSync(join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml"), "utf8");
+    const loose = text.replace(/^stiffness = .*\n/gm, "");
+    await page.setInputFiles("#rig-file", { name: "loose.toml", mimeType: "application/toml", buffer: Buffer.from(loose) });
+    await page.waitForFunction(() => window.ikarus.state.rig && window.ikarus.state.rig.rig.bones.every((b) => !b.stiffness), null, { timeout: 15000 });
+    const leaned = await reach(page);
+    assert.ok(leaned > 10, `without stiffness the torso turned only ${leaned}°`);
+    await page.screenshot({ path: join(artifacts, "rest-before.png") });
+    assert.deepEqual(errors, [], "console errors");
+  } finally {
+    await browser.close();
+    child.kill("SIGINT");
+  }
+});

@@ -136,6 +136,13 @@ test("the request: the rig's fields, the pose, every goal and pin, no arm-only o
   assert.equal(req.rig.solver, undefined);
   assert.equal("parent" in req.rig.bones[3], false);
   assert.deepEqual(req.rig.bones[1].limits_deg, [-120, 0]);
+  assert.equal("stiffness" in req.rig.bones[1], false);
+  // The rest-pose preference travels with the rig (without it the server would solve the
+  // shipped rigs without their stiff spine).
+  const stiff = { ...tree, bones: tree.bones.map((b) => (b.name === "top" ? { ...b, stiffness: 4, rest_deg: 5 } : b)) };
+  const sent = rigForRequest(stiff).bones[2];
+  assert.equal(sent.stiffness, 4);
+  assert.equal(sent.rest_deg, 5);
 });
 
 test("an answer's pose in bone order, and the chip's line naming what failed", () => {

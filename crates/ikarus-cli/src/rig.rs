@@ -73,6 +73,13 @@ pub struct BoneFile {
     /// Optional `[min, max]` range of the angle, degrees.
     #[serde(default)]
     pub limits_deg: Option<[f64; 2]>,
+    /// How much the bone resists turning away from its rest angle, ≥ 0 (absent: 0, no
+    /// preference); see `ikarus::Bone::stiffness`.
+    #[serde(default)]
+    pub stiffness: Option<f64>,
+    /// The angle the bone is pulled back to, degrees (absent: `angle_deg`).
+    #[serde(default)]
+    pub rest_deg: Option<f64>,
 }
 
 /// The most bones of a rig the command line (and Python) reads unless `ikarus --max-bones N`
@@ -201,6 +208,8 @@ impl RigFile {
                 })?;
                 bone = bone.with_limits(limits);
             }
+            bone.stiffness = b.stiffness.unwrap_or(0.0);
+            bone.rest = b.rest_deg.map(f64::to_radians);
             bones.push(bone);
         }
         Skeleton::new(self.base.unwrap_or([0.0, 0.0]), &bones).map_err(|e| self.describe(&e))
@@ -229,6 +238,28 @@ impl RigFile {
             }
             SkeletonError::NonFinite { index, field: BoneField::Length, value, .. } => {
                 format!("{}.length = {}: must be a finite number", self.bone(*index), Num(*value))
+            }
+            SkeletonError::NonFinite { index, field: BoneField::Stiffness, value, .. } => {
+                format!("{}.stiffness = {}: must be a finite number", self.bone(*index), Num(*value))
+            }
+            SkeletonError::NegativeStiffness { index, value, .. } => {
+                format!("{}.stiffness = {}: must be 0 or more", self.bone(*index), Num(*value))
+            }
+            SkeletonError::NonFinite { index, field: BoneField::Rest, .. } => {
+                let value = self.bones[*index].rest_deg.unwrap_or(f64::NAN);
+                format!("{}.rest_deg = {}: must be a finite number", self.bone(*index), Num(value))
+            }
+            SkeletonError::RestOutsideLimits { index, .. } => {
+                let b = &self.bones[*index];
+                let [lo, hi] = b.limits_deg.unwrap_or([f64::NAN; 2]);
+                let value = b.rest_deg.unwrap_or(f64::NAN);
+                format!(
+                    "{}.rest_deg = {}: outside limits_deg [{}, {}]",
+                    self.bone(*index),
+                    Num(value),
+                    Num(lo),
+                    Num(hi)
+                )
             }
             SkeletonError::NonFinite { index, .. } => {
                 format!(
@@ -304,6 +335,29 @@ mod tests {
         assert_eq!(rig.solver.method, Some(ikarus::Method::DampedLeastSquares));
     }
 
+    /// `stiffness` and `rest_deg` (degrees, by default the start angle) reach the skeleton;
+    /// the shipped puppet holds its torso stiffer than its limbs.
+    #[test]
+    fn the_rest_pose_preference_reads() {
+        let rig = Rig::parse(
+            "[[bones]]\nname = \"a\"\nlength = 1\nangle_deg = 30\nstiffness = 2.5\n\
+             [[bones]]\nname = \"b\"\nparent = \"a\"\nlength = 1\nangle_deg = 10\nrest_deg = -20\n",
+            "r",
+        )
+        .unwrap();
+        let s = &rig.skeleton;
+        assert_eq!(s.stiffness(), &[2.5, 0.0]);
+        assert_eq!(s.rest_angles(), &[30f64.to_radians(), (-20f64).to_radians()]);
+        assert!(s.has_rest_pose());
+        let puppet = shipped("puppet.toml").skeleton;
+        let of = |n: &str| puppet.stiffness()[puppet.index_of(n).unwrap()];
+        for (stiff, supple) in [("spine", "right_upper_arm"), ("neck", "left_forearm"), ("pelvis", "left_thigh")] {
+            assert!(of(stiff) > of(supple), "{stiff} {supple}");
+        }
+        assert_eq!(puppet.rest_angles(), puppet.start_angles());
+        assert!(shipped("hand.toml").skeleton.has_rest_pose());
+    }
+
     #[test]
     fn each_problem_is_one_line_naming_the_bone_field_and_value() {
         let a = "[[bones]]\nname = \"a\"\nlength = 1\n";
@@ -373,6 +427,23 @@ mod tests {
             (
                 "[[bones]]\nname = \"a\"\nlength = 1\nangle_deg = inf\n".to_owned(),
                 "rig file r.toml: bones[0] (\"a\").angle_deg = inf: must be a finite number",
+            ),
+            // A bad rest-pose preference.
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1\nstiffness = -2\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").stiffness = -2: must be 0 or more",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1\nstiffness = nan\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").stiffness = NaN: must be a finite number",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1\nrest_deg = 60\nlimits_deg = [-45, 45]\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").rest_deg = 60: outside limits_deg [-45, 45]",
+            ),
+            (
+                "[[bones]]\nname = \"a\"\nlength = 1\nrest_deg = -inf\n".to_owned(),
+                "rig file r.toml: bones[0] (\"a\").rest_deg = -inf: must be a finite number",
             ),
             // Unknown keys, at the top, in a bone, in the solver table.
             (

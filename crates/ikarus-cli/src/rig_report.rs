@@ -131,8 +131,8 @@ pub fn tips(rig: &Rig, angles: &[f64]) -> Vec<Point2<f64>> {
 }
 
 /// A rig file's fields as JSON (the requests' `rig`): `name`, `base`, `bones` (each with
-/// `parent`, null for a root, and `limits_deg` when it has limits) and, when the file has one,
-/// `solver`.
+/// `parent`, null for a root, and `limits_deg`, `stiffness` and `rest_deg` when it has them)
+/// and, when the file has one, `solver`.
 #[derive(Debug, serde::Serialize)]
 pub struct RigJson {
     pub name: String,
@@ -150,6 +150,10 @@ pub struct BoneJson {
     pub angle_deg: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limits_deg: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rest_deg: Option<f64>,
 }
 
 impl RigJson {
@@ -181,6 +185,8 @@ impl RigJson {
                     length: b.length,
                     angle_deg: b.angle_deg,
                     limits_deg: b.limits_deg,
+                    stiffness: b.stiffness,
+                    rest_deg: b.rest_deg,
                 })
                 .collect(),
             solver,

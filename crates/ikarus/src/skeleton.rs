@@ -41,7 +41,8 @@ pub use kinematics::Effector;
 
 /// One bone: its name, its parent's name (`None` for a root, which starts at the base), its
 /// length, its starting angle (radians, relative to the parent's direction; a root's relative
-/// to +x) and its optional limits.
+/// to +x), its optional limits, and its rest-pose preference (a stiffness and a rest angle; see
+/// [`Bone::stiffness`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Bone {
     /// Name, unique within the skeleton and not empty.
@@ -54,6 +55,16 @@ pub struct Bone {
     pub angle: f64,
     /// Optional range the angle must stay within.
     pub limits: Option<JointLimits>,
+    /// How much the bone resists turning away from its rest angle, ≥ 0 (0 by default: no
+    /// preference). In a rig solve a bone of stiffness `s` turns `1 + s` times less readily
+    /// than a bone of stiffness 0 for the same effect on the goals, and between the goals'
+    /// steps it is pulled back toward its rest angle, in what the goals and pins leave free
+    /// (see [`crate::solve`]'s rest pose): a stiff spine and a supple arm make a reach move
+    /// the arm first and the body only as needed.
+    pub stiffness: f64,
+    /// The angle the bone is pulled back to, radians (`None`: its starting angle, the bind
+    /// pose); within its limits. It matters only with a stiffness > 0.
+    pub rest: Option<f64>,
 }
 
 impl Bone {
@@ -61,7 +72,7 @@ impl Bone {
     /// limits; [`Bone::with_parent`] hangs it on another bone.
     #[must_use]
     pub fn new(name: impl Into<String>, length: f64, angle: f64) -> Self {
-        Self { name: name.into(), parent: None, length, angle, limits: None }
+        Self { name: name.into(), parent: None, length, angle, limits: None, stiffness: 0.0, rest: None }
     }
 
     /// The same bone starting at the tip of the bone called `parent`, its angle measured from
@@ -76,6 +87,20 @@ impl Bone {
     #[must_use]
     pub fn with_limits(mut self, limits: JointLimits) -> Self {
         self.limits = Some(limits);
+        self
+    }
+
+    /// The same bone with stiffness `stiffness` (see [`Bone::stiffness`]).
+    #[must_use]
+    pub fn with_stiffness(mut self, stiffness: f64) -> Self {
+        self.stiffness = stiffness;
+        self
+    }
+
+    /// The same bone pulled back to `rest` radians rather than to its starting angle.
+    #[must_use]
+    pub fn with_rest(mut self, rest: f64) -> Self {
+        self.rest = Some(rest);
         self
     }
 }
@@ -97,6 +122,9 @@ pub struct Skeleton {
     lengths: Vec<f64>,
     limits: Vec<Option<JointLimits>>,
     start: Vec<f64>,
+    /// Each bone's stiffness and rest angle ([`Bone::stiffness`], [`Bone::rest`] resolved).
+    stiffness: Vec<f64>,
+    rest: Vec<f64>,
     /// Every bone once, every parent before its children.
     order: Vec<usize>,
     /// The children of bone `i` are `children[child_start[i]..child_start[i + 1]]`, in the
@@ -116,7 +144,8 @@ impl Skeleton {
     ///
     /// Checks, in order: at least one bone; a finite base; for each bone a non-empty name not
     /// used before and a finite length > 0; every parent names a bone; no bone is its own
-    /// ancestor; each start angle finite and within its limits; the reach (the longest
+    /// ancestor; each start angle finite and within its limits; each stiffness finite and ≥ 0,
+    /// each rest angle finite and within its limits; the reach (the longest
     /// root-to-tip path plus the base's distance from the origin) at most [`MAX_REACH`].
     pub fn new(base: [f64; 2], bones: &[Bone]) -> Result<Self, SkeletonError> {
         if bones.is_empty() {
@@ -165,6 +194,7 @@ impl Skeleton {
         let lengths: Vec<f64> = bones.iter().map(|b| b.length).collect();
         let names: Vec<String> = bones.iter().map(|b| b.name.clone()).collect();
         check_angles(&names, &start, Bounds::new(&limits))?;
+        let (stiffness, rest) = rest_pose(bones, &limits)?;
         let (enter, leave) = subtrees_of(&parents, &order);
         let root = roots_of(&parents, &order);
         // The length of the path to each tip, summed root first in the order of a chain's
@@ -186,6 +216,8 @@ impl Skeleton {
             lengths,
             limits,
             start,
+            stiffness,
+            rest,
             order,
             children,
             child_start,
@@ -210,6 +242,8 @@ impl Skeleton {
                 length: link.length,
                 angle: link.angle,
                 limits: link.limits,
+                stiffness: 0.0,
+                rest: None,
             })
             .collect();
         let base = chain.base();
@@ -369,6 +403,24 @@ impl Skeleton {
         &self.start
     }
 
+    /// Each bone's stiffness ([`Bone::stiffness`]; 0 for a bone without a preference).
+    #[must_use]
+    pub fn stiffness(&self) -> &[f64] {
+        &self.stiffness
+    }
+
+    /// Each bone's rest angle, radians ([`Bone::rest`], or its start angle).
+    #[must_use]
+    pub fn rest_angles(&self) -> &[f64] {
+        &self.rest
+    }
+
+    /// Whether some bone has a stiffness > 0: a rig solve then prefers the rest pose.
+    #[must_use]
+    pub fn has_rest_pose(&self) -> bool {
+        self.stiffness.iter().any(|&s| s > 0.0)
+    }
+
     /// The bones as given to [`Skeleton::new`], with the start angles.
     #[must_use]
     pub fn bones(&self) -> Vec<Bone> {
@@ -379,6 +431,8 @@ impl Skeleton {
                 length: self.lengths[i],
                 angle: self.start[i],
                 limits: self.limits[i],
+                stiffness: self.stiffness[i],
+                rest: (self.rest[i] != self.start[i]).then_some(self.rest[i]),
             })
             .collect()
     }
@@ -408,6 +462,36 @@ impl Skeleton {
         }
         check_angles(&self.names, angles, bounds)
     }
+}
+
+/// Each bone's stiffness and rest angle (its start angle unless given), checked: a stiffness
+/// finite and ≥ 0, a rest angle finite and within the bone's limits.
+fn rest_pose(bones: &[Bone], limits: &[Option<JointLimits>]) -> Result<(Vec<f64>, Vec<f64>), SkeletonError> {
+    let mut stiffness = Vec::with_capacity(bones.len());
+    let mut rest = Vec::with_capacity(bones.len());
+    for (index, (bone, lim)) in bones.iter().zip(limits).enumerate() {
+        let name = || bone.name.clone();
+        let s = bone.stiffness;
+        if !s.is_finite() {
+            return Err(SkeletonError::NonFinite { index, name: name(), field: BoneField::Stiffness, value: s });
+        }
+        if s < 0.0 {
+            return Err(SkeletonError::NegativeStiffness { index, name: name(), value: s });
+        }
+        let r = bone.rest.unwrap_or(bone.angle);
+        if !r.is_finite() {
+            return Err(SkeletonError::NonFinite { index, name: name(), field: BoneField::Rest, value: r });
+        }
+        if let Some(l) = lim {
+            if !l.contains(r) {
+                let (min, max) = (l.min(), l.max());
+                return Err(SkeletonError::RestOutsideLimits { index, name: name(), value: r, min, max });
+            }
+        }
+        stiffness.push(s);
+        rest.push(r);
+    }
+    Ok((stiffness, rest))
 }
 
 fn check_angles(names: &[String], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {

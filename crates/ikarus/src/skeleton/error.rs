@@ -17,6 +17,10 @@ pub enum BoneField {
     Angle,
     /// [`Bone::limits`](super::Bone::limits).
     Limits,
+    /// [`Bone::stiffness`](super::Bone::stiffness).
+    Stiffness,
+    /// [`Bone::rest`](super::Bone::rest).
+    Rest,
 }
 
 impl std::fmt::Display for BoneField {
@@ -25,6 +29,8 @@ impl std::fmt::Display for BoneField {
             BoneField::Length => "length",
             BoneField::Angle => "angle",
             BoneField::Limits => "limits",
+            BoneField::Stiffness => "stiffness",
+            BoneField::Rest => "rest",
         })
     }
 }
@@ -127,6 +133,35 @@ pub enum SkeletonError {
         Num(*.max)
     )]
     AngleOutsideLimits {
+        /// Index of the bone, from 0.
+        index: usize,
+        /// Its name.
+        name: String,
+        /// The offending angle, radians.
+        value: f64,
+        /// Lower limit, radians.
+        min: f64,
+        /// Upper limit, radians.
+        max: f64,
+    },
+    /// A bone's stiffness is negative.
+    #[error("bones[{index}] ({name:?}).stiffness: must be 0 or more, got {}", Num(*.value))]
+    NegativeStiffness {
+        /// Index of the bone, from 0.
+        index: usize,
+        /// Its name.
+        name: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A bone's rest angle lies outside its limits.
+    #[error(
+        "bones[{index}] ({name:?}).rest: {} rad lies outside the limits [{}, {}] rad",
+        Num(*.value),
+        Num(*.min),
+        Num(*.max)
+    )]
+    RestOutsideLimits {
         /// Index of the bone, from 0.
         index: usize,
         /// Its name.

@@ -291,7 +291,7 @@ mod tests {
                         .map(|(i, &(l, p, key))| {
                             // About one bone in four is a root.
                             let parent = (i > 0 && p % 4 != 0).then(|| format!("b{}", p as usize % i));
-                            (key, Bone { name: format!("b{i}"), parent, length: l, angle: 0.0, limits: None })
+                            (key, Bone { parent, ..Bone::new(format!("b{i}"), l, 0.0) })
                         })
                         .collect();
                     bones.sort_by_key(|(key, _)| *key);

@@ -11,10 +11,16 @@
 //! - [`LimitMode::Weighted`] (weighted least norm, Chan & Dubey 1995): each joint's column is
 //!   weighted by how near its limit the task moves it, `W Jᵀ (J W Jᵀ)⁻¹` with `W` diagonal,
 //!   computed as the rule's step on `J W^½`.
+//!
+//! A body with a rest-pose preference (a skeleton whose bones have a stiffness, see
+//! [`Bone::stiffness`](crate::Bone::stiffness)) weights its columns the same way, joint `i` by
+//! `kᵢ = 1/√(1 + sᵢ)` for stiffness `sᵢ`, so that the step is the one of least
+//! `Σ (1 + sᵢ) Δθᵢ²` (stiff joints turn less); and the first try of each step adds a pull toward
+//! the rest angles in the null space of the task (see [`pull_to_rest`]).
 
 use super::LimitMode;
 use super::algebra::Algebra;
-use super::model::{Model, ScratchOf};
+use super::model::{Model, Posture, ScratchOf};
 use super::problem::Problem;
 use super::step::Rule;
 use crate::math;
@@ -26,21 +32,36 @@ const NULLSPACE_GAIN: f64 = 0.3;
 /// The null-space push fades linearly once the task error is below this share of the reach.
 const NULLSPACE_FADE: f64 = 0.1;
 
+/// Per step, a joint with a rest-pose preference is asked to cover this share of its
+/// stiffness-weighted distance to its rest angle (before the projection into the null space,
+/// and the cap of [`pull_to_rest`]).
+const REST_GAIN: f64 = 0.5;
+
+/// The pull of a step may turn a joint by up to this much (radians, about 3°) even when the
+/// goals' own step turns them by less (see [`pull_to_rest`]).
+const REST_FLOOR: f64 = 0.05;
+
 /// Fills `s.delta` with the joint step of `rule` under the problem's limit mode, scaled by the
 /// gain and the rates, and returns the factor that brings it within
 /// [`SolveOptions::max_step`](super::SolveOptions::max_step). `mu` is Levenberg–Marquardt's
-/// damping; the task error `e` and `J` are in `s.alg`.
+/// damping; the task error `e` and `J` are in `s.alg`. With `pull` and a body with a rest-pose
+/// preference, the step carries the pull toward the rest pose ([`pull_to_rest`]).
 #[inline]
 pub(super) fn compute_delta<M: Model>(
     p: &Problem<'_, M>,
     rule: Rule,
     mu: f64,
+    pull: bool,
     angles: &[f64],
     s: &mut ScratchOf<M>,
 ) -> f64 {
     let (model, opts, mode) = (p.model, p.opts, p.mode);
     let n = model.len();
-    s.scale.fill(1.0);
+    let posture = model.posture();
+    match posture {
+        Some(post) => s.scale.copy_from_slice(post.scale),
+        None => s.scale.fill(1.0),
+    }
     let (locking, weighing, pushing) = match mode {
         LimitMode::Ignore | LimitMode::Clamp => (false, false, false),
         LimitMode::Lock => (true, false, false),
@@ -55,7 +76,7 @@ pub(super) fn compute_delta<M: Model>(
     let fade = if pushing { (s.alg.e_norm() / (NULLSPACE_FADE * model.max_reach())).min(1.0) } else { 0.0 };
     for round in 0..=n {
         // Until a joint is locked or weighted, J itself is the weighted Jacobian.
-        let plain = round == 0 && !weighing;
+        let plain = round == 0 && !weighing && posture.is_none();
         if !plain {
             for i in 0..n {
                 let k = if s.locked[i] { 0.0 } else { s.scale[i] };
@@ -69,6 +90,9 @@ pub(super) fn compute_delta<M: Model>(
                 let rate = opts.rates.get(i).copied().unwrap_or(1.0);
                 s.delta[i] = opts.gain * rate * s.scale[i] * s.step[i];
             }
+        }
+        if let (true, Some(post)) = (pull, posture) {
+            pull_to_rest(p, post, plain, angles, s);
         }
         if pushing {
             push_to_the_middle(p, fade, plain, angles, s);
@@ -102,15 +126,15 @@ fn weigh<M: Model>(model: &M, angles: &[f64], s: &mut ScratchOf<M>) {
                 } else {
                     0.0
                 };
-                s.scale[i] = w.sqrt();
+                s.scale[i] *= w.sqrt();
             }
         }
     }
 }
 
 /// The null-space push: `z` pulls limited joints toward the middle; remove what the task would
-/// see of it: `Δθ += z − Jᵀ (J Jᵀ)⁺ J z`, over the free (unlocked) joints. `plain` says whether
-/// this round's weighted Jacobian is `J` itself, whose Gram matrix the algebra holds.
+/// see of it ([`project_free`]) and add it to the step. `plain` says whether this round's
+/// weighted Jacobian is `J` itself, whose Gram matrix the algebra holds.
 #[inline]
 fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
     for (i, lim) in p.model.limits().iter().enumerate() {
@@ -119,7 +143,65 @@ fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, plain: bool, angl
             _ => 0.0,
         };
     }
-    s.alg.project_push(plain, p.opts.singular_threshold, &s.step, &s.locked, &mut s.delta);
+    project_free(p, plain, s);
+    for (d, (&q, &locked)) in s.delta.iter_mut().zip(s.pull.iter().zip(&s.locked)) {
+        if !locked {
+            *d += q;
+        }
+    }
+}
+
+/// The joint motion `z` (in `s.step`) less what the task would see of it, into `s.pull`, in the
+/// metric of the weighted step (`K` the column weights, 1 unless weighted; `Ĵ = J K`):
+/// `K (z' − Ĵᵀ (Ĵ Ĵᵀ)⁺ Ĵ z')` with `z' = K⁻¹ z`, so that `J` of it is 0; the locked joints (and
+/// those of weight 0) are left out. With every weight 1 this is `z − Jᵀ (J Jᵀ)⁺ J z`.
+#[inline]
+fn project_free<M: Model>(p: &Problem<'_, M>, plain: bool, s: &mut ScratchOf<M>) {
+    for i in 0..s.step.len() {
+        let k = s.scale[i];
+        s.step[i] = if k > 0.0 && !s.locked[i] { s.step[i] / k } else { 0.0 };
+    }
+    s.pull.fill(0.0);
+    s.alg.project_push(plain, p.opts.singular_threshold, &s.step, &s.locked, &mut s.pull);
+    for (q, &k) in s.pull.iter_mut().zip(&s.scale) {
+        *q *= k;
+    }
+}
+
+/// The pull toward the rest pose: joint `i` is asked to turn by
+/// `zᵢ = −REST_GAIN · pullᵢ · (θᵢ − restᵢ)`, the natural gradient of `½ Σ sᵢ (θᵢ − restᵢ)²` in
+/// the metric of the weighted step; what the task would see of it is removed in that same
+/// metric (`K` the column weights, `Ĵ = J K`, `z' = K⁻¹ z`):
+/// `Δθ += c · K (z' − Ĵᵀ (Ĵ Ĵᵀ)⁺ Ĵ z')`, over the free joints, so that to first order the pull
+/// moves no goal and no pin. It is capped (`c ≤ 1`) at the largest turn of the task's own step
+/// or [`REST_FLOOR`], whichever is larger, so that it never outruns the goals by much: far from
+/// them the body is pulled home as fast as the limbs move. The line search judges the step with
+/// its pull on the task's error alone, and tries it once: a step whose pull costs too much (near
+/// the goals, where the pull's second-order error outweighs the step's gain) is tried again
+/// without it, which keeps the final convergence the rule's own.
+#[inline]
+fn pull_to_rest<M: Model>(p: &Problem<'_, M>, post: Posture<'_>, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
+    let mut largest = 0.0f64;
+    for i in 0..angles.len() {
+        if !s.locked[i] {
+            largest = largest.max(s.delta[i].abs());
+        }
+        s.step[i] = -REST_GAIN * post.pull[i] * (angles[i] - post.rest[i]);
+    }
+    if !(largest > 0.0 && largest.is_finite()) {
+        return;
+    }
+    project_free(p, plain, s);
+    let size = s.pull.iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    if !(size > 0.0 && size.is_finite()) {
+        return;
+    }
+    let c = (largest.max(REST_FLOOR) / size).min(1.0);
+    for (d, (&q, &locked)) in s.delta.iter_mut().zip(s.pull.iter().zip(&s.locked)) {
+        if !locked {
+            *d += c * q;
+        }
+    }
 }
 
 /// Clamp and lock: a free joint whose step crosses its limit goes only to the limit and is

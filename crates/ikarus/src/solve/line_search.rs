@@ -65,8 +65,12 @@ fn damped_search<M: Model>(
     s: &mut ScratchOf<M>,
 ) -> Option<f64> {
     let backtrack = p.opts.backtrack;
-    for _ in 0..=backtrack {
-        let scale = compute_delta(p, Rule::LevenbergMarquardt, damping.mu(), angles, s);
+    // The rest pose's pull rides on the first try only: a step it spoils is tried again
+    // without it, at the same damping.
+    let mut pulled = p.model.posture().is_some();
+    let mut tries = 0;
+    while tries <= backtrack {
+        let scale = compute_delta(p, Rule::LevenbergMarquardt, damping.mu(), pulled, angles, s);
         let (trial_error, expected, trial_phi) = try_pose(p, scale, angles, s);
         if backtrack == 0 {
             return Some(trial_phi);
@@ -76,7 +80,11 @@ fn damped_search<M: Model>(
             damping.accept(decrease, expected);
             return Some(trial_phi);
         }
+        if std::mem::take(&mut pulled) {
+            continue;
+        }
         damping.reject();
+        tries += 1;
     }
     None
 }
@@ -92,8 +100,12 @@ fn halving_search<M: Model>(
     angles: &[f64],
     s: &mut ScratchOf<M>,
 ) -> Option<f64> {
-    let mut scale = compute_delta(p, rule, mu, angles, s);
-    for attempt in 0..=halvings {
+    let mut scale = compute_delta(p, rule, mu, true, angles, s);
+    // Whether the step carries the rest pose's pull: its first try does; if that fails, the
+    // step without the pull is tried at full length, and then halved.
+    let mut pulled = p.model.posture().is_some();
+    let mut attempt = 0;
+    while attempt <= halvings {
         let (trial_error, expected, trial_phi) = try_pose(p, scale, angles, s);
         if p.opts.backtrack == 0 {
             return Some(trial_phi);
@@ -101,9 +113,14 @@ fn halving_search<M: Model>(
         if trial_error < current && current - trial_error >= SUFFICIENT_DECREASE * expected {
             return Some(trial_phi);
         }
+        if std::mem::take(&mut pulled) {
+            scale = compute_delta(p, rule, mu, false, angles, s);
+            continue;
+        }
         if attempt < halvings {
             scale *= 0.5;
         }
+        attempt += 1;
     }
     None
 }

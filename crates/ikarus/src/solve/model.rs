@@ -23,6 +23,20 @@ use crate::math;
 /// The scratch of a model's solves.
 pub(super) type ScratchOf<M> = Scratch<<M as Model>::Points, <M as Model>::Alg>;
 
+/// A body's rest-pose preference, one entry per joint (see `limit_modes::pull_to_rest`):
+/// joint `i` turns `1 / scale[i]²` times less readily than a joint of scale 1, and is pulled
+/// back toward `rest[i]` at the share `pull[i]` of its gain, in the null space of the task.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Posture<'a> {
+    /// `1 / √(1 + stiffness)`: the weight of the joint's column.
+    pub(super) scale: &'a [f64],
+    /// `stiffness / (1 + stiffness)`: the pull's share, the natural gradient of
+    /// `½ Σ stiffness (θ − rest)²` in the metric `1 + stiffness`.
+    pub(super) pull: &'a [f64],
+    /// The rest angles.
+    pub(super) rest: &'a [f64],
+}
+
 /// A kinematic body the solver core can move, with what it is asked to reach: angles in,
 /// points, the task error and the Jacobian out.
 pub(super) trait Model: Sized {
@@ -46,6 +60,12 @@ pub(super) trait Model: Sized {
     fn limits(&self) -> &[Option<JointLimits>];
     /// The limits as [`Bounds`].
     fn bounds(&self) -> Bounds<'_>;
+    /// The body's rest-pose preference, if it has one (a skeleton with stiff bones; a chain
+    /// has none, and its steps are the rules' own).
+    #[inline]
+    fn posture(&self) -> Option<Posture<'_>> {
+        None
+    }
     /// Forward kinematics of `angles` into `points`; returns the end effector's orientation
     /// (a chain's; for other bodies some number that is finite exactly when every angle is).
     fn forward_into(&self, angles: &[f64], points: &mut Self::Points) -> f64;

@@ -6,7 +6,7 @@ use nalgebra::Point2;
 
 use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
 use super::attempt::distance;
-use super::model::{Model, ScratchOf};
+use super::model::{Model, Posture, ScratchOf};
 use super::problem::Problem;
 use super::rig::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
 use super::{Outcome, SolveOptions, Status};
@@ -72,6 +72,10 @@ pub(super) struct RigWork {
     /// Where the first level, solved again alone, starts from (the pose the whole solve
     /// ended on): its own buffer, since that solve's restarts draw into its scratch's.
     pub(super) resume: Vec<f64>,
+    /// The rest pose's column weights and pull shares (see [`Posture`]); empty when no bone
+    /// of the skeleton has a stiffness.
+    pub(super) rest_scale: Vec<f64>,
+    pub(super) rest_pull: Vec<f64>,
     fk: RigPoints,
     lengths: Vec<f64>,
 }
@@ -96,6 +100,13 @@ impl RigWork {
         self.limits.extend(skeleton.limits().iter().map(|l| if ignore { None } else { *l }));
         self.start.clear();
         self.start.extend_from_slice(start);
+        self.rest_scale.clear();
+        self.rest_pull.clear();
+        if skeleton.has_rest_pose() {
+            let stiffness = skeleton.stiffness();
+            self.rest_scale.extend(stiffness.iter().map(|s| 1.0 / (1.0 + s).sqrt()));
+            self.rest_pull.extend(stiffness.iter().map(|s| s / (1.0 + s)));
+        }
         for g in &task.goals {
             let Some(bend) = g.bend else { continue };
             let (lo, hi) = match bend {
@@ -210,6 +221,8 @@ pub(super) struct Rig<'a> {
     pub(super) primary_rows: usize,
     /// The solve's tolerance (the merit's weight of the first level comes from it).
     pub(super) tolerance: f64,
+    /// The skeleton's rest-pose preference, if it has one.
+    pub(super) posture: Option<Posture<'a>>,
 }
 
 impl Rig<'_> {
@@ -279,6 +292,11 @@ impl Model for Rig<'_> {
 
     fn bounds(&self) -> Bounds<'_> {
         if self.limits.is_empty() { Bounds::free() } else { Bounds::new(self.limits) }
+    }
+
+    #[inline]
+    fn posture(&self) -> Option<Posture<'_>> {
+        self.posture
     }
 
     #[inline]

@@ -1,7 +1,7 @@
 //! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors, the core's
 //! loop and restarts on the [`Rig`] model, and the mix.
 
-use super::model::Model;
+use super::model::{Model, Posture};
 use super::problem::Problem;
 use super::restarts::solve_with_restarts;
 use super::rig::RigTask;
@@ -50,6 +50,13 @@ impl Solver {
             limits: &work.limits,
             primary_rows: work.primary_rows,
             tolerance: opts.tolerance,
+            // (Fields of `work` borrowed one by one: the first level's solve below writes
+            // `work.resume`.)
+            posture: (!work.rest_scale.is_empty()).then(|| Posture {
+                scale: &work.rest_scale,
+                pull: &work.rest_pull,
+                rest: skeleton.rest_angles(),
+            }),
         };
         let s = &mut self.rig_scratch;
         Model::fit(&rig, s);

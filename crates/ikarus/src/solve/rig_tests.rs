@@ -411,3 +411,80 @@ fn the_first_level_solved_again_may_restart() {
     assert_eq!(out.pose.angles().len(), 7);
     assert!(out.restarts >= 1, "{out:?}");
 }
+
+/// The puppet without its rest-pose preference: every bone's stiffness 0 (the solver of
+/// before issue 24).
+fn without_rest_pose(skeleton: &Skeleton) -> Skeleton {
+    let bones: Vec<_> = skeleton.bones().into_iter().map(|b| b.with_stiffness(0.0)).collect();
+    Skeleton::new([skeleton.base().x, skeleton.base().y], &bones).unwrap()
+}
+
+/// The largest turn, degrees, of the pelvis, spine, neck and head of `angles` from the rest pose.
+fn torso_turn(puppet: &Skeleton, angles: &[f64]) -> f64 {
+    ["pelvis", "spine", "neck", "head"]
+        .iter()
+        .map(|n| bone(puppet, n))
+        .map(|i| (angles[i] - puppet.rest_angles()[i]).abs().to_degrees())
+        .fold(0.0, f64::max)
+}
+
+/// Issue 24, point 11: with both feet pinned and the right hand sent forward and up, within
+/// reach of the arm alone, the shipped puppet moves its arm and keeps its torso upright (every
+/// torso bone within 3° of rest) while the hand reaches; without its stiffness the same solve
+/// leaned the torso back by more than 10°.
+#[test]
+fn a_reach_the_arm_can_make_alone_leaves_the_torso_upright() {
+    let puppet = rig("puppet");
+    assert!(puppet.has_rest_pose());
+    assert!(puppet.stiffness()[bone(&puppet, "spine")] > puppet.stiffness()[bone(&puppet, "right_forearm")]);
+    let opts = SolveOptions { limits: LimitMode::Lock, ..SolveOptions::default() };
+    let pins = vec![Pin::new(bone(&puppet, "left_foot")), Pin::new(bone(&puppet, "right_foot"))];
+    let hand = bone(&puppet, "right_hand");
+    // Forward and up from the shoulder (0, 0.52), within the arm's 0.79.
+    for (x, y) in [(0.45, 0.9), (0.55, 0.75), (0.3, 1.1)] {
+        let task = RigTask::new(vec![RigGoal::new(hand, Goal::position(x, y).unwrap())], pins.clone());
+        let mut solver = Solver::new(opts.clone()).unwrap();
+        let out = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+        assert!(verify(&puppet, puppet.start_angles(), &task, &opts, &out), "({x}, {y}): {:?}", out.status);
+        let turn = torso_turn(&puppet, out.pose.angles());
+        assert!(turn < 3.0, "({x}, {y}): the torso turned {turn}°");
+        let free = without_rest_pose(&puppet);
+        let before = solver.solve_rig(&free, free.start_angles(), &task).unwrap();
+        assert!(verify(&free, free.start_angles(), &task, &opts, &before));
+        let leaned = torso_turn(&puppet, before.pose.angles());
+        assert!(leaned > 10.0, "({x}, {y}): without stiffness the torso turned only {leaned}°");
+    }
+}
+
+/// The pull toward the rest pose acts in what the goals leave free: from a torso leaned back
+/// and a head turned, a reach the arm can make alone brings them most of the way back upright,
+/// while the hand reaches and the pins hold; where the goal needs the body (the left hand
+/// behind the back, out of the arm's reach), the body moves as it must.
+#[test]
+fn the_rest_pose_pulls_the_body_home_in_the_null_space() {
+    let puppet = rig("puppet");
+    let opts = SolveOptions { limits: LimitMode::Lock, ..SolveOptions::default() };
+    let pins = vec![Pin::new(bone(&puppet, "left_foot")), Pin::new(bone(&puppet, "right_foot"))];
+    let mut start = puppet.start_angles().to_vec();
+    for (name, d) in [("pelvis", 20.0), ("spine", 20.0), ("neck", -20.0), ("head", 25.0)] {
+        start[bone(&puppet, name)] += deg(d);
+    }
+    let leaned = torso_turn(&puppet, &start);
+    let hand = bone(&puppet, "right_hand");
+    let task = RigTask::new(vec![RigGoal::new(hand, Goal::position(0.2, 0.25).unwrap())], pins.clone());
+    let mut solver = Solver::new(opts.clone()).unwrap();
+    let out = solver.solve_rig(&puppet, &start, &task).unwrap();
+    assert!(verify(&puppet, &start, &task, &opts, &out), "{:?}", out.status);
+    let turn = torso_turn(&puppet, out.pose.angles());
+    assert!(turn < 0.5 * leaned, "from {leaned}° the torso came back only to {turn}°");
+
+    // Behind the back and low: the arm alone cannot reach it; the body gives what it must and
+    // no more, and the neck and head (on no goal's path) stay at rest.
+    let left = bone(&puppet, "left_hand");
+    let task = RigTask::new(vec![RigGoal::new(left, Goal::position(-0.8, 0.4).unwrap())], pins);
+    let out = solver.solve_rig(&puppet, puppet.start_angles(), &task).unwrap();
+    for name in ["neck", "head"] {
+        let i = bone(&puppet, name);
+        assert_eq!(out.pose.angles()[i], puppet.rest_angles()[i], "{name}");
+    }
+}

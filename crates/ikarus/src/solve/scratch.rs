@@ -17,6 +17,8 @@ pub(super) struct Scratch<P, A> {
     /// The method's step in weighted coordinates.
     pub(super) step: Vec<f64>,
     pub(super) delta: Vec<f64>,
+    /// The rest pose's pull of this step (a body with a [`Posture`](super::model::Posture)).
+    pub(super) pull: Vec<f64>,
     pub(super) trial: Vec<f64>,
     /// The best pose of a non-descent method (CCD, FABRIK).
     pub(super) best: Vec<f64>,
@@ -36,6 +38,7 @@ impl<P, A: super::algebra::Algebra> Scratch<P, A> {
             &mut self.scale,
             &mut self.step,
             &mut self.delta,
+            &mut self.pull,
             &mut self.trial,
             &mut self.best,
             &mut self.restart,

@@ -100,7 +100,7 @@ pub fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal 
 
 /// A shipped rig, `examples/rigs/{name}.toml`, read with `toml` (the CLI's reader, with its
 /// error messages, is not available to the library's tests): bones' name, parent, length,
-/// angle and limits in degrees, and the base.
+/// angle and limits in degrees, stiffness and rest angle, and the base.
 pub fn rig(name: &str) -> Skeleton {
     let path = format!("{}/../../examples/rigs/{name}.toml", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).expect("a shipped rig");
@@ -123,6 +123,12 @@ pub fn rig(name: &str) -> Skeleton {
             if let Some(l) = b.get("limits_deg") {
                 let l = l.as_array().expect("limits");
                 bone = bone.with_limits(JointLimits::new(deg(number(&l[0])), deg(number(&l[1]))).expect("limits"));
+            }
+            if let Some(s) = b.get("stiffness") {
+                bone = bone.with_stiffness(number(s));
+            }
+            if let Some(r) = b.get("rest_deg") {
+                bone = bone.with_rest(deg(number(r)));
             }
             bone
         })

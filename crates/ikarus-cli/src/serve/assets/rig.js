@@ -191,6 +191,9 @@ export function rigForRequest(rig) {
       length: b.length,
       angle_deg: b.angle_deg,
       ...(b.limits_deg ? { limits_deg: b.limits_deg } : {}),
+      // The rest-pose preference: a stiff bone turns less and is pulled back to its rest angle.
+      ...(b.stiffness !== undefined && b.stiffness !== null ? { stiffness: b.stiffness } : {}),
+      ...(b.rest_deg !== undefined && b.rest_deg !== null ? { rest_deg: b.rest_deg } : {}),
     })),
   };
 }

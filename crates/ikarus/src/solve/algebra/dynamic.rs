@@ -406,6 +406,11 @@ impl Algebra for Dynamic {
         }
     }
 
+    /// `y = A⁺ W z` by a Cholesky factorisation of `A + t² I` (`t` the singular threshold: the
+    /// pseudoinverse's own cut, as a damping, which leaves the directions well above it exact),
+    /// or where that fails by the eigen-decomposition; then `delta += z − Wᵀ y`. (The
+    /// factorisation is several times cheaper than the decomposition, and the rest pose's pull
+    /// projects every step.)
     fn project_push(&mut self, plain: bool, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]) {
         let m = self.e.len();
         {
@@ -414,8 +419,12 @@ impl Algebra for Dynamic {
                 self.r[r] = (0..z.len()).map(|j| w[(r, j)] * z[j]).sum();
             }
         }
-        symmetric_eigen(m, &self.a, &mut self.factor, &mut self.values, &mut self.vectors);
-        pinv_apply(m, &self.values, &self.vectors, threshold * threshold, &self.r, &mut self.y);
+        let trace: f64 = (0..m).map(|i| self.a[i + i * m]).sum();
+        let shift = (threshold * threshold).max(1e-15 * trace);
+        if !cholesky_solve(m, &self.a, shift, &self.r, &mut self.factor, &mut self.first, &mut self.y) {
+            symmetric_eigen(m, &self.a, &mut self.factor, &mut self.values, &mut self.vectors);
+            pinv_apply(m, &self.values, &self.vectors, threshold * threshold, &self.r, &mut self.y);
+        }
         let w = if plain { &self.jacobian } else { &self.weighted };
         for (i, d) in delta.iter_mut().enumerate() {
             if !locked[i] {
