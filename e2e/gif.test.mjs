@@ -85,7 +85,8 @@ test("the GIF is the screen's picture: its size, the shaded area, the traces and
     const bare = await gif(page);
     assert.deepEqual([bare.req.workspace, bare.req.traces, bare.req.ghosts], [false, false, false]);
     const plain = await firstFrame(page, bare.bytes, [meta.palette.workspace]);
-    assert.equal(plain.counts[0], 0, "no area");
+    // (a few antialiased edge pixels may round to the area's colour: far fewer than the area paints)
+    assert.ok(plain.counts[0] * 100 < frame.counts[0], `no area: ${plain.counts[0]} vs ${frame.counts[0]} pixels`);
     assert.deepEqual(errors, [], "console errors");
   } finally {
     await browser.close();

@@ -499,8 +499,12 @@ fn track_endpoint_and_its_bad_requests() {
     assert_eq!(a.status, 200, "{}", String::from_utf8_lossy(&a.body));
     let v = a.json();
     assert_eq!(v["mode"], "plan");
-    assert_eq!(v["samples"].as_array().unwrap().len(), 40);
-    // 40 samples are coarse near the base: the flips the plan could not avoid are listed.
+    // 40 samples are coarse near the base: where the plan must step over the bound it leaves
+    // the path for poses within it (`off_path`), listed beside the 40 samples.
+    let off = v["summary"]["off_path"].as_u64().unwrap() as usize;
+    assert!(off > 0, "{}", v["summary"]);
+    assert_eq!(v["samples"].as_array().unwrap().len(), 40 + off);
+    assert_eq!((v["summary"]["samples"].as_u64(), v["summary"]["flips"].as_u64()), (Some(40), Some(0)));
     assert_eq!(v["summary"]["reached"], 40);
     assert_eq!(
         v["summary"]["flips"].as_u64().unwrap() as usize,

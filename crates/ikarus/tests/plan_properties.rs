@@ -3,8 +3,6 @@
 //! the poses stay inside the limits, and the path's samples are all there, in order; where the
 //! arm left the path the poses say so (`off_path`).
 
-mod common;
-
 use std::f64::consts::PI;
 
 use ikarus::track::{self, Path, SampleStatus, TrackOptions};
