@@ -181,12 +181,9 @@ fn project_free<M: Model>(p: &Problem<'_, M>, plain: bool, s: &mut ScratchOf<M>)
 /// without it, which keeps the final convergence the rule's own.
 #[inline]
 fn pull_to_rest<M: Model>(p: &Problem<'_, M>, post: Posture<'_>, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
-    let mut largest = 0.0f64;
-    for i in 0..angles.len() {
-        if !s.locked[i] {
-            largest = largest.max(s.delta[i].abs());
-        }
-        s.step[i] = -REST_GAIN * post.pull[i] * (angles[i] - post.rest[i]);
+    let largest = s.delta.iter().zip(&s.locked).filter(|(_, l)| !**l).fold(0.0f64, |m, (d, _)| m.max(d.abs()));
+    for (z, ((a, r), f)) in s.step.iter_mut().zip(angles.iter().zip(post.rest).zip(post.pull)) {
+        *z = -REST_GAIN * f * (a - r);
     }
     if !(largest > 0.0 && largest.is_finite()) {
         return;
