@@ -2,7 +2,8 @@
 //! the server: the exact region ([`Region::of`], the default) or, when asked, a sampled
 //! occupancy grid (`--grid`, `"grid": true`).
 
-use ikarus::reach::{Region, Workspace, WorkspaceOptions};
+use ikarus::Interrupt;
+use ikarus::reach::{Region, RegionError, RegionOptions, Workspace, WorkspaceOptions};
 
 use crate::arm::Arm;
 use crate::error::CliError;
@@ -97,12 +98,22 @@ impl GridRequest {
     }
 }
 
-/// The exact region of `arm`, within its ranges if `limits`, or a run-time error when the
-/// library could not build it: a region that lost every boundary piece, or no area although two
-/// joints move (a fault of the library's union, seen on a few random arms of 5 and 11 links;
-/// the edges answer it as a failure, never as an empty region).
-pub fn exact_region(arm: &Arm, limits: bool) -> Result<Region, CliError> {
-    let region = Region::of(&arm.chain, limits);
+/// The exact region of `arm`, within its ranges if `limits`, built within the library's work
+/// cap ([`Region::try_of`]) and stopping when `interrupt` is set. An input error for an arm
+/// whose region needs more than the cap (the edge suggests the sampled grid), or a run-time
+/// error when the library could not build it: a region that lost every boundary piece, or no
+/// area although two joints move (a fault of the library's union, seen on a few random arms
+/// of 5 and 11 links; the edges answer it as a failure, never as an empty region). The server
+/// reads an interrupted build as its interrupt ([`RegionError::Interrupted`] is a run-time
+/// error here).
+pub fn exact_region(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<Region, CliError> {
+    let options = RegionOptions { limits, interrupt: interrupt.cloned(), ..RegionOptions::default() };
+    let region = Region::try_of(&arm.chain, &options).map_err(|e| match e {
+        RegionError::TooComplex { .. } => {
+            CliError::input(format!("{}: {e} (`--grid`, \"grid\": true, samples it)", arm.label))
+        }
+        e => CliError::runtime(format!("{}: the exact region: {e}", arm.label)),
+    })?;
     let moving = arm
         .chain
         .limits()
@@ -112,7 +123,10 @@ pub fn exact_region(arm: &Arm, limits: bool) -> Result<Region, CliError> {
             _ => true,
         })
         .count();
-    if region.pieces() == 0 || (moving >= 2 && !region.has_area()) {
+    // Links far shorter than the rounding of the reach (5e-324 beside 1, 1e-150 beside 1e150)
+    // sweep nothing wider than a rounding error: such a region is a curve, and it passed its
+    // self-check (the sampled tips lie on it).
+    if region.pieces() == 0 || (moving >= 2 && !region.has_area() && !region.is_checked()) {
         return Err(CliError::runtime(format!(
             "{}: the library could not build the exact region{} (a bug: its boundary came out empty); `--grid` (\"grid\": true) samples it instead",
             arm.label,
@@ -123,6 +137,6 @@ pub fn exact_region(arm: &Arm, limits: bool) -> Result<Region, CliError> {
 }
 
 /// [`exact_region`] as a reachable area.
-pub fn exact(arm: &Arm, limits: bool) -> Result<ReachableArea, CliError> {
-    exact_region(arm, limits).map(ReachableArea::Exact)
+pub fn exact(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<ReachableArea, CliError> {
+    exact_region(arm, limits, interrupt).map(ReachableArea::Exact)
 }

@@ -69,9 +69,10 @@ impl ReachRequest {
         self.tolerance.or(arm.solver.tolerance).unwrap_or(ikarus::SolveOptions::default().tolerance)
     }
 
-    /// The exact region of `arm` the verdicts are read from ([`crate::area::exact_region`]).
-    pub fn region(&self, arm: &Arm) -> Result<Region, CliError> {
-        crate::area::exact_region(arm, arm.limits(self.limits))
+    /// The exact region of `arm` the verdicts are read from ([`crate::area::exact_region`]),
+    /// stopping when `interrupt` is set.
+    pub fn region(&self, arm: &Arm, interrupt: Option<&ikarus::Interrupt>) -> Result<Region, CliError> {
+        crate::area::exact_region(arm, arm.limits(self.limits), interrupt)
     }
 }
 
@@ -98,7 +99,7 @@ pub fn run(args: &ReachArgs) -> Result<(), CliError> {
     };
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
     let request = ReachRequest { limits: args.limits.asked(), tolerance: args.tolerance };
-    let region = request.region(&arm)?;
+    let region = request.region(&arm, None)?;
     let tolerance = request.tolerance(&arm);
     let verdicts: Vec<Verdict> = points.iter().map(|&p| verdict(&region, p, tolerance)).collect();
     let write = |w: &mut dyn Write| write(w, format, single, &points, &verdicts);

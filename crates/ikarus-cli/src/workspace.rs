@@ -72,7 +72,7 @@ impl AreaArgs {
     /// parallel with a progress bar on a terminal.
     pub fn area(&self, arm: &Arm) -> Result<ReachableArea, CliError> {
         let limits = arm.limits(self.limits.asked());
-        let Some(grid) = self.grid()? else { return area::exact(arm, limits) };
+        let Some(grid) = self.grid()? else { return area::exact(arm, limits, None) };
         let bar = progress_bar(100, "sampling the workspace");
         let report = |done: u64, total: u64| {
             if let Some(bar) = &bar {
@@ -161,7 +161,7 @@ fn text(w: &mut dyn Write, arm: &Arm, area: &ReachableArea) -> std::io::Result<(
         }
         ReachableArea::Exact(region) => writeln!(
             w,
-            "reachable    no area: a curve of {} (fewer than two joints move)",
+            "reachable    no area: a curve of {} (fewer than two joints move, or the others sweep less than the rounding of the reach)",
             plural(region.pieces(), "piece", "pieces")
         ),
         ReachableArea::Grid(ws) => writeln!(

@@ -137,3 +137,44 @@ fn numbers_in_error_lines_are_short() {
     let e = fails(&["solve", "--goal", "1,1", "--lambda=-1e300"], 2);
     assert!(e.contains("-1e300: must be a finite number ≥ 0") && e.len() < 200, "{e}");
 }
+
+/// Issue 24: `ikarus workspace --limits` on 64 links whose lengths spread from 1e-9 to 1e9 ran
+/// for over two minutes. The exact region now has a work cap: the command ends with one line
+/// naming the links and the way out (`--grid`), exit 2, in bounded time (about 2 s in release).
+#[test]
+fn an_exact_region_over_its_work_cap_is_refused_with_the_way_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let lengths: Vec<f64> = (0..64).map(|k| 10f64.powf(-9.0 + 18.0 * f64::from(k) / 63.0)).collect();
+    let arm = write(dir.path(), "spread.toml", &arm_file(&lengths, 0.0, Some([-90.0, 90.0])));
+    for command in ["workspace", "reach"] {
+        let mut args = vec![command, "--arm", &arm, "--limits"];
+        if command == "reach" {
+            args.extend(["--point", "0,0"]);
+        }
+        let err = fails(&args, 2);
+        assert!(err.contains("spread.toml: links: the exact region of these 64 links needs more than"), "{err}");
+        assert!(err.contains("--grid"), "{err}");
+    }
+}
+
+/// Issue 24: a link of 5e-324 (subnormal) made the exact region fail (`/api/workspace`
+/// answered 500, the CLI exited 1 calling it a bug). Links far shorter than the rounding of the
+/// reach (5e-324 or 1e-310 beside 1, 1e-150 beside 1e150) sweep no area a float can hold: the
+/// region is the other joint's arc, answered without area (a curve, or with limits off the
+/// annulus of width 0).
+#[test]
+fn subnormal_and_extreme_lengths_give_a_region() {
+    let dir = tempfile::tempdir().unwrap();
+    for lengths in [[1.0, 5e-324], [5e-324, 1.0], [1.0, 1e-310], [1e150, 1e-150], [1e-150, 1e150]] {
+        let arm = write(dir.path(), "tiny.toml", &arm_file(&lengths, 0.0, Some([-60.0, 60.0])));
+        for limits in ["--limits", "--no-limits"] {
+            let v = json(&["workspace", "--arm", &arm, limits, "--format", "json"]);
+            assert_eq!((v["exact"].as_bool(), v["area"].as_f64()), (Some(true), Some(0.0)), "{lengths:?}: {v}");
+            // A curve, or (limits off: the annulus) circles of width 0.
+            let pieces = v["curves"].as_array().unwrap().len() + v["boundary"].as_array().unwrap().len();
+            assert!(pieces > 0, "{lengths:?}: {v}");
+            let v = json(&["reach", "--arm", &arm, limits, "--point", "0,0", "--format", "json"]);
+            assert!(v["distance"].as_f64().is_some_and(f64::is_finite), "{lengths:?}: {v}");
+        }
+    }
+}

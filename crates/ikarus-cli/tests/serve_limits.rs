@@ -130,6 +130,77 @@ fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
     assert_eq!(v["status"], "reached");
 }
 
+/// Issue 24's arm: 64 links whose lengths spread from 1e-9 (base) to 1e9 (tip), each joint
+/// limited to ±90°. Its exact region ran for minutes, deaf to the deadline.
+fn spread_arm() -> Value {
+    let links: Vec<Value> = (0..64)
+        .map(|k| {
+            let length = 10f64.powf(-9.0 + 18.0 * f64::from(k) / 63.0);
+            json!({ "length": length, "angle_deg": 0.0, "limits_deg": [-90.0, 90.0] })
+        })
+        .collect();
+    json!({ "links": links })
+}
+
+/// Issue 24: `/api/workspace`, `/api/reach` and `/api/solve` (its reach verdict) on the spread
+/// arm answered 503 at the budget while the exact region went on being built for minutes, and
+/// with it every later request got 503. Now the construction sees the deadline: the only
+/// worker is free again at once (generous: within 3 s, where it took minutes).
+#[test]
+fn work_stopped_at_the_deadline_frees_the_worker() {
+    let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "100"]);
+    let arm = spread_arm();
+    let heavy = [
+        ("/api/workspace", json!({ "arm": arm, "limits": true })),
+        ("/api/reach", json!({ "arm": arm, "limits": true, "point": [0.0, 0.0] })),
+        (
+            "/api/solve",
+            json!({
+                "arm": arm, "goal": { "x": 0.0, "y": 0.0 },
+                "options": { "limits": true, "method": "dls", "limit_mode": "clamp", "restarts": 2 }
+            }),
+        ),
+    ];
+    for (path, body) in heavy {
+        let e = error(&s.post_json(path, &body), 503);
+        assert!(e.contains("--request-budget-ms"), "{path}: {e}");
+        let began = Instant::now();
+        loop {
+            let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
+            if status == 200 {
+                break;
+            }
+            assert_eq!(status, 503, "{v}");
+            assert!(began.elapsed() < Duration::from_secs(3), "{path}: the worker was not freed: {v}");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+}
+
+/// Issue 24: within a budget long enough, the spread arm's exact region ends at its work cap
+/// with 422 and the way out, not after minutes; a link of 5e-324 (subnormal) gave 500 and now
+/// gives its region: a curve without area.
+#[test]
+fn an_exact_region_over_its_cap_is_refused_and_a_subnormal_link_answers() {
+    let s = start(&["--request-budget-ms", "60000"]);
+    for (path, mut body) in [("/api/workspace", json!({})), ("/api/reach", json!({ "point": [0.0, 0.0] }))] {
+        body["arm"] = spread_arm();
+        body["limits"] = json!(true);
+        let e = error(&s.post_json(path, &body), 422);
+        assert!(e.starts_with("arm: links: the exact region of these 64 links needs more than"), "{path}: {e}");
+        assert!(e.contains("\"grid\": true"), "{e}");
+    }
+    for lengths in [[1.0, 5e-324], [5e-324, 1.0], [1.0, 1e-310], [1e150, 1e-150]] {
+        let links: Vec<Value> =
+            lengths.iter().map(|l| json!({ "length": l, "angle_deg": 0.0, "limits_deg": [-60.0, 60.0] })).collect();
+        for limits in [true, false] {
+            let (status, v) = s.post_json("/api/workspace", &json!({ "arm": { "links": links }, "limits": limits }));
+            assert_eq!(status, 200, "{lengths:?}: {v}");
+            assert_eq!((v["exact"].as_bool(), v["area"].as_f64()), (Some(true), Some(0.0)), "{lengths:?}: {v}");
+        }
+    }
+}
+
 #[test]
 fn a_from_solve_motion_that_could_record_gigabytes_is_refused() {
     let s = start(&[]);

@@ -32,8 +32,14 @@ pub(super) fn picture(
     drawn: Result<Vec<u8>, crate::error::CliError>,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
+    watched(drawn, interrupt)
+}
+
+/// The result of a computation that watches `interrupt`: 503 if the interrupt was set (an
+/// error it caused is not the caller's fault nor ours), else the result as it is.
+pub(super) fn watched<T>(result: Result<T, crate::error::CliError>, interrupt: &Interrupt) -> Result<T, Problem> {
     stopped(interrupt)?;
-    Ok(drawn?)
+    Ok(result?)
 }
 
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
@@ -201,7 +207,7 @@ pub fn reach(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Repl
         let request = ReachRequest { limits: req.limits, tolerance: req.tolerance };
         match (req.point, req.points) {
             (Some(p), None) => {
-                let region = request.region(&arm)?;
+                let region = watched(request.region(&arm, Some(interrupt)), interrupt)?;
                 json_response(&VerdictJson::of(&crate::reach::verdict(&region, p, request.tolerance(&arm))))
             }
             (None, Some(points)) => {
@@ -212,10 +218,12 @@ pub fn reach(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Repl
                         limits.max_samples
                     )));
                 }
-                let region = request.region(&arm)?;
+                let region = watched(request.region(&arm, Some(interrupt)), interrupt)?;
                 let tolerance = request.tolerance(&arm);
                 let mut answers = Vec::with_capacity(points.len());
-                for chunk in points.chunks(1024) {
+                // A verdict walks every boundary piece: about 10⁶ pieces between two checks.
+                let chunk = ((1 << 20) / region.pieces().max(1)).clamp(1, 1024);
+                for chunk in points.chunks(chunk) {
                     stopped(interrupt)?;
                     answers
                         .extend(chunk.iter().map(|&p| VerdictJson::of(&crate::reach::verdict(&region, p, tolerance))));
@@ -507,7 +515,7 @@ pub(super) fn reachable_area(
     let grid =
         GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
             .map_err(Problem::invalid)?;
-    let Some(grid) = grid else { return Ok(area::exact(arm, on)?) };
+    let Some(grid) = grid else { return watched(area::exact(arm, on, Some(interrupt)), interrupt) };
     if grid.resolution > limits.max_resolution {
         return Err(Problem::invalid(format!(
             "resolution = {}: more than the cap of {} (--max-resolution)",

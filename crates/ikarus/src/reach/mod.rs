@@ -97,7 +97,7 @@
 //! bounded by the validated options.
 
 pub mod exact;
-pub use exact::{BoundarySegment, Membership, Region, Verdict};
+pub use exact::{BoundarySegment, Membership, Region, RegionError, RegionOptions, Verdict};
 mod outline;
 pub use outline::{OUTLINE_AVERAGING, OUTLINE_SMOOTHING};
 mod raster;

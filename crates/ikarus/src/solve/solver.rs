@@ -91,7 +91,8 @@ impl Solver {
         let mut judged = false;
         // (A solve interrupted before it starts ends interrupted, as it always has.)
         if opts.reach_verdict && !p.bounds.is_free() && !crate::interrupt::is_set(opts.interrupt.as_ref()) {
-            let found = self.reach.judge(chain, goal, opts.tolerance, opts.angle_tolerance, &mut s.trial);
+            let tolerances = (opts.tolerance, opts.angle_tolerance);
+            let found = self.reach.judge(chain, goal, tolerances, opts.interrupt.as_ref(), &mut s.trial);
             if let Some(found) = found {
                 judged = true;
                 out.reach_distance = Some(found.distance);

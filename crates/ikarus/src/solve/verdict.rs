@@ -13,22 +13,44 @@
 //!
 //! The regions are built on the first solve of a chain with limits (0.2 ms for the seed arm,
 //! about 1 ms for eight links) and kept by the [`Solver`](super::Solver) until it solves for a
-//! chain with other lengths, limits or base.
+//! chain with other lengths, limits or base. They are built with [`Region::try_of`]: within its
+//! work cap (a chain whose region needs more is solved by searching, without a verdict, and the
+//! solver remembers not to try again for it) and watching the solve's interrupt (an interrupted
+//! build leaves nothing behind, and the solve ends `interrupted` at its first check).
 
 use nalgebra::{Point2, Vector2};
 
 use crate::chain::Chain;
 use crate::goal::Goal;
 use crate::math;
-use crate::reach::Region;
+use crate::reach::{Region, RegionError, RegionOptions};
 
 /// The regions of the last chain checked, and what identifies that chain.
 #[derive(Debug, Clone, Default)]
 pub(super) struct ReachCache {
     key: Vec<f64>,
-    position: Option<Region>,
-    /// `Some(None)`: built, and the chain has one link (no wrist region).
+    /// `Some(None)`: tried, and over the work cap.
+    position: Option<Option<Region>>,
+    /// `Some(None)`: tried, and the chain has one link (no wrist region) or it was over the
+    /// work cap.
     wrist: Option<Option<Region>>,
+}
+
+/// The region in `slot`, built by `build` if it was not tried yet: `None` when there is none
+/// (`build` gave none or ran over its cap, remembered) or the build was interrupted (not
+/// remembered: the next solve tries again).
+fn built(
+    slot: &mut Option<Option<Region>>,
+    build: impl FnOnce() -> Result<Option<Region>, RegionError>,
+) -> Option<&Region> {
+    if slot.is_none() {
+        *slot = match build() {
+            Ok(region) => Some(region),
+            Err(RegionError::TooComplex { .. }) => Some(None),
+            Err(_) => return None,
+        };
+    }
+    slot.as_ref().and_then(Option::as_ref)
 }
 
 /// What the verdict found: the distance from the goal to the region (0 inside), and whether it
@@ -62,20 +84,23 @@ impl ReachCache {
 
     /// Judges `goal` for `chain` with its limits; writes the pose reaching the nearest
     /// reachable point into `pose` when the goal is out of reach. `None` when there is nothing
-    /// to judge by (an orientation goal on a one-link chain).
+    /// to judge by (an orientation goal on a one-link chain, a region over its work cap, or a
+    /// build stopped by `interrupt`).
     pub(super) fn judge(
         &mut self,
         chain: &Chain,
         goal: &Goal,
-        tolerance: f64,
-        angle_tolerance: f64,
+        tolerances: (f64, f64),
+        interrupt: Option<&crate::Interrupt>,
         pose: &mut Vec<f64>,
     ) -> Option<Found> {
+        let (tolerance, angle_tolerance) = tolerances;
         self.fit(chain);
         let target = goal.target();
+        let options = RegionOptions { limits: true, interrupt: interrupt.cloned(), ..RegionOptions::default() };
         match goal.orientation() {
             None => {
-                let region = self.position.get_or_insert_with(|| Region::of(chain, true));
+                let region = built(&mut self.position, || Region::try_of(chain, &options).map(Some))?;
                 if !region.is_checked() {
                     return None;
                 }
@@ -86,7 +111,7 @@ impl ReachCache {
                 Some(Found { distance: v.distance, unreachable: !v.reachable })
             }
             Some(direction) => {
-                let region = self.wrist.get_or_insert_with(|| Region::wrist(chain, true)).as_ref()?;
+                let region = built(&mut self.wrist, || Region::try_wrist(chain, &options))?;
                 if !region.is_checked() {
                     return None;
                 }
@@ -122,7 +147,7 @@ impl ReachCache {
         let target = goal.target();
         match goal.orientation() {
             None => match &self.position {
-                Some(region) if region.is_checked() => {
+                Some(Some(region)) if region.is_checked() => {
                     region.pose_reaching_into(target, pose);
                 }
                 _ => return false,
@@ -304,5 +329,47 @@ mod tests {
             }
         }
         assert!(stopped > 50, "{stopped}");
+    }
+
+    /// Issue 24: on the 64-link arm whose lengths spread from 1e-9 to 1e9 the verdict built
+    /// its region for minutes before the first iteration, deaf to the interrupt (the server
+    /// answered 503 and the work went on). A token set from another thread now ends the solve
+    /// `interrupted` (the only wall-clock bound: it ends at all).
+    #[test]
+    fn the_verdict_stops_building_when_interrupted() {
+        use crate::{Interrupt, Restarts};
+        let chain = crate::fixtures::spread_arm();
+        let token = Interrupt::new();
+        let options = SolveOptions {
+            method: Method::DampedLeastSquares,
+            limits: LimitMode::Clamp,
+            restarts: Some(Restarts { attempts: 2, ..Restarts::default() }),
+            interrupt: Some(token.clone()),
+            ..SolveOptions::default()
+        };
+        let setter = std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            token.interrupt();
+        });
+        let goal = Goal::position(0.0, 0.0).unwrap();
+        let out = Solver::new(options).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+        setter.join().unwrap();
+        assert_eq!(out.status, Status::Interrupted, "{out:?}");
+        assert_eq!((out.iterations, out.reach_distance), (0, None));
+    }
+
+    /// A region over the work cap is tried once per chain: the cache remembers it has none,
+    /// and the solve searches without a verdict.
+    #[test]
+    fn a_region_over_the_cap_is_remembered_and_the_solve_searches() {
+        use super::ReachCache;
+        let chain = crate::fixtures::spread_arm();
+        let goal = Goal::position(0.0, 0.0).unwrap();
+        let mut cache = ReachCache::default();
+        let mut pose = Vec::new();
+        assert_eq!(cache.judge(&chain, &goal, (1e-6, 1e-6), None, &mut pose), None);
+        assert!(matches!(cache.position, Some(None)), "{:?}", cache.position.as_ref().map(Option::is_some));
+        assert_eq!(cache.judge(&chain, &goal, (1e-6, 1e-6), None, &mut pose), None);
+        assert!(!cache.seed_pose(&chain, &goal, &mut pose));
     }
 }

@@ -51,6 +51,16 @@ pub fn seven_link_arm() -> Chain {
     Chain::new([0.0, 0.0], &links).expect("valid arm")
 }
 
+/// Issue 24's arm: 64 links whose lengths spread evenly in magnitude from 1e-9 (base) to 1e9
+/// (tip), each joint limited to ±90°. Its exact region has no end of pieces: without a work
+/// cap it took minutes to build.
+pub fn spread_arm() -> Chain {
+    let lim = JointLimits::new(deg(-90.0), deg(90.0)).expect("valid limits");
+    let links: Vec<Link> =
+        (0..64).map(|k| Link::new(10f64.powf(-9.0 + 18.0 * f64::from(k) / 63.0), 0.0).with_limits(lim)).collect();
+    Chain::new([0.0, 0.0], &links).expect("valid arm")
+}
+
 /// An arm based at the origin with links of `(length, min°, max°)`, every joint at the middle
 /// of its range.
 pub fn limited_arm(links: &[(f64, f64, f64)]) -> Chain {

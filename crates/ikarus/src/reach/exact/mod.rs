@@ -35,12 +35,28 @@
 //!
 //! A chain with fewer than two joints that move reaches a curve or a point; its region has no
 //! loops and no area, and only its curve is reachable ([`Region::curves`]).
+//!
+//! # What it costs
+//!
+//! Each joint's union cuts every boundary piece of its inputs against the others and tests a
+//! point beside each cut part against every input, so a level of `m` pieces costs up to `m²`
+//! steps; `m` is the number of arcs of the level below plus the quadrilaterals they sweep. For
+//! the arms people draw the boundary stays small (3 to 7 pieces for the shipped arms, a few
+//! hundred for 64 links of equal lengths) and a region builds in a millisecond or less; but the
+//! pieces can multiply from level to level, and a chain of 64 links whose lengths spread from
+//! 1e-9 to 1e9 ran for minutes. [`Region::try_of`] therefore meters the work (one unit per
+//! pair of pieces tested for crossings, per piece a side test looks at, per segment a winding
+//! number walks; a unit is at most a few hundred nanoseconds) and gives up past
+//! [`Region::MAX_WORK`] units with [`RegionError::TooComplex`], or at once when its
+//! [`Interrupt`](crate::Interrupt) is set with [`RegionError::Interrupted`]. [`Region::of`] has
+//! no cap: use it for chains you trust.
 
 mod seg;
 mod sweep;
 #[cfg(test)]
 mod tests;
 mod union;
+mod work;
 
 use std::f64::consts::TAU;
 
@@ -51,6 +67,47 @@ use crate::reach::sampling::Range;
 use seg::{Bbox, P, Prov, Seg, add, angle_of, dist, rotate, sub, turn, unit};
 use sweep::{Kind, Level};
 use union::{Prepared, Tol, winding_prepared};
+use work::{Stop, Work};
+
+/// Why [`Region::try_of`] gave no region. Each message names what to change.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RegionError {
+    /// [`RegionOptions::interrupt`] was set before the region was built.
+    #[error("interrupted")]
+    Interrupted,
+    /// The construction needed more than [`RegionOptions::max_work`] units of work.
+    #[error(
+        "links: the exact region of these {links} links needs more than {cap} steps of work (the cap was spent while sweeping joint {joint}, counted from 1 at the base, building from the tip); sample the region instead"
+    )]
+    TooComplex {
+        /// The chain's number of links.
+        links: usize,
+        /// The joint (1-based from the base) whose sweep was running when the cap was spent.
+        joint: usize,
+        /// The cap, in units of work.
+        cap: u64,
+    },
+}
+
+/// How [`Region::try_of`] builds a region.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RegionOptions {
+    /// Respect the chain's joint limits. Default `true`.
+    pub limits: bool,
+    /// The most units of work the construction may spend (see the [module docs](self)).
+    /// Default [`Region::MAX_WORK`].
+    pub max_work: u64,
+    /// Stops the construction when set (checked after every inner loop of the sweep and the
+    /// union, a few milliseconds apart at most). Default `None`.
+    pub interrupt: Option<crate::Interrupt>,
+}
+
+impl Default for RegionOptions {
+    fn default() -> Self {
+        Self { limits: true, max_work: Region::MAX_WORK, interrupt: None }
+    }
+}
 
 /// A piece of a region's boundary, in world coordinates (radians).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -121,10 +178,37 @@ pub struct Region {
 }
 
 impl Region {
+    /// The default cap of [`Region::try_of`], in units of work: 5·10⁷, a few seconds of work
+    /// in a release build on a 2-core machine (issue 24's 64-link arms spent it in 1.3 to 5.5 s
+    /// on a machine shared by several builds). The seed arm needs 19 193 units, the seven-link
+    /// arm 39 317; 64 equal links with ±60° ranges build in 0.2 s.
+    pub const MAX_WORK: u64 = 50_000_000;
+
     /// The region of `chain`, respecting its joint limits if `limits` (a joint without limits,
-    /// or with a range of a whole turn or more, turns freely).
+    /// or with a range of a whole turn or more, turns freely). Its work has no cap (see
+    /// [`Region::try_of`] for chains from untrusted input).
     #[must_use]
     pub fn of(chain: &Chain, limits: bool) -> Region {
+        match Region::build(chain, limits, &mut Work::unbounded()) {
+            Ok(region) => region,
+            // Without a cap nor an interrupt the construction always ends.
+            Err(_) => unreachable!("an unbounded construction stopped"),
+        }
+    }
+
+    /// The region of `chain` as [`Region::of`] builds it, within the work cap of `options`
+    /// and stopping when its interrupt is set.
+    pub fn try_of(chain: &Chain, options: &RegionOptions) -> Result<Region, RegionError> {
+        let mut work = Work::new(options.max_work, options.interrupt.as_ref());
+        Region::build(chain, options.limits, &mut work).map_err(|(stop, joint)| match stop {
+            Stop::Interrupted => RegionError::Interrupted,
+            Stop::OverBudget => RegionError::TooComplex { links: chain.len(), joint: joint + 1, cap: options.max_work },
+        })
+    }
+
+    /// The construction, spending `work`; `Err` with the joint (0-based) being swept, or 0 (the
+    /// last one swept) for the self-check.
+    fn build(chain: &Chain, limits: bool, work: &mut Work<'_>) -> Result<Region, (Stop, usize)> {
         // A full turn starts at the lower limit where there is one (limits a turn or more
         // apart), so that every angle the levels fix for it lies within the limits.
         let ranges: Vec<Range> = chain
@@ -137,7 +221,7 @@ impl Region {
             .collect();
         let lengths = chain.lengths().to_vec();
         let tol = Tol::of_scale(chain.max_reach());
-        let (levels, closed) = sweep::levels(&lengths, &ranges, tol);
+        let (levels, closed) = sweep::levels(&lengths, &ranges, tol, work)?;
         let base = [chain.base().x, chain.base().y];
         let top = &levels[0];
         let mut world: Vec<Seg> = top.segs.iter().map(|s| s.moved(0.0, [1.0, 0.0], base, s.prov)).collect();
@@ -165,23 +249,28 @@ impl Region {
             area,
             checked: false,
         };
-        region.checked = closed && region.holds_sampled_tips(chain);
-        region
+        region.checked = closed && region.holds_sampled_tips(chain, work).map_err(|stop| (stop, 0))?;
+        Ok(region)
     }
 
     /// The self-check: 256 poses drawn uniformly within the ranges (a fixed sequence), their
-    /// tips all inside or within `1e-9` of the reach of the region.
-    fn holds_sampled_tips(&self, chain: &Chain) -> bool {
+    /// tips all inside or within `1e-9` of the reach of the region. Each tip spends a unit per
+    /// link and two per boundary piece.
+    fn holds_sampled_tips(&self, chain: &Chain, work: &mut Work<'_>) -> Result<bool, Stop> {
         let mut rng = crate::rng::SplitMix64(0x5eed);
         let mut angles = vec![0.0; chain.len()];
         let tol = 1e-9 * chain.max_reach();
-        (0..256).all(|_| {
+        for _ in 0..256 {
+            work.spend_n(chain.len() + 2 * self.world.len())?;
             for (a, r) in angles.iter_mut().zip(&self.ranges) {
                 *a = r.lo + rng.unit() * if r.full { TAU } else { r.span };
             }
             let tip = crate::kinematics::end_effector(chain, &angles).position;
-            self.contains(tip, tol)
-        })
+            if !self.contains(tip, tol) {
+                return Ok(false);
+            }
+        }
+        Ok(true)
     }
 
     /// Whether the region passed its self-check: every union closed all its loops, and the
@@ -201,14 +290,24 @@ impl Region {
     /// chain.
     #[must_use]
     pub fn wrist(chain: &Chain, limits: bool) -> Option<Region> {
+        Region::wrist_chain(chain).map(|sub| Region::of(&sub, limits))
+    }
+
+    /// [`Region::wrist`] within the work cap and the interrupt of `options`: `Ok(None)` for a
+    /// one-link chain.
+    pub fn try_wrist(chain: &Chain, options: &RegionOptions) -> Result<Option<Region>, RegionError> {
+        Region::wrist_chain(chain).map(|sub| Region::try_of(&sub, options)).transpose()
+    }
+
+    /// The chain without its last link (`None` for a one-link chain).
+    fn wrist_chain(chain: &Chain) -> Option<Chain> {
         let links = chain.links();
         let (_, rest) = links.split_last()?;
         if rest.is_empty() {
             return None;
         }
         let base = [chain.base().x, chain.base().y];
-        let sub = Chain::new(base, rest).ok()?;
-        Some(Region::of(&sub, limits))
+        Chain::new(base, rest).ok()
     }
 
     /// Whether the joint limits were respected.

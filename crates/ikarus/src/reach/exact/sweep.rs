@@ -24,8 +24,9 @@
 
 use std::f64::consts::TAU;
 
-use super::seg::{P, Prov, Seg, add, angle_of, norm, rotate, sub, unit};
+use super::seg::{Bbox, P, Prov, Seg, add, angle_of, norm, rotate, sub, unit};
 use super::union::{Piece, Tol, union, winding};
+use super::work::{Stop, Work};
 use crate::reach::sampling::Range;
 
 /// What kind of set a level is.
@@ -78,38 +79,82 @@ impl Level {
 
 /// Every level of a chain given its link lengths and joint ranges: `levels[k]` for joint `k`,
 /// and `levels[n]`, the point past the tip; and whether every union closed all its chains.
-pub(crate) fn levels(lengths: &[f64], ranges: &[Range], tol: Tol) -> (Vec<Level>, bool) {
+/// `Err` with the joint being swept when `work` runs out or is interrupted.
+pub(crate) fn levels(
+    lengths: &[f64],
+    ranges: &[Range],
+    tol: Tol,
+    work: &mut Work<'_>,
+) -> Result<(Vec<Level>, bool), (Stop, usize)> {
     let n = lengths.len();
     let mut levels: Vec<Level> = Vec::with_capacity(n + 1);
     levels.push(Level::point([0.0; 2], Vec::new()));
     let mut closed = true;
     for k in (0..n).rev() {
         let child = levels.last().expect("the level past the tip");
-        let (level, ok) = sweep(child, [lengths[k], 0.0], ranges[k], tol);
+        let (level, ok) = sweep(child, [lengths[k], 0.0], ranges[k], tol, work).map_err(|stop| (stop, k))?;
         closed &= ok;
         levels.push(level);
     }
     levels.reverse();
-    (levels, closed)
+    Ok((levels, closed))
 }
 
 /// Level `k` from level `k + 1` (`child`), link `k` as `shift` and joint `k`'s range.
 ///
-/// Where rounding leaves nothing with area (a link far shorter than the rounding of the next:
-/// the curves it draws are constant in their distance from the joint to the last bit, and a
-/// turn moves them along themselves), the child's two end copies stand for the level, so that
-/// no level is ever empty.
-fn sweep(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, bool) {
-    let (level, closed) = sweep_exactly(child, shift, range, tol);
+/// Where rounding leaves nothing with area (a link far shorter than the rounding of the next,
+/// as with lengths 1 and 5e-324, or 1e150 and 1e-150: the curves it draws are constant in their
+/// distance from the joint to the last bit, and a turn moves them along themselves), the level
+/// is a curve: the child's two end copies and the arc each child piece's start traces about
+/// the joint through the range, so that no level is ever empty and every tip stays on it.
+///
+/// A child no wider than half the merge tolerance is one point to the union (every piece of it
+/// lies within that of its first piece): only its first piece is swept. Without that, links
+/// shorter than the rounding of the reach (the tip half of 64 links from 1e9 down to 1e-9)
+/// doubled the pieces at every level, 2⁶⁰ of them in the end.
+fn sweep(child: &Level, shift: P, range: Range, tol: Tol, work: &mut Work<'_>) -> Result<(Level, bool), Stop> {
+    // Moving and copying the child's pieces.
+    work.spend_n(child.segs.len())?;
+    let first;
+    let child = if child.segs.len() > 1 && extent(&child.segs) <= 0.5 * tol.merge {
+        first = Level::curve(child.segs[..1].to_vec());
+        &first
+    } else {
+        child
+    };
+    let (level, closed) = sweep_exactly(child, shift, range, tol, work)?;
     if level.segs.is_empty() && child.kind != Kind::Point {
-        let mut ends = copy(child, shift, range.lo);
-        ends.extend(copy(child, shift, range.lo + range.span));
-        return (Level::curve(ends), closed);
+        // The child's two end copies, and for a curve the arc each piece's start traces
+        // between them: a piece at a constant distance from the joint (an arc about it, to the
+        // last bit) covers, over the range, its own angles and that orbit. (A region whose
+        // union kept nothing, which its self-check then fails, stays its two copies.)
+        work.spend_n(3 * child.segs.len())?;
+        let span = if range.full { TAU } else { range.span };
+        let mut curve = copy(child, shift, range.lo);
+        curve.extend(copy(child, shift, range.lo + span));
+        let curves = if child.kind == Kind::Curve { child.segs.as_slice() } else { &[] };
+        for (j, s) in curves.iter().enumerate() {
+            let a = add(s.a, shift);
+            let r = norm(a);
+            if r > 0.0 {
+                let from = rotate(a, unit(range.lo));
+                let to = if range.full { from } else { rotate(a, unit(range.lo + span)) };
+                curve.push(Seg::arc([0.0; 2], r, angle_of(a) + range.lo, span, from, to, orbit(j, a, shift)));
+            }
+        }
+        return Ok((Level::curve(curve), closed));
     }
-    (level, closed)
+    Ok((level, closed))
 }
 
-fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, bool) {
+/// The diagonal of the box holding `segs`.
+fn extent(segs: &[Seg]) -> f64 {
+    let mut b = Bbox::EMPTY;
+    segs.iter().for_each(|s| b.union(&s.bbox()));
+    norm([b.x1 - b.x0, b.y1 - b.y0])
+}
+
+fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol, work: &mut Work<'_>) -> Result<(Level, bool), Stop> {
     let lo = range.lo;
     let span = if range.full { TAU } else { range.span };
     if child.kind == Kind::Point {
@@ -117,7 +162,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
         let r = norm(p);
         let fixed = |angle: f64| std::iter::once(angle).chain(child.fixed.iter().copied()).collect();
         if span == 0.0 || r == 0.0 {
-            return (Level::point(rotate(p, unit(lo)), fixed(lo)), true);
+            return Ok((Level::point(rotate(p, unit(lo)), fixed(lo)), true));
         }
         let phase = angle_of(p);
         let prov = Prov::Orbit { child: None, point: child.point, phase };
@@ -127,18 +172,18 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
             let (a, b) = (rotate(p, unit(lo)), rotate(p, unit(lo + span)));
             Seg::arc([0.0; 2], r, phase + lo, span, a, b, prov)
         };
-        return (Level::curve(vec![arc]), true);
+        return Ok((Level::curve(vec![arc]), true));
     }
     if span == 0.0 {
         let copy = copy(child, shift, lo);
-        return match child.kind {
+        return Ok(match child.kind {
             Kind::Region => {
                 let mut level = child.clone();
                 level.segs = copy;
                 (level, true)
             }
             _ => (Level::curve(copy), true),
-        };
+        });
     }
     // The child moved out along the link; each piece's radial parts remember the piece.
     let moved: Vec<Seg> = child.segs.iter().map(|s| s.moved(0.0, [1.0, 0.0], shift, s.prov)).collect();
@@ -149,9 +194,17 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
         s.radial_parts(&mut buf, range.full);
         parts.extend(buf.iter().map(|p| (j, *p)));
     }
+    work.spend_n(parts.len())?;
     if range.full {
-        let inside = |q: P| child.kind == Kind::Region && winding(&moved, q) != 0;
-        return (Level::region(annuli(&parts, shift, inside, tol)), true);
+        // A gap's middle circle is tested against every moved piece.
+        let inside = |q: P, work: &mut Work<'_>| -> Result<bool, Stop> {
+            if child.kind != Kind::Region {
+                return Ok(false);
+            }
+            work.spend_n(moved.len())?;
+            Ok(winding(&moved, q) != 0)
+        };
+        return Ok((Level::region(annuli(&parts, shift, inside, tol, work)?), true));
     }
     let pieces = pieces(child, &parts, shift, lo, span);
     // The side test looks 1e-8 of the reach off each part; where curves run closer than that
@@ -160,15 +213,15 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol) -> (Level, boo
     // look that closes every chain is taken.
     let mut best: Option<(Vec<Vec<Seg>>, usize)> = None;
     for widen in [1.0, 100.0, 1e4] {
-        let (loops, open) = union(&pieces, Tol { probe: tol.probe * widen, ..tol });
+        let (loops, open) = union(&pieces, Tol { probe: tol.probe * widen, ..tol }, work)?;
         if open == 0 {
-            return (Level::region(loops), true);
+            return Ok((Level::region(loops), true));
         }
         if best.as_ref().is_none_or(|b| open < b.1) {
             best = Some((loops, open));
         }
     }
-    (Level::region(best.map(|b| b.0).unwrap_or_default()), false)
+    Ok((Level::region(best.map(|b| b.0).unwrap_or_default()), false))
 }
 
 /// The pieces whose union is a limited joint's level: the child's two end copies (if it has
@@ -225,16 +278,22 @@ fn quad(s: &Seg, j: usize, shift: P, lo: f64, span: f64) -> Vec<Seg> {
 /// The annuli swept by a full turn: the radii each part covers, merged, with the gaps whose
 /// middle circle lies inside the child also covered; each annulus as its outer circle
 /// (counter-clockwise) and, unless it reaches the joint, its inner circle (clockwise).
-fn annuli(parts: &[(usize, Seg)], shift: P, inside: impl Fn(P) -> bool, tol: Tol) -> Vec<Vec<Seg>> {
+fn annuli(
+    parts: &[(usize, Seg)],
+    shift: P,
+    inside: impl Fn(P, &mut Work<'_>) -> Result<bool, Stop>,
+    tol: Tol,
+    work: &mut Work<'_>,
+) -> Result<Vec<Vec<Seg>>, Stop> {
     // (radius, point, piece) at each end of each part's interval.
     type End = (f64, P, usize);
     let mut spans: Vec<(End, End)> = parts.iter().map(|&(j, s)| ((norm(s.a), s.a, j), (norm(s.b), s.b, j))).collect();
     spans.sort_by(|x, y| x.0.0.total_cmp(&y.0.0));
     let mut merged: Vec<(End, End)> = Vec::new();
-    let covered = |r0: f64, r1: f64| inside([0.5 * (r0 + r1), 0.0]);
+    let covered = |r0: f64, r1: f64, work: &mut Work<'_>| inside([0.5 * (r0 + r1), 0.0], work);
     for s in spans {
         match merged.last_mut() {
-            Some(m) if s.0.0 <= m.1.0 + tol.merge || covered(m.1.0, s.0.0) => {
+            Some(m) if s.0.0 <= m.1.0 + tol.merge || covered(m.1.0, s.0.0, work)? => {
                 if s.1.0 > m.1.0 {
                     m.1 = s.1;
                 }
@@ -244,7 +303,7 @@ fn annuli(parts: &[(usize, Seg)], shift: P, inside: impl Fn(P) -> bool, tol: Tol
     }
     let mut loops = Vec::new();
     for (k, (inner, outer)) in merged.iter().enumerate() {
-        let reaches_joint = k == 0 && covered(0.0, inner.0);
+        let reaches_joint = k == 0 && covered(0.0, inner.0, work)?;
         let circle =
             |(r, p, j): End, sense: f64| Seg::arc([0.0; 2], r, angle_of(p), sense * TAU, p, p, orbit(j, p, shift));
         let mut l = vec![circle(*outer, 1.0)];
@@ -258,5 +317,5 @@ fn annuli(parts: &[(usize, Seg)], shift: P, inside: impl Fn(P) -> bool, tol: Tol
             loops.push(hole);
         }
     }
-    loops
+    Ok(loops)
 }

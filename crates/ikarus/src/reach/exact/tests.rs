@@ -336,3 +336,87 @@ fn random_arms_agree_with_sampling_and_with_poses() {
     }
     println!("{by_witness} points reached only by the witness");
 }
+
+/// A set interrupt stops the construction at its first check: one unit of work per piece of
+/// the first level, not the whole sweep.
+#[test]
+fn a_set_interrupt_stops_the_construction_at_once() {
+    use super::work::{Stop, Work};
+    use super::{RegionError, RegionOptions};
+    let token = crate::Interrupt::new();
+    token.interrupt();
+    for c in [seed(), seven(), crate::fixtures::spread_arm()] {
+        let mut work = Work::new(u64::MAX, Some(&token));
+        let stopped = Region::build(&c, true, &mut work).map(|_| ()).unwrap_err();
+        assert_eq!(stopped, (Stop::Interrupted, c.len() - 1), "it stops sweeping the last joint");
+        assert!(work.spent <= 1, "{} units spent", work.spent);
+        let options = RegionOptions { interrupt: Some(token.clone()), ..RegionOptions::default() };
+        assert_eq!(Region::try_of(&c, &options).map(|_| ()), Err(RegionError::Interrupted));
+        assert_eq!(Region::try_wrist(&c, &options).map(|_| ()), Err(RegionError::Interrupted));
+    }
+}
+
+/// Issue 24: the 64-link arm whose lengths spread from 1e-9 to 1e9 ran for minutes. Its
+/// construction now stops when the interrupt is set from another thread (the only wall-clock
+/// bound: it ends at all), and runs out of its work cap in bounded work otherwise.
+#[test]
+fn the_spread_arm_is_interrupted_or_over_its_cap() {
+    use super::{RegionError, RegionOptions};
+    let c = crate::fixtures::spread_arm();
+    let token = crate::Interrupt::new();
+    let setter = {
+        let token = token.clone();
+        std::thread::spawn(move || {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            token.interrupt();
+        })
+    };
+    let options = RegionOptions { max_work: u64::MAX - 1, interrupt: Some(token), ..RegionOptions::default() };
+    assert_eq!(Region::try_of(&c, &options).map(|_| ()), Err(RegionError::Interrupted));
+    setter.join().unwrap();
+    let capped = RegionOptions { max_work: 2_000_000, ..RegionOptions::default() };
+    let err = Region::try_of(&c, &capped).unwrap_err();
+    assert!(matches!(err, RegionError::TooComplex { links: 64, cap: 2_000_000, .. }), "{err:?}");
+    let message = err.to_string();
+    assert!(
+        message.starts_with("links: the exact region of these 64 links needs more than 2000000 steps"),
+        "{message}"
+    );
+}
+
+/// The arms of the tests and the benches spend a small share of the default cap.
+#[test]
+fn ordinary_arms_stay_far_below_the_work_cap() {
+    use super::work::Work;
+    let sixty_four = chain(&[(0.1, -60.0, 60.0); 64]);
+    for (c, most) in [(seed(), 20_000), (seven(), 200_000), (sixty_four, Region::MAX_WORK / 4)] {
+        let mut work = Work::unbounded();
+        let region = Region::build(&c, true, &mut work).unwrap();
+        assert!(work.spent < most, "{} links: {} units", c.len(), work.spent);
+        println!("{} links: {} units, {} pieces", c.len(), work.spent, region.pieces());
+    }
+}
+
+/// Issue 24: a link of 5e-324 (subnormal) beside a link of 1 made the exact region fail (the
+/// server answered 500). A link far shorter than the rounding of the reach sweeps nothing
+/// wider than a rounding error: the region is a curve (the arcs the other joint traces), it
+/// passes its self-check, every sampled tip lies on it, and the poses it reads off reach it.
+#[test]
+fn links_below_the_rounding_of_the_reach_give_a_checked_curve() {
+    for lengths in [[1.0, 5e-324], [5e-324, 1.0], [1.0, 1e-310], [1e-310, 1.0], [1e150, 1e-150], [1e-150, 1e150]] {
+        for limits in [true, false] {
+            let c = chain(&[(lengths[0], -60.0, 60.0), (lengths[1], -90.0, 90.0)]);
+            let r = Region::of(&c, limits);
+            assert!(r.is_checked() && r.pieces() > 0, "{lengths:?} limits {limits}: {r:?}");
+            assert_eq!(r.area(), 0.0, "{lengths:?}");
+            let scale = c.max_reach();
+            for p in tips(&c, 500, 9) {
+                assert!(r.contains(p, 1e-9 * scale), "{lengths:?} limits {limits}: tip {p} off the curve");
+                let (angles, q) = r.pose_reaching(p);
+                assert!((q - p).norm() <= 1e-9 * scale, "{lengths:?}: nearest {q} to {p}");
+                let tip = end_effector(&c, &angles).position;
+                assert!((tip - q).norm() <= 1e-9 * scale, "{lengths:?}: the pose reaches {tip}, not {q}");
+            }
+        }
+    }
+}

@@ -14,6 +14,7 @@
 //! part's length (at most `1e-8` of the scale) off its middle.
 
 use super::seg::{Bbox, P, Seg, add, cross, dist, intersections, scale, sub};
+use super::work::{Stop, Work};
 
 /// Tolerances, each a fixed fraction of the scale of the problem (the chain's reach).
 #[derive(Debug, Clone, Copy)]
@@ -46,10 +47,6 @@ impl Piece {
             bbox.union(&s.bbox());
         }
         Piece { segs, bbox }
-    }
-
-    pub(crate) fn contains(&self, p: P) -> bool {
-        self.bbox.contains(p, 0.0) && winding(&self.segs, p) != 0
     }
 }
 
@@ -144,8 +141,11 @@ fn between_arc_and_chord(s: &Seg, p: P) -> bool {
 }
 
 /// The boundary of the union of `pieces`, as closed loops, and the number of chains of kept
-/// parts that did not close (0 unless the side test was fooled by curves nearer than it looks).
-pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
+/// parts that did not close (0 unless the side test was fooled by curves nearer than it looks);
+/// `Err` when `work` runs out or is interrupted. The work is the pairs of items whose boxes
+/// overlap in x (each tested for crossings), the cut points compared with each other, and for
+/// each cut part the pieces its side test looks at and the segments their winding numbers walk.
+pub(crate) fn union(pieces: &[Piece], tol: Tol, work: &mut Work<'_>) -> Result<(Vec<Vec<Seg>>, usize), Stop> {
     struct Item {
         piece: usize,
         seg: Seg,
@@ -157,6 +157,7 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
         .flat_map(|(i, p)| p.segs.iter().map(move |s| Item { piece: i, seg: *s, bbox: s.bbox() }))
         .filter(|it| it.seg.length() > tol.merge)
         .collect();
+    work.spend_n(items.len())?;
 
     // Cut points of every item, found by a sweep over the boxes' left edges.
     let mut order: Vec<usize> = (0..items.len()).collect();
@@ -164,10 +165,12 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
     let mut cuts: Vec<Vec<P>> = vec![Vec::new(); items.len()];
     let mut found = Vec::new();
     for (n, &i) in order.iter().enumerate() {
+        let mut pairs = 1;
         for &j in &order[n + 1..] {
             if items[j].bbox.x0 > items[i].bbox.x1 + tol.merge {
                 break;
             }
+            pairs += 1;
             if items[i].piece == items[j].piece || !items[i].bbox.overlaps(&items[j].bbox, tol.merge) {
                 continue;
             }
@@ -178,6 +181,7 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
                 cuts[j].push(p);
             }
         }
+        work.spend(pairs)?;
     }
 
     // Cut parts, each kept if just right of it lies in no piece.
@@ -189,6 +193,8 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
     let mut kept: Vec<Part> = Vec::new();
     for (i, item) in items.iter().enumerate() {
         let s = &item.seg;
+        // Each cut point is compared with those kept before it.
+        work.spend_n(cuts[i].len().saturating_mul(cuts[i].len()) / 2 + 1)?;
         let mut points: Vec<(f64, P)> = Vec::with_capacity(cuts[i].len());
         for &p in &cuts[i] {
             if dist(p, s.a) <= tol.merge || dist(p, s.b) <= tol.merge {
@@ -204,7 +210,7 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
         let mut p0 = s.a;
         for (u1, p1) in points.into_iter().chain(std::iter::once((1.0, s.b))) {
             let part = s.sub(u0, u1, p0, p1);
-            if (part.length() > tol.merge || part.is_full_circle()) && on_boundary(&part, pieces, tol) {
+            if (part.length() > tol.merge || part.is_full_circle()) && on_boundary(&part, pieces, tol, work)? {
                 kept.push(Part { seg: part, source: i, u0 });
             }
             u0 = u1;
@@ -270,15 +276,25 @@ pub(crate) fn union(pieces: &[Piece], tol: Tol) -> (Vec<Vec<Seg>>, usize) {
             loops.push(join(&path, &kept.iter().map(|p| (p.seg, p.source, p.u0)).collect::<Vec<_>>()));
         }
     }
-    (loops, open)
+    Ok((loops, open))
 }
 
 /// Whether a cut part bounds the union: the point just right of its middle lies in no piece.
-fn on_boundary(part: &Seg, pieces: &[Piece], tol: Tol) -> bool {
+/// Spends a unit per piece looked at and per segment of the winding numbers taken.
+fn on_boundary(part: &Seg, pieces: &[Piece], tol: Tol, work: &mut Work<'_>) -> Result<bool, Stop> {
     let (m, left) = part.mid_and_left();
     let d = (part.length() * 1e-2).min(tol.probe);
     let right = add(m, scale(left, -d));
-    !pieces.iter().any(|p| p.contains(right))
+    let mut units = 0;
+    let inside = pieces.iter().any(|p| {
+        units += 1;
+        p.bbox.contains(right, 0.0) && {
+            units += p.segs.len();
+            winding(&p.segs, right) != 0
+        }
+    });
+    work.spend_n(units)?;
+    Ok(!inside)
 }
 
 /// A loop's parts with consecutive parts of one input piece joined (the loop starting where
