@@ -80,7 +80,8 @@ impl Goal {
         // (a goal at 1e308 from a base at −1e308 is 2e308 away, beyond the f64 range).
         let (qx, qy) = (0.25 * self.position.x - 0.25 * base.x, 0.25 * self.position.y - 0.25 * base.y);
         let quarter = math::hypot(qx, qy);
-        if !(quarter > 0.25 * (far + tolerance)) || !(far > 0.0) {
+        // (Finite goals and bases: no NaN here.)
+        if quarter <= 0.25 * (far + tolerance) || far <= 0.0 {
             return None;
         }
         let position = Point2::new(base.x + qx / quarter * far, base.y + qy / quarter * far);
