@@ -1,11 +1,12 @@
 //! `ikarus animate`: solve for a goal (through any via points), then turn the poses into an
 //! eased motion: frames on stdout, and a picture or an animated GIF with `--out`.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ikarus::motion::{Animation, Interpolation, Timing};
+use ikarus::number::Num;
 use ikarus::{EaseKind, Goal};
 
 use crate::arm::Arm;
@@ -14,7 +15,7 @@ use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{Drawing, MotionLayers, PictureArgs, PictureFormat, draw_for_command, motion_drawing};
+use crate::picture::{Drawing, MotionLayers, PictureArgs, PictureFormat, draw_for_command, motion_drawing, report_format};
 use crate::report::{AnimateJson, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
@@ -167,7 +168,10 @@ impl MotionArgs {
                 let target = s.goal.target();
                 eprintln!(
                     "ikarus: goal ({}, {}) not reached: {}, error {:.3e}; the motion ends at the best pose found",
-                    target.x, target.y, s.status, s.error
+                    Num(target.x),
+                    Num(target.y),
+                    s.status,
+                    s.error
                 );
             }
         }
@@ -216,11 +220,8 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     }
 
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
-    let format = match (args.format, drew) {
-        (Some(f), _) => f,
-        (None, true) => return Ok(()),
-        (None, false) if std::io::stdout().is_terminal() => AnimateFormat::Text,
-        (None, false) => AnimateFormat::Json,
+    let Some(format) = report_format(args.format, drew, AnimateFormat::Text, AnimateFormat::Json) else {
+        return Ok(());
     };
     let arm = &run.arm;
     output::stdout(|w| match format {

@@ -6,11 +6,11 @@
 
 use std::process::ExitCode;
 
-use clap::error::ErrorKind;
-use clap::{Parser, Subcommand};
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+use clap::{CommandFactory, Parser, Subcommand};
 
 use crate::error::CliError;
-use crate::{animate, bench, input, reach, render, rig, serve, solve, track, workspace};
+use crate::{animate, bench, input, output, reach, render, rig, serve, shell, solve, track, workspace};
 
 /// Inverse kinematics for planar chains: move an arm's tip to a goal.
 #[derive(Debug, Parser)]
@@ -54,6 +54,10 @@ enum Command {
     Serve(serve::ServeArgs),
     /// Time every solver on seeded goal sets for the shipped arms, optionally beside Orocos KDL
     Bench(bench::BenchArgs),
+    /// Print a completion script for a shell (bash, zsh, fish, elvish, powershell) to stdout
+    Completions(shell::CompletionsArgs),
+    /// Print the manual page (roff) to stdout, or write one page per command to a folder
+    Man(shell::ManArgs),
 }
 
 /// The command line: parses the arguments, runs the command, prints a failure in one line.
@@ -76,6 +80,11 @@ pub fn main() -> ExitCode {
     };
     input::set_max_bytes(cli.max_input_bytes);
     rig::set_max_bones(usize::try_from(cli.max_bones).unwrap_or(usize::MAX));
+    // Ctrl-C (SIGINT) or SIGTERM ends every command but the server (which shuts down on its own)
+    // with 130 or 143 and the unfinished output files removed, whenever it comes.
+    if !matches!(cli.command, Command::Serve(_)) {
+        output::handle_interrupts();
+    }
     let result: Result<(), CliError> = match &cli.command {
         Command::Solve(args) => solve::run(args),
         Command::Animate(args) => animate::run(args),
@@ -85,6 +94,8 @@ pub fn main() -> ExitCode {
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Completions(args) => shell::completions(args, Cli::command()),
+        Command::Man(args) => shell::man(args, Cli::command()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -108,13 +119,36 @@ fn usage_error(e: &clap::Error) -> ExitCode {
         }
         _ => {
             // clap's message is the first paragraph (a missing argument lists the arguments on
-            // the lines below it); the usage and help hint that follow are left out.
+            // the lines below it); the usage and help hint that follow are left out, and a
+            // suggestion (`tip: a similar subcommand exists`) becomes `did you mean …?`.
             let text = e.to_string();
             let message: Vec<&str> =
                 text.lines().take_while(|l| !l.is_empty() && !l.starts_with("Usage:")).map(str::trim).collect();
             let message = message.join(" ");
-            eprintln!("ikarus: {}", message.strip_prefix("error: ").unwrap_or(&message));
+            let message = message.strip_prefix("error: ").unwrap_or(&message);
+            eprintln!("ikarus: {message}{}", did_you_mean(e));
             ExitCode::from(2)
         }
+    }
+}
+
+/// `; did you mean 'solve'?` when clap found a similar subcommand, flag or value for a
+/// misspelt one, else nothing.
+fn did_you_mean(e: &clap::Error) -> String {
+    let kinds = [ContextKind::SuggestedSubcommand, ContextKind::SuggestedArg, ContextKind::SuggestedValue];
+    let names: Vec<String> = kinds
+        .iter()
+        .filter_map(|&k| e.get(k))
+        .flat_map(|v| match v {
+            ContextValue::String(s) => vec![s.clone()],
+            ContextValue::Strings(s) => s.clone(),
+            _ => Vec::new(),
+        })
+        .map(|name| format!("'{name}'"))
+        .collect();
+    match &names[..] {
+        [] => String::new(),
+        [one] => format!("; did you mean {one}?"),
+        [init @ .., last] => format!("; did you mean {} or {last}?", init.join(", ")),
     }
 }

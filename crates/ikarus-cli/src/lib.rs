@@ -45,6 +45,8 @@ mod rig_track;
 #[cfg(feature = "server")]
 mod serve;
 mod settings;
+#[cfg(feature = "server")]
+mod shell;
 mod solve;
 mod stats;
 mod track;

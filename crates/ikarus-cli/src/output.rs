@@ -133,6 +133,15 @@ fn halfway(v: f64, text: &[u8]) -> bool {
     }
 }
 
+/// Ends the process on SIGINT (exit 130) or SIGTERM (143) from now on, removing every output
+/// file still pending then. The command line calls it before any work, so that an interrupt
+/// ends every command the same way whenever it comes (while a batch writes its rows to stdout,
+/// while the input is read), not only once an output file is pending; `ikarus serve` does not,
+/// as it shuts down on its own.
+pub fn handle_interrupts() {
+    cleanup::handle();
+}
+
 /// Links followed at most when resolving a target, as the kernel's own limit (ELOOP).
 const MAX_LINK_HOPS: usize = 40;
 
@@ -271,9 +280,14 @@ mod cleanup {
     static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
     static HANDLER: Once = Once::new();
 
+    /// Installs the handler of SIGINT / SIGTERM, once.
+    pub fn handle() {
+        HANDLER.call_once(install);
+    }
+
     /// Adds `path` to the files removed on SIGINT / SIGTERM, installing the handler once.
     pub fn register(path: &Path) {
-        HANDLER.call_once(install);
+        handle();
         PENDING.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(path.to_path_buf());
     }
 
@@ -294,7 +308,7 @@ mod cleanup {
     }
 
     /// A thread that waits for SIGINT or SIGTERM (tokio's signal handling, already a dependency
-    /// for `ikarus serve`; only installed once a file is pending, so serve keeps its own).
+    /// for `ikarus serve`; installed by every command but serve, which keeps its own).
     #[cfg(all(unix, feature = "server"))]
     fn install() {
         let (ready, installed) = std::sync::mpsc::channel::<()>();

@@ -332,6 +332,19 @@ impl StillArgs {
     }
 }
 
+/// The format of a command's report on stdout, or `None` for none: the one asked for
+/// (`--format`); else none when the command drew a picture (`drew`, with `--out`: the picture is
+/// the result, so stdout stays quiet); else `text` on a terminal and `json` when piped. Every
+/// command with `--out` (solve, animate, track, workspace, with an arm or a rig) decides so.
+pub fn report_format<F>(asked: Option<F>, drew: bool, text: F, json: F) -> Option<F> {
+    match (asked, drew) {
+        (Some(f), _) => Some(f),
+        (None, true) => None,
+        (None, false) if std::io::stdout().is_terminal() => Some(text),
+        (None, false) => Some(json),
+    }
+}
+
 /// The default cap of `--max-gif-pixels`: 1000 frames of 800 × 800 and more (10⁹ pixels;
 /// 100 frames at 4096 × 4096, 1.7·10⁹ pixels, took 11 s).
 pub const DEFAULT_MAX_GIF_PIXELS: u64 = 1_000_000_000;

@@ -3,7 +3,7 @@
 //! `--pin NAME` bones held in each — and the poses eased into a motion; JSON, CSV or text on
 //! stdout, a picture or a GIF of the skeleton with `--out`.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path;
 
 use ikarus::{EaseKind, LimitMode, RigTask};
@@ -12,7 +12,7 @@ use crate::animate::{AnimateArgs, AnimateFormat, MotionArgs, ViaArg};
 use crate::error::CliError;
 use crate::motion::DEFAULT_FPS;
 use crate::output;
-use crate::picture::{Drawing, PictureFormat, draw_for_command};
+use crate::picture::{Drawing, PictureFormat, draw_for_command, report_format};
 use crate::report::deg_text;
 use crate::rig::Rig;
 use crate::rig_args::{RigTaskArgs, Target};
@@ -93,11 +93,9 @@ pub fn run(args: &AnimateArgs, path: &Path) -> Result<(), CliError> {
         let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, animation.frames.len())?;
         out.commit(&bytes)?;
     }
-    let format = match (args.format, drew) {
-        (Some(f), _) => f,
-        (None, true) => return Ok(()),
-        (None, false) if std::io::stdout().is_terminal() => AnimateFormat::Text,
-        (None, false) => AnimateFormat::Json,
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let Some(format) = report_format(args.format, drew, AnimateFormat::Text, AnimateFormat::Json) else {
+        return Ok(());
     };
     output::stdout(|w| match format {
         AnimateFormat::Json => {

@@ -2,7 +2,7 @@
 //! the rig's start pose and reported as JSON, CSV (one row) or text, with a picture on `--out`;
 //! or a batch of target sets ([`crate::rig_batch`]).
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
 
@@ -10,7 +10,7 @@ use ikarus::{LimitMode, Outcome, RigTask, SolveOptions};
 
 use crate::error::CliError;
 use crate::output;
-use crate::picture::{Drawing, draw, rig_figure};
+use crate::picture::{Drawing, draw, report_format, rig_figure};
 use crate::report::deg_text;
 use crate::rig::Rig;
 use crate::rig_args::Target;
@@ -35,16 +35,18 @@ pub fn run(args: &SolveArgs, path: &Path) -> Result<(), CliError> {
         .map_err(|e| CliError::input(e.to_string()))?;
     let micros = started.elapsed().as_secs_f64() * 1e6;
     let options = solver.options();
-    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() { Format::Text } else { Format::Json });
-    output::stdout(|w| match format {
-        Format::Json => {
-            let report = RigSolveReport { rig: &rig, options, outcome: &outcome, micros };
-            serde_json::to_writer_pretty(&mut *w, &report.json())?;
-            writeln!(w)
-        }
-        Format::Csv => csv(w, &rig, &outcome),
-        Format::Text => text(w, &rig, &task, options, &outcome, micros),
-    })?;
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    if let Some(format) = report_format(args.format, picture.is_some(), Format::Text, Format::Json) {
+        output::stdout(|w| match format {
+            Format::Json => {
+                let report = RigSolveReport { rig: &rig, options, outcome: &outcome, micros };
+                serde_json::to_writer_pretty(&mut *w, &report.json())?;
+                writeln!(w)
+            }
+            Format::Csv => csv(w, &rig, &outcome),
+            Format::Text => text(w, &rig, &task, options, &outcome, micros),
+        })?;
+    }
     if let Some(out) = picture {
         let caption = format!("{} · {} after {} iterations", rig.name, outcome.status, outcome.iterations);
         let figure = rig_figure(&rig, outcome.pose.angles(), &task, options.limits != LimitMode::Ignore, Some(caption));

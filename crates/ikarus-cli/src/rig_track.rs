@@ -4,7 +4,7 @@
 //! tips keyed by bone name), CSV or text, and a picture or GIF of the skeleton with `--out`.
 //! The job and its JSON are shared with `POST /api/track` with `rig`.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path as FilePath;
 
 use ikarus::track::{self, Path, Track, TrackMode, TrackOptions};
@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::error::CliError;
 use crate::output;
-use crate::picture::{Drawing, PictureFormat, draw_for_command, rig_figure};
+use crate::picture::{Drawing, PictureFormat, draw_for_command, report_format, rig_figure};
 use crate::report::degrees;
 use crate::rig::Rig;
 use crate::rig_args::Target;
@@ -164,12 +164,8 @@ pub fn run(args: &TrackArgs, file: &FilePath) -> Result<(), CliError> {
         let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
         out.commit(&bytes)?;
     }
-    let format = match (args.format, drew) {
-        (Some(f), _) => f,
-        (None, true) => return Ok(()),
-        (None, false) if std::io::stdout().is_terminal() => TrackFormat::Text,
-        (None, false) => TrackFormat::Json,
-    };
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
     output::stdout(|w| match format {
         TrackFormat::Json => {
             serde_json::to_writer_pretty(&mut *w, &job.json(&t))?;

@@ -1,7 +1,7 @@
 //! `ikarus solve`: one goal (JSON, CSV or text), or a batch of goals from a CSV file; with
 //! `--rig`, goals on a rig's bones ([`crate::rig_solve`]).
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -14,7 +14,7 @@ use crate::error::CliError;
 use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::output;
-use crate::picture::{StillArgs, arm_drawing, draw};
+use crate::picture::{StillArgs, arm_drawing, draw, report_format};
 use crate::report::{SolveJson, SolveReport, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::{SolverSettings, solver};
@@ -64,7 +64,7 @@ pub struct SolveArgs {
     /// --rig, none]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
-    /// Output format [default: text on a terminal, json otherwise]
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
     #[arg(long, value_enum, conflicts_with = "batch")]
     pub format: Option<Format>,
     /// Solve every goal of a CSV file (header `x,y` or `x,y,angle_deg`; with --rig, `NAME.x,NAME.y`
@@ -132,15 +132,17 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
         solver.solve(&arm.chain, arm.chain.start_pose(), &goal).map_err(|e| CliError::input(e.to_string()))?;
     let micros = started.elapsed().as_secs_f64() * 1e6;
     let report = Report { arm, options: solver.options(), goal: &goal, outcome: &outcome, micros };
-    let format = args.format.unwrap_or(if std::io::stdout().is_terminal() { Format::Text } else { Format::Json });
-    output::stdout(|w| match format {
-        Format::Json => {
-            serde_json::to_writer_pretty(&mut *w, &report.json())?;
-            writeln!(w)
-        }
-        Format::Csv => report.csv(w),
-        Format::Text => report.text(w),
-    })?;
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    if let Some(format) = report_format(args.format, picture.is_some(), Format::Text, Format::Json) {
+        output::stdout(|w| match format {
+            Format::Json => {
+                serde_json::to_writer_pretty(&mut *w, &report.json())?;
+                writeln!(w)
+            }
+            Format::Csv => report.csv(w),
+            Format::Text => report.text(w),
+        })?;
+    }
     if let Some(out) = picture {
         let drawing = arm_drawing(arm, outcome.pose.angles(), Some(goal.target()), None);
         let bytes = draw(&drawing, out.format, args.picture.width, args.picture.height, &|_, _| {})?;

@@ -3,7 +3,7 @@
 //! JSON, CSV or text on stdout, and a picture or GIF with `--out`. The job, its JSON shape and
 //! its picture are shared with `POST /api/track`.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, ValueEnum};
@@ -16,7 +16,7 @@ use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::{named, parse_finite, parse_positive};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command};
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format};
 use crate::report::{degrees, points};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
@@ -324,12 +324,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
         out.commit(&bytes)?;
     }
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
-    let format = match (args.format, drew) {
-        (Some(f), _) => f,
-        (None, true) => return Ok(()),
-        (None, false) if std::io::stdout().is_terminal() => TrackFormat::Text,
-        (None, false) => TrackFormat::Json,
-    };
+    let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
     output::stdout(|w| match format {
         TrackFormat::Json => {
             serde_json::to_writer_pretty(&mut *w, &TrackJson::new(&job, &t))?;

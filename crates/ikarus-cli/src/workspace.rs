@@ -1,7 +1,7 @@
 //! `ikarus workspace`: the region the arm's tip can reach, as numbers, boundary loops (or a
 //! sampled grid with `--grid`), and a picture.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
@@ -11,7 +11,7 @@ use crate::area::{self, GridRequest, ReachableArea};
 use crate::arm::{Arm, LimitsArgs};
 use crate::error::CliError;
 use crate::options::parse_at_least_one;
-use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, workspace_drawing};
+use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, report_format, workspace_drawing};
 use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -117,11 +117,8 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     }
 
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
-    let format = match (args.format, drew) {
-        (Some(f), _) => f,
-        (None, true) => return Ok(()),
-        (None, false) if std::io::stdout().is_terminal() => WorkspaceFormat::Text,
-        (None, false) => WorkspaceFormat::Json,
+    let Some(format) = report_format(args.format, drew, WorkspaceFormat::Text, WorkspaceFormat::Json) else {
+        return Ok(());
     };
     output::stdout(|w| match format {
         WorkspaceFormat::Json => {

@@ -178,3 +178,46 @@ fn subnormal_and_extreme_lengths_give_a_region() {
         }
     }
 }
+
+/// Issue 24: `ikarus track --circle 0,0,1e308` answered `"error": null` on every sample and the
+/// arm did not stretch toward the goals. Every command now gives a finite goal a finite error
+/// and points the arm at it: track (both modes), solve (with and without limits), animate.
+#[test]
+fn goals_near_the_largest_float_give_finite_errors_and_point_the_arm() {
+    let finite_error = |v: &Value, what: &str| {
+        let e = v["error"].as_f64().unwrap_or_else(|| panic!("{what}: error {}", v["error"]));
+        assert!(e.is_finite() && e > 1e307, "{what}: {e}");
+    };
+    for mode in ["plan", "follow"] {
+        let v = json(&["track", "--circle", "0,0,1e308", "--samples", "12", "--mode", mode, "--max-step-deg", "40"]);
+        assert_no_null(&v, "");
+        for s in v["samples"].as_array().unwrap() {
+            finite_error(s, mode);
+            let joints = s["joints"].as_array().unwrap();
+            let tip = joints.last().unwrap();
+            let (x, y) = (tip[0].as_f64().unwrap(), tip[1].as_f64().unwrap());
+            let (gx, gy) = (s["goal"][0].as_f64().unwrap(), s["goal"][1].as_f64().unwrap());
+            assert!((x.hypot(y) - 6.0).abs() < 1e-3, "{mode}: the arm stretched out: {tip:?}");
+            let turn = ikarus::angle::wrap_angle(y.atan2(x) - gy.atan2(gx));
+            assert!(turn.abs() < 1e-3, "{mode}: the arm points at the goal: {tip:?} vs ({gx}, {gy})");
+        }
+    }
+    for limits in [&[][..], &["--limits"]] {
+        let v = json(&[&["solve", "--goal=-1e308,1e308"][..], limits].concat());
+        assert_no_null(&v, "");
+        finite_error(&v, "solve");
+        let tip = &v["end_effector"];
+        // Toward the goal (up and left; the seed's ranges keep it from going further left).
+        assert!(tip["x"].as_f64().unwrap() < 1e-9 && tip["y"].as_f64().unwrap() > 4.0, "{limits:?}: {tip}");
+    }
+    let o = common::ikarus(&["animate", "--goal", "0,1e308", "--frames", "3", "--format", "json"]);
+    assert!(o.status.success());
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_no_null(&v, "");
+    finite_error(&v["solves"][0], "animate");
+    // The line on stderr writes the goal short.
+    assert_eq!(
+        common::stderr(&o),
+        "ikarus: goal (0, 1e308) not reached: unreachable, error 1.000e308; the motion ends at the best pose found\n"
+    );
+}

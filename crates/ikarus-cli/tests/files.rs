@@ -111,9 +111,9 @@ fn an_existing_file_keeps_its_permissions() {
     assert_eq!(std::fs::metadata(&png).unwrap().permissions().mode() & 0o7777, 0o640);
 }
 
-/// SIGINT while a long run holds its temporary output: the temporary file is removed and the
-/// exit code is 130. The run is made endless on purpose (10⁹ workspace samples of a seven-link
-/// arm), so that the signal always arrives during the work.
+/// SIGINT or SIGTERM while a long run holds its temporary output: the temporary file is
+/// removed and the exit code is 130 (143). The run is made endless on purpose (10⁹ workspace
+/// samples of a seven-link arm), so that the signal always arrives during the work.
 #[cfg(unix)]
 #[test]
 fn sigint_during_out_leaves_no_temporary_file() {
@@ -121,38 +121,101 @@ fn sigint_during_out_leaves_no_temporary_file() {
         let dir = tempfile::tempdir().unwrap();
         let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/seven.toml");
         let out = dir.path().join("w.png");
-        let child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-            .args(["workspace", "--limits", "--samples", "1000000000", "--max-samples", "1000000000"])
-            .args(["--resolution", "64", "--arm", arm.to_str().unwrap(), "--out", out.to_str().unwrap()])
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        // Wait for the temporary file (a generous bound: a hang here is the failure).
-        let started = Instant::now();
-        while entries(dir.path()).is_empty() {
-            assert!(started.elapsed() < Duration::from_secs(60), "no temporary file appeared");
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        let temp = entries(dir.path());
-        assert!(temp[0].starts_with(".ikarus-") && temp[0].ends_with(".tmp"), "{temp:?}");
-        std::thread::sleep(Duration::from_millis(200));
-        assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
-        // A generous bound: a process that ignores the signal would otherwise run for hours.
-        let mut child = child;
-        let signalled = Instant::now();
-        while child.try_wait().unwrap().is_none() {
-            if signalled.elapsed() > Duration::from_secs(60) {
-                let _ = child.kill();
-                panic!("{signal}: the process kept running");
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        let o = child.wait_with_output().unwrap();
-        let want = if signal == "-INT" { 130 } else { 143 };
-        assert_eq!(o.status.code(), Some(want), "{signal}: {}", String::from_utf8_lossy(&o.stderr));
-        assert_eq!(entries(dir.path()), Vec::<String>::new(), "{signal}: the temporary file is removed");
+        let args = ["workspace", "--limits", "--samples", "1000000000", "--max-samples", "1000000000"];
+        let args = [&args[..], &["--resolution", "64", "--arm", arm.to_str().unwrap(), "--out", out.to_str().unwrap()]];
+        interrupted_leaves_nothing(&args.concat(), dir.path(), signal, true);
     }
+}
+
+/// Sends `signal` (`-INT` or `-TERM`) to a run of `args` (long on purpose, so that the signal
+/// arrives during the work): once its temporary output file is in `dir` if `wait_for_file`,
+/// else a second after it started (while it reads its input or works, before or after the file
+/// is made). Checks the end: exit 130 (143 for SIGTERM), one line on stderr, nothing in `dir`.
+#[cfg(unix)]
+fn interrupted_leaves_nothing(args: &[&str], dir: &Path, signal: &str, wait_for_file: bool) {
+    let child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait for the temporary file (a generous bound: a hang here is the failure).
+    let started = Instant::now();
+    while wait_for_file && entries(dir).is_empty() {
+        assert!(started.elapsed() < Duration::from_secs(60), "{args:?}: no temporary file appeared");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    if wait_for_file {
+        let temp = entries(dir);
+        assert!(temp[0].starts_with(".ikarus-") && temp[0].ends_with(".tmp"), "{temp:?}");
+    }
+    std::thread::sleep(Duration::from_millis(if wait_for_file { 300 } else { 1000 }));
+    assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
+    let mut child = child;
+    let signalled = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if signalled.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("{args:?}: the process kept running");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let o = child.wait_with_output().unwrap();
+    let err = stderr(&o);
+    let want = if signal == "-INT" { 130 } else { 143 };
+    assert_eq!(o.status.code(), Some(want), "{signal} {args:?}: {:?}, {err}", o.status);
+    assert!(
+        err == "ikarus: interrupted\n" || err == "ikarus: interrupted; the unfinished output file is removed\n",
+        "{args:?}: {err}"
+    );
+    assert_eq!(entries(dir), Vec::<String>::new(), "{args:?}: no output file");
+}
+
+/// Issue 24: `ikarus solve --batch` (rows on stdout, the summary to a file) and `ikarus reach
+/// --batch --out` died by the signal on SIGINT (exit −2 as Python reports it, no code) instead
+/// of exiting 130. Each run here is long on purpose: a million goals on one thread; the reach
+/// verdicts of 200,000 points on a seven-link limited arm.
+#[cfg(unix)]
+#[test]
+fn sigint_during_a_batch_exits_130_and_leaves_no_file() {
+    let inputs = tempfile::tempdir().unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let summary = out.path().join("summary.json");
+    // Rows on stdout only (no file was ever pending: no handler was installed before): a
+    // million goals on one thread, several seconds of work.
+    let many = inputs.path().join("many.csv");
+    let rows: String = (0..1_000_000).map(|i| format!("{},{}\n", f64::from(i % 1000) * 0.006, 1.5)).collect();
+    std::fs::write(&many, format!("x,y\n{rows}")).unwrap();
+    interrupted_leaves_nothing(
+        &["solve", "--batch", many.to_str().unwrap(), "--threads", "1"],
+        out.path(),
+        "-INT",
+        false,
+    );
+    // And with the summary to a file: that file is removed.
+    let args =
+        ["solve", "--batch", many.to_str().unwrap(), "--threads", "1", "--summary-json", summary.to_str().unwrap()];
+    interrupted_leaves_nothing(&args, out.path(), "-INT", true);
+    let points = inputs.path().join("points.csv");
+    let rows: String = (0..200_000).map(|i| format!("{},{}\n", f64::from(i % 1000) * 0.01, 1.5)).collect();
+    std::fs::write(&points, format!("x,y\n{rows}")).unwrap();
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/seven.toml");
+    let csv = out.path().join("verdicts.csv");
+    interrupted_leaves_nothing(
+        &[
+            "reach",
+            "--arm",
+            arm.to_str().unwrap(),
+            "--limits",
+            "--batch",
+            points.to_str().unwrap(),
+            "--out",
+            csv.to_str().unwrap(),
+        ],
+        out.path(),
+        "-INT",
+        false,
+    );
 }
 
 #[cfg(unix)]

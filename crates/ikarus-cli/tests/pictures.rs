@@ -462,3 +462,41 @@ fn the_playgrounds_gif_is_the_screens_picture() {
     let (_, free) = with(serde_json::json!({ "workspace": true, "options": { "limits": false } }));
     assert!(pixels_of(&free[0], AREA) > area, "{} vs {area}", pixels_of(&free[0], AREA));
 }
+
+/// Issue 24: `ikarus solve --out puppet.png` printed the whole JSON while `animate`, `track`
+/// and `workspace` with `--out` printed nothing. Now all four agree (with an arm or a rig):
+/// with `--out` the picture is the result and stdout stays quiet, unless `--format` asks for
+/// the report too; nothing goes to stderr either.
+#[test]
+fn with_out_every_command_prints_nothing_unless_a_format_is_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let rig = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rigs/puppet.toml");
+    let rig = rig.to_str().unwrap();
+    let commands: [&[&str]; 7] = [
+        &["solve", "--goal", "2,3"],
+        &["solve", "--rig", rig, "--goal", "right_hand=0.6451,1.0024", "--pin", "left_foot"],
+        &["animate", "--goal", "2,3", "--frames", "4"],
+        &["animate", "--rig", rig, "--goal", "right_hand=0.6451,1.0024", "--frames", "4"],
+        &["track", "--circle", "0,2,1", "--samples", "8"],
+        &["track", "--rig", rig, "--effector", "left_hand", "--line", "-0.6,0.6,-0.7,0.9", "--samples", "4"],
+        &["workspace"],
+    ];
+    for (i, args) in commands.into_iter().enumerate() {
+        let out = dir.path().join(format!("{i}.svg"));
+        let with_out = [args, &["--out", out.to_str().unwrap()]].concat();
+        let o = ikarus(&with_out);
+        assert!(o.status.success(), "{with_out:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(String::from_utf8_lossy(&o.stdout), "", "{with_out:?}: nothing on stdout");
+        assert_eq!(String::from_utf8_lossy(&o.stderr), "", "{with_out:?}: nothing on stderr");
+        assert!(std::fs::read_to_string(&out).unwrap().starts_with("<svg"), "{with_out:?}");
+        // Asked for, the report comes too: the same JSON as without --out.
+        let asked = [&with_out[..], &["--format", "json"]].concat();
+        let o = ikarus(&asked);
+        assert!(o.status.success(), "{asked:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let plain = json(args);
+        let key = ["area", "arm", "rig"].into_iter().find(|k| plain.get(k).is_some()).unwrap();
+        assert_eq!(report[key], plain[key], "{asked:?}");
+        assert!(report.is_object() && !report[key].is_null(), "{asked:?}: {report}");
+    }
+}

@@ -497,7 +497,8 @@ impl PyChain {
     /// Solves many goals in parallel, each from the chain's start pose (``ikarus solve --batch``),
     /// in blocks through the library's batch path.
     ///
-    /// ``goals`` is a float64 array [N, 2] (x, y) or [N, 3] (x, y, angle_deg). ``threads``: the
+    /// ``goals`` is an array [N, 2] (x, y) or [N, 3] (x, y, angle_deg) of numbers (integers and
+    /// float32 are converted to float64, as NumPy's ``astype`` does). ``threads``: the
     /// number of worker threads (``None``: all cores). Options are those of :meth:`solve`.
     /// The GIL is released while solving; the results are in input order and the same bit for
     /// bit whatever ``threads`` is. Returns a dict of NumPy arrays: ``angles_deg`` float64
@@ -511,23 +512,12 @@ impl PyChain {
         threads: Option<i64>,
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let array = goals.cast::<numpy::PyArray2<f64>>().map_err(|_| {
-            let shape = goals
-                .getattr("shape")
-                .map(|s| s.to_string())
-                .unwrap_or_else(|_| goals.get_type().name().map(|n| n.to_string()).unwrap_or_default());
-            let dtype = goals.getattr("dtype").map(|d| format!(" of {d}")).unwrap_or_default();
-            PyValueError::new_err(format!(
-                "goals: expected a float64 array of shape (N, 2) or (N, 3), got {shape}{dtype}"
-            ))
-        })?;
+        let array = goals_array(goals)?;
         let readonly: PyReadonlyArray2<f64> = array.readonly();
         let shape = readonly.shape().to_vec();
         let (count, width) = (shape[0], shape[1]);
         if width != 2 && width != 3 {
-            return Err(PyValueError::new_err(format!(
-                "goals: expected a float64 array of shape (N, 2) or (N, 3), got ({count}, {width})"
-            )));
+            return Err(PyValueError::new_err(format!("{GOALS_EXPECTED}, got ({count}, {width})")));
         }
         let values: Vec<f64> = match readonly.as_slice() {
             Ok(s) => s.to_vec(),
@@ -628,6 +618,34 @@ fn api_call(py: Python<'_>, endpoint: &str, body: &[u8]) -> PyResult<Vec<u8>> {
         Endpoint::from_path(endpoint).ok_or_else(|| PyValueError::new_err(format!("unknown endpoint '{endpoint}'")))?;
     let body = body.to_vec();
     py.detach(move || edge::call(endpoint, &body, limits(), &ikarus::Interrupt::new())).map(|r| r.body).map_err(problem)
+}
+
+/// What `Chain.solve_batch` takes as goals, for its messages.
+const GOALS_EXPECTED: &str = "goals: expected an array of numbers of shape (N, 2) or (N, 3)";
+
+/// `goals` as a float64 array of two dimensions: a float64 array as it is; any other array of
+/// integers or floats (int64, uint8, float32, …), or nested sequences of numbers, converted as
+/// NumPy's `asarray(goals).astype(float64)` does. Anything else (strings, objects, booleans,
+/// complex numbers, ragged lists, another number of dimensions) is refused in one line naming
+/// its shape and dtype.
+fn goals_array<'py>(goals: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    if let Ok(array) = goals.cast::<PyArray2<f64>>() {
+        return Ok(array.clone());
+    }
+    let py = goals.py();
+    let kind_of = |what: String| PyValueError::new_err(format!("{GOALS_EXPECTED}, got {what}"));
+    let type_name = || goals.get_type().name().map(|n| n.to_string()).unwrap_or_default();
+    let raw = py.import("numpy")?.call_method1("asarray", (goals,)).map_err(|_| kind_of(type_name()))?;
+    let shape = raw.getattr("shape").map(|s| s.to_string()).unwrap_or_else(|_| type_name());
+    let dtype = raw.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    // Signed and unsigned integers and real floats; not booleans ("b"), complex ("c"), strings,
+    // objects, dates.
+    if !matches!(kind.as_str(), "i" | "u" | "f") {
+        return Err(kind_of(format!("{shape} of {dtype}")));
+    }
+    let converted = raw.call_method1("astype", ("float64",))?;
+    converted.cast_into::<PyArray2<f64>>().map_err(|_| kind_of(shape))
 }
 
 /// Joint positions as float64 [k, 2].

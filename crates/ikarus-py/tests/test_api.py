@@ -129,6 +129,21 @@ def test_plot_returns_axes_and_draws(tmp_path):
     ax = arm.plot(pose=[0, 45, 90], goal=(1, 4))
     assert ax.lines
     plt.close("all")
+    # Drawing imported the drawing module; `ikarus.plot` is still the function, not that module.
+    assert callable(ikarus.plot) and ikarus.plot(arm).lines
+    plt.close("all")
+
+
+def test_the_namespace_is_the_api():
+    # `dir(ikarus)` and `from ikarus import *` give the API and nothing the package uses inside.
+    public = sorted(name for name in dir(ikarus) if not name.startswith("_"))
+    assert public == sorted(name for name in ikarus.__all__ if not name.startswith("_")), public
+    assert public == ["Chain", "Outcome", "Rig", "call", "ease", "plot"]
+    names: dict = {}
+    exec("from ikarus import *", names)
+    assert sorted(k for k in names if k != "__builtins__") == sorted(ikarus.__all__)
+    for name in ikarus.__all__:
+        assert getattr(ikarus, name) is not None, name
 
 
 def test_a_rig_solve_equals_the_cli():

@@ -94,3 +94,22 @@ def test_python_threads_sharing_a_chain_get_the_same_bits():
     with ThreadPoolExecutor(4) as pool:
         got = list(pool.map(lambda x: chain.solve(x).angles_deg.tolist(), g * 3))
     assert got == want * 3
+
+
+@pytest.mark.parametrize("dtype", [np.int64, np.int32, np.uint8, np.float32, np.float16])
+def test_goals_of_any_real_number_type_are_converted(dtype):
+    # Integer and float32 goals are the float64 goals of the same values, as NumPy converts them.
+    chain = ikarus.Chain()
+    g = np.array([[2, 3], [1, 1], [0, 4], [7, 0], [5, 1]], dtype=dtype)
+    want = chain.solve_batch(g.astype(np.float64))
+    got = chain.solve_batch(g)
+    for key in ("angles_deg", "status", "error", "iterations"):
+        assert np.array_equal(got[key], want[key]), key
+
+
+def test_goals_as_nested_lists_are_converted():
+    chain = ikarus.Chain()
+    want = chain.solve_batch(np.array([[2.0, 3.0, 45.0], [1.0, 1.0, 0.0]]))
+    got = chain.solve_batch([[2, 3, 45], (1.0, 1, 0)])
+    for key in ("angles_deg", "status", "error", "iterations"):
+        assert np.array_equal(got[key], want[key]), key

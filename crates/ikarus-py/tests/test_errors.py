@@ -149,11 +149,15 @@ def test_a_goal_that_is_not_numbers():
     "goals,fragment",
     [
         (np.zeros((3, 4)), "got (3, 4)"),
-        (np.zeros(3), "goals: expected a float64 array of shape (N, 2) or (N, 3)"),
-        (np.zeros((3, 2), dtype=np.int64), "int64"),
-        (np.zeros((3, 2), dtype=np.float32), "float32"),
-        ([[1.0, 2.0]], "goals: expected a float64 array"),
+        (np.zeros(3), "goals: expected an array of numbers of shape (N, 2) or (N, 3), got (3,)"),
+        (np.zeros((2, 2, 2), dtype=np.int64), "got (2, 2, 2)"),
+        (np.array([["a", "b"]]), "goals: expected an array of numbers of shape (N, 2) or (N, 3), got (1, 2) of <U1"),
+        (np.zeros((3, 2), dtype=bool), "got (3, 2) of bool"),
+        (np.zeros((3, 2), dtype=complex), "got (3, 2) of complex128"),
+        (np.array([[1.0, None]]), "got (1, 2) of object"),
+        ([[1.0, 2.0], [3.0]], "goals: expected an array of numbers of shape (N, 2) or (N, 3), got list"),
         (np.array([[1.0, 2.0], [np.nan, 1.0]]), "goals[1].x: must be a finite number, got NaN"),
+        (np.array([[1.0, 2.0], [np.inf, 1.0]], dtype=np.float32), "goals[1].x: must be a finite number, got inf"),
     ],
 )
 def test_bad_batch_goals(goals, fragment):

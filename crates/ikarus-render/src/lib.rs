@@ -47,4 +47,4 @@ pub use scene::TrailStyle;
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use skeleton_gif::skeleton_gif;
 pub use style::{COLOURS, Colours};
-pub use view::{PixelRect, VIEW_PADDING, View};
+pub use view::{FIT_MARGIN, PixelRect, VIEW_PADDING, View};

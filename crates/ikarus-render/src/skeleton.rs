@@ -9,7 +9,7 @@ use crate::raster::{check_size, svg_to_png};
 use crate::scene::{Scene, Wedge};
 use crate::style;
 use crate::svg::{PathData, Svg, num};
-use crate::view::{PixelRect, View};
+use crate::view::{MAX_GOAL_ZOOM_OUT, PixelRect, View};
 use labels::labels;
 
 mod labels;
@@ -89,6 +89,10 @@ pub struct SkeletonFigure<'a> {
     pub show_reach: bool,
     /// A line of text under the plot.
     pub caption: Option<String>,
+    /// The world box the view fits, `(min, max)`, instead of the one of [`pose`](Self::pose)
+    /// ([`SkeletonFigure::extent`]): an animation gives every frame the box of all its poses,
+    /// so that the view stays still. `None` (the default): the pose's own.
+    pub fit: Option<(Point2<f64>, Point2<f64>)>,
 }
 
 impl<'a> SkeletonFigure<'a> {
@@ -104,20 +108,51 @@ impl<'a> SkeletonFigure<'a> {
             labels: false,
             show_reach: false,
             caption: None,
+            fit: None,
         }
     }
 
-    /// The view this figure is drawn in at `width` × `height`: centred on the base, fitting
-    /// `base ± 1.12 · max_reach` and the farthest goal (up to three reaches), as an arm's.
+    /// The view this figure is drawn in at `width` × `height`: fitted to what it shows, the
+    /// box of [`fit`](Self::fit) or else of [`extent`](Self::extent) at its pose (the base,
+    /// the bones, the goals), centred, with [`FIT_MARGIN`](crate::FIT_MARGIN) of room
+    /// around it. A rig's reach (the base's distance to its farthest tip over every pose) says
+    /// little of where its bones are: a hand drawn in its reach's circle filled the top sixth
+    /// of the picture.
     #[must_use]
     pub fn view(&self, width: u32, height: u32) -> View {
-        View::around(
-            self.skeleton.base(),
-            self.skeleton.max_reach(),
-            self.goals.iter().map(|g| g.position),
-            width,
-            height,
-        )
+        let (min, max) = self.fit.unwrap_or_else(|| self.extent([self.pose]));
+        View::fitting(min, max, width, height)
+    }
+
+    /// The world box `(min, max)` that holds the base, every bone at each of `poses`, and each
+    /// goal (one farther than three reaches from the base counts as that far, in its direction:
+    /// it is drawn as an arrow on the plot's edge). A pose that does not fit the skeleton (the
+    /// wrong length, an angle not finite) is left out: drawing it fails with its own error.
+    #[must_use]
+    pub fn extent<'p>(&self, poses: impl IntoIterator<Item = &'p [f64]>) -> (Point2<f64>, Point2<f64>) {
+        let skeleton = self.skeleton;
+        let base = skeleton.base();
+        let (mut min, mut max) = (base, base);
+        let mut include = |p: Point2<f64>| {
+            min = min.inf(&p);
+            max = max.sup(&p);
+        };
+        let n = skeleton.len();
+        let mut bones = Bones { starts: vec![base; n], tips: vec![base; n], directions: vec![0.0; n] };
+        for pose in poses {
+            if pose.len() != n || !pose.iter().all(|a| a.is_finite()) {
+                continue;
+            }
+            skeleton.forward_into(pose, &mut bones.starts, &mut bones.tips, &mut bones.directions);
+            bones.starts.iter().chain(&bones.tips).for_each(|&p| include(p));
+        }
+        let far = MAX_GOAL_ZOOM_OUT * skeleton.max_reach();
+        for g in self.goals.iter().filter(|g| g.position.x.is_finite() && g.position.y.is_finite()) {
+            let away = g.position - base;
+            let d = away.x.hypot(away.y);
+            include(if d > far { base + away * (far / d) } else { g.position });
+        }
+        (min, max)
     }
 
     fn check(&self) -> Result<(), RenderError> {

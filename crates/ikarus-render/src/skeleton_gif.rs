@@ -14,9 +14,10 @@ use crate::style;
 /// `animation` of `figure`'s skeleton as a looping GIF of `width` × `height` pixels at `fps`
 /// frames per second, one GIF frame per animation frame: each is `figure` (its goals, pins,
 /// ranges and names) with the frame's angles as the pose, and its caption followed by the
-/// frame's time (`t = 0.50`). The view is the figure's, the same for every frame (it depends on
-/// the skeleton and the goals, not on the pose), so the picture does not jump. `figure.pose` is
-/// not drawn. `progress(done, total)` is called after each frame.
+/// frame's time (`t = 0.50`). The view is the same for every frame, so the picture does not
+/// jump: fitted to the bones at every frame's pose and the goals ([`SkeletonFigure::extent`]),
+/// unless `figure.fit` gives it. `figure.pose` is not drawn. `progress(done, total)` is called
+/// after each frame.
 ///
 /// # Errors
 /// [`RenderError::Size`] for a side outside 16..=4096, [`RenderError::Fps`] for a rate outside
@@ -39,6 +40,7 @@ pub fn skeleton_gif(
     if total == 0 {
         return Err(RenderError::NoFrames);
     }
+    let fit = figure.fit.or_else(|| Some(figure.extent(animation.frames.iter().map(|f| f.angles.as_slice()))));
     let rgba = |i: usize| -> Result<Vec<u8>, RenderError> {
         check_interrupt()?;
         let frame = &animation.frames[i];
@@ -47,7 +49,7 @@ pub fn skeleton_gif(
             Some(c) => format!("{c} · {clock}"),
             None => clock,
         };
-        let at = SkeletonFigure { pose: &frame.angles, caption: Some(caption), ..figure.clone() };
+        let at = SkeletonFigure { pose: &frame.angles, caption: Some(caption), fit, ..figure.clone() };
         Ok(svg_to_pixmap(&skeleton_svg(&at, width, height)?)?.take())
     };
     let mut sample = Vec::new();

@@ -7,7 +7,10 @@ pub const VIEW_PADDING: f64 = 1.12;
 
 /// A goal farther than this many reaches from the base does not widen the view any more; it is
 /// drawn as an arrow at the edge of the plot instead.
-const MAX_GOAL_ZOOM_OUT: f64 = 3.0;
+pub(crate) const MAX_GOAL_ZOOM_OUT: f64 = 3.0;
+
+/// The room [`View::fitting`] leaves on each side of what it fits, as a share of its larger side.
+pub const FIT_MARGIN: f64 = 0.12;
 
 /// A rectangle in pixels: `left ≤ x ≤ right`, `top ≤ y ≤ bottom` (y points down).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,8 +112,8 @@ impl View {
     }
 
     /// The view centred on `base` that fits `base ± 1.12 · reach` and the farthest of `goals`
-    /// (up to three reaches), as [`View::new`] does for a chain; a skeleton's view.
-    pub(crate) fn around(
+    /// (up to three reaches): [`View::new`]'s for a chain.
+    fn around(
         base: Point2<f64>,
         reach: f64,
         goals: impl IntoIterator<Item = Point2<f64>>,
@@ -126,6 +129,20 @@ impl View {
         let plot = layout.plot;
         let scale = plot.width().min(plot.height()).max(1.0) / (2.0 * half);
         Self { layout, center: base, scale }
+    }
+
+    /// The view that shows the world box from `min` to `max` whole and centred, with equal scale
+    /// on both axes and [`FIT_MARGIN`] of the box's larger side free on each side (a box of no
+    /// size, a point, gets a margin of 1): a skeleton's view, fitted to its bones.
+    pub(crate) fn fitting(min: Point2<f64>, max: Point2<f64>, width: u32, height: u32) -> Self {
+        let layout = Layout::new(width, height, 0.0);
+        let size = max - min;
+        let larger = size.x.max(size.y);
+        let margin = if larger > 0.0 { FIT_MARGIN * larger } else { 1.0 };
+        let plot = layout.plot;
+        let scale =
+            (plot.width().max(1.0) / (size.x + 2.0 * margin)).min(plot.height().max(1.0) / (size.y + 2.0 * margin));
+        Self { layout, center: Point2::new(0.5 * (min.x + max.x), 0.5 * (min.y + max.y)), scale }
     }
 
     /// Pixel coordinates `(x, y)` of the world point `p`.

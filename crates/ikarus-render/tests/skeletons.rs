@@ -122,26 +122,79 @@ fn a_one_branch_skeleton_draws_the_arms_links() {
     let skeleton = Skeleton::from_chain(&chain);
     let pose = [0.4, 1.1, -0.6];
     let arm = arm_svg(&ArmFigure { show_reach: false, ..ArmFigure::new(&chain, &pose) }, 500, 400).unwrap();
-    let skel = skeleton_svg(&SkeletonFigure::new(&skeleton, &pose), 500, 400).unwrap();
-    // The arm's links: the ink polyline (round-joined, in ink) after the comment "arm".
+    let figure = SkeletonFigure::new(&skeleton, &pose);
+    let skel = skeleton_svg(&figure, 500, 400).unwrap();
+    // The arm's links: the ink polyline (round-joined, in ink) after the comment "arm", in the
+    // arm's view (centred on the base, fitting its reach), back in world coordinates.
     let arm_part = arm.split("<!-- arm -->").nth(1).unwrap();
     let ink = arm_part.lines().find(|l| l.contains("stroke-linejoin=\"round\" stroke=\"#26324a\"")).unwrap();
     let d = ink.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
-    let arm_segments = segments(d);
-    assert_eq!(arm_segments.len(), 3);
-    let bone_segments: Vec<_> = (0..3)
+    let world = |view: &ikarus_render::View, [(x, y), _]: &[(String, String); 2]| {
+        view.pixel_to_world(x.parse().unwrap(), y.parse().unwrap())
+    };
+    let arm_view = ArmFigure::new(&chain, &pose).view(500, 400);
+    let arm_starts: Vec<Point2<f64>> = segments(d).iter().map(|s| world(&arm_view, s)).collect();
+    assert_eq!(arm_starts.len(), 3);
+    // The skeleton's bones, one path each, in its own view (fitted to the bones).
+    let view = figure.view(500, 400);
+    let bone_starts: Vec<Point2<f64>> = (0..3)
         .map(|i| {
             let line = skel.lines().find(|l| l.contains(&format!("id=\"bone{i}\""))).unwrap();
             let d = line.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
             let s = segments(d);
             assert_eq!(s.len(), 1);
-            s[0].clone()
+            world(&view, &s[0])
         })
         .collect();
-    assert_eq!(bone_segments, arm_segments);
-    // The same view: the same grid and ticks, so everything else lines up too.
-    let grid = |s: &str| s.split("<!-- grid -->").nth(1).unwrap().split("<!--").next().unwrap().to_string();
-    assert_eq!(grid(&arm), grid(&skel));
+    // The same links: the same joints, to the SVG's 1/100 px.
+    let px = 0.006 / view.scale().min(arm_view.scale());
+    for (a, b) in arm_starts.iter().zip(&bone_starts) {
+        assert!((a - b).norm() < px, "{a} vs {b}");
+    }
+}
+
+/// Where the bones are drawn, in pixels: the box of every point of the `bone{i}` paths.
+fn drawn_box(svg: &str) -> (f64, f64, f64, f64) {
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for line in svg.lines().filter(|l| l.contains("id=\"bone")) {
+        let d = line.split("d=\"").nth(1).unwrap().split('"').next().unwrap();
+        for [a, b] in segments(d) {
+            for (x, y) in [a, b] {
+                let (x, y) = (x.parse::<f64>().unwrap(), y.parse::<f64>().unwrap());
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+    }
+    (x0, y0, x1, y1)
+}
+
+/// Issue 24: the hand filled the top sixth of its picture (drawn in the circle of its reach
+/// around the wrist). Now a rig's picture is fitted to its bones: at any size and pose, the
+/// drawing is centred in the plot and fills it along one side, with room to spare.
+#[test]
+fn a_rig_fills_its_picture() {
+    for name in ["hand", "puppet"] {
+        let s = rig(name);
+        let curled: Vec<f64> = s.start_angles().iter().map(|a| a - 0.3).collect();
+        for pose in [s.start_angles().to_vec(), curled] {
+            for (w, h) in [(800, 800), (600, 400), (300, 700)] {
+                let figure = SkeletonFigure::new(&s, &pose);
+                let svg = skeleton_svg(&figure, w, h).unwrap();
+                let plot = figure.view(w, h).plot_area();
+                let (x0, y0, x1, y1) = drawn_box(&svg);
+                let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+                let at = format!("{name} {w}×{h}: bones in x {x0:.0}..{x1:.0}, y {y0:.0}..{y1:.0} of {plot:?}");
+                // The base is in the box too, so the bones' own box may sit off centre a little.
+                assert!((cx - 0.5 * (plot.left + plot.right)).abs() < 0.1 * plot.width(), "{at}");
+                assert!((cy - 0.5 * (plot.top + plot.bottom)).abs() < 0.1 * plot.height(), "{at}");
+                // The box with its margin (12 % of its larger side each side) fills the plot
+                // along one side: the bones alone fill 1/1.24 of it, less the base's share.
+                let filled = ((x1 - x0) / plot.width()).max((y1 - y0) / plot.height());
+                assert!((0.6..=0.81).contains(&filled), "{at}: fills {filled:.2}");
+                assert!(plot.contains(x0, y0) && plot.contains(x1, y1), "{at}");
+            }
+        }
+    }
 }
 
 #[test]

@@ -9,6 +9,9 @@ use thiserror::Error;
 
 use crate::chain::{Chain, annulus_inner};
 
+/// How many reaches from the base a goal is at most where a solve aims ([`Goal::stand_in`]).
+pub(crate) const FAR_GOAL_REACHES: f64 = 1e6;
+
 /// What the end effector should reach: a position, and optionally an absolute orientation
 /// of the last link.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +62,32 @@ impl Goal {
         self.orientation
     }
 
+    /// The goal an iterative solve aims at instead of this one when this one is so far from
+    /// `base` (more than [`FAR_GOAL_REACHES`] times `reach`, and by more than `tolerance`) that
+    /// the loop cannot see its own progress: the same orientation, at that distance in the same
+    /// direction. `None` for a goal nearer than that.
+    ///
+    /// From a goal `D` away, a step that brings the tip `δ` nearer lowers `|e|²` by about
+    /// `2Dδ`: below the last bit of `D²` once `D` is some 10¹⁶ reaches, so that every step
+    /// looked useless and the solve stalled at its start pose (a goal at (1e300, 0) left the
+    /// seed arm folded at 5°, 5°, 5°). Past `reach`, the pose nearest a far goal points the arm
+    /// at it; at 10⁶ reaches the stand-in's direction is the goal's to the last bit that
+    /// matters, and every step shows. The error reported is still the goal's own distance.
+    #[must_use]
+    pub(crate) fn stand_in(&self, base: Point2<f64>, reach: f64, tolerance: f64) -> Option<Self> {
+        let far = FAR_GOAL_REACHES * reach;
+        // A quarter of the offset, so that neither the difference nor its length overflows
+        // (a goal at 1e308 from a base at −1e308 is 2e308 away, beyond the f64 range).
+        let (qx, qy) = (0.25 * self.position.x - 0.25 * base.x, 0.25 * self.position.y - 0.25 * base.y);
+        let quarter = math::hypot(qx, qy);
+        // (Finite goals and bases: no NaN here.)
+        if quarter <= 0.25 * (far + tolerance) || far <= 0.0 {
+            return None;
+        }
+        let position = Point2::new(base.x + qx / quarter * far, base.y + qy / quarter * far);
+        Some(Self { position, ..*self })
+    }
+
     /// Whether no pose of `chain` can reach this goal even with its limits ignored, by more
     /// than `tolerance`.
     ///
@@ -86,11 +115,10 @@ impl Goal {
     }
 }
 
-/// `|v|`, by `hypot` where the sum of squares overflows (a goal 1e200 away from the base of a
-/// chain of reach 3e200 is within reach, not infinitely far) or is subnormal.
+/// `|v|`, without overflow (a goal 1e200 away from the base of a chain of reach 3e200 is
+/// within reach, not infinitely far) or underflow: [`math::distance`].
 fn length(v: nalgebra::Vector2<f64>) -> f64 {
-    let squared = v.norm_squared();
-    if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { math::hypot(v.x, v.y) }
+    math::distance(v.x, v.y)
 }
 
 fn finite(field: &'static str, value: f64) -> Result<(), GoalError> {

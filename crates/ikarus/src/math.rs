@@ -63,6 +63,24 @@ pub(crate) fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 
+/// The length of `(dx, dy)`: `√(dx² + dy²)`, or [`hypot`] where the sum of squares would
+/// overflow or lose precision below the smallest normal number (so that a goal 1e200 away is
+/// 1e200 away, not infinitely far, and 1e-170 away is not 0). Saturates at `f64::MAX` if the
+/// length itself is beyond the f64 range, so that it is always a finite number. Every distance
+/// the library reports (a solve's, a track sample's error) is this one.
+#[inline]
+pub(crate) fn distance(dx: f64, dy: f64) -> f64 {
+    let squared = dx * dx + dy * dy;
+    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { hypot(dx, dy) };
+    d.min(f64::MAX)
+}
+
+/// [`distance`] from `a` to `b`.
+#[inline]
+pub(crate) fn distance_between(a: nalgebra::Point2<f64>, b: nalgebra::Point2<f64>) -> f64 {
+    distance(b.x - a.x, b.y - a.y)
+}
+
 /// `eˣ`.
 #[inline]
 pub(crate) fn exp(x: f64) -> f64 {

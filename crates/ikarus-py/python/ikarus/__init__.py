@@ -17,15 +17,23 @@ Options are keywords with the CLI's names (``method="dls"``, ``lambda_=0.2``, ``
 
 from __future__ import annotations
 
-import json
-import math
-import os
-from typing import Any, Iterable, Optional, Sequence
+# Helpers under private names, so that the package's namespace (``dir(ikarus)``, completion in
+# an editor) holds only its API, ``__all__``. The annotations are strings (the future import
+# above), read by type checkers, which see the typing names below.
+import json as _json
+import math as _math
+import os as _os
+import typing as _typing
 
-import numpy as np
+import numpy as _np
 
 from . import _ikarus
 from ._ikarus import Outcome, ease
+
+if _typing.TYPE_CHECKING:
+    import os
+
+    from typing import Any, Iterable, Optional, Sequence
 
 __all__ = ["Chain", "Rig", "Outcome", "ease", "plot", "call", "__version__"]
 __version__ = _ikarus.__version__
@@ -36,15 +44,15 @@ def _plain(value: Any, field: str) -> Any:
     non-finite number (which JSON cannot carry) refused here, naming the field."""
     if value is None or isinstance(value, (bool, str)):
         return value
-    if isinstance(value, np.ndarray):
+    if isinstance(value, _np.ndarray):
         return _plain(value.tolist(), field)
-    if isinstance(value, (int, np.integer)) and not isinstance(value, np.bool_):
+    if isinstance(value, (int, _np.integer)) and not isinstance(value, _np.bool_):
         return int(value)
-    if isinstance(value, np.bool_):
+    if isinstance(value, _np.bool_):
         return bool(value)
-    if isinstance(value, (float, np.floating)):
+    if isinstance(value, (float, _np.floating)):
         x = float(value)
-        if not math.isfinite(x):
+        if not _math.isfinite(x):
             raise ValueError(f"{field} = {x!r}: must be a finite number".replace("nan", "NaN"))
         return x
     if isinstance(value, dict):
@@ -81,11 +89,11 @@ def call(endpoint: str, request: Optional[dict] = None) -> Any:
     """Asks the API without HTTP: what ``ikarus serve`` answers for ``POST /api/<endpoint>``
     with this request (a dict), parsed from JSON (or the bytes of a picture). A refused request
     raises ``ValueError`` with the server's one-line ``{"error": …}`` message."""
-    body = json.dumps(_plain(request or {}, "request"), allow_nan=False)
+    body = _json.dumps(_plain(request or {}, "request"), allow_nan=False)
     reply = _ikarus._call(endpoint, body)
     try:
-        return json.loads(reply)
-    except (UnicodeDecodeError, json.JSONDecodeError):
+        return _json.loads(reply)
+    except (UnicodeDecodeError, _json.JSONDecodeError):
         return reply
 
 
@@ -102,18 +110,18 @@ def _columns(rows: Sequence[dict]) -> dict:
         values = [row.get(key) for row in rows]
         if any(v is None for v in values):
             if all(v is None or isinstance(v, (int, float)) for v in values):
-                out[key] = np.array([np.nan if v is None else float(v) for v in values])
+                out[key] = _np.array([_np.nan if v is None else float(v) for v in values])
             else:
                 out[key] = values
         elif all(isinstance(v, str) for v in values):
-            out[key] = np.array(values, dtype=str)
+            out[key] = _np.array(values, dtype=str)
         elif all(isinstance(v, bool) for v in values):
-            out[key] = np.array(values, dtype=bool)
+            out[key] = _np.array(values, dtype=bool)
         elif all(isinstance(v, int) and not isinstance(v, bool) for v in values):
-            out[key] = np.array(values, dtype=np.int64)
+            out[key] = _np.array(values, dtype=_np.int64)
         else:
             try:
-                out[key] = np.array(values, dtype=np.float64)
+                out[key] = _np.array(values, dtype=_np.float64)
             except (ValueError, TypeError):
                 out[key] = values
     return out
@@ -131,7 +139,7 @@ class Chain(_ikarus.Chain):
         """Reads an arm file (TOML, the format of ``ikarus solve --arm FILE``). A missing file
         raises ``FileNotFoundError``; a bad one ``ValueError`` with the CLI's line
         (``arm file PATH: links[1].length = -2: must be greater than 0``)."""
-        path = os.fspath(path)
+        path = _os.fspath(path)
         with open(path, encoding="utf-8") as f:
             text = f.read()
         return cls(toml=text, label=f"arm file {path}")
@@ -146,7 +154,7 @@ class Chain(_ikarus.Chain):
         return (_rebuild_chain, (type(self), self._toml))
 
     def _arm(self) -> dict:
-        return json.loads(self._arm_json)
+        return _json.loads(self._arm_json)
 
     def _request(self, endpoint: str, request: dict) -> Any:
         request = {"arm": self._arm(), **{k: v for k, v in request.items() if v is not None}}
@@ -221,7 +229,7 @@ class Chain(_ikarus.Chain):
         if "solver_max_step_deg" in solver_options:
             solver_options["max_step_deg"] = solver_options.pop("solver_max_step_deg")
         request = {
-            "path": None if path is None else _plain(np.asarray(path, dtype=float), "path"),
+            "path": None if path is None else _plain(_np.asarray(path, dtype=float), "path"),
             "line": line,
             "circle": circle,
             "figure8": figure8,
@@ -255,7 +263,7 @@ class Chain(_ikarus.Chain):
         request = {"limits": limits, "grid": grid, "resolution": resolution, "samples": samples, "seed": seed}
         answer = self._request("workspace", request)
         if "grid" in answer:
-            answer["cells"] = np.array([[c == "1" for c in row] for row in answer["grid"]], dtype=bool)
+            answer["cells"] = _np.array([[c == "1" for c in row] for row in answer["grid"]], dtype=bool)
         return answer
 
     def reach(
@@ -268,7 +276,7 @@ class Chain(_ikarus.Chain):
         off the exact region. One point ``(x, y)`` gives ``{"reachable", "distance",
         "nearest"}``; an array [N, 2] gives columns ``reachable`` bool [N], ``distance`` [N]
         and ``nearest`` [N, 2]."""
-        arr = np.asarray(points, dtype=float)
+        arr = _np.asarray(points, dtype=float)
         if arr.ndim == 1:
             if arr.shape != (2,):
                 raise ValueError(f"points: expected (x, y) or an array of shape (N, 2), got {arr.shape}")
@@ -298,12 +306,12 @@ class Chain(_ikarus.Chain):
         request = {"arm": self._arm(), **{k: v for k, v in request.items() if v is not None}}
         if figure == "ease":
             request.pop("arm")
-        body = json.dumps(_plain(request, "request"), allow_nan=False)
+        body = _json.dumps(_plain(request, "request"), allow_nan=False)
         return bytes(_ikarus._call("render", body))
 
     def plot(self, pose: Any = None, goal: Any = None, ax: Any = None, **kwargs: Any) -> Any:
         """Draws the chain with matplotlib: see :func:`ikarus.plot`."""
-        from .plot import plot as _plot
+        from ._plot import plot as _plot
 
         return _plot(self, pose=pose, goal=goal, ax=ax, **kwargs)
 
@@ -325,10 +333,10 @@ class Rig:
     def from_toml(cls, path: "os.PathLike[str] | str") -> "Rig":
         """Reads a rig file (TOML, ``ikarus solve --rig FILE``); a bad one raises
         ``ValueError`` with the CLI's line."""
-        path = os.fspath(path)
+        path = _os.fspath(path)
         with open(path, encoding="utf-8") as f:
             text = f.read()
-        answer = json.loads(_ikarus._call("rig/parse", text))
+        answer = _json.loads(_ikarus._call("rig/parse", text))
         if "problem" in answer:
             problem = answer["problem"]
             if problem.startswith("rig file: "):
@@ -395,7 +403,7 @@ class Rig:
         """A picture of the rig by ikarus's renderer (``"figure": "rig"``): ``pose_deg``,
         ``goals`` (as the API's list), ``pins``, ``limits``, ``labels``."""
         request = {"figure": "rig", "format": format, "width": width, "height": height, "rig": self.rig, **fields}
-        body = json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
+        body = _json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
         return bytes(_ikarus._call("render", body))
 
     def _repr_svg_(self) -> str:
@@ -408,6 +416,10 @@ def plot(chain: Chain, pose: Any = None, goal: Any = None, ax: Any = None, **kwa
     ``workspace=True`` the boundary of the region it reaches (``limits=`` as for
     :meth:`Chain.workspace`). Returns the Axes. Needs matplotlib (``pip install
     'ikarus[plot]'``)."""
-    from .plot import plot as _plot
+    from ._plot import plot as _plot
 
     return _plot(chain, pose=pose, goal=goal, ax=ax, **kwargs)
+
+
+# The future import's own name: not part of the API.
+del annotations

@@ -79,8 +79,9 @@ class Chain:
     def solve(self, goal: Goal, **options: Any) -> Outcome:
         """Solve for ``goal`` from the start pose; options by keyword with the CLI's names
         (``method``, ``lambda_``, ``tolerance``, ``limits``, ``limit_mode``, ``restarts``, …)."""
-    def solve_batch(self, goals: npt.NDArray[np.float64], threads: Optional[int] = None, **options: Any) -> dict[str, npt.NDArray[Any]]:
-        """Solve every row of ``goals`` ([N, 2] or [N, 3]) in parallel: ``angles_deg`` [N, n],
+    def solve_batch(self, goals: npt.ArrayLike, threads: Optional[int] = None, **options: Any) -> dict[str, npt.NDArray[Any]]:
+        """Solve every row of ``goals`` ([N, 2] or [N, 3], numbers, converted to float64) in
+        parallel: ``angles_deg`` [N, n],
         ``status`` <U15 [N], ``error`` [N], ``iterations`` uint32 [N]."""
     def _repr_svg_(self) -> str: ...
 

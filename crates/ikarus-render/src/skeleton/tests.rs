@@ -107,3 +107,28 @@ fn bad_input_names_the_field() {
         "goals[0].bone: no bone 9 in a skeleton of 3 bones"
     );
 }
+
+/// The box a figure fits holds the base, every bone at every pose given and every goal (a far
+/// one pulled in to three reaches): an animation's frames share the box of all their poses.
+#[test]
+fn the_extent_holds_every_pose_and_goal() {
+    let s = fork();
+    let (a, b) = (s.start_angles().to_vec(), vec![-1.0, 2.0, -2.5]);
+    let far = Point2::new(1e9, 0.0);
+    let figure = SkeletonFigure { goals: vec![BoneGoal::at(1, far)], ..SkeletonFigure::new(&s, &a) };
+    let (min, max) = figure.extent([a.as_slice(), b.as_slice()]);
+    let inside = |p: Point2<f64>| min.x <= p.x && p.x <= max.x && min.y <= p.y && p.y <= max.y;
+    for pose in [&a, &b] {
+        let (mut starts, mut tips, mut dirs) = (vec![Point2::origin(); 3], vec![Point2::origin(); 3], vec![0.0; 3]);
+        s.forward_into(pose, &mut starts, &mut tips, &mut dirs);
+        assert!(starts.iter().chain(&tips).all(|&p| inside(p)), "{pose:?}: {min} {max}");
+    }
+    // The far goal counts three reaches out, in its direction.
+    assert!((max.x - 3.0 * s.max_reach()).abs() < 1e-12, "{max}");
+    // A pose that does not fit the skeleton is left out, not a panic.
+    assert_eq!(figure.extent([&[0.0][..], a.as_slice()]), figure.extent([a.as_slice()]));
+    // A figure given a box is drawn in that box's view, whatever its pose.
+    let fit = Some(figure.extent([a.as_slice(), b.as_slice()]));
+    let still = |pose: &[f64]| SkeletonFigure { fit, pose, ..figure.clone() }.view(300, 300);
+    assert_eq!(still(&a), still(&b));
+}

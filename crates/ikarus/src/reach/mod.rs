@@ -151,7 +151,7 @@ impl Annulus {
     /// Whether `inner ≤ |p − center| ≤ outer`, with no tolerance.
     #[must_use]
     pub fn contains(&self, p: Point2<f64>) -> bool {
-        let d = (p - self.center).norm();
+        let d = crate::math::distance_between(self.center, p);
         self.inner <= d && d <= self.outer
     }
 }

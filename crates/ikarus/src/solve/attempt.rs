@@ -8,7 +8,6 @@ use super::model::{Model, ScratchOf};
 use super::problem::Problem;
 use super::step::Stepper;
 use super::{Outcome, Status};
-use crate::math;
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
@@ -150,15 +149,4 @@ fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut ScratchOf<
         let phi = model.forward_into(angles, &mut s.joints);
         model.measure(p.goal, p.opts, &s.joints, phi, out, &mut s.alg);
     }
-}
-
-/// The length of `(dx, dy)`: `√(dx² + dy²)`, or `hypot` where the sum of squares would overflow
-/// or lose precision below the smallest normal number (so that a goal 1e200 away is 1e200
-/// away, not infinitely far, and 1e-170 away is not 0). Saturates at `f64::MAX` if the length
-/// itself is beyond the f64 range, so that it is always a finite number.
-#[inline]
-pub(super) fn distance(dx: f64, dy: f64) -> f64 {
-    let squared = dx * dx + dy * dy;
-    let d = if squared.is_finite() && squared >= f64::MIN_POSITIVE { squared.sqrt() } else { math::hypot(dx, dy) };
-    d.min(f64::MAX)
 }

@@ -9,7 +9,6 @@
 use nalgebra::{Point2, Vector3};
 
 use super::algebra::{Algebra, Fixed3};
-use super::attempt::distance;
 use super::problem::Problem;
 use super::scratch::Scratch;
 use super::{Outcome, SolveOptions, ccd, fabrik, fast};
@@ -19,6 +18,7 @@ use crate::goal::Goal;
 use crate::kinematics::{EndEffector, jacobian_from_joints, joint_positions_into};
 use crate::limits::Bounds;
 use crate::math;
+use crate::math::distance;
 
 /// The scratch of a model's solves.
 pub(super) type ScratchOf<M> = Scratch<<M as Model>::Points, <M as Model>::Alg>;

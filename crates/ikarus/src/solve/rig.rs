@@ -106,7 +106,7 @@ impl RigGoal {
             return target;
         }
         let v = target - root;
-        let d = v.norm();
+        let d = math::distance(v.x, v.y);
         let knee = reach - s;
         if !(d > knee && d > 0.0) {
             return target;

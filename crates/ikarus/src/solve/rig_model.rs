@@ -5,7 +5,6 @@
 use nalgebra::Point2;
 
 use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
-use super::attempt::distance;
 use super::model::{Model, Posture, ScratchOf};
 use super::problem::Problem;
 use super::rig::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
@@ -15,6 +14,7 @@ use crate::chain::{JointLimits, annulus_inner};
 use crate::kinematics::EndEffector;
 use crate::limits::Bounds;
 use crate::math;
+use crate::math::distance;
 use crate::rng::SplitMix64;
 use crate::skeleton::Skeleton;
 use std::f64::consts::PI;

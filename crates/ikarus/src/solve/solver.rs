@@ -4,7 +4,6 @@
 
 use super::algebra::Fixed3;
 use super::algebra::dynamic::Dynamic;
-use super::attempt::distance;
 use super::model::{Model, ScratchOf};
 use super::problem::Problem;
 use super::restarts::solve_with_restarts_seeded;
@@ -17,6 +16,7 @@ use crate::chain::{Chain, Pose};
 use crate::closed_form::{self, ClosedForm};
 use crate::goal::Goal;
 use crate::kinematics::{EndEffector, joint_positions_into};
+use crate::math::distance;
 use nalgebra::Point2;
 
 /// A solver: validated options plus scratch buffers. Reuse one value for many solves; once
@@ -87,26 +87,41 @@ impl Solver {
         let s = &mut self.scratch;
         Model::fit(chain, s);
         let p = Problem::new(chain, goal, opts);
+        // A goal too far for the loop (or the region's nearest point) to see a difference is
+        // aimed at through its stand-in (same direction, 10⁶ reaches away), and the outcome
+        // measured against the goal itself at the end ([`Goal::stand_in`]).
+        let stand_in = goal.stand_in(chain.base(), chain.max_reach(), opts.tolerance);
+        let aimed = stand_in.as_ref().map(|aim| Problem::new(chain, aim, opts));
+        let (aim, q) = (stand_in.as_ref().unwrap_or(goal), aimed.as_ref().unwrap_or(&p));
+        let far = |s: &mut ScratchOf<Chain>, out: &mut Outcome| {
+            if stand_in.is_some() {
+                measure(&p, s, out);
+                // The goal's distance from the region: from the point nearest it, where the
+                // tip is (to every digit a goal this far has).
+                out.reach_distance = out.reach_distance.map(|_| out.error);
+            }
+        };
         out.reach_distance = None;
         let mut judged = false;
         // (A solve interrupted before it starts ends interrupted, as it always has.)
         if opts.reach_verdict && !p.bounds.is_free() && !crate::interrupt::is_set(opts.interrupt.as_ref()) {
             let tolerances = (opts.tolerance, opts.angle_tolerance);
-            let found = self.reach.judge(chain, goal, tolerances, opts.interrupt.as_ref(), &mut s.trial);
+            let found = self.reach.judge(chain, aim, tolerances, opts.interrupt.as_ref(), &mut s.trial);
             if let Some(found) = found {
                 judged = true;
                 out.reach_distance = Some(found.distance);
                 if found.unreachable {
-                    out_of_reach(&p, start, s, out);
+                    out_of_reach(q, start, s, out);
+                    far(s, out);
                     return Ok(());
                 }
             }
         }
         if opts.closed_form || opts.method == Method::Analytic {
-            match closed_form::solve(chain, goal, start, p.bounds, &mut s.trial) {
+            match closed_form::solve(chain, aim, start, q.bounds, &mut s.trial) {
                 ClosedForm::Solved => {
-                    if reached_in_closed_form(&p, start, s, out) {
-                        finish(&p, s, out);
+                    if reached_in_closed_form(q, start, s, out) {
+                        finish(q, s, out);
                         return Ok(());
                     }
                 }
@@ -119,9 +134,10 @@ impl Solver {
         }
         // A goal the region judged reachable restarts first from the pose it reads off.
         let reach = &self.reach;
-        let seed = |pose: &mut Vec<f64>| reach.seed_pose(chain, goal, pose);
-        solve_with_restarts_seeded(&p, start, began, judged.then_some(&seed), s, out);
-        finish(&p, s, out);
+        let seed = |pose: &mut Vec<f64>| reach.seed_pose(chain, aim, pose);
+        solve_with_restarts_seeded(q, start, began, judged.then_some(&seed), s, out);
+        finish(q, s, out);
+        far(s, out);
         Ok(())
     }
 
@@ -433,6 +449,61 @@ mod tests {
         assert_eq!(distance(3.0 * small, 4.0 * small), 5.0 * small);
         assert_eq!(distance(f64::MAX, f64::MAX), f64::MAX);
         assert_eq!(distance(f64::INFINITY, 0.0), f64::MAX);
+    }
+
+    /// Issue 24: a goal at (1e300, 0) left the seed arm folded at its start pose, 0 iterations:
+    /// from that far, a step toward the goal lowers `|e|²` by less than its last bit, so every
+    /// step looked useless. Every method now points the arm at a far goal, in any direction, with
+    /// or without limits (the same pose as for a goal 10⁵ away in the same direction, where the
+    /// loop sees its steps), and reports the goal's own distance, finite.
+    #[test]
+    fn a_far_goal_stretches_the_arm_toward_it() {
+        let lim = crate::chain::JointLimits::new(-1.5, 1.5).unwrap();
+        let free = Chain::new([1.0, -2.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.1), Link::new(1.0, 0.1)]).unwrap();
+        let limited =
+            Chain::new([1.0, -2.0], &[Link::new(3.0, 0.1).with_limits(lim), Link::new(2.0, 0.1).with_limits(lim)])
+                .unwrap();
+        for (chain, mode) in [(&free, LimitMode::Ignore), (&limited, LimitMode::Lock)] {
+            let base = chain.base();
+            for (dx, dy) in [(1.0, 0.0), (0.0, -1.0), (-0.6, 0.8), (-1.0, -1.0)] {
+                for method in Method::ALL.into_iter().filter(|&m| m != Method::Analytic) {
+                    let opts = SolveOptions { method, limits: mode, ..SolveOptions::default() };
+                    let mut solver = Solver::new(opts).unwrap();
+                    let near = Goal::position(base.x + 1e5 * dx, base.y + 1e5 * dy).unwrap();
+                    let near = solver.solve(chain, chain.start_pose(), &near).unwrap();
+                    for far in [1e17, 1e100, 1e300, 1e308] {
+                        let goal = Goal::position(far * dx, far * dy).unwrap();
+                        let out = solver.solve(chain, chain.start_pose(), &goal).unwrap();
+                        let at = format!("{mode:?} {method:?} ({dx}, {dy})·{far:e}");
+                        assert_eq!(out.status, Status::Unreachable, "{at}");
+                        let tip = out.end_effector.position;
+                        let d = distance(goal.target().x - tip.x, goal.target().y - tip.y);
+                        assert!(out.error.is_finite() && out.error == d, "{at}: error {} vs {d}", out.error);
+                        if let Some(r) = out.reach_distance {
+                            assert_eq!(r, out.error, "{at}");
+                        }
+                        // Pointed at the goal as at the near one in its direction: the tip
+                        // within a hundredth of the reach of the near goal's.
+                        let gap = distance(tip.x - near.end_effector.position.x, tip.y - near.end_effector.position.y);
+                        assert!(gap < 1e-2 * chain.max_reach(), "{at}: tip {tip} vs {}", near.end_effector.position);
+                    }
+                }
+            }
+        }
+        // The stand-in: the same direction and orientation, 10⁶ reaches out; none for a goal
+        // nearer than that, or one a tolerance that large would count as reached.
+        let goal = Goal::with_orientation(3e200, -4e200, 0.5).unwrap();
+        let aim = goal.stand_in(free.base(), free.max_reach(), 1e-6).unwrap();
+        let away = aim.target() - free.base();
+        assert!((away.norm() / (6e6) - 1.0).abs() < 1e-12 && aim.orientation() == Some(0.5), "{aim:?}");
+        assert!((away.x / away.norm() - 0.6).abs() < 1e-12, "{aim:?}");
+        assert_eq!(Goal::position(1e6, 0.0).unwrap().stand_in(free.base(), free.max_reach(), 1e-6), None);
+        assert_eq!(goal.stand_in(free.base(), free.max_reach(), 1e300), None);
+        // From a base at −1e308 to a goal at 1e308: 2e308 apart, beyond the f64 range; the
+        // stand-in is still a finite point (10⁶ from the base is the base itself, that far out).
+        let base = crate::Point2::new(-1e308, 0.0);
+        let aim = Goal::position(1e308, 1.0).unwrap().stand_in(base, 1.0, 1e-6).unwrap();
+        assert!(aim.target().x.is_finite() && aim.target().y.is_finite(), "{aim:?}");
     }
 
     /// Issue 11: a 100-link limited arm, a goal at (1e99, 1e99), transpose without line search

@@ -14,6 +14,7 @@ use crate::chain::{Chain, Link};
 use crate::goal::Goal;
 use crate::kinematics::end_effector;
 use crate::limits::Bounds;
+use crate::math;
 use crate::skeleton::Skeleton;
 use crate::solve::{LimitMode, Outcome, RigGoal, RigTask, SolveError, SolveOptions, Solver};
 
@@ -81,7 +82,7 @@ impl TrackBody for Chain {
     #[inline]
     fn errors(&mut self, pose: &[f64], goal: &Goal) -> (f64, f64) {
         let tip = end_effector(self, pose);
-        let error = (goal.target() - tip.position).norm();
+        let error = math::distance_between(tip.position, goal.target());
         let angle_error = goal.orientation().map_or(0.0, |g| crate::angle::wrap_angle(g - tip.orientation).abs());
         (error, angle_error)
     }
@@ -229,7 +230,7 @@ impl TrackBody for RigEffector {
         let (mut error, mut angle_error) = (0.0f64, 0.0f64);
         for g in &self.task.goals {
             let tip = self.points[g.bone + 1];
-            error = error.max((g.goal.target() - tip).norm());
+            error = error.max(math::distance_between(tip, g.goal.target()));
             if let Some(phi) = g.goal.orientation() {
                 angle_error = angle_error.max(crate::angle::wrap_angle(phi - self.directions[g.bone]).abs());
             }

@@ -334,7 +334,7 @@ fn samples(chain: &Chain, goals: &[Goal], bridged: Bridged, bounds: Bounds<'_>) 
         out.push(TrackSample {
             goal,
             status: status[k],
-            error: (goal.target() - tip.position).norm(),
+            error: math::distance_between(tip.position, goal.target()),
             angle_error: goal.orientation().map_or(0.0, |g| crate::angle::wrap_angle(g - tip.orientation).abs()),
             angles,
             step,

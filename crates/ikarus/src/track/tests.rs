@@ -100,3 +100,30 @@ fn bound_first_makes_the_first_sample_a_bounded_step_from_the_start() {
         assert!(joint_step(Bounds::free(), &w[1].angles, &w[0].angles) <= bound * (1.0 + 1e-9));
     }
 }
+
+/// Issue 24: `ikarus track --circle 0,0,1e308` answered `"error": null` on every sample (the
+/// error `|goal − tip|` overflowed in its squares) and left the arm at its start pose (no solve
+/// saw its steps that far). Now, in both modes, every sample's error is the goal's finite
+/// distance and the arm points at each goal: its tip `reach` out, in the goal's direction.
+#[test]
+fn a_path_far_beyond_reach_gives_finite_errors_and_points_the_arm_at_it() {
+    let chain = Chain::new([0.0, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.1), Link::new(1.0, 0.1)]).unwrap();
+    for radius in [1e200, 1e308] {
+        let path = Path::circle([0.0, 0.0], radius, 12).unwrap();
+        for mode in super::TrackMode::ALL {
+            // A bound that lets follow turn with the goal (30° a sample).
+            let options = TrackOptions { max_step: 40f64.to_radians(), ..TrackOptions::default() };
+            let t = super::track(&chain, chain.start_pose().angles(), &path, mode, &options).unwrap();
+            for (k, s) in t.samples.iter().enumerate() {
+                let tip = crate::kinematics::end_effector(&chain, &s.angles).position;
+                let g = s.goal.target();
+                let at = format!("{mode:?} {radius:e} sample {k}: tip {tip}, goal {g}");
+                assert!(s.error.is_finite() && s.error > 0.99 * radius, "{at}: error {}", s.error);
+                assert!((tip.coords.norm() - 6.0).abs() < 1e-3, "{at}: stretched out");
+                let (a, b) = (math::atan2(tip.y, tip.x), math::atan2(g.y, g.x));
+                assert!(crate::angle::wrap_angle(a - b).abs() < 1e-3, "{at}: pointed at the goal");
+            }
+            assert!(t.summary.max_error.is_finite(), "{mode:?}");
+        }
+    }
+}
