@@ -15,7 +15,9 @@ use crate::error::CliError;
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
-use crate::picture::{Drawing, MotionLayers, PictureArgs, PictureFormat, draw_for_command, motion_drawing, report_format};
+use crate::picture::{
+    Drawing, MotionLayers, PictureArgs, PictureFormat, draw_for_command, motion_drawing, report_format,
+};
 use crate::report::{AnimateJson, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
 use crate::settings::SolverSettings;
