@@ -57,7 +57,7 @@ pub fn seven_link_arm() -> Chain {
 pub fn spread_arm() -> Chain {
     let lim = JointLimits::new(deg(-90.0), deg(90.0)).expect("valid limits");
     let links: Vec<Link> =
-        (0..64).map(|k| Link::new(10f64.powf(-9.0 + 18.0 * f64::from(k) / 63.0), 0.0).with_limits(lim)).collect();
+        (0..64).map(|k| Link::new(libm::pow(10.0, -9.0 + 18.0 * f64::from(k) / 63.0), 0.0).with_limits(lim)).collect();
     Chain::new([0.0, 0.0], &links).expect("valid arm")
 }
 
