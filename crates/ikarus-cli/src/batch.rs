@@ -93,6 +93,15 @@ struct Run {
     last: Instant,
 }
 
+/// Where [`Batch::solve_blocks`] writes its rows: the `header` line first, then the rows, to
+/// `out`.
+pub struct Rows<'a> {
+    /// Written first, before any row.
+    pub header: &'a [u8],
+    /// The rows' destination, flushed at the end.
+    pub out: &'a mut dyn Write,
+}
+
 /// A batch being run: its threads, and the summary file prepared before any solve (so that an
 /// unwritable `--summary-json` fails before the work is done).
 pub struct Batch {
@@ -185,11 +194,10 @@ impl Batch {
     /// The threads take the tasks in order (the next one not taken), so they finish nearly in
     /// order, and this thread writes each task's rows to `out` as soon as the rows before them
     /// are written: writing overlaps solving instead of following it (writing 100,000 rows, 10
-    /// MB, to a file took 10 to 20 ms, a tenth of a 2-thread batch). `out` gets `header` first
+    /// MB, to a file took 10 to 20 ms, a tenth of a 2-thread batch). `out` gets `header` first (both in [`Rows`])
     /// and is flushed at the end. A reader that goes away is not an error (the batch still
     /// finishes, for its summary). The first error ends the batch as bad input; the caller
     /// checks what can fail (the options) before, so that no row is written when it does.
-    #[allow(clippy::too_many_arguments)]
     pub fn solve_blocks<S, E>(
         &self,
         tasks: usize,
@@ -197,12 +205,12 @@ impl Batch {
         init: impl Fn() -> S + Sync + Send,
         solve: impl Fn(&mut S, usize, Range<usize>) -> Result<usize, E> + Sync + Send,
         format: impl Fn(&mut S, usize, Range<usize>, &mut Vec<u8>) + Sync + Send,
-        header: &[u8],
-        out: &mut dyn Write,
+        rows: Rows<'_>,
     ) -> Result<Tally, CliError>
     where
         E: std::fmt::Display + Send,
     {
+        let Rows { header, out } = rows;
         let goals: usize = (0..tasks).map(&size).sum();
         let progress = progress_bar(goals);
         let run = |state: &mut S, t: usize| -> Result<Run, E> {

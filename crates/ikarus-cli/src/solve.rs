@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 use ikarus::{Goal, Outcome, SolveOptions, Status};
 
 use crate::arm::Arm;
-use crate::batch::{BLOCK_GOALS, Batch, TASK_GOALS};
+use crate::batch::{BLOCK_GOALS, Batch, Rows, TASK_GOALS};
 use crate::error::CliError;
 use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one};
@@ -293,8 +293,7 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
                 row(buf, *x, *y, o);
             }
         },
-        header.as_bytes(),
-        &mut std::io::BufWriter::new(stdout.lock()),
+        Rows { header: header.as_bytes(), out: &mut std::io::BufWriter::new(stdout.lock()) },
     )?;
     batch.finish(tally, solver.options().method.name())
 }

@@ -19,7 +19,7 @@ mod kernels;
 
 use nalgebra::{Matrix3, Matrix3xX, Vector3};
 
-use super::step::{Rule, gram, method_step};
+use super::step::{Rule, System, gram, method_step};
 use super::{SolveOptions, pinv};
 
 /// Task-space state and kernels of the Jacobian methods (see the [module docs](self)).
@@ -121,7 +121,8 @@ impl Algebra for Fixed3 {
 
     #[inline]
     fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
-        method_step(rule, opts, self.oriented, &self.a, self.j(plain), &self.task, mu, out);
+        let sys = System { a: &self.a, weighted: self.j(plain), e: &self.task };
+        method_step(rule, opts, self.oriented, sys, mu, out);
     }
 
     #[inline]

@@ -244,7 +244,7 @@ pub(super) fn run<L: Lanes>(
         }
 
         // One damped try in every lane: the step, the trial pose, its error.
-        let t = try_step(chain, st, n, (tx, ty), (dx, dy), current, (mu, nu), gain, cap);
+        let t = try_step(chain, st, n, Miss { target: (tx, ty), e: (dx, dy), current }, (mu, nu), gain, cap);
         let (trial_phi, accepted, damped, det) = (t.trial_phi, t.accepted, t.damped, t.det);
         let (accepted_mu, rejected_mu) = (t.accepted_mu, t.rejected_mu);
 
@@ -298,7 +298,7 @@ pub(super) fn run<L: Lanes>(
 }
 
 /// One damped try of every lane, from the pose in `st` (angles and points) whose tip misses
-/// the target `(tx, ty)` by `e = (dx, dy)`, `current = ‖e‖²`, with damping `(μ, ν)`: the step
+/// its target as `miss` says, with damping `(μ, ν)`: the step
 /// into `st.delta`, the trial pose into `st.trial` and its points, and what the line search
 /// decides from them. The arithmetic of `compute_delta`, `damped_2x2`, `try_pose` and
 /// `damped_search`, operation for operation; [`run`] and [`run_one`] share it.
@@ -314,19 +314,26 @@ struct Try<L: Lanes> {
     rejected_mu: L,
 }
 
-#[allow(clippy::too_many_arguments)]
+/// Where every lane's tip stands against its target at the start of a try: the target
+/// `(tx, ty)`, the miss `e = (dx, dy)` (target less tip) and `current = ‖e‖²`.
+#[derive(Clone, Copy)]
+struct Miss<L> {
+    target: (L, L),
+    e: (L, L),
+    current: L,
+}
+
 #[inline(always)]
 fn try_step<L: Lanes>(
     chain: &Chain,
     st: &mut Buffers<L>,
     n: usize,
-    (tx, ty): (L, L),
-    (dx, dy): (L, L),
-    current: L,
+    miss: Miss<L>,
     (mu, nu): (L, L),
     gain: L,
     cap: Option<f64>,
 ) -> Try<L> {
+    let Miss { target: (tx, ty), e: (dx, dy), current } = miss;
     let zero = L::splat(0.0);
     let (tip_x, tip_y) = (st.xs[n], st.ys[n]);
     let mut xx = zero;
@@ -443,7 +450,15 @@ pub(super) fn run_one(
         }
         let mut tries = 0;
         loop {
-            let t = try_step(chain, st, n, (tx, ty), (dx, dy), current, (mu, nu), opts.gain, opts.max_step);
+            let t = try_step(
+                chain,
+                st,
+                n,
+                Miss { target: (tx, ty), e: (dx, dy), current },
+                (mu, nu),
+                opts.gain,
+                opts.max_step,
+            );
             if !t.damped || t.det == 0.0 {
                 return leave;
             }

@@ -117,7 +117,8 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
     if let Some(r) = opts.restarts {
         let go_on = !matches!(tally.status, Status::Reached | Status::Interrupted);
         if go_on && !model.is_out_of_reach(goal, opts.tolerance) {
-            restart(p, r, began, seed, (spent, owed), start, s, out, &mut tally);
+            let plan = Plan { r, began, seed, spent, owed };
+            restart(p, plan, start, s, out, &mut tally);
         } else if owed {
             // (Not seen: a goal the region holds is within the reach.) No restarts follow, so
             // the first attempt runs to the whole cap, as it would unseeded.
@@ -137,19 +138,30 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
     out.status = if judged && model.is_out_of_reach(goal, opts.tolerance) { Status::Unreachable } else { tally.status };
 }
 
-/// The restarts after a first attempt that did not reach the goal, counted into `tally`.
-#[allow(clippy::too_many_arguments)]
-fn restart<M: Model>(
-    p: &Problem<'_, M>,
+/// What the restarts of a solve go by, set once the first attempt (or the probe) has run:
+/// the options' restarts, when the solve began (for the time budget), the seed of restart 1,
+/// and what the probe left behind.
+#[derive(Clone, Copy)]
+struct Plan<'a> {
     r: Restarts,
     began: Option<Instant>,
-    seed: Option<Seed<'_>>,
-    (spent, owed): (u32, bool),
+    seed: Option<Seed<'a>>,
+    /// The probe's iterations, taken out of restart 1's cap (0 without a probe cut short).
+    spent: u32,
+    /// The whole first attempt is owed: the probe was cut short while pinned at a limit.
+    owed: bool,
+}
+
+/// The restarts after a first attempt that did not reach the goal, counted into `tally`.
+fn restart<M: Model>(
+    p: &Problem<'_, M>,
+    plan: Plan<'_>,
     start: &[f64],
     s: &mut ScratchOf<M>,
     out: &mut Outcome,
     tally: &mut Tally,
 ) {
+    let Plan { r, began, seed, spent, owed } = plan;
     // The best attempt so far: its task error, status and final pose (in `s.best_attempt`).
     let mut best = (p.model.best_key(p.opts, out, &s.alg), tally.status);
     s.best_attempt.copy_from_slice(out.pose.angles());

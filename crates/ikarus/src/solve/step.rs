@@ -72,20 +72,20 @@ pub(super) fn gram(j: &Matrix3xX<f64>, oriented: bool) -> Matrix3<f64> {
     Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
 }
 
+/// The linear system a step solves: the weighted Jacobian `J_w`, `A = J_w J_wᵀ` (see
+/// [`gram`]) and the task error `e`.
+#[derive(Clone, Copy)]
+pub(super) struct System<'a> {
+    pub(super) a: &'a Matrix3<f64>,
+    pub(super) weighted: &'a Matrix3xX<f64>,
+    pub(super) e: &'a Vector3<f64>,
+}
+
 /// The step of a Jacobian `rule` in weighted joint coordinates: `J_wᵀ y` for the task-space
 /// rules, the selectively damped step for SDLS. `mu` is Levenberg–Marquardt's damping.
 #[inline]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn method_step(
-    rule: Rule,
-    opts: &SolveOptions,
-    oriented: bool,
-    a: &Matrix3<f64>,
-    weighted: &Matrix3xX<f64>,
-    e: &Vector3<f64>,
-    mu: f64,
-    out: &mut [f64],
-) {
+pub(super) fn method_step(rule: Rule, opts: &SolveOptions, oriented: bool, sys: System<'_>, mu: f64, out: &mut [f64]) {
+    let System { a, weighted, e } = sys;
     // A position goal: the damped rules solve the 2×2 system of the x and y rows.
     let damping = match rule {
         Rule::DampedLeastSquares => Some(opts.lambda * opts.lambda),
