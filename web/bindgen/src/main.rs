@@ -13,8 +13,13 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     };
     // Bindings for the web target (an ES module whose default export loads the module), no
-    // TypeScript declarations.
-    let made = Bindgen::new().input_path(input).web(true).and_then(|b| b.typescript(false).generate(out_dir));
+    // TypeScript declarations. The library omits the default module path unless told (the
+    // command line keeps it): without it `init()` has no `ikarus_wasm_bg.wasm` beside
+    // `import.meta.url` to fetch, and the page's worker could not load the module.
+    let made = Bindgen::new()
+        .input_path(input)
+        .web(true)
+        .and_then(|b| b.typescript(false).omit_default_module_path(false).generate(out_dir));
     match made {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
