@@ -1,0 +1,44 @@
+//! Refusals as Python exceptions: the facade's one-line `Problem`s as `ValueError` (bad input)
+//! or `RuntimeError` (a failure inside), with the field named as a Python caller wrote it.
+
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+
+use crate::edge::Problem;
+
+/// A refused request as Python sees it: a bad value (422) or malformed request (400) is a
+/// `ValueError` with the facade's one line; anything else (500) a `RuntimeError`.
+pub(crate) fn problem(p: Problem) -> PyErr {
+    if (400..500).contains(&p.status) { PyValueError::new_err(p.message) } else { PyRuntimeError::new_err(p.message) }
+}
+
+/// A refused option: the facade's line, without what only its JSON form had (an `options: `
+/// before a field of a malformed value, the ` at line 1 column N` of the JSON text this edge
+/// made from the keywords), so that it names the keyword and the value.
+pub(crate) fn option_problem(p: Problem) -> PyErr {
+    let mut message = p.message.strip_prefix("options: ").unwrap_or(&p.message).to_owned();
+    if let Some(at) = message.rfind(" at line ") {
+        let tail = &message[at + " at line ".len()..];
+        let mut parts = tail.split(" column ");
+        let digits = |s: Option<&str>| s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
+        if digits(parts.next()) && digits(parts.next()) && parts.next().is_none() {
+            message.truncate(at);
+        }
+    }
+    problem(Problem { message, ..p })
+}
+
+/// A refused goal: the facade's line (`goal: goal.y: must be a finite number, got NaN`) with
+/// the field once (`goal.y: …`), or for row `row` of a batch, `goals[row].y: …`.
+pub(crate) fn goal_problem(p: Problem, row: Option<usize>) -> PyErr {
+    let detail = p.message.strip_prefix("goal: ").unwrap_or(&p.message);
+    let detail = if detail.starts_with("goal.") || detail.starts_with("goal:") { detail } else { &p.message };
+    let message = match row {
+        None => detail.to_owned(),
+        Some(i) => match detail.strip_prefix("goal") {
+            Some(rest) => format!("goals[{i}]{rest}"),
+            None => format!("goals[{i}]: {detail}"),
+        },
+    };
+    problem(Problem { message, ..p })
+}
