@@ -19,7 +19,7 @@ use crate::edge::{self, Arm, Endpoint};
 use crate::errors::{goal_problem, option_problem, problem};
 use crate::goals::{GOALS_EXPECTED, goal_of, goals_array};
 use crate::options::{limits, options_json};
-use crate::outcome::{PyOutcome, points_array};
+use crate::outcome::{ChainSolved, PyOutcome, Solved, points_array};
 
 /// What a chain holds: the validated arm, its API form, and a solver with the default options.
 pub(crate) struct ChainData {
@@ -302,20 +302,20 @@ impl PyChain {
             })?,
         };
         let (outcome, options) = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(PyOutcome { outcome, goal, chain: self.data.clone(), options })
+        Ok(PyOutcome { solved: Solved::Chain(ChainSolved { outcome, goal, chain: self.data.clone(), options }) })
     }
 
     /// Solves many goals in parallel, each from the chain's start pose (``ikarus solve --batch``),
     /// in blocks through the library's batch path.
     ///
     /// ``goals`` is an array [N, 2] (x, y) or [N, 3] (x, y, angle_deg) of numbers (integers and
-    /// float32 are converted to float64, as NumPy's ``astype`` does). ``threads``: the
+    /// float32 are converted to float64, as NumPy's ``astype`` does). ``threads`` (keyword-only): the
     /// number of worker threads (``None``: all cores). Options are those of :meth:`solve`.
     /// The GIL is released while solving; the results are in input order and the same bit for
     /// bit whatever ``threads`` is. Returns a dict of NumPy arrays: ``angles_deg`` float64
     /// [N, n], ``status`` ``<U15`` [N] (``"reached"``, …), ``error`` float64 [N] and
     /// ``iterations`` uint32 [N] — the rows of ``ikarus solve --batch``'s CSV.
-    #[pyo3(signature = (goals, threads=None, **options))]
+    #[pyo3(signature = (goals, *, threads=None, **options))]
     fn solve_batch<'py>(
         &self,
         py: Python<'py>,

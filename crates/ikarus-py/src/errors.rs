@@ -12,20 +12,41 @@ pub(crate) fn problem(p: Problem) -> PyErr {
     if (400..500).contains(&p.status) { PyValueError::new_err(p.message) } else { PyRuntimeError::new_err(p.message) }
 }
 
-/// A refused option: the facade's line, without what only its JSON form had (an `options: `
-/// before a field of a malformed value, the ` at line 1 column N` of the JSON text this edge
-/// made from the keywords), so that it names the keyword and the value.
-pub(crate) fn option_problem(p: Problem) -> PyErr {
-    let mut message = p.message.strip_prefix("options: ").unwrap_or(&p.message).to_owned();
+/// The message less a trailing ` at line N column M`: where serde_json found the problem in
+/// the JSON text this edge made from keywords, which the caller never saw.
+fn without_position(message: &str) -> &str {
     if let Some(at) = message.rfind(" at line ") {
         let tail = &message[at + " at line ".len()..];
         let mut parts = tail.split(" column ");
         let digits = |s: Option<&str>| s.is_some_and(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
         if digits(parts.next()) && digits(parts.next()) && parts.next().is_none() {
-            message.truncate(at);
+            return &message[..at];
         }
     }
+    message
+}
+
+/// A refused option: the facade's line, without what only its JSON form had (an `options: `
+/// before a field of a malformed value, the ` at line 1 column N` of the JSON text this edge
+/// made from the keywords), so that it names the keyword and the value.
+pub(crate) fn option_problem(p: Problem) -> PyErr {
+    let message = without_position(p.message.strip_prefix("options: ").unwrap_or(&p.message)).to_owned();
     problem(Problem { message, ..p })
+}
+
+/// A refused request of a body's method (a rig's `solve`, `animate`, `track`): a line about
+/// the request's `options` names the keyword as :meth:`Chain.solve`'s does (`lamda: unknown
+/// field …`, `lambda = -1: …`), without the request's JSON path (`request body: options.`)
+/// and position; any other line is the API's.
+pub(crate) fn request_problem(p: Problem) -> PyErr {
+    let line = p.message.strip_prefix("request body: ").unwrap_or(&p.message);
+    match line.strip_prefix("options.").or_else(|| line.strip_prefix("options: ")) {
+        Some(field) => {
+            let message = without_position(field).to_owned();
+            problem(Problem { message, ..p })
+        }
+        None => problem(p),
+    }
 }
 
 /// A refused goal: the facade's line (`goal: goal.y: must be a finite number, got NaN`) with

@@ -29,15 +29,17 @@ use crate::api::_call;
 use crate::batch::_status_names;
 use crate::chain::PyChain;
 use crate::easing::ease;
-use crate::outcome::PyOutcome;
+use crate::outcome::{_solve_rig, PyEffector, PyOutcome};
 
 #[pymodule]
 fn _ikarus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
     m.add_class::<PyOutcome>()?;
+    m.add_class::<PyEffector>()?;
     m.add_function(wrap_pyfunction!(ease, m)?)?;
     m.add_function(wrap_pyfunction!(_status_names, m)?)?;
     m.add_function(wrap_pyfunction!(_call, m)?)?;
+    m.add_function(wrap_pyfunction!(_solve_rig, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,4 +1,4 @@
-"""ikarus: inverse kinematics for planar chains, from Python.
+"""ikarus: inverse kinematics for planar chains and skeletons, from Python.
 
 The computing is the Rust library's; this edge speaks degrees, as the command line does, and
 its results equal ``ikarus solve/animate/track/workspace/reach --format json`` for the same
@@ -11,8 +11,12 @@ inputs, bit for bit::
     ('reached', 7)
     >>> arm.solve_batch(goals)["status"]          # goals: float64 [N, 2] or [N, 3]
 
-Options are keywords with the CLI's names (``method="dls"``, ``lambda_=0.2``, ``limits=True``,
-``restarts=0``, …); a bad value raises ``ValueError`` with the CLI's one-line message.
+A :class:`Chain` and a :class:`Rig` have the same methods with the same typed results:
+``solve`` gives an :class:`Outcome`, ``animate`` a :class:`Motion`, ``track`` a :class:`Track`
+(frozen classes with NumPy columns), ``render`` a picture's bytes. Options are keyword-only,
+with the CLI's names (``method="dls"``, ``lambda_=0.2``, ``limits=True``, ``restarts=0``, …;
+typed as :class:`SolveOptions`); a bad name or value raises ``ValueError`` with the CLI's
+one-line message.
 """
 
 from __future__ import annotations
@@ -28,14 +32,42 @@ import typing as _typing
 import numpy as _np
 
 from . import _ikarus
-from ._ikarus import Outcome, ease
+from ._ikarus import Effector, Outcome, ease
+from ._results import Motion, MotionFrames, Track, TrackSamples
+from ._types import LimitMode, Method, MotionSolve, RigGoal, SolveOptions, TrackSolveOptions, TrackSummary
 
 if _typing.TYPE_CHECKING:
     import os
 
-    from typing import Any, Iterable, Optional, Sequence
+    from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
 
-__all__ = ["Chain", "Rig", "Outcome", "ease", "plot", "call", "__version__"]
+    import numpy.typing as npt
+    from typing_extensions import Unpack
+
+    from ._ikarus import Goal
+    from ._types import EaseName, Figure, Interpolation, PictureFormat, TrackMode
+
+__all__ = [
+    "Chain",
+    "Rig",
+    "Outcome",
+    "Effector",
+    "Motion",
+    "MotionFrames",
+    "Track",
+    "TrackSamples",
+    "SolveOptions",
+    "TrackSolveOptions",
+    "RigGoal",
+    "MotionSolve",
+    "TrackSummary",
+    "Method",
+    "LimitMode",
+    "ease",
+    "plot",
+    "call",
+    "__version__",
+]
 __version__ = _ikarus.__version__
 
 
@@ -97,41 +129,104 @@ def call(endpoint: str, request: Optional[dict] = None) -> Any:
         return reply
 
 
-def _columns(rows: Sequence[dict]) -> dict:
-    """A list of objects with the same keys as a dict of columns (NumPy arrays where the
-    values are numbers, booleans or strings)."""
-    if not rows:
-        return {}
-    keys = list(rows[0].keys())
-    for row in rows[1:]:
-        keys.extend(k for k in row if k not in keys)
-    out = {}
-    for key in keys:
-        values = [row.get(key) for row in rows]
-        if any(v is None for v in values):
-            if all(v is None or isinstance(v, (int, float)) for v in values):
-                out[key] = _np.array([_np.nan if v is None else float(v) for v in values])
-            else:
-                out[key] = values
-        elif all(isinstance(v, str) for v in values):
-            out[key] = _np.array(values, dtype=str)
-        elif all(isinstance(v, bool) for v in values):
-            out[key] = _np.array(values, dtype=bool)
-        elif all(isinstance(v, int) and not isinstance(v, bool) for v in values):
-            out[key] = _np.array(values, dtype=_np.int64)
-        else:
-            try:
-                out[key] = _np.array(values, dtype=_np.float64)
-            except (ValueError, TypeError):
-                out[key] = values
-    return out
-
-
 def _rebuild_chain(cls: type, toml: Optional[str]) -> "Chain":
     return cls() if toml is None else cls(toml=toml)
 
 
-class Chain(_ikarus.Chain):
+def _track_options(options: dict) -> Optional[dict]:
+    """``track``'s solver options: ``solver_max_step_deg`` is the solver's ``max_step_deg``."""
+    solver_options = _options(options)
+    if "solver_max_step_deg" in solver_options:
+        solver_options["max_step_deg"] = solver_options.pop("solver_max_step_deg")
+    return solver_options or None
+
+
+class _Body:
+    """What a chain and a rig share: their requests to the API (``animate``, ``track``,
+    ``render``) written once, each body adding its own key (``arm`` or ``rig``) and goals."""
+
+    def _body(self) -> dict:
+        """The request's body: ``{"arm": …}`` or ``{"rig": …}``."""
+        raise NotImplementedError
+
+    def _columns(self) -> Tuple[Optional[Sequence[str]], Optional[Sequence[float]]]:
+        """A rig's bone names and base (how its answers' objects become columns); None for a chain."""
+        return None, None
+
+    def _request(self, endpoint: str, request: dict) -> Any:
+        """The API's answer to this body's request; a refused option is named as its keyword."""
+        request = {**self._body(), **{k: v for k, v in request.items() if v is not None}}
+        body = _json.dumps(_plain(request, "request"), allow_nan=False)
+        return _json.loads(_ikarus._call(endpoint, body, keywords=True))
+
+    def _animate(
+        self,
+        request: dict,
+        *,
+        frames: Optional[int],
+        duration: Optional[float],
+        fps: Optional[float],
+        ease: Optional[EaseName],
+        k1: Optional[float],
+        k2: Optional[float],
+        interpolation: Optional[Interpolation],
+        from_solve: Optional[bool],
+        start_deg: Optional[Sequence[float]],
+        options: dict,
+    ) -> Motion:
+        easing = {"kind": ease, "k1": k1, "k2": k2}
+        request = {
+            **request,
+            "frames": frames,
+            "duration": duration,
+            "fps": fps,
+            "ease": {k: v for k, v in easing.items() if v is not None} or None,
+            "interpolation": interpolation,
+            "from_solve": from_solve,
+            "start_deg": start_deg,
+            "options": _options(options) or None,
+        }
+        bones, base = self._columns()
+        return Motion._of(self._request("animate", request), bones, base)
+
+    def _track(
+        self,
+        request: dict,
+        *,
+        path: Optional[Any],
+        line: Optional[Sequence[float]],
+        circle: Optional[Sequence[float]],
+        figure8: Optional[Sequence[float]],
+        samples: Optional[int],
+        mode: Optional[TrackMode],
+        max_step_deg: Optional[float],
+        bound_first: Optional[bool],
+        start_deg: Optional[Sequence[float]],
+        options: dict,
+    ) -> Track:
+        request = {
+            **request,
+            "path": None if path is None else _plain(_np.asarray(path, dtype=float), "path"),
+            "line": line,
+            "circle": circle,
+            "figure8": figure8,
+            "samples": samples,
+            "mode": mode,
+            "max_step_deg": max_step_deg,
+            "bound_first": bound_first,
+            "start_deg": start_deg,
+            "options": _track_options(options),
+        }
+        bones, base = self._columns()
+        return Track._of(self._request("track", request), bones, base)
+
+    def _render(self, request: dict) -> bytes:
+        request = {**self._body(), **{k: v for k, v in request.items() if v is not None}}
+        body = _json.dumps(_plain(request, "request"), allow_nan=False)
+        return bytes(_ikarus._call("render", body))
+
+
+class Chain(_Body, _ikarus.Chain):
     __doc__ = _ikarus.Chain.__doc__
 
     @classmethod
@@ -156,49 +251,49 @@ class Chain(_ikarus.Chain):
     def _arm(self) -> dict:
         return _json.loads(self._arm_json)
 
-    def _request(self, endpoint: str, request: dict) -> Any:
-        request = {"arm": self._arm(), **{k: v for k, v in request.items() if v is not None}}
-        return call(endpoint, request)
+    def _body(self) -> dict:
+        return {"arm": self._arm()}
 
     def animate(
         self,
-        goal: Sequence[float],
+        goal: Goal,
         via: Optional[Iterable[Sequence[float]]] = None,
         *,
         frames: Optional[int] = None,
         duration: Optional[float] = None,
         fps: Optional[float] = None,
-        ease: Optional[str] = None,
+        ease: Optional[EaseName] = None,
         k1: Optional[float] = None,
         k2: Optional[float] = None,
-        interpolation: Optional[str] = None,
+        interpolation: Optional[Interpolation] = None,
         from_solve: Optional[bool] = None,
         start_deg: Optional[Sequence[float]] = None,
-        **options: Any,
-    ) -> dict:
+        **options: Unpack[SolveOptions],
+    ) -> Motion:
         """The motion of ``ikarus animate`` (``POST /api/animate``): solve for ``goal`` through
         each ``via`` point, then move along a smooth spline, eased.
 
-        Returns the answer's fields (``arm``, ``ease``, ``duration``, ``solves``) with
-        ``frames`` as columns: ``time`` [F], ``angles_deg`` [F, n], ``joints`` [F, n+1, 2]
-        (NumPy arrays, the numbers of ``ikarus animate --format json``, bit for bit). Solver
-        options are keywords, as for :meth:`solve`."""
-        easing = {"kind": ease, "k1": k1, "k2": k2}
+        Returns a :class:`Motion`: ``body`` (the arm's name), ``ease``, ``duration``,
+        ``solves``, and ``frames`` as columns: ``time`` [F], ``angles_deg`` [F, n], ``joints``
+        [F, n+1, 2] (NumPy arrays, the numbers of ``ikarus animate --format json``, bit for
+        bit). Solver options are keywords, as for :meth:`solve`."""
         request = {
             "goal": _goal(goal),
             "via": None if via is None else [list(_plain(p, f"via[{i}]")) for i, p in enumerate(via)],
-            "frames": frames,
-            "duration": duration,
-            "fps": fps,
-            "ease": {k: v for k, v in easing.items() if v is not None} or None,
-            "interpolation": interpolation,
-            "from_solve": from_solve,
-            "start_deg": start_deg,
-            "options": _options(options) or None,
         }
-        answer = self._request("animate", request)
-        answer["frames"] = _columns(answer["frames"])
-        return answer
+        return self._animate(
+            request,
+            frames=frames,
+            duration=duration,
+            fps=fps,
+            ease=ease,
+            k1=k1,
+            k2=k2,
+            interpolation=interpolation,
+            from_solve=from_solve,
+            start_deg=start_deg,
+            options=options,
+        )
 
     def track(
         self,
@@ -208,46 +303,41 @@ class Chain(_ikarus.Chain):
         circle: Optional[Sequence[float]] = None,
         figure8: Optional[Sequence[float]] = None,
         samples: Optional[int] = None,
-        mode: Optional[str] = None,
+        mode: Optional[TrackMode] = None,
         max_step_deg: Optional[float] = None,
         bound_first: Optional[bool] = None,
         start_deg: Optional[Sequence[float]] = None,
-        **options: Any,
-    ) -> dict:
+        **options: Unpack[TrackSolveOptions],
+    ) -> Track:
         """The tip follows a path without flips, as ``ikarus track`` (``POST /api/track``):
         ``path`` (an array [N, 2] or [N, 3] of x, y[, angle_deg]) or one of ``line=(x0, y0, x1,
         y1)``, ``circle=(cx, cy, r)``, ``figure8=(cx, cy, a)`` with ``samples``; ``mode`` is
         ``"plan"`` (default) or ``"follow"``; ``max_step_deg`` the flip bound (10°).
 
-        Returns ``arm``, ``mode``, ``summary`` (a dict, as the CLI's) and ``samples`` as
-        columns: ``goal`` [N, 2], ``status`` [N] (str), ``error`` [N], ``angles_deg`` [N, n],
-        ``joints`` [N, n+1, 2], ``step_deg`` [N] (and ``angle_deg`` for oriented goals). Solver
-        options are keywords, as for :meth:`solve`; the solver's per-iteration step cap, which
-        ``max_step_deg`` names elsewhere, is ``solver_max_step_deg`` here (as the CLI's
-        ``ikarus track --solver-max-step-deg``)."""
-        solver_options = _options(options)
-        if "solver_max_step_deg" in solver_options:
-            solver_options["max_step_deg"] = solver_options.pop("solver_max_step_deg")
-        request = {
-            "path": None if path is None else _plain(_np.asarray(path, dtype=float), "path"),
-            "line": line,
-            "circle": circle,
-            "figure8": figure8,
-            "samples": samples,
-            "mode": mode,
-            "max_step_deg": max_step_deg,
-            "bound_first": bound_first,
-            "start_deg": start_deg,
-            "options": solver_options or None,
-        }
-        answer = self._request("track", request)
-        answer["samples"] = _columns(answer["samples"])
-        return answer
+        Returns a :class:`Track`: ``body``, ``mode``, ``summary`` (the CLI's, a dict) and
+        ``samples`` as columns: ``goal`` [N, 2], ``status`` [N] (str), ``error`` [N],
+        ``angles_deg`` [N, n], ``joints`` [N, n+1, 2], ``step_deg`` [N] (and ``angle_deg`` for
+        oriented goals). Solver options are keywords, as for :meth:`solve`; the solver's
+        per-iteration step cap, which ``max_step_deg`` names elsewhere, is
+        ``solver_max_step_deg`` here (as the CLI's ``ikarus track --solver-max-step-deg``)."""
+        return self._track(
+            {},
+            path=path,
+            line=line,
+            circle=circle,
+            figure8=figure8,
+            samples=samples,
+            mode=mode,
+            max_step_deg=max_step_deg,
+            bound_first=bound_first,
+            start_deg=start_deg,
+            options=options,
+        )
 
     def workspace(
         self,
-        limits: Optional[bool] = None,
         *,
+        limits: Optional[bool] = None,
         grid: Optional[bool] = None,
         resolution: Optional[int] = None,
         samples: Optional[int] = None,
@@ -259,7 +349,8 @@ class Chain(_ikarus.Chain):
         degrees) and ``curves``. ``limits`` enforces the joint ranges (default: the arm file's
         ``[solver] limits``, else off). With ``grid=True`` (or ``resolution``, ``samples``,
         ``seed``) the sampled grid instead; its rows are then also given as ``cells``, a bool
-        array [resolution, resolution] (row 0 at the bottom)."""
+        array [resolution, resolution] (row 0 at the bottom). A chain's alone: the exact
+        region is built for chains (``POST /api/workspace`` takes an ``arm``)."""
         request = {"limits": limits, "grid": grid, "resolution": resolution, "samples": samples, "seed": seed}
         answer = self._request("workspace", request)
         if "grid" in answer:
@@ -268,14 +359,15 @@ class Chain(_ikarus.Chain):
 
     def reach(
         self,
-        points: Any,
+        points: npt.ArrayLike,
+        *,
         limits: Optional[bool] = None,
         tolerance: Optional[float] = None,
     ) -> dict:
         """Can the tip get there? As ``ikarus reach --format json`` (``POST /api/reach``), read
         off the exact region. One point ``(x, y)`` gives ``{"reachable", "distance",
         "nearest"}``; an array [N, 2] gives columns ``reachable`` bool [N], ``distance`` [N]
-        and ``nearest`` [N, 2]."""
+        and ``nearest`` [N, 2]. A chain's alone, as :meth:`workspace`."""
         arr = _np.asarray(points, dtype=float)
         if arr.ndim == 1:
             if arr.shape != (2,):
@@ -285,12 +377,17 @@ class Chain(_ikarus.Chain):
         if arr.ndim != 2 or arr.shape[1] != 2:
             raise ValueError(f"points: expected (x, y) or an array of shape (N, 2), got {arr.shape}")
         request = {"points": _plain(arr, "points"), "limits": limits, "tolerance": tolerance}
-        return _columns(self._request("reach", request))
+        answer = self._request("reach", request)
+        return {
+            "reachable": _np.array([v["reachable"] for v in answer], dtype=bool),
+            "distance": _np.array([v["distance"] for v in answer], dtype=_np.float64),
+            "nearest": _np.array([v["nearest"] for v in answer], dtype=_np.float64).reshape(len(answer), 2),
+        }
 
     def render(
         self,
-        figure: str = "arm",
-        format: str = "svg",
+        figure: Figure = "arm",
+        format: PictureFormat = "svg",
         *,
         width: Optional[int] = None,
         height: Optional[int] = None,
@@ -303,11 +400,10 @@ class Chain(_ikarus.Chain):
         request = {"figure": figure, "format": format, "width": width, "height": height, **fields}
         if "goal" in request and request["goal"] is not None and not isinstance(request["goal"], dict):
             request["goal"] = _goal(request["goal"])
-        request = {"arm": self._arm(), **{k: v for k, v in request.items() if v is not None}}
         if figure == "ease":
-            request.pop("arm")
-        body = _json.dumps(_plain(request, "request"), allow_nan=False)
-        return bytes(_ikarus._call("render", body))
+            body = _json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
+            return bytes(_ikarus._call("render", body))
+        return self._render(request)
 
     def plot(self, pose: Any = None, goal: Any = None, ax: Any = None, **kwargs: Any) -> Any:
         """Draws the chain with matplotlib: see :func:`ikarus.plot`."""
@@ -316,7 +412,16 @@ class Chain(_ikarus.Chain):
         return _plot(self, pose=pose, goal=goal, ax=ax, **kwargs)
 
 
-class Rig:
+def _rig_goals(goals: Mapping[str, Union[Goal, RigGoal]], field: str = "goals") -> list:
+    """A rig's goals, ``{bone: (x, y[, angle_deg]) or {"x", "y", …}}``, as the API's list."""
+    listed = []
+    for bone, goal in goals.items():
+        g = dict(goal) if isinstance(goal, dict) else _goal(goal, f"{field}[{len(listed)}]")
+        listed.append({"bone": bone, **g})
+    return listed
+
+
+class Rig(_Body):
     """A skeleton (a *rig*): a tree of named bones, solved for goals on any bones' tips with
     others pinned, through the API (``POST /api/solve`` with ``rig``), as
     ``ikarus solve --rig FILE``.
@@ -324,7 +429,11 @@ class Rig:
     ``Rig(rig)`` takes a rig file's fields as a dict (``{"name", "base", "bones": [{"name",
     "parent", "length", "angle_deg", "limits_deg"}], "solver"}``); ``Rig.from_toml(path)``
     reads a rig file; ``Rig.shipped("puppet")`` (or ``"hand"``) is one of
-    ``examples/rigs/``."""
+    ``examples/rigs/``. It has a chain's methods with the same results (``solve`` an
+    :class:`Outcome`, ``animate`` a :class:`Motion`, ``track`` a :class:`Track`, ``render``),
+    goals by bone name; not ``workspace``, ``reach`` and ``solve_batch``, which the backend
+    computes for chains alone (the exact region is a chain's; ``POST /api/solve/batch`` takes
+    an arm)."""
 
     def __init__(self, rig: dict) -> None:
         self.rig = _plain(rig, "rig")
@@ -368,43 +477,139 @@ class Rig:
     def __repr__(self) -> str:
         return f"<ikarus.Rig {self.name!r}: {len(self)} bones>"
 
+    def _body(self) -> dict:
+        return {"rig": self.rig}
+
+    def _columns(self) -> Tuple[Optional[Sequence[str]], Optional[Sequence[float]]]:
+        return self.bones, self.rig.get("base")
+
     def solve(
         self,
-        goals: dict,
+        goals: Mapping[str, Union[Goal, RigGoal]],
         pins: Sequence[str] = (),
         *,
         mix: Optional[float] = None,
         start_deg: Optional[Sequence[float]] = None,
-        **options: Any,
-    ) -> dict:
+        **options: Unpack[SolveOptions],
+    ) -> Outcome:
         """Solves every goal and pin together from the rig's start pose (or ``start_deg``, one
         angle per bone). ``goals`` maps a bone's name to ``(x, y)``, ``(x, y, angle_deg)`` or a
         dict with ``x``, ``y`` and optionally ``angle_deg``, ``weight``, ``priority``
         (``"primary"``/``"secondary"``), ``bend`` (``"ccw"``/``"cw"``), ``softness``;
         ``pins`` names bones held where they start. Options are the solver's keywords, as for
-        :meth:`Chain.solve`. Returns the object of ``ikarus solve --rig --format json``:
-        ``status``, ``effectors`` (goals in order, then pins), ``angles_deg`` and ``joints``
-        keyed by bone name."""
-        listed = []
-        for bone, goal in goals.items():
-            g = dict(goal) if isinstance(goal, dict) else _goal(goal, f"goals[{len(listed)}]")
-            listed.append({"bone": bone, **g})
+        :meth:`Chain.solve`. Returns an :class:`Outcome`, as a chain's: ``status``,
+        ``angles_deg`` and ``joints`` in the bones' order (the base first), ``effectors`` (the
+        goals in order, then the pins); ``to_dict()`` is the object of
+        ``ikarus solve --rig --format json`` (but ``solve_us``)."""
         request = {
             "rig": self.rig,
-            "goals": listed,
+            "goals": _rig_goals(goals),
             "pins": list(pins) or None,
             "mix": mix,
             "start_deg": start_deg,
             "options": _options(options) or None,
         }
-        return call("solve", {k: v for k, v in request.items() if v is not None})
+        body = _json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
+        return _ikarus._solve_rig(body)
 
-    def render(self, format: str = "svg", *, width: Optional[int] = None, height: Optional[int] = None, **fields: Any) -> bytes:
+    def animate(
+        self,
+        goals: Mapping[str, Union[Goal, RigGoal]],
+        via: Optional[Iterable[Mapping[str, Union[Goal, RigGoal]]]] = None,
+        *,
+        pins: Sequence[str] = (),
+        mix: Optional[float] = None,
+        frames: Optional[int] = None,
+        duration: Optional[float] = None,
+        fps: Optional[float] = None,
+        ease: Optional[EaseName] = None,
+        k1: Optional[float] = None,
+        k2: Optional[float] = None,
+        interpolation: Optional[Interpolation] = None,
+        from_solve: Optional[bool] = None,
+        start_deg: Optional[Sequence[float]] = None,
+        **options: Unpack[SolveOptions],
+    ) -> Motion:
+        """The motion of ``ikarus animate --rig`` (``POST /api/animate`` with ``rig``): solve
+        each ``via`` set of goals in turn, then ``goals``, each from where the last ended, with
+        ``pins`` held, then move every bone along one spline, eased. ``goals`` and each ``via``
+        set are as for :meth:`solve`. Returns a :class:`Motion` whose columns are the bones in
+        the rig's order (``bones``): ``angles_deg`` [F, n], ``joints`` [F, n+1, 2] (the base,
+        then each bone's tip)."""
+        request = {
+            "goals": _rig_goals(goals),
+            "via": None if via is None else [_rig_goals(g, f"via[{i}]") for i, g in enumerate(via)],
+            "pins": list(pins) or None,
+            "mix": mix,
+        }
+        return self._animate(
+            request,
+            frames=frames,
+            duration=duration,
+            fps=fps,
+            ease=ease,
+            k1=k1,
+            k2=k2,
+            interpolation=interpolation,
+            from_solve=from_solve,
+            start_deg=start_deg,
+            options=options,
+        )
+
+    def track(
+        self,
+        effector: str,
+        path: Optional[Any] = None,
+        *,
+        line: Optional[Sequence[float]] = None,
+        circle: Optional[Sequence[float]] = None,
+        figure8: Optional[Sequence[float]] = None,
+        samples: Optional[int] = None,
+        goals: Optional[Mapping[str, Union[Goal, RigGoal]]] = None,
+        pins: Sequence[str] = (),
+        mix: Optional[float] = None,
+        mode: Optional[TrackMode] = None,
+        max_step_deg: Optional[float] = None,
+        bound_first: Optional[bool] = None,
+        start_deg: Optional[Sequence[float]] = None,
+        **options: Unpack[TrackSolveOptions],
+    ) -> Track:
+        """The tip of bone ``effector`` follows a path (``ikarus track --rig --effector``,
+        ``POST /api/track`` with ``rig``) while ``goals`` hold and ``pins`` stay: ``path`` [N,
+        2] or ``line``, ``circle``, ``figure8`` with ``samples``, as for :meth:`Chain.track`
+        (``mode`` ``"follow"``, the only one for a rig). Returns a :class:`Track` whose columns
+        are the bones in the rig's order."""
+        request = {
+            "effector": effector,
+            "goals": None if goals is None else _rig_goals(goals),
+            "pins": list(pins) or None,
+            "mix": mix,
+        }
+        return self._track(
+            request,
+            path=path,
+            line=line,
+            circle=circle,
+            figure8=figure8,
+            samples=samples,
+            mode=mode,
+            max_step_deg=max_step_deg,
+            bound_first=bound_first,
+            start_deg=start_deg,
+            options=options,
+        )
+
+    def render(
+        self,
+        format: PictureFormat = "svg",
+        *,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+        **fields: Any,
+    ) -> bytes:
         """A picture of the rig by ikarus's renderer (``"figure": "rig"``): ``pose_deg``,
         ``goals`` (as the API's list), ``pins``, ``limits``, ``labels``."""
-        request = {"figure": "rig", "format": format, "width": width, "height": height, "rig": self.rig, **fields}
-        body = _json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
-        return bytes(_ikarus._call("render", body))
+        return self._render({"figure": "rig", "format": format, "width": width, "height": height, **fields})
 
     def _repr_svg_(self) -> str:
         return self.render("svg", width=480, height=480).decode()
