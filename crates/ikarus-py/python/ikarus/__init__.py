@@ -94,7 +94,7 @@ def _plain(value: Any, field: str) -> Any:
     raise TypeError(f"{field}: cannot use a {type(value).__name__} here")
 
 
-def _options(options: dict) -> dict:
+def _options(options: Mapping[str, object]) -> dict:
     """Keyword options under the CLI's names (``lambda_`` is ``lambda``); None = the default."""
     out = {}
     for key, value in options.items():
@@ -133,7 +133,7 @@ def _rebuild_chain(cls: type, toml: Optional[str]) -> "Chain":
     return cls() if toml is None else cls(toml=toml)
 
 
-def _track_options(options: dict) -> Optional[dict]:
+def _track_options(options: Mapping[str, object]) -> Optional[dict]:
     """``track``'s solver options: ``solver_max_step_deg`` is the solver's ``max_step_deg``."""
     solver_options = _options(options)
     if "solver_max_step_deg" in solver_options:
@@ -172,7 +172,7 @@ class _Body:
         interpolation: Optional[Interpolation],
         from_solve: Optional[bool],
         start_deg: Optional[Sequence[float]],
-        options: dict,
+        options: Mapping[str, object],
     ) -> Motion:
         easing = {"kind": ease, "k1": k1, "k2": k2}
         request = {
@@ -202,7 +202,7 @@ class _Body:
         max_step_deg: Optional[float],
         bound_first: Optional[bool],
         start_deg: Optional[Sequence[float]],
-        options: dict,
+        options: Mapping[str, object],
     ) -> Track:
         request = {
             **request,
@@ -310,14 +310,13 @@ class Chain(_Body, _ikarus.Chain):
         **options: Unpack[TrackSolveOptions],
     ) -> Track:
         """The tip follows a path without flips, as ``ikarus track`` (``POST /api/track``):
-        ``path`` (an array [N, 2] or [N, 3] of x, y[, angle_deg]) or one of ``line=(x0, y0, x1,
+        ``path`` (an array [N, 2] of x, y) or one of ``line=(x0, y0, x1,
         y1)``, ``circle=(cx, cy, r)``, ``figure8=(cx, cy, a)`` with ``samples``; ``mode`` is
         ``"plan"`` (default) or ``"follow"``; ``max_step_deg`` the flip bound (10°).
 
         Returns a :class:`Track`: ``body``, ``mode``, ``summary`` (the CLI's, a dict) and
         ``samples`` as columns: ``goal`` [N, 2], ``status`` [N] (str), ``error`` [N],
-        ``angles_deg`` [N, n], ``joints`` [N, n+1, 2], ``step_deg`` [N] (and ``angle_deg`` for
-        oriented goals). Solver options are keywords, as for :meth:`solve`; the solver's
+        ``angles_deg`` [N, n], ``joints`` [N, n+1, 2], ``step_deg`` [N]. Solver options are keywords, as for :meth:`solve`; the solver's
         per-iteration step cap, which ``max_step_deg`` names elsewhere, is
         ``solver_max_step_deg`` here (as the CLI's ``ikarus track --solver-max-step-deg``)."""
         return self._track(
@@ -414,7 +413,7 @@ class Chain(_Body, _ikarus.Chain):
 
 def _rig_goals(goals: Mapping[str, Union[Goal, RigGoal]], field: str = "goals") -> list:
     """A rig's goals, ``{bone: (x, y[, angle_deg]) or {"x", "y", …}}``, as the API's list."""
-    listed = []
+    listed: list = []
     for bone, goal in goals.items():
         g = dict(goal) if isinstance(goal, dict) else _goal(goal, f"{field}[{len(listed)}]")
         listed.append({"bone": bone, **g})

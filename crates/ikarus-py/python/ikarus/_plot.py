@@ -105,8 +105,8 @@ def plot(chain: Any, pose: Any = None, goal: Any = None, ax: Any = None, workspa
         ax.plot(g[0], g[1], "x", color=colours["goal"], ms=10, mew=2.5, zorder=5, label="goal")
         if len(g) == 3:
             d = 0.12 * reach
-            a = np.radians(g[2])
-            ax.annotate("", xy=(g[0] + d * np.cos(a), g[1] + d * np.sin(a)), xytext=(g[0], g[1]), arrowprops={"arrowstyle": "->", "color": colours["goal"], "lw": 2})
+            heading = np.radians(g[2])
+            ax.annotate("", xy=(g[0] + d * np.cos(heading), g[1] + d * np.sin(heading)), xytext=(g[0], g[1]), arrowprops={"arrowstyle": "->", "color": colours["goal"], "lw": 2})
     pad = 1.08 * reach
     ax.set_xlim(bx - pad, bx + pad)
     ax.set_ylim(by - pad, by + pad)
