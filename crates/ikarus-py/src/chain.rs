@@ -1,11 +1,11 @@
 //! `Chain`: an arm (a one-branch body of revolute joints), its properties, `solve` and
 //! `solve_batch`.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use ikarus::kinematics::joint_positions;
 use ikarus::number::Num;
-use ikarus::{Outcome, SolveOptions, Solver};
+use ikarus::{Outcome, Solver};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -14,25 +14,13 @@ use rayon::prelude::*;
 use serde_json::Value;
 
 use crate::api::svg;
+use crate::arm::ChainData;
 use crate::batch::{STATUS_OF_CODE, STATUS_WIDTH, pool, status_code};
-use crate::edge::{self, Arm, Endpoint};
-use crate::errors::{goal_problem, option_problem, problem};
+use crate::edge::{self, Endpoint};
+use crate::errors::{goal_problem, problem};
 use crate::goals::{GOALS_EXPECTED, goal_of, goals_array};
-use crate::options::{limits, options_json};
+use crate::options::limits;
 use crate::outcome::{ChainSolved, PyOutcome, Solved, points_array};
-
-/// What a chain holds: the validated arm, its API form, and a solver with the default options.
-pub(crate) struct ChainData {
-    pub(crate) arm: Arm,
-    /// The API's `arm` object (the arm file as JSON).
-    pub(crate) arm_json: Value,
-    pub(crate) name: String,
-    /// The arm file's text it was made from (None for the built-in arm), for pickling.
-    pub(crate) toml: Option<String>,
-    /// The options of a solve without keywords, and a solver with them (taken while in use).
-    pub(crate) options: Arc<SolveOptions>,
-    pub(crate) solver: Mutex<Solver>,
-}
 
 /// A planar chain: links joined by revolute joints, with optional joint ranges.
 ///
@@ -99,42 +87,6 @@ pub(crate) fn arm_toml(
         .collect();
     file.insert("links".into(), toml::Value::Array(links));
     toml::to_string(&file).map_err(|e| PyRuntimeError::new_err(format!("arm: {e}")))
-}
-
-impl ChainData {
-    fn new(arm: Arm, arm_json: Value) -> PyResult<Self> {
-        let name = arm.name().to_owned();
-        let options = edge::solve_options(&arm, "{}", limits()).map_err(problem)?;
-        let solver = Solver::new(options.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Self { arm, arm_json, name, toml: None, options: Arc::new(options), solver: Mutex::new(solver) })
-    }
-
-    fn from_toml(text: &str, label: &str) -> PyResult<Self> {
-        let arm = edge::arm_from_toml(text, label).map_err(problem)?;
-        // The arm is valid, so its numbers are finite and the file is JSON as well.
-        let json: Value = toml::from_str(text).map_err(|e| PyRuntimeError::new_err(format!("{label}: {e}")))?;
-        Ok(Self { toml: Some(text.to_owned()), ..Self::new(arm, json)? })
-    }
-
-    fn options(&self, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<SolveOptions> {
-        match kwargs {
-            Some(k) if !k.is_empty() => {
-                edge::solve_options(&self.arm, &options_json(Some(k))?, limits()).map_err(option_problem)
-            }
-            _ => Ok(SolveOptions::clone(&self.options)),
-        }
-    }
-
-    /// Runs `f` with the cached default solver, in place (or with a fresh one while another
-    /// thread holds it).
-    fn with_default_solver<T>(&self, f: impl FnOnce(&mut Solver) -> T) -> PyResult<T> {
-        if let Ok(mut cached) = self.solver.try_lock() {
-            return Ok(f(&mut cached));
-        }
-        let mut solver =
-            Solver::new(SolveOptions::clone(&self.options)).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(f(&mut solver))
-    }
 }
 
 #[pymethods]

@@ -14,6 +14,7 @@
 //! shared facade.
 
 mod api;
+mod arm;
 mod batch;
 mod chain;
 mod easing;

@@ -12,8 +12,8 @@ use pyo3::types::{PyDict, PyFloat, PyList, PyString, PyTuple};
 use serde_json::Value;
 
 use crate::api::{body_call, svg};
+use crate::arm::ChainData;
 use crate::batch::STATUS_OF_CODE;
-use crate::chain::ChainData;
 use crate::edge;
 
 /// Joint positions as float64 [k, 2].
@@ -29,8 +29,8 @@ fn pairs_array<'py>(py: Python<'py>, pairs: &[[f64; 2]]) -> Bound<'py, PyArray2<
 
 /// One effector of a solve: a goal on a tip (or a pin holding one), how close the tip came.
 /// A chain's solve has one, named ``"tip"``; a rig's lists its goals in order, then its pins.
-/// Built by ``Chain.solve``, ``Rig.solve`` and the motions of ``animate``; the fields are those
-/// of the JSON's ``effectors`` (``ikarus solve --rig --format json``).
+/// Made by the solves (``Outcome.effectors``); the fields are those of the JSON's ``effectors``
+/// (``ikarus solve --rig --format json``).
 #[pyclass(frozen, get_all, eq, module = "ikarus._ikarus", name = "Effector")]
 #[derive(Clone, PartialEq)]
 pub(crate) struct PyEffector {
@@ -52,20 +52,6 @@ pub(crate) struct PyEffector {
 
 #[pymethods]
 impl PyEffector {
-    #[new]
-    #[pyo3(signature = (*, name, pinned, status, error, angle_error_deg, tip, target))]
-    fn new(
-        name: String,
-        pinned: bool,
-        status: String,
-        error: f64,
-        angle_error_deg: f64,
-        tip: (f64, f64),
-        target: (f64, f64),
-    ) -> Self {
-        Self { name, pinned, status, error, angle_error_deg, tip, target }
-    }
-
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         // Python's reprs of the values (quotes, exponents), as a dataclass's repr shows them.
         let r = |v: Bound<'_, PyAny>| -> PyResult<String> { Ok(v.repr()?.to_string()) };

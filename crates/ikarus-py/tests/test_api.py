@@ -140,7 +140,8 @@ def test_the_namespace_is_the_api():
     assert public == sorted(name for name in ikarus.__all__ if not name.startswith("_")), public
     assert public == sorted(
         ["Chain", "Rig", "Outcome", "Effector", "Motion", "MotionFrames", "Track", "TrackSamples", "call", "ease", "plot"]
-        + ["SolveOptions", "TrackSolveOptions", "RigGoal", "MotionSolve", "TrackSummary", "Method", "LimitMode"]
+        + ["SolveOptions", "TrackSolveOptions", "MotionOptions", "TrackOptions", "RigGoal", "MotionSolve", "TrackSummary"]
+        + ["Method", "LimitMode"]
     )
     names: dict = {}
     exec("from ikarus import *", names)

@@ -44,6 +44,11 @@ def test_the_options_typeddict_is_the_apis_option_set():
     assert ikarus.SolveOptions.__total__ is False
     track = {"solver_max_step_deg" if f == "max_step_deg" else f for f in want}
     assert set(ikarus.TrackSolveOptions.__annotations__) == track
+    # animate's and track's keywords: their own settings over the solver's options.
+    motion = {"frames", "duration", "fps", "ease", "k1", "k2", "interpolation", "from_solve", "start_deg"}
+    assert set(ikarus.MotionOptions.__annotations__) == want | motion
+    path = {"line", "circle", "figure8", "samples", "mode", "max_step_deg", "bound_first", "start_deg"}
+    assert set(ikarus.TrackOptions.__annotations__) == track | path
 
 
 def test_a_rig_solve_is_an_outcome_with_typed_effectors():
@@ -83,8 +88,9 @@ def dataclass_like(e: ikarus.Effector) -> dict:
 def test_a_chain_outcome_has_its_tip_as_one_effector():
     out = ikarus.Chain().solve((2.0, 3.0, 120.0), limits=True)
     (tip,) = out.effectors
-    assert tip == ikarus.Effector(name="tip", pinned=False, status=out.status, error=out.error, angle_error_deg=out.angle_error_deg, tip=out.end_effector[:2], target=out.goal[:2])
-    assert tip != ikarus.Effector(name="tip", pinned=True, status=out.status, error=out.error, angle_error_deg=out.angle_error_deg, tip=out.end_effector[:2], target=out.goal[:2])
+    assert isinstance(tip, ikarus.Effector)
+    assert dataclass_like(tip) == {"name": "tip", "pinned": False, "status": out.status, "error": out.error, "angle_error_deg": out.angle_error_deg, "tip": list(out.end_effector[:2]), "target": list(out.goal[:2])}
+    assert tip == out.effectors[0] and tip != ikarus.Chain().solve((2.0, 2.0)).effectors[0]
     assert repr(tip).startswith("Effector(name='tip', pinned=False, status='unreachable', error=")
     with pytest.raises(AttributeError):
         tip.error = 0.0  # frozen

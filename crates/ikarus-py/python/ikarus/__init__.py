@@ -34,7 +34,17 @@ import numpy as _np
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
 from ._results import Motion, MotionFrames, Track, TrackSamples
-from ._types import LimitMode, Method, MotionSolve, RigGoal, SolveOptions, TrackSolveOptions, TrackSummary
+from ._types import (
+    LimitMode,
+    Method,
+    MotionOptions,
+    MotionSolve,
+    RigGoal,
+    SolveOptions,
+    TrackOptions,
+    TrackSolveOptions,
+    TrackSummary,
+)
 
 if _typing.TYPE_CHECKING:
     import os
@@ -45,7 +55,7 @@ if _typing.TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from ._ikarus import Goal
-    from ._types import EaseName, Figure, Interpolation, PictureFormat, TrackMode
+    from ._types import Figure, PictureFormat
 
 __all__ = [
     "Chain",
@@ -58,6 +68,8 @@ __all__ = [
     "TrackSamples",
     "SolveOptions",
     "TrackSolveOptions",
+    "MotionOptions",
+    "TrackOptions",
     "RigGoal",
     "MotionSolve",
     "TrackSummary",
@@ -141,6 +153,12 @@ def _track_options(options: Mapping[str, object]) -> Optional[dict]:
     return solver_options or None
 
 
+# The keywords of ``animate`` and ``track`` that are the API's request fields of the same names
+# (the rest are the ease's and the solver's options).
+_MOTION_FIELDS = ("frames", "duration", "fps", "interpolation", "from_solve", "start_deg")
+_TRACK_FIELDS = ("line", "circle", "figure8", "samples", "mode", "max_step_deg", "bound_first", "start_deg")
+
+
 class _Body:
     """What a chain and a rig share: their requests to the API (``animate``, ``track``,
     ``render``) written once, each body adding its own key (``arm`` or ``rig``) and goals."""
@@ -159,63 +177,33 @@ class _Body:
         body = _json.dumps(_plain(request, "request"), allow_nan=False)
         return _json.loads(_ikarus._call(endpoint, body, keywords=True))
 
-    def _animate(
-        self,
-        request: dict,
-        *,
-        frames: Optional[int],
-        duration: Optional[float],
-        fps: Optional[float],
-        ease: Optional[EaseName],
-        k1: Optional[float],
-        k2: Optional[float],
-        interpolation: Optional[Interpolation],
-        from_solve: Optional[bool],
-        start_deg: Optional[Sequence[float]],
-        options: Mapping[str, object],
-    ) -> Motion:
-        easing = {"kind": ease, "k1": k1, "k2": k2}
+    def _animate(self, request: dict, options: Mapping[str, object]) -> Motion:
+        """A motion: ``request`` (the body's goals) with ``animate``'s keywords, the motion's
+        settings (``MotionOptions``) and then the solver's options."""
+        keywords = dict(options)
+        fields = {k: keywords.pop(k, None) for k in _MOTION_FIELDS}
+        easing = {k: keywords.pop(k, None) for k in ("ease", "k1", "k2")}
+        easing["kind"] = easing.pop("ease")
         request = {
             **request,
-            "frames": frames,
-            "duration": duration,
-            "fps": fps,
+            **fields,
             "ease": {k: v for k, v in easing.items() if v is not None} or None,
-            "interpolation": interpolation,
-            "from_solve": from_solve,
-            "start_deg": start_deg,
-            "options": _options(options) or None,
+            "options": _options(keywords) or None,
         }
         bones, base = self._columns()
         return Motion._of(self._request("animate", request), bones, base)
 
-    def _track(
-        self,
-        request: dict,
-        *,
-        path: Optional[Any],
-        line: Optional[Sequence[float]],
-        circle: Optional[Sequence[float]],
-        figure8: Optional[Sequence[float]],
-        samples: Optional[int],
-        mode: Optional[TrackMode],
-        max_step_deg: Optional[float],
-        bound_first: Optional[bool],
-        start_deg: Optional[Sequence[float]],
-        options: Mapping[str, object],
-    ) -> Track:
+    def _track(self, request: dict, options: Mapping[str, object]) -> Track:
+        """A tracked path: ``request`` (the body's part and ``path``) with ``track``'s keywords,
+        the path's settings (``TrackOptions``) and then the solver's options."""
+        keywords = dict(options)
+        fields = {k: keywords.pop(k, None) for k in _TRACK_FIELDS}
+        path = request.get("path")
         request = {
             **request,
+            **fields,
             "path": None if path is None else _plain(_np.asarray(path, dtype=float), "path"),
-            "line": line,
-            "circle": circle,
-            "figure8": figure8,
-            "samples": samples,
-            "mode": mode,
-            "max_step_deg": max_step_deg,
-            "bound_first": bound_first,
-            "start_deg": start_deg,
-            "options": _track_options(options),
+            "options": _track_options(keywords),
         }
         bones, base = self._columns()
         return Track._of(self._request("track", request), bones, base)
@@ -258,17 +246,7 @@ class Chain(_Body, _ikarus.Chain):
         self,
         goal: Goal,
         via: Optional[Iterable[Sequence[float]]] = None,
-        *,
-        frames: Optional[int] = None,
-        duration: Optional[float] = None,
-        fps: Optional[float] = None,
-        ease: Optional[EaseName] = None,
-        k1: Optional[float] = None,
-        k2: Optional[float] = None,
-        interpolation: Optional[Interpolation] = None,
-        from_solve: Optional[bool] = None,
-        start_deg: Optional[Sequence[float]] = None,
-        **options: Unpack[SolveOptions],
+        **options: Unpack[MotionOptions],
     ) -> Motion:
         """The motion of ``ikarus animate`` (``POST /api/animate``): solve for ``goal`` through
         each ``via`` point, then move along a smooth spline, eased.
@@ -281,33 +259,12 @@ class Chain(_Body, _ikarus.Chain):
             "goal": _goal(goal),
             "via": None if via is None else [list(_plain(p, f"via[{i}]")) for i, p in enumerate(via)],
         }
-        return self._animate(
-            request,
-            frames=frames,
-            duration=duration,
-            fps=fps,
-            ease=ease,
-            k1=k1,
-            k2=k2,
-            interpolation=interpolation,
-            from_solve=from_solve,
-            start_deg=start_deg,
-            options=options,
-        )
+        return self._animate(request, options)
 
     def track(
         self,
-        path: Optional[Any] = None,
-        *,
-        line: Optional[Sequence[float]] = None,
-        circle: Optional[Sequence[float]] = None,
-        figure8: Optional[Sequence[float]] = None,
-        samples: Optional[int] = None,
-        mode: Optional[TrackMode] = None,
-        max_step_deg: Optional[float] = None,
-        bound_first: Optional[bool] = None,
-        start_deg: Optional[Sequence[float]] = None,
-        **options: Unpack[TrackSolveOptions],
+        path: Optional[npt.ArrayLike] = None,
+        **options: Unpack[TrackOptions],
     ) -> Track:
         """The tip follows a path without flips, as ``ikarus track`` (``POST /api/track``):
         ``path`` (an array [N, 2] of x, y) or one of ``line=(x0, y0, x1,
@@ -319,19 +276,7 @@ class Chain(_Body, _ikarus.Chain):
         ``angles_deg`` [N, n], ``joints`` [N, n+1, 2], ``step_deg`` [N]. Solver options are keywords, as for :meth:`solve`; the solver's
         per-iteration step cap, which ``max_step_deg`` names elsewhere, is
         ``solver_max_step_deg`` here (as the CLI's ``ikarus track --solver-max-step-deg``)."""
-        return self._track(
-            {},
-            path=path,
-            line=line,
-            circle=circle,
-            figure8=figure8,
-            samples=samples,
-            mode=mode,
-            max_step_deg=max_step_deg,
-            bound_first=bound_first,
-            start_deg=start_deg,
-            options=options,
-        )
+        return self._track({"path": path}, options)
 
     def workspace(
         self,
@@ -518,16 +463,7 @@ class Rig(_Body):
         *,
         pins: Sequence[str] = (),
         mix: Optional[float] = None,
-        frames: Optional[int] = None,
-        duration: Optional[float] = None,
-        fps: Optional[float] = None,
-        ease: Optional[EaseName] = None,
-        k1: Optional[float] = None,
-        k2: Optional[float] = None,
-        interpolation: Optional[Interpolation] = None,
-        from_solve: Optional[bool] = None,
-        start_deg: Optional[Sequence[float]] = None,
-        **options: Unpack[SolveOptions],
+        **options: Unpack[MotionOptions],
     ) -> Motion:
         """The motion of ``ikarus animate --rig`` (``POST /api/animate`` with ``rig``): solve
         each ``via`` set of goals in turn, then ``goals``, each from where the last ended, with
@@ -541,37 +477,17 @@ class Rig(_Body):
             "pins": list(pins) or None,
             "mix": mix,
         }
-        return self._animate(
-            request,
-            frames=frames,
-            duration=duration,
-            fps=fps,
-            ease=ease,
-            k1=k1,
-            k2=k2,
-            interpolation=interpolation,
-            from_solve=from_solve,
-            start_deg=start_deg,
-            options=options,
-        )
+        return self._animate(request, options)
 
     def track(
         self,
         effector: str,
-        path: Optional[Any] = None,
+        path: Optional[npt.ArrayLike] = None,
         *,
-        line: Optional[Sequence[float]] = None,
-        circle: Optional[Sequence[float]] = None,
-        figure8: Optional[Sequence[float]] = None,
-        samples: Optional[int] = None,
         goals: Optional[Mapping[str, Union[Goal, RigGoal]]] = None,
         pins: Sequence[str] = (),
         mix: Optional[float] = None,
-        mode: Optional[TrackMode] = None,
-        max_step_deg: Optional[float] = None,
-        bound_first: Optional[bool] = None,
-        start_deg: Optional[Sequence[float]] = None,
-        **options: Unpack[TrackSolveOptions],
+        **options: Unpack[TrackOptions],
     ) -> Track:
         """The tip of bone ``effector`` follows a path (``ikarus track --rig --effector``,
         ``POST /api/track`` with ``rig``) while ``goals`` hold and ``pins`` stay: ``path`` [N,
@@ -584,19 +500,7 @@ class Rig(_Body):
             "pins": list(pins) or None,
             "mix": mix,
         }
-        return self._track(
-            request,
-            path=path,
-            line=line,
-            circle=circle,
-            figure8=figure8,
-            samples=samples,
-            mode=mode,
-            max_step_deg=max_step_deg,
-            bound_first=bound_first,
-            start_deg=start_deg,
-            options=options,
-        )
+        return self._track({**request, "path": path}, options)
 
     def render(
         self,

@@ -15,17 +15,6 @@ Goal = Union[Tuple[float, float], Tuple[float, float, float], Sequence[float], n
 class Effector:
     """One goal or pin of a solve and how close its tip came (a chain's solve has one, ``"tip"``)."""
 
-    def __init__(
-        self,
-        *,
-        name: str,
-        pinned: bool,
-        status: str,
-        error: float,
-        angle_error_deg: float,
-        tip: Tuple[float, float],
-        target: Tuple[float, float],
-    ) -> None: ...
     @property
     def name(self) -> str:
         """The bone whose tip it moves (``"tip"`` for a chain's last link)."""

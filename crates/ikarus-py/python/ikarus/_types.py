@@ -27,52 +27,67 @@ Figure = Literal["arm", "motion", "workspace", "ease", "rig"]
 PictureFormat = Literal["svg", "png", "gif"]
 
 
-class SolveOptions(TypedDict, total=False):
+class _SolverOptions(TypedDict, total=False):
+    method: Method
+    lambda_: float
+    tolerance: float
+    angle_tolerance_deg: float
+    max_iterations: int
+    gain: float
+    rates: Sequence[float]
+    backtrack: int
+    stall_window: int
+    stall_epsilon_deg: float
+    limits: bool
+    limit_mode: LimitMode
+    restarts: int
+    restart_seed: int
+    time_budget_ms: float
+    no_closed_form: bool
+    record_every: int
+
+
+class SolveOptions(_SolverOptions, total=False):
     """The solver's keyword options, the API's ``options`` (the CLI's flags by name), over the
     arm or rig file's ``[solver]`` table. ``lambda`` is a Python keyword: ``lambda_``."""
 
-    method: Method
-    lambda_: float
-    tolerance: float
-    angle_tolerance_deg: float
-    max_iterations: int
-    gain: float
-    rates: Sequence[float]
     max_step_deg: float
-    backtrack: int
-    stall_window: int
-    stall_epsilon_deg: float
-    limits: bool
-    limit_mode: LimitMode
-    restarts: int
-    restart_seed: int
-    time_budget_ms: float
-    no_closed_form: bool
-    record_every: int
 
 
-class TrackSolveOptions(TypedDict, total=False):
+class TrackSolveOptions(_SolverOptions, total=False):
     """:class:`SolveOptions` for ``track``, whose ``max_step_deg`` is the flip bound: the
     solver's own step cap is ``solver_max_step_deg`` there (``--solver-max-step-deg``)."""
 
-    method: Method
-    lambda_: float
-    tolerance: float
-    angle_tolerance_deg: float
-    max_iterations: int
-    gain: float
-    rates: Sequence[float]
     solver_max_step_deg: float
-    backtrack: int
-    stall_window: int
-    stall_epsilon_deg: float
-    limits: bool
-    limit_mode: LimitMode
-    restarts: int
-    restart_seed: int
-    time_budget_ms: float
-    no_closed_form: bool
-    record_every: int
+
+
+class MotionOptions(SolveOptions, total=False):
+    """``animate``'s keywords: the motion's settings (``ikarus animate``'s flags by name), then
+    the solver's options."""
+
+    frames: int
+    duration: float
+    fps: float
+    ease: EaseName
+    k1: float
+    k2: float
+    interpolation: Interpolation
+    from_solve: bool
+    start_deg: Sequence[float]
+
+
+class TrackOptions(TrackSolveOptions, total=False):
+    """``track``'s keywords: the path's settings (``ikarus track``'s flags by name; one of
+    ``line``, ``circle``, ``figure8`` unless a ``path`` is given), then the solver's options."""
+
+    line: Sequence[float]
+    circle: Sequence[float]
+    figure8: Sequence[float]
+    samples: int
+    mode: TrackMode
+    max_step_deg: float
+    bound_first: bool
+    start_deg: Sequence[float]
 
 
 class RigGoal(TypedDict, total=False):

@@ -28,3 +28,6 @@ rig.animate({"right_hand": (0.6, 1.0)}, limit_mode="lok")  # type: ignore[arg-ty
 arm.track(figure8=(2.0, 1.0, 2.0), mode="glide")  # type: ignore[arg-type]
 arm.solve_batch(np.zeros((3, 2)), 2)  # type: ignore[misc]
 arm.workspace(True)  # type: ignore[misc]
+arm.animate((2.0, 3.0), ease="bounce")  # type: ignore[arg-type]
+arm.animate((2.0, 3.0), framez=3)  # type: ignore[call-arg]
+rig.track("right_hand", circle=(0.3, 0.8, 0.2), solver_max_step="10")  # type: ignore[call-arg]
