@@ -1,17 +1,20 @@
 //! `ikarus._ikarus`: the Python bindings of ikarus (re-exported by the `ikarus` package).
 //!
 //! One workflow per job: arms, settings, defaults, messages and JSON answers come from the shared
-//! facade `ikarus_cli::edge`, as for the command line and the server. The hot path
-//! (`Chain.solve`, `Chain.solve_batch`) uses its typed pieces and `ikarus::Solver` directly; the
-//! rest (animate, track, workspace, reach, pictures) posts the API's request to `edge::call` and
-//! hands its JSON answer to the Python side (`python/ikarus/__init__.py`), which turns it into
-//! Python objects and NumPy arrays. Angles are degrees at this edge, as in the CLI.
+//! facade (named in one place, `edge`), as for the command line and the server. The hot path
+//! (`Chain.solve`, `Chain.solve_batch`) uses its typed pieces and `ikarus::Solver` directly; a
+//! rig's solve (`_solve_rig`) posts the API's request to `edge::call` and reads its answer into
+//! the same `Outcome` a chain's solve gives; the rest (animate, track, workspace, reach,
+//! pictures) posts the API's request and hands its JSON answer to the Python side
+//! (`python/ikarus/`), which turns it into typed objects with NumPy columns. Angles are degrees
+//! at this edge, as in the CLI.
 //!
-//! By concern: `chain` (the `Chain` class, its solves), `outcome` (`Outcome`), `options`
-//! (keyword options as the API's JSON, this edge's caps), `goals` (goals and goal arrays),
-//! `batch` (`solve_batch`'s pools and status codes), `errors` (refusals as Python exceptions),
-//! `api` (requests without HTTP), `easing` (`ease`), and `edge`, the one place that names the
-//! shared facade.
+//! By concern: `chain` (the `Chain` class, its solves), `arm` (what a chain holds, shared with
+//! its outcomes), `outcome` (`Outcome` of a chain or a rig, `Effector`), `options` (keyword
+//! options as the API's JSON, this edge's caps), `goals` (goals and goal arrays), `batch`
+//! (`solve_batch`'s pools and status codes), `errors` (refusals as Python exceptions), `api`
+//! (requests without HTTP), `easing` (`ease`), and `edge`, the one place that names the shared
+//! facade.
 
 mod api;
 mod arm;
