@@ -607,7 +607,7 @@ function applyControls() {
     syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked, !!state.rig);
     syncLimitModes(state.meta, state.limitModeChoice);
   }
-  syncEnabled();
+  syncEnabled(state.meta);
   Object.assign(state, readControls(state.arm.links));
   timeline.choose(state.duration);
 }
