@@ -443,15 +443,17 @@ fn ctrl_c_stops_the_server_cleanly() {
     let pid = s.child.id().to_string();
     let sent = Command::new("kill").args(["-INT", &pid]).status().expect("run kill");
     assert!(sent.success());
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
-    loop {
+    // The event: the process exits, with 0. The bound only tells a hang from a slow machine.
+    let hang = std::time::Duration::from_secs(120);
+    let began = std::time::Instant::now();
+    let status = loop {
         if let Some(status) = s.child.try_wait().unwrap() {
-            assert_eq!(status.code(), Some(0), "{status:?}");
-            break;
+            break status;
         }
-        assert!(std::time::Instant::now() < deadline, "still running 5 s after Ctrl-C");
+        assert!(began.elapsed() < hang, "still running {hang:?} after Ctrl-C: a hang");
         std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    };
+    assert_eq!(status.code(), Some(0), "{status:?}");
 }
 
 /// Every method and limit mode of the library goes through the API by its name; a pair the
