@@ -40,6 +40,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("main.js", JS, include_str!("assets/main.js")),
     ("api.js", JS, include_str!("assets/api.js")),
     ("armfile.js", JS, include_str!("assets/armfile.js")),
+    ("body.js", JS, include_str!("assets/body.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("drawrig.js", JS, include_str!("assets/drawrig.js")),

@@ -5,7 +5,9 @@
 //
 // World: x to the right, y up, in arm units. Canvas: CSS pixels, x to the right, y down.
 
-export const DEG = Math.PI / 180;
+import { DEG, bodyForward, chainBody } from "./body.js";
+
+export { DEG };
 
 /**
  * A solve's time (`solve_us`) for the chip: milliseconds to three places. In the static build
@@ -23,20 +25,13 @@ export const DRAG_PIXELS = 4;
 /** The view spans the arm's reach times this margin in its shorter direction. */
 export const VIEW_MARGIN = 1.12;
 
-/** Joint positions [[x, y], …], base first, of `pose` (degrees, relative; a missing angle is the link's own). */
+/**
+ * Joint positions [[x, y], …], base first, of `pose` (degrees, relative; a missing angle is the
+ * link's own): the base and each link's tip, from the one forward kinematics (body.js).
+ */
 export function forward(arm, pose) {
   const [bx, by] = arm.base || [0, 0];
-  const joints = [[bx, by]];
-  let x = bx;
-  let y = by;
-  let a = 0;
-  arm.links.forEach((link, i) => {
-    a += (pose[i] ?? link.angle_deg) * DEG;
-    x += link.length * Math.cos(a);
-    y += link.length * Math.sin(a);
-    joints.push([x, y]);
-  });
-  return joints;
+  return [[bx, by], ...bodyForward(chainBody(arm), pose).tips];
 }
 
 /** The sum of the link lengths (a negative or unreadable length counts as 0). */
