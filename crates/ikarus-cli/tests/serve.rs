@@ -38,6 +38,7 @@ fn health_and_the_playground_page() {
         ("/input.js", "text/javascript", "export function wireInput"),
         ("/paths.js", "text/javascript", "export function resampleStroke"),
         ("/region.js", "text/javascript", "export function verdict"),
+        ("/body.js", "text/javascript", "export function bodyForward"),
         ("/timeline.js", "text/javascript", "export function wireTimeline"),
         ("/track.js", "text/javascript", "export function wireTrack"),
         ("/view.js", "text/javascript", "export function fitView"),
@@ -63,7 +64,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 17, "{modules:?}");
+    assert_eq!(modules.len(), 18, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
