@@ -272,6 +272,10 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),
         )
+        .route(
+            "/api/ease",
+            post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::Ease, &s, &b.bytes) }),
+        )
         .route("/api/solve", post(|State(s), b| compute(Endpoint::Solve, s, b)))
         .route("/api/solve_batch", post(|State(s), b| compute(Endpoint::SolveBatch, s, b)))
         .route("/api/animate", post(|State(s), b| compute(Endpoint::Animate, s, b)))
