@@ -549,7 +549,7 @@ fn ctrl_c_stops_the_server_promptly_with_work_running() {
     let mut s = start(&["--request-budget-ms", "600000", "--workers", "4", "--long-workers", "3"]);
     // Two solves of hours, which stop at their next iteration, and the largest still picture,
     // which is not interrupted (seconds of drawing and encoding).
-    let mut busy = vec![send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
+    let mut busy = [send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
     let picture =
         json!({ "figure": "arm", "arm": { "links": links(64) }, "width": 4096, "height": 4096, "format": "png" });
     let mut drawing = send_raw_to(&s, "/api/render", &picture);

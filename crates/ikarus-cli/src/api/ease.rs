@@ -62,7 +62,10 @@ mod tests {
             (r#"{"ease": {"kind": "linear"}, "samples": 2}"#, EaseKind::Linear.ease(None, None).unwrap()),
             (r#"{"ease": {"kind": "smoothstep"}, "samples": 49}"#, EaseKind::Smoothstep.ease(None, None).unwrap()),
             (r#"{"ease": {"kind": "parent"}, "samples": 24}"#, EaseKind::Parent.ease(None, None).unwrap()),
-            (r#"{"ease": {"kind": "parent", "k1": 0.3, "k2": 0.75}, "samples": 101}"#, Ease::parent(0.3, 0.75).unwrap()),
+            (
+                r#"{"ease": {"kind": "parent", "k1": 0.3, "k2": 0.75}, "samples": 101}"#,
+                Ease::parent(0.3, 0.75).unwrap(),
+            ),
         ];
         for (body, want) in cases {
             let v = answer(body).unwrap();

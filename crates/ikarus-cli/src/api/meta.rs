@@ -169,7 +169,8 @@ mod tests {
             };
             let chain = Chain::new([0.0, 0.0], links).unwrap();
             let pose = |lambda: f64| {
-                let opts = SolveOptions { method, lambda, restarts: None, max_iterations: 50, ..SolveOptions::default() };
+                let opts =
+                    SolveOptions { method, lambda, restarts: None, max_iterations: 50, ..SolveOptions::default() };
                 let out = Solver::new(opts).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
                 out.pose.angles().iter().map(|a| a.to_bits()).collect::<Vec<u64>>()
             };
