@@ -80,7 +80,8 @@ const SLEEVE_PIXELS = 12;
 /**
  * Each prismatic joint (body.js): a sleeve, a wider rectangle along the slide from the joint to
  * where the bone starts now (at least a short stub when it is not out), and, when limits are
- * on, its limits as a bar along the slide from joint + lo to joint + hi with a tick at each end.
+ * on, its limits as a bar beside it along the slide, from joint + lo to joint + hi, with a tick
+ * at each end.
  */
 function drawSleeves(ctx, view, r, limits) {
   r.rig.bones.forEach((b, i) => {
@@ -91,7 +92,9 @@ function drawSleeves(ctx, view, r, limits) {
     // On the canvas y points down.
     const [ux, uy] = [dir[0], -dir[1]];
     const [nx, ny] = [-uy, ux];
-    const along = (d) => [jx + ux * d * view.scale, jy + uy * d * view.scale];
+    // The bar runs beside the sleeve (to its right), so that the bone does not hide it.
+    const aside = SLEEVE_PIXELS / 2 + 5;
+    const along = (d) => [jx + ux * d * view.scale - nx * aside, jy + uy * d * view.scale - ny * aside];
     if (limits && b.limits) {
       const [[ax, ay], [bx, by]] = [along(b.limits[0]), along(b.limits[1])];
       const t = SLEEVE_PIXELS * 0.8;
