@@ -12,7 +12,8 @@ import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, launch, openPage, startServer } from "./browser.mjs";
 import { forPeople } from "../crates/ikarus-cli/src/serve/assets/api.js";
-import { leafNames, rigForward } from "../crates/ikarus-cli/src/serve/assets/rig.js";
+import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
+import { leafNames } from "../crates/ikarus-cli/src/serve/assets/rig.js";
 
 const ready = (page) => page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
 const settled = (page) => page.waitForFunction(() => window.ikarus.rigs.settled(), null, { timeout: 15000 });
@@ -104,7 +105,7 @@ test("the puppet: both feet pinned, both hands dragged to reachable points, all 
 
     // Click both feet: pinned. A click again unpins, and once more pins.
     const rig = await page.evaluate(() => window.ikarus.state.rig.rig);
-    const start = rigForward(rig, []);
+    const start = bodyForward(rig, []);
     const index = (n) => rig.bones.findIndex((b) => b.name === n);
     for (const foot of ["left_foot", "right_foot"]) await page.mouse.click(...(await tipClient(page, foot)));
     assert.deepEqual(await page.evaluate(() => [...window.ikarus.state.rig.pins].sort()), ["left_foot", "right_foot"]);
@@ -120,7 +121,7 @@ test("the puppet: both feet pinned, both hands dragged to reachable points, all 
     const pose = rig.bones.map((b) => b.angle_deg);
     Object.assign(pose, { [index("left_upper_arm")]: -100, [index("left_forearm")]: 40, [index("right_upper_arm")]: -60, [index("right_forearm")]: 30 });
     rig.bones.forEach((b, i) => b.limits_deg && assert.ok(pose[i] >= b.limits_deg[0] && pose[i] <= b.limits_deg[1], b.name));
-    const target = rigForward(rig, pose);
+    const target = bodyForward(rig, pose);
     const rightTo = target.tips[index("right_hand")];
     const leftTo = target.tips[index("left_hand")];
 
@@ -229,7 +230,7 @@ test("a bad rig file is its one-line problem; the hand loads and follows a finge
     const index = (n) => rig.bones.findIndex((b) => b.name === n);
     const pose = rig.bones.map((b) => b.angle_deg);
     Object.assign(pose, { [index("index_proximal")]: -30, [index("index_middle")]: -40, [index("index_distal")]: -20 });
-    const to = rigForward(rig, pose).tips[index("index_distal")];
+    const to = bodyForward(rig, pose).tips[index("index_distal")];
     const before = await page.evaluate(() => window.ikarus.state.rig.pose_deg.slice());
     const solves = await drag(page, "index_distal", to);
     const last = solves[solves.length - 1].answer;

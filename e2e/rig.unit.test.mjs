@@ -12,8 +12,6 @@ import {
   fitRigView,
   leafNames,
   rigForRequest,
-  rigForward,
-  rigOrder,
   rigReach,
   rigSolveRequest,
   rigSummary,
@@ -23,6 +21,7 @@ import {
   togglePin,
 } from "../crates/ikarus-cli/src/serve/assets/rig.js";
 import { toCanvas } from "../crates/ikarus-cli/src/serve/assets/view.js";
+import { bodyForward as rigForward, boneOrder as rigOrder } from "../crates/ikarus-cli/src/serve/assets/body.js";
 
 const close = (a, b, eps = 1e-12) => Math.abs(a - b) <= eps;
 const closePoint = (p, q, eps = 1e-12) => assert.ok(close(p[0], q[0], eps) && close(p[1], q[1], eps), `${p} is not ${q}`);

@@ -11,7 +11,7 @@ import {
   autoDuration,
   boxesOverlap,
   decimalsFor,
-  easePosition,
+  easeAt,
   fitView,
   forward,
   frameIndexAt,
@@ -339,64 +339,18 @@ test("the default duration: 0.6 s plus 0.4 s per radian travelled, from 0.6 s to
   near(autoDuration(jointDistance(swing)), 0.6 + 0.4 * Math.sqrt(3) * (Math.PI / 2), 1e-12);
 });
 
-test("ease s(t) matches the Rust library's curves", () => {
-  // Angles of a one-link arm (no limits, start 0°) animated to 120° in 11 frames by the library:
-  //   ikarus animate --arm one.toml --goal -0.5,0.8660254037844387 --frames 11 --ease E \
-  //     --tolerance 1e-14 --format csv
-  // (one.toml: one link of length 1 at 0°), so s(t_i) = θ_i / 120 at t_i = i / 10.
-  const library = {
-    linear: [{ kind: "linear" }, [0, 12, 24, 36, 48, 60, 72, 84, 96, 108, 120]],
-    sine: [
-      { kind: "sine" },
-      [0, 2.9366090222907877, 11.458980337503153, 24.73288486245161, 41.45898033750315, 59.99999999999999,
-        78.54101966249684, 95.26711513754839, 108.54101966249685, 117.06339097770922, 120],
-    ],
-    smoothstep: [
-      { kind: "smoothstep" },
-      [0, 3.3600000000000003, 12.480000000000002, 25.919999999999998, 42.24000000000001, 59.99999999999999,
-        77.75999999999999, 94.07999999999998, 107.52000000000001, 116.64, 120],
-    ],
-    "parent (defaults 0.3, 0.7)": [
-      { kind: "parent" },
-      [0, 3.9265755120873185, 14.654179310865654, 29.30835862173129, 44.654179310865636, 60.00000000000001,
-        75.34582068913434, 90.69164137826868, 105.34582068913436, 116.07342448791267, 120],
-    ],
-    "parent 0.2, 0.8": [
-      { kind: "parent", k1: 0.2, k2: 0.8 },
-      [0, 5.236166491590897, 17.877390650433178, 31.91826043362211, 45.959130216811054, 59.999999999999986,
-        74.04086978318891, 88.08173956637786, 102.12260934956682, 114.76383350840909, 120],
-    ],
-    "parent 0.3, 0.75": [
-      { kind: "parent", k1: 0.3, k2: 0.75 },
-      [0, 3.8374137189373965, 14.321422968736199, 28.64284593747238, 43.64020499998363, 58.63756406249489,
-        73.63492312500611, 88.63228218751736, 103.50690018705833, 115.44141932767182, 120],
-    ],
-  };
-  for (const [name, [ease, thetas]] of Object.entries(library)) {
-    thetas.forEach((theta, i) => {
-      const s = easePosition(ease, i / 10);
-      assert.ok(Math.abs(s - theta / 120) <= 1e-12, `${name} at ${i / 10}: ${s} vs ${theta / 120}`);
-    });
-  }
-  // ease.rs's own reference values (ERRATA.md) for Parent's ease with k1 = 0.3, k2 = 0.75.
-  for (const [t, want] of [[0.25, 0.176913], [0.5, 0.488646], [0.9, 0.962012]]) {
-    near(easePosition({ kind: "parent", k1: 0.3, k2: 0.75 }, t), want, 5e-7);
-  }
-  // Exact ends, clamping, and the degenerate Parent parameters that must not divide by zero.
-  for (const ease of [{ kind: "sine" }, { kind: "parent", k1: 0, k2: 1 }, { kind: "parent", k1: 0, k2: 0 }, { kind: "parent", k1: 1, k2: 1 }]) {
-    assert.equal(easePosition(ease, 0), 0);
-    assert.equal(easePosition(ease, 1), 1);
-    assert.equal(easePosition(ease, -2), 0);
-    assert.equal(easePosition(ease, 3), 1);
-    assert.equal(easePosition(ease, NaN), 0);
-    let last = 0;
-    for (let i = 0; i <= 200; i++) {
-      const s = easePosition(ease, i / 200);
-      assert.ok(Number.isFinite(s) && s >= last - 1e-15 && s <= 1, `${JSON.stringify(ease)} at ${i / 200}: ${s}`);
-      last = s;
-    }
-  }
-  for (let i = 0; i <= 10; i++) near(easePosition({ kind: "parent", k1: 0, k2: 1 }, i / 10), i / 10, 1e-15);
+test("the ease's progress between the backend's samples: exact on them, linear between, clamped", () => {
+  // An /api/ease answer's shape: {t, s} at evenly spaced times (here smoothstep's, 5 samples).
+  const t = [0, 0.25, 0.5, 0.75, 1];
+  const curve = { t, s: t.map((x) => x * x * (3 - 2 * x)) };
+  t.forEach((x, i) => assert.equal(easeAt(curve, x), curve.s[i]));
+  near(easeAt(curve, 0.125), curve.s[1] / 2, 1e-15);
+  near(easeAt(curve, 0.6), curve.s[2] + 0.4 * (curve.s[3] - curve.s[2]), 1e-15);
+  assert.equal(easeAt(curve, -2), 0);
+  assert.equal(easeAt(curve, 3), 1);
+  assert.equal(easeAt(curve, NaN), 0);
+  // Two samples: a straight line.
+  near(easeAt({ t: [0, 1], s: [0, 1] }, 0.3), 0.3, 1e-15);
 });
 
 test("a stroke is resampled at even arc lengths, ends kept, at most 200 samples", () => {
@@ -617,7 +571,9 @@ test("limits turned on: each joint to the nearest angle its range allows, on the
 });
 
 test("the glide into range: eased frames from the pose to the pose in range, the joints' positions with them", () => {
-  const frames = glideFrames(SEED, [73.6, 97.4, 23.8], [45, 90, 23.8], { kind: "sine" }, 5);
+  // The sine ease at five times, as /api/ease sends it.
+  const sine = { t: [0, 0.25, 0.5, 0.75, 1], s: [0, 0.14644660940672624, 0.5, 0.8535533905932737, 1] };
+  const frames = glideFrames(SEED, [73.6, 97.4, 23.8], [45, 90, 23.8], sine);
   assert.equal(frames.length, 5);
   nearAll(frames.map((f) => f.time), [0, 0.25, 0.5, 0.75, 1]);
   nearAll(frames[0].angles_deg, [73.6, 97.4, 23.8], 1e-12);
@@ -628,7 +584,7 @@ test("the glide into range: eased frames from the pose to the pose in range, the
   assert.deepEqual(frames[4].joints, forward(SEED, [45, 90, 23.8]));
   // The short way round for a free joint: 170° to −170° through 180°.
   const free = { links: [{ length: 1, angle_deg: 0 }] };
-  near(glideFrames(free, [170], [-170], { kind: "linear" }, 3)[1].angles_deg[0], -180, 1e-12);
+  near(glideFrames(free, [170], [-170], { t: [0, 0.5, 1], s: [0, 0.5, 1] })[1].angles_deg[0], -180, 1e-12);
 });
 
 test("downloads carry the seconds played: times scaled to the playback's duration", () => {

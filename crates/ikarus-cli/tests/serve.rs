@@ -38,6 +38,7 @@ fn health_and_the_playground_page() {
         ("/input.js", "text/javascript", "export function wireInput"),
         ("/paths.js", "text/javascript", "export function resampleStroke"),
         ("/region.js", "text/javascript", "export function verdict"),
+        ("/body.js", "text/javascript", "export function bodyForward"),
         ("/timeline.js", "text/javascript", "export function wireTimeline"),
         ("/track.js", "text/javascript", "export function wireTrack"),
         ("/view.js", "text/javascript", "export function fitView"),
@@ -63,7 +64,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 17, "{modules:?}");
+    assert_eq!(modules.len(), 18, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);
@@ -443,15 +444,17 @@ fn ctrl_c_stops_the_server_cleanly() {
     let pid = s.child.id().to_string();
     let sent = Command::new("kill").args(["-INT", &pid]).status().expect("run kill");
     assert!(sent.success());
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
-    loop {
+    // The event: the process exits, with 0. The bound only tells a hang from a slow machine.
+    let hang = std::time::Duration::from_secs(120);
+    let began = std::time::Instant::now();
+    let status = loop {
         if let Some(status) = s.child.try_wait().unwrap() {
-            assert_eq!(status.code(), Some(0), "{status:?}");
-            break;
+            break status;
         }
-        assert!(std::time::Instant::now() < deadline, "still running 5 s after Ctrl-C");
+        assert!(began.elapsed() < hang, "still running {hang:?} after Ctrl-C: a hang");
         std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    };
+    assert_eq!(status.code(), Some(0), "{status:?}");
 }
 
 /// Every method and limit mode of the library goes through the API by its name; a pair the

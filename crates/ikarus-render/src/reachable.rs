@@ -4,9 +4,9 @@
 use ikarus::Point2;
 use ikarus::reach::{BoundarySegment, Region, Workspace};
 
-use crate::scene::Scene;
 use crate::style;
 use crate::svg::{PathData, Svg, num};
+use crate::view::View;
 
 /// The reachable area a picture shades.
 #[derive(Debug, Clone, Copy)]
@@ -41,119 +41,120 @@ impl<'a> From<&'a Workspace> for Reachable<'a> {
     }
 }
 
-impl Scene<'_> {
-    /// The reachable area, shaded in the workspace colour and traced thinly in the reach colour.
-    pub(crate) fn reachable(&self, svg: &mut Svg, area: Reachable<'_>) {
-        match area {
-            Reachable::Exact(region) if region.has_area() => self.region_loops(svg, region),
-            Reachable::Exact(region) => self.region_curves(svg, region),
-            Reachable::Grid(ws) => self.grid_outline(svg, ws),
+impl Reachable<'_> {
+    /// The reachable area in `view`, shaded in the workspace colour and traced thinly in the
+    /// reach colour.
+    pub(crate) fn draw(self, svg: &mut Svg, view: &View) {
+        match self {
+            Reachable::Exact(region) if region.has_area() => region_loops(svg, view, region),
+            Reachable::Exact(region) => region_curves(svg, view, region),
+            Reachable::Grid(ws) => grid_outline(svg, view, ws),
         }
     }
+}
 
-    /// The exact region as one path of its boundary loops (outer counter-clockwise, holes
-    /// clockwise), with arcs as SVG arcs, filled with the even-odd rule so that holes stay empty.
-    fn region_loops(&self, svg: &mut Svg, region: &Region) {
-        let mut d = PathData::new();
-        for ring in region.boundary() {
-            let Some(first) = ring.first() else { continue };
-            let (x, y) = self.view.world_to_pixel(start(first));
-            d.move_to(x, y);
-            for seg in &ring {
-                self.segment(&mut d, seg);
-            }
-            d.close();
+/// The exact region as one path of its boundary loops (outer counter-clockwise, holes
+/// clockwise), with arcs as SVG arcs, filled with the even-odd rule so that holes stay empty.
+fn region_loops(svg: &mut Svg, view: &View, region: &Region) {
+    let mut d = PathData::new();
+    for ring in region.boundary() {
+        let Some(first) = ring.first() else { continue };
+        let (x, y) = view.world_to_pixel(start(first));
+        d.move_to(x, y);
+        for seg in &ring {
+            segment(&mut d, view, seg);
         }
-        self.fill(svg, &d);
+        d.close();
     }
+    fill(svg, view, &d);
+}
 
-    /// A region without area: its curves (or its single point) stroked in the reach colour.
-    fn region_curves(&self, svg: &mut Svg, region: &Region) {
-        let u = self.view.layout().unit;
-        let mut d = PathData::new();
-        for seg in region.curves() {
-            let (x, y) = self.view.world_to_pixel(start(&seg));
-            d.move_to(x, y);
-            match seg {
-                BoundarySegment::Line { from, to } if from == to => {
-                    // A point: a dot, drawn as a stroke of no length with round caps.
-                    d.line_to(x, y);
-                }
-                _ => self.segment(&mut d, &seg),
-            }
-        }
-        if d.is_empty() {
-            return;
-        }
-        svg.comment("reachable workspace (a curve: fewer than two joints move)");
-        svg.path(
-            &d,
-            &format!(
-                "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"",
-                style::REACH,
-                num(4.0 * u)
-            ),
-        );
-    }
-
-    /// One segment from its start (the current point) to its end. An arc of more than half a
-    /// turn is drawn as two halves, so that a full circle (same start and end) is drawn too.
-    fn segment(&self, d: &mut PathData, seg: &BoundarySegment) {
-        match *seg {
-            BoundarySegment::Line { to, .. } => {
-                let (x, y) = self.view.world_to_pixel(to);
+/// A region without area: its curves (or its single point) stroked in the reach colour.
+fn region_curves(svg: &mut Svg, view: &View, region: &Region) {
+    let u = view.layout().unit;
+    let mut d = PathData::new();
+    for seg in region.curves() {
+        let (x, y) = view.world_to_pixel(start(&seg));
+        d.move_to(x, y);
+        match seg {
+            BoundarySegment::Line { from, to } if from == to => {
+                // A point: a dot, drawn as a stroke of no length with round caps.
                 d.line_to(x, y);
             }
-            BoundarySegment::Arc { center, radius, from_angle, to_angle } => {
-                let r = radius * self.view.scale();
-                let sweep = to_angle - from_angle;
-                let pieces = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
-                for k in 1..=pieces {
-                    let t = from_angle + sweep * f64::from(k) / f64::from(pieces);
-                    let end = Point2::new(center.x + radius * t.cos(), center.y + radius * t.sin());
-                    let (x, y) = self.view.world_to_pixel(end);
-                    // World counter-clockwise stays counter-clockwise on the screen (y flips
-                    // with the picture): SVG's sweep flag 0.
-                    d.arc_to(r, false, sweep < 0.0, x, y);
-                }
+            _ => segment(&mut d, view, &seg),
+        }
+    }
+    if d.is_empty() {
+        return;
+    }
+    svg.comment("reachable workspace (a curve: fewer than two joints move)");
+    svg.path(
+        &d,
+        &format!(
+            "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\"",
+            style::REACH,
+            num(4.0 * u)
+        ),
+    );
+}
+
+/// One segment from its start (the current point) to its end. An arc of more than half a
+/// turn is drawn as two halves, so that a full circle (same start and end) is drawn too.
+fn segment(d: &mut PathData, view: &View, seg: &BoundarySegment) {
+    match *seg {
+        BoundarySegment::Line { to, .. } => {
+            let (x, y) = view.world_to_pixel(to);
+            d.line_to(x, y);
+        }
+        BoundarySegment::Arc { center, radius, from_angle, to_angle } => {
+            let r = radius * view.scale();
+            let sweep = to_angle - from_angle;
+            let pieces = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
+            for k in 1..=pieces {
+                let t = from_angle + sweep * f64::from(k) / f64::from(pieces);
+                let end = Point2::new(center.x + radius * t.cos(), center.y + radius * t.sin());
+                let (x, y) = view.world_to_pixel(end);
+                // World counter-clockwise stays counter-clockwise on the screen (y flips
+                // with the picture): SVG's sweep flag 0.
+                d.arc_to(r, false, sweep < 0.0, x, y);
             }
         }
     }
+}
 
-    /// The reachable area as one path: the smooth edge of the occupied cells
-    /// ([`Workspace::outline`], the playground's edge too).
-    fn grid_outline(&self, svg: &mut Svg, ws: &Workspace) {
-        let mut d = PathData::new();
-        for ring in ws.outline(ikarus::reach::OUTLINE_SMOOTHING) {
-            for (k, p) in ring.iter().enumerate() {
-                let (x, y) = self.view.world_to_pixel(*p);
-                if k == 0 {
-                    d.move_to(x, y);
-                } else {
-                    d.line_to(x, y);
-                }
+/// The reachable area as one path: the smooth edge of the occupied cells
+/// ([`Workspace::outline`], the playground's edge too).
+fn grid_outline(svg: &mut Svg, view: &View, ws: &Workspace) {
+    let mut d = PathData::new();
+    for ring in ws.outline(ikarus::reach::OUTLINE_SMOOTHING) {
+        for (k, p) in ring.iter().enumerate() {
+            let (x, y) = view.world_to_pixel(*p);
+            if k == 0 {
+                d.move_to(x, y);
+            } else {
+                d.line_to(x, y);
             }
-            d.close();
         }
-        self.fill(svg, &d);
+        d.close();
     }
+    fill(svg, view, &d);
+}
 
-    /// `d` filled with the even-odd rule (holes stay empty) and traced thinly.
-    fn fill(&self, svg: &mut Svg, d: &PathData) {
-        if d.is_empty() {
-            return;
-        }
-        svg.comment("reachable workspace");
-        svg.path(
-            d,
-            &format!(
-                "fill=\"{}\" fill-rule=\"evenodd\" stroke=\"{}\" stroke-opacity=\"0.6\" stroke-width=\"{}\"",
-                style::WORKSPACE,
-                style::REACH,
-                num(0.8 * self.view.layout().unit)
-            ),
-        );
+/// `d` filled with the even-odd rule (holes stay empty) and traced thinly.
+fn fill(svg: &mut Svg, view: &View, d: &PathData) {
+    if d.is_empty() {
+        return;
     }
+    svg.comment("reachable workspace");
+    svg.path(
+        d,
+        &format!(
+            "fill=\"{}\" fill-rule=\"evenodd\" stroke=\"{}\" stroke-opacity=\"0.6\" stroke-width=\"{}\"",
+            style::WORKSPACE,
+            style::REACH,
+            num(0.8 * view.layout().unit)
+        ),
+    );
 }
 
 /// Where a segment starts.

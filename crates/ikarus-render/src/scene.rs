@@ -7,7 +7,6 @@ use crate::reachable::Reachable;
 use crate::style;
 use crate::svg::{PathData, Svg, num};
 use crate::view::{View, nice_step, tick_label, ticks};
-pub(crate) use crate::wedge::{Wedge, chain_wedges};
 
 /// How the joints' paths of an animation are drawn.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -94,7 +93,7 @@ impl Scene<'_> {
         svg.path(&major, &format!("fill=\"none\" stroke=\"{}\" stroke-width=\"{w}\"", style::GRID));
 
         if let Some(area) = self.workspace {
-            self.reachable(svg, area);
+            area.draw(svg, &self.view);
         }
 
         // The axes through the origin, when in view, with their names at the positive ends.

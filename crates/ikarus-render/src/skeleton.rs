@@ -6,10 +6,11 @@ use ikarus::{Point2, Skeleton};
 use crate::RenderError;
 use crate::error::{check_finite, check_point};
 use crate::raster::{check_size, svg_to_png};
-use crate::scene::{Scene, Wedge};
+use crate::scene::Scene;
 use crate::style;
 use crate::svg::{PathData, Svg, num};
 use crate::view::{MAX_GOAL_ZOOM_OUT, PixelRect, View};
+use crate::wedge::{Wedge, ranges};
 use labels::labels;
 
 mod labels;
@@ -228,7 +229,7 @@ pub fn skeleton_svg(figure: &SkeletonFigure, width: u32, height: u32) -> Result<
     let mut svg = Svg::new(width, height);
     scene.background(&mut svg);
     if figure.ranges {
-        scene.ranges(&mut svg, &wedges(skeleton, &bones));
+        ranges(&mut svg, &scene.view, &wedges(skeleton, &bones));
     }
     goal_leads(&scene, &mut svg, figure, &bones);
     draw_bones(&scene, &mut svg, skeleton, &bones);

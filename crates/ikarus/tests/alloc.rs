@@ -198,7 +198,9 @@ fn limit_modes_and_restarts_allocate_nothing() {
             }
         }
     }
-    assert!(restarted > 10, "only {restarted} solves restarted");
+    // The restart path is exercised: an exact count of the solves that restarted (the run is
+    // deterministic; a method or limit mode more or fewer changes it).
+    assert_eq!(restarted, 19, "solves that restarted");
 }
 
 /// Issue 12: a skeleton's forward kinematics and stacked Jacobian, into buffers of the right

@@ -30,6 +30,9 @@ pub struct MethodChoice {
     /// Whether it solves rigs (skeletons) too: CCD, FABRIK and the closed form solve chains
     /// only.
     pub solves_rigs: bool,
+    /// Whether the λ setting (`lambda`) sets its damping (damped least squares,
+    /// Levenberg–Marquardt): the page enables its λ field for these only.
+    pub uses_lambda: bool,
     /// The arm shapes the method solves, when it does not solve every arm: `[links, orientation
     /// goal]` pairs (the closed form: two links with a position goal, three with an orientation
     /// goal). Absent: any arm.
@@ -85,6 +88,7 @@ pub fn meta() -> Meta {
                 limit_modes: LimitMode::ALL.iter().filter(|&&l| m.supports(l)).map(|l| l.name()).collect(),
                 default_limit_mode: m.default_limit_mode().name(),
                 solves_rigs: m.solves_rigs(),
+                uses_lambda: m.uses_lambda(),
                 shapes: shapes(m),
             })
             .collect(),
@@ -130,6 +134,7 @@ mod tests {
             assert_eq!(modes, supported, "{method}");
             assert_eq!(listed["default_limit_mode"], method.default_limit_mode().name());
             assert_eq!(listed["solves_rigs"], method.solves_rigs(), "{method}");
+            assert_eq!(listed["uses_lambda"], method.uses_lambda(), "{method}");
             assert!(!listed["label"].as_str().unwrap().is_empty());
         }
         assert_eq!((m["default_method"].as_str(), m["default_limit_mode"].as_str()), (Some("lm"), Some("lock")));
@@ -147,5 +152,29 @@ mod tests {
         assert_eq!(shaped, ["analytic"]);
         assert_eq!(m["methods"][7]["shapes"], serde_json::json!([[2, false], [3, true]]));
         assert_eq!((m["default_ease"].as_str(), m["default_interpolation"].as_str()), (Some("sine"), Some("spline")));
+    }
+
+    /// `uses_lambda` says what λ does: the same solve with λ = 0.05 and λ = 2 ends on another
+    /// pose exactly for the methods that say they use it (a closed form's arm of two links, a
+    /// reachable goal it answers without falling back; the others a three-link arm).
+    #[test]
+    fn uses_lambda_is_whether_lambda_changes_the_answer() {
+        use ikarus::{Chain, Goal, Link, Solver};
+        let goal = Goal::position(1.2, 1.9).unwrap();
+        for &method in Method::ALL.iter() {
+            let links: &[Link] = if method == Method::Analytic {
+                &[Link::new(2.0, 0.3), Link::new(1.5, 0.4)]
+            } else {
+                &[Link::new(1.5, 0.3), Link::new(1.2, 0.4), Link::new(1.0, 0.5)]
+            };
+            let chain = Chain::new([0.0, 0.0], links).unwrap();
+            let pose = |lambda: f64| {
+                let opts =
+                    SolveOptions { method, lambda, restarts: None, max_iterations: 50, ..SolveOptions::default() };
+                let out = Solver::new(opts).unwrap().solve(&chain, chain.start_pose(), &goal).unwrap();
+                out.pose.angles().iter().map(|a| a.to_bits()).collect::<Vec<u64>>()
+            };
+            assert_eq!(pose(0.05) != pose(2.0), method.uses_lambda(), "{method}");
+        }
     }
 }

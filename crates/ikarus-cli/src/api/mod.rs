@@ -10,6 +10,7 @@
 
 pub mod arm_files;
 pub mod bodies;
+pub mod ease;
 pub mod jobs;
 pub mod meta;
 #[cfg(feature = "render")]
@@ -211,6 +212,8 @@ pub enum Endpoint {
     /// `POST /api/render`: a picture (PNG, SVG or GIF).
     #[cfg(feature = "render")]
     Render,
+    /// `POST /api/ease`: an ease curve's progress at evenly spaced times.
+    Ease,
 }
 
 impl Endpoint {
@@ -230,6 +233,7 @@ impl Endpoint {
         Endpoint::Reach,
         #[cfg(feature = "render")]
         Endpoint::Render,
+        Endpoint::Ease,
     ];
 
     /// Its path, `/api/solve`.
@@ -250,6 +254,7 @@ impl Endpoint {
             Endpoint::Reach => "/api/reach",
             #[cfg(feature = "render")]
             Endpoint::Render => "/api/render",
+            Endpoint::Ease => "/api/ease",
         }
     }
 
@@ -296,6 +301,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::Reach => jobs::reach(body, limits, interrupt),
         #[cfg(feature = "render")]
         Endpoint::Render => render::render(body, limits, interrupt),
+        Endpoint::Ease => ease::curve(body),
     }
 }
 

@@ -40,6 +40,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("main.js", JS, include_str!("assets/main.js")),
     ("api.js", JS, include_str!("assets/api.js")),
     ("armfile.js", JS, include_str!("assets/armfile.js")),
+    ("body.js", JS, include_str!("assets/body.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("drawrig.js", JS, include_str!("assets/drawrig.js")),
@@ -270,6 +271,10 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
         .route(
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),
+        )
+        .route(
+            "/api/ease",
+            post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::Ease, &s, &b.bytes) }),
         )
         .route("/api/solve", post(|State(s), b| compute(Endpoint::Solve, s, b)))
         .route("/api/solve_batch", post(|State(s), b| compute(Endpoint::SolveBatch, s, b)))

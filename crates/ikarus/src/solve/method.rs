@@ -76,6 +76,23 @@ impl Method {
         }
     }
 
+    /// Whether [`SolveOptions::lambda`](super::SolveOptions::lambda) sets the method's damping:
+    /// damped least squares' damping, and Levenberg–Marquardt's damping at the start. The
+    /// others take their steps without it (SDLS damps each singular direction by its own
+    /// bound).
+    #[must_use]
+    pub fn uses_lambda(self) -> bool {
+        match self {
+            Method::DampedLeastSquares | Method::LevenbergMarquardt => true,
+            Method::Transpose
+            | Method::PseudoInverse
+            | Method::SelectivelyDamped
+            | Method::CyclicCoordinateDescent
+            | Method::Fabrik
+            | Method::Analytic => false,
+        }
+    }
+
     /// A label for people: `Levenberg–Marquardt`, …
     #[must_use]
     pub fn label(self) -> &'static str {

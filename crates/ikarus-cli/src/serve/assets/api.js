@@ -152,6 +152,8 @@ export const defaultArm = () => get("/api/arm/default");
 
 export const solve = (body) => post("/api/solve", body);
 export const animate = (body) => post("/api/animate", body);
+/** The ease `ease` ({kind, k1, k2}) at `samples` evenly spaced times: {t, s} (the library's curve). */
+export const easeCurve = (ease, samples) => post("/api/ease", { ease, samples });
 export const workspace = (body) => post("/api/workspace", body);
 /** The tip along a path (`ikarus track`): per-sample poses and a summary with the flips. */
 export const track = (body) => post("/api/track", body);

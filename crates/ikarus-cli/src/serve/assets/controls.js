@@ -78,10 +78,15 @@ export function syncLimitModes(meta, preferred) {
   return select.value;
 }
 
-/** Enables the fields that matter for the current method, limits and ease. */
-export function syncEnabled() {
-  const method = $("method").value;
-  $("lambda").disabled = method !== "dls" && method !== "lm";
+/**
+ * Whether the method named `name` reads λ (its `uses_lambda` in the /api/meta answer `meta`:
+ * damped least squares and Levenberg–Marquardt); false before the answer has come.
+ */
+export const usesLambda = (meta, name) => !!meta?.methods.find((m) => m.name === name)?.uses_lambda;
+
+/** Enables the fields that matter for the current method (as `meta` describes it), limits and ease. */
+export function syncEnabled(meta) {
+  $("lambda").disabled = !usesLambda(meta, $("method").value);
   const modes = $("limit-mode");
   modes.disabled = !$("limits").checked || modes.dataset.only === "true";
   modes.title = modes.dataset.only === "true" ? "This method has one way of keeping joints in range" : "";

@@ -7,6 +7,7 @@
 // page's state and never writes it; the geometry comes from view.js and region.js. The screen
 // and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
 
+import { bodyForward, chainBody } from "./body.js";
 import { traceCurves, traceRegion } from "./region.js";
 import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, placeLabels, toCanvas, toWorld } from "./view.js";
 
@@ -316,11 +317,9 @@ function drawReachMiss(ctx, view, state) {
  */
 function drawRanges(ctx, view, state) {
   if (!state.options.limits || state.joints.length !== state.arm.links.length + 1) return;
-  let heading = 0;
+  const { parentHeadings } = bodyForward(chainBody(state.arm), state.pose_deg);
   state.arm.links.forEach((link, i) => {
-    const angle = state.pose_deg[i] ?? link.angle_deg;
-    if (link.limits_deg) drawWedge(ctx, view, state.joints[i], heading, link.limits_deg, link.length);
-    heading += angle;
+    if (link.limits_deg) drawWedge(ctx, view, state.joints[i], parentHeadings[i], link.limits_deg, link.length);
   });
 }
 

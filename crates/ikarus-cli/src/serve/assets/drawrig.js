@@ -3,7 +3,8 @@
 // the bones, the base, the joints (a white ring where bones start), the effectors (ink dots on
 // the tips the reader can drag; a ring on the one under the pointer or being dragged, with its
 // name), the pins (blue squares) and the goals (red targets, a dashed line from the tip to its
-// goal while it is not there). It reads the page's state and never writes it. The screen and the
+// goal while it is not there), and each prismatic joint as a sleeve along its slide with its
+// limits as a bar. It reads the page's state and never writes it. The screen and the
 // PNG and SVG downloads (export.js) are drawn by the same drawRigScene.
 
 import { COLORS, drawBase, drawGoal, drawGrid, drawWedge } from "./draw.js";
@@ -26,6 +27,7 @@ export function drawRigScene(ctx, view, state) {
       if (b.limits_deg) drawWedge(ctx, view, r.starts[i], r.parentHeadings[i], b.limits_deg, b.length, RIG_WEDGE_PIXELS);
     });
   }
+  drawSleeves(ctx, view, r, state.options.limits);
   drawBones(ctx, view, r);
   drawBase(ctx, view, r.rig);
   drawJoints(ctx, view, r);
@@ -70,6 +72,62 @@ function drawBones(ctx, view, r) {
     ctx.lineTo(tx, ty);
   });
   ctx.stroke();
+}
+
+/** A prismatic joint's sleeve, CSS pixels across. */
+const SLEEVE_PIXELS = 12;
+
+/**
+ * Each prismatic joint (body.js): a sleeve, a wider rectangle along the slide from the joint to
+ * where the bone starts now (at least a short stub when it is not out), and, when limits are
+ * on, its limits as a bar beside it along the slide, from joint + lo to joint + hi, with a tick
+ * at each end.
+ */
+function drawSleeves(ctx, view, r, limits) {
+  r.rig.bones.forEach((b, i) => {
+    const dir = r.slides[i];
+    if (!dir) return;
+    const at = r.joints[i];
+    const [jx, jy] = toCanvas(view, ...at);
+    // On the canvas y points down.
+    const [ux, uy] = [dir[0], -dir[1]];
+    const [nx, ny] = [-uy, ux];
+    // The bar runs beside the sleeve (to its right), so that the bone does not hide it.
+    const aside = SLEEVE_PIXELS / 2 + 5;
+    const along = (d) => [jx + ux * d * view.scale - nx * aside, jy + uy * d * view.scale - ny * aside];
+    if (limits && b.limits) {
+      const [[ax, ay], [bx, by]] = [along(b.limits[0]), along(b.limits[1])];
+      const t = SLEEVE_PIXELS * 0.8;
+      ctx.globalAlpha = 0.45;
+      ctx.strokeStyle = COLORS.ink;
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(bx, by);
+      for (const [x, y] of [[ax, ay], [bx, by]]) {
+        ctx.moveTo(x - (nx * t) / 2, y - (ny * t) / 2);
+        ctx.lineTo(x + (nx * t) / 2, y + (ny * t) / 2);
+      }
+      ctx.stroke();
+      ctx.globalAlpha = 1;
+    }
+    const [sx, sy] = toCanvas(view, ...r.starts[i]);
+    let len = Math.hypot(sx - jx, sy - jy);
+    const sign = (sx - jx) * ux + (sy - jy) * uy < 0 ? -1 : 1;
+    len = Math.max(len, SLEEVE_PIXELS) * sign;
+    const h = SLEEVE_PIXELS / 2;
+    ctx.beginPath();
+    ctx.moveTo(jx + nx * h, jy + ny * h);
+    ctx.lineTo(jx + ux * len + nx * h, jy + uy * len + ny * h);
+    ctx.lineTo(jx + ux * len - nx * h, jy + uy * len - ny * h);
+    ctx.lineTo(jx - nx * h, jy - ny * h);
+    ctx.closePath();
+    ctx.fillStyle = "#fff";
+    ctx.fill();
+    ctx.lineWidth = 2;
+    ctx.strokeStyle = COLORS.ink;
+    ctx.stroke();
+  });
 }
 
 /** A white ring where bones start (once per point: several bones may start at one joint). */

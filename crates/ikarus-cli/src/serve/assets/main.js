@@ -28,6 +28,8 @@ import { fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.
 /** The grid's resolution when the exact region cannot be had (the server could not build it). */
 const WORKSPACE_RESOLUTION = 160;
 const WORKSPACE_DEBOUNCE_MS = 120;
+/** Frames of the glide into range (the ease's samples from /api/ease). */
+const GLIDE_FRAMES = 24;
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("plot");
@@ -479,7 +481,7 @@ function cancelMotion() {
  * the chip says which joints moved and where. Nothing to do for a pose inside, or for a rig
  * (its solve takes the pose in).
  */
-function glideIntoRange() {
+async function glideIntoRange() {
   if (state.rig || !state.options.limits || !state.arm) return;
   const { pose, moved } = poseIntoLimits(state.arm, state.pose_deg);
   if (moved.length === 0) {
@@ -487,9 +489,21 @@ function glideIntoRange() {
     return;
   }
   cancelMotion();
+  const seq = state.jobs.animateSeq;
+  let curve;
+  try {
+    curve = await api.easeCurve(state.ease, GLIDE_FRAMES);
+  } catch (e) {
+    // The ease's fields are checked before: take the pose in range at once.
+    setPose(pose);
+    showError(e);
+    return;
+  }
+  // Something else moved the arm meanwhile.
+  if (seq !== state.jobs.animateSeq) return;
   paths.clear();
   const from = state.pose_deg.slice();
-  const frames = glideFrames(state.arm, from, pose, state.ease);
+  const frames = glideFrames(state.arm, from, pose, curve);
   state.goal = null;
   state.animation = { arm: state.arm.name, ease: state.ease.kind, duration: 1, frames };
   state.animationRequest = null;
@@ -607,7 +621,7 @@ function applyControls() {
     syncMethods(state.meta, state.arm.links.length, $("use-goal-angle").checked, !!state.rig);
     syncLimitModes(state.meta, state.limitModeChoice);
   }
-  syncEnabled();
+  syncEnabled(state.meta);
   Object.assign(state, readControls(state.arm.links));
   timeline.choose(state.duration);
 }

@@ -1,11 +1,11 @@
-// Rigs (skeletons: trees of bones), the pure parts: forward kinematics in degrees (a bone's angle
-// is relative to its parent's direction, a root's to +x; bones in any order that names existing
-// parents), the view that fits a rig, its effectors (tips without children), which tip the
+// Rigs (skeletons: trees of bones), the pure parts (their forward kinematics is body.js's, the
+// page's one): the view that fits a rig, its effectors (tips without children), which tip the
 // pointer is on, the goals and pins the page keeps and the /api/solve request made of them, and
 // an answer's one-line summary naming the effectors that failed. No DOM and no state of its own:
 // node tests it (e2e/rig.unit.test.mjs). The page's wiring is rigs.js.
 
-import { DEG, solveTime } from "./view.js";
+import { bodyForward, boneOrder, isPrismatic, restValue } from "./body.js";
+import { solveTime } from "./view.js";
 
 /**
  * Whether `method` (a /api/meta method) solves rigs: its `solves_rigs`, the library's
@@ -16,31 +16,6 @@ export const solvesRigs = (method) => method.solves_rigs === true;
 
 /** A pointer press within this many CSS pixels of a bone's tip grabs it. */
 export const GRAB_PIXELS = 14;
-
-/** Bone indices with every parent before its children (roots and siblings in file order). */
-export function rigOrder(rig) {
-  const index = new Map(rig.bones.map((b, i) => [b.name, i]));
-  const children = rig.bones.map(() => []);
-  const roots = [];
-  rig.bones.forEach((b, i) => {
-    const p = b.parent === undefined || b.parent === null ? undefined : index.get(b.parent);
-    if (p === undefined) roots.push(i);
-    else children[p].push(i);
-  });
-  const order = [];
-  const seen = new Set();
-  // Depth first without recursion; a bone is visited once (a cycle, which the server refuses,
-  // would leave its bones out rather than loop).
-  const stack = roots.slice().reverse();
-  while (stack.length && order.length < rig.bones.length) {
-    const i = stack.pop();
-    if (seen.has(i)) continue;
-    seen.add(i);
-    order.push(i);
-    for (let k = children[i].length - 1; k >= 0; k--) stack.push(children[i][k]);
-  }
-  return order;
-}
 
 /** Each bone's children's indices (file order), by bone index. */
 export function rigChildren(rig) {
@@ -53,39 +28,12 @@ export function rigChildren(rig) {
   return children;
 }
 
-/**
- * Forward kinematics of `pose` (degrees, bone order; a missing angle is the bone's own):
- * {starts, tips} ([x, y] per bone, bone order) and {headings} (each bone's direction from +x,
- * degrees), and {parentHeadings} (the direction its angle is measured from: its parent's, 0 for a root).
- */
-export function rigForward(rig, pose = []) {
-  const n = rig.bones.length;
-  const index = new Map(rig.bones.map((b, i) => [b.name, i]));
-  const base = rig.base || [0, 0];
-  const starts = new Array(n);
-  const tips = new Array(n);
-  const headings = new Array(n);
-  const parentHeadings = new Array(n);
-  for (const i of rigOrder(rig)) {
-    const b = rig.bones[i];
-    const p = b.parent === undefined || b.parent === null ? undefined : index.get(b.parent);
-    const start = p === undefined ? base : tips[p];
-    const from = p === undefined ? 0 : headings[p];
-    const h = from + (pose[i] ?? b.angle_deg);
-    starts[i] = [start[0], start[1]];
-    tips[i] = [start[0] + b.length * Math.cos(h * DEG), start[1] + b.length * Math.sin(h * DEG)];
-    headings[i] = h;
-    parentHeadings[i] = from;
-  }
-  return { starts, tips, headings, parentHeadings };
-}
-
 /** The longest path of bone lengths from the base to a tip: nothing of the rig reaches farther. */
 export function rigReach(rig) {
   const index = new Map(rig.bones.map((b, i) => [b.name, i]));
   const reach = new Array(rig.bones.length).fill(0);
   let most = 0;
-  for (const i of rigOrder(rig)) {
+  for (const i of boneOrder(rig)) {
     const b = rig.bones[i];
     const p = b.parent === undefined || b.parent === null ? undefined : index.get(b.parent);
     reach[i] = (p === undefined ? 0 : reach[p]) + Math.max(0, Number(b.length) || 0);
@@ -104,7 +52,7 @@ export const RIG_VIEW_ROOM = 0.35;
  * while the rig moves.
  */
 export function fitRigView(rig, w, h) {
-  const { tips } = rigForward(rig, []);
+  const { tips } = bodyForward(rig, []);
   const base = rig.base || [0, 0];
   const xs = [base[0], ...tips.map((t) => t[0])];
   const ys = [base[1], ...tips.map((t) => t[1])];
@@ -188,9 +136,15 @@ export function rigForRequest(rig) {
     bones: rig.bones.map((b) => ({
       name: b.name,
       ...(b.parent !== undefined && b.parent !== null ? { parent: b.parent } : {}),
+      ...(b.offset ? { offset: b.offset } : {}),
       length: b.length,
       angle_deg: b.angle_deg,
       ...(b.limits_deg ? { limits_deg: b.limits_deg } : {}),
+      // A prismatic joint (absent: revolute), its slide, extension and limits in length units.
+      ...(b.joint ? { joint: b.joint } : {}),
+      ...(b.slide ? { slide: b.slide } : {}),
+      ...(b.extension !== undefined && b.extension !== null ? { extension: b.extension } : {}),
+      ...(b.limits ? { limits: b.limits } : {}),
       // The rest-pose preference: a stiff bone turns less and is pulled back to its rest angle.
       ...(b.stiffness !== undefined && b.stiffness !== null ? { stiffness: b.stiffness } : {}),
       ...(b.rest_deg !== undefined && b.rest_deg !== null ? { rest_deg: b.rest_deg } : {}),
@@ -199,26 +153,40 @@ export function rigForRequest(rig) {
 }
 
 /**
- * The /api/solve body of a rig: from the pose shown (`pose`, degrees, bone order), every goal
- * (in the order they were first made) and every pin (file order), with the page's solver
- * options. Arm-only options (the joint rates, one per link) are left out.
+ * The /api/solve body of a rig: from the pose shown (`pose`, body.js's joint values in bone
+ * order: `start_deg` holds the revolute bones' angles, and each prismatic bone starts from its
+ * value as the rig's `extension`, keeping its fixed angle in `start_deg`), every goal (in the
+ * order they were first made) and every pin (file order), with the page's solver options.
+ * Arm-only options (the joint rates, one per link) are left out.
  */
 export function rigSolveRequest(rig, pose, goals, pins, options) {
   const { rates: _rates, ...opts } = options || {};
   const names = rig.bones.map((b) => b.name);
+  const sent = rigForRequest(rig);
+  rig.bones.forEach((b, i) => {
+    if (isPrismatic(b) && Number.isFinite(pose[i])) sent.bones[i].extension = pose[i];
+  });
   return {
-    rig: rigForRequest(rig),
-    start_deg: pose.slice(),
+    rig: sent,
+    start_deg: rig.bones.map((b, i) => (isPrismatic(b) ? b.angle_deg : pose[i])),
     goals: [...goals].map(([bone, g]) => ({ bone, x: g.x, y: g.y })),
     pins: names.filter((n) => pins.has(n)),
     options: opts,
   };
 }
 
-/** The pose of an answer (`angles_deg`, an object bone → degrees) in bone order; a missing bone keeps `fallback`'s angle. */
+/**
+ * The pose of an answer in bone order (body.js's joint values): `angles_deg` (an object bone →
+ * degrees) for the revolute bones, `extensions` (bone → length) for the prismatic ones; a
+ * missing bone keeps `fallback`'s value, else its own.
+ */
 export function answerPose(rig, answer, fallback = []) {
   const a = answer.angles_deg || {};
-  return rig.bones.map((b, i) => (Number.isFinite(a[b.name]) ? a[b.name] : fallback[i] ?? b.angle_deg));
+  const e = answer.extensions || {};
+  return rig.bones.map((b, i) => {
+    const v = (isPrismatic(b) ? e : a)[b.name];
+    return Number.isFinite(v) ? v : fallback[i] ?? restValue(b);
+  });
 }
 
 /**

@@ -9,7 +9,8 @@
 
 import * as api from "./api.js";
 import { postText } from "./armfile.js";
-import { dragGoal, answerPose, rigForward, rigSolveRequest, rigSummary, shownEffectors, tipAt, togglePin } from "./rig.js";
+import { bodyForward, restValue } from "./body.js";
+import { dragGoal, answerPose, rigSolveRequest, rigSummary, shownEffectors, tipAt, togglePin } from "./rig.js";
 import { isDrag, toCanvas, toWorld } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
@@ -18,8 +19,8 @@ const $ = (id) => document.getElementById(id);
  * A fresh `state.rig` for `rig` (a rig file's JSON: {name, base, bones: [{name, parent, length,
  * angle_deg, limits_deg}]}):
  *   rig        the rig;  source  where it came from ("rig:puppet", "file")
- *   pose_deg   the pose shown (degrees, bone order); starts, tips, headings, parentHeadings: its
- *              forward kinematics (rig.js's rigForward)
+ *   pose_deg   the pose shown (body.js's joint values: degrees, or lengths for prismatic bones; bone order); starts, tips, headings, parentHeadings: its
+ *              forward kinematics (body.js's bodyForward)
  *   goals      Map bone name -> {x, y}, in the order they were made;  pins  Set of bone names
  *   grabbed    the bone being dragged, or null;  hover  the effector under the pointer, or null
  *   busy       a solve is in flight;  pending  the goals changed since it left (ask again)
@@ -29,7 +30,7 @@ function newRigState(rig, source) {
   const r = {
     rig,
     source,
-    pose_deg: rig.bones.map((b) => b.angle_deg),
+    pose_deg: rig.bones.map(restValue),
     goals: new Map(),
     pins: new Set(),
     grabbed: null,
@@ -40,7 +41,7 @@ function newRigState(rig, source) {
     request: null,
     solves: 0,
   };
-  return Object.assign(r, rigForward(rig, r.pose_deg));
+  return Object.assign(r, bodyForward(rig, r.pose_deg));
 }
 
 /**
@@ -174,7 +175,7 @@ export function wireRigs(state, canvas, act) {
 
   function apply(r, req, answer) {
     r.pose_deg = answerPose(r.rig, answer, r.pose_deg);
-    Object.assign(r, rigForward(r.rig, r.pose_deg));
+    Object.assign(r, bodyForward(r.rig, r.pose_deg));
     r.answer = answer;
     r.request = req;
     r.solves++;
@@ -219,8 +220,8 @@ export function wireRigs(state, canvas, act) {
   /** Back to the start pose, with no goals (the pins stay: they hold the tips where they are). */
   function reset() {
     const r = state.rig;
-    r.pose_deg = r.rig.bones.map((b) => b.angle_deg);
-    Object.assign(r, rigForward(r.rig, r.pose_deg));
+    r.pose_deg = r.rig.bones.map(restValue);
+    Object.assign(r, bodyForward(r.rig, r.pose_deg));
     clearGoals();
   }
 

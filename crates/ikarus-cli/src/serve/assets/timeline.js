@@ -9,12 +9,16 @@
 
 import { fitCanvas } from "./draw.js";
 import { ownsKeys } from "./input.js";
-import { autoDuration, easePosition, freeJoints, jointDistance, poseAt } from "./view.js";
+import * as api from "./api.js";
+import { autoDuration, easeAt, freeJoints, jointDistance, poseAt } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
 /** Steps of the scrubber over the whole motion. */
 export const SCRUB_STEPS = 1000;
+
+/** Samples of the ease plotted (from /api/ease): every 96th of the motion's time. */
+const EASE_SAMPLES = 97;
 
 /**
  * A fresh `state.playback`:
@@ -80,7 +84,26 @@ export function wireTimeline(state, act) {
     drawEase();
   }
 
-  /** The ease's s(t) over [0, 1], the playhead's time as a line and its progress as a dot. */
+  /** Ease curves from the backend by their request ({kind, k1, k2}): the curve, null while asked, false if refused. */
+  const curves = new Map();
+
+  /** The backend's curve of `ease`, or null until it has come (then the bar is drawn again). */
+  function curveOf(ease) {
+    const key = JSON.stringify(ease);
+    if (!curves.has(key)) {
+      curves.set(key, null);
+      api.easeCurve(ease, EASE_SAMPLES).then(
+        (c) => {
+          curves.set(key, c);
+          sync();
+        },
+        () => curves.set(key, false),
+      );
+    }
+    return curves.get(key) || null;
+  }
+
+  /** The ease's s(t) over [0, 1] (the backend's samples), the playhead's time as a line and its progress as a dot. */
   function drawEase() {
     const canvas = $("ease-plot");
     const ctx = canvas.getContext("2d");
@@ -94,15 +117,15 @@ export function wireTimeline(state, act) {
     ctx.strokeStyle = "#e7eaee";
     ctx.lineWidth = 1;
     ctx.strokeRect(m + 0.5, m + 0.5, w - 2 * m - 1, h - 2 * m - 1);
-    const ease = pb.ease || state.ease;
+    const curve = curveOf(pb.ease || state.ease);
+    if (!curve) return;
     ctx.strokeStyle = "#26324a";
     ctx.lineWidth = 1.5;
     ctx.beginPath();
-    for (let i = 0; i <= 48; i++) {
-      const t = i / 48;
-      if (i === 0) ctx.moveTo(X(t), Y(easePosition(ease, t)));
-      else ctx.lineTo(X(t), Y(easePosition(ease, t)));
-    }
+    curve.t.forEach((t, i) => {
+      if (i === 0) ctx.moveTo(X(t), Y(curve.s[i]));
+      else ctx.lineTo(X(t), Y(curve.s[i]));
+    });
     ctx.stroke();
     if (!loaded()) return;
     ctx.strokeStyle = "#ec7f2d";
@@ -112,7 +135,7 @@ export function wireTimeline(state, act) {
     ctx.stroke();
     ctx.fillStyle = "#ec7f2d";
     ctx.beginPath();
-    ctx.arc(X(pb.u), Y(easePosition(ease, pb.u)), 3, 0, 2 * Math.PI);
+    ctx.arc(X(pb.u), Y(easeAt(curve, pb.u)), 3, 0, 2 * Math.PI);
     ctx.fill();
   }
 

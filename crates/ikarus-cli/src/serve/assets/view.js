@@ -1,11 +1,13 @@
 // Pure geometry of the playground: forward kinematics in degrees, the world <-> canvas transform,
 // grid steps, the drag threshold, keyboard nudges, playback (the pose between two frames, the
-// default duration, the ease curves), ghost timing, and the smooth edge of the reachable area. No DOM and no state of its own: every function takes what it reads and
+// default duration, the ease's progress between the backend's samples), ghost timing, and the smooth edge of the reachable area. No DOM and no state of its own: every function takes what it reads and
 // returns a new value, so node can test it (e2e/view.test.mjs).
 //
 // World: x to the right, y up, in arm units. Canvas: CSS pixels, x to the right, y down.
 
-export const DEG = Math.PI / 180;
+import { DEG, bodyForward, chainBody } from "./body.js";
+
+export { DEG };
 
 /**
  * A solve's time (`solve_us`) for the chip: milliseconds to three places. In the static build
@@ -23,20 +25,13 @@ export const DRAG_PIXELS = 4;
 /** The view spans the arm's reach times this margin in its shorter direction. */
 export const VIEW_MARGIN = 1.12;
 
-/** Joint positions [[x, y], …], base first, of `pose` (degrees, relative; a missing angle is the link's own). */
+/**
+ * Joint positions [[x, y], …], base first, of `pose` (degrees, relative; a missing angle is the
+ * link's own): the base and each link's tip, from the one forward kinematics (body.js).
+ */
 export function forward(arm, pose) {
   const [bx, by] = arm.base || [0, 0];
-  const joints = [[bx, by]];
-  let x = bx;
-  let y = by;
-  let a = 0;
-  arm.links.forEach((link, i) => {
-    a += (pose[i] ?? link.angle_deg) * DEG;
-    x += link.length * Math.cos(a);
-    y += link.length * Math.sin(a);
-    joints.push([x, y]);
-  });
-  return joints;
+  return [[bx, by], ...bodyForward(chainBody(arm), pose).tips];
 }
 
 /** The sum of the link lengths (a negative or unreadable length counts as 0). */
@@ -181,19 +176,17 @@ export function poseIntoLimits(arm, pose) {
 }
 
 /**
- * A short motion from pose `a` to pose `b` (degrees) as frames the timeline plays: `n` frames
- * at times 0 to 1 along the ease (`ease`, as a request sends it), each joint turning the short
- * way from its angle in `a` to its angle in `b`, with the joints' positions.
+ * A short motion from pose `a` to pose `b` (degrees) as frames the timeline plays, one per sample
+ * of `curve` (an /api/ease answer, {t, s}: the backend's ease at evenly spaced times): frame k at
+ * time t[k], each joint turned the short way from its angle in `a` to its angle in `b` by the
+ * progress s[k], with the joints' positions; the last frame is `b` exactly.
  */
-export function glideFrames(arm, a, b, ease, n = 24) {
-  const frames = [];
-  for (let k = 0; k < n; k++) {
-    const t = k / (n - 1);
-    const s = easePosition(ease, t);
+export function glideFrames(arm, a, b, curve) {
+  const n = curve.s.length;
+  return curve.s.map((s, k) => {
     const angles = b.map((to, i) => (k === n - 1 ? to : to - (1 - s) * shortDelta(a[i], to)));
-    frames.push({ time: t, angles_deg: angles, joints: forward(arm, angles) });
-  }
-  return frames;
+    return { time: curve.t[k], angles_deg: angles, joints: forward(arm, angles) };
+  });
 }
 
 /**
@@ -249,42 +242,19 @@ export function autoDuration(distance) {
   return Math.min(Math.max(d, DURATION.min), DURATION.max);
 }
 
-const HALF_PI = Math.PI / 2;
-const TWO_OVER_PI = 2 / Math.PI;
-
 /**
- * Progress s(t) in [0, 1] of an ease ({kind, k1, k2}, as a request sends it) at normalised time
- * t, clamped: the formulas of crates/ikarus/src/ease.rs (linear t; sine (sin(πt − π/2) + 1)/2;
- * smoothstep 3t² − 2t³; Parent's sine pieces around a constant-speed middle, k1 and k2
- * defaulting to 0.3 and 0.7). s(0) = 0 and s(1) = 1 exactly.
+ * The progress at normalised time `u` of `curve` (an /api/ease answer, {t, s}, its times evenly
+ * spaced from 0 to 1): the backend's value on a sample, linear between two, clamped to [0, 1].
+ * The page draws and plays the library's ease this way and has no copy of its formulas.
  */
-export function easePosition(ease, t) {
-  if (!(t > 0)) return 0;
-  if (t >= 1) return 1;
-  let s;
-  switch (ease && ease.kind) {
-    case "linear":
-      s = t;
-      break;
-    case "smoothstep":
-      s = t * t * (3 - 2 * t);
-      break;
-    case "parent":
-      s = parentPosition(ease.k1 ?? 0.3, ease.k2 ?? 0.7, t);
-      break;
-    default:
-      s = (Math.sin(Math.PI * t - HALF_PI) + 1) / 2;
-  }
-  return Math.min(Math.max(s, 0), 1);
-}
-
-function parentPosition(k1, k2, t) {
-  const total = (2 * k1) / Math.PI + (k2 - k1) + (2 * (1 - k2)) / Math.PI;
-  let s;
-  if (t < k1) s = k1 * TWO_OVER_PI * (Math.sin((t / k1) * HALF_PI - HALF_PI) + 1);
-  else if (t <= k2) s = (2 * k1) / Math.PI + t - k1;
-  else s = (2 * k1) / Math.PI + k2 - k1 + (1 - k2) * TWO_OVER_PI * Math.sin(((t - k2) / (1 - k2)) * HALF_PI);
-  return s / total;
+export function easeAt(curve, u) {
+  const n = curve.s.length - 1;
+  if (!(u > 0)) return curve.s[0];
+  if (u >= 1) return curve.s[n];
+  const x = u * n;
+  const k = Math.min(Math.floor(x), n - 1);
+  const w = x - k;
+  return w === 0 ? curve.s[k] : curve.s[k] + w * (curve.s[k + 1] - curve.s[k]);
 }
 
 /**
