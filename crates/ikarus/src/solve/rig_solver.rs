@@ -2,7 +2,7 @@
 //! loop and restarts on the [`Rig`] model, and the mix.
 
 use super::model::{Model, Posture};
-use super::problem::Problem;
+use super::model::Problem;
 use super::restarts::solve_with_restarts;
 use super::rig::RigTask;
 use super::rig_model::Rig;

@@ -4,8 +4,8 @@
 
 use super::algebra::Fixed3;
 use super::algebra::dynamic::Dynamic;
+use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::problem::Problem;
 use super::restarts::solve_with_restarts_seeded;
 use super::rig_model::RigPoints;
 use super::scratch::Scratch;
