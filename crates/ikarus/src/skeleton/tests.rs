@@ -127,6 +127,32 @@ fn rejects_each_kind_of_bad_input_naming_the_bone_and_the_value() {
             [0.0, 0.0],
             "bones[1] (\"b\").angle: 2 rad lies outside the limits [-1, 1] rad",
         ),
+        // Issue 25: offsets and prismatic joints.
+        (
+            vec![b("a", None), b("b", Some("a")).with_offset([f64::NAN, 0.0])],
+            [0.0, 0.0],
+            "bones[1] (\"b\").offset: must be finite numbers, got [NaN, 0]",
+        ),
+        (
+            vec![b("a", None), b("s", Some("a")).with_slide([0.0, 0.0])],
+            [0.0, 0.0],
+            "bones[1] (\"s\").slide: must not be zero, got [0, 0]",
+        ),
+        (
+            vec![b("s", None).with_slide([1.0, f64::INFINITY])],
+            [0.0, 0.0],
+            "bones[0] (\"s\").slide: must be finite numbers, got [1, inf]",
+        ),
+        (
+            vec![b("a", None), b("s", Some("a")).prismatic(0.5).with_limits(lim(-0.2, 0.3))],
+            [0.0, 0.0],
+            "bones[1] (\"s\").extension: 0.5 lies outside the limits [-0.2, 0.3]",
+        ),
+        (
+            vec![b("s", None).prismatic(f64::NAN)],
+            [0.0, 0.0],
+            "bones[0] (\"s\").extension: must be a finite number, got NaN",
+        ),
         // Each path is within the reach, but the longest is not.
         (
             vec![Bone::new("a", 1e152, 0.0), Bone::new("b", 1e152, 0.0), Bone::new("c", 1e140, 0.0).with_parent("a")],

@@ -2,6 +2,7 @@
 //! their names at the edges and which rule supports which mode.
 
 use crate::names::by_name;
+use crate::skeleton::Joint;
 
 /// The step rule of a solve. See the [module docs](super) for the formulas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -73,6 +74,25 @@ impl Method {
             | Method::SelectivelyDamped
             | Method::LevenbergMarquardt => true,
             Method::CyclicCoordinateDescent | Method::Fabrik | Method::Analytic => false,
+        }
+    }
+
+    /// Whether it can move a joint of kind `joint`: every method turns revolute joints; the
+    /// Jacobian methods slide prismatic ones too (a column is the slide's direction), CCD,
+    /// FABRIK and the closed forms do not. A new joint kind or method makes the compiler
+    /// name this match.
+    #[must_use]
+    pub fn moves(self, joint: Joint) -> bool {
+        match joint {
+            Joint::Revolute => true,
+            Joint::Prismatic { .. } => match self {
+                Method::Transpose
+                | Method::PseudoInverse
+                | Method::DampedLeastSquares
+                | Method::SelectivelyDamped
+                | Method::LevenbergMarquardt => true,
+                Method::CyclicCoordinateDescent | Method::Fabrik | Method::Analytic => false,
+            },
         }
     }
 

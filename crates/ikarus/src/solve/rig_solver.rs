@@ -1,14 +1,15 @@
 //! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors, the core's
 //! loop and restarts on the [`Rig`] model, and the mix.
 
-use super::model::{Model, Posture};
 use super::model::Problem;
+use super::model::{Model, Posture};
 use super::restarts::solve_with_restarts;
 use super::rig::RigTask;
 use super::rig_model::Rig;
 use super::solver::{finish, measure};
 use super::{Outcome, SolveError, Solver, Status};
-use crate::skeleton::Skeleton;
+use super::Method;
+use crate::skeleton::{Joint, Skeleton};
 
 impl Solver {
     /// Solves every goal and pin of `task` on `skeleton` together, starting from `start` (one
@@ -36,6 +37,7 @@ impl Solver {
         out: &mut Outcome,
     ) -> Result<(), SolveError> {
         let opts = &self.options;
+        check_joints(skeleton, opts.method)?;
         if !opts.method.solves_rigs() {
             return Err(SolveError::ChainOnly { method: opts.method.name() });
         }
@@ -94,6 +96,21 @@ impl Solver {
         }
         Ok(())
     }
+}
+
+/// Every joint of `skeleton` is one `method` moves.
+fn check_joints(skeleton: &Skeleton, method: Method) -> Result<(), SolveError> {
+    for (index, &joint) in skeleton.joints().iter().enumerate() {
+        if !method.moves(joint) {
+            let kind = match joint {
+                Joint::Revolute => "revolute",
+                Joint::Prismatic { .. } => "prismatic",
+            };
+            let (method, name) = (method.name(), skeleton.name(index).to_owned());
+            return Err(SolveError::JointKind { method, kind, name, index });
+        }
+    }
+    Ok(())
 }
 
 /// One finite angle per bone, and rates one per bone or none.
