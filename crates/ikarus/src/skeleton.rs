@@ -276,11 +276,8 @@ impl Skeleton {
         let start: Vec<f64> = bones.iter().zip(&joints).map(|(b, j)| joint_value(b.angle, *j)).collect();
         check_angles(&names, &joints, &start, Bounds::new(&limits))?;
         let (stiffness, rest) = rest_pose(bones, &joints, &limits)?;
-        let shifts: Vec<Option<[f64; 2]>> = offsets
-            .iter()
-            .zip(&parents)
-            .map(|(o, p)| o.map(|[x, y]| [x - p.map_or(0.0, |p| lengths[p]), y]))
-            .collect();
+        let shifts: Vec<Option<[f64; 2]>> =
+            offsets.iter().zip(&parents).map(|(o, p)| o.map(|[x, y]| [x - p.map_or(0.0, |p| lengths[p]), y])).collect();
         let plain = offsets.iter().all(Option::is_none) && joints.iter().all(|j| *j == Joint::Revolute);
         let (enter, leave) = subtrees_of(&parents, &order);
         let root = roots_of(&parents, &order);
@@ -667,7 +664,9 @@ fn check_angles(names: &[String], joints: &[Joint], angles: &[f64], bounds: Boun
                 let (min, max, name) = (lim.min(), lim.max(), name.clone());
                 return Err(match joint {
                     Joint::Revolute => SkeletonError::AngleOutsideLimits { index, name, value, min, max },
-                    Joint::Prismatic { .. } => SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max },
+                    Joint::Prismatic { .. } => {
+                        SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
+                    }
                 });
             }
         }

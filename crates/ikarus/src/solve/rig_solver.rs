@@ -1,6 +1,7 @@
 //! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors, the core's
 //! loop and restarts on the [`Rig`] model, and the mix.
 
+use super::Method;
 use super::model::Problem;
 use super::model::{Model, Posture};
 use super::restarts::solve_with_restarts;
@@ -8,7 +9,6 @@ use super::rig::RigTask;
 use super::rig_model::Rig;
 use super::solver::{finish, measure};
 use super::{Outcome, SolveError, Solver, Status};
-use super::Method;
 use crate::skeleton::{Joint, Skeleton};
 
 impl Solver {
