@@ -177,12 +177,15 @@ impl Skeleton {
     /// [`Skeleton::forward_into`]'s). Allocates the path (as long as the bone's depth).
     #[must_use]
     pub fn direction(&self, angles: &[f64], bone: usize) -> f64 {
-        self.path(bone).iter().fold(0.0, |phi, &j| phi + self.turn_of(j, angles[j]))
+        self.path(bone).iter().fold(0.0, |phi, &j| phi + self.relative_angle(j, angles[j]))
     }
 
-    /// What bone `j` adds to the direction for its joint value `q`.
+    /// Bone `j`'s angle from its parent's direction (a root's from +x) at joint value `q`:
+    /// `q` itself for a revolute joint, the fixed [`Bone::angle`](super::Bone::angle) of a
+    /// prismatic one.
     #[inline]
-    fn turn_of(&self, j: usize, q: f64) -> f64 {
+    #[must_use]
+    pub fn relative_angle(&self, j: usize, q: f64) -> f64 {
         match self.joints[j] {
             Joint::Revolute => q,
             Joint::Prismatic { .. } => self.fixed[j],
