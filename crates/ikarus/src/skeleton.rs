@@ -33,7 +33,7 @@ use std::collections::HashMap;
 
 use nalgebra::Point2;
 
-use crate::chain::{Chain, MAX_REACH};
+use crate::chain::{Chain, Link, MAX_REACH};
 use crate::limits::{Bounds, JointLimits};
 use crate::math;
 use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
@@ -355,6 +355,31 @@ impl Skeleton {
         // A valid chain passes every check of a skeleton: the names are distinct, the parents
         // exist and form a path, and the reach is the chain's own sum (the same additions).
         Skeleton::new([base.x, base.y], &bones).expect("ikarus: a valid chain is a valid skeleton")
+    }
+
+    /// The chain this skeleton is, when its shape allows: one branch in the order given
+    /// (bone `i + 1` hangs on bone `i`), every bone revolute at its parent's tip, no stiffness.
+    /// Its links are the bones, so its forward kinematics and Jacobian are the skeleton's bit
+    /// for bit (see [`Skeleton::from_chain`], the other way). `None` for any other shape: a
+    /// fork, a bone given before its parent, an offset, a slide, a rest-pose preference.
+    #[must_use]
+    pub fn as_chain(&self) -> Option<Chain> {
+        let one_branch = self.parents.iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
+        if !one_branch || !self.plain || self.has_rest_pose() {
+            return None;
+        }
+        let links: Vec<Link> = (0..self.len())
+            .map(|i| {
+                let link = Link::new(self.lengths[i], self.start[i]);
+                match self.limits[i] {
+                    Some(l) => link.with_limits(l),
+                    None => link,
+                }
+            })
+            .collect();
+        // The skeleton's checks include the chain's (finite numbers, lengths > 0, start angles
+        // within their limits, the same reach sum).
+        Some(Chain::new([self.base.x, self.base.y], &links).expect("ikarus: a one-branch skeleton is a valid chain"))
     }
 
     /// Number of bones.
