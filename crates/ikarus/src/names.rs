@@ -152,8 +152,6 @@ pub(crate) use by_name;
 
 #[cfg(test)]
 mod tests {
-    use super::listed_enum;
-
     listed_enum! {
         /// Three variants, one with attributes of its own.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -492,7 +492,7 @@ mod tests {
             let (starts, tips, dirs) = forward(&s, &angles);
             for i in 0..s.len() {
                 let (origin, phi) = by_definition(&s, &bones, &angles, i);
-                let tip = origin + bones[i].length * nalgebra::Vector2::new(phi.cos(), phi.sin());
+                let tip = origin + bones[i].length * nalgebra::Vector2::new(crate::math::cos(phi), crate::math::sin(phi));
                 let near = |a: Point2<f64>, b: Point2<f64>| (a - b).norm() <= 1e-9 * (1.0 + b.coords.norm());
                 prop_assert!(near(starts[i], origin), "start {}: {} vs {}", i, starts[i], origin);
                 prop_assert!(near(tips[i], tip), "tip {}: {} vs {}", i, tips[i], tip);
@@ -524,7 +524,7 @@ mod tests {
                 p_phi + bones[i].angle
             }
         };
-        let (sn, cs) = p_phi.sin_cos();
+        let (sn, cs) = (crate::math::sin(p_phi), crate::math::cos(p_phi));
         (Point2::new(p_origin.x + cs * lx - sn * ly, p_origin.y + sn * lx + cs * ly), phi)
     }
 
@@ -557,8 +557,8 @@ mod tests {
                         }
                         if p % 3 == 0 {
                             if let Some((a, r, d)) = slide {
-                                b = b.prismatic(d).with_slide([r * a.cos(), r * a.sin()]);
-                                values.push(d + 0.2 * q.sin());
+                                b = b.prismatic(d).with_slide([r * crate::math::cos(a), r * crate::math::sin(a)]);
+                                values.push(d + 0.2 * crate::math::sin(q));
                                 return b;
                             }
                         }
