@@ -4,14 +4,12 @@
 //! keys (not the library's); and the new keys' bad values are one line naming the field.
 
 mod common;
-#[path = "common/server.rs"]
-mod server;
 
 use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use common::{fails, json};
+use common::{fails, json, server};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/joints").join(format!("{name}.toml"))
@@ -66,7 +64,7 @@ fn tips(rig: &Value, answer: &Value) -> Vec<(String, [f64; 2])> {
 
 /// Checks an answer: reached, every reported tip where the file's forward kinematics puts it,
 /// the goals' targets within the tolerance, every extension within its limits.
-fn check(name: &str, answer: &Value, goals: &[(&str, [f64; 2])]) {
+fn check(name: &str, answer: &Value, goals: &[Target]) {
     let rig = file(name);
     assert_eq!(answer["status"], "reached", "{name}: {answer}");
     for (bone, tip) in tips(&rig, answer) {
@@ -89,7 +87,10 @@ fn check(name: &str, answer: &Value, goals: &[(&str, [f64; 2])]) {
     }
 }
 
-const CASES: [(&str, &[(&str, [f64; 2])]); 3] = [
+/// A goal: a bone's name and its target.
+type Target = (&'static str, [f64; 2]);
+
+const CASES: [(&str, &[Target]); 3] = [
     ("rrp", &[("ram", [1.2, 1.3])]),
     ("prr", &[("lower", [1.4, 0.9])]),
     ("palm", &[("index_tip", [0.029, 0.1228]), ("thumb_tip", [-0.0638, 0.0847])]),

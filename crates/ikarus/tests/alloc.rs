@@ -274,15 +274,14 @@ fn skeleton_solves_allocate_nothing() {
             vec![Pin::new(7)],
         ),
     ];
-    for (s, t) in [&s, &p].into_iter().flat_map(|s| tasks.iter().enumerate().map(move |t| (s, t))) {
-        let (t, task) = t;
+    for (s, (t, task)) in [&s, &p].into_iter().flat_map(|s| tasks.iter().enumerate().map(move |t| (s, t))) {
         for method in iterative().filter(|m| m.solves_rigs()) {
             for limits in LimitMode::ALL {
                 let mut solver = Solver::new(SolveOptions { method, limits, ..SolveOptions::default() }).unwrap();
                 let mut out = Outcome::default();
-                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
-                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
-                let (n, r) = allocations_in(|| solver.solve_rig_into(&s, s.start_angles(), task, &mut out));
+                solver.solve_rig_into(s, s.start_angles(), task, &mut out).unwrap();
+                solver.solve_rig_into(s, s.start_angles(), task, &mut out).unwrap();
+                let (n, r) = allocations_in(|| solver.solve_rig_into(s, s.start_angles(), task, &mut out));
                 r.unwrap();
                 assert_eq!(
                     n,
