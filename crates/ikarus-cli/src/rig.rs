@@ -13,6 +13,15 @@
 //! length = 1.0
 //! angle_deg = 0.0                # relative to the parent's direction (a root's to +x)
 //! limits_deg = [-30.0, 30.0]     # optional
+//! offset = [0.5, 0.1]            # optional: the origin in the parent's frame (default its tip)
+//! [[bones]]
+//! name = "ram"
+//! parent = "spine"
+//! length = 0.5
+//! joint = "prismatic"            # optional: "revolute" (the default) or "prismatic"
+//! slide = [1.0, 0.0]             # prismatic: the direction in the parent's frame (default along the bone)
+//! extension = 0.1                # prismatic: the start displacement (default 0)
+//! limits = [0.0, 0.4]            # prismatic: the displacement's range, length units
 //! [solver]                       # optional, as in arm files; flags override it
 //! method = "dls"
 //! ```
@@ -80,6 +89,30 @@ pub struct BoneFile {
     /// The angle the bone is pulled back to, degrees (absent: `angle_deg`).
     #[serde(default)]
     pub rest_deg: Option<f64>,
+    /// The bone's origin in its parent's frame (a root's from the base); absent: the
+    /// parent's tip.
+    #[serde(default)]
+    pub offset: Option<[f64; 2]>,
+    /// The joint's kind; absent: revolute.
+    #[serde(default)]
+    pub joint: Option<JointFile>,
+    /// A prismatic joint's direction in the parent's frame; absent: along the bone.
+    #[serde(default)]
+    pub slide: Option<[f64; 2]>,
+    /// A prismatic joint's start displacement; absent: 0.
+    #[serde(default)]
+    pub extension: Option<f64>,
+    /// A prismatic joint's `[min, max]` displacement, length units.
+    #[serde(default)]
+    pub limits: Option<[f64; 2]>,
+}
+
+/// A bone's `joint` key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointFile {
+    Revolute,
+    Prismatic,
 }
 
 /// The most bones of a rig the command line (and Python) reads unless `ikarus --max-bones N`
@@ -202,6 +235,8 @@ impl RigFile {
             }
             let mut bone = Bone::new(b.name.clone(), b.length, start_angle(b.angle_deg, b.limits_deg).to_radians());
             bone.parent.clone_from(&b.parent);
+            bone.offset = b.offset;
+            bone = self.joint(i, bone)?;
             if let Some([lo, hi]) = b.limits_deg {
                 let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
                     format!("{}.limits_deg = [{}, {}]: {}", self.bone(i), Num(lo), Num(hi), limits_problem(lo, hi))
@@ -213,6 +248,47 @@ impl RigFile {
             bones.push(bone);
         }
         Skeleton::new(self.base.unwrap_or([0.0, 0.0]), &bones).map_err(|e| self.describe(&e))
+    }
+
+    /// Bone `i`'s joint from its `joint`, `slide`, `extension` and `limits` keys: a revolute
+    /// joint takes none of the last three, a prismatic one no `limits_deg` or `rest_deg`.
+    fn joint(&self, i: usize, bone: Bone) -> Result<Bone, String> {
+        let b = &self.bones[i];
+        let refuse = |key: &str, kind: &str| Err(format!("{}.{key}: not for a {kind}", self.bone(i)));
+        match b.joint.unwrap_or(JointFile::Revolute) {
+            JointFile::Revolute => {
+                for (key, given) in
+                    [("slide", b.slide.is_some()), ("extension", b.extension.is_some()), ("limits", b.limits.is_some())]
+                {
+                    if given {
+                        return refuse(
+                            key,
+                            "revolute joint (say joint = \"prismatic\"; a revolute joint has limits_deg)",
+                        );
+                    }
+                }
+                Ok(bone)
+            }
+            JointFile::Prismatic => {
+                if b.limits_deg.is_some() {
+                    return refuse("limits_deg", "prismatic joint (its limits = [lo, hi] are in length units)");
+                }
+                if b.rest_deg.is_some() {
+                    return refuse("rest_deg", "prismatic joint");
+                }
+                let mut bone = bone.prismatic(b.extension.unwrap_or(0.0));
+                if let Some(slide) = b.slide {
+                    bone = bone.with_slide(slide);
+                }
+                if let Some([lo, hi]) = b.limits {
+                    let limits = JointLimits::new(lo, hi).map_err(|_| {
+                        format!("{}.limits = [{}, {}]: {}", self.bone(i), Num(lo), Num(hi), limits_problem(lo, hi))
+                    })?;
+                    bone = bone.with_limits(limits);
+                }
+                Ok(bone)
+            }
+        }
     }
 
     /// `bones[i] ("name")`, as every message about a bone starts.
@@ -260,6 +336,9 @@ impl RigFile {
                     Num(lo),
                     Num(hi)
                 )
+            }
+            SkeletonError::NonFinite { index, field: BoneField::Extension, value, .. } => {
+                format!("{}.extension = {}: must be a finite number", self.bone(*index), Num(*value))
             }
             SkeletonError::NonFinite { index, .. } => {
                 format!(

@@ -73,8 +73,11 @@ pub struct RigSolveJson<'a> {
     pub solve_us: f64,
     /// Goals in the task's order, then pins.
     pub effectors: Vec<EffectorJson<'a>>,
-    /// Bone name → its angle (relative to its parent), degrees.
+    /// Bone name → its angle (relative to its parent), degrees (a prismatic bone's fixed one).
     pub angles_deg: ByName<'a, f64>,
+    /// Prismatic bone name → its displacement; only when the rig has prismatic joints.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extensions: Option<Extensions<'a>>,
     /// Bone name → its tip.
     pub joints: ByName<'a, [f64; 2]>,
     /// Recorded frames (empty unless recording is asked): angles in bone order, and the base
@@ -109,7 +112,8 @@ impl<'a> RigSolveReport<'a> {
             tolerance: self.options.tolerance,
             solve_us: self.micros,
             effectors: o.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
-            angles_deg: ByName { names, values: degrees(o.pose.angles()) },
+            angles_deg: ByName { names, values: relative_degrees(s, o.pose.angles()) },
+            extensions: s.has_prismatic().then_some(Extensions { skeleton: s, values: o.pose.angles() }),
             joints: ByName { names, values: points(&tips(self.rig, o.pose.angles())) },
             frames: o
                 .frames
@@ -117,6 +121,33 @@ impl<'a> RigSolveReport<'a> {
                 .map(|f| FrameJson { iteration: f.iteration, angles_deg: degrees(f.angles), joints: points(f.joints) })
                 .collect(),
         }
+    }
+}
+
+/// Every bone's angle from its parent's direction at joint values `q`, degrees: the joint
+/// value of a revolute bone, the fixed angle of a prismatic one (the same bits as
+/// `degrees` for a rig without prismatic joints).
+pub fn relative_degrees(s: &ikarus::Skeleton, q: &[f64]) -> Vec<f64> {
+    q.iter().enumerate().map(|(j, &v)| s.relative_angle(j, v).to_degrees()).collect()
+}
+
+/// The displacements of a rig's prismatic bones, keyed by name in the rig's order.
+pub struct Extensions<'a> {
+    pub skeleton: &'a ikarus::Skeleton,
+    /// Every bone's joint value.
+    pub values: &'a [f64],
+}
+
+impl Serialize for Extensions<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        for (j, joint) in self.skeleton.joints().iter().enumerate() {
+            match joint {
+                ikarus::Joint::Revolute => {}
+                ikarus::Joint::Prismatic { .. } => map.serialize_entry(self.skeleton.name(j), &self.values[j])?,
+            }
+        }
+        map.end()
     }
 }
 

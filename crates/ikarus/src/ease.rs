@@ -12,6 +12,7 @@
 //! | [`Ease::Parent`] | sine pieces around a constant-velocity middle (below) | 0, 0 (if k1 > 0, k2 < 1) | C¹ |
 
 use crate::math;
+use crate::names::listed_enum;
 use crate::number::Num;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
@@ -129,18 +130,19 @@ impl ParentEase {
     }
 }
 
-/// The kinds of [`Ease`], without their parameters: what the edges name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum EaseKind {
-    /// [`Ease::Linear`].
-    Linear,
-    /// [`Ease::Sine`].
-    Sine,
-    /// [`Ease::Parent`], with [`DEFAULT_K1`] and [`DEFAULT_K2`] unless told otherwise.
-    Parent,
-    /// [`Ease::Smoothstep`].
-    Smoothstep,
+listed_enum! {
+    /// The kinds of [`Ease`], without their parameters: what the edges name.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum EaseKind {
+        /// [`Ease::Linear`].
+        Linear,
+        /// [`Ease::Sine`].
+        Sine,
+        /// [`Ease::Parent`], with [`DEFAULT_K1`] and [`DEFAULT_K2`] unless told otherwise.
+        Parent,
+        /// [`Ease::Smoothstep`].
+        Smoothstep,
+    }
 }
 
 /// Parent's ease's default end of acceleration: the seed report's Figures 13 and 14 used 0.3.
@@ -149,9 +151,6 @@ pub const DEFAULT_K1: f64 = 0.3;
 pub const DEFAULT_K2: f64 = 0.7;
 
 impl EaseKind {
-    /// Every kind, in a stable order.
-    pub const ALL: [EaseKind; 4] = [EaseKind::Linear, EaseKind::Sine, EaseKind::Parent, EaseKind::Smoothstep];
-
     /// The short name used at the edges: `linear`, `sine`, `parent`, `smoothstep`.
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -180,7 +179,7 @@ impl EaseKind {
         match self {
             EaseKind::Linear => "Constant speed",
             EaseKind::Sine => "Sine ease-in/ease-out",
-            EaseKind::Parent => "Parent's sine ease with a constant-speed middle between --k1 and --k2",
+            EaseKind::Parent => "Parent's sine ease with a constant-speed middle between k1 and k2",
             EaseKind::Smoothstep => "Cubic smoothstep",
         }
     }

@@ -71,7 +71,7 @@ pub use limits::{Bounds, JointLimits, LimitsError};
 pub use motion::{Animation, AnimationFrame, Interpolation, MotionError, MotionOptions, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
-pub use skeleton::{Bone, BoneField, Effector, Skeleton, SkeletonError};
+pub use skeleton::{Bone, BoneField, Effector, Joint, Skeleton, SkeletonError};
 pub use solve::{
     Bend, EffectorOutcome, Frame, Frames, LimitMode, Method, OptionsError, Outcome, Pin, Priority, Restarts, RigGoal,
     RigTask, RigTaskError, SolveError, SolveOptions, Solver, StallDetection, Status,

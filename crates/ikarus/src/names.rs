@@ -9,6 +9,30 @@
 
 use thiserror::Error;
 
+/// Declares a fieldless enum and its `ALL` list from one list of variants, so that no variant
+/// can be left out of `ALL` (and so out of the edges' parsing, the tests' loops and
+/// `/api/meta`): a derived list, without a dependency (`strum`'s `VariantArray` would do the
+/// same with two crates more in every build of every edge).
+macro_rules! listed_enum {
+    (
+        $(#[$meta:meta])*
+        $vis:vis enum $name:ident {
+            $( $(#[$vmeta:meta])* $variant:ident ),+ $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        $vis enum $name {
+            $( $(#[$vmeta])* $variant ),+
+        }
+
+        impl $name {
+            /// Every variant, in the order declared (generated with the enum: none is left out).
+            pub const ALL: [$name; [$(stringify!($variant)),+].len()] = [$($name::$variant),+];
+        }
+    };
+}
+pub(crate) use listed_enum;
+
 /// An enum whose variants are chosen by name at the edges (flags, files, requests).
 pub trait Named: Copy + Sized + 'static {
     /// What the edges call this kind of choice (`"method"`, `"limit mode"`, `"ease"`).
@@ -125,3 +149,34 @@ macro_rules! by_name {
 }
 
 pub(crate) use by_name;
+
+#[cfg(test)]
+mod tests {
+    listed_enum! {
+        /// Three variants, one with attributes of its own.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+        enum Three {
+            /// The first.
+            First,
+            #[default]
+            Second,
+            Third,
+        }
+    }
+
+    #[test]
+    fn a_listed_enum_lists_every_variant_in_the_order_declared() {
+        assert_eq!(Three::ALL, [Three::First, Three::Second, Three::Third]);
+        assert_eq!(Three::default(), Three::Second);
+        for (k, v) in Three::ALL.iter().enumerate() {
+            assert_eq!(*v as usize, k);
+        }
+        // The library's choice enums: every variant once, in the order declared.
+        for (k, v) in crate::Method::ALL.iter().enumerate() {
+            assert_eq!(*v as usize, k);
+        }
+        for (k, v) in crate::LimitMode::ALL.iter().enumerate() {
+            assert_eq!(*v as usize, k);
+        }
+    }
+}

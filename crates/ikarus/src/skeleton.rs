@@ -1,11 +1,17 @@
 //! The skeleton model: a tree of named bones, validated once (errors in [`error`]; forward
 //! kinematics and the stacked effector Jacobian in [`kinematics`]).
 //!
-//! A [`Skeleton`] is a planar tree of `N ≥ 1` bones. Each bone is a revolute joint at its start
-//! followed by a rigid segment of its length. A bone with a parent starts at its parent's tip,
-//! and its angle is measured from the parent's direction; a bone without a parent (a root;
-//! there may be several) starts at the base and its angle is measured from +x.
-//! Counter-clockwise is positive, and every angle inside the library is in radians.
+//! A [`Skeleton`] is a planar tree of `N ≥ 1` bones. Each bone is a joint at its origin
+//! followed by a rigid segment of its length. A bone with a parent starts at its parent's tip
+//! (or at its [`Bone::offset`] in the parent's frame), and its angle is measured from the
+//! parent's direction; a bone without a parent (a root; there may be several) starts at the
+//! base (plus its offset, in world axes) and its angle is measured from +x. Counter-clockwise
+//! is positive, and every angle inside the library is in radians.
+//!
+//! The joint is a [`Joint`]: a revolute joint's value is the bone's angle; a prismatic joint
+//! keeps the bone at its fixed angle ([`Bone::angle`]) and its value is a displacement of the
+//! bone's origin along a fixed direction of the parent's frame, in length units. Everything
+//! called "angles" per bone (poses, start and rest values, limits) holds these joint values.
 //!
 //! A chain is a skeleton with one branch: [`Skeleton::from_chain`] builds it, and its forward
 //! kinematics and Jacobian equal the chain's bit for bit.
@@ -27,7 +33,7 @@ use std::collections::HashMap;
 
 use nalgebra::Point2;
 
-use crate::chain::{Chain, MAX_REACH};
+use crate::chain::{Chain, Link, MAX_REACH};
 use crate::limits::{Bounds, JointLimits};
 use crate::math;
 use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
@@ -38,6 +44,26 @@ mod tree;
 
 pub use error::{BoneField, SkeletonError};
 pub use kinematics::Effector;
+
+/// A bone's joint: what its joint value moves. A new kind is added here, and the compiler then
+/// names every place that must handle it (forward kinematics, the Jacobian, restarts, the
+/// methods that refuse it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Joint {
+    /// The bone turns about its origin; the joint value is its angle (radians, from the
+    /// parent's direction), its limits in radians.
+    Revolute,
+    /// The bone slides: its angle stays [`Bone::angle`], and its origin moves by the joint
+    /// value `d` (length units; its limits too) along `slide`, a direction in the parent's
+    /// frame (world axes for a root).
+    Prismatic {
+        /// The direction of the slide (normalised when the skeleton is built; `None`: along
+        /// the bone's own rest direction, `(cos angle, sin angle)`).
+        slide: Option<[f64; 2]>,
+        /// The start value of the displacement.
+        extension: f64,
+    },
+}
 
 /// One bone: its name, its parent's name (`None` for a root, which starts at the base), its
 /// length, its starting angle (radians, relative to the parent's direction; a root's relative
@@ -63,8 +89,15 @@ pub struct Bone {
     /// the arm first and the body only as needed.
     pub stiffness: f64,
     /// The angle the bone is pulled back to, radians (`None`: its starting angle, the bind
-    /// pose); within its limits. It matters only with a stiffness > 0.
+    /// pose); within its limits. It matters only with a stiffness > 0. For a prismatic joint:
+    /// the rest displacement (`None`: its start extension).
     pub rest: Option<f64>,
+    /// The bone's origin in its parent's frame (the parent's origin, x along its direction);
+    /// for a root, relative to the base in world axes. `None`: the parent's tip
+    /// `(parent length, 0)`, or the base itself for a root.
+    pub offset: Option<[f64; 2]>,
+    /// What the joint at the bone's origin does ([`Joint::Revolute`] by default).
+    pub joint: Joint,
 }
 
 impl Bone {
@@ -72,7 +105,44 @@ impl Bone {
     /// limits; [`Bone::with_parent`] hangs it on another bone.
     #[must_use]
     pub fn new(name: impl Into<String>, length: f64, angle: f64) -> Self {
-        Self { name: name.into(), parent: None, length, angle, limits: None, stiffness: 0.0, rest: None }
+        Self {
+            name: name.into(),
+            parent: None,
+            length,
+            angle,
+            limits: None,
+            stiffness: 0.0,
+            rest: None,
+            offset: None,
+            joint: Joint::Revolute,
+        }
+    }
+
+    /// The same bone starting at `offset` in its parent's frame (see [`Bone::offset`]).
+    #[must_use]
+    pub fn with_offset(mut self, offset: [f64; 2]) -> Self {
+        self.offset = Some(offset);
+        self
+    }
+
+    /// The same bone on a prismatic joint that starts at `extension` (length units), sliding
+    /// along the bone's own rest direction; [`Bone::with_slide`] turns the slide.
+    #[must_use]
+    pub fn prismatic(mut self, extension: f64) -> Self {
+        self.joint = Joint::Prismatic { slide: None, extension };
+        self
+    }
+
+    /// The same bone with its prismatic joint sliding along `slide` (in the parent's frame).
+    /// A revolute bone becomes prismatic, starting at 0.
+    #[must_use]
+    pub fn with_slide(mut self, slide: [f64; 2]) -> Self {
+        let extension = match self.joint {
+            Joint::Revolute => 0.0,
+            Joint::Prismatic { extension, .. } => extension,
+        };
+        self.joint = Joint::Prismatic { slide: Some(slide), extension };
+        self
     }
 
     /// The same bone starting at the tip of the bone called `parent`, its angle measured from
@@ -125,6 +195,16 @@ pub struct Skeleton {
     /// Each bone's stiffness and rest angle ([`Bone::stiffness`], [`Bone::rest`] resolved).
     stiffness: Vec<f64>,
     rest: Vec<f64>,
+    /// Each bone's offset as given, and where its origin lies from its parent's tip in the
+    /// parent's frame (`offset − (parent length, 0)`; a root's from the base), `None` at the tip.
+    offsets: Vec<Option<[f64; 2]>>,
+    shifts: Vec<Option<[f64; 2]>>,
+    /// Each bone's joint, a prismatic slide normalised; and its fixed angle (a prismatic
+    /// bone's [`Bone::angle`]; 0 for a revolute one, whose angle is its joint value).
+    joints: Vec<Joint>,
+    fixed: Vec<f64>,
+    /// Whether every bone is revolute and starts at its parent's tip (or the base).
+    plain: bool,
     /// Every bone once, every parent before its children.
     order: Vec<usize>,
     /// The children of bone `i` are `children[child_start[i]..child_start[i + 1]]`, in the
@@ -190,18 +270,42 @@ impl Skeleton {
             return Err(cycle_error(bones, &parents, &order));
         }
         let limits: Vec<Option<JointLimits>> = bones.iter().map(|b| b.limits).collect();
-        let start: Vec<f64> = bones.iter().map(|b| b.angle).collect();
         let lengths: Vec<f64> = bones.iter().map(|b| b.length).collect();
         let names: Vec<String> = bones.iter().map(|b| b.name.clone()).collect();
-        check_angles(&names, &start, Bounds::new(&limits))?;
-        let (stiffness, rest) = rest_pose(bones, &limits)?;
+        let (joints, fixed, offsets) = joints_of(bones)?;
+        let start: Vec<f64> = bones.iter().zip(&joints).map(|(b, j)| joint_value(b.angle, *j)).collect();
+        check_angles(&names, &joints, &start, Bounds::new(&limits))?;
+        let (stiffness, rest) = rest_pose(bones, &joints, &limits)?;
+        let shifts: Vec<Option<[f64; 2]>> =
+            offsets.iter().zip(&parents).map(|(o, p)| o.map(|[x, y]| [x - p.map_or(0.0, |p| lengths[p]), y])).collect();
+        let plain = offsets.iter().all(Option::is_none) && joints.iter().all(|j| *j == Joint::Revolute);
         let (enter, leave) = subtrees_of(&parents, &order);
         let root = roots_of(&parents, &order);
         // The length of the path to each tip, summed root first in the order of a chain's
         // `Σ lᵢ` (so that a chain's reach is its own, bit for bit).
+        // A bone with an offset or a slide adds, to the path to its parent's origin, the
+        // offset's length and the slide's largest travel (within its limits, or the nominal
+        // range of an unlimited slide: its start ± its length).
         let mut to_tip = vec![0.0; n];
         for &i in &order {
-            to_tip[i] = parents[i].map_or(0.0, |p| to_tip[p]) + lengths[i];
+            let above = parents[i].map_or(0.0, |p| to_tip[p]);
+            to_tip[i] = if offsets[i].is_none() && joints[i] == Joint::Revolute {
+                above + lengths[i]
+            } else {
+                let origin = match (parents[i], offsets[i]) {
+                    (Some(p), Some([x, y])) => above - lengths[p] + math::hypot(x, y),
+                    (None, Some([x, y])) => math::hypot(x, y),
+                    (_, None) => above,
+                };
+                let travel = match joints[i] {
+                    Joint::Revolute => 0.0,
+                    Joint::Prismatic { .. } => match limits[i] {
+                        Some(l) => l.min().abs().max(l.max().abs()),
+                        None => start[i].abs() + lengths[i],
+                    },
+                };
+                origin + travel + lengths[i]
+            };
         }
         let reach = to_tip.iter().copied().fold(0.0, f64::max);
         let extent = math::hypot(x, y) + reach;
@@ -218,6 +322,11 @@ impl Skeleton {
             start,
             stiffness,
             rest,
+            offsets,
+            shifts,
+            joints,
+            fixed,
+            plain,
             order,
             children,
             child_start,
@@ -237,19 +346,40 @@ impl Skeleton {
             .iter()
             .enumerate()
             .map(|(i, link)| Bone {
-                name: format!("link{i}"),
                 parent: i.checked_sub(1).map(|p| format!("link{p}")),
-                length: link.length,
-                angle: link.angle,
                 limits: link.limits,
-                stiffness: 0.0,
-                rest: None,
+                ..Bone::new(format!("link{i}"), link.length, link.angle)
             })
             .collect();
         let base = chain.base();
         // A valid chain passes every check of a skeleton: the names are distinct, the parents
         // exist and form a path, and the reach is the chain's own sum (the same additions).
         Skeleton::new([base.x, base.y], &bones).expect("ikarus: a valid chain is a valid skeleton")
+    }
+
+    /// The chain this skeleton is, when its shape allows: one branch in the order given
+    /// (bone `i + 1` hangs on bone `i`), every bone revolute at its parent's tip, no stiffness.
+    /// Its links are the bones, so its forward kinematics and Jacobian are the skeleton's bit
+    /// for bit (see [`Skeleton::from_chain`], the other way). `None` for any other shape: a
+    /// fork, a bone given before its parent, an offset, a slide, a rest-pose preference.
+    #[must_use]
+    pub fn as_chain(&self) -> Option<Chain> {
+        let one_branch = self.parents.iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
+        if !one_branch || !self.plain || self.has_rest_pose() {
+            return None;
+        }
+        let links: Vec<Link> = (0..self.len())
+            .map(|i| {
+                let link = Link::new(self.lengths[i], self.start[i]);
+                match self.limits[i] {
+                    Some(l) => link.with_limits(l),
+                    None => link,
+                }
+            })
+            .collect();
+        // The skeleton's checks include the chain's (finite numbers, lengths > 0, start angles
+        // within their limits, the same reach sum).
+        Some(Chain::new([self.base.x, self.base.y], &links).expect("ikarus: a one-branch skeleton is a valid chain"))
     }
 
     /// Number of bones.
@@ -397,7 +527,8 @@ impl Skeleton {
         if self.has_limits() { Bounds::new(&self.limits) } else { Bounds::free() }
     }
 
-    /// The angles the skeleton was built with (its start pose), radians.
+    /// The joint values the skeleton was built with (its start pose): radians for a revolute
+    /// joint, the [`Joint::Prismatic`] extension for a prismatic one.
     #[must_use]
     pub fn start_angles(&self) -> &[f64] {
         &self.start
@@ -421,6 +552,41 @@ impl Skeleton {
         self.stiffness.iter().any(|&s| s > 0.0)
     }
 
+    /// The joint of bone `i` (a prismatic slide normalised).
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    #[must_use]
+    pub fn joint(&self, i: usize) -> Joint {
+        self.joints[i]
+    }
+
+    /// Every bone's joint.
+    #[must_use]
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// Whether some bone has a prismatic joint.
+    #[must_use]
+    pub fn has_prismatic(&self) -> bool {
+        self.joints.iter().any(|j| matches!(j, Joint::Prismatic { .. }))
+    }
+
+    /// Every bone's offset as given ([`Bone::offset`]).
+    #[must_use]
+    pub fn offsets(&self) -> &[Option<[f64; 2]>] {
+        &self.offsets
+    }
+
+    /// Whether every bone is revolute and starts at its parent's tip (a root at the base): the
+    /// shape of today's rigs, whose geometry (annuli of lengths, two-bone triangles) the
+    /// solver's reach tests and soft goals use.
+    #[must_use]
+    pub fn is_plain(&self) -> bool {
+        self.plain
+    }
+
     /// The bones as given to [`Skeleton::new`], with the start angles.
     #[must_use]
     pub fn bones(&self) -> Vec<Bone> {
@@ -429,10 +595,15 @@ impl Skeleton {
                 name: self.names[i].clone(),
                 parent: self.parents[i].map(|p| self.names[p].clone()),
                 length: self.lengths[i],
-                angle: self.start[i],
+                angle: match self.joints[i] {
+                    Joint::Revolute => self.start[i],
+                    Joint::Prismatic { .. } => self.fixed[i],
+                },
                 limits: self.limits[i],
                 stiffness: self.stiffness[i],
                 rest: (self.rest[i] != self.start[i]).then_some(self.rest[i]),
+                offset: self.offsets[i],
+                joint: self.joints[i],
             })
             .collect()
     }
@@ -460,16 +631,20 @@ impl Skeleton {
         if angles.len() != self.len() {
             return Err(SkeletonError::AnglesLength { expected: self.len(), got: angles.len() });
         }
-        check_angles(&self.names, angles, bounds)
+        check_angles(&self.names, &self.joints, angles, bounds)
     }
 }
 
 /// Each bone's stiffness and rest angle (its start angle unless given), checked: a stiffness
 /// finite and ≥ 0, a rest angle finite and within the bone's limits.
-fn rest_pose(bones: &[Bone], limits: &[Option<JointLimits>]) -> Result<(Vec<f64>, Vec<f64>), SkeletonError> {
+fn rest_pose(
+    bones: &[Bone],
+    joints: &[Joint],
+    limits: &[Option<JointLimits>],
+) -> Result<(Vec<f64>, Vec<f64>), SkeletonError> {
     let mut stiffness = Vec::with_capacity(bones.len());
     let mut rest = Vec::with_capacity(bones.len());
-    for (index, (bone, lim)) in bones.iter().zip(limits).enumerate() {
+    for (index, ((bone, lim), &joint)) in bones.iter().zip(limits).zip(joints).enumerate() {
         let name = || bone.name.clone();
         let s = bone.stiffness;
         if !s.is_finite() {
@@ -478,14 +653,20 @@ fn rest_pose(bones: &[Bone], limits: &[Option<JointLimits>]) -> Result<(Vec<f64>
         if s < 0.0 {
             return Err(SkeletonError::NegativeStiffness { index, name: name(), value: s });
         }
-        let r = bone.rest.unwrap_or(bone.angle);
+        let r = bone.rest.unwrap_or(joint_value(bone.angle, joint));
         if !r.is_finite() {
             return Err(SkeletonError::NonFinite { index, name: name(), field: BoneField::Rest, value: r });
         }
         if let Some(l) = lim {
             if !l.contains(r) {
                 let (min, max) = (l.min(), l.max());
-                return Err(SkeletonError::RestOutsideLimits { index, name: name(), value: r, min, max });
+                return Err(match joint {
+                    Joint::Revolute => SkeletonError::RestOutsideLimits { index, name: name(), value: r, min, max },
+                    Joint::Prismatic { .. } => {
+                        let field = BoneField::Rest;
+                        SkeletonError::ExtensionOutsideLimits { index, name: name(), field, value: r, min, max }
+                    }
+                });
             }
         }
         stiffness.push(s);
@@ -494,19 +675,75 @@ fn rest_pose(bones: &[Bone], limits: &[Option<JointLimits>]) -> Result<(Vec<f64>
     Ok((stiffness, rest))
 }
 
-fn check_angles(names: &[String], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
-    for (index, (&value, name)) in angles.iter().zip(names).enumerate() {
+fn check_angles(names: &[String], joints: &[Joint], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
+    for (index, ((&value, name), &joint)) in angles.iter().zip(names).zip(joints).enumerate() {
+        let field = match joint {
+            Joint::Revolute => BoneField::Angle,
+            Joint::Prismatic { .. } => BoneField::Extension,
+        };
         if !value.is_finite() {
-            return Err(SkeletonError::NonFinite { index, name: name.clone(), field: BoneField::Angle, value });
+            return Err(SkeletonError::NonFinite { index, name: name.clone(), field, value });
         }
         if let Some(lim) = bounds.get(index) {
             if !lim.contains(value) {
-                let (min, max) = (lim.min(), lim.max());
-                return Err(SkeletonError::AngleOutsideLimits { index, name: name.clone(), value, min, max });
+                let (min, max, name) = (lim.min(), lim.max(), name.clone());
+                return Err(match joint {
+                    Joint::Revolute => SkeletonError::AngleOutsideLimits { index, name, value, min, max },
+                    Joint::Prismatic { .. } => {
+                        SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
+                    }
+                });
             }
         }
     }
     Ok(())
+}
+
+/// A bone's start joint value: its angle (revolute) or its extension (prismatic).
+fn joint_value(angle: f64, joint: Joint) -> f64 {
+    match joint {
+        Joint::Revolute => angle,
+        Joint::Prismatic { extension, .. } => extension,
+    }
+}
+
+/// Each bone's joint (a slide checked finite and not zero, then normalised; by default along
+/// the bone's rest direction), its fixed angle, and its offset checked finite.
+type JointsOf = (Vec<Joint>, Vec<f64>, Vec<Option<[f64; 2]>>);
+fn joints_of(bones: &[Bone]) -> Result<JointsOf, SkeletonError> {
+    let (mut joints, mut fixed, mut offsets) = (Vec::new(), Vec::new(), Vec::new());
+    for (index, bone) in bones.iter().enumerate() {
+        let name = || bone.name.clone();
+        if let Some([x, y]) = bone.offset {
+            if !x.is_finite() || !y.is_finite() {
+                return Err(SkeletonError::NonFinitePair { index, name: name(), field: BoneField::Offset, x, y });
+            }
+        }
+        offsets.push(bone.offset);
+        match bone.joint {
+            Joint::Revolute => {
+                joints.push(Joint::Revolute);
+                fixed.push(0.0);
+            }
+            Joint::Prismatic { slide, extension } => {
+                if !bone.angle.is_finite() {
+                    let (field, value) = (BoneField::Angle, bone.angle);
+                    return Err(SkeletonError::NonFinite { index, name: name(), field, value });
+                }
+                let [x, y] = slide.unwrap_or([math::cos(bone.angle), math::sin(bone.angle)]);
+                if !x.is_finite() || !y.is_finite() {
+                    return Err(SkeletonError::NonFinitePair { index, name: name(), field: BoneField::Slide, x, y });
+                }
+                let norm = math::hypot(x, y);
+                if norm == 0.0 {
+                    return Err(SkeletonError::ZeroSlide { index, name: name(), x, y });
+                }
+                joints.push(Joint::Prismatic { slide: Some([x / norm, y / norm]), extension });
+                fixed.push(bone.angle);
+            }
+        }
+    }
+    Ok((joints, fixed, offsets))
 }
 
 #[cfg(test)]

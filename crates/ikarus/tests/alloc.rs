@@ -225,7 +225,7 @@ fn skeleton_kinematics_allocate_nothing() {
     let (count, ()) = allocations_in(|| {
         for _ in 0..100 {
             s.forward_into(&angles, &mut starts, &mut tips, &mut dirs);
-            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+            s.jacobian_into(&starts, &tips, &dirs, &effectors, &mut j);
         }
     });
     assert_eq!(count, 0, "{count} allocations");
@@ -250,6 +250,16 @@ fn skeleton_solves_allocate_nothing() {
         Bone::new("foot", 0.2, 1.0).with_parent("leg").with_limits(lim),
     ];
     let s = Skeleton::new([0.0, 0.0], &bones).unwrap();
+    // Issue 25: the same body with a prismatic forearm (limited slide across the arm) and a
+    // head that starts beside the spine's middle.
+    let mut sliding = bones.clone();
+    sliding[3] = Bone::new("fore", 0.5, 0.3)
+        .with_parent("arm")
+        .with_slide([1.0, 0.5])
+        .with_limits(JointLimits::new(-0.3, 0.4).unwrap());
+    sliding[5] = sliding[5].clone().with_offset([0.25, 0.1]);
+    let p = Skeleton::new([0.0, 0.0], &sliding).unwrap();
+    assert!(p.has_prismatic() && !p.is_plain());
     let tasks = [
         RigTask::new(
             vec![
@@ -266,19 +276,22 @@ fn skeleton_solves_allocate_nothing() {
             vec![Pin::new(7)],
         ),
     ];
-    for method in iterative().filter(|m| m.solves_rigs()) {
-        for limits in LimitMode::ALL {
-            let mut solver = Solver::new(SolveOptions { method, limits, ..SolveOptions::default() }).unwrap();
-            for (t, task) in tasks.iter().enumerate() {
+    for (s, (t, task)) in [&s, &p].into_iter().flat_map(|s| tasks.iter().enumerate().map(move |t| (s, t))) {
+        for method in iterative().filter(|m| m.solves_rigs()) {
+            for limits in LimitMode::ALL {
+                let mut solver = Solver::new(SolveOptions { method, limits, ..SolveOptions::default() }).unwrap();
                 let mut out = Outcome::default();
-                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
-                solver.solve_rig_into(&s, s.start_angles(), task, &mut out).unwrap();
-                let (n, r) = allocations_in(|| solver.solve_rig_into(&s, s.start_angles(), task, &mut out));
+                solver.solve_rig_into(s, s.start_angles(), task, &mut out).unwrap();
+                solver.solve_rig_into(s, s.start_angles(), task, &mut out).unwrap();
+                let (n, r) = allocations_in(|| solver.solve_rig_into(s, s.start_angles(), task, &mut out));
                 r.unwrap();
                 assert_eq!(
-                    n, 0,
-                    "task {t}, {method:?} {limits:?}: {n} allocations ({} iterations, {:?})",
-                    out.iterations, out.status
+                    n,
+                    0,
+                    "{} task {t}, {method:?} {limits:?}: {n} allocations ({} iterations, {:?})",
+                    if s.is_plain() { "plain" } else { "prismatic" },
+                    out.iterations,
+                    out.status
                 );
             }
         }

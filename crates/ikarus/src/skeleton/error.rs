@@ -21,6 +21,12 @@ pub enum BoneField {
     Stiffness,
     /// [`Bone::rest`](super::Bone::rest).
     Rest,
+    /// [`Bone::offset`](super::Bone::offset).
+    Offset,
+    /// A prismatic joint's slide ([`Joint::Prismatic`](super::Joint::Prismatic)).
+    Slide,
+    /// A prismatic joint's extension ([`Joint::Prismatic`](super::Joint::Prismatic)).
+    Extension,
 }
 
 impl std::fmt::Display for BoneField {
@@ -31,6 +37,9 @@ impl std::fmt::Display for BoneField {
             BoneField::Limits => "limits",
             BoneField::Stiffness => "stiffness",
             BoneField::Rest => "rest",
+            BoneField::Offset => "offset",
+            BoneField::Slide => "slide",
+            BoneField::Extension => "extension",
         })
     }
 }
@@ -78,6 +87,54 @@ pub enum SkeletonError {
         field: BoneField,
         /// The offending value.
         value: f64,
+    },
+    /// A bone's pair of numbers (its offset or slide) holds a NaN or an infinity.
+    #[error("bones[{index}] ({name:?}).{field}: must be finite numbers, got [{}, {}]", Num(*.x), Num(*.y))]
+    NonFinitePair {
+        /// Index of the bone, from 0.
+        index: usize,
+        /// Its name.
+        name: String,
+        /// Which pair.
+        field: BoneField,
+        /// The first number.
+        x: f64,
+        /// The second number.
+        y: f64,
+    },
+    /// A prismatic joint's slide is the zero vector: it has no direction.
+    #[error("bones[{index}] ({name:?}).slide: must not be zero, got [{}, {}]", Num(*.x), Num(*.y))]
+    ZeroSlide {
+        /// Index of the bone, from 0.
+        index: usize,
+        /// Its name.
+        name: String,
+        /// x of the slide.
+        x: f64,
+        /// y of the slide.
+        y: f64,
+    },
+    /// A prismatic joint's displacement (its extension, rest or a pose's value) lies outside
+    /// its limits (length units).
+    #[error(
+        "bones[{index}] ({name:?}).{field}: {} lies outside the limits [{}, {}]",
+        Num(*.value),
+        Num(*.min),
+        Num(*.max)
+    )]
+    ExtensionOutsideLimits {
+        /// Index of the bone, from 0.
+        index: usize,
+        /// Its name.
+        name: String,
+        /// Which value: the extension or the rest.
+        field: BoneField,
+        /// The offending displacement.
+        value: f64,
+        /// Lower limit.
+        min: f64,
+        /// Upper limit.
+        max: f64,
     },
     /// A bone's length is zero or negative.
     #[error("bones[{index}] ({name:?}).length: must be greater than 0, got {}", Num(*.value))]

@@ -14,6 +14,17 @@
 //! (`0 + θ` for a root, then `x += l cos φ`, `y += l sin φ`), so a one-branch skeleton's
 //! positions equal its chain's bit for bit.
 //!
+//! A bone with an offset `o` (its origin in the parent's frame) or a prismatic joint (value
+//! `d`, unit slide `s` in the parent's frame, fixed angle `α`) starts elsewhere:
+//!
+//! ```text
+//! start_i = tip_parent(i) + R(φ_parent(i)) ((o − (l_parent, 0)) + d s)   (o = (l_parent, 0) by default),
+//! φ_i = φ_parent(i) + α                                                  (prismatic),
+//! ```
+//!
+//! the same point as `start_parent + R(φ_parent) (o + d s)`, written from the parent's tip so
+//! that no start need be kept (a root's "tip" is the base and `φ = 0`).
+//!
 //! Turning bone j by dθ rotates everything below it about `start_j`: an effector at the tip of
 //! bone e moves when j lies on e's path from the root (an ancestor of e, or e itself), and
 //! then
@@ -22,7 +33,8 @@
 //! ∂tip_e/∂θ_j = (−(y_e − y_j), x_e − x_j)   with (x_j, y_j) = start_j,   ∂φ_e/∂θ_j = 1,
 //! ```
 //!
-//! and both are 0 otherwise. The stacked Jacobian puts each effector's rows (x, y, and φ when
+//! and both are 0 otherwise. Sliding a prismatic bone j by dd moves everything below it along
+//! the slide's world direction: `∂tip_e/∂d_j = R(φ_parent(j)) s_j`, `∂φ_e/∂d_j = 0`. The stacked Jacobian puts each effector's rows (x, y, and φ when
 //! it has an orientation) below the previous effector's, one column per bone.
 //!
 //! The functions panic if a slice or the Jacobian's shape does not fit the skeleton: that is a
@@ -30,7 +42,7 @@
 
 use nalgebra::{DMatrix, Point2};
 
-use super::Skeleton;
+use super::{Joint, Skeleton};
 
 /// One effector of the stacked Jacobian: the tip of a bone, its position and optionally its
 /// direction.
@@ -92,12 +104,12 @@ impl Skeleton {
             directions.len()
         );
         for &i in &self.order {
-            let (mut p, mut phi) = match self.parents[i] {
+            let (from, turn) = match self.parents[i] {
                 Some(q) => (tips[q], directions[q]),
                 None => (self.base, 0.0),
             };
+            let (mut p, phi) = self.origin(i, angles[i], from, turn);
             starts[i] = p;
-            phi += angles[i];
             let (s, c) = crate::lanes::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
@@ -105,6 +117,27 @@ impl Skeleton {
             tips[i] = p;
             directions[i] = phi;
         }
+    }
+
+    /// Bone `i`'s origin and absolute direction for its joint value `q`, from its parent's
+    /// tip `from` and direction `turn` (the base and 0 for a root): see the module docs. A
+    /// revolute bone at its parent's tip is `(from, turn + q)`, the chain's operations.
+    #[inline]
+    fn origin(&self, i: usize, q: f64, from: Point2<f64>, turn: f64) -> (Point2<f64>, f64) {
+        if self.plain {
+            return (from, turn + q);
+        }
+        let (local, phi) = match self.joints[i] {
+            Joint::Revolute => (self.shifts[i], turn + q),
+            Joint::Prismatic { slide, .. } => {
+                let [sx, sy] = slide.expect("ikarus: a skeleton's slides are resolved");
+                let [ox, oy] = self.shifts[i].unwrap_or([0.0, 0.0]);
+                (Some([ox + q * sx, oy + q * sy]), turn + self.fixed[i])
+            }
+        };
+        let Some([x, y]) = local else { return (from, phi) };
+        let (s, c) = crate::lanes::sin_cos(turn);
+        (Point2::new(from.x + c * x - s * y, from.y + s * x + c * y), phi)
     }
 
     /// Forward kinematics into one buffer of `len() + 1` points — the base, then every bone's
@@ -125,11 +158,11 @@ impl Skeleton {
         );
         points[0] = self.base;
         for &i in &self.order {
-            let (mut p, mut phi) = match self.parents[i] {
+            let (from, turn) = match self.parents[i] {
                 Some(q) => (points[q + 1], directions[q]),
                 None => (self.base, 0.0),
             };
-            phi += angles[i];
+            let (mut p, phi) = self.origin(i, angles[i], from, turn);
             let (s, c) = crate::lanes::sin_cos(phi);
             let l = self.lengths[i];
             p.x += l * c;
@@ -140,15 +173,43 @@ impl Skeleton {
     }
 
     /// The absolute direction of bone `bone` for `angles`: the sum of the angles from its root
-    /// down to it, in that order (the same bits as [`Skeleton::forward_into`]'s). Allocates
-    /// the path (as long as the bone's depth).
+    /// down to it, in that order (a prismatic bone adds its fixed angle; the same bits as
+    /// [`Skeleton::forward_into`]'s). Allocates the path (as long as the bone's depth).
     #[must_use]
     pub fn direction(&self, angles: &[f64], bone: usize) -> f64 {
-        self.path(bone).iter().fold(0.0, |phi, &j| phi + angles[j])
+        self.path(bone).iter().fold(0.0, |phi, &j| phi + self.relative_angle(j, angles[j]))
+    }
+
+    /// Bone `j`'s angle from its parent's direction (a root's from +x) at joint value `q`:
+    /// `q` itself for a revolute joint, the fixed [`Bone::angle`](super::Bone::angle) of a
+    /// prismatic one.
+    #[inline]
+    #[must_use]
+    pub fn relative_angle(&self, j: usize, q: f64) -> f64 {
+        match self.joints[j] {
+            Joint::Revolute => q,
+            Joint::Prismatic { .. } => self.fixed[j],
+        }
+    }
+
+    /// Bone `j`'s column of the Jacobian for an effector at `tip`, with `starts` and
+    /// `directions` of forward kinematics: `(∂x, ∂y, ∂φ)` (see the module docs).
+    #[inline]
+    #[must_use]
+    pub fn column(&self, j: usize, tip: Point2<f64>, starts_j: Point2<f64>, directions: &[f64]) -> [f64; 3] {
+        match self.joints[j] {
+            Joint::Revolute => [-(tip.y - starts_j.y), tip.x - starts_j.x, 1.0],
+            Joint::Prismatic { slide, .. } => {
+                let [sx, sy] = slide.expect("ikarus: a skeleton's slides are resolved");
+                let turn = self.parents[j].map_or(0.0, |p| directions[p]);
+                let (s, c) = crate::lanes::sin_cos(turn);
+                [c * sx - s * sy, s * sx + c * sy, 0.0]
+            }
+        }
     }
 
     /// Fills the stacked Jacobian of `effectors` from the starts and tips computed by
-    /// [`Skeleton::forward_into`]: [`task_rows`] rows (each effector's x, y and, with an
+    /// [`Skeleton::forward_into`] (and its directions): [`task_rows`] rows (each effector's x, y and, with an
     /// orientation, φ, in the order of `effectors`) and one column per bone. Allocates nothing
     /// if `out` already has that shape; otherwise it is resized first.
     ///
@@ -159,11 +220,15 @@ impl Skeleton {
         &self,
         starts: &[Point2<f64>],
         tips: &[Point2<f64>],
+        directions: &[f64],
         effectors: &[Effector],
         out: &mut DMatrix<f64>,
     ) {
         let n = self.len();
-        assert!(starts.len() == n && tips.len() == n, "ikarus: the Jacobian of {n} bones needs {n} starts and tips");
+        assert!(
+            starts.len() == n && tips.len() == n && directions.len() == n,
+            "ikarus: the Jacobian of {n} bones needs {n} starts, tips and directions"
+        );
         let rows = task_rows(effectors);
         if out.shape() != (rows, n) {
             *out = DMatrix::zeros(rows, n);
@@ -174,11 +239,11 @@ impl Skeleton {
         for e in effectors {
             let tip = tips[e.bone];
             for j in self.path_to_root(e.bone) {
-                let p = starts[j];
-                out[(row, j)] = -(tip.y - p.y);
-                out[(row + 1, j)] = tip.x - p.x;
+                let [dx, dy, dphi] = self.column(j, tip, starts[j], directions);
+                out[(row, j)] = dx;
+                out[(row + 1, j)] = dy;
                 if e.orientation {
-                    out[(row + 2, j)] = 1.0;
+                    out[(row + 2, j)] = dphi;
                 }
             }
             row += e.rows();
@@ -190,7 +255,7 @@ impl Skeleton {
 mod tests {
     use super::*;
     use crate::kinematics::{jacobian_from_joints, joint_positions_into};
-    use crate::skeleton::Bone;
+    use crate::skeleton::{Bone, Joint};
     use crate::{Chain, JointLimits, Link};
     use nalgebra::Matrix3xX;
     use proptest::prelude::*;
@@ -222,7 +287,7 @@ mod tests {
         assert!(near(starts[2], 1.0, 2.0) && near(tips[2], 1.5, 2.0), "{tips:?}");
         assert!((dirs[0] - PI).abs() < 1e-15 && dirs[2].abs() < 1e-15);
         let mut j = DMatrix::zeros(0, 0);
-        s.jacobian_into(&starts, &tips, &[Effector::with_orientation(0), Effector::position(2)], &mut j);
+        s.jacobian_into(&starts, &tips, &dirs, &[Effector::with_orientation(0), Effector::position(2)], &mut j);
         // Left tip (0, 2): trunk from (1, 0) → (−2, −1); left from (1, 2) → (0, −1); right: 0.
         #[rustfmt::skip]
         let want = DMatrix::from_row_slice(5, 3, &[
@@ -325,7 +390,7 @@ mod tests {
             let mut want = Matrix3xX::zeros(n);
             jacobian_from_joints(&joints, &mut want);
             let mut got = DMatrix::zeros(0, 0);
-            s.jacobian_into(&starts, &tips, &[Effector::with_orientation(n - 1)], &mut got);
+            s.jacobian_into(&starts, &tips, &dirs, &[Effector::with_orientation(n - 1)], &mut got);
             prop_assert_eq!(got.shape(), (3, n));
             for r in 0..3 {
                 for c in 0..n {
@@ -341,12 +406,12 @@ mod tests {
             let n = s.len();
             let effectors: Vec<Effector> =
                 (0..n).map(|b| if b % 2 == 0 { Effector::with_orientation(b) } else { Effector::position(b) }).collect();
-            let (starts, tips, _) = forward(&s, &angles);
+            let (starts, tips, dirs) = forward(&s, &angles);
             let mut j = DMatrix::zeros(0, 0);
-            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+            s.jacobian_into(&starts, &tips, &dirs, &effectors, &mut j);
             // Built again into the same buffer: the same matrix (the buffer is cleared first).
             let first = j.clone();
-            s.jacobian_into(&starts, &tips, &effectors, &mut j);
+            s.jacobian_into(&starts, &tips, &dirs, &effectors, &mut j);
             prop_assert_eq!(&first, &j);
             let h = 1e-6;
             for c in 0..n {
@@ -379,5 +444,160 @@ mod tests {
                 }
             }
         }
+
+        /// Offsets and prismatic joints: the Jacobian matches central differences too (a
+        /// prismatic column is the slide's world direction, its orientation row 0).
+        #[test]
+        fn the_jacobian_of_offsets_and_slides_matches_central_differences((s, angles) in bodies()) {
+            let n = s.len();
+            let effectors: Vec<Effector> =
+                (0..n).map(|b| if b % 2 == 0 { Effector::with_orientation(b) } else { Effector::position(b) }).collect();
+            let (starts, tips, dirs) = forward(&s, &angles);
+            let mut j = DMatrix::zeros(0, 0);
+            s.jacobian_into(&starts, &tips, &dirs, &effectors, &mut j);
+            let h = 1e-6;
+            for c in 0..n {
+                let (mut plus, mut minus) = (angles.clone(), angles.clone());
+                plus[c] += h;
+                minus[c] -= h;
+                let (_, tp, dp) = forward(&s, &plus);
+                let (_, tm, dm) = forward(&s, &minus);
+                let mut row = 0;
+                for e in &effectors {
+                    let mut fd = vec![(tp[e.bone].x - tm[e.bone].x) / (2.0 * h), (tp[e.bone].y - tm[e.bone].y) / (2.0 * h)];
+                    if e.orientation {
+                        fd.push((dp[e.bone] - dm[e.bone]) / (2.0 * h));
+                    }
+                    for (k, d) in fd.iter().enumerate() {
+                        let a = j[(row + k, c)];
+                        let scale = a.abs().max(1.0);
+                        prop_assert!((a - d).abs() <= 1e-6 * scale, "row {} col {}: {} vs {}", row + k, c, a, d);
+                    }
+                    if let Joint::Prismatic { .. } = s.joint(c) {
+                        if e.orientation {
+                            prop_assert_eq!(j[(row + 2, c)], 0.0);
+                        }
+                    }
+                    row += e.rows();
+                }
+            }
+        }
+
+        /// Forward kinematics of offsets and slides against an independent implementation:
+        /// each origin from its parent's origin, `start_p + R(φ_p) (offset + d slide)`, by
+        /// recursion (not the library's walk from the parent's tip).
+        #[test]
+        fn offsets_and_slides_match_an_independent_forward_kinematics((s, angles) in bodies()) {
+            let bones = s.bones();
+            let (starts, tips, dirs) = forward(&s, &angles);
+            for i in 0..s.len() {
+                let (origin, phi) = by_definition(&s, &bones, &angles, i);
+                let tip = origin + bones[i].length * nalgebra::Vector2::new(crate::math::cos(phi), crate::math::sin(phi));
+                let near = |a: Point2<f64>, b: Point2<f64>| (a - b).norm() <= 1e-9 * (1.0 + b.coords.norm());
+                prop_assert!(near(starts[i], origin), "start {}: {} vs {}", i, starts[i], origin);
+                prop_assert!(near(tips[i], tip), "tip {}: {} vs {}", i, tips[i], tip);
+                prop_assert!((dirs[i] - phi).abs() <= 1e-12 * (1.0 + phi.abs()));
+                prop_assert_eq!(s.direction(&angles, i).to_bits(), dirs[i].to_bits());
+            }
+        }
+    }
+
+    /// Bone `i`'s origin and direction by the definition of [`crate::skeleton::Bone::offset`]
+    /// and [`Joint::Prismatic`], recursively from the base.
+    fn by_definition(s: &Skeleton, bones: &[Bone], q: &[f64], i: usize) -> (Point2<f64>, f64) {
+        let (p_origin, p_phi, p_len) = match s.parent(i) {
+            Some(p) => {
+                let (o, phi) = by_definition(s, bones, q, p);
+                (o, phi, bones[p].length)
+            }
+            None => (s.base(), 0.0, 0.0),
+        };
+        let [ox, oy] = bones[i].offset.unwrap_or([p_len, 0.0]);
+        let (mut lx, mut ly) = (ox, oy);
+        let phi = match bones[i].joint {
+            Joint::Revolute => p_phi + q[i],
+            Joint::Prismatic { slide, .. } => {
+                let [sx, sy] = slide.unwrap();
+                let norm = (sx * sx + sy * sy).sqrt();
+                lx += q[i] * sx / norm;
+                ly += q[i] * sy / norm;
+                p_phi + bones[i].angle
+            }
+        };
+        let (sn, cs) = (crate::math::sin(p_phi), crate::math::cos(p_phi));
+        (Point2::new(p_origin.x + cs * lx - sn * ly, p_origin.y + sn * lx + cs * ly), phi)
+    }
+
+    /// Random trees with offsets (about half the bones) and prismatic joints (about a third;
+    /// slides in any direction, some limited), and joint values for them.
+    fn bodies() -> impl Strategy<Value = (Skeleton, Vec<f64>)> {
+        (1usize..=10).prop_flat_map(|n| {
+            prop::collection::vec(
+                (
+                    0.05f64..3.0,
+                    any::<u32>(),
+                    prop::option::of((-2.0f64..2.0, -2.0f64..2.0)),
+                    prop::option::of((-PI..PI, 0.5f64..2.0, -1.0f64..1.0)),
+                    -2.0 * PI..2.0 * PI,
+                ),
+                n,
+            )
+            .prop_map(|raw| {
+                let mut values = Vec::new();
+                let bones: Vec<Bone> = raw
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &(l, p, offset, slide, q))| {
+                        let mut b = Bone::new(format!("b{i}"), l, 0.3 * q);
+                        if i > 0 && p % 4 != 0 {
+                            b = b.with_parent(format!("b{}", p as usize % i));
+                        }
+                        if let Some((x, y)) = offset {
+                            b = b.with_offset([x, y]);
+                        }
+                        if p % 3 == 0 {
+                            if let Some((a, r, d)) = slide {
+                                b = b.prismatic(d).with_slide([r * crate::math::cos(a), r * crate::math::sin(a)]);
+                                values.push(d + 0.2 * crate::math::sin(q));
+                                return b;
+                            }
+                        }
+                        values.push(q);
+                        b
+                    })
+                    .collect();
+                (Skeleton::new([0.3, -0.2], &bones).unwrap(), values)
+            })
+        })
+    }
+
+    #[test]
+    fn a_slider_and_an_offset_by_hand() {
+        // A root up from the base, a bone at (0.5, 0.25) in its frame sliding along its own
+        // x by 0.5 at a fixed right angle.
+        let s = Skeleton::new(
+            [1.0, 0.0],
+            &[
+                Bone::new("root", 2.0, PI / 2.0),
+                Bone::new("slider", 1.0, PI / 2.0).with_parent("root").with_offset([0.5, 0.25]).with_slide([2.0, 0.0]),
+            ],
+        )
+        .unwrap();
+        let q = [PI / 2.0, 0.5];
+        let (starts, tips, dirs) = forward(&s, &q);
+        // Origin: (1, 0) + R(90°)(0.5 + 0.5, 0.25) = (1 − 0.25, 1.0); direction 180°.
+        assert!((starts[1] - Point2::new(0.75, 1.0)).norm() < 1e-12, "{}", starts[1]);
+        assert!((tips[1] - Point2::new(-0.25, 1.0)).norm() < 1e-12, "{}", tips[1]);
+        assert!((dirs[1] - PI).abs() < 1e-15);
+        let mut j = DMatrix::zeros(0, 0);
+        s.jacobian_into(&starts, &tips, &dirs, &[Effector::with_orientation(1)], &mut j);
+        // Root turning about (1, 0): tip (−0.25, 1) → (−1, −1.25); the slide along world +y.
+        #[rustfmt::skip]
+        let want = DMatrix::from_row_slice(3, 2, &[
+            -1.0, 0.0,
+            -1.25, 1.0,
+            1.0, 0.0,
+        ]);
+        assert!((&j - &want).abs().max() < 1e-12, "{j}");
     }
 }

@@ -70,6 +70,24 @@ fn a_chain_becomes_one_branch() {
     // A chain at the largest reach is a skeleton too (the same sum, the same check).
     let widest = Chain::new([0.0, 0.0], &[Link::new(5e151, 0.0), Link::new(5e151, 0.0)]).unwrap();
     assert_eq!(Skeleton::from_chain(&widest).max_reach(), MAX_REACH);
+    // And back: the chain view of a one-branch skeleton is the chain.
+    assert_eq!(s.as_chain(), Some(chain.clone()));
+    assert_eq!(Skeleton::from_chain(&widest).as_chain(), Some(widest));
+}
+
+#[test]
+fn only_a_plain_branch_in_order_has_a_chain_view() {
+    let a = Bone::new("a", 1.0, 0.2);
+    let b = Bone::new("b", 1.0, 0.3).with_parent("a");
+    let view = |bones: &[Bone]| Skeleton::new([0.0, 0.0], bones).unwrap().as_chain();
+    let chain = view(&[a.clone(), b.clone()]).unwrap();
+    assert_eq!((chain.lengths(), chain.start_pose().angles()), (&[1.0, 1.0][..], &[0.2, 0.3][..]));
+    // Given child first, forked, offset, sliding, stiff: no chain.
+    assert_eq!(view(&[b.clone(), a.clone()]), None);
+    assert_eq!(view(&[a.clone(), b.clone(), Bone::new("c", 1.0, 0.0).with_parent("a")]), None);
+    assert_eq!(view(&[a.clone(), b.clone().with_offset([0.5, 0.0])]), None);
+    assert_eq!(view(&[a.clone(), b.clone().prismatic(0.0)]), None);
+    assert_eq!(view(&[a.clone().with_stiffness(1.0), b]), None);
 }
 
 #[test]
@@ -126,6 +144,32 @@ fn rejects_each_kind_of_bad_input_naming_the_bone_and_the_value() {
             vec![b("a", None), Bone::new("b", 1.0, 2.0).with_parent("a").with_limits(lim(-1.0, 1.0))],
             [0.0, 0.0],
             "bones[1] (\"b\").angle: 2 rad lies outside the limits [-1, 1] rad",
+        ),
+        // Issue 25: offsets and prismatic joints.
+        (
+            vec![b("a", None), b("b", Some("a")).with_offset([f64::NAN, 0.0])],
+            [0.0, 0.0],
+            "bones[1] (\"b\").offset: must be finite numbers, got [NaN, 0]",
+        ),
+        (
+            vec![b("a", None), b("s", Some("a")).with_slide([0.0, 0.0])],
+            [0.0, 0.0],
+            "bones[1] (\"s\").slide: must not be zero, got [0, 0]",
+        ),
+        (
+            vec![b("s", None).with_slide([1.0, f64::INFINITY])],
+            [0.0, 0.0],
+            "bones[0] (\"s\").slide: must be finite numbers, got [1, inf]",
+        ),
+        (
+            vec![b("a", None), b("s", Some("a")).prismatic(0.5).with_limits(lim(-0.2, 0.3))],
+            [0.0, 0.0],
+            "bones[1] (\"s\").extension: 0.5 lies outside the limits [-0.2, 0.3]",
+        ),
+        (
+            vec![b("s", None).prismatic(f64::NAN)],
+            [0.0, 0.0],
+            "bones[0] (\"s\").extension: must be a finite number, got NaN",
         ),
         // Each path is within the reach, but the longest is not.
         (

@@ -4,8 +4,8 @@ use super::algebra::Algebra;
 use super::fast::Taken;
 use super::line_search::jacobian_step;
 use super::lm::Damping;
+use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::problem::Problem;
 use super::step::Stepper;
 use super::{Outcome, Status};
 

@@ -52,7 +52,7 @@
 
 use nalgebra::{Point2, Vector2};
 
-use super::problem::Problem;
+use super::model::Problem;
 use crate::angle::wrap_angle;
 use crate::kinematics::joint_positions_into;
 use crate::math;

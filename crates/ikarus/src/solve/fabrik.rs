@@ -28,7 +28,7 @@
 
 use nalgebra::{Point2, Vector2};
 
-use super::problem::Problem;
+use super::model::Problem;
 use crate::angle;
 use crate::chain::JointLimits;
 use crate::kinematics::joint_positions_into;

@@ -20,8 +20,8 @@
 
 use super::LimitMode;
 use super::algebra::Algebra;
+use super::model::Problem;
 use super::model::{Model, Posture, ScratchOf};
-use super::problem::Problem;
 use super::step::Rule;
 use crate::math;
 

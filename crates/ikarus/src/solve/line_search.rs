@@ -9,8 +9,8 @@
 use super::algebra::Algebra;
 use super::limit_modes::compute_delta;
 use super::lm::Damping;
+use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::problem::Problem;
 use super::step::Rule;
 
 /// The share of the linearly predicted error decrease a backtracking step must achieve.

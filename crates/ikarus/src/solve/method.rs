@@ -2,50 +2,41 @@
 //! their names at the edges and which rule supports which mode.
 
 use crate::names::by_name;
+use crate::names::listed_enum;
+use crate::skeleton::Joint;
 
-/// The step rule of a solve. See the [module docs](super) for the formulas.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum Method {
-    /// Jacobian transpose with the step length that minimises the linearised error.
-    Transpose,
-    /// Jacobian pseudoinverse `Jᵀ (J Jᵀ)⁺`, via the eigen-decomposition of `J Jᵀ`.
-    PseudoInverse,
-    /// Damped least squares `Jᵀ (J Jᵀ + λ² I)⁻¹`, λ = [`SolveOptions::lambda`](super::SolveOptions::lambda).
-    DampedLeastSquares,
-    /// Selectively damped least squares (Buss & Kim 2005): each singular direction's joint
-    /// change is clamped by how far it can move the tip.
-    SelectivelyDamped,
-    /// Levenberg–Marquardt: damped least squares whose damping adapts to how well the
-    /// linearisation predicted the last step (Nielsen's update), starting from
-    /// [`SolveOptions::lambda`](super::SolveOptions::lambda). The default: as fast as DLS on reachable goals, and it does
-    /// not crawl near singular poses (goals at or beyond the reach).
-    #[default]
-    LevenbergMarquardt,
-    /// Cyclic coordinate descent: one joint at a time, from the tip to the base, each turned to
-    /// the angle that best brings the tip to the goal.
-    CyclicCoordinateDescent,
-    /// FABRIK (Aristidou & Lasenby 2011): backward and forward reaching on the joint positions,
-    /// with angular limits applied in the forward pass.
-    Fabrik,
-    /// Closed form, for two links with a position goal or three links with an orientation goal;
-    /// other shapes are a [`SolveError::NoClosedForm`](super::SolveError::NoClosedForm).
-    Analytic,
+listed_enum! {
+    /// The step rule of a solve. See the [module docs](super) for the formulas.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+    pub enum Method {
+        /// Jacobian transpose with the step length that minimises the linearised error.
+        Transpose,
+        /// Jacobian pseudoinverse `Jᵀ (J Jᵀ)⁺`, via the eigen-decomposition of `J Jᵀ`.
+        PseudoInverse,
+        /// Damped least squares `Jᵀ (J Jᵀ + λ² I)⁻¹`, λ = [`SolveOptions::lambda`](super::SolveOptions::lambda).
+        DampedLeastSquares,
+        /// Selectively damped least squares (Buss & Kim 2005): each singular direction's joint
+        /// change is clamped by how far it can move the tip.
+        SelectivelyDamped,
+        /// Levenberg–Marquardt: damped least squares whose damping adapts to how well the
+        /// linearisation predicted the last step (Nielsen's update), starting from
+        /// [`SolveOptions::lambda`](super::SolveOptions::lambda). The default: as fast as DLS on reachable goals, and it does
+        /// not crawl near singular poses (goals at or beyond the reach).
+        #[default]
+        LevenbergMarquardt,
+        /// Cyclic coordinate descent: one joint at a time, from the tip to the base, each turned to
+        /// the angle that best brings the tip to the goal.
+        CyclicCoordinateDescent,
+        /// FABRIK (Aristidou & Lasenby 2011): backward and forward reaching on the joint positions,
+        /// with angular limits applied in the forward pass.
+        Fabrik,
+        /// Closed form, for two links with a position goal or three links with an orientation goal;
+        /// other shapes are a [`SolveError::NoClosedForm`](super::SolveError::NoClosedForm).
+        Analytic,
+    }
 }
 
 impl Method {
-    /// Every method, in a stable order.
-    pub const ALL: [Method; 8] = [
-        Method::Transpose,
-        Method::PseudoInverse,
-        Method::DampedLeastSquares,
-        Method::SelectivelyDamped,
-        Method::LevenbergMarquardt,
-        Method::CyclicCoordinateDescent,
-        Method::Fabrik,
-        Method::Analytic,
-    ];
-
     /// The short name used at the edges: `transpose`, `pinv`, `dls`, `sdls`, `lm`, `ccd`,
     /// `fabrik`, `analytic`.
     #[must_use]
@@ -93,6 +84,25 @@ impl Method {
         }
     }
 
+    /// Whether it can move a joint of kind `joint`: every method turns revolute joints; the
+    /// Jacobian methods slide prismatic ones too (a column is the slide's direction), CCD,
+    /// FABRIK and the closed forms do not. A new joint kind or method makes the compiler
+    /// name this match.
+    #[must_use]
+    pub fn moves(self, joint: Joint) -> bool {
+        match joint {
+            Joint::Revolute => true,
+            Joint::Prismatic { .. } => match self {
+                Method::Transpose
+                | Method::PseudoInverse
+                | Method::DampedLeastSquares
+                | Method::SelectivelyDamped
+                | Method::LevenbergMarquardt => true,
+                Method::CyclicCoordinateDescent | Method::Fabrik | Method::Analytic => false,
+            },
+        }
+    }
+
     /// A label for people: `Levenberg–Marquardt`, …
     #[must_use]
     pub fn label(self) -> &'static str {
@@ -114,14 +124,14 @@ impl Method {
         match self {
             Method::Transpose => "Jacobian transpose with the error-minimising step length",
             Method::PseudoInverse => "Jacobian pseudoinverse (truncated at singular values below 1e-6)",
-            Method::DampedLeastSquares => "Damped least squares with damping --lambda",
+            Method::DampedLeastSquares => "Damped least squares with the damping λ",
             Method::SelectivelyDamped => "Selectively damped least squares (Buss & Kim)",
             Method::LevenbergMarquardt => {
-                "Levenberg–Marquardt: damped least squares with adaptive damping, starting at --lambda"
+                "Levenberg–Marquardt: damped least squares with adaptive damping, starting at the damping λ"
             }
             Method::CyclicCoordinateDescent => "Cyclic coordinate descent, one joint at a time from the tip",
             Method::Fabrik => "FABRIK, forward and backward reaching on the joint positions",
-            Method::Analytic => "Closed form: 2 links with a position goal, 3 links with --goal-angle",
+            Method::Analytic => "Closed form: 2 links with a position goal, 3 links with an orientation goal",
         }
     }
 
@@ -164,37 +174,34 @@ impl Method {
     }
 }
 
-/// How joint limits are enforced. Every mode except [`LimitMode::Ignore`] also clamps each
-/// step into the limits, so no pose of a solve ever leaves them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum LimitMode {
-    /// Limits are not enforced.
-    Ignore,
-    /// After every step, each limited joint is clamped into its range (the seed program's
-    /// method). Simple, but a joint pinned at a limit can hold the chain in a dead end.
-    Clamp,
-    /// Clamp and lock: a joint whose step would cross its limit moves only to the limit, its
-    /// Jacobian column is removed, and the step is solved again for the other joints (the way
-    /// Blender's IK treats limits). Each iteration starts with every joint free, so a locked
-    /// joint is released as soon as the task pulls it back inside.
-    #[default]
-    Lock,
-    /// [`LimitMode::Lock`] plus a secondary task pushing every limited joint toward the middle
-    /// of its range, projected into the null space of the Jacobian so that it does not disturb
-    /// the tip (Parent, "adding more control"). It matters only for redundant chains.
-    NullSpace,
-    /// Weighted least norm (Chan & Lawrence 1995): a joint moving toward a limit is slowed by a
-    /// weight `1 / (1 + |∂H/∂θ|)` of the barrier `H = Σ (max − min)² / 4(max − θ)(θ − min)`;
-    /// joints moving away keep weight 1. Steps are clamped as well.
-    Weighted,
+listed_enum! {
+    /// How joint limits are enforced. Every mode except [`LimitMode::Ignore`] also clamps each
+    /// step into the limits, so no pose of a solve ever leaves them.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+    pub enum LimitMode {
+        /// Limits are not enforced.
+        Ignore,
+        /// After every step, each limited joint is clamped into its range (the seed program's
+        /// method). Simple, but a joint pinned at a limit can hold the chain in a dead end.
+        Clamp,
+        /// Clamp and lock: a joint whose step would cross its limit moves only to the limit, its
+        /// Jacobian column is removed, and the step is solved again for the other joints (the way
+        /// Blender's IK treats limits). Each iteration starts with every joint free, so a locked
+        /// joint is released as soon as the task pulls it back inside.
+        #[default]
+        Lock,
+        /// [`LimitMode::Lock`] plus a secondary task pushing every limited joint toward the middle
+        /// of its range, projected into the null space of the Jacobian so that it does not disturb
+        /// the tip (Parent, "adding more control"). It matters only for redundant chains.
+        NullSpace,
+        /// Weighted least norm (Chan & Lawrence 1995): a joint moving toward a limit is slowed by a
+        /// weight `1 / (1 + |∂H/∂θ|)` of the barrier `H = Σ (max − min)² / 4(max − θ)(θ − min)`;
+        /// joints moving away keep weight 1. Steps are clamped as well.
+        Weighted,
+    }
 }
 
 impl LimitMode {
-    /// Every mode, in a stable order.
-    pub const ALL: [LimitMode; 5] =
-        [LimitMode::Ignore, LimitMode::Clamp, LimitMode::Lock, LimitMode::NullSpace, LimitMode::Weighted];
-
     /// The short name used at the edges: `ignore`, `clamp`, `lock`, `nullspace`, `weighted`.
     #[must_use]
     pub fn name(self) -> &'static str {

@@ -53,6 +53,7 @@
 mod algebra;
 mod attempt;
 mod ccd;
+mod chain_model;
 mod dls;
 mod fabrik;
 mod fast;
@@ -65,7 +66,6 @@ mod model;
 mod options;
 mod outcome;
 mod pinv;
-mod problem;
 mod restarts;
 mod rig;
 mod rig_model;

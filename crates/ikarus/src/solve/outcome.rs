@@ -143,6 +143,18 @@ pub enum SolveError {
         /// The method's name.
         method: &'static str,
     },
+    /// A method cannot move one of the body's joints ([`Method::moves`](super::Method::moves)).
+    #[error("method {method} cannot move {kind} joint {name:?} (bones[{index}])")]
+    JointKind {
+        /// The method's name.
+        method: &'static str,
+        /// The joint's kind: `prismatic`, …
+        kind: &'static str,
+        /// The bone's name.
+        name: String,
+        /// The bone's index, from 0.
+        index: usize,
+    },
     /// [`SolveOptions::rates`](super::SolveOptions::rates) is neither empty nor one per joint.
     #[error("rates: expected {expected} values (one per joint) or none, got {got}")]
     RatesLength {

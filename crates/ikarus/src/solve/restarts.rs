@@ -5,8 +5,8 @@
 use web_time::Instant;
 
 use super::attempt::attempt;
+use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::problem::Problem;
 use super::{Method, Outcome, Restarts, Status};
 use crate::limits::Bounds;
 use crate::rng::SplitMix64;

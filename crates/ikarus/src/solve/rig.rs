@@ -259,6 +259,12 @@ pub enum RigTaskError {
         /// The bone's name.
         name: String,
     },
+    /// A bend asked of a bone whose joint slides: it has no side to bend to.
+    #[error("goal {name:?}.bend: the bone's joint is prismatic; a bend needs a revolute joint")]
+    BendOnPrismatic {
+        /// The bone's name.
+        name: String,
+    },
     /// A mix outside [0, 1].
     #[error("mix: must be from 0 to 1, got {}", Num(*.value))]
     Mix {

@@ -5,8 +5,8 @@
 use nalgebra::Point2;
 
 use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
+use super::model::Problem;
 use super::model::{Model, Posture, ScratchOf};
-use super::problem::Problem;
 use super::rig::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
 use super::{Outcome, SolveOptions, Status};
 use crate::angle::wrap_angle;
@@ -16,7 +16,7 @@ use crate::limits::Bounds;
 use crate::math;
 use crate::math::distance;
 use crate::rng::SplitMix64;
-use crate::skeleton::Skeleton;
+use crate::skeleton::{Joint, Skeleton};
 use std::f64::consts::PI;
 
 /// A rig's step that lowers the merit by less than this share of it counts toward the stall
@@ -34,6 +34,30 @@ const SECONDARY_REACH: f64 = 0.1;
 pub(super) struct RigPoints {
     pub(super) points: Vec<Point2<f64>>,
     pub(super) directions: Vec<f64>,
+    /// Every bone's origin, for a skeleton that is not [plain](Skeleton::is_plain) (a plain
+    /// one's origins are its parents' tips; then empty).
+    pub(super) starts: Vec<Point2<f64>>,
+}
+
+impl RigPoints {
+    /// Sizes the buffers for `skeleton`.
+    fn fit(&mut self, skeleton: &Skeleton) {
+        let n = skeleton.len();
+        self.points.resize(n + 1, Point2::origin());
+        self.directions.resize(n, 0.0);
+        self.starts.resize(if skeleton.is_plain() { 0 } else { n }, Point2::origin());
+    }
+
+    /// Forward kinematics of `angles` on `skeleton` into these buffers (sized by `fit`).
+    #[inline]
+    fn compute(&mut self, skeleton: &Skeleton, angles: &[f64]) {
+        if self.starts.is_empty() {
+            skeleton.points_into(angles, &mut self.points, &mut self.directions);
+        } else {
+            self.points[0] = skeleton.base();
+            skeleton.forward_into(angles, &mut self.starts, &mut self.points[1..], &mut self.directions);
+        }
+    }
 }
 
 /// One effector as the core sees it.
@@ -91,10 +115,8 @@ impl RigWork {
         opts: &SolveOptions,
         out: &mut Outcome,
     ) -> Result<(), RigTaskError> {
-        let n = skeleton.len();
-        self.fk.points.resize(n + 1, Point2::origin());
-        self.fk.directions.resize(n, 0.0);
-        skeleton.points_into(start, &mut self.fk.points, &mut self.fk.directions);
+        self.fk.fit(skeleton);
+        self.fk.compute(skeleton, start);
         let ignore = opts.limits == super::LimitMode::Ignore;
         self.limits.clear();
         self.limits.extend(skeleton.limits().iter().map(|l| if ignore { None } else { *l }));
@@ -109,6 +131,11 @@ impl RigWork {
         }
         for g in &task.goals {
             let Some(bend) = g.bend else { continue };
+            let name = || skeleton.name(g.bone).to_owned();
+            match skeleton.joint(g.bone) {
+                Joint::Revolute => {}
+                Joint::Prismatic { .. } => return Err(RigTaskError::BendOnPrismatic { name: name() }),
+            }
             let (lo, hi) = match bend {
                 Bend::Positive => (0.0, std::f64::consts::PI),
                 Bend::Negative => (-std::f64::consts::PI, 0.0),
@@ -117,7 +144,6 @@ impl RigWork {
                 Some(l) => (l.min().max(lo), l.max().min(hi)),
                 None => (lo, hi),
             };
-            let name = || skeleton.name(g.bone).to_owned();
             let lim = JointLimits::new(lo, hi).map_err(|_| RigTaskError::BendOutsideLimits { name: name() })?;
             self.limits[g.bone] = Some(lim);
             let a = self.start[g.bone];
@@ -131,8 +157,9 @@ impl RigWork {
         out.effectors.clear();
         self.effs.clear();
         for (slot, g) in task.goals.iter().enumerate() {
+            // (Softening assumes the two bones' triangle: plain skeletons only.)
             let target = match skeleton.parent(g.bone) {
-                Some(parent) if g.softness > 0.0 => {
+                Some(parent) if g.softness > 0.0 && skeleton.is_plain() => {
                     let root = match skeleton.parent(parent) {
                         Some(q) => self.fk.points[q + 1],
                         None => skeleton.base(),
@@ -174,9 +201,13 @@ impl RigWork {
     }
 
     /// Whether `eff`'s target is beyond the reach of the bones from the base to it (by more
-    /// than `tolerance`), limits ignored: the annulus of their lengths, or with an orientation
+    /// than `tolerance`), limits ignored (never, for a skeleton that is not plain): the annulus of their lengths, or with an orientation
     /// the wrist's annulus of all but the last.
     fn out_of_reach(&mut self, skeleton: &Skeleton, eff: &Eff, tolerance: f64) -> bool {
+        if !skeleton.is_plain() {
+            // Offsets and slides leave the annulus of lengths: no claim is made.
+            return false;
+        }
         // Root first, as a chain of these bones would sum them.
         self.lengths.clear();
         self.lengths.extend(skeleton.path_to_root(eff.bone).map(|j| skeleton.lengths()[j]));
@@ -233,10 +264,13 @@ impl Rig<'_> {
 
     /// Where bone `j` starts, from the points of forward kinematics.
     #[inline]
-    fn start_of(&self, points: &[Point2<f64>], j: usize) -> Point2<f64> {
+    fn start_of(&self, points: &RigPoints, j: usize) -> Point2<f64> {
+        if !points.starts.is_empty() {
+            return points.starts[j];
+        }
         match self.skeleton.parent(j) {
-            Some(q) => points[q + 1],
-            None => points[0],
+            Some(q) => points.points[q + 1],
+            None => points.points[0],
         }
     }
 }
@@ -255,8 +289,7 @@ impl Model for Rig<'_> {
     fn fit(&self, s: &mut ScratchOf<Self>) {
         let n = self.skeleton.len();
         for p in [&mut s.joints, &mut s.trial_joints] {
-            p.points.resize(n + 1, Point2::origin());
-            p.directions.resize(n, 0.0);
+            p.fit(self.skeleton);
         }
         s.fit_joints(n);
         let rows = self.effs.iter().map(Eff::rows).sum();
@@ -301,7 +334,7 @@ impl Model for Rig<'_> {
 
     #[inline]
     fn forward_into(&self, angles: &[f64], points: &mut RigPoints) -> f64 {
-        self.skeleton.points_into(angles, &mut points.points, &mut points.directions);
+        points.compute(self.skeleton, angles);
         angles.iter().sum()
     }
 
@@ -358,11 +391,11 @@ impl Model for Rig<'_> {
             let tip = points.points[eff.bone + 1];
             let rw = eff.root_weight;
             for j in self.skeleton.path_to_root(eff.bone) {
-                let p = self.start_of(&points.points, j);
-                alg.jacobian[(row, j)] = rw * -(tip.y - p.y);
-                alg.jacobian[(row + 1, j)] = rw * (tip.x - p.x);
+                let [dx, dy, dphi] = self.skeleton.column(j, tip, self.start_of(points, j), &points.directions);
+                alg.jacobian[(row, j)] = rw * dx;
+                alg.jacobian[(row + 1, j)] = rw * dy;
                 if eff.orientation.is_some() {
-                    alg.jacobian[(row + 2, j)] = rw * w_o;
+                    alg.jacobian[(row + 2, j)] = rw * w_o * dphi;
                 }
             }
             row += eff.rows();
@@ -427,7 +460,8 @@ impl Model for Rig<'_> {
     }
 
     /// The joints on the path of an effector the attempt missed are drawn anew, uniformly
-    /// inside their bounds (±π around the start for a free joint); the others keep the
+    /// inside their bounds (for a free joint: ±π around the start of a revolute one, ±its
+    /// bone's length around the start of a prismatic one); the others keep the
     /// attempt's angles, so that a restart does not undo the limbs that were reached. (Drawing
     /// every joint, a rig of four limbs would need every limb to succeed in the same attempt;
     /// and a chain's restarts begin near the start pose, which suits one limb but leaves every
@@ -449,7 +483,11 @@ impl Model for Rig<'_> {
         for (i, ((r, &f), &a)) in restart.iter_mut().zip(free.iter()).zip(out.pose.angles()).enumerate() {
             let u = rng.unit();
             *r = if f {
-                let (lo, hi) = p.bounds.get(i).map_or((start[i] - PI, start[i] + PI), |l| (l.min(), l.max()));
+                let free = match self.skeleton.joint(i) {
+                    Joint::Revolute => PI,
+                    Joint::Prismatic { .. } => self.skeleton.lengths()[i],
+                };
+                let (lo, hi) = p.bounds.get(i).map_or((start[i] - free, start[i] + free), |l| (l.min(), l.max()));
                 lo + u * (hi - lo)
             } else {
                 a

@@ -1,14 +1,17 @@
 //! [`Solver::solve_rig`]: a skeleton solve — input checks, the task's effectors, the core's
 //! loop and restarts on the [`Rig`] model, and the mix.
 
+use super::Method;
+use super::model::Problem;
 use super::model::{Model, Posture};
-use super::problem::Problem;
 use super::restarts::solve_with_restarts;
-use super::rig::RigTask;
+use super::rig::{EffectorOutcome, Priority, RigTask};
 use super::rig_model::Rig;
 use super::solver::{finish, measure};
 use super::{Outcome, SolveError, Solver, Status};
-use crate::skeleton::Skeleton;
+use crate::chain::Chain;
+use crate::goal::Goal;
+use crate::skeleton::{Joint, Skeleton};
 
 impl Solver {
     /// Solves every goal and pin of `task` on `skeleton` together, starting from `start` (one
@@ -20,6 +23,11 @@ impl Solver {
     /// `angle_error` are the largest over them; `effectors` says how each ended. When the
     /// goals cannot all be met, the pose is the weighted least-squares best the solve found.
     /// CCD, FABRIK and the closed form solve chains only ([`SolveError::ChainOnly`]).
+    ///
+    /// A skeleton that is a chain ([`Skeleton::as_chain`]) with one goal on its last bone
+    /// (no pins, weight 1, primary, no bend or softness, mix 1) is solved as that chain by
+    /// [`Solver::solve_into`]: its fast path, closed forms, region verdict and every method,
+    /// the outcome the chain's bit for bit with the goal as its one effector.
     pub fn solve_rig(&mut self, skeleton: &Skeleton, start: &[f64], task: &RigTask) -> Result<Outcome, SolveError> {
         let mut out = Outcome::default();
         self.solve_rig_into(skeleton, start, task, &mut out)?;
@@ -36,11 +44,16 @@ impl Solver {
         out: &mut Outcome,
     ) -> Result<(), SolveError> {
         let opts = &self.options;
+        check_joints(skeleton, opts.method)?;
+        check_rig_input(skeleton, start, opts.rates.len())?;
+        task.validate(skeleton)?;
+        if let Some(goal) = chain_goal(skeleton, task) {
+            return self.solve_as_chain(skeleton, start, &goal, out);
+        }
+        let opts = &self.options;
         if !opts.method.solves_rigs() {
             return Err(SolveError::ChainOnly { method: opts.method.name() });
         }
-        check_rig_input(skeleton, start, opts.rates.len())?;
-        task.validate(skeleton)?;
         let began = opts.restarts.and_then(|r| r.time_budget).map(|_| web_time::Instant::now());
         let work = &mut self.rig_work;
         work.setup(skeleton, start, task, opts, out)?;
@@ -94,6 +107,81 @@ impl Solver {
         }
         Ok(())
     }
+}
+
+impl Solver {
+    /// The chain path of [`Solver::solve_rig_into`]: the skeleton's chain view (built once
+    /// per skeleton and kept), solved for `goal`, its outcome given the goal as its effector.
+    fn solve_as_chain(
+        &mut self,
+        skeleton: &Skeleton,
+        start: &[f64],
+        goal: &Goal,
+        out: &mut Outcome,
+    ) -> Result<(), SolveError> {
+        let same = |c: &Chain| {
+            c.base() == skeleton.base()
+                && c.lengths() == skeleton.lengths()
+                && c.limits() == skeleton.limits()
+                && c.start_pose().angles() == skeleton.start_angles()
+        };
+        let chain = match self.rig_chain.take() {
+            Some(c) if same(&c) => c,
+            _ => skeleton.as_chain().expect("ikarus: chain_goal checked the shape"),
+        };
+        let result = self.solve_into(&chain, start, goal, out);
+        self.rig_chain = Some(chain);
+        result?;
+        let (status, error, angle_error) = (out.status, out.error, out.angle_error);
+        let (tip, orientation) = (out.end_effector.position, out.end_effector.orientation);
+        out.effectors.clear();
+        out.effectors.push(EffectorOutcome {
+            bone: skeleton.len() - 1,
+            pinned: false,
+            status,
+            error,
+            angle_error,
+            tip,
+            orientation,
+            target: goal.target(),
+        });
+        Ok(())
+    }
+}
+
+/// The goal of a task that is a chain's: `skeleton` has a chain view and the task is one
+/// goal on its last bone that the chain's solve means the same way (weight 1, primary, no
+/// bend or softness), no pins, mix 1.
+fn chain_goal(skeleton: &Skeleton, task: &RigTask) -> Option<Goal> {
+    let [g] = task.goals.as_slice() else { return None };
+    let plain_goal = g.bone + 1 == skeleton.len()
+        && g.weight == 1.0
+        && g.priority == Priority::Primary
+        && g.bend.is_none()
+        && g.softness == 0.0;
+    let one_branch = skeleton.parents().iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
+    (plain_goal
+        && task.pins.is_empty()
+        && task.mix == 1.0
+        && one_branch
+        && skeleton.is_plain()
+        && !skeleton.has_rest_pose())
+    .then_some(g.goal)
+}
+
+/// Every joint of `skeleton` is one `method` moves.
+fn check_joints(skeleton: &Skeleton, method: Method) -> Result<(), SolveError> {
+    for (index, &joint) in skeleton.joints().iter().enumerate() {
+        if !method.moves(joint) {
+            let kind = match joint {
+                Joint::Revolute => "revolute",
+                Joint::Prismatic { .. } => "prismatic",
+            };
+            let (method, name) = (method.name(), skeleton.name(index).to_owned());
+            return Err(SolveError::JointKind { method, kind, name, index });
+        }
+    }
+    Ok(())
 }
 
 /// One finite angle per bone, and rates one per bone or none.

@@ -488,3 +488,171 @@ fn the_rest_pose_pulls_the_body_home_in_the_null_space() {
         assert_eq!(out.pose.angles()[i], puppet.rest_angles()[i], "{name}");
     }
 }
+
+/// Issue 25: planar robot arms with a prismatic joint (RRP: two revolute then a slide; PRR: a
+/// slide first), limits on every joint, and an offset bone: every Jacobian method and limit
+/// mode reaches targets put at the tip by a random pose inside the limits (pose → FK → IK →
+/// FK), within the limits, the claim checked by forward kinematics.
+#[test]
+fn prismatic_arms_reach_what_a_random_pose_inside_the_limits_reaches() {
+    use crate::{Bone, JointLimits};
+    let lim = |a: f64, b: f64| JointLimits::new(a, b).unwrap();
+    let rrp = Skeleton::new(
+        [0.0, 0.0],
+        &[
+            Bone::new("shoulder", 1.0, 0.3).with_limits(lim(-2.5, 2.5)),
+            Bone::new("elbow", 0.8, 0.4).with_parent("shoulder").with_limits(lim(-2.5, 2.5)),
+            Bone::new("ram", 0.5, 0.0).with_parent("elbow").prismatic(0.2).with_limits(lim(0.0, 0.6)),
+        ],
+    )
+    .unwrap();
+    let prr = Skeleton::new(
+        [0.0, 0.0],
+        &[
+            Bone::new("carriage", 0.3, 0.0).prismatic(0.5).with_slide([1.0, 0.0]).with_limits(lim(-1.0, 1.5)),
+            Bone::new("upper", 1.0, 1.2).with_parent("carriage").with_offset([0.15, 0.1]).with_limits(lim(-0.5, 2.8)),
+            Bone::new("lower", 0.7, -0.5).with_parent("upper").with_limits(lim(-2.5, 2.5)),
+        ],
+    )
+    .unwrap();
+    let mut reached = 0;
+    let mut total = 0;
+    for arm in [&rrp, &prr] {
+        let mut rng = SplitMix64(25);
+        for method in Method::ALL.into_iter().filter(|m| m.solves_rigs()) {
+            for limits in [LimitMode::Clamp, LimitMode::Lock, LimitMode::NullSpace, LimitMode::Weighted] {
+                let restarts = Some(crate::Restarts { attempts: 8, seed: 3, time_budget: None });
+                let opts = SolveOptions { method, limits, restarts, max_iterations: 400, ..SolveOptions::default() };
+                let mut solver = Solver::new(opts.clone()).unwrap();
+                for _ in 0..6 {
+                    let task = reachable_task(arm, &[2], &mut rng);
+                    let out = solver.solve_rig(arm, arm.start_angles(), &task).unwrap();
+                    reached += usize::from(verify(arm, arm.start_angles(), &task, &opts, &out));
+                    total += 1;
+                }
+            }
+        }
+    }
+    // Measured: every one (the count is exact, the run deterministic).
+    assert_eq!(reached, total, "{reached}/{total}");
+}
+
+/// A method that cannot move a prismatic joint refuses the body in one line naming the joint,
+/// before the rig check.
+#[test]
+fn ccd_fabrik_and_the_closed_forms_refuse_a_prismatic_joint() {
+    use crate::Bone;
+    let arm = Skeleton::new(
+        [0.0, 0.0],
+        &[Bone::new("base", 1.0, 0.0), Bone::new("slider", 0.5, 0.0).with_parent("base").prismatic(0.0)],
+    )
+    .unwrap();
+    let task = RigTask::new(vec![RigGoal::new(1, Goal::position(1.0, 0.5).unwrap())], vec![]);
+    for method in Method::ALL {
+        let mut solver = Solver::new(SolveOptions { method, ..SolveOptions::default() }).unwrap();
+        let result = solver.solve_rig(&arm, arm.start_angles(), &task);
+        match result {
+            Ok(_) => assert!(method.solves_rigs(), "{method:?}"),
+            Err(e) => assert_eq!(
+                e.to_string(),
+                format!("method {} cannot move prismatic joint \"slider\" (bones[1])", method.name())
+            ),
+        }
+    }
+    // A bend on the slider is refused too.
+    let bent = RigTask::new(vec![RigGoal::new(1, Goal::position(1.0, 0.5).unwrap()).with_bend(Bend::Positive)], vec![]);
+    let err = Solver::new(SolveOptions::default()).unwrap().solve_rig(&arm, arm.start_angles(), &bent).unwrap_err();
+    assert_eq!(err.to_string(), "goal \"slider\".bend: the bone's joint is prismatic; a bend needs a revolute joint");
+}
+
+mod chain_dispatch {
+    use super::*;
+    use crate::{Chain, JointLimits, Link, Restarts};
+    use proptest::prelude::*;
+    use std::f64::consts::PI;
+
+    /// Random arms of 1 to 7 links (some limited) and goals around them, some with an
+    /// orientation.
+    fn cases() -> impl Strategy<Value = (Chain, Goal)> {
+        (1usize..=7).prop_flat_map(|n| {
+            (
+                prop::collection::vec((0.2f64..2.0, -PI..PI, any::<bool>()), n),
+                (-1.3f64..1.3, -1.3f64..1.3, prop::option::of(-PI..PI)),
+            )
+                .prop_map(|(links, (u, v, angle))| {
+                    let links: Vec<Link> = links
+                        .iter()
+                        .map(|&(l, a, limited)| {
+                            let link = Link::new(l, a);
+                            if limited { link.with_limits(JointLimits::new(a - 1.5, a + 1.5).unwrap()) } else { link }
+                        })
+                        .collect();
+                    let chain = Chain::new([0.1, -0.2], &links).unwrap();
+                    let r = chain.max_reach();
+                    let goal = match angle {
+                        Some(a) => Goal::with_orientation(u * r, v * r, a),
+                        None => Goal::position(u * r, v * r),
+                    };
+                    (chain, goal.unwrap())
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+
+        /// Issue 25: a chain and the same chain written as a one-branch skeleton give
+        /// bit-identical answers, for every method and several limit modes.
+        #[test]
+        fn a_chain_and_its_one_branch_skeleton_answer_bit_for_bit((chain, goal) in cases()) {
+            let skeleton = Skeleton::from_chain(&chain);
+            let task = RigTask::new(vec![RigGoal::new(chain.len() - 1, goal)], vec![]);
+            let start = chain.start_pose().angles().to_vec();
+            for method in Method::ALL {
+                for limits in [LimitMode::Ignore, LimitMode::Clamp, LimitMode::Lock, LimitMode::Weighted] {
+                    let restarts = Some(Restarts { attempts: 3, seed: 7, time_budget: None });
+                    let opts = SolveOptions { method, limits, restarts, max_iterations: 200, ..SolveOptions::default() };
+                    let mut solver = Solver::new(opts).unwrap();
+                    let c = solver.solve(&chain, chain.start_pose(), &goal);
+                    let s = solver.solve_rig(&skeleton, &start, &task);
+                    match (c, s) {
+                        (Ok(c), Ok(s)) => {
+                            let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                            prop_assert_eq!(bits(c.pose.angles()), bits(s.pose.angles()), "{:?} {:?}", method, limits);
+                            prop_assert_eq!(c.status, s.status);
+                            prop_assert_eq!((c.iterations, c.restarts), (s.iterations, s.restarts));
+                            prop_assert_eq!(c.error.to_bits(), s.error.to_bits());
+                            prop_assert_eq!(c.angle_error.to_bits(), s.angle_error.to_bits());
+                            let e = &s.effectors[0];
+                            prop_assert_eq!((e.bone, e.status, e.tip), (chain.len() - 1, c.status, c.end_effector.position));
+                        }
+                        (Err(c), Err(s)) => prop_assert_eq!(c.to_string(), s.to_string()),
+                        (c, s) => prop_assert!(false, "{:?} {:?}: chain {:?}, skeleton {:?}", method, limits, c, s),
+                    }
+                }
+            }
+        }
+    }
+
+    /// A task the chain does not mean the same way (a pin, a weight, a fork) stays on the rig
+    /// path: the chain-only methods are still refused there.
+    #[test]
+    fn other_tasks_stay_rig_solves() {
+        let chain = crate::fixtures::seed_arm_limited();
+        let skeleton = Skeleton::from_chain(&chain);
+        let goal = Goal::position(1.0, 1.0).unwrap();
+        let last = chain.len() - 1;
+        let mut ccd =
+            Solver::new(SolveOptions { method: Method::CyclicCoordinateDescent, ..SolveOptions::default() }).unwrap();
+        let start = chain.start_pose().angles();
+        assert!(ccd.solve_rig(&skeleton, start, &RigTask::new(vec![RigGoal::new(last, goal)], vec![])).is_ok());
+        for task in [
+            RigTask::new(vec![RigGoal::new(last, goal)], vec![Pin::new(0)]),
+            RigTask::new(vec![RigGoal::new(last, goal).with_weight(2.0)], vec![]),
+            RigTask::new(vec![RigGoal::new(0, goal)], vec![]),
+        ] {
+            let e = ccd.solve_rig(&skeleton, start, &task).unwrap_err();
+            assert!(matches!(e, SolveError::ChainOnly { .. }), "{e}");
+        }
+    }
+}

@@ -4,8 +4,8 @@
 
 use super::algebra::Fixed3;
 use super::algebra::dynamic::Dynamic;
+use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::problem::Problem;
 use super::restarts::solve_with_restarts_seeded;
 use super::rig_model::RigPoints;
 use super::scratch::Scratch;
@@ -33,6 +33,9 @@ pub struct Solver {
     pub(super) first_level_scratch: Scratch<RigPoints, Dynamic>,
     /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
     pub(super) rig_work: super::rig_model::RigWork,
+    /// The chain view of the last chain-shaped skeleton solved (see `Solver::solve_rig`), kept
+    /// so that solving it again allocates nothing.
+    pub(super) rig_chain: Option<Chain>,
     /// The exact regions of the last chain solved with limits, for the verdict.
     reach: ReachCache,
     /// The batch's lanes ([`Solver::solve_batch`]).
@@ -49,6 +52,7 @@ impl Solver {
             options,
             scratch: Scratch::default(),
             rig_scratch: Scratch::default(),
+            rig_chain: None,
             first_level_scratch: Scratch::default(),
             rig_work: Default::default(),
             reach: ReachCache::default(),

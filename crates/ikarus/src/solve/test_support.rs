@@ -4,7 +4,7 @@
 
 use nalgebra::Point2;
 
-use super::problem::Problem;
+use super::model::Problem;
 use super::{Goal, Method, SolveOptions, wrap_angle};
 use crate::chain::Chain;
 use crate::kinematics::joint_positions;

@@ -221,7 +221,9 @@ impl TrackBody for RigEffector {
     }
 
     fn out_of_reach(&self, goal: &Goal, tolerance: f64) -> bool {
-        goal.is_out_of_reach(&self.limb, tolerance)
+        // The limb's annulus of lengths holds only where bones start at their parents' tips
+        // and turn: with offsets or slides no claim is made (as the rig solve's own test).
+        self.skeleton.is_plain() && goal.is_out_of_reach(&self.limb, tolerance)
     }
 
     fn errors(&mut self, pose: &[f64], goal: &Goal) -> (f64, f64) {

@@ -83,6 +83,7 @@ mod rig_tests;
 mod tests;
 
 use crate::math;
+use crate::names::listed_enum;
 use crate::number::Num;
 use thiserror::Error;
 
@@ -98,20 +99,18 @@ pub use path::{Path, PathError, PointError};
 pub use plan::plan;
 pub use result::{SampleStatus, Track, TrackSample, TrackSummary, is_flip};
 
-/// How a path is tracked.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum TrackMode {
-    /// [`follow`]: online, sample by sample, every step within the bound.
-    Follow,
-    /// [`plan`]: one global search over the whole path.
-    Plan,
+listed_enum! {
+    /// How a path is tracked.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum TrackMode {
+        /// [`follow`]: online, sample by sample, every step within the bound.
+        Follow,
+        /// [`plan`]: one global search over the whole path.
+        Plan,
+    }
 }
 
 impl TrackMode {
-    /// Every mode.
-    pub const ALL: [TrackMode; 2] = [TrackMode::Follow, TrackMode::Plan];
-
     /// `follow` or `plan`.
     #[must_use]
     pub fn name(self) -> &'static str {

@@ -1,0 +1,144 @@
+//! Issue 25: rig files with offsets and prismatic joints (`examples/joints/`: an RRP arm, a
+//! PRR arm, a hand whose fingers start across the palm) solve from the command line and from
+//! `POST /api/solve`, the answers checked by a forward kinematics written here from the file's
+//! keys (not the library's); and the new keys' bad values are one line naming the field.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+use common::{fails, json, server};
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/joints").join(format!("{name}.toml"))
+}
+
+fn file(name: &str) -> Value {
+    toml::from_str(&std::fs::read_to_string(example(name)).unwrap()).unwrap()
+}
+
+fn pair(v: &Value) -> Option<[f64; 2]> {
+    let a = v.as_array()?;
+    Some([a[0].as_f64().unwrap(), a[1].as_f64().unwrap()])
+}
+
+/// Every bone's tip from the answer's `angles_deg` and `extensions` by the file's definition:
+/// origin = parent's origin + R(parent's direction) (offset + d · unit slide), offset by
+/// default the parent's tip, a prismatic bone's slide by default along its own angle.
+fn tips(rig: &Value, answer: &Value) -> Vec<(String, [f64; 2])> {
+    let bones = rig["bones"].as_array().unwrap();
+    let index = |name: &str| bones.iter().position(|b| b["name"] == name).unwrap();
+    fn place(bones: &[Value], answer: &Value, index: &dyn Fn(&str) -> usize, i: usize) -> ([f64; 2], f64) {
+        let b = &bones[i];
+        let (origin, phi, len) = match b["parent"].as_str() {
+            Some(p) => {
+                let j = index(p);
+                let (o, phi) = place(bones, answer, index, j);
+                (o, phi, bones[j]["length"].as_f64().unwrap())
+            }
+            None => ([0.0, 0.0], 0.0, 0.0),
+        };
+        let name = b["name"].as_str().unwrap();
+        let angle = answer["angles_deg"][name].as_f64().unwrap().to_radians();
+        let [mut x, mut y] = pair(&b["offset"]).unwrap_or([len, 0.0]);
+        if b["joint"] == "prismatic" {
+            let d = answer["extensions"][name].as_f64().unwrap();
+            let [sx, sy] = pair(&b["slide"]).unwrap_or([angle.cos(), angle.sin()]);
+            let norm = sx.hypot(sy);
+            x += d * sx / norm;
+            y += d * sy / norm;
+        }
+        let (s, c) = phi.sin_cos();
+        ([origin[0] + c * x - s * y, origin[1] + s * x + c * y], phi + angle)
+    }
+    (0..bones.len())
+        .map(|i| {
+            let (o, phi) = place(bones, answer, &index, i);
+            let l = bones[i]["length"].as_f64().unwrap();
+            (bones[i]["name"].as_str().unwrap().to_owned(), [o[0] + l * phi.cos(), o[1] + l * phi.sin()])
+        })
+        .collect()
+}
+
+/// Checks an answer: reached, every reported tip where the file's forward kinematics puts it,
+/// the goals' targets within the tolerance, every extension within its limits.
+fn check(name: &str, answer: &Value, goals: &[Target]) {
+    let rig = file(name);
+    assert_eq!(answer["status"], "reached", "{name}: {answer}");
+    for (bone, tip) in tips(&rig, answer) {
+        let got = pair(&answer["joints"][&bone]).unwrap();
+        assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{name} {bone}: {got:?} vs {tip:?}");
+        if let Some((_, target)) = goals.iter().find(|(b, _)| *b == bone) {
+            assert!((tip[0] - target[0]).hypot(tip[1] - target[1]) <= 1e-6, "{name} {bone}: {tip:?}");
+        }
+    }
+    for b in rig["bones"].as_array().unwrap() {
+        let bone = b["name"].as_str().unwrap();
+        match (b["joint"].as_str(), pair(&b["limits"])) {
+            (Some("prismatic"), Some([lo, hi])) => {
+                let d = answer["extensions"][bone].as_f64().unwrap();
+                assert!((lo..=hi).contains(&d), "{name} {bone}: {d} outside [{lo}, {hi}]");
+            }
+            (Some("prismatic"), None) => assert!(answer["extensions"][bone].is_f64()),
+            _ => assert!(answer["extensions"].get(bone).is_none()),
+        }
+    }
+}
+
+/// A goal: a bone's name and its target.
+type Target = (&'static str, [f64; 2]);
+
+const CASES: [(&str, &[Target]); 3] = [
+    ("rrp", &[("ram", [1.2, 1.3])]),
+    ("prr", &[("lower", [1.4, 0.9])]),
+    ("palm", &[("index_tip", [0.029, 0.1228]), ("thumb_tip", [-0.0638, 0.0847])]),
+];
+
+#[test]
+fn the_joint_examples_solve_from_the_command_line_and_the_api_alike() {
+    let s = server::start(&[]);
+    for (name, goals) in CASES {
+        let path = example(name);
+        let mut args = vec!["solve".to_owned(), "--rig".to_owned(), path.to_str().unwrap().to_owned()];
+        for (bone, [x, y]) in goals {
+            args.extend(["--goal".to_owned(), format!("{bone}={x},{y}")]);
+        }
+        args.extend(["--limits", "--restarts", "8", "--format", "json"].map(str::to_owned));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let cli = json(&args);
+        check(name, &cli, goals);
+        // Only the rigs with a prismatic joint say "extensions".
+        assert_eq!(cli.get("extensions").is_some(), name != "palm", "{name}");
+        let goals_json: Vec<Value> = goals.iter().map(|(b, [x, y])| json!({"bone": b, "x": x, "y": y})).collect();
+        let body = json!({"rig": file(name), "goals": goals_json, "options": {"limits": true, "restarts": 8}});
+        let api = s.post("/api/solve", &body).json();
+        check(name, &api, goals);
+        assert_eq!(api["angles_deg"], cli["angles_deg"], "{name}: the API's pose is the command line's");
+        assert_eq!(api["extensions"], cli["extensions"], "{name}");
+    }
+}
+
+#[test]
+fn bad_joint_keys_are_one_line_naming_the_field_and_the_value() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = "[[bones]]\nname = \"a\"\nlength = 1\n[[bones]]\nname = \"s\"\nparent = \"a\"\nlength = 0.5\n";
+    for (extra, want) in [
+        ("joint = \"prismatic\"\nslide = [0, 0]\n", "bones[1] (\"s\").slide: must not be zero, got [0, 0]"),
+        (
+            "joint = \"prismatic\"\nextension = 0.9\nlimits = [0, 0.5]\n",
+            "bones[1] (\"s\").extension: 0.9 lies outside the limits [0, 0.5]",
+        ),
+        ("joint = \"prismatic\"\nlimits = [0.5, 0]\n", "bones[1] (\"s\").limits = [0.5, 0]"),
+        ("joint = \"prismatic\"\nlimits_deg = [0, 10]\n", "bones[1] (\"s\").limits_deg: not for a prismatic joint"),
+        ("slide = [1, 0]\n", "bones[1] (\"s\").slide: not for a revolute joint"),
+        ("offset = [nan, 0]\n", "bones[1] (\"s\").offset: must be finite numbers, got [NaN, 0]"),
+        ("joint = \"helical\"\n", "line 8, column 9: unknown variant `helical`, expected `revolute` or `prismatic`"),
+    ] {
+        let path = dir.path().join("r.toml");
+        std::fs::write(&path, format!("{base}{extra}")).unwrap();
+        let err = fails(&["solve", "--rig", path.to_str().unwrap(), "--goal", "s=1,0"], 2);
+        assert!(err.contains(want) && err.trim_end().lines().count() == 1, "{extra}: {err}");
+    }
+}
