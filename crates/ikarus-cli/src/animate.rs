@@ -20,7 +20,7 @@ use crate::picture::{
 };
 use crate::report::{AnimateJson, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
-use crate::settings::SolverSettings;
+use crate::settings::SolverFlags;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AnimateFormat {
@@ -58,7 +58,7 @@ pub struct MotionArgs {
     #[command(flatten)]
     pub rig_task: RigTaskArgs,
     #[command(flatten)]
-    pub solver: SolverSettings,
+    pub solver: SolverFlags,
     /// Number of frames of the motion [default: 60]
     #[arg(long, value_name = "N", value_parser = parse_at_least_one, conflicts_with = "duration")]
     pub frames: Option<u32>,
@@ -147,7 +147,7 @@ impl MotionArgs {
         let ease = self.ease.resolve(EaseKind::Sine)?;
         // Solve for each via point, then the goal, each from the previous pose.
         let record = if self.from_solve { Some(self.record_every.unwrap_or(1)) } else { None };
-        let options = arm.options(&self.solver, record)?;
+        let options = arm.options(&self.solver.settings(), record)?;
         let goal = self.arm_goal()?;
         let via = self
             .via

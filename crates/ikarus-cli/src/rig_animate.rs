@@ -64,7 +64,7 @@ pub fn motion_run(args: &MotionArgs, path: &Path) -> Result<RigMotionRun, CliErr
     let timing = args.timing()?;
     let ease = args.ease.resolve(EaseKind::Sine)?;
     let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
-    let options = rig.options(&args.solver, record)?;
+    let options = rig.options(&args.solver.settings(), record)?;
     let tasks = tasks(args, &rig)?;
     let start = rig.skeleton.start_angles().to_vec();
     let interpolation = args.interpolation.unwrap_or_default();

@@ -143,7 +143,7 @@ pub fn run(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
         return Err(CliError::input(format!("{label}: no target sets (expected a header and one target set per row)")));
     }
 
-    let solver = solver(rig.options(&args.solver, None)?)?;
+    let solver = solver(rig.options(&args.solver.settings(), None)?)?;
     let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
     let skeleton = &rig.skeleton;
     let (solved, tally) = batch.solve_all(

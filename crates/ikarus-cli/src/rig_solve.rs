@@ -27,7 +27,7 @@ pub fn run(args: &SolveArgs, path: &Path) -> Result<(), CliError> {
     let task = args.rig_task.task(&rig.skeleton, &targets)?;
     // No frames unless asked for: a rig's frames are one point per bone each.
     let every = args.record_every.or(rig.solver.record_every);
-    let mut solver = solver(rig.options(&args.solver, every)?)?;
+    let mut solver = solver(rig.options(&args.solver.settings(), every)?)?;
     let picture = args.picture.prepare()?;
     let started = Instant::now();
     let outcome = solver

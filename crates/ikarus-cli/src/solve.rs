@@ -17,7 +17,7 @@ use crate::output;
 use crate::picture::{StillArgs, arm_drawing, draw, report_format};
 use crate::report::{SolveJson, SolveReport, deg_text};
 use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
-use crate::settings::{SolverSettings, solver};
+use crate::settings::{SolverFlags, solver};
 
 /// Frames recorded by default: every 20 iterations, as the seed program did.
 const DEFAULT_RECORD_EVERY: u32 = 20;
@@ -59,7 +59,7 @@ pub struct SolveArgs {
     #[command(flatten)]
     pub rig_task: RigTaskArgs,
     #[command(flatten)]
-    pub solver: SolverSettings,
+    pub solver: SolverFlags,
     /// Record a frame every K iterations, plus the first and the last [default: 20; with
     /// --rig, none]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
@@ -126,7 +126,7 @@ fn run_single(args: &SolveArgs, arm: &Arm) -> Result<(), CliError> {
     let goal = arm_goal(args)?;
     let picture = args.picture.prepare()?;
     let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
-    let mut solver = solver(arm.options(&args.solver, Some(every))?)?;
+    let mut solver = solver(arm.options(&args.solver.settings(), Some(every))?)?;
     let started = Instant::now();
     let outcome =
         solver.solve(&arm.chain, arm.chain.start_pose(), &goal).map_err(|e| CliError::input(e.to_string()))?;
@@ -268,7 +268,7 @@ fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
     if pieces.iter().all(|p| p.goals.is_empty()) {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
-    let solver = solver(arm.options(&args.solver, None)?)?;
+    let solver = solver(arm.options(&args.solver.settings(), None)?)?;
     batch.summary_json(args.summary_json.as_deref())?;
     let chain = &arm.chain;
     let start = chain.start_pose().angles();

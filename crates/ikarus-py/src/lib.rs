@@ -1,7 +1,7 @@
 //! `ikarus._ikarus`: the Python bindings of ikarus (re-exported by the `ikarus` package).
 //!
 //! One workflow per job: arms, settings, defaults, messages and JSON answers come from the shared
-//! facade `ikarus_cli::edge`, as for the command line and the server. The hot path
+//! facade `ikarus_edge::edge`, as for the command line and the server. The hot path
 //! (`Chain.solve`, `Chain.solve_batch`) uses its typed pieces and `ikarus::Solver` directly; the
 //! rest (animate, track, workspace, reach, pictures) posts the API's request to `edge::call` and
 //! hands its JSON answer to the Python side (`python/ikarus/__init__.py`), which turns it into
@@ -14,7 +14,7 @@ use ikarus::kinematics::joint_positions;
 use ikarus::names::Named;
 use ikarus::number::Num;
 use ikarus::{EaseKind, Goal, LimitMode, Outcome, SolveOptions, Solver};
-use ikarus_cli::edge::{self, Arm, Endpoint, Limits, Problem};
+use ikarus_edge::edge::{self, Arm, Endpoint, Limits, Problem};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;

@@ -26,7 +26,7 @@ use clap::Args;
 pub use crate::api::Limits;
 use crate::api::{Endpoint, status};
 use crate::error::CliError;
-use errors::{ApiError, JsonBody};
+use errors::{ApiError, JsonBody, Refusal};
 use handlers::{at_once, compute, file_text};
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
@@ -285,13 +285,13 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
 }
 
 /// One of the page's `ASSETS`, by name.
-async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<impl IntoResponse, ApiError> {
+async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<impl IntoResponse, Refusal> {
     match ASSETS.iter().find(|(n, ..)| *n == name) {
         Some(&(_, kind, text)) => Ok(([(header::CONTENT_TYPE, kind)], text)),
         None => Err(not_found(method, uri).await),
     }
 }
 
-async fn not_found(method: Method, uri: Uri) -> ApiError {
-    ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) }
+async fn not_found(method: Method, uri: Uri) -> Refusal {
+    Refusal(ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) })
 }

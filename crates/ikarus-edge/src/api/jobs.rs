@@ -354,7 +354,7 @@ pub(super) fn pose_from_degrees(
 }
 
 pub(super) fn goal(g: &GoalReq, field: &str) -> Result<Goal, Problem> {
-    crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| Problem::invalid(format!("{field}: {m}")))
+    crate::goal::make_goal(g.x, g.y, g.angle_deg).map_err(|m| Problem::invalid(format!("{field}: {m}")))
 }
 
 pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, Problem> {

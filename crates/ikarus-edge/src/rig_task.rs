@@ -4,7 +4,7 @@
 
 use ikarus::{Bend, Pin, Priority, RigGoal, RigTask, Skeleton};
 
-use crate::goals::make_goal;
+use crate::goal::make_goal;
 
 /// Most bone names listed in a message about an unknown bone.
 const LISTED_NAMES: usize = 24;

@@ -5,7 +5,7 @@
 //! one-line message — on every edge.
 //!
 //! ```
-//! use ikarus_cli::edge::{self, Endpoint, Limits};
+//! use ikarus_edge::edge::{self, Endpoint, Limits};
 //!
 //! let body = br#"{"goal": {"x": 2.0, "y": 1.0}}"#;
 //! let reply = edge::call(Endpoint::Solve, body, &Limits::default(), &ikarus::Interrupt::new()).unwrap();
@@ -105,7 +105,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
 /// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
 /// --goal-angle DEG` makes it.
 pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
-    crate::goals::make_goal(x, y, angle_deg).map_err(Problem::invalid)
+    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::invalid)
 }
 
 /// The command line's name of a status: `reached`, `unreachable`, `stalled`,
