@@ -7,7 +7,7 @@
 // The edge's modules under their old names, so that the commands' paths (`crate::arm::Arm`)
 // stay as they were; the modules below that share a name with an edge module re-export it and
 // add the command line's part (its flags, its terminal output).
-use ikarus_edge::{api, area, arm, error, input, motion, report, rig, rig_motion, rig_report, rig_task};
+use ikarus_edge::{api, area, arm, body, error, input, motion, report, rig, rig_motion, rig_report, rig_task};
 
 mod animate;
 mod batch;
@@ -21,11 +21,7 @@ mod output;
 mod picture;
 mod reach;
 mod render;
-mod rig_animate;
 mod rig_args;
-mod rig_batch;
-mod rig_solve;
-mod rig_track;
 #[cfg(feature = "server")]
 mod serve;
 mod settings;

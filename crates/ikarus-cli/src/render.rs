@@ -123,15 +123,8 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
         }
         RenderCommand::Motion(args) => {
             let out = required_out(&args.picture, &[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-            if let Some(path) = &args.motion.rig {
-                let run = crate::rig_animate::motion_run(&args.motion, path)?;
-                let frames = run.motion.motion.animation.frames.len();
-                let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, frames)?;
-                return out.commit(&bytes);
-            }
-            let run = args.motion.run()?;
-            let frames = run.motion.motion.animation.frames.len();
-            let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, frames)?;
+            let run = crate::animate::BodyMotion::of(&args.motion)?;
+            let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, run.frames())?;
             out.commit(&bytes)
         }
         RenderCommand::Workspace(args) => {

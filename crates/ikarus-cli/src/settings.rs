@@ -72,6 +72,9 @@ pub struct SolverFlags {
     /// Largest --restarts accepted (the command line's cap; the server has its own)
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_RESTARTS)]
     pub max_restarts: u32,
+    /// Largest --max-iterations accepted, as `ikarus serve --max-iterations` caps a request's
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_ITERATION_CAP)]
+    pub iteration_cap: u32,
     /// Seed of the restarts' start poses (the same seed gives the same result) [default: 0]
     #[arg(long, value_name = "S")]
     pub restart_seed: Option<u64>,
@@ -106,6 +109,7 @@ impl SolverFlags {
             limit_mode: self.limit_mode,
             restarts: self.restarts,
             max_restarts: self.max_restarts,
+            iteration_cap: self.iteration_cap,
             restart_seed: self.restart_seed,
             time_budget_ms: self.time_budget_ms,
             no_closed_form: self.no_closed_form,

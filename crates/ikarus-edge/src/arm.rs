@@ -189,15 +189,6 @@ pub(crate) fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String
     }
 }
 
-/// The OS reason without Rust's "(os error N)" suffix.
-pub fn io_reason(e: &std::io::Error) -> String {
-    let s = e.to_string();
-    match s.find(" (os error") {
-        Some(i) => s[..i].to_owned(),
-        None => s,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

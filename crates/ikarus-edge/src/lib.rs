@@ -20,6 +20,8 @@ pub mod area;
 #[doc(hidden)]
 pub mod arm;
 #[doc(hidden)]
+pub mod body;
+#[doc(hidden)]
 pub mod ease_args;
 #[doc(hidden)]
 pub mod error;
@@ -45,8 +47,6 @@ pub mod rig_motion;
 pub mod rig_report;
 #[doc(hidden)]
 pub mod rig_task;
-#[doc(hidden)]
-pub mod rig_track;
 #[doc(hidden)]
 pub mod settings;
 #[doc(hidden)]

@@ -53,6 +53,9 @@ pub struct SolverSettings {
     /// Largest --restarts accepted (the command line's cap; the server has its own)
     #[serde(skip, default = "default_max_restarts")]
     pub max_restarts: u32,
+    /// Largest `max_iterations` accepted (the command line's cap; the server has its own)
+    #[serde(skip, default = "default_iteration_cap")]
+    pub iteration_cap: u32,
     /// Seed of the restarts' start poses (the same seed gives the same result) [default: 0]
     pub restart_seed: Option<u64>,
     /// Start no restart after this many milliseconds of one solve; results then depend on the
@@ -68,6 +71,26 @@ pub const DEFAULT_MAX_RESTARTS: u32 = 10_000;
 
 fn default_max_restarts() -> u32 {
     DEFAULT_MAX_RESTARTS
+}
+
+/// The default cap of `max_iterations` on every edge: the command line's (`--iteration-cap`)
+/// and the API's (`ikarus serve --max-iterations`), for Python and WebAssembly too.
+pub const DEFAULT_ITERATION_CAP: u32 = 100_000;
+
+fn default_iteration_cap() -> u32 {
+    DEFAULT_ITERATION_CAP
+}
+
+/// Frames a solve records when nothing says `record_every`: every 20 iterations, as the seed
+/// program did (`ikarus solve`, `POST /api/solve`, Python's and WebAssembly's solves).
+pub const DEFAULT_RECORD_EVERY: u32 = 20;
+
+/// A value above its cap, in one line for every edge: `what` names the field and the value as
+/// the edge does (`--max-iterations 200000`, `options.max_iterations = 200000`), `raise` says
+/// how the cap is raised.
+#[must_use]
+pub fn over_cap(what: &str, cap: u32, raise: &str) -> String {
+    format!("{what}: more than the cap of {cap} ({raise})")
 }
 
 /// Why settings do not make options for a chain; each edge words it in its own field names.
@@ -127,6 +150,7 @@ impl SolverSettings {
             limit_mode: self.limit_mode.or(base.limit_mode),
             restarts: self.restarts.or(base.restarts),
             max_restarts: self.max_restarts,
+            iteration_cap: self.iteration_cap,
             restart_seed: self.restart_seed.or(base.restart_seed),
             time_budget_ms: self.time_budget_ms.or(base.time_budget_ms),
             no_closed_form: self.no_closed_form.or(base.no_closed_form),
@@ -259,9 +283,23 @@ pub fn command_options(
     if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
         let field =
             if flags.restarts.is_some() { "--restarts".to_owned() } else { format!("{label}: [solver].restarts") };
-        return Err(CliError::input(format!(
-            "{field} {n}: more than the cap of {} (raise it with --max-restarts N)",
-            flags.max_restarts
+        return Err(CliError::input(over_cap(
+            &format!("{field} {n}"),
+            flags.max_restarts,
+            "raise it with --max-restarts N",
+        )));
+    }
+    let iterations = flags.max_iterations.or(file.max_iterations);
+    if let Some(n) = iterations.filter(|&n| n > flags.iteration_cap) {
+        let field = if flags.max_iterations.is_some() {
+            "--max-iterations".to_owned()
+        } else {
+            format!("{label}: [solver].max_iterations")
+        };
+        return Err(CliError::input(over_cap(
+            &format!("{field} {n}"),
+            flags.iteration_cap,
+            "raise it with --iteration-cap N",
         )));
     }
     flags.over(file).to_options_for(joints, record_every).map_err(|e| {

@@ -75,7 +75,7 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = 256, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub max_bones: u64,
     /// Largest options.max_iterations of a request
-    #[arg(long, default_value_t = 100_000, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = crate::settings::DEFAULT_ITERATION_CAP, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_iterations: u32,
     /// Most frames of a motion
     #[arg(long, default_value_t = 2000, value_name = "N", value_parser = clap::value_parser!(u64).range(2..=1_000_000))]
@@ -183,7 +183,7 @@ async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(
         );
     }
     let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| {
-        CliError::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::arm::io_reason(&e)))
+        CliError::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::input::io_reason(&e)))
     })?;
     let bound = listener.local_addr().map_err(|e| CliError::runtime(format!("cannot read the bound address: {e}")))?;
     // The Ctrl-C handler is installed before the address is printed, so that a Ctrl-C sent
