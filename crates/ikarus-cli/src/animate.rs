@@ -15,6 +15,7 @@ use ikarus::{EaseKind, Goal, LimitMode, RigTask};
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
+use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::motion::{DEFAULT_FPS, Motion, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
@@ -23,7 +24,6 @@ use crate::picture::{
 };
 use crate::report::{AnimateJson, deg_text};
 use crate::rig::Rig;
-use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::rig_motion::{RigMotion, RigMotionPlan};
 use crate::settings::SolverFlags;
 use crate::solve::angle_columns;

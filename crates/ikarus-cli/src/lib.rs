@@ -7,7 +7,7 @@
 // The edge's modules under their old names, so that the commands' paths (`crate::arm::Arm`)
 // stay as they were; the modules below that share a name with an edge module re-export it and
 // add the command line's part (its flags, its terminal output).
-use ikarus_edge::{api, area, arm, body, error, input, motion, report, rig, rig_motion, rig_report, rig_task};
+use ikarus_edge::{api, area, arm, body, error, goal, input, motion, report, rig, rig_motion};
 
 mod animate;
 mod batch;
@@ -15,13 +15,13 @@ mod bench;
 #[cfg(feature = "server")]
 mod cli;
 mod ease_args;
+mod goal_args;
 mod goals;
 mod options;
 mod output;
 mod picture;
 mod reach;
 mod render;
-mod rig_args;
 #[cfg(feature = "server")]
 mod serve;
 mod settings;

@@ -11,12 +11,12 @@ use crate::animate::MotionArgs;
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
+use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::options::{parse_finite, parse_point};
 use crate::picture::{
     Drawing, PictureArgs, PictureFormat, PictureOut, arm_drawing, draw, draw_for_command, rig_figure, workspace_drawing,
 };
 use crate::rig::Rig;
-use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::workspace::AreaArgs;
 
 #[derive(Debug, Subcommand)]
@@ -178,7 +178,7 @@ fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
     let mut given = vec![false; s.len()];
     for (name, deg) in angles {
         let flag = format!("--pose-deg {name}={deg}");
-        let i = crate::rig_task::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
+        let i = crate::goal::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
         if std::mem::replace(&mut given[i], true) {
             return Err(CliError::input(format!("{flag}: bone {name:?} given twice")));
         }

@@ -13,15 +13,15 @@ use crate::arm::Arm;
 use crate::batch::{BLOCK_GOALS, Batch, Rows, TASK_GOALS};
 use crate::body::Body;
 use crate::error::CliError;
+use crate::goal;
+use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::goals::{self, Goals, make_goal};
 use crate::options::{parse_angle, parse_at_least_one, parse_finite};
 use crate::output;
 use crate::picture::{Drawing, StillArgs, arm_drawing, draw, report_format, rig_figure};
+use crate::report::RigSolveReport;
 use crate::report::{SolveJson, SolveReport, deg_text};
 use crate::rig::Rig;
-use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_goal};
-use crate::rig_report::RigSolveReport;
-use crate::rig_task;
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverFlags, solver};
 
 // Floats in CSV are written with `{:?}`: the shortest text that reads back to the same
@@ -476,7 +476,7 @@ fn goal_columns(rig: &Rig, cells: &[&str], label: &str) -> Result<Vec<GoalColumn
                 column(i)
             )));
         };
-        rig_task::index(&rig.skeleton, name).map_err(|m| CliError::input(format!("{}: {m}", column(i))))?;
+        goal::index(&rig.skeleton, name).map_err(|m| CliError::input(format!("{}: {m}", column(i))))?;
         let k = match found.iter().position(|(n, _)| n == name) {
             Some(k) => k,
             None => {

@@ -44,10 +44,6 @@ pub mod rig;
 #[doc(hidden)]
 pub mod rig_motion;
 #[doc(hidden)]
-pub mod rig_report;
-#[doc(hidden)]
-pub mod rig_task;
-#[doc(hidden)]
 pub mod settings;
 #[doc(hidden)]
 pub mod track;

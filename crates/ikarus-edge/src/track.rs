@@ -10,9 +10,9 @@ use ikarus::{Goal, RigTask, SolveOptions};
 use serde::Serialize;
 
 use crate::arm::Arm;
+use crate::report::ByName;
 use crate::report::{degrees, points};
 use crate::rig::Rig;
-use crate::rig_report::ByName;
 
 /// Samples of a shape unless `--samples` says otherwise.
 pub const DEFAULT_SAMPLES: usize = 100;
@@ -205,7 +205,7 @@ pub struct RigTrackJob<'a> {
 /// The index of the effector bone `name`, which must exist and have neither a goal nor a pin
 /// in `task`; a problem starts with `field` and the name (`--effector hand`).
 pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Result<usize, String> {
-    let bone = crate::rig_task::index(&rig.skeleton, name).map_err(|m| format!("{field} {name}: {m}"))?;
+    let bone = crate::goal::index(&rig.skeleton, name).map_err(|m| format!("{field} {name}: {m}"))?;
     if task.goals.iter().any(|g| g.bone == bone) {
         return Err(format!("{field} {name}: the bone also has a goal; the effector's goal is the path"));
     }
@@ -245,7 +245,7 @@ impl RigTrackJob<'_> {
             .iter()
             .map(|x| {
                 let p = x.goal.target();
-                let tips = crate::rig_report::tips(self.rig, &x.angles);
+                let tips = crate::report::tips(self.rig, &x.angles);
                 RigTrackSampleJson {
                     goal: [p.x, p.y],
                     angle_deg: x.goal.orientation().map(f64::to_degrees),
