@@ -3,7 +3,7 @@
 // (ikarus_wasm.js and ikarus_wasm_bg.wasm, beside this file in the directory `bash web/build DIR`
 // fills). Every function takes and returns plain objects in the API's JSON shapes (README:
 // "`ikarus serve` (API)"); the answers are the server's bytes for the same request, because the
-// module runs the server's own code (`ikarus_cli::edge::call`).
+// module runs the server's own code (`ikarus_edge::edge::call`).
 //
 //   import * as ikarus from "./ikarus.js";
 //   await ikarus.init();

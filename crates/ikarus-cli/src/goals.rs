@@ -11,16 +11,7 @@ use ikarus::Goal;
 use crate::error::CliError;
 use crate::options::parse_finite;
 
-/// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
-/// into (−180°, 180°] exactly before it becomes radians: 1e20° is the direction it names).
-pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
-    match angle_deg {
-        None => Goal::position(x, y),
-        Some(a) if !a.is_finite() => Goal::with_orientation(x, y, a),
-        Some(a) => Goal::with_orientation(x, y, ikarus::angle::radians_from_degrees(a)),
-    }
-    .map_err(|e| e.to_string())
-}
+pub use ikarus_edge::goal::make_goal;
 
 /// The goals of a goal file, column by column: each row's position as written (for the rows of
 /// the output) and the goal it makes, in the file's order.

@@ -17,8 +17,8 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, Once};
 
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 
 /// Runs `write` against a buffered, locked stdout. A reader that went away (`| head`) is not
 /// an error.

@@ -7,14 +7,15 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::Point2;
-use ikarus::reach::{Region, Verdict};
+use ikarus::reach::Verdict;
+pub use ikarus_edge::reach::*;
 
-use crate::arm::{Arm, LimitsArgs};
+use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::{parse_point, parse_positive};
 use crate::output::{self, PendingFile};
 use crate::report::VerdictJson;
+use crate::settings::LimitsArgs;
 
 /// Output format of `ikarus reach`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -53,32 +54,6 @@ pub struct ReachArgs {
     /// Write the output to FILE instead of stdout (whole or not at all)
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
-}
-
-/// What a reach request asks, from the flags or the API: `limits` over the arm file's
-/// `[solver] limits` (off when neither says), and the tolerance over the arm file's
-/// `[solver] tolerance` over the solver's default.
-pub struct ReachRequest {
-    pub limits: Option<bool>,
-    pub tolerance: Option<f64>,
-}
-
-impl ReachRequest {
-    /// The distance from the region that counts as reachable.
-    pub fn tolerance(&self, arm: &Arm) -> f64 {
-        self.tolerance.or(arm.solver.tolerance).unwrap_or(ikarus::SolveOptions::default().tolerance)
-    }
-
-    /// The exact region of `arm` the verdicts are read from ([`crate::area::exact_region`]),
-    /// stopping when `interrupt` is set.
-    pub fn region(&self, arm: &Arm, interrupt: Option<&ikarus::Interrupt>) -> Result<Region, CliError> {
-        crate::area::exact_region(arm, arm.limits(self.limits), interrupt)
-    }
-}
-
-/// The verdict on `p`.
-pub fn verdict(region: &Region, p: [f64; 2], tolerance: f64) -> Verdict {
-    region.verdict(Point2::new(p[0], p[1]), tolerance)
 }
 
 pub fn run(args: &ReachArgs) -> Result<(), CliError> {

@@ -11,12 +11,12 @@ use crate::animate::MotionArgs;
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
+use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::options::{parse_finite, parse_point};
 use crate::picture::{
     Drawing, PictureArgs, PictureFormat, PictureOut, arm_drawing, draw, draw_for_command, rig_figure, workspace_drawing,
 };
 use crate::rig::Rig;
-use crate::rig_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::workspace::AreaArgs;
 
 #[derive(Debug, Subcommand)]
@@ -123,15 +123,8 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
         }
         RenderCommand::Motion(args) => {
             let out = required_out(&args.picture, &[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-            if let Some(path) = &args.motion.rig {
-                let run = crate::rig_animate::motion_run(&args.motion, path)?;
-                let frames = run.motion.motion.animation.frames.len();
-                let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, frames)?;
-                return out.commit(&bytes);
-            }
-            let run = args.motion.run()?;
-            let frames = run.motion.motion.animation.frames.len();
-            let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, frames)?;
+            let run = crate::animate::BodyMotion::of(&args.motion)?;
+            let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, run.frames())?;
             out.commit(&bytes)
         }
         RenderCommand::Workspace(args) => {
@@ -185,7 +178,7 @@ fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
     let mut given = vec![false; s.len()];
     for (name, deg) in angles {
         let flag = format!("--pose-deg {name}={deg}");
-        let i = crate::rig_task::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
+        let i = crate::goal::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
         if std::mem::replace(&mut given[i], true) {
             return Err(CliError::input(format!("{flag}: bone {name:?} given twice")));
         }

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use clap::Args;
 use clap_complete::Shell;
 
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 use crate::output::{self, PendingFile};
 
 /// `ikarus completions SHELL`.

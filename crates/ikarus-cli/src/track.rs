@@ -1,30 +1,30 @@
 //! `ikarus track`: the tip follows a path (a CSV file, a line, a circle or a figure-8), online
 //! (`--mode follow`) or planned over the whole path (`--mode plan`, the default); per-sample
 //! JSON, CSV or text on stdout, and a picture or GIF with `--out`. The job, its JSON shape and
-//! its picture are shared with `POST /api/track`.
+//! its picture are shared with `POST /api/track`. With `--rig FILE --effector NAME`, the tip of
+//! one bone follows the path online while the rig's other goals hold and its pins stay where
+//! they start; angles and tips keyed by bone name.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, ValueEnum};
-use ikarus::number::Num;
-use ikarus::track::{self, Path, PathError, Track, TrackError, TrackMode, TrackOptions};
-use ikarus::{Goal, SolveOptions};
-use serde::Serialize;
+use ikarus::track::{Path, PathError, Track, TrackMode};
+use ikarus::{LimitMode, RigTask};
+pub use ikarus_edge::track::*;
 
 use crate::arm::Arm;
+use crate::body::Body;
 use crate::error::CliError;
+use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::options::{named, parse_finite, parse_positive};
 use crate::output;
-use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format};
-use crate::report::{degrees, points};
-use crate::rig_args::{GoalArg, RigTaskArgs, parse_goal};
-use crate::settings::SolverSettings;
+use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format, rig_figure};
+use crate::rig::Rig;
+use crate::rig_motion::poses_animation;
+use crate::settings::SolverFlags;
+use crate::solve::angle_columns;
 
-/// Samples of a shape unless `--samples` says otherwise.
-pub const DEFAULT_SAMPLES: usize = 100;
-/// The default bound on a joint's change between samples, degrees.
-pub const DEFAULT_MAX_STEP_DEG: f64 = 10.0;
 /// Frames per second of a track's GIF: one frame per sample.
 pub const TRACK_FPS: f64 = 25.0;
 
@@ -64,7 +64,7 @@ pub struct TrackArgs {
     #[command(flatten)]
     pub rig_task: RigTaskArgs,
     #[command(flatten)]
-    pub solver: SolverSettings,
+    pub solver: SolverFlags,
     /// The path as a CSV file: header `x,y` or `x,y,angle_deg`, one sample per row, used as given
     #[arg(long, value_name = "FILE.csv", group = "shape")]
     pub path: Option<PathBuf>,
@@ -121,193 +121,24 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
     Ok(out)
 }
 
-/// A shape sampled into a path.
-#[derive(Debug, Clone, Copy)]
-pub enum Shape {
-    Line([f64; 4]),
-    Circle([f64; 3]),
-    Figure8([f64; 3]),
-}
-
-impl Shape {
-    /// The shape's name, as the flag and the API field.
-    pub fn name(self) -> &'static str {
-        match self {
-            Shape::Line(_) => "line",
-            Shape::Circle(_) => "circle",
-            Shape::Figure8(_) => "figure8",
-        }
-    }
-
-    /// The path of `samples` points on the shape.
-    pub fn path(self, samples: usize) -> Result<Path, PathError> {
-        match self {
-            Shape::Line([x0, y0, x1, y1]) => Path::line([x0, y0], [x1, y1], samples),
-            Shape::Circle([cx, cy, r]) => Path::circle([cx, cy], r, samples),
-            Shape::Figure8([cx, cy, a]) => Path::figure8([cx, cy], a, samples),
-        }
-    }
-}
-
-/// One track: the workflow of `ikarus track` and `POST /api/track`.
-pub struct TrackJob<'a> {
-    pub arm: &'a Arm,
-    pub start: Vec<f64>,
-    pub path: Path,
-    pub mode: TrackMode,
-    pub options: TrackOptions,
-}
-
-impl TrackJob<'_> {
-    /// The tracking options: the solver's `solve`, the bound in degrees, and whether follow
-    /// bounds the first sample too.
-    pub fn options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) -> TrackOptions {
-        TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
-    }
-
-    /// Tracks the path; a problem is bad input, in the library's words (the bound in the edge's
-    /// degrees, `max_step_deg`).
-    pub fn run(&self) -> Result<Track, String> {
-        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| match e {
-            TrackError::OffPathCap { max_step, needed, cap } => format!(
-                "max_step_deg = {}: bridging the plan's gaps in steps this small needs {needed} poses off the path, more than the cap of {cap} ({} per sample); raise it or sample the path more finely",
-                Num(max_step.to_degrees()),
-                track::MAX_OFF_PATH_PER_SAMPLE
-            ),
-            other => other.to_string(),
-        })
-    }
-
-    /// The picture's layer: the wanted path, the tip's trace, the flips.
-    pub fn layer(&self, t: &Track) -> ikarus_render::PathLayer {
-        let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.arm.chain, &s.angles).position;
-        ikarus_render::PathLayer {
-            goals: self.path.goals().iter().map(Goal::target).collect(),
-            trace: t.samples.iter().map(tip).collect(),
-            flips: t.summary.flips.iter().map(|&k| tip(&t.samples[k])).collect(),
-        }
-    }
-
-    /// A one-line caption for pictures.
-    pub fn caption(&self, t: &Track) -> String {
-        let s = &t.summary;
-        let off = if s.off_path > 0 { format!(" · {} off path", s.off_path) } else { String::new() };
-        format!(
-            "{} · {} · {} of {} reached{off} · {} flips · largest step {:.1}°",
-            self.arm.name,
-            self.mode.name(),
-            s.reached,
-            s.samples,
-            s.flips.len(),
-            s.max_step.to_degrees()
-        )
-    }
-}
-
-#[derive(Serialize)]
-pub struct TrackSampleJson {
-    pub goal: [f64; 2],
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub angle_deg: Option<f64>,
-    pub status: &'static str,
-    pub error: f64,
-    pub angles_deg: Vec<f64>,
-    pub joints: Vec<[f64; 2]>,
-    pub step_deg: f64,
-}
-
-#[derive(Serialize)]
-pub struct TrackSummaryJson {
-    pub samples: usize,
-    pub reached: usize,
-    pub limited: usize,
-    pub unreachable: usize,
-    /// Stalled or at the iteration cap.
-    pub stalled: usize,
-    /// Poses plan inserted off the path, between two samples whose poses lie further apart
-    /// than the bound (status `off_path`; not counted in `samples`).
-    pub off_path: usize,
-    pub flips: usize,
-    pub flip_samples: Vec<usize>,
-    /// The bound: a larger step is a flip.
-    pub step_bound_deg: f64,
-    pub max_step_deg: f64,
-    pub max_error: f64,
-    pub max_velocity_deg_per_sample: f64,
-    pub max_acceleration_deg_per_sample2: f64,
-    pub max_jerk_deg_per_sample3: f64,
-}
-
-/// A track: `ikarus track --format json` and `POST /api/track`.
-#[derive(Serialize)]
-pub struct TrackJson<'a> {
-    pub arm: &'a str,
-    pub mode: &'static str,
-    pub samples: Vec<TrackSampleJson>,
-    pub summary: TrackSummaryJson,
-}
-
-impl<'a> TrackJson<'a> {
-    pub fn new(job: &TrackJob<'a>, t: &Track) -> Self {
-        let chain = &job.arm.chain;
-        let samples = t
-            .samples
-            .iter()
-            .map(|s| {
-                let p = s.goal.target();
-                TrackSampleJson {
-                    goal: [p.x, p.y],
-                    angle_deg: s.goal.orientation().map(f64::to_degrees),
-                    status: s.status.as_str(),
-                    error: s.error,
-                    angles_deg: degrees(&s.angles),
-                    joints: points(&ikarus::kinematics::joint_positions(chain, &s.angles)),
-                    step_deg: s.step.to_degrees(),
-                }
-            })
-            .collect();
-        let summary = TrackSummaryJson::new(&t.summary, job.options.max_step);
-        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
-    }
-}
-
-impl TrackSummaryJson {
-    /// The summary of a track whose flip bound was `max_step` radians.
-    pub fn new(s: &track::TrackSummary, max_step: f64) -> Self {
-        TrackSummaryJson {
-            samples: s.samples,
-            reached: s.reached,
-            limited: s.limited,
-            unreachable: s.unreachable,
-            stalled: s.stalled,
-            off_path: s.off_path,
-            flips: s.flips.len(),
-            flip_samples: s.flips.clone(),
-            step_bound_deg: max_step.to_degrees(),
-            max_step_deg: s.max_step.to_degrees(),
-            max_error: s.max_error,
-            max_velocity_deg_per_sample: s.max_velocity.to_degrees(),
-            max_acceleration_deg_per_sample2: s.max_acceleration.to_degrees(),
-            max_jerk_deg_per_sample3: s.max_jerk.to_degrees(),
-        }
-    }
-}
-
 pub fn run(args: &TrackArgs) -> Result<(), CliError> {
-    if let Some(rig) = &args.rig {
-        return crate::rig_track::run(args, rig);
+    match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
+        Body::Chain(arm) => run_chain(args, &arm),
+        Body::Rig(rig) => run_rig(args, &rig),
     }
-    let arm = Arm::load(args.arm.as_deref())?;
+}
+
+fn run_chain(args: &TrackArgs, arm: &Arm) -> Result<(), CliError> {
     let mode = args.mode.unwrap_or(TrackMode::Plan);
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let path = cli_path(args)?;
-    let solve = arm.options(&args.solver, None)?;
+    let solve = arm.options(&args.solver.settings(), None)?;
     let start = arm.chain.start_pose().angles().to_vec();
     if args.bound_first && mode != TrackMode::Follow {
         return Err(CliError::input("--bound-first: only applies with --mode follow"));
     }
     let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
-    let job = TrackJob { arm: &arm, start, path, mode, options };
+    let job = TrackJob { arm, start, path, mode, options };
     let t = job.run().map_err(CliError::input)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
@@ -428,4 +259,89 @@ fn text(w: &mut dyn Write, job: &TrackJob, t: &Track) -> std::io::Result<()> {
         s.max_jerk.to_degrees()
     )?;
     writeln!(w, "error     largest {:.3e}", s.max_error)
+}
+
+fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
+    let Some(name) = &args.effector else {
+        return Err(CliError::input("--effector: required with --rig: the bone whose tip follows the path"));
+    };
+    if let Some(mode) = args.mode.filter(|&m| m != TrackMode::Follow) {
+        return Err(CliError::input(format!(
+            "--mode {}: a rig's effector is followed online only (--mode follow, the default with --rig)",
+            mode.name()
+        )));
+    }
+    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
+    let path = cli_path(args)?;
+    let targets = args.goal.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+    let task = if targets.is_empty() && args.rig_task.pin.is_empty() {
+        args.rig_task.check_against(&[])?;
+        RigTask { mix: args.rig_task.mix.unwrap_or(1.0), ..RigTask::default() }
+    } else {
+        args.rig_task.task(&rig.skeleton, &targets)?
+    };
+    let bone = effector_index(rig, name, &task, "--effector").map_err(CliError::input)?;
+    let solve = rig.options(&args.solver.settings(), None)?;
+    let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
+    let start = rig.skeleton.start_angles().to_vec();
+    let job = RigTrackJob { rig, start, bone, task, path, options };
+    let t = job.run().map_err(CliError::input)?;
+    let drew = picture.is_some();
+    if let Some(out) = picture {
+        let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
+        let animation = poses_animation(rig, &poses);
+        let last = poses.last().map_or(job.start.as_slice(), Vec::as_slice);
+        let ranges = job.options.solve.limits != LimitMode::Ignore;
+        let mut figure = rig_figure(rig, last, &job.task, ranges, Some(job.caption(&t)));
+        if let Some(goal) = t.samples.last().map(|s| s.goal) {
+            figure.goals.push(ikarus_render::BoneGoal { bone, position: goal.target(), angle: goal.orientation() });
+        }
+        let drawing = Drawing::RigMotion { figure, animation: &animation, fps: TRACK_FPS };
+        let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
+        out.commit(&bytes)?;
+    }
+    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
+    let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
+    output::stdout(|w| match format {
+        TrackFormat::Json => {
+            serde_json::to_writer_pretty(&mut *w, &job.json(&t))?;
+            writeln!(w)
+        }
+        TrackFormat::Csv => {
+            let columns = angle_columns(rig).split(',').map(str::to_owned).collect();
+            csv_with(w, &t, columns)
+        }
+        TrackFormat::Text => rig_text(w, &job, &t),
+    })
+}
+
+fn rig_text(w: &mut dyn Write, job: &RigTrackJob, t: &Track) -> std::io::Result<()> {
+    let s = &t.summary;
+    let sk = &job.rig.skeleton;
+    writeln!(w, "rig       {} ({} bones)", job.rig.name, sk.len())?;
+    let held: Vec<String> = job
+        .task
+        .goals
+        .iter()
+        .map(|g| format!("{} at ({}, {})", sk.name(g.bone), g.goal.target().x, g.goal.target().y))
+        .chain(job.task.pins.iter().map(|p| format!("{} pinned", sk.name(p.bone))))
+        .collect();
+    let held = if held.is_empty() { String::new() } else { format!("; held: {}", held.join(", ")) };
+    writeln!(w, "effector  {}{held}", sk.name(job.bone))?;
+    writeln!(w, "mode      follow (bound {}° per sample)", job.options.max_step.to_degrees())?;
+    writeln!(
+        w,
+        "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
+        s.samples, s.reached, s.limited, s.unreachable, s.stalled
+    )?;
+    let which = if s.flips.is_empty() { String::new() } else { format!(" at samples {:?}", s.flips) };
+    writeln!(w, "flips     {}{which}", s.flips.len())?;
+    writeln!(
+        w,
+        "steps     largest {:.3}°; acceleration {:.3}°, jerk {:.3}° per sample",
+        s.max_step.to_degrees(),
+        s.max_acceleration.to_degrees(),
+        s.max_jerk.to_degrees()
+    )?;
+    writeln!(w, "error     largest {:.3e} (every effector: the followed tip, held goals, pins)", s.max_error)
 }

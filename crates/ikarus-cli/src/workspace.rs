@@ -8,10 +8,11 @@ use clap::{Args, ValueEnum};
 use ikarus::reach::{Annulus, BoundarySegment};
 
 use crate::area::{self, GridRequest, ReachableArea};
-use crate::arm::{Arm, LimitsArgs};
+use crate::arm::Arm;
 use crate::error::CliError;
 use crate::options::parse_at_least_one;
 use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, report_format, workspace_drawing};
+use crate::settings::LimitsArgs;
 use crate::{output, report};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

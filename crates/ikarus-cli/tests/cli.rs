@@ -520,3 +520,37 @@ fn every_library_limit_mode_and_unsupported_pairs() {
         }
     }
 }
+
+#[test]
+fn max_iterations_is_held_to_the_cap_as_the_api_holds_it() {
+    // The flag: the cap of `ikarus serve --max-iterations`, 100 000, by default.
+    let v = json(&["solve", "--goal", "2,3", "--max-iterations", "100000"]);
+    assert_eq!(v["status"], "reached");
+    let err = fails(&["solve", "--goal", "2,3", "--max-iterations", "100001"], 2);
+    assert_eq!(
+        err.trim(),
+        "ikarus: --max-iterations 100001: more than the cap of 100000 (raise it with --iteration-cap N)"
+    );
+    let v = json(&["solve", "--goal", "2,3", "--max-iterations", "100001", "--iteration-cap", "100001"]);
+    assert_eq!(v["status"], "reached");
+    // An arm file's [solver] table is held to it too, and named.
+    let dir = tempfile::tempdir().unwrap();
+    let arm = write(
+        dir.path(),
+        "a.toml",
+        "[[links]]\nlength = 1\n[[links]]\nlength = 1\n[solver]\nmax_iterations = 200000\n",
+    );
+    let err = fails(&["solve", "--arm", &arm, "--goal", "1,1"], 2);
+    assert_eq!(
+        err.trim(),
+        format!(
+            "ikarus: arm file {arm}: [solver].max_iterations 200000: more than the cap of 100000 (raise it with --iteration-cap N)"
+        )
+    );
+    // A rig's solve and the other commands share the check.
+    let rig = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rigs/puppet.toml");
+    let err = fails(&["solve", "--rig", rig.to_str().unwrap(), "--goal", "head=0,3", "--max-iterations", "100001"], 2);
+    assert!(err.starts_with("ikarus: --max-iterations 100001: more than the cap of 100000"), "{err}");
+    let err = fails(&["track", "--line", "1,1,2,2", "--max-iterations", "100001"], 2);
+    assert!(err.starts_with("ikarus: --max-iterations 100001: more than the cap of 100000"), "{err}");
+}

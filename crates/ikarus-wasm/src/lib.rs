@@ -1,7 +1,7 @@
 //! ikarus in the browser: the JSON API of `ikarus serve` compiled to WebAssembly.
 //!
 //! There is one entry point, [`call`], and it is the server's: it hands the endpoint and the
-//! request body to [`ikarus_cli::edge::call`], the function behind `ikarus serve`'s handlers, so
+//! request body to [`ikarus_edge::edge::call`], the function behind `ikarus serve`'s handlers, so
 //! every answer is the server's bytes for the same request (the same shapes, the same numbers,
 //! the same one-line message and status for a bad request). Nothing here parses requests or
 //! shapes answers. `web/build` compiles this crate for `wasm32-unknown-unknown` and runs
@@ -13,7 +13,7 @@
 use std::sync::Mutex;
 
 use ikarus::Interrupt;
-use ikarus_cli::edge::{self, Endpoint, Limits};
+use ikarus_edge::edge::{self, Endpoint, Limits};
 use wasm_bindgen::prelude::*;
 
 /// A refused request, as thrown to JavaScript: the HTTP status `ikarus serve` answers for it

@@ -11,8 +11,8 @@ use ikarus::{Chain, SolveOptions};
 use super::judge::judge;
 use super::run::{RowResult, Tally};
 use super::sets::GoalSet;
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 
 /// Label of the rows of KDL's `ChainIkSolverPos_LMA`.
 pub const LMA_LABEL: &str = "kdl lma";

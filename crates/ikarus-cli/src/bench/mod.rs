@@ -32,8 +32,8 @@ use clap::builder::PossibleValuesParser;
 use ikarus::{LimitMode, Method, SolveOptions};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 use crate::options::parse_at_least_one;
 use crate::output::{self, PendingFile};
 use run::{Config, Filter, RowResult};

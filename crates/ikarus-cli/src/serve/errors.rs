@@ -21,10 +21,20 @@ use super::AppState;
 pub use crate::api::Problem as ApiError;
 use crate::api::status;
 
-impl IntoResponse for ApiError {
+/// A refused request as axum answers it: the edge's [`ApiError`] (a `Problem`), its status and
+/// the body `{"error": "…"}` of one line.
+pub struct Refusal(pub ApiError);
+
+impl From<ApiError> for Refusal {
+    fn from(p: ApiError) -> Self {
+        Self(p)
+    }
+}
+
+impl IntoResponse for Refusal {
     fn into_response(self) -> Response {
-        let status = StatusCode::from_u16(self.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
-        (status, Json(serde_json::json!({ "error": self.one_line() }))).into_response()
+        let status = StatusCode::from_u16(self.0.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+        (status, Json(serde_json::json!({ "error": self.0.one_line() }))).into_response()
     }
 }
 
@@ -84,9 +94,16 @@ pub type JsonBody = ApiBody<JsonType>;
 pub type TomlBody = ApiBody<TomlType>;
 
 impl<T: MediaType> FromRequest<AppState> for ApiBody<T> {
-    type Rejection = ApiError;
+    type Rejection = Refusal;
 
     async fn from_request(req: Request, state: &AppState) -> Result<Self, Self::Rejection> {
+        Self::read(req, state).await.map_err(Refusal)
+    }
+}
+
+impl<T: MediaType> ApiBody<T> {
+    /// The body, within the server's caps of size, memory and time.
+    async fn read(req: Request, state: &AppState) -> Result<Self, ApiError> {
         let max_body_bytes = state.limits.max_body_bytes;
         // The content type before the size and before the body is read.
         check_content_type::<T>(req.headers())?;

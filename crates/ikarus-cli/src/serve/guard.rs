@@ -22,7 +22,7 @@ use axum::http::{HeaderMap, StatusCode, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 
-use super::errors::ApiError;
+use super::errors::{ApiError, Refusal};
 
 /// The largest oversized body read and dropped before its 413 (see [`check`]).
 const DRAIN_BYTES: u64 = 1 << 20;
@@ -45,12 +45,12 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
     if let Some(host) = req.headers().get(header::HOST) {
         let host = String::from_utf8_lossy(host.as_bytes()).into_owned();
         if !guard.any_host && !guard.host_allowed(&host) {
-            return ApiError {
+            return Refusal(ApiError {
                 status: crate::api::status::FORBIDDEN,
                 message: format!(
                     "Host: {host:?} is not a loopback name; this server answers only localhost, 127.0.0.1 and [::1] (add names with --allow-host)"
                 ),
-            }
+            })
             .into_response();
         }
     }
@@ -65,13 +65,13 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
                 let drain = axum::body::to_bytes(req.into_body(), DRAIN_BYTES as usize);
                 let _ = tokio::time::timeout(DRAIN_TIME, drain).await;
             }
-            return ApiError {
+            return Refusal(ApiError {
                 status: crate::api::status::PAYLOAD_TOO_LARGE,
                 message: format!(
                     "request body: Content-Length {length} is larger than the cap of {} bytes (--max-body-bytes)",
                     guard.max_body_bytes
                 ),
-            }
+            })
             .into_response();
         }
     }

@@ -7,34 +7,34 @@ use axum::response::{IntoResponse, Response};
 use ikarus::Interrupt;
 
 use super::AppState;
-use super::errors::{ApiError, JsonBody, TomlBody};
+use super::errors::{JsonBody, Refusal, TomlBody};
 use crate::api::{self, Endpoint, Reply};
 
-impl IntoResponse for Reply {
-    fn into_response(self) -> Response {
-        ([(header::CONTENT_TYPE, self.content_type)], self.body).into_response()
-    }
+/// An answer's bytes under its content type.
+fn answer(reply: Reply) -> Response {
+    ([(header::CONTENT_TYPE, reply.content_type)], reply.body).into_response()
 }
 
 /// A computation (`/api/solve`, `solve_batch`, `animate`, `track`, `workspace`, `reach`, `render`): its JSON
 /// body answered by [`api::call`] on a worker of the pool, in the lane its cost estimate says,
 /// under the time budget.
-pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, ApiError> {
+pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, Refusal> {
     let pool = state.pool.clone();
     let lane = super::cost::lane(endpoint, &body.bytes);
     pool.run(lane, move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
         .await
-        .map(Reply::into_response)
+        .map(answer)
+        .map_err(Refusal)
 }
 
 /// A quick answer (`/api/meta`, `arm/default`, `rigs`, `arm/parse`, `rig/parse`, `arm/toml`):
 /// no solve, no loop a request can lengthen, answered on the spot.
-pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Response, ApiError> {
-    api::call(endpoint, body, &state.limits, &Interrupt::new()).map(Reply::into_response)
+pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Response, Refusal> {
+    api::call(endpoint, body, &state.limits, &Interrupt::new()).map(answer).map_err(Refusal)
 }
 
 /// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, sent as `application/toml`.
-pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, ApiError> {
+pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, Refusal> {
     at_once(endpoint, &state, &body.bytes)
 }
 

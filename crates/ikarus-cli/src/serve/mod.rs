@@ -26,7 +26,7 @@ use clap::Args;
 pub use crate::api::Limits;
 use crate::api::{Endpoint, status};
 use crate::error::CliError;
-use errors::{ApiError, JsonBody};
+use errors::{ApiError, JsonBody, Refusal};
 use handlers::{at_once, compute, file_text};
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
@@ -76,7 +76,7 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = 256, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub max_bones: u64,
     /// Largest options.max_iterations of a request
-    #[arg(long, default_value_t = 100_000, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, default_value_t = crate::settings::DEFAULT_ITERATION_CAP, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_iterations: u32,
     /// Most frames of a motion
     #[arg(long, default_value_t = 2000, value_name = "N", value_parser = clap::value_parser!(u64).range(2..=1_000_000))]
@@ -184,7 +184,7 @@ async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(
         );
     }
     let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| {
-        CliError::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::arm::io_reason(&e)))
+        CliError::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::input::io_reason(&e)))
     })?;
     let bound = listener.local_addr().map_err(|e| CliError::runtime(format!("cannot read the bound address: {e}")))?;
     // The Ctrl-C handler is installed before the address is printed, so that a Ctrl-C sent
@@ -290,13 +290,13 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
 }
 
 /// One of the page's `ASSETS`, by name.
-async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<impl IntoResponse, ApiError> {
+async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<impl IntoResponse, Refusal> {
     match ASSETS.iter().find(|(n, ..)| *n == name) {
         Some(&(_, kind, text)) => Ok(([(header::CONTENT_TYPE, kind)], text)),
         None => Err(not_found(method, uri).await),
     }
 }
 
-async fn not_found(method: Method, uri: Uri) -> ApiError {
-    ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) }
+async fn not_found(method: Method, uri: Uri) -> Refusal {
+    Refusal(ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) })
 }

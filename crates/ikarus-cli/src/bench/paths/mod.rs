@@ -18,8 +18,8 @@ use ikarus::track::TrackOptions;
 use indicatif::ProgressBar;
 
 use super::BenchArgs;
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 use crate::output;
 use measure::{Answer, PathSolver};
 use rows::PathRow;

@@ -20,8 +20,8 @@ use ikarus::SolveOptions;
 use indicatif::ProgressBar;
 
 use super::BenchArgs;
-use crate::arm::io_reason;
 use crate::error::CliError;
+use crate::input::io_reason;
 use crate::output;
 use rows::RigRow;
 use set::RigSet;

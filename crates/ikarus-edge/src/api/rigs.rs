@@ -1,7 +1,7 @@
 //! The API's rigs: `POST /api/solve` with `rig`, `GET /api/rigs` (the shipped rig files,
 //! embedded in the binary), `POST /api/rig/parse` (rig-file text → `{"rig": …}` or
 //! `{"problem": "…"}`, as `/api/arm/parse`) and the figure `rig` of `POST /api/render`. The work
-//! and the answers are the command line's (`crate::rig_task`, `crate::rig_report`,
+//! and the answers are the command line's (`crate::goal`, `crate::report`,
 //! `crate::picture`), under the server's caps and time budget.
 
 use ikarus::{Bend, Interrupt, Outcome, Priority, RigTask};
@@ -17,11 +17,11 @@ use super::jobs::{
 use super::rig_requests::RigFigureReq;
 use super::rig_requests::{BendReq, PriorityReq, RigGoalReq, RigSolveReq};
 use super::{Limits, Problem, Reply};
+use crate::goal::{self, Field, NamedGoal};
 #[cfg(feature = "render")]
 use crate::picture::{Drawing, PictureFormat, draw, rig_figure};
+use crate::report::{RigJson, RigSolveReport};
 use crate::rig::{BoneCap, Rig, RigFile};
-use crate::rig_report::{RigJson, RigSolveReport};
-use crate::rig_task::{self, Field, NamedGoal};
 use crate::settings::solver;
 
 /// Most effectors (goals and pins together) of a request.
@@ -81,7 +81,7 @@ pub fn task(
         Field::Bend(i) => format!("goals[{i}].bend"),
         Field::Pin(i) => format!("pins[{i}]"),
     };
-    rig_task::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(Problem::invalid)
+    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(Problem::invalid)
 }
 
 /// `POST /api/solve` with `rig`: the JSON of `ikarus solve --rig --format json`.

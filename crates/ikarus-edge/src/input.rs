@@ -7,7 +7,6 @@ use std::io::Read;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::arm::io_reason;
 use crate::error::CliError;
 
 /// The default cap of an input file: far beyond any arm or goal file (a million goals of CSV
@@ -62,4 +61,13 @@ pub fn read_text(path: &Path, label: &str) -> Result<String, CliError> {
     String::from_utf8(read(path, label)?).map_err(|e| {
         CliError::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
     })
+}
+
+/// The OS reason without Rust's "(os error N)" suffix.
+pub fn io_reason(e: &std::io::Error) -> String {
+    let s = e.to_string();
+    match s.find(" (os error") {
+        Some(i) => s[..i].to_owned(),
+        None => s,
+    }
 }

@@ -11,8 +11,8 @@ use serde::Serialize;
 use crate::error::CliError;
 use crate::picture::{Drawing, rig_figure};
 use crate::report::degrees;
+use crate::report::{ByName, EffectorJson};
 use crate::rig::Rig;
-use crate::rig_report::{ByName, EffectorJson};
 
 /// What a rig motion request asks for once its values are checked.
 pub struct RigMotionPlan<'a> {

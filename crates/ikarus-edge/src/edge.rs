@@ -5,7 +5,7 @@
 //! one-line message — on every edge.
 //!
 //! ```
-//! use ikarus_cli::edge::{self, Endpoint, Limits};
+//! use ikarus_edge::edge::{self, Endpoint, Limits};
 //!
 //! let body = br#"{"goal": {"x": 2.0, "y": 1.0}}"#;
 //! let reply = edge::call(Endpoint::Solve, body, &Limits::default(), &ikarus::Interrupt::new()).unwrap();
@@ -24,7 +24,7 @@ pub use crate::rig::DEFAULT_MAX_BONES;
 use crate::settings::SolverSettings;
 
 /// Frames a solve records when its options give no `record_every`, as `ikarus solve`.
-pub const DEFAULT_RECORD_EVERY: u32 = 20;
+pub use crate::settings::DEFAULT_RECORD_EVERY;
 
 /// A validated arm: its chain (start pose and joint ranges included) and its file's `[solver]`
 /// settings, read as `--arm FILE` or the API's `arm` reads it.
@@ -105,7 +105,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
 /// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
 /// --goal-angle DEG` makes it.
 pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
-    crate::goals::make_goal(x, y, angle_deg).map_err(Problem::invalid)
+    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::invalid)
 }
 
 /// The command line's name of a status: `reached`, `unreachable`, `stalled`,
@@ -153,6 +153,26 @@ mod tests {
         assert!(e.message.starts_with("rates: expected 3 values"), "{}", e.message);
         let ok = solve_options(&arm, "{}", &limits).unwrap();
         assert_eq!(ok.record_every, Some(DEFAULT_RECORD_EVERY));
+    }
+
+    #[test]
+    fn max_iterations_is_held_to_the_cap() {
+        // Python and WebAssembly: the same cap and the same line as the API's `options.`.
+        let arm = default_arm();
+        let limits = Limits::default();
+        let at_cap = format!(r#"{{"max_iterations": {}}}"#, limits.max_iterations);
+        assert_eq!(solve_options(&arm, &at_cap, &limits).unwrap().max_iterations, limits.max_iterations);
+        let over = format!(r#"{{"max_iterations": {}}}"#, limits.max_iterations + 1);
+        let e = solve_options(&arm, &over, &limits).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert_eq!(
+            e.message,
+            format!(
+                "max_iterations = {}: more than the cap of {} (--max-iterations)",
+                limits.max_iterations + 1,
+                limits.max_iterations
+            )
+        );
     }
 
     #[test]

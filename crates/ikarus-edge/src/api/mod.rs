@@ -63,7 +63,7 @@ impl Default for Limits {
             max_body_bytes: 1 << 20,
             max_links: 64,
             max_bones: 256,
-            max_iterations: 100_000,
+            max_iterations: crate::settings::DEFAULT_ITERATION_CAP,
             max_frames: 2000,
             max_samples: 5000,
             max_resolution: 1024,

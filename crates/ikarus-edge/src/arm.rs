@@ -15,7 +15,6 @@
 
 use std::path::Path;
 
-use clap::Args;
 use ikarus::number::Num;
 use ikarus::{Chain, ChainError, JointLimits, Link};
 use serde::Deserialize;
@@ -25,29 +24,6 @@ use crate::settings::SolverSettings;
 
 /// The built-in default arm: the seed program's, shipped as `examples/arms/seed.toml`.
 pub const DEFAULT_ARM: &str = include_str!("../../../examples/arms/seed.toml");
-
-/// `--limits` / `--no-limits` of the commands that look at the reachable region (`workspace`,
-/// `reach`, `render arm`, `render workspace`): over the arm file's `[solver] limits`.
-#[derive(Debug, Clone, Args)]
-pub struct LimitsArgs {
-    /// Respect the arm's joint ranges (the built-in arm's are the seed's)
-    #[arg(long, overrides_with = "no_limits")]
-    pub limits: bool,
-    /// Ignore the joint ranges, even if the arm file's [solver] table enforces them
-    #[arg(long, overrides_with = "limits")]
-    pub no_limits: bool,
-}
-
-impl LimitsArgs {
-    /// What the flags ask: `Some(true)`, `Some(false)`, or `None` (the arm file decides).
-    pub fn asked(&self) -> Option<bool> {
-        match (self.limits, self.no_limits) {
-            (true, _) => Some(true),
-            (false, true) => Some(false),
-            (false, false) => None,
-        }
-    }
-}
 
 /// An arm as written in a file: names and units of the edge (degrees).
 #[derive(Debug, Clone, Deserialize)]
@@ -185,7 +161,7 @@ impl ArmFile {
 /// `limits_deg = [0, 45]` starts at 10°; none inside is reported as outside the limits);
 /// without limits, wrapped into (−180°, 180°] exactly (`angle_deg = 1e300` is a direction, not
 /// a number no step could change). See [`ikarus::angle::degrees_within`].
-pub(crate) fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
+pub fn start_angle(angle_deg: f64, limits_deg: Option<[f64; 2]>) -> f64 {
     if !angle_deg.is_finite() {
         return angle_deg;
     }
@@ -210,15 +186,6 @@ pub(crate) fn toml_error(label: &str, text: &str, e: &toml::de::Error) -> String
             format!("{label}: line {line}, column {col}: {msg}")
         }
         None => format!("{label}: {msg}"),
-    }
-}
-
-/// The OS reason without Rust's "(os error N)" suffix.
-pub fn io_reason(e: &std::io::Error) -> String {
-    let s = e.to_string();
-    match s.find(" (os error") {
-        Some(i) => s[..i].to_owned(),
-        None => s,
     }
 }
 

@@ -16,11 +16,9 @@ use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{Motion, MotionPlan, TimingProblem};
 use crate::reach::ReachRequest;
 use crate::report::{self, AnimateJson, SolveReport, VerdictJson};
-use crate::settings::{SolverSettings, solver};
+use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, over_cap, solver};
 use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape, TrackJob, TrackJson};
 
-/// Frames recorded by a solve when `options.record_every` is not given (as `ikarus solve`).
-const SOLVE_RECORD_EVERY: u32 = 20;
 /// Most via points of a motion: each is one more solve of up to `--max-iterations`.
 pub(super) const MAX_VIA: usize = 100;
 /// Most joint-space samples of a workspace.
@@ -89,7 +87,7 @@ pub fn default_arm() -> Result<Reply, Problem> {
 pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
         let arm = load_arm(req.arm, limits)?;
-        let mut options = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
+        let mut options = options(&arm, req.options.as_ref(), DEFAULT_RECORD_EVERY, limits, interrupt)?;
         let asked = req.options.as_ref().and_then(|o| o.record_every).or(arm.solver.record_every);
         if asked.is_none() {
             options.record_every = Some(default_record_every(&arm, options.max_iterations));
@@ -121,7 +119,7 @@ pub fn animate(req: AnimateReq, limits: &Limits, interrupt: &Interrupt) -> Resul
 pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
         let arm = load_arm(req.arm.clone(), limits)?;
-        let solve = options(&arm, req.options.as_ref(), SOLVE_RECORD_EVERY, limits, interrupt)?;
+        let solve = options(&arm, req.options.as_ref(), DEFAULT_RECORD_EVERY, limits, interrupt)?;
         let start = start_pose(&arm, req.start_deg.as_deref(), "start_deg")?;
         let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
         let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
@@ -295,9 +293,10 @@ pub(crate) fn settings_options(
     table.check().map_err(|m| Problem::invalid(format!("{prefix}{m}")))?;
     let iterations = table.max_iterations.unwrap_or(SolveOptions::default().max_iterations);
     if iterations > limits.max_iterations {
-        return Err(Problem::invalid(format!(
-            "{prefix}max_iterations = {iterations}: more than the cap of {} (--max-iterations)",
-            limits.max_iterations
+        return Err(Problem::invalid(over_cap(
+            &format!("{prefix}max_iterations = {iterations}"),
+            limits.max_iterations,
+            "--max-iterations",
         )));
     }
     if let Some(restarts) = table.restarts.filter(|&r| r > limits.max_restarts) {
@@ -354,7 +353,7 @@ pub(super) fn pose_from_degrees(
 }
 
 pub(super) fn goal(g: &GoalReq, field: &str) -> Result<Goal, Problem> {
-    crate::goals::make_goal(g.x, g.y, g.angle_deg).map_err(|m| Problem::invalid(format!("{field}: {m}")))
+    crate::goal::make_goal(g.x, g.y, g.angle_deg).map_err(|m| Problem::invalid(format!("{field}: {m}")))
 }
 
 pub(super) fn ease(req: Option<&EaseReq>, default: EaseKind) -> Result<Ease, Problem> {
@@ -446,7 +445,7 @@ pub(super) fn motion(
     }
     let timing = timing(req.frames, req.duration, req.fps, limits)?;
     let ease = ease(req.ease, EaseKind::Sine)?;
-    let record = if req.from_solve { 1 } else { SOLVE_RECORD_EVERY };
+    let record = if req.from_solve { 1 } else { DEFAULT_RECORD_EVERY };
     let options = options(arm, req.options, record, limits, interrupt)?;
     if req.from_solve {
         recorded_cap(arm, &options, req.via.len() + 1, MAX_RECORDED_VALUES)?;
@@ -465,13 +464,13 @@ pub(super) const MAX_RECORDED_VALUES: u64 = 4_000_000;
 /// answer, about 60 bytes of JSON per value (1 million: about 60 MB of JSON at most).
 pub(super) const MAX_SOLVE_RECORDED_VALUES: u64 = 1_000_000;
 
-/// The frame interval of a solve whose request gives none: [`SOLVE_RECORD_EVERY`], or more
+/// The frame interval of a solve whose request gives none: [`DEFAULT_RECORD_EVERY`], or more
 /// when that would record more than [`MAX_SOLVE_RECORDED_VALUES`].
 fn default_record_every(arm: &Arm, max_iterations: u32) -> u32 {
     let per_frame = arm.chain.len() as u64 + 4;
     let frames = (MAX_SOLVE_RECORDED_VALUES / per_frame).saturating_sub(2).max(1);
     let every = u64::from(max_iterations).div_ceil(frames);
-    u32::try_from(every).unwrap_or(u32::MAX).max(SOLVE_RECORD_EVERY)
+    u32::try_from(every).unwrap_or(u32::MAX).max(DEFAULT_RECORD_EVERY)
 }
 
 /// Refuses, before any solve, a request whose `solves` solves could record more than `cap`

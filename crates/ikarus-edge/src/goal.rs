@@ -1,10 +1,20 @@
-//! A rig solve's task from names: goals and pins on bones named as in the rig file, checked
+//! Goals at the edges, from flags or a request: an arm's tip ([`make_goal`], degrees), and a
+//! rig's task from names ([`build`]): goals and pins on bones named as in the rig file, checked
 //! before any solve with messages in each edge's own field names (`--goal left_hand=…` on the
-//! command line, `goals[0].bone` in a request). Shared by `ikarus solve --rig` and the API.
+//! command line, `goals[0].bone` in a request).
 
-use ikarus::{Bend, Pin, Priority, RigGoal, RigTask, Skeleton};
+use ikarus::{Bend, Goal, Pin, Priority, RigGoal, RigTask, Skeleton};
 
-use crate::goals::make_goal;
+/// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
+/// into (−180°, 180°] exactly before it becomes radians: 1e20° is the direction it names).
+pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
+    match angle_deg {
+        None => Goal::position(x, y),
+        Some(a) if !a.is_finite() => Goal::with_orientation(x, y, a),
+        Some(a) => Goal::with_orientation(x, y, ikarus::angle::radians_from_degrees(a)),
+    }
+    .map_err(|e| e.to_string())
+}
 
 /// Most bone names listed in a message about an unknown bone.
 const LISTED_NAMES: usize = 24;

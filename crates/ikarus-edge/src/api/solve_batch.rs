@@ -50,8 +50,8 @@ struct SolveBatchJson<'a> {
 fn goal(i: usize, g: &[f64]) -> Result<Goal, Problem> {
     let field = format!("goals[{i}]");
     let made = match *g {
-        [x, y] => crate::goals::make_goal(x, y, None),
-        [x, y, angle_deg] => crate::goals::make_goal(x, y, Some(angle_deg)),
+        [x, y] => crate::goal::make_goal(x, y, None),
+        [x, y, angle_deg] => crate::goal::make_goal(x, y, Some(angle_deg)),
         _ => Err(format!("expected [x, y] or [x, y, angle_deg], got {} numbers", g.len())),
     };
     made.map_err(|m| Problem::invalid(format!("{field}: {m}")))

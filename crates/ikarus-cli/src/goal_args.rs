@@ -1,14 +1,14 @@
-//! The command line's words for a rig's task: `--goal NAME=X,Y[,DEG]` (beside an arm's
-//! `--goal X,Y`), `--pin NAME`, and the per-goal controls `--weight NAME=W`, `--secondary NAME`,
+//! The goal flags of every command: an arm's `--goal X,Y`, and a rig's task: `--goal
+//! NAME=X,Y[,DEG]`, `--pin NAME`, and the per-goal controls `--weight NAME=W`, `--secondary NAME`,
 //! `--bend NAME=ccw|cw`, `--softness NAME=S`, `--mix M`; turned into the task by
-//! [`crate::rig_task::build`] with messages that name the flag and its value.
+//! [`crate::goal::build`] with messages that name the flag and its value.
 
 use clap::Args;
 use ikarus::{Bend, Priority, RigTask, Skeleton};
 
 use crate::error::CliError;
+use crate::goal::{self, Field, NamedGoal};
 use crate::options::{parse_finite, parse_non_negative, parse_point, parse_positive};
-use crate::rig_task::{self, Field, NamedGoal};
 
 /// A `--goal`: an arm's tip position `X,Y`, or a rig bone's `NAME=X,Y[,DEG]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -178,7 +178,7 @@ impl RigTaskArgs {
             Field::Bend(i) => format!("--bend {}", targets[i].bone),
             Field::Pin(i) => format!("--pin {}", self.pin[i]),
         };
-        rig_task::build(skeleton, &goals, &self.pin, self.mix.unwrap_or(1.0), &field).map_err(|m| {
+        goal::build(skeleton, &goals, &self.pin, self.mix.unwrap_or(1.0), &field).map_err(|m| {
             // The library's words for a task of nothing, in the flags' words.
             if m.starts_with("goals: ") {
                 CliError::input("--goal: a rig solve needs at least one --goal NAME=X,Y or --pin NAME")

@@ -1,7 +1,7 @@
 //! `POST /api/animate` and `POST /api/track` with `rig` in place of `arm`: the rig motion of
 //! `ikarus animate --rig` (goal sets `via`, then `goals`, with `pins` held) and the rig track of
 //! `ikarus track --rig` (`effector` follows the path while `goals` hold and `pins` stay), made
-//! by the command line's workflows (`crate::rig_motion`, `crate::rig_track`) under the
+//! by the command line's workflows (`crate::rig_motion`, `crate::track`) under the
 //! server's caps and time budget. The bodies are told apart as `POST /api/solve`'s are: `rig`
 //! and `goals` make a rig's request.
 
@@ -19,9 +19,8 @@ use super::rigs::{MAX_EFFECTORS, load_rig, task};
 use super::{Limits, Problem, Reply};
 use crate::rig::{Rig, RigFile};
 use crate::rig_motion::RigMotionPlan;
-use crate::rig_track::{RigTrackJob, effector_index};
 use crate::settings::SolverSettings;
-use crate::track::{Shape, TrackJob};
+use crate::track::{RigTrackJob, Shape, TrackJob, effector_index};
 
 /// `POST /api/animate` with `rig`: goal sets solved in turn, then eased.
 #[derive(Debug, Deserialize)]

@@ -1,0 +1,293 @@
+//! The track workflow shared by `ikarus track` and `POST /api/track`: the tip of an arm follows
+//! a path (a line, a circle, a figure-8 or given goals), online or planned ([`TrackJob`]); or the
+//! tip of one bone of a rig follows it online while the rig's other goals hold and its pins stay
+//! where they start ([`RigTrackJob`], the library's [`ikarus::track::follow_rig`]). The jobs,
+//! their JSON shapes and their picture layers.
+
+use ikarus::number::Num;
+use ikarus::track::{self, Path, PathError, Track, TrackError, TrackMode, TrackOptions};
+use ikarus::{Goal, RigTask, SolveOptions};
+use serde::Serialize;
+
+use crate::arm::Arm;
+use crate::report::ByName;
+use crate::report::{degrees, points};
+use crate::rig::Rig;
+
+/// Samples of a shape unless `--samples` says otherwise.
+pub const DEFAULT_SAMPLES: usize = 100;
+/// The default bound on a joint's change between samples, degrees.
+pub const DEFAULT_MAX_STEP_DEG: f64 = 10.0;
+/// A shape sampled into a path.
+#[derive(Debug, Clone, Copy)]
+pub enum Shape {
+    Line([f64; 4]),
+    Circle([f64; 3]),
+    Figure8([f64; 3]),
+}
+
+impl Shape {
+    /// The shape's name, as the flag and the API field.
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Line(_) => "line",
+            Shape::Circle(_) => "circle",
+            Shape::Figure8(_) => "figure8",
+        }
+    }
+
+    /// The path of `samples` points on the shape.
+    pub fn path(self, samples: usize) -> Result<Path, PathError> {
+        match self {
+            Shape::Line([x0, y0, x1, y1]) => Path::line([x0, y0], [x1, y1], samples),
+            Shape::Circle([cx, cy, r]) => Path::circle([cx, cy], r, samples),
+            Shape::Figure8([cx, cy, a]) => Path::figure8([cx, cy], a, samples),
+        }
+    }
+}
+
+/// One track: the workflow of `ikarus track` and `POST /api/track`.
+pub struct TrackJob<'a> {
+    pub arm: &'a Arm,
+    pub start: Vec<f64>,
+    pub path: Path,
+    pub mode: TrackMode,
+    pub options: TrackOptions,
+}
+
+impl TrackJob<'_> {
+    /// The tracking options: the solver's `solve`, the bound in degrees, and whether follow
+    /// bounds the first sample too.
+    pub fn options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) -> TrackOptions {
+        TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
+    }
+
+    /// Tracks the path; a problem is bad input, in the library's words (the bound in the edge's
+    /// degrees, `max_step_deg`).
+    pub fn run(&self) -> Result<Track, String> {
+        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| match e {
+            TrackError::OffPathCap { max_step, needed, cap } => format!(
+                "max_step_deg = {}: bridging the plan's gaps in steps this small needs {needed} poses off the path, more than the cap of {cap} ({} per sample); raise it or sample the path more finely",
+                Num(max_step.to_degrees()),
+                track::MAX_OFF_PATH_PER_SAMPLE
+            ),
+            other => other.to_string(),
+        })
+    }
+
+    /// The picture's layer: the wanted path, the tip's trace, the flips.
+    pub fn layer(&self, t: &Track) -> ikarus_render::PathLayer {
+        let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.arm.chain, &s.angles).position;
+        ikarus_render::PathLayer {
+            goals: self.path.goals().iter().map(Goal::target).collect(),
+            trace: t.samples.iter().map(tip).collect(),
+            flips: t.summary.flips.iter().map(|&k| tip(&t.samples[k])).collect(),
+        }
+    }
+
+    /// A one-line caption for pictures.
+    pub fn caption(&self, t: &Track) -> String {
+        let s = &t.summary;
+        let off = if s.off_path > 0 { format!(" · {} off path", s.off_path) } else { String::new() };
+        format!(
+            "{} · {} · {} of {} reached{off} · {} flips · largest step {:.1}°",
+            self.arm.name,
+            self.mode.name(),
+            s.reached,
+            s.samples,
+            s.flips.len(),
+            s.max_step.to_degrees()
+        )
+    }
+}
+
+#[derive(Serialize)]
+pub struct TrackSampleJson {
+    pub goal: [f64; 2],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_deg: Option<f64>,
+    pub status: &'static str,
+    pub error: f64,
+    pub angles_deg: Vec<f64>,
+    pub joints: Vec<[f64; 2]>,
+    pub step_deg: f64,
+}
+
+#[derive(Serialize)]
+pub struct TrackSummaryJson {
+    pub samples: usize,
+    pub reached: usize,
+    pub limited: usize,
+    pub unreachable: usize,
+    /// Stalled or at the iteration cap.
+    pub stalled: usize,
+    /// Poses plan inserted off the path, between two samples whose poses lie further apart
+    /// than the bound (status `off_path`; not counted in `samples`).
+    pub off_path: usize,
+    pub flips: usize,
+    pub flip_samples: Vec<usize>,
+    /// The bound: a larger step is a flip.
+    pub step_bound_deg: f64,
+    pub max_step_deg: f64,
+    pub max_error: f64,
+    pub max_velocity_deg_per_sample: f64,
+    pub max_acceleration_deg_per_sample2: f64,
+    pub max_jerk_deg_per_sample3: f64,
+}
+
+/// A track: `ikarus track --format json` and `POST /api/track`.
+#[derive(Serialize)]
+pub struct TrackJson<'a> {
+    pub arm: &'a str,
+    pub mode: &'static str,
+    pub samples: Vec<TrackSampleJson>,
+    pub summary: TrackSummaryJson,
+}
+
+impl<'a> TrackJson<'a> {
+    pub fn new(job: &TrackJob<'a>, t: &Track) -> Self {
+        let chain = &job.arm.chain;
+        let samples = t
+            .samples
+            .iter()
+            .map(|s| {
+                let p = s.goal.target();
+                TrackSampleJson {
+                    goal: [p.x, p.y],
+                    angle_deg: s.goal.orientation().map(f64::to_degrees),
+                    status: s.status.as_str(),
+                    error: s.error,
+                    angles_deg: degrees(&s.angles),
+                    joints: points(&ikarus::kinematics::joint_positions(chain, &s.angles)),
+                    step_deg: s.step.to_degrees(),
+                }
+            })
+            .collect();
+        let summary = TrackSummaryJson::new(&t.summary, job.options.max_step);
+        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
+    }
+}
+
+impl TrackSummaryJson {
+    /// The summary of a track whose flip bound was `max_step` radians.
+    pub fn new(s: &track::TrackSummary, max_step: f64) -> Self {
+        TrackSummaryJson {
+            samples: s.samples,
+            reached: s.reached,
+            limited: s.limited,
+            unreachable: s.unreachable,
+            stalled: s.stalled,
+            off_path: s.off_path,
+            flips: s.flips.len(),
+            flip_samples: s.flips.clone(),
+            step_bound_deg: max_step.to_degrees(),
+            max_step_deg: s.max_step.to_degrees(),
+            max_error: s.max_error,
+            max_velocity_deg_per_sample: s.max_velocity.to_degrees(),
+            max_acceleration_deg_per_sample2: s.max_acceleration.to_degrees(),
+            max_jerk_deg_per_sample3: s.max_jerk.to_degrees(),
+        }
+    }
+}
+
+/// One rig track: the workflow of `ikarus track --rig` and `POST /api/track` with `rig`.
+pub struct RigTrackJob<'a> {
+    pub rig: &'a Rig,
+    pub start: Vec<f64>,
+    /// The bone whose tip follows the path.
+    pub bone: usize,
+    /// The goals held and the pins, without the effector.
+    pub task: RigTask,
+    pub path: Path,
+    pub options: TrackOptions,
+}
+
+/// The index of the effector bone `name`, which must exist and have neither a goal nor a pin
+/// in `task`; a problem starts with `field` and the name (`--effector hand`).
+pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Result<usize, String> {
+    let bone = crate::goal::index(&rig.skeleton, name).map_err(|m| format!("{field} {name}: {m}"))?;
+    if task.goals.iter().any(|g| g.bone == bone) {
+        return Err(format!("{field} {name}: the bone also has a goal; the effector's goal is the path"));
+    }
+    if task.pins.iter().any(|p| p.bone == bone) {
+        return Err(format!("{field} {name}: the bone is also pinned; a pinned tip cannot follow a path"));
+    }
+    Ok(bone)
+}
+
+impl RigTrackJob<'_> {
+    /// Follows the path; a problem is bad input, in the library's words.
+    pub fn run(&self) -> Result<Track, String> {
+        let s = &self.rig.skeleton;
+        track::follow_rig(s, &self.start, self.bone, &self.task, &self.path, &self.options).map_err(|e| e.to_string())
+    }
+
+    /// A one-line caption for pictures.
+    pub fn caption(&self, t: &Track) -> String {
+        let s = &t.summary;
+        format!(
+            "{} · {} follows · {} of {} reached · {} flips · largest step {:.1}°",
+            self.rig.name,
+            self.rig.skeleton.name(self.bone),
+            s.reached,
+            s.samples,
+            s.flips.len(),
+            s.max_step.to_degrees()
+        )
+    }
+
+    /// The JSON object of a finished track.
+    pub fn json<'a>(&'a self, t: &Track) -> RigTrackJson<'a> {
+        let s = &self.rig.skeleton;
+        let names = s.names();
+        let samples = t
+            .samples
+            .iter()
+            .map(|x| {
+                let p = x.goal.target();
+                let tips = crate::report::tips(self.rig, &x.angles);
+                RigTrackSampleJson {
+                    goal: [p.x, p.y],
+                    angle_deg: x.goal.orientation().map(f64::to_degrees),
+                    status: x.status.as_str(),
+                    error: x.error,
+                    angles_deg: ByName { names, values: degrees(&x.angles) },
+                    joints: ByName { names, values: tips.iter().map(|p| [p.x, p.y]).collect() },
+                    step_deg: x.step.to_degrees(),
+                }
+            })
+            .collect();
+        RigTrackJson {
+            rig: &self.rig.name,
+            effector: s.name(self.bone),
+            mode: TrackMode::Follow.name(),
+            samples,
+            summary: TrackSummaryJson::new(&t.summary, self.options.max_step),
+        }
+    }
+}
+
+/// One sample of a rig track: as an arm's, with angles and tips keyed by bone name.
+#[derive(Serialize)]
+pub struct RigTrackSampleJson<'a> {
+    pub goal: [f64; 2],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_deg: Option<f64>,
+    pub status: &'static str,
+    /// The largest effector error: the followed tip's, the held goals' and the pins'.
+    pub error: f64,
+    pub angles_deg: ByName<'a, f64>,
+    pub joints: ByName<'a, [f64; 2]>,
+    pub step_deg: f64,
+}
+
+/// A rig track: `ikarus track --rig --format json` and `POST /api/track` with `rig`.
+#[derive(Serialize)]
+pub struct RigTrackJson<'a> {
+    pub rig: &'a str,
+    /// The bone whose tip followed the path.
+    pub effector: &'a str,
+    pub mode: &'static str,
+    pub samples: Vec<RigTrackSampleJson<'a>>,
+    pub summary: TrackSummaryJson,
+}
