@@ -117,6 +117,15 @@ fn the_joint_examples_solve_from_the_command_line_and_the_api_alike() {
         check(name, &api, goals);
         assert_eq!(api["angles_deg"], cli["angles_deg"], "{name}: the API's pose is the command line's");
         assert_eq!(api["extensions"], cli["extensions"], "{name}");
+        // The rig as `POST /api/rig/parse` reads the file (what Python's `Rig.from_toml` and the
+        // page send back) keeps its joint keys: it solves as the file does.
+        let text = std::fs::read_to_string(&path).unwrap();
+        let parsed = s.post_raw("/api/rig/parse", "application/toml", text.as_bytes()).json();
+        let body = json!({"rig": parsed["rig"], "goals": goals_json, "options": {"limits": true, "restarts": 8}});
+        let again = s.post("/api/solve", &body).json();
+        check(name, &again, goals);
+        assert_eq!(again["angles_deg"], cli["angles_deg"], "{name}: the parsed rig's pose is the file's");
+        assert_eq!(again["extensions"], cli["extensions"], "{name}");
     }
 }
 

@@ -502,7 +502,8 @@ pub fn tips(rig: &Rig, angles: &[f64]) -> Vec<Point2<f64>> {
 }
 
 /// A rig file's fields as JSON (the requests' `rig`): `name`, `base`, `bones` (each with
-/// `parent`, null for a root, and `limits_deg`, `stiffness` and `rest_deg` when it has them)
+/// `parent`, null for a root, and `limits_deg`, `stiffness`, `rest_deg` and the joint keys
+/// `offset`, `joint`, `slide`, `extension`, `limits` when it has them)
 /// and, when the file has one, `solver`.
 #[derive(Debug, serde::Serialize)]
 pub struct RigJson {
@@ -525,6 +526,17 @@ pub struct BoneJson {
     pub stiffness: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rest_deg: Option<f64>,
+    /// The file's joint keys, each only when it has it (so a rig without them reads as before).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<crate::rig::JointFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extension: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits: Option<[f64; 2]>,
 }
 
 impl RigJson {
@@ -558,6 +570,11 @@ impl RigJson {
                     limits_deg: b.limits_deg,
                     stiffness: b.stiffness,
                     rest_deg: b.rest_deg,
+                    offset: b.offset,
+                    joint: b.joint,
+                    slide: b.slide,
+                    extension: b.extension,
+                    limits: b.limits,
                 })
                 .collect(),
             solver,
