@@ -26,7 +26,7 @@ use crate::report::{AnimateJson, deg_text};
 use crate::rig::Rig;
 use crate::rig_motion::{RigMotion, RigMotionPlan};
 use crate::settings::SolverFlags;
-use crate::solve::angle_columns;
+use crate::solve::{angle_columns, write_pose};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum AnimateFormat {
@@ -403,17 +403,15 @@ pub fn motion_run(args: &MotionArgs, path: &Path) -> Result<RigMotionRun, CliErr
     Ok(RigMotionRun { rig, motion, fps: args.fps.unwrap_or(DEFAULT_FPS) })
 }
 
-/// One row per frame: `time`, every bone's angle (`NAME_deg`), every bone's tip
-/// (`NAME.x,NAME.y`), in the rig's order.
+/// One row per frame: `time`, every bone's angle (`NAME_deg`), every prismatic bone's
+/// displacement (`NAME_ext`), every bone's tip (`NAME.x,NAME.y`), in the rig's order.
 fn rig_csv(w: &mut dyn Write, run: &RigMotionRun) -> std::io::Result<()> {
     let names = run.rig.skeleton.names();
     let tips: Vec<String> = names.iter().map(|n| format!("{n}.x,{n}.y")).collect();
     writeln!(w, "time,{},{}", angle_columns(&run.rig), tips.join(","))?;
     for f in &run.motion.motion.animation.frames {
         write!(w, "{:?}", f.time)?;
-        for a in &f.angles {
-            write!(w, ",{:?}", a.to_degrees())?;
-        }
+        write_pose(w, &run.rig, &f.angles)?;
         for p in &f.joints[1..] {
             write!(w, ",{:?},{:?}", p.x, p.y)?;
         }

@@ -354,18 +354,26 @@ fn run_rig_single(args: &SolveArgs, rig: &Rig) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The CSV header of a rig's angles: `NAME_deg` per bone, in the rig's order.
+/// The CSV header of a rig's pose: `NAME_deg` per bone, then `NAME_ext` per prismatic bone,
+/// in the rig's order ([`crate::report::pose_columns`]).
 pub fn angle_columns(rig: &Rig) -> String {
-    rig.skeleton.names().iter().map(|n| format!("{n}_deg")).collect::<Vec<_>>().join(",")
+    crate::report::pose_columns(&rig.skeleton).join(",")
 }
 
-/// One row: `status,iterations,error` and every bone's angle.
+/// `,value` for every column of [`angle_columns`] at joint values `q`.
+pub fn write_pose(w: &mut dyn Write, rig: &Rig, q: &[f64]) -> std::io::Result<()> {
+    for v in crate::report::pose_values(&rig.skeleton, q) {
+        write!(w, ",{v:?}")?;
+    }
+    Ok(())
+}
+
+/// One row: `status,iterations,error` and every bone's angle (then every prismatic bone's
+/// displacement).
 fn rig_csv(w: &mut dyn Write, rig: &Rig, o: &Outcome) -> std::io::Result<()> {
     writeln!(w, "status,iterations,error,{}", angle_columns(rig))?;
     write!(w, "{},{},{:?}", o.status, o.iterations, o.error)?;
-    for a in o.pose.angles() {
-        write!(w, ",{:?}", a.to_degrees())?;
-    }
+    write_pose(w, rig, o.pose.angles())?;
     writeln!(w)
 }
 
@@ -575,9 +583,7 @@ fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliErro
             let (error, iterations, angles) = &r.row;
             let values: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
             write!(w, "{},{},{:?},{}", values.join(","), r.status, error, iterations)?;
-            for a in angles {
-                write!(w, ",{:?}", a.to_degrees())?;
-            }
+            write_pose(w, rig, angles)?;
             writeln!(w)?;
         }
         Ok(())

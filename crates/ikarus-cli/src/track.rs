@@ -23,7 +23,7 @@ use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, repo
 use crate::rig::Rig;
 use crate::rig_motion::poses_animation;
 use crate::settings::SolverFlags;
-use crate::solve::angle_columns;
+use crate::solve::write_pose;
 
 /// Frames per second of a track's GIF: one frame per sample.
 pub const TRACK_FPS: f64 = 25.0;
@@ -209,18 +209,22 @@ fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
 
 fn csv(w: &mut dyn Write, t: &Track) -> std::io::Result<()> {
     let n = t.samples.first().map_or(0, |s| s.angles.len());
-    csv_with(w, t, (1..=n).map(|i| format!("theta{i}_deg")).collect())
+    let angles = |w: &mut dyn Write, q: &[f64]| q.iter().try_for_each(|a| write!(w, ",{:?}", a.to_degrees()));
+    csv_with(w, t, (1..=n).map(|i| format!("theta{i}_deg")).collect(), &angles)
 }
 
-/// One row per sample, the angles under `angle_columns` (one per angle).
-pub fn csv_with(w: &mut dyn Write, t: &Track, angle_columns: Vec<String>) -> std::io::Result<()> {
+/// How a sample's pose is written: `,value` for each of the pose's columns.
+type PoseWriter<'a> = &'a dyn Fn(&mut dyn Write, &[f64]) -> std::io::Result<()>;
+
+/// One row per sample, the pose under `pose_columns`, written by `pose`.
+pub fn csv_with(w: &mut dyn Write, t: &Track, pose_columns: Vec<String>, pose: PoseWriter) -> std::io::Result<()> {
     let oriented = t.samples.iter().any(|s| s.goal.orientation().is_some());
     let mut header = vec!["sample", "x", "y"].into_iter().map(str::to_owned).collect::<Vec<_>>();
     if oriented {
         header.push("angle_deg".to_owned());
     }
     header.extend(["status", "error", "step_deg"].map(str::to_owned));
-    header.extend(angle_columns);
+    header.extend(pose_columns);
     writeln!(w, "{}", header.join(","))?;
     for (k, s) in t.samples.iter().enumerate() {
         let p = s.goal.target();
@@ -229,9 +233,7 @@ pub fn csv_with(w: &mut dyn Write, t: &Track, angle_columns: Vec<String>) -> std
             write!(w, ",{}", s.goal.orientation().map_or(String::new(), |a| format!("{:?}", a.to_degrees())))?;
         }
         write!(w, ",{},{:?},{:?}", s.status, s.error, s.step.to_degrees())?;
-        for a in &s.angles {
-            write!(w, ",{:?}", a.to_degrees())?;
-        }
+        pose(w, &s.angles)?;
         writeln!(w)?;
     }
     Ok(())
@@ -308,8 +310,8 @@ fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
             writeln!(w)
         }
         TrackFormat::Csv => {
-            let columns = angle_columns(rig).split(',').map(str::to_owned).collect();
-            csv_with(w, &t, columns)
+            let columns = crate::report::pose_columns(&rig.skeleton);
+            csv_with(w, &t, columns, &|w, q| write_pose(w, rig, q))
         }
         TrackFormat::Text => rig_text(w, &job, &t),
     })

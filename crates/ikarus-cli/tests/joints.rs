@@ -117,6 +117,15 @@ fn the_joint_examples_solve_from_the_command_line_and_the_api_alike() {
         check(name, &api, goals);
         assert_eq!(api["angles_deg"], cli["angles_deg"], "{name}: the API's pose is the command line's");
         assert_eq!(api["extensions"], cli["extensions"], "{name}");
+        // The rig as `POST /api/rig/parse` reads the file (what Python's `Rig.from_toml` and the
+        // page send back) keeps its joint keys: it solves as the file does.
+        let text = std::fs::read_to_string(&path).unwrap();
+        let parsed = s.post_raw("/api/rig/parse", "application/toml", text.as_bytes()).json();
+        let body = json!({"rig": parsed["rig"], "goals": goals_json, "options": {"limits": true, "restarts": 8}});
+        let again = s.post("/api/solve", &body).json();
+        check(name, &again, goals);
+        assert_eq!(again["angles_deg"], cli["angles_deg"], "{name}: the parsed rig's pose is the file's");
+        assert_eq!(again["extensions"], cli["extensions"], "{name}");
     }
 }
 
@@ -140,5 +149,107 @@ fn bad_joint_keys_are_one_line_naming_the_field_and_the_value() {
         std::fs::write(&path, format!("{base}{extra}")).unwrap();
         let err = fails(&["solve", "--rig", path.to_str().unwrap(), "--goal", "s=1,0"], 2);
         assert!(err.contains(want) && err.trim_end().lines().count() == 1, "{extra}: {err}");
+    }
+}
+
+/// Checks one frame (or sample) of a motion, a track or a recorded solve: every reported tip
+/// where the file's forward kinematics puts it from the frame's own `angles_deg` and
+/// `extensions` (a prismatic value printed as an angle, or a missing extension, fails here).
+fn check_frame(name: &str, what: &str, frame: &Value) {
+    for (bone, tip) in tips(&file(name), frame) {
+        let got = pair(&frame["joints"][&bone]).unwrap();
+        assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{name} {what} {bone}: {got:?} vs {tip:?}");
+    }
+}
+
+/// A CSV's rows as column name → value.
+fn csv_rows(text: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    lines.map(|l| header.iter().map(|h| h.to_string()).zip(l.split(',').map(str::to_owned)).collect()).collect()
+}
+
+/// A CSV row's pose as an answer's `angles_deg` and `extensions` (`NAME_deg`, `NAME_ext`).
+fn csv_pose(name: &str, row: &std::collections::HashMap<String, String>) -> Value {
+    let (mut angles, mut extensions) = (serde_json::Map::new(), serde_json::Map::new());
+    for b in file(name)["bones"].as_array().unwrap() {
+        let bone = b["name"].as_str().unwrap();
+        let number = |c: String| json!(row[&c].parse::<f64>().unwrap());
+        angles.insert(bone.to_owned(), number(format!("{bone}_deg")));
+        match b["joint"].as_str() {
+            Some("prismatic") => extensions.insert(bone.to_owned(), number(format!("{bone}_ext"))),
+            _ => row.get(&format!("{bone}_ext")).map(|_| panic!("{name}: {bone}_ext for a revolute bone")),
+        };
+    }
+    json!({"angles_deg": angles, "extensions": extensions})
+}
+
+#[test]
+fn motions_tracks_and_recorded_frames_of_prismatic_rigs_report_angles_and_extensions() {
+    for (name, goals, effector) in [("rrp", CASES[0].1, "ram"), ("prr", CASES[1].1, "lower")] {
+        let path = example(name);
+        let path = path.to_str().unwrap();
+        let goal = goals.iter().map(|(b, [x, y])| format!("{b}={x},{y}")).next().unwrap();
+        let motion = ["animate", "--rig", path, "--goal", &goal, "--limits", "--restarts", "8", "--frames", "9"];
+        let answer = json(&[&motion[..], &["--format", "json"]].concat());
+        let frames = answer["frames"].as_array().unwrap();
+        assert_eq!(frames.len(), 9, "{name}");
+        for (k, f) in frames.iter().enumerate() {
+            assert!(f["extensions"].is_object(), "{name} frame {k}: {f}");
+            check_frame(name, &format!("frame {k}"), f);
+        }
+        // The CSV: the same pose, with `NAME_ext` columns for the prismatic bones only.
+        let csv = common::succeeds(&[&motion[..], &["--format", "csv"]].concat());
+        let rows = csv_rows(&csv);
+        assert_eq!(rows.len(), frames.len(), "{name}");
+        for (k, (row, f)) in rows.iter().zip(frames).enumerate() {
+            let pose = csv_pose(name, row);
+            assert_eq!(pose["angles_deg"], f["angles_deg"], "{name} csv row {k}");
+            assert_eq!(pose["extensions"], f["extensions"], "{name} csv row {k}");
+            for (bone, tip) in tips(&file(name), &pose) {
+                let got =
+                    [row[&format!("{bone}.x")].parse::<f64>().unwrap(), row[&format!("{bone}.y")].parse().unwrap()];
+                assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{name} csv row {k} {bone}");
+            }
+        }
+        // A track: the effector's tip along a short line near where it starts.
+        let start = json(&["solve", "--rig", path, "--goal", &goal, "--max-iterations", "0", "--format", "json"]);
+        let [x, y] = pair(&start["joints"][effector]).unwrap();
+        let line = format!("{x},{y},{},{}", x - 0.1, y + 0.05);
+        let track = ["track", "--rig", path, "--effector", effector, "--line", &line, "--samples", "6"];
+        let answer = json(&[&track[..], &["--format", "json"]].concat());
+        let samples = answer["samples"].as_array().unwrap();
+        assert_eq!(samples.len(), 6, "{name}: {answer}");
+        for (k, s) in samples.iter().enumerate() {
+            check_frame(name, &format!("sample {k}"), s);
+        }
+        let csv = common::succeeds(&[&track[..], &["--format", "csv"]].concat());
+        for (k, (row, s)) in csv_rows(&csv).iter().zip(samples).enumerate() {
+            let pose = csv_pose(name, row);
+            assert_eq!(pose["angles_deg"], s["angles_deg"], "{name} track csv row {k}");
+            assert_eq!(pose["extensions"], s["extensions"], "{name} track csv row {k}");
+        }
+        // A recorded solve: each frame's angles in bone order, its extensions by name, and the
+        // base then every tip.
+        let solve = ["solve", "--rig", path, "--goal", &goal, "--limits", "--record-every", "1", "--format", "json"];
+        let answer = json(&solve);
+        let recorded = answer["frames"].as_array().unwrap();
+        assert!(recorded.len() > 1, "{name}: {answer}");
+        let rig = file(name);
+        let names: Vec<&str> = rig["bones"].as_array().unwrap().iter().map(|b| b["name"].as_str().unwrap()).collect();
+        for (k, f) in recorded.iter().enumerate() {
+            let angles: serde_json::Map<String, Value> = names
+                .iter()
+                .zip(f["angles_deg"].as_array().unwrap())
+                .map(|(n, a)| (n.to_string(), a.clone()))
+                .collect();
+            let joints: serde_json::Map<String, Value> = names
+                .iter()
+                .zip(&f["joints"].as_array().unwrap()[1..])
+                .map(|(n, p)| (n.to_string(), p.clone()))
+                .collect();
+            let frame = json!({"angles_deg": angles, "extensions": f["extensions"], "joints": joints});
+            check_frame(name, &format!("recorded frame {k}"), &frame);
+        }
     }
 }

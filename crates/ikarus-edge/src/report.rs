@@ -31,9 +31,12 @@ pub struct TipJson {
 }
 
 #[derive(Serialize)]
-pub struct FrameJson {
+pub struct FrameJson<'a> {
     pub iteration: u32,
     pub angles_deg: Vec<f64>,
+    /// A rig's prismatic bones' displacements at this frame; only when it has any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extensions: Option<Extensions<'a>>,
     pub joints: Vec<[f64; 2]>,
 }
 
@@ -60,7 +63,7 @@ pub struct SolveJson<'a> {
     pub end_effector: TipJson,
     pub angles_deg: Vec<f64>,
     pub joints: Vec<[f64; 2]>,
-    pub frames: Vec<FrameJson>,
+    pub frames: Vec<FrameJson<'a>>,
 }
 
 pub fn degrees(angles: &[f64]) -> Vec<f64> {
@@ -110,7 +113,12 @@ impl<'a> SolveReport<'a> {
             frames: o
                 .frames
                 .iter()
-                .map(|f| FrameJson { iteration: f.iteration, angles_deg: degrees(f.angles), joints: points(f.joints) })
+                .map(|f| FrameJson {
+                    iteration: f.iteration,
+                    angles_deg: degrees(f.angles),
+                    extensions: None,
+                    joints: points(f.joints),
+                })
                 .collect(),
         }
     }
@@ -381,7 +389,7 @@ pub struct RigSolveJson<'a> {
     pub joints: ByName<'a, [f64; 2]>,
     /// Recorded frames (empty unless recording is asked): angles in bone order, and the base
     /// then every bone's tip.
-    pub frames: Vec<FrameJson>,
+    pub frames: Vec<FrameJson<'a>>,
 }
 
 /// A finished rig solve and what it needs to be described.
@@ -412,12 +420,17 @@ impl<'a> RigSolveReport<'a> {
             solve_us: self.micros,
             effectors: o.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
             angles_deg: ByName { names, values: relative_degrees(s, o.pose.angles()) },
-            extensions: s.has_prismatic().then_some(Extensions { skeleton: s, values: o.pose.angles() }),
+            extensions: Extensions::of(s, o.pose.angles()),
             joints: ByName { names, values: points(&tips(self.rig, o.pose.angles())) },
             frames: o
                 .frames
                 .iter()
-                .map(|f| FrameJson { iteration: f.iteration, angles_deg: degrees(f.angles), joints: points(f.joints) })
+                .map(|f| FrameJson {
+                    iteration: f.iteration,
+                    angles_deg: relative_degrees(s, f.angles),
+                    extensions: Extensions::of(s, f.angles),
+                    joints: points(f.joints),
+                })
                 .collect(),
         }
     }
@@ -434,7 +447,35 @@ pub fn relative_degrees(s: &ikarus::Skeleton, q: &[f64]) -> Vec<f64> {
 pub struct Extensions<'a> {
     pub skeleton: &'a ikarus::Skeleton,
     /// Every bone's joint value.
-    pub values: &'a [f64],
+    pub values: Vec<f64>,
+}
+
+impl<'a> Extensions<'a> {
+    /// The displacements at joint values `q`: `None` for a skeleton without prismatic joints,
+    /// so that its answers carry no `extensions` (and stay what they were before joint kinds).
+    pub fn of(skeleton: &'a ikarus::Skeleton, q: &[f64]) -> Option<Self> {
+        skeleton.has_prismatic().then(|| Self { skeleton, values: q.to_vec() })
+    }
+}
+
+/// The CSV columns of a rig's pose: `NAME_deg` for every bone (its angle from its parent's
+/// direction), then `NAME_ext` for every prismatic bone (its displacement), in the rig's order.
+pub fn pose_columns(s: &ikarus::Skeleton) -> Vec<String> {
+    let angles = s.names().iter().map(|n| format!("{n}_deg"));
+    let prismatic = |(j, n): (usize, &String)| match s.joint(j) {
+        ikarus::Joint::Revolute => None,
+        ikarus::Joint::Prismatic { .. } => Some(format!("{n}_ext")),
+    };
+    angles.chain(s.names().iter().enumerate().filter_map(prismatic)).collect()
+}
+
+/// The values under [`pose_columns`] at joint values `q`.
+pub fn pose_values(s: &ikarus::Skeleton, q: &[f64]) -> Vec<f64> {
+    let prismatic = |(j, &v): (usize, &f64)| match s.joint(j) {
+        ikarus::Joint::Revolute => None,
+        ikarus::Joint::Prismatic { .. } => Some(v),
+    };
+    relative_degrees(s, q).into_iter().chain(q.iter().enumerate().filter_map(prismatic)).collect()
 }
 
 impl Serialize for Extensions<'_> {
@@ -461,7 +502,8 @@ pub fn tips(rig: &Rig, angles: &[f64]) -> Vec<Point2<f64>> {
 }
 
 /// A rig file's fields as JSON (the requests' `rig`): `name`, `base`, `bones` (each with
-/// `parent`, null for a root, and `limits_deg`, `stiffness` and `rest_deg` when it has them)
+/// `parent`, null for a root, and `limits_deg`, `stiffness`, `rest_deg` and the joint keys
+/// `offset`, `joint`, `slide`, `extension`, `limits` when it has them)
 /// and, when the file has one, `solver`.
 #[derive(Debug, serde::Serialize)]
 pub struct RigJson {
@@ -484,6 +526,17 @@ pub struct BoneJson {
     pub stiffness: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rest_deg: Option<f64>,
+    /// The file's joint keys, each only when it has it (so a rig without them reads as before).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<crate::rig::JointFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extension: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits: Option<[f64; 2]>,
 }
 
 impl RigJson {
@@ -517,6 +570,11 @@ impl RigJson {
                     limits_deg: b.limits_deg,
                     stiffness: b.stiffness,
                     rest_deg: b.rest_deg,
+                    offset: b.offset,
+                    joint: b.joint,
+                    slide: b.slide,
+                    extension: b.extension,
+                    limits: b.limits,
                 })
                 .collect(),
             solver,

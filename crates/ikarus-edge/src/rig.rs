@@ -108,7 +108,7 @@ pub struct BoneFile {
 }
 
 /// A bone's `joint` key.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum JointFile {
     Revolute,

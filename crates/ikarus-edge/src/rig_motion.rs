@@ -10,8 +10,7 @@ use serde::Serialize;
 
 use crate::error::CliError;
 use crate::picture::{Drawing, rig_figure};
-use crate::report::degrees;
-use crate::report::{ByName, EffectorJson};
+use crate::report::{ByName, EffectorJson, Extensions, relative_degrees};
 use crate::rig::Rig;
 
 /// What a rig motion request asks for once its values are checked.
@@ -100,7 +99,6 @@ impl RigMotion {
     /// The JSON object of the motion.
     pub fn json<'a>(&'a self, rig: &'a Rig) -> RigAnimateJson<'a> {
         let s = &rig.skeleton;
-        let names = s.names();
         let animation = &self.motion.animation;
         RigAnimateJson {
             rig: &rig.name,
@@ -117,7 +115,7 @@ impl RigMotion {
                     effectors: r.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
                 })
                 .collect(),
-            frames: animation.frames.iter().map(|f| RigFrameJson::of(names, f)).collect(),
+            frames: animation.frames.iter().map(|f| RigFrameJson::of(s, f)).collect(),
         }
     }
 }
@@ -134,20 +132,25 @@ pub struct RigMotionSolveJson<'a> {
     pub effectors: Vec<EffectorJson<'a>>,
 }
 
-/// One frame of a rig motion or track: bone name → angle (degrees) and bone name → tip.
+/// One frame of a rig motion: bone name → angle (degrees, from its parent's direction), prismatic
+/// bone name → displacement (only when the rig has prismatic joints), bone name → tip.
 #[derive(Serialize)]
 pub struct RigFrameJson<'a> {
     pub time: f64,
     pub angles_deg: ByName<'a, f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extensions: Option<Extensions<'a>>,
     pub joints: ByName<'a, [f64; 2]>,
 }
 
 impl<'a> RigFrameJson<'a> {
     /// A frame whose `joints` are the base, then every bone's tip ([`ikarus::motion::Body`]).
-    pub fn of(names: &'a [String], f: &ikarus::AnimationFrame) -> Self {
+    pub fn of(s: &'a ikarus::Skeleton, f: &ikarus::AnimationFrame) -> Self {
+        let names = s.names();
         Self {
             time: f.time,
-            angles_deg: ByName { names, values: degrees(&f.angles) },
+            angles_deg: ByName { names, values: relative_degrees(s, &f.angles) },
+            extensions: Extensions::of(s, &f.angles),
             joints: ByName { names, values: f.joints[1..].iter().map(|p| [p.x, p.y]).collect() },
         }
     }

@@ -10,8 +10,7 @@ use ikarus::{Goal, RigTask, SolveOptions};
 use serde::Serialize;
 
 use crate::arm::Arm;
-use crate::report::ByName;
-use crate::report::{degrees, points};
+use crate::report::{ByName, Extensions, degrees, points, relative_degrees};
 use crate::rig::Rig;
 
 /// Samples of a shape unless `--samples` says otherwise.
@@ -251,7 +250,8 @@ impl RigTrackJob<'_> {
                     angle_deg: x.goal.orientation().map(f64::to_degrees),
                     status: x.status.as_str(),
                     error: x.error,
-                    angles_deg: ByName { names, values: degrees(&x.angles) },
+                    angles_deg: ByName { names, values: relative_degrees(s, &x.angles) },
+                    extensions: Extensions::of(s, &x.angles),
                     joints: ByName { names, values: tips.iter().map(|p| [p.x, p.y]).collect() },
                     step_deg: x.step.to_degrees(),
                 }
@@ -276,7 +276,11 @@ pub struct RigTrackSampleJson<'a> {
     pub status: &'static str,
     /// The largest effector error: the followed tip's, the held goals' and the pins'.
     pub error: f64,
+    /// Bone name → its angle from its parent's direction, degrees.
     pub angles_deg: ByName<'a, f64>,
+    /// Prismatic bone name → its displacement; only when the rig has prismatic joints.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extensions: Option<Extensions<'a>>,
     pub joints: ByName<'a, [f64; 2]>,
     pub step_deg: f64,
 }

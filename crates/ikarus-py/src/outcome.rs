@@ -91,6 +91,8 @@ pub(crate) struct RigSolved {
     angles_deg: Vec<f64>,
     /// The base, then each bone's tip in the rig's order.
     joints: Vec<[f64; 2]>,
+    /// Each prismatic bone's displacement, in the rig's order (empty without prismatic joints).
+    extensions: Vec<(String, f64)>,
     frames: Vec<Frame>,
     /// The picture's request: the rig, its goals and pins.
     picture: Value,
@@ -164,6 +166,18 @@ impl RigSolved {
             angles_deg.push(angles.get(*name).and_then(Value::as_f64).ok_or_else(|| broken("angles_deg"))?);
             joints.push(pair_of(tips.get(*name).ok_or_else(|| broken("joints"))?, "joints")?);
         }
+        // Only a rig with prismatic joints says `extensions`.
+        let extensions = match a.get("extensions") {
+            None => Vec::new(),
+            Some(e) => {
+                let e = e.as_object().ok_or_else(|| broken("extensions"))?;
+                let value = |v: &Value| v.as_f64().ok_or_else(|| broken("extensions"));
+                names
+                    .iter()
+                    .filter_map(|n| e.get(*n).map(|v| Ok(((*n).to_owned(), value(v)?))))
+                    .collect::<PyResult<_>>()?
+            }
+        };
         let list = |field: &str| a.get(field).and_then(Value::as_array).ok_or_else(|| broken(field));
         let effectors = list("effectors")?.iter().map(effector_of).collect::<PyResult<_>>()?;
         let frames = list("frames")?
@@ -195,6 +209,7 @@ impl RigSolved {
             effectors,
             angles_deg,
             joints,
+            extensions,
             frames,
             picture,
             answer,
@@ -319,6 +334,19 @@ impl PyOutcome {
     #[getter]
     fn angles_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.angles_deg_vec())
+    }
+
+    /// Each prismatic joint's displacement (length units), by bone name in the rig's order, as
+    /// the JSON's ``extensions``: empty for a chain or a rig whose joints all turn.
+    #[getter]
+    fn extensions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        if let Solved::Rig(r) = &self.solved {
+            for (name, value) in &r.extensions {
+                d.set_item(name, value)?;
+            }
+        }
+        Ok(d)
     }
 
     /// Joint positions of the solution: the base, then each link's (bone's) tip: float64 [n+1, 2].

@@ -12,8 +12,10 @@ use crate::svg::{PathData, Svg, num};
 use crate::view::{MAX_GOAL_ZOOM_OUT, PixelRect, View};
 use crate::wedge::{Wedge, ranges};
 use labels::labels;
+use sleeve::{draw_sleeves, sleeves};
 
 mod labels;
+mod sleeve;
 
 /// A goal for the tip of one bone: a position and optionally a direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -232,6 +234,7 @@ pub fn skeleton_svg(figure: &SkeletonFigure, width: u32, height: u32) -> Result<
         ranges(&mut svg, &scene.view, &wedges(skeleton, &bones));
     }
     goal_leads(&scene, &mut svg, figure, &bones);
+    draw_sleeves(&scene, &mut svg, &sleeves(skeleton, figure.pose, &bones), figure.ranges);
     draw_bones(&scene, &mut svg, skeleton, &bones);
     pins(&scene, &mut svg, figure, &bones);
     goals(&scene, &mut svg, figure);
@@ -251,13 +254,18 @@ pub fn skeleton_png(figure: &SkeletonFigure, width: u32, height: u32) -> Result<
     svg_to_png(&skeleton_svg(figure, width, height)?)
 }
 
-/// The wedge of every limited bone: at its start, from its parent's direction (+x for a root).
+/// The wedge of every limited revolute bone: at its start, from its parent's direction (+x for
+/// a root). A prismatic bone's limits are lengths: its sleeve shows them ([`sleeve`]).
 fn wedges(skeleton: &Skeleton, bones: &Bones) -> Vec<Wedge> {
     let mut out = Vec::new();
     for (i, limits) in skeleton.limits().iter().enumerate() {
-        if let Some(limits) = limits {
+        let revolute = match skeleton.joint(i) {
+            ikarus::Joint::Revolute => true,
+            ikarus::Joint::Prismatic { .. } => false,
+        };
+        if let Some(limits) = limits.filter(|_| revolute) {
             let heading = skeleton.parent(i).map_or(0.0, |p| bones.directions[p]);
-            out.push(Wedge { at: bones.starts[i], heading, limits: *limits, length: skeleton.lengths()[i] });
+            out.push(Wedge { at: bones.starts[i], heading, limits, length: skeleton.lengths()[i] });
         }
     }
     out
@@ -287,6 +295,17 @@ fn draw_bones(scene: &Scene, svg: &mut Svg, skeleton: &Skeleton, bones: &Bones) 
         socket(scene, svg, skeleton.base());
     }
     scene.joint_ring(svg, skeleton.base());
+    // A bone that starts off its parent's tip (an offset, a slide) has its own joint.
+    for &i in skeleton.topological_order() {
+        let own = skeleton.offsets()[i].is_some()
+            || match skeleton.joint(i) {
+                ikarus::Joint::Revolute => false,
+                ikarus::Joint::Prismatic { .. } => true,
+            };
+        if own {
+            scene.joint_ring(svg, bones.starts[i]);
+        }
+    }
     for &i in skeleton.topological_order() {
         if skeleton.children(i).len() > 0 {
             scene.joint_ring(svg, bones.tips[i]);

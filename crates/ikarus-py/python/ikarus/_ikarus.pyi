@@ -1,6 +1,6 @@
 """Type stubs of the native module ``ikarus._ikarus`` (PyO3). Angles are degrees."""
 
-from typing import Any, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -64,6 +64,11 @@ class Outcome:
     @property
     def joints(self) -> npt.NDArray[np.float64]:
         """float64 [n+1, 2]: the base, then each link's (bone's) tip."""
+    @property
+    def extensions(self) -> Dict[str, float]:
+        """Each prismatic bone's displacement (length units) by name, in the rig's order; empty
+        for a chain or a rig without prismatic joints (whose ``to_dict()`` has no
+        ``"extensions"``)."""
     @property
     def effectors(self) -> Tuple[Effector, ...]:
         """The goals in order, then the pins (a chain's: one, ``"tip"``)."""

@@ -14,7 +14,7 @@ import typing
 import numpy as np
 
 if typing.TYPE_CHECKING:
-    from typing import Any, List, Optional, Sequence, Tuple
+    from typing import Any, Dict, List, Optional, Sequence, Tuple
 
     import numpy.typing as npt
 
@@ -48,6 +48,14 @@ def _points(rows: Sequence[Any], base: Optional[Sequence[float]], bones: Optiona
     return np.array([[base, *(row[b] for b in bones)] for row in rows], dtype=np.float64).reshape(len(rows), len(bones) + 1, 2)
 
 
+def _extensions(rows: Sequence[Any], bones: Optional[Sequence[str]]) -> Optional[Dict[str, npt.NDArray[np.float64]]]:
+    """A rig's prismatic bones' displacements as columns [k] by name, in its bones' order; None
+    when the rows have none (a chain, or a rig whose joints all turn)."""
+    if bones is None or not rows or rows[0] is None:
+        return None
+    return {b: np.array([row[b] for row in rows], dtype=np.float64) for b in bones if b in rows[0]}
+
+
 def _angles(rows: Sequence[Any], bones: Optional[Sequence[str]]) -> npt.NDArray[np.float64]:
     """Angles [k, n]: an arm's lists as they are; a rig's by bone name, in its bones' order."""
     if bones is None:
@@ -58,11 +66,14 @@ def _angles(rows: Sequence[Any], bones: Optional[Sequence[str]]) -> npt.NDArray[
 @dataclasses.dataclass(frozen=True, eq=False)
 class MotionFrames(_ByKey):
     """A motion's frames as columns: ``time`` [F] (seconds), ``angles_deg`` [F, n] (each joint
-    or bone, degrees) and ``joints`` [F, n+1, 2] (the base, then each link's or bone's tip)."""
+    or bone, degrees), ``joints`` [F, n+1, 2] (the base, then each link's or bone's tip) and,
+    for a rig with prismatic joints, ``extensions`` (each such bone's displacement [F] by name;
+    None otherwise)."""
 
     time: npt.NDArray[np.float64]
     angles_deg: npt.NDArray[np.float64]
     joints: npt.NDArray[np.float64]
+    extensions: Optional[Dict[str, npt.NDArray[np.float64]]] = None
 
     def __len__(self) -> int:
         return len(self.time)
@@ -92,6 +103,7 @@ class Motion(_ByKey):
             time=np.array([f["time"] for f in rows], dtype=np.float64),
             angles_deg=_angles([f["angles_deg"] for f in rows], bones),
             joints=_points([f["joints"] for f in rows], base, bones),
+            extensions=_extensions([f.get("extensions") for f in rows], bones),
         )
         body = answer["rig"] if bones is not None else answer["arm"]
         return cls(
@@ -110,7 +122,8 @@ class TrackSamples(_ByKey):
     else None), ``status`` [N] (str: ``reached``, ``limited``, ``unreachable``, ``stalled``,
     ``iteration_limit``, ``off_path``), ``error`` [N], ``angles_deg`` [N, n], ``joints``
     [N, n+1, 2] (the base, then each tip) and ``step_deg`` [N] (the largest joint change from
-    the sample before)."""
+    the sample before); for a rig with prismatic joints, ``extensions`` (each such bone's
+    displacement [N] by name; None otherwise)."""
 
     goal: npt.NDArray[np.float64]
     angle_deg: Optional[npt.NDArray[np.float64]]
@@ -119,6 +132,7 @@ class TrackSamples(_ByKey):
     angles_deg: npt.NDArray[np.float64]
     joints: npt.NDArray[np.float64]
     step_deg: npt.NDArray[np.float64]
+    extensions: Optional[Dict[str, npt.NDArray[np.float64]]] = None
 
     def __len__(self) -> int:
         return len(self.status)
@@ -154,6 +168,7 @@ class Track(_ByKey):
             angles_deg=_angles([r["angles_deg"] for r in rows], bones),
             joints=_points([r["joints"] for r in rows], base, bones),
             step_deg=np.array([r["step_deg"] for r in rows], dtype=np.float64),
+            extensions=_extensions([r.get("extensions") for r in rows], bones),
         )
         return cls(
             body=answer["rig"] if bones is not None else answer["arm"],

@@ -132,3 +132,40 @@ fn the_extent_holds_every_pose_and_goal() {
     let still = |pose: &[f64]| SkeletonFigure { fit, pose, ..figure.clone() }.view(300, 300);
     assert_eq!(still(&a), still(&b));
 }
+
+#[test]
+fn a_prismatic_bone_has_a_sleeve_along_its_slide_and_no_wedge() {
+    let limits = |lo, hi| JointLimits::new(lo, hi).unwrap();
+    let s = Skeleton::new(
+        [0.0, 0.0],
+        &[
+            Bone::new("arm", 1.0, 0.5).with_limits(limits(-1.0, 1.0)),
+            Bone::new("ram", 0.5, 0.0).with_parent("arm").prismatic(0.2).with_limits(limits(0.0, 0.6)),
+        ],
+    )
+    .unwrap();
+    let b = Bones::at(&s, s.start_angles());
+    // Only the revolute bone's limits are an angle's range.
+    assert_eq!(wedges(&s, &b).len(), 1);
+    let sl = sleeves(&s, s.start_angles(), &b);
+    assert_eq!(sl.len(), 1);
+    // The slide starts at the arm's tip and runs along the arm; the ram starts 0.2 along it.
+    let (sin, cos) = 0.5f64.sin_cos();
+    assert!((sl[0].joint - b.tips[0]).norm() < 1e-15, "{:?}", sl[0]);
+    assert!((sl[0].slide[0] - cos).abs() < 1e-15 && (sl[0].slide[1] - sin).abs() < 1e-15, "{:?}", sl[0]);
+    assert_eq!(sl[0].start, b.starts[1]);
+    let along = Point2::new(b.tips[0].x + 0.2 * cos, b.tips[0].y + 0.2 * sin);
+    assert!((b.starts[1] - along).norm() < 1e-15, "{:?} vs {along:?}", b.starts[1]);
+    assert_eq!(sl[0].limits, Some(limits(0.0, 0.6)));
+    // The sleeve is drawn; its bar only with the ranges.
+    let plain = skeleton_svg(&SkeletonFigure::new(&s, s.start_angles()), 300, 300).unwrap();
+    assert_eq!((plain.matches("class=\"sleeve\"").count(), plain.matches("slide-limits").count()), (1, 0));
+    let with =
+        skeleton_svg(&SkeletonFigure { ranges: true, ..SkeletonFigure::new(&s, s.start_angles()) }, 300, 300).unwrap();
+    assert_eq!((with.matches("class=\"sleeve\"").count(), with.matches("slide-limits").count()), (1, 1));
+    // A revolute skeleton has neither.
+    let f = fork();
+    let svg =
+        skeleton_svg(&SkeletonFigure { ranges: true, ..SkeletonFigure::new(&f, f.start_angles()) }, 300, 300).unwrap();
+    assert!(!svg.contains("sleeve") && !svg.contains("slide-limits") && !svg.contains("prismatic joints"));
+}
