@@ -182,6 +182,14 @@ fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
         if std::mem::replace(&mut given[i], true) {
             return Err(CliError::input(format!("{flag}: bone {name:?} given twice")));
         }
+        match s.joints()[i] {
+            ikarus::Joint::Revolute => {}
+            ikarus::Joint::Prismatic { .. } => {
+                return Err(CliError::input(format!(
+                    "{flag}: bone {name:?} is prismatic (its value is a length, not an angle); set its extension in the rig file"
+                )));
+            }
+        }
         let limits = s.limits()[i].map(|l| [l.min().to_degrees(), l.max().to_degrees()]);
         pose[i] = crate::arm::start_angle(*deg, limits).to_radians();
     }

@@ -253,3 +253,24 @@ fn motions_tracks_and_recorded_frames_of_prismatic_rigs_report_angles_and_extens
         }
     }
 }
+
+/// A pose in degrees says nothing about a slide: `render rig --pose-deg` on a prismatic bone, and
+/// the API's `pose_deg` for a rig with one, are refused in one line naming the bone (they used to
+/// read 30° as 0.52 length units).
+#[test]
+fn a_pose_in_degrees_is_refused_for_a_prismatic_bone() {
+    let path = example("rrp");
+    let path = path.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rrp.svg");
+    let err = fails(&["render", "rig", "--rig", path, "--pose-deg", "ram=30", "--out", out.to_str().unwrap()], 2);
+    assert!(err.contains("--pose-deg ram=30: bone \"ram\" is prismatic"), "{err}");
+    assert!(!out.exists(), "no picture written");
+    // A revolute bone of the same rig still takes degrees.
+    common::succeeds(&["render", "rig", "--rig", path, "--pose-deg", "elbow=45", "--out", out.to_str().unwrap()]);
+    let s = server::start(&[]);
+    let rig = file("rrp");
+    let answer = s.post("/api/render", &json!({"figure": "rig", "format": "svg", "rig": rig, "pose_deg": [30, 30, 0]}));
+    let err = answer.error(422);
+    assert!(err.starts_with("pose_deg: bone \"ram\" is prismatic"), "{err}");
+}

@@ -166,6 +166,21 @@ pub fn figure(
 ) -> Result<Vec<u8>, Problem> {
     let rig = load_rig(r.rig, limits)?;
     let task = task(&rig, &r.goals, &r.pins, None, false)?;
+    // Degrees say nothing about a slide: a rig with prismatic joints is drawn in the pose its
+    // bones' `angle_deg` and `extension` give.
+    if r.pose_deg.is_some() {
+        for (j, joint) in rig.skeleton.joints().iter().enumerate() {
+            match joint {
+                ikarus::Joint::Revolute => {}
+                ikarus::Joint::Prismatic { .. } => {
+                    return Err(Problem::invalid(format!(
+                        "pose_deg: bone {:?} is prismatic (its value is a length, not an angle); give the pose as the bones' angle_deg and extension",
+                        rig.skeleton.name(j)
+                    )));
+                }
+            }
+        }
+    }
     let pose =
         pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), r.pose_deg.as_deref(), "pose_deg")?;
     let figure = ikarus_render::SkeletonFigure { labels: r.labels, ..rig_figure(&rig, &pose, &task, r.limits, None) };
