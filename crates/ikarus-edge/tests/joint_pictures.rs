@@ -112,3 +112,43 @@ fn a_sleeve_runs_from_where_the_slide_starts_to_the_bones_origin() {
         assert!((end.0 - x).hypot(end.1 - y) < 0.02, "{end:?} vs ({x}, {y})");
     }
 }
+
+/// A slide's range wider than the view (the PRR carriage's −1 to 1.5 on a view of the arm) is
+/// drawn only inside the plot, without end ticks where it is cut; it used to run past the plot's
+/// frame to the picture's edge.
+#[test]
+fn a_slide_range_wider_than_the_view_stays_in_the_plot() {
+    let rig = rig("prr");
+    let figure = rig_figure(&rig, rig.skeleton.start_angles(), &RigTask::default(), true, None);
+    let svg = ikarus_render::skeleton_svg(&figure, 640, 480).unwrap();
+    // The plot: the white rectangle inside the page's background.
+    let attr = |tag: &str, name: &str| -> f64 {
+        let at = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        tag[at..at + tag[at..].find('"').unwrap()].parse().unwrap()
+    };
+    let tag = svg.split("<rect").nth(2).expect("the plot's rectangle");
+    let (left, top) = (attr(tag, "x"), attr(tag, "y"));
+    let (right, bottom) = (left + attr(tag, "width"), top + attr(tag, "height"));
+    let path = svg.lines().find(|l| l.contains("class=\"slide-limits\"")).expect("a limits bar");
+    let d = &path[path.find("d=\"").unwrap() + 3..];
+    let d = &d[..d.find('"').unwrap()];
+    let numbers: Vec<f64> = d
+        .split(|c: char| c == ' ' || c.is_ascii_alphabetic())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect();
+    for p in numbers.chunks(2) {
+        assert!(
+            p[0] >= left - 0.01 && p[0] <= right + 0.01 && p[1] >= top - 0.01 && p[1] <= bottom + 0.01,
+            "({}, {}) outside the plot [{left}, {right}] × [{top}, {bottom}]: {d}",
+            p[0],
+            p[1]
+        );
+    }
+    // The bar first, then a tick at each end that is not cut by the plot's edge; this range
+    // is cut on at least one side.
+    let on_edge = |p: &[f64]| (p[0] - left).abs() < 0.01 || (p[0] - right).abs() < 0.01;
+    let cut = numbers.chunks(2).take(2).filter(|p| on_edge(p)).count();
+    assert!(cut >= 1, "the range is wider than the view: {d}");
+    assert_eq!(d.matches('M').count(), 1 + (2 - cut), "{d}");
+}

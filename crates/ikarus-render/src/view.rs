@@ -26,6 +26,29 @@ pub struct PixelRect {
 }
 
 impl PixelRect {
+    /// The part of the segment `a`–`b` inside the rectangle, as the range `[t0, t1]` of its
+    /// parameter (`a + t (b − a)`), or `None` when it misses (Liang–Barsky clipping).
+    #[must_use]
+    pub fn clip(&self, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) -> Option<(f64, f64)> {
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        for (p, q) in [(-dx, x0 - self.left), (dx, self.right - x0), (-dy, y0 - self.top), (dy, self.bottom - y0)] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else {
+                let t = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(t);
+                } else {
+                    t1 = t1.min(t);
+                }
+            }
+        }
+        (t0 <= t1).then_some((t0, t1))
+    }
+
     /// `right − left`.
     #[must_use]
     pub fn width(&self) -> f64 {

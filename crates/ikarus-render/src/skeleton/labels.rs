@@ -18,25 +18,9 @@ fn overlaps(a: &PixelRect, b: &PixelRect) -> bool {
     a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom
 }
 
-/// Whether the segment (x0, y0)–(x1, y1) passes through `r` (Liang–Barsky clipping).
-fn crosses(r: &PixelRect, (x0, y0): (f64, f64), (x1, y1): (f64, f64)) -> bool {
-    let (dx, dy) = (x1 - x0, y1 - y0);
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (p, q) in [(-dx, x0 - r.left), (dx, r.right - x0), (-dy, y0 - r.top), (dy, r.bottom - y0)] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    t0 <= t1
+/// Whether the segment `a`–`b` passes through `r`.
+fn crosses(r: &PixelRect, a: (f64, f64), b: (f64, f64)) -> bool {
+    r.clip(a, b).is_some()
 }
 
 /// Each bone's name beside it, in topological order. Places are tried along the bone (the

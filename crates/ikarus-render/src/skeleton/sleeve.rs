@@ -71,18 +71,26 @@ pub(super) fn draw_sleeves(scene: &Scene, svg: &mut Svg, sleeves: &[Sleeve], ran
             let t = 0.4 * SLEEVE_UNITS * u;
             let mut d = PathData::new();
             let (a, b) = (along(limits.min()), along(limits.max()));
-            d.move_to(a.0, a.1).line_to(b.0, b.1);
-            for (x, y) in [a, b] {
-                d.move_to(x - nx * t, y - ny * t).line_to(x + nx * t, y + ny * t);
+            // Only what lies in the plot: a range wider than the view runs to its edge, and
+            // an end outside it has no tick.
+            if let Some((t0, t1)) = scene.view.layout().plot.clip(a, b) {
+                let at = |s: f64| (a.0 + (b.0 - a.0) * s, a.1 + (b.1 - a.1) * s);
+                let (a, b) = (at(t0), at(t1));
+                d.move_to(a.0, a.1).line_to(b.0, b.1);
+                for ((x, y), end) in [(a, t0 == 0.0), (b, t1 == 1.0)] {
+                    if end {
+                        d.move_to(x - nx * t, y - ny * t).line_to(x + nx * t, y + ny * t);
+                    }
+                }
+                svg.path(
+                    &d,
+                    &format!(
+                        "class=\"slide-limits\" fill=\"none\" stroke=\"{}\" stroke-opacity=\"0.45\" stroke-width=\"{}\"",
+                        style::INK,
+                        num(2.0 * u)
+                    ),
+                );
             }
-            svg.path(
-                &d,
-                &format!(
-                    "class=\"slide-limits\" fill=\"none\" stroke=\"{}\" stroke-opacity=\"0.45\" stroke-width=\"{}\"",
-                    style::INK,
-                    num(2.0 * u)
-                ),
-            );
         }
         let (sx, sy) = scene.view.world_to_pixel(sl.start);
         let sign = if (sx - jx) * ux + (sy - jy) * uy < 0.0 { -1.0 } else { 1.0 };
