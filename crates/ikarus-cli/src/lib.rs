@@ -28,7 +28,6 @@ mod settings;
 #[cfg(feature = "server")]
 mod shell;
 mod solve;
-mod stats;
 mod track;
 mod workspace;
 

@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use super::judge::judge;
 use super::sets::GoalSet;
-use crate::stats::median;
+use ikarus_edge::stats::median;
 
 /// Timed samples per thread count; the reported time is their median.
 pub const SAMPLES: usize = 5;

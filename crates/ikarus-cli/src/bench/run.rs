@@ -8,7 +8,7 @@ use ikarus::{LimitMode, Method, Outcome, Restarts, SolveOptions, Solver};
 use super::batch::Batched;
 use super::judge::{Verdict, judge};
 use super::sets::{GoalSet, SetName};
-use crate::stats::{median, nearest_rank};
+use ikarus_edge::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first goals of the set.
 pub const WARMUP_GOALS: usize = 50;

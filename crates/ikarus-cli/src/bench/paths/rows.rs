@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::measure::{Answer, PathMetrics, PathSolver};
 use super::set::{Kind, PathSet};
-use crate::stats::{median, nearest_rank};
+use ikarus_edge::stats::{median, nearest_rank};
 
 /// One row of the table.
 #[derive(Debug, Clone, Serialize)]

@@ -9,7 +9,7 @@ use ikarus::{Chain, Goal, Outcome, Point2, SolveOptions, Solver, Status};
 use serde::Serialize;
 
 use super::set::{Points, ReachArm, beyond_annulus};
-use crate::stats::{median, nearest_rank};
+use ikarus_edge::stats::{median, nearest_rank};
 
 /// Region builds are repeated until this much time has passed…
 const BUILD_BUDGET_SECS: f64 = 1.0;

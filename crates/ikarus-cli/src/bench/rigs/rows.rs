@@ -8,7 +8,7 @@ use serde::Serialize;
 use super::judge::{Judge, RigVerdict};
 use super::sequential::Sequential;
 use super::set::RigSet;
-use crate::stats::{median, nearest_rank};
+use ikarus_edge::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first target sets.
 pub const WARMUP: usize = 50;
