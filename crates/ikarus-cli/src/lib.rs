@@ -8,10 +8,11 @@
 // stay as they were; the modules below that share a name with an edge module re-export it and
 // add the command line's part (its flags, its terminal output).
 use ikarus_edge::{api, area, arm, body, error, goal, input, motion, report, rig, rig_motion};
+// `ikarus bench`, its own crate (`crates/ikarus-bench`).
+use ikarus_bench as bench;
 
 mod animate;
 mod batch;
-mod bench;
 #[cfg(feature = "server")]
 mod cli;
 mod ease_args;

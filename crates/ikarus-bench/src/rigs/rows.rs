@@ -224,7 +224,7 @@ fn elapsed(started: Instant) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::rigs::set::{RigSetName, generate};
+    use crate::rigs::set::{RigSetName, generate};
 
     #[test]
     fn rows_are_the_default_each_mode_and_the_baseline() {

@@ -20,7 +20,7 @@ use ikarus::{Chain, SolveOptions};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::{BenchArgs, Sink};
-use crate::error::CliError;
+use ikarus_edge::error::CliError;
 use agree::{Context, SUBSET_EVERY};
 use set::{Points, ReachArm};
 use table::{ReachHeader, ReachReport};

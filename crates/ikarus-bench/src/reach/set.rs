@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use ikarus::reach::{BoundarySegment, Region};
 use ikarus::{Chain, JointLimits, Link, Point2};
 
-use crate::bench::sets::{ArmName, SplitMix64, stable_hash};
-use crate::error::CliError;
+use crate::sets::{ArmName, SplitMix64, stable_hash};
+use ikarus_edge::error::CliError;
 
 /// The eighth link of the `eight` arm: length…
 const EIGHTH_LENGTH: f64 = 0.4;

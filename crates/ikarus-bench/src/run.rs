@@ -294,7 +294,7 @@ pub fn run_config(set: &GoalSet, config: &Config, mut tick: impl FnMut()) -> Row
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::sets::{ArmName, generate};
+    use crate::sets::{ArmName, generate};
 
     fn seed_set(set: SetName) -> GoalSet {
         generate("seed", &ArmName::Seed.load().unwrap().chain, set, 20, 1)

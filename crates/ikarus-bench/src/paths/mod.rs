@@ -18,8 +18,8 @@ use ikarus::track::TrackOptions;
 use indicatif::ProgressBar;
 
 use super::{BenchArgs, Sink};
-use crate::error::CliError;
-use crate::input::io_reason;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use measure::{Answer, PathSolver};
 use rows::PathRow;
 use set::{Kind, PathSet};

@@ -20,8 +20,8 @@ use ikarus::SolveOptions;
 use indicatif::ProgressBar;
 
 use super::{BenchArgs, Sink};
-use crate::error::CliError;
-use crate::input::io_reason;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use rows::RigRow;
 use set::RigSet;
 use table::{RigsHeader, SetInfo};

@@ -32,9 +32,9 @@ use clap::builder::PossibleValuesParser;
 use ikarus::{LimitMode, Method, SolveOptions};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::error::CliError;
-use crate::input::io_reason;
-use crate::options::parse_at_least_one;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
+use ikarus_edge::options::parse_at_least_one;
 use run::{Config, Filter, RowResult};
 use sets::{ArmName, GoalSet, SetName};
 use table::Header;
