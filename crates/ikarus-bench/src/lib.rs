@@ -13,6 +13,9 @@
 //!   KDL's tree solver);
 //! - [`reach`]: `--reach`, the exact reachable region (verdict time, build time, the verdict
 //!   against solving, unreachable goals answered with and without it).
+//!
+//! The command line parses [`BenchArgs`] and calls [`run`](fn@run) with its stdout and output
+//! files ([`Sink`]); this crate reads the shipped arms and rigs through `ikarus-edge`.
 
 mod batch;
 mod judge;

@@ -1,6 +1,7 @@
 //! The `ikarus` command line and `ikarus serve`: clap flags, files and the terminal on stdin,
-//! stdout and stderr, HTTP, and `ikarus bench`, around what the edges share (the crate
-//! `ikarus-edge`: arm and rig files, settings, the API's endpoints, one workflow per job).
+//! stdout and stderr, HTTP, and `ikarus bench` (the crate `ikarus-bench`, given the command
+//! line's stdout and files), around what the edges share (the crate `ikarus-edge`: arm and rig
+//! files, settings, the API's endpoints, one workflow per job).
 //!
 //! The binary `ikarus` is [`main`] (with the default feature `server`).
 
