@@ -6,11 +6,11 @@
 use std::time::Instant;
 
 use ikarus::{Outcome, SolveOptions, Solver};
+use ikarus_edge::stats::median;
 use serde::Serialize;
 
 use super::judge::judge;
 use super::sets::GoalSet;
-use ikarus_edge::stats::median;
 
 /// Timed samples per thread count; the reported time is their median.
 pub const SAMPLES: usize = 5;

@@ -7,12 +7,12 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 use ikarus::{Chain, SolveOptions};
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 
 use super::judge::judge;
 use super::run::{RowResult, Tally};
 use super::sets::GoalSet;
-use ikarus_edge::error::CliError;
-use ikarus_edge::input::io_reason;
 
 /// Label of the rows of KDL's `ChainIkSolverPos_LMA`.
 pub const LMA_LABEL: &str = "kdl lma";
@@ -122,13 +122,7 @@ pub fn parse_output(text: &str, set: &GoalSet) -> Result<KdlRun, String> {
 
 /// Parses `kdl_bench`'s output for the set `name` of `goals` goals on `n` joints: the version
 /// line, `goals` `lma` lines, then `goals` `nr_jl` lines if `nr_jl`.
-pub(crate) fn parse_solves(
-    text: &str,
-    name: &str,
-    n: usize,
-    goals: usize,
-    nr_jl: bool,
-) -> Result<KdlRun, String> {
+pub(crate) fn parse_solves(text: &str, name: &str, n: usize, goals: usize, nr_jl: bool) -> Result<KdlRun, String> {
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let version = match lines.next() {
         None => return Err("no output".to_owned()),

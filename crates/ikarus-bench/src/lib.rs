@@ -33,11 +33,11 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use clap::builder::PossibleValuesParser;
 use ikarus::{LimitMode, Method, SolveOptions};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-
 use ikarus_edge::error::CliError;
 use ikarus_edge::input::io_reason;
 use ikarus_edge::options::parse_at_least_one;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
 use run::{Config, Filter, RowResult};
 use sets::{ArmName, GoalSet, SetName};
 use table::Header;

@@ -4,11 +4,11 @@
 use std::time::Instant;
 
 use ikarus::{LimitMode, Method, Outcome, Restarts, SolveOptions, Solver};
+use ikarus_edge::stats::{median, nearest_rank};
 
 use super::batch::Batched;
 use super::judge::{Verdict, judge};
 use super::sets::{GoalSet, SetName};
-use ikarus_edge::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first goals of the set.
 pub const WARMUP_GOALS: usize = 50;

@@ -11,7 +11,6 @@ use clap::ValueEnum;
 use ikarus::kinematics::end_effector;
 use ikarus::solve::wrap_angle;
 use ikarus::{Chain, Goal};
-
 use ikarus_edge::arm::{Arm, DEFAULT_ARM};
 use ikarus_edge::error::CliError;
 

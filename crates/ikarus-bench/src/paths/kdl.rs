@@ -4,10 +4,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use ikarus_edge::error::CliError;
+
 use super::measure::Answer;
 use super::set::{PathSet, points};
 use crate::kdl::{header, parse_solves, run_file};
-use ikarus_edge::error::CliError;
 
 /// The path file of `set`: format `ikarus-goals 1` with `orientation 0`, every sample of every
 /// path as a goal line `x y 0`, and `paths L₀ L₁ …`, each path's sample count in order.

@@ -15,11 +15,11 @@ pub(super) mod set;
 mod table;
 
 use ikarus::track::TrackOptions;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
 use super::{BenchArgs, Sink};
-use ikarus_edge::error::CliError;
-use ikarus_edge::input::io_reason;
 use measure::{Answer, PathSolver};
 use rows::PathRow;
 use set::{Kind, PathSet};

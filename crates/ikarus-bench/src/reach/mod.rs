@@ -17,10 +17,10 @@ use std::io::IsTerminal;
 
 use ikarus::reach::Region;
 use ikarus::{Chain, SolveOptions};
+use ikarus_edge::error::CliError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::{BenchArgs, Sink};
-use ikarus_edge::error::CliError;
 use agree::{Context, SUBSET_EVERY};
 use set::{Points, ReachArm};
 use table::{ReachHeader, ReachReport};

@@ -6,12 +6,12 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use ikarus::SolveOptions;
+use ikarus_edge::error::CliError;
 
 use super::judge::Judge;
 use super::rows::{RigRow, RigTally};
 use super::set::RigSet;
 use crate::kdl::{KdlSolve, run_file};
-use ikarus_edge::error::CliError;
 
 /// Label of the rows of KDL's tree solver.
 pub const TREE_LABEL: &str = "kdl tree nr_jl";

@@ -17,11 +17,11 @@ pub(super) mod set;
 mod table;
 
 use ikarus::SolveOptions;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
 use super::{BenchArgs, Sink};
-use ikarus_edge::error::CliError;
-use ikarus_edge::input::io_reason;
 use rows::RigRow;
 use set::RigSet;
 use table::{RigsHeader, SetInfo};

@@ -3,12 +3,12 @@
 use std::time::Instant;
 
 use ikarus::{LimitMode, Outcome, SolveOptions, Solver};
+use ikarus_edge::stats::{median, nearest_rank};
 use serde::Serialize;
 
 use super::judge::{Judge, RigVerdict};
 use super::sequential::Sequential;
 use super::set::RigSet;
-use ikarus_edge::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first target sets.
 pub const WARMUP: usize = 50;

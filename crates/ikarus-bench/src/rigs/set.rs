@@ -10,10 +10,10 @@ use std::f64::consts::{PI, TAU};
 
 use clap::ValueEnum;
 use ikarus::{Goal, Pin, Point2, RigGoal, RigTask, Skeleton};
-
-use crate::sets::{SplitMix64, stable_hash};
 use ikarus_edge::error::CliError;
 use ikarus_edge::rig::Rig;
+
+use crate::sets::{SplitMix64, stable_hash};
 
 /// The kinds of rig set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
