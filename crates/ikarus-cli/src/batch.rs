@@ -19,7 +19,7 @@ use serde::Serialize;
 
 use crate::error::CliError;
 use crate::output::{self, PendingFile};
-use crate::stats::{median, nearest_rank};
+use ikarus_edge::stats::{median, nearest_rank};
 
 /// Batches at least this large show a progress bar (when stderr is a terminal).
 const PROGRESS_MIN_GOALS: usize = 20_000;

@@ -93,7 +93,7 @@ pub fn main() -> ExitCode {
         Command::Reach(args) => reach::run(args),
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),
-        Command::Bench(args) => bench::run(args),
+        Command::Bench(args) => bench::run(args, &output::Terminal),
         Command::Completions(args) => shell::completions(args, Cli::command()),
         Command::Man(args) => shell::man(args, Cli::command()),
     };

@@ -1,6 +1,7 @@
 //! The `ikarus` command line and `ikarus serve`: clap flags, files and the terminal on stdin,
-//! stdout and stderr, HTTP, and `ikarus bench`, around what the edges share (the crate
-//! `ikarus-edge`: arm and rig files, settings, the API's endpoints, one workflow per job).
+//! stdout and stderr, HTTP, and `ikarus bench` (the crate `ikarus-bench`, given the command
+//! line's stdout and files), around what the edges share (the crate `ikarus-edge`: arm and rig
+//! files, settings, the API's endpoints, one workflow per job).
 //!
 //! The binary `ikarus` is [`main`] (with the default feature `server`).
 
@@ -8,10 +9,11 @@
 // stay as they were; the modules below that share a name with an edge module re-export it and
 // add the command line's part (its flags, its terminal output).
 use ikarus_edge::{api, area, arm, body, error, goal, input, motion, report, rig, rig_motion};
+// `ikarus bench`, its own crate (`crates/ikarus-bench`).
+use ikarus_bench as bench;
 
 mod animate;
 mod batch;
-mod bench;
 #[cfg(feature = "server")]
 mod cli;
 mod ease_args;
@@ -28,7 +30,6 @@ mod settings;
 #[cfg(feature = "server")]
 mod shell;
 mod solve;
-mod stats;
 mod track;
 mod workspace;
 

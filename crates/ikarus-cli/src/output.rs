@@ -133,6 +133,36 @@ fn halfway(v: f64, text: &[u8]) -> bool {
     }
 }
 
+/// Writes every `(path, bytes)` of `files`, each whole or not at all: every file is prepared
+/// before any is written, so that an unwritable folder fails before the first; `flag` names the
+/// option in messages.
+pub fn write_files<P: AsRef<Path>, B: AsRef<[u8]>>(
+    flag: &'static str,
+    files: impl IntoIterator<Item = (P, B)>,
+) -> Result<(), CliError> {
+    let pending = files
+        .into_iter()
+        .map(|(path, bytes)| Ok((PendingFile::create(path.as_ref(), flag)?, bytes)))
+        .collect::<Result<Vec<_>, CliError>>()?;
+    for (file, bytes) in pending {
+        file.commit(bytes.as_ref())?;
+    }
+    Ok(())
+}
+
+/// The command line's stdout and output files, where `ikarus bench` writes its results.
+pub struct Terminal;
+
+impl crate::bench::Sink for Terminal {
+    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
+        stdout(write)
+    }
+
+    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), CliError> {
+        write_files(flag, files.iter().map(|(path, text)| (path, text.as_bytes())))
+    }
+}
+
 /// Ends the process on SIGINT (exit 130) or SIGTERM (143) from now on, removing every output
 /// file still pending then. The command line calls it before any work, so that an interrupt
 /// ends every command the same way whenever it comes (while a batch writes its rows to stdout,

@@ -9,7 +9,7 @@ use clap_complete::Shell;
 
 use crate::error::CliError;
 use crate::input::io_reason;
-use crate::output::{self, PendingFile};
+use crate::output;
 
 /// `ikarus completions SHELL`.
 #[derive(Debug, Args)]
@@ -50,15 +50,7 @@ pub fn man(args: &ManArgs, command: clap::Command) -> Result<(), CliError> {
     std::fs::create_dir_all(dir).map_err(|e| {
         CliError::runtime(format!("--out {}: cannot create the folder: {}", dir.display(), io_reason(&e)))
     })?;
-    // Every file prepared before any is written: an unwritable folder fails before the first.
-    let files = pages
-        .into_iter()
-        .map(|(name, roff)| Ok((PendingFile::create(&dir.join(name), "--out")?, roff)))
-        .collect::<Result<Vec<_>, CliError>>()?;
-    for (file, roff) in files {
-        file.commit(&roff)?;
-    }
-    Ok(())
+    output::write_files("--out", pages.into_iter().map(|(name, roff)| (dir.join(name), roff)))
 }
 
 /// Every visible command's page, `(file name, roff)`, the subcommands' before their parent's

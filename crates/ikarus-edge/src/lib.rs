@@ -46,4 +46,6 @@ pub mod rig_motion;
 #[doc(hidden)]
 pub mod settings;
 #[doc(hidden)]
+pub mod stats;
+#[doc(hidden)]
 pub mod track;

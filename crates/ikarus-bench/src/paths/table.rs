@@ -151,7 +151,7 @@ pub fn text(w: &mut dyn Write, header: &PathsHeader, rows: &[PathRow], targets: 
     writeln!(w)?;
     write_targets(w, targets, "")?;
     writeln!(w)?;
-    for l in crate::bench::table::wrap(LEGEND, 100) {
+    for l in crate::table::wrap(LEGEND, 100) {
         writeln!(w, "{l}")?;
     }
     Ok(())

@@ -100,8 +100,8 @@ impl Sequential {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::rigs::judge::Judge;
-    use crate::bench::rigs::set::{RigSetName, forward, generate};
+    use crate::rigs::judge::Judge;
+    use crate::rigs::set::{RigSetName, forward, generate};
 
     #[test]
     fn limbs_are_the_paths_from_the_root() {
@@ -136,7 +136,7 @@ mod tests {
         let mut seq = Sequential::new(&s, SolveOptions::default());
         let mut judge = Judge::default();
         let (mut missed, mut right_missed, mut rest) = (0, 0, 0);
-        let within = |points: &[ikarus::Point2<f64>], k: usize, c: &crate::bench::rigs::set::RigCase| {
+        let within = |points: &[ikarus::Point2<f64>], k: usize, c: &crate::rigs::set::RigCase| {
             (points[s.goals[k] + 1] - c.targets[k]).norm() <= 1e-6
         };
         for c in &s.cases {

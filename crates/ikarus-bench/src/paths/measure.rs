@@ -8,7 +8,7 @@ use ikarus::track::{self, Follower, SampleStatus, TrackOptions};
 use ikarus::{LimitMode, Outcome, SolveOptions, Solver};
 
 use super::set::{BenchPath, PathSet};
-use crate::bench::judge::within;
+use crate::judge::within;
 
 /// Rounding slack on the tolerance when judging, as in the goal benchmark.
 const ROUNDING_SLACK: f64 = 1e-12;

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::set::{Points, ReachArm, boundary_distance};
-use crate::bench::judge::within;
+use crate::judge::within;
 
 /// Every this many points (by index), a point the verdict calls unreachable is also searched
 /// for by every method.

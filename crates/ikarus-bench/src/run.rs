@@ -4,11 +4,11 @@
 use std::time::Instant;
 
 use ikarus::{LimitMode, Method, Outcome, Restarts, SolveOptions, Solver};
+use ikarus_edge::stats::{median, nearest_rank};
 
 use super::batch::Batched;
 use super::judge::{Verdict, judge};
 use super::sets::{GoalSet, SetName};
-use crate::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first goals of the set.
 pub const WARMUP_GOALS: usize = 50;
@@ -294,7 +294,7 @@ pub fn run_config(set: &GoalSet, config: &Config, mut tick: impl FnMut()) -> Row
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::sets::{ArmName, generate};
+    use crate::sets::{ArmName, generate};
 
     fn seed_set(set: SetName) -> GoalSet {
         generate("seed", &ArmName::Seed.load().unwrap().chain, set, 20, 1)

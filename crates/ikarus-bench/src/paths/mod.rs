@@ -15,19 +15,18 @@ pub(super) mod set;
 mod table;
 
 use ikarus::track::TrackOptions;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
-use super::BenchArgs;
-use crate::error::CliError;
-use crate::input::io_reason;
-use crate::output;
+use super::{BenchArgs, Sink};
 use measure::{Answer, PathSolver};
 use rows::PathRow;
 use set::{Kind, PathSet};
 use table::PathsHeader;
 
 /// Runs `ikarus bench --paths`.
-pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     if let Some(path) = &args.kdl {
         super::kdl::check(path)?;
     }
@@ -70,7 +69,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let shown: Vec<PathRow> = rows.iter().filter(|r| args.by_kind || r.kind == "all").cloned().collect();
     let targets = rows::targets(&rows, max_step_deg);
     let header = header(args, &arms, &sets, kdl_version, max_step_deg);
-    output::stdout(|w| {
+    sink.stdout(&mut |w| {
         if args.json {
             table::json(w, &header, &rows, &targets)
         } else if args.markdown {

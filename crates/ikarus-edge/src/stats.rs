@@ -1,4 +1,5 @@
-//! The two statistics the commands report about solve times: median and nearest-rank quantile.
+//! The two statistics the command line and `ikarus bench` report about solve times: median and
+//! nearest-rank quantile.
 
 /// Median of sorted, non-empty `v` (the mean of the middle two for an even count).
 pub fn median(v: &[f64]) -> f64 {

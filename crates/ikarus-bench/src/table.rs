@@ -457,7 +457,7 @@ fn significant(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::sets::SetName;
+    use crate::sets::SetName;
 
     fn row(label: &str, set: SetName, reached: usize) -> RowResult {
         RowResult {

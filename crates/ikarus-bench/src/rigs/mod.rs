@@ -17,18 +17,17 @@ pub(super) mod set;
 mod table;
 
 use ikarus::SolveOptions;
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
-use super::BenchArgs;
-use crate::error::CliError;
-use crate::input::io_reason;
-use crate::output;
+use super::{BenchArgs, Sink};
 use rows::RigRow;
 use set::RigSet;
 use table::{RigsHeader, SetInfo};
 
 /// Runs `ikarus bench --rigs`.
-pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     if let Some(path) = &args.kdl {
         super::kdl::check(path)?;
     }
@@ -64,7 +63,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     }
     let targets = table::targets(&rows);
     let header = header(args, &sets, kdl_version);
-    output::stdout(|w| {
+    sink.stdout(&mut |w| {
         if args.json {
             table::json(w, &header, &rows, &targets)
         } else if args.markdown {

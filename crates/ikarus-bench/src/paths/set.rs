@@ -24,7 +24,7 @@ use ikarus::track::Path;
 use ikarus::{Chain, Goal};
 use serde::Serialize;
 
-use crate::bench::sets::stable_hash;
+use crate::sets::stable_hash;
 
 /// The generating trajectories never move a joint more than this per sample, degrees.
 pub const GEN_MAX_STEP_DEG: f64 = 4.0;
@@ -273,7 +273,7 @@ pub fn points(path: &Path) -> impl Iterator<Item = (f64, f64)> + '_ {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::sets::ArmName;
+    use crate::sets::ArmName;
 
     fn all(seed: u64, count: usize, samples: usize) -> Vec<PathSet> {
         let mut out = Vec::new();

@@ -6,7 +6,7 @@ use ikarus::solve::wrap_angle;
 use ikarus::{Point2, SolveOptions};
 
 use super::set::{RigCase, RigSet};
-use crate::bench::judge::within;
+use crate::judge::within;
 
 /// Rounding slack added to the tolerances, as for chains.
 const ROUNDING_SLACK: f64 = 1e-12;
@@ -79,7 +79,7 @@ mod tests {
     use std::f64::consts::TAU;
 
     use super::*;
-    use crate::bench::rigs::set::{RigSetName, generate};
+    use crate::rigs::set::{RigSetName, generate};
 
     #[test]
     fn the_generating_configuration_reaches_and_the_start_does_not() {

@@ -3,12 +3,12 @@
 use std::time::Instant;
 
 use ikarus::{LimitMode, Outcome, SolveOptions, Solver};
+use ikarus_edge::stats::{median, nearest_rank};
 use serde::Serialize;
 
 use super::judge::{Judge, RigVerdict};
 use super::sequential::Sequential;
 use super::set::RigSet;
-use crate::stats::{median, nearest_rank};
 
 /// Untimed warm-up solves before each row's timed pass, over the first target sets.
 pub const WARMUP: usize = 50;
@@ -224,7 +224,7 @@ fn elapsed(started: Instant) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::rigs::set::{RigSetName, generate};
+    use crate::rigs::set::{RigSetName, generate};
 
     #[test]
     fn rows_are_the_default_each_mode_and_the_baseline() {

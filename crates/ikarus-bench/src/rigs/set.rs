@@ -10,10 +10,10 @@ use std::f64::consts::{PI, TAU};
 
 use clap::ValueEnum;
 use ikarus::{Goal, Pin, Point2, RigGoal, RigTask, Skeleton};
+use ikarus_edge::error::CliError;
+use ikarus_edge::rig::Rig;
 
-use crate::bench::sets::{SplitMix64, stable_hash};
-use crate::error::CliError;
-use crate::rig::Rig;
+use crate::sets::{SplitMix64, stable_hash};
 
 /// The kinds of rig set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -51,8 +51,8 @@ impl RigSetName {
     /// The rig file's text, embedded so that the command works from any directory.
     fn text(self) -> &'static str {
         match self {
-            RigSetName::Puppet | RigSetName::PuppetPins => include_str!("../../../../../examples/rigs/puppet.toml"),
-            RigSetName::Hand => include_str!("../../../../../examples/rigs/hand.toml"),
+            RigSetName::Puppet | RigSetName::PuppetPins => include_str!("../../../../examples/rigs/puppet.toml"),
+            RigSetName::Hand => include_str!("../../../../examples/rigs/hand.toml"),
         }
     }
 
@@ -190,7 +190,7 @@ pub fn generate_on(set: RigSetName, skeleton: Skeleton, count: usize, seed: u64)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::judge::within;
+    use crate::judge::within;
 
     fn bits(set: &RigSet) -> Vec<u64> {
         set.cases

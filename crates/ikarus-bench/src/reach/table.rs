@@ -6,8 +6,8 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
-pub use crate::bench::table::Target;
-use crate::bench::table::write_targets;
+pub use crate::table::Target;
+use crate::table::write_targets;
 
 use super::agree::Agreement;
 use super::timing::{BuildRow, GoalKind, SpeedupRow, VerdictRow};
@@ -277,7 +277,7 @@ pub fn text(w: &mut dyn Write, r: &ReachReport) -> io::Result<()> {
     writeln!(w)?;
     write_targets(w, &r.targets, "")?;
     writeln!(w)?;
-    for l in crate::bench::table::wrap(LEGEND, 100) {
+    for l in crate::table::wrap(LEGEND, 100) {
         writeln!(w, "{l}")?;
     }
     Ok(())
@@ -370,7 +370,7 @@ fn ratio(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::reach::agree::Disagreement;
+    use crate::reach::agree::Disagreement;
 
     fn agreement(arm: &'static str, points: u64, agree: u64) -> Agreement {
         Agreement {

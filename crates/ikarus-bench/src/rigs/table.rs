@@ -5,8 +5,8 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
-pub use crate::bench::table::Target;
-use crate::bench::table::write_targets;
+pub use crate::table::Target;
+use crate::table::write_targets;
 
 use super::kdl::TREE_LABEL;
 use super::rows::{RigRow, SEQUENTIAL_LABEL};
@@ -225,7 +225,7 @@ pub fn text(w: &mut dyn Write, header: &RigsHeader, rows: &[RigRow], targets: &[
     writeln!(w)?;
     write_targets(w, targets, "")?;
     writeln!(w)?;
-    for l in crate::bench::table::wrap(LEGEND, 100) {
+    for l in crate::table::wrap(LEGEND, 100) {
         writeln!(w, "{l}")?;
     }
     Ok(())

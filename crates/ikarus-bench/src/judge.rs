@@ -59,7 +59,7 @@ pub fn judge(set: &GoalSet, goal: &BenchGoal, angles: &[f64]) -> Verdict {
 }
 
 /// Whether `angle + 2πk` lies in `[min − slack, max + slack]` for some whole `k`.
-pub(in crate::bench) fn within(angle: f64, min: f64, max: f64) -> bool {
+pub(crate) fn within(angle: f64, min: f64, max: f64) -> bool {
     if !angle.is_finite() {
         return false;
     }
@@ -76,7 +76,7 @@ mod tests {
     use ikarus::{Chain, Link};
 
     use super::*;
-    use crate::bench::sets::{ArmName, generate};
+    use crate::sets::{ArmName, generate};
 
     fn seed_set(set: SetName) -> GoalSet {
         generate("seed", &ArmName::Seed.load().unwrap().chain, set, 20, 1)

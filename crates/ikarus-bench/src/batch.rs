@@ -6,11 +6,11 @@
 use std::time::Instant;
 
 use ikarus::{Outcome, SolveOptions, Solver};
+use ikarus_edge::stats::median;
 use serde::Serialize;
 
 use super::judge::judge;
 use super::sets::GoalSet;
-use crate::stats::median;
 
 /// Timed samples per thread count; the reported time is their median.
 pub const SAMPLES: usize = 5;
@@ -141,8 +141,8 @@ fn time(mut sample: impl FnMut(usize)) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::run::{configs, run_config};
-    use crate::bench::sets::{ArmName, SetName, generate};
+    use crate::run::{configs, run_config};
+    use crate::sets::{ArmName, SetName, generate};
 
     #[test]
     fn the_batch_agrees_with_the_per_solve_row() {

@@ -6,10 +6,10 @@ use std::time::Instant;
 
 use ikarus::reach::Region;
 use ikarus::{Chain, Goal, Outcome, Point2, SolveOptions, Solver, Status};
+use ikarus_edge::stats::{median, nearest_rank};
 use serde::Serialize;
 
 use super::set::{Points, ReachArm, beyond_annulus};
-use crate::stats::{median, nearest_rank};
 
 /// Region builds are repeated until this much time has passed…
 const BUILD_BUDGET_SECS: f64 = 1.0;

@@ -13,6 +13,9 @@
 //!   KDL's tree solver);
 //! - [`reach`]: `--reach`, the exact reachable region (verdict time, build time, the verdict
 //!   against solving, unreachable goals answered with and without it).
+//!
+//! The command line parses [`BenchArgs`] and calls [`run`](fn@run) with its stdout and output
+//! files ([`Sink`]); this crate reads the shipped arms and rigs through `ikarus-edge`.
 
 mod batch;
 mod judge;
@@ -24,18 +27,17 @@ mod run;
 mod sets;
 mod table;
 
-use std::io::IsTerminal;
+use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use clap::builder::PossibleValuesParser;
 use ikarus::{LimitMode, Method, SolveOptions};
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
+use ikarus_edge::options::parse_at_least_one;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::error::CliError;
-use crate::input::io_reason;
-use crate::options::parse_at_least_one;
-use crate::output::{self, PendingFile};
 use run::{Config, Filter, RowResult};
 use sets::{ArmName, GoalSet, SetName};
 use table::Header;
@@ -132,16 +134,27 @@ fn mode_names() -> PossibleValuesParser {
     PossibleValuesParser::new(LimitMode::ALL.iter().map(|m| m.name()))
 }
 
-/// Runs `ikarus bench`.
-pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+/// Where `ikarus bench` writes its results: the command line's stdout and its output files.
+/// The benchmark itself prints nothing but its progress bar (on stderr, when that is a
+/// terminal).
+pub trait Sink {
+    /// Runs `write` against stdout.
+    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError>;
+    /// Writes every `(path, text)` of `files`, each whole or not at all, every file created
+    /// before any is written; `flag` names the option in messages.
+    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), CliError>;
+}
+
+/// Runs `ikarus bench`, writing its results to `sink`.
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     if args.paths {
-        return paths::run(args);
+        return paths::run(args, sink);
     }
     if args.rigs {
-        return rigs::run(args);
+        return rigs::run(args, sink);
     }
     if args.reach {
-        return reach::run(args);
+        return reach::run(args, sink);
     }
     // Everything that can be checked is checked before the (long) work starts.
     if let Some(path) = &args.kdl {
@@ -155,7 +168,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let configs = run::configs();
     let plan = plan(args, &arms, &set_names, &configs)?;
     if let Some(dir) = &args.write_goals {
-        write_goal_files(args, dir, &plan)?;
+        write_goal_files(args, dir, &plan, sink)?;
     }
 
     let total: u64 = plan.iter().map(|(set, rows)| (set.goals.len() * rows.len()) as u64).sum();
@@ -171,7 +184,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     }
 
     let header = header(args, &arms, &set_names, kdl_version);
-    output::stdout(|w| {
+    sink.stdout(&mut |w| {
         if args.json {
             table::json(w, &header, &rows)
         } else if args.markdown {
@@ -228,17 +241,14 @@ fn goal_file_comment(args: &BenchArgs, set: &GoalSet) -> String {
     )
 }
 
-/// `--write-goals DIR`: every set's goal file. Every file is created (as a temporary file)
-/// before any is renamed into place.
-fn write_goal_files(args: &BenchArgs, dir: &Path, plan: &[Planned]) -> Result<(), CliError> {
-    let pending = plan
+/// `--write-goals DIR`: every set's goal file, written by `sink` (every file created before
+/// any is written).
+fn write_goal_files(args: &BenchArgs, dir: &Path, plan: &[Planned], sink: &dyn Sink) -> Result<(), CliError> {
+    let files: Vec<(PathBuf, String)> = plan
         .iter()
-        .map(|(set, _)| Ok((PendingFile::create(&dir.join(format!("{}.goals", set.name())), "--write-goals")?, set)))
-        .collect::<Result<Vec<_>, CliError>>()?;
-    for (file, set) in pending {
-        file.commit(kdl::goal_file(set, &goal_file_comment(args, set)).as_bytes())?;
-    }
-    Ok(())
+        .map(|(set, _)| (dir.join(format!("{}.goals", set.name())), kdl::goal_file(set, &goal_file_comment(args, set))))
+        .collect();
+    sink.files("--write-goals", &files)
 }
 
 /// `--kdl PATH`: KDL's rows of every set, and the version `kdl_bench` reported.

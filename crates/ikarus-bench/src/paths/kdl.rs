@@ -4,10 +4,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use ikarus_edge::error::CliError;
+
 use super::measure::Answer;
 use super::set::{PathSet, points};
-use crate::bench::kdl::{header, parse_solves, run_file};
-use crate::error::CliError;
+use crate::kdl::{header, parse_solves, run_file};
 
 /// The path file of `set`: format `ikarus-goals 1` with `orientation 0`, every sample of every
 /// path as a goal line `x y 0`, and `paths L₀ L₁ …`, each path's sample count in order.
@@ -59,8 +60,8 @@ pub fn run(path: &Path, set: &PathSet, dir: &Path, comment: &str) -> Result<(Str
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::paths::set::generate;
-    use crate::bench::sets::ArmName;
+    use crate::paths::set::generate;
+    use crate::sets::ArmName;
 
     #[test]
     fn path_files_list_every_sample_and_answers_split_by_path() {

@@ -1,11 +1,11 @@
 //! The rows of `ikarus bench --paths`: each solver's path metrics summed up per arm, limits
 //! setting and (optionally) kind, and the targets checked against them.
 
+use ikarus_edge::stats::{median, nearest_rank};
 use serde::Serialize;
 
 use super::measure::{Answer, PathMetrics, PathSolver};
 use super::set::{Kind, PathSet};
-use crate::stats::{median, nearest_rank};
 
 /// One row of the table.
 #[derive(Debug, Clone, Serialize)]

@@ -6,9 +6,9 @@ use std::f64::consts::PI;
 
 use ikarus::reach::{BoundarySegment, Region};
 use ikarus::{Chain, JointLimits, Link, Point2};
+use ikarus_edge::error::CliError;
 
-use crate::bench::sets::{ArmName, SplitMix64, stable_hash};
-use crate::error::CliError;
+use crate::sets::{ArmName, SplitMix64, stable_hash};
 
 /// The eighth link of the `eight` arm: length…
 const EIGHTH_LENGTH: f64 = 0.4;

@@ -17,11 +17,10 @@ use std::io::IsTerminal;
 
 use ikarus::reach::Region;
 use ikarus::{Chain, SolveOptions};
+use ikarus_edge::error::CliError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use super::BenchArgs;
-use crate::error::CliError;
-use crate::output;
+use super::{BenchArgs, Sink};
 use agree::{Context, SUBSET_EVERY};
 use set::{Points, ReachArm};
 use table::{ReachHeader, ReachReport};
@@ -31,7 +30,7 @@ use timing::GoalKind;
 const THREADS: usize = 2;
 
 /// Runs `ikarus bench --reach`.
-pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     let tolerance = SolveOptions::default().tolerance;
     let points = args.points;
     let goals = args.goals as usize;
@@ -97,7 +96,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         debug_build: cfg!(debug_assertions),
     };
     let report = ReachReport { header, verdict, build, agreement, speedup, targets };
-    output::stdout(|w| {
+    sink.stdout(&mut |w| {
         if args.json {
             table::json(w, &report)
         } else if args.markdown {

@@ -6,12 +6,12 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use ikarus::SolveOptions;
+use ikarus_edge::error::CliError;
 
 use super::judge::Judge;
 use super::rows::{RigRow, RigTally};
 use super::set::RigSet;
-use crate::bench::kdl::{KdlSolve, run_file};
-use crate::error::CliError;
+use crate::kdl::{KdlSolve, run_file};
 
 /// Label of the rows of KDL's tree solver.
 pub const TREE_LABEL: &str = "kdl tree nr_jl";
@@ -168,7 +168,7 @@ pub fn run(path: &Path, set: &RigSet, dir: &Path, comment: &str) -> Result<KdlRi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::rigs::set::{RigSetName, generate};
+    use crate::rigs::set::{RigSetName, generate};
 
     fn line(i: usize, angles: &[f64]) -> String {
         let a: Vec<String> = angles.iter().map(|x| format!("{x:.17e}")).collect();

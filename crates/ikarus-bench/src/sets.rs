@@ -11,9 +11,8 @@ use clap::ValueEnum;
 use ikarus::kinematics::end_effector;
 use ikarus::solve::wrap_angle;
 use ikarus::{Chain, Goal};
-
-use crate::arm::{Arm, DEFAULT_ARM};
-use crate::error::CliError;
+use ikarus_edge::arm::{Arm, DEFAULT_ARM};
+use ikarus_edge::error::CliError;
 
 /// Goals of the `unreachable` set lie this many maximal reaches from the base, at the least…
 const BEYOND_MIN: f64 = 1.05;
@@ -51,8 +50,8 @@ impl ArmName {
     fn text(self) -> &'static str {
         match self {
             ArmName::Seed => DEFAULT_ARM,
-            ArmName::Seven => include_str!("../../../../examples/arms/seven.toml"),
-            ArmName::Tentacle => include_str!("../../../../examples/arms/tentacle.toml"),
+            ArmName::Seven => include_str!("../../../examples/arms/seven.toml"),
+            ArmName::Tentacle => include_str!("../../../examples/arms/tentacle.toml"),
         }
     }
 
@@ -226,7 +225,7 @@ fn unreachable_goal(chain: &Chain, index: usize, rng: &mut SplitMix64) -> BenchG
 
 /// FNV-1a (64 bits) of `arm`, a zero byte and `set`: a hash that does not change between
 /// Rust versions or machines.
-pub(in crate::bench) fn stable_hash(arm: &str, set: &str) -> u64 {
+pub(crate) fn stable_hash(arm: &str, set: &str) -> u64 {
     let mut h: u64 = 0xCBF2_9CE4_8422_2325;
     for &b in arm.as_bytes().iter().chain(&[0u8]).chain(set.as_bytes()) {
         h ^= u64::from(b);

@@ -7,12 +7,12 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 use ikarus::{Chain, SolveOptions};
+use ikarus_edge::error::CliError;
+use ikarus_edge::input::io_reason;
 
 use super::judge::judge;
 use super::run::{RowResult, Tally};
 use super::sets::GoalSet;
-use crate::error::CliError;
-use crate::input::io_reason;
 
 /// Label of the rows of KDL's `ChainIkSolverPos_LMA`.
 pub const LMA_LABEL: &str = "kdl lma";
@@ -122,13 +122,7 @@ pub fn parse_output(text: &str, set: &GoalSet) -> Result<KdlRun, String> {
 
 /// Parses `kdl_bench`'s output for the set `name` of `goals` goals on `n` joints: the version
 /// line, `goals` `lma` lines, then `goals` `nr_jl` lines if `nr_jl`.
-pub(in crate::bench) fn parse_solves(
-    text: &str,
-    name: &str,
-    n: usize,
-    goals: usize,
-    nr_jl: bool,
-) -> Result<KdlRun, String> {
+pub(crate) fn parse_solves(text: &str, name: &str, n: usize, goals: usize, nr_jl: bool) -> Result<KdlRun, String> {
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let version = match lines.next() {
         None => return Err("no output".to_owned()),
@@ -225,7 +219,7 @@ pub fn run(path: &Path, set: &GoalSet, dir: &Path, comment: &str) -> Result<KdlR
 
 /// Writes `contents` to `file`, runs `path` on it and returns its stdout. Any failure is one
 /// line naming `--kdl`, the path and the set `name` (exit 1).
-pub(in crate::bench) fn run_file(path: &Path, file: &Path, contents: &str, name: &str) -> Result<String, CliError> {
+pub(crate) fn run_file(path: &Path, file: &Path, contents: &str, name: &str) -> Result<String, CliError> {
     let fail = |what: String| CliError::runtime(format!("--kdl {}: {what}", path.display()));
     std::fs::write(file, contents)
         .map_err(|e| fail(format!("cannot write the goal file {}: {}", file.display(), io_reason(&e))))?;
@@ -245,7 +239,7 @@ pub(in crate::bench) fn run_file(path: &Path, file: &Path, contents: &str, name:
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::sets::{ArmName, SetName, generate};
+    use crate::sets::{ArmName, SetName, generate};
 
     fn set(kind: SetName, goals: usize) -> GoalSet {
         generate("seed", &ArmName::Seed.load().unwrap().chain, kind, goals, 1)
