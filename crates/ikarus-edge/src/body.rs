@@ -5,9 +5,12 @@
 
 use std::path::Path;
 
+use ikarus::{Goal, JointLimits, Outcome, RigTask, SolveError, Solver};
+
 use crate::arm::Arm;
 use crate::error::CliError;
 use crate::rig::Rig;
+use crate::settings::SolverSettings;
 
 /// An arm or a rig.
 #[derive(Debug, Clone)]
@@ -25,6 +28,79 @@ impl Body {
         match rig {
             Some(path) => Ok(Self::Rig(Box::new(Rig::load(path)?))),
             None => Ok(Self::Chain(Box::new(Arm::load(arm)?))),
+        }
+    }
+
+    /// Its name, as the answers give it.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        match self {
+            Self::Chain(arm) => &arm.name,
+            Self::Rig(rig) => &rig.name,
+        }
+    }
+
+    /// Its number of joints: an arm's links, a rig's bones.
+    #[must_use]
+    pub fn joints(&self) -> usize {
+        match self {
+            Self::Chain(arm) => arm.chain.len(),
+            Self::Rig(rig) => rig.skeleton.len(),
+        }
+    }
+
+    /// Its file's `[solver]` table.
+    #[must_use]
+    pub fn solver(&self) -> &SolverSettings {
+        match self {
+            Self::Chain(arm) => &arm.solver,
+            Self::Rig(rig) => &rig.solver,
+        }
+    }
+
+    /// Its start pose, one joint value per joint.
+    #[must_use]
+    pub fn start(&self) -> &[f64] {
+        match self {
+            Self::Chain(arm) => arm.chain.start_pose().angles(),
+            Self::Rig(rig) => rig.skeleton.start_angles(),
+        }
+    }
+
+    /// Its joints' ranges, one per joint.
+    #[must_use]
+    pub fn limits(&self) -> &[Option<JointLimits>] {
+        match self {
+            Self::Chain(arm) => arm.chain.limits(),
+            Self::Rig(rig) => rig.skeleton.limits(),
+        }
+    }
+
+    /// The values a recorded frame of a solve holds: an arm's `n + 4` (as its cap has always
+    /// counted them), a rig's `n` angles and `n + 1` points.
+    #[must_use]
+    pub fn frame_values(&self) -> u64 {
+        let n = self.joints() as u64;
+        match self {
+            Self::Chain(_) => n + 4,
+            Self::Rig(_) => 3 * n + 2,
+        }
+    }
+}
+
+/// A body and what a solve aims it at: an arm's tip at a goal, a rig's goals and pins. The
+/// solver's entry point is the one thing a solve does differently for the two.
+pub enum Aimed<'a> {
+    Chain(&'a Arm, Goal),
+    Rig(&'a Rig, RigTask),
+}
+
+impl Aimed<'_> {
+    /// Solves from `start` into `out` (its buffers reused).
+    pub fn solve_into(&self, solver: &mut Solver, start: &[f64], out: &mut Outcome) -> Result<(), SolveError> {
+        match self {
+            Aimed::Chain(arm, goal) => solver.solve_into(&arm.chain, start, goal, out),
+            Aimed::Rig(rig, task) => solver.solve_rig_into(&rig.skeleton, start, task, out),
         }
     }
 }

@@ -92,7 +92,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
         Problem { message: message.to_owned(), ..p }
     })?;
     let arm = &arm.0;
-    crate::api::jobs::settings_options(
+    crate::api::fields::settings_options(
         &arm.solver,
         arm.chain.len(),
         Some(&table),

@@ -3,14 +3,15 @@
 //! with the CLI's one-line error. That answer is a 200 either way (`{"arm": …}` or
 //! `{"problem": "…"}`): a bad file is the reader's to fix, not a failed request, and a browser
 //! logs every 4xx answer as a console error;
-//! `POST /api/arm/toml` writes the page's arm back as arm-file text. The page's per-joint rates
+//! `POST /api/arm/toml` writes the page's arm back as arm-file text; `GET /api/arm/default` is
+//! the built-in arm. The page's per-joint rates
 //! are the file's `[solver].rates`; the file's other `[solver]` settings are the page's controls'
 //! business and are not carried.
 
 use serde::{Deserialize, Serialize};
 
 use super::{Problem, Reply, parse_json};
-use crate::arm::{Arm, ArmFile, LinkFile};
+use crate::arm::{Arm, ArmFile, DEFAULT_ARM, LinkFile};
 use crate::settings::SolverSettings;
 
 /// The arm as the page holds it: the arm file's fields, and each joint's rate.
@@ -147,6 +148,35 @@ pub fn toml(body: &[u8]) -> Result<Reply, Problem> {
     let req: TomlReq = parse_json(body)?;
     let text = to_toml(&req.arm).map_err(Problem::invalid)?;
     Ok(Reply { content_type: "application/toml; charset=utf-8", body: text.into_bytes() })
+}
+
+#[derive(serde::Serialize)]
+struct LinkJson {
+    length: f64,
+    angle_deg: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    limits_deg: Option<[f64; 2]>,
+}
+
+#[derive(serde::Serialize)]
+struct ArmJson {
+    name: String,
+    base: [f64; 2],
+    links: Vec<LinkJson>,
+}
+
+/// `GET /api/arm/default`: the built-in arm.
+pub fn default_arm() -> Result<Reply, Problem> {
+    let file: ArmFile = toml::from_str(DEFAULT_ARM).map_err(|e| Problem::internal(format!("the built-in arm: {e}")))?;
+    Reply::json(&ArmJson {
+        name: file.name.clone().unwrap_or_else(|| "arm".to_owned()),
+        base: file.base.unwrap_or([0.0, 0.0]),
+        links: file
+            .links
+            .iter()
+            .map(|l| LinkJson { length: l.length, angle_deg: l.angle_deg, limits_deg: l.limits_deg })
+            .collect(),
+    })
 }
 
 #[cfg(test)]

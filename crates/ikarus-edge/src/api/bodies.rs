@@ -1,14 +1,31 @@
-//! Which request a body is: `POST /api/solve`, `/api/animate` and `/api/track` take an arm's
-//! request or a rig's. A body is read once for its keys, then as the request it is, so that an
-//! error names the field in the words of that request.
+//! The one place that tells a request's body apart: `POST /api/solve`, `/api/animate`,
+//! `/api/track` and the figures `arm`/`rig` of `/api/render` take an arm (`arm`, or the
+//! built-in arm without one) or a rig (`rig`), in one request type per job
+//! ([`super::requests`], [`super::figures`]). A body is read once for its keys ([`Keys`]), then
+//! as the request, whose fields for the other body are refused by [`fields_of`], each in the words of a
+//! field serde does not know (`pins: unknown field `pins`, …`). The bodies are loaded here too,
+//! under the server's caps ([`load`]), and a rig's goals and pins become its task ([`task`]).
 
+use ikarus::{Bend, Priority, RigTask};
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
-use super::requests::{AnimateReq, SolveReq, TrackReq};
-use super::rig_motion::{RigAnimateReq, RigTrackReq};
-use super::rig_requests::RigSolveReq;
-use super::{Problem, parse_json};
+use super::requests::{AnimateReq, BendReq, PriorityReq, RigGoalReq, SolveReq, TrackReq};
+use super::{Limits, Problem, parse_json};
+use crate::arm::{Arm, ArmFile};
+use crate::body::Body;
+use crate::goal::{self, Field, NamedGoal};
+use crate::rig::{BoneCap, Rig, RigFile};
+
+/// Most effectors (goals and pins together) of a request.
+pub const MAX_EFFECTORS: usize = 64;
+
+/// Which body a request is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BodyKind {
+    Arm,
+    Rig,
+}
 
 /// What a body has, read without judging anything else.
 #[derive(Debug, Deserialize)]
@@ -25,67 +42,202 @@ pub struct Keys {
 }
 
 impl Keys {
-    /// Whether the body is a rig's request: it has `rig`, and no field of an arm's.
-    pub fn rig(&self) -> Result<bool, Problem> {
-        match (self.arm.is_some(), self.rig.is_some()) {
+    /// The body of a job's request: a rig's when it has `rig`; an arm's, which has no `goals`,
+    /// otherwise.
+    pub fn of(body: &[u8]) -> Result<BodyKind, Problem> {
+        let keys: Keys = parse_json(body)?;
+        match (keys.arm.is_some(), keys.rig.is_some()) {
             (true, true) => Err(Problem::invalid("arm, rig: give one or the other, not both")),
-            (_, true) if self.goal.is_some() => {
+            (_, true) if keys.goal.is_some() => {
                 Err(Problem::invalid("goal: a rig takes goals, a list of {\"bone\", \"x\", \"y\"}"))
             }
-            (_, true) => Ok(true),
-            (_, false) if self.goals.is_some() => {
+            (_, true) => Ok(BodyKind::Rig),
+            (_, false) if keys.goals.is_some() => {
                 Err(Problem::invalid("goals: only with rig (an arm takes one goal, {\"x\", \"y\"})"))
             }
-            (_, false) => Ok(false),
+            (_, false) => Ok(BodyKind::Arm),
         }
     }
 }
 
-/// The body of `POST /api/solve`: an arm's request or a rig's.
-#[derive(Debug)]
-pub enum SolveBody {
-    Arm(Box<SolveReq>),
-    Rig(Box<RigSolveReq>),
-}
-
-impl SolveBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? { SolveBody::Rig(parse_json(body)?) } else { SolveBody::Arm(parse_json(body)?) })
+/// Refuses the first field given that the body does not take: `arm_only` for a rig,
+/// `rig_only` for an arm, each `(name, given)`; then the field the body needs, `required`,
+/// when absent. As serde words them, the latter with the body's end as its position.
+pub(super) fn fields_of(
+    kind: BodyKind,
+    arm_only: &[(&str, bool)],
+    rig_only: &[(&str, bool)],
+    required: (&str, bool),
+    body: &[u8],
+) -> Result<(), Problem> {
+    let (foreign, whose) = match kind {
+        BodyKind::Arm => (rig_only, "only with rig"),
+        BodyKind::Rig => (arm_only, "not with rig"),
+    };
+    if let Some((name, _)) = foreign.iter().find(|(_, given)| *given) {
+        return Err(Problem::invalid(format!("request body: {name}: unknown field `{name}`, {whose}")));
+    }
+    match required {
+        (name, false) => Err(Problem::invalid(format!("request body: missing field `{name}` at {}", end(body)))),
+        _ => Ok(()),
     }
 }
 
-/// The body of `POST /api/animate`: an arm's request or a rig's.
-#[derive(Debug)]
-pub enum AnimateBody {
-    Arm(Box<AnimateReq>),
-    Rig(Box<RigAnimateReq>),
+/// `line L column C` of a JSON body's last character, where serde reports a missing field.
+fn end(body: &[u8]) -> String {
+    let last = body.iter().rposition(|b| !matches!(b, b' ' | b'\t' | b'\n' | b'\r')).unwrap_or(0);
+    let line = body[..last].iter().filter(|&&b| b == b'\n').count() + 1;
+    let column = last - body[..last].iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+    format!("line {line} column {column}")
 }
 
-/// The body of `POST /api/track`: an arm's request or a rig's.
+impl SolveReq {
+    /// The body of `POST /api/solve`: which body it is about, and the request.
+    pub fn parse(body: &[u8]) -> Result<(BodyKind, Self), Problem> {
+        let kind = Keys::of(body)?;
+        let req: Self = parse_json(body)?;
+        let rig_only = [("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
+        let goal = ("goal", kind == BodyKind::Rig || req.goal.is_some());
+        fields_of(kind, &[], &rig_only, goal, body)?;
+        Ok((kind, req))
+    }
+}
+
+/// An arm's `via` entry: a point `[x, y]`.
+pub type ArmVia = [f64; 2];
+/// A rig's `via` entry: a goal set.
+pub type RigVia = Vec<RigGoalReq>;
+
+/// The body of `POST /api/animate`, read with the `via` entries of its body.
 #[derive(Debug)]
-pub enum TrackBody {
-    Arm(Box<TrackReq>),
-    Rig(Box<RigTrackReq>),
+pub enum AnimateBody {
+    Arm(Box<AnimateReq<ArmVia>>),
+    Rig(Box<AnimateReq<RigVia>>),
 }
 
 impl AnimateBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
+    /// The request, its `via` read as its body's.
     pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? {
-            AnimateBody::Rig(parse_json(body)?)
-        } else {
-            AnimateBody::Arm(Box::new(parse_json(body)?))
-        })
+        match Keys::of(body)? {
+            BodyKind::Arm => {
+                let req: AnimateReq<ArmVia> = parse_json(body)?;
+                let rig_only = [("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
+                fields_of(BodyKind::Arm, &[], &rig_only, ("goal", req.goal.is_some()), body)?;
+                Ok(AnimateBody::Arm(Box::new(req)))
+            }
+            BodyKind::Rig => Ok(AnimateBody::Rig(parse_json(body)?)),
+        }
     }
 }
 
-impl TrackBody {
-    /// The body as an arm's request or a rig's, told apart by its keys.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let keys: Keys = parse_json(body)?;
-        Ok(if keys.rig()? { TrackBody::Rig(parse_json(body)?) } else { TrackBody::Arm(Box::new(parse_json(body)?)) })
+impl TrackReq {
+    /// The body of `POST /api/track`: which body it is about, and the request.
+    pub fn parse(body: &[u8]) -> Result<(BodyKind, Self), Problem> {
+        let kind = Keys::of(body)?;
+        let req: Self = parse_json(body)?;
+        let rig_only = [("effector", req.effector.is_some()), ("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
+        fields_of(kind, &[], &rig_only, ("", true), body)?;
+        Ok((kind, req))
+    }
+}
+
+/// The request's body: its rig, else its arm, else the built-in seed arm (as [`load_rig`] and
+/// [`load_arm`] check them).
+pub fn load(arm: Option<ArmFile>, rig: Option<RigFile>, limits: &Limits) -> Result<Body, Problem> {
+    match rig {
+        Some(rig) => Ok(Body::Rig(Box::new(load_rig(rig, limits)?))),
+        None => Ok(Body::Chain(Box::new(load_arm(arm, limits)?))),
+    }
+}
+
+/// The request's arm, or the built-in seed arm; at most `--max-links` links.
+pub fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, Problem> {
+    match file {
+        None => Ok(Arm::load(None)?),
+        Some(file) => {
+            if file.links.len() > limits.max_links {
+                return Err(Problem::invalid(format!(
+                    "arm.links: {} links, more than the cap of {} (--max-links)",
+                    file.links.len(),
+                    limits.max_links
+                )));
+            }
+            Ok(Arm::from_file(file, "arm")?)
+        }
+    }
+}
+
+/// The request's rig, checked as a rig file is (errors start with `rig:`); at most
+/// `--max-bones` bones (counted first).
+pub fn load_rig(file: RigFile, limits: &Limits) -> Result<Rig, Problem> {
+    Ok(Rig::from_file(file, "rig", BoneCap::flag(limits.max_bones))?)
+}
+
+/// The task of a request's `goals`, `pins` and `mix` on `rig`; problems name the field
+/// (`goals[1].bone`, `pins[0]`); at most [`MAX_EFFECTORS`] goals and pins together. `need_one`:
+/// a solve needs a goal or a pin, a picture does not.
+pub fn task(
+    rig: &Rig,
+    goals: &[RigGoalReq],
+    pins: &[String],
+    mix: Option<f64>,
+    need_one: bool,
+) -> Result<RigTask, Problem> {
+    let effectors = goals.len() + pins.len();
+    if effectors > MAX_EFFECTORS {
+        return Err(Problem::invalid(format!(
+            "goals, pins: {effectors} effectors (goals and pins together), more than the cap of {MAX_EFFECTORS}"
+        )));
+    }
+    if !need_one && effectors == 0 {
+        return Ok(RigTask::default());
+    }
+    let goals: Vec<NamedGoal> = goals
+        .iter()
+        .map(|g| NamedGoal {
+            weight: g.weight.unwrap_or(1.0),
+            priority: match g.priority {
+                None | Some(PriorityReq::Primary) => Priority::Primary,
+                Some(PriorityReq::Secondary) => Priority::Secondary,
+            },
+            bend: g.bend.map(|b| match b {
+                BendReq::Ccw => Bend::Positive,
+                BendReq::Cw => Bend::Negative,
+            }),
+            softness: g.softness.unwrap_or(0.0),
+            ..NamedGoal::new(g.bone.clone(), g.x, g.y, g.angle_deg)
+        })
+        .collect();
+    let field = |f: Field| match f {
+        Field::Goal(i) => format!("goals[{i}]"),
+        Field::Weight(i) => format!("goals[{i}].weight"),
+        Field::Softness(i) => format!("goals[{i}].softness"),
+        Field::Bend(i) => format!("goals[{i}].bend"),
+        Field::Pin(i) => format!("pins[{i}]"),
+    };
+    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(Problem::invalid)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A missing field is reported where serde reports it: at the body's last character.
+    #[test]
+    fn a_missing_field_is_placed_as_serde_places_it() {
+        for body in ["{}", " {\n \"x\": 1 }\n\n", "{\"start_deg\": [1, 2, 3]}"] {
+            #[derive(Debug, Deserialize)]
+            #[allow(dead_code)]
+            struct Needs {
+                goal: u32,
+                #[serde(default)]
+                x: u32,
+                #[serde(default)]
+                start_deg: Vec<u32>,
+            }
+            let serde = parse_json::<Needs>(body.as_bytes()).unwrap_err().message;
+            let ours = fields_of(BodyKind::Arm, &[], &[], ("goal", false), body.as_bytes()).unwrap_err().message;
+            assert_eq!(ours, serde, "{body:?}");
+        }
     }
 }

@@ -5,7 +5,7 @@
 use ikarus::EaseKind;
 use serde::{Deserialize, Serialize};
 
-use super::jobs::ease;
+use super::fields::ease;
 use super::requests::EaseReq;
 use super::{Problem, Reply, parse_json};
 

@@ -3,21 +3,24 @@
 //! pool; Python and WebAssembly call it directly (through [`crate::edge`]), so the four edges
 //! answer the same request with the same bytes, the same status and the same message.
 //!
-//! Requests ([`requests`], [`rig_requests`]) use the names of the command line and the arm files
-//! (degrees at the edge); answers are the objects the commands print (`crate::report`), made
-//! by the same workflows (`crate::settings`, `crate::motion`, `crate::picture`, `crate::area`,
-//! `crate::reach`).
+//! Requests ([`requests`], [`figures`]: one type per job, for an arm or a rig, told apart by
+//! [`bodies`]) use the names of the command line and the arm and rig files (degrees at the
+//! edge); answers are the objects the commands print (`crate::report`), made by the same
+//! workflows ([`jobs`]: `crate::settings`, `crate::motion`, `crate::track`; [`regions`]:
+//! `crate::area`, `crate::reach`; [`render`]: `crate::picture`), the request's fields checked by
+//! [`fields`].
 
 pub mod arm_files;
 pub mod bodies;
 pub mod ease;
+pub mod fields;
+pub mod figures;
 pub mod jobs;
 pub mod meta;
+pub mod regions;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod requests;
-pub mod rig_motion;
-pub mod rig_requests;
 pub mod rigs;
 pub mod solve_batch;
 
@@ -27,7 +30,8 @@ use ikarus::Interrupt;
 use serde::de::DeserializeOwned;
 
 use crate::error::CliError;
-use bodies::{AnimateBody, SolveBody, TrackBody};
+use bodies::AnimateBody;
+use requests::{SolveReq, TrackReq};
 
 /// The caps of every request: the server's flags, and the same defaults for the edges that
 /// have no flags (Python, WebAssembly).
@@ -279,26 +283,17 @@ impl Endpoint {
 pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     match endpoint {
         Endpoint::Meta => Reply::json(&meta::meta()),
-        Endpoint::ArmDefault => jobs::default_arm(),
+        Endpoint::ArmDefault => arm_files::default_arm(),
         Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
         Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?, limits)),
-        Endpoint::Solve => match SolveBody::parse(body)? {
-            SolveBody::Arm(req) => jobs::solve(*req, limits, interrupt),
-            SolveBody::Rig(req) => rigs::solve(*req, limits, interrupt),
-        },
+        Endpoint::Solve => jobs::solve(SolveReq::parse(body)?.1, limits, interrupt),
         Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
-        Endpoint::Animate => match AnimateBody::parse(body)? {
-            AnimateBody::Arm(req) => jobs::animate(*req, limits, interrupt),
-            AnimateBody::Rig(req) => rig_motion::animate(*req, limits, interrupt),
-        },
-        Endpoint::Track => match TrackBody::parse(body)? {
-            TrackBody::Arm(req) => jobs::track(*req, limits, interrupt),
-            TrackBody::Rig(req) => rig_motion::track(*req, limits, interrupt),
-        },
-        Endpoint::Workspace => jobs::workspace(body, limits, interrupt),
-        Endpoint::Reach => jobs::reach(body, limits, interrupt),
+        Endpoint::Animate => jobs::animate(AnimateBody::parse(body)?, limits, interrupt),
+        Endpoint::Track => jobs::track(TrackReq::parse(body)?.1, limits, interrupt),
+        Endpoint::Workspace => regions::workspace(body, limits, interrupt),
+        Endpoint::Reach => regions::reach(body, limits, interrupt),
         #[cfg(feature = "render")]
         Endpoint::Render => render::render(body, limits, interrupt),
         Endpoint::Ease => ease::curve(body),

@@ -1,13 +1,21 @@
-//! `POST /api/render`: pictures of arms, motions, workspaces, ease curves and rigs, drawn by
-//! `crate::picture` as the command line draws them.
+//! `POST /api/render`: pictures of arms and rigs, motions, workspaces and ease curves, drawn
+//! by `crate::picture` as the command line draws them.
 
 use ikarus::{EaseKind, Interrupt};
 
-use super::jobs::{MotionFields, ease, goal, load_arm, motion, picture, reachable_area, start_pose, stopped};
-use super::requests::{ArmFigureReq, MotionFigureReq, RenderReq, WorkspaceReq};
+use super::bodies::{load, load_arm, task};
+use super::fields::{ease, goal, picture, pose_from_degrees, start_pose, stopped};
+use super::figures::{BodyFigureReq, MotionFigureReq, RenderReq};
+use super::jobs::{MotionFields, motion};
+use super::regions::reachable_area;
+use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
+use crate::body::Body;
 use crate::motion::DEFAULT_FPS;
-use crate::picture::{Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, workspace_drawing};
+use crate::picture::{
+    Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, rig_figure, workspace_drawing,
+};
+use crate::rig::Rig;
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
@@ -49,7 +57,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
             draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {}),
             interrupt,
         )?,
-        RenderReq::Arm(r) => arm_figure(r, format, width, height, limits, interrupt)?,
+        RenderReq::Body(_, r) => body_figure(*r, format, width, height, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
             let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
@@ -57,30 +65,63 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
             picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
         }
         RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
-        RenderReq::Rig(r) => super::rigs::figure(*r, format, width, height, limits, interrupt)?,
     };
     Ok((bytes, format))
 }
 
-fn arm_figure(
-    r: ArmFigureReq,
+/// The figures `arm` and `rig`: the body in a pose (its start pose by default), an arm with
+/// its goal and area, a rig with its goals and pins.
+fn body_figure(
+    r: BodyFigureReq,
     format: PictureFormat,
     width: u32,
     height: u32,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
-    let arm = load_arm(r.arm, limits)?;
-    let pose = start_pose(&arm, r.pose_deg.as_deref(), "pose_deg")?;
-    let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
-    let workspace = if r.workspace {
-        let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
-        Some(reachable_area(&arm, &ws_req, limits, interrupt)?)
-    } else {
-        None
+    let body = load(r.arm.clone(), r.rig.clone(), limits)?;
+    let drawn = match &body {
+        Body::Chain(arm) => {
+            let pose = start_pose(arm, r.pose_deg.as_deref(), "pose_deg")?;
+            let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
+            let workspace = if r.workspace.unwrap_or(false) {
+                let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
+                Some(reachable_area(arm, &ws_req, limits, interrupt)?)
+            } else {
+                None
+            };
+            let drawing = arm_drawing(arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
+            draw(&drawing, format, width, height, &|_, _| {})
+        }
+        Body::Rig(rig) => {
+            let (goals, pins) = (r.goals.as_deref().unwrap_or_default(), r.pins.as_deref().unwrap_or_default());
+            let task = task(rig, goals, pins, None, false)?;
+            let pose = rig_pose(rig, r.pose_deg.as_deref())?;
+            let figure = rig_figure(rig, &pose, &task, r.limits.unwrap_or(false), None);
+            let figure = ikarus_render::SkeletonFigure { labels: r.labels.unwrap_or(false), ..figure };
+            draw(&Drawing::Skeleton(figure), format, width, height, &|_, _| {})
+        }
     };
-    let drawing = arm_drawing(&arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
-    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
+    picture(drawn, interrupt)
+}
+
+/// A rig's pose from `pose_deg`, its start pose without. Degrees say nothing about a slide: a
+/// rig with prismatic joints is drawn in the pose its bones' `angle_deg` and `extension` give.
+fn rig_pose(rig: &Rig, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, Problem> {
+    if pose_deg.is_some() {
+        for (j, joint) in rig.skeleton.joints().iter().enumerate() {
+            match joint {
+                ikarus::Joint::Revolute => {}
+                ikarus::Joint::Prismatic { .. } => {
+                    return Err(Problem::invalid(format!(
+                        "pose_deg: bone {:?} is prismatic (its value is a length, not an angle); give the pose as the bones' angle_deg and extension",
+                        rig.skeleton.name(j)
+                    )));
+                }
+            }
+        }
+    }
+    pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), pose_deg, "pose_deg")
 }
 
 fn motion_figure(

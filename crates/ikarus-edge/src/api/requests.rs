@@ -1,15 +1,18 @@
-//! The JSON requests of the API, in the names of the command line and the arm files (degrees
-//! at the edge). Every field is optional unless said otherwise; unknown fields are refused.
+//! The JSON requests of the API's jobs, in the names of the command line and the arm and rig
+//! files (degrees at the edge). Every field is optional unless said otherwise; unknown fields
+//! are refused.
+//!
+//! `POST /api/solve`, `/api/animate` and `/api/track` each take one request that carries the
+//! body, `arm` (the built-in arm without one) or `rig`, and the fields of both: an arm takes
+//! one `goal`, a rig `goals` on named bones, `pins` and `mix`. Which fields a body takes is
+//! checked in one place, [`super::bodies`].
 
 use ikarus::EaseKind;
 use ikarus::motion::Interpolation;
 use serde::Deserialize;
-use serde::de::IgnoredAny;
 
-use super::rig_requests::RigFigureReq;
-use super::{Problem, parse_json};
 use crate::arm::ArmFile;
-use crate::picture::PictureFormat;
+use crate::rig::RigFile;
 use crate::settings::SolverSettings;
 
 /// A goal: position, and optionally the orientation of the last link.
@@ -22,16 +25,65 @@ pub struct GoalReq {
     pub angle_deg: Option<f64>,
 }
 
-/// `POST /api/solve`.
+/// A goal's priority: `primary` (the default) or `secondary`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PriorityReq {
+    Primary,
+    Secondary,
+}
+
+/// Which way a limb bends: `ccw` or `cw`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BendReq {
+    Ccw,
+    Cw,
+}
+
+/// A rig's goal on the tip of the bone `bone`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigGoalReq {
+    pub bone: String,
+    pub x: f64,
+    pub y: f64,
+    #[serde(default)]
+    pub angle_deg: Option<f64>,
+    #[serde(default)]
+    pub weight: Option<f64>,
+    #[serde(default)]
+    pub priority: Option<PriorityReq>,
+    #[serde(default)]
+    pub bend: Option<BendReq>,
+    #[serde(default)]
+    pub softness: Option<f64>,
+}
+
+/// `POST /api/solve`: an arm's tip to `goal` (required with an arm), or a rig's `goals` and
+/// `pins` solved together.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolveReq {
     #[serde(default)]
     pub arm: Option<ArmFile>,
     #[serde(default)]
+    pub rig: Option<RigFile>,
+    /// One angle per joint (a rig's bones in its order) [default: the body's start pose].
+    #[serde(default)]
     pub start_deg: Option<Vec<f64>>,
-    /// Required.
-    pub goal: GoalReq,
+    /// An arm's goal.
+    #[serde(default)]
+    pub goal: Option<GoalReq>,
+    /// A rig's goals.
+    #[serde(default)]
+    pub goals: Option<Vec<RigGoalReq>>,
+    /// A rig's pinned bones.
+    #[serde(default)]
+    pub pins: Option<Vec<String>>,
+    /// A rig's mix, from 0 to 1 [default: 1].
+    #[serde(default)]
+    pub mix: Option<f64>,
     #[serde(default)]
     pub options: Option<SolverSettings>,
 }
@@ -48,18 +100,32 @@ pub struct EaseReq {
     pub k2: Option<f64>,
 }
 
-/// `POST /api/animate`.
+/// `POST /api/animate`: the solves of [`SolveReq`] in turn, through `via`, eased into frames.
+/// `V` is what one `via` entry is for the body: an arm's point `[x, y]`, a rig's goal set
+/// (a list of goals, the pins held in each); the body is told apart before the request is read.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct AnimateReq {
+pub struct AnimateReq<V> {
     #[serde(default)]
     pub arm: Option<ArmFile>,
     #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// Required.
-    pub goal: GoalReq,
+    pub rig: Option<RigFile>,
     #[serde(default)]
-    pub via: Vec<[f64; 2]>,
+    pub start_deg: Option<Vec<f64>>,
+    /// An arm's final goal.
+    #[serde(default)]
+    pub goal: Option<GoalReq>,
+    /// A rig's final goal set.
+    #[serde(default)]
+    pub goals: Option<Vec<RigGoalReq>>,
+    /// A rig's bones held where they are, in every goal set.
+    #[serde(default)]
+    pub pins: Option<Vec<String>>,
+    #[serde(default)]
+    pub mix: Option<f64>,
+    /// What to pass through first, in order.
+    #[serde(default = "Vec::new")]
+    pub via: Vec<V>,
     #[serde(default)]
     pub options: Option<SolverSettings>,
     #[serde(default)]
@@ -76,14 +142,26 @@ pub struct AnimateReq {
     pub from_solve: bool,
 }
 
-/// `POST /api/track`: exactly one of `path`, `line`, `circle`, `figure8`.
+/// `POST /api/track`: exactly one of `path`, `line`, `circle`, `figure8`, followed by an arm's
+/// tip, or by the tip of a rig's `effector` while its `goals` hold and its `pins` stay.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TrackReq {
     #[serde(default)]
     pub arm: Option<ArmFile>,
     #[serde(default)]
+    pub rig: Option<RigFile>,
+    #[serde(default)]
     pub start_deg: Option<Vec<f64>>,
+    /// A rig's bone whose tip follows the path (required with a rig).
+    #[serde(default)]
+    pub effector: Option<String>,
+    #[serde(default)]
+    pub goals: Option<Vec<RigGoalReq>>,
+    #[serde(default)]
+    pub pins: Option<Vec<String>>,
+    #[serde(default)]
+    pub mix: Option<f64>,
     /// The samples, `[[x, y], …]`, used as given.
     #[serde(default)]
     pub path: Option<Vec<[f64; 2]>>,
@@ -99,7 +177,7 @@ pub struct TrackReq {
     /// Samples of a shape [default: 100].
     #[serde(default)]
     pub samples: Option<usize>,
-    /// `follow` or `plan` [default: plan].
+    /// `follow` or `plan` [default: plan for an arm; follow, the only mode, for a rig].
     #[serde(default)]
     pub mode: Option<ikarus::TrackMode>,
     /// The bound on a joint's change between samples, degrees [default: 10].
@@ -164,211 +242,4 @@ pub struct ReachReq {
     /// Many points: the answer is an array of objects, in order.
     #[serde(default)]
     pub points: Option<Vec<[f64; 2]>>,
-}
-
-/// `POST /api/render`: the figure, and the inputs of that figure. Read in two passes, so that an
-/// error names its field like the other endpoints' errors: first `figure` alone ([`FigureTag`]),
-/// then that figure's own struct, which refuses the fields of other figures. Of two faults in
-/// one body, a fault of `figure` or of the JSON syntax is the one reported.
-#[derive(Debug)]
-pub enum RenderReq {
-    /// An arm in one pose.
-    Arm(ArmFigureReq),
-    /// A motion (the fields of `/api/animate`): animated as a GIF, overlaid in PNG and SVG.
-    Motion(Box<MotionFigureReq>),
-    /// The reachable area (the fields of `/api/workspace`).
-    Workspace(WorkspaceFigureReq),
-    /// An ease curve.
-    Ease(EaseFigureReq),
-    /// A rig in one pose (figure `rig`, or `arm` with `rig` in place of `arm`).
-    Rig(Box<RigFigureReq>),
-}
-
-/// The names of the figures.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Figure {
-    Arm,
-    Motion,
-    Workspace,
-    Ease,
-    Rig,
-}
-
-/// The first pass over a render request: `figure` (required), other fields skipped. Its
-/// messages speak of the whole request (`expected struct RenderReq`).
-#[derive(Debug, Deserialize)]
-#[serde(expecting = "struct RenderReq")]
-pub struct FigureTag {
-    pub figure: Figure,
-    /// Whether the body has a `rig` (figure `arm` then draws it).
-    #[serde(default)]
-    pub rig: Option<IgnoredAny>,
-}
-
-impl RenderReq {
-    /// The body read in two passes: `figure`, then that figure's fields.
-    pub fn parse(body: &[u8]) -> Result<Self, Problem> {
-        let FigureTag { figure, rig } = parse_json(body)?;
-        Ok(match figure {
-            Figure::Arm if rig.is_some() => RenderReq::Rig(parse_json(body)?),
-            Figure::Rig => RenderReq::Rig(parse_json(body)?),
-            Figure::Arm => RenderReq::Arm(parse_json(body)?),
-            Figure::Motion => RenderReq::Motion(parse_json(body)?),
-            Figure::Workspace => RenderReq::Workspace(parse_json(body)?),
-            Figure::Ease => RenderReq::Ease(parse_json(body)?),
-        })
-    }
-}
-
-/// Figure `arm`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArmFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    /// The pose drawn [default: the arm's start pose].
-    #[serde(default)]
-    pub pose_deg: Option<Vec<f64>>,
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    /// Also shade the reachable area with the workspace fields below: the exact region, or
-    /// the sampled grid (as `/api/workspace`).
-    #[serde(default)]
-    pub workspace: bool,
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-}
-
-/// Figure `motion`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MotionFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// Required (checked after parsing, to name it in the figure's words).
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    #[serde(default)]
-    pub via: Vec<[f64; 2]>,
-    #[serde(default)]
-    pub options: Option<SolverSettings>,
-    #[serde(default)]
-    pub ease: Option<EaseReq>,
-    #[serde(default)]
-    pub frames: Option<u32>,
-    #[serde(default)]
-    pub duration: Option<f64>,
-    #[serde(default)]
-    pub fps: Option<f64>,
-    #[serde(default)]
-    pub interpolation: Option<Interpolation>,
-    #[serde(default)]
-    pub from_solve: bool,
-    /// Also shade the reachable area, as the playground shows it: the exact region, or the
-    /// sampled grid with the workspace fields below (as `/api/workspace`).
-    #[serde(default)]
-    pub workspace: bool,
-    /// The area's limits [default: the options' `limits`].
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-    /// Draw the joints' traces, as lines as the playground's screen does [default: true].
-    #[serde(default)]
-    pub traces: Option<bool>,
-    /// Draw earlier poses as ghosts in a GIF, as the playground's screen does [default: false].
-    #[serde(default)]
-    pub ghosts: bool,
-}
-
-/// Figure `workspace`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WorkspaceFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-}
-
-/// Figure `ease`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct EaseFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub ease: Option<EaseReq>,
-}
-
-impl RenderReq {
-    /// The picture's format (PNG by default) and size (800 × 800 by default), unchecked.
-    pub fn picture(&self) -> (Option<PictureFormat>, Option<u32>, Option<u32>) {
-        match self {
-            RenderReq::Arm(r) => (r.format, r.width, r.height),
-            RenderReq::Motion(r) => (r.format, r.width, r.height),
-            RenderReq::Workspace(r) => (r.format, r.width, r.height),
-            RenderReq::Ease(r) => (r.format, r.width, r.height),
-            RenderReq::Rig(r) => (r.format, r.width, r.height),
-        }
-    }
 }

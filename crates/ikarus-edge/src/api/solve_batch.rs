@@ -6,7 +6,8 @@
 use ikarus::{Goal, Interrupt, Outcome};
 use serde::{Deserialize, Serialize};
 
-use super::jobs::{json_response, load_arm, options_for, start_pose, stopped};
+use super::bodies::load_arm;
+use super::fields::{json_response, options_for, start_pose, stopped};
 use super::{Limits, Problem, Reply, parse_json};
 use crate::arm::ArmFile;
 use crate::report::degrees;
