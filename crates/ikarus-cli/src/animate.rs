@@ -24,7 +24,6 @@ use crate::picture::{
 };
 use crate::report::{AnimateJson, deg_text};
 use crate::rig::Rig;
-use crate::rig_motion::{RigMotion, RigMotionPlan};
 use crate::settings::SolverFlags;
 use crate::solve::{angle_columns, write_pose};
 
@@ -139,7 +138,7 @@ pub struct AnimateArgs {
 pub struct MotionRun {
     pub arm: Arm,
     pub goal: Goal,
-    pub motion: Motion,
+    pub motion: Motion<Arm>,
     /// Frames per second of a GIF.
     pub fps: f64,
 }
@@ -170,7 +169,8 @@ impl MotionArgs {
         let start = arm.chain.start_pose().angles().to_vec();
         let interpolation = self.interpolation.unwrap_or_default();
         let from_solve = self.from_solve;
-        let motion = MotionPlan { arm: &arm, start, goals, options, timing, ease, interpolation, from_solve }.run()?;
+        let motion =
+            MotionPlan { body: &arm, start, stops: goals, options, timing, ease, interpolation, from_solve }.run()?;
         for s in &motion.motion.solves {
             if s.status != ikarus::Status::Reached {
                 let target = s.goal.target();
@@ -209,7 +209,8 @@ impl MotionArgs {
 impl MotionRun {
     /// The drawing of the motion (the one the API's figure `motion` draws).
     pub fn drawing(&self) -> Drawing<'_> {
-        motion_drawing(&self.arm, &self.motion, Some(self.goal.target()), self.fps, MotionLayers::default())
+        let (animation, caption) = (&self.motion.motion.animation, self.motion.caption());
+        motion_drawing(&self.arm, animation, caption, Some(self.goal.target()), self.fps, MotionLayers::default())
     }
 }
 
@@ -341,7 +342,7 @@ fn csv(w: &mut dyn Write, animation: &Animation, n: usize) -> std::io::Result<()
 /// A rig motion computed from the flags, with what its report and pictures need.
 pub struct RigMotionRun {
     pub rig: Rig,
-    pub motion: RigMotion,
+    pub motion: Motion<Rig>,
     /// Frames per second of a GIF.
     pub fps: f64,
 }
@@ -387,8 +388,16 @@ pub fn motion_run(args: &MotionArgs, path: &Path) -> Result<RigMotionRun, CliErr
     let tasks = tasks(args, &rig)?;
     let start = rig.skeleton.start_angles().to_vec();
     let interpolation = args.interpolation.unwrap_or_default();
-    let plan =
-        RigMotionPlan { rig: &rig, start, tasks, options, timing, ease, interpolation, from_solve: args.from_solve };
+    let plan = MotionPlan {
+        body: &rig,
+        start,
+        stops: tasks,
+        options,
+        timing,
+        ease,
+        interpolation,
+        from_solve: args.from_solve,
+    };
     let motion = plan.run()?;
     let count = motion.motion.solves.len();
     for (k, s) in motion.motion.solves.iter().enumerate() {
@@ -432,7 +441,7 @@ fn rig_text(w: &mut dyn Write, run: &RigMotionRun) -> std::io::Result<()> {
         mode => format!("on ({})", mode.name()),
     };
     writeln!(w, "method    {}   limits {limits}", options.method.name())?;
-    for (k, (solve, task)) in motion.solves.iter().zip(&run.motion.tasks).enumerate() {
+    for (k, (solve, task)) in motion.solves.iter().zip(&run.motion.stops).enumerate() {
         let what = if k + 1 == motion.solves.len() { "goals" } else { "via" };
         let goals: Vec<String> = task
             .goals

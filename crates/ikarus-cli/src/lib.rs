@@ -8,7 +8,7 @@
 // The edge's modules under their old names, so that the commands' paths (`crate::arm::Arm`)
 // stay as they were; the modules below that share a name with an edge module re-export it and
 // add the command line's part (its flags, its terminal output).
-use ikarus_edge::{api, area, arm, body, error, goal, input, motion, report, rig, rig_motion};
+use ikarus_edge::{api, area, arm, body, error, goal, input, motion, report, rig};
 // `ikarus bench`, its own crate (`crates/ikarus-bench`).
 use ikarus_bench as bench;
 

@@ -17,11 +17,11 @@ use crate::arm::Arm;
 use crate::body::Body;
 use crate::error::CliError;
 use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
+use crate::motion::poses_animation;
 use crate::options::{named, parse_finite, parse_positive};
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format, rig_figure};
 use crate::rig::Rig;
-use crate::rig_motion::poses_animation;
 use crate::settings::SolverFlags;
 use crate::solve::write_pose;
 

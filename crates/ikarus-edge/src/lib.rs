@@ -42,8 +42,6 @@ pub mod report;
 #[doc(hidden)]
 pub mod rig;
 #[doc(hidden)]
-pub mod rig_motion;
-#[doc(hidden)]
 pub mod settings;
 #[doc(hidden)]
 pub mod stats;

@@ -1,14 +1,23 @@
-//! The motion workflow shared by `ikarus animate` and `POST /api/animate` / `/api/render`:
-//! the timing rules, via points into goals, and the library's motion through goals.
+//! The motion workflow shared by `ikarus animate` and `POST /api/animate` / `/api/render`, one
+//! for both bodies: the timing rules, the stops (an arm's via points and goal, a rig's goal
+//! sets) solved in turn from the pose the previous one ended at, and the poses eased into
+//! frames by the library. [`MotionPlan::run`] is the workflow; what differs between an arm and
+//! a rig — the library's entry point ([`ikarus::motion::through_goals`],
+//! [`ikarus::motion::through_rig_tasks`]) and how a message names a joint — is the body's
+//! [`MotionBody`] impl. A rig motion's JSON shape (angles and tips keyed by bone name) is
+//! `crate::report::motion`'s; its picture is [`Motion::drawing`].
 
 use ikarus::motion::{
-    GoalMotion, GoalMotionError, Interpolation, MotionError, MotionOptions, Route, Timing, through_goals,
+    Animation, GoalMotion, GoalMotionError, Interpolation, MotionError, MotionOptions, Route, Timing, through_goals,
+    through_rig_tasks,
 };
 use ikarus::number::Num;
-use ikarus::{Ease, Goal, GoalError, SolveOptions, Solver};
+use ikarus::{Ease, Goal, GoalError, RigTask, SolveOptions, Solver};
 
 use crate::arm::Arm;
 use crate::error::CliError;
+use crate::picture::{Drawing, rig_figure};
+use crate::rig::Rig;
 
 /// Frames of a motion when neither frames nor a duration is given.
 pub const DEFAULT_FRAMES: u32 = 60;
@@ -62,13 +71,66 @@ pub fn goals(via: &[[f64; 2]], goal: Goal) -> Result<Vec<Goal>, (usize, GoalErro
     Ok(goals)
 }
 
+/// A body a motion moves: what it passes through, and the library's motion of it.
+pub trait MotionBody {
+    /// One stop: an arm's goal, a rig's goal set.
+    type Stop;
+    /// The library's motion: the solves and the animation.
+    type Solved;
+
+    /// Solves for each stop in turn and eases the poses, the problem in the edges' words.
+    fn through(
+        &self,
+        solver: &mut Solver,
+        start: &[f64],
+        stops: &[Self::Stop],
+        route: Route,
+        options: MotionOptions,
+    ) -> Result<Self::Solved, CliError>;
+}
+
+impl MotionBody for Arm {
+    type Stop = Goal;
+    type Solved = GoalMotion;
+
+    fn through(
+        &self,
+        solver: &mut Solver,
+        start: &[f64],
+        goals: &[Goal],
+        route: Route,
+        options: MotionOptions,
+    ) -> Result<GoalMotion, CliError> {
+        through_goals(solver, &self.chain, start, goals, route, options)
+            .map_err(|e| CliError::input(describe(&e, |joint| format!("joint {}", joint + 1))))
+    }
+}
+
+impl MotionBody for Rig {
+    type Stop = RigTask;
+    type Solved = ikarus::motion::RigMotion;
+
+    fn through(
+        &self,
+        solver: &mut Solver,
+        start: &[f64],
+        tasks: &[RigTask],
+        route: Route,
+        options: MotionOptions,
+    ) -> Result<ikarus::motion::RigMotion, CliError> {
+        let names = self.skeleton.names();
+        through_rig_tasks(solver, &self.skeleton, start, tasks, route, options)
+            .map_err(|e| CliError::input(describe(&e, |b| format!("bone {} ({:?})", b + 1, names[b]))))
+    }
+}
+
 /// What a motion request asks for once its values are checked.
-pub struct MotionPlan<'a> {
-    pub arm: &'a Arm,
-    /// The pose the motion starts from, radians.
+pub struct MotionPlan<'a, B: MotionBody> {
+    pub body: &'a B,
+    /// The pose the motion starts from, radians, one value per joint.
     pub start: Vec<f64>,
-    /// Via points, then the final goal.
-    pub goals: Vec<Goal>,
+    /// The stops in order: an arm's via points then its goal, a rig's via sets then its goal set.
+    pub stops: Vec<B::Stop>,
     pub options: SolveOptions,
     pub timing: Timing,
     pub ease: Ease,
@@ -78,24 +140,23 @@ pub struct MotionPlan<'a> {
     pub from_solve: bool,
 }
 
-/// A computed motion, with the options it was solved with.
-pub struct Motion {
+/// A computed motion, with the options and the stops it was solved with.
+pub struct Motion<B: MotionBody> {
     pub options: SolveOptions,
-    pub motion: GoalMotion,
+    pub stops: Vec<B::Stop>,
+    pub motion: B::Solved,
 }
 
-impl MotionPlan<'_> {
-    /// Solves for each via point, then the goal, each from the previous pose, and eases the
-    /// poses into a motion ([`ikarus::motion::through_goals`]), with the same interpolation
-    /// whether the poses are the solved ones or every pose the solver recorded.
-    pub fn run(self) -> Result<Motion, CliError> {
+impl<B: MotionBody> MotionPlan<'_, B> {
+    /// Solves for each stop, each from the previous pose, and eases the poses into a motion,
+    /// with the same interpolation whether the poses are the solved ones or every pose the
+    /// solver recorded; a problem (a method that solves chains only, a bad stop) is bad input.
+    pub fn run(self) -> Result<Motion<B>, CliError> {
         let mut solver = Solver::new(self.options).map_err(|e| CliError::input(e.to_string()))?;
         let route = if self.from_solve { Route::Recorded } else { Route::Keyframes };
-        let chain = &self.arm.chain;
         let options = MotionOptions::new(self.timing, self.ease).with_interpolation(self.interpolation);
-        let motion = through_goals(&mut solver, chain, &self.start, &self.goals, route, options)
-            .map_err(|e| CliError::input(describe(&e, |joint| format!("joint {}", joint + 1))))?;
-        Ok(Motion { options: solver.options().clone(), motion })
+        let motion = self.body.through(&mut solver, &self.start, &self.stops, route, options)?;
+        Ok(Motion { options: solver.options().clone(), stops: self.stops, motion })
     }
 }
 
@@ -148,23 +209,89 @@ fn outside_degrees(radians: f64, lo: f64, hi: f64) -> String {
     Num(d).to_string()
 }
 
-impl Motion {
+/// The one-line caption of a motion's pictures: `method · status · iterations · error · frames, ease`.
+fn caption(
+    options: &SolveOptions,
+    status: ikarus::Status,
+    iterations: u32,
+    error: f64,
+    animation: &Animation,
+) -> String {
+    format!(
+        "{} · {} · {} iterations · error {:.1e} · {} frames, {} ease",
+        options.method.name(),
+        status,
+        iterations,
+        error,
+        animation.frames.len(),
+        animation.ease.name()
+    )
+}
+
+impl Motion<Arm> {
     /// The one-line caption of the motion's pictures.
     pub fn caption(&self) -> String {
         let solves = &self.motion.solves;
-        let animation = &self.motion.animation;
         let last = solves.last().expect("at least the goal was solved");
         let iterations: u32 = solves.iter().map(|s| s.iterations).sum();
+        caption(&self.options, last.status, iterations, last.error, &self.motion.animation)
+    }
+}
+
+impl Motion<Rig> {
+    /// The one-line caption of the motion's pictures, after the rig's name.
+    pub fn caption(&self, rig: &Rig) -> String {
+        let solves = &self.motion.solves;
+        let last = solves.last().expect("at least the final goal set was solved");
+        let iterations: u32 = solves.iter().map(|s| s.iterations).sum();
         format!(
-            "{} · {} · {} iterations · error {:.1e} · {} frames, {} ease",
-            self.options.method.name(),
-            last.status,
-            iterations,
-            last.error,
-            animation.frames.len(),
-            animation.ease.name()
+            "{} · {}",
+            rig.name,
+            caption(&self.options, last.status, iterations, last.error, &self.motion.animation)
         )
     }
+
+    /// The drawing of the motion: the skeleton at its last pose with every goal set's goals and
+    /// the final pins (SVG, PNG), or every frame (GIF) at `fps`.
+    pub fn drawing<'a>(&'a self, rig: &'a Rig, fps: f64) -> Drawing<'a> {
+        let last = self.motion.animation.frames.last().expect("an animation has frames");
+        let task = self.stops.last().expect("at least the final goal set");
+        let mut figure = rig_figure(
+            rig,
+            &last.angles,
+            task,
+            self.options.limits != ikarus::LimitMode::Ignore,
+            Some(self.caption(rig)),
+        );
+        // The via sets' goals too, where the final set has none on the same bone.
+        for via in &self.stops[..self.stops.len() - 1] {
+            for g in &via.goals {
+                figure.goals.push(ikarus_render::BoneGoal {
+                    bone: g.bone,
+                    position: g.goal.target(),
+                    angle: g.goal.orientation(),
+                });
+            }
+        }
+        Drawing::RigMotion { figure, animation: &self.motion.animation, fps }
+    }
+}
+
+/// An animation of one frame per pose, evenly timed over [0, 1] (a track's samples), with the
+/// skeleton's points.
+pub fn poses_animation(rig: &Rig, poses: &[Vec<f64>]) -> Animation {
+    use ikarus::motion::Body;
+    let last = poses.len().saturating_sub(1).max(1) as f64;
+    let frames = poses
+        .iter()
+        .enumerate()
+        .map(|(k, q)| ikarus::AnimationFrame {
+            time: k as f64 / last,
+            angles: q.clone(),
+            joints: rig.skeleton.frame_points(q),
+        })
+        .collect();
+    Animation { frames, duration: 1.0, ease: Ease::Linear }
 }
 
 #[cfg(test)]

@@ -8,7 +8,6 @@ use serde::Deserialize;
 use crate::area::ReachableArea;
 use crate::arm::Arm;
 use crate::error::CliError;
-use crate::motion::Motion;
 use crate::rig::Rig;
 
 /// What a picture holds: from a file's extension, or a request's `format`.
@@ -230,23 +229,19 @@ pub fn workspace_drawing<'a>(arm: &'a Arm, area: &'a ReachableArea) -> Drawing<'
     }
 }
 
-/// The figure `motion`: a computed motion towards `goal`, animated at `fps` in a GIF, with
-/// `layers` (the API's figure `motion`, `ikarus animate --out` and `ikarus render motion`).
+/// The figure `motion`: an arm's motion (its `animation`, with its `caption`) towards `goal`,
+/// animated at `fps` in a GIF, with `layers` (the API's figure `motion`, `ikarus animate --out`
+/// and `ikarus render motion`). It takes what it draws, not the motion, which draws a rig's
+/// motion itself (`crate::motion::Motion::drawing`).
 pub fn motion_drawing<'a>(
     arm: &'a Arm,
-    motion: &'a Motion,
+    animation: &'a Animation,
+    caption: String,
     goal: Option<Point2<f64>>,
     fps: f64,
     layers: MotionLayers<'a>,
 ) -> Drawing<'a> {
-    Drawing::Motion {
-        chain: &arm.chain,
-        animation: &motion.motion.animation,
-        goal,
-        caption: motion.caption(),
-        fps,
-        layers,
-    }
+    Drawing::Motion { chain: &arm.chain, animation, goal, caption, fps, layers }
 }
 
 /// The figure of a rig at `pose` with the goals and pins of `task`, the limit wedges when

@@ -14,6 +14,7 @@ use serde::ser::{SerializeMap, Serializer};
 
 use crate::area::ReachableArea;
 use crate::arm::Arm;
+use crate::motion::Motion;
 use crate::rig::{BoneCap, Rig, RigFile};
 
 #[derive(Serialize)]
@@ -178,6 +179,78 @@ impl<'a> AnimateJson<'a> {
                 .collect(),
         }
     }
+}
+
+impl Motion<Rig> {
+    /// The JSON object of the motion.
+    pub fn json<'a>(&'a self, rig: &'a Rig) -> RigAnimateJson<'a> {
+        let s = &rig.skeleton;
+        let animation = &self.motion.animation;
+        RigAnimateJson {
+            rig: &rig.name,
+            ease: animation.ease.name(),
+            duration: animation.duration,
+            solves: self
+                .motion
+                .solves
+                .iter()
+                .map(|r| RigMotionSolveJson {
+                    status: r.status.as_str(),
+                    iterations: r.iterations,
+                    error: r.error,
+                    effectors: r.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
+                })
+                .collect(),
+            frames: animation.frames.iter().map(|f| RigFrameJson::of(s, f)).collect(),
+        }
+    }
+}
+
+/// How one goal set of a rig motion was solved.
+#[derive(Serialize)]
+pub struct RigMotionSolveJson<'a> {
+    /// `reached` only if every effector is.
+    pub status: &'static str,
+    pub iterations: u32,
+    /// The largest effector error.
+    pub error: f64,
+    /// The set's goals in order, then its pins.
+    pub effectors: Vec<EffectorJson<'a>>,
+}
+
+/// One frame of a rig motion: bone name → angle (degrees, from its parent's direction), prismatic
+/// bone name → displacement (only when the rig has prismatic joints), bone name → tip.
+#[derive(Serialize)]
+pub struct RigFrameJson<'a> {
+    pub time: f64,
+    pub angles_deg: ByName<'a, f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extensions: Option<Extensions<'a>>,
+    pub joints: ByName<'a, [f64; 2]>,
+}
+
+impl<'a> RigFrameJson<'a> {
+    /// A frame whose `joints` are the base, then every bone's tip ([`ikarus::motion::Body`]).
+    pub fn of(s: &'a ikarus::Skeleton, f: &ikarus::AnimationFrame) -> Self {
+        let names = s.names();
+        Self {
+            time: f.time,
+            angles_deg: ByName { names, values: relative_degrees(s, &f.angles) },
+            extensions: Extensions::of(s, &f.angles),
+            joints: ByName { names, values: f.joints[1..].iter().map(|p| [p.x, p.y]).collect() },
+        }
+    }
+}
+
+/// A rig motion: `ikarus animate --rig` (JSON) and `POST /api/animate` with `rig`.
+#[derive(Serialize)]
+pub struct RigAnimateJson<'a> {
+    pub rig: &'a str,
+    pub ease: &'static str,
+    pub duration: f64,
+    /// One per goal set: the via sets, then the final one.
+    pub solves: Vec<RigMotionSolveJson<'a>>,
+    pub frames: Vec<RigFrameJson<'a>>,
 }
 
 /// The reachable region: `ikarus workspace --format json` and `POST /api/workspace`. The exact

@@ -21,7 +21,6 @@ use crate::arm::Arm;
 use crate::body::{Aimed, Body};
 use crate::motion::{Motion, MotionPlan};
 use crate::report::{AnimateJson, RigSolveReport, SolveReport};
-use crate::rig_motion::RigMotionPlan;
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, solver};
 use crate::track::{RigTrackJob, Shape, TrackJob, TrackJson, effector_index};
 
@@ -120,8 +119,16 @@ fn rig_motion(req: AnimateReq<RigVia>, limits: &Limits, interrupt: &Interrupt) -
     let start =
         pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), req.start_deg.as_deref(), "start_deg")?;
     let interpolation = req.interpolation.unwrap_or_default();
-    let plan =
-        RigMotionPlan { rig: &rig, start, tasks, options, timing, ease, interpolation, from_solve: req.from_solve };
+    let plan = MotionPlan {
+        body: &rig,
+        start,
+        stops: tasks,
+        options,
+        timing,
+        ease,
+        interpolation,
+        from_solve: req.from_solve,
+    };
     let motion = plan.run()?;
     stopped(interrupt)?;
     json_response(&motion.json(&rig))
@@ -244,7 +251,7 @@ pub(super) fn motion(
     goal_req: &GoalReq,
     limits: &Limits,
     interrupt: &Interrupt,
-) -> Result<Motion, Problem> {
+) -> Result<Motion<Arm>, Problem> {
     if req.via.len() > MAX_VIA {
         return Err(Problem::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
     }
@@ -259,5 +266,6 @@ pub(super) fn motion(
     let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
         .map_err(|(i, e)| Problem::invalid(format!("via[{i}]: {e}")))?;
     let interpolation = req.interpolation.unwrap_or_default();
-    Ok(MotionPlan { arm, start, goals, options, timing, ease, interpolation, from_solve: req.from_solve }.run()?)
+    let from_solve = req.from_solve;
+    Ok(MotionPlan { body: arm, start, stops: goals, options, timing, ease, interpolation, from_solve }.run()?)
 }

@@ -157,6 +157,7 @@ fn motion_figure(
     };
     let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
     let layers = MotionLayers::screen(area.as_ref(), r.traces.unwrap_or(true), r.ghosts);
-    let drawing = motion_drawing(&arm, &motion, goal, r.fps.unwrap_or(DEFAULT_FPS), layers);
+    let fps = r.fps.unwrap_or(DEFAULT_FPS);
+    let drawing = motion_drawing(&arm, animation, motion.caption(), goal, fps, layers);
     picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
 }
