@@ -137,8 +137,8 @@ fn run_chain(args: &TrackArgs, arm: &Arm) -> Result<(), CliError> {
     if args.bound_first && mode != TrackMode::Follow {
         return Err(CliError::input("--bound-first: only applies with --mode follow"));
     }
-    let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
-    let job = TrackJob { arm, start, path, mode, options };
+    let options = track_options(solve, args.max_step_deg, args.bound_first);
+    let job = TrackJob { body: arm, start, follower: mode, path, options };
     let t = job.run().map_err(CliError::input)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
@@ -239,10 +239,10 @@ pub fn csv_with(w: &mut dyn Write, t: &Track, pose_columns: Vec<String>, pose: P
     Ok(())
 }
 
-fn text(w: &mut dyn Write, job: &TrackJob, t: &Track) -> std::io::Result<()> {
+fn text(w: &mut dyn Write, job: &TrackJob<Arm>, t: &Track) -> std::io::Result<()> {
     let s = &t.summary;
-    writeln!(w, "arm       {} ({} links)", job.arm.name, job.arm.chain.len())?;
-    writeln!(w, "mode      {} (bound {}° per sample)", job.mode.name(), job.options.max_step.to_degrees())?;
+    writeln!(w, "arm       {} ({} links)", job.body.name, job.body.chain.len())?;
+    writeln!(w, "mode      {} (bound {}° per sample)", job.follower.name(), job.options.max_step.to_degrees())?;
     writeln!(
         w,
         "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
@@ -284,9 +284,9 @@ fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
     };
     let bone = effector_index(rig, name, &task, "--effector").map_err(CliError::input)?;
     let solve = rig.options(&args.solver.settings(), None)?;
-    let options = TrackJob::options(solve, args.max_step_deg, args.bound_first);
+    let options = track_options(solve, args.max_step_deg, args.bound_first);
     let start = rig.skeleton.start_angles().to_vec();
-    let job = RigTrackJob { rig, start, bone, task, path, options };
+    let job = TrackJob { body: rig, start, follower: RigFollower { bone, task }, path, options };
     let t = job.run().map_err(CliError::input)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
@@ -294,7 +294,7 @@ fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
         let animation = poses_animation(rig, &poses);
         let last = poses.last().map_or(job.start.as_slice(), Vec::as_slice);
         let ranges = job.options.solve.limits != LimitMode::Ignore;
-        let mut figure = rig_figure(rig, last, &job.task, ranges, Some(job.caption(&t)));
+        let mut figure = rig_figure(rig, last, &job.follower.task, ranges, Some(job.caption(&t)));
         if let Some(goal) = t.samples.last().map(|s| s.goal) {
             figure.goals.push(ikarus_render::BoneGoal { bone, position: goal.target(), angle: goal.orientation() });
         }
@@ -317,19 +317,20 @@ fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
     })
 }
 
-fn rig_text(w: &mut dyn Write, job: &RigTrackJob, t: &Track) -> std::io::Result<()> {
+fn rig_text(w: &mut dyn Write, job: &TrackJob<Rig>, t: &Track) -> std::io::Result<()> {
     let s = &t.summary;
-    let sk = &job.rig.skeleton;
-    writeln!(w, "rig       {} ({} bones)", job.rig.name, sk.len())?;
+    let sk = &job.body.skeleton;
+    writeln!(w, "rig       {} ({} bones)", job.body.name, sk.len())?;
     let held: Vec<String> = job
+        .follower
         .task
         .goals
         .iter()
         .map(|g| format!("{} at ({}, {})", sk.name(g.bone), g.goal.target().x, g.goal.target().y))
-        .chain(job.task.pins.iter().map(|p| format!("{} pinned", sk.name(p.bone))))
+        .chain(job.follower.task.pins.iter().map(|p| format!("{} pinned", sk.name(p.bone))))
         .collect();
     let held = if held.is_empty() { String::new() } else { format!("; held: {}", held.join(", ")) };
-    writeln!(w, "effector  {}{held}", sk.name(job.bone))?;
+    writeln!(w, "effector  {}{held}", sk.name(job.follower.bone))?;
     writeln!(w, "mode      follow (bound {}° per sample)", job.options.max_step.to_degrees())?;
     writeln!(
         w,

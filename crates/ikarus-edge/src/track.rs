@@ -1,8 +1,9 @@
-//! The track workflow shared by `ikarus track` and `POST /api/track`: the tip of an arm follows
-//! a path (a line, a circle, a figure-8 or given goals), online or planned ([`TrackJob`]); or the
-//! tip of one bone of a rig follows it online while the rig's other goals hold and its pins stay
-//! where they start ([`RigTrackJob`], the library's [`ikarus::track::follow_rig`]). The jobs,
-//! their JSON shapes and their picture layers.
+//! The track workflow shared by `ikarus track` and `POST /api/track`, one for both bodies
+//! ([`TrackJob`]): the tip of an arm follows a path (a line, a circle, a figure-8 or given
+//! goals), online or planned; or the tip of one bone of a rig follows it online while the rig's
+//! other goals hold and its pins stay where they start (the library's
+//! [`ikarus::track::follow_rig`]). What differs — who follows and the library's entry point — is
+//! the body's [`TrackBody`] impl. The job, its JSON shapes and its picture layers.
 
 use ikarus::number::Num;
 use ikarus::track::{self, Path, PathError, Track, TrackError, TrackMode, TrackOptions};
@@ -45,26 +46,28 @@ impl Shape {
     }
 }
 
-/// One track: the workflow of `ikarus track` and `POST /api/track`.
-pub struct TrackJob<'a> {
-    pub arm: &'a Arm,
-    pub start: Vec<f64>,
-    pub path: Path,
-    pub mode: TrackMode,
-    pub options: TrackOptions,
+/// A body that follows a path: who follows it, and the library's entry point.
+pub trait TrackBody {
+    /// Who follows: an arm's tip, online or planned ([`TrackMode`]); a rig's effector bone
+    /// with the goals it holds ([`RigFollower`]).
+    type Follower;
+
+    /// Tracks `path` from `start`; a problem is bad input, in the library's words.
+    fn follow(
+        &self,
+        start: &[f64],
+        follower: &Self::Follower,
+        path: &Path,
+        options: &TrackOptions,
+    ) -> Result<Track, String>;
 }
 
-impl TrackJob<'_> {
-    /// The tracking options: the solver's `solve`, the bound in degrees, and whether follow
-    /// bounds the first sample too.
-    pub fn options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) -> TrackOptions {
-        TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
-    }
+impl TrackBody for Arm {
+    type Follower = TrackMode;
 
-    /// Tracks the path; a problem is bad input, in the library's words (the bound in the edge's
-    /// degrees, `max_step_deg`).
-    pub fn run(&self) -> Result<Track, String> {
-        track::track(&self.arm.chain, &self.start, &self.path, self.mode, &self.options).map_err(|e| match e {
+    /// The bound in a problem is in the edge's degrees, `max_step_deg`.
+    fn follow(&self, start: &[f64], mode: &TrackMode, path: &Path, options: &TrackOptions) -> Result<Track, String> {
+        track::track(&self.chain, start, path, *mode, options).map_err(|e| match e {
             TrackError::OffPathCap { max_step, needed, cap } => format!(
                 "max_step_deg = {}: bridging the plan's gaps in steps this small needs {needed} poses off the path, more than the cap of {cap} ({} per sample); raise it or sample the path more finely",
                 Num(max_step.to_degrees()),
@@ -73,10 +76,50 @@ impl TrackJob<'_> {
             other => other.to_string(),
         })
     }
+}
 
+/// Who follows a rig's path: the tip of `bone`, while `task`'s goals hold and its pins stay.
+pub struct RigFollower {
+    /// The bone whose tip follows the path.
+    pub bone: usize,
+    /// The goals held and the pins, without the effector.
+    pub task: RigTask,
+}
+
+impl TrackBody for Rig {
+    type Follower = RigFollower;
+
+    fn follow(&self, start: &[f64], f: &RigFollower, path: &Path, options: &TrackOptions) -> Result<Track, String> {
+        track::follow_rig(&self.skeleton, start, f.bone, &f.task, path, options).map_err(|e| e.to_string())
+    }
+}
+
+/// One track: the workflow of `ikarus track` and `POST /api/track`.
+pub struct TrackJob<'a, B: TrackBody> {
+    pub body: &'a B,
+    pub start: Vec<f64>,
+    pub follower: B::Follower,
+    pub path: Path,
+    pub options: TrackOptions,
+}
+
+/// The tracking options: the solver's `solve`, the bound in degrees, and whether follow bounds
+/// the first sample too.
+pub fn track_options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) -> TrackOptions {
+    TrackOptions { max_step: max_step_deg.to_radians(), solve, bound_first, ..TrackOptions::default() }
+}
+
+impl<B: TrackBody> TrackJob<'_, B> {
+    /// Tracks the path; a problem is bad input, in the library's words.
+    pub fn run(&self) -> Result<Track, String> {
+        self.body.follow(&self.start, &self.follower, &self.path, &self.options)
+    }
+}
+
+impl TrackJob<'_, Arm> {
     /// The picture's layer: the wanted path, the tip's trace, the flips.
     pub fn layer(&self, t: &Track) -> ikarus_render::PathLayer {
-        let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.arm.chain, &s.angles).position;
+        let tip = |s: &track::TrackSample| ikarus::kinematics::end_effector(&self.body.chain, &s.angles).position;
         ikarus_render::PathLayer {
             goals: self.path.goals().iter().map(Goal::target).collect(),
             trace: t.samples.iter().map(tip).collect(),
@@ -90,8 +133,8 @@ impl TrackJob<'_> {
         let off = if s.off_path > 0 { format!(" · {} off path", s.off_path) } else { String::new() };
         format!(
             "{} · {} · {} of {} reached{off} · {} flips · largest step {:.1}°",
-            self.arm.name,
-            self.mode.name(),
+            self.body.name,
+            self.follower.name(),
             s.reached,
             s.samples,
             s.flips.len(),
@@ -144,8 +187,8 @@ pub struct TrackJson<'a> {
 }
 
 impl<'a> TrackJson<'a> {
-    pub fn new(job: &TrackJob<'a>, t: &Track) -> Self {
-        let chain = &job.arm.chain;
+    pub fn new(job: &TrackJob<'a, Arm>, t: &Track) -> Self {
+        let chain = &job.body.chain;
         let samples = t
             .samples
             .iter()
@@ -163,7 +206,7 @@ impl<'a> TrackJson<'a> {
             })
             .collect();
         let summary = TrackSummaryJson::new(&t.summary, job.options.max_step);
-        Self { arm: &job.arm.name, mode: job.mode.name(), samples, summary }
+        Self { arm: &job.body.name, mode: job.follower.name(), samples, summary }
     }
 }
 
@@ -189,18 +232,6 @@ impl TrackSummaryJson {
     }
 }
 
-/// One rig track: the workflow of `ikarus track --rig` and `POST /api/track` with `rig`.
-pub struct RigTrackJob<'a> {
-    pub rig: &'a Rig,
-    pub start: Vec<f64>,
-    /// The bone whose tip follows the path.
-    pub bone: usize,
-    /// The goals held and the pins, without the effector.
-    pub task: RigTask,
-    pub path: Path,
-    pub options: TrackOptions,
-}
-
 /// The index of the effector bone `name`, which must exist and have neither a goal nor a pin
 /// in `task`; a problem starts with `field` and the name (`--effector hand`).
 pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Result<usize, String> {
@@ -214,20 +245,14 @@ pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Res
     Ok(bone)
 }
 
-impl RigTrackJob<'_> {
-    /// Follows the path; a problem is bad input, in the library's words.
-    pub fn run(&self) -> Result<Track, String> {
-        let s = &self.rig.skeleton;
-        track::follow_rig(s, &self.start, self.bone, &self.task, &self.path, &self.options).map_err(|e| e.to_string())
-    }
-
+impl TrackJob<'_, Rig> {
     /// A one-line caption for pictures.
     pub fn caption(&self, t: &Track) -> String {
         let s = &t.summary;
         format!(
             "{} · {} follows · {} of {} reached · {} flips · largest step {:.1}°",
-            self.rig.name,
-            self.rig.skeleton.name(self.bone),
+            self.body.name,
+            self.body.skeleton.name(self.follower.bone),
             s.reached,
             s.samples,
             s.flips.len(),
@@ -237,14 +262,14 @@ impl RigTrackJob<'_> {
 
     /// The JSON object of a finished track.
     pub fn json<'a>(&'a self, t: &Track) -> RigTrackJson<'a> {
-        let s = &self.rig.skeleton;
+        let s = &self.body.skeleton;
         let names = s.names();
         let samples = t
             .samples
             .iter()
             .map(|x| {
                 let p = x.goal.target();
-                let tips = crate::report::tips(self.rig, &x.angles);
+                let tips = crate::report::tips(self.body, &x.angles);
                 RigTrackSampleJson {
                     goal: [p.x, p.y],
                     angle_deg: x.goal.orientation().map(f64::to_degrees),
@@ -258,8 +283,8 @@ impl RigTrackJob<'_> {
             })
             .collect();
         RigTrackJson {
-            rig: &self.rig.name,
-            effector: s.name(self.bone),
+            rig: &self.body.name,
+            effector: s.name(self.follower.bone),
             mode: TrackMode::Follow.name(),
             samples,
             summary: TrackSummaryJson::new(&t.summary, self.options.max_step),

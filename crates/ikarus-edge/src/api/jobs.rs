@@ -22,7 +22,7 @@ use crate::body::{Aimed, Body};
 use crate::motion::{Motion, MotionPlan};
 use crate::report::{AnimateJson, RigSolveReport, SolveReport};
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, solver};
-use crate::track::{RigTrackJob, Shape, TrackJob, TrackJson, effector_index};
+use crate::track::{RigFollower, Shape, TrackJob, TrackJson, effector_index, track_options};
 
 /// What a request aims its body at: an arm's `goal`, a rig's `goals`, `pins` and `mix`
 /// (`need_one`: a goal or a pin).
@@ -153,10 +153,10 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let max_step_deg = max_step_deg(req.max_step_deg)?;
-    let options = TrackJob::options(solve, max_step_deg, req.bound_first);
+    let options = track_options(solve, max_step_deg, req.bound_first);
     match (&body, rig) {
         (_, Some((rig, (bone, task)))) => {
-            let job = RigTrackJob { rig, start, bone, task, path, options };
+            let job = TrackJob { body: &**rig, start, follower: RigFollower { bone, task }, path, options };
             let t = job.run().map_err(Problem::invalid)?;
             stopped(interrupt)?;
             json_response(&job.json(&t))
@@ -166,7 +166,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
             if req.bound_first && mode != TrackMode::Follow {
                 return Err(Problem::invalid("bound_first: only applies with mode follow"));
             }
-            let job = TrackJob { arm, start, path, mode, options };
+            let job = TrackJob { body: &**arm, start, follower: mode, path, options };
             let t = job.run().map_err(Problem::invalid)?;
             stopped(interrupt)?;
             json_response(&TrackJson::new(&job, &t))
