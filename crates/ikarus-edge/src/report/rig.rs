@@ -1,0 +1,118 @@
+//! A rig file as JSON (`GET /api/rigs`, `POST /api/rig/parse`, the requests' `rig`).
+
+use crate::rig::{BoneCap, Rig, RigFile};
+
+/// A rig file's fields as JSON (the requests' `rig`): `name`, `base`, `bones` (each with
+/// `parent`, null for a root, and `limits_deg`, `stiffness`, `rest_deg` and the joint keys
+/// `offset`, `joint`, `slide`, `extension`, `limits` when it has them)
+/// and, when the file has one, `solver`.
+#[derive(Debug, serde::Serialize)]
+pub struct RigJson {
+    pub name: String,
+    pub base: [f64; 2],
+    pub bones: Vec<BoneJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solver: Option<serde_json::Value>,
+}
+
+#[derive(Debug, serde::Serialize)]
+pub struct BoneJson {
+    pub name: String,
+    pub parent: Option<String>,
+    pub length: f64,
+    pub angle_deg: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits_deg: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rest_deg: Option<f64>,
+    /// The file's joint keys, each only when it has it (so a rig without them reads as before).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<crate::rig::JointFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide: Option<[f64; 2]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extension: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits: Option<[f64; 2]>,
+}
+
+impl RigJson {
+    /// The rig of rig-file `text` as JSON, after the CLI's checks (whose one-line message it
+    /// returns for a bad file, starting with `label`), under the command line's cap on bones.
+    /// The `[solver]` table is carried as written.
+    pub fn parse(text: &str, label: &str) -> Result<Self, String> {
+        Self::parse_within(text, label, BoneCap::cli())
+    }
+
+    /// [`RigJson::parse`] of a rig of at most `cap` bones (counted before anything else).
+    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, String> {
+        let file = RigFile::read(text, label, cap).map_err(|e| e.to_string())?;
+        Rig::from_file(file.clone(), label, cap).map_err(|e| e.to_string())?;
+        let table: toml::Table = toml::from_str(text).map_err(|e| format!("{label}: {e}"))?;
+        let solver = match table.get("solver") {
+            Some(t) => Some(serde_json::to_value(t).map_err(|e| format!("{label}: [solver]: {e}"))?),
+            None => None,
+        };
+        Ok(Self {
+            name: file.name.clone().unwrap_or_else(|| "rig".to_owned()),
+            base: file.base.unwrap_or([0.0, 0.0]),
+            bones: file
+                .bones
+                .into_iter()
+                .map(|b| BoneJson {
+                    name: b.name,
+                    parent: b.parent,
+                    length: b.length,
+                    angle_deg: b.angle_deg,
+                    limits_deg: b.limits_deg,
+                    stiffness: b.stiffness,
+                    rest_deg: b.rest_deg,
+                    offset: b.offset,
+                    joint: b.joint,
+                    slide: b.slide,
+                    extension: b.extension,
+                    limits: b.limits,
+                })
+                .collect(),
+            solver,
+        })
+    }
+}
+
+#[cfg(test)]
+mod rig_tests {
+    use super::*;
+    use crate::report::ByName;
+
+    #[test]
+    fn a_rig_file_as_json_reads_back_as_the_same_rig() {
+        let text = "name = \"fork\"\n[[bones]]\nname = \"a.b\"\nlength = 1\nangle_deg = 90\n\
+                    [[bones]]\nname = \"c\"\nparent = \"a.b\"\nlength = 0.5\nlimits_deg = [-10, 20]\n\
+                    [solver]\nmethod = \"dls\"\nrates = [1, 0.5]\n";
+        let json = serde_json::to_value(RigJson::parse(text, "r").unwrap()).unwrap();
+        assert_eq!(
+            json,
+            serde_json::json!({"name": "fork", "base": [0.0, 0.0], "bones": [
+                {"name": "a.b", "parent": null, "length": 1.0, "angle_deg": 90.0},
+                {"name": "c", "parent": "a.b", "length": 0.5, "angle_deg": 0.0, "limits_deg": [-10.0, 20.0]}],
+                "solver": {"method": "dls", "rates": [1, 0.5]}})
+        );
+        let file: RigFile = serde_json::from_value(json).unwrap();
+        let rig = Rig::from_file(file, "r", BoneCap::cli()).unwrap();
+        assert_eq!(rig.skeleton.names(), &["a.b", "c"]);
+        assert_eq!(rig.solver.rates, Some(vec![1.0, 0.5]));
+        let e = RigJson::parse("[[bones]]\nname = \"a\"\nparent = \"b\"\nlength = 1\n", "rig file").unwrap_err();
+        assert_eq!(e, "rig file: bones[0] (\"a\").parent = \"b\": no bone of that name");
+    }
+
+    #[test]
+    fn objects_by_name_keep_the_rigs_order() {
+        let names = ["z".to_owned(), "a".to_owned(), "m".to_owned()];
+        let text = serde_json::to_string(&ByName { names: &names, values: vec![1, 2, 3] }).unwrap();
+        assert_eq!(text, r#"{"z":1,"a":2,"m":3}"#);
+    }
+}
