@@ -281,17 +281,7 @@ impl Motion<Rig> {
 /// skeleton's points.
 pub fn poses_animation(rig: &Rig, poses: &[Vec<f64>]) -> Animation {
     use ikarus::motion::Body;
-    let last = poses.len().saturating_sub(1).max(1) as f64;
-    let frames = poses
-        .iter()
-        .enumerate()
-        .map(|(k, q)| ikarus::AnimationFrame {
-            time: k as f64 / last,
-            angles: q.clone(),
-            joints: rig.skeleton.frame_points(q),
-        })
-        .collect();
-    Animation { frames, duration: 1.0, ease: Ease::Linear }
+    crate::picture::poses_animation(poses, |q| rig.skeleton.frame_points(q))
 }
 
 #[cfg(test)]

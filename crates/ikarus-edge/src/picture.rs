@@ -137,7 +137,7 @@ pub fn draw(
             ikarus_render::arm_svg(&figure, width, height)
         }
         Drawing::Track { chain, poses, layer, caption, fps } if format == PictureFormat::Gif => {
-            let animation = track_animation(chain, poses);
+            let animation = poses_animation(poses, |q| ikarus::kinematics::joint_positions(chain, q));
             let overlay = ikarus_render::Overlay {
                 show_reach: true,
                 caption: Some(caption.clone()),
@@ -191,17 +191,14 @@ pub fn draw(
     }
 }
 
-/// One animation frame per pose, evenly timed over [0, 1].
-fn track_animation(chain: &Chain, poses: &[Vec<f64>]) -> Animation {
+/// One animation frame per pose (a track's samples), evenly timed over [0, 1], each with the
+/// points `joints` gives for it (an arm's joints, a rig's base and tips).
+pub fn poses_animation(poses: &[Vec<f64>], joints: impl Fn(&[f64]) -> Vec<Point2<f64>>) -> Animation {
     let last = poses.len().saturating_sub(1).max(1) as f64;
     let frames = poses
         .iter()
         .enumerate()
-        .map(|(k, q)| ikarus::AnimationFrame {
-            time: k as f64 / last,
-            angles: q.clone(),
-            joints: ikarus::kinematics::joint_positions(chain, q),
-        })
+        .map(|(k, q)| ikarus::AnimationFrame { time: k as f64 / last, angles: q.clone(), joints: joints(q) })
         .collect();
     Animation { frames, duration: 1.0, ease: Ease::Linear }
 }
