@@ -31,60 +31,72 @@ impl Body {
         }
     }
 
+    /// The arm or the rig, as what the workflows ask of either.
+    #[must_use]
+    pub fn jointed(&self) -> &dyn Jointed {
+        match self {
+            Self::Chain(arm) => &**arm,
+            Self::Rig(rig) => &**rig,
+        }
+    }
+}
+
+/// What a job's workflow asks of a body, an arm or a rig alike.
+pub trait Jointed {
     /// Its name, as the answers give it.
-    #[must_use]
-    pub fn name(&self) -> &str {
-        match self {
-            Self::Chain(arm) => &arm.name,
-            Self::Rig(rig) => &rig.name,
-        }
-    }
-
+    fn name(&self) -> &str;
     /// Its number of joints: an arm's links, a rig's bones.
-    #[must_use]
-    pub fn joints(&self) -> usize {
-        match self {
-            Self::Chain(arm) => arm.chain.len(),
-            Self::Rig(rig) => rig.skeleton.len(),
-        }
-    }
-
+    fn joints(&self) -> usize;
     /// Its file's `[solver]` table.
-    #[must_use]
-    pub fn solver(&self) -> &SolverSettings {
-        match self {
-            Self::Chain(arm) => &arm.solver,
-            Self::Rig(rig) => &rig.solver,
-        }
-    }
-
+    fn solver(&self) -> &SolverSettings;
     /// Its start pose, one joint value per joint.
-    #[must_use]
-    pub fn start(&self) -> &[f64] {
-        match self {
-            Self::Chain(arm) => arm.chain.start_pose().angles(),
-            Self::Rig(rig) => rig.skeleton.start_angles(),
-        }
-    }
-
+    fn start(&self) -> &[f64];
     /// Its joints' ranges, one per joint.
-    #[must_use]
-    pub fn limits(&self) -> &[Option<JointLimits>] {
-        match self {
-            Self::Chain(arm) => arm.chain.limits(),
-            Self::Rig(rig) => rig.skeleton.limits(),
-        }
-    }
-
+    fn limits(&self) -> &[Option<JointLimits>];
     /// The values a recorded frame of a solve holds: an arm's `n + 4` (as its cap has always
     /// counted them), a rig's `n` angles and `n + 1` points.
-    #[must_use]
-    pub fn frame_values(&self) -> u64 {
-        let n = self.joints() as u64;
-        match self {
-            Self::Chain(_) => n + 4,
-            Self::Rig(_) => 3 * n + 2,
-        }
+    fn frame_values(&self) -> u64;
+}
+
+impl Jointed for Arm {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn joints(&self) -> usize {
+        self.chain.len()
+    }
+    fn solver(&self) -> &SolverSettings {
+        &self.solver
+    }
+    fn start(&self) -> &[f64] {
+        self.chain.start_pose().angles()
+    }
+    fn limits(&self) -> &[Option<JointLimits>] {
+        self.chain.limits()
+    }
+    fn frame_values(&self) -> u64 {
+        self.chain.len() as u64 + 4
+    }
+}
+
+impl Jointed for Rig {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn joints(&self) -> usize {
+        self.skeleton.len()
+    }
+    fn solver(&self) -> &SolverSettings {
+        &self.solver
+    }
+    fn start(&self) -> &[f64] {
+        self.skeleton.start_angles()
+    }
+    fn limits(&self) -> &[Option<JointLimits>] {
+        self.skeleton.limits()
+    }
+    fn frame_values(&self) -> u64 {
+        3 * self.skeleton.len() as u64 + 2
     }
 }
 

@@ -47,21 +47,11 @@ pub(super) fn json_response(value: &impl serde::Serialize) -> Result<Reply, Prob
     Reply::json(value)
 }
 
-/// Library options from the request's `options` over the arm's `solver` table over the
-/// defaults; `options.max_iterations` at most `--max-iterations`.
-pub(super) fn options(
-    arm: &Arm,
-    table: Option<&SolverSettings>,
-    record_every: u32,
-    limits: &Limits,
-    interrupt: &Interrupt,
-) -> Result<SolveOptions, Problem> {
-    options_for(&arm.solver, arm.chain.len(), table, Some(record_every), limits, interrupt)
-}
-
-/// [`options`] for a body of `joints` joints whose file's `solver` table is `base` (an arm's or
-/// a rig's); frames every `record_every` iterations unless the request or the table says
-/// otherwise (none when both are `None`). Problems name the field `options.…`.
+/// Library options from the request's `options` over the body's file's `solver` table `base`
+/// (an arm's or a rig's) over the defaults, for a body of `joints` joints;
+/// `options.max_iterations` at most `--max-iterations`; frames every `record_every` iterations
+/// unless the request or the table says otherwise (none when both are `None`). Problems name
+/// the field `options.…`.
 pub(super) fn options_for(
     base: &SolverSettings,
     joints: usize,
@@ -250,12 +240,8 @@ pub(super) fn default_record_every(joints: usize, max_iterations: u32) -> u32 {
 }
 
 /// Refuses, before any solve, a request whose `solves` solves could record more than `cap`
-/// values: each up to `max_iterations / record_every + 2` frames.
-pub(super) fn recorded_cap(arm: &Arm, options: &SolveOptions, solves: usize, cap: u64) -> Result<(), Problem> {
-    recorded_values_cap(arm.chain.len(), arm.chain.len() as u64 + 4, options, solves, cap)
-}
-
-/// [`recorded_cap`] for a body of `joints` joints whose frames hold `per_frame` values each.
+/// values: each up to `max_iterations / record_every + 2` frames of `per_frame` values, on a
+/// body of `joints` joints.
 pub(super) fn recorded_values_cap(
     joints: usize,
     per_frame: u64,

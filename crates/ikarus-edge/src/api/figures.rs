@@ -25,7 +25,7 @@ pub enum RenderReq {
     /// A motion (the fields of `/api/animate`): animated as a GIF, overlaid in PNG and SVG.
     Motion(Box<MotionFigureReq>),
     /// The reachable area (the fields of `/api/workspace`).
-    Workspace(WorkspaceFigureReq),
+    Workspace(Box<WorkspaceFigureReq>),
     /// An ease curve.
     Ease(EaseFigureReq),
 }

@@ -12,14 +12,13 @@ use web_time::Instant;
 use super::bodies::{self, AnimateBody, ArmVia, RigVia, load, task};
 use super::fields::{
     MAX_RECORDED_VALUES, MAX_SOLVE_RECORDED_VALUES, MAX_VIA, default_record_every, ease, goal, json_response,
-    max_step_deg, options, options_for, pose_from_degrees, recorded_cap, recorded_values_cap, start_pose, stopped,
-    timing, track_path,
+    max_step_deg, options_for, pose_from_degrees, recorded_values_cap, stopped, timing, track_path,
 };
 use super::requests::{AnimateReq, EaseReq, GoalReq, SolveReq, TrackReq};
 use super::{Limits, Problem, Reply};
 use crate::arm::Arm;
-use crate::body::{Aimed, Body};
-use crate::motion::{Motion, MotionPlan};
+use crate::body::{Aimed, Body, Jointed};
+use crate::motion::{Motion, MotionBody, MotionPlan};
 use crate::report::{AnimateJson, RigSolveReport, SolveReport};
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, solver};
 use crate::track::{RigFollower, Shape, TrackJob, TrackJson, effector_index, track_options};
@@ -45,13 +44,14 @@ fn aimed<'a>(
 
 /// `POST /api/solve`: the JSON of `ikarus solve --format json` (with `--rig`, of a rig).
 pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let body = load(req.arm, req.rig, limits)?;
+    let loaded = load(req.arm, req.rig, limits)?;
     let (goals, pins) = (req.goals.unwrap_or_default(), req.pins.unwrap_or_default());
-    let aimed = aimed(&body, req.goal.as_ref(), (&goals, &pins, req.mix))?;
+    let aimed = aimed(&loaded, req.goal.as_ref(), (&goals, &pins, req.mix))?;
+    let body = loaded.jointed();
     let mut options = options_for(body.solver(), body.joints(), req.options.as_ref(), None, limits, interrupt)?;
     // An arm's frames every DEFAULT_RECORD_EVERY iterations (or more, under the cap) unless
     // asked otherwise; a rig's none unless asked.
-    if let (Body::Chain(_), None) = (&body, options.record_every) {
+    if let (Body::Chain(_), None) = (&loaded, options.record_every) {
         options.record_every = Some(default_record_every(body.joints(), options.max_iterations));
     }
     recorded_values_cap(body.joints(), body.frame_values(), &options, 1, MAX_SOLVE_RECORDED_VALUES)?;
@@ -71,18 +71,26 @@ pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     }
 }
 
-/// `POST /api/animate`: the JSON of `ikarus animate --format json` (with `--rig`, of a rig).
+/// `POST /api/animate`: the JSON of `ikarus animate --format json` (with `--rig`, of a rig):
+/// the body's stops (an arm's via points and goal, a rig's via sets and goal set), then the
+/// one motion workflow ([`motion`]).
 pub fn animate(req: AnimateBody, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     match req {
         AnimateBody::Arm(req) => {
             let arm = bodies::load_arm(req.arm.clone(), limits)?;
-            let fields = MotionFields::of_animate(&req);
             let goal_req = req.goal.as_ref().ok_or_else(|| Problem::internal("an arm's motion without its goal"))?;
-            let motion = motion(&arm, &fields, goal_req, limits, interrupt)?;
+            let motion = arm_motion(&arm, &MotionFields::of_animate(&req), &req.via, goal_req, limits, interrupt)?;
             stopped(interrupt)?;
             json_response(&AnimateJson::new(&arm, &motion.motion))
         }
-        AnimateBody::Rig(req) => rig_motion(*req, limits, interrupt),
+        AnimateBody::Rig(req) => {
+            let file = req.rig.clone().ok_or_else(|| Problem::internal("a rig's motion without its rig"))?;
+            let rig = bodies::load_rig(file, limits)?;
+            let tasks = tasks(&rig, &req)?;
+            let motion = motion(&rig, tasks, &MotionFields::of_animate(&req), None, limits, interrupt)?;
+            stopped(interrupt)?;
+            json_response(&motion.json(&rig))
+        }
     }
 }
 
@@ -103,48 +111,18 @@ fn tasks(rig: &crate::rig::Rig, req: &AnimateReq<RigVia>) -> Result<Vec<RigTask>
     Ok(tasks)
 }
 
-/// A rig's motion: goal sets solved in turn, then eased.
-fn rig_motion(req: AnimateReq<RigVia>, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let file = req.rig.clone().ok_or_else(|| Problem::internal("a rig's motion without its rig"))?;
-    let rig = bodies::load_rig(file, limits)?;
-    let tasks = tasks(&rig, &req)?;
-    let timing = timing(req.frames, req.duration, req.fps, limits)?;
-    let ease = ease(req.ease.as_ref(), EaseKind::Sine)?;
-    let n = rig.skeleton.len();
-    let record = req.from_solve.then_some(1);
-    let options = options_for(&rig.solver, n, req.options.as_ref(), record, limits, interrupt)?;
-    if req.from_solve {
-        recorded_values_cap(n, 3 * n as u64 + 2, &options, tasks.len(), MAX_RECORDED_VALUES)?;
-    }
-    let start =
-        pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), req.start_deg.as_deref(), "start_deg")?;
-    let interpolation = req.interpolation.unwrap_or_default();
-    let plan = MotionPlan {
-        body: &rig,
-        start,
-        stops: tasks,
-        options,
-        timing,
-        ease,
-        interpolation,
-        from_solve: req.from_solve,
-    };
-    let motion = plan.run()?;
-    stopped(interrupt)?;
-    json_response(&motion.json(&rig))
-}
-
 /// `POST /api/track`: the work of `ikarus track` (with `--rig`, of a rig's effector), under
 /// `--max-samples` and the solver caps.
 pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let body = load(req.arm.clone(), req.rig.clone(), limits)?;
-    let rig = match &body {
+    let loaded = load(req.arm.clone(), req.rig.clone(), limits)?;
+    let body = loaded.jointed();
+    let rig = match &loaded {
         Body::Chain(_) => None,
         Body::Rig(rig) => Some((rig, rig_follower(rig, &req)?)),
     };
     // An arm's solves record frames every DEFAULT_RECORD_EVERY iterations, a rig's none,
     // unless asked (a track keeps none either way).
-    let record = match &body {
+    let record = match &loaded {
         Body::Chain(_) => Some(DEFAULT_RECORD_EVERY),
         Body::Rig(_) => None,
     };
@@ -154,7 +132,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let max_step_deg = max_step_deg(req.max_step_deg)?;
     let options = track_options(solve, max_step_deg, req.bound_first);
-    match (&body, rig) {
+    match (&loaded, rig) {
         (_, Some((rig, (bone, task)))) => {
             let job = TrackJob { body: &**rig, start, follower: RigFollower { bone, task }, path, options };
             let t = job.run().map_err(Problem::invalid)?;
@@ -201,10 +179,10 @@ fn rig_follower(rig: &crate::rig::Rig, req: &TrackReq) -> Result<(usize, RigTask
     Ok((bone, task))
 }
 
-/// The fields of a motion, from `/api/animate` or the figure `motion` of `/api/render`.
+/// The fields of a motion that both bodies share, from `/api/animate` or the figure `motion`
+/// of `/api/render`.
 pub(super) struct MotionFields<'a> {
     start_deg: Option<&'a [f64]>,
-    via: &'a [[f64; 2]],
     options: Option<&'a SolverSettings>,
     ease: Option<&'a EaseReq>,
     frames: Option<u32>,
@@ -215,10 +193,9 @@ pub(super) struct MotionFields<'a> {
 }
 
 impl<'a> MotionFields<'a> {
-    fn of_animate(r: &'a AnimateReq<ArmVia>) -> Self {
+    fn of_animate<V>(r: &'a AnimateReq<V>) -> Self {
         Self {
             start_deg: r.start_deg.as_deref(),
-            via: &r.via,
             options: r.options.as_ref(),
             ease: r.ease.as_ref(),
             frames: r.frames,
@@ -233,7 +210,6 @@ impl<'a> MotionFields<'a> {
     pub(super) fn of_figure(r: &'a super::figures::MotionFigureReq) -> Self {
         Self {
             start_deg: r.start_deg.as_deref(),
-            via: &r.via,
             options: r.options.as_ref(),
             ease: r.ease.as_ref(),
             frames: r.frames,
@@ -245,27 +221,43 @@ impl<'a> MotionFields<'a> {
     }
 }
 
-pub(super) fn motion(
+/// An arm's motion through its `via` points to `goal_req` (the figure `motion` draws it too).
+pub(super) fn arm_motion(
     arm: &Arm,
     req: &MotionFields<'_>,
+    via: &[ArmVia],
     goal_req: &GoalReq,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Motion<Arm>, Problem> {
-    if req.via.len() > MAX_VIA {
-        return Err(Problem::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", req.via.len())));
+    if via.len() > MAX_VIA {
+        return Err(Problem::invalid(format!("via: {} points, more than the cap of {MAX_VIA}", via.len())));
     }
+    let goals = crate::motion::goals(via, goal(goal_req, "goal")?)
+        .map_err(|(i, e)| Problem::invalid(format!("via[{i}]: {e}")))?;
+    motion(arm, goals, req, Some(DEFAULT_RECORD_EVERY), limits, interrupt)
+}
+
+/// The one motion workflow of the API: `stops` on `body` with the request's timing, ease,
+/// options and start pose, under the caps. Without `from_solve`, the solves record frames every
+/// `record` iterations unless asked (an arm's, as ever; a rig's none).
+fn motion<B: MotionBody + Jointed>(
+    body: &B,
+    stops: Vec<B::Stop>,
+    req: &MotionFields<'_>,
+    record: Option<u32>,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Motion<B>, Problem> {
     let timing = timing(req.frames, req.duration, req.fps, limits)?;
     let ease = ease(req.ease, EaseKind::Sine)?;
-    let record = if req.from_solve { 1 } else { DEFAULT_RECORD_EVERY };
-    let options = options(arm, req.options, record, limits, interrupt)?;
+    let record = if req.from_solve { Some(1) } else { record };
+    let options = options_for(body.solver(), body.joints(), req.options, record, limits, interrupt)?;
     if req.from_solve {
-        recorded_cap(arm, &options, req.via.len() + 1, MAX_RECORDED_VALUES)?;
+        recorded_values_cap(body.joints(), body.frame_values(), &options, stops.len(), MAX_RECORDED_VALUES)?;
     }
-    let start = start_pose(arm, req.start_deg, "start_deg")?;
-    let goals = crate::motion::goals(req.via, goal(goal_req, "goal")?)
-        .map_err(|(i, e)| Problem::invalid(format!("via[{i}]: {e}")))?;
+    let start = pose_from_degrees(body.start(), body.limits(), req.start_deg, "start_deg")?;
     let interpolation = req.interpolation.unwrap_or_default();
     let from_solve = req.from_solve;
-    Ok(MotionPlan { body: arm, start, stops: goals, options, timing, ease, interpolation, from_solve }.run()?)
+    Ok(MotionPlan { body, start, stops, options, timing, ease, interpolation, from_solve }.run()?)
 }

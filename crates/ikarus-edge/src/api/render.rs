@@ -6,7 +6,7 @@ use ikarus::{EaseKind, Interrupt};
 use super::bodies::{load, load_arm, task};
 use super::fields::{ease, goal, picture, pose_from_degrees, start_pose, stopped};
 use super::figures::{BodyFigureReq, MotionFigureReq, RenderReq};
-use super::jobs::{MotionFields, motion};
+use super::jobs::{MotionFields, arm_motion};
 use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
@@ -136,7 +136,7 @@ fn motion_figure(
     let Some(goal_req) = &r.goal else {
         return Err(Problem::invalid("goal: required for the figure motion"));
     };
-    let motion = motion(&arm, &MotionFields::of_figure(r), goal_req, limits, interrupt)?;
+    let motion = arm_motion(&arm, &MotionFields::of_figure(r), &r.via, goal_req, limits, interrupt)?;
     stopped(interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
