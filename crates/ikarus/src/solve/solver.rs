@@ -34,8 +34,9 @@ pub struct Solver {
     /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
     pub(super) rig_work: super::rig_model::RigWork,
     /// The chain view of the last chain-shaped skeleton solved (see `Solver::solve_rig`), kept
-    /// so that solving it again allocates nothing.
-    pub(super) rig_chain: Option<Chain>,
+    /// so that solving it again allocates nothing (boxed: a chain holds its whole skeleton,
+    /// and it is moved out and back in on every such solve).
+    pub(super) rig_chain: Option<Box<Chain>>,
     /// The exact regions of the last chain solved with limits, for the verdict.
     reach: ReachCache,
     /// The batch's lanes ([`Solver::solve_batch`]).
