@@ -5,7 +5,7 @@ use super::Method;
 use super::model::Problem;
 use super::model::{Model, Posture};
 use super::restarts::solve_with_restarts;
-use super::rig_model::Rig;
+use super::skeleton_model::Rig;
 use super::solver::{finish, measure};
 use super::task::{EffectorOutcome, Priority, RigTask};
 use super::{Outcome, SolveError, Solver, Status};
