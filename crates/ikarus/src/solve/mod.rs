@@ -94,6 +94,6 @@ mod ccd_fabrik_tests;
 #[cfg(test)]
 mod limit_tests;
 #[cfg(test)]
-mod rig_tests;
+mod skeleton_tests;
 #[cfg(test)]
 mod test_support;
