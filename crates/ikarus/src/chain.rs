@@ -20,7 +20,7 @@ use crate::skeleton::{Bone, Skeleton};
 use nalgebra::Point2;
 use thiserror::Error;
 
-use crate::limits::Bounds;
+use crate::limits::{Bounds, Violation};
 pub use crate::limits::{JointLimits, LimitsError};
 pub use crate::skeleton::MAX_REACH;
 
@@ -379,17 +379,15 @@ pub(crate) fn annulus_inner(lengths: &[f64]) -> f64 {
 }
 
 fn check_angles(angles: &[f64], bounds: Bounds<'_>) -> Result<(), ChainError> {
-    for (index, &value) in angles.iter().enumerate() {
-        if !value.is_finite() {
-            return Err(ChainError::NonFinite { index, field: LinkField::Angle, value });
+    match bounds.first_violation(angles) {
+        None => Ok(()),
+        Some(Violation::NonFinite { index, value }) => {
+            Err(ChainError::NonFinite { index, field: LinkField::Angle, value })
         }
-        if let Some(lim) = bounds.get(index) {
-            if !lim.contains(value) {
-                return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min(), max: lim.max() });
-            }
+        Some(Violation::Outside { index, value, limits }) => {
+            Err(ChainError::AngleOutsideLimits { index, value, min: limits.min(), max: limits.max() })
         }
     }
-    Ok(())
 }
 
 /// Joint angles of a chain, in radians, base to tip.

@@ -34,7 +34,7 @@ use std::collections::HashMap;
 
 use nalgebra::Point2;
 
-use crate::limits::{Bounds, JointLimits};
+use crate::limits::{Bounds, JointLimits, Violation};
 use crate::math;
 use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
 
@@ -659,27 +659,23 @@ fn rest_pose(
 }
 
 fn check_angles(names: &[String], joints: &[Joint], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
-    for (index, ((&value, name), &joint)) in angles.iter().zip(names).zip(joints).enumerate() {
-        let field = match joint {
-            Joint::Revolute => BoneField::Angle,
-            Joint::Prismatic { .. } => BoneField::Extension,
-        };
-        if !value.is_finite() {
-            return Err(SkeletonError::NonFinite { index, name: name.clone(), field, value });
+    let Some(violation) = bounds.first_violation(angles) else { return Ok(()) };
+    let (Violation::NonFinite { index, .. } | Violation::Outside { index, .. }) = violation;
+    let (name, joint) = (names[index].clone(), joints[index]);
+    let field = match joint {
+        Joint::Revolute => BoneField::Angle,
+        Joint::Prismatic { .. } => BoneField::Extension,
+    };
+    Err(match (violation, joint) {
+        (Violation::NonFinite { value, .. }, _) => SkeletonError::NonFinite { index, name, field, value },
+        (Violation::Outside { value, limits, .. }, Joint::Revolute) => {
+            SkeletonError::AngleOutsideLimits { index, name, value, min: limits.min(), max: limits.max() }
         }
-        if let Some(lim) = bounds.get(index) {
-            if !lim.contains(value) {
-                let (min, max, name) = (lim.min(), lim.max(), name.clone());
-                return Err(match joint {
-                    Joint::Revolute => SkeletonError::AngleOutsideLimits { index, name, value, min, max },
-                    Joint::Prismatic { .. } => {
-                        SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
-                    }
-                });
-            }
+        (Violation::Outside { value, limits, .. }, Joint::Prismatic { .. }) => {
+            let (min, max) = (limits.min(), limits.max());
+            SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
         }
-    }
-    Ok(())
+    })
 }
 
 /// A bone's start joint value: its angle (revolute) or its extension (prismatic).
