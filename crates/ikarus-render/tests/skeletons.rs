@@ -119,7 +119,7 @@ fn a_one_branch_skeleton_draws_the_arms_links() {
         &[Link::new(3.0, 0.3).with_limits(lim(60.0)), Link::new(2.0, 0.5), Link::new(1.5, -0.7)],
     )
     .unwrap();
-    let skeleton = Skeleton::from_chain(&chain);
+    let skeleton = chain.skeleton().clone();
     let pose = [0.4, 1.1, -0.6];
     let arm = arm_svg(&ArmFigure { show_reach: false, ..ArmFigure::new(&chain, &pose) }, 500, 400).unwrap();
     let figure = SkeletonFigure::new(&skeleton, &pose);

@@ -1,20 +1,28 @@
-//! The chain model: links, poses, and their validation (joint limits are in
-//! [`crate::limits`], re-exported here).
+//! The chain: a [`Skeleton`] of one branch, built from links; poses and their validation (joint
+//! limits are in [`crate::limits`], re-exported here).
 //!
 //! A [`Chain`] is a planar serial chain of `N ≥ 1` revolute joints, each followed by a rigid
 //! link. Joint `i` sits at the end of link `i − 1` (joint 0 sits at the base). Its angle is
-//! measured relative to the previous link; the first joint's angle is relative to the +x axis.
+//! measured relative to the previous link; the first joint's angle is relative to +x.
 //! Counter-clockwise is positive, and every angle inside the library is in radians.
+//!
+//! The chain holds no data of its own: it is a view of the one body, a skeleton whose bone
+//! `i + 1` hangs on bone `i`, every joint revolute at its parent's tip, without a rest-pose
+//! preference ([`Chain::skeleton`]; [`Chain::new`] names the bones `link0`, `link1`, ...).
+//! Every accessor reads the skeleton, so a chain's forward kinematics and Jacobian are its
+//! skeleton's bit for bit.
 //!
 //! A chain is validated once, when it is built; everything downstream may assume valid data.
 
 use crate::math;
 use crate::number::Num;
+use crate::skeleton::{Bone, Skeleton};
 use nalgebra::Point2;
 use thiserror::Error;
 
-use crate::limits::Bounds;
+use crate::limits::{Bounds, Violation};
 pub use crate::limits::{JointLimits, LimitsError};
+pub use crate::skeleton::MAX_REACH;
 
 /// One joint and the link that follows it: the link's length, the joint's starting angle
 /// (radians, relative to the previous link) and its optional limits.
@@ -43,17 +51,35 @@ impl Link {
     }
 }
 
-/// A validated planar chain: base position, links, start pose.
+/// A validated planar chain: base position, links, start pose; a view of a one-branch
+/// [`Skeleton`] (see the [module docs](self)).
 ///
 /// Build one with [`Chain::new`]; the constructor rejects empty chains, non-finite numbers,
-/// non-positive lengths, and start angles outside their limits.
-#[derive(Debug, Clone, PartialEq)]
+/// non-positive lengths, and start angles outside their limits. A skeleton of the chain's
+/// shape becomes one with [`Chain::try_from`] or [`Skeleton::as_chain`], and a chain its
+/// skeleton with [`Skeleton::from`]. Two chains are equal when their skeletons are (the bones'
+/// names included).
+#[derive(Clone, PartialEq)]
 pub struct Chain {
-    base: Point2<f64>,
-    lengths: Vec<f64>,
-    limits: Vec<Option<JointLimits>>,
+    /// The body: one branch, bone `i` is link `i`.
+    skeleton: Skeleton,
+    /// A cache of the skeleton's start angles as a [`Pose`], so that [`Chain::start_pose`] can
+    /// lend one; derived from the skeleton when the chain is made, never changed apart.
     start: Pose,
-    reach: f64,
+}
+
+impl std::fmt::Debug for Chain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The chain's own data, not the skeleton's derived tables (its name index is a hash
+        // map, whose order would differ from run to run).
+        f.debug_struct("Chain")
+            .field("base", &self.base())
+            .field("names", &self.skeleton.names())
+            .field("lengths", &self.lengths())
+            .field("limits", &self.limits())
+            .field("start", &self.start)
+            .finish()
+    }
 }
 
 /// Which number of a link an error is about.
@@ -154,13 +180,9 @@ pub enum ChainError {
     },
 }
 
-/// The largest reach (sum of the lengths plus the base's distance from the origin) a chain may
-/// have: its square, and so the areas of workspaces and the entries of `J Jᵀ`, stay far inside
-/// the f64 range (a workspace's area overflowed from a reach of about 1.3e154).
-pub const MAX_REACH: f64 = 1e152;
-
 impl Chain {
-    /// Validates and builds a chain with its base at `base`.
+    /// Validates and builds a chain with its base at `base`: a skeleton of one branch whose
+    /// bone `i`, named `link{i}`, is link `i` and hangs on bone `i − 1`.
     ///
     /// Checks, in order: at least one link; a finite base; for each link a finite length > 0,
     /// well-formed limits, and a finite start angle within them.
@@ -182,20 +204,45 @@ impl Chain {
         }
         let angles: Vec<f64> = links.iter().map(|l| l.angle).collect();
         let limits: Vec<Option<JointLimits>> = links.iter().map(|l| l.limits).collect();
-        let lengths: Vec<f64> = links.iter().map(|l| l.length).collect();
         check_angles(&angles, Bounds::new(&limits))?;
-        let reach: f64 = lengths.iter().sum();
+        let reach: f64 = links.iter().map(|l| l.length).sum();
         let extent = math::hypot(x, y) + reach;
         if extent.is_nan() || extent > MAX_REACH {
             return Err(ChainError::ReachTooLarge { reach: extent });
         }
-        Ok(Self { base: Point2::new(x, y), lengths, limits, start: Pose { angles }, reach })
+        let bones: Vec<Bone> = links
+            .iter()
+            .enumerate()
+            .map(|(i, link)| Bone {
+                parent: i.checked_sub(1).map(|p| format!("link{p}")),
+                limits: link.limits,
+                ..Bone::new(format!("link{i}"), link.length, link.angle)
+            })
+            .collect();
+        // A valid chain passes every check of a skeleton: the names are distinct, the parents
+        // exist and form a path, and the reach is the chain's own sum (the same additions).
+        let skeleton = Skeleton::new(base, &bones).expect("ikarus: a valid chain is a valid skeleton");
+        Ok(Self { skeleton, start: Pose { angles } })
+    }
+
+    /// `skeleton` seen as a chain; it must have a chain's shape ([`Skeleton::is_chain`]).
+    fn viewing(skeleton: Skeleton) -> Chain {
+        let start = Pose { angles: skeleton.start_angles().to_vec() };
+        Chain { skeleton, start }
+    }
+
+    /// The chain's body: a skeleton of one branch (see the [module docs](self)).
+    #[must_use]
+    pub fn skeleton(&self) -> &Skeleton {
+        &self.skeleton
     }
 
     /// Number of joints (equal to the number of links).
     #[must_use]
     pub fn len(&self) -> usize {
-        self.lengths.len()
+        // (The lengths' count, not the names': the hot loops index the lengths and the points
+        // by it, and the compiler then knows the two agree.)
+        self.lengths().len()
     }
 
     /// Always `false`: a valid chain has at least one link.
@@ -207,25 +254,25 @@ impl Chain {
     /// Where the first joint sits.
     #[must_use]
     pub fn base(&self) -> Point2<f64> {
-        self.base
+        self.skeleton.base()
     }
 
     /// Link lengths, base to tip.
     #[must_use]
     pub fn lengths(&self) -> &[f64] {
-        &self.lengths
+        self.skeleton.lengths()
     }
 
     /// Per-joint limits, base to tip.
     #[must_use]
     pub fn limits(&self) -> &[Option<JointLimits>] {
-        &self.limits
+        self.skeleton.limits()
     }
 
     /// Whether any joint has limits.
     #[must_use]
     pub fn has_limits(&self) -> bool {
-        self.limits.iter().any(Option::is_some)
+        self.skeleton.has_limits()
     }
 
     /// The pose the chain was built with.
@@ -237,9 +284,9 @@ impl Chain {
     /// The links as given to [`Chain::new`], with the start pose's angles.
     #[must_use]
     pub fn links(&self) -> Vec<Link> {
-        self.lengths
+        self.lengths()
             .iter()
-            .zip(&self.limits)
+            .zip(self.limits())
             .zip(self.start.angles())
             .map(|((&length, &limits), &angle)| Link { length, angle, limits })
             .collect()
@@ -248,7 +295,7 @@ impl Chain {
     /// Outer radius of the reachable set ignoring limits: Σ lᵢ.
     #[must_use]
     pub fn max_reach(&self) -> f64 {
-        self.reach
+        self.skeleton.max_reach()
     }
 
     /// Inner radius of the reachable set ignoring limits: `max(0, l_max − (Σl − l_max))`.
@@ -257,21 +304,21 @@ impl Chain {
     /// be folded back far enough by the others.
     #[must_use]
     pub fn min_reach(&self) -> f64 {
-        annulus_inner(&self.lengths)
+        annulus_inner(self.lengths())
     }
 
     /// The same chain with every joint free: what a solve with
     /// [`LimitMode::Ignore`](crate::LimitMode::Ignore) sees, for motion and workspaces that must
-    /// agree with it.
+    /// agree with it (it builds a skeleton: not for a hot loop).
     #[must_use]
     pub fn without_limits(&self) -> Chain {
-        Chain { limits: vec![None; self.len()], ..self.clone() }
+        Chain { skeleton: self.skeleton.without_limits(), start: self.start.clone() }
     }
 
     /// The joint limits as a [`Bounds`] view (free if no joint has limits).
     #[must_use]
     pub fn bounds(&self) -> Bounds<'_> {
-        if self.has_limits() { Bounds::new(&self.limits) } else { Bounds::free() }
+        self.skeleton.bounds()
     }
 
     /// Validates `angles` as a pose of this chain: one finite angle per joint, each within its
@@ -295,6 +342,35 @@ impl Chain {
     }
 }
 
+impl From<Chain> for Skeleton {
+    /// The chain's body (its bones named as the chain's, `link0`, `link1`, ... for a chain
+    /// from [`Chain::new`]).
+    fn from(chain: Chain) -> Skeleton {
+        chain.skeleton
+    }
+}
+
+impl TryFrom<Skeleton> for Chain {
+    type Error = Skeleton;
+
+    /// The skeleton as a chain, when it has a chain's shape ([`Skeleton::is_chain`]); the
+    /// bones keep their names. Otherwise the skeleton back, unchanged.
+    fn try_from(skeleton: Skeleton) -> Result<Self, Skeleton> {
+        if skeleton.is_chain() { Ok(Chain::viewing(skeleton)) } else { Err(skeleton) }
+    }
+}
+
+impl Skeleton {
+    /// The chain this skeleton is, when its shape allows ([`Skeleton::is_chain`]): a clone of
+    /// the skeleton seen as a chain, its bones keeping their names, so its forward kinematics
+    /// and Jacobian are the skeleton's bit for bit. `None` for any other shape: a fork, a bone
+    /// given before its parent, an offset, a slide, a rest-pose preference.
+    #[must_use]
+    pub fn as_chain(&self) -> Option<Chain> {
+        self.is_chain().then(|| Chain::viewing(self.clone()))
+    }
+}
+
 /// Inner radius of the annulus reachable by links of `lengths` with free joints.
 pub(crate) fn annulus_inner(lengths: &[f64]) -> f64 {
     let total: f64 = lengths.iter().sum();
@@ -303,17 +379,15 @@ pub(crate) fn annulus_inner(lengths: &[f64]) -> f64 {
 }
 
 fn check_angles(angles: &[f64], bounds: Bounds<'_>) -> Result<(), ChainError> {
-    for (index, &value) in angles.iter().enumerate() {
-        if !value.is_finite() {
-            return Err(ChainError::NonFinite { index, field: LinkField::Angle, value });
+    match bounds.first_violation(angles) {
+        None => Ok(()),
+        Some(Violation::NonFinite { index, value }) => {
+            Err(ChainError::NonFinite { index, field: LinkField::Angle, value })
         }
-        if let Some(lim) = bounds.get(index) {
-            if !lim.contains(value) {
-                return Err(ChainError::AngleOutsideLimits { index, value, min: lim.min(), max: lim.max() });
-            }
+        Some(Violation::Outside { index, value, limits }) => {
+            Err(ChainError::AngleOutsideLimits { index, value, min: limits.min(), max: limits.max() })
         }
     }
-    Ok(())
 }
 
 /// Joint angles of a chain, in radians, base to tip.

@@ -140,6 +140,24 @@ impl<'a> Bounds<'a> {
         }
     }
 
+    /// Where `values` (one per joint, from the first) first break these bounds: a value that is
+    /// not finite, or one outside its joint's range. The one walk behind the validation of a
+    /// chain's poses and a skeleton's, each of which names what it finds in its own words
+    /// (`links[i]`, `bones[i] ("name")`).
+    pub(crate) fn first_violation(&self, values: &[f64]) -> Option<Violation> {
+        for (index, &value) in values.iter().enumerate() {
+            if !value.is_finite() {
+                return Some(Violation::NonFinite { index, value });
+            }
+            if let Some(limits) = self.get(index) {
+                if !limits.contains(value) {
+                    return Some(Violation::Outside { index, value, limits });
+                }
+            }
+        }
+        None
+    }
+
     /// Every angle of `angles` clamped into its joint's bound.
     #[inline]
     pub fn clamp_into(&self, angles: &mut [f64]) {
@@ -149,6 +167,15 @@ impl<'a> Bounds<'a> {
             }
         }
     }
+}
+
+/// The first joint value that [`Bounds::first_violation`] found wrong.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Violation {
+    /// Joint `index`'s value is NaN or infinite.
+    NonFinite { index: usize, value: f64 },
+    /// Joint `index`'s value lies outside its `limits`.
+    Outside { index: usize, value: f64, limits: JointLimits },
 }
 
 #[cfg(test)]
@@ -170,5 +197,20 @@ mod tests {
         let free = Bounds::free();
         assert!(free.is_free() && free.get(0).is_none() && free.clamp(0, 9.0) == 9.0);
         assert!(chain.without_limits().bounds().is_free());
+    }
+
+    #[test]
+    fn the_first_violation_is_the_first_joint_that_breaks_its_bound() {
+        let lim = JointLimits::new(-0.5, 0.5).unwrap();
+        let limits = [Some(lim), None, Some(lim)];
+        let b = Bounds::new(&limits);
+        assert_eq!(b.first_violation(&[0.5, 9.0, -0.5]), None);
+        assert_eq!(b.first_violation(&[0.5, 9.0, 0.7]), Some(Violation::Outside { index: 2, value: 0.7, limits: lim }));
+        // A value that is not finite is named as such even where it is also outside a bound,
+        // and an earlier joint comes first.
+        let nan = b.first_violation(&[0.0, f64::INFINITY, f64::NAN]);
+        assert_eq!(nan, Some(Violation::NonFinite { index: 1, value: f64::INFINITY }));
+        assert!(matches!(b.first_violation(&[f64::NAN]), Some(Violation::NonFinite { index: 0, .. })));
+        assert_eq!(Bounds::free().first_violation(&[1e300, -1e300]), None);
     }
 }

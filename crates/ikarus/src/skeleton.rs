@@ -13,7 +13,8 @@
 //! bone's origin along a fixed direction of the parent's frame, in length units. Everything
 //! called "angles" per bone (poses, start and rest values, limits) holds these joint values.
 //!
-//! A chain is a skeleton with one branch: [`Skeleton::from_chain`] builds it, and its forward
+//! A chain is a skeleton with one branch: a [`Chain`](crate::Chain) is a view of one
+//! ([`Chain::skeleton`](crate::Chain::skeleton), [`Skeleton::is_chain`]), and its forward
 //! kinematics and Jacobian equal the chain's bit for bit.
 //!
 //! # Orders
@@ -33,8 +34,7 @@ use std::collections::HashMap;
 
 use nalgebra::Point2;
 
-use crate::chain::{Chain, Link, MAX_REACH};
-use crate::limits::{Bounds, JointLimits};
+use crate::limits::{Bounds, JointLimits, Violation};
 use crate::math;
 use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
 
@@ -44,6 +44,11 @@ mod tree;
 
 pub use error::{BoneField, SkeletonError};
 pub use kinematics::Effector;
+
+/// The largest reach (sum of the lengths plus the base's distance from the origin) a body may
+/// have: its square, and so the areas of workspaces and the entries of `J Jᵀ`, stay far inside
+/// the f64 range (a workspace's area overflowed from a reach of about 1.3e154).
+pub const MAX_REACH: f64 = 1e152;
 
 /// A bone's joint: what its joint value moves. A new kind is added here, and the compiler then
 /// names every place that must handle it (forward kinematics, the Jacobian, restarts, the
@@ -337,49 +342,27 @@ impl Skeleton {
         })
     }
 
-    /// The chain as a skeleton of one branch: bone `i` is link `i`, named `link{i}`, the
-    /// parent of bone `i + 1`; same base, lengths, limits and start angles.
+    /// Whether the skeleton has a chain's shape, so that it can be seen as a
+    /// [`Chain`](crate::Chain) ([`Skeleton::as_chain`]): one branch in the order given (bone
+    /// `i + 1` hangs on bone `i`), every bone revolute at its parent's tip, no stiffness.
     #[must_use]
-    pub fn from_chain(chain: &Chain) -> Skeleton {
-        let bones: Vec<Bone> = chain
-            .links()
-            .iter()
-            .enumerate()
-            .map(|(i, link)| Bone {
-                parent: i.checked_sub(1).map(|p| format!("link{p}")),
-                limits: link.limits,
-                ..Bone::new(format!("link{i}"), link.length, link.angle)
-            })
-            .collect();
-        let base = chain.base();
-        // A valid chain passes every check of a skeleton: the names are distinct, the parents
-        // exist and form a path, and the reach is the chain's own sum (the same additions).
-        Skeleton::new([base.x, base.y], &bones).expect("ikarus: a valid chain is a valid skeleton")
+    pub fn is_chain(&self) -> bool {
+        let one_branch = self.parents.iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
+        one_branch && self.plain && !self.has_rest_pose()
     }
 
-    /// The chain this skeleton is, when its shape allows: one branch in the order given
-    /// (bone `i + 1` hangs on bone `i`), every bone revolute at its parent's tip, no stiffness.
-    /// Its links are the bones, so its forward kinematics and Jacobian are the skeleton's bit
-    /// for bit (see [`Skeleton::from_chain`], the other way). `None` for any other shape: a
-    /// fork, a bone given before its parent, an offset, a slide, a rest-pose preference.
+    /// The same skeleton with every bone free: what a solve with
+    /// [`LimitMode::Ignore`](crate::LimitMode::Ignore) sees, for motion and workspaces that must
+    /// agree with it (it builds a skeleton: not for a hot loop).
     #[must_use]
-    pub fn as_chain(&self) -> Option<Chain> {
-        let one_branch = self.parents.iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
-        if !one_branch || !self.plain || self.has_rest_pose() {
-            return None;
+    pub fn without_limits(&self) -> Skeleton {
+        let mut bones = self.bones();
+        for bone in &mut bones {
+            bone.limits = None;
         }
-        let links: Vec<Link> = (0..self.len())
-            .map(|i| {
-                let link = Link::new(self.lengths[i], self.start[i]);
-                match self.limits[i] {
-                    Some(l) => link.with_limits(l),
-                    None => link,
-                }
-            })
-            .collect();
-        // The skeleton's checks include the chain's (finite numbers, lengths > 0, start angles
-        // within their limits, the same reach sum).
-        Some(Chain::new([self.base.x, self.base.y], &links).expect("ikarus: a one-branch skeleton is a valid chain"))
+        // The bones passed every check with their limits; without them there is one check
+        // fewer (a slide's reach is then its nominal range, as for any unlimited slide).
+        Skeleton::new([self.base.x, self.base.y], &bones).expect("ikarus: a valid skeleton stays valid without limits")
     }
 
     /// Number of bones.
@@ -609,7 +592,7 @@ impl Skeleton {
     }
 
     /// The longest path of lengths from the base to a tip: no tip is ever farther from the
-    /// base. For a one-branch skeleton, its chain's [`Chain::max_reach`].
+    /// base. For a one-branch skeleton, its chain's [`Chain::max_reach`](crate::Chain::max_reach).
     #[must_use]
     pub fn max_reach(&self) -> f64 {
         self.reach
@@ -676,27 +659,23 @@ fn rest_pose(
 }
 
 fn check_angles(names: &[String], joints: &[Joint], angles: &[f64], bounds: Bounds<'_>) -> Result<(), SkeletonError> {
-    for (index, ((&value, name), &joint)) in angles.iter().zip(names).zip(joints).enumerate() {
-        let field = match joint {
-            Joint::Revolute => BoneField::Angle,
-            Joint::Prismatic { .. } => BoneField::Extension,
-        };
-        if !value.is_finite() {
-            return Err(SkeletonError::NonFinite { index, name: name.clone(), field, value });
+    let Some(violation) = bounds.first_violation(angles) else { return Ok(()) };
+    let (Violation::NonFinite { index, .. } | Violation::Outside { index, .. }) = violation;
+    let (name, joint) = (names[index].clone(), joints[index]);
+    let field = match joint {
+        Joint::Revolute => BoneField::Angle,
+        Joint::Prismatic { .. } => BoneField::Extension,
+    };
+    Err(match (violation, joint) {
+        (Violation::NonFinite { value, .. }, _) => SkeletonError::NonFinite { index, name, field, value },
+        (Violation::Outside { value, limits, .. }, Joint::Revolute) => {
+            SkeletonError::AngleOutsideLimits { index, name, value, min: limits.min(), max: limits.max() }
         }
-        if let Some(lim) = bounds.get(index) {
-            if !lim.contains(value) {
-                let (min, max, name) = (lim.min(), lim.max(), name.clone());
-                return Err(match joint {
-                    Joint::Revolute => SkeletonError::AngleOutsideLimits { index, name, value, min, max },
-                    Joint::Prismatic { .. } => {
-                        SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
-                    }
-                });
-            }
+        (Violation::Outside { value, limits, .. }, Joint::Prismatic { .. }) => {
+            let (min, max) = (limits.min(), limits.max());
+            SkeletonError::ExtensionOutsideLimits { index, name, field, value, min, max }
         }
-    }
-    Ok(())
+    })
 }
 
 /// A bone's start joint value: its angle (revolute) or its extension (prismatic).

@@ -68,14 +68,3 @@ impl Body for Skeleton {
         points
     }
 }
-
-/// The same skeleton with every bone free: what a solve with
-/// [`LimitMode::Ignore`](crate::LimitMode::Ignore) sees (as [`Chain::without_limits`]).
-pub(super) fn skeleton_without_limits(skeleton: &Skeleton) -> Skeleton {
-    let mut bones = skeleton.bones();
-    for bone in &mut bones {
-        bone.limits = None;
-    }
-    // The bones passed every check with their limits; without them there is one check fewer.
-    Skeleton::new([skeleton.base().x, skeleton.base().y], &bones).expect("a valid skeleton stays valid without limits")
-}

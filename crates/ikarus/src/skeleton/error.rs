@@ -3,7 +3,7 @@
 
 use thiserror::Error;
 
-use crate::chain::MAX_REACH;
+use super::MAX_REACH;
 use crate::limits::LimitsError;
 use crate::number::Num;
 

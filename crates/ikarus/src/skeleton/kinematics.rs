@@ -414,7 +414,7 @@ mod tests {
         /// A chain as a skeleton: the same positions, direction and Jacobian, bit for bit.
         #[test]
         fn a_chain_is_a_skeleton_of_one_branch_bit_for_bit((chain, angles) in chains()) {
-            let s = Skeleton::from_chain(&chain);
+            let s = crate::fixtures::chain_written_as_rig(&chain);
             prop_assert_eq!(s.max_reach().to_bits(), chain.max_reach().to_bits());
             prop_assert_eq!(s.start_angles(), chain.start_pose().angles());
             prop_assert_eq!(s.limits(), chain.limits());

@@ -1,5 +1,5 @@
 use super::*;
-use crate::Link;
+use crate::{Chain, Link};
 
 fn lim(a: f64, b: f64) -> JointLimits {
     JointLimits::new(a, b).unwrap()
@@ -55,24 +55,35 @@ fn every_parent_comes_before_its_children() {
 }
 
 #[test]
-fn a_chain_becomes_one_branch() {
+fn a_chain_is_a_skeleton_of_one_branch() {
     let chain =
         Chain::new([0.5, 0.0], &[Link::new(3.0, 0.1), Link::new(2.0, 0.2).with_limits(lim(-1.0, 1.0))]).unwrap();
-    let s = Skeleton::from_chain(&chain);
+    let s = chain.skeleton();
     assert_eq!(s.names(), &["link0", "link1"]);
     assert_eq!(s.parents(), &[None, Some(0)]);
     assert_eq!(s.topological_order(), &[0, 1]);
+    assert!(s.is_chain() && s.is_plain() && !s.has_rest_pose());
     assert_eq!(
         (s.base(), s.lengths(), s.limits(), s.start_angles()),
         (chain.base(), chain.lengths(), chain.limits(), chain.start_pose().angles())
     );
     assert_eq!(s.max_reach(), chain.max_reach());
+    // The same as the rig written by hand, names aside.
+    let by_hand = crate::fixtures::chain_written_as_rig(&chain);
+    assert_eq!(by_hand.bones().iter().map(|b| (b.length, b.angle, b.limits)).collect::<Vec<_>>(), {
+        s.bones().iter().map(|b| (b.length, b.angle, b.limits)).collect::<Vec<_>>()
+    });
     // A chain at the largest reach is a skeleton too (the same sum, the same check).
     let widest = Chain::new([0.0, 0.0], &[Link::new(5e151, 0.0), Link::new(5e151, 0.0)]).unwrap();
-    assert_eq!(Skeleton::from_chain(&widest).max_reach(), MAX_REACH);
-    // And back: the chain view of a one-branch skeleton is the chain.
+    assert_eq!(widest.skeleton().max_reach(), MAX_REACH);
+    // And back: the chain view of a one-branch skeleton is the chain, its bones keeping their
+    // names (so the hand-written rig's view is another chain, equal but for the names).
     assert_eq!(s.as_chain(), Some(chain.clone()));
-    assert_eq!(Skeleton::from_chain(&widest).as_chain(), Some(widest));
+    assert_eq!(Chain::try_from(Skeleton::from(widest.clone())), Ok(widest));
+    let view = by_hand.as_chain().unwrap();
+    assert_eq!(view.skeleton().names(), &["upper0", "upper1"]);
+    assert_eq!((view.links(), view.base()), (chain.links(), chain.base()));
+    assert_ne!(view, chain);
 }
 
 #[test]
@@ -82,7 +93,9 @@ fn only_a_plain_branch_in_order_has_a_chain_view() {
     let view = |bones: &[Bone]| Skeleton::new([0.0, 0.0], bones).unwrap().as_chain();
     let chain = view(&[a.clone(), b.clone()]).unwrap();
     assert_eq!((chain.lengths(), chain.start_pose().angles()), (&[1.0, 1.0][..], &[0.2, 0.3][..]));
-    // Given child first, forked, offset, sliding, stiff: no chain.
+    // Given child first, forked, offset, sliding, stiff: no chain (and the skeleton back).
+    let child_first = Skeleton::new([0.0, 0.0], &[b.clone(), a.clone()]).unwrap();
+    assert_eq!(Chain::try_from(child_first.clone()), Err(child_first));
     assert_eq!(view(&[b.clone(), a.clone()]), None);
     assert_eq!(view(&[a.clone(), b.clone(), Bone::new("c", 1.0, 0.0).with_parent("a")]), None);
     assert_eq!(view(&[a.clone(), b.clone().with_offset([0.5, 0.0])]), None);

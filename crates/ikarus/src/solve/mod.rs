@@ -67,13 +67,13 @@ mod options;
 mod outcome;
 mod pinv;
 mod restarts;
-mod rig;
-mod rig_model;
-mod rig_solver;
 mod scratch;
 mod sdls;
+mod skeleton_model;
+mod skeleton_solve;
 mod solver;
 mod step;
+mod task;
 mod transpose;
 mod verdict;
 
@@ -83,8 +83,8 @@ pub use frames::{Frame, Frames};
 pub use method::{LimitMode, Method};
 pub use options::{MAX_BACKTRACK, OptionsError, Restarts, SolveOptions, StallDetection};
 pub use outcome::{Outcome, SolveError, Status};
-pub use rig::{Bend, EffectorOutcome, Pin, Priority, RigGoal, RigTask, RigTaskError};
 pub use solver::Solver;
+pub use task::{Bend, EffectorOutcome, Pin, Priority, RigGoal, RigTask, RigTaskError};
 
 #[cfg(test)]
 mod tests;
@@ -94,6 +94,6 @@ mod ccd_fabrik_tests;
 #[cfg(test)]
 mod limit_tests;
 #[cfg(test)]
-mod rig_tests;
+mod skeleton_tests;
 #[cfg(test)]
 mod test_support;

@@ -2,7 +2,7 @@
 //! scratch, the Jacobian, the limits, the reach, the reachability of a goal and the
 //! non-Jacobian steppers — so that one core can serve chains and skeletons — and [`Problem`],
 //! what one solve borrows. The bodies' implementations live beside their data
-//! (`chain_model`, `rig_model`), so this file imports none of the steppers that use it.
+//! (`chain_model`, `skeleton_model`), so this file imports none of the steppers that use it.
 //!
 //! The core is generic over the model and monomorphised per model: for a [`Chain`] every
 //! method is today's chain function, inlined, so the chain path is the same machine code as

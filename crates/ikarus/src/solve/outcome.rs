@@ -6,7 +6,7 @@ use nalgebra::Point2;
 use thiserror::Error;
 
 use super::Frames;
-use super::rig::{EffectorOutcome, RigTaskError};
+use super::task::{EffectorOutcome, RigTaskError};
 use crate::chain::Pose;
 use crate::kinematics::EndEffector;
 

@@ -7,8 +7,8 @@ use super::algebra::dynamic::Dynamic;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
 use super::restarts::solve_with_restarts_seeded;
-use super::rig_model::RigPoints;
 use super::scratch::Scratch;
+use super::skeleton_model::RigPoints;
 use super::verdict::ReachCache;
 use super::{Method, OptionsError, Outcome, SolveError, SolveOptions, Status, fast};
 use crate::angle::wrap_angle;
@@ -32,10 +32,11 @@ pub struct Solver {
     /// neither is resized back and forth).
     pub(super) first_level_scratch: Scratch<RigPoints, Dynamic>,
     /// A skeleton solve's per-solve data (effectors, targets, limits), reused.
-    pub(super) rig_work: super::rig_model::RigWork,
+    pub(super) rig_work: super::skeleton_model::RigWork,
     /// The chain view of the last chain-shaped skeleton solved (see `Solver::solve_rig`), kept
-    /// so that solving it again allocates nothing.
-    pub(super) rig_chain: Option<Chain>,
+    /// so that solving it again allocates nothing (boxed: a chain holds its whole skeleton,
+    /// and it is moved out and back in on every such solve).
+    pub(super) rig_chain: Option<Box<Chain>>,
     /// The exact regions of the last chain solved with limits, for the verdict.
     reach: ReachCache,
     /// The batch's lanes ([`Solver::solve_batch`]).

@@ -78,7 +78,7 @@ mod plan;
 mod result;
 
 #[cfg(test)]
-mod rig_tests;
+mod skeleton_tests;
 #[cfg(test)]
 mod tests;
 

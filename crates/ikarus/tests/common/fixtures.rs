@@ -108,6 +108,28 @@ pub fn random_goal(rng: &mut SplitMix64, chain: &Chain, oriented: bool) -> Goal 
     }
 }
 
+/// `chain` written by hand as a one-branch rig (bones `upper0`, `upper1`, ..., each on the one
+/// before), built by [`Skeleton::new`] from its links and not taken from the chain
+/// ([`Chain::skeleton`]): the rig a user would write for the arm, against which the chain's
+/// answers are compared.
+pub fn chain_written_as_rig(chain: &Chain) -> Skeleton {
+    let bones: Vec<Bone> = chain
+        .links()
+        .iter()
+        .enumerate()
+        .map(|(i, link)| {
+            let bone = Bone::new(format!("upper{i}"), link.length, link.angle);
+            let bone = if i > 0 { bone.with_parent(format!("upper{}", i - 1)) } else { bone };
+            match link.limits {
+                Some(l) => bone.with_limits(l),
+                None => bone,
+            }
+        })
+        .collect();
+    let base = chain.base();
+    Skeleton::new([base.x, base.y], &bones).expect("a valid chain written as a rig")
+}
+
 /// A shipped rig, `examples/rigs/{name}.toml`, read with `toml` (the CLI's reader, with its
 /// error messages, is not available to the library's tests): bones' name, parent, length,
 /// angle and limits in degrees, stiffness and rest angle, and the base.

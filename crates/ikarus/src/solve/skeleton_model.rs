@@ -7,7 +7,7 @@ use nalgebra::Point2;
 use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
 use super::model::Problem;
 use super::model::{Model, Posture, ScratchOf};
-use super::rig::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
+use super::task::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
 use super::{Outcome, SolveOptions, Status};
 use crate::angle::wrap_angle;
 use crate::chain::{JointLimits, annulus_inner};

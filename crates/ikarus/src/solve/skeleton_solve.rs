@@ -5,9 +5,9 @@ use super::Method;
 use super::model::Problem;
 use super::model::{Model, Posture};
 use super::restarts::solve_with_restarts;
-use super::rig::{EffectorOutcome, Priority, RigTask};
-use super::rig_model::Rig;
+use super::skeleton_model::Rig;
 use super::solver::{finish, measure};
+use super::task::{EffectorOutcome, Priority, RigTask};
 use super::{Outcome, SolveError, Solver, Status};
 use crate::chain::Chain;
 use crate::goal::Goal;
@@ -119,15 +119,17 @@ impl Solver {
         goal: &Goal,
         out: &mut Outcome,
     ) -> Result<(), SolveError> {
+        // (The rest of a chain's shape, one branch of plain revolute bones, `chain_goal` checked.)
         let same = |c: &Chain| {
             c.base() == skeleton.base()
                 && c.lengths() == skeleton.lengths()
                 && c.limits() == skeleton.limits()
                 && c.start_pose().angles() == skeleton.start_angles()
+                && c.skeleton().names() == skeleton.names()
         };
         let chain = match self.rig_chain.take() {
             Some(c) if same(&c) => c,
-            _ => skeleton.as_chain().expect("ikarus: chain_goal checked the shape"),
+            _ => Box::new(skeleton.as_chain().expect("ikarus: chain_goal checked the shape")),
         };
         let result = self.solve_into(&chain, start, goal, out);
         self.rig_chain = Some(chain);
@@ -159,14 +161,7 @@ fn chain_goal(skeleton: &Skeleton, task: &RigTask) -> Option<Goal> {
         && g.priority == Priority::Primary
         && g.bend.is_none()
         && g.softness == 0.0;
-    let one_branch = skeleton.parents().iter().enumerate().all(|(i, &p)| p == i.checked_sub(1));
-    (plain_goal
-        && task.pins.is_empty()
-        && task.mix == 1.0
-        && one_branch
-        && skeleton.is_plain()
-        && !skeleton.has_rest_pose())
-    .then_some(g.goal)
+    (plain_goal && task.pins.is_empty() && task.mix == 1.0 && skeleton.is_chain()).then_some(g.goal)
 }
 
 /// Every joint of `skeleton` is one `method` moves.

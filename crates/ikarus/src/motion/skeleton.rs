@@ -3,7 +3,6 @@
 //! solved poses with one ease — the same loop and the same path, spline and timing as a
 //! chain's motion through goals ([`through_goals`](super::through_goals)), on a [`Skeleton`].
 
-use super::body::skeleton_without_limits;
 use super::through::solve_in_turn;
 use super::{Animation, GoalMotionError, MotionOptions, Route, animate_with};
 use crate::skeleton::Skeleton;
@@ -72,7 +71,7 @@ pub fn through_rig_tasks(
     };
     let poses = solve_in_turn(start, tasks, route, solve, record)?;
     let animation = match solver.options().limits {
-        LimitMode::Ignore => animate_with(&skeleton_without_limits(skeleton), &poses, None, options)?,
+        LimitMode::Ignore => animate_with(&skeleton.without_limits(), &poses, None, options)?,
         LimitMode::Clamp | LimitMode::Lock | LimitMode::NullSpace | LimitMode::Weighted => {
             animate_with(skeleton, &poses, None, options)?
         }

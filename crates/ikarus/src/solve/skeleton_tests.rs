@@ -306,7 +306,7 @@ fn an_unreachable_goal_is_named_and_as_secondary_costs_the_others_nothing() {
 #[test]
 fn a_one_branch_skeleton_solves_like_its_chain() {
     let chain = crate::fixtures::seed_arm_limited();
-    let skeleton = Skeleton::from_chain(&chain);
+    let skeleton = crate::fixtures::chain_written_as_rig(&chain);
     let mut rng = SplitMix64(21);
     // The chain's search against the skeleton's (skeletons have no region verdict).
     let opts = SolveOptions { closed_form: false, reach_verdict: false, ..SolveOptions::default() };
@@ -605,7 +605,7 @@ mod chain_dispatch {
         /// bit-identical answers, for every method and several limit modes.
         #[test]
         fn a_chain_and_its_one_branch_skeleton_answer_bit_for_bit((chain, goal) in cases()) {
-            let skeleton = Skeleton::from_chain(&chain);
+            let skeleton = crate::fixtures::chain_written_as_rig(&chain);
             let task = RigTask::new(vec![RigGoal::new(chain.len() - 1, goal)], vec![]);
             let start = chain.start_pose().angles().to_vec();
             for method in Method::ALL {
@@ -639,7 +639,7 @@ mod chain_dispatch {
     #[test]
     fn other_tasks_stay_rig_solves() {
         let chain = crate::fixtures::seed_arm_limited();
-        let skeleton = Skeleton::from_chain(&chain);
+        let skeleton = crate::fixtures::chain_written_as_rig(&chain);
         let goal = Goal::position(1.0, 1.0).unwrap();
         let last = chain.len() - 1;
         let mut ccd =

@@ -69,7 +69,7 @@ fn a_skeleton_animates_through_keyframes_with_base_and_tips_as_points() {
 #[test]
 fn a_skeleton_of_one_branch_moves_as_its_chain() {
     let chain = Chain::new([0.5, -0.25], &[Link::new(3.0, 0.1), Link::new(2.0, 0.2), Link::new(1.0, 0.3)]).unwrap();
-    let skeleton = Skeleton::from_chain(&chain);
+    let skeleton = crate::fixtures::chain_written_as_rig(&chain);
     let keys = vec![vec![0.1, 0.2, 0.3], vec![0.9, -0.4, 1.3], vec![2.0, 0.5, -0.7]];
     let a = animate_with(&chain, &keys, None, options(17)).unwrap();
     let b = animate_with(&skeleton, &keys, None, options(17)).unwrap();
