@@ -321,7 +321,11 @@ fn row(buf: &mut Vec<u8>, x: f64, y: f64, o: &Outcome) {
 
 /// A rig's goals (`--goal NAME=X,Y`) and pins, solved together from its start pose.
 fn run_rig_single(args: &SolveArgs, rig: &Rig) -> Result<(), CliError> {
-    let targets = args.goal.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+    let mut targets = args.goal.iter().map(|g| Target::of(g, rig)).collect::<Result<Vec<_>, _>>()?;
+    // `--goal-angle` (an arm file's rig: a rig file's is refused by the flags) is the tip's.
+    for t in targets.iter_mut().filter(|_| args.goal_angle.is_some()) {
+        t.angle_deg = args.goal_angle;
+    }
     let task = args.rig_task.task(&rig.skeleton, &targets)?;
     // No frames unless asked for: a rig's frames are one point per bone each.
     let every = args.record_every.or(rig.solver.record_every);
