@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use common::{fails, json, server};
+use common::{fails, json, server, succeeds};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/joints").join(format!("{name}.toml"))
@@ -377,4 +377,57 @@ fn bad_joint_keys_of_an_arm_are_one_line_naming_the_link() {
     let err = fails(&["animate", "--arm", arm.to_str().unwrap(), "--goal", "1,1"], 2);
     assert!(err.contains("rrp.toml: links[2].joint: an arm with offsets or slides is a one-branch rig"), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}
+
+/// Issue 25: `workspace` over the body. A rig the exact region cannot take (the PRR arm: a slide,
+/// an offset) gets the sampled region of its last bone's tip (or `--bone`'s), `"exact": false`,
+/// every occupied cell within the rig's reach; a rig that is a chain gets the chain's exact
+/// region, the same JSON as the arm file of the same links.
+#[test]
+fn workspace_takes_a_rig_sampled_unless_it_is_a_chain() {
+    let prr = example("prr");
+    let ws = json(&["workspace", "--rig", prr.to_str().unwrap(), "--resolution", "64", "--format", "json"]);
+    assert_eq!((&ws["arm"], &ws["bone"], &ws["exact"]), (&json!("prr"), &json!("lower"), &json!(false)), "{ws}");
+    let grid = ws["grid"].as_array().unwrap();
+    assert_eq!(grid.len(), 64);
+    let (h, origin, reach) =
+        (ws["cell_size"].as_f64().unwrap(), pair(&ws["origin"]).unwrap(), ws["outer_radius"].as_f64().unwrap());
+    let mut occupied = 0;
+    for (iy, row) in grid.iter().enumerate() {
+        for (ix, c) in row.as_str().unwrap().chars().enumerate() {
+            if c == '1' {
+                occupied += 1;
+                let (x, y) = (origin[0] + h * (ix as f64 + 0.5), origin[1] + h * (iy as f64 + 0.5));
+                assert!(x.hypot(y) <= reach + h, "cell {ix},{iy}");
+            }
+        }
+    }
+    assert!((f64::from(occupied) * h * h - ws["area"].as_f64().unwrap()).abs() < 1e-9);
+    // The carriage's tip runs along the rail: one row of cells.
+    let carriage = json(&["workspace", "--rig", prr.to_str().unwrap(), "--bone", "carriage", "--resolution", "64"]);
+    let rows = carriage["grid"].as_array().unwrap().iter().filter(|r| r.as_str().unwrap().contains('1')).count();
+    assert_eq!((rows, &carriage["exact"]), (1, &json!(false)));
+    let text = succeeds(&["workspace", "--rig", prr.to_str().unwrap(), "--resolution", "16", "--format", "text"]);
+    assert!(text.contains("sampled: "), "{text}");
+    // The seed arm written as a rig: the same exact region, byte for byte but the name.
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("seed-rig.toml");
+    std::fs::write(
+        &rig,
+        "name = \"seed\"\n[[bones]]\nname = \"a\"\nlength = 3\nangle_deg = 5\nlimits_deg = [-45, 45]\n\
+         [[bones]]\nname = \"b\"\nparent = \"a\"\nlength = 2\nangle_deg = 5\nlimits_deg = [-90, 90]\n\
+         [[bones]]\nname = \"c\"\nparent = \"b\"\nlength = 1\nangle_deg = 5\nlimits_deg = [-170, 170]\n",
+    )
+    .unwrap();
+    for limits in [&[][..], &["--limits"][..]] {
+        let mut args = vec!["workspace", "--rig", rig.to_str().unwrap(), "--format", "json"];
+        args.extend(limits);
+        let from_rig = succeeds(&args);
+        let mut args = vec!["workspace", "--format", "json"];
+        args.extend(limits);
+        assert_eq!(from_rig, succeeds(&args), "{limits:?}");
+        assert!(from_rig.contains("\"exact\":true"));
+    }
+    let err = fails(&["workspace", "--bone", "a"], 2);
+    assert!(err.contains("--bone a: only with --rig FILE"), "{err}");
 }
