@@ -5,13 +5,12 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::reach::{Annulus, BoundarySegment};
+use ikarus::reach::{Annulus, BoundarySegment, WorkspaceOptions};
 
-use crate::area::{self, GridRequest, ReachableArea};
+use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
 use crate::body::Body;
 use crate::error::CliError;
-use crate::goal;
 use crate::options::parse_at_least_one;
 use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, report_format, workspace_drawing};
 use crate::rig::Rig;
@@ -116,29 +115,10 @@ pub struct WorkspaceArgs {
 }
 
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
-    let arm = match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
-        Body::Chain(arm) => {
-            if let Some(name) = &args.bone {
-                return Err(CliError::input(format!(
-                    "--bone {name}: only with --rig FILE or an arm with slides (an arm's region is its tip's)"
-                )));
-            }
-            *arm
-        }
-        Body::Rig(rig) => {
-            let last = rig.skeleton.len() - 1;
-            let bone = match &args.bone {
-                Some(name) => {
-                    goal::index(&rig.skeleton, name).map_err(|m| CliError::input(format!("--bone {name}: {m}")))?
-                }
-                None => last,
-            };
-            // A rig that is a chain, at its last bone: the chain's exact region, as an arm's.
-            match rig.skeleton.as_chain().filter(|_| bone == last) {
-                Some(chain) => Arm { name: rig.name, label: rig.label, chain, solver: rig.solver },
-                None => return run_sampled(args, &rig, bone),
-            }
-        }
+    let body = Body::load(args.arm.as_deref(), args.rig.as_deref())?;
+    let arm = match Effector::of(body, args.bone.as_deref(), |name| format!("--bone {name}"))? {
+        Effector::Chain(arm) => *arm,
+        Effector::Bone(rig, bone) => return run_sampled(args, &rig, bone),
     };
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
     let area = args.area.area(&arm)?;
@@ -221,14 +201,8 @@ fn run_sampled(args: &WorkspaceArgs, rig: &Rig, bone: usize) -> Result<(), CliEr
         )));
     }
     let limits = args.area.limits.asked().or(rig.solver.limits).unwrap_or(false);
-    let grid =
-        args.area.grid()?.unwrap_or(GridRequest { resolution: area::default_resolution(), samples: None, seed: 0 });
-    let bar = progress_bar(100, "sampling the workspace");
-    let workspace = ikarus::reach::sample_skeleton(&rig.skeleton, bone, &grid.options(limits))
-        .map_err(|e| CliError::input(format!("--{e}")))?;
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
-    }
+    let run = WorkspaceOptions { limits, ..WorkspaceOptions::default() };
+    let workspace = area::sampled(rig, bone, args.area.grid()?, run).map_err(|e| CliError::input(format!("--{e}")))?;
     let Some(format) = report_format(args.format, false, WorkspaceFormat::Text, WorkspaceFormat::Json) else {
         return Ok(());
     };

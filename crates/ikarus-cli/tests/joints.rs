@@ -429,5 +429,18 @@ fn workspace_takes_a_rig_sampled_unless_it_is_a_chain() {
         assert!(from_rig.contains("\"exact\":true"));
     }
     let err = fails(&["workspace", "--bone", "a"], 2);
-    assert!(err.contains("--bone a: only with --rig FILE"), "{err}");
+    assert!(err.contains("--bone a: only for a rig or an arm with slides"), "{err}");
+    // The API: the same answers, by `rig` (and `bone`), or an arm with a slide.
+    let s = server::start(&[]);
+    let api = s.post("/api/workspace", &json!({"rig": file("prr"), "resolution": 64})).json();
+    assert_eq!(api, ws, "the API's region is the command line's");
+    let api = s.post("/api/workspace", &json!({"rig": file("prr"), "bone": "carriage", "resolution": 64})).json();
+    assert_eq!(api, carriage);
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/rrp.toml");
+    let cli = json(&["workspace", "--arm", arm.to_str().unwrap(), "--resolution", "32", "--limits"]);
+    let arm: Value = toml::from_str(&std::fs::read_to_string(&arm).unwrap()).unwrap();
+    let api = s.post("/api/workspace", &json!({"arm": arm, "resolution": 32, "limits": true})).json();
+    assert_eq!((&api, &api["exact"], &api["bone"]), (&cli, &json!(false), &json!("link2")));
+    let e = s.post("/api/workspace", &json!({"rig": file("prr"), "bone": "nose"})).error(422);
+    assert!(e.starts_with("bone = \"nose\": no bone named \"nose\""), "{e}");
 }
