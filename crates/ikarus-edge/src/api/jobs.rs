@@ -13,6 +13,7 @@ use super::{Limits, Problem, Reply, parse_json, status};
 use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::body::Body;
+use crate::rig::{BoneCap, Rig};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{Motion, MotionPlan, TimingProblem};
 use crate::reach::ReachRequest;
@@ -538,7 +539,7 @@ fn grid_of(req: &WorkspaceReq, limits: &Limits) -> Result<Option<GridRequest>, P
 fn body_workspace(req: WorkspaceReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let body = match (req.arm.clone(), req.rig.clone()) {
         (Some(_), Some(_)) => return Err(Problem::invalid("arm, rig: give one or the other, not both")),
-        (_, Some(rig)) => Body::Rig(Box::new(super::rigs::load_rig(rig, limits)?)),
+        (_, Some(rig)) => Body::Rig(Box::new(Rig::from_file(rig, "rig", BoneCap::flag(limits.max_bones))?)),
         (Some(arm), None) => {
             links_cap(&arm, limits)?;
             Body::from_arm_file(arm, "arm")?
