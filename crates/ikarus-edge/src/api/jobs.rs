@@ -13,11 +13,11 @@ use super::{Limits, Problem, Reply, parse_json, status};
 use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::body::Body;
-use crate::rig::{BoneCap, Rig};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::{Motion, MotionPlan, TimingProblem};
 use crate::reach::ReachRequest;
 use crate::report::{self, AnimateJson, SolveReport, VerdictJson};
+use crate::rig::{BoneCap, Rig};
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, over_cap, solver};
 use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape, TrackJob, TrackJson};
 
