@@ -366,13 +366,13 @@ fn tasks(args: &MotionArgs, rig: &Rig) -> Result<Vec<RigTask>, CliError> {
                 via.text()
             )));
         };
-        let mut targets = goals.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+        let mut targets = goals.iter().map(|g| Target::of(g, rig)).collect::<Result<Vec<_>, _>>()?;
         for t in &mut targets {
             t.source = via.text();
         }
         tasks.push(plain.task(&rig.skeleton, &targets)?);
     }
-    let targets = args.goal.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+    let targets = args.goal.iter().map(|g| Target::of(g, rig)).collect::<Result<Vec<_>, _>>()?;
     tasks.push(args.rig_task.task(&rig.skeleton, &targets)?);
     Ok(tasks)
 }

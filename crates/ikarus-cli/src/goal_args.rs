@@ -9,6 +9,7 @@ use ikarus::{Bend, Priority, RigTask, Skeleton};
 use crate::error::CliError;
 use crate::goal::{self, Field, NamedGoal};
 use crate::options::{parse_finite, parse_non_negative, parse_point, parse_positive};
+use crate::rig::Rig;
 
 /// A `--goal`: an arm's tip position `X,Y`, or a rig bone's `NAME=X,Y[,DEG]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -122,15 +123,25 @@ pub struct Target {
 }
 
 impl Target {
-    /// The target of a `--goal`, which must name its bone.
-    pub fn of(goal: &GoalArg) -> Result<Self, CliError> {
+    /// The target of a `--goal` on `rig`, which must name its bone unless the rig has a tip
+    /// (an arm file's rig: `--goal X,Y` is on its last link).
+    pub fn of(goal: &GoalArg, rig: &Rig) -> Result<Self, CliError> {
         match goal {
             GoalArg::Named { bone, x, y, angle_deg } => {
                 Ok(Self { bone: bone.clone(), x: *x, y: *y, angle_deg: *angle_deg, source: goal.text() })
             }
-            GoalArg::Point(_) => {
-                Err(CliError::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
-            }
+            GoalArg::Point([x, y]) => match rig.tip {
+                Some(tip) => Ok(Self {
+                    bone: rig.skeleton.name(tip).to_owned(),
+                    x: *x,
+                    y: *y,
+                    angle_deg: None,
+                    source: goal.text(),
+                }),
+                None => {
+                    Err(CliError::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
+                }
+            },
         }
     }
 }

@@ -264,7 +264,9 @@ fn text(w: &mut dyn Write, job: &TrackJob<Arm>, t: &Track) -> std::io::Result<()
 }
 
 fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
-    let Some(name) = &args.effector else {
+    // An arm file's rig: its last link's tip follows the path unless --effector says otherwise.
+    let tip = rig.tip.map(|t| rig.skeleton.name(t).to_owned());
+    let Some(name) = args.effector.as_ref().or(tip.as_ref()) else {
         return Err(CliError::input("--effector: required with --rig: the bone whose tip follows the path"));
     };
     if let Some(mode) = args.mode.filter(|&m| m != TrackMode::Follow) {
@@ -275,7 +277,7 @@ fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
     }
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let path = cli_path(args)?;
-    let targets = args.goal.iter().map(Target::of).collect::<Result<Vec<_>, _>>()?;
+    let targets = args.goal.iter().map(|g| Target::of(g, rig)).collect::<Result<Vec<_>, _>>()?;
     let task = if targets.is_empty() && args.rig_task.pin.is_empty() {
         args.rig_task.check_against(&[])?;
         RigTask { mix: args.rig_task.mix.unwrap_or(1.0), ..RigTask::default() }

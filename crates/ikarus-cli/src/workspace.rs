@@ -5,13 +5,15 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus::reach::{Annulus, BoundarySegment};
+use ikarus::reach::{Annulus, BoundarySegment, WorkspaceOptions};
 
-use crate::area::{self, GridRequest, ReachableArea};
+use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
+use crate::body::Body;
 use crate::error::CliError;
 use crate::options::parse_at_least_one;
 use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, report_format, workspace_drawing};
+use crate::rig::Rig;
 use crate::settings::LimitsArgs;
 use crate::{output, report};
 
@@ -90,12 +92,19 @@ impl AreaArgs {
     }
 }
 
-/// Compute the reachable region of the arm's tip.
+/// Compute the reachable region of the arm's tip (or of a rig's bone tip, sampled).
 #[derive(Debug, Args)]
 pub struct WorkspaceArgs {
     /// Arm file (TOML) [default: the built-in seed arm]
     #[arg(long, value_name = "FILE")]
     pub arm: Option<PathBuf>,
+    /// Rig file (TOML): the region of one bone's tip, sampled (exact for a rig that is a chain)
+    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
+    pub rig: Option<PathBuf>,
+    /// With --rig (or an arm with slides): the bone whose tip's region is computed [default:
+    /// the last bone]
+    #[arg(long, value_name = "NAME")]
+    pub bone: Option<String>,
     #[command(flatten)]
     pub area: AreaArgs,
     /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
@@ -106,7 +115,11 @@ pub struct WorkspaceArgs {
 }
 
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
-    let arm = Arm::load(args.arm.as_deref())?;
+    let body = Body::load(args.arm.as_deref(), args.rig.as_deref())?;
+    let arm = match Effector::of(body, args.bone.as_deref(), |name| format!("--bone {name}"))? {
+        Effector::Chain(arm) => *arm,
+        Effector::Bone(rig, bone) => return run_sampled(args, &rig, bone),
+    };
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png])?;
     let area = args.area.area(&arm)?;
 
@@ -176,4 +189,44 @@ fn text(w: &mut dyn Write, arm: &Arm, area: &ReachableArea) -> std::io::Result<(
 /// `n` and the noun that goes with it.
 fn plural(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// The sampled region of the tip of `bone` of a rig the exact region cannot take (offsets,
+/// slides, a fork): [`ikarus::reach::sample_skeleton`], `"exact": false`.
+fn run_sampled(args: &WorkspaceArgs, rig: &Rig, bone: usize) -> Result<(), CliError> {
+    if let Some(p) = &args.picture.out {
+        return Err(CliError::input(format!(
+            "--out {}: the sampled region of a rig's bone is not drawn yet (JSON and text only)",
+            p.display()
+        )));
+    }
+    let limits = args.area.limits.asked().or(rig.solver.limits).unwrap_or(false);
+    let run = WorkspaceOptions { limits, ..WorkspaceOptions::default() };
+    let workspace = area::sampled(rig, bone, args.area.grid()?, run).map_err(|e| CliError::input(format!("--{e}")))?;
+    let Some(format) = report_format(args.format, false, WorkspaceFormat::Text, WorkspaceFormat::Json) else {
+        return Ok(());
+    };
+    output::stdout(|w| match format {
+        WorkspaceFormat::Json => {
+            serde_json::to_writer(&mut *w, &report::rig_workspace_json(rig, bone, workspace))?;
+            writeln!(w)
+        }
+        WorkspaceFormat::Text => {
+            let disk = workspace.annulus();
+            let s = &rig.skeleton;
+            writeln!(w, "rig          {} ({} bones), the tip of {}", rig.name, s.len(), s.name(bone))?;
+            writeln!(w, "limits       {}", if limits { "on" } else { "off" })?;
+            writeln!(w, "disk         radius {} (no tip is farther), area {:.4}", disk.outer, disk.area())?;
+            writeln!(
+                w,
+                "reachable    {:.4} ({:.1}% of the disk), sampled: {} of {} cells of {:.4}, {} joint-space samples",
+                workspace.area(),
+                100.0 * workspace.area() / disk.area(),
+                workspace.occupied_cells(),
+                u64::from(workspace.resolution()).pow(2),
+                workspace.cell_size(),
+                workspace.samples()
+            )
+        }
+    })
 }

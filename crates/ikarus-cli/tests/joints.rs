@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use common::{fails, json, server};
+use common::{fails, json, server, succeeds};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/joints").join(format!("{name}.toml"))
@@ -156,9 +156,14 @@ fn bad_joint_keys_are_one_line_naming_the_field_and_the_value() {
 /// where the file's forward kinematics puts it from the frame's own `angles_deg` and
 /// `extensions` (a prismatic value printed as an angle, or a missing extension, fails here).
 fn check_frame(name: &str, what: &str, frame: &Value) {
-    for (bone, tip) in tips(&file(name), frame) {
+    check_frame_of(&file(name), &format!("{name} {what}"), frame);
+}
+
+/// [`check_frame`] of a frame of `rig` (a rig file's fields as JSON), `label` in messages.
+fn check_frame_of(rig: &Value, label: &str, frame: &Value) {
+    for (bone, tip) in tips(rig, frame) {
         let got = pair(&frame["joints"][&bone]).unwrap();
-        assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{name} {what} {bone}: {got:?} vs {tip:?}");
+        assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{label} {bone}: {got:?} vs {tip:?}");
     }
 }
 
@@ -273,4 +278,169 @@ fn a_pose_in_degrees_is_refused_for_a_prismatic_bone() {
     let answer = s.post("/api/render", &json!({"figure": "rig", "format": "svg", "rig": rig, "pose_deg": [30, 30, 0]}));
     let err = answer.error(422);
     assert!(err.starts_with("pose_deg: bone \"ram\" is prismatic"), "{err}");
+}
+
+/// An arm file's links as the rig the answers speak of: bone `link{i}` on `link{i-1}`, with
+/// the link's keys.
+fn arm_as_rig(path: &Path) -> Value {
+    let arm: Value = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let bones: Vec<Value> = arm["links"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let mut b = l.clone();
+            b["name"] = json!(format!("link{i}"));
+            if i > 0 {
+                b["parent"] = json!(format!("link{}", i - 1));
+            }
+            b
+        })
+        .collect();
+    json!({"bones": bones})
+}
+
+/// Issue 25: an arm file's links take the joint keys. The shipped RRP arm reaches, from the
+/// command line (`--goal X,Y`, on the last link) and from `POST /api/solve` with `arm`, a goal
+/// farther than its links' lengths (and its start extension) reach: only the slide gets there.
+/// Every tip is checked by the forward kinematics above, written from the file's keys.
+#[test]
+fn an_arm_file_with_a_slide_solves_from_the_command_line_and_the_api() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/rrp.toml");
+    let rig = arm_as_rig(&path);
+    let links = rig["bones"].as_array().unwrap();
+    let lengths: f64 = links.iter().map(|b| b["length"].as_f64().unwrap()).sum();
+    let start = links[2]["extension"].as_f64().unwrap();
+    let [lo, hi] = pair(&links[2]["limits"]).unwrap();
+    let goal: [f64; 2] = [0.5, 2.5];
+    assert!(goal[0].hypot(goal[1]) > lengths + start + 0.2, "the goal must need the slide");
+    let check = |answer: &Value| {
+        assert_eq!(answer["status"], "reached", "{answer}");
+        assert_eq!(answer["rig"], "rrp");
+        assert_eq!(answer["effectors"][0]["name"], "link2");
+        for (bone, tip) in tips(&rig, answer) {
+            let got = pair(&answer["joints"][&bone]).unwrap();
+            assert!((got[0] - tip[0]).hypot(got[1] - tip[1]) < 1e-12, "{bone}: {got:?} vs {tip:?}");
+        }
+        let tip = tips(&rig, answer)[2].1;
+        assert!((tip[0] - goal[0]).hypot(tip[1] - goal[1]) <= 1e-6, "{tip:?}");
+        let d = answer["extensions"]["link2"].as_f64().unwrap();
+        assert!(d > start + 0.2 && (lo..=hi).contains(&d), "extension {d}");
+        assert_eq!(answer["extensions"].as_object().unwrap().len(), 1);
+    };
+    let goal_arg = format!("{},{}", goal[0], goal[1]);
+    let cli = json(&["solve", "--arm", path.to_str().unwrap(), "--goal", &goal_arg, "--limits", "--format", "json"]);
+    check(&cli);
+    // `track` follows with the last link's tip unless --effector says otherwise.
+    let line = format!("1,1,{},{}", goal[0], goal[1]);
+    let track = json(&["track", "--arm", path.to_str().unwrap(), "--line", &line, "--samples", "4", "--limits"]);
+    assert_eq!(track["effector"], "link2");
+    for sample in track["samples"].as_array().unwrap() {
+        check_frame_of(&rig, "rrp arm track", sample);
+    }
+    let s = server::start(&[]);
+    let arm: Value = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let body = json!({"arm": arm, "goal": {"x": goal[0], "y": goal[1]}, "options": {"limits": true}});
+    let api = s.post("/api/solve", &body).json();
+    check(&api);
+    assert_eq!(api["angles_deg"], cli["angles_deg"]);
+    assert_eq!(api["extensions"], cli["extensions"]);
+    // A bad key of the arm is named as the arm's link, on either edge.
+    let mut bad = arm.clone();
+    bad["links"][2]["limits"] = json!([0.6, 0.0]);
+    let answer = s.post("/api/solve", &json!({"arm": bad, "goal": {"x": 1, "y": 1}}));
+    assert_eq!(answer.error(422), "arm: links[2].limits = [0.6, 0]: min must not exceed max");
+}
+
+/// The joint keys of an arm file's links: problems named by the link, one line each; a
+/// command that takes a chain only says so, naming the first key.
+#[test]
+fn bad_joint_keys_of_an_arm_are_one_line_naming_the_link() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = "[[links]]\nlength = 1\n[[links]]\nlength = 0.5\n";
+    for (extra, want) in [
+        ("joint = \"prismatic\"\nslide = [0, 0]\n", "links[1].slide: must not be zero, got [0, 0]"),
+        ("joint = \"prismatic\"\nextension = 0.9\nlimits = [0, 0.5]\n", "links[1].extension: 0.9 lies outside"),
+        ("joint = \"prismatic\"\nlimits_deg = [0, 10]\n", "links[1].limits_deg: not for a prismatic joint"),
+        ("limits = [0, 1]\n", "links[1].limits: not for a revolute joint"),
+        ("offset = [nan, 0]\n", "links[1].offset: must be finite numbers, got [NaN, 0]"),
+        ("joint = \"prismatic\"\nextension = inf\n", "links[1].extension = inf: must be a finite number"),
+    ] {
+        let path = dir.path().join("a.toml");
+        std::fs::write(&path, format!("{base}{extra}")).unwrap();
+        let err = fails(&["solve", "--arm", path.to_str().unwrap(), "--goal", "1,0"], 2);
+        let want = format!("arm file {}: {want}", path.display());
+        assert!(err.starts_with(&format!("ikarus: {want}")) && err.trim_end().lines().count() == 1, "{extra}: {err}");
+    }
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/rrp.toml");
+    let err = fails(&["animate", "--arm", arm.to_str().unwrap(), "--goal", "1,1"], 2);
+    assert!(err.contains("rrp.toml: links[2].joint: an arm with offsets or slides is a one-branch rig"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}
+
+/// Issue 25: `workspace` over the body. A rig the exact region cannot take (the PRR arm: a slide,
+/// an offset) gets the sampled region of its last bone's tip (or `--bone`'s), `"exact": false`,
+/// every occupied cell within the rig's reach; a rig that is a chain gets the chain's exact
+/// region, the same JSON as the arm file of the same links.
+#[test]
+fn workspace_takes_a_rig_sampled_unless_it_is_a_chain() {
+    let prr = example("prr");
+    let ws = json(&["workspace", "--rig", prr.to_str().unwrap(), "--resolution", "64", "--format", "json"]);
+    assert_eq!((&ws["arm"], &ws["bone"], &ws["exact"]), (&json!("prr"), &json!("lower"), &json!(false)), "{ws}");
+    let grid = ws["grid"].as_array().unwrap();
+    assert_eq!(grid.len(), 64);
+    let (h, origin, reach) =
+        (ws["cell_size"].as_f64().unwrap(), pair(&ws["origin"]).unwrap(), ws["outer_radius"].as_f64().unwrap());
+    let mut occupied = 0;
+    for (iy, row) in grid.iter().enumerate() {
+        for (ix, c) in row.as_str().unwrap().chars().enumerate() {
+            if c == '1' {
+                occupied += 1;
+                let (x, y) = (origin[0] + h * (ix as f64 + 0.5), origin[1] + h * (iy as f64 + 0.5));
+                assert!(x.hypot(y) <= reach + h, "cell {ix},{iy}");
+            }
+        }
+    }
+    assert!((f64::from(occupied) * h * h - ws["area"].as_f64().unwrap()).abs() < 1e-9);
+    // The carriage's tip runs along the rail: one row of cells.
+    let carriage = json(&["workspace", "--rig", prr.to_str().unwrap(), "--bone", "carriage", "--resolution", "64"]);
+    let rows = carriage["grid"].as_array().unwrap().iter().filter(|r| r.as_str().unwrap().contains('1')).count();
+    assert_eq!((rows, &carriage["exact"]), (1, &json!(false)));
+    let text = succeeds(&["workspace", "--rig", prr.to_str().unwrap(), "--resolution", "16", "--format", "text"]);
+    assert!(text.contains("sampled: "), "{text}");
+    // The seed arm written as a rig: the same exact region, byte for byte but the name.
+    let dir = tempfile::tempdir().unwrap();
+    let rig = dir.path().join("seed-rig.toml");
+    std::fs::write(
+        &rig,
+        "name = \"seed\"\n[[bones]]\nname = \"a\"\nlength = 3\nangle_deg = 5\nlimits_deg = [-45, 45]\n\
+         [[bones]]\nname = \"b\"\nparent = \"a\"\nlength = 2\nangle_deg = 5\nlimits_deg = [-90, 90]\n\
+         [[bones]]\nname = \"c\"\nparent = \"b\"\nlength = 1\nangle_deg = 5\nlimits_deg = [-170, 170]\n",
+    )
+    .unwrap();
+    for limits in [&[][..], &["--limits"][..]] {
+        let mut args = vec!["workspace", "--rig", rig.to_str().unwrap(), "--format", "json"];
+        args.extend(limits);
+        let from_rig = succeeds(&args);
+        let mut args = vec!["workspace", "--format", "json"];
+        args.extend(limits);
+        assert_eq!(from_rig, succeeds(&args), "{limits:?}");
+        assert!(from_rig.contains("\"exact\":true"));
+    }
+    let err = fails(&["workspace", "--bone", "a"], 2);
+    assert!(err.contains("--bone a: only for a rig or an arm with slides"), "{err}");
+    // The API: the same answers, by `rig` (and `bone`), or an arm with a slide.
+    let s = server::start(&[]);
+    let api = s.post("/api/workspace", &json!({"rig": file("prr"), "resolution": 64})).json();
+    assert_eq!(api, ws, "the API's region is the command line's");
+    let api = s.post("/api/workspace", &json!({"rig": file("prr"), "bone": "carriage", "resolution": 64})).json();
+    assert_eq!(api, carriage);
+    let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/rrp.toml");
+    let cli = json(&["workspace", "--arm", arm.to_str().unwrap(), "--resolution", "32", "--limits"]);
+    let arm: Value = toml::from_str(&std::fs::read_to_string(&arm).unwrap()).unwrap();
+    let api = s.post("/api/workspace", &json!({"arm": arm, "resolution": 32, "limits": true})).json();
+    assert_eq!((&api, &api["exact"], &api["bone"]), (&cli, &json!(false), &json!("link2")));
+    let e = s.post("/api/workspace", &json!({"rig": file("prr"), "bone": "nose"})).error(422);
+    assert!(e.starts_with("bone = \"nose\": no bone named \"nose\""), "{e}");
 }

@@ -6,7 +6,9 @@ use ikarus::Interrupt;
 use ikarus::reach::{Region, RegionError, RegionOptions, Workspace, WorkspaceOptions};
 
 use crate::arm::Arm;
+use crate::body::Body;
 use crate::error::CliError;
+use crate::rig::Rig;
 
 /// The default of `--resolution` and of a request's `resolution`: the library's.
 pub fn default_resolution() -> u32 {
@@ -45,6 +47,56 @@ impl ReachableArea {
             ReachableArea::Grid(w) => ikarus_render::Reachable::Grid(w),
         }
     }
+}
+
+/// Whose region a job computes: an arm's tip (a chain, the exact region by default), or the tip
+/// of one bone of a rig the exact region cannot take (sampled, [`sampled`]).
+pub enum Effector {
+    Chain(Box<Arm>),
+    Bone(Box<Rig>, usize),
+}
+
+impl Effector {
+    /// The effector of `body` at bone `bone` (by name; default the last bone). A rig that is a
+    /// chain, at its last bone, is that chain (its exact region, as an arm file's); `bone` for
+    /// an arm is refused. `field` words the bone's field as the edge does (`--bone nose`,
+    /// `bone = "nose"`).
+    pub fn of(body: Body, bone: Option<&str>, field: impl Fn(&str) -> String) -> Result<Self, CliError> {
+        match body {
+            Body::Chain(arm) => match bone {
+                Some(name) => Err(CliError::input(format!(
+                    "{}: only for a rig or an arm with slides (an arm's region is its tip's)",
+                    field(name)
+                ))),
+                None => Ok(Self::Chain(arm)),
+            },
+            Body::Rig(rig) => {
+                let last = rig.skeleton.len() - 1;
+                let bone = match bone {
+                    Some(name) => crate::goal::index(&rig.skeleton, name)
+                        .map_err(|m| CliError::input(format!("{}: {m}", field(name))))?,
+                    None => last,
+                };
+                let rig = *rig;
+                Ok(match rig.skeleton.as_chain().filter(|_| bone == last) {
+                    Some(chain) => {
+                        Self::Chain(Box::new(Arm { name: rig.name, label: rig.label, chain, solver: rig.solver }))
+                    }
+                    None => Self::Bone(Box::new(rig), bone),
+                })
+            }
+        }
+    }
+}
+
+/// The sampled region of the tip of `bone` of `rig` ([`ikarus::reach::sample_skeleton`]) with
+/// `grid`'s fields (the defaults without) over `run`'s other options (limits, threads,
+/// interrupt); an error names the option (`samples: …`).
+pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: WorkspaceOptions) -> Result<Workspace, String> {
+    let grid = grid.unwrap_or(GridRequest { resolution: default_resolution(), samples: None, seed: 0 });
+    let options =
+        WorkspaceOptions { resolution: grid.resolution, samples: grid.samples.map(u64::from), seed: grid.seed, ..run };
+    ikarus::reach::sample_skeleton(&rig.skeleton, bone, &options).map_err(|e| e.to_string())
 }
 
 /// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).

@@ -11,6 +11,11 @@
 //! method = "dls"
 //! ```
 //!
+//! A link may also take a rig file's joint keys (`offset`, `joint = "revolute" | "prismatic"`,
+//! `slide`, `extension`, `limits`; see [`crate::rig`]): such an arm is a one-branch rig whose
+//! bones are named `link0`, `link1`, … ([`crate::body::Body::from_arm_file`]); `joint =
+//! "revolute"` alone changes nothing (the same chain as without it).
+//!
 //! Every problem becomes one line naming the file, the field and the value.
 
 use std::path::Path;
@@ -44,7 +49,7 @@ pub struct ArmFile {
 }
 
 /// One `[[links]]` entry.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LinkFile {
     /// Link length.
@@ -55,6 +60,48 @@ pub struct LinkFile {
     /// Optional `[min, max]` range of the joint angle, degrees.
     #[serde(default)]
     pub limits_deg: Option<[f64; 2]>,
+    /// The link's origin in the previous link's frame (the first's from the base); absent: the
+    /// previous link's tip.
+    #[serde(default)]
+    pub offset: Option<[f64; 2]>,
+    /// The joint's kind; absent: revolute.
+    #[serde(default)]
+    pub joint: Option<JointFile>,
+    /// A prismatic joint's direction in the previous link's frame; absent: along the link.
+    #[serde(default)]
+    pub slide: Option<[f64; 2]>,
+    /// A prismatic joint's start displacement; absent: 0.
+    #[serde(default)]
+    pub extension: Option<f64>,
+    /// A prismatic joint's `[min, max]` displacement, length units.
+    #[serde(default)]
+    pub limits: Option<[f64; 2]>,
+}
+
+impl LinkFile {
+    /// The first joint key of this link that a chain's link cannot hold (`offset`,
+    /// `joint = "prismatic"`, `slide`, `extension`, `limits`), as `links[i].KEY` names it;
+    /// `joint = "revolute"` alone changes nothing.
+    #[must_use]
+    pub fn joint_key(&self) -> Option<&'static str> {
+        [
+            ("offset", self.offset.is_some()),
+            ("joint", self.joint == Some(JointFile::Prismatic)),
+            ("slide", self.slide.is_some()),
+            ("extension", self.extension.is_some()),
+            ("limits", self.limits.is_some()),
+        ]
+        .into_iter()
+        .find_map(|(key, given)| given.then_some(key))
+    }
+}
+
+/// A link's or a bone's `joint` key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum JointFile {
+    Revolute,
+    Prismatic,
 }
 
 /// A loaded arm: the validated chain, its name, and the file's solver defaults.
@@ -95,13 +142,21 @@ impl Arm {
 
     /// Parses and validates arm-file text; `label` starts every error message.
     pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
-        let file: ArmFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
-        Self::from_file(file, label)
+        Self::from_file(ArmFile::read(text, label)?, label)
     }
 
     /// Validates an arm already read (from a file or a JSON request); `label` starts every
     /// error message.
+    ///
+    /// A link with joint keys is refused here, naming the first: such an arm is read as a body
+    /// ([`crate::body::Body::from_arm_file`]) by the commands that take one.
     pub fn from_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
+        if let Some((i, key)) = file.joint_key() {
+            return Err(CliError::input(format!(
+                "{label}: links[{i}].{key}: an arm with offsets or slides is a one-branch rig, which this \
+                 command does not take (solve, track and workspace do, and the API's solve)"
+            )));
+        }
         let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
         let name = file.name.clone().unwrap_or_else(|| "arm".to_owned());
@@ -110,6 +165,17 @@ impl Arm {
 }
 
 impl ArmFile {
+    /// Reads arm-file text (TOML), unchecked otherwise; `label` starts every error message.
+    pub fn read(text: &str, label: &str) -> Result<Self, CliError> {
+        toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))
+    }
+
+    /// The first link that gives a joint key a chain cannot hold, and the key.
+    #[must_use]
+    pub fn joint_key(&self) -> Option<(usize, &'static str)> {
+        self.links.iter().enumerate().find_map(|(i, l)| l.joint_key().map(|k| (i, k)))
+    }
+
     /// Builds the chain, describing any problem in the file's own names and numbers.
     pub fn to_chain(&self) -> Result<Chain, String> {
         let mut links = Vec::with_capacity(self.links.len());

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use ikarus::{Goal, JointLimits, Outcome, RigTask, SolveError, Solver};
 
-use crate::arm::Arm;
+use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
 use crate::error::CliError;
 use crate::rig::Rig;
 use crate::settings::SolverSettings;
@@ -27,7 +27,28 @@ impl Body {
     pub fn load(arm: Option<&Path>, rig: Option<&Path>) -> Result<Self, CliError> {
         match rig {
             Some(path) => Ok(Self::Rig(Box::new(Rig::load(path)?))),
-            None => Ok(Self::Chain(Box::new(Arm::load(arm)?))),
+            None => {
+                let (text, label) = match arm {
+                    None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),
+                    Some(p) => {
+                        let label = format!("arm file {}", p.display());
+                        (crate::input::read_text(p, &label)?, label)
+                    }
+                };
+                Self::from_arm_file(ArmFile::read(&text, &label)?, &label)
+            }
+        }
+    }
+
+    /// The body of an arm file (or a request's `arm`): its chain when no link gives a joint key
+    /// a chain cannot hold ([`ArmFile::joint_key`]), read exactly as [`Arm::from_file`] reads
+    /// it; else the one-branch rig of its links ([`Rig::from_arm`]: bones `link0`, `link1`, …, a
+    /// goal without a bone's name on the last). `label` starts every message, which names the
+    /// link as an arm file does (`links[2].limits = [1, 0]: …`).
+    pub fn from_arm_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
+        match file.joint_key() {
+            None => Ok(Self::Chain(Box::new(Arm::from_file(file, label)?))),
+            Some(_) => Ok(Self::Rig(Box::new(Rig::from_arm(&file, label)?))),
         }
     }
 
@@ -128,5 +149,31 @@ mod tests {
         assert!(matches!(Body::load(None, None), Ok(Body::Chain(a)) if a.chain.len() == 3));
         let Err(e) = Body::load(None, Some(Path::new("/nonexistent/r.toml"))) else { panic!("read a missing file") };
         assert!(e.to_string().starts_with("rig file /nonexistent/r.toml: "), "{e}");
+    }
+
+    /// An arm file's joint keys: `joint = "revolute"` alone keeps the same chain; a slide makes
+    /// a one-branch rig of bones `link0…` whose unnamed goal is on the last link.
+    #[test]
+    fn an_arm_with_a_slide_is_a_one_branch_rig() {
+        let plain = "[[links]]\nlength = 3\nangle_deg = 5\n[[links]]\nlength = 2\nlimits_deg = [-90, 90]\n";
+        let revolute = plain.replace("length = 2\n", "length = 2\njoint = \"revolute\"\n");
+        let chain = |text: &str| match Body::from_arm_file(ArmFile::read(text, "a").unwrap(), "a") {
+            Ok(Body::Chain(arm)) => arm.chain,
+            _ => panic!("not a chain: {text}"),
+        };
+        assert_eq!(chain(plain), chain(&revolute));
+        let slide = format!("name = \"r\"\n{plain}[[links]]\nlength = 1\njoint = \"prismatic\"\nlimits = [0, 1]\n");
+        let Ok(Body::Rig(rig)) = Body::from_arm_file(ArmFile::read(&slide, "a").unwrap(), "a") else {
+            panic!("not a rig")
+        };
+        assert_eq!((rig.name.as_str(), rig.label.as_str(), rig.tip), ("r", "a", Some(2)));
+        let s = &rig.skeleton;
+        assert_eq!(s.names(), &["link0", "link1", "link2"]);
+        assert_eq!(s.parents(), &[None, Some(0), Some(1)]);
+        assert!(s.as_chain().is_none() && s.has_prismatic());
+        assert_eq!(s.limits()[2].map(|l| (l.min(), l.max())), Some((0.0, 1.0)));
+        // The chain-only reader names the first key it cannot hold.
+        let e = Arm::parse(&slide, "a").unwrap_err().to_string();
+        assert!(e.starts_with("a: links[2].joint: an arm with offsets or slides is a one-branch rig"), "{e}");
     }
 }

@@ -47,7 +47,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use ikarus::Skeleton;
 use serde::Deserialize;
 
-use crate::arm::toml_error;
+pub use crate::arm::JointFile;
+use crate::arm::{ArmFile, toml_error};
 use crate::error::CliError;
 use crate::settings::SolverSettings;
 
@@ -67,6 +68,10 @@ pub struct RigFile {
     /// Solver defaults: the `[solver]` table, which flags override (as in arm files).
     #[serde(default)]
     pub solver: SolverSettings,
+    /// Made from an arm file's links ([`RigFile::from_arm`]): messages name a bone as the arm
+    /// file does, `links[i]`, not `bones[i] ("link{i}")`. Never read from a file or a request.
+    #[serde(skip)]
+    links: bool,
 }
 
 /// One `[[bones]]` entry.
@@ -109,14 +114,6 @@ pub struct BoneFile {
     /// A prismatic joint's `[min, max]` displacement, length units.
     #[serde(default)]
     pub limits: Option<[f64; 2]>,
-}
-
-/// A bone's `joint` key.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum JointFile {
-    Revolute,
-    Prismatic,
 }
 
 /// The most bones of a rig the command line (and Python) reads unless `ikarus --max-bones N`
@@ -169,6 +166,9 @@ pub struct Rig {
     pub label: String,
     pub skeleton: Skeleton,
     pub solver: SolverSettings,
+    /// The bone a goal without a bone's name is on (`--goal X,Y`, a request's `goal`): an arm
+    /// file's last link; `None` for a rig file, whose goals name their bones.
+    pub tip: Option<usize>,
 }
 
 impl Rig {
@@ -206,11 +206,48 @@ impl Rig {
         let skeleton = file.to_skeleton().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
         file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
         let name = file.name.clone().unwrap_or_else(|| "rig".to_owned());
-        Ok(Self { name, label: label.to_owned(), skeleton, solver: file.solver })
+        Ok(Self { name, label: label.to_owned(), skeleton, solver: file.solver, tip: None })
+    }
+
+    /// The one-branch rig of an arm file: link `i` is bone `link{i}` (as
+    /// [`Skeleton::from_chain`] names them) on bone `link{i-1}`, with the link's joint keys; its
+    /// name is the arm's (`arm` without one), a goal without a bone's name is on the last link,
+    /// and every problem is named as in an arm file (`arm file a.toml: links[2].limits_deg = …`).
+    pub fn from_arm(file: &ArmFile, label: &str) -> Result<Self, CliError> {
+        let mut rig = Self::from_file(RigFile::from_arm(file), label, BoneCap::cli())?;
+        rig.tip = rig.skeleton.len().checked_sub(1);
+        Ok(rig)
     }
 }
 
 impl RigFile {
+    /// An arm file's links as the bones of a one-branch rig: `link{i}` on `link{i-1}`, each
+    /// with the link's length, angle, limits and joint keys; the same base, name and `[solver]`.
+    #[must_use]
+    pub fn from_arm(arm: &ArmFile) -> Self {
+        let bones = arm
+            .links
+            .iter()
+            .enumerate()
+            .map(|(i, l)| BoneFile {
+                name: format!("link{i}"),
+                parent: i.checked_sub(1).map(|p| format!("link{p}")),
+                length: l.length,
+                angle_deg: l.angle_deg,
+                limits_deg: l.limits_deg,
+                stiffness: None,
+                rest_deg: None,
+                offset: l.offset,
+                joint: l.joint,
+                slide: l.slide,
+                extension: l.extension,
+                limits: l.limits,
+            })
+            .collect();
+        let name = Some(arm.name.clone().unwrap_or_else(|| "arm".to_owned()));
+        Self { name, base: arm.base, bones, solver: arm.solver.clone(), links: true }
+    }
+
     /// Reads rig-file text (TOML) of at most `cap` bones, unchecked otherwise; `label` starts
     /// every error message.
     pub fn read(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {

@@ -48,3 +48,26 @@ def test_a_prismatic_rigs_motion_and_track_have_extension_columns_as_the_cli():
             assert column.tolist() == [s["extensions"][b] for s in want["samples"]], (name, b)
     motion = ikarus.Rig.shipped("hand").animate({"little_distal": (0.03, 0.12)}, frames=3)
     assert motion.frames.extensions is None
+
+
+def test_an_arm_file_with_a_slide_solves_through_the_api_and_chain_refuses_it():
+    """``examples/arms/rrp.toml`` (an arm file whose last link slides) is a one-branch rig:
+    ``ikarus.call("solve", {"arm": …})`` answers as ``ikarus solve --arm`` does, with the goal
+    on the last link; ``Chain`` holds only revolute links at their parents' tips, so it refuses
+    the file in one line naming the first joint key."""
+    import tomllib
+
+    import pytest
+
+    path = ROOT / "examples" / "arms" / "rrp.toml"
+    want = cli_json("solve", "--arm", str(path), "--goal", "0.5,2.5", "--limits")
+    arm = tomllib.loads(path.read_text())
+    got = ikarus.call("solve", {"arm": arm, "goal": {"x": 0.5, "y": 2.5}, "options": {"limits": True}})
+    assert got["status"] == want["status"] == "reached"
+    assert got["angles_deg"] == want["angles_deg"] and got["extensions"] == want["extensions"]
+    assert list(got["extensions"]) == ["link2"] and got["extensions"]["link2"] > 0.3
+    with pytest.raises(ValueError) as e:
+        ikarus.Chain.from_toml(path)
+    message = str(e.value)
+    assert "links[2].joint: an arm with offsets or slides is a one-branch rig" in message, message
+    assert "\n" not in message

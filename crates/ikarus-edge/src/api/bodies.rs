@@ -142,11 +142,17 @@ impl TrackReq {
 }
 
 /// The request's body: its rig, else its arm, else the built-in seed arm (as [`load_rig`] and
-/// [`load_arm`] check them).
+/// [`load_arm`] check them). An arm with offsets or slides ([`ArmFile::joint_key`]) is the
+/// one-branch rig of its links ([`Body::from_arm_file`]: bones `link0`, `link1`, …, its goal on
+/// the last), checked as an arm so that a problem names the link (`arm: links[2].limits = …`).
 pub fn load(arm: Option<ArmFile>, rig: Option<RigFile>, limits: &Limits) -> Result<Body, Problem> {
-    match rig {
-        Some(rig) => Ok(Body::Rig(Box::new(load_rig(rig, limits)?))),
-        None => Ok(Body::Chain(Box::new(load_arm(arm, limits)?))),
+    match (rig, arm) {
+        (Some(rig), _) => Ok(Body::Rig(Box::new(load_rig(rig, limits)?))),
+        (None, Some(arm)) if arm.joint_key().is_some() => {
+            links_cap(&arm, limits)?;
+            Ok(Body::from_arm_file(arm, "arm")?)
+        }
+        (None, arm) => Ok(Body::Chain(Box::new(load_arm(arm, limits)?))),
     }
 }
 
@@ -155,16 +161,22 @@ pub fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, Problem> 
     match file {
         None => Ok(Arm::load(None)?),
         Some(file) => {
-            if file.links.len() > limits.max_links {
-                return Err(Problem::invalid(format!(
-                    "arm.links: {} links, more than the cap of {} (--max-links)",
-                    file.links.len(),
-                    limits.max_links
-                )));
-            }
+            links_cap(&file, limits)?;
             Ok(Arm::from_file(file, "arm")?)
         }
     }
+}
+
+/// At most `--max-links` links in a request's arm.
+fn links_cap(file: &ArmFile, limits: &Limits) -> Result<(), Problem> {
+    if file.links.len() > limits.max_links {
+        return Err(Problem::invalid(format!(
+            "arm.links: {} links, more than the cap of {} (--max-links)",
+            file.links.len(),
+            limits.max_links
+        )));
+    }
+    Ok(())
 }
 
 /// The request's rig, checked as a rig file is (errors start with `rig:`); at most

@@ -30,12 +30,27 @@ fn aimed<'a>(
     goal_req: Option<&GoalReq>,
     rig: (&[super::requests::RigGoalReq], &[String], Option<f64>),
 ) -> Result<Aimed<'a>, Problem> {
-    match body {
-        Body::Chain(arm) => {
-            let g = goal_req.ok_or_else(|| Problem::internal("an arm's request without its goal"))?;
+    match (body, goal_req) {
+        (Body::Chain(arm), g) => {
+            let g = g.ok_or_else(|| Problem::internal("an arm's request without its goal"))?;
             Ok(Aimed::Chain(arm, goal(g, "goal")?))
         }
-        Body::Rig(r) => {
+        // An arm with offsets or slides (a rig with a tip): its one goal on its last link.
+        (Body::Rig(r), Some(g)) => {
+            let tip = r.tip.ok_or_else(|| Problem::internal("a rig's request with an arm's goal"))?;
+            let on_tip = super::requests::RigGoalReq {
+                bone: r.skeleton.name(tip).to_owned(),
+                x: g.x,
+                y: g.y,
+                angle_deg: g.angle_deg,
+                weight: None,
+                priority: None,
+                bend: None,
+                softness: None,
+            };
+            Ok(Aimed::Rig(r, task(r, &[on_tip], &[], None, true)?))
+        }
+        (Body::Rig(r), None) => {
             let (goals, pins, mix) = rig;
             Ok(Aimed::Rig(r, task(r, goals, pins, mix, true)?))
         }
@@ -156,7 +171,9 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
 /// A rig track's effector bone and the task held while it follows: `effector` (required),
 /// `mode` follow only, `goals` and `pins` with the effector at most [`bodies::MAX_EFFECTORS`].
 fn rig_follower(rig: &crate::rig::Rig, req: &TrackReq) -> Result<(usize, RigTask), Problem> {
-    let Some(name) = &req.effector else {
+    // An arm with offsets or slides follows the path with its last link.
+    let tip = rig.tip.map(|t| rig.skeleton.name(t).to_owned());
+    let Some(name) = req.effector.as_ref().or(tip.as_ref()) else {
         return Err(Problem::invalid("effector: required with rig: the bone whose tip follows the path"));
     };
     if let Some(mode) = req.mode.filter(|&m| m != TrackMode::Follow) {

@@ -5,11 +5,11 @@
 use ikarus::Interrupt;
 use ikarus::reach::WorkspaceOptions;
 
-use super::bodies::load_arm;
+use super::bodies::{load, load_arm};
 use super::fields::{json_response, stopped, watched};
 use super::requests::{ReachReq, WorkspaceReq};
 use super::{Limits, Problem, Reply, parse_json};
-use crate::area::{self, GridRequest, ReachableArea};
+use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
 use crate::reach::ReachRequest;
 use crate::report::{self, VerdictJson};
@@ -20,10 +20,60 @@ const MAX_SAMPLES: u32 = 1_000_000;
 /// `POST /api/workspace`: the JSON of `ikarus workspace --format json`.
 pub fn workspace(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: WorkspaceReq = parse_json(body)?;
+    if req.rig.is_some() || req.bone.is_some() || req.arm.as_ref().is_some_and(|a| a.joint_key().is_some()) {
+        return body_workspace(req, limits, interrupt);
+    }
     let arm = load_arm(req.arm.clone(), limits)?;
     let area = reachable_area(&arm, &req, limits, interrupt)?;
     stopped(interrupt)?;
     json_response(&report::workspace_json(&arm, &area))
+}
+
+/// `POST /api/workspace` with `rig`, `bone` or an arm with slides: the region of the bone's tip
+/// ([`Effector::of`]): a chain's as an arm's, else sampled (`"exact": false`).
+fn body_workspace(req: WorkspaceReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+    if req.arm.is_some() && req.rig.is_some() {
+        return Err(Problem::invalid("arm, rig: give one or the other, not both"));
+    }
+    let body = load(req.arm.clone(), req.rig.clone(), limits)?;
+    let (rig, bone) = match Effector::of(body, req.bone.as_deref(), |name| format!("bone = {name:?}"))? {
+        Effector::Chain(arm) => {
+            let area = reachable_area(&arm, &req, limits, interrupt)?;
+            stopped(interrupt)?;
+            return json_response(&report::workspace_json(&arm, &area));
+        }
+        Effector::Bone(rig, bone) => (rig, bone),
+    };
+    let grid = grid_of(&req, limits)?;
+    let on = req.limits.or(rig.solver.limits).unwrap_or(false);
+    let run = WorkspaceOptions {
+        limits: on,
+        parallel: false,
+        interrupt: Some(interrupt.clone()),
+        ..WorkspaceOptions::default()
+    };
+    let workspace = area::sampled(&rig, bone, grid, run).map_err(Problem::invalid)?;
+    stopped(interrupt)?;
+    json_response(&report::rig_workspace_json(&rig, bone, workspace))
+}
+
+/// The grid a request asks for (`None`: the exact region), within the server's caps.
+fn grid_of(req: &WorkspaceReq, limits: &Limits) -> Result<Option<GridRequest>, Problem> {
+    let grid =
+        GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
+            .map_err(Problem::invalid)?;
+    if let Some(grid) = &grid {
+        if grid.resolution > limits.max_resolution {
+            return Err(Problem::invalid(format!(
+                "resolution = {}: more than the cap of {} (--max-resolution)",
+                grid.resolution, limits.max_resolution
+            )));
+        }
+        if let Some(n) = grid.samples.filter(|&n| n == 0 || n > MAX_SAMPLES) {
+            return Err(Problem::invalid(format!("samples = {n}: must be between 1 and {MAX_SAMPLES}")));
+        }
+    }
+    Ok(grid)
 }
 
 /// `POST /api/reach`: the verdict on `point`, or on each of `points` (at most `--max-samples`),
@@ -76,21 +126,7 @@ pub(super) fn reachable_area(
     interrupt: &Interrupt,
 ) -> Result<ReachableArea, Problem> {
     let on = arm.limits(req.limits);
-    let grid =
-        GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
-            .map_err(Problem::invalid)?;
-    let Some(grid) = grid else { return watched(area::exact(arm, on, Some(interrupt)), interrupt) };
-    if grid.resolution > limits.max_resolution {
-        return Err(Problem::invalid(format!(
-            "resolution = {}: more than the cap of {} (--max-resolution)",
-            grid.resolution, limits.max_resolution
-        )));
-    }
-    if let Some(n) = grid.samples {
-        if n == 0 || n > MAX_SAMPLES {
-            return Err(Problem::invalid(format!("samples = {n}: must be between 1 and {MAX_SAMPLES}")));
-        }
-    }
+    let Some(grid) = grid_of(req, limits)? else { return watched(area::exact(arm, on, Some(interrupt)), interrupt) };
     // Sequential on its worker: rayon's global pool is shared by every request, so a small
     // request would wait behind a large one; the server's workers give the parallelism.
     let options = WorkspaceOptions { parallel: false, interrupt: Some(interrupt.clone()), ..grid.options(on) };

@@ -199,6 +199,12 @@ pub struct TrackReq {
 pub struct WorkspaceReq {
     #[serde(default)]
     pub arm: Option<ArmFile>,
+    /// A rig in place of `arm`: the region of `bone`'s tip (sampled unless the rig is a chain).
+    #[serde(default)]
+    pub rig: Option<crate::rig::RigFile>,
+    /// The rig's bone [default: the last].
+    #[serde(default)]
+    pub bone: Option<String>,
     #[serde(default)]
     pub limits: Option<bool>,
     #[serde(default)]
@@ -221,7 +227,7 @@ impl WorkspaceReq {
         samples: Option<u32>,
         seed: Option<u64>,
     ) -> Self {
-        Self { arm: None, limits, grid, resolution, samples, seed }
+        Self { arm: None, rig: None, bone: None, limits, grid, resolution, samples, seed }
     }
 }
 

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::area::ReachableArea;
 use crate::arm::Arm;
+use crate::rig::Rig;
 
 /// The reachable region: `ikarus workspace --format json` and `POST /api/workspace`. The exact
 /// region gives `boundary` (and `curves`, for a region without area); the grid (`--grid`)
@@ -13,6 +14,9 @@ use crate::arm::Arm;
 #[derive(Serialize)]
 pub struct WorkspaceJson<'a> {
     pub arm: &'a str,
+    /// A rig's (or an arm with slides') effector bone, whose tip's region is sampled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bone: Option<&'a str>,
     pub limits: bool,
     /// Whether `area` and the boundary are the exact region's (not a sampled grid's).
     pub exact: bool,
@@ -71,9 +75,24 @@ impl SegmentJson {
 
 /// The JSON object of a reachable area of `arm`, exact or sampled.
 pub fn workspace_json<'a>(arm: &'a Arm, area: &ReachableArea) -> WorkspaceJson<'a> {
-    let annulus = Annulus::of(&arm.chain);
+    area_json(&arm.name, Annulus::of(&arm.chain), area)
+}
+
+/// The JSON object of the sampled region of the tip of bone `bone` of `rig`
+/// ([`ikarus::reach::sample_skeleton`]): `"exact": false`, the radii of the disk no tip leaves
+/// (inner radius 0), and the grid.
+pub fn rig_workspace_json(rig: &Rig, bone: usize, workspace: Workspace) -> WorkspaceJson<'_> {
+    let disk = workspace.annulus();
+    let json = area_json(&rig.name, disk, &ReachableArea::Grid(workspace));
+    WorkspaceJson { bone: Some(rig.skeleton.name(bone)), ..json }
+}
+
+/// The JSON object of a reachable area of the body named `name`, `annulus` the region with
+/// every joint free.
+fn area_json<'a>(name: &'a str, annulus: Annulus, area: &ReachableArea) -> WorkspaceJson<'a> {
     let base = WorkspaceJson {
-        arm: &arm.name,
+        arm: name,
+        bone: None,
         limits: area.limits(),
         exact: matches!(area, ReachableArea::Exact(_)),
         inner_radius: annulus.inner,

@@ -79,9 +79,17 @@ impl RigFile {
         }
     }
 
-    /// `bones[i] ("name")`, as every message about a bone starts.
+    /// `bones[i] ("name")`, as every message about a bone starts (`links[i]` for an arm's).
     fn bone(&self, i: usize) -> String {
-        format!("bones[{i}] ({:?})", self.bones[i].name)
+        if self.links { format!("links[{i}]") } else { format!("bones[{i}] ({:?})", self.bones[i].name) }
+    }
+
+    /// `message` with an arm's bones named as its links: `bones[2] ("link2")` → `links[2]`.
+    fn linked(&self, message: String) -> String {
+        if !self.links {
+            return message;
+        }
+        (0..self.bones.len()).rev().fold(message, |m, i| m.replace(&format!("bones[{i}] (\"link{i}\")"), &self.bone(i)))
     }
 
     fn describe(&self, e: &SkeletonError) -> String {
@@ -146,8 +154,9 @@ impl RigFile {
                     Num(hi)
                 )
             }
-            // Already in the file's terms: `bones[i] ("name").parent = "p": …`, the reach.
-            _ => e.to_string(),
+            // Already in the file's terms: `bones[i] ("name").parent = "p": …`, the reach (an
+            // arm's bone named as its link).
+            _ => self.linked(e.to_string()),
         }
     }
 }

@@ -103,6 +103,8 @@ pub use outline::{OUTLINE_AVERAGING, OUTLINE_SMOOTHING};
 mod raster;
 mod region;
 mod sampling;
+mod skeleton;
+pub use skeleton::{SKELETON_SAMPLES_PER_CELL, sample_skeleton};
 #[cfg(test)]
 mod tests;
 
@@ -114,7 +116,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::chain::Chain;
-use raster::{Raster, cell_centre};
+use raster::{Raster, cell_centre, cell_index};
 use region::Sampler;
 use sampling::{Plan, Range, Reduced};
 
@@ -317,12 +319,7 @@ impl Workspace {
     /// Points on the square's right or top edge belong to the last column or row.
     #[must_use]
     pub fn cell_of(&self, p: Point2<f64>) -> Option<(u32, u32)> {
-        let index = |v: f64, o: f64| {
-            let t = (v - o) / self.cell_size;
-            let n = f64::from(self.resolution);
-            // `t` in [0, n] (NaN fails both comparisons); the cast is exact after the floor.
-            (0.0..=n).contains(&t).then(|| (t.floor() as u32).min(self.resolution - 1))
-        };
+        let index = |v: f64, o: f64| cell_index(v, o, self.cell_size, self.resolution);
         Some((index(p.x, self.origin.x)?, index(p.y, self.origin.y)?))
     }
 
@@ -440,36 +437,54 @@ fn run(
     let exact = !reduced.rounded && sampler.as_ref().is_none_or(|s| s.plan == Plan::Single);
 
     let total = sampler.as_ref().map_or(0, Sampler::count);
-    progress(0, total);
     if let Some(sampler) = &sampler {
-        const MAX_CHUNKS: u64 = 1024;
-        let chunk = total.div_ceil(MAX_CHUNKS).max(1);
-        // At most 1024 chunks, so the cast is exact.
-        let chunks = total.div_ceil(chunk) as usize;
-        let done = AtomicU64::new(0);
-        let run = |k: usize| {
-            let start = k as u64 * chunk;
-            let end = (start + chunk).min(total);
-            for i in start..end {
-                if crate::interrupt::is_set(options.interrupt.as_ref()) {
-                    return;
-                }
-                raster.paint(&sampler.slice(i));
+        paint_samples(total, options, progress, || (), |(), i| raster.paint(&sampler.slice(i)))?;
+    } else {
+        // No sample: the grid is empty, or the two-joint slice of a chain that is not sampled.
+        paint_samples(0, options, progress, || (), |(), _| {})?;
+    }
+    Ok(Workspace::new(annulus, raster, options.limits, total, exact))
+}
+
+/// Runs `each(scratch, i)` for every joint-space sample `i < total`, in at most 1024 chunks
+/// (each with its own `scratch()`), on rayon's pool with `options.parallel`; checks the
+/// interrupt before every sample and calls `progress` as [`sample_with_progress`] says.
+fn paint_samples<S>(
+    total: u64,
+    options: &WorkspaceOptions,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    scratch: impl Fn() -> S + Sync,
+    each: impl Fn(&mut S, u64) + Sync,
+) -> Result<(), ReachError> {
+    progress(0, total);
+    const MAX_CHUNKS: u64 = 1024;
+    let chunk = total.div_ceil(MAX_CHUNKS).max(1);
+    // At most 1024 chunks, so the cast is exact.
+    let chunks = total.div_ceil(chunk) as usize;
+    let done = AtomicU64::new(0);
+    let run = |k: usize| {
+        let start = k as u64 * chunk;
+        let end = (start + chunk).min(total);
+        let mut s = scratch();
+        for i in start..end {
+            if crate::interrupt::is_set(options.interrupt.as_ref()) {
+                return;
             }
-            let now = done.fetch_add(end - start, Ordering::Relaxed) + (end - start);
-            if now < total {
-                progress(now, total);
-            }
-        };
-        if options.parallel {
-            (0..chunks).into_par_iter().for_each(run);
-        } else {
-            (0..chunks).for_each(run);
+            each(&mut s, i);
         }
+        let now = done.fetch_add(end - start, Ordering::Relaxed) + (end - start);
+        if now < total {
+            progress(now, total);
+        }
+    };
+    if options.parallel {
+        (0..chunks).into_par_iter().for_each(run);
+    } else {
+        (0..chunks).for_each(run);
     }
     if crate::interrupt::is_set(options.interrupt.as_ref()) {
         return Err(ReachError::Interrupted);
     }
     progress(total, total);
-    Ok(Workspace::new(annulus, raster, options.limits, total, exact))
+    Ok(())
 }

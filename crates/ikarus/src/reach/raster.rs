@@ -10,6 +10,16 @@ pub(super) fn cell_centre(origin: f64, h: f64, i: u32) -> f64 {
     origin + h * (f64::from(i) + 0.5)
 }
 
+/// The index of the cell holding `v` along an axis of `resolution` cells of side `h` from
+/// `origin`: `None` outside `[origin, origin + h·resolution]` (or for NaN); the far end belongs
+/// to the last cell. The one rule used when marking points and when answering queries.
+pub(super) fn cell_index(v: f64, origin: f64, h: f64, resolution: u32) -> Option<u32> {
+    let t = (v - origin) / h;
+    let n = f64::from(resolution);
+    // `t` in [0, n] (NaN fails both comparisons); the cast is exact after the floor.
+    (0.0..=n).contains(&t).then(|| (t.floor() as u32).min(resolution - 1))
+}
+
 /// The grid while sampling: one bit per cell, rows of whole 64-bit words, set with atomic OR so
 /// that any number of threads can paint at once and the result does not depend on order.
 pub(super) struct Raster {
@@ -83,6 +93,16 @@ impl Raster {
             if mask != 0 {
                 row[word].fetch_or(mask, Ordering::Relaxed);
             }
+        }
+    }
+
+    /// Sets the bit of the cell holding `p` (a point on the grid's right or top edge belongs to
+    /// the last column or row); nothing for a point outside the grid.
+    pub(super) fn mark(&self, p: [f64; 2]) {
+        let index = |v: f64, o: f64| cell_index(v, o, self.h, self.resolution);
+        if let (Some(ix), Some(iy)) = (index(p[0], self.origin[0]), index(p[1], self.origin[1])) {
+            let word = iy as usize * self.words_per_row + ix as usize / 64;
+            self.bits[word].fetch_or(1 << (ix % 64), Ordering::Relaxed);
         }
     }
 

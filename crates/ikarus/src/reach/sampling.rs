@@ -128,15 +128,24 @@ pub(super) fn splitmix64(x: u64) -> u64 {
 }
 
 impl Plan {
+    /// The plan of the joints before the last two of `segments` (sliced exactly).
     pub(super) fn new(segments: &[Segment], samples: u64, seed: u64) -> Plan {
-        let m = segments.len() - 2;
+        let sampled = &segments[..segments.len() - 2];
+        let travels: Vec<f64> = sampled.iter().map(|s| s.lever * s.range.span).collect();
+        Plan::over(&travels, samples, seed)
+    }
+
+    /// The plan of `m = travels.len()` sampled joints, `travels[k]` the most joint `k` moves the
+    /// tip over its range (a revolute joint's lever times its span, a slide's span), which
+    /// balances a two-joint grid.
+    pub(super) fn over(travels: &[f64], samples: u64, seed: u64) -> Plan {
+        let m = travels.len();
         match m {
             0 => Plan::Single,
             1 => Plan::Grid1 { n: samples },
             2 => {
                 // Balance the tip's step `lever·span/n` of the two joints: n0/n1 = w0/w1.
-                let w = |s: &Segment| s.lever * s.range.span;
-                let ratio = w(&segments[0]) / w(&segments[1]);
+                let ratio = travels[0] / travels[1];
                 let n0 = (samples as f64 * ratio).sqrt().round();
                 let n0 = if n0.is_finite() { n0.clamp(1.0, samples as f64) as u64 } else { 1 };
                 Plan::Grid2 { n0, n1: (samples / n0).max(1) }

@@ -16,6 +16,7 @@ use crate::math;
 
 mod grid;
 mod parts;
+mod skeleton;
 
 /// Uniform in `[0, 1)` from a SplitMix64 stream.
 struct Rng(u64);

@@ -1,0 +1,108 @@
+//! `ikarus solve`: one goal (JSON, CSV or text), or a batch of goals from a CSV file; with
+//! `--rig FILE`, goals on the tips of a rig's bones and pins, solved together from the rig's
+//! start pose, or a batch of target sets. One command, one reader of the body ([`Body`]).
+//!
+//! By concern: the flags and the dispatch here; the single solve of either body
+//! ([`single`]); its answers for people and for CSV ([`write`]); the batches ([`batch`]) and
+//! the goal columns of a rig's batch file ([`columns`]).
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+
+use crate::body::Body;
+use crate::error::CliError;
+use crate::goal_args::{GoalArg, RigTaskArgs, parse_goal};
+use crate::options::{parse_angle, parse_at_least_one};
+use crate::picture::StillArgs;
+use crate::settings::SolverFlags;
+
+mod batch;
+mod columns;
+mod single;
+mod write;
+
+pub use write::{angle_columns, write_pose};
+
+// Floats in CSV are written with `{:?}`: the shortest text that reads back to the same
+// number, in scientific notation where that is shorter (1.2e-7, not 0.00000012).
+
+/// Output format of a single solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One JSON object (the default when stdout is not a terminal).
+    Json,
+    /// The recorded frames, one row each.
+    Csv,
+    /// A short report for people (the default on a terminal).
+    Text,
+}
+
+/// Move the arm's tip to a goal and report the pose, or solve a batch of goals; with `--rig`,
+/// the same for goals on the tips of a rig's bones, solved together.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Goal position of the tip; with --rig, NAME=X,Y[,DEG]: the tip of bone NAME at X,Y (and
+    /// pointing DEG degrees from +x), repeatable
+    #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_goal,
+          required_unless_present_any = ["batch", "rig"])]
+    pub goal: Vec<GoalArg>,
+    /// Goal orientation of the last link, degrees from +x (counter-clockwise)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle,
+          conflicts_with_all = ["batch", "rig"])]
+    pub goal_angle: Option<f64>,
+    /// Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]
+    #[arg(long, value_name = "FILE")]
+    pub arm: Option<PathBuf>,
+    /// Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin
+    /// NAME) are solved together
+    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
+    pub rig: Option<PathBuf>,
+    #[command(flatten)]
+    pub rig_task: RigTaskArgs,
+    #[command(flatten)]
+    pub solver: SolverFlags,
+    /// Record a frame every K iterations, plus the first and the last [default: 20; with
+    /// --rig, none]
+    #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
+    pub record_every: Option<u32>,
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
+    #[arg(long, value_enum, conflicts_with = "batch")]
+    pub format: Option<Format>,
+    /// Solve every goal of a CSV file (header `x,y` or `x,y,angle_deg`; with --rig, `NAME.x,NAME.y`
+    /// and optionally `NAME.angle_deg` per goal) from the start pose; one CSV row per goal (or
+    /// target set) on stdout, a summary on stderr
+    #[arg(long, value_name = "GOALS.csv", conflicts_with = "goal")]
+    pub batch: Option<PathBuf>,
+    /// Threads for --batch [default: all cores]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+    /// Also write the batch summary as JSON to PATH
+    #[arg(long, value_name = "PATH")]
+    pub summary_json: Option<PathBuf>,
+    #[command(flatten)]
+    pub picture: StillArgs,
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n = parse_at_least_one(s)? as usize;
+    if n > 1024 { Err(format!("{n}: must be at most 1024")) } else { Ok(n) }
+}
+
+pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+    if args.batch.is_none() {
+        if let Some(n) = args.threads {
+            return Err(CliError::input(format!("--threads {n}: only applies with --batch")));
+        }
+        if let Some(p) = &args.summary_json {
+            return Err(CliError::input(format!("--summary-json {}: only applies with --batch", p.display())));
+        }
+    } else if let Some(p) = &args.picture.out {
+        return Err(CliError::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
+    }
+    match (Body::load(args.arm.as_deref(), args.rig.as_deref())?, &args.batch) {
+        (Body::Chain(arm), Some(path)) => batch::run_batch(args, &arm, path),
+        (Body::Rig(rig), Some(path)) => batch::run_rig_batch(args, &rig, path),
+        (body, None) => single::run(args, &body),
+    }
+}
