@@ -307,6 +307,9 @@ fn out_of_reach(p: &Problem, start: &[f64], s: &mut ScratchOf<Chain>, out: &mut 
     let n = chain.len();
     s.restart.copy_from_slice(start);
     p.bounds.clamp_into(&mut s.restart);
+    // The region's pose can round an ulp or two past a limit it lies on (its angles are
+    // recovered from points): the answer keeps within the limits, as every solve's does.
+    p.bounds.clamp_into(&mut s.trial);
     let task_error = |angles: &[f64], joints: &mut Vec<nalgebra::Point2<f64>>| {
         let phi = joint_positions_into(chain, angles, joints);
         let tip = joints[n];

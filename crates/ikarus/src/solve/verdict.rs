@@ -200,6 +200,7 @@ mod tests {
     use crate::fixtures::{limited_arm as limited, seed_arm_limited as seed, seven_link_arm as seven};
     use crate::goal::Goal;
     use crate::kinematics::end_effector;
+    use crate::limits::JointLimits;
     use crate::math;
     use crate::reach::Region;
     use crate::rng::SplitMix64;
@@ -226,6 +227,25 @@ mod tests {
         assert_ne!(slow.status, Status::Reached);
         assert!(slow.iterations > 1 && slow.reach_distance.is_none());
         assert!(slow.error >= d - 1e-9, "{} < {d}", slow.error);
+    }
+
+    /// The region's nearest pose recovers its angles from points, and can round an ulp or two
+    /// past the limit it lies on (here the elbow's upper limit: 1.0779494873184452 against
+    /// 1.077949487318445, found by `rig_motion_properties` tracking this arm): the answer is
+    /// clamped back, so a pose outside the limits is never handed out.
+    #[test]
+    fn the_nearest_pose_keeps_within_the_limits_it_lies_on() {
+        let elbow = JointLimits::new(-0.9742445137674658, 1.077949487318445).unwrap();
+        let chain =
+            Chain::new([0.0, 0.0], &[Link::new(0.3, 0.0), Link::new(0.3, 0.8333026795398881).with_limits(elbow)])
+                .unwrap();
+        let start = chain.pose(vec![-0.040009201910397196, 1.008558209291579]).unwrap();
+        let goal = Goal::position(0.46555014001115286, 0.21029116721282393).unwrap();
+        let opts = SolveOptions { limits: LimitMode::Lock, ..SolveOptions::default() };
+        let out = Solver::new(opts).unwrap().solve(&chain, &start, &goal).unwrap();
+        assert_eq!(out.status, Status::Unreachable);
+        assert_eq!(out.pose.angles()[1], elbow.max());
+        assert!(chain.pose(out.pose.angles().to_vec()).is_ok(), "{:?}", out.pose.angles());
     }
 
     /// The closest poses the searches found behind the seed arm (`solve::limit_tests`,
