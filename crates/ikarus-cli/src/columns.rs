@@ -46,3 +46,34 @@ impl BodyColumns for Rig {
         write_pose(w, self, q)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    fn row(body: &dyn Fn(&mut Vec<u8>) -> std::io::Result<()>) -> String {
+        let mut out = Vec::new();
+        body(&mut out).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn an_arms_joints_by_index_a_rigs_by_bone_name() {
+        let arm = Arm::load(None).unwrap();
+        assert_eq!(arm.pose_columns(), ["theta1_deg", "theta2_deg", "theta3_deg"]);
+        let q = [std::f64::consts::FRAC_PI_2, 0.0, -std::f64::consts::PI];
+        assert_eq!(row(&|w| BodyColumns::write_pose(&arm, w, &q)), ",90.0,0.0,-180.0");
+
+        let rig = Rig::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rigs/puppet.toml")).unwrap();
+        let columns = rig.pose_columns();
+        let names = rig.skeleton.names();
+        assert_eq!(columns.len(), names.len());
+        for (c, n) in columns.iter().zip(names) {
+            assert_eq!(c, &format!("{n}_deg"));
+        }
+        let values = row(&|w| BodyColumns::write_pose(&rig, w, rig.start()));
+        assert_eq!(values.matches(',').count(), names.len(), "{values}");
+    }
+}
