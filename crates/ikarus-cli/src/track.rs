@@ -143,6 +143,8 @@ trait Tracked: TrackBody + BodyColumns + Sized {
     fn head(job: &TrackJob<Self>, w: &mut dyn Write) -> std::io::Result<()>;
     /// What the report's largest error covers.
     const ERROR_NOTE: &str;
+    /// The mode without `--mode`: an arm's plan, a rig's follow (its only one).
+    const MODE: TrackMode;
 }
 
 /// Draws a drawing of `n` frames.
@@ -156,6 +158,9 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
     let path = cli_path(args)?;
     let follower = body.follower(args)?;
     let solve = body.solve_options(&args.solver.settings(), None)?;
+    if args.bound_first && args.mode.unwrap_or(B::MODE) != TrackMode::Follow {
+        return Err(CliError::input("--bound-first: only applies with --mode follow"));
+    }
     let options = track_options(solve, args.max_step_deg, args.bound_first);
     let job = TrackJob { body, start: body.start().to_vec(), follower, path, options };
     let t = job.run().map_err(CliError::input)?;
@@ -278,11 +283,7 @@ impl Tracked for Arm {
     }
 
     fn follower(&self, args: &TrackArgs) -> Result<TrackMode, CliError> {
-        let mode = args.mode.unwrap_or(TrackMode::Plan);
-        if args.bound_first && mode != TrackMode::Follow {
-            return Err(CliError::input("--bound-first: only applies with --mode follow"));
-        }
-        Ok(mode)
+        Ok(args.mode.unwrap_or(Self::MODE))
     }
 
     fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<(), CliError> {
@@ -302,6 +303,7 @@ impl Tracked for Arm {
     }
 
     const ERROR_NOTE: &str = "";
+    const MODE: TrackMode = TrackMode::Plan;
 }
 
 impl Tracked for Rig {
@@ -363,4 +365,5 @@ impl Tracked for Rig {
     }
 
     const ERROR_NOTE: &str = " (every effector: the followed tip, held goals, pins)";
+    const MODE: TrackMode = TrackMode::Follow;
 }
