@@ -135,8 +135,8 @@ trait Tracked: TrackBody + BodyColumns + Sized {
     fn check(args: &TrackArgs) -> Result<(), CliError>;
     /// Who follows the path, from the flags.
     fn follower(&self, args: &TrackArgs) -> Result<Self::Follower, CliError>;
-    /// The picture of the track, drawn by `draw`.
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<(), CliError>;
+    /// The picture of the track, the bytes `draw` makes of its drawing.
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError>;
     /// The JSON object of the track.
     fn json(job: &TrackJob<Self>, t: &Track, w: &mut dyn Write) -> serde_json::Result<()>;
     /// The report's first lines: the body, who follows and how.
@@ -147,8 +147,8 @@ trait Tracked: TrackBody + BodyColumns + Sized {
     const MODE: TrackMode;
 }
 
-/// Draws a drawing of `n` frames.
-type Draw<'a> = &'a mut dyn FnMut(&Drawing, usize) -> Result<(), CliError>;
+/// The bytes of a drawing of `n` frames.
+type Draw<'a> = &'a dyn Fn(&Drawing, usize) -> Result<Vec<u8>, CliError>;
 
 /// The one track workflow: the flags checked, the path tracked, the picture drawn and the
 /// report written, for an arm or a rig.
@@ -167,12 +167,8 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
     let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
-        let mut bytes = None;
-        B::draw(&job, &t, &poses, &mut |drawing, n| {
-            bytes = Some(draw_for_command(drawing, out.format, &args.picture, n)?);
-            Ok(())
-        })?;
-        out.commit(&bytes.expect("the body drew its picture"))?;
+        let bytes = B::draw(&job, &t, &poses, &|drawing, n| draw_for_command(drawing, out.format, &args.picture, n))?;
+        out.commit(&bytes)?;
     }
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
     let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
@@ -286,7 +282,7 @@ impl Tracked for Arm {
         Ok(args.mode.unwrap_or(Self::MODE))
     }
 
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<(), CliError> {
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
         let layer = job.layer(t);
         let drawing =
             Drawing::Track { chain: &job.body.chain, poses, layer: &layer, caption: job.caption(t), fps: TRACK_FPS };
@@ -333,7 +329,7 @@ impl Tracked for Rig {
         Ok(RigFollower { bone, task })
     }
 
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<(), CliError> {
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
         let animation = poses_animation(job.body, poses);
         let last = poses.last().map_or(job.start.as_slice(), Vec::as_slice);
         let ranges = job.options.solve.limits != LimitMode::Ignore;
