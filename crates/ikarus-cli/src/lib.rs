@@ -16,6 +16,7 @@ mod animate;
 mod batch;
 #[cfg(feature = "server")]
 mod cli;
+mod columns;
 mod ease_args;
 mod goal_args;
 mod goals;

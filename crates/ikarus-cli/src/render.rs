@@ -123,7 +123,7 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
         }
         RenderCommand::Motion(args) => {
             let out = required_out(&args.picture, &[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-            let run = crate::animate::BodyMotion::of(&args.motion)?;
+            let run = crate::animate::motion(&args.motion)?;
             let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, run.frames())?;
             out.commit(&bytes)
         }

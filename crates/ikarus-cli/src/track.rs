@@ -15,6 +15,7 @@ pub use ikarus_edge::track::*;
 
 use crate::arm::Arm;
 use crate::body::Body;
+use crate::columns::BodyColumns;
 use crate::error::CliError;
 use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::motion::poses_animation;
@@ -23,7 +24,6 @@ use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format, rig_figure};
 use crate::rig::Rig;
 use crate::settings::SolverFlags;
-use crate::solve::write_pose;
 
 /// Frames per second of a track's GIF: one frame per sample.
 pub const TRACK_FPS: f64 = 25.0;
@@ -123,45 +123,61 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
 
 pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
-        Body::Chain(arm) => run_chain(args, &arm),
-        Body::Rig(rig) => run_rig(args, &rig),
+        Body::Chain(arm) => track(args, &*arm),
+        Body::Rig(rig) => track(args, &*rig),
     }
 }
 
-fn run_chain(args: &TrackArgs, arm: &Arm) -> Result<(), CliError> {
-    let mode = args.mode.unwrap_or(TrackMode::Plan);
+/// What a track asks of a body beyond the edge's [`TrackBody`]: who follows the path (from the
+/// flags), its picture, its JSON, and the lines of its report that name the body.
+trait Tracked: TrackBody + BodyColumns + Sized {
+    /// The flags checked before the picture's: a rig's effector and mode.
+    fn check(&self, args: &TrackArgs) -> Result<(), CliError>;
+    /// Who follows the path, from the flags.
+    fn follower(&self, args: &TrackArgs) -> Result<Self::Follower, CliError>;
+    /// The picture of the track, the bytes `draw` makes of its drawing.
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError>;
+    /// The JSON object of the track.
+    fn json(job: &TrackJob<Self>, t: &Track, w: &mut dyn Write) -> serde_json::Result<()>;
+    /// The report's first lines: the body, who follows and how.
+    fn head(job: &TrackJob<Self>, w: &mut dyn Write) -> std::io::Result<()>;
+    /// What the report's largest error covers.
+    const ERROR_NOTE: &str;
+    /// The mode without `--mode`: an arm's plan, a rig's follow (its only one).
+    const MODE: TrackMode;
+}
+
+/// The bytes of a drawing of `n` frames.
+type Draw<'a> = &'a dyn Fn(&Drawing, usize) -> Result<Vec<u8>, CliError>;
+
+/// The one track workflow: the flags checked, the path tracked, the picture drawn and the
+/// report written, for an arm or a rig.
+fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
+    body.check(args)?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let path = cli_path(args)?;
-    let solve = arm.options(&args.solver.settings(), None)?;
-    let start = arm.chain.start_pose().angles().to_vec();
-    if args.bound_first && mode != TrackMode::Follow {
+    let follower = body.follower(args)?;
+    let solve = body.solve_options(&args.solver.settings(), None)?;
+    if args.bound_first && args.mode.unwrap_or(B::MODE) != TrackMode::Follow {
         return Err(CliError::input("--bound-first: only applies with --mode follow"));
     }
     let options = track_options(solve, args.max_step_deg, args.bound_first);
-    let job = TrackJob { body: arm, start, follower: mode, path, options };
+    let job = TrackJob { body, start: body.start().to_vec(), follower, path, options };
     let t = job.run().map_err(CliError::input)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
-        let layer = job.layer(&t);
-        let drawing = Drawing::Track {
-            chain: &arm.chain,
-            poses: &poses,
-            layer: &layer,
-            caption: job.caption(&t),
-            fps: TRACK_FPS,
-        };
-        let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
+        let bytes = B::draw(&job, &t, &poses, &|drawing, n| draw_for_command(drawing, out.format, &args.picture, n))?;
         out.commit(&bytes)?;
     }
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
     let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
     output::stdout(|w| match format {
         TrackFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, &TrackJson::new(&job, &t))?;
+            B::json(&job, &t, &mut *w)?;
             writeln!(w)
         }
-        TrackFormat::Csv => csv(w, &t),
+        TrackFormat::Csv => csv_with(w, &t, body.pose_columns(), &|w, q| body.write_pose(w, q)),
         TrackFormat::Text => text(w, &job, &t),
     })
 }
@@ -207,12 +223,6 @@ fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
         .map_err(|_| CliError::input(format!("{label}: no samples (expected a header and one sample per row)")))
 }
 
-fn csv(w: &mut dyn Write, t: &Track) -> std::io::Result<()> {
-    let n = t.samples.first().map_or(0, |s| s.angles.len());
-    let angles = |w: &mut dyn Write, q: &[f64]| q.iter().try_for_each(|a| write!(w, ",{:?}", a.to_degrees()));
-    csv_with(w, t, (1..=n).map(|i| format!("theta{i}_deg")).collect(), &angles)
-}
-
 /// How a sample's pose is written: `,value` for each of the pose's columns.
 type PoseWriter<'a> = &'a dyn Fn(&mut dyn Write, &[f64]) -> std::io::Result<()>;
 
@@ -239,10 +249,10 @@ pub fn csv_with(w: &mut dyn Write, t: &Track, pose_columns: Vec<String>, pose: P
     Ok(())
 }
 
-fn text(w: &mut dyn Write, job: &TrackJob<Arm>, t: &Track) -> std::io::Result<()> {
+/// The short summary: the body, who follows, the samples, flips, steps and error.
+fn text<B: Tracked>(w: &mut dyn Write, job: &TrackJob<B>, t: &Track) -> std::io::Result<()> {
     let s = &t.summary;
-    writeln!(w, "arm       {} ({} links)", job.body.name, job.body.chain.len())?;
-    writeln!(w, "mode      {} (bound {}° per sample)", job.follower.name(), job.options.max_step.to_degrees())?;
+    B::head(job, w)?;
     writeln!(
         w,
         "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
@@ -260,93 +270,98 @@ fn text(w: &mut dyn Write, job: &TrackJob<Arm>, t: &Track) -> std::io::Result<()
         s.max_acceleration.to_degrees(),
         s.max_jerk.to_degrees()
     )?;
-    writeln!(w, "error     largest {:.3e}", s.max_error)
+    writeln!(w, "error     largest {:.3e}{}", s.max_error, B::ERROR_NOTE)
 }
 
-fn run_rig(args: &TrackArgs, rig: &Rig) -> Result<(), CliError> {
-    // An arm file's rig: its last link's tip follows the path unless --effector says otherwise.
-    let tip = rig.tip.map(|t| rig.skeleton.name(t).to_owned());
-    let Some(name) = args.effector.as_ref().or(tip.as_ref()) else {
-        return Err(CliError::input("--effector: required with --rig: the bone whose tip follows the path"));
-    };
-    if let Some(mode) = args.mode.filter(|&m| m != TrackMode::Follow) {
-        return Err(CliError::input(format!(
-            "--mode {}: a rig's effector is followed online only (--mode follow, the default with --rig)",
-            mode.name()
-        )));
+impl Tracked for Arm {
+    fn check(&self, _: &TrackArgs) -> Result<(), CliError> {
+        Ok(())
     }
-    let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-    let path = cli_path(args)?;
-    let targets = args.goal.iter().map(|g| Target::of(g, rig)).collect::<Result<Vec<_>, _>>()?;
-    let task = if targets.is_empty() && args.rig_task.pin.is_empty() {
-        args.rig_task.check_against(&[])?;
-        RigTask { mix: args.rig_task.mix.unwrap_or(1.0), ..RigTask::default() }
-    } else {
-        args.rig_task.task(&rig.skeleton, &targets)?
-    };
-    let bone = effector_index(rig, name, &task, "--effector").map_err(CliError::input)?;
-    let solve = rig.options(&args.solver.settings(), None)?;
-    let options = track_options(solve, args.max_step_deg, args.bound_first);
-    let start = rig.skeleton.start_angles().to_vec();
-    let job = TrackJob { body: rig, start, follower: RigFollower { bone, task }, path, options };
-    let t = job.run().map_err(CliError::input)?;
-    let drew = picture.is_some();
-    if let Some(out) = picture {
-        let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
-        let animation = poses_animation(rig, &poses);
+
+    fn follower(&self, args: &TrackArgs) -> Result<TrackMode, CliError> {
+        Ok(args.mode.unwrap_or(Self::MODE))
+    }
+
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
+        let layer = job.layer(t);
+        let drawing =
+            Drawing::Track { chain: &job.body.chain, poses, layer: &layer, caption: job.caption(t), fps: TRACK_FPS };
+        draw(&drawing, poses.len())
+    }
+
+    fn json(job: &TrackJob<Self>, t: &Track, w: &mut dyn Write) -> serde_json::Result<()> {
+        serde_json::to_writer_pretty(w, &TrackJson::new(job, t))
+    }
+
+    fn head(job: &TrackJob<Self>, w: &mut dyn Write) -> std::io::Result<()> {
+        writeln!(w, "arm       {} ({} links)", job.body.name, job.body.chain.len())?;
+        writeln!(w, "mode      {} (bound {}° per sample)", job.follower.name(), job.options.max_step.to_degrees())
+    }
+
+    const ERROR_NOTE: &str = "";
+    const MODE: TrackMode = TrackMode::Plan;
+}
+
+impl Tracked for Rig {
+    fn check(&self, args: &TrackArgs) -> Result<(), CliError> {
+        // An arm file's rig: its last link's tip follows the path unless --effector says otherwise.
+        if args.effector.is_none() && self.tip.is_none() {
+            return Err(CliError::input("--effector: required with --rig: the bone whose tip follows the path"));
+        }
+        if let Some(mode) = args.mode.filter(|&m| m != TrackMode::Follow) {
+            return Err(CliError::input(format!(
+                "--mode {}: a rig's effector is followed online only (--mode follow, the default with --rig)",
+                mode.name()
+            )));
+        }
+        Ok(())
+    }
+
+    fn follower(&self, args: &TrackArgs) -> Result<RigFollower, CliError> {
+        let tip = self.tip.map(|t| self.skeleton.name(t));
+        let name = args.effector.as_deref().or(tip).unwrap_or_default();
+        let targets = args.goal.iter().map(|g| Target::of(g, self)).collect::<Result<Vec<_>, _>>()?;
+        let task = if targets.is_empty() && args.rig_task.pin.is_empty() {
+            args.rig_task.check_against(&[])?;
+            RigTask { mix: args.rig_task.mix.unwrap_or(1.0), ..RigTask::default() }
+        } else {
+            args.rig_task.task(&self.skeleton, &targets)?
+        };
+        let bone = effector_index(self, name, &task, "--effector").map_err(CliError::input)?;
+        Ok(RigFollower { bone, task })
+    }
+
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
+        let animation = poses_animation(job.body, poses);
         let last = poses.last().map_or(job.start.as_slice(), Vec::as_slice);
         let ranges = job.options.solve.limits != LimitMode::Ignore;
-        let mut figure = rig_figure(rig, last, &job.follower.task, ranges, Some(job.caption(&t)));
+        let mut figure = rig_figure(job.body, last, &job.follower.task, ranges, Some(job.caption(t)));
         if let Some(goal) = t.samples.last().map(|s| s.goal) {
-            figure.goals.push(ikarus_render::BoneGoal { bone, position: goal.target(), angle: goal.orientation() });
+            let (bone, position, angle) = (job.follower.bone, goal.target(), goal.orientation());
+            figure.goals.push(ikarus_render::BoneGoal { bone, position, angle });
         }
-        let drawing = Drawing::RigMotion { figure, animation: &animation, fps: TRACK_FPS };
-        let bytes = draw_for_command(&drawing, out.format, &args.picture, poses.len())?;
-        out.commit(&bytes)?;
+        draw(&Drawing::RigMotion { figure, animation: &animation, fps: TRACK_FPS }, poses.len())
     }
-    // With --out the picture is the result: stdout stays quiet unless a format is asked for.
-    let Some(format) = report_format(args.format, drew, TrackFormat::Text, TrackFormat::Json) else { return Ok(()) };
-    output::stdout(|w| match format {
-        TrackFormat::Json => {
-            serde_json::to_writer_pretty(&mut *w, &job.json(&t))?;
-            writeln!(w)
-        }
-        TrackFormat::Csv => {
-            let columns = crate::report::pose_columns(&rig.skeleton);
-            csv_with(w, &t, columns, &|w, q| write_pose(w, rig, q))
-        }
-        TrackFormat::Text => rig_text(w, &job, &t),
-    })
-}
 
-fn rig_text(w: &mut dyn Write, job: &TrackJob<Rig>, t: &Track) -> std::io::Result<()> {
-    let s = &t.summary;
-    let sk = &job.body.skeleton;
-    writeln!(w, "rig       {} ({} bones)", job.body.name, sk.len())?;
-    let held: Vec<String> = job
-        .follower
-        .task
-        .goals
-        .iter()
-        .map(|g| format!("{} at ({}, {})", sk.name(g.bone), g.goal.target().x, g.goal.target().y))
-        .chain(job.follower.task.pins.iter().map(|p| format!("{} pinned", sk.name(p.bone))))
-        .collect();
-    let held = if held.is_empty() { String::new() } else { format!("; held: {}", held.join(", ")) };
-    writeln!(w, "effector  {}{held}", sk.name(job.follower.bone))?;
-    writeln!(w, "mode      follow (bound {}° per sample)", job.options.max_step.to_degrees())?;
-    writeln!(
-        w,
-        "samples   {}: {} reached, {} limited, {} unreachable, {} stalled",
-        s.samples, s.reached, s.limited, s.unreachable, s.stalled
-    )?;
-    let which = if s.flips.is_empty() { String::new() } else { format!(" at samples {:?}", s.flips) };
-    writeln!(w, "flips     {}{which}", s.flips.len())?;
-    writeln!(
-        w,
-        "steps     largest {:.3}°; acceleration {:.3}°, jerk {:.3}° per sample",
-        s.max_step.to_degrees(),
-        s.max_acceleration.to_degrees(),
-        s.max_jerk.to_degrees()
-    )?;
-    writeln!(w, "error     largest {:.3e} (every effector: the followed tip, held goals, pins)", s.max_error)
+    fn json(job: &TrackJob<Self>, t: &Track, w: &mut dyn Write) -> serde_json::Result<()> {
+        serde_json::to_writer_pretty(w, &job.json(t))
+    }
+
+    fn head(job: &TrackJob<Self>, w: &mut dyn Write) -> std::io::Result<()> {
+        let sk = &job.body.skeleton;
+        writeln!(w, "rig       {} ({} bones)", job.body.name, sk.len())?;
+        let task = &job.follower.task;
+        let held: Vec<String> = task
+            .goals
+            .iter()
+            .map(|g| format!("{} at ({}, {})", sk.name(g.bone), g.goal.target().x, g.goal.target().y))
+            .chain(task.pins.iter().map(|p| format!("{} pinned", sk.name(p.bone))))
+            .collect();
+        let held = if held.is_empty() { String::new() } else { format!("; held: {}", held.join(", ")) };
+        writeln!(w, "effector  {}{held}", sk.name(job.follower.bone))?;
+        writeln!(w, "mode      follow (bound {}° per sample)", job.options.max_step.to_degrees())
+    }
+
+    const ERROR_NOTE: &str = " (every effector: the followed tip, held goals, pins)";
+    const MODE: TrackMode = TrackMode::Follow;
 }
