@@ -373,10 +373,19 @@ fn bad_joint_keys_of_an_arm_are_one_line_naming_the_link() {
         let want = format!("arm file {}: {want}", path.display());
         assert!(err.starts_with(&format!("ikarus: {want}")) && err.trim_end().lines().count() == 1, "{extra}: {err}");
     }
+    // A command that takes a chain only refuses it in one line; `animate` takes it as the rig
+    // of its links, its goal on the last link's tip.
     let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/rrp.toml");
-    let err = fails(&["animate", "--arm", arm.to_str().unwrap(), "--goal", "1,1"], 2);
+    let arm = arm.to_str().unwrap();
+    let err = fails(&["reach", "--arm", arm, "--point", "1,1"], 2);
     assert!(err.contains("rrp.toml: links[2].joint: an arm with offsets or slides is a one-branch rig"), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    let answer = json(&["animate", "--arm", arm, "--goal", "1,1", "--frames", "5", "--format", "json"]);
+    let last = &answer["frames"][4];
+    let tip = last["joints"]["link2"].as_array().unwrap();
+    let (x, y) = (tip[0].as_f64().unwrap(), tip[1].as_f64().unwrap());
+    assert!((x - 1.0).hypot(y - 1.0) < 1e-5, "{last}");
+    assert!(last["extensions"]["link2"].is_f64(), "{last}");
 }
 
 /// Issue 25: `workspace` over the body. A rig the exact region cannot take (the PRR arm: a slide,

@@ -154,7 +154,8 @@ impl Arm {
         if let Some((i, key)) = file.joint_key() {
             return Err(CliError::input(format!(
                 "{label}: links[{i}].{key}: an arm with offsets or slides is a one-branch rig, which this \
-                 command does not take (solve, track and workspace do, and the API's solve)"
+                 command does not take (solve, animate, track and workspace do; in the API solve, track \
+                 and workspace)"
             )));
         }
         let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;

@@ -22,7 +22,7 @@ mod columns;
 mod single;
 mod write;
 
-pub use write::{angle_columns, write_pose};
+pub use write::write_pose;
 
 // Floats in CSV are written with `{:?}`: the shortest text that reads back to the same
 // number, in scientific notation where that is shorter (1.2e-7, not 0.00000012).
