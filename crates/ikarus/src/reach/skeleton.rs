@@ -1,24 +1,6 @@
 //! The sampled region of one bone's tip of a [`Skeleton`]: what [`super::sample`] does for a
-//! chain, for a body its two-joint slices cannot take (offsets, slides, a tree).
-//!
-//! Every joint on the path from the root to the bone is sampled (the others stay at their start
-//! values: they do not move the tip), by the same plans as a chain's sampled joints (a regular
-//! grid for one or two, the warped R_d sequence for three or more; see the [module
-//! docs](super)), and forward kinematics puts the tip of each sample into its cell. A joint
-//! samples its range: a revolute one its limits (with `limits` on) or a full turn; a prismatic
-//! one its limits whether or not `limits` is on (a slide's limits are its rail), or, without
-//! limits, its start ± its bone's length, the range the solver's restarts draw a free slide
-//! from. The grid is the square `base ± R`, `R` the skeleton's [`Skeleton::max_reach`] (no tip
-//! gets farther), and [`Workspace::annulus`] is the disk of radius `R`, a superset.
-//!
-//! So the grid is a sample, never exact ([`Workspace::is_exact`] is `false`): **sound** (each
-//! occupied cell holds a reachable tip, a pose within the ranges), and **complete** only up to
-//! the sampling: a cell the sampled tips miss stays empty, and a cell the region only touches
-//! is occupied (the rule of rasterised points, which over-counts the area by about
-//! `0.64 · h · perimeter` for a cell side `h`; a chain's grid uses cell centres instead). The
-//! count is [`WorkspaceOptions::samples`], by default [`SKELETON_SAMPLES_PER_CELL`] per cell
-//! of the grid (at most 2²⁴). Deterministic: each sample is a function of its index, and the
-//! cells are merged by OR, whatever the threads.
+//! chain, for a body its two-joint slices cannot take (offsets, slides, a tree). See
+//! [`sample_skeleton`].
 
 use nalgebra::Point2;
 
@@ -49,8 +31,27 @@ fn range(skeleton: &Skeleton, j: usize, use_limits: bool) -> Range {
     }
 }
 
-/// Samples the region the tip of bone `bone` of `skeleton` reaches; see the [module
-/// docs](self). Its errors are the options'.
+/// Samples the region the tip of bone `bone` of `skeleton` reaches. Its errors are the
+/// options'.
+///
+/// Every joint on the path from the root to the bone is sampled (the others stay at their start
+/// values: they do not move the tip), by the same plans as a chain's sampled joints (a regular
+/// grid for one or two, the warped R_d sequence for three or more; see the [module
+/// docs](super)), and forward kinematics puts the tip of each sample into its cell. A joint
+/// samples its range: a revolute one its limits (with `limits` on) or a full turn; a prismatic
+/// one its limits whether or not `limits` is on (a slide's limits are its rail), or, without
+/// limits, its start ± its bone's length, the range the solver's restarts draw a free slide
+/// from. The grid is the square `base ± R`, `R` the skeleton's [`Skeleton::max_reach`] (no tip
+/// gets farther), and [`Workspace::annulus`] is the disk of radius `R`, a superset.
+///
+/// So the grid is a sample, never exact ([`Workspace::is_exact`] is `false`): **sound** (each
+/// occupied cell holds a reachable tip, a pose within the ranges), and **complete** only up to
+/// the sampling: a cell the sampled tips miss stays empty, and a cell the region only touches
+/// is occupied (the rule of rasterised points, which over-counts the area by about
+/// `0.64 · h · perimeter` for a cell side `h`; a chain's grid uses cell centres instead). The
+/// count is [`WorkspaceOptions::samples`], by default [`SKELETON_SAMPLES_PER_CELL`] per cell
+/// of the grid (at most 2²⁴). Deterministic: each sample is a function of its index, and the
+/// cells are merged by OR, whatever the threads.
 ///
 /// # Panics
 /// If `bone >= skeleton.len()`.
