@@ -41,7 +41,12 @@ test("arm files: every example loads, a saved arm is the CLI's format, the arm s
     const { page, errors } = await openPage(browser);
     await page.goto(url);
     await ready(page);
-    const files = readdirSync(arms).filter((f) => f.endsWith(".toml")).sort();
+    // An arm with joint keys (rrp.toml's slide) is a one-branch rig, which the page's arm
+    // editor refuses (the CLI answers it as a rig): the chains only.
+    const jointKeys = /^(offset|joint|slide|extension|limits) =/m;
+    const files = readdirSync(arms)
+      .filter((f) => f.endsWith(".toml") && !jointKeys.test(readFileSync(join(arms, f), "utf8")))
+      .sort();
     assert.ok(files.length >= 3, `${files}`);
     for (const f of files) {
       const cli = JSON.parse(execFileSync(binary, ["solve", "--arm", join(arms, f), "--goal", "1,1", "--format", "json"], { encoding: "utf8" }));
