@@ -2,8 +2,8 @@
 //! orientation, with no limits to enforce and no per-joint rates — the commonest solve — as
 //! one lean loop. Its arithmetic ([`try_step`] and the forward kinematics) is written once over
 //! [`Lanes`]: [`run_one`] drives it for one goal (`f64`, inside
-//! [`attempt`](super::attempt::attempt)), [`run`] for four side by side (`Quad`, in
-//! [`Solver::solve_batch`](super::Solver::solve_batch)).
+//! [`attempt`](super::attempt::attempt)), [`run`] for four side by side (AVX2 lanes or
+//! `Quad`s, in [`Solver::solve_batch`](super::Solver::solve_batch), through [`run_lanes`]).
 //!
 //! It runs exactly the arithmetic of the general loop for that case (the loop in `attempt.rs`,
 //! the line search, `compute_delta`, the 2×2 [`damped_2x2`](super::step::damped_2x2) and
@@ -20,7 +20,7 @@
 
 use super::{LimitMode, Method, SolveOptions, Status};
 use crate::chain::Chain;
-use crate::lanes::{Lanes, sin_cos};
+use crate::lanes::{Lanes, Quad, sin_cos};
 
 /// The share of the linearly predicted decrease a step must achieve (the line search's).
 const SUFFICIENT_DECREASE: f64 = 0.1;
@@ -79,7 +79,7 @@ pub(super) enum Taken {
 
 /// The state of the goals in the lanes, struct of arrays (one `L` per joint), kept between
 /// solves so that the fast path allocates nothing once it has grown.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub(super) struct Buffers<L> {
     angles: Vec<L>,
     trial: Vec<L>,
@@ -91,6 +91,22 @@ pub(super) struct Buffers<L> {
     delta: Vec<L>,
     /// One lane's angles, handed to `emit`.
     lane_angles: Vec<f64>,
+}
+
+impl<L> Default for Buffers<L> {
+    fn default() -> Self {
+        let none = Vec::new;
+        Buffers {
+            angles: none(),
+            trial: none(),
+            xs: none(),
+            ys: none(),
+            trial_xs: none(),
+            trial_ys: none(),
+            delta: none(),
+            lane_angles: Vec::new(),
+        }
+    }
 }
 
 impl<L: Lanes> Buffers<L> {
@@ -152,7 +168,6 @@ pub(super) fn run<L: Lanes>(
     let n = chain.len();
     let zero = L::splat(0.0);
     st.fit(n);
-    let mut lane_angles = std::mem::take(&mut st.lane_angles);
     let mut slots = [Slot::default(); 16];
     let slots = &mut slots[..L::LANES];
     let (mut tx, mut ty) = (zero, zero);
@@ -188,7 +203,6 @@ pub(super) fn run<L: Lanes>(
             }
         }
         if slots.iter().all(|s| s.goal.is_none()) {
-            st.lane_angles = lane_angles;
             return;
         }
         if any_new {
@@ -210,7 +224,9 @@ pub(super) fn run<L: Lanes>(
         let current = dx * dx + dy * dy;
         let mut finished = false;
         for (k, slot) in slots.iter_mut().enumerate() {
-            let Some(goal) = slot.goal else { continue };
+            if slot.goal.is_none() {
+                continue;
+            }
             if slot.measured {
                 continue;
             }
@@ -218,7 +234,7 @@ pub(super) fn run<L: Lanes>(
             let squared = current.lane(k);
             if !(squared.is_finite() && squared >= f64::MIN_POSITIVE) {
                 // The general loop measures this with `hypot`: leave it to it.
-                finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+                finish(st, k, None, slot, phi, f64::NAN, &mut emit);
                 finished = true;
                 continue;
             }
@@ -235,7 +251,7 @@ pub(super) fn run<L: Lanes>(
                 None
             };
             if let Some(status) = status {
-                finish(st, k, goal, Some(status), slot, &mut lane_angles, tip_x, tip_y, phi, error, &mut emit);
+                finish(st, k, Some(status), slot, phi, error, &mut emit);
                 finished = true;
             }
         }
@@ -275,7 +291,9 @@ pub(super) fn run<L: Lanes>(
         nu = L::select(take, two, L::select(reject, nu * two, nu));
 
         for (k, slot) in slots.iter_mut().enumerate() {
-            let Some(goal) = slot.goal else { continue };
+            if slot.goal.is_none() {
+                continue;
+            }
             if L::mask_lane(take, k) {
                 slot.iteration += 1;
                 slot.tries = 0;
@@ -288,10 +306,10 @@ pub(super) fn run<L: Lanes>(
                 slot.tries += 1;
                 if slot.tries > opts.backtrack {
                     // Every damped try failed: the general loop turns to the transpose step.
-                    finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+                    finish(st, k, None, slot, phi, f64::NAN, &mut emit);
                 }
             } else {
-                finish(st, k, goal, None, slot, &mut lane_angles, tip_x, tip_y, phi, f64::NAN, &mut emit);
+                finish(st, k, None, slot, phi, f64::NAN, &mut emit);
             }
         }
     }
@@ -501,50 +519,56 @@ impl Buffers<f64> {
     }
 }
 
-/// Hands lane `k`'s goal to `emit` and frees the lane.
-#[allow(clippy::too_many_arguments)]
+/// Hands lane `k`'s goal to `emit` and frees the lane. The lane's angles and points in `st`
+/// are the pose it ends on (a lane that finishes has not taken this iteration's step), and
+/// lane `k` of `phi` is that pose's orientation.
 #[inline(never)]
 fn finish<L: Lanes>(
-    st: &Buffers<L>,
+    st: &mut Buffers<L>,
     k: usize,
-    goal: usize,
     status: Option<Status>,
     slot: &mut Slot,
-    angles: &mut [f64],
-    tip_x: L,
-    tip_y: L,
     phi: L,
     error: f64,
     emit: &mut impl FnMut(usize, End<'_>),
 ) {
-    for (o, a) in angles.iter_mut().zip(&st.angles) {
+    let Some(goal) = slot.goal else { return };
+    let n = st.angles.len();
+    for (o, a) in st.lane_angles.iter_mut().zip(&st.angles) {
         *o = a.lane(k);
     }
     emit(
         goal,
         End {
             status,
-            angles,
+            angles: &st.lane_angles,
             iterations: slot.iteration,
             error,
-            tip: (tip_x.lane(k), tip_y.lane(k)),
+            tip: (st.xs[n].lane(k), st.ys[n].lane(k)),
             phi: phi.lane(k),
         },
     );
     *slot = Slot::default();
 }
 
-/// The lanes of a batch: four (one AVX2 instruction; eight lanes for AVX-512 measured no faster).
-pub(super) type Batch = crate::lanes::Quad;
+/// The buffers of [`run_lanes`]: AVX2 lanes where the processor has them, else [`Quad`]s.
+/// Only the kind that runs grows.
+#[derive(Debug, Clone, Default)]
+pub(super) struct BatchBuffers {
+    #[cfg(target_arch = "x86_64")]
+    avx: Buffers<crate::lanes::Avx>,
+    quad: Buffers<Quad>,
+}
 
-/// [`run`] on [`Batch`] lanes, compiled for AVX2 where the processor has it
-/// (checked at run time), else for the target's baseline (SSE2 on x86-64). Every variant runs
-/// the same IEEE operations per lane, so the results do not depend on which one runs.
+/// [`run`] four goals at a time: on [`Avx`](crate::lanes::Avx) lanes in a function compiled
+/// for AVX2 where the processor has it (checked at run time), else on [`Quad`] lanes compiled
+/// for the target's baseline (SSE2 on x86-64). Both run the same IEEE operations per lane, so
+/// the results do not depend on which one runs.
 pub(super) fn run_lanes(
     chain: &Chain,
     opts: &SolveOptions,
     start: &[f64],
-    st: &mut Buffers<Batch>,
+    st: &mut BatchBuffers,
     goals: impl Iterator<Item = (usize, f64, f64)>,
     emit: impl FnMut(usize, End<'_>),
 ) {
@@ -555,7 +579,7 @@ pub(super) fn run_lanes(
             chain: &Chain,
             opts: &SolveOptions,
             start: &[f64],
-            st: &mut Buffers<Batch>,
+            st: &mut Buffers<crate::lanes::Avx>,
             goals: impl Iterator<Item = (usize, f64, f64)>,
             emit: impl FnMut(usize, End<'_>),
         ) {
@@ -565,12 +589,12 @@ pub(super) fn run_lanes(
             // SAFETY: the processor has AVX2 (checked just above).
             #[allow(unsafe_code)]
             unsafe {
-                avx2(chain, opts, start, st, goals, emit);
+                avx2(chain, opts, start, &mut st.avx, goals, emit);
             }
             return;
         }
     }
-    run(chain, opts, opts.max_iterations, start, st, goals, emit);
+    run(chain, opts, opts.max_iterations, start, &mut st.quad, goals, emit);
 }
 
 #[cfg(test)]
@@ -595,7 +619,7 @@ mod tests {
             })
             .collect();
         let mut seen = std::collections::BTreeMap::new();
-        let mut buffers = Buffers::<Batch>::default();
+        let mut buffers = Buffers::<Quad>::default();
         let mut emitted = vec![0; goals.len()];
         let start = chain.start_pose().angles().to_vec();
         run(&chain, &opts, opts.max_iterations, &start, &mut buffers, goals.iter().copied(), |i, end| {
@@ -611,5 +635,49 @@ mod tests {
             *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
         });
         assert!(seen.contains_key("iteration_limit"), "{seen:?}");
+    }
+
+    /// Everything a goal's end hands out, as bits.
+    fn ends<L: Lanes>(chain: &Chain, opts: &SolveOptions, goals: &[(usize, f64, f64)]) -> Vec<Vec<u64>> {
+        let mut buffers = Buffers::<L>::default();
+        let mut out = vec![Vec::new(); goals.len()];
+        let start = chain.start_pose().angles().to_vec();
+        run(chain, opts, opts.max_iterations, &start, &mut buffers, goals.iter().copied(), |i, end| {
+            let status = end.status.map_or(u64::MAX, |s| s as u64);
+            let numbers = [end.error, end.tip.0, end.tip.1, end.phi].into_iter().chain(end.angles.iter().copied());
+            out[i] = [status, u64::from(end.iterations)].into_iter().chain(numbers.map(f64::to_bits)).collect();
+        });
+        out
+    }
+
+    /// The explicit AVX lanes (what `solve_batch` runs on an AVX2 processor) and the portable
+    /// `Quad` lanes (what it runs elsewhere) end every goal alike, bit for bit, one goal per lane
+    /// or many through the same lane.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx_and_portable_lanes_end_every_goal_alike() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let mut rng = crate::rng::SplitMix64(17);
+        for links in [3, 7, 20] {
+            let chain = crate::fixtures::random_chain(&mut rng, links, false);
+            let reach = chain.max_reach();
+            let goals: Vec<(usize, f64, f64)> =
+                (0..300).map(|i| (i, 2.2 * reach * (rng.unit() - 0.5), 2.2 * reach * (rng.unit() - 0.5))).collect();
+            for opts in [
+                SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() },
+                SolveOptions {
+                    limits: LimitMode::Ignore,
+                    max_iterations: 5,
+                    max_step: Some(0.1),
+                    ..SolveOptions::default()
+                },
+            ] {
+                let quad = ends::<Quad>(&chain, &opts, &goals);
+                assert!(quad.iter().all(|e| !e.is_empty()), "every goal ends once");
+                assert_eq!(ends::<crate::lanes::Avx>(&chain, &opts, &goals), quad, "{links} links");
+            }
+        }
     }
 }

@@ -40,7 +40,7 @@ pub struct Solver {
     /// The exact regions of the last chain solved with limits, for the verdict.
     reach: ReachCache,
     /// The batch's lanes ([`Solver::solve_batch`]).
-    lanes: fast::Buffers<fast::Batch>,
+    lanes: fast::BatchBuffers,
     /// The goals of a batch left to the scalar solver.
     pending: Vec<usize>,
 }
@@ -57,7 +57,7 @@ impl Solver {
             first_level_scratch: Scratch::default(),
             rig_work: Default::default(),
             reach: ReachCache::default(),
-            lanes: fast::Buffers::default(),
+            lanes: fast::BatchBuffers::default(),
             pending: Vec::new(),
         })
     }
