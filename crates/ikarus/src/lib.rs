@@ -45,6 +45,7 @@
 
 pub mod angle;
 pub mod chain;
+pub mod character;
 pub mod closed_form;
 pub mod ease;
 pub mod goal;

@@ -1,0 +1,626 @@
+//! Imported characters (Spine and DragonBones skeletons), held as their runtimes hold them:
+//! bones with a full affine local transform (translation, rotation, scale, shear) and an
+//! inherit mode, IK constraints applied one after another in their order, and animation clips
+//! whose timelines key the bones' transforms and the constraints' settings.
+//!
+//! This module is the model only: what a character *is*, validated once by [`Character::new`].
+//! Reading the files belongs to the edge (`ikarus-edge`), which names fields and values in its
+//! errors; posing a character as its runtime does lives beside this model.
+//!
+//! Conventions: y points up (a DragonBones file, y down, is flipped when it is read), angles are
+//! radians, counter-clockwise positive, and lengths are in the file's own units. A bone's local
+//! transform is relative to its parent's frame (the skeleton's frame for a root bone).
+
+use thiserror::Error;
+
+/// A character: bones listed parent first, IK constraints, clips, and the skeleton's own
+/// placement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Character {
+    bones: Vec<CharacterBone>,
+    constraints: Vec<IkConstraint>,
+    clips: Vec<Clip>,
+    placement: Placement,
+    unsupported: Vec<Unsupported>,
+}
+
+/// The skeleton's own position and scale: every world transform is the bones' own transform
+/// scaled by `scale` and moved by `position` (Spine's `skeleton.x`, `y`, `scaleX`, `scaleY`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// Where the skeleton's origin goes in the world.
+    pub position: [f64; 2],
+    /// The skeleton's scale along x and y (a negative one mirrors it).
+    pub scale: [f64; 2],
+}
+
+impl Default for Placement {
+    fn default() -> Self {
+        Placement { position: [0.0, 0.0], scale: [1.0, 1.0] }
+    }
+}
+
+/// One bone.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CharacterBone {
+    /// Its name in the file.
+    pub name: String,
+    /// The parent's index, always lower than this bone's; `None` for a root.
+    pub parent: Option<usize>,
+    /// Length along the bone's local x axis (0 for a bone that is only a frame).
+    pub length: f64,
+    /// The setup pose's local transform.
+    pub setup: LocalTransform,
+    /// What it takes from its parent's world transform.
+    pub inherit: Inherit,
+}
+
+/// A local transform in the parent's frame. The local matrix is
+/// `[[cos(r + shx)·sx, cos(r + π/2 + shy)·sy], [sin(r + shx)·sx, sin(r + π/2 + shy)·sy]]`
+/// with `r = rotation`, and the origin is `(x, y)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalTransform {
+    /// Origin x in the parent's frame.
+    pub x: f64,
+    /// Origin y in the parent's frame.
+    pub y: f64,
+    /// Radians, counter-clockwise.
+    pub rotation: f64,
+    /// Scale along the local x axis.
+    pub scale_x: f64,
+    /// Scale along the local y axis.
+    pub scale_y: f64,
+    /// Radians.
+    pub shear_x: f64,
+    /// Radians.
+    pub shear_y: f64,
+}
+
+impl Default for LocalTransform {
+    fn default() -> Self {
+        LocalTransform { x: 0.0, y: 0.0, rotation: 0.0, scale_x: 1.0, scale_y: 1.0, shear_x: 0.0, shear_y: 0.0 }
+    }
+}
+
+/// What a bone takes from its parent's world transform (Spine's `inherit`, called `transform`
+/// in 3.8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Inherit {
+    /// Translation, rotation, scale, shear and reflection.
+    #[default]
+    Normal,
+    /// The parent's translation only.
+    OnlyTranslation,
+    /// Translation and scale; not rotation nor reflection.
+    NoRotationOrReflection,
+    /// Translation, rotation and reflection; not scale.
+    NoScale,
+    /// Translation and rotation; not scale nor reflection.
+    NoScaleOrReflection,
+}
+
+impl Inherit {
+    /// Every mode, in the order above.
+    pub const ALL: [Inherit; 5] = [
+        Inherit::Normal,
+        Inherit::OnlyTranslation,
+        Inherit::NoRotationOrReflection,
+        Inherit::NoScale,
+        Inherit::NoScaleOrReflection,
+    ];
+
+    /// Spine's name of the mode (`normal`, `onlyTranslation`, …).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Inherit::Normal => "normal",
+            Inherit::OnlyTranslation => "onlyTranslation",
+            Inherit::NoRotationOrReflection => "noRotationOrReflection",
+            Inherit::NoScale => "noScale",
+            Inherit::NoScaleOrReflection => "noScaleOrReflection",
+        }
+    }
+}
+
+/// Whose rules an IK constraint follows when the character is posed as its runtime does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IkRule {
+    /// Spine's: one bone aims, two bones by the law of cosines in the parent's parent's frame,
+    /// with softness, stretch, compress and uniform.
+    Spine,
+    /// DragonBones': one bone aims, two bones by a circle–circle intersection in world space.
+    DragonBones,
+}
+
+/// The bones an IK constraint moves: one, or a parent and its child.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IkBones {
+    /// One bone, which aims at the target.
+    One(usize),
+    /// A parent and its child (the child's tip reaches for the target).
+    Two {
+        /// The parent bone's index.
+        parent: usize,
+        /// The child bone's index.
+        child: usize,
+    },
+}
+
+/// An IK constraint's settings that clips can key.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IkSettings {
+    /// How much of the solved rotation is applied, 0 to 1.
+    pub mix: f64,
+    /// The width of the band near full reach over which a two-bone limb straightens smoothly
+    /// (Spine; 0 is none). In the file's units, before the skeleton's scale.
+    pub softness: f64,
+    /// Bend counter-clockwise (`true`, Spine's `bendPositive`) or clockwise.
+    pub bend_positive: bool,
+    /// One bone: shrink along x to reach a target nearer than its length.
+    pub compress: bool,
+    /// Stretch along x to reach a target beyond the bone's (the limb's) length.
+    pub stretch: bool,
+}
+
+impl Default for IkSettings {
+    fn default() -> Self {
+        IkSettings { mix: 1.0, softness: 0.0, bend_positive: true, compress: false, stretch: false }
+    }
+}
+
+/// An IK constraint: its bones' last tip is brought to the target bone's origin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkConstraint {
+    /// Its name in the file.
+    pub name: String,
+    /// Constraints are applied in increasing `order` (ties: the order they are listed in).
+    pub order: u32,
+    /// The bone or bones it moves.
+    pub bones: IkBones,
+    /// The bone whose world origin is the target.
+    pub target: usize,
+    /// The settings of the setup pose (clips key them).
+    pub setup: IkSettings,
+    /// With stretch or compress, scale y as x (Spine's `uniform`).
+    pub uniform: bool,
+    /// Whose rules posing follows.
+    pub rule: IkRule,
+}
+
+/// A constraint the character's file has and that posing leaves inactive (transform, path,
+/// physics), reported to the user.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unsupported {
+    /// `transform`, `path`, `physics`, …
+    pub kind: String,
+    /// Its name in the file.
+    pub name: String,
+}
+
+/// A named animation: timelines over the bones' local transforms and the constraints'
+/// settings. Times are seconds from the clip's start.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clip {
+    /// Its name in the file.
+    pub name: String,
+    /// The latest key time of any timeline.
+    pub duration: f64,
+    /// The bones' timelines.
+    pub bones: Vec<BoneTimeline>,
+    /// The constraints' timelines.
+    pub constraints: Vec<IkTimeline>,
+}
+
+/// What a bone timeline keys. Rotation, translation and shear keys add to the setup values;
+/// scale keys multiply the setup scale.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BoneProperty {
+    /// One channel: radians.
+    Rotate,
+    /// Two channels: x, y.
+    Translate,
+    /// One channel: x.
+    TranslateX,
+    /// One channel: y.
+    TranslateY,
+    /// Two channels: x, y.
+    Scale,
+    /// One channel: x.
+    ScaleX,
+    /// One channel: y.
+    ScaleY,
+    /// Two channels, radians: x, y.
+    Shear,
+    /// One channel, radians: x.
+    ShearX,
+    /// One channel, radians: y.
+    ShearY,
+}
+
+impl BoneProperty {
+    /// How many values a key of this property holds (1 or 2).
+    pub fn channels(self) -> usize {
+        match self {
+            BoneProperty::Translate | BoneProperty::Scale | BoneProperty::Shear => 2,
+            BoneProperty::Rotate
+            | BoneProperty::TranslateX
+            | BoneProperty::TranslateY
+            | BoneProperty::ScaleX
+            | BoneProperty::ScaleY
+            | BoneProperty::ShearX
+            | BoneProperty::ShearY => 1,
+        }
+    }
+}
+
+/// How a channel goes from a key to the next.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Interpolation {
+    /// A straight line to the next key's value.
+    Linear,
+    /// Holds the key's value until the next key.
+    Stepped,
+    /// A cubic Bézier from `(time, value)` of this key to that of the next, with these two
+    /// control points `[time, value]` in absolute units (Spine 4's `curve` numbers).
+    Bezier {
+        /// The first control point, `[time, value]`.
+        c1: [f64; 2],
+        /// The second control point, `[time, value]`.
+        c2: [f64; 2],
+    },
+}
+
+/// One key of a bone timeline: `values[..channels]` are used.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoneKey {
+    /// Seconds from the clip's start.
+    pub time: f64,
+    /// The key's values (`channels()` of them).
+    pub values: [f64; 2],
+    /// Per channel, toward the next key (ignored on the last key).
+    pub curves: [Interpolation; 2],
+}
+
+/// A bone's timeline for one property, keys in increasing time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoneTimeline {
+    /// The bone's index.
+    pub bone: usize,
+    /// What the keys hold.
+    pub property: BoneProperty,
+    /// The keys, in increasing time.
+    pub keys: Vec<BoneKey>,
+}
+
+/// One key of an IK constraint's timeline.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IkKey {
+    /// Seconds from the clip's start.
+    pub time: f64,
+    /// The settings at this key.
+    pub settings: IkSettings,
+    /// Toward the next key, for `mix` and `softness` (the flags are stepped).
+    pub curves: [Interpolation; 2],
+}
+
+/// An IK constraint's timeline, keys in increasing time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IkTimeline {
+    /// The constraint's index.
+    pub constraint: usize,
+    /// The keys, in increasing time.
+    pub keys: Vec<IkKey>,
+}
+
+/// A character that breaks the model's rules. The edge reads files by name and words its own
+/// errors; these name indices.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum CharacterError {
+    /// The character has no bones.
+    #[error("bones: a character needs at least one bone, got none")]
+    NoBones,
+    /// A bone's parent is not listed before it.
+    #[error("bones[{bone}].parent: {parent} is not an earlier bone")]
+    ParentOrder {
+        /// The bone's index.
+        bone: usize,
+        /// Its parent's index.
+        parent: usize,
+    },
+    /// A bone's number is NaN or infinite.
+    #[error("bones[{bone}].{field}: must be finite, got {value}")]
+    NotFinite {
+        /// The bone's index.
+        bone: usize,
+        /// The field's name in Spine's terms.
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
+    /// A bone's length is negative.
+    #[error("bones[{bone}].length: must not be negative, got {value}")]
+    NegativeLength {
+        /// The bone's index.
+        bone: usize,
+        /// The value found.
+        value: f64,
+    },
+    /// A constraint names a bone that does not exist.
+    #[error("ik[{constraint}]: bone {bone} does not exist")]
+    MissingBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone index named.
+        bone: usize,
+    },
+    /// A two-bone constraint's second bone is not the first one's child.
+    #[error("ik[{constraint}].bones: bone {child} is not a child of bone {parent}")]
+    NotParentChild {
+        /// The constraint's index.
+        constraint: usize,
+        /// The first bone's index.
+        parent: usize,
+        /// The second bone's index.
+        child: usize,
+    },
+    /// A constraint's mix is outside [0, 1] or its softness negative or not finite.
+    #[error("ik[{constraint}].{field}: out of range, got {value}")]
+    Setting {
+        /// The constraint's index.
+        constraint: usize,
+        /// `mix` or `softness`.
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
+    /// A timeline names a bone or constraint that does not exist.
+    #[error("clips[{clip}]: a timeline names {what} {index}, which does not exist")]
+    MissingTarget {
+        /// The clip's index.
+        clip: usize,
+        /// `bone` or `constraint`.
+        what: &'static str,
+        /// The index named.
+        index: usize,
+    },
+    /// A key's time is not finite, negative, or not after the previous key's.
+    #[error("clips[{clip}]: a key's time must be finite, at least 0 and after the previous key's, got {time}")]
+    KeyTime {
+        /// The clip's index.
+        clip: usize,
+        /// The time found.
+        time: f64,
+    },
+    /// A key's value is NaN or infinite.
+    #[error("clips[{clip}]: a key's value must be finite, got {value}")]
+    KeyValue {
+        /// The clip's index.
+        clip: usize,
+        /// The value found.
+        value: f64,
+    },
+}
+
+/// The parts of a character, checked by [`Character::new`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CharacterParts {
+    /// The bones, parent first.
+    pub bones: Vec<CharacterBone>,
+    /// The IK constraints.
+    pub constraints: Vec<IkConstraint>,
+    /// The clips.
+    pub clips: Vec<Clip>,
+    /// The skeleton's own position and scale.
+    pub placement: Placement,
+    /// The constraints left inactive.
+    pub unsupported: Vec<Unsupported>,
+}
+
+impl Character {
+    /// A character from its parts, once they are checked: at least one bone, every parent an
+    /// earlier bone, every number finite, lengths not negative, every constraint's bones and
+    /// target existing (a two-bone constraint's child the parent's child), mix within [0, 1]
+    /// and softness not negative, every timeline's bone or constraint existing and its keys
+    /// in increasing finite time with finite values.
+    pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
+        let CharacterParts { bones, constraints, clips, placement, unsupported } = parts;
+        if bones.is_empty() {
+            return Err(CharacterError::NoBones);
+        }
+        for (i, b) in bones.iter().enumerate() {
+            if let Some(p) = b.parent {
+                if p >= i {
+                    return Err(CharacterError::ParentOrder { bone: i, parent: p });
+                }
+            }
+            let t = &b.setup;
+            for (field, value) in [
+                ("length", b.length),
+                ("x", t.x),
+                ("y", t.y),
+                ("rotation", t.rotation),
+                ("scaleX", t.scale_x),
+                ("scaleY", t.scale_y),
+                ("shearX", t.shear_x),
+                ("shearY", t.shear_y),
+            ] {
+                if !value.is_finite() {
+                    return Err(CharacterError::NotFinite { bone: i, field, value });
+                }
+            }
+            if b.length < 0.0 {
+                return Err(CharacterError::NegativeLength { bone: i, value: b.length });
+            }
+        }
+        let n = bones.len();
+        for (c, k) in constraints.iter().enumerate() {
+            let missing = |bone: usize| CharacterError::MissingBone { constraint: c, bone };
+            match k.bones {
+                IkBones::One(b) if b >= n => return Err(missing(b)),
+                IkBones::Two { parent, .. } if parent >= n => return Err(missing(parent)),
+                IkBones::Two { child, .. } if child >= n => return Err(missing(child)),
+                IkBones::Two { parent, child } if bones[child].parent != Some(parent) => {
+                    return Err(CharacterError::NotParentChild { constraint: c, parent, child });
+                }
+                IkBones::One(_) | IkBones::Two { .. } => {}
+            }
+            if k.target >= n {
+                return Err(missing(k.target));
+            }
+            check_settings(c, &k.setup)?;
+        }
+        for (ci, clip) in clips.iter().enumerate() {
+            for t in &clip.bones {
+                if t.bone >= n {
+                    return Err(CharacterError::MissingTarget { clip: ci, what: "bone", index: t.bone });
+                }
+                check_times(ci, t.keys.iter().map(|k| k.time))?;
+                for k in &t.keys {
+                    if let Some(&value) = k.values[..t.property.channels()].iter().find(|v| !v.is_finite()) {
+                        return Err(CharacterError::KeyValue { clip: ci, value });
+                    }
+                }
+            }
+            for t in &clip.constraints {
+                if t.constraint >= constraints.len() {
+                    return Err(CharacterError::MissingTarget { clip: ci, what: "constraint", index: t.constraint });
+                }
+                check_times(ci, t.keys.iter().map(|k| k.time))?;
+                for k in &t.keys {
+                    check_settings(t.constraint, &k.settings)?;
+                }
+            }
+        }
+        Ok(Character { bones, constraints, clips, placement, unsupported })
+    }
+
+    /// The bones, parent first.
+    pub fn bones(&self) -> &[CharacterBone] {
+        &self.bones
+    }
+
+    /// The IK constraints, as listed in the file (apply them by [`IkConstraint::order`]).
+    pub fn constraints(&self) -> &[IkConstraint] {
+        &self.constraints
+    }
+
+    /// The animation clips.
+    pub fn clips(&self) -> &[Clip] {
+        &self.clips
+    }
+
+    /// The skeleton's own position and scale.
+    pub fn placement(&self) -> Placement {
+        self.placement
+    }
+
+    /// The constraints of the file that posing leaves inactive.
+    pub fn unsupported(&self) -> &[Unsupported] {
+        &self.unsupported
+    }
+
+    /// The index of the bone called `name`.
+    pub fn bone_index(&self, name: &str) -> Option<usize> {
+        self.bones.iter().position(|b| b.name == name)
+    }
+
+    /// The index of the clip called `name`.
+    pub fn clip_index(&self, name: &str) -> Option<usize> {
+        self.clips.iter().position(|c| c.name == name)
+    }
+}
+
+fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterError> {
+    if !(0.0..=1.0).contains(&s.mix) {
+        return Err(CharacterError::Setting { constraint, field: "mix", value: s.mix });
+    }
+    if !(s.softness.is_finite() && s.softness >= 0.0) {
+        return Err(CharacterError::Setting { constraint, field: "softness", value: s.softness });
+    }
+    Ok(())
+}
+
+fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), CharacterError> {
+    let mut last = f64::NEG_INFINITY;
+    for time in times {
+        if !(time.is_finite() && time >= 0.0 && time > last) {
+            return Err(CharacterError::KeyTime { clip, time });
+        }
+        last = time;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bone(name: &str, parent: Option<usize>) -> CharacterBone {
+        CharacterBone {
+            name: name.into(),
+            parent,
+            length: 10.0,
+            setup: LocalTransform::default(),
+            inherit: Inherit::Normal,
+        }
+    }
+
+    fn leg() -> CharacterParts {
+        CharacterParts {
+            bones: vec![bone("root", None), bone("thigh", Some(0)), bone("shin", Some(1)), bone("target", Some(0))],
+            constraints: vec![IkConstraint {
+                name: "leg".into(),
+                order: 0,
+                bones: IkBones::Two { parent: 1, child: 2 },
+                target: 3,
+                setup: IkSettings::default(),
+                uniform: false,
+                rule: IkRule::Spine,
+            }],
+            ..CharacterParts::default()
+        }
+    }
+
+    #[test]
+    fn a_well_formed_character_is_taken_and_its_names_found() {
+        let c = Character::new(leg()).unwrap();
+        assert_eq!(c.bone_index("shin"), Some(2));
+        assert_eq!(c.bone_index("arm"), None);
+        assert_eq!(c.placement(), Placement::default());
+    }
+
+    #[test]
+    fn broken_characters_are_refused_by_index() {
+        let mut p = leg();
+        p.bones[1].parent = Some(2);
+        assert_eq!(Character::new(p).unwrap_err(), CharacterError::ParentOrder { bone: 1, parent: 2 });
+        let mut p = leg();
+        p.bones[2].setup.scale_x = f64::NAN;
+        assert!(matches!(Character::new(p).unwrap_err(), CharacterError::NotFinite { bone: 2, field: "scaleX", .. }));
+        let mut p = leg();
+        p.constraints[0].bones = IkBones::Two { parent: 0, child: 2 };
+        assert_eq!(
+            Character::new(p).unwrap_err(),
+            CharacterError::NotParentChild { constraint: 0, parent: 0, child: 2 }
+        );
+        let mut p = leg();
+        p.constraints[0].setup.mix = 1.5;
+        assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
+        let mut p = leg();
+        p.clips.push(Clip {
+            name: "walk".into(),
+            duration: 1.0,
+            bones: vec![BoneTimeline {
+                bone: 1,
+                property: BoneProperty::Rotate,
+                keys: vec![
+                    BoneKey { time: 0.5, values: [0.0; 2], curves: [Interpolation::Linear; 2] },
+                    BoneKey { time: 0.5, values: [1.0; 2], curves: [Interpolation::Linear; 2] },
+                ],
+            }],
+            constraints: vec![],
+        });
+        assert_eq!(Character::new(p).unwrap_err(), CharacterError::KeyTime { clip: 0, time: 0.5 });
+        assert_eq!(Character::new(CharacterParts::default()).unwrap_err(), CharacterError::NoBones);
+    }
+}
