@@ -15,6 +15,7 @@ pub mod bodies;
 pub mod ease;
 pub mod fields;
 pub mod figures;
+mod groups;
 pub mod jobs;
 pub mod meta;
 pub mod regions;
