@@ -5,8 +5,7 @@
 use serde::Deserialize;
 
 use super::bodies::{BodyKind, fields_of};
-use super::groups::request;
-use super::requests::{EaseReq, GoalReq};
+use super::requests::{EaseReq, GoalReq, request};
 use super::{Problem, parse_json};
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;

@@ -15,7 +15,6 @@ pub mod bodies;
 pub mod ease;
 pub mod fields;
 pub mod figures;
-mod groups;
 pub mod jobs;
 pub mod meta;
 pub mod regions;

@@ -5,8 +5,15 @@
 //! `POST /api/solve`, `/api/animate` and `/api/track` each take one request that carries the
 //! body, `arm` (the built-in arm without one) or `rig`, and the fields of both: an arm takes
 //! one `goal`, a rig `goals` on named bones, `pins` and `mix`. Which fields a body takes is
-//! checked in one place, [`super::bodies`]. The requests are declared by `request!`
-//! ([`super::groups`]) from their own fields and the field groups they share.
+//! checked in one place, [`super::bodies`].
+//!
+//! The groups of fields that several requests share (the body, a rig's goals, a motion's
+//! timing, a picture's size, a reachable area) are declared once, in `request!`, which declares
+//! a request struct from its own fields and these groups. They are written into each struct as
+//! plain fields rather than as `serde(flatten)`ed structs: a flattened struct would lose
+//! `deny_unknown_fields` and the field paths of `serde_path_to_error`, and the refusals name
+//! the field and its place (the refusal of an unknown field lists the fields in their order,
+//! so a group stands where its fields stood).
 
 use ikarus::EaseKind;
 use serde::Deserialize;
@@ -14,7 +21,97 @@ use serde::Deserialize;
 use crate::arm::ArmFile;
 use crate::settings::SolverSettings;
 
-use super::groups::request;
+/// Declares a request struct: its attributes and name (with at most one type parameter), then
+/// a list of fields, each either a field as in a struct (`pub name: Type,` with its attributes)
+/// or a group, `..name,`, that stands for the group's fields in its place. Every field is
+/// optional: absent, it takes its type's default (`#[serde(default)]` is added to each).
+///
+/// - `..body`: `arm` and `rig`, the request's body.
+/// - `..rig_goals`: a rig's `goals` and `pins`.
+/// - `..aim`: `..body`, `start_deg`, an arm's `goal`, `..rig_goals` and a rig's `mix`
+///   (what a solve is aimed at).
+/// - `..motion`: `options` and the motion's timing (`ease`, `frames`, `duration`, `fps`,
+///   `interpolation`, `from_solve`), after its `via`.
+/// - `..picture`: `figure` (read by the render request's first pass), `format`, `width`,
+///   `height`.
+/// - `..area`: `limits`, `grid`, `resolution`, `samples`, `seed` (the exact region, or the
+///   sampled grid).
+macro_rules! request {
+    ($(#[$meta:meta])* pub struct $name:ident $(<$param:ident>)? { $($fields:tt)* }) => {
+        $crate::api::requests::request!(@fields [$(#[$meta])* pub struct $name $(<$param>)?] [] $($fields)*);
+    };
+    (@fields [$($head:tt)*] [$($done:tt)*]) => {
+        $($head)* { $($done)* }
+    };
+    (@fields $head:tt $done:tt ..body, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            pub arm: Option<$crate::arm::ArmFile>,
+            pub rig: Option<$crate::rig::RigFile>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..rig_goals, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// A rig's goals.
+            pub goals: Option<Vec<$crate::api::requests::RigGoalReq>>,
+            /// A rig's pinned bones (held where they are).
+            pub pins: Option<Vec<String>>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..aim, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            ..body,
+            /// One angle per joint (a rig's bones in its order) [default: the body's start pose].
+            pub start_deg: Option<Vec<f64>>,
+            /// An arm's goal.
+            pub goal: Option<$crate::api::requests::GoalReq>,
+            ..rig_goals,
+            /// A rig's mix, from 0 to 1 [default: 1].
+            pub mix: Option<f64>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..motion, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            pub options: Option<$crate::settings::SolverSettings>,
+            pub ease: Option<$crate::api::requests::EaseReq>,
+            pub frames: Option<u32>,
+            pub duration: Option<f64>,
+            pub fps: Option<f64>,
+            pub interpolation: Option<ikarus::motion::Interpolation>,
+            pub from_solve: bool,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..picture, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// Read by the first pass.
+            #[serde(rename = "figure")]
+            pub _figure: serde::de::IgnoredAny,
+            pub format: Option<$crate::picture::PictureFormat>,
+            pub width: Option<u32>,
+            pub height: Option<u32>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..area, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// The area within the limits (a rig figure's: its limit wedges).
+            pub limits: Option<bool>,
+            pub grid: Option<bool>,
+            pub resolution: Option<u32>,
+            pub samples: Option<u32>,
+            pub seed: Option<u64>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt [$($done:tt)*] $(#[$attr:meta])* pub $field:ident : $ty:ty, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head [$($done)* $(#[$attr])* #[serde(default)] pub $field: $ty,] $($rest)*);
+    };
+}
+
+pub(super) use request;
 
 /// A goal: position, and optionally the orientation of the last link.
 #[derive(Debug, Clone, Deserialize)]
