@@ -103,7 +103,7 @@ impl Single<'_> {
                 }
             }
             (Single::Rig { rig, .. }, Format::Json) => {
-                pretty(w, &RigSolveReport { rig, options, outcome, micros }.json())
+                pretty(w, &RigSolveReport { body: rig, options, outcome, micros }.json())
             }
             (Single::Rig { rig, .. }, Format::Csv) => rig_csv(w, rig, outcome),
             (Single::Rig { rig, task }, Format::Text) => rig_text(w, rig, task, options, outcome, micros),

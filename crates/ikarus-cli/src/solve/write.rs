@@ -24,14 +24,8 @@ pub(super) struct ChainReport<'a> {
 
 impl ChainReport<'_> {
     pub(super) fn json(&self) -> SolveJson<'_> {
-        SolveReport {
-            arm: self.arm,
-            options: self.options,
-            goal: self.goal,
-            outcome: self.outcome,
-            micros: self.micros,
-        }
-        .json()
+        SolveReport { body: (self.arm, self.goal), options: self.options, outcome: self.outcome, micros: self.micros }
+            .json()
     }
 
     pub(super) fn csv(&self, w: &mut dyn Write) -> std::io::Result<()> {

@@ -3,16 +3,12 @@
 //! refused.
 
 use serde::Deserialize;
-use serde::de::IgnoredAny;
 
 use super::bodies::{BodyKind, fields_of};
-use super::requests::{EaseReq, GoalReq, RigGoalReq};
+use super::requests::{EaseReq, GoalReq, request};
 use super::{Problem, parse_json};
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;
-use crate::rig::RigFile;
-use crate::settings::SolverSettings;
-use ikarus::motion::Interpolation;
 
 /// `POST /api/render`: the figure, and the inputs of that figure. Read in two passes, so that an
 /// error names its field like the other endpoints' errors: first `figure` alone ([`FigureTag`]),
@@ -65,56 +61,28 @@ impl RenderReq {
     }
 }
 
-/// Figure `arm` (or `rig`): the body in one pose, an arm (the built-in arm without `arm`) with
-/// its goal and, with `workspace`, its reachable area; or a rig (`rig`) with its goals and
-/// pins marked, its limit wedges with `limits` and its bones' names with `labels`. Which
-/// fields a body takes is checked in one place, [`super::bodies`].
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BodyFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub rig: Option<RigFile>,
-    /// The pose drawn, one angle per joint [default: the body's start pose].
-    #[serde(default)]
-    pub pose_deg: Option<Vec<f64>>,
-    /// An arm's goal.
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    /// A rig's goals.
-    #[serde(default)]
-    pub goals: Option<Vec<RigGoalReq>>,
-    /// A rig's pins.
-    #[serde(default)]
-    pub pins: Option<Vec<String>>,
-    /// An arm's: also shade the reachable area with the workspace fields below: the exact
-    /// region, or the sampled grid (as `/api/workspace`).
-    #[serde(default)]
-    pub workspace: Option<bool>,
-    /// An arm's area within the limits; a rig's limit wedges [default: false].
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-    /// A rig's: write each bone's name beside it.
-    #[serde(default)]
-    pub labels: Option<bool>,
+request! {
+    /// Figure `arm` (or `rig`): the body in one pose, an arm (the built-in arm without `arm`)
+    /// with its goal and, with `workspace`, its reachable area; or a rig (`rig`) with its goals
+    /// and pins marked, its limit wedges with `limits` and its bones' names with `labels`. Which
+    /// fields a body takes is checked in one place, [`super::bodies`].
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct BodyFigureReq {
+        ..picture,
+        ..body,
+        /// The pose drawn, one angle per joint [default: the body's start pose].
+        pub pose_deg: Option<Vec<f64>>,
+        /// An arm's goal.
+        pub goal: Option<GoalReq>,
+        ..rig_goals,
+        /// An arm's: also shade the reachable area with the area's fields: the exact region,
+        /// or the sampled grid (as `/api/workspace`).
+        pub workspace: Option<bool>,
+        ..area,
+        /// A rig's: write each bone's name beside it.
+        pub labels: Option<bool>,
+    }
 }
 
 impl BodyFigureReq {
@@ -139,107 +107,48 @@ impl BodyFigureReq {
     }
 }
 
-/// Figure `motion`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MotionFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// Required (checked after parsing, to name it in the figure's words).
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    #[serde(default)]
-    pub via: Vec<[f64; 2]>,
-    #[serde(default)]
-    pub options: Option<SolverSettings>,
-    #[serde(default)]
-    pub ease: Option<EaseReq>,
-    #[serde(default)]
-    pub frames: Option<u32>,
-    #[serde(default)]
-    pub duration: Option<f64>,
-    #[serde(default)]
-    pub fps: Option<f64>,
-    #[serde(default)]
-    pub interpolation: Option<Interpolation>,
-    #[serde(default)]
-    pub from_solve: bool,
-    /// Also shade the reachable area, as the playground shows it: the exact region, or the
-    /// sampled grid with the workspace fields below (as `/api/workspace`).
-    #[serde(default)]
-    pub workspace: bool,
-    /// The area's limits [default: the options' `limits`].
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-    /// Draw the joints' traces, as lines as the playground's screen does [default: true].
-    #[serde(default)]
-    pub traces: Option<bool>,
-    /// Draw earlier poses as ghosts in a GIF, as the playground's screen does [default: false].
-    #[serde(default)]
-    pub ghosts: bool,
+request! {
+    /// Figure `motion`: the fields of `/api/animate` for an arm (`goal` required, checked after
+    /// parsing to name it in the figure's words), and with `workspace` the reachable area, as
+    /// the playground shows it: the exact region, or the sampled grid with the area's fields
+    /// (as `/api/workspace`; its `limits` default to the options' `limits`).
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct MotionFigureReq {
+        ..picture,
+        pub arm: Option<ArmFile>,
+        pub start_deg: Option<Vec<f64>>,
+        pub goal: Option<GoalReq>,
+        pub via: Vec<[f64; 2]>,
+        ..motion,
+        pub workspace: bool,
+        ..area,
+        /// Draw the joints' traces, as lines as the playground's screen does [default: true].
+        pub traces: Option<bool>,
+        /// Draw earlier poses as ghosts in a GIF, as the playground's screen does [default: false].
+        pub ghosts: bool,
+    }
 }
 
-/// Figure `workspace`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WorkspaceFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
+request! {
+    /// Figure `workspace`.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct WorkspaceFigureReq {
+        ..picture,
+        pub arm: Option<ArmFile>,
+        ..area,
+    }
 }
 
-/// Figure `ease`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct EaseFigureReq {
-    /// Read by the first pass.
-    #[serde(default, rename = "figure")]
-    pub _figure: IgnoredAny,
-    #[serde(default)]
-    pub format: Option<PictureFormat>,
-    #[serde(default)]
-    pub width: Option<u32>,
-    #[serde(default)]
-    pub height: Option<u32>,
-    #[serde(default)]
-    pub ease: Option<EaseReq>,
+request! {
+    /// Figure `ease`.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct EaseFigureReq {
+        ..picture,
+        pub ease: Option<EaseReq>,
+    }
 }
 
 impl RenderReq {

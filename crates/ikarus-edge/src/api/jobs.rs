@@ -80,9 +80,9 @@ pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     let options = solver.options();
     match aimed {
         Aimed::Chain(arm, goal) => {
-            json_response(&SolveReport { arm, options, goal: &goal, outcome: &outcome, micros }.json())
+            json_response(&SolveReport { body: (arm, &goal), options, outcome: &outcome, micros }.json())
         }
-        Aimed::Rig(rig, _) => json_response(&RigSolveReport { rig, options, outcome: &outcome, micros }.json()),
+        Aimed::Rig(rig, _) => json_response(&RigSolveReport { body: rig, options, outcome: &outcome, micros }.json()),
     }
 }
 

@@ -6,14 +6,112 @@
 //! body, `arm` (the built-in arm without one) or `rig`, and the fields of both: an arm takes
 //! one `goal`, a rig `goals` on named bones, `pins` and `mix`. Which fields a body takes is
 //! checked in one place, [`super::bodies`].
+//!
+//! The groups of fields that several requests share (the body, a rig's goals, a motion's
+//! timing, a picture's size, a reachable area) are declared once, in `request!`, which declares
+//! a request struct from its own fields and these groups. They are written into each struct as
+//! plain fields rather than as `serde(flatten)`ed structs: a flattened struct would lose
+//! `deny_unknown_fields` and the field paths of `serde_path_to_error`, and the refusals name
+//! the field and its place (the refusal of an unknown field lists the fields in their order,
+//! so a group stands where its fields stood).
 
 use ikarus::EaseKind;
-use ikarus::motion::Interpolation;
 use serde::Deserialize;
 
 use crate::arm::ArmFile;
-use crate::rig::RigFile;
 use crate::settings::SolverSettings;
+
+/// Declares a request struct: its attributes and name (with at most one type parameter), then
+/// a list of fields, each either a field as in a struct (`pub name: Type,` with its attributes)
+/// or a group, `..name,`, that stands for the group's fields in its place. Every field is
+/// optional: absent, it takes its type's default (`#[serde(default)]` is added to each).
+///
+/// - `..body`: `arm` and `rig`, the request's body.
+/// - `..rig_goals`: a rig's `goals` and `pins`.
+/// - `..aim`: `..body`, `start_deg`, an arm's `goal`, `..rig_goals` and a rig's `mix`
+///   (what a solve is aimed at).
+/// - `..motion`: `options` and the motion's timing (`ease`, `frames`, `duration`, `fps`,
+///   `interpolation`, `from_solve`), after its `via`.
+/// - `..picture`: `figure` (read by the render request's first pass), `format`, `width`,
+///   `height`.
+/// - `..area`: `limits`, `grid`, `resolution`, `samples`, `seed` (the exact region, or the
+///   sampled grid).
+macro_rules! request {
+    ($(#[$meta:meta])* pub struct $name:ident $(<$param:ident>)? { $($fields:tt)* }) => {
+        $crate::api::requests::request!(@fields [$(#[$meta])* pub struct $name $(<$param>)?] [] $($fields)*);
+    };
+    (@fields [$($head:tt)*] [$($done:tt)*]) => {
+        $($head)* { $($done)* }
+    };
+    (@fields $head:tt $done:tt ..body, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            pub arm: Option<$crate::arm::ArmFile>,
+            pub rig: Option<$crate::rig::RigFile>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..rig_goals, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// A rig's goals.
+            pub goals: Option<Vec<$crate::api::requests::RigGoalReq>>,
+            /// A rig's pinned bones (held where they are).
+            pub pins: Option<Vec<String>>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..aim, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            ..body,
+            /// One angle per joint (a rig's bones in its order) [default: the body's start pose].
+            pub start_deg: Option<Vec<f64>>,
+            /// An arm's goal.
+            pub goal: Option<$crate::api::requests::GoalReq>,
+            ..rig_goals,
+            /// A rig's mix, from 0 to 1 [default: 1].
+            pub mix: Option<f64>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..motion, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            pub options: Option<$crate::settings::SolverSettings>,
+            pub ease: Option<$crate::api::requests::EaseReq>,
+            pub frames: Option<u32>,
+            pub duration: Option<f64>,
+            pub fps: Option<f64>,
+            pub interpolation: Option<ikarus::motion::Interpolation>,
+            pub from_solve: bool,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..picture, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// Read by the first pass.
+            #[serde(rename = "figure")]
+            pub _figure: serde::de::IgnoredAny,
+            pub format: Option<$crate::picture::PictureFormat>,
+            pub width: Option<u32>,
+            pub height: Option<u32>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..area, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// The area within the limits (a rig figure's: its limit wedges).
+            pub limits: Option<bool>,
+            pub grid: Option<bool>,
+            pub resolution: Option<u32>,
+            pub samples: Option<u32>,
+            pub seed: Option<u64>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt [$($done:tt)*] $(#[$attr:meta])* pub $field:ident : $ty:ty, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head [$($done)* $(#[$attr])* #[serde(default)] pub $field: $ty,] $($rest)*);
+    };
+}
+
+pub(super) use request;
 
 /// A goal: position, and optionally the orientation of the last link.
 #[derive(Debug, Clone, Deserialize)]
@@ -60,32 +158,15 @@ pub struct RigGoalReq {
     pub softness: Option<f64>,
 }
 
-/// `POST /api/solve`: an arm's tip to `goal` (required with an arm), or a rig's `goals` and
-/// `pins` solved together.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolveReq {
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub rig: Option<RigFile>,
-    /// One angle per joint (a rig's bones in its order) [default: the body's start pose].
-    #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// An arm's goal.
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    /// A rig's goals.
-    #[serde(default)]
-    pub goals: Option<Vec<RigGoalReq>>,
-    /// A rig's pinned bones.
-    #[serde(default)]
-    pub pins: Option<Vec<String>>,
-    /// A rig's mix, from 0 to 1 [default: 1].
-    #[serde(default)]
-    pub mix: Option<f64>,
-    #[serde(default)]
-    pub options: Option<SolverSettings>,
+request! {
+    /// `POST /api/solve`: an arm's tip to `goal` (required with an arm), or a rig's `goals` and
+    /// `pins` solved together.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct SolveReq {
+        ..aim,
+        pub options: Option<SolverSettings>,
+    }
 }
 
 /// An ease curve: `kind` (default sine for a motion, parent for the ease figure), `k1`, `k2`.
@@ -100,121 +181,68 @@ pub struct EaseReq {
     pub k2: Option<f64>,
 }
 
-/// `POST /api/animate`: the solves of [`SolveReq`] in turn, through `via`, eased into frames.
-/// `V` is what one `via` entry is for the body: an arm's point `[x, y]`, a rig's goal set
-/// (a list of goals, the pins held in each); the body is told apart before the request is read.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AnimateReq<V> {
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub rig: Option<RigFile>,
-    #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// An arm's final goal.
-    #[serde(default)]
-    pub goal: Option<GoalReq>,
-    /// A rig's final goal set.
-    #[serde(default)]
-    pub goals: Option<Vec<RigGoalReq>>,
-    /// A rig's bones held where they are, in every goal set.
-    #[serde(default)]
-    pub pins: Option<Vec<String>>,
-    #[serde(default)]
-    pub mix: Option<f64>,
-    /// What to pass through first, in order.
-    #[serde(default = "Vec::new")]
-    pub via: Vec<V>,
-    #[serde(default)]
-    pub options: Option<SolverSettings>,
-    #[serde(default)]
-    pub ease: Option<EaseReq>,
-    #[serde(default)]
-    pub frames: Option<u32>,
-    #[serde(default)]
-    pub duration: Option<f64>,
-    #[serde(default)]
-    pub fps: Option<f64>,
-    #[serde(default)]
-    pub interpolation: Option<Interpolation>,
-    #[serde(default)]
-    pub from_solve: bool,
+request! {
+    /// `POST /api/animate`: the solves of [`SolveReq`] in turn, through `via`, eased into frames.
+    /// `V` is what one `via` entry is for the body: an arm's point `[x, y]`, a rig's goal set
+    /// (a list of goals, the pins held in each); the body is told apart before the request is
+    /// read. `goal` (an arm's) or `goals` (a rig's) is the final goal; a rig's `pins` hold in
+    /// every goal set.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct AnimateReq<V> {
+        ..aim,
+        /// What to pass through first, in order.
+                pub via: Vec<V>,
+        ..motion,
+    }
 }
 
-/// `POST /api/track`: exactly one of `path`, `line`, `circle`, `figure8`, followed by an arm's
-/// tip, or by the tip of a rig's `effector` while its `goals` hold and its `pins` stay.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TrackReq {
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub rig: Option<RigFile>,
-    #[serde(default)]
-    pub start_deg: Option<Vec<f64>>,
-    /// A rig's bone whose tip follows the path (required with a rig).
-    #[serde(default)]
-    pub effector: Option<String>,
-    #[serde(default)]
-    pub goals: Option<Vec<RigGoalReq>>,
-    #[serde(default)]
-    pub pins: Option<Vec<String>>,
-    #[serde(default)]
-    pub mix: Option<f64>,
-    /// The samples, `[[x, y], …]`, used as given.
-    #[serde(default)]
-    pub path: Option<Vec<[f64; 2]>>,
-    /// `[x0, y0, x1, y1]`.
-    #[serde(default)]
-    pub line: Option<[f64; 4]>,
-    /// `[cx, cy, r]`.
-    #[serde(default)]
-    pub circle: Option<[f64; 3]>,
-    /// `[cx, cy, a]`.
-    #[serde(default)]
-    pub figure8: Option<[f64; 3]>,
-    /// Samples of a shape [default: 100].
-    #[serde(default)]
-    pub samples: Option<usize>,
-    /// `follow` or `plan` [default: plan for an arm; follow, the only mode, for a rig].
-    #[serde(default)]
-    pub mode: Option<ikarus::TrackMode>,
-    /// The bound on a joint's change between samples, degrees [default: 10].
-    #[serde(default)]
-    pub max_step_deg: Option<f64>,
-    /// With `mode: "follow"`: bound the first sample's step from `start_deg` too, as every
-    /// later one (a pointer followed one request at a time) [default: false, the first sample
-    /// is placed on the path].
-    #[serde(default)]
-    pub bound_first: bool,
-    #[serde(default)]
-    pub options: Option<SolverSettings>,
+request! {
+    /// `POST /api/track`: exactly one of `path`, `line`, `circle`, `figure8`, followed by an
+    /// arm's tip, or by the tip of a rig's `effector` while its `goals` hold and its `pins` stay.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct TrackReq {
+        ..body,
+        pub start_deg: Option<Vec<f64>>,
+        /// A rig's bone whose tip follows the path (required with a rig).
+        pub effector: Option<String>,
+        ..rig_goals,
+        pub mix: Option<f64>,
+        /// The samples, `[[x, y], …]`, used as given.
+        pub path: Option<Vec<[f64; 2]>>,
+        /// `[x0, y0, x1, y1]`.
+        pub line: Option<[f64; 4]>,
+        /// `[cx, cy, r]`.
+        pub circle: Option<[f64; 3]>,
+        /// `[cx, cy, a]`.
+        pub figure8: Option<[f64; 3]>,
+        /// Samples of a shape [default: 100].
+        pub samples: Option<usize>,
+        /// `follow` or `plan` [default: plan for an arm; follow, the only mode, for a rig].
+        pub mode: Option<ikarus::TrackMode>,
+        /// The bound on a joint's change between samples, degrees [default: 10].
+        pub max_step_deg: Option<f64>,
+        /// With `mode: "follow"`: bound the first sample's step from `start_deg` too, as every
+        /// later one (a pointer followed one request at a time) [default: false, the first sample
+        /// is placed on the path].
+        pub bound_first: bool,
+        pub options: Option<SolverSettings>,
+    }
 }
 
-/// `POST /api/workspace`: the exact region, or with `grid: true` (or any of `resolution`,
-/// `samples`, `seed`) the sampled grid.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WorkspaceReq {
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    /// A rig in place of `arm`: the region of `bone`'s tip (sampled unless the rig is a chain).
-    #[serde(default)]
-    pub rig: Option<crate::rig::RigFile>,
-    /// The rig's bone [default: the last].
-    #[serde(default)]
-    pub bone: Option<String>,
-    #[serde(default)]
-    pub limits: Option<bool>,
-    #[serde(default)]
-    pub grid: Option<bool>,
-    #[serde(default)]
-    pub resolution: Option<u32>,
-    #[serde(default)]
-    pub samples: Option<u32>,
-    #[serde(default)]
-    pub seed: Option<u64>,
+request! {
+    /// `POST /api/workspace`: the exact region, or with `grid: true` (or any of `resolution`,
+    /// `samples`, `seed`) the sampled grid; with `rig` in place of `arm`, the region of `bone`'s
+    /// tip (sampled unless the rig is a chain).
+    #[derive(Debug, Default, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct WorkspaceReq {
+        ..body,
+        /// The rig's bone [default: the last].
+        pub bone: Option<String>,
+        ..area,
+    }
 }
 
 impl WorkspaceReq {
@@ -231,21 +259,19 @@ impl WorkspaceReq {
     }
 }
 
-/// `POST /api/reach`: exactly one of `point` and `points`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReachReq {
-    #[serde(default)]
-    pub arm: Option<ArmFile>,
-    #[serde(default)]
-    pub limits: Option<bool>,
-    /// Distance that still counts as reachable [default: the arm's `solver.tolerance`, else 1e-6].
-    #[serde(default)]
-    pub tolerance: Option<f64>,
-    /// One point: the answer is one object.
-    #[serde(default)]
-    pub point: Option<[f64; 2]>,
-    /// Many points: the answer is an array of objects, in order.
-    #[serde(default)]
-    pub points: Option<Vec<[f64; 2]>>,
+request! {
+    /// `POST /api/reach`: exactly one of `point` and `points`.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct ReachReq {
+        pub arm: Option<ArmFile>,
+        pub limits: Option<bool>,
+        /// Distance that still counts as reachable [default: the arm's `solver.tolerance`, else
+        /// 1e-6].
+        pub tolerance: Option<f64>,
+        /// One point: the answer is one object.
+        pub point: Option<[f64; 2]>,
+        /// Many points: the answer is an array of objects, in order.
+        pub points: Option<Vec<[f64; 2]>>,
+    }
 }

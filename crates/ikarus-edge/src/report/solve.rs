@@ -33,22 +33,81 @@ pub struct FrameJson<'a> {
     pub joints: Vec<[f64; 2]>,
 }
 
-/// One solve: `ikarus solve --format json` and `POST /api/solve`.
+/// What a solve ran with, in every solve's answer (an arm's and a rig's).
 #[derive(Serialize)]
-pub struct SolveJson<'a> {
-    pub arm: &'a str,
+pub struct RunJson {
     pub method: &'static str,
     pub limits: bool,
     /// `ignore` when limits are off.
     pub limit_mode: &'static str,
-    pub goal: GoalJson,
+}
+
+impl RunJson {
+    pub fn of(options: &SolveOptions) -> Self {
+        RunJson {
+            method: options.method.name(),
+            limits: options.limits != ikarus::LimitMode::Ignore,
+            limit_mode: options.limits.name(),
+        }
+    }
+}
+
+/// How a solve ended, in every solve's answer (an arm's and a rig's).
+#[derive(Serialize)]
+pub struct EndJson {
+    /// A rig's is `reached` only if every effector is.
     pub status: &'static str,
     pub iterations: u32,
     /// Restarts used (0 when the first attempt ended the solve).
     pub restarts: u32,
+    /// The distance to the goal (a rig's: the largest effector error).
     pub error: f64,
+    /// The orientation error, degrees (a rig's: the largest effector's).
     pub angle_error_deg: f64,
     pub tolerance: f64,
+}
+
+impl EndJson {
+    pub fn of(options: &SolveOptions, o: &Outcome) -> Self {
+        EndJson {
+            status: o.status.as_str(),
+            iterations: o.iterations,
+            restarts: o.restarts,
+            error: o.error,
+            angle_error_deg: o.angle_error.to_degrees(),
+            tolerance: options.tolerance,
+        }
+    }
+}
+
+/// The recorded frames of `o`, each frame's angles and extensions as `angles` and
+/// `extensions` give them.
+fn frames_of<'a>(
+    o: &Outcome,
+    angles: impl Fn(&[f64]) -> Vec<f64>,
+    extensions: impl Fn(&[f64]) -> Option<Extensions<'a>>,
+) -> Vec<FrameJson<'a>> {
+    o.frames
+        .iter()
+        .map(|f| FrameJson {
+            iteration: f.iteration,
+            angles_deg: angles(f.angles),
+            extensions: extensions(f.angles),
+            joints: points(f.joints),
+        })
+        .collect()
+}
+
+/// One solve: `ikarus solve --format json` and `POST /api/solve`. The groups
+/// [`RunJson`] and [`EndJson`] are written as if their fields were this object's own.
+#[derive(Serialize)]
+pub struct SolveJson<'a> {
+    pub arm: &'a str,
+    #[serde(flatten)]
+    pub run: RunJson,
+    pub goal: GoalJson,
+    #[serde(flatten)]
+    pub end: EndJson,
     /// With limits on: the distance from the goal to the exact reachable region (0 inside);
     /// `null` when no verdict was made.
     pub reach_distance: Option<f64>,
@@ -59,33 +118,33 @@ pub struct SolveJson<'a> {
     pub frames: Vec<FrameJson<'a>>,
 }
 
-/// A finished single solve and what it needs to be described.
-pub struct SolveReport<'a> {
-    pub arm: &'a Arm,
+/// A finished solve of `body` and what it needs to be described: an arm and its goal
+/// ([`SolveReport`]) or a rig ([`RigSolveReport`], whose goals are in the outcome's effectors).
+pub struct Solved<'a, B> {
+    pub body: B,
     pub options: &'a SolveOptions,
-    pub goal: &'a Goal,
     pub outcome: &'a Outcome,
     pub micros: f64,
 }
+
+/// A finished single solve of an arm, aimed at a goal.
+pub type SolveReport<'a> = Solved<'a, (&'a Arm, &'a Goal)>;
+
+/// A finished rig solve.
+pub type RigSolveReport<'a> = Solved<'a, &'a Rig>;
 
 impl<'a> SolveReport<'a> {
     /// The JSON object of one solve.
     pub fn json(&self) -> SolveJson<'a> {
         let o = self.outcome;
-        let target = self.goal.target();
-        let joints = points(&ikarus::kinematics::joint_positions(&self.arm.chain, o.pose.angles()));
+        let (arm, goal) = self.body;
+        let target = goal.target();
+        let joints = points(&ikarus::kinematics::joint_positions(&arm.chain, o.pose.angles()));
         SolveJson {
-            arm: &self.arm.name,
-            method: self.options.method.name(),
-            limits: self.options.limits != ikarus::LimitMode::Ignore,
-            limit_mode: self.options.limits.name(),
-            goal: GoalJson { x: target.x, y: target.y, angle_deg: self.goal.orientation().map(f64::to_degrees) },
-            status: o.status.as_str(),
-            iterations: o.iterations,
-            restarts: o.restarts,
-            error: o.error,
-            angle_error_deg: o.angle_error.to_degrees(),
-            tolerance: self.options.tolerance,
+            arm: &arm.name,
+            run: RunJson::of(self.options),
+            goal: GoalJson { x: target.x, y: target.y, angle_deg: goal.orientation().map(f64::to_degrees) },
+            end: EndJson::of(self.options, o),
             reach_distance: o.reach_distance,
             solve_us: self.micros,
             end_effector: TipJson {
@@ -95,16 +154,7 @@ impl<'a> SolveReport<'a> {
             },
             angles_deg: degrees(o.pose.angles()),
             joints,
-            frames: o
-                .frames
-                .iter()
-                .map(|f| FrameJson {
-                    iteration: f.iteration,
-                    angles_deg: degrees(f.angles),
-                    extensions: None,
-                    joints: points(f.joints),
-                })
-                .collect(),
+            frames: frames_of(o, degrees, |_| None),
         }
     }
 }
@@ -140,19 +190,10 @@ impl<'a> EffectorJson<'a> {
 #[derive(serde::Serialize)]
 pub struct RigSolveJson<'a> {
     pub rig: &'a str,
-    pub method: &'static str,
-    pub limits: bool,
-    /// `ignore` when limits are off.
-    pub limit_mode: &'static str,
-    /// `reached` only if every effector is.
-    pub status: &'static str,
-    pub iterations: u32,
-    pub restarts: u32,
-    /// The largest effector error.
-    pub error: f64,
-    /// The largest effector orientation error, degrees.
-    pub angle_error_deg: f64,
-    pub tolerance: f64,
+    #[serde(flatten)]
+    pub run: RunJson,
+    #[serde(flatten)]
+    pub end: EndJson,
     pub solve_us: f64,
     /// Goals in the task's order, then pins.
     pub effectors: Vec<EffectorJson<'a>>,
@@ -168,46 +209,23 @@ pub struct RigSolveJson<'a> {
     pub frames: Vec<FrameJson<'a>>,
 }
 
-/// A finished rig solve and what it needs to be described.
-pub struct RigSolveReport<'a> {
-    pub rig: &'a Rig,
-    pub options: &'a SolveOptions,
-    pub outcome: &'a Outcome,
-    pub micros: f64,
-}
-
 impl<'a> RigSolveReport<'a> {
     /// The JSON object of one rig solve.
     pub fn json(&self) -> RigSolveJson<'a> {
         let o = self.outcome;
-        let s = &self.rig.skeleton;
+        let rig = self.body;
+        let s = &rig.skeleton;
         let names = s.names();
         RigSolveJson {
-            rig: &self.rig.name,
-            method: self.options.method.name(),
-            limits: self.options.limits != ikarus::LimitMode::Ignore,
-            limit_mode: self.options.limits.name(),
-            status: o.status.as_str(),
-            iterations: o.iterations,
-            restarts: o.restarts,
-            error: o.error,
-            angle_error_deg: o.angle_error.to_degrees(),
-            tolerance: self.options.tolerance,
+            rig: &rig.name,
+            run: RunJson::of(self.options),
+            end: EndJson::of(self.options, o),
             solve_us: self.micros,
             effectors: o.effectors.iter().map(|e| EffectorJson::of(s, e)).collect(),
             angles_deg: ByName { names, values: relative_degrees(s, o.pose.angles()) },
             extensions: Extensions::of(s, o.pose.angles()),
-            joints: ByName { names, values: points(&tips(self.rig, o.pose.angles())) },
-            frames: o
-                .frames
-                .iter()
-                .map(|f| FrameJson {
-                    iteration: f.iteration,
-                    angles_deg: relative_degrees(s, f.angles),
-                    extensions: Extensions::of(s, f.angles),
-                    joints: points(f.joints),
-                })
-                .collect(),
+            joints: ByName { names, values: points(&tips(rig, o.pose.angles())) },
+            frames: frames_of(o, |q| relative_degrees(s, q), |q| Extensions::of(s, q)),
         }
     }
 }
