@@ -5,21 +5,20 @@
 //! bones held in each — and the poses eased into a motion of the skeleton.
 
 use std::io::Write;
-use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ikarus::motion::{Interpolation, Timing};
 use ikarus::{EaseKind, LimitMode};
 
 use crate::body::Body;
+use crate::body_args::{BodyArgs, BodyHelp};
 use crate::ease_args::EaseArgs;
 use crate::error::CliError;
-use crate::goal_args::{GoalArg, RigTaskArgs, parse_goal};
+use crate::goal_args::{GoalArg, parse_goal};
 use crate::motion::{DEFAULT_FPS, Motion, MotionBody, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
 use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format};
-use crate::settings::SolverFlags;
 
 mod bodies;
 
@@ -51,17 +50,8 @@ pub struct MotionArgs {
     /// goal set to pass through, NAME=X,Y[,DEG] goals separated by ';' (the pins hold in each)
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_via)]
     pub via: Vec<ViaArg>,
-    /// Arm file (TOML) [default: the built-in seed arm]
-    #[arg(long, value_name = "FILE")]
-    pub arm: Option<PathBuf>,
-    /// Rig file (TOML): a tree of named bones; the motion solves its goal sets (--via, then
-    /// --goal NAME=X,Y …, with --pin NAME held) in turn and eases the pose through them
-    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
-    pub rig: Option<PathBuf>,
     #[command(flatten)]
-    pub rig_task: RigTaskArgs,
-    #[command(flatten)]
-    pub solver: SolverFlags,
+    pub body: BodyArgs<AnimateBody>,
     /// Number of frames of the motion [default: 60]
     #[arg(long, value_name = "N", value_parser = parse_at_least_one, conflicts_with = "duration")]
     pub frames: Option<u32>,
@@ -83,6 +73,16 @@ pub struct MotionArgs {
     /// Record a solver frame every K iterations for --from-solve [default: 1]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
+}
+
+/// The help of `ikarus animate`'s (and `ikarus render motion`'s) `--arm` and `--rig`.
+#[derive(Debug)]
+pub struct AnimateBody;
+
+impl BodyHelp for AnimateBody {
+    const ARM: &'static str = "Arm file (TOML) [default: the built-in seed arm]";
+    const RIG: &'static str = "Rig file (TOML): a tree of named bones; the motion solves its goal sets (--via, then \
+                               --goal NAME=X,Y …, with --pin NAME held) in turn and eases the pose through them";
 }
 
 /// A `--via`: an arm's point `X,Y`, or a rig's goal set `NAME=X,Y[,DEG][;NAME=X,Y[,DEG]…]`.
@@ -158,7 +158,7 @@ impl<B: Animated> MotionRun<B> {
         let timing = args.timing()?;
         let ease = args.ease.resolve(EaseKind::Sine)?;
         let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
-        let options = body.solve_options(&args.solver.settings(), record)?;
+        let options = body.solve_options(&args.body.solver.settings(), record)?;
         let stops = body.stops(args)?;
         let start = body.start().to_vec();
         let interpolation = args.interpolation.unwrap_or_default();
@@ -183,7 +183,7 @@ pub trait ShownMotion {
 /// The motion the flags ask for: of the rig (`--rig FILE`), or of the arm (`--arm`, or the
 /// built-in arm).
 pub fn motion(args: &MotionArgs) -> Result<Box<dyn ShownMotion>, CliError> {
-    Ok(match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
+    Ok(match args.body.load()? {
         Body::Chain(arm) => Box::new(MotionRun::of(args, *arm)?),
         Body::Rig(rig) => Box::new(MotionRun::of(args, *rig)?),
     })

@@ -14,6 +14,7 @@ use ikarus_bench as bench;
 
 mod animate;
 mod batch;
+mod body_args;
 #[cfg(feature = "server")]
 mod cli;
 mod columns;

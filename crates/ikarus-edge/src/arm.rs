@@ -48,34 +48,53 @@ pub struct ArmFile {
     pub solver: SolverSettings,
 }
 
-/// One `[[links]]` entry.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LinkFile {
-    /// Link length.
-    pub length: f64,
-    /// Start angle of the joint, degrees, relative to the previous link.
-    #[serde(default)]
-    pub angle_deg: f64,
-    /// Optional `[min, max]` range of the joint angle, degrees.
-    #[serde(default)]
-    pub limits_deg: Option<[f64; 2]>,
-    /// The link's origin in the previous link's frame (the first's from the base); absent: the
-    /// previous link's tip.
-    #[serde(default)]
-    pub offset: Option<[f64; 2]>,
-    /// The joint's kind; absent: revolute.
-    #[serde(default)]
-    pub joint: Option<JointFile>,
-    /// A prismatic joint's direction in the previous link's frame; absent: along the link.
-    #[serde(default)]
-    pub slide: Option<[f64; 2]>,
-    /// A prismatic joint's start displacement; absent: 0.
-    #[serde(default)]
-    pub extension: Option<f64>,
-    /// A prismatic joint's `[min, max]` displacement, length units.
-    #[serde(default)]
-    pub limits: Option<[f64; 2]>,
+/// Declares a `[[links]]` or a `[[bones]]` entry: the fields of the `{ … }` before, then the
+/// joint's fields both take (`length`, `angle_deg`, `limits_deg`), then the fields of the `{ … }`
+/// after, then the joint keys (`offset`, `joint`, `slide`, `extension`, `limits`), in that
+/// order (the order serde's "expected one of" lists them). Written once for both, so that an
+/// arm's link takes every joint key a rig's bone takes, under the same name.
+macro_rules! part_file {
+    ($(#[$attr:meta])* pub struct $name:ident { $($head:tt)* } { $($tail:tt)* }) => {
+        $(#[$attr])*
+        pub struct $name {
+            $($head)*
+            /// Length.
+            pub length: f64,
+            /// Start angle of the joint, degrees, relative to the parent's direction (a link's
+            /// parent is the previous link; the first link's and a root bone's is +x).
+            #[serde(default)]
+            pub angle_deg: f64,
+            /// Optional `[min, max]` range of the joint angle, degrees.
+            #[serde(default)]
+            pub limits_deg: Option<[f64; 2]>,
+            $($tail)*
+            /// The origin in the parent's frame (the first link's and a root bone's from the
+            /// base); absent: the parent's tip.
+            #[serde(default)]
+            pub offset: Option<[f64; 2]>,
+            /// The joint's kind; absent: revolute.
+            #[serde(default)]
+            pub joint: Option<$crate::arm::JointFile>,
+            /// A prismatic joint's direction in the parent's frame; absent: along the link or
+            /// bone.
+            #[serde(default)]
+            pub slide: Option<[f64; 2]>,
+            /// A prismatic joint's start displacement; absent: 0.
+            #[serde(default)]
+            pub extension: Option<f64>,
+            /// A prismatic joint's `[min, max]` displacement, length units.
+            #[serde(default)]
+            pub limits: Option<[f64; 2]>,
+        }
+    };
+}
+pub(crate) use part_file;
+
+part_file! {
+    /// One `[[links]]` entry.
+    #[derive(Debug, Clone, Default, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct LinkFile {} {}
 }
 
 impl LinkFile {

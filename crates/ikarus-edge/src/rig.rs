@@ -48,7 +48,7 @@ use ikarus::Skeleton;
 use serde::Deserialize;
 
 pub use crate::arm::JointFile;
-use crate::arm::{ArmFile, toml_error};
+use crate::arm::{ArmFile, part_file, toml_error};
 use crate::error::CliError;
 use crate::settings::SolverSettings;
 
@@ -74,46 +74,25 @@ pub struct RigFile {
     links: bool,
 }
 
-/// One `[[bones]]` entry.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BoneFile {
-    /// Name, unique in the rig.
-    pub name: String,
-    /// The parent's name; absent for a bone that starts at the base.
-    #[serde(default)]
-    pub parent: Option<String>,
-    /// Bone length.
-    pub length: f64,
-    /// Start angle, degrees, relative to the parent's direction (a root's to +x).
-    #[serde(default)]
-    pub angle_deg: f64,
-    /// Optional `[min, max]` range of the angle, degrees.
-    #[serde(default)]
-    pub limits_deg: Option<[f64; 2]>,
-    /// How much the bone resists turning away from its rest angle, ≥ 0 (absent: 0, no
-    /// preference); see `ikarus::Bone::stiffness`.
-    #[serde(default)]
-    pub stiffness: Option<f64>,
-    /// The angle the bone is pulled back to, degrees (absent: `angle_deg`).
-    #[serde(default)]
-    pub rest_deg: Option<f64>,
-    /// The bone's origin in its parent's frame (a root's from the base); absent: the
-    /// parent's tip.
-    #[serde(default)]
-    pub offset: Option<[f64; 2]>,
-    /// The joint's kind; absent: revolute.
-    #[serde(default)]
-    pub joint: Option<JointFile>,
-    /// A prismatic joint's direction in the parent's frame; absent: along the bone.
-    #[serde(default)]
-    pub slide: Option<[f64; 2]>,
-    /// A prismatic joint's start displacement; absent: 0.
-    #[serde(default)]
-    pub extension: Option<f64>,
-    /// A prismatic joint's `[min, max]` displacement, length units.
-    #[serde(default)]
-    pub limits: Option<[f64; 2]>,
+part_file! {
+    /// One `[[bones]]` entry.
+    #[derive(Debug, Clone, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct BoneFile {
+        /// Name, unique in the rig.
+        pub name: String,
+        /// The parent's name; absent for a bone that starts at the base.
+        #[serde(default)]
+        pub parent: Option<String>,
+    } {
+        /// How much the bone resists turning away from its rest angle, ≥ 0 (absent: 0, no
+        /// preference); see `ikarus::Bone::stiffness`.
+        #[serde(default)]
+        pub stiffness: Option<f64>,
+        /// The angle the bone is pulled back to, degrees (absent: `angle_deg`).
+        #[serde(default)]
+        pub rest_deg: Option<f64>,
+    }
 }
 
 /// The most bones of a rig the command line (and Python) reads unless `ikarus --max-bones N`
@@ -307,6 +286,27 @@ mod tests {
         assert_eq!(Rig::parse_within(inline, "r", cap).unwrap_err().to_string(), want);
         let e = Rig::parse_within(inline, "rig file x.toml", BoneCap::cli()).map(|r| r.skeleton.len());
         assert_eq!(e.unwrap(), 3);
+    }
+
+    /// An arm file's link takes the joint's keys a rig file's bone takes, under the same names
+    /// and in the same order: the bone's keys but its own (`name`, `parent`, `stiffness`,
+    /// `rest_deg`), as each reader lists them for an unknown key.
+    #[test]
+    fn a_link_takes_the_joint_keys_of_a_bone() {
+        fn expected(message: String) -> Vec<String> {
+            let list = message.split("expected one of ").nth(1).unwrap_or_else(|| panic!("{message}"));
+            list.split(", ").map(|k| k.trim_matches('`').to_owned()).collect()
+        }
+        let link = expected(crate::arm::Arm::parse("[[links]]\nlength = 1\nbogus = 1\n", "a").unwrap_err().to_string());
+        let bone =
+            expected(Rig::parse("[[bones]]\nname = \"a\"\nlength = 1\nbogus = 1\n", "r").unwrap_err().to_string());
+        let own = ["name", "parent", "stiffness", "rest_deg"];
+        let shared: Vec<String> = bone.iter().filter(|k| !own.contains(&k.as_str())).cloned().collect();
+        assert_eq!(link, shared);
+        assert_eq!(
+            link,
+            ["length", "angle_deg", "limits_deg", "offset", "joint", "slide", "extension", "limits"].map(String::from)
+        );
     }
 
     #[test]

@@ -144,7 +144,8 @@ impl Animated for Rig {
     /// Each `--via` set (with the pins and the mix), then the `--goal` set (with every per-goal
     /// control).
     fn stops(&self, args: &MotionArgs) -> Result<Vec<RigTask>, CliError> {
-        let plain = RigTaskArgs { pin: args.rig_task.pin.clone(), mix: args.rig_task.mix, ..RigTaskArgs::default() };
+        let plain =
+            RigTaskArgs { pin: args.body.rig_task.pin.clone(), mix: args.body.rig_task.mix, ..RigTaskArgs::default() };
         let mut tasks = Vec::with_capacity(args.via.len() + 1);
         for via in &args.via {
             let ViaArg::Set(goals) = via else {
@@ -160,7 +161,7 @@ impl Animated for Rig {
             tasks.push(plain.task(&self.skeleton, &targets)?);
         }
         let targets = args.goal.iter().map(|g| Target::of(g, self)).collect::<Result<Vec<_>, _>>()?;
-        tasks.push(args.rig_task.task(&self.skeleton, &targets)?);
+        tasks.push(args.body.rig_task.task(&self.skeleton, &targets)?);
         Ok(tasks)
     }
 

@@ -30,7 +30,7 @@ pub(super) fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), 
     if pieces.iter().all(|p| p.goals.is_empty()) {
         return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
-    let solver = solver(arm.options(&args.solver.settings(), None)?)?;
+    let solver = solver(arm.options(&args.body.solver.settings(), None)?)?;
     batch.summary_json(args.summary_json.as_deref())?;
     let chain = &arm.chain;
     let start = chain.start_pose().angles();
@@ -106,7 +106,7 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
             source: format!("{label}: column {} `{}`", c.x + 1, cells[c.x]),
         })
         .collect();
-    let template = args.rig_task.task(&rig.skeleton, &targets)?;
+    let template = args.body.rig_task.task(&rig.skeleton, &targets)?;
 
     // Each row's values, checked as targets here (so that a bad one is named by its line); each
     // worker fills its own copy of the task with a row's targets.
@@ -136,7 +136,7 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
         return Err(CliError::input(format!("{label}: no target sets (expected a header and one target set per row)")));
     }
 
-    let solver = solver(rig.options(&args.solver.settings(), None)?)?;
+    let solver = solver(rig.options(&args.body.solver.settings(), None)?)?;
     let batch = Batch::new(args.threads, args.summary_json.as_deref())?;
     let skeleton = &rig.skeleton;
     let (solved, tally) = batch.solve_all(

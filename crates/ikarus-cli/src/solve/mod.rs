@@ -11,11 +11,11 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 
 use crate::body::Body;
+use crate::body_args::{BodyArgs, BodyHelp};
 use crate::error::CliError;
-use crate::goal_args::{GoalArg, RigTaskArgs, parse_goal};
+use crate::goal_args::{GoalArg, parse_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::picture::StillArgs;
-use crate::settings::SolverFlags;
 
 mod batch;
 mod columns;
@@ -51,17 +51,8 @@ pub struct SolveArgs {
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle,
           conflicts_with_all = ["batch", "rig"])]
     pub goal_angle: Option<f64>,
-    /// Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]
-    #[arg(long, value_name = "FILE")]
-    pub arm: Option<PathBuf>,
-    /// Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin
-    /// NAME) are solved together
-    #[arg(long, value_name = "FILE", conflicts_with = "arm")]
-    pub rig: Option<PathBuf>,
     #[command(flatten)]
-    pub rig_task: RigTaskArgs,
-    #[command(flatten)]
-    pub solver: SolverFlags,
+    pub body: BodyArgs<SolveBody>,
     /// Record a frame every K iterations, plus the first and the last [default: 20; with
     /// --rig, none]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
@@ -89,6 +80,16 @@ fn parse_threads(s: &str) -> Result<usize, String> {
     if n > 1024 { Err(format!("{n}: must be at most 1024")) } else { Ok(n) }
 }
 
+/// The help of `ikarus solve`'s `--arm` and `--rig`.
+#[derive(Debug)]
+pub struct SolveBody;
+
+impl BodyHelp for SolveBody {
+    const ARM: &'static str = "Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]";
+    const RIG: &'static str =
+        "Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin NAME) are solved together";
+}
+
 pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     if args.batch.is_none() {
         if let Some(n) = args.threads {
@@ -100,7 +101,7 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     } else if let Some(p) = &args.picture.out {
         return Err(CliError::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
     }
-    match (Body::load(args.arm.as_deref(), args.rig.as_deref())?, &args.batch) {
+    match (args.body.load()?, &args.batch) {
         (Body::Chain(arm), Some(path)) => batch::run_batch(args, &arm, path),
         (Body::Rig(rig), Some(path)) => batch::run_rig_batch(args, &rig, path),
         (body, None) => single::run(args, &body),

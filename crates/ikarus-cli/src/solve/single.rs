@@ -37,7 +37,7 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
             let goal = arm_goal(args)?;
             let picture = args.picture.prepare()?;
             let every = args.record_every.or(arm.solver.record_every).unwrap_or(DEFAULT_RECORD_EVERY);
-            let solver = solver(arm.options(&args.solver.settings(), Some(every))?)?;
+            let solver = solver(arm.options(&args.body.solver.settings(), Some(every))?)?;
             (Single::Chain { arm, goal }, solver, picture)
         }
         Body::Rig(rig) => {
@@ -46,10 +46,10 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
             for t in targets.iter_mut().filter(|_| args.goal_angle.is_some()) {
                 t.angle_deg = args.goal_angle;
             }
-            let task = args.rig_task.task(&rig.skeleton, &targets)?;
+            let task = args.body.rig_task.task(&rig.skeleton, &targets)?;
             // No frames unless asked for: a rig's frames are one point per bone each.
             let every = args.record_every.or(rig.solver.record_every);
-            let solver = solver(rig.options(&args.solver.settings(), every)?)?;
+            let solver = solver(rig.options(&args.body.solver.settings(), every)?)?;
             (Single::Rig { rig, task }, solver, args.picture.prepare()?)
         }
     };

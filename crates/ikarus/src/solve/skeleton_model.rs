@@ -262,6 +262,22 @@ impl Rig<'_> {
         self.primary_rows > 0 && self.primary_rows < self.effs.iter().map(Eff::rows).sum()
     }
 
+    /// The merit of the effectors' weighted squared errors `sq(eff)`: summed per priority level
+    /// (the first `primary_rows` rows, then the rest), in the effectors' order.
+    #[inline]
+    fn merit(&self, opts: &SolveOptions, sq: impl Fn(&Eff) -> f64) -> f64 {
+        let (mut first, mut second, mut row) = (0.0, 0.0, 0);
+        for eff in self.effs {
+            if row < self.primary_rows {
+                first += sq(eff);
+            } else {
+                second += sq(eff);
+            }
+            row += eff.rows();
+        }
+        merit_of(first, second, self.levels(), primary_merit(opts.tolerance))
+    }
+
     /// Where bone `j` starts, from the points of forward kinematics.
     #[inline]
     fn start_of(&self, points: &RigPoints, j: usize) -> Point2<f64> {
@@ -404,37 +420,20 @@ impl Model for Rig<'_> {
 
     fn trial_error(&self, _: &(), opts: &SolveOptions, points: &RigPoints, _phi: f64) -> f64 {
         let w_o = opts.orientation_weight;
-        let (mut first, mut second, mut row) = (0.0, 0.0, 0);
-        for eff in self.effs {
+        self.merit(opts, |eff| {
             let tip = points.points[eff.bone + 1];
             let rw = eff.root_weight;
             let turn = eff.orientation.map_or(0.0, |g| rw * w_o * wrap_angle(g - points.directions[eff.bone]));
-            let sq =
-                math::square(rw * (eff.target.x - tip.x)) + math::square(rw * (eff.target.y - tip.y)) + turn * turn;
-            if row < self.primary_rows {
-                first += sq;
-            } else {
-                second += sq;
-            }
-            row += eff.rows();
-        }
-        merit_of(first, second, self.levels(), primary_merit(opts.tolerance))
+            math::square(rw * (eff.target.x - tip.x)) + math::square(rw * (eff.target.y - tip.y)) + turn * turn
+        })
     }
 
     fn best_key(&self, opts: &SolveOptions, out: &Outcome, _alg: &Dynamic) -> f64 {
-        let (mut first, mut second, mut row) = (0.0, 0.0, 0);
-        for eff in self.effs {
+        self.merit(opts, |eff| {
             let o = &out.effectors[eff.slot];
             let w = eff.root_weight * eff.root_weight;
-            let sq = w * (o.error * o.error + math::square(opts.orientation_weight * o.angle_error));
-            if row < self.primary_rows {
-                first += sq;
-            } else {
-                second += sq;
-            }
-            row += eff.rows();
-        }
-        merit_of(first, second, self.levels(), primary_merit(opts.tolerance))
+            w * (o.error * o.error + math::square(opts.orientation_weight * o.angle_error))
+        })
     }
 
     fn is_out_of_reach(&self, _: &(), _tolerance: f64) -> bool {

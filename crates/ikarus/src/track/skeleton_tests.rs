@@ -1,31 +1,12 @@
 //! A skeleton's effector following a path: continuity, held pins, errors.
 
-use std::f64::consts::FRAC_PI_2;
-
 use nalgebra::Point2;
 
 use super::{Follower, Path, SampleStatus, TrackError, TrackOptions, follow_rig, is_flip};
 use crate::Goal;
-use crate::limits::JointLimits;
+use crate::fixtures::fork;
 use crate::motion::Body;
-use crate::skeleton::{Bone, Skeleton};
 use crate::solve::{Method, Pin, RigGoal, RigTask, SolveError, SolveOptions};
-
-/// A trunk standing up from the base with two arms of two bones each, the elbows limited.
-fn fork() -> Skeleton {
-    let elbow = JointLimits::new(-2.5, 2.5).unwrap();
-    Skeleton::new(
-        [0.0, 0.0],
-        &[
-            Bone::new("trunk", 1.0, FRAC_PI_2),
-            Bone::new("left_upper", 1.0, 1.2).with_parent("trunk"),
-            Bone::new("left_lower", 1.0, 0.3).with_parent("left_upper").with_limits(elbow),
-            Bone::new("right_upper", 1.0, -1.2).with_parent("trunk"),
-            Bone::new("right_lower", 1.0, -0.3).with_parent("right_upper").with_limits(elbow),
-        ],
-    )
-    .unwrap()
-}
 
 /// The right hand pinned.
 fn pinned_right() -> RigTask {

@@ -1,5 +1,5 @@
 //! Fixtures shared by the library's unit tests, its integration tests and its benchmarks: the
-//! seed arm, the seven-link arm, and random chains, poses and goals.
+//! seed arm, the seven-link arm, a forked rig, and random chains, poses and goals.
 //!
 //! One file, included three ways: as `crate::fixtures` in the unit tests (`lib.rs` includes it
 //! with `#[path]` under `cfg(test)`, and `extern crate self as ikarus` makes the `ikarus::`
@@ -9,7 +9,7 @@
 //! user sees the same, public-API-only code.
 #![allow(dead_code)]
 
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 use ikarus::kinematics::end_effector;
 use ikarus::rng::SplitMix64;
@@ -128,6 +128,23 @@ pub fn chain_written_as_rig(chain: &Chain) -> Skeleton {
         .collect();
     let base = chain.base();
     Skeleton::new([base.x, base.y], &bones).expect("a valid chain written as a rig")
+}
+
+/// A trunk standing up from the base with two arms of two bones each (`left_upper`,
+/// `left_lower`, `right_upper`, `right_lower`), the elbows limited to ±2.5 rad.
+pub fn fork() -> Skeleton {
+    let elbow = JointLimits::new(-2.5, 2.5).expect("valid limits");
+    Skeleton::new(
+        [0.0, 0.0],
+        &[
+            Bone::new("trunk", 1.0, FRAC_PI_2),
+            Bone::new("left_upper", 1.0, 1.2).with_parent("trunk"),
+            Bone::new("left_lower", 1.0, 0.3).with_parent("left_upper").with_limits(elbow),
+            Bone::new("right_upper", 1.0, -1.2).with_parent("trunk"),
+            Bone::new("right_lower", 1.0, -0.3).with_parent("right_upper").with_limits(elbow),
+        ],
+    )
+    .expect("a valid rig")
 }
 
 /// A shipped rig, `examples/rigs/{name}.toml`, read with `toml` (the CLI's reader, with its

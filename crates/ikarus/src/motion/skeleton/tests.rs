@@ -1,29 +1,10 @@
-use std::f64::consts::FRAC_PI_2;
-
 use super::*;
 use crate::chain::{Chain, Link};
 use crate::ease::Ease;
+use crate::fixtures::fork;
 use crate::goal::Goal;
-use crate::limits::JointLimits;
 use crate::motion::{Body, Interpolation, MotionError, Timing};
-use crate::skeleton::Bone;
 use crate::solve::{Method, Pin, RigGoal, SolveError, SolveOptions};
-
-/// A trunk standing up from the base with two arms of two bones each, the elbows limited.
-fn fork() -> Skeleton {
-    let elbow = JointLimits::new(-2.5, 2.5).unwrap();
-    Skeleton::new(
-        [0.0, 0.0],
-        &[
-            Bone::new("trunk", 1.0, FRAC_PI_2),
-            Bone::new("left_upper", 1.0, 1.2).with_parent("trunk"),
-            Bone::new("left_lower", 1.0, 0.3).with_parent("left_upper").with_limits(elbow),
-            Bone::new("right_upper", 1.0, -1.2).with_parent("trunk"),
-            Bone::new("right_lower", 1.0, -0.3).with_parent("right_upper").with_limits(elbow),
-        ],
-    )
-    .unwrap()
-}
 
 fn options(frames: usize) -> MotionOptions {
     MotionOptions::new(Timing::Frames(frames), Ease::Sine)
