@@ -203,6 +203,13 @@ impl Svg {
         self.out.push_str("</text>\n");
     }
 
+    /// A `<title>` (the tooltip of the element it sits in), escaped.
+    pub(crate) fn title(&mut self, text: &str) {
+        self.out.push_str("<title>");
+        push_escaped(&mut self.out, text);
+        self.out.push_str("</title>\n");
+    }
+
     /// Closes any open group and the document.
     pub(crate) fn finish(mut self) -> String {
         for _ in 0..self.open_groups {
