@@ -44,6 +44,15 @@ impl Format {
             Format::DragonBones => "dragonbones",
         }
     }
+
+    /// `Spine` or `DragonBones`, as messages name it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Spine => "Spine",
+            Format::DragonBones => "DragonBones",
+        }
+    }
 }
 
 /// A character file, read.
