@@ -22,6 +22,8 @@ pub mod arm;
 #[doc(hidden)]
 pub mod body;
 #[doc(hidden)]
+pub mod character;
+#[doc(hidden)]
 pub mod ease_args;
 #[doc(hidden)]
 pub mod error;

@@ -1,12 +1,14 @@
 //! Rig files for the page: `GET /api/rigs` (the shipped rig files, embedded in the binary) and
-//! `POST /api/rig/parse` (rig-file text → `{"rig": …}` or `{"problem": "…"}`, as
-//! `/api/arm/parse`), in the shapes of `crate::report`.
+//! `POST /api/rig/parse` (rig-file text → `{"rig": …}`, a Spine or DragonBones file's JSON →
+//! `{"character": …}`, or `{"problem": "…"}`, as `/api/arm/parse`), in the shapes of
+//! `crate::report`.
 
 use serde::Serialize;
 
 use super::fields::json_response;
 use super::{Limits, Problem, Reply};
 use crate::report::RigJson;
+use crate::report::character::CharacterJson;
 use crate::rig::BoneCap;
 
 /// The shipped rigs (`examples/rigs/`), by name, as rig-file text.
@@ -45,13 +47,22 @@ pub fn list() -> Result<Reply, Problem> {
 #[serde(rename_all = "lowercase")]
 pub enum Parsed {
     Rig(RigJson),
+    Character(Box<CharacterJson>),
     Problem(String),
 }
 
 /// `POST /api/rig/parse`: the body is the file's text, of at most `--max-bones` bones (a
-/// bigger one is a problem, found before any bone is checked).
+/// bigger one is a problem, found before any bone is checked): a rig file (TOML), or a
+/// character file (JSON, told by its first character; [`crate::character`]).
 pub fn parsed(text: &str, limits: &Limits) -> Parsed {
-    match RigJson::parse_within(text, "rig file", BoneCap::flag(limits.max_bones)) {
+    let cap = BoneCap::flag(limits.max_bones);
+    if crate::character::is_json(text) {
+        return match crate::character::load_within(text, "rig file", cap) {
+            Ok(loaded) => Parsed::Character(Box::new(CharacterJson::new(&loaded))),
+            Err(problem) => Parsed::Problem(problem.to_string()),
+        };
+    }
+    match RigJson::parse_within(text, "rig file", cap) {
         Ok(rig) => Parsed::Rig(rig),
         Err(problem) => Parsed::Problem(problem),
     }
@@ -85,6 +96,33 @@ mod tests {
         let file: crate::rig::RigFile = toml::from_str(&chain(300)).unwrap();
         let e = super::super::bodies::load_rig(file, &Limits { max_bones: 299, ..Limits::default() }).unwrap_err();
         assert_eq!((e.status, e.message.as_str()), (422, "rig: bones: 300 bones exceed the cap of 299 (--max-bones)"));
+    }
+
+    /// A Spine or DragonBones file answers with the character; a bad one with its one line.
+    #[test]
+    fn a_character_file_answers_with_its_bones_constraints_and_clips() {
+        let spineboy = include_str!("../../../../examples/characters/spine-spineboy-pro.json");
+        let reply = super::super::call(
+            super::super::Endpoint::RigParse,
+            spineboy.as_bytes(),
+            &Limits::default(),
+            &ikarus::Interrupt::new(),
+        );
+        let answer: serde_json::Value = serde_json::from_slice(&reply.unwrap().body).unwrap();
+        let c = &answer["character"];
+        assert_eq!((c["format"].as_str(), c["version"].as_str()), (Some("spine"), Some("4.2.22")));
+        assert_eq!((c["bones"].as_array().unwrap().len(), c["ik"].as_array().unwrap().len()), (67, 7));
+        assert_eq!(
+            c["bones"][1],
+            serde_json::json!({"name": "hip", "parent": "root", "length": 0.0, "x": 0.0, "y": 247.27, "rotation_deg": 0.0,
+                "scale_x": 1.0, "scale_y": 1.0, "shear_x_deg": 0.0, "shear_y_deg": 0.0, "inherit": "normal"})
+        );
+        assert_eq!(c["ik"][4]["bones"], serde_json::json!(["front-thigh", "front-shin"]));
+        assert_eq!(c["clips"][10], serde_json::json!({"name": "walk", "duration": 1.0}));
+        assert_eq!(c["unsupported"].as_array().unwrap().len(), 8); // spineboy's transform constraints
+        let parsed = parsed("{\"skeleton\": {\"spine\": \"4.2\"}, \"bones\": [{\"name\": 1}]}", &Limits::default());
+        let Parsed::Problem(p) = parsed else { panic!("{parsed:?}") };
+        assert!(p.starts_with("rig file: bones[0].name: invalid type: integer `1`, expected a string"), "{p}");
     }
 
     /// Every rig file in `examples/rigs/` is shipped, and reads.

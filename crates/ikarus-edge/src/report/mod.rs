@@ -3,7 +3,7 @@
 //! with the same shapes (degrees at the edge, names matching the arm and rig files). Shapes
 //! only: the work is done elsewhere. One file per concern: [`solve`] (a solve of an arm or a
 //! rig), [`motion`] (a motion of either), [`workspace`] (reachable areas and verdicts),
-//! [`rig`] (a rig file as JSON); the pieces they share (a rig's values keyed by bone name in
+//! [`rig`] (a rig file as JSON), [`character`] (a character file as JSON); the pieces they share (a rig's values keyed by bone name in
 //! its file's order, degrees for people) are here.
 
 use ikarus::Point2;
@@ -12,6 +12,7 @@ use serde::ser::{SerializeMap, Serializer};
 
 use crate::rig::Rig;
 
+pub mod character;
 pub mod motion;
 pub mod rig;
 pub mod solve;

@@ -1,0 +1,192 @@
+//! Character files: Spine (4.0–4.2 JSON, and 3.8's) and DragonBones (5.x JSON) skeletons,
+//! read into the library's [`Character`].
+//!
+//! The format is told from the content, not the file's name ([`detect`]): a Spine file has a
+//! `skeleton` object with a `spine` version string and a `bones` array; a DragonBones file an
+//! `armature` array beside its `version` or `frameRate`. Every problem is one line naming the
+//! field's path and the value (`bones[3] ("foot").parent = "hip": no bone of that name`), after the label, as rig
+//! files' are. [`spine`] and [`dragonbones`] read their format; [`clips`] reads Spine's
+//! animations.
+//!
+//! What is read: bones (local transforms, inherit modes), IK constraints with all their
+//! settings, and (Spine) the animations' bone and IK timelines. What is not: skins, slots,
+//! attachments, images, events, draw order, deform; transform, path and physics constraints
+//! are listed in [`Character::unsupported`] and left inactive, as are DragonBones animations.
+
+mod clips;
+mod dragonbones;
+mod spine;
+
+use std::collections::HashMap;
+
+use ikarus::character::{Character, CharacterError, CharacterParts};
+use serde::de::DeserializeOwned;
+use serde_json::Value;
+
+use crate::error::CliError;
+use crate::rig::BoneCap;
+
+/// The format of a character file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Spine's JSON export (4.0–4.2, or 3.8).
+    Spine,
+    /// DragonBones' JSON (5.x).
+    DragonBones,
+}
+
+impl Format {
+    /// `spine` or `dragonbones`, as the API's answers name it.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Format::Spine => "spine",
+            Format::DragonBones => "dragonbones",
+        }
+    }
+
+    /// `Spine` or `DragonBones`, as messages name it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Spine => "Spine",
+            Format::DragonBones => "DragonBones",
+        }
+    }
+}
+
+/// A character file, read.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// The character.
+    pub character: Character,
+    /// The file's format.
+    pub format: Format,
+    /// The version the file says it was written by (Spine's `skeleton.spine`, DragonBones'
+    /// `version`).
+    pub version: String,
+    /// Lines for the user (one each, without the label): what was left out of the file, a
+    /// version ikarus was not made for.
+    pub warnings: Vec<String>,
+}
+
+/// Whether `text` is JSON rather than a rig file (TOML), from its first character: a TOML
+/// document never starts with `{`.
+#[must_use]
+pub fn is_json(text: &str) -> bool {
+    text.trim_start_matches('\u{feff}').trim_start().starts_with('{')
+}
+
+/// Reads a character file's text under the command line's cap on bones; `label` starts every
+/// error message (`rig file spineboy.json`).
+pub fn load(text: &str, label: &str) -> Result<Loaded, CliError> {
+    load_within(text, label, BoneCap::cli())
+}
+
+/// Reads a character file's text of at most `cap` bones (counted before any bone is read);
+/// `label` starts every error message.
+pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliError> {
+    let fail = |msg: String| CliError::input(format!("{label}: {msg}"));
+    let text = text.trim_start_matches('\u{feff}');
+    let value: Value = serde_json::from_str(text).map_err(|e| fail(format!("malformed JSON: {e}")))?;
+    match detect(&value) {
+        Some(Format::Spine) => spine::read(text, &value, cap).map_err(fail),
+        Some(Format::DragonBones) => dragonbones::read(text, &value, cap).map_err(fail),
+        None => Err(fail(
+            "not a character file: expected a Spine skeleton (a \"skeleton\" object with a \"spine\" version \
+             and a \"bones\" array) or a DragonBones 5 file (an \"armature\" array beside \"version\" or \
+             \"frameRate\")"
+                .to_owned(),
+        )),
+    }
+}
+
+/// The format of a parsed JSON document, from its content.
+#[must_use]
+pub fn detect(value: &Value) -> Option<Format> {
+    let spine = value.get("skeleton").and_then(|s| s.get("spine")).is_some_and(Value::is_string)
+        && value.get("bones").is_some_and(Value::is_array);
+    let dragonbones = value.get("armature").is_some_and(Value::is_array)
+        && (value.get("version").is_some() || value.get("frameRate").is_some());
+    match (spine, dragonbones) {
+        (true, _) => Some(Format::Spine),
+        (false, true) => Some(Format::DragonBones),
+        (false, false) => None,
+    }
+}
+
+/// The text as a `T`, each refusal naming the field's path and the value
+/// (`bones[3].rotation: invalid type: string "x", expected f64 at line 9 column 22`).
+fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(&mut de).map_err(|e| e.to_string())
+}
+
+/// The bones' names to their indices, each parent resolved to an earlier bone: `names[i]` is
+/// bone `i`'s name and parent's name, `at(i)` its path in the file (`bones[3]`). Refused: a
+/// name used twice, a parent that is not a bone, a parent listed after its child.
+fn parents(bones: &[(&str, Option<&str>)], at: impl Fn(usize) -> String) -> Result<Tree, String> {
+    let mut index: HashMap<String, usize> = HashMap::new();
+    let mut out = Vec::with_capacity(bones.len());
+    for (i, (name, _)) in bones.iter().enumerate() {
+        if let Some(first) = index.insert((*name).to_owned(), i) {
+            return Err(format!("{}.name = {name:?}: also the name of {}", at(i), at(first)));
+        }
+    }
+    for (i, (_, parent)) in bones.iter().enumerate() {
+        let p = match parent {
+            None => None,
+            Some(p) => match index.get(*p) {
+                None => return Err(format!("{} ({:?}).parent = {p:?}: no bone of that name", at(i), bones[i].0)),
+                Some(&j) if j >= i => {
+                    let child = bones[i].0;
+                    return Err(format!(
+                        "{} ({child:?}).parent = {p:?}: listed after this bone (a parent comes first)",
+                        at(i)
+                    ));
+                }
+                Some(&j) => Some(j),
+            },
+        };
+        out.push(p);
+    }
+    Ok(Tree { parents: out, index })
+}
+
+/// The bones' parents by index and their indices by name.
+struct Tree {
+    parents: Vec<Option<usize>>,
+    index: HashMap<String, usize>,
+}
+
+/// The index of bone `name`, or `path = "name": no bone of that name`.
+fn bone(index: &HashMap<String, usize>, name: &str, path: &str) -> Result<usize, String> {
+    index.get(name).copied().ok_or_else(|| format!("{path} = {name:?}: no bone of that name"))
+}
+
+/// The bone count of a `bones` array, checked against the cap before anything is read.
+fn count(bones: Option<&Value>, cap: BoneCap) -> Result<(), String> {
+    cap.check(bones.and_then(Value::as_array).map_or(0, Vec::len))
+}
+
+/// The character of checked parts; what the model still refuses (its messages name indices)
+/// is said as it says it.
+fn character(parts: CharacterParts) -> Result<Character, String> {
+    Character::new(parts).map_err(|e: CharacterError| e.to_string())
+}
+
+/// The latest `time` of any key anywhere under `value` (an animation): its duration as Spine's
+/// runtime counts it, over every timeline, those ikarus does not read too.
+fn latest_time(value: &Value) -> f64 {
+    match value {
+        Value::Object(map) => {
+            let own = map.get("time").and_then(Value::as_f64).unwrap_or(0.0);
+            map.values().map(latest_time).fold(own, f64::max)
+        }
+        Value::Array(items) => items.iter().map(latest_time).fold(0.0, f64::max),
+        _ => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests;

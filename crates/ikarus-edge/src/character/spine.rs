@@ -1,0 +1,242 @@
+//! Spine's JSON export (4.0–4.2; 3.8 names a bone's inherit mode `transform` and writes its
+//! curves normalised): bones, IK constraints, the transform, path and physics constraints'
+//! names (left inactive), and the animations ([`super::clips`]).
+//!
+//! Defaults as the format has them: a bone's `length`, `x`, `y`, `rotation`, `shearX`,
+//! `shearY` 0, `scaleX`, `scaleY` 1, `inherit` `normal`; an IK constraint's `order` 0, `mix` 1,
+//! `softness` 0, `bendPositive` true, `compress`, `stretch`, `uniform` false. Degrees become
+//! radians. The `skeleton` object's `x`, `y`, `width` and `height` are the bounds of the setup
+//! pose's attachments, not a placement: the character is placed at the origin, unscaled.
+
+use std::collections::HashMap;
+
+use ikarus::character::{
+    CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
+};
+use serde::Deserialize;
+use serde_json::Value;
+
+use super::clips::{self, Ordered};
+use super::{Format, Loaded};
+use crate::rig::BoneCap;
+
+#[derive(Deserialize)]
+struct SpineFile {
+    skeleton: Skeleton,
+    bones: Vec<BoneJson>,
+    #[serde(default)]
+    ik: Vec<IkJson>,
+    #[serde(default)]
+    transform: Vec<Named>,
+    #[serde(default)]
+    path: Vec<Named>,
+    #[serde(default)]
+    physics: Vec<Named>,
+    #[serde(default)]
+    animations: Ordered<clips::Animation>,
+}
+
+#[derive(Deserialize)]
+struct Skeleton {
+    spine: String,
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct BoneJson {
+    name: String,
+    #[serde(default)]
+    parent: Option<String>,
+    #[serde(default)]
+    length: f64,
+    #[serde(default)]
+    x: f64,
+    #[serde(default)]
+    y: f64,
+    #[serde(default)]
+    rotation: f64,
+    #[serde(default = "one")]
+    scale_x: f64,
+    #[serde(default = "one")]
+    scale_y: f64,
+    #[serde(default)]
+    shear_x: f64,
+    #[serde(default)]
+    shear_y: f64,
+    #[serde(default)]
+    inherit: Option<InheritJson>,
+    /// 3.8's name of `inherit`.
+    #[serde(default)]
+    transform: Option<InheritJson>,
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(rename_all = "camelCase")]
+enum InheritJson {
+    Normal,
+    OnlyTranslation,
+    NoRotationOrReflection,
+    NoScale,
+    NoScaleOrReflection,
+}
+
+impl From<InheritJson> for Inherit {
+    fn from(i: InheritJson) -> Self {
+        match i {
+            InheritJson::Normal => Inherit::Normal,
+            InheritJson::OnlyTranslation => Inherit::OnlyTranslation,
+            InheritJson::NoRotationOrReflection => Inherit::NoRotationOrReflection,
+            InheritJson::NoScale => Inherit::NoScale,
+            InheritJson::NoScaleOrReflection => Inherit::NoScaleOrReflection,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct IkJson {
+    name: String,
+    #[serde(default)]
+    order: u32,
+    bones: Vec<String>,
+    target: String,
+    #[serde(default = "one")]
+    mix: f64,
+    #[serde(default)]
+    softness: f64,
+    #[serde(default = "yes")]
+    bend_positive: bool,
+    #[serde(default)]
+    compress: bool,
+    #[serde(default)]
+    stretch: bool,
+    #[serde(default)]
+    uniform: bool,
+}
+
+/// A constraint ikarus leaves inactive: only its name is read.
+#[derive(Deserialize)]
+struct Named {
+    name: String,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Reads a Spine file (`value` is its text parsed, for the cap and the clips' durations).
+pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, String> {
+    super::count(value.get("bones"), cap)?;
+    let file: SpineFile = super::typed(text)?;
+    let version = file.skeleton.spine.clone();
+    let legacy = version.starts_with("3.");
+    let mut warnings = Vec::new();
+    if !(version.starts_with("3.8") || ["4.0", "4.1", "4.2"].iter().any(|v| version.starts_with(v))) {
+        warnings.push(format!(
+            "skeleton.spine: {version:?} is not a version ikarus was made for (3.8, 4.0 to 4.2); read as {}",
+            if legacy { "3.8" } else { "4.2" }
+        ));
+    }
+    let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
+    let super::Tree { parents: parent_of, index } = super::parents(&named, |i| format!("bones[{i}]"))?;
+    if let Some((i, b)) = file.bones.iter().enumerate().find(|(_, b)| b.length < 0.0) {
+        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", b.name, b.length));
+    }
+    let bones = file.bones.iter().zip(parent_of.iter().copied()).map(|(b, parent)| bone(b, parent)).collect();
+    let constraints = file
+        .ik
+        .iter()
+        .enumerate()
+        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", k.name), &parent_of))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut unsupported = Vec::new();
+    for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
+        unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
+    }
+    let names =
+        clips::Names { bones: &index, constraints: &file.ik.iter().map(|k| k.name.as_str()).collect::<Vec<_>>() };
+    let clips = file
+        .animations
+        .0
+        .iter()
+        .map(|(name, animation)| {
+            let duration = super::latest_time(&value["animations"][name]);
+            clips::clip(name, animation, duration, &names, legacy)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if !unsupported.is_empty() {
+        warnings.push(inactive(&unsupported));
+    }
+    let parts = CharacterParts { bones, constraints, clips, unsupported, ..CharacterParts::default() };
+    Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
+}
+
+/// `left inactive: transform constraint "a", path constraint "b"`.
+pub(super) fn inactive(unsupported: &[Unsupported]) -> String {
+    let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, u.name)).collect();
+    format!("left inactive (ikarus does not apply them): {}", list.join(", "))
+}
+
+fn bone(b: &BoneJson, parent: Option<usize>) -> CharacterBone {
+    CharacterBone {
+        name: b.name.clone(),
+        parent,
+        length: b.length,
+        setup: LocalTransform {
+            x: b.x,
+            y: b.y,
+            rotation: b.rotation.to_radians(),
+            scale_x: b.scale_x,
+            scale_y: b.scale_y,
+            shear_x: b.shear_x.to_radians(),
+            shear_y: b.shear_y.to_radians(),
+        },
+        inherit: b.inherit.or(b.transform).map_or(Inherit::Normal, Inherit::from),
+    }
+}
+
+fn constraint(
+    k: &IkJson,
+    index: &HashMap<String, usize>,
+    at: &str,
+    parent_of: &[Option<usize>],
+) -> Result<IkConstraint, String> {
+    let bones = match k.bones.as_slice() {
+        [one] => IkBones::One(super::bone(index, one, &format!("{at}.bones[0]"))?),
+        [first, second] => {
+            let parent = super::bone(index, first, &format!("{at}.bones[0]"))?;
+            let child = super::bone(index, second, &format!("{at}.bones[1]"))?;
+            if parent_of[child] != Some(parent) {
+                return Err(format!("{at}.bones[1] = {second:?}: not a child of {first:?}"));
+            }
+            IkBones::Two { parent, child }
+        }
+        other => return Err(format!("{at}.bones: expected one or two bones, got {}", other.len())),
+    };
+    let target = super::bone(index, &k.target, &format!("{at}.target"))?;
+    if !(0.0..=1.0).contains(&k.mix) {
+        return Err(format!("{at}.mix = {}: must be within 0 and 1", k.mix));
+    }
+    if k.softness < 0.0 {
+        return Err(format!("{at}.softness = {}: must not be negative", k.softness));
+    }
+    Ok(IkConstraint {
+        name: k.name.clone(),
+        order: k.order,
+        bones,
+        target,
+        setup: IkSettings {
+            mix: k.mix,
+            softness: k.softness,
+            bend_positive: k.bend_positive,
+            compress: k.compress,
+            stretch: k.stretch,
+        },
+        uniform: k.uniform,
+        rule: IkRule::Spine,
+    })
+}
