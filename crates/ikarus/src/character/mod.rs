@@ -13,6 +13,14 @@
 
 use thiserror::Error;
 
+mod ik;
+mod pose;
+mod timeline;
+mod world;
+
+pub use pose::{PoseError, PoseRequest, Posed};
+pub use world::{Affine, world_transform};
+
 /// A character: bones listed parent first, IK constraints, clips, and the skeleton's own
 /// placement.
 #[derive(Debug, Clone, PartialEq)]

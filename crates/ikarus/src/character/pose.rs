@@ -1,0 +1,211 @@
+//! Posing a character as its runtime does: the setup pose, then a clip at a time, then the
+//! targets moved, then the IK constraints one after another in their order.
+
+use super::ik;
+use super::timeline;
+use super::world::{Affine, Bones};
+use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
+use thiserror::Error;
+
+/// What to pose: a clip at a time (seconds), and bones whose world origin is put at a point
+/// after the clip and before the constraints.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PoseRequest<'a> {
+    /// The clip's index and the time in it (before its first key a timeline leaves the setup
+    /// pose; after its last key it holds the last key's value).
+    pub clip: Option<(usize, f64)>,
+    /// `(bone, [x, y])`: the bone's world origin goes to `(x, y)` (its local x and y are set
+    /// from its parent's world transform after the clip), in this order.
+    pub targets: &'a [(usize, [f64; 2])],
+}
+
+/// A pose request the character cannot take.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum PoseError {
+    /// The clip index is not one of the character's clips.
+    #[error("clip: no clip {0}")]
+    UnknownClip(usize),
+    /// The time is NaN or infinite.
+    #[error("time: must be finite, got {0}")]
+    Time(f64),
+    /// A target names a bone that does not exist.
+    #[error("target: no bone {0}")]
+    UnknownBone(usize),
+    /// A target's point is not finite.
+    #[error("target: bone {bone}'s point must be finite, got ({x}, {y})")]
+    TargetPoint {
+        /// The bone's index.
+        bone: usize,
+        /// The point's x.
+        x: f64,
+        /// The point's y.
+        y: f64,
+    },
+    /// A target's bone has a parent whose world matrix is singular (scaled to nothing), so no
+    /// local position puts it anywhere else.
+    #[error("target: bone {0}'s parent is scaled to nothing, its origin cannot be placed")]
+    SingularParent(usize),
+}
+
+/// A posed character: every bone's local transform as posing left it and its world transform.
+/// Reuse one across poses: once its buffers have grown to the character's size, posing
+/// allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct Posed {
+    local: Vec<LocalTransform>,
+    world: Vec<Affine>,
+    length: Vec<f64>,
+    below: Vec<bool>,
+    settings: Vec<IkSettings>,
+    order: Vec<usize>,
+}
+
+impl Posed {
+    /// How many bones.
+    pub fn len(&self) -> usize {
+        self.world.len()
+    }
+
+    /// Whether there are no bones (before the first pose).
+    pub fn is_empty(&self) -> bool {
+        self.world.is_empty()
+    }
+
+    /// Bone `i`'s world origin. Panics if `i` is not a bone.
+    pub fn origin(&self, i: usize) -> [f64; 2] {
+        [self.world[i].x, self.world[i].y]
+    }
+
+    /// The world direction of bone `i`'s x axis, radians in `[−π, π]`: `atan2(c, a)`.
+    pub fn rotation(&self, i: usize) -> f64 {
+        self.world[i].rotation()
+    }
+
+    /// Bone `i`'s tip: its origin plus its length along its world x axis, `(x + a·l, y + c·l)`.
+    pub fn tip(&self, i: usize) -> [f64; 2] {
+        let w = &self.world[i];
+        [w.x + w.a * self.length[i], w.y + w.c * self.length[i]]
+    }
+
+    /// Bone `i`'s world matrix `[a, b, c, d]` (rows `[a, b]`, `[c, d]`).
+    pub fn matrix(&self, i: usize) -> [f64; 4] {
+        let w = &self.world[i];
+        [w.a, w.b, w.c, w.d]
+    }
+
+    /// Bone `i`'s whole world transform.
+    pub fn world(&self, i: usize) -> Affine {
+        self.world[i]
+    }
+
+    /// Bone `i`'s local transform as posing left it (the clip's, the target's, the
+    /// constraints').
+    pub fn local(&self, i: usize) -> LocalTransform {
+        self.local[i]
+    }
+
+    /// Constraint `k`'s settings as the clip left them.
+    pub fn settings(&self, k: usize) -> IkSettings {
+        self.settings[k]
+    }
+}
+
+impl Character {
+    /// Poses the character into `out`: every bone reset to its setup pose and every
+    /// constraint to its setup settings; the clip's timelines applied at the time; the world
+    /// transforms computed; each target's bone moved (its local x, y set so that its world
+    /// origin is the point, given its parent's world transform then); then the constraints in
+    /// increasing `order` (ties in the order listed), each seeing the world transforms as
+    /// updated so far and followed by an update of the bones below its bones, so that a later
+    /// constraint can undo what an earlier one did, as in the runtime.
+    pub fn pose(&self, request: &PoseRequest, out: &mut Posed) -> Result<(), PoseError> {
+        self.check(request)?;
+        let n = self.bones.len();
+        out.local.clear();
+        out.local.extend(self.bones.iter().map(|b| b.setup));
+        out.length.clear();
+        out.length.extend(self.bones.iter().map(|b| b.length));
+        out.world.resize(n, Affine::default());
+        out.below.resize(n, false);
+        out.settings.clear();
+        out.settings.extend(self.constraints.iter().map(|k| k.setup));
+        out.order.clear();
+        out.order.extend(0..self.constraints.len());
+        out.order.sort_unstable_by_key(|&k| (self.constraints[k].order, k));
+
+        if let Some((c, time)) = request.clip {
+            let clip = &self.clips[c];
+            for t in &clip.bones {
+                timeline::apply_bone(t, &self.bones[t.bone].setup, &mut out.local[t.bone], time);
+            }
+            for t in &clip.constraints {
+                if let Some(s) = timeline::ik_settings(&t.keys, time) {
+                    out.settings[t.constraint] = s;
+                }
+            }
+        }
+        let mut bones = Bones {
+            bones: &self.bones,
+            placement: self.placement,
+            local: &mut out.local,
+            world: &mut out.world,
+            below: &mut out.below,
+        };
+        bones.update_all();
+        for &(bone, [x, y]) in request.targets {
+            let [lx, ly] = bones.parent_world(bone).to_local(x, y).ok_or(PoseError::SingularParent(bone))?;
+            bones.local[bone].x = lx;
+            bones.local[bone].y = ly;
+            bones.update_below(bone);
+        }
+        for &k in &out.order {
+            let c = &self.constraints[k];
+            let s = &out.settings[k];
+            let w = bones.world[c.target];
+            let target = [w.x, w.y];
+            let top = match (c.bones, c.rule) {
+                (IkBones::One(b), _) => {
+                    let s =
+                        if c.rule == IkRule::Spine { *s } else { IkSettings { compress: false, stretch: false, ..*s } };
+                    ik::spine_one(&mut bones, b, target, &s, c.uniform);
+                    b
+                }
+                (IkBones::Two { parent, child }, IkRule::Spine) => {
+                    ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
+                    parent
+                }
+                (IkBones::Two { parent, child }, IkRule::DragonBones) => {
+                    ik::dragonbones_two(&mut bones, (parent, child), target, s);
+                    parent
+                }
+            };
+            bones.update_below(top);
+        }
+        Ok(())
+    }
+
+    fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
+        if let Some((c, time)) = request.clip {
+            if c >= self.clips.len() {
+                return Err(PoseError::UnknownClip(c));
+            }
+            if !time.is_finite() {
+                return Err(PoseError::Time(time));
+            }
+        }
+        for &(bone, [x, y]) in request.targets {
+            if bone >= self.bones.len() {
+                return Err(PoseError::UnknownBone(bone));
+            }
+            if !(x.is_finite() && y.is_finite()) {
+                return Err(PoseError::TargetPoint { bone, x, y });
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+#[path = "pose_tests.rs"]
+mod tests;

@@ -1,0 +1,328 @@
+//! World transforms of a character's bones, as Spine's runtime computes them.
+//!
+//! A bone's local matrix is `L = [[cos(r + shx)·sx, cos(r + π/2 + shy)·sy], [sin(r + shx)·sx,
+//! sin(r + π/2 + shy)·sy]]` and its origin `(x, y)` in the parent's frame. With the parent's
+//! world matrix `P` and origin `o`, and the skeleton's scale `S = diag(Sx, Sy)`:
+//!
+//! - the origin is always `P·(x, y) + o` (every mode inherits translation);
+//! - `normal`: `W = P·L`;
+//! - `onlyTranslation`: `W = S·L` (only the skeleton's own scale, which may mirror);
+//! - `noRotationOrReflection`: with `Q = S⁻¹·P` (the parent's matrix without the skeleton's
+//!   scale), `θ` the direction of `Q`'s x axis, `sx = |Q's x axis|` and `sy = |det Q| / sx`,
+//!   `W = S·R(θ)·diag(sx, sy)·R(−θ)·L`: the parent's scale along its own axes, without its
+//!   rotation nor its reflection;
+//! - `noScale` and `noScaleOrReflection`: the bone's x axis points where `Q·(cos r, sin r)`
+//!   points (where it would point under `normal`), in a frame of unit axes `Z` (x axis that
+//!   direction, y axis perpendicular counter-clockwise, turned over when `det Q < 0` for
+//!   `noScale` only), and `W = S·Z·K` with `K` the local matrix without rotation (shear and
+//!   scale only).
+//!
+//! A root bone's parent is the skeleton itself: `P = S`, `o` = the skeleton's position.
+
+use super::{CharacterBone, Inherit, LocalTransform, Placement};
+use crate::math;
+use std::f64::consts::FRAC_PI_2;
+
+/// A 2D affine transform: the matrix `[[a, b], [c, d]]` and the origin `(x, y)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Affine {
+    /// Row 1, column 1: x of the x axis.
+    pub a: f64,
+    /// Row 1, column 2: x of the y axis.
+    pub b: f64,
+    /// Row 2, column 1: y of the x axis.
+    pub c: f64,
+    /// Row 2, column 2: y of the y axis.
+    pub d: f64,
+    /// The origin's x.
+    pub x: f64,
+    /// The origin's y.
+    pub y: f64,
+}
+
+impl Default for Affine {
+    fn default() -> Self {
+        Affine { a: 1.0, b: 0.0, c: 0.0, d: 1.0, x: 0.0, y: 0.0 }
+    }
+}
+
+impl Affine {
+    /// The skeleton's own frame: its scale and position.
+    pub fn of_placement(p: Placement) -> Affine {
+        Affine { a: p.scale[0], b: 0.0, c: 0.0, d: p.scale[1], x: p.position[0], y: p.position[1] }
+    }
+
+    /// `ad − bc`.
+    pub fn det(&self) -> f64 {
+        self.a * self.d - self.b * self.c
+    }
+
+    /// The matrix applied to the vector `(x, y)` (no translation).
+    pub fn apply(&self, x: f64, y: f64) -> [f64; 2] {
+        [self.a * x + self.b * y, self.c * x + self.d * y]
+    }
+
+    /// The point `(x, y)` of this frame in the world.
+    pub fn to_world(&self, x: f64, y: f64) -> [f64; 2] {
+        let [u, v] = self.apply(x, y);
+        [u + self.x, v + self.y]
+    }
+
+    /// The world point `(x, y)` in this frame (`None` when the matrix is singular).
+    pub fn to_local(&self, x: f64, y: f64) -> Option<[f64; 2]> {
+        let det = self.det();
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let (u, v) = (x - self.x, y - self.y);
+        Some([(u * self.d - v * self.b) / det, (v * self.a - u * self.c) / det])
+    }
+
+    /// The product of the matrices `self · other`, with `other`'s origin taken into this frame.
+    pub fn times(&self, o: &Affine) -> Affine {
+        let [x, y] = self.to_world(o.x, o.y);
+        Affine {
+            a: self.a * o.a + self.b * o.c,
+            b: self.a * o.b + self.b * o.d,
+            c: self.c * o.a + self.d * o.c,
+            d: self.c * o.b + self.d * o.d,
+            x,
+            y,
+        }
+    }
+
+    /// The direction of the x axis, radians: `atan2(c, a)`.
+    pub fn rotation(&self) -> f64 {
+        math::atan2(self.c, self.a)
+    }
+
+    /// The matrix with the skeleton's scale divided out of its rows (`S⁻¹·M`).
+    fn unscaled(&self, s: [f64; 2]) -> Affine {
+        Affine { a: self.a / s[0], b: self.b / s[0], c: self.c / s[1], d: self.d / s[1], ..*self }
+    }
+
+    /// The matrix with the skeleton's scale applied to its rows (`S·M`).
+    fn scaled(&self, s: [f64; 2]) -> Affine {
+        Affine { a: self.a * s[0], b: self.b * s[0], c: self.c * s[1], d: self.d * s[1], ..*self }
+    }
+}
+
+/// The local matrix of `t` turned by `rotation` (its own rotation, or 0 for the rotation-free
+/// part), origin 0.
+fn local_matrix(t: &LocalTransform, rotation: f64) -> Affine {
+    let (sx, cx) = math::sin_cos(rotation + t.shear_x);
+    let (sy, cy) = math::sin_cos(rotation + FRAC_PI_2 + t.shear_y);
+    Affine { a: cx * t.scale_x, b: cy * t.scale_y, c: sx * t.scale_x, d: sy * t.scale_y, x: 0.0, y: 0.0 }
+}
+
+/// The frame a bone's local rotation is measured in, for aiming it (one-bone IK): the matrix
+/// `F` and the angle `θ` such that the bone's world x axis points along `F·(cos(r + shx − θ),
+/// sin(r + shx − θ))` — exactly for `normal`, `onlyTranslation` and
+/// `noRotationOrReflection`, and the parent's own matrix for the `noScale` modes (as the
+/// runtime does). Its origin is the parent's.
+pub(crate) fn aim_frame(inherit: Inherit, parent: &Affine, placement: Placement) -> (Affine, f64) {
+    let s = placement.scale;
+    match inherit {
+        Inherit::Normal | Inherit::NoScale | Inherit::NoScaleOrReflection => (*parent, 0.0),
+        Inherit::OnlyTranslation => (Affine { x: parent.x, y: parent.y, ..Affine::of_placement(placement) }, 0.0),
+        Inherit::NoRotationOrReflection => {
+            let (frame, theta) = unrotated(&parent.unscaled(s));
+            (Affine { x: parent.x, y: parent.y, ..frame.scaled(s) }, theta)
+        }
+    }
+}
+
+/// `R(θ)·diag(sx, sy)` for `q`, with `θ`: see the module's doc.
+fn unrotated(q: &Affine) -> (Affine, f64) {
+    let sx2 = q.a * q.a + q.c * q.c;
+    if sx2 > 1e-8 {
+        let s = q.det().abs() / sx2;
+        (Affine { a: q.a, b: -q.c * s, c: q.c, d: q.a * s, x: 0.0, y: 0.0 }, math::atan2(q.c, q.a))
+    } else {
+        // No x axis left: keep the y axis's length, along +y.
+        let sy = math::hypot(q.b, q.d);
+        (Affine { a: 0.0, b: 0.0, c: 0.0, d: sy, x: 0.0, y: 0.0 }, 0.0)
+    }
+}
+
+/// The world transform of a bone with local transform `t` and inherit mode `inherit`, below
+/// `parent`'s world transform (`None` for a root). The math is in the module's doc.
+pub fn world_transform(t: &LocalTransform, inherit: Inherit, parent: Option<&Affine>, placement: Placement) -> Affine {
+    let s = placement.scale;
+    let Some(p) = parent else {
+        return Affine::of_placement(placement).times(&Affine { x: t.x, y: t.y, ..local_matrix(t, t.rotation) });
+    };
+    let [x, y] = p.to_world(t.x, t.y);
+    let m = match inherit {
+        Inherit::Normal => p.times(&local_matrix(t, t.rotation)),
+        Inherit::OnlyTranslation => local_matrix(t, t.rotation).scaled(s),
+        Inherit::NoRotationOrReflection => {
+            let (frame, theta) = unrotated(&p.unscaled(s));
+            frame.times(&local_matrix(t, t.rotation - theta)).scaled(s)
+        }
+        Inherit::NoScale | Inherit::NoScaleOrReflection => {
+            let q = p.unscaled(s);
+            let (sin, cos) = math::sin_cos(t.rotation);
+            let [zx, zy] = q.apply(cos, sin);
+            let len = math::hypot(zx, zy);
+            let (za, zc) = if len > 1e-12 { (zx / len, zy / len) } else { (1.0, 0.0) };
+            let flip = if inherit == Inherit::NoScale && q.det() < 0.0 { -1.0 } else { 1.0 };
+            let z = Affine { a: za, b: -zc * flip, c: zc, d: za * flip, x: 0.0, y: 0.0 };
+            z.times(&local_matrix(t, 0.0)).scaled(s)
+        }
+    };
+    Affine { x, y, ..m }
+}
+
+/// A character's bones being posed: their local transforms (which posing changes) and their
+/// world transforms (kept up to date by [`Bones::update_below`]).
+pub(crate) struct Bones<'a> {
+    pub(crate) bones: &'a [CharacterBone],
+    pub(crate) placement: Placement,
+    pub(crate) local: &'a mut [LocalTransform],
+    pub(crate) world: &'a mut [Affine],
+    /// Scratch: which bones are below the one being updated.
+    pub(crate) below: &'a mut [bool],
+}
+
+impl Bones<'_> {
+    /// The world transform of bone `i`'s parent (the skeleton's frame for a root).
+    pub(crate) fn parent_world(&self, i: usize) -> Affine {
+        match self.bones[i].parent {
+            Some(p) => self.world[p],
+            None => Affine::of_placement(self.placement),
+        }
+    }
+
+    /// Recomputes bone `i`'s world transform from its local one and its parent's world one.
+    fn update(&mut self, i: usize) {
+        let b = &self.bones[i];
+        let parent = b.parent.map(|p| self.world[p]);
+        self.world[i] = world_transform(&self.local[i], b.inherit, parent.as_ref(), self.placement);
+    }
+
+    /// Recomputes every bone's world transform, parent first.
+    pub(crate) fn update_all(&mut self) {
+        for i in 0..self.bones.len() {
+            self.update(i);
+        }
+    }
+
+    /// Recomputes bone `i`'s world transform and those of every bone below it (bones are
+    /// listed parent first, so one pass from `i` on suffices).
+    pub(crate) fn update_below(&mut self, i: usize) {
+        self.below[i..].fill(false);
+        self.below[i] = true;
+        self.update(i);
+        for j in i + 1..self.bones.len() {
+            if self.bones[j].parent.is_some_and(|p| p >= i && self.below[p]) {
+                self.below[j] = true;
+                self.update(j);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn local(x: f64, y: f64, r: f64, sx: f64, sy: f64) -> LocalTransform {
+        LocalTransform { x, y, rotation: r, scale_x: sx, scale_y: sy, shear_x: 0.0, shear_y: 0.0 }
+    }
+
+    fn close(a: f64, b: f64) {
+        assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+    }
+
+    fn parent() -> Affine {
+        // Rotated 0.7, scaled 2 along its x and 3 along its y, mirrored by a negative y scale.
+        world_transform(&local(5.0, -1.0, 0.7, 2.0, -3.0), Inherit::Normal, None, Placement::default())
+    }
+
+    #[test]
+    fn normal_is_the_product_of_the_parent_and_the_local_matrix() {
+        let p = parent();
+        let t = local(1.0, 2.0, 0.3, 1.5, 0.5);
+        let w = world_transform(&t, Inherit::Normal, Some(&p), Placement::default());
+        let [x, y] = p.to_world(1.0, 2.0);
+        close(w.x, x);
+        close(w.y, y);
+        close(w.det(), p.det() * 0.75);
+        // The direction of the x axis is the parent's x direction turned by the local
+        // rotation, as seen through the parent's matrix.
+        let [u, v] = p.apply(math::cos(0.3), math::sin(0.3));
+        close(w.rotation(), math::atan2(v, u));
+    }
+
+    #[test]
+    fn only_translation_keeps_the_local_rotation_and_scale() {
+        let p = parent();
+        let t = local(1.0, 2.0, 0.3, 1.5, 0.5);
+        let w = world_transform(&t, Inherit::OnlyTranslation, Some(&p), Placement::default());
+        close(w.rotation(), 0.3);
+        close(math::hypot(w.a, w.c), 1.5);
+        close(math::hypot(w.b, w.d), 0.5);
+        close(w.x, p.to_world(1.0, 2.0)[0]);
+    }
+
+    #[test]
+    fn no_scale_keeps_unit_axes_and_the_normal_direction() {
+        let p = parent();
+        let t = local(1.0, 2.0, 0.3, 1.0, 1.0);
+        let normal = world_transform(&t, Inherit::Normal, Some(&p), Placement::default());
+        for mode in [Inherit::NoScale, Inherit::NoScaleOrReflection] {
+            let w = world_transform(&t, mode, Some(&p), Placement::default());
+            close(math::hypot(w.a, w.c), 1.0);
+            close(math::hypot(w.b, w.d), 1.0);
+            close(w.rotation(), normal.rotation());
+            // The parent is mirrored: noScale keeps the reflection, noScaleOrReflection not.
+            close(w.det(), if mode == Inherit::NoScale { -1.0 } else { 1.0 });
+        }
+    }
+
+    #[test]
+    fn no_rotation_or_reflection_keeps_the_scale_not_the_turn() {
+        let p = parent();
+        let t = local(1.0, 2.0, 0.3, 1.0, 1.0);
+        let w = world_transform(&t, Inherit::NoRotationOrReflection, Some(&p), Placement::default());
+        // Area scale is the parent's, without the reflection.
+        close(w.det(), 6.0);
+        // An unscaled, unrotated parent leaves the local rotation alone.
+        let q = world_transform(&local(0.0, 0.0, 0.0, 1.0, 1.0), Inherit::Normal, None, Placement::default());
+        let turned = world_transform(&local(0.0, 0.0, 1.2, 1.0, 1.0), Inherit::Normal, Some(&q), Placement::default());
+        let w = world_transform(&t, Inherit::NoRotationOrReflection, Some(&turned), Placement::default());
+        close(w.rotation(), 0.3);
+        // A uniformly scaled parent scales the bone but leaves its rotation.
+        let big = world_transform(&local(0.0, 0.0, 1.2, 2.0, 2.0), Inherit::Normal, None, Placement::default());
+        let w = world_transform(&t, Inherit::NoRotationOrReflection, Some(&big), Placement::default());
+        close(w.rotation(), 0.3);
+        close(math::hypot(w.a, w.c), 2.0);
+    }
+
+    #[test]
+    fn a_negative_skeleton_scale_mirrors_everything() {
+        let mirrored = Placement { position: [3.0, 4.0], scale: [-1.0, 1.0] };
+        let t = local(1.0, 2.0, 0.3, 1.0, 1.0);
+        let root = world_transform(&t, Inherit::Normal, None, mirrored);
+        close(root.x, 2.0);
+        close(root.y, 6.0);
+        close(root.rotation(), PI - 0.3);
+        close(root.det(), -1.0);
+        for mode in Inherit::ALL {
+            let w = world_transform(&t, mode, Some(&root), mirrored);
+            let plain = world_transform(
+                &t,
+                mode,
+                Some(&world_transform(&t, Inherit::Normal, None, Placement::default())),
+                Placement::default(),
+            );
+            // Mirroring the skeleton mirrors every bone about the skeleton's origin.
+            close(w.x - 3.0, -(plain.x));
+            close(w.y - 4.0, plain.y);
+            close(w.a, -plain.a);
+            close(w.c, plain.c);
+        }
+    }
+}
