@@ -325,3 +325,76 @@ fn a_rig_follower_step_allocates_nothing() {
     });
     assert_eq!(count, 0, "{count} allocations in 39 steps");
 }
+
+/// Issue 26: posing a character (setup, a clip with Bézier and IK keys, a target, two- and
+/// one-bone constraints) allocates nothing once its `Posed` has grown to the character.
+#[test]
+fn posing_a_character_allocates_nothing() {
+    use ikarus::character::{
+        BoneKey, BoneProperty, BoneTimeline, Character, CharacterBone, CharacterParts, Clip, IkBones, IkConstraint,
+        IkKey, IkRule, IkSettings, IkTimeline, Inherit, Interpolation, LocalTransform, PoseRequest, Posed,
+    };
+    let bone = |name: &str, parent: Option<usize>, x: f64, rotation: f64| CharacterBone {
+        name: name.into(),
+        parent,
+        length: 10.0,
+        setup: LocalTransform { x, rotation, ..LocalTransform::default() },
+        inherit: Inherit::Normal,
+    };
+    let ik = |bones: IkBones, target: usize, order: u32| IkConstraint {
+        name: format!("ik{order}"),
+        order,
+        bones,
+        target,
+        setup: IkSettings { softness: 1.0, ..IkSettings::default() },
+        uniform: false,
+        rule: IkRule::Spine,
+    };
+    let bezier = Interpolation::Bezier { c1: [0.2, 0.1], c2: [0.6, 0.9] };
+    let c = Character::new(CharacterParts {
+        bones: vec![
+            bone("root", None, 0.0, 0.0),
+            bone("thigh", Some(0), 0.0, -1.5),
+            bone("shin", Some(1), 10.0, 0.3),
+            bone("foot", Some(2), 10.0, 0.0),
+            bone("target", Some(0), 5.0, 0.0),
+        ],
+        constraints: vec![ik(IkBones::Two { parent: 1, child: 2 }, 4, 1), ik(IkBones::One(3), 0, 0)],
+        clips: vec![Clip {
+            name: "walk".into(),
+            duration: 1.0,
+            bones: vec![BoneTimeline {
+                bone: 1,
+                property: BoneProperty::Rotate,
+                keys: vec![
+                    BoneKey { time: 0.0, values: [0.0; 2], curves: [bezier; 2] },
+                    BoneKey { time: 1.0, values: [1.0; 2], curves: [bezier; 2] },
+                ],
+            }],
+            constraints: vec![IkTimeline {
+                constraint: 0,
+                keys: vec![
+                    IkKey { time: 0.0, settings: IkSettings::default(), curves: [bezier; 2] },
+                    IkKey {
+                        time: 1.0,
+                        settings: IkSettings { mix: 0.5, ..IkSettings::default() },
+                        curves: [bezier; 2],
+                    },
+                ],
+            }],
+        }],
+        ..CharacterParts::default()
+    })
+    .unwrap();
+    let mut out = Posed::default();
+    let targets = [(4, [3.0, -12.0])];
+    c.pose(&PoseRequest { clip: Some((0, 0.1)), targets: &targets }, &mut out).unwrap(); // warm-up
+    let (count, ()) = allocations_in(|| {
+        for i in 0..100 {
+            let time = i as f64 / 100.0;
+            c.pose(&PoseRequest { clip: Some((0, time)), targets: &targets }, &mut out).unwrap();
+        }
+    });
+    assert_eq!(count, 0, "{count} allocations in 100 poses");
+    assert!(out.tip(2)[0].is_finite());
+}
