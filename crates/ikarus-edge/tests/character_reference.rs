@@ -92,3 +92,37 @@ fn spineboy_setup_is_posed_as_the_runtime_does() {
     println!("back-shoulder: {unmoved} from the reference without the transform constraint, {off} with it");
     assert!(off < 1e-4 && unmoved > 1e-3, "{off} {unmoved}");
 }
+
+/// Every clip of every shipped character, at its start, middle and end and past it, with every
+/// constraint's target moved near and far (reachable or not), poses to finite numbers.
+#[test]
+fn every_shipped_clip_and_target_poses_to_finite_numbers() {
+    for file in [
+        "spine-spineboy-pro.json",
+        "spine-raptor-pro.json",
+        "spine-stretchyman-pro.json",
+        "dragonbones-mecha_1406_ske.json",
+    ] {
+        let c = load(file);
+        let mut posed = Posed::default();
+        for scale in [0.0, 0.01, 1.0, 1e4] {
+            let moved: Vec<(usize, [f64; 2])> =
+                c.constraints().iter().map(|k| (k.target, [37.0 * scale, -53.0 * scale])).collect();
+            for clip in 0..c.clips().len() {
+                let d = c.clips()[clip].duration;
+                for time in [0.0, d / 3.0, d / 2.0, d, d + 1.0] {
+                    for t in [&[][..], &moved[..]] {
+                        c.pose(&PoseRequest { clip: Some((clip, time)), targets: t }, &mut posed).unwrap();
+                        for i in 0..c.bones().len() {
+                            let [x, y] = posed.tip(i);
+                            assert!(
+                                x.is_finite() && y.is_finite() && posed.rotation(i).is_finite(),
+                                "{file} clip {clip} at {time}: bone {i}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
