@@ -10,7 +10,7 @@ use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::{CommandFactory, Parser, Subcommand};
 
 use crate::error::CliError;
-use crate::{animate, bench, input, output, reach, render, rig, serve, shell, solve, track, workspace};
+use crate::{animate, bench, input, output, pose, reach, render, rig, serve, shell, solve, track, workspace};
 
 /// Inverse kinematics for planar chains: move an arm's tip to a goal.
 #[derive(Debug, Parser)]
@@ -47,6 +47,10 @@ enum Command {
     /// from the reachable region and the nearest reachable point
     #[command(allow_negative_numbers = true)]
     Reach(reach::ReachArgs),
+    /// Pose a character file (Spine, DragonBones) as its runtime does: the setup pose, an
+    /// animation at a time, bones moved to targets, the IK constraints in order
+    #[command(allow_negative_numbers = true)]
+    Pose(pose::PoseArgs),
     /// Draw figures that stand on their own
     #[command(subcommand)]
     Render(render::RenderCommand),
@@ -91,6 +95,7 @@ pub fn main() -> ExitCode {
         Command::Track(args) => track::run(args),
         Command::Workspace(args) => workspace::run(args),
         Command::Reach(args) => reach::run(args),
+        Command::Pose(args) => pose::run(args),
         Command::Render(command) => render::run(command),
         Command::Serve(args) => serve::run(args),
         Command::Bench(args) => bench::run(args, &output::Terminal),

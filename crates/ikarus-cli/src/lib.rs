@@ -24,6 +24,7 @@ mod goals;
 mod options;
 mod output;
 mod picture;
+mod pose;
 mod reach;
 mod render;
 #[cfg(feature = "server")]

@@ -38,6 +38,8 @@ pub mod options;
 #[doc(hidden)]
 pub mod picture;
 #[doc(hidden)]
+pub mod pose;
+#[doc(hidden)]
 pub mod reach;
 #[doc(hidden)]
 pub mod report;

@@ -282,6 +282,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
         .route("/api/track", post(|State(s), b| compute(Endpoint::Track, s, b)))
         .route("/api/workspace", post(|State(s), b| compute(Endpoint::Workspace, s, b)))
         .route("/api/reach", post(|State(s), b| compute(Endpoint::Reach, s, b)))
+        .route("/api/pose", post(|State(s), b| compute(Endpoint::Pose, s, b)))
         .route("/api/render", post(|State(s), b| compute(Endpoint::Render, s, b)))
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))

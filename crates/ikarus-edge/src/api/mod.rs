@@ -17,6 +17,7 @@ pub mod fields;
 pub mod figures;
 pub mod jobs;
 pub mod meta;
+pub mod pose;
 pub mod regions;
 #[cfg(feature = "render")]
 pub mod render;
@@ -213,6 +214,8 @@ pub enum Endpoint {
     Workspace,
     /// `POST /api/reach`: the verdict on points.
     Reach,
+    /// `POST /api/pose`: a character file posed as its runtime does.
+    Pose,
     /// `POST /api/render`: a picture (PNG, SVG or GIF).
     #[cfg(feature = "render")]
     Render,
@@ -235,6 +238,7 @@ impl Endpoint {
         Endpoint::Track,
         Endpoint::Workspace,
         Endpoint::Reach,
+        Endpoint::Pose,
         #[cfg(feature = "render")]
         Endpoint::Render,
         Endpoint::Ease,
@@ -256,6 +260,7 @@ impl Endpoint {
             Endpoint::Track => "/api/track",
             Endpoint::Workspace => "/api/workspace",
             Endpoint::Reach => "/api/reach",
+            Endpoint::Pose => "/api/pose",
             #[cfg(feature = "render")]
             Endpoint::Render => "/api/render",
             Endpoint::Ease => "/api/ease",
@@ -294,6 +299,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::Track => jobs::track(TrackReq::parse(body)?.1, limits, interrupt),
         Endpoint::Workspace => regions::workspace(body, limits, interrupt),
         Endpoint::Reach => regions::reach(body, limits, interrupt),
+        Endpoint::Pose => pose::pose(body, limits),
         #[cfg(feature = "render")]
         Endpoint::Render => render::render(body, limits, interrupt),
         Endpoint::Ease => ease::curve(body),

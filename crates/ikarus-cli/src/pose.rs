@@ -1,0 +1,146 @@
+//! `ikarus pose`: a character file (Spine, DragonBones) posed as its runtime does — the setup
+//! pose, an animation at a time, bones moved to targets, then the IK constraints in their order
+//! — printed as every bone's world origin, rotation and tip, or drawn. The job is the edge's
+//! ([`ikarus_edge::pose`], shared with `POST /api/pose`).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use ikarus_edge::pose::{PoseAsk, PoseReport, pose};
+
+use crate::error::CliError;
+use crate::options::{parse_finite, parse_point};
+use crate::output::{self, PendingFile};
+
+/// Output format of `ikarus pose`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PoseFormat {
+    /// One line per bone: name, x, y, rotation (degrees), tip x, tip y
+    Text,
+    /// `{"bones": [{"name", "x", "y", "rotation_deg", "tip"}, …], "unsupported": […]}`
+    Json,
+    /// The bones drawn (SVG), the IK targets as goals
+    Svg,
+    /// The bones drawn (PNG), the IK targets as goals
+    Png,
+}
+
+/// Pose a character file as its runtime does.
+#[derive(Debug, Args)]
+pub struct PoseArgs {
+    /// Character file: Spine (4.0–4.2, 3.8) or DragonBones (5.x) JSON, told by its content
+    #[arg(long, value_name = "FILE")]
+    pub rig: PathBuf,
+    /// Sample this animation of the file (by name) [default: the setup pose]
+    #[arg(long, value_name = "NAME")]
+    pub animation: Option<String>,
+    /// Seconds into the animation [default: 0]
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true, value_parser = parse_finite, requires = "animation")]
+    pub time: Option<f64>,
+    /// Put a bone's world origin at X,Y after the animation and before the constraints (an IK
+    /// target bone moves its limb), BONE=X,Y (repeatable, applied in order)
+    #[arg(long, value_name = "BONE=X,Y", allow_hyphen_values = true, value_parser = parse_target)]
+    pub target: Vec<(String, [f64; 2])>,
+    /// Output format [default: text on a terminal, json otherwise; from --out's extension for
+    /// .svg and .png]
+    #[arg(long, value_enum)]
+    pub format: Option<PoseFormat>,
+    /// Write the output to FILE instead of stdout (whole or not at all)
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Picture width in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub width: u32,
+    /// Picture height in pixels
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub height: u32,
+}
+
+/// `BONE=X,Y`: the name is everything before the last `=`.
+fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
+    let (name, point) = s.rsplit_once('=').ok_or_else(|| format!("expected BONE=X,Y, got {s:?}"))?;
+    if name.is_empty() {
+        return Err(format!("expected BONE=X,Y with a bone's name before '=', got {s:?}"));
+    }
+    Ok((name.to_owned(), parse_point(point)?))
+}
+
+pub fn run(args: &PoseArgs) -> Result<(), CliError> {
+    let label = format!("rig file {}", args.rig.display());
+    let text = crate::input::read_text(&args.rig, &label)?;
+    if !ikarus_edge::character::is_json(&text) {
+        return Err(CliError::input(format!(
+            "{label}: pose takes a character file (Spine or DragonBones JSON); a rig file (TOML) is posed by solve --rig"
+        )));
+    }
+    let loaded = ikarus_edge::character::load(&text, &label)?;
+    for warning in &loaded.warnings {
+        eprintln!("ikarus: {label}: {warning}");
+    }
+    let format = format_of(args)?;
+    let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
+    let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone() };
+    let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+    let bytes = render(&report, format, args)?;
+    match file {
+        Some(file) => file.commit(&bytes),
+        None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+    }
+}
+
+/// The format asked for; else from `--out`'s extension (.svg, .png, else json); else text on
+/// a terminal and json when piped.
+fn format_of(args: &PoseArgs) -> Result<PoseFormat, CliError> {
+    if let Some(f) = args.format {
+        return Ok(f);
+    }
+    let ext = args.out.as_deref().and_then(|p| p.extension()).and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    Ok(match ext.as_deref() {
+        Some("svg") => PoseFormat::Svg,
+        Some("png") => PoseFormat::Png,
+        Some(_) => PoseFormat::Json,
+        None => {
+            crate::picture::report_format(None, false, PoseFormat::Text, PoseFormat::Json).unwrap_or(PoseFormat::Json)
+        }
+    })
+}
+
+fn render(report: &PoseReport, format: PoseFormat, args: &PoseArgs) -> Result<Vec<u8>, CliError> {
+    let caption = || {
+        let file = args.rig.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+        match &args.animation {
+            Some(a) => format!("{file} · {a} at {} s", args.time.unwrap_or(0.0)),
+            None => format!("{file} · setup pose"),
+        }
+    };
+    let drawn = |e: ikarus_render::RenderError| CliError::runtime(format!("cannot draw the pose: {e}"));
+    Ok(match format {
+        PoseFormat::Text => report.text().into_bytes(),
+        PoseFormat::Json => {
+            let mut v = serde_json::to_vec(report).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
+            v.push(b'\n');
+            v
+        }
+        PoseFormat::Svg => ikarus_render::character_svg(&report.figure(Some(caption())), args.width, args.height)
+            .map_err(drawn)?
+            .into_bytes(),
+        PoseFormat::Png => {
+            ikarus_render::character_png(&report.figure(Some(caption())), args.width, args.height).map_err(drawn)?
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_target_is_a_name_and_a_point() {
+        assert_eq!(parse_target("front-foot=1,-2.5"), Ok(("front-foot".to_owned(), [1.0, -2.5])));
+        assert_eq!(parse_target("a=b=3,4"), Ok(("a=b".to_owned(), [3.0, 4.0])));
+        assert!(parse_target("foot").unwrap_err().contains("BONE=X,Y"));
+        assert!(parse_target("=1,2").unwrap_err().contains("bone's name"));
+        assert!(parse_target("foot=1").unwrap_err().contains("two numbers"));
+    }
+}

@@ -1,0 +1,199 @@
+//! The `pose` job, shared by `ikarus pose` and `POST /api/pose`: a character file posed as its
+//! runtime does (the setup pose, then an animation at a time, then bones moved to targets, then
+//! the IK constraints in their order), answered as every bone's world origin, rotation and tip.
+//!
+//! Names are resolved here, once, into the library's indices; each refusal is one line naming
+//! the field and the value, and for a name that does not exist, the names that do.
+
+use ikarus::Point2;
+use ikarus::character::{Character, PoseRequest, Posed};
+use ikarus_render::{CharacterFigure, PosedBone};
+use serde::Serialize;
+
+use crate::character::Loaded;
+use crate::report::character::UnsupportedJson;
+
+/// What to pose, by name, as the user gave it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PoseAsk {
+    /// The animation sampled, by name; `None`: the setup pose.
+    pub animation: Option<String>,
+    /// Seconds into the animation (only with an animation).
+    pub time: Option<f64>,
+    /// `(bone, [x, y])`: the bone's world origin is put at (x, y) after the animation and before
+    /// the constraints, in this order.
+    pub targets: Vec<(String, [f64; 2])>,
+}
+
+/// One bone posed: world origin, the world direction of its x axis in degrees, and its tip
+/// (origin plus length along that axis), in the file's units, y up.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PosedBoneJson {
+    pub name: String,
+    pub x: f64,
+    pub y: f64,
+    pub rotation_deg: f64,
+    pub tip: [f64; 2],
+}
+
+/// `{"bones": [{"name", "x", "y", "rotation_deg", "tip"}, …], "unsupported": […]}`.
+#[derive(Debug, Serialize)]
+pub struct PoseReport {
+    pub bones: Vec<PosedBoneJson>,
+    pub unsupported: Vec<UnsupportedJson>,
+    /// The IK constraints' target bones' origins, for the picture (not in the JSON).
+    #[serde(skip)]
+    targets: Vec<[f64; 2]>,
+}
+
+/// Poses `loaded` as `ask` says. Errors are one line without a label: `--animation "wlk": no
+/// such animation; spineboy has: aim, death, …`.
+pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
+    let c = &loaded.character;
+    let clip = match &ask.animation {
+        Some(name) => {
+            let i = c.clip_index(name).ok_or_else(|| {
+                let names: Vec<&str> = c.clips().iter().map(|k| k.name.as_str()).collect();
+                let has = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
+                format!("animation {name:?}: no such animation (the file has: {has})")
+            })?;
+            let time = ask.time.unwrap_or(0.0);
+            if !time.is_finite() {
+                return Err(format!("time: must be a finite number of seconds, got {time}"));
+            }
+            Some((i, time))
+        }
+        None if ask.time.is_some() => return Err("time: only with an animation".to_owned()),
+        None => None,
+    };
+    let mut targets = Vec::with_capacity(ask.targets.len());
+    for (name, [x, y]) in &ask.targets {
+        let bone = c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"))?;
+        if !(x.is_finite() && y.is_finite()) {
+            return Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"));
+        }
+        targets.push((bone, [*x, *y]));
+    }
+    let mut posed = Posed::default();
+    c.pose(&PoseRequest { clip, targets: &targets }, &mut posed).map_err(|e| e.to_string())?;
+    Ok(PoseReport::of(c, &posed))
+}
+
+impl PoseReport {
+    fn of(c: &Character, posed: &Posed) -> Self {
+        let bones = c
+            .bones()
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let [x, y] = posed.origin(i);
+                PosedBoneJson {
+                    name: b.name.clone(),
+                    x,
+                    y,
+                    rotation_deg: posed.rotation(i).to_degrees(),
+                    tip: posed.tip(i),
+                }
+            })
+            .collect();
+        let unsupported =
+            c.unsupported().iter().map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() }).collect();
+        let targets = c.constraints().iter().map(|k| posed.origin(k.target)).collect();
+        PoseReport { bones, unsupported, targets }
+    }
+
+    /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
+    /// per unsupported constraint.
+    #[must_use]
+    pub fn text(&self) -> String {
+        use std::fmt::Write;
+        let width = self.bones.iter().map(|b| b.name.len()).max().unwrap_or(4).max(4);
+        let mut out = format!(
+            "{:width$}  {:>12}  {:>12}  {:>12}  {:>12}  {:>12}\n",
+            "bone", "x", "y", "rotation_deg", "tip_x", "tip_y"
+        );
+        for b in &self.bones {
+            let _ = writeln!(
+                out,
+                "{:width$}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}",
+                b.name, b.x, b.y, b.rotation_deg, b.tip[0], b.tip[1]
+            );
+        }
+        for u in &self.unsupported {
+            let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, u.name);
+        }
+        out
+    }
+
+    /// The picture of the pose: every bone, and the IK targets as goals.
+    #[must_use]
+    pub fn figure(&self, caption: Option<String>) -> CharacterFigure<'_> {
+        let point = |p: [f64; 2]| Point2::new(p[0], p[1]);
+        CharacterFigure {
+            bones: self
+                .bones
+                .iter()
+                .map(|b| PosedBone { name: &b.name, origin: Point2::new(b.x, b.y), tip: point(b.tip) })
+                .collect(),
+            targets: self.targets.iter().copied().map(point).collect(),
+            caption,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spineboy() -> Loaded {
+        let text = include_str!("../../../examples/characters/spine-spineboy-pro.json");
+        crate::character::load(text, "spineboy").unwrap()
+    }
+
+    #[test]
+    fn names_that_do_not_exist_are_refused_in_one_line() {
+        let boy = spineboy();
+        let ask = |animation: Option<&str>, time, targets: Vec<(String, [f64; 2])>| PoseAsk {
+            animation: animation.map(str::to_owned),
+            time,
+            targets,
+        };
+        let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
+        assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");
+        let e = pose(&boy, &ask(None, Some(1.0), vec![])).unwrap_err();
+        assert_eq!(e, "time: only with an animation");
+        let e = pose(&boy, &ask(Some("walk"), Some(f64::NAN), vec![])).unwrap_err();
+        assert_eq!(e, "time: must be a finite number of seconds, got NaN");
+        let e = pose(&boy, &ask(None, None, vec![("toe".into(), [0.0, 0.0])])).unwrap_err();
+        assert_eq!(e, "target \"toe\": no bone of that name");
+        let e = pose(&boy, &ask(None, None, vec![("hip".into(), [f64::INFINITY, 0.0])])).unwrap_err();
+        assert_eq!(e, "target \"hip\": the point must be finite, got (inf, 0)");
+        assert!(e.lines().count() == 1);
+    }
+
+    #[test]
+    fn a_target_moves_its_bone_and_the_report_lists_every_bone() {
+        let boy = spineboy();
+        let setup = pose(&boy, &PoseAsk::default()).unwrap();
+        assert_eq!(setup.bones.len(), boy.character.bones().len());
+        let moved = PoseAsk { targets: vec![("front-leg-target".into(), [120.0, 40.0])], ..PoseAsk::default() };
+        let report = pose(&boy, &moved).unwrap();
+        let target = report.bones.iter().find(|b| b.name == "front-leg-target").unwrap();
+        assert!((target.x - 120.0).abs() < 1e-9 && (target.y - 40.0).abs() < 1e-9, "{target:?}");
+        // The tip is the origin plus the length along the bone's direction.
+        for (b, bone) in report.bones.iter().zip(boy.character.bones()) {
+            let r = b.rotation_deg.to_radians();
+            let (s, c) = r.sin_cos();
+            let scale = ((b.tip[0] - b.x).powi(2) + (b.tip[1] - b.y).powi(2)).sqrt();
+            if bone.length > 0.0 {
+                assert!(((b.tip[0] - b.x) - scale * c).abs() < 1e-6 && ((b.tip[1] - b.y) - scale * s).abs() < 1e-6);
+            }
+        }
+        let text = report.text();
+        let rows = text.lines().filter(|l| !l.starts_with("unsupported ")).count();
+        assert!(text.starts_with("bone") && rows == report.bones.len() + 1, "{text}");
+        assert_eq!(text.lines().count(), rows + report.unsupported.len());
+        let svg = ikarus_render::character_svg(&report.figure(None), 300, 300).unwrap();
+        assert_eq!(svg.matches("<g class=\"bone\">").count(), report.bones.len());
+    }
+}
