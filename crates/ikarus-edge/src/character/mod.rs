@@ -115,6 +115,22 @@ pub fn detect(value: &Value) -> Option<Format> {
     }
 }
 
+/// A constraint or animation ikarus does not read: only its name is.
+#[derive(serde::Deserialize)]
+struct Named {
+    name: String,
+}
+
+/// The default of a scale, a mix, a weight.
+fn one() -> f64 {
+    1.0
+}
+
+/// The default of `bendPositive` and DragonBones' inherit flags.
+fn yes() -> bool {
+    true
+}
+
 /// The text as a `T`, each refusal naming the field's path and the value
 /// (`bones[3].rotation: invalid type: string "x", expected f64 at line 9 column 22`).
 fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
