@@ -26,7 +26,12 @@ impl Body {
     /// file as each reader does (`rig file r.toml: …`, `arm file a.toml: …`).
     pub fn load(arm: Option<&Path>, rig: Option<&Path>) -> Result<Self, CliError> {
         match rig {
-            Some(path) => Ok(Self::Rig(Box::new(Rig::load(path)?))),
+            Some(path) => {
+                let label = format!("rig file {}", path.display());
+                let text = crate::input::read_text(path, &label)?;
+                crate::character::not_a_rig(&text, &label)?;
+                Ok(Self::Rig(Box::new(Rig::parse(&text, &label)?)))
+            }
             None => {
                 let (text, label) = match arm {
                     None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),

@@ -173,19 +173,8 @@ impl Rig {
     }
 
     /// Parses and validates rig-file text of at most `cap` bones; `label` starts every error
-    /// message. A character file (Spine, DragonBones: JSON) is read, and refused with what it
-    /// is, since a rig's commands take rig files.
+    /// message.
     pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {
-        if crate::character::is_json(text) {
-            let loaded = crate::character::load_within(text, label, cap)?;
-            let c = &loaded.character;
-            return Err(CliError::input(format!(
-                "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML)",
-                loaded.format.name(),
-                c.bones().len(),
-                c.constraints().len()
-            )));
-        }
         Self::from_file(RigFile::read(text, label, cap)?, label, cap)
     }
 
@@ -324,20 +313,6 @@ mod tests {
     fn names_beyond_ascii_and_with_dots_are_fine() {
         let rig = Rig::parse("[[bones]]\nname = \"Hüfte.links-1_a\"\nlength = 1\n", "r").unwrap();
         assert_eq!(rig.skeleton.names(), &["Hüfte.links-1_a"]);
-    }
-
-    #[test]
-    fn a_character_file_is_read_and_named_for_what_it_is() {
-        let spineboy = include_str!("../../../examples/characters/spine-spineboy-pro.json");
-        let e = Rig::parse(spineboy, "rig file s.json").unwrap_err().to_string();
-        assert_eq!(
-            e,
-            "rig file s.json: a Spine character (67 bones, 7 IK constraints), which this command does not take: it takes rig files (TOML)"
-        );
-        let e = Rig::parse("{\"skeleton\": {\"spine\": \"4.2\"}, \"bones\": [{}]}", "rig file s.json")
-            .unwrap_err()
-            .to_string();
-        assert_eq!(e, "rig file s.json: bones[0]: missing field `name` at line 1 column 43");
     }
 
     #[test]

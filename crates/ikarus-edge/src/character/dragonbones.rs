@@ -40,12 +40,7 @@ struct Armature {
     #[serde(default)]
     ik: Vec<IkJson>,
     #[serde(default)]
-    animation: Vec<Named>,
-}
-
-#[derive(Deserialize)]
-struct Named {
-    name: String,
+    animation: Vec<super::Named>,
 }
 
 #[derive(Deserialize)]
@@ -58,13 +53,13 @@ struct BoneJson {
     length: f64,
     #[serde(default)]
     transform: TransformJson,
-    #[serde(default = "yes")]
+    #[serde(default = "super::yes")]
     inherit_translation: bool,
-    #[serde(default = "yes")]
+    #[serde(default = "super::yes")]
     inherit_rotation: bool,
-    #[serde(default = "yes")]
+    #[serde(default = "super::yes")]
     inherit_scale: bool,
-    #[serde(default = "yes")]
+    #[serde(default = "super::yes")]
     inherit_reflection: bool,
 }
 
@@ -79,9 +74,9 @@ struct TransformJson {
     sk_x: f64,
     #[serde(default)]
     sk_y: f64,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     sc_x: f64,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     sc_y: f64,
 }
 
@@ -99,33 +94,19 @@ struct IkJson {
     target: String,
     #[serde(default)]
     chain: u32,
-    #[serde(default = "yes", deserialize_with = "flag")]
+    #[serde(default = "super::yes", deserialize_with = "flag")]
     bend_positive: bool,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     weight: f64,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-fn yes() -> bool {
-    true
 }
 
 /// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
 fn flag<'de, D: Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
-    #[derive(Deserialize)]
-    #[serde(untagged)]
-    enum Flag {
-        Bool(bool),
-        Text(String),
-    }
-    match Flag::deserialize(d)? {
-        Flag::Bool(b) => Ok(b),
-        Flag::Text(t) if t == "true" => Ok(true),
-        Flag::Text(t) if t == "false" => Ok(false),
-        Flag::Text(t) => Err(de::Error::invalid_value(de::Unexpected::Str(&t), &"true or false")),
+    match Value::deserialize(d)? {
+        Value::Bool(b) => Ok(b),
+        Value::String(t) if t == "true" => Ok(true),
+        Value::String(t) if t == "false" => Ok(false),
+        other => Err(de::Error::custom(format_args!("expected true or false, got {other}"))),
     }
 }
 

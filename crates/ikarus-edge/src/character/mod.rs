@@ -101,6 +101,22 @@ pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliE
     }
 }
 
+/// For a rig's commands (`--rig FILE`): nothing for a rig file (not JSON); a character file is
+/// read (a bad one is its line) and refused saying what it is, since they take rig files.
+pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
+    if !is_json(text) {
+        return Ok(());
+    }
+    let loaded = load(text, label)?;
+    let c = &loaded.character;
+    Err(CliError::input(format!(
+        "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML)",
+        loaded.format.name(),
+        c.bones().len(),
+        c.constraints().len()
+    )))
+}
+
 /// The format of a parsed JSON document, from its content.
 #[must_use]
 pub fn detect(value: &Value) -> Option<Format> {
@@ -113,6 +129,22 @@ pub fn detect(value: &Value) -> Option<Format> {
         (false, true) => Some(Format::DragonBones),
         (false, false) => None,
     }
+}
+
+/// A constraint or animation ikarus does not read: only its name is.
+#[derive(serde::Deserialize)]
+struct Named {
+    name: String,
+}
+
+/// The default of a scale, a mix, a weight.
+fn one() -> f64 {
+    1.0
+}
+
+/// The default of `bendPositive` and DragonBones' inherit flags.
+fn yes() -> bool {
+    true
 }
 
 /// The text as a `T`, each refusal naming the field's path and the value

@@ -27,11 +27,11 @@ struct SpineFile {
     #[serde(default)]
     ik: Vec<IkJson>,
     #[serde(default)]
-    transform: Vec<Named>,
+    transform: Vec<super::Named>,
     #[serde(default)]
-    path: Vec<Named>,
+    path: Vec<super::Named>,
     #[serde(default)]
-    physics: Vec<Named>,
+    physics: Vec<super::Named>,
     #[serde(default)]
     animations: Ordered<clips::Animation>,
 }
@@ -55,9 +55,9 @@ struct BoneJson {
     y: f64,
     #[serde(default)]
     rotation: f64,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     scale_x: f64,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     scale_y: f64,
     #[serde(default)]
     shear_x: f64,
@@ -100,11 +100,11 @@ struct IkJson {
     order: u32,
     bones: Vec<String>,
     target: String,
-    #[serde(default = "one")]
+    #[serde(default = "super::one")]
     mix: f64,
     #[serde(default)]
     softness: f64,
-    #[serde(default = "yes")]
+    #[serde(default = "super::yes")]
     bend_positive: bool,
     #[serde(default)]
     compress: bool,
@@ -112,20 +112,6 @@ struct IkJson {
     stretch: bool,
     #[serde(default)]
     uniform: bool,
-}
-
-/// A constraint ikarus leaves inactive: only its name is read.
-#[derive(Deserialize)]
-struct Named {
-    name: String,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-fn yes() -> bool {
-    true
 }
 
 /// Reads a Spine file (`value` is its text parsed, for the cap and the clips' durations).

@@ -265,10 +265,9 @@ fn dragonbones_flags_may_be_strings() {
     assert!(load_ok(&text("\"true\"")).character.constraints()[0].setup.bend_positive);
     assert!(!load_ok(&text("false")).character.constraints()[0].setup.bend_positive);
     let e = refused(&text("\"maybe\""));
-    assert!(
-        e.starts_with("f: armature[0].ik[0].bendPositive: invalid value: string \"maybe\", expected true or false"),
-        "{e}"
-    );
+    assert!(e.starts_with("f: armature[0].ik[0].bendPositive: expected true or false, got \"maybe\""), "{e}");
+    let e = refused(&text("1"));
+    assert!(e.starts_with("f: armature[0].ik[0].bendPositive: expected true or false, got 1"), "{e}");
     let e = refused(&text("true").replace("\"chain\": 1", "\"chain\": 2"));
     assert_eq!(e, "f: armature[0].ik[0] (\"k\").chain = 2: expected 0 (one bone) or 1 (two bones)");
 }
@@ -284,43 +283,49 @@ fn bad_files_are_refused_with_one_line_naming_field_and_value() {
     assert_eq!(refused(&swapped), "f: bones[1] (\"b\").parent = \"a\": listed after this bone (a parent comes first)");
     let e = refused(&MINIMAL.replace(r#"{"name": "root"}"#, r#"{"name": "root", "rotation": "ten"}"#));
     assert!(e.starts_with("f: bones[0].rotation: invalid type: string \"ten\", expected f64"), "{e}");
-    assert_eq!(
-        refused(&MINIMAL.replace(r#""target": "t""#, r#""target": "z""#)),
-        "f: ik[0] (\"k\").target = \"z\": no bone of that name"
-    );
-    assert_eq!(
-        refused(&MINIMAL.replace(r#"["a", "b"]"#, r#"["a", "q"]"#)),
-        "f: ik[0] (\"k\").bones[1] = \"q\": no bone of that name"
-    );
-    assert_eq!(
-        refused(&MINIMAL.replace(r#"["a", "b"]"#, r#"["root", "b"]"#)),
-        "f: ik[0] (\"k\").bones[1] = \"b\": not a child of \"root\""
-    );
-    let e = refused(&MINIMAL.replace(r#""curve": "stepped""#, r#""curve": [0.1, 2, 0.3]"#));
-    assert_eq!(e, "f: animations.go.bones.a.rotate[1].curve: 3 numbers, expected 4 ([cx1, cy1, cx2, cy2] per channel)");
     let e = refused(&MINIMAL.replace(r#""curve": "stepped""#, r#""curve": "smooth""#));
     assert!(e.starts_with("f: animations.go.bones.a.rotate[1].curve: invalid value: string \"smooth\""), "{e}");
-    let e = refused(&MINIMAL.replace(r#"{"time": 1}"#, r#"{"time": 0.5}"#));
-    assert_eq!(e, "f: animations.go.bones.a.rotate[2].time = 0.5: must be after the previous key's, 0.5");
-    assert_eq!(
-        refused(&MINIMAL.replace(r#""bones": {"a""#, r#""bones": {"zz""#)),
-        "f: animations.go.bones.zz: no bone of that name"
-    );
-    assert_eq!(
-        refused(&MINIMAL.replace(r#""ik": {"k""#, r#""ik": {"kk""#)),
-        "f: animations.go.ik.kk: no IK constraint of that name"
-    );
-    assert_eq!(
-        refused(&MINIMAL.replace(r#""target": "t"}"#, r#""target": "t", "mix": 2}"#)),
-        "f: ik[0] (\"k\").mix = 2: must be within 0 and 1"
-    );
+    // (what is replaced, by what, the line)
+    for (from, to, want) in [
+        (r#""target": "t""#, r#""target": "z""#, r#"f: ik[0] ("k").target = "z": no bone of that name"#),
+        (r#"["a", "b"]"#, r#"["a", "q"]"#, r#"f: ik[0] ("k").bones[1] = "q": no bone of that name"#),
+        (r#"["a", "b"]"#, r#"["root", "b"]"#, r#"f: ik[0] ("k").bones[1] = "b": not a child of "root""#),
+        (r#"["a", "b"]"#, r#"["root", "a", "b"]"#, r#"f: ik[0] ("k").bones: expected one or two bones, got 3"#),
+        (
+            r#""curve": "stepped""#,
+            r#""curve": [0.1, 2, 0.3]"#,
+            "f: animations.go.bones.a.rotate[1].curve: 3 numbers, expected 4 ([cx1, cy1, cx2, cy2] per channel)",
+        ),
+        (
+            r#"{"time": 1}"#,
+            r#"{"time": 0.5}"#,
+            "f: animations.go.bones.a.rotate[2].time = 0.5: must be after the previous key's, 0.5",
+        ),
+        (r#""bones": {"a""#, r#""bones": {"zz""#, "f: animations.go.bones.zz: no bone of that name"),
+        (r#""ik": {"k""#, r#""ik": {"kk""#, "f: animations.go.ik.kk: no IK constraint of that name"),
+        (r#""target": "t"}"#, r#""target": "t", "mix": 2}"#, r#"f: ik[0] ("k").mix = 2: must be within 0 and 1"#),
+        (
+            r#""ik": {"k": [{}]"#,
+            r#""ik": {"k": [{"mix": -1}]"#,
+            "f: animations.go.ik.k[0].mix = -1: must be within 0 and 1",
+        ),
+        (
+            r#"{"name": "t", "parent": "root"}"#,
+            r#"{"name": "a", "parent": "root"}"#,
+            r#"f: bones[3].name = "a": also the name of bones[1]"#,
+        ),
+        (
+            r#"{"name": "root"}"#,
+            r#"{"name": "root", "length": -1}"#,
+            r#"f: bones[0] ("root").length = -1: must not be negative"#,
+        ),
+    ] {
+        assert!(MINIMAL.contains(from), "{from}");
+        assert_eq!(refused(&MINIMAL.replacen(from, to, 1)), want);
+    }
     let e = refused(&MINIMAL[..MINIMAL.len() / 2]);
     assert!(e.starts_with("f: malformed JSON: EOF while parsing"), "{e}");
     assert!(refused("{\"bones\": []}").starts_with("f: not a character file: expected a Spine skeleton"));
-    let e = refused(&MINIMAL.replace(r#"{"name": "t", "parent": "root"}"#, r#"{"name": "a", "parent": "root"}"#));
-    assert_eq!(e, "f: bones[3].name = \"a\": also the name of bones[1]");
-    let e = refused(&MINIMAL.replace(r#"{"name": "root"}"#, r#"{"name": "root", "length": -1}"#));
-    assert_eq!(e, "f: bones[0] (\"root\").length = -1: must not be negative");
 }
 
 #[test]
@@ -331,4 +336,21 @@ fn the_format_is_told_from_the_content_and_bones_are_capped() {
     assert_eq!(e, "f: bones: 4 bones exceed the cap of 3 (--max-bones)");
     let e = load_within(MECHA, "f", cap).unwrap_err().to_string();
     assert_eq!(e, "f: bones: 17 bones exceed the cap of 3 (--max-bones)");
+}
+
+#[test]
+fn a_character_file_given_for_a_rig_is_read_and_named_for_what_it_is() {
+    let e = not_a_rig(SPINEBOY, "rig file s.json").unwrap_err().to_string();
+    let want = "rig file s.json: a Spine character (67 bones, 7 IK constraints), which this command does not take: it takes rig files (TOML)";
+    assert_eq!(e, want);
+    let e =
+        not_a_rig("{\"skeleton\": {\"spine\": \"4.2\"}, \"bones\": [{}]}", "rig file s.json").unwrap_err().to_string();
+    assert_eq!(e, "rig file s.json: bones[0]: missing field `name` at line 1 column 43");
+    assert!(not_a_rig("[[bones]]\nname = \"a\"\nlength = 1\n", "r").is_ok());
+    let body = crate::body::Body::load(
+        None,
+        Some(std::path::Path::new("../../examples/characters/dragonbones-mecha_1406_ske.json")),
+    );
+    let e = body.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.ends_with("a DragonBones character (17 bones, 4 IK constraints), which this command does not take: it takes rig files (TOML)"), "{e}");
 }
