@@ -8,7 +8,7 @@
 //!   command are its output (stdout, then stderr). A line ending in `\` continues on the next.
 //! - `ikarus …` runs the binary built for the tests, from the repository root, with the
 //!   arguments split as a shell would split them (single and double quotes). The commands whose
-//!   output is text on a terminal (`solve`, `animate`, `track`, `workspace`, `reach`) print JSON when
+//!   output is text on a terminal (`solve`, `animate`, `track`, `workspace`, `reach`, `pose`) print JSON when
 //!   piped, as here: when the command names no `--format` (and is no `--batch`), the test adds
 //!   `--format text`, which is what a terminal gets.
 //! - `curl -s [-o FILE] localhost:7878/PATH [-H …] [-d 'BODY']` is sent to an `ikarus serve`
@@ -236,7 +236,7 @@ fn agrees(shown: &str, actual: &str) -> bool {
 }
 
 /// Commands whose output is text on a terminal and JSON when piped.
-const TERMINAL_TEXT: [&str; 5] = ["solve", "animate", "track", "workspace", "reach"];
+const TERMINAL_TEXT: [&str; 6] = ["solve", "animate", "track", "workspace", "reach", "pose"];
 
 fn run_ikarus(args: &[String]) -> String {
     let mut args = args.to_vec();
