@@ -12,18 +12,25 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::error::CliError;
 use crate::output::PendingFile;
 
-/// `--out` and the picture size.
-#[derive(Debug, Clone, Args)]
-pub struct PictureArgs {
-    /// Draw the result to FILE (.svg, .png, or .gif where it animates)
-    #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+/// A picture's size in pixels: `--width`, `--height`.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct SizeArgs {
     /// Picture width in pixels
     #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
     pub width: u32,
     /// Picture height in pixels
     #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
     pub height: u32,
+}
+
+/// `--out` and the picture size.
+#[derive(Debug, Clone, Args)]
+pub struct PictureArgs {
+    /// Draw the result to FILE (.svg, .png, or .gif where it animates)
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub size: SizeArgs,
     /// Largest GIF drawn, in frames × width × height pixels (about 6 s of rendering at the cap)
     #[arg(long, value_name = "PIXELS", default_value_t = DEFAULT_MAX_GIF_PIXELS)]
     pub max_gif_pixels: u64,
@@ -36,12 +43,8 @@ pub struct StillArgs {
     /// Draw the solved pose to FILE (.svg or .png): the goal and, for a rig, its pins
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
-    /// Picture width in pixels
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
-    pub width: u32,
-    /// Picture height in pixels
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
-    pub height: u32,
+    #[command(flatten)]
+    pub size: SizeArgs,
 }
 
 impl StillArgs {
@@ -123,7 +126,7 @@ pub fn draw_for_command(
     picture: &PictureArgs,
     frames: usize,
 ) -> Result<Vec<u8>, CliError> {
-    let (width, height) = (picture.width, picture.height);
+    let SizeArgs { width, height } = picture.size;
     if format == PictureFormat::Gif {
         let pixels = (frames as u64).saturating_mul(u64::from(width) * u64::from(height));
         if pixels > picture.max_gif_pixels {

@@ -49,12 +49,8 @@ pub struct PoseArgs {
     /// Write the output to FILE instead of stdout (whole or not at all)
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
-    /// Picture width in pixels
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
-    pub width: u32,
-    /// Picture height in pixels
-    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(16..=4096))]
-    pub height: u32,
+    #[command(flatten)]
+    pub size: crate::picture::SizeArgs,
 }
 
 /// `BONE=X,Y`: the name is everything before the last `=`.
@@ -122,11 +118,14 @@ fn render(report: &PoseReport, format: PoseFormat, args: &PoseArgs) -> Result<Ve
             v.push(b'\n');
             v
         }
-        PoseFormat::Svg => ikarus_render::character_svg(&report.figure(Some(caption())), args.width, args.height)
-            .map_err(drawn)?
-            .into_bytes(),
+        PoseFormat::Svg => {
+            ikarus_render::character_svg(&report.figure(Some(caption())), args.size.width, args.size.height)
+                .map_err(drawn)?
+                .into_bytes()
+        }
         PoseFormat::Png => {
-            ikarus_render::character_png(&report.figure(Some(caption())), args.width, args.height).map_err(drawn)?
+            ikarus_render::character_png(&report.figure(Some(caption())), args.size.width, args.size.height)
+                .map_err(drawn)?
         }
     })
 }

@@ -166,7 +166,7 @@ fn required_out(picture: &PictureArgs, allowed: &[PictureFormat]) -> Result<Pict
 }
 
 fn still_picture(drawing: &Drawing<'_>, out: PictureOut, picture: &PictureArgs) -> Result<(), CliError> {
-    let bytes = draw(drawing, out.format, picture.width, picture.height, &|_, _| {})?;
+    let bytes = draw(drawing, out.format, picture.size.width, picture.size.height, &|_, _| {})?;
     out.commit(&bytes)
 }
 

@@ -125,8 +125,13 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
 
     let drew = picture.is_some();
     if let Some(out) = picture {
-        let bytes =
-            draw(&workspace_drawing(&arm, &area), out.format, args.picture.width, args.picture.height, &|_, _| {})?;
+        let bytes = draw(
+            &workspace_drawing(&arm, &area),
+            out.format,
+            args.picture.size.width,
+            args.picture.size.height,
+            &|_, _| {},
+        )?;
         out.commit(&bytes)?;
     }
 

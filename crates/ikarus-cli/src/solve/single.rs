@@ -69,7 +69,7 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
 
 /// Draws `drawing` into the prepared `--out` file.
 fn draw_picture(drawing: &Drawing, out: PictureOut, args: &SolveArgs) -> Result<(), CliError> {
-    let bytes = draw(drawing, out.format, args.picture.width, args.picture.height, &|_, _| {})?;
+    let bytes = draw(drawing, out.format, args.picture.size.width, args.picture.size.height, &|_, _| {})?;
     out.commit(&bytes)
 }
 
