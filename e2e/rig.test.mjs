@@ -215,6 +215,13 @@ test("a bad rig file is its one-line problem; the hand loads and follows a finge
     assert.equal(await page.evaluate(() => window.ikarus.state.rig), null);
     assert.equal(await page.inputValue("#body-kind"), "arm");
 
+    // A character file (Spine JSON) says what it is and that the page does not pose it yet.
+    const raptor = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-raptor-pro.json"));
+    await page.setInputFiles("#rig-file", { name: "raptor.json", mimeType: "application/json", buffer: raptor });
+    await page.waitForFunction(() => document.getElementById("error").textContent.includes("character"), null, { timeout: 15000 });
+    assert.match(await page.textContent("#error"), /^raptor\.json is a Spine character \(76 bones, 9 IK constraints\): the playground does not pose characters yet/);
+    assert.equal(await page.inputValue("#body-kind"), "arm");
+
     // A good rig file loads as "Rig file: NAME" (the shipped hand, read from disk).
     const hand = readFileSync(join(import.meta.dirname, "..", "examples", "rigs", "hand.toml"));
     await page.setInputFiles("#rig-file", { name: "hand.toml", mimeType: "application/toml", buffer: hand });

@@ -180,6 +180,15 @@ def test_a_bad_rig_file_gives_the_cli_line(tmp_path):
     assert str(e.value) == want
 
 
+def test_a_character_file_is_named_for_what_it_is():
+    """Issue 26: a Spine or DragonBones file given as a rig says what it is instead of failing on a key."""
+    for name, kind, bones, ik in [("spine-raptor-pro.json", "Spine", 76, 9), ("dragonbones-mecha_1406_ske.json", "DragonBones", 17, 4)]:
+        path = ROOT / "examples" / "characters" / name
+        with pytest.raises(ValueError) as e:
+            ikarus.Rig.from_toml(path)
+        assert str(e.value).startswith(f"rig file {path}: a {kind} character ({bones} bones, {ik} IK constraints), which Rig does not take")
+
+
 def test_a_rig_over_the_bone_cap_is_refused_before_it_is_built(tmp_path):
     """Issue 24: a rig's bones are counted first (the command line's cap, 10 000), in a file and in a dict."""
     n = 10_001

@@ -395,6 +395,13 @@ class Rig(_Body):
             if problem.startswith("rig file: "):
                 problem = f"rig file {path}: " + problem[len("rig file: "):]
             raise ValueError(problem)
+        if "character" in answer:
+            c = answer["character"]
+            kind = {"spine": "Spine", "dragonbones": "DragonBones"}.get(c["format"], c["format"])
+            raise ValueError(
+                f"rig file {path}: a {kind} character ({len(c['bones'])} bones, {len(c['ik'])} IK constraints), "
+                "which Rig does not take: it takes rig files (TOML); `ikarus pose --rig FILE` poses it"
+            )
         return cls(answer["rig"])
 
     @classmethod

@@ -127,6 +127,13 @@ export function wireRigs(state, canvas, act) {
     try {
       const answer = JSON.parse(await postText("/api/rig/parse", await file.text(), "application/toml"));
       if (answer.problem) throw new api.Notice(api.forPeople(answer.problem));
+      if (answer.character) {
+        const c = answer.character;
+        const kind = c.format === "dragonbones" ? "DragonBones" : "Spine";
+        throw new api.Notice(
+          `${file.name} is a ${kind} character (${c.bones.length} bones, ${c.ik.length} IK constraints): the playground does not pose characters yet; ikarus pose --rig ${file.name} does`,
+        );
+      }
       const select = $("body-kind");
       let option = [...select.options].find((o) => o.value === "file");
       if (!option) {
