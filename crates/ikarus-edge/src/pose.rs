@@ -49,6 +49,14 @@ pub struct PoseReport {
 /// Poses `loaded` as `ask` says. Errors are one line without a label: `--animation "wlk": no
 /// such animation; spineboy has: aim, death, …`.
 pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
+    let mut posed = Posed::default();
+    pose_into(loaded, ask, &mut posed)?;
+    Ok(PoseReport::of(&loaded.character, &posed))
+}
+
+/// Poses `loaded` as `ask` says into `out` (reuse one `out` across poses: a motion's frames),
+/// refusing what [`pose`] refuses.
+pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<(), String> {
     let c = &loaded.character;
     let clip = match &ask.animation {
         Some(name) => {
@@ -74,13 +82,13 @@ pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
         }
         targets.push((bone, [*x, *y]));
     }
-    let mut posed = Posed::default();
-    c.pose(&PoseRequest { clip, targets: &targets }, &mut posed).map_err(|e| e.to_string())?;
-    Ok(PoseReport::of(c, &posed))
+    c.pose(&PoseRequest { clip, targets: &targets }, out).map_err(|e| e.to_string())
 }
 
 impl PoseReport {
-    fn of(c: &Character, posed: &Posed) -> Self {
+    /// The report of a pose of `c`.
+    #[must_use]
+    pub fn of(c: &Character, posed: &Posed) -> Self {
         let bones = c
             .bones()
             .iter()
