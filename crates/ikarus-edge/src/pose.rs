@@ -106,7 +106,7 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
     match &ask.ik {
         IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
         IkChoice::Ikarus(rules) => {
-            let mut solver = Solver::new(SolveOptions::default()).map_err(|e| e.to_string())?;
+            let mut solver = Solver::new(character_options()).map_err(|e| e.to_string())?;
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
     }
@@ -122,6 +122,15 @@ pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Chara
         ("ikarus", Some(text)) => Ok(IkChoice::Ikarus(Box::new(crate::character::ik_file::read(text, label, c)?))),
         (other, _) => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
     }
+}
+
+/// The solver's options for a character: Levenberg–Marquardt from the runtime's pose, without
+/// restarts (a restart starts from a random pose: it would lose the animation's look and the
+/// bends, and an aim that cannot be met exactly would restart every solve), at most 200
+/// iterations.
+#[must_use]
+pub fn character_options() -> SolveOptions {
+    SolveOptions { restarts: None, max_iterations: 200, ..SolveOptions::default() }
 }
 
 /// What `--ik ikarus` did: `{"solver": "ikarus", "status", "rounds", "constraints": [{"name",
