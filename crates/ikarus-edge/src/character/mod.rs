@@ -15,6 +15,8 @@
 
 mod clips;
 mod dragonbones;
+pub mod export;
+pub mod motion;
 mod spine;
 
 use std::collections::HashMap;
