@@ -56,8 +56,7 @@ pub struct Output<'a> {
 pub fn refuse_foreign(given: &[(&str, bool)]) -> Result<(), CliError> {
     match given.iter().find(|(_, g)| *g) {
         Some((flag, _)) => Err(CliError::input(format!(
-            "{flag}: not with a character file (it is for rig files and arms); a character's motion takes --target, \
-             --duration, --fps, --ease, --format json|spine"
+            "{flag}: not with a character file (it is for rig files and arms)"
         ))),
         None => Ok(()),
     }
