@@ -55,9 +55,9 @@ pub struct Output<'a> {
 /// something only for an ikarus rig or arm.
 pub fn refuse_foreign(given: &[(&str, bool)]) -> Result<(), CliError> {
     match given.iter().find(|(_, g)| *g) {
-        Some((flag, _)) => Err(CliError::input(format!(
-            "{flag}: not with a character file (it is for rig files and arms)"
-        ))),
+        Some((flag, _)) => {
+            Err(CliError::input(format!("{flag}: not with a character file (it is for rig files and arms)")))
+        }
         None => Ok(()),
     }
 }
@@ -82,7 +82,8 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     let bytes = match output.written {
         Written::Frames => {
             let frames = motion.frames().map_err(fail)?;
-            let mut v = serde_json::to_vec(&frames).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
+            let mut v =
+                serde_json::to_vec(&frames).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
             v.push(b'\n');
             v
         }

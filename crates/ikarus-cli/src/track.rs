@@ -209,7 +209,8 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     let mut foreign =
         vec![("--goal", !args.goal.is_empty()), ("--mode", args.mode.is_some()), ("--bound-first", args.bound_first)];
     foreign.extend(args.rig_task.given());
-    foreign.extend(args.solver.given().map(|(f, g)| (if f == "--max-step-deg" { "--solver-max-step-deg" } else { f }, g)));
+    foreign
+        .extend(args.solver.given().map(|(f, g)| (if f == "--max-step-deg" { "--solver-max-step-deg" } else { f }, g)));
     refuse_foreign(&foreign)?;
     let written = match args.format {
         None | Some(TrackFormat::Json) => Written::Frames,
@@ -222,7 +223,9 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
         }
     };
     let Some(bone) = args.effector.clone() else {
-        return Err(CliError::input("--effector: required with a character file (the bone whose origin follows the path)"));
+        return Err(CliError::input(
+            "--effector: required with a character file (the bone whose origin follows the path)",
+        ));
     };
     let fps = args.fps.unwrap_or(DEFAULT_FPS);
     if fps <= 0.0 {

@@ -29,7 +29,8 @@ fn animate_answers_frames_or_the_spine_document() {
     let frames = ask(Endpoint::Animate, &body).unwrap();
     assert_eq!(frames["frames"].as_array().unwrap().len(), 31);
     assert_eq!(frames["frames"][30]["time"], 1.0);
-    let target = frames["frames"][30]["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap();
+    let target =
+        frames["frames"][30]["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap();
     assert!((target["x"].as_f64().unwrap() - 10.0).abs() < 1e-9 && (target["y"].as_f64().unwrap() - 20.0).abs() < 1e-9);
     assert!(!frames["unsupported"].as_array().unwrap().is_empty());
 
@@ -45,7 +46,10 @@ fn animate_answers_frames_or_the_spine_document() {
     // The exported document again, with the same name: refused.
     body["rig"] = json!(serde_json::to_string(&doc).unwrap());
     let (status, message) = ask(Endpoint::Animate, &body).unwrap_err();
-    assert_eq!((status, message.as_str()), (422, "animation name \"reach\": the file already has an animation of that name"));
+    assert_eq!(
+        (status, message.as_str()),
+        (422, "animation name \"reach\": the file already has an animation of that name")
+    );
 }
 
 #[test]
@@ -56,7 +60,11 @@ fn track_follows_a_shape_with_a_bone() {
     let keys = doc["animations"]["ikarus"]["bones"]["front-leg-target"]["translate"].as_array().unwrap();
     assert!(keys.len() >= 25, "{}", keys.len());
     assert!((keys.last().unwrap()["time"].as_f64().unwrap() - 24.0 / 30.0).abs() < 1e-12);
-    let frames = ask(Endpoint::Track, &json!({"rig": spineboy(), "effector": "front-leg-target", "line": [0, 0, 10, 10], "samples": 3})).unwrap();
+    let frames = ask(
+        Endpoint::Track,
+        &json!({"rig": spineboy(), "effector": "front-leg-target", "line": [0, 0, 10, 10], "samples": 3}),
+    )
+    .unwrap();
     assert_eq!(frames["frames"].as_array().unwrap().len(), 3);
 }
 
@@ -66,14 +74,34 @@ fn bad_requests_are_one_line_naming_the_field() {
     let refused = |endpoint, body: Value| ask(endpoint, &body).err().expect("refused");
     let t = json!([{"bone": "front-leg-target", "x": 1.0, "y": 2.0}]);
     let cases = [
-        (Endpoint::Animate, json!({"rig": rig, "targets": t, "fps": 1000, "duration": 10}), "duration, fps: 10001 frames"),
+        (
+            Endpoint::Animate,
+            json!({"rig": rig, "targets": t, "fps": 1000, "duration": 10}),
+            "duration, fps: 10001 frames",
+        ),
         (Endpoint::Animate, json!({"rig": rig, "targets": t, "goals": []}), "unknown field `goals`"),
         (Endpoint::Animate, json!({"rig": rig, "targets": []}), "targets: give at least one"),
-        (Endpoint::Animate, json!({"rig": rig, "targets": [{"bone": "toe", "x": 0, "y": 0}]}), "target \"toe\": no bone"),
+        (
+            Endpoint::Animate,
+            json!({"rig": rig, "targets": [{"bone": "toe", "x": 0, "y": 0}]}),
+            "target \"toe\": no bone",
+        ),
         (Endpoint::Animate, json!({"rig": rig, "targets": t, "fps": 0}), "fps: must be a positive number"),
-        (Endpoint::Animate, json!({"rig": rig, "targets": t, "ease": "sine", "k1": 0.2}), "k1: only applies with ease parent"),
-        (Endpoint::Animate, json!({"rig": rig, "targets": t, "animation_name": "x"}), "animation_name: only with format spine"),
-        (Endpoint::Animate, json!({"rig": rig, "targets": t, "format": "spine", "animation_name": "walk"}), "animation name \"walk\": the file already has"),
+        (
+            Endpoint::Animate,
+            json!({"rig": rig, "targets": t, "ease": "sine", "k1": 0.2}),
+            "k1: only applies with ease parent",
+        ),
+        (
+            Endpoint::Animate,
+            json!({"rig": rig, "targets": t, "animation_name": "x"}),
+            "animation_name: only with format spine",
+        ),
+        (
+            Endpoint::Animate,
+            json!({"rig": rig, "targets": t, "format": "spine", "animation_name": "walk"}),
+            "animation name \"walk\": the file already has",
+        ),
         (Endpoint::Track, json!({"rig": rig, "circle": [0, 0, 1]}), "effector: required with a character"),
         (Endpoint::Track, json!({"rig": rig, "effector": "hip"}), "path, line, circle, figure8: give exactly one"),
     ];

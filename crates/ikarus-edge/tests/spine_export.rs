@@ -115,7 +115,8 @@ fn check(file: &str, course: Course, fps: f64) {
 fn spineboy_legs_moved_and_played_back() {
     let file = "spine-spineboy-pro.json";
     let loaded = load(&text(file), file).unwrap();
-    let targets = vec![moved(&loaded, "front-leg-target", [60.0, 80.0]), moved(&loaded, "rear-leg-target", [-40.0, 50.0])];
+    let targets =
+        vec![moved(&loaded, "front-leg-target", [60.0, 80.0]), moved(&loaded, "rear-leg-target", [-40.0, 50.0])];
     check(file, Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 1.0 }, 30.0);
 }
 
@@ -123,7 +124,8 @@ fn spineboy_legs_moved_and_played_back() {
 fn raptor_legs_moved_and_played_back() {
     let file = "spine-raptor-pro.json";
     let loaded = load(&text(file), file).unwrap();
-    let targets = vec![moved(&loaded, "front-leg-target", [80.0, 120.0]), moved(&loaded, "back-leg-target", [-60.0, 90.0])];
+    let targets =
+        vec![moved(&loaded, "front-leg-target", [80.0, 120.0]), moved(&loaded, "back-leg-target", [-60.0, 90.0])];
     check(file, Course::Eased { targets, ease: EaseKind::Smoothstep.ease(None, None).unwrap(), duration: 0.8 }, 24.0);
 }
 
@@ -147,9 +149,12 @@ fn a_dragonbones_file_is_not_exported() {
     let original = text(file);
     let loaded = load(&original, file).unwrap();
     let bone = loaded.character.bones()[1].name.clone();
-    let motion =
-        Motion::new(&loaded, Course::Eased { targets: vec![(bone, [1.0, 2.0])], ease: Ease::Linear, duration: 1.0 }, 30.0)
-            .unwrap();
+    let motion = Motion::new(
+        &loaded,
+        Course::Eased { targets: vec![(bone, [1.0, 2.0])], ease: Ease::Linear, duration: 1.0 },
+        30.0,
+    )
+    .unwrap();
     let e = export::spine(&motion, &original, "ikarus").unwrap_err();
     assert_eq!(e, "format spine: the Spine export takes a Spine file, and this is a DragonBones file");
 }

@@ -130,8 +130,8 @@ pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
-    let motion =
-        Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    let motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
+        .map_err(Problem::invalid)?;
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 

@@ -16,9 +16,9 @@ use ikarus::character::{Affine, Character, LocalTransform, Posed, world_transfor
 use serde_json::value::RawValue;
 use serde_json::{Map, Value, json};
 
+use super::Format;
 use super::clips::Ordered;
 use super::motion::Motion;
-use super::Format;
 
 /// The largest distance, in the file's units, between a bone's world origin or tip as the keys
 /// pose it (linear between keys) and as the motion poses it, that a pair of keys is left with;
@@ -65,7 +65,8 @@ pub fn spine(motion: &Motion<'_>, text: &str, name: &str) -> Result<String, Stri
     let animation = animation(&loaded.character, &keys, legacy)?;
     let raw = RawValue::from_string(animation.to_string()).map_err(|e| format!("cannot write JSON: {e}"))?;
     animations.0.push((name.to_owned(), raw));
-    let animations = RawValue::from_string(object(&animations, "    ")).map_err(|e| format!("cannot write JSON: {e}"))?;
+    let animations =
+        RawValue::from_string(object(&animations, "    ")).map_err(|e| format!("cannot write JSON: {e}"))?;
     let mut out = top;
     match out.0.iter_mut().find(|(k, _)| k == "animations") {
         Some((_, v)) => *v = animations,
@@ -79,11 +80,8 @@ pub fn spine(motion: &Motion<'_>, text: &str, name: &str) -> Result<String, Stri
 /// `{` the entries, one per line indented by `indent`, `}`.
 fn object(entries: &Ordered<Box<RawValue>>, indent: &str) -> String {
     let close = &indent[..indent.len().saturating_sub(2)];
-    let body: Vec<String> = entries
-        .0
-        .iter()
-        .map(|(k, v)| format!("{indent}{}: {}", Value::String(k.clone()), v.get()))
-        .collect();
+    let body: Vec<String> =
+        entries.0.iter().map(|(k, v)| format!("{indent}{}: {}", Value::String(k.clone()), v.get())).collect();
     if body.is_empty() { "{}".to_owned() } else { format!("{{\n{}\n{close}}}", body.join(",\n")) }
 }
 
@@ -204,8 +202,12 @@ fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String>
             timelines.insert("rotate".to_owned(), Value::Array(rotate));
         }
         let two = |name: &str, f: &dyn Fn(&LocalTransform) -> [f64; 2], timelines: &mut Map<String, Value>| {
-            let keys: Vec<Value> =
-                keys.iter().map(|k| f(&k.local[i])).zip(keys).map(|([x, y], k)| json!({"time": k.time, "x": x, "y": y})).collect();
+            let keys: Vec<Value> = keys
+                .iter()
+                .map(|k| f(&k.local[i]))
+                .zip(keys)
+                .map(|([x, y], k)| json!({"time": k.time, "x": x, "y": y}))
+                .collect();
             timelines.insert(name.to_owned(), Value::Array(keys));
         };
         if moved(&|l| [l.x, l.y]) {
@@ -223,7 +225,11 @@ fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String>
             two("scale", &|l| [l.scale_x / s.scale_x, l.scale_y / s.scale_y], &mut timelines);
         }
         if moved(&|l| [l.shear_x, l.shear_y]) {
-            two("shear", &|l| [(l.shear_x - s.shear_x).to_degrees(), (l.shear_y - s.shear_y).to_degrees()], &mut timelines);
+            two(
+                "shear",
+                &|l| [(l.shear_x - s.shear_x).to_degrees(), (l.shear_y - s.shear_y).to_degrees()],
+                &mut timelines,
+            );
         }
         if !timelines.is_empty() {
             bones.insert(bone.name.clone(), Value::Object(timelines));
