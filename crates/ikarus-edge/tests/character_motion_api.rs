@@ -71,7 +71,10 @@ fn track_follows_a_shape_with_a_bone() {
 #[test]
 fn bad_requests_are_one_line_naming_the_field() {
     let rig = spineboy();
-    let refused = |endpoint, body: Value| ask(endpoint, &body).err().expect("refused");
+    let refused = |endpoint, body: Value| match ask(endpoint, &body) {
+        Err(e) => e,
+        Ok(_) => panic!("accepted"),
+    };
     let t = json!([{"bone": "front-leg-target", "x": 1.0, "y": 2.0}]);
     let cases = [
         (
