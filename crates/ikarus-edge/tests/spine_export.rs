@@ -58,22 +58,16 @@ fn played(file: &str, course: Course, fps: f64) -> (f64, f64, usize) {
     assert_eq!(e, "animation name \"ikarus\": the file already has an animation of that name");
 
     // Played back: at every key and at 600 times between, most off the frame grid.
-    let keys: Vec<f64> = after["animations"]["ikarus"]["bones"]
+    // Every key time of every timeline.
+    let mut keys: Vec<f64> = after["animations"]["ikarus"]["bones"]
         .as_object()
         .unwrap()
         .values()
-        .next()
-        .unwrap()
-        .as_object()
-        .unwrap()
-        .values()
-        .next()
-        .unwrap()
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|k| k["time"].as_f64().unwrap())
+        .flat_map(|timelines| timelines.as_object().unwrap().values())
+        .flat_map(|keys| keys.as_array().unwrap().iter().map(|k| k["time"].as_f64().unwrap()))
         .collect();
+    keys.sort_by(f64::total_cmp);
+    keys.dedup();
     let d = motion.duration;
     let mut times = keys.clone();
     times.extend((0..600).map(|k| d * ((k as f64 * 0.618_033_988_75) % 1.0)));

@@ -175,6 +175,33 @@ fn world_of(c: &Character, local: &[LocalTransform], world: &mut Vec<Affine>) {
     }
 }
 
+/// The keys of one timeline less those that the straight line between the kept keys around
+/// them gives within 1e-9 (a bone still, or moving evenly, for a while): the pose the keys give
+/// does not change. A run of dropped keys is at most 64 long (the check is over the run).
+fn thinned(series: Vec<(f64, [f64; 2])>) -> Vec<(f64, [f64; 2])> {
+    const LINE: f64 = 1e-9;
+    let n = series.len();
+    if n <= 2 {
+        return series;
+    }
+    let mut out = vec![series[0]];
+    let mut kept = 0;
+    for k in 1..n - 1 {
+        let ((t0, v0), (t1, v1)) = (series[kept], series[k + 1]);
+        let on_line = k - kept <= 64
+            && series[kept + 1..=k].iter().all(|&(t, v)| {
+                let f = (t - t0) / (t1 - t0);
+                (0..2).all(|c| (v0[c] + (v1[c] - v0[c]) * f - v[c]).abs() <= LINE)
+            });
+        if !on_line {
+            out.push(series[k]);
+            kept = k;
+        }
+    }
+    out.push(series[n - 1]);
+    out
+}
+
 /// The animation's JSON: the bones' timelines (those that leave the setup pose) and every IK
 /// constraint at mix 0.
 fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
@@ -189,25 +216,23 @@ fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String>
             })
         };
         let mut timelines = Map::new();
+        let series = |f: &dyn Fn(&LocalTransform) -> [f64; 2]| -> Vec<(f64, [f64; 2])> {
+            thinned(keys.iter().map(|k| (k.time, f(&k.local[i]))).collect())
+        };
         if moved(&|l| [l.rotation, 0.0]) {
             let mut last = 0.0;
-            let rotate: Vec<Value> = keys
-                .iter()
-                .map(|k| {
-                    let d = (k.local[i].rotation - s.rotation).to_degrees();
-                    last += wrap(d - last, 360.0);
-                    json!({"time": k.time, (if legacy { "angle" } else { "value" }): last})
-                })
-                .collect();
+            let mut unwrapped = |l: &LocalTransform| {
+                let d = (l.rotation - s.rotation).to_degrees();
+                last += wrap(d - last, 360.0);
+                last
+            };
+            let values: Vec<(f64, [f64; 2])> = keys.iter().map(|k| (k.time, [unwrapped(&k.local[i]), 0.0])).collect();
+            let name = if legacy { "angle" } else { "value" };
+            let rotate = thinned(values).into_iter().map(|(time, [v, _])| json!({"time": time, (name): v})).collect();
             timelines.insert("rotate".to_owned(), Value::Array(rotate));
         }
         let two = |name: &str, f: &dyn Fn(&LocalTransform) -> [f64; 2], timelines: &mut Map<String, Value>| {
-            let keys: Vec<Value> = keys
-                .iter()
-                .map(|k| f(&k.local[i]))
-                .zip(keys)
-                .map(|([x, y], k)| json!({"time": k.time, "x": x, "y": y}))
-                .collect();
+            let keys = series(f).into_iter().map(|(time, [x, y])| json!({"time": time, "x": x, "y": y})).collect();
             timelines.insert(name.to_owned(), Value::Array(keys));
         };
         if moved(&|l| [l.x, l.y]) {
