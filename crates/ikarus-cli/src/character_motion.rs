@@ -78,6 +78,14 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     if output.animation_name.is_some() && output.written != Written::Spine {
         return Err(CliError::input("--animation-name: only with --format spine"));
     }
+    if let Some(ext) = output.out.and_then(|p| p.extension()).and_then(|e| e.to_str()) {
+        if ["svg", "png", "gif"].contains(&ext.to_ascii_lowercase().as_str()) {
+            return Err(CliError::input(format!(
+                "--out {}: a character's motion is written as JSON (frames or Spine), not as a picture",
+                output.out.map(|p| p.display().to_string()).unwrap_or_default()
+            )));
+        }
+    }
     let pending = output.out.map(|p| PendingFile::create(p, "--out")).transpose()?;
     let bytes = match output.written {
         Written::Frames => {

@@ -101,8 +101,8 @@ fn check(file: &str, course: Course, fps: f64) {
     assert!(worst < 1e-2, "{file}: {worst}");
     assert!(worst <= TOLERANCE * 1.01, "{file}: {worst} beyond the bisection's own tolerance");
     // Keys are 32-bit floats in the runtime (and in our reader): the last key is the end pose
-    // within their rounding.
-    assert!(last < 1e-3, "{file}: {last}");
+    // within their rounding (a value near 250 is held to about 1.5e-5), not to 1e-6.
+    assert!(last < 5e-5, "{file}: {last}");
 }
 
 #[test]
