@@ -21,6 +21,7 @@ use crate::output;
 use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, report_format};
 
 mod bodies;
+mod character;
 
 pub use bodies::Animated;
 
@@ -32,6 +33,8 @@ pub enum AnimateFormat {
     Csv,
     /// A short report for people (the default on a terminal)
     Text,
+    /// With a character file: the file with the motion added as a Spine animation
+    Spine,
 }
 
 /// What a motion is made of: the goal, the via points, the arm (or rig), the solver, the
@@ -55,7 +58,7 @@ pub struct MotionArgs {
     /// Number of frames of the motion [default: 60]
     #[arg(long, value_name = "N", value_parser = parse_at_least_one, conflicts_with = "duration")]
     pub frames: Option<u32>,
-    /// Length of the motion in seconds (with --fps)
+    /// Length of the motion in seconds (with --fps) [default with a character file: 1]
     #[arg(long, value_name = "SECONDS", value_parser = parse_finite)]
     pub duration: Option<f64>,
     /// Frames per second, for --duration and the GIF [default: 30]
@@ -125,9 +128,18 @@ pub fn parse_via(s: &str) -> Result<ViaArg, String> {
 pub struct AnimateArgs {
     #[command(flatten)]
     pub motion: MotionArgs,
-    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
+    /// With a character file (--rig FILE.json): the bone's world origin at X,Y at the end,
+    /// eased from where the setup pose has it, the file's IK constraints following, BONE=X,Y
+    /// (repeatable)
+    #[arg(long, value_name = "BONE=X,Y", allow_hyphen_values = true, value_parser = crate::pose::parse_target)]
+    pub target: Vec<(String, [f64; 2])>,
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out;
+    /// with a character file, json (its frames) or spine, written to --out FILE if given]
     #[arg(long, value_enum)]
     pub format: Option<AnimateFormat>,
+    /// With --format spine: the name of the animation added to the file [default: ikarus]
+    #[arg(long, value_name = "NAME")]
+    pub animation_name: Option<String>,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
@@ -206,11 +218,20 @@ impl<B: Animated> ShownMotion for MotionRun<B> {
             }
             AnimateFormat::Csv => csv(w, self),
             AnimateFormat::Text => text(w, self),
+            AnimateFormat::Spine => unreachable!("--format spine is refused without a character file"),
         }
     }
 }
 
 pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
+    if let Some(file) = crate::character_motion::character(args.motion.body.rig.as_deref()) {
+        return character::run(args, &file?);
+    }
+    crate::character_motion::refuse_without(&[
+        ("--target", !args.target.is_empty()),
+        ("--animation-name", args.animation_name.is_some()),
+        ("--format spine", args.format == Some(AnimateFormat::Spine)),
+    ])?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let run = motion(&args.motion)?;
     let drew = picture.is_some();

@@ -111,6 +111,21 @@ pub struct RigTaskArgs {
     pub mix: Option<f64>,
 }
 
+impl RigTaskArgs {
+    /// Each task flag as written and whether it was given.
+    #[must_use]
+    pub fn given(&self) -> [(&'static str, bool); 6] {
+        [
+            ("--pin", !self.pin.is_empty()),
+            ("--weight", !self.weight.is_empty()),
+            ("--secondary", !self.secondary.is_empty()),
+            ("--bend", !self.bend.is_empty()),
+            ("--softness", !self.softness.is_empty()),
+            ("--mix", self.mix.is_some()),
+        ]
+    }
+}
+
 /// A goal from the command line: its target, and the flag it came from (for messages).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Target {

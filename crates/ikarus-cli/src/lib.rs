@@ -15,6 +15,7 @@ use ikarus_bench as bench;
 mod animate;
 mod batch;
 mod body_args;
+mod character_motion;
 #[cfg(feature = "server")]
 mod cli;
 mod columns;

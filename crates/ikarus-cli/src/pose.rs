@@ -82,7 +82,7 @@ pub struct PoseArgs {
 }
 
 /// `BONE=X,Y`: the name is everything before the last `=`.
-fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
+pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
     let (name, point) = s.rsplit_once('=').ok_or_else(|| format!("expected BONE=X,Y, got {s:?}"))?;
     if name.is_empty() {
         return Err(format!("expected BONE=X,Y with a bone's name before '=', got {s:?}"));

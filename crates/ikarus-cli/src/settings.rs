@@ -88,6 +88,32 @@ pub struct SolverFlags {
 }
 
 impl SolverFlags {
+    /// Each solver flag as written and whether it was given (`--max-restarts` and
+    /// `--iteration-cap`, which have defaults, are not told apart from their default).
+    #[must_use]
+    pub fn given(&self) -> [(&'static str, bool); 18] {
+        [
+            ("--method", self.method.is_some()),
+            ("--lambda", self.lambda.is_some()),
+            ("--tolerance", self.tolerance.is_some()),
+            ("--angle-tolerance-deg", self.angle_tolerance_deg.is_some()),
+            ("--max-iterations", self.max_iterations.is_some()),
+            ("--gain", self.gain.is_some()),
+            ("--rates", self.rates.is_some()),
+            ("--max-step-deg", self.max_step_deg.is_some()),
+            ("--backtrack", self.backtrack.is_some()),
+            ("--stall-window", self.stall_window.is_some()),
+            ("--stall-epsilon-deg", self.stall_epsilon_deg.is_some()),
+            ("--limits", self.limits.is_some()),
+            ("--no-limits", self.no_limits),
+            ("--limit-mode", self.limit_mode.is_some()),
+            ("--restarts", self.restarts.is_some()),
+            ("--restart-seed", self.restart_seed.is_some()),
+            ("--time-budget-ms", self.time_budget_ms.is_some()),
+            ("--no-closed-form", self.no_closed_form.is_some()),
+        ]
+    }
+
     /// The settings the flags give.
     #[must_use]
     pub fn settings(&self) -> SolverSettings {

@@ -36,6 +36,8 @@ pub enum TrackFormat {
     Csv,
     /// A short summary for people (the default on a terminal)
     Text,
+    /// With a character file: the file with the motion added as a Spine animation
+    Spine,
 }
 
 /// The tip follows a path.
@@ -97,9 +99,17 @@ pub struct TrackArgs {
     #[arg(long = "max-step-deg", id = "track_max_step_deg", value_name = "DEG", value_parser = parse_positive,
           default_value_t = DEFAULT_MAX_STEP_DEG)]
     pub max_step_deg: f64,
-    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out]
+    /// Output format on stdout [default: text on a terminal, json otherwise; nothing with --out;
+    /// with a character file, json (its frames) or spine, written to --out FILE if given]
     #[arg(long, value_enum)]
     pub format: Option<TrackFormat>,
+    /// With a character file (--rig FILE.json): samples per second, one pose per sample
+    /// [default: 30]
+    #[arg(long, value_name = "F", value_parser = parse_finite)]
+    pub fps: Option<f64>,
+    /// With --format spine: the name of the animation added to the file [default: ikarus]
+    #[arg(long, value_name = "NAME")]
+    pub animation_name: Option<String>,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
@@ -122,6 +132,14 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
 }
 
 pub fn run(args: &TrackArgs) -> Result<(), CliError> {
+    if let Some(file) = crate::character_motion::character(args.rig.as_deref()) {
+        return character(args, &file?);
+    }
+    crate::character_motion::refuse_without(&[
+        ("--fps", args.fps.is_some()),
+        ("--animation-name", args.animation_name.is_some()),
+        ("--format spine", args.format == Some(TrackFormat::Spine)),
+    ])?;
     match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
         Body::Chain(arm) => track(args, &*arm),
         Body::Rig(rig) => track(args, &*rig),
@@ -179,7 +197,45 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
         }
         TrackFormat::Csv => csv_with(w, &t, body.pose_columns(), &|w, q| body.write_pose(w, q)),
         TrackFormat::Text => text(w, &job, &t),
+        TrackFormat::Spine => unreachable!("--format spine is refused without a character file"),
     })
+}
+
+/// `ikarus track --rig FILE.json --effector BONE …`: the bone's world origin follows the path,
+/// one sample per pose at --fps, the file's IK constraints posing the rest.
+fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) -> Result<(), CliError> {
+    use crate::character_motion::{Output, Written, refuse_foreign, write};
+    use ikarus_edge::character::motion::{Course, DEFAULT_FPS, Motion};
+    let mut foreign =
+        vec![("--goal", !args.goal.is_empty()), ("--mode", args.mode.is_some()), ("--bound-first", args.bound_first)];
+    foreign.extend(args.rig_task.given());
+    foreign
+        .extend(args.solver.given().map(|(f, g)| (if f == "--max-step-deg" { "--solver-max-step-deg" } else { f }, g)));
+    refuse_foreign(&foreign)?;
+    let written = match args.format {
+        None | Some(TrackFormat::Json) => Written::Frames,
+        Some(TrackFormat::Spine) => Written::Spine,
+        Some(f) => {
+            let name = if f == TrackFormat::Csv { "csv" } else { "text" };
+            return Err(CliError::input(format!(
+                "--format {name}: a character's motion is written as json (its frames) or spine"
+            )));
+        }
+    };
+    let Some(bone) = args.effector.clone() else {
+        return Err(CliError::input(
+            "--effector: required with a character file (the bone whose origin follows the path)",
+        ));
+    };
+    let fps = args.fps.unwrap_or(DEFAULT_FPS);
+    if fps <= 0.0 {
+        return Err(CliError::input(format!("--fps {fps}: must be positive")));
+    }
+    let points = cli_path(args)?.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
+    let motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
+        .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+    let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
+    write(file, &motion, &out)
 }
 
 /// The path the flags ask for: a CSV file or a sampled shape.

@@ -12,6 +12,7 @@
 
 pub mod arm_files;
 pub mod bodies;
+pub mod character_motion;
 pub mod ease;
 pub mod fields;
 pub mod figures;
@@ -295,6 +296,8 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?, limits)),
         Endpoint::Solve => jobs::solve(SolveReq::parse(body)?.1, limits, interrupt),
         Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
+        Endpoint::Animate if character_motion::is_character(body) => character_motion::animate(body, limits),
+        Endpoint::Track if character_motion::is_character(body) => character_motion::track(body, limits),
         Endpoint::Animate => jobs::animate(AnimateBody::parse(body)?, limits, interrupt),
         Endpoint::Track => jobs::track(TrackReq::parse(body)?.1, limits, interrupt),
         Endpoint::Workspace => regions::workspace(body, limits, interrupt),

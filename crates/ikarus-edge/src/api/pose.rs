@@ -32,10 +32,10 @@ struct PoseReq {
 /// A bone's world origin put at (x, y).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct TargetReq {
-    bone: String,
-    x: f64,
-    y: f64,
+pub(super) struct TargetReq {
+    pub(super) bone: String,
+    pub(super) x: f64,
+    pub(super) y: f64,
 }
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many

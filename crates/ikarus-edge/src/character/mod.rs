@@ -15,7 +15,9 @@
 
 mod clips;
 mod dragonbones;
+pub mod export;
 pub mod ik_file;
+pub mod motion;
 mod spine;
 
 use std::collections::HashMap;

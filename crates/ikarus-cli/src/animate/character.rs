@@ -1,0 +1,56 @@
+//! `ikarus animate --rig FILE.json --target BONE=X,Y …`: bones of a character moved from where
+//! its setup pose has them to the targets, eased, the file's IK constraints posing the rest;
+//! its frames (`--format json`) or the file with the motion added as a Spine animation
+//! (`--format spine`).
+
+use ikarus::EaseKind;
+use ikarus_edge::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+
+use super::{AnimateArgs, AnimateFormat};
+use crate::character_motion::{CharacterFile, Output, Written, refuse_foreign, write};
+use crate::error::CliError;
+
+/// The motion of the character `file` the flags ask for, written.
+pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
+    let m = &args.motion;
+    let mut foreign = vec![
+        ("--goal", !m.goal.is_empty()),
+        ("--goal-angle", m.goal_angle.is_some()),
+        ("--via", !m.via.is_empty()),
+        ("--frames", m.frames.is_some()),
+        ("--interpolation", m.interpolation.is_some()),
+        ("--from-solve", m.from_solve),
+        ("--record-every", m.record_every.is_some()),
+    ];
+    foreign.extend(m.body.rig_task.given());
+    foreign.extend(m.body.solver.given());
+    refuse_foreign(&foreign)?;
+    let written = match args.format {
+        None | Some(AnimateFormat::Json) => Written::Frames,
+        Some(AnimateFormat::Spine) => Written::Spine,
+        Some(f) => {
+            let name = if f == AnimateFormat::Csv { "csv" } else { "text" };
+            return Err(CliError::input(format!(
+                "--format {name}: a character's motion is written as json (its frames) or spine"
+            )));
+        }
+    };
+    if args.target.is_empty() {
+        return Err(CliError::input(
+            "--target: give at least one BONE=X,Y with a character file (the bone's world origin at the end)",
+        ));
+    }
+    let duration = m.duration.unwrap_or(DEFAULT_DURATION);
+    if duration <= 0.0 {
+        return Err(CliError::input(format!("--duration {duration}: must be positive")));
+    }
+    let fps = m.fps.unwrap_or(DEFAULT_FPS);
+    if fps <= 0.0 {
+        return Err(CliError::input(format!("--fps {fps}: must be positive")));
+    }
+    let ease = m.ease.resolve(EaseKind::Sine)?;
+    let course = Course::Eased { targets: args.target.clone(), ease, duration };
+    let motion = Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+    let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
+    write(file, &motion, &out)
+}

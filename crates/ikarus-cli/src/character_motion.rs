@@ -1,0 +1,107 @@
+//! `ikarus animate --rig FILE.json` and `ikarus track --rig FILE.json`: with a character file
+//! (Spine, DragonBones) in place of a rig file, the commands move bones of the character
+//! ([`ikarus_edge::character::motion`]) and write its frames (`--format json`) or the file with
+//! the motion added as a Spine animation (`--format spine`,
+//! [`ikarus_edge::character::export`]).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use ikarus_edge::character::export;
+use ikarus_edge::character::motion::Motion;
+use ikarus_edge::character::{Loaded, is_json, load};
+
+use crate::error::CliError;
+use crate::output::{self, PendingFile};
+
+/// A character file given as `--rig FILE`: its text, read, and its label (`rig file s.json`).
+pub struct CharacterFile {
+    pub text: String,
+    pub loaded: Loaded,
+    pub label: String,
+}
+
+/// The character file `--rig` names, read (its warnings on stderr); `None` without `--rig`, or
+/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it).
+pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> {
+    let path = rig?;
+    let label = format!("rig file {}", path.display());
+    let text = crate::input::read_text(path, &label).ok().filter(|t| is_json(t))?;
+    Some(load(&text, &label).map(|loaded| {
+        for warning in &loaded.warnings {
+            eprintln!("ikarus: {label}: {warning}");
+        }
+        CharacterFile { text, loaded, label }
+    }))
+}
+
+/// What a character's motion is written as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Written {
+    /// `{"frames": […], "unsupported": […]}`.
+    Frames,
+    /// The file with the motion added as a Spine animation.
+    Spine,
+}
+
+/// How the motion is written: the form, the new animation's name, and where.
+pub struct Output<'a> {
+    pub written: Written,
+    pub animation_name: Option<&'a str>,
+    pub out: Option<&'a PathBuf>,
+}
+
+/// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
+/// something only for an ikarus rig or arm.
+pub fn refuse_foreign(given: &[(&str, bool)]) -> Result<(), CliError> {
+    match given.iter().find(|(_, g)| *g) {
+        Some((flag, _)) => {
+            Err(CliError::input(format!("{flag}: not with a character file (it is for rig files and arms)")))
+        }
+        None => Ok(()),
+    }
+}
+
+/// The flags of a character's motion given without a character file: refused in one line.
+pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), CliError> {
+    match given.iter().find(|(_, g)| *g) {
+        Some((flag, _)) => {
+            Err(CliError::input(format!("{flag}: only with a character file (--rig FILE.json, Spine or DragonBones)")))
+        }
+        None => Ok(()),
+    }
+}
+
+/// Writes `motion` of `file` as `output` says, to `--out` (whole or not at all) or stdout.
+pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> Result<(), CliError> {
+    let fail = |m: String| CliError::input(format!("{}: {m}", file.label));
+    if output.animation_name.is_some() && output.written != Written::Spine {
+        return Err(CliError::input("--animation-name: only with --format spine"));
+    }
+    if let Some(ext) = output.out.and_then(|p| p.extension()).and_then(|e| e.to_str()) {
+        if ["svg", "png", "gif"].contains(&ext.to_ascii_lowercase().as_str()) {
+            return Err(CliError::input(format!(
+                "--out {}: a character's motion is written as JSON (frames or Spine), not as a picture",
+                output.out.map(|p| p.display().to_string()).unwrap_or_default()
+            )));
+        }
+    }
+    let pending = output.out.map(|p| PendingFile::create(p, "--out")).transpose()?;
+    let bytes = match output.written {
+        Written::Frames => {
+            let frames = motion.frames().map_err(fail)?;
+            let mut v =
+                serde_json::to_vec(&frames).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
+            v.push(b'\n');
+            v
+        }
+        Written::Spine => {
+            let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
+            export::spine(motion, &file.text, name).map_err(fail)?.into_bytes()
+        }
+    };
+    match pending {
+        Some(p) => p.commit(&bytes),
+        None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+    }
+}

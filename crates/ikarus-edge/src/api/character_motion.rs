@@ -1,0 +1,167 @@
+//! `POST /api/animate` and `POST /api/track` with a character: `rig` holding a character file's
+//! text (Spine or DragonBones JSON, told by [`is_json`] as `/api/pose` tells it). The motion of
+//! [`crate::character::motion`], answered as its frames (`"format": "json"`, the default,
+//! `{"frames": [{"time", "bones": […]}], "unsupported": […]}`) or as the exported Spine document
+//! (`"format": "spine"`, the file with the motion added as animation `animation_name`).
+//!
+//! The work is bounded: the character's bones by `--max-bones` (counted first), the frames by
+//! `--max-frames`, and frames × bones by [`MAX_BONE_FRAMES`].
+
+use ikarus::EaseKind;
+use serde::Deserialize;
+
+use super::fields::track_path;
+use super::pose::TargetReq;
+use super::{Limits, Problem, Reply, parse_json};
+use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+use crate::character::{Loaded, export, is_json, load_within};
+use crate::ease_args::{EaseProblem, choose_ease};
+use crate::rig::BoneCap;
+use crate::track::Shape;
+
+/// Most frames × bones of one request's motion (the Spine export poses each frame a few times
+/// more where it bisects).
+pub const MAX_BONE_FRAMES: usize = 200_000;
+
+/// What a character's motion is answered as.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MotionFormat {
+    /// Its frames.
+    #[default]
+    Json,
+    /// The Spine document with the motion added.
+    Spine,
+}
+
+/// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
+/// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
+/// "animation_name": "ikarus"}`, every field but `rig` and `targets` optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AnimateCharacterReq {
+    rig: String,
+    targets: Vec<TargetReq>,
+    #[serde(default)]
+    duration: Option<f64>,
+    #[serde(default)]
+    fps: Option<f64>,
+    #[serde(default)]
+    ease: Option<EaseKind>,
+    #[serde(default)]
+    k1: Option<f64>,
+    #[serde(default)]
+    k2: Option<f64>,
+    #[serde(default)]
+    format: MotionFormat,
+    #[serde(default)]
+    animation_name: Option<String>,
+}
+
+/// `POST /api/track` with a character: `{"rig": "<text>", "effector": "BONE"`, exactly one of
+/// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name"}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrackCharacterReq {
+    rig: String,
+    effector: Option<String>,
+    #[serde(default)]
+    path: Option<Vec<[f64; 2]>>,
+    #[serde(default)]
+    line: Option<[f64; 4]>,
+    #[serde(default)]
+    circle: Option<[f64; 3]>,
+    #[serde(default)]
+    figure8: Option<[f64; 3]>,
+    #[serde(default)]
+    samples: Option<usize>,
+    #[serde(default)]
+    fps: Option<f64>,
+    #[serde(default)]
+    format: MotionFormat,
+    #[serde(default)]
+    animation_name: Option<String>,
+}
+
+/// Whether a job's body carries a character: `rig` is a string of JSON text.
+#[must_use]
+pub fn is_character(body: &[u8]) -> bool {
+    #[derive(Deserialize)]
+    struct Peek {
+        #[serde(default)]
+        rig: Option<serde_json::Value>,
+    }
+    serde_json::from_slice::<Peek>(body).ok().and_then(|p| p.rig).is_some_and(|r| r.as_str().is_some_and(is_json))
+}
+
+/// `POST /api/animate` with a character.
+pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+    let req: AnimateCharacterReq = parse_json(body)?;
+    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    if req.targets.is_empty() {
+        return Err(Problem::invalid("targets: give at least one {\"bone\", \"x\", \"y\"}"));
+    }
+    if req.targets.len() > loaded.character.bones().len() {
+        return Err(Problem::invalid(format!(
+            "targets: {} targets for {} bones; at most one per bone",
+            req.targets.len(),
+            loaded.character.bones().len()
+        )));
+    }
+    let ease = choose_ease(req.ease, req.k1, req.k2, EaseKind::Sine).map_err(|p| match p {
+        EaseProblem::KWithoutParent { k1 } => {
+            Problem::invalid(format!("{}: only applies with ease parent", if k1 { "k1" } else { "k2" }))
+        }
+        EaseProblem::Invalid(e) => Problem::invalid(e.to_string()),
+    })?;
+    let targets = req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect();
+    let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
+    let motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+}
+
+/// `POST /api/track` with a character.
+pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+    let req: TrackCharacterReq = parse_json(body)?;
+    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let Some(bone) = req.effector else {
+        return Err(Problem::invalid("effector: required with a character: the bone whose origin follows the path"));
+    };
+    let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
+    let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
+    let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
+    let motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
+        .map_err(Problem::invalid)?;
+    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+}
+
+/// The motion's frames or its Spine document, within the caps.
+fn answer(
+    loaded: &Loaded,
+    motion: &Motion<'_>,
+    (format, name): (MotionFormat, Option<&str>),
+    text: &str,
+    limits: &Limits,
+) -> Result<Reply, Problem> {
+    let frames = motion.frame_count();
+    let bones = loaded.character.bones().len();
+    if frames > limits.max_frames {
+        return Err(Problem::invalid(format!(
+            "duration, fps: {frames} frames, more than the cap of {} (--max-frames)",
+            limits.max_frames
+        )));
+    }
+    if frames * bones > MAX_BONE_FRAMES {
+        return Err(Problem::invalid(format!(
+            "duration, fps: {frames} frames × {bones} bones, more than the cap of {MAX_BONE_FRAMES}"
+        )));
+    }
+    match format {
+        MotionFormat::Json if name.is_some() => Err(Problem::invalid("animation_name: only with format spine")),
+        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
+        MotionFormat::Spine => {
+            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
+            Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
+        }
+    }
+}

@@ -1,0 +1,285 @@
+//! A character's motion written back as a Spine animation: the input file's own text with one
+//! animation added under `animations`.
+//!
+//! Every top-level field and every animation already in the file is copied as it was written
+//! (its text, byte for byte, in its order; only the whitespace between top-level fields is
+//! ours). The new animation keys, per bone whose local transform leaves its setup value during
+//! the motion, `rotate` (degrees, unwrapped so that consecutive keys never differ by more than
+//! 180°), `translate`, `scale` and `shear` relative to the setup pose, as Spine reads them and as
+//! [`super::clips`] reads them (3.8 files get `angle` for a rotation, 4.x files `value`). Keys
+//! are linear: one per frame, and more by bisection wherever a straight line between two keys
+//! would put a bone's world origin or tip more than [`TOLERANCE`] from the motion posed at that
+//! time. Every IK constraint of the file is keyed to mix 0 at time 0, so that the constraints
+//! leave the bones where the keys put them (at mix 0 a constraint does nothing).
+
+use ikarus::character::{Affine, Character, LocalTransform, Posed, world_transform};
+use serde_json::value::RawValue;
+use serde_json::{Map, Value, json};
+
+use super::Format;
+use super::clips::Ordered;
+use super::motion::Motion;
+
+/// The largest distance, in the file's units, between a bone's world origin or tip as the keys
+/// pose it (linear between keys) and as the motion poses it, that a pair of keys is left with;
+/// the promise is 1e-2, this is half for margin.
+pub const TOLERANCE: f64 = 5e-3;
+
+/// How many times an interval between two frames is halved at most (a key every
+/// 1 / (fps · 2⁸) s at the finest).
+const MAX_DEPTH: u32 = 8;
+
+/// The default animation name.
+pub const DEFAULT_NAME: &str = "ikarus";
+
+/// One key: its time and every bone's local transform.
+struct Key {
+    time: f64,
+    local: Vec<LocalTransform>,
+}
+
+/// `text` (the Spine file `motion` was loaded from) with the motion added as animation `name`,
+/// and the number of keys per timeline. Refusals are one line naming the field.
+pub fn spine(motion: &Motion<'_>, text: &str, name: &str) -> Result<String, String> {
+    let loaded = motion.loaded;
+    if loaded.format != Format::Spine {
+        return Err(format!(
+            "format spine: the Spine export takes a Spine file, and this is a {} file",
+            loaded.format.name()
+        ));
+    }
+    if name.is_empty() {
+        return Err("animation name: must not be empty".to_owned());
+    }
+    let text = text.trim_start_matches('\u{feff}');
+    let top: Ordered<Box<RawValue>> = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
+    let mut animations: Ordered<Box<RawValue>> = match top.0.iter().find(|(k, _)| k == "animations") {
+        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| format!("animations: {e}"))?,
+        None => Ordered::default(),
+    };
+    if animations.0.iter().any(|(k, _)| k == name) {
+        return Err(format!("animation name {name:?}: the file already has an animation of that name"));
+    }
+    let keys = keys(motion)?;
+    let legacy = loaded.version.starts_with("3.");
+    let animation = animation(&loaded.character, &keys, legacy)?;
+    let raw = RawValue::from_string(animation.to_string()).map_err(|e| format!("cannot write JSON: {e}"))?;
+    animations.0.push((name.to_owned(), raw));
+    let animations =
+        RawValue::from_string(object(&animations, "    ")).map_err(|e| format!("cannot write JSON: {e}"))?;
+    let mut out = top;
+    match out.0.iter_mut().find(|(k, _)| k == "animations") {
+        Some((_, v)) => *v = animations,
+        None => out.0.push(("animations".to_owned(), animations)),
+    }
+    let mut text = object(&out, "  ");
+    text.push('\n');
+    Ok(text)
+}
+
+/// `{` the entries, one per line indented by `indent`, `}`.
+fn object(entries: &Ordered<Box<RawValue>>, indent: &str) -> String {
+    let close = &indent[..indent.len().saturating_sub(2)];
+    let body: Vec<String> =
+        entries.0.iter().map(|(k, v)| format!("{indent}{}: {}", Value::String(k.clone()), v.get())).collect();
+    if body.is_empty() { "{}".to_owned() } else { format!("{{\n{}\n{close}}}", body.join(",\n")) }
+}
+
+/// The keys: one per frame, and the bisections that keep a straight line between two keys
+/// within [`TOLERANCE`] of the motion.
+fn keys(motion: &Motion<'_>) -> Result<Vec<Key>, String> {
+    let mut posed = Posed::default();
+    let mut pose = |time: f64| -> Result<Key, String> {
+        motion.pose_at(time, &mut posed)?;
+        Ok(Key { time, local: (0..posed.len()).map(|i| posed.local(i)).collect() })
+    };
+    let mut check = Posed::default();
+    let mut world = Vec::new();
+    let times = motion.frame_times();
+    let mut out = vec![pose(times[0])?];
+    for &t1 in &times[1..] {
+        let end = pose(t1)?;
+        refine(motion, (&mut check, &mut world), &end, &mut out, 0, &mut pose)?;
+        out.push(end);
+    }
+    Ok(out)
+}
+
+/// Keys inserted between the last of `out` and `end` (not pushed) wherever a straight line
+/// between them strays more than [`TOLERANCE`] from the motion.
+fn refine(
+    motion: &Motion<'_>,
+    (check, world): (&mut Posed, &mut Vec<Affine>),
+    end: &Key,
+    out: &mut Vec<Key>,
+    depth: u32,
+    pose: &mut dyn FnMut(f64) -> Result<Key, String>,
+) -> Result<(), String> {
+    let start = out.last().expect("a first key");
+    if depth >= MAX_DEPTH || stray(motion, (check, world), start, end)? <= TOLERANCE {
+        return Ok(());
+    }
+    let mid = pose((start.time + end.time) / 2.0)?;
+    refine(motion, (check, world), &mid, out, depth + 1, pose)?;
+    out.push(mid);
+    refine(motion, (check, world), end, out, depth + 1, pose)
+}
+
+/// The largest distance between a bone's origin or tip posed by the straight line between keys
+/// `a` and `b` and posed by the motion, at a quarter, half and three quarters of the way.
+fn stray(motion: &Motion<'_>, (check, world): (&mut Posed, &mut Vec<Affine>), a: &Key, b: &Key) -> Result<f64, String> {
+    let c = &motion.loaded.character;
+    let mut worst: f64 = 0.0;
+    for f in [0.25, 0.5, 0.75] {
+        let time = a.time + (b.time - a.time) * f;
+        motion.pose_at(time, check)?;
+        let local: Vec<LocalTransform> = a.local.iter().zip(&b.local).map(|(p, q)| between(p, q, f)).collect();
+        world_of(c, &local, world);
+        for (i, bone) in c.bones().iter().enumerate() {
+            let w = &world[i];
+            let tip = [w.x + w.a * bone.length, w.y + w.c * bone.length];
+            for (p, q) in [([w.x, w.y], check.origin(i)), (tip, check.tip(i))] {
+                worst = worst.max((p[0] - q[0]).hypot(p[1] - q[1]));
+            }
+        }
+    }
+    Ok(worst)
+}
+
+/// The local transform a fraction `f` of the way from `p` to `q`, as linear keys give it (the
+/// rotation the short way round, as the unwrapped keys turn).
+fn between(p: &LocalTransform, q: &LocalTransform, f: f64) -> LocalTransform {
+    let lerp = |a: f64, b: f64| a + (b - a) * f;
+    LocalTransform {
+        x: lerp(p.x, q.x),
+        y: lerp(p.y, q.y),
+        rotation: p.rotation + wrap(q.rotation - p.rotation, std::f64::consts::TAU) * f,
+        scale_x: lerp(p.scale_x, q.scale_x),
+        scale_y: lerp(p.scale_y, q.scale_y),
+        shear_x: lerp(p.shear_x, q.shear_x),
+        shear_y: lerp(p.shear_y, q.shear_y),
+    }
+}
+
+/// `v` less the whole turns (`turn`) that bring it into [−turn/2, turn/2].
+fn wrap(v: f64, turn: f64) -> f64 {
+    v - turn * (v / turn).round()
+}
+
+/// Every bone's world transform from its local one, parents first.
+fn world_of(c: &Character, local: &[LocalTransform], world: &mut Vec<Affine>) {
+    world.clear();
+    for (b, t) in c.bones().iter().zip(local) {
+        let w = world_transform(t, b.inherit, b.parent.map(|p| &world[p]), c.placement());
+        world.push(w);
+    }
+}
+
+/// The keys of one timeline less those that the straight line between the kept keys around
+/// them gives within 1e-9 (a bone still, or moving evenly, for a while): the pose the keys give
+/// does not change. A run of dropped keys is at most 64 long (the check is over the run).
+fn thinned(series: Vec<(f64, [f64; 2])>) -> Vec<(f64, [f64; 2])> {
+    const LINE: f64 = 1e-9;
+    let n = series.len();
+    if n <= 2 {
+        return series;
+    }
+    let mut out = vec![series[0]];
+    let mut kept = 0;
+    for k in 1..n - 1 {
+        let ((t0, v0), (t1, v1)) = (series[kept], series[k + 1]);
+        let on_line = k - kept <= 64
+            && series[kept + 1..=k].iter().all(|&(t, v)| {
+                let f = (t - t0) / (t1 - t0);
+                (0..2).all(|c| (v0[c] + (v1[c] - v0[c]) * f - v[c]).abs() <= LINE)
+            });
+        if !on_line {
+            out.push(series[k]);
+            kept = k;
+        }
+    }
+    out.push(series[n - 1]);
+    out
+}
+
+/// The animation's JSON: the bones' timelines (those that leave the setup pose) and every IK
+/// constraint at mix 0.
+fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
+    const SAME: f64 = 1e-12;
+    let mut bones = Map::new();
+    for (i, bone) in c.bones().iter().enumerate() {
+        let s = &bone.setup;
+        let moved = |f: &dyn Fn(&LocalTransform) -> [f64; 2]| {
+            keys.iter().any(|k| {
+                let (a, b) = (f(&k.local[i]), f(s));
+                (a[0] - b[0]).abs() > SAME || (a[1] - b[1]).abs() > SAME
+            })
+        };
+        let mut timelines = Map::new();
+        let series = |f: &dyn Fn(&LocalTransform) -> [f64; 2]| -> Vec<(f64, [f64; 2])> {
+            thinned(keys.iter().map(|k| (k.time, f(&k.local[i]))).collect())
+        };
+        if moved(&|l| [l.rotation, 0.0]) {
+            let mut last = 0.0;
+            let mut unwrapped = |l: &LocalTransform| {
+                let d = (l.rotation - s.rotation).to_degrees();
+                last += wrap(d - last, 360.0);
+                last
+            };
+            let values: Vec<(f64, [f64; 2])> = keys.iter().map(|k| (k.time, [unwrapped(&k.local[i]), 0.0])).collect();
+            let name = if legacy { "angle" } else { "value" };
+            let rotate = thinned(values).into_iter().map(|(time, [v, _])| json!({"time": time, (name): v})).collect();
+            timelines.insert("rotate".to_owned(), Value::Array(rotate));
+        }
+        let two = |name: &str, f: &dyn Fn(&LocalTransform) -> [f64; 2], timelines: &mut Map<String, Value>| {
+            let keys = series(f).into_iter().map(|(time, [x, y])| json!({"time": time, "x": x, "y": y})).collect();
+            timelines.insert(name.to_owned(), Value::Array(keys));
+        };
+        if moved(&|l| [l.x, l.y]) {
+            two("translate", &|l| [l.x - s.x, l.y - s.y], &mut timelines);
+        }
+        if moved(&|l| [l.scale_x, l.scale_y]) {
+            for (setup, axis) in [(s.scale_x, "scaleX"), (s.scale_y, "scaleY")] {
+                if setup == 0.0 {
+                    return Err(format!(
+                        "bone {:?}: its setup {axis} is 0, and the motion scales it (a scale key multiplies the setup's)",
+                        bone.name
+                    ));
+                }
+            }
+            two("scale", &|l| [l.scale_x / s.scale_x, l.scale_y / s.scale_y], &mut timelines);
+        }
+        if moved(&|l| [l.shear_x, l.shear_y]) {
+            two(
+                "shear",
+                &|l| [(l.shear_x - s.shear_x).to_degrees(), (l.shear_y - s.shear_y).to_degrees()],
+                &mut timelines,
+            );
+        }
+        if !timelines.is_empty() {
+            bones.insert(bone.name.clone(), Value::Object(timelines));
+        }
+    }
+    let mut ik = Map::new();
+    for k in c.constraints() {
+        let s = &k.setup;
+        let mut key = json!({"time": 0.0, "mix": 0.0});
+        if s.softness != 0.0 {
+            key["softness"] = json!(s.softness);
+        }
+        key["bendPositive"] = json!(s.bend_positive);
+        if s.compress {
+            key["compress"] = json!(true);
+        }
+        if s.stretch {
+            key["stretch"] = json!(true);
+        }
+        ik.insert(k.name.clone(), json!([key]));
+    }
+    let mut out = Map::new();
+    out.insert("bones".to_owned(), Value::Object(bones));
+    if !ik.is_empty() {
+        out.insert("ik".to_owned(), Value::Object(ik));
+    }
+    Ok(Value::Object(out))
+}

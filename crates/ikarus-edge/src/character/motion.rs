@@ -1,0 +1,170 @@
+//! The motion of a character, shared by `ikarus animate --rig FILE.json`, `ikarus track --rig
+//! FILE.json`, `POST /api/animate` and `POST /api/track` with a character: bones' world origins
+//! moved over time, every instant posed as the runtime does ([`crate::pose::pose_into`], the
+//! target bones put at their points, then the file's IK constraints in their order).
+//!
+//! Two courses: [`Course::Eased`], each target bone's origin eased from where the setup pose
+//! has it to its end point over the duration (ikarus's ease curves); [`Course::Path`], one
+//! bone's origin along a traced path, one sample per frame at the frame rate, in a straight
+//! line between samples. The motion is sampled at the frame rate for its frames (JSON) and at
+//! any time for the Spine export ([`super::export`]).
+
+use ikarus::Ease;
+use ikarus::character::Posed;
+use serde::Serialize;
+
+use super::Loaded;
+use crate::pose::{PoseAsk, PoseReport, PosedBoneJson, pose_into};
+use crate::report::character::UnsupportedJson;
+
+/// The frame rate without one asked for.
+pub const DEFAULT_FPS: f64 = 30.0;
+/// The duration of an eased motion without one asked for, seconds.
+pub const DEFAULT_DURATION: f64 = 1.0;
+
+/// How the target bones move.
+#[derive(Debug, Clone)]
+pub enum Course {
+    /// Each `(bone, end)`: the bone's origin eased from its setup pose's place to `end`.
+    Eased {
+        /// The bones and their end points, applied in this order.
+        targets: Vec<(String, [f64; 2])>,
+        /// The ease of every target.
+        ease: Ease,
+        /// Seconds.
+        duration: f64,
+    },
+    /// `bone`'s origin at `points[k]` at time k / fps, in a straight line between.
+    Path {
+        /// The bone that follows the path.
+        bone: String,
+        /// The samples, at least one.
+        points: Vec<[f64; 2]>,
+    },
+}
+
+/// A character's motion, checked: every name resolved, every number finite.
+#[derive(Debug)]
+pub struct Motion<'a> {
+    /// The character.
+    pub loaded: &'a Loaded,
+    /// Frames per second (and, for a path, samples per second).
+    pub fps: f64,
+    /// Seconds.
+    pub duration: f64,
+    /// Where each eased target starts (an eased course's).
+    starts: Vec<[f64; 2]>,
+    course: Course,
+}
+
+/// One frame: the time and every bone as `ikarus pose --format json` gives it.
+#[derive(Debug, Serialize)]
+pub struct FrameJson {
+    pub time: f64,
+    pub bones: Vec<PosedBoneJson>,
+}
+
+/// `{"frames": [{"time", "bones": […]}, …], "unsupported": […]}`.
+#[derive(Debug, Serialize)]
+pub struct FramesJson {
+    pub frames: Vec<FrameJson>,
+    pub unsupported: Vec<UnsupportedJson>,
+}
+
+impl<'a> Motion<'a> {
+    /// The motion of `loaded` along `course` at `fps` frames per second. Refusals are one line
+    /// naming the field (`fps`, `duration`, `target "toe"`, `path`), without a label.
+    pub fn new(loaded: &'a Loaded, course: Course, fps: f64) -> Result<Self, String> {
+        if !(fps.is_finite() && fps > 0.0) {
+            return Err(format!("fps: must be a positive number, got {fps}"));
+        }
+        let c = &loaded.character;
+        let mut setup = Posed::default();
+        pose_into(loaded, &PoseAsk::default(), &mut setup)?;
+        let bone = |name: &str| c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"));
+        let (starts, duration) = match &course {
+            Course::Eased { targets, duration, .. } => {
+                if !(duration.is_finite() && *duration > 0.0) {
+                    return Err(format!("duration: must be a positive number of seconds, got {duration}"));
+                }
+                if targets.is_empty() {
+                    return Err("target: give at least one BONE=X,Y".to_owned());
+                }
+                let mut starts = Vec::with_capacity(targets.len());
+                for (name, [x, y]) in targets {
+                    if !(x.is_finite() && y.is_finite()) {
+                        return Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"));
+                    }
+                    starts.push(setup.origin(bone(name)?));
+                }
+                (starts, *duration)
+            }
+            Course::Path { bone: name, points } => {
+                bone(name).map_err(|_| format!("effector {name:?}: no bone of that name"))?;
+                if points.is_empty() {
+                    return Err("path: no samples".to_owned());
+                }
+                if let Some((k, p)) = points.iter().enumerate().find(|(_, p)| !(p[0].is_finite() && p[1].is_finite())) {
+                    return Err(format!("path[{k}]: the point must be finite, got ({}, {})", p[0], p[1]));
+                }
+                (Vec::new(), (points.len() - 1) as f64 / fps)
+            }
+        };
+        Ok(Motion { loaded, fps, duration, starts, course })
+    }
+
+    /// The frame times: k / fps up to the duration, and the duration itself last.
+    #[must_use]
+    pub fn frame_times(&self) -> Vec<f64> {
+        let n = (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize;
+        (0..=n).map(|k| if k == n { self.duration } else { k as f64 / self.fps }).collect()
+    }
+
+    /// The number of frames (for caps, before any is posed).
+    #[must_use]
+    pub fn frame_count(&self) -> usize {
+        (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize + 1
+    }
+
+    /// The targets at `time` (clamped into the motion).
+    #[must_use]
+    pub fn targets_at(&self, time: f64) -> Vec<(String, [f64; 2])> {
+        let time = time.clamp(0.0, self.duration);
+        match &self.course {
+            Course::Eased { targets, ease, duration } => {
+                let s = ease.position(time / duration);
+                targets
+                    .iter()
+                    .zip(&self.starts)
+                    .map(|((name, end), start)| (name.clone(), [0, 1].map(|k| start[k] + (end[k] - start[k]) * s)))
+                    .collect()
+            }
+            Course::Path { bone, points } => {
+                let u = time * self.fps;
+                let i = (u.floor() as usize).min(points.len() - 1);
+                let (a, b) = (points[i], points[(i + 1).min(points.len() - 1)]);
+                let f = if i + 1 < points.len() { u - i as f64 } else { 0.0 };
+                vec![(bone.clone(), [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f])]
+            }
+        }
+    }
+
+    /// The character posed at `time` into `out`.
+    pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
+        pose_into(self.loaded, &PoseAsk { targets: self.targets_at(time), ..PoseAsk::default() }, out)
+    }
+
+    /// Every frame posed, one `Posed` reused.
+    pub fn frames(&self) -> Result<FramesJson, String> {
+        let mut posed = Posed::default();
+        let mut frames = Vec::new();
+        let mut unsupported = Vec::new();
+        for time in self.frame_times() {
+            self.pose_at(time, &mut posed)?;
+            let report = PoseReport::of(&self.loaded.character, &posed);
+            unsupported = report.unsupported;
+            frames.push(FrameJson { time, bones: report.bones });
+        }
+        Ok(FramesJson { frames, unsupported })
+    }
+}

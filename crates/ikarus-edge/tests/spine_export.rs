@@ -1,0 +1,154 @@
+//! The Spine export, checked by playing it: the exported file is read back by our own loader
+//! (whose posing matches Spine's runtime within 7.5e-5, `character_reference.rs`), its new
+//! animation posed at every key and at hundreds of times between (most off the frame grid),
+//! and every bone's world origin and tip compared with the motion posed directly at that time.
+
+use ikarus::character::Posed;
+use ikarus::{Ease, EaseKind};
+use ikarus_edge::character::export::{self, TOLERANCE};
+use ikarus_edge::character::motion::{Course, Motion};
+use ikarus_edge::character::{Loaded, load};
+use ikarus_edge::pose::{PoseAsk, pose, pose_into};
+use serde_json::Value;
+
+fn text(file: &str) -> String {
+    let path = format!("{}/../../examples/characters/{file}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// The setup origin of `bone` moved by `by`.
+fn moved(loaded: &Loaded, bone: &str, by: [f64; 2]) -> (String, [f64; 2]) {
+    let setup = pose(loaded, &PoseAsk::default()).unwrap();
+    let b = setup.bones.iter().find(|b| b.name == bone).unwrap();
+    (bone.to_owned(), [b.x + by[0], b.y + by[1]])
+}
+
+/// The largest distance between any bone's origin or tip in `a` and in `b`.
+fn distance(a: &Posed, b: &Posed) -> f64 {
+    (0..a.len())
+        .flat_map(|i| [(a.origin(i), b.origin(i)), (a.tip(i), b.tip(i))])
+        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
+        .fold(0.0, f64::max)
+}
+
+/// Exports `course` of `file`, plays it back, and returns the largest error found between the
+/// keys and the error at the last key against `ikarus pose --target …` at the end points.
+fn played(file: &str, course: Course, fps: f64) -> (f64, f64, usize) {
+    let original = text(file);
+    let loaded = load(&original, file).unwrap();
+    let motion = Motion::new(&loaded, course, fps).unwrap();
+    let exported = export::spine(&motion, &original, "ikarus").unwrap();
+
+    // Valid JSON that keeps every original top-level field and animation as it was.
+    let before: Value = serde_json::from_str(&original).unwrap();
+    let after: Value = serde_json::from_str(&exported).unwrap();
+    for (k, v) in before.as_object().unwrap() {
+        if k != "animations" {
+            assert_eq!(&after[k], v, "{file}: field {k} changed");
+        }
+    }
+    for (name, a) in before["animations"].as_object().unwrap() {
+        assert_eq!(&after["animations"][name], a, "{file}: animation {name} changed");
+    }
+    assert_eq!(after["animations"].as_object().unwrap().len(), before["animations"].as_object().unwrap().len() + 1);
+    // A second export of the same name into the exported file is refused in one line.
+    let back = load(&exported, "exported").unwrap();
+    let again = Motion::new(&back, motion_course(&motion), fps).unwrap();
+    let e = export::spine(&again, &exported, "ikarus").unwrap_err();
+    assert_eq!(e, "animation name \"ikarus\": the file already has an animation of that name");
+
+    // Played back: at every key and at 600 times between, most off the frame grid.
+    // Every key time of every timeline.
+    let mut keys: Vec<f64> = after["animations"]["ikarus"]["bones"]
+        .as_object()
+        .unwrap()
+        .values()
+        .flat_map(|timelines| timelines.as_object().unwrap().values())
+        .flat_map(|keys| keys.as_array().unwrap().iter().map(|k| k["time"].as_f64().unwrap()))
+        .collect();
+    keys.sort_by(f64::total_cmp);
+    keys.dedup();
+    let d = motion.duration;
+    let mut times = keys.clone();
+    times.extend((0..600).map(|k| d * ((k as f64 * 0.618_033_988_75) % 1.0)));
+    let (mut exported_pose, mut direct) = (Posed::default(), Posed::default());
+    let mut worst: f64 = 0.0;
+    for &t in &times {
+        let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(t), ..PoseAsk::default() };
+        pose_into(&back, &ask, &mut exported_pose).unwrap();
+        motion.pose_at(t, &mut direct).unwrap();
+        worst = worst.max(distance(&exported_pose, &direct));
+    }
+    // At the last key: `ikarus pose --target …` at the end points.
+    let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(d), ..PoseAsk::default() };
+    pose_into(&back, &ask, &mut exported_pose).unwrap();
+    let end = PoseAsk { targets: motion.targets_at(d), ..PoseAsk::default() };
+    pose_into(&loaded, &end, &mut direct).unwrap();
+    let last = distance(&exported_pose, &direct);
+    motion.pose_at(d, &mut exported_pose).unwrap();
+    assert_eq!(distance(&exported_pose, &direct), 0.0, "the motion ends where pose puts the targets");
+    (worst, last, keys.len())
+}
+
+/// The same course (for the second export).
+fn motion_course(m: &Motion<'_>) -> Course {
+    Course::Eased { targets: m.targets_at(m.duration), ease: Ease::Linear, duration: m.duration }
+}
+
+fn check(file: &str, course: Course, fps: f64) {
+    let (worst, last, keys) = played(file, course, fps);
+    println!("{file}: {keys} keys, largest error between keys {worst:.3e}, at the last key {last:.3e}");
+    assert!(worst < 1e-2, "{file}: {worst}");
+    assert!(worst <= TOLERANCE * 1.01, "{file}: {worst} beyond the bisection's own tolerance");
+    // Keys are 32-bit floats in the runtime (and in our reader): the last key is the end pose
+    // within their rounding (a value near 250 is held to about 1.5e-5), not to 1e-6.
+    assert!(last < 5e-5, "{file}: {last}");
+}
+
+#[test]
+fn spineboy_legs_moved_and_played_back() {
+    let file = "spine-spineboy-pro.json";
+    let loaded = load(&text(file), file).unwrap();
+    let targets =
+        vec![moved(&loaded, "front-leg-target", [60.0, 80.0]), moved(&loaded, "rear-leg-target", [-40.0, 50.0])];
+    check(file, Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 1.0 }, 30.0);
+}
+
+#[test]
+fn raptor_legs_moved_and_played_back() {
+    let file = "spine-raptor-pro.json";
+    let loaded = load(&text(file), file).unwrap();
+    let targets =
+        vec![moved(&loaded, "front-leg-target", [80.0, 120.0]), moved(&loaded, "back-leg-target", [-60.0, 90.0])];
+    check(file, Course::Eased { targets, ease: EaseKind::Smoothstep.ease(None, None).unwrap(), duration: 0.8 }, 24.0);
+}
+
+#[test]
+fn a_traced_circle_played_back() {
+    let file = "spine-spineboy-pro.json";
+    let loaded = load(&text(file), file).unwrap();
+    let (_, [cx, cy]) = moved(&loaded, "front-leg-target", [0.0, 40.0]);
+    let points: Vec<[f64; 2]> = (0..=40)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 40.0;
+            [cx + 40.0 * a.cos(), cy + 40.0 * a.sin()]
+        })
+        .collect();
+    check(file, Course::Path { bone: "front-leg-target".into(), points }, 30.0);
+}
+
+#[test]
+fn a_dragonbones_file_is_not_exported() {
+    let file = "dragonbones-mecha_1406_ske.json";
+    let original = text(file);
+    let loaded = load(&original, file).unwrap();
+    let bone = loaded.character.bones()[1].name.clone();
+    let motion = Motion::new(
+        &loaded,
+        Course::Eased { targets: vec![(bone, [1.0, 2.0])], ease: Ease::Linear, duration: 1.0 },
+        30.0,
+    )
+    .unwrap();
+    let e = export::spine(&motion, &original, "ikarus").unwrap_err();
+    assert_eq!(e, "format spine: the Spine export takes a Spine file, and this is a DragonBones file");
+}
