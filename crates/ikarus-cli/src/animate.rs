@@ -141,6 +141,8 @@ pub struct AnimateArgs {
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
     #[command(flatten)]
+    pub ik: crate::pose::IkArgs,
+    #[command(flatten)]
     pub picture: PictureArgs,
 }
 
@@ -227,10 +229,13 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     if let Some(file) = crate::character_motion::character(args.motion.body.rig.as_deref()) {
         return character::run(args, &file?);
     }
+    let [ik, ik_file] = args.ik.given();
     crate::character_motion::refuse_without(&[
         ("--target", !args.target.is_empty()),
         ("--animation-name", args.animation_name.is_some()),
         ("--format spine", args.format == Some(AnimateFormat::Spine)),
+        ik,
+        ik_file,
     ])?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let run = motion(&args.motion)?;

@@ -7,7 +7,8 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ikarus_edge::pose::{PoseAsk, PoseReport, pose};
+use ikarus::character::Character;
+use ikarus_edge::pose::{IkChoice, PoseAsk, PoseReport, pose};
 
 use crate::error::CliError;
 use crate::options::{parse_finite, parse_point};
@@ -46,6 +47,45 @@ impl IkRules {
     }
 }
 
+/// Whose rules solve a character's IK constraints, and an IK file: `pose`, and `animate` and
+/// `track` with a character file.
+#[derive(Debug, Args)]
+pub struct IkArgs {
+    /// With a character file: whose rules solve its IK constraints, the runtime's (one after
+    /// another, in their order) or ikarus's rig solver (all at once: no constraint undoes
+    /// another, limbs of any length)
+    #[arg(long, value_enum, default_value_t = IkRules::Runtime)]
+    pub ik: IkRules,
+    /// With --ik ikarus: an IK file (TOML) adding pins, longer limbs, weights, joint limits and
+    /// stiffness to the character's constraints
+    #[arg(long, value_name = "FILE")]
+    pub ik_file: Option<PathBuf>,
+}
+
+impl IkArgs {
+    /// The rules for `character`, the IK file read and checked against it.
+    pub fn choice(&self, character: &Character) -> Result<IkChoice, CliError> {
+        let text = match &self.ik_file {
+            Some(p) => {
+                let label = format!("ik file {}", p.display());
+                Some((crate::input::read_text(p, &label)?, label))
+            }
+            None => None,
+        };
+        let (file, label) = match &text {
+            Some((t, l)) => (Some(t.as_str()), l.as_str()),
+            None => (None, "--ik-file"),
+        };
+        ikarus_edge::pose::ik_choice(Some(self.ik.name()), file, label, character)
+    }
+
+    /// `(flag, given)` for the refusals of flags that mean something only with a character.
+    #[must_use]
+    pub fn given(&self) -> [(&'static str, bool); 2] {
+        [("--ik", self.ik != IkRules::Runtime), ("--ik-file", self.ik_file.is_some())]
+    }
+}
+
 /// Pose a character file as its runtime does.
 #[derive(Debug, Args)]
 pub struct PoseArgs {
@@ -62,14 +102,8 @@ pub struct PoseArgs {
     /// target bone moves its limb), BONE=X,Y (repeatable, applied in order)
     #[arg(long, value_name = "BONE=X,Y", allow_hyphen_values = true, value_parser = parse_target)]
     pub target: Vec<(String, [f64; 2])>,
-    /// Whose rules solve the IK constraints: the runtime's (one after another, in their order) or
-    /// ikarus's rig solver (all at once: no constraint undoes another, limbs of any length)
-    #[arg(long, value_enum, default_value_t = IkRules::Runtime)]
-    pub ik: IkRules,
-    /// With --ik ikarus: an IK file (TOML) adding pins, longer limbs, weights, joint limits and
-    /// stiffness to the character's constraints
-    #[arg(long, value_name = "FILE")]
-    pub ik_file: Option<PathBuf>,
+    #[command(flatten)]
+    pub ik: IkArgs,
     /// Output format [default: text on a terminal, json otherwise; from --out's extension for
     /// .svg and .png]
     #[arg(long, value_enum)]
@@ -104,17 +138,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     }
     let format = format_of(args)?;
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
-    let ik_text = match &args.ik_file {
-        Some(p) => {
-            Some((crate::input::read_text(p, &format!("ik file {}", p.display()))?, format!("ik file {}", p.display())))
-        }
-        None => None,
-    };
-    let (ik_file, ik_label) = match &ik_text {
-        Some((text, label)) => (Some(text.as_str()), label.as_str()),
-        None => (None, "--ik-file"),
-    };
-    let ik = ikarus_edge::pose::ik_choice(Some(args.ik.name()), ik_file, ik_label, &loaded.character)?;
+    let ik = args.ik.choice(&loaded.character)?;
     let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone(), ik };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, args)?;

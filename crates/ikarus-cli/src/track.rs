@@ -111,6 +111,8 @@ pub struct TrackArgs {
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
     #[command(flatten)]
+    pub ik: crate::pose::IkArgs,
+    #[command(flatten)]
     pub picture: PictureArgs,
 }
 
@@ -135,10 +137,13 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     if let Some(file) = crate::character_motion::character(args.rig.as_deref()) {
         return character(args, &file?);
     }
+    let [ik, ik_file] = args.ik.given();
     crate::character_motion::refuse_without(&[
         ("--fps", args.fps.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--format spine", args.format == Some(TrackFormat::Spine)),
+        ik,
+        ik_file,
     ])?;
     match Body::load(args.arm.as_deref(), args.rig.as_deref())? {
         Body::Chain(arm) => track(args, &*arm),
@@ -232,8 +237,9 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
         return Err(CliError::input(format!("--fps {fps}: must be positive")));
     }
     let points = cli_path(args)?.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
-    let motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
+    let mut motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
         .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+    motion.ik = args.ik.choice(&file.loaded.character)?;
     let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
     write(file, &motion, &out)
 }

@@ -1,6 +1,6 @@
-use std::time::Instant;
-use ikarus::character::{PoseRequest, Posed, Together};
 use ikarus::Solver;
+use ikarus::character::{PoseRequest, Posed, Together};
+use std::time::Instant;
 fn main() {
     for f in ["spine-spineboy-pro.json", "spine-raptor-pro.json"] {
         let text = std::fs::read_to_string(format!("examples/characters/{f}")).unwrap();
@@ -19,11 +19,20 @@ fn main() {
                 let t = dur * (i as f64 / count as f64);
                 let req = PoseRequest { clip: Some((walk, t)), targets: &[] };
                 let s = Instant::now();
-                if ikarus { c.pose_together(&req, &rules, &mut solver, &mut out).unwrap(); } else { c.pose(&req, &mut out).unwrap(); }
+                if ikarus {
+                    c.pose_together(&req, &rules, &mut solver, &mut out).unwrap();
+                } else {
+                    c.pose(&req, &mut out).unwrap();
+                }
                 times.push(s.elapsed().as_secs_f64() * 1e6);
             }
             times.sort_by(f64::total_cmp);
-            println!("{f} {label}: {} poses, median {:.2} µs, p99 {:.2} µs", count, times[count / 2], times[count * 99 / 100]);
+            println!(
+                "{f} {label}: {} poses, median {:.2} µs, p99 {:.2} µs",
+                count,
+                times[count / 2],
+                times[count * 99 / 100]
+            );
         }
     }
 }

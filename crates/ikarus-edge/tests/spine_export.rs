@@ -8,7 +8,7 @@ use ikarus::{Ease, EaseKind};
 use ikarus_edge::character::export::{self, TOLERANCE};
 use ikarus_edge::character::motion::{Course, Motion};
 use ikarus_edge::character::{Loaded, load};
-use ikarus_edge::pose::{PoseAsk, pose, pose_into};
+use ikarus_edge::pose::{IkChoice, PoseAsk, pose, pose_into};
 use serde_json::Value;
 
 fn text(file: &str) -> String {
@@ -33,10 +33,11 @@ fn distance(a: &Posed, b: &Posed) -> f64 {
 
 /// Exports `course` of `file`, plays it back, and returns the largest error found between the
 /// keys and the error at the last key against `ikarus pose --target …` at the end points.
-fn played(file: &str, course: Course, fps: f64) -> (f64, f64, usize) {
+fn played(file: &str, course: Course, fps: f64, ik: &IkChoice) -> (f64, f64, usize) {
     let original = text(file);
     let loaded = load(&original, file).unwrap();
-    let motion = Motion::new(&loaded, course, fps).unwrap();
+    let mut motion = Motion::new(&loaded, course, fps).unwrap();
+    motion.ik = ik.clone();
     let exported = export::spine(&motion, &original, "ikarus").unwrap();
 
     // Valid JSON that keeps every original top-level field and animation as it was.
@@ -82,7 +83,7 @@ fn played(file: &str, course: Course, fps: f64) -> (f64, f64, usize) {
     // At the last key: `ikarus pose --target …` at the end points.
     let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(d), ..PoseAsk::default() };
     pose_into(&back, &ask, &mut exported_pose).unwrap();
-    let end = PoseAsk { targets: motion.targets_at(d), ..PoseAsk::default() };
+    let end = PoseAsk { targets: motion.targets_at(d), ik: ik.clone(), ..PoseAsk::default() };
     pose_into(&loaded, &end, &mut direct).unwrap();
     let last = distance(&exported_pose, &direct);
     motion.pose_at(d, &mut exported_pose).unwrap();
@@ -96,7 +97,11 @@ fn motion_course(m: &Motion<'_>) -> Course {
 }
 
 fn check(file: &str, course: Course, fps: f64) {
-    let (worst, last, keys) = played(file, course, fps);
+    check_with(file, course, fps, &IkChoice::Runtime);
+}
+
+fn check_with(file: &str, course: Course, fps: f64, ik: &IkChoice) {
+    let (worst, last, keys) = played(file, course, fps, ik);
     println!("{file}: {keys} keys, largest error between keys {worst:.3e}, at the last key {last:.3e}");
     assert!(worst < 1e-2, "{file}: {worst}");
     assert!(worst <= TOLERANCE * 1.01, "{file}: {worst} beyond the bisection's own tolerance");
@@ -121,6 +126,27 @@ fn raptor_legs_moved_and_played_back() {
     let targets =
         vec![moved(&loaded, "front-leg-target", [80.0, 120.0]), moved(&loaded, "back-leg-target", [-60.0, 90.0])];
     check(file, Course::Eased { targets, ease: EaseKind::Smoothstep.ease(None, None).unwrap(), duration: 0.8 }, 24.0);
+}
+
+#[test]
+fn a_motion_solved_by_ikarus_plays_back_too() {
+    // The raptor's front leg as one four-bone limb (its leg constraint secondary): keyed
+    // rotations of a solve the file's constraints do not make, played back by them at mix 0.
+    // (Carried 500 units, beyond the leg constraint's reach, the secondary goal's slow
+    // convergence makes the solve stop at different iterations from frame to frame, and the
+    // export strays up to 1.8e-2 between its keys: that case is left out, and said in the
+    // README.)
+    let file = "spine-raptor-pro.json";
+    let loaded = load(&text(file), file).unwrap();
+    let rules = ikarus_edge::character::ik_file::read(
+        "[limbs.front-foot-ik]\nbones = 4\n[limbs.front-leg-ik]\nsecondary = true\n",
+        "ik file",
+        &loaded.character,
+    )
+    .unwrap();
+    let targets = vec![moved(&loaded, "front-foot-target", [420.0, 90.0])];
+    let course = Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 0.5 };
+    check_with(file, course, 30.0, &IkChoice::Ikarus(Box::new(rules)));
 }
 
 #[test]

@@ -50,7 +50,9 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     }
     let ease = m.ease.resolve(EaseKind::Sine)?;
     let course = Course::Eased { targets: args.target.clone(), ease, duration };
-    let motion = Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+    let mut motion =
+        Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+    motion.ik = args.ik.choice(&file.loaded.character)?;
     let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
     write(file, &motion, &out)
 }

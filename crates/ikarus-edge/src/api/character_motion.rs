@@ -16,6 +16,7 @@ use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
 use crate::character::{Loaded, export, is_json, load_within};
 use crate::ease_args::{EaseProblem, choose_ease};
+use crate::pose::ik_choice;
 use crate::rig::BoneCap;
 use crate::track::Shape;
 
@@ -36,7 +37,8 @@ pub enum MotionFormat {
 
 /// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
 /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
-/// "animation_name": "ikarus"}`, every field but `rig` and `targets` optional.
+/// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
+/// `rig` and `targets` optional.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct AnimateCharacterReq {
@@ -55,11 +57,16 @@ struct AnimateCharacterReq {
     #[serde(default)]
     format: MotionFormat,
     #[serde(default)]
+    ik: Option<String>,
+    #[serde(default)]
+    ik_file: Option<String>,
+    #[serde(default)]
     animation_name: Option<String>,
 }
 
 /// `POST /api/track` with a character: `{"rig": "<text>", "effector": "BONE"`, exactly one of
-/// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name"}`.
+/// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name", "ik",
+/// "ik_file"}`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TrackCharacterReq {
@@ -79,6 +86,10 @@ struct TrackCharacterReq {
     fps: Option<f64>,
     #[serde(default)]
     format: MotionFormat,
+    #[serde(default)]
+    ik: Option<String>,
+    #[serde(default)]
+    ik_file: Option<String>,
     #[serde(default)]
     animation_name: Option<String>,
 }
@@ -116,7 +127,8 @@ pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     })?;
     let targets = req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect();
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
-    let motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 
@@ -130,8 +142,9 @@ pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
-    let motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
+    let mut motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
         .map_err(Problem::invalid)?;
+    motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 

@@ -14,7 +14,7 @@ use ikarus::character::Posed;
 use serde::Serialize;
 
 use super::Loaded;
-use crate::pose::{PoseAsk, PoseReport, PosedBoneJson, pose_into};
+use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into};
 use crate::report::character::UnsupportedJson;
 
 /// The frame rate without one asked for.
@@ -55,6 +55,8 @@ pub struct Motion<'a> {
     /// Where each eased target starts (an eased course's).
     starts: Vec<[f64; 2]>,
     course: Course,
+    /// Whose rules solve the IK constraints in every frame (the runtime's by default).
+    pub ik: IkChoice,
 }
 
 /// One frame: the time and every bone as `ikarus pose --format json` gives it.
@@ -110,7 +112,7 @@ impl<'a> Motion<'a> {
                 (Vec::new(), (points.len() - 1) as f64 / fps)
             }
         };
-        Ok(Motion { loaded, fps, duration, starts, course })
+        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
@@ -151,7 +153,8 @@ impl<'a> Motion<'a> {
 
     /// The character posed at `time` into `out`.
     pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
-        pose_into(self.loaded, &PoseAsk { targets: self.targets_at(time), ..PoseAsk::default() }, out)
+        let ask = PoseAsk { targets: self.targets_at(time), ik: self.ik.clone(), ..PoseAsk::default() };
+        pose_into(self.loaded, &ask, out).map(|_| ())
     }
 
     /// Every frame posed, one `Posed` reused.
