@@ -15,6 +15,8 @@ import {
   ikTargets,
   poseRequest,
   posedBox,
+  surveyTimes,
+  unionBox,
   unsupportedLines,
 } from "../crates/ikarus-cli/src/serve/assets/character.js";
 import { toCanvas } from "../crates/ikarus-cli/src/serve/assets/view.js";
@@ -101,6 +103,15 @@ test("the view fits the setup pose's box with room around it, centred, y up", ()
     const [px, py] = toCanvas(view, x, y);
     assert.ok(px >= 0 && px <= 800 && py >= 0 && py <= 700);
   }
+});
+
+test("a clip's survey: its ends and evenly between; boxes joined", () => {
+  assert.deepEqual(surveyTimes(2, 4), [0, 0.5, 1, 1.5, 2]);
+  assert.equal(surveyTimes(1.25).length, 9);
+  const a = { x0: 0, x1: 1, y0: 0, y1: 1 };
+  assert.deepEqual(unionBox(a, { x0: -1, x1: 0.5, y0: 0.5, y1: 3 }), { x0: -1, x1: 1, y0: 0, y1: 3 });
+  assert.deepEqual(unionBox(null, a), a);
+  assert.deepEqual(unionBox(a, undefined), a);
 });
 
 test("a bone is a kite from its origin to its tip, widest a fifth along; no length is a circle", () => {

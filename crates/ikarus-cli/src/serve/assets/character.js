@@ -37,10 +37,21 @@ export function posedBox(bones) {
   return { x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys) };
 }
 
+/** The smallest box holding boxes `a` and `b` (either may be null). */
+export function unionBox(a, b) {
+  if (!a || !b) return a || b || null;
+  return { x0: Math.min(a.x0, b.x0), x1: Math.max(a.x1, b.x1), y0: Math.min(a.y0, b.y0), y1: Math.max(a.y1, b.y1) };
+}
+
+/** The clip's poses the view is fitted to before it plays: `n` + 1 times evenly over its `seconds`. */
+export function surveyTimes(seconds, n = 8) {
+  return Array.from({ length: n + 1 }, (_, k) => (seconds * k) / n);
+}
+
 /**
- * The transform that fits `box` (the setup pose's, posedBox) with CHARACTER_VIEW_ROOM of its
+ * The transform that fits `box` (the setup pose's, posedBox, with the clip's survey) with CHARACTER_VIEW_ROOM of its
  * larger side around it into a `w` × `h` canvas (the page's fitBox). It depends on the setup pose
- * only, so the view stays still while a clip plays or a target is dragged.
+ * and the clip's survey only, so the view stays still while a clip plays or a target is dragged.
  */
 export function fitCharacterView(box, w, h) {
   const side = Math.max(box.x1 - box.x0, box.y1 - box.y0, 1e-3);

@@ -10,7 +10,7 @@
 
 import * as api from "./api.js";
 import { saveBlob } from "./files.js";
-import { characterSummary, clipSeconds, exportName, exportRequest, handleAt, boneAt, ikTargets, poseRequest, posedBox, unsupportedLines } from "./character.js";
+import { boneAt, characterSummary, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
 import { isDrag, toWorld } from "./view.js";
 
@@ -24,6 +24,8 @@ const $ = (id) => document.getElementById(id);
  *   targets      Map bone → {x, y}, the targets the reader put somewhere (in the order first dragged)
  *   ik           "runtime" (Spine's rules) or "ikarus" (ikarus's solver)
  *   posed        the last /api/pose answer's bones;  box  the setup pose's world box (the view fits it)
+ *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
+ *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
  *   request      the request of `posed`;  poses  answers received
  *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
  *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
@@ -41,6 +43,8 @@ function newCharacterState(name, text, character) {
     ik: "runtime",
     posed: null,
     box: null,
+    clipBoxes: new Map(),
+    survey: null,
     request: null,
     poses: 0,
     busy: false,
@@ -141,6 +145,9 @@ export function wireCharacters(state, canvas, act) {
     if (!c) return;
     c.animation = name;
     c.time = 0;
+    // The clip's poses are surveyed first (in the one line of requests), so that the view fits them.
+    const seconds = clipSeconds(c.character, name);
+    if (name && !c.clipBoxes.has(name)) c.survey = { name, times: seconds > 0 ? surveyTimes(seconds) : [0], box: null };
     playClip(c);
     poseSoon();
   }
@@ -156,13 +163,22 @@ export function wireCharacters(state, canvas, act) {
 
   async function pump() {
     const c = state.character;
-    if (!c || c.busy || !c.pending) return;
-    c.pending = false;
+    if (!c || c.busy) return;
+    // A clip's survey goes first: the view is fitted to it before the clip is seen moving.
+    const s = c.survey && c.survey.times.length ? c.survey : null;
+    if (!s && !c.pending) return;
     c.busy = true;
-    const req = poseRequest(c);
+    let req;
+    if (s) {
+      req = { rig: c.text, animation: s.name, time: s.times.shift(), targets: [] };
+    } else {
+      c.pending = false;
+      req = poseRequest(c);
+    }
     try {
       const answer = await api.post("/api/pose", req);
-      if (state.character === c) apply(c, req, answer);
+      if (state.character === c && s) surveyed(c, s, answer);
+      else if (state.character === c) apply(c, req, answer);
     } catch (e) {
       if (state.character === c) {
         act.showError(e);
@@ -174,6 +190,15 @@ export function wireCharacters(state, canvas, act) {
       c.busy = false;
       if (state.character === c) pump();
     });
+  }
+
+  /** A pose of the clip's survey: its box grows; the last one gives the view its box. */
+  function surveyed(c, s, answer) {
+    s.box = unionBox(s.box, posedBox(answer.bones));
+    if (s.times.length || c.survey !== s) return;
+    c.clipBoxes.set(s.name, s.box);
+    c.survey = null;
+    act.requestDraw();
   }
 
   function apply(c, req, answer) {
@@ -189,7 +214,10 @@ export function wireCharacters(state, canvas, act) {
   }
 
   /** Whether no pose is in flight or waiting (for tests and scripts). */
-  const settled = () => !!state.character && !state.character.busy && !state.character.pending;
+  const settled = () => {
+    const c = state.character;
+    return !!c && !c.busy && !c.pending && !(c.survey && c.survey.times.length);
+  };
 
   function clearTargets() {
     const c = state.character;

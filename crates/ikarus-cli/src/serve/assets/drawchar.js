@@ -7,14 +7,20 @@
 // downloads (export.js) are drawn by the same drawCharacterScene.
 
 import { COLORS, drawGrid } from "./draw.js";
-import { boneShape, fitCharacterView } from "./character.js";
+import { boneShape, fitCharacterView, unionBox } from "./character.js";
 import { toCanvas } from "./view.js";
 
 /** A target's handle, CSS pixels (its ring's radius). */
 const HANDLE_RADIUS = 7;
 
-/** The view of `state` in a `w` × `h` canvas: the character's setup pose fitted (pose-independent). */
-export const characterView = (state, w, h) => fitCharacterView(state.character.box, w, h);
+/**
+ * The view of `state` in a `w` × `h` canvas: the character's setup pose fitted, with the poses of
+ * the clip shown once surveyed (pose-independent).
+ */
+export const characterView = (state, w, h) => {
+  const c = state.character;
+  return fitCharacterView(unionBox(c.box, c.clipBoxes.get(c.animation)), w, h);
+};
 
 /**
  * Each posed bone of `c` (state.character) with its origin and tip in canvas pixels, bone
