@@ -2,11 +2,11 @@
 // bone as Spine draws bones (character.js's boneShape: a slim kite from the origin to the tip, a
 // small circle for a bone of no length), the bones an IK constraint moves tinted, every IK
 // target as a handle (an orange ring with a cross; red and filled once dragged, with a dashed
-// line to its bone when the bone is not there), and the name of the bone or target under the
+// line from its bone when the bone is not there, draw.js's drawLeash), and the name of the bone or target under the
 // pointer in a label. It reads the state and never writes it. The screen and the PNG and SVG
 // downloads (export.js) are drawn by the same drawCharacterScene.
 
-import { COLORS, drawGrid } from "./draw.js";
+import { COLORS, drawGrid, drawLeash } from "./draw.js";
 import { boneShape, fitCharacterView, unionBox } from "./character.js";
 import { toCanvas } from "./view.js";
 
@@ -115,20 +115,6 @@ function drawHandle(ctx, [x, y], placed, focused) {
     ctx.strokeStyle = COLORS.path;
     ctx.stroke();
   }
-}
-
-/** A dashed line from where the target bone is to where the reader put it. */
-function drawLeash(ctx, [ax, ay], [bx, by]) {
-  ctx.setLineDash([4, 4]);
-  ctx.strokeStyle = COLORS.goal;
-  ctx.lineWidth = 1.2;
-  ctx.globalAlpha = 0.7;
-  ctx.beginPath();
-  ctx.moveTo(ax, ay);
-  ctx.lineTo(bx, by);
-  ctx.stroke();
-  ctx.globalAlpha = 1;
-  ctx.setLineDash([]);
 }
 
 /** The name under the pointer: in a white box beside `at`, kept inside the canvas. */

@@ -345,6 +345,7 @@ function draw() {
   if (state.character) {
     if (!state.character.box) return;
     state.view = characterView(state, canvas.clientWidth, canvas.clientHeight);
+    state.view.keepOut = overlays();
     // The bones drawn, for scripts and tests.
     canvas.dataset.bones = String(drawCharacterScene(ctx, state.view, state));
     return;

@@ -230,11 +230,7 @@ export function wireTimeline(state, act) {
    * at 0 (shown at once).
    */
   function loadClip(clip) {
-    pause();
-    pb.u = 0;
-    pb.index = 0;
-    pb.solver = false;
-    pb.auto = null;
+    unload();
     pb.clip = clip;
     show(0);
   }
