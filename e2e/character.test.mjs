@@ -162,6 +162,29 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     const [near, far] = [dist(played.bones["front-shin"].tip, [put.x, put.y]), dist(shinAlone, [put.x, put.y])];
     assert.ok(near < far - 10, `at ${played.request.time} s the shin's tip is ${near} from the target, ${far} without it`);
 
+    // A click on the placed target (no drag) lets it go; Esc on the canvas lets all go.
+    const putAt = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [put.x, put.y]);
+    await page.mouse.click(...putAt);
+    await settled(page);
+    assert.deepEqual((await shown(page)).request.targets, []);
+    /** Drags the front leg's target from where the pose has it to the canvas point `to`. */
+    const replace = async (to) => {
+      const bone = (await shown(page)).bones["front-leg-target"];
+      await page.mouse.move(...(await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [bone.x, bone.y])));
+      await page.mouse.down();
+      await page.mouse.move(...to, { steps: 4 });
+      await page.mouse.up();
+      await settled(page);
+      assert.equal((await shown(page)).request.targets.length, 1);
+    };
+    await replace(putAt);
+    await page.focus("#plot");
+    await page.keyboard.press("Escape");
+    await settled(page);
+    assert.deepEqual((await shown(page)).request.targets, []);
+    // Put back where it was for the switch and the export.
+    await replace(putAt);
+
     // The switch: ikarus's solver is asked for (`ik: "ikarus"`), Spine's rules again without the field.
     const sent = await page.evaluate(() => window.poses.bodies.length);
     await page.check('input[name="character-ik"][value="ikarus"]');
@@ -218,6 +241,14 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await page.selectOption("#character-animation", "walk");
     await settled(page);
     await page.screenshot({ path: join(artifacts, "character-raptor-walk.png") });
+    // Reset pose: the setup pose, no clip on the timeline.
+    await page.click("#reset");
+    await settled(page);
+    assert.equal(await page.inputValue("#character-animation"), "");
+    assert.deepEqual((await shown(page)).request, { targets: [], rig: undefined });
+    assert.equal(await page.textContent("#playtime"), "– / – s");
+    await page.selectOption("#character-animation", "walk");
+    await settled(page);
 
     // Back to the arm: its controls, no character; and back to the raptor as it was left.
     await page.selectOption("#body-kind", "arm");
