@@ -241,6 +241,7 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await page.selectOption("#character-animation", "walk");
     await settled(page);
     await page.screenshot({ path: join(artifacts, "character-raptor-walk.png") });
+    const walkRaptor = (await page.evaluate(() => window.ikarus.state.character.character.clips)).find((c) => c.name === "walk");
     // Reset pose: the setup pose, no clip on the timeline.
     await page.click("#reset");
     await settled(page);
@@ -250,7 +251,13 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await page.selectOption("#character-animation", "walk");
     await settled(page);
 
-    // Back to the arm: its controls, no character; and back to the raptor as it was left.
+    // Back to the arm: its controls, no character; and back to the raptor as it was left (its
+    // clip at the time it showed).
+    await page.fill("#scrubber", "500");
+    await page.dispatchEvent("#scrubber", "input");
+    await settled(page);
+    const left = (await shown(page)).request.time;
+    assert.ok(Math.abs(left - 0.5 * walkRaptor.duration) < 1e-9, `${left}`);
     await page.selectOption("#body-kind", "arm");
     assert.equal(await page.evaluate(() => window.ikarus.state.character), null);
     assert.equal(await page.isVisible("#links-body"), true);
@@ -260,6 +267,8 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await settled(page);
     assert.equal(await page.evaluate(() => window.ikarus.state.character.name), "raptor.json");
     assert.equal(await page.inputValue("#character-animation"), "walk");
+    assert.equal((await shown(page)).request.time, left);
+    assert.equal(await page.textContent("#playtime"), `${left.toFixed(2)} / ${walkRaptor.duration.toFixed(2)} s`);
 
     // The refused requests (ik before the lead's merge, the export before A's) log a failed load.
     assert.deepEqual(errors.filter((e) => !/status of 4\d\d/.test(e)), [], "console errors");

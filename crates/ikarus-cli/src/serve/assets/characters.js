@@ -129,6 +129,8 @@ export function wireCharacters(state, canvas, act) {
       act.timeline.unload();
       return;
     }
+    // Loading shows the clip's start: a character shown again goes back to its time after.
+    const at = c.time;
     act.timeline.loadClip({
       seconds,
       show: (t) => {
@@ -137,7 +139,7 @@ export function wireCharacters(state, canvas, act) {
         poseSoon();
       },
     });
-    if (c.time > 0) act.timeline.seek(c.time / seconds);
+    if (at > 0) act.timeline.seek(at / seconds);
   }
 
   function choose(name) {
