@@ -15,6 +15,7 @@
 
 mod clips;
 mod dragonbones;
+pub mod ik_file;
 mod spine;
 
 use std::collections::HashMap;

@@ -83,9 +83,9 @@ pub struct Together {
     pub pins: Vec<usize>,
 }
 
-/// How one constraint ended: the distance from its last bone's tip to its target, in the
-/// world units of the runtime's pose (for a one-bone constraint on a bone of length 0, aimed by
-/// the runtime's rule: 0).
+/// How one constraint ended: how far it misses its target, in world units: a two-bone one, its
+/// child's tip's distance from the target; a one-bone one (an aim), the target's distance from
+/// the bone's ray (for a bone of length 0, aimed by the runtime's rule: 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LimbEnd {
     /// The constraint's index.
@@ -143,7 +143,7 @@ impl Character {
         solver: &mut Solver,
         out: &mut Posed,
     ) -> Result<TogetherReport, TogetherError> {
-        self.check_rules(rules)?;
+        self.check_together(rules)?;
         self.pose(request, out)?;
         let active: Vec<usize> = (0..self.constraints.len()).filter(|&k| out.settings(k).mix > 0.0).collect();
         let moving = self.moving(rules, &active);
@@ -167,22 +167,17 @@ impl Character {
         self.aim_zero_length(&active, out);
         report.limbs = (0..self.constraints.len())
             .map(|k| {
-                let c = &self.constraints[k];
                 let on = active.contains(&k);
-                let error = if on && self.has_tip_goal(k) {
-                    let [tx, ty] = out.origin(c.target);
-                    let [x, y] = out.tip(last_bone(c.bones));
-                    math::distance(x - tx, y - ty)
-                } else {
-                    0.0
-                };
+                let error = if on && self.has_tip_goal(k) { self.miss(k, out) } else { 0.0 };
                 LimbEnd { constraint: k, active: on, error }
             })
             .collect();
         Ok(report)
     }
 
-    fn check_rules(&self, rules: &Together) -> Result<(), TogetherError> {
+    /// Checks `rules` against the character: constraints and bones that exist, weights > 0,
+    /// limb lengths from the constraint's own bones to its root, stiffness ≥ 0, limits in order.
+    pub fn check_together(&self, rules: &Together) -> Result<(), TogetherError> {
         let n = self.bones.len();
         for r in &rules.limbs {
             let c = self
@@ -392,6 +387,29 @@ impl Character {
                 let s = if c.rule == IkRule::Spine { s } else { IkSettings { compress: false, stretch: false, ..s } };
                 ik::spine_one(&mut bones, b, [w.x, w.y], &s, c.uniform);
                 bones.update_below(b);
+            }
+        }
+    }
+
+    /// How far constraint `k` misses its target: a two-bone one, its tip's distance from it; a
+    /// one-bone one (an aim: its tip reaches only by chance), the target's distance from the
+    /// bone's ray (0 when it points right at it).
+    fn miss(&self, k: usize, out: &Posed) -> f64 {
+        let c = &self.constraints[k];
+        let [tx, ty] = out.origin(c.target);
+        let b = last_bone(c.bones);
+        match c.bones {
+            IkBones::Two { .. } => {
+                let [x, y] = out.tip(b);
+                math::distance(x - tx, y - ty)
+            }
+            IkBones::One(_) => {
+                let [x, y] = out.origin(b);
+                let (s, co) = math::sin_cos(out.rotation(b));
+                let (dx, dy) = (tx - x, ty - y);
+                let along = co * dx + s * dy;
+                let across = (-s * dx + co * dy).abs();
+                if along >= 0.0 { across } else { math::distance(dx, dy) }
             }
         }
     }
