@@ -191,18 +191,19 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await page.waitForFunction((n) => window.poses.bodies.length > n, sent);
     await settled(page);
     assert.equal(await page.evaluate(() => window.poses.bodies.at(-1).ik), "ikarus");
-    const refused = await page.evaluate(() => (document.getElementById("error").hidden ? "" : document.getElementById("error").textContent));
-    if (refused) {
-      // Until the lead's `ik` field is merged, the server refuses it by name: said on the chip.
-      t.diagnostic(`the server does not solve with ikarus yet: ${refused}`);
-      assert.match(refused, /\bik\b/);
-    } else {
-      assert.match(await page.textContent("#stats"), / · ikarus solver$/);
-      await page.screenshot({ path: join(artifacts, "character-spineboy-ikarus.png") });
-    }
+    assert.equal(await page.evaluate(() => document.getElementById("error").hidden), true, await page.textContent("#error"));
+    // ikarus's solver puts the shin's tip on the target too, and says so on the chip.
+    const solved = await shown(page);
+    assert.equal(solved.request.ik, "ikarus");
+    const report = await page.evaluate(() => window.ikarus.state.character.ikReport);
+    assert.equal(report.solver, "ikarus");
+    assert.ok(dist(solved.bones["front-shin"].tip, [put.x, put.y]) < 0.5, `ikarus: the shin's tip ${dist(solved.bones["front-shin"].tip, [put.x, put.y])} from the target`);
+    assert.match(await page.textContent("#stats"), / · ikarus solver \S+/);
+    await page.screenshot({ path: join(artifacts, "character-spineboy-ikarus.png") });
     await page.check('input[name="character-ik"][value="runtime"]');
     await settled(page);
     assert.equal(await page.evaluate(() => "ik" in window.poses.bodies.at(-1)), false);
+    assert.match(await page.textContent("#stats"), / · Spine rules$/);
     assert.equal(await page.evaluate(() => document.getElementById("error").hidden), true);
 
     // Export Spine JSON: the file with the `ikarus` animation (helper A's /api/animate).
@@ -270,7 +271,7 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     assert.equal((await shown(page)).request.time, left);
     assert.equal(await page.textContent("#playtime"), `${left.toFixed(2)} / ${walkRaptor.duration.toFixed(2)} s`);
 
-    // The refused requests (ik before the lead's merge, the export before A's) log a failed load.
+    // A refused export (before helper A's branch) logs a failed load.
     assert.deepEqual(errors.filter((e) => !/status of 4\d\d/.test(e)), [], "console errors");
     assert.equal(await page.evaluate(() => window.poses.most), 1, "one pose in flight at a time");
   } finally {

@@ -15,6 +15,7 @@ import {
   ikTargets,
   poseRequest,
   posedBox,
+  solverLine,
   surveyTimes,
   unionBox,
   unsupportedLines,
@@ -157,6 +158,22 @@ test("the handle under the pointer: the nearest within the radius", () => {
   assert.equal(handleAt(handles, 4, 0), "a");
   assert.equal(handleAt(handles, 6, 0), "b");
   assert.equal(handleAt(handles, 30, 0), null);
+});
+
+test("the solver's line: Spine's rules, or ikarus's status and the constraints it missed", () => {
+  assert.equal(solverLine(null), "Spine rules");
+  const ik = {
+    solver: "ikarus",
+    status: "unreachable",
+    constraints: [
+      { name: "a", active: true, error: 0 },
+      { name: "b", active: true, error: 3.4567 },
+      { name: "c", active: false, error: 9 },
+      { name: "d", active: true, error: 5e-4 },
+    ],
+  };
+  assert.equal(solverLine(ik), "ikarus solver unreachable · b 3.5");
+  assert.equal(solverLine({ status: "reached", constraints: [] }), "ikarus solver reached");
 });
 
 test("the chip's line and the inactive constraints' lines", () => {

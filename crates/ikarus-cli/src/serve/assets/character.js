@@ -167,6 +167,18 @@ export function unsupportedLines(character) {
   return (character.unsupported || []).map((u) => `${u.kind} constraint ${u.name}`);
 }
 
+/**
+ * What ikarus's solver says of a pose (the /api/pose answer's `ik`: {solver, status,
+ * constraints: [{name, active, error}]}) for the chip: "ikarus solver reached", or its status and
+ * each active constraint missed by more than `tolerance` with its error ("ikarus solver
+ * unreachable · front-leg-ik 3.5"). The runtime's rules (no `ik`): "Spine rules".
+ */
+export function solverLine(ik, tolerance = 1e-3) {
+  if (!ik) return "Spine rules";
+  const missed = (ik.constraints || []).filter((k) => k.active && k.error > tolerance);
+  return [`ikarus solver ${ik.status}`, ...missed.map((k) => `${k.name} ${Number(k.error.toPrecision(2))}`)].join(" · ");
+}
+
 /** The chip's line of a character: "Spine character spineboy · 67 bones · 7 IK constraints". */
 export function characterSummary(name, character) {
   const kind = character.format === "dragonbones" ? "DragonBones" : "Spine";

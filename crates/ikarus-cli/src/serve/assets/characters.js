@@ -10,7 +10,7 @@
 
 import * as api from "./api.js";
 import { saveBlob } from "./files.js";
-import { boneAt, characterSummary, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
+import { boneAt, characterSummary, solverLine, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
 import { isDrag, toWorld } from "./view.js";
 
@@ -27,6 +27,7 @@ const $ = (id) => document.getElementById(id);
  *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
  *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
  *   request      the request of `posed`;  poses  answers received
+ *   ikReport     what ikarus's solver said of `posed` (the answer's `ik`), or null under Spine's rules
  *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
  *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
  */
@@ -46,6 +47,7 @@ function newCharacterState(name, text, character) {
     clipBoxes: new Map(),
     survey: null,
     request: null,
+    ikReport: null,
     poses: 0,
     busy: false,
     pending: false,
@@ -63,13 +65,11 @@ export function wireCharacters(state, canvas, act) {
   /** The last character loaded: the Body list's "Character: …" shows it again. */
   let last = null;
 
-  const ikLabel = (ik) => (ik === "ikarus" ? "ikarus solver" : "Spine rules");
-
   function say() {
     const c = state.character;
     const when = c.animation ? `${c.animation} ${c.time.toFixed(2)} s` : "setup pose";
     const targets = c.targets.size ? ` · ${c.targets.size} target${c.targets.size === 1 ? "" : "s"} placed` : "";
-    act.say(`${characterSummary(c.name, c.character)} · ${when}${targets} · ${ikLabel(c.ik)}`);
+    act.say(`${characterSummary(c.name, c.character)} · ${when}${targets} · ${solverLine(c.ikReport)}`);
   }
 
   /** Shows the character `c` on the canvas (its clips, inactive constraints, the switch). */
@@ -205,6 +205,7 @@ export function wireCharacters(state, canvas, act) {
 
   function apply(c, req, answer) {
     c.posed = answer.bones;
+    c.ikReport = answer.ik || null;
     // The view fits the first pose, the setup pose, and stays.
     if (!c.box) c.box = posedBox(answer.bones);
     c.request = req;
