@@ -3,7 +3,7 @@
 // running: the page says it runs in the browser, asks no /api/ path of anyone, and the solver
 // answers in the page: a clicked goal moves the arm there, following the pointer answers every
 // move, a drawn path is traced, the reachable area is shaded, the shipped puppet follows a dragged
-// hand; the motion-GIF button says it needs
+// hand, spineboy walks with an IK target dragged; the motion-GIF button says it needs
 // `ikarus serve`. Afterwards a native `ikarus serve` answers the page's own requests, and its
 // answers must equal the page's, number for number (the WebAssembly module runs the server's
 // code). Prints the solves per second measured in the page. Screenshots: target/e2e/static-*.png.
@@ -12,7 +12,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { mkdirSync } from "node:fs";
+import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, binary, launch, openPage, startServer } from "../e2e/browser.mjs";
 
@@ -181,6 +181,29 @@ test("the static build runs the playground with no ikarus server", async () => {
     await page.screenshot({ path: join(artifacts, "static-rig.png") });
     await page.evaluate(() => window.ikarus.rigs.use("arm"));
 
+    // A character (spineboy, read and posed by the module): its walk at 0.4 s, the IK target at
+    // its front leg's target dragged (there the rear foot's is on it: the nearest handle is
+    // taken); the pose drawn is the module's answer, the native server's to the number.
+    const spineboy = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.json"));
+    await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: spineboy });
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed && window.ikarus.characters.settled(), null, { timeout: 15000 });
+    await page.selectOption("#character-animation", "walk");
+    await page.waitForFunction(() => window.ikarus.characters.settled());
+    await page.fill("#scrubber", "400");
+    await page.dispatchEvent("#scrubber", "input");
+    const target = await page.evaluate(() => window.ikarus.state.character.posed.find((b) => b.name === "front-leg-target"));
+    await page.mouse.move(...(await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [target.x, target.y])));
+    await page.mouse.down();
+    await page.mouse.move(...(await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [target.x + 30, target.y + 40])), { steps: 4 });
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.characters.settled());
+    seen.character = await page.evaluate(() => ({ request: window.ikarus.state.character.request, posed: window.ikarus.state.character.posed }));
+    assert.equal(seen.character.request.animation, "walk");
+    assert.equal(seen.character.request.targets.length, 1);
+    assert.equal(seen.character.posed.length, 67);
+    await page.screenshot({ path: join(artifacts, "static-character.png") });
+    await page.selectOption("#body-kind", "arm");
+
     // Solves per second in the page: the seed arm's solves through the JS API on the page's
     // thread (JSON in, JSON out), and through api.js, the page's own way (the worker: a message
     // each way). Timed over the whole run: the page's clock is coarse (100 µs) in Chromium.
@@ -239,6 +262,7 @@ test("the static build runs the playground with no ikarus server", async () => {
     same("the drawn path (track)", await post("track", seen.traced.request), seen.traced.answer);
     same("the reachable area (workspace)", await post("workspace", seen.workspace.request), seen.workspace.answer);
     same("the dragged rig (solve)", { ...(await post("solve", seen.rig.request)), solve_us: 0 }, { ...seen.rig.answer, solve_us: 0 });
+    same("the character's pose (pose)", (await post("pose", seen.character.request)).bones, seen.character.posed);
     assert.ok(differ.length === 0, differ.join("\n"));
   } finally {
     child.kill();

@@ -405,6 +405,23 @@ export function drawBase(ctx, view, arm) {
   ctx.fillRect(px - 16, py + 15, 32, 3);
 }
 
+/**
+ * A dashed red line from the canvas point `a` to `b`: from a rig's tip, or a character's target
+ * bone, to the goal it is not at.
+ */
+export function drawLeash(ctx, [ax, ay], [bx, by]) {
+  ctx.setLineDash([4, 4]);
+  ctx.strokeStyle = COLORS.goal;
+  ctx.lineWidth = 1.2;
+  ctx.globalAlpha = 0.7;
+  ctx.beginPath();
+  ctx.moveTo(ax, ay);
+  ctx.lineTo(bx, by);
+  ctx.stroke();
+  ctx.globalAlpha = 1;
+  ctx.setLineDash([]);
+}
+
 /** The goal: a red target, with an arrow along the wanted heading when a goal angle is set. */
 export function drawGoal(ctx, view, goal) {
   if (!goal) return;

@@ -7,7 +7,7 @@
 // limits as a bar. It reads the page's state and never writes it. The screen and the
 // PNG and SVG downloads (export.js) are drawn by the same drawRigScene.
 
-import { COLORS, drawBase, drawGoal, drawGrid, drawWedge } from "./draw.js";
+import { COLORS, drawBase, drawGoal, drawGrid, drawLeash, drawWedge } from "./draw.js";
 import { fitRigView, shownEffectors } from "./rig.js";
 import { toCanvas } from "./view.js";
 
@@ -40,18 +40,7 @@ export function drawRigScene(ctx, view, state) {
     const tip = tipOf(name);
     const [tx, ty] = toCanvas(view, ...tip);
     const [gx, gy] = toCanvas(view, goal.x, goal.y);
-    if (Math.hypot(gx - tx, gy - ty) > 10) {
-      ctx.setLineDash([4, 4]);
-      ctx.strokeStyle = COLORS.goal;
-      ctx.lineWidth = 1.2;
-      ctx.globalAlpha = 0.7;
-      ctx.beginPath();
-      ctx.moveTo(tx, ty);
-      ctx.lineTo(gx, gy);
-      ctx.stroke();
-      ctx.globalAlpha = 1;
-      ctx.setLineDash([]);
-    }
+    if (Math.hypot(gx - tx, gy - ty) > 10) drawLeash(ctx, [tx, ty], [gx, gy]);
     drawGoal(ctx, view, goal);
   }
   const focus = r.grabbed || r.hover;

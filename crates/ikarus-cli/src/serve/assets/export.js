@@ -6,6 +6,7 @@
 
 import { drawScene } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
+import { characterView, drawCharacterScene } from "./drawchar.js";
 import { fitView } from "./view.js";
 
 /** The side of a downloaded figure, CSS pixels. */
@@ -110,7 +111,8 @@ export function svgContext(w, h) {
 
 /** The scene of `state` (the rig when one is shown, else the arm) drawn on `ctx` at `side` × `side` (the view fitted to that size). */
 function drawFigure(ctx, state, side) {
-  if (state.rig) drawRigScene(ctx, rigView(state, side, side), state);
+  if (state.character && state.character.box) drawCharacterScene(ctx, characterView(state, side, side), state);
+  else if (state.rig) drawRigScene(ctx, rigView(state, side, side), state);
   else drawScene(ctx, fitView(state.arm, side, side), state);
 }
 

@@ -144,7 +144,7 @@ export function wireDownloads(state, showError, duration) {
         blob = new Blob([figureSvg(state)], { type: "image/svg+xml" });
       }
       showError(null);
-      saveBlob(blob, `ikarus-${format === "gif" ? "motion" : state.rig ? "rig" : "arm"}.${format}`);
+      saveBlob(blob, `ikarus-${format === "gif" ? "motion" : state.character ? "character" : state.rig ? "rig" : "arm"}.${format}`);
     } catch (e) {
       showError(e);
     } finally {

@@ -21,14 +21,14 @@ export function wireInput(canvas, state, act) {
 
   // A rig on the canvas has its own pointer (rigs.js): these are the arm's.
   canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.arm || state.rig || ev.button !== 0) return;
+    if (!state.arm || state.rig || state.character || ev.button !== 0) return;
     state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
     if (state.drawPath) act.startStroke(...eventWorld(ev));
   });
 
   canvas.addEventListener("pointermove", (ev) => {
-    if (!state.arm || state.rig) return;
+    if (!state.arm || state.rig || state.character) return;
     const press = state.press;
     if (state.drawPath) {
       if (press) act.extendStroke(...eventWorld(ev));
@@ -66,7 +66,7 @@ export function wireInput(canvas, state, act) {
 
   // The keys act anywhere on the page but in a field or on a button (which own them).
   document.addEventListener("keydown", (ev) => {
-    if (!state.arm || state.rig || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
+    if (!state.arm || state.rig || state.character || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
     const tip = state.joints[state.joints.length - 1];
     const g = nudge(state.arm, state.goal || { x: tip[0], y: tip[1] }, ev.key);
     if (g) {

@@ -7,8 +7,9 @@
 // (input.js), plays motions on the timeline (timeline.js, which owns `state.playback`), follows
 // the pointer and traces paths (track.js, with the pure parts in paths.js), edits the arm
 // (links.js, with arm files in armfile.js), shows and solves a rig instead of the arm (rigs.js,
-// with the pure parts in rig.js and the drawing in drawrig.js) or saves files (files.js, with
-// the figures drawn by export.js).
+// with the pure parts in rig.js and the drawing in drawrig.js), poses a character (characters.js,
+// with the pure parts in character.js and the drawing in drawchar.js) or saves files (files.js,
+// with the figures drawn by export.js).
 
 import * as api from "./api.js";
 import { armForRequest, fillSelects, firstProblem, problemOf, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
@@ -16,6 +17,8 @@ import { storedArm } from "./armfile.js";
 import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
+import { characterView, drawCharacterScene } from "./drawchar.js";
+import { wireCharacters } from "./characters.js";
 import { wireRigs } from "./rigs.js";
 import { areaOutline, solveTime } from "./view.js";
 import { formatDistance, regionOf, unreachableText, verdict } from "./region.js";
@@ -101,6 +104,9 @@ const state = {
   // The rig the canvas shows and solves instead of the arm, or null (rigs.js's newRigState
   // documents its fields). The arm stays in `arm` meanwhile and comes back as it was.
   rig: null,
+  // The character (a Spine or DragonBones file) the canvas poses instead, or null
+  // (characters.js's newCharacterState documents its fields).
+  character: null,
   // Work in flight. A sequence number is bumped by each new motion so that a stale answer is
   // dropped; following keeps one request in flight and only the latest goal waiting, asked again
   // (followChases times) while the bound holds the arm back.
@@ -144,8 +150,19 @@ const armEditor = wireArm(state, {
   showError,
 });
 
+/** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
+const characters = wireCharacters(state, canvas, {
+  forgetMotion,
+  timeline,
+  requestDraw,
+  showError,
+  setStatus,
+  say: (text) => ($("stats").textContent = text),
+});
+
 /** The Body list and the rig's pointer (rigs.js). */
 const rigs = wireRigs(state, canvas, {
+  characters,
   forgetMotion,
   controlsChanged,
   fieldsOk,
@@ -325,6 +342,14 @@ function overlays() {
 function draw() {
   if (!state.arm) return;
   fitCanvas(canvas, ctx);
+  if (state.character) {
+    if (!state.character.box) return;
+    state.view = characterView(state, canvas.clientWidth, canvas.clientHeight);
+    state.view.keepOut = overlays();
+    // The bones drawn, for scripts and tests.
+    canvas.dataset.bones = String(drawCharacterScene(ctx, state.view, state));
+    return;
+  }
   if (state.rig) {
     state.view = rigView(state, canvas.clientWidth, canvas.clientHeight);
     state.view.keepOut = overlays();
@@ -651,6 +676,10 @@ function forgetMotion() {
 }
 
 function resetPose() {
+  if (state.character) {
+    characters.reset();
+    return;
+  }
   if (state.rig) {
     rigs.reset();
     return;
@@ -773,6 +802,8 @@ window.ikarus = {
   resetPose,
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
   rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },
+  /** Whether no pose of the character shown is in flight or waiting. */
+  characters: { settled: () => characters.settled() },
   /** The timeline's playback duration, seconds. */
   duration: () => timeline.duration(),
   /** Client coordinates of a world point, for clicking on it. */

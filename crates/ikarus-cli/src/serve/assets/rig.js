@@ -5,7 +5,7 @@
 // node tests it (e2e/rig.unit.test.mjs). The page's wiring is rigs.js.
 
 import { bodyForward, boneOrder, isPrismatic, restValue } from "./body.js";
-import { solveTime } from "./view.js";
+import { fitBox, solveTime } from "./view.js";
 
 /**
  * Whether `method` (a /api/meta method) solves rigs: its `solves_rigs`, the library's
@@ -57,12 +57,7 @@ export function fitRigView(rig, w, h) {
   const xs = [base[0], ...tips.map((t) => t[0])];
   const ys = [base[1], ...tips.map((t) => t[1])];
   const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
-  const room = Math.max(rigReach(rig), 1e-3) * RIG_VIEW_ROOM;
-  const halfW = (x1 - x0) / 2 + room;
-  const halfH = (y1 - y0) / 2 + room;
-  const scale = Math.min(w / (2 * halfW), h / (2 * halfH));
-  const [mx, my] = [(x0 + x1) / 2, (y0 + y1) / 2];
-  return { cx: w / 2 - mx * scale, cy: h / 2 + my * scale, scale, w, h };
+  return fitBox({ x0, x1, y0, y1 }, Math.max(rigReach(rig), 1e-3) * RIG_VIEW_ROOM, w, h);
 }
 
 /** The names of the bones whose tips have no children: the rig's effectors (file order). */

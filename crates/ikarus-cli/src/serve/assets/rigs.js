@@ -5,7 +5,8 @@
 // a click (no drag) pins or unpins the tip. Goals stay where they were dragged, so several
 // effectors hold their goals at once, until "Clear goals" (or Esc on the canvas) drops them;
 // pins stay until clicked again or "Unpin all". The pure parts are rig.js; the drawing is
-// drawrig.js. It writes `state.rig` (below) and tells main.js through `act`.
+// drawrig.js. It writes `state.rig` (below) and tells main.js through `act`. A character file
+// (Spine, DragonBones), picked or dropped anywhere on the page, goes to characters.js.
 
 import * as api from "./api.js";
 import { postText } from "./armfile.js";
@@ -45,7 +46,8 @@ function newRigState(rig, source) {
 }
 
 /**
- * Wires the Body fieldset and the rig's pointer on `canvas`. `act` is {forgetMotion(),
+ * Wires the Body fieldset and the rig's pointer on `canvas`. `act` is {characters
+ * (characters.js's), forgetMotion(),
  * controlsChanged(), fieldsOk(point), draw(), requestDraw(), showError(e), setStatus(s),
  * say(text)}. Returns {load() (the shipped rigs into the list), use(value), reset(), resolve(),
  * settled()}.
@@ -71,6 +73,12 @@ export function wireRigs(state, canvas, act) {
   /** The rig `value` of the list (or the arm): the canvas solves it from its start pose. */
   function use(value) {
     const select = $("body-kind");
+    if (value === "character") {
+      if (state.rig) use("arm");
+      act.characters.resume();
+      return;
+    }
+    act.characters.leave();
     if (value === "arm") {
       if (!state.rig) return;
       state.rig = null;
@@ -122,17 +130,19 @@ export function wireRigs(state, canvas, act) {
     }
   }
 
-  /** A rig file the reader picked: read by the server; a bad one is its one-line problem. */
+  /**
+   * A rig file or a character file the reader picked or dropped: read by the server (the format
+   * told from the content); a bad one is its one-line problem.
+   */
   async function loadFile(file) {
     try {
-      const answer = JSON.parse(await postText("/api/rig/parse", await file.text(), "application/toml"));
+      const text = await file.text();
+      const answer = JSON.parse(await postText("/api/rig/parse", text, "application/toml"));
       if (answer.problem) throw new api.Notice(api.forPeople(answer.problem));
       if (answer.character) {
-        const c = answer.character;
-        const kind = c.format === "dragonbones" ? "DragonBones" : "Spine";
-        throw new api.Notice(
-          `${file.name} is a ${kind} character (${c.bones.length} bones, ${c.ik.length} IK constraints): the playground does not pose characters yet; ikarus pose --rig ${file.name} does`,
-        );
+        if (state.rig) use("arm");
+        act.characters.enter(file.name, text, answer.character);
+        return;
       }
       const select = $("body-kind");
       let option = [...select.options].find((o) => o.value === "file");
@@ -322,6 +332,16 @@ export function wireRigs(state, canvas, act) {
     const file = ev.target.files[0];
     ev.target.value = "";
     if (file) loadFile(file);
+  });
+  // A file dropped anywhere on the page is loaded as if picked.
+  document.addEventListener("dragover", (ev) => {
+    if (ev.dataTransfer && [...ev.dataTransfer.types].includes("Files")) ev.preventDefault();
+  });
+  document.addEventListener("drop", (ev) => {
+    const file = ev.dataTransfer && ev.dataTransfer.files[0];
+    if (!file) return;
+    ev.preventDefault();
+    loadFile(file);
   });
   $("clear-goals").addEventListener("click", clearGoals);
   $("unpin-all").addEventListener("click", unpinAll);

@@ -35,23 +35,26 @@ const EASE_SAMPLES = 97;
  *   ease      the ease the motion was made with ({kind, k1, k2}), for the s(t) plot
  *   solver    whether the motion is the solver's recorded iterations (from_solve)
  *   posed     whether the arm shows the playhead's pose (false once something else moved it)
+ *   clip      a character's clip played instead of a motion (characters.js): {seconds (its
+ *             duration), show(t) (poses the character at t seconds)}, or null
  */
 export function newPlayback() {
-  return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, auto: null, ease: null, solver: false, posed: false };
+  return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, auto: null, ease: null, solver: false, posed: false, clip: null };
 }
 
 /**
  * Wires the timeline's controls. `act` is {showPose(angles, joints?), draw(), toggleSolver(),
  * clearVia(), ended(), canPlay()} (ended: the playback reached the end of the motion; canPlay:
  * whether the fields allow playing, else it has said why). Returns {load(), unload(), detach(),
- * play(), pause(), toggle(), replay(), seek(u), choose(seconds), duration(), sync()}.
+ * play(), pause(), toggle(), replay(), seek(u), choose(seconds), duration(), sync(), loadClip(clip)}.
  */
 export function wireTimeline(state, act) {
   const pb = state.playback;
   const frames = () => (state.animation && state.animation.frames) || [];
-  const loaded = () => frames().length > 0;
+  const loaded = () => !!pb.clip || frames().length > 0;
   const auto = () => pb.auto ?? autoDuration(pb.distance);
-  const duration = () => pb.chosen ?? auto();
+  // A clip plays at its own pace (seconds are the file's): the Duration field is the motions'.
+  const duration = () => (pb.clip ? pb.clip.seconds : pb.chosen ?? auto());
 
   function phase() {
     if (!loaded()) return "none";
@@ -143,6 +146,12 @@ export function wireTimeline(state, act) {
   function show(u) {
     const f = frames();
     pb.u = Math.min(Math.max(u, 0), 1);
+    if (pb.clip) {
+      pb.posed = true;
+      pb.clip.show(pb.u * pb.clip.seconds);
+      sync();
+      return;
+    }
     const r = poseAt(f, pb.u, pb.free, pb.index);
     pb.index = r.index;
     pb.posed = true;
@@ -217,6 +226,16 @@ export function wireTimeline(state, act) {
   }
 
   /**
+   * Takes a character's clip ({seconds > 0, show(t)}) as what the timeline plays, the playhead
+   * at 0 (shown at once).
+   */
+  function loadClip(clip) {
+    unload();
+    pb.clip = clip;
+    show(0);
+  }
+
+  /**
    * The duration the reader chose (seconds, the *Duration* field once checked), or null for the
    * default; a motion playing goes on from its playhead at the new pace.
    */
@@ -243,6 +262,7 @@ export function wireTimeline(state, act) {
     pb.ease = null;
     pb.auto = null;
     pb.distance = 0;
+    pb.clip = null;
     sync();
   }
 
@@ -259,5 +279,5 @@ export function wireTimeline(state, act) {
   });
   new ResizeObserver(drawEase).observe($("ease-plot"));
 
-  return { load, unload, detach, play, pause, toggle, replay, seek, choose, duration, sync };
+  return { load, loadClip, unload, detach, play, pause, toggle, replay, seek, choose, duration, sync };
 }

@@ -50,6 +50,18 @@ export function fitView(arm, w, h) {
   return { cx: w / 2 - bx * scale, cy: h / 2 + by * scale, scale, w, h };
 }
 
+/**
+ * The transform that fits the world box {x0, x1, y0, y1} with `room` world units around it into
+ * a `w` × `h` canvas, centred: canvas = (cx + x·scale, cy − y·scale).
+ */
+export function fitBox({ x0, x1, y0, y1 }, room, w, h) {
+  const halfW = (x1 - x0) / 2 + room;
+  const halfH = (y1 - y0) / 2 + room;
+  const scale = Math.min(w / (2 * halfW), h / (2 * halfH));
+  const [mx, my] = [(x0 + x1) / 2, (y0 + y1) / 2];
+  return { cx: w / 2 - mx * scale, cy: h / 2 + my * scale, scale, w, h };
+}
+
 /** Canvas pixels of the world point (x, y). */
 export const toCanvas = (view, x, y) => [view.cx + x * view.scale, view.cy - y * view.scale];
 

@@ -1,0 +1,187 @@
+// Characters (Spine and DragonBones skeletons, read by POST /api/rig/parse), the pure parts: the
+// bones an IK constraint aims at (the handles the reader drags), the view that fits the setup
+// pose, the /api/pose and /api/animate (Spine export) requests made of the page's choices, the
+// Spine-like shape of a posed bone on the canvas, and which bone or handle the pointer is on.
+// No DOM and no state of its own: node tests it (e2e/character.unit.test.mjs). The page's wiring
+// is characters.js; the drawing is drawchar.js.
+
+import { fitBox } from "./view.js";
+
+/** A pointer press within this many CSS pixels of a target's handle grabs it. */
+export const HANDLE_PIXELS = 12;
+
+/** The pointer within this many CSS pixels of a bone's shape names it. */
+export const BONE_PIXELS = 5;
+
+/** A zero-length bone's circle, CSS pixels across (its radius). */
+export const POINT_BONE_PIXELS = 3.5;
+
+/** The margin around the setup pose in the view, as a share of its larger side (room for clips and drags). */
+export const CHARACTER_VIEW_ROOM = 0.12;
+
+/** The names of the bones the IK constraints aim at (`ik[].target`), each once, in file order. */
+export function ikTargets(character) {
+  return [...new Set((character.ik || []).map((k) => k.target))];
+}
+
+/** A clip's duration in seconds (`clips[].duration`), or 0 for none or an unknown name. */
+export function clipSeconds(character, name) {
+  const clip = (character.clips || []).find((c) => c.name === name);
+  return clip ? clip.duration : 0;
+}
+
+/** The world box {x0, x1, y0, y1} of posed bones ([{x, y, tip: [x, y]}]): every origin and tip. */
+export function posedBox(bones) {
+  const xs = bones.flatMap((b) => [b.x, b.tip[0]]);
+  const ys = bones.flatMap((b) => [b.y, b.tip[1]]);
+  return { x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys) };
+}
+
+/** The smallest box holding boxes `a` and `b` (either may be null). */
+export function unionBox(a, b) {
+  if (!a || !b) return a || b || null;
+  return { x0: Math.min(a.x0, b.x0), x1: Math.max(a.x1, b.x1), y0: Math.min(a.y0, b.y0), y1: Math.max(a.y1, b.y1) };
+}
+
+/** The clip's poses the view is fitted to before it plays: `n` + 1 times evenly over its `seconds`. */
+export function surveyTimes(seconds, n = 8) {
+  return Array.from({ length: n + 1 }, (_, k) => (seconds * k) / n);
+}
+
+/**
+ * The transform that fits `box` (the setup pose's, posedBox, with the clip's survey) with CHARACTER_VIEW_ROOM of its
+ * larger side around it into a `w` × `h` canvas (the page's fitBox). It depends on the setup pose
+ * and the clip's survey only, so the view stays still while a clip plays or a target is dragged.
+ */
+export function fitCharacterView(box, w, h) {
+  const side = Math.max(box.x1 - box.x0, box.y1 - box.y0, 1e-3);
+  return fitBox(box, side * CHARACTER_VIEW_ROOM, w, h);
+}
+
+/**
+ * The /api/pose body of the page's choices: the file's text, the clip and its time (none for
+ * the setup pose), every dragged target (`targets`, a Map bone → {x, y}, in the order they were
+ * first dragged), and `ik: "ikarus"` when the reader chose ikarus's solver (the runtime's rules
+ * are the endpoint's default, so the field is left out for them).
+ */
+export function poseRequest({ text, animation, time, targets, ik }) {
+  return {
+    rig: text,
+    ...(animation ? { animation, time } : {}),
+    targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
+    ...(ik === "ikarus" ? { ik: "ikarus" } : {}),
+  };
+}
+
+/** The seconds of the motion an *Export Spine JSON* bakes, its frames per second and its ease. */
+export const EXPORT = { duration: 1.0, fps: 30, ease: "sine", animation_name: "ikarus" };
+
+/**
+ * The /api/animate body of an *Export Spine JSON*: the file's text and the dragged targets; the
+ * answer is the file with one added animation (EXPORT.animation_name) moving the targets from
+ * the setup pose to where they were dragged.
+ */
+export function exportRequest({ text, targets }) {
+  return {
+    rig: text,
+    targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
+    duration: EXPORT.duration,
+    fps: EXPORT.fps,
+    ease: EXPORT.ease,
+    format: "spine",
+    animation_name: EXPORT.animation_name,
+  };
+}
+
+/** The download's name of a character file `name`'s export: `spineboy.json` → `spineboy-ikarus.json`. */
+export function exportName(name) {
+  const stem = String(name || "character").replace(/\.json$/i, "") || "character";
+  return `${stem}-${EXPORT.animation_name}.json`;
+}
+
+/**
+ * A posed bone's shape on the canvas, from its origin `o` and tip `t` (canvas pixels): a slim
+ * kite (Spine's bone shape) from the origin to the tip, widest a fifth of the way along, at most
+ * 7 pixels across each side, as {kind: "kite", points: [[x, y] × 4]}; a bone of no length (in the
+ * file) or shorter than a pixel on the screen is a small circle, {kind: "circle", at, r}.
+ */
+export function boneShape(o, t, length) {
+  const dx = t[0] - o[0];
+  const dy = t[1] - o[1];
+  const l = Math.hypot(dx, dy);
+  if (!(length > 0) || l < 1) return { kind: "circle", at: o, r: POINT_BONE_PIXELS };
+  const [ux, uy] = [dx / l, dy / l];
+  const [nx, ny] = [-uy, ux];
+  const w = Math.min(7, Math.max(1.5, l * 0.1));
+  const s = l * 0.2;
+  const at = [o[0] + ux * s, o[1] + uy * s];
+  return {
+    kind: "kite",
+    points: [o, [at[0] + nx * w, at[1] + ny * w], t, [at[0] - nx * w, at[1] - ny * w]],
+  };
+}
+
+/** The distance from (px, py) to the segment from `a` to `b`. */
+function segmentDistance(a, b, px, py) {
+  const [dx, dy] = [b[0] - a[0], b[1] - a[1]];
+  const l2 = dx * dx + dy * dy;
+  const u = l2 > 0 ? Math.min(1, Math.max(0, ((px - a[0]) * dx + (py - a[1]) * dy) / l2)) : 0;
+  return Math.hypot(a[0] + u * dx - px, a[1] + u * dy - py);
+}
+
+/**
+ * The index of the bone under the canvas point (px, py): the nearest of the drawn bones
+ * (`bonesPx`, [{o, t}] in canvas pixels, bone order) whose segment from origin to tip passes
+ * within `radius` pixels (a zero-length bone: its circle); on a tie the later bone, drawn last.
+ * -1 when none is.
+ */
+export function boneAt(bonesPx, px, py, radius = BONE_PIXELS) {
+  let best = -1;
+  let bestD = Infinity;
+  bonesPx.forEach(({ o, t }, i) => {
+    const d = segmentDistance(o, t, px, py);
+    if (d <= radius && d <= bestD) {
+      best = i;
+      bestD = d;
+    }
+  });
+  return best;
+}
+
+/** The target (a name of `handlesPx`, a Map name → [x, y] in canvas pixels) nearest (px, py) within `radius`, or null. */
+export function handleAt(handlesPx, px, py, radius = HANDLE_PIXELS) {
+  let best = null;
+  let bestD = Infinity;
+  for (const [name, [x, y]] of handlesPx) {
+    const d = Math.hypot(x - px, y - py);
+    if (d <= radius && d < bestD) {
+      best = name;
+      bestD = d;
+    }
+  }
+  return best;
+}
+
+/** The constraints ikarus leaves inactive, one line each: "transform constraint shoulder" (none: []). */
+export function unsupportedLines(character) {
+  return (character.unsupported || []).map((u) => `${u.kind} constraint ${u.name}`);
+}
+
+/**
+ * What ikarus's solver says of a pose (the /api/pose answer's `ik`: {solver, status,
+ * constraints: [{name, active, error}]}) for the chip: "ikarus solver reached", or its status and
+ * each active constraint missed by more than `tolerance` with its error ("ikarus solver
+ * unreachable · front-leg-ik 3.5"). The runtime's rules (no `ik`): "Spine rules".
+ */
+export function solverLine(ik, tolerance = 1e-3) {
+  if (!ik) return "Spine rules";
+  const missed = (ik.constraints || []).filter((k) => k.active && k.error > tolerance);
+  return [`ikarus solver ${ik.status}`, ...missed.map((k) => `${k.name} ${Number(k.error.toPrecision(2))}`)].join(" · ");
+}
+
+/** The chip's line of a character: "Spine character spineboy · 67 bones · 7 IK constraints". */
+export function characterSummary(name, character) {
+  const kind = character.format === "dragonbones" ? "DragonBones" : "Spine";
+  const n = (k, one) => `${k} ${one}${k === 1 ? "" : "s"}`;
+  return `${kind} character ${name} · ${n(character.bones.length, "bone")} · ${n((character.ik || []).length, "IK constraint")}`;
+}

@@ -1,0 +1,366 @@
+// A character on the page (a Spine or DragonBones skeleton, read by POST /api/rig/parse; rigs.js
+// hands it over from *Load rig or character…* or a dropped file): posed by POST /api/pose, one
+// request in flight and only the latest choices waiting (latest wins), from the setup pose, a
+// clip of the file at a time the timeline plays (timeline.js's loadClip), and the IK targets the
+// reader dragged (each stays where it was put while a clip plays), by Spine's rules or ikarus's
+// solver. The Character fieldset lists the clips, the constraints left inactive, the switch
+// between the two ways of solving, and *Export Spine JSON* (POST /api/animate: the file with one
+// added animation moving the targets from the setup pose to where they are). The pure parts are
+// character.js; the drawing is drawchar.js. It writes `state.character` (below).
+
+import * as api from "./api.js";
+import { saveBlob } from "./files.js";
+import { boneAt, characterSummary, solverLine, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
+import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
+import { isDrag, toWorld } from "./view.js";
+
+const $ = (id) => document.getElementById(id);
+
+/**
+ * A fresh `state.character` for the file `name` (its `text`) read as `character` (the
+ * /api/rig/parse answer's `character`: {format, bones, ik, clips, unsupported, …}):
+ *   targetNames  the bones the IK constraints aim at (the handles);  ikBones  the bones they move (a Set)
+ *   animation    the clip shown ("" for the setup pose);  time  its time, seconds
+ *   targets      Map bone → {x, y}, the targets the reader put somewhere (in the order first dragged)
+ *   ik           "runtime" (Spine's rules) or "ikarus" (ikarus's solver)
+ *   posed        the last /api/pose answer's bones;  box  the setup pose's world box (the view fits it)
+ *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
+ *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
+ *   request      the request of `posed`;  poses  answers received
+ *   ikReport     what ikarus's solver said of `posed` (the answer's `ik`), or null under Spine's rules
+ *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
+ *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
+ */
+function newCharacterState(name, text, character) {
+  return {
+    name,
+    text,
+    character,
+    targetNames: ikTargets(character),
+    ikBones: new Set((character.ik || []).flatMap((k) => k.bones)),
+    animation: "",
+    time: 0,
+    targets: new Map(),
+    ik: "runtime",
+    posed: null,
+    box: null,
+    clipBoxes: new Map(),
+    survey: null,
+    request: null,
+    ikReport: null,
+    poses: 0,
+    busy: false,
+    pending: false,
+    hover: null,
+    grabbed: null,
+  };
+}
+
+/**
+ * Wires the Character fieldset and the character's pointer on `canvas`. `act` is
+ * {forgetMotion(), timeline (timeline.js's), requestDraw(), showError(e), setStatus(s),
+ * say(text)}. Returns {enter(name, text, character), resume(), leave(), reset(), settled()}.
+ */
+export function wireCharacters(state, canvas, act) {
+  /** The last character loaded: the Body list's "Character: …" shows it again. */
+  let last = null;
+
+  function say() {
+    const c = state.character;
+    const when = c.animation ? `${c.animation} ${c.time.toFixed(2)} s` : "setup pose";
+    const targets = c.targets.size ? ` · ${c.targets.size} target${c.targets.size === 1 ? "" : "s"} placed` : "";
+    act.say(`${characterSummary(c.name, c.character)} · ${when}${targets} · ${solverLine(c.ikReport)}`);
+  }
+
+  /** Shows the character `c` on the canvas (its clips, inactive constraints, the switch). */
+  function show(c) {
+    act.forgetMotion();
+    state.character = c;
+    last = c;
+    document.body.classList.add("character");
+    $("hint").textContent = $("hint").dataset.character;
+    const select = $("body-kind");
+    let option = [...select.options].find((o) => o.value === "character");
+    if (!option) {
+      option = new Option("", "character");
+      select.append(option);
+    }
+    option.textContent = `Character: ${c.name}`;
+    select.value = "character";
+    const list = $("character-animation");
+    list.replaceChildren(new Option("Setup pose", ""), ...(c.character.clips || []).map((k) => new Option(`${k.name} (${k.duration.toFixed(2)} s)`, k.name)));
+    list.value = c.animation;
+    for (const radio of document.querySelectorAll('input[name="character-ik"]')) radio.checked = radio.value === c.ik;
+    const lines = unsupportedLines(c.character);
+    $("character-unsupported").replaceChildren(...lines.map((l) => Object.assign(document.createElement("li"), { textContent: l })));
+    $("character-unsupported-box").hidden = lines.length === 0;
+    act.showError(null);
+    act.setStatus("ready");
+    playClip(c);
+    poseSoon();
+  }
+
+  /** A character file read by /api/rig/parse: shown from its setup pose. */
+  function enter(name, text, character) {
+    show(newCharacterState(name, text, character));
+  }
+
+  /** The last character again (the Body list's "Character: …"), as it was left. */
+  function resume() {
+    if (last && state.character !== last) show(last);
+  }
+
+  /** The arm or a rig takes the canvas: the character's controls step aside (it is kept for resume). */
+  function leave() {
+    if (!state.character) return;
+    state.character = null;
+    document.body.classList.remove("character");
+    canvas.style.cursor = "";
+    const hint = $("hint");
+    hint.textContent = state.drawPath ? hint.dataset.drawing : hint.dataset.normal;
+    act.forgetMotion();
+    act.requestDraw();
+  }
+
+  /** The clip chosen onto the timeline (paused at its time), or none for the setup pose. */
+  function playClip(c) {
+    const seconds = clipSeconds(c.character, c.animation);
+    if (!c.animation || !(seconds > 0)) {
+      act.timeline.unload();
+      return;
+    }
+    // Loading shows the clip's start: a character shown again goes back to its time after.
+    const at = c.time;
+    act.timeline.loadClip({
+      seconds,
+      show: (t) => {
+        if (state.character !== c) return;
+        c.time = t;
+        poseSoon();
+      },
+    });
+    if (at > 0) act.timeline.seek(at / seconds);
+  }
+
+  function choose(name) {
+    const c = state.character;
+    if (!c) return;
+    c.animation = name;
+    c.time = 0;
+    // The clip's poses are surveyed first (in the one line of requests), so that the view fits them.
+    const seconds = clipSeconds(c.character, name);
+    if (name && !c.clipBoxes.has(name)) c.survey = { name, times: seconds > 0 ? surveyTimes(seconds) : [0], box: null };
+    playClip(c);
+    poseSoon();
+  }
+
+  // ---- Posing ------------------------------------------------------------------------------
+
+  function poseSoon() {
+    const c = state.character;
+    if (!c) return;
+    c.pending = true;
+    pump();
+  }
+
+  async function pump() {
+    const c = state.character;
+    if (!c || c.busy) return;
+    // A clip's survey goes first: the view is fitted to it before the clip is seen moving.
+    const s = c.survey && c.survey.times.length ? c.survey : null;
+    if (!s && !c.pending) return;
+    c.busy = true;
+    let req;
+    if (s) {
+      req = { rig: c.text, animation: s.name, time: s.times.shift(), targets: [] };
+    } else {
+      c.pending = false;
+      req = poseRequest(c);
+    }
+    try {
+      const answer = await api.post("/api/pose", req);
+      if (state.character === c && s) surveyed(c, s, answer);
+      else if (state.character === c) apply(c, req, answer);
+    } catch (e) {
+      if (state.character === c) {
+        act.showError(e);
+        act.setStatus("error");
+      }
+    }
+    // One answer per displayed frame: the next request leaves on the next one.
+    requestAnimationFrame(() => {
+      c.busy = false;
+      if (state.character === c) pump();
+    });
+  }
+
+  /** A pose of the clip's survey: its box grows; the last one gives the view its box. */
+  function surveyed(c, s, answer) {
+    s.box = unionBox(s.box, posedBox(answer.bones));
+    if (s.times.length || c.survey !== s) return;
+    c.clipBoxes.set(s.name, s.box);
+    c.survey = null;
+    act.requestDraw();
+  }
+
+  function apply(c, req, answer) {
+    c.posed = answer.bones;
+    c.ikReport = answer.ik || null;
+    // The view fits the first pose, the setup pose, and stays.
+    if (!c.box) c.box = posedBox(answer.bones);
+    c.request = req;
+    c.poses++;
+    act.showError(null);
+    if (document.body.dataset.status === "error") act.setStatus("ready");
+    say();
+    act.requestDraw();
+  }
+
+  /** Whether no pose is in flight or waiting (for tests and scripts). */
+  const settled = () => {
+    const c = state.character;
+    return !!c && !c.busy && !c.pending && !(c.survey && c.survey.times.length);
+  };
+
+  function clearTargets() {
+    const c = state.character;
+    if (!c) return;
+    c.targets = new Map();
+    poseSoon();
+  }
+
+  /** The setup pose: no clip, no targets (the switch stays). */
+  function reset() {
+    const c = state.character;
+    if (!c) return;
+    c.targets = new Map();
+    $("character-animation").value = "";
+    choose("");
+  }
+
+  async function exportSpine() {
+    const c = state.character;
+    if (!c) return;
+    if (c.targets.size === 0) {
+      act.showError(new api.Notice("Drag a target first: the export moves the targets from the setup pose to where you put them"));
+      return;
+    }
+    const button = $("export-spine");
+    button.disabled = true;
+    try {
+      const text = await api.postText("/api/animate", JSON.stringify(exportRequest(c)), "application/json");
+      saveBlob(new Blob([text], { type: "application/json" }), exportName(c.name));
+      act.showError(null);
+    } catch (e) {
+      act.showError(e);
+    } finally {
+      button.disabled = false;
+    }
+  }
+
+  // ---- The pointer -------------------------------------------------------------------------
+
+  const local = (ev) => {
+    const rect = canvas.getBoundingClientRect();
+    return [ev.clientX - rect.left, ev.clientY - rect.top];
+  };
+
+  /** The target whose handle is under the event, or null. */
+  function handleUnder(ev) {
+    return handleAt(handlesOnCanvas(state.view, state.character), ...local(ev));
+  }
+
+  /** What the pointer names: a target's handle first, else the bone under it, else null. */
+  function under(ev) {
+    const c = state.character;
+    const h = handleUnder(ev);
+    if (h) return h;
+    const i = boneAt(bonesOnCanvas(state.view, c), ...local(ev));
+    return i < 0 ? null : c.character.bones[i].name;
+  }
+
+  let press = null;
+
+  canvas.addEventListener("pointerdown", (ev) => {
+    if (!state.character || !state.character.posed || ev.button !== 0) return;
+    const name = handleUnder(ev);
+    if (!name) return;
+    press = { x: ev.clientX, y: ev.clientY, name, dragging: false };
+    canvas.setPointerCapture(ev.pointerId);
+  });
+
+  canvas.addEventListener("pointermove", (ev) => {
+    const c = state.character;
+    if (!c || !c.posed) return;
+    if (!press) {
+      const hover = under(ev);
+      canvas.style.cursor = hover && c.targetNames.includes(hover) ? "grab" : "";
+      if (hover !== c.hover) {
+        c.hover = hover;
+        act.requestDraw();
+      }
+      return;
+    }
+    if (!press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
+      press.dragging = true;
+      c.grabbed = press.name;
+      canvas.style.cursor = "grabbing";
+    }
+    if (!press.dragging) return;
+    const [x, y] = toWorld(state.view, ...local(ev));
+    c.targets = new Map(c.targets).set(press.name, { x, y });
+    act.requestDraw();
+    poseSoon();
+  });
+
+  canvas.addEventListener("pointerup", () => {
+    const c = state.character;
+    if (!c || !press) return;
+    const { name, dragging } = press;
+    press = null;
+    c.grabbed = null;
+    canvas.style.cursor = "grab";
+    // A click (no drag) on a placed target lets it go: the clip and the constraints move it again.
+    if (!dragging && c.targets.has(name)) {
+      c.targets = new Map(c.targets);
+      c.targets.delete(name);
+      poseSoon();
+    }
+    act.requestDraw();
+  });
+
+  canvas.addEventListener("pointerleave", () => {
+    const c = state.character;
+    if (!c || press || !c.hover) return;
+    c.hover = null;
+    canvas.style.cursor = "";
+    act.requestDraw();
+  });
+
+  canvas.addEventListener("pointercancel", () => {
+    if (!state.character) return;
+    press = null;
+    state.character.grabbed = null;
+    act.requestDraw();
+  });
+
+  canvas.addEventListener("keydown", (ev) => {
+    if (state.character && ev.key === "Escape") {
+      ev.preventDefault();
+      clearTargets();
+    }
+  });
+
+  $("character-animation").addEventListener("change", (ev) => choose(ev.target.value));
+  for (const radio of document.querySelectorAll('input[name="character-ik"]')) {
+    radio.addEventListener("change", (ev) => {
+      if (!state.character || !ev.target.checked) return;
+      state.character.ik = ev.target.value;
+      poseSoon();
+    });
+  }
+  $("clear-targets").addEventListener("click", clearTargets);
+  $("export-spine").addEventListener("click", exportSpine);
+
+  return { enter, resume, leave, reset, settled };
+}
