@@ -33,7 +33,7 @@ import numpy as _np
 
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
-from ._results import Motion, MotionFrames, Track, TrackSamples
+from ._results import Motion, MotionFrames, Pose, Track, TrackSamples
 from ._types import (
     LimitMode,
     Method,
@@ -66,6 +66,7 @@ __all__ = [
     "MotionFrames",
     "Track",
     "TrackSamples",
+    "Pose",
     "SolveOptions",
     "TrackSolveOptions",
     "MotionOptions",
@@ -143,6 +144,12 @@ def call(endpoint: str, request: Optional[dict] = None) -> Any:
 
 def _rebuild_chain(cls: type, toml: Optional[str]) -> "Chain":
     return cls() if toml is None else cls(toml=toml)
+
+
+def _rebuild_character(cls: "type[Rig]", text: str, name: str) -> "Rig":
+    rig = cls.from_json(text)
+    rig.rig = {"name": name}
+    return rig
 
 
 def _track_options(options: Mapping[str, object]) -> Optional[dict]:
@@ -377,7 +384,15 @@ class Rig(_Body):
     :class:`Outcome`, ``animate`` a :class:`Motion`, ``track`` a :class:`Track`, ``render``),
     goals by bone name; not ``workspace``, ``reach`` and ``solve_batch``, which the backend
     computes for chains alone (the exact region is a chain's; ``POST /api/solve/batch`` takes
-    an arm)."""
+    an arm).
+
+    A character (Spine or DragonBones JSON) is a rig too: ``Rig.from_json(text)`` reads one
+    from its text, ``Rig.from_file(path)`` from a file (a rig file or a character, told by
+    the content, as ``--rig FILE``); its :meth:`pose` poses it as its runtime does
+    (``ikarus pose``). Its other methods take rig files only, and say so."""
+
+    _character: Optional[_ikarus._Character] = None
+    _text: Optional[str] = None
 
     def __init__(self, rig: dict) -> None:
         self.rig = _plain(rig, "rig")
@@ -405,6 +420,74 @@ class Rig(_Body):
         return cls(answer["rig"])
 
     @classmethod
+    def from_json(cls, text: str, *, label: str = "rig") -> "Rig":
+        """A character from its file's text (Spine 4.0–4.2 or 3.8, DragonBones 5.x JSON, told
+        by the content); a bad one raises ``ValueError`` with the CLI's line, after ``label``
+        (``rig: bones[3] ("foot").parent = "hip": no bone of that name``)."""
+        rig = cls.__new__(cls)
+        rig._character = _ikarus._Character(text, label)
+        rig._text = text
+        rig.rig = {"name": _os.path.splitext(_os.path.basename(label))[0] if label != "rig" else "character"}
+        return rig
+
+    @classmethod
+    def from_file(cls, path: "os.PathLike[str] | str") -> "Rig":
+        """Reads a rig file (TOML, as :meth:`from_toml`) or a character file (JSON, as
+        :meth:`from_json`), told by the content as ``--rig FILE`` tells it; messages start
+        ``rig file PATH:`` as the CLI's."""
+        path = _os.fspath(path)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        if text.lstrip("\ufeff").lstrip().startswith("{"):
+            return cls.from_json(text, label=f"rig file {path}")
+        return cls.from_toml(path)
+
+    def __reduce__(self) -> Any:
+        # Picklable: a character is rebuilt from its file's text.
+        if self._character is None:
+            return (type(self), (self.rig,))
+        return (_rebuild_character, (type(self), self._text, self.rig["name"]))
+
+    @property
+    def format(self) -> str:
+        """``"rig"`` for a rig file's rig; ``"spine"`` or ``"dragonbones"`` for a character."""
+        return "rig" if self._character is None else self._character.format
+
+    def pose(
+        self,
+        animation: Optional[str] = None,
+        time: Optional[float] = None,
+        targets: Optional[Mapping[str, Tuple[float, float]]] = None,
+    ) -> Pose:
+        """A character posed as its runtime does (``ikarus pose``, ``POST /api/pose``, by the
+        same code): the setup pose, then ``animation`` at ``time`` seconds, then each bone of
+        ``targets`` (``{"bone": (x, y)}``, in order) with its world origin put at (x, y), then
+        the IK constraints in their order. Returns a :class:`Pose` (NumPy columns, the numbers
+        of ``ikarus pose --format json`` bit for bit); a bad name or value raises
+        ``ValueError`` with the CLI's line."""
+        if self._character is None:
+            raise ValueError(
+                f"Rig {self.name!r}: pose takes a character (Spine or DragonBones JSON, Rig.from_json or "
+                "Rig.from_file); a rig file's rig is posed by solve"
+            )
+        pairs = []
+        for bone, point in (targets or {}).items():
+            x, y = point
+            pairs.append((bone, (float(x), float(y))))
+        answer = self._character.pose(animation, None if time is None else float(time), pairs)
+        return Pose(**answer)
+
+    def _rig_file(self) -> Any:
+        """The rig file's fields, for the methods that take a rig file only."""
+        if self._character is not None:
+            kind = {"spine": "Spine", "dragonbones": "DragonBones"}[self._character.format]
+            raise ValueError(
+                f"Rig {self.name!r}: a {kind} character, which solve, animate, track and render do not take: "
+                "they take rig files (TOML); pose poses it"
+            )
+        return self.rig
+
+    @classmethod
     def shipped(cls, name: str) -> "Rig":
         """A shipped rig (``GET /api/rigs``): ``"puppet"`` or ``"hand"``."""
         rigs = call("rigs")["rigs"]
@@ -420,16 +503,23 @@ class Rig(_Body):
     @property
     def bones(self) -> list:
         """The bones' names, in the file's order."""
+        if self._character is not None:
+            return self._character.bones
         return [b["name"] for b in self.rig["bones"]]
 
+    @property
+    def animations(self) -> list:
+        """A character's animations' names (a rig file has none)."""
+        return [] if self._character is None else self._character.animations
+
     def __len__(self) -> int:
-        return len(self.rig["bones"])
+        return len(self.bones)
 
     def __repr__(self) -> str:
         return f"<ikarus.Rig {self.name!r}: {len(self)} bones>"
 
     def _body(self) -> dict:
-        return {"rig": self.rig}
+        return {"rig": self._rig_file()}
 
     def _columns(self) -> Tuple[Optional[Sequence[str]], Optional[Sequence[float]]]:
         return self.bones, self.rig.get("base")
@@ -453,7 +543,7 @@ class Rig(_Body):
         goals in order, then the pins); ``to_dict()`` is the object of
         ``ikarus solve --rig --format json`` (but ``solve_us``)."""
         request = {
-            "rig": self.rig,
+            "rig": self._rig_file(),
             "goals": _rig_goals(goals),
             "pins": list(pins) or None,
             "mix": mix,
@@ -521,7 +611,9 @@ class Rig(_Body):
         ``goals`` (as the API's list), ``pins``, ``limits``, ``labels``."""
         return self._render({"figure": "rig", "format": format, "width": width, "height": height, **fields})
 
-    def _repr_svg_(self) -> str:
+    def _repr_svg_(self) -> Optional[str]:
+        if self._character is not None:
+            return None  # a character is not drawn by render; Jupyter shows its repr
         return self.render("svg", width=480, height=480).decode()
 
 
