@@ -15,6 +15,7 @@
 
 mod clips;
 mod dragonbones;
+mod dragonbones_clips;
 mod spine;
 
 use std::collections::HashMap;
