@@ -19,7 +19,6 @@ use ikarus::character::{
     CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
 };
 use serde::Deserialize;
-use serde::de::{self, Deserializer};
 use serde_json::Value;
 
 use super::dragonbones_clips::{self, AnimationJson, Context, Notes};
@@ -100,20 +99,10 @@ struct IkJson {
     target: String,
     #[serde(default)]
     chain: u32,
-    #[serde(default = "super::yes", deserialize_with = "flag")]
+    #[serde(default = "super::yes", deserialize_with = "super::flag")]
     bend_positive: bool,
     #[serde(default = "super::one")]
     weight: f64,
-}
-
-/// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
-pub(super) fn flag<'de, D: Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
-    match Value::deserialize(d)? {
-        Value::Bool(b) => Ok(b),
-        Value::String(t) if t == "true" => Ok(true),
-        Value::String(t) if t == "false" => Ok(false),
-        other => Err(de::Error::custom(format_args!("expected true or false, got {other}"))),
-    }
 }
 
 /// Reads a DragonBones file's first armature (`value` is its text parsed, for the cap).

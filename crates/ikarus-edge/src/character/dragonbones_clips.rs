@@ -81,7 +81,7 @@ struct FrameJson {
 }
 
 fn some_flag<'de, D: Deserializer<'de>>(d: D) -> Result<Option<bool>, D::Error> {
-    super::dragonbones::flag(d).map(Some)
+    super::flag(d).map(Some)
 }
 
 /// What the timelines' names resolve to, and the frame rate.

@@ -138,6 +138,16 @@ struct Named {
     name: String,
 }
 
+/// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
+fn flag<'de, D: serde::Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
+    match <Value as serde::Deserialize>::deserialize(d)? {
+        Value::Bool(b) => Ok(b),
+        Value::String(t) if t == "true" => Ok(true),
+        Value::String(t) if t == "false" => Ok(false),
+        other => Err(serde::de::Error::custom(format_args!("expected true or false, got {other}"))),
+    }
+}
+
 /// The default of a scale, a mix, a weight.
 fn one() -> f64 {
     1.0

@@ -33,6 +33,7 @@ import numpy as _np
 
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
+from ._character import _CharacterRig
 from ._results import Motion, MotionFrames, Pose, Track, TrackSamples
 from ._types import (
     LimitMode,
@@ -144,12 +145,6 @@ def call(endpoint: str, request: Optional[dict] = None) -> Any:
 
 def _rebuild_chain(cls: type, toml: Optional[str]) -> "Chain":
     return cls() if toml is None else cls(toml=toml)
-
-
-def _rebuild_character(cls: "type[Rig]", text: str, name: str) -> "Rig":
-    rig = cls.from_json(text)
-    rig.rig = {"name": name}
-    return rig
 
 
 def _track_options(options: Mapping[str, object]) -> Optional[dict]:
@@ -372,7 +367,7 @@ def _rig_goals(goals: Mapping[str, Union[Goal, RigGoal]], field: str = "goals") 
     return listed
 
 
-class Rig(_Body):
+class Rig(_CharacterRig, _Body):
     """A skeleton (a *rig*): a tree of named bones, solved for goals on any bones' tips with
     others pinned, through the API (``POST /api/solve`` with ``rig``), as
     ``ikarus solve --rig FILE``.
@@ -390,9 +385,6 @@ class Rig(_Body):
     from its text, ``Rig.from_file(path)`` from a file (a rig file or a character, told by
     the content, as ``--rig FILE``); its :meth:`pose` poses it as its runtime does
     (``ikarus pose``). Its other methods take rig files only, and say so."""
-
-    _character: Optional[_ikarus._Character] = None
-    _text: Optional[str] = None
 
     def __init__(self, rig: dict) -> None:
         self.rig = _plain(rig, "rig")
@@ -420,17 +412,6 @@ class Rig(_Body):
         return cls(answer["rig"])
 
     @classmethod
-    def from_json(cls, text: str, *, label: str = "rig") -> "Rig":
-        """A character from its file's text (Spine 4.0–4.2 or 3.8, DragonBones 5.x JSON, told
-        by the content); a bad one raises ``ValueError`` with the CLI's line, after ``label``
-        (``rig: bones[3] ("foot").parent = "hip": no bone of that name``)."""
-        rig = cls.__new__(cls)
-        rig._character = _ikarus._Character(text, label)
-        rig._text = text
-        rig.rig = {"name": _os.path.splitext(_os.path.basename(label))[0] if label != "rig" else "character"}
-        return rig
-
-    @classmethod
     def from_file(cls, path: "os.PathLike[str] | str") -> "Rig":
         """Reads a rig file (TOML, as :meth:`from_toml`) or a character file (JSON, as
         :meth:`from_json`), told by the content as ``--rig FILE`` tells it; messages start
@@ -441,51 +422,6 @@ class Rig(_Body):
         if text.lstrip("\ufeff").lstrip().startswith("{"):
             return cls.from_json(text, label=f"rig file {path}")
         return cls.from_toml(path)
-
-    def __reduce__(self) -> Any:
-        # Picklable: a character is rebuilt from its file's text.
-        if self._character is None:
-            return (type(self), (self.rig,))
-        return (_rebuild_character, (type(self), self._text, self.rig["name"]))
-
-    @property
-    def format(self) -> str:
-        """``"rig"`` for a rig file's rig; ``"spine"`` or ``"dragonbones"`` for a character."""
-        return "rig" if self._character is None else self._character.format
-
-    def pose(
-        self,
-        animation: Optional[str] = None,
-        time: Optional[float] = None,
-        targets: Optional[Mapping[str, Tuple[float, float]]] = None,
-    ) -> Pose:
-        """A character posed as its runtime does (``ikarus pose``, ``POST /api/pose``, by the
-        same code): the setup pose, then ``animation`` at ``time`` seconds, then each bone of
-        ``targets`` (``{"bone": (x, y)}``, in order) with its world origin put at (x, y), then
-        the IK constraints in their order. Returns a :class:`Pose` (NumPy columns, the numbers
-        of ``ikarus pose --format json`` bit for bit); a bad name or value raises
-        ``ValueError`` with the CLI's line."""
-        if self._character is None:
-            raise ValueError(
-                f"Rig {self.name!r}: pose takes a character (Spine or DragonBones JSON, Rig.from_json or "
-                "Rig.from_file); a rig file's rig is posed by solve"
-            )
-        pairs = []
-        for bone, point in (targets or {}).items():
-            x, y = point
-            pairs.append((bone, (float(x), float(y))))
-        answer = self._character.pose(animation, None if time is None else float(time), pairs)
-        return Pose(**answer)
-
-    def _rig_file(self) -> Any:
-        """The rig file's fields, for the methods that take a rig file only."""
-        if self._character is not None:
-            kind = {"spine": "Spine", "dragonbones": "DragonBones"}[self._character.format]
-            raise ValueError(
-                f"Rig {self.name!r}: a {kind} character, which solve, animate, track and render do not take: "
-                "they take rig files (TOML); pose poses it"
-            )
-        return self.rig
 
     @classmethod
     def shipped(cls, name: str) -> "Rig":
@@ -506,11 +442,6 @@ class Rig(_Body):
         if self._character is not None:
             return self._character.bones
         return [b["name"] for b in self.rig["bones"]]
-
-    @property
-    def animations(self) -> list:
-        """A character's animations' names (a rig file has none)."""
-        return [] if self._character is None else self._character.animations
 
     def __len__(self) -> int:
         return len(self.bones)
