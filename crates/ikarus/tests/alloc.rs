@@ -11,7 +11,9 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
-mod common;
+// The shared fixtures (the character's bones, constraint and clip), without the rest of `common`.
+#[path = "common/fixtures.rs"]
+mod fixtures;
 
 use ikarus::{Chain, Goal, Link, Method, Outcome, SolveOptions, Solver, Status};
 
@@ -332,7 +334,7 @@ fn a_rig_follower_step_allocates_nothing() {
 /// one-bone constraints) allocates nothing once its `Posed` has grown to the character.
 #[test]
 fn posing_a_character_allocates_nothing() {
-    use common::fixtures::{character_bone as bone, rotate_clip, spine_ik};
+    use fixtures::{character_bone as bone, rotate_clip, spine_ik};
     use ikarus::character::{
         Character, CharacterParts, IkBones, IkKey, IkSettings, IkTimeline, Interpolation, PoseRequest, Posed,
     };

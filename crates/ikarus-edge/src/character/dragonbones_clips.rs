@@ -246,7 +246,7 @@ fn easing(f: &FrameJson, path: &str, notes: &mut Notes) -> Result<Ease, String> 
     }
     Ok(match f.tween_easing {
         None => Ease::Exact(Interpolation::Stepped),
-        Some(e) if e == 0.0 => Ease::Exact(Interpolation::Linear),
+        Some(0.0) => Ease::Exact(Interpolation::Linear),
         Some(e) if !e.is_finite() => return Err(format!("{path}.tweenEasing = {e}: must be a finite number")),
         Some(e) => {
             notes.approximated += 1;

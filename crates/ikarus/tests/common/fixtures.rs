@@ -1,11 +1,12 @@
 //! Fixtures shared by the library's unit tests, its integration tests and its benchmarks: the
 //! seed arm, the seven-link arm, a forked rig, random chains, poses and goals, and a character's
-//! bones and IK constraints.
+//! bones, IK constraint and clip.
 //!
 //! One file, included three ways: as `crate::fixtures` in the unit tests (`lib.rs` includes it
 //! with `#[path]` under `cfg(test)`, and `extern crate self as ikarus` makes the `ikarus::`
-//! paths below resolve inside the crate), as `common::fixtures` in the integration tests, and
-//! through `tests/common/mod.rs` in the benchmarks. Plain inclusion rather than a `pub` module
+//! paths below resolve inside the crate), as `common::fixtures` in the integration tests (as
+//! `fixtures` alone in `alloc.rs`, which needs nothing else of `common`), and through
+//! `tests/common/mod.rs` in the benchmarks. Plain inclusion rather than a `pub` module
 //! behind a feature: nothing test-only enters the library's API or its feature set, and every
 //! user sees the same, public-API-only code.
 #![allow(dead_code)]
