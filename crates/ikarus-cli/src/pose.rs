@@ -26,6 +26,26 @@ pub enum PoseFormat {
     Png,
 }
 
+/// Whose rules solve a character's IK constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum IkRules {
+    /// The runtime's: each constraint on its one or two bones, one after another in their order
+    Runtime,
+    /// ikarus's rig solver: every constraint at once, each a goal on its last bone's tip
+    Ikarus,
+}
+
+impl IkRules {
+    /// The name the edge takes.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            IkRules::Runtime => "runtime",
+            IkRules::Ikarus => "ikarus",
+        }
+    }
+}
+
 /// Pose a character file as its runtime does.
 #[derive(Debug, Args)]
 pub struct PoseArgs {
@@ -42,6 +62,14 @@ pub struct PoseArgs {
     /// target bone moves its limb), BONE=X,Y (repeatable, applied in order)
     #[arg(long, value_name = "BONE=X,Y", allow_hyphen_values = true, value_parser = parse_target)]
     pub target: Vec<(String, [f64; 2])>,
+    /// Whose rules solve the IK constraints: the runtime's (one after another, in their order) or
+    /// ikarus's rig solver (all at once: no constraint undoes another, limbs of any length)
+    #[arg(long, value_enum, default_value_t = IkRules::Runtime)]
+    pub ik: IkRules,
+    /// With --ik ikarus: an IK file (TOML) adding pins, longer limbs, weights, joint limits and
+    /// stiffness to the character's constraints
+    #[arg(long, value_name = "FILE")]
+    pub ik_file: Option<PathBuf>,
     /// Output format [default: text on a terminal, json otherwise; from --out's extension for
     /// .svg and .png]
     #[arg(long, value_enum)]
@@ -76,7 +104,18 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     }
     let format = format_of(args)?;
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
-    let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone() };
+    let ik_text = match &args.ik_file {
+        Some(p) => {
+            Some((crate::input::read_text(p, &format!("ik file {}", p.display()))?, format!("ik file {}", p.display())))
+        }
+        None => None,
+    };
+    let (ik_file, ik_label) = match &ik_text {
+        Some((text, label)) => (Some(text.as_str()), label.as_str()),
+        None => (None, "--ik-file"),
+    };
+    let ik = ikarus_edge::pose::ik_choice(Some(args.ik.name()), ik_file, ik_label, &loaded.character)?;
+    let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone(), ik };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, args)?;
     match file {

@@ -6,11 +6,13 @@
 //! the field and the value, and for a name that does not exist, the names that do.
 
 use ikarus::Point2;
-use ikarus::character::{Character, PoseRequest, Posed};
+use ikarus::character::{Character, PoseRequest, Posed, Together, TogetherReport};
+use ikarus::{SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
 use serde::Serialize;
 
 use crate::character::Loaded;
+use crate::error::CliError;
 use crate::report::character::UnsupportedJson;
 
 /// What to pose, by name, as the user gave it.
@@ -23,6 +25,19 @@ pub struct PoseAsk {
     /// `(bone, [x, y])`: the bone's world origin is put at (x, y) after the animation and before
     /// the constraints, in this order.
     pub targets: Vec<(String, [f64; 2])>,
+    /// Whose rules solve the IK constraints.
+    pub ik: IkChoice,
+}
+
+/// Whose rules solve a character's IK constraints.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub enum IkChoice {
+    /// The runtime's: one constraint after another, in their order (the default).
+    #[default]
+    Runtime,
+    /// ikarus's rig solver, every constraint at once ([`Character::pose_together`]), with the
+    /// IK file's rules (an empty [`Together`] without one).
+    Ikarus(Box<Together>),
 }
 
 /// One bone posed: world origin, the world direction of its x axis in degrees, and its tip
@@ -41,6 +56,9 @@ pub struct PosedBoneJson {
 pub struct PoseReport {
     pub bones: Vec<PosedBoneJson>,
     pub unsupported: Vec<UnsupportedJson>,
+    /// With `--ik ikarus`: what the solve did (absent under the runtime's rules).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ik: Option<IkJson>,
     /// The IK constraints' target bones' origins, for the picture (not in the JSON).
     #[serde(skip)]
     targets: Vec<[f64; 2]>,
@@ -50,13 +68,15 @@ pub struct PoseReport {
 /// such animation; spineboy has: aim, death, …`.
 pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
     let mut posed = Posed::default();
-    pose_into(loaded, ask, &mut posed)?;
-    Ok(PoseReport::of(&loaded.character, &posed))
+    let together = pose_into(loaded, ask, &mut posed)?;
+    let mut report = PoseReport::of(&loaded.character, &posed);
+    report.ik = together.map(|t| IkJson::of(&loaded.character, &t));
+    Ok(report)
 }
 
 /// Poses `loaded` as `ask` says into `out` (reuse one `out` across poses: a motion's frames),
-/// refusing what [`pose`] refuses.
-pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<(), String> {
+/// refusing what [`pose`] refuses; with [`IkChoice::Ikarus`], what the solve did.
+pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Option<TogetherReport>, String> {
     let c = &loaded.character;
     let clip = match &ask.animation {
         Some(name) => {
@@ -82,7 +102,63 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<(), 
         }
         targets.push((bone, [*x, *y]));
     }
-    c.pose(&PoseRequest { clip, targets: &targets }, out).map_err(|e| e.to_string())
+    let request = PoseRequest { clip, targets: &targets };
+    match &ask.ik {
+        IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
+        IkChoice::Ikarus(rules) => {
+            let mut solver = Solver::new(SolveOptions::default()).map_err(|e| e.to_string())?;
+            c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
+        }
+    }
+}
+
+/// The rules asked for: `ik` is `runtime` (the default) or `ikarus`; `ik_file` the text of an
+/// IK file (only with `ikarus`), named `label` in messages.
+pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
+    match (ik.unwrap_or("runtime"), ik_file) {
+        ("runtime", None) => Ok(IkChoice::Runtime),
+        ("runtime", Some(_)) => Err(CliError::input(format!("{label}: an IK file is read only with ik = \"ikarus\""))),
+        ("ikarus", None) => Ok(IkChoice::Ikarus(Box::default())),
+        ("ikarus", Some(text)) => Ok(IkChoice::Ikarus(Box::new(crate::character::ik_file::read(text, label, c)?))),
+        (other, _) => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
+    }
+}
+
+/// What `--ik ikarus` did: `{"solver": "ikarus", "status", "rounds", "constraints": [{"name",
+/// "active", "error"}]}`, each constraint's error its last bone's tip's distance from its target.
+#[derive(Debug, Serialize)]
+pub struct IkJson {
+    pub solver: &'static str,
+    pub status: Option<String>,
+    pub rounds: usize,
+    pub constraints: Vec<LimbJson>,
+}
+
+/// One constraint's end under `--ik ikarus`.
+#[derive(Debug, Serialize)]
+pub struct LimbJson {
+    pub name: String,
+    pub active: bool,
+    pub error: f64,
+}
+
+impl IkJson {
+    fn of(c: &Character, t: &TogetherReport) -> Self {
+        IkJson {
+            solver: "ikarus",
+            status: t.outcome.as_ref().map(|o| o.status.to_string()),
+            rounds: t.rounds,
+            constraints: t
+                .limbs
+                .iter()
+                .map(|l| LimbJson {
+                    name: c.constraints()[l.constraint].name.clone(),
+                    active: l.active,
+                    error: l.error,
+                })
+                .collect(),
+        }
+    }
 }
 
 impl PoseReport {
@@ -107,7 +183,7 @@ impl PoseReport {
         let unsupported =
             c.unsupported().iter().map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() }).collect();
         let targets = c.constraints().iter().map(|k| posed.origin(k.target)).collect();
-        PoseReport { bones, unsupported, targets }
+        PoseReport { bones, unsupported, ik: None, targets }
     }
 
     /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
@@ -165,6 +241,7 @@ mod tests {
             animation: animation.map(str::to_owned),
             time,
             targets,
+            ik: IkChoice::Runtime,
         };
         let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
         assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");
@@ -203,5 +280,72 @@ mod tests {
         assert_eq!(text.lines().count(), rows + report.unsupported.len());
         let svg = ikarus_render::character_svg(&report.figure(None), 300, 300).unwrap();
         assert_eq!(svg.matches("<g class=\"bone\">").count(), report.bones.len());
+    }
+
+    /// Each constraint's miss under the runtime's rules, from the report: a two-bone one's tip
+    /// from its target.
+    fn two_bone_misses(c: &Character, report: &PoseReport) -> Vec<f64> {
+        let at = |i: usize| &report.bones[i];
+        c.constraints()
+            .iter()
+            .filter_map(|k| match k.bones {
+                ikarus::character::IkBones::Two { child, .. } => {
+                    let (tip, t) = (at(child).tip, at(k.target));
+                    Some(((tip[0] - t.x).powi(2) + (tip[1] - t.y).powi(2)).sqrt())
+                }
+                ikarus::character::IkBones::One(_) => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn ikarus_rules_meet_every_two_bone_limb_the_runtime_meets_on_the_shipped_walks() {
+        let raptor =
+            crate::character::load(include_str!("../../../examples/characters/spine-raptor-pro.json"), "raptor")
+                .unwrap();
+        for loaded in [spineboy(), raptor] {
+            let c = &loaded.character;
+            for step in 0..=10 {
+                let time = Some(f64::from(step) * 0.1);
+                let runtime =
+                    pose(&loaded, &PoseAsk { animation: Some("walk".into()), time, ..PoseAsk::default() }).unwrap();
+                let ask = PoseAsk {
+                    animation: Some("walk".into()),
+                    time,
+                    ik: IkChoice::Ikarus(Box::default()),
+                    ..PoseAsk::default()
+                };
+                let together = pose(&loaded, &ask).unwrap();
+                let ik = together.ik.as_ref().unwrap();
+                assert_eq!(ik.constraints.len(), c.constraints().len());
+                let (was, now) = (two_bone_misses(c, &runtime), two_bone_misses(c, &together));
+                for (w, n) in was.iter().zip(&now) {
+                    assert!(n <= &(w + 1e-6), "{time:?}: ikarus misses {n}, the runtime {w}");
+                }
+                // The report's errors are the pose's own.
+                let two: Vec<f64> = c
+                    .constraints()
+                    .iter()
+                    .zip(&ik.constraints)
+                    .filter(|(k, _)| matches!(k.bones, ikarus::character::IkBones::Two { .. }))
+                    .map(|(_, l)| l.error)
+                    .collect();
+                for (a, b) in two.iter().zip(&now) {
+                    assert!((a - b).abs() < 1e-9);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_ik_choice_is_read_or_refused_in_one_line() {
+        let boy = spineboy();
+        let c = &boy.character;
+        assert_eq!(ik_choice(None, None, "ik_file", c).unwrap(), IkChoice::Runtime);
+        assert_eq!(ik_choice(Some("ikarus"), None, "ik_file", c).unwrap(), IkChoice::Ikarus(Box::default()));
+        let e = ik_choice(Some("spine"), None, "ik_file", c).unwrap_err().to_string();
+        assert_eq!(e, "ik = \"spine\": expected \"runtime\" or \"ikarus\"");
+        let e = ik_choice(None, Some("pins = []"), "ik_file", c).unwrap_err().to_string();
+        assert_eq!(e, "ik_file: an IK file is read only with ik = \"ikarus\"");
     }
 }

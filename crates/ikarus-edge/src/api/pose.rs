@@ -10,7 +10,7 @@ use crate::pose::{PoseAsk, pose as posed};
 use crate::rig::BoneCap;
 
 /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
-/// "y"}, …]}`: every field but `rig` optional.
+/// "y"}, …], "ik": "ikarus", "ik_file": "<TOML>"}`: every field but `rig` optional.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PoseReq {
@@ -21,6 +21,12 @@ struct PoseReq {
     time: Option<f64>,
     #[serde(default)]
     targets: Vec<TargetReq>,
+    /// `"runtime"` (the default) or `"ikarus"`.
+    #[serde(default)]
+    ik: Option<String>,
+    /// With `"ik": "ikarus"`: an IK file's text (TOML; see `ikarus pose --ik-file`).
+    #[serde(default)]
+    ik_file: Option<String>,
 }
 
 /// A bone's world origin put at (x, y).
@@ -49,10 +55,12 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
             req.targets.len()
         )));
     }
+    let ik = crate::pose::ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     let ask = PoseAsk {
         animation: req.animation,
         time: req.time,
         targets: req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect(),
+        ik,
     };
     let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
     json_response(&report)

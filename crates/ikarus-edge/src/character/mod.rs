@@ -9,13 +9,15 @@
 //! animations.
 //!
 //! What is read: bones (local transforms, inherit modes), IK constraints with all their
-//! settings, and (Spine) the animations' bone and IK timelines. What is not: skins, slots,
-//! attachments, images, events, draw order, deform; transform, path and physics constraints
-//! are listed in [`Character::unsupported`] and left inactive, as are DragonBones animations.
+//! settings, and the animations' bone and IK timelines (Spine's by [`clips`], DragonBones' by
+//! [`dragonbones_clips`]). What is not: skins, slots, attachments, images, events, draw order,
+//! deform; transform, path and physics constraints are listed in [`Character::unsupported`]
+//! and left inactive.
 
 mod clips;
 mod dragonbones;
 mod dragonbones_clips;
+pub mod ik_file;
 mod spine;
 
 use std::collections::HashMap;

@@ -16,9 +16,11 @@ use thiserror::Error;
 mod ik;
 mod pose;
 mod timeline;
+mod together;
 mod world;
 
 pub use pose::{PoseError, PoseRequest, Posed};
+pub use together::{BoneRule, LimbEnd, LimbRule, ROUNDS, Together, TogetherError, TogetherReport};
 pub use world::{Affine, world_transform};
 
 /// A character: bones listed parent first, IK constraints, clips, and the skeleton's own

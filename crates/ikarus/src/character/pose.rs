@@ -109,6 +109,12 @@ impl Posed {
     pub fn settings(&self, k: usize) -> IkSettings {
         self.settings[k]
     }
+
+    /// The buffers a change of the local transforms works on: the local and world transforms,
+    /// the lengths, the marks of [`Bones::update_below`](super::world::Bones).
+    pub(crate) fn parts(&mut self) -> (&mut [LocalTransform], &mut [Affine], &[f64], &mut [bool]) {
+        (&mut self.local, &mut self.world, &self.length, &mut self.below)
+    }
 }
 
 impl Character {

@@ -1,0 +1,478 @@
+//! A character's IK constraints solved together by ikarus's rig solver, instead of one after
+//! another by the runtime's one- and two-bone rules.
+//!
+//! The runtime applies its constraints in order, each on at most two bones, each blind to the
+//! others: a later constraint can undo an earlier one, and a limb of three bones cannot be
+//! solved at all. Here every active constraint (mix > 0) becomes a goal on its last bone's tip
+//! at its target bone's world origin, and one weighted least-squares solve
+//! ([`Solver::solve_rig`]) moves every bone of every limb at once:
+//!
+//! 1. The runtime's own pose is the start ([`Character::pose`]): it has each two-bone limb bent
+//!    the way its constraint says, and the solve keeps that side ([`Bend`]).
+//! 2. The bones that move (each constraint's bones, extended up the hierarchy by
+//!    [`LimbRule::bones`], and the pinned bones) become an ikarus [`Skeleton`] frozen at that
+//!    pose: a bone's origin, world direction and world length as the runtime's world transforms
+//!    have them, its parent the nearest moving ancestor (the bones between are rigid).
+//! 3. After the solve, each moving bone's world direction is written back as the local rotation
+//!    that gives it under the bone's own inherit mode, parents first, and the world transforms
+//!    are recomputed as the runtime computes them. Where a parent's scale is not uniform, a
+//!    rotation is not rigid in the runtime's world; the skeleton is then rebuilt from the new
+//!    pose and solved again (at most [`ROUNDS`] times in all) until the two agree: under a mild
+//!    uneven scale (1.15 by 0.9) the gap shrinks about fourfold a round; under a strong one (1.6
+//!    by 0.6) a bone's world length changes so much with its rotation that the rounds need not
+//!    close it, and the report's per-constraint error says what is left.
+//!
+//! What the runtime's rules have that this does not: `stretch` and `compress` (the solve turns
+//! bones; it never scales them) and a partial mix (a constraint with mix > 0 is solved fully;
+//! mix 0 leaves it out). A one-bone constraint is a secondary goal on its bone's tip (the least
+//! squares of a tip toward a point is the aim toward it), so that it turns its own bone in what
+//! the limbs above it leave free instead of pulling them; on a bone of length 0 it has no tip to
+//! aim, and the runtime's aim is applied after the solve instead.
+
+use super::ik;
+use super::pose::{PoseError, PoseRequest, Posed};
+use super::world::{Affine, Bones, world_transform};
+use super::{Character, IkBones, IkRule, IkSettings};
+use crate::angle::wrap_angle;
+use crate::goal::Goal;
+use crate::limits::JointLimits;
+use crate::math;
+use crate::skeleton::{Bone, Skeleton};
+use crate::solve::{Bend, Outcome, Pin, Priority, RigGoal, RigTask, Solver};
+use thiserror::Error;
+
+/// How many times at most the skeleton is rebuilt and solved again (see the module docs).
+pub const ROUNDS: usize = 16;
+
+/// How one constraint is solved (constraints without a rule take the defaults: the
+/// constraint's own bones, weight 1, primary).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimbRule {
+    /// The constraint's index.
+    pub constraint: usize,
+    /// How many bones move for it, counted up from its last bone (`None`: its own one or two):
+    /// 3 makes a three-bone leg of a two-bone constraint, its parent's parent moving too.
+    pub bones: Option<usize>,
+    /// Its goal's weight, > 0, when goals conflict.
+    pub weight: f64,
+    /// Met only in what the primary goals and the pins leave free.
+    pub secondary: bool,
+}
+
+/// What a bone adds to the solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoneRule {
+    /// The bone's index.
+    pub bone: usize,
+    /// The range of its local rotation, radians (the runtime's `rotation`), when it moves.
+    pub limits: Option<[f64; 2]>,
+    /// How much it resists turning, ≥ 0 (see [`Bone::stiffness`]).
+    pub stiffness: f64,
+}
+
+/// How ikarus solves a character's constraints: rules per limb and per bone, and pinned bones
+/// (their tips held where the runtime's pose has them). Empty: every constraint as the file
+/// has it, nothing pinned, no limits.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Together {
+    /// Per constraint.
+    pub limbs: Vec<LimbRule>,
+    /// Per bone.
+    pub bones: Vec<BoneRule>,
+    /// Bones whose tip (position and direction) stays where it starts.
+    pub pins: Vec<usize>,
+}
+
+/// How one constraint ended: how far it misses its target, in world units: a two-bone one, its
+/// child's tip's distance from the target; a one-bone one (an aim), the target's distance from
+/// the bone's ray (for a bone of length 0, aimed by the runtime's rule: 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LimbEnd {
+    /// The constraint's index.
+    pub constraint: usize,
+    /// Whether it took part (mix > 0).
+    pub active: bool,
+    /// Tip to target.
+    pub error: f64,
+}
+
+/// What a solve together did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TogetherReport {
+    /// Per constraint, in the character's order.
+    pub limbs: Vec<LimbEnd>,
+    /// How many times the skeleton was solved (1 to [`ROUNDS`]; 0 when no constraint was
+    /// active).
+    pub rounds: usize,
+    /// The last solve's outcome (status, iterations), when there was one.
+    pub outcome: Option<Outcome>,
+}
+
+/// A solve together that cannot be done.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum TogetherError {
+    /// The pose request itself (see [`PoseError`]).
+    #[error(transparent)]
+    Pose(#[from] PoseError),
+    /// A rule names a constraint or a bone that does not exist, or gives a bad value.
+    #[error("{0}")]
+    Rule(String),
+    /// The skeleton or the solve refused (a message naming what).
+    #[error("{0}")]
+    Solve(String),
+}
+
+/// The moving bones as an ikarus skeleton: `bones[k]` is the character's bone of the
+/// skeleton's bone `k`.
+struct Frozen {
+    skeleton: Skeleton,
+    bones: Vec<usize>,
+    start: Vec<f64>,
+}
+
+impl Character {
+    /// Poses the character as [`Character::pose`] does, then solves its active constraints
+    /// together with `solver` (a method that solves rigs), as the module docs say; `out` holds
+    /// the final pose, its local transforms those that give it under the runtime's world
+    /// transforms.
+    pub fn pose_together(
+        &self,
+        request: &PoseRequest,
+        rules: &Together,
+        solver: &mut Solver,
+        out: &mut Posed,
+    ) -> Result<TogetherReport, TogetherError> {
+        self.check_together(rules)?;
+        self.pose(request, out)?;
+        let active: Vec<usize> = (0..self.constraints.len()).filter(|&k| out.settings(k).mix > 0.0).collect();
+        let moving = self.moving(rules, &active);
+        let mut report = TogetherReport::default();
+        let goals: Vec<usize> = active.iter().copied().filter(|&k| self.has_tip_goal(k)).collect();
+        if !moving.is_empty() && !goals.is_empty() {
+            for round in 1..=ROUNDS {
+                let frozen = self.freeze(out, &moving, rules)?;
+                let task = self.task(out, &frozen, rules, &goals)?;
+                let outcome = solver
+                    .solve_rig(&frozen.skeleton, &frozen.start, &task)
+                    .map_err(|e| TogetherError::Solve(e.to_string()))?;
+                let drift = self.thaw(out, &frozen, outcome.pose.angles());
+                report.rounds = round;
+                report.outcome = Some(outcome);
+                if drift <= 1e-9 * (1.0 + self.size(out)) {
+                    break;
+                }
+            }
+        }
+        self.aim_zero_length(&active, out);
+        report.limbs = (0..self.constraints.len())
+            .map(|k| {
+                let on = active.contains(&k);
+                let error = if on && self.has_tip_goal(k) { self.miss(k, out) } else { 0.0 };
+                LimbEnd { constraint: k, active: on, error }
+            })
+            .collect();
+        Ok(report)
+    }
+
+    /// Checks `rules` against the character: constraints and bones that exist, weights > 0,
+    /// limb lengths from the constraint's own bones to its root, stiffness ≥ 0, limits in order.
+    pub fn check_together(&self, rules: &Together) -> Result<(), TogetherError> {
+        let n = self.bones.len();
+        for r in &rules.limbs {
+            let c = self
+                .constraints
+                .get(r.constraint)
+                .ok_or_else(|| TogetherError::Rule(format!("limb: no constraint {}", r.constraint)))?;
+            if !(r.weight > 0.0 && r.weight.is_finite()) {
+                return Err(TogetherError::Rule(format!("limb {:?}: weight must be > 0, got {}", c.name, r.weight)));
+            }
+            let own = match c.bones {
+                IkBones::One(_) => 1,
+                IkBones::Two { .. } => 2,
+            };
+            if let Some(b) = r.bones {
+                let depth = self.depth(last_bone(c.bones)) + 1;
+                if b < own || b > depth {
+                    return Err(TogetherError::Rule(format!(
+                        "limb {:?}: bones must be from {own} (its own) to {depth} (up to its root), got {b}",
+                        c.name
+                    )));
+                }
+            }
+        }
+        for r in &rules.bones {
+            let name =
+                &self.bones.get(r.bone).ok_or_else(|| TogetherError::Rule(format!("bone: no bone {}", r.bone)))?.name;
+            if !(r.stiffness >= 0.0 && r.stiffness.is_finite()) {
+                return Err(TogetherError::Rule(format!("bone {name:?}: stiffness must be ≥ 0, got {}", r.stiffness)));
+            }
+            if let Some([lo, hi]) = r.limits {
+                JointLimits::new(lo, hi).map_err(|e| TogetherError::Rule(format!("bone {name:?}: limits: {e}")))?;
+            }
+        }
+        if let Some(&p) = rules.pins.iter().find(|&&p| p >= n) {
+            return Err(TogetherError::Rule(format!("pin: no bone {p}")));
+        }
+        Ok(())
+    }
+
+    fn depth(&self, mut i: usize) -> usize {
+        let mut d = 0;
+        while let Some(p) = self.bones[i].parent {
+            d += 1;
+            i = p;
+        }
+        d
+    }
+
+    /// Whether constraint `k` is a goal of the solve: every two-bone one, and a one-bone one on
+    /// a bone with a length.
+    fn has_tip_goal(&self, k: usize) -> bool {
+        match self.constraints[k].bones {
+            IkBones::One(b) => self.bones[b].length > 0.0,
+            IkBones::Two { .. } => true,
+        }
+    }
+
+    /// The moving bones, ascending (parents first): each active constraint's bones, up as far
+    /// as its rule says, and the pins.
+    fn moving(&self, rules: &Together, active: &[usize]) -> Vec<usize> {
+        let mut on = vec![false; self.bones.len()];
+        for &k in active.iter().filter(|&&k| self.has_tip_goal(k)) {
+            let c = &self.constraints[k];
+            let own = match c.bones {
+                IkBones::One(_) => 1,
+                IkBones::Two { .. } => 2,
+            };
+            let count = rules.limbs.iter().find(|r| r.constraint == k).and_then(|r| r.bones).unwrap_or(own);
+            let mut b = Some(last_bone(c.bones));
+            for _ in 0..count {
+                let Some(i) = b else { break };
+                on[i] = true;
+                b = self.bones[i].parent;
+            }
+        }
+        for &p in &rules.pins {
+            on[p] = true;
+        }
+        (0..on.len()).filter(|&i| on[i]).collect()
+    }
+
+    /// The moving bones frozen at `posed` as an ikarus skeleton.
+    fn freeze(&self, posed: &Posed, moving: &[usize], rules: &Together) -> Result<Frozen, TogetherError> {
+        let index = |b: usize| moving.binary_search(&b).ok();
+        let mut bones = Vec::with_capacity(moving.len());
+        let mut start = Vec::with_capacity(moving.len());
+        for &m in moving {
+            let mut up = self.bones[m].parent;
+            while let Some(p) = up.filter(|&p| index(p).is_none()) {
+                up = self.bones[p].parent;
+            }
+            let [x, y] = posed.origin(m);
+            let theta = posed.rotation(m);
+            let [tx, ty] = posed.tip(m);
+            // A bone of length 0 keeps a length (its children hang on offsets, not on its tip).
+            let length = math::distance(tx - x, ty - y).max(1e-9);
+            let (angle, offset) = match up {
+                Some(p) => {
+                    let [px, py] = posed.origin(p);
+                    let tp = posed.rotation(p);
+                    let (s, c) = math::sin_cos(tp);
+                    let (dx, dy) = (x - px, y - py);
+                    (wrap_angle(theta - tp), [c * dx + s * dy, -s * dx + c * dy])
+                }
+                None => (theta, [x, y]),
+            };
+            let b = &self.bones[m];
+            let mut bone = Bone::new(b.name.clone(), length, angle).with_offset(offset);
+            if let Some(p) = up {
+                bone = bone.with_parent(self.bones[p].name.clone());
+            }
+            if let Some(r) = rules.bones.iter().find(|r| r.bone == m) {
+                if let Some([lo, hi]) = r.limits {
+                    // The limits are on the local rotation; the skeleton's angle differs from it
+                    // by what the bones between (and the parent's shear) add, constant here.
+                    let shift = angle - posed.local(m).rotation;
+                    let l = JointLimits::new(lo + shift, hi + shift).map_err(|e| TogetherError::Rule(e.to_string()))?;
+                    bone = bone.with_limits(l);
+                    bone.angle = angle.clamp(lo + shift, hi + shift);
+                }
+                bone = bone.with_stiffness(r.stiffness);
+            }
+            start.push(bone.angle);
+            bones.push(bone);
+        }
+        let skeleton = Skeleton::new([0.0, 0.0], &bones).map_err(|e| TogetherError::Solve(e.to_string()))?;
+        Ok(Frozen { skeleton, bones: moving.to_vec(), start })
+    }
+
+    fn task(
+        &self,
+        posed: &Posed,
+        frozen: &Frozen,
+        rules: &Together,
+        goals: &[usize],
+    ) -> Result<RigTask, TogetherError> {
+        let index = |b: usize| frozen.bones.binary_search(&b).ok();
+        let mut task = RigTask::new(Vec::new(), Vec::new());
+        for &k in goals {
+            let c = &self.constraints[k];
+            let last = last_bone(c.bones);
+            let Some(i) = index(last) else { continue };
+            let [x, y] = posed.origin(c.target);
+            let goal =
+                Goal::position(x, y).map_err(|e| TogetherError::Solve(format!("constraint {:?}: {e}", c.name)))?;
+            let rule = rules.limbs.iter().find(|r| r.constraint == k);
+            let settings = posed.settings(k);
+            let mut g =
+                RigGoal::new(i, goal).with_weight(rule.map_or(1.0, |r| r.weight)).with_softness(settings.softness);
+            if matches!(c.bones, IkBones::One(_)) || rule.is_some_and(|r| r.secondary) {
+                g = g.with_priority(Priority::Secondary);
+            }
+            if matches!(c.bones, IkBones::Two { .. }) && frozen.skeleton.parent(i).is_some() {
+                g = g.with_bend(bend_of(frozen.start[i], &settings, posed, c.bones, c.rule));
+            }
+            // One goal per bone: a later constraint on the same bone replaces an earlier one.
+            task.goals.retain(|o| o.bone != i);
+            task.goals.push(g);
+        }
+        for &p in &rules.pins {
+            if let Some(i) = index(p) {
+                task.goals.retain(|o| o.bone != i);
+                task.pins.push(Pin::new(i));
+            }
+        }
+        Ok(task)
+    }
+
+    /// Writes the solved directions back as local rotations, parents first, recomputing the
+    /// world transforms as the runtime does. Returns how far the runtime's tips of the moving
+    /// bones ended from the skeleton's (0 when every rotation was rigid).
+    fn thaw(&self, out: &mut Posed, frozen: &Frozen, angles: &[f64]) -> f64 {
+        let n = frozen.bones.len();
+        let mut points = vec![nalgebra::Point2::origin(); n + 1];
+        let mut directions = vec![0.0; n];
+        frozen.skeleton.points_into(angles, &mut points, &mut directions);
+        let (local, world, length, below) = out.parts();
+        let mut bones = Bones { bones: &self.bones, placement: self.placement, local, world, below };
+        for (k, &m) in frozen.bones.iter().enumerate() {
+            let parent = self.bones[m].parent.map(|p| bones.world[p]);
+            let r = rotation_for(&bones.local[m], &self.bones[m], parent.as_ref(), self.placement, directions[k]);
+            bones.local[m].rotation = r;
+            bones.update_below(m);
+        }
+        let mut drift: f64 = 0.0;
+        for (k, &m) in frozen.bones.iter().enumerate() {
+            let w = bones.world[m];
+            let tip = [w.x + w.a * length[m], w.y + w.c * length[m]];
+            let p = points[k + 1];
+            // A bone of length 0 was given a tiny length; its tip is its origin.
+            let d = if length[m] > 0.0 { math::distance(tip[0] - p.x, tip[1] - p.y) } else { 0.0 };
+            drift = drift.max(d);
+        }
+        drift
+    }
+
+    /// The runtime's aim for the active one-bone constraints on bones of length 0.
+    fn aim_zero_length(&self, active: &[usize], out: &mut Posed) {
+        let aims: Vec<(usize, IkSettings)> =
+            active.iter().filter(|&&k| !self.has_tip_goal(k)).map(|&k| (k, out.settings(k))).collect();
+        let (local, world, _, below) = out.parts();
+        let mut bones = Bones { bones: &self.bones, placement: self.placement, local, world, below };
+        for (k, s) in aims {
+            let c = &self.constraints[k];
+            if let IkBones::One(b) = c.bones {
+                let w = bones.world[c.target];
+                let s = if c.rule == IkRule::Spine { s } else { IkSettings { compress: false, stretch: false, ..s } };
+                ik::spine_one(&mut bones, b, [w.x, w.y], &s, c.uniform);
+                bones.update_below(b);
+            }
+        }
+    }
+
+    /// How far constraint `k` misses its target: a two-bone one, its tip's distance from it; a
+    /// one-bone one (an aim: its tip reaches only by chance), the target's distance from the
+    /// bone's ray (0 when it points right at it).
+    fn miss(&self, k: usize, out: &Posed) -> f64 {
+        let c = &self.constraints[k];
+        let [tx, ty] = out.origin(c.target);
+        let b = last_bone(c.bones);
+        match c.bones {
+            IkBones::Two { .. } => {
+                let [x, y] = out.tip(b);
+                math::distance(x - tx, y - ty)
+            }
+            IkBones::One(_) => {
+                let [x, y] = out.origin(b);
+                let (s, co) = math::sin_cos(out.rotation(b));
+                let (dx, dy) = (tx - x, ty - y);
+                let along = co * dx + s * dy;
+                let across = (-s * dx + co * dy).abs();
+                if along >= 0.0 { across } else { math::distance(dx, dy) }
+            }
+        }
+    }
+
+    /// The largest distance of a bone's origin from the skeleton's, a scale for tolerances.
+    fn size(&self, posed: &Posed) -> f64 {
+        (0..self.bones.len()).map(|i| posed.origin(i)).fold(0.0, |m: f64, [x, y]| m.max(x.abs()).max(y.abs()))
+    }
+}
+
+fn last_bone(bones: IkBones) -> usize {
+    match bones {
+        IkBones::One(b) => b,
+        IkBones::Two { child, .. } => child,
+    }
+}
+
+/// The side a two-bone limb bends, as the skeleton's angle of its child: for Spine's rule, the
+/// side its constraint names (counter-clockwise for `bendPositive`, unless the parent's world
+/// frame is mirrored); for DragonBones', the side the runtime's pose has it (`angle`, the child's
+/// angle at the start), counter-clockwise when straight.
+fn bend_of(angle: f64, s: &IkSettings, posed: &Posed, bones: IkBones, rule: IkRule) -> Bend {
+    let positive = match (rule, bones) {
+        (IkRule::Spine, IkBones::Two { parent, .. }) => {
+            let [a, b, c, d] = posed.matrix(parent);
+            s.bend_positive != (a * d - b * c < 0.0)
+        }
+        _ => angle >= -1e-9,
+    };
+    if positive { Bend::Positive } else { Bend::Negative }
+}
+
+/// The local rotation that points `bone`'s world x axis along `direction` under its inherit
+/// mode, from its current local transform: Newton's method on the world direction as a
+/// function of the rotation, its derivative by a central difference (±1 for a normal bone
+/// under a parent without shear; other modes and shears bend it).
+fn rotation_for(
+    local: &super::LocalTransform,
+    bone: &super::CharacterBone,
+    parent: Option<&Affine>,
+    placement: super::Placement,
+    direction: f64,
+) -> f64 {
+    let world_dir = |r: f64| {
+        let t = super::LocalTransform { rotation: r, ..*local };
+        world_transform(&t, bone.inherit, parent, placement).rotation()
+    };
+    let mut r = local.rotation;
+    for _ in 0..8 {
+        let miss = wrap_angle(direction - world_dir(r));
+        if miss.abs() < 1e-14 {
+            break;
+        }
+        let h = 1e-6;
+        let slope = wrap_angle(world_dir(r + h) - world_dir(r - h)) / (2.0 * h);
+        if slope.abs() < 1e-6 {
+            break;
+        }
+        r += miss / slope;
+    }
+    r
+}
+
+#[cfg(test)]
+#[path = "together_tests.rs"]
+mod tests;
