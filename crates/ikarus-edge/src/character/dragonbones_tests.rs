@@ -56,6 +56,22 @@ fn frames_key_the_setup_pose_flipped_at_their_times() {
 }
 
 #[test]
+fn rotations_turn_the_short_way_unless_clockwise_says() {
+    // From 0 to −90 (y down): the short way is −90; `clockwise: 1` turns the positive way, 270;
+    // `clockwise: 2` a full turn more, 630; `clockwise: -1` the negative way, −90 (already so).
+    for (clockwise, turned) in [(0.0, -90.0), (1.0, 270.0), (2.0, 630.0), (-1.0, -90.0)] {
+        let animation = format!(
+            r#"{{"name": "go", "duration": 10, "bone": [{{"name": "arm", "rotateFrame": [
+                {{"duration": 10, "tweenEasing": 0, "rotate": 0, "clockwise": {clockwise}}}, {{"duration": 0, "rotate": -90}}]}}]}}"#
+        );
+        let l = load(&file("", "", &animation), "f").unwrap();
+        // Half-way: half the turn, in y-down degrees (the model's rotation is its negative).
+        let got = -pose(&l.character, 0, 0.5).local(1).rotation.to_degrees() - 30.0;
+        assert!((got - turned / 2.0).abs() < 1e-4, "clockwise {clockwise}: {got}");
+    }
+}
+
+#[test]
 fn tween_easing_eases_as_dragonbones_does_within_one_percent() {
     // 0 → 100 degrees over 10 frames, eased by e: quadratic out (e in (0, 1]), in (e < 0), and
     // in-out (e > 1, the blend of (1 − cos πp)/2 by e − 1); p = 0.3 and 0.5.
