@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::edge::{Loaded, PoseAsk, load_character, pose};
+use crate::edge::{Loaded, PoseAsk, ik_choice, load_character, pose};
 
 /// A character file, read: ``_Character(text, label)`` raises ``ValueError`` with the CLI's
 /// line (``label`` starts it, as ``rig file PATH`` does on the command line).
@@ -58,17 +58,23 @@ impl PyCharacter {
     /// The pose as columns: ``name`` (list), ``x``, ``y``, ``rotation_deg``, ``tip_x``,
     /// ``tip_y`` (float64 arrays, one row per bone) and ``unsupported`` (``{"kind", "name"}``
     /// dicts), the numbers of ``ikarus pose --format json``; a refusal is ``ValueError`` with
-    /// the CLI's line.
-    #[pyo3(signature = (animation=None, time=None, targets=Vec::new()))]
+    /// the CLI's line. ``ik``: ``"runtime"`` (default) or ``"ikarus"`` (every constraint solved
+    /// together, with the IK file's text ``ik_file``); with ``"ikarus"``, ``ik`` in the answer is
+    /// the JSON's ``ik`` object as text.
+    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None, ik_file=None))]
     fn pose<'py>(
         &self,
         py: Python<'py>,
         animation: Option<String>,
         time: Option<f64>,
         targets: Vec<(String, (f64, f64))>,
+        ik: Option<&str>,
+        ik_file: Option<&str>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let ik = ik_choice(ik, ik_file, "ik_file", &self.loaded.character)
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
-        let ask = PoseAsk { animation, time, targets };
+        let ask = PoseAsk { animation, time, targets, ik };
         let report = py
             .detach(|| pose(&self.loaded, &ask))
             .map_err(|m| PyValueError::new_err(format!("{}: {m}", self.label)))?;
@@ -91,6 +97,13 @@ impl PyCharacter {
             })
             .collect::<PyResult<_>>()?;
         out.set_item("unsupported", list)?;
+        let ik = report
+            .ik
+            .as_ref()
+            .map(serde_json::to_string)
+            .transpose()
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        out.set_item("ik", ik)?;
         Ok(out)
     }
 }

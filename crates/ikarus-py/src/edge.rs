@@ -4,4 +4,4 @@
 
 pub(crate) use ikarus_edge::character::{Loaded, load as load_character};
 pub(crate) use ikarus_edge::edge::*;
-pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, pose};
+pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, ik_choice, pose};

@@ -151,3 +151,16 @@ def test_refusals_are_the_clis_line() -> None:
         boy.solve({"front-foot": (0.0, 0.0)})
     with pytest.raises(ValueError, match=r"a Spine character \(67 bones, 7 IK constraints\), which Rig does not take"):
         ikarus.Rig.from_toml(ROOT / path)
+
+
+@pytest.mark.parametrize("name", sorted(FILES))
+def test_ik_ikarus_is_the_clis_bit_for_bit(name: str) -> None:
+    bone, (x, y) = TARGETS[name]
+    pose = rig(name).pose(animation="walk", time=0.4, targets={bone: (x, y)}, ik="ikarus")
+    want = cli_pose(name, "--animation", "walk", "--time", "0.4", "--target", f"{bone}={x},{y}", "--ik", "ikarus")
+    assert pose.x.tolist() == [b["x"] for b in want["bones"]]
+    assert pose.rotation_deg.tolist() == [b["rotation_deg"] for b in want["bones"]]
+    assert pose.ik == want["ik"] and pose.ik["solver"] == "ikarus"
+    assert rig(name).pose(ik="runtime").ik is None
+    with pytest.raises(ValueError, match=r'^ik = "ikarous": expected "runtime" or "ikarus"$'):
+        rig(name).pose(ik="ikarous")

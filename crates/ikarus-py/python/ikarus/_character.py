@@ -5,6 +5,7 @@ refuse a character in one line."""
 
 from __future__ import annotations
 
+import json
 import os
 import typing
 
@@ -60,11 +61,16 @@ class _CharacterRig:
         animation: Optional[str] = None,
         time: Optional[float] = None,
         targets: Optional[Mapping[str, Tuple[float, float]]] = None,
+        *,
+        ik: str = "runtime",
+        ik_file: Optional[str] = None,
     ) -> Pose:
         """A character posed as its runtime does (``ikarus pose``, ``POST /api/pose``, by the
         same code): the setup pose, then ``animation`` at ``time`` seconds, then each bone of
         ``targets`` (``{"bone": (x, y)}``, in order) with its world origin put at (x, y), then
-        the IK constraints in their order. Returns a :class:`Pose` (NumPy columns, the numbers
+        the IK constraints in their order — by the runtime's rules (``ik="runtime"``) or all
+        together by ikarus's rig solver (``ik="ikarus"``, ``ikarus pose --ik ikarus``, with an
+        IK file's text ``ik_file``; the answer's ``ik`` then says what the solve did). Returns a :class:`Pose` (NumPy columns, the numbers
         of ``ikarus pose --format json`` bit for bit); a bad name or value raises
         ``ValueError`` with the CLI's line."""
         if self._character is None:
@@ -76,7 +82,9 @@ class _CharacterRig:
         for bone, point in (targets or {}).items():
             x, y = point
             pairs.append((bone, (float(x), float(y))))
-        answer = self._character.pose(animation, None if time is None else float(time), pairs)
+        answer = self._character.pose(animation, None if time is None else float(time), pairs, ik, ik_file)
+        if answer["ik"] is not None:
+            answer["ik"] = json.loads(answer["ik"])
         return Pose(**answer)
 
     def _rig_file(self) -> Any:

@@ -186,7 +186,8 @@ class Pose(_ByKey):
     row per bone in the file's order: ``name`` (the bones' names), ``x``, ``y`` (world origin),
     ``rotation_deg`` (the world direction of the bone's x axis), ``tip_x``, ``tip_y`` (origin
     plus length along that axis), float64 columns [n] in the file's units, y up; and
-    ``unsupported`` (the constraints left inactive, ``{"kind", "name"}``)."""
+    ``unsupported`` (the constraints left inactive, ``{"kind", "name"}``); with
+    ``ik="ikarus"``, ``ik`` (the JSON's: ``solver``, ``status``, ``rounds``, ``constraints``)."""
 
     name: List[str]
     x: npt.NDArray[np.float64]
@@ -195,6 +196,7 @@ class Pose(_ByKey):
     tip_x: npt.NDArray[np.float64]
     tip_y: npt.NDArray[np.float64]
     unsupported: List[Dict[str, str]]
+    ik: Optional[Dict[str, Any]] = None
 
     def __len__(self) -> int:
         return len(self.name)
