@@ -117,6 +117,15 @@ export const workspace = (request) => json("workspace", request);
  */
 export const reach = (request) => json("reach", request);
 
+/**
+ * A character posed as its runtime does: `{rig: "<the Spine or DragonBones file's text>",
+ * animation?, time?, targets?: [{bone, x, y}]}` → `{bones: [{name, x, y, rotation_deg, tip}],
+ * unsupported}`, the JSON of `ikarus pose --format json` (POST /api/pose).
+ * @param {object} request
+ * @returns {object}
+ */
+export const pose = (request) => json("pose", request);
+
 /** The methods, limit modes, eases, defaults and palette the page's lists use (GET /api/meta). */
 export const meta = () => json("meta");
 

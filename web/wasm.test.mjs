@@ -200,3 +200,36 @@ test("the JS API's functions return the API's objects; the CLI gives the same an
   assert.match(ikarus.armToml({ base: [0, 0], ...limited }), /\[\[links\]\]/);
   assert.equal(ikarus.version(), JSON.parse((await native("health")).text).version);
 });
+
+test("a character posed by the module is the bytes of the server and of ikarus pose", async () => {
+  // Spineboy (Spine) and the mecha (DragonBones): the setup pose, `walk` at 0.4 s, a target, both.
+  const characters = [
+    ["spine-spineboy-pro.json", "walk", ["front-leg-target", 120, 40]],
+    ["dragonbones-mecha_1406_ske.json", "walk", ["foot_l", 30, -20]],
+  ];
+  for (const [file, animation, [bone, x, y]] of characters) {
+    const path = join("examples", "characters", file);
+    const rig = readFileSync(join(root, path), "utf8");
+    const cases = [[{}, []]];
+    if (animation) cases.push([{ animation, time: 0.4 }, ["--animation", animation, "--time", "0.4"]]);
+    cases.push([{ targets: [{ bone, x, y }] }, ["--target", `${bone}=${x},${y}`]]);
+    if (animation) cases.push([{ animation, time: 0.4, targets: [{ bone, x, y }] }, ["--animation", animation, "--time", "0.4", "--target", `${bone}=${x},${y}`]]);
+    for (const [fields, args] of cases) {
+      const body = JSON.stringify({ rig, ...fields });
+      const [n, w] = [await native("pose", body), wasm("pose", body)];
+      assert.equal(n.status, 200, `${file} ${JSON.stringify(fields)}: ${n.text}`);
+      assert.equal(w.status, 200, `${file} ${JSON.stringify(fields)}: ${w.text}`);
+      assert.equal(w.text, n.text, `${file} ${JSON.stringify(fields)}: wasm vs server ${firstDifference(w.text, n.text)}`);
+      const cli = execFileSync(binary, ["pose", "--rig", path, "--format", "json", ...args], { cwd: root, encoding: "utf8", stdio: ["ignore", "pipe", "ignore"] });
+      assert.equal(w.text, cli.trimEnd(), `${file} ${JSON.stringify(fields)}: wasm vs CLI ${firstDifference(w.text, cli)}`);
+      assert.deepEqual(ikarus.pose({ rig, ...fields }), JSON.parse(cli));
+    }
+  }
+  // A refusal: the server's status and line.
+  const spineboy = readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8");
+  for (const fields of [{ animation: "wlk" }, { targets: [{ bone: "toe", x: 0, y: 0 }] }, { time: 1 }]) {
+    const body = JSON.stringify({ rig: spineboy, ...fields });
+    assert.deepEqual(wasm("pose", body), await native("pose", body), JSON.stringify(fields));
+  }
+  assert.equal(wasm("pose", JSON.stringify({ rig: puppet })).status, 422);
+});

@@ -1,4 +1,7 @@
 //! The shared facade of the edges, in one place: arm files, settings, requests, messages and the
-//! API's JSON answers. Every other module names it as `crate::edge`.
+//! API's JSON answers, and the character files' reader and pose job (`ikarus pose`'s). Every
+//! other module names it as `crate::edge`.
 
+pub(crate) use ikarus_edge::character::{Loaded, load as load_character};
 pub(crate) use ikarus_edge::edge::*;
+pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, ik_choice, pose};

@@ -9,7 +9,8 @@
 //! (`python/ikarus/`), which turns it into typed objects with NumPy columns. Angles are degrees
 //! at this edge, as in the CLI.
 //!
-//! By concern: `chain` (the `Chain` class, its solves), `arm` (what a chain holds, shared with
+//! By concern: `chain` (the `Chain` class, its solves), `character` (a character file read
+//! once and posed by the shared pose job), `arm` (what a chain holds, shared with
 //! its outcomes), `outcome` (`Outcome` of a chain or a rig, `Effector`), `options` (keyword
 //! options as the API's JSON, this edge's caps), `goals` (goals and goal arrays), `batch`
 //! (`solve_batch`'s pools and status codes), `errors` (refusals as Python exceptions), `api`
@@ -20,6 +21,7 @@ mod api;
 mod arm;
 mod batch;
 mod chain;
+mod character;
 mod easing;
 mod edge;
 mod errors;
@@ -32,6 +34,7 @@ use pyo3::prelude::*;
 use crate::api::_call;
 use crate::batch::_status_names;
 use crate::chain::PyChain;
+use crate::character::PyCharacter;
 use crate::easing::ease;
 use crate::outcome::{_solve_rig, PyEffector, PyOutcome};
 
@@ -40,6 +43,7 @@ fn _ikarus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
     m.add_class::<PyOutcome>()?;
     m.add_class::<PyEffector>()?;
+    m.add_class::<PyCharacter>()?;
     m.add_function(wrap_pyfunction!(ease, m)?)?;
     m.add_function(wrap_pyfunction!(_status_names, m)?)?;
     m.add_function(wrap_pyfunction!(_call, m)?)?;

@@ -11,6 +11,10 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+// The shared fixtures (the character's bones, constraint and clip), without the rest of `common`.
+#[path = "common/fixtures.rs"]
+mod fixtures;
+
 use ikarus::{Chain, Goal, Link, Method, Outcome, SolveOptions, Solver, Status};
 
 struct Counting;
@@ -330,25 +334,12 @@ fn a_rig_follower_step_allocates_nothing() {
 /// one-bone constraints) allocates nothing once its `Posed` has grown to the character.
 #[test]
 fn posing_a_character_allocates_nothing() {
+    use fixtures::{character_bone as bone, rotate_clip, spine_ik};
     use ikarus::character::{
-        BoneKey, BoneProperty, BoneTimeline, Character, CharacterBone, CharacterParts, Clip, IkBones, IkConstraint,
-        IkKey, IkRule, IkSettings, IkTimeline, Inherit, Interpolation, LocalTransform, PoseRequest, Posed,
+        Character, CharacterParts, IkBones, IkKey, IkSettings, IkTimeline, Interpolation, PoseRequest, Posed,
     };
-    let bone = |name: &str, parent: Option<usize>, x: f64, rotation: f64| CharacterBone {
-        name: name.into(),
-        parent,
-        length: 10.0,
-        setup: LocalTransform { x, rotation, ..LocalTransform::default() },
-        inherit: Inherit::Normal,
-    };
-    let ik = |bones: IkBones, target: usize, order: u32| IkConstraint {
-        name: format!("ik{order}"),
-        order,
-        bones,
-        target,
-        setup: IkSettings { softness: 1.0, ..IkSettings::default() },
-        uniform: false,
-        rule: IkRule::Spine,
+    let ik = |bones: IkBones, target: usize, order: u32| {
+        spine_ik(&format!("ik{order}"), order, bones, target, IkSettings { softness: 1.0, ..IkSettings::default() })
     };
     let bezier = Interpolation::Bezier { c1: [0.2, 0.1], c2: [0.6, 0.9] };
     let c = Character::new(CharacterParts {
@@ -360,18 +351,11 @@ fn posing_a_character_allocates_nothing() {
             bone("target", Some(0), 5.0, 0.0),
         ],
         constraints: vec![ik(IkBones::Two { parent: 1, child: 2 }, 4, 1), ik(IkBones::One(3), 0, 0)],
-        clips: vec![Clip {
-            name: "walk".into(),
-            duration: 1.0,
-            bones: vec![BoneTimeline {
-                bone: 1,
-                property: BoneProperty::Rotate,
-                keys: vec![
-                    BoneKey { time: 0.0, values: [0.0; 2], curves: [bezier; 2] },
-                    BoneKey { time: 1.0, values: [1.0; 2], curves: [bezier; 2] },
-                ],
-            }],
-            constraints: vec![IkTimeline {
+        clips: vec![rotate_clip(
+            1,
+            [(0.0, 0.0), (1.0, 1.0)],
+            bezier,
+            vec![IkTimeline {
                 constraint: 0,
                 keys: vec![
                     IkKey { time: 0.0, settings: IkSettings::default(), curves: [bezier; 2] },
@@ -382,7 +366,7 @@ fn posing_a_character_allocates_nothing() {
                     },
                 ],
             }],
-        }],
+        )],
         ..CharacterParts::default()
     })
     .unwrap();

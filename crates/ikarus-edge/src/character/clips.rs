@@ -259,18 +259,9 @@ impl Series {
         next: Option<(f64, [f64; 2])>,
     ) -> Result<[Interpolation; 2], String> {
         // Spine 3.8's curve, normalised to the segment from this key to the next.
-        let normalised = |[cx1, cy1, cx2, cy2]: [f64; 4]| match next {
+        let normalised = |p: [f64; 4]| match next {
             None => [Interpolation::Linear; 2],
-            Some((t1, there)) => {
-                let dt = t1 - k.time;
-                [0, 1].map(|c| {
-                    let dv = there[c] - here[c];
-                    Interpolation::Bezier {
-                        c1: [k.time + cx1 * dt, here[c] + cy1 * dv],
-                        c2: [k.time + cx2 * dt, here[c] + cy2 * dv],
-                    }
-                })
-            }
+            Some((t1, there)) => [0, 1].map(|c| unit_bezier([k.time, here[c]], [t1, there[c]], p)),
         };
         Ok(match &k.curve {
             None => [Interpolation::Linear; 2],
@@ -296,4 +287,12 @@ impl Series {
             }
         })
     }
+}
+
+/// The Bezier from `from` to `to` (each `[time, value]`) whose control points are
+/// `[cx1, cy1, cx2, cy2]` in the segment scaled to the unit square (Spine 3.8's and DragonBones'
+/// form), as the model's absolute control points.
+pub(super) fn unit_bezier(from: [f64; 2], to: [f64; 2], [cx1, cy1, cx2, cy2]: [f64; 4]) -> Interpolation {
+    let (dt, dv) = (to[0] - from[0], to[1] - from[1]);
+    Interpolation::Bezier { c1: [from[0] + cx1 * dt, from[1] + cy1 * dv], c2: [from[0] + cx2 * dt, from[1] + cy2 * dv] }
 }

@@ -13,34 +13,39 @@
 //! kind `inherit`. IK `{name, bone, target, chain, bendPositive, weight}`: `bone` is the END
 //! bone, `chain` 0 one bone, 1 it and its parent; `bendPositive` is true by default, a boolean
 //! or the string `"true"`/`"false"`, kept as the file has it (in DragonBones' y-down frame); the
-//! constraints apply in the order listed. Animations are not read: each is listed as
-//! unsupported, kind `animation`.
+//! constraints apply in the order listed. Animations are read by [`super::dragonbones_clips`].
 
 use ikarus::character::{
     CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
 };
 use serde::Deserialize;
-use serde::de::{self, Deserializer};
 use serde_json::Value;
 
+use super::dragonbones_clips::{self, AnimationJson, Context, Notes};
 use super::{Format, Loaded};
 use crate::rig::BoneCap;
 
 #[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
 struct DragonBonesFile {
     #[serde(default)]
     version: Option<String>,
+    #[serde(default)]
+    frame_rate: Option<f64>,
     armature: Vec<Armature>,
 }
 
 #[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
 struct Armature {
+    #[serde(default)]
+    frame_rate: Option<f64>,
     #[serde(default)]
     bone: Vec<BoneJson>,
     #[serde(default)]
     ik: Vec<IkJson>,
     #[serde(default)]
-    animation: Vec<super::Named>,
+    animation: Vec<AnimationJson>,
 }
 
 #[derive(Deserialize)]
@@ -94,20 +99,10 @@ struct IkJson {
     target: String,
     #[serde(default)]
     chain: u32,
-    #[serde(default = "super::yes", deserialize_with = "flag")]
+    #[serde(default = "super::yes", deserialize_with = "super::flag")]
     bend_positive: bool,
     #[serde(default = "super::one")]
     weight: f64,
-}
-
-/// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
-fn flag<'de, D: Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
-    match Value::deserialize(d)? {
-        Value::Bool(b) => Ok(b),
-        Value::String(t) if t == "true" => Ok(true),
-        Value::String(t) if t == "false" => Ok(false),
-        other => Err(de::Error::custom(format_args!("expected true or false, got {other}"))),
-    }
 }
 
 /// Reads a DragonBones file's first armature (`value` is its text parsed, for the cap).
@@ -174,12 +169,35 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             rule: IkRule::DragonBones,
         });
     }
-    unsupported
-        .extend(armature.animation.iter().map(|a| Unsupported { kind: "animation".to_owned(), name: a.name.clone() }));
+    let frame_rate = armature.frame_rate.or(file.frame_rate).unwrap_or(24.0);
+    if !(frame_rate > 0.0 && frame_rate.is_finite()) {
+        return Err(format!("armature[0].frameRate = {frame_rate}: must be a number of frames per second above 0"));
+    }
+    let names: Vec<&str> = armature.ik.iter().map(|k| k.name.as_str()).collect();
+    let cx = Context { bones: &index, constraints: &names, frame_rate };
+    let mut notes = Notes::default();
+    let clips = armature
+        .animation
+        .iter()
+        .enumerate()
+        .map(|(i, a)| dragonbones_clips::clip(i, a, &cx, &mut notes))
+        .collect::<Result<Vec<_>, _>>()?;
+    if notes.approximated > 0 {
+        warnings.push(format!(
+            "animations: {} frames ease by a tweenEasing other than 0 or by a curve, read as Bezier curves sampled as Spine's runtime samples them (within about 1 % of each change of DragonBones' own easing)",
+            notes.approximated
+        ));
+    }
+    if notes.instant > 0 {
+        warnings.push(format!(
+            "animations: {} frames of duration 0 before a timeline's last are instant changes, read as the next frame's value",
+            notes.instant
+        ));
+    }
     if !unsupported.is_empty() {
         warnings.push(super::spine::inactive(&unsupported));
     }
-    let parts = CharacterParts { bones, constraints, unsupported, ..CharacterParts::default() };
+    let parts = CharacterParts { bones, constraints, clips, unsupported, ..CharacterParts::default() };
     Ok(Loaded { character: super::character(parts)?, format: Format::DragonBones, version, warnings })
 }
 

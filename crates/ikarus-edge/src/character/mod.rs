@@ -9,12 +9,14 @@
 //! animations.
 //!
 //! What is read: bones (local transforms, inherit modes), IK constraints with all their
-//! settings, and (Spine) the animations' bone and IK timelines. What is not: skins, slots,
-//! attachments, images, events, draw order, deform; transform, path and physics constraints
-//! are listed in [`Character::unsupported`] and left inactive, as are DragonBones animations.
+//! settings, and the animations' bone and IK timelines (Spine's by [`clips`], DragonBones' by
+//! [`dragonbones_clips`]). What is not: skins, slots, attachments, images, events, draw order,
+//! deform; transform, path and physics constraints are listed in [`Character::unsupported`]
+//! and left inactive.
 
 mod clips;
 mod dragonbones;
+mod dragonbones_clips;
 pub mod export;
 pub mod ik_file;
 pub mod motion;
@@ -138,6 +140,16 @@ pub fn detect(value: &Value) -> Option<Format> {
 #[derive(serde::Deserialize)]
 struct Named {
     name: String,
+}
+
+/// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
+fn flag<'de, D: serde::Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
+    match <Value as serde::Deserialize>::deserialize(d)? {
+        Value::Bool(b) => Ok(b),
+        Value::String(t) if t == "true" => Ok(true),
+        Value::String(t) if t == "false" => Ok(false),
+        other => Err(serde::de::Error::custom(format_args!("expected true or false, got {other}"))),
+    }
 }
 
 /// The default of a scale, a mix, a weight.

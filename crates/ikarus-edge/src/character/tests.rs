@@ -42,7 +42,7 @@ fn every_shipped_character_loads_with_notes_counts() {
         (SPINEBOY, Format::Spine, 67, 7, 11),
         (RAPTOR, Format::Spine, 76, 9, 5),
         (STRETCHYMAN, Format::Spine, 55, 4, 2),
-        (MECHA, Format::DragonBones, 17, 4, 0),
+        (MECHA, Format::DragonBones, 17, 4, 8),
     ] {
         let l = load_ok(text);
         let c = &l.character;
@@ -57,7 +57,8 @@ fn every_shipped_character_loads_with_notes_counts() {
     assert!(load_ok(RAPTOR).character.unsupported().is_empty() && load_ok(RAPTOR).warnings.is_empty());
     let mecha = load_ok(MECHA);
     assert_eq!(mecha.version, "5.5");
-    assert_eq!(kinds(&mecha.character).iter().filter(|(k, _)| k == "animation").count(), 8);
+    // Its 8 animations are read (as clips), not listed as unsupported; all its frames ease linearly.
+    assert!(mecha.character.unsupported().is_empty() && mecha.warnings.is_empty(), "{:?}", mecha.warnings);
 }
 
 #[test]

@@ -33,7 +33,8 @@ import numpy as _np
 
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
-from ._results import Motion, MotionFrames, Track, TrackSamples
+from ._character import _CharacterRig
+from ._results import Motion, MotionFrames, Pose, Track, TrackSamples
 from ._types import (
     LimitMode,
     Method,
@@ -66,6 +67,7 @@ __all__ = [
     "MotionFrames",
     "Track",
     "TrackSamples",
+    "Pose",
     "SolveOptions",
     "TrackSolveOptions",
     "MotionOptions",
@@ -365,7 +367,7 @@ def _rig_goals(goals: Mapping[str, Union[Goal, RigGoal]], field: str = "goals") 
     return listed
 
 
-class Rig(_Body):
+class Rig(_CharacterRig, _Body):
     """A skeleton (a *rig*): a tree of named bones, solved for goals on any bones' tips with
     others pinned, through the API (``POST /api/solve`` with ``rig``), as
     ``ikarus solve --rig FILE``.
@@ -377,7 +379,12 @@ class Rig(_Body):
     :class:`Outcome`, ``animate`` a :class:`Motion`, ``track`` a :class:`Track`, ``render``),
     goals by bone name; not ``workspace``, ``reach`` and ``solve_batch``, which the backend
     computes for chains alone (the exact region is a chain's; ``POST /api/solve/batch`` takes
-    an arm)."""
+    an arm).
+
+    A character (Spine or DragonBones JSON) is a rig too: ``Rig.from_json(text)`` reads one
+    from its text, ``Rig.from_file(path)`` from a file (a rig file or a character, told by
+    the content, as ``--rig FILE``); its :meth:`pose` poses it as its runtime does
+    (``ikarus pose``). Its other methods take rig files only, and say so."""
 
     def __init__(self, rig: dict) -> None:
         self.rig = _plain(rig, "rig")
@@ -405,6 +412,18 @@ class Rig(_Body):
         return cls(answer["rig"])
 
     @classmethod
+    def from_file(cls, path: "os.PathLike[str] | str") -> "Rig":
+        """Reads a rig file (TOML, as :meth:`from_toml`) or a character file (JSON, as
+        :meth:`from_json`), told by the content as ``--rig FILE`` tells it; messages start
+        ``rig file PATH:`` as the CLI's."""
+        path = _os.fspath(path)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        if text.lstrip("\ufeff").lstrip().startswith("{"):
+            return cls.from_json(text, label=f"rig file {path}")
+        return cls.from_toml(path)
+
+    @classmethod
     def shipped(cls, name: str) -> "Rig":
         """A shipped rig (``GET /api/rigs``): ``"puppet"`` or ``"hand"``."""
         rigs = call("rigs")["rigs"]
@@ -420,16 +439,18 @@ class Rig(_Body):
     @property
     def bones(self) -> list:
         """The bones' names, in the file's order."""
+        if self._character is not None:
+            return self._character.bones
         return [b["name"] for b in self.rig["bones"]]
 
     def __len__(self) -> int:
-        return len(self.rig["bones"])
+        return len(self.bones)
 
     def __repr__(self) -> str:
         return f"<ikarus.Rig {self.name!r}: {len(self)} bones>"
 
     def _body(self) -> dict:
-        return {"rig": self.rig}
+        return {"rig": self._rig_file()}
 
     def _columns(self) -> Tuple[Optional[Sequence[str]], Optional[Sequence[float]]]:
         return self.bones, self.rig.get("base")
@@ -453,7 +474,7 @@ class Rig(_Body):
         goals in order, then the pins); ``to_dict()`` is the object of
         ``ikarus solve --rig --format json`` (but ``solve_us``)."""
         request = {
-            "rig": self.rig,
+            "rig": self._rig_file(),
             "goals": _rig_goals(goals),
             "pins": list(pins) or None,
             "mix": mix,
@@ -521,7 +542,9 @@ class Rig(_Body):
         ``goals`` (as the API's list), ``pins``, ``limits``, ``labels``."""
         return self._render({"figure": "rig", "format": format, "width": width, "height": height, **fields})
 
-    def _repr_svg_(self) -> str:
+    def _repr_svg_(self) -> Optional[str]:
+        if self._character is not None:
+            return None  # a character is not drawn by render; Jupyter shows its repr
         return self.render("svg", width=480, height=480).decode()
 
 

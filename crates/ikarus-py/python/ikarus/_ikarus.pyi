@@ -130,6 +130,27 @@ class Chain:
         ``status`` <U15 [N], ``error`` [N], ``iterations`` uint32 [N]."""
     def _repr_svg_(self) -> str: ...
 
+class _Character:
+    def __init__(self, text: str, label: str) -> None: ...
+    @property
+    def format(self) -> str: ...
+    @property
+    def version(self) -> str: ...
+    @property
+    def bones(self) -> list[str]: ...
+    @property
+    def animations(self) -> list[str]: ...
+    @property
+    def warnings(self) -> list[str]: ...
+    def pose(
+        self,
+        animation: Optional[str] = None,
+        time: Optional[float] = None,
+        targets: Sequence[Tuple[str, Tuple[float, float]]] = ...,
+        ik: Optional[str] = None,
+        ik_file: Optional[str] = None,
+    ) -> dict[str, Any]: ...
+
 def ease(kind: EaseName, t: Union[float, npt.ArrayLike], k1: Optional[float] = None, k2: Optional[float] = None, velocity: bool = False) -> Any:
     """An ease curve's position s(t) (or velocity) at t in [0, 1]; the shape of ``t``."""
 

@@ -178,3 +178,37 @@ class Track(_ByKey):
             samples=samples,
             summary=answer["summary"],
         )
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Pose(_ByKey):
+    """A character posed as its runtime does (``ikarus pose --format json``, bit for bit), one
+    row per bone in the file's order: ``name`` (the bones' names), ``x``, ``y`` (world origin),
+    ``rotation_deg`` (the world direction of the bone's x axis), ``tip_x``, ``tip_y`` (origin
+    plus length along that axis), float64 columns [n] in the file's units, y up; and
+    ``unsupported`` (the constraints left inactive, ``{"kind", "name"}``); with
+    ``ik="ikarus"``, ``ik`` (the JSON's: ``solver``, ``status``, ``rounds``, ``constraints``)."""
+
+    name: List[str]
+    x: npt.NDArray[np.float64]
+    y: npt.NDArray[np.float64]
+    rotation_deg: npt.NDArray[np.float64]
+    tip_x: npt.NDArray[np.float64]
+    tip_y: npt.NDArray[np.float64]
+    unsupported: List[Dict[str, str]]
+    ik: Optional[Dict[str, Any]] = None
+
+    def __len__(self) -> int:
+        return len(self.name)
+
+    def bone(self, name: str) -> Dict[str, Any]:
+        """One bone's row as ``ikarus pose --format json`` has it: ``{"name", "x", "y",
+        "rotation_deg", "tip": [x, y]}``."""
+        i = self.name.index(name)
+        return {
+            "name": name,
+            "x": float(self.x[i]),
+            "y": float(self.y[i]),
+            "rotation_deg": float(self.rotation_deg[i]),
+            "tip": [float(self.tip_x[i]), float(self.tip_y[i])],
+        }

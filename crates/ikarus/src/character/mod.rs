@@ -565,28 +565,13 @@ fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), Char
 mod tests {
     use super::*;
 
-    fn bone(name: &str, parent: Option<usize>) -> CharacterBone {
-        CharacterBone {
-            name: name.into(),
-            parent,
-            length: 10.0,
-            setup: LocalTransform::default(),
-            inherit: Inherit::Normal,
-        }
-    }
+    use crate::fixtures::{character_bone, rotate_clip, spine_ik};
 
     fn leg() -> CharacterParts {
+        let bone = |name: &str, parent: Option<usize>| character_bone(name, parent, 0.0, 0.0);
         CharacterParts {
             bones: vec![bone("root", None), bone("thigh", Some(0)), bone("shin", Some(1)), bone("target", Some(0))],
-            constraints: vec![IkConstraint {
-                name: "leg".into(),
-                order: 0,
-                bones: IkBones::Two { parent: 1, child: 2 },
-                target: 3,
-                setup: IkSettings::default(),
-                uniform: false,
-                rule: IkRule::Spine,
-            }],
+            constraints: vec![spine_ik("leg", 0, IkBones::Two { parent: 1, child: 2 }, 3, IkSettings::default())],
             ..CharacterParts::default()
         }
     }
@@ -617,19 +602,7 @@ mod tests {
         p.constraints[0].setup.mix = 1.5;
         assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
         let mut p = leg();
-        p.clips.push(Clip {
-            name: "walk".into(),
-            duration: 1.0,
-            bones: vec![BoneTimeline {
-                bone: 1,
-                property: BoneProperty::Rotate,
-                keys: vec![
-                    BoneKey { time: 0.5, values: [0.0; 2], curves: [Interpolation::Linear; 2] },
-                    BoneKey { time: 0.5, values: [1.0; 2], curves: [Interpolation::Linear; 2] },
-                ],
-            }],
-            constraints: vec![],
-        });
+        p.clips.push(rotate_clip(1, [(0.5, 0.0), (0.5, 1.0)], Interpolation::Linear, vec![]));
         assert_eq!(Character::new(p).unwrap_err(), CharacterError::KeyTime { clip: 0, time: 0.5 });
         assert_eq!(Character::new(CharacterParts::default()).unwrap_err(), CharacterError::NoBones);
     }

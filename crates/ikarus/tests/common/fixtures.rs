@@ -1,16 +1,22 @@
 //! Fixtures shared by the library's unit tests, its integration tests and its benchmarks: the
-//! seed arm, the seven-link arm, a forked rig, and random chains, poses and goals.
+//! seed arm, the seven-link arm, a forked rig, random chains, poses and goals, and a character's
+//! bones, IK constraint and clip.
 //!
 //! One file, included three ways: as `crate::fixtures` in the unit tests (`lib.rs` includes it
 //! with `#[path]` under `cfg(test)`, and `extern crate self as ikarus` makes the `ikarus::`
-//! paths below resolve inside the crate), as `common::fixtures` in the integration tests, and
-//! through `tests/common/mod.rs` in the benchmarks. Plain inclusion rather than a `pub` module
+//! paths below resolve inside the crate), as `common::fixtures` in the integration tests (as
+//! `fixtures` alone in `alloc.rs`, which needs nothing else of `common`), and through
+//! `tests/common/mod.rs` in the benchmarks. Plain inclusion rather than a `pub` module
 //! behind a feature: nothing test-only enters the library's API or its feature set, and every
 //! user sees the same, public-API-only code.
 #![allow(dead_code)]
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use ikarus::character::{
+    BoneKey, BoneProperty, BoneTimeline, CharacterBone, Clip, IkBones, IkConstraint, IkRule, IkSettings, IkTimeline,
+    Inherit, Interpolation, LocalTransform,
+};
 use ikarus::kinematics::end_effector;
 use ikarus::rng::SplitMix64;
 use ikarus::{Bone, Chain, Goal, JointLimits, Link, Skeleton};
@@ -197,4 +203,36 @@ pub fn random_rig_pose(skeleton: &Skeleton, rng: &mut SplitMix64) -> Vec<f64> {
             None => rng.range(a - PI, a + PI),
         })
         .collect()
+}
+
+/// A character's bone of length 10 inheriting normally, its origin at (`x`, 0) in its parent's
+/// frame, turned by `rotation` radians.
+pub fn character_bone(name: &str, parent: Option<usize>, x: f64, rotation: f64) -> CharacterBone {
+    CharacterBone {
+        name: name.into(),
+        parent,
+        length: 10.0,
+        setup: LocalTransform { x, rotation, ..LocalTransform::default() },
+        inherit: Inherit::Normal,
+    }
+}
+
+/// An IK constraint posed by Spine's rules, not uniform: `bones` toward the origin of `target`.
+pub fn spine_ik(name: &str, order: u32, bones: IkBones, target: usize, setup: IkSettings) -> IkConstraint {
+    IkConstraint { name: name.into(), order, bones, target, setup, uniform: false, rule: IkRule::Spine }
+}
+
+/// A clip `walk` of 1 s: one rotate timeline on `bone` with a key at each `(time, value)` (both
+/// channels `value`, both curves `curve`), and the IK timelines `constraints`.
+pub fn rotate_clip(bone: usize, keys: [(f64, f64); 2], curve: Interpolation, constraints: Vec<IkTimeline>) -> Clip {
+    Clip {
+        name: "walk".into(),
+        duration: 1.0,
+        bones: vec![BoneTimeline {
+            bone,
+            property: BoneProperty::Rotate,
+            keys: keys.iter().map(|&(time, value)| BoneKey { time, values: [value; 2], curves: [curve; 2] }).collect(),
+        }],
+        constraints,
+    }
 }
