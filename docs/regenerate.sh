@@ -19,6 +19,13 @@ $ikarus workspace --limits --width 560 --height 560 --out docs/workspace-limits.
 # The puppet reaching with both hands while its feet stay planted (limits on, wedges drawn).
 $ikarus solve --rig examples/rigs/puppet.toml --goal right_hand=0.6451,1.0024 --goal left_hand=0.8118,0.5652 \
   --pin left_foot --pin right_foot --limits --width 560 --height 560 --out docs/puppet.png > /dev/null
+# Spineboy walking (0.4 s into walk), its front leg's target moved, posed by ikarus's solver.
+$ikarus pose --rig examples/characters/spine-spineboy-pro.json --animation walk --time 0.4 \
+  --target front-leg-target=60,60 --ik ikarus --width 420 --height 520 --out docs/spineboy-ikarus.png 2> /dev/null
+# The raptor's front leg as one four-bone limb reaching a foot target the runtime's rules leave short.
+$ikarus pose --rig examples/characters/spine-raptor-pro.json --animation walk --time 0.4 \
+  --target front-foot-target=460,80 --ik ikarus --ik-file examples/characters/raptor-legs.ik.toml \
+  --width 560 --height 460 --out docs/raptor-ikarus.png 2> /dev/null
 # Parent's ease with the errata's corrected formula: position and velocity against time.
 $ikarus render ease --k1 0.3 --k2 0.75 --width 560 --height 420 --out docs/ease.png
 # The playground, as the browser test leaves it: FABRIK on a clicked goal, the free area.

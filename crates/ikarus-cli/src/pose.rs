@@ -168,10 +168,18 @@ fn format_of(args: &PoseArgs) -> Result<PoseFormat, CliError> {
 fn render(report: &PoseReport, format: PoseFormat, args: &PoseArgs) -> Result<Vec<u8>, CliError> {
     let caption = || {
         let file = args.rig.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
-        match &args.animation {
+        let mut caption = match &args.animation {
             Some(a) => format!("{file} · {a} at {} s", args.time.unwrap_or(0.0)),
             None => format!("{file} · setup pose"),
+        };
+        if !args.target.is_empty() {
+            let n = args.target.len();
+            caption.push_str(&format!(" · {n} target{}", if n == 1 { "" } else { "s" }));
         }
+        if args.ik.ik == IkRules::Ikarus {
+            caption.push_str(" · ikarus solver");
+        }
+        caption
     };
     let drawn = |e: ikarus_render::RenderError| CliError::runtime(format!("cannot draw the pose: {e}"));
     Ok(match format {
