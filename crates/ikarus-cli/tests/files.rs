@@ -197,7 +197,10 @@ fn sigint_during_a_batch_exits_130_and_leaves_no_file() {
         ["solve", "--batch", many.to_str().unwrap(), "--threads", "1", "--summary-json", summary.to_str().unwrap()];
     interrupted_leaves_nothing(&args, out.path(), "-INT", true);
     let points = inputs.path().join("points.csv");
-    let rows: String = (0..200_000).map(|i| format!("{},{}\n", f64::from(i % 1000) * 0.01, 1.5)).collect();
+    // Two million points: about 18 s in a debug build, so that the signal (0.3 s after the
+    // temporary file appears) arrives during the work; 200,000 finished first on a quiet machine
+    // (the fresh-clone gate), leaving a complete file behind an exit of 130.
+    let rows: String = (0..2_000_000).map(|i| format!("{},{}\n", f64::from(i % 1000) * 0.01, 1.5)).collect();
     std::fs::write(&points, format!("x,y\n{rows}")).unwrap();
     let arm = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/arms/seven.toml");
     let csv = out.path().join("verdicts.csv");
