@@ -20,7 +20,9 @@ mod together;
 mod world;
 
 pub use pose::{PoseError, PoseRequest, Posed};
-pub use together::{BoneRule, LimbEnd, LimbRule, ROUNDS, Together, TogetherError, TogetherReport};
+pub use together::{
+    BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
+};
 pub use world::{Affine, world_transform};
 
 /// A character: bones listed parent first, IK constraints, clips, and the skeleton's own

@@ -81,7 +81,27 @@ pub struct Together {
     pub bones: Vec<BoneRule>,
     /// Bones whose tip (position and direction) stays where it starts.
     pub pins: Vec<usize>,
+    /// Goals on bones' tips besides the file's constraints (`ikarus solve --rig
+    /// CHARACTER.json --goal BONE=X,Y`), solved with them; after them, so that a goal on a
+    /// constraint's last bone replaces the constraint's.
+    pub goals: Vec<TipGoal>,
 }
+
+/// A goal on a bone's tip that is none of the file's constraints: the goal (its `bone` the
+/// character's bone index; its bend, softness, weight and priority as a rig's goal has them),
+/// and how far up the hierarchy it moves the body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TipGoal {
+    /// The goal, on the character's bone `goal.bone`.
+    pub goal: RigGoal,
+    /// How many bones turn for it, counted up from its bone: 1, the bone alone; 2 (the
+    /// default, [`TIP_GOAL_BONES`]), the bone and its parent, as a two-bone constraint and a
+    /// pose tool turn them; more, up to its depth plus one, the whole way to its root.
+    pub bones: usize,
+}
+
+/// How many bones a [`TipGoal`] turns unless told: the bone and its parent.
+pub const TIP_GOAL_BONES: usize = 2;
 
 /// How one constraint ended: how far it misses its target, in world units: a two-bone one, its
 /// child's tip's distance from the target; a one-bone one (an aim), the target's distance from
@@ -96,13 +116,27 @@ pub struct LimbEnd {
     pub error: f64,
 }
 
+/// How one [`TipGoal`] ended: its bone's tip's distance from the goal, world units, and with
+/// an orientation goal, the bone's world direction's difference from it, radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GoalEnd {
+    /// The character's bone.
+    pub bone: usize,
+    /// Tip to goal.
+    pub error: f64,
+    /// Direction to goal's (`None` without one), in (−π, π].
+    pub angle_error: Option<f64>,
+}
+
 /// What a solve together did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TogetherReport {
     /// Per constraint, in the character's order.
     pub limbs: Vec<LimbEnd>,
+    /// Per goal of [`Together::goals`], in their order.
+    pub goals: Vec<GoalEnd>,
     /// How many times the skeleton was solved (1 to [`ROUNDS`]; 0 when no constraint was
-    /// active).
+    /// active and there was no goal).
     pub rounds: usize,
     /// The last solve's outcome (status, iterations), when there was one.
     pub outcome: Option<Outcome>,
@@ -149,7 +183,8 @@ impl Character {
         let moving = self.moving(rules, &active);
         let mut report = TogetherReport::default();
         let goals: Vec<usize> = active.iter().copied().filter(|&k| self.has_tip_goal(k)).collect();
-        if !moving.is_empty() && !goals.is_empty() {
+        let anything = !goals.is_empty() || !rules.goals.is_empty();
+        if !moving.is_empty() && anything {
             for round in 1..=ROUNDS {
                 let frozen = self.freeze(out, &moving, rules)?;
                 let task = self.task(out, &frozen, rules, &goals)?;
@@ -172,6 +207,7 @@ impl Character {
                 LimbEnd { constraint: k, active: on, error }
             })
             .collect();
+        report.goals = rules.goals.iter().map(|g| goal_end(&g.goal, out)).collect();
         Ok(report)
     }
 
@@ -214,6 +250,29 @@ impl Character {
         if let Some(&p) = rules.pins.iter().find(|&&p| p >= n) {
             return Err(TogetherError::Rule(format!("pin: no bone {p}")));
         }
+        for g in &rules.goals {
+            let b = g.goal.bone;
+            let name = &self.bones.get(b).ok_or_else(|| TogetherError::Rule(format!("goal: no bone {b}")))?.name;
+            let depth = self.depth(b) + 1;
+            if g.bones < 1 || g.bones > depth {
+                return Err(TogetherError::Rule(format!(
+                    "goal on {name:?}: bones must be from 1 (the bone alone) to {depth} (up to its root), got {}",
+                    g.bones
+                )));
+            }
+            if !(g.goal.weight > 0.0 && g.goal.weight.is_finite()) {
+                return Err(TogetherError::Rule(format!(
+                    "goal on {name:?}: weight must be > 0, got {}",
+                    g.goal.weight
+                )));
+            }
+            if !(g.goal.softness >= 0.0 && g.goal.softness.is_finite()) {
+                return Err(TogetherError::Rule(format!(
+                    "goal on {name:?}: softness must be ≥ 0, got {}",
+                    g.goal.softness
+                )));
+            }
+        }
         Ok(())
     }
 
@@ -236,7 +295,7 @@ impl Character {
     }
 
     /// The moving bones, ascending (parents first): each active constraint's bones, up as far
-    /// as its rule says, and the pins.
+    /// as its rule says, each goal's, and the pins.
     fn moving(&self, rules: &Together, active: &[usize]) -> Vec<usize> {
         let mut on = vec![false; self.bones.len()];
         for &k in active.iter().filter(|&&k| self.has_tip_goal(k)) {
@@ -248,6 +307,14 @@ impl Character {
             let count = rules.limbs.iter().find(|r| r.constraint == k).and_then(|r| r.bones).unwrap_or(own);
             let mut b = Some(last_bone(c.bones));
             for _ in 0..count {
+                let Some(i) = b else { break };
+                on[i] = true;
+                b = self.bones[i].parent;
+            }
+        }
+        for g in &rules.goals {
+            let mut b = Some(g.goal.bone);
+            for _ in 0..g.bones {
                 let Some(i) = b else { break };
                 on[i] = true;
                 b = self.bones[i].parent;
@@ -337,6 +404,17 @@ impl Character {
             task.goals.retain(|o| o.bone != i);
             task.goals.push(g);
         }
+        for g in &rules.goals {
+            let Some(i) = index(g.goal.bone) else { continue };
+            let mut goal = g.goal.clone();
+            goal.bone = i;
+            // A bend needs a joint: the goal's bone must turn with its parent.
+            if frozen.skeleton.parent(i).is_none() {
+                goal.bend = None;
+            }
+            task.goals.retain(|o| o.bone != i);
+            task.goals.push(goal);
+        }
         for &p in &rules.pins {
             if let Some(i) = index(p) {
                 task.goals.retain(|o| o.bone != i);
@@ -417,6 +495,17 @@ impl Character {
     /// The largest distance of a bone's origin from the skeleton's, a scale for tolerances.
     fn size(&self, posed: &Posed) -> f64 {
         (0..self.bones.len()).map(|i| posed.origin(i)).fold(0.0, |m: f64, [x, y]| m.max(x.abs()).max(y.abs()))
+    }
+}
+
+/// How far the tip of `goal`'s bone ended from it.
+fn goal_end(goal: &RigGoal, out: &Posed) -> GoalEnd {
+    let [x, y] = out.tip(goal.bone);
+    let t = goal.goal.target();
+    GoalEnd {
+        bone: goal.bone,
+        error: math::distance(x - t.x, y - t.y),
+        angle_error: goal.goal.orientation().map(|a| wrap_angle(out.rotation(goal.bone) - a)),
     }
 }
 

@@ -221,3 +221,94 @@ fn a_parent_scaled_unevenly_is_solved_in_the_runtimes_own_world() {
         report.rounds
     );
 }
+
+fn tip_goal(bone: usize, goal: crate::goal::Goal, bones: usize) -> crate::character::TipGoal {
+    crate::character::TipGoal { goal: crate::solve::RigGoal::new(bone, goal), bones }
+}
+
+/// A goal on the shin's tip turning two bones is the runtime's two-bone answer for a
+/// constraint with its target there, on the side its bend names; the bones above stay.
+#[test]
+fn a_goal_on_two_bones_is_the_runtimes_two_bone_answer() {
+    use crate::goal::Goal;
+    use crate::solve::Bend;
+    for (bend_positive, bend) in [(true, Bend::Positive), (false, Bend::Negative)] {
+        let mut parts = leg();
+        let mut k = constraint("knee", 0, 2, 3, 5);
+        k.setup.bend_positive = bend_positive;
+        parts.constraints = vec![k];
+        let with_constraint = Character::new(parts).unwrap();
+        let free = Character::new(leg()).unwrap();
+        for target in [[5.0, 8.0], [-6.0, 10.0], [3.0, 4.0]] {
+            let (runtime, _) = both(&with_constraint, &[(5, target)], &Together::default());
+            let mut g = tip_goal(3, Goal::position(target[0], target[1]).unwrap(), 2);
+            g.goal = g.goal.with_bend(bend);
+            let rules = Together { goals: vec![g], ..Together::default() };
+            let mut posed = Posed::default();
+            let report = free
+                .pose_together(&PoseRequest { clip: None, targets: &[] }, &rules, &mut solver(), &mut posed)
+                .unwrap();
+            for i in 0..5 {
+                assert!(dist(runtime.tip(i), posed.tip(i)) < 1e-6, "bone {i}, bend {bend_positive}, {target:?}");
+            }
+            assert!(report.goals[0].error < 1e-6 && report.goals[0].angle_error.is_none(), "{:?}", report.goals);
+            assert!(report.rounds >= 1 && report.limbs.is_empty());
+        }
+    }
+}
+
+/// `bones` says how far up a goal moves the body: one bone only aims; three reach with a
+/// direction; the bones above the last one counted never move.
+#[test]
+fn a_goals_bone_count_bounds_what_moves() {
+    use crate::goal::Goal;
+    let c = Character::new(leg()).unwrap();
+    let mut setup = Posed::default();
+    c.pose(&PoseRequest { clip: None, targets: &[] }, &mut setup).unwrap();
+    let solve = |g: crate::character::TipGoal| {
+        let mut posed = Posed::default();
+        let rules = Together { goals: vec![g], ..Together::default() };
+        let r = c.pose_together(&PoseRequest { clip: None, targets: &[] }, &rules, &mut solver(), &mut posed).unwrap();
+        (posed, r)
+    };
+    // The foot alone turns toward (12, 0): its tip on the ray, not on the point.
+    let (aimed, r) = solve(tip_goal(4, Goal::position(12.0, 0.0).unwrap(), 1));
+    for i in 0..4 {
+        assert!(dist(aimed.tip(i), setup.tip(i)) < 1e-12, "bone {i} moved");
+    }
+    let [ox, oy] = aimed.origin(4);
+    let toward = math::atan2(0.0 - oy, 12.0 - ox);
+    assert!((aimed.rotation(4) - toward).abs() < 1e-6, "{} vs {toward}", aimed.rotation(4));
+    assert!((r.goals[0].error - (math::hypot(12.0 - ox, -oy) - 4.0)).abs() < 1e-6);
+    // Three bones put the foot's tip at (9, 6) pointing down-right; the hip stays.
+    let down_right = -0.6;
+    let (placed, r) = solve(tip_goal(4, Goal::with_orientation(9.0, 6.0, down_right).unwrap(), 3));
+    assert!(r.goals[0].error < 1e-6, "{:?}", r.goals[0]);
+    assert!(r.goals[0].angle_error.is_some_and(|a| a.abs() < 1e-6), "{:?}", r.goals[0]);
+    assert!(dist(placed.origin(2), setup.origin(2)) < 1e-12);
+    // A goal on a constraint's last bone replaces the constraint's; another constraint stays met.
+    let mut parts = leg();
+    parts.constraints = vec![constraint("knee", 0, 2, 3, 5)];
+    let both_c = Character::new(parts).unwrap();
+    let g = tip_goal(3, Goal::position(4.0, 9.0).unwrap(), 2);
+    let rules = Together { goals: vec![g], ..Together::default() };
+    let mut posed = Posed::default();
+    let r = both_c
+        .pose_together(&PoseRequest { clip: None, targets: &[(5, [-20.0, -20.0])] }, &rules, &mut solver(), &mut posed)
+        .unwrap();
+    assert!(dist(posed.tip(3), [4.0, 9.0]) < 1e-6 && r.goals[0].error < 1e-6);
+}
+
+#[test]
+fn a_goal_names_a_bone_and_a_count_it_has() {
+    use crate::goal::Goal;
+    let c = Character::new(leg()).unwrap();
+    let g = |bone, bones| Together {
+        goals: vec![tip_goal(bone, Goal::position(1.0, 1.0).unwrap(), bones)],
+        ..Together::default()
+    };
+    let e = c.check_together(&g(4, 6)).unwrap_err().to_string();
+    assert_eq!(e, "goal on \"foot\": bones must be from 1 (the bone alone) to 5 (up to its root), got 6");
+    assert!(c.check_together(&g(4, 0)).is_err() && c.check_together(&g(4, 5)).is_ok());
+    assert_eq!(c.check_together(&g(9, 1)).unwrap_err().to_string(), "goal: no bone 9");
+}
