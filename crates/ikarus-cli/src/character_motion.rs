@@ -44,6 +44,19 @@ pub enum Written {
     Spine,
 }
 
+/// What `--format` asks a character's motion to be written as: the frames (`json`, or no
+/// `--format`) or the file with a Spine animation (`spine`); any other format is refused.
+pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Written, CliError> {
+    let name = format.and_then(|f| f.to_possible_value()).map(|v| v.get_name().to_owned());
+    match name.as_deref() {
+        None | Some("json") => Ok(Written::Frames),
+        Some("spine") => Ok(Written::Spine),
+        Some(other) => Err(CliError::input(format!(
+            "--format {other}: a character's motion is written as json (its frames) or spine"
+        ))),
+    }
+}
+
 /// How the motion is written: the form, the new animation's name, and where.
 pub struct Output<'a> {
     pub written: Written,

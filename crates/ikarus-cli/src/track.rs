@@ -209,7 +209,7 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
 /// `ikarus track --rig FILE.json --effector BONE …`: the bone's world origin follows the path,
 /// one sample per pose at --fps, the file's IK constraints posing the rest.
 fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) -> Result<(), CliError> {
-    use crate::character_motion::{Output, Written, refuse_foreign, write};
+    use crate::character_motion::{Output, refuse_foreign, write};
     use ikarus_edge::character::motion::{Course, DEFAULT_FPS, Motion};
     let mut foreign =
         vec![("--goal", !args.goal.is_empty()), ("--mode", args.mode.is_some()), ("--bound-first", args.bound_first)];
@@ -217,16 +217,7 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     foreign
         .extend(args.solver.given().map(|(f, g)| (if f == "--max-step-deg" { "--solver-max-step-deg" } else { f }, g)));
     refuse_foreign(&foreign)?;
-    let written = match args.format {
-        None | Some(TrackFormat::Json) => Written::Frames,
-        Some(TrackFormat::Spine) => Written::Spine,
-        Some(f) => {
-            let name = if f == TrackFormat::Csv { "csv" } else { "text" };
-            return Err(CliError::input(format!(
-                "--format {name}: a character's motion is written as json (its frames) or spine"
-            )));
-        }
-    };
+    let written = crate::character_motion::written(args.format)?;
     let Some(bone) = args.effector.clone() else {
         return Err(CliError::input(
             "--effector: required with a character file (the bone whose origin follows the path)",

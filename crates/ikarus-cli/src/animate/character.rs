@@ -6,8 +6,8 @@
 use ikarus::EaseKind;
 use ikarus_edge::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
 
-use super::{AnimateArgs, AnimateFormat};
-use crate::character_motion::{CharacterFile, Output, Written, refuse_foreign, write};
+use super::AnimateArgs;
+use crate::character_motion::{CharacterFile, Output, refuse_foreign, write};
 use crate::error::CliError;
 
 /// The motion of the character `file` the flags ask for, written.
@@ -25,16 +25,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     foreign.extend(m.body.rig_task.given());
     foreign.extend(m.body.solver.given());
     refuse_foreign(&foreign)?;
-    let written = match args.format {
-        None | Some(AnimateFormat::Json) => Written::Frames,
-        Some(AnimateFormat::Spine) => Written::Spine,
-        Some(f) => {
-            let name = if f == AnimateFormat::Csv { "csv" } else { "text" };
-            return Err(CliError::input(format!(
-                "--format {name}: a character's motion is written as json (its frames) or spine"
-            )));
-        }
-    };
+    let written = crate::character_motion::written(args.format)?;
     if args.target.is_empty() {
         return Err(CliError::input(
             "--target: give at least one BONE=X,Y with a character file (the bone's world origin at the end)",

@@ -11,6 +11,7 @@ use ikarus::EaseKind;
 use serde::Deserialize;
 
 use super::fields::track_path;
+use super::requests::{MotionFormat, request};
 use super::pose::TargetReq;
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
@@ -24,74 +25,42 @@ use crate::track::Shape;
 /// more where it bisects).
 pub const MAX_BONE_FRAMES: usize = 200_000;
 
-/// What a character's motion is answered as.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum MotionFormat {
-    /// Its frames.
-    #[default]
-    Json,
-    /// The Spine document with the motion added.
-    Spine,
+request! {
+    /// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
+    /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
+    /// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
+    /// `rig` and `targets` optional.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct AnimateCharacterReq {
+        required rig: String,
+        required targets: Vec<TargetReq>,
+        pub duration: Option<f64>,
+        pub fps: Option<f64>,
+        pub ease: Option<EaseKind>,
+        pub k1: Option<f64>,
+        pub k2: Option<f64>,
+        ..export,
+    }
 }
 
-/// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
-/// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
-/// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
-/// `rig` and `targets` optional.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct AnimateCharacterReq {
-    rig: String,
-    targets: Vec<TargetReq>,
-    #[serde(default)]
-    duration: Option<f64>,
-    #[serde(default)]
-    fps: Option<f64>,
-    #[serde(default)]
-    ease: Option<EaseKind>,
-    #[serde(default)]
-    k1: Option<f64>,
-    #[serde(default)]
-    k2: Option<f64>,
-    #[serde(default)]
-    format: MotionFormat,
-    #[serde(default)]
-    ik: Option<String>,
-    #[serde(default)]
-    ik_file: Option<String>,
-    #[serde(default)]
-    animation_name: Option<String>,
-}
-
-/// `POST /api/track` with a character: `{"rig": "<text>", "effector": "BONE"`, exactly one of
-/// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name", "ik",
-/// "ik_file"}`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TrackCharacterReq {
-    rig: String,
-    effector: Option<String>,
-    #[serde(default)]
-    path: Option<Vec<[f64; 2]>>,
-    #[serde(default)]
-    line: Option<[f64; 4]>,
-    #[serde(default)]
-    circle: Option<[f64; 3]>,
-    #[serde(default)]
-    figure8: Option<[f64; 3]>,
-    #[serde(default)]
-    samples: Option<usize>,
-    #[serde(default)]
-    fps: Option<f64>,
-    #[serde(default)]
-    format: MotionFormat,
-    #[serde(default)]
-    ik: Option<String>,
-    #[serde(default)]
-    ik_file: Option<String>,
-    #[serde(default)]
-    animation_name: Option<String>,
+request! {
+    /// `POST /api/track` with a character: `{"rig": "<text>", "effector": "BONE"`, exactly one of
+    /// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name", "ik",
+    /// "ik_file"}`.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct TrackCharacterReq {
+        required rig: String,
+        required effector: Option<String>,
+        pub path: Option<Vec<[f64; 2]>>,
+        pub line: Option<[f64; 4]>,
+        pub circle: Option<[f64; 3]>,
+        pub figure8: Option<[f64; 3]>,
+        pub samples: Option<usize>,
+        pub fps: Option<f64>,
+        ..export,
+    }
 }
 
 /// Whether a job's body carries a character: `rig` is a string of JSON text.
