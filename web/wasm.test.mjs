@@ -227,6 +227,12 @@ test("a character posed by the module is the bytes of the server and of ikarus p
   }
   // A refusal: the server's status and line.
   const spineboy = readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8");
+  // Goals on bones' tips (ikarus solve --rig CHARACTER.json): the same bytes.
+  const goals = JSON.stringify({ rig: spineboy, ik: "ikarus", goals: [{ bone: "front-fist", x: 60, y: 300, bones: 3 }] });
+  const solved = wasm("pose", goals);
+  assert.equal(solved.status, 200, solved.text);
+  const cliSolve = execFileSync(binary, ["solve", "--rig", join("examples", "characters", "spine-spineboy-pro.json"), "--goal", "front-fist=60,300", "--bones", "front-fist=3", "--format", "json"], { cwd: root, encoding: "utf8", stdio: ["ignore", "pipe", "ignore"] });
+  assert.equal(solved.text, cliSolve.trimEnd(), `wasm vs CLI solve ${firstDifference(solved.text, cliSolve)}`);
   for (const fields of [{ animation: "wlk" }, { targets: [{ bone: "toe", x: 0, y: 0 }] }, { time: 1 }]) {
     const body = JSON.stringify({ rig: spineboy, ...fields });
     assert.deepEqual(wasm("pose", body), await native("pose", body), JSON.stringify(fields));

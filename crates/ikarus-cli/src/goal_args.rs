@@ -185,25 +185,8 @@ impl RigTaskArgs {
     /// The task of `targets` and the pins on `skeleton`, with these flags' controls; problems
     /// name the flag and its value.
     pub fn task(&self, skeleton: &Skeleton, targets: &[Target]) -> Result<RigTask, CliError> {
-        let bones: Vec<&str> = targets.iter().map(|t| t.bone.as_str()).collect();
-        self.check_against(&bones)?;
-        let goals: Vec<NamedGoal> = targets
-            .iter()
-            .map(|t| NamedGoal {
-                weight: self.weight.iter().find(|(n, _)| *n == t.bone).map_or(1.0, |w| w.1),
-                priority: if self.secondary.contains(&t.bone) { Priority::Secondary } else { Priority::Primary },
-                bend: self.bend.iter().find(|(n, _)| *n == t.bone).map(|b| b.1),
-                softness: self.softness.iter().find(|(n, _)| *n == t.bone).map_or(0.0, |s| s.1),
-                ..NamedGoal::new(t.bone.clone(), t.x, t.y, t.angle_deg)
-            })
-            .collect();
-        let field = |f: Field| match f {
-            Field::Goal(i) => targets[i].source.clone(),
-            Field::Weight(i) => format!("--weight {}", targets[i].bone),
-            Field::Softness(i) => format!("--softness {}", targets[i].bone),
-            Field::Bend(i) => format!("--bend {}", targets[i].bone),
-            Field::Pin(i) => format!("--pin {}", self.pin[i]),
-        };
+        let goals = self.named(targets)?;
+        let field = |f: Field| self.field(targets, f);
         goal::build(skeleton, &goals, &self.pin, self.mix.unwrap_or(1.0), &field).map_err(|m| {
             // The library's words for a task of nothing, in the flags' words.
             if m.starts_with("goals: ") {
@@ -212,6 +195,35 @@ impl RigTaskArgs {
                 CliError::input(m)
             }
         })
+    }
+
+    /// The goals of `targets` with these flags' controls, each per-goal flag checked to name a
+    /// goal's bone.
+    pub fn named(&self, targets: &[Target]) -> Result<Vec<NamedGoal>, CliError> {
+        let bones: Vec<&str> = targets.iter().map(|t| t.bone.as_str()).collect();
+        self.check_against(&bones)?;
+        Ok(targets
+            .iter()
+            .map(|t| NamedGoal {
+                weight: self.weight.iter().find(|(n, _)| *n == t.bone).map_or(1.0, |w| w.1),
+                priority: if self.secondary.contains(&t.bone) { Priority::Secondary } else { Priority::Primary },
+                bend: self.bend.iter().find(|(n, _)| *n == t.bone).map(|b| b.1),
+                softness: self.softness.iter().find(|(n, _)| *n == t.bone).map_or(0.0, |s| s.1),
+                ..NamedGoal::new(t.bone.clone(), t.x, t.y, t.angle_deg)
+            })
+            .collect())
+    }
+
+    /// The flag a problem with `f` names, for the goals of `targets`.
+    pub fn field(&self, targets: &[Target], f: Field) -> String {
+        match f {
+            Field::Goal(i) => targets[i].source.clone(),
+            Field::Weight(i) => format!("--weight {}", targets[i].bone),
+            Field::Softness(i) => format!("--softness {}", targets[i].bone),
+            Field::Bend(i) => format!("--bend {}", targets[i].bone),
+            Field::Bones(i) => format!("--bones {}", targets[i].bone),
+            Field::Pin(i) => format!("--pin {}", self.pin[i]),
+        }
     }
 }
 

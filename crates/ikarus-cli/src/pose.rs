@@ -141,7 +141,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let ik = args.ik.choice(&loaded.character)?;
     let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone(), ik };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
-    let bytes = render(&report, format, args)?;
+    let bytes = render(&report, format, &|| caption(args), &args.size)?;
     match file {
         Some(file) => file.commit(&bytes),
         None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
@@ -165,22 +165,30 @@ fn format_of(args: &PoseArgs) -> Result<PoseFormat, CliError> {
     })
 }
 
-fn render(report: &PoseReport, format: PoseFormat, args: &PoseArgs) -> Result<Vec<u8>, CliError> {
-    let caption = || {
-        let file = args.rig.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
-        let mut caption = match &args.animation {
-            Some(a) => format!("{file} · {a} at {} s", args.time.unwrap_or(0.0)),
-            None => format!("{file} · setup pose"),
-        };
-        if !args.target.is_empty() {
-            let n = args.target.len();
-            caption.push_str(&format!(" · {n} target{}", if n == 1 { "" } else { "s" }));
-        }
-        if args.ik.ik == IkRules::Ikarus {
-            caption.push_str(" · ikarus solver");
-        }
-        caption
+/// The caption of `args`'s picture: the file, the animation and time, the targets, the solver.
+fn caption(args: &PoseArgs) -> String {
+    let file = args.rig.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+    let mut caption = match &args.animation {
+        Some(a) => format!("{file} · {a} at {} s", args.time.unwrap_or(0.0)),
+        None => format!("{file} · setup pose"),
     };
+    if !args.target.is_empty() {
+        let n = args.target.len();
+        caption.push_str(&format!(" · {n} target{}", if n == 1 { "" } else { "s" }));
+    }
+    if args.ik.ik == IkRules::Ikarus {
+        caption.push_str(" · ikarus solver");
+    }
+    caption
+}
+
+/// `report` in `format`; a picture `size` large, captioned by `caption`.
+pub fn render(
+    report: &PoseReport,
+    format: PoseFormat,
+    caption: &dyn Fn() -> String,
+    size: &crate::picture::SizeArgs,
+) -> Result<Vec<u8>, CliError> {
     let drawn = |e: ikarus_render::RenderError| CliError::runtime(format!("cannot draw the pose: {e}"));
     Ok(match format {
         PoseFormat::Text => report.text().into_bytes(),
@@ -189,14 +197,11 @@ fn render(report: &PoseReport, format: PoseFormat, args: &PoseArgs) -> Result<Ve
             v.push(b'\n');
             v
         }
-        PoseFormat::Svg => {
-            ikarus_render::character_svg(&report.figure(Some(caption())), args.size.width, args.size.height)
-                .map_err(drawn)?
-                .into_bytes()
-        }
+        PoseFormat::Svg => ikarus_render::character_svg(&report.figure(Some(caption())), size.width, size.height)
+            .map_err(drawn)?
+            .into_bytes(),
         PoseFormat::Png => {
-            ikarus_render::character_png(&report.figure(Some(caption())), args.size.width, args.size.height)
-                .map_err(drawn)?
+            ikarus_render::character_png(&report.figure(Some(caption())), size.width, size.height).map_err(drawn)?
         }
     })
 }

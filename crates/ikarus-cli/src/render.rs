@@ -140,7 +140,7 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
         }
         RenderCommand::Rig(args) => {
             let out = required_out(&args.picture, &still)?;
-            let rig = Rig::load(&args.rig)?;
+            let rig = crate::body::load_rig(&args.rig)?;
             let pose = rig_pose(&rig, &args.pose_deg)?;
             let targets = args.goal.iter().map(|g| Target::of(g, &rig)).collect::<Result<Vec<_>, _>>()?;
             let task = if targets.is_empty() && args.pin.is_empty() {

@@ -115,3 +115,104 @@ fn bad_requests_are_one_line() {
     let e = fails(&["pose", "--rig", RAPTOR, "--target", "toe"], 2);
     assert!(e.contains("BONE=X,Y"), "{e}");
 }
+
+/// The bone `name` of a pose answer.
+fn bone_of<'a>(v: &'a Value, name: &str) -> &'a Value {
+    v["bones"].as_array().unwrap().iter().find(|b| b["name"] == name).unwrap()
+}
+
+fn point(v: &Value) -> [f64; 2] {
+    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
+}
+
+/// `ikarus solve --rig CHARACTER.json` (issue 26): a goal on a bone's tip turns as many bones
+/// as `--bones` says, solved with the character's own constraints by ikarus's solver; the
+/// server's `/api/pose` with `goals` answers the same bytes.
+#[test]
+fn solve_puts_a_characters_bone_tip_on_a_goal_turning_the_bones_asked_for() {
+    let o = ikarus(&[
+        "solve",
+        "--rig",
+        SPINEBOY,
+        "--goal",
+        "front-fist=60,300",
+        "--bones",
+        "front-fist=3",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let tip = point(&bone_of(&v, "front-fist")["tip"]);
+    assert!((tip[0] - 60.0).abs() < 1e-6 && (tip[1] - 300.0).abs() < 1e-6, "{tip:?}");
+    let goal = &v["ik"]["goals"][0];
+    assert_eq!(goal["bone"], "front-fist");
+    assert!(goal["error"].as_f64().unwrap() < 1e-6, "{goal}");
+    // Three bones turn: the fist, the bracer and the upper arm; the bone above them stays where
+    // ikarus's own pose of the constraints has it, and so do the legs, within the solve's
+    // tolerance.
+    let (plain, _) = pose(&["--rig", SPINEBOY, "--ik", "ikarus", "--format", "json"]);
+    let plain: Value = serde_json::from_str(&plain).unwrap();
+    for name in ["front-upper-arm", "torso3", "rear-foot", "front-foot"] {
+        let (a, b) = (bone_of(&v, name), bone_of(&plain, name));
+        for k in ["x", "y"] {
+            assert!((a[k].as_f64().unwrap() - b[k].as_f64().unwrap()).abs() < 1e-6, "{name}.{k}: {a} {b}");
+        }
+    }
+    let moved = bone_of(&v, "front-upper-arm")["rotation_deg"].as_f64().unwrap();
+    let was = bone_of(&plain, "front-upper-arm")["rotation_deg"].as_f64().unwrap();
+    assert!(turn(moved, was).abs() > 1.0, "the upper arm turned: {moved} vs {was}");
+    // With the default of two bones the upper arm keeps its direction.
+    let o = ikarus(&["solve", "--rig", SPINEBOY, "--goal", "front-fist=0,260", "--format", "json"]);
+    let two: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let kept = bone_of(&two, "front-upper-arm")["rotation_deg"].as_f64().unwrap();
+    assert!(turn(kept, was).abs() < 1e-6, "{kept} vs {was}");
+
+    let server = start(&[]);
+    let text = std::fs::read_to_string(SPINEBOY).unwrap();
+    let body = json!({"rig": text, "ik": "ikarus", "goals": [{"bone": "front-fist", "x": 60, "y": 300, "bones": 3}]});
+    let answer = server.post("/api/pose", &body);
+    assert_eq!(answer.status, 200, "{}", answer.text());
+    assert_eq!(answer.text().trim_end(), out.trim_end());
+    let e =
+        server.post("/api/pose", &json!({"rig": text, "goals": [{"bone": "front-fist", "x": 1, "y": 2}]})).error(422);
+    assert_eq!(e, "goals: only with \"ik\": \"ikarus\" (the runtime's rules know only the file's constraints)");
+    let bad = json!({"rig": text, "ik": "ikarus", "goals": [{"bone": "front-fist", "x": 1, "y": 2, "bones": 10}]});
+    let e = server.post("/api/pose", &bad).error(422);
+    assert_eq!(e, "goals[0].bones: 10: must be from 1 (the bone alone) to 9 (bone \"front-fist\" and all above it)");
+    let puppet = std::fs::read_to_string("../../examples/rigs/puppet.toml").unwrap();
+    let rig: toml::Value = toml::from_str(&puppet).unwrap();
+    let e = server
+        .post("/api/solve", &json!({"rig": rig, "goals": [{"bone": "left_hand", "x": 1, "y": 1, "bones": 2}]}))
+        .error(422);
+    assert!(e.starts_with("goals[0].bones: only for a character's goal"), "{e}");
+}
+
+#[test]
+fn solve_refuses_what_a_character_cannot_take_in_one_line() {
+    // The raptor has no constraint ikarus leaves out, so nothing else is on stderr.
+    let goal = ["solve", "--rig", RAPTOR, "--goal"];
+    for (extra, want) in [
+        (&["1,2"][..], "--goal 1,2: a character's goal names its bone: --goal BONE=X,Y[,DEG]"),
+        (&["toe=1,2"][..], "--goal toe=1,2: no bone named \"toe\" in the rig"),
+        (&["front-hand=1,2", "--bones", "front-hand=10"][..], "--bones front-hand: 10: must be from 1"),
+        (&["front-hand=1,2", "--bones", "head=2"][..], "--bones head=2: no goal on bone \"head\""),
+        (&["front-hand=1,2", "--method", "ccd"][..], "--method: not with a character file"),
+        (&["front-hand=1,2", "--format", "csv"][..], "--format csv: a character's solve is written as json or text"),
+        (
+            &["front-hand=1,2", "--bend", "front-hand=cw", "--bones", "front-hand=1"][..],
+            "turns one bone, so no joint to bend",
+        ),
+    ] {
+        let e = fails(&[&goal[..], extra].concat(), 2);
+        assert!(e.contains(want), "{extra:?}: {e}");
+    }
+    let e = fails(
+        &["solve", "--rig", "../../examples/rigs/puppet.toml", "--goal", "left_hand=1,1", "--bones", "left_hand=2"],
+        2,
+    );
+    assert!(e.contains("--bones: only with a character file"), "{e}");
+    let e = fails(&["render", "rig", "--rig", RAPTOR, "--out", "x.svg"], 2);
+    assert!(e.contains("a Spine character (76 bones, 9 IK constraints), which this command does not take"), "{e}");
+}

@@ -26,12 +26,7 @@ impl Body {
     /// file as each reader does (`rig file r.toml: …`, `arm file a.toml: …`).
     pub fn load(arm: Option<&Path>, rig: Option<&Path>) -> Result<Self, CliError> {
         match rig {
-            Some(path) => {
-                let label = format!("rig file {}", path.display());
-                let text = crate::input::read_text(path, &label)?;
-                crate::character::not_a_rig(&text, &label)?;
-                Ok(Self::Rig(Box::new(Rig::parse(&text, &label)?)))
-            }
+            Some(path) => Ok(Self::Rig(Box::new(load_rig(path)?))),
             None => {
                 let (text, label) = match arm {
                     None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),
@@ -65,6 +60,15 @@ impl Body {
             Self::Rig(rig) => &**rig,
         }
     }
+}
+
+/// The rig file at `path` (`--rig FILE`), a character file refused in one line that says what it
+/// is and which commands take it ([`crate::character::not_a_rig`]).
+pub fn load_rig(path: &Path) -> Result<Rig, CliError> {
+    let label = format!("rig file {}", path.display());
+    let text = crate::input::read_text(path, &label)?;
+    crate::character::not_a_rig(&text, &label)?;
+    Rig::parse(&text, &label)
 }
 
 /// What a job's workflow asks of a body, an arm or a rig alike.

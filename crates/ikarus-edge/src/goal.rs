@@ -3,6 +3,7 @@
 //! before any solve with messages in each edge's own field names (`--goal left_hand=…` on the
 //! command line, `goals[0].bone` in a request).
 
+use ikarus::character::Character;
 use ikarus::{Bend, Goal, Pin, Priority, RigGoal, RigTask, Skeleton};
 
 /// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
@@ -53,6 +54,50 @@ pub enum Field {
     Bend(usize),
     /// Pin `i`.
     Pin(usize),
+    /// How many bones goal `i` turns (a character's goal).
+    Bones(usize),
+}
+
+/// Bones known by name: a rig's skeleton, or a character's bones.
+pub trait BoneNames {
+    /// The index of the bone `name`, or a message listing the bones there are.
+    fn index(&self, name: &str) -> Result<usize, String>;
+    /// How many bones there are.
+    fn count(&self) -> usize;
+    /// The name of bone `i`.
+    fn name_of(&self, i: usize) -> &str;
+    /// Whether bone `i` has a parent.
+    fn has_parent(&self, i: usize) -> bool;
+}
+
+impl BoneNames for Skeleton {
+    fn index(&self, name: &str) -> Result<usize, String> {
+        index_among(self.index_of(name), self.names().iter().map(String::as_str), name)
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+    fn name_of(&self, i: usize) -> &str {
+        self.name(i)
+    }
+    fn has_parent(&self, i: usize) -> bool {
+        self.parent(i).is_some()
+    }
+}
+
+impl BoneNames for Character {
+    fn index(&self, name: &str) -> Result<usize, String> {
+        index_among(self.bone_index(name), self.bones().iter().map(|b| b.name.as_str()), name)
+    }
+    fn count(&self) -> usize {
+        self.bones().len()
+    }
+    fn name_of(&self, i: usize) -> &str {
+        &self.bones()[i].name
+    }
+    fn has_parent(&self, i: usize) -> bool {
+        self.bones()[i].parent.is_some()
+    }
 }
 
 /// The task of `goals` and `pins` (bone names) with `mix` on `skeleton`, or the first problem
@@ -65,13 +110,28 @@ pub fn build(
     mix: f64,
     field: &dyn Fn(Field) -> String,
 ) -> Result<RigTask, String> {
+    let (goals, pins) = goals_and_pins(skeleton, goals, pins, field)?;
+    let task = RigTask { goals, pins: pins.into_iter().map(Pin::new).collect(), mix };
+    // The library's own check last: what is left (no goal and no pin, a mix out of range).
+    task.validate(skeleton).map_err(|e| e.to_string())?;
+    Ok(task)
+}
+
+/// The goals (on bone indices of `bones`) and the pinned bones of `goals` and `pins`, checked
+/// as [`build`] says.
+pub fn goals_and_pins(
+    bones: &dyn BoneNames,
+    goals: &[NamedGoal],
+    pins: &[String],
+    field: &dyn Fn(Field) -> String,
+) -> Result<(Vec<RigGoal>, Vec<usize>), String> {
     // Which goal or pin took each bone first.
-    let mut taken: Vec<Option<Field>> = vec![None; skeleton.len()];
+    let mut taken: Vec<Option<Field>> = vec![None; bones.count()];
     let mut claim = |bone: usize, by: Field| match taken[bone] {
         Some(first) => Err(format!(
             "{}: bone {:?} already has a {} ({}); one goal or pin per bone",
             field(by),
-            skeleton.name(bone),
+            bones.name_of(bone),
             if matches!(first, Field::Pin(_)) { "pin" } else { "goal" },
             field(first)
         )),
@@ -80,9 +140,9 @@ pub fn build(
             Ok(())
         }
     };
-    let mut task = RigTask { goals: Vec::with_capacity(goals.len()), pins: Vec::with_capacity(pins.len()), mix };
+    let mut solved = Vec::with_capacity(goals.len());
     for (i, g) in goals.iter().enumerate() {
-        let bone = index(skeleton, &g.bone).map_err(|m| format!("{}: {m}", field(Field::Goal(i))))?;
+        let bone = bones.index(&g.bone).map_err(|m| format!("{}: {m}", field(Field::Goal(i))))?;
         claim(bone, Field::Goal(i))?;
         let goal = make_goal(g.x, g.y, g.angle_deg).map_err(|m| format!("{}: {m}", field(Field::Goal(i))))?;
         if !(g.weight.is_finite() && g.weight > 0.0) {
@@ -93,7 +153,7 @@ pub fn build(
             let value = ikarus::number::Num(g.softness);
             return Err(format!("{}: {value}: must be a finite number ≥ 0", field(Field::Softness(i))));
         }
-        if g.bend.is_some() && skeleton.parent(bone).is_none() {
+        if g.bend.is_some() && !bones.has_parent(bone) {
             return Err(format!(
                 "{}: bone {:?} has no parent, so no joint to bend (bend applies to the second bone of a limb)",
                 field(Field::Bend(i)),
@@ -103,25 +163,33 @@ pub fn build(
         let mut goal =
             RigGoal::new(bone, goal).with_weight(g.weight).with_priority(g.priority).with_softness(g.softness);
         goal.bend = g.bend;
-        task.goals.push(goal);
+        solved.push(goal);
     }
+    let mut pinned = Vec::with_capacity(pins.len());
     for (i, name) in pins.iter().enumerate() {
-        let bone = index(skeleton, name).map_err(|m| format!("{}: {m}", field(Field::Pin(i))))?;
+        let bone = bones.index(name).map_err(|m| format!("{}: {m}", field(Field::Pin(i))))?;
         claim(bone, Field::Pin(i))?;
-        task.pins.push(Pin::new(bone));
+        pinned.push(bone);
     }
-    // The library's own check last: what is left (no goal and no pin, a mix out of range).
-    task.validate(skeleton).map_err(|e| e.to_string())?;
-    Ok(task)
+    Ok((solved, pinned))
 }
 
 /// The index of the bone `name`, or a message listing the rig's bones.
 pub fn index(skeleton: &Skeleton, name: &str) -> Result<usize, String> {
-    skeleton.index_of(name).ok_or_else(|| {
-        let names = skeleton.names();
-        let mut listed = names.iter().take(LISTED_NAMES).map(String::as_str).collect::<Vec<_>>().join(", ");
-        if names.len() > LISTED_NAMES {
-            listed.push_str(&format!(", … ({} in all)", names.len()));
+    skeleton.index(name)
+}
+
+/// `found`, or a message listing `names`.
+fn index_among<'a>(
+    found: Option<usize>,
+    names: impl ExactSizeIterator<Item = &'a str>,
+    name: &str,
+) -> Result<usize, String> {
+    found.ok_or_else(|| {
+        let n = names.len();
+        let mut listed = names.take(LISTED_NAMES).collect::<Vec<_>>().join(", ");
+        if n > LISTED_NAMES {
+            listed.push_str(&format!(", … ({n} in all)"));
         }
         format!("no bone named {name:?} in the rig (its bones: {listed})")
     })

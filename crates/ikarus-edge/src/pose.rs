@@ -6,13 +6,16 @@
 //! the field and the value, and for a name that does not exist, the names that do.
 
 use ikarus::Point2;
-use ikarus::character::{Character, PoseRequest, Posed, Together, TogetherReport};
+use ikarus::character::{
+    Character, GoalEnd, LimbEnd, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherReport,
+};
 use ikarus::{SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
 use serde::Serialize;
 
 use crate::character::Loaded;
 use crate::error::CliError;
+use crate::goal::{Field, NamedGoal};
 use crate::report::character::UnsupportedJson;
 
 /// What to pose, by name, as the user gave it.
@@ -59,7 +62,8 @@ pub struct PoseReport {
     /// With `--ik ikarus`: what the solve did (absent under the runtime's rules).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ik: Option<IkJson>,
-    /// The IK constraints' target bones' origins, for the picture (not in the JSON).
+    /// The IK constraints' target bones' origins and the goals' points, for the picture (not in
+    /// the JSON).
     #[serde(skip)]
     targets: Vec<[f64; 2]>,
 }
@@ -71,6 +75,9 @@ pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
     let together = pose_into(loaded, ask, &mut posed)?;
     let mut report = PoseReport::of(&loaded.character, &posed);
     report.ik = together.map(|t| IkJson::of(&loaded.character, &t));
+    if let IkChoice::Ikarus(rules) = &ask.ik {
+        report.targets.extend(rules.goals.iter().map(|g| [g.goal.goal.target().x, g.goal.goal.target().y]));
+    }
     Ok(report)
 }
 
@@ -124,6 +131,55 @@ pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Chara
     }
 }
 
+/// Adds goals on bones' tips and pins, by name, to the rules of ikarus's solver
+/// (`ikarus solve --rig CHARACTER.json`, `/api/pose`'s `goals` and `pins`), checked as a rig's
+/// are ([`crate::goal::goals_and_pins`]); `bones[i]` is how many bones goal `i` turns, counted up
+/// from its bone (`None`: [`TIP_GOAL_BONES`], or fewer for a bone nearer its root), from 1 to
+/// its depth plus one. Each problem is one line, its field named by `field`.
+pub fn add_goals(
+    rules: &mut Together,
+    c: &Character,
+    goals: &[NamedGoal],
+    bones: &[Option<usize>],
+    pins: &[String],
+    field: &dyn Fn(Field) -> String,
+) -> Result<(), String> {
+    let (solved, pinned) = crate::goal::goals_and_pins(c, goals, pins, field)?;
+    for (i, goal) in solved.into_iter().enumerate() {
+        let mut depth = 1;
+        let mut up = c.bones()[goal.bone].parent;
+        while let Some(p) = up {
+            depth += 1;
+            up = c.bones()[p].parent;
+        }
+        let count = match bones.get(i).copied().flatten() {
+            Some(n) if n == 0 || n > depth => {
+                return Err(format!(
+                    "{}: {n}: must be from 1 (the bone alone) to {depth} (bone {:?} and all above it)",
+                    field(Field::Bones(i)),
+                    c.bones()[goal.bone].name
+                ));
+            }
+            Some(n) => n,
+            None => TIP_GOAL_BONES.min(depth),
+        };
+        if goal.bend.is_some() && count < 2 {
+            return Err(format!(
+                "{}: the goal on {:?} turns one bone, so no joint to bend (give it 2 bones or more)",
+                field(Field::Bend(i)),
+                c.bones()[goal.bone].name
+            ));
+        }
+        rules.goals.push(TipGoal { goal, bones: count });
+    }
+    for p in pinned {
+        if !rules.pins.contains(&p) {
+            rules.pins.push(p);
+        }
+    }
+    Ok(())
+}
+
 /// The solver's options for a character: Levenberg–Marquardt from the runtime's pose, without
 /// restarts (a restart starts from a random pose: it would lose the animation's look and the
 /// bends, and an aim that cannot be met exactly would restart every solve), at most 200
@@ -141,6 +197,19 @@ pub struct IkJson {
     pub status: Option<String>,
     pub rounds: usize,
     pub constraints: Vec<LimbJson>,
+    /// The goals on bones' tips ([`add_goals`]), when there are any.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub goals: Vec<GoalJson>,
+}
+
+/// One goal's end: its bone's tip's distance from it, and with an angle, the bone's direction's
+/// difference from it, degrees.
+#[derive(Debug, Serialize)]
+pub struct GoalJson {
+    pub bone: String,
+    pub error: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle_error_deg: Option<f64>,
 }
 
 /// One constraint's end under `--ik ikarus`.
@@ -151,21 +220,27 @@ pub struct LimbJson {
     pub error: f64,
 }
 
+impl LimbJson {
+    fn of(c: &Character, l: &LimbEnd) -> Self {
+        LimbJson { name: c.constraints()[l.constraint].name.clone(), active: l.active, error: l.error }
+    }
+}
+
+impl GoalJson {
+    fn of(c: &Character, g: &GoalEnd) -> Self {
+        let bone = c.bones()[g.bone].name.clone();
+        GoalJson { bone, error: g.error, angle_error_deg: g.angle_error.map(f64::to_degrees) }
+    }
+}
+
 impl IkJson {
     fn of(c: &Character, t: &TogetherReport) -> Self {
         IkJson {
             solver: "ikarus",
             status: t.outcome.as_ref().map(|o| o.status.to_string()),
             rounds: t.rounds,
-            constraints: t
-                .limbs
-                .iter()
-                .map(|l| LimbJson {
-                    name: c.constraints()[l.constraint].name.clone(),
-                    active: l.active,
-                    error: l.error,
-                })
-                .collect(),
+            constraints: t.limbs.iter().map(|l| LimbJson::of(c, l)).collect(),
+            goals: t.goals.iter().map(|g| GoalJson::of(c, g)).collect(),
         }
     }
 }
@@ -196,7 +271,7 @@ impl PoseReport {
     }
 
     /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
-    /// per unsupported constraint.
+    /// per unsupported constraint, then one per goal on a bone's tip (its miss).
     #[must_use]
     pub fn text(&self) -> String {
         use std::fmt::Write;
@@ -214,6 +289,13 @@ impl PoseReport {
         }
         for u in &self.unsupported {
             let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, u.name);
+        }
+        for g in self.ik.iter().flat_map(|k| &k.goals) {
+            let _ = write!(out, "goal on {:?}: tip {:.6} from its point", g.bone, g.error);
+            if let Some(a) = g.angle_error_deg {
+                let _ = write!(out, ", direction {a:.6}° from its angle");
+            }
+            out.push('\n');
         }
         out
     }

@@ -18,6 +18,7 @@ use crate::options::{parse_angle, parse_at_least_one};
 use crate::picture::StillArgs;
 
 mod batch;
+mod character;
 mod columns;
 mod single;
 mod write;
@@ -71,8 +72,26 @@ pub struct SolveArgs {
     /// Also write the batch summary as JSON to PATH
     #[arg(long, value_name = "PATH")]
     pub summary_json: Option<PathBuf>,
+    /// With a character file (--rig FILE.json): how many bones the goal on bone NAME turns,
+    /// counted up from it [default: 2, the bone and its parent]
+    #[arg(long, value_name = "NAME=N", value_parser = parse_bones)]
+    pub bones: Vec<(String, usize)>,
+    /// With a character file: an IK file (TOML) adding pins, longer limbs, weights, joint limits
+    /// and stiffness to its constraints (see ikarus pose --ik-file)
+    #[arg(long, value_name = "FILE")]
+    pub ik_file: Option<PathBuf>,
     #[command(flatten)]
     pub picture: StillArgs,
+}
+
+/// `NAME=N`, N ≥ 1.
+fn parse_bones(s: &str) -> Result<(String, usize), String> {
+    let (name, n) = s.rsplit_once('=').ok_or_else(|| format!("expected NAME=N, got {s:?}"))?;
+    if name.trim().is_empty() {
+        return Err("NAME=N: the bone's name is empty".to_owned());
+    }
+    let n = parse_at_least_one(n).map_err(|m| format!("{name}: {m}"))?;
+    Ok((name.trim().to_owned(), n as usize))
 }
 
 fn parse_threads(s: &str) -> Result<usize, String> {
@@ -86,11 +105,17 @@ pub struct SolveBody;
 
 impl BodyHelp for SolveBody {
     const ARM: &'static str = "Arm file (TOML) [default: the built-in seed arm, lengths 3, 2, 1]";
-    const RIG: &'static str =
-        "Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin NAME) are solved together";
+    const RIG: &'static str = "Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin NAME) are solved together; or a character file (Spine, DragonBones JSON): the goals solved with its IK constraints by ikarus's solver";
 }
 
 pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+    if let Some(file) = crate::character_motion::character(args.body.rig.as_deref()) {
+        return character::run(args, &file?);
+    }
+    crate::character_motion::refuse_without(&[
+        ("--bones", !args.bones.is_empty()),
+        ("--ik-file", args.ik_file.is_some()),
+    ])?;
     if args.batch.is_none() {
         if let Some(n) = args.threads {
             return Err(CliError::input(format!("--threads {n}: only applies with --batch")));

@@ -195,16 +195,33 @@ pub fn task(
     mix: Option<f64>,
     need_one: bool,
 ) -> Result<RigTask, Problem> {
+    let effectors = effectors_within(goals, pins)?;
+    if !need_one && effectors == 0 {
+        return Ok(RigTask::default());
+    }
+    if let Some(i) = goals.iter().position(|g| g.bones.is_some()) {
+        return Err(Problem::invalid(format!(
+            "goals[{i}].bones: only for a character's goal (/api/pose); a rig's goal turns every bone above it"
+        )));
+    }
+    let goals = named_goals(goals);
+    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field_name).map_err(Problem::invalid)
+}
+
+/// How many goals and pins there are together, refused over [`MAX_EFFECTORS`].
+pub(super) fn effectors_within(goals: &[RigGoalReq], pins: &[String]) -> Result<usize, Problem> {
     let effectors = goals.len() + pins.len();
     if effectors > MAX_EFFECTORS {
         return Err(Problem::invalid(format!(
             "goals, pins: {effectors} effectors (goals and pins together), more than the cap of {MAX_EFFECTORS}"
         )));
     }
-    if !need_one && effectors == 0 {
-        return Ok(RigTask::default());
-    }
-    let goals: Vec<NamedGoal> = goals
+    Ok(effectors)
+}
+
+/// A request's goals by name, in the edge's units.
+pub(super) fn named_goals(goals: &[RigGoalReq]) -> Vec<NamedGoal> {
+    goals
         .iter()
         .map(|g| NamedGoal {
             weight: g.weight.unwrap_or(1.0),
@@ -219,15 +236,19 @@ pub fn task(
             softness: g.softness.unwrap_or(0.0),
             ..NamedGoal::new(g.bone.clone(), g.x, g.y, g.angle_deg)
         })
-        .collect();
-    let field = |f: Field| match f {
+        .collect()
+}
+
+/// A goal's or a pin's field as a request names it (`goals[1].weight`, `pins[0]`).
+pub(super) fn field_name(f: Field) -> String {
+    match f {
         Field::Goal(i) => format!("goals[{i}]"),
         Field::Weight(i) => format!("goals[{i}].weight"),
         Field::Softness(i) => format!("goals[{i}].softness"),
         Field::Bend(i) => format!("goals[{i}].bend"),
+        Field::Bones(i) => format!("goals[{i}].bones"),
         Field::Pin(i) => format!("pins[{i}]"),
-    };
-    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field).map_err(Problem::invalid)
+    }
 }
 
 #[cfg(test)]

@@ -47,6 +47,7 @@ fn aimed<'a>(
                 priority: None,
                 bend: None,
                 softness: None,
+                bones: None,
             };
             Ok(Aimed::Rig(r, task(r, &[on_tip], &[], None, true)?))
         }

@@ -3,39 +3,38 @@
 
 use serde::Deserialize;
 
+use super::bodies::{effectors_within, field_name, named_goals};
 use super::fields::json_response;
+use super::requests::request;
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::{is_json, load_within};
-use crate::pose::{PoseAsk, pose as posed};
+use crate::pose::{IkChoice, PoseAsk, add_goals, pose as posed};
 use crate::rig::BoneCap;
+use ikarus::character::Character;
 
-/// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
-/// "y"}, …], "ik": "ikarus", "ik_file": "<TOML>"}`: every field but `rig` optional.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PoseReq {
-    rig: String,
-    #[serde(default)]
-    animation: Option<String>,
-    #[serde(default)]
-    time: Option<f64>,
-    #[serde(default)]
-    targets: Vec<TargetReq>,
-    /// `"runtime"` (the default) or `"ikarus"`.
-    #[serde(default)]
-    ik: Option<String>,
-    /// With `"ik": "ikarus"`: an IK file's text (TOML; see `ikarus pose --ik-file`).
-    #[serde(default)]
-    ik_file: Option<String>,
+request! {
+    /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
+    /// "y"}, …], "ik": "ikarus", "ik_file": "<TOML>", "goals": [{"bone", "x", "y", "bones", …}],
+    /// "pins": ["BONE", …]}`: every field but `rig` optional; `goals` and `pins` only with `"ik":
+    /// "ikarus"`.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct PoseReq {
+        required rig: String,
+        pub animation: Option<String>,
+        pub time: Option<f64>,
+        pub targets: Vec<TargetReq>,
+        ..ik_goals,
+    }
 }
 
 /// A bone's world origin put at (x, y).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct TargetReq {
-    pub(super) bone: String,
-    pub(super) x: f64,
-    pub(super) y: f64,
+pub struct TargetReq {
+    pub bone: String,
+    pub x: f64,
+    pub y: f64,
 }
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
@@ -55,7 +54,7 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
             req.targets.len()
         )));
     }
-    let ik = crate::pose::ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    let ik = IkReq { ik: req.ik, ik_file: req.ik_file, goals: req.goals, pins: req.pins }.choice(&loaded.character)?;
     let ask = PoseAsk {
         animation: req.animation,
         time: req.time,
@@ -64,4 +63,38 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     };
     let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
     json_response(&report)
+}
+
+request! {
+    /// The IK part of a pose request: whose rules, the IK file, and with ikarus's, goals on
+    /// bones' tips and pins (`/api/pose`'s fields; Python's `rig.pose` sends them as one object).
+    #[derive(Debug, Default, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct IkReq {
+        ..ik_goals,
+    }
+}
+
+impl IkReq {
+    /// The rules asked for on `c` ([`crate::pose::ik_choice`]), with the goals and pins, which
+    /// need ikarus's; problems name the field (`goals[0].bones`).
+    pub fn choice(&self, c: &Character) -> Result<IkChoice, Problem> {
+        let mut ik = crate::pose::ik_choice(self.ik.as_deref(), self.ik_file.as_deref(), "ik_file", c)?;
+        effectors_within(&self.goals, &self.pins)?;
+        match &mut ik {
+            IkChoice::Ikarus(rules) => {
+                let bones: Vec<Option<usize>> = self.goals.iter().map(|g| g.bones).collect();
+                add_goals(rules, c, &named_goals(&self.goals), &bones, &self.pins, &field_name)
+                    .map_err(Problem::invalid)?;
+            }
+            IkChoice::Runtime if !self.goals.is_empty() || !self.pins.is_empty() => {
+                let which = if self.goals.is_empty() { "pins" } else { "goals" };
+                return Err(Problem::invalid(format!(
+                    "{which}: only with \"ik\": \"ikarus\" (the runtime's rules know only the file's constraints)"
+                )));
+            }
+            IkChoice::Runtime => {}
+        }
+        Ok(ik)
+    }
 }

@@ -36,6 +36,11 @@ use crate::settings::SolverSettings;
 ///   `height`.
 /// - `..area`: `limits`, `grid`, `resolution`, `samples`, `seed` (the exact region, or the
 ///   sampled grid).
+/// - `..character_ik`: a character's `ik` (`"runtime"` or `"ikarus"`) and `ik_file` (TOML).
+/// - `..ik_goals`: `..character_ik`, then goals on bones' tips and pins (with `"ikarus"`).
+/// - `..export`: a character's motion's `format`, `..character_ik`, `animation_name`.
+///
+/// A field written `required name: Type,` has no default: absent, it is refused.
 macro_rules! request {
     ($(#[$meta:meta])* pub struct $name:ident $(<$param:ident>)? { $($fields:tt)* }) => {
         $crate::api::requests::request!(@fields [$(#[$meta])* pub struct $name $(<$param>)?] [] $($fields)*);
@@ -106,6 +111,39 @@ macro_rules! request {
             $($rest)*
         );
     };
+    (@fields $head:tt $done:tt ..character_ik, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// `"runtime"` (the default) or `"ikarus"`.
+            pub ik: Option<String>,
+            /// With `"ik": "ikarus"`: an IK file's text (TOML; see `ikarus pose --ik-file`).
+            pub ik_file: Option<String>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..ik_goals, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            ..character_ik,
+            /// With `"ik": "ikarus"`: goals on bones' tips, solved with the constraints (a rig's
+            /// goals, and `bones`: how many bones each turns).
+            pub goals: Vec<$crate::api::requests::RigGoalReq>,
+            /// With `"ik": "ikarus"`: bones whose tips stay where they start.
+            pub pins: Vec<String>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..export, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// `json` (the frames, the default) or `spine` (the file with the motion added).
+            pub format: $crate::api::requests::MotionFormat,
+            ..character_ik,
+            /// With `spine`: the added animation's name.
+            pub animation_name: Option<String>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt [$($done:tt)*] $(#[$attr:meta])* required $field:ident : $ty:ty, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head [$($done)* $(#[$attr])* pub $field: $ty,] $($rest)*);
+    };
     (@fields $head:tt [$($done:tt)*] $(#[$attr:meta])* pub $field:ident : $ty:ty, $($rest:tt)*) => {
         $crate::api::requests::request!(@fields $head [$($done)* $(#[$attr])* #[serde(default)] pub $field: $ty,] $($rest)*);
     };
@@ -156,6 +194,9 @@ pub struct RigGoalReq {
     pub bend: Option<BendReq>,
     #[serde(default)]
     pub softness: Option<f64>,
+    /// A character's goal (`/api/pose`): how many bones it turns, counted up from its bone.
+    #[serde(default)]
+    pub bones: Option<usize>,
 }
 
 request! {
@@ -274,4 +315,15 @@ request! {
         /// Many points: the answer is an array of objects, in order.
         pub points: Option<Vec<[f64; 2]>>,
     }
+}
+
+/// What a character's motion is answered as.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MotionFormat {
+    /// Its frames.
+    #[default]
+    Json,
+    /// The Spine document with the motion added.
+    Spine,
 }

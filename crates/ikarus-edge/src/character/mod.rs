@@ -115,7 +115,7 @@ pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
     let loaded = load(text, label)?;
     let c = &loaded.character;
     Err(CliError::input(format!(
-        "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML)",
+        "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters",
         loaded.format.name(),
         c.bones().len(),
         c.constraints().len()

@@ -342,7 +342,7 @@ fn the_format_is_told_from_the_content_and_bones_are_capped() {
 #[test]
 fn a_character_file_given_for_a_rig_is_read_and_named_for_what_it_is() {
     let e = not_a_rig(SPINEBOY, "rig file s.json").unwrap_err().to_string();
-    let want = "rig file s.json: a Spine character (67 bones, 7 IK constraints), which this command does not take: it takes rig files (TOML)";
+    let want = "rig file s.json: a Spine character (67 bones, 7 IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters";
     assert_eq!(e, want);
     let e =
         not_a_rig("{\"skeleton\": {\"spine\": \"4.2\"}, \"bones\": [{}]}", "rig file s.json").unwrap_err().to_string();
@@ -353,5 +353,5 @@ fn a_character_file_given_for_a_rig_is_read_and_named_for_what_it_is() {
         Some(std::path::Path::new("../../examples/characters/dragonbones-mecha_1406_ske.json")),
     );
     let e = body.err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(e.ends_with("a DragonBones character (17 bones, 4 IK constraints), which this command does not take: it takes rig files (TOML)"), "{e}");
+    assert!(e.ends_with("a DragonBones character (17 bones, 4 IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters"), "{e}");
 }
