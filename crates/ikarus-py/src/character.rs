@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::edge::{Loaded, PoseAsk, ik_choice, load_character, pose};
+use crate::edge::{IkReq, Loaded, PoseAsk, load_character, parse_json, pose};
 
 /// A character file, read: ``_Character(text, label)`` raises ``ValueError`` with the CLI's
 /// line (``label`` starts it, as ``rig file PATH`` does on the command line).
@@ -60,8 +60,9 @@ impl PyCharacter {
     /// dicts), the numbers of ``ikarus pose --format json``; a refusal is ``ValueError`` with
     /// the CLI's line. ``ik``: ``"runtime"`` (default) or ``"ikarus"`` (every constraint solved
     /// together, with the IK file's text ``ik_file``); with ``"ikarus"``, ``ik`` in the answer is
-    /// the JSON's ``ik`` object as text.
-    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None, ik_file=None))]
+    /// the JSON's ``ik`` object as text. ``ik`` is the JSON text of ``POST /api/pose``'s IK
+    /// fields as one object: ``{"ik", "ik_file", "goals", "pins"}``, each optional.
+    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None))]
     fn pose<'py>(
         &self,
         py: Python<'py>,
@@ -69,10 +70,12 @@ impl PyCharacter {
         time: Option<f64>,
         targets: Vec<(String, (f64, f64))>,
         ik: Option<&str>,
-        ik_file: Option<&str>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let ik = ik_choice(ik, ik_file, "ik_file", &self.loaded.character)
-            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let asked: IkReq = match ik {
+            Some(text) => parse_json(text.as_bytes()).map_err(|e| PyValueError::new_err(e.to_string()))?,
+            None => IkReq::default(),
+        };
+        let ik = asked.choice(&self.loaded.character).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
         let ask = PoseAsk { animation, time, targets, ik };
         let report = py

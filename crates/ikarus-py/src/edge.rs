@@ -2,6 +2,8 @@
 //! API's JSON answers, and the character files' reader and pose job (`ikarus pose`'s). Every
 //! other module names it as `crate::edge`.
 
+pub(crate) use ikarus_edge::api::parse_json;
+pub(crate) use ikarus_edge::api::pose::IkReq;
 pub(crate) use ikarus_edge::character::{Loaded, load as load_character};
 pub(crate) use ikarus_edge::edge::*;
-pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, ik_choice, pose};
+pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, pose};

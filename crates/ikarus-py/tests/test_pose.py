@@ -164,3 +164,23 @@ def test_ik_ikarus_is_the_clis_bit_for_bit(name: str) -> None:
     assert rig(name).pose(ik="runtime").ik is None
     with pytest.raises(ValueError, match=r'^ik = "ikarous": expected "runtime" or "ikarus"$'):
         rig(name).pose(ik="ikarous")
+
+
+def test_goals_on_bones_are_the_clis_solve_bit_for_bit() -> None:
+    """``rig.pose(ik="ikarus", goals=…)`` is ``ikarus solve --rig CHARACTER.json`` (issue 26)."""
+    boy = rig("spineboy")
+    pose = boy.pose(ik="ikarus", goals={"front-fist": {"x": 60.0, "y": 300.0, "bones": 3}}, pins=["head"])
+    out = run_cli(
+        "solve", "--rig", f"examples/characters/{FILES['spineboy']}", "--goal", "front-fist=60,300",
+        "--bones", "front-fist=3", "--pin", "head", "--format", "json",
+    ).stdout
+    want = json.loads(out)
+    assert pose.x.tolist() == [b["x"] for b in want["bones"]]
+    assert pose.tip_y.tolist() == [b["tip"][1] for b in want["bones"]]
+    assert pose.ik == want["ik"] and pose.ik["goals"][0]["error"] < 1e-6
+    fist = boy.bones.index("front-fist")
+    assert abs(pose.tip_x[fist] - 60.0) < 1e-6 and abs(pose.tip_y[fist] - 300.0) < 1e-6
+    with pytest.raises(ValueError, match=r'^goals: only with "ik": "ikarus"'):
+        boy.pose(goals={"front-fist": (1.0, 2.0)})
+    with pytest.raises(ValueError, match=r"^goals\[0\]\.bones: 10: must be from 1 \(the bone alone\) to 9"):
+        boy.pose(ik="ikarus", goals={"front-fist": {"x": 1.0, "y": 2.0, "bones": 10}})

@@ -455,6 +455,9 @@ class Rig(_CharacterRig, _Body):
     def _columns(self) -> Tuple[Optional[Sequence[str]], Optional[Sequence[float]]]:
         return self.bones, self.rig.get("base")
 
+    def _goal_list(self, goals: Mapping[str, Any]) -> list:
+        return _plain(_rig_goals(goals), "goals")
+
     def solve(
         self,
         goals: Mapping[str, Union[Goal, RigGoal]],

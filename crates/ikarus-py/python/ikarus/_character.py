@@ -13,7 +13,7 @@ from . import _ikarus
 from ._results import Pose
 
 if typing.TYPE_CHECKING:
-    from typing import Any, Mapping, Optional, Tuple, TypeVar
+    from typing import Any, Mapping, Optional, Sequence, Tuple, TypeVar
 
     C = TypeVar("C", bound="_CharacterRig")
 
@@ -64,15 +64,21 @@ class _CharacterRig:
         *,
         ik: str = "runtime",
         ik_file: Optional[str] = None,
+        goals: Optional[Mapping[str, Any]] = None,
+        pins: Sequence[str] = (),
     ) -> Pose:
         """A character posed as its runtime does (``ikarus pose``, ``POST /api/pose``, by the
         same code): the setup pose, then ``animation`` at ``time`` seconds, then each bone of
         ``targets`` (``{"bone": (x, y)}``, in order) with its world origin put at (x, y), then
         the IK constraints in their order — by the runtime's rules (``ik="runtime"``) or all
         together by ikarus's rig solver (``ik="ikarus"``, ``ikarus pose --ik ikarus``, with an
-        IK file's text ``ik_file``; the answer's ``ik`` then says what the solve did). Returns a :class:`Pose` (NumPy columns, the numbers
-        of ``ikarus pose --format json`` bit for bit); a bad name or value raises
-        ``ValueError`` with the CLI's line."""
+        IK file's text ``ik_file``; the answer's ``ik`` then says what the solve did). With
+        ``ik="ikarus"``, ``goals`` puts bones' tips on points as ``ikarus solve --rig
+        CHARACTER.json`` does: ``{bone: (x, y[, angle_deg]) or {"x", "y", "bones", "weight",
+        "priority", "bend", "softness", "angle_deg"}}``, ``bones`` how many bones the goal
+        turns (2 by default, the bone and its parent); ``pins`` names bones held where they
+        start. Returns a :class:`Pose` (NumPy columns, the numbers of ``ikarus pose --format
+        json`` bit for bit); a bad name or value raises ``ValueError`` with the CLI's line."""
         if self._character is None:
             raise ValueError(
                 f"Rig {self.rig.get('name', 'rig')!r}: pose takes a character (Spine or DragonBones JSON, "
@@ -82,10 +88,16 @@ class _CharacterRig:
         for bone, point in (targets or {}).items():
             x, y = point
             pairs.append((bone, (float(x), float(y))))
-        answer = self._character.pose(animation, None if time is None else float(time), pairs, ik, ik_file)
+        asked: dict = {"ik": ik, "ik_file": ik_file, "goals": self._goal_list(goals or {}), "pins": list(pins)}
+        text = json.dumps({k: v for k, v in asked.items() if v is not None}, allow_nan=False)
+        answer = self._character.pose(animation, None if time is None else float(time), pairs, text)
         if answer["ik"] is not None:
             answer["ik"] = json.loads(answer["ik"])
         return Pose(**answer)
+
+    def _goal_list(self, goals: Mapping[str, Any]) -> list:
+        """Goals by bone as the API's list (the rig's reader of goals, given by ``Rig``)."""
+        raise NotImplementedError
 
     def _rig_file(self) -> Any:
         """The rig file's fields, for the methods that take a rig file only."""
@@ -93,6 +105,7 @@ class _CharacterRig:
             kind = {"spine": "Spine", "dragonbones": "DragonBones"}[self._character.format]
             raise ValueError(
                 f"Rig {self.rig['name']!r}: a {kind} character, which solve, animate, track and render do not "
-                "take: they take rig files (TOML); pose poses it"
+                "take: they take rig files (TOML); pose poses it, and pose(ik=\"ikarus\", goals=…) puts its bones' "
+                "tips on goals as ikarus solve --rig does"
             )
         return self.rig

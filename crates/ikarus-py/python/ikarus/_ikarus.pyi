@@ -148,7 +148,6 @@ class _Character:
         time: Optional[float] = None,
         targets: Sequence[Tuple[str, Tuple[float, float]]] = ...,
         ik: Optional[str] = None,
-        ik_file: Optional[str] = None,
     ) -> dict[str, Any]: ...
 
 def ease(kind: EaseName, t: Union[float, npt.ArrayLike], k1: Optional[float] = None, k2: Optional[float] = None, velocity: bool = False) -> Any:
