@@ -47,6 +47,17 @@ pub struct Summary {
     pub median_us: f64,
     /// The 99th percentile (nearest rank) of the same figures as `median_us`.
     pub p99_us: f64,
+    /// Median time of one goal (an arm's) or target set (a rig's) solved alone, by itself, on one
+    /// thread with the other threads idle, in µs: the latency one solve has, which the blocks'
+    /// figures average away. Measured after the batch over [`Summary::goals_timed_alone`] goals
+    /// evenly spaced through the file (a rig's batch on `--threads 1` is timed so already: its
+    /// own times are these).
+    pub goal_median_us: f64,
+    /// The 99th percentile (nearest rank) of the same figures as `goal_median_us`.
+    pub goal_p99_us: f64,
+    /// How many goals were timed alone: all of them up to [`GOALS_TIMED_ALONE`] (a rig's batch
+    /// on one thread: all of them).
+    pub goals_timed_alone: usize,
     /// Seconds from the start of the first solve to the end of the last, on all threads
     /// together: the solving phase, without reading the file or writing stdout (for an arm, the
     /// rows of each block are formatted between its blocks, so that time is in it).
@@ -67,6 +78,26 @@ pub struct Tally {
     /// arm's).
     pub micros: Vec<f64>,
     pub wall_s: f64,
+    /// Time of each goal solved alone on one thread, µs ([`time_alone`]).
+    pub alone: Vec<f64>,
+}
+
+/// At most this many goals of a batch are timed alone ([`Summary::goal_median_us`]): 10,000
+/// gives a p99 of 100 goals beyond it, and costs a tenth of a second at 10 µs a solve.
+pub const GOALS_TIMED_ALONE: usize = 10_000;
+
+/// Solves goal `i` of `n` with `solve`, each timed alone on this thread: every goal, or
+/// [`GOALS_TIMED_ALONE`] of them evenly spaced; their times in µs.
+pub fn time_alone<E>(n: usize, mut solve: impl FnMut(usize) -> Result<(), E>) -> Result<Vec<f64>, E> {
+    let count = n.min(GOALS_TIMED_ALONE);
+    let mut micros = Vec::with_capacity(count);
+    for k in 0..count {
+        let i = k * n / count;
+        let started = Instant::now();
+        solve(i)?;
+        micros.push(started.elapsed().as_secs_f64() * 1e6);
+    }
+    Ok(micros)
 }
 
 /// An arm's goals are solved in blocks of this many, each by one call of `Solver::solve_batch`
@@ -181,6 +212,7 @@ impl Batch {
             reached: rows.iter().filter(|r| r.status == Status::Reached).count(),
             micros: rows.iter().map(|r| r.micros).collect(),
             wall_s,
+            alone: Vec::new(),
         };
         Ok((rows, tally))
     }
@@ -302,6 +334,7 @@ impl Batch {
                 (Some(first), Some(last)) => (last - first).as_secs_f64(),
                 _ => 0.0,
             },
+            alone: Vec::new(),
         })
     }
 
@@ -313,14 +346,17 @@ impl Batch {
         let percent = (summary.reached_percent * 100.0).floor() / 100.0;
         eprintln!(
             "batch: {} goals, {} reached ({percent:.2}%), median {:.2} µs, p99 {:.2} µs per solve, {} threads, \
-             {:.2} ms wall, {:.0} solves/s",
+             {:.2} ms wall, {:.0} solves/s; each alone: median {:.2} µs, p99 {:.2} µs ({} goals, 1 thread)",
             summary.goals,
             summary.reached,
             summary.median_us,
             summary.p99_us,
             summary.threads,
             summary.wall_s * 1e3,
-            summary.solves_per_s
+            summary.solves_per_s,
+            summary.goal_median_us,
+            summary.goal_p99_us,
+            summary.goals_timed_alone
         );
         if let Some(file) = self.summary {
             let mut bytes = serde_json::to_vec_pretty(&summary).expect("summary serialises");
@@ -346,8 +382,9 @@ fn progress_bar(goals: usize) -> Option<ProgressBar> {
 }
 
 fn summarise(tally: Tally, threads: usize, method: &'static str) -> Summary {
-    let Tally { goals, reached, mut micros, wall_s } = tally;
+    let Tally { goals, reached, mut micros, wall_s, mut alone } = tally;
     micros.sort_by(f64::total_cmp);
+    alone.sort_by(f64::total_cmp);
     // A wall clock too coarse to see the batch at all still gives a finite throughput.
     let wall_s = wall_s.max(1e-9);
     Summary {
@@ -356,6 +393,9 @@ fn summarise(tally: Tally, threads: usize, method: &'static str) -> Summary {
         reached_percent: 100.0 * reached as f64 / goals as f64,
         median_us: median(&micros),
         p99_us: nearest_rank(&micros, 0.99),
+        goal_median_us: median(&alone),
+        goal_p99_us: nearest_rank(&alone, 0.99),
+        goals_timed_alone: alone.len(),
         wall_s,
         solves_per_s: goals as f64 / wall_s,
         threads,

@@ -12,7 +12,7 @@ use super::SolveArgs;
 use super::columns::goal_columns;
 use super::write::{angle_columns, write_pose};
 use crate::arm::Arm;
-use crate::batch::{BLOCK_GOALS, Batch, Rows, TASK_GOALS};
+use crate::batch::{BLOCK_GOALS, Batch, Rows, TASK_GOALS, Tally, time_alone};
 use crate::error::CliError;
 use crate::goal_args::Target;
 use crate::goals::{self, Goals, make_goal};
@@ -57,6 +57,11 @@ pub(super) fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), 
         },
         Rows { header: header.as_bytes(), out: &mut std::io::BufWriter::new(stdout.lock()) },
     )?;
+    // Each goal alone, on this thread (the pool is idle now).
+    let goals: Vec<&Goal> = pieces.iter().flat_map(|p| &p.goals).collect();
+    let (mut alone, mut outcome) = (solver.clone(), Outcome::default());
+    let timed = time_alone(goals.len(), |i| alone.solve_into(chain, start, goals[i], &mut outcome));
+    let tally = Tally { alone: timed.map_err(|e| CliError::input(e.to_string()))?, ..tally };
     batch.finish(tally, solver.options().method.name())
 }
 
@@ -148,6 +153,18 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
             Ok::<_, String>((out.status, (out.error, out.iterations, out.pose.angles().to_vec())))
         },
     )?;
+    // Each target set alone on one thread: a batch on one thread has timed them so already.
+    let alone = if batch.threads == 1 {
+        tally.micros.clone()
+    } else {
+        let (mut alone, mut out, mut task) = (solver.clone(), Outcome::default(), template.clone());
+        time_alone(rows.len(), |i| {
+            targets(&mut task, &rows[i]).map_err(|(bone, m)| format!("{bone}: {m}"))?;
+            alone.solve_rig_into(skeleton, skeleton.start_angles(), &task, &mut out).map_err(|e| e.to_string())
+        })
+        .map_err(CliError::input)?
+    };
+    let tally = Tally { alone, ..tally };
     output::stdout(|w| {
         writeln!(w, "{},status,error,iterations,{}", cells.join(","), angle_columns(rig))?;
         for (values, r) in rows.iter().zip(&solved) {

@@ -62,11 +62,30 @@ pub fn batch_summary(summary_json: &std::path::Path, err: &str, goals: f64) -> V
     keys.sort_unstable();
     assert_eq!(
         keys,
-        ["goals", "median_us", "method", "p99_us", "reached", "reached_percent", "solves_per_s", "threads", "wall_s"]
+        [
+            "goal_median_us",
+            "goal_p99_us",
+            "goals",
+            "goals_timed_alone",
+            "median_us",
+            "method",
+            "p99_us",
+            "reached",
+            "reached_percent",
+            "solves_per_s",
+            "threads",
+            "wall_s"
+        ]
     );
+    // Each goal timed alone, on one thread: every goal up to 10,000.
+    let alone = s["goals_timed_alone"].as_f64().unwrap();
+    assert_eq!(alone, goals.min(10_000.0), "{s}");
+    let (median, p99) = (s["goal_median_us"].as_f64().unwrap(), s["goal_p99_us"].as_f64().unwrap());
+    assert!(median > 0.0 && p99 >= median, "{s}");
+    assert!(err.contains(&format!("; each alone: median {median:.2} µs, p99 {p99:.2} µs ({alone} goals, 1 thread)")), "{err}");
     let (wall, rate) = (s["wall_s"].as_f64().unwrap(), s["solves_per_s"].as_f64().unwrap());
     assert!(wall > 0.0 && wall < 60.0, "{s}");
     assert!((rate * wall / goals - 1.0).abs() < 1e-9, "solves_per_s is goals / wall_s: {s}");
-    assert!(err.contains(" ms wall, ") && err.ends_with(" solves/s\n"), "{err}");
+    assert!(err.contains(" ms wall, ") && err.contains(" solves/s; each alone: "), "{err}");
     s
 }
