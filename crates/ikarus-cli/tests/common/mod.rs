@@ -82,7 +82,10 @@ pub fn batch_summary(summary_json: &std::path::Path, err: &str, goals: f64) -> V
     assert_eq!(alone, goals.min(10_000.0), "{s}");
     let (median, p99) = (s["goal_median_us"].as_f64().unwrap(), s["goal_p99_us"].as_f64().unwrap());
     assert!(median > 0.0 && p99 >= median, "{s}");
-    assert!(err.contains(&format!("; each alone: median {median:.2} µs, p99 {p99:.2} µs ({alone} goals, 1 thread)")), "{err}");
+    assert!(
+        err.contains(&format!("; each alone: median {median:.2} µs, p99 {p99:.2} µs ({alone} goals, 1 thread)")),
+        "{err}"
+    );
     let (wall, rate) = (s["wall_s"].as_f64().unwrap(), s["solves_per_s"].as_f64().unwrap());
     assert!(wall > 0.0 && wall < 60.0, "{s}");
     assert!((rate * wall / goals - 1.0).abs() < 1e-9, "solves_per_s is goals / wall_s: {s}");
