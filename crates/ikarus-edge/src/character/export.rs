@@ -26,8 +26,18 @@ use super::motion::Motion;
 pub const TOLERANCE: f64 = 5e-3;
 
 /// How many times an interval between two frames is halved at most (a key every
-/// 1 / (fps · 2⁸) s at the finest).
-const MAX_DEPTH: u32 = 8;
+/// 1 / (fps · 2¹⁶) s at the finest, 5·10⁻⁷ s at 30 fps: about the resolution of a key's time,
+/// a 32-bit float, a few seconds in). Deep, because a limb passing through full reach under
+/// ikarus's solver swings like a square root of the time left, and a chord of √t strays
+/// √h / 4 over an interval h: the raptor's four-bone leg carried beyond its reach (the README's
+/// tour) needed 12 halvings at 30 fps to stay within [`TOLERANCE`]. The bisection only goes
+/// deep where a line strays, about two keys a level near such a point; [`MAX_REFINED`] bounds it
+/// where the motion strays everywhere.
+const MAX_DEPTH: u32 = 16;
+
+/// The most keys added between two frames: a motion that no line follows anywhere (a solution
+/// that jumps back and forth) stops being refined there instead of taking 2¹⁶ poses.
+const MAX_REFINED: usize = 256;
 
 /// The default animation name.
 pub const DEFAULT_NAME: &str = "ikarus";
@@ -99,30 +109,39 @@ fn keys(motion: &Motion<'_>) -> Result<Vec<Key>, String> {
     let mut out = vec![pose(times[0])?];
     for &t1 in &times[1..] {
         let end = pose(t1)?;
-        refine(motion, (&mut check, &mut world), &end, &mut out, 0, &mut pose)?;
+        let mut budget = MAX_REFINED;
+        refine(motion, (&mut check, &mut world), &end, &mut out, (0, &mut budget), &mut pose)?;
         out.push(end);
     }
     Ok(out)
 }
 
 /// Keys inserted between the last of `out` and `end` (not pushed) wherever a straight line
-/// between them strays more than [`TOLERANCE`] from the motion.
+/// between them strays more than [`TOLERANCE`] from the motion, `depth` halvings deep with
+/// `budget` keys left to add.
 fn refine(
     motion: &Motion<'_>,
     (check, world): (&mut Posed, &mut Vec<Affine>),
     end: &Key,
     out: &mut Vec<Key>,
-    depth: u32,
+    (depth, budget): (u32, &mut usize),
     pose: &mut dyn FnMut(f64) -> Result<Key, String>,
 ) -> Result<(), String> {
     let start = out.last().expect("a first key");
-    if depth >= MAX_DEPTH || stray(motion, (check, world), start, end)? <= TOLERANCE {
+    if depth >= MAX_DEPTH || *budget == 0 || stray(motion, (check, world), start, end)? <= TOLERANCE {
         return Ok(());
     }
-    let mid = pose((start.time + end.time) / 2.0)?;
-    refine(motion, (check, world), &mid, out, depth + 1, pose)?;
+    // A key's time is read as a 32-bit float: the key is posed at the time it will be read at,
+    // and halving stops where the two ends have no such time between them.
+    let mid_time = f64::from(((start.time + end.time) / 2.0) as f32);
+    if mid_time <= start.time || mid_time >= end.time {
+        return Ok(());
+    }
+    *budget -= 1;
+    let mid = pose(mid_time)?;
+    refine(motion, (check, world), &mid, out, (depth + 1, &mut *budget), pose)?;
     out.push(mid);
-    refine(motion, (check, world), end, out, depth + 1, pose)
+    refine(motion, (check, world), end, out, (depth + 1, budget), pose)
 }
 
 /// The largest distance between a bone's origin or tip posed by the straight line between keys
