@@ -305,6 +305,19 @@ fn joint_distance2(bounds: Bounds<'_>, to: &[f64], from: &[f64]) -> f64 {
     to.iter().zip(from).enumerate().map(|(i, (&a, &b))| math::square(joint_delta(bounds, i, a, b))).sum()
 }
 
+/// [`joint_step`] and [`joint_distance2`] of the same two poses in one pass over the joints,
+/// bit for bit the same numbers (the plan's search asks for both of every pair of candidates).
+#[inline]
+fn joint_step_and_distance2(bounds: Bounds<'_>, to: &[f64], from: &[f64]) -> (f64, f64) {
+    let (mut step, mut distance2) = (0.0f64, 0.0);
+    for (i, (&a, &b)) in to.iter().zip(from).enumerate() {
+        let d = joint_delta(bounds, i, a, b);
+        step = step.max(d.abs());
+        distance2 += math::square(d);
+    }
+    (step, distance2)
+}
+
 /// Moves every free joint of `angles` to its 2π-equivalent nearest `reference`, so that
 /// consecutive poses differ by their short-way steps.
 #[inline]

@@ -17,7 +17,7 @@ use crate::solve::{Outcome, Solver, Status};
 use super::bridge::{Bridged, bridge};
 use super::{
     Path, SampleStatus, Track, TrackError, TrackOptions, TrackSample, bounds, is_flip, joint_delta, joint_distance2,
-    joint_step, unwrap_free,
+    joint_step, joint_step_and_distance2, unwrap_free,
 };
 
 /// The candidate solutions of one sample: `len()` poses of `n` angles each, flat.
@@ -291,8 +291,8 @@ fn search(ladder: &[Rung], start: &[f64], bounds: Bounds<'_>, max_step: f64, n: 
             let mut best = (f64::INFINITY, f64::INFINITY);
             let mut from = 0;
             for (i, &(flips, motion)) in cost.iter().enumerate() {
-                let p = prev.pose(i, n);
-                let c = (flips + flip_cost(joint_step(bounds, q, p), max_step), motion + joint_distance2(bounds, q, p));
+                let (step, distance2) = joint_step_and_distance2(bounds, q, prev.pose(i, n));
+                let c = (flips + flip_cost(step, max_step), motion + distance2);
                 if better(c, best) {
                     (best, from) = (c, i);
                 }
