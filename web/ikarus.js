@@ -15,6 +15,10 @@
 // it (400 malformed JSON, 422 a bad value) and `.message` its one-line message, naming the field
 // and the value (`request body: goal.y: invalid type: string "a", expected f64 at line 1 column
 // 22`). Calls are synchronous once `init()` has resolved; they run on the calling thread.
+//
+// The hot paths have typed handles beside these, without JSON: `Chain` (an arm read once, then
+// `solve(x, y, out)` / `solveBatch(goals, out)`) and `Character` (a character file read once,
+// then `pose(time, targets, out)`), writing numbers into a Float64Array the caller owns.
 
 import wasmInit, * as wasm from "./ikarus_wasm.js";
 
@@ -61,14 +65,149 @@ export function call(path, body = "") {
   try {
     return wasm.call(path, body);
   } catch (e) {
-    if (e instanceof wasm.Problem) {
-      const error = new IkarusError(e.status, e.message);
-      e.free();
-      throw error;
+    throw failure(e);
+  }
+}
+
+/** The IkarusError of what the module threw: a refusal (its Problem), or a trap. */
+function failure(e) {
+  if (e instanceof wasm.Problem) {
+    const error = new IkarusError(e.status, e.message);
+    e.free();
+    return error;
+  }
+  // A trap (a panic aborts on wasm32): say the panic's message if the module kept one.
+  const panic = e instanceof WebAssembly.RuntimeError ? wasm.last_panic() : undefined;
+  return new IkarusError(500, panic ? `internal error: ${panic}` : `internal error: ${e && e.message ? e.message : e}`);
+}
+
+/** The module's typed handle made by `make`, or the IkarusError it refused with. */
+function handle(make) {
+  if (!ready) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+  try {
+    return make();
+  } catch (e) {
+    throw failure(e);
+  }
+}
+
+/**
+ * The status names of a Chain record's last number (its status code).
+ * @type {readonly string[]}
+ */
+export const STATUS = Object.freeze(["reached", "unreachable", "stalled", "iteration_limit", "interrupted"]);
+
+/**
+ * An arm read once and solved without JSON (the hot path: following the pointer, many goals).
+ * `new Chain(arm?, options?)` takes `/api/solve`'s `arm` and `options` objects (the seed arm
+ * and `ikarus solve`'s settings when left out; no frames are recorded) and throws an
+ * IkarusError with the server's line for a bad one. Each solve writes a record of
+ * `recordLen = joints + 6` numbers into a Float64Array you own: the angles in degrees, the
+ * tip's x and y, the error, the iterations, the restarts, and the status code (`STATUS[code]`).
+ * The numbers are those of `solve({arm, options, goal: {x, y}})`, bit for bit. Call `free()`
+ * when done with it.
+ *
+ *   const chain = new ikarus.Chain();
+ *   const out = new Float64Array(chain.recordLen);
+ *   ikarus.STATUS[chain.solve(2, 3, out)];   // "reached"; out[0..3]: the angles in degrees
+ */
+export class Chain {
+  #h;
+  /**
+   * @param {object} [arm]     the API's `arm` object
+   * @param {object} [options] the API's `options` object
+   */
+  constructor(arm, options) {
+    this.#h = handle(() => new wasm.Chain(arm === undefined ? "" : JSON.stringify(arm), options === undefined ? "" : JSON.stringify(options)));
+    /** The number of joints. */
+    this.joints = this.#h.joints;
+    /** The numbers of one record: joints + 6. */
+    this.recordLen = this.#h.recordLen;
+  }
+
+  /**
+   * Solves the goal (x, y) from the arm's start pose into `out[0 .. recordLen]`; returns the
+   * status code.
+   * @param {number} x
+   * @param {number} y
+   * @param {Float64Array} out
+   * @returns {number}
+   */
+  solve(x, y, out) {
+    try {
+      return this.#h.solve(x, y, out);
+    } catch (e) {
+      throw failure(e);
     }
-    // A trap (a panic aborts on wasm32): say the panic's message if the module kept one.
-    const panic = e instanceof WebAssembly.RuntimeError ? wasm.last_panic() : undefined;
-    throw new IkarusError(500, panic ? `internal error: ${panic}` : `internal error: ${e && e.message ? e.message : e}`);
+  }
+
+  /**
+   * Solves each goal of `goals` (flat x, y pairs) from the start pose, through the library's
+   * batch path, writing one record per goal into `out` (at least goals.length / 2 records).
+   * @param {Float64Array} goals
+   * @param {Float64Array} out
+   */
+  solveBatch(goals, out) {
+    try {
+      this.#h.solveBatch(goals, out);
+    } catch (e) {
+      throw failure(e);
+    }
+  }
+
+  /** Releases the module's memory for this chain. */
+  free() {
+    this.#h.free();
+  }
+}
+
+/**
+ * A character file (Spine or DragonBones JSON text) read once and posed without JSON, as
+ * `/api/pose` poses it (the runtime's rules). `bones` (the file's order) and `animations` are
+ * read once; `setAnimation(name)` picks the animation (undefined: the setup pose); `pose(time,
+ * targets, out)` writes `poseLen = 5 × bones` numbers into a Float64Array you own, per bone:
+ * the world origin's x and y, the rotation in degrees and the tip's x and y — those of
+ * `pose({rig, animation, time, targets})`, bit for bit. `targets` is a Float64Array of flat
+ * `bone index, x, y` triples (the bone's origin put at (x, y) before the constraints).
+ */
+export class Character {
+  #h;
+  /** @param {string} text the character file's text */
+  constructor(text) {
+    this.#h = handle(() => new wasm.Character(text));
+    /** @type {string[]} the bones' names, the pose's order */
+    this.bones = this.#h.bones();
+    /** @type {string[]} */
+    this.animations = this.#h.animations();
+    /** The numbers of one pose: 5 × bones. */
+    this.poseLen = this.#h.poseLen;
+  }
+
+  /** @param {string | undefined} name the animation sampled from now on (undefined: none) */
+  setAnimation(name) {
+    try {
+      this.#h.setAnimation(name);
+    } catch (e) {
+      throw failure(e);
+    }
+  }
+
+  /**
+   * @param {number} time          seconds into the animation (ignored without one)
+   * @param {Float64Array} targets bone index, x, y triples
+   * @param {Float64Array} out     at least poseLen numbers
+   */
+  pose(time, targets, out) {
+    try {
+      this.#h.pose(time, targets, out);
+    } catch (e) {
+      throw failure(e);
+    }
+  }
+
+  /** Releases the module's memory for this character. */
+  free() {
+    this.#h.free();
   }
 }
 

@@ -1,18 +1,24 @@
-// Solves per second of the WebAssembly module in node, beside the native library's: the seed
-// arm's solves of N goals through ikarus.js's solve (a JSON request in, a JSON answer out), with
-// the median time of a call, the median `solve_us` the module measures around the solve alone
-// (so the JSON boundary's cost is the difference), and the native server's `solve_us` for the
-// same requests (the library at native speed, HTTP aside). Prints; checks nothing.
+// The WebAssembly module's speed in node, per call, three ways interleaved in one run: the
+// seed arm's solve through `call("solve", json)` (a JSON request in, a JSON answer out, as the
+// page's worker asks it), the same solve through the typed `Chain.solve(x, y, out)` (no JSON), and
+// a pose of spineboy (`walk` at a time that advances, one target) through the typed
+// `Character.pose(time, targets, out)`; then, optionally, the native server's `solve_us` for the
+// same requests (the library at native speed, HTTP aside). Each call is timed alone; the three
+// run in rounds of 100 calls each, in turn, so that a change of the machine's load hits all
+// three alike. Prints medians and p99 in µs with os.loadavg() before and after; checks nothing.
 //
-//   node web/speed.mjs DIR [N]      (DIR from `bash web/build DIR`; target/release/ikarus native)
+//   node web/speed.mjs DIR [N] [--native]   (DIR from `bash web/build DIR`; N calls of each, 20000)
 import { spawn } from "node:child_process";
 import { readFileSync } from "node:fs";
+import { loadavg } from "node:os";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "..");
-const dir = resolve(process.argv[2] ?? "");
-const n = Number(process.argv[3] ?? 5000);
+const args = process.argv.slice(2).filter((a) => a !== "--native");
+const withNative = process.argv.includes("--native");
+const dir = resolve(args[0] ?? "");
+const n = Number(args[1] ?? 20000);
 const ikarus = await import(pathToFileURL(join(dir, "ikarus.js")).href);
 await ikarus.init(readFileSync(join(dir, "ikarus_wasm_bg.wasm")));
 
@@ -22,37 +28,62 @@ const goal = (k) => {
   return { x: r * Math.cos(a), y: r * Math.sin(a) };
 };
 const request = (k) => JSON.stringify({ goal: goal(k), options: { record_every: 1000000 } });
-const median = (v) => v.slice().sort((a, b) => a - b)[v.length >> 1];
+const sorted = (v) => v.slice().sort((a, b) => a - b);
+const median = (v) => sorted(v)[v.length >> 1];
+const p99 = (v) => sorted(v)[Math.min(v.length - 1, Math.floor(v.length * 0.99))];
+const load = () => loadavg().map((l) => l.toFixed(2)).join(" ");
 
-for (let k = 0; k < 200; k++) ikarus.call("solve", request(k)); // warm up
-const calls = [];
-const solves = [];
-const t = performance.now();
-for (let k = 0; k < n; k++) {
-  const t0 = performance.now();
-  const text = ikarus.call("solve", request(k));
-  calls.push((performance.now() - t0) * 1000);
-  solves.push(JSON.parse(text).solve_us);
+const chain = new ikarus.Chain();
+const record = new Float64Array(chain.recordLen);
+const spineboy = new ikarus.Character(readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8"));
+spineboy.setAnimation("walk");
+const targets = Float64Array.of(spineboy.bones.indexOf("front-leg-target"), 120, 40);
+const posed = new Float64Array(spineboy.poseLen);
+
+const kinds = {
+  json: { label: 'call("solve", json)', run: (k) => JSON.parse(ikarus.call("solve", request(k))), times: [], inside: [] },
+  typed: { label: "Chain.solve (typed)", run: (k) => { const g = goal(k); chain.solve(g.x, g.y, record); }, times: [] },
+  pose: { label: "Character.pose spineboy walk (typed)", run: (k) => spineboy.pose((k % 100) * 0.0123, targets, posed), times: [] },
+};
+for (const kind of Object.values(kinds)) for (let k = 0; k < 300; k++) kind.run(k); // warm up
+
+const loadBefore = load();
+const round = 100;
+for (let start = 0; start < n; start += round) {
+  for (const kind of Object.values(kinds)) {
+    for (let k = start; k < Math.min(n, start + round); k++) {
+      const t0 = performance.now();
+      const answer = kind.run(k);
+      kind.times.push((performance.now() - t0) * 1000);
+      if (kind.inside) kind.inside.push(answer.solve_us);
+    }
+  }
 }
-const total = performance.now() - t;
+const loadAfter = load();
 
-const binary = process.env.IKARUS_BIN ?? join(root, "target", "release", "ikarus");
-const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
-const url = await new Promise((ok) => {
-  let out = "";
-  child.stdout.on("data", (c) => {
-    out += c;
-    const m = out.match(/listening on (http:\/\/\S+)/);
-    if (m) ok(m[1]);
+console.log(`node ${process.version}, ${n} calls of each, interleaved in rounds of ${round}; loadavg ${loadBefore} before, ${loadAfter} after`);
+for (const kind of Object.values(kinds)) {
+  let line = `  ${kind.label.padEnd(38)} median ${median(kind.times).toFixed(2).padStart(7)} µs   p99 ${p99(kind.times).toFixed(2).padStart(7)} µs`;
+  if (kind.inside) line += `   (the solve inside: median ${median(kind.inside).toFixed(2)} µs)`;
+  console.log(line);
+}
+
+if (withNative) {
+  const binary = process.env.IKARUS_BIN ?? join(root, "target", "release", "ikarus");
+  const child = spawn(binary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
+  const url = await new Promise((ok) => {
+    let out = "";
+    child.stdout.on("data", (c) => {
+      out += c;
+      const m = out.match(/listening on (http:\/\/\S+)/);
+      if (m) ok(m[1]);
+    });
   });
-});
-const native = [];
-for (let k = 0; k < n; k++) {
-  const res = await fetch(`${url}/api/solve`, { method: "POST", headers: { "content-type": "application/json" }, body: request(k) });
-  native.push((await res.json()).solve_us);
+  const native = [];
+  for (let k = 0; k < Math.min(n, 5000); k++) {
+    const res = await fetch(`${url}/api/solve`, { method: "POST", headers: { "content-type": "application/json" }, body: request(k) });
+    native.push((await res.json()).solve_us);
+  }
+  child.kill();
+  console.log(`  native library (the server's solve_us)   median ${median(native).toFixed(2).padStart(7)} µs   p99 ${p99(native).toFixed(2).padStart(7)} µs`);
 }
-child.kill();
-
-console.log(`${n} solves of the seed arm (LM, up to 16 restarts), node ${process.version}:`);
-console.log(`  wasm: ${Math.round((n / total) * 1000)} calls/s; median call ${median(calls).toFixed(1)} µs, of which the solve ${median(solves).toFixed(1)} µs (JSON in and out: ${(median(calls) - median(solves)).toFixed(1)} µs)`);
-console.log(`  native library (the server's solve_us): median ${median(native).toFixed(1)} µs a solve`);

@@ -201,6 +201,9 @@ test("the static build runs the playground with no ikarus server", async () => {
     assert.equal(seen.character.request.animation, "walk");
     assert.equal(seen.character.request.targets.length, 1);
     assert.equal(seen.character.posed.length, 67);
+    // The playback went through the module's typed path (ikarus.Character in the worker), not JSON.
+    const typedPoses = await page.evaluate(async () => (await import("./api.js")).typed.poses);
+    assert.ok(typedPoses >= 3, `poses by the typed path: ${typedPoses}`);
     await page.screenshot({ path: join(artifacts, "static-character.png") });
     await page.selectOption("#body-kind", "arm");
 
@@ -223,8 +226,33 @@ test("the static build runs the playground with no ikarus server", async () => {
         return { per_second: Math.round((n / ms) * 1000), call_us: (ms * 1000) / n };
       };
       await run(ikarus.solve, 50); // warm up
-      return { direct: await run(ikarus.solve, 2000), worker: await run(api.solve, 2000) };
+      const direct = await run(ikarus.solve, 2000);
+      const worker = await run(api.solve, 2000);
+      // The typed paths on the page's thread: the seed arm's Chain.solve, spineboy's walk posed.
+      const chain = new ikarus.Chain();
+      const record = new Float64Array(chain.recordLen);
+      const timed = (f, n) => {
+        for (let k = 0; k < 200; k++) f(k);
+        const t = performance.now();
+        for (let k = 0; k < n; k++) f(k);
+        return ((performance.now() - t) * 1000) / n;
+      };
+      const typedSolve = timed((k) => { const g = goal(k); chain.solve(g.x, g.y, record); }, 20000);
+      return { direct, worker, typedSolve };
     });
+    const poseUs = await page.evaluate(async (text) => {
+      const ikarus = await import("./ikarus.js");
+      const c = new ikarus.Character(text);
+      c.setAnimation("walk");
+      const targets = Float64Array.of(c.bones.indexOf("front-leg-target"), 120, 40);
+      const out = new Float64Array(c.poseLen);
+      for (let k = 0; k < 200; k++) c.pose(k * 0.0123, targets, out);
+      const n = 20000;
+      const t = performance.now();
+      for (let k = 0; k < n; k++) c.pose((k % 100) * 0.0123, targets, out);
+      return ((performance.now() - t) * 1000) / n;
+    }, spineboy.toString("utf8"));
+    console.log(`in-page typed calls: Chain.solve (seed arm) ${speed.typedSolve.toFixed(2)} µs a call; Character.pose (spineboy walk, one target) ${poseUs.toFixed(2)} µs a call`);
     console.log(
       `in-page solves, seed arm (LM, up to 16 restarts), 2000 goals: on the page's thread ${speed.direct.per_second}/s (${speed.direct.call_us.toFixed(1)} µs a call); through api.js and the worker ${speed.worker.per_second}/s (${speed.worker.call_us.toFixed(1)} µs a call)`,
     );

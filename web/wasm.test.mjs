@@ -239,3 +239,96 @@ test("a character posed by the module is the bytes of the server and of ikarus p
   }
   assert.equal(wasm("pose", JSON.stringify({ rig: puppet })).status, 422);
 });
+
+/** Whether two numbers are the same float64, bit for bit (Object.is tells 0 from -0, and NaN). */
+const sameBits = (a, b) => Object.is(a, b);
+
+test("the typed Chain solves as call(\"solve\") answers, bit for bit, and refuses with the server's line", async () => {
+  const cases = [
+    [undefined, undefined, [[2, 3], [-3, -1], [9, 9], [0.3, 0.2], [4.5, 1]]],
+    [undefined, { limits: true }, [[-3, -1], [3.3, -1.7], [2, 3]]],
+    [undefined, { method: "fabrik", limits: true, restarts: 4 }, [[3.3, -1.7], [1, 4]]],
+    [limited, { limits: true, restarts: 8, restart_seed: 7 }, [[2.5, 4.1], [-3, -1], [1, -4]]],
+    [JSON.parse(ikarus.call("arm/parse", seven)).arm, { limits: true }, [[2, 3], [-1, 2.5], [4, -2]]],
+  ];
+  for (const [arm, options, goals] of cases) {
+    const chain = new ikarus.Chain(arm, options);
+    const n = chain.joints;
+    assert.equal(chain.recordLen, n + 6);
+    const out = new Float64Array(chain.recordLen);
+    const batch = new Float64Array(goals.length * chain.recordLen);
+    chain.solveBatch(Float64Array.from(goals.flat()), batch);
+    goals.forEach(([x, y], k) => {
+      const what = `${arm ? arm.name : "seed"} ${JSON.stringify(options)} goal ${x},${y}`;
+      const code = chain.solve(x, y, out);
+      const json = JSON.parse(ikarus.call("solve", JSON.stringify({ arm, options, goal: { x, y } })));
+      const want = [...json.angles_deg, json.end_effector.x, json.end_effector.y, json.error, json.iterations, json.restarts, ikarus.STATUS.indexOf(json.status)];
+      assert.equal(ikarus.STATUS[code], json.status, what);
+      want.forEach((w, i) => assert.ok(sameBits(out[i], w), `${what}: number ${i} is ${out[i]}, the JSON's ${w}`));
+      // The batch: the same record per goal (the JSON of /api/solve_batch gives angles, error, iterations, status).
+      const record = batch.subarray(k * chain.recordLen, (k + 1) * chain.recordLen);
+      record.forEach((v, i) => assert.ok(sameBits(v, out[i]), `${what}: batch number ${i} is ${v}, the solve's ${out[i]}`));
+    });
+    const json = JSON.parse(ikarus.call("solve_batch", JSON.stringify({ arm, options, goals })));
+    goals.forEach((_, k) => {
+      const record = batch.subarray(k * chain.recordLen, (k + 1) * chain.recordLen);
+      json.angles_deg[k].forEach((w, i) => assert.ok(sameBits(record[i], w), `solve_batch goal ${k} angle ${i}`));
+      assert.ok(sameBits(record[n + 2], json.error[k]));
+      assert.equal(record[n + 3], json.iterations[k]);
+      assert.equal(ikarus.STATUS[record[n + 5]], json.status[k]);
+    });
+    chain.free();
+  }
+  // Refusals: the server's status and line for the same arm and options.
+  // A value of the wrong kind: the server's line less `request body: ` and the position in the
+  // JSON text (which the caller of Chain did not write).
+  const unplaced = (text) => JSON.stringify({ error: JSON.parse(text).error.replace(/^request body: /, "").replace(/ at line \d+ column \d+$/, "") });
+  const refused = [
+    [undefined, { tolerance: 0 }],
+    [undefined, { method: "newton" }],
+    [undefined, { lambda: "x" }],
+    [{ links: [] }, undefined],
+    [{ links: [{ length: 0, angle_deg: 0 }] }, undefined],
+    [{ links: [{ length: "x" }] }, undefined],
+    [{ links: [{ length: 1, colour: 2 }] }, undefined],
+  ];
+  for (const [arm, options] of refused) {
+    const server = await native("solve", JSON.stringify({ arm, options, goal: { x: 2, y: 3 } }));
+    assert.throws(() => new ikarus.Chain(arm, options), (e) => e instanceof ikarus.IkarusError && e.status === server.status && JSON.stringify({ error: e.message }) === unplaced(server.text), `${JSON.stringify([arm, options])}: ${server.text}`);
+  }
+  const chain = new ikarus.Chain();
+  assert.throws(() => chain.solve(NaN, 1, new Float64Array(9)), (e) => e instanceof ikarus.IkarusError && e.status === 422 && /^goal\.x/.test(e.message));
+  assert.throws(() => chain.solve(1, 1, new Float64Array(8)), /out: shorter than 1 record/);
+  assert.throws(() => chain.solveBatch(Float64Array.of(1, 1, 1, Infinity), new Float64Array(18)), /^IkarusError: goals\[1\]: goal\.y/);
+});
+
+test("the typed Character poses as call(\"pose\") answers, bit for bit", () => {
+  const characters = [
+    ["spine-spineboy-pro.json", "walk", ["front-leg-target", 120, 40]],
+    ["spine-raptor-pro.json", "walk", ["front-leg-target", 300, 60]],
+    ["dragonbones-mecha_1406_ske.json", "walk", ["foot_l", 30, -20]],
+  ];
+  for (const [file, animation, [bone, x, y]] of characters) {
+    const rig = readFileSync(join(root, "examples", "characters", file), "utf8");
+    const character = new ikarus.Character(rig);
+    assert.deepEqual(character.bones, JSON.parse(ikarus.call("pose", JSON.stringify({ rig }))).bones.map((b) => b.name));
+    assert.equal(character.poseLen, 5 * character.bones.length);
+    const index = character.bones.indexOf(bone);
+    assert.ok(index >= 0, `${file}: no bone ${bone}`);
+    const out = new Float64Array(character.poseLen);
+    for (const [fields, time] of [[{}, 0], [{ animation, time: 0.4 }, 0.4], [{ targets: [{ bone, x, y }] }, 0], [{ animation, time: 0.4, targets: [{ bone, x, y }] }, 0.4], [{ animation, time: 1.3 }, 1.3]]) {
+      character.setAnimation(fields.animation);
+      character.pose(time, fields.targets ? Float64Array.of(index, x, y) : new Float64Array(0), out);
+      const json = JSON.parse(ikarus.call("pose", JSON.stringify({ rig, ...fields })));
+      json.bones.forEach((b, i) => {
+        [b.x, b.y, b.rotation_deg, b.tip[0], b.tip[1]].forEach((w, k) =>
+          assert.ok(sameBits(out[5 * i + k], w), `${file} ${JSON.stringify(fields)} ${b.name} number ${k}: ${out[5 * i + k]} vs the JSON's ${w}`));
+      });
+    }
+    const server = wasm("pose", JSON.stringify({ rig, animation: "wlk" }));
+    assert.throws(() => character.setAnimation("wlk"), (e) => e instanceof ikarus.IkarusError && JSON.stringify({ error: e.message }) === server.text);
+    assert.throws(() => character.pose(0, Float64Array.of(1e6, 0, 0), out), /targets\[0\]: bone 1000000/);
+    character.free();
+  }
+  assert.throws(() => new ikarus.Character(puppet), (e) => e instanceof ikarus.IkarusError && JSON.stringify({ error: e.message }) === wasm("pose", JSON.stringify({ rig: puppet })).text);
+});

@@ -85,29 +85,11 @@ pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
 /// refusing what [`pose`] refuses; with [`IkChoice::Ikarus`], what the solve did.
 pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Option<TogetherReport>, String> {
     let c = &loaded.character;
-    let clip = match &ask.animation {
-        Some(name) => {
-            let i = c.clip_index(name).ok_or_else(|| {
-                let names: Vec<&str> = c.clips().iter().map(|k| k.name.as_str()).collect();
-                let has = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
-                format!("animation {name:?}: no such animation (the file has: {has})")
-            })?;
-            let time = ask.time.unwrap_or(0.0);
-            if !time.is_finite() {
-                return Err(format!("time: must be a finite number of seconds, got {time}"));
-            }
-            Some((i, time))
-        }
-        None if ask.time.is_some() => return Err("time: only with an animation".to_owned()),
-        None => None,
-    };
+    let clip = clip_at(c, ask.animation.as_deref(), ask.time)?;
     let mut targets = Vec::with_capacity(ask.targets.len());
     for (name, [x, y]) in &ask.targets {
         let bone = c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"))?;
-        if !(x.is_finite() && y.is_finite()) {
-            return Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"));
-        }
-        targets.push((bone, [*x, *y]));
+        targets.push((bone, target_point(name, [*x, *y])?));
     }
     let request = PoseRequest { clip, targets: &targets };
     match &ask.ik {
@@ -116,6 +98,39 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
             let mut solver = Solver::new(character_options()).map_err(|e| e.to_string())?;
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
+    }
+}
+
+/// The clip `animation` names at `time` (seconds, 0 when not given) as the library's index, or
+/// `None` for the setup pose; the one-line refusals of [`pose`] (an unknown name lists the
+/// file's animations; a time without an animation, or not finite).
+pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Result<Option<(usize, f64)>, String> {
+    match animation {
+        Some(name) => {
+            let i = c.clip_index(name).ok_or_else(|| {
+                let names: Vec<&str> = c.clips().iter().map(|k| k.name.as_str()).collect();
+                let has = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
+                format!("animation {name:?}: no such animation (the file has: {has})")
+            })?;
+            Ok(Some((i, finite_time(time.unwrap_or(0.0))?)))
+        }
+        None if time.is_some() => Err("time: only with an animation".to_owned()),
+        None => Ok(None),
+    }
+}
+
+/// `time` if it is a finite number of seconds, else [`pose`]'s refusal.
+pub fn finite_time(time: f64) -> Result<f64, String> {
+    if time.is_finite() { Ok(time) } else { Err(format!("time: must be a finite number of seconds, got {time}")) }
+}
+
+/// The point of the target on bone `name` if both its coordinates are finite, else [`pose`]'s
+/// refusal.
+pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], String> {
+    if x.is_finite() && y.is_finite() {
+        Ok([x, y])
+    } else {
+        Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"))
     }
 }
 

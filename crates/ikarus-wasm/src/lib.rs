@@ -1,16 +1,27 @@
 //! ikarus in the browser: the JSON API of `ikarus serve` compiled to WebAssembly.
 //!
-//! There is one entry point, [`call`], and it is the server's: it hands the endpoint and the
+//! The general entry point, [`call`], is the server's: it hands the endpoint and the
 //! request body to [`ikarus_edge::edge::call`], the function behind `ikarus serve`'s handlers, so
 //! every answer is the server's bytes for the same request (the same shapes, the same numbers,
 //! the same one-line message and status for a bad request). Nothing here parses requests or
 //! shapes answers. `web/build` compiles this crate for `wasm32-unknown-unknown` and runs
 //! `wasm-bindgen --target web`; `web/ikarus.js` is the small JavaScript API over it.
 //!
+//! Beside it, typed handles for the hot paths, without JSON: a [`Chain`] (an arm read once, then
+//! `solve(x, y, out)` and `solveBatch(goals, out)`) and a [`Character`] (a character file read
+//! once, then `pose(time, targets, out)`), each writing numbers into a `Float64Array` the caller
+//! owns, bit for bit those of [`call`]'s JSON for the same request.
+//!
 //! Natively the crate is an ordinary library (so that `cargo test --workspace` checks it on a
 //! machine without the wasm target); its tests call [`answer`], which [`call`] wraps.
 
 use std::sync::Mutex;
+
+mod chain;
+mod character;
+
+pub use chain::{Chain, status_name};
+pub use character::Character;
 
 use ikarus::Interrupt;
 use ikarus_edge::edge::{self, Endpoint, Limits};

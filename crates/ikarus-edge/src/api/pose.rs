@@ -41,12 +41,7 @@ pub struct TargetReq {
 /// targets as it has bones.
 pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let req: PoseReq = parse_json(body)?;
-    if !is_json(&req.rig) {
-        return Err(Problem::invalid(
-            "rig: pose takes a character file's text (Spine or DragonBones JSON); a rig file (TOML) is posed by /api/solve",
-        ));
-    }
-    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let loaded = character(&req.rig, limits)?;
     let bones = loaded.character.bones().len();
     if req.targets.len() > bones {
         return Err(Problem::invalid(format!(
@@ -63,6 +58,17 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     };
     let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
     json_response(&report)
+}
+
+/// The character file `rig` of a pose request (its text, Spine or DragonBones JSON, at most
+/// `--max-bones` bones, counted first), or the refusal `/api/pose` answers for it.
+pub fn character(rig: &str, limits: &Limits) -> Result<crate::character::Loaded, Problem> {
+    if !is_json(rig) {
+        return Err(Problem::invalid(
+            "rig: pose takes a character file's text (Spine or DragonBones JSON); a rig file (TOML) is posed by /api/solve",
+        ));
+    }
+    Ok(load_within(rig, "rig", BoneCap::flag(limits.max_bones))?)
 }
 
 request! {

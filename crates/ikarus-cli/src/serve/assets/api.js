@@ -81,6 +81,12 @@ function startWorker() {
               waiting.set(id, done);
               worker.postMessage({ id, path, body });
             }),
+          askPose: (ask) =>
+            new Promise((done) => {
+              const id = next++;
+              waiting.set(id, done);
+              worker.postMessage({ id, pose: ask });
+            }),
         });
         return;
       }
@@ -149,6 +155,39 @@ export const meta = () => get("/api/meta");
 
 /** The default arm (the seed arm), in the arm file's shape. */
 export const defaultArm = () => get("/api/arm/default");
+
+/**
+ * Poses made by the WebAssembly module's typed path (ikarus.Character in the worker, no JSON),
+ * counted for tests: `typed.poses`.
+ */
+export const typed = { poses: 0 };
+
+/** The character file the worker holds (sent again only when it changes). */
+let workerRig = null;
+
+/**
+ * A character posed (POST /api/pose's body and answer). In the static build, a pose by the
+ * runtime's rules goes through the worker's typed path (the file sent once, then the clip, time
+ * and targets; the answer's numbers bit for bit /api/pose's), anything else through /api/pose.
+ */
+export async function pose(body) {
+  const m = await wasm;
+  if (!m || body.ik || body.goals || body.pins) return post("/api/pose", body);
+  const { rig, ...ask } = body;
+  const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
+  if (reply.status === 200 && reply.typed) {
+    workerRig = rig;
+    typed.poses++;
+    const n = reply.numbers;
+    const bones = reply.names.map((name, i) => ({ name, x: n[5 * i], y: n[5 * i + 1], rotation_deg: n[5 * i + 2], tip: [n[5 * i + 3], n[5 * i + 4]] }));
+    return { bones, unsupported: reply.unsupported };
+  }
+  // The worker's file is unknown after a refusal of it: send it with the next pose.
+  if (reply.status !== 200) workerRig = null;
+  const res = new Response(reply.text, { status: reply.status, headers: { "content-type": "application/json" } });
+  if (!res.ok) throw await failure("/api/pose", res);
+  return res.json();
+}
 
 export const solve = (body) => post("/api/solve", body);
 export const animate = (body) => post("/api/animate", body);

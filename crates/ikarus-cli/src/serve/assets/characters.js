@@ -1,6 +1,7 @@
 // A character on the page (a Spine or DragonBones skeleton, read by POST /api/rig/parse; rigs.js
-// hands it over from *Load rig or character…* or a dropped file): posed by POST /api/pose, one
-// request in flight and only the latest choices waiting (latest wins), from the setup pose, a
+// hands it over from *Load rig or character…* or a dropped file): posed by POST /api/pose (in
+// the static build by the WebAssembly module's typed path, without JSON: api.pose), one request
+// in flight and only the latest choices waiting (latest wins), from the setup pose, a
 // clip of the file at a time the timeline plays (timeline.js's loadClip), and the IK targets the
 // reader dragged (each stays where it was put while a clip plays), by Spine's rules or ikarus's
 // solver. The Character fieldset lists the clips, the constraints left inactive, the switch
@@ -178,7 +179,7 @@ export function wireCharacters(state, canvas, act) {
       req = poseRequest(c);
     }
     try {
-      const answer = await api.post("/api/pose", req);
+      const answer = await api.pose(req);
       if (state.character === c && s) surveyed(c, s, answer);
       else if (state.character === c) apply(c, req, answer);
     } catch (e) {

@@ -1,0 +1,208 @@
+//! The typed chain: an arm read once, solved many times without JSON. [`Chain`] holds the
+//! validated arm (read by the edge's reader, so its refusals are the server's lines), the
+//! options of `/api/solve` for it, and one [`Solver`] and [`Outcome`] whose buffers every solve
+//! reuses. Each solve writes one [record](Chain::record_len) into a `Float64Array` the caller
+//! owns; its numbers are bit for bit those of `call("solve", …)` for the same arm, options and
+//! goal (the same library call from the same start pose).
+
+use ikarus::{Goal, Outcome, Solver, Status};
+use ikarus_edge::edge::{self, Arm, Limits};
+use wasm_bindgen::prelude::*;
+
+use crate::Problem;
+
+/// Numbers of a record after the angles: the tip's x and y, the error, the iterations, the
+/// restarts, the status code.
+const TAIL: usize = 6;
+
+/// The statuses by code, the order of [`ikarus::Status`]: a record's last number.
+const STATUSES: [Status; 5] =
+    [Status::Reached, Status::Unreachable, Status::Stalled, Status::IterationLimit, Status::Interrupted];
+
+/// The code of `status` in a record (its index in [`STATUSES`]).
+fn status_code(status: Status) -> u32 {
+    STATUSES.iter().position(|&s| s == status).map_or(u32::MAX, |i| i as u32)
+}
+
+/// A chain to solve from JavaScript without JSON: `new Chain(armJson, optionsJson)`, then
+/// `solve(x, y, out)` / `solveBatch(goals, out)`. A record is `n + 6` numbers (`n` joints):
+/// the angles in degrees (`angles_deg`), the tip's x and y (`end_effector`), `error`,
+/// `iterations`, `restarts`, and the status code ([`status_name`] names it: 0 `reached`,
+/// 1 `unreachable`, 2 `stalled`, 3 `iteration_limit`, 4 `interrupted`).
+#[wasm_bindgen]
+pub struct Chain {
+    arm: Arm,
+    solver: Solver,
+    outcome: Outcome,
+    goals: Vec<Goal>,
+    outcomes: Vec<Outcome>,
+}
+
+/// A [`Problem`] of the edge's.
+fn problem(p: edge::Problem) -> Problem {
+    Problem { status: p.status, message: p.message }
+}
+
+#[wasm_bindgen]
+impl Chain {
+    /// The arm `arm` (the API's `arm` object as JSON text; `""` for the built-in seed arm) with
+    /// the options `options` (the API's `options` object as JSON text, `""` for none), as
+    /// `/api/solve` reads them; frames are not recorded. Throws the server's [`Problem`]
+    /// (`arm: links[0].length = -1: …`, `options.tolerance = 0: …`); for a value of the wrong
+    /// kind, the server's line less `request body: ` and the position in the JSON text
+    /// (`options.method: unknown variant …`). An arm with offsets or slides (a one-branch rig,
+    /// which `/api/solve` solves as a rig) is refused with the command line's line.
+    #[wasm_bindgen(constructor)]
+    pub fn new(arm: &str, options: &str) -> Result<Chain, Problem> {
+        let arm = if arm.trim().is_empty() {
+            edge::default_arm()
+        } else {
+            edge::arm_from_json(arm).map_err(|p| Problem { status: p.status, message: unplaced(&p.message) })?
+        };
+        let options = if options.trim().is_empty() { "{}" } else { options };
+        let mut options = edge::solve_options(&arm, options, &Limits::default())
+            .map_err(|p| Problem { status: p.status, message: format!("options.{}", p.message) })?;
+        options.record_every = None;
+        let solver = Solver::new(options).map_err(|e| Problem { status: 422, message: format!("options: {e}") })?;
+        Ok(Chain { arm, solver, outcome: Outcome::default(), goals: Vec::new(), outcomes: Vec::new() })
+    }
+
+    /// The number of joints (`n`).
+    #[wasm_bindgen(getter)]
+    pub fn joints(&self) -> usize {
+        self.arm.chain().len()
+    }
+
+    /// The numbers of one record: `n + 6`.
+    #[wasm_bindgen(getter, js_name = recordLen)]
+    pub fn record_len(&self) -> usize {
+        self.joints() + TAIL
+    }
+
+    /// Solves the goal (`x`, `y`) from the arm's start pose into `out` (at least one record
+    /// long) and returns the status code. Throws a [`Problem`] for a goal that is not finite
+    /// (`goal.x = NaN: …`) or an `out` too short.
+    pub fn solve(&mut self, x: f64, y: f64, out: &mut [f64]) -> Result<u32, Problem> {
+        let len = self.record_len();
+        let record = out.get_mut(..len).ok_or_else(|| short("out", len, 1))?;
+        let goal = edge::goal(x, y, None).map_err(problem)?;
+        let chain = self.arm.chain();
+        self.solver
+            .solve_into(chain, chain.start_pose().angles(), &goal, &mut self.outcome)
+            .map_err(|e| Problem { status: 422, message: e.to_string() })?;
+        Ok(write(&self.outcome, record))
+    }
+
+    /// Solves the goals `goals` (`x, y` pairs, flat) through the library's batch path, each from
+    /// the start pose, writing one record per goal into `out` in order (what `solve` would write
+    /// for each, bit for bit). Throws a [`Problem`] naming the first goal that is not finite
+    /// (`goals[3]: …`), or for an odd `goals` or an `out` too short.
+    #[wasm_bindgen(js_name = solveBatch)]
+    pub fn solve_batch(&mut self, goals: &[f64], out: &mut [f64]) -> Result<(), Problem> {
+        if goals.len() % 2 != 0 {
+            return Err(Problem { status: 422, message: format!("goals: {} numbers, not x, y pairs", goals.len()) });
+        }
+        let count = goals.len() / 2;
+        let len = self.record_len();
+        let out = out.get_mut(..count * len).ok_or_else(|| short("out", len, count))?;
+        self.goals.clear();
+        for (i, xy) in goals.chunks_exact(2).enumerate() {
+            let goal = edge::goal(xy[0], xy[1], None)
+                .map_err(|p| Problem { status: p.status, message: format!("goals[{i}]: {}", p.message) })?;
+            self.goals.push(goal);
+        }
+        let chain = self.arm.chain();
+        self.solver
+            .solve_batch(chain, chain.start_pose().angles(), &self.goals, &mut self.outcomes)
+            .map_err(|e| Problem { status: 422, message: e.to_string() })?;
+        for (o, record) in self.outcomes.iter().zip(out.chunks_exact_mut(len)) {
+            write(o, record);
+        }
+        Ok(())
+    }
+}
+
+/// The name of a record's status code (`reached`, …; `undefined` for another number).
+#[wasm_bindgen(js_name = statusName)]
+pub fn status_name(code: u32) -> Option<String> {
+    STATUSES.get(code as usize).map(|&s| edge::status_name(s).to_owned())
+}
+
+/// The message of a refused `arm` as `/api/solve` words it for `{"arm": …}`, less the position
+/// in a JSON text the caller did not write: the edge's `arm: links[0].length: invalid type: …
+/// at line 1 column 23` (a value of the wrong kind) is `arm.links[0].length: invalid type: …`;
+/// a refused value (`arm: links[0].length = 0: …`) is the server's line as it is.
+fn unplaced(message: &str) -> String {
+    let Some(at) = message.rfind(" at line ") else { return message.to_owned() };
+    let message = &message[..at];
+    message.strip_prefix("arm: ").map_or_else(|| message.to_owned(), |rest| format!("arm.{rest}"))
+}
+
+/// The refusal of an output array shorter than `count` records of `len` numbers.
+fn short(name: &str, len: usize, count: usize) -> Problem {
+    Problem { status: 422, message: format!("{name}: shorter than {count} record(s) of {len} numbers") }
+}
+
+/// Writes `o` as a record into `record` (exactly one record long); returns the status code.
+fn write(o: &Outcome, record: &mut [f64]) -> u32 {
+    let (angles, tail) = record.split_at_mut(record.len() - TAIL);
+    for (dst, a) in angles.iter_mut().zip(o.pose.angles()) {
+        *dst = a.to_degrees();
+    }
+    let code = status_code(o.status);
+    let p = o.end_effector.position;
+    tail.copy_from_slice(&[p.x, p.y, o.error, f64::from(o.iterations), f64::from(o.restarts), f64::from(code)]);
+    code
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_is_the_json_answers_numbers() {
+        let mut chain = Chain::new("", "").unwrap();
+        let mut out = vec![0.0; chain.record_len()];
+        let code = chain.solve(2.0, 3.0, &mut out).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&crate::answer("solve", r#"{"goal":{"x":2,"y":3}}"#).unwrap()).unwrap();
+        let n = chain.joints();
+        for i in 0..n {
+            assert_eq!(out[i].to_bits(), json["angles_deg"][i].as_f64().unwrap().to_bits());
+        }
+        assert_eq!(out[n], json["end_effector"]["x"].as_f64().unwrap());
+        assert_eq!(out[n + 2], json["error"].as_f64().unwrap());
+        assert_eq!(out[n + 3], json["iterations"].as_f64().unwrap());
+        assert_eq!(status_name(code).as_deref(), json["status"].as_str());
+        assert_eq!(out[n + 5], f64::from(code));
+
+        let mut batch = vec![0.0; 2 * chain.record_len()];
+        chain.solve_batch(&[9.0, 9.0, 2.0, 3.0], &mut batch).unwrap();
+        assert_eq!(batch[chain.record_len()..], out[..]);
+        assert_eq!(status_name(batch[n + 5] as u32).as_deref(), Some("unreachable"));
+    }
+
+    #[test]
+    fn refusals_are_the_servers_lines() {
+        let e = Chain::new("", r#"{"tolerance": 0}"#).err().unwrap();
+        let server = crate::answer("solve", r#"{"goal":{"x":2,"y":3},"options":{"tolerance":0}}"#).unwrap_err();
+        assert_eq!(e, server);
+        let e = Chain::new(r#"{"links": [{"length": "x"}]}"#, "").err().unwrap();
+        assert_eq!(e.message, "arm.links[0].length: invalid type: string \"x\", expected f64");
+        let e = Chain::new("", r#"{"method": "newton"}"#).err().unwrap();
+        assert!(e.message.starts_with("options.method: unknown variant `newton`"), "{e:?}");
+        assert!(!e.message.contains(" at line "), "{e:?}");
+        let e = Chain::new(r#"{"links": [{"length": -1}]}"#, "").err().unwrap();
+        let server = crate::answer("solve", r#"{"goal":{"x":2,"y":3},"arm":{"links":[{"length":-1}]}}"#).unwrap_err();
+        assert_eq!(e, server);
+        let mut chain = Chain::new("", "").unwrap();
+        let e = chain.solve(f64::NAN, 1.0, &mut [0.0; 9]).unwrap_err();
+        assert!(e.message.starts_with("goal.x"), "{e:?}");
+        let e = chain.solve(1.0, 1.0, &mut [0.0; 8]).unwrap_err();
+        assert_eq!(e.message, "out: shorter than 1 record(s) of 9 numbers");
+        let e = chain.solve_batch(&[1.0, 1.0, 1.0, f64::INFINITY], &mut [0.0; 18]).unwrap_err();
+        assert!(e.message.starts_with("goals[1]: goal.y"), "{e:?}");
+        assert!(chain.solve_batch(&[1.0], &mut []).is_err());
+        assert_eq!(status_name(5), None);
+    }
+}

@@ -1,0 +1,157 @@
+//! The typed character: a character file read once, posed many times without JSON.
+//! [`Character`] holds the file as `/api/pose` reads it (the same refusals), the animation
+//! chosen, and the library's [`Posed`] buffers every pose reuses. Each pose writes five numbers
+//! per bone into a `Float64Array` the caller owns, bit for bit those of `call("pose", …)` for
+//! the same file, animation, time and targets (the same library call).
+
+use ikarus::character::{PoseRequest, Posed};
+use ikarus_edge::character::Loaded;
+use ikarus_edge::edge::Limits;
+use ikarus_edge::pose::{clip_at, finite_time, target_point};
+use wasm_bindgen::prelude::*;
+
+use crate::Problem;
+
+/// Numbers per bone in a pose: x, y, rotation_deg, tip x, tip y.
+const PER_BONE: usize = 5;
+
+/// A character to pose from JavaScript without JSON: `new Character(text)`, then
+/// `setAnimation(name)` and `pose(time, targets, out)`. The pose is `5 × bones` numbers, bone
+/// after bone in the file's order (the names of [`Character::bones`]): the world origin's x and
+/// y, the rotation in degrees, and the tip's x and y (`/api/pose`'s `x`, `y`, `rotation_deg`,
+/// `tip`).
+#[wasm_bindgen]
+pub struct Character {
+    loaded: Loaded,
+    clip: Option<usize>,
+    targets: Vec<(usize, [f64; 2])>,
+    posed: Posed,
+}
+
+/// A refusal of `/api/pose`'s job (a 422 with its line).
+fn invalid(message: String) -> Problem {
+    Problem { status: 422, message }
+}
+
+#[wasm_bindgen]
+impl Character {
+    /// The character file `text` (Spine or DragonBones JSON), read as `/api/pose` reads its
+    /// `rig`; throws the server's [`Problem`] for a file it refuses.
+    #[wasm_bindgen(constructor)]
+    pub fn new(text: &str) -> Result<Character, Problem> {
+        let loaded = ikarus_edge::api::pose::character(text, &Limits::default())
+            .map_err(|p| Problem { status: p.status, message: p.message })?;
+        Ok(Character { loaded, clip: None, targets: Vec::new(), posed: Posed::default() })
+    }
+
+    /// The bones' names in the file's order (the pose's order).
+    #[must_use]
+    pub fn bones(&self) -> Vec<String> {
+        self.loaded.character.bones().iter().map(|b| b.name.clone()).collect()
+    }
+
+    /// The animations' names.
+    #[must_use]
+    pub fn animations(&self) -> Vec<String> {
+        self.loaded.character.clips().iter().map(|c| c.name.clone()).collect()
+    }
+
+    /// The numbers of one pose: `5 × bones`.
+    #[wasm_bindgen(getter, js_name = poseLen)]
+    pub fn pose_len(&self) -> usize {
+        PER_BONE * self.loaded.character.bones().len()
+    }
+
+    /// Samples the animation `name` in the poses that follow (`undefined`: the setup pose).
+    /// Throws the server's line for a name the file does not have.
+    #[wasm_bindgen(js_name = setAnimation)]
+    pub fn set_animation(&mut self, name: Option<String>) -> Result<(), Problem> {
+        self.clip = clip_at(&self.loaded.character, name.as_deref(), None).map_err(invalid)?.map(|(i, _)| i);
+        Ok(())
+    }
+
+    /// Poses the character into `out` (at least [`pose_len`](Character::pose_len) numbers): the
+    /// setup pose, the animation at `time` seconds (ignored in the setup pose), then each target
+    /// in order, `targets` being flat `bone index, x, y` triples (the bone's world origin put at
+    /// (x, y)), then the IK constraints by the runtime's rules. Throws a [`Problem`] for a time or
+    /// a point that is not finite (the server's line), a bone index that is not one, or a short
+    /// `out`.
+    pub fn pose(&mut self, time: f64, targets: &[f64], out: &mut [f64]) -> Result<(), Problem> {
+        let c = &self.loaded.character;
+        let len = self.pose_len();
+        let out = out
+            .get_mut(..len)
+            .ok_or_else(|| invalid(format!("out: shorter than the pose's {len} numbers ({PER_BONE} per bone)")))?;
+        if targets.len() % 3 != 0 {
+            return Err(invalid(format!("targets: {} numbers, not bone, x, y triples", targets.len())));
+        }
+        let clip = match self.clip {
+            Some(i) => Some((i, finite_time(time).map_err(invalid)?)),
+            None => None,
+        };
+        self.targets.clear();
+        for (k, t) in targets.chunks_exact(3).enumerate() {
+            let bone =
+                c.bones().get(t[0] as usize).filter(|_| t[0].fract() == 0.0 && t[0] >= 0.0).ok_or_else(|| {
+                    invalid(format!("targets[{k}]: bone {} is not a bone's index (0 to {})", t[0], c.bones().len() - 1))
+                })?;
+            self.targets.push((t[0] as usize, target_point(&bone.name, [t[1], t[2]]).map_err(invalid)?));
+        }
+        c.pose(&PoseRequest { clip, targets: &self.targets }, &mut self.posed).map_err(|e| invalid(e.to_string()))?;
+        for (i, bone) in out.chunks_exact_mut(PER_BONE).enumerate() {
+            let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));
+            bone.copy_from_slice(&[x, y, self.posed.rotation(i).to_degrees(), tx, ty]);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spineboy() -> String {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
+        std::fs::read_to_string(path).unwrap()
+    }
+
+    #[test]
+    fn a_pose_is_the_json_answers_numbers() {
+        let text = spineboy();
+        let mut c = Character::new(&text).unwrap();
+        let bones = c.bones();
+        let hand = bones.iter().position(|b| b == "crosshair").unwrap();
+        c.set_animation(Some("walk".to_owned())).unwrap();
+        let mut out = vec![0.0; c.pose_len()];
+        c.pose(0.4, &[hand as f64, 50.0, 200.0], &mut out).unwrap();
+        let request = serde_json::json!({"rig": text, "animation": "walk", "time": 0.4,
+            "targets": [{"bone": "crosshair", "x": 50.0, "y": 200.0}]});
+        let json: serde_json::Value =
+            serde_json::from_str(&crate::answer("pose", &request.to_string()).unwrap()).unwrap();
+        for (i, b) in json["bones"].as_array().unwrap().iter().enumerate() {
+            assert_eq!(b["name"].as_str(), Some(bones[i].as_str()));
+            let want = [&b["x"], &b["y"], &b["rotation_deg"], &b["tip"][0], &b["tip"][1]];
+            for (k, w) in want.iter().enumerate() {
+                assert_eq!(out[PER_BONE * i + k].to_bits(), w.as_f64().unwrap().to_bits(), "bone {i} number {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn refusals_name_the_field() {
+        let server = crate::answer("pose", r#"{"rig": "[[bones]]"}"#).unwrap_err();
+        assert_eq!(Character::new("[[bones]]").err(), Some(server));
+        let text = spineboy();
+        let mut c = Character::new(&text).unwrap();
+        let e = c.set_animation(Some("wlk".to_owned())).unwrap_err();
+        assert!(e.message.starts_with("animation \"wlk\": no such animation (the file has: "), "{e:?}");
+        let mut out = vec![0.0; c.pose_len()];
+        assert!(c.pose(0.0, &[9999.0, 0.0, 0.0], &mut out).unwrap_err().message.starts_with("targets[0]: bone 9999"));
+        assert!(c.pose(0.0, &[1.5, 0.0, 0.0], &mut out).is_err());
+        let e = c.pose(0.0, &[1.0, f64::NAN, 0.0], &mut out).unwrap_err();
+        assert!(e.message.contains("the point must be finite"), "{e:?}");
+        c.set_animation(Some("walk".to_owned())).unwrap();
+        assert!(c.pose(f64::INFINITY, &[], &mut out).unwrap_err().message.starts_with("time: must be a finite"));
+        assert!(c.pose(0.0, &[], &mut out[..4]).unwrap_err().message.starts_with("out: shorter"));
+    }
+}
