@@ -107,11 +107,40 @@ impl Affine {
     }
 }
 
+/// The sine and cosine a bone's world transform last needed, by argument: a memo, so that a
+/// bone whose rotation and shear did not change since it was last updated (in this pose or
+/// the previous one) costs no sine nor cosine. The answer is the same bits either way.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Trig {
+    arg: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl Trig {
+    /// The memo of `sin_cos(0)`, exact: `(0, 1)`.
+    pub(crate) const ZERO: Trig = Trig { arg: 0.0, sin: 0.0, cos: 1.0 };
+
+    /// `math::sin_cos(x)`, from the memo when its argument has the same bits.
+    #[inline]
+    fn sin_cos(&mut self, x: f64) -> (f64, f64) {
+        if self.arg.to_bits() != x.to_bits() {
+            let (sin, cos) = math::sin_cos(x);
+            *self = Trig { arg: x, sin, cos };
+        }
+        (self.sin, self.cos)
+    }
+}
+
+/// A bone's memos: its local x axis's angle, its y axis's, and its rotation alone (the `noScale`
+/// modes).
+pub(crate) type BoneTrig = [Trig; 3];
+
 /// The local matrix of `t` turned by `rotation` (its own rotation, or 0 for the rotation-free
 /// part), origin 0.
-fn local_matrix(t: &LocalTransform, rotation: f64) -> Affine {
-    let (sx, cx) = math::sin_cos(rotation + t.shear_x);
-    let (sy, cy) = math::sin_cos(rotation + FRAC_PI_2 + t.shear_y);
+fn local_matrix(t: &LocalTransform, rotation: f64, trig: &mut BoneTrig) -> Affine {
+    let (sx, cx) = trig[0].sin_cos(rotation + t.shear_x);
+    let (sy, cy) = trig[1].sin_cos(rotation + FRAC_PI_2 + t.shear_y);
     Affine { a: cx * t.scale_x, b: cy * t.scale_y, c: sx * t.scale_x, d: sy * t.scale_y, x: 0.0, y: 0.0 }
 }
 
@@ -148,27 +177,38 @@ fn unrotated(q: &Affine) -> (Affine, f64) {
 /// The world transform of a bone with local transform `t` and inherit mode `inherit`, below
 /// `parent`'s world transform (`None` for a root). The math is in the module's doc.
 pub fn world_transform(t: &LocalTransform, inherit: Inherit, parent: Option<&Affine>, placement: Placement) -> Affine {
+    world_transform_memo(t, inherit, parent, placement, &mut [Trig::ZERO; 3])
+}
+
+/// [`world_transform`] with the bone's memo of sines and cosines.
+fn world_transform_memo(
+    t: &LocalTransform,
+    inherit: Inherit,
+    parent: Option<&Affine>,
+    placement: Placement,
+    trig: &mut BoneTrig,
+) -> Affine {
     let s = placement.scale;
     let Some(p) = parent else {
-        return Affine::of_placement(placement).times(&Affine { x: t.x, y: t.y, ..local_matrix(t, t.rotation) });
+        return Affine::of_placement(placement).times(&Affine { x: t.x, y: t.y, ..local_matrix(t, t.rotation, trig) });
     };
     let [x, y] = p.to_world(t.x, t.y);
     let m = match inherit {
-        Inherit::Normal => p.times(&local_matrix(t, t.rotation)),
-        Inherit::OnlyTranslation => local_matrix(t, t.rotation).scaled(s),
+        Inherit::Normal => p.times(&local_matrix(t, t.rotation, trig)),
+        Inherit::OnlyTranslation => local_matrix(t, t.rotation, trig).scaled(s),
         Inherit::NoRotationOrReflection => {
             let (frame, theta) = unrotated(&p.unscaled(s));
-            frame.times(&local_matrix(t, t.rotation - theta)).scaled(s)
+            frame.times(&local_matrix(t, t.rotation - theta, trig)).scaled(s)
         }
         Inherit::NoScale | Inherit::NoScaleOrReflection => {
             let q = p.unscaled(s);
-            let (sin, cos) = math::sin_cos(t.rotation);
+            let (sin, cos) = trig[2].sin_cos(t.rotation);
             let [zx, zy] = q.apply(cos, sin);
             let len = math::hypot(zx, zy);
             let (za, zc) = if len > 1e-12 { (zx / len, zy / len) } else { (1.0, 0.0) };
             let flip = if inherit == Inherit::NoScale && q.det() < 0.0 { -1.0 } else { 1.0 };
             let z = Affine { a: za, b: -zc * flip, c: zc, d: za * flip, x: 0.0, y: 0.0 };
-            z.times(&local_matrix(t, 0.0)).scaled(s)
+            z.times(&local_matrix(t, 0.0, trig)).scaled(s)
         }
     };
     Affine { x, y, ..m }
@@ -183,6 +223,8 @@ pub(crate) struct Bones<'a> {
     pub(crate) world: &'a mut [Affine],
     /// Scratch: which bones are below the one being updated.
     pub(crate) below: &'a mut [bool],
+    /// Per bone, the sines and cosines its world transform last needed.
+    pub(crate) trig: &'a mut [BoneTrig],
 }
 
 impl Bones<'_> {
@@ -198,7 +240,7 @@ impl Bones<'_> {
     fn update(&mut self, i: usize) {
         let b = &self.bones[i];
         let parent = b.parent.map(|p| self.world[p]);
-        self.world[i] = world_transform(&self.local[i], b.inherit, parent.as_ref(), self.placement);
+        self.world[i] = world_transform_memo(&self.local[i], b.inherit, parent.as_ref(), self.placement, &mut self.trig[i]);
     }
 
     /// Recomputes every bone's world transform, parent first.
@@ -239,6 +281,27 @@ mod tests {
     fn parent() -> Affine {
         // Rotated 0.7, scaled 2 along its x and 3 along its y, mirrored by a negative y scale.
         world_transform(&local(5.0, -1.0, 0.7, 2.0, -3.0), Inherit::Normal, None, Placement::default())
+    }
+
+    #[test]
+    fn the_memo_gives_the_bits_of_sin_cos() {
+        assert_eq!(Trig::ZERO, { let (sin, cos) = math::sin_cos(0.0); Trig { arg: 0.0, sin, cos } });
+        let mut memo = Trig::ZERO;
+        for x in [0.3, 0.3, -0.0, 0.0, 1e22, 0.3, -2.5, -2.5] {
+            let (s, c) = math::sin_cos(x);
+            let (ms, mc) = memo.sin_cos(x);
+            assert_eq!((ms.to_bits(), mc.to_bits()), (s.to_bits(), c.to_bits()), "{x}");
+        }
+        // Every mode, with a memo warmed on other transforms: the same bits as without one.
+        let p = parent();
+        let mut trig = [Trig::ZERO; 3];
+        for mode in Inherit::ALL {
+            for t in [local(1.0, 2.0, 0.3, 1.5, 0.5), local(1.0, 2.0, 0.3, 1.5, 0.5), local(0.0, 1.0, -1.1, 1.0, 2.0)] {
+                let a = world_transform_memo(&t, mode, Some(&p), Placement::default(), &mut trig);
+                let b = world_transform(&t, mode, Some(&p), Placement::default());
+                assert_eq!(format!("{a:?}"), format!("{b:?}"));
+            }
+        }
     }
 
     #[test]
