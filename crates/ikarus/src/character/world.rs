@@ -107,28 +107,40 @@ impl Affine {
     }
 }
 
-/// The sine and cosine a bone's world transform last needed, by argument: a memo, so that a
-/// bone whose rotation and shear did not change since it was last updated (in this pose or
-/// the previous one) costs no sine nor cosine. The answer is the same bits either way.
+/// The sines and cosines a bone's world transform needed last and the time before, by
+/// argument: a memo, so that a bone whose rotation and shear did not change since (in this pose
+/// or the previous one) costs no sine nor cosine, and a bone a constraint turns (its rotation
+/// before the constraint, then after, pose after pose) neither. The answer is the same bits
+/// either way.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Trig {
-    arg: f64,
-    sin: f64,
-    cos: f64,
+    arg: [f64; 2],
+    sin: [f64; 2],
+    cos: [f64; 2],
 }
 
 impl Trig {
     /// The memo of `sin_cos(0)`, exact: `(0, 1)`.
-    pub(crate) const ZERO: Trig = Trig { arg: 0.0, sin: 0.0, cos: 1.0 };
+    pub(crate) const ZERO: Trig = Trig { arg: [0.0; 2], sin: [0.0; 2], cos: [1.0; 2] };
 
-    /// `math::sin_cos(x)`, from the memo when its argument has the same bits.
+    /// `math::sin_cos(x)`, from the memo when one of its arguments has the same bits (the
+    /// latest first); else computed, and the older argument forgotten.
     #[inline]
     fn sin_cos(&mut self, x: f64) -> (f64, f64) {
-        if self.arg.to_bits() != x.to_bits() {
-            let (sin, cos) = math::sin_cos(x);
-            *self = Trig { arg: x, sin, cos };
+        let bits = x.to_bits();
+        if self.arg[0].to_bits() == bits {
+            return (self.sin[0], self.cos[0]);
         }
-        (self.sin, self.cos)
+        if self.arg[1].to_bits() != bits {
+            let (sin, cos) = math::sin_cos(x);
+            self.arg[1] = x;
+            self.sin[1] = sin;
+            self.cos[1] = cos;
+        }
+        self.arg.swap(0, 1);
+        self.sin.swap(0, 1);
+        self.cos.swap(0, 1);
+        (self.sin[0], self.cos[0])
     }
 }
 
@@ -285,9 +297,9 @@ mod tests {
 
     #[test]
     fn the_memo_gives_the_bits_of_sin_cos() {
-        assert_eq!(Trig::ZERO, { let (sin, cos) = math::sin_cos(0.0); Trig { arg: 0.0, sin, cos } });
+        assert_eq!(Trig::ZERO, { let (sin, cos) = math::sin_cos(0.0); Trig { arg: [0.0; 2], sin: [sin; 2], cos: [cos; 2] } });
         let mut memo = Trig::ZERO;
-        for x in [0.3, 0.3, -0.0, 0.0, 1e22, 0.3, -2.5, -2.5] {
+        for x in [0.3, 0.3, -0.0, 0.0, 1e22, 0.3, -2.5, -2.5, 0.3, -2.5, 0.3, 7.0, 1e22] {
             let (s, c) = math::sin_cos(x);
             let (ms, mc) = memo.sin_cos(x);
             assert_eq!((ms.to_bits(), mc.to_bits()), (s.to_bits(), c.to_bits()), "{x}");
