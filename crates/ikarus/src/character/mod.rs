@@ -38,6 +38,8 @@ pub struct Character {
     order: Vec<usize>,
     /// The clips' Bézier segments, sampled once.
     curves: timeline::Curves,
+    /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
+    deferred: Vec<bool>,
 }
 
 /// The skeleton's own position and scale: every world transform is the bones' own transform
@@ -510,7 +512,8 @@ impl Character {
         let mut order: Vec<usize> = (0..constraints.len()).collect();
         order.sort_by_key(|&k| (constraints[k].order, k));
         let curves = timeline::Curves::of(&clips);
-        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves })
+        let deferred = world::deferred(&bones, &constraints, &order);
+        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred })
     }
 
     /// The bones, parent first.

@@ -167,7 +167,11 @@ impl Character {
             }
         }
         let (mut bones, _, settings) = out.bones(self);
-        bones.update_all();
+        if request.targets.is_empty() {
+            bones.update_all_but(&self.deferred);
+        } else {
+            bones.update_all();
+        }
         for &(bone, [x, y]) in request.targets {
             let [lx, ly] = bones.parent_world(bone).to_local(x, y).ok_or(PoseError::SingularParent(bone))?;
             bones.local[bone].x = lx;
@@ -224,3 +228,7 @@ impl Character {
 #[cfg(test)]
 #[path = "pose_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "deferred_tests.rs"]
+mod deferred_tests;

@@ -19,7 +19,7 @@
 //!
 //! A root bone's parent is the skeleton itself: `P = S`, `o` = the skeleton's position.
 
-use super::{CharacterBone, Inherit, LocalTransform, Placement};
+use super::{CharacterBone, IkBones, IkConstraint, Inherit, LocalTransform, Placement};
 use crate::math;
 use std::f64::consts::FRAC_PI_2;
 
@@ -262,6 +262,16 @@ impl Bones<'_> {
         }
     }
 
+    /// Recomputes every bone's world transform but the `deferred` ones (see [`deferred`]),
+    /// which the constraints' updates compute before anything reads them.
+    pub(crate) fn update_all_but(&mut self, deferred: &[bool]) {
+        for i in 0..self.bones.len() {
+            if !deferred[i] {
+                self.update(i);
+            }
+        }
+    }
+
     /// Recomputes bone `i`'s world transform and those of every bone below it (bones are
     /// listed parent first, so one pass from `i` on suffices).
     pub(crate) fn update_below(&mut self, i: usize) {
@@ -275,6 +285,47 @@ impl Bones<'_> {
             }
         }
     }
+}
+
+/// The bones whose world transform the first pass of a pose without targets may skip: each is
+/// below (or is) the bones of a constraint, so that constraint's update below them recomputes
+/// it, and nothing reads it before — no constraint applied up to then reads it (its target, its
+/// bones, the parent of its first bone) and no bone the first pass computes is its child. The
+/// pose's every number is then the same, bit for bit, with one update fewer per such bone.
+/// `order` is the constraints' indices in the order they apply.
+pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], order: &[usize]) -> Vec<bool> {
+    let n = bones.len();
+    // The first constraint (its place in `order`) whose update recomputes the bone, and the
+    // first that reads it.
+    let (mut fresh, mut read) = (vec![usize::MAX; n], vec![usize::MAX; n]);
+    let mut below = vec![false; n];
+    for (pos, &k) in order.iter().enumerate() {
+        let c = &constraints[k];
+        let (top, child) = match c.bones {
+            IkBones::One(b) => (b, None),
+            IkBones::Two { parent, child } => (parent, Some(child)),
+        };
+        for r in [Some(c.target), Some(top), child, bones[top].parent].into_iter().flatten() {
+            read[r] = read[r].min(pos);
+        }
+        below[top..].fill(false);
+        below[top] = true;
+        fresh[top] = fresh[top].min(pos);
+        for j in top + 1..n {
+            if bones[j].parent.is_some_and(|p| p >= top && below[p]) {
+                below[j] = true;
+                fresh[j] = fresh[j].min(pos);
+            }
+        }
+    }
+    let mut deferred: Vec<bool> = (0..n).map(|j| fresh[j] != usize::MAX && read[j] > fresh[j]).collect();
+    // A bone the first pass computes reads its parent: that one is computed too.
+    for j in (0..n).rev() {
+        if let (false, Some(p)) = (deferred[j], bones[j].parent) {
+            deferred[p] = false;
+        }
+    }
+    deferred
 }
 
 #[cfg(test)]
