@@ -19,10 +19,7 @@ const CHARACTERS: [(&str, &str); 4] = [
     ("spine-spineboy-pro.json", include_str!("../../../examples/characters/spine-spineboy-pro.json")),
     ("spine-raptor-pro.json", include_str!("../../../examples/characters/spine-raptor-pro.json")),
     ("spine-stretchyman-pro.json", include_str!("../../../examples/characters/spine-stretchyman-pro.json")),
-    (
-        "dragonbones-mecha_1406_ske.json",
-        include_str!("../../../examples/characters/dragonbones-mecha_1406_ske.json"),
-    ),
+    ("dragonbones-mecha_1406_ske.json", include_str!("../../../examples/characters/dragonbones-mecha_1406_ske.json")),
 ];
 
 /// How far the animation's time advances from one pose to the next, seconds (a frame at 60 Hz).

@@ -11,8 +11,8 @@ use ikarus::EaseKind;
 use serde::Deserialize;
 
 use super::fields::track_path;
-use super::requests::{MotionFormat, request};
 use super::pose::TargetReq;
+use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
 use crate::character::{Loaded, export, is_json, load_within};

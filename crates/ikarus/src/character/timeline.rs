@@ -84,7 +84,11 @@ impl Curves {
 
     /// One timeline's slots; `segment(i, ch)` is key `i`'s curve on channel `ch` and the two
     /// keys' `[time, value]`, not yet rounded.
-    fn timeline(&mut self, keys: usize, segment: impl Fn(usize, usize) -> (Interpolation, [f64; 2], [f64; 2])) -> Vec<u32> {
+    fn timeline(
+        &mut self,
+        keys: usize,
+        segment: impl Fn(usize, usize) -> (Interpolation, [f64; 2], [f64; 2]),
+    ) -> Vec<u32> {
         let mut slots = vec![NONE; 2 * keys];
         for i in 0..keys.saturating_sub(1) {
             for ch in 0..2 {
@@ -122,7 +126,8 @@ impl Reader<'_> {
     /// else by binary search (which the answer does not depend on: the number of keys at or
     /// before `time` is the one `n` with key `n − 1` at or before and key `n` after it).
     fn key_at(&mut self, times: impl Fn(usize) -> f64, len: usize, time: f64) -> Option<usize> {
-        let fits = |n: usize| n <= len && (n == 0 || f32ed(times(n - 1)) <= time) && (n == len || f32ed(times(n)) > time);
+        let fits =
+            |n: usize| n <= len && (n == 0 || f32ed(times(n - 1)) <= time) && (n == len || f32ed(times(n)) > time);
         let hint = *self.last as usize;
         let n = if fits(hint) {
             hint
@@ -154,7 +159,9 @@ pub(crate) fn segment(curve: Interpolation, (t0, v0): (f64, f64), (t1, v1): (f64
     match curve {
         Interpolation::Stepped => v0,
         Interpolation::Linear => v0 + (time - t0) / (t1 - t0) * (v1 - v0),
-        Interpolation::Bezier { c1, c2 } => on_samples(&bezier_samples([t0, v0], c1, c2, [t1, v1]), (t0, v0), (t1, v1), time),
+        Interpolation::Bezier { c1, c2 } => {
+            on_samples(&bezier_samples([t0, v0], c1, c2, [t1, v1]), (t0, v0), (t1, v1), time)
+        }
     }
 }
 

@@ -65,7 +65,10 @@ fn cached_keys_and_precomputed_curves_give_the_same_bits() {
         let mut r = Reader { curves: &curves, clip: 0, timeline: 1, last: &mut last_ik };
         let a = ik_settings_at(&mut r, &c.constraints[0].keys, time);
         let b = ik_settings(&c.constraints[0].keys, time);
-        assert_eq!(a.map(|s| (s.mix.to_bits(), s.softness.to_bits())), b.map(|s| (s.mix.to_bits(), s.softness.to_bits())));
+        assert_eq!(
+            a.map(|s| (s.mix.to_bits(), s.softness.to_bits())),
+            b.map(|s| (s.mix.to_bits(), s.softness.to_bits()))
+        );
     }
 }
 

@@ -252,7 +252,8 @@ impl Bones<'_> {
     fn update(&mut self, i: usize) {
         let b = &self.bones[i];
         let parent = b.parent.map(|p| self.world[p]);
-        self.world[i] = world_transform_memo(&self.local[i], b.inherit, parent.as_ref(), self.placement, &mut self.trig[i]);
+        self.world[i] =
+            world_transform_memo(&self.local[i], b.inherit, parent.as_ref(), self.placement, &mut self.trig[i]);
     }
 
     /// Recomputes every bone's world transform, parent first.
@@ -348,7 +349,10 @@ mod tests {
 
     #[test]
     fn the_memo_gives_the_bits_of_sin_cos() {
-        assert_eq!(Trig::ZERO, { let (sin, cos) = math::sin_cos(0.0); Trig { arg: [0.0; 2], sin: [sin; 2], cos: [cos; 2] } });
+        assert_eq!(Trig::ZERO, {
+            let (sin, cos) = math::sin_cos(0.0);
+            Trig { arg: [0.0; 2], sin: [sin; 2], cos: [cos; 2] }
+        });
         let mut memo = Trig::ZERO;
         for x in [0.3, 0.3, -0.0, 0.0, 1e22, 0.3, -2.5, -2.5, 0.3, -2.5, 0.3, 7.0, 1e22] {
             let (s, c) = math::sin_cos(x);
