@@ -266,10 +266,8 @@ impl Bones<'_> {
     /// Recomputes every bone's world transform but the `deferred` ones (see [`deferred`]),
     /// which the constraints' updates compute before anything reads them.
     pub(crate) fn update_all_but(&mut self, deferred: &[bool]) {
-        for i in 0..self.bones.len() {
-            if !deferred[i] {
-                self.update(i);
-            }
+        for (i, _) in deferred.iter().enumerate().filter(|(_, d)| !**d) {
+            self.update(i);
         }
     }
 
