@@ -12,12 +12,14 @@
 //! - [`rigs`]: `--rigs`, whole rigs (the library's rig solve, the sequential-limb baseline,
 //!   KDL's tree solver);
 //! - [`reach`]: `--reach`, the exact reachable region (verdict time, build time, the verdict
-//!   against solving, unreachable goals answered with and without it).
+//!   against solving, unreachable goals answered with and without it);
+//! - [`characters`]: `--characters`, every shipped character posed (setup and animated).
 //!
 //! The command line parses [`BenchArgs`] and calls [`run`](fn@run) with its stdout and output
 //! files ([`Sink`]); this crate reads the shipped arms and rigs through `ikarus-edge`.
 
 mod batch;
+mod characters;
 mod judge;
 mod kdl;
 mod paths;
@@ -66,6 +68,14 @@ pub struct BenchArgs {
     /// unreachable goals answered with the verdict and without it
     #[arg(long, conflicts_with_all = ["paths", "rigs", "arms", "sets", "methods", "limit_modes", "write_goals", "kdl"])]
     pub reach: bool,
+    /// Benchmark posing the shipped characters instead of solvers: each one's setup pose with
+    /// its constraints and its animation (`walk`, else its first) at a time advancing 1/60 s per
+    /// pose, by the runtime's rules, --poses times each, one thread
+    #[arg(long, conflicts_with_all = ["paths", "rigs", "reach", "goals", "arms", "sets", "methods", "limit_modes", "write_goals", "kdl"])]
+    pub characters: bool,
+    /// With --characters: timed poses of each kind per character
+    #[arg(long, value_name = "N", default_value_t = 10_000, requires = "characters", value_parser = parse_at_least_one)]
+    pub poses: u32,
     /// With --reach: random points per arm for the verdict's time and its agreement with solving
     #[arg(long, value_name = "N", default_value_t = 1_000_000, requires = "reach", value_parser = parse_points)]
     pub points: u64,
@@ -155,6 +165,9 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     }
     if args.reach {
         return reach::run(args, sink);
+    }
+    if args.characters {
+        return characters::run(args, sink);
     }
     // Everything that can be checked is checked before the (long) work starts.
     if let Some(path) = &args.kdl {

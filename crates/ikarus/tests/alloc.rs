@@ -382,3 +382,44 @@ fn posing_a_character_allocates_nothing() {
     assert_eq!(count, 0, "{count} allocations in 100 poses");
     assert!(out.tip(2)[0].is_finite());
 }
+
+/// Issue 27: the shipped spineboy and raptor, posed by the runtime's rules — the setup pose,
+/// the walk at times going forward (and wrapping), the walk with targets moved — allocate
+/// nothing once their `Posed` has grown (one `Posed` for both characters and every kind).
+#[test]
+fn posing_the_shipped_characters_allocates_nothing() {
+    use ikarus::character::{PoseRequest, Posed};
+    let read = |file: &str| {
+        let path = format!("{}/../../examples/characters/{file}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        ikarus_edge::character::load(&text, file).unwrap().character
+    };
+    let characters = [read("spine-spineboy-pro.json"), read("spine-raptor-pro.json")];
+    let mut out = Posed::default();
+    for c in &characters {
+        let walk = c.clip_index("walk").unwrap();
+        let duration = c.clips()[walk].duration;
+        let target = (c.constraints()[0].target, [30.0, -20.0]);
+        let targets = [target];
+        let requests = |i: usize| {
+            let time = (i as f64 / 60.0) % duration;
+            [
+                PoseRequest::default(),
+                PoseRequest { clip: Some((walk, time)), targets: &[] },
+                PoseRequest { clip: Some((walk, time)), targets: &targets },
+            ]
+        };
+        for r in requests(0) {
+            c.pose(&r, &mut out).unwrap(); // warm-up: grows `out` to this character
+        }
+        for (kind, name) in ["setup", "walk", "walk with a target"].iter().enumerate() {
+            let (count, ()) = allocations_in(|| {
+                for i in 0..300 {
+                    c.pose(&requests(i)[kind], &mut out).unwrap();
+                }
+            });
+            assert_eq!(count, 0, "{} bones, {name}: {count} allocations in 300 poses", c.bones().len());
+        }
+        assert!(out.tip(c.bones().len() - 1)[0].is_finite());
+    }
+}

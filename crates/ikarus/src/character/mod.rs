@@ -34,6 +34,12 @@ pub struct Character {
     clips: Vec<Clip>,
     placement: Placement,
     unsupported: Vec<Unsupported>,
+    /// The constraints' indices in the order they apply (by `order`, ties as listed).
+    order: Vec<usize>,
+    /// The clips' Bézier segments, sampled once.
+    curves: timeline::Curves,
+    /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
+    deferred: Vec<bool>,
 }
 
 /// The skeleton's own position and scale: every world transform is the bones' own transform
@@ -503,7 +509,11 @@ impl Character {
                 }
             }
         }
-        Ok(Character { bones, constraints, clips, placement, unsupported })
+        let mut order: Vec<usize> = (0..constraints.len()).collect();
+        order.sort_by_key(|&k| (constraints[k].order, k));
+        let curves = timeline::Curves::of(&clips);
+        let deferred = world::deferred(&bones, &constraints, &order);
+        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred })
     }
 
     /// The bones, parent first.

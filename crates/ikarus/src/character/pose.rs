@@ -3,7 +3,8 @@
 
 use super::ik;
 use super::timeline;
-use super::world::{Affine, Bones};
+use super::timeline::Reader;
+use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
 use thiserror::Error;
 
@@ -58,7 +59,11 @@ pub struct Posed {
     length: Vec<f64>,
     below: Vec<bool>,
     settings: Vec<IkSettings>,
-    order: Vec<usize>,
+    /// Per bone, the sines and cosines its world transform last needed (kept across poses).
+    trig: Vec<BoneTrig>,
+    /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
+    /// before the time last asked: where the next time's key is looked for first.
+    keys: Vec<u32>,
 }
 
 impl Posed {
@@ -110,10 +115,18 @@ impl Posed {
         self.settings[k]
     }
 
-    /// The buffers a change of the local transforms works on: the local and world transforms,
-    /// the lengths, the marks of [`Bones::update_below`](super::world::Bones).
-    pub(crate) fn parts(&mut self) -> (&mut [LocalTransform], &mut [Affine], &[f64], &mut [bool]) {
-        (&mut self.local, &mut self.world, &self.length, &mut self.below)
+    /// The bones of `c` as posing left them, to change their local transforms (and the world
+    /// transforms below), their lengths, and the constraints' settings.
+    pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [IkSettings]) {
+        let bones = Bones {
+            bones: &c.bones,
+            placement: c.placement,
+            local: &mut self.local,
+            world: &mut self.world,
+            below: &mut self.below,
+            trig: &mut self.trig,
+        };
+        (bones, &self.length, &self.settings)
     }
 }
 
@@ -136,38 +149,38 @@ impl Character {
         out.below.resize(n, false);
         out.settings.clear();
         out.settings.extend(self.constraints.iter().map(|k| k.setup));
-        out.order.clear();
-        out.order.extend(0..self.constraints.len());
-        out.order.sort_unstable_by_key(|&k| (self.constraints[k].order, k));
+        out.trig.resize(n, [Trig::ZERO; 3]);
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
-            for t in &clip.bones {
-                timeline::apply_bone(t, &self.bones[t.bone].setup, &mut out.local[t.bone], time);
+            out.keys.resize(clip.bones.len() + clip.constraints.len(), 0);
+            let (bone_keys, ik_keys) = out.keys.split_at_mut(clip.bones.len());
+            for (k, (t, last)) in clip.bones.iter().zip(bone_keys).enumerate() {
+                let mut r = Reader { curves: &self.curves, clip: c, timeline: k, last };
+                timeline::apply_bone_at(&mut r, t, &self.bones[t.bone].setup, &mut out.local[t.bone], time);
             }
-            for t in &clip.constraints {
-                if let Some(s) = timeline::ik_settings(&t.keys, time) {
+            for (k, (t, last)) in clip.constraints.iter().zip(ik_keys).enumerate() {
+                let mut r = Reader { curves: &self.curves, clip: c, timeline: clip.bones.len() + k, last };
+                if let Some(s) = timeline::ik_settings_at(&mut r, &t.keys, time) {
                     out.settings[t.constraint] = s;
                 }
             }
         }
-        let mut bones = Bones {
-            bones: &self.bones,
-            placement: self.placement,
-            local: &mut out.local,
-            world: &mut out.world,
-            below: &mut out.below,
-        };
-        bones.update_all();
+        let (mut bones, _, settings) = out.bones(self);
+        if request.targets.is_empty() {
+            bones.update_all_but(&self.deferred);
+        } else {
+            bones.update_all();
+        }
         for &(bone, [x, y]) in request.targets {
             let [lx, ly] = bones.parent_world(bone).to_local(x, y).ok_or(PoseError::SingularParent(bone))?;
             bones.local[bone].x = lx;
             bones.local[bone].y = ly;
             bones.update_below(bone);
         }
-        for &k in &out.order {
+        for &k in &self.order {
             let c = &self.constraints[k];
-            let s = &out.settings[k];
+            let s = &settings[k];
             let w = bones.world[c.target];
             let target = [w.x, w.y];
             let top = match (c.bones, c.rule) {
@@ -215,3 +228,7 @@ impl Character {
 #[cfg(test)]
 #[path = "pose_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "deferred_tests.rs"]
+mod deferred_tests;

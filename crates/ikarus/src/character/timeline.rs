@@ -8,7 +8,7 @@
 //! u = 0 and u = 1). Before the first key a timeline gives the setup value, after the last key
 //! the last key's value.
 
-use super::{BoneKey, BoneProperty, BoneTimeline, IkKey, IkSettings, Interpolation, LocalTransform};
+use super::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSettings, Interpolation, LocalTransform};
 
 /// A value rounded to the runtime's `f32`.
 fn f32ed(v: f64) -> f64 {
@@ -38,6 +38,121 @@ fn bezier_samples(p0: [f64; 2], c1: [f64; 2], c2: [f64; 2], p3: [f64; 2]) -> [[f
     out
 }
 
+/// The nine samples of every Bézier segment of a character's clips, computed once when the
+/// character is made, exactly as [`bezier_samples`] computes them when a pose needs them.
+#[derive(Clone, Default, PartialEq)]
+pub(crate) struct Curves {
+    /// Per clip, per bone timeline then per IK timeline, per key and channel (`2·key + ch`):
+    /// the index of the segment's samples in `samples`, or `NONE` for a segment that is not a
+    /// Bézier one (and the last key's).
+    slots: Vec<Vec<Vec<u32>>>,
+    samples: Vec<[[f64; 2]; 9]>,
+}
+
+/// No Bézier samples.
+const NONE: u32 = u32::MAX;
+
+impl std::fmt::Debug for Curves {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Curves({} Bézier segments)", self.samples.len())
+    }
+}
+
+impl Curves {
+    /// The samples of every Bézier segment of `clips`.
+    pub(crate) fn of(clips: &[Clip]) -> Curves {
+        let mut out = Curves::default();
+        for clip in clips {
+            let mut per_clip = Vec::with_capacity(clip.bones.len() + clip.constraints.len());
+            for t in &clip.bones {
+                per_clip.push(out.timeline(t.keys.len(), |i, ch| {
+                    let (k, n) = (&t.keys[i], &t.keys[i + 1]);
+                    (k.curves[ch], [k.time, k.values[ch]], [n.time, n.values[ch]])
+                }));
+            }
+            for t in &clip.constraints {
+                per_clip.push(out.timeline(t.keys.len(), |i, ch| {
+                    let (k, n) = (&t.keys[i], &t.keys[i + 1]);
+                    let value = |s: &IkSettings| if ch == 0 { s.mix } else { s.softness };
+                    (k.curves[ch], [k.time, value(&k.settings)], [n.time, value(&n.settings)])
+                }));
+            }
+            out.slots.push(per_clip);
+        }
+        out
+    }
+
+    /// One timeline's slots; `segment(i, ch)` is key `i`'s curve on channel `ch` and the two
+    /// keys' `[time, value]`, not yet rounded.
+    fn timeline(
+        &mut self,
+        keys: usize,
+        segment: impl Fn(usize, usize) -> (Interpolation, [f64; 2], [f64; 2]),
+    ) -> Vec<u32> {
+        let mut slots = vec![NONE; 2 * keys];
+        for i in 0..keys.saturating_sub(1) {
+            for ch in 0..2 {
+                if let (Interpolation::Bezier { c1, c2 }, p0, p1) = segment(i, ch) {
+                    slots[2 * i + ch] = self.samples.len() as u32;
+                    let f = |p: [f64; 2]| [f32ed(p[0]), f32ed(p[1])];
+                    self.samples.push(bezier_samples(f(p0), c1, c2, f(p1)));
+                }
+            }
+        }
+        slots
+    }
+
+    /// The samples of timeline `timeline` of clip `clip` (bone timelines first) from key `key`
+    /// on channel `ch`, if that segment is a Bézier one.
+    fn get(&self, clip: usize, timeline: usize, key: usize, ch: usize) -> Option<&[[f64; 2]; 9]> {
+        let slot = *self.slots.get(clip)?.get(timeline)?.get(2 * key + ch)?;
+        self.samples.get(slot as usize)
+    }
+}
+
+/// Where a timeline is read: the character's precomputed curves, the clip and the timeline's
+/// index in it (bone timelines first), and the timeline's last key, cached across poses (the
+/// number of keys at or before the last time asked, a hint checked before it is used).
+pub(crate) struct Reader<'a> {
+    pub(crate) curves: &'a Curves,
+    pub(crate) clip: usize,
+    pub(crate) timeline: usize,
+    pub(crate) last: &'a mut u32,
+}
+
+impl Reader<'_> {
+    /// The index of the last key whose (f32) time is at or before `time`, or `None` before
+    /// the first key: the cached key if it still is that key, else the next one if that is it,
+    /// else by binary search (which the answer does not depend on: the number of keys at or
+    /// before `time` is the one `n` with key `n − 1` at or before and key `n` after it).
+    fn key_at(&mut self, times: impl Fn(usize) -> f64, len: usize, time: f64) -> Option<usize> {
+        let fits =
+            |n: usize| n <= len && (n == 0 || f32ed(times(n - 1)) <= time) && (n == len || f32ed(times(n)) > time);
+        let hint = *self.last as usize;
+        let n = if fits(hint) {
+            hint
+        } else if fits(hint + 1) {
+            hint + 1
+        } else {
+            key_at(&times, len, time).map_or(0, |i| i + 1)
+        };
+        *self.last = n as u32;
+        n.checked_sub(1)
+    }
+
+    /// The value at `time` on key `key`'s segment of channel `ch`, from `(t0, v0)` to
+    /// `(t1, v1)` (f32-rounded already), `t0 <= time < t1`.
+    fn segment(&self, key: usize, ch: usize, curve: Interpolation, p0: (f64, f64), p1: (f64, f64), time: f64) -> f64 {
+        match curve {
+            Interpolation::Bezier { .. } => match self.curves.get(self.clip, self.timeline, key, ch) {
+                Some(samples) => on_samples(samples, p0, p1, time),
+                None => segment(curve, p0, p1, time),
+            },
+            _ => segment(curve, p0, p1, time),
+        }
+    }
+}
+
 /// The value at `time` on the segment from `(t0, v0)` to `(t1, v1)` (f32-rounded already),
 /// `t0 <= time < t1`, with the curve `curve` toward the next key.
 pub(crate) fn segment(curve: Interpolation, (t0, v0): (f64, f64), (t1, v1): (f64, f64), time: f64) -> f64 {
@@ -45,18 +160,23 @@ pub(crate) fn segment(curve: Interpolation, (t0, v0): (f64, f64), (t1, v1): (f64
         Interpolation::Stepped => v0,
         Interpolation::Linear => v0 + (time - t0) / (t1 - t0) * (v1 - v0),
         Interpolation::Bezier { c1, c2 } => {
-            let samples = bezier_samples([t0, v0], c1, c2, [t1, v1]);
-            let mut prev = [t0, v0];
-            for s in samples.iter().chain(std::iter::once(&[t1, v1])) {
-                if s[0] >= time {
-                    let span = s[0] - prev[0];
-                    return if span > 0.0 { prev[1] + (time - prev[0]) / span * (s[1] - prev[1]) } else { s[1] };
-                }
-                prev = *s;
-            }
-            v1
+            on_samples(&bezier_samples([t0, v0], c1, c2, [t1, v1]), (t0, v0), (t1, v1), time)
         }
     }
+}
+
+/// The value at `time` between a Bézier segment's samples (the keys `(t0, v0)`, `(t1, v1)` count
+/// as the samples at u = 0 and u = 1): linear in time between the neighbouring samples.
+fn on_samples(samples: &[[f64; 2]; 9], (t0, v0): (f64, f64), (t1, v1): (f64, f64), time: f64) -> f64 {
+    let mut prev = [t0, v0];
+    for s in samples.iter().chain(std::iter::once(&[t1, v1])) {
+        if s[0] >= time {
+            let span = s[0] - prev[0];
+            return if span > 0.0 { prev[1] + (time - prev[0]) / span * (s[1] - prev[1]) } else { s[1] };
+        }
+        prev = *s;
+    }
+    v1
 }
 
 /// The index of the last key whose (f32) time is at or before `time`, or `None` before the
@@ -74,23 +194,29 @@ fn key_at(times: impl Fn(usize) -> f64, len: usize, time: f64) -> Option<usize> 
     lo.checked_sub(1)
 }
 
-/// The value of channel `ch` of `keys` at `time` (`None` before the first key).
-fn channel(keys: &[BoneKey], ch: usize, time: f64) -> Option<f64> {
-    let i = key_at(|i| keys[i].time, keys.len(), time)?;
+/// The value of channel `ch` of `keys` from key `i` at `time`.
+fn channel(r: &Reader, keys: &[BoneKey], i: usize, ch: usize, time: f64) -> f64 {
     let k = &keys[i];
     let v0 = f32ed(k.values[ch]);
     match keys.get(i + 1) {
-        None => Some(v0),
-        Some(n) => Some(segment(k.curves[ch], (f32ed(k.time), v0), (f32ed(n.time), f32ed(n.values[ch])), time)),
+        None => v0,
+        Some(n) => r.segment(i, ch, k.curves[ch], (f32ed(k.time), v0), (f32ed(n.time), f32ed(n.values[ch])), time),
     }
 }
 
 /// Applies a bone timeline at `time` to `local` (the bone's pose, reset to `setup` before the
 /// clip): rotation, translation and shear add their values to the setup ones, scale multiplies
 /// the setup scale. Before the first key the setup value stays.
-pub(crate) fn apply_bone(t: &BoneTimeline, setup: &LocalTransform, local: &mut LocalTransform, time: f64) {
-    let Some(v0) = channel(&t.keys, 0, time) else { return };
-    let v1 = if t.property.channels() == 2 { channel(&t.keys, 1, time).unwrap_or(0.0) } else { 0.0 };
+pub(crate) fn apply_bone_at(
+    r: &mut Reader,
+    t: &BoneTimeline,
+    setup: &LocalTransform,
+    local: &mut LocalTransform,
+    time: f64,
+) {
+    let Some(i) = r.key_at(|i| t.keys[i].time, t.keys.len(), time) else { return };
+    let v0 = channel(r, &t.keys, i, 0, time);
+    let v1 = if t.property.channels() == 2 { channel(r, &t.keys, i, 1, time) } else { 0.0 };
     match t.property {
         BoneProperty::Rotate => local.rotation = setup.rotation + v0,
         BoneProperty::Translate => {
@@ -117,19 +243,39 @@ pub(crate) fn apply_bone(t: &BoneTimeline, setup: &LocalTransform, local: &mut L
 /// An IK constraint's settings at `time` from its keys: mix and softness interpolated with
 /// their curves, the flags those of the key at or before `time`; `None` before the first key
 /// (the setup settings stay).
-pub(crate) fn ik_settings(keys: &[IkKey], time: f64) -> Option<IkSettings> {
-    let i = key_at(|i| keys[i].time, keys.len(), time)?;
+pub(crate) fn ik_settings_at(r: &mut Reader, keys: &[IkKey], time: f64) -> Option<IkSettings> {
+    let i = r.key_at(|i| keys[i].time, keys.len(), time)?;
     let k = &keys[i];
     let mut s = k.settings;
     s.mix = f32ed(s.mix);
     s.softness = f32ed(s.softness);
     if let Some(n) = keys.get(i + 1) {
         let (t0, t1) = (f32ed(k.time), f32ed(n.time));
-        s.mix = segment(k.curves[0], (t0, s.mix), (t1, f32ed(n.settings.mix)), time);
-        s.softness = segment(k.curves[1], (t0, s.softness), (t1, f32ed(n.settings.softness)), time);
+        s.mix = r.segment(i, 0, k.curves[0], (t0, s.mix), (t1, f32ed(n.settings.mix)), time);
+        s.softness = r.segment(i, 1, k.curves[1], (t0, s.softness), (t1, f32ed(n.settings.softness)), time);
     }
     Some(s)
 }
+
+/// [`apply_bone_at`] without precomputed curves nor a cached key.
+#[cfg(test)]
+fn apply_bone(t: &BoneTimeline, setup: &LocalTransform, local: &mut LocalTransform, time: f64) {
+    let mut last = 0;
+    let curves = Curves::default();
+    apply_bone_at(&mut Reader { curves: &curves, clip: 0, timeline: 0, last: &mut last }, t, setup, local, time);
+}
+
+/// [`ik_settings_at`] without precomputed curves nor a cached key.
+#[cfg(test)]
+fn ik_settings(keys: &[IkKey], time: f64) -> Option<IkSettings> {
+    let mut last = 0;
+    let curves = Curves::default();
+    ik_settings_at(&mut Reader { curves: &curves, clip: 0, timeline: 0, last: &mut last }, keys, time)
+}
+
+#[cfg(test)]
+#[path = "timeline_cache_tests.rs"]
+mod cache_tests;
 
 #[cfg(test)]
 mod tests {

@@ -31,7 +31,7 @@
 
 use super::ik;
 use super::pose::{PoseError, PoseRequest, Posed};
-use super::world::{Affine, Bones, world_transform};
+use super::world::{Affine, world_transform};
 use super::{Character, IkBones, IkRule, IkSettings};
 use crate::angle::wrap_angle;
 use crate::goal::Goal;
@@ -432,8 +432,7 @@ impl Character {
         let mut points = vec![nalgebra::Point2::origin(); n + 1];
         let mut directions = vec![0.0; n];
         frozen.skeleton.points_into(angles, &mut points, &mut directions);
-        let (local, world, length, below) = out.parts();
-        let mut bones = Bones { bones: &self.bones, placement: self.placement, local, world, below };
+        let (mut bones, length, _) = out.bones(self);
         for (k, &m) in frozen.bones.iter().enumerate() {
             let parent = self.bones[m].parent.map(|p| bones.world[p]);
             let r = rotation_for(&bones.local[m], &self.bones[m], parent.as_ref(), self.placement, directions[k]);
@@ -456,8 +455,7 @@ impl Character {
     fn aim_zero_length(&self, active: &[usize], out: &mut Posed) {
         let aims: Vec<(usize, IkSettings)> =
             active.iter().filter(|&&k| !self.has_tip_goal(k)).map(|&k| (k, out.settings(k))).collect();
-        let (local, world, _, below) = out.parts();
-        let mut bones = Bones { bones: &self.bones, placement: self.placement, local, world, below };
+        let (mut bones, ..) = out.bones(self);
         for (k, s) in aims {
             let c = &self.constraints[k];
             if let IkBones::One(b) = c.bones {

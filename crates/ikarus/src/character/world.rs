@@ -19,7 +19,7 @@
 //!
 //! A root bone's parent is the skeleton itself: `P = S`, `o` = the skeleton's position.
 
-use super::{CharacterBone, Inherit, LocalTransform, Placement};
+use super::{CharacterBone, IkBones, IkConstraint, Inherit, LocalTransform, Placement};
 use crate::math;
 use std::f64::consts::FRAC_PI_2;
 
@@ -107,11 +107,52 @@ impl Affine {
     }
 }
 
+/// The sines and cosines a bone's world transform needed last and the time before, by
+/// argument: a memo, so that a bone whose rotation and shear did not change since (in this pose
+/// or the previous one) costs no sine nor cosine, and a bone a constraint turns (its rotation
+/// before the constraint, then after, pose after pose) neither. The answer is the same bits
+/// either way.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Trig {
+    arg: [f64; 2],
+    sin: [f64; 2],
+    cos: [f64; 2],
+}
+
+impl Trig {
+    /// The memo of `sin_cos(0)`, exact: `(0, 1)`.
+    pub(crate) const ZERO: Trig = Trig { arg: [0.0; 2], sin: [0.0; 2], cos: [1.0; 2] };
+
+    /// `math::sin_cos(x)`, from the memo when one of its arguments has the same bits (the
+    /// latest first); else computed, and the older argument forgotten.
+    #[inline]
+    fn sin_cos(&mut self, x: f64) -> (f64, f64) {
+        let bits = x.to_bits();
+        if self.arg[0].to_bits() == bits {
+            return (self.sin[0], self.cos[0]);
+        }
+        if self.arg[1].to_bits() != bits {
+            let (sin, cos) = math::sin_cos(x);
+            self.arg[1] = x;
+            self.sin[1] = sin;
+            self.cos[1] = cos;
+        }
+        self.arg.swap(0, 1);
+        self.sin.swap(0, 1);
+        self.cos.swap(0, 1);
+        (self.sin[0], self.cos[0])
+    }
+}
+
+/// A bone's memos: its local x axis's angle, its y axis's, and its rotation alone (the `noScale`
+/// modes).
+pub(crate) type BoneTrig = [Trig; 3];
+
 /// The local matrix of `t` turned by `rotation` (its own rotation, or 0 for the rotation-free
 /// part), origin 0.
-fn local_matrix(t: &LocalTransform, rotation: f64) -> Affine {
-    let (sx, cx) = math::sin_cos(rotation + t.shear_x);
-    let (sy, cy) = math::sin_cos(rotation + FRAC_PI_2 + t.shear_y);
+fn local_matrix(t: &LocalTransform, rotation: f64, trig: &mut BoneTrig) -> Affine {
+    let (sx, cx) = trig[0].sin_cos(rotation + t.shear_x);
+    let (sy, cy) = trig[1].sin_cos(rotation + FRAC_PI_2 + t.shear_y);
     Affine { a: cx * t.scale_x, b: cy * t.scale_y, c: sx * t.scale_x, d: sy * t.scale_y, x: 0.0, y: 0.0 }
 }
 
@@ -148,27 +189,38 @@ fn unrotated(q: &Affine) -> (Affine, f64) {
 /// The world transform of a bone with local transform `t` and inherit mode `inherit`, below
 /// `parent`'s world transform (`None` for a root). The math is in the module's doc.
 pub fn world_transform(t: &LocalTransform, inherit: Inherit, parent: Option<&Affine>, placement: Placement) -> Affine {
+    world_transform_memo(t, inherit, parent, placement, &mut [Trig::ZERO; 3])
+}
+
+/// [`world_transform`] with the bone's memo of sines and cosines.
+fn world_transform_memo(
+    t: &LocalTransform,
+    inherit: Inherit,
+    parent: Option<&Affine>,
+    placement: Placement,
+    trig: &mut BoneTrig,
+) -> Affine {
     let s = placement.scale;
     let Some(p) = parent else {
-        return Affine::of_placement(placement).times(&Affine { x: t.x, y: t.y, ..local_matrix(t, t.rotation) });
+        return Affine::of_placement(placement).times(&Affine { x: t.x, y: t.y, ..local_matrix(t, t.rotation, trig) });
     };
     let [x, y] = p.to_world(t.x, t.y);
     let m = match inherit {
-        Inherit::Normal => p.times(&local_matrix(t, t.rotation)),
-        Inherit::OnlyTranslation => local_matrix(t, t.rotation).scaled(s),
+        Inherit::Normal => p.times(&local_matrix(t, t.rotation, trig)),
+        Inherit::OnlyTranslation => local_matrix(t, t.rotation, trig).scaled(s),
         Inherit::NoRotationOrReflection => {
             let (frame, theta) = unrotated(&p.unscaled(s));
-            frame.times(&local_matrix(t, t.rotation - theta)).scaled(s)
+            frame.times(&local_matrix(t, t.rotation - theta, trig)).scaled(s)
         }
         Inherit::NoScale | Inherit::NoScaleOrReflection => {
             let q = p.unscaled(s);
-            let (sin, cos) = math::sin_cos(t.rotation);
+            let (sin, cos) = trig[2].sin_cos(t.rotation);
             let [zx, zy] = q.apply(cos, sin);
             let len = math::hypot(zx, zy);
             let (za, zc) = if len > 1e-12 { (zx / len, zy / len) } else { (1.0, 0.0) };
             let flip = if inherit == Inherit::NoScale && q.det() < 0.0 { -1.0 } else { 1.0 };
             let z = Affine { a: za, b: -zc * flip, c: zc, d: za * flip, x: 0.0, y: 0.0 };
-            z.times(&local_matrix(t, 0.0)).scaled(s)
+            z.times(&local_matrix(t, 0.0, trig)).scaled(s)
         }
     };
     Affine { x, y, ..m }
@@ -183,6 +235,8 @@ pub(crate) struct Bones<'a> {
     pub(crate) world: &'a mut [Affine],
     /// Scratch: which bones are below the one being updated.
     pub(crate) below: &'a mut [bool],
+    /// Per bone, the sines and cosines its world transform last needed.
+    pub(crate) trig: &'a mut [BoneTrig],
 }
 
 impl Bones<'_> {
@@ -198,12 +252,21 @@ impl Bones<'_> {
     fn update(&mut self, i: usize) {
         let b = &self.bones[i];
         let parent = b.parent.map(|p| self.world[p]);
-        self.world[i] = world_transform(&self.local[i], b.inherit, parent.as_ref(), self.placement);
+        self.world[i] =
+            world_transform_memo(&self.local[i], b.inherit, parent.as_ref(), self.placement, &mut self.trig[i]);
     }
 
     /// Recomputes every bone's world transform, parent first.
     pub(crate) fn update_all(&mut self) {
         for i in 0..self.bones.len() {
+            self.update(i);
+        }
+    }
+
+    /// Recomputes every bone's world transform but the `deferred` ones (see [`deferred`]),
+    /// which the constraints' updates compute before anything reads them.
+    pub(crate) fn update_all_but(&mut self, deferred: &[bool]) {
+        for (i, _) in deferred.iter().enumerate().filter(|(_, d)| !**d) {
             self.update(i);
         }
     }
@@ -223,6 +286,47 @@ impl Bones<'_> {
     }
 }
 
+/// The bones whose world transform the first pass of a pose without targets may skip: each is
+/// below (or is) the bones of a constraint, so that constraint's update below them recomputes
+/// it, and nothing reads it before — no constraint applied up to then reads it (its target, its
+/// bones, the parent of its first bone) and no bone the first pass computes is its child. The
+/// pose's every number is then the same, bit for bit, with one update fewer per such bone.
+/// `order` is the constraints' indices in the order they apply.
+pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], order: &[usize]) -> Vec<bool> {
+    let n = bones.len();
+    // The first constraint (its place in `order`) whose update recomputes the bone, and the
+    // first that reads it.
+    let (mut fresh, mut read) = (vec![usize::MAX; n], vec![usize::MAX; n]);
+    let mut below = vec![false; n];
+    for (pos, &k) in order.iter().enumerate() {
+        let c = &constraints[k];
+        let (top, child) = match c.bones {
+            IkBones::One(b) => (b, None),
+            IkBones::Two { parent, child } => (parent, Some(child)),
+        };
+        for r in [Some(c.target), Some(top), child, bones[top].parent].into_iter().flatten() {
+            read[r] = read[r].min(pos);
+        }
+        below[top..].fill(false);
+        below[top] = true;
+        fresh[top] = fresh[top].min(pos);
+        for j in top + 1..n {
+            if bones[j].parent.is_some_and(|p| p >= top && below[p]) {
+                below[j] = true;
+                fresh[j] = fresh[j].min(pos);
+            }
+        }
+    }
+    let mut deferred: Vec<bool> = (0..n).map(|j| fresh[j] != usize::MAX && read[j] > fresh[j]).collect();
+    // A bone the first pass computes reads its parent: that one is computed too.
+    for j in (0..n).rev() {
+        if let (false, Some(p)) = (deferred[j], bones[j].parent) {
+            deferred[p] = false;
+        }
+    }
+    deferred
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -239,6 +343,30 @@ mod tests {
     fn parent() -> Affine {
         // Rotated 0.7, scaled 2 along its x and 3 along its y, mirrored by a negative y scale.
         world_transform(&local(5.0, -1.0, 0.7, 2.0, -3.0), Inherit::Normal, None, Placement::default())
+    }
+
+    #[test]
+    fn the_memo_gives_the_bits_of_sin_cos() {
+        assert_eq!(Trig::ZERO, {
+            let (sin, cos) = math::sin_cos(0.0);
+            Trig { arg: [0.0; 2], sin: [sin; 2], cos: [cos; 2] }
+        });
+        let mut memo = Trig::ZERO;
+        for x in [0.3, 0.3, -0.0, 0.0, 1e22, 0.3, -2.5, -2.5, 0.3, -2.5, 0.3, 7.0, 1e22] {
+            let (s, c) = math::sin_cos(x);
+            let (ms, mc) = memo.sin_cos(x);
+            assert_eq!((ms.to_bits(), mc.to_bits()), (s.to_bits(), c.to_bits()), "{x}");
+        }
+        // Every mode, with a memo warmed on other transforms: the same bits as without one.
+        let p = parent();
+        let mut trig = [Trig::ZERO; 3];
+        for mode in Inherit::ALL {
+            for t in [local(1.0, 2.0, 0.3, 1.5, 0.5), local(1.0, 2.0, 0.3, 1.5, 0.5), local(0.0, 1.0, -1.1, 1.0, 2.0)] {
+                let a = world_transform_memo(&t, mode, Some(&p), Placement::default(), &mut trig);
+                let b = world_transform(&t, mode, Some(&p), Placement::default());
+                assert_eq!(format!("{a:?}"), format!("{b:?}"));
+            }
+        }
     }
 
     #[test]
