@@ -3,7 +3,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use ikarus::{SolveOptions, Solver};
+use ikarus::{Outcome, SolveOptions, Solver};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -24,14 +24,28 @@ pub(crate) struct ChainData {
     /// The options of a solve without keywords, and a solver with them (taken while in use).
     pub(crate) options: Arc<SolveOptions>,
     pub(crate) solver: Mutex<Solver>,
+    /// Outcomes of this chain's solves that Python has let go of, their buffers kept for the
+    /// next solves (at most [`SPARE_OUTCOMES`]): a solve then allocates nothing of its own.
+    spare: Mutex<Vec<Outcome>>,
 }
+
+/// How many dropped outcomes a chain keeps for reuse.
+const SPARE_OUTCOMES: usize = 4;
 
 impl ChainData {
     pub(crate) fn new(arm: Arm, arm_json: Value) -> PyResult<Self> {
         let name = arm.name().to_owned();
         let options = edge::solve_options(&arm, "{}", limits()).map_err(problem)?;
         let solver = Solver::new(options.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Self { arm, arm_json, name, toml: None, options: Arc::new(options), solver: Mutex::new(solver) })
+        Ok(Self {
+            arm,
+            arm_json,
+            name,
+            toml: None,
+            options: Arc::new(options),
+            solver: Mutex::new(solver),
+            spare: Mutex::default(),
+        })
     }
 
     pub(crate) fn from_toml(text: &str, label: &str) -> PyResult<Self> {
@@ -47,6 +61,21 @@ impl ChainData {
                 edge::solve_options(&self.arm, &options_json(Some(k))?, limits()).map_err(option_problem)
             }
             _ => Ok(SolveOptions::clone(&self.options)),
+        }
+    }
+
+    /// An outcome to solve into: a dropped one's buffers when there is one, else a new one.
+    /// (`Solver::solve_into` sets every field, so what it held before never shows.)
+    pub(crate) fn outcome(&self) -> Outcome {
+        self.spare.try_lock().ok().and_then(|mut spare| spare.pop()).unwrap_or_default()
+    }
+
+    /// Keeps a dropped outcome's buffers for the next solve.
+    pub(crate) fn recycle(&self, outcome: Outcome) {
+        if let Ok(mut spare) = self.spare.try_lock() {
+            if spare.len() < SPARE_OUTCOMES {
+                spare.push(outcome);
+            }
         }
     }
 

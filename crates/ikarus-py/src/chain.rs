@@ -241,19 +241,21 @@ impl PyChain {
         let goal = goal_of(goal)?;
         let data = &self.data;
         let chain = data.arm.chain();
+        let start = chain.start_pose().angles();
+        let mut outcome = data.outcome();
         let result = match options {
             Some(k) if !k.is_empty() => {
                 let opts = data.options(Some(k))?;
                 let mut solver = Solver::new(opts).map_err(|e| PyValueError::new_err(e.to_string()))?;
                 py.detach(|| {
-                    solver.solve(chain, chain.start_pose(), &goal).map(|o| (o, Arc::new(solver.options().clone())))
+                    solver.solve_into(chain, start, &goal, &mut outcome).map(|()| Arc::new(solver.options().clone()))
                 })
             }
             _ => data.with_default_solver(|solver| {
-                py.detach(|| solver.solve(chain, chain.start_pose(), &goal)).map(|o| (o, data.options.clone()))
+                py.detach(|| solver.solve_into(chain, start, &goal, &mut outcome)).map(|()| data.options.clone())
             })?,
         };
-        let (outcome, options) = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let options = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(PyOutcome { solved: Solved::Chain(ChainSolved { outcome, goal, chain: self.data.clone(), options }) })
     }
 

@@ -11,6 +11,17 @@ use crate::errors::goal_problem;
 
 /// A goal from Python: `(x, y)` or `(x, y, angle_deg)`.
 pub(crate) fn goal_of(goal: &Bound<'_, PyAny>) -> PyResult<Goal> {
+    // The common case, `(x, y)` or `(x, y, angle_deg)`, read without a vector.
+    if let Ok(t) = goal.cast::<PyTuple>() {
+        let n = t.len();
+        if n == 2 || n == 3 {
+            let mut v = [0.0; 3];
+            for (i, item) in t.iter().enumerate() {
+                v[i] = item.extract::<f64>()?;
+            }
+            return edge::goal(v[0], v[1], (n == 3).then_some(v[2])).map_err(|p| goal_problem(p, None));
+        }
+    }
     let values: Vec<f64> = if let Ok(t) = goal.cast::<PyTuple>() {
         t.iter().map(|v| v.extract::<f64>()).collect::<PyResult<_>>()?
     } else {

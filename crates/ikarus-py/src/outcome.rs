@@ -77,6 +77,13 @@ pub(crate) struct ChainSolved {
     pub(crate) options: Arc<SolveOptions>,
 }
 
+impl Drop for ChainSolved {
+    /// Gives the outcome's buffers back to the chain, for its next solve.
+    fn drop(&mut self) {
+        self.chain.recycle(std::mem::take(&mut self.outcome));
+    }
+}
+
 /// A rig's solve: the API's answer (`POST /api/solve` with `rig`), read once into typed fields.
 pub(crate) struct RigSolved {
     /// The answer's JSON text, for `to_dict`.

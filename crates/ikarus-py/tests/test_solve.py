@@ -74,6 +74,30 @@ def test_a_plain_solve_twice_gives_the_same_bits_and_reuses_nothing_visible():
     assert arm.solve((2.0, 3.0)).angles_deg.tolist() == a.angles_deg.tolist()
 
 
+def fields(out: ikarus.Outcome) -> tuple:
+    """Every field of a chain's outcome, as plain Python values."""
+    return (
+        out.status, out.iterations, out.restarts, out.error, out.angle_error_deg, out.reach_distance,
+        out.end_effector, out.goal, out.angles_deg.tolist(), out.joints.tolist(), out.frames.tolist(),
+        out.frame_joints.tolist(), out.frame_iterations.tolist(),
+    )
+
+
+def test_outcomes_let_go_lend_their_buffers_to_later_solves_and_change_nothing():
+    # A chain keeps the buffers of outcomes Python has dropped for its next solves; whatever
+    # they held (more frames, a reach distance, another method's answer) must never show.
+    seed = [(goal, options) for name, goal, options, _ in CASES if name == "seed"]
+    fresh = [fields(ikarus.Chain().solve(goal, **options)) for goal, options in seed]
+    arm = ikarus.Chain()
+    for order in (range(len(seed)), reversed(range(len(seed)))):
+        for i in order:
+            assert fields(arm.solve(seed[i][0], **seed[i][1])) == fresh[i], seed[i]
+    held = [arm.solve(goal, **options) for goal, options in seed]
+    assert [fields(out) for out in held] == fresh
+    del held
+    assert [fields(arm.solve(goal, **options)) for goal, options in seed] == fresh
+
+
 def test_outcome_fields():
     out = ikarus.Chain().solve((2.0, 3.0))
     assert out.status == "reached" and out.reached
