@@ -38,7 +38,7 @@ pub struct Solver {
     /// and it is moved out and back in on every such solve).
     pub(super) rig_chain: Option<Box<Chain>>,
     /// The exact regions of the last chain solved with limits, for the verdict.
-    reach: ReachCache,
+    pub(super) reach: ReachCache,
     /// The batch's lanes ([`Solver::solve_batch`]).
     lanes: fast::BatchBuffers,
     /// The goals of a batch left to the scalar solver.

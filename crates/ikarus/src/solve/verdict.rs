@@ -12,11 +12,18 @@
 //! still be out of reach, and is then searched for as before.
 //!
 //! The regions are built on the first solve of a chain with limits (0.2 ms for the seed arm,
-//! about 1 ms for eight links) and kept by the [`Solver`](super::Solver) until it solves for a
-//! chain with other lengths, limits or base. They are built with [`Region::try_of`]: within its
+//! about 1 ms for eight links, several for the 20-link tentacle) and kept by the
+//! [`Solver`](super::Solver) until it solves for a chain with other lengths, limits or base.
+//! They are also kept for the process, for the last [`SHARED_REGIONS`] chains: a new solver on a
+//! chain seen before (each [`track::plan`](crate::track::plan) and each server request makes
+//! one) takes them instead of building them again. A region is a function of the chain's
+//! lengths, limits and base alone, so a shared one is the one the solver would build, bit for
+//! bit. They are built with [`Region::try_of`]: within its
 //! work cap (a chain whose region needs more is solved by searching, without a verdict, and the
 //! solver remembers not to try again for it) and watching the solve's interrupt (an interrupted
 //! build leaves nothing behind, and the solve ends `interrupted` at its first check).
+
+use std::sync::{Arc, Mutex};
 
 use nalgebra::{Point2, Vector2};
 
@@ -30,27 +37,75 @@ use crate::reach::{Region, RegionError, RegionOptions};
 pub(super) struct ReachCache {
     key: Vec<f64>,
     /// `Some(None)`: tried, and over the work cap.
-    position: Option<Option<Region>>,
+    position: Option<Option<Arc<Region>>>,
     /// `Some(None)`: tried, and the chain has one link (no wrist region) or it was over the
     /// work cap.
-    wrist: Option<Option<Region>>,
+    wrist: Option<Option<Arc<Region>>>,
 }
 
-/// The region in `slot`, built by `build` if it was not tried yet: `None` when there is none
-/// (`build` gave none or ran over its cap, remembered) or the build was interrupted (not
-/// remembered: the next solve tries again).
-fn built(
-    slot: &mut Option<Option<Region>>,
+/// Which of a chain's two regions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Position,
+    Wrist,
+}
+
+/// A region built in this process: the chain's key (as [`ReachCache`] keeps it), which region,
+/// and what the build gave (`None`: none, or over the work cap).
+struct Shared {
+    key: Vec<f64>,
+    kind: Kind,
+    region: Option<Arc<Region>>,
+}
+
+/// How many built regions the process keeps (the most recently built).
+pub(crate) const SHARED_REGIONS: usize = 8;
+
+/// The regions built in this process, oldest first.
+static SHARED: Mutex<Vec<Shared>> = Mutex::new(Vec::new());
+
+/// The region of `kind` for the chain with `key`, if this process built it before.
+fn shared(key: &[f64], kind: Kind) -> Option<Option<Arc<Region>>> {
+    let list = SHARED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    list.iter().find(|s| s.kind == kind && s.key == key).map(|s| s.region.clone())
+}
+
+/// Keeps what a build gave for the chain with `key`, dropping the oldest beyond
+/// [`SHARED_REGIONS`].
+fn share(key: &[f64], kind: Kind, region: Option<Arc<Region>>) {
+    let mut list = SHARED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if list.iter().any(|s| s.kind == kind && s.key == key) {
+        return;
+    }
+    if list.len() == SHARED_REGIONS {
+        list.remove(0);
+    }
+    list.push(Shared { key: key.to_vec(), kind, region });
+}
+
+/// The region in `slot`: taken from the process's built regions, or built by `build` if it was
+/// not tried yet: `None` when there is none (`build` gave none or ran over its cap, remembered)
+/// or the build was interrupted (not remembered: the next solve tries again).
+fn built<'s>(
+    slot: &'s mut Option<Option<Arc<Region>>>,
+    (key, kind): (&[f64], Kind),
     build: impl FnOnce() -> Result<Option<Region>, RegionError>,
-) -> Option<&Region> {
+) -> Option<&'s Region> {
     if slot.is_none() {
-        *slot = match build() {
-            Ok(region) => Some(region),
-            Err(RegionError::TooComplex { .. }) => Some(None),
-            Err(_) => return None,
+        *slot = match shared(key, kind) {
+            Some(region) => Some(region),
+            None => {
+                let region = match build() {
+                    Ok(region) => region.map(Arc::new),
+                    Err(RegionError::TooComplex { .. }) => None,
+                    Err(_) => return None,
+                };
+                share(key, kind, region.clone());
+                Some(region)
+            }
         };
     }
-    slot.as_ref().and_then(Option::as_ref)
+    slot.as_ref().and_then(Option::as_deref)
 }
 
 /// What the verdict found: the distance from the goal to the region (0 inside), and whether it
@@ -100,7 +155,9 @@ impl ReachCache {
         let options = RegionOptions { limits: true, interrupt: interrupt.cloned(), ..RegionOptions::default() };
         match goal.orientation() {
             None => {
-                let region = built(&mut self.position, || Region::try_of(chain, &options).map(Some))?;
+                let region = built(&mut self.position, (&self.key, Kind::Position), || {
+                    Region::try_of(chain, &options).map(Some)
+                })?;
                 if !region.is_checked() {
                     return None;
                 }
@@ -111,7 +168,7 @@ impl ReachCache {
                 Some(Found { distance: v.distance, unreachable: !v.reachable })
             }
             Some(direction) => {
-                let region = built(&mut self.wrist, || Region::try_wrist(chain, &options))?;
+                let region = built(&mut self.wrist, (&self.key, Kind::Wrist), || Region::try_wrist(chain, &options))?;
                 if !region.is_checked() {
                     return None;
                 }
@@ -261,6 +318,41 @@ mod tests {
         }
     }
 
+    /// A second solver on a chain the process has built the regions of takes them (the same
+    /// region, not a copy) and answers as the first; a chain with other limits gets its own.
+    #[test]
+    fn a_new_solver_takes_the_regions_this_process_built() {
+        // Lengths no other test uses, so that this chain's regions are built here.
+        let arm = |hi: f64| {
+            let lim = JointLimits::new(-1.0, hi).unwrap();
+            let links = [Link::new(1.37, 0.2), Link::new(0.91, 0.3).with_limits(lim), Link::new(0.53, 0.1)];
+            Chain::new([0.0, 0.0], &links).unwrap()
+        };
+        let (chain, other) = (arm(1.5), arm(1.25));
+        // Inside the inner hole the elbow's range leaves (about 1.17 from the base), and an oriented one.
+        let goals = [Goal::position(0.3, 0.2).unwrap(), Goal::with_orientation(0.5, 1.9, 2.0).unwrap()];
+        let solve = |chain: &Chain| {
+            let mut solver = Solver::new(SolveOptions::default()).unwrap();
+            let outs: Vec<_> = goals.iter().map(|g| solver.solve(chain, chain.start_pose(), g).unwrap()).collect();
+            (solver, outs)
+        };
+        let regions = |s: &Solver| match (&s.reach.position, &s.reach.wrist) {
+            (Some(Some(p)), Some(Some(w))) => (p.clone(), w.clone()),
+            other => panic!("both regions built: {other:?}"),
+        };
+        let (first, a) = solve(&chain);
+        let (second, b) = solve(&chain);
+        let (p1, w1) = regions(&first);
+        let (p2, w2) = regions(&second);
+        assert!(std::sync::Arc::ptr_eq(&p1, &p2) && std::sync::Arc::ptr_eq(&w1, &w2));
+        assert_eq!(a, b);
+        assert_eq!(a[0].status, Status::Unreachable, "the verdict judged the first goal");
+        let (third, _) = solve(&other);
+        let (p3, _) = regions(&third);
+        assert!(!std::sync::Arc::ptr_eq(&p1, &p3));
+        assert_ne!(p1.area(), p3.area());
+    }
+
     #[test]
     fn no_verdict_without_limits() {
         let chain = seed();
@@ -358,7 +450,9 @@ mod tests {
     #[test]
     fn the_verdict_stops_building_when_interrupted() {
         use crate::{Interrupt, Restarts};
-        let chain = crate::fixtures::spread_arm();
+        // A chain no other test solves: the process keeps what building a chain's region gave,
+        // and a region found over the cap elsewhere would not be built (nor interrupted) here.
+        let chain = crate::fixtures::spread_arm_at([0.5, 0.0]);
         let token = Interrupt::new();
         let options = SolveOptions {
             method: Method::DampedLeastSquares,

@@ -61,10 +61,15 @@ pub fn seven_link_arm() -> Chain {
 /// (tip), each joint limited to ±90°. Its exact region has no end of pieces: without a work
 /// cap it took minutes to build.
 pub fn spread_arm() -> Chain {
+    spread_arm_at([0.0, 0.0])
+}
+
+/// [`spread_arm`] based at `base`: another chain for the process's memo of built regions.
+pub fn spread_arm_at(base: [f64; 2]) -> Chain {
     let lim = JointLimits::new(deg(-90.0), deg(90.0)).expect("valid limits");
     let links: Vec<Link> =
         (0..64).map(|k| Link::new(libm::pow(10.0, -9.0 + 18.0 * f64::from(k) / 63.0), 0.0).with_limits(lim)).collect();
-    Chain::new([0.0, 0.0], &links).expect("valid arm")
+    Chain::new(base, &links).expect("valid arm")
 }
 
 /// An arm based at the origin with links of `(length, min°, max°)`, every joint at the middle
