@@ -468,3 +468,7 @@ impl Algebra for Dynamic {
         self.merit(self.predicted.as_slice())
     }
 }
+
+#[cfg(test)]
+#[path = "dynamic_tests.rs"]
+mod tests;
