@@ -423,3 +423,57 @@ fn posing_the_shipped_characters_allocates_nothing() {
         assert!(out.tip(c.bones().len() - 1)[0].is_finite());
     }
 }
+
+/// Issue 27: the shipped puppet (four limbs, stiff trunk: the rest pose's pull projects every
+/// step) and hand (five fingertips on one wrist), solved with the defaults — restarts, limits
+/// locked — for many reachable target sets in a row, allocate nothing once the solver and
+/// the outcome have been used on the rig.
+#[test]
+fn the_shipped_rigs_solve_without_allocating() {
+    use ikarus::{RigGoal, RigTask};
+    let read = |file: &str, bones: &[&str]| {
+        let path = format!("{}/../../examples/rigs/{file}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let s = ikarus_edge::rig::Rig::parse(&text, file).unwrap().skeleton;
+        let bones: Vec<usize> = bones.iter().map(|b| s.index_of(b).unwrap()).collect();
+        (s, bones)
+    };
+    let rigs = [
+        read("puppet.toml", &["left_hand", "right_hand", "left_foot", "right_foot"]),
+        read("hand.toml", &["thumb_distal", "index_distal", "middle_distal", "ring_distal", "little_distal"]),
+    ];
+    let mut state = 0x2701_u64;
+    let mut unit = move || {
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for (s, bones) in &rigs {
+        let n = s.len();
+        // Targets where a random pose inside the limits puts the effectors.
+        let (mut points, mut dirs) = (vec![nalgebra::Point2::origin(); n + 1], vec![0.0; n]);
+        let mut tasks = Vec::new();
+        for _ in 0..40 {
+            let pose: Vec<f64> = s
+                .limits()
+                .iter()
+                .map(|l| {
+                    let u = unit();
+                    l.map_or(-3.0 + 6.0 * u, |l| l.min() + u * (l.max() - l.min()))
+                })
+                .collect();
+            s.points_into(&pose, &mut points, &mut dirs);
+            let goals =
+                bones.iter().map(|&b| RigGoal::new(b, Goal::position(points[b + 1].x, points[b + 1].y).unwrap()));
+            tasks.push(RigTask::new(goals.collect(), vec![]));
+        }
+        let mut solver = Solver::new(SolveOptions::default()).unwrap();
+        let mut out = Outcome::default();
+        solver.solve_rig_into(s, s.start_angles(), &tasks[0], &mut out).unwrap();
+        let (count, ()) = allocations_in(|| {
+            for task in &tasks {
+                solver.solve_rig_into(s, s.start_angles(), task, &mut out).unwrap();
+            }
+        });
+        assert_eq!(count, 0, "{} bones: {count} allocations in {} solves", n, tasks.len());
+    }
+}

@@ -68,6 +68,12 @@ pub(in crate::solve) struct Dynamic {
     pub(in crate::solve) gram_valid: bool,
     gram_k: Vec<f64>,
     pending_k: Vec<f64>,
+    /// The eigen-decomposition of `A`'s leading `k × k` block (`eigen_of == Some(k)`), kept
+    /// while `A` is unchanged: Levenberg–Marquardt's retries, a step tried again without the
+    /// rest pose's pull and the second level's `A₁⁺` ask for it again on the same `A`.
+    eigen_of: Option<usize>,
+    eigen_values: Vec<f64>,
+    eigen_vectors: Vec<f64>,
 }
 
 /// The weight of the first level's squared error in the line search's merit when a task has
@@ -102,16 +108,17 @@ impl Dynamic {
                 *v = DVector::zeros(m);
             }
         }
-        for v in [&mut self.a, &mut self.block, &mut self.factor, &mut self.vectors] {
+        for v in [&mut self.a, &mut self.block, &mut self.factor, &mut self.vectors, &mut self.eigen_vectors] {
             v.resize(m * m, 0.0);
         }
-        for v in [&mut self.values, &mut self.y, &mut self.t, &mut self.r] {
+        for v in [&mut self.values, &mut self.eigen_values, &mut self.y, &mut self.t, &mut self.r] {
             v.resize(m, 0.0);
         }
         self.first.resize(m, 0);
         self.gram_k.resize(n, 1.0);
         self.pending_k.resize(n, 1.0);
         self.gram_valid = false;
+        self.eigen_of = None;
         self.k.resize(n * m, 0.0);
         self.primary = if primary == 0 { m } else { primary };
     }
@@ -123,6 +130,22 @@ impl Dynamic {
         let f: f64 = first.iter().map(|x| x * x).sum();
         let s: f64 = second.iter().map(|x| x * x).sum();
         merit_of(f, s, !second.is_empty(), self.primary_merit)
+    }
+
+    /// Fills `eigen_values` and `eigen_vectors` with the eigen-decomposition of `A`'s leading
+    /// `k × k` block, unless they already hold it for this `A`.
+    fn leading_eigen(&mut self, k: usize) {
+        if self.eigen_of == Some(k) {
+            return;
+        }
+        let m = self.e.len();
+        for c in 0..k {
+            for r in 0..k {
+                self.block[r + c * k] = self.a[r + c * m];
+            }
+        }
+        symmetric_eigen(k, &self.block[..k * k], &mut self.factor, &mut self.eigen_values, &mut self.eigen_vectors);
+        self.eigen_of = Some(k);
     }
 
     fn w(&self, plain: bool) -> &DMatrix<f64> {
@@ -155,21 +178,16 @@ impl Dynamic {
                 return;
             }
         }
-        symmetric_eigen(k, block, &mut self.factor, &mut self.values, &mut self.vectors);
+        self.leading_eigen(k);
         let floor = opts.singular_threshold * opts.singular_threshold;
-        pinv_apply(k, &self.values, &self.vectors, floor, v, y);
+        let v: &[f64] = if v_from_task { &self.task.as_slice()[..k] } else { &self.r[..k] };
+        pinv_apply(k, &self.eigen_values, &self.eigen_vectors, floor, v, &mut self.y[..k]);
     }
 
     /// Buss & Kim's selectively damped step of the leading `k` rows into `out` (see `sdls.rs`:
     /// the same rule, with the norms taken per effector block).
     fn sdls_step(&mut self, plain: bool, k: usize, threshold: f64, out: &mut [f64]) {
-        let m = self.e.len();
-        for c in 0..k {
-            for r in 0..k {
-                self.block[r + c * k] = self.a[r + c * m];
-            }
-        }
-        symmetric_eigen(k, &self.block[..k * k], &mut self.factor, &mut self.values, &mut self.vectors);
+        self.leading_eigen(k);
         out.fill(0.0);
         let floor = threshold * threshold;
         let blocks = &self.blocks;
@@ -190,11 +208,11 @@ impl Dynamic {
         };
         let w = if plain { &self.jacobian } else { &self.weighted };
         for i in 0..k {
-            let mu = self.values[i];
+            let mu = self.eigen_values[i];
             if mu <= floor {
                 continue;
             }
-            let u = &self.vectors[i * k..(i + 1) * k];
+            let u = &self.eigen_vectors[i * k..(i + 1) * k];
             let alpha = dot(u, &self.task.as_slice()[..k]);
             if alpha == 0.0 {
                 continue;
@@ -229,12 +247,7 @@ impl Dynamic {
         let m2 = m - p;
         let n = out.len();
         // A₁⁺ by eigen-decomposition of the leading block.
-        for c in 0..p {
-            for r in 0..p {
-                self.block[r + c * p] = self.a[r + c * m];
-            }
-        }
-        symmetric_eigen(p, &self.block[..p * p], &mut self.factor, &mut self.values, &mut self.vectors);
+        self.leading_eigen(p);
         let floor = opts.singular_threshold * opts.singular_threshold;
         let w = if plain { &self.jacobian } else { &self.weighted };
         // K = P₁ W₂ᵀ, one column per secondary row.
@@ -246,7 +259,7 @@ impl Dynamic {
             for r in 0..p {
                 self.t[r] = (0..n).map(|j| w[(r, j)] * col[j]).sum();
             }
-            pinv_apply(p, &self.values, &self.vectors, floor, &self.t, &mut self.y);
+            pinv_apply(p, &self.eigen_values, &self.eigen_vectors, floor, &self.t, &mut self.y);
             for (j, c) in col.iter_mut().enumerate() {
                 *c -= (0..p).map(|r| w[(r, j)] * self.y[r]).sum::<f64>();
             }
@@ -346,6 +359,7 @@ impl Algebra for Dynamic {
             for i in 0..self.pending_k.len() {
                 let (new, old) = (self.pending_k[i], self.gram_k[i]);
                 if new != old {
+                    self.eigen_of = None;
                     let f = new * new - old * old;
                     let col = &self.jacobian.as_slice()[i * m..(i + 1) * m];
                     let rows = &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]];
@@ -363,6 +377,7 @@ impl Algebra for Dynamic {
             }
             return;
         }
+        self.eigen_of = None;
         let a = &mut self.a;
         a.fill(0.0);
         let w = if plain { &self.jacobian } else { &self.weighted };
@@ -422,8 +437,8 @@ impl Algebra for Dynamic {
         let trace: f64 = (0..m).map(|i| self.a[i + i * m]).sum();
         let shift = (threshold * threshold).max(1e-15 * trace);
         if !cholesky_solve(m, &self.a, shift, &self.r, &mut self.factor, &mut self.first, &mut self.y) {
-            symmetric_eigen(m, &self.a, &mut self.factor, &mut self.values, &mut self.vectors);
-            pinv_apply(m, &self.values, &self.vectors, threshold * threshold, &self.r, &mut self.y);
+            self.leading_eigen(m);
+            pinv_apply(m, &self.eigen_values, &self.eigen_vectors, threshold * threshold, &self.r, &mut self.y);
         }
         let w = if plain { &self.jacobian } else { &self.weighted };
         for (i, d) in delta.iter_mut().enumerate() {
@@ -453,3 +468,7 @@ impl Algebra for Dynamic {
         self.merit(self.predicted.as_slice())
     }
 }
+
+#[cfg(test)]
+#[path = "dynamic_tests.rs"]
+mod tests;

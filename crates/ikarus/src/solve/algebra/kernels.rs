@@ -98,28 +98,33 @@ pub(super) fn symmetric_eigen(k: usize, a: &[f64], w: &mut [f64], values: &mut [
                     let t = if theta == 0.0 { 1.0 } else { t };
                     let c = 1.0 / math::hypot(t, 1.0);
                     let s = t * c;
-                    // W ← Jᵀ W J on rows/columns p and q.
-                    for i in 0..k {
-                        let (wip, wiq) = (w[i + p * k], w[i + q * k]);
-                        w[i + p * k] = c * wip - s * wiq;
-                        w[i + q * k] = s * wip + c * wiq;
+                    // W ← Jᵀ W J on columns p and q, then rows p and q; V ← V J.
+                    rotate_columns(&mut w[..k * k], k, p, q, c, s);
+                    for col in w[..k * k].chunks_exact_mut(k) {
+                        let (wpi, wqi) = (col[p], col[q]);
+                        col[p] = c * wpi - s * wqi;
+                        col[q] = s * wpi + c * wqi;
                     }
-                    for i in 0..k {
-                        let (wpi, wqi) = (w[p + i * k], w[q + i * k]);
-                        w[p + i * k] = c * wpi - s * wqi;
-                        w[q + i * k] = s * wpi + c * wqi;
-                    }
-                    for i in 0..k {
-                        let (vip, viq) = (vectors[i + p * k], vectors[i + q * k]);
-                        vectors[i + p * k] = c * vip - s * viq;
-                        vectors[i + q * k] = s * vip + c * viq;
-                    }
+                    rotate_columns(&mut vectors[..k * k], k, p, q, c, s);
                 }
             }
         }
     }
     for i in 0..k {
         values[i] = w[i + i * k];
+    }
+}
+
+/// Columns `p < q` of the column-major `m` (`k` rows) turned by the rotation `(c, s)`: column
+/// `p` becomes `c·p − s·q`, column `q` becomes `s·p + c·q`. (On the two columns as slices, so
+/// that the loop runs without index checks; the same operations as element by element.)
+#[inline]
+fn rotate_columns(m: &mut [f64], k: usize, p: usize, q: usize, c: f64, s: f64) {
+    let (left, right) = m.split_at_mut(q * k);
+    for (a, b) in left[p * k..(p + 1) * k].iter_mut().zip(&mut right[..k]) {
+        let (u, v) = (*a, *b);
+        *a = c * u - s * v;
+        *b = s * u + c * v;
     }
 }
 
