@@ -19,7 +19,6 @@ impl Model for Chain {
     type Points = Vec<Point2<f64>>;
     type Alg = Fixed3;
     const PROGRESS_FLOOR: Option<f64> = None;
-    const GIVES_UP_PINNED: bool = true;
 
     #[inline]
     fn len(&self) -> usize {
@@ -187,7 +186,6 @@ mod tests {
         type Points = Vec<Point2<f64>>;
         type Alg = Fixed3;
         const PROGRESS_FLOOR: Option<f64> = None;
-        const GIVES_UP_PINNED: bool = <Chain as Model>::GIVES_UP_PINNED;
         fn len(&self) -> usize {
             Model::len(self.0)
         }

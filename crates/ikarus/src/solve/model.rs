@@ -47,10 +47,6 @@ pub(super) trait Model: Sized {
     /// counts as standing still (as a pose that moves by less than the stall's epsilon does);
     /// `None`: only the pose's movement counts.
     const PROGRESS_FLOOR: Option<f64>;
-    /// Whether an attempt of this body that has restarts to move on to gives up once it is
-    /// pinned and hopeless (see [`attempt`](super::attempt::attempt)); bodies whose answers
-    /// were fixed before that rule keep to the stall window alone.
-    const GIVES_UP_PINNED: bool = false;
     /// The number of angles (joints).
     fn len(&self) -> usize;
     /// Sizes the scratch for this body.

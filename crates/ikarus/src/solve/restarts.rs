@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::attempt::{attempt, pinned};
+use super::attempt::attempt;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
 use super::{Method, Outcome, Restarts, Status};
@@ -104,7 +104,7 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
     // pinned at a limit.
     let spent = if cut { PROBE_ITERATIONS } else { 0 };
     let mut owed = cut;
-    if cut && !pinned(p.bounds, out.pose.angles()) {
+    if cut && !pinned(p, out.pose.angles()) {
         // Cut short with no joint held at a limit: converging, not pinned; the first attempt
         // runs whole at once, as it would unseeded.
         tally.status = attempt(p, start, s, out);
@@ -216,6 +216,12 @@ fn restart<M: Model>(
         tally.status = if interrupted { Status::Interrupted } else { best.1 };
     }
     join(p, start, tally, s, out);
+}
+
+/// Whether a joint of `angles` is held at an end of its range (where lock and clamp modes put
+/// it, exactly).
+fn pinned<M: Model>(p: &Problem<'_, M>, angles: &[f64]) -> bool {
+    angles.iter().enumerate().any(|(i, &a)| p.bounds.get(i).is_some_and(|l| a == l.min() || a == l.max()))
 }
 
 /// What follows an attempt of the restarts.
