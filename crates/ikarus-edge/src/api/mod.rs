@@ -161,9 +161,13 @@ pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
         message: format!("request body: malformed JSON: {e}"),
     };
     let mut de = serde_json::Deserializer::from_slice(bytes);
-    match serde_path_to_error::deserialize(&mut de) {
+    #[cfg(feature = "field-paths")]
+    let (read, inner) = (serde_path_to_error::deserialize(&mut de), serde_path_to_error::Error::inner);
+    #[cfg(not(feature = "field-paths"))]
+    let (read, inner) = (serde::Deserialize::deserialize(&mut de), std::convert::identity::<&serde_json::Error>);
+    match read {
         Ok(value) => de.end().map(|()| value).map_err(|e| malformed(&e)),
-        Err(e) => match e.inner().classify() {
+        Err(e) => match inner(&e).classify() {
             serde_json::error::Category::Data => Err(Problem::invalid(format!("request body: {e}"))),
             _ => Err(malformed(&e)),
         },
