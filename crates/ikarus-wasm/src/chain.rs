@@ -64,7 +64,7 @@ impl Chain {
         };
         let options = if options.trim().is_empty() { "{}" } else { options };
         let mut options = edge::solve_options(&arm, options, &Limits::default())
-            .map_err(|p| Problem { status: p.status, message: format!("options.{}", p.message) })?;
+            .map_err(|p| Problem { status: p.status, message: under("options", &p.message) })?;
         options.record_every = None;
         let solver = Solver::new(options).map_err(|e| Problem { status: 422, message: format!("options: {e}") })?;
         let record = vec![0.0; arm.chain().len() + TAIL];
@@ -146,10 +146,14 @@ impl Chain {
 /// The seed arm (`examples/arms/seed.toml`, the edge's [`edge::default_arm`]). The small module
 /// (without the `json` feature) has no TOML reader, so it reads the same arm from JSON; a test
 /// checks that the two are one arm.
+#[cfg(feature = "json")]
 fn seed_arm() -> Arm {
-    #[cfg(feature = "json")]
-    return edge::default_arm();
-    #[cfg(not(feature = "json"))]
+    edge::default_arm()
+}
+
+/// The seed arm, read from [`SEED_ARM_JSON`] (the small module has no TOML reader).
+#[cfg(not(feature = "json"))]
+fn seed_arm() -> Arm {
     edge::arm_from_json(SEED_ARM_JSON).expect("the seed arm's JSON is valid (a test reads it)")
 }
 
@@ -170,7 +174,20 @@ pub fn status_name(code: u32) -> Option<String> {
 fn unplaced(message: &str) -> String {
     let Some(at) = message.rfind(" at line ") else { return message.to_owned() };
     let message = &message[..at];
-    message.strip_prefix("arm: ").map_or_else(|| message.to_owned(), |rest| format!("arm.{rest}"))
+    message.strip_prefix("arm: ").map_or_else(|| message.to_owned(), |rest| under("arm", rest))
+}
+
+/// `message` (a refusal inside the object `object`) as the server words it: `object.path: …`
+/// when it starts with a field's path or a refused value (`links[0].length: …`, `tolerance =
+/// 0: …`), `object: …` when it names no field (`invalid type: …`, as the small module, without
+/// serde_path_to_error, words a value of the wrong kind).
+fn under(object: &str, message: &str) -> String {
+    let head = message.split(": ").next().unwrap_or(message);
+    if head.contains(' ') && !head.contains(" = ") {
+        format!("{object}: {message}")
+    } else {
+        format!("{object}.{message}")
+    }
 }
 
 /// The refusal of an output array shorter than `count` records of `len` numbers.
@@ -215,6 +232,20 @@ mod tests {
         chain.solve_batch(&[9.0, 9.0, 2.0, 3.0], &mut batch).unwrap();
         assert_eq!(batch[chain.record_len()..], out[..]);
         assert_eq!(status_name(batch[n + 5] as u32).as_deref(), Some("unreachable"));
+    }
+
+    #[test]
+    fn a_refusal_without_a_path_is_not_joined_to_its_object() {
+        assert_eq!(under("arm", "links[0].length: invalid type: x"), "arm.links[0].length: invalid type: x");
+        assert_eq!(under("options", "tolerance = 0: must be …"), "options.tolerance = 0: must be …");
+        assert_eq!(
+            under("arm", "invalid type: string \"x\", expected f64"),
+            "arm: invalid type: string \"x\", expected f64"
+        );
+        assert_eq!(
+            unplaced("arm: invalid type: string \"x\", expected f64 at line 1 column 23"),
+            "arm: invalid type: string \"x\", expected f64"
+        );
     }
 
     #[test]

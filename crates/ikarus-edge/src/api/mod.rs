@@ -154,7 +154,8 @@ impl From<CliError> for Problem {
 
 /// A JSON body as a `T`, refused as the server refuses it: malformed JSON (or anything after
 /// the value) → 400, a value of the wrong type or an unknown field → 422, each message with the
-/// field's path (`links[0].length: invalid type: …`) and the line and column.
+/// field's path (`links[0].length: invalid type: …`; with the `field-paths` feature) and the line
+/// and column.
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
     let malformed = |e: &dyn fmt::Display| Problem {
         status: status::BAD_REQUEST,
