@@ -12,9 +12,18 @@
 // /api/pose answer's) — no JSON on the way. What the typed path does not take (a bone name the
 // file lacks, a refused time) is asked of call("pose") with the same fields, for the server's
 // status and line.
+//
+// It loads the small module first (ikarus_core_bg.wasm: the typed handles; ready as soon as it
+// is), and the full one (ikarus_wasm_bg.wasm) on the first message that needs `call`. The GET
+// endpoints' answers (/api/meta, /api/arm/default, /api/rigs) do not change: `web/build` writes
+// them beside this file (api-meta.json, …) and they are read from there, so the page's first
+// lists need no module at all.
 import * as ikarus from "./ikarus.js";
 
-ikarus.init().then(
+/** The GET endpoints answered from the files `web/build` writes (the full module's answers). */
+const FILES = { meta: "api-meta.json", "arm/default": "api-arm-default.json", rigs: "api-rigs.json" };
+
+ikarus.initCore().then(
   () => postMessage({ ready: true }),
   (e) => postMessage({ ready: false, error: String(e && e.message ? e.message : e) }),
 );
@@ -22,9 +31,15 @@ ikarus.init().then(
 /** The last character file: its text, its ikarus.Character, names, unsupported and output array. */
 let loaded = null;
 
-/** {status, text} of call(path, body): the server's answer or its refusal. */
-function answer(path, body) {
+/** {status, text} of call(path, body): the server's answer or its refusal; loads the full module first. */
+async function answer(path, body) {
+  const file = FILES[path.replace(/^\/?(api\/)?/, "")];
+  if (file) {
+    const res = await fetch(new URL(file, import.meta.url));
+    if (res.ok) return { status: 200, text: await res.text() };
+  }
   try {
+    await ikarus.init();
     return { status: 200, text: ikarus.call(path, body) };
   } catch (e) {
     const status = e instanceof ikarus.IkarusError ? e.status : 500;
@@ -33,14 +48,19 @@ function answer(path, body) {
 }
 
 /** The typed pose of `ask` ({rig?, animation, time, targets: [{bone, x, y}]}), or the JSON answer's {status, text}. */
-function pose({ rig, animation, time, targets }) {
+async function pose({ rig, animation, time, targets }) {
   if (rig !== undefined && (!loaded || loaded.text !== rig)) {
     if (loaded) loaded.character.free();
     loaded = null;
-    const setup = answer("pose", JSON.stringify({ rig }));
-    if (setup.status !== 200) return setup;
-    const character = new ikarus.Character(rig);
-    loaded = { text: rig, character, names: character.bones, unsupported: JSON.parse(setup.text).unsupported };
+    let character;
+    try {
+      character = new ikarus.Character(rig);
+    } catch (e) {
+      // The server's status and line (the small module words a bad value without its path).
+      if (e instanceof ikarus.IkarusError) return answer("pose", JSON.stringify({ rig }));
+      throw e;
+    }
+    loaded = { text: rig, character, names: character.bones, unsupported: character.unsupported };
   }
   if (!loaded) return { status: 500, text: JSON.stringify({ error: "ikarus-worker: a pose before its character file" }) };
   const fields = { ...(animation ? { animation, time } : {}), targets };
@@ -59,11 +79,11 @@ function pose({ rig, animation, time, targets }) {
   }
 }
 
-onmessage = ({ data }) => {
+onmessage = async ({ data }) => {
   if (data.pose) {
     let reply;
     try {
-      reply = pose(data.pose);
+      reply = await pose(data.pose);
     } catch (e) {
       reply = { status: 500, text: JSON.stringify({ error: e && e.message ? e.message : String(e) }) };
     }
@@ -72,5 +92,5 @@ onmessage = ({ data }) => {
     return;
   }
   const { id, path, body } = data;
-  postMessage({ id, ...answer(path, body) });
+  postMessage({ id, ...(await answer(path, body)) });
 };

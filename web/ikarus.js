@@ -19,8 +19,16 @@
 // The hot paths have typed handles beside these, without JSON: `Chain` (an arm read once, then
 // `solve(x, y, out)` / `solveBatch(goals, out)`) and `Character` (a character file read once,
 // then `pose(time, targets, out)`), writing numbers into a Float64Array the caller owns.
+//
+// Two modules: the full one (ikarus_wasm_bg.wasm, `init()`: every endpoint, TOML, the refusals'
+// field paths) and a small one (ikarus_core_bg.wasm, `initCore()`: the typed handles and the
+// library, no `call`), which a page loads first. Handles are made in the full module once it is
+// loaded, else in the small one; their numbers are the same bit for bit. In the small module a
+// value of the wrong kind in an arm, options or character file is refused with serde_json's line
+// without the field's path (load the full module for the server's line).
 
 import wasmInit, * as wasm from "./ikarus_wasm.js";
+import coreInit, * as core from "./ikarus_core.js";
 
 /** A request the module refused, or a failure inside it: the server's status and one-line message. */
 export class IkarusError extends Error {
@@ -35,22 +43,57 @@ export class IkarusError extends Error {
   }
 }
 
+/** The full module once loaded: its glue (`api`) and its memory; `loading` the promise. */
+const full = { api: wasm, memory: null, loading: null };
+/** The small module once loaded. */
+const small = { api: core, memory: null, loading: null };
 let ready = null;
 
+/** Loads module `m` (full or small) from `source` once; resolves when its memory is known. */
+function load(m, start, source) {
+  m.loading ??= start(source === undefined ? undefined : { module_or_path: source }).then((exports) => {
+    m.memory = exports.memory;
+  });
+  return m.loading;
+}
+
 /**
- * Loads and instantiates the WebAssembly module; call (and await) once before anything else.
- * In a page it fetches `ikarus_wasm_bg.wasm` beside this file; elsewhere (node) pass the module's
- * bytes, a `WebAssembly.Module`, a URL or a Response.
+ * Loads and instantiates the full WebAssembly module (every function here); call (and await)
+ * once before anything else. In a page it fetches `ikarus_wasm_bg.wasm` beside this file;
+ * elsewhere (node) pass the module's bytes, a `WebAssembly.Module`, a URL or a Response.
  * @param {BufferSource | WebAssembly.Module | URL | string | Response} [source]
  * @returns {Promise<void>}
  */
 export function init(source) {
-  ready ??= wasmInit(source === undefined ? undefined : { module_or_path: source }).then(() => undefined);
+  ready ??= load(full, wasmInit, source);
   return ready;
 }
 
+/**
+ * Loads the small module (`ikarus_core_bg.wasm`: `Chain`, `Character`, `version`, no `call`),
+ * enough for the typed handles; `init()` may follow at any time for the rest.
+ * @param {BufferSource | WebAssembly.Module | URL | string | Response} [source]
+ * @returns {Promise<void>}
+ */
+export const initCore = (source) => load(small, coreInit, source);
+
+/** Whether the full module is loaded (`call` and the JSON functions work). */
+export const fullLoaded = () => full.memory !== null;
+
+/** The module handles are made in: the full one once loaded, else the small one. */
+function handles() {
+  if (full.memory) return full;
+  if (small.memory) return small;
+  throw new IkarusError(500, "ikarus.js: call init() or initCore() (and await it) first");
+}
+
+/** A Float64Array view of `len` numbers at byte `ptr` of module `m`'s memory, `view` if still valid. */
+function viewOf(m, view, ptr, len) {
+  return view && view.buffer === m.memory.buffer ? view : new Float64Array(m.memory.buffer, ptr, len);
+}
+
 /** The version of ikarus the module was built from. */
-export const version = () => wasm.version();
+export const version = () => handles().api.version();
 
 /**
  * The raw call: the answer's text for endpoint `path` ("solve", "/api/solve", "arm/default", …)
@@ -61,7 +104,7 @@ export const version = () => wasm.version();
  * @returns {string}
  */
 export function call(path, body = "") {
-  if (!ready) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+  if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
   try {
     return wasm.call(path, body);
   } catch (e) {
@@ -69,25 +112,24 @@ export function call(path, body = "") {
   }
 }
 
-/** The IkarusError of what the module threw: a refusal (its Problem), or a trap. */
-function failure(e) {
-  if (e instanceof wasm.Problem) {
+/** The IkarusError of what module `m` (default: the full one) threw: a refusal (its Problem), or a trap. */
+function failure(e, m = full) {
+  if (e instanceof m.api.Problem) {
     const error = new IkarusError(e.status, e.message);
     e.free();
     return error;
   }
   // A trap (a panic aborts on wasm32): say the panic's message if the module kept one.
-  const panic = e instanceof WebAssembly.RuntimeError ? wasm.last_panic() : undefined;
+  const panic = e instanceof WebAssembly.RuntimeError ? m.api.last_panic() : undefined;
   return new IkarusError(500, panic ? `internal error: ${panic}` : `internal error: ${e && e.message ? e.message : e}`);
 }
 
-/** The module's typed handle made by `make`, or the IkarusError it refused with. */
-function handle(make) {
-  if (!ready) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+/** The typed handle `make(api)` makes in module `m`, or the IkarusError it refused with. */
+function handle(m, make) {
   try {
-    return make();
+    return make(m.api);
   } catch (e) {
-    throw failure(e);
+    throw failure(e, m);
   }
 }
 
@@ -113,32 +155,70 @@ export const STATUS = Object.freeze(["reached", "unreachable", "stalled", "itera
  */
 export class Chain {
   #h;
+  #m;
+  #ptr;
+  #view = null;
   /**
    * @param {object} [arm]     the API's `arm` object
    * @param {object} [options] the API's `options` object
    */
   constructor(arm, options) {
-    this.#h = handle(() => new wasm.Chain(arm === undefined ? "" : JSON.stringify(arm), options === undefined ? "" : JSON.stringify(options)));
+    this.#m = handles();
+    this.#h = handle(this.#m, (api) => new api.Chain(arm === undefined ? "" : JSON.stringify(arm), options === undefined ? "" : JSON.stringify(options)));
     /** The number of joints. */
     this.joints = this.#h.joints;
     /** The numbers of one record: joints + 6. */
     this.recordLen = this.#h.recordLen;
+    this.#ptr = this.#h.recordPtr;
   }
 
   /**
    * Solves the goal (x, y) from the arm's start pose into `out[0 .. recordLen]`; returns the
-   * status code.
+   * status code. The module writes the record into its own memory and it is copied from there
+   * (no array is passed through wasm-bindgen's glue, which would copy it in and out).
    * @param {number} x
    * @param {number} y
    * @param {Float64Array} out
    * @returns {number}
    */
   solve(x, y, out) {
+    if (!(out instanceof Float64Array) || out.length < this.recordLen) return this.#solveGlue(x, y, out);
+    const code = this.solveHere(x, y);
+    out.set(this.#view);
+    return code;
+  }
+
+  /** `solve` through the glue's copies: what refuses an `out` that is not one, with the module's line. */
+  #solveGlue(x, y, out) {
     try {
       return this.#h.solve(x, y, out);
     } catch (e) {
-      throw failure(e);
+      throw failure(e, this.#m);
     }
+  }
+
+  /**
+   * Solves the goal (x, y) into the chain's own record (`record`, a view over the module's
+   * memory, valid until the next call on this chain); returns the status code. No copy at all.
+   * @param {number} x
+   * @param {number} y
+   * @returns {number}
+   */
+  solveHere(x, y) {
+    let code;
+    try {
+      code = this.#h.solveHere(x, y);
+    } catch (e) {
+      throw failure(e, this.#m);
+    }
+    this.#view = viewOf(this.#m, this.#view, this.#ptr, this.recordLen);
+    return code;
+  }
+
+  /** The last `solveHere`'s (or `solve`'s) record: a Float64Array view over the module's memory. */
+  get record() {
+    this.#view = viewOf(this.#m, this.#view, this.#ptr, this.recordLen);
+    return this.#view;
   }
 
   /**
@@ -151,7 +231,7 @@ export class Chain {
     try {
       this.#h.solveBatch(goals, out);
     } catch (e) {
-      throw failure(e);
+      throw failure(e, this.#m);
     }
   }
 
@@ -172,15 +252,24 @@ export class Chain {
  */
 export class Character {
   #h;
+  #m;
+  #ptr;
+  #view = null;
   /** @param {string} text the character file's text */
   constructor(text) {
-    this.#h = handle(() => new wasm.Character(text));
+    this.#m = handles();
+    this.#h = handle(this.#m, (api) => new api.Character(text));
     /** @type {string[]} the bones' names, the pose's order */
     this.bones = this.#h.bones();
     /** @type {string[]} */
     this.animations = this.#h.animations();
     /** The numbers of one pose: 5 × bones. */
     this.poseLen = this.#h.poseLen;
+    const flat = this.#h.unsupported();
+    /** @type {{kind: string, name: string}[]} the constraints left inactive (`/api/pose`'s `unsupported`) */
+    this.unsupported = [];
+    for (let i = 0; i < flat.length; i += 2) this.unsupported.push({ kind: flat[i], name: flat[i + 1] });
+    this.#ptr = this.#h.numbersPtr;
   }
 
   /** @param {string | undefined} name the animation sampled from now on (undefined: none) */
@@ -188,21 +277,43 @@ export class Character {
     try {
       this.#h.setAnimation(name);
     } catch (e) {
-      throw failure(e);
+      throw failure(e, this.#m);
     }
   }
 
   /**
+   * Poses the character into `out` (copied from the module's memory, as `poseHere` leaves it).
    * @param {number} time          seconds into the animation (ignored without one)
    * @param {Float64Array} targets bone index, x, y triples
    * @param {Float64Array} out     at least poseLen numbers
    */
   pose(time, targets, out) {
-    try {
-      this.#h.pose(time, targets, out);
-    } catch (e) {
-      throw failure(e);
+    if (!(out instanceof Float64Array) || out.length < this.poseLen) {
+      try {
+        this.#h.pose(time, targets, out);
+      } catch (e) {
+        throw failure(e, this.#m);
+      }
+      return;
     }
+    out.set(this.poseHere(time, targets));
+  }
+
+  /**
+   * Poses the character into its own numbers and returns them: a Float64Array view over the
+   * module's memory (poseLen numbers), valid until the next call on this character.
+   * @param {number} time          seconds into the animation (ignored without one)
+   * @param {Float64Array} targets bone index, x, y triples
+   * @returns {Float64Array}
+   */
+  poseHere(time, targets) {
+    try {
+      this.#h.poseHere(time, targets);
+    } catch (e) {
+      throw failure(e, this.#m);
+    }
+    this.#view = viewOf(this.#m, this.#view, this.#ptr, this.poseLen);
+    return this.#view;
   }
 
   /** Releases the module's memory for this character. */

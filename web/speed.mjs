@@ -1,11 +1,13 @@
-// The WebAssembly module's speed in node, per call, three ways interleaved in one run: the
-// seed arm's solve through `call("solve", json)` (a JSON request in, a JSON answer out, as the
-// page's worker asks it), the same solve through the typed `Chain.solve(x, y, out)` (no JSON), and
-// a pose of spineboy (`walk` at a time that advances, one target) through the typed
-// `Character.pose(time, targets, out)`; then, optionally, the native server's `solve_us` for the
-// same requests (the library at native speed, HTTP aside). Each call is timed alone; the three
-// run in rounds of 100 calls each, in turn, so that a change of the machine's load hits all
-// three alike. Prints medians and p99 in µs with os.loadavg() before and after; checks nothing.
+// The WebAssembly module's speed in node, per call, interleaved in one run: the seed arm's solve
+// through `call("solve", json)` (a JSON request in, a JSON answer out), the same solve through
+// the typed `Chain.solve(x, y, out)` (the record copied out of the module's memory), through
+// `Chain.solveHere(x, y)` (read in place, no copy) and through wasm-bindgen's glue with the
+// Float64Array as argument (what `Chain.solve` was: the glue allocates, copies in and out, frees);
+// and a pose of spineboy (`walk` at a time that advances, one target) the same three typed ways;
+// then, optionally, the native server's `solve_us` for the same requests (the library at native
+// speed, HTTP aside). Each call is timed alone; the kinds run in rounds of 100 calls each, in
+// turn, so that a change of the machine's load hits all alike. Prints medians and p99 in µs with
+// os.loadavg() before and after; checks nothing.
 //
 //   node web/speed.mjs DIR [N] [--native]   (DIR from `bash web/build DIR`; N calls of each, 20000)
 import { spawn } from "node:child_process";
@@ -21,6 +23,8 @@ const dir = resolve(args[0] ?? "");
 const n = Number(args[1] ?? 20000);
 const ikarus = await import(pathToFileURL(join(dir, "ikarus.js")).href);
 await ikarus.init(readFileSync(join(dir, "ikarus_wasm_bg.wasm")));
+// The glue ikarus.js wraps (the same module instance), for the copying path.
+const glue = await import(pathToFileURL(join(dir, "ikarus_wasm.js")).href);
 
 const goal = (k) => {
   const a = (k * 2.399963) % (2 * Math.PI);
@@ -35,15 +39,23 @@ const load = () => loadavg().map((l) => l.toFixed(2)).join(" ");
 
 const chain = new ikarus.Chain();
 const record = new Float64Array(chain.recordLen);
-const spineboy = new ikarus.Character(readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8"));
+const glueChain = new glue.Chain("", "");
+const spineboyText = readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8");
+const spineboy = new ikarus.Character(spineboyText);
 spineboy.setAnimation("walk");
+const glueSpineboy = new glue.Character(spineboyText);
+glueSpineboy.setAnimation("walk");
 const targets = Float64Array.of(spineboy.bones.indexOf("front-leg-target"), 120, 40);
 const posed = new Float64Array(spineboy.poseLen);
 
 const kinds = {
   json: { label: 'call("solve", json)', run: (k) => JSON.parse(ikarus.call("solve", request(k))), times: [], inside: [] },
   typed: { label: "Chain.solve (typed)", run: (k) => { const g = goal(k); chain.solve(g.x, g.y, record); }, times: [] },
+  here: { label: "Chain.solveHere (in place)", run: (k) => { const g = goal(k); chain.solveHere(g.x, g.y); }, times: [] },
+  glue: { label: "glue Chain.solve(x, y, out) (copies)", run: (k) => { const g = goal(k); glueChain.solve(g.x, g.y, record); }, times: [] },
   pose: { label: "Character.pose spineboy walk (typed)", run: (k) => spineboy.pose((k % 100) * 0.0123, targets, posed), times: [] },
+  poseHere: { label: "Character.poseHere (in place)", run: (k) => spineboy.poseHere((k % 100) * 0.0123, targets), times: [] },
+  poseGlue: { label: "glue Character.pose (copies)", run: (k) => glueSpineboy.pose((k % 100) * 0.0123, targets, posed), times: [] },
 };
 for (const kind of Object.values(kinds)) for (let k = 0; k < 300; k++) kind.run(k); // warm up
 

@@ -332,3 +332,56 @@ test("the typed Character poses as call(\"pose\") answers, bit for bit", () => {
   }
   assert.throws(() => new ikarus.Character(puppet), (e) => e instanceof ikarus.IkarusError && JSON.stringify({ error: e.message }) === wasm("pose", JSON.stringify({ rig: puppet })).text);
 });
+
+test("the small module's handles answer as the full module's call, bit for bit, in place and copied; the GET files are call's answers", async () => {
+  // A second instance of ikarus.js that loads only the small module (ikarus_core_bg.wasm).
+  const small = await import(`${pathToFileURL(join(dir, "ikarus.js")).href}?small`);
+  await small.initCore(readFileSync(join(dir, "ikarus_core_bg.wasm")));
+  assert.equal(small.fullLoaded(), false);
+  assert.equal(small.version(), ikarus.version());
+  assert.throws(() => small.call("meta"), (e) => e instanceof small.IkarusError && e.status === 500 && /init\(\)/.test(e.message));
+
+  for (const [arm, options] of [[undefined, undefined], [limited, { limits: true, restarts: 8, restart_seed: 7 }], [undefined, { method: "fabrik" }]]) {
+    const chain = new small.Chain(arm, options);
+    const out = new Float64Array(chain.recordLen + 2).fill(-1);
+    for (const [x, y] of [[2, 3], [-3, -1], [9, 9], [2.5, 4.1]]) {
+      const json = JSON.parse(ikarus.call("solve", JSON.stringify({ arm, options, goal: { x, y } })));
+      const want = [...json.angles_deg, json.end_effector.x, json.end_effector.y, json.error, json.iterations, json.restarts, ikarus.STATUS.indexOf(json.status)];
+      const code = chain.solveHere(x, y);
+      assert.equal(small.STATUS[code], json.status);
+      assert.equal(chain.record.length, chain.recordLen);
+      want.forEach((w, i) => assert.ok(sameBits(chain.record[i], w), `in place: number ${i} is ${chain.record[i]}, the JSON's ${w}`));
+      assert.equal(chain.solve(x, y, out), code);
+      want.forEach((w, i) => assert.ok(sameBits(out[i], w), `copied: number ${i} is ${out[i]}, the JSON's ${w}`));
+      assert.deepEqual([...out.subarray(chain.recordLen)], [-1, -1], "nothing written past the record");
+    }
+    chain.free();
+  }
+  // A refused value is the server's line; a value of the wrong kind is refused (without its path).
+  assert.throws(() => new small.Chain(undefined, { tolerance: 0 }), (e) => e.status === 422 && e.message === JSON.parse(wasm("solve", JSON.stringify({ goal: { x: 2, y: 3 }, options: { tolerance: 0 } })).text).error);
+  assert.throws(() => new small.Chain({ links: [{ length: "x" }] }), (e) => e instanceof small.IkarusError && e.status === 422 && e.message === 'arm: invalid type: string "x", expected f64');
+
+  for (const file of ["spine-spineboy-pro.json", "dragonbones-mecha_1406_ske.json"]) {
+    const rig = readFileSync(join(root, "examples", "characters", file), "utf8");
+    const character = new small.Character(rig);
+    assert.deepEqual(character.unsupported, JSON.parse(ikarus.call("pose", JSON.stringify({ rig }))).unsupported);
+    const bone = character.bones.length - 1;
+    character.setAnimation("walk");
+    const out = new Float64Array(character.poseLen);
+    for (const time of [0, 0.4, 1.3]) {
+      const json = JSON.parse(ikarus.call("pose", JSON.stringify({ rig, animation: "walk", time, targets: [{ bone: character.bones[bone], x: 30, y: 20 }] })));
+      const here = character.poseHere(time, Float64Array.of(bone, 30, 20));
+      character.pose(time, Float64Array.of(bone, 30, 20), out);
+      json.bones.forEach((b, i) =>
+        [b.x, b.y, b.rotation_deg, b.tip[0], b.tip[1]].forEach((w, k) => {
+          assert.ok(sameBits(here[5 * i + k], w), `${file} ${time} ${b.name} in place number ${k}`);
+          assert.ok(sameBits(out[5 * i + k], w), `${file} ${time} ${b.name} copied number ${k}`);
+        }));
+    }
+    assert.throws(() => character.pose(0, Float64Array.of(1e6, 0, 0), out), /targets\[0\]: bone 1000000/);
+    character.free();
+  }
+
+  for (const [path, file] of [["meta", "api-meta.json"], ["arm/default", "api-arm-default.json"], ["rigs", "api-rigs.json"]])
+    assert.equal(readFileSync(join(dir, file), "utf8"), ikarus.call(path, ""), file);
+});

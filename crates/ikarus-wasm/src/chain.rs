@@ -36,6 +36,9 @@ pub struct Chain {
     outcome: Outcome,
     goals: Vec<Goal>,
     outcomes: Vec<Outcome>,
+    /// The record of the last [`solve_here`](Chain::solve_here), read by JavaScript through a
+    /// view over the module's memory at [`record_ptr`](Chain::record_ptr).
+    record: Vec<f64>,
 }
 
 /// A [`Problem`] of the edge's.
@@ -55,16 +58,17 @@ impl Chain {
     #[wasm_bindgen(constructor)]
     pub fn new(arm: &str, options: &str) -> Result<Chain, Problem> {
         let arm = if arm.trim().is_empty() {
-            edge::default_arm()
+            seed_arm()
         } else {
             edge::arm_from_json(arm).map_err(|p| Problem { status: p.status, message: unplaced(&p.message) })?
         };
         let options = if options.trim().is_empty() { "{}" } else { options };
         let mut options = edge::solve_options(&arm, options, &Limits::default())
-            .map_err(|p| Problem { status: p.status, message: format!("options.{}", p.message) })?;
+            .map_err(|p| Problem { status: p.status, message: under("options", &p.message) })?;
         options.record_every = None;
         let solver = Solver::new(options).map_err(|e| Problem { status: 422, message: format!("options: {e}") })?;
-        Ok(Chain { arm, solver, outcome: Outcome::default(), goals: Vec::new(), outcomes: Vec::new() })
+        let record = vec![0.0; arm.chain().len() + TAIL];
+        Ok(Chain { arm, solver, outcome: Outcome::default(), goals: Vec::new(), outcomes: Vec::new(), record })
     }
 
     /// The number of joints (`n`).
@@ -85,12 +89,29 @@ impl Chain {
     pub fn solve(&mut self, x: f64, y: f64, out: &mut [f64]) -> Result<u32, Problem> {
         let len = self.record_len();
         let record = out.get_mut(..len).ok_or_else(|| short("out", len, 1))?;
+        let code = self.solve_here(x, y)?;
+        record.copy_from_slice(&self.record);
+        Ok(code)
+    }
+
+    /// [`solve`](Chain::solve) into the chain's own record, which JavaScript reads through a
+    /// `Float64Array` view over the module's memory at [`record_ptr`](Chain::record_ptr): no
+    /// array crosses the boundary (wasm-bindgen copies a `Float64Array` argument in and out).
+    #[wasm_bindgen(js_name = solveHere)]
+    pub fn solve_here(&mut self, x: f64, y: f64) -> Result<u32, Problem> {
         let goal = edge::goal(x, y, None).map_err(problem)?;
         let chain = self.arm.chain();
         self.solver
             .solve_into(chain, chain.start_pose().angles(), &goal, &mut self.outcome)
             .map_err(|e| Problem { status: 422, message: e.to_string() })?;
-        Ok(write(&self.outcome, record))
+        Ok(write(&self.outcome, &mut self.record))
+    }
+
+    /// Where the chain's own record lies in the module's memory (a byte offset, 8-aligned;
+    /// fixed for the chain's life, though the memory's buffer changes when it grows).
+    #[wasm_bindgen(getter, js_name = recordPtr)]
+    pub fn record_ptr(&self) -> usize {
+        self.record.as_ptr() as usize
     }
 
     /// Solves the goals `goals` (`x, y` pairs, flat) through the library's batch path, each from
@@ -122,6 +143,24 @@ impl Chain {
     }
 }
 
+/// The seed arm (`examples/arms/seed.toml`, the edge's [`edge::default_arm`]). The small module
+/// (without the `json` feature) has no TOML reader, so it reads the same arm from JSON; a test
+/// checks that the two are one arm.
+#[cfg(feature = "json")]
+fn seed_arm() -> Arm {
+    edge::default_arm()
+}
+
+/// The seed arm, read from [`SEED_ARM_JSON`] (the small module has no TOML reader).
+#[cfg(not(feature = "json"))]
+fn seed_arm() -> Arm {
+    edge::arm_from_json(SEED_ARM_JSON).expect("the seed arm's JSON is valid (a test reads it)")
+}
+
+/// `examples/arms/seed.toml` as the API's `arm` object (`call("arm/default")`'s answer).
+#[cfg_attr(feature = "json", allow(dead_code, reason = "read by the small module and the tests"))]
+const SEED_ARM_JSON: &str = r#"{"name":"seed","base":[0.0,0.0],"links":[{"length":3.0,"angle_deg":5.0,"limits_deg":[-45.0,45.0]},{"length":2.0,"angle_deg":5.0,"limits_deg":[-90.0,90.0]},{"length":1.0,"angle_deg":5.0,"limits_deg":[-170.0,170.0]}]}"#;
+
 /// The name of a record's status code (`reached`, …; `undefined` for another number).
 #[wasm_bindgen(js_name = statusName)]
 pub fn status_name(code: u32) -> Option<String> {
@@ -135,7 +174,20 @@ pub fn status_name(code: u32) -> Option<String> {
 fn unplaced(message: &str) -> String {
     let Some(at) = message.rfind(" at line ") else { return message.to_owned() };
     let message = &message[..at];
-    message.strip_prefix("arm: ").map_or_else(|| message.to_owned(), |rest| format!("arm.{rest}"))
+    message.strip_prefix("arm: ").map_or_else(|| message.to_owned(), |rest| under("arm", rest))
+}
+
+/// `message` (a refusal inside the object `object`) as the server words it: `object.path: …`
+/// when it starts with a field's path or a refused value (`links[0].length: …`, `tolerance =
+/// 0: …`), `object: …` when it names no field (`invalid type: …`, as the small module, without
+/// serde_path_to_error, words a value of the wrong kind).
+fn under(object: &str, message: &str) -> String {
+    let head = message.split(": ").next().unwrap_or(message);
+    if head.contains(' ') && !head.contains(" = ") {
+        format!("{object}: {message}")
+    } else {
+        format!("{object}.{message}")
+    }
 }
 
 /// The refusal of an output array shorter than `count` records of `len` numbers.
@@ -180,6 +232,39 @@ mod tests {
         chain.solve_batch(&[9.0, 9.0, 2.0, 3.0], &mut batch).unwrap();
         assert_eq!(batch[chain.record_len()..], out[..]);
         assert_eq!(status_name(batch[n + 5] as u32).as_deref(), Some("unreachable"));
+    }
+
+    #[test]
+    fn a_refusal_without_a_path_is_not_joined_to_its_object() {
+        assert_eq!(under("arm", "links[0].length: invalid type: x"), "arm.links[0].length: invalid type: x");
+        assert_eq!(under("options", "tolerance = 0: must be …"), "options.tolerance = 0: must be …");
+        assert_eq!(
+            under("arm", "invalid type: string \"x\", expected f64"),
+            "arm: invalid type: string \"x\", expected f64"
+        );
+        assert_eq!(
+            unplaced("arm: invalid type: string \"x\", expected f64 at line 1 column 23"),
+            "arm: invalid type: string \"x\", expected f64"
+        );
+    }
+
+    #[test]
+    fn the_seed_arms_json_is_the_built_in_arm() {
+        assert_eq!(SEED_ARM_JSON, crate::answer("arm/default", "").unwrap());
+    }
+
+    #[test]
+    fn the_chains_own_record_is_solves_record() {
+        let mut chain = Chain::new("", "").unwrap();
+        let mut out = vec![0.0; chain.record_len()];
+        for (x, y) in [(2.0, 3.0), (9.0, 9.0), (-1.0, 0.5)] {
+            let code = chain.solve(x, y, &mut out).unwrap();
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+            assert_eq!(chain.solve_here(x, y).unwrap(), code);
+            assert_eq!(chain.record_ptr(), chain.record.as_ptr() as usize);
+            chain.solve(x, y, &mut out).unwrap();
+            assert_eq!(chain.record, out);
+        }
     }
 
     #[test]

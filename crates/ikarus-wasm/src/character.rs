@@ -26,6 +26,9 @@ pub struct Character {
     clip: Option<usize>,
     targets: Vec<(usize, [f64; 2])>,
     posed: Posed,
+    /// The numbers of the last [`pose_here`](Character::pose_here), read by JavaScript through
+    /// a view over the module's memory at [`numbers_ptr`](Character::numbers_ptr).
+    numbers: Vec<f64>,
 }
 
 /// A refusal of `/api/pose`'s job (a 422 with its line).
@@ -41,7 +44,8 @@ impl Character {
     pub fn new(text: &str) -> Result<Character, Problem> {
         let loaded = ikarus_edge::api::pose::character(text, &Limits::default())
             .map_err(|p| Problem { status: p.status, message: p.message })?;
-        Ok(Character { loaded, clip: None, targets: Vec::new(), posed: Posed::default() })
+        let numbers = vec![0.0; PER_BONE * loaded.character.bones().len()];
+        Ok(Character { loaded, clip: None, targets: Vec::new(), posed: Posed::default(), numbers })
     }
 
     /// The bones' names in the file's order (the pose's order).
@@ -54,6 +58,13 @@ impl Character {
     #[must_use]
     pub fn animations(&self) -> Vec<String> {
         self.loaded.character.clips().iter().map(|c| c.name.clone()).collect()
+    }
+
+    /// The constraints the file has that are left inactive, flat `kind, name` pairs (`/api/pose`'s
+    /// `unsupported`, `[{kind, name}, …]`).
+    #[must_use]
+    pub fn unsupported(&self) -> Vec<String> {
+        self.loaded.character.unsupported().iter().flat_map(|u| [u.kind.clone(), u.name.clone()]).collect()
     }
 
     /// The numbers of one pose: `5 × bones`.
@@ -77,11 +88,21 @@ impl Character {
     /// a point that is not finite (the server's line), a bone index that is not one, or a short
     /// `out`.
     pub fn pose(&mut self, time: f64, targets: &[f64], out: &mut [f64]) -> Result<(), Problem> {
-        let c = &self.loaded.character;
         let len = self.pose_len();
         let out = out
             .get_mut(..len)
             .ok_or_else(|| invalid(format!("out: shorter than the pose's {len} numbers ({PER_BONE} per bone)")))?;
+        self.pose_here(time, targets)?;
+        out.copy_from_slice(&self.numbers);
+        Ok(())
+    }
+
+    /// [`pose`](Character::pose) into the character's own numbers, which JavaScript reads
+    /// through a `Float64Array` view over the module's memory at
+    /// [`numbers_ptr`](Character::numbers_ptr): the pose does not cross the boundary as an array.
+    #[wasm_bindgen(js_name = poseHere)]
+    pub fn pose_here(&mut self, time: f64, targets: &[f64]) -> Result<(), Problem> {
+        let c = &self.loaded.character;
         if targets.len() % 3 != 0 {
             return Err(invalid(format!("targets: {} numbers, not bone, x, y triples", targets.len())));
         }
@@ -98,11 +119,18 @@ impl Character {
             self.targets.push((t[0] as usize, target_point(&bone.name, [t[1], t[2]]).map_err(invalid)?));
         }
         c.pose(&PoseRequest { clip, targets: &self.targets }, &mut self.posed).map_err(|e| invalid(e.to_string()))?;
-        for (i, bone) in out.chunks_exact_mut(PER_BONE).enumerate() {
+        for (i, bone) in self.numbers.chunks_exact_mut(PER_BONE).enumerate() {
             let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));
             bone.copy_from_slice(&[x, y, self.posed.rotation(i).to_degrees(), tx, ty]);
         }
         Ok(())
+    }
+
+    /// Where the character's own numbers lie in the module's memory (a byte offset, 8-aligned;
+    /// fixed for the character's life, though the memory's buffer changes when it grows).
+    #[wasm_bindgen(getter, js_name = numbersPtr)]
+    pub fn numbers_ptr(&self) -> usize {
+        self.numbers.as_ptr() as usize
     }
 }
 
@@ -135,6 +163,29 @@ mod tests {
                 assert_eq!(out[PER_BONE * i + k].to_bits(), w.as_f64().unwrap().to_bits(), "bone {i} number {k}");
             }
         }
+    }
+
+    #[test]
+    fn the_characters_own_numbers_are_poses_and_unsupported_is_the_answers() {
+        let text = spineboy();
+        let mut c = Character::new(&text).unwrap();
+        c.set_animation(Some("walk".to_owned())).unwrap();
+        let mut out = vec![0.0; c.pose_len()];
+        c.pose(0.3, &[3.0, 10.0, 20.0], &mut out).unwrap();
+        c.pose(0.0, &[], &mut vec![0.0; c.pose_len()]).unwrap();
+        c.pose_here(0.3, &[3.0, 10.0, 20.0]).unwrap();
+        assert_eq!(c.numbers, out);
+        assert_eq!(c.numbers_ptr(), c.numbers.as_ptr() as usize);
+        let request = serde_json::json!({ "rig": text });
+        let json: serde_json::Value =
+            serde_json::from_str(&crate::answer("pose", &request.to_string()).unwrap()).unwrap();
+        let want: Vec<String> = json["unsupported"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|u| [u["kind"].as_str().unwrap().to_owned(), u["name"].as_str().unwrap().to_owned()])
+            .collect();
+        assert_eq!(c.unsupported(), want);
     }
 
     #[test]

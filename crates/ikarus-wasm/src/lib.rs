@@ -66,6 +66,7 @@ pub fn answer(path: &str, body: &str) -> Result<String, Problem> {
 }
 
 /// [`answer`] for JavaScript: returns the answer's text, throws a [`Problem`].
+#[cfg(feature = "json")]
 #[wasm_bindgen]
 pub fn call(path: &str, body: &str) -> Result<String, Problem> {
     answer(path, body)

@@ -154,16 +154,21 @@ impl From<CliError> for Problem {
 
 /// A JSON body as a `T`, refused as the server refuses it: malformed JSON (or anything after
 /// the value) → 400, a value of the wrong type or an unknown field → 422, each message with the
-/// field's path (`links[0].length: invalid type: …`) and the line and column.
+/// field's path (`links[0].length: invalid type: …`; with the `field-paths` feature) and the line
+/// and column.
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
     let malformed = |e: &dyn fmt::Display| Problem {
         status: status::BAD_REQUEST,
         message: format!("request body: malformed JSON: {e}"),
     };
     let mut de = serde_json::Deserializer::from_slice(bytes);
-    match serde_path_to_error::deserialize(&mut de) {
+    #[cfg(feature = "field-paths")]
+    let (read, inner) = (serde_path_to_error::deserialize(&mut de), serde_path_to_error::Error::inner);
+    #[cfg(not(feature = "field-paths"))]
+    let (read, inner) = (serde::Deserialize::deserialize(&mut de), std::convert::identity::<&serde_json::Error>);
+    match read {
         Ok(value) => de.end().map(|()| value).map_err(|e| malformed(&e)),
-        Err(e) => match e.inner().classify() {
+        Err(e) => match inner(&e).classify() {
             serde_json::error::Category::Data => Err(Problem::invalid(format!("request body: {e}"))),
             _ => Err(malformed(&e)),
         },

@@ -164,9 +164,15 @@ fn yes() -> bool {
 
 /// The text as a `T`, each refusal naming the field's path and the value
 /// (`bones[3].rotation: invalid type: string "x", expected f64 at line 9 column 22`).
+#[cfg(feature = "field-paths")]
 fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
-    let mut de = serde_json::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(&mut de).map_err(|e| e.to_string())
+    serde_path_to_error::deserialize(&mut serde_json::Deserializer::from_str(text)).map_err(|e| e.to_string())
+}
+
+/// The text as a `T`, each refusal serde_json's line (without the `field-paths` feature).
+#[cfg(not(feature = "field-paths"))]
+fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
+    serde::Deserialize::deserialize(&mut serde_json::Deserializer::from_str(text)).map_err(|e| e.to_string())
 }
 
 /// The bones' names to their indices, each parent resolved to an earlier bone: `names[i]` is
