@@ -8,6 +8,16 @@ use super::model::Problem;
 use super::model::{Model, ScratchOf};
 use super::step::Stepper;
 use super::{Outcome, Status};
+use crate::limits::Bounds;
+
+/// An iteration is hopeless when a joint is held at an end of its range and the task's merit
+/// (the squared error) has fallen by less than this share of it since the last iteration. At
+/// that rate the merit needs over 20,000 iterations to fall from 1 to the default tolerance's
+/// 1e-12, twenty times the default cap.
+pub(super) const HOPELESS_SHARE: f64 = 1e-3;
+
+/// How many hopeless iterations in a row end an attempt that may give up.
+pub(super) const HOPELESS_WINDOW: u32 = 3;
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
@@ -19,7 +29,14 @@ use super::{Outcome, Status};
 /// orientation, their sum, is then not finite either: an overflow on a chain or goal near the
 /// end of the f64 range) is not taken: the attempt keeps its last finite pose and ends
 /// [`Status::Stalled`].
+///
+/// Pinned and hopeless: where the problem asks ([`Problem::gives_up_pinned`]) and the body
+/// allows it ([`Model::GIVES_UP_PINNED`]), an attempt of a Jacobian method that stands
+/// [`HOPELESS_WINDOW`] iterations in a row with a joint held at a limit and its merit falling by
+/// less than [`HOPELESS_SHARE`] ends [`Status::Stalled`] at once, with `s.gave_up` set, rather
+/// than after the stall window.
 pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
+    s.gave_up = false;
     let resume = match M::fast_attempt(p, start, s, out) {
         Taken::Done(status) => return status,
         Taken::Resume(r) => Some(r),
@@ -46,6 +63,8 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     let mut damping = if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) };
     let mut skip_damped = r.damped_failed;
     let mut best_error = f64::INFINITY;
+    let watch = M::GIVES_UP_PINNED && p.gives_up_pinned;
+    let (mut last_merit, mut hopeless) = (f64::INFINITY, 0u32);
     let status = loop {
         model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);
         if let Some(k) = opts.record_every {
@@ -64,6 +83,15 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
                 if let Some(floor) = M::PROGRESS_FLOOR {
                     flat = prev_merit - current <= floor * prev_merit;
                     prev_merit = current;
+                }
+                if watch {
+                    let slow = current >= last_merit * (1.0 - HOPELESS_SHARE);
+                    hopeless = if slow && pinned(p.bounds, angles) { hopeless + 1 } else { 0 };
+                    last_merit = current;
+                    if hopeless >= HOPELESS_WINDOW {
+                        s.gave_up = true;
+                        break Status::Stalled;
+                    }
                 }
                 // Where the fast path handed over after every damped try of this iteration
                 // failed, the line search goes on from there, with the transpose step.
@@ -110,6 +138,12 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     status
 }
 
+/// Whether a joint of `angles` is held at an end of its range in `bounds` (where lock and
+/// clamp modes put it, exactly).
+pub(super) fn pinned(bounds: Bounds<'_>, angles: &[f64]) -> bool {
+    angles.iter().enumerate().any(|(i, &a)| bounds.get(i).is_some_and(|l| a == l.min() || a == l.max()))
+}
+
 /// Why the loop stops at this iteration, if it does.
 #[inline]
 fn stop<M: Model>(p: &Problem<'_, M>, error: f64, angle_error: f64, still: u32, iteration: u32) -> Option<Status> {
@@ -148,5 +182,115 @@ fn end_on_best<M: Model>(p: &Problem<'_, M>, best_error: f64, s: &mut ScratchOf<
         angles.copy_from_slice(&s.best);
         let phi = model.forward_into(angles, &mut s.joints);
         model.measure(p.goal, p.opts, &s.joints, phi, out, &mut s.alg);
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Chain;
+    use crate::goal::Goal;
+    use crate::rng::SplitMix64;
+    use crate::solve::scratch::Scratch;
+    use crate::solve::{LimitMode, Method, Restarts, SolveOptions, Solver};
+
+    /// `examples/arms/seven.toml`'s start pose, radians.
+    fn seven_start() -> Vec<f64> {
+        [30.0f64, -15.0, -15.0, -10.0, -10.0, -5.0, -5.0].iter().map(|d| d.to_radians()).collect()
+    }
+
+    /// One attempt from `start`, locked at the limits, watched (may give up pinned and
+    /// hopeless) or not; and whether it gave up.
+    fn one(chain: &Chain, start: &[f64], goal: &Goal, method: Method, watched: bool) -> (Status, Outcome, bool) {
+        let opts = SolveOptions {
+            method,
+            limits: LimitMode::Lock,
+            restarts: Some(Restarts::default()),
+            ..SolveOptions::default()
+        };
+        let p = Problem { gives_up_pinned: watched, ..Problem::new(chain, goal, &opts) };
+        let mut s = Scratch::default();
+        Model::fit(chain, &mut s);
+        let mut out = Outcome::default();
+        let status = attempt(&p, start, &mut s, &mut out);
+        (status, out, s.gave_up)
+    }
+
+    /// A goal of the seven-link arm whose first attempt crawls to a pose with three joints at
+    /// their limits, 1.0 from the goal, by iteration 30, and then stands there until the stall
+    /// window ends it at iteration 66: watched, it gives up by iteration 35, and the default
+    /// solve (probe, the watched attempt, the region's seed) reaches the goal in fewer
+    /// iterations than the stuck attempt alone took.
+    #[test]
+    fn a_pinned_hopeless_attempt_is_abandoned_early_and_a_restart_reaches() {
+        let chain = crate::fixtures::seven_link_arm();
+        let start = seven_start();
+        let goal = Goal::position(-4.457868754474337, 0.6171882605183886).unwrap();
+        for method in [Method::LevenbergMarquardt, Method::DampedLeastSquares] {
+            let (alone, kept, idle) = one(&chain, &start, &goal, method, false);
+            let (watched, ended, gave_up) = one(&chain, &start, &goal, method, true);
+            assert_eq!((alone, watched), (Status::Stalled, Status::Stalled), "{method:?}");
+            assert!(gave_up && !idle, "{method:?}");
+            assert!(
+                kept.iterations >= 60 && ended.iterations <= 35,
+                "{method:?}: {} and {}",
+                kept.iterations,
+                ended.iterations
+            );
+            assert!(pinned(chain.bounds(), ended.pose.angles()), "{method:?}");
+            let opts = SolveOptions { method, ..SolveOptions::default() };
+            let out = Solver::new(opts).unwrap().solve(&chain, &chain.pose(start.clone()).unwrap(), &goal).unwrap();
+            assert_eq!(out.status, Status::Reached, "{method:?}");
+            assert!(out.iterations < kept.iterations, "{method:?}: {}", out.iterations);
+        }
+    }
+
+    /// Goals drawn inside the limits of the seed arm and the seven-link arm, first attempts
+    /// from the start pose: an attempt that reaches its goal unwatched reaches it watched too, in the same iterations and to the same pose, bit for bit, unless the rule
+    /// ended it on a plateau (held at a limit, the error all but still for three iterations)
+    /// that it would have left later; the solve then still reaches the goal. The rule ends some
+    /// attempts that would not have reached (it is not idle).
+    #[test]
+    fn converging_attempts_run_as_before_and_goals_left_on_a_plateau_are_still_reached() {
+        for (name, chain, start) in [
+            ("seed", crate::fixtures::seed_arm_limited(), None),
+            ("seven", crate::fixtures::seven_link_arm(), Some(seven_start())),
+        ] {
+            let start = start.unwrap_or_else(|| chain.start_pose().angles().to_vec());
+            let from = chain.pose(start.clone()).unwrap();
+            let mut rng = SplitMix64(27);
+            let (mut same, mut plateaus, mut ended_early) = (0, 0, 0);
+            for _ in 0..300 {
+                let angles: Vec<f64> = chain
+                    .limits()
+                    .iter()
+                    .map(|l| l.map_or(rng.range(-3.0, 3.0), |l| rng.range(l.min(), l.max())))
+                    .collect();
+                let tip = crate::kinematics::end_effector(&chain, &angles);
+                let goal = if rng.unit() < 0.5 {
+                    Goal::with_orientation(tip.position.x, tip.position.y, tip.orientation).unwrap()
+                } else {
+                    Goal::position(tip.position.x, tip.position.y).unwrap()
+                };
+                for method in [Method::LevenbergMarquardt, Method::DampedLeastSquares] {
+                    let (alone, kept, _) = one(&chain, &start, &goal, method, false);
+                    let (watched, out, _) = one(&chain, &start, &goal, method, true);
+                    if alone == Status::Reached && watched == Status::Reached {
+                        same += 1;
+                        assert_eq!((out.iterations, out.pose.angles()), (kept.iterations, kept.pose.angles()));
+                    } else if alone == Status::Reached {
+                        plateaus += 1;
+                        assert_eq!(watched, Status::Stalled, "{name} {method:?} {goal:?}");
+                        assert!(pinned(chain.bounds(), out.pose.angles()), "{name} {method:?} {goal:?}");
+                        let opts = SolveOptions { method, ..SolveOptions::default() };
+                        let solved = Solver::new(opts).unwrap().solve(&chain, &from, &goal).unwrap();
+                        assert_eq!(solved.status, Status::Reached, "{name} {method:?} {goal:?}");
+                    } else if out.iterations < kept.iterations {
+                        ended_early += 1;
+                    }
+                }
+            }
+            assert!(same >= 500, "{name}: {same} reached alike ({plateaus} left on a plateau)");
+            assert!(ended_early >= 5, "{name}: {ended_early} ended early");
+        }
     }
 }

@@ -19,6 +19,7 @@ impl Model for Chain {
     type Points = Vec<Point2<f64>>;
     type Alg = Fixed3;
     const PROGRESS_FLOOR: Option<f64> = None;
+    const GIVES_UP_PINNED: bool = true;
 
     #[inline]
     fn len(&self) -> usize {

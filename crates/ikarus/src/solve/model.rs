@@ -47,6 +47,10 @@ pub(super) trait Model: Sized {
     /// counts as standing still (as a pose that moves by less than the stall's epsilon does);
     /// `None`: only the pose's movement counts.
     const PROGRESS_FLOOR: Option<f64>;
+    /// Whether an attempt of this body may give up once pinned and hopeless, when its
+    /// [`Problem::gives_up_pinned`] asks (see [`attempt`](super::attempt::attempt)); bodies
+    /// whose answers were fixed before that rule keep to the stall window alone.
+    const GIVES_UP_PINNED: bool = false;
     /// The number of angles (joints).
     fn len(&self) -> usize;
     /// Sizes the scratch for this body.
@@ -135,6 +139,10 @@ pub(super) struct Problem<'a, M: Model = Chain> {
     /// The iteration cap of an attempt: [`SolveOptions::max_iterations`], or less for the
     /// probe of a seeded solve (see `restarts`).
     pub(super) max_iterations: u32,
+    /// The attempt gives up when it stands pinned at a limit and hopeless (see
+    /// [`attempt`](super::attempt::attempt)): only the first attempt run whole after a probe
+    /// that was still converging, whose whole run is owed if it gives up (see `restarts`).
+    pub(super) gives_up_pinned: bool,
 }
 
 // By hand: derived impls would ask `M: Clone`/`M: Copy`, and only references are copied.
@@ -159,6 +167,6 @@ impl<'a, M: Model> Problem<'a, M> {
     /// The context with explicit `bounds` (the mode of `opts` applies unless they are free).
     pub(super) fn with_bounds(model: &'a M, goal: &'a M::Goal, opts: &'a SolveOptions, bounds: Bounds<'a>) -> Self {
         let mode = if bounds.is_free() { LimitMode::Ignore } else { opts.limits };
-        Self { model, goal, opts, bounds, mode, max_iterations: opts.max_iterations }
+        Self { model, goal, opts, bounds, mode, max_iterations: opts.max_iterations, gives_up_pinned: false }
     }
 }

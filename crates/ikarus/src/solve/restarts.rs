@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::attempt::attempt;
+use super::attempt::{attempt, pinned};
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
 use super::{Method, Outcome, Restarts, Status};
@@ -102,14 +102,26 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
     // The probe's iterations come out of restart 1's cap, so that (1 + attempts) caps still
     // bound the solve; the whole first attempt is owed if the probe was cut short while
     // pinned at a limit.
-    let spent = if cut { PROBE_ITERATIONS } else { 0 };
+    let mut spent = if cut { PROBE_ITERATIONS } else { 0 };
     let mut owed = cut;
-    if cut && !pinned(p, out.pose.angles()) {
-        // Cut short with no joint held at a limit: converging, not pinned; the first attempt
-        // runs whole at once, as it would unseeded.
-        tally.status = attempt(p, start, s, out);
+    if cut && !pinned(p.bounds, out.pose.angles()) {
+        // Cut short with no joint held at a limit: converging, not pinned (yet); the first
+        // attempt runs whole at once, as it would unseeded, but watched: one that comes to
+        // stand pinned at a limit, its error all but still, gives up (see `attempt`) and is then
+        // owed as after a probe cut short while pinned, its iterations taken out of restart 1's
+        // cap with the probe's. (If that leaves restart 1 nothing, it runs whole at once.)
+        let watched = Problem { gives_up_pinned: true, ..*p };
+        tally.status = attempt(&watched, start, s, out);
         tally.iterations += out.iterations;
-        owed = false;
+        owed = s.gave_up;
+        if owed {
+            spent += out.iterations;
+            if spent >= p.max_iterations {
+                tally.status = attempt(p, start, s, out);
+                tally.iterations += out.iterations;
+                (owed, spent) = (false, PROBE_ITERATIONS);
+            }
+        }
     }
     // A solve that stalled or ran out of iterations restarts (one crawling at the cap, as
     // weighted least norm does against a limit, is as stuck as one standing still); restarts
@@ -216,12 +228,6 @@ fn restart<M: Model>(
         tally.status = if interrupted { Status::Interrupted } else { best.1 };
     }
     join(p, start, tally, s, out);
-}
-
-/// Whether a joint of `angles` is held at an end of its range (where lock and clamp modes put
-/// it, exactly).
-fn pinned<M: Model>(p: &Problem<'_, M>, angles: &[f64]) -> bool {
-    angles.iter().enumerate().any(|(i, &a)| p.bounds.get(i).is_some_and(|l| a == l.min() || a == l.max()))
 }
 
 /// What follows an attempt of the restarts.

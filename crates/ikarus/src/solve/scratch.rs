@@ -28,6 +28,9 @@ pub(super) struct Scratch<P, A> {
     pub(super) best_attempt: Vec<f64>,
     /// The position-only fast path's state (a chain's; see [`super::fast`]).
     pub(super) fast: super::fast::Buffers<f64>,
+    /// Whether the last attempt gave up pinned and hopeless (see
+    /// [`attempt`](super::attempt::attempt)).
+    pub(super) gave_up: bool,
 }
 
 impl<P, A: super::algebra::Algebra> Scratch<P, A> {
