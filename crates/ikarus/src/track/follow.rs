@@ -90,6 +90,20 @@ impl<B: TrackBody> Follower<B> {
         })
     }
 
+    /// Puts the follower at the pose `start` (radians, one per joint) as if it were new: its
+    /// later steps are those of [`Follower::new`] with the same body, options and `start`, bit
+    /// for bit, and it keeps its solver and buffers (no allocation). A pointer that one follower
+    /// follows from poses set elsewhere (an edited pose, another motion) needs no new one.
+    ///
+    /// # Errors
+    /// A `start` of the wrong length, or with an angle that is not finite.
+    pub fn reset(&mut self, start: &[f64]) -> Result<(), TrackError> {
+        super::check_start(self.pose.len(), start)?;
+        self.pose.copy_from_slice(start);
+        self.count = 0;
+        Ok(())
+    }
+
     /// The current pose, radians.
     #[must_use]
     pub fn pose(&self) -> &[f64] {

@@ -248,18 +248,24 @@ impl TrackOptions {
     fn solver(&self, chain: &Chain, start: &[f64]) -> Result<Solver, TrackError> {
         self.validate()?;
         self.solve.validate_for(chain)?;
-        if start.len() != chain.len() {
-            return Err(SolveError::PoseLength { expected: chain.len(), got: start.len() }.into());
-        }
-        if let Some((index, &value)) = start.iter().enumerate().find(|(_, a)| !a.is_finite()) {
-            return Err(SolveError::NonFiniteAngle { index, value }.into());
-        }
+        check_start(chain.len(), start)?;
         Ok(Solver::new(SolveOptions { restarts: None, record_every: None, ..self.solve.clone() })?)
     }
 
     /// The seed of the restarts and seeded poses.
     fn seed(&self) -> u64 {
         self.solve.restarts.map_or(0, |r| r.seed)
+    }
+}
+
+/// Checks that the start pose `start` has `joints` angles, all finite.
+fn check_start(joints: usize, start: &[f64]) -> Result<(), SolveError> {
+    if start.len() != joints {
+        return Err(SolveError::PoseLength { expected: joints, got: start.len() });
+    }
+    match start.iter().enumerate().find(|(_, a)| !a.is_finite()) {
+        Some((index, &value)) => Err(SolveError::NonFiniteAngle { index, value }),
+        None => Ok(()),
     }
 }
 

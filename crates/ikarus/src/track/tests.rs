@@ -127,3 +127,45 @@ fn a_path_far_beyond_reach_gives_finite_errors_and_points_the_arm_at_it() {
         }
     }
 }
+
+/// A follower [`reset`](super::Follower::reset) to a pose steps as a new one made there, bit for
+/// bit, whatever it followed before: the restarts' seeds count steps from the reset. Goals are
+/// drawn over twice the reach, so that many steps are cut by the bound, miss, and restart.
+#[test]
+fn a_reset_follower_steps_as_a_new_one() {
+    let chain = crate::fixtures::seven_link_arm();
+    let options =
+        TrackOptions { max_step: 7f64.to_radians(), solve: SolveOptions::default(), ..TrackOptions::default() };
+    let mut rng = SplitMix64(28);
+    let mut goal = || Goal::position(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0)).unwrap();
+    let start = chain.start_pose().angles().to_vec();
+    let mut kept = super::Follower::new(&chain, &start, &options).unwrap();
+    let (mut compared, mut missed) = (0, 0);
+    for round in 0..6 {
+        for _ in 0..=round {
+            kept.step(&goal());
+        }
+        let from = kept.pose().to_vec();
+        let mut fresh = super::Follower::new(&chain, &from, &options).unwrap();
+        kept.reset(&from).unwrap();
+        for _ in 0..8 {
+            let g = goal();
+            let (a, b) = (kept.step(&g), fresh.step(&g));
+            assert_eq!(
+                (a.status, a.error.to_bits(), a.step.to_bits()),
+                (b.status, b.error.to_bits(), b.step.to_bits())
+            );
+            assert_eq!(kept.pose(), fresh.pose(), "round {round}");
+            compared += 1;
+            missed += usize::from(!matches!(a.status, SampleStatus::Reached | SampleStatus::Limited));
+        }
+    }
+    assert!(missed > 0, "no step restarted: {compared} compared");
+    assert!(matches!(kept.reset(&start[1..]), Err(super::TrackError::Solve(crate::SolveError::PoseLength { .. }))));
+    let mut bad = start.clone();
+    bad[3] = f64::NAN;
+    assert!(matches!(
+        kept.reset(&bad),
+        Err(super::TrackError::Solve(crate::SolveError::NonFiniteAngle { index: 3, .. }))
+    ));
+}
