@@ -108,6 +108,22 @@ pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
     crate::goal::make_goal(x, y, angle_deg).map_err(Problem::invalid)
 }
 
+/// The pose `start_deg` (degrees, one per joint) of `arm` as `/api/track` and `/api/solve` read
+/// their `start_deg`: normalised into each joint's range like an arm file's start angles; a
+/// wrong count is a 422 naming `start_deg`.
+pub fn start_pose(arm: &Arm, start_deg: &[f64]) -> Result<Vec<f64>, Problem> {
+    let chain = arm.chain();
+    crate::api::fields::pose_from_degrees(arm.start(), chain.limits(), Some(start_deg), "start_deg")
+}
+
+/// The options of `/api/track`'s follow mode with `bound_first`, as the page follows the
+/// pointer: the solve options `solve` (from [`solve_options`]) and the bound `max_step_deg`
+/// (degrees; a value that is not a finite number > 0 is a 422 naming `max_step_deg`).
+pub fn follow_options(solve: SolveOptions, max_step_deg: f64) -> Result<ikarus::TrackOptions, Problem> {
+    let max_step_deg = crate::api::fields::max_step_deg(Some(max_step_deg))?;
+    Ok(crate::track::track_options(solve, max_step_deg, true))
+}
+
 /// The command line's name of a status: `reached`, `unreachable`, `stalled`,
 /// `iteration_limit` or `interrupted`.
 #[must_use]

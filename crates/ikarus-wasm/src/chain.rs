@@ -5,7 +5,7 @@
 //! owns; its numbers are bit for bit those of `call("solve", …)` for the same arm, options and
 //! goal (the same library call from the same start pose).
 
-use ikarus::{Goal, Outcome, Solver, Status};
+use ikarus::{Follower, Goal, Outcome, SampleStatus, SolveOptions, Solver, Status};
 use ikarus_edge::edge::{self, Arm, Limits};
 use wasm_bindgen::prelude::*;
 
@@ -18,6 +18,21 @@ const TAIL: usize = 6;
 /// The statuses by code, the order of [`ikarus::Status`]: a record's last number.
 const STATUSES: [Status; 5] =
     [Status::Reached, Status::Unreachable, Status::Stalled, Status::IterationLimit, Status::Interrupted];
+
+/// The statuses of a follow record's last number, the order of [`ikarus::SampleStatus`]
+/// (`off_path` never: it is the plan's).
+const FOLLOW_STATUSES: [SampleStatus; 7] = [
+    SampleStatus::Reached,
+    SampleStatus::Limited,
+    SampleStatus::Unreachable,
+    SampleStatus::Stalled,
+    SampleStatus::IterationLimit,
+    SampleStatus::Interrupted,
+    SampleStatus::OffPath,
+];
+
+/// Numbers of a follow record after the angles and the joints: the error, the step, the status code.
+const FOLLOW_TAIL: usize = 3;
 
 /// The code of `status` in a record (its index in [`STATUSES`]).
 fn status_code(status: Status) -> u32 {
@@ -39,6 +54,13 @@ pub struct Chain {
     /// The record of the last [`solve_here`](Chain::solve_here), read by JavaScript through a
     /// view over the module's memory at [`record_ptr`](Chain::record_ptr).
     record: Vec<f64>,
+    /// The options as `/api/track` reads them, for the follower.
+    track: SolveOptions,
+    /// The follower of [`follow_here`](Chain::follow_here) and its bound (degrees), made on the
+    /// first follow and again when the bound changes.
+    follower: Option<(f64, Follower)>,
+    /// The record of the last follow, read at [`follow_ptr`](Chain::follow_ptr).
+    follow_record: Vec<f64>,
 }
 
 /// A [`Problem`] of the edge's.
@@ -63,12 +85,22 @@ impl Chain {
             edge::arm_from_json(arm).map_err(|p| Problem { status: p.status, message: unplaced(&p.message) })?
         };
         let options = if options.trim().is_empty() { "{}" } else { options };
-        let mut options = edge::solve_options(&arm, options, &Limits::default())
+        let track = edge::solve_options(&arm, options, &Limits::default())
             .map_err(|p| Problem { status: p.status, message: under("options", &p.message) })?;
-        options.record_every = None;
+        let options = SolveOptions { record_every: None, ..track.clone() };
         let solver = Solver::new(options).map_err(|e| Problem { status: 422, message: format!("options: {e}") })?;
-        let record = vec![0.0; arm.chain().len() + TAIL];
-        Ok(Chain { arm, solver, outcome: Outcome::default(), goals: Vec::new(), outcomes: Vec::new(), record })
+        let n = arm.chain().len();
+        Ok(Chain {
+            arm,
+            solver,
+            outcome: Outcome::default(),
+            goals: Vec::new(),
+            outcomes: Vec::new(),
+            record: vec![0.0; n + TAIL],
+            track,
+            follower: None,
+            follow_record: vec![0.0; n + 2 * (n + 1) + FOLLOW_TAIL],
+        })
     }
 
     /// The number of joints (`n`).
@@ -112,6 +144,60 @@ impl Chain {
     #[wasm_bindgen(getter, js_name = recordPtr)]
     pub fn record_ptr(&self) -> usize {
         self.record.as_ptr() as usize
+    }
+
+    /// The numbers of a follow record: `3n + 5` (`n` joints).
+    #[wasm_bindgen(getter, js_name = followLen)]
+    pub fn follow_len(&self) -> usize {
+        self.follow_record.len()
+    }
+
+    /// Where the chain's follow record lies in the module's memory (as [`record_ptr`](Chain::record_ptr)).
+    #[wasm_bindgen(getter, js_name = followPtr)]
+    pub fn follow_ptr(&self) -> usize {
+        self.follow_record.as_ptr() as usize
+    }
+
+    /// One step of following the pointer: from the pose `start_deg` (degrees, one per joint)
+    /// toward the goal (`x`, `y`), no joint moving more than `max_step_deg` — what `/api/track`
+    /// answers for `{arm, options, start_deg, max_step_deg, path: [[x, y]], mode: "follow",
+    /// bound_first: true}`, bit for bit. Writes the follow record (read at
+    /// [`follow_ptr`](Chain::follow_ptr)): the angles in degrees (`angles_deg`), the joints'
+    /// x, y pairs from the base to the tip (`joints`), `error`, `step_deg`, and the sample's
+    /// status code ([`follow_status_name`]); returns the code. Throws a [`Problem`] for a goal,
+    /// pose or bound the server refuses (`goal.x = NaN: …`, `start_deg: expected 3 angles …`,
+    /// `max_step_deg = 0: …`).
+    #[wasm_bindgen(js_name = followHere)]
+    pub fn follow_here(&mut self, start_deg: &[f64], x: f64, y: f64, max_step_deg: f64) -> Result<u32, Problem> {
+        let goal = edge::goal(x, y, None).map_err(problem)?;
+        let start = edge::start_pose(&self.arm, start_deg).map_err(problem)?;
+        let refused = |e: ikarus::TrackError| Problem { status: 422, message: e.to_string() };
+        let follower = match &mut self.follower {
+            Some((bound, f)) if bound.to_bits() == max_step_deg.to_bits() => {
+                f.reset(&start).map_err(refused)?;
+                f
+            }
+            slot => {
+                let options = edge::follow_options(self.track.clone(), max_step_deg).map_err(problem)?;
+                let f = Follower::new(self.arm.chain(), &start, &options).map_err(refused)?;
+                &mut slot.insert((max_step_deg, f)).1
+            }
+        };
+        let step = follower.step(&goal);
+        let n = start.len();
+        let (angles, rest) = self.follow_record.split_at_mut(n);
+        let (joints, tail) = rest.split_at_mut(2 * (n + 1));
+        for (dst, a) in angles.iter_mut().zip(follower.pose()) {
+            *dst = a.to_degrees();
+        }
+        for (dst, p) in
+            joints.chunks_exact_mut(2).zip(ikarus::kinematics::joint_positions(self.arm.chain(), follower.pose()))
+        {
+            dst.copy_from_slice(&[p.x, p.y]);
+        }
+        let code = FOLLOW_STATUSES.iter().position(|&s| s == step.status).map_or(u32::MAX, |i| i as u32);
+        tail.copy_from_slice(&[step.error, step.step.to_degrees(), f64::from(code)]);
+        Ok(code)
     }
 
     /// Solves the goals `goals` (`x, y` pairs, flat) through the library's batch path, each from
@@ -165,6 +251,12 @@ const SEED_ARM_JSON: &str = r#"{"name":"seed","base":[0.0,0.0],"links":[{"length
 #[wasm_bindgen(js_name = statusName)]
 pub fn status_name(code: u32) -> Option<String> {
     STATUSES.get(code as usize).map(|&s| edge::status_name(s).to_owned())
+}
+
+/// The name of a follow record's status code (`reached`, `limited`, …; `undefined` for another number).
+#[wasm_bindgen(js_name = followStatusName)]
+pub fn follow_status_name(code: u32) -> Option<String> {
+    FOLLOW_STATUSES.get(code as usize).map(|&s| s.as_str().to_owned())
 }
 
 /// The message of a refused `arm` as `/api/solve` words it for `{"arm": …}`, less the position
@@ -265,6 +357,70 @@ mod tests {
             chain.solve(x, y, &mut out).unwrap();
             assert_eq!(chain.record, out);
         }
+    }
+
+    /// The follow record is the numbers of `/api/track`'s one-sample follow answer, bit for bit,
+    /// step after step from the pose each step left (as the page follows the pointer: one
+    /// follower reset to each pose), with the
+    /// limits off and on, the bound changed on the way, goals reached, cut by the bound and
+    /// out of reach.
+    #[test]
+    fn a_follow_record_is_the_track_answers_numbers() {
+        let goals = [(2.0, 3.0), (-4.0, 1.0), (-4.1, 1.2), (9.0, 9.0), (0.5, -5.5), (1.0, 1.0), (-6.0, 0.0)];
+        let mut seen = std::collections::BTreeSet::new();
+        for options in ["", r#"{"limits": true}"#, r#"{"method": "dls", "limits": true, "limit_mode": "clamp"}"#] {
+            let mut chain = Chain::new("", options).unwrap();
+            let n = chain.joints();
+            let mut pose: Vec<f64> = chain.arm.start().iter().map(|a| a.to_degrees()).collect();
+            // Each goal asked 6 times, as the page chases a goal the bound cut short.
+            for (k, &(x, y)) in goals.iter().flat_map(|g| [g; 6]).enumerate() {
+                let bound = if k < 20 { 10.0 } else { 25.0 };
+                let code = chain.follow_here(&pose, x, y, bound).unwrap();
+                let body = serde_json::json!({
+                    "options": serde_json::from_str::<serde_json::Value>(if options.is_empty() { "{}" } else { options }).unwrap(),
+                    "start_deg": pose, "max_step_deg": bound, "path": [[x, y]], "mode": "follow", "bound_first": true,
+                });
+                let json: serde_json::Value =
+                    serde_json::from_str(&crate::answer("track", &body.to_string()).unwrap()).unwrap();
+                let s = &json["samples"][0];
+                let r = &chain.follow_record;
+                let bits = |v: &serde_json::Value| v.as_f64().unwrap().to_bits();
+                for i in 0..n {
+                    assert_eq!(r[i].to_bits(), bits(&s["angles_deg"][i]), "{options} goal {k}");
+                }
+                for j in 0..=n {
+                    assert_eq!(r[n + 2 * j].to_bits(), bits(&s["joints"][j][0]));
+                    assert_eq!(r[n + 2 * j + 1].to_bits(), bits(&s["joints"][j][1]));
+                }
+                let tail = &r[3 * n + 2..];
+                assert_eq!((tail[0].to_bits(), tail[1].to_bits()), (bits(&s["error"]), bits(&s["step_deg"])));
+                assert_eq!(follow_status_name(code).as_deref(), s["status"].as_str());
+                assert_eq!(tail[2], f64::from(code));
+                seen.insert(s["status"].as_str().unwrap().to_owned());
+                pose = r[..n].to_vec();
+            }
+        }
+        assert!(["reached", "limited", "unreachable"].iter().all(|s| seen.contains(*s)), "{seen:?}");
+        assert_eq!(Chain::new("", "").unwrap().follow_len(), 3 * 3 + 5);
+        for (code, status) in FOLLOW_STATUSES.iter().enumerate() {
+            assert_eq!(follow_status_name(code as u32).as_deref(), Some(status.as_str()));
+        }
+        assert_eq!(follow_status_name(7), None);
+    }
+
+    #[test]
+    fn a_refused_follow_is_the_servers_line() {
+        let mut chain = Chain::new("", "").unwrap();
+        let track = |fields: &str| {
+            crate::answer("track", &format!(r#"{{"mode": "follow", "bound_first": true, {fields}}}"#)).unwrap_err()
+        };
+        let e = chain.follow_here(&[0.0, 0.0], 1.0, 1.0, 10.0).unwrap_err();
+        assert_eq!(e, track(r#""start_deg": [0, 0], "path": [[1, 1]]"#));
+        let e = chain.follow_here(&[0.0, 0.0, 0.0], 1.0, 1.0, 0.0).unwrap_err();
+        assert_eq!(e, track(r#""start_deg": [0, 0, 0], "max_step_deg": 0, "path": [[1, 1]]"#));
+        let e = chain.follow_here(&[0.0, f64::NAN, 0.0], 1.0, 1.0, 5.0).unwrap_err();
+        assert!(e.message.contains("NaN"), "{e:?}");
+        assert!(chain.follow_here(&[0.0; 3], f64::INFINITY, 1.0, 5.0).unwrap_err().message.starts_with("goal.x"));
     }
 
     #[test]

@@ -20,7 +20,7 @@ use std::sync::Mutex;
 mod chain;
 mod character;
 
-pub use chain::{Chain, status_name};
+pub use chain::{Chain, follow_status_name, status_name};
 pub use character::Character;
 
 use ikarus::Interrupt;

@@ -110,7 +110,7 @@ pub(super) fn start_pose(arm: &Arm, degrees: Option<&[f64]>, field: &str) -> Res
 
 /// A pose in radians from degrees, one angle per joint (`limits` has one entry per joint);
 /// `default` when absent.
-pub(super) fn pose_from_degrees(
+pub(crate) fn pose_from_degrees(
     default: &[f64],
     limits: &[Option<ikarus::JointLimits>],
     degrees: Option<&[f64]>,
@@ -176,7 +176,7 @@ pub(super) fn timing(
 }
 
 /// A track's `max_step_deg` (10 by default), > 0.
-pub(super) fn max_step_deg(value: Option<f64>) -> Result<f64, Problem> {
+pub(crate) fn max_step_deg(value: Option<f64>) -> Result<f64, Problem> {
     let max_step_deg = value.unwrap_or(DEFAULT_MAX_STEP_DEG);
     if !(max_step_deg.is_finite() && max_step_deg > 0.0) {
         return Err(Problem::invalid(format!(
