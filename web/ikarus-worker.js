@@ -13,6 +13,13 @@
 // file lacks, a refused time) is asked of call("pose") with the same fields, for the server's
 // status and line.
 //
+// Following the pointer takes a typed path too ({id, follow: {chain?: {arm, options}, start_deg,
+// max_step_deg, x, y}}): the worker keeps an ikarus.Chain of the last arm and options it was sent
+// (sent only when they change) and answers {id, status: 200, typed: true, numbers} with the
+// chain's follow record (Chain.followHere: bit for bit /api/track's one-sample follow with
+// bound_first). What the chain refuses (an arm with offsets or slides, a refused value) is asked
+// of call("track") with the same fields, for the server's answer or its status and line.
+//
 // It loads the small module first (ikarus_core_bg.wasm: the typed handles; ready as soon as it
 // is), and the full one (ikarus_wasm_bg.wasm) on the first message that needs `call`. The GET
 // endpoints' answers (/api/meta, /api/arm/default, /api/rigs) do not change: `web/build` writes
@@ -79,11 +86,38 @@ async function pose({ rig, animation, time, targets }) {
   }
 }
 
+/** The last arm and options of a follow: {arm, options, chain (an ikarus.Chain, or null when it refused them)}. */
+let following = null;
+
+/** The typed follow of `ask` ({chain?: {arm, options}, start_deg, max_step_deg, x, y}), or call("track")'s {status, text}. */
+async function follow({ chain, start_deg, max_step_deg, x, y }) {
+  if (chain) {
+    if (following && following.chain) following.chain.free();
+    following = { ...chain, chain: null };
+    try {
+      following.chain = new ikarus.Chain(chain.arm, chain.options);
+    } catch (e) {
+      if (!(e instanceof ikarus.IkarusError)) throw e;
+    }
+  }
+  if (!following) return { status: 500, text: JSON.stringify({ error: "ikarus-worker: a follow before its arm" }) };
+  const { arm, options } = following;
+  const asked = () => answer("track", JSON.stringify({ arm, options, start_deg, max_step_deg, path: [[x, y]], mode: "follow", bound_first: true }));
+  if (!following.chain) return asked();
+  try {
+    following.chain.followHere(start_deg, x, y, max_step_deg);
+  } catch (e) {
+    if (!(e instanceof ikarus.IkarusError)) throw e;
+    return asked();
+  }
+  return { status: 200, typed: true, numbers: following.chain.followRecord.slice() };
+}
+
 onmessage = async ({ data }) => {
-  if (data.pose) {
+  if (data.pose || data.follow) {
     let reply;
     try {
-      reply = await pose(data.pose);
+      reply = await (data.pose ? pose(data.pose) : follow(data.follow));
     } catch (e) {
       reply = { status: 500, text: JSON.stringify({ error: e && e.message ? e.message : String(e) }) };
     }

@@ -17,7 +17,8 @@
 // 22`). Calls are synchronous once `init()` has resolved; they run on the calling thread.
 //
 // The hot paths have typed handles beside these, without JSON: `Chain` (an arm read once, then
-// `solve(x, y, out)` / `solveBatch(goals, out)`) and `Character` (a character file read once,
+// `solve(x, y, out)` / `solveBatch(goals, out)`, and `followHere(startDeg, x, y, maxStepDeg)`,
+// one step of following the pointer) and `Character` (a character file read once,
 // then `pose(time, targets, out)`), writing numbers into a Float64Array the caller owns.
 //
 // Two modules: the full one (ikarus_wasm_bg.wasm, `init()`: every endpoint, TOML, the refusals'
@@ -140,6 +141,12 @@ function handle(m, make) {
 export const STATUS = Object.freeze(["reached", "unreachable", "stalled", "iteration_limit", "interrupted"]);
 
 /**
+ * The status names of a Chain follow record's last number (`followHere`'s code).
+ * @type {readonly string[]}
+ */
+export const FOLLOW_STATUS = Object.freeze(["reached", "limited", "unreachable", "stalled", "iteration_limit", "interrupted", "off_path"]);
+
+/**
  * An arm read once and solved without JSON (the hot path: following the pointer, many goals).
  * `new Chain(arm?, options?)` takes `/api/solve`'s `arm` and `options` objects (the seed arm
  * and `ikarus solve`'s settings when left out; no frames are recorded) and throws an
@@ -158,6 +165,8 @@ export class Chain {
   #m;
   #ptr;
   #view = null;
+  #followPtr;
+  #follow = null;
   /**
    * @param {object} [arm]     the API's `arm` object
    * @param {object} [options] the API's `options` object
@@ -170,6 +179,9 @@ export class Chain {
     /** The numbers of one record: joints + 6. */
     this.recordLen = this.#h.recordLen;
     this.#ptr = this.#h.recordPtr;
+    /** The numbers of one follow record: 3 × joints + 5. */
+    this.followLen = this.#h.followLen;
+    this.#followPtr = this.#h.followPtr;
   }
 
   /**
@@ -233,6 +245,38 @@ export class Chain {
     } catch (e) {
       throw failure(e, this.#m);
     }
+  }
+
+  /**
+   * One step of following the pointer (the page's follow mode): from the pose `startDeg`
+   * (degrees, one per joint) toward (x, y), no joint moving more than `maxStepDeg`. Writes the
+   * chain's follow record (`followRecord`, a view over the module's memory valid until the next
+   * call on this chain; `followLen = 3 × joints + 5` numbers): the angles in degrees, the joints'
+   * x, y pairs from the base to the tip, the error, the step in degrees, and the status code
+   * (`FOLLOW_STATUS[code]`: "reached", "limited", "unreachable", …), which it returns. The
+   * numbers are those of `track({arm, options, start_deg, max_step_deg, path: [[x, y]], mode:
+   * "follow", bound_first: true}).samples[0]`, bit for bit.
+   * @param {Float64Array | number[]} startDeg
+   * @param {number} x
+   * @param {number} y
+   * @param {number} maxStepDeg
+   * @returns {number}
+   */
+  followHere(startDeg, x, y, maxStepDeg) {
+    let code;
+    try {
+      code = this.#h.followHere(startDeg, x, y, maxStepDeg);
+    } catch (e) {
+      throw failure(e, this.#m);
+    }
+    this.#follow = viewOf(this.#m, this.#follow, this.#followPtr, this.followLen);
+    return code;
+  }
+
+  /** The last `followHere`'s record: a Float64Array view over the module's memory. */
+  get followRecord() {
+    this.#follow = viewOf(this.#m, this.#follow, this.#followPtr, this.followLen);
+    return this.#follow;
   }
 
   /** Releases the module's memory for this chain. */

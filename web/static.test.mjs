@@ -103,6 +103,9 @@ test("the static build runs the playground with no ikarus server", async () => {
     assert.equal(poses.length, arc.length);
     assert.ok(Math.hypot(followed.tip[0] - followed.goal.x, followed.tip[1] - followed.goal.y) < 1e-4, `followed to ${followed.tip}, goal ${JSON.stringify(followed.goal)}`);
     assert.match(followed.stats, /^status reached · step /);
+    // Each step went through the worker's typed ikarus.Chain (Chain.followHere), not /api/track's JSON.
+    const typedFollows = await page.evaluate(async () => (await import("./api.js")).typed.follows);
+    assert.ok(typedFollows >= arc.length, `follow steps by the typed path: ${typedFollows}`);
     await page.uncheck("#follow");
 
     // Draw a path: a stroke dragged in front of the arm, traced with plan, no flips.
@@ -241,7 +244,21 @@ test("the static build runs the playground with no ikarus server", async () => {
         return ((performance.now() - t) * 1000) / n;
       };
       const typedSolve = timed((k) => { const g = goal(k); chain.solve(g.x, g.y, record); }, 20000);
-      return { direct, worker, typedSolve };
+      // A follow step through the worker, as the page follows the pointer: the typed path
+      // (api.follow) and /api/track's JSON (api.track), alternated in rounds of 250.
+      const arm = await api.defaultArm();
+      const step = (k) => ({ arm, options: {}, start_deg: [5, 5, 5], max_step_deg: 10, ...goal(k) });
+      const asJson = ({ x, y, ...b }) => api.track({ ...b, path: [[x, y]], mode: "follow", bound_first: true });
+      const follows = { typed: 0, json: 0 };
+      for (let k = 0; k < 50; k++) await api.follow(step(k)), await asJson(step(k));
+      for (let round = 0; round < 8; round++) {
+        for (const [name, f] of [["typed", api.follow], ["json", asJson]]) {
+          const t = performance.now();
+          for (let k = 0; k < 250; k++) await f(step(k));
+          follows[name] += performance.now() - t;
+        }
+      }
+      return { direct, worker, typedSolve, followTyped: follows.typed / 2, followJson: follows.json / 2 };
     });
     // spineboy's walk posed three ways, interleaved in rounds of 1000: Character.pose (the
     // numbers copied out of the module's memory), Character.poseHere (read in place) and the
@@ -274,6 +291,9 @@ test("the static build runs the playground with no ikarus server", async () => {
     }, spineboy.toString("utf8"));
     console.log(
       `in-page typed calls: Chain.solve (seed arm) ${speed.typedSolve.toFixed(2)} µs a call; spineboy walk, one target: Character.pose ${pose.copied.toFixed(2)} µs, poseHere ${pose.here.toFixed(2)} µs, the glue's pose ${pose.glue.toFixed(2)} µs a call`,
+    );
+    console.log(
+      `a follow step through the worker (seed arm, 2000 goals): typed (Chain.followHere) ${speed.followTyped.toFixed(1)} µs a step; /api/track's JSON ${speed.followJson.toFixed(1)} µs a step`,
     );
     console.log(
       `in-page solves, seed arm (LM, up to 16 restarts), 2000 goals: on the page's thread ${speed.direct.per_second}/s (${speed.direct.call_us.toFixed(1)} µs a call); through api.js and the worker ${speed.worker.per_second}/s (${speed.worker.call_us.toFixed(1)} µs a call)`,

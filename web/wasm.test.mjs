@@ -385,3 +385,35 @@ test("the small module's handles answer as the full module's call, bit for bit, 
   for (const [path, file] of [["meta", "api-meta.json"], ["arm/default", "api-arm-default.json"], ["rigs", "api-rigs.json"]])
     assert.equal(readFileSync(join(dir, file), "utf8"), ikarus.call(path, ""), file);
 });
+
+test("the typed follow steps as call(\"track\")'s one-sample follow answers, bit for bit, in both modules", async () => {
+  const small = await import(`${pathToFileURL(join(dir, "ikarus.js")).href}?follow`);
+  await small.initCore(readFileSync(join(dir, "ikarus_core_bg.wasm")));
+  const seen = new Set();
+  for (const api of [ikarus, small]) {
+    for (const [arm, options] of [[undefined, undefined], [limited, { limits: true }]]) {
+      const chain = new api.Chain(arm, options);
+      const n = chain.joints;
+      let pose = JSON.parse(ikarus.call("solve", JSON.stringify({ arm, options, goal: { x: 1, y: 1 } }))).angles_deg.map(() => 0);
+      // Each goal asked four times (the page chases a goal the bound cut short); the bound changes halfway.
+      const goals = [[2, 3], [-4, 1], [9, 9], [0.5, -3.5], [-2, -2]].flatMap((g) => [g, g, g, g]);
+      goals.forEach(([x, y], k) => {
+        const bound = k < 10 ? 10 : 30;
+        const code = chain.followHere(pose, x, y, bound);
+        const body = { arm, options, start_deg: pose, max_step_deg: bound, path: [[x, y]], mode: "follow", bound_first: true };
+        const s = JSON.parse(ikarus.call("track", JSON.stringify(body))).samples[0];
+        const want = [...s.angles_deg, ...s.joints.flat(), s.error, s.step_deg, api.FOLLOW_STATUS.indexOf(s.status)];
+        const got = chain.followRecord;
+        assert.equal(got.length, 3 * n + 5);
+        assert.equal(api.FOLLOW_STATUS[code], s.status);
+        want.forEach((w, i) => assert.ok(sameBits(got[i], w), `${JSON.stringify(options)} goal ${k}: number ${i} is ${got[i]}, the JSON's ${w}`));
+        seen.add(s.status);
+        pose = Array.from(got.subarray(0, n));
+      });
+      const refused = wasm("track", JSON.stringify({ arm, options, start_deg: pose, max_step_deg: 0, path: [[1, 1]], mode: "follow", bound_first: true }));
+      assert.throws(() => chain.followHere(pose, 1, 1, 0), (e) => e instanceof api.IkarusError && e.status === refused.status && JSON.stringify({ error: e.message }) === refused.text);
+      chain.free();
+    }
+  }
+  assert.deepEqual([...seen].sort(), ["limited", "reached", "unreachable"]);
+});

@@ -87,6 +87,12 @@ function startWorker() {
               waiting.set(id, done);
               worker.postMessage({ id, pose: ask });
             }),
+          askFollow: (ask) =>
+            new Promise((done) => {
+              const id = next++;
+              waiting.set(id, done);
+              worker.postMessage({ id, follow: ask });
+            }),
         });
         return;
       }
@@ -157,10 +163,10 @@ export const meta = () => get("/api/meta");
 export const defaultArm = () => get("/api/arm/default");
 
 /**
- * Poses made by the WebAssembly module's typed path (ikarus.Character in the worker, no JSON),
- * counted for tests: `typed.poses`.
+ * Poses and follow steps made by the WebAssembly module's typed paths (ikarus.Character and
+ * ikarus.Chain in the worker, no JSON), counted for tests: `typed.poses`, `typed.follows`.
  */
-export const typed = { poses: 0 };
+export const typed = { poses: 0, follows: 0 };
 
 /** The character file the worker holds (sent again only when it changes). */
 let workerRig = null;
@@ -187,6 +193,39 @@ export async function pose(body) {
   const res = new Response(reply.text, { status: reply.status, headers: { "content-type": "application/json" } });
   if (!res.ok) throw await failure("/api/pose", res);
   return res.json();
+}
+
+/** The arm and options the worker's follow chain holds (JSON text; sent again only when they change). */
+let workerChain = null;
+
+/** The follow record's status names (ikarus.js's FOLLOW_STATUS). */
+const FOLLOW_STATUS = ["reached", "limited", "unreachable", "stalled", "iteration_limit", "interrupted", "off_path"];
+
+/**
+ * One step of following the pointer: `{arm, options, start_deg, max_step_deg, x, y}` →
+ * /api/track's one sample of a follow from `start_deg` toward (x, y) with `bound_first`
+ * ({status, error, angles_deg, joints, step_deg}). In the static build it goes through the
+ * worker's typed path (ikarus.Chain.followHere: the arm and options sent once, then the pose and
+ * the goal; the numbers bit for bit /api/track's), anything it refuses through /api/track.
+ */
+export async function follow({ arm, options, start_deg, max_step_deg, x, y }) {
+  const m = await wasm;
+  const body = { arm, options, start_deg, max_step_deg, path: [[x, y]], mode: "follow", bound_first: true };
+  if (!m) return (await track(body)).samples[0];
+  const key = JSON.stringify([arm, options]);
+  const reply = await m.askFollow(key === workerChain ? { start_deg, max_step_deg, x, y } : { chain: { arm, options }, start_deg, max_step_deg, x, y });
+  if (reply.status !== 200) {
+    workerChain = null;
+    throw await failure("/api/track", new Response(reply.text, { status: reply.status }));
+  }
+  workerChain = key;
+  if (!reply.typed) return JSON.parse(reply.text).samples[0];
+  typed.follows++;
+  const r = reply.numbers;
+  const n = start_deg.length;
+  const joints = [];
+  for (let j = 0; j <= n; j++) joints.push([r[n + 2 * j], r[n + 2 * j + 1]]);
+  return { status: FOLLOW_STATUS[r[3 * n + 4]], error: r[3 * n + 2], angles_deg: Array.from(r.subarray(0, n)), joints, step_deg: r[3 * n + 3] };
 }
 
 export const solve = (body) => post("/api/solve", body);

@@ -3,7 +3,7 @@
 // played on the timeline with the wanted path, the tip's trace and the flips drawn.
 //
 // Following sends each pointer position as a one-sample `follow` path from the current pose with
-// `bound_first`, so no joint moves more than the step bound between two answers, and at most one
+// `bound_first` (api.follow: in the static build, the worker's typed ikarus.Chain, no JSON), so no joint moves more than the step bound between two answers, and at most one
 // answer is shown per displayed frame: the arm never jumps. One request is in flight and only
 // the latest goal waits; when an answer was cut short by the bound (`limited`, or on its way to
 // the nearest pose of an `unreachable` goal), the same goal is asked again on the next frame, so
@@ -53,8 +53,7 @@ export function wireTrack(state, act) {
     const n = state.pose_deg.length;
     let chase = false;
     try {
-      const res = await api.track({ ...base(), path: [[goal.x, goal.y]], mode: "follow", bound_first: true });
-      const s = res.samples[0];
+      const s = await api.follow({ ...base(), x: goal.x, y: goal.y });
       // Dropped when a click's motion started meanwhile or the arm changed.
       if (seq === jobs.animateSeq && !state.playback.playing && s.angles_deg.length === n && state.arm.links.length === n) {
         clear();
