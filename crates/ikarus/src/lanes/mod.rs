@@ -33,7 +33,11 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 #[cfg(target_arch = "x86_64")]
 mod avx2;
 #[cfg(target_arch = "x86_64")]
+mod pair;
+#[cfg(target_arch = "x86_64")]
 pub(crate) use avx2::Avx;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use pair::Pair;
 
 /// Numbers side by side: `f64` (one lane) or `f64x4` (four). Every operation is lane-wise and
 /// exactly rounded, so lane `k` of a result depends only on lane `k` of the operands.
