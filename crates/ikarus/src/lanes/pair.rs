@@ -134,7 +134,7 @@ mod tests {
         assert_eq!(p, Pair(Quad([0.0, 1.0, 2.0, 3.0]), Quad([4.0, 5.0, 6.0, 7.0])));
         assert_eq!((0..8).map(|k| p.lane(k)).collect::<Vec<_>>(), [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let odd = Pair::<Quad>::mask_from(|k| k % 2 == 1 || k == 6);
-        let picked = Pair::select(odd, p, -p);
+        let picked = Pair::<Quad>::select(odd, p, -p);
         assert_eq!((0..8).map(|k| picked.lane(k)).collect::<Vec<_>>(), [-0.0, 1.0, -2.0, 3.0, -4.0, 5.0, 6.0, 7.0]);
         let above = p.gt(Pair::splat(4.5));
         assert_eq!(
@@ -142,7 +142,7 @@ mod tests {
             [false, false, false, false, false, true, true, true]
         );
         assert!(!Pair::<Quad>::all(above));
-        assert!(Pair::<Quad>::all(Pair::or(p.gt(Pair::splat(0.0)), p.eq(Pair::splat(0.0)))));
-        assert!(!Pair::<Quad>::all(Pair::and(above, p.lt(Pair::splat(7.0)))));
+        assert!(Pair::<Quad>::all(Pair::<Quad>::or(p.gt(Pair::splat(0.0)), p.eq(Pair::splat(0.0)))));
+        assert!(!Pair::<Quad>::all(Pair::<Quad>::and(above, p.lt(Pair::splat(7.0)))));
     }
 }
