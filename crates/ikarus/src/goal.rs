@@ -98,10 +98,7 @@ impl Goal {
     pub fn is_out_of_reach(&self, chain: &Chain, tolerance: f64) -> bool {
         let base = chain.base();
         match self.orientation {
-            None => {
-                let d = length(self.position - base);
-                d > chain.max_reach() + tolerance || d < chain.min_reach() - tolerance
-            }
+            None => self.position_out_of(chain, Annulus::of(chain, tolerance)),
             Some(phi) => {
                 let lengths = chain.lengths();
                 let (last, rest) = lengths.split_last().expect("a chain has at least one link");
@@ -112,6 +109,30 @@ impl Goal {
                 d > outer + tolerance || d < inner - tolerance
             }
         }
+    }
+}
+
+impl Goal {
+    /// Whether the position lies outside `annulus` around `chain`'s base (what
+    /// [`Goal::is_out_of_reach`] asks of a goal without an orientation; the batch solver asks it
+    /// of every goal with the annulus measured once).
+    pub(crate) fn position_out_of(&self, chain: &Chain, annulus: Annulus) -> bool {
+        let d = length(self.position - chain.base());
+        d > annulus.outer || d < annulus.inner
+    }
+}
+
+/// The distances from a chain's base within which its tip reaches, widened by a tolerance.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Annulus {
+    inner: f64,
+    outer: f64,
+}
+
+impl Annulus {
+    /// `chain`'s reach without limits, widened by `tolerance` on both sides.
+    pub(crate) fn of(chain: &Chain, tolerance: f64) -> Self {
+        Annulus { inner: chain.min_reach() - tolerance, outer: chain.max_reach() + tolerance }
     }
 }
 

@@ -368,8 +368,8 @@ mod tests {
 
     /// `solve_batch` gives what `solve_into` gives goal by goal, bit for bit, whichever path a
     /// goal takes (lanes, or the scalar solver after them): reachable, unreachable and oriented
-    /// goals mixed, batches of every size around the lane count, the outcomes reused across
-    /// batches, with limits on and off, a two-link chain (the closed form) and non-default
+    /// goals mixed, batches of every size around the lane counts (four, and eight in two AVX2
+    /// groups), the outcomes reused across batches, with limits on and off, a two-link chain (the closed form) and non-default
     /// options.
     #[test]
     fn a_batch_gives_every_goal_its_single_solve() {
@@ -379,6 +379,9 @@ mod tests {
             crate::fixtures::seed_arm_limited(),
             crate::fixtures::arm(&[2.0, 1.0]),
             crate::fixtures::random_chain(&mut rng, 9, false),
+            // The shipped seven and (in lengths) tentacle.
+            crate::fixtures::seven_link_arm(),
+            crate::fixtures::arm(&[0.5; 20]),
         ];
         let mut out = Vec::new();
         let mut variants = fast_variants();
@@ -389,7 +392,7 @@ mod tests {
             let mut alone = Solver::new(opts.clone()).unwrap();
             for chain in &chains {
                 let reach = chain.max_reach();
-                for size in [0, 1, 3, 4, 5, 9, 64] {
+                for size in [0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 64] {
                     let goals: Vec<Goal> = (0..size)
                         .map(|k| match k % 7 {
                             0 => Goal::position(2.0 * reach * (rng.unit() - 0.5), 2.0 * reach * (rng.unit() - 0.5))

@@ -2,8 +2,9 @@
 //! orientation, with no limits to enforce and no per-joint rates — the commonest solve — as
 //! one lean loop. Its arithmetic ([`try_step`] and the forward kinematics) is written once over
 //! [`Lanes`]: [`run_one`] drives it for one goal (`f64`, inside
-//! [`attempt`](super::attempt::attempt)), [`run`] for four side by side (AVX2 lanes or
-//! `Quad`s, in [`Solver::solve_batch`](super::Solver::solve_batch), through [`run_lanes`]).
+//! [`attempt`](super::attempt::attempt)), [`run`] for several side by side (eight AVX2 lanes
+//! in two groups, or four `Quad`s, in [`Solver::solve_batch`](super::Solver::solve_batch),
+//! through [`run_lanes`]).
 //!
 //! It runs exactly the arithmetic of the general loop for that case (the loop in `attempt.rs`,
 //! the line search, `compute_delta`, the 2×2 [`damped_2x2`](super::step::damped_2x2) and
@@ -20,6 +21,8 @@
 
 use super::{LimitMode, Method, SolveOptions, Status};
 use crate::chain::Chain;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{Avx, Pair};
 use crate::lanes::{Lanes, Quad, sin_cos};
 
 /// The share of the linearly predicted decrease a step must achieve (the line search's).
@@ -91,6 +94,9 @@ pub(super) struct Buffers<L> {
     delta: Vec<L>,
     /// One lane's angles, handed to `emit`.
     lane_angles: Vec<f64>,
+    /// The start pose's joint points, x and y, which every goal's lane starts from.
+    start_xs: Vec<f64>,
+    start_ys: Vec<f64>,
 }
 
 impl<L> Default for Buffers<L> {
@@ -105,6 +111,8 @@ impl<L> Default for Buffers<L> {
             trial_ys: none(),
             delta: none(),
             lane_angles: Vec::new(),
+            start_xs: Vec::new(),
+            start_ys: Vec::new(),
         }
     }
 }
@@ -119,6 +127,8 @@ impl<L: Lanes> Buffers<L> {
             v.resize(n + 1, zero);
         }
         self.lane_angles.resize(n, 0.0);
+        self.start_xs.resize(n + 1, 0.0);
+        self.start_ys.resize(n + 1, 0.0);
     }
 }
 
@@ -179,41 +189,35 @@ pub(super) fn run<L: Lanes>(
     let cap = opts.max_step;
     let stall = opts.stall;
     let tolerance = opts.tolerance;
+    // The start pose's points, once: a lane's forward kinematics computes the same bits as
+    // the one-lane forward kinematics, so a fresh lane takes them instead of a pass over all.
+    let start_phi = forward(chain, start, &mut st.start_xs, &mut st.start_ys);
 
-    // Fill every lane with a goal, at the start pose.
-    let mut starting = [false; 16];
     loop {
         // Lanes without a goal take the next one, at the start pose.
-        let mut any_new = false;
         for (k, slot) in slots.iter_mut().enumerate() {
-            starting[k] = false;
             if slot.goal.is_none() {
                 if let Some((i, x, y)) = goals.next() {
                     *slot = Slot { goal: Some(i), ..Slot::default() };
                     for (a, &s0) in st.angles.iter_mut().zip(start) {
                         *a = a.with_lane(k, s0);
                     }
+                    for (p, &s0) in st.xs.iter_mut().zip(&st.start_xs) {
+                        *p = p.with_lane(k, s0);
+                    }
+                    for (p, &s0) in st.ys.iter_mut().zip(&st.start_ys) {
+                        *p = p.with_lane(k, s0);
+                    }
+                    phi = phi.with_lane(k, start_phi);
                     tx = tx.with_lane(k, x);
                     ty = ty.with_lane(k, y);
                     mu = mu.with_lane(k, lambda_sq);
                     nu = nu.with_lane(k, 2.0);
-                    starting[k] = true;
-                    any_new = true;
                 }
             }
         }
         if slots.iter().all(|s| s.goal.is_none()) {
             return;
-        }
-        if any_new {
-            // Forward kinematics of the fresh lanes (the others' points are already there:
-            // recomputing them gives the same bits).
-            let p = forward(chain, &st.angles, &mut st.xs, &mut st.ys);
-            for (k, &fresh) in starting.iter().enumerate() {
-                if fresh {
-                    phi = phi.with_lane(k, p.lane(k));
-                }
-            }
         }
 
         // Measure the lanes standing on a new pose, and stop those that are done.
@@ -556,14 +560,17 @@ fn finish<L: Lanes>(
 #[derive(Debug, Clone, Default)]
 pub(super) struct BatchBuffers {
     #[cfg(target_arch = "x86_64")]
-    avx: Buffers<crate::lanes::Avx>,
+    avx: Buffers<Pair<Avx>>,
     quad: Buffers<Quad>,
 }
 
-/// [`run`] four goals at a time: on [`Avx`](crate::lanes::Avx) lanes in a function compiled
-/// for AVX2 where the processor has it (checked at run time), else on [`Quad`] lanes compiled
-/// for the target's baseline (SSE2 on x86-64). Both run the same IEEE operations per lane, so
-/// the results do not depend on which one runs.
+/// [`run`] several goals at a time: eight, in two groups of four [`Avx`] lanes ([`Pair`]), in a
+/// function compiled for AVX2 where the processor has it (checked at run time), else four on
+/// [`Quad`] lanes compiled for the target's baseline (SSE2 on x86-64). Both run the same IEEE
+/// operations per lane, so the results do not depend on which one runs. (Two groups: each
+/// step's dependency chain, the sines of the joints and the 2×2 solve, leaves the floating-point
+/// units idle part of the time, and the second group's independent chain fills them; see the
+/// [lanes' module docs](crate::lanes) for what it measured.)
 pub(super) fn run_lanes(
     chain: &Chain,
     opts: &SolveOptions,
@@ -579,7 +586,7 @@ pub(super) fn run_lanes(
             chain: &Chain,
             opts: &SolveOptions,
             start: &[f64],
-            st: &mut Buffers<crate::lanes::Avx>,
+            st: &mut Buffers<Pair<Avx>>,
             goals: impl Iterator<Item = (usize, f64, f64)>,
             emit: impl FnMut(usize, End<'_>),
         ) {
@@ -598,86 +605,5 @@ pub(super) fn run_lanes(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The goals the bit-for-bit tests (in `model.rs`) use exercise every way out of the fast
-    /// path: reached, at the iteration cap, and handed to the general loop mid-attempt.
-    #[test]
-    fn every_way_out_is_taken() {
-        let mut rng = crate::rng::SplitMix64(5);
-        let chain = crate::fixtures::random_chain(&mut rng, 20, false);
-        let reach = chain.max_reach();
-        let opts = SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() };
-        let goals: Vec<(usize, f64, f64)> = (0..400)
-            .map(|i| match i % 4 {
-                0 => (i, 3.0 * reach * (rng.unit() - 0.5), 3.0 * reach * (rng.unit() - 0.5)),
-                _ => {
-                    let g = crate::fixtures::random_goal(&mut rng, &chain, false);
-                    (i, g.target().x, g.target().y)
-                }
-            })
-            .collect();
-        let mut seen = std::collections::BTreeMap::new();
-        let mut buffers = Buffers::<Quad>::default();
-        let mut emitted = vec![0; goals.len()];
-        let start = chain.start_pose().angles().to_vec();
-        run(&chain, &opts, opts.max_iterations, &start, &mut buffers, goals.iter().copied(), |i, end| {
-            emitted[i] += 1;
-            *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
-        });
-        assert!(emitted.iter().all(|&e| e == 1), "every goal once");
-        assert!(seen.get("reached").copied().unwrap_or(0) >= 290, "{seen:?}");
-        assert!(seen.contains_key("resume"), "{seen:?}");
-        let capped = SolveOptions { max_iterations: 3, ..opts };
-        seen.clear();
-        run(&chain, &capped, capped.max_iterations, &start, &mut buffers, goals.iter().copied(), |_, end| {
-            *seen.entry(end.status.map_or("resume", Status::as_str)).or_insert(0) += 1;
-        });
-        assert!(seen.contains_key("iteration_limit"), "{seen:?}");
-    }
-
-    /// Everything a goal's end hands out, as bits.
-    fn ends<L: Lanes>(chain: &Chain, opts: &SolveOptions, goals: &[(usize, f64, f64)]) -> Vec<Vec<u64>> {
-        let mut buffers = Buffers::<L>::default();
-        let mut out = vec![Vec::new(); goals.len()];
-        let start = chain.start_pose().angles().to_vec();
-        run(chain, opts, opts.max_iterations, &start, &mut buffers, goals.iter().copied(), |i, end| {
-            let status = end.status.map_or(u64::MAX, |s| s as u64);
-            let numbers = [end.error, end.tip.0, end.tip.1, end.phi].into_iter().chain(end.angles.iter().copied());
-            out[i] = [status, u64::from(end.iterations)].into_iter().chain(numbers.map(f64::to_bits)).collect();
-        });
-        out
-    }
-
-    /// The explicit AVX lanes (what `solve_batch` runs on an AVX2 processor) and the portable
-    /// `Quad` lanes (what it runs elsewhere) end every goal alike, bit for bit, one goal per lane
-    /// or many through the same lane.
-    #[cfg(target_arch = "x86_64")]
-    #[test]
-    fn avx_and_portable_lanes_end_every_goal_alike() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            return;
-        }
-        let mut rng = crate::rng::SplitMix64(17);
-        for links in [3, 7, 20] {
-            let chain = crate::fixtures::random_chain(&mut rng, links, false);
-            let reach = chain.max_reach();
-            let goals: Vec<(usize, f64, f64)> =
-                (0..300).map(|i| (i, 2.2 * reach * (rng.unit() - 0.5), 2.2 * reach * (rng.unit() - 0.5))).collect();
-            for opts in [
-                SolveOptions { limits: LimitMode::Ignore, ..SolveOptions::default() },
-                SolveOptions {
-                    limits: LimitMode::Ignore,
-                    max_iterations: 5,
-                    max_step: Some(0.1),
-                    ..SolveOptions::default()
-                },
-            ] {
-                let quad = ends::<Quad>(&chain, &opts, &goals);
-                assert!(quad.iter().all(|e| !e.is_empty()), "every goal ends once");
-                assert_eq!(ends::<crate::lanes::Avx>(&chain, &opts, &goals), quad, "{links} links");
-            }
-        }
-    }
-}
+#[path = "fast_tests.rs"]
+mod tests;

@@ -14,7 +14,7 @@ use super::{Method, OptionsError, Outcome, SolveError, SolveOptions, Status, fas
 use crate::angle::wrap_angle;
 use crate::chain::{Chain, Pose};
 use crate::closed_form::{self, ClosedForm};
-use crate::goal::Goal;
+use crate::goal::{Annulus, Goal};
 use crate::kinematics::{EndEffector, joint_positions_into};
 use crate::math::distance;
 use nalgebra::Point2;
@@ -152,8 +152,9 @@ impl Solver {
     /// caller that keeps `out` across batches allocates nothing once it has grown.
     ///
     /// Where the position-only fast path applies (Levenberg–Marquardt, the default; position
-    /// goals; no limits enforced; no rates; no frames) the goals are solved four at a time in
-    /// SIMD lanes, a lane taking the next goal as soon as its own is reached; a goal that is
+    /// goals; no limits enforced; no rates; no frames) the goals are solved several at a time
+    /// in SIMD lanes (eight, two groups of four AVX2 lanes, where the processor has AVX2; else
+    /// four), a lane taking the next goal as soon as its own is reached; a goal that is
     /// not reached on its first attempt (it needs restarts), a goal out of reach and every
     /// other goal is solved by [`Solver::solve_into`]. The lanes run the scalar solver's
     /// arithmetic operation for operation, so which path a goal takes does not change its
@@ -202,8 +203,8 @@ impl Solver {
             // The lanes take the position goals within reach; the others (oriented, or out of
             // reach, which the lanes could only hand back after a whole attempt) go straight
             // to the scalar solver.
-            let tolerance = opts.tolerance;
-            let in_lanes = |g: &Goal| g.orientation().is_none() && !g.is_out_of_reach(chain, tolerance);
+            let annulus = Annulus::of(chain, opts.tolerance);
+            let in_lanes = |g: &Goal| g.orientation().is_none() && !g.position_out_of(chain, annulus);
             let position_goals =
                 goals.iter().enumerate().filter(|(_, g)| in_lanes(g)).map(|(i, g)| (i, g.target().x, g.target().y));
             rest.extend(goals.iter().enumerate().filter(|(_, g)| !in_lanes(g)).map(|(i, _)| i));
