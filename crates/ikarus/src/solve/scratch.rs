@@ -31,6 +31,10 @@ pub(super) struct Scratch<P, A> {
     /// Whether the last attempt gave up pinned and hopeless (see
     /// [`attempt`](super::attempt::attempt)).
     pub(super) gave_up: bool,
+    /// The attempt paused for [`resume`](super::attempt::resume), if one is (see
+    /// [`Problem::pauses`](super::model::Problem::pauses)), and its pose.
+    pub(super) paused: Option<super::attempt::Paused>,
+    pub(super) paused_pose: Vec<f64>,
 }
 
 impl<P, A: super::algebra::Algebra> Scratch<P, A> {
@@ -46,6 +50,7 @@ impl<P, A: super::algebra::Algebra> Scratch<P, A> {
             &mut self.best,
             &mut self.restart,
             &mut self.best_attempt,
+            &mut self.paused_pose,
         ] {
             v.resize(n, 0.0);
         }
