@@ -6,6 +6,7 @@ use super::line_search::jacobian_step;
 use super::lm::Damping;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
+use super::scratch::Paused;
 use super::step::Stepper;
 use super::{Outcome, Status};
 use crate::limits::Bounds;
@@ -18,38 +19,6 @@ pub(super) const HOPELESS_SHARE: f64 = 1e-3;
 
 /// How many hopeless iterations in a row end an attempt that may give up.
 pub(super) const HOPELESS_WINDOW: u32 = 3;
-
-/// The state of an attempt's loop at the start of an iteration, kept where the attempt
-/// paused (see [`Problem::pauses`]) so that [`resume`] goes on exactly as the attempt would
-/// have run on (its pose is in `s.paused_pose`).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Paused {
-    iteration: u32,
-    still: u32,
-    damping: Damping,
-    skip_damped: bool,
-    prev_merit: f64,
-    last_merit: f64,
-    hopeless: u32,
-    /// The merit where it paused (that of the pose it paused on).
-    merit: f64,
-}
-
-/// A watched attempt paused at its cap whose merit fell below this share of the iteration
-/// before's in its last step converges as Levenberg–Marquardt and damped least squares do
-/// near a solution, faster than linearly (see [`Paused::converging`]).
-pub(super) const CONVERGING_SHARE: f64 = 0.25;
-
-impl Paused {
-    /// Whether the attempt, watched, paused converging: its last step lowered the merit below
-    /// [`CONVERGING_SHARE`] of what it was. On the bench's 7-link `limits-*` sets (seeds 1 and
-    /// 7, 4000 goals), the first attempts that reach their goal after 13 iterations fell to
-    /// 0.00 to 0.10 of it in their twelfth step, while those crawling toward a limit, which
-    /// then stand pinned there, fell to 0.3 to 1.0 of it in most cases.
-    pub(super) fn converging(&self) -> bool {
-        self.merit < CONVERGING_SHARE * self.last_merit
-    }
-}
 
 /// One solve from `start` (clamped into the bounds); writes everything in `out` except the
 /// final status relabelling and the restart count, and returns how it ended.
