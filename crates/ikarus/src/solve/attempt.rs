@@ -6,6 +6,7 @@ use super::line_search::jacobian_step;
 use super::lm::Damping;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
+use super::scratch::Paused;
 use super::step::Stepper;
 use super::{Outcome, Status};
 use crate::limits::Bounds;
@@ -35,12 +36,37 @@ pub(super) const HOPELESS_WINDOW: u32 = 3;
 /// [`HOPELESS_WINDOW`] iterations in a row with a joint held at a limit and its merit falling by
 /// less than [`HOPELESS_SHARE`] ends [`Status::Stalled`] at once, with `s.gave_up` set, rather
 /// than after the stall window.
+///
+/// Paused: where the problem asks ([`Problem::pauses`]), an attempt of a Jacobian method that
+/// stops at its iteration cap or gives up keeps its state in `s.paused` (and its pose in
+/// `s.paused_pose`), and [`resume`] goes on from there.
 pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
+    run(p, start, false, s, out)
+}
+
+/// Goes on with the attempt paused in `s` (see [`attempt`]) under `p` (a larger cap, or
+/// without giving up), as if it had not stopped: the same steps, bit for bit, and
+/// `out.iterations` counts them from its start. Without a paused attempt, the attempt runs
+/// from `start`.
+pub(super) fn resume<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
+    run(p, start, true, s, out)
+}
+
+/// [`attempt`], or [`resume`] when `resuming`.
+fn run<M: Model>(p: &Problem<'_, M>, start: &[f64], resuming: bool, s: &mut ScratchOf<M>, out: &mut Outcome) -> Status {
     s.gave_up = false;
-    let resume = match M::fast_attempt(p, start, s, out) {
-        Taken::Done(status) => return status,
-        Taken::Resume(r) => Some(r),
-        Taken::No => None,
+    // Only an attempt that may pause (or goes on) forgets the paused one: the attempts run
+    // between a pause and its resumption keep it.
+    let paused = if resuming || p.pauses { s.paused.take() } else { None };
+    let paused = paused.filter(|_| resuming);
+    let resume = if paused.is_some() {
+        None
+    } else {
+        match M::fast_attempt(p, start, s, out) {
+            Taken::Done(status) => return status,
+            Taken::Resume(r) => Some(r),
+            Taken::No => None,
+        }
     };
     let (model, goal, opts) = (p.model, p.goal, p.opts);
     let n = model.len();
@@ -49,30 +75,44 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     let angles = &mut pose;
     angles.clear();
     // Where the fast path left off, the pose it stood on is in `s.best`.
-    angles.extend_from_slice(if resume.is_some() { &s.best } else { start });
+    angles.extend_from_slice(if paused.is_some() {
+        &s.paused_pose
+    } else if resume.is_some() {
+        &s.best
+    } else {
+        start
+    });
     p.bounds.clamp_into(angles);
     out.frames.start(n, opts.record_every, opts.max_iterations);
 
     let stepper = Stepper::of(opts.method);
     let mut phi = model.forward_into(angles, &mut s.joints);
     let r = resume.unwrap_or_default();
-    let mut iteration: u32 = r.iteration;
-    let mut still: u32 = r.still;
-    let mut prev_merit = f64::INFINITY;
+    let mut st = paused.unwrap_or(Paused {
+        iteration: r.iteration,
+        still: r.still,
+        damping: if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) },
+        skip_damped: r.damped_failed,
+        prev_merit: f64::INFINITY,
+        last_merit: f64::INFINITY,
+        hopeless: 0,
+        merit: f64::INFINITY,
+    });
     let mut flat = false;
-    let mut damping = if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) };
-    let mut skip_damped = r.damped_failed;
     let mut best_error = f64::INFINITY;
     let watch = M::GIVES_UP_PINNED && p.gives_up_pinned;
-    let (mut last_merit, mut hopeless) = (f64::INFINITY, 0u32);
     let status = loop {
         model.measure(goal, opts, &s.joints, phi, out, &mut s.alg);
         if let Some(k) = opts.record_every {
-            if iteration % k == 0 {
-                out.frames.push(iteration, angles, M::frame_points(&s.joints));
+            if st.iteration % k == 0 {
+                out.frames.push(st.iteration, angles, M::frame_points(&s.joints));
             }
         }
-        if let Some(status) = stop(p, out.error, out.angle_error, still, iteration) {
+        if let Some(status) = stop(p, out.error, out.angle_error, st.still, st.iteration) {
+            if status == Status::IterationLimit && p.pauses {
+                st.merit = s.alg.e_norm_squared();
+                pause(&st, angles, s);
+            }
             break status;
         }
 
@@ -81,22 +121,26 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
                 model.jacobian(goal, opts, &s.joints, &mut s.alg);
                 let current = s.alg.e_norm_squared();
                 if let Some(floor) = M::PROGRESS_FLOOR {
-                    flat = prev_merit - current <= floor * prev_merit;
-                    prev_merit = current;
+                    flat = st.prev_merit - current <= floor * st.prev_merit;
+                    st.prev_merit = current;
                 }
                 if watch {
-                    let slow = current >= last_merit * (1.0 - HOPELESS_SHARE);
-                    hopeless = if slow && pinned(p.bounds, angles) { hopeless + 1 } else { 0 };
-                    last_merit = current;
-                    if hopeless >= HOPELESS_WINDOW {
+                    let slow = current >= st.last_merit * (1.0 - HOPELESS_SHARE);
+                    st.hopeless = if slow && pinned(p.bounds, angles) { st.hopeless + 1 } else { 0 };
+                    st.last_merit = current;
+                    if st.hopeless >= HOPELESS_WINDOW {
                         s.gave_up = true;
+                        if p.pauses {
+                            st.merit = current;
+                            pause(&st, angles, s);
+                        }
                         break Status::Stalled;
                     }
                 }
                 // Where the fast path handed over after every damped try of this iteration
                 // failed, the line search goes on from there, with the transpose step.
-                let damped_failed = std::mem::take(&mut skip_damped);
-                let Some(trial_phi) = jacobian_step(p, rule, damped_failed, current, &mut damping, angles, s) else {
+                let damped_failed = std::mem::take(&mut st.skip_damped);
+                let Some(trial_phi) = jacobian_step(p, rule, damped_failed, current, &mut st.damping, angles, s) else {
                     // No step along this direction lowers the error: the pose cannot move, and
                     // the same pose would give the same direction again.
                     break Status::Stalled;
@@ -120,10 +164,10 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
         std::mem::swap(angles, &mut s.trial);
         std::mem::swap(&mut s.joints, &mut s.trial_joints);
         phi = trial_phi;
-        iteration += 1;
+        st.iteration += 1;
         match opts.stall {
-            Some(st) if moved <= st.epsilon || flat => still += 1,
-            _ => still = 0,
+            Some(stall) if moved <= stall.epsilon || flat => st.still += 1,
+            _ => st.still = 0,
         }
     };
     *out.pose.angles_mut() = pose;
@@ -131,11 +175,18 @@ pub(super) fn attempt<M: Model>(p: &Problem<'_, M>, start: &[f64], s: &mut Scrat
     if !matches!(stepper, Stepper::Jacobian(_)) && status != Status::Reached {
         end_on_best(p, best_error, s, out);
     }
-    out.iterations = iteration;
+    out.iterations = st.iteration;
     if opts.record_every.is_some() {
-        out.frames.push_final(iteration, out.pose.angles(), M::frame_points(&s.joints));
+        out.frames.push_final(st.iteration, out.pose.angles(), M::frame_points(&s.joints));
     }
     status
+}
+
+/// Keeps the loop's state `st` and its pose `angles` in `s` for [`resume`].
+#[cold]
+fn pause<P, A>(st: &Paused, angles: &[f64], s: &mut super::scratch::Scratch<P, A>) {
+    s.paused = Some(*st);
+    s.paused_pose.copy_from_slice(angles);
 }
 
 /// Whether a joint of `angles` is held at an end of its range in `bounds` (where lock and
@@ -292,5 +343,93 @@ mod tests {
             assert!(same >= 500, "{name}: {same} reached alike ({plateaus} left on a plateau)");
             assert!(ended_early >= 5, "{name}: {ended_early} ended early");
         }
+    }
+
+    /// Goals drawn inside the limits of the seven-link arm: an attempt paused at iteration
+    /// `k` (its cap, watched or not) and resumed under the whole cap, unwatched, ends as the
+    /// attempt run whole does, bit for bit (pose, status, iterations); so does one that gave up
+    /// pinned and hopeless, resumed. A resumed attempt that lost any of the loop's state (the
+    /// damping, the stall count) would not.
+    #[test]
+    fn a_paused_attempt_goes_on_as_if_it_had_not_stopped() {
+        let chain = crate::fixtures::seven_link_arm();
+        let start = seven_start();
+        let mut rng = SplitMix64(5);
+        let (mut resumed, mut gave_up) = (0, 0);
+        // The goal of `a_pinned_hopeless_attempt_is_abandoned_early_and_a_restart_reaches`
+        // first (its watched attempt gives up), then goals drawn inside the limits.
+        for i in 0..200 {
+            let goal = if i == 0 {
+                Goal::position(-4.457868754474337, 0.6171882605183886).unwrap()
+            } else {
+                let angles: Vec<f64> =
+                    chain.limits().iter().map(|l| rng.range(l.unwrap().min(), l.unwrap().max())).collect();
+                let tip = crate::kinematics::end_effector(&chain, &angles);
+                Goal::with_orientation(tip.position.x, tip.position.y, tip.orientation).unwrap()
+            };
+            let k = if i == 0 { 1000 } else { 2 + (rng.unit() * 12.0) as u32 };
+            for method in [Method::LevenbergMarquardt, Method::DampedLeastSquares] {
+                let watched = i == 0 || rng.unit() < 0.5;
+                let opts = SolveOptions { method, limits: LimitMode::Lock, ..SolveOptions::default() };
+                let whole = Problem::new(&chain, &goal, &opts);
+                let mut s = Scratch::default();
+                Model::fit(&chain, &mut s);
+                let mut kept = Outcome::default();
+                let alone = attempt(&whole, &start, &mut s, &mut kept);
+                let paused = Problem { max_iterations: k, gives_up_pinned: watched, pauses: true, ..whole };
+                let mut out = Outcome::default();
+                let first = attempt(&paused, &start, &mut s, &mut out);
+                if first != Status::IterationLimit && !s.gave_up {
+                    continue;
+                }
+                gave_up += u32::from(s.gave_up);
+                // Another attempt in between (as the seed's) leaves the paused one alone.
+                let mut other = Outcome::default();
+                attempt(&whole, chain.start_pose().angles(), &mut s, &mut other);
+                let went_on = resume(&whole, &start, &mut s, &mut out);
+                assert_eq!(
+                    (went_on, out.iterations, out.pose.angles()),
+                    (alone, kept.iterations, kept.pose.angles()),
+                    "{method:?} {goal:?} paused at {k}"
+                );
+                resumed += 1;
+            }
+        }
+        assert!(resumed >= 40 && gave_up >= 2, "{resumed} resumed, {gave_up} of them after giving up");
+    }
+
+    /// The probe's new early exit, on a goal of the seven-link arm's bench set: a probe cut
+    /// short crawling (not [`Paused::converging`]) with no joint at a limit goes to the
+    /// region's seed pose at once; the solve reaches the goal within the probe and the seed's
+    /// few iterations, where the first attempt alone (which the solve used to run on first)
+    /// stands pinned far from it.
+    #[test]
+    fn a_crawling_probe_goes_to_the_seed_at_once() {
+        use crate::solve::restarts::PROBE_ITERATIONS;
+        let chain = crate::fixtures::seven_link_arm();
+        let start = seven_start();
+        // A goal of seed 1's limits-position set whose probe crawls from 12.0 to 0.94 (the
+        // last step kept 0.78 of the merit), unpinned at iteration 12; its first attempt alone
+        // stands pinned at 0.28 from the goal.
+        let crawling = Goal::position(-3.8603198272538197, 1.1539168931101147).unwrap();
+        let opts = SolveOptions { limits: LimitMode::Lock, ..SolveOptions::default() };
+        let probe = Problem {
+            max_iterations: PROBE_ITERATIONS,
+            gives_up_pinned: true,
+            pauses: true,
+            ..Problem::new(&chain, &crawling, &opts)
+        };
+        let mut s = Scratch::default();
+        Model::fit(&chain, &mut s);
+        let mut out = Outcome::default();
+        assert_eq!(attempt(&probe, &start, &mut s, &mut out), Status::IterationLimit);
+        assert!(!pinned(chain.bounds(), out.pose.angles()) && !s.paused.unwrap().converging());
+        let (alone, kept, _) = one(&chain, &start, &crawling, Method::LevenbergMarquardt, false);
+        assert!(alone != Status::Reached && kept.error > 0.1, "{alone:?} {}", kept.error);
+        let mut solver = Solver::new(SolveOptions::default()).unwrap();
+        let from = chain.pose(start.clone()).unwrap();
+        let solved = solver.solve(&chain, &from, &crawling).unwrap();
+        assert_eq!((solved.status, solved.restarts), (Status::Reached, 1));
+        assert!(solved.iterations <= PROBE_ITERATIONS + 8, "{}", solved.iterations);
     }
 }

@@ -143,6 +143,10 @@ pub(super) struct Problem<'a, M: Model = Chain> {
     /// [`attempt`](super::attempt::attempt)): only the first attempt run whole after a probe
     /// that was still converging, whose whole run is owed if it gives up (see `restarts`).
     pub(super) gives_up_pinned: bool,
+    /// The attempt, of a Jacobian method, keeps its state where it stops at its cap or gives
+    /// up, for [`resume`](super::attempt::resume) to go on from: only the first attempt of a
+    /// seeded solve (see `restarts`).
+    pub(super) pauses: bool,
 }
 
 // By hand: derived impls would ask `M: Clone`/`M: Copy`, and only references are copied.
@@ -167,6 +171,15 @@ impl<'a, M: Model> Problem<'a, M> {
     /// The context with explicit `bounds` (the mode of `opts` applies unless they are free).
     pub(super) fn with_bounds(model: &'a M, goal: &'a M::Goal, opts: &'a SolveOptions, bounds: Bounds<'a>) -> Self {
         let mode = if bounds.is_free() { LimitMode::Ignore } else { opts.limits };
-        Self { model, goal, opts, bounds, mode, max_iterations: opts.max_iterations, gives_up_pinned: false }
+        Self {
+            model,
+            goal,
+            opts,
+            bounds,
+            mode,
+            max_iterations: opts.max_iterations,
+            gives_up_pinned: false,
+            pauses: false,
+        }
     }
 }

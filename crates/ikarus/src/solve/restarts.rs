@@ -4,7 +4,7 @@
 
 use web_time::Instant;
 
-use super::attempt::{attempt, pinned};
+use super::attempt::{attempt, pinned, resume};
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
 use super::{Method, Outcome, Restarts, Status};
@@ -50,8 +50,10 @@ pub(super) type Seed<'a> = &'a dyn Fn(&mut Vec<f64>) -> bool;
 /// attempt pinned at a limit crawls to its stall at about 0.4 µs an iteration, and up to the
 /// cap of 1000 on the tentacle. With the probe, every goal of these sets that restarts is
 /// reached by restart 1, from the seed pose; the longest solves take 25 iterations (seed arm,
-/// probe included), 30 (tentacle) and 86 (seven, whose slow first attempts are often not yet
-/// held at a limit at iteration 12, and so run whole before the seed).
+/// probe included) and 30 (tentacle). On seven, whose slow first attempts are often not yet
+/// held at a limit at iteration 12, the longest took 86 while a probe cut short unpinned ran
+/// whole before the seed; now that only a converging one goes on (see
+/// [`Paused::converging`](super::scratch::Paused::converging)), 18 (seeds 1 and 7).
 pub(super) const PROBE_ITERATIONS: u32 = 12;
 
 /// Whether a seeded solve with `method` starts with a probe: Levenberg–Marquardt and damped
@@ -76,11 +78,16 @@ fn probes(method: Method) -> bool {
 /// pose the exact region reads off for a goal it judged reachable, see
 /// [`ReachCache::seed_pose`](super::verdict::ReachCache::seed_pose)) and restarts asked for,
 /// the first attempt is (for the methods that [`probes`] names) a probe of at most
-/// [`PROBE_ITERATIONS`], and restart 1 starts from the seed. A probe cut short by its cap
-/// while no joint is held at a limit is converging, not pinned: the first attempt runs again
-/// whole at once, as it would unseeded. One cut short while pinned at a limit is the tail
-/// this is for: the seed's attempt goes first, and restart 1 then runs the first attempt
-/// again whole if the seed's did not reach. Restart 1 has the cap less the probe's iterations. Restart `k ≥ 2` takes the pose
+/// [`PROBE_ITERATIONS`], watched (it gives up once pinned and hopeless, see
+/// [`attempt`](super::attempt::attempt)) and paused where it stops, and restart 1 starts from
+/// the seed. A probe cut short by its cap converging (see
+/// [`Paused::converging`](super::scratch::Paused::converging)) with no joint held at a limit
+/// goes on at once from where it stopped, still watched, as the first attempt runs unseeded.
+/// One that gave up, or was cut short pinned at a limit or crawling, is the tail this is for,
+/// and so is a first attempt that goes on and then gives up: the seed's attempt goes first,
+/// with the cap less the first attempt's iterations so far, and if it does not reach, the
+/// first attempt goes on from where it stopped, unwatched, within restart 1 (its steps are
+/// the unseeded attempt's, bit for bit, none taken twice). Restart `k ≥ 2` takes the pose
 /// [`restart_pose`] gives for `k − 1`. The iteration bound ((1 + attempts) caps) holds, no
 /// solve ends worse than its first attempt alone, every pose an unseeded solve tries is still
 /// tried (but the last), and an animation still starts by looking near the
@@ -95,33 +102,33 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
 ) {
     let (model, goal, opts) = (p.model, p.goal, p.opts);
     let probe = seed.is_some() && opts.restarts.is_some() && p.max_iterations > PROBE_ITERATIONS && probes(opts.method);
-    let first = if probe { Problem { max_iterations: PROBE_ITERATIONS, ..*p } } else { *p };
+    // The probe is the first attempt watched (it gives up once pinned and hopeless) and paused
+    // at its cap or where it gives up, so that it can go on from there (`resume`).
+    let first = if probe {
+        Problem { max_iterations: PROBE_ITERATIONS, gives_up_pinned: true, pauses: true, ..*p }
+    } else {
+        *p
+    };
     let status = attempt(&first, start, s, out);
-    let cut = probe && status == Status::IterationLimit;
+    let cut = probe && (status == Status::IterationLimit || s.gave_up);
     let mut tally = Tally { status, iterations: out.iterations, restarts: 0 };
-    // The probe's iterations come out of restart 1's cap, so that (1 + attempts) caps still
-    // bound the solve; the whole first attempt is owed if the probe was cut short while
-    // pinned at a limit.
-    let mut spent = if cut { PROBE_ITERATIONS } else { 0 };
+    // The first attempt's iterations so far, taken out of restart 1's cap when the rest of it is
+    // owed (the probe gave up, or was cut short while pinned at a limit), so that
+    // (1 + attempts) caps still bound the solve.
+    let mut spent = if cut { out.iterations } else { 0 };
     let mut owed = cut;
-    if cut && !pinned(p.bounds, out.pose.angles()) {
-        // Cut short with no joint held at a limit: converging, not pinned (yet); the first
-        // attempt runs whole at once, as it would unseeded, but watched: one that comes to
-        // stand pinned at a limit, its error all but still, gives up (see `attempt`) and is then
-        // owed as after a probe cut short while pinned, its iterations taken out of restart 1's
-        // cap with the probe's. (If that leaves restart 1 nothing, it runs whole at once.)
-        let watched = Problem { gives_up_pinned: true, ..*p };
-        tally.status = attempt(&watched, start, s, out);
-        tally.iterations += out.iterations;
+    let converging = s.paused.is_some_and(|paused| paused.converging());
+    if cut && !s.gave_up && !pinned(p.bounds, out.pose.angles()) && converging {
+        // Cut short converging (see `Paused::converging`), no joint held at a limit: the first
+        // attempt goes on from where the probe stopped, as it would have run unseeded, but
+        // still watched: one that comes to stand pinned at a limit, its error all but still,
+        // gives up (see `attempt`) and the rest of it is then owed, as after a probe cut
+        // short while pinned or crawling.
+        let watched = Problem { gives_up_pinned: true, pauses: true, ..*p };
+        tally.status = resume(&watched, start, s, out);
+        tally.iterations = out.iterations;
         owed = s.gave_up;
-        if owed {
-            spent += out.iterations;
-            if spent >= p.max_iterations {
-                tally.status = attempt(p, start, s, out);
-                tally.iterations += out.iterations;
-                (owed, spent) = (false, PROBE_ITERATIONS);
-            }
-        }
+        spent = if owed { out.iterations } else { 0 };
     }
     // A solve that stalled or ran out of iterations restarts (one crawling at the cap, as
     // weighted least norm does against a limit, is as stuck as one standing still); restarts
@@ -133,15 +140,14 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
             restart(p, plan, start, s, out, &mut tally);
         } else if owed {
             // (Not seen: a goal the region holds is within the reach.) No restarts follow, so
-            // the first attempt runs to the whole cap, as it would unseeded.
-            tally.status = attempt(p, start, s, out);
-            tally.iterations += out.iterations;
+            // the first attempt goes on to the whole cap, as it would unseeded.
+            tally.status = resume(p, start, s, out);
+            tally.iterations += out.iterations - spent;
         }
     }
-    if spent > 0 && tally.restarts == 0 && opts.record_every.is_some() {
-        // The first attempt ran whole after its probe, from the start pose again: as after
-        // restarts, the frames run from the start pose to the outcome's, numbered by every
-        // iteration.
+    if cut && tally.restarts == 0 && opts.record_every.is_some() {
+        // The first attempt went on after its probe: as after restarts, the frames run from
+        // the start pose to the outcome's, numbered by every iteration.
         join_frames(p, start, tally.iterations, s, out);
     }
     out.iterations = tally.iterations;
@@ -158,9 +164,11 @@ struct Plan<'a> {
     r: Restarts,
     began: Option<Instant>,
     seed: Option<Seed<'a>>,
-    /// The probe's iterations, taken out of restart 1's cap (0 without a probe cut short).
+    /// The first attempt's iterations so far when the rest of it is owed, taken out of
+    /// restart 1's cap (else 0).
     spent: u32,
-    /// The whole first attempt is owed: the probe was cut short while pinned at a limit.
+    /// The rest of the first attempt is owed: it gave up pinned and hopeless, or its probe was
+    /// cut short while pinned at a limit; it goes on from where it stopped (`resume`).
     owed: bool,
 }
 
@@ -178,7 +186,7 @@ fn restart<M: Model>(
     let mut best = (p.model.best_key(p.opts, out, &s.alg), tally.status);
     s.best_attempt.copy_from_slice(out.pose.angles());
     let mut last_is_best = true;
-    // The seed pose (and, without one, the probe's attempt run whole) comes first (see
+    // The seed pose (and, without one, the rest of the first attempt) comes first (see
     // `solve_with_restarts_seeded`); the schedule of `restart_pose` moves along by one.
     let mut shift = 0;
     for k in 1..=r.attempts {
@@ -192,28 +200,30 @@ fn restart<M: Model>(
             debug_assert_eq!(s.restart.len(), p.model.len());
             shift = 1;
         } else if k == 1 && owed {
-            s.restart.copy_from_slice(start);
             shift = 1;
         } else {
             restart_pose(p.bounds, start, r, k - shift, &mut s.restart);
         }
-        p.model.settle_restart(p, k, out, &mut s.restart, &mut s.locked);
+        // (Restart 1 is the rest of the first attempt itself when it is owed and there is no
+        // seed.)
+        let goes_on = k == 1 && owed && !seeded;
+        if !goes_on {
+            p.model.settle_restart(p, k, out, &mut s.restart, &mut s.locked);
+        }
         tally.restarts = k;
-        // After a probe cut short, restart 1 has what the probe left of the cap, and if the
-        // whole first attempt is owed it runs next, within the same restart: every solve stays
+        // When the rest of the first attempt is owed, restart 1 has what it left of the cap,
+        // and the first attempt goes on next, within the same restart: every solve stays
         // within (1 + attempts) caps, and none ends worse than its first attempt would alone.
-        let whole_first = seeded && owed;
-        // (Restart 1 is the whole first attempt itself when it is owed and there is no seed.)
-        let rest = k == 1 && (seeded || !owed);
-        let q = if rest { Problem { max_iterations: p.max_iterations - spent, ..*p } } else { *p };
-        match try_once(&q, s, out, tally, &mut best, &mut last_is_best) {
+        let rest_of_first = seeded && owed;
+        let q = if seeded { Problem { max_iterations: p.max_iterations - spent, ..*p } } else { *p };
+        let first = goes_on.then_some((start, spent));
+        match try_once(&q, first, s, out, tally, &mut best, &mut last_is_best) {
             Next::Reached => return join(p, start, tally, s, out),
             Next::Stop => break,
             Next::Go => {}
         }
-        if whole_first {
-            s.restart.copy_from_slice(start);
-            match try_once(p, s, out, tally, &mut best, &mut last_is_best) {
+        if rest_of_first {
+            match try_once(p, Some((start, spent)), s, out, tally, &mut best, &mut last_is_best) {
                 Next::Reached => return join(p, start, tally, s, out),
                 Next::Stop => break,
                 Next::Go => {}
@@ -240,18 +250,26 @@ enum Next {
     Go,
 }
 
-/// One attempt of the restarts from the pose in `s.restart`, counted into `tally`; remembers
-/// it in `best` (task error and status, pose in `s.best_attempt`) if it is the best so far.
+/// One attempt of the restarts from the pose in `s.restart`, or, given `first` (the start
+/// pose and the iterations it has taken), the rest of the paused first attempt; counted into
+/// `tally`; remembers it in `best` (task error and status, pose in `s.best_attempt`) if it is
+/// the best so far.
 fn try_once<M: Model>(
     q: &Problem<'_, M>,
+    first: Option<(&[f64], u32)>,
     s: &mut ScratchOf<M>,
     out: &mut Outcome,
     tally: &mut Tally,
     best: &mut (f64, Status),
     last_is_best: &mut bool,
 ) -> Next {
-    tally.status = attempt_from_restart(q, s, out);
-    tally.iterations += out.iterations;
+    if let Some((start, spent)) = first {
+        tally.status = resume(q, start, s, out);
+        tally.iterations += out.iterations - spent;
+    } else {
+        tally.status = attempt_from_restart(q, s, out);
+        tally.iterations += out.iterations;
+    }
     if tally.status == Status::Reached {
         return Next::Reached;
     }
@@ -406,10 +424,10 @@ mod tests {
         }
     }
 
-    /// A seeded solve whose probe is cut short by [`PROBE_ITERATIONS`] and whose seed gives
-    /// nothing runs the first attempt again, whole: at once if no joint was held at a limit
-    /// when it was cut, else as restart 1. Either way it ends where the unseeded solve ends,
-    /// with the probe's iterations counted on top.
+    /// A seeded solve whose probe is cut short by [`PROBE_ITERATIONS`] (or gives up) and whose
+    /// seed gives nothing goes on with the first attempt from where the probe stopped: at once
+    /// if it was converging with no joint held at a limit, else as restart 1. Either way it
+    /// ends where the unseeded solve ends, in as many iterations: none is taken twice.
     #[test]
     fn a_cut_probe_without_a_seed_pose_runs_the_first_attempt_again() {
         use crate::solve::scratch::Scratch;
@@ -436,8 +454,8 @@ mod tests {
             solve_with_restarts_seeded(&p, chain.start_pose().angles(), None, Some(&nothing), &mut s, &mut out);
             finish(&p, &mut s, &mut out);
             assert_eq!((out.pose.angles(), out.status), (expected.pose.angles(), Status::Reached), "{goal:?}");
-            // Pinned at a limit when cut, the first attempt runs again as restart 1; else at once.
-            assert_eq!(out.iterations, expected.iterations + PROBE_ITERATIONS, "{goal:?}");
+            // Not converging when cut, the first attempt goes on as restart 1; else at once.
+            assert_eq!(out.iterations, expected.iterations, "{goal:?}");
             assert!(out.restarts <= 1, "{goal:?}: {out:?}");
             pinned_cuts += out.restarts;
             checked += 1;
