@@ -311,11 +311,7 @@ mod tests {
             let mut rng = SplitMix64(27);
             let (mut same, mut plateaus, mut ended_early) = (0, 0, 0);
             for _ in 0..300 {
-                let angles: Vec<f64> = chain
-                    .limits()
-                    .iter()
-                    .map(|l| l.map_or(rng.range(-3.0, 3.0), |l| rng.range(l.min(), l.max())))
-                    .collect();
+                let angles = super::super::test_support::pose_within_limits(&chain, &mut rng);
                 let tip = crate::kinematics::end_effector(&chain, &angles);
                 let goal = if rng.unit() < 0.5 {
                     Goal::with_orientation(tip.position.x, tip.position.y, tip.orientation).unwrap()

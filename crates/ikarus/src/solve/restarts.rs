@@ -402,11 +402,7 @@ mod tests {
             let mut plain = Solver::new(SolveOptions { reach_verdict: false, ..SolveOptions::default() }).unwrap();
             let (mut restarted, mut plain_restarts) = (0, 0);
             for _ in 0..400 {
-                let angles: Vec<f64> = chain
-                    .limits()
-                    .iter()
-                    .map(|l| l.map_or(rng.range(-3.0, 3.0), |l| rng.range(l.min(), l.max())))
-                    .collect();
+                let angles = super::super::test_support::pose_within_limits(&chain, &mut rng);
                 let tip = crate::kinematics::end_effector(&chain, &angles).position;
                 let goal = Goal::position(tip.x, tip.y).unwrap();
                 let out = seeded.solve(&chain, chain.start_pose(), &goal).unwrap();

@@ -102,3 +102,18 @@ pub(super) fn success_rates(method: Method, seed: u64, limited: bool, oriented: 
         assert_eq!(reached, want, "{name} n={n} limits={limited} orientation={oriented}: goals reached of {total}");
     }
 }
+
+/// A pose inside `chain`'s limits (a free joint in [−3, 3)) as the solver's restart tests draw
+/// their goals' poses. Each joint draws a free angle first, whether it is limited or not, so a
+/// limited joint takes two numbers from `rng`: the goal sets are the ones those tests were
+/// written and measured with.
+pub(super) fn pose_within_limits(chain: &Chain, rng: &mut SplitMix64) -> Vec<f64> {
+    chain
+        .limits()
+        .iter()
+        .map(|l| {
+            let free = rng.range(-3.0, 3.0);
+            l.map_or(free, |l| rng.range(l.min(), l.max()))
+        })
+        .collect()
+}
