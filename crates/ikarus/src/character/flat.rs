@@ -91,7 +91,7 @@ pub(crate) fn subtree(links: &[Link], top: usize) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::character::world::{Bones, Kept, Trig, world_transform};
+    use crate::character::world::{Bones, Trig, world_transform};
     use crate::character::{Affine, Placement};
     use crate::rng::SplitMix64;
 
@@ -165,7 +165,7 @@ mod tests {
                     below: &mut below,
                     trig: &mut trig,
                 };
-                bones.first_pass(None, &mut vec![Kept::NONE; n], true);
+                bones.update_all();
                 let mut want: Vec<Affine> = Vec::with_capacity(n);
                 for (i, link) in links.iter().enumerate() {
                     let parent = (link.parent != ROOT).then(|| want[link.parent as usize]);

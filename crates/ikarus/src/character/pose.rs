@@ -4,7 +4,7 @@
 use super::ik;
 use super::timeline;
 use super::timeline::Reader;
-use super::world::{Affine, BoneTrig, Bones, Kept, Trig};
+use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
 use thiserror::Error;
 
@@ -64,10 +64,6 @@ pub struct Posed {
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
     /// before the time last asked: where the next time's key is looked for first.
     keys: Vec<u32>,
-    /// Per bone, its world transform from the last pose's first pass and what it came from.
-    kept: Vec<Kept>,
-    /// The skeleton's placement in the last pose's first pass, as bits.
-    kept_placement: [u64; 4],
 }
 
 impl Posed {
@@ -133,25 +129,6 @@ impl Posed {
         };
         (bones, &self.length, &self.settings)
     }
-
-    /// The first pass of a pose of `c` (see [`Bones::first_pass`]), the `skip`ped bones left.
-    fn first_pass(&mut self, c: &Character, skip: Option<&[bool]>) {
-        let p = c.placement;
-        let placement = [p.position[0], p.position[1], p.scale[0], p.scale[1]].map(f64::to_bits);
-        let same_placement = placement == self.kept_placement;
-        self.kept_placement = placement;
-        self.kept.resize(c.bones.len(), Kept::NONE);
-        let mut bones = Bones {
-            bones: &c.bones,
-            links: &c.flat.links,
-            placement: p,
-            local: &mut self.local,
-            world: &mut self.world,
-            below: &mut self.below,
-            trig: &mut self.trig,
-        };
-        bones.first_pass(skip, &mut self.kept, same_placement);
-    }
 }
 
 impl Character {
@@ -190,8 +167,12 @@ impl Character {
                 }
             }
         }
-        out.first_pass(self, request.targets.is_empty().then_some(&self.deferred[..]));
         let (mut bones, _, settings) = out.bones(self);
+        if request.targets.is_empty() {
+            bones.update_all_but(&self.deferred);
+        } else {
+            bones.update_all();
+        }
         for &(bone, [x, y]) in request.targets {
             let [lx, ly] = bones.parent_world(bone).to_local(x, y).ok_or(PoseError::SingularParent(bone))?;
             bones.local[bone].x = lx;

@@ -227,37 +227,6 @@ fn world_transform_memo(
     Affine { x, y, ..m }
 }
 
-/// A bone's world transform from the first pass of the last pose, and what it was computed
-/// from (see [`Bones::first_pass`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Kept {
-    local: LocalTransform,
-    link: Link,
-    world: Affine,
-    /// Whether `world` was computed from `local` and `link` in the last pose's first pass.
-    valid: bool,
-    /// In this pose's first pass: whether the bone kept `world` (so its children may too).
-    pub(crate) same: bool,
-}
-
-impl Kept {
-    /// Nothing kept.
-    pub(crate) const NONE: Kept = Kept {
-        local: LocalTransform { x: 0.0, y: 0.0, rotation: 0.0, scale_x: 1.0, scale_y: 1.0, shear_x: 0.0, shear_y: 0.0 },
-        link: Link { parent: ROOT, inherit: Inherit::Normal },
-        world: Affine { a: 1.0, b: 0.0, c: 0.0, d: 1.0, x: 0.0, y: 0.0 },
-        valid: false,
-        same: false,
-    };
-}
-
-/// Whether two local transforms have the same bits.
-fn same_bits(a: &LocalTransform, b: &LocalTransform) -> bool {
-    let bits =
-        |t: &LocalTransform| [t.x, t.y, t.rotation, t.scale_x, t.scale_y, t.shear_x, t.shear_y].map(f64::to_bits);
-    bits(a) == bits(b)
-}
-
 /// A character's bones being posed: their local transforms (which posing changes) and their
 /// world transforms (kept up to date by [`Bones::update_below`]).
 pub(crate) struct Bones<'a> {
@@ -304,27 +273,19 @@ impl Bones<'_> {
         self.world[i] = w;
     }
 
-    /// The first pass of a pose: every bone's world transform, parent first, but the
-    /// `skip`ped ones (see [`deferred`]), which the constraints' updates compute before anything
-    /// reads them. A bone whose local transform and link have the same bits as in the last
-    /// pose's first pass, below a parent kept too (or a root, the skeleton's placement the same
-    /// bits, `same_placement`), keeps the world transform it had then in `kept`: the same bits
-    /// it would compute again. The others are computed and kept.
-    pub(crate) fn first_pass(&mut self, skip: Option<&[bool]>, kept: &mut [Kept], same_placement: bool) {
+    /// Recomputes every bone's world transform, parent first.
+    pub(crate) fn update_all(&mut self) {
         for i in 0..self.links.len() {
-            if skip.is_some_and(|d| d[i]) {
-                kept[i] = Kept::NONE;
-                continue;
-            }
-            let link = self.links[i];
-            let parent_same = if link.parent == ROOT { same_placement } else { kept[link.parent as usize].same };
-            let k = &mut kept[i];
-            if parent_same && k.valid && k.link == link && same_bits(&k.local, &self.local[i]) {
-                self.world[i] = k.world;
-                k.same = true;
-            } else {
+            self.update(i);
+        }
+    }
+
+    /// Recomputes every bone's world transform but the `deferred` ones (see [`deferred`]),
+    /// which the constraints' updates compute before anything reads them.
+    pub(crate) fn update_all_but(&mut self, deferred: &[bool]) {
+        for (i, &d) in deferred.iter().enumerate() {
+            if !d {
                 self.update(i);
-                *k = Kept { local: self.local[i], link, world: self.world[i], valid: true, same: false };
             }
         }
     }
