@@ -232,8 +232,15 @@ fn handedness(frame: &Affine) -> f64 {
 /// `a = (l1² − l2² + d²)/(2d)`, `h = √(l1² − a²)`, on the counter-clockwise side (in y-up
 /// terms) when `bendPositive` XOR the parent's parent's frame mirrors, else on the clockwise
 /// side; out of reach the parent points the elbow straight at the target. The child then aims
-/// at the target. Each turn is blended by the weight (`mix`).
-pub(crate) fn dragonbones_two(v: &mut Bones, (parent, child): (usize, usize), target: [f64; 2], s: &IkSettings) {
+/// at the target. Each turn is blended by the weight (`mix`). `below` is the parent and every
+/// bone below it, in update order (recomputed between the two turns).
+pub(crate) fn dragonbones_two(
+    v: &mut Bones,
+    (parent, child): (usize, usize),
+    below: &[u32],
+    target: [f64; 2],
+    s: &IkSettings,
+) {
     if s.mix == 0.0 {
         return;
     }
@@ -255,7 +262,7 @@ pub(crate) fn dragonbones_two(v: &mut Bones, (parent, child): (usize, usize), ta
     };
     let turn = wrap(math::atan2(elbow[1], elbow[0]) - math::atan2(ey, ex));
     v.local[parent].rotation += turn * handedness(&pp) * s.mix;
-    v.update_below(parent);
+    v.update_listed(below);
     let e = v.world[child];
     let turn = wrap(math::atan2(target[1] - e.y, target[0] - e.x) - e.rotation());
     v.local[child].rotation += turn * handedness(&v.world[parent]) * s.mix;

@@ -13,6 +13,7 @@
 
 use thiserror::Error;
 
+mod flat;
 mod ik;
 mod pose;
 mod timeline;
@@ -40,6 +41,8 @@ pub struct Character {
     curves: timeline::Curves,
     /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
     deferred: Vec<bool>,
+    /// The bones and constraints as posing reads them.
+    flat: flat::Flat,
 }
 
 /// The skeleton's own position and scale: every world transform is the bones' own transform
@@ -513,7 +516,8 @@ impl Character {
         order.sort_by_key(|&k| (constraints[k].order, k));
         let curves = timeline::Curves::of(&clips);
         let deferred = world::deferred(&bones, &constraints, &order);
-        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred })
+        let flat = flat::Flat::of(&bones, &constraints);
+        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred, flat })
     }
 
     /// The bones, parent first.

@@ -120,6 +120,7 @@ impl Posed {
     pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [IkSettings]) {
         let bones = Bones {
             bones: &c.bones,
+            links: &c.flat.links,
             placement: c.placement,
             local: &mut self.local,
             world: &mut self.world,
@@ -142,13 +143,13 @@ impl Character {
         self.check(request)?;
         let n = self.bones.len();
         out.local.clear();
-        out.local.extend(self.bones.iter().map(|b| b.setup));
+        out.local.extend_from_slice(&self.flat.setup);
         out.length.clear();
-        out.length.extend(self.bones.iter().map(|b| b.length));
+        out.length.extend_from_slice(&self.flat.length);
         out.world.resize(n, Affine::default());
         out.below.resize(n, false);
         out.settings.clear();
-        out.settings.extend(self.constraints.iter().map(|k| k.setup));
+        out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
 
         if let Some((c, time)) = request.clip {
@@ -183,23 +184,22 @@ impl Character {
             let s = &settings[k];
             let w = bones.world[c.target];
             let target = [w.x, w.y];
-            let top = match (c.bones, c.rule) {
+            // The constraint's top bone and every bone below it, in update order.
+            let below = self.flat.below(k);
+            match (c.bones, c.rule) {
                 (IkBones::One(b), _) => {
                     let s =
                         if c.rule == IkRule::Spine { *s } else { IkSettings { compress: false, stretch: false, ..*s } };
                     ik::spine_one(&mut bones, b, target, &s, c.uniform);
-                    b
                 }
                 (IkBones::Two { parent, child }, IkRule::Spine) => {
                     ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
-                    parent
                 }
                 (IkBones::Two { parent, child }, IkRule::DragonBones) => {
-                    ik::dragonbones_two(&mut bones, (parent, child), target, s);
-                    parent
+                    ik::dragonbones_two(&mut bones, (parent, child), below, target, s);
                 }
-            };
-            bones.update_below(top);
+            }
+            bones.update_listed(below);
         }
         Ok(())
     }

@@ -19,6 +19,7 @@
 //!
 //! A root bone's parent is the skeleton itself: `P = S`, `o` = the skeleton's position.
 
+use super::flat::{Link, ROOT};
 use super::{CharacterBone, IkBones, IkConstraint, Inherit, LocalTransform, Placement};
 use crate::math;
 use std::f64::consts::FRAC_PI_2;
@@ -230,6 +231,8 @@ fn world_transform_memo(
 /// world transforms (kept up to date by [`Bones::update_below`]).
 pub(crate) struct Bones<'a> {
     pub(crate) bones: &'a [CharacterBone],
+    /// Each bone's parent and inherit mode, side by side.
+    pub(crate) links: &'a [Link],
     pub(crate) placement: Placement,
     pub(crate) local: &'a mut [LocalTransform],
     pub(crate) world: &'a mut [Affine],
@@ -242,23 +245,37 @@ pub(crate) struct Bones<'a> {
 impl Bones<'_> {
     /// The world transform of bone `i`'s parent (the skeleton's frame for a root).
     pub(crate) fn parent_world(&self, i: usize) -> Affine {
-        match self.bones[i].parent {
-            Some(p) => self.world[p],
-            None => Affine::of_placement(self.placement),
+        match self.links[i].parent {
+            ROOT => Affine::of_placement(self.placement),
+            p => self.world[p as usize],
         }
     }
 
-    /// Recomputes bone `i`'s world transform from its local one and its parent's world one.
+    /// Recomputes bone `i`'s world transform from its local one and its parent's world one:
+    /// [`world_transform_memo`], with the parent read in place and the common case (a child
+    /// inheriting normally) spelled out, the same operations in the same order.
+    #[inline]
     fn update(&mut self, i: usize) {
-        let b = &self.bones[i];
-        let parent = b.parent.map(|p| self.world[p]);
-        self.world[i] =
-            world_transform_memo(&self.local[i], b.inherit, parent.as_ref(), self.placement, &mut self.trig[i]);
+        let Link { parent, inherit } = self.links[i];
+        let t = &self.local[i];
+        let trig = &mut self.trig[i];
+        let w = if parent == ROOT {
+            world_transform_memo(t, inherit, None, self.placement, trig)
+        } else {
+            let p = &self.world[parent as usize];
+            if inherit == Inherit::Normal {
+                let [x, y] = p.to_world(t.x, t.y);
+                Affine { x, y, ..p.times(&local_matrix(t, t.rotation, trig)) }
+            } else {
+                world_transform_memo(t, inherit, Some(p), self.placement, trig)
+            }
+        };
+        self.world[i] = w;
     }
 
     /// Recomputes every bone's world transform, parent first.
     pub(crate) fn update_all(&mut self) {
-        for i in 0..self.bones.len() {
+        for i in 0..self.links.len() {
             self.update(i);
         }
     }
@@ -266,8 +283,18 @@ impl Bones<'_> {
     /// Recomputes every bone's world transform but the `deferred` ones (see [`deferred`]),
     /// which the constraints' updates compute before anything reads them.
     pub(crate) fn update_all_but(&mut self, deferred: &[bool]) {
-        for (i, _) in deferred.iter().enumerate().filter(|(_, d)| !**d) {
-            self.update(i);
+        for (i, &d) in deferred.iter().enumerate() {
+            if !d {
+                self.update(i);
+            }
+        }
+    }
+
+    /// Recomputes the world transforms of `bones`, in this order: a bone and every bone below
+    /// it, parents first (a constraint's subtree, [`super::flat::Flat::below`]).
+    pub(crate) fn update_listed(&mut self, bones: &[u32]) {
+        for &j in bones {
+            self.update(j as usize);
         }
     }
 
@@ -277,8 +304,9 @@ impl Bones<'_> {
         self.below[i..].fill(false);
         self.below[i] = true;
         self.update(i);
-        for j in i + 1..self.bones.len() {
-            if self.bones[j].parent.is_some_and(|p| p >= i && self.below[p]) {
+        for j in i + 1..self.links.len() {
+            let p = self.links[j].parent;
+            if p != ROOT && p as usize >= i && self.below[p as usize] {
                 self.below[j] = true;
                 self.update(j);
             }
