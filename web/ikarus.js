@@ -106,11 +106,7 @@ export const version = () => handles().api.version();
  */
 export function call(path, body = "") {
   if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  try {
-    return wasm.call(path, body);
-  } catch (e) {
-    throw failure(e);
-  }
+  return guarded(full, () => wasm.call(path, body));
 }
 
 /** The IkarusError of what module `m` (default: the full one) threw: a refusal (its Problem), or a trap. */
@@ -127,8 +123,13 @@ function failure(e, m = full) {
 
 /** The typed handle `make(api)` makes in module `m`, or the IkarusError it refused with. */
 function handle(m, make) {
+  return guarded(m, () => make(m.api));
+}
+
+/** What `f()` returns, or the IkarusError of what module `m` threw (`failure`). */
+function guarded(m, f) {
   try {
-    return make(m.api);
+    return f();
   } catch (e) {
     throw failure(e, m);
   }
@@ -202,11 +203,7 @@ export class Chain {
 
   /** `solve` through the glue's copies: what refuses an `out` that is not one, with the module's line. */
   #solveGlue(x, y, out) {
-    try {
-      return this.#h.solve(x, y, out);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    return guarded(this.#m, () => this.#h.solve(x, y, out));
   }
 
   /**
@@ -217,12 +214,7 @@ export class Chain {
    * @returns {number}
    */
   solveHere(x, y) {
-    let code;
-    try {
-      code = this.#h.solveHere(x, y);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    const code = guarded(this.#m, () => this.#h.solveHere(x, y));
     this.#view = viewOf(this.#m, this.#view, this.#ptr, this.recordLen);
     return code;
   }
@@ -240,11 +232,7 @@ export class Chain {
    * @param {Float64Array} out
    */
   solveBatch(goals, out) {
-    try {
-      this.#h.solveBatch(goals, out);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    guarded(this.#m, () => this.#h.solveBatch(goals, out));
   }
 
   /**
@@ -263,12 +251,7 @@ export class Chain {
    * @returns {number}
    */
   followHere(startDeg, x, y, maxStepDeg) {
-    let code;
-    try {
-      code = this.#h.followHere(startDeg, x, y, maxStepDeg);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    const code = guarded(this.#m, () => this.#h.followHere(startDeg, x, y, maxStepDeg));
     this.#follow = viewOf(this.#m, this.#follow, this.#followPtr, this.followLen);
     return code;
   }
@@ -318,11 +301,7 @@ export class Character {
 
   /** @param {string | undefined} name the animation sampled from now on (undefined: none) */
   setAnimation(name) {
-    try {
-      this.#h.setAnimation(name);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    guarded(this.#m, () => this.#h.setAnimation(name));
   }
 
   /**
@@ -333,11 +312,7 @@ export class Character {
    */
   pose(time, targets, out) {
     if (!(out instanceof Float64Array) || out.length < this.poseLen) {
-      try {
-        this.#h.pose(time, targets, out);
-      } catch (e) {
-        throw failure(e, this.#m);
-      }
+      guarded(this.#m, () => this.#h.pose(time, targets, out));
       return;
     }
     out.set(this.poseHere(time, targets));
@@ -351,11 +326,7 @@ export class Character {
    * @returns {Float64Array}
    */
   poseHere(time, targets) {
-    try {
-      this.#h.poseHere(time, targets);
-    } catch (e) {
-      throw failure(e, this.#m);
-    }
+    guarded(this.#m, () => this.#h.poseHere(time, targets));
     this.#view = viewOf(this.#m, this.#view, this.#ptr, this.poseLen);
     return this.#view;
   }
