@@ -3,10 +3,9 @@
 use super::algebra::Algebra;
 use super::fast::Taken;
 use super::line_search::jacobian_step;
-use super::lm::Damping;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::scratch::Paused;
+use super::scratch::LoopState;
 use super::step::Stepper;
 use super::{Outcome, Status};
 use crate::limits::Bounds;
@@ -87,17 +86,7 @@ fn run<M: Model>(p: &Problem<'_, M>, start: &[f64], resuming: bool, s: &mut Scra
 
     let stepper = Stepper::of(opts.method);
     let mut phi = model.forward_into(angles, &mut s.joints);
-    let r = resume.unwrap_or_default();
-    let mut st = paused.unwrap_or(Paused {
-        iteration: r.iteration,
-        still: r.still,
-        damping: if resume.is_some() { Damping::resume(r.mu, r.nu) } else { Damping::new(opts.lambda) },
-        skip_damped: r.damped_failed,
-        prev_merit: f64::INFINITY,
-        last_merit: f64::INFINITY,
-        hopeless: 0,
-        merit: f64::INFINITY,
-    });
+    let mut st = paused.or(resume).unwrap_or_else(|| LoopState::start(opts.lambda));
     let mut flat = false;
     let mut best_error = f64::INFINITY;
     let watch = M::GIVES_UP_PINNED && p.gives_up_pinned;
@@ -184,7 +173,7 @@ fn run<M: Model>(p: &Problem<'_, M>, start: &[f64], resuming: bool, s: &mut Scra
 
 /// Keeps the loop's state `st` and its pose `angles` in `s` for [`resume`].
 #[cold]
-fn pause<P, A>(st: &Paused, angles: &[f64], s: &mut super::scratch::Scratch<P, A>) {
+fn pause<P, A>(st: &LoopState, angles: &[f64], s: &mut super::scratch::Scratch<P, A>) {
     s.paused = Some(*st);
     s.paused_pose.copy_from_slice(angles);
 }
@@ -395,7 +384,7 @@ mod tests {
     }
 
     /// The probe's new early exit, on a goal of the seven-link arm's bench set: a probe cut
-    /// short crawling (not [`Paused::converging`]) with no joint at a limit goes to the
+    /// short crawling (not [`LoopState::converging`]) with no joint at a limit goes to the
     /// region's seed pose at once; the solve reaches the goal within the probe and the seed's
     /// few iterations, where the first attempt alone (which the solve used to run on first)
     /// stands pinned far from it.

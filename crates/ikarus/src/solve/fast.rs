@@ -13,12 +13,14 @@
 //! leave the common case (the damped step falls back to the pseudoinverse, every damped try
 //! fails and the line search turns to the transpose direction, a step or a distance leaves the
 //! normal numbers), [`run_one`] hands the attempt to the general loop at the start of that
-//! iteration ([`Resume`]), and [`run`] gives the goal back for `solve_into` to solve whole.
+//! iteration (a [`LoopState`]), and [`run`] gives the goal back for `solve_into` to solve whole.
 //!
 //! Per iteration it keeps, per goal, only the angles, the joint points and the task error: no
 //! Jacobian matrix (its columns are differences of joint points, formed where they are used),
 //! no temporary vectors, no dynamic dispatch.
 
+use super::lm::Damping;
+use super::scratch::LoopState;
 use super::{LimitMode, Method, SolveOptions, Status};
 use crate::chain::Chain;
 #[cfg(target_arch = "x86_64")]
@@ -56,19 +58,6 @@ pub(super) struct End<'a> {
     pub(super) phi: f64,
 }
 
-/// The state of an attempt at the start of an iteration, from which the general loop goes on
-/// exactly as if it had run the attempt from its start.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct Resume {
-    pub(super) iteration: u32,
-    pub(super) still: u32,
-    pub(super) mu: f64,
-    pub(super) nu: f64,
-    /// This iteration's damped tries were all rejected (μ and ν are as they left them): the
-    /// general loop goes on with the line search's transpose step.
-    pub(super) damped_failed: bool,
-}
-
 /// What the fast path did with an attempt.
 pub(super) enum Taken {
     /// It does not apply: the general loop runs the attempt.
@@ -77,7 +66,7 @@ pub(super) enum Taken {
     Done(Status),
     /// It left the common case at the start of an iteration: the general loop goes on from
     /// there (the pose is in the scratch's `best`).
-    Resume(Resume),
+    Resume(LoopState),
 }
 
 /// The state of the goals in the lanes, struct of arrays (one `L` per joint), kept between
@@ -427,7 +416,8 @@ pub(super) struct OneEnd {
     pub(super) iterations: u32,
     pub(super) error: f64,
     pub(super) phi: f64,
-    pub(super) resume: Resume,
+    /// Where the general loop goes on from, if it must.
+    pub(super) resume: LoopState,
 }
 
 /// One goal's attempt on the fast path: [`run`]'s arithmetic (the same [`try_step`] and
@@ -450,10 +440,16 @@ pub(super) fn run_one(
     loop {
         let (dx, dy) = (tx - st.xs[n], ty - st.ys[n]);
         let current = dx * dx + dy * dy;
-        let resume = Resume { iteration, still, mu, nu, damped_failed: false };
-        let leave = OneEnd { status: None, iterations: iteration, error: f64::NAN, phi, resume };
+        // The general loop goes on from this iteration (built only where it must).
+        let leave = |mu, nu, damped_failed| OneEnd {
+            status: None,
+            iterations: iteration,
+            error: f64::NAN,
+            phi,
+            resume: LoopState::at(iteration, still, Damping::resume(mu, nu), damped_failed),
+        };
         if !(current.is_finite() && current >= f64::MIN_POSITIVE) {
-            return leave;
+            return leave(mu, nu, false);
         }
         let error = current.sqrt();
         let status = if error <= opts.tolerance {
@@ -468,7 +464,7 @@ pub(super) fn run_one(
             None
         };
         if status.is_some() {
-            return OneEnd { status, iterations: iteration, error, phi, resume };
+            return OneEnd { status, error, ..leave(mu, nu, false) };
         }
         let mut tries = 0;
         loop {
@@ -482,11 +478,11 @@ pub(super) fn run_one(
                 opts.max_step,
             );
             if !t.damped || t.det == 0.0 {
-                return leave;
+                return leave(mu, nu, false);
             }
             if t.accepted {
                 if !t.trial_phi.is_finite() {
-                    return leave;
+                    return leave(mu, nu, false);
                 }
                 let moved = st.angles.iter().zip(&st.trial).fold(0.0f64, |m, (a, t)| m.max((t - a).abs()));
                 std::mem::swap(&mut st.angles, &mut st.trial);
@@ -504,8 +500,7 @@ pub(super) fn run_one(
             (mu, nu) = (t.rejected_mu, nu * 2.0);
             tries += 1;
             if tries > opts.backtrack {
-                let resume = Resume { mu, nu, damped_failed: true, ..resume };
-                return OneEnd { resume, ..leave };
+                return leave(mu, nu, true);
             }
         }
     }

@@ -53,7 +53,7 @@ pub(super) type Seed<'a> = &'a dyn Fn(&mut Vec<f64>) -> bool;
 /// probe included) and 30 (tentacle). On seven, whose slow first attempts are often not yet
 /// held at a limit at iteration 12, the longest took 86 while a probe cut short unpinned ran
 /// whole before the seed; now that only a converging one goes on (see
-/// [`Paused::converging`](super::scratch::Paused::converging)), 18 (seeds 1 and 7).
+/// [`LoopState::converging`](super::scratch::LoopState::converging)), 18 (seeds 1 and 7).
 pub(super) const PROBE_ITERATIONS: u32 = 12;
 
 /// Whether a seeded solve with `method` starts with a probe: Levenberg–Marquardt and damped
@@ -81,7 +81,7 @@ fn probes(method: Method) -> bool {
 /// [`PROBE_ITERATIONS`], watched (it gives up once pinned and hopeless, see
 /// [`attempt`](super::attempt::attempt)) and paused where it stops, and restart 1 starts from
 /// the seed. A probe cut short by its cap converging (see
-/// [`Paused::converging`](super::scratch::Paused::converging)) with no joint held at a limit
+/// [`LoopState::converging`](super::scratch::LoopState::converging)) with no joint held at a limit
 /// goes on at once from where it stopped, still watched, as the first attempt runs unseeded.
 /// One that gave up, or was cut short pinned at a limit or crawling, is the tail this is for,
 /// and so is a first attempt that goes on and then gives up: the seed's attempt goes first,
@@ -119,7 +119,7 @@ pub(super) fn solve_with_restarts_seeded<M: Model>(
     let mut owed = cut;
     let converging = s.paused.is_some_and(|paused| paused.converging());
     if cut && !s.gave_up && !pinned(p.bounds, out.pose.angles()) && converging {
-        // Cut short converging (see `Paused::converging`), no joint held at a limit: the first
+        // Cut short converging (see `LoopState::converging`), no joint held at a limit: the first
         // attempt goes on from where the probe stopped, as it would have run unseeded, but
         // still watched: one that comes to stand pinned at a limit, its error all but still,
         // gives up (see `attempt`) and the rest of it is then owed, as after a probe cut

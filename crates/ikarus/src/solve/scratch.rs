@@ -1,5 +1,5 @@
 //! [`Scratch`]: the buffers one [`Solver`](super::Solver) reuses across iterations and
-//! solves, so that the loop does not allocate, and [`Paused`], an attempt's state kept there.
+//! solves, so that the loop does not allocate, and [`LoopState`], an attempt's state kept there.
 
 use super::lm::Damping;
 
@@ -35,7 +35,7 @@ pub(super) struct Scratch<P, A> {
     pub(super) gave_up: bool,
     /// The attempt paused for [`resume`](super::attempt::resume), if one is (see
     /// [`Problem::pauses`](super::model::Problem::pauses)), and its pose.
-    pub(super) paused: Option<Paused>,
+    pub(super) paused: Option<LoopState>,
     pub(super) paused_pose: Vec<f64>,
 }
 
@@ -61,11 +61,18 @@ impl<P, A: super::algebra::Algebra> Scratch<P, A> {
     }
 }
 
-/// The state of an attempt's loop at the start of an iteration, kept where the attempt
-/// paused (see [`Problem::pauses`](super::model::Problem::pauses)) so that [`resume`](super::attempt::resume) goes on exactly as the attempt would
-/// have run on (its pose is in `s.paused_pose`).
+/// A watched attempt paused at its cap whose merit fell below this share of the iteration
+/// before's in its last step converges as Levenberg–Marquardt and damped least squares do
+/// near a solution, faster than linearly (see [`LoopState::converging`]).
+pub(super) const CONVERGING_SHARE: f64 = 0.25;
+
+/// The state of an attempt's loop at the start of an iteration: all it needs to go on exactly
+/// as if it had run on without stopping. Two hand-overs carry it: the fast path leaving the
+/// common case ([`Taken::Resume`](super::fast::Taken::Resume), the pose in `s.best`), and a
+/// watched attempt pausing (see [`Problem::pauses`](super::model::Problem::pauses)) for
+/// [`resume`](super::attempt::resume) (the pose in `s.paused_pose`).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Paused {
+pub(super) struct LoopState {
     pub(super) iteration: u32,
     pub(super) still: u32,
     pub(super) damping: Damping,
@@ -77,12 +84,28 @@ pub(super) struct Paused {
     pub(super) merit: f64,
 }
 
-/// A watched attempt paused at its cap whose merit fell below this share of the iteration
-/// before's in its last step converges as Levenberg–Marquardt and damped least squares do
-/// near a solution, faster than linearly (see [`Paused::converging`]).
-pub(super) const CONVERGING_SHARE: f64 = 0.25;
+impl LoopState {
+    /// Where an attempt starts: iteration 0, damping μ = λ², nothing watched yet.
+    pub(super) fn start(lambda: f64) -> Self {
+        Self::at(0, 0, Damping::new(lambda), false)
+    }
 
-impl Paused {
+    /// At `iteration`, `still` iterations without moving, with `damping`; `damped_failed`:
+    /// this iteration's damped tries were all rejected, so the loop goes on with the line
+    /// search's transpose step. Nothing watched yet (the fast path does not watch).
+    pub(super) fn at(iteration: u32, still: u32, damping: Damping, damped_failed: bool) -> Self {
+        Self {
+            iteration,
+            still,
+            damping,
+            skip_damped: damped_failed,
+            prev_merit: f64::INFINITY,
+            last_merit: f64::INFINITY,
+            hopeless: 0,
+            merit: f64::INFINITY,
+        }
+    }
+
     /// Whether the attempt, watched, paused converging: its last step lowered the merit below
     /// [`CONVERGING_SHARE`] of what it was. On the bench's 7-link `limits-*` sets (seeds 1 and
     /// 7, 4000 goals), the first attempts that reach their goal after 13 iterations fell to
