@@ -74,8 +74,8 @@ pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use skeleton::{Bone, BoneField, Effector, Joint, Skeleton, SkeletonError};
 pub use solve::{
-    Bend, BoneBend, EffectorOutcome, Frame, Frames, LimitMode, Method, OptionsError, Outcome, Pin, Priority, Restarts, RigGoal,
-    RigTask, RigTaskError, SolveError, SolveOptions, Solver, StallDetection, Status,
+    Bend, BoneBend, EffectorOutcome, Frame, Frames, LimitMode, Method, OptionsError, Outcome, Pin, Priority, Restarts,
+    RigGoal, RigTask, RigTaskError, SolveError, SolveOptions, Solver, StallDetection, Status,
 };
 pub use track::{Follower, Path, PathError, SampleStatus, Track, TrackError, TrackMode, TrackOptions};
 

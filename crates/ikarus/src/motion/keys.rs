@@ -150,7 +150,13 @@ mod tests {
     }
 
     fn eases() -> Vec<Ease> {
-        vec![Ease::Linear, Ease::Sine, Ease::Smoothstep, Ease::parent(0.2, 0.8).unwrap(), Ease::parent(0.0, 0.5).unwrap()]
+        vec![
+            Ease::Linear,
+            Ease::Sine,
+            Ease::Smoothstep,
+            Ease::parent(0.2, 0.8).unwrap(),
+            Ease::parent(0.0, 0.5).unwrap(),
+        ]
     }
 
     /// A walk-like cycle of four keys plus the return, with every ease.
@@ -182,7 +188,11 @@ mod tests {
                     let v = at(&t, time);
                     for c in 0..2 {
                         let (lo, hi) = (xy[k][c].min(xy[k + 1][c]), xy[k][c].max(xy[k + 1][c]));
-                        assert!((lo..=hi).contains(&v[c]), "{ease:?} segment {k} t {time}: {} not in [{lo}, {hi}]", v[c]);
+                        assert!(
+                            (lo..=hi).contains(&v[c]),
+                            "{ease:?} segment {k} t {time}: {} not in [{lo}, {hi}]",
+                            v[c]
+                        );
                     }
                 }
             }
@@ -241,7 +251,10 @@ mod tests {
             KeyTrack::new(1, times.to_vec(), values.to_vec(), vec![Ease::Sine; times.len()]).unwrap_err()
         };
         assert_eq!(e(&[], &[]), KeyTrackError::Empty);
-        assert_eq!(e(&[0.0, 0.0], &[1.0, 2.0]).to_string(), "key 1: time 0 must be finite and after the previous key's");
+        assert_eq!(
+            e(&[0.0, 0.0], &[1.0, 2.0]).to_string(),
+            "key 1: time 0 must be finite and after the previous key's"
+        );
         assert_eq!(e(&[0.0, 1.0], &[1.0, f64::NAN]).to_string(), "key 1: value NaN is not finite");
         assert!(matches!(e(&[0.0], &[1.0, 2.0]), KeyTrackError::Shape { .. }));
     }
