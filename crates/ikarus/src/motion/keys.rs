@@ -235,6 +235,16 @@ mod tests {
     }
 
     #[test]
+    fn three_keys_follow_the_motion_s_monotone_cubic_not_a_polyline() {
+        // Keys 0, 1, 3 at times 0, 1, 2: secants 1 and 2, PCHIP slopes 1/2 at the first key
+        // (the limited three-point estimate) and 4/3 at the middle one (the weighted harmonic
+        // mean); the cubic at t = 0.5 is 1/2 + (1/2)/8 − (4/3)/8 = 19/48, not the line's 1/2.
+        let t = KeyTrack::new(1, vec![0.0, 1.0, 2.0], vec![0.0, 1.0, 3.0], vec![Ease::Linear; 3]).unwrap();
+        let v = at(&t, 0.5);
+        assert!((v[0] - 19.0 / 48.0).abs() < 1e-15, "{v:?}");
+    }
+
+    #[test]
     fn a_track_holds_its_first_key_before_it_and_its_last_after_it() {
         let one = track(&[0.0], &[[0.5, 0.25]], &[Ease::Sine]);
         assert_eq!(at(&one, 0.0), vec![0.5, 0.25]);
