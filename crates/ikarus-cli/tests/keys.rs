@@ -102,22 +102,34 @@ fn the_puppet_s_walk_reaches_every_key_at_its_time_with_limits_on() {
 
 #[test]
 fn pins_hold_where_the_start_pose_has_them_over_the_whole_motion() {
-    let mut keys = walk();
-    let tracks = keys["tracks"].as_object_mut().unwrap();
-    tracks.remove("left_foot");
-    tracks.remove("right_foot");
-    keys["pins"] = json!(["left_foot", "right_foot"]);
-    let file = keys_file("pins", &keys);
-    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--limits", "--format", "json"]);
+    // The left foot keyed while its knee (the left thigh's tip) is pinned: unpinned, the thigh
+    // swings (its tip moves 0.06); pinned, the tip and the thigh's direction hold all along,
+    // not merely where each frame's solve starts.
+    let key = |t: f64, x: f64, y: f64| json!({"time": t, "x": x, "y": y});
+    let mut keys = json!({"fps": 30, "tracks": {
+        "left_foot": [key(0.0, 0.24, -0.9), key(0.3, 0.2, -0.85), key(0.6, 0.15, -0.82), key(0.9, 0.24, -0.9)],
+        "right_hand": walk()["tracks"]["right_hand"].clone()},
+        "pins": ["left_thigh", "right_foot"]});
+    let run = |keys: &Value, name: &str| {
+        let file = keys_file(name, keys);
+        json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"])
+    };
+    let v = run(&keys, "pins");
     let frames = v["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 28);
     for (k, f) in frames.iter().enumerate() {
         assert_eq!(f["status"], "reached", "frame {k}");
-        for foot in ["left_foot", "right_foot"] {
-            assert!(dist(point(&f["joints"][foot]), start_tip(foot)) <= 1e-6, "{foot} at frame {k}");
+        for pin in ["left_thigh", "right_foot"] {
+            assert!(dist(point(&f["joints"][pin]), start_tip(pin)) <= 1e-6, "{pin} at frame {k}");
         }
+        let thigh = f["angles_deg"]["left_thigh"].as_f64().unwrap();
+        assert!((thigh + 85.0).abs() < 1e-4, "frame {k}: the thigh turned to {thigh}");
         assert_eq!(f["targets"].as_object().unwrap().len(), 2, "the pins are not tracks");
     }
+    keys["pins"] = json!([]);
+    let free = run(&keys, "unpinned");
+    let moved = free["frames"].as_array().unwrap().iter().map(|f| dist(point(&f["joints"]["left_thigh"]), start_tip("left_thigh")));
+    assert!(moved.fold(0.0, f64::max) > 0.01, "unpinned, the knee moves");
 }
 
 #[test]
