@@ -128,7 +128,11 @@ fn pins_hold_where_the_start_pose_has_them_over_the_whole_motion() {
     }
     keys["pins"] = json!([]);
     let free = run(&keys, "unpinned");
-    let moved = free["frames"].as_array().unwrap().iter().map(|f| dist(point(&f["joints"]["left_thigh"]), start_tip("left_thigh")));
+    let moved = free["frames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| dist(point(&f["joints"]["left_thigh"]), start_tip("left_thigh")));
     assert!(moved.fold(0.0, f64::max) > 0.01, "unpinned, the knee moves");
 }
 
@@ -150,6 +154,27 @@ fn a_bend_key_flips_the_knee_and_the_foot_still_reaches() {
         }
         assert_eq!(f["status"], "reached", "frame {k}");
     }
+}
+
+#[test]
+fn a_track_with_directions_turns_the_bone_to_them() {
+    // The foot's tip and its absolute direction keyed: level at 0, 20° up at 0.5 s, eased.
+    let keys = json!({"fps": 10, "tracks": {"left_foot": [
+        {"time": 0, "x": 0.24, "y": -0.86, "angle_deg": 0}, {"time": 0.5, "x": 0.3, "y": -0.8, "angle_deg": 20}]}});
+    let file = keys_file("angle", &keys);
+    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
+    let frames = v["frames"].as_array().unwrap();
+    let direction = |f: &Value| {
+        ["left_thigh", "left_shin", "left_foot"].iter().map(|b| f["angles_deg"][b].as_f64().unwrap()).sum::<f64>()
+    };
+    for (k, want) in [(0, 0.0), (5, 20.0)] {
+        assert_eq!(frames[k]["status"], "reached", "frame {k}");
+        assert!((direction(&frames[k]) - want).abs() < 1e-3, "frame {k}: {}", direction(&frames[k]));
+    }
+    // Between, the direction follows the sine ease from 0° to 20°.
+    let mid = direction(&frames[2]);
+    let eased = 20.0 * (1.0 - (std::f64::consts::PI * 0.4).cos()) / 2.0;
+    assert!((mid - eased).abs() < 1e-3, "{mid} vs {eased}");
 }
 
 #[test]
