@@ -283,6 +283,18 @@ fn every_bad_field_is_refused_naming_it() {
     ] {
         assert_eq!(refused(keys.clone()), message, "{keys}");
     }
+    // The caps: tracks and pins together, keys per track.
+    let many: serde_json::Map<String, Value> = (0..60).map(|i| (format!("b{i}"), two_keys())).collect();
+    let pins: Vec<String> = (0..5).map(|i| format!("p{i}")).collect();
+    assert_eq!(
+        refused(json!({"tracks": many, "pins": pins})),
+        "keys.tracks, keys.pins: 65 tracks and pins, more than the cap of 64"
+    );
+    let long: Vec<Value> = (0..1001).map(|k| json!({"time": k as f64 / 240.0, "x": 0.2, "y": -0.85})).collect();
+    assert_eq!(
+        refused(json!({"fps": 240, "tracks": {"left_foot": long}})),
+        "keys.tracks.left_foot: 1001 keys, more than the cap of 1000"
+    );
     // What serde reads names its field too.
     let wrong = refused(keyed(json!([{"time": 0, "x": "a", "y": 0}]), json!({})));
     assert!(wrong.starts_with("request body: keys.tracks.left_foot[0].x: invalid type: string \"a\""), "{wrong}");

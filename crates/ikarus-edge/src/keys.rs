@@ -207,12 +207,6 @@ impl KeysFile {
             crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
         };
         let (fps, mut last, tracks) = self.tracks(&bone)?;
-        let effectors = self.tracks.len() + self.pins.len();
-        if effectors > MAX_TRACKS {
-            return Err(format!(
-                "keys.tracks, keys.pins: {effectors} tracks and pins, more than the cap of {MAX_TRACKS}"
-            ));
-        }
         let mut bends = Vec::with_capacity(self.bends.len());
         for (name, keys) in &self.bends {
             let field = format!("keys.bends.{name}");
@@ -267,9 +261,6 @@ impl KeysFile {
             );
         }
         let (fps, last, tracks) = self.tracks(bone)?;
-        if self.tracks.len() > MAX_TRACKS {
-            return Err(format!("keys.tracks: {} tracks, more than the cap of {MAX_TRACKS}", self.tracks.len()));
-        }
         if let Some((name, _)) = self.tracks.iter().find(|(_, keys)| keys.iter().any(|k| k.angle_deg.is_some())) {
             return Err(format!("keys.tracks.{name}: angle_deg is not for a character (a target is a bone's origin)"));
         }
@@ -277,7 +268,8 @@ impl KeysFile {
         Ok((fps, last, tracks))
     }
 
-    /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`).
+    /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`);
+    /// at most [`MAX_TRACKS`] tracks and pins together.
     fn tracks(
         &self,
         bone: &dyn Fn(&str, &str) -> Result<usize, String>,
@@ -290,6 +282,12 @@ impl KeysFile {
             return Err(
                 "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
             );
+        }
+        let effectors = self.tracks.len() + self.pins.len();
+        if effectors > MAX_TRACKS {
+            return Err(format!(
+                "keys.tracks, keys.pins: {effectors} tracks and pins, more than the cap of {MAX_TRACKS}"
+            ));
         }
         let mut last = 0;
         let mut tracks = Vec::with_capacity(self.tracks.len());
