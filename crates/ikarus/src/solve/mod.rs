@@ -90,6 +90,8 @@ pub use task::{Bend, BoneBend, EffectorOutcome, Pin, Priority, RigGoal, RigTask,
 mod tests;
 
 #[cfg(test)]
+mod bend_tests;
+#[cfg(test)]
 mod ccd_fabrik_tests;
 #[cfg(test)]
 mod limit_tests;
