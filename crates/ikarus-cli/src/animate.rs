@@ -22,6 +22,7 @@ use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, repo
 
 mod bodies;
 mod character;
+mod keyed;
 
 pub use bodies::Animated;
 
@@ -44,7 +45,7 @@ pub struct MotionArgs {
     /// Goal position of the tip; with --rig, NAME=X,Y[,DEG]: the tip of bone NAME at X,Y (and
     /// pointing DEG degrees from +x), repeatable: the final goal set
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_goal,
-          required_unless_present = "rig")]
+          required_unless_present_any = ["rig", "keys"])]
     pub goal: Vec<GoalArg>,
     /// Goal orientation of the last link at the final goal, degrees from +x
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle, conflicts_with = "rig")]
@@ -76,6 +77,11 @@ pub struct MotionArgs {
     /// Record a solver frame every K iterations for --from-solve [default: 1]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
+    /// With --rig: keyframes per effector, a KEYS JSON file (`{"fps": 30, "tracks": {"BONE":
+    /// [{"time": 0, "x": …, "y": …, "ease": "sine"}, …]}, "bends": {…}, "pins": […]}`); every
+    /// frame is one rig solve of the tracks' targets at its time
+    #[arg(long, value_name = "KEYS.json", conflicts_with_all = KEYS_CONFLICT)]
+    pub keys: Option<std::path::PathBuf>,
 }
 
 /// The help of `ikarus animate`'s (and `ikarus render motion`'s) `--arm` and `--rig`.
@@ -140,11 +146,37 @@ pub struct AnimateArgs {
     /// With --format spine: the name of the animation added to the file [default: ikarus]
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
+    /// With a character file and --keys: the clip posed under the keyed targets, at the same
+    /// time (looping when the keys run longer)
+    #[arg(long, value_name = "NAME", requires = "keys")]
+    pub animation: Option<String>,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
 }
+
+/// The flags `--keys` replaces: its file gives the targets, pins, bends and fps.
+const KEYS_CONFLICT: [&str; 18] = [
+    "ease",
+    "k1",
+    "k2",
+    "goal",
+    "goal_angle",
+    "via",
+    "frames",
+    "duration",
+    "fps",
+    "from_solve",
+    "record_every",
+    "interpolation",
+    "pin",
+    "bend",
+    "weight",
+    "secondary",
+    "softness",
+    "mix",
+];
 
 /// A motion computed from the flags, with the body it moves and what its pictures need.
 pub struct MotionRun<B: MotionBody> {
@@ -194,9 +226,12 @@ pub trait ShownMotion {
     fn write(&self, w: &mut dyn Write, format: AnimateFormat) -> std::io::Result<()>;
 }
 
-/// The motion the flags ask for: of the rig (`--rig FILE`), or of the arm (`--arm`, or the
-/// built-in arm).
+/// The motion the flags ask for: keyed (`--keys`), of the rig (`--rig FILE`), or of the arm
+/// (`--arm`, or the built-in arm).
 pub fn motion(args: &MotionArgs) -> Result<Box<dyn ShownMotion>, CliError> {
+    if let Some(keys) = &args.keys {
+        return Ok(Box::new(keyed::KeyedRun::of(args, keys)?));
+    }
     Ok(match args.body.load()? {
         Body::Chain(arm) => Box::new(MotionRun::of(args, *arm)?),
         Body::Rig(rig) => Box::new(MotionRun::of(args, *rig)?),
@@ -232,6 +267,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let [ik, ik_file] = args.ik.given();
     crate::character_motion::refuse_without(&[
         ("--target", !args.target.is_empty()),
+        ("--animation", args.animation.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--format spine", args.format == Some(AnimateFormat::Spine)),
         ik,
