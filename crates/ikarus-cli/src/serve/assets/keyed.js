@@ -1,10 +1,13 @@
-// Keyframes on the page for a rig (issue 28): the keys bar and rows under the timeline, Key mode
-// (a drag of an effector keys its target at the playhead, a click pins it for the whole
-// animation), the bend handles at knees and elbows (a click keys the other side at the playhead),
-// and the keyed motion: after every edit of the keys POST /api/animate with the rig, `keys` and
-// the solver options (one request in flight, latest wins), played by the timeline (timeline.js's
-// loadClip: frame ⌊t·fps⌉ of the answer shown, never blended), and its frames saved as JSON or
-// CSV as the server writes them. The pure parts are keys.js, the drawing drawkeys.js.
+// Keyframes on the page for a rig or a character (issue 28): the keys bar and rows under the
+// timeline, Key mode (a drag of an effector or an IK target keys its target at the playhead; on
+// a rig a click pins the tip for the whole animation), the bend handles at a rig's knees and
+// elbows (a click keys the other side at the playhead), and the keyed motion: after every edit
+// of the keys POST /api/animate with the rig (or the character file's text, its clip and IK
+// choice), `keys` and the solver options (one request in flight, latest wins), played by the
+// timeline (timeline.js's loadClip: frame ⌊t·fps⌉ of the answer shown, never blended), and its
+// frames saved as the server writes them (JSON; CSV for a rig). A character without keys leaves
+// the timeline to its clip (characters.js) and keys at the clip's time. The pure parts are
+// keys.js, the drawing drawkeys.js.
 //
 // It writes `state.keys` (the KEYS object of `ikarus animate --keys`, or null) and
 // `state.motion` ({fps, duration, frames}, each frame with `pose` in bone order, or null).
@@ -13,18 +16,41 @@ import * as api from "./api.js";
 import { bodyForward } from "./body.js";
 import { saveBlob } from "./files.js";
 import { ownsKeys } from "./input.js";
-import { bendAllowed, bendHandleAt, bendHandles, DEFAULT_LENGTH, deleteKey, frameAt, frameOf, keyRows, keysDuration, moveKey, pasteKey, rigAnimateRequest, rigMotion, setBend, setEase, setKey, sideOf, tidy, togglePinKey } from "./keys.js";
+import {
+  bendAllowed,
+  bendHandleAt,
+  bendHandles,
+  characterAnimateRequest,
+  characterMotion,
+  DEFAULT_LENGTH,
+  deleteKey,
+  frameAt,
+  frameOf,
+  keyRows,
+  keysDuration,
+  moveKey,
+  pasteKey,
+  rigAnimateRequest,
+  rigMotion,
+  setBend,
+  setEase,
+  setKey,
+  sideOf,
+  tidy,
+  togglePinKey,
+} from "./keys.js";
 import { drawBendHandles, drawRows, pickKey, rowAxis } from "./drawkeys.js";
 import { toCanvas } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
 /**
- * Wires the keys of a rig. `act` is {timeline (timeline.js's), draw(), requestDraw(),
- * showError(e), setStatus(s), say(text), edited(what) (called once after each edit of the keys:
- * undo records it)}. Returns {enter(), leave(), applyKeys(keys), dragEnded(bone, goal, from),
- * pinToggled(bone), bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), resolve(), setMode(on),
- * seek(t), fillEases(meta)}.
+ * Wires the keys of a rig or a character. `act` is {timeline (timeline.js's), draw(),
+ * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
+ * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
+ * Returns {enter(), leave(), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
+ * (the bend handles in canvas pixels), hovering(), dragEnded(bone, goal, from), pinToggled(bone),
+ * bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), setMode(on), seek(t), fillEases(meta)}.
  */
 export function wireKeyed(state, canvas, act) {
   /**
@@ -41,9 +67,20 @@ export function wireKeyed(state, canvas, act) {
 
   const fps = () => (state.keys && state.keys.fps) || 30;
   const seconds = () => Math.max(k.length, keysDuration(state.keys));
-  const rows = () => (state.rig ? keyRows(state.keys, state.rig.rig.bones.map((b) => b.name)) : []);
+  /** The body keyed: the rig or the character shown (null: the arm). */
+  const body = () => state.rig || state.character;
+  const boneNames = () => (state.rig ? state.rig.rig.bones : state.character ? state.character.character.bones : []).map((b) => b.name);
+  const rows = () => (body() ? keyRows(state.keys, boneNames()) : []);
+  /** Whether the timeline plays the keys: a rig's always, a character's once it has keys. */
+  const owns = () => !!state.rig || (!!state.character && !!state.keys);
 
   // ---- The timeline ----------------------------------------------------------------------
+
+  /** The timeline to the keys (or a character's clip without keys), the playhead kept at `k.t`. */
+  function takeTimeline() {
+    if (owns()) loadClip();
+    else if (state.character) act.clipBack();
+  }
 
   /** The timeline plays the keyed animation (its length), the playhead kept at `k.t`. */
   function loadClip() {
@@ -57,8 +94,15 @@ export function wireKeyed(state, canvas, act) {
   function showAt(t) {
     k.t = t;
     const r = state.rig;
+    const c = state.character;
     const f = frameAt(state.motion, t);
-    if (r && f) {
+    if (c && f) {
+      c.time = t;
+      c.posed = f.bones;
+      // The keyed targets there (a drag then moves one, the others held).
+      c.targets = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
+      document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
+    } else if (r && f) {
       r.pose_deg = f.pose.slice();
       Object.assign(r, bodyForward(r.rig, r.pose_deg));
       r.goals = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
@@ -79,7 +123,7 @@ export function wireKeyed(state, canvas, act) {
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-frames-csv").disabled = !k.answer;
+    $("key-frames-csv").disabled = !k.answer || !state.rig;
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
@@ -94,24 +138,33 @@ export function wireKeyed(state, canvas, act) {
 
   /** After an edit: the keys kept tidy, the timeline as long as they are, undo told, the motion asked again. */
   function commit(what) {
-    const before = seconds();
+    const before = [seconds(), owns()];
     state.keys = tidy(state.keys);
     if (!selectedKey()) k.selected = null;
-    if (seconds() !== before) loadClip();
+    if (seconds() !== before[0] || owns() !== before[1]) takeTimeline();
     act.edited(what);
     requestMotion();
     syncBar();
   }
 
-  /** The tip of `bone` at time 0 of the motion shown, if it has one. */
+  /** Where `bone`'s tip (a character: its origin) is at time 0 of the motion shown, if it has one. */
   function tipAtStart(bone) {
     const f = state.motion && state.motion.frames[0];
+    if (f && f.bones) {
+      const b = f.bones.find((x) => x.name === bone);
+      return b ? [b.x, b.y] : null;
+    }
     return f && f.joints && f.joints[bone] ? f.joints[bone] : null;
   }
 
-  /** A drag of `bone`'s goal ended at `goal` ({x, y}) from `from` (its tip when grabbed): in Key mode, a key. */
+  /**
+   * A drag of `bone`'s goal (a rig's effector, a character's IK target) ended at `goal` ({x, y})
+   * from `from` (where it was when grabbed): in Key mode, a key at the playhead (a character
+   * without keys yet: at its clip's time).
+   */
   function dragEnded(bone, goal, from) {
     if (!k.mode || !goal) return false;
+    if (state.character && !state.keys) k.t = state.character.time;
     state.keys = setKey(state.keys, bone, k.t, goal.x, goal.y, tipAtStart(bone) || from);
     const list = state.keys.tracks[bone];
     k.selected = { kind: "track", bone, index: list.findIndex((q) => frameOf(q.time, fps()) === frameOf(k.t, fps())) };
@@ -161,14 +214,15 @@ export function wireKeyed(state, canvas, act) {
     return true;
   }
 
-  /** The bend handle under the pointer, ringed and named. */
+  /** The bend handle under the pointer, ringed and named; whether there is one (then it alone is named). */
   function hoverBend(ev) {
-    if (!state.rig) return;
+    if (!state.rig) return false;
     const bone = bendHandleAt(handles(), ...local(ev));
     if (bone !== k.hover) {
       k.hover = bone;
       act.requestDraw();
     }
+    return !!bone;
   }
 
   /** Over the rig on the canvas: the bend handles. */
@@ -184,8 +238,8 @@ export function wireKeyed(state, canvas, act) {
   }
 
   async function pump() {
-    const r = state.rig;
-    if (!r || k.busy || !k.pending) return;
+    const b = body();
+    if (!b || k.busy || !k.pending) return;
     k.pending = false;
     const keys = state.keys;
     if (!keys || !Object.keys(keys.tracks).length) {
@@ -195,22 +249,22 @@ export function wireKeyed(state, canvas, act) {
       return;
     }
     k.busy = true;
-    const req = rigAnimateRequest(r.rig, keys, state.options);
+    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : characterAnimateRequest(state.character, keys, "json");
     act.setStatus("solving");
     try {
       const answer = await api.animate(req);
-      if (state.rig === r && state.keys === keys) {
-        state.motion = rigMotion(r.rig, answer);
+      if (body() === b && state.keys === keys) {
+        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : characterMotion(answer, keys.fps);
         k.answer = answer;
         k.request = req;
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
-        act.setStatus(reached === answer.frames.length ? "reached" : "ready");
-        act.say(`keyed motion · ${answer.frames.length} frames at ${answer.fps} fps · ${reached} reached`);
+        act.setStatus(!state.rig || reached === answer.frames.length ? "ready" : "unreachable");
+        act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.rig ? ` · ${reached} reached` : ""}`);
         showAt(k.t);
       }
     } catch (e) {
-      if (state.rig === r) {
+      if (body() === b) {
         act.showError(e);
         act.setStatus("error");
       }
@@ -224,20 +278,29 @@ export function wireKeyed(state, canvas, act) {
 
   // ---- Entering and leaving a rig, restoring keys ----------------------------------------
 
-  /** A rig took the canvas: no keys yet, the timeline spans the length. */
+  /** A rig or a character took the canvas: no keys yet; a rig's timeline spans the length. */
   function enter() {
     state.keys = null;
     state.motion = null;
     k.answer = null;
+    k.request = null;
     k.selected = null;
     k.t = 0;
+    if (state.rig) loadClip();
+    syncBar();
+  }
+
+  /** A character's clip changed: the keyed motion is made over the new one. */
+  function clipChanged() {
     loadClip();
+    requestMotion();
   }
 
   function leave() {
     state.keys = null;
     state.motion = null;
     k.answer = null;
+    k.request = null;
     k.selected = null;
   }
 
@@ -245,7 +308,7 @@ export function wireKeyed(state, canvas, act) {
   function applyKeys(keys) {
     state.keys = tidy(keys);
     k.selected = null;
-    if (state.rig) loadClip();
+    takeTimeline();
     requestMotion();
     syncBar();
   }
@@ -295,7 +358,7 @@ export function wireKeyed(state, canvas, act) {
     if (!k.request) return;
     try {
       const text = await api.postText("/api/animate", JSON.stringify({ ...k.request, format }), "application/json");
-      const name = `${state.rig.rig.name || "rig"}-keys.${format}`;
+      const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
       saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
     } catch (e) {
       act.showError(e);
@@ -310,7 +373,7 @@ export function wireKeyed(state, canvas, act) {
     return [ev.clientX - rect.left, ev.clientY - rect.top];
   };
   rowsCanvas.addEventListener("pointerdown", (ev) => {
-    if (!state.rig || ev.button !== 0) return;
+    if (!body() || ev.button !== 0) return;
     const axis = rowAxis(rowsCanvas.clientWidth, seconds());
     const [px, py] = rowPoint(ev);
     const pick = pickKey(rows(), axis, px, py);
@@ -323,7 +386,7 @@ export function wireKeyed(state, canvas, act) {
     }
     // Elsewhere on the rows: the playhead goes there.
     k.selected = null;
-    act.timeline.seek(axis.t(px) / seconds());
+    if (owns()) act.timeline.seek(axis.t(px) / seconds());
     syncBar();
   });
   rowsCanvas.addEventListener("pointermove", (ev) => {
@@ -347,7 +410,7 @@ export function wireKeyed(state, canvas, act) {
   });
 
   document.addEventListener("keydown", (ev) => {
-    if (!state.rig || ev.altKey || ownsKeys(ev.target, ev.key)) return;
+    if (!body() || ev.altKey || ownsKeys(ev.target, ev.key)) return;
     const ctrl = ev.ctrlKey || ev.metaKey;
     if (!ctrl && (ev.key === "Delete" || ev.key === "Backspace") && k.selected) {
       ev.preventDefault();
@@ -372,7 +435,10 @@ export function wireKeyed(state, canvas, act) {
     $("key-ease").replaceChildren(...meta.eases.map((e) => Object.assign(new Option(e.label, e.name), { title: e.summary })));
   }
 
-  const seek = (t) => act.timeline.seek(Math.min(t / seconds(), 1));
+  const seek = (t) => (owns() ? act.timeline.seek(Math.min(t / seconds(), 1)) : undefined);
 
-  return { enter, leave, applyKeys, resolve, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+  /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
+  const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
+
+  return { enter, leave, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
 }

@@ -238,6 +238,33 @@ export function rigMotion(rig, answer) {
   return { fps: answer.fps, duration: answer.duration, frames };
 }
 
+/**
+ * The /api/animate body of a character's keys (`c`: characters.js's state.character): the file's
+ * text, the keys (tracks only: a character has no pins, and its bends are its constraints'),
+ * the clip posed under them (none: the setup pose), `ik: "ikarus"` when the reader chose
+ * ikarus's solver, and the format: "json" (the frames) or "spine" (the file with the animation
+ * `ikarus` added).
+ */
+export function characterAnimateRequest(c, keys, format = "json") {
+  return {
+    rig: c.text,
+    keys: { fps: keys.fps, tracks: keys.tracks },
+    ...(c.animation ? { animation: c.animation } : {}),
+    ...(c.ik === "ikarus" ? { ik: "ikarus" } : {}),
+    format,
+    ...(format === "spine" ? { animation_name: "ikarus" } : {}),
+  };
+}
+
+/**
+ * A character's keyed /api/animate answer as `state.motion`: {fps (the keys'), duration, frames}
+ * (each frame's `bones` as /api/pose answers them).
+ */
+export function characterMotion(answer, fps) {
+  const frames = answer.frames || [];
+  return { fps: answer.fps ?? fps, duration: answer.duration ?? (frames.length ? frames[frames.length - 1].time : 0), frames };
+}
+
 /** The frame of `motion` shown at `t` seconds: frame ⌊t·fps⌉, within the frames; null for none. */
 export function frameAt(motion, t) {
   if (!motion || !motion.frames || !motion.frames.length) return null;

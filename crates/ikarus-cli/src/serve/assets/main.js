@@ -155,17 +155,7 @@ const armEditor = wireArm(state, {
   showError,
 });
 
-/** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
-const characters = wireCharacters(state, canvas, {
-  forgetMotion,
-  timeline,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-});
-
-/** A rig's keys, keyed motion and bend handles (keyed.js). */
+/** The keys of a rig or a character, their motion and the bend handles (keyed.js). */
 const keyed = wireKeyed(state, canvas, {
   timeline,
   draw,
@@ -175,6 +165,18 @@ const keyed = wireKeyed(state, canvas, {
   say: (text) => ($("stats").textContent = text),
   // Undo records each edit of the keys (history.js wires it).
   edited: () => {},
+  clipBack: () => characters.clipBack(),
+});
+
+/** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
+const characters = wireCharacters(state, canvas, {
+  forgetMotion,
+  timeline,
+  keyed,
+  requestDraw,
+  showError,
+  setStatus,
+  say: (text) => ($("stats").textContent = text),
 });
 
 /** The Body list and the rig's pointer (rigs.js). */
@@ -822,8 +824,8 @@ window.ikarus = {
   resetPose,
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
   rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },
-  /** A rig's keys: restore a KEYS object (undo, projects), whether no keyed motion is asked, Key mode, the playhead. */
-  keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t) },
+  /** A rig's keys: restore a KEYS object (undo, projects), whether no keyed motion is asked, Key mode, the playhead (seconds), the bend handles (canvas pixels). */
+  keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
   /** The timeline's playback duration, seconds. */

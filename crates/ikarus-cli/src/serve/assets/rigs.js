@@ -270,9 +270,8 @@ export function wireRigs(state, canvas, act) {
     const r = state.rig;
     if (!r) return;
     if (!press) {
-      act.keyed.hoverBend(ev);
-      const hover = tipUnder(ev);
-      canvas.style.cursor = hover ? "grab" : "";
+      const hover = act.keyed.hoverBend(ev) ? null : tipUnder(ev);
+      canvas.style.cursor = hover ? "grab" : act.keyed.hovering() ? "pointer" : "";
       if (hover !== r.hover) {
         r.hover = hover;
         act.requestDraw();
