@@ -54,7 +54,7 @@ export const rowName = (row) => (row.kind === "track" ? row.bone : `${row.bone} 
  * index}) filled orange, the playhead at `t`.
  */
 export function drawRows(canvas, rows, length, t, selected) {
-  canvas.style.height = `${Math.max(1, rows.length) * ROW.height + 2}px`;
+  canvas.style.height = `${Math.max(1, rows.length) * ROW.height}px`;
   const ctx = canvas.getContext("2d");
   fitCanvas(canvas, ctx);
   const w = canvas.clientWidth;
