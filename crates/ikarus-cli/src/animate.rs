@@ -45,7 +45,7 @@ pub struct MotionArgs {
     /// Goal position of the tip; with --rig, NAME=X,Y[,DEG]: the tip of bone NAME at X,Y (and
     /// pointing DEG degrees from +x), repeatable: the final goal set
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true, value_parser = parse_goal,
-          required_unless_present = "rig")]
+          required_unless_present_any = ["rig", "keys"])]
     pub goal: Vec<GoalArg>,
     /// Goal orientation of the last link at the final goal, degrees from +x
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = parse_angle, conflicts_with = "rig")]
@@ -77,6 +77,11 @@ pub struct MotionArgs {
     /// Record a solver frame every K iterations for --from-solve [default: 1]
     #[arg(long, value_name = "K", value_parser = parse_at_least_one)]
     pub record_every: Option<u32>,
+    /// With --rig: keyframes per effector, a KEYS JSON file (`{"fps": 30, "tracks": {"BONE":
+    /// [{"time": 0, "x": …, "y": …, "ease": "sine"}, …]}, "bends": {…}, "pins": […]}`); every
+    /// frame is one rig solve of the tracks' targets at its time
+    #[arg(long, value_name = "KEYS.json", conflicts_with_all = KEYS_CONFLICT)]
+    pub keys: Option<std::path::PathBuf>,
 }
 
 /// The help of `ikarus animate`'s (and `ikarus render motion`'s) `--arm` and `--rig`.
@@ -145,15 +150,10 @@ pub struct AnimateArgs {
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
-    /// With --rig: keyframes per effector, a KEYS JSON file (`{"fps": 30, "tracks": {"BONE":
-    /// [{"time": 0, "x": …, "y": …, "ease": "sine"}, …]}, "bends": {…}, "pins": […]}`); every
-    /// frame is one rig solve of the tracks' targets at its time
-    #[arg(long, value_name = "KEYS.json", conflicts_with_all = KEYS_CONFLICT)]
-    pub keys: Option<std::path::PathBuf>,
 }
 
 /// The flags `--keys` replaces: its file gives the targets, pins, bends and fps.
-const KEYS_CONFLICT: [&str; 19] = [
+const KEYS_CONFLICT: [&str; 18] = [
     "ease",
     "k1",
     "k2",
@@ -172,7 +172,6 @@ const KEYS_CONFLICT: [&str; 19] = [
     "secondary",
     "softness",
     "mix",
-    "target",
 ];
 
 /// A motion computed from the flags, with the body it moves and what its pictures need.
@@ -223,9 +222,12 @@ pub trait ShownMotion {
     fn write(&self, w: &mut dyn Write, format: AnimateFormat) -> std::io::Result<()>;
 }
 
-/// The motion the flags ask for: of the rig (`--rig FILE`), or of the arm (`--arm`, or the
-/// built-in arm).
+/// The motion the flags ask for: keyed (`--keys`), of the rig (`--rig FILE`), or of the arm
+/// (`--arm`, or the built-in arm).
 pub fn motion(args: &MotionArgs) -> Result<Box<dyn ShownMotion>, CliError> {
+    if let Some(keys) = &args.keys {
+        return Ok(Box::new(keyed::KeyedRun::of(args, keys)?));
+    }
     Ok(match args.body.load()? {
         Body::Chain(arm) => Box::new(MotionRun::of(args, *arm)?),
         Body::Rig(rig) => Box::new(MotionRun::of(args, *rig)?),
@@ -267,10 +269,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         ik_file,
     ])?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-    let run: Box<dyn ShownMotion> = match &args.keys {
-        Some(keys) => Box::new(keyed::KeyedRun::of(args, keys)?),
-        None => motion(&args.motion)?,
-    };
+    let run = motion(&args.motion)?;
     let drew = picture.is_some();
     if let Some(out) = picture {
         let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, run.frames())?;

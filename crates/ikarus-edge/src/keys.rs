@@ -201,37 +201,20 @@ impl KeysFile {
     /// The plan of these keys on `skeleton`, at most `max_frames` frames (`cap` names the cap:
     /// `--max-frames`); every problem names its field (`keys.tracks.left_foot[2].x`) and value.
     pub fn check(&self, skeleton: &Skeleton, max_frames: usize, cap: &str) -> Result<KeyPlan, String> {
-        let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
-        if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
-            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
-        }
-        if self.tracks.is_empty() {
-            return Err(
-                "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
-            );
-        }
+        let bone = |field: &str, name: &str| -> Result<usize, String> {
+            crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
+        };
+        let (fps, mut last, tracks) = self.tracks(&bone)?;
         let effectors = self.tracks.len() + self.pins.len();
         if effectors > MAX_TRACKS {
             return Err(format!(
                 "keys.tracks, keys.pins: {effectors} tracks and pins, more than the cap of {MAX_TRACKS}"
             ));
         }
-        let bone = |field: String, name: &str| -> Result<usize, String> {
-            crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
-        };
-        let mut last = 0;
-        let mut tracks = Vec::with_capacity(self.tracks.len());
-        for (name, keys) in &self.tracks {
-            let field = format!("keys.tracks.{name}");
-            let index = bone(field.clone(), name)?;
-            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
-            last = last.max(*frames.last().expect("a track has a key"));
-            tracks.push(keyed_bone(&field, index, keys, &frames, fps)?);
-        }
         let mut bends = Vec::with_capacity(self.bends.len());
         for (name, keys) in &self.bends {
             let field = format!("keys.bends.{name}");
-            let index = bone(field.clone(), name)?;
+            let index = bone(&field, name)?;
             if skeleton.parent(index).is_none() {
                 return Err(format!("{field}: the bone has no parent, so no joint to bend"));
             }
@@ -245,7 +228,7 @@ impl KeysFile {
         let mut pins = Vec::with_capacity(self.pins.len());
         for (i, name) in self.pins.iter().enumerate() {
             let field = format!("keys.pins[{i}]");
-            let index = bone(field.clone(), name)?;
+            let index = bone(&field, name)?;
             if self.tracks.contains_key(name) {
                 return Err(format!(
                     "{field} = {name}: the bone is also keyed in keys.tracks; a pinned tip holds still"
@@ -256,11 +239,75 @@ impl KeysFile {
             }
             pins.push(index);
         }
-        if last + 1 > max_frames {
-            return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last + 1));
-        }
+        frames_within(last, max_frames, cap)?;
         Ok(KeyPlan { fps, last, tracks, bends, pins })
     }
+
+    /// The keys of a character's target bones (`bone` finds one by name, its problem after
+    /// the field): tracks only, without directions; pins and bends refused (a character's
+    /// constraints bend its limbs, by their `bendPositive`). The fps, the last frame and the
+    /// tracks.
+    pub fn check_character(
+        &self,
+        bone: &dyn Fn(&str, &str) -> Result<usize, String>,
+        max_frames: usize,
+        cap: &str,
+    ) -> Result<(f64, usize, Vec<KeyedBone>), String> {
+        if !self.pins.is_empty() {
+            return Err(
+                "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)".into(),
+            );
+        }
+        if !self.bends.is_empty() {
+            return Err(
+                "keys.bends: not for a character (its IK constraints bend its limbs, as their bendPositive says)"
+                    .into(),
+            );
+        }
+        let (fps, last, tracks) = self.tracks(bone)?;
+        if self.tracks.len() > MAX_TRACKS {
+            return Err(format!("keys.tracks: {} tracks, more than the cap of {MAX_TRACKS}", self.tracks.len()));
+        }
+        if let Some((name, _)) = self.tracks.iter().find(|(_, keys)| keys.iter().any(|k| k.angle_deg.is_some())) {
+            return Err(format!("keys.tracks.{name}: angle_deg is not for a character (a target is a bone's origin)"));
+        }
+        frames_within(last, max_frames, cap)?;
+        Ok((fps, last, tracks))
+    }
+
+    /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`).
+    fn tracks(
+        &self,
+        bone: &dyn Fn(&str, &str) -> Result<usize, String>,
+    ) -> Result<(f64, usize, Vec<KeyedBone>), String> {
+        let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
+        if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
+            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
+        }
+        if self.tracks.is_empty() {
+            return Err(
+                "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
+            );
+        }
+        let mut last = 0;
+        let mut tracks = Vec::with_capacity(self.tracks.len());
+        for (name, keys) in &self.tracks {
+            let field = format!("keys.tracks.{name}");
+            let index = bone(&field, name)?;
+            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
+            last = last.max(*frames.last().expect("a track has a key"));
+            tracks.push(keyed_bone(&field, index, keys, &frames, fps)?);
+        }
+        Ok((fps, last, tracks))
+    }
+}
+
+/// At most `max_frames` frames `0..=last`.
+fn frames_within(last: usize, max_frames: usize, cap: &str) -> Result<(), String> {
+    if last + 1 > max_frames {
+        return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last + 1));
+    }
+    Ok(())
 }
 
 /// The track of one bone's keys: finite values, the direction on every key or none, each key's

@@ -9,7 +9,7 @@ use std::path::Path;
 use ikarus_edge::keys::KeysFile;
 use ikarus_edge::keys::motion::KeyedMotion;
 
-use super::{AnimateArgs, AnimateFormat, ShownMotion};
+use super::{AnimateFormat, MotionArgs, ShownMotion};
 use crate::body::Body;
 use crate::columns::BodyColumns;
 use crate::error::CliError;
@@ -26,8 +26,8 @@ pub struct KeyedRun {
 
 impl KeyedRun {
     /// The motion of the rig of `--rig` keyed by the file `keys`; an arm is refused.
-    pub fn of(args: &AnimateArgs, keys: &Path) -> Result<Self, CliError> {
-        let rig = match args.motion.body.load()? {
+    pub fn of(args: &MotionArgs, keys: &Path) -> Result<Self, CliError> {
+        let rig = match args.body.load()? {
             Body::Rig(rig) => *rig,
             Body::Chain(_) => {
                 return Err(CliError::input(
@@ -42,7 +42,7 @@ impl KeyedRun {
         let plan = file
             .check(s, ikarus::motion::MAX_FRAMES, "the most frames of a motion")
             .map_err(|m| CliError::input(format!("{label}: {m}")))?;
-        let options = rig.solve_options(&args.motion.body.solver.settings(), None)?;
+        let options = rig.solve_options(&args.body.solver.settings(), None)?;
         let limits = options.limits != ikarus::LimitMode::Ignore;
         let motion = plan
             .run(&rig, s.start_angles(), options, &|| Ok(()))

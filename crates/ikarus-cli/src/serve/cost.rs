@@ -10,7 +10,7 @@
 //!   halve its step `backtrack` times, every restart may run to the cap); a rig's solve also
 //!   times its goals and pins;
 //! - `solve_batch`: a solve per goal; `animate`: a solve per via point and the goal, plus a pose
-//!   per frame; `track`: a solve per sample (12 in `plan`: candidates, seeds, polish);
+//!   per frame (with `keys`, one solve of its tracks and pins per frame); `track`: a solve per sample (12 in `plan`: candidates, seeds, polish);
 //! - `workspace`: the grid's cells and samples × links, or for the exact region links² × 100
 //!   (10 times more with limits); `reach`: that region's cost once, plus a solve per point;
 //! - `render`: its pixels (times the frames of a GIF) plus the cost of what it draws.
@@ -27,6 +27,8 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 
 use super::pool::Lane;
 use crate::api::Endpoint;
+
+mod keys;
 
 /// The largest estimate (link steps) of a quick request: about a tenth of a second of work in its
 /// worst case.
@@ -92,6 +94,7 @@ struct Shape {
     figure: Json,
     format: Json,
     mode: Json,
+    keys: Nested<keys::Keys>,
 }
 
 /// An arm's or a rig's file: how many links or bones, and its `[solver]` table.
@@ -131,11 +134,15 @@ impl Shape {
 
     /// One solve, worst case.
     fn solve(&self) -> f64 {
+        // A rig's solve places every bone for each goal and pin.
+        self.solve_of(if self.rig.0.is_some() { 1.0 + self.goals.0 + self.pins.0 } else { 1.0 })
+    }
+
+    /// One solve placing every joint for each of `targets`, worst case.
+    fn solve_of(&self, targets: f64) -> f64 {
         let iterations = self.option(|s| s.max_iterations.value(), ITERATIONS);
         let restarts = self.option(|s| s.restarts.value(), RESTARTS);
         let backtrack = self.option(|s| s.backtrack.value(), BACKTRACK);
-        // A rig's solve places every bone for each goal and pin.
-        let targets = if self.rig.0.is_some() { 1.0 + self.goals.0 + self.pins.0 } else { 1.0 };
         self.joints() * targets * iterations.max(1.0) * (1.0 + restarts) * (1.0 + backtrack)
     }
 
@@ -149,7 +156,11 @@ impl Shape {
         .max(0.0)
     }
 
+    /// A motion's solves and poses; a keyed one's, one solve of its tracks and pins per frame.
     fn animate(&self) -> f64 {
+        if let Some(keys) = &self.keys.0 {
+            return keys.frames() * (self.solve_of(1.0 + keys.effectors()) + self.joints());
+        }
         (1.0 + self.via.0) * self.solve() + self.frames() * self.joints()
     }
 

@@ -3,17 +3,20 @@
 //! moved over time, every instant posed as the runtime does ([`crate::pose::pose_into`], the
 //! target bones put at their points, then the file's IK constraints in their order).
 //!
-//! Two courses: [`Course::Eased`], each target bone's origin eased from where the setup pose
+//! Three courses: [`Course::Eased`], each target bone's origin eased from where the setup pose
 //! has it to its end point over the duration (ikarus's ease curves); [`Course::Path`], one
 //! bone's origin along a traced path, one sample per frame at the frame rate, in a straight
-//! line between samples. The motion is sampled at the frame rate for its frames (JSON) and at
+//! line between samples; [`Course::Keyed`], target bones on keyed tracks ([`crate::keys`]),
+//! optionally over a clip. The motion is sampled at the frame rate for its frames (JSON) and at
 //! any time for the Spine export ([`super::export`]).
 
 use ikarus::Ease;
 use ikarus::character::Posed;
+use ikarus::motion::KeyTrack;
 use serde::Serialize;
 
 use super::Loaded;
+use crate::keys::KeysFile;
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into};
 use crate::report::character::UnsupportedJson;
 
@@ -41,6 +44,37 @@ pub enum Course {
         /// The samples, at least one.
         points: Vec<[f64; 2]>,
     },
+    /// Each `(bone, track)`: the bone's origin on its keyed track ([`crate::keys`], made by
+    /// [`keyed`]), over the clip `animation` posed at the same time (looping when the keys run
+    /// longer than it), or over the setup pose.
+    Keyed {
+        /// The bones and their tracks, applied in this order.
+        tracks: Vec<(String, KeyTrack)>,
+        /// The clip under the keys.
+        animation: Option<String>,
+    },
+}
+
+/// The keyed course of `keys` on the character `loaded` over the clip `animation`, and its fps:
+/// the keys checked as a character's ([`KeysFile::check_character`]: tracks on its bones, no
+/// pins, bends or directions), at most `max_frames` frames (`cap` names the cap).
+pub fn keyed(
+    loaded: &Loaded,
+    keys: &KeysFile,
+    animation: Option<String>,
+    max_frames: usize,
+    cap: &str,
+) -> Result<(Course, f64), String> {
+    let c = &loaded.character;
+    let bone = |field: &str, name: &str| {
+        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {name:?} in the character"))
+    };
+    let (fps, _, tracks) = keys.check_character(&bone, max_frames, cap)?;
+    if let Some(name) = &animation {
+        crate::pose::clip_at(c, Some(name), None)?;
+    }
+    let tracks = tracks.into_iter().map(|t| (c.bones()[t.bone].name.clone(), t.track)).collect();
+    Ok((Course::Keyed { tracks, animation }, fps))
 }
 
 /// A character's motion, checked: every name resolved, every number finite.
@@ -111,6 +145,7 @@ impl<'a> Motion<'a> {
                 }
                 (Vec::new(), (points.len() - 1) as f64 / fps)
             }
+            Course::Keyed { tracks, .. } => (Vec::new(), tracks.iter().map(|(_, t)| t.end()).fold(0.0, f64::max)),
         };
         Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime })
     }
@@ -148,12 +183,34 @@ impl<'a> Motion<'a> {
                 let f = if i + 1 < points.len() { u - i as f64 } else { 0.0 };
                 vec![(bone.clone(), [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f])]
             }
+            Course::Keyed { tracks, .. } => {
+                let mut v = Vec::with_capacity(2);
+                tracks
+                    .iter()
+                    .map(|(name, track)| {
+                        track.at(time, &mut v);
+                        (name.clone(), [v[0], v[1]])
+                    })
+                    .collect()
+            }
         }
+    }
+
+    /// The clip under the motion and its time at `time`: a keyed course's clip, looping when
+    /// the keys run longer than it.
+    fn clip_at(&self, time: f64) -> (Option<String>, Option<f64>) {
+        let Course::Keyed { animation: Some(name), .. } = &self.course else { return (None, None) };
+        let c = &self.loaded.character;
+        let length = c.clip_index(name).map_or(0.0, |i| c.clips()[i].duration);
+        let time = time.clamp(0.0, self.duration);
+        let t = if length > 0.0 && time > length { time % length } else { time };
+        (Some(name.clone()), Some(t))
     }
 
     /// The character posed at `time` into `out`.
     pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
-        let ask = PoseAsk { targets: self.targets_at(time), ik: self.ik.clone(), ..PoseAsk::default() };
+        let (animation, clip_time) = self.clip_at(time);
+        let ask = PoseAsk { animation, time: clip_time, targets: self.targets_at(time), ik: self.ik.clone() };
         pose_into(self.loaded, &ask, out).map(|_| ())
     }
 

@@ -1,0 +1,289 @@
+//! Keyframes per effector: `ikarus animate --rig FILE --keys KEYS.json` through the binary and
+//! `POST /api/animate` with `keys` over real HTTP. The puppet's walk-like keys reach every key
+//! at its time with limits on, the frames are at k/fps, the pins hold where the start pose has
+//! them, a bend key flips the knee, the command line and the API answer the same bits, twice
+//! the same bytes, and every bad field is refused naming it. The tests that check `reached`
+//! need the real rig solver.
+
+mod common;
+#[path = "common/rigs.rs"]
+mod rigs;
+
+use common::{fails, ikarus, json, stdout, succeeds};
+use serde_json::{Value, json};
+
+const WALK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/keys/puppet-walk.json");
+
+fn puppet() -> String {
+    rigs::path("puppet").to_str().unwrap().to_owned()
+}
+
+fn walk() -> Value {
+    serde_json::from_str(&std::fs::read_to_string(WALK).unwrap()).unwrap()
+}
+
+fn point(v: &Value) -> [f64; 2] {
+    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+}
+
+fn start_tip(name: &str) -> [f64; 2] {
+    let rig = rigs::json("puppet");
+    let i = rigs::names(&rig).iter().position(|n| n == name).unwrap();
+    rigs::tips(&rig, &rigs::start_deg(&rig))[i].0
+}
+
+/// Writes `keys` to a file of the test's own and gives its path.
+fn keys_file(name: &str, keys: &Value) -> String {
+    let dir = std::env::temp_dir().join(format!("ikarus-keys-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{name}.json"));
+    std::fs::write(&path, keys.to_string()).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+/// Every number of `a` and `b` the same bits, everything else equal.
+fn same_bits(a: &Value, b: &Value, at: &str) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            assert_eq!(x.as_f64().unwrap().to_bits(), y.as_f64().unwrap().to_bits(), "{at}: {x} vs {y}")
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}");
+            for (i, (p, q)) in x.iter().zip(y).enumerate() {
+                same_bits(p, q, &format!("{at}[{i}]"));
+            }
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            assert_eq!(x.keys().collect::<Vec<_>>(), y.keys().collect::<Vec<_>>(), "{at}");
+            for (k, p) in x {
+                same_bits(p, &y[k], &format!("{at}.{k}"));
+            }
+        }
+        _ => assert_eq!(a, b, "{at}"),
+    }
+}
+
+#[test]
+fn the_puppet_s_walk_reaches_every_key_at_its_time_with_limits_on() {
+    let v = json(&["animate", "--rig", &puppet(), "--keys", WALK, "--limits", "--format", "json"]);
+    assert_eq!((v["rig"].as_str(), v["fps"].as_f64(), v["duration"].as_f64()), (Some("puppet"), Some(30.0), Some(0.9)));
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 28);
+    for (k, f) in frames.iter().enumerate() {
+        assert_eq!(f["time"].as_f64().unwrap().to_bits(), (k as f64 / 30.0).to_bits(), "frame {k}");
+        assert_eq!(f["status"], "reached", "frame {k}: {}", f["error"]);
+    }
+    let keys = walk();
+    let rig = rigs::json("puppet");
+    let names = rigs::names(&rig);
+    for (bone, track) in keys["tracks"].as_object().unwrap() {
+        assert_eq!(track.as_array().unwrap().len(), 4, "{bone}");
+        for key in track.as_array().unwrap() {
+            let k = (key["time"].as_f64().unwrap() * 30.0).round() as usize;
+            let target = [key["x"].as_f64().unwrap(), key["y"].as_f64().unwrap()];
+            let f = &frames[k];
+            assert_eq!(point(&f["targets"][bone]).map(f64::to_bits), target.map(f64::to_bits), "{bone} at {k}");
+            assert!(dist(point(&f["joints"][bone]), target) <= 1e-6, "{bone} at frame {k}: {}", f["joints"][bone]);
+        }
+    }
+    // Limits on: every angle within its bone's range.
+    for f in frames {
+        for (i, bone) in rig["bones"].as_array().unwrap().iter().enumerate() {
+            let [lo, hi] = [0, 1].map(|j| bone["limits_deg"][j].as_f64().unwrap());
+            let a = f["angles_deg"][&names[i]].as_f64().unwrap();
+            assert!(a >= lo - 1e-9 && a <= hi + 1e-9, "{}: {a} outside [{lo}, {hi}]", names[i]);
+        }
+    }
+}
+
+#[test]
+fn pins_hold_where_the_start_pose_has_them_over_the_whole_motion() {
+    let mut keys = walk();
+    let tracks = keys["tracks"].as_object_mut().unwrap();
+    tracks.remove("left_foot");
+    tracks.remove("right_foot");
+    keys["pins"] = json!(["left_foot", "right_foot"]);
+    let file = keys_file("pins", &keys);
+    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--limits", "--format", "json"]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 28);
+    for (k, f) in frames.iter().enumerate() {
+        assert_eq!(f["status"], "reached", "frame {k}");
+        for foot in ["left_foot", "right_foot"] {
+            assert!(dist(point(&f["joints"][foot]), start_tip(foot)) <= 1e-6, "{foot} at frame {k}");
+        }
+        assert_eq!(f["targets"].as_object().unwrap().len(), 2, "the pins are not tracks");
+    }
+}
+
+#[test]
+fn a_bend_key_flips_the_knee_and_the_foot_still_reaches() {
+    let keys = json!({"fps": 10,
+        "tracks": {"left_foot": [{"time": 0, "x": 0.3, "y": -0.75}, {"time": 1.0, "x": 0.2, "y": -0.8}]},
+        "bends": {"left_shin": [{"time": 0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]}});
+    let file = keys_file("bend", &keys);
+    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 11);
+    for (k, f) in frames.iter().enumerate() {
+        let knee = f["angles_deg"]["left_shin"].as_f64().unwrap();
+        if k < 5 {
+            assert!(knee > 1.0, "frame {k}: ccw, the knee at {knee}");
+        } else {
+            assert!(knee <= 0.0, "frame {k}: cw, the knee at {knee}");
+        }
+        assert_eq!(f["status"], "reached", "frame {k}");
+    }
+}
+
+#[test]
+fn the_command_line_and_the_api_answer_the_same_bits_and_twice_the_same_bytes() {
+    let args = ["animate", "--rig", &puppet(), "--keys", WALK, "--limits", "--format", "json"];
+    let (a, b) = (succeeds(&args), succeeds(&args));
+    assert_eq!(a, b, "the command line twice");
+    let s = common::server::start(&[]);
+    let body = json!({"rig": rigs::json("puppet"), "keys": walk(), "options": {"limits": true}});
+    let (x, y) = (s.post("/api/animate", &body), s.post("/api/animate", &body));
+    assert_eq!(x.status, 200, "{}", x.text());
+    assert_eq!(x.body, y.body, "the API twice");
+    same_bits(&serde_json::from_str(&a).unwrap(), &x.json(), "answer");
+}
+
+#[test]
+fn csv_has_a_row_per_frame_in_seconds_and_text_a_summary() {
+    let csv = succeeds(&["animate", "--rig", &puppet(), "--keys", WALK, "--format", "csv"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 29);
+    assert!(lines[0].starts_with("time,pelvis_deg,"), "{}", lines[0]);
+    assert!(lines[0].ends_with("right_foot.x,right_foot.y"), "{}", lines[0]);
+    assert!(lines[10].starts_with(&format!("{:?},", 9.0 / 30.0)), "{}", lines[10]);
+    let text = succeeds(&["animate", "--rig", &puppet(), "--keys", WALK, "--format", "text"]);
+    assert!(text.contains("motion    28 frames over 0.9 s at 30 fps"), "{text}");
+    assert!(text.contains("solves    28 of 28 reached"), "{text}");
+}
+
+/// One key track `{"left_foot": keys}` with `extra` fields merged into the keys.
+fn keyed(track: Value, extra: Value) -> Value {
+    let mut keys = json!({"tracks": {"left_foot": track}});
+    for (k, v) in extra.as_object().unwrap() {
+        keys[k] = v.clone();
+    }
+    keys
+}
+
+fn two_keys() -> Value {
+    json!([{"time": 0, "x": 0.24, "y": -0.9}, {"time": 0.5, "x": 0.3, "y": -0.85}])
+}
+
+#[test]
+fn every_bad_field_is_refused_naming_it() {
+    let s = common::server::start(&["--max-frames", "20"]);
+    let refused = |keys: Value| {
+        let a = s.post("/api/animate", &json!({"rig": rigs::json("puppet"), "keys": keys}));
+        a.error(422)
+    };
+    let bones = "no bone named \"left_fot\" in the rig (its bones: pelvis, spine, neck, head, left_upper_arm, left_forearm, left_hand, right_upper_arm, right_forearm, right_hand, left_thigh, left_shin, left_foot, right_thigh, right_shin, right_foot)";
+    let k = |time: f64| json!({"time": time, "x": 0.2, "y": -0.85});
+    for (keys, message) in [
+        (keyed(two_keys(), json!({"fps": 0})), "keys.fps = 0: must be greater than 0 and at most 240".to_owned()),
+        (keyed(two_keys(), json!({"fps": 241})), "keys.fps = 241: must be greater than 0 and at most 240".into()),
+        (
+            json!({"tracks": {}}),
+            "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into(),
+        ),
+        (json!({"tracks": {"left_fot": two_keys()}}), format!("keys.tracks.left_fot: {bones}")),
+        (keyed(json!([]), json!({})), "keys.tracks.left_foot: a track needs at least one key, at time 0".into()),
+        (
+            keyed(json!([k(0.1)]), json!({})),
+            "keys.tracks.left_foot[0].time = 0.1: a track's first key is at time 0".into(),
+        ),
+        (
+            keyed(json!([k(0.0), k(0.01)]), json!({})),
+            "keys.tracks.left_foot[1].time = 0.01: not on a frame at 30 fps (nearest frame time 0)".into(),
+        ),
+        (
+            keyed(json!([k(0.0), k(0.3), k(0.2)]), json!({})),
+            "keys.tracks.left_foot[2].time = 0.2: must be after the previous key's time 0.3".into(),
+        ),
+        (
+            keyed(json!([k(0.0), k(-1.0)]), json!({})),
+            "keys.tracks.left_foot[1].time = -1: must be a finite number of seconds >= 0".into(),
+        ),
+        (keyed(json!([k(0.0), k(1.0)]), json!({})), "keys: 31 frames, more than the cap of 20 (--max-frames)".into()),
+        (
+            keyed(json!([{"time": 0, "x": 0.2, "y": -0.8, "ease": "sine", "k1": 0.2}]), json!({})),
+            "keys.tracks.left_foot[0].k1: only applies with \"ease\": \"parent\"".into(),
+        ),
+        (
+            keyed(json!([{"time": 0, "x": 0.2, "y": -0.8, "ease": "parent", "k1": 0.9, "k2": 0.2}]), json!({})),
+            "keys.tracks.left_foot[0].k1: must not exceed k2, got k1 = 0.9, k2 = 0.2".into(),
+        ),
+        (
+            keyed(json!([{"time": 0, "x": 0.2, "y": -0.8, "angle_deg": 0}, k(0.5)]), json!({})),
+            "keys.tracks.left_foot[1].angle_deg: give it on every key of a track or on none (key 0 has one)".into(),
+        ),
+        (keyed(two_keys(), json!({"pins": ["left_fot"]})), format!("keys.pins[0]: {bones}")),
+        (
+            keyed(two_keys(), json!({"pins": ["left_foot"]})),
+            "keys.pins[0] = left_foot: the bone is also keyed in keys.tracks; a pinned tip holds still".into(),
+        ),
+        (
+            keyed(two_keys(), json!({"pins": ["right_foot", "right_foot"]})),
+            "keys.pins[1] = right_foot: pinned twice".into(),
+        ),
+        (
+            keyed(two_keys(), json!({"bends": {"pelvis": [{"time": 0, "bend": "cw"}]}})),
+            "keys.bends.pelvis: the bone has no parent, so no joint to bend".into(),
+        ),
+        (
+            keyed(two_keys(), json!({"bends": {"left_shin": [{"time": 0.05, "bend": "cw"}]}})),
+            "keys.bends.left_shin[0].time = 0.05: a track's first key is at time 0".into(),
+        ),
+    ] {
+        assert_eq!(refused(keys.clone()), message, "{keys}");
+    }
+    // What serde reads names its field too.
+    let wrong = refused(keyed(json!([{"time": 0, "x": "a", "y": 0}]), json!({})));
+    assert!(wrong.starts_with("request body: keys.tracks.left_foot[0].x: invalid type: string \"a\""), "{wrong}");
+    let wrong = refused(keyed(two_keys(), json!({"bends": {"left_shin": [{"time": 0, "bend": "up"}]}})));
+    assert!(wrong.starts_with("request body: keys.bends.left_shin[0].bend: unknown variant `up`"), "{wrong}");
+    // The fields keys replace, and an arm.
+    let a = s.post(
+        "/api/animate",
+        &json!({"rig": rigs::json("puppet"), "keys": keyed(two_keys(), json!({})), "frames": 10}),
+    );
+    assert_eq!(
+        a.error(422),
+        "frames: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
+    );
+    let a = s.post("/api/animate", &json!({"keys": keyed(two_keys(), json!({}))}));
+    assert_eq!(
+        a.error(422),
+        "keys: needs rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)"
+    );
+    s.assert_healthy();
+}
+
+#[test]
+fn the_command_line_refuses_what_keys_replace_and_bad_keys_files() {
+    let file = keys_file("two", &keyed(two_keys(), json!({})));
+    let err = fails(&["animate", "--rig", &puppet(), "--keys", &file, "--goal", "left_hand=0,0"], 2);
+    assert!(err.contains("'--keys <KEYS.json>' cannot be used with '--goal"), "{err}");
+    let err = fails(&["animate", "--rig", &puppet(), "--keys", &file, "--pin", "right_foot"], 2);
+    assert!(err.contains("cannot be used with '--pin"), "{err}");
+    let err = fails(&["animate", "--keys", &file], 2);
+    assert_eq!(
+        err,
+        "ikarus: --keys: needs --rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)\n"
+    );
+    let bad = keys_file("bad", &keyed(two_keys(), json!({"fps": 0})));
+    let err = fails(&["animate", "--rig", &puppet(), "--keys", &bad], 2);
+    assert_eq!(err, format!("ikarus: --keys {bad}: keys.fps = 0: must be greater than 0 and at most 240\n"));
+    let o = ikarus(&["animate", "--rig", &puppet(), "--keys", "/nonexistent/keys.json"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stdout(&o).is_empty());
+}
