@@ -146,6 +146,10 @@ pub struct AnimateArgs {
     /// With --format spine: the name of the animation added to the file [default: ikarus]
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
+    /// With a character file and --keys: the clip posed under the keyed targets, at the same
+    /// time (looping when the keys run longer)
+    #[arg(long, value_name = "NAME", requires = "keys")]
+    pub animation: Option<String>,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
@@ -263,6 +267,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
     let [ik, ik_file] = args.ik.given();
     crate::character_motion::refuse_without(&[
         ("--target", !args.target.is_empty()),
+        ("--animation", args.animation.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--format spine", args.format == Some(AnimateFormat::Spine)),
         ik,

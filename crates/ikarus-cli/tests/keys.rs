@@ -287,3 +287,74 @@ fn the_command_line_refuses_what_keys_replace_and_bad_keys_files() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stdout(&o).is_empty());
 }
+
+/// The stdout of a command that succeeds (spineboy's constraints ikarus leaves inactive are
+/// named on stderr).
+fn stdout_of(args: &[&str]) -> String {
+    let o = ikarus(args);
+    assert!(o.status.success(), "{args:?}: {}", common::stderr(&o));
+    stdout(&o)
+}
+
+const SPINEBOY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
+
+/// spineboy's front foot target keyed over four keys (from where its setup pose has it).
+fn spineboy_keys() -> Value {
+    let v: Value = serde_json::from_str(&stdout_of(&["pose", "--rig", SPINEBOY, "--format", "json"])).unwrap();
+    let b = v["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap().clone();
+    let (x, y) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
+    let key = |t: f64, dx: f64, dy: f64| json!({"time": t, "x": x + dx, "y": y + dy});
+    json!({"fps": 30, "tracks": {"front-leg-target": [key(0.0, 0.0, 0.0), key(0.3, 40.0, 60.0), key(0.6, 80.0, 20.0), key(0.9, 20.0, 0.0)]}})
+}
+
+#[test]
+fn a_character_s_keys_over_a_clip_answer_the_same_through_the_command_line_and_the_api() {
+    let file = keys_file("spineboy", &spineboy_keys());
+    let text = std::fs::read_to_string(SPINEBOY).unwrap();
+    let s = common::server::start(&[]);
+    for format in ["json", "spine"] {
+        let cli =
+            stdout_of(&["animate", "--rig", SPINEBOY, "--keys", &file, "--animation", "walk", "--format", format]);
+        let body = json!({"rig": text, "keys": spineboy_keys(), "animation": "walk", "format": format});
+        let a = s.post("/api/animate", &body);
+        assert_eq!(a.status, 200, "{}", a.text());
+        same_bits(&serde_json::from_str(&cli).unwrap(), &a.json(), format);
+        if format == "json" {
+            let frames = a.json()["frames"].as_array().unwrap().len();
+            assert_eq!(frames, 28);
+        }
+    }
+    // Refusals: what a character does not take, an unknown clip, the eased course's fields.
+    let refused = |extra: Value| {
+        let mut body = json!({"rig": text, "keys": spineboy_keys()});
+        for (k, v) in extra.as_object().unwrap() {
+            body[k] = v.clone();
+        }
+        s.post("/api/animate", &body).error(422)
+    };
+    let mut pinned = spineboy_keys();
+    pinned["pins"] = json!(["front-foot"]);
+    assert_eq!(
+        refused(json!({"keys": pinned})),
+        "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)"
+    );
+    let mut bent = spineboy_keys();
+    bent["bends"] = json!({"front-shin": [{"time": 0, "bend": "cw"}]});
+    assert_eq!(
+        refused(json!({"keys": bent})),
+        "keys.bends: not for a character (its IK constraints bend its limbs, as their bendPositive says)"
+    );
+    let e = refused(json!({"animation": "wlk"}));
+    assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");
+    assert_eq!(
+        refused(json!({"duration": 1.0})),
+        "duration: not with keys (the keys give the targets, their eases and the fps)"
+    );
+    let unknown = refused(json!({"keys": {"tracks": {"toe": [{"time": 0, "x": 0, "y": 0}]}}}));
+    assert_eq!(unknown, "keys.tracks.toe: no bone named \"toe\" in the character");
+    let a = s.post(
+        "/api/animate",
+        &json!({"rig": text, "targets": [{"bone": "front-leg-target", "x": 0, "y": 0}], "animation": "walk"}),
+    );
+    assert_eq!(a.error(422), "animation: only with keys (the clip under the keyed targets)");
+}

@@ -5,6 +5,7 @@
 
 use ikarus::EaseKind;
 use ikarus_edge::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+use ikarus_edge::keys::KeysFile;
 
 use super::AnimateArgs;
 use crate::character_motion::{CharacterFile, Output, refuse_foreign, write};
@@ -26,6 +27,27 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     foreign.extend(m.body.solver.given());
     refuse_foreign(&foreign)?;
     let written = crate::character_motion::written(args.format)?;
+    if let Some(keys) = &m.keys {
+        if !args.target.is_empty() {
+            return Err(CliError::input("--target: not with --keys (the keys give the targets)"));
+        }
+        let label = format!("--keys {}", keys.display());
+        let text = crate::input::read_text(keys, &label)?;
+        let keys = KeysFile::parse(&text).map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let (course, fps) = ikarus_edge::character::motion::keyed(
+            &file.loaded,
+            &keys,
+            args.animation.clone(),
+            ikarus::motion::MAX_FRAMES,
+            "the most frames of a motion",
+        )
+        .map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let mut motion =
+            Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+        motion.ik = args.ik.choice(&file.loaded.character)?;
+        let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
+        return write(file, &motion, &out);
+    }
     if args.target.is_empty() {
         return Err(CliError::input(
             "--target: give at least one BONE=X,Y with a character file (the bone's world origin at the end)",

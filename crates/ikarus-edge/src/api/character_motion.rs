@@ -34,7 +34,12 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct AnimateCharacterReq {
         required rig: String,
-        required targets: Vec<TargetReq>,
+        /// Required unless `keys` is given.
+        pub targets: Vec<TargetReq>,
+        /// Target bones keyed over time ([`crate::keys`]), instead of `targets`.
+        pub keys: Option<crate::keys::KeysFile>,
+        /// With `keys`: the clip posed under them, at the same time (looping).
+        pub animation: Option<String>,
         pub duration: Option<f64>,
         pub fps: Option<f64>,
         pub ease: Option<EaseKind>,
@@ -78,6 +83,12 @@ pub fn is_character(body: &[u8]) -> bool {
 pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let req: AnimateCharacterReq = parse_json(body)?;
     let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    if let Some(keys) = &req.keys {
+        return keyed(&loaded, keys, &req, limits);
+    }
+    if req.animation.is_some() {
+        return Err(Problem::invalid("animation: only with keys (the clip under the keyed targets)"));
+    }
     if req.targets.is_empty() {
         return Err(Problem::invalid("targets: give at least one {\"bone\", \"x\", \"y\"}"));
     }
@@ -99,6 +110,35 @@ pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+}
+
+/// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
+/// `animation` if given; the eased course's fields refused, naming them.
+fn keyed(
+    loaded: &Loaded,
+    keys: &crate::keys::KeysFile,
+    req: &AnimateCharacterReq,
+    limits: &Limits,
+) -> Result<Reply, Problem> {
+    let given = [
+        ("targets", !req.targets.is_empty()),
+        ("duration", req.duration.is_some()),
+        ("fps", req.fps.is_some()),
+        ("ease", req.ease.is_some()),
+        ("k1", req.k1.is_some()),
+        ("k2", req.k2.is_some()),
+    ];
+    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(Problem::invalid(format!(
+            "{name}: not with keys (the keys give the targets, their eases and the fps)"
+        )));
+    }
+    let (course, fps) =
+        crate::character::motion::keyed(loaded, keys, req.animation.clone(), limits.max_frames, "--max-frames")
+            .map_err(Problem::invalid)?;
+    let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
+    motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 
 /// `POST /api/track` with a character.

@@ -207,11 +207,16 @@ impl<'a> Motion<'a> {
         (Some(name.clone()), Some(t))
     }
 
+    /// What posing the motion at `time` asks: `ikarus pose [--animation A --time T] --target …`.
+    #[must_use]
+    pub fn ask_at(&self, time: f64) -> PoseAsk {
+        let (animation, clip_time) = self.clip_at(time);
+        PoseAsk { animation, time: clip_time, targets: self.targets_at(time), ik: self.ik.clone() }
+    }
+
     /// The character posed at `time` into `out`.
     pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
-        let (animation, clip_time) = self.clip_at(time);
-        let ask = PoseAsk { animation, time: clip_time, targets: self.targets_at(time), ik: self.ik.clone() };
-        pose_into(self.loaded, &ask, out).map(|_| ())
+        pose_into(self.loaded, &self.ask_at(time), out).map(|_| ())
     }
 
     /// Every frame posed, one `Posed` reused.
