@@ -61,8 +61,9 @@ export function wireKeyed(state, canvas, act) {
    * clipboard  {row, key} copied by Ctrl-C;  drag  a key being dragged along its row, or null
    * busy, pending, answer  a motion request in flight, the keys changed since (ask again), the last answer
    * hover      the bend handle under the pointer (a bone name), or null
+   * loaded     the seconds of the keys the timeline plays, or null while it plays something else
    */
-  const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, hover: null };
+  const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, hover: null, loaded: null };
   state.keys = null;
   state.motion = null;
 
@@ -80,13 +81,17 @@ export function wireKeyed(state, canvas, act) {
   /** The timeline to the keys (or a character's clip without keys), the playhead kept at `k.t`. */
   function takeTimeline() {
     if (owns()) loadClip();
-    else if (state.character) act.clipBack();
+    else if (state.character) {
+      k.loaded = null;
+      act.clipBack();
+    }
   }
 
   /** The timeline plays the keyed animation (its length), the playhead kept at `k.t`. */
   function loadClip() {
     const at = k.t;
     const s = seconds();
+    k.loaded = s;
     act.timeline.loadClip({ seconds: s, show: showAt });
     if (at > 0) act.timeline.seek(Math.min(at / s, 1));
   }
@@ -139,10 +144,10 @@ export function wireKeyed(state, canvas, act) {
 
   /** After an edit: the keys kept tidy, the timeline as long as they are, undo told, the motion asked again. */
   function commit(what) {
-    const before = [seconds(), owns()];
     state.keys = tidy(state.keys);
     if (!selectedKey()) k.selected = null;
-    if (seconds() !== before[0] || owns() !== before[1]) takeTimeline();
+    // The timeline as long as the keys, or back to a character's clip without them.
+    if (owns() ? seconds() !== k.loaded : k.loaded !== null) takeTimeline();
     act.edited(what);
     requestMotion();
     syncBar();
@@ -280,6 +285,7 @@ export function wireKeyed(state, canvas, act) {
 
   /** A rig or a character took the canvas: no keys yet; a rig's timeline spans the length. */
   function enter() {
+    k.loaded = null;
     state.keys = null;
     state.motion = null;
     k.answer = null;
@@ -296,6 +302,7 @@ export function wireKeyed(state, canvas, act) {
   }
 
   function leave() {
+    k.loaded = null;
     state.keys = null;
     state.motion = null;
     k.answer = null;
@@ -332,7 +339,7 @@ export function wireKeyed(state, canvas, act) {
     }
     k.length = v;
     act.showError(null);
-    loadClip();
+    if (owns()) loadClip();
     syncBar();
   });
   $("key-ease").addEventListener("change", (ev) => {
