@@ -11,6 +11,8 @@ import {
   bendHandleAt,
   bendHandles,
   bendLimbs,
+  characterAnimateRequest,
+  characterMotion,
   deleteKey,
   emptyKeys,
   frameAt,
@@ -288,4 +290,22 @@ test("numbers as Rust's {:?} writes them, and the CSV of `animate --keys --forma
   const rig = { bones: [{ name: "a", length: 1, angle_deg: 0 }, { name: "b", parent: "a", length: 1, angle_deg: 5, joint: "prismatic" }] };
   const answer = { frames: [{ time: 0, angles_deg: { a: 10.5 }, extensions: { b: 0.25 }, joints: { a: [1, 0], b: [2, 0.5] } }] };
   assert.equal(rigFramesCsv(rig, answer), "time,a_deg,b_deg,b_ext,a.x,a.y,b.x,b.y\n0.0,10.5,5.0,0.25,1.0,0.0,2.0,0.5\n");
+});
+
+test("a character's request: the file's text, the tracks only, the clip, the IK switch, the format", () => {
+  let keys = setKey(null, "front-foot-target", 0, 1, 2);
+  keys = togglePinKey(keys, "hip");
+  const c = { text: "{…}", animation: "walk", ik: "runtime" };
+  assert.deepEqual(characterAnimateRequest(c, keys), { rig: "{…}", keys: { fps: 30, tracks: keys.tracks }, animation: "walk", format: "json" });
+  assert.deepEqual(characterAnimateRequest({ ...c, animation: "", ik: "ikarus" }, keys, "spine"), {
+    rig: "{…}",
+    keys: { fps: 30, tracks: keys.tracks },
+    ik: "ikarus",
+    format: "spine",
+    animation_name: "ikarus",
+  });
+  const m = characterMotion({ frames: [{ time: 0, bones: [] }, { time: 1 / 30, bones: [] }] }, 30);
+  assert.equal(m.fps, 30);
+  assert.equal(m.duration, 1 / 30);
+  assert.equal(frameAt(m, 0.03), m.frames[1]);
 });
