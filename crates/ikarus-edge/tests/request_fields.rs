@@ -20,7 +20,7 @@ fn groups_stand_where_their_fields_stood() {
     let picture = "figure, format, width, height";
     let area = "limits, grid, resolution, samples, seed";
     assert_eq!(fields::<SolveReq>(), format!("{aim}, options"));
-    assert_eq!(fields::<AnimateReq<[f64; 2]>>(), format!("{aim}, via, {motion}"));
+    assert_eq!(fields::<AnimateReq<[f64; 2]>>(), format!("{aim}, via, {motion}, keys"));
     assert_eq!(
         fields::<TrackReq>(),
         "arm, rig, start_deg, effector, goals, pins, mix, path, line, circle, figure8, samples, mode, \

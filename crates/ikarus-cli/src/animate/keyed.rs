@@ -30,9 +30,8 @@ impl KeyedRun {
         let rig = match args.body.load()? {
             Body::Rig(rig) => *rig,
             Body::Chain(_) => {
-                return Err(CliError::input(
-                    "--keys: needs --rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)",
-                ));
+                let message = ikarus_edge::keys::NEEDS_RIG.replacen("keys: needs rig", "--keys: needs --rig", 1);
+                return Err(CliError::input(message));
             }
         };
         let label = format!("--keys {}", keys.display());

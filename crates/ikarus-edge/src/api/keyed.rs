@@ -5,22 +5,18 @@
 
 use ikarus::Interrupt;
 
-use super::bodies::RigVia;
 use super::character_motion::MAX_BONE_FRAMES;
 use super::fields::{json_response, options_for, stopped};
-use super::requests::AnimateReq;
+use super::requests::{AnimateReq, RigGoalReq};
 use super::{Limits, Problem, Reply};
 use crate::keys::KeysFile;
 use crate::rig::Rig;
-
-/// The refusal of `keys` without a rig.
-pub const NEEDS_RIG: &str = "keys: needs rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)";
 
 /// The keyed motion of `rig`: every other motion field refused, naming it.
 pub fn animate(
     rig: &Rig,
     keys: &KeysFile,
-    req: &AnimateReq<RigVia>,
+    req: &AnimateReq<Vec<RigGoalReq>>,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Reply, Problem> {
