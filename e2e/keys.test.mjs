@@ -5,7 +5,7 @@
 // each effector on its key (the answer's `joints`, and the tips drawn); a knee's bend handle
 // flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
 // angle changes sign there and stays on that side after while the foot still reaches; the
-// frames' CSV is the CLI's. Then spineboy: its front foot target keyed over `walk` (four keys)
+// frames' CSV is the CLI's; a click pins the head for the whole animation. Then spineboy: its front foot target keyed over `walk` (four keys)
 // and exported as Spine JSON. Screenshots go to $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -14,6 +14,7 @@ import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
 import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
+import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
 
 /** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
 const TIMES = [0, 0.4, 0.8, 1.2];
@@ -243,6 +244,19 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
+
+    // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
+    // `pins` in the keys, and every frame holds the tip where the start pose has it.
+    await page.mouse.click(...(await tipClient(page, "head")));
+    await settled(page);
+    const keys3 = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(keys3.pins, ["head"]);
+    assert.deepEqual(keys3.tracks, keys2.tracks);
+    const rig = await page.evaluate(() => window.ikarus.state.rig.rig);
+    const rest = bodyForward(rig, []).tips[rig.bones.findIndex((b) => b.name === "head")];
+    const heads = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => f.joints.head));
+    heads.forEach((h, i) => assert.ok(Math.hypot(h[0] - rest[0], h[1] - rest[1]) < TOLERANCE, `frame ${i}: the pinned head at ${h}, the start pose's ${rest}`));
+    assert.ok(await page.evaluate(() => document.getElementById("key-rows").clientHeight >= 6 * 18), "a row for the pin");
     assert.deepEqual(errors, []);
   });
 });
