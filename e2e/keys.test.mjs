@@ -5,8 +5,9 @@
 // each effector on its key (the answer's `joints`, and the tips drawn); a knee's bend handle
 // flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
 // angle changes sign there and stays on that side after while the foot still reaches; the
-// frames' CSV is the CLI's; a click pins the head for the whole animation. Then spineboy: its front foot target keyed over `walk` (four keys)
-// and exported as Spine JSON. Screenshots go to $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
+// frames' CSV is the CLI's; a click pins the head for the whole animation. Then spineboy: its
+// front foot target keyed over `walk` (four keys) and exported as Spine JSON. Screenshots go to
+// $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
