@@ -40,6 +40,9 @@ fn health_and_the_playground_page() {
         ("/region.js", "text/javascript", "export function verdict"),
         ("/body.js", "text/javascript", "export function bodyForward"),
         ("/timeline.js", "text/javascript", "export function wireTimeline"),
+        ("/keys.js", "text/javascript", "export function setKey"),
+        ("/keyed.js", "text/javascript", "export function wireKeyed"),
+        ("/drawkeys.js", "text/javascript", "export function drawRows"),
         ("/track.js", "text/javascript", "export function wireTrack"),
         ("/view.js", "text/javascript", "export function fitView"),
         ("/app.css", "text/css", "#fbfaf7"),
@@ -64,7 +67,7 @@ fn health_and_the_playground_page() {
         }
         i += 1;
     }
-    assert_eq!(modules.len(), 21, "{modules:?}");
+    assert_eq!(modules.len(), 24, "{modules:?}");
     let e = s.get("/api/nope").error(404);
     assert!(e.contains("/api/nope"), "{e}");
     let e = s.get("/nope.js").error(404);

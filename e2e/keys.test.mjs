@@ -1,0 +1,362 @@
+// Keyframes in the playground (issue 28), in a real browser: on the puppet, Key mode on, both
+// feet and both hands keyed over four keys each by dragging them at the playhead (a walk-like
+// cycle: the feet alternating forward and back, the hands swinging against them); the keyed
+// motion (POST /api/animate with `keys`) plays to its end; at every key time the drawn pose has
+// each effector on its key (the answer's `joints`, and the tips drawn); a knee's bend handle
+// flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
+// angle changes sign there and stays on that side after while the foot still reaches; the
+// frames' CSV is the CLI's; a click pins the head for the whole animation. Then spineboy: its
+// front foot target keyed over `walk` (four keys) and exported as Spine JSON. Screenshots go to
+// $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
+import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
+import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
+
+/** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
+const TIMES = [0, 0.4, 0.8, 1.2];
+
+/**
+ * A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. At
+ * 0.8 s the left foot is lifted (a high step), nearer the hip than the straight leg reaches, so
+ * that its knee must bend one way or the other.
+ */
+const WALK = {
+  left_foot: [
+    [0.3, -0.86],
+    [0.18, -0.8],
+    [0.22, -0.62],
+    [0.3, -0.86],
+  ],
+  right_foot: [
+    [0.0, -0.9],
+    [0.15, -0.84],
+    [0.28, -0.86],
+    [0.0, -0.9],
+  ],
+  left_hand: [
+    [0.05, -0.27],
+    [0.15, -0.25],
+    [0.25, -0.2],
+    [0.05, -0.27],
+  ],
+  right_hand: [
+    [0.22, -0.2],
+    [0.1, -0.26],
+    [-0.05, -0.27],
+    [0.22, -0.2],
+  ],
+};
+
+/** How near a key's target an effector must be at its key time (the targets are reachable). */
+const TOLERANCE = 1e-3;
+
+const settled = (page) => page.waitForFunction(() => window.ikarus.keys.settled() && window.ikarus.rigs.settled(), null, { timeout: 60000 });
+
+/** Client coordinates of bone `name`'s tip as drawn now. */
+const tipClient = (page, name) =>
+  page.evaluate((n) => {
+    const r = window.ikarus.state.rig;
+    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
+  }, name);
+
+/** Drags bone `name`'s tip to the world point `to` and lets go; waits for the keyed motion. */
+async function drag(page, name, to) {
+  const from = await tipClient(page, name);
+  const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
+  await page.mouse.move(...from);
+  await page.mouse.down();
+  await page.mouse.move((from[0] + end[0]) / 2, (from[1] + end[1]) / 2, { steps: 4 });
+  await page.mouse.move(...end, { steps: 4 });
+  await page.mouse.up();
+  await settled(page);
+}
+
+/** The playhead to `t` seconds, the frame there shown. */
+async function seek(page, t) {
+  await page.evaluate((s) => window.ikarus.keys.seek(s), t);
+  await settled(page);
+}
+
+/** What the page shows now: each bone's drawn tip, the frame's `joints` and angles, the frame index. */
+const shown = (page) =>
+  page.evaluate(() => {
+    const s = window.ikarus.state;
+    const r = s.rig;
+    const tips = Object.fromEntries(r.rig.bones.map((b, i) => [b.name, r.tips[i]]));
+    const index = Number(document.body.dataset.keyFrame);
+    const frame = s.motion.frames[index];
+    return { tips, index, frame: { time: frame.time, status: frame.status, joints: frame.joints, angles_deg: frame.angles_deg } };
+  });
+
+test("the puppet: a walk keyed on both feet and both hands plays with every effector on its keys; a knee's bend handle flips it", async () => {
+  const dir = artifacts;
+  mkdirSync(dir, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    await page.selectOption("#body-kind", "rig:puppet");
+    await page.click("#key-mode");
+    assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "true");
+    for (let k = 0; k < TIMES.length; k++) {
+      await seek(page, TIMES[k]);
+      for (const [bone, targets] of Object.entries(WALK)) await drag(page, bone, targets[k]);
+    }
+    const keys = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(Object.keys(keys.tracks).sort(), Object.keys(WALK).sort());
+    for (const [bone, targets] of Object.entries(WALK)) {
+      assert.deepEqual(
+        keys.tracks[bone].map((q) => q.time),
+        TIMES,
+        `${bone}: the keys' times`,
+      );
+      keys.tracks[bone].forEach((q, k) => assert.ok(Math.hypot(q.x - targets[k][0], q.y - targets[k][1]) < 1e-6, `${bone} key ${k} at ${q.x}, ${q.y}, dragged to ${targets[k]}`));
+    }
+    const motion = await page.evaluate(() => ({ fps: window.ikarus.state.motion.fps, n: window.ikarus.state.motion.frames.length, times: window.ikarus.state.motion.frames.map((f) => f.time) }));
+    assert.equal(motion.fps, 30);
+    assert.equal(motion.n, 37, "frames 0 to 36");
+    motion.times.forEach((t, k) => assert.equal(t, k / 30));
+    // The rows: one per keyed effector, four diamonds each.
+    await page.screenshot({ path: join(dir, "keys-puppet-walk.png") });
+
+    // Played to its end; the timeline spans the Length, or the keys when they run longer.
+    assert.match(await page.textContent("#playtime"), / \/ 2\.00 s$/);
+    await page.fill("#key-length", "1");
+    await page.dispatchEvent("#key-length", "change");
+    assert.match(await page.textContent("#playtime"), / \/ 1\.20 s$/);
+    await page.click("#play");
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 20000 });
+    assert.equal(await page.textContent("#playtime"), "1.20 / 1.20 s");
+    await page.fill("#key-length", "2");
+    await page.dispatchEvent("#key-length", "change");
+
+    // At every key time, every effector drawn on its key.
+    for (let k = 0; k < TIMES.length; k++) {
+      await seek(page, TIMES[k]);
+      const s = await shown(page);
+      assert.equal(s.index, Math.round(TIMES[k] * 30));
+      for (const [bone, targets] of Object.entries(WALK)) {
+        const [x, y] = targets[k];
+        const j = s.frame.joints[bone];
+        assert.ok(Math.hypot(j[0] - x, j[1] - y) < TOLERANCE, `${bone} at ${TIMES[k]} s: the answer has it at ${j}, its key at ${targets[k]}`);
+        const d = s.tips[bone];
+        assert.ok(Math.hypot(d[0] - x, d[1] - y) < TOLERANCE, `${bone} at ${TIMES[k]} s: drawn at ${d}, its key at ${targets[k]}`);
+      }
+    }
+
+    // Editing on the rows (tracks in bone order: left_hand first): the left hand's key at 0.4 s
+    // dragged to 0.5 s, copied to 1.6 s and that copy deleted, then eased linear.
+    const box = await page.locator("#key-rows").boundingBox();
+    const inner = await page.evaluate(() => {
+      const c = document.getElementById("key-rows");
+      return { w: c.clientWidth, left: c.clientLeft, top: c.clientTop };
+    });
+    const axis = rowAxis(inner.w, 2);
+    const onRow = (t, r) => [box.x + inner.left + axis.x(t), box.y + inner.top + r * ROW.height + ROW.height / 2];
+    const hand = () => page.evaluate(() => window.ikarus.state.keys.tracks.left_hand.map((q) => ({ time: q.time, ease: q.ease })));
+    await page.mouse.move(...onRow(0.4, 0));
+    await page.mouse.down();
+    await page.mouse.move(...onRow(0.5, 0), { steps: 4 });
+    await page.mouse.up();
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2],
+      "moved to 0.5 s",
+    );
+    await page.keyboard.press("Control+C");
+    await seek(page, 1.6);
+    await page.keyboard.press("Control+V");
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2, 1.6],
+      "pasted at 1.6 s",
+    );
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 49, "the motion runs to the pasted key");
+    await page.keyboard.press("Delete");
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2],
+      "the pasted key deleted",
+    );
+    await page.mouse.click(...onRow(0.5, 0));
+    await page.selectOption("#key-ease", "linear");
+    await settled(page);
+    assert.equal((await hand())[1].ease, "linear");
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 37);
+
+    // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only with
+    // them; without them the lifted foot's knee bends whichever way the solve takes it).
+    await page.click("#limits");
+    await settled(page);
+    const side = (deg) => (deg >= 0 ? "ccw" : "cw");
+    const start = await page.evaluate(() => window.ikarus.state.motion.frames[0].angles_deg.left_shin);
+    await seek(page, 0.8);
+    const before = await shown(page);
+    const knee = before.frame.angles_deg.left_shin;
+    assert.ok(Math.abs(knee) > 5, `the left knee is bent at 0.8 s (${knee}°)`);
+    const handle = await page.evaluate(() => {
+      const h = window.ikarus.keys.handles().find((x) => x.bone === "left_shin");
+      const r = document.getElementById("plot").getBoundingClientRect();
+      return { side: h.side, at: [r.left + h.at[0], r.top + h.at[1]] };
+    });
+    assert.equal(handle.side, side(knee), "the handle says the side the knee bends");
+    await page.mouse.move(...handle.at);
+    await page.screenshot({ path: join(dir, "keys-puppet-bend-hover.png") });
+    await page.mouse.click(...handle.at);
+    await settled(page);
+    const flipped = side(knee) === "ccw" ? "cw" : "ccw";
+    const keys2 = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(keys2.bends.left_shin, [
+      { time: 0, bend: side(start) },
+      { time: 0.8, bend: flipped },
+    ]);
+    const after = await shown(page);
+    const knee2 = after.frame.angles_deg.left_shin;
+    assert.ok(Math.sign(knee2) === -Math.sign(knee) && Math.abs(knee2) > 5, `the left knee flipped at 0.8 s: ${knee}° → ${knee2}°`);
+    const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => f.angles_deg.left_shin));
+    // Every frame's knee within the half-turn its bend key holds (ccw [0°, 180°], cw [−180°, 0°]).
+    frames.forEach((a, i) => {
+      const want = i >= 24 ? flipped : side(start);
+      assert.ok(want === "ccw" ? a >= 0 : a <= 0, `frame ${i}: the knee at ${a}°, bending ${want} by the keys`);
+    });
+    const [x, y] = WALK.left_foot[2];
+    assert.ok(Math.hypot(after.tips.left_foot[0] - x, after.tips.left_foot[1] - y) < TOLERANCE, `the foot still on its key after the flip: ${after.tips.left_foot}`);
+    await page.screenshot({ path: join(dir, "keys-puppet-knee-flipped.png") });
+
+    // The frames saved as answered, times in seconds; the CSV is the CLI's, byte for byte, for
+    // the same keys (the page's solver settings are the CLI's defaults, limits now off).
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-json")]);
+    const saved = JSON.parse(readFileSync(await d.path(), "utf8"));
+    assert.equal(saved.frames.length, 37);
+    assert.equal(saved.frames[36].time, 1.2);
+    const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);
+    const csv = readFileSync(await c.path(), "utf8");
+    assert.equal(csv.trim().split("\n").length, 38, "a header and 37 rows");
+    const keysFile = join(dir, "keys-puppet-walk.json");
+    writeFileSync(keysFile, JSON.stringify(keys2));
+    const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
+    const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
+    assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
+
+    // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
+    // `pins` in the keys, and every frame holds the tip where the start pose has it.
+    await page.mouse.click(...(await tipClient(page, "head")));
+    await settled(page);
+    const keys3 = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(keys3.pins, ["head"]);
+    assert.deepEqual(keys3.tracks, keys2.tracks);
+    const rig = await page.evaluate(() => window.ikarus.state.rig.rig);
+    const rest = bodyForward(rig, []).tips[rig.bones.findIndex((b) => b.name === "head")];
+    const heads = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => f.joints.head));
+    heads.forEach((h, i) => assert.ok(Math.hypot(h[0] - rest[0], h[1] - rest[1]) < TOLERANCE, `frame ${i}: the pinned head at ${h}, the start pose's ${rest}`));
+    assert.ok(await page.evaluate(() => document.getElementById("key-rows").clientHeight >= 6 * 18), "a row for the pin");
+    assert.deepEqual(errors, []);
+  });
+});
+
+const examples = join(import.meta.dirname, "..", "examples", "characters");
+
+/** Seconds of spineboy's four keys, within `walk` (frames 0, 9, 18, 27 at 30 fps). */
+const SPINE_TIMES = [0, 0.3, 0.6, 0.9];
+
+/** Offsets of the front foot target from where `walk` has it at each key, Spine units. */
+const SPINE_OFFSETS = [
+  [0, 0],
+  [30, 25],
+  [60, 0],
+  [20, -5],
+];
+
+const characterSettled = (page) => page.waitForFunction(() => window.ikarus.characters.settled() && window.ikarus.keys.settled(), null, { timeout: 60000 });
+
+test("spineboy: the front foot target keyed over walk (four keys) is on its keys, and exported as Spine JSON", async (t) => {
+  mkdirSync(artifacts, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const text = readFileSync(join(examples, "spine-spineboy-pro.json"), "utf8");
+    const probe = await fetch(`${url}/api/animate`, {
+      method: "POST",
+      headers: { "content-type": "application/json" },
+      body: JSON.stringify({ rig: text, keys: { fps: 30, tracks: { "front-foot-target": [{ time: 0, x: 0, y: 0 }] } }, animation: "walk", format: "json" }),
+    });
+    if (probe.status >= 400 && probe.status < 500) {
+      t.skip(`/api/animate answers ${probe.status} to keys for a character: ${(await probe.json()).error}`);
+      return;
+    }
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: Buffer.from(text) });
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed, null, { timeout: 15000 });
+    await page.selectOption("#character-animation", "walk");
+    await characterSettled(page);
+    await page.click("#key-mode");
+    const name = "front-foot-target";
+    const keysWanted = [];
+    for (let k = 0; k < SPINE_TIMES.length; k++) {
+      if (k > 0) {
+        await page.evaluate((s) => window.ikarus.keys.seek(s), SPINE_TIMES[k]);
+        await characterSettled(page);
+      }
+      const at = await page.evaluate((n) => {
+        const c = window.ikarus.state.character;
+        const g = c.targets.get(n);
+        const b = c.posed.find((x) => x.name === n);
+        return g ? [g.x, g.y] : [b.x, b.y];
+      }, name);
+      // At time 0 the first key is where walk has the target (a plain click would not drag).
+      const goal = k === 0 ? [at[0] + 10, at[1]] : [at[0] + SPINE_OFFSETS[k][0], at[1] + SPINE_OFFSETS[k][1]];
+      const from = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), at);
+      const to = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), goal);
+      await page.mouse.move(...from);
+      await page.mouse.down();
+      await page.mouse.move(...to, { steps: 6 });
+      await page.mouse.up();
+      await characterSettled(page);
+      keysWanted.push(goal);
+    }
+    const keys = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(
+      keys.tracks[name].map((q) => q.time),
+      SPINE_TIMES,
+    );
+    // Where the pointer was let go (to a thousandth of a Spine unit, under a pixel: the pointer's
+    // place goes through the browser's event coordinates).
+    keys.tracks[name].forEach((q, k) => assert.ok(Math.hypot(q.x - keysWanted[k][0], q.y - keysWanted[k][1]) < 1e-3, `key ${k} at ${q.x}, ${q.y}; dragged to ${keysWanted[k]}`));
+    const keyed = keys.tracks[name].map((q) => [q.x, q.y]);
+    // At each key time the target bone's origin is on its key.
+    for (let k = 0; k < SPINE_TIMES.length; k++) {
+      await page.evaluate((s) => window.ikarus.keys.seek(s), SPINE_TIMES[k]);
+      await characterSettled(page);
+      const b = await page.evaluate((n) => window.ikarus.state.character.posed.find((x) => x.name === n), name);
+      const [x, y] = keyed[k];
+      assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-6, `${name} at ${SPINE_TIMES[k]} s: at ${b.x}, ${b.y}, its key ${x}, ${y}`);
+    }
+    await page.screenshot({ path: join(artifacts, "keys-spineboy-walk.png") });
+
+    // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its keys
+    // (to 1e-2, the export's promise).
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click("#export-spine")]);
+    assert.equal(d.suggestedFilename(), "spineboy-ikarus.json");
+    const exported = readFileSync(await d.path(), "utf8");
+    const file = JSON.parse(exported);
+    assert.ok(file.animations && file.animations.ikarus, "the export has animations.ikarus");
+    // Posed by `ikarus pose` (the file is past the server's body cap) at each key time.
+    const exportedFile = join(artifacts, "keys-spineboy-ikarus.json");
+    writeFileSync(exportedFile, exported);
+    for (let k = 0; k < SPINE_TIMES.length; k++) {
+      const posed = JSON.parse(execFileSync(binary, ["pose", "--rig", exportedFile, "--animation", "ikarus", "--time", String(SPINE_TIMES[k]), "--format", "json"], { encoding: "utf8", stdio: ["ignore", "pipe", "ignore"] }));
+      const b = posed.bones.find((x) => x.name === name);
+      const [x, y] = keyed[k];
+      assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-2, `the exported ikarus animation at ${SPINE_TIMES[k]} s has ${name} at ${b.x}, ${b.y}, its key ${x}, ${y}`);
+    }
+    assert.deepEqual(errors, []);
+  });
+});
