@@ -53,7 +53,8 @@ async function press(page, keys) {
   await settled(page);
 }
 
-test("the puppet and the arm: every edit undone and redone; saved, reloaded with a warning, opened bit for bit", async () => {
+/** Runs `body(page)` on a fresh playground (its own server and browser), then checks that nothing logged an error. */
+async function onPlayground(body) {
   const { child, url } = await startServer();
   const browser = await launch();
   try {
@@ -61,6 +62,16 @@ test("the puppet and the arm: every edit undone and redone; saved, reloaded with
     await page.goto(url);
     await ready(page);
     mkdirSync(artifacts, { recursive: true });
+    await body(page);
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    child.kill();
+  }
+}
+
+test("the puppet and the arm: every edit undone and redone; saved, reloaded with a warning, opened bit for bit", () =>
+  onPlayground(async (page) => {
     assert.equal(await page.isDisabled("#undo"), true);
     assert.equal(await page.evaluate(() => document.body.dataset.dirty), "false");
 
@@ -220,20 +231,10 @@ test("the puppet and the arm: every edit undone and redone; saved, reloaded with
     }, saved);
     await page.waitForFunction(() => window.ikarus.state.rig && /^opened walk/.test(document.getElementById("stats").textContent));
     assert.deepEqual(await work(page), rigWork);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill();
-  }
-});
+  }));
 
-test("spineboy: a placed target and a clip saved with the character embedded, opened on a fresh page", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("spineboy: a placed target and a clip saved with the character embedded, opened on a fresh page", () =>
+  onPlayground(async (page) => {
     const text = readFileSync(join(characters, "spine-spineboy-pro.json"), "utf8");
     await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: Buffer.from(text) });
     const charSettled = () => page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed && window.ikarus.characters.settled(), null, { timeout: 15000 });
@@ -291,9 +292,4 @@ test("spineboy: a placed target and a clip saved with the character embedded, op
     await page.waitForFunction(() => /^opened ref/.test(document.getElementById("stats").textContent) || window.ikarus.state.character.targets.size === 1);
     await charSettled();
     assert.deepEqual(await charWork(), before);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill();
-  }
-});
+  }));

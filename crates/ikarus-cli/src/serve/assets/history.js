@@ -16,8 +16,17 @@ export const HISTORY_CAP = 200;
  */
 export function newHistory(present, key = JSON.stringify, cap = HISTORY_CAP) {
   let now = present;
-  let back = [];
-  let ahead = [];
+  const back = [];
+  const ahead = [];
+
+  /** One step from the stack `from` to the stack `to`: its snapshot becomes the present. */
+  function move(from, to) {
+    const step = from.pop();
+    if (!step) return null;
+    to.push({ snapshot: now, label: step.label });
+    now = step.snapshot;
+    return step;
+  }
 
   return {
     /** An edit made the work `snapshot`: the work before it can be undone. False when nothing changed. */
@@ -25,35 +34,23 @@ export function newHistory(present, key = JSON.stringify, cap = HISTORY_CAP) {
       if (now !== null && key(snapshot) === key(now)) return false;
       back.push({ snapshot: now, label });
       if (back.length > cap) back.splice(0, back.length - cap);
-      ahead = [];
+      ahead.length = 0;
       now = snapshot;
       return true;
     },
-    /** What the last edit led to, as it settled (a solve's answer came): no new step. */
+    /** What the last edit led to, as it settled (a solve came back): no new step. */
     amend(snapshot) {
       now = snapshot;
     },
     /** Back one step: the snapshot to restore (now the present), or null when there is none. */
-    undo() {
-      const step = back.pop();
-      if (!step) return null;
-      ahead.push({ snapshot: now, label: step.label });
-      now = step.snapshot;
-      return step;
-    },
+    undo: () => move(back, ahead),
     /** Forward one step: the snapshot to restore, or null. */
-    redo() {
-      const step = ahead.pop();
-      if (!step) return null;
-      back.push({ snapshot: now, label: step.label });
-      now = step.snapshot;
-      return step;
-    },
+    redo: () => move(ahead, back),
     /** Forgets every step: `present` is the work. */
     reset(present) {
       now = present;
-      back = [];
-      ahead = [];
+      back.length = 0;
+      ahead.length = 0;
     },
     present: () => now,
     /** The label of what undo would undo, or null. */
