@@ -98,9 +98,13 @@ test("the puppet: both feet pinned, both hands dragged to reachable points, all 
     assert.equal(await page.inputValue("#method"), "lm");
     // A rig is solved inside its joint ranges (the checkbox can turn them off).
     assert.equal(await page.isChecked("#limits"), true);
-    // The arm's own controls step aside; the rig's appear.
+    // The arm's own controls step aside; the rig's appear, and the timeline plays its keys
+    // (keyed.js; without the motions' duration, ease plot and replay).
     assert.equal(await page.isVisible("#links-body"), false);
-    assert.equal(await page.isVisible("#timeline"), false);
+    assert.equal(await page.isVisible("#timeline"), true);
+    assert.equal(await page.isVisible("#keys"), true);
+    assert.equal(await page.isVisible("#ease-plot"), false);
+    assert.equal(await page.isVisible("#solver"), false);
     assert.equal(await page.isVisible("#clear-goals"), true);
 
     // Click both feet: pinned. A click again unpins, and once more pins.

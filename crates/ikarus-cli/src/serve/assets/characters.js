@@ -59,9 +59,11 @@ function newCharacterState(name, text, character) {
 
 /**
  * Wires the Character fieldset and the character's pointer on `canvas`. `act` is
- * {forgetMotion(), timeline (timeline.js's), requestDraw(), showError(e), setStatus(s),
- * say(text), edited(label) (an undo step)}. Returns {enter(name, text, character), ensure(name,
- * text, character), setWork(work), loaded(), resume(), leave(), reset(), settled()}.
+ * {forgetMotion(), timeline (timeline.js's), keyed (keyed.js's: a dragged target keyed in Key
+ * mode; with keys the timeline plays them, and the export bakes them), requestDraw(),
+ * showError(e), setStatus(s), say(text), edited(label) (an undo step)}. Returns {enter(name,
+ * text, character), ensure(name, text, character), setWork(work), loaded(), resume(), leave(),
+ * reset(), settled(), clipBack() (the clip on the timeline again)}.
  */
 export function wireCharacters(state, canvas, act) {
   /** The last character loaded: the Body list's "Character: …" shows it again. */
@@ -79,6 +81,7 @@ export function wireCharacters(state, canvas, act) {
     act.forgetMotion();
     state.character = c;
     last = c;
+    act.keyed.enter();
     document.body.classList.add("character");
     $("hint").textContent = $("hint").dataset.character;
     const select = $("body-kind");
@@ -148,6 +151,7 @@ export function wireCharacters(state, canvas, act) {
   function leave() {
     if (!state.character) return;
     state.character = null;
+    act.keyed.leave();
     document.body.classList.remove("character");
     canvas.style.cursor = "";
     const hint = $("hint");
@@ -158,6 +162,11 @@ export function wireCharacters(state, canvas, act) {
 
   /** The clip chosen onto the timeline (paused at its time), or none for the setup pose. */
   function playClip(c) {
+    // With keys the timeline plays them, over the clip.
+    if (state.keys) {
+      act.keyed.clipChanged();
+      return;
+    }
     const seconds = clipSeconds(c.character, c.animation);
     if (!c.animation || !(seconds > 0)) {
       act.timeline.unload();
@@ -275,14 +284,16 @@ export function wireCharacters(state, canvas, act) {
   async function exportSpine() {
     const c = state.character;
     if (!c) return;
-    if (c.targets.size === 0) {
-      act.showError(new api.Notice("Drag a target first: the export moves the targets from the setup pose to where you put them"));
+    // The keys when there are, else the targets from the setup pose to where they were put.
+    const keyed = act.keyed.spineRequest();
+    if (!keyed && c.targets.size === 0) {
+      act.showError(new api.Notice("Drag a target first: the export moves the targets from the setup pose to where you put them (or key them in Key mode)"));
       return;
     }
     const button = $("export-spine");
     button.disabled = true;
     try {
-      const text = await api.postText("/api/animate", JSON.stringify(exportRequest(c)), "application/json");
+      const text = await api.postText("/api/animate", JSON.stringify(keyed || exportRequest(c)), "application/json");
       saveBlob(new Blob([text], { type: "application/json" }), exportName(c.name));
       act.showError(null);
     } catch (e) {
@@ -319,7 +330,8 @@ export function wireCharacters(state, canvas, act) {
     if (!state.character || !state.character.posed || ev.button !== 0) return;
     const name = handleUnder(ev);
     if (!name) return;
-    press = { x: ev.clientX, y: ev.clientY, name, dragging: false };
+    const bone = state.character.posed.find((b) => b.name === name);
+    press = { x: ev.clientX, y: ev.clientY, name, from: bone ? [bone.x, bone.y] : null, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
   });
 
@@ -350,9 +362,10 @@ export function wireCharacters(state, canvas, act) {
   canvas.addEventListener("pointerup", () => {
     const c = state.character;
     if (!c || !press) return;
-    const { name, dragging } = press;
+    const { name, dragging, from } = press;
     press = null;
     c.grabbed = null;
+    if (dragging) act.keyed.dragEnded(name, c.targets.get(name), from);
     canvas.style.cursor = "grab";
     // A click (no drag) on a placed target lets it go: the clip and the constraints move it again.
     if (!dragging && c.targets.has(name)) {
@@ -396,7 +409,8 @@ export function wireCharacters(state, canvas, act) {
     radio.addEventListener("change", (ev) => {
       if (!state.character || !ev.target.checked) return;
       state.character.ik = ev.target.value;
-      poseSoon();
+      if (state.keys) act.keyed.resolve();
+      else poseSoon();
       act.edited(`IK by ${ev.target.value === "ikarus" ? "ikarus's solver" : "Spine's rules"}`);
     });
   }
@@ -406,5 +420,7 @@ export function wireCharacters(state, canvas, act) {
   });
   $("export-spine").addEventListener("click", exportSpine);
 
-  return { enter, ensure, setWork, loaded, resume, leave, reset, settled };
+  const clipBack = () => state.character && playClip(state.character);
+
+  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack };
 }

@@ -20,6 +20,7 @@ import { drawRigScene, rigView } from "./drawrig.js";
 import { characterView, drawCharacterScene } from "./drawchar.js";
 import { wireCharacters } from "./characters.js";
 import { wireRigs } from "./rigs.js";
+import { wireKeyed } from "./keyed.js";
 import { areaOutline, solveTime } from "./view.js";
 import { formatDistance, regionOf, unreachableText, verdict } from "./region.js";
 import { wireDownloads } from "./files.js";
@@ -108,6 +109,10 @@ const state = {
   // The character (a Spine or DragonBones file) the canvas poses instead, or null
   // (characters.js's newCharacterState documents its fields).
   character: null,
+  // Keyframes of the rig shown (keyed.js): the KEYS object of `ikarus animate --keys`, or null,
+  // and the keyed motion played ({fps, duration, frames with `pose`}), or null.
+  keys: null,
+  motion: null,
   // Work in flight. A sequence number is bumped by each new motion so that a stale answer is
   // dropped; following keeps one request in flight and only the latest goal waiting, asked again
   // (followChases times) while the bound holds the arm back.
@@ -158,10 +163,24 @@ const armEditor = wireArm(state, {
   edited,
 });
 
+/** The keys of a rig or a character, their motion and the bend handles (keyed.js). */
+const keyed = wireKeyed(state, canvas, {
+  timeline,
+  draw,
+  requestDraw,
+  showError,
+  setStatus,
+  say: (text) => ($("stats").textContent = text),
+  // Undo records each edit of the keys (projects.js).
+  edited,
+  clipBack: () => characters.clipBack(),
+});
+
 /** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
 const characters = wireCharacters(state, canvas, {
   forgetMotion,
   timeline,
+  keyed,
   requestDraw,
   showError,
   setStatus,
@@ -172,6 +191,7 @@ const characters = wireCharacters(state, canvas, {
 /** The Body list and the rig's pointer (rigs.js). */
 const rigs = wireRigs(state, canvas, {
   characters,
+  keyed,
   forgetMotion,
   controlsChanged,
   fieldsOk,
@@ -192,6 +212,7 @@ project = wireProject(state, {
   setPose,
   settingsChanged,
   forgetMotion,
+  applyKeys: (keys) => keyed.applyKeys(keys),
   seek: (u) => (state.playback.clip || state.animation ? timeline.seek(u) : (state.playback.u = u)),
   requestDraw,
   showError,
@@ -379,6 +400,7 @@ function draw() {
     state.view = rigView(state, canvas.clientWidth, canvas.clientHeight);
     state.view.keepOut = overlays();
     drawRigScene(ctx, state.view, state);
+    keyed.drawOver(ctx);
     canvas.dataset.pose = state.rig.pose_deg.map((a) => a.toFixed(6)).join(" ");
     return;
   }
@@ -702,8 +724,8 @@ function controlsChanged() {
   recheck();
   timeline.sync();
   requestDraw();
-  // A rig's goals are solved again with the new settings.
-  if (state.rig) rigs.resolve();
+  // A rig's goals (or its keyed motion) are solved again with the new settings.
+  if (state.rig) state.keys ? keyed.resolve() : rigs.resolve();
 }
 
 /** A new arm: no motion, goal, via points or replay of the old one. */
@@ -824,6 +846,7 @@ async function init() {
     usePalette(meta.palette);
     state.limitModeChoice = meta.default_limit_mode;
     fillSelects(meta);
+    keyed.fillEases(meta);
     // The arm of the last visit, else the server's default.
     state.arm = storedArm() || arm;
     armEditor.showLinks();
@@ -852,6 +875,8 @@ window.ikarus = {
   resetPose,
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
   rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },
+  /** A rig's keys: restore a KEYS object (undo, projects), whether no keyed motion is asked, Key mode, the playhead (seconds), the bend handles (canvas pixels). */
+  keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
   /** Undo, redo, save and open (projects.js), the work as a snapshot, and whether it is unsaved. */

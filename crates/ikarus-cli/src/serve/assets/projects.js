@@ -56,9 +56,10 @@ async function sha256(bytes) {
 /**
  * Wires undo, redo and project files. `act` is {rigs (rigs.js's), characters (characters.js's),
  * useArm(arm) (links.js's), setPose(pose), settingsChanged() (the settings' fields were set: the
- * page reads them), forgetMotion(), applyKeys(keys)? (the keys' module; else `state.keys` is
- * set), seek(u), requestDraw(), showError(e), say(text)}. Returns {start(), edited(label),
- * amend(), undo(), redo(), save(), open(name, text), dirty(), sizes(), restoring()}.
+ * page reads them), forgetMotion(), applyKeys(keys) (keyed.js's: the keys shown and their motion
+ * asked), seek(u), requestDraw(), showError(e), say(text)}. Returns {start(), edited(label),
+ * amend(), undo(), redo(), save(), open(name, text), isProject(text), dirty(), sizes(),
+ * restoring()}.
  */
 export function wireProject(state, act) {
   /** The work as the page starts (its arm and settings are the defaults of a file missing them). */
@@ -123,8 +124,7 @@ export function wireProject(state, act) {
       if (snap.rig) act.rigs.setWork(snap.rig);
       if (snap.character) act.characters.setWork(snap.character);
       const keys = snap.keys ? JSON.parse(JSON.stringify(snap.keys)) : null;
-      if (act.applyKeys) act.applyKeys(keys);
-      else state.keys = keys;
+      act.applyKeys(keys);
       act.seek(snap.playhead);
       act.requestDraw();
     } finally {

@@ -47,7 +47,8 @@ function newRigState(rig, source) {
 
 /**
  * Wires the Body fieldset and the rig's pointer on `canvas`. `act` is {characters
- * (characters.js's), forgetMotion(),
+ * (characters.js's), keyed (keyed.js's: keys from drags and pin clicks in Key mode, the bend
+ * handles, which a press tries first), forgetMotion(),
  * controlsChanged(), fieldsOk(point), draw(), requestDraw(), showError(e), setStatus(s),
  * say(text), edited(label) (an undo step), amend() (the last step settled), project
  * (projects.js's: a project file picked or dropped opens there)}. Returns {load() (the shipped
@@ -84,6 +85,7 @@ export function wireRigs(state, canvas, act) {
     if (value === "arm") {
       if (!state.rig) return;
       state.rig = null;
+      act.keyed.leave();
       document.body.classList.remove("rig");
       delete document.body.dataset.failed;
       if (armLimits !== null) $("limits").checked = armLimits;
@@ -113,6 +115,7 @@ export function wireRigs(state, canvas, act) {
     act.showError(null);
     act.controlsChanged();
     idle();
+    act.keyed.enter();
     act.requestDraw();
   }
 
@@ -292,10 +295,11 @@ export function wireRigs(state, canvas, act) {
   let press = null;
 
   canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.rig || ev.button !== 0) return;
+    if (!state.rig || ev.button !== 0 || act.keyed.bendPress(ev)) return;
     const bone = tipUnder(ev);
     if (!bone) return;
-    press = { x: ev.clientX, y: ev.clientY, bone, dragging: false };
+    const from = state.rig.tips[names().indexOf(bone)];
+    press = { x: ev.clientX, y: ev.clientY, bone, from, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
   });
 
@@ -303,8 +307,8 @@ export function wireRigs(state, canvas, act) {
     const r = state.rig;
     if (!r) return;
     if (!press) {
-      const hover = tipUnder(ev);
-      canvas.style.cursor = hover ? "grab" : "";
+      const hover = act.keyed.hoverBend(ev) ? null : tipUnder(ev);
+      canvas.style.cursor = hover ? "grab" : act.keyed.hovering() ? "pointer" : "";
       if (hover !== r.hover) {
         r.hover = hover;
         act.requestDraw();
@@ -327,14 +331,16 @@ export function wireRigs(state, canvas, act) {
   canvas.addEventListener("pointerup", (ev) => {
     const r = state.rig;
     if (!r || !press) return;
-    const { bone, dragging } = press;
+    const { bone, dragging, from } = press;
     press = null;
+    if (dragging) act.keyed.dragEnded(bone, r.goals.get(bone), from);
     r.grabbed = null;
     r.hover = tipUnder(ev);
     canvas.style.cursor = r.hover ? "grab" : "";
     if (dragging) act.edited(`Move ${bone} goal`);
     else {
       setGoalsAndPins(togglePin(r.goals, r.pins, bone));
+      act.keyed.pinToggled(bone);
       act.edited(`${r.pins.has(bone) ? "Pin" : "Unpin"} ${bone}`);
       show(`${bone} ${r.pins.has(bone) ? "pinned" : "unpinned"} · ${r.pins.size} pin${r.pins.size === 1 ? "" : "s"}, ${r.goals.size} goal${r.goals.size === 1 ? "" : "s"}`);
       // A pin dropped a goal: the others are solved again without it.

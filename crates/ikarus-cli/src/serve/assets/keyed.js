@@ -1,0 +1,444 @@
+// Keyframes on the page for a rig or a character (issue 28): the keys bar and rows under the
+// timeline, Key mode (a drag of an effector or an IK target keys its target at the playhead; on
+// a rig a click pins the tip for the whole animation), the bend handles at a rig's knees and
+// elbows (a click keys the other side at the playhead), and the keyed motion: after every edit
+// of the keys POST /api/animate with the rig (or the character file's text, its clip and IK
+// choice), `keys` and the solver options (one request in flight, latest wins), played by the
+// timeline (timeline.js's loadClip: frame ⌊t·fps⌉ of the answer shown, never blended), and its
+// frames saved as the server writes them (JSON; CSV for a rig). A character without keys leaves
+// the timeline to its clip (characters.js) and keys at the clip's time. The pure parts are
+// keys.js, the drawing drawkeys.js.
+//
+// It writes `state.keys` (the KEYS object of `ikarus animate --keys`, or null) and
+// `state.motion` ({fps, duration, frames}, each frame with `pose` in bone order, or null).
+
+import * as api from "./api.js";
+import { bodyForward } from "./body.js";
+import { saveBlob } from "./files.js";
+import { ownsKeys } from "./input.js";
+import {
+  bendAllowed,
+  bendHandleAt,
+  bendHandles,
+  characterAnimateRequest,
+  characterMotion,
+  DEFAULT_LENGTH,
+  deleteKey,
+  frameAt,
+  frameOf,
+  keyRows,
+  keysDuration,
+  moveKey,
+  pasteKey,
+  rigAnimateRequest,
+  rigMotion,
+  setBend,
+  setEase,
+  setKey,
+  sideOf,
+  tidy,
+  togglePinKey,
+} from "./keys.js";
+import { drawBendHandles, drawRows, pickKey, rowAxis } from "./drawkeys.js";
+import { toCanvas } from "./view.js";
+
+const $ = (id) => document.getElementById(id);
+
+/**
+ * Wires the keys of a rig or a character. `act` is {timeline (timeline.js's), draw(),
+ * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
+ * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
+ * Returns {enter(), leave(), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
+ * (the bend handles in canvas pixels), hovering(), dragEnded(bone, goal, from), pinToggled(bone),
+ * bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), setMode(on), seek(t), fillEases(meta)}.
+ */
+export function wireKeyed(state, canvas, act) {
+  /**
+   * mode       Key mode on (drags key, clicks pin for the animation)
+   * length     the animation's length the reader chose, seconds (the timeline spans at least the last key)
+   * t          the playhead, seconds;  selected  {kind, bone, index} of the selected key, or null
+   * clipboard  {row, key} copied by Ctrl-C;  drag  a key being dragged along its row, or null
+   * busy, pending, answer, request  the motion's request in flight, asked again, the last answer and its request
+   * hover      the bend handle under the pointer (a bone name), or null
+   */
+  const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, request: null, hover: null };
+  state.keys = null;
+  state.motion = null;
+
+  const fps = () => (state.keys && state.keys.fps) || 30;
+  const seconds = () => Math.max(k.length, keysDuration(state.keys));
+  /** The body keyed: the rig or the character shown (null: the arm). */
+  const body = () => state.rig || state.character;
+  const boneNames = () => (state.rig ? state.rig.rig.bones : state.character ? state.character.character.bones : []).map((b) => b.name);
+  const rows = () => (body() ? keyRows(state.keys, boneNames()) : []);
+  /** Whether the timeline plays the keys: a rig's always, a character's once it has keys. */
+  const owns = () => !!state.rig || (!!state.character && !!state.keys);
+
+  // ---- The timeline ----------------------------------------------------------------------
+
+  /** The timeline to the keys (or a character's clip without keys), the playhead kept at `k.t`. */
+  function takeTimeline() {
+    if (owns()) loadClip();
+    else if (state.character) act.clipBack();
+  }
+
+  /** The timeline plays the keyed animation (its length), the playhead kept at `k.t`. */
+  function loadClip() {
+    const at = k.t;
+    const s = seconds();
+    act.timeline.loadClip({ seconds: s, show: showAt });
+    if (at > 0) act.timeline.seek(Math.min(at / s, 1));
+  }
+
+  /** The playhead at `t` seconds: the motion's frame there shown (its pose, targets and pins). */
+  function showAt(t) {
+    k.t = t;
+    const r = state.rig;
+    const c = state.character;
+    const f = frameAt(state.motion, t);
+    if (c && f) {
+      c.time = t;
+      c.posed = f.bones;
+      // The keyed targets there (a drag then moves one, the others held).
+      c.targets = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
+      document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
+    } else if (r && f) {
+      r.pose_deg = f.pose.slice();
+      Object.assign(r, bodyForward(r.rig, r.pose_deg));
+      r.goals = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
+      r.pins = new Set(state.keys ? state.keys.pins : []);
+      document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
+    }
+    syncBar();
+    act.draw();
+  }
+
+  /** The bar's buttons and the rows. */
+  function syncBar() {
+    const mode = $("key-mode");
+    mode.setAttribute("aria-pressed", String(k.mode));
+    const sel = selectedKey();
+    const ease = $("key-ease");
+    ease.disabled = !sel || k.selected.kind !== "track";
+    if (!ease.disabled) ease.value = sel.ease || "sine";
+    $("key-delete").disabled = !sel;
+    $("key-frames-json").disabled = !k.answer;
+    $("key-frames-csv").disabled = !k.answer || !state.rig;
+    drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
+  }
+
+  function selectedKey() {
+    const s = k.selected;
+    if (!s || !state.keys) return null;
+    const list = (s.kind === "bend" ? state.keys.bends : state.keys.tracks)[s.bone];
+    return (list && list[s.index]) || null;
+  }
+
+  // ---- Edits -----------------------------------------------------------------------------
+
+  /** After an edit: the keys kept tidy, the timeline as long as they are, undo told, the motion asked again. */
+  function commit(what) {
+    const before = [seconds(), owns()];
+    state.keys = tidy(state.keys);
+    if (!selectedKey()) k.selected = null;
+    if (seconds() !== before[0] || owns() !== before[1]) takeTimeline();
+    act.edited(what);
+    requestMotion();
+    syncBar();
+  }
+
+  /** Where `bone`'s tip (a character: its origin) is at time 0 of the motion shown, if it has one. */
+  function tipAtStart(bone) {
+    const f = state.motion && state.motion.frames[0];
+    if (f && f.bones) {
+      const b = f.bones.find((x) => x.name === bone);
+      return b ? [b.x, b.y] : null;
+    }
+    return f && f.joints && f.joints[bone] ? f.joints[bone] : null;
+  }
+
+  /**
+   * A drag of `bone`'s goal (a rig's effector, a character's IK target) ended at `goal` ({x, y})
+   * from `from` (where it was when grabbed): in Key mode, a key at the playhead (a character
+   * without keys yet: at its clip's time).
+   */
+  function dragEnded(bone, goal, from) {
+    if (!k.mode || !goal) return false;
+    if (state.character && !state.keys) k.t = state.character.time;
+    state.keys = setKey(state.keys, bone, k.t, goal.x, goal.y, tipAtStart(bone) || from);
+    const list = state.keys.tracks[bone];
+    k.selected = { kind: "track", bone, index: list.findIndex((q) => frameOf(q.time, fps()) === frameOf(k.t, fps())) };
+    commit(`key ${bone} at ${(frameOf(k.t, fps()) / fps()).toFixed(2)} s`);
+    return true;
+  }
+
+  /** A click on `bone`'s tip: in Key mode, pinned (or unpinned) for the whole animation. */
+  function pinToggled(bone) {
+    if (!k.mode) return false;
+    state.keys = togglePinKey(state.keys, bone);
+    commit(`${state.keys.pins.includes(bone) ? "pin" : "unpin"} ${bone}`);
+    return true;
+  }
+
+  /** The bend handles of the pose shown, in canvas pixels. */
+  const handles = () => (state.rig ? bendHandles(state.rig.rig, state.rig.pose_deg, (x, y) => toCanvas(state.view, x, y)) : []);
+
+  const local = (ev) => {
+    const rect = canvas.getBoundingClientRect();
+    return [ev.clientX - rect.left, ev.clientY - rect.top];
+  };
+
+  /** A press on a bend handle flips that joint at the playhead (a bend key); true when it was on one. */
+  function bendPress(ev) {
+    const r = state.rig;
+    if (!r) return false;
+    const hs = handles();
+    const bone = bendHandleAt(hs, ...local(ev));
+    if (!bone) return false;
+    ev.preventDefault();
+    const h = hs.find((x) => x.bone === bone);
+    const to = h.side === "ccw" ? "cw" : "ccw";
+    const i = r.rig.bones.findIndex((b) => b.name === bone);
+    const def = r.rig.bones[i];
+    if (!bendAllowed(def, to, state.options.limits)) {
+      const [lo, hi] = def.limits_deg;
+      act.showError(new api.Notice(`${bone}: its limits [${lo}°, ${hi}°] allow only ${h.side}; turn off Enforce joint limits to flip it`));
+      return true;
+    }
+    const f0 = state.motion && state.motion.frames[0];
+    const from = f0 ? sideOf(f0.pose[i]) : h.side;
+    state.keys = setBend(state.keys, bone, k.t, to, from);
+    k.selected = null;
+    if (!state.keys.tracks || !Object.keys(state.keys.tracks).length) act.say(`${bone} keyed to bend ${to}; key an effector to see the motion`);
+    commit(`bend ${bone} ${to}`);
+    return true;
+  }
+
+  /** The bend handle under the pointer, ringed and named; whether there is one (then it alone is named). */
+  function hoverBend(ev) {
+    if (!state.rig) return false;
+    const bone = bendHandleAt(handles(), ...local(ev));
+    if (bone !== k.hover) {
+      k.hover = bone;
+      act.requestDraw();
+    }
+    return !!bone;
+  }
+
+  /** Over the rig on the canvas: the bend handles. */
+  function drawOver(ctx) {
+    if (state.rig) drawBendHandles(ctx, handles(), k.hover);
+  }
+
+  // ---- The motion ------------------------------------------------------------------------
+
+  function requestMotion() {
+    k.pending = true;
+    pump();
+  }
+
+  async function pump() {
+    const b = body();
+    if (!b || k.busy || !k.pending) return;
+    k.pending = false;
+    const keys = state.keys;
+    if (!keys || !Object.keys(keys.tracks).length) {
+      state.motion = null;
+      k.answer = null;
+      syncBar();
+      return;
+    }
+    k.busy = true;
+    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : characterAnimateRequest(state.character, keys, "json");
+    act.setStatus("solving");
+    try {
+      const answer = await api.animate(req);
+      if (body() === b && state.keys === keys) {
+        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : characterMotion(answer, keys.fps);
+        k.answer = answer;
+        k.request = req;
+        const reached = answer.frames.filter((f) => f.status === "reached").length;
+        act.showError(null);
+        act.setStatus(!state.rig || reached === answer.frames.length ? "ready" : "unreachable");
+        act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.rig ? ` · ${reached} reached` : ""}`);
+        showAt(k.t);
+      }
+    } catch (e) {
+      if (body() === b) {
+        act.showError(e);
+        act.setStatus("error");
+      }
+    }
+    k.busy = false;
+    pump();
+  }
+
+  /** Whether no motion is in flight or waiting (for tests and scripts). */
+  const settled = () => !k.busy && !k.pending;
+
+  // ---- Entering and leaving a rig, restoring keys ----------------------------------------
+
+  /** A rig or a character took the canvas: no keys yet; a rig's timeline spans the length. */
+  function enter() {
+    state.keys = null;
+    state.motion = null;
+    k.answer = null;
+    k.request = null;
+    k.selected = null;
+    k.t = 0;
+    if (state.rig) loadClip();
+    syncBar();
+  }
+
+  /** A character's clip changed: the keyed motion is made over the new one. */
+  function clipChanged() {
+    loadClip();
+    requestMotion();
+  }
+
+  function leave() {
+    state.keys = null;
+    state.motion = null;
+    k.answer = null;
+    k.request = null;
+    k.selected = null;
+  }
+
+  /** Keys restored (undo, an opened project): shown and solved, without recording an edit. */
+  function applyKeys(keys) {
+    state.keys = tidy(keys);
+    k.selected = null;
+    takeTimeline();
+    requestMotion();
+    syncBar();
+  }
+
+  /** The solver's settings changed: the keyed motion is solved again with them. */
+  function resolve() {
+    if (state.keys) requestMotion();
+  }
+
+  function setMode(on) {
+    k.mode = on;
+    syncBar();
+  }
+
+  // ---- The bar and rows ------------------------------------------------------------------
+
+  $("key-mode").addEventListener("click", () => setMode(!k.mode));
+  $("key-length").addEventListener("change", (ev) => {
+    const v = Number(ev.target.value);
+    if (!(v >= 0.1 && v <= 60)) {
+      act.showError(new api.Notice(`Length: ${ev.target.value} is not a number of seconds from 0.1 to 60`));
+      return;
+    }
+    k.length = v;
+    act.showError(null);
+    loadClip();
+    syncBar();
+  });
+  $("key-ease").addEventListener("change", (ev) => {
+    const s = k.selected;
+    if (!s || s.kind !== "track") return;
+    const m = state.meta || {};
+    state.keys = setEase(state.keys, s.bone, s.index, { kind: ev.target.value, k1: m.default_k1, k2: m.default_k2 });
+    commit(`ease ${s.bone} ${ev.target.value}`);
+  });
+  $("key-delete").addEventListener("click", deleteSelected);
+
+  function deleteSelected() {
+    const s = k.selected;
+    if (!s || !selectedKey()) return;
+    state.keys = deleteKey(state.keys, s, s.index);
+    k.selected = null;
+    commit(`delete key of ${s.bone}`);
+  }
+
+  async function download(format) {
+    if (!k.request) return;
+    try {
+      const text = await api.postText("/api/animate", JSON.stringify({ ...k.request, format }), "application/json");
+      const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
+      saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
+    } catch (e) {
+      act.showError(e);
+    }
+  }
+  $("key-frames-json").addEventListener("click", () => download("json"));
+  $("key-frames-csv").addEventListener("click", () => download("csv"));
+
+  const rowsCanvas = $("key-rows");
+  const rowPoint = (ev) => {
+    const rect = rowsCanvas.getBoundingClientRect();
+    return [ev.clientX - rect.left, ev.clientY - rect.top];
+  };
+  rowsCanvas.addEventListener("pointerdown", (ev) => {
+    if (!body() || ev.button !== 0) return;
+    const axis = rowAxis(rowsCanvas.clientWidth, seconds());
+    const [px, py] = rowPoint(ev);
+    const pick = pickKey(rows(), axis, px, py);
+    if (pick && pick.index >= 0) {
+      k.selected = { kind: pick.row.kind, bone: pick.row.bone, index: pick.index };
+      k.drag = { base: state.keys, row: k.selected, moved: false };
+      rowsCanvas.setPointerCapture(ev.pointerId);
+      syncBar();
+      return;
+    }
+    // Elsewhere on the rows: the playhead goes there.
+    k.selected = null;
+    if (owns()) act.timeline.seek(axis.t(px) / seconds());
+    syncBar();
+  });
+  rowsCanvas.addEventListener("pointermove", (ev) => {
+    if (!k.drag) return;
+    const axis = rowAxis(rowsCanvas.clientWidth, seconds());
+    const moved = moveKey(k.drag.base, k.drag.row, k.drag.row.index, axis.t(rowPoint(ev)[0]));
+    if (moved.time !== selectedKeyTime(k.drag.base)) k.drag.moved = true;
+    state.keys = moved.keys;
+    syncBar();
+  });
+  const selectedKeyTime = (keys) => {
+    const s = k.selected;
+    const list = (s.kind === "bend" ? keys.bends : keys.tracks)[s.bone];
+    return list[s.index].time;
+  };
+  rowsCanvas.addEventListener("pointerup", () => {
+    if (!k.drag) return;
+    const { moved, row } = k.drag;
+    k.drag = null;
+    if (moved) commit(`move key of ${row.bone}`);
+  });
+
+  document.addEventListener("keydown", (ev) => {
+    if (!body() || ev.altKey || ownsKeys(ev.target, ev.key)) return;
+    const ctrl = ev.ctrlKey || ev.metaKey;
+    if (!ctrl && (ev.key === "Delete" || ev.key === "Backspace") && k.selected) {
+      ev.preventDefault();
+      deleteSelected();
+    } else if (ctrl && ev.key.toLowerCase() === "c" && selectedKey()) {
+      k.clipboard = { row: { kind: k.selected.kind, bone: k.selected.bone }, key: { ...selectedKey() } };
+    } else if (ctrl && ev.key.toLowerCase() === "v" && k.clipboard) {
+      ev.preventDefault();
+      const { row, key } = k.clipboard;
+      state.keys = pasteKey(state.keys, row, key, k.t);
+      const list = (row.kind === "bend" ? state.keys.bends : state.keys.tracks)[row.bone];
+      k.selected = { ...row, index: list.findIndex((q) => frameOf(q.time, fps()) === frameOf(list.length > 1 ? k.t : 0, fps())) };
+      commit(`paste key of ${row.bone}`);
+    } else if (!ctrl && ev.key.toLowerCase() === "k") {
+      setMode(!k.mode);
+    }
+  });
+  new ResizeObserver(syncBar).observe(rowsCanvas);
+
+  /** Fills the ease list from /api/meta's eases. */
+  function fillEases(meta) {
+    $("key-ease").replaceChildren(...meta.eases.map((e) => Object.assign(new Option(e.label, e.name), { title: e.summary })));
+  }
+
+  const seek = (t) => (owns() ? act.timeline.seek(Math.min(t / seconds(), 1)) : undefined);
+
+  /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
+  const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
+
+  return { enter, leave, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+}

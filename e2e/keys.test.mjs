@@ -1,0 +1,277 @@
+// Keyframes in the playground (issue 28), in a real browser: on the puppet, Key mode on, both
+// feet and both hands keyed over four keys each by dragging them at the playhead (a walk-like
+// cycle: the feet alternating forward and back, the hands swinging against them); the keyed
+// motion (POST /api/animate with `keys`) plays to its end; at every key time the drawn pose has
+// each effector on its key (the answer's `joints`, and the tips drawn); a knee's bend handle
+// flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
+// angle changes sign there and after while the foot still reaches. Then spineboy: its front
+// foot target keyed over `walk` (four keys) and exported as Spine JSON. Screenshots go to
+// $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { mkdirSync, readFileSync } from "node:fs";
+import { join } from "node:path";
+import { artifacts, openPage, ready, withBrowser } from "./browser.mjs";
+
+/** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
+const TIMES = [0, 0.4, 0.8, 1.2];
+
+/** A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. */
+const WALK = {
+  left_foot: [
+    [0.3, -0.86],
+    [0.18, -0.8],
+    [0.02, -0.88],
+    [0.3, -0.86],
+  ],
+  right_foot: [
+    [0.0, -0.9],
+    [0.15, -0.84],
+    [0.28, -0.86],
+    [0.0, -0.9],
+  ],
+  left_hand: [
+    [0.05, -0.27],
+    [0.15, -0.25],
+    [0.25, -0.2],
+    [0.05, -0.27],
+  ],
+  right_hand: [
+    [0.22, -0.2],
+    [0.1, -0.26],
+    [-0.05, -0.27],
+    [0.22, -0.2],
+  ],
+};
+
+/** How near a key's target an effector must be at its key time (the targets are reachable). */
+const TOLERANCE = 1e-3;
+
+const settled = (page) => page.waitForFunction(() => window.ikarus.keys.settled() && window.ikarus.rigs.settled(), null, { timeout: 60000 });
+
+/** Client coordinates of bone `name`'s tip as drawn now. */
+const tipClient = (page, name) =>
+  page.evaluate((n) => {
+    const r = window.ikarus.state.rig;
+    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
+  }, name);
+
+/** Drags bone `name`'s tip to the world point `to` and lets go; waits for the keyed motion. */
+async function drag(page, name, to) {
+  const from = await tipClient(page, name);
+  const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
+  await page.mouse.move(...from);
+  await page.mouse.down();
+  await page.mouse.move((from[0] + end[0]) / 2, (from[1] + end[1]) / 2, { steps: 4 });
+  await page.mouse.move(...end, { steps: 4 });
+  await page.mouse.up();
+  await settled(page);
+}
+
+/** The playhead to `t` seconds, the frame there shown. */
+async function seek(page, t) {
+  await page.evaluate((s) => window.ikarus.keys.seek(s), t);
+  await settled(page);
+}
+
+/** What the page shows now: each bone's drawn tip, the frame's `joints` and angles, the frame index. */
+const shown = (page) =>
+  page.evaluate(() => {
+    const s = window.ikarus.state;
+    const r = s.rig;
+    const tips = Object.fromEntries(r.rig.bones.map((b, i) => [b.name, r.tips[i]]));
+    const index = Number(document.body.dataset.keyFrame);
+    const frame = s.motion.frames[index];
+    return { tips, index, frame: { time: frame.time, status: frame.status, joints: frame.joints, angles_deg: frame.angles_deg } };
+  });
+
+test("the puppet: a walk keyed on both feet and both hands plays with every effector on its keys; a knee's bend handle flips it", async () => {
+  const dir = artifacts;
+  mkdirSync(dir, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    await page.selectOption("#body-kind", "rig:puppet");
+    await page.click("#key-mode");
+    assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "true");
+    for (let k = 0; k < TIMES.length; k++) {
+      await seek(page, TIMES[k]);
+      for (const [bone, targets] of Object.entries(WALK)) await drag(page, bone, targets[k]);
+    }
+    const keys = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(Object.keys(keys.tracks).sort(), Object.keys(WALK).sort());
+    for (const [bone, targets] of Object.entries(WALK)) {
+      assert.deepEqual(
+        keys.tracks[bone].map((q) => q.time),
+        TIMES,
+        `${bone}: the keys' times`,
+      );
+      keys.tracks[bone].forEach((q, k) => assert.ok(Math.hypot(q.x - targets[k][0], q.y - targets[k][1]) < 1e-6, `${bone} key ${k} at ${q.x}, ${q.y}, dragged to ${targets[k]}`));
+    }
+    const motion = await page.evaluate(() => ({ fps: window.ikarus.state.motion.fps, n: window.ikarus.state.motion.frames.length, times: window.ikarus.state.motion.frames.map((f) => f.time) }));
+    assert.equal(motion.fps, 30);
+    assert.equal(motion.n, 37, "frames 0 to 36");
+    motion.times.forEach((t, k) => assert.equal(t, k / 30));
+    // The rows: one per keyed effector, four diamonds each.
+    await page.screenshot({ path: join(dir, "keys-puppet-walk.png") });
+
+    // Played to its end.
+    await page.click("#play");
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 20000 });
+
+    // At every key time, every effector drawn on its key.
+    for (let k = 0; k < TIMES.length; k++) {
+      await seek(page, TIMES[k]);
+      const s = await shown(page);
+      assert.equal(s.index, Math.round(TIMES[k] * 30));
+      for (const [bone, targets] of Object.entries(WALK)) {
+        const [x, y] = targets[k];
+        const j = s.frame.joints[bone];
+        assert.ok(Math.hypot(j[0] - x, j[1] - y) < TOLERANCE, `${bone} at ${TIMES[k]} s: the answer has it at ${j}, its key at ${targets[k]}`);
+        const d = s.tips[bone];
+        assert.ok(Math.hypot(d[0] - x, d[1] - y) < TOLERANCE, `${bone} at ${TIMES[k]} s: drawn at ${d}, its key at ${targets[k]}`);
+      }
+    }
+
+    // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only).
+    await page.click("#limits");
+    await settled(page);
+    await seek(page, 0.8);
+    const before = await shown(page);
+    const knee = before.frame.angles_deg.left_shin;
+    assert.ok(knee < 0, `the left knee bends cw at first (${knee}°)`);
+    const handle = await page.evaluate(() => {
+      const h = window.ikarus.keys.handles().find((x) => x.bone === "left_shin");
+      const r = document.getElementById("plot").getBoundingClientRect();
+      return [r.left + h.at[0], r.top + h.at[1]];
+    });
+    await page.mouse.move(...handle);
+    await page.screenshot({ path: join(dir, "keys-puppet-bend-hover.png") });
+    await page.mouse.click(...handle);
+    await settled(page);
+    const keys2 = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(keys2.bends.left_shin, [
+      { time: 0, bend: "cw" },
+      { time: 0.8, bend: "ccw" },
+    ]);
+    const after = await shown(page);
+    assert.ok(after.frame.angles_deg.left_shin > 0, `the left knee bends ccw after the flip (${after.frame.angles_deg.left_shin}°)`);
+    const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => ({ knee: f.angles_deg.left_shin, foot: f.joints.left_foot, target: f.targets.left_foot })));
+    frames.forEach((f, i) => {
+      if (i >= 24) assert.ok(f.knee > 0, `frame ${i}: the knee ${f.knee}° after the flip`);
+      else assert.ok(f.knee < 0, `frame ${i}: the knee ${f.knee}° before the flip`);
+    });
+    const [x, y] = WALK.left_foot[2];
+    assert.ok(Math.hypot(after.tips.left_foot[0] - x, after.tips.left_foot[1] - y) < TOLERANCE, `the foot still on its key after the flip: ${after.tips.left_foot}`);
+    await page.screenshot({ path: join(dir, "keys-puppet-knee-flipped.png") });
+
+    // The frames saved as the server writes them, times in seconds.
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-json")]);
+    const saved = JSON.parse(readFileSync(await d.path(), "utf8"));
+    assert.equal(saved.frames.length, 37);
+    assert.equal(saved.frames[36].time, 1.2);
+    const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);
+    const csv = readFileSync(await c.path(), "utf8").trim().split("\n");
+    assert.equal(csv.length, 38, "a header and 37 rows");
+    assert.match(csv[0], /^time,/);
+    assert.deepEqual(errors, []);
+  });
+});
+
+const examples = join(import.meta.dirname, "..", "examples", "characters");
+
+/** Seconds of spineboy's four keys, within `walk` (frames 0, 9, 18, 27 at 30 fps). */
+const SPINE_TIMES = [0, 0.3, 0.6, 0.9];
+
+/** Offsets of the front foot target from where `walk` has it at each key, Spine units. */
+const SPINE_OFFSETS = [
+  [0, 0],
+  [30, 25],
+  [60, 0],
+  [20, -5],
+];
+
+const characterSettled = (page) => page.waitForFunction(() => window.ikarus.characters.settled() && window.ikarus.keys.settled(), null, { timeout: 60000 });
+
+test("spineboy: the front foot target keyed over walk (four keys) is on its keys, and exported as Spine JSON", async (t) => {
+  mkdirSync(artifacts, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const text = readFileSync(join(examples, "spine-spineboy-pro.json"), "utf8");
+    const probe = await fetch(`${url}/api/animate`, {
+      method: "POST",
+      headers: { "content-type": "application/json" },
+      body: JSON.stringify({ rig: text, keys: { fps: 30, tracks: { "front-foot-target": [{ time: 0, x: 0, y: 0 }] } }, animation: "walk", format: "json" }),
+    });
+    if (probe.status >= 400 && probe.status < 500) {
+      t.skip(`/api/animate answers ${probe.status} to keys for a character: ${(await probe.json()).error}`);
+      return;
+    }
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: Buffer.from(text) });
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed, null, { timeout: 15000 });
+    await page.selectOption("#character-animation", "walk");
+    await characterSettled(page);
+    await page.click("#key-mode");
+    const name = "front-foot-target";
+    const keysWanted = [];
+    for (let k = 0; k < SPINE_TIMES.length; k++) {
+      if (k > 0) {
+        await page.evaluate((s) => window.ikarus.keys.seek(s), SPINE_TIMES[k]);
+        await characterSettled(page);
+      }
+      const at = await page.evaluate((n) => {
+        const c = window.ikarus.state.character;
+        const g = c.targets.get(n);
+        const b = c.posed.find((x) => x.name === n);
+        return g ? [g.x, g.y] : [b.x, b.y];
+      }, name);
+      // At time 0 the first key is where walk has the target (a plain click would not drag).
+      const goal = k === 0 ? [at[0] + 10, at[1]] : [at[0] + SPINE_OFFSETS[k][0], at[1] + SPINE_OFFSETS[k][1]];
+      const from = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), at);
+      const to = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), goal);
+      await page.mouse.move(...from);
+      await page.mouse.down();
+      await page.mouse.move(...to, { steps: 6 });
+      await page.mouse.up();
+      await characterSettled(page);
+      keysWanted.push(goal);
+    }
+    const keys = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(
+      keys.tracks[name].map((q) => q.time),
+      SPINE_TIMES,
+    );
+    keys.tracks[name].forEach((q, k) => assert.ok(Math.hypot(q.x - keysWanted[k][0], q.y - keysWanted[k][1]) < 1e-6, `key ${k} at ${q.x}, ${q.y}; dragged to ${keysWanted[k]}`));
+    // At each key time the target bone's origin is on its key.
+    for (let k = 0; k < SPINE_TIMES.length; k++) {
+      await page.evaluate((s) => window.ikarus.keys.seek(s), SPINE_TIMES[k]);
+      await characterSettled(page);
+      const b = await page.evaluate((n) => window.ikarus.state.character.posed.find((x) => x.name === n), name);
+      const [x, y] = keysWanted[k];
+      assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-6, `${name} at ${SPINE_TIMES[k]} s: at ${b.x}, ${b.y}, its key ${x}, ${y}`);
+    }
+    await page.screenshot({ path: join(artifacts, "keys-spineboy-walk.png") });
+
+    // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its first key.
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click("#export-spine")]);
+    assert.equal(d.suggestedFilename(), "spineboy-ikarus.json");
+    const exported = readFileSync(await d.path(), "utf8");
+    const file = JSON.parse(exported);
+    assert.ok(file.animations && file.animations.ikarus, "the export has animations.ikarus");
+    for (const k of [0, SPINE_TIMES.length - 1]) {
+      const res = await fetch(`${url}/api/pose`, {
+        method: "POST",
+        headers: { "content-type": "application/json" },
+        body: JSON.stringify({ rig: exported, animation: "ikarus", time: SPINE_TIMES[k], targets: [] }),
+      });
+      assert.equal(res.status, 200);
+      const b = (await res.json()).bones.find((x) => x.name === name);
+      const [x, y] = keysWanted[k];
+      assert.ok(Math.hypot(b.x - x, b.y - y) < 0.05, `the exported ikarus animation at ${SPINE_TIMES[k]} s has ${name} at ${b.x}, ${b.y}, its key ${x}, ${y}`);
+    }
+    assert.deepEqual(errors, []);
+  });
+});
