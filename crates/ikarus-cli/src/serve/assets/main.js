@@ -142,6 +142,8 @@ const paths = wireTrack(state, {
     const miss = missShown();
     const status = /^status (\S+)/.exec(text);
     $("stats").textContent = miss && status ? text.replace(status[0], `${status[0]} · ${missNote(status[1], miss.distance)}`) : text;
+    // A followed goal's answer after the drag: the drag's undo step holds the pose it reached.
+    if (!state.press) amend();
   },
   showWhenEnded: (status, text) => {
     state.pendingStats = { status, text };
