@@ -12,6 +12,7 @@ import assert from "node:assert/strict";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, openPage, ready, withBrowser } from "./browser.mjs";
+import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 
 /** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
 const TIMES = [0, 0.4, 0.8, 1.2];
@@ -133,6 +134,49 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
         assert.ok(Math.hypot(d[0] - x, d[1] - y) < TOLERANCE, `${bone} at ${TIMES[k]} s: drawn at ${d}, its key at ${targets[k]}`);
       }
     }
+
+    // Editing on the rows (tracks in bone order: left_hand first): the left hand's key at 0.4 s
+    // dragged to 0.5 s, copied to 1.6 s and that copy deleted, then eased linear.
+    const box = await page.locator("#key-rows").boundingBox();
+    const inner = await page.evaluate(() => {
+      const c = document.getElementById("key-rows");
+      return { w: c.clientWidth, left: c.clientLeft, top: c.clientTop };
+    });
+    const axis = rowAxis(inner.w, 2);
+    const onRow = (t, r) => [box.x + inner.left + axis.x(t), box.y + inner.top + r * ROW.height + ROW.height / 2];
+    const hand = () => page.evaluate(() => window.ikarus.state.keys.tracks.left_hand.map((q) => ({ time: q.time, ease: q.ease })));
+    await page.mouse.move(...onRow(0.4, 0));
+    await page.mouse.down();
+    await page.mouse.move(...onRow(0.5, 0), { steps: 4 });
+    await page.mouse.up();
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2],
+      "moved to 0.5 s",
+    );
+    await page.keyboard.press("Control+C");
+    await seek(page, 1.6);
+    await page.keyboard.press("Control+V");
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2, 1.6],
+      "pasted at 1.6 s",
+    );
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 49, "the motion runs to the pasted key");
+    await page.keyboard.press("Delete");
+    await settled(page);
+    assert.deepEqual(
+      (await hand()).map((q) => q.time),
+      [0, 0.5, 0.8, 1.2],
+      "the pasted key deleted",
+    );
+    await page.mouse.click(...onRow(0.5, 0));
+    await page.selectOption("#key-ease", "linear");
+    await settled(page);
+    assert.equal((await hand())[1].ease, "linear");
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 37);
 
     // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only).
     await page.click("#limits");

@@ -22,6 +22,7 @@ use crate::picture::{Drawing, PictureArgs, PictureFormat, draw_for_command, repo
 
 mod bodies;
 mod character;
+mod keyed;
 
 pub use bodies::Animated;
 
@@ -144,7 +145,35 @@ pub struct AnimateArgs {
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
+    /// With --rig: keyframes per effector, a KEYS JSON file (`{"fps": 30, "tracks": {"BONE":
+    /// [{"time": 0, "x": …, "y": …, "ease": "sine"}, …]}, "bends": {…}, "pins": […]}`); every
+    /// frame is one rig solve of the tracks' targets at its time
+    #[arg(long, value_name = "KEYS.json", conflicts_with_all = KEYS_CONFLICT)]
+    pub keys: Option<std::path::PathBuf>,
 }
+
+/// The flags `--keys` replaces: its file gives the targets, pins, bends and fps.
+const KEYS_CONFLICT: [&str; 19] = [
+    "ease",
+    "k1",
+    "k2",
+    "goal",
+    "goal_angle",
+    "via",
+    "frames",
+    "duration",
+    "fps",
+    "from_solve",
+    "record_every",
+    "interpolation",
+    "pin",
+    "bend",
+    "weight",
+    "secondary",
+    "softness",
+    "mix",
+    "target",
+];
 
 /// A motion computed from the flags, with the body it moves and what its pictures need.
 pub struct MotionRun<B: MotionBody> {
@@ -238,7 +267,10 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         ik_file,
     ])?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
-    let run = motion(&args.motion)?;
+    let run: Box<dyn ShownMotion> = match &args.keys {
+        Some(keys) => Box::new(keyed::KeyedRun::of(args, keys)?),
+        None => motion(&args.motion)?,
+    };
     let drew = picture.is_some();
     if let Some(out) = picture {
         let bytes = draw_for_command(&run.drawing(), out.format, &args.picture, run.frames())?;

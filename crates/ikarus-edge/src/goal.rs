@@ -111,7 +111,7 @@ pub fn build(
     field: &dyn Fn(Field) -> String,
 ) -> Result<RigTask, String> {
     let (goals, pins) = goals_and_pins(skeleton, goals, pins, field)?;
-    let task = RigTask { goals, pins: pins.into_iter().map(Pin::new).collect(), mix };
+    let task = RigTask { goals, pins: pins.into_iter().map(Pin::new).collect(), mix, bends: Vec::new() };
     // The library's own check last: what is left (no goal and no pin, a mix out of range).
     task.validate(skeleton).map_err(|e| e.to_string())?;
     Ok(task)

@@ -32,6 +32,8 @@ pub mod goal;
 #[doc(hidden)]
 pub mod input;
 #[doc(hidden)]
+pub mod keys;
+#[doc(hidden)]
 pub mod motion;
 #[doc(hidden)]
 pub mod options;

@@ -69,13 +69,13 @@ pub use goal::{Goal, GoalError};
 pub use interrupt::Interrupt;
 pub use kinematics::EndEffector;
 pub use limits::{Bounds, JointLimits, LimitsError};
-pub use motion::{Animation, AnimationFrame, Interpolation, MotionError, MotionOptions, Timing};
+pub use motion::{Animation, AnimationFrame, Interpolation, KeyTrack, MotionError, MotionOptions, Timing};
 pub use names::{Named, UnknownName};
 pub use reach::{Annulus, ReachError, Workspace, WorkspaceOptions};
 pub use skeleton::{Bone, BoneField, Effector, Joint, Skeleton, SkeletonError};
 pub use solve::{
-    Bend, EffectorOutcome, Frame, Frames, LimitMode, Method, OptionsError, Outcome, Pin, Priority, Restarts, RigGoal,
-    RigTask, RigTaskError, SolveError, SolveOptions, Solver, StallDetection, Status,
+    Bend, BoneBend, EffectorOutcome, Frame, Frames, LimitMode, Method, OptionsError, Outcome, Pin, Priority, Restarts,
+    RigGoal, RigTask, RigTaskError, SolveError, SolveOptions, Solver, StallDetection, Status,
 };
 pub use track::{Follower, Path, PathError, SampleStatus, Track, TrackError, TrackMode, TrackOptions};
 

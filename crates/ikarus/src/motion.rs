@@ -87,6 +87,7 @@ use crate::ease::Ease;
 use crate::solve::Frames;
 
 mod body;
+mod keys;
 mod options;
 mod path;
 mod skeleton;
@@ -95,6 +96,7 @@ mod through;
 mod timing;
 
 pub use body::Body;
+pub use keys::{KeyTrack, KeyTrackError};
 pub use options::{Interpolation, MotionOptions};
 use path::Path;
 pub use skeleton::{RigMotion, RigSolveOutcome, through_rig_tasks};

@@ -121,6 +121,9 @@ impl AnimateBody {
         match Keys::of(body)? {
             BodyKind::Arm => {
                 let req: AnimateReq<ArmVia> = parse_json(body)?;
+                if req.keys.is_some() {
+                    return Err(Problem::invalid(super::keyed::NEEDS_RIG));
+                }
                 let rig_only = [("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
                 fields_of(BodyKind::Arm, &[], &rig_only, ("goal", req.goal.is_some()), body)?;
                 Ok(AnimateBody::Arm(Box::new(req)))

@@ -102,6 +102,9 @@ pub fn animate(req: AnimateBody, limits: &Limits, interrupt: &Interrupt) -> Resu
         AnimateBody::Rig(req) => {
             let file = req.rig.clone().ok_or_else(|| Problem::internal("a rig's motion without its rig"))?;
             let rig = bodies::load_rig(file, limits)?;
+            if let Some(keys) = &req.keys {
+                return super::keyed::animate(&rig, keys, &req, limits, interrupt);
+            }
             let tasks = tasks(&rig, &req)?;
             let motion = motion(&rig, tasks, &MotionFields::of_animate(&req), None, limits, interrupt)?;
             stopped(interrupt)?;

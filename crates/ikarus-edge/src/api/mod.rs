@@ -17,6 +17,7 @@ pub mod ease;
 pub mod fields;
 pub mod figures;
 pub mod jobs;
+pub mod keyed;
 pub mod meta;
 pub mod pose;
 pub mod regions;

@@ -235,6 +235,9 @@ request! {
         /// What to pass through first, in order.
                 pub via: Vec<V>,
         ..motion,
+        /// A rig's keyframes per effector ([`crate::keys`]): instead of `goals`, `via`, `pins`
+        /// and the motion's timing.
+        pub keys: Option<crate::keys::KeysFile>,
     }
 }
 

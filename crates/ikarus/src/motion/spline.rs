@@ -5,6 +5,7 @@
 use super::path::Path;
 
 /// A monotone cubic Hermite spline through keyframes, one per joint over shared knots.
+#[derive(Debug, Clone)]
 pub(super) struct Spline {
     /// Joints per pose.
     n: usize,
@@ -39,7 +40,9 @@ impl Spline {
         Self::new(path.joints(), times.to_vec(), keys)
     }
 
-    fn new(n: usize, knots: Vec<f64>, keys: Vec<f64>) -> Option<Self> {
+    /// The spline over `knots` (strictly increasing) of `keys` (`n` per knot, stored flat).
+    /// `None` with fewer than three knots.
+    pub(super) fn new(n: usize, knots: Vec<f64>, keys: Vec<f64>) -> Option<Self> {
         if knots.len() < 3 {
             return None;
         }
@@ -55,7 +58,7 @@ impl Spline {
 
     /// The pose at parameter `u` of segment `k` (the Hermite form on
     /// [`Interpolation`](super::Interpolation)), each angle clamped to its two keyframe values.
-    fn on_segment(&self, k: usize, u: f64, out: &mut Vec<f64>) {
+    pub(super) fn on_segment(&self, k: usize, u: f64, out: &mut Vec<f64>) {
         let (u0, u1) = (self.knots[k], self.knots[k + 1]);
         let h = u1 - u0;
         let t = ((u - u0) / h).clamp(0.0, 1.0);

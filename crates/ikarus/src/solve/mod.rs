@@ -84,7 +84,7 @@ pub use method::{LimitMode, Method};
 pub use options::{MAX_BACKTRACK, OptionsError, Restarts, SolveOptions, StallDetection};
 pub use outcome::{Outcome, SolveError, Status};
 pub use solver::Solver;
-pub use task::{Bend, EffectorOutcome, Pin, Priority, RigGoal, RigTask, RigTaskError};
+pub use task::{Bend, BoneBend, EffectorOutcome, Pin, Priority, RigGoal, RigTask, RigTaskError};
 
 #[cfg(test)]
 mod tests;

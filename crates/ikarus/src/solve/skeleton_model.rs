@@ -129,10 +129,9 @@ impl RigWork {
             self.rest_scale.extend(stiffness.iter().map(|s| 1.0 / (1.0 + s).sqrt()));
             self.rest_pull.extend(stiffness.iter().map(|s| s / (1.0 + s)));
         }
-        for g in &task.goals {
-            let Some(bend) = g.bend else { continue };
-            let name = || skeleton.name(g.bone).to_owned();
-            match skeleton.joint(g.bone) {
+        for super::task::BoneBend { bone, bend } in task.all_bends() {
+            let name = || skeleton.name(bone).to_owned();
+            match skeleton.joint(bone) {
                 Joint::Revolute => {}
                 Joint::Prismatic { .. } => return Err(RigTaskError::BendOnPrismatic { name: name() }),
             }
@@ -140,15 +139,15 @@ impl RigWork {
                 Bend::Positive => (0.0, std::f64::consts::PI),
                 Bend::Negative => (-std::f64::consts::PI, 0.0),
             };
-            let (lo, hi) = match self.limits[g.bone] {
+            let (lo, hi) = match self.limits[bone] {
                 Some(l) => (l.min().max(lo), l.max().min(hi)),
                 None => (lo, hi),
             };
             let lim = JointLimits::new(lo, hi).map_err(|_| RigTaskError::BendOutsideLimits { name: name() })?;
-            self.limits[g.bone] = Some(lim);
-            let a = self.start[g.bone];
+            self.limits[bone] = Some(lim);
+            let a = self.start[bone];
             let turned = if (a < 0.0 && lo >= 0.0) || (a > 0.0 && hi <= 0.0) { -a } else { a };
-            self.start[g.bone] = lim.clamp(turned);
+            self.start[bone] = lim.clamp(turned);
         }
         if self.limits.iter().all(Option::is_none) {
             self.limits.clear();

@@ -161,7 +161,8 @@ fn chain_goal(skeleton: &Skeleton, task: &RigTask) -> Option<Goal> {
         && g.priority == Priority::Primary
         && g.bend.is_none()
         && g.softness == 0.0;
-    (plain_goal && task.pins.is_empty() && task.mix == 1.0 && skeleton.is_chain()).then_some(g.goal)
+    (plain_goal && task.pins.is_empty() && task.bends.is_empty() && task.mix == 1.0 && skeleton.is_chain())
+        .then_some(g.goal)
 }
 
 /// Every joint of `skeleton` is one `method` moves.

@@ -141,6 +141,18 @@ impl Pin {
     }
 }
 
+/// A bend on a bone's joint with its parent, whether or not the bone has a goal (a knee at the
+/// start of the shin while the goal is on the foot's tip): the same rule as a goal's
+/// [`RigGoal::bend`] — the joint's range intersected with that half-turn, and the start pose
+/// turned to that side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BoneBend {
+    /// The bone at whose start the joint bends (index in the skeleton's order).
+    pub bone: usize,
+    /// Which way.
+    pub bend: Bend,
+}
+
 /// Everything one skeleton solve is asked.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigTask {
@@ -151,11 +163,13 @@ pub struct RigTask {
     /// How much of the IK result to take, in [0, 1] (1 by default): the answer's angles are
     /// `start + mix·(solved − start)`, joint by joint.
     pub mix: f64,
+    /// Bends on joints besides the goals' own ([`BoneBend`]); at most one per bone.
+    pub bends: Vec<BoneBend>,
 }
 
 impl Default for RigTask {
     fn default() -> Self {
-        Self { goals: Vec::new(), pins: Vec::new(), mix: 1.0 }
+        Self { goals: Vec::new(), pins: Vec::new(), mix: 1.0, bends: Vec::new() }
     }
 }
 
@@ -163,12 +177,18 @@ impl RigTask {
     /// A task of `goals` and `pins`, mix 1.
     #[must_use]
     pub fn new(goals: Vec<RigGoal>, pins: Vec<Pin>) -> Self {
-        Self { goals, pins, mix: 1.0 }
+        Self { goals, pins, mix: 1.0, bends: Vec::new() }
+    }
+
+    /// Every bend of the task on its bone: the goals' (in order), then [`RigTask::bends`].
+    pub fn all_bends(&self) -> impl Iterator<Item = BoneBend> + '_ {
+        let goals = self.goals.iter().filter_map(|g| g.bend.map(|bend| BoneBend { bone: g.bone, bend }));
+        goals.chain(self.bends.iter().copied())
     }
 
     /// Checks the task against `skeleton`: bones that exist, at most one goal or pin per bone,
     /// at least one goal or pin, weights > 0, softness ≥ 0 and finite, bend only on a bone with a
-    /// parent, mix in [0, 1].
+    /// parent (a goal's and [`RigTask::bends`], at most one of the latter per bone), mix in [0, 1].
     pub fn validate(&self, skeleton: &Skeleton) -> Result<(), RigTaskError> {
         let n = skeleton.len();
         if self.goals.is_empty() && self.pins.is_empty() {
@@ -197,6 +217,18 @@ impl RigTask {
                 return Err(RigTaskError::Softness { name: name(), value: g.softness });
             }
             if g.bend.is_some() && skeleton.parent(g.bone).is_none() {
+                return Err(RigTaskError::BendOnRoot { name: name() });
+            }
+        }
+        for (k, b) in self.bends.iter().enumerate() {
+            if b.bone >= n {
+                return Err(RigTaskError::NoSuchBone { what: "bend", bone: b.bone, bones: n });
+            }
+            let name = || skeleton.name(b.bone).to_owned();
+            if self.bends[..k].iter().any(|e| e.bone == b.bone) {
+                return Err(RigTaskError::Twice { name: name(), first: "bend", second: "bend" });
+            }
+            if skeleton.parent(b.bone).is_none() {
                 return Err(RigTaskError::BendOnRoot { name: name() });
             }
         }

@@ -38,6 +38,16 @@ export function usePalette(palette) {
   for (const [name, value] of Object.entries(palette || {})) if (name in COLORS) COLORS[name] = value;
 }
 
+/** A new path: the diamond of half-diagonal `r` centred on (x, y) (the nearest reachable point, a key). */
+export function diamondPath(ctx, x, y, r) {
+  ctx.beginPath();
+  ctx.moveTo(x, y - r);
+  ctx.lineTo(x + r, y);
+  ctx.lineTo(x, y + r);
+  ctx.lineTo(x - r, y);
+  ctx.closePath();
+}
+
 /** Sizes the canvas's backing store to its CSS size times the device pixel ratio; drawing is then in CSS pixels. */
 export function fitCanvas(canvas, ctx) {
   const dpr = window.devicePixelRatio || 1;
@@ -290,13 +300,7 @@ function drawReachMiss(ctx, view, state) {
   ctx.lineTo(nx, ny);
   ctx.stroke();
   ctx.setLineDash([]);
-  const r = 9;
-  ctx.beginPath();
-  ctx.moveTo(nx, ny - r);
-  ctx.lineTo(nx + r, ny);
-  ctx.lineTo(nx, ny + r);
-  ctx.lineTo(nx - r, ny);
-  ctx.closePath();
+  diamondPath(ctx, nx, ny, 9);
   ctx.globalAlpha = 0.35;
   ctx.fillStyle = COLORS.reach;
   ctx.fill();

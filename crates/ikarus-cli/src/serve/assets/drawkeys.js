@@ -4,7 +4,8 @@
 // (keys.js's bendHandles: a small half-moon beside each knee and elbow, on the side it bends).
 // It reads and never writes the state.
 
-import { COLORS, fitCanvas } from "./draw.js";
+import { COLORS, diamondPath, fitCanvas } from "./draw.js";
+import { drawRingLabel } from "./drawrig.js";
 
 /** A row's height, the names' column and the margin at the rows' right end, CSS pixels. */
 export const ROW = { height: 18, names: 128, right: 10 };
@@ -53,7 +54,7 @@ export const rowName = (row) => (row.kind === "track" ? row.bone : `${row.bone} 
  * index}) filled orange, the playhead at `t`.
  */
 export function drawRows(canvas, rows, length, t, selected) {
-  canvas.style.height = `${Math.max(1, rows.length) * ROW.height + 2}px`;
+  canvas.style.height = `${Math.max(1, rows.length) * ROW.height}px`;
   const ctx = canvas.getContext("2d");
   fitCanvas(canvas, ctx);
   const w = canvas.clientWidth;
@@ -98,12 +99,7 @@ export function drawRows(canvas, rows, length, t, selected) {
 /** A key's diamond; a bend key's is half filled (the side it keys: ccw's left half, cw's right). */
 function drawDiamond(ctx, x, y, selected, bend) {
   const r = 5.5;
-  ctx.beginPath();
-  ctx.moveTo(x, y - r);
-  ctx.lineTo(x + r, y);
-  ctx.lineTo(x, y + r);
-  ctx.lineTo(x - r, y);
-  ctx.closePath();
+  diamondPath(ctx, x, y, r);
   ctx.fillStyle = selected ? COLORS.path : "#fff";
   ctx.fill();
   ctx.lineWidth = 1.5;
@@ -147,17 +143,6 @@ export function drawBendHandles(ctx, handles, hover) {
     ctx.arc(x, y, 9, -0.2 * Math.PI, 0.9 * Math.PI);
     ctx.strokeStyle = COLORS.joints[2];
     ctx.stroke();
-    if (hover === h.bone) {
-      ctx.beginPath();
-      ctx.arc(x, y, 12, 0, 2 * Math.PI);
-      ctx.lineWidth = 2;
-      ctx.strokeStyle = COLORS.path;
-      ctx.stroke();
-      ctx.font = "12px system-ui, sans-serif";
-      ctx.textAlign = "left";
-      ctx.textBaseline = "middle";
-      ctx.fillStyle = COLORS.ink;
-      ctx.fillText(`${h.bone} bends ${h.side} · click to flip`, x + 15, y - 12);
-    }
+    if (hover === h.bone) drawRingLabel(ctx, h.at, 12, `${h.bone} bends ${h.side} · click to flip`);
   }
 }

@@ -168,9 +168,13 @@ function drawPin(ctx, view, tip) {
 
 /** The effector under the pointer or being dragged: an orange ring and its name. */
 function drawFocus(ctx, view, tip, name) {
-  const [px, py] = toCanvas(view, ...tip);
+  drawRingLabel(ctx, toCanvas(view, ...tip), 10, name);
+}
+
+/** An orange ring of `radius` round (px, py) in canvas pixels, with `label` above to its right (the thing under the pointer). */
+export function drawRingLabel(ctx, [px, py], radius, label) {
   ctx.beginPath();
-  ctx.arc(px, py, 10, 0, 2 * Math.PI);
+  ctx.arc(px, py, radius, 0, 2 * Math.PI);
   ctx.lineWidth = 2;
   ctx.strokeStyle = COLORS.path;
   ctx.stroke();
@@ -178,5 +182,5 @@ function drawFocus(ctx, view, tip, name) {
   ctx.textAlign = "left";
   ctx.textBaseline = "middle";
   ctx.fillStyle = COLORS.ink;
-  ctx.fillText(name, px + 14, py - 12);
+  ctx.fillText(label, px + radius + 4, py - 12);
 }

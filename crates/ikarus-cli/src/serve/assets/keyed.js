@@ -368,9 +368,10 @@ export function wireKeyed(state, canvas, act) {
   $("key-frames-csv").addEventListener("click", () => download("csv"));
 
   const rowsCanvas = $("key-rows");
+  // The rows are drawn inside the canvas's border: a point is measured from there too.
   const rowPoint = (ev) => {
     const rect = rowsCanvas.getBoundingClientRect();
-    return [ev.clientX - rect.left, ev.clientY - rect.top];
+    return [ev.clientX - rect.left - rowsCanvas.clientLeft, ev.clientY - rect.top - rowsCanvas.clientTop];
   };
   rowsCanvas.addEventListener("pointerdown", (ev) => {
     if (!body() || ev.button !== 0) return;

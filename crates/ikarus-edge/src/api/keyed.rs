@@ -1,0 +1,61 @@
+//! `POST /api/animate` with `keys` and a rig: the keyed motion of [`crate::keys`], the same
+//! workflow and answer as `ikarus animate --rig FILE --keys KEYS.json --format json`, under
+//! `--max-frames`, frames × bones at most [`MAX_BONE_FRAMES`], and the server's time budget
+//! (the solver options carry its interrupt, and it is asked between frames).
+
+use ikarus::Interrupt;
+
+use super::bodies::RigVia;
+use super::character_motion::MAX_BONE_FRAMES;
+use super::fields::{json_response, options_for, stopped};
+use super::requests::AnimateReq;
+use super::{Limits, Problem, Reply};
+use crate::keys::KeysFile;
+use crate::rig::Rig;
+
+/// The refusal of `keys` without a rig.
+pub const NEEDS_RIG: &str = "keys: needs rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)";
+
+/// The keyed motion of `rig`: every other motion field refused, naming it.
+pub fn animate(
+    rig: &Rig,
+    keys: &KeysFile,
+    req: &AnimateReq<RigVia>,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Reply, Problem> {
+    let given = [
+        ("via", !req.via.is_empty()),
+        ("goals", req.goals.is_some()),
+        ("pins", req.pins.is_some()),
+        ("mix", req.mix.is_some()),
+        ("start_deg", req.start_deg.is_some()),
+        ("frames", req.frames.is_some()),
+        ("duration", req.duration.is_some()),
+        ("fps", req.fps.is_some()),
+        ("ease", req.ease.is_some()),
+        ("interpolation", req.interpolation.is_some()),
+        ("from_solve", req.from_solve),
+    ];
+    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(Problem::invalid(format!(
+            "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
+        )));
+    }
+    let s = &rig.skeleton;
+    let options = options_for(&rig.solver, s.len(), req.options.as_ref(), None, limits, interrupt)?;
+    let plan = keys.check(s, limits.max_frames, "--max-frames").map_err(Problem::invalid)?;
+    if plan.frames() * s.len() > MAX_BONE_FRAMES {
+        return Err(Problem::invalid(format!(
+            "keys: {} frames × {} bones, more than the cap of {MAX_BONE_FRAMES}",
+            plan.frames(),
+            s.len()
+        )));
+    }
+    let stop = || if interrupt.is_interrupted() { Err("interrupted".to_owned()) } else { Ok(()) };
+    let motion = plan.run(rig, s.start_angles(), options, &stop);
+    stopped(interrupt)?;
+    let motion = motion.map_err(Problem::invalid)?;
+    let names = plan.track_names(s);
+    json_response(&motion.json(rig, &names))
+}

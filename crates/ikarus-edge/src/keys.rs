@@ -1,0 +1,299 @@
+//! Keyframes per effector (`ikarus animate --rig FILE --keys KEYS.json`, `POST /api/animate`
+//! with `keys`): the KEYS shape, one for the command line's file, the API's field and the
+//! playground's project file, its checks ([`KeysFile::check`], every problem naming the field
+//! `keys.…` and the value), and the plan they make ([`KeyPlan`]): per tracked bone a
+//! [`KeyTrack`] of its targets, per bent bone its step keys, the pinned bones, the frames.
+//! The motion itself, one rig solve per frame, is [`motion`].
+//!
+//! ```json
+//! {"fps": 30,
+//!  "tracks": {"left_foot": [{"time": 0.0, "x": 0.1, "y": -0.9, "ease": "sine"}, …]},
+//!  "bends": {"left_shin": [{"time": 0.0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]},
+//!  "pins": ["right_foot"]}
+//! ```
+
+use std::collections::BTreeMap;
+
+use ikarus::motion::KeyTrack;
+use ikarus::number::Num;
+use ikarus::{Bend, EaseKind, Joint, Skeleton};
+use serde::Deserialize;
+
+use crate::ease_args::{EaseProblem, choose_ease};
+
+pub mod motion;
+
+/// Frames per second when the keys give none.
+pub const DEFAULT_KEY_FPS: f64 = 30.0;
+/// The largest `fps`.
+pub const MAX_KEY_FPS: f64 = 240.0;
+/// Most tracks and pins together.
+pub const MAX_TRACKS: usize = 64;
+/// Most keys of one track (and of one bone's bends).
+pub const MAX_KEYS: usize = 1000;
+
+/// The KEYS shape as read (see the module docs); every field is checked by [`KeysFile::check`].
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeysFile {
+    /// Frames per second [default: 30], in (0, 240].
+    #[serde(default)]
+    pub fps: Option<f64>,
+    /// Bone name → its tip's target keys.
+    #[serde(default)]
+    pub tracks: BTreeMap<String, Vec<KeyReq>>,
+    /// Bone name → the bend keys of its joint with its parent.
+    #[serde(default)]
+    pub bends: BTreeMap<String, Vec<BendKeyReq>>,
+    /// Bones whose tips hold where the start pose has them (position and direction).
+    #[serde(default)]
+    pub pins: Vec<String>,
+}
+
+/// One key of a track: the target of the bone's tip at `time` seconds, and the ease of the
+/// segment from this key to the next.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeyReq {
+    pub time: f64,
+    pub x: f64,
+    pub y: f64,
+    /// The bone's absolute direction at the key, degrees (on every key of a track or on none).
+    #[serde(default)]
+    pub angle_deg: Option<f64>,
+    /// `linear`, `sine` (the default), `parent` or `smoothstep`.
+    #[serde(default)]
+    pub ease: Option<EaseKind>,
+    /// Parent's ease's end of acceleration and start of deceleration.
+    #[serde(default)]
+    pub k1: Option<f64>,
+    #[serde(default)]
+    pub k2: Option<f64>,
+}
+
+/// Which way a joint bends from `time` on: `ccw` or `cw`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BendKeyReq {
+    pub time: f64,
+    pub bend: BendName,
+}
+
+/// `ccw` (the joint's angle in [0°, 180°]) or `cw` (in [−180°, 0°]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BendName {
+    Ccw,
+    Cw,
+}
+
+impl BendName {
+    /// The library's bend.
+    pub fn bend(self) -> Bend {
+        match self {
+            BendName::Ccw => Bend::Positive,
+            BendName::Cw => Bend::Negative,
+        }
+    }
+
+    /// As written.
+    pub fn name(self) -> &'static str {
+        match self {
+            BendName::Ccw => "ccw",
+            BendName::Cw => "cw",
+        }
+    }
+}
+
+/// One tracked bone: its keys as a track of `x`, `y` (and the direction in radians when its
+/// keys give one).
+#[derive(Debug, Clone)]
+pub struct KeyedBone {
+    pub bone: usize,
+    pub track: KeyTrack,
+    pub oriented: bool,
+}
+
+/// The checked keys of a rig: what each frame solves.
+#[derive(Debug, Clone)]
+pub struct KeyPlan {
+    pub fps: f64,
+    /// Frames `0..=last` at `k / fps` seconds.
+    pub last: usize,
+    /// The tracked bones in the keys' order (by name).
+    pub tracks: Vec<KeyedBone>,
+    /// Bone → its bends by first frame, in time order.
+    pub bends: Vec<(usize, Vec<(usize, Bend)>)>,
+    /// The pinned bones, in the keys' order.
+    pub pins: Vec<usize>,
+}
+
+impl KeyPlan {
+    /// The number of frames.
+    pub fn frames(&self) -> usize {
+        self.last + 1
+    }
+
+    /// The time of frame `k`, seconds: `k / fps`.
+    pub fn time(&self, k: usize) -> f64 {
+        k as f64 / self.fps
+    }
+
+    /// The duration: the last frame's time.
+    pub fn duration(&self) -> f64 {
+        self.time(self.last)
+    }
+}
+
+/// The index of the frame at `time` if the time lies on one at `fps`:
+/// `|time·fps − round(time·fps)| ≤ 1e-9·max(1, time·fps)`; else the message after the value.
+fn frame_of(time: f64, fps: f64) -> Result<usize, String> {
+    let f = time * fps;
+    let k = f.round();
+    if (f - k).abs() <= 1e-9 * f.max(1.0) {
+        return Ok(k as usize);
+    }
+    let (below, above) = (f.floor() / fps, f.ceil() / fps);
+    let nearest = if f - f.floor() <= f.ceil() - f { below } else { above };
+    Err(format!("not on a frame at {} fps (nearest frame time {})", Num(fps), Num(nearest)))
+}
+
+/// Checks the key times of one track (`field` is `keys.tracks.NAME` or `keys.bends.NAME`): at
+/// least one key, at most [`MAX_KEYS`], the first at 0, strictly increasing, finite, each on a
+/// frame; their frame indices.
+fn key_frames(field: &str, times: impl ExactSizeIterator<Item = f64>, fps: f64) -> Result<Vec<usize>, String> {
+    let n = times.len();
+    if n == 0 {
+        return Err(format!("{field}: a track needs at least one key, at time 0"));
+    }
+    if n > MAX_KEYS {
+        return Err(format!("{field}: {n} keys, more than the cap of {MAX_KEYS}"));
+    }
+    let mut frames = Vec::with_capacity(n);
+    let mut previous = f64::NEG_INFINITY;
+    for (i, time) in times.enumerate() {
+        let at = || format!("{field}[{i}].time = {}", Num(time));
+        if !time.is_finite() || time < 0.0 {
+            return Err(format!("{}: must be a finite number of seconds >= 0", at()));
+        }
+        if i == 0 && time != 0.0 {
+            return Err(format!("{}: a track's first key is at time 0", at()));
+        }
+        if time <= previous {
+            return Err(format!("{}: must be after the previous key's time {}", at(), Num(previous)));
+        }
+        let frame = frame_of(time, fps).map_err(|m| format!("{}: {m}", at()))?;
+        if frames.last() == Some(&frame) {
+            return Err(format!("{}: on the same frame at {} fps as the previous key", at(), Num(fps)));
+        }
+        frames.push(frame);
+        previous = time;
+    }
+    Ok(frames)
+}
+
+impl KeysFile {
+    /// Reads the KEYS JSON `text`; a problem names the field (`tracks.left_foot[0].ease: …`).
+    pub fn parse(text: &str) -> Result<Self, String> {
+        crate::api::parse_json(text.as_bytes()).map_err(|p| p.message.replacen("request body: ", "", 1))
+    }
+
+    /// The plan of these keys on `skeleton`, at most `max_frames` frames (`cap` names the cap:
+    /// `--max-frames`); every problem names its field (`keys.tracks.left_foot[2].x`) and value.
+    pub fn check(&self, skeleton: &Skeleton, max_frames: usize, cap: &str) -> Result<KeyPlan, String> {
+        let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
+        if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
+            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
+        }
+        if self.tracks.is_empty() {
+            return Err(
+                "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
+            );
+        }
+        let effectors = self.tracks.len() + self.pins.len();
+        if effectors > MAX_TRACKS {
+            return Err(format!(
+                "keys.tracks, keys.pins: {effectors} tracks and pins, more than the cap of {MAX_TRACKS}"
+            ));
+        }
+        let bone = |field: String, name: &str| -> Result<usize, String> {
+            crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
+        };
+        let mut last = 0;
+        let mut tracks = Vec::with_capacity(self.tracks.len());
+        for (name, keys) in &self.tracks {
+            let field = format!("keys.tracks.{name}");
+            let index = bone(field.clone(), name)?;
+            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
+            last = last.max(*frames.last().expect("a track has a key"));
+            tracks.push(keyed_bone(&field, index, keys, &frames, fps)?);
+        }
+        let mut bends = Vec::with_capacity(self.bends.len());
+        for (name, keys) in &self.bends {
+            let field = format!("keys.bends.{name}");
+            let index = bone(field.clone(), name)?;
+            if skeleton.parent(index).is_none() {
+                return Err(format!("{field}: the bone has no parent, so no joint to bend"));
+            }
+            if let Joint::Prismatic { .. } = skeleton.joint(index) {
+                return Err(format!("{field}: the bone's joint is prismatic; a bend needs a revolute joint"));
+            }
+            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
+            last = last.max(*frames.last().expect("a track has a key"));
+            bends.push((index, frames.into_iter().zip(keys.iter().map(|k| k.bend.bend())).collect()));
+        }
+        let mut pins = Vec::with_capacity(self.pins.len());
+        for (i, name) in self.pins.iter().enumerate() {
+            let field = format!("keys.pins[{i}]");
+            let index = bone(field.clone(), name)?;
+            if self.tracks.contains_key(name) {
+                return Err(format!(
+                    "{field} = {name}: the bone is also keyed in keys.tracks; a pinned tip holds still"
+                ));
+            }
+            if pins.contains(&index) {
+                return Err(format!("{field} = {name}: pinned twice"));
+            }
+            pins.push(index);
+        }
+        if last + 1 > max_frames {
+            return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last + 1));
+        }
+        Ok(KeyPlan { fps, last, tracks, bends, pins })
+    }
+}
+
+/// The track of one bone's keys: finite values, the direction on every key or none, each key's
+/// ease by the one rule of `--ease/--k1/--k2` ([`choose_ease`]); its knots at the keys' frame
+/// times `frame / fps`, so that a frame on a key takes the key bit for bit.
+fn keyed_bone(field: &str, bone: usize, keys: &[KeyReq], frames: &[usize], fps: f64) -> Result<KeyedBone, String> {
+    let oriented = keys[0].angle_deg.is_some();
+    let mut values = Vec::with_capacity(keys.len() * 3);
+    let mut eases = Vec::with_capacity(keys.len());
+    for (i, k) in keys.iter().enumerate() {
+        for (name, v) in [("x", k.x), ("y", k.y)].into_iter().chain(k.angle_deg.map(|a| ("angle_deg", a))) {
+            if !v.is_finite() {
+                return Err(format!("{field}[{i}].{name} = {}: must be a finite number", Num(v)));
+            }
+        }
+        if k.angle_deg.is_some() != oriented {
+            return Err(format!(
+                "{field}[{i}].angle_deg: give it on every key of a track or on none (key 0 {} one)",
+                if oriented { "has" } else { "has no" }
+            ));
+        }
+        values.extend([k.x, k.y]);
+        values.extend(k.angle_deg.map(f64::to_radians));
+        let ease = choose_ease(k.ease, k.k1, k.k2, EaseKind::Sine).map_err(|p| match p {
+            EaseProblem::KWithoutParent { k1 } => {
+                format!("{field}[{i}].{}: only applies with \"ease\": \"parent\"", if k1 { "k1" } else { "k2" })
+            }
+            EaseProblem::Invalid(e) => format!("{field}[{i}].{e}"),
+        })?;
+        eases.push(ease);
+    }
+    let n = if oriented { 3 } else { 2 };
+    let times = frames.iter().map(|&f| f as f64 / fps).collect();
+    let track = KeyTrack::new(n, times, values, eases).map_err(|e| format!("{field}: {e}"))?;
+    Ok(KeyedBone { bone, track, oriented })
+}
