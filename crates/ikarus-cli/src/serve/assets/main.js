@@ -165,47 +165,17 @@ const armEditor = wireArm(state, {
   edited,
 });
 
+/** What the bodies' modules (keys, characters, rigs) share of main.js: drawing, the chip, and undo (each edit reported). */
+const bodyActs = { requestDraw, showError, setStatus, say: (text) => ($("stats").textContent = text), edited };
+
 /** The keys of a rig or a character, their motion and the bend handles (keyed.js). */
-const keyed = wireKeyed(state, canvas, {
-  timeline,
-  draw,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-  // Undo records each edit of the keys (projects.js).
-  edited,
-  clipBack: () => characters.clipBack(),
-});
+const keyed = wireKeyed(state, canvas, { ...bodyActs, timeline, draw, clipBack: () => characters.clipBack() });
 
 /** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
-const characters = wireCharacters(state, canvas, {
-  forgetMotion,
-  timeline,
-  keyed,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-  edited,
-});
+const characters = wireCharacters(state, canvas, { ...bodyActs, forgetMotion, timeline, keyed });
 
 /** The Body list and the rig's pointer (rigs.js). */
-const rigs = wireRigs(state, canvas, {
-  characters,
-  keyed,
-  forgetMotion,
-  controlsChanged,
-  fieldsOk,
-  draw,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-  edited,
-  amend,
-  project: projectFiles,
-});
+const rigs = wireRigs(state, canvas, { ...bodyActs, characters, keyed, forgetMotion, controlsChanged, fieldsOk, draw, amend, project: projectFiles });
 
 project = wireProject(state, {
   rigs,
@@ -218,7 +188,7 @@ project = wireProject(state, {
   seek: (u) => (state.playback.clip || state.animation ? timeline.seek(u) : (state.playback.u = u)),
   requestDraw,
   showError,
-  say: (text) => ($("stats").textContent = text),
+  say: bodyActs.say,
 });
 
 // ---- Messages and status ------------------------------------------------------------------
