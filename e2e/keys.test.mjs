@@ -4,25 +4,30 @@
 // motion (POST /api/animate with `keys`) plays to its end; at every key time the drawn pose has
 // each effector on its key (the answer's `joints`, and the tips drawn); a knee's bend handle
 // flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
-// angle changes sign there and after while the foot still reaches. Then spineboy: its front
-// foot target keyed over `walk` (four keys) and exported as Spine JSON. Screenshots go to
-// $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
+// angle changes sign there and stays on that side after while the foot still reaches; the
+// frames' CSV is the CLI's. Then spineboy: its front foot target keyed over `walk` (four keys)
+// and exported as Spine JSON. Screenshots go to $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, readFileSync } from "node:fs";
+import { execFileSync } from "node:child_process";
+import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, openPage, ready, withBrowser } from "./browser.mjs";
+import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
 import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 
 /** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
 const TIMES = [0, 0.4, 0.8, 1.2];
 
-/** A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. */
+/**
+ * A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. At
+ * 0.8 s the left foot is lifted (a high step), nearer the hip than the straight leg reaches, so
+ * that its knee must bend one way or the other.
+ */
 const WALK = {
   left_foot: [
     [0.3, -0.86],
     [0.18, -0.8],
-    [0.02, -0.88],
+    [0.22, -0.62],
     [0.3, -0.86],
   ],
   right_foot: [
@@ -178,47 +183,59 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     assert.equal((await hand())[1].ease, "linear");
     assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 37);
 
-    // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only).
+    // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only with
+    // them; without them the lifted foot's knee bends whichever way the solve takes it).
     await page.click("#limits");
     await settled(page);
+    const side = (deg) => (deg >= 0 ? "ccw" : "cw");
+    const start = await page.evaluate(() => window.ikarus.state.motion.frames[0].angles_deg.left_shin);
     await seek(page, 0.8);
     const before = await shown(page);
     const knee = before.frame.angles_deg.left_shin;
-    assert.ok(knee < 0, `the left knee bends cw at first (${knee}°)`);
+    assert.ok(Math.abs(knee) > 5, `the left knee is bent at 0.8 s (${knee}°)`);
     const handle = await page.evaluate(() => {
       const h = window.ikarus.keys.handles().find((x) => x.bone === "left_shin");
       const r = document.getElementById("plot").getBoundingClientRect();
-      return [r.left + h.at[0], r.top + h.at[1]];
+      return { side: h.side, at: [r.left + h.at[0], r.top + h.at[1]] };
     });
-    await page.mouse.move(...handle);
+    assert.equal(handle.side, side(knee), "the handle says the side the knee bends");
+    await page.mouse.move(...handle.at);
     await page.screenshot({ path: join(dir, "keys-puppet-bend-hover.png") });
-    await page.mouse.click(...handle);
+    await page.mouse.click(...handle.at);
     await settled(page);
+    const flipped = side(knee) === "ccw" ? "cw" : "ccw";
     const keys2 = await page.evaluate(() => window.ikarus.state.keys);
     assert.deepEqual(keys2.bends.left_shin, [
-      { time: 0, bend: "cw" },
-      { time: 0.8, bend: "ccw" },
+      { time: 0, bend: side(start) },
+      { time: 0.8, bend: flipped },
     ]);
     const after = await shown(page);
-    assert.ok(after.frame.angles_deg.left_shin > 0, `the left knee bends ccw after the flip (${after.frame.angles_deg.left_shin}°)`);
-    const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => ({ knee: f.angles_deg.left_shin, foot: f.joints.left_foot, target: f.targets.left_foot })));
-    frames.forEach((f, i) => {
-      if (i >= 24) assert.ok(f.knee > 0, `frame ${i}: the knee ${f.knee}° after the flip`);
-      else assert.ok(f.knee < 0, `frame ${i}: the knee ${f.knee}° before the flip`);
+    const knee2 = after.frame.angles_deg.left_shin;
+    assert.ok(Math.sign(knee2) === -Math.sign(knee) && Math.abs(knee2) > 5, `the left knee flipped at 0.8 s: ${knee}° → ${knee2}°`);
+    const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => f.angles_deg.left_shin));
+    // Every frame's knee within the half-turn its bend key holds (ccw [0°, 180°], cw [−180°, 0°]).
+    frames.forEach((a, i) => {
+      const want = i >= 24 ? flipped : side(start);
+      assert.ok(want === "ccw" ? a >= 0 : a <= 0, `frame ${i}: the knee at ${a}°, bending ${want} by the keys`);
     });
     const [x, y] = WALK.left_foot[2];
     assert.ok(Math.hypot(after.tips.left_foot[0] - x, after.tips.left_foot[1] - y) < TOLERANCE, `the foot still on its key after the flip: ${after.tips.left_foot}`);
     await page.screenshot({ path: join(dir, "keys-puppet-knee-flipped.png") });
 
-    // The frames saved as the server writes them, times in seconds.
+    // The frames saved as answered, times in seconds; the CSV is the CLI's, byte for byte, for
+    // the same keys (the page's solver settings are the CLI's defaults, limits now off).
     const [d] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-json")]);
     const saved = JSON.parse(readFileSync(await d.path(), "utf8"));
     assert.equal(saved.frames.length, 37);
     assert.equal(saved.frames[36].time, 1.2);
     const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);
-    const csv = readFileSync(await c.path(), "utf8").trim().split("\n");
-    assert.equal(csv.length, 38, "a header and 37 rows");
-    assert.match(csv[0], /^time,/);
+    const csv = readFileSync(await c.path(), "utf8");
+    assert.equal(csv.trim().split("\n").length, 38, "a header and 37 rows");
+    const keysFile = join(dir, "keys-puppet-walk.json");
+    writeFileSync(keysFile, JSON.stringify(keys2));
+    const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
+    const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
+    assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
     assert.deepEqual(errors, []);
   });
 });

@@ -19,7 +19,9 @@ import {
   moveKey,
   pasteKey,
   rigAnimateRequest,
+  rigFramesCsv,
   rigMotion,
+  rustNumber,
   setBend,
   setEase,
   setKey,
@@ -191,7 +193,7 @@ test("the request: the rig as sent, the keys as they are, the options without ra
   const req = rigAnimateRequest(RIG, keys, { method: "dls", limits: true, rates: [1, 2] });
   assert.deepEqual(req.keys, keys);
   assert.deepEqual(req.options, { method: "dls", limits: true });
-  assert.equal(req.format, "json");
+  assert.equal(req.format, undefined, "a rig's answer is JSON");
   assert.equal(req.rig.bones.length, RIG.bones.length);
   assert.equal(req.rig.bones[2].parent, "thigh");
   assert.deepEqual(req.rig.bones[2].limits_deg, [-150, 0]);
@@ -272,4 +274,18 @@ test("the rows' axis and picking: a key within 7 pixels, else the time under the
   assert.equal(miss.index, -1);
   assert.ok(Math.abs(miss.t - ((340 - 128) / 390) * 2) < 1e-12);
   assert.equal(pickKey(rows, axis, 329, 40), null, "below the rows");
+});
+
+test("numbers as Rust's {:?} writes them, and the CSV of `animate --keys --format csv`", () => {
+  assert.equal(rustNumber(1), "1.0");
+  assert.equal(rustNumber(-90), "-90.0");
+  assert.equal(rustNumber(0), "0.0");
+  assert.equal(rustNumber(0.1), "0.1");
+  assert.equal(rustNumber(1 / 30), "0.03333333333333333");
+  assert.equal(rustNumber(1.5e-5), "1.5e-5");
+  assert.equal(rustNumber(0.0001), "0.0001");
+  assert.equal(rustNumber(2e16), "2e16");
+  const rig = { bones: [{ name: "a", length: 1, angle_deg: 0 }, { name: "b", parent: "a", length: 1, angle_deg: 5, joint: "prismatic" }] };
+  const answer = { frames: [{ time: 0, angles_deg: { a: 10.5 }, extensions: { b: 0.25 }, joints: { a: [1, 0], b: [2, 0.5] } }] };
+  assert.equal(rigFramesCsv(rig, answer), "time,a_deg,b_deg,b_ext,a.x,a.y,b.x,b.y\n0.0,10.5,5.0,0.25,1.0,0.0,2.0,0.5\n");
 });

@@ -5,7 +5,7 @@
 // of the keys POST /api/animate with the rig (or the character file's text, its clip and IK
 // choice), `keys` and the solver options (one request in flight, latest wins), played by the
 // timeline (timeline.js's loadClip: frame ⌊t·fps⌉ of the answer shown, never blended), and its
-// frames saved as the server writes them (JSON; CSV for a rig). A character without keys leaves
+// frames saved (the answer as JSON; a rig's as the CLI's CSV too). A character without keys leaves
 // the timeline to its clip (characters.js) and keys at the clip's time. The pure parts are
 // keys.js, the drawing drawkeys.js.
 //
@@ -31,6 +31,7 @@ import {
   moveKey,
   pasteKey,
   rigAnimateRequest,
+  rigFramesCsv,
   rigMotion,
   setBend,
   setEase,
@@ -58,10 +59,10 @@ export function wireKeyed(state, canvas, act) {
    * length     the animation's length the reader chose, seconds (the timeline spans at least the last key)
    * t          the playhead, seconds;  selected  {kind, bone, index} of the selected key, or null
    * clipboard  {row, key} copied by Ctrl-C;  drag  a key being dragged along its row, or null
-   * busy, pending, answer, request  the motion's request in flight, asked again, the last answer and its request
+   * busy, pending, answer  a motion request in flight, the keys changed since (ask again), the last answer
    * hover      the bend handle under the pointer (a bone name), or null
    */
-  const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, request: null, hover: null };
+  const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, hover: null };
   state.keys = null;
   state.motion = null;
 
@@ -256,7 +257,6 @@ export function wireKeyed(state, canvas, act) {
       if (body() === b && state.keys === keys) {
         state.motion = state.rig ? rigMotion(state.rig.rig, answer) : characterMotion(answer, keys.fps);
         k.answer = answer;
-        k.request = req;
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
         act.setStatus(!state.rig || reached === answer.frames.length ? "ready" : "unreachable");
@@ -283,7 +283,6 @@ export function wireKeyed(state, canvas, act) {
     state.keys = null;
     state.motion = null;
     k.answer = null;
-    k.request = null;
     k.selected = null;
     k.t = 0;
     if (state.rig) loadClip();
@@ -300,7 +299,6 @@ export function wireKeyed(state, canvas, act) {
     state.keys = null;
     state.motion = null;
     k.answer = null;
-    k.request = null;
     k.selected = null;
   }
 
@@ -354,15 +352,12 @@ export function wireKeyed(state, canvas, act) {
     commit(`delete key of ${s.bone}`);
   }
 
-  async function download(format) {
-    if (!k.request) return;
-    try {
-      const text = await api.postText("/api/animate", JSON.stringify({ ...k.request, format }), "application/json");
-      const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
-      saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
-    } catch (e) {
-      act.showError(e);
-    }
+  /** The keyed motion's frames as answered (JSON), or a rig's as `ikarus animate --keys --format csv` writes them. */
+  function download(format) {
+    if (!k.answer) return;
+    const text = format === "csv" ? rigFramesCsv(state.rig.rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
+    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
+    saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
   }
   $("key-frames-json").addEventListener("click", () => download("json"));
   $("key-frames-csv").addEventListener("click", () => download("csv"));

@@ -218,11 +218,39 @@ export function keyRows(keys, boneNames) {
 
 /**
  * The /api/animate body of a rig's keys: the rig as a request sends it (rig.js's rigForRequest),
- * the keys as they are, the page's solver options without the arm-only rates, format json.
+ * the keys as they are, the page's solver options without the arm-only rates.
  */
 export function rigAnimateRequest(rig, keys, options) {
   const { rates: _rates, ...opts } = options || {};
-  return { rig: rigForRequest(rig), keys, options: opts, format: "json" };
+  return { rig: rigForRequest(rig), keys, options: opts };
+}
+
+/**
+ * A number as Rust's `{:?}` writes an f64 (the CLI's CSV): the shortest text that reads back
+ * to it, `.0` on a whole number, an exponent (no `+`) below 1e-4 or from 1e16 on.
+ */
+export function rustNumber(v) {
+  const a = Math.abs(v);
+  if (!Number.isFinite(v)) return Number.isNaN(v) ? "NaN" : v > 0 ? "inf" : "-inf";
+  if (a !== 0 && (a < 1e-4 || a >= 1e16)) return v.toExponential().replace("e+", "e");
+  return Number.isInteger(v) ? v.toFixed(1) : String(v);
+}
+
+/**
+ * A rig's keyed /api/animate answer as the CSV of `ikarus animate --rig FILE --keys KEYS
+ * --format csv`: `time`, each bone's `NAME_deg` then each prismatic bone's `NAME_ext`, then each
+ * bone's tip `NAME.x,NAME.y`, one row per frame (time in seconds).
+ */
+export function rigFramesCsv(rig, answer) {
+  const prismatic = rig.bones.filter((b) => b.joint === "prismatic");
+  const head = ["time", ...rig.bones.map((b) => `${b.name}_deg`), ...prismatic.map((b) => `${b.name}_ext`), ...rig.bones.map((b) => `${b.name}.x,${b.name}.y`)];
+  const rows = (answer.frames || []).map((f) => {
+    const a = f.angles_deg || {};
+    const e = f.extensions || {};
+    const j = f.joints || {};
+    return [f.time, ...rig.bones.map((b) => a[b.name] ?? b.angle_deg), ...prismatic.map((b) => e[b.name]), ...rig.bones.flatMap((b) => j[b.name] || [NaN, NaN])].map(rustNumber).join(",");
+  });
+  return [head.join(","), ...rows].join("\n") + "\n";
 }
 
 /**
