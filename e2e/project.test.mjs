@@ -119,6 +119,12 @@ test("the puppet and the arm: every edit undone and redone; saved, reloaded with
       assert.deepEqual(await work(page), steps[k], `redo to step ${k}`);
     }
     assert.equal(await page.isDisabled("#redo"), true);
+    // In a text field, Ctrl-Z is the field's own: the page's work stays.
+    const sizes = await page.evaluate(() => window.ikarus.project.sizes());
+    await page.focus("#tolerance");
+    await page.keyboard.press("Control+z");
+    assert.deepEqual(await page.evaluate(() => window.ikarus.project.sizes()), sizes);
+    assert.deepEqual(await work(page), steps[steps.length - 1]);
     await page.screenshot({ path: join(artifacts, "project-puppet.png") });
 
     // The arm: a link's length (the table), a clicked goal; each undone and redone.
