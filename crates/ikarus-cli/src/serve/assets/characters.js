@@ -61,8 +61,9 @@ function newCharacterState(name, text, character) {
  * Wires the Character fieldset and the character's pointer on `canvas`. `act` is
  * {forgetMotion(), timeline (timeline.js's), keyed (keyed.js's: a dragged target keyed in Key
  * mode; with keys the timeline plays them, and the export bakes them), requestDraw(),
- * showError(e), setStatus(s), say(text)}. Returns {enter(name, text, character), resume(),
- * leave(), reset(), settled(), clipBack() (the clip on the timeline again)}.
+ * showError(e), setStatus(s), say(text), edited(label) (an undo step)}. Returns {enter(name,
+ * text, character), ensure(name, text, character), setWork(work), loaded(), resume(), leave(),
+ * reset(), settled(), clipBack() (the clip on the timeline again)}.
  */
 export function wireCharacters(state, canvas, act) {
   /** The last character loaded: the Body list's "Character: …" shows it again. */
@@ -108,6 +109,38 @@ export function wireCharacters(state, canvas, act) {
   function enter(name, text, character) {
     show(newCharacterState(name, text, character));
   }
+
+  /**
+   * The character `name` (its `text`, read as `character`) on the canvas: the one shown or the
+   * last one stays as it is when it is the same file, else it is shown from its setup pose.
+   */
+  function ensure(name, text, character) {
+    const same = (c) => c && c.name === name && c.text === text;
+    if (same(state.character)) return;
+    if (same(last)) show(last);
+    else enter(name, text, character);
+  }
+
+  /**
+   * The character's work put back (an undo, a project opened): the clip `animation` at `time`,
+   * the IK switch `ik`, the placed `targets` [{bone, x, y}].
+   */
+  function setWork({ animation, time, ik, targets }) {
+    const c = state.character;
+    if (!c) return;
+    c.ik = ik;
+    for (const radio of document.querySelectorAll('input[name="character-ik"]')) radio.checked = radio.value === ik;
+    c.targets = new Map(targets.map((t) => [t.bone, { x: t.x, y: t.y }]));
+    const known = animation === "" || (c.character.clips || []).some((k) => k.name === animation);
+    $("character-animation").value = known ? animation : "";
+    if (c.animation !== animation) choose(known ? animation : "");
+    c.time = time;
+    playClip(c);
+    poseSoon();
+  }
+
+  /** The last character loaded (shown or not), or null. */
+  const loaded = () => last;
 
   /** The last character again (the Body list's "Character: …"), as it was left. */
   function resume() {
@@ -339,7 +372,9 @@ export function wireCharacters(state, canvas, act) {
       c.targets = new Map(c.targets);
       c.targets.delete(name);
       poseSoon();
+      act.edited(`Let ${name} go`);
     }
+    if (dragging) act.edited(`Move ${name} target`);
     act.requestDraw();
   });
 
@@ -362,22 +397,30 @@ export function wireCharacters(state, canvas, act) {
     if (state.character && ev.key === "Escape") {
       ev.preventDefault();
       clearTargets();
+      act.edited("Clear targets");
     }
   });
 
-  $("character-animation").addEventListener("change", (ev) => choose(ev.target.value));
+  $("character-animation").addEventListener("change", (ev) => {
+    choose(ev.target.value);
+    act.edited(`Animation: ${ev.target.value || "setup pose"}`);
+  });
   for (const radio of document.querySelectorAll('input[name="character-ik"]')) {
     radio.addEventListener("change", (ev) => {
       if (!state.character || !ev.target.checked) return;
       state.character.ik = ev.target.value;
       if (state.keys) act.keyed.resolve();
       else poseSoon();
+      act.edited(`IK by ${ev.target.value === "ikarus" ? "ikarus's solver" : "Spine's rules"}`);
     });
   }
-  $("clear-targets").addEventListener("click", clearTargets);
+  $("clear-targets").addEventListener("click", () => {
+    clearTargets();
+    act.edited("Clear targets");
+  });
   $("export-spine").addEventListener("click", exportSpine);
 
   const clipBack = () => state.character && playClip(state.character);
 
-  return { enter, resume, leave, reset, settled, clipBack };
+  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack };
 }

@@ -11,7 +11,8 @@ import { isDrag, nudge, toWorld } from "./view.js";
  * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `drawPath`, `joints` and `goal`;
  * writes `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
  * {animateTo(x, y), followTo(x, y), addVia(x, y), cancelMotion(), requestDraw(),
- * startStroke(x, y), extendStroke(x, y), endStroke(trace = true)}.
+ * startStroke(x, y), extendStroke(x, y), endStroke(trace = true), dragEnded() (a followed drag
+ * ended: one undo step)}.
  */
 export function wireInput(canvas, state, act) {
   const eventWorld = (ev) => {
@@ -53,7 +54,10 @@ export function wireInput(canvas, state, act) {
       act.endStroke();
       return;
     }
-    if (wasDrag) return;
+    if (wasDrag) {
+      act.dragEnded();
+      return;
+    }
     const [x, y] = eventWorld(ev);
     if (ev.shiftKey) act.addVia(x, y);
     else if (!state.follow) act.animateTo(x, y);

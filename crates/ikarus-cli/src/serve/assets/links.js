@@ -16,7 +16,7 @@ export const MAX_LINKS = 64;
 /**
  * Wires the links table, the base fields and the arm-file buttons. `act` is {applyControls(),
  * recheck(), controlsChanged(), setPose(pose), requestDraw(), refreshWorkspace(), clearPaths(),
- * forgetMotion(), showError(e)}. Returns {showLinks(), showBase(), armChanged(), useArm(arm)}.
+ * forgetMotion(), showError(e), edited(label) (an undo step)}. Returns {showLinks(), showBase(), armChanged(), useArm(arm)}.
  */
 export function wireArm(state, act) {
   /** A cell's text checked by `rule`; marks the cell and returns the number, or null when bad. */
@@ -38,6 +38,7 @@ export function wireArm(state, act) {
       if (length === null) return;
       state.arm.links[i].length = length;
       armChanged();
+      act.edited(`Link ${i + 1} length`);
     },
     start(i, v, el) {
       const link = state.arm.links[i];
@@ -53,6 +54,7 @@ export function wireArm(state, act) {
       link.angle_deg = angle;
       state.pose_deg[i] = angle;
       armChanged();
+      act.edited(`Link ${i + 1} start angle`);
     },
     limit(i, k, v, el) {
       const link = state.arm.links[i];
@@ -71,6 +73,7 @@ export function wireArm(state, act) {
       state.pose_deg[i] = clampInto(state.pose_deg[i], limits);
       showLinks();
       armChanged();
+      act.edited(`Link ${i + 1} range`);
     },
     rate(i, v, el) {
       const rate = v === "" ? 1 : cellNumber(el, v, `Joint ${i + 1} rate`, { above: 0, max: 1e6 });
@@ -78,12 +81,14 @@ export function wireArm(state, act) {
       clearProblem(el);
       state.arm.links[i].rate = rate;
       act.controlsChanged();
+      act.edited(`Joint ${i + 1} rate`);
     },
     remove(i) {
       state.arm.links.splice(i, 1);
       state.pose_deg.splice(i, 1);
       showLinks();
       armChanged();
+      act.edited(`Remove link ${i + 1}`);
     },
   };
 
@@ -95,6 +100,7 @@ export function wireArm(state, act) {
     state.arm.links.push({ length: last ? last.length : 1, angle_deg: 0, limits_deg: [-170, 170] });
     showLinks();
     armChanged();
+    act.edited("Add link");
   }
 
   function armChanged() {
@@ -128,6 +134,7 @@ export function wireArm(state, act) {
     base[k] = v;
     state.arm.base = base;
     armChanged();
+    act.edited(`Base ${k === 0 ? "x" : "y"}`);
   }
 
   /** A new arm (loaded from a file, the default, or kept from the last visit): its start pose, no motion. */
@@ -149,6 +156,7 @@ export function wireArm(state, act) {
     try {
       useArm(await loadArmFile(file));
       act.showError(null);
+      act.edited(`Load ${file.name}`);
     } catch (e) {
       act.showError(e);
     }
@@ -164,6 +172,7 @@ export function wireArm(state, act) {
     try {
       useArm(await defaultArm());
       act.showError(null);
+      act.edited("Default arm");
     } catch (e) {
       act.showError(e);
     }

@@ -27,6 +27,7 @@ import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
 import { wireTrack } from "./track.js";
+import { wireProject } from "./projects.js";
 import { fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.js";
 
 /** The grid's resolution when the exact region cannot be had (the server could not build it). */
@@ -118,6 +119,12 @@ const state = {
   jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, followChases: 0, drawQueued: false },
 };
 
+/** Undo, redo and project files (projects.js), wired last: the others report their edits here. */
+let project = null;
+const edited = (label) => project && project.edited(label);
+const amend = () => project && project.amend();
+const projectFiles = { isProject: (text) => !!project && project.isProject(text), open: (name, text) => project.open(name, text) };
+
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
 const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded, canPlay: durationOk });
 
@@ -135,6 +142,8 @@ const paths = wireTrack(state, {
     const miss = missShown();
     const status = /^status (\S+)/.exec(text);
     $("stats").textContent = miss && status ? text.replace(status[0], `${status[0]} · ${missNote(status[1], miss.distance)}`) : text;
+    // A followed goal's answer after the drag: the drag's undo step holds the pose it reached.
+    if (!state.press) amend();
   },
   showWhenEnded: (status, text) => {
     state.pendingStats = { status, text };
@@ -153,44 +162,33 @@ const armEditor = wireArm(state, {
   clearPaths: () => paths.clear(),
   forgetMotion,
   showError,
+  edited,
 });
+
+/** What the bodies' modules (keys, characters, rigs) share of main.js: drawing, the chip, and undo (each edit reported). */
+const bodyActs = { requestDraw, showError, setStatus, say: (text) => ($("stats").textContent = text), edited };
 
 /** The keys of a rig or a character, their motion and the bend handles (keyed.js). */
-const keyed = wireKeyed(state, canvas, {
-  timeline,
-  draw,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-  // Undo records each edit of the keys (history.js wires it).
-  edited: () => {},
-  clipBack: () => characters.clipBack(),
-});
+const keyed = wireKeyed(state, canvas, { ...bodyActs, timeline, draw, clipBack: () => characters.clipBack() });
 
 /** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
-const characters = wireCharacters(state, canvas, {
-  forgetMotion,
-  timeline,
-  keyed,
-  requestDraw,
-  showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
-});
+const characters = wireCharacters(state, canvas, { ...bodyActs, forgetMotion, timeline, keyed });
 
 /** The Body list and the rig's pointer (rigs.js). */
-const rigs = wireRigs(state, canvas, {
+const rigs = wireRigs(state, canvas, { ...bodyActs, characters, keyed, forgetMotion, controlsChanged, fieldsOk, draw, amend, project: projectFiles });
+
+project = wireProject(state, {
+  rigs,
   characters,
-  keyed,
+  useArm: (arm) => armEditor.useArm(arm),
+  setPose,
+  settingsChanged,
   forgetMotion,
-  controlsChanged,
-  fieldsOk,
-  draw,
+  applyKeys: (keys) => keyed.applyKeys(keys),
+  seek: (u) => (state.playback.clip || state.animation ? timeline.seek(u) : (state.playback.u = u)),
   requestDraw,
   showError,
-  setStatus,
-  say: (text) => ($("stats").textContent = text),
+  say: bodyActs.say,
 });
 
 // ---- Messages and status ------------------------------------------------------------------
@@ -416,6 +414,7 @@ async function animateTo(x, y) {
   const goal = state.goalAngle === undefined ? { x, y } : { x, y, angle_deg: state.goalAngle };
   // The goal drawn: with its heading, an arrow.
   state.goal = goal;
+  edited("Move the goal");
   const seq = state.jobs.animateSeq;
   const base = {
     arm: armForRequest(state.arm),
@@ -498,6 +497,8 @@ function motionEnded() {
   else setStats(stats);
   if (frames) $("stats").textContent += frames;
   setStatus(stats.status);
+  // The undo step of the motion's goal holds the pose it reached.
+  amend();
 }
 
 function failed(e, seq) {
@@ -593,12 +594,14 @@ function addVia(x, y) {
   state.via.push({ x, y });
   timeline.sync();
   requestDraw();
+  edited("Add a via point");
 }
 
 function clearVia() {
   state.via = [];
   timeline.sync();
   requestDraw();
+  edited("Clear via points");
 }
 
 /** Follows the pointer to (x, y) (track.js), judging the goal first (a miss shows at once). */
@@ -672,6 +675,21 @@ function applyControls() {
   timeline.choose(state.duration);
 }
 
+/**
+ * The settings' fields were set all at once (an undo, a project opened): the page reads them as
+ * their own handlers would.
+ */
+function settingsChanged() {
+  state.limitModeChoice = $("limit-mode").value;
+  state.follow = $("follow").checked;
+  state.showGhosts = $("show-ghosts").checked;
+  state.showTraces = $("show-traces").checked;
+  state.showWorkspace = $("show-workspace").checked;
+  state.reachMiss = null;
+  controlsChanged();
+  refreshWorkspace();
+}
+
 function controlsChanged() {
   if (!state.arm) return;
   applyControls();
@@ -733,7 +751,8 @@ function wire() {
   // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
   const followTo = (x, y) => fieldsOk(false) && followGoal(x, y);
   const startStroke = (x, y) => fieldsOk() && (settleIntoRange(), paths.startStroke(x, y));
-  wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke });
+  const dragEnded = () => edited("Follow the pointer");
+  wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke, dragEnded });
   wireDownloads(state, showError, () => timeline.duration());
   for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle", "duration"]) {
     $(id).addEventListener("change", controlsChanged);
@@ -773,7 +792,10 @@ function wire() {
     if (state.showWorkspace) refreshWorkspace();
     requestDraw();
   });
-  $("reset").addEventListener("click", resetPose);
+  $("reset").addEventListener("click", () => {
+    resetPose();
+    edited("Reset pose");
+  });
   const narrow = window.matchMedia("(max-width: 720px)");
   $("panel-toggle").addEventListener("click", () => setCollapsed(!document.body.classList.contains("collapsed")));
   if (narrow.matches) setCollapsed(true);
@@ -806,6 +828,7 @@ async function init() {
     setStatus("ready");
     $("stats").textContent = "ready";
     timeline.sync();
+    project.start();
     window.ikarus.ready = true;
     draw();
   } catch (e) {
@@ -828,6 +851,15 @@ window.ikarus = {
   keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
+  /** Undo, redo, save and open (projects.js), the work as a snapshot, and whether it is unsaved. */
+  project: {
+    undo: () => project.undo(),
+    redo: () => project.redo(),
+    save: () => project.save(),
+    open: (name, text) => project.open(name, text),
+    sizes: () => project.sizes(),
+    dirty: () => project.dirty(),
+  },
   /** The timeline's playback duration, seconds. */
   duration: () => timeline.duration(),
   /** Client coordinates of a world point, for clicking on it. */

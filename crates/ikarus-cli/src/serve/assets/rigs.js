@@ -50,8 +50,10 @@ function newRigState(rig, source) {
  * (characters.js's), keyed (keyed.js's: keys from drags and pin clicks in Key mode, the bend
  * handles, which a press tries first), forgetMotion(),
  * controlsChanged(), fieldsOk(point), draw(), requestDraw(), showError(e), setStatus(s),
- * say(text)}. Returns {load() (the shipped rigs into the list), use(value), reset(), resolve(),
- * settled()}.
+ * say(text), edited(label) (an undo step), amend() (the last step settled), project
+ * (projects.js's: a project file picked or dropped opens there)}. Returns {load() (the shipped
+ * rigs into the list), use(value), useRig(value or rig JSON), shipped(), setWork(work), reset(),
+ * resolve(), settled(), names()}.
  */
 export function wireRigs(state, canvas, act) {
   /** The rigs the list offers by value ("rig:puppet", "file"). */
@@ -134,31 +136,64 @@ export function wireRigs(state, canvas, act) {
   }
 
   /**
-   * A rig file or a character file the reader picked or dropped: read by the server (the format
-   * told from the content); a bad one is its one-line problem.
+   * A rig file, a character file or a project file the reader picked or dropped: a project
+   * (a JSON object with `ikarus_project`) goes to projects.js; the others are read by the server
+   * (the format told from the content); a bad one is its one-line problem.
    */
   async function loadFile(file) {
     try {
       const text = await file.text();
+      if (act.project.isProject(text)) {
+        await act.project.open(file.name, text);
+        return;
+      }
       const answer = JSON.parse(await postText("/api/rig/parse", text, "application/toml"));
       if (answer.problem) throw new api.Notice(api.forPeople(answer.problem));
       if (answer.character) {
         if (state.rig) use("arm");
         act.characters.enter(file.name, text, answer.character);
-        return;
+      } else {
+        useRigFile(answer.rig, file.name);
       }
-      const select = $("body-kind");
-      let option = [...select.options].find((o) => o.value === "file");
-      if (!option) {
-        option = new Option("", "file");
-        select.append(option);
-      }
-      option.textContent = `Rig file: ${answer.rig.name || file.name}`;
-      rigs.set("file", answer.rig);
-      use("file");
+      act.edited(`Load ${file.name}`);
     } catch (e) {
       act.showError(e);
     }
+  }
+
+  /** A rig file's JSON (`name`: the file's, when the rig has none) shown as the list's "Rig file: …". */
+  function useRigFile(rig, name = "rig") {
+    const select = $("body-kind");
+    let option = [...select.options].find((o) => o.value === "file");
+    if (!option) {
+      option = new Option("", "file");
+      select.append(option);
+    }
+    option.textContent = `Rig file: ${rig.name || name}`;
+    rigs.set("file", rig);
+    use("file");
+  }
+
+  /** A shipped rig by its list value ("rig:puppet") or a rig file's JSON: shown from its start pose. */
+  const useRig = (rig) => (typeof rig === "string" ? use(rig) : useRigFile(rig));
+
+  /** The shipped rigs: Map name -> rig JSON. */
+  const shipped = () => new Map([...rigs].filter(([v]) => v.startsWith("rig:")).map(([v, rig]) => [v.slice(4), rig]));
+
+  /**
+   * The rig's work put back (an undo, a project opened): `goals` [{bone, x, y}], `pins` [bone],
+   * `pose_deg` (the pose shown; the start pose when absent). No solve: the pose is the one saved.
+   */
+  function setWork({ goals, pins, pose_deg }) {
+    const r = state.rig;
+    if (!r) return;
+    r.goals = new Map(goals.map((g) => [g.bone, { x: g.x, y: g.y }]));
+    r.pins = new Set(pins);
+    r.pending = false;
+    r.pose_deg = pose_deg ? pose_deg.slice() : r.rig.bones.map(restValue);
+    Object.assign(r, bodyForward(r.rig, r.pose_deg));
+    idle();
+    act.requestDraw();
   }
 
   // ---- Solving ---------------------------------------------------------------------------
@@ -205,6 +240,8 @@ export function wireRigs(state, canvas, act) {
     document.body.dataset.failed = s.failed.join(" ");
     act.setStatus(answer.status);
     act.draw();
+    // The last solve of a drag came back: the undo step of the drag holds its pose.
+    if (!r.pending && !r.grabbed) act.amend();
   }
 
   /** Whether no solve is in flight or waiting (for tests and scripts). */
@@ -300,9 +337,11 @@ export function wireRigs(state, canvas, act) {
     r.grabbed = null;
     r.hover = tipUnder(ev);
     canvas.style.cursor = r.hover ? "grab" : "";
-    if (!dragging) {
+    if (dragging) act.edited(`Move ${bone} goal`);
+    else {
       setGoalsAndPins(togglePin(r.goals, r.pins, bone));
       act.keyed.pinToggled(bone);
+      act.edited(`${r.pins.has(bone) ? "Pin" : "Unpin"} ${bone}`);
       show(`${bone} ${r.pins.has(bone) ? "pinned" : "unpinned"} · ${r.pins.size} pin${r.pins.size === 1 ? "" : "s"}, ${r.goals.size} goal${r.goals.size === 1 ? "" : "s"}`);
       // A pin dropped a goal: the others are solved again without it.
       if (r.goals.size) solveSoon();
@@ -329,10 +368,14 @@ export function wireRigs(state, canvas, act) {
     if (state.rig && ev.key === "Escape") {
       ev.preventDefault();
       clearGoals();
+      act.edited("Clear goals");
     }
   });
 
-  $("body-kind").addEventListener("change", (ev) => use(ev.target.value));
+  $("body-kind").addEventListener("change", (ev) => {
+    use(ev.target.value);
+    act.edited(`Body: ${ev.target.selectedOptions[0].textContent}`);
+  });
   $("load-rig").addEventListener("click", () => $("rig-file").click());
   $("rig-file").addEventListener("change", (ev) => {
     const file = ev.target.files[0];
@@ -349,8 +392,14 @@ export function wireRigs(state, canvas, act) {
     ev.preventDefault();
     loadFile(file);
   });
-  $("clear-goals").addEventListener("click", clearGoals);
-  $("unpin-all").addEventListener("click", unpinAll);
+  $("clear-goals").addEventListener("click", () => {
+    clearGoals();
+    act.edited("Clear goals");
+  });
+  $("unpin-all").addEventListener("click", () => {
+    unpinAll();
+    act.edited("Unpin all");
+  });
 
-  return { load, use, reset, resolve, settled, names };
+  return { load, use, useRig, shipped, setWork, reset, resolve, settled, names };
 }
