@@ -41,6 +41,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("api.js", JS, include_str!("assets/api.js")),
     ("armfile.js", JS, include_str!("assets/armfile.js")),
     ("body.js", JS, include_str!("assets/body.js")),
+    ("camera.js", JS, include_str!("assets/camera.js")),
     ("character.js", JS, include_str!("assets/character.js")),
     ("characters.js", JS, include_str!("assets/characters.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
@@ -51,6 +52,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("files.js", JS, include_str!("assets/files.js")),
     ("input.js", JS, include_str!("assets/input.js")),
     ("links.js", JS, include_str!("assets/links.js")),
+    ("onion.js", JS, include_str!("assets/onion.js")),
     ("paths.js", JS, include_str!("assets/paths.js")),
     ("region.js", JS, include_str!("assets/region.js")),
     ("rig.js", JS, include_str!("assets/rig.js")),
@@ -58,6 +60,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("timeline.js", JS, include_str!("assets/timeline.js")),
     ("track.js", JS, include_str!("assets/track.js")),
     ("view.js", JS, include_str!("assets/view.js")),
+    ("viewctl.js", JS, include_str!("assets/viewctl.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)
