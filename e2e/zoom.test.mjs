@@ -8,7 +8,7 @@
 // side) and hidden. Screenshots go to $E2E_ARTIFACTS. Run: cd e2e && node --test zoom.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync } from "node:fs";
+import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, ended, openPage, ready, withBrowser } from "./browser.mjs";
 
@@ -328,6 +328,59 @@ test("the arm zoomed out: a click's goal is the world point clicked; Space held 
     await frames(page);
     assert.equal(await page.evaluate(() => document.getElementById("plot").dataset.onion), "0 0");
     assert.equal(await pixels(), plain, "off: the canvas as it was");
+    assert.deepEqual(errors, []);
+  });
+});
+
+test("spineboy zoomed ×4 about its front leg's target: the target dragged lands on the world point under the pointer; empty space pans", async () => {
+  mkdirSync(artifacts, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    const text = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.json"));
+    await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: text });
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed && window.ikarus.characters.settled(), null, { timeout: 15000 });
+    await frames(page);
+    const handle = () =>
+      page.evaluate(() => {
+        const b = window.ikarus.state.character.posed.find((b) => b.name === "front-leg-target");
+        return window.ikarus.toClient(b.x, b.y).map(Math.round);
+      });
+    const at = await handle();
+    await page.mouse.move(...at);
+    const under = await worldAt(page, ...at);
+    for (let k = 0; k < 7; k++) await page.mouse.wheel(0, -100);
+    assert.ok(Math.abs((await zoom(page)) - Math.exp(1.4)) < 1e-9);
+    assertNear(await worldAt(page, ...at), under, 1e-9, "the point under the pointer");
+    // The handle is still under the pointer (within its ring): a drag moves the target.
+    await page.mouse.down();
+    await page.mouse.move(at[0] + 4, at[1] + 4);
+    await page.mouse.move(at[0] + 9, at[1] + 12);
+    const want = await worldAt(page, at[0] + 9, at[1] + 12);
+    await page.mouse.up();
+    await page.waitForFunction(() => window.ikarus.characters.settled(), null, { timeout: 15000 });
+    const put = await page.evaluate(() => window.ikarus.state.character.targets.get("front-leg-target"));
+    assertNear([put.x, put.y], want, 1e-9, "the target put");
+    // A press on empty space (the upper left, no handle there) pans and moves no target.
+    const box = await page.evaluate(() => {
+      const r = document.getElementById("plot").getBoundingClientRect();
+      return { x: r.left, y: r.top };
+    });
+    const from = [box.x + 40, box.y + 120];
+    const anchor = await worldAt(page, ...from);
+    await page.mouse.move(...from);
+    await page.mouse.down();
+    await page.mouse.move(from[0] + 50, from[1] + 70, { steps: 5 });
+    await page.mouse.up();
+    assertNear(await worldAt(page, from[0] + 50, from[1] + 70), anchor, 1e-9, "the pan");
+    const still = await page.evaluate(() => window.ikarus.state.character.targets.get("front-leg-target"));
+    assert.deepEqual(still, put);
+    await page.screenshot({ path: join(artifacts, "zoom-spineboy.png") });
+    // Back to the arm: the camera is the arm's fit.
+    await page.selectOption("#body-kind", "arm");
+    await frames(page);
+    assert.equal(await zoom(page), 1);
     assert.deepEqual(errors, []);
   });
 });
