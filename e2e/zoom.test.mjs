@@ -88,13 +88,28 @@ async function assertLabels(page, what) {
   return labels;
 }
 
-test("the hand zoomed ×20 over a fingertip: the point stays under the pointer, a drag's goal is the world point under it; pan, pinch, Fit", async () => {
+/** Runs `fn(page)` on the playground, loaded and ready, its requests recorded; no console errors after. */
+async function onPage(fn) {
   mkdirSync(artifacts, { recursive: true });
   await withBrowser(async ({ url, browser }) => {
     const { page, errors } = await openPage(browser);
     await watchRequests(page);
     await page.goto(url);
     await ready(page);
+    await fn(page);
+    assert.deepEqual(errors, []);
+  });
+}
+
+/** The canvas's box in client pixels. */
+const canvasBox = (page) =>
+  page.evaluate(() => {
+    const r = document.getElementById("plot").getBoundingClientRect();
+    return { x: r.left, y: r.top, w: r.width, h: r.height };
+  });
+
+test("the hand zoomed ×20 over a fingertip: the point stays under the pointer, a drag's goal is the world point under it; pan, pinch, Fit", async () => {
+  await onPage(async (page) => {
     await page.selectOption("#body-kind", "rig:hand");
     await page.waitForFunction(() => window.ikarus.state.rig && window.ikarus.state.rig.rig.name === "hand");
     assert.equal(await zoom(page), 1);
@@ -138,10 +153,7 @@ test("the hand zoomed ×20 over a fingertip: the point stays under the pointer, 
     assert.ok(Math.abs(pixels - 10) < 1e-6, `the goal is ${pixels} pixels from the pointer's press`);
 
     // A drag on empty space (the canvas's lower left, no tip within reach) pans: the world follows the pointer.
-    const box = await page.evaluate(() => {
-      const r = document.getElementById("plot").getBoundingClientRect();
-      return { x: r.left, y: r.top, w: r.width, h: r.height };
-    });
+    const box = await canvasBox(page);
     const from = [box.x + 60, box.y + box.h - 90];
     const anchor = await worldAt(page, ...from);
     const goalsBefore = await page.evaluate(() => JSON.stringify([...window.ikarus.state.rig.goals]));
@@ -211,21 +223,12 @@ test("the hand zoomed ×20 over a fingertip: the point stays under the pointer, 
     await page.waitForFunction(() => window.ikarus.state.rig.rig.name === "puppet");
     await frames(page);
     assert.equal(await zoom(page), 1);
-    assert.deepEqual(errors, []);
   });
 });
 
 test("the arm zoomed out: a click's goal is the world point clicked; Space held pans without playing, a tap plays; onion skins", async () => {
-  mkdirSync(artifacts, { recursive: true });
-  await withBrowser(async ({ url, browser }) => {
-    const { page, errors } = await openPage(browser);
-    await watchRequests(page);
-    await page.goto(url);
-    await ready(page);
-    const box = await page.evaluate(() => {
-      const r = document.getElementById("plot").getBoundingClientRect();
-      return { x: r.left, y: r.top, w: r.width, h: r.height };
-    });
+  await onPage(async (page) => {
+    const box = await canvasBox(page);
     const centre = [Math.round(box.x + box.w / 2), Math.round(box.y + box.h / 2)];
     // Eight frames: the skins stand apart.
     await page.fill("#frames", "8");
@@ -328,16 +331,11 @@ test("the arm zoomed out: a click's goal is the world point clicked; Space held 
     await frames(page);
     assert.equal(await page.evaluate(() => document.getElementById("plot").dataset.onion), "0 0");
     assert.equal(await pixels(), plain, "off: the canvas as it was");
-    assert.deepEqual(errors, []);
   });
 });
 
 test("spineboy zoomed ×4 about its front leg's target: the target dragged lands on the world point under the pointer; empty space pans", async () => {
-  mkdirSync(artifacts, { recursive: true });
-  await withBrowser(async ({ url, browser }) => {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+  await onPage(async (page) => {
     const text = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.json"));
     await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: text });
     await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed && window.ikarus.characters.settled(), null, { timeout: 15000 });
@@ -363,10 +361,7 @@ test("spineboy zoomed ×4 about its front leg's target: the target dragged lands
     const put = await page.evaluate(() => window.ikarus.state.character.targets.get("front-leg-target"));
     assertNear([put.x, put.y], want, 1e-9, "the target put");
     // A press on empty space (the upper left, no handle there) pans and moves no target.
-    const box = await page.evaluate(() => {
-      const r = document.getElementById("plot").getBoundingClientRect();
-      return { x: r.left, y: r.top };
-    });
+    const box = await canvasBox(page);
     const from = [box.x + 40, box.y + 120];
     const anchor = await worldAt(page, ...from);
     await page.mouse.move(...from);
@@ -381,6 +376,5 @@ test("spineboy zoomed ×4 about its front leg's target: the target dragged lands
     await page.selectOption("#body-kind", "arm");
     await frames(page);
     assert.equal(await zoom(page), 1);
-    assert.deepEqual(errors, []);
   });
 });
