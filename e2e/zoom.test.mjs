@@ -199,6 +199,19 @@ test("the hand zoomed ×20 over a fingertip: the point stays under the pointer, 
     await page.focus("#plot");
     await page.keyboard.press("f");
     assert.equal(await zoom(page), 1);
+    // + and - zoom about the canvas's centre.
+    const centreWorld = () => page.evaluate(() => {
+      const v = window.ikarus.state.view;
+      return [(v.w / 2 - v.cx) / v.scale, (v.cy - v.h / 2) / v.scale];
+    });
+    const mid = await centreWorld();
+    await page.keyboard.press("+");
+    await page.keyboard.press("+");
+    assert.ok(Math.abs((await zoom(page)) - 1.5625) < 1e-12, `+ +: ${await zoom(page)}`);
+    await page.keyboard.press("-");
+    assert.ok(Math.abs((await zoom(page)) - 1.25) < 1e-12, `+ + -: ${await zoom(page)}`);
+    assertNear(await centreWorld(), mid, 1e-9, "the centre after + and -");
+    await page.keyboard.press("f");
     // F typed in a field is a letter, not Fit.
     await page.mouse.wheel(0, -300);
     await page.focus("#restarts");

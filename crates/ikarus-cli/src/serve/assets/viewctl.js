@@ -8,7 +8,8 @@
 //   middle button drag     pans, on every body
 //   drag on empty space    pans a rig or a character: a press that grabs nothing (no effector,
 //                          no target's handle). On the arm a press sets a goal, so it does not pan
-//   Fit, or F              back to the fitted view (F when the focus is not in a field)
+//   + and -                zoom in and out about the canvas's centre (= is +)
+//   Fit, or F              back to the fitted view (F, + and - when the focus is not in a field)
 //
 // The camera resets when the body changes (the arm, a rig, a character) and stays while it moves
 // or plays. Pans are taken before the canvas's other listeners (rigs.js, characters.js,
@@ -21,6 +22,9 @@ import { ownsKeys } from "./input.js";
 import { ONION } from "./onion.js";
 
 const $ = (id) => document.getElementById(id);
+
+/** The keys that zoom about the canvas's centre, and by how much. */
+const KEY_ZOOM = { "+": 1.25, "=": 1.25, "-": 0.8 };
 
 /**
  * Wires the view controls of `canvas`. Writes `state.camera` (camera.js's {zoom, x, y}) and
@@ -177,6 +181,9 @@ export function wireViewControls(state, canvas, act) {
     } else if ((ev.key === "f" || ev.key === "F") && !ev.repeat && !ev.shiftKey) {
       ev.preventDefault();
       fit();
+    } else if (KEY_ZOOM[ev.key] && state.view.fit) {
+      ev.preventDefault();
+      move(zoomAbout(state.view, KEY_ZOOM[ev.key], state.view.w / 2, state.view.h / 2));
     }
   });
   document.addEventListener("keyup", (ev) => {
