@@ -41,6 +41,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("api.js", JS, include_str!("assets/api.js")),
     ("armfile.js", JS, include_str!("assets/armfile.js")),
     ("body.js", JS, include_str!("assets/body.js")),
+    ("camera.js", JS, include_str!("assets/camera.js")),
     ("character.js", JS, include_str!("assets/character.js")),
     ("characters.js", JS, include_str!("assets/characters.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
@@ -55,6 +56,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("keyed.js", JS, include_str!("assets/keyed.js")),
     ("keys.js", JS, include_str!("assets/keys.js")),
     ("links.js", JS, include_str!("assets/links.js")),
+    ("onion.js", JS, include_str!("assets/onion.js")),
     ("paths.js", JS, include_str!("assets/paths.js")),
     ("project.js", JS, include_str!("assets/project.js")),
     ("projects.js", JS, include_str!("assets/projects.js")),
@@ -64,6 +66,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("timeline.js", JS, include_str!("assets/timeline.js")),
     ("track.js", JS, include_str!("assets/track.js")),
     ("view.js", JS, include_str!("assets/view.js")),
+    ("viewctl.js", JS, include_str!("assets/viewctl.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)

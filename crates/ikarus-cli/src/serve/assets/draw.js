@@ -1,6 +1,6 @@
 // Drawing on a 2D context: the grid and axes, the reachable area (the exact region of
 // region.js, or the sampled grid's smooth edge), the reach circle, the joints' ranges (wedges)
-// when limits are on, the motion (ghost poses and joint traces up to the playhead), the wanted
+// when limits are on, the motion (ghost poses and joint traces up to the playhead), the onion skins (onion.js), the wanted
 // path of a traced path (or the stroke being drawn), the base, the arm, the flips and where a plan
 // left the path, the via
 // points, the goal and, for a goal out of reach, the nearest reachable point. It reads the
@@ -8,6 +8,7 @@
 // and the PNG and SVG downloads (export.js) are drawn by the same drawScene.
 
 import { bodyForward, chainBody } from "./body.js";
+import { drawOnion } from "./onion.js";
 import { traceCurves, traceRegion } from "./region.js";
 import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, placeLabels, toCanvas, toWorld } from "./view.js";
 
@@ -67,6 +68,7 @@ export function drawScene(ctx, view, state) {
   drawReach(ctx, view, state.arm);
   drawRanges(ctx, view, state);
   drawMotion(ctx, view, state);
+  drawOnion(ctx, view, state);
   drawWanted(ctx, view, state);
   drawBase(ctx, view, state.arm);
   drawArm(ctx, view, state.joints);
@@ -200,7 +202,8 @@ const LABEL_HEIGHT = 12;
 
 /**
  * The axis labels: the axes' names ("x" above the x axis at the right end, "y" right of the y
- * axis at the top, or under the chip when that covers the top), then the x ticks' values under the x axis and the y ticks' left of the y
+ * axis at the top, or under the chip when that covers the top), then the x ticks' values under the x axis (or above it, or above
+ * what covers them, where that is covered) and the y ticks' left of the y
  * axis (or right of it where that is covered), each only where it is clear of the others and of
  * what the page lays over the canvas (`view.keepOut`, boxes in canvas pixels: the status chip,
  * the hint). The labels drawn are kept as `view.labels` ([{text, x, y, w, h}]).
@@ -228,7 +231,11 @@ function drawLabels(ctx, view, { ax, ay, xs, ys, decimals, step }) {
     const [px] = toCanvas(view, gx, 0);
     const box = at(text, 0, Math.min(ay + 3, h - 14));
     box.x = px - box.w / 2;
-    candidates.push({ text, places: [box] });
+    // Where that is taken: above the axis, or above what the page lays over that row (the hint,
+    // the zoom box: an axis out of view runs along the bottom edge, under them).
+    const covers = keepOut.filter((k) => k.y < box.y + box.h && box.y < k.y + k.h);
+    const ups = [ay - 3 - LABEL_HEIGHT, ...covers.map((k) => k.y - 3 - LABEL_HEIGHT)].map((y) => ({ ...box, y }));
+    candidates.push({ text, places: [box, ...ups] });
   }
   for (const gy of ys) {
     if (Math.abs(gy) < step / 2) continue;

@@ -1,4 +1,5 @@
-// Drawing a character (characters.js's `state.character`) on a 2D context: the grid, each posed
+// Drawing a character (characters.js's `state.character`) on a 2D context: the grid, the onion
+// skins of a keyed motion (onion.js), each posed
 // bone as Spine draws bones (character.js's boneShape: a slim kite from the origin to the tip, a
 // small circle for a bone of no length), the bones an IK constraint moves tinted, every IK
 // target as a handle (an orange ring with a cross; red and filled once dragged, with a dashed
@@ -8,6 +9,7 @@
 
 import { COLORS, drawGrid, drawLeash } from "./draw.js";
 import { boneShape, fitCharacterView, unionBox } from "./character.js";
+import { drawOnion } from "./onion.js";
 import { toCanvas } from "./view.js";
 
 /** A target's handle, CSS pixels (its ring's radius). */
@@ -50,6 +52,7 @@ export function handlesOnCanvas(view, c) {
 export function drawCharacterScene(ctx, view, state) {
   const c = state.character;
   drawGrid(ctx, view);
+  drawOnion(ctx, view, state);
   const px = bonesOnCanvas(view, c);
   const index = new Map(c.character.bones.map((b, i) => [b.name, i]));
   c.character.bones.forEach((bone, i) => {

@@ -1,5 +1,6 @@
 // Drawing a rig (a skeleton) on a 2D context, as the render crate's skeleton pictures do: the
 // grid, the joints' ranges as wedges when limits are on (the arm's wedges, draw.js's drawWedge),
+// the onion skins of a keyed motion (onion.js),
 // the bones, the base, the joints (a white ring where bones start), the effectors (ink dots on
 // the tips the reader can drag; a ring on the one under the pointer or being dragged, with its
 // name), the pins (blue squares) and the goals (red targets, a dashed line from the tip to its
@@ -8,6 +9,7 @@
 // PNG and SVG downloads (export.js) are drawn by the same drawRigScene.
 
 import { COLORS, drawBase, drawGoal, drawGrid, drawLeash, drawWedge } from "./draw.js";
+import { drawOnion } from "./onion.js";
 import { fitRigView, shownEffectors } from "./rig.js";
 import { toCanvas } from "./view.js";
 
@@ -27,6 +29,7 @@ export function drawRigScene(ctx, view, state) {
       if (b.limits_deg) drawWedge(ctx, view, r.starts[i], r.parentHeadings[i], b.limits_deg, b.length, RIG_WEDGE_PIXELS);
     });
   }
+  drawOnion(ctx, view, state);
   drawSleeves(ctx, view, r, state.options.limits);
   drawBones(ctx, view, r);
   drawBase(ctx, view, r.rig);

@@ -9,7 +9,9 @@
 // (links.js, with arm files in armfile.js), shows and solves a rig instead of the arm (rigs.js,
 // with the pure parts in rig.js and the drawing in drawrig.js), poses a character (characters.js,
 // with the pure parts in character.js and the drawing in drawchar.js) or saves files (files.js,
-// with the figures drawn by export.js).
+// with the figures drawn by export.js). The view drawn and picked through is the body's fitted
+// view under the camera (camera.js: zoom and pan, moved by viewctl.js, which also holds the
+// onion skins' fields; onion.js draws them).
 
 import * as api from "./api.js";
 import { armForRequest, fillSelects, firstProblem, problemOf, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
@@ -26,6 +28,9 @@ import { formatDistance, regionOf, unreachableText, verdict } from "./region.js"
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
+import { fittedCamera } from "./camera.js";
+import { newOnion } from "./onion.js";
+import { wireViewControls } from "./viewctl.js";
 import { wireTrack } from "./track.js";
 import { wireProject } from "./projects.js";
 import { fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.js";
@@ -68,8 +73,13 @@ const state = {
   showGhosts: true,
   showTraces: true,
   showWorkspace: false,
-  // The world <-> canvas transform of the last drawing (view.js's fitView).
+  // The world <-> canvas transform of the last drawing: the body's fitted view (view.js's
+  // fitView, drawrig.js's rigView, drawchar.js's characterView) under the camera (camera.js's
+  // viewThrough of `camera`, {zoom, x, y}). Every pick reads it.
   view: { cx: 0, cy: 0, scale: 1, w: 1, h: 1 },
+  camera: fittedCamera(),
+  // The onion skins: shown or not, and how many frames each side of the playhead (onion.js).
+  onion: newOnion(),
   // The last /api/workspace answer and what is drawn of it, kept until the next answer arrives
   // so that the area does not blink while it recomputes: the exact region (region.js's regionOf
   // of its `boundary`) and the arm and limits it belongs to (regionKey), or, from a server that
@@ -127,6 +137,9 @@ const projectFiles = { isProject: (text) => !!project && project.isProject(text)
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
 const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded, canPlay: durationOk });
+
+/** Zoom, pan, Fit and the onion skins' fields (viewctl.js). */
+const views = wireViewControls(state, canvas, { draw, toggle: () => timeline.toggle(), requestDraw, recheck });
 
 /** Following and traced paths (track.js). */
 const paths = wireTrack(state, {
@@ -349,7 +362,7 @@ function solvedVerdict(goal, status, reachDistance, tip) {
 function overlays() {
   const c = canvas.getBoundingClientRect();
   const boxes = [];
-  for (const el of [$("chip"), $("hint"), document.body.classList.contains("collapsed") ? $("panel") : null]) {
+  for (const el of [$("chip"), $("hint"), $("zoom-box"), document.body.classList.contains("collapsed") ? $("panel") : null]) {
     if (!el) continue;
     const r = el.getBoundingClientRect();
     if (r.width > 0 && r.height > 0) boxes.push({ x: r.left - c.left, y: r.top - c.top, w: r.width, h: r.height });
@@ -358,29 +371,27 @@ function overlays() {
 }
 
 function draw() {
-  if (!state.arm) return;
+  if (!state.arm || (state.character && !state.character.box)) return;
   fitCanvas(canvas, ctx);
+  const [w, h] = [canvas.clientWidth, canvas.clientHeight];
+  const fit = state.character ? characterView(state, w, h) : state.rig ? rigView(state, w, h) : fitView(state.arm, w, h);
+  // The one view drawn and picked through: the fit under the camera.
+  state.view = views.look(fit);
+  state.view.keepOut = overlays();
   if (state.character) {
-    if (!state.character.box) return;
-    state.view = characterView(state, canvas.clientWidth, canvas.clientHeight);
-    state.view.keepOut = overlays();
     // The bones drawn, for scripts and tests.
     canvas.dataset.bones = String(drawCharacterScene(ctx, state.view, state));
-    return;
-  }
-  if (state.rig) {
-    state.view = rigView(state, canvas.clientWidth, canvas.clientHeight);
-    state.view.keepOut = overlays();
+  } else if (state.rig) {
     drawRigScene(ctx, state.view, state);
     keyed.drawOver(ctx);
     canvas.dataset.pose = state.rig.pose_deg.map((a) => a.toFixed(6)).join(" ");
-    return;
+  } else {
+    drawScene(ctx, state.view, state);
+    // The pose drawn, for scripts and tests: joint angles in degrees.
+    canvas.dataset.pose = state.pose_deg.map((a) => a.toFixed(6)).join(" ");
   }
-  state.view = fitView(state.arm, canvas.clientWidth, canvas.clientHeight);
-  state.view.keepOut = overlays();
-  drawScene(ctx, state.view, state);
-  // The pose drawn, for scripts and tests: joint angles in degrees.
-  canvas.dataset.pose = state.pose_deg.map((a) => a.toFixed(6)).join(" ");
+  // The onion skins drawn, for scripts and tests: "before after".
+  canvas.dataset.onion = state.view.onion.join(" ");
 }
 
 function requestDraw() {

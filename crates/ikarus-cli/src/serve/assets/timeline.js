@@ -2,13 +2,13 @@
 // between its frames (view.js's poseAt), over a duration the reader sets or one proportional to
 // the joint-space distance; play, pause, replay, a scrubber, the time, a small plot of the
 // ease's s(t) with the playhead, and the buttons of the solver's iterations and the via points.
-// Space plays and pauses when focus is not in a field or on a button.
+// A tap of Space plays and pauses when focus is not in a field or on a button (viewctl.js tells
+// a tap from Space held to pan).
 //
 // It owns `state.playback` (below) and reads `state.animation` and `state.animationRequest`;
 // everything else goes through main.js's actions.
 
 import { fitCanvas } from "./draw.js";
-import { ownsKeys } from "./input.js";
 import * as api from "./api.js";
 import { autoDuration, easeAt, freeJoints, jointDistance, poseAt } from "./view.js";
 
@@ -271,12 +271,6 @@ export function wireTimeline(state, act) {
   $("scrubber").addEventListener("input", (ev) => seek(Number(ev.target.value) / SCRUB_STEPS));
   $("solver").addEventListener("click", () => act.toggleSolver());
   $("clear-via").addEventListener("click", () => act.clearVia());
-  document.addEventListener("keydown", (ev) => {
-    if (ev.key !== " " || ev.repeat || ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
-    if (!loaded()) return;
-    ev.preventDefault();
-    toggle();
-  });
   new ResizeObserver(drawEase).observe($("ease-plot"));
 
   return { load, loadClip, unload, detach, play, pause, toggle, replay, seek, choose, duration, sync };
