@@ -3,9 +3,9 @@
 use super::algebra::Algebra;
 use super::fast::Taken;
 use super::line_search::jacobian_step;
+use super::loop_state::LoopState;
 use super::model::Problem;
 use super::model::{Model, ScratchOf};
-use super::scratch::LoopState;
 use super::step::Stepper;
 use super::{Outcome, Status};
 use crate::limits::Bounds;

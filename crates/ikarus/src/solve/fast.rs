@@ -20,7 +20,7 @@
 //! no temporary vectors, no dynamic dispatch.
 
 use super::lm::Damping;
-use super::scratch::LoopState;
+use super::loop_state::LoopState;
 use super::{LimitMode, Method, SolveOptions, Status};
 use crate::chain::Chain;
 #[cfg(target_arch = "x86_64")]

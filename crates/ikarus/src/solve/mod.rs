@@ -61,6 +61,7 @@ mod frames;
 mod limit_modes;
 mod line_search;
 mod lm;
+mod loop_state;
 mod method;
 mod model;
 mod options;

@@ -53,7 +53,7 @@ pub(super) type Seed<'a> = &'a dyn Fn(&mut Vec<f64>) -> bool;
 /// probe included) and 30 (tentacle). On seven, whose slow first attempts are often not yet
 /// held at a limit at iteration 12, the longest took 86 while a probe cut short unpinned ran
 /// whole before the seed; now that only a converging one goes on (see
-/// [`LoopState::converging`](super::scratch::LoopState::converging)), 18 (seeds 1 and 7).
+/// [`LoopState::converging`](super::loop_state::LoopState::converging)), 18 (seeds 1 and 7).
 pub(super) const PROBE_ITERATIONS: u32 = 12;
 
 /// Whether a seeded solve with `method` starts with a probe: Levenberg–Marquardt and damped
@@ -81,7 +81,7 @@ fn probes(method: Method) -> bool {
 /// [`PROBE_ITERATIONS`], watched (it gives up once pinned and hopeless, see
 /// [`attempt`](super::attempt::attempt)) and paused where it stops, and restart 1 starts from
 /// the seed. A probe cut short by its cap converging (see
-/// [`LoopState::converging`](super::scratch::LoopState::converging)) with no joint held at a limit
+/// [`LoopState::converging`](super::loop_state::LoopState::converging)) with no joint held at a limit
 /// goes on at once from where it stopped, still watched, as the first attempt runs unseeded.
 /// One that gave up, or was cut short pinned at a limit or crawling, is the tail this is for,
 /// and so is a first attempt that goes on and then gives up: the seed's attempt goes first,
