@@ -11,7 +11,7 @@ use super::fields::picture;
 use super::fields::{json_response, options_for, stopped};
 #[cfg(feature = "render")]
 use super::figures::MotionFigureReq;
-use super::requests::{AnimateReq, RigGoalReq};
+use super::requests::AnimateReq;
 use super::{Limits, Problem, Reply};
 use crate::keys::KeysFile;
 use crate::keys::motion::KeyedMotion;
@@ -21,15 +21,16 @@ use crate::rig::Rig;
 use crate::settings::SolverSettings;
 
 /// The keyed motion of `rig`: every other motion field refused, naming it.
-pub fn animate(
+pub fn animate<V>(
     rig: &Rig,
     keys: &KeysFile,
-    req: &AnimateReq<Vec<RigGoalReq>>,
+    req: &AnimateReq<V>,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Reply, Problem> {
     let given = [
         ("via", !req.via.is_empty()),
+        ("goal", req.goal.is_some()),
         ("goals", req.goals.is_some()),
         ("pins", req.pins.is_some()),
         ("mix", req.mix.is_some()),
@@ -90,14 +91,10 @@ pub(super) fn figure(
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
-    let (Some(file), Some(keys)) = (&r.rig, &r.keys) else {
-        return Err(Problem::invalid(match r.rig {
-            None => crate::keys::NEEDS_RIG,
-            Some(_) => "rig: the figure motion draws a rig's keyed motion: give its keys",
-        }));
+    let Some(keys) = &r.keys else {
+        return Err(Problem::invalid("rig: the figure motion draws a rig's keyed motion: give its keys"));
     };
     let given = [
-        ("arm", r.arm.is_some()),
         ("goal", r.goal.is_some()),
         ("via", !r.via.is_empty()),
         ("start_deg", r.start_deg.is_some()),
@@ -121,7 +118,10 @@ pub(super) fn figure(
             "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
         )));
     }
-    let rig = super::bodies::load_rig(file.clone(), limits)?;
+    let rig = match &r.rig {
+        Some(file) => super::bodies::load_rig(file.clone(), limits)?,
+        None => super::bodies::load_arm_as_rig(r.arm.clone(), limits)?,
+    };
     let (motion, _, limits_on) = keyed_motion(&rig, keys, r.options.as_ref(), limits, interrupt)?;
     if format == PictureFormat::Gif {
         super::render::gif_cap(motion.animation.frames.len(), width, height)?;
