@@ -1,6 +1,7 @@
 //! [`RigTask::bends`]: a bend on a joint whose bone has no goal (a knee while the foot's tip is
 //! the goal), by the one rule of a goal's bend, and its checks.
 
+use crate::math;
 use crate::skeleton::Skeleton;
 use crate::{Bend, Bone, BoneBend, Goal, RigGoal, RigTask, SolveOptions, Solver};
 
@@ -58,8 +59,8 @@ fn a_flipped_bend_mirrors_the_knee_about_the_hip_to_ankle_line_keeping_the_ankle
     let leg = leg();
     let start: [f64; 3] = [-1.4, 0.8, 1.4];
     // The ankle (the shin's tip) of the start pose; thigh and shin are 1 long.
-    let (c0, s0) = (start[0].cos(), start[0].sin());
-    let (c1, s1) = ((start[0] + start[1]).cos(), (start[0] + start[1]).sin());
+    let (c0, s0) = (math::cos(start[0]), math::sin(start[0]));
+    let (c1, s1) = (math::cos(start[0] + start[1]), math::sin(start[0] + start[1]));
     let ankle = (c0 + c1, s0 + s1);
     let mut solver = Solver::new(SolveOptions::default()).unwrap();
     let goal = RigGoal::new(1, Goal::position(ankle.0, ankle.1).unwrap()).with_bend(Bend::Negative);
