@@ -41,6 +41,11 @@ impl<H: BodyHelp + Send + Sync + 'static> BodyArgs<H> {
     pub fn load(&self) -> Result<Body, CliError> {
         Body::load(self.arm.as_deref(), self.rig.as_deref())
     }
+
+    /// The body as a rig: `--rig FILE`, else the one-branch rig of the arm (bones `link0`, …).
+    pub fn load_as_rig(&self) -> Result<ikarus_edge::rig::Rig, CliError> {
+        Body::load_as_rig(self.arm.as_deref(), self.rig.as_deref())
+    }
 }
 
 #[cfg(test)]

@@ -123,33 +123,62 @@ fn sigint_during_out_leaves_no_temporary_file() {
         let out = dir.path().join("w.png");
         let args = ["workspace", "--limits", "--samples", "1000000000", "--max-samples", "1000000000"];
         let args = [&args[..], &["--resolution", "64", "--arm", arm.to_str().unwrap(), "--out", out.to_str().unwrap()]];
-        interrupted_leaves_nothing(&args.concat(), dir.path(), signal, true);
+        interrupted_leaves_nothing(&args.concat(), dir.path(), signal, Until::File);
     }
 }
 
-/// Sends `signal` (`-INT` or `-TERM`) to a run of `args` (long on purpose, so that the signal
-/// arrives during the work): once its temporary output file is in `dir` if `wait_for_file`,
-/// else a second after it started (while it reads its input or works, before or after the file
-/// is made). Checks the end: exit 130 (143 for SIGTERM), one line on stderr, nothing in `dir`.
+/// When [`interrupted_leaves_nothing`] sends its signal.
 #[cfg(unix)]
-fn interrupted_leaves_nothing(args: &[&str], dir: &Path, signal: &str, wait_for_file: bool) {
-    let child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Wait for the temporary file (a generous bound: a hang here is the failure).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Until {
+    /// 0.3 s after the run's temporary output file appears in `dir`.
+    File,
+    /// As soon as the run's first bytes reach stdout (the work visibly under way); stdout is
+    /// read to its end meanwhile.
+    Output,
+    /// A second after the run started (while it reads its input or works, before or after its
+    /// file is made).
+    Second,
+}
+
+/// Sends `signal` (`-INT` or `-TERM`) to a run of `args` (long on purpose, so that the signal
+/// arrives during the work) at the moment `until` says. Checks the end: exit 130 (143 for
+/// SIGTERM), one line on stderr, nothing in `dir`.
+#[cfg(unix)]
+fn interrupted_leaves_nothing(args: &[&str], dir: &Path, signal: &str, until: Until) {
+    let output = if until == Until::Output { Stdio::piped() } else { Stdio::null() };
+    let mut child =
+        Command::new(env!("CARGO_BIN_EXE_ikarus")).args(args).stdout(output).stderr(Stdio::piped()).spawn().unwrap();
+    // A hang while waiting is the failure: generous bounds.
     let started = Instant::now();
-    while wait_for_file && entries(dir).is_empty() {
+    let drain = child.stdout.take().map(|mut stdout| {
+        let (tx, rx) = std::sync::mpsc::channel();
+        let reader = std::thread::spawn(move || {
+            let mut buf = [0u8; 1 << 16];
+            let mut first = Some(tx);
+            while let Ok(n @ 1..) = std::io::Read::read(&mut stdout, &mut buf) {
+                if let Some(tx) = first.take() {
+                    let _ = tx.send(n);
+                }
+            }
+        });
+        let first = rx.recv_timeout(Duration::from_secs(60));
+        assert!(first.is_ok(), "{args:?}: nothing on stdout");
+        reader
+    });
+    while until == Until::File && entries(dir).is_empty() {
         assert!(started.elapsed() < Duration::from_secs(60), "{args:?}: no temporary file appeared");
         std::thread::sleep(Duration::from_millis(20));
     }
-    if wait_for_file {
-        let temp = entries(dir);
-        assert!(temp[0].starts_with(".ikarus-") && temp[0].ends_with(".tmp"), "{temp:?}");
+    match until {
+        Until::File => {
+            let temp = entries(dir);
+            assert!(temp[0].starts_with(".ikarus-") && temp[0].ends_with(".tmp"), "{temp:?}");
+            std::thread::sleep(Duration::from_millis(300));
+        }
+        Until::Output => {}
+        Until::Second => std::thread::sleep(Duration::from_secs(1)),
     }
-    std::thread::sleep(Duration::from_millis(if wait_for_file { 300 } else { 1000 }));
     assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
     let mut child = child;
     let signalled = Instant::now();
@@ -161,6 +190,9 @@ fn interrupted_leaves_nothing(args: &[&str], dir: &Path, signal: &str, wait_for_
         std::thread::sleep(Duration::from_millis(20));
     }
     let o = child.wait_with_output().unwrap();
+    if let Some(reader) = drain {
+        reader.join().unwrap();
+    }
     let err = stderr(&o);
     let want = if signal == "-INT" { 130 } else { 143 };
     assert_eq!(o.status.code(), Some(want), "{signal} {args:?}: {:?}, {err}", o.status);
@@ -182,20 +214,18 @@ fn sigint_during_a_batch_exits_130_and_leaves_no_file() {
     let out = tempfile::tempdir().unwrap();
     let summary = out.path().join("summary.json");
     // Rows on stdout only (no file was ever pending: no handler was installed before): a
-    // million goals on one thread, several seconds of work.
+    // million goals far out of reach on one thread, each solved by the Jacobian transpose to
+    // its iteration limit (about a minute of work), interrupted as soon as the first rows are
+    // out. (Goals near the arm, solved by LM, ended in 0.74 s on a quiet machine, before a
+    // signal sent a second after the start.)
     let many = inputs.path().join("many.csv");
-    let rows: String = (0..1_000_000).map(|i| format!("{},{}\n", f64::from(i % 1000) * 0.006, 1.5)).collect();
+    let rows: String = (0..1_000_000).map(|i| format!("{},{}\n", 50.0 + f64::from(i % 1000) * 0.006, 1.5)).collect();
     std::fs::write(&many, format!("x,y\n{rows}")).unwrap();
-    interrupted_leaves_nothing(
-        &["solve", "--batch", many.to_str().unwrap(), "--threads", "1"],
-        out.path(),
-        "-INT",
-        false,
-    );
+    let batch = ["solve", "--batch", many.to_str().unwrap(), "--threads", "1", "--method", "transpose"];
+    interrupted_leaves_nothing(&batch, out.path(), "-INT", Until::Output);
     // And with the summary to a file: that file is removed.
-    let args =
-        ["solve", "--batch", many.to_str().unwrap(), "--threads", "1", "--summary-json", summary.to_str().unwrap()];
-    interrupted_leaves_nothing(&args, out.path(), "-INT", true);
+    let args = [&batch[..], &["--summary-json", summary.to_str().unwrap()]].concat();
+    interrupted_leaves_nothing(&args, out.path(), "-INT", Until::File);
     let points = inputs.path().join("points.csv");
     // Two million points: about 18 s in a debug build, so that the signal (0.3 s after the
     // temporary file appears) arrives during the work; 200,000 finished first on a quiet machine
@@ -217,7 +247,7 @@ fn sigint_during_a_batch_exits_130_and_leaves_no_file() {
         ],
         out.path(),
         "-INT",
-        false,
+        Until::Second,
     );
 }
 

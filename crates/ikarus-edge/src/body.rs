@@ -28,14 +28,20 @@ impl Body {
         match rig {
             Some(path) => Ok(Self::Rig(Box::new(load_rig(path)?))),
             None => {
-                let (text, label) = match arm {
-                    None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),
-                    Some(p) => {
-                        let label = format!("arm file {}", p.display());
-                        (crate::input::read_text(p, &label)?, label)
-                    }
-                };
-                Self::from_arm_file(ArmFile::read(&text, &label)?, &label)
+                let (file, label) = read_arm_file(arm)?;
+                Self::from_arm_file(file, &label)
+            }
+        }
+    }
+
+    /// The body as a rig: `--rig FILE`, else the one-branch rig of `--arm FILE` or of the
+    /// built-in seed arm ([`Rig::from_arm`]: bones `link0`, `link1`, …), as keyed motion takes it.
+    pub fn load_as_rig(arm: Option<&Path>, rig: Option<&Path>) -> Result<Rig, CliError> {
+        match rig {
+            Some(path) => load_rig(path),
+            None => {
+                let (file, label) = read_arm_file(arm)?;
+                Rig::from_arm(&file, &label)
             }
         }
     }
@@ -60,6 +66,18 @@ impl Body {
             Self::Rig(rig) => &**rig,
         }
     }
+}
+
+/// The arm file at `arm`, else the built-in seed arm's, with the label its messages start with.
+fn read_arm_file(arm: Option<&Path>) -> Result<(ArmFile, String), CliError> {
+    let (text, label) = match arm {
+        None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),
+        Some(p) => {
+            let label = format!("arm file {}", p.display());
+            (crate::input::read_text(p, &label)?, label)
+        }
+    };
+    Ok((ArmFile::read(&text, &label)?, label))
 }
 
 /// The rig file at `path` (`--rig FILE`), a character file refused in one line that says what it

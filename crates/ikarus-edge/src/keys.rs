@@ -31,8 +31,6 @@ pub const MAX_KEY_FPS: f64 = 240.0;
 pub const MAX_TRACKS: usize = 64;
 /// Most keys of one track (and of one bone's bends).
 pub const MAX_KEYS: usize = 1000;
-/// The refusal of keys for an arm (the API's words; the command line's say `--keys`, `--rig`).
-pub const NEEDS_RIG: &str = "keys: needs rig (a chain is a rig of one branch: give its links as the bones of a rig file, and key the last bone)";
 
 /// The KEYS shape as read (see the module docs); every field is checked by [`KeysFile::check`].
 #[derive(Debug, Clone, Default, Deserialize)]

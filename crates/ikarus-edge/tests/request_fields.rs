@@ -34,7 +34,7 @@ fn groups_stand_where_their_fields_stood() {
     );
     assert_eq!(
         fields::<MotionFigureReq>(),
-        format!("{picture}, arm, start_deg, goal, via, {motion}, workspace, {area}, traces, ghosts")
+        format!("{picture}, arm, rig, keys, start_deg, goal, via, {motion}, workspace, {area}, traces, ghosts")
     );
     assert_eq!(fields::<WorkspaceFigureReq>(), format!("{picture}, arm, {area}"));
     assert_eq!(fields::<EaseFigureReq>(), format!("{picture}, ease"));

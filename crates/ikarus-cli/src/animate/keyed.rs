@@ -10,10 +10,9 @@ use ikarus_edge::keys::KeysFile;
 use ikarus_edge::keys::motion::KeyedMotion;
 
 use super::{AnimateFormat, MotionArgs, ShownMotion};
-use crate::body::Body;
 use crate::columns::BodyColumns;
 use crate::error::CliError;
-use crate::picture::{Drawing, rig_figure};
+use crate::picture::Drawing;
 use crate::rig::Rig;
 
 /// A keyed motion of a rig, with the names of its tracked bones.
@@ -25,15 +24,10 @@ pub struct KeyedRun {
 }
 
 impl KeyedRun {
-    /// The motion of the rig of `--rig` keyed by the file `keys`; an arm is refused.
+    /// The motion of the rig of `--rig` (or the one-branch rig of `--arm` or the built-in
+    /// arm: bones `link0`, `link1`, …) keyed by the file `keys`.
     pub fn of(args: &MotionArgs, keys: &Path) -> Result<Self, CliError> {
-        let rig = match args.body.load()? {
-            Body::Rig(rig) => *rig,
-            Body::Chain(_) => {
-                let message = ikarus_edge::keys::NEEDS_RIG.replacen("keys: needs rig", "--keys: needs --rig", 1);
-                return Err(CliError::input(message));
-            }
-        };
+        let rig = args.body.load_as_rig()?;
         let label = format!("--keys {}", keys.display());
         let text = crate::input::read_text(keys, &label)?;
         let file = KeysFile::parse(&text).map_err(|m| CliError::input(format!("{label}: {m}")))?;
@@ -61,17 +55,7 @@ impl KeyedRun {
 
 impl ShownMotion for KeyedRun {
     fn drawing(&self) -> Drawing<'_> {
-        let animation = &self.motion.animation;
-        let last = animation.frames.last().expect("a keyed motion has frames");
-        let caption = format!(
-            "{} · keys · {} frames at {} fps · {} reached",
-            self.rig.name,
-            animation.frames.len(),
-            self.motion.fps,
-            self.motion.reached()
-        );
-        let figure = rig_figure(&self.rig, &last.angles, &self.motion.last_task, self.limits, Some(caption));
-        Drawing::RigMotion { figure, animation, fps: self.motion.fps }
+        self.motion.drawing(&self.rig, self.limits)
     }
 
     fn frames(&self) -> usize {

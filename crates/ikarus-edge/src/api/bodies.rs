@@ -121,11 +121,11 @@ impl AnimateBody {
         match Keys::of(body)? {
             BodyKind::Arm => {
                 let req: AnimateReq<ArmVia> = parse_json(body)?;
-                if req.keys.is_some() {
-                    return Err(Problem::invalid(crate::keys::NEEDS_RIG));
+                // Keyed, the arm is the one-branch rig of its links, its fields checked there.
+                if req.keys.is_none() {
+                    let rig_only = [("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
+                    fields_of(BodyKind::Arm, &[], &rig_only, ("goal", req.goal.is_some()), body)?;
                 }
-                let rig_only = [("pins", req.pins.is_some()), ("mix", req.mix.is_some())];
-                fields_of(BodyKind::Arm, &[], &rig_only, ("goal", req.goal.is_some()), body)?;
                 Ok(AnimateBody::Arm(Box::new(req)))
             }
             BodyKind::Rig => Ok(AnimateBody::Rig(parse_json(body)?)),
@@ -168,6 +168,19 @@ pub fn load_arm(file: Option<ArmFile>, limits: &Limits) -> Result<Arm, Problem> 
             Ok(Arm::from_file(file, "arm")?)
         }
     }
+}
+
+/// The one-branch rig of a request's arm (the built-in arm without one): bones `link0`,
+/// `link1`, … ([`Rig::from_arm`]), at most `--max-links` of them.
+pub fn load_arm_as_rig(file: Option<ArmFile>, limits: &Limits) -> Result<Rig, Problem> {
+    let file = match file {
+        None => ArmFile::read(crate::arm::DEFAULT_ARM, "built-in arm")?,
+        Some(file) => {
+            links_cap(&file, limits)?;
+            file
+        }
+    };
+    Ok(Rig::from_arm(&file, "arm")?)
 }
 
 /// At most `--max-links` links in a request's arm.

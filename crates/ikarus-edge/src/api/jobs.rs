@@ -93,6 +93,10 @@ pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
 pub fn animate(req: AnimateBody, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     match req {
         AnimateBody::Arm(req) => {
+            if let Some(keys) = &req.keys {
+                let rig = bodies::load_arm_as_rig(req.arm.clone(), limits)?;
+                return super::keyed::animate(&rig, keys, &req, limits, interrupt);
+            }
             let arm = bodies::load_arm(req.arm.clone(), limits)?;
             let goal_req = req.goal.as_ref().ok_or_else(|| Problem::internal("an arm's motion without its goal"))?;
             let motion = arm_motion(&arm, &MotionFields::of_animate(&req), &req.via, goal_req, limits, interrupt)?;

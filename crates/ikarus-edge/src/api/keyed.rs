@@ -7,21 +7,24 @@ use ikarus::Interrupt;
 
 use super::character_motion::MAX_BONE_FRAMES;
 use super::fields::{json_response, options_for, stopped};
-use super::requests::{AnimateReq, RigGoalReq};
+use super::requests::AnimateReq;
 use super::{Limits, Problem, Reply};
 use crate::keys::KeysFile;
+use crate::keys::motion::KeyedMotion;
 use crate::rig::Rig;
+use crate::settings::SolverSettings;
 
 /// The keyed motion of `rig`: every other motion field refused, naming it.
-pub fn animate(
+pub fn animate<V>(
     rig: &Rig,
     keys: &KeysFile,
-    req: &AnimateReq<Vec<RigGoalReq>>,
+    req: &AnimateReq<V>,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Reply, Problem> {
     let given = [
         ("via", !req.via.is_empty()),
+        ("goal", req.goal.is_some()),
         ("goals", req.goals.is_some()),
         ("pins", req.pins.is_some()),
         ("mix", req.mix.is_some()),
@@ -38,8 +41,23 @@ pub fn animate(
             "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
         )));
     }
+    let (motion, names, _) = keyed_motion(rig, keys, req.options.as_ref(), limits, interrupt)?;
+    json_response(&motion.json(rig, &names))
+}
+
+/// The keyed motion of `rig` with the solver `options` over the rig's `[solver]`, under the
+/// server's caps (`--max-frames`, frames × bones, its time budget): the motion, its tracks'
+/// names, and whether the solve enforced the limits (a picture's wedges).
+pub(super) fn keyed_motion(
+    rig: &Rig,
+    keys: &KeysFile,
+    options: Option<&SolverSettings>,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<(KeyedMotion, Vec<String>, bool), Problem> {
     let s = &rig.skeleton;
-    let options = options_for(&rig.solver, s.len(), req.options.as_ref(), None, limits, interrupt)?;
+    let options = options_for(&rig.solver, s.len(), options, None, limits, interrupt)?;
+    let limits_on = options.limits != ikarus::LimitMode::Ignore;
     let plan = keys.check(s, limits.max_frames, "--max-frames").map_err(Problem::invalid)?;
     if plan.frames() * s.len() > MAX_BONE_FRAMES {
         return Err(Problem::invalid(format!(
@@ -52,6 +70,5 @@ pub fn animate(
     let motion = plan.run(rig, s.start_angles(), options, &stop);
     stopped(interrupt)?;
     let motion = motion.map_err(Problem::invalid)?;
-    let names = plan.track_names(s);
-    json_response(&motion.json(rig, &names))
+    Ok((motion, plan.track_names(s), limits_on))
 }

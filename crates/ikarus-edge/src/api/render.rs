@@ -124,6 +124,17 @@ fn rig_pose(rig: &Rig, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, Problem> {
     pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), pose_deg, "pose_deg")
 }
 
+/// A GIF of `frames` frames of `width` × `height` within [`MAX_GIF_PIXELS`].
+pub(super) fn gif_cap(frames: usize, width: u32, height: u32) -> Result<(), Problem> {
+    let pixels = frames as u64 * u64::from(width) * u64::from(height);
+    if pixels > MAX_GIF_PIXELS {
+        return Err(Problem::invalid(format!(
+            "frames, width, height: {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF"
+        )));
+    }
+    Ok(())
+}
+
 fn motion_figure(
     r: &MotionFigureReq,
     format: PictureFormat,
@@ -132,6 +143,9 @@ fn motion_figure(
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
+    if r.keys.is_some() || r.rig.is_some() {
+        return keyed_figure(r, format, width, height, limits, interrupt);
+    }
     let arm = load_arm(r.arm.clone(), limits)?;
     let Some(goal_req) = &r.goal else {
         return Err(Problem::invalid("goal: required for the figure motion"));
@@ -140,13 +154,7 @@ fn motion_figure(
     stopped(interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
-        let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);
-        if pixels > MAX_GIF_PIXELS {
-            return Err(Problem::invalid(format!(
-                "frames, width, height: {} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF",
-                animation.frames.len()
-            )));
-        }
+        gif_cap(animation.frames.len(), width, height)?;
     }
     let area = if r.workspace {
         let on = r.limits.or_else(|| r.options.as_ref().and_then(|o| o.limits));
@@ -160,4 +168,53 @@ fn motion_figure(
     let fps = r.fps.unwrap_or(DEFAULT_FPS);
     let drawing = motion_drawing(&arm, animation, motion.caption(), goal, fps, layers);
     picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
+}
+
+/// Figure `motion` of `POST /api/render` with a rig and its `keys`: the keyed motion drawn as
+/// `ikarus render motion --rig FILE --keys KEYS.json --out` draws it; the fields of an arm's
+/// motion and of its area refused, naming them.
+fn keyed_figure(
+    r: &MotionFigureReq,
+    format: PictureFormat,
+    width: u32,
+    height: u32,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    let Some(keys) = &r.keys else {
+        return Err(Problem::invalid("rig: the figure motion draws a rig's keyed motion: give its keys"));
+    };
+    let given = [
+        ("goal", r.goal.is_some()),
+        ("via", !r.via.is_empty()),
+        ("start_deg", r.start_deg.is_some()),
+        ("frames", r.frames.is_some()),
+        ("duration", r.duration.is_some()),
+        ("fps", r.fps.is_some()),
+        ("ease", r.ease.is_some()),
+        ("interpolation", r.interpolation.is_some()),
+        ("from_solve", r.from_solve),
+        ("workspace", r.workspace),
+        ("limits", r.limits.is_some()),
+        ("grid", r.grid.is_some()),
+        ("resolution", r.resolution.is_some()),
+        ("samples", r.samples.is_some()),
+        ("seed", r.seed.is_some()),
+        ("traces", r.traces.is_some()),
+        ("ghosts", r.ghosts),
+    ];
+    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+        return Err(Problem::invalid(format!(
+            "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
+        )));
+    }
+    let rig = match &r.rig {
+        Some(file) => super::bodies::load_rig(file.clone(), limits)?,
+        None => super::bodies::load_arm_as_rig(r.arm.clone(), limits)?,
+    };
+    let (motion, _, limits_on) = super::keyed::keyed_motion(&rig, keys, r.options.as_ref(), limits, interrupt)?;
+    if format == PictureFormat::Gif {
+        gif_cap(motion.animation.frames.len(), width, height)?;
+    }
+    picture(draw(&motion.drawing(&rig, limits_on), format, width, height, &|_, _| {}), interrupt)
 }
