@@ -12,6 +12,7 @@ import assert from "node:assert/strict";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, launch, openPage, ready, startServer } from "./browser.mjs";
+import { tipClient } from "./rigpage.mjs";
 
 const settled = (page) => page.waitForFunction(() => !window.ikarus.state.rig || window.ikarus.rigs.settled(), null, { timeout: 15000 });
 const characters = join(import.meta.dirname, "..", "examples", "characters");
@@ -36,12 +37,6 @@ const work = (page) =>
       settings,
     };
   });
-
-const tipClient = (page, name) =>
-  page.evaluate((n) => {
-    const r = window.ikarus.state.rig;
-    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
-  }, name);
 
 /** The chip's message (the error line when shown, else the status line). */
 const chip = (page) => page.evaluate(() => (document.getElementById("error").hidden ? document.getElementById("stats").textContent : document.getElementById("error").textContent));

@@ -60,6 +60,8 @@ export function wireRigs(state, canvas, act) {
   const rigs = new Map();
   /** The limits checkbox of the arm, given back when the arm returns (a rig turns limits on). */
   let armLimits = null;
+  /** Each rig's work when another body took the canvas: list value -> {r (its rig state), keys}. */
+  const kept = new Map();
 
   const names = () => state.rig.rig.bones.map((b) => b.name);
 
@@ -76,6 +78,11 @@ export function wireRigs(state, canvas, act) {
   /** The rig `value` of the list (or the arm): the canvas solves it from its start pose. */
   function use(value) {
     const select = $("body-kind");
+    if (state.rig) {
+      // Its work kept for its return; its keys leave with it (before anything solves the next body).
+      kept.set(state.rig.source, { r: state.rig, keys: state.keys });
+      act.keyed.leave();
+    }
     if (value === "character") {
       if (state.rig) use("arm");
       act.characters.resume();
@@ -107,7 +114,9 @@ export function wireRigs(state, canvas, act) {
       armLimits = $("limits").checked;
       $("limits").checked = true;
     }
-    state.rig = newRigState(rig, value);
+    // A rig shown before comes back as it was left: its goals, pins, pose and keys.
+    const back = kept.get(value);
+    state.rig = back && back.r.rig === rig ? Object.assign(back.r, { grabbed: null, hover: null, busy: false, pending: false }) : newRigState(rig, value);
     document.body.classList.add("rig");
     delete document.body.dataset.failed;
     $("hint").textContent = $("hint").dataset.rig;
@@ -116,6 +125,7 @@ export function wireRigs(state, canvas, act) {
     act.controlsChanged();
     idle();
     act.keyed.enter();
+    if (back && back.r === state.rig && back.keys) act.keyed.applyKeys(back.keys);
     act.requestDraw();
   }
 

@@ -1,0 +1,125 @@
+// What the browser tests of a rig on the playground share: where a bone's tip is drawn, the
+// world point under the pointer, keying by real drags at the playhead (the puppet's walk-like
+// cycle), the frame shown, and a knee flipped with its bend handle. Used by keys.test.mjs,
+// zoom.test.mjs, project.test.mjs and animator.test.mjs.
+
+/** Seconds of the four keys of the walk (frames 0, 12, 24, 36 at 30 fps). */
+export const TIMES = [0, 0.4, 0.8, 1.2];
+
+/**
+ * A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. At
+ * 0.8 s the left foot is lifted (a high step), nearer the hip than the straight leg reaches, so
+ * that its knee must bend one way or the other.
+ */
+export const WALK = {
+  left_foot: [
+    [0.3, -0.86],
+    [0.18, -0.8],
+    [0.22, -0.62],
+    [0.3, -0.86],
+  ],
+  right_foot: [
+    [0.0, -0.9],
+    [0.15, -0.84],
+    [0.28, -0.86],
+    [0.0, -0.9],
+  ],
+  left_hand: [
+    [0.05, -0.27],
+    [0.15, -0.25],
+    [0.25, -0.2],
+    [0.05, -0.27],
+  ],
+  right_hand: [
+    [0.22, -0.2],
+    [0.1, -0.26],
+    [-0.05, -0.27],
+    [0.22, -0.2],
+  ],
+};
+
+/** How near a key's target an effector must be at its key time (the targets are reachable). */
+export const TOLERANCE = 1e-3;
+
+/** Resolves once no keyed motion and no rig solve is in flight or waiting. */
+export const keysSettled = (page) => page.waitForFunction(() => window.ikarus.keys.settled() && window.ikarus.rigs.settled(), null, { timeout: 60000 });
+
+/** Client coordinates of rig bone `name`'s tip as drawn now. */
+export const tipClient = (page, name) =>
+  page.evaluate((n) => {
+    const r = window.ikarus.state.rig;
+    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
+  }, name);
+
+/** The world point under client point (x, y) in the view last drawn (the one picks read). */
+export const worldAt = (page, x, y) =>
+  page.evaluate(([x, y]) => {
+    const v = window.ikarus.state.view;
+    const r = document.getElementById("plot").getBoundingClientRect();
+    return [(x - r.left - v.cx) / v.scale, (v.cy - (y - r.top)) / v.scale];
+  }, [x, y]);
+
+/** Drags bone `name`'s tip to the world point `to` and lets go; waits for the keyed motion. */
+export async function dragTip(page, name, to) {
+  const from = await tipClient(page, name);
+  const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
+  await page.mouse.move(...from);
+  await page.mouse.down();
+  await page.mouse.move((from[0] + end[0]) / 2, (from[1] + end[1]) / 2, { steps: 4 });
+  await page.mouse.move(...end, { steps: 4 });
+  await page.mouse.up();
+  await keysSettled(page);
+}
+
+/** The playhead to `t` seconds, the frame there shown. */
+export async function seek(page, t) {
+  await page.evaluate((s) => window.ikarus.keys.seek(s), t);
+  await keysSettled(page);
+}
+
+/**
+ * Keys the puppet's walk (Key mode on): at each key time, each of the four effectors dragged to
+ * its target. `after(bone, k)` runs after each drag (to record the keys, say).
+ */
+export async function keyWalk(page, after = async () => {}) {
+  for (let k = 0; k < TIMES.length; k++) {
+    await seek(page, TIMES[k]);
+    for (const [bone, targets] of Object.entries(WALK)) {
+      await dragTip(page, bone, targets[k]);
+      await after(bone, k);
+    }
+  }
+}
+
+/** What the page shows now: each bone's drawn tip, the frame's `joints` and angles, the frame index. */
+export const shown = (page) =>
+  page.evaluate(() => {
+    const s = window.ikarus.state;
+    const r = s.rig;
+    const tips = Object.fromEntries(r.rig.bones.map((b, i) => [b.name, r.tips[i]]));
+    const index = Number(document.body.dataset.keyFrame);
+    const frame = s.motion.frames[index];
+    return { tips, index, frame: { time: frame.time, status: frame.status, joints: frame.joints, angles_deg: frame.angles_deg } };
+  });
+
+/** The side a joint at `deg` bends to, as the bend keys name it. */
+export const side = (deg) => (deg >= 0 ? "ccw" : "cw");
+
+/**
+ * The bend handle of `bone` at the playhead clicked: resolves with the frame shown before and
+ * after, and the handle ({side, at: client point}). `hovered()` runs with the pointer on the
+ * handle before the click (a screenshot, say).
+ */
+export async function flipBend(page, bone, hovered = async () => {}) {
+  const before = await shown(page);
+  const handle = await page.evaluate((b) => {
+    const h = window.ikarus.keys.handles().find((x) => x.bone === b);
+    const r = document.getElementById("plot").getBoundingClientRect();
+    return { side: h.side, at: [r.left + h.at[0], r.top + h.at[1]] };
+  }, bone);
+  await page.mouse.move(...handle.at);
+  await hovered();
+  await page.mouse.click(...handle.at);
+  await keysSettled(page);
+  return { before, after: await shown(page), handle };
+}
