@@ -59,14 +59,19 @@ export const worldAt = (page, x, y) =>
     return [(x - r.left - v.cx) / v.scale, (v.cy - (y - r.top)) / v.scale];
   }, [x, y]);
 
-/** Drags bone `name`'s tip to the world point `to` and lets go; waits for the keyed motion. */
-export async function dragTip(page, name, to) {
+/**
+ * Drags bone `name`'s tip to the world point `to` in eight even moves and lets go; waits for the
+ * keyed motion. `moved()` runs after each move (a screen recording's frame, say).
+ */
+export async function dragTip(page, name, to, moved = async () => {}) {
   const from = await tipClient(page, name);
   const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
   await page.mouse.move(...from);
   await page.mouse.down();
-  await page.mouse.move((from[0] + end[0]) / 2, (from[1] + end[1]) / 2, { steps: 4 });
-  await page.mouse.move(...end, { steps: 4 });
+  for (let i = 1; i <= 8; i++) {
+    await page.mouse.move(from[0] + ((end[0] - from[0]) * i) / 8, from[1] + ((end[1] - from[1]) * i) / 8);
+    await moved();
+  }
   await page.mouse.up();
   await keysSettled(page);
 }
@@ -79,13 +84,14 @@ export async function seek(page, t) {
 
 /**
  * Keys the puppet's walk (Key mode on): at each key time, each of the four effectors dragged to
- * its target. `after(bone, k)` runs after each drag (to record the keys, say).
+ * its target. `after(bone, k)` runs after each drag (to record the keys, say), `moved()` after
+ * each pointer move of a drag.
  */
-export async function keyWalk(page, after = async () => {}) {
+export async function keyWalk(page, after = async () => {}, moved = async () => {}) {
   for (let k = 0; k < TIMES.length; k++) {
     await seek(page, TIMES[k]);
     for (const [bone, targets] of Object.entries(WALK)) {
-      await dragTip(page, bone, targets[k]);
+      await dragTip(page, bone, targets[k], moved);
       await after(bone, k);
     }
   }
