@@ -251,6 +251,9 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
       assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-6, `${name} at ${SPINE_TIMES[k]} s: at ${b.x}, ${b.y}, its key ${x}, ${y}`);
     }
     await page.screenshot({ path: join(artifacts, "keys-spineboy-walk.png") });
+    // No frames CSV for a character (the CLI writes its motion as json or spine), and the button says so.
+    assert.equal(await page.isDisabled("#key-frames-csv"), true);
+    assert.match(await page.getAttribute("#key-frames-csv", "title"), /no CSV/);
 
     // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its keys
     // (to 1e-2, the export's promise).

@@ -129,7 +129,10 @@ export function wireKeyed(state, canvas, act) {
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-frames-csv").disabled = !k.answer || !state.rig;
+    const csv = $("key-frames-csv");
+    csv.disabled = !k.answer || !state.rig;
+    // A character's keyed motion has no CSV: `ikarus animate` writes it as json (its frames) or spine.
+    csv.title = state.character ? "A character's keyed motion is saved as Frames JSON or Spine JSON (the CLI has no CSV of it)" : csv.dataset.title || csv.title;
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
