@@ -11,8 +11,8 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, openPage, ready, withBrowser } from "./browser.mjs";
-import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keysSettled, seek, side, tipClient, worldAt } from "./rigpage.mjs";
+import { artifacts, reloadUnsaved, withBrowser } from "./browser.mjs";
+import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keyingPuppet, keysSettled, seek, side, tipClient, worldAt } from "./rigpage.mjs";
 
 /** The keys and the keyed motion's frames as the page holds them (plain JSON). */
 const work = (page) => page.evaluate(() => JSON.parse(JSON.stringify({ keys: window.ikarus.state.keys, frames: window.ikarus.state.motion && window.ikarus.state.motion.frames })));
@@ -28,13 +28,8 @@ test("the animator's flow: a walk keyed on the puppet, undone and redone, the ha
   mkdirSync(artifacts, { recursive: true });
   const shot = (page, name) => page.screenshot({ path: join(artifacts, `animator-${name}.png`) });
   await withBrowser(async ({ url, browser }) => {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
-
     // The walk, keyed by dragging the four effectors at each key time; the keys after each drag kept.
-    await page.selectOption("#body-kind", "rig:puppet");
-    await page.click("#key-mode");
+    const { page, errors } = await keyingPuppet(browser, url);
     const after = [];
     await keyWalk(page, async () => after.push((await work(page)).keys));
     const walked = await work(page);
@@ -116,17 +111,7 @@ test("the animator's flow: a walk keyed on the puppet, undone and redone, the ha
     const [download] = await Promise.all([page.waitForEvent("download"), page.click("#save-project")]);
     const saved = readFileSync(await download.path(), "utf8");
     assert.deepEqual(JSON.parse(saved).keys, final.keys);
-    await page.fill("#tolerance", "0.001");
-    await page.press("#tolerance", "Tab");
-    assert.equal(await page.evaluate(() => document.body.dataset.dirty), "true");
-    const dialogs = [];
-    page.on("dialog", (dialog) => {
-      dialogs.push(dialog.type());
-      dialog.accept();
-    });
-    await page.reload();
-    await ready(page);
-    assert.deepEqual(dialogs, ["beforeunload"], "the unsaved-work warning");
+    assert.deepEqual(await reloadUnsaved(page), { dirty: "true", dialogs: ["beforeunload"] }, "the unsaved-work warning");
     assert.equal(await page.evaluate(() => window.ikarus.state.keys), null, "a fresh page");
 
     // Opened: the same keys and the same frames, every number of every frame.

@@ -16,17 +16,13 @@ import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
 import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
-import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keysSettled as settled, seek, shown, side, tipClient } from "./rigpage.mjs";
+import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keyingPuppet, keysSettled as settled, seek, shown, side, tipClient } from "./rigpage.mjs";
 
 test("the puppet: a walk keyed on both feet and both hands plays with every effector on its keys; a knee's bend handle flips it", async () => {
   const dir = artifacts;
   mkdirSync(dir, { recursive: true });
   await withBrowser(async ({ url, browser }) => {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
-    await page.selectOption("#body-kind", "rig:puppet");
-    await page.click("#key-mode");
+    const { page, errors } = await keyingPuppet(browser, url);
     assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "true");
     await keyWalk(page);
     const keys = await page.evaluate(() => window.ikarus.state.keys);

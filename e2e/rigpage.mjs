@@ -3,6 +3,18 @@
 // cycle), the frame shown, and a knee flipped with its bend handle. Used by keys.test.mjs,
 // zoom.test.mjs, project.test.mjs and animator.test.mjs.
 
+import { openPage, ready } from "./browser.mjs";
+
+/** A new page of `browser` at the playground `url`, the puppet shown and Key mode on: {page, errors}. */
+export async function keyingPuppet(browser, url) {
+  const { page, errors } = await openPage(browser);
+  await page.goto(url);
+  await ready(page);
+  await page.selectOption("#body-kind", "rig:puppet");
+  await page.click("#key-mode");
+  return { page, errors };
+}
+
 /** Seconds of the four keys of the walk (frames 0, 12, 24, 36 at 30 fps). */
 export const TIMES = [0, 0.4, 0.8, 1.2];
 
