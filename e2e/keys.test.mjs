@@ -247,6 +247,15 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
       assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-6, `${name} at ${SPINE_TIMES[k]} s: at ${b.x}, ${b.y}, its key ${x}, ${y}`);
     }
     await page.screenshot({ path: join(artifacts, "keys-spineboy-walk.png") });
+    // The arm shown, then the character again: its keys and keyed motion as they were left.
+    const frames = await page.evaluate(() => JSON.stringify(window.ikarus.state.motion.frames));
+    await page.selectOption("#body-kind", "arm");
+    assert.equal(await page.evaluate(() => window.ikarus.state.keys), null);
+    await page.selectOption("#body-kind", "character");
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.motion, null, { timeout: 15000 });
+    await characterSettled(page);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys, "the character's keys kept");
+    assert.equal(await page.evaluate(() => JSON.stringify(window.ikarus.state.motion.frames)), frames, "the same keyed frames");
     // No frames CSV for a character (the CLI writes its motion as json or spine), and the button says so.
     assert.equal(await page.isDisabled("#key-frames-csv"), true);
     assert.match(await page.getAttribute("#key-frames-csv", "title"), /no CSV/);
