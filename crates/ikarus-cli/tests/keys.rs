@@ -156,6 +156,28 @@ fn a_bend_key_flips_the_knee_and_the_foot_still_reaches() {
     }
 }
 
+/// A bend key on the wrong side mirrors the knee (θ → −θ, the thigh turned so that the ankle
+/// stays), as Spine and Godot flip a bend: the next frame's knee is the mirrored angle, not a
+/// straight leg the solver barely leaves.
+#[test]
+fn a_bend_flip_mirrors_the_knee_rather_than_straightening_it() {
+    let keys = json!({"fps": 10,
+        "tracks": {"left_foot": [{"time": 0, "x": 0.3, "y": -0.6}, {"time": 1.0, "x": 0.25, "y": -0.62}]},
+        "bends": {"left_shin": [{"time": 0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]}});
+    let file = keys_file("flip", &keys);
+    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
+    let frames = v["frames"].as_array().unwrap();
+    let knee = |k: usize| frames[k]["angles_deg"]["left_shin"].as_f64().unwrap();
+    let before = knee(4);
+    assert!((35.0..60.0).contains(&before), "before the flip, the knee at {before}");
+    for k in 5..frames.len() {
+        let after = knee(k);
+        assert!(after < -20.0, "frame {k}: the flipped knee at {after}, not mirrored from {before}");
+        assert!((after + before).abs() < 15.0, "frame {k}: the knee at {after}, the mirror of {before}");
+        assert_eq!(frames[k]["status"], "reached", "frame {k}");
+    }
+}
+
 #[test]
 fn a_track_with_directions_turns_the_bone_to_them() {
     // The foot's tip and its absolute direction keyed: level at 0, 20° up at 0.5 s, eased.

@@ -13,7 +13,7 @@ use super::{AnimateFormat, MotionArgs, ShownMotion};
 use crate::body::Body;
 use crate::columns::BodyColumns;
 use crate::error::CliError;
-use crate::picture::{Drawing, rig_figure};
+use crate::picture::Drawing;
 use crate::rig::Rig;
 
 /// A keyed motion of a rig, with the names of its tracked bones.
@@ -61,17 +61,7 @@ impl KeyedRun {
 
 impl ShownMotion for KeyedRun {
     fn drawing(&self) -> Drawing<'_> {
-        let animation = &self.motion.animation;
-        let last = animation.frames.last().expect("a keyed motion has frames");
-        let caption = format!(
-            "{} · keys · {} frames at {} fps · {} reached",
-            self.rig.name,
-            animation.frames.len(),
-            self.motion.fps,
-            self.motion.reached()
-        );
-        let figure = rig_figure(&self.rig, &last.angles, &self.motion.last_task, self.limits, Some(caption));
-        Drawing::RigMotion { figure, animation, fps: self.motion.fps }
+        self.motion.drawing(&self.rig, self.limits)
     }
 
     fn frames(&self) -> usize {

@@ -146,8 +146,11 @@ impl Shape {
         self.joints() * targets * iterations.max(1.0) * (1.0 + restarts) * (1.0 + backtrack)
     }
 
-    /// Frames of a motion: `frames`, else `duration` × `fps`.
+    /// Frames of a motion: a keyed one's, else `frames`, else `duration` × `fps`.
     fn frames(&self) -> f64 {
+        if let Some(keys) = &self.keys.0 {
+            return keys.frames();
+        }
         match (self.frames.value(), self.duration.value()) {
             (Some(frames), _) => frames,
             (None, Some(seconds)) => seconds * self.fps.value().unwrap_or(FRAMES),

@@ -109,7 +109,7 @@ impl BodyFigureReq {
 
 request! {
     /// Figure `motion`: the fields of `/api/animate` for an arm (`goal` required, checked after
-    /// parsing to name it in the figure's words), and with `workspace` the reachable area, as
+    /// parsing to name it in the figure's words), or a rig and its `keys` (the keyed motion), and with `workspace` the reachable area, as
     /// the playground shows it: the exact region, or the sampled grid with the area's fields
     /// (as `/api/workspace`; its `limits` default to the options' `limits`).
     #[derive(Debug, Deserialize)]
@@ -117,6 +117,10 @@ request! {
     pub struct MotionFigureReq {
         ..picture,
         pub arm: Option<ArmFile>,
+        /// A rig, drawn in its keyed motion (with `keys`, as `/api/animate` takes them).
+        pub rig: Option<crate::rig::RigFile>,
+        /// A rig's keyframes per effector ([`crate::keys`]).
+        pub keys: Option<crate::keys::KeysFile>,
         pub start_deg: Option<Vec<f64>>,
         pub goal: Option<GoalReq>,
         pub via: Vec<[f64; 2]>,

@@ -124,6 +124,17 @@ fn rig_pose(rig: &Rig, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, Problem> {
     pose_from_degrees(rig.skeleton.start_angles(), rig.skeleton.limits(), pose_deg, "pose_deg")
 }
 
+/// A GIF of `frames` frames of `width` × `height` within [`MAX_GIF_PIXELS`].
+pub(super) fn gif_cap(frames: usize, width: u32, height: u32) -> Result<(), Problem> {
+    let pixels = frames as u64 * u64::from(width) * u64::from(height);
+    if pixels > MAX_GIF_PIXELS {
+        return Err(Problem::invalid(format!(
+            "frames, width, height: {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF"
+        )));
+    }
+    Ok(())
+}
+
 fn motion_figure(
     r: &MotionFigureReq,
     format: PictureFormat,
@@ -132,6 +143,9 @@ fn motion_figure(
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
+    if r.keys.is_some() || r.rig.is_some() {
+        return super::keyed::figure(r, format, width, height, limits, interrupt);
+    }
     let arm = load_arm(r.arm.clone(), limits)?;
     let Some(goal_req) = &r.goal else {
         return Err(Problem::invalid("goal: required for the figure motion"));
@@ -140,13 +154,7 @@ fn motion_figure(
     stopped(interrupt)?;
     let animation = &motion.motion.animation;
     if format == PictureFormat::Gif {
-        let pixels = animation.frames.len() as u64 * u64::from(width) * u64::from(height);
-        if pixels > MAX_GIF_PIXELS {
-            return Err(Problem::invalid(format!(
-                "frames, width, height: {} frames of {width}×{height} is {pixels} pixels, more than the cap of {MAX_GIF_PIXELS} for a GIF",
-                animation.frames.len()
-            )));
-        }
+        gif_cap(animation.frames.len(), width, height)?;
     }
     let area = if r.workspace {
         let on = r.limits.or_else(|| r.options.as_ref().and_then(|o| o.limits));

@@ -33,6 +33,25 @@ pub struct KeyedMotion {
     pub last_task: RigTask,
 }
 
+impl KeyedMotion {
+    /// The motion's picture, as `ikarus animate --rig FILE --keys KEYS.json --out` and
+    /// `POST /api/render` with `keys` draw it: every frame's pose (a GIF animates them), the last
+    /// frame's goals and pins marked, limit wedges when `limits`.
+    pub fn drawing<'a>(&'a self, rig: &'a Rig, limits: bool) -> crate::picture::Drawing<'a> {
+        let animation = &self.animation;
+        let last = animation.frames.last().expect("a keyed motion has frames");
+        let caption = format!(
+            "{} · keys · {} frames at {} fps · {} reached",
+            rig.name,
+            animation.frames.len(),
+            self.fps,
+            self.reached()
+        );
+        let figure = crate::picture::rig_figure(rig, &last.angles, &self.last_task, limits, Some(caption));
+        crate::picture::Drawing::RigMotion { figure, animation, fps: self.fps }
+    }
+}
+
 impl KeyPlan {
     /// Solves every frame on `rig` from `start` with `options`; `stop` is asked between frames
     /// whether to give up (the server's interrupt), answering its problem. A problem of the task

@@ -48,3 +48,26 @@ fn bends_are_checked() {
         assert_eq!(solver.solve_rig(&leg, leg.start_angles(), &task).unwrap_err().to_string(), message);
     }
 }
+
+/// A bend on the side the start pose does not have mirrors the joint (θ → −θ) and turns the
+/// parent by twice the angle between the upper bone and the line from the hip to the ankle, so
+/// the ankle stays: with the goal on the ankle where the start has it, the start already
+/// reaches, and the answer is that mirrored pose (not a straightened knee).
+#[test]
+fn a_flipped_bend_mirrors_the_knee_about_the_hip_to_ankle_line_keeping_the_ankle() {
+    let leg = leg();
+    let start: [f64; 3] = [-1.4, 0.8, 1.4];
+    // The ankle (the shin's tip) of the start pose; thigh and shin are 1 long.
+    let (c0, s0) = (start[0].cos(), start[0].sin());
+    let (c1, s1) = ((start[0] + start[1]).cos(), (start[0] + start[1]).sin());
+    let ankle = (c0 + c1, s0 + s1);
+    let mut solver = Solver::new(SolveOptions::default()).unwrap();
+    let goal = RigGoal::new(1, Goal::position(ankle.0, ankle.1).unwrap()).with_bend(Bend::Negative);
+    let out = solver.solve_rig(&leg, &start, &RigTask::new(vec![goal], vec![])).unwrap();
+    assert_eq!(out.status, crate::Status::Reached, "{out:?}");
+    assert_eq!(out.iterations, 0, "the turned start reaches already: {out:?}");
+    let a = out.pose.angles();
+    // The line from the hip to the ankle is at start[0] + start[1]/2: the thigh turns by start[1].
+    assert!((a[1] + 0.8).abs() < 1e-6, "the knee mirrored to -0.8, at {a:?}");
+    assert!((a[0] - (-1.4 + 0.8)).abs() < 1e-6, "the thigh turned by 0.8, at {a:?}");
+}

@@ -69,6 +69,7 @@ mod pinv;
 mod restarts;
 mod scratch;
 mod sdls;
+mod skeleton_bends;
 mod skeleton_model;
 mod skeleton_solve;
 mod solver;

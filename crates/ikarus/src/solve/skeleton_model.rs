@@ -7,7 +7,7 @@ use nalgebra::Point2;
 use super::algebra::dynamic::{Dynamic, merit_of, primary_merit};
 use super::model::Problem;
 use super::model::{Model, Posture, ScratchOf};
-use super::task::{Bend, EffectorOutcome, Priority, RigTask, RigTaskError};
+use super::task::{EffectorOutcome, Priority, RigTask, RigTaskError};
 use super::{Outcome, SolveOptions, Status};
 use crate::angle::wrap_angle;
 use crate::chain::{JointLimits, annulus_inner};
@@ -50,7 +50,7 @@ impl RigPoints {
 
     /// Forward kinematics of `angles` on `skeleton` into these buffers (sized by `fit`).
     #[inline]
-    fn compute(&mut self, skeleton: &Skeleton, angles: &[f64]) {
+    pub(super) fn compute(&mut self, skeleton: &Skeleton, angles: &[f64]) {
         if self.starts.is_empty() {
             skeleton.points_into(angles, &mut self.points, &mut self.directions);
         } else {
@@ -100,7 +100,7 @@ pub(super) struct RigWork {
     /// of the skeleton has a stiffness.
     pub(super) rest_scale: Vec<f64>,
     pub(super) rest_pull: Vec<f64>,
-    fk: RigPoints,
+    pub(super) fk: RigPoints,
     lengths: Vec<f64>,
 }
 
@@ -129,26 +129,7 @@ impl RigWork {
             self.rest_scale.extend(stiffness.iter().map(|s| 1.0 / (1.0 + s).sqrt()));
             self.rest_pull.extend(stiffness.iter().map(|s| s / (1.0 + s)));
         }
-        for super::task::BoneBend { bone, bend } in task.all_bends() {
-            let name = || skeleton.name(bone).to_owned();
-            match skeleton.joint(bone) {
-                Joint::Revolute => {}
-                Joint::Prismatic { .. } => return Err(RigTaskError::BendOnPrismatic { name: name() }),
-            }
-            let (lo, hi) = match bend {
-                Bend::Positive => (0.0, std::f64::consts::PI),
-                Bend::Negative => (-std::f64::consts::PI, 0.0),
-            };
-            let (lo, hi) = match self.limits[bone] {
-                Some(l) => (l.min().max(lo), l.max().min(hi)),
-                None => (lo, hi),
-            };
-            let lim = JointLimits::new(lo, hi).map_err(|_| RigTaskError::BendOutsideLimits { name: name() })?;
-            self.limits[bone] = Some(lim);
-            let a = self.start[bone];
-            let turned = if (a < 0.0 && lo >= 0.0) || (a > 0.0 && hi <= 0.0) { -a } else { a };
-            self.start[bone] = lim.clamp(turned);
-        }
+        self.apply_bends(skeleton, start, task)?;
         if self.limits.iter().all(Option::is_none) {
             self.limits.clear();
         }

@@ -166,4 +166,20 @@ mod tests {
             assert!(animate(one) <= 2.0 * 40.0 + 2.0, "{keys}");
         }
     }
+
+    #[test]
+    fn a_keyed_motion_figure_costs_its_motion_and_a_picture_per_frame_of_a_gif() {
+        let options = json!({"max_iterations": 10, "restarts": 0, "backtrack": 0});
+        let rig = json!({"bones": [{}, {}]});
+        let keys = json!({"fps": 10, "tracks": {"a": [{"time": 0}, {"time": 2}]}});
+        let render = |format: &str| {
+            let body = json!({"figure": "motion", "format": format, "width": 10, "height": 20,
+                              "rig": rig, "keys": keys, "options": options});
+            estimate(Endpoint::Render, body.to_string().as_bytes())
+        };
+        // 21 frames × (2 bones × (1 + 1 track) × 10 iterations + a pose of 2 bones), the picture.
+        let motion = 21.0 * (40.0 + 2.0);
+        assert_eq!(render("png"), 200.0 + motion + 200.0);
+        assert_eq!(render("gif"), 200.0 + motion + 21.0 * 200.0);
+    }
 }
