@@ -152,6 +152,15 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
+    // The GIF (POST /api/render with the rig and keys, the canvas's size): the CLI's, byte for byte.
+    const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
+    assert.equal(g.suggestedFilename(), "puppet-keys.gif");
+    const gif = readFileSync(await g.path());
+    const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
+    const gifFile = join(dir, "keys-puppet-walk-cli.gif");
+    execFileSync(binary, ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--width", String(plot[0]), "--height", String(plot[1]), "--out", gifFile], { stdio: "ignore" });
+    assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
+    assert.ok(gif.equals(readFileSync(gifFile)), `the page's GIF (${gif.length} bytes) is \`ikarus render motion --rig puppet.toml --keys … --no-limits --width ${plot[0]} --height ${plot[1]}\` (${readFileSync(gifFile).length} bytes)`);
 
     // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
     // `pins` in the keys, and every frame holds the tip where the start pose has it.
