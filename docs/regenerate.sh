@@ -31,4 +31,6 @@ $ikarus render ease --k1 0.3 --k2 0.75 --width 560 --height 420 --out docs/ease.
 # The playground, as the browser test leaves it: FABRIK on a clicked goal, the free area.
 bash e2e/run > /dev/null
 cp target/e2e/playground.png docs/playground.png
+# The playground as an animation tool: the puppet's walk keyed, played with onion skins, a knee flipped, zoomed.
+(cd e2e && node record.mjs > /dev/null)
 echo "docs/: $(ls docs/*.png docs/*.gif | tr '\n' ' ')"

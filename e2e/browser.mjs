@@ -59,6 +59,26 @@ export const ready = (page) => page.waitForFunction(() => window.ikarus && windo
 export const ended = (page, timeout = 15000) =>
   page.waitForFunction(() => document.body.dataset.playback === "ended" && !["solving", "moving"].includes(document.body.dataset.status), null, { timeout });
 
+/**
+ * One edit left unsaved (the tolerance changed), then the page reloaded: resolves with whether
+ * the page was dirty before and the dialogs it showed (["beforeunload"] when it warned).
+ */
+export async function reloadUnsaved(page) {
+  await page.fill("#tolerance", "0.001");
+  await page.press("#tolerance", "Tab");
+  const dirty = await page.evaluate(() => document.body.dataset.dirty);
+  const dialogs = [];
+  const accept = (dialog) => {
+    dialogs.push(dialog.type());
+    dialog.accept();
+  };
+  page.on("dialog", accept);
+  await page.reload();
+  await ready(page);
+  page.off("dialog", accept);
+  return { dirty, dialogs };
+}
+
 /** Types `value` into the field `selector` and commits it, as leaving the field does. */
 export async function setField(page, selector, value) {
   await page.fill(selector, value);

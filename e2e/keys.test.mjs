@@ -16,97 +16,15 @@ import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
 import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
-
-/** Seconds of the four keys (frames 0, 12, 24, 36 at 30 fps). */
-const TIMES = [0, 0.4, 0.8, 1.2];
-
-/**
- * A walk-like cycle of the puppet, reachable with its limits: bone → a target per key time. At
- * 0.8 s the left foot is lifted (a high step), nearer the hip than the straight leg reaches, so
- * that its knee must bend one way or the other.
- */
-const WALK = {
-  left_foot: [
-    [0.3, -0.86],
-    [0.18, -0.8],
-    [0.22, -0.62],
-    [0.3, -0.86],
-  ],
-  right_foot: [
-    [0.0, -0.9],
-    [0.15, -0.84],
-    [0.28, -0.86],
-    [0.0, -0.9],
-  ],
-  left_hand: [
-    [0.05, -0.27],
-    [0.15, -0.25],
-    [0.25, -0.2],
-    [0.05, -0.27],
-  ],
-  right_hand: [
-    [0.22, -0.2],
-    [0.1, -0.26],
-    [-0.05, -0.27],
-    [0.22, -0.2],
-  ],
-};
-
-/** How near a key's target an effector must be at its key time (the targets are reachable). */
-const TOLERANCE = 1e-3;
-
-const settled = (page) => page.waitForFunction(() => window.ikarus.keys.settled() && window.ikarus.rigs.settled(), null, { timeout: 60000 });
-
-/** Client coordinates of bone `name`'s tip as drawn now. */
-const tipClient = (page, name) =>
-  page.evaluate((n) => {
-    const r = window.ikarus.state.rig;
-    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
-  }, name);
-
-/** Drags bone `name`'s tip to the world point `to` and lets go; waits for the keyed motion. */
-async function drag(page, name, to) {
-  const from = await tipClient(page, name);
-  const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
-  await page.mouse.move(...from);
-  await page.mouse.down();
-  await page.mouse.move((from[0] + end[0]) / 2, (from[1] + end[1]) / 2, { steps: 4 });
-  await page.mouse.move(...end, { steps: 4 });
-  await page.mouse.up();
-  await settled(page);
-}
-
-/** The playhead to `t` seconds, the frame there shown. */
-async function seek(page, t) {
-  await page.evaluate((s) => window.ikarus.keys.seek(s), t);
-  await settled(page);
-}
-
-/** What the page shows now: each bone's drawn tip, the frame's `joints` and angles, the frame index. */
-const shown = (page) =>
-  page.evaluate(() => {
-    const s = window.ikarus.state;
-    const r = s.rig;
-    const tips = Object.fromEntries(r.rig.bones.map((b, i) => [b.name, r.tips[i]]));
-    const index = Number(document.body.dataset.keyFrame);
-    const frame = s.motion.frames[index];
-    return { tips, index, frame: { time: frame.time, status: frame.status, joints: frame.joints, angles_deg: frame.angles_deg } };
-  });
+import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keyingPuppet, keysSettled as settled, seek, shown, side, tipClient } from "./rigpage.mjs";
 
 test("the puppet: a walk keyed on both feet and both hands plays with every effector on its keys; a knee's bend handle flips it", async () => {
   const dir = artifacts;
   mkdirSync(dir, { recursive: true });
   await withBrowser(async ({ url, browser }) => {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
-    await page.selectOption("#body-kind", "rig:puppet");
-    await page.click("#key-mode");
+    const { page, errors } = await keyingPuppet(browser, url);
     assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "true");
-    for (let k = 0; k < TIMES.length; k++) {
-      await seek(page, TIMES[k]);
-      for (const [bone, targets] of Object.entries(WALK)) await drag(page, bone, targets[k]);
-    }
+    await keyWalk(page);
     const keys = await page.evaluate(() => window.ikarus.state.keys);
     assert.deepEqual(Object.keys(keys.tracks).sort(), Object.keys(WALK).sort());
     for (const [bone, targets] of Object.entries(WALK)) {
@@ -196,29 +114,18 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     // them; without them the lifted foot's knee bends whichever way the solve takes it).
     await page.click("#limits");
     await settled(page);
-    const side = (deg) => (deg >= 0 ? "ccw" : "cw");
     const start = await page.evaluate(() => window.ikarus.state.motion.frames[0].angles_deg.left_shin);
     await seek(page, 0.8);
-    const before = await shown(page);
+    const { before, after, handle } = await flipBend(page, "left_shin", () => page.screenshot({ path: join(dir, "keys-puppet-bend-hover.png") }));
     const knee = before.frame.angles_deg.left_shin;
     assert.ok(Math.abs(knee) > 5, `the left knee is bent at 0.8 s (${knee}°)`);
-    const handle = await page.evaluate(() => {
-      const h = window.ikarus.keys.handles().find((x) => x.bone === "left_shin");
-      const r = document.getElementById("plot").getBoundingClientRect();
-      return { side: h.side, at: [r.left + h.at[0], r.top + h.at[1]] };
-    });
     assert.equal(handle.side, side(knee), "the handle says the side the knee bends");
-    await page.mouse.move(...handle.at);
-    await page.screenshot({ path: join(dir, "keys-puppet-bend-hover.png") });
-    await page.mouse.click(...handle.at);
-    await settled(page);
     const flipped = side(knee) === "ccw" ? "cw" : "ccw";
     const keys2 = await page.evaluate(() => window.ikarus.state.keys);
     assert.deepEqual(keys2.bends.left_shin, [
       { time: 0, bend: side(start) },
       { time: 0.8, bend: flipped },
     ]);
-    const after = await shown(page);
     const knee2 = after.frame.angles_deg.left_shin;
     assert.ok(Math.sign(knee2) === -Math.sign(knee) && Math.abs(knee2) > 5, `the left knee flipped at 0.8 s: ${knee}° → ${knee2}°`);
     const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map((f) => f.angles_deg.left_shin));
@@ -245,6 +152,15 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
+    // The GIF (POST /api/render with the rig and keys, the canvas's size): the CLI's, byte for byte.
+    const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
+    assert.equal(g.suggestedFilename(), "puppet-keys.gif");
+    const gif = readFileSync(await g.path());
+    const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
+    const gifFile = join(dir, "keys-puppet-walk-cli.gif");
+    execFileSync(binary, ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--width", String(plot[0]), "--height", String(plot[1]), "--out", gifFile], { stdio: "ignore" });
+    assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
+    assert.ok(gif.equals(readFileSync(gifFile)), `the page's GIF (${gif.length} bytes) is \`ikarus render motion --rig puppet.toml --keys … --no-limits --width ${plot[0]} --height ${plot[1]}\` (${readFileSync(gifFile).length} bytes)`);
 
     // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
     // `pins` in the keys, and every frame holds the tip where the start pose has it.
@@ -340,6 +256,18 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
       assert.ok(Math.hypot(b.x - x, b.y - y) < 1e-6, `${name} at ${SPINE_TIMES[k]} s: at ${b.x}, ${b.y}, its key ${x}, ${y}`);
     }
     await page.screenshot({ path: join(artifacts, "keys-spineboy-walk.png") });
+    // The arm shown, then the character again: its keys and keyed motion as they were left.
+    const frames = await page.evaluate(() => JSON.stringify(window.ikarus.state.motion.frames));
+    await page.selectOption("#body-kind", "arm");
+    assert.equal(await page.evaluate(() => window.ikarus.state.keys), null);
+    await page.selectOption("#body-kind", "character");
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.motion, null, { timeout: 15000 });
+    await characterSettled(page);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys, "the character's keys kept");
+    assert.equal(await page.evaluate(() => JSON.stringify(window.ikarus.state.motion.frames)), frames, "the same keyed frames");
+    // No frames CSV for a character (the CLI writes its motion as json or spine), and the button says so.
+    assert.equal(await page.isDisabled("#key-frames-csv"), true);
+    assert.match(await page.getAttribute("#key-frames-csv", "title"), /no CSV/);
 
     // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its keys
     // (to 1e-2, the export's promise).

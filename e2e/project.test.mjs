@@ -11,7 +11,8 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, launch, openPage, ready, startServer } from "./browser.mjs";
+import { artifacts, launch, openPage, ready, reloadUnsaved, startServer } from "./browser.mjs";
+import { tipClient } from "./rigpage.mjs";
 
 const settled = (page) => page.waitForFunction(() => !window.ikarus.state.rig || window.ikarus.rigs.settled(), null, { timeout: 15000 });
 const characters = join(import.meta.dirname, "..", "examples", "characters");
@@ -36,12 +37,6 @@ const work = (page) =>
       settings,
     };
   });
-
-const tipClient = (page, name) =>
-  page.evaluate((n) => {
-    const r = window.ikarus.state.rig;
-    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
-  }, name);
 
 /** The chip's message (the error line when shown, else the status line). */
 const chip = (page) => page.evaluate(() => (document.getElementById("error").hidden ? document.getElementById("stats").textContent : document.getElementById("error").textContent));
@@ -190,17 +185,7 @@ test("the puppet and the arm: every edit undone and redone; saved, reloaded with
     assert.equal(await page.evaluate(() => document.body.dataset.dirty), "false");
 
     // One more edit, then a reload: the page warns that it would be lost.
-    await page.fill("#tolerance", "0.001");
-    await page.press("#tolerance", "Tab");
-    assert.equal(await page.evaluate(() => document.body.dataset.dirty), "true");
-    const dialogs = [];
-    page.on("dialog", (dialog) => {
-      dialogs.push(dialog.type());
-      dialog.accept();
-    });
-    await page.reload();
-    await ready(page);
-    assert.deepEqual(dialogs, ["beforeunload"]);
+    assert.deepEqual(await reloadUnsaved(page), { dirty: "true", dialogs: ["beforeunload"] });
     assert.equal(await page.evaluate(() => window.ikarus.state.rig), null, "a fresh page");
 
     // Opened through the file input: the work saved, bit for bit, and itself one undo step.

@@ -11,6 +11,7 @@ import assert from "node:assert/strict";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, ended, openPage, ready, withBrowser } from "./browser.mjs";
+import { tipClient, worldAt } from "./rigpage.mjs";
 
 /** Records the bodies of the page's /api/solve and /api/animate requests (window.sent). */
 const watchRequests = (page) =>
@@ -27,14 +28,6 @@ const watchRequests = (page) =>
 const sent = (page) => page.evaluate(() => window.sent);
 const settled = (page) => page.waitForFunction(() => window.ikarus.rigs.settled(), null, { timeout: 15000 });
 
-/** The world point under client point (x, y) in the view last drawn (the one picks read). */
-const worldAt = (page, x, y) =>
-  page.evaluate(([x, y]) => {
-    const v = window.ikarus.state.view;
-    const r = document.getElementById("plot").getBoundingClientRect();
-    return [(x - r.left - v.cx) / v.scale, (v.cy - (y - r.top)) / v.scale];
-  }, [x, y]);
-
 const zoom = (page) => page.evaluate(() => Number(document.getElementById("plot").dataset.zoom));
 const camera = (page) => page.evaluate(() => ({ ...window.ikarus.state.camera }));
 
@@ -44,13 +37,6 @@ function assertNear(p, q, rel, what) {
   const d = Math.max(Math.abs(p[0] - q[0]), Math.abs(p[1] - q[1]));
   assert.ok(d <= rel * scale, `${what}: ${p} is not ${q} (off by ${d})`);
 }
-
-/** Client coordinates of rig bone `name`'s tip as drawn now. */
-const tipClient = (page, name) =>
-  page.evaluate((n) => {
-    const r = window.ikarus.state.rig;
-    return window.ikarus.toClient(...r.tips[r.rig.bones.findIndex((b) => b.name === n)]);
-  }, name);
 
 /** After the next two frames (a redraw asked for has happened). */
 const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));

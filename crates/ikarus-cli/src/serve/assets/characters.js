@@ -103,6 +103,7 @@ export function wireCharacters(state, canvas, act) {
     act.setStatus("ready");
     playClip(c);
     poseSoon();
+    if (c.keys) act.keyed.applyKeys(c.keys);
   }
 
   /** A character file read by /api/rig/parse: shown from its setup pose. */
@@ -150,6 +151,8 @@ export function wireCharacters(state, canvas, act) {
   /** The arm or a rig takes the canvas: the character's controls step aside (it is kept for resume). */
   function leave() {
     if (!state.character) return;
+    // Its keys kept with it, for its return (show).
+    state.character.keys = state.keys;
     state.character = null;
     act.keyed.leave();
     document.body.classList.remove("character");

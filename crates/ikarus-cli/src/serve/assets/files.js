@@ -92,6 +92,17 @@ export function screenLook(state, canvas) {
 }
 
 /**
+ * {width, height} of a GIF of `frames` frames at the canvas's size (`look`: screenLook's), scaled
+ * down keeping its aspect where the frames would pass the server's pixel cap.
+ */
+export function gifSize(frames, look) {
+  const [w, h] = [Math.max(1, look.width), Math.max(1, look.height)];
+  const fit = Math.min(1, Math.sqrt(GIF_MAX_PIXELS / (frames * w * h)), GIF_SIDES[1] / Math.max(w, h));
+  const side = (v) => Math.min(Math.max(Math.floor(v * fit), GIF_SIDES[0]), GIF_SIDES[1]);
+  return { width: side(w), height: side(h) };
+}
+
+/**
  * The /api/render request of the motion's GIF: the motion the page plays, sampled at GIF_FPS
  * over the page's playback duration (`seconds`), so that the GIF lasts as long as the playback
  * (to within half a frame's delay: the frame count is whole), and drawn as the screen `look`
@@ -103,11 +114,8 @@ export function gifRequest(animationRequest, seconds, look) {
   // delays: the motion itself takes one delay less than the playback.
   const duration = Math.max(seconds - 1 / GIF_FPS, 1 / GIF_FPS);
   const frames = Math.round(duration * GIF_FPS) + 1;
-  const [w, h] = [Math.max(1, look.width), Math.max(1, look.height)];
-  const fit = Math.min(1, Math.sqrt(GIF_MAX_PIXELS / (frames * w * h)), GIF_SIDES[1] / Math.max(w, h));
-  const side = (v) => Math.min(Math.max(Math.floor(v * fit), GIF_SIDES[0]), GIF_SIDES[1]);
   const req = { figure: "motion", format: "gif", ...animationRequest, duration, fps: GIF_FPS };
-  Object.assign(req, { width: side(w), height: side(h), workspace: look.workspace, traces: look.traces, ghosts: look.ghosts });
+  Object.assign(req, gifSize(frames, look), { workspace: look.workspace, traces: look.traces, ghosts: look.ghosts });
   if (look.workspace && look.grid) Object.assign(req, { grid: true, resolution: look.grid });
   delete req.frames;
   return req;

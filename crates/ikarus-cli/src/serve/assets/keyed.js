@@ -14,7 +14,7 @@
 
 import * as api from "./api.js";
 import { bodyForward } from "./body.js";
-import { saveBlob } from "./files.js";
+import { gifSize, saveBlob, screenLook } from "./files.js";
 import { ownsKeys } from "./input.js";
 import {
   bendAllowed,
@@ -129,7 +129,11 @@ export function wireKeyed(state, canvas, act) {
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-frames-csv").disabled = !k.answer || !state.rig;
+    $("key-gif").disabled = !k.answer || !state.rig;
+    const csv = $("key-frames-csv");
+    csv.disabled = !k.answer || !state.rig;
+    // A character's keyed motion has no CSV: `ikarus animate` writes it as json (its frames) or spine.
+    csv.title = state.character ? "A character's keyed motion is saved as Frames JSON or Spine JSON (the CLI has no CSV of it)" : csv.dataset.title || csv.title;
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
@@ -366,6 +370,23 @@ export function wireKeyed(state, canvas, act) {
     const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
     saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
   }
+  /** A rig's keyed motion as a GIF (POST /api/render, figure motion with the rig and keys), at the keys' fps, the canvas's size. */
+  async function downloadGif() {
+    if (!k.answer || !state.rig) return;
+    const button = $("key-gif");
+    button.disabled = true;
+    try {
+      const size = gifSize(k.answer.frames.length, screenLook(state, canvas));
+      const req = { figure: "motion", format: "gif", ...rigAnimateRequest(state.rig.rig, state.keys, state.options), ...size };
+      saveBlob(await api.render(req), `${state.rig.rig.name || "rig"}-keys.gif`);
+      act.showError(null);
+    } catch (e) {
+      act.showError(e);
+    } finally {
+      syncBar();
+    }
+  }
+  $("key-gif").addEventListener("click", downloadGif);
   $("key-frames-json").addEventListener("click", () => download("json"));
   $("key-frames-csv").addEventListener("click", () => download("csv"));
 

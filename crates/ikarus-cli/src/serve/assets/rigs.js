@@ -60,6 +60,8 @@ export function wireRigs(state, canvas, act) {
   const rigs = new Map();
   /** The limits checkbox of the arm, given back when the arm returns (a rig turns limits on). */
   let armLimits = null;
+  /** Each rig's work when another body took the canvas: list value -> {r (its rig state), keys}. */
+  const kept = new Map();
 
   const names = () => state.rig.rig.bones.map((b) => b.name);
 
@@ -73,9 +75,17 @@ export function wireRigs(state, canvas, act) {
     show(`rig ${r.rig.name || "rig"} · ${r.rig.bones.length} bones · drag an effector, click one to pin it`);
   }
 
-  /** The rig `value` of the list (or the arm): the canvas solves it from its start pose. */
-  function use(value) {
+  /**
+   * The rig `value` of the list (or the arm): the canvas solves it from its start pose, or, when
+   * `resume` and it was shown before, as it was left (an undo or a project sets its work itself).
+   */
+  function use(value, resume = true) {
     const select = $("body-kind");
+    if (state.rig) {
+      // Its work kept for its return; its keys leave with it (before anything solves the next body).
+      kept.set(state.rig.source, { r: state.rig, keys: state.keys });
+      act.keyed.leave();
+    }
     if (value === "character") {
       if (state.rig) use("arm");
       act.characters.resume();
@@ -107,7 +117,9 @@ export function wireRigs(state, canvas, act) {
       armLimits = $("limits").checked;
       $("limits").checked = true;
     }
-    state.rig = newRigState(rig, value);
+    // A rig shown before comes back as it was left: its goals, pins, pose and keys.
+    const back = resume ? kept.get(value) : undefined;
+    state.rig = back && back.r.rig === rig ? Object.assign(back.r, { grabbed: null, hover: null, busy: false, pending: false }) : newRigState(rig, value);
     document.body.classList.add("rig");
     delete document.body.dataset.failed;
     $("hint").textContent = $("hint").dataset.rig;
@@ -116,6 +128,7 @@ export function wireRigs(state, canvas, act) {
     act.controlsChanged();
     idle();
     act.keyed.enter();
+    if (back && back.r === state.rig && back.keys) act.keyed.applyKeys(back.keys);
     act.requestDraw();
   }
 
@@ -175,7 +188,7 @@ export function wireRigs(state, canvas, act) {
   }
 
   /** A shipped rig by its list value ("rig:puppet") or a rig file's JSON: shown from its start pose. */
-  const useRig = (rig) => (typeof rig === "string" ? use(rig) : useRigFile(rig));
+  const useRig = (rig) => (typeof rig === "string" ? use(rig, false) : useRigFile(rig));
 
   /** The shipped rigs: Map name -> rig JSON. */
   const shipped = () => new Map([...rigs].filter(([v]) => v.startsWith("rig:")).map(([v, rig]) => [v.slice(4), rig]));
