@@ -547,11 +547,15 @@ fn idle_sockets_at_the_cap_make_room_for_requests() {
 #[test]
 fn ctrl_c_stops_the_server_promptly_with_work_running() {
     let mut s = start(&["--request-budget-ms", "600000", "--workers", "4", "--long-workers", "3"]);
-    // Two solves of hours, which stop at their next iteration, and the largest still picture,
-    // which is not interrupted (seconds of drawing and encoding).
+    // Two solves of hours, which stop at their next iteration, and a picture of seconds: a
+    // 2000-frame GIF of 64 links (about 6 s in a release build; the largest still picture, a
+    // 4096² PNG, once stood here, but a release build draws it in 0.3 s, inside the wait below,
+    // and the test then saw its 200).
     let mut busy = [send_raw(&s, &endless_solve()), send_raw(&s, &endless_solve())];
-    let picture =
-        json!({ "figure": "arm", "arm": { "links": links(64) }, "width": 4096, "height": 4096, "format": "png" });
+    let picture = json!({
+        "figure": "motion", "arm": { "links": links(64) }, "goal": { "x": 3, "y": 3 },
+        "frames": 2000, "format": "gif", "width": 223, "height": 223
+    });
     let mut drawing = send_raw_to(&s, "/api/render", &picture);
     // And a client trickling its body.
     let _trickle = sending_a_body(&s);
