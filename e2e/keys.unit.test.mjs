@@ -6,6 +6,9 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import {
+  armAnimateRequest,
+  armBones,
+  armMotion,
   bendAllowed,
   bendAt,
   bendHandleAt,
@@ -308,4 +311,20 @@ test("a character's request: the file's text, the tracks only, the clip, the IK 
   assert.equal(m.fps, 30);
   assert.equal(m.duration, 1 / 30);
   assert.equal(frameAt(m, 0.03), m.frames[1]);
+});
+
+test("the arm's request: the arm as its requests send it, its tip's track link N-1, the options as they are", () => {
+  const arm = { name: "seed", base: [0, 0], links: [{ length: 3, angle_deg: 0 }, { length: 2, angle_deg: 10, limits_deg: [-90, 90] }, { length: 1, angle_deg: 0 }], extra: true };
+  assert.deepEqual(armBones(arm), ["link0", "link1", "link2"]);
+  const keys = setKey(setKey(null, "link2", 0, 4, 2), "link2", 0.4, 2, 4, [4, 2]);
+  const req = armAnimateRequest(arm, keys, { method: "fabrik", rates: [1, 2, 3] });
+  assert.deepEqual(Object.keys(req).sort(), ["arm", "keys", "options"]);
+  assert.deepEqual(req.arm, { name: "seed", base: [0, 0], links: [{ length: 3, angle_deg: 0 }, { length: 2, angle_deg: 10, limits_deg: [-90, 90] }, { length: 1, angle_deg: 0 }] });
+  assert.equal(req.keys, keys);
+  assert.deepEqual(req.options, { method: "fabrik", rates: [1, 2, 3] }, "the arm's options keep their rates");
+  assert.deepEqual(armAnimateRequest(arm, keys).options, {});
+  // Its answer's frames: each pose the link angles in order, a missing one held from before.
+  const m = armMotion(arm, { fps: 10, duration: 0.1, frames: [{ time: 0, angles_deg: { link0: 5, link1: 6, link2: 7 } }, { time: 0.1, angles_deg: { link0: 8, link2: 9 } }] });
+  assert.deepEqual(m.frames.map((f) => f.pose), [[5, 6, 7], [8, 6, 9]]);
+  assert.equal(m.fps, 10);
 });

@@ -9,10 +9,10 @@ import { isDrag, nudge, toWorld } from "./view.js";
 
 /**
  * Listens to `canvas`. Reads `state.arm`, `view`, `follow`, `drawPath`, `joints` and `goal`;
- * writes `state.press` (the pointer press: {x, y, dragging}) and `state.goal`. `act` is
+ * writes `state.press` (the pointer press: {x, y, dragging, tip (the arm's tip then)}) and `state.goal`. `act` is
  * {animateTo(x, y), followTo(x, y), addVia(x, y), cancelMotion(), requestDraw(),
- * startStroke(x, y), extendStroke(x, y), endStroke(trace = true), dragEnded() (a followed drag
- * ended: one undo step)}.
+ * startStroke(x, y), extendStroke(x, y), endStroke(trace = true), dragEnded(x, y, from) (a
+ * followed drag ended at (x, y), the tip at [from] when pressed: one undo step, or in Key mode a key)}.
  */
 export function wireInput(canvas, state, act) {
   const eventWorld = (ev) => {
@@ -23,7 +23,7 @@ export function wireInput(canvas, state, act) {
   // A rig on the canvas has its own pointer (rigs.js): these are the arm's.
   canvas.addEventListener("pointerdown", (ev) => {
     if (!state.arm || state.rig || state.character || ev.button !== 0) return;
-    state.press = { x: ev.clientX, y: ev.clientY, dragging: false };
+    state.press = { x: ev.clientX, y: ev.clientY, dragging: false, tip: state.joints[state.joints.length - 1].slice() };
     canvas.setPointerCapture(ev.pointerId);
     if (state.drawPath) act.startStroke(...eventWorld(ev));
   });
@@ -47,7 +47,7 @@ export function wireInput(canvas, state, act) {
 
   canvas.addEventListener("pointerup", (ev) => {
     if (!state.press) return;
-    const wasDrag = state.press.dragging;
+    const { dragging: wasDrag, tip } = state.press;
     state.press = null;
     if (state.drawPath) {
       act.extendStroke(...eventWorld(ev));
@@ -55,7 +55,7 @@ export function wireInput(canvas, state, act) {
       return;
     }
     if (wasDrag) {
-      act.dragEnded();
+      act.dragEnded(...eventWorld(ev), tip);
       return;
     }
     const [x, y] = eventWorld(ev);

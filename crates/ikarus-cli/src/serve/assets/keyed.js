@@ -1,4 +1,4 @@
-// Keyframes on the page for a rig or a character (issue 28): the keys bar and rows under the
+// Keyframes on the page for a rig, a character or the arm (issue 28): the keys bar and rows under the
 // timeline, Key mode (a drag of an effector or an IK target keys its target at the playhead; on
 // a rig a click pins the tip for the whole animation), the bend handles at a rig's knees and
 // elbows (a click keys the other side at the playhead), and the keyed motion: after every edit
@@ -17,6 +17,9 @@ import { bodyForward } from "./body.js";
 import { gifSize, saveBlob, screenLook } from "./files.js";
 import { ownsKeys } from "./input.js";
 import {
+  armAnimateRequest,
+  armBones,
+  armMotion,
   bendAllowed,
   bendHandleAt,
   bendHandles,
@@ -46,7 +49,7 @@ import { toCanvas } from "./view.js";
 const $ = (id) => document.getElementById(id);
 
 /**
- * Wires the keys of a rig or a character. `act` is {timeline (timeline.js's), draw(),
+ * Wires the keys of a rig, a character or the arm. `act` is {timeline (timeline.js's), draw(), setPose(pose) (the arm's),
  * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
  * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
  * Returns {enter(), leave(), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
@@ -69,12 +72,14 @@ export function wireKeyed(state, canvas, act) {
 
   const fps = () => (state.keys && state.keys.fps) || 30;
   const seconds = () => Math.max(k.length, keysDuration(state.keys));
-  /** The body keyed: the rig or the character shown (null: the arm). */
-  const body = () => state.rig || state.character;
-  const boneNames = () => (state.rig ? state.rig.rig.bones : state.character ? state.character.character.bones : []).map((b) => b.name);
+  /** Whether the arm is shown (no rig, no character): its tip's track is `linkN-1`. */
+  const armShown = () => !state.rig && !state.character && !!state.arm;
+  /** The body keyed: the rig, the character or the arm shown. */
+  const body = () => state.rig || state.character || (armShown() ? state.arm : null);
+  const boneNames = () => (state.rig ? state.rig.rig.bones.map((b) => b.name) : state.character ? state.character.character.bones.map((b) => b.name) : state.arm ? armBones(state.arm) : []);
   const rows = () => (body() ? keyRows(state.keys, boneNames()) : []);
-  /** Whether the timeline plays the keys: a rig's always, a character's once it has keys. */
-  const owns = () => !!state.rig || (!!state.character && !!state.keys);
+  /** Whether the timeline plays the keys: a rig's always, a character's or the arm's once it has keys. */
+  const owns = () => !!state.rig || ((!!state.character || armShown()) && !!state.keys);
 
   // ---- The timeline ----------------------------------------------------------------------
 
@@ -84,6 +89,10 @@ export function wireKeyed(state, canvas, act) {
     else if (state.character) {
       k.loaded = null;
       act.clipBack();
+    } else if (k.loaded !== null) {
+      // The arm without keys: the timeline to its own motions again.
+      k.loaded = null;
+      act.timeline.unload();
     }
   }
 
@@ -114,6 +123,12 @@ export function wireKeyed(state, canvas, act) {
       r.goals = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
       r.pins = new Set(state.keys ? state.keys.pins : []);
       document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
+    } else if (armShown() && f) {
+      act.setPose(f.pose);
+      // The tip's keyed target there is the goal drawn (not the last followed one).
+      const target = (f.targets || {})[`link${state.arm.links.length - 1}`];
+      state.goal = target ? { x: target[0], y: target[1] } : null;
+      document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
     }
     syncBar();
     act.draw();
@@ -123,6 +138,9 @@ export function wireKeyed(state, canvas, act) {
   function syncBar() {
     const mode = $("key-mode");
     mode.setAttribute("aria-pressed", String(k.mode));
+    $("arm-key-mode").checked = k.mode;
+    // The arm's keys bar shows in Key mode or once it has keys (the CSS hides it else).
+    document.body.classList.toggle("arm-keys", k.mode || !!state.keys);
     const sel = selectedKey();
     const ease = $("key-ease");
     ease.disabled = !sel || k.selected.kind !== "track";
@@ -150,8 +168,9 @@ export function wireKeyed(state, canvas, act) {
   function commit(what) {
     state.keys = tidy(state.keys);
     if (!selectedKey()) k.selected = null;
-    // The timeline as long as the keys, or back to a character's clip without them.
-    if (owns() ? seconds() !== k.loaded : k.loaded !== null) takeTimeline();
+    // The timeline as long as the keys, or back to a character's clip without them (the arm's
+    // own motions may have taken it meanwhile: its keys take it back).
+    if (armShown() || (owns() ? seconds() !== k.loaded : k.loaded !== null)) takeTimeline();
     act.edited(what);
     requestMotion();
     syncBar();
@@ -259,17 +278,17 @@ export function wireKeyed(state, canvas, act) {
       return;
     }
     k.busy = true;
-    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : characterAnimateRequest(state.character, keys, "json");
+    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : state.character ? characterAnimateRequest(state.character, keys, "json") : armAnimateRequest(state.arm, keys, state.options);
     act.setStatus("solving");
     try {
       const answer = await api.animate(req);
       if (body() === b && state.keys === keys) {
-        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : characterMotion(answer, keys.fps);
+        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : state.character ? characterMotion(answer, keys.fps) : armMotion(state.arm, answer);
         k.answer = answer;
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
-        act.setStatus(!state.rig || reached === answer.frames.length ? "ready" : "unreachable");
-        act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.rig ? ` · ${reached} reached` : ""}`);
+        act.setStatus(state.character || reached === answer.frames.length ? "ready" : "unreachable");
+        act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.character ? "" : ` · ${reached} reached`}`);
         showAt(k.t);
       }
     } catch (e) {
@@ -311,6 +330,7 @@ export function wireKeyed(state, canvas, act) {
     state.motion = null;
     k.answer = null;
     k.selected = null;
+    syncBar();
   }
 
   /** Keys restored (undo, an opened project): shown and solved, without recording an edit. */
@@ -335,6 +355,7 @@ export function wireKeyed(state, canvas, act) {
   // ---- The bar and rows ------------------------------------------------------------------
 
   $("key-mode").addEventListener("click", () => setMode(!k.mode));
+  $("arm-key-mode").addEventListener("change", (ev) => setMode(ev.target.checked));
   $("key-length").addEventListener("change", (ev) => {
     const v = Number(ev.target.value);
     if (!(v >= 0.1 && v <= 60)) {
@@ -367,7 +388,7 @@ export function wireKeyed(state, canvas, act) {
   function download(format) {
     if (!k.answer) return;
     const text = format === "csv" ? rigFramesCsv(state.rig.rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
-    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character.name.replace(/\.json$/i, "")}-keys.${format}`;
+    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character ? state.character.name.replace(/\.json$/i, "") : state.arm.name || "arm"}-keys.${format}`;
     saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
   }
   /** A rig's keyed motion as a GIF (POST /api/render, figure motion with the rig and keys), at the keys' fps, the canvas's size. */

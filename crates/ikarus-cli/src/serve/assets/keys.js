@@ -9,6 +9,7 @@
 // (e2e/keys.unit.test.mjs). The page's wiring is keyed.js.
 
 import { bodyForward } from "./body.js";
+import { armForRequest } from "./controls.js";
 import { answerPose, rigChildren, rigForRequest } from "./rig.js";
 
 /** Frames per second of new keys (the CLI's default). */
@@ -224,6 +225,23 @@ export function rigAnimateRequest(rig, keys, options) {
   const { rates: _rates, ...opts } = options || {};
   return { rig: rigForRequest(rig), keys, options: opts };
 }
+
+/** An arm's links as the keys name them (the arm solved as its one-branch rig): link0, link1, …, the tip's the last. */
+export const armBones = (arm) => arm.links.map((_, i) => `link${i}`);
+
+/** The arm as that one-branch rig, enough for answerPose: bones link0… with their angles. */
+const armRig = (arm) => ({ bones: arm.links.map((l, i) => ({ name: `link${i}`, angle_deg: l.angle_deg })) });
+
+/**
+ * The /api/animate body of the arm's keys: the arm as the arm's requests send it (controls.js's
+ * armForRequest), the keys as they are, the page's solver options (the arm's, rates and all).
+ */
+export function armAnimateRequest(arm, keys, options) {
+  return { arm: armForRequest(arm), keys, options: options || {} };
+}
+
+/** The arm's keyed /api/animate answer as `state.motion`: each frame's `pose` the link angles in order (main.js's setPose takes it). */
+export const armMotion = (arm, answer) => rigMotion(armRig(arm), answer);
 
 /**
  * A number as Rust's `{:?}` writes an f64 (the CLI's CSV): the shortest text that reads back

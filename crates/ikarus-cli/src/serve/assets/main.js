@@ -182,7 +182,7 @@ const armEditor = wireArm(state, {
 const bodyActs = { requestDraw, showError, setStatus, say: (text) => ($("stats").textContent = text), edited };
 
 /** The keys of a rig or a character, their motion and the bend handles (keyed.js). */
-const keyed = wireKeyed(state, canvas, { ...bodyActs, timeline, draw, clipBack: () => characters.clipBack() });
+const keyed = wireKeyed(state, canvas, { ...bodyActs, timeline, draw, setPose, clipBack: () => characters.clipBack() });
 
 /** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
 const characters = wireCharacters(state, canvas, { ...bodyActs, forgetMotion, timeline, keyed });
@@ -762,7 +762,8 @@ function wire() {
   // Nothing is asked of the server while a field holds a bad value: the field is shown instead.
   const followTo = (x, y) => fieldsOk(false) && followGoal(x, y);
   const startStroke = (x, y) => fieldsOk() && (settleIntoRange(), paths.startStroke(x, y));
-  const dragEnded = () => edited("Follow the pointer");
+  // In Key mode a drag of the arm's tip keys its track (link N-1) at the drop point instead.
+  const dragEnded = (x, y, from) => keyed.dragEnded(`link${state.arm.links.length - 1}`, { x, y }, from) || edited("Follow the pointer");
   wireInput(canvas, state, { animateTo, followTo, addVia, cancelMotion, requestDraw, startStroke, extendStroke, endStroke, dragEnded });
   wireDownloads(state, showError, () => timeline.duration());
   for (const id of ["method", "restarts", "lambda", "tolerance", "max-iterations", "ease", "k1", "k2", "frames", "max-step", "use-goal-angle", "goal-angle", "duration"]) {

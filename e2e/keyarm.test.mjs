@@ -1,0 +1,86 @@
+// The arm keyed on the playground (issue 28: "for chains, rigs and imported characters alike"),
+// in a real browser: the seed arm shown, Key mode on, its tip dragged to three reachable points
+// at 0, 0.4 and 0.8 s (each drag keys the tip's track, link2, at its drop point); the keyed
+// motion (POST /api/animate with `arm` and `keys`) plays to its end; at each key time the drawn
+// tip is on its key; the page's frames are `ikarus animate --keys FILE --format json`'s (the
+// built-in seed arm) number for number. Run by e2e/run:  node --test e2e/keyarm.test.mjs
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { mkdirSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
+
+/** The keys' times and the tip's targets there (the seed arm's links are 3, 2, 1 long). */
+const KEYS = [
+  [0, [4, 2]],
+  [0.4, [2, 4]],
+  [0.8, [-1, 3.5]],
+];
+
+/** Resolves once no keyed motion is asked and no followed goal is in flight. */
+const settled = (page) => page.waitForFunction(() => window.ikarus.keys.settled() && !window.ikarus.state.jobs.followBusy, null, { timeout: 60000 });
+
+const tip = (page) => page.evaluate(() => window.ikarus.state.joints[window.ikarus.state.joints.length - 1]);
+
+test("the arm: its tip keyed at three times plays through its keys, frame for frame the CLI's", async () => {
+  mkdirSync(artifacts, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    assert.equal(await page.evaluate(() => !!window.ikarus.state.rig || !!window.ikarus.state.character), false, "the arm is shown");
+    // Key mode from the arm's View ("Key the tip"): the keys bar shows, its Key mode pressed.
+    assert.equal(await page.isVisible("#key-mode"), false, "no keys bar on the arm before Key mode");
+    await page.check("#arm-key-mode");
+    assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "true");
+    for (const [t, to] of KEYS) {
+      await page.evaluate((s) => window.ikarus.keys.seek(s), t);
+      await settled(page);
+      const from = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), await tip(page));
+      const end = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), to);
+      await page.mouse.move(...from);
+      await page.mouse.down();
+      for (let i = 1; i <= 8; i++) await page.mouse.move(from[0] + ((end[0] - from[0]) * i) / 8, from[1] + ((end[1] - from[1]) * i) / 8);
+      await page.mouse.up();
+      await settled(page);
+    }
+    const keys = await page.evaluate(() => window.ikarus.state.keys);
+    assert.deepEqual(Object.keys(keys.tracks), ["link2"], "the tip's track alone");
+    const track = keys.tracks.link2;
+    assert.deepEqual(
+      track.map((q) => q.time),
+      KEYS.map(([t]) => t),
+    );
+    // Each key at its drop point: the target within a pixel of the point dragged to.
+    const scale = await page.evaluate(() => window.ikarus.state.view.scale);
+    track.forEach((q, k) => assert.ok(Math.hypot(q.x - KEYS[k][1][0], q.y - KEYS[k][1][1]) <= 1.5 / scale, `key ${k} at ${q.x}, ${q.y}, dragged to ${KEYS[k][1]}`));
+
+    // The motion plays to its end.
+    await page.click("#play");
+    await page.waitForFunction(() => document.body.dataset.playback === "ended", null, { timeout: 20000 });
+    await page.screenshot({ path: join(artifacts, "keys-arm-ended.png") });
+
+    // At each key time the drawn tip is on its key.
+    for (const [k, q] of track.entries()) {
+      await page.evaluate((s) => window.ikarus.keys.seek(s), q.time);
+      await settled(page);
+      assert.equal(await page.evaluate(() => document.body.dataset.keyFrame), String(Math.round(q.time * keys.fps)));
+      const d = await tip(page);
+      assert.ok(Math.hypot(d[0] - q.x, d[1] - q.y) < 1e-3, `key ${k} at ${q.time} s: the tip drawn at ${d}, its key at ${q.x}, ${q.y}`);
+      if (k === 1) await page.screenshot({ path: join(artifacts, "keys-arm-key1.png") });
+    }
+
+    // The page's frames are the CLI's for the same keys (the built-in seed arm).
+    const keysFile = join(artifacts, "keys-arm.json");
+    writeFileSync(keysFile, JSON.stringify(keys));
+    const cli = JSON.parse(execFileSync(binary, ["animate", "--keys", keysFile, "--format", "json"], { encoding: "utf8" }));
+    const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map(({ time, status, angles_deg, joints }) => ({ time, status, angles_deg, joints })));
+    assert.equal(frames.length, Math.round(0.8 * keys.fps) + 1);
+    assert.deepEqual(
+      frames,
+      cli.frames.map(({ time, status, angles_deg, joints }) => ({ time, status, angles_deg, joints })),
+    );
+    assert.deepEqual(errors, []);
+  });
+});
