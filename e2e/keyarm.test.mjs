@@ -3,13 +3,14 @@
 // at 0, 0.4 and 0.8 s (each drag keys the tip's track, link2, at its drop point); the keyed
 // motion (POST /api/animate with `arm` and `keys`) plays to its end; at each key time the drawn
 // tip is on its key; the page's frames are `ikarus animate --keys FILE --format json`'s (the
-// built-in seed arm) number for number. Run by e2e/run:  node --test e2e/keyarm.test.mjs
+// built-in seed arm) number for number; undo and redo take the last key away and back; a saved
+// project, opened on the reloaded page, gives the same keys and frames. Run by e2e/run:  node --test e2e/keyarm.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdirSync, writeFileSync } from "node:fs";
+import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
+import { artifacts, binary, openPage, ready, reloadUnsaved, withBrowser } from "./browser.mjs";
 
 /** The keys' times and the tip's targets there (the seed arm's links are 3, 2, 1 long). */
 const KEYS = [
@@ -81,6 +82,30 @@ test("the arm: its tip keyed at three times plays through its keys, frame for fr
       frames,
       cli.frames.map(({ time, status, angles_deg, joints }) => ({ time, status, angles_deg, joints })),
     );
+
+    // Undo takes the last key away (one step), redo brings it back, the motion with it.
+    const motionOf = () => page.evaluate(() => window.ikarus.state.motion.frames.map(({ time, angles_deg, joints }) => ({ time, angles_deg, joints })));
+    await page.evaluate(() => window.ikarus.project.undo());
+    await settled(page);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys.tracks.link2.map((q) => q.time)), [0, 0.4]);
+    assert.equal((await motionOf()).length, 13);
+    await page.evaluate(() => window.ikarus.project.redo());
+    await settled(page);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys);
+    assert.deepEqual(await motionOf(), frames.map(({ time, angles_deg, joints }) => ({ time, angles_deg, joints })));
+
+    // Saved, the page reloaded, the file opened: the same keys and the same frames.
+    const [d] = await Promise.all([page.waitForEvent("download"), page.click("#save-project")]);
+    const saved = readFileSync(await d.path(), "utf8");
+    assert.deepEqual(JSON.parse(saved).keys, keys);
+    assert.deepEqual((await reloadUnsaved(page)).dialogs, ["beforeunload"]);
+    assert.equal(await page.evaluate(() => window.ikarus.state.keys), null, "a fresh page");
+    await page.setInputFiles("#project-file", { name: "arm.ikarus.json", mimeType: "application/json", buffer: Buffer.from(saved) });
+    await page.waitForFunction(() => /^opened/.test(document.getElementById("stats").textContent) || window.ikarus.state.motion);
+    await settled(page);
+    await page.waitForFunction(() => window.ikarus.state.motion);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys);
+    assert.deepEqual(await motionOf(), frames.map(({ time, angles_deg, joints }) => ({ time, angles_deg, joints })));
     assert.deepEqual(errors, []);
   });
 });
