@@ -9,62 +9,19 @@ mod common;
 #[path = "common/rigs.rs"]
 mod rigs;
 
-use common::{fails, ikarus, json, stdout, succeeds};
+use common::{dist, fails, ikarus, json, point, same_bits, stdout, succeeds};
+use rigs::{puppet, puppet_start_tip as start_tip};
 use serde_json::{Value, json};
 
 const WALK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/keys/puppet-walk.json");
-
-fn puppet() -> String {
-    rigs::path("puppet").to_str().unwrap().to_owned()
-}
 
 fn walk() -> Value {
     serde_json::from_str(&std::fs::read_to_string(WALK).unwrap()).unwrap()
 }
 
-fn point(v: &Value) -> [f64; 2] {
-    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
-fn start_tip(name: &str) -> [f64; 2] {
-    let rig = rigs::json("puppet");
-    let i = rigs::names(&rig).iter().position(|n| n == name).unwrap();
-    rigs::tips(&rig, &rigs::start_deg(&rig))[i].0
-}
-
 /// Writes `keys` to a file of the test's own and gives its path.
 fn keys_file(name: &str, keys: &Value) -> String {
-    let dir = std::env::temp_dir().join(format!("ikarus-keys-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{name}.json"));
-    std::fs::write(&path, keys.to_string()).unwrap();
-    path.to_str().unwrap().to_owned()
-}
-
-/// Every number of `a` and `b` the same bits, everything else equal.
-fn same_bits(a: &Value, b: &Value, at: &str) {
-    match (a, b) {
-        (Value::Number(x), Value::Number(y)) => {
-            assert_eq!(x.as_f64().unwrap().to_bits(), y.as_f64().unwrap().to_bits(), "{at}: {x} vs {y}")
-        }
-        (Value::Array(x), Value::Array(y)) => {
-            assert_eq!(x.len(), y.len(), "{at}");
-            for (i, (p, q)) in x.iter().zip(y).enumerate() {
-                same_bits(p, q, &format!("{at}[{i}]"));
-            }
-        }
-        (Value::Object(x), Value::Object(y)) => {
-            assert_eq!(x.keys().collect::<Vec<_>>(), y.keys().collect::<Vec<_>>(), "{at}");
-            for (k, p) in x {
-                same_bits(p, &y[k], &format!("{at}.{k}"));
-            }
-        }
-        _ => assert_eq!(a, b, "{at}"),
-    }
+    common::temp_file("keys", &format!("{name}.json"), &keys.to_string())
 }
 
 #[test]

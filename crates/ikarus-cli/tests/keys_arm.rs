@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::same_bits;
 use serde_json::{Value, json};
 
 /// A 3-key track on the seed arm's tip (links 3, 2, 1 long), every target in reach.
@@ -14,31 +15,10 @@ fn keys() -> Value {
         {"time": 1.0, "x": -1.0, "y": 3.5}]}})
 }
 
-/// The same bits for every number of `a` and `b`, everything else equal.
-fn same_bits(a: &Value, b: &Value, at: &str) {
-    match (a, b) {
-        (Value::Number(x), Value::Number(y)) => {
-            assert_eq!(x.as_f64().unwrap().to_bits(), y.as_f64().unwrap().to_bits(), "{at}: {x} vs {y}")
-        }
-        (Value::Array(x), Value::Array(y)) => {
-            assert_eq!(x.len(), y.len(), "{at}");
-            x.iter().zip(y).enumerate().for_each(|(i, (p, q))| same_bits(p, q, &format!("{at}[{i}]")));
-        }
-        (Value::Object(x), Value::Object(y)) => {
-            assert_eq!(x.keys().collect::<Vec<_>>(), y.keys().collect::<Vec<_>>(), "{at}");
-            x.iter().for_each(|(k, p)| same_bits(p, &y[k], &format!("{at}.{k}")));
-        }
-        _ => assert_eq!(a, b, "{at}"),
-    }
-}
-
 #[test]
 fn the_seed_arm_keyed_answers_the_same_bits_through_the_command_line_and_the_api() {
-    let dir = std::env::temp_dir().join(format!("ikarus-keys-arm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("arm.json");
-    std::fs::write(&file, keys().to_string()).unwrap();
-    let cli = common::json(&["animate", "--keys", file.to_str().unwrap(), "--format", "json"]);
+    let file = common::temp_file("keys-arm", "arm.json", &keys().to_string());
+    let cli = common::json(&["animate", "--keys", &file, "--format", "json"]);
     let frames = cli["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 11);
     for (k, key) in [(0, [4.0, 2.0]), (5, [2.0, 4.0]), (10, [-1.0, 3.5])] {
@@ -53,7 +33,7 @@ fn the_seed_arm_keyed_answers_the_same_bits_through_the_command_line_and_the_api
     same_bits(&cli, &api.json(), "answer");
     // An arm file given, as a request's `arm`: the same arm, the same bits.
     let seed = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/arms/seed.toml");
-    let with_arm = common::json(&["animate", "--arm", seed, "--keys", file.to_str().unwrap(), "--format", "json"]);
+    let with_arm = common::json(&["animate", "--arm", seed, "--keys", &file, "--format", "json"]);
     same_bits(&cli["frames"], &with_arm["frames"], "--arm seed.toml");
     // An arm's goal is refused beside keys, naming it.
     let a = s.post("/api/animate", &json!({"keys": keys(), "goal": {"x": 1, "y": 1}}));

@@ -5,7 +5,7 @@
 mod common;
 
 use common::server::start;
-use common::{fails, ikarus, stderr, stdout};
+use common::{fails, ikarus, point, stderr, stdout};
 use serde_json::{Value, json};
 
 const RAPTOR: &str = "../../examples/characters/spine-raptor-pro.json";
@@ -119,10 +119,6 @@ fn bad_requests_are_one_line() {
 /// The bone `name` of a pose answer.
 fn bone_of<'a>(v: &'a Value, name: &str) -> &'a Value {
     v["bones"].as_array().unwrap().iter().find(|b| b["name"] == name).unwrap()
-}
-
-fn point(v: &Value) -> [f64; 2] {
-    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
 }
 
 /// `ikarus solve --rig CHARACTER.json` (issue 26): a goal on a bone's tip turns as many bones

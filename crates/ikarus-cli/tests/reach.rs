@@ -13,7 +13,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::server::start;
-use common::{fails, ikarus, json, stdout, succeeds};
+use common::{dist, fails, ikarus, json, stdout, succeeds};
 use ikarus::reach::{Region, Verdict};
 use ikarus::{Chain, JointLimits, Link, Point2};
 use serde_json::{Value, json};
@@ -63,10 +63,6 @@ fn ends(seg: &Value) -> ([f64; 2], [f64; 2]) {
     let r = arc["radius"].as_f64().unwrap();
     let at = |deg: f64| [cx + r * deg.to_radians().cos(), cy + r * deg.to_radians().sin()];
     (at(arc["from_deg"].as_f64().unwrap()), at(arc["to_deg"].as_f64().unwrap()))
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
 /// Every loop closes: each segment starts where the one before it ends (the last before the

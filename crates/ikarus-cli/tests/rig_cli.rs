@@ -10,11 +10,8 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use common::{fails, floats, ikarus, json, stderr, stdout, succeeds};
-
-fn puppet() -> String {
-    rigs::path("puppet").to_str().unwrap().to_owned()
-}
+use common::{fails, floats, ikarus, json, point, stderr, stdout, succeeds};
+use rigs::puppet;
 
 fn write(dir: &Path, name: &str, text: &str) -> String {
     let p = dir.join(name);
@@ -27,11 +24,6 @@ const DOTTED: &str = "name = \"fork\"\n\
     [[bones]]\nname = \"trunk\"\nlength = 1\nangle_deg = 90\n\
     [[bones]]\nname = \"arm.l\"\nparent = \"trunk\"\nlength = 1\nangle_deg = 45\n\
     [[bones]]\nname = \"arm.r\"\nparent = \"trunk\"\nlength = 1\nangle_deg = -45\n";
-
-fn point(v: &Value) -> [f64; 2] {
-    let p = floats(v);
-    [p[0], p[1]]
-}
 
 #[test]
 fn the_json_of_a_rig_solve() {

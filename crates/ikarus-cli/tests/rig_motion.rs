@@ -7,31 +7,12 @@ mod common;
 #[path = "common/rigs.rs"]
 mod rigs;
 
-use common::{fails, ikarus, json, stderr, stdout, succeeds};
-use serde_json::Value;
-
-fn puppet() -> String {
-    rigs::path("puppet").to_str().unwrap().to_owned()
-}
+use common::{dist, fails, ikarus, json, point, stderr, stdout, succeeds};
+use rigs::{puppet, puppet_start_tip as start_tip};
 
 /// The targets of both hands, as `--goal NAME=X,Y` values.
 fn hand_goals() -> Vec<String> {
     rigs::puppet_hand_targets().iter().map(|(n, [x, y])| format!("{n}={x},{y}")).collect()
-}
-
-fn point(v: &Value) -> [f64; 2] {
-    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
-/// The puppet's tips at its start pose, by name.
-fn start_tip(name: &str) -> [f64; 2] {
-    let rig = rigs::json("puppet");
-    let i = rigs::names(&rig).iter().position(|n| n == name).unwrap();
-    rigs::tips(&rig, &rigs::start_deg(&rig))[i].0
 }
 
 #[test]

@@ -2,28 +2,14 @@
 //! command line's rig motion and rig track JSON, the pins hold, and bad requests are 422s
 //! naming the field. The tests that check `reached` need the real rig solver.
 
+mod common;
 #[path = "common/rigs.rs"]
 mod rigs;
-#[path = "common/server.rs"]
-mod server;
 
+use common::server::start;
+use common::{dist, point};
+use rigs::puppet_start_tip as start_tip;
 use serde_json::{Value, json};
-
-use server::start;
-
-fn point(v: &Value) -> [f64; 2] {
-    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
-fn start_tip(name: &str) -> [f64; 2] {
-    let rig = rigs::json("puppet");
-    let i = rigs::names(&rig).iter().position(|n| n == name).unwrap();
-    rigs::tips(&rig, &rigs::start_deg(&rig))[i].0
-}
 
 fn hand_goals() -> Value {
     rigs::puppet_hand_targets().iter().map(|(n, [x, y])| json!({"bone": n, "x": x, "y": y})).collect()

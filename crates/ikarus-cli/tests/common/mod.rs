@@ -47,6 +47,45 @@ pub fn fails(args: &[&str], code: i32) -> String {
     err
 }
 
+/// A JSON pair of numbers as a point.
+pub fn point(v: &Value) -> [f64; 2] {
+    [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()]
+}
+
+/// The distance between two points.
+pub fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// Every number of `a` and `b` the same bits, everything else equal; `at` names the place in
+/// the failure.
+pub fn same_bits(a: &Value, b: &Value, at: &str) {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            assert_eq!(x.as_f64().unwrap().to_bits(), y.as_f64().unwrap().to_bits(), "{at}: {x} vs {y}")
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            assert_eq!(x.len(), y.len(), "{at}");
+            x.iter().zip(y).enumerate().for_each(|(i, (p, q))| same_bits(p, q, &format!("{at}[{i}]")));
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            assert_eq!(x.keys().collect::<Vec<_>>(), y.keys().collect::<Vec<_>>(), "{at}");
+            x.iter().for_each(|(k, p)| same_bits(p, &y[k], &format!("{at}.{k}")));
+        }
+        _ => assert_eq!(a, b, "{at}"),
+    }
+}
+
+/// Writes `text` to `NAME` in a directory of this test process's own (`ikarus-test-TAG-PID`)
+/// and gives its path.
+pub fn temp_file(tag: &str, name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("ikarus-test-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
 /// A JSON array of numbers.
 pub fn floats(v: &Value) -> Vec<f64> {
     v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()

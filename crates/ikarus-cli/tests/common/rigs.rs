@@ -12,6 +12,18 @@ pub fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rigs").join(format!("{name}.toml"))
 }
 
+/// The path of the shipped puppet, as a command line's argument.
+pub fn puppet() -> String {
+    path("puppet").to_str().unwrap().to_owned()
+}
+
+/// The puppet's tip of bone `name` at its start pose.
+pub fn puppet_start_tip(name: &str) -> [f64; 2] {
+    let rig = json("puppet");
+    let i = names(&rig).iter().position(|n| n == name).unwrap();
+    tips(&rig, &start_deg(&rig))[i].0
+}
+
 /// `examples/rigs/NAME.toml` as the JSON a request carries.
 pub fn json(name: &str) -> Value {
     toml::from_str(&std::fs::read_to_string(path(name)).unwrap()).unwrap()
