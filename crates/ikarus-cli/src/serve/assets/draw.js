@@ -10,7 +10,7 @@
 import { bodyForward, chainBody } from "./body.js";
 import { drawOnion } from "./onion.js";
 import { traceCurves, traceRegion } from "./region.js";
-import { decimalsFor, ghostFrames, gridValues, maxReach, niceStep, placeLabels, toCanvas, toWorld } from "./view.js";
+import { decimalsFor, ghostFrames, gridValues, inClear, maxReach, niceStep, placeLabels, toCanvas, toWorld } from "./view.js";
 
 /**
  * The colours, the render crate's palette (`ikarus-render`'s style.rs, given by /api/meta's
@@ -225,18 +225,23 @@ function drawLabels(ctx, view, { ax, ay, xs, ys, decimals, step }) {
   const yName = at("y", ax + 5, 4);
   const tops = [4, ...keepOut.map((k) => k.y + k.h + 4)];
   candidates.push({ text: "y", places: tops.flatMap((y) => [{ ...yName, y }, { ...yName, y, x: ax - 5 - yName.w }]) });
-  for (const gx of xs) {
-    if (Math.abs(gx) < step / 2) continue;
-    const text = gx.toFixed(decimals);
-    const [px] = toCanvas(view, gx, 0);
-    const box = at(text, 0, Math.min(ay + 3, h - 14));
-    box.x = px - box.w / 2;
-    // Where that is taken: above the axis, or above what the page lays over that row (the hint,
-    // the zoom box: an axis out of view runs along the bottom edge, under them).
-    const covers = keepOut.filter((k) => k.y < box.y + box.h && box.y < k.y + k.h);
-    const ups = [ay - 3 - LABEL_HEIGHT, ...covers.map((k) => k.y - 3 - LABEL_HEIGHT)].map((y) => ({ ...box, y }));
-    candidates.push({ text, places: [box, ...ups] });
-  }
+  // The x ticks' values in one row: under the axis, else above it, else above what the page lays
+  // over that row (the hint, the zoom box: an axis out of view runs along the bottom edge, under
+  // them), the row where the most of them are clear; those it covers are left out.
+  const below = Math.min(ay + 3, h - 14);
+  const xBoxes = xs
+    .filter((gx) => Math.abs(gx) >= step / 2)
+    .map((gx) => {
+      const text = gx.toFixed(decimals);
+      const box = at(text, 0, below);
+      box.x = toCanvas(view, gx, 0)[0] - box.w / 2;
+      return { text, box };
+    });
+  const covers = keepOut.filter((k) => k.y < below + LABEL_HEIGHT && below < k.y + k.h);
+  const rows = [below, ay - 3 - LABEL_HEIGHT, ...covers.map((k) => k.y - 3 - LABEL_HEIGHT)];
+  const count = (y) => xBoxes.filter(({ box }) => inClear({ ...box, y }, keepOut, w, h)).length;
+  const row = rows.reduce((best, y) => (count(y) > count(best) ? y : best), rows[0]);
+  for (const { text, box } of xBoxes) candidates.push({ text, places: [{ ...box, y: row }] });
   for (const gy of ys) {
     if (Math.abs(gy) < step / 2) continue;
     const text = gy.toFixed(decimals);

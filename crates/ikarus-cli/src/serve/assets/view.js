@@ -93,6 +93,11 @@ export function boxesOverlap(a, b, pad = 0) {
   return a.x - pad < b.x + b.w && b.x - pad < a.x + a.w && a.y - pad < b.y + b.h && b.y - pad < a.y + a.h;
 }
 
+/** Whether box `b` lies inside the `w` × `h` canvas and clear of every box of `keepOut`. */
+export function inClear(b, keepOut, w, h) {
+  return b.x >= 0 && b.y >= 0 && b.x + b.w <= w && b.y + b.h <= h && !keepOut.some((k) => boxesOverlap(b, k));
+}
+
 /** The room kept between two labels, pixels. */
 export const LABEL_GAP = 2;
 
@@ -105,8 +110,7 @@ export const LABEL_GAP = 2;
  */
 export function placeLabels(candidates, keepOut, w, h) {
   const placed = [];
-  const free = (b) =>
-    b.x >= 0 && b.y >= 0 && b.x + b.w <= w && b.y + b.h <= h && !keepOut.some((k) => boxesOverlap(b, k)) && !placed.some((p) => boxesOverlap(b, p, LABEL_GAP));
+  const free = (b) => inClear(b, keepOut, w, h) && !placed.some((p) => boxesOverlap(b, p, LABEL_GAP));
   for (const c of candidates) {
     const box = c.places.find(free);
     if (box) placed.push({ text: c.text, ...box });
