@@ -139,7 +139,13 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let format = format_of(args)?;
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
     let ik = args.ik.choice(&loaded.character)?;
-    let ask = PoseAsk { animation: args.animation.clone(), time: args.time, targets: args.target.clone(), ik };
+    let ask = PoseAsk {
+        animation: args.animation.clone(),
+        time: args.time,
+        targets: args.target.clone(),
+        ik,
+        bends: Vec::new(),
+    };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, &|| caption(args), &args.size)?;
     match file {

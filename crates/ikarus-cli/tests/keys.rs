@@ -352,6 +352,36 @@ fn a_character_s_keys_over_a_clip_answer_the_same_through_the_command_line_and_t
             assert_eq!(frames, 28);
         }
     }
+    // Bend keys on the front knee (its constraint's bendPositive from each key's time on): the
+    // same bits again, and the knee's frames differ from the unbent motion's.
+    let mut bent = spineboy_keys();
+    bent["bends"] = json!({"front-shin": [{"time": 0, "bend": "cw"}, {"time": 0.5, "bend": "ccw"}]});
+    let bent_file = keys_file("spineboy-bent", &bent);
+    let cli =
+        stdout_of(&["animate", "--rig", SPINEBOY, "--keys", &bent_file, "--animation", "walk", "--format", "json"]);
+    let a = s.post("/api/animate", &json!({"rig": text, "keys": bent, "animation": "walk"}));
+    assert_eq!(a.status, 200, "{}", a.text());
+    let cli: Value = serde_json::from_str(&cli).unwrap();
+    same_bits(&cli, &a.json(), "bent");
+    let plain: Value = serde_json::from_str(&stdout_of(&[
+        "animate",
+        "--rig",
+        SPINEBOY,
+        "--keys",
+        &file,
+        "--animation",
+        "walk",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let shin = |v: &Value, k: usize| {
+        v["frames"][k]["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-shin").unwrap()["rotation_deg"]
+            .as_f64()
+            .unwrap()
+    };
+    assert_eq!(shin(&cli, 3), shin(&plain, 3), "before 0.5 s the file's own bend (cw: its bendPositive false)");
+    assert!((shin(&cli, 20) - shin(&plain, 20)).abs() > 1.0, "from 0.5 s on the knee bends the other way");
     // Refusals: what a character does not take, an unknown clip, the eased course's fields.
     let refused = |extra: Value| {
         let mut body = json!({"rig": text, "keys": spineboy_keys()});
@@ -367,10 +397,10 @@ fn a_character_s_keys_over_a_clip_answer_the_same_through_the_command_line_and_t
         "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)"
     );
     let mut bent = spineboy_keys();
-    bent["bends"] = json!({"front-shin": [{"time": 0, "bend": "cw"}]});
+    bent["bends"] = json!({"front-thigh": [{"time": 0, "bend": "cw"}]});
     assert_eq!(
         refused(json!({"keys": bent})),
-        "keys.bends: not for a character (its IK constraints bend its limbs, as their bendPositive says)"
+        "keys.bends.front-thigh: \"front-thigh\" is not the lower bone of a two-bone IK constraint (the character's are: front-shin, rear-shin)"
     );
     let e = refused(json!({"animation": "wlk"}));
     assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");

@@ -114,6 +114,19 @@ pub struct KeyedBone {
     pub oriented: bool,
 }
 
+/// Bends by bone (or constraint): `(index, [(first frame, bend)])`, in time order.
+pub type Bends = Vec<(usize, Vec<(usize, Bend)>)>;
+
+/// The checked keys of a character ([`KeysFile::check_character`]).
+#[derive(Debug, Clone)]
+pub struct CharacterKeys {
+    pub fps: f64,
+    /// The target bones' tracks.
+    pub tracks: Vec<KeyedBone>,
+    /// The two-bone IK constraints' bends, by constraint.
+    pub bends: Bends,
+}
+
 /// The checked keys of a rig: what each frame solves.
 #[derive(Debug, Clone)]
 pub struct KeyPlan {
@@ -123,7 +136,7 @@ pub struct KeyPlan {
     /// The tracked bones in the keys' order (by name).
     pub tracks: Vec<KeyedBone>,
     /// Bone → its bends by first frame, in time order.
-    pub bends: Vec<(usize, Vec<(usize, Bend)>)>,
+    pub bends: Bends,
     /// The pinned bones, in the keys' order.
     pub pins: Vec<usize>,
 }
@@ -205,20 +218,17 @@ impl KeysFile {
             crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
         };
         let (fps, mut last, tracks) = self.tracks(&bone)?;
-        let mut bends = Vec::with_capacity(self.bends.len());
-        for (name, keys) in &self.bends {
-            let field = format!("keys.bends.{name}");
-            let index = bone(&field, name)?;
+        let joint = |field: &str, name: &str| -> Result<usize, String> {
+            let index = bone(field, name)?;
             if skeleton.parent(index).is_none() {
                 return Err(format!("{field}: the bone has no parent, so no joint to bend"));
             }
             if let Joint::Prismatic { .. } = skeleton.joint(index) {
                 return Err(format!("{field}: the bone's joint is prismatic; a bend needs a revolute joint"));
             }
-            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
-            last = last.max(*frames.last().expect("a track has a key"));
-            bends.push((index, frames.into_iter().zip(keys.iter().map(|k| k.bend.bend())).collect()));
-        }
+            Ok(index)
+        };
+        let bends = self.bend_keys(&joint, fps, &mut last)?;
         let mut pins = Vec::with_capacity(self.pins.len());
         for (i, name) in self.pins.iter().enumerate() {
             let field = format!("keys.pins[{i}]");
@@ -237,33 +247,47 @@ impl KeysFile {
         Ok(KeyPlan { fps, last, tracks, bends, pins })
     }
 
+    /// The bends, each bone found (and checked) by `joint` (its problem after the field), as
+    /// `(index, [(first frame, bend)])`; `last` raised to their last key's frame.
+    fn bend_keys(
+        &self,
+        joint: &dyn Fn(&str, &str) -> Result<usize, String>,
+        fps: f64,
+        last: &mut usize,
+    ) -> Result<Bends, String> {
+        let mut bends = Vec::with_capacity(self.bends.len());
+        for (name, keys) in &self.bends {
+            let field = format!("keys.bends.{name}");
+            let index = joint(&field, name)?;
+            let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
+            *last = (*last).max(*frames.last().expect("a track has a key"));
+            bends.push((index, frames.into_iter().zip(keys.iter().map(|k| k.bend.bend())).collect()));
+        }
+        Ok(bends)
+    }
+
     /// The keys of a character's target bones (`bone` finds one by name, its problem after
-    /// the field): tracks only, without directions; pins and bends refused (a character's
-    /// constraints bend its limbs, by their `bendPositive`). The fps, the last frame and the
-    /// tracks.
+    /// the field): tracks without directions, and bends of the two-bone IK constraints
+    /// (`constraint` finds the one whose lower bone a bend names); pins refused.
     pub fn check_character(
         &self,
         bone: &dyn Fn(&str, &str) -> Result<usize, String>,
+        constraint: &dyn Fn(&str, &str) -> Result<usize, String>,
         max_frames: usize,
         cap: &str,
-    ) -> Result<(f64, usize, Vec<KeyedBone>), String> {
+    ) -> Result<CharacterKeys, String> {
         if !self.pins.is_empty() {
             return Err(
                 "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)".into(),
             );
         }
-        if !self.bends.is_empty() {
-            return Err(
-                "keys.bends: not for a character (its IK constraints bend its limbs, as their bendPositive says)"
-                    .into(),
-            );
-        }
-        let (fps, last, tracks) = self.tracks(bone)?;
+        let (fps, mut last, tracks) = self.tracks(bone)?;
         if let Some((name, _)) = self.tracks.iter().find(|(_, keys)| keys.iter().any(|k| k.angle_deg.is_some())) {
             return Err(format!("keys.tracks.{name}: angle_deg is not for a character (a target is a bone's origin)"));
         }
+        let bends = self.bend_keys(constraint, fps, &mut last)?;
         frames_within(last, max_frames, cap)?;
-        Ok((fps, last, tracks))
+        Ok(CharacterKeys { fps, tracks, bends })
     }
 
     /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`);

@@ -30,6 +30,9 @@ pub struct PoseAsk {
     pub targets: Vec<(String, [f64; 2])>,
     /// Whose rules solve the IK constraints.
     pub ik: IkChoice,
+    /// `(constraint, bend_positive)`: the constraints' bend sides in place of the clip's
+    /// ([`ikarus::character::PoseRequest::bends`]).
+    pub bends: Vec<(usize, bool)>,
 }
 
 /// Whose rules solve a character's IK constraints.
@@ -91,7 +94,7 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
         let bone = c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"))?;
         targets.push((bone, target_point(name, [*x, *y])?));
     }
-    let request = PoseRequest { clip, targets: &targets };
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
     match &ask.ik {
         IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
         IkChoice::Ikarus(rules) => {
@@ -348,6 +351,7 @@ mod tests {
             time,
             targets,
             ik: IkChoice::Runtime,
+            bends: Vec::new(),
         };
         let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
         assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");

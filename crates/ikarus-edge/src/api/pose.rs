@@ -55,6 +55,7 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
         time: req.time,
         targets: req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect(),
         ik,
+        bends: Vec::new(),
     };
     let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
     json_response(&report)

@@ -10,12 +10,13 @@
 //! optionally over a clip. The motion is sampled at the frame rate for its frames (JSON) and at
 //! any time for the Spine export ([`super::export`]).
 
-use ikarus::Ease;
+use ikarus::character::IkBones;
 use ikarus::character::Posed;
 use ikarus::motion::KeyTrack;
+use ikarus::{Bend, Ease};
 use serde::Serialize;
 
-use super::Loaded;
+use super::{Format, Loaded};
 use crate::keys::KeysFile;
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into};
 use crate::report::character::UnsupportedJson;
@@ -50,14 +51,24 @@ pub enum Course {
     Keyed {
         /// The bones and their tracks, applied in this order.
         tracks: Vec<(String, KeyTrack)>,
+        /// Each `(constraint, keys)`: the constraint's `bendPositive` from each key's time
+        /// (seconds) on, in time order, the first at 0.
+        bends: Vec<(usize, Vec<(f64, bool)>)>,
         /// The clip under the keys.
         animation: Option<String>,
     },
 }
 
 /// The keyed course of `keys` on the character `loaded` over the clip `animation`, and its fps:
-/// the keys checked as a character's ([`KeysFile::check_character`]: tracks on its bones, no
-/// pins, bends or directions), at most `max_frames` frames (`cap` names the cap).
+/// the keys checked as a character's ([`KeysFile::check_character`]: tracks on its bones,
+/// bends on the lower bones of its two-bone IK constraints, no pins or directions), at most
+/// `max_frames` frames (`cap` names the cap).
+///
+/// A bend key sets the constraint's `bendPositive` from its time on, the side the key names as
+/// the setup pose sees it: `ccw` bends the lower bone counter-clockwise from the upper one
+/// (`bendPositive` true in Spine, whose y points up; false in DragonBones, whose y points down),
+/// `cw` the other way. Under a mirrored parent (a negative scale) the runtime mirrors the side,
+/// and so does ikarus.
 pub fn keyed(
     loaded: &Loaded,
     keys: &KeysFile,
@@ -69,12 +80,37 @@ pub fn keyed(
     let bone = |field: &str, name: &str| {
         c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {name:?} in the character"))
     };
-    let (fps, _, tracks) = keys.check_character(&bone, max_frames, cap)?;
+    let constraint = |field: &str, name: &str| {
+        let index = bone(field, name)?;
+        let two =
+            |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
+        c.constraints().iter().position(|k| two(&k)).ok_or_else(|| {
+            let lower: Vec<&str> = c
+                .constraints()
+                .iter()
+                .filter_map(|k| match k.bones {
+                    IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
+                    IkBones::One(_) => None,
+                })
+                .collect();
+            let has = if lower.is_empty() { "none".to_owned() } else { lower.join(", ") };
+            format!("{field}: {name:?} is not the lower bone of a two-bone IK constraint (the character's are: {has})")
+        })
+    };
+    let checked = keys.check_character(&bone, &constraint, max_frames, cap)?;
     if let Some(name) = &animation {
         crate::pose::clip_at(c, Some(name), None)?;
     }
-    let tracks = tracks.into_iter().map(|t| (c.bones()[t.bone].name.clone(), t.track)).collect();
-    Ok((Course::Keyed { tracks, animation }, fps))
+    let fps = checked.fps;
+    let tracks = checked.tracks.into_iter().map(|t| (c.bones()[t.bone].name.clone(), t.track)).collect();
+    // ccw is a positive turn in y-up; DragonBones' bendPositive is one in its y-down.
+    let positive = |bend: Bend| (bend == Bend::Positive) == (loaded.format == Format::Spine);
+    let bends = checked
+        .bends
+        .into_iter()
+        .map(|(k, keys)| (k, keys.into_iter().map(|(frame, bend)| (frame as f64 / fps, positive(bend))).collect()))
+        .collect();
+    Ok((Course::Keyed { tracks, bends, animation }, fps))
 }
 
 /// A character's motion, checked: every name resolved, every number finite.
@@ -145,7 +181,10 @@ impl<'a> Motion<'a> {
                 }
                 (Vec::new(), (points.len() - 1) as f64 / fps)
             }
-            Course::Keyed { tracks, .. } => (Vec::new(), tracks.iter().map(|(_, t)| t.end()).fold(0.0, f64::max)),
+            Course::Keyed { tracks, bends, .. } => {
+                let bent = bends.iter().filter_map(|(_, keys)| keys.last().map(|k| k.0));
+                (Vec::new(), tracks.iter().map(|(_, t)| t.end()).chain(bent).fold(0.0, f64::max))
+            }
         };
         Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime })
     }
@@ -211,7 +250,20 @@ impl<'a> Motion<'a> {
     #[must_use]
     pub fn ask_at(&self, time: f64) -> PoseAsk {
         let (animation, clip_time) = self.clip_at(time);
-        PoseAsk { animation, time: clip_time, targets: self.targets_at(time), ik: self.ik.clone() }
+        PoseAsk {
+            animation,
+            time: clip_time,
+            targets: self.targets_at(time),
+            ik: self.ik.clone(),
+            bends: self.bends_at(time),
+        }
+    }
+
+    /// The keyed constraints' `bendPositive` at `time`: each one's last key at or before it.
+    fn bends_at(&self, time: f64) -> Vec<(usize, bool)> {
+        let Course::Keyed { bends, .. } = &self.course else { return Vec::new() };
+        // A key's time is its frame / fps, as the frame's time is: the frame is on it.
+        bends.iter().map(|(k, keys)| (*k, keys.iter().rev().find(|(t, _)| *t <= time).unwrap_or(&keys[0]).1)).collect()
     }
 
     /// The character posed at `time` into `out`.

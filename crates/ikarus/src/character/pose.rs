@@ -8,8 +8,8 @@ use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
 use thiserror::Error;
 
-/// What to pose: a clip at a time (seconds), and bones whose world origin is put at a point
-/// after the clip and before the constraints.
+/// What to pose: a clip at a time (seconds), bones whose world origin is put at a point after
+/// the clip and before the constraints, and constraints' bend sides.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct PoseRequest<'a> {
     /// The clip's index and the time in it (before its first key a timeline leaves the setup
@@ -18,6 +18,9 @@ pub struct PoseRequest<'a> {
     /// `(bone, [x, y])`: the bone's world origin goes to `(x, y)` (its local x and y are set
     /// from its parent's world transform after the clip), in this order.
     pub targets: &'a [(usize, [f64; 2])],
+    /// `(constraint, bend_positive)`: the constraint's `bendPositive` in place of what the clip
+    /// (or the setup pose) gives it, as a key of its IK timeline would set it.
+    pub bends: &'a [(usize, bool)],
 }
 
 /// A pose request the character cannot take.
@@ -43,6 +46,9 @@ pub enum PoseError {
         /// The point's y.
         y: f64,
     },
+    /// A bend names a constraint that does not exist.
+    #[error("bend: no constraint {0}")]
+    UnknownConstraint(usize),
     /// A target's bone has a parent whose world matrix is singular (scaled to nothing), so no
     /// local position puts it anywhere else.
     #[error("target: bone {0}'s parent is scaled to nothing, its origin cannot be placed")]
@@ -167,6 +173,9 @@ impl Character {
                 }
             }
         }
+        for &(k, bend_positive) in request.bends {
+            out.settings[k].bend_positive = bend_positive;
+        }
         let (mut bones, _, settings) = out.bones(self);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
@@ -220,6 +229,9 @@ impl Character {
             if !(x.is_finite() && y.is_finite()) {
                 return Err(PoseError::TargetPoint { bone, x, y });
             }
+        }
+        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| *k >= self.constraints.len()) {
+            return Err(PoseError::UnknownConstraint(k));
         }
         Ok(())
     }

@@ -58,7 +58,7 @@ fn dist(p: [f64; 2], q: [f64; 2]) -> f64 {
 }
 
 fn both(c: &Character, targets: &[(usize, [f64; 2])], rules: &Together) -> (Posed, Posed) {
-    let request = PoseRequest { clip: None, targets };
+    let request = PoseRequest { clip: None, targets, bends: &[] };
     let mut runtime = Posed::default();
     c.pose(&request, &mut runtime).unwrap();
     let mut together = Posed::default();
@@ -162,7 +162,7 @@ fn a_pinned_bone_keeps_its_tip_and_mix_zero_leaves_a_constraint_out() {
     }
     let report = c
         .pose_together(
-            &PoseRequest { clip: None, targets: &targets },
+            &PoseRequest { clip: None, targets: &targets, bends: &[] },
             &Together::default(),
             &mut solver(),
             &mut Posed::default(),
@@ -204,14 +204,20 @@ fn a_parent_scaled_unevenly_is_solved_in_the_runtimes_own_world() {
         Character::new(turned).unwrap().pose(&PoseRequest::default(), &mut there).unwrap();
         let target = there.tip(4);
         let mut runtime = Posed::default();
-        c.pose(&PoseRequest { clip: None, targets: &[(6, target)] }, &mut runtime).unwrap();
+        c.pose(&PoseRequest { clip: None, targets: &[(6, target)], bends: &[] }, &mut runtime).unwrap();
         (target, dist(runtime.tip(4), target))
     };
     let tries = [0.6, -0.6, 1.2, -1.2, 2.0, -2.0].map(reach);
     let (target, _) = tries.into_iter().find(|&(_, miss)| miss > 1.0).unwrap_or_else(|| panic!("{tries:?}"));
     let mut out = Posed::default();
-    let report =
-        c.pose_together(&PoseRequest { clip: None, targets: &[(6, target)] }, &three, &mut solver(), &mut out).unwrap();
+    let report = c
+        .pose_together(
+            &PoseRequest { clip: None, targets: &[(6, target)], bends: &[] },
+            &three,
+            &mut solver(),
+            &mut out,
+        )
+        .unwrap();
     let miss = dist(out.tip(4), target);
     assert!(miss < 1e-6, "{miss} after {} rounds: {:?}", report.rounds, report.outcome.map(|o| (o.status, o.error)));
     assert!((report.limbs[0].error - miss).abs() < 1e-12);
@@ -246,7 +252,7 @@ fn a_goal_on_two_bones_is_the_runtimes_two_bone_answer() {
             let rules = Together { goals: vec![g], ..Together::default() };
             let mut posed = Posed::default();
             let report = free
-                .pose_together(&PoseRequest { clip: None, targets: &[] }, &rules, &mut solver(), &mut posed)
+                .pose_together(&PoseRequest { clip: None, targets: &[], bends: &[] }, &rules, &mut solver(), &mut posed)
                 .unwrap();
             for i in 0..5 {
                 assert!(dist(runtime.tip(i), posed.tip(i)) < 1e-6, "bone {i}, bend {bend_positive}, {target:?}");
@@ -264,11 +270,13 @@ fn a_goals_bone_count_bounds_what_moves() {
     use crate::goal::Goal;
     let c = Character::new(leg()).unwrap();
     let mut setup = Posed::default();
-    c.pose(&PoseRequest { clip: None, targets: &[] }, &mut setup).unwrap();
+    c.pose(&PoseRequest { clip: None, targets: &[], bends: &[] }, &mut setup).unwrap();
     let solve = |g: crate::character::TipGoal| {
         let mut posed = Posed::default();
         let rules = Together { goals: vec![g], ..Together::default() };
-        let r = c.pose_together(&PoseRequest { clip: None, targets: &[] }, &rules, &mut solver(), &mut posed).unwrap();
+        let r = c
+            .pose_together(&PoseRequest { clip: None, targets: &[], bends: &[] }, &rules, &mut solver(), &mut posed)
+            .unwrap();
         (posed, r)
     };
     // The foot alone turns toward (12, 0): its tip on the ray, not on the point.
@@ -294,7 +302,12 @@ fn a_goals_bone_count_bounds_what_moves() {
     let rules = Together { goals: vec![g], ..Together::default() };
     let mut posed = Posed::default();
     let r = both_c
-        .pose_together(&PoseRequest { clip: None, targets: &[(5, [-20.0, -20.0])] }, &rules, &mut solver(), &mut posed)
+        .pose_together(
+            &PoseRequest { clip: None, targets: &[(5, [-20.0, -20.0])], bends: &[] },
+            &rules,
+            &mut solver(),
+            &mut posed,
+        )
         .unwrap();
     assert!(dist(posed.tip(3), [4.0, 9.0]) < 1e-6 && r.goals[0].error < 1e-6);
 }
