@@ -15,6 +15,7 @@ import {
   bendHandles,
   bendLimbs,
   characterAnimateRequest,
+  characterBendHandles,
   characterMotion,
   deleteKey,
   emptyKeys,
@@ -307,6 +308,9 @@ test("a character's request: the file's text, the tracks only, the clip, the IK 
     format: "spine",
     animation_name: "ikarus",
   });
+  // Bends go with the tracks when there are some.
+  const bent = { ...keys, bends: { shin: [{ time: 0, bend: "cw" }] } };
+  assert.deepEqual(characterAnimateRequest(c, bent).keys, { fps: 30, tracks: keys.tracks, bends: bent.bends });
   const m = characterMotion({ frames: [{ time: 0, bones: [] }, { time: 1 / 30, bones: [] }] }, 30);
   assert.equal(m.fps, 30);
   assert.equal(m.duration, 1 / 30);
@@ -327,4 +331,29 @@ test("the arm's request: the arm as its requests send it, its tip's track link N
   const m = armMotion(arm, { fps: 10, duration: 0.1, frames: [{ time: 0, angles_deg: { link0: 5, link1: 6, link2: 7 } }, { time: 0.1, angles_deg: { link0: 8, link2: 9 } }] });
   assert.deepEqual(m.frames.map((f) => f.pose), [[5, 6, 7], [8, 6, 9]]);
   assert.equal(m.fps, 10);
+});
+
+test("a character's bend handles: one per two-bone IK constraint, at its lower bone, on the side the knee turns", () => {
+  const toCanvas = (x, y) => [200 + x, 200 - y];
+  const ik = [
+    { name: "leg", bones: ["thigh", "shin"], target: "t" },
+    { name: "aim", bones: ["arm"], target: "a" },
+  ];
+  // The thigh straight down from (0, 0), the shin turned 30° counter-clockwise from it at (0, -10).
+  const bone = (name, x, y, deg, len) => ({ name, x, y, rotation_deg: deg, tip: [x + len * Math.cos((deg * Math.PI) / 180), y + len * Math.sin((deg * Math.PI) / 180)] });
+  const posed = [bone("thigh", 0, 0, -90, 10), bone("shin", 0, -10, -60, 10), bone("arm", 5, 5, 0, 3)];
+  const [h, ...rest] = characterBendHandles(ik, posed, toCanvas);
+  assert.deepEqual(rest, []);
+  assert.equal(h.bone, "shin");
+  assert.equal(h.side, "ccw");
+  assert.deepEqual(h.joint, toCanvas(0, -10));
+  // The knee sticks out left of the hip–ankle line (x < 0 on the screen), and so does the handle.
+  assert.ok(h.at[0] < h.joint[0], `the handle at ${h.at}, the knee at ${h.joint}`);
+  // Turned the other way, the side says so and the handle goes over.
+  const other = [posed[0], bone("shin", 0, -10, -120, 10)];
+  const [g] = characterBendHandles(ik, other, toCanvas);
+  assert.equal(g.side, "cw");
+  assert.ok(g.at[0] > g.joint[0]);
+  // Bones not posed (yet): no handle.
+  assert.deepEqual(characterBendHandles(ik, [], toCanvas), []);
 });

@@ -330,7 +330,7 @@ export function wireCharacters(state, canvas, act) {
   let press = null;
 
   canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.character || !state.character.posed || ev.button !== 0) return;
+    if (!state.character || !state.character.posed || ev.button !== 0 || act.keyed.bendPress(ev)) return;
     const name = handleUnder(ev);
     if (!name) return;
     const bone = state.character.posed.find((b) => b.name === name);
@@ -342,8 +342,10 @@ export function wireCharacters(state, canvas, act) {
     const c = state.character;
     if (!c || !c.posed) return;
     if (!press) {
-      const hover = under(ev);
-      canvas.style.cursor = hover && c.targetNames.includes(hover) ? "grab" : "";
+      // A bend handle (Key mode) first: ringed and named alone.
+      const bend = act.keyed.hoverBend(ev);
+      const hover = bend ? null : under(ev);
+      canvas.style.cursor = bend ? "pointer" : hover && c.targetNames.includes(hover) ? "grab" : "";
       if (hover !== c.hover) {
         c.hover = hover;
         act.requestDraw();

@@ -24,6 +24,7 @@ import {
   bendHandleAt,
   bendHandles,
   characterAnimateRequest,
+  characterBendHandles,
   characterMotion,
   DEFAULT_LENGTH,
   deleteKey,
@@ -210,7 +211,12 @@ export function wireKeyed(state, canvas, act) {
   }
 
   /** The bend handles of the pose shown, in canvas pixels. */
-  const handles = () => (state.rig ? bendHandles(state.rig.rig, state.rig.pose_deg, (x, y) => toCanvas(state.view, x, y)) : []);
+  const handles = () => {
+    const at = (x, y) => toCanvas(state.view, x, y);
+    if (state.rig) return bendHandles(state.rig.rig, state.rig.pose_deg, at);
+    const c = state.character;
+    return c && k.mode ? characterBendHandles(c.character.ik, c.posed, at) : [];
+  };
 
   const local = (ev) => {
     const rect = canvas.getBoundingClientRect();
@@ -220,22 +226,29 @@ export function wireKeyed(state, canvas, act) {
   /** A press on a bend handle flips that joint at the playhead (a bend key); true when it was on one. */
   function bendPress(ev) {
     const r = state.rig;
-    if (!r) return false;
+    if (!r && !state.character) return false;
     const hs = handles();
     const bone = bendHandleAt(hs, ...local(ev));
     if (!bone) return false;
     ev.preventDefault();
     const h = hs.find((x) => x.bone === bone);
     const to = h.side === "ccw" ? "cw" : "ccw";
-    const i = r.rig.bones.findIndex((b) => b.name === bone);
-    const def = r.rig.bones[i];
-    if (!bendAllowed(def, to, state.options.limits)) {
-      const [lo, hi] = def.limits_deg;
-      act.showError(new api.Notice(`${bone}: its limits [${lo}°, ${hi}°] allow only ${h.side}; turn off Enforce joint limits to flip it`));
-      return true;
-    }
     const f0 = state.motion && state.motion.frames[0];
-    const from = f0 ? sideOf(f0.pose[i]) : h.side;
+    let from = h.side;
+    if (r) {
+      const i = r.rig.bones.findIndex((b) => b.name === bone);
+      const def = r.rig.bones[i];
+      if (!bendAllowed(def, to, state.options.limits)) {
+        const [lo, hi] = def.limits_deg;
+        act.showError(new api.Notice(`${bone}: its limits [${lo}°, ${hi}°] allow only ${h.side}; turn off Enforce joint limits to flip it`));
+        return true;
+      }
+      if (f0) from = sideOf(f0.pose[i]);
+    } else if (f0) {
+      // A character: the side its knee bends in the motion's first frame.
+      const first = characterBendHandles(state.character.character.ik, f0.bones, (x, y) => [x, -y]).find((x) => x.bone === bone);
+      if (first) from = first.side;
+    }
     state.keys = setBend(state.keys, bone, k.t, to, from);
     k.selected = null;
     if (!state.keys.tracks || !Object.keys(state.keys.tracks).length) act.say(`${bone} keyed to bend ${to}; key an effector to see the motion`);
@@ -245,7 +258,7 @@ export function wireKeyed(state, canvas, act) {
 
   /** The bend handle under the pointer, ringed and named; whether there is one (then it alone is named). */
   function hoverBend(ev) {
-    if (!state.rig) return false;
+    if (!state.rig && !state.character) return false;
     const bone = bendHandleAt(handles(), ...local(ev));
     if (bone !== k.hover) {
       k.hover = bone;
@@ -256,7 +269,7 @@ export function wireKeyed(state, canvas, act) {
 
   /** Over the rig on the canvas: the bend handles. */
   function drawOver(ctx) {
-    if (state.rig) drawBendHandles(ctx, handles(), k.hover);
+    if (state.rig || state.character) drawBendHandles(ctx, handles(), k.hover);
   }
 
   // ---- The motion ------------------------------------------------------------------------

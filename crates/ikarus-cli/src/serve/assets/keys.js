@@ -286,7 +286,8 @@ export function rigMotion(rig, answer) {
 
 /**
  * The /api/animate body of a character's keys (`c`: characters.js's state.character): the file's
- * text, the keys (tracks only: a character has no pins, and its bends are its constraints'),
+ * text, the keys (tracks, and bends when there are: a bend keys a two-bone IK constraint's side;
+ * a character has no pins),
  * the clip posed under them (none: the setup pose), `ik: "ikarus"` when the reader chose
  * ikarus's solver, and the format: "json" (the frames) or "spine" (the file with the animation
  * `ikarus` added).
@@ -294,7 +295,7 @@ export function rigMotion(rig, answer) {
 export function characterAnimateRequest(c, keys, format = "json") {
   return {
     rig: c.text,
-    keys: { fps: keys.fps, tracks: keys.tracks },
+    keys: { fps: keys.fps, tracks: keys.tracks, ...(Object.keys(keys.bends || {}).length ? { bends: keys.bends } : {}) },
     ...(c.animation ? { animation: c.animation } : {}),
     ...(c.ik === "ikarus" ? { ik: "ikarus" } : {}),
     format,
@@ -358,31 +359,54 @@ export const BEND_PICK_PIXELS = 8;
 
 /**
  * Each bend handle of `rig` posed by `pose` in canvas pixels, through `toCanvas(x, y)` (the
- * page's view): [{bone, side, at: [x, y], joint: [x, y]}], the handle BEND_OFFSET_PIXELS from the
- * middle joint on the side the joint points to (away from the line from the limb's root to its
- * end), so that it shows which way the limb bends; `side` is the lower bone's bend now.
+ * page's view): [{bone, side, at: [x, y], joint: [x, y]}] (handleOf); `side` is the lower
+ * bone's bend now.
  */
 export function bendHandles(rig, pose, toCanvas) {
   const fk = bodyForward(rig, pose);
   const index = new Map(rig.bones.map((b, i) => [b.name, i]));
   return bendLimbs(rig).map(({ bone, upper }) => {
     const i = index.get(bone);
-    const u = index.get(upper);
-    const joint = toCanvas(...fk.starts[i]);
-    const root = toCanvas(...fk.starts[u]);
-    const tip = toCanvas(...fk.tips[i]);
-    // Away from the root–tip line, through the joint; a straight limb: to the side it would bend.
-    const [dx, dy] = [tip[0] - root[0], tip[1] - root[1]];
-    const l = Math.hypot(dx, dy) || 1;
     const side = sideOf(pose[i] ?? rig.bones[i].angle_deg);
-    // The canvas's y points down: a ccw bend puts the joint to the right of root → tip on the screen.
-    let [nx, ny] = [-dy / l, dx / l];
-    const off = (joint[0] - root[0]) * nx + (joint[1] - root[1]) * ny;
-    if (Math.abs(off) > 0.5) {
-      if (off < 0) [nx, ny] = [-nx, -ny];
-    } else if (side === "ccw") [nx, ny] = [-nx, -ny];
-    return { bone, side, joint, at: [joint[0] + nx * BEND_OFFSET_PIXELS, joint[1] + ny * BEND_OFFSET_PIXELS] };
+    return handleOf(bone, side, toCanvas(...fk.starts[index.get(upper)]), toCanvas(...fk.starts[i]), toCanvas(...fk.tips[i]));
   });
+}
+
+/**
+ * Each bend handle of a character: one per two-bone IK constraint (`ik`, the file's as
+ * /api/rig/parse lists them, `bones` [upper, lower]), at its lower bone's origin as `posed` (the
+ * bones as /api/pose answers them: {name, x, y, rotation_deg, tip}) has it, in canvas pixels;
+ * `side` the way the lower bone turns from the upper one on the screen ("ccw" or "cw", as a bend
+ * key names it).
+ */
+export function characterBendHandles(ik, posed, toCanvas) {
+  const at = new Map((posed || []).map((b) => [b.name, b]));
+  return (ik || [])
+    .filter((k) => k.bones.length === 2 && at.has(k.bones[0]) && at.has(k.bones[1]))
+    .map((k) => {
+      const [u, l] = k.bones.map((b) => at.get(b));
+      const side = Math.sin(((l.rotation_deg - u.rotation_deg) * Math.PI) / 180) >= 0 ? "ccw" : "cw";
+      return handleOf(l.name, side, toCanvas(u.x, u.y), toCanvas(l.x, l.y), toCanvas(...l.tip));
+    });
+}
+
+/**
+ * The bend handle of the limb root → joint → tip (canvas pixels) whose lower bone is `bone`,
+ * bending `side`: {bone, side, at, joint}, the handle BEND_OFFSET_PIXELS from the joint on the
+ * side the joint points to (away from the line from the limb's root to its end), so that it shows
+ * which way the limb bends.
+ */
+function handleOf(bone, side, root, joint, tip) {
+  // Away from the root–tip line, through the joint; a straight limb: to the side it would bend.
+  const [dx, dy] = [tip[0] - root[0], tip[1] - root[1]];
+  const l = Math.hypot(dx, dy) || 1;
+  // The canvas's y points down: a ccw bend puts the joint to the right of root → tip on the screen.
+  let [nx, ny] = [-dy / l, dx / l];
+  const off = (joint[0] - root[0]) * nx + (joint[1] - root[1]) * ny;
+  if (Math.abs(off) > 0.5) {
+    if (off < 0) [nx, ny] = [-nx, -ny];
+  } else if (side === "ccw") [nx, ny] = [-nx, -ny];
+  return { bone, side, joint, at: [joint[0] + nx * BEND_OFFSET_PIXELS, joint[1] + ny * BEND_OFFSET_PIXELS] };
 }
 
 /** The bone of the bend handle nearest (px, py) within BEND_PICK_PIXELS, or null. */

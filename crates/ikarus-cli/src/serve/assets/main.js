@@ -381,6 +381,7 @@ function draw() {
   if (state.character) {
     // The bones drawn, for scripts and tests.
     canvas.dataset.bones = String(drawCharacterScene(ctx, state.view, state));
+    keyed.drawOver(ctx);
   } else if (state.rig) {
     drawRigScene(ctx, state.view, state);
     keyed.drawOver(ctx);
