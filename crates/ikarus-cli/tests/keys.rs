@@ -93,14 +93,20 @@ fn pins_hold_where_the_start_pose_has_them_over_the_whole_motion() {
     assert!(moved.fold(0.0, f64::max) > 0.01, "unpinned, the knee moves");
 }
 
+/// The frames of the puppet's left foot keyed from `from` to `to` over 1 s at 10 fps, its knee
+/// keyed ccw at 0 and cw from 0.5 s (`name` names the keys file).
+fn knee_flipped(name: &str, from: [f64; 2], to: [f64; 2]) -> Vec<Value> {
+    let keys = json!({"fps": 10,
+        "tracks": {"left_foot": [{"time": 0, "x": from[0], "y": from[1]}, {"time": 1.0, "x": to[0], "y": to[1]}]},
+        "bends": {"left_shin": [{"time": 0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]}});
+    let file = keys_file(name, &keys);
+    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
+    v["frames"].as_array().unwrap().clone()
+}
+
 #[test]
 fn a_bend_key_flips_the_knee_and_the_foot_still_reaches() {
-    let keys = json!({"fps": 10,
-        "tracks": {"left_foot": [{"time": 0, "x": 0.3, "y": -0.75}, {"time": 1.0, "x": 0.2, "y": -0.8}]},
-        "bends": {"left_shin": [{"time": 0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]}});
-    let file = keys_file("bend", &keys);
-    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
-    let frames = v["frames"].as_array().unwrap();
+    let frames = knee_flipped("bend", [0.3, -0.75], [0.2, -0.8]);
     assert_eq!(frames.len(), 11);
     for (k, f) in frames.iter().enumerate() {
         let knee = f["angles_deg"]["left_shin"].as_f64().unwrap();
@@ -118,12 +124,7 @@ fn a_bend_key_flips_the_knee_and_the_foot_still_reaches() {
 /// straight leg the solver barely leaves.
 #[test]
 fn a_bend_flip_mirrors_the_knee_rather_than_straightening_it() {
-    let keys = json!({"fps": 10,
-        "tracks": {"left_foot": [{"time": 0, "x": 0.3, "y": -0.6}, {"time": 1.0, "x": 0.25, "y": -0.62}]},
-        "bends": {"left_shin": [{"time": 0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]}});
-    let file = keys_file("flip", &keys);
-    let v = json(&["animate", "--rig", &puppet(), "--keys", &file, "--format", "json"]);
-    let frames = v["frames"].as_array().unwrap();
+    let frames = knee_flipped("flip", [0.3, -0.6], [0.25, -0.62]);
     let knee = |k: usize| frames[k]["angles_deg"]["left_shin"].as_f64().unwrap();
     let before = knee(4);
     assert!((35.0..60.0).contains(&before), "before the flip, the knee at {before}");
