@@ -86,14 +86,7 @@ fn the_csv_is_the_json_frames_row_by_row_and_the_same_bytes_through_the_api() {
         assert_eq!(row.len(), 8, "row {i}: {row:?}");
         assert_eq!(row[0], k.to_string());
         assert_eq!(row[2], bone["name"].as_str().unwrap());
-        let want = [
-            &frame["time"],
-            &bone["x"],
-            &bone["y"],
-            &bone["rotation_deg"],
-            &bone["tip"][0],
-            &bone["tip"][1],
-        ];
+        let want = [&frame["time"], &bone["x"], &bone["y"], &bone["rotation_deg"], &bone["tip"][0], &bone["tip"][1]];
         let got = [&row[1], &row[3], &row[4], &row[5], &row[6], &row[7]];
         for (g, w) in got.iter().zip(want) {
             let g: f64 = g.parse().unwrap_or_else(|e| panic!("row {i}: {g:?} is not a number: {e}"));
@@ -102,7 +95,8 @@ fn the_csv_is_the_json_frames_row_by_row_and_the_same_bytes_through_the_api() {
     }
     let s = common::server::start(&[]);
     let text = std::fs::read_to_string(SPINEBOY).unwrap();
-    let a = s.post("/api/animate", &json!({"rig": text, "keys": spineboy_keys(), "animation": "walk", "format": "csv"}));
+    let a =
+        s.post("/api/animate", &json!({"rig": text, "keys": spineboy_keys(), "animation": "walk", "format": "csv"}));
     assert_eq!(a.status, 200, "{}", a.text());
     assert_eq!(a.content_type, "text/csv; charset=utf-8");
     assert!(a.body == csv.as_bytes(), "the API's CSV differs from the command line's");
@@ -142,8 +136,7 @@ fn the_gif_is_the_same_bytes_through_the_api_one_800_square_frame_per_motion_fra
 
     let s = common::server::start(&[]);
     let text = std::fs::read_to_string(SPINEBOY).unwrap();
-    let body =
-        json!({"figure": "motion", "format": "gif", "rig": text, "keys": spineboy_keys(), "animation": "walk"});
+    let body = json!({"figure": "motion", "format": "gif", "rig": text, "keys": spineboy_keys(), "animation": "walk"});
     let a = s.post("/api/render", &body);
     assert_eq!(a.status, 200, "{}", a.text());
     assert_eq!(a.content_type, "image/gif");
@@ -170,7 +163,17 @@ fn the_svg_and_png_are_written_and_formats_that_do_not_apply_are_refused() {
     let (dir, keys) = setup("still");
     for ext in ["svg", "png"] {
         let out = dir.path().join(format!("walk.{ext}"));
-        bytes_of(&["animate", "--rig", SPINEBOY, "--keys", &keys, "--animation", "walk", "--out", out.to_str().unwrap()]);
+        bytes_of(&[
+            "animate",
+            "--rig",
+            SPINEBOY,
+            "--keys",
+            &keys,
+            "--animation",
+            "walk",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         let bytes = std::fs::read(&out).unwrap();
         match ext {
             "svg" => {

@@ -29,7 +29,7 @@ pub const MAX_BONE_FRAMES: usize = 200_000;
 
 request! {
     /// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
-    /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
+    /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"csv"|"spine",
     /// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
     /// `rig` and `targets` optional.
     #[derive(Debug, Deserialize)]
