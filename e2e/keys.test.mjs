@@ -154,14 +154,7 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
     // The GIF (POST /api/render with the rig and keys, the canvas's size): the CLI's, byte for byte.
-    const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
-    assert.equal(g.suggestedFilename(), "puppet-keys.gif");
-    const gif = readFileSync(await g.path());
-    const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
-    const gifFile = join(dir, "keys-puppet-walk-cli.gif");
-    execFileSync(binary, ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--width", String(plot[0]), "--height", String(plot[1]), "--out", gifFile], { stdio: "ignore" });
-    assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
-    assert.ok(gif.equals(readFileSync(gifFile)), `the page's GIF (${gif.length} bytes) is \`ikarus render motion --rig puppet.toml --keys … --no-limits --width ${plot[0]} --height ${plot[1]}\` (${readFileSync(gifFile).length} bytes)`);
+    await gifIsTheCli(page, "puppet-keys.gif", ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits"], join(dir, "keys-puppet-walk-cli.gif"));
 
     // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
     // `pins` in the keys, and every frame holds the tip where the start pose has it.
@@ -180,6 +173,22 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
 });
 
 const examples = join(import.meta.dirname, "..", "examples", "characters");
+
+/**
+ * The Keys bar's GIF, downloaded as `name`, is `ikarus ARGS --width W --height H --out FILE`
+ * (W × H the canvas's) byte for byte; resolves with its bytes.
+ */
+async function gifIsTheCli(page, name, args, file) {
+  const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
+  assert.equal(g.suggestedFilename(), name);
+  const gif = readFileSync(await g.path());
+  const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
+  execFileSync(binary, [...args, "--width", String(plot[0]), "--height", String(plot[1]), "--out", file], { stdio: "ignore" });
+  assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
+  const cli = readFileSync(file);
+  assert.ok(gif.equals(cli), `the page's GIF (${gif.length} bytes) is \`ikarus ${args.join(" ")} --width ${plot[0]} --height ${plot[1]}\` (${cli.length} bytes)`);
+  return gif;
+}
 
 /** Seconds of spineboy's four keys, within `walk` (frames 0, 9, 18, 27 at 30 fps). */
 const SPINE_TIMES = [0, 0.3, 0.6, 0.9];
@@ -281,14 +290,7 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
     const cliCsv = execFileSync(binary, [...cliArgs, "--format", "csv"], { encoding: "utf8", stdio: ["ignore", "pipe", "ignore"] });
     assert.equal(csv.split("\n")[0], "frame,time,bone,x,y,rotation_deg,tip_x,tip_y");
     assert.equal(csv, cliCsv, "the page's CSV is the CLI's");
-    const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
-    assert.equal(g.suggestedFilename(), "spineboy-keys.gif");
-    const gif = readFileSync(await g.path());
-    const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
-    const gifFile = join(artifacts, "keys-spineboy-walk-cli.gif");
-    execFileSync(binary, [...cliArgs, "--width", String(plot[0]), "--height", String(plot[1]), "--out", gifFile], { stdio: "ignore" });
-    assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
-    assert.ok(gif.equals(readFileSync(gifFile)), `the page's GIF (${gif.length} bytes) is the CLI's (${readFileSync(gifFile).length} bytes)`);
+    const gif = await gifIsTheCli(page, "spineboy-keys.gif", cliArgs, join(artifacts, "keys-spineboy-walk-cli.gif"));
     writeFileSync(join(artifacts, "keys-spineboy-walk-page.gif"), gif);
 
     // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its keys

@@ -7,10 +7,8 @@
 
 mod common;
 
-use common::{ikarus, stderr, stdout};
+use common::{SPINEBOY, ikarus, spineboy_keys, stderr, stdout};
 use serde_json::{Value, json};
-
-const SPINEBOY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
 
 /// The stdout bytes of a command that succeeds (spineboy's constraints ikarus leaves inactive
 /// are named on stderr).
@@ -29,15 +27,6 @@ fn refusal(args: &[&str]) -> String {
     let err = stderr(&o);
     assert!(!err.contains("panicked"), "{err}");
     err.lines().last().unwrap().to_owned()
-}
-
-/// spineboy's front foot target keyed over four keys (from where its setup pose has it).
-fn spineboy_keys() -> Value {
-    let v: Value = serde_json::from_slice(&bytes_of(&["pose", "--rig", SPINEBOY, "--format", "json"])).unwrap();
-    let b = v["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap().clone();
-    let (x, y) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
-    let key = |t: f64, dx: f64, dy: f64| json!({"time": t, "x": x + dx, "y": y + dy});
-    json!({"fps": 30, "tracks": {"front-leg-target": [key(0.0, 0.0, 0.0), key(0.3, 40.0, 60.0), key(0.6, 80.0, 20.0), key(0.9, 20.0, 0.0)]}})
 }
 
 /// A directory of the test's own, and the keys written into it.
