@@ -6,7 +6,8 @@
 // flips the knee at the playhead (limits off: the puppet's knees bend one way), and the knee's
 // angle changes sign there and stays on that side after while the foot still reaches; the
 // frames' CSV is the CLI's; a click pins the head for the whole animation. Then spineboy: its
-// front foot target keyed over `walk` (four keys) and exported as Spine JSON. Screenshots go to
+// front foot target keyed over `walk` (four keys), its frames CSV and GIF the CLI's bytes, and
+// exported as Spine JSON. Screenshots go to
 // $E2E_ARTIFACTS. Run by e2e/run:  node --test e2e/keys.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -153,14 +154,7 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
     // The GIF (POST /api/render with the rig and keys, the canvas's size): the CLI's, byte for byte.
-    const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
-    assert.equal(g.suggestedFilename(), "puppet-keys.gif");
-    const gif = readFileSync(await g.path());
-    const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
-    const gifFile = join(dir, "keys-puppet-walk-cli.gif");
-    execFileSync(binary, ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--width", String(plot[0]), "--height", String(plot[1]), "--out", gifFile], { stdio: "ignore" });
-    assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
-    assert.ok(gif.equals(readFileSync(gifFile)), `the page's GIF (${gif.length} bytes) is \`ikarus render motion --rig puppet.toml --keys … --no-limits --width ${plot[0]} --height ${plot[1]}\` (${readFileSync(gifFile).length} bytes)`);
+    await gifIsTheCli(page, "puppet-keys.gif", ["render", "motion", "--rig", rigFile, "--keys", keysFile, "--no-limits"], join(dir, "keys-puppet-walk-cli.gif"));
 
     // A click on the head's tip in Key mode pins it for the whole animation: a row of its own,
     // `pins` in the keys, and every frame holds the tip where the start pose has it.
@@ -179,6 +173,22 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
 });
 
 const examples = join(import.meta.dirname, "..", "examples", "characters");
+
+/**
+ * The Keys bar's GIF, downloaded as `name`, is `ikarus ARGS --width W --height H --out FILE`
+ * (W × H the canvas's) byte for byte; resolves with its bytes.
+ */
+async function gifIsTheCli(page, name, args, file) {
+  const [g] = await Promise.all([page.waitForEvent("download"), page.click("#key-gif")]);
+  assert.equal(g.suggestedFilename(), name);
+  const gif = readFileSync(await g.path());
+  const plot = await page.evaluate(() => [document.getElementById("plot").clientWidth, document.getElementById("plot").clientHeight]);
+  execFileSync(binary, [...args, "--width", String(plot[0]), "--height", String(plot[1]), "--out", file], { stdio: "ignore" });
+  assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
+  const cli = readFileSync(file);
+  assert.ok(gif.equals(cli), `the page's GIF (${gif.length} bytes) is \`ikarus ${args.join(" ")} --width ${plot[0]} --height ${plot[1]}\` (${cli.length} bytes)`);
+  return gif;
+}
 
 /** Seconds of spineboy's four keys, within `walk` (frames 0, 9, 18, 27 at 30 fps). */
 const SPINE_TIMES = [0, 0.3, 0.6, 0.9];
@@ -265,9 +275,23 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
     await characterSettled(page);
     assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys, "the character's keys kept");
     assert.equal(await page.evaluate(() => JSON.stringify(window.ikarus.state.motion.frames)), frames, "the same keyed frames");
-    // No frames CSV for a character (the CLI writes its motion as json or spine), and the button says so.
-    assert.equal(await page.isDisabled("#key-frames-csv"), true);
-    assert.match(await page.getAttribute("#key-frames-csv", "title"), /no CSV/);
+    // Frames CSV and GIF of the keyed character: the server's (/api/animate format csv,
+    // /api/render figure motion), the bytes of `ikarus animate --rig spineboy.json --keys …
+    // --animation walk --format csv` and `… --width W --height H --out x.gif`.
+    assert.equal(await page.isDisabled("#key-frames-csv"), false);
+    assert.equal(await page.isDisabled("#key-gif"), false);
+    const keysFile = join(artifacts, "keys-spineboy-walk.json");
+    writeFileSync(keysFile, JSON.stringify({ fps: keys.fps, tracks: keys.tracks }));
+    const spineboy = join(examples, "spine-spineboy-pro.json");
+    const cliArgs = ["animate", "--rig", spineboy, "--keys", keysFile, "--animation", "walk"];
+    const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);
+    assert.equal(c.suggestedFilename(), "spineboy-keys.csv");
+    const csv = readFileSync(await c.path(), "utf8");
+    const cliCsv = execFileSync(binary, [...cliArgs, "--format", "csv"], { encoding: "utf8", stdio: ["ignore", "pipe", "ignore"] });
+    assert.equal(csv.split("\n")[0], "frame,time,bone,x,y,rotation_deg,tip_x,tip_y");
+    assert.equal(csv, cliCsv, "the page's CSV is the CLI's");
+    const gif = await gifIsTheCli(page, "spineboy-keys.gif", cliArgs, join(artifacts, "keys-spineboy-walk-cli.gif"));
+    writeFileSync(join(artifacts, "keys-spineboy-walk-page.gif"), gif);
 
     // Export Spine JSON: the file with the `ikarus` animation, which poses the target on its keys
     // (to 1e-2, the export's promise).

@@ -1,18 +1,20 @@
 //! `ikarus animate --rig FILE.json` and `ikarus track --rig FILE.json`: with a character file
 //! (Spine, DragonBones) in place of a rig file, the commands move bones of the character
-//! ([`ikarus_edge::character::motion`]) and write its frames (`--format json`) or the file with
-//! the motion added as a Spine animation (`--format spine`,
-//! [`ikarus_edge::character::export`]).
+//! ([`ikarus_edge::character::motion`]) and write its frames (`--format json`, or `csv`), or the
+//! file with the motion added as a Spine animation (`--format spine`,
+//! [`ikarus_edge::character::export`]), or draw it (`--out x.svg|png|gif`,
+//! [`ikarus_edge::character::motion_files`]).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use ikarus_edge::character::export;
 use ikarus_edge::character::motion::Motion;
-use ikarus_edge::character::{Loaded, is_json, load};
+use ikarus_edge::character::{Loaded, is_json, load, motion_files};
 
 use crate::error::CliError;
 use crate::output::{self, PendingFile};
+use crate::picture::{PictureArgs, PictureFormat, draw_for_command};
 
 /// A character file given as `--rig FILE`: its text, read, and its label (`rig file s.json`).
 pub struct CharacterFile {
@@ -40,28 +42,34 @@ pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> 
 pub enum Written {
     /// `{"frames": […], "unsupported": […]}`.
     Frames,
+    /// The frames as CSV, one row per bone per frame ([`motion_files::write_csv`]).
+    Csv,
     /// The file with the motion added as a Spine animation.
     Spine,
 }
 
-/// What `--format` asks a character's motion to be written as: the frames (`json`, or no
-/// `--format`) or the file with a Spine animation (`spine`); any other format is refused.
-pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Written, CliError> {
+/// What `--format` asks a character's motion to be written as: the frames (`json`), their CSV
+/// (`csv`) or the file with a Spine animation (`spine`); `None` without `--format`; any other
+/// format is refused.
+pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Option<Written>, CliError> {
     let name = format.and_then(|f| f.to_possible_value()).map(|v| v.get_name().to_owned());
     match name.as_deref() {
-        None | Some("json") => Ok(Written::Frames),
-        Some("spine") => Ok(Written::Spine),
+        None => Ok(None),
+        Some("json") => Ok(Some(Written::Frames)),
+        Some("csv") => Ok(Some(Written::Csv)),
+        Some("spine") => Ok(Some(Written::Spine)),
         Some(other) => Err(CliError::input(format!(
-            "--format {other}: a character's motion is written as json (its frames) or spine"
+            "--format {other}: a character's motion is written as json (its frames), csv or spine"
         ))),
     }
 }
 
-/// How the motion is written: the form, the new animation's name, and where.
+/// How the motion is written: the form asked for (`None`: the frames, or nothing on stdout
+/// when a picture is drawn), the new animation's name, and where (`--out`, its size).
 pub struct Output<'a> {
-    pub written: Written,
+    pub written: Option<Written>,
     pub animation_name: Option<&'a str>,
-    pub out: Option<&'a PathBuf>,
+    pub picture: &'a PictureArgs,
 }
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
@@ -85,22 +93,32 @@ pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), CliError> {
     }
 }
 
-/// Writes `motion` of `file` as `output` says, to `--out` (whole or not at all) or stdout.
+/// Writes `motion` of `file` as `output` says: with `--out x.svg|png|gif` its picture there
+/// (and the form asked for, if one is, on stdout); else the form to `--out` (whole or not at
+/// all) or stdout.
 pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> Result<(), CliError> {
     let fail = |m: String| CliError::input(format!("{}: {m}", file.label));
-    if output.animation_name.is_some() && output.written != Written::Spine {
+    if output.animation_name.is_some() && output.written != Some(Written::Spine) {
         return Err(CliError::input("--animation-name: only with --format spine"));
     }
-    if let Some(ext) = output.out.and_then(|p| p.extension()).and_then(|e| e.to_str()) {
-        if ["svg", "png", "gif"].contains(&ext.to_ascii_lowercase().as_str()) {
-            return Err(CliError::input(format!(
-                "--out {}: a character's motion is written as JSON (frames or Spine), not as a picture",
-                output.out.map(|p| p.display().to_string()).unwrap_or_default()
-            )));
+    let out = output.picture.out.as_ref();
+    let ext = out.and_then(|p| p.extension()).and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let picture = if ext.as_deref().is_some_and(|e| ["svg", "png", "gif"].contains(&e)) {
+        output.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?
+    } else {
+        None
+    };
+    let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
+    if let Some(picture) = picture {
+        let poses = motion.poses().map_err(fail)?;
+        let drawing = motion_files::drawing(motion, &poses);
+        let bytes = draw_for_command(&drawing, picture.format, output.picture, poses.len())?;
+        picture.commit(&bytes)?;
+        if output.written.is_none() {
+            return Ok(());
         }
     }
-    let pending = output.out.map(|p| PendingFile::create(p, "--out")).transpose()?;
-    let bytes = match output.written {
+    let bytes = match output.written.unwrap_or(Written::Frames) {
         Written::Frames => {
             let frames = motion.frames().map_err(fail)?;
             let mut v =
@@ -108,6 +126,7 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
             v.push(b'\n');
             v
         }
+        Written::Csv => motion_files::csv(motion).map_err(fail)?,
         Written::Spine => {
             let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
             export::spine(motion, &file.text, name).map_err(fail)?.into_bytes()

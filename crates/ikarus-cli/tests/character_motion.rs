@@ -154,8 +154,6 @@ fn flags_that_do_not_apply_are_refused_naming_the_flag() {
     assert!(e.contains("--format text: a character's motion is written as json"), "{e}");
     let e = fails(&["animate", "--rig", RAPTOR, "--target", t, "--animation-name", "x"], 2);
     assert!(e.contains("--animation-name: only with --format spine"), "{e}");
-    let e = fails(&["animate", "--rig", RAPTOR, "--target", t, "--out", "motion.gif"], 2);
-    assert!(e.contains("--out motion.gif: a character's motion is written as JSON"), "{e}");
     let e = fails(&["animate", "--rig", RAPTOR], 2);
     assert!(e.contains("--target: give at least one"), "{e}");
     let e = fails(&["animate", "--rig", RAPTOR, "--target", "toe=1,2"], 2);

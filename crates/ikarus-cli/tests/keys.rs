@@ -9,7 +9,7 @@ mod common;
 #[path = "common/rigs.rs"]
 mod rigs;
 
-use common::{dist, fails, ikarus, json, point, same_bits, stdout, succeeds};
+use common::{SPINEBOY, dist, fails, ikarus, json, point, same_bits, spineboy_keys, stdout, succeeds};
 use rigs::{puppet, puppet_start_tip as start_tip};
 use serde_json::{Value, json};
 
@@ -323,17 +323,6 @@ fn stdout_of(args: &[&str]) -> String {
     let o = ikarus(args);
     assert!(o.status.success(), "{args:?}: {}", common::stderr(&o));
     stdout(&o)
-}
-
-const SPINEBOY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
-
-/// spineboy's front foot target keyed over four keys (from where its setup pose has it).
-fn spineboy_keys() -> Value {
-    let v: Value = serde_json::from_str(&stdout_of(&["pose", "--rig", SPINEBOY, "--format", "json"])).unwrap();
-    let b = v["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap().clone();
-    let (x, y) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
-    let key = |t: f64, dx: f64, dy: f64| json!({"time": t, "x": x + dx, "y": y + dy});
-    json!({"fps": 30, "tracks": {"front-leg-target": [key(0.0, 0.0, 0.0), key(0.3, 40.0, 60.0), key(0.6, 80.0, 20.0), key(0.9, 20.0, 0.0)]}})
 }
 
 #[test]

@@ -68,6 +68,9 @@ pub enum Drawing<'a> {
     /// A rig's motion or track: the figure (its goals, pins, ranges) at the last frame's pose
     /// (SVG, PNG), or at every frame's (GIF) at `fps`.
     RigMotion { figure: ikarus_render::SkeletonFigure<'a>, animation: &'a Animation, fps: f64 },
+    /// A character's motion: its frames overlaid, the earlier as ghosts (SVG, PNG), or
+    /// animated (GIF) at `fps`.
+    CharacterMotion { figure: ikarus_render::CharacterMotionFigure<'a>, fps: f64 },
 }
 
 /// What a motion's picture shows besides the arm and the goal. The command line's: no area,
@@ -175,6 +178,10 @@ pub fn draw(
             return ikarus_render::skeleton_gif(figure, animation, width, height, *fps, progress)
                 .map_err(|e| render_failed(&e));
         }
+        Drawing::CharacterMotion { figure, fps } if format == PictureFormat::Gif => {
+            return ikarus_render::character_gif(figure, width, height, *fps, progress).map_err(|e| render_failed(&e));
+        }
+        Drawing::CharacterMotion { figure, .. } => ikarus_render::character_motion_svg(figure, width, height),
         Drawing::RigMotion { figure, animation, .. } => match animation.frames.last() {
             Some(last) => ikarus_render::skeleton_svg(
                 &ikarus_render::SkeletonFigure { pose: &last.angles, ..figure.clone() },

@@ -228,16 +228,26 @@ impl<'a> Painter<'a> {
     /// One palette for the whole GIF, learnt from the first, middle and last frames (the last
     /// holds the whole trail), each thinned to at most [`SAMPLE_PIXELS`] pixels.
     fn learn_palette(&self) -> Result<Palette, RenderError> {
-        let total = self.len();
-        let mut sample: Vec<u8> = Vec::new();
-        let mut sampled: Vec<usize> = vec![0, total / 2, total - 1];
-        sampled.dedup();
         let mut trail = self.trail();
-        for &i in &sampled {
-            thin_into(&self.rgba(i, &mut trail)?, self.width, &mut sample);
-        }
-        Ok(Palette::learn(&sample, &style::key_colours()))
+        learn_palette_of(self.len(), self.width, &mut |i| self.rgba(i, &mut trail))
     }
+}
+
+/// One palette for a GIF of `total` frames `width` wide, learnt from the first, middle and
+/// last frames as `rgba(i)` paints them, each thinned to at most [`SAMPLE_PIXELS`] pixels.
+/// Shared by the skeleton's GIF and the character's.
+pub(crate) fn learn_palette_of(
+    total: usize,
+    width: u32,
+    rgba: &mut dyn FnMut(usize) -> Result<Vec<u8>, RenderError>,
+) -> Result<Palette, RenderError> {
+    let mut sample = Vec::new();
+    let mut sampled = vec![0, total / 2, total - 1];
+    sampled.dedup();
+    for &i in &sampled {
+        thin_into(&rgba(i)?, width, &mut sample);
+    }
+    Ok(Palette::learn(&sample, &style::key_colours()))
 }
 
 /// The GIF of `total` frames of `width` × `height` pixels, frame `i` painted as RGBA by

@@ -69,7 +69,7 @@ impl CharacterFigure<'_> {
         View::fitting(min, max, width, height)
     }
 
-    fn check(&self) -> Result<(), RenderError> {
+    pub(crate) fn check(&self) -> Result<(), RenderError> {
         for (i, b) in self.bones.iter().enumerate() {
             check_point(Some(b.origin), &format!("bones[{i}].origin"))?;
             check_point(Some(b.tip), &format!("bones[{i}].tip"))?;
@@ -91,24 +91,43 @@ impl CharacterFigure<'_> {
 pub fn character_svg(figure: &CharacterFigure, width: u32, height: u32) -> Result<String, RenderError> {
     check_size(width, height)?;
     figure.check()?;
-    let view = figure.view(width, height);
+    Ok(character_svg_in(figure, &[], figure.view(width, height), width, height))
+}
+
+/// `figure` drawn in `view` with `ghosts` (earlier poses, checked by the caller) faded under
+/// it: grid, ghosts' bones, the figure's bones, its targets, its caption.
+pub(crate) fn character_svg_in(
+    figure: &CharacterFigure,
+    ghosts: &[&CharacterFigure],
+    view: View,
+    width: u32,
+    height: u32,
+) -> String {
     let base = figure.bones.first().map_or_else(Point2::origin, |b| b.origin);
     let scene = Scene { base, max_reach: 0.0, min_reach: 0.0, view, goal: None, workspace: None, show_reach: false };
     let mut svg = Svg::new(width, height);
     scene.background(&mut svg);
-    svg.comment("bones");
     let u = scene.view.layout().unit;
+    if !ghosts.is_empty() {
+        svg.comment("ghosts");
+        for ghost in ghosts {
+            for bone in &ghost.bones {
+                draw_bone(&scene, &mut svg, bone, u, GHOST_OPACITY);
+            }
+        }
+    }
+    svg.comment("bones");
     for bone in &figure.bones {
         svg.group("class=\"bone\"");
         svg.title(bone.name);
-        draw_bone(&scene, &mut svg, bone, u);
+        draw_bone(&scene, &mut svg, bone, u, SOLID_OPACITY);
         svg.end_group();
     }
     for &t in &figure.targets {
         scene.goal_at(&mut svg, t);
     }
     scene.caption(&mut svg, figure.caption.as_deref(), None);
-    Ok(svg.finish())
+    svg.finish()
 }
 
 /// The figure as PNG bytes: [`character_svg`] rasterised with [`svg_to_png`].
@@ -119,21 +138,28 @@ pub fn character_png(figure: &CharacterFigure, width: u32, height: u32) -> Resul
     svg_to_png(&character_svg(figure, width, height)?)
 }
 
+/// How opaque a bone's kite is drawn: the pose's, and an earlier pose's (a ghost).
+const SOLID_OPACITY: f64 = 0.85;
+const GHOST_OPACITY: f64 = 0.12;
+
 /// A bone: a kite from the origin, widest a sixth of the way along (a tenth of its drawn
-/// length wide, at most 9 px), to the tip, on a white edge; a bone shorter than 2 px on screen
-/// is a small ring at its origin.
-fn draw_bone(scene: &Scene, svg: &mut Svg, bone: &PosedBone, u: f64) {
+/// length wide, at most 9 px), to the tip, on a white edge, `opacity` opaque; a bone shorter
+/// than 2 px on screen is a small ring at its origin (not drawn for a ghost).
+fn draw_bone(scene: &Scene, svg: &mut Svg, bone: &PosedBone, u: f64, opacity: f64) {
+    let ghost = opacity < SOLID_OPACITY;
     let (x0, y0) = scene.view.world_to_pixel(bone.origin);
     let (x1, y1) = scene.view.world_to_pixel(bone.tip);
     let (dx, dy) = (x1 - x0, y1 - y0);
     let len = dx.hypot(dy);
     if len < 2.0 * u {
-        svg.circle(
-            x0,
-            y0,
-            3.0 * u,
-            &format!("fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(1.4 * u)),
-        );
+        if !ghost {
+            svg.circle(
+                x0,
+                y0,
+                3.0 * u,
+                &format!("fill=\"#ffffff\" stroke=\"{}\" stroke-width=\"{}\"", style::INK, num(1.4 * u)),
+            );
+        }
         return;
     }
     let half = (0.05 * len).min(4.5 * u);
@@ -141,15 +167,15 @@ fn draw_bone(scene: &Scene, svg: &mut Svg, bone: &PosedBone, u: f64) {
     let (mx, my) = (x0 + dx / 6.0, y0 + dy / 6.0);
     let mut d = PathData::new();
     d.move_to(x0, y0).line_to(mx + nx, my + ny).line_to(x1, y1).line_to(mx - nx, my - ny).close();
-    svg.path(
-        &d,
-        &format!(
-            "fill=\"{}\" fill-opacity=\"0.85\" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
-            style::INK,
-            num(0.8 * u)
-        ),
-    );
-    svg.circle(x0, y0, 1.8 * u, "fill=\"#ffffff\"");
+    let edge = if ghost {
+        String::new()
+    } else {
+        format!(" stroke=\"#ffffff\" stroke-width=\"{}\" stroke-linejoin=\"round\"", num(0.8 * u))
+    };
+    svg.path(&d, &format!("fill=\"{}\" fill-opacity=\"{}\"{edge}", style::INK, num(opacity)));
+    if !ghost {
+        svg.circle(x0, y0, 1.8 * u, "fill=\"#ffffff\"");
+    }
 }
 
 #[cfg(test)]

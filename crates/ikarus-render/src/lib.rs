@@ -23,6 +23,7 @@
 mod animation;
 mod arm;
 mod character;
+mod character_gif;
 mod ease_plot;
 mod error;
 mod palette;
@@ -40,6 +41,7 @@ mod wedge;
 pub use animation::{MAX_FPS, Overlay, animation_gif, ghost_frames, with_interrupt};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
 pub use character::{CharacterFigure, PosedBone, character_png, character_svg};
+pub use character_gif::{CharacterMotionFigure, character_gif, character_motion_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;

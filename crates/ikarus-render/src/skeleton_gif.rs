@@ -5,11 +5,9 @@
 use ikarus::motion::Animation;
 
 use crate::RenderError;
-use crate::animation::{MAX_FPS, check_interrupt, encode_gif, gif_delay, thin_into};
-use crate::palette::Palette;
+use crate::animation::{MAX_FPS, check_interrupt, encode_gif, gif_delay, learn_palette_of};
 use crate::raster::{check_size, svg_to_pixmap};
 use crate::skeleton::{SkeletonFigure, skeleton_svg};
-use crate::style;
 
 /// `animation` of `figure`'s skeleton as a looping GIF of `width` × `height` pixels at `fps`
 /// frames per second, one GIF frame per animation frame: each is `figure` (its goals, pins,
@@ -52,13 +50,7 @@ pub fn skeleton_gif(
         let at = SkeletonFigure { pose: &frame.angles, caption: Some(caption), fit, ..figure.clone() };
         Ok(svg_to_pixmap(&skeleton_svg(&at, width, height)?)?.take())
     };
-    let mut sample = Vec::new();
-    let mut sampled = vec![0, total / 2, total - 1];
-    sampled.dedup();
-    for &i in &sampled {
-        thin_into(&rgba(i)?, width, &mut sample);
-    }
-    let palette = Palette::learn(&sample, &style::key_colours());
+    let palette = learn_palette_of(total, width, &mut |i| rgba(i))?;
     encode_gif(width, height, total, palette, gif_delay(fps), &mut |i| rgba(i), progress)
 }
 

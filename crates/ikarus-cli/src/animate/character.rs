@@ -45,7 +45,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let mut motion =
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
-        let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
+        let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
         return write(file, &motion, &out);
     }
     if args.target.is_empty() {
@@ -66,6 +66,6 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let mut motion =
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), out: args.picture.out.as_ref() };
+    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
     write(file, &motion, &out)
 }

@@ -131,3 +131,17 @@ pub fn batch_summary(summary_json: &std::path::Path, err: &str, goals: f64) -> V
     assert!(err.contains(" ms wall, ") && err.contains(" solves/s; each alone: "), "{err}");
     s
 }
+
+/// spineboy's file, the character of the keyed-character tests (`keys.rs`, `character_exports.rs`).
+pub const SPINEBOY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
+
+/// spineboy's front foot target keyed over four keys (from where its setup pose has it).
+pub fn spineboy_keys() -> Value {
+    let o = ikarus(&["pose", "--rig", SPINEBOY, "--format", "json"]);
+    assert!(o.status.success(), "pose spineboy: {}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let b = v["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap().clone();
+    let (x, y) = (b["x"].as_f64().unwrap(), b["y"].as_f64().unwrap());
+    let key = |t: f64, dx: f64, dy: f64| serde_json::json!({"time": t, "x": x + dx, "y": y + dy});
+    serde_json::json!({"fps": 30, "tracks": {"front-leg-target": [key(0.0, 0.0, 0.0), key(0.3, 40.0, 60.0), key(0.6, 80.0, 20.0), key(0.9, 20.0, 0.0)]}})
+}

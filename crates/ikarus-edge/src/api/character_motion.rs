@@ -1,8 +1,10 @@
 //! `POST /api/animate` and `POST /api/track` with a character: `rig` holding a character file's
 //! text (Spine or DragonBones JSON, told by [`is_json`] as `/api/pose` tells it). The motion of
 //! [`crate::character::motion`], answered as its frames (`"format": "json"`, the default,
-//! `{"frames": [{"time", "bones": […]}], "unsupported": […]}`) or as the exported Spine document
-//! (`"format": "spine"`, the file with the motion added as animation `animation_name`).
+//! `{"frames": [{"time", "bones": […]}], "unsupported": […]}`), as CSV (`"format": "csv"`, one
+//! row per bone per frame, the bytes of `ikarus animate --rig FILE.json --format csv`) or as the
+//! exported Spine document (`"format": "spine"`, the file with the motion added as animation
+//! `animation_name`).
 //!
 //! The work is bounded: the character's bones by `--max-bones` (counted first), the frames by
 //! `--max-frames`, and frames × bones by [`MAX_BONE_FRAMES`].
@@ -27,7 +29,7 @@ pub const MAX_BONE_FRAMES: usize = 200_000;
 
 request! {
     /// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
-    /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"spine",
+    /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"csv"|"spine",
     /// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
     /// `rig` and `targets` optional.
     #[derive(Debug, Deserialize)]
@@ -133,12 +135,26 @@ fn keyed(
             "{name}: not with keys (the keys give the targets, their eases and the fps)"
         )));
     }
-    let (course, fps) =
-        crate::character::motion::keyed(loaded, keys, req.animation.clone(), limits.max_frames, "--max-frames")
-            .map_err(Problem::invalid)?;
-    let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
-    motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    let ik = (req.ik.as_deref(), req.ik_file.as_deref());
+    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, limits)?;
     answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+}
+
+/// The keyed motion of `loaded` by `keys` over the clip `animation`, under the IK rules `ik`
+/// (`ik`, `ik_file`), within the caps: `/api/animate`'s and `/api/render`'s (figure `motion`).
+pub(super) fn keyed_motion<'a>(
+    loaded: &'a Loaded,
+    keys: &crate::keys::KeysFile,
+    animation: Option<String>,
+    (ik, ik_file): (Option<&str>, Option<&str>),
+    limits: &Limits,
+) -> Result<Motion<'a>, Problem> {
+    let (course, fps) = crate::character::motion::keyed(loaded, keys, animation, limits.max_frames, "--max-frames")
+        .map_err(Problem::invalid)?;
+    let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
+    motion.ik = ik_choice(ik, ik_file, "ik_file", &loaded.character)?;
+    within_caps(loaded, &motion, limits)?;
+    Ok(motion)
 }
 
 /// `POST /api/track` with a character.
@@ -165,6 +181,25 @@ fn answer(
     text: &str,
     limits: &Limits,
 ) -> Result<Reply, Problem> {
+    within_caps(loaded, motion, limits)?;
+    match format {
+        MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
+            Err(Problem::invalid("animation_name: only with format spine"))
+        }
+        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
+        MotionFormat::Csv => Ok(Reply {
+            content_type: "text/csv; charset=utf-8",
+            body: crate::character::motion_files::csv(motion).map_err(Problem::invalid)?,
+        }),
+        MotionFormat::Spine => {
+            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
+            Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
+        }
+    }
+}
+
+/// The motion's frames within `--max-frames` and frames × bones within [`MAX_BONE_FRAMES`].
+fn within_caps(loaded: &Loaded, motion: &Motion<'_>, limits: &Limits) -> Result<(), Problem> {
     let frames = motion.frame_count();
     let bones = loaded.character.bones().len();
     if frames > limits.max_frames {
@@ -178,12 +213,5 @@ fn answer(
             "duration, fps: {frames} frames × {bones} bones, more than the cap of {MAX_BONE_FRAMES}"
         )));
     }
-    match format {
-        MotionFormat::Json if name.is_some() => Err(Problem::invalid("animation_name: only with format spine")),
-        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
-        MotionFormat::Spine => {
-            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
-            Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
-        }
-    }
+    Ok(())
 }

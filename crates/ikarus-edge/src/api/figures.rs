@@ -20,6 +20,8 @@ pub enum RenderReq {
     Body(BodyKind, Box<BodyFigureReq>),
     /// A motion (the fields of `/api/animate`): animated as a GIF, overlaid in PNG and SVG.
     Motion(Box<MotionFigureReq>),
+    /// A character's keyed motion (figure `motion` with `rig` holding a character's text).
+    CharacterMotion(Box<CharacterFigureReq>),
     /// The reachable area (the fields of `/api/workspace`).
     Workspace(Box<WorkspaceFigureReq>),
     /// An ease curve.
@@ -53,6 +55,9 @@ impl RenderReq {
             Figure::Arm | Figure::Rig => {
                 let req: Box<BodyFigureReq> = parse_json(body)?;
                 RenderReq::Body(req.kind(figure, body)?, req)
+            }
+            Figure::Motion if super::character_motion::is_character(body) => {
+                RenderReq::CharacterMotion(parse_json(body)?)
             }
             Figure::Motion => RenderReq::Motion(parse_json(body)?),
             Figure::Workspace => RenderReq::Workspace(parse_json(body)?),
@@ -135,6 +140,23 @@ request! {
 }
 
 request! {
+    /// Figure `motion` with a character: `rig` holding a Spine or DragonBones file's text (as
+    /// `/api/animate` takes it), its target bones keyed by `keys` over the clip `animation`, under
+    /// the IK rules `ik` and `ik_file`; drawn as `ikarus animate --rig FILE.json --keys K.json
+    /// --out` draws it (its frames overlaid, or a GIF at the keys' fps).
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct CharacterFigureReq {
+        ..picture,
+        required rig: String,
+        required keys: crate::keys::KeysFile,
+        /// The clip posed under the keys, at the same time (looping).
+        pub animation: Option<String>,
+        ..character_ik,
+    }
+}
+
+request! {
     /// Figure `workspace`.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
@@ -161,8 +183,14 @@ impl RenderReq {
         match self {
             RenderReq::Body(_, r) => (r.format, r.width, r.height),
             RenderReq::Motion(r) => (r.format, r.width, r.height),
+            RenderReq::CharacterMotion(r) => (r.format, r.width, r.height),
             RenderReq::Workspace(r) => (r.format, r.width, r.height),
             RenderReq::Ease(r) => (r.format, r.width, r.height),
         }
+    }
+
+    /// Whether the figure animates (a GIF can be asked of it): a motion's.
+    pub fn animates(&self) -> bool {
+        matches!(self, RenderReq::Motion(_) | RenderReq::CharacterMotion(_))
     }
 }

@@ -1,21 +1,23 @@
-//! `POST /api/render`: pictures of arms and rigs, motions, workspaces and ease curves, drawn
-//! by `crate::picture` as the command line draws them.
+//! `POST /api/render`: pictures of arms and rigs, motions (a character's keyed motion too),
+//! workspaces and ease curves, drawn by `crate::picture` as the command line draws them.
 
 use ikarus::{EaseKind, Interrupt};
 
 use super::bodies::{load, load_arm, task};
+use super::character_motion::keyed_motion;
 use super::fields::{ease, goal, picture, pose_from_degrees, start_pose, stopped};
-use super::figures::{BodyFigureReq, MotionFigureReq, RenderReq};
+use super::figures::{BodyFigureReq, CharacterFigureReq, MotionFigureReq, RenderReq};
 use super::jobs::{MotionFields, arm_motion};
 use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
 use crate::body::Body;
+use crate::character::{load_within, motion_files};
 use crate::motion::DEFAULT_FPS;
 use crate::picture::{
     Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, rig_figure, workspace_drawing,
 };
-use crate::rig::Rig;
+use crate::rig::{BoneCap, Rig};
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
@@ -45,42 +47,54 @@ pub(super) fn side(value: Option<u32>, field: &str) -> Result<u32, Problem> {
     }
 }
 
+/// A picture's format and size in pixels, checked: what every figure is drawn at.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Canvas {
+    pub format: PictureFormat,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Canvas {
+    /// `drawing` drawn on the canvas, stopped by `interrupt`.
+    fn draw(self, drawing: &Drawing<'_>, interrupt: &Interrupt) -> Result<Vec<u8>, Problem> {
+        picture(draw(drawing, self.format, self.width, self.height, &|_, _| {}), interrupt)
+    }
+
+    /// A GIF of `frames` frames on the canvas within [`gif_cap`]; any other format passes.
+    fn gif_within_cap(self, frames: usize) -> Result<(), Problem> {
+        if self.format == PictureFormat::Gif { gif_cap(frames, self.width, self.height) } else { Ok(()) }
+    }
+}
+
 fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<(Vec<u8>, PictureFormat), Problem> {
     let (format, width, height) = req.picture();
     let (width, height) = (side(width, "width")?, side(height, "height")?);
     let format = format.unwrap_or(PictureFormat::Png);
-    if format == PictureFormat::Gif && !matches!(req, RenderReq::Motion(_)) {
+    if format == PictureFormat::Gif && !req.animates() {
         return Err(Problem::invalid("format = gif: only the figure motion animates (use png or svg)"));
     }
+    let canvas = Canvas { format, width, height };
     let bytes = match req {
-        RenderReq::Ease(r) => picture(
-            draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), format, width, height, &|_, _| {}),
-            interrupt,
-        )?,
-        RenderReq::Body(_, r) => body_figure(*r, format, width, height, limits, interrupt)?,
+        RenderReq::Ease(r) => canvas.draw(&Drawing::Ease(ease(r.ease.as_ref(), EaseKind::Parent)?), interrupt)?,
+        RenderReq::Body(_, r) => body_figure(*r, canvas, limits, interrupt)?,
         RenderReq::Workspace(r) => {
             let arm = load_arm(r.arm, limits)?;
             let ws_req = WorkspaceReq::area(r.limits, r.grid, r.resolution, r.samples, r.seed);
             let area = reachable_area(&arm, &ws_req, limits, interrupt)?;
-            picture(draw(&workspace_drawing(&arm, &area), format, width, height, &|_, _| {}), interrupt)?
+            canvas.draw(&workspace_drawing(&arm, &area), interrupt)?
         }
-        RenderReq::Motion(r) => motion_figure(&r, format, width, height, limits, interrupt)?,
+        RenderReq::Motion(r) => motion_figure(&r, canvas, limits, interrupt)?,
+        RenderReq::CharacterMotion(r) => character_figure(&r, canvas, limits, interrupt)?,
     };
     Ok((bytes, format))
 }
 
 /// The figures `arm` and `rig`: the body in a pose (its start pose by default), an arm with
 /// its goal and area, a rig with its goals and pins.
-fn body_figure(
-    r: BodyFigureReq,
-    format: PictureFormat,
-    width: u32,
-    height: u32,
-    limits: &Limits,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, Problem> {
+fn body_figure(r: BodyFigureReq, canvas: Canvas, limits: &Limits, interrupt: &Interrupt) -> Result<Vec<u8>, Problem> {
     let body = load(r.arm.clone(), r.rig.clone(), limits)?;
-    let drawn = match &body {
+    match &body {
         Body::Chain(arm) => {
             let pose = start_pose(arm, r.pose_deg.as_deref(), "pose_deg")?;
             let goal = r.goal.as_ref().map(|g| goal(g, "goal")).transpose()?;
@@ -90,8 +104,7 @@ fn body_figure(
             } else {
                 None
             };
-            let drawing = arm_drawing(arm, &pose, goal.map(|g| g.target()), workspace.as_ref());
-            draw(&drawing, format, width, height, &|_, _| {})
+            canvas.draw(&arm_drawing(arm, &pose, goal.map(|g| g.target()), workspace.as_ref()), interrupt)
         }
         Body::Rig(rig) => {
             let (goals, pins) = (r.goals.as_deref().unwrap_or_default(), r.pins.as_deref().unwrap_or_default());
@@ -99,10 +112,9 @@ fn body_figure(
             let pose = rig_pose(rig, r.pose_deg.as_deref())?;
             let figure = rig_figure(rig, &pose, &task, r.limits.unwrap_or(false), None);
             let figure = ikarus_render::SkeletonFigure { labels: r.labels.unwrap_or(false), ..figure };
-            draw(&Drawing::Skeleton(figure), format, width, height, &|_, _| {})
+            canvas.draw(&Drawing::Skeleton(figure), interrupt)
         }
-    };
-    picture(drawn, interrupt)
+    }
 }
 
 /// A rig's pose from `pose_deg`, its start pose without. Degrees say nothing about a slide: a
@@ -137,14 +149,12 @@ pub(super) fn gif_cap(frames: usize, width: u32, height: u32) -> Result<(), Prob
 
 fn motion_figure(
     r: &MotionFigureReq,
-    format: PictureFormat,
-    width: u32,
-    height: u32,
+    canvas: Canvas,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
     if r.keys.is_some() || r.rig.is_some() {
-        return keyed_figure(r, format, width, height, limits, interrupt);
+        return keyed_figure(r, canvas, limits, interrupt);
     }
     let arm = load_arm(r.arm.clone(), limits)?;
     let Some(goal_req) = &r.goal else {
@@ -153,9 +163,7 @@ fn motion_figure(
     let motion = arm_motion(&arm, &MotionFields::of_figure(r), &r.via, goal_req, limits, interrupt)?;
     stopped(interrupt)?;
     let animation = &motion.motion.animation;
-    if format == PictureFormat::Gif {
-        gif_cap(animation.frames.len(), width, height)?;
-    }
+    canvas.gif_within_cap(animation.frames.len())?;
     let area = if r.workspace {
         let on = r.limits.or_else(|| r.options.as_ref().and_then(|o| o.limits));
         let ws_req = WorkspaceReq::area(on, r.grid, r.resolution, r.samples, r.seed);
@@ -166,8 +174,7 @@ fn motion_figure(
     let goal = Some(ikarus::Point2::new(goal_req.x, goal_req.y));
     let layers = MotionLayers::screen(area.as_ref(), r.traces.unwrap_or(true), r.ghosts);
     let fps = r.fps.unwrap_or(DEFAULT_FPS);
-    let drawing = motion_drawing(&arm, animation, motion.caption(), goal, fps, layers);
-    picture(draw(&drawing, format, width, height, &|_, _| {}), interrupt)
+    canvas.draw(&motion_drawing(&arm, animation, motion.caption(), goal, fps, layers), interrupt)
 }
 
 /// Figure `motion` of `POST /api/render` with a rig and its `keys`: the keyed motion drawn as
@@ -175,9 +182,7 @@ fn motion_figure(
 /// motion and of its area refused, naming them.
 fn keyed_figure(
     r: &MotionFigureReq,
-    format: PictureFormat,
-    width: u32,
-    height: u32,
+    canvas: Canvas,
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
@@ -213,8 +218,24 @@ fn keyed_figure(
         None => super::bodies::load_arm_as_rig(r.arm.clone(), limits)?,
     };
     let (motion, _, limits_on) = super::keyed::keyed_motion(&rig, keys, r.options.as_ref(), limits, interrupt)?;
-    if format == PictureFormat::Gif {
-        gif_cap(motion.animation.frames.len(), width, height)?;
-    }
-    picture(draw(&motion.drawing(&rig, limits_on), format, width, height, &|_, _| {}), interrupt)
+    canvas.gif_within_cap(motion.animation.frames.len())?;
+    canvas.draw(&motion.drawing(&rig, limits_on), interrupt)
+}
+
+/// Figure `motion` of `POST /api/render` with a character and its `keys`: the keyed motion
+/// drawn as `ikarus animate --rig FILE.json --keys KEYS.json [--animation A] --out` draws it,
+/// the same bytes.
+fn character_figure(
+    r: &CharacterFigureReq,
+    canvas: Canvas,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    let loaded = load_within(&r.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let ik = (r.ik.as_deref(), r.ik_file.as_deref());
+    let motion = keyed_motion(&loaded, &r.keys, r.animation.clone(), ik, limits)?;
+    canvas.gif_within_cap(motion.frame_count())?;
+    let poses = motion.poses().map_err(Problem::invalid)?;
+    stopped(interrupt)?;
+    canvas.draw(&motion_files::drawing(&motion, &poses), interrupt)
 }

@@ -329,4 +329,6 @@ pub enum MotionFormat {
     Json,
     /// The Spine document with the motion added.
     Spine,
+    /// Its frames as CSV, one row per bone per frame ([`crate::character::motion_files`]).
+    Csv,
 }

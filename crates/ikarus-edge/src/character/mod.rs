@@ -20,6 +20,7 @@ mod dragonbones_clips;
 pub mod export;
 pub mod ik_file;
 pub mod motion;
+pub mod motion_files;
 mod spine;
 
 use std::collections::HashMap;

@@ -271,17 +271,44 @@ impl<'a> Motion<'a> {
         pose_into(self.loaded, &self.ask_at(time), out).map(|_| ())
     }
 
-    /// Every frame posed, one `Posed` reused.
-    pub fn frames(&self) -> Result<FramesJson, String> {
+    /// Every frame posed (its time and report), one `Posed` reused.
+    pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, String> {
         let mut posed = Posed::default();
-        let mut frames = Vec::new();
+        self.frame_times()
+            .into_iter()
+            .map(|time| {
+                self.pose_at(time, &mut posed)?;
+                Ok((time, PoseReport::of(&self.loaded.character, &posed)))
+            })
+            .collect()
+    }
+
+    /// Every frame posed, as JSON.
+    pub fn frames(&self) -> Result<FramesJson, String> {
         let mut unsupported = Vec::new();
-        for time in self.frame_times() {
-            self.pose_at(time, &mut posed)?;
-            let report = PoseReport::of(&self.loaded.character, &posed);
+        let mut frames = Vec::new();
+        for (time, report) in self.poses()? {
             unsupported = report.unsupported;
             frames.push(FrameJson { time, bones: report.bones });
         }
         Ok(FramesJson { frames, unsupported })
+    }
+
+    /// What the motion is, for a picture's caption: `spine character · keys over "walk" · 28
+    /// frames at 30 fps`.
+    #[must_use]
+    pub fn caption(&self) -> String {
+        let course = match &self.course {
+            Course::Eased { targets, .. } => format!("{} targets", targets.len()),
+            Course::Path { bone, .. } => format!("{bone} on a path"),
+            Course::Keyed { animation: Some(a), .. } => format!("keys over {a:?}"),
+            Course::Keyed { animation: None, .. } => "keys".to_owned(),
+        };
+        format!(
+            "{} character · {course} · {} frames at {} fps",
+            self.loaded.format.as_str(),
+            self.frame_count(),
+            self.fps
+        )
     }
 }

@@ -148,11 +148,8 @@ export function wireKeyed(state, canvas, act) {
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-gif").disabled = !k.answer || !state.rig;
-    const csv = $("key-frames-csv");
-    csv.disabled = !k.answer || !state.rig;
-    // A character's keyed motion has no CSV: `ikarus animate` writes it as json (its frames) or spine.
-    csv.title = state.character ? "A character's keyed motion is saved as Frames JSON or Spine JSON (the CLI has no CSV of it)" : csv.dataset.title || csv.title;
+    $("key-gif").disabled = !k.answer || !(state.rig || state.character);
+    $("key-frames-csv").disabled = !k.answer || !(state.rig || state.character);
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
@@ -400,19 +397,32 @@ export function wireKeyed(state, canvas, act) {
   /** The keyed motion's frames as answered (JSON), or a rig's as `ikarus animate --keys --format csv` writes them. */
   function download(format) {
     if (!k.answer) return;
+    if (format === "csv" && state.character) return downloadCharacterCsv();
     const text = format === "csv" ? rigFramesCsv(state.rig.rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
-    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character ? state.character.name.replace(/\.json$/i, "") : state.arm.name || "arm"}-keys.${format}`;
+    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character ? characterName() : state.arm.name || "arm"}-keys.${format}`;
     saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
   }
-  /** A rig's keyed motion as a GIF (POST /api/render, figure motion with the rig and keys), at the keys' fps, the canvas's size. */
+  const characterName = () => state.character.name.replace(/\.json$/i, "");
+  /** A character's keyed motion as `ikarus animate --rig CHAR.json --keys --format csv` writes it: the server's CSV (/api/animate, format csv). */
+  async function downloadCharacterCsv() {
+    try {
+      const csv = await api.post("/api/animate", characterAnimateRequest(state.character, state.keys, "csv"), "blob");
+      saveBlob(new Blob([csv], { type: "text/csv" }), `${characterName()}-keys.csv`);
+      act.showError(null);
+    } catch (e) {
+      act.showError(e);
+    }
+  }
+  /** A rig's or a character's keyed motion as a GIF (POST /api/render, figure motion with the body and keys), at the keys' fps, the canvas's size. */
   async function downloadGif() {
-    if (!k.answer || !state.rig) return;
+    if (!k.answer || !(state.rig || state.character)) return;
     const button = $("key-gif");
     button.disabled = true;
     try {
       const size = gifSize(k.answer.frames.length, screenLook(state, canvas));
-      const req = { figure: "motion", format: "gif", ...rigAnimateRequest(state.rig.rig, state.keys, state.options), ...size };
-      saveBlob(await api.render(req), `${state.rig.rig.name || "rig"}-keys.gif`);
+      const body = state.rig ? rigAnimateRequest(state.rig.rig, state.keys, state.options) : characterAnimateRequest(state.character, state.keys);
+      const req = { figure: "motion", ...body, format: "gif", ...size };
+      saveBlob(await api.render(req), `${state.rig ? state.rig.rig.name || "rig" : characterName()}-keys.gif`);
       act.showError(null);
     } catch (e) {
       act.showError(e);

@@ -182,4 +182,17 @@ mod tests {
         assert_eq!(render("png"), 200.0 + motion + 200.0);
         assert_eq!(render("gif"), 200.0 + motion + 21.0 * 200.0);
     }
+
+    #[test]
+    fn a_character_s_keyed_gif_costs_a_picture_per_frame_too() {
+        // The character's text in `rig` is read as no body: its bones are capped by --max-bones.
+        let keys = json!({"fps": 10, "tracks": {"front-leg-target": [{"time": 0}, {"time": 2}]}});
+        let render = |format: &str| {
+            let body = json!({"figure": "motion", "format": format, "width": 10, "height": 20,
+                              "rig": "{\"bones\": []}", "keys": keys, "animation": "walk"});
+            estimate(Endpoint::Render, body.to_string().as_bytes())
+        };
+        assert!(render("gif") >= 200.0 + 21.0 * 200.0, "{}", render("gif"));
+        assert_eq!(render("gif") - render("png"), 20.0 * 200.0);
+    }
 }
