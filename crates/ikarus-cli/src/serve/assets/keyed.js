@@ -17,9 +17,7 @@ import { bodyForward } from "./body.js";
 import { gifSize, saveBlob, screenLook } from "./files.js";
 import { ownsKeys } from "./input.js";
 import {
-  armAnimateRequest,
   armBones,
-  armMotion,
   bendAllowed,
   bendHandleAt,
   bendHandles,
@@ -29,11 +27,11 @@ import {
   deleteKey,
   frameAt,
   frameOf,
+  keyedBranch,
   keyRows,
   keysDuration,
   moveKey,
   pasteKey,
-  rigAnimateRequest,
   rigFramesCsv,
   rigMotion,
   setBend,
@@ -52,7 +50,7 @@ const $ = (id) => document.getElementById(id);
  * Wires the keys of a rig, a character or the arm. `act` is {timeline (timeline.js's), draw(), setPose(pose) (the arm's),
  * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
  * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
- * Returns {enter(), leave(), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
+ * Returns {enter(), leave(), resume() (the body shown gets back the keys it left with), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
  * (the bend handles in canvas pixels), hovering(), dragEnded(bone, goal, from), pinToggled(bone),
  * bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), setMode(on), seek(t), fillEases(meta)}.
  */
@@ -78,8 +76,28 @@ export function wireKeyed(state, canvas, act) {
   const body = () => state.rig || state.character || (armShown() ? state.arm : null);
   const boneNames = () => (state.rig ? state.rig.rig.bones.map((b) => b.name) : state.character ? state.character.character.bones.map((b) => b.name) : state.arm ? armBones(state.arm) : []);
   const rows = () => (body() ? keyRows(state.keys, boneNames()) : []);
-  /** Whether the timeline plays the keys: a rig's always, a character's or the arm's once it has keys. */
-  const owns = () => !!state.rig || ((!!state.character || armShown()) && !!state.keys);
+  /** A rig's or the arm's keys as one body (keys.js's keyedBranch: its rig, file name, request); null for a character. */
+  const branch = () => (state.character ? null : keyedBranch(state.rig ? state.rig.rig : null, state.arm));
+  /**
+   * Whether the timeline plays the keys: a rig's always, a character's once it has keys, the
+   * arm's once it has keys and while Key mode is on (off, its clicks' motions take the timeline).
+   */
+  const owns = () => !!state.rig || (!!state.character && !!state.keys) || (armShown() && !!state.keys && k.mode);
+  /**
+   * Each body's keys while another body shows (by slot(): a rig's state object, a character, or
+   * ARM, the arm whatever its links), given back by resume(); `owner` is the slot of the body
+   * `state.keys` belong to.
+   */
+  const kept = new WeakMap();
+  const ARM = {};
+  const slot = () => state.rig || state.character || (armShown() ? ARM : null);
+  let owner = null;
+  /** The keys shown kept with their body (none: nothing kept), as the canvas changes body. */
+  function stash() {
+    if (owner && state.keys) kept.set(owner, state.keys);
+    else if (owner) kept.delete(owner);
+    owner = null;
+  }
 
   // ---- The timeline ----------------------------------------------------------------------
 
@@ -139,17 +157,19 @@ export function wireKeyed(state, canvas, act) {
     const mode = $("key-mode");
     mode.setAttribute("aria-pressed", String(k.mode));
     $("arm-key-mode").checked = k.mode;
-    // The arm's keys bar shows in Key mode or once it has keys (the CSS hides it else).
+    // The arm's keys bar shows in Key mode or once it has keys (the CSS hides it else); while its
+    // keys play, its click motions' controls (duration, ease, via points, replay) step aside.
     document.body.classList.toggle("arm-keys", k.mode || !!state.keys);
+    document.body.classList.toggle("arm-keyed", armShown() && k.loaded !== null);
     const sel = selectedKey();
     const ease = $("key-ease");
     ease.disabled = !sel || k.selected.kind !== "track";
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-gif").disabled = !k.answer || !state.rig;
+    $("key-gif").disabled = !k.answer || !!state.character;
     const csv = $("key-frames-csv");
-    csv.disabled = !k.answer || !state.rig;
+    csv.disabled = !k.answer || !!state.character;
     // A character's keyed motion has no CSV: `ikarus animate` writes it as json (its frames) or spine.
     csv.title = state.character ? "A character's keyed motion is saved as Frames JSON or Spine JSON (the CLI has no CSV of it)" : csv.dataset.title || csv.title;
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
@@ -171,6 +191,7 @@ export function wireKeyed(state, canvas, act) {
     // The timeline as long as the keys, or back to a character's clip without them (the arm's
     // own motions may have taken it meanwhile: its keys take it back).
     if (armShown() || (owns() ? seconds() !== k.loaded : k.loaded !== null)) takeTimeline();
+    owner = slot();
     act.edited(what);
     requestMotion();
     syncBar();
@@ -278,18 +299,20 @@ export function wireKeyed(state, canvas, act) {
       return;
     }
     k.busy = true;
-    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : state.character ? characterAnimateRequest(state.character, keys, "json") : armAnimateRequest(state.arm, keys, state.options);
+    const req = state.character ? characterAnimateRequest(state.character, keys, "json") : branch().request(keys, state.options);
     act.setStatus("solving");
     try {
       const answer = await api.animate(req);
       if (body() === b && state.keys === keys) {
-        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : state.character ? characterMotion(answer, keys.fps) : armMotion(state.arm, answer);
+        state.motion = state.character ? characterMotion(answer, keys.fps) : rigMotion(branch().rig, answer);
         k.answer = answer;
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
         act.setStatus(state.character || reached === answer.frames.length ? "ready" : "unreachable");
         act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.character ? "" : ` · ${reached} reached`}`);
-        showAt(k.t);
+        // The arm's keys out of Key mode: their motion is ready, the arm's own motion stays shown.
+        if (owns()) showAt(k.t);
+        else syncBar();
       }
     } catch (e) {
       if (body() === b) {
@@ -306,8 +329,13 @@ export function wireKeyed(state, canvas, act) {
 
   // ---- Entering and leaving a rig, restoring keys ----------------------------------------
 
-  /** A rig or a character took the canvas: no keys yet; a rig's timeline spans the length. */
+  /**
+   * A rig or a character took the canvas (the keys shown before are kept with their body): no
+   * keys yet (resume() gives back its own); a rig's timeline spans the length.
+   */
   function enter() {
+    stash();
+    owner = slot();
     k.loaded = null;
     state.keys = null;
     state.motion = null;
@@ -324,7 +352,9 @@ export function wireKeyed(state, canvas, act) {
     requestMotion();
   }
 
+  /** The body shown leaves the canvas: its keys kept with it (resume() gives them back). */
   function leave() {
+    stash();
     k.loaded = null;
     state.keys = null;
     state.motion = null;
@@ -333,8 +363,18 @@ export function wireKeyed(state, canvas, act) {
     syncBar();
   }
 
-  /** Keys restored (undo, an opened project): shown and solved, without recording an edit. */
+  /** The body shown again (a rig, a character, the arm): the keys it had when it left, if any. */
+  function resume() {
+    const b = slot();
+    const keys = b && kept.get(b);
+    if (!keys) return;
+    kept.delete(b);
+    applyKeys(keys);
+  }
+
+  /** Keys restored (undo, an opened project, resume): shown and solved, without recording an edit. */
   function applyKeys(keys) {
+    owner = slot();
     state.keys = tidy(keys);
     k.selected = null;
     takeTimeline();
@@ -349,6 +389,8 @@ export function wireKeyed(state, canvas, act) {
 
   function setMode(on) {
     k.mode = on;
+    // The arm's keys take the timeline in Key mode and give it back to its motions out of it.
+    if (armShown() && state.keys) takeTimeline();
     syncBar();
   }
 
@@ -384,22 +426,23 @@ export function wireKeyed(state, canvas, act) {
     commit(`delete key of ${s.bone}`);
   }
 
-  /** The keyed motion's frames as answered (JSON), or a rig's as `ikarus animate --keys --format csv` writes them. */
+  /** The keyed motion's frames as answered (JSON), or a rig's or the arm's as `ikarus animate --keys --format csv` writes them. */
   function download(format) {
     if (!k.answer) return;
-    const text = format === "csv" ? rigFramesCsv(state.rig.rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
-    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character ? state.character.name.replace(/\.json$/i, "") : state.arm.name || "arm"}-keys.${format}`;
+    const text = format === "csv" ? rigFramesCsv(branch().rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
+    const name = `${state.character ? state.character.name.replace(/\.json$/i, "") : branch().name}-keys.${format}`;
     saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
   }
-  /** A rig's keyed motion as a GIF (POST /api/render, figure motion with the rig and keys), at the keys' fps, the canvas's size. */
+  /** A rig's or the arm's keyed motion as a GIF (POST /api/render, figure motion with the body and keys), at the keys' fps, the canvas's size. */
   async function downloadGif() {
-    if (!k.answer || !state.rig) return;
+    if (!k.answer || state.character) return;
     const button = $("key-gif");
     button.disabled = true;
     try {
       const size = gifSize(k.answer.frames.length, screenLook(state, canvas));
-      const req = { figure: "motion", format: "gif", ...rigAnimateRequest(state.rig.rig, state.keys, state.options), ...size };
-      saveBlob(await api.render(req), `${state.rig.rig.name || "rig"}-keys.gif`);
+      const b = branch();
+      const req = { figure: "motion", format: "gif", ...b.request(state.keys, state.options), ...size };
+      saveBlob(await api.render(req), `${b.name}-keys.gif`);
       act.showError(null);
     } catch (e) {
       act.showError(e);
@@ -485,5 +528,5 @@ export function wireKeyed(state, canvas, act) {
   /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
   const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
 
-  return { enter, leave, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+  return { enter, leave, resume, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
 }
