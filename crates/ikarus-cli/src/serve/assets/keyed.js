@@ -27,6 +27,7 @@ import {
   deleteKey,
   frameAt,
   frameOf,
+  KEY_LENGTH,
   keyedBranch,
   keyRows,
   keysDuration,
@@ -50,7 +51,8 @@ const $ = (id) => document.getElementById(id);
  * Wires the keys of a rig, a character or the arm. `act` is {timeline (timeline.js's), draw(), setPose(pose) (the arm's),
  * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
  * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
- * Returns {enter(), leave(), resume() (the body shown gets back the keys it left with), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
+ * Returns {enter(), leave(), resume() (the body shown gets back the keys it left with), setLength(s),
+ * length() (the keys' Length, seconds), mode() (Key mode on), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
  * (the bend handles in canvas pixels), hovering(), dragEnded(bone, goal, from), pinToggled(bone),
  * bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), setMode(on), seek(t), fillEases(meta)}.
  */
@@ -398,16 +400,22 @@ export function wireKeyed(state, canvas, act) {
 
   $("key-mode").addEventListener("click", () => setMode(!k.mode));
   $("arm-key-mode").addEventListener("change", (ev) => setMode(ev.target.checked));
-  $("key-length").addEventListener("change", (ev) => {
-    const v = Number(ev.target.value);
-    if (!(v >= 0.1 && v <= 60)) {
-      act.showError(new api.Notice(`Length: ${ev.target.value} is not a number of seconds from 0.1 to 60`));
-      return;
-    }
+  /** The keyed animation's length, `v` seconds (in KEY_LENGTH): the field shows it, the timeline spans it. */
+  function setLength(v) {
     k.length = v;
-    act.showError(null);
+    $("key-length").value = String(v);
     if (owns()) loadClip();
     syncBar();
+  }
+  $("key-length").addEventListener("change", (ev) => {
+    const v = Number(ev.target.value);
+    if (!(v >= KEY_LENGTH.min && v <= KEY_LENGTH.max)) {
+      act.showError(new api.Notice(`Length: ${ev.target.value} is not a number of seconds from ${KEY_LENGTH.min} to ${KEY_LENGTH.max}`));
+      return;
+    }
+    act.showError(null);
+    setLength(v);
+    act.edited(`Length ${v} s`);
   });
   $("key-ease").addEventListener("change", (ev) => {
     const s = k.selected;
@@ -528,5 +536,5 @@ export function wireKeyed(state, canvas, act) {
   /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
   const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
 
-  return { enter, leave, resume, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+  return { enter, leave, resume, setLength, length: () => k.length, mode: () => k.mode, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
 }

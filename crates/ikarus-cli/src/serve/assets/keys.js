@@ -18,6 +18,9 @@ export const KEYS_FPS = 30;
 /** The keyed animation's length before any key is past it, seconds. */
 export const DEFAULT_LENGTH = 2;
 
+/** The range of the keys' Length, seconds (the Length field and a project file's `key_length`). */
+export const KEY_LENGTH = { min: 0.1, max: 60 };
+
 /** An empty KEYS object. */
 export const emptyKeys = (fps = KEYS_FPS) => ({ fps, tracks: {}, bends: {}, pins: [] });
 
