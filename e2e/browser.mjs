@@ -1,7 +1,8 @@
-// What the browser tests share: the ikarus server on a free port, headless Chromium, and where
-// the screenshots go.
+// What the browser tests share: the ikarus server on a free port, headless Chromium, where the
+// screenshots go, and a fresh playground to run a test on (onPlayground).
+import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { readFileSync } from "node:fs";
+import { mkdirSync, readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
@@ -101,4 +102,21 @@ export async function withBrowser(fn) {
     await browser.close();
     child.kill("SIGINT");
   }
+}
+
+/**
+ * Runs `body(page, {url, browser})` on a fresh playground: its own server and browser, a page
+ * (of `viewport`) at `url` and ready, the screenshots' folder made; then checks that the page
+ * logged no error. `before(page)` runs before the page loads (listeners of its requests, say).
+ */
+export function onPlayground(body, { before = () => {}, viewport } = {}) {
+  return withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser, viewport);
+    before(page);
+    await page.goto(url);
+    await ready(page);
+    mkdirSync(artifacts, { recursive: true });
+    await body(page, { url, browser });
+    assert.deepEqual(errors, [], "console errors");
+  });
 }

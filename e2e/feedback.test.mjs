@@ -9,13 +9,8 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { binary, launch, openPage, startServer } from "./browser.mjs";
+import { binary, ended, launch, onPlayground, openPage, ready, startServer } from "./browser.mjs";
 
-const ready = (page) => page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
-const ended = (page) =>
-  page.waitForFunction(() => document.body.dataset.playback === "ended" && !["solving", "moving"].includes(document.body.dataset.status), null, {
-    timeout: 15000,
-  });
 /** The chip's text, colour kind and whether it is on screen. */
 const chip = (page) =>
   page.evaluate(() => {
@@ -29,28 +24,21 @@ const setField = async (page, selector, value) => {
   await page.dispatchEvent(selector, "change");
 };
 
-test("the page's first solve of (2, 3) gives the CLI's angles (the same defaults)", async () => {
+test("the page's first solve of (2, 3) gives the CLI's angles (the same defaults)", () => {
   const cli = JSON.parse(execFileSync(binary, ["solve", "--goal", "2,3", "--format", "json"], { encoding: "utf8" }));
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    const answers = [];
-    page.on("response", async (r) => r.url().endsWith("/api/solve") && answers.push(await r.json()));
-    await page.goto(url);
-    await ready(page);
-    await page.evaluate(() => window.ikarus.animateTo(2, 3));
-    await ended(page);
-    assert.equal(answers.length, 1);
-    assert.equal(answers[0].status, cli.status);
-    cli.angles_deg.forEach((a, i) => assert.ok(Math.abs(answers[0].angles_deg[i] - a) < 1e-9, `joint ${i + 1}: ${answers[0].angles_deg[i]} vs the CLI's ${a}`));
-    const drawn = (await page.evaluate(() => document.getElementById("plot").dataset.pose)).split(" ").map(Number);
-    cli.angles_deg.forEach((a, i) => assert.ok(Math.abs(drawn[i] - a) < 1e-5, `drawn joint ${i + 1}: ${drawn[i]} vs ${a}`));
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
+  const answers = [];
+  return onPlayground(
+    async (page) => {
+      await page.evaluate(() => window.ikarus.animateTo(2, 3));
+      await ended(page);
+      assert.equal(answers.length, 1);
+      assert.equal(answers[0].status, cli.status);
+      cli.angles_deg.forEach((a, i) => assert.ok(Math.abs(answers[0].angles_deg[i] - a) < 1e-9, `joint ${i + 1}: ${answers[0].angles_deg[i]} vs the CLI's ${a}`));
+      const drawn = (await page.evaluate(() => document.getElementById("plot").dataset.pose)).split(" ").map(Number);
+      cli.angles_deg.forEach((a, i) => assert.ok(Math.abs(drawn[i] - a) < 1e-5, `drawn joint ${i + 1}: ${drawn[i]} vs ${a}`));
+    },
+    { before: (page) => page.on("response", async (r) => r.url().endsWith("/api/solve") && answers.push(await r.json())) },
+  );
 });
 
 test("errors: a chip on the canvas at every width, the field marked and focused, no rejected request", async () => {
@@ -132,13 +120,8 @@ test("errors: a chip on the canvas at every width, the field marked and focused,
   }
 });
 
-test("start angles, base and ranges: editable, and a new range takes the pose in", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("start angles, base and ranges: editable, and a new range takes the pose in", () =>
+  onPlayground(async (page) => {
     await page.check("#limits");
     const cell = (row, col) => `#links-body tr:nth-child(${row}) td:nth-child(${col}) input`;
     // Joint 1's range [10°, 45°]: the start angle (5°) and the pose move to 10°, and solves work.
@@ -174,20 +157,10 @@ test("start angles, base and ranges: editable, and a new range takes the pose in
     await ended(page);
     const tip = await page.evaluate(() => window.ikarus.state.joints.at(-1));
     assert.ok(Math.hypot(tip[0] - 3, tip[1] - 2) < 1e-5, `tip at ${tip}`);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
-});
+  }));
 
-test("controls: methods that apply, a goal angle, limit modes, reached at the end, reset, layout, the area kept", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("controls: methods that apply, a goal angle, limit modes, reached at the end, reset, layout, the area kept", () =>
+  onPlayground(async (page, { url }) => {
     const offered = () => page.evaluate(() => [...document.getElementById("method").options].filter((o) => !o.disabled).map((o) => o.value));
 
     // Three links: no closed form until a goal angle is set; then it solves (2, 3) pointing at 90°.
@@ -260,49 +233,37 @@ test("controls: methods that apply, a goal angle, limit modes, reached at the en
     const width = await page.evaluate(() => document.getElementById("plot").getBoundingClientRect().width);
     assert.equal(Math.round(width), 1280);
     await page.click("#panel-toggle");
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
-});
+  }));
 
-test("limit modes are fixed for CCD and FABRIK; Replay every shapes the solver's replay", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    const animates = [];
-    page.on("request", (r) => r.url().endsWith("/api/animate") && animates.push(JSON.parse(r.postData())));
-    await page.goto(url);
-    await ready(page);
-    await page.check("#limits");
-    for (const [method, disabled] of [["ccd", true], ["fabrik", true], ["lm", false], ["dls", false]]) {
-      await page.selectOption("#method", method);
-      assert.equal(await page.isDisabled("#limit-mode"), disabled, method);
-    }
-    await page.selectOption("#method", "transpose");
-    await page.evaluate(() => window.ikarus.animateTo(2, 3));
-    await ended(page);
-    await page.click("#solver");
-    await page.waitForFunction(() => document.getElementById("timeline").dataset.source === "solver", null, { timeout: 15000 });
-    await ended(page);
-    const every1 = await page.evaluate(() => window.ikarus.state.animation.frames.length);
-    const iterations = await page.evaluate(() => window.ikarus.state.animation.solves[0].iterations);
-    assert.equal(animates.at(-1).options.record_every, 1);
-    // One frame per recorded pose: every iteration and the start.
-    assert.equal(every1, iterations + 1);
-    assert.match(await page.textContent("#stats"), new RegExp(`${every1} poses replayed`));
-    await setField(page, "#record-every", "10");
-    await page.waitForFunction((n) => window.ikarus.state.animation.frames.length < n && document.body.dataset.playback === "ended", every1, { timeout: 15000 });
-    const every10 = await page.evaluate(() => window.ikarus.state.animation.frames.length);
-    assert.equal(animates.at(-1).options.record_every, 10);
-    assert.equal(every10, Math.ceil(iterations / 10) + 1, `${every10} poses every 10 iterations, ${every1} every one`);
-    // The eased motion does not carry it.
-    assert.equal(animates[0].options.record_every, undefined);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
+test("limit modes are fixed for CCD and FABRIK; Replay every shapes the solver's replay", () => {
+  const animates = [];
+  return onPlayground(
+    async (page) => {
+      await page.check("#limits");
+      for (const [method, disabled] of [["ccd", true], ["fabrik", true], ["lm", false], ["dls", false]]) {
+        await page.selectOption("#method", method);
+        assert.equal(await page.isDisabled("#limit-mode"), disabled, method);
+      }
+      await page.selectOption("#method", "transpose");
+      await page.evaluate(() => window.ikarus.animateTo(2, 3));
+      await ended(page);
+      await page.click("#solver");
+      await page.waitForFunction(() => document.getElementById("timeline").dataset.source === "solver", null, { timeout: 15000 });
+      await ended(page);
+      const every1 = await page.evaluate(() => window.ikarus.state.animation.frames.length);
+      const iterations = await page.evaluate(() => window.ikarus.state.animation.solves[0].iterations);
+      assert.equal(animates.at(-1).options.record_every, 1);
+      // One frame per recorded pose: every iteration and the start.
+      assert.equal(every1, iterations + 1);
+      assert.match(await page.textContent("#stats"), new RegExp(`${every1} poses replayed`));
+      await setField(page, "#record-every", "10");
+      await page.waitForFunction((n) => window.ikarus.state.animation.frames.length < n && document.body.dataset.playback === "ended", every1, { timeout: 15000 });
+      const every10 = await page.evaluate(() => window.ikarus.state.animation.frames.length);
+      assert.equal(animates.at(-1).options.record_every, 10);
+      assert.equal(every10, Math.ceil(iterations / 10) + 1, `${every10} poses every 10 iterations, ${every1} every one`);
+      // The eased motion does not carry it.
+      assert.equal(animates[0].options.record_every, undefined);
+    },
+    { before: (page) => page.on("request", (r) => r.url().endsWith("/api/animate") && animates.push(JSON.parse(r.postData()))) },
+  );
 });

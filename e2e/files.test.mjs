@@ -6,16 +6,11 @@
 // columns.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { readFileSync, readdirSync, mkdirSync } from "node:fs";
+import { readFileSync, readdirSync } from "node:fs";
 import { join } from "node:path";
 import { execFileSync } from "node:child_process";
-import { artifacts, binary, launch, openPage, startServer } from "./browser.mjs";
+import { artifacts, binary, ended, onPlayground, ready } from "./browser.mjs";
 
-const ready = (page) => page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
-const ended = (page) =>
-  page.waitForFunction(() => document.body.dataset.playback === "ended" && !["solving", "moving"].includes(document.body.dataset.status), null, {
-    timeout: 15000,
-  });
 const arms = join(import.meta.dirname, "..", "examples", "arms");
 
 /** Clicks `button` and resolves with the download's file name and text (or bytes). */
@@ -34,13 +29,8 @@ function gifDelays(bytes) {
   return delays;
 }
 
-test("arm files: every example loads, a saved arm is the CLI's format, the arm survives a reload", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("arm files: every example loads, a saved arm is the CLI's format, the arm survives a reload", () =>
+  onPlayground(async (page) => {
     // An arm with joint keys (rrp.toml's slide) is a one-branch rig, which the page's arm
     // editor refuses (the CLI answers it as a rig): the chains only.
     const jointKeys = /^(offset|joint|slide|extension|limits) =/m;
@@ -71,7 +61,6 @@ test("arm files: every example loads, a saved arm is the CLI's format, the arm s
     await page.dispatchEvent("#links-body tr:nth-child(1) td:nth-child(2) input", "change");
     const saved = await download(page, "#save-arm");
     assert.match(saved.name, /\.toml$/);
-    mkdirSync(artifacts, { recursive: true });
     const savedPath = join(artifacts, saved.name);
     execFileSync("sh", ["-c", 'cat > "$1"', "sh", savedPath], { input: saved.body });
     const back = JSON.parse(execFileSync(binary, ["solve", "--arm", savedPath, "--goal", "1,1", "--format", "json"], { encoding: "utf8" }));
@@ -97,20 +86,10 @@ test("arm files: every example loads, a saved arm is the CLI's format, the arm s
     assert.match(message, /^arm file: link 1 length/);
     assert.equal(await page.evaluate(() => document.getElementById("chip").dataset.kind), "bad");
     assert.equal(await page.evaluate(() => window.ikarus.state.arm.name), "seed");
-    assert.deepEqual(errors, [], "console errors");
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
-});
+  }));
 
-test("downloads are the screen: ghosts, traces, ranges and area in one palette; the GIF's length; the CLI's columns", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("downloads are the screen: ghosts, traces, ranges and area in one palette; the GIF's length; the CLI's columns", () =>
+  onPlayground(async (page, { url }) => {
     // One palette: the page draws with the pictures' colours (/api/meta's palette).
     const meta = await (await fetch(`${url}/api/meta`)).json();
     const colors = await page.evaluate(async () => (await import("/draw.js")).COLORS);
@@ -185,9 +164,4 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
     const cliCsv = execFileSync(binary, ["animate", "--goal", "2,3", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv.split("\n")[0], cliCsv.split("\n")[0]);
     assert.match(csv.split("\n")[0], /^time,theta1_deg,theta2_deg,theta3_deg,x0,y0/);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
-});
+  }));

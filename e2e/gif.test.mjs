@@ -3,15 +3,10 @@
 // the GIF it gets is that size, with the area's colour and the tip's trace in it. Run by e2e/run.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, launch, openPage, startServer } from "./browser.mjs";
+import { artifacts, ended, onPlayground } from "./browser.mjs";
 
-const ready = (page) => page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
-const ended = (page) =>
-  page.waitForFunction(() => document.body.dataset.playback === "ended" && !["solving", "moving"].includes(document.body.dataset.status), null, {
-    timeout: 15000,
-  });
 
 /** The GIF button's request and the downloaded bytes. */
 async function gif(page) {
@@ -46,13 +41,8 @@ const firstFrame = (page, bytes, hexes) =>
     { b64: bytes.toString("base64"), hexes },
   );
 
-test("the GIF is the screen's picture: its size, the shaded area, the traces and ghosts as shown", async () => {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
+test("the GIF is the screen's picture: its size, the shaded area, the traces and ghosts as shown", () =>
+  onPlayground(async (page, { url }) => {
     const meta = await (await fetch(`${url}/api/meta`)).json();
     await page.check("#limits");
     await page.check("#show-workspace");
@@ -74,7 +64,6 @@ test("the GIF is the screen's picture: its size, the shaded area, the traces and
     const frame = await firstFrame(page, shown.bytes, [meta.palette.workspace]);
     assert.deepEqual([frame.width, frame.height], canvas);
     assert.ok(frame.counts[0] > 10000, `${frame.counts[0]} pixels of the area's colour`);
-    mkdirSync(artifacts, { recursive: true });
     writeFileSync(join(artifacts, "motion.gif"), shown.bytes);
     await page.screenshot({ path: join(artifacts, "motion-screen.png") });
 
@@ -87,9 +76,4 @@ test("the GIF is the screen's picture: its size, the shaded area, the traces and
     const plain = await firstFrame(page, bare.bytes, [meta.palette.workspace]);
     // (a few antialiased edge pixels may round to the area's colour: far fewer than the area paints)
     assert.ok(plain.counts[0] * 100 < frame.counts[0], `no area: ${plain.counts[0]} vs ${frame.counts[0]} pixels`);
-    assert.deepEqual(errors, [], "console errors");
-  } finally {
-    await browser.close();
-    child.kill("SIGINT");
-  }
-});
+  }));

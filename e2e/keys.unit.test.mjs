@@ -8,7 +8,6 @@ import assert from "node:assert/strict";
 import {
   armAnimateRequest,
   armBones,
-  armMotion,
   bendAllowed,
   bendAt,
   bendHandleAt,
@@ -20,6 +19,7 @@ import {
   deleteKey,
   emptyKeys,
   frameAt,
+  keyedBranch,
   keyRows,
   keysDuration,
   moveKey,
@@ -317,7 +317,7 @@ test("a character's request: the file's text, the tracks only, the clip, the IK 
   assert.equal(frameAt(m, 0.03), m.frames[1]);
 });
 
-test("the arm's request: the arm as its requests send it, its tip's track link N-1, the options as they are", () => {
+test("the arm's request: the arm as its requests send it, its tip's track link N-1, the options as they are; its branch is a rig's", () => {
   const arm = { name: "seed", base: [0, 0], links: [{ length: 3, angle_deg: 0 }, { length: 2, angle_deg: 10, limits_deg: [-90, 90] }, { length: 1, angle_deg: 0 }], extra: true };
   assert.deepEqual(armBones(arm), ["link0", "link1", "link2"]);
   const keys = setKey(setKey(null, "link2", 0, 4, 2), "link2", 0.4, 2, 4, [4, 2]);
@@ -327,10 +327,26 @@ test("the arm's request: the arm as its requests send it, its tip's track link N
   assert.equal(req.keys, keys);
   assert.deepEqual(req.options, { method: "fabrik", rates: [1, 2, 3] }, "the arm's options keep their rates");
   assert.deepEqual(armAnimateRequest(arm, keys).options, {});
+  // The arm as the keys' one body: its one-branch rig, its name, the same request.
+  const branch = keyedBranch(null, arm);
+  assert.equal(branch.name, "seed");
+  assert.deepEqual(branch.request(keys, { method: "fabrik" }), armAnimateRequest(arm, keys, { method: "fabrik" }));
+  const answer = { fps: 10, duration: 0.1, frames: [{ time: 0, angles_deg: { link0: 5, link1: 6, link2: 7 }, joints: { link0: [1, 0], link1: [2, 0], link2: [3, 0] } }, { time: 0.1, angles_deg: { link0: 8, link2: 9 }, joints: { link0: [1, 0.5], link1: [2, 0.5], link2: [3, 0.25] } }] };
   // Its answer's frames: each pose the link angles in order, a missing one held from before.
-  const m = armMotion(arm, { fps: 10, duration: 0.1, frames: [{ time: 0, angles_deg: { link0: 5, link1: 6, link2: 7 } }, { time: 0.1, angles_deg: { link0: 8, link2: 9 } }] });
+  const m = rigMotion(branch.rig, answer);
   assert.deepEqual(m.frames.map((f) => f.pose), [[5, 6, 7], [8, 6, 9]]);
   assert.equal(m.fps, 10);
+  // Its CSV: the rig CSV of the one-branch rig link0…, as `ikarus animate --keys --format csv` (a missing angle: the link's start).
+  assert.equal(
+    rigFramesCsv(branch.rig, answer),
+    "time,link0_deg,link1_deg,link2_deg,link0.x,link0.y,link1.x,link1.y,link2.x,link2.y\n0.0,5.0,6.0,7.0,1.0,0.0,2.0,0.0,3.0,0.0\n0.1,8.0,10.0,9.0,1.0,0.5,2.0,0.5,3.0,0.25\n",
+  );
+  // A rig's branch is the rig itself, its request the rig's.
+  const rig = { name: "r", bones: [{ name: "a", length: 1, angle_deg: 0 }] };
+  const rb = keyedBranch(rig, arm);
+  assert.equal(rb.rig, rig);
+  assert.equal(rb.name, "r");
+  assert.deepEqual(rb.request(keys, { method: "fabrik", rates: [1] }), rigAnimateRequest(rig, keys, { method: "fabrik", rates: [1] }));
 });
 
 test("a character's bend handles: one per two-bone IK constraint, at its lower bone, on the side the knee turns", () => {

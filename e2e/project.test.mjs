@@ -9,9 +9,9 @@
 // with the character embedded, opened on a fresh page. Run by e2e/run.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, readFileSync } from "node:fs";
+import { readFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, launch, openPage, ready, reloadUnsaved, startServer } from "./browser.mjs";
+import { artifacts, onPlayground, ready, reloadUnsaved, setField } from "./browser.mjs";
 import { tipClient } from "./rigpage.mjs";
 
 const settled = (page) => page.waitForFunction(() => !window.ikarus.state.rig || window.ikarus.rigs.settled(), null, { timeout: 15000 });
@@ -41,28 +41,21 @@ const work = (page) =>
 /** The chip's message (the error line when shown, else the status line). */
 const chip = (page) => page.evaluate(() => (document.getElementById("error").hidden ? document.getElementById("stats").textContent : document.getElementById("error").textContent));
 
+/** Key mode, the keys' Length, the camera, the timeline's length and the playhead (seconds) as the page shows them. */
+const viewNow = (page) =>
+  page.evaluate(() => ({
+    mode: document.getElementById("key-mode").getAttribute("aria-pressed"),
+    length: document.getElementById("key-length").value,
+    camera: { ...window.ikarus.state.camera },
+    duration: window.ikarus.duration(),
+    playhead: window.ikarus.state.playback.u * window.ikarus.duration(),
+  }));
+
 /** Presses `keys` on the canvas (focus outside any field) and waits for the rig to settle. */
 async function press(page, keys) {
   await page.focus("#plot");
   await page.keyboard.press(keys);
   await settled(page);
-}
-
-/** Runs `body(page)` on a fresh playground (its own server and browser), then checks that nothing logged an error. */
-async function onPlayground(body) {
-  const { child, url } = await startServer();
-  const browser = await launch();
-  try {
-    const { page, errors } = await openPage(browser);
-    await page.goto(url);
-    await ready(page);
-    mkdirSync(artifacts, { recursive: true });
-    await body(page);
-    assert.deepEqual(errors, []);
-  } finally {
-    await browser.close();
-    child.kill();
-  }
 }
 
 test("the puppet and the arm: every edit undone and redone; saved, reloaded with a warning, opened bit for bit", () =>
@@ -331,15 +324,64 @@ test("the puppet's keys: keyed in Key mode, undone and redone, saved and opened 
     await keysSettled();
     assert.deepEqual(await keyed(), full);
 
+    // The view and the timing saved with the work: the Length (an edit), a zoom about a point
+    // (not an edit: undo keeps its last step), the playhead at 0.5 s.
+    await setField(page, "#key-length", "3");
+    assert.match(await page.getAttribute("#undo", "title"), /^Undo: Length 3 s/);
+    const box = await page.evaluate(() => {
+      const r = document.getElementById("plot").getBoundingClientRect();
+      return [r.left + r.width * 0.4, r.top + r.height * 0.35];
+    });
+    await page.mouse.move(...box);
+    for (let i = 0; i < 3; i++) await page.mouse.wheel(0, -240);
+    await page.waitForFunction(() => window.ikarus.state.camera.zoom > 1.5);
+    assert.match(await page.getAttribute("#undo", "title"), /^Undo: Length 3 s/, "zooming is no undo step");
+    await seek(0.5);
+    const view = await viewNow(page);
+    assert.equal(view.mode, "true");
+    assert.equal(view.length, "3");
+    assert.ok(Math.abs(view.playhead - 0.5) < 1e-9, `the playhead at ${view.playhead} s`);
+    assert.equal(view.duration, 3);
+
     const [d] = await Promise.all([page.waitForEvent("download"), page.click("#save-project")]);
     const saved = readFileSync(await d.path(), "utf8");
-    assert.deepEqual(JSON.parse(saved).keys, full.keys);
+    const file = JSON.parse(saved);
+    assert.deepEqual(file.keys, full.keys);
+    assert.deepEqual([file.key_mode, file.key_length, file.camera], [true, 3, view.camera]);
+    assert.ok(Math.abs(file.playhead_s - 0.5) < 1e-9, `playhead_s ${file.playhead_s}`);
+    assert.equal(file.playhead, undefined, "no fraction in a new file");
     await page.reload();
     await ready(page);
+    assert.equal(await page.getAttribute("#key-mode", "aria-pressed"), "false", "a fresh page: Key mode off");
     await page.setInputFiles("#project-file", { name: "keys.ikarus.json", mimeType: "application/json", buffer: Buffer.from(saved) });
     await page.waitForFunction(() => window.ikarus.state.keys && window.ikarus.state.motion);
     await keysSettled();
     assert.deepEqual(await keyed(), full, "the same keys and the same frames, bit for bit");
+    const back = await viewNow(page);
+    assert.deepEqual({ ...back, playhead: 0 }, { ...view, playhead: 0 }, "Key mode, Length, camera and timeline back");
+    assert.ok(Math.abs(back.playhead - 0.5) < 1e-9, `the playhead back at ${back.playhead} s`);
+    assert.equal(await page.textContent("#zoom-level"), `${Math.round(view.camera.zoom * 100)}%`);
     await page.screenshot({ path: join(artifacts, "project-keys.png") });
+
+    // A file of the earlier shape (its playhead a fraction of the timeline; no Length, Key mode
+    // or camera) opens: the fraction read, the rest the defaults, named.
+    const old = readFileSync(join(import.meta.dirname, "fixtures", "puppet-keys-v1.ikarus.json"), "utf8");
+    // (Every line the status says is kept: the keyed motion's answer soon says its own.)
+    await page.evaluate(() => {
+      const stats = document.getElementById("stats");
+      window.said = [];
+      new MutationObserver(() => window.said.push(stats.textContent)).observe(stats, { childList: true, characterData: true, subtree: true });
+    });
+    await page.setInputFiles("#project-file", { name: "old.ikarus.json", mimeType: "application/json", buffer: Buffer.from(old) });
+    await page.waitForFunction(() => window.said.some((t) => /^opened old/.test(t)));
+    await keysSettled();
+    assert.deepEqual(
+      (await page.evaluate(() => window.said)).filter((t) => /^opened/.test(t)),
+      ["opened old.ikarus.json · defaulted: key_length, key_mode, camera"],
+    );
+    const opened = await viewNow(page);
+    assert.deepEqual([opened.mode, opened.length, opened.camera, opened.duration], ["false", "2", { zoom: 1, x: 0, y: 0 }, 2]);
+    assert.ok(Math.abs(opened.playhead - 0.25 * 2) < 1e-9, `the fraction 0.25 of 2 s: ${opened.playhead} s`);
+    assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), JSON.parse(old).keys);
   });
 });

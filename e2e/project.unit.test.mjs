@@ -33,7 +33,7 @@ function rigState() {
 const page = { defaults: { arm: structuredClone(ARM), settings: SETTINGS }, rigs: new Map([["puppet", PUPPET]]), choices: { method: ["dls", "ccd"], "limit-mode": ["clamp", "project"] } };
 
 /** A snapshot through its file and back: the text a download holds, parsed and read. */
-const roundTrip = (snap) => readProject(JSON.parse(JSON.stringify(projectFile(snap, "ikarus 1.0.0"))), page);
+const roundTrip = (snap, view) => readProject(JSON.parse(JSON.stringify(projectFile(snap, "ikarus 1.0.0", {}, view))), page);
 
 test("a rig's work survives a project file bit for bit", () => {
   const snap = snapshot(rigState(), SETTINGS);
@@ -47,6 +47,37 @@ test("a rig's work survives a project file bit for bit", () => {
   assert.deepEqual(back, snap);
   assert.equal(workKey(back), workKey(snap));
   assert.equal(projectName(snap), "puppet.ikarus.json");
+});
+
+test("the keys' Length, the playhead in seconds, Key mode and the camera survive a project file", () => {
+  const snap = snapshot(rigState(), SETTINGS, { key_length: 3.5, playhead_s: 1.2333333333333334 });
+  assert.equal(snap.key_length, 3.5);
+  assert.equal(snap.playhead_s, 1.2333333333333334);
+  assert.equal(snap.playhead, undefined, "no fraction any more");
+  const view = { key_mode: true, camera: { zoom: 4.5, x: -0.125, y: 0.75 } };
+  const file = projectFile(snap, "ikarus 1.0.0", {}, view);
+  assert.equal(file.key_mode, true);
+  assert.deepEqual(file.camera, view.camera);
+  const { snap: back, view: viewBack, defaulted } = roundTrip(snap, view);
+  assert.deepEqual(defaulted, []);
+  assert.deepEqual(back, snap);
+  assert.deepEqual(viewBack, view);
+  // The view is not the work: two snapshots differ by their Length, never by a camera.
+  assert.notEqual(workKey(snapshot(rigState(), SETTINGS, { key_length: 2 })), workKey(snap));
+  // Without a view, Key mode off and the fitted camera are written.
+  const plain = projectFile(snap, "ikarus 1.0.0");
+  assert.deepEqual([plain.key_mode, plain.camera], [false, { zoom: 1, x: 0, y: 0 }]);
+});
+
+test("a file of the earlier shape (its playhead a fraction, no Length, Key mode or camera) opens with the defaults named", () => {
+  const old = { ikarus_project: 1, saved_by: "ikarus 0.9.0", body: { kind: "rig", rig: "puppet" }, arm: ARM, pose_deg: [10, -20], goal: null, via: [], rig: { goals: [], pins: [], pose_deg: [90, 0, 0] }, character: null, keys: KEYS, settings: SETTINGS, playhead: 0.25 };
+  const { snap, view, defaulted } = readProject(old, page);
+  assert.deepEqual(defaulted, ["key_length", "key_mode", "camera"]);
+  assert.equal(snap.playhead, 0.25, "the fraction kept, for the page to seek to");
+  assert.equal(snap.playhead_s, undefined);
+  assert.equal(snap.key_length, 2);
+  assert.deepEqual(view, { key_mode: false, camera: { zoom: 1, x: 0, y: 0 } });
+  assert.deepEqual(snap.keys, KEYS);
 });
 
 test("a snapshot is a copy: later edits of the state do not reach it", () => {
@@ -85,7 +116,7 @@ test("a character is embedded below the size limit and referenced above it", () 
 
 test("an older file opens with the page's defaults and names them", () => {
   const { snap, defaulted } = readProject({ ikarus_project: 1, body: { kind: "arm" }, settings: { method: "ccd" } }, page);
-  assert.deepEqual(defaulted, ["arm", "pose_deg", "goal", "via", "keys", "settings.limits", "settings.limit-mode", "settings.restarts", "settings.lambda", "settings.frames", "settings.show-ghosts", "playhead"]);
+  assert.deepEqual(defaulted, ["arm", "pose_deg", "goal", "via", "keys", "key_length", "settings.limits", "settings.limit-mode", "settings.restarts", "settings.lambda", "settings.frames", "settings.show-ghosts", "playhead_s", "key_mode", "camera"]);
   assert.deepEqual(snap.arm, ARM);
   assert.deepEqual(snap.pose_deg, [10, -20]);
   assert.equal(snap.settings.method, "ccd");
@@ -108,6 +139,13 @@ test("a file this page cannot read says exactly why", () => {
   bad({ ikarus_project: 1, settings: { limits: "yes" } }, 'project file: settings.limits = "yes" is not true or false');
   bad({ ikarus_project: 1, settings: { method: "magic" } }, 'project file: settings.method = "magic" is not one of dls, ccd');
   bad({ ikarus_project: 1, playhead: 2 }, "project file: playhead = 2 is not from 0 to 1");
+  bad({ ikarus_project: 1, playhead_s: -1 }, "project file: playhead_s = -1 is below 0 seconds");
+  bad({ ikarus_project: 1, key_length: 0 }, "project file: key_length = 0 is not from 0.1 to 60 seconds");
+  bad({ ikarus_project: 1, key_length: "2" }, 'project file: key_length = "2" is not a number');
+  bad({ ikarus_project: 1, key_mode: 1 }, "project file: key_mode = 1 is not true or false");
+  bad({ ikarus_project: 1, camera: { zoom: 1000, x: 0, y: 0 } }, "project file: camera.zoom = 1000 is not from 0.05 to 200");
+  bad({ ikarus_project: 1, camera: { zoom: 2, x: "a", y: 0 } }, 'project file: camera.x = "a" is not a number');
+  bad({ ikarus_project: 1, camera: [1] }, "project file: camera = [1] is not an object");
 });
 
 test("only a JSON object with ikarus_project is a project (rigs and characters are not)", () => {

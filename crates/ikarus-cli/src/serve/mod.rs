@@ -44,6 +44,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("camera.js", JS, include_str!("assets/camera.js")),
     ("character.js", JS, include_str!("assets/character.js")),
     ("characters.js", JS, include_str!("assets/characters.js")),
+    ("chip.js", JS, include_str!("assets/chip.js")),
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("drawchar.js", JS, include_str!("assets/drawchar.js")),

@@ -103,7 +103,7 @@ export function wireCharacters(state, canvas, act) {
     act.setStatus("ready");
     playClip(c);
     poseSoon();
-    if (c.keys) act.keyed.applyKeys(c.keys);
+    act.keyed.resume();
   }
 
   /** A character file read by /api/rig/parse: shown from its setup pose. */
@@ -151,8 +151,7 @@ export function wireCharacters(state, canvas, act) {
   /** The arm or a rig takes the canvas: the character's controls step aside (it is kept for resume). */
   function leave() {
     if (!state.character) return;
-    // Its keys kept with it, for its return (show).
-    state.character.keys = state.keys;
+    // Its keys kept with it (keyed.js), for its return (show).
     state.character = null;
     act.keyed.leave();
     document.body.classList.remove("character");

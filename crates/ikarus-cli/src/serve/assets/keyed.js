@@ -17,9 +17,7 @@ import { bodyForward } from "./body.js";
 import { gifSize, saveBlob, screenLook } from "./files.js";
 import { ownsKeys } from "./input.js";
 import {
-  armAnimateRequest,
   armBones,
-  armMotion,
   bendAllowed,
   bendHandleAt,
   bendHandles,
@@ -30,11 +28,12 @@ import {
   deleteKey,
   frameAt,
   frameOf,
+  KEY_LENGTH,
+  keyedBranch,
   keyRows,
   keysDuration,
   moveKey,
   pasteKey,
-  rigAnimateRequest,
   rigFramesCsv,
   rigMotion,
   setBend,
@@ -53,7 +52,8 @@ const $ = (id) => document.getElementById(id);
  * Wires the keys of a rig, a character or the arm. `act` is {timeline (timeline.js's), draw(), setPose(pose) (the arm's),
  * requestDraw(), showError(e), setStatus(s), say(text), edited(what) (called once after each
  * edit of the keys: undo records it), clipBack() (a character's clip takes the timeline again)}.
- * Returns {enter(), leave(), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
+ * Returns {enter(), leave(), resume() (the body shown gets back the keys it left with), setLength(s),
+ * length() (the keys' Length, seconds), mode() (Key mode on), clipChanged(), spineRequest(), applyKeys(keys), resolve(), handles()
  * (the bend handles in canvas pixels), hovering(), dragEnded(bone, goal, from), pinToggled(bone),
  * bendPress(ev), hoverBend(ev), drawOver(ctx), settled(), setMode(on), seek(t), fillEases(meta)}.
  */
@@ -79,8 +79,28 @@ export function wireKeyed(state, canvas, act) {
   const body = () => state.rig || state.character || (armShown() ? state.arm : null);
   const boneNames = () => (state.rig ? state.rig.rig.bones.map((b) => b.name) : state.character ? state.character.character.bones.map((b) => b.name) : state.arm ? armBones(state.arm) : []);
   const rows = () => (body() ? keyRows(state.keys, boneNames()) : []);
-  /** Whether the timeline plays the keys: a rig's always, a character's or the arm's once it has keys. */
-  const owns = () => !!state.rig || ((!!state.character || armShown()) && !!state.keys);
+  /** A rig's or the arm's keys as one body (keys.js's keyedBranch: its rig, file name, request); null for a character. */
+  const branch = () => (state.character ? null : keyedBranch(state.rig ? state.rig.rig : null, state.arm));
+  /**
+   * Whether the timeline plays the keys: a rig's always, a character's once it has keys, the
+   * arm's once it has keys and while Key mode is on (off, its clicks' motions take the timeline).
+   */
+  const owns = () => !!state.rig || (!!state.character && !!state.keys) || (armShown() && !!state.keys && k.mode);
+  /**
+   * Each body's keys while another body shows (by slot(): a rig's state object, a character, or
+   * ARM, the arm whatever its links), given back by resume(); `owner` is the slot of the body
+   * `state.keys` belong to.
+   */
+  const kept = new WeakMap();
+  const ARM = {};
+  const slot = () => state.rig || state.character || (armShown() ? ARM : null);
+  let owner = null;
+  /** The keys shown kept with their body (none: nothing kept), as the canvas changes body. */
+  function stash() {
+    if (owner && state.keys) kept.set(owner, state.keys);
+    else if (owner) kept.delete(owner);
+    owner = null;
+  }
 
   // ---- The timeline ----------------------------------------------------------------------
 
@@ -140,16 +160,18 @@ export function wireKeyed(state, canvas, act) {
     const mode = $("key-mode");
     mode.setAttribute("aria-pressed", String(k.mode));
     $("arm-key-mode").checked = k.mode;
-    // The arm's keys bar shows in Key mode or once it has keys (the CSS hides it else).
+    // The arm's keys bar shows in Key mode or once it has keys (the CSS hides it else); while its
+    // keys play, its click motions' controls (duration, ease, via points, replay) step aside.
     document.body.classList.toggle("arm-keys", k.mode || !!state.keys);
+    document.body.classList.toggle("arm-keyed", armShown() && k.loaded !== null);
     const sel = selectedKey();
     const ease = $("key-ease");
     ease.disabled = !sel || k.selected.kind !== "track";
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-gif").disabled = !k.answer || !(state.rig || state.character);
-    $("key-frames-csv").disabled = !k.answer || !(state.rig || state.character);
+    $("key-gif").disabled = !k.answer;
+    $("key-frames-csv").disabled = !k.answer;
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
@@ -169,6 +191,7 @@ export function wireKeyed(state, canvas, act) {
     // The timeline as long as the keys, or back to a character's clip without them (the arm's
     // own motions may have taken it meanwhile: its keys take it back).
     if (armShown() || (owns() ? seconds() !== k.loaded : k.loaded !== null)) takeTimeline();
+    owner = slot();
     act.edited(what);
     requestMotion();
     syncBar();
@@ -288,18 +311,20 @@ export function wireKeyed(state, canvas, act) {
       return;
     }
     k.busy = true;
-    const req = state.rig ? rigAnimateRequest(state.rig.rig, keys, state.options) : state.character ? characterAnimateRequest(state.character, keys, "json") : armAnimateRequest(state.arm, keys, state.options);
+    const req = state.character ? characterAnimateRequest(state.character, keys, "json") : branch().request(keys, state.options);
     act.setStatus("solving");
     try {
       const answer = await api.animate(req);
       if (body() === b && state.keys === keys) {
-        state.motion = state.rig ? rigMotion(state.rig.rig, answer) : state.character ? characterMotion(answer, keys.fps) : armMotion(state.arm, answer);
+        state.motion = state.character ? characterMotion(answer, keys.fps) : rigMotion(branch().rig, answer);
         k.answer = answer;
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
         act.setStatus(state.character || reached === answer.frames.length ? "ready" : "unreachable");
         act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.character ? "" : ` · ${reached} reached`}`);
-        showAt(k.t);
+        // The arm's keys out of Key mode: their motion is ready, the arm's own motion stays shown.
+        if (owns()) showAt(k.t);
+        else syncBar();
       }
     } catch (e) {
       if (body() === b) {
@@ -316,8 +341,13 @@ export function wireKeyed(state, canvas, act) {
 
   // ---- Entering and leaving a rig, restoring keys ----------------------------------------
 
-  /** A rig or a character took the canvas: no keys yet; a rig's timeline spans the length. */
+  /**
+   * A rig or a character took the canvas (the keys shown before are kept with their body): no
+   * keys yet (resume() gives back its own); a rig's timeline spans the length.
+   */
   function enter() {
+    stash();
+    owner = slot();
     k.loaded = null;
     state.keys = null;
     state.motion = null;
@@ -334,7 +364,9 @@ export function wireKeyed(state, canvas, act) {
     requestMotion();
   }
 
+  /** The body shown leaves the canvas: its keys kept with it (resume() gives them back). */
   function leave() {
+    stash();
     k.loaded = null;
     state.keys = null;
     state.motion = null;
@@ -343,8 +375,18 @@ export function wireKeyed(state, canvas, act) {
     syncBar();
   }
 
-  /** Keys restored (undo, an opened project): shown and solved, without recording an edit. */
+  /** The body shown again (a rig, a character, the arm): the keys it had when it left, if any. */
+  function resume() {
+    const b = slot();
+    const keys = b && kept.get(b);
+    if (!keys) return;
+    kept.delete(b);
+    applyKeys(keys);
+  }
+
+  /** Keys restored (undo, an opened project, resume): shown and solved, without recording an edit. */
   function applyKeys(keys) {
+    owner = slot();
     state.keys = tidy(keys);
     k.selected = null;
     takeTimeline();
@@ -359,6 +401,8 @@ export function wireKeyed(state, canvas, act) {
 
   function setMode(on) {
     k.mode = on;
+    // The arm's keys take the timeline in Key mode and give it back to its motions out of it.
+    if (armShown() && state.keys) takeTimeline();
     syncBar();
   }
 
@@ -366,16 +410,22 @@ export function wireKeyed(state, canvas, act) {
 
   $("key-mode").addEventListener("click", () => setMode(!k.mode));
   $("arm-key-mode").addEventListener("change", (ev) => setMode(ev.target.checked));
-  $("key-length").addEventListener("change", (ev) => {
-    const v = Number(ev.target.value);
-    if (!(v >= 0.1 && v <= 60)) {
-      act.showError(new api.Notice(`Length: ${ev.target.value} is not a number of seconds from 0.1 to 60`));
-      return;
-    }
+  /** The keyed animation's length, `v` seconds (in KEY_LENGTH): the field shows it, the timeline spans it. */
+  function setLength(v) {
     k.length = v;
-    act.showError(null);
+    $("key-length").value = String(v);
     if (owns()) loadClip();
     syncBar();
+  }
+  $("key-length").addEventListener("change", (ev) => {
+    const v = Number(ev.target.value);
+    if (!(v >= KEY_LENGTH.min && v <= KEY_LENGTH.max)) {
+      act.showError(new api.Notice(`Length: ${ev.target.value} is not a number of seconds from ${KEY_LENGTH.min} to ${KEY_LENGTH.max}`));
+      return;
+    }
+    act.showError(null);
+    setLength(v);
+    act.edited(`Length ${v} s`);
   });
   $("key-ease").addEventListener("change", (ev) => {
     const s = k.selected;
@@ -394,35 +444,35 @@ export function wireKeyed(state, canvas, act) {
     commit(`delete key of ${s.bone}`);
   }
 
-  /** The keyed motion's frames as answered (JSON), or a rig's as `ikarus animate --keys --format csv` writes them. */
+  /** The keyed motion's frames as answered (JSON), or a rig's or the arm's as `ikarus animate --keys --format csv` writes them. */
   function download(format) {
     if (!k.answer) return;
     if (format === "csv" && state.character) return downloadCharacterCsv();
-    const text = format === "csv" ? rigFramesCsv(state.rig.rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
-    const name = `${state.rig ? state.rig.rig.name || "rig" : state.character ? characterName() : state.arm.name || "arm"}-keys.${format}`;
-    saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), name);
+    const text = format === "csv" ? rigFramesCsv(branch().rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
+    saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), `${bodyName()}-keys.${format}`);
   }
-  const characterName = () => state.character.name.replace(/\.json$/i, "");
+  /** The name of the files saved: the character's file without .json, the rig's or the arm's name. */
+  const bodyName = () => (state.character ? state.character.name.replace(/\.json$/i, "") : branch().name);
   /** A character's keyed motion as `ikarus animate --rig CHAR.json --keys --format csv` writes it: the server's CSV (/api/animate, format csv). */
   async function downloadCharacterCsv() {
     try {
       const csv = await api.post("/api/animate", characterAnimateRequest(state.character, state.keys, "csv"), "blob");
-      saveBlob(new Blob([csv], { type: "text/csv" }), `${characterName()}-keys.csv`);
+      saveBlob(new Blob([csv], { type: "text/csv" }), `${bodyName()}-keys.csv`);
       act.showError(null);
     } catch (e) {
       act.showError(e);
     }
   }
-  /** A rig's or a character's keyed motion as a GIF (POST /api/render, figure motion with the body and keys), at the keys' fps, the canvas's size. */
+  /** The keyed motion (a rig's, the arm's or a character's) as a GIF (POST /api/render, figure motion with the body and keys), at the keys' fps, the canvas's size. */
   async function downloadGif() {
-    if (!k.answer || !(state.rig || state.character)) return;
+    if (!k.answer) return;
     const button = $("key-gif");
     button.disabled = true;
     try {
       const size = gifSize(k.answer.frames.length, screenLook(state, canvas));
-      const body = state.rig ? rigAnimateRequest(state.rig.rig, state.keys, state.options) : characterAnimateRequest(state.character, state.keys);
+      const body = state.character ? characterAnimateRequest(state.character, state.keys) : branch().request(state.keys, state.options);
       const req = { figure: "motion", ...body, format: "gif", ...size };
-      saveBlob(await api.render(req), `${state.rig ? state.rig.rig.name || "rig" : characterName()}-keys.gif`);
+      saveBlob(await api.render(req), `${bodyName()}-keys.gif`);
       act.showError(null);
     } catch (e) {
       act.showError(e);
@@ -508,5 +558,5 @@ export function wireKeyed(state, canvas, act) {
   /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
   const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
 
-  return { enter, leave, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+  return { enter, leave, resume, setLength, length: () => k.length, mode: () => k.mode, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
 }

@@ -18,6 +18,9 @@ export const KEYS_FPS = 30;
 /** The keyed animation's length before any key is past it, seconds. */
 export const DEFAULT_LENGTH = 2;
 
+/** The range of the keys' Length, seconds (the Length field and a project file's `key_length`). */
+export const KEY_LENGTH = { min: 0.1, max: 60 };
+
 /** An empty KEYS object. */
 export const emptyKeys = (fps = KEYS_FPS) => ({ fps, tracks: {}, bends: {}, pins: [] });
 
@@ -240,8 +243,16 @@ export function armAnimateRequest(arm, keys, options) {
   return { arm: armForRequest(arm), keys, options: options || {} };
 }
 
-/** The arm's keyed /api/animate answer as `state.motion`: each frame's `pose` the link angles in order (main.js's setPose takes it). */
-export const armMotion = (arm, answer) => rigMotion(armRig(arm), answer);
+/**
+ * A rig's or the arm's keys as one body: `rig` (the rig, or the arm as its one-branch rig
+ * link0…: enough for the poses of rigMotion and the columns of rigFramesCsv), `name` (of the
+ * files saved) and `request(keys, options)` (the /api/animate body, which is also the keyed part
+ * of /api/render's figure `motion`). `arm` is used when `rig` is null.
+ */
+export function keyedBranch(rig, arm) {
+  if (rig) return { rig, name: rig.name || "rig", request: (keys, options) => rigAnimateRequest(rig, keys, options) };
+  return { rig: armRig(arm), name: arm.name || "arm", request: (keys, options) => armAnimateRequest(arm, keys, options) };
+}
 
 /**
  * A number as Rust's `{:?}` writes an f64 (the CLI's CSV): the shortest text that reads back

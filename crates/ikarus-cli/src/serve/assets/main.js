@@ -11,10 +11,11 @@
 // with the pure parts in character.js and the drawing in drawchar.js) or saves files (files.js,
 // with the figures drawn by export.js). The view drawn and picked through is the body's fitted
 // view under the camera (camera.js: zoom and pan, moved by viewctl.js, which also holds the
-// onion skins' fields; onion.js draws them).
+// onion skins' fields; onion.js draws them). The chip on the canvas (status, messages, bad
+// fields, the goal's reach) is chip.js's.
 
 import * as api from "./api.js";
-import { armForRequest, fillSelects, firstProblem, problemOf, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
+import { armForRequest, fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, syncMethods } from "./controls.js";
 import { storedArm } from "./armfile.js";
 import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
@@ -23,8 +24,7 @@ import { characterView, drawCharacterScene } from "./drawchar.js";
 import { wireCharacters } from "./characters.js";
 import { wireRigs } from "./rigs.js";
 import { wireKeyed } from "./keyed.js";
-import { areaOutline, solveTime } from "./view.js";
-import { formatDistance, regionOf, unreachableText, verdict } from "./region.js";
+import { regionOf, unreachableText } from "./region.js";
 import { wireDownloads } from "./files.js";
 import { wireInput } from "./input.js";
 import { newPlayback, wireTimeline } from "./timeline.js";
@@ -33,7 +33,8 @@ import { newOnion } from "./onion.js";
 import { wireViewControls } from "./viewctl.js";
 import { wireTrack } from "./track.js";
 import { wireProject } from "./projects.js";
-import { fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.js";
+import { wireChip } from "./chip.js";
+import { areaOutline, fitView, forward, glideFrames, poseIntoLimits, toCanvas } from "./view.js";
 
 /** The grid's resolution when the exact region cannot be had (the server could not build it). */
 const WORKSPACE_RESOLUTION = 160;
@@ -129,6 +130,9 @@ const state = {
   jobs: { animateSeq: 0, workspaceSeq: 0, workspaceTimer: 0, followGoal: null, followBusy: false, followChases: 0, drawQueued: false },
 };
 
+/** The chip on the canvas: status, messages, bad fields and the goal's reach (chip.js). */
+const { showError, setStatus, fieldsOk, durationOk, recheck, setStats, regionKey, missShown, missNote, judge, solvedVerdict } = wireChip(state, { setCollapsed });
+
 /** Undo, redo and project files (projects.js), wired last: the others report their edits here. */
 let project = null;
 const edited = (label) => project && project.edited(label);
@@ -198,160 +202,14 @@ project = wireProject(state, {
   settingsChanged,
   forgetMotion,
   applyKeys: (keys) => keyed.applyKeys(keys),
+  keyed,
+  timeline,
+  views,
   seek: (u) => (state.playback.clip || state.animation ? timeline.seek(u) : (state.playback.u = u)),
   requestDraw,
   showError,
   say: bodyActs.say,
 });
-
-// ---- Messages and status ------------------------------------------------------------------
-//
-// The chip on the canvas (#chip) holds the status line and the message: visible at every width
-// and whatever the panel shows, neutral while the page works or the arm moves, red for an error,
-// a bad field, or a goal not reached.
-
-/** Statuses that are not trouble: the chip stays neutral. */
-const CALM = new Set(["loading", "ready", "solving", "moving", "reached", "limited"]);
-
-function syncChip() {
-  const bad = !$("error").hidden || !CALM.has(document.body.dataset.status) || !!missShown();
-  // For scripts and tests: "outside" while the goal shown is out of the reachable region.
-  if (missShown()) document.body.dataset.reach = "outside";
-  else delete document.body.dataset.reach;
-  $("chip").dataset.kind = bad ? "bad" : "neutral";
-}
-
-function showError(e) {
-  const el = $("error");
-  if (!e) {
-    el.hidden = true;
-    el.textContent = "";
-  } else {
-    el.textContent = e.message || String(e);
-    el.hidden = false;
-    if (!(e instanceof api.Notice)) console.warn("ikarus:", e);
-  }
-  syncChip();
-}
-
-/** The page's status (loading, ready, solving, moving, reached, …, error), as body[data-status]. */
-function setStatus(status) {
-  document.body.dataset.status = status;
-  if (status === "error") $("stats").textContent = "status error";
-  if (status === "moving") {
-    const miss = missShown();
-    $("stats").textContent = miss ? `${unreachableText(miss.distance)} · moving to the nearest reachable point…` : "moving…";
-  }
-  syncChip();
-}
-
-/**
- * Whether every field holds a good value. If not, the first bad one is named on the chip, and
- * when `point` is set (the reader tried to act) it is shown: the panel opens, the field scrolls
- * into view and takes the focus.
- */
-function fieldsOk(point = true) {
-  const p = firstProblem();
-  if (!p) return true;
-  showProblem(p, point);
-  return false;
-}
-
-/** Names the bad field `p` ({el, message}) on the chip; with `point`, shows and focuses it. */
-function showProblem(p, point) {
-  showError(new api.Notice(p.message));
-  state.fieldShown = true;
-  if (point) {
-    // A field of the panel opens it (the timeline's Duration is always in view).
-    if (p.el.closest("#panel")) setCollapsed(false);
-    p.el.scrollIntoView({ block: "center" });
-    p.el.focus({ preventScroll: true });
-  }
-}
-
-/** Whether the Duration field allows playing; if not, it is named and shown instead. */
-function durationOk() {
-  const el = $("duration");
-  const message = problemOf(el);
-  if (message) showProblem({ el, message }, true);
-  return !message;
-}
-
-/** After an edit: the message of the first bad field, or none (a fixed field clears it). */
-function recheck() {
-  const p = firstProblem();
-  if (p) {
-    showError(new api.Notice(p.message));
-    state.fieldShown = true;
-  } else if (state.fieldShown) {
-    showError(null);
-    state.fieldShown = false;
-  }
-}
-
-function setStats(s) {
-  const parts = [`status ${s.status}`];
-  const miss = missShown();
-  const distance = s.status === "unreachable" && Number.isFinite(s.reach_distance) ? s.reach_distance : miss && miss.distance;
-  if (Number.isFinite(distance)) parts.push(missNote(s.status, distance));
-  if (s.iterations !== undefined) parts.push(`${s.iterations} iteration${s.iterations === 1 ? "" : "s"}`);
-  if (s.restarts) parts.push(`${s.restarts} restart${s.restarts === 1 ? "" : "s"}`);
-  if (s.error !== undefined) parts.push(`error ${Number(s.error).toExponential(2)}`);
-  if (s.solve_us !== undefined) parts.push(solveTime(s.solve_us));
-  $("stats").textContent = parts.join(" · ");
-}
-
-// ---- Reach: a goal out of the reachable region ---------------------------------------------
-
-/** Which arm and limits a region is of: the workspace request's arm and limits. */
-const regionKey = () => JSON.stringify([armForRequest(state.arm), !!state.options.limits]);
-
-/** The exact region of the current arm and limits (the last workspace answer's), or null. */
-function currentRegion() {
-  return state.region && state.regionFor === regionKey() ? state.region : null;
-}
-
-/** The miss of the goal shown, or null. */
-function missShown() {
-  const miss = state.reachMiss;
-  return miss && state.goal && miss.goal === state.goal ? miss : null;
-}
-
-/** "0.83 from the reachable region" after a status that says unreachable already, else "unreachable · 0.83 …". */
-function missNote(status, distance) {
-  return status === "unreachable" ? `${formatDistance(distance)} from the reachable region` : unreachableText(distance);
-}
-
-/**
- * The page's own verdict on `goal` with limits on, from the region of the current arm: a goal
- * outside it (farther than the solver's tolerance) becomes state.reachMiss, with the nearest
- * reachable point. None for an orientation goal (its region is another) or without a region.
- */
-function judge(goal) {
-  state.reachMiss = null;
-  const region = state.options.limits && goal.angle_deg === undefined ? currentRegion() : null;
-  if (region) {
-    const tolerance = state.options.tolerance ?? (state.meta && state.meta.defaults && state.meta.defaults.tolerance) ?? 1e-6;
-    const v = verdict(region, [goal.x, goal.y], tolerance);
-    if (!v.reachable) state.reachMiss = { goal, nearest: v.nearest, distance: v.distance };
-  }
-  syncChip();
-  return state.reachMiss;
-}
-
-/**
- * The solve's word on `goal`, which overrides the page's: `unreachable` with its
- * `reach_distance`, the nearest point being where its pose puts the tip (`tip`); `reached`
- * clears a miss.
- */
-function solvedVerdict(goal, status, reachDistance, tip) {
-  if (status === "unreachable" && Number.isFinite(reachDistance) && tip) {
-    state.reachMiss = { goal, nearest: tip, distance: reachDistance };
-  } else if (status === "reached") {
-    state.reachMiss = null;
-  }
-  syncChip();
-}
 
 // ---- Drawing ------------------------------------------------------------------------------
 

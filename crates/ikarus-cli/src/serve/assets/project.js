@@ -1,10 +1,13 @@
-// The work of the page as one plain JSON object, the pure part: `snapshot(state, settings)` of
-// everything a reader edits (the body, the arm, its pose, goal and via points, a rig's goals,
-// pins and pose, a character's clip, time, IK switch and placed targets, the keys, the panel's
-// settings and the playhead), the key that compares two snapshots, the project file made of one
-// (`{"ikarus_project": 1, "saved_by": "ikarus VERSION", …snapshot}`) and the file read back,
+// The work of the page as one plain JSON object, the pure part: `snapshot(state, settings,
+// timing)` of everything a reader edits (the body, the arm, its pose, goal and via points, a
+// rig's goals, pins and pose, a character's clip, time, IK switch and placed targets, the keys
+// and their Length, the panel's settings and the playhead in seconds), the key that compares two
+// snapshots, the project file made of one (`{"ikarus_project": 1, "saved_by": "ikarus VERSION",
+// …snapshot, "key_mode", "camera"}`: the view of the work, Key mode and the zoom and pan, is
+// saved with it but is not an edit, so undo never steps through it) and the file read back,
 // checked field by field with one-line messages that name the field and the value, missing
-// fields taken from the page's defaults and named. No DOM: node tests it
+// fields taken from the page's defaults and named (a file of the earlier shape, its playhead a
+// fraction of the timeline in `playhead`, opens too). No DOM: node tests it
 // (e2e/project.unit.test.mjs); projects.js wires it (Save, Open, drop, undo).
 //
 // The body: `{"kind": "arm"}` (the arm is the top-level `arm`), `{"kind": "rig", "rig": "puppet"}`
@@ -20,17 +23,21 @@ export const PROJECT_VERSION = 1;
 /** A character file smaller than this (bytes of UTF-8) is embedded in the project file. */
 export const EMBED_BYTES = 2 * 1024 * 1024;
 
+import { fittedCamera, ZOOM } from "./camera.js";
+import { DEFAULT_LENGTH, KEY_LENGTH } from "./keys.js";
+
 /** A deep copy of plain JSON data. */
 const copy = (v) => (v === undefined || v === null ? null : JSON.parse(JSON.stringify(v)));
 
 const points = (map) => [...map].map(([bone, p]) => ({ bone, x: p.x, y: p.y }));
 
 /**
- * The work of the page: `state` (main.js's) and `settings` (the panel's controls by id: text of a
- * field, true/false of a check box). A character's text and its parse answer are held by
- * reference (`text`, `parsed`: never copied, never compared, never saved as such).
+ * The work of the page: `state` (main.js's), `settings` (the panel's controls by id: text of a
+ * field, true/false of a check box) and `timing` ({key_length: the keys' Length, playhead_s: the
+ * playhead, both seconds}). A character's text and its parse answer are held by reference
+ * (`text`, `parsed`: never copied, never compared, never saved as such).
  */
-export function snapshot(state, settings) {
+export function snapshot(state, settings, timing = {}) {
   const c = state.character;
   const r = state.rig;
   let body = { kind: "arm" };
@@ -46,8 +53,9 @@ export function snapshot(state, settings) {
     rig: r ? { goals: points(r.goals), pins: [...r.pins], pose_deg: r.pose_deg.slice() } : null,
     character: c ? { animation: c.animation, time: c.time, ik: c.ik, targets: points(c.targets) } : null,
     keys: copy(state.keys),
+    key_length: timing.key_length ?? DEFAULT_LENGTH,
     settings: { ...settings },
-    playhead: state.playback ? state.playback.u : 0,
+    playhead_s: timing.playhead_s ?? 0,
   };
 }
 
@@ -89,10 +97,11 @@ export function isProjectText(text) {
 
 /**
  * The project file of `snap`: `savedBy` ("ikarus 0.9.0"); for a character, `size` (its bytes)
- * and `sha256` (hex) of its text, which is embedded below EMBED_BYTES.
+ * and `sha256` (hex) of its text, which is embedded below EMBED_BYTES; `view` ({key_mode,
+ * camera}: Key mode on or off, the camera's {zoom, x, y}), saved beside the work.
  */
-export function projectFile(snap, savedBy, character = {}) {
-  const out = { ikarus_project: PROJECT_VERSION, saved_by: savedBy, ...snap };
+export function projectFile(snap, savedBy, character = {}, view = {}) {
+  const out = { ikarus_project: PROJECT_VERSION, saved_by: savedBy, ...snap, key_mode: !!view.key_mode, camera: { ...fittedCamera(), ...view.camera } };
   if (snap.body.kind === "character") {
     const { name, format, text } = snap.body.character;
     const ref = { name, format, size: character.size, ...(character.sha256 ? { sha256: character.sha256 } : {}) };
@@ -140,6 +149,12 @@ function obj(v, path) {
 
 function list(v, path) {
   if (!Array.isArray(v)) throw refuse(path, v, "is not a list");
+  return v;
+}
+
+/** `v` (a number) when it is from `range.min` to `range.max`, else the refusal naming them (and `unit`). */
+function within(v, path, range, unit) {
+  if (v < range.min || v > range.max) throw refuse(path, v, `is not from ${range.min} to ${range.max}${unit}`);
   return v;
 }
 
@@ -215,7 +230,9 @@ export function checkKeys(keys, path = "keys") {
  * The project file `file` (parsed JSON) read against the page: `page` is {defaults (a snapshot
  * of the page as it starts: its arm and settings), rigs (Map shipped rig name -> rig JSON),
  * choices (the values a list of the settings offers, by id: a value outside them is refused)}.
- * Returns {snap, defaulted (the fields missing and taken from the defaults)}, or throws an Error
+ * Returns {snap (its playhead `playhead_s`, or `playhead`, a fraction, from a file of the earlier
+ * shape), view ({key_mode, camera}), defaulted (the fields missing and taken from the
+ * defaults)}, or throws an Error
  * with a one-line message naming the field and its value. A character that is not embedded comes
  * back with `text` undefined (projects.js matches it with the one loaded).
  */
@@ -270,8 +287,9 @@ export function readProject(file, page) {
     rig: null,
     character: null,
     keys: null,
+    key_length: d.key_length ?? DEFAULT_LENGTH,
     settings: {},
-    playhead: 0,
+    playhead_s: 0,
   };
   const goal = field("goal");
   if (goal !== undefined && goal !== null) {
@@ -303,6 +321,8 @@ export function readProject(file, page) {
   }
   const keys = field("keys");
   if (keys !== undefined && keys !== null) snap.keys = checkKeys(keys);
+  const length = field("key_length");
+  if (length !== undefined) snap.key_length = within(num(length, "key_length"), "key_length", KEY_LENGTH, " seconds");
 
   const settings = field("settings") ?? {};
   obj(settings, "settings");
@@ -321,11 +341,28 @@ export function readProject(file, page) {
       snap.settings[id] = String(v);
     }
   }
-  const playhead = field("playhead");
-  if (playhead !== undefined) {
-    num(playhead, "playhead");
-    if (playhead < 0 || playhead > 1) throw refuse("playhead", playhead, "is not from 0 to 1");
-    snap.playhead = playhead;
+  // The playhead in seconds; a file of the earlier shape holds a fraction of its timeline instead.
+  if (file.playhead_s !== undefined) {
+    if (num(file.playhead_s, "playhead_s") < 0) throw refuse("playhead_s", file.playhead_s, "is below 0 seconds");
+    snap.playhead_s = file.playhead_s;
+  } else if (file.playhead !== undefined) {
+    num(file.playhead, "playhead");
+    if (file.playhead < 0 || file.playhead > 1) throw refuse("playhead", file.playhead, "is not from 0 to 1");
+    delete snap.playhead_s;
+    snap.playhead = file.playhead;
+  } else defaulted.push("playhead_s");
+
+  // The view saved with the work: Key mode and the camera.
+  const view = { key_mode: false, camera: fittedCamera() };
+  const mode = field("key_mode");
+  if (mode !== undefined) {
+    if (typeof mode !== "boolean") throw refuse("key_mode", mode, "is not true or false");
+    view.key_mode = mode;
   }
-  return { snap, defaulted };
+  const camera = field("camera");
+  if (camera !== undefined) {
+    obj(camera, "camera");
+    view.camera = { zoom: within(num(camera.zoom, "camera.zoom"), "camera.zoom", ZOOM, ""), x: num(camera.x, "camera.x"), y: num(camera.y, "camera.y") };
+  }
+  return { snap, view, defaulted };
 }

@@ -2,7 +2,9 @@
 // project.js's snapshots), *Save project* (a `NAME.ikarus.json` download), *Open project…* and a
 // project file dropped on the page (rigs.js hands it over: a JSON object with `ikarus_project`),
 // and the warning before a reload would lose edits made since the last save or open. A snapshot
-// is put back through the page's own actions (`act`), never by half-filling the form.
+// is put back through the page's own actions (`act`), never by half-filling the form. A file also
+// holds the view (Key mode, the camera's zoom and pan), put back when it opens; undo does not
+// step through the view (zooming is not an edit).
 //
 // What is an edit: every change of a panel setting (listened to here), and what the other
 // modules report through `edited(label)` (main.js, links.js, rigs.js, characters.js, the keys):
@@ -57,7 +59,9 @@ async function sha256(bytes) {
  * Wires undo, redo and project files. `act` is {rigs (rigs.js's), characters (characters.js's),
  * useArm(arm) (links.js's), setPose(pose), settingsChanged() (the settings' fields were set: the
  * page reads them), forgetMotion(), applyKeys(keys) (keyed.js's: the keys shown and their motion
- * asked), seek(u), requestDraw(), showError(e), say(text)}. Returns {start(), edited(label),
+ * asked), keyed (keyed.js's: setLength, length, mode, setMode), timeline (timeline.js's:
+ * duration), views (viewctl.js's: setCamera), seek(u) (the playhead to a fraction of the
+ * timeline), requestDraw(), showError(e), say(text)}. Returns {start(), edited(label),
  * amend(), undo(), redo(), save(), open(name, text), isProject(text), dirty(), sizes(),
  * restoring()}.
  */
@@ -69,7 +73,12 @@ export function wireProject(state, act) {
   /** A snapshot is being put back (its actions' edits are not new steps), or a file opened. */
   let restoring = false;
 
-  const take = () => snapshot(state, readSettings());
+  /** The timeline's length now, seconds (0 when it has none). */
+  const seconds = () => {
+    const d = act.timeline.duration();
+    return Number.isFinite(d) && d > 0 ? d : 0;
+  };
+  const take = () => snapshot(state, readSettings(), { key_length: act.keyed.length(), playhead_s: state.playback.u * seconds() });
   const dirty = () => !!history && workKey(history.present()) !== savedKey;
 
   function sync() {
@@ -104,8 +113,11 @@ export function wireProject(state, act) {
     sync();
   }
 
-  /** Puts `snap` back through the page's actions. */
-  function restore(snap) {
+  /**
+   * Puts `snap` back through the page's actions, and `view` ({key_mode, camera}: an opened
+   * file's; undo has none) with it.
+   */
+  function restore(snap, view = null) {
     restoring = true;
     try {
       act.forgetMotion();
@@ -123,9 +135,15 @@ export function wireProject(state, act) {
       }
       if (snap.rig) act.rigs.setWork(snap.rig);
       if (snap.character) act.characters.setWork(snap.character);
+      // Key mode and the Length before the keys: they decide what the timeline plays and how long.
+      if (view) act.keyed.setMode(view.key_mode);
+      act.keyed.setLength(snap.key_length);
       const keys = snap.keys ? JSON.parse(JSON.stringify(snap.keys)) : null;
       act.applyKeys(keys);
-      act.seek(snap.playhead);
+      // The playhead in seconds (a file of the earlier shape: a fraction of the timeline).
+      const d = seconds();
+      act.seek(snap.playhead_s === undefined ? snap.playhead : d > 0 ? Math.min(snap.playhead_s / d, 1) : 0);
+      if (view) act.views.setCamera(view.camera);
       act.requestDraw();
     } finally {
       restoring = false;
@@ -185,7 +203,7 @@ export function wireProject(state, act) {
         extra.size = bytes.length;
         extra.sha256 = await sha256(bytes);
       }
-      const file = projectFile(snap, await version(), extra);
+      const file = projectFile(snap, await version(), extra, { key_mode: act.keyed.mode(), camera: state.camera });
       const name = projectName(snap);
       saveBlob(new Blob([JSON.stringify(file, null, 1)], { type: "application/json" }), name);
       savedKey = workKey(snap);
@@ -241,11 +259,11 @@ export function wireProject(state, act) {
       } catch (e) {
         throw new Error(`project file: not JSON (${e.message})`);
       }
-      const { snap, defaulted } = readProject(file, { defaults, rigs: act.rigs.shipped(), choices: choices() });
+      const { snap, view, defaulted } = readProject(file, { defaults, rigs: act.rigs.shipped(), choices: choices() });
       if (snap.body.kind === "character") await findCharacter(snap.body.character);
       if (snap.rig && snap.rig.pose_deg === null) delete snap.rig.pose_deg;
       amend();
-      restore(snap);
+      restore(snap, view);
       history.record(take(), `Open ${name}`);
       savedKey = workKey(history.present());
       act.showError(null);

@@ -60,7 +60,7 @@ export function wireRigs(state, canvas, act) {
   const rigs = new Map();
   /** The limits checkbox of the arm, given back when the arm returns (a rig turns limits on). */
   let armLimits = null;
-  /** Each rig's work when another body took the canvas: list value -> {r (its rig state), keys}. */
+  /** Each rig's work when another body took the canvas: list value -> {r (its rig state)} (keyed.js keeps its keys). */
   const kept = new Map();
 
   const names = () => state.rig.rig.bones.map((b) => b.name);
@@ -81,11 +81,10 @@ export function wireRigs(state, canvas, act) {
    */
   function use(value, resume = true) {
     const select = $("body-kind");
-    if (state.rig) {
-      // Its work kept for its return; its keys leave with it (before anything solves the next body).
-      kept.set(state.rig.source, { r: state.rig, keys: state.keys });
-      act.keyed.leave();
-    }
+    // Its work kept for its return; its keys (or the arm's) leave with it, kept by keyed.js,
+    // before anything solves the next body.
+    if (state.rig) kept.set(state.rig.source, { r: state.rig });
+    if (!(value === "character" && state.character)) act.keyed.leave();
     if (value === "character") {
       if (state.rig) use("arm");
       act.characters.resume();
@@ -93,7 +92,11 @@ export function wireRigs(state, canvas, act) {
     }
     act.characters.leave();
     if (value === "arm") {
-      if (!state.rig) return;
+      if (!state.rig) {
+        // From a character: the arm's keys, if it had any when it left.
+        act.keyed.resume();
+        return;
+      }
       state.rig = null;
       act.keyed.leave();
       document.body.classList.remove("rig");
@@ -106,6 +109,8 @@ export function wireRigs(state, canvas, act) {
       act.forgetMotion();
       act.showError(null);
       act.controlsChanged();
+      // The arm's keys, if it had any when it left.
+      act.keyed.resume();
       act.requestDraw();
       return;
     }
@@ -128,7 +133,8 @@ export function wireRigs(state, canvas, act) {
     act.controlsChanged();
     idle();
     act.keyed.enter();
-    if (back && back.r === state.rig && back.keys) act.keyed.applyKeys(back.keys);
+    // A rig resumed: its keys (a new rig state has none).
+    act.keyed.resume();
     act.requestDraw();
   }
 

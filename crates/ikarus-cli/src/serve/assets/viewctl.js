@@ -31,7 +31,7 @@ const KEY_ZOOM = { "+": 1.25, "=": 1.25, "-": 0.8 };
  * `state.onion` ({show, count}). `act` is {draw() (draws at once: the view picks use is the one
  * drawn), toggle() (plays or pauses the timeline), requestDraw(), recheck() (shows or clears
  * the first bad field's message)}. Returns {look(fit): the view to draw and pick through, of the
- * fitted view `fit` of the body shown; fit()}.
+ * fitted view `fit` of the body shown; fit(); setCamera(camera): that camera on the body shown}.
  */
 export function wireViewControls(state, canvas, act) {
   const box = canvas.parentElement;
@@ -60,6 +60,12 @@ export function wireViewControls(state, canvas, act) {
   }
 
   const fit = () => move(fittedCamera());
+
+  /** The camera `camera` of the body shown now (an opened project's): kept as that body's, shown at once. */
+  function setCamera(camera) {
+    cameraFor = bodyKey();
+    move({ ...camera });
+  }
 
   const local = (ev) => {
     const r = canvas.getBoundingClientRect();
@@ -217,5 +223,5 @@ export function wireViewControls(state, canvas, act) {
     act.requestDraw();
   });
 
-  return { look, fit };
+  return { look, fit, setCamera };
 }
