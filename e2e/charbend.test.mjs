@@ -12,9 +12,9 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
+import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
 
 const file = join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.json");
-const settled = (page) => page.waitForFunction(() => window.ikarus.characters.settled() && window.ikarus.keys.settled(), null, { timeout: 60000 });
 
 /** The side the shin turns from the thigh in `bones` (/api/pose's): "ccw" or "cw". */
 function kneeSide(bones) {
@@ -23,20 +23,9 @@ function kneeSide(bones) {
 }
 
 /** Drags the character's target `name` by `by` (world units) at the playhead, and waits. */
-async function dragTarget(page, name, by) {
-  const at = await page.evaluate((n) => {
-    const c = window.ikarus.state.character;
-    const g = c.targets.get(n);
-    const b = c.posed.find((x) => x.name === n);
-    return g ? [g.x, g.y] : [b.x, b.y];
-  }, name);
-  const from = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), at);
-  const to = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [at[0] + by[0], at[1] + by[1]]);
-  await page.mouse.move(...from);
-  await page.mouse.down();
-  await page.mouse.move(...to, { steps: 6 });
-  await page.mouse.up();
-  await settled(page);
+async function dragBy(page, name, by) {
+  const at = await targetAt(page, name);
+  await dragTarget(page, at, [at[0] + by[0], at[1] + by[1]]);
 }
 
 test("spineboy: a knee's bend handle keys the other side at the playhead, and the frames are the CLI's", async () => {
@@ -48,7 +37,7 @@ test("spineboy: a knee's bend handle keys the other side at the playhead, and th
     await ready(page);
     await page.setInputFiles("#rig-file", { name: "spineboy.json", mimeType: "application/json", buffer: Buffer.from(text) });
     await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed, null, { timeout: 15000 });
-    await settled(page);
+    await characterSettled(page);
     // No handles outside Key mode; in it, one per two-bone constraint, at its lower bone.
     assert.deepEqual(await page.evaluate(() => window.ikarus.keys.handles()), []);
     await page.click("#key-mode");
@@ -57,16 +46,16 @@ test("spineboy: a knee's bend handle keys the other side at the playhead, and th
     assert.deepEqual(handles.map((h) => h[0]).sort(), ["front-shin", "rear-shin"]);
     assert.equal(Object.fromEntries(handles)["front-shin"], kneeSide(posed), "the handle says the side the knee bends");
 
-    await dragTarget(page, "front-leg-target", [10, 0]);
+    await dragBy(page, "front-leg-target", [10, 0]);
     await page.evaluate(() => window.ikarus.keys.seek(0.6));
-    await settled(page);
-    await dragTarget(page, "front-leg-target", [40, 50]);
+    await characterSettled(page);
+    await dragBy(page, "front-leg-target", [40, 50]);
     const first = await page.evaluate(() => window.ikarus.state.motion.frames[0].bones);
     const start = kneeSide(first);
 
     // At 0.3 s, a click on the front knee's handle.
     await page.evaluate(() => window.ikarus.keys.seek(0.3));
-    await settled(page);
+    await characterSettled(page);
     const handle = await page.evaluate(() => {
       const h = window.ikarus.keys.handles().find((x) => x.bone === "front-shin");
       const r = document.getElementById("plot").getBoundingClientRect();
@@ -75,7 +64,7 @@ test("spineboy: a knee's bend handle keys the other side at the playhead, and th
     await page.mouse.move(...handle.at);
     await page.screenshot({ path: join(artifacts, "charbend-hover.png") });
     await page.mouse.click(...handle.at);
-    await settled(page);
+    await characterSettled(page);
     const flipped = handle.side === "ccw" ? "cw" : "ccw";
     const keys = await page.evaluate(() => window.ikarus.state.keys);
     assert.deepEqual(keys.bends["front-shin"], [

@@ -15,6 +15,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
+import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
 import { ROW, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
 import { TIMES, TOLERANCE, WALK, flipBend, keyWalk, keyingPuppet, keysSettled as settled, seek, shown, side, tipClient } from "./rigpage.mjs";
@@ -201,7 +202,6 @@ const SPINE_OFFSETS = [
   [20, -5],
 ];
 
-const characterSettled = (page) => page.waitForFunction(() => window.ikarus.characters.settled() && window.ikarus.keys.settled(), null, { timeout: 60000 });
 
 test("spineboy: the front foot target keyed over walk (four keys) is on its keys, and exported as Spine JSON", async (t) => {
   mkdirSync(artifacts, { recursive: true });
@@ -231,21 +231,10 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
         await page.evaluate((s) => window.ikarus.keys.seek(s), SPINE_TIMES[k]);
         await characterSettled(page);
       }
-      const at = await page.evaluate((n) => {
-        const c = window.ikarus.state.character;
-        const g = c.targets.get(n);
-        const b = c.posed.find((x) => x.name === n);
-        return g ? [g.x, g.y] : [b.x, b.y];
-      }, name);
+      const at = await targetAt(page, name);
       // At time 0 the first key is where walk has the target (a plain click would not drag).
       const goal = k === 0 ? [at[0] + 10, at[1]] : [at[0] + SPINE_OFFSETS[k][0], at[1] + SPINE_OFFSETS[k][1]];
-      const from = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), at);
-      const to = await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), goal);
-      await page.mouse.move(...from);
-      await page.mouse.down();
-      await page.mouse.move(...to, { steps: 6 });
-      await page.mouse.up();
-      await characterSettled(page);
+      await dragTarget(page, at, goal);
       keysWanted.push(goal);
     }
     const keys = await page.evaluate(() => window.ikarus.state.keys);
