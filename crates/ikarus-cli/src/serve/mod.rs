@@ -55,6 +55,8 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("history.js", JS, include_str!("assets/history.js")),
     ("input.js", JS, include_str!("assets/input.js")),
     ("keyed.js", JS, include_str!("assets/keyed.js")),
+    ("keybends.js", JS, include_str!("assets/keybends.js")),
+    ("keyexports.js", JS, include_str!("assets/keyexports.js")),
     ("keys.js", JS, include_str!("assets/keys.js")),
     ("links.js", JS, include_str!("assets/links.js")),
     ("onion.js", JS, include_str!("assets/onion.js")),

@@ -1,28 +1,23 @@
 // Keyframes on the page for a rig, a character or the arm (issue 28): the keys bar and rows under the
 // timeline, Key mode (a drag of an effector or an IK target keys its target at the playhead; on
-// a rig a click pins the tip for the whole animation), the bend handles at a rig's knees and
-// elbows (a click keys the other side at the playhead), and the keyed motion: after every edit
+// a rig a click pins the tip for the whole animation), the bend handles at a rig's or a
+// character's knees and elbows (keybends.js), and the keyed motion: after every edit
 // of the keys POST /api/animate with the rig (or the character file's text, its clip and IK
 // choice), `keys` and the solver options (one request in flight, latest wins), played by the
 // timeline (timeline.js's loadClip: frame ⌊t·fps⌉ of the answer shown, never blended), and its
-// frames saved (the answer as JSON; a rig's as the CLI's CSV too). A character without keys leaves
-// the timeline to its clip (characters.js) and keys at the clip's time. The pure parts are
-// keys.js, the drawing drawkeys.js.
+// frames saved as JSON, CSV and GIF (keyexports.js). A character without keys leaves the
+// timeline to its clip (characters.js) and keys at the clip's time. The pure parts are keys.js,
+// the drawing drawkeys.js.
 //
 // It writes `state.keys` (the KEYS object of `ikarus animate --keys`, or null) and
 // `state.motion` ({fps, duration, frames}, each frame with `pose` in bone order, or null).
 
 import * as api from "./api.js";
 import { bodyForward } from "./body.js";
-import { gifSize, saveBlob, screenLook } from "./files.js";
 import { ownsKeys } from "./input.js";
 import {
   armBones,
-  bendAllowed,
-  bendHandleAt,
-  bendHandles,
   characterAnimateRequest,
-  characterBendHandles,
   characterMotion,
   DEFAULT_LENGTH,
   deleteKey,
@@ -34,17 +29,15 @@ import {
   keysDuration,
   moveKey,
   pasteKey,
-  rigFramesCsv,
   rigMotion,
-  setBend,
   setEase,
   setKey,
-  sideOf,
   tidy,
   togglePinKey,
 } from "./keys.js";
-import { drawBendHandles, drawRows, pickKey, rowAxis } from "./drawkeys.js";
-import { toCanvas } from "./view.js";
+import { drawRows, pickKey, rowAxis } from "./drawkeys.js";
+import { wireBendHandles } from "./keybends.js";
+import { wireKeyExports } from "./keyexports.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -230,67 +223,7 @@ export function wireKeyed(state, canvas, act) {
     return true;
   }
 
-  /** The bend handles of the pose shown, in canvas pixels. */
-  const handles = () => {
-    const at = (x, y) => toCanvas(state.view, x, y);
-    if (state.rig) return bendHandles(state.rig.rig, state.rig.pose_deg, at);
-    const c = state.character;
-    return c && k.mode ? characterBendHandles(c.character.ik, c.posed, at) : [];
-  };
-
-  const local = (ev) => {
-    const rect = canvas.getBoundingClientRect();
-    return [ev.clientX - rect.left, ev.clientY - rect.top];
-  };
-
-  /** A press on a bend handle flips that joint at the playhead (a bend key); true when it was on one. */
-  function bendPress(ev) {
-    const r = state.rig;
-    if (!r && !state.character) return false;
-    const hs = handles();
-    const bone = bendHandleAt(hs, ...local(ev));
-    if (!bone) return false;
-    ev.preventDefault();
-    const h = hs.find((x) => x.bone === bone);
-    const to = h.side === "ccw" ? "cw" : "ccw";
-    const f0 = state.motion && state.motion.frames[0];
-    let from = h.side;
-    if (r) {
-      const i = r.rig.bones.findIndex((b) => b.name === bone);
-      const def = r.rig.bones[i];
-      if (!bendAllowed(def, to, state.options.limits)) {
-        const [lo, hi] = def.limits_deg;
-        act.showError(new api.Notice(`${bone}: its limits [${lo}°, ${hi}°] allow only ${h.side}; turn off Enforce joint limits to flip it`));
-        return true;
-      }
-      if (f0) from = sideOf(f0.pose[i]);
-    } else if (f0) {
-      // A character: the side its knee bends in the motion's first frame.
-      const first = characterBendHandles(state.character.character.ik, f0.bones, (x, y) => [x, -y]).find((x) => x.bone === bone);
-      if (first) from = first.side;
-    }
-    state.keys = setBend(state.keys, bone, k.t, to, from);
-    k.selected = null;
-    if (!state.keys.tracks || !Object.keys(state.keys.tracks).length) act.say(`${bone} keyed to bend ${to}; key an effector to see the motion`);
-    commit(`bend ${bone} ${to}`);
-    return true;
-  }
-
-  /** The bend handle under the pointer, ringed and named; whether there is one (then it alone is named). */
-  function hoverBend(ev) {
-    if (!state.rig && !state.character) return false;
-    const bone = bendHandleAt(handles(), ...local(ev));
-    if (bone !== k.hover) {
-      k.hover = bone;
-      act.requestDraw();
-    }
-    return !!bone;
-  }
-
-  /** Over the rig on the canvas: the bend handles. */
-  function drawOver(ctx) {
-    if (state.rig || state.character) drawBendHandles(ctx, handles(), k.hover);
-  }
+  const { handles, bendPress, hoverBend, drawOver } = wireBendHandles({ state, k, canvas, act, commit });
 
   // ---- The motion ------------------------------------------------------------------------
 
@@ -444,45 +377,7 @@ export function wireKeyed(state, canvas, act) {
     commit(`delete key of ${s.bone}`);
   }
 
-  /** The keyed motion's frames as answered (JSON), or a rig's or the arm's as `ikarus animate --keys --format csv` writes them. */
-  function download(format) {
-    if (!k.answer) return;
-    if (format === "csv" && state.character) return downloadCharacterCsv();
-    const text = format === "csv" ? rigFramesCsv(branch().rig, k.answer) : `${JSON.stringify(k.answer, null, 2)}\n`;
-    saveBlob(new Blob([text], { type: format === "csv" ? "text/csv" : "application/json" }), `${bodyName()}-keys.${format}`);
-  }
-  /** The name of the files saved: the character's file without .json, the rig's or the arm's name. */
-  const bodyName = () => (state.character ? state.character.name.replace(/\.json$/i, "") : branch().name);
-  /** A character's keyed motion as `ikarus animate --rig CHAR.json --keys --format csv` writes it: the server's CSV (/api/animate, format csv). */
-  async function downloadCharacterCsv() {
-    try {
-      const csv = await api.post("/api/animate", characterAnimateRequest(state.character, state.keys, "csv"), "blob");
-      saveBlob(new Blob([csv], { type: "text/csv" }), `${bodyName()}-keys.csv`);
-      act.showError(null);
-    } catch (e) {
-      act.showError(e);
-    }
-  }
-  /** The keyed motion (a rig's, the arm's or a character's) as a GIF (POST /api/render, figure motion with the body and keys), at the keys' fps, the canvas's size. */
-  async function downloadGif() {
-    if (!k.answer) return;
-    const button = $("key-gif");
-    button.disabled = true;
-    try {
-      const size = gifSize(k.answer.frames.length, screenLook(state, canvas));
-      const body = state.character ? characterAnimateRequest(state.character, state.keys) : branch().request(state.keys, state.options);
-      const req = { figure: "motion", ...body, format: "gif", ...size };
-      saveBlob(await api.render(req), `${bodyName()}-keys.gif`);
-      act.showError(null);
-    } catch (e) {
-      act.showError(e);
-    } finally {
-      syncBar();
-    }
-  }
-  $("key-gif").addEventListener("click", downloadGif);
-  $("key-frames-json").addEventListener("click", () => download("json"));
-  $("key-frames-csv").addEventListener("click", () => download("csv"));
+  wireKeyExports({ state, canvas, answer: () => k.answer, branch, showError: act.showError, syncBar });
 
   const rowsCanvas = $("key-rows");
   // The rows are drawn inside the canvas's border: a point is measured from there too.
