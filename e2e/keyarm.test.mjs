@@ -142,9 +142,12 @@ test("the arm: its tip keyed at three times plays through its keys, frame for fr
     // Out of Key mode the click motions take the timeline again, their controls with them.
     await page.uncheck("#arm-key-mode");
     assert.deepEqual(await clickControlsShown(page), CLICK_CONTROLS, "Key mode off: the click motions' controls are back");
+    const chip = () => page.evaluate(() => document.getElementById("stats").textContent);
+    assert.equal(await chip(), "Key mode off · the arm's keys kept · a click moves the arm");
     await page.screenshot({ path: join(artifacts, "keys-arm-keymode-off.png") });
     await page.check("#arm-key-mode");
     assert.deepEqual(await clickControlsShown(page), []);
+    assert.equal(await chip(), `keyed motion · ${frames.length} frames at 30 fps · ${frames.length} reached`, "Key mode on: the keyed motion's line again");
 
     // Saved, the page reloaded, the file opened: the same keys and the same frames.
     const [d] = await Promise.all([page.waitForEvent("download"), page.click("#save-project")]);

@@ -227,6 +227,12 @@ export function wireKeyed(state, canvas, act) {
 
   // ---- The motion ------------------------------------------------------------------------
 
+  /** The chip's line for a keyed answer: `keyed motion · 25 frames at 30 fps · 25 reached` (a character's without reached). */
+  function keyedSummary(answer) {
+    const reached = answer.frames.filter((f) => f.status === "reached").length;
+    return `keyed motion · ${answer.frames.length} frames at ${answer.fps ?? state.keys.fps} fps${state.character ? "" : ` · ${reached} reached`}`;
+  }
+
   function requestMotion() {
     k.pending = true;
     pump();
@@ -254,7 +260,7 @@ export function wireKeyed(state, canvas, act) {
         const reached = answer.frames.filter((f) => f.status === "reached").length;
         act.showError(null);
         act.setStatus(state.character || reached === answer.frames.length ? "ready" : "unreachable");
-        act.say(`keyed motion · ${answer.frames.length} frames at ${state.motion.fps} fps${state.character ? "" : ` · ${reached} reached`}`);
+        act.say(keyedSummary(answer));
         // The arm's keys out of Key mode: their motion is ready, the arm's own motion stays shown.
         if (owns()) showAt(k.t);
         else syncBar();
@@ -334,8 +340,12 @@ export function wireKeyed(state, canvas, act) {
 
   function setMode(on) {
     k.mode = on;
-    // The arm's keys take the timeline in Key mode and give it back to its motions out of it.
-    if (armShown() && state.keys) takeTimeline();
+    // The arm's keys take the timeline in Key mode and give it back to its motions out of it;
+    // the chip says which plays.
+    if (armShown() && state.keys) {
+      takeTimeline();
+      act.say(on && k.answer ? keyedSummary(k.answer) : "Key mode off · the arm's keys kept · a click moves the arm");
+    }
     syncBar();
   }
 
