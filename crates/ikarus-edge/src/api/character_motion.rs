@@ -12,7 +12,7 @@
 use ikarus::EaseKind;
 use serde::Deserialize;
 
-use super::fields::track_path;
+use super::fields::{refuse_given, track_path};
 use super::pose::TargetReq;
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
@@ -130,11 +130,7 @@ fn keyed(
         ("k1", req.k1.is_some()),
         ("k2", req.k2.is_some()),
     ];
-    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
-        return Err(Problem::invalid(format!(
-            "{name}: not with keys (the keys give the targets, their eases and the fps)"
-        )));
-    }
+    refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
     let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, limits)?;
     answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)

@@ -17,6 +17,18 @@ use crate::track::{DEFAULT_MAX_STEP_DEG, DEFAULT_SAMPLES, Shape};
 /// Most via points (or goal sets) of a motion: each is one more solve of up to `--max-iterations`.
 pub(super) const MAX_VIA: usize = 100;
 
+/// What a rig's keys replace, for the refusal of the fields they leave no room for.
+pub(super) const RIG_KEYS_GIVE: &str =
+    "not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)";
+
+/// The first field of `given` (`(name, given)`) that is given, refused as `NAME: why`.
+pub(super) fn refuse_given(given: &[(&str, bool)], why: &str) -> Result<(), Problem> {
+    match given.iter().find(|(_, g)| *g) {
+        Some((name, _)) => Err(Problem::invalid(format!("{name}: {why}"))),
+        None => Ok(()),
+    }
+}
+
 #[cfg(feature = "render")]
 /// A picture, or the interruption that stopped its drawing (not an internal error).
 pub(super) fn picture(

@@ -6,7 +6,7 @@
 use ikarus::Interrupt;
 
 use super::character_motion::MAX_BONE_FRAMES;
-use super::fields::{json_response, options_for, stopped};
+use super::fields::{RIG_KEYS_GIVE, json_response, options_for, refuse_given, stopped};
 use super::requests::AnimateReq;
 use super::{Limits, Problem, Reply};
 use crate::keys::KeysFile;
@@ -36,11 +36,7 @@ pub fn animate<V>(
         ("interpolation", req.interpolation.is_some()),
         ("from_solve", req.from_solve),
     ];
-    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
-        return Err(Problem::invalid(format!(
-            "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
-        )));
-    }
+    refuse_given(&given, RIG_KEYS_GIVE)?;
     let (motion, names, _) = keyed_motion(rig, keys, req.options.as_ref(), limits, interrupt)?;
     json_response(&motion.json(rig, &names))
 }

@@ -5,7 +5,7 @@ use ikarus::{EaseKind, Interrupt};
 
 use super::bodies::{load, load_arm, task};
 use super::character_motion::keyed_motion;
-use super::fields::{ease, goal, picture, pose_from_degrees, start_pose, stopped};
+use super::fields::{RIG_KEYS_GIVE, ease, goal, picture, pose_from_degrees, refuse_given, start_pose, stopped};
 use super::figures::{BodyFigureReq, CharacterFigureReq, MotionFigureReq, RenderReq};
 use super::jobs::{MotionFields, arm_motion};
 use super::regions::reachable_area;
@@ -208,11 +208,7 @@ fn keyed_figure(
         ("traces", r.traces.is_some()),
         ("ghosts", r.ghosts),
     ];
-    if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
-        return Err(Problem::invalid(format!(
-            "{name}: not with keys (the keys give the targets, pins, bends and fps; the motion starts at the rig's start pose)"
-        )));
-    }
+    refuse_given(&given, RIG_KEYS_GIVE)?;
     let rig = match &r.rig {
         Some(file) => super::bodies::load_rig(file.clone(), limits)?,
         None => super::bodies::load_arm_as_rig(r.arm.clone(), limits)?,
