@@ -350,46 +350,34 @@ fn heavy_mix() -> Vec<(&'static str, Value)> {
     kinds.iter().chain(kinds.iter()).cloned().collect()
 }
 
+/// While every long worker and the long queue hold work that never ends inside the test
+/// (endless solves, under the test server's hour-long budget), each request of the heavy mix is
+/// turned away as the long lane's (503 "server busy": it was costed as long work) and small
+/// solves are answered (the quick lane is free). Before the lanes a small solve waited behind
+/// heavy work; here that would be a hang, so no clock measures how fast this machine is.
 #[test]
-fn a_small_solve_answers_within_2_s_under_a_heavy_mix() {
-    let s = start(&["--workers", "2"]);
-    let stop = std::sync::atomic::AtomicBool::new(false);
-    let mix = heavy_mix();
+fn a_small_solve_is_answered_while_long_work_holds_every_long_worker() {
+    let s = start(&["--workers", "2", "--long-workers", "1", "--max-queued", "2"]);
+    // The long worker and both queue places: none of them ends before the server does.
+    let _endless: Vec<TcpStream> = (0..3).map(|_| send_raw(&s, &endless_solve())).collect();
+    let began = Instant::now();
+    loop {
+        let (status, v) = s.post_json("/api/solve", &long_but_brief_solve());
+        if status == 503 && v["error"].as_str().is_some_and(|e| e.contains("server busy")) {
+            break;
+        }
+        assert!(began.elapsed() < HANG, "the endless solves never filled the long lane: {status} {v}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    for (path, body) in heavy_mix() {
+        let e = error(&s.post_json(path, &body), 503);
+        assert!(e.contains("server busy"), "{path}: {e}");
+    }
     let small = json!({ "goal": { "x": 2.0, "y": 3.0 } });
-    std::thread::scope(|scope| {
-        let heavy: Vec<_> = mix
-            .iter()
-            .map(|(path, body)| {
-                let (s, stop) = (&s, &stop);
-                scope.spawn(move || {
-                    let mut statuses = Vec::new();
-                    while !stop.load(std::sync::atomic::Ordering::Relaxed) {
-                        statuses.push(s.post_json(path, body).0);
-                    }
-                    statuses
-                })
-            })
-            .collect();
-        // Let the heavy clients fill the workers and the queue.
-        std::thread::sleep(Duration::from_millis(1500));
-        let mut slowest = Duration::ZERO;
-        for _ in 0..10 {
-            let began = Instant::now();
-            let (status, v) = s.post_json("/api/solve", &small);
-            let took = began.elapsed();
-            assert_eq!(status, 200, "{v}");
-            slowest = slowest.max(took);
-            std::thread::sleep(Duration::from_millis(200));
-        }
-        stop.store(true, std::sync::atomic::Ordering::Relaxed);
-        // Before the lanes: 503, or 200 after seconds behind the heavy requests.
-        assert!(slowest < Duration::from_secs(2), "a small solve took {slowest:?}");
-        for h in heavy {
-            for status in h.join().unwrap() {
-                assert!(status == 200 || status == 503, "{status}");
-            }
-        }
-    });
+    for _ in 0..10 {
+        let (status, v) = s.post_json("/api/solve", &small);
+        assert_eq!(status, 200, "{v}");
+    }
 }
 
 #[test]

@@ -9,6 +9,9 @@ use std::time::Duration;
 
 use serde_json::Value;
 
+/// The budget of a test server that does not test the budget: an hour.
+pub const UNTIMED_BUDGET_MS: &str = "3600000";
+
 /// A running `ikarus serve`, killed on drop.
 pub struct Server {
     pub child: Child,
@@ -30,9 +33,18 @@ impl Drop for Server {
 impl Server {
     /// `ikarus serve --port 0 ARGS…`; `timeout` bounds each request of the agent (where a hang
     /// is the bug).
+    ///
+    /// Unless ARGS set `--request-budget-ms`, the server's budget is an hour
+    /// ([`UNTIMED_BUDGET_MS`]): a test checks what the server answers, never how fast this
+    /// machine is (the test-profile binary on a busy 2-core machine once took 8 s for a GIF
+    /// that the default 10 s budget then refused). Tests of the budget itself set a small one
+    /// and ask for work that cannot finish inside it on any machine.
     pub fn start(args: &[&str], timeout: Option<Duration>) -> Self {
+        let budget: &[&str] =
+            if args.contains(&"--request-budget-ms") { &[] } else { &["--request-budget-ms", UNTIMED_BUDGET_MS] };
         let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
             .args(["serve", "--port", "0"])
+            .args(budget)
             .args(args)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
