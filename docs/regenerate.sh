@@ -24,7 +24,7 @@ $ikarus pose --rig examples/characters/spine-spineboy-pro.json --animation walk 
   --target front-leg-target=60,60 --ik ikarus --width 420 --height 520 --out docs/spineboy-ikarus.png 2> /dev/null
 # The raptor's front leg as one four-bone limb reaching a foot target the runtime's rules leave short.
 $ikarus pose --rig examples/characters/spine-raptor-pro.json --animation walk --time 0.4 \
-  --target front-foot-target=460,80 --ik ikarus --ik-file examples/characters/raptor-legs.ik.toml \
+  --target front-foot-target=520,80 --ik ikarus --ik-file examples/characters/raptor-legs.ik.toml \
   --width 560 --height 460 --out docs/raptor-ikarus.png 2> /dev/null
 # Parent's ease with the errata's corrected formula: position and velocity against time.
 $ikarus render ease --k1 0.3 --k2 0.75 --width 560 --height 420 --out docs/ease.png

@@ -212,3 +212,32 @@ fn solve_refuses_what_a_character_cannot_take_in_one_line() {
     let e = fails(&["render", "rig", "--rig", RAPTOR, "--out", "x.svg"], 2);
     assert!(e.contains("a Spine character (76 bones, 9 IK constraints), which this command does not take"), "{e}");
 }
+
+/// How far `bone`'s tip ends from `goal` when `ikarus pose ARGS --format json` poses the raptor.
+fn raptor_miss(args: &[&str], bone: &str, goal: [f64; 2]) -> f64 {
+    let all: Vec<&str> = [&["--rig", RAPTOR], args, &["--format", "json"]].concat();
+    let (out, _) = pose(&all);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let tip = &bone_of(&v, bone)["tip"];
+    (tip[0].as_f64().unwrap() - goal[0]).hypot(tip[1].as_f64().unwrap() - goal[1])
+}
+
+/// The README's Spine tour, step 3 and the paragraph under it: at walk 0.4 s the runtime's rules
+/// leave the raptor's front foot 6.8 units short of (520, 80) and ikarus's four-bone limb puts
+/// it on; in the setup pose the runtime leaves it 3.5 units short of (460, 80). (At walk 0.4 s
+/// both put it exactly on (460, 80), which the tour once claimed the runtime missed.)
+#[test]
+fn the_tours_raptor_foot_is_short_under_the_runtime_and_on_under_ikarus() {
+    let ik = ["--ik", "ikarus", "--ik-file", "../../examples/characters/raptor-legs.ik.toml"];
+    let walk = ["--animation", "walk", "--time", "0.4"];
+    let far = ["--target", "front-foot-target=520,80"];
+    let runtime = raptor_miss(&[&walk[..], &far].concat(), "front-foot1", [520.0, 80.0]);
+    assert!((runtime - 6.8).abs() < 0.05, "the runtime misses by {runtime}");
+    let solved = raptor_miss(&[&walk[..], &far, &ik].concat(), "front-foot1", [520.0, 80.0]);
+    assert!(solved < 1e-6, "ikarus misses by {solved}");
+    let near = ["--target", "front-foot-target=460,80"];
+    let setup = raptor_miss(&near, "front-foot1", [460.0, 80.0]);
+    assert!((setup - 3.5).abs() < 0.05, "the runtime misses by {setup} in the setup pose");
+    let walking = raptor_miss(&[&walk[..], &near].concat(), "front-foot1", [460.0, 80.0]);
+    assert!(walking < 1e-6, "the runtime reaches (460, 80) at walk 0.4 s: {walking}");
+}
