@@ -234,7 +234,7 @@ impl Character {
                     ik::dragonbones_two(&mut bones, (parent, child), below, target, s);
                 }
             }
-            bones.update_listed(below);
+            bones.update_subtree(below);
         }
         Ok(())
     }

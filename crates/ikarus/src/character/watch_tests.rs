@@ -70,3 +70,24 @@ fn a_solve_together_stops_on_its_solvers_interrupt() {
     assert_eq!(e, TogetherError::Pose(PoseError::Interrupted));
     assert_eq!(e.to_string(), "interrupted");
 }
+
+/// A chain with a constraint on every bone keeps at most [`LISTED_PER_BONE`] subtree entries a
+/// bone (listing them all would be n²/2), and the constraints whose subtree is not listed update
+/// the same bones in the same order: the pose is the same, bit for bit, as with every list kept.
+#[test]
+fn a_constraint_on_every_bone_of_a_chain_keeps_linear_lists_and_the_same_bits() {
+    use super::super::flat::{Flat, LISTED_PER_BONE};
+    let n = 300;
+    let mut c = aimed_chain(n);
+    let bones = c.bones().len();
+    assert!(c.flat.listed() <= LISTED_PER_BONE * bones, "{} entries for {bones} bones", c.flat.listed());
+    let mut lean = Posed::default();
+    c.pose(&PoseRequest::default(), &mut lean).unwrap();
+    c.flat = Flat::within(&c.bones, &c.constraints, usize::MAX);
+    assert_eq!(c.flat.listed(), (1..=n).sum::<usize>(), "every subtree listed");
+    let mut full = Posed::default();
+    c.pose(&PoseRequest::default(), &mut full).unwrap();
+    for i in 0..bones {
+        assert_eq!(format!("{:?}", lean.world(i)), format!("{:?}", full.world(i)), "bone {i}");
+    }
+}
