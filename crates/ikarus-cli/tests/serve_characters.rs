@@ -168,3 +168,66 @@ fn a_hostile_parse_is_refused_at_once_and_health_answers_meanwhile() {
     assert!(problem.contains(r#"animations: "a" is listed twice"#), "{problem}");
     s.assert_healthy();
 }
+
+const RAPTOR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-raptor-pro.json");
+
+/// The raptor with its walk copied under sixteen more names, 2.0 MB: a real character past the
+/// 1 MiB request cap.
+fn big_raptor() -> String {
+    let mut raptor: Value = serde_json::from_str(&std::fs::read_to_string(RAPTOR).unwrap()).unwrap();
+    let animations = raptor["animations"].as_object_mut().unwrap();
+    let walk = animations["walk"].clone();
+    for i in 0..16 {
+        animations.insert(format!("walk{i}"), walk.clone());
+    }
+    serde_json::to_string_pretty(&raptor).unwrap()
+}
+
+/// `/api/rig/parse` of a character answers its `id`; the file's text is read once, and each
+/// pose of playback refers to it: a request of a few hundred bytes where it was the whole file
+/// (the raptor's export, 1.91 MB, was over the 1 MiB request cap and could not be opened).
+#[test]
+fn a_character_is_read_once_and_posed_by_its_id() {
+    let s = start(&[]);
+    // The raptor's export, made with the command line, opens.
+    let dir = tempfile::tempdir().unwrap();
+    let export = dir.path().join("raptor-export.json");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_ikarus"))
+        .args(["animate", "--rig", RAPTOR, "--target", "front-leg-target=300,20", "--format", "spine", "--out"])
+        .arg(&export)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read(&export).unwrap();
+    let a = s.post_raw("/api/rig/parse", "application/toml", &text);
+    assert_eq!(a.status, 200, "{}", a.text());
+    assert!(a.json()["character"]["id"].is_string(), "{}", a.text());
+    // A character past the request cap opens too, and is posed by its id.
+    let big = big_raptor();
+    assert!(big.len() > 3 << 19, "{} bytes", big.len());
+    let parsed = s.post_raw("/api/rig/parse", "application/toml", big.as_bytes());
+    assert_eq!(parsed.status, 200, "{}", parsed.text());
+    let id = parsed.json()["character"]["id"].as_str().unwrap().to_owned();
+    let by_id = json!({"character": id, "animation": "walk7", "time": 0.4,
+        "targets": [{"bone": "front-leg-target", "x": 300, "y": 20}]});
+    assert!(by_id.to_string().len() < 1024, "{} bytes a pose", by_id.to_string().len());
+    let a = s.post("/api/pose", &by_id);
+    assert_eq!(a.status, 200, "{}", a.text());
+    let by_text = s.post(
+        "/api/pose",
+        &json!({"rig": std::fs::read_to_string(RAPTOR).unwrap(), "animation": "walk", "time": 0.4,
+            "targets": [{"bone": "front-leg-target", "x": 300, "y": 20}]}),
+    );
+    assert_eq!(a.json()["bones"], by_text.json()["bones"], "the same pose as from the file's text");
+    // A motion by id, and its Spine export (the kept text is what it adds to).
+    let motion = json!({"character": id, "targets": [{"bone": "front-leg-target", "x": 300, "y": 20}], "fps": 10});
+    let a = s.post("/api/animate", &motion);
+    assert_eq!(a.status, 200, "{}", a.text());
+    // An id the server does not keep is a 404 naming the field; both or neither are refused.
+    let e = s.post("/api/pose", &json!({"character": "c0123"})).error(404);
+    assert!(e.starts_with("character: no character \"c0123\" on the server"), "{e}");
+    let e = s.post("/api/pose", &json!({"character": id, "rig": "{}"})).error(422);
+    assert!(e.starts_with("rig, character: give one"), "{e}");
+    let e = s.post("/api/animate", &json!({"character": "nope", "targets": []})).error(404);
+    assert!(e.starts_with("character: "), "{e}");
+}

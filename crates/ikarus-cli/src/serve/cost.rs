@@ -85,6 +85,8 @@ pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
 struct Shape {
     arm: Nested<Body>,
     rig: RigField,
+    /// A kept character's id (`"character": ID`).
+    character: Option<String>,
     ik: Json,
     options: Nested<Solver>,
     goals: Count,
@@ -134,9 +136,10 @@ struct RigField {
 }
 
 impl Shape {
-    /// The request's character file (`rig` as a character's JSON text).
-    fn character(&self) -> Option<&character::Character> {
-        self.rig.character.as_ref()
+    /// The request's character: `rig` as a character's JSON text, or the kept one `character`
+    /// names.
+    fn character(&self) -> Option<character::Character> {
+        self.rig.character.or_else(|| self.character.as_deref().and_then(character::Character::kept))
     }
 
     /// Whose rules the request's character poses follow.

@@ -13,14 +13,13 @@ use ikarus::{EaseKind, Interrupt};
 use serde::Deserialize;
 
 use super::fields::{refuse_given, stopped, track_path};
-use super::pose::TargetReq;
+use super::pose::{TargetReq, stored_character};
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
-use crate::character::{Loaded, export, is_json, load_within};
+use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::pose::ik_choice;
-use crate::rig::BoneCap;
 use crate::track::Shape;
 
 /// Most frames × bones of one request's motion (the Spine export poses each frame a few times
@@ -35,7 +34,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct AnimateCharacterReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered ([`crate::character::store`]).
+        pub character: Option<String>,
         /// Required unless `keys` is given.
         pub targets: Vec<TargetReq>,
         /// Target bones keyed over time ([`crate::keys`]), instead of `targets`.
@@ -58,7 +60,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct TrackCharacterReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered.
+        pub character: Option<String>,
         required effector: Option<String>,
         pub path: Option<Vec<[f64; 2]>>,
         pub line: Option<[f64; 4]>,
@@ -70,23 +75,29 @@ request! {
     }
 }
 
-/// Whether a job's body carries a character: `rig` is a string of JSON text.
+/// Whether a job's body carries a character: `rig` is a string of JSON text, or `character`
+/// (a kept character's id) is given.
 #[must_use]
 pub fn is_character(body: &[u8]) -> bool {
     #[derive(Deserialize)]
     struct Peek {
         #[serde(default)]
         rig: Option<serde_json::Value>,
+        #[serde(default)]
+        character: Option<serde::de::IgnoredAny>,
     }
-    serde_json::from_slice::<Peek>(body).ok().and_then(|p| p.rig).is_some_and(|r| r.as_str().is_some_and(is_json))
+    serde_json::from_slice::<Peek>(body)
+        .ok()
+        .is_some_and(|p| p.character.is_some() || p.rig.is_some_and(|r| r.as_str().is_some_and(is_json)))
 }
 
 /// `POST /api/animate` with a character.
 pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: AnimateCharacterReq = parse_json(body)?;
-    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let (loaded, text) = (&stored.loaded, stored.text.as_str());
     if let Some(keys) = &req.keys {
-        return keyed(&loaded, keys, &req, (limits, interrupt));
+        return keyed(loaded, keys, &req, (limits, interrupt), text);
     }
     if req.animation.is_some() {
         return Err(Problem::invalid("animation: only with keys (the clip under the keyed targets)"));
@@ -109,10 +120,10 @@ pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Re
     })?;
     let targets = req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect();
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
-    let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.interrupt = Some(interrupt.clone());
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
@@ -122,6 +133,7 @@ fn keyed(
     keys: &crate::keys::KeysFile,
     req: &AnimateCharacterReq,
     (limits, interrupt): (&Limits, &Interrupt),
+    text: &str,
 ) -> Result<Reply, Problem> {
     let given = [
         ("targets", !req.targets.is_empty()),
@@ -134,7 +146,7 @@ fn keyed(
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
     let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// The keyed motion of `loaded` by `keys` over the clip `animation`, under the IK rules `ik`
@@ -158,18 +170,19 @@ pub(super) fn keyed_motion<'a>(
 /// `POST /api/track` with a character.
 pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: TrackCharacterReq = parse_json(body)?;
-    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let (loaded, text) = (&stored.loaded, stored.text.as_str());
     let Some(bone) = req.effector else {
         return Err(Problem::invalid("effector: required with a character: the bone whose origin follows the path"));
     };
     let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
-    let mut motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
-        .map_err(Problem::invalid)?;
+    let mut motion =
+        Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.interrupt = Some(interrupt.clone());
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// The motion's frames or its Spine document, within the caps.

@@ -6,12 +6,14 @@ use serde::Deserialize;
 use super::bodies::{effectors_within, field_name, named_goals};
 use super::fields::{json_response, stopped};
 use super::requests::request;
-use super::{Limits, Problem, Reply, parse_json};
+use super::{Limits, Problem, Reply, parse_json, status};
+use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
 use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
 use ikarus::Interrupt;
 use ikarus::character::Character;
+use std::sync::Arc;
 
 request! {
     /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
@@ -21,7 +23,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct PoseReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered for the character ([`crate::character::store`]).
+        pub character: Option<String>,
         pub animation: Option<String>,
         pub time: Option<f64>,
         pub targets: Vec<TargetReq>,
@@ -42,7 +47,8 @@ pub struct TargetReq {
 /// targets as it has bones.
 pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: PoseReq = parse_json(body)?;
-    let loaded = character(&req.rig, limits)?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let loaded = &stored.loaded;
     let bones = loaded.character.bones().len();
     if req.targets.len() > bones {
         return Err(Problem::invalid(format!(
@@ -58,10 +64,33 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
         ik,
         bends: Vec::new(),
     };
-    let report = posed(&loaded, &ask, interrupt);
+    let report = posed(loaded, &ask, interrupt);
     stopped(interrupt)?;
     let report = report.map_err(Problem::invalid)?;
     json_response(&report)
+}
+
+/// The character of a request: `rig`, the file's text (read now), or `character`, the id
+/// `/api/rig/parse` answered (kept by [`store`]); exactly one of them. An id not kept (never
+/// sent, or let go) is a 404 naming the field, after which the page sends the file again.
+pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) -> Result<Arc<Stored>, Problem> {
+    match (rig, id) {
+        (Some(_), Some(_)) => Err(Problem::invalid(
+            "rig, character: give one (the character file's text, or the id /api/rig/parse answered for it)",
+        )),
+        (Some(text), None) => {
+            Ok(Arc::new(Stored { loaded: character(text, limits)?, text: text.to_owned() }))
+        }
+        (None, Some(id)) => store::global().get(id).ok_or_else(|| Problem {
+            status: status::NOT_FOUND,
+            message: format!(
+                "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
+            ),
+        }),
+        (None, None) => Err(Problem::invalid(
+            "rig: required: the character file's text (or character: the id /api/rig/parse answered for it)",
+        )),
+    }
 }
 
 /// The character file `rig` of a pose request (its text, Spine or DragonBones JSON, at most

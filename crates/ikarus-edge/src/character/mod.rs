@@ -22,6 +22,7 @@ pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
 mod spine;
+pub mod store;
 
 use std::collections::HashMap;
 

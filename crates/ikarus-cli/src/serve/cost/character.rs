@@ -74,6 +74,19 @@ impl Character {
         }
     }
 
+    /// The counts of the character kept under `id` ([`ikarus_edge::character::store`]): its
+    /// file was read when it was kept, so reading costs nothing. An id not kept costs nothing
+    /// (it is refused at once).
+    pub(super) fn kept(id: &str) -> Option<Self> {
+        let stored = ikarus_edge::character::store::global().get(id)?;
+        let c = &stored.loaded.character;
+        Some(Character {
+            bytes: 0.0,
+            bones: c.bones().len() as f64,
+            constraints: (c.constraints().len() + c.unsupported().len()) as f64,
+        })
+    }
+
     /// Reading the file.
     pub(super) fn parse(&self) -> f64 {
         self.bytes * BYTE_STEPS
