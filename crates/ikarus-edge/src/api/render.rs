@@ -12,12 +12,12 @@ use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
 use crate::body::Body;
-use crate::character::{load_within, motion_files};
+use crate::character::motion_files;
 use crate::motion::DEFAULT_FPS;
 use crate::picture::{
     Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, rig_figure, workspace_drawing,
 };
-use crate::rig::{BoneCap, Rig};
+use crate::rig::Rig;
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
