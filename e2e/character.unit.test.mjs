@@ -14,6 +14,7 @@ import {
   handleAt,
   ikTargets,
   poseRequest,
+  characterRef,
   posedBox,
   solverLine,
   surveyTimes,
@@ -64,6 +65,16 @@ test("the pose request: the clip and its time only with a clip, targets in order
     ],
     ik: "ikarus",
   });
+});
+
+test("a character the backend read is named by its id, not its text, in every request", () => {
+  const c = { text: "T".repeat(300_000), character: { id: "c0123456789abcdef0000000a" }, animation: "walk", time: 0.4, targets: new Map([["foot", { x: 1, y: 2 }]]), ik: "runtime" };
+  const pose = poseRequest(c);
+  assert.deepEqual(pose, { character: "c0123456789abcdef0000000a", animation: "walk", time: 0.4, targets: [{ bone: "foot", x: 1, y: 2 }] });
+  assert.ok(JSON.stringify(pose).length < 1024, "a pose of playback is a few bytes, not the file");
+  assert.equal(exportRequest(c).character, "c0123456789abcdef0000000a");
+  assert.equal(exportRequest(c).rig, undefined);
+  assert.deepEqual(characterRef({ text: "T" }), { rig: "T" }, "without an id (not read yet), the text");
 });
 
 test("the export request is helper A's contract, and its file name", () => {

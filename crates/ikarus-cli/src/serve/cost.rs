@@ -13,7 +13,10 @@
 //!   per frame (with `keys`, one solve of its tracks and pins per frame); `track`: a solve per sample (12 in `plan`: candidates, seeds, polish);
 //! - `workspace`: the grid's cells and samples × links, or for the exact region links² × 100
 //!   (10 times more with limits); `reach`: that region's cost once, plus a solve per point;
-//! - `render`: its pixels (times the frames of a GIF) plus the cost of what it draws.
+//! - `render`: its pixels (times the frames of a GIF) plus the cost of what it draws;
+//! - a character's job (`rig` a character file's text): reading the file, plus its poses (one
+//!   for `pose`, a frame's for `animate` and `render`, a sample's for `track`), each costed from
+//!   the file's bones and constraints ([`character`]); `rig/parse` and `arm/parse`: their bytes.
 //!
 //! The body is read leniently: unknown fields are skipped, and a field of the wrong type counts
 //! as absent (the request is then refused when it runs, at once). A body that is not a JSON
@@ -28,7 +31,10 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use super::pool::Lane;
 use crate::api::Endpoint;
 
+mod character;
 mod keys;
+
+use character::Rules;
 
 /// The largest estimate (link steps) of a quick request: about a tenth of a second of work in its
 /// worst case.
@@ -55,6 +61,9 @@ pub fn lane(endpoint: Endpoint, body: &[u8]) -> Lane {
 /// The request's worst-case work in link steps (see the module docs); 0 for a body that is not
 /// a JSON object.
 pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
+    if matches!(endpoint, Endpoint::RigParse | Endpoint::ArmParse) {
+        return body.len() as f64 * character::BYTE_STEPS;
+    }
     let Ok(r) = serde_json::from_slice::<Shape>(body) else { return 0.0 };
     match endpoint {
         Endpoint::Solve => r.solve(),
@@ -63,6 +72,7 @@ pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
         Endpoint::Track => r.track(),
         Endpoint::Workspace => r.workspace(),
         Endpoint::Reach => r.region() + r.points.0.max(1.0) * r.solve(),
+        Endpoint::Pose => r.character().map_or(0.0, |c| c.parse() + c.pose(r.rules())),
         #[cfg(feature = "render")]
         Endpoint::Render => r.render(),
         _ => 0.0,
@@ -74,7 +84,10 @@ pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
 #[serde(default)]
 struct Shape {
     arm: Nested<Body>,
-    rig: Nested<Body>,
+    rig: RigField,
+    /// A kept character's id (`"character": ID`).
+    character: Option<String>,
+    ik: Json,
     options: Nested<Solver>,
     goals: Count,
     pins: Count,
@@ -115,10 +128,32 @@ struct Solver {
     backtrack: Num,
 }
 
+/// A request's `rig`: a rig's table, or a character file's text (its counts).
+#[derive(Debug, Default)]
+struct RigField {
+    body: Option<Body>,
+    character: Option<character::Character>,
+}
+
 impl Shape {
+    /// The request's character: `rig` as a character's JSON text, or the kept one `character`
+    /// names.
+    fn character(&self) -> Option<character::Character> {
+        self.rig.character.or_else(|| self.character.as_deref().and_then(character::Character::kept))
+    }
+
+    /// Whose rules the request's character poses follow.
+    fn rules(&self) -> Rules {
+        if self.ik.is_text("ikarus") {
+            Rules::Ikarus { goals: self.goals.0, pins: self.pins.0 }
+        } else {
+            Rules::Runtime
+        }
+    }
+
     /// Joints of the request's arm or rig.
     fn joints(&self) -> f64 {
-        match (&self.arm.0, &self.rig.0) {
+        match (&self.arm.0, &self.rig.body) {
             (_, Some(rig)) => rig.bones.0,
             (Some(arm), None) => arm.links.0,
             (None, None) => SEED_LINKS,
@@ -128,14 +163,14 @@ impl Shape {
 
     /// A solver option: `options`, else the arm's or rig's `[solver]`, else `default`.
     fn option(&self, field: impl Fn(&Solver) -> Option<f64>, default: f64) -> f64 {
-        let file = self.arm.0.as_ref().or(self.rig.0.as_ref()).and_then(|b| b.solver.0.as_ref());
+        let file = self.arm.0.as_ref().or(self.rig.body.as_ref()).and_then(|b| b.solver.0.as_ref());
         [self.options.0.as_ref(), file].into_iter().flatten().find_map(field).unwrap_or(default).max(0.0)
     }
 
     /// One solve, worst case.
     fn solve(&self) -> f64 {
         // A rig's solve places every bone for each goal and pin.
-        self.solve_of(if self.rig.0.is_some() { 1.0 + self.goals.0 + self.pins.0 } else { 1.0 })
+        self.solve_of(if self.rig.body.is_some() { 1.0 + self.goals.0 + self.pins.0 } else { 1.0 })
     }
 
     /// One solve placing every joint for each of `targets`, worst case.
@@ -161,6 +196,9 @@ impl Shape {
 
     /// A motion's solves and poses; a keyed one's, one solve of its tracks and pins per frame.
     fn animate(&self) -> f64 {
+        if let Some(c) = self.character() {
+            return c.parse() + self.frames() * c.pose(self.rules());
+        }
         if let Some(keys) = &self.keys.0 {
             return keys.frames() * (self.solve_of(1.0 + keys.effectors()) + self.joints());
         }
@@ -169,6 +207,9 @@ impl Shape {
 
     fn track(&self) -> f64 {
         let samples = if self.path.0 > 0.0 { self.path.0 } else { self.samples.value().unwrap_or(TRACK_SAMPLES) };
+        if let Some(c) = self.character() {
+            return c.parse() + samples.max(1.0) * c.pose(self.rules());
+        }
         let solves = if self.mode.is_text("follow") { 1.0 } else { PLAN_SOLVES };
         samples.max(0.0) * solves * self.solve()
     }
@@ -335,6 +376,58 @@ impl<'de> Visitor<'de> for AnyValue {
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Json, A::Error> {
         while map.next_entry::<IgnoredAny, IgnoredAny>()?.is_some() {}
         Ok(Json::Other)
+    }
+}
+
+impl<'de> Deserialize<'de> for RigField {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(RigValue)
+    }
+}
+
+/// Reads a rig's table as its [`Body`], a character file's text as its counts, and anything
+/// else as absent.
+struct RigValue;
+
+impl<'de> Visitor<'de> for RigValue {
+    type Value = RigField;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("any JSON value")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<RigField, A::Error> {
+        let body = Body::deserialize(de::value::MapAccessDeserializer::new(map))?;
+        Ok(RigField { body: Some(body), character: None })
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<RigField, E> {
+        let json = v.trim_start_matches('\u{feff}').trim_start().starts_with('{');
+        Ok(RigField { body: None, character: json.then(|| character::Character::read(v)) })
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<RigField, A::Error> {
+        AnyValue.visit_seq(seq).map(|_| RigField::default())
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_i64<E>(self, _: i64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_u64<E>(self, _: u64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_f64<E>(self, _: f64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_unit<E>(self) -> Result<RigField, E> {
+        Ok(RigField::default())
     }
 }
 

@@ -44,6 +44,10 @@ pub trait MediaType {
     const NAME: &'static str;
     /// Whether `essence` (the type without parameters, lowercase) is this type.
     fn accepts(essence: &str) -> bool;
+    /// The size cap of such a body and the flag that sets it.
+    fn cap(state: &AppState) -> (usize, &'static str) {
+        (state.limits.max_body_bytes, "--max-body-bytes")
+    }
 }
 
 /// JSON: `application/json`, or `application/…+json` (axum's `Json` rule).
@@ -63,6 +67,10 @@ impl MediaType for TomlType {
     const NAME: &'static str = "application/toml";
     fn accepts(essence: &str) -> bool {
         essence == "application/toml"
+    }
+    /// A file's text: `--max-file-bytes`.
+    fn cap(state: &AppState) -> (usize, &'static str) {
+        (state.max_file_bytes, "--max-file-bytes")
     }
 }
 
@@ -104,7 +112,7 @@ impl<T: MediaType> FromRequest<AppState> for ApiBody<T> {
 impl<T: MediaType> ApiBody<T> {
     /// The body, within the server's caps of size, memory and time.
     async fn read(req: Request, state: &AppState) -> Result<Self, ApiError> {
-        let max_body_bytes = state.limits.max_body_bytes;
+        let (max_body_bytes, flag) = T::cap(state);
         // The content type before the size and before the body is read.
         check_content_type::<T>(req.headers())?;
         // The memory the body may take (its declared length, or the cap) is reserved before
@@ -128,7 +136,7 @@ impl<T: MediaType> ApiBody<T> {
         let timeout = state.limits.body_timeout;
         match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
             Ok(Ok(bytes)) => Ok(Self { bytes, _memory: memory, _type: PhantomData }),
-            Ok(Err(rejection)) => Err(rejected(&rejection.into(), max_body_bytes)),
+            Ok(Err(rejection)) => Err(rejected(&rejection.into(), (max_body_bytes, flag))),
             Err(_) => Err(ApiError {
                 status: status::REQUEST_TIMEOUT,
                 message: format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
@@ -137,7 +145,7 @@ impl<T: MediaType> ApiBody<T> {
     }
 }
 
-fn rejected(rejection: &JsonRejection, max_body_bytes: usize) -> ApiError {
+fn rejected(rejection: &JsonRejection, (max_body_bytes, flag): (usize, &str)) -> ApiError {
     // axum's text is "Failed to …: <serde's message, with the path of the field>".
     let detail = || {
         let text = rejection.body_text();
@@ -157,7 +165,7 @@ fn rejected(rejection: &JsonRejection, max_body_bytes: usize) -> ApiError {
         },
         other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError {
             status: status::PAYLOAD_TOO_LARGE,
-            message: format!("request body: larger than the cap of {max_body_bytes} bytes (--max-body-bytes)"),
+            message: format!("request body: larger than the cap of {max_body_bytes} bytes ({flag})"),
         },
         other => ApiError { status: other.status().as_u16(), message: format!("request body: {}", other.body_text()) },
     }

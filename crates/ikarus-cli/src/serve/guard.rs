@@ -38,6 +38,19 @@ pub struct Guard {
     /// Host names accepted besides the loopback ones (`--allow-host`), lowercase.
     pub allowed_hosts: Vec<String>,
     pub max_body_bytes: usize,
+    /// The cap of a file's text (`/api/arm/parse`, `/api/rig/parse`): `--max-file-bytes`.
+    pub max_file_bytes: usize,
+}
+
+impl Guard {
+    /// The body cap of a request to `path` and the flag that sets it.
+    pub fn cap_of(&self, path: &str) -> (usize, &'static str) {
+        if super::is_file_path(path) {
+            (self.max_file_bytes, "--max-file-bytes")
+        } else {
+            (self.max_body_bytes, "--max-body-bytes")
+        }
+    }
 }
 
 /// The middleware: see the module docs.
@@ -54,8 +67,9 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
             .into_response();
         }
     }
+    let (cap, flag) = guard.cap_of(req.uri().path());
     if let Some(length) = content_length(req.headers()) {
-        if length > guard.max_body_bytes as u64 {
+        if length > cap as u64 {
             // A client that does not wait for "100 Continue" is sending the body already: when
             // it is small, read it and drop it first, so that the 413 reaches the client rather
             // than a reset of a connection closed on its unread bytes (a client that waits gets
@@ -68,8 +82,7 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
             return Refusal(ApiError {
                 status: crate::api::status::PAYLOAD_TOO_LARGE,
                 message: format!(
-                    "request body: Content-Length {length} is larger than the cap of {} bytes (--max-body-bytes)",
-                    guard.max_body_bytes
+                    "request body: Content-Length {length} is larger than the cap of {cap} bytes ({flag})"
                 ),
             })
             .into_response();
@@ -134,7 +147,12 @@ mod tests {
 
     #[test]
     fn loopback_hosts_with_or_without_port_are_accepted() {
-        let guard = Guard { any_host: false, allowed_hosts: vec!["ikarus.test".to_owned()], max_body_bytes: 1 };
+        let guard = Guard {
+            any_host: false,
+            allowed_hosts: vec!["ikarus.test".to_owned()],
+            max_body_bytes: 1,
+            max_file_bytes: 1,
+        };
         for ok in [
             "localhost",
             "LOCALHOST:7878",

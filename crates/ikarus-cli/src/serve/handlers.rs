@@ -7,7 +7,7 @@ use axum::response::{IntoResponse, Response};
 use ikarus::Interrupt;
 
 use super::AppState;
-use super::errors::{JsonBody, Refusal, TomlBody};
+use super::errors::{ApiBody, JsonBody, Refusal, TomlBody};
 use crate::api::{self, Endpoint, Reply};
 
 /// An answer's bytes under its content type.
@@ -19,6 +19,15 @@ fn answer(reply: Reply) -> Response {
 /// body answered by [`api::call`] on a worker of the pool, in the lane its cost estimate says,
 /// under the time budget.
 pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Result<Response, Refusal> {
+    on_pool(endpoint, state, body).await
+}
+
+/// [`api::call`] of `body` on a worker of the pool, in its lane, under the time budget.
+async fn on_pool<T: Send + Sync + 'static>(
+    endpoint: Endpoint,
+    state: AppState,
+    body: ApiBody<T>,
+) -> Result<Response, Refusal> {
     let pool = state.pool.clone();
     let lane = super::cost::lane(endpoint, &body.bytes);
     pool.run(lane, move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
@@ -27,15 +36,18 @@ pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Res
         .map_err(Refusal)
 }
 
-/// A quick answer (`/api/meta`, `arm/default`, `rigs`, `arm/parse`, `rig/parse`, `arm/toml`):
-/// no solve, no loop a request can lengthen, answered on the spot.
+/// A quick answer (`/api/meta`, `arm/default`, `rigs`, `arm/toml`, `ease`): no solve, no loop
+/// a request can lengthen, answered on the spot.
 pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Response, Refusal> {
     api::call(endpoint, body, &state.limits, &Interrupt::new()).map(answer).map_err(Refusal)
 }
 
 /// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, sent as `application/toml`.
+/// Read on a worker of the pool, costed from its bytes ([`super::cost`]), under the time
+/// budget: a character file of a megabyte is real work, which on the runtime's own threads
+/// held `/api/health`, every other request and Ctrl-C for as long as it took.
 pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, Refusal> {
-    at_once(endpoint, &state, &body.bytes)
+    on_pool(endpoint, state, body).await
 }
 
 /// `GET /api/health`.

@@ -84,6 +84,10 @@ pub struct ServeArgs {
     /// Largest request body, in bytes (413 above it)
     #[arg(long, default_value_t = 1 << 20, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..=1 << 30))]
     pub max_body_bytes: u64,
+    /// Largest file text sent to /api/rig/parse or /api/arm/parse, in bytes (413 above it): a
+    /// character read there is kept and later requests refer to it by id
+    #[arg(long, default_value_t = 16 << 20, value_name = "BYTES", value_parser = clap::value_parser!(u64).range(1..=1 << 30))]
+    pub max_file_bytes: u64,
     /// Most links an arm of a request may have
     #[arg(long, default_value_t = 64, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub max_links: u64,
@@ -136,6 +140,14 @@ pub struct AppState {
     /// Bytes of request bodies being received or held, at most [`BODY_MEMORY`] (or one body
     /// at the cap, if larger): so that many slow clients cannot fill the memory with bodies.
     pub bodies: Arc<tokio::sync::Semaphore>,
+    /// The cap of a file's text (`--max-file-bytes`).
+    pub max_file_bytes: usize,
+}
+
+/// Whether `path` takes a file's text (`/api/arm/parse`, `/api/rig/parse`), under
+/// `--max-file-bytes` rather than `--max-body-bytes`.
+pub fn is_file_path(path: &str) -> bool {
+    matches!(path, "/api/arm/parse" | "/api/rig/parse")
 }
 
 /// Bytes all the request bodies being received may hold at once.
@@ -170,6 +182,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
             header_timeout: Duration::from_millis(args.header_timeout_ms),
         },
         allowed_hosts: args.allow_host.iter().map(|h| h.to_ascii_lowercase()).collect(),
+        max_file_bytes: usize::try_from(args.max_file_bytes).unwrap_or(usize::MAX),
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -187,6 +200,7 @@ struct Settings {
     pool: pool::PoolConfig,
     conn: conn::ConnConfig,
     allowed_hosts: Vec<String>,
+    max_file_bytes: usize,
 }
 
 async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(), CliError> {
@@ -210,10 +224,16 @@ async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(
         any_host: !loopback,
         allowed_hosts: settings.allowed_hosts,
         max_body_bytes: limits.max_body_bytes,
+        max_file_bytes: settings.max_file_bytes,
     };
     let pool = pool::Pool::new(settings.pool, stop_rx.clone());
     println!("ikarus serve: listening on http://{bound}");
-    let server = tokio::spawn(conn::serve(listener, router(limits, pool, guard), settings.conn, stop_rx));
+    let server = tokio::spawn(conn::serve(
+        listener,
+        router(limits, pool, guard, settings.max_file_bytes),
+        settings.conn,
+        stop_rx,
+    ));
     signals.next().await;
     eprintln!("ikarus serve: stopping (Ctrl-C again to quit at once)");
     // A second signal ends the process whatever is still running.
@@ -267,10 +287,11 @@ impl Signals {
 }
 
 /// The routes, with the body cap and the request checks.
-fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
+fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard, max_file_bytes: usize) -> Router {
     let body_cap = limits.max_body_bytes;
-    let bodies = Arc::new(tokio::sync::Semaphore::new(BODY_MEMORY.max(body_cap)));
-    let state = AppState { limits: Arc::new(limits), pool, bodies };
+    let bodies = Arc::new(tokio::sync::Semaphore::new(BODY_MEMORY.max(body_cap).max(max_file_bytes)));
+    let state = AppState { limits: Arc::new(limits), pool, bodies, max_file_bytes };
+    let file_cap = DefaultBodyLimit::max(max_file_bytes);
     Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
         .route("/{asset}", get(asset))
@@ -281,8 +302,8 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard) -> Router {
             get(|State(s): State<AppState>| async move { at_once(Endpoint::ArmDefault, &s, b"") }),
         )
         .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
-        .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)))
-        .route("/api/rig/parse", post(|State(s), b| file_text(Endpoint::RigParse, s, b)))
+        .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)).layer(file_cap))
+        .route("/api/rig/parse", post(|State(s), b| file_text(Endpoint::RigParse, s, b)).layer(file_cap))
         .route(
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),

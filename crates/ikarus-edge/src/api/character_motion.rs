@@ -9,18 +9,17 @@
 //! The work is bounded: the character's bones by `--max-bones` (counted first), the frames by
 //! `--max-frames`, and frames × bones by [`MAX_BONE_FRAMES`].
 
-use ikarus::EaseKind;
+use ikarus::{EaseKind, Interrupt};
 use serde::Deserialize;
 
-use super::fields::{refuse_given, track_path};
-use super::pose::TargetReq;
+use super::fields::{refuse_given, stopped, track_path};
+use super::pose::{TargetReq, stored_character};
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
-use crate::character::{Loaded, export, is_json, load_within};
+use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::pose::ik_choice;
-use crate::rig::BoneCap;
 use crate::track::Shape;
 
 /// Most frames × bones of one request's motion (the Spine export poses each frame a few times
@@ -35,7 +34,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct AnimateCharacterReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered ([`crate::character::store`]).
+        pub character: Option<String>,
         /// Required unless `keys` is given.
         pub targets: Vec<TargetReq>,
         /// Target bones keyed over time ([`crate::keys`]), instead of `targets`.
@@ -58,7 +60,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct TrackCharacterReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered.
+        pub character: Option<String>,
         required effector: Option<String>,
         pub path: Option<Vec<[f64; 2]>>,
         pub line: Option<[f64; 4]>,
@@ -70,23 +75,29 @@ request! {
     }
 }
 
-/// Whether a job's body carries a character: `rig` is a string of JSON text.
+/// Whether a job's body carries a character: `rig` is a string of JSON text, or `character`
+/// (a kept character's id) is given.
 #[must_use]
 pub fn is_character(body: &[u8]) -> bool {
     #[derive(Deserialize)]
     struct Peek {
         #[serde(default)]
         rig: Option<serde_json::Value>,
+        #[serde(default)]
+        character: Option<serde::de::IgnoredAny>,
     }
-    serde_json::from_slice::<Peek>(body).ok().and_then(|p| p.rig).is_some_and(|r| r.as_str().is_some_and(is_json))
+    serde_json::from_slice::<Peek>(body)
+        .ok()
+        .is_some_and(|p| p.character.is_some() || p.rig.is_some_and(|r| r.as_str().is_some_and(is_json)))
 }
 
 /// `POST /api/animate` with a character.
-pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: AnimateCharacterReq = parse_json(body)?;
-    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let (loaded, text) = (&stored.loaded, stored.text.as_str());
     if let Some(keys) = &req.keys {
-        return keyed(&loaded, keys, &req, limits);
+        return keyed(loaded, keys, &req, (limits, interrupt), text);
     }
     if req.animation.is_some() {
         return Err(Problem::invalid("animation: only with keys (the clip under the keyed targets)"));
@@ -109,9 +120,10 @@ pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     })?;
     let targets = req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect();
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
-    let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    motion.interrupt = Some(interrupt.clone());
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
@@ -120,7 +132,8 @@ fn keyed(
     loaded: &Loaded,
     keys: &crate::keys::KeysFile,
     req: &AnimateCharacterReq,
-    limits: &Limits,
+    (limits, interrupt): (&Limits, &Interrupt),
+    text: &str,
 ) -> Result<Reply, Problem> {
     let given = [
         ("targets", !req.targets.is_empty()),
@@ -132,8 +145,8 @@ fn keyed(
     ];
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
-    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, limits)?;
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// The keyed motion of `loaded` by `keys` over the clip `animation`, under the IK rules `ik`
@@ -143,30 +156,33 @@ pub(super) fn keyed_motion<'a>(
     keys: &crate::keys::KeysFile,
     animation: Option<String>,
     (ik, ik_file): (Option<&str>, Option<&str>),
-    limits: &Limits,
+    (limits, interrupt): (&Limits, &Interrupt),
 ) -> Result<Motion<'a>, Problem> {
     let (course, fps) = crate::character::motion::keyed(loaded, keys, animation, limits.max_frames, "--max-frames")
         .map_err(Problem::invalid)?;
     let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
     motion.ik = ik_choice(ik, ik_file, "ik_file", &loaded.character)?;
+    motion.interrupt = Some(interrupt.clone());
     within_caps(loaded, &motion, limits)?;
     Ok(motion)
 }
 
 /// `POST /api/track` with a character.
-pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: TrackCharacterReq = parse_json(body)?;
-    let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let (loaded, text) = (&stored.loaded, stored.text.as_str());
     let Some(bone) = req.effector else {
         return Err(Problem::invalid("effector: required with a character: the bone whose origin follows the path"));
     };
     let shapes = [req.line.map(Shape::Line), req.circle.map(Shape::Circle), req.figure8.map(Shape::Figure8)];
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
-    let mut motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
-        .map_err(Problem::invalid)?;
+    let mut motion =
+        Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    motion.interrupt = Some(interrupt.clone());
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
 }
 
 /// The motion's frames or its Spine document, within the caps.
@@ -182,16 +198,25 @@ fn answer(
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
         }
-        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
+        MotionFormat::Json => Reply::json(&posed(motion.frames(), motion)?),
         MotionFormat::Csv => Ok(Reply {
             content_type: "text/csv; charset=utf-8",
-            body: crate::character::motion_files::csv(motion).map_err(Problem::invalid)?,
+            body: posed(crate::character::motion_files::csv(motion), motion)?,
         }),
         MotionFormat::Spine => {
-            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
+            let doc = posed(export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)), motion)?;
             Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
         }
     }
+}
+
+/// What posing `motion`'s frames gave: 503 when its interrupt was set (an `interrupted`
+/// refusal is the deadline's, not the request's fault), else the result, a refusal a 422.
+pub(super) fn posed<T>(result: Result<T, String>, motion: &Motion<'_>) -> Result<T, Problem> {
+    if let Some(interrupt) = &motion.interrupt {
+        stopped(interrupt)?;
+    }
+    result.map_err(Problem::invalid)
 }
 
 /// The motion's frames within `--max-frames` and frames × bones within [`MAX_BONE_FRAMES`].

@@ -148,7 +148,10 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct CharacterFigureReq {
         ..picture,
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered ([`crate::character::store`]).
+        pub character: Option<String>,
         required keys: crate::keys::KeysFile,
         /// The clip posed under the keys, at the same time (looping).
         pub animation: Option<String>,

@@ -4,13 +4,16 @@
 use serde::Deserialize;
 
 use super::bodies::{effectors_within, field_name, named_goals};
-use super::fields::json_response;
+use super::fields::{json_response, stopped};
 use super::requests::request;
-use super::{Limits, Problem, Reply, parse_json};
+use super::{Limits, Problem, Reply, parse_json, status};
+use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
-use crate::pose::{IkChoice, PoseAsk, add_goals, pose as posed};
+use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
+use ikarus::Interrupt;
 use ikarus::character::Character;
+use std::sync::Arc;
 
 request! {
     /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
@@ -20,7 +23,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct PoseReq {
-        required rig: String,
+        /// The character file's text; or `character`.
+        pub rig: Option<String>,
+        /// The id `/api/rig/parse` answered for the character ([`crate::character::store`]).
+        pub character: Option<String>,
         pub animation: Option<String>,
         pub time: Option<f64>,
         pub targets: Vec<TargetReq>,
@@ -39,9 +45,10 @@ pub struct TargetReq {
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
 /// targets as it has bones.
-pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: PoseReq = parse_json(body)?;
-    let loaded = character(&req.rig, limits)?;
+    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+    let loaded = &stored.loaded;
     let bones = loaded.character.bones().len();
     if req.targets.len() > bones {
         return Err(Problem::invalid(format!(
@@ -57,8 +64,33 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
         ik,
         bends: Vec::new(),
     };
-    let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
+    let report = posed(loaded, &ask, interrupt);
+    stopped(interrupt)?;
+    let report = report.map_err(Problem::invalid)?;
     json_response(&report)
+}
+
+/// The character of a request: `rig`, the file's text (read now), or `character`, the id
+/// `/api/rig/parse` answered (kept by [`store`]); exactly one of them. An id not kept (never
+/// sent, or let go) is a 404 naming the field, after which the page sends the file again.
+pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) -> Result<Arc<Stored>, Problem> {
+    match (rig, id) {
+        (Some(_), Some(_)) => Err(Problem::invalid(
+            "rig, character: give one (the character file's text, or the id /api/rig/parse answered for it)",
+        )),
+        (Some(text), None) => {
+            Ok(Arc::new(Stored { loaded: character(text, limits)?, text: text.to_owned() }))
+        }
+        (None, Some(id)) => store::global().get(id).ok_or_else(|| Problem {
+            status: status::NOT_FOUND,
+            message: format!(
+                "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
+            ),
+        }),
+        (None, None) => Err(Problem::invalid(
+            "rig: required: the character file's text (or character: the id /api/rig/parse answered for it)",
+        )),
+    }
 }
 
 /// The character file `rig` of a pose request (its text, Spine or DragonBones JSON, at most
@@ -103,5 +135,39 @@ impl IkReq {
             IkChoice::Runtime => {}
         }
         Ok(ik)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Endpoint, Limits, call, status};
+    use ikarus::Interrupt;
+
+    /// A character's pose, motion and track with their interrupt set end 503 (the server's
+    /// deadline), not 200 nor a refusal of the request; unset, the same requests answer.
+    #[test]
+    fn character_jobs_stop_at_their_interrupt() {
+        let rig = include_str!("../../../../examples/characters/spine-spineboy-pro.json");
+        let bodies = [
+            (Endpoint::Pose, serde_json::json!({"rig": rig, "animation": "walk", "time": 0.2, "ik": "ikarus"})),
+            (Endpoint::Pose, serde_json::json!({"rig": rig, "animation": "walk", "time": 0.2})),
+            (
+                Endpoint::Animate,
+                serde_json::json!({"rig": rig, "targets": [{"bone": "front-leg-target", "x": 30, "y": 0}], "fps": 10}),
+            ),
+            (
+                Endpoint::Track,
+                serde_json::json!({"rig": rig, "effector": "front-leg-target", "line": [0, 0, 30, 0], "samples": 5}),
+            ),
+        ];
+        for (endpoint, body) in bodies {
+            let body = body.to_string();
+            let answered = call(endpoint, body.as_bytes(), &Limits::default(), &Interrupt::new());
+            assert!(answered.is_ok(), "{endpoint:?}: {:?}", answered.err());
+            let token = Interrupt::new();
+            token.interrupt();
+            let e = call(endpoint, body.as_bytes(), &Limits::default(), &token).unwrap_err();
+            assert_eq!(e.status, status::SERVICE_UNAVAILABLE, "{endpoint:?}: {}", e.message);
+        }
     }
 }

@@ -12,12 +12,12 @@ use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
 use crate::body::Body;
-use crate::character::{load_within, motion_files};
+use crate::character::motion_files;
 use crate::motion::DEFAULT_FPS;
 use crate::picture::{
     Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, rig_figure, workspace_drawing,
 };
-use crate::rig::{BoneCap, Rig};
+use crate::rig::Rig;
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
@@ -227,11 +227,11 @@ fn character_figure(
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
-    let loaded = load_within(&r.rig, "rig", BoneCap::flag(limits.max_bones))?;
+    let stored = super::pose::stored_character(r.rig.as_deref(), r.character.as_deref(), limits)?;
+    let loaded = &stored.loaded;
     let ik = (r.ik.as_deref(), r.ik_file.as_deref());
-    let motion = keyed_motion(&loaded, &r.keys, r.animation.clone(), ik, limits)?;
+    let motion = keyed_motion(loaded, &r.keys, r.animation.clone(), ik, (limits, interrupt))?;
     canvas.gif_within_cap(motion.frame_count())?;
-    let poses = motion.poses().map_err(Problem::invalid)?;
-    stopped(interrupt)?;
+    let poses = super::character_motion::posed(motion.poses(), &motion)?;
     canvas.draw(&motion_files::drawing(&motion, &poses), interrupt)
 }

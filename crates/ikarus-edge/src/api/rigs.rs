@@ -58,7 +58,12 @@ pub fn parsed(text: &str, limits: &Limits) -> Parsed {
     let cap = BoneCap::flag(limits.max_bones);
     if crate::character::is_json(text) {
         return match crate::character::load_within(text, "rig file", cap) {
-            Ok(loaded) => Parsed::Character(Box::new(CharacterJson::new(&loaded))),
+            Ok(loaded) => {
+                let mut json = CharacterJson::new(&loaded);
+                let (id, _) = crate::character::store::global().put(text.to_owned(), loaded);
+                json.id = Some(id);
+                Parsed::Character(Box::new(json))
+            }
             Err(problem) => Parsed::Problem(problem.to_string()),
         };
     }

@@ -20,6 +20,10 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
 /// A JSON object's entries in the file's order (`serde_json` keeps no order of its own here).
+/// A name listed twice is refused (`"walk" is listed twice in this object`): a JSON reader
+/// keeps one of them, which one differs between readers, and keeping both made every later
+/// lookup by name (an animation's duration, a clip by name) see the wrong one, and cost a scan
+/// each (quadratic in a file of 73,000 entries named alike).
 pub(super) struct Ordered<T>(pub Vec<(String, T)>);
 
 impl<T> Default for Ordered<T> {
@@ -38,8 +42,15 @@ impl<'de, T: Deserialize<'de>> Deserialize<'de> for Ordered<T> {
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
                 let mut out = Vec::new();
-                while let Some(entry) = map.next_entry::<String, T>()? {
-                    out.push(entry);
+                let mut seen = std::collections::HashSet::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    if !seen.insert(key.clone()) {
+                        return Err(de::Error::custom(format_args!(
+                            "{key:?} is listed twice in this object (names must be unique)"
+                        )));
+                    }
+                    let value = map.next_value::<T>()?;
+                    out.push((key, value));
                 }
                 Ok(Ordered(out))
             }
@@ -127,8 +138,8 @@ impl<'de> Deserialize<'de> for Curve {
 pub(super) struct Names<'a> {
     /// Bone names to indices.
     pub bones: &'a HashMap<String, usize>,
-    /// The IK constraints' names, by index.
-    pub constraints: &'a [&'a str],
+    /// The IK constraints' names to indices (the first of a name listed twice, [`super::first_index`]).
+    pub constraints: &'a HashMap<&'a str, usize>,
 }
 
 /// What a bone timeline's kind keys: the property, whether its values are angles (degrees in
@@ -180,8 +191,8 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
     for (ik_name, keys) in &a.ik.0 {
         let constraint = names
             .constraints
-            .iter()
-            .position(|n| n == ik_name)
+            .get(ik_name.as_str())
+            .copied()
             .ok_or_else(|| format!("{at}.ik.{ik_name}: no IK constraint of that name"))?;
         let series = Series { path: format!("{at}.ik.{ik_name}"), channels: 2, unit: 1.0, legacy };
         let value = |k: &Key| [k.mix.unwrap_or(1.0), k.softness.unwrap_or(0.0)];

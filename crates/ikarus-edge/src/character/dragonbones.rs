@@ -105,9 +105,14 @@ struct IkJson {
     weight: f64,
 }
 
-/// Reads a DragonBones file's first armature (`value` is its text parsed, for the cap).
+/// Reads a DragonBones file's first armature (`value` is its text parsed, for the caps: the
+/// bones and constraints of every armature count, since every armature is parsed).
 pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, String> {
-    super::count(value.get("armature").and_then(|a| a.get(0)).and_then(|a| a.get("bone")), cap)?;
+    let armatures = value.get("armature").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
+    let bones = armatures.iter().map(|a| super::length(a.get("bone"))).sum();
+    cap.check(bones)?;
+    let constraints = armatures.iter().map(|a| super::length(a.get("ik"))).sum();
+    super::constraints_within("armature[].ik", constraints, bones)?;
     let file: DragonBonesFile = super::typed(text)?;
     let version = file.version.unwrap_or_default();
     let mut warnings = Vec::new();
@@ -173,7 +178,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     if !(frame_rate > 0.0 && frame_rate.is_finite()) {
         return Err(format!("armature[0].frameRate = {frame_rate}: must be a number of frames per second above 0"));
     }
-    let names: Vec<&str> = armature.ik.iter().map(|k| k.name.as_str()).collect();
+    let names = super::first_index(armature.ik.iter().map(|k| k.name.as_str()));
     let cx = Context { bones: &index, constraints: &names, frame_rate };
     let mut notes = Notes::default();
     let clips = armature

@@ -87,7 +87,8 @@ fn some_flag<'de, D: Deserializer<'de>>(d: D) -> Result<Option<bool>, D::Error> 
 /// What the timelines' names resolve to, and the frame rate.
 pub(super) struct Context<'a> {
     pub bones: &'a std::collections::HashMap<String, usize>,
-    pub constraints: &'a [&'a str],
+    /// The IK constraints' names to indices (the first of a name listed twice).
+    pub constraints: &'a std::collections::HashMap<&'a str, usize>,
     pub frame_rate: f64,
 }
 
@@ -139,8 +140,8 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
         let here = format!("{at}.ik[{j}] ({:?})", t.name);
         let constraint = cx
             .constraints
-            .iter()
-            .position(|n| *n == t.name)
+            .get(t.name.as_str())
+            .copied()
             .ok_or_else(|| format!("{here}.name = {:?}: no IK constraint of that name", t.name))?;
         let path = format!("{here}.frame");
         let read = keys(&t.frame, &path, cx.frame_rate, notes, &|_, f| [f.weight.unwrap_or(100.0) / 100.0, 0.0])?;

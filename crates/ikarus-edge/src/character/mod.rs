@@ -22,6 +22,7 @@ pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
 mod spine;
+pub mod store;
 
 use std::collections::HashMap;
 
@@ -218,9 +219,48 @@ fn bone(index: &HashMap<String, usize>, name: &str, path: &str) -> Result<usize,
     index.get(name).copied().ok_or_else(|| format!("{path} = {name:?}: no bone of that name"))
 }
 
+/// Names to the index of their first occurrence, in one pass (a lookup per timeline was a scan
+/// of every constraint: quadratic in a file of many of both).
+fn first_index<'a>(names: impl Iterator<Item = &'a str>) -> HashMap<&'a str, usize> {
+    let mut index = HashMap::new();
+    for (i, name) in names.enumerate() {
+        index.entry(name).or_insert(i);
+    }
+    index
+}
+
 /// The bone count of a `bones` array, checked against the cap before anything is read.
 fn count(bones: Option<&Value>, cap: BoneCap) -> Result<(), String> {
-    cap.check(bones.and_then(Value::as_array).map_or(0, Vec::len))
+    cap.check(length(bones))
+}
+
+/// How many constraints a file may have a bone (IK, transform, path and physics ones together),
+/// and at least [`MIN_CONSTRAINT_CAP`] in all. Real characters have far fewer (spineboy: 7 for
+/// 67 bones); each constraint is a pass over the bones below its own when the character is
+/// posed, so their number bounds a pose's work with the bones' (600,000 constraints on 10,000
+/// bones ran for minutes).
+pub const CONSTRAINTS_PER_BONE: usize = 4;
+
+/// The fewest constraints a file may have, however few its bones.
+pub const MIN_CONSTRAINT_CAP: usize = 64;
+
+/// The length of a JSON array (0 when it is absent or not one).
+fn length(value: Option<&Value>) -> usize {
+    value.and_then(Value::as_array).map_or(0, Vec::len)
+}
+
+/// `constraints` constraints for `bones` bones, refused past [`CONSTRAINTS_PER_BONE`] a bone
+/// before anything is read: `fields: N constraints for B bones, more than the cap of C (4 a
+/// bone, at least 64)`.
+fn constraints_within(fields: &str, constraints: usize, bones: usize) -> Result<(), String> {
+    let cap = bones.saturating_mul(CONSTRAINTS_PER_BONE).max(MIN_CONSTRAINT_CAP);
+    if constraints > cap {
+        return Err(format!(
+            "{fields}: {constraints} constraints for {bones} bones, more than the cap of {cap} \
+             ({CONSTRAINTS_PER_BONE} a bone, at least {MIN_CONSTRAINT_CAP})"
+        ));
+    }
+    Ok(())
 }
 
 /// The character of checked parts; what the model still refuses (its messages name indices)
@@ -244,3 +284,6 @@ fn latest_time(value: &Value) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod caps_tests;

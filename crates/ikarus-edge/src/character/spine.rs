@@ -117,6 +117,8 @@ struct IkJson {
 /// Reads a Spine file (`value` is its text parsed, for the cap and the clips' durations).
 pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, String> {
     super::count(value.get("bones"), cap)?;
+    let constraints = ["ik", "transform", "path", "physics"].map(|k| super::length(value.get(k))).iter().sum();
+    super::constraints_within("ik, transform, path, physics", constraints, super::length(value.get("bones")))?;
     let file: SpineFile = super::typed(text)?;
     let version = file.skeleton.spine.clone();
     let legacy = version.starts_with("3.");
@@ -144,7 +146,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
     let names =
-        clips::Names { bones: &index, constraints: &file.ik.iter().map(|k| k.name.as_str()).collect::<Vec<_>>() };
+        clips::Names { bones: &index, constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())) };
     let clips = file
         .animations
         .0

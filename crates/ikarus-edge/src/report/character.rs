@@ -20,6 +20,10 @@ pub struct CharacterJson {
     pub unsupported: Vec<UnsupportedJson>,
     /// The lines a command prints on stderr for this file.
     pub warnings: Vec<String>,
+    /// Where the server (or the WebAssembly module) keeps the character read: requests give
+    /// `"character": ID` instead of the file's text ([`crate::character::store`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
 }
 
 /// A bone's setup pose in its parent's frame, y up, angles in degrees.
@@ -129,6 +133,7 @@ impl CharacterJson {
                 .map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() })
                 .collect(),
             warnings: loaded.warnings.clone(),
+            id: None,
         }
     }
 }

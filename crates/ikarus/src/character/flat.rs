@@ -3,6 +3,11 @@
 //! bone), the setup pose's local transforms, lengths and constraint settings (a pose starts by
 //! copying them), and, per constraint, its top bone and every bone below it in update order
 //! (the bones its update recomputes, found once instead of by a scan of the bones after it).
+//!
+//! The lists are kept while they stay small: a chain with a constraint on every bone would
+//! need n²/2 entries (200 MB for 10,000 bones), so past [`LISTED_PER_BONE`] entries a bone in
+//! all, a constraint's update scans the bones after its top instead, which is the same bones in
+//! the same order. Making the lists is linear in the bones and constraints.
 
 use super::{CharacterBone, IkBones, IkConstraint, IkSettings, Inherit, LocalTransform};
 
@@ -26,13 +31,32 @@ pub(crate) struct Flat {
     pub(crate) settings: Vec<IkSettings>,
     /// The subtrees, one after another.
     below: Vec<u32>,
-    /// Per constraint, where its top bone's subtree is in `below`.
-    ranges: Vec<(u32, u32)>,
+    /// Per constraint, where its top bone's subtree is in `below` (`None`: not kept).
+    ranges: Vec<Option<(u32, u32)>>,
+    /// Per constraint, its top bone.
+    tops: Vec<u32>,
+}
+
+/// At most this many subtree entries a bone are kept (see the module's doc).
+pub(crate) const LISTED_PER_BONE: usize = 16;
+
+/// A constraint's subtree as posing updates it: listed, or found by a scan from its top bone.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Subtree<'a> {
+    /// The top bone and every bone below it, in update order.
+    Listed(&'a [u32]),
+    /// The top bone; the bones below it are found by a scan of the bones after it.
+    Below(usize),
 }
 
 impl Flat {
     /// The flat view of `bones` (parent first) and `constraints`.
     pub(crate) fn of(bones: &[CharacterBone], constraints: &[IkConstraint]) -> Flat {
+        Flat::within(bones, constraints, LISTED_PER_BONE * bones.len())
+    }
+
+    /// [`Flat::of`] keeping at most `budget` subtree entries.
+    pub(crate) fn within(bones: &[CharacterBone], constraints: &[IkConstraint], budget: usize) -> Flat {
         let mut flat = Flat {
             links: bones
                 .iter()
@@ -43,32 +67,46 @@ impl Flat {
             settings: constraints.iter().map(|k| k.setup).collect(),
             ..Flat::default()
         };
-        let mut tops: Vec<(usize, (u32, u32))> = Vec::new();
+        // Every bone's subtree size, children before parents.
+        let mut size = vec![1usize; bones.len()];
+        for (j, b) in bones.iter().enumerate().rev() {
+            if let Some(p) = b.parent {
+                size[p] += size[j];
+            }
+        }
+        // Per bone, its subtree's range once listed; `Some(None)` once refused for the budget.
+        let mut listed: Vec<Option<Option<(u32, u32)>>> = vec![None; bones.len()];
         for k in constraints {
             let top = match k.bones {
                 IkBones::One(b) => b,
                 IkBones::Two { parent, .. } => parent,
             };
-            let range = match tops.iter().find(|(t, _)| *t == top) {
-                Some(&(_, range)) => range,
-                None => {
+            let range = *listed[top].get_or_insert_with(|| {
+                (flat.below.len() + size[top] <= budget).then(|| {
                     let start = flat.below.len() as u32;
                     flat.below.extend(subtree(&flat.links, top));
-                    let range = (start, flat.below.len() as u32);
-                    tops.push((top, range));
-                    range
-                }
-            };
+                    (start, flat.below.len() as u32)
+                })
+            });
             flat.ranges.push(range);
+            flat.tops.push(top as u32);
         }
         flat
     }
 
+    /// How many subtree entries are kept.
+    #[cfg(test)]
+    pub(crate) fn listed(&self) -> usize {
+        self.below.len()
+    }
+
     /// Constraint `k`'s top bone (its one bone, or the parent of its two) and every bone below
     /// it, in update order.
-    pub(crate) fn below(&self, k: usize) -> &[u32] {
-        let (start, end) = self.ranges[k];
-        &self.below[start as usize..end as usize]
+    pub(crate) fn below(&self, k: usize) -> Subtree<'_> {
+        match self.ranges[k] {
+            Some((start, end)) => Subtree::Listed(&self.below[start as usize..end as usize]),
+            None => Subtree::Below(self.tops[k] as usize),
+        }
     }
 }
 

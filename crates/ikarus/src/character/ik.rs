@@ -237,7 +237,7 @@ fn handedness(frame: &Affine) -> f64 {
 pub(crate) fn dragonbones_two(
     v: &mut Bones,
     (parent, child): (usize, usize),
-    below: &[u32],
+    below: super::flat::Subtree<'_>,
     target: [f64; 2],
     s: &IkSettings,
 ) {
@@ -262,7 +262,7 @@ pub(crate) fn dragonbones_two(
     };
     let turn = wrap(math::atan2(elbow[1], elbow[0]) - math::atan2(ey, ex));
     v.local[parent].rotation += turn * handedness(&pp) * s.mix;
-    v.update_listed(below);
+    v.update_subtree(below);
     let e = v.world[child];
     let turn = wrap(math::atan2(target[1] - e.y, target[0] - e.x) - e.rotation());
     v.local[child].rotation += turn * handedness(&v.world[parent]) * s.mix;

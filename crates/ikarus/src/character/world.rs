@@ -298,6 +298,16 @@ impl Bones<'_> {
         }
     }
 
+    /// Recomputes a constraint's subtree: `top` and every bone below it, from its list when the
+    /// character keeps one ([`super::flat::Subtree`]), else by [`Bones::update_below`]'s scan
+    /// (the same bones in the same order).
+    pub(crate) fn update_subtree(&mut self, subtree: super::flat::Subtree<'_>) {
+        match subtree {
+            super::flat::Subtree::Listed(bones) => self.update_listed(bones),
+            super::flat::Subtree::Below(top) => self.update_below(top),
+        }
+    }
+
     /// Recomputes bone `i`'s world transform and those of every bone below it (bones are
     /// listed parent first, so one pass from `i` on suffices).
     pub(crate) fn update_below(&mut self, i: usize) {
@@ -324,8 +334,10 @@ pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], or
     let n = bones.len();
     // The first constraint (its place in `order`) whose update recomputes the bone, and the
     // first that reads it.
+    // Linear in the bones and constraints: the first constraint topped at each bone, then, parents
+    // first, the earliest of a bone's own and its parent's (a constraint's update recomputes its
+    // top and every bone below it).
     let (mut fresh, mut read) = (vec![usize::MAX; n], vec![usize::MAX; n]);
-    let mut below = vec![false; n];
     for (pos, &k) in order.iter().enumerate() {
         let c = &constraints[k];
         let (top, child) = match c.bones {
@@ -335,14 +347,11 @@ pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], or
         for r in [Some(c.target), Some(top), child, bones[top].parent].into_iter().flatten() {
             read[r] = read[r].min(pos);
         }
-        below[top..].fill(false);
-        below[top] = true;
         fresh[top] = fresh[top].min(pos);
-        for j in top + 1..n {
-            if bones[j].parent.is_some_and(|p| p >= top && below[p]) {
-                below[j] = true;
-                fresh[j] = fresh[j].min(pos);
-            }
+    }
+    for j in 0..n {
+        if let Some(p) = bones[j].parent {
+            fresh[j] = fresh[j].min(fresh[p]);
         }
     }
     let mut deferred: Vec<bool> = (0..n).map(|j| fresh[j] != usize::MAX && read[j] > fresh[j]).collect();

@@ -138,13 +138,21 @@ export async function get(path) {
   return res.json();
 }
 
+/**
+ * The character files /api/rig/parse read, by the id it answered: requests name a character by
+ * its id (`{"character": ID}`), and when the backend no longer keeps it (404: it keeps a few,
+ * the least recently used let go) the file is sent again once and the request retried.
+ */
+const characterTexts = new Map();
+
 /** POSTs `body` as JSON to `path`; resolves with the JSON answer, or a Blob when `as` is "blob". */
 export async function post(path, body, as = "json") {
-  const res = await send(path, {
-    method: "POST",
-    headers: { "content-type": "application/json" },
-    body: JSON.stringify(body),
-  });
+  const init = { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) };
+  let res = await send(path, init);
+  if (res.status === 404 && body && characterTexts.has(body.character)) {
+    await postText("/api/rig/parse", characterTexts.get(body.character), "application/toml");
+    res = await send(path, init);
+  }
   if (!res.ok) throw await failure(path, res);
   return as === "blob" ? res.blob() : res.json();
 }
@@ -152,8 +160,17 @@ export async function post(path, body, as = "json") {
 /** POSTs `body` (text of content type `type`) to `path` and resolves with the answer's text; a refusal is a Notice with the server's message. */
 export async function postText(path, body, type) {
   const res = await send(path, { method: "POST", headers: { "content-type": type }, body });
-  if (res.ok) return res.text();
-  throw await failure(path, res);
+  if (!res.ok) throw await failure(path, res);
+  const text = await res.text();
+  if (path === "/api/rig/parse" && text.includes('"id"')) {
+    try {
+      const id = JSON.parse(text).character?.id;
+      if (id) characterTexts.set(id, body);
+    } catch (_) {
+      /* not a character: nothing to keep */
+    }
+  }
+  return text;
 }
 
 /** The names and defaults of the select lists: methods (with their limit modes), limit modes, eases. */
@@ -178,8 +195,9 @@ let workerRig = null;
  */
 export async function pose(body) {
   const m = await wasm;
-  if (!m || body.ik || body.goals || body.pins) return post("/api/pose", body);
-  const { rig, ...ask } = body;
+  const { rig: text, character, ...ask } = body;
+  const rig = text ?? characterTexts.get(character);
+  if (!m || body.ik || body.goals || body.pins || rig === undefined) return post("/api/pose", body);
   const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
   if (reply.status === 200 && reply.typed) {
     workerRig = rig;

@@ -59,14 +59,23 @@ export function fitCharacterView(box, w, h) {
 }
 
 /**
- * The /api/pose body of the page's choices: the file's text, the clip and its time (none for
- * the setup pose), every dragged target (`targets`, a Map bone → {x, y}, in the order they were
- * first dragged), and `ik: "ikarus"` when the reader chose ikarus's solver (the runtime's rules
- * are the endpoint's default, so the field is left out for them).
+ * How a request names the character `c` (characters.js's state: its file's `text`, and
+ * `character`, /api/rig/parse's answer): by the id the backend answered when it read the file,
+ * `{character: ID}` (a few bytes instead of the whole file every frame), else by the text.
  */
-export function poseRequest({ text, animation, time, targets, ik }) {
+export function characterRef({ text, character }) {
+  return character && character.id ? { character: character.id } : { rig: text };
+}
+
+/**
+ * The /api/pose body of the page's choices: the character (characterRef), the clip and its time
+ * (none for the setup pose), every dragged target (`targets`, a Map bone → {x, y}, in the order
+ * they were first dragged), and `ik: "ikarus"` when the reader chose ikarus's solver (the
+ * runtime's rules are the endpoint's default, so the field is left out for them).
+ */
+export function poseRequest({ text, character, animation, time, targets, ik }) {
   return {
-    rig: text,
+    ...characterRef({ text, character }),
     ...(animation ? { animation, time } : {}),
     targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
     ...(ik === "ikarus" ? { ik: "ikarus" } : {}),
@@ -81,9 +90,9 @@ export const EXPORT = { duration: 1.0, fps: 30, ease: "sine", animation_name: "i
  * answer is the file with one added animation (EXPORT.animation_name) moving the targets from
  * the setup pose to where they were dragged.
  */
-export function exportRequest({ text, targets }) {
+export function exportRequest({ text, character, targets }) {
   return {
-    rig: text,
+    ...characterRef({ text, character }),
     targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
     duration: EXPORT.duration,
     fps: EXPORT.fps,

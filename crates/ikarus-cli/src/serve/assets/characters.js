@@ -11,7 +11,7 @@
 
 import * as api from "./api.js";
 import { saveBlob } from "./files.js";
-import { boneAt, characterSummary, solverLine, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
+import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
 import { isDrag, toWorld } from "./view.js";
 
@@ -217,7 +217,7 @@ export function wireCharacters(state, canvas, act) {
     c.busy = true;
     let req;
     if (s) {
-      req = { rig: c.text, animation: s.name, time: s.times.shift(), targets: [] };
+      req = { ...characterRef(c), animation: s.name, time: s.times.shift(), targets: [] };
     } else {
       c.pending = false;
       req = poseRequest(c);

@@ -11,6 +11,7 @@
 import { bodyForward } from "./body.js";
 import { armForRequest } from "./controls.js";
 import { answerPose, rigChildren, rigForRequest } from "./rig.js";
+import { characterRef } from "./character.js";
 
 /** Frames per second of new keys (the CLI's default). */
 export const KEYS_FPS = 30;
@@ -305,7 +306,7 @@ export function rigMotion(rig, answer) {
  */
 export function characterAnimateRequest(c, keys, format = "json") {
   return {
-    rig: c.text,
+    ...characterRef(c),
     keys: { fps: keys.fps, tracks: keys.tracks, ...(Object.keys(keys.bends || {}).length ? { bends: keys.bends } : {}) },
     ...(c.animation ? { animation: c.animation } : {}),
     ...(c.ik === "ikarus" ? { ik: "ikarus" } : {}),
