@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::Path;
 
 use ikarus_edge::character::export;
-use ikarus_edge::character::motion::Motion;
+use ikarus_edge::character::motion::{Motion, StreamError};
 use ikarus_edge::character::{Loaded, is_json, load, motion_files};
 
 use crate::error::CliError;
@@ -118,22 +118,40 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
             return Ok(());
         }
     }
-    let bytes = match output.written.unwrap_or(Written::Frames) {
-        Written::Frames => {
-            let frames = motion.frames().map_err(fail)?;
-            let mut v =
-                serde_json::to_vec(&frames).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
-            v.push(b'\n');
-            v
-        }
-        Written::Csv => motion_files::csv(motion).map_err(fail)?,
+    let stream = match output.written.unwrap_or(Written::Frames) {
+        Written::Frames => motion_files::write_json,
+        Written::Csv => motion_files::write_csv,
         Written::Spine => {
             let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
-            export::spine(motion, &file.text, name).map_err(fail)?.into_bytes()
+            let bytes = export::spine(motion, &file.text, name).map_err(fail)?.into_bytes();
+            return match pending {
+                Some(p) => p.commit(&bytes),
+                None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+            };
         }
     };
-    match pending {
-        Some(p) => p.commit(&bytes),
-        None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+    // The frames are written as they are posed, never all held at once: to the temporary file
+    // (renamed into place at the end, removed on a refusal) or to stdout.
+    let json = output.written.unwrap_or(Written::Frames) == Written::Frames;
+    let mut refused = None;
+    let mut write = |w: &mut dyn Write| {
+        let written =
+            stream(motion, w).and_then(|()| if json { w.write_all(b"\n").map_err(StreamError::Io) } else { Ok(()) });
+        match written {
+            Ok(()) => Ok(()),
+            Err(StreamError::Io(e)) => Err(e),
+            Err(StreamError::Motion(m)) => {
+                refused = Some(fail(m));
+                Err(std::io::Error::other("refused"))
+            }
+        }
+    };
+    let result = match pending {
+        Some(p) => p.commit_with(&mut write),
+        None => output::stdout(&mut write),
+    };
+    match refused {
+        Some(e) => Err(e),
+        None => result,
     }
 }

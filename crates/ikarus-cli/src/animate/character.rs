@@ -4,7 +4,9 @@
 //! (`--format spine`).
 
 use ikarus::EaseKind;
-use ikarus_edge::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+use ikarus_edge::character::motion::{
+    Course, DEFAULT_DURATION, DEFAULT_FPS, MAX_FRAMES, Motion, count_text, frames_within,
+};
 use ikarus_edge::keys::KeysFile;
 
 use super::AnimateArgs;
@@ -60,6 +62,14 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let fps = m.fps.unwrap_or(DEFAULT_FPS);
     if fps <= 0.0 {
         return Err(CliError::input(format!("--fps {fps}: must be positive")));
+    }
+    if let Err(n) = frames_within(duration, fps, MAX_FRAMES) {
+        return Err(CliError::input(format!(
+            "--duration {}, --fps {}: {} frames, more than the cap of {MAX_FRAMES}",
+            count_text(duration),
+            count_text(fps),
+            count_text(n)
+        )));
     }
     let ease = m.ease.resolve(EaseKind::Sine)?;
     let course = Course::Eased { targets: args.target.clone(), ease, duration };

@@ -182,7 +182,10 @@ fn answer(
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
         }
-        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
+        MotionFormat::Json => Ok(Reply {
+            content_type: "application/json",
+            body: crate::character::motion_files::json(motion).map_err(Problem::invalid)?,
+        }),
         MotionFormat::Csv => Ok(Reply {
             content_type: "text/csv; charset=utf-8",
             body: crate::character::motion_files::csv(motion).map_err(Problem::invalid)?,

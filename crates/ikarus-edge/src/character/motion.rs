@@ -25,6 +25,26 @@ use crate::report::character::UnsupportedJson;
 pub const DEFAULT_FPS: f64 = 30.0;
 /// The duration of an eased motion without one asked for, seconds.
 pub const DEFAULT_DURATION: f64 = 1.0;
+/// The most frames of a character's motion timed by a duration and a frame rate (an eased
+/// course's, a keyed one's): the arms' cap ([`ikarus::motion::MAX_FRAMES`]). A path's motion has
+/// one frame per sample, capped where its samples are (`--max-samples`).
+pub const MAX_FRAMES: usize = ikarus::motion::MAX_FRAMES;
+
+/// How many frames `duration` seconds at `fps` make (k / fps up to the duration, and the
+/// duration itself last), counted in floating point so that no duration overflows the count:
+/// `Err` with the count (perhaps infinite or NaN) when it is more than `cap`.
+pub fn frames_within(duration: f64, fps: f64, cap: usize) -> Result<usize, f64> {
+    let n = (duration * fps - 1e-9).ceil().max(0.0) + 1.0;
+    // NaN fails the comparison too.
+    if n <= cap as f64 { Ok(n as usize) } else { Err(n) }
+}
+
+/// A number for a message: as Rust prints it below 10¹⁵ in size, else in scientific notation
+/// (`2.4e19`, not twenty digits).
+#[must_use]
+pub fn count_text(n: f64) -> String {
+    if n.abs() < 1e15 { format!("{n}") } else { format!("{n:e}") }
+}
 
 /// How the target bones move.
 #[derive(Debug, Clone)]
@@ -136,6 +156,16 @@ pub struct FrameJson {
     pub bones: Vec<PosedBoneJson>,
 }
 
+/// Why a motion's frames stopped before the end: a frame that could not be posed (a one-line
+/// refusal without a label), or the writer's error.
+#[derive(Debug)]
+pub enum StreamError {
+    /// A frame could not be posed.
+    Motion(String),
+    /// The writer failed.
+    Io(std::io::Error),
+}
+
 /// `{"frames": [{"time", "bones": […]}, …], "unsupported": […]}`.
 #[derive(Debug, Serialize)]
 pub struct FramesJson {
@@ -186,20 +216,40 @@ impl<'a> Motion<'a> {
                 (Vec::new(), tracks.iter().map(|(_, t)| t.end()).chain(bent).fold(0.0, f64::max))
             }
         };
+        // Checked before any frame is made: a path has one frame per sample (capped with its
+        // samples), the others at most MAX_FRAMES.
+        let cap = match &course {
+            Course::Path { points, .. } => points.len().max(MAX_FRAMES),
+            Course::Eased { .. } | Course::Keyed { .. } => MAX_FRAMES,
+        };
+        if let Err(n) = frames_within(duration, fps, cap) {
+            return Err(format!(
+                "duration, fps: {} s at {} fps is {} frames, more than the cap of {cap}",
+                count_text(duration),
+                count_text(fps),
+                count_text(n)
+            ));
+        }
         Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
     #[must_use]
     pub fn frame_times(&self) -> Vec<f64> {
-        let n = (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize;
-        (0..=n).map(|k| if k == n { self.duration } else { k as f64 / self.fps }).collect()
+        (0..self.frame_count()).map(|k| self.frame_time(k)).collect()
     }
 
-    /// The number of frames (for caps, before any is posed).
+    /// Frame `k`'s time: k / fps, the last frame's the duration.
+    #[must_use]
+    pub fn frame_time(&self, k: usize) -> f64 {
+        if k + 1 >= self.frame_count() { self.duration } else { k as f64 / self.fps }
+    }
+
+    /// The number of frames (for caps, before any is posed; [`Motion::new`] refused a motion
+    /// of more than its cap).
     #[must_use]
     pub fn frame_count(&self) -> usize {
-        (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize + 1
+        frames_within(self.duration, self.fps, usize::MAX).unwrap_or(usize::MAX)
     }
 
     /// The targets at `time` (clamped into the motion).
@@ -271,12 +321,30 @@ impl<'a> Motion<'a> {
         pose_into(self.loaded, &self.ask_at(time), out).map(|_| ())
     }
 
-    /// Every frame posed (its time and report), one `Posed` reused.
+    /// Every frame posed in order and handed to `sink` with its index and time: one `Posed`
+    /// reused and one report at a time, so that a long motion is written as it is posed
+    /// ([`super::motion_files::write_json`], [`super::motion_files::write_csv`]) and nothing
+    /// holds more than one frame. Stops at the first frame that cannot be posed, or at the first
+    /// error of `sink`.
+    pub fn each_frame(
+        &self,
+        sink: &mut dyn FnMut(usize, f64, &PoseReport) -> std::io::Result<()>,
+    ) -> Result<(), StreamError> {
+        let mut posed = Posed::default();
+        for k in 0..self.frame_count() {
+            let time = self.frame_time(k);
+            self.pose_at(time, &mut posed).map_err(StreamError::Motion)?;
+            sink(k, time, &PoseReport::of(&self.loaded.character, &posed)).map_err(StreamError::Io)?;
+        }
+        Ok(())
+    }
+
+    /// Every frame posed (its time and report), for what needs them all at once (a picture).
     pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, String> {
         let mut posed = Posed::default();
-        self.frame_times()
-            .into_iter()
-            .map(|time| {
+        (0..self.frame_count())
+            .map(|k| {
+                let time = self.frame_time(k);
                 self.pose_at(time, &mut posed)?;
                 Ok((time, PoseReport::of(&self.loaded.character, &posed)))
             })
