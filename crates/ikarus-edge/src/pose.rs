@@ -95,13 +95,15 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
         targets.push((bone, target_point(name, [*x, *y])?));
     }
     let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
-    match &ask.ik {
+    let report = match &ask.ik {
         IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
         IkChoice::Ikarus(rules) => {
             let mut solver = Solver::new(character_options()).map_err(|e| e.to_string())?;
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
-    }
+    }?;
+    crate::pose_finite::check(loaded, ask, out)?;
+    Ok(report)
 }
 
 /// The clip `animation` names at `time` (seconds, 0 when not given) as the library's index, or
