@@ -24,11 +24,16 @@ pub struct CharacterFile {
 }
 
 /// The character file `--rig` names, read (its warnings on stderr); `None` without `--rig`, or
-/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it).
+/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it); a
+/// Spine texture atlas is refused as one ([`ikarus_edge::character::atlas`]).
 pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> {
     let path = rig?;
     let label = format!("rig file {}", path.display());
-    let text = crate::input::read_text(path, &label).ok().filter(|t| is_json(t))?;
+    let text = crate::input::read_text(path, &label).ok()?;
+    if ikarus_edge::character::atlas::is_atlas(&text) {
+        return Some(Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS))));
+    }
+    let text = Some(text).filter(|t| is_json(t))?;
     Some(load(&text, &label).map(|loaded| {
         for warning in &loaded.warnings {
             eprintln!("ikarus: {label}: {warning}");
@@ -70,6 +75,9 @@ pub struct Output<'a> {
     pub written: Option<Written>,
     pub animation_name: Option<&'a str>,
     pub picture: &'a PictureArgs,
+    /// How the command makes fewer frames, for the GIF cap's refusal (`a lower --fps or a
+    /// shorter --duration`).
+    pub fewer: &'a str,
 }
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
@@ -110,6 +118,9 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     };
     let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
     if let Some(picture) = picture {
+        if picture.format == PictureFormat::Gif {
+            crate::picture::gif_within_cap(output.picture, motion.frame_count(), output.fewer)?;
+        }
         let poses = motion.poses().map_err(fail)?;
         let drawing = motion_files::drawing(motion, &poses);
         let bytes = draw_for_command(&drawing, picture.format, output.picture, poses.len())?;

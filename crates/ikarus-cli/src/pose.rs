@@ -127,6 +127,9 @@ pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
 pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let label = format!("rig file {}", args.rig.display());
     let text = crate::input::read_text(&args.rig, &label)?;
+    if ikarus_edge::character::atlas::is_atlas(&text) {
+        return Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS)));
+    }
     if !ikarus_edge::character::is_json(&text) {
         return Err(CliError::input(format!(
             "{label}: pose takes a character file (Spine or DragonBones JSON); a rig file (TOML) is posed by solve --rig"

@@ -10,9 +10,42 @@ use std::fmt;
 pub const SHOWN_CHARS: usize = 64;
 
 /// `name` quoted for a message: `"front-foot"`, `"two\nlines"`, or for a long one
-/// `"aaaa…" (30000000 bytes)`. Formats as [`quoted`]'s text without allocating.
-#[derive(Debug, Clone, Copy)]
+/// `"aaaa…" (30000000 bytes)`. Formats as [`quoted`]'s text without allocating, with `{}` or
+/// `{:?}` alike (so that a message's `{:?}` of a name becomes `{:?}` of `Quoted(name)`).
+#[derive(Clone, Copy)]
 pub struct Quoted<'a>(pub &'a str);
+
+impl fmt::Debug for Quoted<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
+    }
+}
+
+/// `names` as table cells ([`cell`]: bare when plain, else quoted) joined by `, `, or `none`
+/// when there are none; at most
+/// [`LISTED`] of them, then `… (N in all)`.
+#[must_use]
+pub fn listed<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
+    let mut out = String::new();
+    let mut count = 0;
+    for name in names {
+        if count < LISTED {
+            if count > 0 {
+                out.push_str(", ");
+            }
+            out.push_str(&cell(name));
+        }
+        count += 1;
+    }
+    match count {
+        0 => "none".to_owned(),
+        n if n > LISTED => format!("{out}, … ({n} in all)"),
+        _ => out,
+    }
+}
+
+/// The most names [`listed`] shows.
+pub const LISTED: usize = 50;
 
 impl fmt::Display for Quoted<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -57,5 +90,10 @@ mod tests {
         assert_eq!(cell("left hand"), "left hand");
         assert_eq!(cell("a\nb"), "\"a\\nb\"");
         assert_eq!(cell(&"a".repeat(65)), format!("\"{}…\" (65 bytes)", "a".repeat(64)));
+        assert_eq!(format!("{:?}", Quoted("a\nb")), "\"a\\nb\"");
+        assert_eq!(listed(["walk", "run\n"]), "walk, \"run\\n\"");
+        assert_eq!(listed([]), "none");
+        let many: Vec<String> = (0..60).map(|k| k.to_string()).collect();
+        assert!(listed(many.iter().map(String::as_str)).ends_with(", 49, … (60 in all)"));
     }
 }

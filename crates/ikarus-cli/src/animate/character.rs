@@ -47,7 +47,12 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let mut motion =
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
-        let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+        let out = Output {
+            written,
+            animation_name: args.animation_name.as_deref(),
+            picture: &args.picture,
+            fewer: "keys that end sooner or a lower fps in the keys file",
+        };
         return write(file, &motion, &out);
     }
     if args.target.is_empty() {
@@ -76,6 +81,11 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let mut motion =
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+    let out = Output {
+        written,
+        animation_name: args.animation_name.as_deref(),
+        picture: &args.picture,
+        fewer: "a lower --fps or a shorter --duration",
+    };
     write(file, &motion, &out)
 }

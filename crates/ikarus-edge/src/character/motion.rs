@@ -18,6 +18,7 @@ use serde::Serialize;
 
 use super::{Format, Loaded};
 use crate::keys::KeysFile;
+use crate::names::{Quoted, cell, listed};
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into};
 use crate::report::character::UnsupportedJson;
 
@@ -98,23 +99,21 @@ pub fn keyed(
 ) -> Result<(Course, f64), String> {
     let c = &loaded.character;
     let bone = |field: &str, name: &str| {
-        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {name:?} in the character"))
+        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))
     };
     let constraint = |field: &str, name: &str| {
         let index = bone(field, name)?;
         let two =
             |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
         c.constraints().iter().position(|k| two(&k)).ok_or_else(|| {
-            let lower: Vec<&str> = c
-                .constraints()
-                .iter()
-                .filter_map(|k| match k.bones {
-                    IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
-                    IkBones::One(_) => None,
-                })
-                .collect();
-            let has = if lower.is_empty() { "none".to_owned() } else { lower.join(", ") };
-            format!("{field}: {name:?} is not the lower bone of a two-bone IK constraint (the character's are: {has})")
+            let has = listed(c.constraints().iter().filter_map(|k| match k.bones {
+                IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
+                IkBones::One(_) => None,
+            }));
+            format!(
+                "{field}: {} is not the lower bone of a two-bone IK constraint (the character's are: {has})",
+                Quoted(name)
+            )
         })
     };
     let checked = keys.check_character(&bone, &constraint, max_frames, cap)?;
@@ -183,7 +182,8 @@ impl<'a> Motion<'a> {
         let c = &loaded.character;
         let mut setup = Posed::default();
         pose_into(loaded, &PoseAsk::default(), &mut setup)?;
-        let bone = |name: &str| c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"));
+        let bone =
+            |name: &str| c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)));
         let (starts, duration) = match &course {
             Course::Eased { targets, duration, .. } => {
                 if !(duration.is_finite() && *duration > 0.0) {
@@ -195,14 +195,14 @@ impl<'a> Motion<'a> {
                 let mut starts = Vec::with_capacity(targets.len());
                 for (name, [x, y]) in targets {
                     if !(x.is_finite() && y.is_finite()) {
-                        return Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"));
+                        return Err(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name)));
                     }
                     starts.push(setup.origin(bone(name)?));
                 }
                 (starts, *duration)
             }
             Course::Path { bone: name, points } => {
-                bone(name).map_err(|_| format!("effector {name:?}: no bone of that name"))?;
+                bone(name).map_err(|_| format!("effector {}: no bone of that name", Quoted(name)))?;
                 if points.is_empty() {
                     return Err("path: no samples".to_owned());
                 }
@@ -368,8 +368,8 @@ impl<'a> Motion<'a> {
     pub fn caption(&self) -> String {
         let course = match &self.course {
             Course::Eased { targets, .. } => format!("{} targets", targets.len()),
-            Course::Path { bone, .. } => format!("{bone} on a path"),
-            Course::Keyed { animation: Some(a), .. } => format!("keys over {a:?}"),
+            Course::Path { bone, .. } => format!("{} on a path", cell(bone)),
+            Course::Keyed { animation: Some(a), .. } => format!("keys over {}", Quoted(a)),
             Course::Keyed { animation: None, .. } => "keys".to_owned(),
         };
         format!(

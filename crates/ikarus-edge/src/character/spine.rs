@@ -18,6 +18,7 @@ use serde_json::Value;
 
 use super::clips::{self, Ordered};
 use super::{Format, Loaded};
+use crate::names::Quoted;
 use crate::rig::BoneCap;
 
 #[derive(Deserialize)]
@@ -130,14 +131,14 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
     let super::Tree { parents: parent_of, index } = super::parents(&named, |i| format!("bones[{i}]"))?;
     if let Some((i, b)) = file.bones.iter().enumerate().find(|(_, b)| b.length < 0.0) {
-        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", b.name, b.length));
+        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", Quoted(&b.name), b.length));
     }
     let bones = file.bones.iter().zip(parent_of.iter().copied()).map(|(b, parent)| bone(b, parent)).collect();
     let constraints = file
         .ik
         .iter()
         .enumerate()
-        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", k.name), &parent_of))
+        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
         .collect::<Result<Vec<_>, _>>()?;
     let mut unsupported = Vec::new();
     for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
@@ -163,7 +164,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
 
 /// `left inactive: transform constraint "a", path constraint "b"`.
 pub(super) fn inactive(unsupported: &[Unsupported]) -> String {
-    let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, u.name)).collect();
+    let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, Quoted(&u.name))).collect();
     format!("left inactive (ikarus does not apply them): {}", list.join(", "))
 }
 
@@ -197,7 +198,7 @@ fn constraint(
             let parent = super::bone(index, first, &format!("{at}.bones[0]"))?;
             let child = super::bone(index, second, &format!("{at}.bones[1]"))?;
             if parent_of[child] != Some(parent) {
-                return Err(format!("{at}.bones[1] = {second:?}: not a child of {first:?}"));
+                return Err(format!("{at}.bones[1] = {:?}: not a child of {:?}", Quoted(second), Quoted(first)));
             }
             IkBones::Two { parent, child }
         }
