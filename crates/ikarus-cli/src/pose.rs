@@ -198,7 +198,14 @@ pub fn render(
     caption: &dyn Fn() -> String,
     size: &crate::picture::SizeArgs,
 ) -> Result<Vec<u8>, CliError> {
-    let drawn = |e: ikarus_render::RenderError| CliError::runtime(format!("cannot draw the pose: {e}"));
+    // A number the picture cannot hold (a bone so far away that the view overflows) or a size
+    // out of range is the input's; anything else is the drawing's.
+    let drawn = |e: ikarus_render::RenderError| match e {
+        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
+            CliError::input(format!("cannot draw the pose: {e}"))
+        }
+        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+    };
     Ok(match format {
         PoseFormat::Text => report.text().into_bytes(),
         PoseFormat::Json => {

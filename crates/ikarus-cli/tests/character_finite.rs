@@ -84,3 +84,18 @@ fn the_api_refuses_a_pose_that_overflows() {
     }
     s.assert_healthy();
 }
+
+#[test]
+fn a_finite_pose_at_the_ends_of_the_range_is_drawn() {
+    // Bones at ±1e308 are finite and posed; drawing them overflowed the axis ticks' count
+    // (a panic, exit 101).
+    let text = r#"{"skeleton":{"spine":"4.2.0"},"bones":[{"name":"root"},
+        {"name":"a","parent":"root","x":1e308},{"name":"b","parent":"root","x":-1e308}]}"#;
+    let path = temp_file("finite-far", "far.json", text);
+    for ext in ["png", "svg"] {
+        let out = temp_file("finite-far", &format!("far.{ext}"), "");
+        let o = common::ikarus(&["pose", "--rig", &path, "--out", &out]);
+        assert!(o.status.success(), "{ext}: {}", common::stderr(&o));
+        assert!(std::fs::metadata(&out).unwrap().len() > 0);
+    }
+}
