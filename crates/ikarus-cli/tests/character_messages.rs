@@ -42,6 +42,19 @@ fn names_are_quoted_and_escaped_in_errors_and_in_the_text_table() {
     assert!(!text.contains('\u{1b}'), "{text:?}");
     assert_eq!(text.lines().count(), 3, "a header and one line per bone: {text:?}");
     assert!(text.lines().nth(2).unwrap().starts_with("\"leg\\n\\u{1b}[2J\"  "), "{text:?}");
+    // A version line on stderr, too, cut (it was printed whole).
+    let version = format!("9\n\u{1b}[2J{}", "x".repeat(100));
+    let odd = json!({"skeleton": {"spine": version}, "bones": [{"name": "root"}]}).to_string();
+    let odd = temp_file("messages", "version.json", &odd);
+    let o = ikarus(&["pose", "--rig", &odd, "--format", "json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "ikarus: rig file {odd}: skeleton.spine: \"9\\n\\u{{1b}}[2J{}…\" (106 bytes) is not a version ikarus was made for (3.8, 4.0 to 4.2); read as 4.2\n",
+            "x".repeat(58)
+        )
+    );
     // A keyed bone that is not there, named by the user, is quoted too.
     let e = fails(&["animate", "--rig", &path, "--target", "toe\u{1b}[2J=1,1"], 2);
     assert_eq!(e, format!("ikarus: rig file {path}: target \"toe\\u{{1b}}[2J\": no bone of that name\n"));

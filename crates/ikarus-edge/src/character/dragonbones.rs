@@ -113,7 +113,8 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let version = file.version.unwrap_or_default();
     let mut warnings = Vec::new();
     if !version.starts_with('5') {
-        warnings.push(format!("version: {version:?} is not a version ikarus was made for (5.x); read as 5.5"));
+        warnings
+            .push(format!("version: {:?} is not a version ikarus was made for (5.x); read as 5.5", Quoted(&version)));
     }
     let Some(armature) = file.armature.into_iter().next() else {
         return Err("armature: expected at least one armature, got none".to_owned());

@@ -124,7 +124,8 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let mut warnings = Vec::new();
     if !(version.starts_with("3.8") || ["4.0", "4.1", "4.2"].iter().any(|v| version.starts_with(v))) {
         warnings.push(format!(
-            "skeleton.spine: {version:?} is not a version ikarus was made for (3.8, 4.0 to 4.2); read as {}",
+            "skeleton.spine: {:?} is not a version ikarus was made for (3.8, 4.0 to 4.2); read as {}",
+            Quoted(&version),
             if legacy { "3.8" } else { "4.2" }
         ));
     }
