@@ -118,6 +118,14 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     };
     let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
     if let Some(picture) = picture {
+        let (frames, bones) = (motion.frame_count(), file.loaded.character.bones().len());
+        if frames.saturating_mul(bones) > motion_files::MAX_DRAWN_BONES {
+            return Err(CliError::input(format!(
+                "--out: a picture of {frames} frames × {bones} bones draws more than the cap of {} bones ({})",
+                motion_files::MAX_DRAWN_BONES,
+                output.fewer
+            )));
+        }
         if picture.format == PictureFormat::Gif {
             crate::picture::gif_within_cap(output.picture, motion.frame_count(), output.fewer)?;
         }

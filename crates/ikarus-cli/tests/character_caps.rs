@@ -87,3 +87,16 @@ fn a_long_track_is_written_as_it_is_posed() {
     let got = first_bytes(&args, 100).expect("the JSON's first frame comes while the track runs");
     assert!(got.starts_with("{\"frames\":[{\"time\":0.0,\"bones\":[{\"name\":\"root\""), "{got}");
 }
+
+#[test]
+fn a_picture_of_a_long_motion_is_refused_before_any_frame_is_posed() {
+    // A picture holds every frame's bones: a million-sample track drawn as an SVG held them all
+    // (gigabytes) and drew every frame.
+    let svg = common::temp_file("caps", "long.svg", "");
+    let e = fails(
+        &["track", "--rig", RAPTOR, "--effector", "root", "--line", "0,0,1,1", "--samples", "1000000", "--out", &svg],
+        2,
+    );
+    assert!(e.starts_with("ikarus: --out: a picture of 1000000 frames × "), "{e}");
+    assert!(e.ends_with(" bones draws more than the cap of 1000000 bones (fewer --samples)\n"), "{e}");
+}

@@ -11,6 +11,12 @@ use super::motion::{Motion, StreamError};
 use crate::picture::Drawing;
 use crate::pose::{PoseReport, PosedBoneJson};
 
+/// Most bones a picture of a character's motion draws, frames × bones: a picture holds every
+/// frame's bones (the SVG and PNG draw each frame, the GIF animates them), so unlike the frames'
+/// JSON and CSV it cannot be written as it is posed. A million is some 100 MB held, and 15,000
+/// frames of a 67-bone spineboy.
+pub const MAX_DRAWN_BONES: usize = 1_000_000;
+
 /// The CSV's header: one row per bone per frame, the fields of a posed bone.
 pub const CSV_HEADER: &str = "frame,time,bone,x,y,rotation_deg,tip_x,tip_y";
 
