@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::Path;
 
 use ikarus_edge::character::export;
-use ikarus_edge::character::motion::Motion;
+use ikarus_edge::character::motion::{Motion, StreamError};
 use ikarus_edge::character::{Loaded, is_json, load, motion_files};
 
 use crate::error::CliError;
@@ -24,11 +24,16 @@ pub struct CharacterFile {
 }
 
 /// The character file `--rig` names, read (its warnings on stderr); `None` without `--rig`, or
-/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it).
+/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it); a
+/// Spine texture atlas is refused as one ([`ikarus_edge::character::atlas`]).
 pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> {
     let path = rig?;
     let label = format!("rig file {}", path.display());
-    let text = crate::input::read_text(path, &label).ok().filter(|t| is_json(t))?;
+    let text = crate::input::read_text(path, &label).ok()?;
+    if ikarus_edge::character::atlas::is_atlas(&text) {
+        return Some(Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS))));
+    }
+    let text = Some(text).filter(|t| is_json(t))?;
     Some(load(&text, &label).map(|loaded| {
         for warning in &loaded.warnings {
             eprintln!("ikarus: {label}: {warning}");
@@ -70,6 +75,9 @@ pub struct Output<'a> {
     pub written: Option<Written>,
     pub animation_name: Option<&'a str>,
     pub picture: &'a PictureArgs,
+    /// How the command makes fewer frames, for the GIF cap's refusal (`a lower --fps or a
+    /// shorter --duration`).
+    pub fewer: &'a str,
 }
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
@@ -110,6 +118,17 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     };
     let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
     if let Some(picture) = picture {
+        let (frames, bones) = (motion.frame_count(), file.loaded.character.bones().len());
+        if frames.saturating_mul(bones) > motion_files::MAX_DRAWN_BONES {
+            return Err(CliError::input(format!(
+                "--out: a picture of {frames} frames × {bones} bones draws more than the cap of {} bones ({})",
+                motion_files::MAX_DRAWN_BONES,
+                output.fewer
+            )));
+        }
+        if picture.format == PictureFormat::Gif {
+            crate::picture::gif_within_cap(output.picture, motion.frame_count(), output.fewer)?;
+        }
         let poses = motion.poses().map_err(fail)?;
         let drawing = motion_files::drawing(motion, &poses);
         let bytes = draw_for_command(&drawing, picture.format, output.picture, poses.len())?;
@@ -118,22 +137,40 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
             return Ok(());
         }
     }
-    let bytes = match output.written.unwrap_or(Written::Frames) {
-        Written::Frames => {
-            let frames = motion.frames().map_err(fail)?;
-            let mut v =
-                serde_json::to_vec(&frames).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
-            v.push(b'\n');
-            v
-        }
-        Written::Csv => motion_files::csv(motion).map_err(fail)?,
+    let stream = match output.written.unwrap_or(Written::Frames) {
+        Written::Frames => motion_files::write_json,
+        Written::Csv => motion_files::write_csv,
         Written::Spine => {
             let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
-            export::spine(motion, &file.text, name).map_err(fail)?.into_bytes()
+            let bytes = export::spine(motion, &file.text, name).map_err(fail)?.into_bytes();
+            return match pending {
+                Some(p) => p.commit(&bytes),
+                None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+            };
         }
     };
-    match pending {
-        Some(p) => p.commit(&bytes),
-        None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
+    // The frames are written as they are posed, never all held at once: to the temporary file
+    // (renamed into place at the end, removed on a refusal) or to stdout.
+    let json = output.written.unwrap_or(Written::Frames) == Written::Frames;
+    let mut refused = None;
+    let mut write = |w: &mut dyn Write| {
+        let written =
+            stream(motion, w).and_then(|()| if json { w.write_all(b"\n").map_err(StreamError::Io) } else { Ok(()) });
+        match written {
+            Ok(()) => Ok(()),
+            Err(StreamError::Io(e)) => Err(e),
+            Err(StreamError::Motion(m)) => {
+                refused = Some(fail(m));
+                Err(std::io::Error::other("refused"))
+            }
+        }
+    };
+    let result = match pending {
+        Some(p) => p.commit_with(&mut write),
+        None => output::stdout(&mut write),
+    };
+    match refused {
+        Some(e) => Err(e),
+        None => result,
     }
 }

@@ -232,18 +232,27 @@ impl PendingFile {
     }
 
     /// Writes `bytes` and renames the file into place (or writes them through to a device).
-    pub fn commit(mut self, bytes: &[u8]) -> Result<(), CliError> {
+    pub fn commit(self, bytes: &[u8]) -> Result<(), CliError> {
+        self.commit_with(|w: &mut dyn Write| w.write_all(bytes))
+    }
+
+    /// Writes what `write` writes, as it writes it (buffered), and renames the file into place
+    /// (or writes it through to a device); an error of `write` leaves nothing behind.
+    pub fn commit_with(mut self, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
         let (path, flag) = (self.path.clone(), self.flag);
         let fail =
             |e: io::Error| CliError::runtime(format!("{flag} {}: cannot write: {}", path.display(), io_reason(&e)));
         match &mut self.sink {
             Sink::Direct => {
-                let mut file = std::fs::OpenOptions::new().write(true).open(&path).map_err(fail)?;
-                file.write_all(bytes).and_then(|()| file.flush()).map_err(fail)
+                let file = std::fs::OpenOptions::new().write(true).open(&path).map_err(fail)?;
+                let mut w = io::BufWriter::new(file);
+                write(&mut w).and_then(|()| w.flush()).map_err(fail)
             }
             Sink::Replace { temp, target, mode, .. } => {
                 let Some(mut temp) = temp.take() else { return Ok(()) };
-                temp.write_all(bytes).map_err(fail)?;
+                let mut w = io::BufWriter::new(temp.as_file_mut());
+                write(&mut w).and_then(|()| w.flush()).map_err(fail)?;
+                drop(w);
                 temp.as_file().sync_all().map_err(fail)?;
                 if let Some(mode) = *mode {
                     set_mode(temp.path(), mode).map_err(fail)?;

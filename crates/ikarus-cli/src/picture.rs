@@ -128,13 +128,7 @@ pub fn draw_for_command(
 ) -> Result<Vec<u8>, CliError> {
     let SizeArgs { width, height } = picture.size;
     if format == PictureFormat::Gif {
-        let pixels = (frames as u64).saturating_mul(u64::from(width) * u64::from(height));
-        if pixels > picture.max_gif_pixels {
-            return Err(CliError::input(format!(
-                "--out: a GIF of {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {} (fewer --frames, a smaller --width/--height, or raise it with --max-gif-pixels N)",
-                picture.max_gif_pixels
-            )));
-        }
+        gif_within_cap(picture, frames, "fewer --frames")?;
     }
     let bar = (format == PictureFormat::Gif).then(|| progress_bar(frames as u64, "rendering frames")).flatten();
     let report = |done: usize, total: usize| {
@@ -148,6 +142,21 @@ pub fn draw_for_command(
         bar.finish_and_clear();
     }
     Ok(bytes)
+}
+
+/// A GIF of `frames` frames at `--width` × `--height` within `--max-gif-pixels`, checked before
+/// any frame is made; else the one-line refusal, `fewer` saying how the command makes fewer
+/// frames (`fewer --frames`; a character's motion: `a lower --fps or a shorter --duration`).
+pub fn gif_within_cap(picture: &PictureArgs, frames: usize, fewer: &str) -> Result<(), CliError> {
+    let SizeArgs { width, height } = picture.size;
+    let pixels = (frames as u64).saturating_mul(u64::from(width) * u64::from(height));
+    if pixels > picture.max_gif_pixels {
+        return Err(CliError::input(format!(
+            "--out: a GIF of {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {} ({fewer}, a smaller --width/--height, or raise it with --max-gif-pixels N)",
+            picture.max_gif_pixels
+        )));
+    }
+    Ok(())
 }
 
 /// A progress bar on stderr when it is a terminal, for `total` steps of `what`.

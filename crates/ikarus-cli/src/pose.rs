@@ -127,6 +127,9 @@ pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
 pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let label = format!("rig file {}", args.rig.display());
     let text = crate::input::read_text(&args.rig, &label)?;
+    if ikarus_edge::character::atlas::is_atlas(&text) {
+        return Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS)));
+    }
     if !ikarus_edge::character::is_json(&text) {
         return Err(CliError::input(format!(
             "{label}: pose takes a character file (Spine or DragonBones JSON); a rig file (TOML) is posed by solve --rig"
@@ -195,7 +198,14 @@ pub fn render(
     caption: &dyn Fn() -> String,
     size: &crate::picture::SizeArgs,
 ) -> Result<Vec<u8>, CliError> {
-    let drawn = |e: ikarus_render::RenderError| CliError::runtime(format!("cannot draw the pose: {e}"));
+    // A number the picture cannot hold (a bone so far away that the view overflows) or a size
+    // out of range is the input's; anything else is the drawing's.
+    let drawn = |e: ikarus_render::RenderError| match e {
+        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
+            CliError::input(format!("cannot draw the pose: {e}"))
+        }
+        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+    };
     Ok(match format {
         PoseFormat::Text => report.text().into_bytes(),
         PoseFormat::Json => {

@@ -231,7 +231,12 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     let mut motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
         .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+    let out = Output {
+        written,
+        animation_name: args.animation_name.as_deref(),
+        picture: &args.picture,
+        fewer: "fewer --samples",
+    };
     write(file, &motion, &out)
 }
 

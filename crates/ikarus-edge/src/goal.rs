@@ -131,7 +131,7 @@ pub fn goals_and_pins(
         Some(first) => Err(format!(
             "{}: bone {:?} already has a {} ({}); one goal or pin per bone",
             field(by),
-            bones.name_of(bone),
+            crate::names::Quoted(bones.name_of(bone)),
             if matches!(first, Field::Pin(_)) { "pin" } else { "goal" },
             field(first)
         )),
@@ -157,7 +157,7 @@ pub fn goals_and_pins(
             return Err(format!(
                 "{}: bone {:?} has no parent, so no joint to bend (bend applies to the second bone of a limb)",
                 field(Field::Bend(i)),
-                g.bone
+                crate::names::Quoted(&g.bone)
             ));
         }
         let mut goal =
@@ -187,11 +187,11 @@ fn index_among<'a>(
 ) -> Result<usize, String> {
     found.ok_or_else(|| {
         let n = names.len();
-        let mut listed = names.take(LISTED_NAMES).collect::<Vec<_>>().join(", ");
+        let mut listed = names.take(LISTED_NAMES).map(crate::names::cell).collect::<Vec<_>>().join(", ");
         if n > LISTED_NAMES {
             listed.push_str(&format!(", … ({n} in all)"));
         }
-        format!("no bone named {name:?} in the rig (its bones: {listed})")
+        format!("no bone named {} in the rig (its bones: {listed})", crate::names::Quoted(name))
     })
 }
 

@@ -20,6 +20,7 @@ use ikarus::{Bend, EaseKind, Joint, Skeleton};
 use serde::Deserialize;
 
 use crate::ease_args::{EaseProblem, choose_ease};
+use crate::names::cell;
 
 pub mod motion;
 
@@ -235,11 +236,12 @@ impl KeysFile {
             let index = bone(&field, name)?;
             if self.tracks.contains_key(name) {
                 return Err(format!(
-                    "{field} = {name}: the bone is also keyed in keys.tracks; a pinned tip holds still"
+                    "{field} = {}: the bone is also keyed in keys.tracks; a pinned tip holds still",
+                    cell(name)
                 ));
             }
             if pins.contains(&index) {
-                return Err(format!("{field} = {name}: pinned twice"));
+                return Err(format!("{field} = {}: pinned twice", cell(name)));
             }
             pins.push(index);
         }
@@ -257,7 +259,7 @@ impl KeysFile {
     ) -> Result<Bends, String> {
         let mut bends = Vec::with_capacity(self.bends.len());
         for (name, keys) in &self.bends {
-            let field = format!("keys.bends.{name}");
+            let field = format!("keys.bends.{}", cell(name));
             let index = joint(&field, name)?;
             let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
             *last = (*last).max(*frames.last().expect("a track has a key"));
@@ -283,7 +285,10 @@ impl KeysFile {
         }
         let (fps, mut last, tracks) = self.tracks(bone)?;
         if let Some((name, _)) = self.tracks.iter().find(|(_, keys)| keys.iter().any(|k| k.angle_deg.is_some())) {
-            return Err(format!("keys.tracks.{name}: angle_deg is not for a character (a target is a bone's origin)"));
+            return Err(format!(
+                "keys.tracks.{}: angle_deg is not for a character (a target is a bone's origin)",
+                cell(name)
+            ));
         }
         let bends = self.bend_keys(constraint, fps, &mut last)?;
         frames_within(last, max_frames, cap)?;
@@ -314,7 +319,7 @@ impl KeysFile {
         let mut last = 0;
         let mut tracks = Vec::with_capacity(self.tracks.len());
         for (name, keys) in &self.tracks {
-            let field = format!("keys.tracks.{name}");
+            let field = format!("keys.tracks.{}", cell(name));
             let index = bone(&field, name)?;
             let frames = key_frames(&field, keys.iter().map(|k| k.time), fps)?;
             last = last.max(*frames.last().expect("a track has a key"));

@@ -36,11 +36,15 @@ pub mod keys;
 #[doc(hidden)]
 pub mod motion;
 #[doc(hidden)]
+pub mod names;
+#[doc(hidden)]
 pub mod options;
 #[doc(hidden)]
 pub mod picture;
 #[doc(hidden)]
 pub mod pose;
+#[doc(hidden)]
+pub mod pose_finite;
 #[doc(hidden)]
 pub mod reach;
 #[doc(hidden)]

@@ -16,6 +16,7 @@ use serde::Serialize;
 use crate::character::Loaded;
 use crate::error::CliError;
 use crate::goal::{Field, NamedGoal};
+use crate::names::{Quoted, cell, listed};
 use crate::report::character::UnsupportedJson;
 
 /// What to pose, by name, as the user gave it.
@@ -122,11 +123,11 @@ pub(crate) fn pose_into_until(
     let clip = clip_at(c, ask.animation.as_deref(), ask.time)?;
     let mut targets = Vec::with_capacity(ask.targets.len());
     for (name, [x, y]) in &ask.targets {
-        let bone = c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"))?;
+        let bone = c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)))?;
         targets.push((bone, target_point(name, [*x, *y])?));
     }
     let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
-    match &ask.ik {
+    let report = match &ask.ik {
         IkChoice::Runtime => match interrupt {
             Some(token) => c.pose_watched(&request, out, token),
             None => c.pose(&request, out),
@@ -138,7 +139,9 @@ pub(crate) fn pose_into_until(
             let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
-    }
+    }?;
+    crate::pose_finite::check(loaded, ask, out)?;
+    Ok(report)
 }
 
 /// The clip `animation` names at `time` (seconds, 0 when not given) as the library's index, or
@@ -148,9 +151,8 @@ pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Res
     match animation {
         Some(name) => {
             let i = c.clip_index(name).ok_or_else(|| {
-                let names: Vec<&str> = c.clips().iter().map(|k| k.name.as_str()).collect();
-                let has = if names.is_empty() { "none".to_owned() } else { names.join(", ") };
-                format!("animation {name:?}: no such animation (the file has: {has})")
+                let has = listed(c.clips().iter().map(|k| k.name.as_str()));
+                format!("animation {}: no such animation (the file has: {has})", Quoted(name))
             })?;
             Ok(Some((i, finite_time(time.unwrap_or(0.0))?)))
         }
@@ -170,7 +172,7 @@ pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], String> {
     if x.is_finite() && y.is_finite() {
         Ok([x, y])
     } else {
-        Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"))
+        Err(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name)))
     }
 }
 
@@ -212,7 +214,7 @@ pub fn add_goals(
                 return Err(format!(
                     "{}: {n}: must be from 1 (the bone alone) to {depth} (bone {:?} and all above it)",
                     field(Field::Bones(i)),
-                    c.bones()[goal.bone].name
+                    Quoted(&c.bones()[goal.bone].name)
                 ));
             }
             Some(n) => n,
@@ -222,7 +224,7 @@ pub fn add_goals(
             return Err(format!(
                 "{}: the goal on {:?} turns one bone, so no joint to bend (give it 2 bones or more)",
                 field(Field::Bend(i)),
-                c.bones()[goal.bone].name
+                Quoted(&c.bones()[goal.bone].name)
             ));
         }
         rules.goals.push(TipGoal { goal, bones: count });
@@ -330,7 +332,7 @@ impl PoseReport {
     #[must_use]
     pub fn text(&self) -> String {
         use std::fmt::Write;
-        let width = self.bones.iter().map(|b| b.name.len()).max().unwrap_or(4).max(4);
+        let width = self.bones.iter().map(|b| cell(&b.name).chars().count()).max().unwrap_or(4).max(4);
         let mut out = format!(
             "{:width$}  {:>12}  {:>12}  {:>12}  {:>12}  {:>12}\n",
             "bone", "x", "y", "rotation_deg", "tip_x", "tip_y"
@@ -339,14 +341,19 @@ impl PoseReport {
             let _ = writeln!(
                 out,
                 "{:width$}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}",
-                b.name, b.x, b.y, b.rotation_deg, b.tip[0], b.tip[1]
+                cell(&b.name),
+                b.x,
+                b.y,
+                b.rotation_deg,
+                b.tip[0],
+                b.tip[1]
             );
         }
         for u in &self.unsupported {
-            let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, u.name);
+            let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, Quoted(&u.name));
         }
         for g in self.ik.iter().flat_map(|k| &k.goals) {
-            let _ = write!(out, "goal on {:?}: tip {:.6} from its point", g.bone, g.error);
+            let _ = write!(out, "goal on {:?}: tip {:.6} from its point", Quoted(&g.bone), g.error);
             if let Some(a) = g.angle_error_deg {
                 let _ = write!(out, ", direction {a:.6}° from its angle");
             }

@@ -236,6 +236,9 @@ impl RigFile {
         // memory, seconds for a few MB); bones in an inline array are counted once parsed. (A
         // `[[bones]]` line inside a multi-line string would be counted too: no rig has one.)
         over(text.lines().filter(|l| is_bones_header(l)).count())?;
+        if crate::character::atlas::is_atlas(text) {
+            return Err(CliError::input(format!("{label}: {}", crate::character::atlas::ATLAS)));
+        }
         let file: RigFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
         over(file.bones.len())?;
         Ok(file)

@@ -230,7 +230,7 @@ pub(crate) fn nice_step(raw: f64) -> f64 {
 pub(crate) fn ticks(lo: f64, hi: f64, step: f64) -> Vec<f64> {
     let first = (lo / step - 1e-9).ceil() as i64;
     let last = (hi / step + 1e-9).floor() as i64;
-    if last < first || last - first > 1000 {
+    if last < first || last.saturating_sub(first) > 1000 {
         return Vec::new();
     }
     (first..=last).map(|k| k as f64 * step).collect()

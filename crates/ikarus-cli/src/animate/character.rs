@@ -4,7 +4,9 @@
 //! (`--format spine`).
 
 use ikarus::EaseKind;
-use ikarus_edge::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+use ikarus_edge::character::motion::{
+    Course, DEFAULT_DURATION, DEFAULT_FPS, MAX_FRAMES, Motion, count_text, frames_within,
+};
 use ikarus_edge::keys::KeysFile;
 
 use super::AnimateArgs;
@@ -45,7 +47,12 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let mut motion =
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
-        let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+        let out = Output {
+            written,
+            animation_name: args.animation_name.as_deref(),
+            picture: &args.picture,
+            fewer: "keys that end sooner or a lower fps in the keys file",
+        };
         return write(file, &motion, &out);
     }
     if args.target.is_empty() {
@@ -61,11 +68,24 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     if fps <= 0.0 {
         return Err(CliError::input(format!("--fps {fps}: must be positive")));
     }
+    if let Err(n) = frames_within(duration, fps, MAX_FRAMES) {
+        return Err(CliError::input(format!(
+            "--duration {}, --fps {}: {} frames, more than the cap of {MAX_FRAMES}",
+            count_text(duration),
+            count_text(fps),
+            count_text(n)
+        )));
+    }
     let ease = m.ease.resolve(EaseKind::Sine)?;
     let course = Course::Eased { targets: args.target.clone(), ease, duration };
     let mut motion =
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+    let out = Output {
+        written,
+        animation_name: args.animation_name.as_deref(),
+        picture: &args.picture,
+        fewer: "a lower --fps or a shorter --duration",
+    };
     write(file, &motion, &out)
 }

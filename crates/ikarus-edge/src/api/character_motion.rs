@@ -198,7 +198,10 @@ fn answer(
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
         }
-        MotionFormat::Json => Reply::json(&posed(motion.frames(), motion)?),
+        MotionFormat::Json => Ok(Reply {
+            content_type: "application/json",
+            body: posed(crate::character::motion_files::json(motion), motion)?,
+        }),
         MotionFormat::Csv => Ok(Reply {
             content_type: "text/csv; charset=utf-8",
             body: posed(crate::character::motion_files::csv(motion), motion)?,

@@ -96,6 +96,9 @@ pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) ->
 /// The character file `rig` of a pose request (its text, Spine or DragonBones JSON, at most
 /// `--max-bones` bones, counted first), or the refusal `/api/pose` answers for it.
 pub fn character(rig: &str, limits: &Limits) -> Result<crate::character::Loaded, Problem> {
+    if crate::character::atlas::is_atlas(rig) {
+        return Err(Problem::invalid(format!("rig: {}", crate::character::atlas::ATLAS)));
+    }
     if !is_json(rig) {
         return Err(Problem::invalid(
             "rig: pose takes a character file's text (Spine or DragonBones JSON); a rig file (TOML) is posed by /api/solve",

@@ -19,6 +19,8 @@ use ikarus::character::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSett
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
+use crate::names::cell;
+
 /// A JSON object's entries in the file's order (`serde_json` keeps no order of its own here).
 /// A name listed twice is refused (`"walk" is listed twice in this object`): a JSON reader
 /// keeps one of them, which one differs between readers, and keeping both made every later
@@ -162,14 +164,14 @@ fn property(kind: &str) -> Option<(BoneProperty, bool, f64)> {
 
 /// The clip of animation `name`, `duration` long; `legacy` for a 3.8 file.
 pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, legacy: bool) -> Result<Clip, String> {
-    let at = format!("animations.{name}");
+    let at = format!("animations.{}", cell(name));
     let mut bones = Vec::new();
     for (bone_name, timelines) in &a.bones.0 {
         let bone = names
             .bones
             .get(bone_name)
             .copied()
-            .ok_or_else(|| format!("{at}.bones.{bone_name}: no bone of that name"))?;
+            .ok_or_else(|| format!("{at}.bones.{}: no bone of that name", cell(bone_name)))?;
         for (kind, keys) in &timelines.0 {
             let Some((property, angle, default)) = property(kind) else { continue };
             let unit = if angle { 1f64.to_radians() } else { 1.0 };
@@ -178,7 +180,7 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
                 1 => [k.value.or(k.angle).unwrap_or(default) * unit, 0.0],
                 _ => [k.x.unwrap_or(default) * unit, k.y.unwrap_or(default) * unit],
             };
-            let series = Series { path: format!("{at}.bones.{bone_name}.{kind}"), channels, unit, legacy };
+            let series = Series { path: format!("{at}.bones.{}.{kind}", cell(bone_name)), channels, unit, legacy };
             let keys = series
                 .read(keys, value)?
                 .into_iter()
@@ -193,8 +195,8 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
             .constraints
             .get(ik_name.as_str())
             .copied()
-            .ok_or_else(|| format!("{at}.ik.{ik_name}: no IK constraint of that name"))?;
-        let series = Series { path: format!("{at}.ik.{ik_name}"), channels: 2, unit: 1.0, legacy };
+            .ok_or_else(|| format!("{at}.ik.{}: no IK constraint of that name", cell(ik_name)))?;
+        let series = Series { path: format!("{at}.ik.{}", cell(ik_name)), channels: 2, unit: 1.0, legacy };
         let value = |k: &Key| [k.mix.unwrap_or(1.0), k.softness.unwrap_or(0.0)];
         let keys = series
             .read(keys, value)?

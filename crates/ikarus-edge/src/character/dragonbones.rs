@@ -23,6 +23,7 @@ use serde_json::Value;
 
 use super::dragonbones_clips::{self, AnimationJson, Context, Notes};
 use super::{Format, Loaded};
+use crate::names::Quoted;
 use crate::rig::BoneCap;
 
 #[derive(Deserialize)]
@@ -117,7 +118,8 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let version = file.version.unwrap_or_default();
     let mut warnings = Vec::new();
     if !version.starts_with('5') {
-        warnings.push(format!("version: {version:?} is not a version ikarus was made for (5.x); read as 5.5"));
+        warnings
+            .push(format!("version: {:?} is not a version ikarus was made for (5.x); read as 5.5", Quoted(&version)));
     }
     let Some(armature) = file.armature.into_iter().next() else {
         return Err("armature: expected at least one armature, got none".to_owned());
@@ -127,7 +129,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let at = |i: usize| format!("armature[0].bone[{i}]");
     let super::Tree { parents: parent_of, index } = super::parents(&named, at)?;
     if let Some((i, b)) = armature.bone.iter().enumerate().find(|(_, b)| b.length < 0.0) {
-        return Err(format!("{} ({:?}).length = {}: must not be negative", at(i), b.name, b.length));
+        return Err(format!("{} ({:?}).length = {}: must not be negative", at(i), Quoted(&b.name), b.length));
     }
     let mut unsupported = Vec::new();
     let mut bones = Vec::with_capacity(armature.bone.len());
@@ -150,12 +152,12 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     }
     let mut constraints = Vec::with_capacity(armature.ik.len());
     for (i, k) in armature.ik.iter().enumerate() {
-        let at = format!("armature[0].ik[{i}] ({:?})", k.name);
+        let at = format!("armature[0].ik[{i}] ({:?})", Quoted(&k.name));
         let end = super::bone(&index, &k.bone, &format!("{at}.bone"))?;
         let bones = match (k.chain, parent_of[end]) {
             (0, _) => IkBones::One(end),
             (1, Some(parent)) => IkBones::Two { parent, child: end },
-            (1, None) => return Err(format!("{at}.chain = 1: bone {:?} has no parent", k.bone)),
+            (1, None) => return Err(format!("{at}.chain = 1: bone {:?} has no parent", Quoted(&k.bone))),
             (n, _) => return Err(format!("{at}.chain = {n}: expected 0 (one bone) or 1 (two bones)")),
         };
         let target = super::bone(&index, &k.target, &format!("{at}.target"))?;

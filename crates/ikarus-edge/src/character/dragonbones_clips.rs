@@ -26,6 +26,7 @@ use ikarus::character::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSett
 use serde::{Deserialize, Deserializer};
 
 use super::clips::unit_bezier;
+use crate::names::Quoted;
 
 /// One animation as written.
 #[derive(Deserialize)]
@@ -102,11 +103,11 @@ pub(super) struct Notes {
 
 /// The clip of animation `i`.
 pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut Notes) -> Result<Clip, String> {
-    let at = format!("armature[0].animation[{i}] ({:?})", a.name);
+    let at = format!("armature[0].animation[{i}] ({:?})", Quoted(&a.name));
     let mut bones = Vec::new();
     let mut latest = 0.0f64;
     for (j, t) in a.bone.iter().enumerate() {
-        let here = format!("{at}.bone[{j}] ({:?})", t.name);
+        let here = format!("{at}.bone[{j}] ({:?})", Quoted(&t.name));
         let bone = super::bone(cx.bones, &t.name, &format!("{here}.name"))?;
         let mut push = |property, frames: &[FrameJson], kind: &str, value: &dyn Fn(usize, &FrameJson) -> [f64; 2]| {
             let keys: Vec<BoneKey> = keys(frames, &format!("{here}.{kind}"), cx.frame_rate, notes, value)?
@@ -137,12 +138,12 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
     }
     let mut constraints = Vec::new();
     for (j, t) in a.ik.iter().enumerate() {
-        let here = format!("{at}.ik[{j}] ({:?})", t.name);
+        let here = format!("{at}.ik[{j}] ({:?})", Quoted(&t.name));
         let constraint = cx
             .constraints
             .get(t.name.as_str())
             .copied()
-            .ok_or_else(|| format!("{here}.name = {:?}: no IK constraint of that name", t.name))?;
+            .ok_or_else(|| format!("{here}.name = {:?}: no IK constraint of that name", Quoted(&t.name)))?;
         let path = format!("{here}.frame");
         let read = keys(&t.frame, &path, cx.frame_rate, notes, &|_, f| [f.weight.unwrap_or(100.0) / 100.0, 0.0])?;
         let mut out = Vec::with_capacity(read.len());

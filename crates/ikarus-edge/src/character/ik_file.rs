@@ -21,6 +21,7 @@ use serde::Deserialize;
 
 use crate::arm::toml_error;
 use crate::error::CliError;
+use crate::names::{Quoted, cell, listed};
 
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -63,7 +64,7 @@ pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, 
     let file: IkFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
     let bad = |m: String| CliError::input(format!("{label}: {m}"));
     let bone = |field: &str, name: &str| {
-        character.bone_index(name).ok_or_else(|| bad(format!("{field} = {name:?}: no bone of that name")))
+        character.bone_index(name).ok_or_else(|| bad(format!("{field} = {}: no bone of that name", Quoted(name))))
     };
     let mut rules = Together::default();
     for (i, name) in file.pins.iter().enumerate() {
@@ -71,18 +72,42 @@ pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, 
     }
     for (name, limb) in &file.limbs {
         let constraint = character.constraints().iter().position(|c| &c.name == name).ok_or_else(|| {
-            let names: Vec<&str> = character.constraints().iter().map(|c| c.name.as_str()).collect();
-            bad(format!("limbs.{name}: no IK constraint of that name (the file has: {})", names.join(", ")))
+            let names = listed(character.constraints().iter().map(|c| c.name.as_str()));
+            bad(format!("limbs.{}: no IK constraint of that name (the file has: {names})", cell(name)))
         })?;
         rules.limbs.push(LimbRule { constraint, bones: limb.bones, weight: limb.weight, secondary: limb.secondary });
     }
     for (name, b) in &file.bones {
-        let index = bone(&format!("bones.{name}"), name)?;
+        let field = format!("bones.{}", cell(name));
+        let index = bone(&field, name)?;
+        if let Some(limits) = b.limits_deg {
+            let [lo, hi] = limits.map(super::motion::count_text);
+            limits_in_degrees(limits).map_err(|m| bad(format!("{field}.limits_deg = [{lo}, {hi}]: {m}")))?;
+        }
         let limits = b.limits_deg.map(|[lo, hi]| [lo.to_radians(), hi.to_radians()]);
         rules.bones.push(BoneRule { bone: index, limits, stiffness: b.stiffness });
     }
     character.check_together(&rules).map_err(|e| bad(e.to_string()))?;
     Ok(rules)
+}
+
+/// The most a limit may turn a bone from its setup's direction either way, degrees: a range
+/// wider than this is no limit, and a farther one is a typing slip (1e308).
+pub const MAX_LIMIT_DEG: f64 = 360.0;
+
+/// `[lo, hi]` as an IK file gives a bone's limits, in degrees, checked in degrees (the solver's
+/// own check sees radians, and would print them): finite, within ±[`MAX_LIMIT_DEG`], `lo ≤ hi`.
+fn limits_in_degrees([lo, hi]: [f64; 2]) -> Result<(), String> {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Err("the limits must be finite numbers of degrees".to_owned());
+    }
+    if lo.abs() > MAX_LIMIT_DEG || hi.abs() > MAX_LIMIT_DEG {
+        return Err(format!("each limit must be within -{MAX_LIMIT_DEG} and {MAX_LIMIT_DEG} degrees"));
+    }
+    if lo > hi {
+        return Err("the lower limit must not exceed the upper (degrees)".to_owned());
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -121,9 +146,14 @@ mod tests {
             err("[limbs.front-leg-ik]\nweight = 0\n"),
             "ik file a.toml: limb \"front-leg-ik\": weight must be > 0, got 0"
         );
-        assert!(
-            err("[bones.front-shin]\nlimits_deg = [10.0, -10.0]\n")
-                .starts_with("ik file a.toml: bone \"front-shin\": limits: ")
+        // In degrees, as the file gives them, named by the file's own field.
+        assert_eq!(
+            err("[bones.front-shin]\nlimits_deg = [10.0, -10.0]\n"),
+            "ik file a.toml: bones.front-shin.limits_deg = [10, -10]: the lower limit must not exceed the upper (degrees)"
+        );
+        assert_eq!(
+            err("[bones.front-shin]\nlimits_deg = [1e308, 1e308]\n"),
+            "ik file a.toml: bones.front-shin.limits_deg = [1e308, 1e308]: each limit must be within -360 and 360 degrees"
         );
         assert!(
             err("[bones.front-shin]\nlimit = 1\n")

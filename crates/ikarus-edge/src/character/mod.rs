@@ -14,6 +14,7 @@
 //! deform; transform, path and physics constraints are listed in [`Character::unsupported`]
 //! and left inactive.
 
+pub mod atlas;
 mod clips;
 mod dragonbones;
 mod dragonbones_clips;
@@ -31,6 +32,7 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 
 use crate::error::CliError;
+use crate::names::Quoted;
 use crate::rig::BoneCap;
 
 /// The format of a character file.
@@ -185,16 +187,19 @@ fn parents(bones: &[(&str, Option<&str>)], at: impl Fn(usize) -> String) -> Resu
     let mut out = Vec::with_capacity(bones.len());
     for (i, (name, _)) in bones.iter().enumerate() {
         if let Some(first) = index.insert((*name).to_owned(), i) {
-            return Err(format!("{}.name = {name:?}: also the name of {}", at(i), at(first)));
+            return Err(format!("{}.name = {:?}: also the name of {}", at(i), Quoted(name), at(first)));
         }
     }
     for (i, (_, parent)) in bones.iter().enumerate() {
         let p = match parent {
             None => None,
             Some(p) => match index.get(*p) {
-                None => return Err(format!("{} ({:?}).parent = {p:?}: no bone of that name", at(i), bones[i].0)),
+                None => {
+                    let (child, p) = (Quoted(bones[i].0), Quoted(p));
+                    return Err(format!("{} ({child:?}).parent = {p:?}: no bone of that name", at(i)));
+                }
                 Some(&j) if j >= i => {
-                    let child = bones[i].0;
+                    let (child, p) = (Quoted(bones[i].0), Quoted(p));
                     return Err(format!(
                         "{} ({child:?}).parent = {p:?}: listed after this bone (a parent comes first)",
                         at(i)
@@ -216,7 +221,7 @@ struct Tree {
 
 /// The index of bone `name`, or `path = "name": no bone of that name`.
 fn bone(index: &HashMap<String, usize>, name: &str, path: &str) -> Result<usize, String> {
-    index.get(name).copied().ok_or_else(|| format!("{path} = {name:?}: no bone of that name"))
+    index.get(name).copied().ok_or_else(|| format!("{path} = {:?}: no bone of that name", Quoted(name)))
 }
 
 /// Names to the index of their first occurrence, in one pass (a lookup per timeline was a scan

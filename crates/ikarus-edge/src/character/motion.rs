@@ -18,6 +18,7 @@ use serde::Serialize;
 
 use super::{Format, Loaded};
 use crate::keys::KeysFile;
+use crate::names::{Quoted, cell, listed};
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
 use crate::report::character::UnsupportedJson;
 use ikarus::Interrupt;
@@ -26,6 +27,26 @@ use ikarus::Interrupt;
 pub const DEFAULT_FPS: f64 = 30.0;
 /// The duration of an eased motion without one asked for, seconds.
 pub const DEFAULT_DURATION: f64 = 1.0;
+/// The most frames of a character's motion timed by a duration and a frame rate (an eased
+/// course's, a keyed one's): the arms' cap ([`ikarus::motion::MAX_FRAMES`]). A path's motion has
+/// one frame per sample, capped where its samples are (`--max-samples`).
+pub const MAX_FRAMES: usize = ikarus::motion::MAX_FRAMES;
+
+/// How many frames `duration` seconds at `fps` make (k / fps up to the duration, and the
+/// duration itself last), counted in floating point so that no duration overflows the count:
+/// `Err` with the count (perhaps infinite or NaN) when it is more than `cap`.
+pub fn frames_within(duration: f64, fps: f64, cap: usize) -> Result<usize, f64> {
+    let n = (duration * fps - 1e-9).ceil().max(0.0) + 1.0;
+    // NaN fails the comparison too.
+    if n <= cap as f64 { Ok(n as usize) } else { Err(n) }
+}
+
+/// A number for a message: as Rust prints it below 10¹⁵ in size, else in scientific notation
+/// (`2.4e19`, not twenty digits).
+#[must_use]
+pub fn count_text(n: f64) -> String {
+    if n.abs() < 1e15 { format!("{n}") } else { format!("{n:e}") }
+}
 
 /// How the target bones move.
 #[derive(Debug, Clone)]
@@ -79,23 +100,21 @@ pub fn keyed(
 ) -> Result<(Course, f64), String> {
     let c = &loaded.character;
     let bone = |field: &str, name: &str| {
-        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {name:?} in the character"))
+        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))
     };
     let constraint = |field: &str, name: &str| {
         let index = bone(field, name)?;
         let two =
             |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
         c.constraints().iter().position(|k| two(&k)).ok_or_else(|| {
-            let lower: Vec<&str> = c
-                .constraints()
-                .iter()
-                .filter_map(|k| match k.bones {
-                    IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
-                    IkBones::One(_) => None,
-                })
-                .collect();
-            let has = if lower.is_empty() { "none".to_owned() } else { lower.join(", ") };
-            format!("{field}: {name:?} is not the lower bone of a two-bone IK constraint (the character's are: {has})")
+            let has = listed(c.constraints().iter().filter_map(|k| match k.bones {
+                IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
+                IkBones::One(_) => None,
+            }));
+            format!(
+                "{field}: {} is not the lower bone of a two-bone IK constraint (the character's are: {has})",
+                Quoted(name)
+            )
         })
     };
     let checked = keys.check_character(&bone, &constraint, max_frames, cap)?;
@@ -140,6 +159,16 @@ pub struct FrameJson {
     pub bones: Vec<PosedBoneJson>,
 }
 
+/// Why a motion's frames stopped before the end: a frame that could not be posed (a one-line
+/// refusal without a label), or the writer's error.
+#[derive(Debug)]
+pub enum StreamError {
+    /// A frame could not be posed.
+    Motion(String),
+    /// The writer failed.
+    Io(std::io::Error),
+}
+
 /// `{"frames": [{"time", "bones": […]}, …], "unsupported": […]}`.
 #[derive(Debug, Serialize)]
 pub struct FramesJson {
@@ -157,7 +186,8 @@ impl<'a> Motion<'a> {
         let c = &loaded.character;
         let mut setup = Posed::default();
         pose_into(loaded, &PoseAsk::default(), &mut setup)?;
-        let bone = |name: &str| c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"));
+        let bone =
+            |name: &str| c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)));
         let (starts, duration) = match &course {
             Course::Eased { targets, duration, .. } => {
                 if !(duration.is_finite() && *duration > 0.0) {
@@ -169,14 +199,14 @@ impl<'a> Motion<'a> {
                 let mut starts = Vec::with_capacity(targets.len());
                 for (name, [x, y]) in targets {
                     if !(x.is_finite() && y.is_finite()) {
-                        return Err(format!("target {name:?}: the point must be finite, got ({x}, {y})"));
+                        return Err(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name)));
                     }
                     starts.push(setup.origin(bone(name)?));
                 }
                 (starts, *duration)
             }
             Course::Path { bone: name, points } => {
-                bone(name).map_err(|_| format!("effector {name:?}: no bone of that name"))?;
+                bone(name).map_err(|_| format!("effector {}: no bone of that name", Quoted(name)))?;
                 if points.is_empty() {
                     return Err("path: no samples".to_owned());
                 }
@@ -190,20 +220,40 @@ impl<'a> Motion<'a> {
                 (Vec::new(), tracks.iter().map(|(_, t)| t.end()).chain(bent).fold(0.0, f64::max))
             }
         };
+        // Checked before any frame is made: a path has one frame per sample (capped with its
+        // samples), the others at most MAX_FRAMES.
+        let cap = match &course {
+            Course::Path { points, .. } => points.len().max(MAX_FRAMES),
+            Course::Eased { .. } | Course::Keyed { .. } => MAX_FRAMES,
+        };
+        if let Err(n) = frames_within(duration, fps, cap) {
+            return Err(format!(
+                "duration, fps: {} s at {} fps is {} frames, more than the cap of {cap}",
+                count_text(duration),
+                count_text(fps),
+                count_text(n)
+            ));
+        }
         Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
     #[must_use]
     pub fn frame_times(&self) -> Vec<f64> {
-        let n = (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize;
-        (0..=n).map(|k| if k == n { self.duration } else { k as f64 / self.fps }).collect()
+        (0..self.frame_count()).map(|k| self.frame_time(k)).collect()
     }
 
-    /// The number of frames (for caps, before any is posed).
+    /// Frame `k`'s time: k / fps, the last frame's the duration.
+    #[must_use]
+    pub fn frame_time(&self, k: usize) -> f64 {
+        if k + 1 >= self.frame_count() { self.duration } else { k as f64 / self.fps }
+    }
+
+    /// The number of frames (for caps, before any is posed; [`Motion::new`] refused a motion
+    /// of more than its cap).
     #[must_use]
     pub fn frame_count(&self) -> usize {
-        (self.duration * self.fps - 1e-9).ceil().max(0.0) as usize + 1
+        frames_within(self.duration, self.fps, usize::MAX).unwrap_or(usize::MAX)
     }
 
     /// The targets at `time` (clamped into the motion).
@@ -279,12 +329,30 @@ impl<'a> Motion<'a> {
         pose_into_until(self.loaded, &self.ask_at(time), out, self.interrupt.as_ref()).map(|_| ())
     }
 
-    /// Every frame posed (its time and report), one `Posed` reused.
+    /// Every frame posed in order and handed to `sink` with its index and time: one `Posed`
+    /// reused and one report at a time, so that a long motion is written as it is posed
+    /// ([`super::motion_files::write_json`], [`super::motion_files::write_csv`]) and nothing
+    /// holds more than one frame. Stops at the first frame that cannot be posed, or at the first
+    /// error of `sink`.
+    pub fn each_frame(
+        &self,
+        sink: &mut dyn FnMut(usize, f64, &PoseReport) -> std::io::Result<()>,
+    ) -> Result<(), StreamError> {
+        let mut posed = Posed::default();
+        for k in 0..self.frame_count() {
+            let time = self.frame_time(k);
+            self.pose_at(time, &mut posed).map_err(StreamError::Motion)?;
+            sink(k, time, &PoseReport::of(&self.loaded.character, &posed)).map_err(StreamError::Io)?;
+        }
+        Ok(())
+    }
+
+    /// Every frame posed (its time and report), for what needs them all at once (a picture).
     pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, String> {
         let mut posed = Posed::default();
-        self.frame_times()
-            .into_iter()
-            .map(|time| {
+        (0..self.frame_count())
+            .map(|k| {
+                let time = self.frame_time(k);
                 self.pose_at(time, &mut posed)?;
                 Ok((time, PoseReport::of(&self.loaded.character, &posed)))
             })
@@ -308,8 +376,8 @@ impl<'a> Motion<'a> {
     pub fn caption(&self) -> String {
         let course = match &self.course {
             Course::Eased { targets, .. } => format!("{} targets", targets.len()),
-            Course::Path { bone, .. } => format!("{bone} on a path"),
-            Course::Keyed { animation: Some(a), .. } => format!("keys over {a:?}"),
+            Course::Path { bone, .. } => format!("{} on a path", cell(bone)),
+            Course::Keyed { animation: Some(a), .. } => format!("keys over {}", Quoted(a)),
             Course::Keyed { animation: None, .. } => "keys".to_owned(),
         };
         format!(

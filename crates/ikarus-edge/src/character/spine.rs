@@ -18,6 +18,7 @@ use serde_json::Value;
 
 use super::clips::{self, Ordered};
 use super::{Format, Loaded};
+use crate::names::Quoted;
 use crate::rig::BoneCap;
 
 #[derive(Deserialize)]
@@ -125,21 +126,22 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let mut warnings = Vec::new();
     if !(version.starts_with("3.8") || ["4.0", "4.1", "4.2"].iter().any(|v| version.starts_with(v))) {
         warnings.push(format!(
-            "skeleton.spine: {version:?} is not a version ikarus was made for (3.8, 4.0 to 4.2); read as {}",
+            "skeleton.spine: {:?} is not a version ikarus was made for (3.8, 4.0 to 4.2); read as {}",
+            Quoted(&version),
             if legacy { "3.8" } else { "4.2" }
         ));
     }
     let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
     let super::Tree { parents: parent_of, index } = super::parents(&named, |i| format!("bones[{i}]"))?;
     if let Some((i, b)) = file.bones.iter().enumerate().find(|(_, b)| b.length < 0.0) {
-        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", b.name, b.length));
+        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", Quoted(&b.name), b.length));
     }
     let bones = file.bones.iter().zip(parent_of.iter().copied()).map(|(b, parent)| bone(b, parent)).collect();
     let constraints = file
         .ik
         .iter()
         .enumerate()
-        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", k.name), &parent_of))
+        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
         .collect::<Result<Vec<_>, _>>()?;
     let mut unsupported = Vec::new();
     for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
@@ -165,7 +167,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
 
 /// `left inactive: transform constraint "a", path constraint "b"`.
 pub(super) fn inactive(unsupported: &[Unsupported]) -> String {
-    let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, u.name)).collect();
+    let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, Quoted(&u.name))).collect();
     format!("left inactive (ikarus does not apply them): {}", list.join(", "))
 }
 
@@ -199,7 +201,7 @@ fn constraint(
             let parent = super::bone(index, first, &format!("{at}.bones[0]"))?;
             let child = super::bone(index, second, &format!("{at}.bones[1]"))?;
             if parent_of[child] != Some(parent) {
-                return Err(format!("{at}.bones[1] = {second:?}: not a child of {first:?}"));
+                return Err(format!("{at}.bones[1] = {:?}: not a child of {:?}", Quoted(second), Quoted(first)));
             }
             IkBones::Two { parent, child }
         }
