@@ -69,7 +69,15 @@ pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Option<Written>,
 pub struct Output<'a> {
     pub written: Option<Written>,
     pub animation_name: Option<&'a str>,
+    /// The Spine export's form (`--bake` or not).
+    pub form: export::Form,
     pub picture: &'a PictureArgs,
+}
+
+/// The export's form `--bake` asks for.
+#[must_use]
+pub fn form(bake: bool) -> export::Form {
+    if bake { export::Form::Bake } else { export::Form::Editable }
 }
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
@@ -101,6 +109,9 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     if output.animation_name.is_some() && output.written != Some(Written::Spine) {
         return Err(CliError::input("--animation-name: only with --format spine"));
     }
+    if output.form == export::Form::Bake && output.written != Some(Written::Spine) {
+        return Err(CliError::input("--bake: only with --format spine"));
+    }
     let out = output.picture.out.as_ref();
     let ext = out.and_then(|p| p.extension()).and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let picture = if ext.as_deref().is_some_and(|e| ["svg", "png", "gif"].contains(&e)) {
@@ -128,8 +139,8 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
         }
         Written::Csv => motion_files::csv(motion).map_err(fail)?,
         Written::Spine => {
-            let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
-            export::spine(motion, &file.text, name).map_err(fail)?.into_bytes()
+            let ask = export::Export { name: output.animation_name.unwrap_or(export::DEFAULT_NAME), form: output.form };
+            export::spine(motion, &file.text, &ask).map_err(fail)?.into_bytes()
         }
     };
     match pending {

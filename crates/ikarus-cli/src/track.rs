@@ -110,6 +110,10 @@ pub struct TrackArgs {
     /// With --format spine: the name of the animation added to the file [default: ikarus]
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
+    /// With --format spine: every bone keyed at every frame, the IK constraints at mix 0 (the
+    /// frame-by-frame bake), instead of the keys an animator edits
+    #[arg(long)]
+    pub bake: bool,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
@@ -141,6 +145,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     crate::character_motion::refuse_without(&[
         ("--fps", args.fps.is_some()),
         ("--animation-name", args.animation_name.is_some()),
+        ("--bake", args.bake),
         ("--format spine", args.format == Some(TrackFormat::Spine)),
         ik,
         ik_file,
@@ -231,7 +236,12 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     let mut motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
         .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+    let out = Output {
+        written,
+        animation_name: args.animation_name.as_deref(),
+        form: crate::character_motion::form(args.bake),
+        picture: &args.picture,
+    };
     write(file, &motion, &out)
 }
 

@@ -45,7 +45,12 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let mut motion =
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
-        let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+        let out = Output {
+            written,
+            animation_name: args.animation_name.as_deref(),
+            form: crate::character_motion::form(args.bake),
+            picture: &args.picture,
+        };
         return write(file, &motion, &out);
     }
     if args.target.is_empty() {
@@ -66,6 +71,11 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let mut motion =
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
-    let out = Output { written, animation_name: args.animation_name.as_deref(), picture: &args.picture };
+    let out = Output {
+        written,
+        animation_name: args.animation_name.as_deref(),
+        form: crate::character_motion::form(args.bake),
+        picture: &args.picture,
+    };
     write(file, &motion, &out)
 }

@@ -111,7 +111,7 @@ pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
     let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(&loaded, &motion, (req.format, req.animation_name.as_deref(), export_form(req.bake)), &req.rig, limits)
 }
 
 /// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
@@ -133,7 +133,7 @@ fn keyed(
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
     let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, limits)?;
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export_form(req.bake)), &req.rig, limits)
 }
 
 /// The keyed motion of `loaded` by `keys` over the clip `animation`, under the IK rules `ik`
@@ -166,14 +166,14 @@ pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let mut motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
         .map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
-    answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
+    answer(&loaded, &motion, (req.format, req.animation_name.as_deref(), export_form(req.bake)), &req.rig, limits)
 }
 
 /// The motion's frames or its Spine document, within the caps.
 fn answer(
     loaded: &Loaded,
     motion: &Motion<'_>,
-    (format, name): (MotionFormat, Option<&str>),
+    (format, name, form): (MotionFormat, Option<&str>, export::Form),
     text: &str,
     limits: &Limits,
 ) -> Result<Reply, Problem> {
@@ -182,16 +182,25 @@ fn answer(
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
         }
+        MotionFormat::Json | MotionFormat::Csv if form == export::Form::Bake => {
+            Err(Problem::invalid("bake: only with format spine"))
+        }
         MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
         MotionFormat::Csv => Ok(Reply {
             content_type: "text/csv; charset=utf-8",
             body: crate::character::motion_files::csv(motion).map_err(Problem::invalid)?,
         }),
         MotionFormat::Spine => {
-            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
+            let ask = export::Export { name: name.unwrap_or(export::DEFAULT_NAME), form };
+            let doc = export::spine(motion, text, &ask).map_err(Problem::invalid)?;
             Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
         }
     }
+}
+
+/// The export's form a request's `bake` asks for.
+fn export_form(bake: bool) -> export::Form {
+    if bake { export::Form::Bake } else { export::Form::Editable }
 }
 
 /// The motion's frames within `--max-frames` and frames × bones within [`MAX_BONE_FRAMES`].
