@@ -260,9 +260,9 @@ mod tests {
     fn a_cubic_is_fitted_by_one_curve_and_a_kink_by_more_keys() {
         let mut budget = 100;
         let mut fitter =
-            Fitter { channels: 1, period: None, shape: Shape::Bezier, tolerance: 1e-3, budget: &mut budget };
-        // A cubic in time over one second: its Hermite segment is exact (up to the runtime's
-        // tenths, 1e-4 here).
+            Fitter { channels: 1, period: None, shape: Shape::Bezier, tolerance: 1e-2, budget: &mut budget };
+        // A cubic in time over one second: its Hermite segment is exact, up to the runtime's
+        // playback as ten chords (at most 6 · 0.1² / 8 = 7.5e-3 off here).
         let mut cubic = |t: f64| Ok(Sample { values: [3.0 * t * t - 2.0 * t * t * t, 0.0], weight: 1.0 });
         let keys = fitter.fit(&[0.0, 1.0], &mut cubic).unwrap();
         assert_eq!(keys.len(), 2);
@@ -275,7 +275,7 @@ mod tests {
             for j in 1..10 {
                 let t = w[0].time + (w[1].time - w[0].time) * j as f64 / 10.0;
                 let v = value_at(w[0].curve.map(|c| c[0]), (w[0].time, w[0].values[0]), (w[1].time, w[1].values[0]), t);
-                assert!((v - (t - 0.3).abs()).abs() < 2e-3, "at {t}: {v}");
+                assert!((v - (t - 0.3).abs()).abs() < 1.1e-2, "at {t}: {v}");
             }
         }
     }

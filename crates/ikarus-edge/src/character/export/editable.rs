@@ -35,9 +35,10 @@ use crate::pose::{IkChoice, PoseAsk, pose_into};
 /// How many keys fits may add per frame of the motion, over the whole export.
 const ADDED_PER_FRAME: usize = 4;
 
-/// The share of the tolerance a timeline's fit is held to: a target's error is carried by the
-/// IK constraints (which can lengthen it near full reach) and a bone's adds to its ancestors'.
-const FIT_SHARE: f64 = 0.1;
+/// The share of the tolerance a timeline's fit is held to: a bone's error adds to its
+/// ancestors'. (A target's error is weighed by how far the IK constraints carry it,
+/// [`Sampler::gain`].)
+const FIT_SHARE: f64 = 0.5;
 
 /// The editable animation's JSON (see the module's doc). `clip` is the JSON of the clip under
 /// a keyed course.
@@ -166,15 +167,28 @@ impl<'a> Job<'_, '_, 'a> {
                 ik.insert(name.clone(), Value::Array(looped(keys, cycles, length, self.legacy, &setup)));
             }
         }
-        for &b in &targets {
+        for (index, &b) in targets.iter().enumerate() {
             let c = self.character();
             let parent = c.bones()[b].parent;
             let setup = c.bones()[b].setup;
             let ancestors = ancestors(c, parent);
             let anchors = self.anchors(&|bone| ancestors.contains(&bone))?;
-            let keys = self.fit(&anchors, (2, None), &|s| Sample {
-                values: [s.local[b].x - setup.x, s.local[b].y - setup.y],
-                weight: parent.map_or(1.0, |p| norm(&s.world[p])),
+            let step = self.tolerance;
+            let mut fitter = Fitter {
+                channels: 2,
+                period: None,
+                shape: self.shape,
+                tolerance: self.tolerance * FIT_SHARE,
+                budget: &mut *self.budget,
+            };
+            let sampler = &mut *self.sampler;
+            let keys = fitter.fit(&anchors, &mut |t| {
+                let s = sampler.at(t)?;
+                let gain = sampler.gain(t, index, step)?;
+                Ok(Sample {
+                    values: [s.local[b].x - setup.x, s.local[b].y - setup.y],
+                    weight: parent.map_or(1.0, |p| norm(&s.world[p])) * gain,
+                })
             })?;
             let name = self.character().bones()[b].name.clone();
             let entry = bones.entry(name).or_insert_with(|| json!({}));
