@@ -78,7 +78,8 @@ fn the_spine_export_is_written_whole_and_refused_twice() {
     assert_eq!(doc["animations"]["walk"], original["animations"]["walk"]);
     // The editable form: the target keyed at the motion's two key times and where a fit
     // strays (Spine plays a curve as ten straight pieces, so a sine ease over 390 units
-    // carried by the leg near its full reach needs a key every frame or so: at most two a frame), the leg left to its constraint, which stays on (no mix 0 key).
+    // carried by the leg near its full reach needs a key every frame or so: at most two a
+    // frame), the leg left to its constraint, which stays on (no mix 0 key).
     let reach = &doc["animations"]["reach"];
     let keys = reach["bones"]["front-leg-target"]["translate"].as_array().unwrap();
     println!("the raptor's eased reach: {} target keys", keys.len());

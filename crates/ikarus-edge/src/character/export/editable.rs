@@ -32,7 +32,7 @@ use super::{read_time, written_time};
 use crate::character::motion::Motion;
 use crate::pose::{IkChoice, PoseAsk, pose_into};
 
-/// How many keys fits may add per frame of the motion, over the whole export.
+/// How many keys a timeline's fit may add per frame of the motion.
 const ADDED_PER_FRAME: usize = 4;
 
 /// The share of the tolerance a timeline's fit is held to: a bone's error adds to its
@@ -48,11 +48,12 @@ pub(super) fn animation(
     tolerance: f64,
     legacy: bool,
 ) -> Result<Value, String> {
-    // Keys added where fits stray: at most a few per frame (memory stays within the caps).
-    let mut budget = ADDED_PER_FRAME * motion.frame_count();
+    // Keys added where a fit strays: at most a few per frame per timeline (the keys' memory
+    // stays within timelines × frames, and timelines are at most four per bone).
+    let budget = ADDED_PER_FRAME * motion.frame_count();
     let shape = if legacy { Shape::Linear } else { Shape::Bezier };
     let mut sampler = Sampler::new(motion);
-    let mut job = Job { motion, sampler: &mut sampler, budget: &mut budget, shape, tolerance, legacy };
+    let mut job = Job { motion, sampler: &mut sampler, budget, shape, tolerance, legacy };
     match &motion.ik {
         IkChoice::Runtime => job.spine_rules(clip),
         IkChoice::Ikarus(_) => job.solved(),
@@ -63,7 +64,8 @@ pub(super) fn animation(
 struct Job<'j, 'm, 'a> {
     motion: &'m Motion<'a>,
     sampler: &'j mut Sampler<'m, 'a>,
-    budget: &'j mut usize,
+    /// Keys each timeline's fit may add.
+    budget: usize,
     shape: Shape,
     tolerance: f64,
     legacy: bool,
@@ -122,13 +124,9 @@ impl<'a> Job<'_, '_, 'a> {
         (channels, period): (usize, Option<f64>),
         value: &dyn Fn(&super::sampler::Snapshot) -> Sample,
     ) -> Result<Vec<FittedKey>, String> {
-        let mut fitter = Fitter {
-            channels,
-            period,
-            shape: self.shape,
-            tolerance: self.tolerance * FIT_SHARE,
-            budget: &mut *self.budget,
-        };
+        let mut budget = self.budget;
+        let mut fitter =
+            Fitter { channels, period, shape: self.shape, tolerance: self.tolerance * FIT_SHARE, budget: &mut budget };
         let sampler = &mut *self.sampler;
         fitter.fit(anchors, &mut |t| sampler.at(t).map(|s| value(&s)))
     }
@@ -174,12 +172,13 @@ impl<'a> Job<'_, '_, 'a> {
             let ancestors = ancestors(c, parent);
             let anchors = self.anchors(&|bone| ancestors.contains(&bone))?;
             let step = self.tolerance;
+            let mut budget = self.budget;
             let mut fitter = Fitter {
                 channels: 2,
                 period: None,
                 shape: self.shape,
                 tolerance: self.tolerance * FIT_SHARE,
-                budget: &mut *self.budget,
+                budget: &mut budget,
             };
             let sampler = &mut *self.sampler;
             let keys = fitter.fit(&anchors, &mut |t| {
