@@ -40,11 +40,18 @@ fn eight_keys_on_spineboy_s_feet_export_as_few_keys_with_the_constraints_on() {
     let motion = Motion::new(&loaded, course, fps).unwrap();
     let editable = played(SPINEBOY, &motion, Form::Editable);
     let bake = played(SPINEBOY, &motion, Form::Bake);
-    let targets: usize = timelines(&editable.animation)
-        .iter()
+    let written: Vec<_> = timelines(&editable.animation)
+        .into_iter()
         .filter(|(bone, kind, _)| bone.ends_with("-leg-target") && kind == "translate")
-        .map(|(_, _, k)| k.len())
-        .sum();
+        .collect();
+    let targets: usize = written.iter().map(|(_, _, k)| k.len()).sum();
+    // No two of a target's keys at the same 32-bit time: each a float step or more apart.
+    for (bone, _, keys) in &written {
+        for w in keys.windows(2) {
+            let (a, b) = (w[0]["time"].as_f64().unwrap_or(0.0) as f32, w[1]["time"].as_f64().unwrap() as f32);
+            assert!(a < b, "{bone}: keys at {a} and {b}");
+        }
+    }
     let walk: usize = timelines(&load_walk()).iter().map(|(_, _, k)| k.len()).sum();
     println!(
         "spineboy's 8 keys over walk: editable {} bone keys ({} the targets' translate keys, {} the walk's own), {} times, {} bytes (from {}), frames off by {:.2e}; bake {} keys at {} times, {} bytes, frames off by {:.2e}",

@@ -91,7 +91,7 @@ impl<'a> Job<'_, '_, 'a> {
     fn anchors(&self, on: &dyn Fn(usize) -> bool) -> Result<Vec<f64>, String> {
         let end = read_time(self.motion.duration);
         let mut times: Vec<f64> = self.motion.key_times().into_iter().map(read_time).collect();
-        if let Some((i, length, cycles)) = self.clip(None)? {
+        if let Some((i, length, _)) = self.clip(None)? {
             let clip = &self.character().clips()[i];
             // Each key's time, and inside a Bézier segment the times of the runtime's samples,
             // between which it plays the segment as a straight line: a bone in a frame that
@@ -108,6 +108,8 @@ impl<'a> Job<'_, '_, 'a> {
                     }
                 }
             }
+            // The anchors of every cycle the motion runs, within the copied keys' cap.
+            let cycles = cycles(length, self.motion.duration, own.len().max(1), &clip.name)?;
             for r in 0..cycles {
                 times.extend(own.iter().map(|t| read_time(t + r as f64 * length)).filter(|t| *t <= end));
             }
@@ -193,7 +195,7 @@ impl<'a> Job<'_, '_, 'a> {
             let entry = bones.entry(name).or_insert_with(|| json!({}));
             entry["translate"] = Value::Array(keys.iter().map(two).collect());
         }
-        for (k, bends) in self.motion.bend_keys() {
+        for (k, bends) in self.motion.bend_keys().iter().filter(|(_, b)| !b.is_empty()) {
             let name = self.character().constraints()[*k].name.clone();
             let mut keys = match ik.remove(&name) {
                 Some(Value::Array(keys)) => keys,
