@@ -34,8 +34,8 @@ const MAX_DEPTH: u32 = 16;
 const MAX_REFINED: usize = 256;
 
 /// How many keys the bisection may add per frame of the motion, over the whole motion: the
-/// keys' memory (every bone's transform per key) stays within 33 × frames × bones.
-const ADDED_PER_FRAME: usize = 32;
+/// keys' memory (every bone's transform per key) stays within 17 × frames × bones.
+const ADDED_PER_FRAME: usize = 16;
 
 /// One key: its time and every bone's local transform.
 struct Key {
