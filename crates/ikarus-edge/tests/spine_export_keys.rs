@@ -202,3 +202,31 @@ fn a_character_scaled_a_million_times_is_fitted_to_its_size_within_the_bound() {
     }
     let _ = Ease::Linear;
 }
+
+#[test]
+fn a_spine_3_8_file_gets_straight_keys_that_play_back() {
+    // Spine 3.8's curve is one for all of a key's channels: the editable form writes straight
+    // lines, split where they stray, and plays back within the promise.
+    let text = limbs(3, 1.0).replace("4.2.22", "3.8.99");
+    let loaded = load(&text, "limbs").unwrap();
+    let targets = vec![("target1".to_owned(), [160.0, -30.0])];
+    let course = Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 1.0 };
+    let motion = Motion::new(&loaded, course, 30.0).unwrap();
+    let out = export::spine(&motion, &text, &Export { name: "ikarus", form: Form::Editable }).unwrap();
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let keys = doc["animations"]["ikarus"]["bones"]["target1"]["translate"].as_array().unwrap();
+    assert!(keys.iter().all(|k| k.get("curve").is_none()), "{keys:?}");
+    // Straight lines follow a 50-unit sine ease closely only about every 1/100 s: a key at
+    // every frame and more between, within the bound of 4 added a frame (31 frames).
+    println!("3.8: {} straight keys for 31 frames", keys.len());
+    assert!(keys.len() > 2 && keys.len() <= 31 + 31 * 4, "{}", keys.len());
+    let back = load(&out, "exported").unwrap();
+    let (mut a, mut b) = (Posed::default(), Posed::default());
+    for t in motion.frame_times() {
+        let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(f64::from(t as f32)), ..PoseAsk::default() };
+        pose_into(&back, &ask, &mut a).unwrap();
+        motion.pose_at(t, &mut b).unwrap();
+        let off = export_play::distance(&a, &b);
+        assert!(off < 1e-2, "at {t}: {off}");
+    }
+}

@@ -10,8 +10,8 @@
 //! nothing).
 //!
 //! Memory: the keys hold every bone's local transform, so their number is bounded: at most
-//! [`MAX_REFINED`] keys between two frames and, over the whole motion, no more added keys than
-//! frames (the motion's frames × bones is capped before it gets here).
+//! [`MAX_REFINED`] keys between two frames and, over the whole motion, [`ADDED_PER_FRAME`] per
+//! frame (the motion's frames × bones is capped before it gets here).
 
 use ikarus::character::{Affine, Character, LocalTransform, Posed, world_transform};
 use serde_json::{Map, Value, json};

@@ -13,7 +13,8 @@
 //!   fit strays past the tolerance;
 //! - bend keys become keys of the constraint's IK timeline with `bendPositive` (merged into the
 //!   clip's IK keys: every key takes the side in force at its time, a bend at a time between
-//!   two of the clip's keys splits their curve there).
+//!   two of the clip's keys splits their curve there). Spine 3.8 files, whose curve is one for
+//!   all of a key's channels, get straight keys at every frame too, split where they stray.
 //!
 //! Under ikarus's solver ([`IkChoice::Ikarus`], `--ik ikarus`, for limbs Spine cannot solve),
 //! every bone whose local transform the motion changes gets `rotate`, `translate`, `scale` and
@@ -172,7 +173,14 @@ impl<'a> Job<'_, '_, 'a> {
             let parent = c.bones()[b].parent;
             let setup = c.bones()[b].setup;
             let ancestors = ancestors(c, parent);
-            let anchors = self.anchors(&|bone| ancestors.contains(&bone))?;
+            let mut anchors = self.anchors(&|bone| ancestors.contains(&bone))?;
+            if self.shape == Shape::Linear {
+                // Straight keys (3.8) follow a curve only closely spaced: one at every frame
+                // too, split further where they stray.
+                anchors.extend(self.motion.frame_times().into_iter().map(read_time));
+                anchors.sort_by(f64::total_cmp);
+                anchors.dedup();
+            }
             let step = self.tolerance;
             let mut budget = self.budget;
             let mut fitter = Fitter {

@@ -17,9 +17,9 @@
 //!
 //! Either way every key time is written as the 32-bit float Spine's runtime reads
 //! ([`written_time`]), the keys are posed at that time, and a fit is accepted when the pose the
-//! keys give stays within [`tolerance`] of the motion's at every point checked. The number of
-//! keys added beyond the key times (or the frames) is at most the number of frames, so the
-//! memory an export takes is bounded by the motion's frame caps.
+//! keys give stays within [`tolerance`] of the motion's at every point checked. The keys added
+//! beyond the key times (or the frames) are bounded per frame (4 per timeline for a fit, 16 over
+//! the whole bake), so the memory an export takes is bounded by the motion's frame caps.
 
 mod bake;
 mod clip_copy;
