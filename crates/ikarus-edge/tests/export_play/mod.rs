@@ -133,21 +133,6 @@ pub fn played(file: &str, motion: &Motion<'_>, form: Form) -> Played {
         pose_into(&back, &ask, &mut exported_pose).unwrap();
         motion.pose_at(t, &mut direct).unwrap();
         frames = frames.max(distance(&exported_pose, &direct));
-        if std::env::var("EXPORT_DEBUG").is_ok() {
-            for i in 0..direct.len() {
-                let (p, q) = (exported_pose.origin(i), direct.origin(i));
-                let e = (p[0] - q[0]).hypot(p[1] - q[1]);
-                if e > 1e-2 {
-                    let (a, b) = (exported_pose.local(i), direct.local(i));
-                    println!(
-                        "t={t} bone {} off {e} local {:?} vs {:?}",
-                        loaded.character.bones()[i].name,
-                        [a.x, a.y, a.rotation],
-                        [b.x, b.y, b.rotation]
-                    );
-                }
-            }
-        }
     }
     // At the last key: `ikarus pose --target …` at the end points.
     let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(d), ..PoseAsk::default() };
