@@ -168,7 +168,7 @@ impl<'a> Job<'_, '_, 'a> {
                 ik.insert(name.clone(), Value::Array(looped(keys, cycles, length, self.legacy, &setup)));
             }
         }
-        for (index, &b) in targets.iter().enumerate() {
+        for &b in &targets {
             let c = self.character();
             let parent = c.bones()[b].parent;
             let setup = c.bones()[b].setup;
@@ -193,7 +193,7 @@ impl<'a> Job<'_, '_, 'a> {
             let sampler = &mut *self.sampler;
             let keys = fitter.fit(&anchors, &mut |t| {
                 let s = sampler.at(t)?;
-                let gain = sampler.gain(t, index, step)?;
+                let gain = sampler.gain(t, step)?;
                 Ok(Sample {
                     values: [s.local[b].x - setup.x, s.local[b].y - setup.y],
                     weight: parent.map_or(1.0, |p| norm(&s.world[p])) * gain,

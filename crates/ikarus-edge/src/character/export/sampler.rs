@@ -30,7 +30,7 @@ pub(super) struct Sampler<'m, 'a> {
     motion: &'m Motion<'a>,
     posed: Posed,
     remembered: HashMap<u64, Rc<Snapshot>>,
-    gains: HashMap<(u64, usize), f64>,
+    gains: HashMap<u64, f64>,
     moved: Posed,
     /// How many times were posed (for the tests' counts).
     pub posed_count: usize,
@@ -48,38 +48,39 @@ impl<'m, 'a> Sampler<'m, 'a> {
         }
     }
 
-    /// How far any bone's origin or tip moves, per unit, when target `index` of the motion is
+    /// How far any bone's origin or tip moves, per unit, when the motion's targets are all
     /// moved by `step` (along x, then y; the larger) at `time`: what an error of a target's key
     /// costs once the IK constraints have carried it (about 1, more near a limb's full reach).
-    pub(super) fn gain(&mut self, time: f64, index: usize, step: f64) -> Result<f64, String> {
-        if let Some(g) = self.gains.get(&(time.to_bits(), index)) {
+    /// All targets at once (two poses a time, whatever their number): a bone moved by two
+    /// targets counts both, which errs on the close side.
+    pub(super) fn gain(&mut self, time: f64, step: f64) -> Result<f64, String> {
+        if let Some(g) = self.gains.get(&time.to_bits()) {
             return Ok(*g);
         }
         let base = self.at(time)?;
         let mut gain: f64 = 1.0;
         for d in [[step, 0.0], [0.0, step]] {
             let mut ask = self.motion.ask_at(time);
-            if let Some((_, p)) = ask.targets.get_mut(index) {
+            for (_, p) in &mut ask.targets {
                 p[0] += d[0];
                 p[1] += d[1];
             }
             pose_into(self.motion.loaded, &ask, &mut self.moved)?;
             self.posed_count += 1;
             let m = &self.moved;
-            for i in 0..m.len() {
+            let bones = self.motion.loaded.character.bones();
+            for (i, bone) in bones.iter().enumerate().take(m.len()) {
                 let w = &base.world[i];
-                let o = m.origin(i);
+                let (o, t) = (m.origin(i), m.tip(i));
+                let l = bone.length;
                 gain = gain.max((o[0] - w.x).hypot(o[1] - w.y) / step);
-                let t = m.tip(i);
-                let (a, c) = (w.a, w.c);
-                let l = self.motion.loaded.character.bones()[i].length;
-                gain = gain.max((t[0] - (w.x + a * l)).hypot(t[1] - (w.y + c * l)) / step);
+                gain = gain.max((t[0] - (w.x + w.a * l)).hypot(t[1] - (w.y + w.c * l)) / step);
             }
         }
         if self.gains.len() > MAX_REMEMBERED {
             self.gains.clear();
         }
-        self.gains.insert((time.to_bits(), index), gain);
+        self.gains.insert(time.to_bits(), gain);
         Ok(gain)
     }
 
