@@ -146,6 +146,10 @@ pub struct AnimateArgs {
     /// With --format spine: the name of the animation added to the file [default: ikarus]
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
+    /// With --format spine: every bone keyed at every frame, the IK constraints at mix 0 (the
+    /// frame-by-frame bake), instead of the keys an animator edits
+    #[arg(long)]
+    pub bake: bool,
     /// With a character file and --keys: the clip posed under the keyed targets, at the same
     /// time (looping when the keys run longer)
     #[arg(long, value_name = "NAME", requires = "keys")]
@@ -269,6 +273,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         ("--target", !args.target.is_empty()),
         ("--animation", args.animation.is_some()),
         ("--animation-name", args.animation_name.is_some()),
+        ("--bake", args.bake),
         ("--format spine", args.format == Some(AnimateFormat::Spine)),
         ik,
         ik_file,

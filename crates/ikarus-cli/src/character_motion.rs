@@ -74,6 +74,8 @@ pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Option<Written>,
 pub struct Output<'a> {
     pub written: Option<Written>,
     pub animation_name: Option<&'a str>,
+    /// The Spine export's form (`--bake` or not).
+    pub form: export::Form,
     pub picture: &'a PictureArgs,
     /// How the command makes fewer frames, for the GIF cap's refusal (`a lower --fps or a
     /// shorter --duration`).
@@ -109,6 +111,9 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     if output.animation_name.is_some() && output.written != Some(Written::Spine) {
         return Err(CliError::input("--animation-name: only with --format spine"));
     }
+    if output.form == export::Form::Bake && output.written != Some(Written::Spine) {
+        return Err(CliError::input("--bake: only with --format spine"));
+    }
     let out = output.picture.out.as_ref();
     let ext = out.and_then(|p| p.extension()).and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let picture = if ext.as_deref().is_some_and(|e| ["svg", "png", "gif"].contains(&e)) {
@@ -141,8 +146,8 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
         Written::Frames => motion_files::write_json,
         Written::Csv => motion_files::write_csv,
         Written::Spine => {
-            let name = output.animation_name.unwrap_or(export::DEFAULT_NAME);
-            let bytes = export::spine(motion, &file.text, name).map_err(fail)?.into_bytes();
+            let ask = export::Export { name: output.animation_name.unwrap_or(export::DEFAULT_NAME), form: output.form };
+            let bytes = export::spine(motion, &file.text, &ask).map_err(fail)?.into_bytes();
             return match pending {
                 Some(p) => p.commit(&bytes),
                 None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),

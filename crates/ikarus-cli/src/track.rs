@@ -110,6 +110,10 @@ pub struct TrackArgs {
     /// With --format spine: the name of the animation added to the file [default: ikarus]
     #[arg(long, value_name = "NAME")]
     pub animation_name: Option<String>,
+    /// With --format spine: every bone keyed at every frame, the IK constraints at mix 0 (the
+    /// frame-by-frame bake), instead of the keys an animator edits
+    #[arg(long)]
+    pub bake: bool,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
@@ -141,6 +145,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
     crate::character_motion::refuse_without(&[
         ("--fps", args.fps.is_some()),
         ("--animation-name", args.animation_name.is_some()),
+        ("--bake", args.bake),
         ("--format spine", args.format == Some(TrackFormat::Spine)),
         ik,
         ik_file,
@@ -234,6 +239,7 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),
+        form: ikarus_edge::character::export::Form::asked(args.bake),
         picture: &args.picture,
         fewer: "fewer --samples",
     };

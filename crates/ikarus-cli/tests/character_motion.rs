@@ -76,7 +76,23 @@ fn the_spine_export_is_written_whole_and_refused_twice() {
         }
     }
     assert_eq!(doc["animations"]["walk"], original["animations"]["walk"]);
-    assert!(doc["animations"]["reach"]["bones"]["front-leg1"]["rotate"].is_array());
+    // The editable form: the target keyed at the motion's two key times and where a fit
+    // strays (Spine plays a curve as ten straight pieces, so a sine ease over 390 units
+    // carried by the leg near its full reach needs a key every frame or so: at most two a
+    // frame), the leg left to its constraint, which stays on (no mix 0 key).
+    let reach = &doc["animations"]["reach"];
+    let keys = reach["bones"]["front-leg-target"]["translate"].as_array().unwrap();
+    println!("the raptor's eased reach: {} target keys", keys.len());
+    assert!((2..=62).contains(&keys.len()), "{} keys", keys.len());
+    assert!(reach["bones"]["front-leg1"].is_null() && reach["ik"].is_null(), "{reach}");
+    // --bake: every bone the constraints moved keyed frame by frame, the constraints at mix 0.
+    let baked =
+        json(&["animate", "--rig", RAPTOR, "--target", "front-leg-target=250,60", "--format", "spine", "--bake"]);
+    let baked = &baked["animations"]["ikarus"];
+    assert!(baked["bones"]["front-leg1"]["rotate"].as_array().unwrap().len() >= 31, "{baked}");
+    assert_eq!(baked["ik"]["front-leg-ik"][0]["mix"], 0.0);
+    let e = fails(&["animate", "--rig", RAPTOR, "--target", "front-leg-target=250,60", "--bake"], 2);
+    assert!(e.contains("--bake: only with --format spine"), "{e}");
     let again = dir.path().join("again.json");
     let e = fails(
         &[

@@ -40,8 +40,20 @@ fn animate_answers_frames_or_the_spine_document() {
     let original: Value = serde_json::from_str(&rig).unwrap();
     assert_eq!(doc["skeleton"], original["skeleton"]);
     assert_eq!(doc["animations"]["walk"], original["animations"]["walk"]);
+    // The editable form: the target keyed, the constraints left on (no IK keys at all here).
     assert!(doc["animations"]["reach"]["bones"]["front-leg-target"]["translate"].is_array());
-    assert_eq!(doc["animations"]["reach"]["ik"]["front-leg-ik"][0]["mix"], 0.0);
+    assert!(doc["animations"]["reach"]["ik"].is_null(), "{}", doc["animations"]["reach"]);
+    // "bake": true, the frame-by-frame bake: every IK constraint at mix 0.
+    body["bake"] = json!(true);
+    let baked = ask(Endpoint::Animate, &body).unwrap();
+    assert_eq!(baked["animations"]["reach"]["ik"]["front-leg-ik"][0]["mix"], 0.0);
+    assert!(baked["animations"]["reach"]["bones"]["front-thigh"]["rotate"].as_array().unwrap().len() >= 31);
+    let mut frames_body = body.clone();
+    frames_body["format"] = json!("json");
+    frames_body.as_object_mut().unwrap().remove("animation_name");
+    let (status, message) = ask(Endpoint::Animate, &frames_body).unwrap_err();
+    assert_eq!((status, message.as_str()), (422, "bake: only with format spine"));
+    body.as_object_mut().unwrap().remove("bake");
 
     // The exported document again, with the same name: refused.
     body["rig"] = json!(serde_json::to_string(&doc).unwrap());
@@ -59,7 +71,8 @@ fn track_follows_a_shape_with_a_bone() {
     let doc = ask(Endpoint::Track, &body).unwrap();
     let keys = doc["animations"]["ikarus"]["bones"]["front-leg-target"]["translate"].as_array().unwrap();
     assert!(keys.len() >= 25, "{}", keys.len());
-    assert!((keys.last().unwrap()["time"].as_f64().unwrap() - 24.0 / 30.0).abs() < 1e-12);
+    // The last key at 24/30 s, written as the 32-bit float Spine reads (its shortest decimal).
+    assert_eq!(keys.last().unwrap()["time"], 0.8);
     let frames = ask(
         Endpoint::Track,
         &json!({"rig": spineboy(), "effector": "front-leg-target", "line": [0, 0, 10, 10], "samples": 3}),

@@ -1,139 +1,54 @@
-//! The Spine export, checked by playing it: the exported file is read back by our own loader
-//! (whose posing matches Spine's runtime within 7.5e-5, `character_reference.rs`), its new
-//! animation posed at every key and at hundreds of times between (most off the frame grid),
-//! and every bone's world origin and tip compared with the motion posed directly at that time.
+//! The Spine export, checked by playing it back ([`export_play`]) in both forms: the editable
+//! one (the default: the animator's keys with fitted curves, the constraints on) and the bake.
 
+mod export_play;
+
+use export_play::{distance, moved, played, text};
 use ikarus::character::Posed;
 use ikarus::{Ease, EaseKind};
-use ikarus_edge::character::export::{self, TOLERANCE};
+use ikarus_edge::character::export::{self, Export, Form};
+use ikarus_edge::character::load;
 use ikarus_edge::character::motion::{Course, Motion};
-use ikarus_edge::character::{Loaded, load};
 use ikarus_edge::keys::KeysFile;
-use ikarus_edge::pose::{IkChoice, PoseAsk, pose, pose_into};
+use ikarus_edge::pose::{IkChoice, PoseAsk, pose_into};
 use serde_json::Value;
 
-fn text(file: &str) -> String {
-    let path = format!("{}/../../examples/characters/{file}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(path).unwrap()
-}
-
-/// The setup origin of `bone` moved by `by`.
-fn moved(loaded: &Loaded, bone: &str, by: [f64; 2]) -> (String, [f64; 2]) {
-    let setup = pose(loaded, &PoseAsk::default()).unwrap();
-    let b = setup.bones.iter().find(|b| b.name == bone).unwrap();
-    (bone.to_owned(), [b.x + by[0], b.y + by[1]])
-}
-
-/// The largest distance between any bone's origin or tip in `a` and in `b`.
-fn distance(a: &Posed, b: &Posed) -> f64 {
-    (0..a.len())
-        .flat_map(|i| [(a.origin(i), b.origin(i)), (a.tip(i), b.tip(i))])
-        .map(|(p, q)| (p[0] - q[0]).hypot(p[1] - q[1]))
-        .fold(0.0, f64::max)
-}
-
-/// Exports `course` of `file`, plays it back, and returns the largest error found between the
-/// keys and the error at the last key against `ikarus pose --target …` at the end points.
-fn played(file: &str, course: Course, fps: f64, ik: &IkChoice) -> (f64, f64, usize) {
-    let original = text(file);
-    let loaded = load(&original, file).unwrap();
+/// Both forms of `course` played back within the promise; the bake within its bisection's
+/// tolerance. The editable form's playback error and key count, for the tests' own checks.
+fn check_with(file: &str, course: Course, fps: f64, ik: &IkChoice) -> [export_play::Played; 2] {
+    let loaded = load(&text(file), file).unwrap();
     let mut motion = Motion::new(&loaded, course, fps).unwrap();
     motion.ik = ik.clone();
-    let exported = export::spine(&motion, &original, "ikarus").unwrap();
-
-    // Valid JSON that keeps every original top-level field and animation as it was.
-    let before: Value = serde_json::from_str(&original).unwrap();
-    let after: Value = serde_json::from_str(&exported).unwrap();
-    for (k, v) in before.as_object().unwrap() {
-        if k != "animations" {
-            assert_eq!(&after[k], v, "{file}: field {k} changed");
+    let editable = played(file, &motion, Form::Editable);
+    let bake = played(file, &motion, Form::Bake);
+    for (form, p) in [("editable", &editable), ("bake", &bake)] {
+        println!(
+            "{file} {form}: {} keys at {} times, {} bytes from {}, error at frames {:.3e}, between {:.3e}, at the last key {:.3e}",
+            p.keys, p.times, p.bytes.0, p.bytes.1, p.frames, p.worst, p.last
+        );
+        assert!(p.frames < 1e-2, "{file} {form}: {} at a frame", p.frames);
+        if form == "editable" && *ik == IkChoice::Runtime {
+            assert!(p.worst < 1e-2, "{file} {form}: {}", p.worst);
         }
+        // Keys are 32-bit floats in the runtime (and in our reader): the last key is the end
+        // pose within their rounding (a value near 250 is held to about 1.5e-5).
+        assert!(p.last < 5e-5, "{file} {form}: {}", p.last);
     }
-    for (name, a) in before["animations"].as_object().unwrap() {
-        assert_eq!(&after["animations"][name], a, "{file}: animation {name} changed");
-    }
-    assert_eq!(after["animations"].as_object().unwrap().len(), before["animations"].as_object().unwrap().len() + 1);
-    // A second export of the same name into the exported file is refused in one line.
-    let back = load(&exported, "exported").unwrap();
-    let again = Motion::new(&back, motion_course(&motion), fps).unwrap();
-    let e = export::spine(&again, &exported, "ikarus").unwrap_err();
-    assert_eq!(e, "animation name \"ikarus\": the file already has an animation of that name");
+    [editable, bake]
+}
 
-    // Played back: at every key and at 600 times between, most off the frame grid.
-    // Every key time of every timeline.
-    let mut keys: Vec<f64> = after["animations"]["ikarus"]["bones"]
+fn check(file: &str, course: Course, fps: f64) -> [export_play::Played; 2] {
+    check_with(file, course, fps, &IkChoice::Runtime)
+}
+
+/// Whether any IK key of `animation` has mix 0.
+fn mix_zero(animation: &Value) -> bool {
+    animation["ik"]
         .as_object()
-        .unwrap()
-        .values()
-        .flat_map(|timelines| timelines.as_object().unwrap().values())
-        .flat_map(|keys| keys.as_array().unwrap().iter().map(|k| k["time"].as_f64().unwrap()))
-        .collect();
-    keys.sort_by(f64::total_cmp);
-    keys.dedup();
-    let d = motion.duration;
-    let mut times = keys.clone();
-    // Halfway between every two keys (where a line strays most), and 600 times spread over all.
-    // Keys closer than 1 µs bracket a jump of the motion itself, which no keyed line can follow
-    // between them: the bisection narrowed it to 1/(fps · 2¹⁶) s. Check that each run of such
-    // keys is one (the motion's pose at its two ends differs by more than the tolerance).
-    let (mut a, mut b) = (Posed::default(), Posed::default());
-    let mut jumps = 0;
-    let mut run: Option<f64> = None;
-    for w in keys.windows(2) {
-        if w[1] - w[0] < 1e-6 {
-            run.get_or_insert(w[0]);
-            continue;
-        }
-        if let Some(first) = run.take() {
-            motion.pose_at(first, &mut a).unwrap();
-            motion.pose_at(w[0], &mut b).unwrap();
-            assert!(distance(&a, &b) > TOLERANCE, "{file}: keys close from {first} to {} but no jump", w[0]);
-            jumps += 1;
-        }
-        times.push((w[0] + w[1]) / 2.0);
-    }
-    times.extend((0..600).map(|k| d * ((k as f64 * 0.618_033_988_75) % 1.0)));
-    println!("{file}: {jumps} jump(s) of the motion bracketed by keys");
-    let (mut exported_pose, mut direct) = (Posed::default(), Posed::default());
-    let mut worst: f64 = 0.0;
-    // Each time as a 32-bit float, as the file's key times are read and as Spine's runtime keeps
-    // its time: at a jump of the motion on a frame (a bend key's flip), the file can put the
-    // jump only between two such times, and an f64 time between them is mid-jump.
-    for t in times.iter().map(|&t| f64::from(t as f32)) {
-        let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(t), ..PoseAsk::default() };
-        pose_into(&back, &ask, &mut exported_pose).unwrap();
-        motion.pose_at(t, &mut direct).unwrap();
-        worst = worst.max(distance(&exported_pose, &direct));
-    }
-    // At the last key: `ikarus pose --target …` at the end points.
-    let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(d), ..PoseAsk::default() };
-    pose_into(&back, &ask, &mut exported_pose).unwrap();
-    // (`ikarus pose --animation A --time T --target …` for a keyed course over a clip.)
-    let end = motion.ask_at(d);
-    pose_into(&loaded, &end, &mut direct).unwrap();
-    let last = distance(&exported_pose, &direct);
-    motion.pose_at(d, &mut exported_pose).unwrap();
-    assert_eq!(distance(&exported_pose, &direct), 0.0, "the motion ends where pose puts the targets");
-    (worst, last, keys.len())
-}
-
-/// The same course (for the second export).
-fn motion_course(m: &Motion<'_>) -> Course {
-    Course::Eased { targets: m.targets_at(m.duration), ease: Ease::Linear, duration: m.duration }
-}
-
-fn check(file: &str, course: Course, fps: f64) {
-    check_with(file, course, fps, &IkChoice::Runtime);
-}
-
-fn check_with(file: &str, course: Course, fps: f64, ik: &IkChoice) {
-    let (worst, last, keys) = played(file, course, fps, ik);
-    println!("{file}: {keys} keys, largest error between keys {worst:.3e}, at the last key {last:.3e}");
-    assert!(worst < 1e-2, "{file}: {worst}");
-    assert!(worst <= TOLERANCE * 1.01, "{file}: {worst} beyond the bisection's own tolerance");
-    // Keys are 32-bit floats in the runtime (and in our reader): the last key is the end pose
-    // within their rounding (a value near 250 is held to about 1.5e-5), not to 1e-6.
-    assert!(last < 5e-5, "{file}: {last}");
+        .into_iter()
+        .flatten()
+        .flat_map(|(_, keys)| keys.as_array().unwrap())
+        .any(|k| k["mix"] == 0.0)
 }
 
 #[test]
@@ -169,17 +84,30 @@ fn a_motion_solved_by_ikarus_plays_back_too() {
     let ik = IkChoice::Ikarus(Box::new(rules));
     let targets = vec![moved(&loaded, "front-foot-target", [420.0, 90.0])];
     let course = Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 0.5 };
-    check_with(file, course, 30.0, &ik);
+    let [editable, bake] = check_with(file, course, 30.0, &ik);
+    // ikarus's solve keyed at the course's two key times (and where a fit strays), the
+    // constraints it replaces at mix 0; the bake keys every frame.
+    assert!(mix_zero(&editable.animation) && mix_zero(&bake.animation));
+    assert!(editable.keys * 3 < bake.keys, "{} editable keys, {} baked", editable.keys, bake.keys);
     // The README's tour: carried to (460, 80), beyond the leg constraint's reach, the limb passes
     // full reach near 0.84 s and swings there like the square root of the time left (3 units in
-    // 1/3000 s), then jumps; the keys follow the swing by halving down to 1/(30 · 2¹²) s there.
+    // 1/3000 s), then jumps; the bake follows the swing by halving down to 1/(30 · 2¹²) s there.
     let targets = vec![("front-foot-target".to_owned(), [460.0, 80.0])];
     let course = Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 1.0 };
-    let (worst, last, keys) = played(file, course, 30.0, &ik);
-    println!("the tour: {keys} keys, largest error between keys {worst:.3e}, at the last key {last:.3e}");
-    assert!(worst <= TOLERANCE * 1.01, "the tour's motion strays {worst} between its keys");
-    assert!(last <= 1e-2, "{last}");
-    assert!(keys > 31, "keys were added near full reach: {keys}");
+    let mut motion = Motion::new(&loaded, course, 30.0).unwrap();
+    motion.ik = ik;
+    for form in [Form::Editable, Form::Bake] {
+        let p = played(file, &motion, form);
+        println!(
+            "the tour {form:?}: {} keys at {} times, error at frames {:.3e}, between keys {:.3e}, at the last key {:.3e}",
+            p.keys, p.times, p.frames, p.worst, p.last
+        );
+        assert!(p.frames < 1e-2, "{form:?}: the tour's frames stray {}", p.frames);
+        assert!(p.last <= 1e-2, "{}", p.last);
+        if form == Form::Bake {
+            assert!(p.times > 31, "keys were added near full reach: {}", p.times);
+        }
+    }
 }
 
 #[test]
@@ -227,15 +155,21 @@ fn a_keyed_foot_target_over_the_walk_played_back() {
     pose_into(&loaded, &ask, &mut direct).unwrap();
     motion.pose_at(0.6, &mut posed).unwrap();
     assert_eq!(distance(&posed, &direct), 0.0);
-    // Played back within the export's promise, 1e-2. (Over the walk's own curves the largest
-    // error, at one of the 600 times between keys, is 5.07e-3: 1.4 % over the bisection's
-    // tolerance, which it checks halfway between keys, not everywhere.)
-    let (worst, last, count) = played(file, course().0, 30.0, &IkChoice::Runtime);
-    println!(
-        "{file} keyed over walk: {count} keys, largest error between keys {worst:.3e}, at the last key {last:.3e}"
-    );
-    assert!(worst < 1e-2, "{file}: {worst}");
-    assert!(last < 5e-5, "{file}: {last}");
+    // Played back within the export's promise, 1e-2, in both forms. (The bake, over the
+    // walk's own curves: its largest error, at one of the 600 times between keys, is 5.07e-3,
+    // 1.4 % over the bisection's tolerance, which it checks halfway between keys.)
+    for form in [Form::Editable, Form::Bake] {
+        let p = played(file, &motion, form);
+        println!(
+            "{file} keyed over walk, {form:?}: {} keys at {} times, {} bytes from {}, error at frames {:.3e}, between {:.3e}, at the last key {:.3e}",
+            p.keys, p.times, p.bytes.0, p.bytes.1, p.frames, p.worst, p.last
+        );
+        assert!(p.frames < 1e-2, "{file} {form:?}: {} at a frame", p.frames);
+        if form == Form::Editable {
+            assert!(p.worst < 1e-2, "{file} {form:?}: {} between frames", p.worst);
+        }
+        assert!(p.last < 5e-5, "{file}: {}", p.last);
+    }
 }
 
 #[test]
@@ -281,6 +215,6 @@ fn a_dragonbones_file_is_not_exported() {
         30.0,
     )
     .unwrap();
-    let e = export::spine(&motion, &original, "ikarus").unwrap_err();
+    let e = export::spine(&motion, &original, &Export { name: "ikarus", form: Form::Editable }).unwrap_err();
     assert_eq!(e, "format spine: the Spine export takes a Spine file, and this is a DragonBones file");
 }

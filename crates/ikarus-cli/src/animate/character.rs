@@ -50,6 +50,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let out = Output {
             written,
             animation_name: args.animation_name.as_deref(),
+            form: ikarus_edge::character::export::Form::asked(args.bake),
             picture: &args.picture,
             fewer: "keys that end sooner or a lower fps in the keys file",
         };
@@ -84,6 +85,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),
+        form: ikarus_edge::character::export::Form::asked(args.bake),
         picture: &args.picture,
         fewer: "a lower --fps or a shorter --duration",
     };

@@ -123,7 +123,7 @@ pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Re
     let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.interrupt = Some(interrupt.clone());
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
 }
 
 /// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
@@ -146,7 +146,7 @@ fn keyed(
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
     let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
 }
 
 /// The keyed motion of `loaded` by `keys` over the clip `animation`, under the IK rules `ik`
@@ -182,14 +182,14 @@ pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Repl
         Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.interrupt = Some(interrupt.clone());
-    answer(loaded, &motion, (req.format, req.animation_name.as_deref()), text, limits)
+    answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
 }
 
 /// The motion's frames or its Spine document, within the caps.
 fn answer(
     loaded: &Loaded,
     motion: &Motion<'_>,
-    (format, name): (MotionFormat, Option<&str>),
+    (format, name, form): (MotionFormat, Option<&str>, export::Form),
     text: &str,
     limits: &Limits,
 ) -> Result<Reply, Problem> {
@@ -197,6 +197,9 @@ fn answer(
     match format {
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
+        }
+        MotionFormat::Json | MotionFormat::Csv if form == export::Form::Bake => {
+            Err(Problem::invalid("bake: only with format spine"))
         }
         MotionFormat::Json => Ok(Reply {
             content_type: "application/json",
@@ -207,7 +210,8 @@ fn answer(
             body: posed(crate::character::motion_files::csv(motion), motion)?,
         }),
         MotionFormat::Spine => {
-            let doc = posed(export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)), motion)?;
+            let ask = export::Export { name: name.unwrap_or(export::DEFAULT_NAME), form };
+            let doc = posed(export::spine(motion, text, &ask), motion)?;
             Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
         }
     }

@@ -38,7 +38,7 @@ use crate::settings::SolverSettings;
 ///   sampled grid).
 /// - `..character_ik`: a character's `ik` (`"runtime"` or `"ikarus"`) and `ik_file` (TOML).
 /// - `..ik_goals`: `..character_ik`, then goals on bones' tips and pins (with `"ikarus"`).
-/// - `..export`: a character's motion's `format`, `..character_ik`, `animation_name`.
+/// - `..export`: a character's motion's `format`, `..character_ik`, `animation_name`, `bake`.
 ///
 /// A field written `required name: Type,` has no default: absent, it is refused.
 macro_rules! request {
@@ -138,6 +138,9 @@ macro_rules! request {
             ..character_ik,
             /// With `spine`: the added animation's name.
             pub animation_name: Option<String>,
+            /// With `spine`: every bone keyed at every frame (`true`) instead of the keys an
+            /// animator edits.
+            pub bake: bool,
             $($rest)*
         );
     };

@@ -256,6 +256,44 @@ impl<'a> Motion<'a> {
         frames_within(self.duration, self.fps, usize::MAX).unwrap_or(usize::MAX)
     }
 
+    /// The times the course is keyed at, in increasing order, within the motion: a keyed
+    /// course's keys and bend keys, an eased course's start and end, a path's samples; 0 and
+    /// the duration always.
+    #[must_use]
+    pub fn key_times(&self) -> Vec<f64> {
+        let mut times = vec![0.0, self.duration];
+        match &self.course {
+            Course::Eased { .. } => {}
+            Course::Path { points, .. } => times.extend((0..points.len()).map(|k| k as f64 / self.fps)),
+            Course::Keyed { tracks, bends, .. } => {
+                times.extend(tracks.iter().flat_map(|(_, t)| t.times().iter().copied()));
+                times.extend(bends.iter().flat_map(|(_, keys)| keys.iter().map(|k| k.0)));
+            }
+        }
+        times.retain(|t| (0.0..=self.duration).contains(t));
+        times.sort_by(f64::total_cmp);
+        times.dedup();
+        times
+    }
+
+    /// The clip under a keyed course, by name.
+    #[must_use]
+    pub fn clip(&self) -> Option<&str> {
+        match &self.course {
+            Course::Keyed { animation, .. } => animation.as_deref(),
+            _ => None,
+        }
+    }
+
+    /// A keyed course's bend keys: per constraint, `(time, bend_positive)` in time order.
+    #[must_use]
+    pub fn bend_keys(&self) -> &[(usize, Vec<(f64, bool)>)] {
+        match &self.course {
+            Course::Keyed { bends, .. } => bends,
+            _ => &[],
+        }
+    }
+
     /// The targets at `time` (clamped into the motion).
     #[must_use]
     pub fn targets_at(&self, time: f64) -> Vec<(String, [f64; 2])> {

@@ -97,6 +97,12 @@ impl KeyTrack {
         self.times[self.times.len() - 1]
     }
 
+    /// The keys' times, in increasing order.
+    #[must_use]
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
     /// The coordinates at time `t` into `out` (cleared first): see [`KeyTrack`].
     pub fn at(&self, t: f64, out: &mut Vec<f64>) {
         let last = self.times.len() - 1;

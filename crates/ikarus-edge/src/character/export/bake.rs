@@ -1,36 +1,30 @@
-//! A character's motion written back as a Spine animation: the input file's own text with one
-//! animation added under `animations`.
+//! [`super::Form::Bake`]: the motion baked frame by frame. Per bone whose local transform
+//! leaves its setup value during the motion, `rotate` (degrees, unwrapped so that consecutive
+//! keys never differ by more than 180°), `translate`, `scale` and `shear` relative to the setup
+//! pose, as Spine reads them and as [`super::super::clips`] reads them (3.8 files get `angle`
+//! for a rotation, 4.x files `value`). Keys are linear: one per frame (posed at the frame's
+//! time, written at the 32-bit float nearest it), and more by bisection wherever a straight
+//! line between two keys would put a bone's world origin or tip more than the tolerance from
+//! the motion posed at that time. Every IK constraint of the file is keyed to mix 0 at time 0,
+//! so that the constraints leave the bones where the keys put them (at mix 0 a constraint does
+//! nothing).
 //!
-//! Every top-level field and every animation already in the file is copied as it was written
-//! (its text, byte for byte, in its order; only the whitespace between top-level fields is
-//! ours). The new animation keys, per bone whose local transform leaves its setup value during
-//! the motion, `rotate` (degrees, unwrapped so that consecutive keys never differ by more than
-//! 180°), `translate`, `scale` and `shear` relative to the setup pose, as Spine reads them and as
-//! [`super::clips`] reads them (3.8 files get `angle` for a rotation, 4.x files `value`). Keys
-//! are linear: one per frame, and more by bisection wherever a straight line between two keys
-//! would put a bone's world origin or tip more than [`TOLERANCE`] from the motion posed at that
-//! time. Every IK constraint of the file is keyed to mix 0 at time 0, so that the constraints
-//! leave the bones where the keys put them (at mix 0 a constraint does nothing).
+//! Memory: the keys hold every bone's local transform, so their number is bounded: at most
+//! [`MAX_REFINED`] keys between two frames and, over the whole motion, [`ADDED_PER_FRAME`] per
+//! frame (the motion's frames × bones is capped before it gets here).
 
 use ikarus::character::{Affine, Character, LocalTransform, Posed, world_transform};
-use serde_json::value::RawValue;
 use serde_json::{Map, Value, json};
 
-use super::Format;
-use super::clips::Ordered;
-use super::motion::Motion;
-
-/// The largest distance, in the file's units, between a bone's world origin or tip as the keys
-/// pose it (linear between keys) and as the motion poses it, that a pair of keys is left with;
-/// the promise is 1e-2, this is half for margin.
-pub const TOLERANCE: f64 = 5e-3;
+use super::written_time;
+use crate::character::motion::Motion;
 
 /// How many times an interval between two frames is halved at most (a key every
 /// 1 / (fps · 2¹⁶) s at the finest, 5·10⁻⁷ s at 30 fps: about the resolution of a key's time,
 /// a 32-bit float, a few seconds in). Deep, because a limb passing through full reach under
 /// ikarus's solver swings like a square root of the time left, and a chord of √t strays
 /// √h / 4 over an interval h: the raptor's four-bone leg carried beyond its reach (the README's
-/// tour) needed 12 halvings at 30 fps to stay within [`TOLERANCE`]. The bisection only goes
+/// tour) needed 12 halvings at 30 fps to stay within the tolerance. The bisection only goes
 /// deep where a line strays, about two keys a level near such a point; [`MAX_REFINED`] bounds it
 /// where the motion strays everywhere.
 const MAX_DEPTH: u32 = 16;
@@ -39,8 +33,9 @@ const MAX_DEPTH: u32 = 16;
 /// that jumps back and forth) stops being refined there instead of taking 2¹⁶ poses.
 const MAX_REFINED: usize = 256;
 
-/// The default animation name.
-pub const DEFAULT_NAME: &str = "ikarus";
+/// How many keys the bisection may add per frame of the motion, over the whole motion: the
+/// keys' memory (every bone's transform per key) stays within 17 × frames × bones.
+const ADDED_PER_FRAME: usize = 16;
 
 /// One key: its time and every bone's local transform.
 struct Key {
@@ -48,56 +43,15 @@ struct Key {
     local: Vec<LocalTransform>,
 }
 
-/// `text` (the Spine file `motion` was loaded from) with the motion added as animation `name`,
-/// and the number of keys per timeline. Refusals are one line naming the field.
-pub fn spine(motion: &Motion<'_>, text: &str, name: &str) -> Result<String, String> {
-    let loaded = motion.loaded;
-    if loaded.format != Format::Spine {
-        return Err(format!(
-            "format spine: the Spine export takes a Spine file, and this is a {} file",
-            loaded.format.name()
-        ));
-    }
-    if name.is_empty() {
-        return Err("animation name: must not be empty".to_owned());
-    }
-    let text = text.trim_start_matches('\u{feff}');
-    let top: Ordered<Box<RawValue>> = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
-    let mut animations: Ordered<Box<RawValue>> = match top.0.iter().find(|(k, _)| k == "animations") {
-        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| format!("animations: {e}"))?,
-        None => Ordered::default(),
-    };
-    if animations.0.iter().any(|(k, _)| k == name) {
-        return Err(format!("animation name {name:?}: the file already has an animation of that name"));
-    }
-    let keys = keys(motion)?;
-    let legacy = loaded.version.starts_with("3.");
-    let animation = animation(&loaded.character, &keys, legacy)?;
-    let raw = RawValue::from_string(animation.to_string()).map_err(|e| format!("cannot write JSON: {e}"))?;
-    animations.0.push((name.to_owned(), raw));
-    let animations =
-        RawValue::from_string(object(&animations, "    ")).map_err(|e| format!("cannot write JSON: {e}"))?;
-    let mut out = top;
-    match out.0.iter_mut().find(|(k, _)| k == "animations") {
-        Some((_, v)) => *v = animations,
-        None => out.0.push(("animations".to_owned(), animations)),
-    }
-    let mut text = object(&out, "  ");
-    text.push('\n');
-    Ok(text)
-}
-
-/// `{` the entries, one per line indented by `indent`, `}`.
-fn object(entries: &Ordered<Box<RawValue>>, indent: &str) -> String {
-    let close = &indent[..indent.len().saturating_sub(2)];
-    let body: Vec<String> =
-        entries.0.iter().map(|(k, v)| format!("{indent}{}: {}", Value::String(k.clone()), v.get())).collect();
-    if body.is_empty() { "{}".to_owned() } else { format!("{{\n{}\n{close}}}", body.join(",\n")) }
+/// The baked animation's JSON (see the module's doc), fitted to `tolerance`.
+pub(super) fn animation(motion: &Motion<'_>, tolerance: f64, legacy: bool) -> Result<Value, String> {
+    let keys = keys(motion, tolerance)?;
+    json_of(&motion.loaded.character, &keys, legacy)
 }
 
 /// The keys: one per frame, and the bisections that keep a straight line between two keys
-/// within [`TOLERANCE`] of the motion.
-fn keys(motion: &Motion<'_>) -> Result<Vec<Key>, String> {
+/// within the tolerance of the motion.
+fn keys(motion: &Motion<'_>, tolerance: f64) -> Result<Vec<Key>, String> {
     let mut posed = Posed::default();
     let mut pose = |time: f64| -> Result<Key, String> {
         motion.pose_at(time, &mut posed)?;
@@ -107,28 +61,32 @@ fn keys(motion: &Motion<'_>) -> Result<Vec<Key>, String> {
     let mut world = Vec::new();
     let times = motion.frame_times();
     let mut out = vec![pose(times[0])?];
+    // Over the whole motion, at most ADDED_PER_FRAME added keys per frame.
+    let mut total = ADDED_PER_FRAME * times.len();
     for &t1 in &times[1..] {
         let end = pose(t1)?;
-        let mut budget = MAX_REFINED;
-        refine(motion, (&mut check, &mut world), &end, &mut out, (0, &mut budget), &mut pose)?;
+        let mut budget = MAX_REFINED.min(total);
+        let before = budget;
+        refine(motion, (&mut check, &mut world), &end, &mut out, (0, &mut budget, tolerance), &mut pose)?;
+        total -= before - budget;
         out.push(end);
     }
     Ok(out)
 }
 
 /// Keys inserted between the last of `out` and `end` (not pushed) wherever a straight line
-/// between them strays more than [`TOLERANCE`] from the motion, `depth` halvings deep with
+/// between them strays more than the tolerance from the motion, `depth` halvings deep with
 /// `budget` keys left to add.
 fn refine(
     motion: &Motion<'_>,
     (check, world): (&mut Posed, &mut Vec<Affine>),
     end: &Key,
     out: &mut Vec<Key>,
-    (depth, budget): (u32, &mut usize),
+    (depth, budget, tolerance): (u32, &mut usize, f64),
     pose: &mut dyn FnMut(f64) -> Result<Key, String>,
 ) -> Result<(), String> {
     let start = out.last().expect("a first key");
-    if depth >= MAX_DEPTH || *budget == 0 || stray(motion, (check, world), start, end)? <= TOLERANCE {
+    if depth >= MAX_DEPTH || *budget == 0 || stray(motion, (check, world), start, end)? <= tolerance {
         return Ok(());
     }
     // A key's time is read as a 32-bit float: the key is posed at the time it will be read at,
@@ -139,9 +97,9 @@ fn refine(
     }
     *budget -= 1;
     let mid = pose(mid_time)?;
-    refine(motion, (check, world), &mid, out, (depth + 1, &mut *budget), pose)?;
+    refine(motion, (check, world), &mid, out, (depth + 1, &mut *budget, tolerance), pose)?;
     out.push(mid);
-    refine(motion, (check, world), end, out, (depth + 1, budget), pose)
+    refine(motion, (check, world), end, out, (depth + 1, budget, tolerance), pose)
 }
 
 /// The largest distance between a bone's origin or tip posed by the straight line between keys
@@ -223,7 +181,7 @@ fn thinned(series: Vec<(f64, [f64; 2])>) -> Vec<(f64, [f64; 2])> {
 
 /// The animation's JSON: the bones' timelines (those that leave the setup pose) and every IK
 /// constraint at mix 0.
-fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
+fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
     const SAME: f64 = 1e-12;
     let mut bones = Map::new();
     for (i, bone) in c.bones().iter().enumerate() {
@@ -247,11 +205,17 @@ fn animation(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String>
             };
             let values: Vec<(f64, [f64; 2])> = keys.iter().map(|k| (k.time, [unwrapped(&k.local[i]), 0.0])).collect();
             let name = if legacy { "angle" } else { "value" };
-            let rotate = thinned(values).into_iter().map(|(time, [v, _])| json!({"time": time, (name): v})).collect();
+            let rotate = thinned(values)
+                .into_iter()
+                .map(|(time, [v, _])| json!({"time": written_time(time), (name): v}))
+                .collect();
             timelines.insert("rotate".to_owned(), Value::Array(rotate));
         }
         let two = |name: &str, f: &dyn Fn(&LocalTransform) -> [f64; 2], timelines: &mut Map<String, Value>| {
-            let keys = series(f).into_iter().map(|(time, [x, y])| json!({"time": time, "x": x, "y": y})).collect();
+            let keys = series(f)
+                .into_iter()
+                .map(|(time, [x, y])| json!({"time": written_time(time), "x": x, "y": y}))
+                .collect();
             timelines.insert(name.to_owned(), Value::Array(keys));
         };
         if moved(&|l| [l.x, l.y]) {
