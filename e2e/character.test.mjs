@@ -46,7 +46,7 @@ function watchPoses(page) {
 const shown = (page) =>
   page.evaluate(() => {
     const c = window.ikarus.state.character;
-    return { name: c.name, bones: Object.fromEntries(c.posed.map((b) => [b.name, b])), request: { ...c.request, rig: undefined }, poses: c.poses };
+    return { name: c.name, bones: Object.fromEntries(c.posed.map((b) => [b.name, b])), request: { ...c.request, rig: undefined, character: undefined }, poses: c.poses };
   });
 
 const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1]);
@@ -93,7 +93,12 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     assert.equal(await page.isVisible("#character-unsupported"), true);
     // The setup pose drawn is the one `ikarus pose` gives: no clip, no targets.
     const setup = await shown(page);
-    assert.deepEqual(setup.request, { targets: [], rig: undefined });
+    assert.deepEqual(setup.request, { targets: [], rig: undefined, character: undefined });
+    // The pose names the character by the id /api/rig/parse answered: a few bytes, not the file.
+    const byId = await page.evaluate(() => window.ikarus.state.character.request);
+    assert.match(byId.character, /^c[0-9a-f]{24}$/);
+    assert.equal(byId.rig, undefined);
+    assert.ok(JSON.stringify(byId).length < 1024, `${JSON.stringify(byId).length} bytes a pose`);
     assert.match(await page.textContent("#stats"), /^Spine character spineboy\.json · 67 bones · 7 IK constraints · setup pose · Spine rules$/);
 
     // The pointer on a bone's middle names it.
@@ -253,7 +258,7 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     await page.click("#reset");
     await settled(page);
     assert.equal(await page.inputValue("#character-animation"), "");
-    assert.deepEqual((await shown(page)).request, { targets: [], rig: undefined });
+    assert.deepEqual((await shown(page)).request, { targets: [], rig: undefined, character: undefined });
     assert.equal(await page.textContent("#playtime"), "– / – s");
     await page.selectOption("#character-animation", "walk");
     await settled(page);
