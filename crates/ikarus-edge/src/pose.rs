@@ -9,7 +9,7 @@ use ikarus::Point2;
 use ikarus::character::{
     Character, GoalEnd, LimbEnd, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherReport,
 };
-use ikarus::{SolveOptions, Solver};
+use ikarus::{Interrupt, SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
 use serde::Serialize;
 
@@ -74,8 +74,19 @@ pub struct PoseReport {
 /// Poses `loaded` as `ask` says. Errors are one line without a label: `--animation "wlk": no
 /// such animation; spineboy has: aim, death, …`.
 pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
+    pose_until(loaded, ask, None)
+}
+
+/// [`pose`], stopped once `interrupt` is set (a server's deadline, Ctrl-C): the pose checks it
+/// before each IK constraint, ikarus's solver as it iterates. An interrupted pose is refused
+/// with `interrupted`; the caller tells that from a bad request by the token.
+pub fn pose_watched(loaded: &Loaded, ask: &PoseAsk, interrupt: &Interrupt) -> Result<PoseReport, String> {
+    pose_until(loaded, ask, Some(interrupt))
+}
+
+fn pose_until(loaded: &Loaded, ask: &PoseAsk, interrupt: Option<&Interrupt>) -> Result<PoseReport, String> {
     let mut posed = Posed::default();
-    let together = pose_into(loaded, ask, &mut posed)?;
+    let together = pose_into_until(loaded, ask, &mut posed, interrupt)?;
     let mut report = PoseReport::of(&loaded.character, &posed);
     report.ik = together.map(|t| IkJson::of(&loaded.character, &t));
     if let IkChoice::Ikarus(rules) = &ask.ik {
@@ -87,6 +98,26 @@ pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
 /// Poses `loaded` as `ask` says into `out` (reuse one `out` across poses: a motion's frames),
 /// refusing what [`pose`] refuses; with [`IkChoice::Ikarus`], what the solve did.
 pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Option<TogetherReport>, String> {
+    pose_into_until(loaded, ask, out, None)
+}
+
+/// [`pose_into`], stopped once `interrupt` is set, as [`pose_watched`] is.
+pub fn pose_into_watched(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    out: &mut Posed,
+    interrupt: &Interrupt,
+) -> Result<Option<TogetherReport>, String> {
+    pose_into_until(loaded, ask, out, Some(interrupt))
+}
+
+/// [`pose_into`], watching `interrupt` when there is one.
+pub(crate) fn pose_into_until(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    out: &mut Posed,
+    interrupt: Option<&Interrupt>,
+) -> Result<Option<TogetherReport>, String> {
     let c = &loaded.character;
     let clip = clip_at(c, ask.animation.as_deref(), ask.time)?;
     let mut targets = Vec::with_capacity(ask.targets.len());
@@ -96,9 +127,15 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
     }
     let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
     match &ask.ik {
-        IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
+        IkChoice::Runtime => match interrupt {
+            Some(token) => c.pose_watched(&request, out, token),
+            None => c.pose(&request, out),
+        }
+        .map(|()| None)
+        .map_err(|e| e.to_string()),
         IkChoice::Ikarus(rules) => {
-            let mut solver = Solver::new(character_options()).map_err(|e| e.to_string())?;
+            let options = SolveOptions { interrupt: interrupt.cloned(), ..character_options() };
+            let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
     }

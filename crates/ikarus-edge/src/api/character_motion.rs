@@ -9,10 +9,10 @@
 //! The work is bounded: the character's bones by `--max-bones` (counted first), the frames by
 //! `--max-frames`, and frames × bones by [`MAX_BONE_FRAMES`].
 
-use ikarus::EaseKind;
+use ikarus::{EaseKind, Interrupt};
 use serde::Deserialize;
 
-use super::fields::{refuse_given, track_path};
+use super::fields::{refuse_given, stopped, track_path};
 use super::pose::TargetReq;
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
@@ -82,11 +82,11 @@ pub fn is_character(body: &[u8]) -> bool {
 }
 
 /// `POST /api/animate` with a character.
-pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: AnimateCharacterReq = parse_json(body)?;
     let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
     if let Some(keys) = &req.keys {
-        return keyed(&loaded, keys, &req, limits);
+        return keyed(&loaded, keys, &req, (limits, interrupt));
     }
     if req.animation.is_some() {
         return Err(Problem::invalid("animation: only with keys (the clip under the keyed targets)"));
@@ -111,6 +111,7 @@ pub fn animate(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
     let mut motion = Motion::new(&loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    motion.interrupt = Some(interrupt.clone());
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 
@@ -120,7 +121,7 @@ fn keyed(
     loaded: &Loaded,
     keys: &crate::keys::KeysFile,
     req: &AnimateCharacterReq,
-    limits: &Limits,
+    (limits, interrupt): (&Limits, &Interrupt),
 ) -> Result<Reply, Problem> {
     let given = [
         ("targets", !req.targets.is_empty()),
@@ -132,7 +133,7 @@ fn keyed(
     ];
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
-    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, limits)?;
+    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
     answer(loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 
@@ -143,18 +144,19 @@ pub(super) fn keyed_motion<'a>(
     keys: &crate::keys::KeysFile,
     animation: Option<String>,
     (ik, ik_file): (Option<&str>, Option<&str>),
-    limits: &Limits,
+    (limits, interrupt): (&Limits, &Interrupt),
 ) -> Result<Motion<'a>, Problem> {
     let (course, fps) = crate::character::motion::keyed(loaded, keys, animation, limits.max_frames, "--max-frames")
         .map_err(Problem::invalid)?;
     let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
     motion.ik = ik_choice(ik, ik_file, "ik_file", &loaded.character)?;
+    motion.interrupt = Some(interrupt.clone());
     within_caps(loaded, &motion, limits)?;
     Ok(motion)
 }
 
 /// `POST /api/track` with a character.
-pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: TrackCharacterReq = parse_json(body)?;
     let loaded = load_within(&req.rig, "rig", BoneCap::flag(limits.max_bones))?;
     let Some(bone) = req.effector else {
@@ -166,6 +168,7 @@ pub fn track(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
     let mut motion = Motion::new(&loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS))
         .map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    motion.interrupt = Some(interrupt.clone());
     answer(&loaded, &motion, (req.format, req.animation_name.as_deref()), &req.rig, limits)
 }
 
@@ -182,16 +185,25 @@ fn answer(
         MotionFormat::Json | MotionFormat::Csv if name.is_some() => {
             Err(Problem::invalid("animation_name: only with format spine"))
         }
-        MotionFormat::Json => Reply::json(&motion.frames().map_err(Problem::invalid)?),
+        MotionFormat::Json => Reply::json(&posed(motion.frames(), motion)?),
         MotionFormat::Csv => Ok(Reply {
             content_type: "text/csv; charset=utf-8",
-            body: crate::character::motion_files::csv(motion).map_err(Problem::invalid)?,
+            body: posed(crate::character::motion_files::csv(motion), motion)?,
         }),
         MotionFormat::Spine => {
-            let doc = export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)).map_err(Problem::invalid)?;
+            let doc = posed(export::spine(motion, text, name.unwrap_or(export::DEFAULT_NAME)), motion)?;
             Ok(Reply { content_type: "application/json", body: doc.into_bytes() })
         }
     }
+}
+
+/// What posing `motion`'s frames gave: 503 when its interrupt was set (an `interrupted`
+/// refusal is the deadline's, not the request's fault), else the result, a refusal a 422.
+pub(super) fn posed<T>(result: Result<T, String>, motion: &Motion<'_>) -> Result<T, Problem> {
+    if let Some(interrupt) = &motion.interrupt {
+        stopped(interrupt)?;
+    }
+    result.map_err(Problem::invalid)
 }
 
 /// The motion's frames within `--max-frames` and frames × bones within [`MAX_BONE_FRAMES`].

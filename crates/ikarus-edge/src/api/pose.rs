@@ -4,12 +4,13 @@
 use serde::Deserialize;
 
 use super::bodies::{effectors_within, field_name, named_goals};
-use super::fields::json_response;
+use super::fields::{json_response, stopped};
 use super::requests::request;
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::{is_json, load_within};
-use crate::pose::{IkChoice, PoseAsk, add_goals, pose as posed};
+use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
+use ikarus::Interrupt;
 use ikarus::character::Character;
 
 request! {
@@ -39,7 +40,7 @@ pub struct TargetReq {
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
 /// targets as it has bones.
-pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
+pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let req: PoseReq = parse_json(body)?;
     let loaded = character(&req.rig, limits)?;
     let bones = loaded.character.bones().len();
@@ -57,7 +58,9 @@ pub fn pose(body: &[u8], limits: &Limits) -> Result<Reply, Problem> {
         ik,
         bends: Vec::new(),
     };
-    let report = posed(&loaded, &ask).map_err(Problem::invalid)?;
+    let report = posed(&loaded, &ask, interrupt);
+    stopped(interrupt)?;
+    let report = report.map_err(Problem::invalid)?;
     json_response(&report)
 }
 
@@ -103,5 +106,39 @@ impl IkReq {
             IkChoice::Runtime => {}
         }
         Ok(ik)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Endpoint, Limits, call, status};
+    use ikarus::Interrupt;
+
+    /// A character's pose, motion and track with their interrupt set end 503 (the server's
+    /// deadline), not 200 nor a refusal of the request; unset, the same requests answer.
+    #[test]
+    fn character_jobs_stop_at_their_interrupt() {
+        let rig = include_str!("../../../../examples/characters/spine-spineboy-pro.json");
+        let bodies = [
+            (Endpoint::Pose, serde_json::json!({"rig": rig, "animation": "walk", "time": 0.2, "ik": "ikarus"})),
+            (Endpoint::Pose, serde_json::json!({"rig": rig, "animation": "walk", "time": 0.2})),
+            (
+                Endpoint::Animate,
+                serde_json::json!({"rig": rig, "targets": [{"bone": "front-leg-target", "x": 30, "y": 0}], "fps": 10}),
+            ),
+            (
+                Endpoint::Track,
+                serde_json::json!({"rig": rig, "effector": "front-leg-target", "line": [0, 0, 30, 0], "samples": 5}),
+            ),
+        ];
+        for (endpoint, body) in bodies {
+            let body = body.to_string();
+            let answered = call(endpoint, body.as_bytes(), &Limits::default(), &Interrupt::new());
+            assert!(answered.is_ok(), "{endpoint:?}: {:?}", answered.err());
+            let token = Interrupt::new();
+            token.interrupt();
+            let e = call(endpoint, body.as_bytes(), &Limits::default(), &token).unwrap_err();
+            assert_eq!(e.status, status::SERVICE_UNAVAILABLE, "{endpoint:?}: {}", e.message);
+        }
     }
 }

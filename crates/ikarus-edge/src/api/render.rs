@@ -229,9 +229,8 @@ fn character_figure(
 ) -> Result<Vec<u8>, Problem> {
     let loaded = load_within(&r.rig, "rig", BoneCap::flag(limits.max_bones))?;
     let ik = (r.ik.as_deref(), r.ik_file.as_deref());
-    let motion = keyed_motion(&loaded, &r.keys, r.animation.clone(), ik, limits)?;
+    let motion = keyed_motion(&loaded, &r.keys, r.animation.clone(), ik, (limits, interrupt))?;
     canvas.gif_within_cap(motion.frame_count())?;
-    let poses = motion.poses().map_err(Problem::invalid)?;
-    stopped(interrupt)?;
+    let poses = super::character_motion::posed(motion.poses(), &motion)?;
     canvas.draw(&motion_files::drawing(&motion, &poses), interrupt)
 }

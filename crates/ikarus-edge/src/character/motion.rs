@@ -18,8 +18,9 @@ use serde::Serialize;
 
 use super::{Format, Loaded};
 use crate::keys::KeysFile;
-use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into};
+use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
 use crate::report::character::UnsupportedJson;
+use ikarus::Interrupt;
 
 /// The frame rate without one asked for.
 pub const DEFAULT_FPS: f64 = 30.0;
@@ -127,6 +128,9 @@ pub struct Motion<'a> {
     course: Course,
     /// Whose rules solve the IK constraints in every frame (the runtime's by default).
     pub ik: IkChoice,
+    /// When set, every pose of the motion stops (refused `interrupted`): a server's deadline,
+    /// Ctrl-C. `None` by default.
+    pub interrupt: Option<Interrupt>,
 }
 
 /// One frame: the time and every bone as `ikarus pose --format json` gives it.
@@ -186,7 +190,7 @@ impl<'a> Motion<'a> {
                 (Vec::new(), tracks.iter().map(|(_, t)| t.end()).chain(bent).fold(0.0, f64::max))
             }
         };
-        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime })
+        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
@@ -268,7 +272,11 @@ impl<'a> Motion<'a> {
 
     /// The character posed at `time` into `out`.
     pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
-        pose_into(self.loaded, &self.ask_at(time), out).map(|_| ())
+        // Checked here too: a character without constraints never asks it while posing.
+        if self.interrupt.as_ref().is_some_and(Interrupt::is_interrupted) {
+            return Err("interrupted".to_owned());
+        }
+        pose_into_until(self.loaded, &self.ask_at(time), out, self.interrupt.as_ref()).map(|_| ())
     }
 
     /// Every frame posed (its time and report), one `Posed` reused.

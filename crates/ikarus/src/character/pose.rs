@@ -6,6 +6,7 @@ use super::timeline;
 use super::timeline::Reader;
 use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
+use crate::Interrupt;
 use thiserror::Error;
 
 /// What to pose: a clip at a time (seconds), bones whose world origin is put at a point after
@@ -53,6 +54,10 @@ pub enum PoseError {
     /// local position puts it anywhere else.
     #[error("target: bone {0}'s parent is scaled to nothing, its origin cannot be placed")]
     SingularParent(usize),
+    /// The pose's [`Interrupt`] was set ([`Character::pose_watched`]): `out` holds a pose half
+    /// done, to be thrown away.
+    #[error("interrupted")]
+    Interrupted,
 }
 
 /// A posed character: every bone's local transform as posing left it and its world transform.
@@ -146,6 +151,24 @@ impl Character {
     /// updated so far and followed by an update of the bones below its bones, so that a later
     /// constraint can undo what an earlier one did, as in the runtime.
     pub fn pose(&self, request: &PoseRequest, out: &mut Posed) -> Result<(), PoseError> {
+        self.pose_until(request, out, None)
+    }
+
+    /// [`Character::pose`], stopped with [`PoseError::Interrupted`] once `interrupt` is set: it
+    /// is checked before each constraint (a character's constraints are most of a pose's work;
+    /// each costs at most its bones' subtree), so a server's deadline or a Ctrl-C ends even a
+    /// pose of a hostile character soon.
+    pub fn pose_watched(&self, request: &PoseRequest, out: &mut Posed, interrupt: &Interrupt) -> Result<(), PoseError> {
+        self.pose_until(request, out, Some(interrupt))
+    }
+
+    /// [`Character::pose`] watching `interrupt` when there is one.
+    pub(crate) fn pose_until(
+        &self,
+        request: &PoseRequest,
+        out: &mut Posed,
+        interrupt: Option<&Interrupt>,
+    ) -> Result<(), PoseError> {
         self.check(request)?;
         let n = self.bones.len();
         out.local.clear();
@@ -189,6 +212,9 @@ impl Character {
             bones.update_below(bone);
         }
         for &k in &self.order {
+            if crate::interrupt::is_set(interrupt) {
+                return Err(PoseError::Interrupted);
+            }
             let c = &self.constraints[k];
             let s = &settings[k];
             let w = bones.world[c.target];
@@ -244,3 +270,7 @@ mod tests;
 #[cfg(test)]
 #[path = "deferred_tests.rs"]
 mod deferred_tests;
+
+#[cfg(test)]
+#[path = "watch_tests.rs"]
+mod watch_tests;

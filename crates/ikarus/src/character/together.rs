@@ -170,6 +170,14 @@ impl Character {
     /// together with `solver` (a method that solves rigs), as the module docs say; `out` holds
     /// the final pose, its local transforms those that give it under the runtime's world
     /// transforms.
+    ///
+    /// The solver's [`interrupt`](crate::SolveOptions::interrupt), when it has one, is watched
+    /// by the pose ([`Character::pose_watched`]) and between rounds: once it is set, the call
+    /// ends with [`PoseError::Interrupted`] (inside [`TogetherError::Pose`]).
+    ///
+    /// The work besides the solves is linear in the bones, constraints and rules: every lookup
+    /// by constraint or bone is indexed once, and a goal that replaces another on the same bone
+    /// takes its place without a scan of the goals.
     pub fn pose_together(
         &self,
         request: &PoseRequest,
@@ -178,19 +186,24 @@ impl Character {
         out: &mut Posed,
     ) -> Result<TogetherReport, TogetherError> {
         self.check_together(rules)?;
-        self.pose(request, out)?;
+        let interrupt = solver.options().interrupt.clone();
+        self.pose_until(request, out, interrupt.as_ref())?;
         let active: Vec<usize> = (0..self.constraints.len()).filter(|&k| out.settings(k).mix > 0.0).collect();
-        let moving = self.moving(rules, &active);
+        let limb_rules = self.limb_rules(rules);
+        let moving = self.moving(rules, &limb_rules, &active);
         let mut report = TogetherReport::default();
         let goals: Vec<usize> = active.iter().copied().filter(|&k| self.has_tip_goal(k)).collect();
         let anything = !goals.is_empty() || !rules.goals.is_empty();
         if !moving.is_empty() && anything {
             for round in 1..=ROUNDS {
                 let frozen = self.freeze(out, &moving, rules)?;
-                let task = self.task(out, &frozen, rules, &goals)?;
+                let task = self.task(out, &frozen, (rules, &limb_rules), &goals)?;
                 let outcome = solver
                     .solve_rig(&frozen.skeleton, &frozen.start, &task)
                     .map_err(|e| TogetherError::Solve(e.to_string()))?;
+                if outcome.status == crate::Status::Interrupted || crate::interrupt::is_set(interrupt.as_ref()) {
+                    return Err(TogetherError::Pose(PoseError::Interrupted));
+                }
                 let drift = self.thaw(out, &frozen, outcome.pose.angles());
                 report.rounds = round;
                 report.outcome = Some(outcome);
@@ -200,9 +213,13 @@ impl Character {
             }
         }
         self.aim_zero_length(&active, out);
+        let mut is_active = vec![false; self.constraints.len()];
+        for &k in &active {
+            is_active[k] = true;
+        }
         report.limbs = (0..self.constraints.len())
             .map(|k| {
-                let on = active.contains(&k);
+                let on = is_active[k];
                 let error = if on && self.has_tip_goal(k) { self.miss(k, out) } else { 0.0 };
                 LimbEnd { constraint: k, active: on, error }
             })
@@ -215,6 +232,7 @@ impl Character {
     /// limb lengths from the constraint's own bones to its root, stiffness ≥ 0, limits in order.
     pub fn check_together(&self, rules: &Together) -> Result<(), TogetherError> {
         let n = self.bones.len();
+        let depths = self.depths();
         for r in &rules.limbs {
             let c = self
                 .constraints
@@ -228,7 +246,7 @@ impl Character {
                 IkBones::Two { .. } => 2,
             };
             if let Some(b) = r.bones {
-                let depth = self.depth(last_bone(c.bones)) + 1;
+                let depth = depths[last_bone(c.bones)] + 1;
                 if b < own || b > depth {
                     return Err(TogetherError::Rule(format!(
                         "limb {:?}: bones must be from {own} (its own) to {depth} (up to its root), got {b}",
@@ -253,7 +271,7 @@ impl Character {
         for g in &rules.goals {
             let b = g.goal.bone;
             let name = &self.bones.get(b).ok_or_else(|| TogetherError::Rule(format!("goal: no bone {b}")))?.name;
-            let depth = self.depth(b) + 1;
+            let depth = depths[b] + 1;
             if g.bones < 1 || g.bones > depth {
                 return Err(TogetherError::Rule(format!(
                     "goal on {name:?}: bones must be from 1 (the bone alone) to {depth} (up to its root), got {}",
@@ -276,13 +294,24 @@ impl Character {
         Ok(())
     }
 
-    fn depth(&self, mut i: usize) -> usize {
-        let mut d = 0;
-        while let Some(p) = self.bones[i].parent {
-            d += 1;
-            i = p;
+    /// Every bone's depth (a root's is 0), in one pass: parents come first.
+    fn depths(&self) -> Vec<usize> {
+        let mut depths = Vec::with_capacity(self.bones.len());
+        for b in &self.bones {
+            let d = b.parent.map_or(0, |p| depths[p] + 1);
+            depths.push(d);
         }
-        d
+        depths
+    }
+
+    /// Per constraint, the first limb rule naming it (a rule for a constraint that does not
+    /// exist was refused by [`Character::check_together`]).
+    fn limb_rules<'r>(&self, rules: &'r Together) -> Vec<Option<&'r LimbRule>> {
+        let mut by = vec![None; self.constraints.len()];
+        for r in rules.limbs.iter().rev() {
+            by[r.constraint] = Some(r);
+        }
+        by
     }
 
     /// Whether constraint `k` is a goal of the solve: every two-bone one, and a one-bone one on
@@ -296,7 +325,7 @@ impl Character {
 
     /// The moving bones, ascending (parents first): each active constraint's bones, up as far
     /// as its rule says, each goal's, and the pins.
-    fn moving(&self, rules: &Together, active: &[usize]) -> Vec<usize> {
+    fn moving(&self, rules: &Together, limb_rules: &[Option<&LimbRule>], active: &[usize]) -> Vec<usize> {
         let mut on = vec![false; self.bones.len()];
         for &k in active.iter().filter(|&&k| self.has_tip_goal(k)) {
             let c = &self.constraints[k];
@@ -304,7 +333,7 @@ impl Character {
                 IkBones::One(_) => 1,
                 IkBones::Two { .. } => 2,
             };
-            let count = rules.limbs.iter().find(|r| r.constraint == k).and_then(|r| r.bones).unwrap_or(own);
+            let count = limb_rules[k].and_then(|r| r.bones).unwrap_or(own);
             let mut b = Some(last_bone(c.bones));
             for _ in 0..count {
                 let Some(i) = b else { break };
@@ -329,6 +358,10 @@ impl Character {
     /// The moving bones frozen at `posed` as an ikarus skeleton.
     fn freeze(&self, posed: &Posed, moving: &[usize], rules: &Together) -> Result<Frozen, TogetherError> {
         let index = |b: usize| moving.binary_search(&b).ok();
+        let mut bone_rules = vec![None; self.bones.len()];
+        for r in rules.bones.iter().rev() {
+            bone_rules[r.bone] = Some(r);
+        }
         let mut bones = Vec::with_capacity(moving.len());
         let mut start = Vec::with_capacity(moving.len());
         for &m in moving {
@@ -356,7 +389,7 @@ impl Character {
             if let Some(p) = up {
                 bone = bone.with_parent(self.bones[p].name.clone());
             }
-            if let Some(r) = rules.bones.iter().find(|r| r.bone == m) {
+            if let Some(r) = bone_rules[m] {
                 if let Some([lo, hi]) = r.limits {
                     // The limits are on the local rotation; the skeleton's angle differs from it
                     // by what the bones between (and the parent's shear) add, constant here.
@@ -378,11 +411,14 @@ impl Character {
         &self,
         posed: &Posed,
         frozen: &Frozen,
-        rules: &Together,
+        (rules, limb_rules): (&Together, &[Option<&LimbRule>]),
         goals: &[usize],
     ) -> Result<RigTask, TogetherError> {
         let index = |b: usize| frozen.bones.binary_search(&b).ok();
         let mut task = RigTask::new(Vec::new(), Vec::new());
+        // One goal per skeleton bone: a later one on the same bone replaces an earlier one and
+        // goes last, as a removal and a push would put it, without a scan of the goals.
+        let mut slots = GoalSlots::new(frozen.bones.len());
         for &k in goals {
             let c = &self.constraints[k];
             let last = last_bone(c.bones);
@@ -390,7 +426,7 @@ impl Character {
             let [x, y] = posed.origin(c.target);
             let goal =
                 Goal::position(x, y).map_err(|e| TogetherError::Solve(format!("constraint {:?}: {e}", c.name)))?;
-            let rule = rules.limbs.iter().find(|r| r.constraint == k);
+            let rule = limb_rules[k];
             let settings = posed.settings(k);
             let mut g =
                 RigGoal::new(i, goal).with_weight(rule.map_or(1.0, |r| r.weight)).with_softness(settings.softness);
@@ -401,8 +437,7 @@ impl Character {
                 g = g.with_bend(bend_of(frozen.start[i], &settings, posed, c.bones, c.rule));
             }
             // One goal per bone: a later constraint on the same bone replaces an earlier one.
-            task.goals.retain(|o| o.bone != i);
-            task.goals.push(g);
+            slots.put(i, g);
         }
         for g in &rules.goals {
             let Some(i) = index(g.goal.bone) else { continue };
@@ -412,15 +447,15 @@ impl Character {
             if frozen.skeleton.parent(i).is_none() {
                 goal.bend = None;
             }
-            task.goals.retain(|o| o.bone != i);
-            task.goals.push(goal);
+            slots.put(i, goal);
         }
         for &p in &rules.pins {
             if let Some(i) = index(p) {
-                task.goals.retain(|o| o.bone != i);
+                slots.clear(i);
                 task.pins.push(Pin::new(i));
             }
         }
+        task.goals = slots.goals();
         Ok(task)
     }
 
@@ -493,6 +528,38 @@ impl Character {
     /// The largest distance of a bone's origin from the skeleton's, a scale for tolerances.
     fn size(&self, posed: &Posed) -> f64 {
         (0..self.bones.len()).map(|i| posed.origin(i)).fold(0.0, |m: f64, [x, y]| m.max(x.abs()).max(y.abs()))
+    }
+}
+
+/// The goals of a task in the order they were put, at most one per skeleton bone.
+struct GoalSlots {
+    /// In the order put; `None` where a later goal on the same bone (or a pin) replaced it.
+    put: Vec<Option<RigGoal>>,
+    /// Per skeleton bone, where its goal is in `put`.
+    at: Vec<Option<usize>>,
+}
+
+impl GoalSlots {
+    fn new(bones: usize) -> Self {
+        GoalSlots { put: Vec::new(), at: vec![None; bones] }
+    }
+
+    /// `goal` on bone `i`, replacing the one there.
+    fn put(&mut self, i: usize, goal: RigGoal) {
+        self.clear(i);
+        self.at[i] = Some(self.put.len());
+        self.put.push(Some(goal));
+    }
+
+    /// No goal on bone `i`.
+    fn clear(&mut self, i: usize) {
+        if let Some(k) = self.at[i].take() {
+            self.put[k] = None;
+        }
+    }
+
+    fn goals(self) -> Vec<RigGoal> {
+        self.put.into_iter().flatten().collect()
     }
 }
 
