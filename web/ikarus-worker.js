@@ -2,7 +2,10 @@
 // WebAssembly module) and answers the page's api.js, so that a long job (a traced path, the
 // reachable region of a long arm) never freezes the page. Messages: it posts {ready: true} once
 // the module is initialised (or {ready: false, error}); then each {id, path, body} gets
-// {id, status, text}: 200 and the answer's text, or the server's status and `{"error": …}`.
+// {id, status, text}: 200 and the answer's text, or the server's status and `{"error": …}`. A
+// reply with `restart: true` says the module trapped (out of memory, a panic): ikarus.js has
+// restarted it, but this worker's handles were made in the stopped one, so the page
+// (ikarus-thread.js) replaces the worker; it also replaces one whose job outlives its budget.
 //
 // Character playback takes the typed path instead ({id, pose: {rig?, animation, time, targets}}):
 // the worker keeps the last character file it was sent as an ikarus.Character (the page sends
@@ -49,10 +52,19 @@ async function answer(path, body) {
     await ikarus.init();
     return { status: 200, text: ikarus.call(path, body) };
   } catch (e) {
-    const status = e instanceof ikarus.IkarusError ? e.status : 500;
-    return { status, text: JSON.stringify({ error: e && e.message ? e.message : String(e) }) };
+    return failed(e);
   }
 }
+
+/** The reply for what a job threw: its status and line; `restart` when the module trapped (the page then replaces this worker). */
+function failed(e) {
+  const status = e instanceof ikarus.IkarusError ? e.status : 500;
+  const text = JSON.stringify({ error: e && e.message ? e.message : String(e) });
+  return e instanceof ikarus.IkarusError && e.restarted ? { status, text, restart: true } : { status, text };
+}
+
+/** Whether the typed path may hand `e` to call()'s answer: a refusal, not a trap. */
+const refused = (e) => e instanceof ikarus.IkarusError && !e.restarted;
 
 /** The typed pose of `ask` ({rig?, animation, time, targets: [{bone, x, y}]}), or the JSON answer's {status, text}. */
 async function pose({ rig, animation, time, targets }) {
@@ -64,7 +76,7 @@ async function pose({ rig, animation, time, targets }) {
       character = new ikarus.Character(rig);
     } catch (e) {
       // The server's status and line (the small module words a bad value without its path).
-      if (e instanceof ikarus.IkarusError) return answer("pose", JSON.stringify({ rig }));
+      if (refused(e)) return answer("pose", JSON.stringify({ rig }));
       throw e;
     }
     loaded = { text: rig, character, names: character.bones, unsupported: character.unsupported };
@@ -81,7 +93,7 @@ async function pose({ rig, animation, time, targets }) {
     loaded.character.pose(animation ? (time ?? 0) : 0, flat, numbers);
     return { status: 200, typed: true, numbers, names: loaded.names, unsupported: loaded.unsupported };
   } catch (e) {
-    if (!(e instanceof ikarus.IkarusError)) throw e;
+    if (!refused(e)) throw e;
     return answer("pose", JSON.stringify({ rig: loaded.text, ...fields }));
   }
 }
@@ -97,7 +109,7 @@ async function follow({ chain, start_deg, max_step_deg, x, y }) {
     try {
       following.chain = new ikarus.Chain(chain.arm, chain.options);
     } catch (e) {
-      if (!(e instanceof ikarus.IkarusError)) throw e;
+      if (!refused(e)) throw e;
     }
   }
   if (!following) return { status: 500, text: JSON.stringify({ error: "ikarus-worker: a follow before its arm" }) };
@@ -107,7 +119,7 @@ async function follow({ chain, start_deg, max_step_deg, x, y }) {
   try {
     following.chain.followHere(start_deg, x, y, max_step_deg);
   } catch (e) {
-    if (!(e instanceof ikarus.IkarusError)) throw e;
+    if (!refused(e)) throw e;
     return asked();
   }
   return { status: 200, typed: true, numbers: following.chain.followRecord.slice() };
@@ -119,7 +131,7 @@ onmessage = async ({ data }) => {
     try {
       reply = await (data.pose ? pose(data.pose) : follow(data.follow));
     } catch (e) {
-      reply = { status: 500, text: JSON.stringify({ error: e && e.message ? e.message : String(e) }) };
+      reply = failed(e);
     }
     if (reply.numbers) postMessage({ id: data.id, ...reply }, [reply.numbers.buffer]);
     else postMessage({ id: data.id, ...reply });

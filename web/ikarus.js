@@ -16,6 +16,12 @@
 // and the value (`request body: goal.y: invalid type: string "a", expected f64 at line 1 column
 // 22`). Calls are synchronous once `init()` has resolved; they run on the calling thread.
 //
+// A call that traps (out of memory past wasm32's 4 GB, a panic) would leave the module dead:
+// instead it throws an IkarusError (500, `restarted: true`) and the module is instantiated afresh
+// before it returns, so the next call works; Chains and Characters made before are refused then
+// (make new ones). A call cannot be stopped from inside once it runs: a page runs the module in
+// a worker and terminates it (the static page does, after a budget per job: web/ikarus-thread.js).
+//
 // The hot paths have typed handles beside these, without JSON: `Chain` (an arm read once, then
 // `solve(x, y, out)` / `solveBatch(goals, out)`, and `followHere(startDeg, x, y, maxStepDeg)`,
 // one step of following the pointer) and `Character` (a character file read once,
@@ -44,10 +50,13 @@ export class IkarusError extends Error {
   }
 }
 
-/** The full module once loaded: its glue (`api`) and its memory; `loading` the promise. */
-const full = { api: wasm, memory: null, loading: null };
+/**
+ * The full module once loaded: its glue (`api`) and its memory; `loading` the promise;
+ * `generation` how many times it was restarted after a trap (handles remember theirs).
+ */
+const full = { api: wasm, memory: null, loading: null, generation: 0 };
 /** The small module once loaded. */
-const small = { api: core, memory: null, loading: null };
+const small = { api: core, memory: null, loading: null, generation: 0 };
 let ready = null;
 
 /** Loads module `m` (full or small) from `source` once; resolves when its memory is known. */
@@ -106,19 +115,57 @@ export const version = () => handles().api.version();
  */
 export function call(path, body = "") {
   if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  return guarded(full, () => wasm.call(path, body));
+  return guarded(full, () => full.api.call(path, body));
 }
 
-/** The IkarusError of what module `m` (default: the full one) threw: a refusal (its Problem), or a trap. */
+/**
+ * The IkarusError of what module `m` (default: the full one) threw: a refusal (its Problem), or
+ * a trap. A trap (out of memory, a panic: both abort on wasm32, as `unreachable`; a stack
+ * overflow) leaves the instance dead for good (every later call would trap), so the module is
+ * instantiated afresh at once (`restart`) and the error says so (`restarted: true`); the failed
+ * call is not retried.
+ */
 function failure(e, m = full) {
   if (e instanceof m.api.Problem) {
     const error = new IkarusError(e.status, e.message);
     e.free();
     return error;
   }
-  // A trap (a panic aborts on wasm32): say the panic's message if the module kept one.
-  const panic = e instanceof WebAssembly.RuntimeError ? m.api.last_panic() : undefined;
-  return new IkarusError(500, panic ? `internal error: ${panic}` : `internal error: ${e && e.message ? e.message : e}`);
+  const what = e && e.message ? e.message : String(e);
+  if (!(e instanceof WebAssembly.RuntimeError || e instanceof RangeError)) return new IkarusError(500, `internal error: ${what}`);
+  // Say the panic's message if the module kept one (asking may trap too: the memory may be full).
+  let panic;
+  try {
+    panic = e instanceof WebAssembly.RuntimeError ? m.api.last_panic() : undefined;
+  } catch (_) {
+    panic = undefined;
+  }
+  restart(m);
+  const error = new IkarusError(
+    500,
+    panic
+      ? `internal error: ${panic}; the WebAssembly module stopped and was restarted`
+      : `the WebAssembly module stopped (${what}: out of memory?): it was restarted; ask for less work`,
+  );
+  error.restarted = true;
+  return error;
+}
+
+/**
+ * Module `m` instantiated afresh from its compiled code after a trap (the glue's
+ * `__wbg_reset_state`, which web/bindgen asks wasm-bindgen for): a new memory, no state of the
+ * old instance; handles made before (their generation is older) are refused from now on.
+ */
+function restart(m) {
+  m.api.__wbg_reset_state();
+  m.memory = m.api.initSync().memory;
+  m.generation++;
+}
+
+/** Throws if a handle made in generation `made` of module `m` outlived a restart of it. */
+function live(m, made, what) {
+  if (made !== m.generation)
+    throw new IkarusError(500, `ikarus.js: this ${what} was made before the WebAssembly module restarted (after a trap); make a new one`);
 }
 
 /** The typed handle `make(api)` makes in module `m`, or the IkarusError it refused with. */
@@ -128,6 +175,7 @@ function handle(m, make) {
 
 /** What `f()` returns, or the IkarusError of what module `m` threw (`failure`). */
 function guarded(m, f) {
+  if (m.memory === null) throw new IkarusError(500, "ikarus.js: the WebAssembly module is not loaded");
   try {
     return f();
   } catch (e) {
@@ -164,6 +212,7 @@ export const FOLLOW_STATUS = Object.freeze(["reached", "limited", "unreachable",
 export class Chain {
   #h;
   #m;
+  #gen;
   #ptr;
   #view = null;
   #followPtr;
@@ -174,6 +223,7 @@ export class Chain {
    */
   constructor(arm, options) {
     this.#m = handles();
+    this.#gen = this.#m.generation;
     this.#h = handle(this.#m, (api) => new api.Chain(arm === undefined ? "" : JSON.stringify(arm), options === undefined ? "" : JSON.stringify(options)));
     /** The number of joints. */
     this.joints = this.#h.joints;
@@ -203,7 +253,7 @@ export class Chain {
 
   /** `solve` through the glue's copies: what refuses an `out` that is not one, with the module's line. */
   #solveGlue(x, y, out) {
-    return guarded(this.#m, () => this.#h.solve(x, y, out));
+    return this.#run(() => this.#h.solve(x, y, out));
   }
 
   /**
@@ -214,13 +264,14 @@ export class Chain {
    * @returns {number}
    */
   solveHere(x, y) {
-    const code = guarded(this.#m, () => this.#h.solveHere(x, y));
+    const code = this.#run(() => this.#h.solveHere(x, y));
     this.#view = viewOf(this.#m, this.#view, this.#ptr, this.recordLen);
     return code;
   }
 
   /** The last `solveHere`'s (or `solve`'s) record: a Float64Array view over the module's memory. */
   get record() {
+    live(this.#m, this.#gen, "Chain");
     this.#view = viewOf(this.#m, this.#view, this.#ptr, this.recordLen);
     return this.#view;
   }
@@ -232,7 +283,7 @@ export class Chain {
    * @param {Float64Array} out
    */
   solveBatch(goals, out) {
-    guarded(this.#m, () => this.#h.solveBatch(goals, out));
+    this.#run(() => this.#h.solveBatch(goals, out));
   }
 
   /**
@@ -251,20 +302,27 @@ export class Chain {
    * @returns {number}
    */
   followHere(startDeg, x, y, maxStepDeg) {
-    const code = guarded(this.#m, () => this.#h.followHere(startDeg, x, y, maxStepDeg));
+    const code = this.#run(() => this.#h.followHere(startDeg, x, y, maxStepDeg));
     this.#follow = viewOf(this.#m, this.#follow, this.#followPtr, this.followLen);
     return code;
   }
 
   /** The last `followHere`'s record: a Float64Array view over the module's memory. */
   get followRecord() {
+    live(this.#m, this.#gen, "Chain");
     this.#follow = viewOf(this.#m, this.#follow, this.#followPtr, this.followLen);
     return this.#follow;
   }
 
-  /** Releases the module's memory for this chain. */
+  /** `f()` in this chain's module, unless the module restarted since the chain was made. */
+  #run(f) {
+    live(this.#m, this.#gen, "Chain");
+    return guarded(this.#m, f);
+  }
+
+  /** Releases the module's memory for this chain (nothing to release once the module restarted). */
   free() {
-    this.#h.free();
+    if (this.#gen === this.#m.generation) this.#h.free();
   }
 }
 
@@ -280,11 +338,13 @@ export class Chain {
 export class Character {
   #h;
   #m;
+  #gen;
   #ptr;
   #view = null;
   /** @param {string} text the character file's text */
   constructor(text) {
     this.#m = handles();
+    this.#gen = this.#m.generation;
     this.#h = handle(this.#m, (api) => new api.Character(text));
     /** @type {string[]} the bones' names, the pose's order */
     this.bones = this.#h.bones();
@@ -301,7 +361,7 @@ export class Character {
 
   /** @param {string | undefined} name the animation sampled from now on (undefined: none) */
   setAnimation(name) {
-    guarded(this.#m, () => this.#h.setAnimation(name));
+    this.#run(() => this.#h.setAnimation(name));
   }
 
   /**
@@ -312,7 +372,7 @@ export class Character {
    */
   pose(time, targets, out) {
     if (!(out instanceof Float64Array) || out.length < this.poseLen) {
-      guarded(this.#m, () => this.#h.pose(time, targets, out));
+      this.#run(() => this.#h.pose(time, targets, out));
       return;
     }
     out.set(this.poseHere(time, targets));
@@ -326,14 +386,20 @@ export class Character {
    * @returns {Float64Array}
    */
   poseHere(time, targets) {
-    guarded(this.#m, () => this.#h.poseHere(time, targets));
+    this.#run(() => this.#h.poseHere(time, targets));
     this.#view = viewOf(this.#m, this.#view, this.#ptr, this.poseLen);
     return this.#view;
   }
 
-  /** Releases the module's memory for this character. */
+  /** `f()` in this character's module, unless the module restarted since the character was made. */
+  #run(f) {
+    live(this.#m, this.#gen, "Character");
+    return guarded(this.#m, f);
+  }
+
+  /** Releases the module's memory for this character (nothing to release once the module restarted). */
   free() {
-    this.#h.free();
+    if (this.#gen === this.#m.generation) this.#h.free();
   }
 }
 

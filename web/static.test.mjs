@@ -342,3 +342,47 @@ test("the static build runs the playground with no ikarus server", async () => {
     child.kill();
   }
 });
+
+test("a job over the page's budget is stopped: answered 503 naming the budget, the worker replaced, the next job answered", async () => {
+  const host = await staticServer();
+  const browser = await launch();
+  try {
+    const { page, errors } = await openPage(browser);
+    await page.goto(`${host.url}/?budget_ms=1500`);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 20000 });
+    // A solve that runs for minutes: a heading the limited arm cannot take, no test that could end
+    // an attempt early, every attempt to the server's caps (iterations, restarts).
+    // (64 stiff links: 6,000 iterations take 2 s in node, the 6.5 million asked for half an hour.)
+    const links = Array.from({ length: 64 }, () => ({ length: 0.1, limits_deg: [-1, 1] }));
+    const endless = {
+      arm: { name: "stiff", links },
+      goal: { x: 6, y: 1, angle_deg: -170 },
+      options: { limits: true, tolerance: 1e-300, angle_tolerance_deg: 1e-300, max_iterations: 100000, restarts: 64, stall_window: 100000, stall_epsilon_deg: 1e-300, backtrack: 0, method: "transpose", no_closed_form: true },
+    };
+    const boy = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.json"), "utf8");
+    const seen = await page.evaluate(
+      async ({ endless, boy }) => {
+        const api = await import("./api.js");
+        // A pose first: the worker then holds spineboy's file (api.js sends it once).
+        const ask = { rig: boy, animation: "walk", time: 0.4, targets: [{ bone: "front-leg-target", x: 120, y: 40 }] };
+        const first = await api.pose(ask);
+        // The only clock: "it is answered at all" (without the budget the solve runs for minutes).
+        const bound = new Promise((done) => setTimeout(() => done("no answer within 60 s"), 60000));
+        const stopped = await Promise.race([api.solve(endless).then((a) => `answered ${a.status}`, (e) => e.message), bound]);
+        const next = await api.solve({ goal: { x: 2, y: 3 } });
+        // The new worker holds no file: api.js sends it again, and the typed pose is the same.
+        const again = await api.pose(ask);
+        return { stopped, next: next.status, same: JSON.stringify(again) === JSON.stringify(first), typed: api.typed.poses };
+      },
+      { endless, boy },
+    );
+    assert.match(seen.stopped, /^request stopped: it took longer than the budget of 1500 ms \(budget_ms in the page's address\); the WebAssembly solver was restarted; ask for less work/);
+    assert.equal(seen.next, "reached");
+    assert.equal(seen.same, true);
+    assert.equal(seen.typed, 2);
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    host.child.kill();
+  }
+});

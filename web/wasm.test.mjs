@@ -417,3 +417,34 @@ test("the typed follow steps as call(\"track\")'s one-sample follow answers, bit
   }
   assert.deepEqual([...seen].sort(), ["limited", "reached", "unreachable"]);
 });
+
+test("a call that runs out of memory is answered with a clear error and the module restarts: the next call works", async () => {
+  const before = new ikarus.Chain();
+  const body = JSON.stringify({ goal: { x: 2, y: 3 } });
+  // The instance ikarus.js runs (the glue's initSync hands back the loaded one): all but none of
+  // wasm32's 4 GiB taken from under it, so that a request's first large allocation fails, as
+  // one whose work grows past 4 GiB does (a wasm32 allocation failure aborts: `unreachable`).
+  const glue = await import(pathToFileURL(join(dir, "ikarus_wasm.js")).href);
+  const memory = glue.initSync().memory;
+  memory.grow(65536 - memory.buffer.byteLength / 65536);
+  // 2000 frames of a 64-link arm: megabytes of frames and JSON.
+  const arm = { name: "long", links: Array.from({ length: 64 }, () => ({ length: 0.1 })) };
+  const big = JSON.stringify({ arm, goal: { x: 3, y: 3 }, frames: 2000 });
+  assert.throws(
+    () => ikarus.call("animate", big),
+    (e) =>
+      e instanceof ikarus.IkarusError &&
+      e.status === 500 &&
+      e.restarted === true &&
+      /^the WebAssembly module stopped \(.*out of memory\?\): it was restarted; ask for less work$/.test(e.message),
+  );
+  // The next call is answered by a fresh instance, as the server answers it.
+  assert.equal(untimed(wasm("solve", body).text), untimed((await native("solve", body)).text));
+  assert.equal(JSON.parse(ikarus.call("animate", big)).frames.length, 2000, "the same request fits in a fresh memory");
+  // Handles of the stopped instance are refused with a line that says why; new ones work.
+  assert.throws(() => before.solveHere(2, 3), (e) => e instanceof ikarus.IkarusError && /made before the WebAssembly module restarted/.test(e.message));
+  before.free();
+  const after = new ikarus.Chain();
+  assert.equal(ikarus.STATUS[after.solveHere(2, 3)], "reached");
+  after.free();
+});

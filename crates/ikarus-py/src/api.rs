@@ -7,18 +7,20 @@ use serde_json::Value;
 use crate::edge::{self, Endpoint, Problem};
 use crate::errors::{problem, request_problem};
 use crate::options::limits;
+use crate::signals::interruptible;
 
 pub(crate) fn svg(py: Python<'_>, body: &Value) -> PyResult<String> {
     let bytes = api_call(py, "render", body.to_string().as_bytes())?;
     String::from_utf8(bytes).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
-/// `POST /api/<endpoint>` with `body`, answered by `edge::call`, or the facade's refusal.
+/// `POST /api/<endpoint>` with `body`, answered by `edge::call`, or the facade's refusal; Ctrl-C
+/// stops it (`signals::interruptible`: the job's token is set and `KeyboardInterrupt` raised).
 fn post(py: Python<'_>, endpoint: &str, body: &[u8]) -> PyResult<Result<Vec<u8>, Problem>> {
     let endpoint =
         Endpoint::from_path(endpoint).ok_or_else(|| PyValueError::new_err(format!("unknown endpoint '{endpoint}'")))?;
-    let body = body.to_vec();
-    Ok(py.detach(move || edge::call(endpoint, &body, limits(), &ikarus::Interrupt::new())).map(|r| r.body))
+    let token = ikarus::Interrupt::new();
+    Ok(interruptible(py, &token, || edge::call(endpoint, body, limits(), &token))?.map(|r| r.body))
 }
 
 /// A request as `ikarus.call` makes it: a refusal is the API's line.

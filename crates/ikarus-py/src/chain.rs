@@ -21,6 +21,7 @@ use crate::errors::{goal_problem, problem};
 use crate::goals::{GOALS_EXPECTED, goal_of, goals_array};
 use crate::options::limits;
 use crate::outcome::{ChainSolved, PyOutcome, Solved, points_array};
+use crate::signals::{interruptible, may_run_long};
 
 /// A planar chain: links joined by revolute joints, with optional joint ranges.
 ///
@@ -245,11 +246,22 @@ impl PyChain {
         let mut outcome = data.outcome();
         let result = match options {
             Some(k) if !k.is_empty() => {
-                let opts = data.options(Some(k))?;
+                let mut opts = data.options(Some(k))?;
+                let token = ikarus::Interrupt::new();
+                let long = may_run_long(&opts);
+                if long {
+                    opts.interrupt = Some(token.clone());
+                }
                 let mut solver = Solver::new(opts).map_err(|e| PyValueError::new_err(e.to_string()))?;
-                py.detach(|| {
-                    solver.solve_into(chain, start, &goal, &mut outcome).map(|()| Arc::new(solver.options().clone()))
-                })
+                let run = || {
+                    let result = solver.solve_into(chain, start, &goal, &mut outcome);
+                    result.map(|()| {
+                        let mut options = solver.options().clone();
+                        options.interrupt = None;
+                        Arc::new(options)
+                    })
+                };
+                if long { interruptible(py, &token, run)? } else { py.detach(run) }
             }
             _ => data.with_default_solver(|solver| {
                 py.detach(|| solver.solve_into(chain, start, &goal, &mut outcome)).map(|()| data.options.clone())
@@ -297,6 +309,9 @@ impl PyChain {
         let mut opts = self.data.options(options)?;
         // A batch records no frames, as `ikarus solve --batch`.
         opts.record_every = None;
+        // Ctrl-C stops the batch: every solve checks the token (`signals::interruptible`).
+        let token = ikarus::Interrupt::new();
+        opts.interrupt = Some(token.clone());
         let solver = Solver::new(opts).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let pool = pool(threads)?;
         let chain = self.data.arm.chain();
@@ -333,10 +348,10 @@ impl PyChain {
                     },
                 )
         };
-        py.detach(|| match &pool {
+        interruptible(py, &token, || match &pool {
             Some(p) => p.install(run),
             None => run(),
-        })
+        })?
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
 
         let out = PyDict::new(py);

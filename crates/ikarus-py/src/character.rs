@@ -7,7 +7,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::edge::{IkReq, Loaded, PoseAsk, load_character, parse_json, pose};
+use crate::edge::{IkReq, Loaded, PoseAsk, load_character, parse_json, pose_watched};
+use crate::signals::interruptible;
 
 /// A character file, read: ``_Character(text, label)`` raises ``ValueError`` with the CLI's
 /// line (``label`` starts it, as ``rig file PATH`` does on the command line).
@@ -78,8 +79,9 @@ impl PyCharacter {
         let ik = asked.choice(&self.loaded.character).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
         let ask = PoseAsk { animation, time, targets, ik, bends: Vec::new() };
-        let report = py
-            .detach(|| pose(&self.loaded, &ask))
+        // Off the calling thread, watching the token Ctrl-C sets (`signals`).
+        let token = ikarus::Interrupt::new();
+        let report = interruptible(py, &token, || pose_watched(&self.loaded, &ask, &token))?
             .map_err(|m| PyValueError::new_err(format!("{}: {m}", self.label)))?;
         let column = |f: fn(&crate::edge::PosedBoneJson) -> f64| -> Vec<f64> { report.bones.iter().map(f).collect() };
         let out = PyDict::new(py);

@@ -14,7 +14,7 @@
 //! its outcomes), `outcome` (`Outcome` of a chain or a rig, `Effector`), `options` (keyword
 //! options as the API's JSON, this edge's caps), `goals` (goals and goal arrays), `batch`
 //! (`solve_batch`'s pools and status codes), `errors` (refusals as Python exceptions), `api`
-//! (requests without HTTP), `easing` (`ease`), and `edge`, the one place that names the shared
+//! (requests without HTTP), `signals` (Ctrl-C during a long call), `easing` (`ease`), and `edge`, the one place that names the shared
 //! facade.
 
 mod api;
@@ -28,6 +28,7 @@ mod errors;
 mod goals;
 mod options;
 mod outcome;
+mod signals;
 
 use pyo3::prelude::*;
 

@@ -56,6 +56,11 @@ impl Problem {
 /// JSON, or an arm or rig file's TOML text for `arm/parse` and `rig/parse`; ignored by the GET
 /// endpoints), under the server's default limits: the answer's text (JSON; the arm file's TOML
 /// for `arm/toml`), or the [`Problem`] the server would answer.
+///
+/// The limits are `Limits::default()`, the defaults of `ikarus serve`'s flags, every cap the
+/// edge has included (frames, samples, bones, iterations, restarts, and what bounds an export's
+/// keys), so one request cannot ask the module for more than the server would do: wasm32 has
+/// 4 GB, and an allocation past them aborts the instance (`web/ikarus.js` restarts it).
 pub fn answer(path: &str, body: &str) -> Result<String, Problem> {
     let endpoint =
         Endpoint::from_path(path).ok_or_else(|| Problem { status: 404, message: format!("no endpoint {path:?}") })?;
@@ -118,5 +123,20 @@ mod tests {
 
         let nowhere = answer("nowhere", "{}").unwrap_err();
         assert_eq!((nowhere.status, nowhere.message.as_str()), (404, r#"no endpoint "nowhere""#));
+    }
+
+    /// The module answers under `ikarus serve`'s default caps: a request over one is refused as
+    /// the server refuses it, before any work (wasm32 has 4 GB: work grown past it traps).
+    #[test]
+    fn requests_are_held_to_the_servers_default_caps() {
+        let caps = Limits::default();
+        let over = format!(r#"{{"goal":{{"x":2,"y":3}},"frames":{}}}"#, caps.max_frames + 1);
+        let refused = answer("animate", &over).unwrap_err();
+        assert_eq!(refused.status, 422, "{refused:?}");
+        assert!(refused.message.contains(&caps.max_frames.to_string()), "{refused:?}");
+        let at = format!(r#"{{"goal":{{"x":2,"y":3}},"frames":{}}}"#, caps.max_frames);
+        assert!(answer("animate", &at).is_ok());
+        let restarts = format!(r#"{{"goal":{{"x":2,"y":3}},"options":{{"restarts":{}}}}}"#, caps.max_restarts + 1);
+        assert_eq!(answer("solve", &restarts).unwrap_err().status, 422);
     }
 }

@@ -16,10 +16,14 @@ fn main() -> ExitCode {
     // TypeScript declarations. The library omits the default module path unless told (the
     // command line keeps it): without it `init()` has no `ikarus_wasm_bg.wasm` beside
     // `import.meta.url` to fetch, and the page's worker could not load the module.
+    // With `__wbg_reset_state` (`--experimental-reset-state-function`): after a trap (out of
+    // memory, a panic, both `unreachable` on wasm32) the module is dead for good, and ikarus.js
+    // calls it to instantiate the compiled module afresh, at once; objects made by the stopped
+    // instance are then refused by the glue instead of reaching the new one's memory.
     let made = Bindgen::new()
         .input_path(input)
         .web(true)
-        .and_then(|b| b.typescript(false).omit_default_module_path(false).generate(out_dir));
+        .and_then(|b| b.typescript(false).omit_default_module_path(false).reset_state_function(true).generate(out_dir));
     match made {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

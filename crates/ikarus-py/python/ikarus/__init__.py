@@ -34,7 +34,7 @@ import numpy as _np
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
 from ._character import _CharacterRig
-from ._results import Motion, MotionFrames, Pose, Track, TrackSamples
+from ._results import CharacterMotion, Motion, MotionFrames, Pose, Track, TrackSamples
 from ._types import (
     LimitMode,
     Method,
@@ -68,6 +68,7 @@ __all__ = [
     "Track",
     "TrackSamples",
     "Pose",
+    "CharacterMotion",
     "SolveOptions",
     "TrackSolveOptions",
     "MotionOptions",
@@ -551,12 +552,14 @@ class Rig(_CharacterRig, _Body):
         return self.render("svg", width=480, height=480).decode()
 
 
-def plot(chain: Chain, pose: Any = None, goal: Any = None, ax: Any = None, **kwargs: Any) -> Any:
+def plot(chain: Union[Chain, Rig, Pose], pose: Any = None, goal: Any = None, ax: Any = None, **kwargs: Any) -> Any:
     """Draws ``chain`` in ``pose`` (its start pose, joint angles in degrees, or an
     :class:`Outcome`) with ``goal`` on matplotlib Axes ``ax`` (new ones by default), and with
     ``workspace=True`` the boundary of the region it reaches (``limits=`` as for
-    :meth:`Chain.workspace`). Returns the Axes. Needs matplotlib (``pip install
-    'ikarus[plot]'``)."""
+    :meth:`Chain.workspace`). A character (a :class:`Rig` read from a Spine or DragonBones
+    file) is drawn as its bones, origin to tip, in ``pose`` (a :class:`Pose`; its setup pose by
+    default), as is a :class:`Pose` given alone. Returns the Axes. Needs matplotlib (``pip
+    install 'ikarus[plot]'``)."""
     from ._plot import plot as _plot
 
     return _plot(chain, pose=pose, goal=goal, ax=ax, **kwargs)

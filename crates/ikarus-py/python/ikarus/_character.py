@@ -1,5 +1,6 @@
 """A character file (Spine, DragonBones JSON) as a :class:`~ikarus.Rig`: what a rig has when it
-holds a character (its reader, ``pose``, ``format``, ``animations``, pickling), mixed into
+holds a character (its reader, ``pose``, ``character_motion``, ``export_spine``, ``format``,
+``animations``, pickling), mixed into
 ``Rig``, whose rig-file methods ask :meth:`_CharacterRig._rig_file` for the rig file and so
 refuse a character in one line."""
 
@@ -9,11 +10,15 @@ import json
 import os
 import typing
 
+import numpy as np
+
 from . import _ikarus
-from ._results import Pose
+from ._results import CharacterMotion, Pose
 
 if typing.TYPE_CHECKING:
-    from typing import Any, Mapping, Optional, Sequence, Tuple, TypeVar
+    from typing import Any, Mapping, Optional, Sequence, Tuple, TypeVar, Union
+
+    from ._types import EaseName
 
     C = TypeVar("C", bound="_CharacterRig")
 
@@ -91,9 +96,92 @@ class _CharacterRig:
         asked: dict = {"ik": ik, "ik_file": ik_file, "goals": self._goal_list(goals or {}), "pins": list(pins)}
         text = json.dumps({k: v for k, v in asked.items() if v is not None}, allow_nan=False)
         answer = self._character.pose(animation, None if time is None else float(time), pairs, text)
+        _refuse_non_finite(answer)
         if answer["ik"] is not None:
             answer["ik"] = json.loads(answer["ik"])
         return Pose(**answer)
+
+    def character_motion(
+        self,
+        targets: Optional[Mapping[str, Tuple[float, float]]] = None,
+        *,
+        keys: Union[Mapping[str, Any], str, "os.PathLike[str]", None] = None,
+        animation: Optional[str] = None,
+        duration: Optional[float] = None,
+        fps: Optional[float] = None,
+        ease: Optional[EaseName] = None,
+        k1: Optional[float] = None,
+        k2: Optional[float] = None,
+        ik: Optional[str] = None,
+        ik_file: Optional[str] = None,
+    ) -> CharacterMotion:
+        """A character's motion, as ``ikarus animate --rig CHARACTER.json --format json``
+        (``POST /api/animate`` with the file's text, by the same code): either ``targets``
+        (``{"bone": (x, y)}``) moved there from where the setup pose has them over ``duration``
+        seconds (1) at ``fps`` (30), eased by ``ease`` (``"sine"``; ``k1``, ``k2`` for
+        ``"parent"``), or ``keys``, the keys file's object (or its path, ``--keys FILE``): bones
+        keyed over time, over the clip ``animation`` if given. ``ik``: ``"runtime"`` (default)
+        or ``"ikarus"`` (with an IK file's text ``ik_file``). Returns a
+        :class:`CharacterMotion` (NumPy columns [frames, bones], the CLI's numbers bit for
+        bit). A bad value, or a motion over the caps (frames, bones), raises ``ValueError``
+        with the API's line naming it."""
+        answer = self._motion_request(targets, keys, animation, "json", duration=duration, fps=fps, ease=ease, k1=k1, k2=k2, ik=ik, ik_file=ik_file)
+        return CharacterMotion._of(json.loads(answer))
+
+    def export_spine(
+        self,
+        targets: Optional[Mapping[str, Tuple[float, float]]] = None,
+        *,
+        keys: Union[Mapping[str, Any], str, "os.PathLike[str]", None] = None,
+        animation: Optional[str] = None,
+        animation_name: Optional[str] = None,
+        duration: Optional[float] = None,
+        fps: Optional[float] = None,
+        ease: Optional[EaseName] = None,
+        k1: Optional[float] = None,
+        k2: Optional[float] = None,
+        ik: Optional[str] = None,
+        ik_file: Optional[str] = None,
+    ) -> str:
+        """The motion of :meth:`character_motion` exported as Spine JSON: the character's file
+        with the motion added as animation ``animation_name`` (``"ikarus"``), the text of
+        ``ikarus animate --rig CHARACTER.json --format spine`` byte for byte. A Spine
+        character only; an export over the caps raises ``ValueError`` naming the cap."""
+        answer = self._motion_request(
+            targets, keys, animation, "spine", animation_name=animation_name, duration=duration, fps=fps, ease=ease, k1=k1, k2=k2, ik=ik, ik_file=ik_file
+        )
+        return bytes(answer).decode("utf-8")
+
+    def _motion_request(
+        self,
+        targets: Optional[Mapping[str, Tuple[float, float]]],
+        keys: Union[Mapping[str, Any], str, "os.PathLike[str]", None],
+        animation: Optional[str],
+        format: str,
+        **fields: Any,
+    ) -> bytes:
+        """``POST /api/animate``'s answer for this character: the request's fields named as
+        this method's keywords."""
+        from . import _plain
+
+        if self._character is None:
+            raise ValueError(
+                f"Rig {self.rig.get('name', 'rig')!r}: character_motion and export_spine take a character "
+                "(Spine or DragonBones JSON); a rig file's rig moves by animate"
+            )
+        if isinstance(keys, (str, os.PathLike)):
+            with open(os.fspath(keys), encoding="utf-8") as f:
+                keys = json.load(f)
+        request: dict = {
+            "rig": self._text,
+            "targets": [{"bone": bone, "x": point[0], "y": point[1]} for bone, point in (targets or {}).items()] or None,
+            "keys": keys,
+            "animation": animation,
+            "format": format,
+            **fields,
+        }
+        body = json.dumps(_plain({k: v for k, v in request.items() if v is not None}, "request"), allow_nan=False)
+        return _ikarus._call("animate", body, keywords=True)
 
     def _goal_list(self, goals: Mapping[str, Any]) -> list:
         """Goals by bone as the API's list (the rig's reader of goals, given by ``Rig``)."""
@@ -105,7 +193,18 @@ class _CharacterRig:
             kind = {"spine": "Spine", "dragonbones": "DragonBones"}[self._character.format]
             raise ValueError(
                 f"Rig {self.rig['name']!r}: a {kind} character, which solve, animate, track and render do not "
-                "take: they take rig files (TOML); pose poses it, and pose(ik=\"ikarus\", goals=…) puts its bones' "
-                "tips on goals as ikarus solve --rig does"
+                "take: they take rig files (TOML); pose poses it, pose(ik=\"ikarus\", goals=…) puts its bones' "
+                "tips on goals as ikarus solve --rig does, character_motion moves it and export_spine exports that"
             )
         return self.rig
+
+
+def _refuse_non_finite(answer: dict) -> None:
+    """A pose whose numbers are not all finite is refused, naming the first bone and column
+    (a library that answers NaN silently is worse than one that says so)."""
+    for column in ("x", "y", "rotation_deg", "tip_x", "tip_y"):
+        bad = np.flatnonzero(~np.isfinite(answer[column]))
+        if bad.size:
+            i = int(bad[0])
+            value = float(answer[column][i])
+            raise ValueError(f"bones[{i}] ({answer['name'][i]!r}).{column} = {value!r}: the pose is not a finite number")

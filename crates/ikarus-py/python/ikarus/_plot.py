@@ -1,4 +1,5 @@
-"""ikarus.plot: a chain, a pose, a goal and the reachable region, drawn with matplotlib.
+"""ikarus.plot: a chain, a pose, a goal and the reachable region, or a character's bones,
+drawn with matplotlib.
 
 matplotlib is an optional dependency (``pip install 'ikarus[plot]'``), imported only here and
 only when a plot is asked for.
@@ -70,7 +71,15 @@ def plot(chain: Any, pose: Any = None, goal: Any = None, ax: Any = None, workspa
             "ikarus.plot needs matplotlib: pip install 'ikarus[plot]' (or pip install matplotlib)"
         ) from e
     from ._ikarus import Outcome
+    from ._results import Pose
 
+    if isinstance(chain, Pose) or getattr(chain, "_character", None) is not None:
+        return _plot_character(plt, chain, pose, goal, ax)
+    if not hasattr(chain, "joints"):
+        raise TypeError(
+            f"ikarus.plot draws a Chain, a character (a Rig read from a Spine or DragonBones file) or a Pose, "
+            f"not a {type(chain).__name__}; a rig file's rig is drawn by Rig.render"
+        )
     if isinstance(pose, Outcome):
         if goal is None:
             x, y, a = pose.goal
@@ -113,4 +122,34 @@ def plot(chain: Any, pose: Any = None, goal: Any = None, ax: Any = None, workspa
     ax.set_aspect("equal")
     ax.grid(True, alpha=0.3)
     ax.set_title(f"{chain.name}: {len(chain)} links")
+    return ax
+
+
+def _plot_character(plt: Any, character: Any, pose: Any, goal: Any, ax: Any) -> Any:
+    """A character's bones as segments from each bone's origin to its tip (``pose``: a
+    :class:`Pose`, by default the character's setup pose; ``character`` may be the Pose itself),
+    with ``goal`` (x, y) marked; y up, equal axes."""
+    from ._results import Pose
+
+    if isinstance(character, Pose):
+        pose, title = character, "pose"
+    else:
+        if pose is None:
+            pose = character.pose()
+        elif not isinstance(pose, Pose):
+            raise TypeError(f"pose: a character is drawn in a Pose (Rig.pose), not a {type(pose).__name__}")
+        title = character.rig.get("name", "character")
+    colours = _palette()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5, 5))
+    xs = np.column_stack([pose.x, pose.tip_x, np.full(len(pose), np.nan)]).ravel()
+    ys = np.column_stack([pose.y, pose.tip_y, np.full(len(pose), np.nan)]).ravel()
+    ax.plot(xs, ys, "-", color=colours["ink"], lw=2, solid_capstyle="round", zorder=3)
+    ax.plot(pose.x, pose.y, "o", color=colours["joints"], ms=3, zorder=4)
+    if goal is not None:
+        g = [float(v) for v in goal]
+        ax.plot(g[0], g[1], "x", color=colours["goal"], ms=10, mew=2.5, zorder=5, label="goal")
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+    ax.set_title(f"{title}: {len(pose)} bones")
     return ax

@@ -212,3 +212,67 @@ class Pose(_ByKey):
             "rotation_deg": float(self.rotation_deg[i]),
             "tip": [float(self.tip_x[i]), float(self.tip_y[i])],
         }
+
+
+def _finite_column(rows: Sequence[Any], key: str, where: str) -> npt.NDArray[np.float64]:
+    """``row[key]`` of each row as float64, refusing a value that is not a finite number (JSON
+    has no NaN: a non-finite answer would come back as ``null``) with a line naming it."""
+    values = [row[key] for row in rows]
+    column = np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+    bad = np.flatnonzero(~np.isfinite(column))
+    if bad.size:
+        i = int(bad[0])
+        shown = "null" if values[i] is None else repr(values[i])
+        raise ValueError(f"{where.format(i=i, name=rows[i].get('name', ''))}.{key} = {shown}: the answer is not a finite number")
+    return column
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class CharacterMotion(_ByKey):
+    """A character's motion (``ikarus animate --rig CHARACTER.json --format json``, ``POST
+    /api/animate`` with the character's text, bit for bit), as columns: ``name`` (the bones,
+    the file's order), ``time`` [F] (seconds), and per frame and bone ``x``, ``y`` (world
+    origin), ``rotation_deg``, ``tip_x``, ``tip_y``, float64 [F, n]; ``unsupported`` (the
+    constraints left inactive, ``{"kind", "name"}``)."""
+
+    name: List[str]
+    time: npt.NDArray[np.float64]
+    x: npt.NDArray[np.float64]
+    y: npt.NDArray[np.float64]
+    rotation_deg: npt.NDArray[np.float64]
+    tip_x: npt.NDArray[np.float64]
+    tip_y: npt.NDArray[np.float64]
+    unsupported: List[Dict[str, Any]]
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+    def pose(self, frame: int) -> Pose:
+        """Frame ``frame`` as a :class:`Pose`."""
+        return Pose(
+            name=list(self.name),
+            x=self.x[frame].copy(),
+            y=self.y[frame].copy(),
+            rotation_deg=self.rotation_deg[frame].copy(),
+            tip_x=self.tip_x[frame].copy(),
+            tip_y=self.tip_y[frame].copy(),
+            unsupported=list(self.unsupported),
+        )
+
+    @classmethod
+    def _of(cls, answer: dict) -> CharacterMotion:
+        frames = answer["frames"]
+        names = [b["name"] for b in frames[0]["bones"]] if frames else []
+        n = len(names)
+        time = _finite_column(frames, "time", "frames[{i}]")
+        keys = ("x", "y", "rotation_deg", "tip_x", "tip_y")
+        columns = {key: np.empty((len(frames), n), dtype=np.float64) for key in keys}
+        for f, frame in enumerate(frames):
+            bones = frame["bones"]
+            where = f"frames[{f}].bones[{{i}}] ({{name!r}})"
+            for key in ("x", "y", "rotation_deg"):
+                columns[key][f] = _finite_column(bones, key, where)
+            tips = [{"name": b["name"], "tip_x": b["tip"][0], "tip_y": b["tip"][1]} for b in bones]
+            for key in ("tip_x", "tip_y"):
+                columns[key][f] = _finite_column(tips, key, where)
+        return cls(name=names, time=time, unsupported=answer.get("unsupported", []), **columns)

@@ -21,6 +21,11 @@ batch = arm.solve_batch(np.zeros((3, 2)), threads=2, method="lm")
 status: np.ndarray = batch["status"]
 options: ikarus.SolveOptions = {"method": "sdls", "restarts": 4}
 arm.solve((1.0, 1.0), **options)
+boy = ikarus.Rig.from_file("spineboy.json")
+walked: ikarus.CharacterMotion = boy.character_motion(keys={"fps": 30, "tracks": {}}, animation="walk")
+rows: np.ndarray = walked.x
+posed: ikarus.Pose = walked.pose(0)
+spine: str = boy.export_spine({"front-leg-target": (120.0, 40.0)}, duration=0.5, ease="sine", animation_name="ikarus")
 
 arm.solve((2.0, 3.0), method="lmm")  # type: ignore[arg-type]
 arm.solve((2.0, 3.0), lamda=0.1)  # type: ignore[call-arg]
@@ -31,3 +36,5 @@ arm.workspace(True)  # type: ignore[misc]
 arm.animate((2.0, 3.0), ease="bounce")  # type: ignore[arg-type]
 arm.animate((2.0, 3.0), framez=3)  # type: ignore[call-arg]
 rig.track("right_hand", circle=(0.3, 0.8, 0.2), solver_max_step="10")  # type: ignore[call-arg]
+boy.character_motion({"front-leg-target": (120.0, 40.0)}, ease="bounce")  # type: ignore[arg-type]
+boy.export_spine({"front-leg-target": (120.0, 40.0)}, 0.5)  # type: ignore[misc, arg-type]

@@ -49,57 +49,31 @@ export function forPeople(message) {
  * The WebAssembly solver when the page is the static build and its module loads: a module Web
  * Worker (ikarus-worker.js, which imports ikarus.js) answering `ask(path, body)` with
  * {status, text}, one request at a time in order, off the page's thread so that a long job does
- * not freeze the page. Else null: the server answers.
+ * not freeze the page. ikarus-thread.js keeps it answering: a job over its budget (`?budget_ms=`,
+ * 10 s by default) is answered 503 and the worker replaced, as is one whose module trapped.
+ * Else null: the server answers.
  */
 const wasm =
   typeof document !== "undefined" && document.querySelector('meta[name="ikarus-backend"][content="wasm"]') ? startWorker() : Promise.resolve(null);
 
-function startWorker() {
-  return new Promise((resolve) => {
-    const fail = (why) => {
-      console.warn("ikarus: the WebAssembly module did not load; asking the server instead:", why);
-      resolve(null);
+async function startWorker() {
+  try {
+    const { solverThread, budgetOf } = await import("./ikarus-thread.js");
+    // A new worker holds no character file nor chain: send them again with the next pose or follow.
+    const forget = () => {
+      workerRig = null;
+      workerChain = null;
     };
-    let worker;
-    try {
-      worker = new Worker(new URL("./ikarus-worker.js", import.meta.url), { type: "module" });
-    } catch (e) {
-      fail(e);
-      return;
-    }
-    const waiting = new Map();
-    let next = 0;
-    worker.onerror = (e) => fail(e.message || e);
-    worker.onmessage = ({ data }) => {
-      if ("ready" in data) {
-        worker.onerror = null;
-        if (!data.ready) return fail(data.error);
-        resolve({
-          ask: (path, body) =>
-            new Promise((done) => {
-              const id = next++;
-              waiting.set(id, done);
-              worker.postMessage({ id, path, body });
-            }),
-          askPose: (ask) =>
-            new Promise((done) => {
-              const id = next++;
-              waiting.set(id, done);
-              worker.postMessage({ id, pose: ask });
-            }),
-          askFollow: (ask) =>
-            new Promise((done) => {
-              const id = next++;
-              waiting.set(id, done);
-              worker.postMessage({ id, follow: ask });
-            }),
-        });
-        return;
-      }
-      waiting.get(data.id)(data);
-      waiting.delete(data.id);
+    const thread = await solverThread(new URL("./ikarus-worker.js", import.meta.url), budgetOf(location.search), forget);
+    return {
+      ask: (path, body) => thread.ask({ path, body }),
+      askPose: (ask) => thread.ask({ pose: ask }),
+      askFollow: (ask) => thread.ask({ follow: ask }),
     };
-  });
+  } catch (why) {
+    console.warn("ikarus: the WebAssembly module did not load; asking the server instead:", why);
+    return null;
+  }
 }
 
 const PICTURES_NEED_SERVER = "Pictures (PNG and GIF from /api/render) are drawn by `ikarus serve`; this page runs without it";
