@@ -33,6 +33,9 @@ pub struct PoseAsk {
     /// `(constraint, bend_positive)`: the constraints' bend sides in place of the clip's
     /// ([`ikarus::character::PoseRequest::bends`]).
     pub bends: Vec<(usize, bool)>,
+    /// `(bone, rotation_deg)`: bones turned by hand, each one's local rotation in degrees in
+    /// place of the clip's ([`ikarus::character::PoseRequest::turns`]).
+    pub turns: Vec<(usize, f64)>,
 }
 
 /// Whose rules solve a character's IK constraints.
@@ -94,7 +97,15 @@ pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Opti
         let bone = c.bone_index(name).ok_or_else(|| format!("target {name:?}: no bone of that name"))?;
         targets.push((bone, target_point(name, [*x, *y])?));
     }
-    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
+    let mut turns = Vec::with_capacity(ask.turns.len());
+    for &(bone, deg) in &ask.turns {
+        if !deg.is_finite() {
+            let name = c.bones().get(bone).map_or("?", |b| b.name.as_str());
+            return Err(format!("rotations.{name}: the angle must be finite, got {deg}"));
+        }
+        turns.push((bone, deg.to_radians()));
+    }
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns };
     match &ask.ik {
         IkChoice::Runtime => c.pose(&request, out).map(|()| None).map_err(|e| e.to_string()),
         IkChoice::Ikarus(rules) => {
@@ -352,6 +363,7 @@ mod tests {
             targets,
             ik: IkChoice::Runtime,
             bends: Vec::new(),
+            turns: Vec::new(),
         };
         let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
         assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");

@@ -77,7 +77,7 @@ impl PyCharacter {
         };
         let ik = asked.choice(&self.loaded.character).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
-        let ask = PoseAsk { animation, time, targets, ik, bends: Vec::new() };
+        let ask = PoseAsk { animation, time, targets, ik, bends: Vec::new(), turns: Vec::new() };
         let report = py
             .detach(|| pose(&self.loaded, &ask))
             .map_err(|m| PyValueError::new_err(format!("{}: {m}", self.label)))?;
