@@ -178,7 +178,7 @@ let workerRig = null;
  */
 export async function pose(body) {
   const m = await wasm;
-  if (!m || body.ik || body.goals || body.pins) return post("/api/pose", body);
+  if (!m || body.ik || body.goals || body.pins || body.bends || body.rotations) return post("/api/pose", body);
   const { rig, ...ask } = body;
   const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
   if (reply.status === 200 && reply.typed) {
