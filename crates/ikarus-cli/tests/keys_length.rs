@@ -1,8 +1,9 @@
 //! The keyed motion's length (`"duration"` in the keys): the frames, CSV and GIF run to it, not
 //! to the last key. spineboy's front foot keyed to 0.9 s over `walk` with a duration of 2 s has
 //! 2 × 30 + 1 frames, the last at 2 s, the foot holding its last key after 0.9 s while the clip
-//! plays on; the command line and the API answer the same; a rig's keys run to it too; a
-//! duration before the last key, off a frame or not finite is refused naming the field.
+//! plays on; the command line and the API answer the same, the CSV and the GIF run to it; a
+//! rig's keys run to it too; a duration before the last key, off a frame or not finite is
+//! refused naming the field.
 
 mod common;
 #[path = "common/rigs.rs"]
@@ -62,6 +63,43 @@ fn a_character_s_keys_run_to_their_duration_holding_the_last_key_while_the_clip_
     let bones = frames[0]["bones"].as_array().unwrap().len();
     assert_eq!(csv.lines().count(), 1 + 61 * bones);
     assert!(csv.lines().last().unwrap().starts_with("60,2.0,"), "{:?}", csv.lines().last());
+}
+
+/// The number of frames of a GIF.
+fn gif_frames(bytes: &[u8]) -> usize {
+    let mut decoder = gif::DecodeOptions::new().read_info(bytes).unwrap();
+    let mut n = 0;
+    while decoder.next_frame_info().unwrap().is_some() {
+        n += 1;
+    }
+    n
+}
+
+#[test]
+fn a_character_s_keyed_gif_runs_to_the_duration() {
+    let out = |name: &str, keys: &Value| {
+        let file = keys_file(name, keys);
+        let gif = common::temp_file("keys-length", &format!("{name}.gif"), "");
+        let o = common::ikarus(&[
+            "animate",
+            "--rig",
+            SPINEBOY,
+            "--keys",
+            &file,
+            "--animation",
+            "walk",
+            "--width",
+            "60",
+            "--height",
+            "60",
+            "--out",
+            &gif,
+        ]);
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        gif_frames(&std::fs::read(&gif).unwrap())
+    };
+    assert_eq!(out("gif-2s", &with_duration(spineboy_keys(), json!(2.0))), 61, "a frame per motion frame, to 2 s");
+    assert_eq!(out("gif-keys", &spineboy_keys()), 28, "without a duration: to the last key, 0.9 s");
 }
 
 #[test]
