@@ -95,3 +95,25 @@ fn bad_requests_are_refused_by_name() {
         format!("bend: no constraint {k}")
     );
 }
+
+#[test]
+fn a_turn_replaces_the_clips_rotation_and_the_children_follow() {
+    let c = character();
+    let mut clip = Posed::default();
+    let mut turned = Posed::default();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), ..PoseRequest::default() }, &mut clip).unwrap();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), turns: &[(1, -0.3)], ..PoseRequest::default() }, &mut turned).unwrap();
+    // In place of the clip's 0.35, exactly; the bone stays where it is, its child moves.
+    assert_eq!(turned.local(1).rotation, -0.3);
+    assert_eq!(turned.origin(1), clip.origin(1));
+    assert_ne!(turned.origin(2), clip.origin(2));
+    let mut bad = Posed::default();
+    assert_eq!(
+        c.pose(&PoseRequest { turns: &[(3, 0.0)], ..PoseRequest::default() }, &mut bad).unwrap_err(),
+        PoseError::UnknownTurn(3)
+    );
+    assert_eq!(
+        c.pose(&PoseRequest { turns: &[(1, f64::NAN)], ..PoseRequest::default() }, &mut bad).unwrap_err().to_string(),
+        "turn: bone 1's rotation must be finite, got NaN"
+    );
+}
