@@ -32,14 +32,6 @@ async function alongBone(page, name, u) {
   return page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [b.x + u * (b.tip[0] - b.x), b.y + u * (b.tip[1] - b.y)]);
 }
 
-/** The client point of bone `name`'s tip turned by `deg` about its origin. */
-async function turnedTip(page, name, deg) {
-  const b = await bone(page, name);
-  const a = (deg * Math.PI) / 180;
-  const [dx, dy] = [0.8 * (b.tip[0] - b.x), 0.8 * (b.tip[1] - b.y)];
-  return page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [b.x + dx * Math.cos(a) - dy * Math.sin(a), b.y + dx * Math.sin(a) + dy * Math.cos(a)]);
-}
-
 /** Drags bone `name` from 80% along it round its origin by `deg`, and waits. */
 async function turnBone(page, name, deg) {
   await page.mouse.move(...(await alongBone(page, name, 0.8)));
