@@ -42,7 +42,7 @@ async function turnBone(page, name, deg) {
 }
 
 let grabbed = null;
-/** Like turnedTip, but from where the bone was when the drag began (the bone turns under the pointer). */
+/** The client point 80% along bone `name` turned by `deg` about its origin, from where the bone was when the drag began (it turns under the pointer). */
 async function turnedTipFrom(page, name, deg) {
   if (deg === 0 || !grabbed || grabbed.name !== name) grabbed = { name, b: await bone(page, name) };
   const { b } = grabbed;
