@@ -41,7 +41,7 @@ test("the animator's flow: a walk keyed on the puppet, undone and redone, the ha
       );
       walked.keys.tracks[bone].forEach((q, k) => assert.ok(Math.hypot(q.x - targets[k][0], q.y - targets[k][1]) < 1e-6, `${bone} key ${k} at ${q.x}, ${q.y}, dragged to ${targets[k]}`));
     }
-    assert.equal(walked.frames.length, 37, "frames 0 to 36 at 30 fps");
+    assert.equal(walked.frames.length, 61, "frames 0 to 60 at 30 fps: to the Length, 2 s");
     await shot(page, "1-walk");
 
     // The last three key edits undone one by one, the keys as they were before each; redone.

@@ -89,10 +89,11 @@ test("the arm: its tip keyed at three times plays through its keys, frame for fr
 
     // The page's frames are the CLI's for the same keys (the built-in seed arm).
     const keysFile = join(artifacts, "keys-arm.json");
-    writeFileSync(keysFile, JSON.stringify(keys));
+    // As the page sends them: with the Length (2 s) as their duration.
+    writeFileSync(keysFile, JSON.stringify({ ...keys, duration: 2 }));
     const cli = JSON.parse(execFileSync(binary, ["animate", "--keys", keysFile, "--format", "json"], { encoding: "utf8" }));
     const frames = await page.evaluate(() => window.ikarus.state.motion.frames.map(({ time, status, angles_deg, joints }) => ({ time, status, angles_deg, joints })));
-    assert.equal(frames.length, Math.round(0.8 * keys.fps) + 1);
+    assert.equal(frames.length, Math.round(2 * keys.fps) + 1, "to the Length, past the last key at 0.8 s");
     assert.deepEqual(
       frames,
       cli.frames.map(({ time, status, angles_deg, joints }) => ({ time, status, angles_deg, joints })),
@@ -117,7 +118,9 @@ test("the arm: its tip keyed at three times plays through its keys, frame for fr
     await page.evaluate(() => window.ikarus.project.undo());
     await settled(page);
     assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys.tracks.link2.map((q) => q.time)), [0, 0.4]);
-    assert.equal((await motionOf()).length, 13);
+    const undone = await motionOf();
+    assert.equal(undone.length, 61, "to the Length still");
+    assert.notDeepEqual(undone, frames.map(({ time, angles_deg, joints }) => ({ time, angles_deg, joints })), "the motion without the last key");
     await page.evaluate(() => window.ikarus.project.redo());
     await settled(page);
     assert.deepEqual(await page.evaluate(() => window.ikarus.state.keys), keys);

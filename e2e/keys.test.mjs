@@ -39,7 +39,7 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     }
     const motion = await page.evaluate(() => ({ fps: window.ikarus.state.motion.fps, n: window.ikarus.state.motion.frames.length, times: window.ikarus.state.motion.frames.map((f) => f.time) }));
     assert.equal(motion.fps, 30);
-    assert.equal(motion.n, 37, "frames 0 to 36");
+    assert.equal(motion.n, 61, "frames 0 to 60: the keys end at 1.2 s, the motion runs to the Length, 2 s");
     motion.times.forEach((t, k) => assert.equal(t, k / 30));
     // The rows: one per keyed effector, four diamonds each.
     await page.screenshot({ path: join(dir, "keys-puppet-walk.png") });
@@ -98,7 +98,7 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
       [0, 0.5, 0.8, 1.2, 1.6],
       "pasted at 1.6 s",
     );
-    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 49, "the motion runs to the pasted key");
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 61, "the motion runs to the Length past the pasted key");
     await page.keyboard.press("Delete");
     await settled(page);
     assert.deepEqual(
@@ -110,7 +110,7 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     await page.selectOption("#key-ease", "linear");
     await settled(page);
     assert.equal((await hand())[1].ease, "linear");
-    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 37);
+    assert.equal(await page.evaluate(() => window.ikarus.state.motion.frames.length), 61);
 
     // The knee flipped by its bend handle (limits off: the puppet's knees bend one way only with
     // them; without them the lifted foot's knee bends whichever way the solve takes it).
@@ -144,13 +144,15 @@ test("the puppet: a walk keyed on both feet and both hands plays with every effe
     // the same keys (the page's solver settings are the CLI's defaults, limits now off).
     const [d] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-json")]);
     const saved = JSON.parse(readFileSync(await d.path(), "utf8"));
-    assert.equal(saved.frames.length, 37);
+    assert.equal(saved.frames.length, 61);
     assert.equal(saved.frames[36].time, 1.2);
+    assert.equal(saved.frames[60].time, 2);
     const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);
     const csv = readFileSync(await c.path(), "utf8");
-    assert.equal(csv.trim().split("\n").length, 38, "a header and 37 rows");
+    assert.equal(csv.trim().split("\n").length, 62, "a header and 61 rows");
     const keysFile = join(dir, "keys-puppet-walk.json");
-    writeFileSync(keysFile, JSON.stringify(keys2));
+    // As the page sends them: with the Length (2 s) as their duration.
+    writeFileSync(keysFile, JSON.stringify({ ...keys2, duration: 2 }));
     const rigFile = join(import.meta.dirname, "..", "examples", "rigs", "puppet.toml");
     const cli = execFileSync(binary, ["animate", "--rig", rigFile, "--keys", keysFile, "--no-limits", "--format", "csv"], { encoding: "utf8" });
     assert.equal(csv, cli, "the page's CSV is `ikarus animate --rig puppet.toml --keys … --no-limits --format csv`");
@@ -270,7 +272,7 @@ test("spineboy: the front foot target keyed over walk (four keys) is on its keys
     assert.equal(await page.isDisabled("#key-frames-csv"), false);
     assert.equal(await page.isDisabled("#key-gif"), false);
     const keysFile = join(artifacts, "keys-spineboy-walk.json");
-    writeFileSync(keysFile, JSON.stringify({ fps: keys.fps, tracks: keys.tracks }));
+    writeFileSync(keysFile, JSON.stringify({ fps: keys.fps, tracks: keys.tracks, duration: 2 }));
     const spineboy = join(examples, "spine-spineboy-pro.json");
     const cliArgs = ["animate", "--rig", spineboy, "--keys", keysFile, "--animation", "walk"];
     const [c] = await Promise.all([page.waitForEvent("download"), page.click("#key-frames-csv")]);

@@ -8,13 +8,8 @@ import assert from "node:assert/strict";
 import {
   armAnimateRequest,
   armBones,
-  bendAllowed,
   bendAt,
-  bendHandleAt,
-  bendHandles,
-  bendLimbs,
   characterAnimateRequest,
-  characterBendHandles,
   characterMotion,
   deleteKey,
   emptyKeys,
@@ -36,6 +31,7 @@ import {
   tidy,
   togglePinKey,
 } from "../crates/ikarus-cli/src/serve/assets/keys.js";
+import { bendAllowed, bendHandleAt, bendHandles, bendLimbs, characterBendHandles } from "../crates/ikarus-cli/src/serve/assets/bendhandles.js";
 import { pickKey, rowAxis } from "../crates/ikarus-cli/src/serve/assets/drawkeys.js";
 import { bodyForward } from "../crates/ikarus-cli/src/serve/assets/body.js";
 

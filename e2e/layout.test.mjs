@@ -4,7 +4,9 @@
 // Enter work wherever the focus is but in a field or on a button.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { ended, openPage, ready, setField, withBrowser } from "./browser.mjs";
+import { mkdirSync } from "node:fs";
+import { join } from "node:path";
+import { artifacts, ended, openPage, ready, setField, withBrowser } from "./browser.mjs";
 
 const VIEWPORTS = [
   { width: 1280, height: 800 },
@@ -159,5 +161,44 @@ test("arrow keys and Enter work with the focus anywhere but in a field or on a b
     await page.keyboard.press("ArrowLeft");
     assert.deepEqual(await goal(), held);
     assert.deepEqual(errors, []);
+  });
+});
+
+test("a narrow window: opening the controls leaves the canvas a usable size, the controls below it scrolling", async () => {
+  mkdirSync(artifacts, { recursive: true });
+  await withBrowser(async ({ url, browser }) => {
+    for (const viewport of [
+      { width: 400, height: 800 },
+      { width: 375, height: 667 },
+    ]) {
+      const { page, errors } = await openPage(browser, viewport);
+      await page.goto(url);
+      await ready(page);
+      const what = `${viewport.width}×${viewport.height}`;
+      const box = (id) => page.evaluate((i) => JSON.parse(JSON.stringify(document.getElementById(i).getBoundingClientRect())), id);
+      const closed = await box("plot");
+      if (!(await page.evaluate(() => document.body.classList.contains("collapsed")))) await page.click("#panel-toggle");
+      await page.click("#panel-toggle");
+      assert.equal(await page.evaluate(() => document.body.classList.contains("collapsed")), false, `${what}: the controls open`);
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      await page.screenshot({ path: join(artifacts, `layout-narrow-${viewport.width}-open.png`) });
+      const open = await box("plot");
+      const panel = await box("panel");
+      assert.ok(open.height >= 0.45 * viewport.height, `${what}: the canvas is ${open.height} px tall with the controls open (${closed.height} px closed)`);
+      assert.ok(open.width >= viewport.width - 1, `${what}: the canvas keeps the window's width (${open.width} px)`);
+      assert.ok(panel.top >= open.bottom - 0.5 && panel.height >= 120, `${what}: the controls below the canvas (${JSON.stringify(panel)})`);
+      assert.ok(panel.bottom <= viewport.height + 0.5, `${what}: the controls inside the window`);
+      assert.ok(await page.evaluate(() => getComputedStyle(document.getElementById("panel")).overflowY === "auto"), `${what}: the controls scroll`);
+      // A rig: the keys bar shows under the timeline too; the canvas keeps its height.
+      await page.evaluate(() => window.ikarus.rigs.use("rig:puppet"));
+      await page.waitForFunction(() => window.ikarus.rigs.settled() && window.ikarus.state.rig, null, { timeout: 15000 });
+      if (await page.evaluate(() => document.body.classList.contains("collapsed"))) await page.click("#panel-toggle");
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      await page.screenshot({ path: join(artifacts, `layout-narrow-${viewport.width}-rig-open.png`) });
+      const rig = await box("plot");
+      assert.ok(rig.height >= 0.45 * viewport.height, `${what}: with a rig the canvas is ${rig.height} px tall with the controls open`);
+      assert.deepEqual(errors, [], `${what}: console errors`);
+      await page.close();
+    }
   });
 });

@@ -148,6 +148,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         targets: args.target.clone(),
         ik,
         bends: Vec::new(),
+        turns: Vec::new(),
     };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, &|| caption(args), &args.size)?;

@@ -9,20 +9,31 @@
 //! {"fps": 30,
 //!  "tracks": {"left_foot": [{"time": 0.0, "x": 0.1, "y": -0.9, "ease": "sine"}, …]},
 //!  "bends": {"left_shin": [{"time": 0.0, "bend": "ccw"}, {"time": 0.5, "bend": "cw"}]},
-//!  "pins": ["right_foot"]}
+//!  "pins": ["right_foot"],
+//!  "duration": 2.0}
 //! ```
+//!
+//! `duration` (seconds, optional) is the motion's length: the frames run to it, each track
+//! holding its last key after its end (and a character's clip under the keys playing on); it is
+//! at least the last key's time and on a frame. Without it the motion ends at the last key. A
+//! character's keys may also turn bones by hand ([`rotations`]): `"rotations": {"BONE":
+//! [{"time": 0.2, "angle_deg": 30}]}`.
 
 use std::collections::BTreeMap;
 
 use ikarus::motion::KeyTrack;
 use ikarus::number::Num;
-use ikarus::{Bend, EaseKind, Joint, Skeleton};
+use ikarus::{Bend, Ease, EaseKind, Joint, Skeleton};
 use serde::Deserialize;
 
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::names::cell;
 
+pub mod character;
 pub mod motion;
+pub mod rotations;
+
+pub use rotations::RotationKeyReq;
 
 /// Frames per second when the keys give none.
 pub const DEFAULT_KEY_FPS: f64 = 30.0;
@@ -49,6 +60,12 @@ pub struct KeysFile {
     /// Bones whose tips hold where the start pose has them (position and direction).
     #[serde(default)]
     pub pins: Vec<String>,
+    /// The motion's length, seconds (see the module docs); none: the last key's time.
+    #[serde(default)]
+    pub duration: Option<f64>,
+    /// Bone name → its local rotation's keys (a character's only: [`rotations`]).
+    #[serde(default)]
+    pub rotations: BTreeMap<String, Vec<RotationKeyReq>>,
 }
 
 /// One key of a track: the target of the bone's tip at `time` seconds, and the ease of the
@@ -126,6 +143,10 @@ pub struct CharacterKeys {
     pub tracks: Vec<KeyedBone>,
     /// The two-bone IK constraints' bends, by constraint.
     pub bends: Bends,
+    /// The bones turned by hand: each one's local rotation track (one value, degrees).
+    pub rotations: Vec<KeyedBone>,
+    /// The motion's length, seconds: `duration`, else the last key's time.
+    pub duration: f64,
 }
 
 /// The checked keys of a rig: what each frame solves.
@@ -175,7 +196,11 @@ fn frame_of(time: f64, fps: f64) -> Result<usize, String> {
 /// Checks the key times of one track (`field` is `keys.tracks.NAME` or `keys.bends.NAME`): at
 /// least one key, at most [`MAX_KEYS`], the first at 0, strictly increasing, finite, each on a
 /// frame; their frame indices.
-fn key_frames(field: &str, times: impl ExactSizeIterator<Item = f64>, fps: f64) -> Result<Vec<usize>, String> {
+pub(crate) fn key_frames(
+    field: &str,
+    times: impl ExactSizeIterator<Item = f64>,
+    fps: f64,
+) -> Result<Vec<usize>, String> {
     let n = times.len();
     if n == 0 {
         return Err(format!("{field}: a track needs at least one key, at time 0"));
@@ -218,6 +243,11 @@ impl KeysFile {
         let bone = |field: &str, name: &str| -> Result<usize, String> {
             crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
         };
+        if !self.rotations.is_empty() {
+            return Err(
+                "keys.rotations: for a character only (a rig's bones are turned by its solve; key their tips in keys.tracks)".into(),
+            );
+        }
         let (fps, mut last, tracks) = self.tracks(&bone)?;
         let joint = |field: &str, name: &str| -> Result<usize, String> {
             let index = bone(field, name)?;
@@ -245,6 +275,7 @@ impl KeysFile {
             }
             pins.push(index);
         }
+        let last = self.length(fps, last)?;
         frames_within(last, max_frames, cap)?;
         Ok(KeyPlan { fps, last, tracks, bends, pins })
     }
@@ -291,8 +322,29 @@ impl KeysFile {
             ));
         }
         let bends = self.bend_keys(constraint, fps, &mut last)?;
+        let rotations = rotations::check(&self.rotations, bone, fps, &mut last)?;
+        let last = self.length(fps, last)?;
         frames_within(last, max_frames, cap)?;
-        Ok(CharacterKeys { fps, tracks, bends })
+        Ok(CharacterKeys { fps, tracks, bends, rotations, duration: last as f64 / fps })
+    }
+
+    /// The motion's last frame: `duration`'s when given (finite, on a frame, not before the last
+    /// key's frame `last`), else `last`.
+    fn length(&self, fps: f64, last: usize) -> Result<usize, String> {
+        let Some(d) = self.duration else { return Ok(last) };
+        let at = || format!("keys.duration = {}", Num(d));
+        if !d.is_finite() || d < 0.0 {
+            return Err(format!("{}: must be a finite number of seconds >= 0", at()));
+        }
+        let frame = frame_of(d, fps).map_err(|m| format!("{}: {m}", at()))?;
+        if frame < last {
+            return Err(format!(
+                "{}: before the last key's time {}; the motion runs at least to its last key",
+                at(),
+                Num(last as f64 / fps)
+            ));
+        }
+        Ok(frame)
     }
 
     /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`);
@@ -301,14 +353,15 @@ impl KeysFile {
         &self,
         bone: &dyn Fn(&str, &str) -> Result<usize, String>,
     ) -> Result<(f64, usize, Vec<KeyedBone>), String> {
-        let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
-        if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
-            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
-        }
-        if self.tracks.is_empty() {
+        // A character's keys may turn bones alone; anything else keys a track.
+        if self.tracks.is_empty() && self.rotations.is_empty() {
             return Err(
                 "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
             );
+        }
+        let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
+        if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
+            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
         }
         let effectors = self.tracks.len() + self.pins.len();
         if effectors > MAX_TRACKS {
@@ -331,10 +384,21 @@ impl KeysFile {
 
 /// At most `max_frames` frames `0..=last`.
 fn frames_within(last: usize, max_frames: usize, cap: &str) -> Result<(), String> {
-    if last + 1 > max_frames {
-        return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last + 1));
+    if last >= max_frames {
+        return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last.saturating_add(1)));
     }
     Ok(())
+}
+
+/// A key's ease by the one rule of `--ease/--k1/--k2` ([`choose_ease`], sine by default); a
+/// problem names the key's field `at` (`keys.tracks.foot[2]`).
+pub(crate) fn key_ease(at: &str, ease: Option<EaseKind>, k1: Option<f64>, k2: Option<f64>) -> Result<Ease, String> {
+    choose_ease(ease, k1, k2, EaseKind::Sine).map_err(|p| match p {
+        EaseProblem::KWithoutParent { k1 } => {
+            format!("{at}.{}: only applies with \"ease\": \"parent\"", if k1 { "k1" } else { "k2" })
+        }
+        EaseProblem::Invalid(e) => format!("{at}.{e}"),
+    })
 }
 
 /// The track of one bone's keys: finite values, the direction on every key or none, each key's
@@ -358,13 +422,7 @@ fn keyed_bone(field: &str, bone: usize, keys: &[KeyReq], frames: &[usize], fps: 
         }
         values.extend([k.x, k.y]);
         values.extend(k.angle_deg.map(f64::to_radians));
-        let ease = choose_ease(k.ease, k.k1, k.k2, EaseKind::Sine).map_err(|p| match p {
-            EaseProblem::KWithoutParent { k1 } => {
-                format!("{field}[{i}].{}: only applies with \"ease\": \"parent\"", if k1 { "k1" } else { "k2" })
-            }
-            EaseProblem::Invalid(e) => format!("{field}[{i}].{e}"),
-        })?;
-        eases.push(ease);
+        eases.push(key_ease(&format!("{field}[{i}]"), k.ease, k.k1, k.k2)?);
     }
     let n = if oriented { 3 } else { 2 };
     let times = frames.iter().map(|&f| f as f64 / fps).collect();

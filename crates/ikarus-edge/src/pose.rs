@@ -34,6 +34,9 @@ pub struct PoseAsk {
     /// `(constraint, bend_positive)`: the constraints' bend sides in place of the clip's
     /// ([`ikarus::character::PoseRequest::bends`]).
     pub bends: Vec<(usize, bool)>,
+    /// `(bone, rotation_deg)`: bones turned by hand, each one's local rotation in degrees in
+    /// place of the clip's ([`ikarus::character::PoseRequest::turns`]).
+    pub turns: Vec<(usize, f64)>,
 }
 
 /// Whose rules solve a character's IK constraints.
@@ -126,7 +129,15 @@ pub(crate) fn pose_into_until(
         let bone = c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)))?;
         targets.push((bone, target_point(name, [*x, *y])?));
     }
-    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends };
+    let mut turns = Vec::with_capacity(ask.turns.len());
+    for &(bone, deg) in &ask.turns {
+        if !deg.is_finite() {
+            let name = c.bones().get(bone).map_or("?", |b| b.name.as_str());
+            return Err(format!("rotations.{}: the angle must be finite, got {deg}", cell(name)));
+        }
+        turns.push((bone, deg.to_radians()));
+    }
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns };
     let report = match &ask.ik {
         IkChoice::Runtime => match interrupt {
             Some(token) => c.pose_watched(&request, out, token),
@@ -396,6 +407,7 @@ mod tests {
             targets,
             ik: IkChoice::Runtime,
             bends: Vec::new(),
+            turns: Vec::new(),
         };
         let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
         assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");

@@ -40,6 +40,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("main.js", JS, include_str!("assets/main.js")),
     ("api.js", JS, include_str!("assets/api.js")),
     ("armfile.js", JS, include_str!("assets/armfile.js")),
+    ("bendhandles.js", JS, include_str!("assets/bendhandles.js")),
     ("body.js", JS, include_str!("assets/body.js")),
     ("camera.js", JS, include_str!("assets/camera.js")),
     ("character.js", JS, include_str!("assets/character.js")),

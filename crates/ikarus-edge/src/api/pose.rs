@@ -1,6 +1,8 @@
 //! `POST /api/pose`: a character file posed as its runtime does, the JSON of `ikarus pose
 //! --format json` ([`crate::pose`]).
 
+use std::collections::BTreeMap;
+
 use serde::Deserialize;
 
 use super::bodies::{effectors_within, field_name, named_goals};
@@ -9,6 +11,8 @@ use super::requests::request;
 use super::{Limits, Problem, Reply, parse_json, status};
 use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
+use crate::keys::BendName;
+use crate::keys::character::{bend_constraint, bend_positive};
 use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
 use ikarus::Interrupt;
@@ -18,8 +22,12 @@ use std::sync::Arc;
 request! {
     /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
     /// "y"}, …], "ik": "ikarus", "ik_file": "<TOML>", "goals": [{"bone", "x", "y", "bones", …}],
-    /// "pins": ["BONE", …]}`: every field but `rig` optional; `goals` and `pins` only with `"ik":
-    /// "ikarus"`.
+    /// "pins": ["BONE", …], "bends": {"front-shin": "cw"}, "rotations": {"head": 30}}`: every
+    /// field but `rig` optional;
+    /// `goals` and `pins` only with `"ik": "ikarus"`. `bends` sets the side of the two-bone IK
+    /// constraints whose lower bones it names, as a keys file's bend key does (the page poses a
+    /// drag in Key mode with the bends in force at the playhead); `rotations` turns bones by hand
+    /// (each one's local rotation, degrees, in place of the clip's), as a rotation key does.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct PoseReq {
@@ -30,6 +38,8 @@ request! {
         pub animation: Option<String>,
         pub time: Option<f64>,
         pub targets: Vec<TargetReq>,
+        pub bends: BTreeMap<String, BendName>,
+        pub rotations: BTreeMap<String, f64>,
         ..ik_goals,
     }
 }
@@ -62,7 +72,8 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
         time: req.time,
         targets: req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect(),
         ik,
-        bends: Vec::new(),
+        bends: bends(loaded, &req.bends)?,
+        turns: turns(loaded, &req.rotations)?,
     };
     let report = posed(loaded, &ask, interrupt);
     stopped(interrupt)?;
@@ -91,6 +102,34 @@ pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) ->
             "rig: required: the character file's text (or character: the id /api/rig/parse answered for it)",
         )),
     }
+}
+
+/// The request's `bends` as `(constraint, bendPositive)`; a name that is not a two-bone IK
+/// constraint's lower bone is refused naming `bends.NAME`.
+fn bends(loaded: &crate::character::Loaded, bends: &BTreeMap<String, BendName>) -> Result<Vec<(usize, bool)>, Problem> {
+    bends
+        .iter()
+        .map(|(name, side)| {
+            let k = bend_constraint(loaded, &format!("bends.{name}"), name).map_err(Problem::invalid)?;
+            Ok((k, bend_positive(loaded, side.bend())))
+        })
+        .collect()
+}
+
+/// The request's `rotations` (bone → its local rotation, degrees, in place of the clip's: a
+/// bone turned by hand, as a keys file's rotation key sets it) as `(bone, degrees)`; an unknown
+/// bone is refused naming `rotations.NAME`.
+fn turns(loaded: &crate::character::Loaded, rotations: &BTreeMap<String, f64>) -> Result<Vec<(usize, f64)>, Problem> {
+    let c = &loaded.character;
+    rotations
+        .iter()
+        .map(|(name, &deg)| {
+            let bone = c.bone_index(name).ok_or_else(|| {
+                Problem::invalid(format!("rotations.{name}: no bone named {name:?} in the character"))
+            })?;
+            Ok((bone, deg))
+        })
+        .collect()
 }
 
 /// The character file `rig` of a pose request (its text, Spine or DragonBones JSON, at most

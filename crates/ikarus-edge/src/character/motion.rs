@@ -10,15 +10,15 @@
 //! optionally over a clip. The motion is sampled at the frame rate for its frames (JSON) and at
 //! any time for the Spine export ([`super::export`]).
 
-use ikarus::character::IkBones;
 use ikarus::character::Posed;
 use ikarus::motion::KeyTrack;
 use ikarus::{Bend, Ease};
 use serde::Serialize;
 
-use super::{Format, Loaded};
+use super::Loaded;
 use crate::keys::KeysFile;
-use crate::names::{Quoted, cell, listed};
+use crate::keys::character::{bend_constraint, bend_positive};
+use crate::names::{Quoted, cell};
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
 use crate::report::character::UnsupportedJson;
 use ikarus::Interrupt;
@@ -69,15 +69,21 @@ pub enum Course {
     },
     /// Each `(bone, track)`: the bone's origin on its keyed track ([`crate::keys`], made by
     /// [`keyed`]), over the clip `animation` posed at the same time (looping when the keys run
-    /// longer than it), or over the setup pose.
+    /// longer than it), or over the setup pose, for `duration` seconds (each track holding its
+    /// last key after its end, the clip playing on).
     Keyed {
         /// The bones and their tracks, applied in this order.
         tracks: Vec<(String, KeyTrack)>,
         /// Each `(constraint, keys)`: the constraint's `bendPositive` from each key's time
         /// (seconds) on, in time order, the first at 0.
         bends: Vec<(usize, Vec<(f64, bool)>)>,
+        /// Each `(bone, track)`: the bone's local rotation (degrees, one value) on its keyed
+        /// track, in place of the clip's ([`crate::keys::rotations`]).
+        rotations: Vec<(usize, KeyTrack)>,
         /// The clip under the keys.
         animation: Option<String>,
+        /// The motion's length, seconds: the keys' `duration`, else their last key's time.
+        duration: f64,
     },
 }
 
@@ -102,35 +108,22 @@ pub fn keyed(
     let bone = |field: &str, name: &str| {
         c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))
     };
-    let constraint = |field: &str, name: &str| {
-        let index = bone(field, name)?;
-        let two =
-            |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
-        c.constraints().iter().position(|k| two(&k)).ok_or_else(|| {
-            let has = listed(c.constraints().iter().filter_map(|k| match k.bones {
-                IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
-                IkBones::One(_) => None,
-            }));
-            format!(
-                "{field}: {} is not the lower bone of a two-bone IK constraint (the character's are: {has})",
-                Quoted(name)
-            )
-        })
-    };
+    let constraint = |field: &str, name: &str| bend_constraint(loaded, field, name);
     let checked = keys.check_character(&bone, &constraint, max_frames, cap)?;
+    let duration = checked.duration;
     if let Some(name) = &animation {
         crate::pose::clip_at(c, Some(name), None)?;
     }
     let fps = checked.fps;
     let tracks = checked.tracks.into_iter().map(|t| (c.bones()[t.bone].name.clone(), t.track)).collect();
-    // ccw is a positive turn in y-up; DragonBones' bendPositive is one in its y-down.
-    let positive = |bend: Bend| (bend == Bend::Positive) == (loaded.format == Format::Spine);
+    let positive = |bend: Bend| bend_positive(loaded, bend);
     let bends = checked
         .bends
         .into_iter()
         .map(|(k, keys)| (k, keys.into_iter().map(|(frame, bend)| (frame as f64 / fps, positive(bend))).collect()))
         .collect();
-    Ok((Course::Keyed { tracks, bends, animation }, fps))
+    let rotations = checked.rotations.into_iter().map(|r| (r.bone, r.track)).collect();
+    Ok((Course::Keyed { tracks, bends, rotations, animation, duration }, fps))
 }
 
 /// A character's motion, checked: every name resolved, every number finite.
@@ -215,10 +208,7 @@ impl<'a> Motion<'a> {
                 }
                 (Vec::new(), (points.len() - 1) as f64 / fps)
             }
-            Course::Keyed { tracks, bends, .. } => {
-                let bent = bends.iter().filter_map(|(_, keys)| keys.last().map(|k| k.0));
-                (Vec::new(), tracks.iter().map(|(_, t)| t.end()).chain(bent).fold(0.0, f64::max))
-            }
+            Course::Keyed { duration, .. } => (Vec::new(), *duration),
         };
         // Checked before any frame is made: a path has one frame per sample (capped with its
         // samples), the others at most MAX_FRAMES.
@@ -348,7 +338,22 @@ impl<'a> Motion<'a> {
             targets: self.targets_at(time),
             ik: self.ik.clone(),
             bends: self.bends_at(time),
+            turns: self.turns_at(time),
         }
+    }
+
+    /// The keyed bones' local rotations at `time`, degrees (a keyed course's).
+    fn turns_at(&self, time: f64) -> Vec<(usize, f64)> {
+        let Course::Keyed { rotations, .. } = &self.course else { return Vec::new() };
+        let time = time.clamp(0.0, self.duration);
+        let mut v = Vec::with_capacity(1);
+        rotations
+            .iter()
+            .map(|(bone, track)| {
+                track.at(time, &mut v);
+                (*bone, v[0])
+            })
+            .collect()
     }
 
     /// The keyed constraints' `bendPositive` at `time`: each one's last key at or before it.

@@ -22,6 +22,10 @@ pub struct PoseRequest<'a> {
     /// `(constraint, bend_positive)`: the constraint's `bendPositive` in place of what the clip
     /// (or the setup pose) gives it, as a key of its IK timeline would set it.
     pub bends: &'a [(usize, bool)],
+    /// `(bone, rotation)`: the bone's local rotation (radians, in its parent's frame, as the
+    /// setup pose's) in place of what the clip (or the setup pose) gives it, before the targets
+    /// and the constraints, as a rotate key of the clip would set it: a bone turned by hand.
+    pub turns: &'a [(usize, f64)],
 }
 
 /// A pose request the character cannot take.
@@ -46,6 +50,17 @@ pub enum PoseError {
         x: f64,
         /// The point's y.
         y: f64,
+    },
+    /// A turn names a bone that does not exist.
+    #[error("turn: no bone {0}")]
+    UnknownTurn(usize),
+    /// A turn's rotation is not finite.
+    #[error("turn: bone {bone}'s rotation must be finite, got {rotation}")]
+    TurnRotation {
+        /// The bone's index.
+        bone: usize,
+        /// The rotation, radians.
+        rotation: f64,
     },
     /// A bend names a constraint that does not exist.
     #[error("bend: no constraint {0}")]
@@ -144,7 +159,8 @@ impl Posed {
 
 impl Character {
     /// Poses the character into `out`: every bone reset to its setup pose and every
-    /// constraint to its setup settings; the clip's timelines applied at the time; the world
+    /// constraint to its setup settings; the clip's timelines applied at the time, then the
+    /// turns and bends asked for; the world
     /// transforms computed; each target's bone moved (its local x, y set so that its world
     /// origin is the point, given its parent's world transform then); then the constraints in
     /// increasing `order` (ties in the order listed), each seeing the world transforms as
@@ -195,6 +211,9 @@ impl Character {
                     out.settings[t.constraint] = s;
                 }
             }
+        }
+        for &(bone, rotation) in request.turns {
+            out.local[bone].rotation = rotation;
         }
         for &(k, bend_positive) in request.bends {
             out.settings[k].bend_positive = bend_positive;
@@ -254,6 +273,14 @@ impl Character {
             }
             if !(x.is_finite() && y.is_finite()) {
                 return Err(PoseError::TargetPoint { bone, x, y });
+            }
+        }
+        for &(bone, rotation) in request.turns {
+            if bone >= self.bones.len() {
+                return Err(PoseError::UnknownTurn(bone));
+            }
+            if !rotation.is_finite() {
+                return Err(PoseError::TurnRotation { bone, rotation });
             }
         }
         if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| *k >= self.constraints.len()) {

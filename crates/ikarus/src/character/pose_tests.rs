@@ -38,8 +38,11 @@ fn character() -> Character {
 fn a_target_puts_the_bone_origin_on_the_point() {
     let c = character();
     let mut out = Posed::default();
-    c.pose(&PoseRequest { clip: Some((0, 0.5)), targets: &[(2, [7.0, 8.0]), (1, [-1.0, 0.5])], bends: &[] }, &mut out)
-        .unwrap();
+    c.pose(
+        &PoseRequest { clip: Some((0, 0.5)), targets: &[(2, [7.0, 8.0]), (1, [-1.0, 0.5])], bends: &[], turns: &[] },
+        &mut out,
+    )
+    .unwrap();
     let o = out.origin(1);
     assert!((o[0] + 1.0).abs() < 1e-12 && (o[1] - 0.5).abs() < 1e-12, "{o:?}");
     // The grandchild was placed before its parent moved, and moved with it.
@@ -54,7 +57,7 @@ fn the_clip_turns_the_bone_and_its_children_follow() {
     let mut still = Posed::default();
     let mut turned = Posed::default();
     c.pose(&PoseRequest::default(), &mut still).unwrap();
-    c.pose(&PoseRequest { clip: Some((0, 0.25)), targets: &[], bends: &[] }, &mut turned).unwrap();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), targets: &[], bends: &[], turns: &[] }, &mut turned).unwrap();
     assert!((turned.local(1).rotation - 0.35).abs() < 1e-7);
     assert_eq!(turned.origin(1), still.origin(1));
     assert_ne!(turned.origin(2), still.origin(2));
@@ -71,24 +74,46 @@ fn bad_requests_are_refused_by_name() {
     let mut out = Posed::default();
     let bad = |r: PoseRequest, out: &mut Posed| c.pose(&r, out).unwrap_err();
     assert_eq!(
-        bad(PoseRequest { clip: Some((1, 0.0)), targets: &[], bends: &[] }, &mut out),
+        bad(PoseRequest { clip: Some((1, 0.0)), targets: &[], bends: &[], turns: &[] }, &mut out),
         PoseError::UnknownClip(1)
     );
     assert_eq!(
-        bad(PoseRequest { clip: Some((0, f64::NAN)), targets: &[], bends: &[] }, &mut out).to_string(),
+        bad(PoseRequest { clip: Some((0, f64::NAN)), targets: &[], bends: &[], turns: &[] }, &mut out).to_string(),
         "time: must be finite, got NaN"
     );
     assert_eq!(
-        bad(PoseRequest { clip: None, targets: &[(3, [0.0, 0.0])], bends: &[] }, &mut out),
+        bad(PoseRequest { clip: None, targets: &[(3, [0.0, 0.0])], bends: &[], turns: &[] }, &mut out),
         PoseError::UnknownBone(3)
     );
     assert!(matches!(
-        bad(PoseRequest { clip: None, targets: &[(1, [f64::INFINITY, 0.0])], bends: &[] }, &mut out),
+        bad(PoseRequest { clip: None, targets: &[(1, [f64::INFINITY, 0.0])], bends: &[], turns: &[] }, &mut out),
         PoseError::TargetPoint { bone: 1, .. }
     ));
     let k = c.constraints.len();
     assert_eq!(
-        bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)] }, &mut out).to_string(),
+        bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)], turns: &[] }, &mut out).to_string(),
         format!("bend: no constraint {k}")
+    );
+}
+
+#[test]
+fn a_turn_replaces_the_clips_rotation_and_the_children_follow() {
+    let c = character();
+    let mut clip = Posed::default();
+    let mut turned = Posed::default();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), ..PoseRequest::default() }, &mut clip).unwrap();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), turns: &[(1, -0.3)], ..PoseRequest::default() }, &mut turned).unwrap();
+    // In place of the clip's 0.35, exactly; the bone stays where it is, its child moves.
+    assert_eq!(turned.local(1).rotation, -0.3);
+    assert_eq!(turned.origin(1), clip.origin(1));
+    assert_ne!(turned.origin(2), clip.origin(2));
+    let mut bad = Posed::default();
+    assert_eq!(
+        c.pose(&PoseRequest { turns: &[(3, 0.0)], ..PoseRequest::default() }, &mut bad).unwrap_err(),
+        PoseError::UnknownTurn(3)
+    );
+    assert_eq!(
+        c.pose(&PoseRequest { turns: &[(1, f64::NAN)], ..PoseRequest::default() }, &mut bad).unwrap_err().to_string(),
+        "turn: bone 1's rotation must be finite, got NaN"
     );
 }

@@ -171,7 +171,7 @@ export async function pose(body) {
   const m = await wasm;
   const { rig: text, character, ...ask } = body;
   const rig = text ?? characterTexts.get(character);
-  if (!m || body.ik || body.goals || body.pins || rig === undefined) return post("/api/pose", body);
+  if (!m || body.ik || body.goals || body.pins || body.bends || body.rotations || rig === undefined) return post("/api/pose", body);
   const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
   if (reply.status === 200 && reply.typed) {
     workerRig = rig;

@@ -69,17 +69,31 @@ export function characterRef({ text, character }) {
 
 /**
  * The /api/pose body of the page's choices: the character (characterRef), the clip and its time
- * (none for the setup pose), every dragged target (`targets`, a Map bone → {x, y}, in the order
- * they were first dragged), and `ik: "ikarus"` when the reader chose ikarus's solver (the
- * runtime's rules are the endpoint's default, so the field is left out for them).
+ * (none for the setup pose; past the clip's end it loops, as under keys: clipTime), every dragged
+ * target (`targets`, a Map bone → {x, y}, in the order they were first dragged; in Key mode every
+ * keyed target too), the bends in force (`bends`, {lower bone: "ccw" | "cw"}, keys only), the
+ * bones turned by hand (`turns`, a Map bone → its local rotation in degrees, sent as
+ * `rotations`), and `ik: "ikarus"` when the reader chose ikarus's solver (the runtime's rules are
+ * the endpoint's default, so the field is left out for them).
  */
-export function poseRequest({ text, character, animation, time, targets, ik }) {
+export function poseRequest({ text, character, animation, time, targets, ik, bends, turns }) {
   return {
     ...characterRef({ text, character }),
-    ...(animation ? { animation, time } : {}),
+    ...(animation ? { animation, time: clipTime(character, animation, time) } : {}),
     targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
     ...(ik === "ikarus" ? { ik: "ikarus" } : {}),
+    ...(bends && Object.keys(bends).length ? { bends } : {}),
+    ...(turns && turns.size ? { rotations: Object.fromEntries(turns) } : {}),
   };
+}
+
+/**
+ * The clip's time at `t` seconds of a keyed motion over it: `t`, or past the clip's end `t % its
+ * duration` (the clip loops under keys that run longer, as the server's keyed motion has it).
+ */
+export function clipTime(character, animation, t) {
+  const length = clipSeconds(character || {}, animation);
+  return length > 0 && t > length ? t % length : t;
 }
 
 /** The seconds of the motion an *Export Spine JSON* bakes, its frames per second and its ease. */
@@ -99,6 +113,30 @@ export function exportRequest({ text, character, targets }) {
     ease: EXPORT.ease,
     format: "spine",
     animation_name: EXPORT.animation_name,
+  };
+}
+
+/**
+ * What *Export Spine JSON* does for `character` (the /api/rig/parse answer's) and the keys as
+ * sent (`keys`, with their `duration`; null without keys): {disabled, title}. A DragonBones
+ * character cannot take it (the export adds an animation to a Spine file); with keys it exports
+ * them, else the targets dragged from the setup pose.
+ */
+export function exportState(character, keys) {
+  if (character && character.format === "dragonbones") {
+    return { disabled: true, title: "The Spine export takes a Spine file; this is a DragonBones character" };
+  }
+  if (keys) {
+    const n = [keys.tracks, keys.bends, keys.rotations].flatMap((lists) => Object.values(lists || {}).flat()).length;
+    const length = Number(keys.duration ?? 0);
+    return {
+      disabled: false,
+      title: `Download the file with one added animation, ${EXPORT.animation_name}, made of your ${n} key${n === 1 ? "" : "s"} (${length.toFixed(2)} s, the Length, at ${keys.fps} fps, over the clip chosen), to play in Spine or its runtimes`,
+    };
+  }
+  return {
+    disabled: false,
+    title: `Download the file with one added animation, ${EXPORT.animation_name}, moving the targets from the setup pose to where you put them (${EXPORT.duration} s, ${EXPORT.fps} fps, ${EXPORT.ease} ease), to play in Spine or its runtimes`,
   };
 }
 
@@ -193,4 +231,71 @@ export function characterSummary(name, character) {
   const kind = character.format === "dragonbones" ? "DragonBones" : "Spine";
   const n = (k, one) => `${k} ${one}${k === 1 ? "" : "s"}`;
   return `${kind} character ${name} · ${n(character.bones.length, "bone")} · ${n((character.ik || []).length, "IK constraint")}`;
+}
+
+/** The bone indices a Spine attachment's weighted `vertices` name ([count, bone, x, y, weight, …] per vertex). */
+function weightedBones(att) {
+  const v = att.vertices || [];
+  const n = att.vertexCount ?? v.length / 2;
+  const bones = new Set();
+  if (v.length <= 2 * n) return bones;
+  for (let i = 0; i < v.length; ) {
+    const count = v[i++];
+    for (let k = 0; k < count && i < v.length; k++, i += 4) bones.add(v[i]);
+  }
+  return bones;
+}
+
+/**
+ * What each target's handle does (`character` the /api/rig/parse answer, `file` the Spine file's
+ * JSON, or null for another format): a Map target → {inactive, drives: [bone names], note}.
+ * `note` is the handle's hover text: the bones it turns and by which constraint, or why dragging
+ * it moves nothing: every IK constraint aiming at it has mix 0 (spineboy's crosshair), or the
+ * bones it turns carry no art of their own and only feed constraints ikarus leaves inactive —
+ * a transform constraint's target (spineboy's aim-constraint-target) or a path attachment's
+ * weights under a path constraint (stretchyman's arm and leg IK bones).
+ */
+export function handleNotes(character, file) {
+  const iks = character.ik || [];
+  const notes = new Map();
+  const spine = file && Array.isArray(file.bones) ? file : null;
+  const names = (character.bones || []).map((b) => b.name);
+  const parent = new Map((character.bones || []).map((b) => [b.name, b.parent]));
+  // Bones with art: a slot on them or below them.
+  const drawn = new Set();
+  for (const s of (spine && spine.slots) || []) for (let b = s.bone; b && !drawn.has(b); b = parent.get(b)) drawn.add(b);
+  // What an inactive constraint reads: a transform constraint's target bone, a path constraint's path's weighted bones.
+  const feeds = new Map();
+  const feed = (bone, what) => feeds.set(bone, [...(feeds.get(bone) || []), what]);
+  for (const t of (spine && spine.transform) || []) if (t.target) feed(t.target, `transform constraint ${t.name}`);
+  const skins = spine ? (Array.isArray(spine.skins) ? spine.skins : Object.values(spine.skins || {}).map((a) => ({ attachments: a }))) : [];
+  for (const p of (spine && spine.path) || []) {
+    for (const skin of skins) {
+      for (const att of Object.values((skin.attachments || {})[p.target] || {})) {
+        if (att.type === "path") for (const i of weightedBones(att)) if (names[i]) feed(names[i], `path constraint ${p.name}`);
+      }
+    }
+  }
+  for (const target of ikTargets(character)) {
+    const aiming = iks.filter((k) => k.target === target);
+    const active = aiming.filter((k) => k.mix !== 0);
+    const drives = [...new Set(active.flatMap((k) => k.bones))];
+    const by = (list) => list.map((k) => k.name).join(", ");
+    let note;
+    let inactive = false;
+    if (!active.length) {
+      inactive = true;
+      note = `${target}: its IK constraint${aiming.length > 1 ? "s" : ""} ${by(aiming)} ${aiming.length > 1 ? "have" : "has"} mix 0: dragging it moves nothing`;
+    } else if (spine && drives.every((b) => !drawn.has(b) && feeds.has(b))) {
+      inactive = true;
+      const fed = [...new Set(drives.flatMap((b) => feeds.get(b)))].join(", ");
+      const zero = aiming.filter((k) => k.mix === 0);
+      const off = zero.length ? `IK constraint ${by(zero)} has mix 0, and ` : "";
+      note = `${target}: ${off}${by(active)} turns only ${drives.join(", ")}, bones with no art that feed only what ikarus does not apply yet (${fed}): dragging it moves nothing you see`;
+    } else {
+      note = `${target}: drags ${drives.join(", ")} (IK constraint ${by(active)})`;
+    }
+    notes.set(target, { inactive, drives, note });
+  }
+  return notes;
 }

@@ -11,8 +11,9 @@
 
 import * as api from "./api.js";
 import { saveBlob } from "./files.js";
-import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
+import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, exportState, handleNotes, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
+import { localRotation } from "./keys.js";
 import { isDrag, toWorld } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
@@ -21,8 +22,14 @@ const $ = (id) => document.getElementById(id);
  * A fresh `state.character` for the file `name` (its `text`) read as `character` (the
  * /api/rig/parse answer's `character`: {format, bones, ik, clips, unsupported, …}):
  *   targetNames  the bones the IK constraints aim at (the handles);  ikBones  the bones they move (a Set)
+ *   notes        Map target → {inactive, drives, note} (character.js's handleNotes): the handle's hover text
  *   animation    the clip shown ("" for the setup pose);  time  its time, seconds
- *   targets      Map bone → {x, y}, the targets the reader put somewhere (in the order first dragged)
+ *   targets      Map bone → {x, y}, the targets the reader put somewhere (in the order first dragged;
+ *                with keys, keyed.js puts every keyed target of the frame shown here)
+ *   bends        with keys, the bends in force at the frame shown ({lower bone: "ccw" | "cw"}, keyed.js)
+ *   turns        Map bone → its local rotation (degrees): bones turned by hand (a drag on a bone
+ *                that no IK constraint moves turns it about its origin; with keys, keyed.js puts
+ *                the keyed ones of the frame shown here)
  *   ik           "runtime" (Spine's rules) or "ikarus" (ikarus's solver)
  *   posed        the last /api/pose answer's bones;  box  the setup pose's world box (the view fits it)
  *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
@@ -32,16 +39,30 @@ const $ = (id) => document.getElementById(id);
  *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
  *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
  */
+/** The Spine file's JSON (its slots, skins and unsupported constraints), or null (another format or unreadable). */
+function spineFile(character, text) {
+  if (character.format !== "spine") return null;
+  try {
+    return JSON.parse(text);
+  } catch (_) {
+    return null;
+  }
+}
+
 function newCharacterState(name, text, character) {
   return {
     name,
     text,
     character,
     targetNames: ikTargets(character),
+    notes: handleNotes(character, spineFile(character, text)),
+    parentOf: new Map((character.bones || []).map((b) => [b.name, b.parent])),
     ikBones: new Set((character.ik || []).flatMap((k) => k.bones)),
     animation: "",
     time: 0,
     targets: new Map(),
+    bends: {},
+    turns: new Map(),
     ik: "runtime",
     posed: null,
     box: null,
@@ -220,7 +241,8 @@ export function wireCharacters(state, canvas, act) {
       req = { ...characterRef(c), animation: s.name, time: s.times.shift(), targets: [] };
     } else {
       c.pending = false;
-      req = poseRequest(c);
+      // A drag over keys poses with the bends in force (keyed.js keeps them), never without keys.
+      req = poseRequest({ ...c, bends: state.keys ? c.bends : null });
     }
     try {
       const answer = await api.pose(req);
@@ -271,6 +293,7 @@ export function wireCharacters(state, canvas, act) {
     const c = state.character;
     if (!c) return;
     c.targets = new Map();
+    c.turns = new Map();
     poseSoon();
   }
 
@@ -279,13 +302,14 @@ export function wireCharacters(state, canvas, act) {
     const c = state.character;
     if (!c) return;
     c.targets = new Map();
+    c.turns = new Map();
     $("character-animation").value = "";
     choose("");
   }
 
   async function exportSpine() {
     const c = state.character;
-    if (!c) return;
+    if (!c || exportState(c.character, null).disabled) return;
     // The keys when there are, else the targets from the setup pose to where they were put.
     const keyed = act.keyed.spineRequest();
     if (!keyed && c.targets.size === 0) {
@@ -301,7 +325,7 @@ export function wireCharacters(state, canvas, act) {
     } catch (e) {
       act.showError(e);
     } finally {
-      button.disabled = false;
+      button.disabled = exportState(c.character, null).disabled;
     }
   }
 
@@ -328,12 +352,31 @@ export function wireCharacters(state, canvas, act) {
 
   let press = null;
 
+  /** Whether a drag on bone `name` turns it: no IK constraint moves it and it is no target (those are dragged). */
+  const turnable = (c, name) => !!name && !c.ikBones.has(name) && !c.targetNames.includes(name);
+
+  /** The pointer's direction from a bone's origin `o` (world), degrees. */
+  const bearing = (o, ev) => {
+    const [x, y] = toWorld(state.view, ...local(ev));
+    return (Math.atan2(y - o[1], x - o[0]) * 180) / Math.PI;
+  };
+
   canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.character || !state.character.posed || ev.button !== 0 || act.keyed.bendPress(ev)) return;
+    const c = state.character;
+    if (!c || !c.posed || ev.button !== 0 || act.keyed.bendPress(ev)) return;
     const name = handleUnder(ev);
-    if (!name) return;
-    const bone = state.character.posed.find((b) => b.name === name);
-    press = { x: ev.clientX, y: ev.clientY, name, from: bone ? [bone.x, bone.y] : null, dragging: false };
+    if (!name) {
+      // A plain bone: turned about its origin by the drag (forward kinematics).
+      const over = under(ev);
+      const bone = turnable(c, over) && c.posed.find((b) => b.name === over);
+      if (!bone) return;
+      const start = c.turns.has(over) ? c.turns.get(over) : localRotation(c.posed, (n) => c.parentOf.get(n), over);
+      press = { kind: "turn", x: ev.clientX, y: ev.clientY, name: over, origin: [bone.x, bone.y], a0: bearing([bone.x, bone.y], ev), start, dragging: false };
+      canvas.setPointerCapture(ev.pointerId);
+      return;
+    }
+    const bone = c.posed.find((b) => b.name === name);
+    press = { kind: "target", x: ev.clientX, y: ev.clientY, name, from: bone ? [bone.x, bone.y] : null, dragging: false };
     canvas.setPointerCapture(ev.pointerId);
   });
 
@@ -344,9 +387,13 @@ export function wireCharacters(state, canvas, act) {
       // A bend handle (Key mode) first: ringed and named alone.
       const bend = act.keyed.hoverBend(ev);
       const hover = bend ? null : under(ev);
-      canvas.style.cursor = bend ? "pointer" : hover && c.targetNames.includes(hover) ? "grab" : "";
+      const note = hover && c.notes.get(hover);
+      const turns = !note && turnable(c, hover);
+      canvas.style.cursor = bend ? "pointer" : note ? (note.inactive ? "not-allowed" : "grab") : turns ? "alias" : "";
       if (hover !== c.hover) {
         c.hover = hover;
+        // A handle says what it drags (or why it moves nothing); a bone its name.
+        canvas.title = note ? note.note : turns ? `${hover}: drag to turn it about its origin (a click lets a turned bone go)` : hover ? `${hover}: moved by an IK constraint; drag its target` : "";
         act.requestDraw();
       }
       return;
@@ -357,6 +404,13 @@ export function wireCharacters(state, canvas, act) {
       canvas.style.cursor = "grabbing";
     }
     if (!press.dragging) return;
+    if (press.kind === "turn") {
+      const a = press.start + bearing(press.origin, ev) - press.a0;
+      c.turns = new Map(c.turns).set(press.name, a - 360 * Math.ceil((a - 180) / 360));
+      act.requestDraw();
+      poseSoon();
+      return;
+    }
     const [x, y] = toWorld(state.view, ...local(ev));
     c.targets = new Map(c.targets).set(press.name, { x, y });
     act.requestDraw();
@@ -366,9 +420,24 @@ export function wireCharacters(state, canvas, act) {
   canvas.addEventListener("pointerup", () => {
     const c = state.character;
     if (!c || !press) return;
-    const { name, dragging, from } = press;
+    const { name, dragging, from, kind, start } = press;
     press = null;
     c.grabbed = null;
+    if (kind === "turn") {
+      if (dragging) {
+        act.keyed.turnEnded(name, c.turns.get(name), start);
+        act.edited(`Turn ${name}`);
+      } else if (c.turns.has(name)) {
+        // A click on a turned bone lets it go: the clip turns it again.
+        c.turns = new Map(c.turns);
+        c.turns.delete(name);
+        poseSoon();
+        act.edited(`Let ${name} go`);
+      }
+      canvas.style.cursor = "";
+      act.requestDraw();
+      return;
+    }
     if (dragging) act.keyed.dragEnded(name, c.targets.get(name), from);
     canvas.style.cursor = "grab";
     // A click (no drag) on a placed target lets it go: the clip and the constraints move it again.

@@ -64,7 +64,8 @@ export function drawCharacterScene(ctx, view, state) {
     const placed = c.targets.has(name);
     const bone = px[index.get(name)];
     if (placed && bone && Math.hypot(bone.o[0] - at[0], bone.o[1] - at[1]) > 3) drawLeash(ctx, bone.o, at);
-    drawHandle(ctx, at, placed, c.grabbed === name || c.hover === name);
+    const note = c.notes && c.notes.get(name);
+    drawHandle(ctx, at, placed, c.grabbed === name || c.hover === name, !!(note && note.inactive));
   }
   const focus = c.grabbed || c.hover;
   const at = focus && (handles.get(focus) || (px[index.get(focus)] && px[index.get(focus)].o));
@@ -91,9 +92,36 @@ function drawBone(ctx, shape, ik, hovered) {
   ctx.stroke();
 }
 
-/** A target's handle: a ring with a cross; filled red once the reader has put it somewhere, ringed wider under the pointer. */
-function drawHandle(ctx, [x, y], placed, focused) {
+/**
+ * A target's handle: a ring with a cross; filled red once the reader has put it somewhere, ringed
+ * wider under the pointer; a handle that moves nothing (`inactive`: character.js's handleNotes)
+ * grey and dashed.
+ */
+function drawHandle(ctx, [x, y], placed, focused, inactive) {
   const r = HANDLE_RADIUS;
+  if (inactive) {
+    ctx.beginPath();
+    ctx.arc(x, y, r, 0, 2 * Math.PI);
+    ctx.fillStyle = "#fff";
+    ctx.globalAlpha = 0.7;
+    ctx.fill();
+    ctx.globalAlpha = 1;
+    ctx.setLineDash([3, 3]);
+    ctx.lineWidth = 1.5;
+    ctx.strokeStyle = COLORS.axis;
+    ctx.stroke();
+    ctx.setLineDash([]);
+    ctx.beginPath();
+    ctx.moveTo(x - r + 3, y - r + 3);
+    ctx.lineTo(x + r - 3, y + r - 3);
+    ctx.stroke();
+    if (focused) {
+      ctx.beginPath();
+      ctx.arc(x, y, r + 4, 0, 2 * Math.PI);
+      ctx.stroke();
+    }
+    return;
+  }
   ctx.beginPath();
   ctx.arc(x, y, r, 0, 2 * Math.PI);
   ctx.fillStyle = placed ? COLORS.goal : "#fff";

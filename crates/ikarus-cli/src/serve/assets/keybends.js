@@ -5,7 +5,8 @@
 // cannot reach the other side says so instead).
 import * as api from "./api.js";
 import { drawBendHandles } from "./drawkeys.js";
-import { bendAllowed, bendHandleAt, bendHandles, characterBendHandles, setBend, sideOf } from "./keys.js";
+import { setBend, sideOf } from "./keys.js";
+import { bendAllowed, bendHandleAt, bendHandles, characterBendHandles } from "./bendhandles.js";
 import { toCanvas } from "./view.js";
 
 /**

@@ -15,8 +15,10 @@
 import * as api from "./api.js";
 import { bodyForward } from "./body.js";
 import { ownsKeys } from "./input.js";
+import { exportState } from "./character.js";
 import {
   armBones,
+  bendsAt,
   characterAnimateRequest,
   characterMotion,
   DEFAULT_LENGTH,
@@ -25,13 +27,18 @@ import {
   frameOf,
   KEY_LENGTH,
   keyedBranch,
+  keyedTargets,
   keyRows,
   keysDuration,
+  lengthKeys,
+  listsOf,
+  localRotation,
   moveKey,
   pasteKey,
   rigMotion,
   setEase,
   setKey,
+  setRotationKey,
   tidy,
   togglePinKey,
 } from "./keys.js";
@@ -63,9 +70,13 @@ export function wireKeyed(state, canvas, act) {
   const k = { mode: false, length: DEFAULT_LENGTH, t: 0, selected: null, clipboard: null, drag: null, busy: false, pending: false, answer: null, hover: null, loaded: null };
   state.keys = null;
   state.motion = null;
+  /** The files' buttons (keyexports.js), once wired. */
+  let exportsBar = null;
 
   const fps = () => (state.keys && state.keys.fps) || 30;
   const seconds = () => Math.max(k.length, keysDuration(state.keys));
+  /** `keys` as the requests send them: with the Length as their `duration` (keys.js's lengthKeys). */
+  const sent = (keys) => lengthKeys(keys, k.length);
   /** Whether the arm is shown (no rig, no character): its tip's track is `linkN-1`. */
   const armShown = () => !state.rig && !state.character && !!state.arm;
   /** The body keyed: the rig, the character or the arm shown. */
@@ -115,7 +126,7 @@ export function wireKeyed(state, canvas, act) {
     const at = k.t;
     const s = seconds();
     k.loaded = s;
-    act.timeline.loadClip({ seconds: s, show: showAt });
+    act.timeline.loadClip({ seconds: s, fps: fps(), show: showAt });
     if (at > 0) act.timeline.seek(Math.min(at / s, 1));
   }
 
@@ -126,10 +137,15 @@ export function wireKeyed(state, canvas, act) {
     const c = state.character;
     const f = frameAt(state.motion, t);
     if (c && f) {
-      c.time = t;
+      // The frame's time: a drag poses at it (characters.js), every key applied there.
+      c.time = f.time;
       c.posed = f.bones;
-      // The keyed targets there (a drag then moves one, the others held).
-      c.targets = new Map(Object.entries(f.targets || {}).map(([b, [x, y]]) => [b, { x, y }]));
+      // Every keyed target where the frame has it and the bends in force, so that a drag moves
+      // one target and poses with all the others held on their keys.
+      c.targets = keyedTargets(state.keys, f.bones);
+      c.bends = bendsAt(state.keys, f.time);
+      // The bones keyed by hand there, each one's local rotation.
+      c.turns = new Map(Object.keys(state.keys.rotations || {}).map((b) => [b, localRotation(f.bones, (n) => c.parentOf.get(n), b)]));
       document.body.dataset.keyFrame = String(Math.min(frameOf(t, state.motion.fps), state.motion.frames.length - 1));
     } else if (r && f) {
       r.pose_deg = f.pose.slice();
@@ -159,19 +175,24 @@ export function wireKeyed(state, canvas, act) {
     document.body.classList.toggle("arm-keyed", armShown() && k.loaded !== null);
     const sel = selectedKey();
     const ease = $("key-ease");
-    ease.disabled = !sel || k.selected.kind !== "track";
+    ease.disabled = !sel || (k.selected.kind !== "track" && k.selected.kind !== "rotation");
     if (!ease.disabled) ease.value = sel.ease || "sine";
     $("key-delete").disabled = !sel;
     $("key-frames-json").disabled = !k.answer;
-    $("key-gif").disabled = !k.answer;
+    $("key-gif").disabled = !k.answer || (!!exportsBar && exportsBar.gifOff());
     $("key-frames-csv").disabled = !k.answer;
+    if (state.character) {
+      // *Export Spine JSON* says what it exports (the keys when there are) or why it cannot.
+      const e = exportState(state.character.character, state.keys ? sent(state.keys) : null);
+      Object.assign($("export-spine"), { disabled: e.disabled, title: e.title });
+    }
     drawRows($("key-rows"), rows(), seconds(), k.t, k.selected);
   }
 
   function selectedKey() {
     const s = k.selected;
     if (!s || !state.keys) return null;
-    const list = (s.kind === "bend" ? state.keys.bends : state.keys.tracks)[s.bone];
+    const list = listsOf(state.keys, s.kind)[s.bone];
     return (list && list[s.index]) || null;
   }
 
@@ -215,6 +236,23 @@ export function wireKeyed(state, canvas, act) {
     return true;
   }
 
+  /**
+   * A drag of a character's bone turned it to `angle` (its local rotation, degrees) from
+   * `start` (where it was when grabbed): in Key mode, a rotation key at the playhead (a character
+   * without keys yet: at its clip's time).
+   */
+  function turnEnded(bone, angle, start) {
+    if (!k.mode || !Number.isFinite(angle)) return false;
+    if (state.character && !state.keys) k.t = state.character.time;
+    const f = state.motion && state.motion.frames[0];
+    const current = f && f.bones ? localRotation(f.bones, (n) => state.character.parentOf.get(n), bone) : start;
+    state.keys = setRotationKey(state.keys, bone, k.t, angle, Number.isFinite(current) ? current : start);
+    const list = state.keys.rotations[bone];
+    k.selected = { kind: "rotation", bone, index: list.findIndex((q) => frameOf(q.time, fps()) === frameOf(k.t, fps())) };
+    commit(`key ${bone}'s turn at ${(frameOf(k.t, fps()) / fps()).toFixed(2)} s`);
+    return true;
+  }
+
   /** A click on `bone`'s tip: in Key mode, pinned (or unpinned) for the whole animation. */
   function pinToggled(bone) {
     if (!k.mode) return false;
@@ -243,14 +281,14 @@ export function wireKeyed(state, canvas, act) {
     if (!b || k.busy || !k.pending) return;
     k.pending = false;
     const keys = state.keys;
-    if (!keys || !Object.keys(keys.tracks).length) {
+    if (!keys || !(Object.keys(keys.tracks).length || Object.keys(keys.rotations || {}).length)) {
       state.motion = null;
       k.answer = null;
       syncBar();
       return;
     }
     k.busy = true;
-    const req = state.character ? characterAnimateRequest(state.character, keys, "json") : branch().request(keys, state.options);
+    const req = state.character ? characterAnimateRequest(state.character, sent(keys), "json") : branch().request(sent(keys), state.options);
     act.setStatus("solving");
     try {
       const answer = await api.animate(req);
@@ -355,9 +393,12 @@ export function wireKeyed(state, canvas, act) {
   $("arm-key-mode").addEventListener("change", (ev) => setMode(ev.target.checked));
   /** The keyed animation's length, `v` seconds (in KEY_LENGTH): the field shows it, the timeline spans it. */
   function setLength(v) {
+    const changed = k.length !== v;
     k.length = v;
     $("key-length").value = String(v);
     if (owns()) loadClip();
+    // The motion runs to the Length: asked again.
+    if (changed && state.keys) requestMotion();
     syncBar();
   }
   $("key-length").addEventListener("change", (ev) => {
@@ -372,9 +413,9 @@ export function wireKeyed(state, canvas, act) {
   });
   $("key-ease").addEventListener("change", (ev) => {
     const s = k.selected;
-    if (!s || s.kind !== "track") return;
+    if (!s || (s.kind !== "track" && s.kind !== "rotation")) return;
     const m = state.meta || {};
-    state.keys = setEase(state.keys, s.bone, s.index, { kind: ev.target.value, k1: m.default_k1, k2: m.default_k2 });
+    state.keys = setEase(state.keys, s.bone, s.index, { kind: ev.target.value, k1: m.default_k1, k2: m.default_k2 }, s.kind);
     commit(`ease ${s.bone} ${ev.target.value}`);
   });
   $("key-delete").addEventListener("click", deleteSelected);
@@ -387,7 +428,7 @@ export function wireKeyed(state, canvas, act) {
     commit(`delete key of ${s.bone}`);
   }
 
-  wireKeyExports({ state, canvas, answer: () => k.answer, branch, showError: act.showError, syncBar });
+  exportsBar = wireKeyExports({ state, canvas, answer: () => k.answer, branch, sent: () => sent(state.keys), showError: act.showError, syncBar });
 
   const rowsCanvas = $("key-rows");
   // The rows are drawn inside the canvas's border: a point is measured from there too.
@@ -422,7 +463,7 @@ export function wireKeyed(state, canvas, act) {
   });
   const selectedKeyTime = (keys) => {
     const s = k.selected;
-    const list = (s.kind === "bend" ? keys.bends : keys.tracks)[s.bone];
+    const list = listsOf(keys, s.kind)[s.bone];
     return list[s.index].time;
   };
   rowsCanvas.addEventListener("pointerup", () => {
@@ -444,7 +485,7 @@ export function wireKeyed(state, canvas, act) {
       ev.preventDefault();
       const { row, key } = k.clipboard;
       state.keys = pasteKey(state.keys, row, key, k.t);
-      const list = (row.kind === "bend" ? state.keys.bends : state.keys.tracks)[row.bone];
+      const list = listsOf(state.keys, row.kind)[row.bone];
       k.selected = { ...row, index: list.findIndex((q) => frameOf(q.time, fps()) === frameOf(list.length > 1 ? k.t : 0, fps())) };
       commit(`paste key of ${row.bone}`);
     } else if (!ctrl && ev.key.toLowerCase() === "k") {
@@ -461,7 +502,7 @@ export function wireKeyed(state, canvas, act) {
   const seek = (t) => (owns() ? act.timeline.seek(Math.min(t / seconds(), 1)) : undefined);
 
   /** The /api/animate body of a character's keys as Spine JSON (the export), or null without keys. */
-  const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, state.keys, "spine") : null);
+  const spineRequest = () => (state.character && state.keys ? characterAnimateRequest(state.character, sent(state.keys), "spine") : null);
 
-  return { enter, leave, resume, setLength, length: () => k.length, mode: () => k.mode, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
+  return { enter, leave, resume, setLength, length: () => k.length, sent: () => (state.keys ? sent(state.keys) : null), mode: () => k.mode, clipChanged, spineRequest, applyKeys, resolve, handles, hovering: () => !!k.hover, dragEnded, turnEnded, pinToggled, bendPress, hoverBend, drawOver, settled, setMode, seek, fillEases };
 }

@@ -12,13 +12,14 @@ const $ = (id) => document.getElementById(id);
 /**
  * Wires the Keys bar's file buttons. `state` and `canvas` are the page's; `answer()` the keyed
  * answer shown (or null), `branch()` keys.js's keyedBranch of the rig or arm shown (null for a
- * character), `showError(e)` the chip's, `syncBar()` keyed.js's (the buttons' states again).
+ * character), `sent()` the keys as requests send them (with the Length), `showError(e)` the chip's, `syncBar()` keyed.js's (the buttons' states again).
+ * Returns {gifOff()}: whether the GIF cannot be made here (no server to render it).
  */
-export function wireKeyExports({ state, canvas, answer, branch, showError, syncBar }) {
+export function wireKeyExports({ state, canvas, answer, branch, sent, showError, syncBar }) {
   /** The name of the files saved: the character's file without .json, the rig's or the arm's name. */
   const bodyName = () => (state.character ? state.character.name.replace(/\.json$/i, "") : branch().name);
-  /** The keys' /api/animate body (the character's, or the rig's or arm's with the solver options). */
-  const request = (format) => (state.character ? characterAnimateRequest(state.character, state.keys, format) : branch().request(state.keys, state.options));
+  /** The keys' /api/animate body (the character's, or the rig's or arm's with the solver options), with the Length (`sent()`). */
+  const request = (format) => (state.character ? characterAnimateRequest(state.character, sent(), format) : branch().request(sent(), state.options));
 
   async function saved(make) {
     try {
@@ -54,7 +55,18 @@ export function wireKeyExports({ state, canvas, answer, branch, showError, syncB
     syncBar();
   }
 
+  // The GIF is rendered by the server: without one (the static build) the button says so and
+  // stays disabled (syncBar asks gifOff()).
+  let gifOff = false;
+  api.backend().then((b) => {
+    if (b.pictures) return;
+    gifOff = true;
+    $("key-gif").title = "needs `ikarus serve`: the keyed motion's GIF is rendered by the server (Frames JSON and CSV are made here)";
+    syncBar();
+  });
+
   $("key-gif").addEventListener("click", downloadGif);
   $("key-frames-json").addEventListener("click", () => download("json"));
   $("key-frames-csv").addEventListener("click", () => download("csv"));
+  return { gifOff: () => gifOff };
 }

@@ -1,16 +1,16 @@
 // Keyframes per effector, the pure parts: the KEYS object of `ikarus animate --keys` and
 // `POST /api/animate` with `keys` ({fps, tracks: {BONE: [{time, x, y, ease, k1?, k2?}]}, bends:
-// {BONE: [{time, bend}]}, pins: [BONE…]}), edited as an animator edits keys: set at the playhead
+// {BONE: [{time, bend}]}, pins: [BONE…], rotations?: {BONE: [{time, angle_deg, ease}]}}), edited as an animator edits keys: set at the playhead
 // (snapped to a frame; a track's first key is at 0), moved along its row (snapped, never past a
 // neighbour, the first never off 0), deleted, copied to the playhead, eased; bends keyed as steps;
 // pins listed. Every edit returns a new KEYS object (the old one stays as it was: undo keeps it).
-// Also the /api/animate request of a rig's keys, the frame shown at a time, and the two-bone
-// limbs that get a bend handle. No DOM and no state of its own: node tests it
-// (e2e/keys.unit.test.mjs). The page's wiring is keyed.js.
+// Also rotation keys (a character's bones turned by hand), the /api/animate requests of a rig's
+// and a character's keys (with the Length as their `duration`), and the frame shown at a time.
+// No DOM and no state of its own: node tests it (e2e/keys.unit.test.mjs). The page's wiring is
+// keyed.js; the bend handles' geometry is bendhandles.js.
 
-import { bodyForward } from "./body.js";
 import { armForRequest } from "./controls.js";
-import { answerPose, rigChildren, rigForRequest } from "./rig.js";
+import { answerPose, rigForRequest } from "./rig.js";
 import { characterRef } from "./character.js";
 
 /** Frames per second of new keys (the CLI's default). */
@@ -24,6 +24,13 @@ export const KEY_LENGTH = { min: 0.1, max: 60 };
 
 /** An empty KEYS object. */
 export const emptyKeys = (fps = KEYS_FPS) => ({ fps, tracks: {}, bends: {}, pins: [] });
+
+/**
+ * The lists of `keys` holding a row's keys by its kind: "track" → tracks, "bend" → bends,
+ * "rotation" → rotations (a character's bones turned by hand: {BONE: [{time, angle_deg, ease}]},
+ * each key the bone's local rotation in degrees, in place of the clip's).
+ */
+export const listsOf = (keys, kind) => (kind === "bend" ? keys.bends : kind === "rotation" ? keys.rotations : keys.tracks) || {};
 
 /** `t` seconds snapped to the nearest frame at `fps` (k / fps, as the server computes frame times); never below 0. */
 export function snapTime(t, fps) {
@@ -42,6 +49,7 @@ function copy(keys) {
     tracks: Object.fromEntries(Object.entries(k.tracks || {}).map(([b, list]) => [b, list.map((x) => ({ ...x }))])),
     bends: Object.fromEntries(Object.entries(k.bends || {}).map(([b, list]) => [b, list.map((x) => ({ ...x }))])),
     pins: [...(k.pins || [])],
+    ...(k.rotations ? { rotations: Object.fromEntries(Object.entries(k.rotations).map(([b, list]) => [b, list.map((x) => ({ ...x }))])) } : {}),
   };
 }
 
@@ -50,7 +58,9 @@ export function tidy(keys) {
   const k = copy(keys);
   for (const [b, list] of Object.entries(k.bends)) if (!list.length) delete k.bends[b];
   for (const [b, list] of Object.entries(k.tracks)) if (!list.length) delete k.tracks[b];
-  return Object.keys(k.tracks).length || Object.keys(k.bends).length || k.pins.length ? k : null;
+  if (k.rotations) for (const [b, list] of Object.entries(k.rotations)) if (!list.length) delete k.rotations[b];
+  if (k.rotations && !Object.keys(k.rotations).length) delete k.rotations;
+  return Object.keys(k.tracks).length || Object.keys(k.bends).length || k.pins.length || k.rotations ? k : null;
 }
 
 /** The index of the key of `list` at frame time `t` (same frame), or -1. */
@@ -66,6 +76,62 @@ function place(list, key, fps) {
     list.push(key);
     list.sort((a, b) => a.time - b.time);
   }
+}
+
+/**
+ * A rotation key of `bone` at the playhead `t` (snapped to a frame): its local rotation
+ * `angle` (degrees). An existing key on that frame takes the angle (its ease kept); a new one the
+ * previous key's ease (else sine). The first key of a bone also puts one at time 0 on `current`
+ * (the bone's local rotation now) when the playhead is not at 0. Returns new keys.
+ */
+export function setRotationKey(keys, bone, t, angle, current) {
+  const k = copy(keys);
+  const fps = k.fps;
+  const time = snapTime(t, fps);
+  k.rotations = k.rotations || {};
+  const list = k.rotations[bone] || [];
+  if (list.length === 0 && time > 0 && Number.isFinite(current)) list.push({ time: 0, angle_deg: current, ease: "sine" });
+  const i = keyAtFrame(list, time, fps);
+  if (i >= 0) list[i] = { ...list[i], angle_deg: angle };
+  else {
+    const before = list.filter((q) => q.time < time).at(-1);
+    place(list, { time, angle_deg: angle, ...easeOf(before) }, fps);
+  }
+  k.rotations[bone] = list;
+  return k;
+}
+
+/**
+ * A bone's local rotation in degrees from a pose's world rotations (`bones`: /api/pose's, by
+ * name, `parentOf` bone → parent name): its world rotation less its parent's, in (−180°, 180°].
+ * Exact for parents without shear or unequal scale (a turned bone's key is what the server
+ * poses; this is where a drag starts from).
+ */
+export function localRotation(bones, parentOf, bone) {
+  const at = new Map((bones || []).map((b) => [b.name, b]));
+  const b = at.get(bone);
+  if (!b) return NaN;
+  const p = parentOf(bone);
+  const d = b.rotation_deg - (p && at.has(p) ? at.get(p).rotation_deg : 0);
+  return d - 360 * Math.ceil((d - 180) / 360);
+}
+
+/** Every bone's bend in force at `t` by `keys` ({BONE: "ccw" | "cw"}; bendAt of each bend track). */
+export function bendsAt(keys, t) {
+  return Object.fromEntries(Object.keys((keys && keys.bends) || {}).map((b) => [b, bendAt(keys, b, t)]));
+}
+
+/**
+ * The keyed targets of a character's frame: a Map bone → {x, y} of each tracked bone where the
+ * frame's `bones` (/api/pose's) have its origin (the keyed motion puts it on its track there).
+ */
+export function keyedTargets(keys, bones) {
+  const at = new Map((bones || []).map((b) => [b.name, b]));
+  return new Map(
+    Object.keys((keys && keys.tracks) || {})
+      .filter((b) => at.has(b))
+      .map((b) => [b, { x: at.get(b).x, y: at.get(b).y }]),
+  );
 }
 
 /**
@@ -98,8 +164,8 @@ function easeOf(key) {
   return { ease: key.ease || "sine", ...(key.ease === "parent" ? { k1: key.k1, k2: key.k2 } : {}) };
 }
 
-/** The list of a row: `{kind: "track" | "bend", bone}`. */
-const listOf = (k, row) => (row.kind === "bend" ? k.bends : k.tracks)[row.bone] || [];
+/** The list of a row: `{kind: "track" | "bend" | "rotation", bone}`. */
+const listOf = (k, row) => listsOf(k, row.kind)[row.bone] || [];
 
 /**
  * Key `index` of `row` ({kind, bone}) moved to `t` seconds: snapped to a frame, kept strictly
@@ -125,7 +191,7 @@ export function moveKey(keys, row, index, t) {
  */
 export function deleteKey(keys, row, index) {
   const k = copy(keys);
-  const lists = row.kind === "bend" ? k.bends : k.tracks;
+  const lists = listsOf(k, row.kind);
   const list = lists[row.bone];
   if (!list || !list[index]) return k;
   if (index === 0) delete lists[row.bone];
@@ -141,7 +207,8 @@ export function deleteKey(keys, row, index) {
 export function pasteKey(keys, row, key, t) {
   const k = copy(keys);
   if (!key) return k;
-  const lists = row.kind === "bend" ? k.bends : k.tracks;
+  if (row.kind === "rotation") k.rotations = k.rotations || {};
+  const lists = listsOf(k, row.kind);
   const list = lists[row.bone] || [];
   place(list, { ...key, time: list.length ? snapTime(t, k.fps) : 0 }, k.fps);
   lists[row.bone] = list;
@@ -149,10 +216,13 @@ export function pasteKey(keys, row, key, t) {
   return k;
 }
 
-/** Key `index` of track `bone` eased by `ease` ({kind, k1, k2}; k1 and k2 only with "parent"). Returns new keys. */
-export function setEase(keys, bone, index, ease) {
+/**
+ * Key `index` of track `bone` (of the rotation `bone` when `kind` is "rotation") eased by `ease`
+ * ({kind, k1, k2}; k1 and k2 only with "parent"). Returns new keys.
+ */
+export function setEase(keys, bone, index, ease, kind = "track") {
   const k = copy(keys);
-  const list = k.tracks[bone];
+  const list = listsOf(k, kind)[bone];
   if (!list || !list[index]) return k;
   const { k1: _k1, k2: _k2, ...rest } = list[index];
   list[index] = { ...rest, ease: ease.kind, ...(ease.kind === "parent" ? { k1: ease.k1, k2: ease.k2 } : {}) };
@@ -200,11 +270,22 @@ export function togglePinKey(keys, bone) {
   return k;
 }
 
-/** The keys' duration: the largest key time over tracks and bends (0 for none). */
+/** The keys' duration: the largest key time over tracks, bends and rotations (0 for none). */
 export function keysDuration(keys) {
   if (!keys) return 0;
-  const times = [...Object.values(keys.tracks || {}), ...Object.values(keys.bends || {})].flat().map((k) => k.time);
+  const times = [...Object.values(keys.tracks || {}), ...Object.values(keys.bends || {}), ...Object.values(keys.rotations || {})].flat().map((k) => k.time);
   return times.length ? Math.max(...times) : 0;
+}
+
+/**
+ * `keys` as a request sends them: with `duration`, the keyed motion's length, `length` seconds
+ * (the Length field) or the last key's time if later, on a frame (the server's frames, CSV, GIF
+ * and export run to it, each track holding its last key after its end). `keys` itself is left
+ * as it is (its Length is the page's, kept apart from the keys).
+ */
+export function lengthKeys(keys, length) {
+  const fps = keys.fps ?? KEYS_FPS;
+  return { ...keys, duration: frameOf(Math.max(length || 0, keysDuration(keys)), fps) / fps };
 }
 
 /**
@@ -217,6 +298,7 @@ export function keyRows(keys, boneNames) {
   return [
     ...order(Object.keys(keys.tracks || {})).map((bone) => ({ kind: "track", bone, keys: keys.tracks[bone] })),
     ...order(Object.keys(keys.bends || {})).map((bone) => ({ kind: "bend", bone, keys: keys.bends[bone] })),
+    ...order(Object.keys(keys.rotations || {})).map((bone) => ({ kind: "rotation", bone, keys: keys.rotations[bone] })),
     ...order(keys.pins || []).map((bone) => ({ kind: "pin", bone, keys: [] })),
   ];
 }
@@ -299,7 +381,7 @@ export function rigMotion(rig, answer) {
 /**
  * The /api/animate body of a character's keys (`c`: characters.js's state.character): the file's
  * text, the keys (tracks, and bends when there are: a bend keys a two-bone IK constraint's side;
- * a character has no pins),
+ * a character has no pins; `duration` when the keys have it: keyed.js gives them the Length),
  * the clip posed under them (none: the setup pose), `ik: "ikarus"` when the reader chose
  * ikarus's solver, and the format: "json" (the frames) or "spine" (the file with the animation
  * `ikarus` added).
@@ -307,7 +389,13 @@ export function rigMotion(rig, answer) {
 export function characterAnimateRequest(c, keys, format = "json") {
   return {
     ...characterRef(c),
-    keys: { fps: keys.fps, tracks: keys.tracks, ...(Object.keys(keys.bends || {}).length ? { bends: keys.bends } : {}) },
+    keys: {
+      fps: keys.fps,
+      tracks: keys.tracks,
+      ...(Object.keys(keys.bends || {}).length ? { bends: keys.bends } : {}),
+      ...(Object.keys(keys.rotations || {}).length ? { rotations: keys.rotations } : {}),
+      ...(keys.duration !== undefined ? { duration: keys.duration } : {}),
+    },
     ...(c.animation ? { animation: c.animation } : {}),
     ...(c.ik === "ikarus" ? { ik: "ikarus" } : {}),
     format,
@@ -329,118 +417,4 @@ export function frameAt(motion, t) {
   if (!motion || !motion.frames || !motion.frames.length) return null;
   const i = Math.min(frameOf(t, motion.fps), motion.frames.length - 1);
   return motion.frames[i];
-}
-
-/**
- * The two-bone limbs of a rig that get a bend handle, as [{bone, upper, end}]: `bone` is the
- * lower bone, at whose start the middle joint (knee, elbow) bends (the bend key's name),
- * `upper` its parent, `end` the effector. For each effector (a leaf) E: if E's parent B has E as
- * its only child and B's parent A has B as its only child, the limb is A–B with E on its end
- * (a leg with a foot: the knee at B's start); else if E's parent has E as its only child, the
- * limb is that parent and E (a two-bone arm: the joint at E's start). File order, each bone once.
- */
-export function bendLimbs(rig) {
-  const children = rigChildren(rig);
-  const index = new Map(rig.bones.map((b, i) => [b.name, i]));
-  const parentOf = (i) => {
-    const p = rig.bones[i].parent;
-    return p === undefined || p === null ? undefined : index.get(p);
-  };
-  const only = (p, c) => p !== undefined && children[p].length === 1 && children[p][0] === c;
-  const revolute = (i) => rig.bones[i].joint !== "prismatic";
-  const out = new Map();
-  rig.bones.forEach((_, e) => {
-    if (children[e].length) return;
-    const b = parentOf(e);
-    const a = b === undefined ? undefined : parentOf(b);
-    let limb = null;
-    if (only(b, e) && only(a, b)) limb = { bone: b, upper: a, end: e };
-    else if (only(b, e)) limb = { bone: e, upper: b, end: e };
-    if (limb && revolute(limb.bone) && !out.has(limb.bone)) {
-      out.set(limb.bone, { bone: rig.bones[limb.bone].name, upper: rig.bones[limb.upper].name, end: rig.bones[limb.end].name });
-    }
-  });
-  return [...out.keys()].sort((x, y) => x - y).map((i) => out.get(i));
-}
-
-/** A bend handle's distance from its joint, CSS pixels (beside the knee, not on the thigh's tip). */
-export const BEND_OFFSET_PIXELS = 18;
-
-/** A press within this many CSS pixels of a bend handle flips it. */
-export const BEND_PICK_PIXELS = 8;
-
-/**
- * Each bend handle of `rig` posed by `pose` in canvas pixels, through `toCanvas(x, y)` (the
- * page's view): [{bone, side, at: [x, y], joint: [x, y]}] (handleOf); `side` is the lower
- * bone's bend now.
- */
-export function bendHandles(rig, pose, toCanvas) {
-  const fk = bodyForward(rig, pose);
-  const index = new Map(rig.bones.map((b, i) => [b.name, i]));
-  return bendLimbs(rig).map(({ bone, upper }) => {
-    const i = index.get(bone);
-    const side = sideOf(pose[i] ?? rig.bones[i].angle_deg);
-    return handleOf(bone, side, toCanvas(...fk.starts[index.get(upper)]), toCanvas(...fk.starts[i]), toCanvas(...fk.tips[i]));
-  });
-}
-
-/**
- * Each bend handle of a character: one per two-bone IK constraint (`ik`, the file's as
- * /api/rig/parse lists them, `bones` [upper, lower]), at its lower bone's origin as `posed` (the
- * bones as /api/pose answers them: {name, x, y, rotation_deg, tip}) has it, in canvas pixels;
- * `side` the way the lower bone turns from the upper one on the screen ("ccw" or "cw", as a bend
- * key names it).
- */
-export function characterBendHandles(ik, posed, toCanvas) {
-  const at = new Map((posed || []).map((b) => [b.name, b]));
-  return (ik || [])
-    .filter((k) => k.bones.length === 2 && at.has(k.bones[0]) && at.has(k.bones[1]))
-    .map((k) => {
-      const [u, l] = k.bones.map((b) => at.get(b));
-      const side = Math.sin(((l.rotation_deg - u.rotation_deg) * Math.PI) / 180) >= 0 ? "ccw" : "cw";
-      return handleOf(l.name, side, toCanvas(u.x, u.y), toCanvas(l.x, l.y), toCanvas(...l.tip));
-    });
-}
-
-/**
- * The bend handle of the limb root → joint → tip (canvas pixels) whose lower bone is `bone`,
- * bending `side`: {bone, side, at, joint}, the handle BEND_OFFSET_PIXELS from the joint on the
- * side the joint points to (away from the line from the limb's root to its end), so that it shows
- * which way the limb bends.
- */
-function handleOf(bone, side, root, joint, tip) {
-  // Away from the root–tip line, through the joint; a straight limb: to the side it would bend.
-  const [dx, dy] = [tip[0] - root[0], tip[1] - root[1]];
-  const l = Math.hypot(dx, dy) || 1;
-  // The canvas's y points down: a ccw bend puts the joint to the right of root → tip on the screen.
-  let [nx, ny] = [-dy / l, dx / l];
-  const off = (joint[0] - root[0]) * nx + (joint[1] - root[1]) * ny;
-  if (Math.abs(off) > 0.5) {
-    if (off < 0) [nx, ny] = [-nx, -ny];
-  } else if (side === "ccw") [nx, ny] = [-nx, -ny];
-  return { bone, side, joint, at: [joint[0] + nx * BEND_OFFSET_PIXELS, joint[1] + ny * BEND_OFFSET_PIXELS] };
-}
-
-/** The bone of the bend handle nearest (px, py) within BEND_PICK_PIXELS, or null. */
-export function bendHandleAt(handles, px, py, radius = BEND_PICK_PIXELS) {
-  let best = null;
-  let bestD = Infinity;
-  for (const h of handles) {
-    const d = Math.hypot(h.at[0] - px, h.at[1] - py);
-    if (d <= radius && d < bestD) {
-      best = h.bone;
-      bestD = d;
-    }
-  }
-  return best;
-}
-
-/**
- * Whether `bone`'s joint range (limits_deg, when `limits` are on) lets it bend to `side`: a cw
- * side needs some of [−180°, 0°), ccw some of (0°, 180°]. No limits: always.
- */
-export function bendAllowed(boneDef, side, limits) {
-  if (!limits || !boneDef.limits_deg) return true;
-  const [lo, hi] = boneDef.limits_deg;
-  return side === "ccw" ? hi > 0 : lo < 0;
 }

@@ -140,7 +140,9 @@ const amend = () => project && project.amend();
 const projectFiles = { isProject: (text) => !!project && project.isProject(text), open: (name, text) => project.open(name, text) };
 
 /** The timeline under the canvas (timeline.js): it shows poses and redraws through these. */
-const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded, canPlay: durationOk });
+// The arrow keys step frames on a rig or a character (on the arm they nudge its goal: input.js).
+const arrowsStep = () => !!(state.rig || state.character);
+const timeline = wireTimeline(state, { showPose: setPose, draw, toggleSolver, clearVia, ended: motionEnded, canPlay: durationOk, arrowsStep });
 
 /** Zoom, pan, Fit and the onion skins' fields (viewctl.js). */
 const views = wireViewControls(state, canvas, { draw, toggle: () => timeline.toggle(), requestDraw, recheck });
@@ -719,7 +721,7 @@ window.ikarus = {
   /** Shows the arm ("arm") or a rig of the Body list ("rig:puppet", "file"); whether no rig solve is in flight or waiting. */
   rigs: { use: (value) => rigs.use(value), settled: () => rigs.settled() },
   /** A rig's keys: restore a KEYS object (undo, projects), whether no keyed motion is asked, Key mode, the playhead (seconds), the bend handles (canvas pixels). */
-  keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles() },
+  keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles(), sent: () => keyed.sent() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
   /** Undo, redo, save and open (projects.js), the work as a snapshot, and whether it is unsaved. */

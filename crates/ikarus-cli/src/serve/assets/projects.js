@@ -22,8 +22,12 @@ const $ = (id) => document.getElementById(id);
 /** The panel's settings by id (the other fields of #panel-body are found too: a new control is saved). */
 const SETTINGS = ["method", "limits", "limit-mode", "restarts", "lambda", "tolerance", "max-iterations", "record-every", "use-goal-angle", "goal-angle", "ease", "k1", "k2", "frames", "max-step", "duration", "follow", "show-ghosts", "show-traces", "show-workspace"];
 
-/** Fields of the panel that are not settings: Key mode (the arm's), the body, files, a character's clip, the base (the arm's). */
-const NOT_SETTINGS = new Set(["arm-key-mode", "body-kind", "rig-file", "arm-file", "project-file", "character-animation", "base-x", "base-y"]);
+/**
+ * Fields of the panel that are not settings: Key mode (the arm's), the body, files, a
+ * character's clip, the base (the arm's), and the onion skins (a view setting, like zoom: no
+ * undo step).
+ */
+const NOT_SETTINGS = new Set(["arm-key-mode", "body-kind", "rig-file", "arm-file", "project-file", "character-animation", "base-x", "base-y", "onion", "onion-count"]);
 
 /** Every setting's element: the known ones, then any other named field of the panel. */
 function settingFields() {

@@ -3,13 +3,16 @@
 // the joint-space distance; play, pause, replay, a scrubber, the time, a small plot of the
 // ease's s(t) with the playhead, and the buttons of the solver's iterations and the via points.
 // A tap of Space plays and pauses when focus is not in a field or on a button (viewctl.js tells
-// a tap from Space held to pan).
+// a tap from Space held to pan); `,` and `.` step one frame back and forward (on a rig or a
+// character the left and right arrows too: on the arm they nudge its goal); with Loop ticked the
+// playback starts again at the end instead of stopping (a view setting, not an undo step).
 //
 // It owns `state.playback` (below) and reads `state.animation` and `state.animationRequest`;
 // everything else goes through main.js's actions.
 
 import { fitCanvas } from "./draw.js";
 import * as api from "./api.js";
+import { ownsKeys } from "./input.js";
 import { autoDuration, easeAt, freeJoints, jointDistance, poseAt } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
@@ -35,8 +38,9 @@ const EASE_SAMPLES = 97;
  *   ease      the ease the motion was made with ({kind, k1, k2}), for the s(t) plot
  *   solver    whether the motion is the solver's recorded iterations (from_solve)
  *   posed     whether the arm shows the playhead's pose (false once something else moved it)
- *   clip      a character's clip played instead of a motion (characters.js): {seconds (its
- *             duration), show(t) (poses the character at t seconds)}, or null
+ *   clip      a character's clip or a keyed motion played instead of a motion (characters.js,
+ *             keyed.js): {seconds (its duration), fps (its frames per second; 30 if not
+ *             given), show(t) (shows it at t seconds)}, or null
  */
 export function newPlayback() {
   return { u: 0, playing: false, clock: null, raf: 0, index: 0, free: [], distance: 0, chosen: null, auto: null, ease: null, solver: false, posed: false, clip: null };
@@ -44,9 +48,10 @@ export function newPlayback() {
 
 /**
  * Wires the timeline's controls. `act` is {showPose(angles, joints?), draw(), toggleSolver(),
- * clearVia(), ended(), canPlay()} (ended: the playback reached the end of the motion; canPlay:
- * whether the fields allow playing, else it has said why). Returns {load(), unload(), detach(),
- * play(), pause(), toggle(), replay(), seek(u), choose(seconds), duration(), sync(), loadClip(clip)}.
+ * clearVia(), ended(), canPlay(), arrowsStep()} (ended: the playback reached the end of the motion; canPlay:
+ * whether the fields allow playing, else it has said why; arrowsStep: whether the arrow keys
+ * step frames). Returns {load(), unload(), detach(),
+ * play(), pause(), toggle(), replay(), seek(u), step(n), choose(seconds), duration(), sync(), loadClip(clip)}.
  */
 export function wireTimeline(state, act) {
   const pb = state.playback;
@@ -163,8 +168,14 @@ export function wireTimeline(state, act) {
   function tick(now) {
     pb.raf = 0;
     if (!pb.playing) return;
-    const u = pb.clock.u + Math.max(0, now - pb.clock.wall) / 1000 / duration();
-    if (u >= 1) {
+    let u = pb.clock.u + Math.max(0, now - pb.clock.wall) / 1000 / duration();
+    if (u >= 1 && $("loop").checked) {
+      // Looping: on from the start by as much as it ran past the end.
+      u %= 1;
+      pb.clock = { wall: now, u };
+      pb.loops = (pb.loops || 0) + 1;
+      document.body.dataset.loops = String(pb.loops);
+    } else if (u >= 1) {
       pb.playing = false;
       pb.clock = null;
     }
@@ -205,6 +216,26 @@ export function wireTimeline(state, act) {
     if (!loaded()) return;
     show(u);
     // Scrubbed to the end: the motion has been seen to its end.
+    if (pb.u >= 1 && act.ended) act.ended();
+  }
+
+  /**
+   * The playhead `n` frames on (back for a negative `n`), paused, within the motion: a clip's or
+   * keyed motion's frames at its fps (frame ⌊t·fps⌉ then `n` more), a motion's frames one by one.
+   */
+  function step(n) {
+    pause();
+    if (!loaded()) return;
+    if (pb.clip) {
+      const fps = pb.clip.fps || 30;
+      const d = pb.clip.seconds;
+      const last = Math.floor(d * fps + 1e-9);
+      const k = Math.min(Math.max(Math.round(pb.u * d * fps) + n, 0), last);
+      show(k / fps / d);
+    } else {
+      const last = Math.max(frames().length - 1, 1);
+      show((Math.round(pb.u * last) + n) / last);
+    }
     if (pb.u >= 1 && act.ended) act.ended();
   }
 
@@ -272,6 +303,14 @@ export function wireTimeline(state, act) {
   $("solver").addEventListener("click", () => act.toggleSolver());
   $("clear-via").addEventListener("click", () => act.clearVia());
   new ResizeObserver(drawEase).observe($("ease-plot"));
+  document.addEventListener("keydown", (ev) => {
+    if (ev.ctrlKey || ev.altKey || ev.metaKey || ownsKeys(ev.target, ev.key)) return;
+    const arrows = act.arrowsStep && act.arrowsStep();
+    const n = ev.key === "," || (arrows && ev.key === "ArrowLeft") ? -1 : ev.key === "." || (arrows && ev.key === "ArrowRight") ? 1 : 0;
+    if (!n || !loaded()) return;
+    ev.preventDefault();
+    step(n);
+  });
 
-  return { load, loadClip, unload, detach, play, pause, toggle, replay, seek, choose, duration, sync };
+  return { load, loadClip, unload, detach, play, pause, toggle, replay, seek, step, choose, duration, sync };
 }

@@ -9,22 +9,26 @@ use serde::de::{Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 
 use super::{Count, Nested, Num};
 
-/// The `keys` of a request: its `fps`, its tracks' and bends' latest key time, and how many
-/// tracks and pins it has.
+/// The `keys` of a request: its `fps`, its tracks', bends' and rotations' latest key time, its
+/// `duration`, and how many tracks and pins it has.
 #[derive(Debug, Default, Deserialize)]
 #[serde(default)]
 pub(super) struct Keys {
     fps: Num,
     tracks: Tracks,
     bends: Tracks,
+    rotations: Tracks,
     pins: Count,
+    duration: Num,
 }
 
 impl Keys {
-    /// Frames of the motion: the latest key time × fps (30 when not given), and one.
+    /// Frames of the motion: the duration or the latest key time, whichever is later, × fps (30
+    /// when not given), and one.
     pub(super) fn frames(&self) -> f64 {
         let fps = self.fps.value().unwrap_or(30.0).max(0.0);
-        (self.tracks.last.max(self.bends.last) * fps).max(0.0) + 1.0
+        let last = self.tracks.last.max(self.bends.last).max(self.rotations.last);
+        (last.max(self.duration.value().unwrap_or(0.0)) * fps).max(0.0) + 1.0
     }
 
     /// Goals of each frame's solve: the tracks and the pins.
@@ -160,6 +164,9 @@ mod tests {
         // A bend's key later than every track's sets the frames; 30 fps unless told.
         let keys = json!({"tracks": {"a": [{"time": 0}]}, "bends": {"c": [{"time": 0}, {"time": 1}]}});
         assert_eq!(animate(json!({"rig": rig, "keys": keys, "options": options})), 31.0 * (40.0 + 2.0));
+        // A duration past the last key sets them too (the tracks hold to it).
+        let keys = json!({"tracks": {"a": [{"time": 0}, {"time": 1}]}, "duration": 3});
+        assert_eq!(animate(json!({"rig": rig, "keys": keys, "options": options})), 91.0 * (40.0 + 2.0));
         // Leniently read: a field of the wrong type is absent.
         for keys in [json!({"tracks": 5}), json!({"tracks": {"a": 3}}), json!({"tracks": {"a": [1, {"time": "x"}]}})] {
             let one = json!({"rig": rig, "keys": keys, "options": options});
