@@ -230,3 +230,46 @@ fn a_spine_3_8_file_gets_straight_keys_that_play_back() {
         assert!(off < 1e-2, "at {t}: {off}");
     }
 }
+
+/// Bones turned by hand (rotation keys, in place of the clip's rotation) export as a `rotate`
+/// timeline of their own, fitted between their keys in place of the clip's (the walk's head keys
+/// are not carried for the head), and the export runs to the keys' Length (`duration`, past the
+/// last key) and plays back within 1e-2 at every frame with the constraints on.
+#[test]
+fn bones_turned_by_hand_export_as_their_own_rotate_keys_to_the_keys_length() {
+    let loaded = load(&text(SPINEBOY), SPINEBOY).unwrap();
+    let p = moved(&loaded, "front-leg-target", [40.0, 30.0]).1;
+    let keys = json!({"fps": 30, "duration": 1.0,
+        "tracks": {"front-leg-target": [{"time": 0.0, "x": p[0] - 40.0, "y": p[1] - 30.0}, {"time": 0.4, "x": p[0], "y": p[1]}]},
+        "rotations": {"head": [{"time": 0.0, "angle_deg": 80.0}, {"time": 0.3, "angle_deg": 120.0, "ease": "sine"}, {"time": 0.6, "angle_deg": 95.0}]}});
+    let keys: KeysFile = serde_json::from_value(keys).unwrap();
+    let (course, fps) = keyed(&loaded, &keys, Some("walk".into()), 1000, "cap").unwrap();
+    let motion = Motion::new(&loaded, course, fps).unwrap();
+    assert_eq!(motion.duration, 1.0);
+    let editable = played(SPINEBOY, &motion, Form::Editable);
+    assert!(editable.frames <= 1e-2, "frames off by {}", editable.frames);
+    let head: Vec<_> = timelines(&editable.animation)
+        .into_iter()
+        .filter(|(bone, kind, _)| bone == "head" && kind == "rotate")
+        .flat_map(|(_, _, k)| k)
+        .collect();
+    let setup = loaded.character.bones()[loaded.character.bone_index("head").unwrap()].setup.rotation.to_degrees();
+    // Its keys are the turn's (relative to the setup), not the walk's: the first is 80° at 0.
+    let first = &head[0];
+    assert!((first["value"].as_f64().unwrap() - (80.0 - setup)).abs() < 1e-9, "{first}");
+    // Keys where the turn moves, none where it holds (after its last key at 0.6 s).
+    let times: Vec<f64> = head.iter().map(|k| k["time"].as_f64().unwrap_or(0.0)).collect();
+    println!("the head's turn: {} keys at {times:?}", head.len());
+    assert!(times.iter().filter(|t| **t > 0.6 + 1e-6).count() <= 1, "keys where the turn holds: {times:?}");
+    let last = head.last().unwrap();
+    assert!((last["value"].as_f64().unwrap() - (95.0 - setup)).abs() < 1e-9, "{last}");
+    // The last key of the export is at the Length, not at the last key.
+    let end = timelines(&editable.animation)
+        .iter()
+        .flat_map(|(_, _, k)| k.iter().map(|k| k["time"].as_f64().unwrap_or(0.0)))
+        .fold(0.0, f64::max);
+    assert!((end - 1.0).abs() < 1e-6, "the export ends at {end}");
+    let ik = editable.animation["ik"].as_object().into_iter().flatten();
+    let off = ik.flat_map(|(_, keys)| keys.as_array().unwrap()).filter(|k| k["mix"] == json!(0.0)).count();
+    assert_eq!(off, 0, "the constraints stay on");
+}

@@ -255,9 +255,10 @@ impl<'a> Motion<'a> {
         match &self.course {
             Course::Eased { .. } => {}
             Course::Path { points, .. } => times.extend((0..points.len()).map(|k| k as f64 / self.fps)),
-            Course::Keyed { tracks, bends, .. } => {
+            Course::Keyed { tracks, bends, rotations, .. } => {
                 times.extend(tracks.iter().flat_map(|(_, t)| t.times().iter().copied()));
                 times.extend(bends.iter().flat_map(|(_, keys)| keys.iter().map(|k| k.0)));
+                times.extend(rotations.iter().flat_map(|(_, t)| t.times().iter().copied()));
             }
         }
         times.retain(|t| (0.0..=self.duration).contains(t));
@@ -342,8 +343,19 @@ impl<'a> Motion<'a> {
         }
     }
 
-    /// The keyed bones' local rotations at `time`, degrees (a keyed course's).
-    fn turns_at(&self, time: f64) -> Vec<(usize, f64)> {
+    /// The bones a keyed course turns by hand (its rotation keys), in the keys' order.
+    #[must_use]
+    pub fn turned_bones(&self) -> Vec<usize> {
+        match &self.course {
+            Course::Keyed { rotations, .. } => rotations.iter().map(|(bone, _)| *bone).collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The keyed bones' local rotations at `time`, degrees (a keyed course's), each in place of
+    /// the clip's.
+    #[must_use]
+    pub fn turns_at(&self, time: f64) -> Vec<(usize, f64)> {
         let Course::Keyed { rotations, .. } = &self.course else { return Vec::new() };
         let time = time.clamp(0.0, self.duration);
         let mut v = Vec::with_capacity(1);

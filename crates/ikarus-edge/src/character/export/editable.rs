@@ -11,6 +11,9 @@
 //!   track is ikarus's, and its local translation is that track seen from the moving parent,
 //!   which the keys and their fitted curves follow ([`super::curves`]), with keys added where a
 //!   fit strays past the tolerance;
+//! - each bone turned by hand (a keyed course's rotation keys, in place of the clip's rotation)
+//!   gets a `rotate` timeline in place of the clip's, keyed at the course's key times with
+//!   fitted curves, keys added where a fit strays;
 //! - bend keys become keys of the constraint's IK timeline with `bendPositive` (merged into the
 //!   clip's IK keys: every key takes the side in force at its time, a bend at a time between
 //!   two of the clip's keys splits their curve there). Spine 3.8 files, whose curve is one for
@@ -139,6 +142,7 @@ impl<'a> Job<'_, '_, 'a> {
         let c = self.character();
         let targets: Vec<usize> =
             self.motion.targets_at(0.0).iter().filter_map(|(name, _)| c.bone_index(name)).collect();
+        let turned = self.motion.turned_bones();
         let mut bones = Map::new();
         let mut ik = Map::new();
         let mut out = Map::new();
@@ -150,9 +154,13 @@ impl<'a> Job<'_, '_, 'a> {
             }
             for (bone, timelines) in clip.get("bones").and_then(Value::as_object).into_iter().flatten() {
                 let target = c.bone_index(bone).is_some_and(|b| targets.contains(&b));
+                let turns = c.bone_index(bone).is_some_and(|b| turned.contains(&b));
                 let mut own = Map::new();
                 for (kind, keys) in timelines.as_object().into_iter().flatten() {
                     if target && matches!(kind.as_str(), "translate" | "translatex" | "translatey") {
+                        continue;
+                    }
+                    if turns && kind == "rotate" {
                         continue;
                     }
                     let keys = keys.as_array().map_or(&[][..], Vec::as_slice);
@@ -203,6 +211,7 @@ impl<'a> Job<'_, '_, 'a> {
             let entry = bones.entry(name).or_insert_with(|| json!({}));
             entry["translate"] = Value::Array(keys.iter().map(two).collect());
         }
+        self.turns(&turned, &mut bones)?;
         for (k, bends) in self.motion.bend_keys().iter().filter(|(_, b)| !b.is_empty()) {
             let name = self.character().constraints()[*k].name.clone();
             let mut keys = match ik.remove(&name) {
@@ -225,6 +234,45 @@ impl<'a> Job<'_, '_, 'a> {
             out.insert("ik".to_owned(), Value::Object(ik));
         }
         Ok(Value::Object(out))
+    }
+
+    /// The `rotate` timelines of the bones turned by hand: the keyed local rotation (in place of
+    /// the clip's, as the runtime's rotate timeline sets it before the constraints), relative to
+    /// the setup's, fitted between the course's key times (every frame too for 3.8's straight
+    /// keys), its error weighed by how far a turn of the bone swings its subtree.
+    fn turns(&mut self, turned: &[usize], bones: &mut Map<String, Value>) -> Result<(), String> {
+        if turned.is_empty() {
+            return Ok(());
+        }
+        let reach = reach(self.motion)?;
+        let mut anchors: Vec<f64> = self.motion.key_times().into_iter().map(read_time).collect();
+        if self.shape == Shape::Linear {
+            anchors.extend(self.motion.frame_times().into_iter().map(read_time));
+            anchors.sort_by(f64::total_cmp);
+            anchors.dedup();
+        }
+        for (j, &b) in turned.iter().enumerate() {
+            let setup = self.character().bones()[b].setup.rotation.to_degrees();
+            let weight = reach[b].to_radians();
+            let mut budget = self.budget;
+            let mut fitter = Fitter {
+                channels: 1,
+                period: Some(360.0),
+                shape: self.shape,
+                tolerance: self.tolerance * FIT_SHARE,
+                budget: &mut budget,
+            };
+            let motion = self.motion;
+            let keys = fitter.fit(&anchors, &mut |t| {
+                let deg = motion.turns_at(t).get(j).map_or(setup, |turn| turn.1);
+                Ok(Sample { values: [deg - setup, 0.0], weight })
+            })?;
+            let name = if self.legacy { "angle" } else { "value" };
+            let bone = self.character().bones()[b].name.clone();
+            let entry = bones.entry(bone).or_insert_with(|| json!({}));
+            entry["rotate"] = Value::Array(keys.iter().map(|k| one(k, name)).collect());
+        }
+        Ok(())
     }
 
     /// ikarus's solver: every bone the motion moves keyed, every constraint at mix 0.
