@@ -84,7 +84,7 @@ pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
 #[serde(default)]
 struct Shape {
     arm: Nested<Body>,
-    rig: RigField,
+    rig: character::RigField,
     /// A kept character's id (`"character": ID`).
     character: Option<String>,
     ik: Json,
@@ -126,13 +126,6 @@ struct Solver {
     max_iterations: Num,
     restarts: Num,
     backtrack: Num,
-}
-
-/// A request's `rig`: a rig's table, or a character file's text (its counts).
-#[derive(Debug, Default)]
-struct RigField {
-    body: Option<Body>,
-    character: Option<character::Character>,
 }
 
 impl Shape {
@@ -376,58 +369,6 @@ impl<'de> Visitor<'de> for AnyValue {
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Json, A::Error> {
         while map.next_entry::<IgnoredAny, IgnoredAny>()?.is_some() {}
         Ok(Json::Other)
-    }
-}
-
-impl<'de> Deserialize<'de> for RigField {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_any(RigValue)
-    }
-}
-
-/// Reads a rig's table as its [`Body`], a character file's text as its counts, and anything
-/// else as absent.
-struct RigValue;
-
-impl<'de> Visitor<'de> for RigValue {
-    type Value = RigField;
-
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("any JSON value")
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<RigField, A::Error> {
-        let body = Body::deserialize(de::value::MapAccessDeserializer::new(map))?;
-        Ok(RigField { body: Some(body), character: None })
-    }
-
-    fn visit_str<E>(self, v: &str) -> Result<RigField, E> {
-        let json = v.trim_start_matches('\u{feff}').trim_start().starts_with('{');
-        Ok(RigField { body: None, character: json.then(|| character::Character::read(v)) })
-    }
-
-    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<RigField, A::Error> {
-        AnyValue.visit_seq(seq).map(|_| RigField::default())
-    }
-
-    fn visit_bool<E>(self, _: bool) -> Result<RigField, E> {
-        Ok(RigField::default())
-    }
-
-    fn visit_i64<E>(self, _: i64) -> Result<RigField, E> {
-        Ok(RigField::default())
-    }
-
-    fn visit_u64<E>(self, _: u64) -> Result<RigField, E> {
-        Ok(RigField::default())
-    }
-
-    fn visit_f64<E>(self, _: f64) -> Result<RigField, E> {
-        Ok(RigField::default())
-    }
-
-    fn visit_unit<E>(self) -> Result<RigField, E> {
-        Ok(RigField::default())
     }
 }
 

@@ -39,7 +39,11 @@ use crate::limits::JointLimits;
 use crate::math;
 use crate::skeleton::{Bone, Skeleton};
 use crate::solve::{Bend, Outcome, Pin, Priority, RigGoal, RigTask, Solver};
+use goal_slots::GoalSlots;
 use thiserror::Error;
+
+#[path = "goal_slots.rs"]
+mod goal_slots;
 
 /// How many times at most the skeleton is rebuilt and solved again (see the module docs).
 pub const ROUNDS: usize = 16;
@@ -528,38 +532,6 @@ impl Character {
     /// The largest distance of a bone's origin from the skeleton's, a scale for tolerances.
     fn size(&self, posed: &Posed) -> f64 {
         (0..self.bones.len()).map(|i| posed.origin(i)).fold(0.0, |m: f64, [x, y]| m.max(x.abs()).max(y.abs()))
-    }
-}
-
-/// The goals of a task in the order they were put, at most one per skeleton bone.
-struct GoalSlots {
-    /// In the order put; `None` where a later goal on the same bone (or a pin) replaced it.
-    put: Vec<Option<RigGoal>>,
-    /// Per skeleton bone, where its goal is in `put`.
-    at: Vec<Option<usize>>,
-}
-
-impl GoalSlots {
-    fn new(bones: usize) -> Self {
-        GoalSlots { put: Vec::new(), at: vec![None; bones] }
-    }
-
-    /// `goal` on bone `i`, replacing the one there.
-    fn put(&mut self, i: usize, goal: RigGoal) {
-        self.clear(i);
-        self.at[i] = Some(self.put.len());
-        self.put.push(Some(goal));
-    }
-
-    /// No goal on bone `i`.
-    fn clear(&mut self, i: usize) {
-        if let Some(k) = self.at[i].take() {
-            self.put[k] = None;
-        }
-    }
-
-    fn goals(self) -> Vec<RigGoal> {
-        self.put.into_iter().flatten().collect()
     }
 }
 

@@ -13,9 +13,9 @@
 use std::fmt;
 
 use serde::Deserialize;
-use serde::de::{Deserializer, SeqAccess, Visitor};
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
-use super::{Count, Nested};
+use super::{Body, Count, Nested};
 
 /// Link steps to read a byte of a character file (parse, check, index): a megabyte is about a
 /// tenth of a second, [`super::QUICK_COST`] about 600 kB.
@@ -114,6 +114,65 @@ pub(super) enum Rules {
     Runtime,
     /// ikarus's solver, with the request's goals and pins.
     Ikarus { goals: f64, pins: f64 },
+}
+
+/// A request's `rig`: a rig's table, or a character file's text (its counts).
+#[derive(Debug, Default)]
+pub(super) struct RigField {
+    pub(super) body: Option<Body>,
+    pub(super) character: Option<Character>,
+}
+
+impl<'de> Deserialize<'de> for RigField {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(RigValue)
+    }
+}
+
+/// Reads a rig's table as its [`Body`], a character file's text as its counts, and anything
+/// else as absent.
+struct RigValue;
+
+impl<'de> Visitor<'de> for RigValue {
+    type Value = RigField;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("any JSON value")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<RigField, A::Error> {
+        let body = Body::deserialize(de::value::MapAccessDeserializer::new(map))?;
+        Ok(RigField { body: Some(body), character: None })
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<RigField, E> {
+        let json = v.trim_start_matches('\u{feff}').trim_start().starts_with('{');
+        Ok(RigField { body: None, character: json.then(|| Character::read(v)) })
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<RigField, A::Error> {
+        super::AnyValue.visit_seq(seq).map(|_| RigField::default())
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_i64<E>(self, _: i64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_u64<E>(self, _: u64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_f64<E>(self, _: f64) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
+
+    fn visit_unit<E>(self) -> Result<RigField, E> {
+        Ok(RigField::default())
+    }
 }
 
 impl<'de> Deserialize<'de> for Armatures {
