@@ -75,6 +75,13 @@ pub fn cell(name: &str) -> std::borrow::Cow<'_, str> {
     if plain { name.into() } else { quoted(name).into() }
 }
 
+/// A number for a message: as Rust prints it below 10¹⁵ in size, else in scientific notation
+/// (`2.4e19`, not twenty digits).
+#[must_use]
+pub fn count_text(n: f64) -> String {
+    if n.abs() < 1e15 { format!("{n}") } else { format!("{n:e}") }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

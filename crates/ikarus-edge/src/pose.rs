@@ -151,7 +151,9 @@ pub(crate) fn pose_into_until(
             c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
         }
     }?;
-    crate::pose_finite::check(loaded, ask, out)?;
+    let asked =
+        crate::pose_finite::Asked { targets: &ask.targets, animation: ask.animation.as_deref(), time: ask.time };
+    crate::pose_finite::check(loaded, &asked, out)?;
     Ok(report)
 }
 

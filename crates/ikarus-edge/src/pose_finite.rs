@@ -11,12 +11,23 @@ use ikarus::character::{Character, IkBones, Posed};
 
 use crate::character::{Format, Loaded};
 use crate::names::Quoted;
-use crate::pose::PoseAsk;
+
+/// What a pose was asked for, as far as a refusal tells its cause: the pose's targets, and the
+/// clip and time it sampled (a [`crate::pose::PoseAsk`]'s, borrowed).
+#[derive(Debug, Clone, Copy)]
+pub struct Asked<'a> {
+    /// `(bone, [x, y])`: where each target bone was put.
+    pub targets: &'a [(String, [f64; 2])],
+    /// The clip sampled, by name.
+    pub animation: Option<&'a str>,
+    /// Seconds into the clip.
+    pub time: Option<f64>,
+}
 
 /// `Ok` if every bone of `posed` has a finite world transform and tip; else the one-line
 /// refusal naming the first bone that has not, and the input that made it so where it can be
 /// told.
-pub fn check(loaded: &Loaded, ask: &PoseAsk, posed: &Posed) -> Result<(), String> {
+pub fn check(loaded: &Loaded, ask: &Asked<'_>, posed: &Posed) -> Result<(), String> {
     match (0..posed.len()).find(|&i| what_is_not_finite(posed, i).is_some()) {
         None => Ok(()),
         Some(i) => Err(cause(loaded, ask, posed, i)),
@@ -71,7 +82,7 @@ fn scale_of(w: &ikarus::character::Affine) -> f64 {
 }
 
 /// The refusal of a pose whose bone `i` is the first not finite.
-fn cause(loaded: &Loaded, ask: &PoseAsk, posed: &Posed, i: usize) -> String {
+fn cause(loaded: &Loaded, ask: &Asked<'_>, posed: &Posed, i: usize) -> String {
     let c = &loaded.character;
     let bone = &c.bones()[i];
     let what = what_is_not_finite(posed, i).unwrap_or("pose");
@@ -95,7 +106,7 @@ fn cause(loaded: &Loaded, ask: &PoseAsk, posed: &Posed, i: usize) -> String {
             let settings = posed.settings(k);
             let label = format!("ik[{k}] ({})", Quoted(&constraint.name));
             return if settings.softness.abs() > 1e100 {
-                let softness = crate::character::motion::count_text(settings.softness);
+                let softness = crate::names::count_text(settings.softness);
                 format!("{label}.softness = {softness}: the pose overflows ({at})")
             } else {
                 format!("{label}: the pose overflows ({at}: its {name} came out {value})")
@@ -104,7 +115,7 @@ fn cause(loaded: &Loaded, ask: &PoseAsk, posed: &Posed, i: usize) -> String {
         if let Some((target, p)) = ask.targets.iter().find(|(t, _)| *t == bone.name) {
             return format!("target {} = ({}, {}): the pose overflows ({at})", Quoted(target), p[0], p[1]);
         }
-        if let Some(animation) = &ask.animation {
+        if let Some(animation) = ask.animation {
             let time = ask.time.unwrap_or(0.0);
             return format!(
                 "animation {} at {time} s: bone {}'s {name} is keyed to {value} (a key beyond a 32-bit \
@@ -128,7 +139,7 @@ fn cause(loaded: &Loaded, ask: &PoseAsk, posed: &Posed, i: usize) -> String {
         Some(p) => format!("bone {}'s", Quoted(&c.bones()[p].name)),
         None => "the skeleton's".to_owned(),
     };
-    let num = crate::character::motion::count_text;
+    let num = crate::names::count_text;
     if what == "tip" {
         let w = posed.world(i);
         let length = bone.length;
@@ -153,7 +164,7 @@ fn cause(loaded: &Loaded, ask: &PoseAsk, posed: &Posed, i: usize) -> String {
         return format!("target {} = ({}, {}): the pose overflows ({at})", Quoted(target), p[0], p[1]);
     }
     let keyed = c.bones()[i].setup != local;
-    let clip = match (&ask.animation, keyed) {
+    let clip = match (ask.animation, keyed) {
         (Some(a), true) => format!(", as animation {} keys it at {} s", Quoted(a), ask.time.unwrap_or(0.0)),
         _ => String::new(),
     };

@@ -81,7 +81,7 @@ pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, 
         let field = format!("bones.{}", cell(name));
         let index = bone(&field, name)?;
         if let Some(limits) = b.limits_deg {
-            let [lo, hi] = limits.map(super::motion::count_text);
+            let [lo, hi] = limits.map(crate::names::count_text);
             limits_in_degrees(limits).map_err(|m| bad(format!("{field}.limits_deg = [{lo}, {hi}]: {m}")))?;
         }
         let limits = b.limits_deg.map(|[lo, hi]| [lo.to_radians(), hi.to_radians()]);

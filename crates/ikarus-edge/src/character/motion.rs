@@ -18,6 +18,7 @@ use serde::Serialize;
 use super::Loaded;
 use crate::keys::KeysFile;
 use crate::keys::character::{bend_constraint, bend_positive};
+pub use crate::names::count_text;
 use crate::names::{Quoted, cell};
 use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
 use crate::report::character::UnsupportedJson;
@@ -39,13 +40,6 @@ pub fn frames_within(duration: f64, fps: f64, cap: usize) -> Result<usize, f64> 
     let n = (duration * fps - 1e-9).ceil().max(0.0) + 1.0;
     // NaN fails the comparison too.
     if n <= cap as f64 { Ok(n as usize) } else { Err(n) }
-}
-
-/// A number for a message: as Rust prints it below 10¹⁵ in size, else in scientific notation
-/// (`2.4e19`, not twenty digits).
-#[must_use]
-pub fn count_text(n: f64) -> String {
-    if n.abs() < 1e15 { format!("{n}") } else { format!("{n:e}") }
 }
 
 /// How the target bones move.
