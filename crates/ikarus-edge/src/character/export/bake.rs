@@ -243,26 +243,5 @@ fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
             bones.insert(bone.name.clone(), Value::Object(timelines));
         }
     }
-    let mut ik = Map::new();
-    for k in c.constraints() {
-        let s = &k.setup;
-        let mut key = json!({"time": 0.0, "mix": 0.0});
-        if s.softness != 0.0 {
-            key["softness"] = json!(s.softness);
-        }
-        key["bendPositive"] = json!(s.bend_positive);
-        if s.compress {
-            key["compress"] = json!(true);
-        }
-        if s.stretch {
-            key["stretch"] = json!(true);
-        }
-        ik.insert(k.name.clone(), json!([key]));
-    }
-    let mut out = Map::new();
-    out.insert("bones".to_owned(), Value::Object(bones));
-    if !ik.is_empty() {
-        out.insert("ik".to_owned(), Value::Object(ik));
-    }
-    Ok(Value::Object(out))
+    Ok(super::ik_keys::animation(bones, super::ik_keys::switched_off(c)))
 }

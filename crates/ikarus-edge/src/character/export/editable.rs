@@ -26,11 +26,12 @@
 //! fitted curves between, keys added where a fit strays; every IK constraint is keyed to mix 0 at time
 //! 0, since the solver replaces them all and would otherwise be undone by them.
 
-use ikarus::character::{Character, IkSettings, Interpolation, Posed};
+use ikarus::character::{Character, Interpolation, Posed};
 use serde_json::{Map, Value, json};
 
 use super::clip_copy::{count_keys, cycles, insert_ik_key, looped, time_of};
 use super::curves::{FittedKey, Fitter, Sample, Shape, tenths};
+use super::ik_keys::{animation as animation_json, settings, switched_off};
 use super::sampler::Sampler;
 use super::{read_time, written_time};
 use crate::character::motion::Motion;
@@ -354,19 +355,7 @@ impl<'a> Job<'_, '_, 'a> {
                 bones.insert(bone.name.clone(), Value::Object(timelines));
             }
         }
-        let mut ik = Map::new();
-        for k in self.character().constraints() {
-            let mut key = settings(&k.setup);
-            key["time"] = json!(0.0);
-            key["mix"] = json!(0.0);
-            ik.insert(k.name.clone(), json!([key]));
-        }
-        let mut out = Map::new();
-        out.insert("bones".to_owned(), Value::Object(bones));
-        if !ik.is_empty() {
-            out.insert("ik".to_owned(), Value::Object(ik));
-        }
-        Ok(Value::Object(out))
+        Ok(animation_json(bones, switched_off(self.character())))
     }
 }
 
@@ -408,21 +397,6 @@ fn reach(motion: &Motion<'_>) -> Result<Vec<f64>, String> {
         }
     }
     Ok(reach)
-}
-
-/// An IK key of `s`'s settings (without its time).
-fn settings(s: &IkSettings) -> Value {
-    let mut key = json!({"mix": s.mix, "bendPositive": s.bend_positive});
-    if s.softness != 0.0 {
-        key["softness"] = json!(s.softness);
-    }
-    if s.compress {
-        key["compress"] = json!(true);
-    }
-    if s.stretch {
-        key["stretch"] = json!(true);
-    }
-    key
 }
 
 /// A one-value key (`value`, or 3.8's `angle`).

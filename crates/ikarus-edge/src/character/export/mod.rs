@@ -25,6 +25,7 @@ mod bake;
 mod clip_copy;
 mod curves;
 mod editable;
+mod ik_keys;
 mod sampler;
 
 use ikarus::character::Posed;
