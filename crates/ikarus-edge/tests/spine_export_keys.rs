@@ -273,3 +273,28 @@ fn bones_turned_by_hand_export_as_their_own_rotate_keys_to_the_keys_length() {
     let off = ik.flat_map(|(_, keys)| keys.as_array().unwrap()).filter(|k| k["mix"] == json!(0.0)).count();
     assert_eq!(off, 0, "the constraints stay on");
 }
+
+/// Keys whose Length runs the walk more than twice export its timelines looped: where a timeline
+/// jumps at the loop (its last key at the clip's end differs from its first), the last key of a
+/// cycle stands one 32-bit step before the next cycle's first, never at the same time (the file
+/// must read back), and the motion plays back within 1e-2 at every frame.
+#[test]
+fn a_length_past_the_clip_loops_it_in_the_export_and_reads_back() {
+    let loaded = load(&text(SPINEBOY), SPINEBOY).unwrap();
+    let walk = loaded.character.clips()[loaded.character.clip_index("walk").unwrap()].duration;
+    let p = moved(&loaded, "front-leg-target", [40.0, 30.0]).1;
+    let keys = json!({"fps": 30, "duration": 2.5,
+        "tracks": {"front-leg-target": [{"time": 0.0, "x": p[0] - 40.0, "y": p[1] - 30.0}, {"time": 0.6, "x": p[0], "y": p[1]}]}});
+    let keys: KeysFile = serde_json::from_value(keys).unwrap();
+    let (course, fps) = keyed(&loaded, &keys, Some("walk".into()), 1000, "cap").unwrap();
+    let motion = Motion::new(&loaded, course, fps).unwrap();
+    assert!(motion.duration > 2.0 * walk, "walk is {walk} s");
+    let editable = played(SPINEBOY, &motion, Form::Editable);
+    assert!(editable.frames <= 1e-2, "frames off by {}", editable.frames);
+    for (bone, kind, keys) in timelines(&editable.animation) {
+        for w in keys.windows(2) {
+            let (a, b) = (w[0]["time"].as_f64().unwrap_or(0.0) as f32, w[1]["time"].as_f64().unwrap() as f32);
+            assert!(a < b, "{bone}.{kind}: keys at {a} and {b}");
+        }
+    }
+}

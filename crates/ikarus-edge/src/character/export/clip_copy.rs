@@ -62,19 +62,73 @@ pub(super) fn looped(keys: &[Value], cycles: usize, length: f64, legacy: bool, s
                 k.insert("curve".to_owned(), json!("stepped"));
             }
         }
+        // Where the cycle before ends with a key at the clip's end, the two cycles meet at one
+        // time: the same values once (the key dropped), else a jump, placed where the motion
+        // has it ([`super::super::motion::Motion`] poses the clip at its end at exactly its
+        // length, and at its start at every later multiple of it): just after the first loop
+        // point, just before the later ones.
+        let meets = last >= length;
+        let mut after = false;
+        if first <= 0.0 && meets && same_values(&keys[keys.len() - 1], &keys[0]) {
+            out.pop();
+        } else if meets && r == 1 {
+            after = true;
+        } else if meets {
+            just_before(&mut out, shift, legacy);
+        }
+        let start = out.len();
         if first > 0.0 {
             let mut k = setup.clone();
             k["time"] = json!(written_time(shift));
             k["curve"] = json!("stepped");
             out.push(k);
-        } else if last >= length && same_values(&keys[keys.len() - 1], &keys[0]) {
-            out.pop();
         }
         for key in keys {
             out.push(shifted(key, shift, legacy));
         }
+        if after {
+            just_after(&mut out[start], shift);
+        }
     }
     out
+}
+
+/// Moves `key` to the smallest 32-bit time after `time`, and its own curve's control times (a
+/// Spine 4 key's) no earlier than that.
+fn just_after(key: &mut Value, time: f64) {
+    let after = written_time(f64::from(f32::from_bits((time as f32).to_bits() + 1)));
+    key["time"] = json!(after);
+    if let Some(Value::Array(curve)) = key.get_mut("curve") {
+        for (i, c) in curve.iter_mut().enumerate() {
+            if let (0, Some(t)) = (i % 2, c.as_f64()) {
+                *c = json!(t.max(after));
+            }
+        }
+    }
+}
+
+/// Moves the last key of `out` to the largest 32-bit time before `time`, and the control times
+/// of the curve that ends at it (a Spine 4 key's, on the key before) no later than that.
+fn just_before(out: &mut [Value], time: f64, legacy: bool) {
+    let at = time as f32;
+    if at <= 0.0 {
+        return;
+    }
+    let before = written_time(f64::from(f32::from_bits(at.to_bits() - 1)));
+    let n = out.len();
+    if let Some(last) = out.last_mut() {
+        last["time"] = json!(before);
+    }
+    if legacy || n < 2 {
+        return;
+    }
+    if let Some(Value::Array(curve)) = out[n - 2].get_mut("curve") {
+        for (i, c) in curve.iter_mut().enumerate() {
+            if let (0, Some(t)) = (i % 2, c.as_f64()) {
+                *c = json!(t.min(before));
+            }
+        }
+    }
 }
 
 /// Whether two keys hold the same values (every field but `time` and the curve's).
