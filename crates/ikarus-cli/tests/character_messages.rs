@@ -105,6 +105,31 @@ fn an_ik_files_limits_are_told_in_degrees_under_its_own_field() {
     );
 }
 
+/// Valid limits that leave no angle on the side the shin's IK constraint bends it to: before,
+/// refused as the solver's `goal "front-shin".bend`; now as the IK rules' field.
+#[test]
+fn limits_that_leave_the_bend_no_room_name_the_ik_files_field_not_a_goal() {
+    let ik = temp_file("messages", "room.ik.toml", "[bones.front-shin]\nlimits_deg = [5.0, 10.0]\n");
+    let e = last_error(&[
+        "pose",
+        "--rig",
+        SPINEBOY,
+        "--target",
+        "front-leg-target=60,60",
+        "--ik",
+        "ikarus",
+        "--ik-file",
+        &ik,
+    ]);
+    assert!(
+        e.ends_with(
+            "bones.front-shin.limits_deg: the IK rules' limits of bone \"front-shin\" leave no angle on the side its IK constraint bends it to (bendPositive): widen them, or bend the other way"
+        ),
+        "{e}"
+    );
+    assert!(!e.contains("goal"), "{e}");
+}
+
 #[test]
 fn over_the_gif_cap_a_character_is_told_the_flags_it_has() {
     // Before: "fewer --frames", a flag a character's motion does not have; and every frame was

@@ -38,7 +38,7 @@ use crate::goal::Goal;
 use crate::limits::JointLimits;
 use crate::math;
 use crate::skeleton::{Bone, Skeleton};
-use crate::solve::{Bend, Outcome, Pin, Priority, RigGoal, RigTask, Solver};
+use crate::solve::{Bend, Outcome, Pin, Priority, RigGoal, RigTask, RigTaskError, SolveError, Solver};
 use goal_slots::GoalSlots;
 use thiserror::Error;
 
@@ -159,6 +159,16 @@ pub enum TogetherError {
     /// The skeleton or the solve refused (a message naming what).
     #[error("{0}")]
     Solve(String),
+    /// A bone's limits (the rules' [`BoneRule::limits`], an IK file's `limits_deg`) leave no
+    /// angle on the side its two-bone IK constraint bends it to (the constraint's
+    /// `bendPositive`, as the setup, the clip or a bend key has it).
+    #[error(
+        "bones.{bone}.limits_deg: the IK rules' limits of bone {bone:?} leave no angle on the side its IK constraint bends it to (bendPositive): widen them, or bend the other way"
+    )]
+    BendOutsideLimits {
+        /// The bone's name.
+        bone: String,
+    },
 }
 
 /// The moving bones as an ikarus skeleton: `bones[k]` is the character's bone of the
@@ -202,9 +212,12 @@ impl Character {
             for round in 1..=ROUNDS {
                 let frozen = self.freeze(out, &moving, rules)?;
                 let task = self.task(out, &frozen, (rules, &limb_rules), &goals)?;
-                let outcome = solver
-                    .solve_rig(&frozen.skeleton, &frozen.start, &task)
-                    .map_err(|e| TogetherError::Solve(e.to_string()))?;
+                let outcome = solver.solve_rig(&frozen.skeleton, &frozen.start, &task).map_err(|e| match e {
+                    SolveError::Rig(RigTaskError::BendOutsideLimits { name }) => {
+                        TogetherError::BendOutsideLimits { bone: name }
+                    }
+                    e => TogetherError::Solve(e.to_string()),
+                })?;
                 if outcome.status == crate::Status::Interrupted || crate::interrupt::is_set(interrupt.as_ref()) {
                     return Err(TogetherError::Pose(PoseError::Interrupted));
                 }
