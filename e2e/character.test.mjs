@@ -208,7 +208,9 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     const goalNow = [runtime.request.targets[0].x, runtime.request.targets[0].y];
     const [byIkarus, byRuntime] = [dist(solved.bones["front-shin"].tip, goalNow), dist(runtime.bones["front-shin"].tip, goalNow)];
     assert.ok(byIkarus <= byRuntime + 1e-3, `the shin's tip: ${byIkarus} from the target by ikarus, ${byRuntime} by the runtime`);
-    assert.notDeepEqual(solved.bones, runtime.bones);
+    // Where Spine's rules already put the tip on the target, ikarus's solver starts met and keeps
+    // that pose to the bit; otherwise it moves the leg.
+    if (byRuntime > 1e-3) assert.notDeepEqual(solved.bones, runtime.bones, `the runtime leaves the tip ${byRuntime} off, yet ikarus moved nothing`);
     assert.match(await page.textContent("#stats"), / · ikarus solver \S+/);
     await page.screenshot({ path: join(artifacts, "character-spineboy-ikarus.png") });
     await page.check('input[name="character-ik"][value="runtime"]');
