@@ -24,12 +24,18 @@ pub struct CharacterFile {
 }
 
 /// The character file `--rig` names, read (its warnings on stderr); `None` without `--rig`, or
-/// for a file that cannot be read or is not JSON (the rig's own reader says what it says of it); a
+/// for a file that cannot be read or is not JSON (a Spine `.skel` is read as its JSON) (the rig's own reader says what it says of it); a
 /// Spine texture atlas is refused as one ([`ikarus_edge::character::atlas`]).
 pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> {
     let path = rig?;
     let label = format!("rig file {}", path.display());
-    let text = crate::input::read_text(path, &label).ok()?;
+    let bytes = crate::input::read(path, &label).ok()?;
+    // A Spine binary export (`.skel`) reads as its JSON; bytes that are neither it nor text are
+    // refused with what the binary reader found.
+    let text = match ikarus_edge::character::text_of(bytes, &label) {
+        Ok(text) => text,
+        Err(e) => return Some(Err(e)),
+    };
     if ikarus_edge::character::atlas::is_atlas(&text) {
         return Some(Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS))));
     }

@@ -89,7 +89,7 @@ impl IkArgs {
 /// Pose a character file as its runtime does.
 #[derive(Debug, Args)]
 pub struct PoseArgs {
-    /// Character file: Spine (4.0–4.2, 3.8) or DragonBones (5.x) JSON, told by its content
+    /// Character file: Spine (4.0–4.2, 3.8) or DragonBones (5.x) JSON, or a Spine 4.2 binary export (.skel), told by its content
     #[arg(long, value_name = "FILE")]
     pub rig: PathBuf,
     /// Sample this animation of the file (by name) [default: the setup pose]
@@ -126,13 +126,13 @@ pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
 
 pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let label = format!("rig file {}", args.rig.display());
-    let text = crate::input::read_text(&args.rig, &label)?;
+    let text = crate::input::read_character_text(&args.rig, &label)?;
     if ikarus_edge::character::atlas::is_atlas(&text) {
         return Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS)));
     }
     if !ikarus_edge::character::is_json(&text) {
         return Err(CliError::input(format!(
-            "{label}: pose takes a character file (Spine or DragonBones JSON); a rig file (TOML) is posed by solve --rig"
+            "{label}: pose takes a character file (Spine or DragonBones JSON, or a Spine .skel); a rig file (TOML) is posed by solve --rig"
         )));
     }
     let loaded = ikarus_edge::character::load(&text, &label)?;

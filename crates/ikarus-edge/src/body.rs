@@ -84,7 +84,7 @@ fn read_arm_file(arm: Option<&Path>) -> Result<(ArmFile, String), CliError> {
 /// is and which commands take it ([`crate::character::not_a_rig`]).
 pub fn load_rig(path: &Path) -> Result<Rig, CliError> {
     let label = format!("rig file {}", path.display());
-    let text = crate::input::read_text(path, &label)?;
+    let text = crate::input::read_character_text(path, &label)?;
     crate::character::not_a_rig(&text, &label)?;
     Rig::parse(&text, &label)
 }

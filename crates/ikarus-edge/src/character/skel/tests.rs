@@ -1,0 +1,3 @@
+//! Hand-made bad files and their exact messages.
+
+use super::to_json;
