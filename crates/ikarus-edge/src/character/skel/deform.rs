@@ -38,7 +38,11 @@ pub(super) fn attachments(r: &mut Reader<'_>, names: &Names) -> Result<Map<Strin
                     0 => ("deform", deform(r, frames)?),
                     1 => ("sequence", sequence(r, frames)?),
                     b => {
-                        return Err(r.fail_at(start, "type", &format!("an unknown attachment timeline type (got {b})")));
+                        return Err(r.fail_at(
+                            start,
+                            "type",
+                            &format!("an unknown attachment timeline type (got {b})"),
+                        ));
                     }
                 };
                 let entry = by_name.entry(key.clone()).or_insert_with(|| Value::Object(Map::new()));

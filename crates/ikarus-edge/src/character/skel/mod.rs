@@ -47,12 +47,6 @@ pub fn to_json(bytes: &[u8]) -> Result<Value, String> {
     let mut r = Reader::new(bytes);
     let mut names = Names::default();
     let (header, nonessential) = skeleton::header(&mut r)?;
-    let version = header.get("spine").and_then(Value::as_str).unwrap_or_default();
-    if !version.starts_with("4.2") {
-        return Err(format!(
-            "skel: byte 8: skeleton.spine: this reader reads Spine 4.2's binary format (got {version:?})"
-        ));
-    }
     skeleton::strings(&mut r)?;
     let mut o = Map::new();
     o.insert("skeleton".into(), header);

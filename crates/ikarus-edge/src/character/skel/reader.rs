@@ -15,12 +15,15 @@ pub(super) struct Reader<'a> {
     pub strings: Vec<String>,
     /// Where in the file's tree the reads are (`bones[3]`, `animations["walk"].bones`).
     pub at: String,
+    /// The bytes of the strings [`Reader::string_ref`] has copied so far, held under
+    /// [`Reader::copy_cap`]: a reference is one byte, the string it copies may be long.
+    copied: usize,
 }
 
 impl<'a> Reader<'a> {
     /// A reader at the first byte of `bytes`.
     pub fn new(bytes: &'a [u8]) -> Self {
-        Self { bytes, pos: 0, strings: Vec::new(), at: String::new() }
+        Self { bytes, pos: 0, strings: Vec::new(), at: String::new(), copied: 0 }
     }
 
     /// The byte the next read starts at.
@@ -187,9 +190,26 @@ impl<'a> Reader<'a> {
             return Ok(None);
         }
         match self.strings.get(i - 1) {
-            Some(s) => Ok(Some(s.clone())),
+            Some(s) => {
+                self.copied += s.len();
+                if self.copied > self.copy_cap() {
+                    let cap = self.copy_cap();
+                    return Err(self.fail_at(
+                        start,
+                        field,
+                        &format!("the strings referred to exceed {cap} bytes in all (got {})", self.copied),
+                    ));
+                }
+                Ok(Some(s.clone()))
+            }
             None => Err(self.fail_at(start, field, &format!("string index {} out of {}", i - 1, self.strings.len()))),
         }
+    }
+
+    /// The most bytes of strings the references may copy in all: 16 times the file's size
+    /// and a mebibyte (Spine's own files copy less than their size).
+    fn copy_cap(&self) -> usize {
+        self.bytes.len().saturating_mul(16).saturating_add(1 << 20)
     }
 
     /// A colour stored as a 32-bit int, `rrggbbaa` in hex as JSON writes it.

@@ -43,7 +43,15 @@ pub(super) fn header(r: &mut Reader<'_>) -> Result<(Value, bool), String> {
     let hash = r.take_bytes(8, "hash")?;
     let mut o = Map::new();
     o.insert("hash".into(), Value::from(base64(hash)));
+    let start = r.pos();
     let version = r.string("spine")?.unwrap_or_default();
+    if !version.starts_with("4.2") {
+        return Err(r.fail_at(
+            start,
+            "spine",
+            &format!("this reader reads Spine 4.2's binary format (got {version:?})"),
+        ));
+    }
     o.insert("spine".into(), Value::from(version));
     for f in ["x", "y", "width", "height", "referenceScale"] {
         o.insert(f.into(), r.number(f)?);
