@@ -219,3 +219,28 @@ fn stretchyman_skel_decodes_to_its_json_export() {
 fn celestial_circus_skel_decodes_to_its_json_export() {
     assert!(check("celestial-circus") > 100);
 }
+
+#[test]
+fn the_decoded_trees_text_reads_back_to_the_same_bits() {
+    for character in ["spineboy", "raptor", "stretchyman", "celestial-circus"] {
+        let (_, skel) = pair(character);
+        let back: Value = serde_json::from_str(&serde_json::to_string(&skel).unwrap()).unwrap();
+        assert_eq!(back, skel, "{character}");
+        // And every number is a 32-bit float widened (or an integer).
+        let mut numbers = vec![&skel];
+        let mut checked = 0;
+        while let Some(v) = numbers.pop() {
+            match v {
+                Value::Array(a) => numbers.extend(a),
+                Value::Object(o) => numbers.extend(o.values()),
+                Value::Number(n) => {
+                    let f = n.as_f64().unwrap();
+                    assert_eq!(f64::from(f as f32).to_bits(), f.to_bits(), "{character}: {f}");
+                    checked += 1;
+                }
+                _ => {}
+            }
+        }
+        assert!(checked > 5_000, "{character}: {checked}");
+    }
+}

@@ -61,8 +61,8 @@ pub(super) fn attachments(r: &mut Reader<'_>, names: &Names) -> Result<Map<Strin
 fn deform(r: &mut Reader<'_>, frames: usize) -> Result<Value, String> {
     r.unsigned("bezierCount")?;
     let mut keys: Vec<Map<String, Value>> = Vec::with_capacity(frames);
-    // The time of a key, then its offsets; each key after the first ends with the curve of the
-    // key before... the curve follows the next key's time.
+    // Each key: its offsets (a count, 0 for none, then the first index and the floats); every
+    // key but the last is followed by the next key's time and then its own curve.
     if frames == 0 {
         return Ok(Value::Array(Vec::new()));
     }

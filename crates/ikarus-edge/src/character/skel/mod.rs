@@ -11,6 +11,18 @@
 //! the strings table, bones, slots, IK, transform, path and physics constraints, the skins with
 //! every attachment type, events, and animations with every timeline kind.
 //!
+//! What the binary stores otherwise than JSON is written as JSON has it: a physics
+//! constraint's mass is stored as its inverse (`mass` = 1 / inverse, in f32); a transform
+//! constraint's offsets and mixes not stored are 0; a linked mesh's skin is an index, named
+//! once every skin is read; a deform key's offsets are `offset` and `vertices` as JSON's.
+//!
+//! The layout follows Spine's public "Binary export format" page; where a detail was read
+//! from the example files instead (each decoded and compared with its JSON export in
+//! `tests/skel.rs`): an animation starts with its number of timelines; an IK constraint's
+//! flags byte holds skin (1), bend positive (2), compress (4), stretch (8), uniform (16), a
+//! mix other than 0 (32) read as a float when 64 is set too (else 1), softness (128); a bone's
+//! nonessential data is its colour, icon and a visibility flag.
+//!
 //! Bad input is one line naming the byte and what was being read
 //! (`skel: byte 88: bones[3].parent: bone index 9 out of 4`), never a panic; every count is
 //! checked against the bytes left before anything is allocated for it, so time and memory stay

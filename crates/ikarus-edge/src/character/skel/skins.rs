@@ -24,7 +24,7 @@ pub(super) fn skins(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -
     }
     r.at = "skins".to_owned();
     let n = r.count("count", 7)?;
-    for i in 0..n {
+    for _ in 0..n {
         r.at = format!("skins[{}]", out.len());
         let mut o = Map::new();
         let name = r.name("name")?;
@@ -53,7 +53,6 @@ pub(super) fn skins(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -
         let slots = r.count("slots", 2)?;
         o.insert("attachments".into(), attachments(r, names, slots, nonessential)?);
         names.skins.push(name);
-        let _ = i;
         out.push(Value::Object(o));
     }
     Ok(Value::Array(out))
