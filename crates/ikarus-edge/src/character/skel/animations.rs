@@ -178,7 +178,7 @@ fn slots(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String
                         let mut o = time(r)?;
                         match (kind, dark) {
                             (5, _) => {
-                                o.insert("value".into(), Value::from(f64::from(r.byte("value")?) / 255.0));
+                                o.insert("value".into(), Value::from(f64::from(f32::from(r.byte("value")?) / 255.0)));
                             }
                             (_, 0) => {
                                 o.insert("color".into(), Value::from(color_bytes(r, "color", light)?));

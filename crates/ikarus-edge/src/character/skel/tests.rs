@@ -190,3 +190,75 @@ fn a_string_referred_to_over_and_over_is_refused_past_the_cap() {
     let cap = bytes.len() * 16 + (1 << 20);
     assert!(e.contains(&format!("the strings referred to exceed {cap} bytes in all")), "{e}");
 }
+
+/// The kinds the four example files do not hold, read as the format page describes them: a
+/// region with a sequence, a point, a named skin with its bones and constraints and a linked
+/// mesh naming it, a physics constraint, an event with audio, and alpha, inherit, physics
+/// reset, sequence and event keys.
+#[test]
+fn the_kinds_the_examples_lack_decode_to_their_json_names() {
+    let mut f = File::header().bytes(&[3]).string("img").string("pt").string("lm");
+    f = f.bytes(&[1]).bone("root", None);
+    f = f.bytes(&[1]).string("s").bytes(&[0, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0, 0]);
+    // No IK, transform or path constraints; a physics constraint `p` on root.
+    f = f.bytes(&[0, 0, 0, 1]).string("p").bytes(&[0, 0, 0, 60]).floats(&[0.5, 100.0, 0.9, 0.0, 0.0]).bytes(&[0]);
+    // The default skin: a region `img` with a sequence (flags 64), a point `pt` (type 5).
+    f = f.bytes(&[1, 0, 2, 1, 64, 3, 1, 2, 0]).floats(&[1.0, 2.0, 1.0, 1.0, 8.0, 4.0]);
+    f = f.bytes(&[2, 5]).floats(&[45.0, 3.0, 4.0]);
+    // A named skin `B` with root and `p`, and a linked mesh `lm` (type 3, inheriting timelines)
+    // of skin 1 (itself), parent `img`.
+    f = f.bytes(&[1]).string("B").bytes(&[1, 0, 0, 0, 0, 1, 0]);
+    f = f.bytes(&[1, 0, 1, 3, 3 | 128, 1, 1]);
+    // An event `e`: int -2, float 0.5, no string, audio `a.ogg` (volume 1, balance 0).
+    f = f.bytes(&[1]).string("e").bytes(&[3]).floats(&[0.5]).bytes(&[0]).string("a.ogg").floats(&[1.0, 0.0]);
+    // An animation `w`.
+    f = f.bytes(&[1]).string("w").bytes(&[6]);
+    // Slots: an alpha timeline, 2 keys (255 then 0), the first stepped.
+    f = f.bytes(&[1, 0, 1, 5, 2, 0]).floats(&[0.0]).bytes(&[255]).floats(&[1.0]).bytes(&[0, 1]);
+    // Bones: an inherit key at 0.5 s: noRotationOrReflection.
+    f = f.bytes(&[1, 0, 1, 10, 1]).floats(&[0.5]).bytes(&[2]);
+    // No IK, transform, path timelines; physics: every constraint (0), a reset at 0.25 s.
+    f = f.bytes(&[0, 0, 0, 1, 0, 1, 8, 1]).floats(&[0.25]);
+    // Attachments: skin 0, slot 0, `img`: a sequence key (loop, index 5, delay 0.1).
+    f = f.bytes(&[1, 0, 1, 0, 1, 1, 1, 1]).floats(&[0.0]).bytes(&[0, 0, 0, 0x52]).floats(&[0.1]);
+    // No draw order; an event key at 0.3 s: `e`, int 7, float 1.5, string "hi".
+    f = f.bytes(&[0, 1]).floats(&[0.3]).bytes(&[0, 14]).floats(&[1.5]).bytes(&[1]).string("hi").floats(&[1.0, 0.0]);
+    let t = to_json(&f.0).unwrap();
+    let region = &t["skins"][0]["attachments"]["s"]["img"];
+    assert_eq!(region["sequence"], serde_json::json!({"count": 3, "start": 1, "digits": 2, "setup": 0}));
+    let point = &t["skins"][0]["attachments"]["s"]["pt"];
+    assert_eq!(
+        (point["type"].as_str(), point["rotation"].as_f64(), point["y"].as_f64()),
+        (Some("point"), Some(45.0), Some(4.0))
+    );
+    let b = &t["skins"][1];
+    assert_eq!(
+        (b["name"].as_str(), &b["bones"], &b["physics"]),
+        (Some("B"), &serde_json::json!(["root"]), &serde_json::json!(["p"]))
+    );
+    let linked = &b["attachments"]["s"]["lm"];
+    assert_eq!(
+        (linked["type"].as_str(), linked["skin"].as_str(), linked["parent"].as_str()),
+        (Some("linkedmesh"), Some("B"), Some("img"))
+    );
+    assert_eq!(linked["timelines"], true);
+    assert_eq!(t["physics"][0]["fps"], 60);
+    assert_eq!(
+        t["events"]["e"],
+        serde_json::json!({"int": -2, "float": 0.5, "audio": "a.ogg", "volume": 1.0, "balance": 0.0})
+    );
+    let w = &t["animations"]["w"];
+    assert_eq!(
+        w["slots"]["s"]["alpha"],
+        serde_json::json!([{"time": 0.0, "value": 1.0, "curve": "stepped"}, {"time": 1.0, "value": 0.0}])
+    );
+    assert_eq!(w["bones"]["root"]["inherit"], serde_json::json!([{"time": 0.5, "inherit": "noRotationOrReflection"}]));
+    assert_eq!(w["physics"][""]["reset"], serde_json::json!([{"time": 0.25}]));
+    let key = &w["attachments"]["default"]["s"]["img"]["sequence"][0];
+    assert_eq!((key["mode"].as_str(), key["index"].as_i64()), (Some("loop"), Some(5)));
+    let event = &w["events"][0];
+    assert_eq!(
+        (event["name"].as_str(), event["int"].as_i64(), event["string"].as_str()),
+        (Some("e"), Some(7), Some("hi"))
+    );
+}
