@@ -116,6 +116,10 @@ fn a_broken_skel_is_one_line_naming_the_byte() {
     let e = fails(&["pose", "--rig", cut], 2);
     assert_eq!(e.lines().count(), 1, "{e}");
     assert!(e.contains(&format!("rig file {cut}: skel: byte ")) && e.contains("the file ends"), "{e}");
+    // A command that takes rig files names the .skel for what it is.
+    let svg = dir.join("x.svg");
+    let e = fails(&["render", "rig", "--rig", &path("raptor", "skel"), "--out", svg.to_str().unwrap()], 2);
+    assert!(e.contains("a Spine character (76 bones, 9 IK constraints), which this command does not take"), "{e}");
     let png = dir.join("picture.png");
     std::fs::write(&png, [0x89, b'P', b'N', b'G', 13, 10, 26, 10, 0, 0, 0, 13]).unwrap();
     let png = png.to_str().unwrap();
