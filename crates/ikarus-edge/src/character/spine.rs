@@ -30,7 +30,7 @@ struct SpineFile {
     #[serde(default)]
     transform: Vec<super::Named>,
     #[serde(default)]
-    path: Vec<super::Named>,
+    path: Vec<super::spine_path::PathJson>,
     #[serde(default)]
     physics: Vec<super::Named>,
     #[serde(default)]
@@ -144,9 +144,10 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
         .collect::<Result<Vec<_>, _>>()?;
     let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
+    for (kind, list) in [("transform", &file.transform), ("physics", &file.physics)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
+    unsupported.extend(file.path.iter().map(|n| Unsupported { kind: "path".to_owned(), name: n.name().to_owned() }));
     let names =
         clips::Names { bones: &index, constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())) };
     let clips = file
@@ -229,4 +230,26 @@ fn constraint(
         uniform: k.uniform,
         rule: IkRule::Spine,
     })
+}
+
+/// The path constraints of a Spine file, their paths from the default skin (until the
+/// constraint model holds them).
+pub(super) fn paths(text: &str) -> Result<Vec<ikarus::character::PathConstraint>, String> {
+    let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    let file: SpineFile = super::typed(text)?;
+    let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
+    let super::Tree { index, .. } = super::parents(&named, |i| format!("bones[{i}]"))?;
+    let slots = super::spine_slots::read(&value, &index)?;
+    file.path.iter().enumerate().map(|(i, k)| super::spine_path::constraint(i, k, &index, &slots, "default")).collect()
+}
+
+/// The default skin's path deform timelines of animation `name` (until the model holds them).
+pub(super) fn path_deforms(text: &str, name: &str) -> Result<Vec<ikarus::character::PathDeform>, String> {
+    let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    let file: SpineFile = super::typed(text)?;
+    let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
+    let super::Tree { index, .. } = super::parents(&named, |i| format!("bones[{i}]"))?;
+    let slots = super::spine_slots::read(&value, &index)?;
+    let all = super::spine_deform::read(&value["animations"][name], name, &slots)?;
+    Ok(all.into_iter().filter(|d| d.skin == "default").map(|d| d.deform).collect())
 }

@@ -15,11 +15,16 @@ use thiserror::Error;
 
 mod flat;
 mod ik;
+mod path;
 mod pose;
 mod timeline;
 mod together;
 mod world;
 
+pub use path::{
+    Chain, DeformKey, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices, PositionMode,
+    RotateMode, SpacingMode, Weight, solve as solve_path,
+};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
