@@ -139,3 +139,7 @@ fn mode<T: Copy + Default>(v: &Option<String>, at: &str, field: &str, modes: &[(
         format!("{at}.{field} = {:?}: expected one of {}", Quoted(name), names.join(", "))
     })
 }
+
+#[cfg(test)]
+#[path = "spine_path_tests.rs"]
+mod tests;
