@@ -25,6 +25,7 @@ pub mod motion_files;
 mod spine;
 mod spine_deform;
 mod spine_path;
+mod spine_path_clips;
 mod spine_slots;
 pub mod store;
 
@@ -141,16 +142,6 @@ pub fn detect(value: &Value) -> Option<Format> {
         (false, true) => Some(Format::DragonBones),
         (false, false) => None,
     }
-}
-
-/// The path constraints of a Spine file (its text), their paths the default skin's.
-pub fn spine_paths(text: &str) -> Result<Vec<ikarus::character::PathConstraint>, String> {
-    spine::paths(text)
-}
-
-/// The default skin's path deform timelines of a Spine file's animation `name`.
-pub fn spine_path_deforms(text: &str, name: &str) -> Result<Vec<ikarus::character::PathDeform>, String> {
-    spine::path_deforms(text, name)
 }
 
 /// A constraint or animation ikarus does not read: only its name is.

@@ -11,7 +11,8 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
+    CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
+    Unsupported,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -141,13 +142,30 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .ik
         .iter()
         .enumerate()
-        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
+        .map(|(i, k)| {
+            constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of).map(Constraint::Ik)
+        })
         .collect::<Result<Vec<_>, _>>()?;
+    let mut constraints = constraints;
+    let slots = super::spine_slots::read(value, &index)?;
+    let first_path = constraints.len();
+    for (i, k) in file.path.iter().enumerate() {
+        constraints.push(Constraint::Path(super::spine_path::constraint(i, k, &index, &slots, "default")?));
+    }
+    let path_names: HashMap<&str, usize> =
+        super::first_index(file.path.iter().map(|k| k.name())).into_iter().map(|(n, i)| (n, first_path + i)).collect();
+    let targets: Vec<(usize, usize, Option<&str>)> = constraints[first_path..]
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c {
+            Constraint::Path(p) => Some((first_path + i, p.slot, slots.slots[p.slot].attachment.as_deref())),
+            _ => None,
+        })
+        .collect();
     let mut unsupported = Vec::new();
     for (kind, list) in [("transform", &file.transform), ("physics", &file.physics)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
-    unsupported.extend(file.path.iter().map(|n| Unsupported { kind: "path".to_owned(), name: n.name().to_owned() }));
     let names =
         clips::Names { bones: &index, constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())) };
     let clips = file
@@ -155,8 +173,14 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .0
         .iter()
         .map(|(name, animation)| {
-            let duration = super::latest_time(&value["animations"][name]);
-            clips::clip(name, animation, duration, &names, legacy)
+            let json = &value["animations"][name];
+            let duration = super::latest_time(json);
+            let mut clip = clips::clip(name, animation, duration, &names, legacy)?;
+            let deforms = super::spine_deform::read(json, name, &slots)?;
+            let at = format!("animations.{:?}", Quoted(name));
+            let paths = super::spine_path_clips::read(json, &at, &path_names, &targets, &deforms, legacy)?;
+            clip.constraints.extend(paths);
+            Ok::<_, String>(clip)
         })
         .collect::<Result<Vec<_>, _>>()?;
     if !unsupported.is_empty() {
@@ -230,26 +254,4 @@ fn constraint(
         uniform: k.uniform,
         rule: IkRule::Spine,
     })
-}
-
-/// The path constraints of a Spine file, their paths from the default skin (until the
-/// constraint model holds them).
-pub(super) fn paths(text: &str) -> Result<Vec<ikarus::character::PathConstraint>, String> {
-    let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
-    let file: SpineFile = super::typed(text)?;
-    let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
-    let super::Tree { index, .. } = super::parents(&named, |i| format!("bones[{i}]"))?;
-    let slots = super::spine_slots::read(&value, &index)?;
-    file.path.iter().enumerate().map(|(i, k)| super::spine_path::constraint(i, k, &index, &slots, "default")).collect()
-}
-
-/// The default skin's path deform timelines of animation `name` (until the model holds them).
-pub(super) fn path_deforms(text: &str, name: &str) -> Result<Vec<ikarus::character::PathDeform>, String> {
-    let value: Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
-    let file: SpineFile = super::typed(text)?;
-    let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
-    let super::Tree { index, .. } = super::parents(&named, |i| format!("bones[{i}]"))?;
-    let slots = super::spine_slots::read(&value, &index)?;
-    let all = super::spine_deform::read(&value["animations"][name], name, &slots)?;
-    Ok(all.into_iter().filter(|d| d.skin == "default").map(|d| d.deform).collect())
 }

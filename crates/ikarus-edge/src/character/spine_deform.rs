@@ -15,6 +15,8 @@ use super::spine_slots::{Slots, number};
 pub(super) struct SkinDeform {
     /// The skin's name.
     pub(super) skin: String,
+    /// The attachment's name.
+    pub(super) attachment: String,
     /// The timeline.
     pub(super) deform: PathDeform,
 }
@@ -38,7 +40,11 @@ pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDe
                 let at = if legacy { at } else { format!("{at}.deform") };
                 let len = path.vertices.deform_len();
                 let keys = read_keys(keys, len, legacy, &at)?;
-                out.push(SkinDeform { skin: skin_name.clone(), deform: PathDeform { slot, keys } });
+                out.push(SkinDeform {
+                    skin: skin_name.clone(),
+                    attachment: attachment.clone(),
+                    deform: PathDeform { slot, keys },
+                });
             }
         }
     }

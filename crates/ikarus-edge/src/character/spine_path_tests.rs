@@ -1,4 +1,4 @@
-use ikarus::character::{PathVertices, PositionMode, RotateMode, SpacingMode};
+use ikarus::character::{Constraint, PathConstraint, PathVertices, PositionMode, RotateMode, SpacingMode};
 use serde_json::{Value, json};
 
 /// A file with bones `root`, `a`, `b`, a slot `s` on `root` showing path `p`, and `path` as
@@ -19,13 +19,26 @@ fn file(path: Value, attachment: Option<Value>) -> String {
 }
 
 fn error(path: Value, attachment: Option<Value>) -> String {
-    crate::character::spine_paths(&file(path, attachment)).unwrap_err()
+    let e = crate::character::load(&file(path, attachment), "t.json").err().unwrap().to_string();
+    e.strip_prefix("t.json: ").unwrap_or(&e).to_owned()
+}
+
+/// The path constraints of a file's text.
+fn paths(text: &str) -> Vec<PathConstraint> {
+    let c = crate::character::load(text, "t.json").unwrap().character;
+    c.constraints()
+        .iter()
+        .filter_map(|k| match k {
+            Constraint::Path(p) => Some(p.clone()),
+            _ => None,
+        })
+        .collect()
 }
 
 #[test]
 fn defaults_and_modes_are_read() {
     let text = file(json!([{"name": "p", "bones": ["a", "b"], "target": "s"}]), None);
-    let p = &crate::character::spine_paths(&text).unwrap()[0];
+    let p = &paths(&text)[0];
     assert_eq!(
         (p.position_mode, p.spacing_mode, p.rotate_mode),
         (PositionMode::Percent, SpacingMode::Length, RotateMode::Tangent)
@@ -41,7 +54,7 @@ fn defaults_and_modes_are_read() {
                 "rotateMode": "chainScale", "rotation": 90, "mixX": 0.5}]),
         None,
     );
-    let p = &crate::character::spine_paths(&text).unwrap()[0];
+    let p = &paths(&text)[0];
     assert_eq!(
         (p.position_mode, p.spacing_mode, p.rotate_mode),
         (PositionMode::Fixed, SpacingMode::Proportional, RotateMode::ChainScale)
@@ -54,7 +67,7 @@ fn defaults_and_modes_are_read() {
 fn spine_3_8_mix_names_are_read() {
     let text =
         file(json!([{"name": "p", "bones": ["a"], "target": "s", "rotateMix": 0.25, "translateMix": 0.75}]), None);
-    let p = &crate::character::spine_paths(&text).unwrap()[0];
+    let p = &paths(&text)[0];
     assert_eq!((p.setup.mix_rotate, p.setup.mix_x, p.setup.mix_y), (0.25, 0.75, 0.75));
 }
 
@@ -63,7 +76,7 @@ fn weighted_vertices_are_read() {
     let weighted = json!({"type": "path", "closed": true, "constantSpeed": false, "lengths": [1, 2, 3], "vertexCount": 3,
         "vertices": [1, 1, 5, 6, 1, 2, 1, 2, 1, 0.5, 0, 0, 0.5, 0.5, 1, 2, 1, 2, 1]});
     let text = file(json!([{"name": "p", "bones": ["a"], "target": "s"}]), Some(weighted));
-    let p = &crate::character::spine_paths(&text).unwrap()[0];
+    let p = &paths(&text)[0];
     let path = p.path.as_ref().unwrap();
     assert!(path.closed && !path.constant_speed);
     let PathVertices::Weighted(v) = &path.vertices else { panic!("not weighted") };

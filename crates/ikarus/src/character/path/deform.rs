@@ -40,11 +40,19 @@ impl PathDeform {
     /// The offsets at `time` into `out` (cleared first); `false` (and `out` empty) before the
     /// first key.
     pub fn at(&self, time: f64, out: &mut Vec<f64>) -> bool {
-        out.clear();
-        let i = self.keys.partition_point(|k| f32ed(k.time) <= time);
+        at(&self.keys, time, out)
+    }
+}
+
+/// The offsets of `keys` at `time` into `out` (cleared first); `false` (and `out` empty)
+/// before the first key.
+pub(crate) fn at(keys: &[DeformKey], time: f64, out: &mut Vec<f64>) -> bool {
+    out.clear();
+    {
+        let i = keys.partition_point(|k| f32ed(k.time) <= time);
         let Some(i) = i.checked_sub(1) else { return false };
-        let k = &self.keys[i];
-        let Some(next) = self.keys.get(i + 1) else {
+        let k = &keys[i];
+        let Some(next) = keys.get(i + 1) else {
             out.extend(k.offsets.iter().map(|&v| f32ed(v)));
             return true;
         };

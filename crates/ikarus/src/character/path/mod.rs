@@ -25,6 +25,7 @@
 //! - the turn is the angle to the goal direction plus the `rotation` offset, wrapped to
 //!   `[−π, π]`, times `mixRotate`; it turns the whole world matrix (both axes).
 
+pub(crate) mod apply;
 pub(crate) mod deform;
 pub(crate) mod spline;
 
@@ -32,6 +33,7 @@ pub use deform::{DeformKey, PathDeform};
 pub use spline::{PathShape, PathVertices, Weight};
 
 use super::world::Affine;
+use super::{CharacterBone, CharacterError};
 use crate::math;
 use std::f64::consts::PI;
 
@@ -132,6 +134,35 @@ pub struct PathConstraint {
     pub rotation: f64,
     /// The settings of the setup pose (clips key them).
     pub setup: PathSettings,
+}
+
+impl PathConstraint {
+    /// Checks its bones (and its path's) against the character's `bones`, and its settings
+    /// (constraint `k` of the list).
+    pub(crate) fn check(&self, k: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
+        let n = bones.len();
+        let weighted = match self.path.as_ref().map(|p| &p.vertices) {
+            Some(PathVertices::Weighted(v)) => v.iter().flatten().map(|w| w.bone).collect(),
+            _ => Vec::new(),
+        };
+        if let Some(&bone) = self.bones.iter().chain([&self.slot_bone]).chain(&weighted).find(|&&b| b >= n) {
+            return Err(CharacterError::PathBone { constraint: k, bone });
+        }
+        let s = &self.setup;
+        for (field, value, max) in [
+            ("mixRotate", s.mix_rotate, 1.0),
+            ("mixX", s.mix_x, 1.0),
+            ("mixY", s.mix_y, 1.0),
+            ("position", s.position, f64::MAX),
+            ("spacing", s.spacing, f64::MAX),
+            ("rotation", self.rotation, f64::MAX),
+        ] {
+            if !(value.is_finite() && value.abs() <= max) {
+                return Err(CharacterError::PathSetting { constraint: k, field, value });
+            }
+        }
+        Ok(())
+    }
 }
 
 /// What solving a path constraint reuses from pose to pose.
