@@ -172,6 +172,7 @@ pub struct PathScratch {
     distances: Vec<f64>,
     points: Vec<spline::Point>,
     lengths: Vec<f64>,
+    ends: Vec<f64>,
 }
 
 /// The constraint's bones being moved: `world[i]` is bone `bones[i]`'s world transform as
@@ -202,12 +203,12 @@ pub fn solve(
     }
     let chain = c.rotate_mode.chain();
     spline::world_vertices(path, &bones_world(c.slot_bone), bones_world, deform, &mut scratch.vertices);
-    let Some(total) = spline::length(path, &scratch.vertices) else { return };
+    let Some(total) = spline::ends(path, &scratch.vertices, &mut scratch.ends) else { return };
     // Each bone's world length (its length along its world x axis).
     scratch.lengths.clear();
     scratch.lengths.extend(world.iter().zip(length).map(|(w, l)| l * math::hypot(w.a, w.c)));
     distances(c, s, total, &scratch.lengths, chain, &mut scratch.distances);
-    spline::points(path, &scratch.vertices, total, &scratch.distances, &mut scratch.points);
+    spline::points(path, &scratch.vertices, &scratch.ends, &scratch.distances, &mut scratch.points);
     let p = &scratch.points;
     for (i, w) in world.iter_mut().enumerate() {
         let here = p[i];

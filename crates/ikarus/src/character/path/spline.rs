@@ -157,31 +157,39 @@ fn chords<const N: usize>(c: &[[f64; 2]; 4]) -> [f64; N] {
     out
 }
 
-/// The path's length: measured in the world with `constantSpeed`, else the attachment's.
-/// `None` when the path has no curve (or, without constant speed, too few `lengths`).
-pub(crate) fn length(path: &PathShape, v: &[[f64; 2]]) -> Option<f64> {
+/// Where each curve ends along the path, into `ends` (measured in the world with
+/// `constantSpeed`, four chords a curve; else the attachment's `lengths`), and the path's
+/// length: the last. `None` when the path has no curve (or, without constant speed, too few
+/// `lengths`).
+pub(crate) fn ends(path: &PathShape, v: &[[f64; 2]], ends: &mut Vec<f64>) -> Option<f64> {
+    ends.clear();
     let curves = curve_count(path, v.len());
     if curves == 0 {
         return None;
     }
     if path.constant_speed {
-        Some((0..curves).map(|k| chords::<4>(&curve(v, k))[3]).sum())
+        let mut at = 0.0;
+        for k in 0..curves {
+            at += chords::<4>(&curve(v, k))[3];
+            ends.push(at);
+        }
     } else {
-        path.lengths.get(curves - 1).copied()
+        ends.extend_from_slice(path.lengths.get(..curves)?);
     }
+    ends.last().copied()
 }
 
-/// The points at `distances` along the path of world vertices `v` and length `total`.
-pub(crate) fn points(path: &PathShape, v: &[[f64; 2]], total: f64, distances: &[f64], out: &mut Vec<Point>) {
+/// The points at `distances` along the path of world vertices `v` whose curves end at `ends`
+/// (the last is the path's length).
+pub(crate) fn points(path: &PathShape, v: &[[f64; 2]], ends: &[f64], distances: &[f64], out: &mut Vec<Point>) {
     out.clear();
-    let curves = curve_count(path, v.len());
-    for &d in distances {
-        out.push(point(path, v, curves, total, d));
-    }
+    out.extend(distances.iter().map(|&d| point(path, v, ends, d)));
 }
 
-/// The point at distance `d`.
-fn point(path: &PathShape, v: &[[f64; 2]], curves: usize, total: f64, d: f64) -> Point {
+/// The point at distance `d`: on the first curve that ends at or after it (found by a binary
+/// search), or on the line past an open path's ends.
+fn point(path: &PathShape, v: &[[f64; 2]], ends: &[f64], d: f64) -> Point {
+    let (curves, total) = (ends.len(), ends[ends.len() - 1]);
     let mut d = d;
     if path.closed {
         d = if total > 0.0 { d.rem_euclid(total) } else { 0.0 };
@@ -191,33 +199,23 @@ fn point(path: &PathShape, v: &[[f64; 2]], curves: usize, total: f64, d: f64) ->
         let last = curves * 3 + 1;
         return line(v[last], [v[last - 1], v[last]], d - total);
     }
-    let mut start = 0.0;
-    for k in 0..curves {
-        let c = curve(v, k);
-        if path.constant_speed {
-            let end = start + chords::<4>(&c)[3];
-            if d <= end || k + 1 == curves {
-                let ch = chords::<10>(&c);
-                let span = end - start;
-                let q = if span > 0.0 { (d - start) / span * ch[9] } else { 0.0 };
-                let j = ch.iter().position(|&l| q <= l).unwrap_or(9);
-                let before = if j == 0 { 0.0 } else { ch[j - 1] };
-                let seg = ch[j] - before;
-                let f = if seg > 0.0 { ((q - before) / seg).clamp(0.0, 1.0) } else { 0.0 };
-                return at(&c, (j as f64 + f) / 10.0);
-            }
-            start = end;
-        } else {
-            let end = path.lengths.get(k).copied().unwrap_or(total);
-            if d <= end || k + 1 == curves {
-                let span = end - start;
-                let t = if span > 0.0 { ((d - start) / span).clamp(0.0, 1.0) } else { 0.0 };
-                return at(&c, t);
-            }
-            start = end;
-        }
+    let k = ends.partition_point(|&e| e < d).min(curves - 1);
+    let (start, end) = (if k == 0 { 0.0 } else { ends[k - 1] }, ends[k]);
+    let c = curve(v, k);
+    let span = end - start;
+    if !path.constant_speed {
+        let t = if span > 0.0 { ((d - start) / span).clamp(0.0, 1.0) } else { 0.0 };
+        return at(&c, t);
     }
-    at(&curve(v, 0), 0.0)
+    // Within the curve: the distance scaled to its ten chords, walked proportionally on the
+    // chord it falls on.
+    let ch = chords::<10>(&c);
+    let q = if span > 0.0 { (d - start) / span * ch[9] } else { 0.0 };
+    let j = ch.iter().position(|&l| q <= l).unwrap_or(9);
+    let before = if j == 0 { 0.0 } else { ch[j - 1] };
+    let seg = ch[j] - before;
+    let f = if seg > 0.0 { ((q - before) / seg).clamp(0.0, 1.0) } else { 0.0 };
+    at(&c, (j as f64 + f) / 10.0)
 }
 
 /// The point at distance `d` from `p` along the direction from `dir[0]` to `dir[1]` (the
