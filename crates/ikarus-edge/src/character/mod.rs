@@ -24,6 +24,10 @@ pub mod motion;
 pub mod motion_files;
 pub mod skel;
 mod spine;
+mod spine_deform;
+mod spine_path;
+mod spine_path_clips;
+mod spine_slots;
 pub mod store;
 
 use std::collections::HashMap;

@@ -31,7 +31,7 @@ struct SpineFile {
     #[serde(default)]
     transform: Vec<super::Named>,
     #[serde(default)]
-    path: Vec<super::Named>,
+    path: Vec<super::spine_path::PathJson>,
     #[serde(default)]
     physics: Vec<super::Named>,
     #[serde(default)]
@@ -146,8 +146,24 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of).map(Constraint::Ik)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let mut constraints = constraints;
+    let slots = super::spine_slots::read(value, &index)?;
+    let first_path = constraints.len();
+    for (i, k) in file.path.iter().enumerate() {
+        constraints.push(Constraint::Path(super::spine_path::constraint(i, k, &index, &slots, "default")?));
+    }
+    let path_names: HashMap<&str, usize> =
+        super::first_index(file.path.iter().map(|k| k.name())).into_iter().map(|(n, i)| (n, first_path + i)).collect();
+    let targets: Vec<(usize, usize, Option<&str>)> = constraints[first_path..]
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c {
+            Constraint::Path(p) => Some((first_path + i, p.slot, slots.slots[p.slot].attachment.as_deref())),
+            _ => None,
+        })
+        .collect();
     let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
+    for (kind, list) in [("transform", &file.transform), ("physics", &file.physics)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
     let names =
@@ -157,8 +173,14 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .0
         .iter()
         .map(|(name, animation)| {
-            let duration = super::latest_time(&value["animations"][name]);
-            clips::clip(name, animation, duration, &names, legacy)
+            let json = &value["animations"][name];
+            let duration = super::latest_time(json);
+            let mut clip = clips::clip(name, animation, duration, &names, legacy)?;
+            let deforms = super::spine_deform::read(json, name, &slots)?;
+            let at = format!("animations.{:?}", Quoted(name));
+            let paths = super::spine_path_clips::read(json, &at, &path_names, &targets, &deforms, legacy)?;
+            clip.constraints.extend(paths);
+            Ok::<_, String>(clip)
         })
         .collect::<Result<Vec<_>, _>>()?;
     if !unsupported.is_empty() {

@@ -12,13 +12,16 @@
 //! transforms from them ([`super::world::Bones::set_world`]), and leaves to posing the bones
 //! strictly below them.
 
-use super::{CharacterBone, CharacterError, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
+use super::{CharacterBone, CharacterError, DeformKey, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
+use super::{PathConstraint, PathSettings};
 
 /// A constraint of any kind.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Constraint {
     /// Inverse kinematics: one bone aims, or two bones reach, for a target bone.
     Ik(IkConstraint),
+    /// Path: bones moved along, and turned with, the path a slot shows.
+    Path(PathConstraint),
 }
 
 /// A constraint's settings that clips can key (its mixes and the like), of its kind.
@@ -26,6 +29,8 @@ pub enum Constraint {
 pub enum Settings {
     /// An IK constraint's.
     Ik(IkSettings),
+    /// A path constraint's.
+    Path(PathSettings),
 }
 
 /// Which bones posing recomputes after a constraint has applied.
@@ -34,7 +39,6 @@ pub(crate) enum Updates<'a> {
     /// This bone and every bone below it (the constraint changed local transforms only).
     Subtree(usize),
     /// Every bone strictly below these (the constraint set these bones' world transforms).
-    #[allow(dead_code)] // for the kinds that set world transforms (transform, path, physics)
     Below(&'a [usize]),
 }
 
@@ -43,6 +47,7 @@ impl Constraint {
     pub fn name(&self) -> &str {
         match self {
             Constraint::Ik(c) => &c.name,
+            Constraint::Path(c) => &c.name,
         }
     }
 
@@ -50,6 +55,7 @@ impl Constraint {
     pub fn order(&self) -> u32 {
         match self {
             Constraint::Ik(c) => c.order,
+            Constraint::Path(c) => c.order,
         }
     }
 
@@ -57,6 +63,7 @@ impl Constraint {
     pub fn kind(&self) -> &'static str {
         match self {
             Constraint::Ik(_) => "ik",
+            Constraint::Path(_) => "path",
         }
     }
 
@@ -64,6 +71,7 @@ impl Constraint {
     pub fn ik(&self) -> Option<&IkConstraint> {
         match self {
             Constraint::Ik(c) => Some(c),
+            Constraint::Path(_) => None,
         }
     }
 
@@ -71,6 +79,7 @@ impl Constraint {
     pub fn ik_mut(&mut self) -> Option<&mut IkConstraint> {
         match self {
             Constraint::Ik(c) => Some(c),
+            Constraint::Path(_) => None,
         }
     }
 
@@ -78,6 +87,7 @@ impl Constraint {
     pub fn setup(&self) -> Settings {
         match self {
             Constraint::Ik(c) => Settings::Ik(c.setup),
+            Constraint::Path(c) => Settings::Path(c.setup),
         }
     }
 
@@ -85,6 +95,7 @@ impl Constraint {
     pub(crate) fn updates(&self) -> Updates<'_> {
         match self {
             Constraint::Ik(c) => Updates::Subtree(c.top()),
+            Constraint::Path(c) => Updates::Below(&c.bones),
         }
     }
 
@@ -92,6 +103,7 @@ impl Constraint {
     pub(crate) fn check(&self, k: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
         match self {
             Constraint::Ik(c) => c.check(k, bones),
+            Constraint::Path(c) => c.check(k, bones),
         }
     }
 }
@@ -107,6 +119,7 @@ impl Settings {
     pub fn ik(&self) -> Option<&IkSettings> {
         match self {
             Settings::Ik(s) => Some(s),
+            Settings::Path(_) => None,
         }
     }
 }
@@ -158,6 +171,16 @@ pub struct ChannelKey {
 pub enum ConstraintKeys {
     /// An IK constraint's: mix and softness (curved), the flags (stepped).
     Ik(Vec<IkKey>),
+    /// A path constraint's `position` (one channel).
+    PathPosition(Vec<ChannelKey>),
+    /// A path constraint's `spacing` (one channel).
+    PathSpacing(Vec<ChannelKey>),
+    /// A path constraint's mixes: `mixRotate`, `mixX`, `mixY` (three channels).
+    PathMix(Vec<ChannelKey>),
+    /// The offsets a clip adds to the vertices of the path the constraint follows (a deform
+    /// timeline of its slot's path attachment); its one curve goes from 0 to 1 between keys and
+    /// is sampled when posing, not precomputed (no channel).
+    PathDeform(Vec<DeformKey>),
 }
 
 impl ConstraintKeys {
@@ -165,6 +188,10 @@ impl ConstraintKeys {
     pub fn len(&self) -> usize {
         match self {
             ConstraintKeys::Ik(keys) => keys.len(),
+            ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
+                keys.len()
+            }
+            ConstraintKeys::PathDeform(keys) => keys.len(),
         }
     }
 
@@ -177,6 +204,7 @@ impl ConstraintKeys {
     pub fn ik(&self) -> Option<&[IkKey]> {
         match self {
             ConstraintKeys::Ik(keys) => Some(keys),
+            _ => None,
         }
     }
 
@@ -184,6 +212,10 @@ impl ConstraintKeys {
     pub fn time(&self, i: usize) -> f64 {
         match self {
             ConstraintKeys::Ik(keys) => keys[i].time,
+            ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
+                keys[i].time
+            }
+            ConstraintKeys::PathDeform(keys) => keys[i].time,
         }
     }
 
@@ -191,6 +223,9 @@ impl ConstraintKeys {
     pub(crate) fn channels(&self) -> usize {
         match self {
             ConstraintKeys::Ik(_) => 2,
+            ConstraintKeys::PathPosition(_) | ConstraintKeys::PathSpacing(_) => 1,
+            ConstraintKeys::PathMix(_) => 3,
+            ConstraintKeys::PathDeform(_) => 0,
         }
     }
 
@@ -201,6 +236,10 @@ impl ConstraintKeys {
                 let k = &keys[i];
                 (k.curves[ch], if ch == 0 { k.settings.mix } else { k.settings.softness })
             }
+            ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
+                (keys[i].curves[ch], keys[i].values[ch])
+            }
+            ConstraintKeys::PathDeform(keys) => (keys[i].curve, 0.0),
         }
     }
 
@@ -210,6 +249,14 @@ impl ConstraintKeys {
             (ConstraintKeys::Ik(keys), Constraint::Ik(_)) => {
                 keys.iter().try_for_each(|key| super::check_settings(k, &key.settings))
             }
+            (
+                ConstraintKeys::PathPosition(_)
+                | ConstraintKeys::PathSpacing(_)
+                | ConstraintKeys::PathMix(_)
+                | ConstraintKeys::PathDeform(_),
+                Constraint::Path(_),
+            ) => Ok(()),
+            (_, _) => Err(CharacterError::TimelineKind { constraint: k, kind: of.kind() }),
         }
     }
 }

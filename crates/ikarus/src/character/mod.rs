@@ -18,12 +18,17 @@ mod applied;
 mod constraint;
 mod flat;
 mod ik;
+mod path;
 mod pose;
 mod timeline;
 mod together;
 mod world;
 
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
+pub use path::{
+    Chain, DeformKey, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices, PositionMode,
+    RotateMode, SpacingMode, Weight, solve as solve_path,
+};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
@@ -389,6 +394,32 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// A constraint timeline keys what its constraint's kind does not have.
+    #[error("constraints[{constraint}] ({kind}): a clip's timeline of another kind keys it")]
+    TimelineKind {
+        /// The constraint's index.
+        constraint: usize,
+        /// The constraint's kind.
+        kind: &'static str,
+    },
+    /// A path constraint names a bone that does not exist.
+    #[error("path constraint {constraint}: bone {bone} does not exist")]
+    PathBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone's index.
+        bone: usize,
+    },
+    /// A path constraint's setting is out of range (a mix outside −1 … 1, a value not finite).
+    #[error("path constraint {constraint}.{field}: out of range, got {value}")]
+    PathSetting {
+        /// The constraint's index.
+        constraint: usize,
+        /// The field: `mixRotate`, `position`, …
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
     /// A timeline names a bone or constraint that does not exist.
     #[error("clips[{clip}]: a timeline names {what} {index}, which does not exist")]
     MissingTarget {
@@ -604,14 +635,14 @@ mod tests {
         p.bones[2].setup.scale_x = f64::NAN;
         assert!(matches!(Character::new(p).unwrap_err(), CharacterError::NotFinite { bone: 2, field: "scaleX", .. }));
         let mut p = leg();
-        let Constraint::Ik(ik) = &mut p.constraints[0];
+        let ik = p.constraints[0].ik_mut().unwrap();
         ik.bones = IkBones::Two { parent: 0, child: 2 };
         assert_eq!(
             Character::new(p).unwrap_err(),
             CharacterError::NotParentChild { constraint: 0, parent: 0, child: 2 }
         );
         let mut p = leg();
-        let Constraint::Ik(ik) = &mut p.constraints[0];
+        let ik = p.constraints[0].ik_mut().unwrap();
         ik.setup.mix = 1.5;
         assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
         let mut p = leg();

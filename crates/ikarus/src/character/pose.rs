@@ -2,6 +2,8 @@
 //! targets moved, then the constraints of every kind one after another in their order.
 
 use super::ik;
+use super::path;
+use super::path::apply::PathPose;
 use super::timeline;
 use super::timeline::Reader;
 use super::world::{Affine, BoneTrig, Bones, Trig};
@@ -90,6 +92,8 @@ pub struct Posed {
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
     /// before the time last asked: where the next time's key is looked for first.
     keys: Vec<u32>,
+    /// The path constraints' deform offsets and buffers.
+    path: PathPose,
 }
 
 impl Posed {
@@ -201,6 +205,7 @@ impl Character {
         out.settings.clear();
         out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
+        out.path.reset(self.constraints.len());
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -218,6 +223,22 @@ impl Character {
                             out.settings[t.constraint] = Settings::Ik(s);
                         }
                     }
+                    ConstraintKeys::PathDeform(keys) => {
+                        let k = t.constraint;
+                        out.path.deformed[k] = path::deform::at(keys, time, &mut out.path.deform[k]);
+                    }
+                    keys @ (ConstraintKeys::PathPosition(v)
+                    | ConstraintKeys::PathSpacing(v)
+                    | ConstraintKeys::PathMix(v)) => {
+                        let Some(x) = timeline::channels_at(&mut r, v, keys.channels(), time) else { continue };
+                        if let Settings::Path(s) = &mut out.settings[t.constraint] {
+                            match keys {
+                                ConstraintKeys::PathPosition(_) => s.position = x[0],
+                                ConstraintKeys::PathSpacing(_) => s.spacing = x[0],
+                                _ => [s.mix_rotate, s.mix_x, s.mix_y] = [x[0], x[1], x[2]],
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -225,11 +246,13 @@ impl Character {
             out.local[bone].rotation = rotation;
         }
         for &(k, bend_positive) in request.bends {
-            #[allow(irrefutable_let_patterns)] // refutable once a second kind is in `Settings`
             if let Settings::Ik(s) = &mut out.settings[k] {
                 s.bend_positive = bend_positive;
             }
         }
+        // The path buffers are taken out while the bones are borrowed (and put back at the end;
+        // a pose that fails only loses them to a reallocation next time).
+        let mut path_pose = std::mem::take(&mut out.path);
         let (mut bones, _, settings) = out.bones(self);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
@@ -267,9 +290,12 @@ impl Character {
                         }
                     }
                 }
+                (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, &mut path_pose),
+                _ => {}
             }
             bones.update_subtree(self.flat.below(k));
         }
+        out.path = path_pose;
         Ok(())
     }
 
