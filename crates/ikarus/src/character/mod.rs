@@ -15,11 +15,18 @@ use thiserror::Error;
 
 mod flat;
 mod ik;
+mod physics;
+mod physics_timeline;
 mod pose;
 mod timeline;
 mod together;
 mod world;
 
+pub use physics::{
+    MAX_STEPS, PhysicsConstraint, PhysicsGlobal, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsShares,
+    PhysicsState, PhysicsWorld, applied_local,
+};
+pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
