@@ -23,6 +23,7 @@ pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
 mod spine;
+pub mod spine_physics;
 pub mod store;
 
 use std::collections::HashMap;
