@@ -61,9 +61,8 @@ fn a_target_moves_its_bone_and_the_report_lists_every_bone() {
 /// from its target.
 fn two_bone_misses(c: &Character, report: &PoseReport) -> Vec<f64> {
     let at = |i: usize| &report.bones[i];
-    c.constraints()
-        .iter()
-        .filter_map(|k| match k.bones {
+    c.ik_constraints()
+        .filter_map(|(_, k)| match k.bones {
             ikarus::character::IkBones::Two { child, .. } => {
                 let (tip, t) = (at(child).tip, at(k.target));
                 Some(((tip[0] - t.x).powi(2) + (tip[1] - t.y).powi(2)).sqrt())
@@ -98,8 +97,8 @@ fn ikarus_rules_meet_every_two_bone_limb_the_runtime_meets_on_the_shipped_walks(
             }
             // The report's errors are the pose's own.
             let two: Vec<f64> = c
-                .constraints()
-                .iter()
+                .ik_constraints()
+                .map(|(_, k)| k)
                 .zip(&ik.constraints)
                 .filter(|(k, _)| matches!(k.bones, ikarus::character::IkBones::Two { .. }))
                 .map(|(_, l)| l.error)

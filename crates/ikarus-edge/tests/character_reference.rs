@@ -107,7 +107,7 @@ fn every_shipped_clip_and_target_poses_to_finite_numbers() {
         let mut posed = Posed::default();
         for scale in [0.0, 0.01, 1.0, 1e4] {
             let moved: Vec<(usize, [f64; 2])> =
-                c.constraints().iter().map(|k| (k.target, [37.0 * scale, -53.0 * scale])).collect();
+                c.ik_constraints().map(|(_, k)| (k.target, [37.0 * scale, -53.0 * scale])).collect();
             for clip in 0..c.clips().len() {
                 let d = c.clips()[clip].duration;
                 for time in [0.0, d / 3.0, d / 2.0, d, d + 1.0] {

@@ -52,7 +52,7 @@ fn digest(c: &Character) -> (u64, usize) {
         poses += 1;
     };
     pose(&PoseRequest::default(), &mut out, &mut d);
-    let targets: Vec<(usize, [f64; 2])> = c.constraints().iter().take(2).map(|k| (k.target, [30.0, -20.0])).collect();
+    let targets: Vec<(usize, [f64; 2])> = c.ik_constraints().take(2).map(|(_, k)| (k.target, [30.0, -20.0])).collect();
     let last = c.bones().len() - 1;
     let far = [(last, [-45.0, 120.0])];
     for (k, clip) in c.clips().iter().enumerate() {

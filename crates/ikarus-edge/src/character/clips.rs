@@ -15,7 +15,9 @@ use std::collections::HashMap;
 use std::fmt;
 use std::marker::PhantomData;
 
-use ikarus::character::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSettings, IkTimeline, Interpolation};
+use ikarus::character::{
+    BoneKey, BoneProperty, BoneTimeline, Clip, ConstraintKeys, ConstraintTimeline, IkKey, IkSettings, Interpolation,
+};
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
@@ -218,7 +220,7 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
         if let Some((i, k)) = keys.iter().enumerate().find(|(_, k)| k.settings.softness < 0.0) {
             return Err(format!("{}[{i}].softness = {}: must not be negative", series.path, k.settings.softness));
         }
-        constraints.push(IkTimeline { constraint, keys });
+        constraints.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Ik(keys) });
     }
     Ok(Clip { name: name.to_owned(), duration, bones, constraints })
 }

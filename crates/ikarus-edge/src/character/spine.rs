@@ -11,7 +11,8 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
+    CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
+    Unsupported,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -141,7 +142,9 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .ik
         .iter()
         .enumerate()
-        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
+        .map(|(i, k)| {
+            constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of).map(Constraint::Ik)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let mut unsupported = Vec::new();
     for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {

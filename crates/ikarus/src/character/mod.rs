@@ -1,7 +1,8 @@
 //! Imported characters (Spine and DragonBones skeletons), held as their runtimes hold them:
 //! bones with a full affine local transform (translation, rotation, scale, shear) and an
-//! inherit mode, IK constraints applied one after another in their order, and animation clips
-//! whose timelines key the bones' transforms and the constraints' settings.
+//! inherit mode, constraints of every kind in one list applied one after another in their
+//! order ([`constraint`]), and animation clips whose timelines key the bones' transforms and
+//! the constraints' settings.
 //!
 //! This module is the model only: what a character *is*, validated once by [`Character::new`].
 //! Reading the files belongs to the edge (`ikarus-edge`), which names fields and values in its
@@ -13,6 +14,8 @@
 
 use thiserror::Error;
 
+mod applied;
+mod constraint;
 mod flat;
 mod ik;
 mod physics;
@@ -22,6 +25,7 @@ mod timeline;
 mod together;
 mod world;
 
+pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
 pub use physics::{
     MAX_STEPS, PhysicsConstraint, PhysicsGlobal, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsShares,
     PhysicsState, PhysicsWorld, applied_local,
@@ -33,12 +37,12 @@ pub use together::{
 };
 pub use world::{Affine, world_transform};
 
-/// A character: bones listed parent first, IK constraints, clips, and the skeleton's own
-/// placement.
+/// A character: bones listed parent first, constraints of every kind, clips, and the
+/// skeleton's own placement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Character {
     bones: Vec<CharacterBone>,
-    constraints: Vec<IkConstraint>,
+    constraints: Vec<Constraint>,
     clips: Vec<Clip>,
     placement: Placement,
     unsupported: Vec<Unsupported>,
@@ -235,7 +239,7 @@ pub struct Clip {
     /// The bones' timelines.
     pub bones: Vec<BoneTimeline>,
     /// The constraints' timelines.
-    pub constraints: Vec<IkTimeline>,
+    pub constraints: Vec<ConstraintTimeline>,
 }
 
 /// What a bone timeline keys. Rotation, translation and shear keys add to the setup values;
@@ -328,15 +332,6 @@ pub struct IkKey {
     pub settings: IkSettings,
     /// Toward the next key, for `mix` and `softness` (the flags are stepped).
     pub curves: [Interpolation; 2],
-}
-
-/// An IK constraint's timeline, keys in increasing time.
-#[derive(Debug, Clone, PartialEq)]
-pub struct IkTimeline {
-    /// The constraint's index.
-    pub constraint: usize,
-    /// The keys, in increasing time.
-    pub keys: Vec<IkKey>,
 }
 
 /// A character that breaks the model's rules. The edge reads files by name and words its own
@@ -434,8 +429,8 @@ pub enum CharacterError {
 pub struct CharacterParts {
     /// The bones, parent first.
     pub bones: Vec<CharacterBone>,
-    /// The IK constraints.
-    pub constraints: Vec<IkConstraint>,
+    /// The constraints, of every kind.
+    pub constraints: Vec<Constraint>,
     /// The clips.
     pub clips: Vec<Clip>,
     /// The skeleton's own position and scale.
@@ -480,26 +475,12 @@ impl Character {
                 return Err(CharacterError::NegativeLength { bone: i, value: b.length });
             }
         }
-        let n = bones.len();
-        for (c, k) in constraints.iter().enumerate() {
-            let missing = |bone: usize| CharacterError::MissingBone { constraint: c, bone };
-            match k.bones {
-                IkBones::One(b) if b >= n => return Err(missing(b)),
-                IkBones::Two { parent, .. } if parent >= n => return Err(missing(parent)),
-                IkBones::Two { child, .. } if child >= n => return Err(missing(child)),
-                IkBones::Two { parent, child } if bones[child].parent != Some(parent) => {
-                    return Err(CharacterError::NotParentChild { constraint: c, parent, child });
-                }
-                IkBones::One(_) | IkBones::Two { .. } => {}
-            }
-            if k.target >= n {
-                return Err(missing(k.target));
-            }
-            check_settings(c, &k.setup)?;
+        for (k, c) in constraints.iter().enumerate() {
+            c.check(k, &bones)?;
         }
         for (ci, clip) in clips.iter().enumerate() {
             for t in &clip.bones {
-                if t.bone >= n {
+                if t.bone >= bones.len() {
                     return Err(CharacterError::MissingTarget { clip: ci, what: "bone", index: t.bone });
                 }
                 check_times(ci, t.keys.iter().map(|k| k.time))?;
@@ -513,14 +494,12 @@ impl Character {
                 if t.constraint >= constraints.len() {
                     return Err(CharacterError::MissingTarget { clip: ci, what: "constraint", index: t.constraint });
                 }
-                check_times(ci, t.keys.iter().map(|k| k.time))?;
-                for k in &t.keys {
-                    check_settings(t.constraint, &k.settings)?;
-                }
+                check_times(ci, (0..t.keys.len()).map(|i| t.keys.time(i)))?;
+                t.keys.check(t.constraint, &constraints[t.constraint])?;
             }
         }
         let mut order: Vec<usize> = (0..constraints.len()).collect();
-        order.sort_by_key(|&k| (constraints[k].order, k));
+        order.sort_by_key(|&k| (constraints[k].order(), k));
         let curves = timeline::Curves::of(&clips);
         let deferred = world::deferred(&bones, &constraints, &order);
         let flat = flat::Flat::of(&bones, &constraints);
@@ -532,9 +511,19 @@ impl Character {
         &self.bones
     }
 
-    /// The IK constraints, as listed in the file (apply them by [`IkConstraint::order`]).
-    pub fn constraints(&self) -> &[IkConstraint] {
+    /// The constraints of every kind, as listed (they apply by [`Constraint::order`]).
+    pub fn constraints(&self) -> &[Constraint] {
         &self.constraints
+    }
+
+    /// The IK constraints with their indices in [`Character::constraints`].
+    pub fn ik_constraints(&self) -> impl Iterator<Item = (usize, &IkConstraint)> {
+        self.constraints.iter().enumerate().filter_map(|(k, c)| c.ik().map(|c| (k, c)))
+    }
+
+    /// Constraint `k` if it is an IK constraint.
+    pub fn ik(&self, k: usize) -> Option<&IkConstraint> {
+        self.constraints.get(k).and_then(Constraint::ik)
     }
 
     /// The animation clips.
@@ -563,7 +552,7 @@ impl Character {
     }
 }
 
-fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterError> {
+pub(crate) fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterError> {
     if !(0.0..=1.0).contains(&s.mix) {
         return Err(CharacterError::Setting { constraint, field: "mix", value: s.mix });
     }
@@ -594,7 +583,13 @@ mod tests {
         let bone = |name: &str, parent: Option<usize>| character_bone(name, parent, 0.0, 0.0);
         CharacterParts {
             bones: vec![bone("root", None), bone("thigh", Some(0)), bone("shin", Some(1)), bone("target", Some(0))],
-            constraints: vec![spine_ik("leg", 0, IkBones::Two { parent: 1, child: 2 }, 3, IkSettings::default())],
+            constraints: vec![Constraint::Ik(spine_ik(
+                "leg",
+                0,
+                IkBones::Two { parent: 1, child: 2 },
+                3,
+                IkSettings::default(),
+            ))],
             ..CharacterParts::default()
         }
     }
@@ -616,13 +611,15 @@ mod tests {
         p.bones[2].setup.scale_x = f64::NAN;
         assert!(matches!(Character::new(p).unwrap_err(), CharacterError::NotFinite { bone: 2, field: "scaleX", .. }));
         let mut p = leg();
-        p.constraints[0].bones = IkBones::Two { parent: 0, child: 2 };
+        let Constraint::Ik(ik) = &mut p.constraints[0];
+        ik.bones = IkBones::Two { parent: 0, child: 2 };
         assert_eq!(
             Character::new(p).unwrap_err(),
             CharacterError::NotParentChild { constraint: 0, parent: 0, child: 2 }
         );
         let mut p = leg();
-        p.constraints[0].setup.mix = 1.5;
+        let Constraint::Ik(ik) = &mut p.constraints[0];
+        ik.setup.mix = 1.5;
         assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
         let mut p = leg();
         p.clips.push(rotate_clip(1, [(0.5, 0.0), (0.5, 1.0)], Interpolation::Linear, vec![]));

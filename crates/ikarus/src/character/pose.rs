@@ -1,11 +1,11 @@
 //! Posing a character as its runtime does: the setup pose, then a clip at a time, then the
-//! targets moved, then the IK constraints one after another in their order.
+//! targets moved, then the constraints of every kind one after another in their order.
 
 use super::ik;
 use super::timeline;
 use super::timeline::Reader;
 use super::world::{Affine, BoneTrig, Bones, Trig};
-use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
+use super::{Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, Settings};
 use crate::Interrupt;
 use thiserror::Error;
 
@@ -62,8 +62,8 @@ pub enum PoseError {
         /// The rotation, radians.
         rotation: f64,
     },
-    /// A bend names a constraint that does not exist.
-    #[error("bend: no constraint {0}")]
+    /// A bend names a constraint that does not exist or is not an IK constraint.
+    #[error("bend: no IK constraint {0}")]
     UnknownConstraint(usize),
     /// A target's bone has a parent whose world matrix is singular (scaled to nothing), so no
     /// local position puts it anywhere else.
@@ -84,7 +84,7 @@ pub struct Posed {
     world: Vec<Affine>,
     length: Vec<f64>,
     below: Vec<bool>,
-    settings: Vec<IkSettings>,
+    settings: Vec<Settings>,
     /// Per bone, the sines and cosines its world transform last needed (kept across poses).
     trig: Vec<BoneTrig>,
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
@@ -137,13 +137,18 @@ impl Posed {
     }
 
     /// Constraint `k`'s settings as the clip left them.
-    pub fn settings(&self, k: usize) -> IkSettings {
+    pub fn settings(&self, k: usize) -> Settings {
         self.settings[k]
+    }
+
+    /// Constraint `k`'s settings as the clip left them, if it is an IK constraint.
+    pub fn ik_settings(&self, k: usize) -> Option<IkSettings> {
+        self.settings.get(k).and_then(Settings::ik).copied()
     }
 
     /// The bones of `c` as posing left them, to change their local transforms (and the world
     /// transforms below), their lengths, and the constraints' settings.
-    pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [IkSettings]) {
+    pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings]) {
         let bones = Bones {
             bones: &c.bones,
             links: &c.flat.links,
@@ -207,8 +212,12 @@ impl Character {
             }
             for (k, (t, last)) in clip.constraints.iter().zip(ik_keys).enumerate() {
                 let mut r = Reader { curves: &self.curves, clip: c, timeline: clip.bones.len() + k, last };
-                if let Some(s) = timeline::ik_settings_at(&mut r, &t.keys, time) {
-                    out.settings[t.constraint] = s;
+                match &t.keys {
+                    ConstraintKeys::Ik(keys) => {
+                        if let Some(s) = timeline::ik_settings_at(&mut r, keys, time) {
+                            out.settings[t.constraint] = Settings::Ik(s);
+                        }
+                    }
                 }
             }
         }
@@ -216,7 +225,10 @@ impl Character {
             out.local[bone].rotation = rotation;
         }
         for &(k, bend_positive) in request.bends {
-            out.settings[k].bend_positive = bend_positive;
+            #[allow(irrefutable_let_patterns)] // refutable once a second kind is in `Settings`
+            if let Settings::Ik(s) = &mut out.settings[k] {
+                s.bend_positive = bend_positive;
+            }
         }
         let (mut bones, _, settings) = out.bones(self);
         if request.targets.is_empty() {
@@ -234,26 +246,29 @@ impl Character {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
             }
-            let c = &self.constraints[k];
-            let s = &settings[k];
-            let w = bones.world[c.target];
-            let target = [w.x, w.y];
-            // The constraint's top bone and every bone below it, in update order.
-            let below = self.flat.below(k);
-            match (c.bones, c.rule) {
-                (IkBones::One(b), _) => {
-                    let s =
-                        if c.rule == IkRule::Spine { *s } else { IkSettings { compress: false, stretch: false, ..*s } };
-                    ik::spine_one(&mut bones, b, target, &s, c.uniform);
-                }
-                (IkBones::Two { parent, child }, IkRule::Spine) => {
-                    ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
-                }
-                (IkBones::Two { parent, child }, IkRule::DragonBones) => {
-                    ik::dragonbones_two(&mut bones, (parent, child), below, target, s);
+            match (&self.constraints[k], &settings[k]) {
+                (Constraint::Ik(c), Settings::Ik(s)) => {
+                    let w = bones.world[c.target];
+                    let target = [w.x, w.y];
+                    match (c.bones, c.rule) {
+                        (IkBones::One(b), _) => {
+                            let s = if c.rule == IkRule::Spine {
+                                *s
+                            } else {
+                                IkSettings { compress: false, stretch: false, ..*s }
+                            };
+                            ik::spine_one(&mut bones, b, target, &s, c.uniform);
+                        }
+                        (IkBones::Two { parent, child }, IkRule::Spine) => {
+                            ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
+                        }
+                        (IkBones::Two { parent, child }, IkRule::DragonBones) => {
+                            ik::dragonbones_two(&mut bones, (parent, child), self.flat.below(k), target, s);
+                        }
+                    }
                 }
             }
-            bones.update_subtree(below);
+            bones.update_subtree(self.flat.below(k));
         }
         Ok(())
     }
@@ -283,7 +298,7 @@ impl Character {
                 return Err(PoseError::TurnRotation { bone, rotation });
             }
         }
-        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| *k >= self.constraints.len()) {
+        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| self.ik(*k).is_none()) {
             return Err(PoseError::UnknownConstraint(k));
         }
         Ok(())

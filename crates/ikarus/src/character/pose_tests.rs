@@ -92,7 +92,7 @@ fn bad_requests_are_refused_by_name() {
     let k = c.constraints.len();
     assert_eq!(
         bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)], turns: &[] }, &mut out).to_string(),
-        format!("bend: no constraint {k}")
+        format!("bend: no IK constraint {k}")
     );
 }
 
