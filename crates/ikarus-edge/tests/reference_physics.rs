@@ -11,7 +11,7 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    Affine, Character, PhysicsConstraint, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsState, PhysicsWorld,
+    Affine, Character, PhysicsConstraint, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsState, PhysicsWorld, Play,
     PoseRequest, Posed, applied_local, physics_settings_at, world_transform,
 };
 use ikarus_edge::character::spine_physics;
@@ -23,7 +23,7 @@ struct Rig {
     c: Character,
     physics: Vec<PhysicsConstraint>,
     /// Every constraint with its `order`, sorted: the runtime's update order.
-    order: Vec<(i64, Step)>,
+    order: Vec<(u32, Step)>,
     file: Value,
 }
 
@@ -43,7 +43,7 @@ fn rig() -> Rig {
     let file: Value = serde_json::from_str(&text).unwrap();
     let index: HashMap<String, usize> = c.bones().iter().enumerate().map(|(i, b)| (b.name.clone(), i)).collect();
     let physics = spine_physics::read(&file, &index).unwrap();
-    let mut order: Vec<(i64, Step)> = physics.iter().enumerate().map(|(k, p)| (p.order, Step::Physics(k))).collect();
+    let mut order: Vec<(u32, Step)> = physics.iter().enumerate().map(|(k, p)| (p.order, Step::Physics(k))).collect();
     for t in file["transform"].as_array().unwrap() {
         // Celestial-circus's transform constraints move one bone toward a point of the target.
         for mix in ["mixRotate", "mixScaleX", "mixShearY"] {
@@ -53,7 +53,7 @@ fn rig() -> Rig {
         let bones = t["bones"].as_array().unwrap();
         assert_eq!(bones.len(), 1);
         order.push((
-            t["order"].as_i64().unwrap_or(0),
+            t["order"].as_u64().unwrap_or(0) as u32,
             Step::Transform {
                 bone: index[bones[0].as_str().unwrap()],
                 target: index[t["target"].as_str().unwrap()],
@@ -198,4 +198,51 @@ fn the_same_play_gives_the_same_bits() {
     let bits =
         |w: Vec<Affine>| w.iter().flat_map(|a| [a.a, a.b, a.c, a.d, a.x, a.y].map(f64::to_bits)).collect::<Vec<_>>();
     assert_eq!(bits(pose(&r, Some("wind-idle"), 1.0, true)), bits(pose(&r, Some("wind-idle"), 1.0, true)));
+}
+
+/// The bones that celestial-circus's transform constraints move (and every bone below them):
+/// until the library applies transform constraints, `Character::play` leaves them where the
+/// runtime would not.
+fn moved_by_transform(r: &Rig) -> Vec<bool> {
+    let mut out = vec![false; r.c.bones().len()];
+    for (_, step) in &r.order {
+        if let Step::Transform { bone, .. } = step {
+            out[*bone] = true;
+        }
+    }
+    for (i, b) in r.c.bones().iter().enumerate() {
+        out[i] |= b.parent.is_some_and(|p| out[p]);
+    }
+    out
+}
+
+#[test]
+fn the_library_plays_the_physics_constraints_as_the_runtime_does() {
+    let r = rig();
+    assert!(r.c.unsupported().iter().all(|u| u.kind != "physics"), "{:?}", r.c.unsupported());
+    assert_eq!(r.c.constraints().iter().filter(|k| k.kind() == "physics").count(), 30);
+    let skip = moved_by_transform(&r);
+    let path = format!("{}/tests/reference/spine-celestial-circus-pro-full.json", env!("CARGO_MANIFEST_DIR"));
+    let reference: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut posed = Posed::default();
+    for case in reference["cases"].as_array().unwrap() {
+        let k = &case["case"];
+        let clip = k["animation"].as_str().map(|name| (r.c.clip_index(name).unwrap(), num(&k["time"])));
+        let request = PoseRequest { clip, targets: &[], bends: &[], turns: &[] };
+        if k["physics"].as_bool().unwrap_or(false) {
+            r.c.play(&request, &Play::default(), &mut posed).unwrap();
+        } else {
+            r.c.pose(&request, &mut posed).unwrap();
+        }
+        let (mut position, mut rotation) = (0.0f64, 0.0f64);
+        for (i, b) in r.c.bones().iter().enumerate().filter(|(i, _)| !skip[*i]) {
+            let rb = &case["bones"][&b.name];
+            let o = posed.origin(i);
+            position = position.max((o[0] - num(&rb["x"])).hypot(o[1] - num(&rb["y"])));
+            let turn = (posed.rotation(i).to_degrees() - num(&rb["rotation_deg"])).rem_euclid(360.0);
+            rotation = rotation.max(turn.min(360.0 - turn));
+        }
+        println!("{k}: position {position:.2e}, rotation {rotation:.2e}° (bones not moved by transform constraints)");
+        assert!(position < 1e-3 && rotation < 1e-3, "{k}: {position} {rotation}°");
+    }
 }

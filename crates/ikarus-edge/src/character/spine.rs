@@ -33,8 +33,6 @@ struct SpineFile {
     #[serde(default)]
     path: Vec<super::Named>,
     #[serde(default)]
-    physics: Vec<super::Named>,
-    #[serde(default)]
     animations: Ordered<clips::Animation>,
 }
 
@@ -146,8 +144,12 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of).map(Constraint::Ik)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let mut constraints = constraints;
+    let physics = super::spine_physics::read(value, &index)?;
+    let first_physics = constraints.len();
+    constraints.extend(physics.iter().cloned().map(Constraint::Physics));
     let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
+    for (kind, list) in [("transform", &file.transform), ("path", &file.path)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
     let names =
@@ -158,7 +160,11 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .iter()
         .map(|(name, animation)| {
             let duration = super::latest_time(&value["animations"][name]);
-            clips::clip(name, animation, duration, &names, legacy)
+            let mut clip = clips::clip(name, animation, duration, &names, legacy)?;
+            let at = format!("animations.{:?}", Quoted(name));
+            let keys = super::spine_physics::clip_timelines(&value["animations"][name], &physics, first_physics, &at)?;
+            clip.constraints.extend(keys);
+            Ok::<_, String>(clip)
         })
         .collect::<Result<Vec<_>, _>>()?;
     if !unsupported.is_empty() {

@@ -6,8 +6,8 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    Interpolation, PhysicsConstraint, PhysicsGlobal, PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsSettings,
-    PhysicsShares, PhysicsTimeline,
+    ChannelKey, ConstraintKeys, ConstraintTimeline, Interpolation, MAX_CHANNELS, PhysicsConstraint, PhysicsGlobal,
+    PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsSettings, PhysicsShares, PhysicsTimeline,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -20,7 +20,7 @@ use crate::names::Quoted;
 struct PhysicsJson {
     name: String,
     #[serde(default)]
-    order: i64,
+    order: u32,
     #[serde(default)]
     skin: bool,
     bone: String,
@@ -203,6 +203,52 @@ pub fn read_timelines(
         }
     }
     Ok((timelines, resets))
+}
+
+/// A clip's physics timelines as the character's constraint timelines: constraint `k` of
+/// `physics` is constraint `first + k` of the character; a timeline for every constraint (`""`)
+/// becomes one per constraint whose global flag for its setting is set (a `reset` one, one per
+/// constraint).
+pub fn clip_timelines(
+    animation: &Value,
+    physics: &[PhysicsConstraint],
+    first: usize,
+    at: &str,
+) -> Result<Vec<ConstraintTimeline>, String> {
+    let (timelines, resets) = read_timelines(animation, physics, at)?;
+    let mut out = Vec::new();
+    for t in timelines {
+        let keys: Vec<ChannelKey> = t
+            .keys
+            .iter()
+            .map(|k| ChannelKey {
+                time: k.time,
+                values: [k.value, 0.0, 0.0, 0.0, 0.0, 0.0],
+                curves: [k.curve; MAX_CHANNELS],
+            })
+            .collect();
+        for k in (0..physics.len()).filter(|&k| t.keys_constraint(k, &physics[k])) {
+            out.push(ConstraintTimeline {
+                constraint: first + k,
+                keys: ConstraintKeys::Physics { property: t.property, keys: keys.clone() },
+            });
+        }
+    }
+    for r in resets {
+        let keys: Vec<ChannelKey> = r
+            .times
+            .iter()
+            .map(|&time| ChannelKey {
+                time,
+                values: [0.0; MAX_CHANNELS],
+                curves: [Interpolation::Stepped; MAX_CHANNELS],
+            })
+            .collect();
+        for k in (0..physics.len()).filter(|&k| r.constraint.is_none_or(|j| j == k)) {
+            out.push(ConstraintTimeline { constraint: first + k, keys: ConstraintKeys::PhysicsReset(keys.clone()) });
+        }
+    }
+    Ok(out)
 }
 
 /// A finite number field of a key (`default` when absent).

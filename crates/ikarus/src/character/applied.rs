@@ -83,7 +83,6 @@ fn wrap(a: f64) -> f64 {
 impl Bones<'_> {
     /// Sets bone `i`'s world transform to `w` and its local transform to the applied one that
     /// gives it ([`local_from_world`]). The bones below are not updated.
-    #[allow(dead_code)] // for the kinds that set world transforms (transform, path, physics)
     pub(crate) fn set_world(&mut self, i: usize, w: Affine) {
         let link = self.links[i];
         let parent = (link.parent != ROOT).then(|| self.world[link.parent as usize]);

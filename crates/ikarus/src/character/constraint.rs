@@ -12,13 +12,18 @@
 //! transforms from them ([`super::world::Bones::set_world`]), and leaves to posing the bones
 //! strictly below them.
 
-use super::{CharacterBone, CharacterError, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
+use super::{
+    CharacterBone, CharacterError, IkBones, IkConstraint, IkKey, IkSettings, Interpolation, PhysicsConstraint,
+    PhysicsProperty, PhysicsSettings,
+};
 
 /// A constraint of any kind.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Constraint {
     /// Inverse kinematics: one bone aims, or two bones reach, for a target bone.
     Ik(IkConstraint),
+    /// Physics (Spine 4.2): one bone swings, lags and settles as a damped spring.
+    Physics(PhysicsConstraint),
 }
 
 /// A constraint's settings that clips can key (its mixes and the like), of its kind.
@@ -26,6 +31,8 @@ pub enum Constraint {
 pub enum Settings {
     /// An IK constraint's.
     Ik(IkSettings),
+    /// A physics constraint's.
+    Physics(PhysicsSettings),
 }
 
 /// Which bones posing recomputes after a constraint has applied.
@@ -34,7 +41,6 @@ pub(crate) enum Updates<'a> {
     /// This bone and every bone below it (the constraint changed local transforms only).
     Subtree(usize),
     /// Every bone strictly below these (the constraint set these bones' world transforms).
-    #[allow(dead_code)] // for the kinds that set world transforms (transform, path, physics)
     Below(&'a [usize]),
 }
 
@@ -43,6 +49,7 @@ impl Constraint {
     pub fn name(&self) -> &str {
         match self {
             Constraint::Ik(c) => &c.name,
+            Constraint::Physics(c) => &c.name,
         }
     }
 
@@ -50,6 +57,7 @@ impl Constraint {
     pub fn order(&self) -> u32 {
         match self {
             Constraint::Ik(c) => c.order,
+            Constraint::Physics(c) => c.order,
         }
     }
 
@@ -57,6 +65,7 @@ impl Constraint {
     pub fn kind(&self) -> &'static str {
         match self {
             Constraint::Ik(_) => "ik",
+            Constraint::Physics(_) => "physics",
         }
     }
 
@@ -64,6 +73,7 @@ impl Constraint {
     pub fn ik(&self) -> Option<&IkConstraint> {
         match self {
             Constraint::Ik(c) => Some(c),
+            Constraint::Physics(_) => None,
         }
     }
 
@@ -71,6 +81,7 @@ impl Constraint {
     pub fn ik_mut(&mut self) -> Option<&mut IkConstraint> {
         match self {
             Constraint::Ik(c) => Some(c),
+            Constraint::Physics(_) => None,
         }
     }
 
@@ -78,6 +89,7 @@ impl Constraint {
     pub fn setup(&self) -> Settings {
         match self {
             Constraint::Ik(c) => Settings::Ik(c.setup),
+            Constraint::Physics(c) => Settings::Physics(c.setup),
         }
     }
 
@@ -85,6 +97,7 @@ impl Constraint {
     pub(crate) fn updates(&self) -> Updates<'_> {
         match self {
             Constraint::Ik(c) => Updates::Subtree(c.top()),
+            Constraint::Physics(c) => Updates::Below(std::slice::from_ref(&c.bone)),
         }
     }
 
@@ -92,6 +105,7 @@ impl Constraint {
     pub(crate) fn check(&self, k: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
         match self {
             Constraint::Ik(c) => c.check(k, bones),
+            Constraint::Physics(c) => c.check(k, bones),
         }
     }
 }
@@ -107,6 +121,7 @@ impl Settings {
     pub fn ik(&self) -> Option<&IkSettings> {
         match self {
             Settings::Ik(s) => Some(s),
+            Settings::Physics(_) => None,
         }
     }
 }
@@ -158,6 +173,17 @@ pub struct ChannelKey {
 pub enum ConstraintKeys {
     /// An IK constraint's: mix and softness (curved), the flags (stepped).
     Ik(Vec<IkKey>),
+    /// A physics constraint's: one setting (channel 0: its value; a mass for
+    /// [`PhysicsProperty::Mass`]).
+    Physics {
+        /// The setting keyed.
+        property: PhysicsProperty,
+        /// The keys.
+        keys: Vec<ChannelKey>,
+    },
+    /// A physics constraint's `reset` keys: the simulation restarts when a play passes one
+    /// (times only, no channel).
+    PhysicsReset(Vec<ChannelKey>),
 }
 
 impl ConstraintKeys {
@@ -165,6 +191,7 @@ impl ConstraintKeys {
     pub fn len(&self) -> usize {
         match self {
             ConstraintKeys::Ik(keys) => keys.len(),
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys.len(),
         }
     }
 
@@ -177,6 +204,7 @@ impl ConstraintKeys {
     pub fn ik(&self) -> Option<&[IkKey]> {
         match self {
             ConstraintKeys::Ik(keys) => Some(keys),
+            ConstraintKeys::Physics { .. } | ConstraintKeys::PhysicsReset(_) => None,
         }
     }
 
@@ -184,6 +212,7 @@ impl ConstraintKeys {
     pub fn time(&self, i: usize) -> f64 {
         match self {
             ConstraintKeys::Ik(keys) => keys[i].time,
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys[i].time,
         }
     }
 
@@ -191,6 +220,8 @@ impl ConstraintKeys {
     pub(crate) fn channels(&self) -> usize {
         match self {
             ConstraintKeys::Ik(_) => 2,
+            ConstraintKeys::Physics { .. } => 1,
+            ConstraintKeys::PhysicsReset(_) => 0,
         }
     }
 
@@ -201,6 +232,9 @@ impl ConstraintKeys {
                 let k = &keys[i];
                 (k.curves[ch], if ch == 0 { k.settings.mix } else { k.settings.softness })
             }
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => {
+                (keys[i].curves[ch], keys[i].values[ch])
+            }
         }
     }
 
@@ -210,6 +244,17 @@ impl ConstraintKeys {
             (ConstraintKeys::Ik(keys), Constraint::Ik(_)) => {
                 keys.iter().try_for_each(|key| super::check_settings(k, &key.settings))
             }
+            (ConstraintKeys::Physics { property, keys }, Constraint::Physics(_)) => keys.iter().try_for_each(|key| {
+                let value = key.values[0];
+                let bad = !value.is_finite() || (*property == PhysicsProperty::Mass && value <= 0.0);
+                if bad {
+                    Err(CharacterError::PhysicsValue { constraint: k, field: property.name(), value })
+                } else {
+                    Ok(())
+                }
+            }),
+            (ConstraintKeys::PhysicsReset(_), Constraint::Physics(_)) => Ok(()),
+            (_, of) => Err(CharacterError::TimelineKind { constraint: k, kind: of.kind() }),
         }
     }
 }

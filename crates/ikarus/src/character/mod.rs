@@ -20,6 +20,7 @@ mod flat;
 mod ik;
 mod physics;
 mod physics_timeline;
+mod play;
 mod pose;
 mod timeline;
 mod together;
@@ -31,6 +32,7 @@ pub use physics::{
     PhysicsState, PhysicsWorld, applied_local,
 };
 pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
+pub use play::{MAX_FRAMES, Play};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
@@ -422,6 +424,32 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// A constraint timeline keys another kind than its constraint's.
+    #[error("constraints[{constraint}]: a timeline of another kind keys this {kind} constraint")]
+    TimelineKind {
+        /// The constraint's index.
+        constraint: usize,
+        /// Its kind.
+        kind: &'static str,
+    },
+    /// A physics constraint's bone does not exist.
+    #[error("physics constraints[{constraint}]: bone {bone} does not exist")]
+    PhysicsBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone named.
+        bone: usize,
+    },
+    /// A physics constraint's value (or a key of it) is out of range.
+    #[error("physics constraints[{constraint}].{field}: out of range, got {value}")]
+    PhysicsValue {
+        /// The constraint's index.
+        constraint: usize,
+        /// The field: `fps`, `mass`, `limit`, `strength`, …
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
 }
 
 /// The parts of a character, checked by [`Character::new`].
@@ -611,14 +639,14 @@ mod tests {
         p.bones[2].setup.scale_x = f64::NAN;
         assert!(matches!(Character::new(p).unwrap_err(), CharacterError::NotFinite { bone: 2, field: "scaleX", .. }));
         let mut p = leg();
-        let Constraint::Ik(ik) = &mut p.constraints[0];
+        let ik = p.constraints[0].ik_mut().unwrap();
         ik.bones = IkBones::Two { parent: 0, child: 2 };
         assert_eq!(
             Character::new(p).unwrap_err(),
             CharacterError::NotParentChild { constraint: 0, parent: 0, child: 2 }
         );
         let mut p = leg();
-        let Constraint::Ik(ik) = &mut p.constraints[0];
+        let ik = p.constraints[0].ik_mut().unwrap();
         ik.setup.mix = 1.5;
         assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
         let mut p = leg();

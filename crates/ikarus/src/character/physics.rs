@@ -48,7 +48,7 @@ pub struct PhysicsConstraint {
     /// Its name in the file (`name`).
     pub name: String,
     /// Where it stands in the update order among every constraint (`order`, default 0).
-    pub order: i64,
+    pub order: u32,
     /// Whether it belongs to a skin, active only while that skin is set (`skin`, default false).
     pub skin: bool,
     /// The bone it moves (`bone`), an index.
@@ -261,10 +261,10 @@ impl PhysicsState {
             self.offset = [self.offset[0] - d[0], self.offset[1] - d[1]];
             self.u = [bone.x, bone.y];
             for _ in 0..steps {
-                for k in 0..2 {
-                    self.velocity[k] += (force[k] - self.offset[k] * s.strength) * s.mass_inverse * step;
-                    self.offset[k] += self.velocity[k] * step;
-                    self.velocity[k] *= s.damping;
+                for ((v, o), f) in self.velocity.iter_mut().zip(self.offset.iter_mut()).zip(force) {
+                    *v += (f - *o * s.strength) * s.mass_inverse * step;
+                    *o += *v * step;
+                    *v *= s.damping;
                 }
             }
             bone.x += self.offset[0] * s.mix * sh.x;
@@ -336,6 +336,40 @@ struct Turn {
 /// `x` within `[−limit, limit]`.
 fn clamp(x: f64, limit: f64) -> f64 {
     x.max(-limit).min(limit)
+}
+
+impl PhysicsConstraint {
+    /// Checks it against the character's `bones` (constraint `k` of the list): its bone exists,
+    /// `fps` and `mass` are positive, `limit` and `strength` not negative, every other number
+    /// finite.
+    pub(crate) fn check(&self, k: usize, bones: &[super::CharacterBone]) -> Result<(), super::CharacterError> {
+        if self.bone >= bones.len() {
+            return Err(super::CharacterError::PhysicsBone { constraint: k, bone: self.bone });
+        }
+        let (sh, s) = (&self.shares, &self.setup);
+        let bad = |field: &'static str, value: f64| super::CharacterError::PhysicsValue { constraint: k, field, value };
+        for (field, value, ok) in [
+            ("fps", self.fps, self.fps > 0.0),
+            ("mass", 1.0 / s.mass_inverse, s.mass_inverse > 0.0),
+            ("limit", self.limit, self.limit >= 0.0),
+            ("strength", s.strength, s.strength >= 0.0),
+            ("x", sh.x, true),
+            ("y", sh.y, true),
+            ("rotate", sh.rotate, true),
+            ("scaleX", sh.scale_x, true),
+            ("shearX", sh.shear_x, true),
+            ("inertia", s.inertia, true),
+            ("damping", s.damping, true),
+            ("wind", s.wind, true),
+            ("gravity", s.gravity, true),
+            ("mix", s.mix, true),
+        ] {
+            if !(ok && value.is_finite()) {
+                return Err(bad(field, value));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The most steps one pose takes (a clock moved hours ahead at once is not replayed).

@@ -120,7 +120,7 @@ fn a_turn_of_the_parent_swings_the_tip_back() {
     let mut state = PhysicsState::default();
     let mut bone = Affine::default();
     state.apply(&input(&c, s, 0.0), PhysicsMode::Reset, &mut bone);
-    let (sin, cos) = 0.1f64.sin_cos();
+    let (sin, cos) = crate::math::sin_cos(0.1);
     let mut bone = Affine { a: cos, b: -sin, c: sin, d: cos, x: 0.0, y: 0.0 };
     state.apply(&input(&c, s, 1.0 / 60.0), PhysicsMode::Update, &mut bone);
     assert!(bone.rotation().abs() < 1e-12, "{}", bone.rotation());

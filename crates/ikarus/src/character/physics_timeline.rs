@@ -26,6 +26,35 @@ pub enum PhysicsProperty {
     Mix,
 }
 
+impl PhysicsProperty {
+    /// Its name in the file's timelines: `inertia`, `strength`, `damping`, `mass`, `wind`,
+    /// `gravity`, `mix`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PhysicsProperty::Inertia => "inertia",
+            PhysicsProperty::Strength => "strength",
+            PhysicsProperty::Damping => "damping",
+            PhysicsProperty::Mass => "mass",
+            PhysicsProperty::Wind => "wind",
+            PhysicsProperty::Gravity => "gravity",
+            PhysicsProperty::Mix => "mix",
+        }
+    }
+
+    /// Sets this setting of `s` to `value` (a mass is held inverted).
+    pub fn set(self, s: &mut PhysicsSettings, value: f64) {
+        match self {
+            PhysicsProperty::Inertia => s.inertia = value,
+            PhysicsProperty::Strength => s.strength = value,
+            PhysicsProperty::Damping => s.damping = value,
+            PhysicsProperty::Mass => s.mass_inverse = 1.0 / value,
+            PhysicsProperty::Wind => s.wind = value,
+            PhysicsProperty::Gravity => s.gravity = value,
+            PhysicsProperty::Mix => s.mix = value,
+        }
+    }
+}
+
 /// One key: its time (seconds), value and the curve toward the next key.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhysicsKey {
@@ -69,8 +98,9 @@ impl PhysicsTimeline {
         Some(segment(k.curve, p0, p1, time))
     }
 
-    /// Whether this timeline sets constraint `k`'s setting.
-    fn keys_constraint(&self, k: usize, c: &PhysicsConstraint) -> bool {
+    /// Whether this timeline sets the setting of constraint `k` (which is `c`): its own
+    /// timeline, or one for every constraint when `c`'s global flag for the setting is set.
+    pub fn keys_constraint(&self, k: usize, c: &PhysicsConstraint) -> bool {
         match self.constraint {
             Some(j) => j == k,
             None => {
@@ -111,15 +141,7 @@ pub fn physics_settings_at(
             if !t.keys_constraint(k, c) {
                 continue;
             }
-            match t.property {
-                PhysicsProperty::Inertia => s.inertia = v,
-                PhysicsProperty::Strength => s.strength = v,
-                PhysicsProperty::Damping => s.damping = v,
-                PhysicsProperty::Mass => s.mass_inverse = 1.0 / v,
-                PhysicsProperty::Wind => s.wind = v,
-                PhysicsProperty::Gravity => s.gravity = v,
-                PhysicsProperty::Mix => s.mix = v,
-            }
+            t.property.set(s, v);
         }
     }
 }

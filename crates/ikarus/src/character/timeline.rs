@@ -264,7 +264,6 @@ pub(crate) fn ik_settings_at(r: &mut Reader, keys: &[IkKey], time: f64) -> Optio
 
 /// A numeric constraint timeline's first `channels` values at `time`, each interpolated with
 /// its curve; `None` before the first key (the setup settings stay).
-#[allow(dead_code)] // for the kinds whose timelines key numbers only (transform, path, physics)
 pub(crate) fn channels_at(
     r: &mut Reader,
     keys: &[ChannelKey],

@@ -69,7 +69,7 @@ fn cached_keys_and_precomputed_curves_give_the_same_bits() {
         apply_bone(&c.bones[0], &setup, &mut plain, time);
         assert_eq!((cached.x.to_bits(), cached.y.to_bits()), (plain.x.to_bits(), plain.y.to_bits()), "time {time}");
         let mut r = Reader { curves: &curves, clip: 0, timeline: 1, last: &mut last_ik };
-        let ConstraintKeys::Ik(keys) = &c.constraints[0].keys;
+        let keys = c.constraints[0].keys.ik().unwrap();
         let a = ik_settings_at(&mut r, keys, time);
         let b = ik_settings(keys, time);
         assert_eq!(
