@@ -27,6 +27,7 @@ mod spine;
 mod spine_deform;
 mod spine_path;
 mod spine_path_clips;
+pub mod spine_physics;
 mod spine_slots;
 pub mod store;
 

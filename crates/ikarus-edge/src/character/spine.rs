@@ -33,8 +33,6 @@ struct SpineFile {
     #[serde(default)]
     path: Vec<super::spine_path::PathJson>,
     #[serde(default)]
-    physics: Vec<super::Named>,
-    #[serde(default)]
     animations: Ordered<clips::Animation>,
 }
 
@@ -162,8 +160,11 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             _ => None,
         })
         .collect();
+    let physics = super::spine_physics::read(value, &index)?;
+    let first_physics = constraints.len();
+    constraints.extend(physics.iter().cloned().map(Constraint::Physics));
     let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform), ("physics", &file.physics)] {
+    for (kind, list) in [("transform", &file.transform)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
     let names =
@@ -180,6 +181,8 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             let at = format!("animations.{:?}", Quoted(name));
             let paths = super::spine_path_clips::read(json, &at, &path_names, &targets, &deforms, legacy)?;
             clip.constraints.extend(paths);
+            let keys = super::spine_physics::clip_timelines(json, &physics, first_physics, &at)?;
+            clip.constraints.extend(keys);
             Ok::<_, String>(clip)
         })
         .collect::<Result<Vec<_>, _>>()?;

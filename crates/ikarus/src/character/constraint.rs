@@ -13,7 +13,7 @@
 //! strictly below them.
 
 use super::{CharacterBone, CharacterError, DeformKey, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
-use super::{PathConstraint, PathSettings};
+use super::{PathConstraint, PathSettings, PhysicsConstraint, PhysicsProperty, PhysicsSettings};
 
 /// A constraint of any kind.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,6 +22,8 @@ pub enum Constraint {
     Ik(IkConstraint),
     /// Path: bones moved along, and turned with, the path a slot shows.
     Path(PathConstraint),
+    /// Physics (Spine 4.2): one bone swings, lags and settles as a damped spring.
+    Physics(PhysicsConstraint),
 }
 
 /// A constraint's settings that clips can key (its mixes and the like), of its kind.
@@ -31,6 +33,8 @@ pub enum Settings {
     Ik(IkSettings),
     /// A path constraint's.
     Path(PathSettings),
+    /// A physics constraint's.
+    Physics(PhysicsSettings),
 }
 
 /// Which bones posing recomputes after a constraint has applied.
@@ -48,6 +52,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => &c.name,
             Constraint::Path(c) => &c.name,
+            Constraint::Physics(c) => &c.name,
         }
     }
 
@@ -56,6 +61,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => c.order,
             Constraint::Path(c) => c.order,
+            Constraint::Physics(c) => c.order,
         }
     }
 
@@ -64,6 +70,7 @@ impl Constraint {
         match self {
             Constraint::Ik(_) => "ik",
             Constraint::Path(_) => "path",
+            Constraint::Physics(_) => "physics",
         }
     }
 
@@ -72,6 +79,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => Some(c),
             Constraint::Path(_) => None,
+            Constraint::Physics(_) => None,
         }
     }
 
@@ -80,6 +88,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => Some(c),
             Constraint::Path(_) => None,
+            Constraint::Physics(_) => None,
         }
     }
 
@@ -88,6 +97,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => Settings::Ik(c.setup),
             Constraint::Path(c) => Settings::Path(c.setup),
+            Constraint::Physics(c) => Settings::Physics(c.setup),
         }
     }
 
@@ -96,6 +106,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => Updates::Subtree(c.top()),
             Constraint::Path(c) => Updates::Below(&c.bones),
+            Constraint::Physics(c) => Updates::Below(std::slice::from_ref(&c.bone)),
         }
     }
 
@@ -104,6 +115,7 @@ impl Constraint {
         match self {
             Constraint::Ik(c) => c.check(k, bones),
             Constraint::Path(c) => c.check(k, bones),
+            Constraint::Physics(c) => c.check(k, bones),
         }
     }
 }
@@ -120,6 +132,7 @@ impl Settings {
         match self {
             Settings::Ik(s) => Some(s),
             Settings::Path(_) => None,
+            Settings::Physics(_) => None,
         }
     }
 }
@@ -181,6 +194,17 @@ pub enum ConstraintKeys {
     /// timeline of its slot's path attachment); its one curve goes from 0 to 1 between keys and
     /// is sampled when posing, not precomputed (no channel).
     PathDeform(Vec<DeformKey>),
+    /// A physics constraint's: one setting (channel 0: its value; a mass for
+    /// [`PhysicsProperty::Mass`]).
+    Physics {
+        /// The setting keyed.
+        property: PhysicsProperty,
+        /// The keys.
+        keys: Vec<ChannelKey>,
+    },
+    /// A physics constraint's `reset` keys: the simulation restarts when a play passes one
+    /// (times only, no channel).
+    PhysicsReset(Vec<ChannelKey>),
 }
 
 impl ConstraintKeys {
@@ -192,6 +216,7 @@ impl ConstraintKeys {
                 keys.len()
             }
             ConstraintKeys::PathDeform(keys) => keys.len(),
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys.len(),
         }
     }
 
@@ -216,6 +241,7 @@ impl ConstraintKeys {
                 keys[i].time
             }
             ConstraintKeys::PathDeform(keys) => keys[i].time,
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys[i].time,
         }
     }
 
@@ -226,6 +252,8 @@ impl ConstraintKeys {
             ConstraintKeys::PathPosition(_) | ConstraintKeys::PathSpacing(_) => 1,
             ConstraintKeys::PathMix(_) => 3,
             ConstraintKeys::PathDeform(_) => 0,
+            ConstraintKeys::Physics { .. } => 1,
+            ConstraintKeys::PhysicsReset(_) => 0,
         }
     }
 
@@ -240,6 +268,9 @@ impl ConstraintKeys {
                 (keys[i].curves[ch], keys[i].values[ch])
             }
             ConstraintKeys::PathDeform(keys) => (keys[i].curve, 0.0),
+            ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => {
+                (keys[i].curves[ch], keys[i].values[ch])
+            }
         }
     }
 
@@ -256,7 +287,17 @@ impl ConstraintKeys {
                 | ConstraintKeys::PathDeform(_),
                 Constraint::Path(_),
             ) => Ok(()),
-            (_, _) => Err(CharacterError::TimelineKind { constraint: k, kind: of.kind() }),
+            (ConstraintKeys::Physics { property, keys }, Constraint::Physics(_)) => keys.iter().try_for_each(|key| {
+                let value = key.values[0];
+                let bad = !value.is_finite() || (*property == PhysicsProperty::Mass && value <= 0.0);
+                if bad {
+                    Err(CharacterError::PhysicsValue { constraint: k, field: property.name(), value })
+                } else {
+                    Ok(())
+                }
+            }),
+            (ConstraintKeys::PhysicsReset(_), Constraint::Physics(_)) => Ok(()),
+            (_, of) => Err(CharacterError::TimelineKind { constraint: k, kind: of.kind() }),
         }
     }
 }

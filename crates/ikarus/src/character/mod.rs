@@ -19,6 +19,9 @@ mod constraint;
 mod flat;
 mod ik;
 mod path;
+mod physics;
+mod physics_timeline;
+mod play;
 mod pose;
 mod timeline;
 mod together;
@@ -29,6 +32,12 @@ pub use path::{
     Chain, DeformKey, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices, PositionMode,
     RotateMode, SpacingMode, Weight, solve as solve_path,
 };
+pub use physics::{
+    MAX_STEPS, PhysicsConstraint, PhysicsGlobal, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsShares,
+    PhysicsState, PhysicsWorld, applied_local,
+};
+pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
+pub use play::{MAX_FRAMES, Play};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
@@ -443,6 +452,24 @@ pub enum CharacterError {
     KeyValue {
         /// The clip's index.
         clip: usize,
+        /// The value found.
+        value: f64,
+    },
+    /// A physics constraint's bone does not exist.
+    #[error("physics constraints[{constraint}]: bone {bone} does not exist")]
+    PhysicsBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone named.
+        bone: usize,
+    },
+    /// A physics constraint's value (or a key of it) is out of range.
+    #[error("physics constraints[{constraint}].{field}: out of range, got {value}")]
+    PhysicsValue {
+        /// The constraint's index.
+        constraint: usize,
+        /// The field: `fps`, `mass`, `limit`, `strength`, …
+        field: &'static str,
         /// The value found.
         value: f64,
     },

@@ -7,7 +7,10 @@ use super::path::apply::PathPose;
 use super::timeline;
 use super::timeline::Reader;
 use super::world::{Affine, BoneTrig, Bones, Trig};
-use super::{Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, Settings};
+use super::{
+    Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, PhysicsInput, PhysicsMode,
+    PhysicsState, PhysicsWorld, Settings,
+};
 use crate::Interrupt;
 use thiserror::Error;
 
@@ -40,6 +43,17 @@ pub enum PoseError {
     /// The time is NaN or infinite.
     #[error("time: must be finite, got {0}")]
     Time(f64),
+    /// A play's frame rate is not a positive number.
+    #[error("fps: must be a positive number, got {0}")]
+    Fps(f64),
+    /// A play would take more than [`super::play::MAX_FRAMES`] frames.
+    #[error("time: {time} s at {fps} frames a second is more frames than a play takes")]
+    TooLong {
+        /// The time asked, seconds.
+        time: f64,
+        /// The frames a second.
+        fps: f64,
+    },
     /// A target names a bone that does not exist.
     #[error("target: no bone {0}")]
     UnknownBone(usize),
@@ -94,6 +108,30 @@ pub struct Posed {
     keys: Vec<u32>,
     /// The path constraints' deform offsets and buffers.
     path: PathPose,
+    /// Per constraint, its physics simulation (kept from frame to frame of a play).
+    pub(crate) physics: Vec<PhysicsState>,
+    /// Per constraint, whether a `reset` key of the clip was passed in this frame.
+    restart: Vec<bool>,
+}
+
+/// How a pose treats the physics constraints: left out (Spine's `Physics.none`: the bones stay
+/// as posed), or as one frame of a play ([`Character::play`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Frame {
+    /// Physics constraints do nothing.
+    Still,
+    /// A frame of a play: the simulation restarts (`Reset`) or steps (`Update`) to `clock`;
+    /// `reset` keys after `from` and up to the clip's time restart their constraints.
+    Play {
+        /// Restart or step.
+        mode: PhysicsMode,
+        /// The skeleton's clock, seconds.
+        clock: f64,
+        /// The clip time of the frame before.
+        from: f64,
+        /// Wind, gravity and reference scale.
+        world: PhysicsWorld,
+    },
 }
 
 impl Posed {
@@ -176,7 +214,7 @@ impl Character {
     /// updated so far and followed by an update of the bones below its bones, so that a later
     /// constraint can undo what an earlier one did, as in the runtime.
     pub fn pose(&self, request: &PoseRequest, out: &mut Posed) -> Result<(), PoseError> {
-        self.pose_until(request, out, None)
+        self.pose_frame(request, out, None, Frame::Still)
     }
 
     /// [`Character::pose`], stopped with [`PoseError::Interrupted`] once `interrupt` is set: it
@@ -184,7 +222,7 @@ impl Character {
     /// each costs at most its bones' subtree), so a server's deadline or a Ctrl-C ends even a
     /// pose of a hostile character soon.
     pub fn pose_watched(&self, request: &PoseRequest, out: &mut Posed, interrupt: &Interrupt) -> Result<(), PoseError> {
-        self.pose_until(request, out, Some(interrupt))
+        self.pose_frame(request, out, Some(interrupt), Frame::Still)
     }
 
     /// [`Character::pose`] watching `interrupt` when there is one.
@@ -193,6 +231,17 @@ impl Character {
         request: &PoseRequest,
         out: &mut Posed,
         interrupt: Option<&Interrupt>,
+    ) -> Result<(), PoseError> {
+        self.pose_frame(request, out, interrupt, Frame::Still)
+    }
+
+    /// [`Character::pose_until`] with the physics constraints treated as `frame` says.
+    pub(crate) fn pose_frame(
+        &self,
+        request: &PoseRequest,
+        out: &mut Posed,
+        interrupt: Option<&Interrupt>,
+        frame: Frame,
     ) -> Result<(), PoseError> {
         self.check(request)?;
         let n = self.bones.len();
@@ -206,6 +255,9 @@ impl Character {
         out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
         out.path.reset(self.constraints.len());
+        out.physics.resize(self.constraints.len(), PhysicsState::default());
+        out.restart.clear();
+        out.restart.resize(self.constraints.len(), false);
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -239,6 +291,19 @@ impl Character {
                             }
                         }
                     }
+                    ConstraintKeys::Physics { property, keys } => {
+                        let value = timeline::channels_at(&mut r, keys, 1, time);
+                        if let (Some(v), Settings::Physics(s)) = (value, &mut out.settings[t.constraint]) {
+                            property.set(s, v[0]);
+                        }
+                    }
+                    ConstraintKeys::PhysicsReset(keys) => {
+                        if let Frame::Play { from, .. } = frame {
+                            let passed =
+                                keys.iter().any(|k| from < timeline::f32ed(k.time) && timeline::f32ed(k.time) <= time);
+                            out.restart[t.constraint] |= passed;
+                        }
+                    }
                 }
             }
         }
@@ -250,10 +315,28 @@ impl Character {
                 s.bend_positive = bend_positive;
             }
         }
-        // The path buffers are taken out while the bones are borrowed (and put back at the end;
-        // a pose that fails only loses them to a reallocation next time).
+        // The physics states and path buffers are taken out while the bones are borrowed, and
+        // put back after.
+        let mut physics = std::mem::take(&mut out.physics);
+        let restart = std::mem::take(&mut out.restart);
         let mut path_pose = std::mem::take(&mut out.path);
-        let (mut bones, _, settings) = out.bones(self);
+        let result = self.constrain(request, out, interrupt, frame, (&mut physics, &restart, &mut path_pose));
+        out.path = path_pose;
+        out.physics = physics;
+        out.restart = restart;
+        result
+    }
+
+    /// The targets and the constraints of [`Character::pose_frame`], after the clip.
+    fn constrain(
+        &self,
+        request: &PoseRequest,
+        out: &mut Posed,
+        interrupt: Option<&Interrupt>,
+        frame: Frame,
+        (physics, restart, path_pose): (&mut [PhysicsState], &[bool], &mut PathPose),
+    ) -> Result<(), PoseError> {
+        let (mut bones, length, settings) = out.bones(self);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
         } else {
@@ -290,12 +373,21 @@ impl Character {
                         }
                     }
                 }
-                (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, &mut path_pose),
+                (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, path_pose),
+                (Constraint::Physics(c), Settings::Physics(s)) => {
+                    if let Frame::Play { mode, clock, world, .. } = frame {
+                        let mode = if restart[k] { PhysicsMode::Reset } else { mode };
+                        let input =
+                            PhysicsInput { constraint: c, settings: *s, world, time: clock, length: length[c.bone] };
+                        let mut w = bones.world[c.bone];
+                        physics[k].apply(&input, mode, &mut w);
+                        bones.set_world(c.bone, w);
+                    }
+                }
                 _ => {}
             }
             bones.update_subtree(self.flat.below(k));
         }
-        out.path = path_pose;
         Ok(())
     }
 

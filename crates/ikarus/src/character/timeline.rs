@@ -14,7 +14,7 @@ use super::{
 };
 
 /// A value rounded to the runtime's `f32`.
-fn f32ed(v: f64) -> f64 {
+pub(crate) fn f32ed(v: f64) -> f64 {
     v as f32 as f64
 }
 
@@ -186,7 +186,7 @@ fn on_samples(samples: &[[f64; 2]; 9], (t0, v0): (f64, f64), (t1, v1): (f64, f64
 
 /// The index of the last key whose (f32) time is at or before `time`, or `None` before the
 /// first key. Binary search.
-fn key_at(times: impl Fn(usize) -> f64, len: usize, time: f64) -> Option<usize> {
+pub(crate) fn key_at(times: impl Fn(usize) -> f64, len: usize, time: f64) -> Option<usize> {
     let (mut lo, mut hi) = (0, len);
     while lo < hi {
         let mid = (lo + hi) / 2;
