@@ -18,11 +18,16 @@ mod ik;
 mod pose;
 mod timeline;
 mod together;
+mod transform;
 mod world;
 
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
+};
+pub use transform::{
+    TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,
+    local_from_world, local_relative, world_absolute, world_relative,
 };
 pub use world::{Affine, world_transform};
 
