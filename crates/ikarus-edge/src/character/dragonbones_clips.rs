@@ -160,7 +160,7 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
         constraints.push(IkTimeline { constraint, keys: out });
     }
     let duration = (a.duration / cx.frame_rate).max(latest);
-    Ok(Clip { name: a.name.clone(), duration, bones, constraints })
+    Ok(Clip { name: a.name.clone(), duration, bones, constraints, transforms: Vec::new() })
 }
 
 /// Each rotation in degrees, after the one before it: the short way round, or as the earlier

@@ -23,6 +23,7 @@ pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
 mod spine;
+mod spine_transform;
 pub mod store;
 
 use std::collections::HashMap;
@@ -292,3 +293,6 @@ mod tests;
 
 #[cfg(test)]
 mod caps_tests;
+
+#[cfg(test)]
+mod transform_tests;

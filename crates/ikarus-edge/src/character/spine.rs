@@ -1,6 +1,7 @@
 //! Spine's JSON export (4.0–4.2; 3.8 names a bone's inherit mode `transform` and writes its
-//! curves normalised): bones, IK constraints, the transform, path and physics constraints'
-//! names (left inactive), and the animations ([`super::clips`]).
+//! curves normalised): bones, IK constraints, transform constraints
+//! ([`super::spine_transform`]), the path and physics constraints' names (left inactive), and
+//! the animations ([`super::clips`]).
 //!
 //! Defaults as the format has them: a bone's `length`, `x`, `y`, `rotation`, `shearX`,
 //! `shearY` 0, `scaleX`, `scaleY` 1, `inherit` `normal`; an IK constraint's `order` 0, `mix` 1,
@@ -28,7 +29,7 @@ struct SpineFile {
     #[serde(default)]
     ik: Vec<IkJson>,
     #[serde(default)]
-    transform: Vec<super::Named>,
+    transform: Vec<super::spine_transform::TransformJson>,
     #[serde(default)]
     path: Vec<super::Named>,
     #[serde(default)]
@@ -143,12 +144,16 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .enumerate()
         .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
         .collect::<Result<Vec<_>, _>>()?;
+    let transforms = super::spine_transform::read(&file.transform, &index)?;
     let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform), ("path", &file.path), ("physics", &file.physics)] {
+    for (kind, list) in [("path", &file.path), ("physics", &file.physics)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
     }
-    let names =
-        clips::Names { bones: &index, constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())) };
+    let names = clips::Names {
+        bones: &index,
+        constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())),
+        transforms: &super::first_index(file.transform.iter().map(|k| k.name.as_str())),
+    };
     let clips = file
         .animations
         .0
@@ -161,7 +166,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     if !unsupported.is_empty() {
         warnings.push(inactive(&unsupported));
     }
-    let parts = CharacterParts { bones, constraints, clips, unsupported, ..CharacterParts::default() };
+    let parts = CharacterParts { bones, constraints, transforms, clips, unsupported, ..CharacterParts::default() };
     Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
 }
 

@@ -19,6 +19,7 @@ mod pose;
 mod timeline;
 mod together;
 mod transform;
+mod transform_timeline;
 mod world;
 
 pub use pose::{PoseError, PoseRequest, Posed};
@@ -29,6 +30,7 @@ pub use transform::{
     TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,
     local_from_world, local_relative, world_absolute, world_relative,
 };
+pub use transform_timeline::{TransformKey, TransformTimeline};
 pub use world::{Affine, world_transform};
 
 /// A character: bones listed parent first, IK constraints, clips, and the skeleton's own
@@ -37,11 +39,14 @@ pub use world::{Affine, world_transform};
 pub struct Character {
     bones: Vec<CharacterBone>,
     constraints: Vec<IkConstraint>,
+    transforms: Vec<TransformConstraint>,
     clips: Vec<Clip>,
     placement: Placement,
     unsupported: Vec<Unsupported>,
-    /// The constraints' indices in the order they apply (by `order`, ties as listed).
+    /// The IK constraints' indices in the order they apply (by `order`, ties as listed).
     order: Vec<usize>,
+    /// Every constraint, of every kind, in the order they apply ([`transform::steps`]).
+    steps: Vec<transform::Step>,
     /// The clips' Bézier segments, sampled once.
     curves: timeline::Curves,
     /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
@@ -234,6 +239,8 @@ pub struct Clip {
     pub bones: Vec<BoneTimeline>,
     /// The constraints' timelines.
     pub constraints: Vec<IkTimeline>,
+    /// The transform constraints' timelines.
+    pub transforms: Vec<TransformTimeline>,
 }
 
 /// What a bone timeline keys. Rotation, translation and shear keys add to the setup values;
@@ -417,6 +424,24 @@ pub enum CharacterError {
         /// The time found.
         time: f64,
     },
+    /// A transform constraint names a bone that does not exist.
+    #[error("transform[{constraint}]: bone {bone} does not exist")]
+    TransformBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone index named.
+        bone: usize,
+    },
+    /// A transform constraint's offset or mix is NaN or infinite.
+    #[error("transform[{constraint}].{field}: must be finite, got {value}")]
+    TransformSetting {
+        /// The constraint's index.
+        constraint: usize,
+        /// The field's name in Spine's terms.
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
     /// A key's value is NaN or infinite.
     #[error("clips[{clip}]: a key's value must be finite, got {value}")]
     KeyValue {
@@ -434,6 +459,8 @@ pub struct CharacterParts {
     pub bones: Vec<CharacterBone>,
     /// The IK constraints.
     pub constraints: Vec<IkConstraint>,
+    /// The transform constraints.
+    pub transforms: Vec<TransformConstraint>,
     /// The clips.
     pub clips: Vec<Clip>,
     /// The skeleton's own position and scale.
@@ -449,7 +476,7 @@ impl Character {
     /// and softness not negative, every timeline's bone or constraint existing and its keys
     /// in increasing finite time with finite values.
     pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
-        let CharacterParts { bones, constraints, clips, placement, unsupported } = parts;
+        let CharacterParts { bones, constraints, transforms, clips, placement, unsupported } = parts;
         if bones.is_empty() {
             return Err(CharacterError::NoBones);
         }
@@ -517,12 +544,30 @@ impl Character {
                 }
             }
         }
+        transform::check(&transforms, n, &clips)?;
         let mut order: Vec<usize> = (0..constraints.len()).collect();
         order.sort_by_key(|&k| (constraints[k].order, k));
+        let steps = transform::steps(&constraints, &transforms);
         let curves = timeline::Curves::of(&clips);
-        let deferred = world::deferred(&bones, &constraints, &order);
+        let mut deferred = world::deferred(&bones, &constraints, &order);
+        if !transforms.is_empty() {
+            // The first pass's shortcut knows IK constraints only.
+            deferred.fill(false);
+        }
         let flat = flat::Flat::of(&bones, &constraints);
-        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred, flat })
+        Ok(Character {
+            bones,
+            constraints,
+            transforms,
+            clips,
+            placement,
+            unsupported,
+            order,
+            steps,
+            curves,
+            deferred,
+            flat,
+        })
     }
 
     /// The bones, parent first.
@@ -533,6 +578,11 @@ impl Character {
     /// The IK constraints, as listed in the file (apply them by [`IkConstraint::order`]).
     pub fn constraints(&self) -> &[IkConstraint] {
         &self.constraints
+    }
+
+    /// The transform constraints, as listed in the file.
+    pub fn transforms(&self) -> &[TransformConstraint] {
+        &self.transforms
     }
 
     /// The animation clips.
@@ -571,7 +621,7 @@ fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterErro
     Ok(())
 }
 
-fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), CharacterError> {
+pub(crate) fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), CharacterError> {
     let mut last = f64::NEG_INFINITY;
     for time in times {
         if !(time.is_finite() && time >= 0.0 && time > last) {

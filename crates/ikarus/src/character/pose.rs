@@ -4,6 +4,8 @@
 use super::ik;
 use super::timeline;
 use super::timeline::Reader;
+use super::transform::{self, Step, TransformSettings};
+use super::transform_timeline::transform_settings_at;
 use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
 use crate::Interrupt;
@@ -85,6 +87,8 @@ pub struct Posed {
     length: Vec<f64>,
     below: Vec<bool>,
     settings: Vec<IkSettings>,
+    /// The transform constraints' mixes as the clip left them.
+    transform_settings: Vec<TransformSettings>,
     /// Per bone, the sines and cosines its world transform last needed (kept across poses).
     trig: Vec<BoneTrig>,
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
@@ -139,6 +143,11 @@ impl Posed {
     /// Constraint `k`'s settings as the clip left them.
     pub fn settings(&self, k: usize) -> IkSettings {
         self.settings[k]
+    }
+
+    /// Transform constraint `k`'s mixes as the clip left them.
+    pub fn transform_settings(&self, k: usize) -> TransformSettings {
+        self.transform_settings[k]
     }
 
     /// The bones of `c` as posing left them, to change their local transforms (and the world
@@ -196,6 +205,8 @@ impl Character {
         out.settings.clear();
         out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
+        out.transform_settings.clear();
+        out.transform_settings.extend(self.transforms.iter().map(|t| t.setup));
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -211,6 +222,11 @@ impl Character {
                     out.settings[t.constraint] = s;
                 }
             }
+            for t in &clip.transforms {
+                if let Some(s) = transform_settings_at(&t.keys, time) {
+                    out.transform_settings[t.constraint] = s;
+                }
+            }
         }
         for &(bone, rotation) in request.turns {
             out.local[bone].rotation = rotation;
@@ -218,7 +234,19 @@ impl Character {
         for &(k, bend_positive) in request.bends {
             out.settings[k].bend_positive = bend_positive;
         }
-        let (mut bones, _, settings) = out.bones(self);
+        let transform_settings = &out.transform_settings;
+        let (mut bones, _, settings) = {
+            let bones = Bones {
+                bones: &self.bones,
+                links: &self.flat.links,
+                placement: self.placement,
+                local: &mut out.local,
+                world: &mut out.world,
+                below: &mut out.below,
+                trig: &mut out.trig,
+            };
+            (bones, &out.length, &out.settings)
+        };
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
         } else {
@@ -230,10 +258,21 @@ impl Character {
             bones.local[bone].y = ly;
             bones.update_below(bone);
         }
-        for &k in &self.order {
+        for &step in &self.steps {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
             }
+            let k = match step {
+                Step::Ik(k) => k,
+                Step::Transform(k) => {
+                    let c = &self.transforms[k];
+                    transform::apply(&mut bones, c, &transform_settings[k]);
+                    for &b in &c.bones {
+                        bones.update_below(b);
+                    }
+                    continue;
+                }
+            };
             let c = &self.constraints[k];
             let s = &settings[k];
             let w = bones.world[c.target];

@@ -28,6 +28,7 @@ fn character() -> Character {
                 keys: vec![key(0.0, 0.0), key(1.0, 1.0)],
             }],
             constraints: vec![],
+            transforms: vec![],
         }],
         ..CharacterParts::default()
     })

@@ -34,7 +34,7 @@ fn clip(t: BoneTimeline) -> Clip {
             })
             .collect(),
     };
-    Clip { name: "c".to_owned(), duration: 4.0, bones: vec![t], constraints: vec![ik] }
+    Clip { name: "c".to_owned(), duration: 4.0, bones: vec![t], constraints: vec![ik], transforms: vec![] }
 }
 
 use super::super::IkTimeline;

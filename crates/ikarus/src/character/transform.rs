@@ -32,7 +32,7 @@
 //! 1`).
 
 use super::world::{Affine, Bones};
-use super::{Inherit, LocalTransform, Placement};
+use super::{CharacterError, Clip, IkConstraint, Inherit, LocalTransform, Placement};
 use crate::math;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -394,6 +394,75 @@ pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSetting
             }
         }
     }
+}
+
+/// One constraint of any kind, by its index in its kind's list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Step {
+    /// An IK constraint.
+    Ik(usize),
+    /// A transform constraint.
+    Transform(usize),
+}
+
+/// Every constraint in the order they apply: by `order`, and for equal orders IK constraints
+/// first, then transform ones, each kind as listed (Spine's update order looks for the
+/// constraint of each order among its IK constraints first, then its transform ones).
+pub(crate) fn steps(ik: &[IkConstraint], transforms: &[TransformConstraint]) -> Vec<Step> {
+    let mut out: Vec<(u32, u8, usize, Step)> =
+        ik.iter().enumerate().map(|(i, c)| (c.order, 0, i, Step::Ik(i))).collect();
+    out.extend(transforms.iter().enumerate().map(|(i, c)| (c.order, 1, i, Step::Transform(i))));
+    out.sort_by_key(|&(order, kind, i, _)| (order, kind, i));
+    out.into_iter().map(|(.., s)| s).collect()
+}
+
+/// Checks the transform constraints of a character of `bones` bones and their timelines in
+/// `clips`: every bone and target existing, every offset and mix finite, keys in increasing
+/// finite time.
+pub(crate) fn check(transforms: &[TransformConstraint], bones: usize, clips: &[Clip]) -> Result<(), CharacterError> {
+    let finite = |constraint: usize, s: &TransformSettings| {
+        let names = ["mixRotate", "mixX", "mixY", "mixScaleX", "mixScaleY", "mixShearY"];
+        match names.iter().zip(s.to_array()).find(|(_, v)| !v.is_finite()) {
+            Some((field, value)) => Err(CharacterError::TransformSetting { constraint, field, value }),
+            None => Ok(()),
+        }
+    };
+    for (k, c) in transforms.iter().enumerate() {
+        if let Some(&bone) = c.bones.iter().chain([&c.target]).find(|&&b| b >= bones) {
+            return Err(CharacterError::TransformBone { constraint: k, bone });
+        }
+        let o = &c.offsets;
+        let offsets = [
+            ("rotation", o.rotation),
+            ("x", o.x),
+            ("y", o.y),
+            ("scaleX", o.scale_x),
+            ("scaleY", o.scale_y),
+            ("shearY", o.shear_y),
+        ];
+        if let Some(&(field, value)) = offsets.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(CharacterError::TransformSetting { constraint: k, field, value });
+        }
+        finite(k, &c.setup)?;
+    }
+    for (ci, clip) in clips.iter().enumerate() {
+        for t in &clip.transforms {
+            if t.constraint >= transforms.len() {
+                return Err(CharacterError::MissingTarget {
+                    clip: ci,
+                    what: "transform constraint",
+                    index: t.constraint,
+                });
+            }
+            super::check_times(ci, t.keys.iter().map(|k| k.time))?;
+            for k in &t.keys {
+                if let Some(value) = k.settings.to_array().into_iter().find(|v| !v.is_finite()) {
+                    return Err(CharacterError::KeyValue { clip: ci, value });
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

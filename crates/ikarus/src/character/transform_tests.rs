@@ -1,5 +1,6 @@
 use super::*;
 use crate::character::world_transform;
+use crate::math;
 
 fn close(a: f64, b: f64) {
     assert!((a - b).abs() < 1e-12, "{a} vs {b}");
@@ -38,7 +39,7 @@ fn world_absolute_rotation_turns_toward_the_target_plus_the_offset_by_the_mix() 
     let w = world_absolute(&bone, &target, &o, &only(|m| m.mix_rotate = 0.5));
     // 10° + (80° + 20° − 10°)·0.5 = 55°, the axes' lengths and the origin kept.
     close(w.rotation(), deg(55.0));
-    close(w.a.hypot(w.c), 2.0);
+    close(math::hypot(w.a, w.c), 2.0);
     close(w.det(), bone.det());
     assert_eq!((w.x, w.y), (bone.x, bone.y));
     // The difference is wrapped: from 170° toward −170° is +20°, not −340°.
@@ -71,10 +72,10 @@ fn world_absolute_scale_moves_each_axis_length_toward_the_targets_plus_the_offse
     let o = TransformOffsets { scale_x: 0.5, scale_y: -0.5, ..TransformOffsets::default() };
     let w = world_absolute(&bone, &target, &o, &only(|m| (m.mix_scale_x, m.mix_scale_y) = (0.5, 1.0)));
     // x: 2 + (3 − 2 + 0.5)·0.5 = 2.75; y: 4 + (1 − 4 − 0.5)·1 = 0.5; directions kept.
-    close(w.a.hypot(w.c), 2.75);
-    close(w.b.hypot(w.d), 0.5);
+    close(math::hypot(w.a, w.c), 2.75);
+    close(math::hypot(w.b, w.d), 0.5);
     close(w.rotation(), deg(30.0));
-    close(w.d.atan2(w.b), deg(120.0));
+    close(math::atan2(w.d, w.b), deg(120.0));
 }
 
 #[test]
@@ -85,8 +86,8 @@ fn world_absolute_shear_turns_the_y_axis_to_the_targets_skew_plus_the_offset() {
     let o = TransformOffsets { shear_y: deg(-10.0), ..TransformOffsets::default() };
     let w = world_absolute(&bone, &target, &o, &only(|m| m.mix_shear_y = 0.5));
     // The bone's y axis at 20° + 90° turns by (30° − 10°)·0.5 = 10°, its length kept.
-    close(w.d.atan2(w.b), deg(120.0));
-    close(w.b.hypot(w.d), 3.0);
+    close(math::atan2(w.d, w.b), deg(120.0));
+    close(math::hypot(w.b, w.d), 3.0);
     close(w.rotation(), deg(20.0));
 }
 
@@ -109,8 +110,8 @@ fn world_relative_adds_the_targets_values() {
     close(w.rotation(), deg(45.0));
     close(w.x, 4.0);
     close(w.y, 5.0);
-    close(w.a.hypot(w.c), 3.0);
-    close(w.b.hypot(w.d), 1.0);
+    close(math::hypot(w.a, w.c), 3.0);
+    close(math::hypot(w.b, w.d), 1.0);
 }
 
 #[test]

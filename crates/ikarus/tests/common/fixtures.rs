@@ -239,5 +239,6 @@ pub fn rotate_clip(bone: usize, keys: [(f64, f64); 2], curve: Interpolation, con
             keys: keys.iter().map(|&(time, value)| BoneKey { time, values: [value; 2], curves: [curve; 2] }).collect(),
         }],
         constraints,
+        transforms: vec![],
     }
 }
