@@ -37,7 +37,7 @@ fn compare(file: &str, reference_file: &str, clip: Option<(&str, f64)>, skip: Op
     let r = reference(reference_file);
     let clip = clip.map(|(name, t)| (c.clip_index(name).unwrap(), t));
     let mut posed = Posed::default();
-    c.pose(&PoseRequest { clip, targets: &[], bends: &[], turns: &[] }, &mut posed).unwrap();
+    c.pose(&PoseRequest { clip, targets: &[], bends: &[], turns: &[], skin: None }, &mut posed).unwrap();
     let below_skip = below(&c, skip);
     let mut worst = [(0.0, String::new()), (0.0, String::new()), (0.0, String::new())];
     for (i, b) in c.bones().iter().enumerate().filter(|(i, _)| !below_skip[*i]) {
@@ -98,7 +98,7 @@ fn every_shipped_clip_and_target_poses_to_finite_numbers() {
                 for time in [0.0, d / 3.0, d / 2.0, d, d + 1.0] {
                     for t in [&[][..], &moved[..]] {
                         c.pose(
-                            &PoseRequest { clip: Some((clip, time)), targets: t, bends: &[], turns: &[] },
+                            &PoseRequest { clip: Some((clip, time)), targets: t, bends: &[], turns: &[], skin: None },
                             &mut posed,
                         )
                         .unwrap();

@@ -32,7 +32,7 @@ fn largest(file: &str, reference_file: &str) -> [(f64, String); 2] {
         cases += 1;
         let clip =
             what.get("animation").map(|a| (c.clip_index(a.as_str().unwrap()).unwrap(), what["time"].as_f64().unwrap()));
-        c.pose(&PoseRequest { clip, targets: &[], bends: &[], turns: &[] }, &mut posed).unwrap();
+        c.pose(&PoseRequest { clip, targets: &[], bends: &[], turns: &[], skin: None }, &mut posed).unwrap();
         for (i, b) in c.bones().iter().enumerate() {
             let rb = &case["bones"][&b.name];
             if rb["active"] == Value::Bool(false) {

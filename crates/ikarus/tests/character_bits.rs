@@ -59,7 +59,11 @@ fn digest(c: &Character) -> (u64, usize) {
         let frames = (clip.duration * 60.0).ceil() as usize + 3;
         for i in 0..frames {
             let time = i as f64 / 60.0;
-            pose(&PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[] }, &mut out, &mut d);
+            pose(
+                &PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[], skin: None },
+                &mut out,
+                &mut d,
+            );
             pose(&PoseRequest::default(), &mut out, &mut d);
         }
         // Back and forth, so the cached key is missed both ways; a fresh `Posed` now and then.
@@ -67,25 +71,26 @@ fn digest(c: &Character) -> (u64, usize) {
         for i in 0..40 {
             x = (x * 3.7 + 0.123) % 1.0;
             let time = x * (clip.duration + 0.1) - 0.05;
-            let request = PoseRequest { clip: Some((k, time.max(0.0))), targets: &[], bends: &[], turns: &[] };
+            let request =
+                PoseRequest { clip: Some((k, time.max(0.0))), targets: &[], bends: &[], turns: &[], skin: None };
             if i % 7 == 0 {
                 pose(&request, &mut Posed::default(), &mut d);
             } else {
                 pose(&request, &mut out, &mut d);
             }
             pose(
-                &PoseRequest { clip: Some((k, time.max(0.0))), targets: &targets, bends: &[], turns: &[] },
+                &PoseRequest { clip: Some((k, time.max(0.0))), targets: &targets, bends: &[], turns: &[], skin: None },
                 &mut out,
                 &mut d,
             );
             pose(
-                &PoseRequest { clip: Some((k, time.max(0.0))), targets: &far, bends: &[], turns: &[] },
+                &PoseRequest { clip: Some((k, time.max(0.0))), targets: &far, bends: &[], turns: &[], skin: None },
                 &mut out,
                 &mut d,
             );
         }
     }
-    pose(&PoseRequest { clip: None, targets: &targets, bends: &[], turns: &[] }, &mut out, &mut d);
+    pose(&PoseRequest { clip: None, targets: &targets, bends: &[], turns: &[], skin: None }, &mut out, &mut d);
     (d.0, poses)
 }
 

@@ -16,6 +16,7 @@ use thiserror::Error;
 mod flat;
 mod ik;
 mod pose;
+mod skin;
 mod timeline;
 mod together;
 mod transform;
@@ -23,6 +24,7 @@ mod transform_timeline;
 mod world;
 
 pub use pose::{PoseError, PoseRequest, Posed};
+pub use skin::{Skin, SkinConstraint, SkinRequired};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
 };
@@ -47,6 +49,10 @@ pub struct Character {
     order: Vec<usize>,
     /// Every constraint, of every kind, in the order they apply ([`transform::steps`]).
     steps: Vec<transform::Step>,
+    /// The skins.
+    skins: Vec<Skin>,
+    /// What only a skin turns on, as posing reads it.
+    activity: skin::Activity,
     /// The clips' Bézier segments, sampled once.
     curves: timeline::Curves,
     /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
@@ -442,6 +448,17 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// A skin (or the list of what only a skin turns on) names a bone or constraint that does
+    /// not exist.
+    #[error("{}: {what} {index} does not exist", skin.map_or("skin-required".to_owned(), |s| format!("skins[{s}]")))]
+    SkinIndex {
+        /// The skin's index (`None`: the skin-required list).
+        skin: Option<usize>,
+        /// `bone`, `IK constraint`, `transform constraint`.
+        what: &'static str,
+        /// The index named.
+        index: usize,
+    },
     /// A key's value is NaN or infinite.
     #[error("clips[{clip}]: a key's value must be finite, got {value}")]
     KeyValue {
@@ -467,6 +484,10 @@ pub struct CharacterParts {
     pub placement: Placement,
     /// The constraints left inactive.
     pub unsupported: Vec<Unsupported>,
+    /// The skins (what each turns on).
+    pub skins: Vec<Skin>,
+    /// The bones and constraints only a skin turns on.
+    pub skin_required: SkinRequired,
 }
 
 impl Character {
@@ -476,7 +497,8 @@ impl Character {
     /// and softness not negative, every timeline's bone or constraint existing and its keys
     /// in increasing finite time with finite values.
     pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
-        let CharacterParts { bones, constraints, transforms, clips, placement, unsupported } = parts;
+        let CharacterParts { bones, constraints, transforms, clips, placement, unsupported, skins, skin_required } =
+            parts;
         if bones.is_empty() {
             return Err(CharacterError::NoBones);
         }
@@ -548,6 +570,8 @@ impl Character {
         let mut order: Vec<usize> = (0..constraints.len()).collect();
         order.sort_by_key(|&k| (constraints[k].order, k));
         let steps = transform::steps(&constraints, &transforms);
+        skin::check(&skins, &skin_required, [n, constraints.len(), transforms.len()])?;
+        let activity = skin::Activity::new(n, &steps, &skin_required);
         let curves = timeline::Curves::of(&clips);
         let mut deferred = world::deferred(&bones, &constraints, &order);
         if !transforms.is_empty() {
@@ -564,6 +588,8 @@ impl Character {
             unsupported,
             order,
             steps,
+            skins,
+            activity,
             curves,
             deferred,
             flat,
@@ -583,6 +609,21 @@ impl Character {
     /// The transform constraints, as listed in the file.
     pub fn transforms(&self) -> &[TransformConstraint] {
         &self.transforms
+    }
+
+    /// The skins, as listed in the file.
+    pub fn skins(&self) -> &[Skin] {
+        &self.skins
+    }
+
+    /// The index of the skin called `name`.
+    pub fn skin_index(&self, name: &str) -> Option<usize> {
+        self.skins.iter().position(|s| s.name == name)
+    }
+
+    /// The skin a pose takes unless told otherwise: the one called `default`, if any.
+    pub fn default_skin(&self) -> Option<usize> {
+        self.skin_index("default")
     }
 
     /// The animation clips.

@@ -28,6 +28,10 @@ pub struct PoseRequest<'a> {
     /// setup pose's) in place of what the clip (or the setup pose) gives it, before the targets
     /// and the constraints, as a rotate key of the clip would set it: a bone turned by hand.
     pub turns: &'a [(usize, f64)],
+    /// The skin (its index in [`Character::skins`]) whose skin-required bones and constraints
+    /// take part; `None`: no skin, so only those not skin-required do (the edge asks for
+    /// [`Character::default_skin`] unless told otherwise). See [`super::skin`].
+    pub skin: Option<usize>,
 }
 
 /// A pose request the character cannot take.
@@ -64,6 +68,9 @@ pub enum PoseError {
         /// The rotation, radians.
         rotation: f64,
     },
+    /// The skin index is not one of the character's skins.
+    #[error("skin: no skin {0}")]
+    UnknownSkin(usize),
     /// A bend names a constraint that does not exist.
     #[error("bend: no constraint {0}")]
     UnknownConstraint(usize),
@@ -91,6 +98,8 @@ pub struct Posed {
     transform_settings: Vec<TransformSettings>,
     /// Per bone, the sines and cosines its world transform last needed (kept across poses).
     trig: Vec<BoneTrig>,
+    /// Which bones and constraints the skin turns on.
+    active: super::skin::Active,
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
     /// before the time last asked: where the next time's key is looked for first.
     keys: Vec<u32>,
@@ -105,6 +114,12 @@ impl Posed {
     /// Whether there are no bones (before the first pose).
     pub fn is_empty(&self) -> bool {
         self.world.is_empty()
+    }
+
+    /// Whether bone `i` took part in the pose (see [`super::skin`]): an inactive bone is not
+    /// posed, its world transform all zeros. Panics if `i` is not a bone.
+    pub fn is_active(&self, i: usize) -> bool {
+        self.active.bones[i]
     }
 
     /// Bone `i`'s world origin. Panics if `i` is not a bone.
@@ -205,6 +220,7 @@ impl Character {
         out.settings.clear();
         out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
+        self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
         out.transform_settings.clear();
         out.transform_settings.extend(self.transforms.iter().map(|t| t.setup));
 
@@ -235,6 +251,7 @@ impl Character {
             out.settings[k].bend_positive = bend_positive;
         }
         let transform_settings = &out.transform_settings;
+        let active = &out.active;
         let (mut bones, _, settings) = {
             let bones = Bones {
                 bones: &self.bones,
@@ -258,14 +275,30 @@ impl Character {
             bones.local[bone].y = ly;
             bones.update_below(bone);
         }
-        for &step in &self.steps {
+        for (pos, &step) in self.steps.iter().enumerate() {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
             }
+            if !active.steps[pos] {
+                continue;
+            }
             let k = match step {
-                Step::Ik(k) => k,
+                Step::Ik(k) => {
+                    let c = &self.constraints[k];
+                    let (top, child) = match c.bones {
+                        IkBones::One(b) => (b, b),
+                        IkBones::Two { parent, child } => (parent, child),
+                    };
+                    if !(active.bones[c.target] && active.bones[top] && active.bones[child]) {
+                        continue;
+                    }
+                    k
+                }
                 Step::Transform(k) => {
                     let c = &self.transforms[k];
+                    if !(active.bones[c.target] && c.bones.iter().all(|&b| active.bones[b])) {
+                        continue;
+                    }
                     transform::apply(&mut bones, c, &transform_settings[k]);
                     for &b in &c.bones {
                         bones.update_below(b);
@@ -294,10 +327,20 @@ impl Character {
             }
             bones.update_subtree(below);
         }
+        if self.activity.any {
+            // The runtime leaves an inactive bone unposed, at zeros.
+            let zero = Affine { a: 0.0, b: 0.0, c: 0.0, d: 0.0, x: 0.0, y: 0.0 };
+            for (w, _) in bones.world.iter_mut().zip(&active.bones).filter(|(_, on)| !**on) {
+                *w = zero;
+            }
+        }
         Ok(())
     }
 
     fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
+        if let Some(s) = request.skin.filter(|&s| s >= self.skins.len()) {
+            return Err(PoseError::UnknownSkin(s));
+        }
         if let Some((c, time)) = request.clip {
             if c >= self.clips.len() {
                 return Err(PoseError::UnknownClip(c));
