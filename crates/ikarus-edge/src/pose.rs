@@ -292,7 +292,7 @@ pub struct LimbJson {
 
 impl LimbJson {
     fn of(c: &Character, l: &LimbEnd) -> Self {
-        LimbJson { name: c.constraints()[l.constraint].name.clone(), active: l.active, error: l.error }
+        LimbJson { name: c.constraints()[l.constraint].name().to_owned(), active: l.active, error: l.error }
     }
 }
 
@@ -336,7 +336,7 @@ impl PoseReport {
             .collect();
         let unsupported =
             c.unsupported().iter().map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() }).collect();
-        let targets = c.constraints().iter().map(|k| posed.origin(k.target)).collect();
+        let targets = c.ik_constraints().map(|(_, k)| posed.origin(k.target)).collect();
         PoseReport { bones, unsupported, ik: None, targets }
     }
 

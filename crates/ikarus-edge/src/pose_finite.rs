@@ -70,10 +70,13 @@ fn field(loaded: &Loaded, i: usize, spine: &str) -> String {
 
 /// The constraint that turns bone `i`, if one does (the last in the order of the file's list).
 fn constraint_on(c: &Character, i: usize) -> Option<usize> {
-    c.constraints().iter().rposition(|k| match k.bones {
-        IkBones::One(b) => b == i,
-        IkBones::Two { parent, child } => parent == i || child == i,
-    })
+    c.ik_constraints()
+        .filter(|(_, k)| match k.bones {
+            IkBones::One(b) => b == i,
+            IkBones::Two { parent, child } => parent == i || child == i,
+        })
+        .last()
+        .map(|(k, _)| k)
 }
 
 /// A world transform's scale: the longer of its axes.
@@ -101,10 +104,9 @@ fn cause(loaded: &Loaded, ask: &Asked<'_>, posed: &Posed, i: usize) -> String {
     // Not finite in the bone's own frame: a constraint turned it, a clip keyed it, or a target
     // put it there.
     if let Some((name, value)) = locals.iter().find(|(_, v)| !v.is_finite()) {
-        if let Some(k) = constraint_on(c, i) {
+        if let Some((k, settings)) = constraint_on(c, i).and_then(|k| Some((k, posed.ik_settings(k)?))) {
             let constraint = &c.constraints()[k];
-            let settings = posed.settings(k);
-            let label = format!("ik[{k}] ({})", Quoted(&constraint.name));
+            let label = format!("ik[{k}] ({})", Quoted(constraint.name()));
             return if settings.softness.abs() > 1e100 {
                 let softness = crate::names::count_text(settings.softness);
                 format!("{label}.softness = {softness}: the pose overflows ({at})")

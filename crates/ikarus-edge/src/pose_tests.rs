@@ -61,9 +61,8 @@ fn a_target_moves_its_bone_and_the_report_lists_every_bone() {
 /// from its target.
 fn two_bone_misses(c: &Character, report: &PoseReport) -> Vec<f64> {
     let at = |i: usize| &report.bones[i];
-    c.constraints()
-        .iter()
-        .filter_map(|k| match k.bones {
+    c.ik_constraints()
+        .filter_map(|(_, k)| match k.bones {
             ikarus::character::IkBones::Two { child, .. } => {
                 let (tip, t) = (at(child).tip, at(k.target));
                 Some(((tip[0] - t.x).powi(2) + (tip[1] - t.y).powi(2)).sqrt())
@@ -91,15 +90,15 @@ fn ikarus_rules_meet_every_two_bone_limb_the_runtime_meets_on_the_shipped_walks(
             };
             let together = pose(&loaded, &ask).unwrap();
             let ik = together.ik.as_ref().unwrap();
-            assert_eq!(ik.constraints.len(), c.constraints().len());
+            assert_eq!(ik.constraints.len(), c.ik_constraints().count());
             let (was, now) = (two_bone_misses(c, &runtime), two_bone_misses(c, &together));
             for (w, n) in was.iter().zip(&now) {
                 assert!(n <= &(w + 1e-6), "{time:?}: ikarus misses {n}, the runtime {w}");
             }
             // The report's errors are the pose's own.
             let two: Vec<f64> = c
-                .constraints()
-                .iter()
+                .ik_constraints()
+                .map(|(_, k)| k)
                 .zip(&ik.constraints)
                 .filter(|(k, _)| matches!(k.bones, ikarus::character::IkBones::Two { .. }))
                 .map(|(_, l)| l.error)

@@ -336,7 +336,8 @@ fn a_rig_follower_step_allocates_nothing() {
 fn posing_a_character_allocates_nothing() {
     use fixtures::{character_bone as bone, rotate_clip, spine_ik};
     use ikarus::character::{
-        Character, CharacterParts, IkBones, IkKey, IkSettings, IkTimeline, Interpolation, PoseRequest, Posed,
+        Character, CharacterParts, Constraint, ConstraintKeys, ConstraintTimeline, IkBones, IkKey, IkSettings,
+        Interpolation, PoseRequest, Posed,
     };
     let ik = |bones: IkBones, target: usize, order: u32| {
         spine_ik(&format!("ik{order}"), order, bones, target, IkSettings { softness: 1.0, ..IkSettings::default() })
@@ -350,21 +351,24 @@ fn posing_a_character_allocates_nothing() {
             bone("foot", Some(2), 10.0, 0.0),
             bone("target", Some(0), 5.0, 0.0),
         ],
-        constraints: vec![ik(IkBones::Two { parent: 1, child: 2 }, 4, 1), ik(IkBones::One(3), 0, 0)],
+        constraints: vec![
+            Constraint::Ik(ik(IkBones::Two { parent: 1, child: 2 }, 4, 1)),
+            Constraint::Ik(ik(IkBones::One(3), 0, 0)),
+        ],
         clips: vec![rotate_clip(
             1,
             [(0.0, 0.0), (1.0, 1.0)],
             bezier,
-            vec![IkTimeline {
+            vec![ConstraintTimeline {
                 constraint: 0,
-                keys: vec![
+                keys: ConstraintKeys::Ik(vec![
                     IkKey { time: 0.0, settings: IkSettings::default(), curves: [bezier; 2] },
                     IkKey {
                         time: 1.0,
                         settings: IkSettings { mix: 0.5, ..IkSettings::default() },
                         curves: [bezier; 2],
                     },
-                ],
+                ]),
             }],
         )],
         ..CharacterParts::default()
@@ -404,7 +408,7 @@ fn posing_the_shipped_characters_allocates_nothing() {
     for c in &characters {
         let walk = c.clip_index("walk").unwrap();
         let duration = c.clips()[walk].duration;
-        let target = (c.constraints()[0].target, [30.0, -20.0]);
+        let target = (c.ik(0).unwrap().target, [30.0, -20.0]);
         let targets = [target];
         let requests = |i: usize| {
             let time = (i as f64 / 60.0) % duration;

@@ -20,8 +20,8 @@ use std::fmt;
 use std::marker::PhantomData;
 
 use ikarus::character::{
-    BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSettings, IkTimeline, Interpolation, TransformKey,
-    TransformTimeline,
+    BoneKey, BoneProperty, BoneTimeline, ChannelKey, Clip, ConstraintKeys, ConstraintTimeline, IkKey, IkSettings,
+    Interpolation, MAX_CHANNELS,
 };
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
@@ -154,7 +154,8 @@ pub(super) struct Names<'a> {
     pub bones: &'a HashMap<String, usize>,
     /// The IK constraints' names to indices (the first of a name listed twice, [`super::first_index`]).
     pub constraints: &'a HashMap<&'a str, usize>,
-    /// The transform constraints' names to indices (the first of a name listed twice).
+    /// The transform constraints' names to their indices in the whole list of constraints (the
+    /// first of a name listed twice).
     pub transforms: &'a HashMap<&'a str, usize>,
 }
 
@@ -232,10 +233,10 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
         if let Some((i, k)) = keys.iter().enumerate().find(|(_, k)| k.settings.softness < 0.0) {
             return Err(format!("{}[{i}].softness = {}: must not be negative", series.path, k.settings.softness));
         }
-        constraints.push(IkTimeline { constraint, keys });
+        constraints.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Ik(keys) });
     }
-    let transforms = transform_timelines(a, names, &at, legacy)?;
-    Ok(Clip { name: name.to_owned(), duration, bones, constraints, transforms })
+    constraints.extend(transform_timelines(a, names, &at, legacy)?);
+    Ok(Clip { name: name.to_owned(), duration, bones, constraints })
 }
 
 /// The transform constraints' timelines of animation `a` (at `at`).
@@ -244,7 +245,7 @@ fn transform_timelines(
     names: &Names<'_>,
     at: &str,
     legacy: bool,
-) -> Result<Vec<TransformTimeline>, String> {
+) -> Result<Vec<ConstraintTimeline>, String> {
     let mut out = Vec::new();
     for (name, keys) in &a.transform.0 {
         let constraint = names
@@ -257,18 +258,18 @@ fn transform_timelines(
             k.mixes.settings(&format!("{path}[{i}]"))?;
         }
         // Every key's mixes were checked above.
-        let mixes = |k: &Key| k.mixes.settings("").map_or([0.0; 6], |m| m.to_array());
+        let mixes = |k: &Key| {
+            let mut values = [0.0; MAX_CHANNELS];
+            values[..6].copy_from_slice(&k.mixes.settings("").map_or([0.0; 6], |m| m.to_array()));
+            values
+        };
         let series = Series { path, channels: 6, unit: 1.0, legacy };
         let keys = series
             .read(keys, mixes)?
             .into_iter()
-            .map(|Read { time, values, curves, .. }| TransformKey {
-                time,
-                settings: ikarus::character::TransformSettings::from_array(values),
-                curves,
-            })
+            .map(|Read { time, values, curves, .. }| ChannelKey { time, values, curves })
             .collect();
-        out.push(TransformTimeline { constraint, keys });
+        out.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Transform(keys) });
     }
     Ok(out)
 }

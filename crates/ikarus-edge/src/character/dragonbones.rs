@@ -16,7 +16,8 @@
 //! constraints apply in the order listed. Animations are read by [`super::dragonbones_clips`].
 
 use ikarus::character::{
-    CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
+    CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
+    Unsupported,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -166,7 +167,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         }
         let setup = IkSettings { mix: k.weight, bend_positive: k.bend_positive, ..IkSettings::default() };
         let order = u32::try_from(i).unwrap_or(u32::MAX);
-        constraints.push(IkConstraint {
+        constraints.push(Constraint::Ik(IkConstraint {
             name: k.name.clone(),
             order,
             bones,
@@ -174,7 +175,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             setup,
             uniform: false,
             rule: IkRule::DragonBones,
-        });
+        }));
     }
     let frame_rate = armature.frame_rate.or(file.frame_rate).unwrap_or(24.0);
     if !(frame_rate > 0.0 && frame_rate.is_finite()) {

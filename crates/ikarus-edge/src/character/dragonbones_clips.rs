@@ -22,7 +22,9 @@
 //! the nearest cubic, and each such segment is then within about 1 % of its change of
 //! DragonBones' own curve; one warning line says when a file has them.
 
-use ikarus::character::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSettings, IkTimeline, Interpolation};
+use ikarus::character::{
+    BoneKey, BoneProperty, BoneTimeline, Clip, ConstraintKeys, ConstraintTimeline, IkKey, IkSettings, Interpolation,
+};
 use serde::{Deserialize, Deserializer};
 
 use super::clips::unit_bezier;
@@ -157,10 +159,10 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
             latest = latest.max(key.time);
             out.push(IkKey { time: key.time, settings, curves: key.curves });
         }
-        constraints.push(IkTimeline { constraint, keys: out });
+        constraints.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Ik(out) });
     }
     let duration = (a.duration / cx.frame_rate).max(latest);
-    Ok(Clip { name: a.name.clone(), duration, bones, constraints, transforms: Vec::new() })
+    Ok(Clip { name: a.name.clone(), duration, bones, constraints })
 }
 
 /// Each rotation in degrees, after the one before it: the short way round, or as the earlier

@@ -116,11 +116,11 @@ fn ik_frames_key_the_weight_and_the_bend() {
     let animation = r#"{"name": "go", "duration": 10, "ik": [{"name": "reach", "frame": [
         {"duration": 10, "tweenEasing": 0, "weight": 50, "bendPositive": "false"}, {"duration": 0, "weight": 100}]}]}"#;
     let l = load(&file(bones, ik, animation), "f").unwrap();
-    let s = pose(&l.character, 0, 0.0).settings(0);
+    let s = pose(&l.character, 0, 0.0).ik_settings(0).unwrap();
     assert!((s.mix - 0.5).abs() < 1e-12 && !s.bend_positive, "{s:?}");
-    let s = pose(&l.character, 0, 0.5).settings(0);
+    let s = pose(&l.character, 0, 0.5).ik_settings(0).unwrap();
     assert!((s.mix - 0.75).abs() < 1e-6 && !s.bend_positive, "{s:?}");
-    let s = pose(&l.character, 0, 1.0).settings(0);
+    let s = pose(&l.character, 0, 1.0).ik_settings(0).unwrap();
     assert!((s.mix - 1.0).abs() < 1e-12 && s.bend_positive, "{s:?}");
 }
 
@@ -205,7 +205,7 @@ fn the_mechas_animations_pose_with_the_feet_on_their_targets() {
                 let (o, t) = (p.origin(i), p.tip(i));
                 assert!(o.iter().chain(&t).all(|v| v.is_finite()) && p.rotation(i).is_finite(), "{} {time}", clip.name);
             }
-            for (j, k) in c.constraints().iter().enumerate() {
+            for (j, k) in c.ik_constraints().map(|(_, k)| k).enumerate() {
                 let ikarus::character::IkBones::Two { parent, child } = k.bones else { continue };
                 two_bone += 1;
                 let (root, elbow, tip, target) = (p.origin(parent), p.origin(child), p.tip(child), p.origin(k.target));

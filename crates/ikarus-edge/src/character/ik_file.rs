@@ -71,10 +71,11 @@ pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, 
         rules.pins.push(bone(&format!("pins[{i}]"), name)?);
     }
     for (name, limb) in &file.limbs {
-        let constraint = character.constraints().iter().position(|c| &c.name == name).ok_or_else(|| {
-            let names = listed(character.constraints().iter().map(|c| c.name.as_str()));
-            bad(format!("limbs.{}: no IK constraint of that name (the file has: {names})", cell(name)))
-        })?;
+        let constraint =
+            character.ik_constraints().find(|(_, c)| &c.name == name).map(|(k, _)| k).ok_or_else(|| {
+                let names = listed(character.ik_constraints().map(|(_, c)| c.name.as_str()));
+                bad(format!("limbs.{}: no IK constraint of that name (the file has: {names})", cell(name)))
+            })?;
         rules.limbs.push(LimbRule { constraint, bones: limb.bones, weight: limb.weight, secondary: limb.secondary });
     }
     for (name, b) in &file.bones {
@@ -127,7 +128,7 @@ mod tests {
         assert_eq!(rules.pins, vec![c.bone_index("hip").unwrap()]);
         let limb = &rules.limbs[0];
         assert_eq!((limb.bones, limb.weight, limb.secondary), (Some(3), 2.0, false));
-        assert_eq!(c.constraints()[limb.constraint].name, "front-leg-ik");
+        assert_eq!(c.ik(limb.constraint).unwrap().name, "front-leg-ik");
         let shin = &rules.bones[0];
         assert_eq!(shin.bone, c.bone_index("front-shin").unwrap());
         assert!((shin.limits.unwrap()[0] - (-150f64).to_radians()).abs() < 1e-15 && shin.stiffness == 1.5);

@@ -123,7 +123,7 @@ pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
         "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters",
         loaded.format.name(),
         c.bones().len(),
-        c.constraints().len()
+        c.ik_constraints().count()
     )))
 }
 

@@ -12,7 +12,8 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform, Unsupported,
+    CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
+    Unsupported,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -138,13 +139,17 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", Quoted(&b.name), b.length));
     }
     let bones = file.bones.iter().zip(parent_of.iter().copied()).map(|(b, parent)| bone(b, parent)).collect();
-    let constraints = file
+    let mut constraints = file
         .ik
         .iter()
         .enumerate()
-        .map(|(i, k)| constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of))
+        .map(|(i, k)| {
+            constraint(k, &index, &format!("ik[{i}] ({:?})", Quoted(&k.name)), &parent_of).map(Constraint::Ik)
+        })
         .collect::<Result<Vec<_>, _>>()?;
-    let transforms = super::spine_transform::read(&file.transform, &index)?;
+    // Transform constraints after the IK ones (whose indices the page and the API use).
+    let first_transform = constraints.len();
+    constraints.extend(super::spine_transform::read(&file.transform, &index)?.into_iter().map(Constraint::Transform));
     let mut unsupported = Vec::new();
     for (kind, list) in [("path", &file.path), ("physics", &file.physics)] {
         unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
@@ -152,7 +157,10 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let names = clips::Names {
         bones: &index,
         constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())),
-        transforms: &super::first_index(file.transform.iter().map(|k| k.name.as_str())),
+        transforms: &super::first_index(file.transform.iter().map(|k| k.name.as_str()))
+            .into_iter()
+            .map(|(name, i)| (name, first_transform + i))
+            .collect(),
     };
     let clips = file
         .animations
@@ -166,7 +174,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     if !unsupported.is_empty() {
         warnings.push(inactive(&unsupported));
     }
-    let parts = CharacterParts { bones, constraints, transforms, clips, unsupported, ..CharacterParts::default() };
+    let parts = CharacterParts { bones, constraints, clips, unsupported, ..CharacterParts::default() };
     Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
 }
 

@@ -46,18 +46,22 @@ fn every_shipped_character_loads_with_notes_counts() {
     ] {
         let l = load_ok(text);
         let c = &l.character;
-        assert_eq!((l.format, c.bones().len(), c.constraints().len(), c.clips().len()), (format, bones, ik, clips));
+        assert_eq!(
+            (l.format, c.bones().len(), c.ik_constraints().count(), c.clips().len()),
+            (format, bones, ik, clips)
+        );
     }
     let stretchy = load_ok(STRETCHYMAN);
     let transform = kinds(&stretchy.character).iter().filter(|(k, _)| k == "transform").count();
     let path = kinds(&stretchy.character).iter().filter(|(k, _)| k == "path").count();
     // Transform constraints are applied, path ones left inactive.
     assert_eq!((transform, path, stretchy.character.unsupported().len()), (0, 4, 4));
-    assert_eq!(stretchy.character.transforms().len(), 2);
+    assert_eq!(stretchy.character.constraints().iter().filter(|c| c.kind() == "transform").count(), 2);
     assert_eq!(stretchy.warnings.len(), 1);
     assert!(stretchy.warnings[0].contains("path \"back-leg-path\""), "{:?}", stretchy.warnings);
     let boy = load_ok(SPINEBOY);
-    assert_eq!((boy.character.transforms().len(), boy.character.unsupported().len()), (8, 0));
+    let transforms = boy.character.constraints().iter().filter(|c| c.kind() == "transform").count();
+    assert_eq!((transforms, boy.character.unsupported().len()), (8, 0));
     assert!(load_ok(RAPTOR).character.unsupported().is_empty() && load_ok(RAPTOR).warnings.is_empty());
     let mecha = load_ok(MECHA);
     assert_eq!(mecha.version, "5.5");
@@ -84,14 +88,14 @@ fn spineboys_values_read_as_the_file_writes_them() {
     assert!(close(tip.setup.rotation, (-0.85f64).to_radians()));
     let portal = b("portal-root");
     assert_eq!((portal.setup.scale_x, portal.setup.scale_y, portal.setup.shear_x), (2.0334, 2.0334, 0.0));
-    let k = &c.constraints()[c.constraints().iter().position(|k| k.name == "front-leg-ik").unwrap()];
+    let k = &c.ik(c.ik_constraints().map(|(_, k)| k).position(|k| k.name == "front-leg-ik").unwrap()).unwrap();
     let (thigh, shin) = (c.bone_index("front-thigh").unwrap(), c.bone_index("front-shin").unwrap());
     assert_eq!(
         (k.order, k.bones, k.target),
         (4, IkBones::Two { parent: thigh, child: shin }, c.bone_index("front-leg-target").unwrap())
     );
     assert_eq!((k.setup.mix, k.setup.softness, k.setup.bend_positive, k.rule), (1.0, 0.0, false, IkRule::Spine));
-    assert_eq!(c.constraints()[0].setup.mix, 0.0); // aim-ik writes "mix": 0
+    assert_eq!(c.ik(0).unwrap().setup.mix, 0.0); // aim-ik writes "mix": 0
     // walk: rear-foot-target's first rotate key and translate key, front-leg-ik's keys.
     let walk = &c.clips()[c.clip_index("walk").unwrap()];
     assert_eq!(walk.duration, 1.0);
@@ -112,8 +116,8 @@ fn spineboys_values_read_as_the_file_writes_them() {
             Interpolation::Bezier { c1: [0.045, 0.58], c2: [0.075, 30.12] }
         ]
     );
-    let leg = walk.constraints.iter().find(|t| c.constraints()[t.constraint].name == "front-leg-ik").unwrap();
-    let key = &leg.keys[1];
+    let leg = walk.constraints.iter().find(|t| c.ik(t.constraint).unwrap().name == "front-leg-ik").unwrap();
+    let key = &leg.keys.ik().unwrap()[1];
     assert_eq!(
         (key.time, key.settings.mix, key.settings.softness, key.settings.bend_positive),
         (0.0333, 1.0, 9.9, false)
@@ -137,7 +141,7 @@ fn absent_fields_take_the_formats_defaults() {
     let c = &l.character;
     let a = &c.bones()[1];
     assert_eq!((a.length, a.inherit, a.setup), (0.0, Inherit::Normal, ikarus::character::LocalTransform::default()));
-    let k = &c.constraints()[0];
+    let k = &c.ik(0).unwrap();
     assert_eq!((k.order, k.setup, k.uniform), (0, ikarus::character::IkSettings::default(), false));
     let go = &c.clips()[0];
     assert_eq!(go.duration, 3.0); // the slot's key counts
@@ -146,7 +150,7 @@ fn absent_fields_take_the_formats_defaults() {
     assert_eq!(rotate.keys.iter().map(|k| k.values[0]).collect::<Vec<_>>(), [10f64.to_radians(), 0.0, 0.0]);
     assert_eq!(rotate.keys[1].curves, [Interpolation::Stepped; 2]);
     assert_eq!(go.bones[1].keys[0].values, [1.0, 1.0]);
-    assert_eq!(go.constraints[0].keys[0].settings, ikarus::character::IkSettings::default());
+    assert_eq!(go.constraints[0].keys.ik().unwrap()[0].settings, ikarus::character::IkSettings::default());
 }
 
 #[test]
@@ -244,7 +248,7 @@ fn dragonbones_bones_are_the_files_flipped_upright() {
     }
     assert_eq!(c.bones()[0].inherit, Inherit::NoScale); // inheritScale: false
     assert_eq!(c.bones()[thigh].inherit, Inherit::Normal);
-    let calf = &c.constraints()[2];
+    let calf = &c.ik(2).unwrap();
     let (calf_l, knee) = (c.bone_index("calf_l").unwrap(), c.bone_index("thigh_1_l").unwrap());
     assert_eq!(c.bones()[knee].inherit, Inherit::NoScale);
     assert_eq!(
@@ -253,7 +257,7 @@ fn dragonbones_bones_are_the_files_flipped_upright() {
     );
     assert!(!calf.setup.bend_positive);
     assert_eq!(
-        (c.constraints()[0].bones, c.constraints()[0].setup.mix, c.constraints()[0].order),
+        (c.ik(0).unwrap().bones, c.ik(0).unwrap().setup.mix, c.ik(0).unwrap().order),
         (IkBones::One(thigh), 1.0, 0)
     );
 }
@@ -266,9 +270,9 @@ fn dragonbones_flags_may_be_strings() {
             {{"name": "b", "parent": "a", "length": 5}}], "ik": [{{"name": "k", "bone": "b", "target": "root", "chain": 1, "bendPositive": {bend}}}]}}]}}"#
         )
     };
-    assert!(!load_ok(&text("\"false\"")).character.constraints()[0].setup.bend_positive);
-    assert!(load_ok(&text("\"true\"")).character.constraints()[0].setup.bend_positive);
-    assert!(!load_ok(&text("false")).character.constraints()[0].setup.bend_positive);
+    assert!(!load_ok(&text("\"false\"")).character.ik(0).unwrap().setup.bend_positive);
+    assert!(load_ok(&text("\"true\"")).character.ik(0).unwrap().setup.bend_positive);
+    assert!(!load_ok(&text("false")).character.ik(0).unwrap().setup.bend_positive);
     let e = refused(&text("\"maybe\""));
     assert!(e.starts_with("f: armature[0].ik[0].bendPositive: expected true or false, got \"maybe\""), "{e}");
     let e = refused(&text("1"));

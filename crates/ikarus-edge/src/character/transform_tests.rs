@@ -1,6 +1,6 @@
 //! Transform constraints' timelines as Spine's JSON writes them.
 
-use ikarus::character::Interpolation;
+use ikarus::character::{Constraint, ConstraintKeys, Interpolation};
 
 use super::tests::{load_ok, refused};
 
@@ -21,15 +21,17 @@ fn transform_keys_take_the_formats_defaults_and_a_curve_per_mix() {
         curve.join(",")
     );
     let l = load_ok(&with_keys(&keys));
-    let t = &l.character.clips()[0].transforms[0];
+    let t = &l.character.clips()[0].constraints[0];
     assert_eq!(t.constraint, 0);
+    let ConstraintKeys::Transform(keys) = &t.keys else { panic!("{:?}", t.keys) };
     // Absent mixes are 1, mixY follows mixX and mixScaleY mixScaleX.
-    assert_eq!(t.keys[0].settings.to_array(), [0.5, 1.0, 1.0, 0.25, 0.25, 1.0]);
-    assert_eq!(t.keys[1].settings.to_array(), [1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
-    assert_eq!(t.keys[0].curves[3], Interpolation::Bezier { c1: [0.1, 3.0], c2: [0.2, 0.5] });
-    assert_eq!(t.keys[1].time, 1.0);
+    assert_eq!(keys[0].values, [0.5, 1.0, 1.0, 0.25, 0.25, 1.0]);
+    assert_eq!(keys[1].values, [1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+    assert_eq!(keys[0].curves[3], Interpolation::Bezier { c1: [0.1, 3.0], c2: [0.2, 0.5] });
+    assert_eq!(keys[1].time, 1.0);
     // The setup mixes: mixY as mixX.
-    assert_eq!(l.character.transforms()[0].setup.to_array(), [1.0, 0.5, 0.5, 1.0, 1.0, 1.0]);
+    let Constraint::Transform(c) = &l.character.constraints()[0] else { panic!() };
+    assert_eq!(c.setup.to_array(), [1.0, 0.5, 0.5, 1.0, 1.0, 1.0]);
 }
 
 #[test]

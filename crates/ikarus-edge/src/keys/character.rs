@@ -16,8 +16,8 @@ pub fn bend_constraint(loaded: &Loaded, field: &str, name: &str) -> Result<usize
     let index =
         c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))?;
     let two = |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
-    c.constraints().iter().position(|k| two(&k)).ok_or_else(|| {
-        let has = listed(c.constraints().iter().filter_map(|k| match k.bones {
+    c.ik_constraints().find(|(_, k)| two(k)).map(|(k, _)| k).ok_or_else(|| {
+        let has = listed(c.ik_constraints().filter_map(|(_, k)| match k.bones {
             IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
             IkBones::One(_) => None,
         }));

@@ -99,9 +99,8 @@ impl CharacterJson {
             })
             .collect();
         let ik = c
-            .constraints()
-            .iter()
-            .map(|k| IkJson {
+            .ik_constraints()
+            .map(|(_, k)| IkJson {
                 name: k.name.clone(),
                 order: k.order,
                 bones: match k.bones {

@@ -32,7 +32,7 @@ fn random_character(rng: &mut SplitMix64) -> Character {
         if rng.chance(0.3) {
             c.rule = IkRule::DragonBones;
         }
-        constraints.push(c);
+        constraints.push(c.into());
     }
     let clips = vec![rotate_clip(n - 1, [(0.0, 0.0), (1.0, 1.5)], crate::character::Interpolation::Linear, vec![])];
     Character::new(CharacterParts { bones, constraints, clips, ..CharacterParts::default() }).unwrap()

@@ -9,7 +9,8 @@
 //! all, a constraint's update scans the bones after its top instead, which is the same bones in
 //! the same order. Making the lists is linear in the bones and constraints.
 
-use super::{CharacterBone, IkBones, IkConstraint, IkSettings, Inherit, LocalTransform};
+use super::constraint::Updates;
+use super::{CharacterBone, Constraint, Inherit, LocalTransform, Settings};
 
 /// A root bone's parent.
 pub(crate) const ROOT: u32 = u32::MAX;
@@ -28,35 +29,45 @@ pub(crate) struct Flat {
     pub(crate) links: Vec<Link>,
     pub(crate) setup: Vec<LocalTransform>,
     pub(crate) length: Vec<f64>,
-    pub(crate) settings: Vec<IkSettings>,
+    pub(crate) settings: Vec<Settings>,
     /// The subtrees, one after another.
     below: Vec<u32>,
-    /// Per constraint, where its top bone's subtree is in `below` (`None`: not kept).
+    /// Per constraint, where the bones its update recomputes are in `below` (`None`: not kept).
     ranges: Vec<Option<(u32, u32)>>,
-    /// Per constraint, its top bone.
-    tops: Vec<u32>,
+    /// Per constraint, the bones posing recomputes after it.
+    updates: Vec<Scan>,
+}
+
+/// A constraint's update found by a scan when its list is not kept: a top bone and the bones
+/// below it, or the bones strictly below a constraint's bones (their indices in `tops`).
+#[derive(Debug, Clone, PartialEq)]
+enum Scan {
+    Subtree(u32),
+    Below(Vec<u32>),
 }
 
 /// At most this many subtree entries a bone are kept (see the module's doc).
 pub(crate) const LISTED_PER_BONE: usize = 16;
 
-/// A constraint's subtree as posing updates it: listed, or found by a scan from its top bone.
+/// The bones posing recomputes after a constraint: listed, or found by a scan.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Subtree<'a> {
-    /// The top bone and every bone below it, in update order.
+    /// The bones, in update order.
     Listed(&'a [u32]),
-    /// The top bone; the bones below it are found by a scan of the bones after it.
+    /// A top bone; it and the bones below it are found by a scan of the bones after it.
     Below(usize),
+    /// The bones strictly below these, found by a scan.
+    Under(&'a [u32]),
 }
 
 impl Flat {
     /// The flat view of `bones` (parent first) and `constraints`.
-    pub(crate) fn of(bones: &[CharacterBone], constraints: &[IkConstraint]) -> Flat {
+    pub(crate) fn of(bones: &[CharacterBone], constraints: &[Constraint]) -> Flat {
         Flat::within(bones, constraints, LISTED_PER_BONE * bones.len())
     }
 
     /// [`Flat::of`] keeping at most `budget` subtree entries.
-    pub(crate) fn within(bones: &[CharacterBone], constraints: &[IkConstraint], budget: usize) -> Flat {
+    pub(crate) fn within(bones: &[CharacterBone], constraints: &[Constraint], budget: usize) -> Flat {
         let mut flat = Flat {
             links: bones
                 .iter()
@@ -64,7 +75,7 @@ impl Flat {
                 .collect(),
             setup: bones.iter().map(|b| b.setup).collect(),
             length: bones.iter().map(|b| b.length).collect(),
-            settings: constraints.iter().map(|k| k.setup).collect(),
+            settings: constraints.iter().map(Constraint::setup).collect(),
             ..Flat::default()
         };
         // Every bone's subtree size, children before parents.
@@ -77,19 +88,29 @@ impl Flat {
         // Per bone, its subtree's range once listed; `Some(None)` once refused for the budget.
         let mut listed: Vec<Option<Option<(u32, u32)>>> = vec![None; bones.len()];
         for k in constraints {
-            let top = match k.bones {
-                IkBones::One(b) => b,
-                IkBones::Two { parent, .. } => parent,
-            };
-            let range = *listed[top].get_or_insert_with(|| {
-                (flat.below.len() + size[top] <= budget).then(|| {
-                    let start = flat.below.len() as u32;
-                    flat.below.extend(subtree(&flat.links, top));
-                    (start, flat.below.len() as u32)
-                })
-            });
-            flat.ranges.push(range);
-            flat.tops.push(top as u32);
+            match k.updates() {
+                Updates::Subtree(top) => {
+                    let range = *listed[top].get_or_insert_with(|| {
+                        (flat.below.len() + size[top] <= budget).then(|| {
+                            let start = flat.below.len() as u32;
+                            flat.below.extend(subtree(&flat.links, top));
+                            (start, flat.below.len() as u32)
+                        })
+                    });
+                    flat.ranges.push(range);
+                    flat.updates.push(Scan::Subtree(top as u32));
+                }
+                Updates::Below(tops) => {
+                    let under = strictly_below(&flat.links, tops);
+                    let range = (flat.below.len() + under.len() <= budget).then(|| {
+                        let start = flat.below.len() as u32;
+                        flat.below.extend(under);
+                        (start, flat.below.len() as u32)
+                    });
+                    flat.ranges.push(range);
+                    flat.updates.push(Scan::Below(tops.iter().map(|&b| b as u32).collect()));
+                }
+            }
         }
         flat
     }
@@ -100,12 +121,14 @@ impl Flat {
         self.below.len()
     }
 
-    /// Constraint `k`'s top bone (its one bone, or the parent of its two) and every bone below
-    /// it, in update order.
+    /// The bones posing recomputes after constraint `k`, in update order: an IK constraint's
+    /// top bone (its one bone, or the parent of its two) and every bone below it; for a kind
+    /// that sets world transforms, the bones strictly below its bones.
     pub(crate) fn below(&self, k: usize) -> Subtree<'_> {
-        match self.ranges[k] {
-            Some((start, end)) => Subtree::Listed(&self.below[start as usize..end as usize]),
-            None => Subtree::Below(self.tops[k] as usize),
+        match (self.ranges[k], &self.updates[k]) {
+            (Some((start, end)), _) => Subtree::Listed(&self.below[start as usize..end as usize]),
+            (None, Scan::Subtree(top)) => Subtree::Below(*top as usize),
+            (None, Scan::Below(tops)) => Subtree::Under(tops),
         }
     }
 }
@@ -119,6 +142,26 @@ pub(crate) fn subtree(links: &[Link], top: usize) -> Vec<u32> {
     for (j, link) in links.iter().enumerate().skip(top + 1) {
         let p = link.parent as usize;
         if link.parent != ROOT && p >= top && below[p] {
+            below[j] = true;
+            out.push(j as u32);
+        }
+    }
+    out
+}
+
+/// Every bone strictly below one of `tops`, in the bones' order: a bone whose parent is one of
+/// `tops` or strictly below one (a bone of `tops` below another one is listed).
+pub(crate) fn strictly_below(links: &[Link], tops: &[usize]) -> Vec<u32> {
+    let Some(&first) = tops.iter().min() else { return Vec::new() };
+    let mut marked = vec![false; links.len()];
+    for &t in tops {
+        marked[t] = true;
+    }
+    let mut below = vec![false; links.len()];
+    let mut out = Vec::new();
+    for (j, link) in links.iter().enumerate().skip(first + 1) {
+        let p = link.parent as usize;
+        if link.parent != ROOT && p >= first && (marked[p] || below[p]) {
             below[j] = true;
             out.push(j as u32);
         }

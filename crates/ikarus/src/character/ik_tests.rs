@@ -3,8 +3,8 @@
 //! target, the softness band, stretch, compress, mix, and the cases the rules leave alone.
 
 use crate::character::{
-    Character, CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
-    Placement, PoseRequest, Posed,
+    Character, CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit,
+    LocalTransform, Placement, PoseRequest, Posed,
 };
 use crate::math;
 use std::f64::consts::FRAC_PI_2;
@@ -27,7 +27,7 @@ fn leg(settings: IkSettings, rule: IkRule, shin_y: f64) -> CharacterParts {
             bone("shin", Some(1), 8.0, at(10.0, shin_y, 0.2)),
             bone("target", Some(0), 0.0, at(0.0, 0.0, 0.0)),
         ],
-        constraints: vec![IkConstraint {
+        constraints: vec![Constraint::Ik(IkConstraint {
             name: "leg".into(),
             order: 0,
             bones: IkBones::Two { parent: 1, child: 2 },
@@ -35,7 +35,7 @@ fn leg(settings: IkSettings, rule: IkRule, shin_y: f64) -> CharacterParts {
             setup: settings,
             uniform: false,
             rule,
-        }],
+        })],
         ..CharacterParts::default()
     }
 }
@@ -186,8 +186,9 @@ fn arm(settings: IkSettings, uniform: bool, inherit: Inherit) -> CharacterParts 
     parts.bones[1].setup = LocalTransform { rotation: 0.9, scale_x: 1.5, scale_y: 0.5, ..LocalTransform::default() };
     parts.bones[2].inherit = inherit;
     parts.bones[2].setup = LocalTransform { x: 4.0, y: 1.0, rotation: 0.3, shear_x: 0.1, ..LocalTransform::default() };
-    parts.constraints[0].bones = IkBones::One(2);
-    parts.constraints[0].uniform = uniform;
+    let ik = parts.constraints[0].ik_mut().unwrap();
+    ik.bones = IkBones::One(2);
+    ik.uniform = uniform;
     parts
 }
 
@@ -233,7 +234,7 @@ fn a_later_constraint_undoes_an_earlier_one() {
             uniform: false,
             rule: IkRule::Spine,
         };
-        parts.constraints = vec![one(3, first), one(4, second)];
+        parts.constraints = vec![one(3, first).into(), one(4, second).into()];
         let p = pose(&parts, 30.0, 2.0);
         let o = p.origin(2);
         let winner = if first > second { p.origin(3) } else { p.origin(4) };

@@ -1,7 +1,8 @@
 //! Imported characters (Spine and DragonBones skeletons), held as their runtimes hold them:
 //! bones with a full affine local transform (translation, rotation, scale, shear) and an
-//! inherit mode, IK constraints applied one after another in their order, and animation clips
-//! whose timelines key the bones' transforms and the constraints' settings.
+//! inherit mode, constraints of every kind in one list applied one after another in their
+//! order ([`constraint`]), and animation clips whose timelines key the bones' transforms and
+//! the constraints' settings.
 //!
 //! This module is the model only: what a character *is*, validated once by [`Character::new`].
 //! Reading the files belongs to the edge (`ikarus-edge`), which names fields and values in its
@@ -13,6 +14,8 @@
 
 use thiserror::Error;
 
+mod applied;
+mod constraint;
 mod flat;
 mod ik;
 mod pose;
@@ -20,39 +23,35 @@ mod skin;
 mod timeline;
 mod together;
 mod transform;
-mod transform_timeline;
 mod world;
 
+pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
 pub use pose::{PoseError, PoseRequest, Posed};
-pub use skin::{Skin, SkinConstraint, SkinRequired};
+pub use skin::{Skin, SkinRequired};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
 };
 pub use transform::{
-    TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,
-    local_from_world, local_relative, world_absolute, world_relative,
+    MIX_NAMES, TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,
+    local_relative, world_absolute, world_relative,
 };
-pub use transform_timeline::{TransformKey, TransformTimeline};
 pub use world::{Affine, world_transform};
 
-/// A character: bones listed parent first, IK constraints, clips, and the skeleton's own
-/// placement.
+/// A character: bones listed parent first, constraints of every kind, clips, and the
+/// skeleton's own placement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Character {
     bones: Vec<CharacterBone>,
-    constraints: Vec<IkConstraint>,
-    transforms: Vec<TransformConstraint>,
+    constraints: Vec<Constraint>,
     clips: Vec<Clip>,
     placement: Placement,
     unsupported: Vec<Unsupported>,
-    /// The IK constraints' indices in the order they apply (by `order`, ties as listed).
-    order: Vec<usize>,
-    /// Every constraint, of every kind, in the order they apply ([`transform::steps`]).
-    steps: Vec<transform::Step>,
     /// The skins.
     skins: Vec<Skin>,
     /// What only a skin turns on, as posing reads it.
     activity: skin::Activity,
+    /// The constraints' indices in the order they apply (by `order`, ties as listed).
+    order: Vec<usize>,
     /// The clips' Bézier segments, sampled once.
     curves: timeline::Curves,
     /// The bones a pose without targets leaves to the constraints' updates ([`world::deferred`]).
@@ -244,9 +243,7 @@ pub struct Clip {
     /// The bones' timelines.
     pub bones: Vec<BoneTimeline>,
     /// The constraints' timelines.
-    pub constraints: Vec<IkTimeline>,
-    /// The transform constraints' timelines.
-    pub transforms: Vec<TransformTimeline>,
+    pub constraints: Vec<ConstraintTimeline>,
 }
 
 /// What a bone timeline keys. Rotation, translation and shear keys add to the setup values;
@@ -341,15 +338,6 @@ pub struct IkKey {
     pub curves: [Interpolation; 2],
 }
 
-/// An IK constraint's timeline, keys in increasing time.
-#[derive(Debug, Clone, PartialEq)]
-pub struct IkTimeline {
-    /// The constraint's index.
-    pub constraint: usize,
-    /// The keys, in increasing time.
-    pub keys: Vec<IkKey>,
-}
-
 /// A character that breaks the model's rules. The edge reads files by name and words its own
 /// errors; these name indices.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -438,9 +426,9 @@ pub enum CharacterError {
         /// The bone index named.
         bone: usize,
     },
-    /// A transform constraint's offset or mix is NaN or infinite.
-    #[error("transform[{constraint}].{field}: must be finite, got {value}")]
-    TransformSetting {
+    /// A constraint's offset or mix (of a kind that takes any number) is NaN or infinite.
+    #[error("constraints[{constraint}].{field}: must be finite, got {value}")]
+    NotFiniteSetting {
         /// The constraint's index.
         constraint: usize,
         /// The field's name in Spine's terms.
@@ -448,13 +436,23 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// A constraint timeline's keys are of another kind than its constraint.
+    #[error("a timeline of constraint {constraint} keys {keys} settings, but it is a {kind} constraint")]
+    TimelineKind {
+        /// The constraint's index.
+        constraint: usize,
+        /// The keys' kind.
+        keys: &'static str,
+        /// The constraint's kind.
+        kind: &'static str,
+    },
     /// A skin (or the list of what only a skin turns on) names a bone or constraint that does
     /// not exist.
     #[error("{}: {what} {index} does not exist", skin.map_or("skin-required".to_owned(), |s| format!("skins[{s}]")))]
     SkinIndex {
         /// The skin's index (`None`: the skin-required list).
         skin: Option<usize>,
-        /// `bone`, `IK constraint`, `transform constraint`.
+        /// `bone` or `constraint`.
         what: &'static str,
         /// The index named.
         index: usize,
@@ -474,10 +472,8 @@ pub enum CharacterError {
 pub struct CharacterParts {
     /// The bones, parent first.
     pub bones: Vec<CharacterBone>,
-    /// The IK constraints.
-    pub constraints: Vec<IkConstraint>,
-    /// The transform constraints.
-    pub transforms: Vec<TransformConstraint>,
+    /// The constraints, of every kind.
+    pub constraints: Vec<Constraint>,
     /// The clips.
     pub clips: Vec<Clip>,
     /// The skeleton's own position and scale.
@@ -497,8 +493,7 @@ impl Character {
     /// and softness not negative, every timeline's bone or constraint existing and its keys
     /// in increasing finite time with finite values.
     pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
-        let CharacterParts { bones, constraints, transforms, clips, placement, unsupported, skins, skin_required } =
-            parts;
+        let CharacterParts { bones, constraints, clips, placement, unsupported, skins, skin_required } = parts;
         if bones.is_empty() {
             return Err(CharacterError::NoBones);
         }
@@ -527,26 +522,12 @@ impl Character {
                 return Err(CharacterError::NegativeLength { bone: i, value: b.length });
             }
         }
-        let n = bones.len();
-        for (c, k) in constraints.iter().enumerate() {
-            let missing = |bone: usize| CharacterError::MissingBone { constraint: c, bone };
-            match k.bones {
-                IkBones::One(b) if b >= n => return Err(missing(b)),
-                IkBones::Two { parent, .. } if parent >= n => return Err(missing(parent)),
-                IkBones::Two { child, .. } if child >= n => return Err(missing(child)),
-                IkBones::Two { parent, child } if bones[child].parent != Some(parent) => {
-                    return Err(CharacterError::NotParentChild { constraint: c, parent, child });
-                }
-                IkBones::One(_) | IkBones::Two { .. } => {}
-            }
-            if k.target >= n {
-                return Err(missing(k.target));
-            }
-            check_settings(c, &k.setup)?;
+        for (k, c) in constraints.iter().enumerate() {
+            c.check(k, &bones)?;
         }
         for (ci, clip) in clips.iter().enumerate() {
             for t in &clip.bones {
-                if t.bone >= n {
+                if t.bone >= bones.len() {
                     return Err(CharacterError::MissingTarget { clip: ci, what: "bone", index: t.bone });
                 }
                 check_times(ci, t.keys.iter().map(|k| k.time))?;
@@ -560,36 +541,26 @@ impl Character {
                 if t.constraint >= constraints.len() {
                     return Err(CharacterError::MissingTarget { clip: ci, what: "constraint", index: t.constraint });
                 }
-                check_times(ci, t.keys.iter().map(|k| k.time))?;
-                for k in &t.keys {
-                    check_settings(t.constraint, &k.settings)?;
-                }
+                check_times(ci, (0..t.keys.len()).map(|i| t.keys.time(i)))?;
+                t.keys.check(t.constraint, &constraints[t.constraint])?;
             }
         }
-        transform::check(&transforms, n, &clips)?;
         let mut order: Vec<usize> = (0..constraints.len()).collect();
-        order.sort_by_key(|&k| (constraints[k].order, k));
-        let steps = transform::steps(&constraints, &transforms);
-        skin::check(&skins, &skin_required, [n, constraints.len(), transforms.len()])?;
-        let activity = skin::Activity::new(n, &steps, &skin_required);
+        order.sort_by_key(|&k| (constraints[k].order(), k));
         let curves = timeline::Curves::of(&clips);
-        let mut deferred = world::deferred(&bones, &constraints, &order);
-        if !transforms.is_empty() {
-            // The first pass's shortcut knows IK constraints only.
-            deferred.fill(false);
-        }
+        let deferred = world::deferred(&bones, &constraints, &order);
         let flat = flat::Flat::of(&bones, &constraints);
+        skin::check(&skins, &skin_required, [bones.len(), constraints.len()])?;
+        let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
             bones,
             constraints,
-            transforms,
             clips,
             placement,
             unsupported,
-            order,
-            steps,
             skins,
             activity,
+            order,
             curves,
             deferred,
             flat,
@@ -601,14 +572,24 @@ impl Character {
         &self.bones
     }
 
-    /// The IK constraints, as listed in the file (apply them by [`IkConstraint::order`]).
-    pub fn constraints(&self) -> &[IkConstraint] {
+    /// The constraints of every kind, as listed (they apply by [`Constraint::order`]).
+    pub fn constraints(&self) -> &[Constraint] {
         &self.constraints
     }
 
-    /// The transform constraints, as listed in the file.
-    pub fn transforms(&self) -> &[TransformConstraint] {
-        &self.transforms
+    /// The IK constraints with their indices in [`Character::constraints`].
+    pub fn ik_constraints(&self) -> impl Iterator<Item = (usize, &IkConstraint)> {
+        self.constraints.iter().enumerate().filter_map(|(k, c)| c.ik().map(|c| (k, c)))
+    }
+
+    /// Constraint `k` if it is an IK constraint.
+    pub fn ik(&self, k: usize) -> Option<&IkConstraint> {
+        self.constraints.get(k).and_then(Constraint::ik)
+    }
+
+    /// The animation clips.
+    pub fn clips(&self) -> &[Clip] {
+        &self.clips
     }
 
     /// The skins, as listed in the file.
@@ -624,11 +605,6 @@ impl Character {
     /// The skin a pose takes unless told otherwise: the one called `default`, if any.
     pub fn default_skin(&self) -> Option<usize> {
         self.skin_index("default")
-    }
-
-    /// The animation clips.
-    pub fn clips(&self) -> &[Clip] {
-        &self.clips
     }
 
     /// The skeleton's own position and scale.
@@ -652,7 +628,7 @@ impl Character {
     }
 }
 
-fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterError> {
+pub(crate) fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterError> {
     if !(0.0..=1.0).contains(&s.mix) {
         return Err(CharacterError::Setting { constraint, field: "mix", value: s.mix });
     }
@@ -662,7 +638,7 @@ fn check_settings(constraint: usize, s: &IkSettings) -> Result<(), CharacterErro
     Ok(())
 }
 
-pub(crate) fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), CharacterError> {
+fn check_times(clip: usize, times: impl Iterator<Item = f64>) -> Result<(), CharacterError> {
     let mut last = f64::NEG_INFINITY;
     for time in times {
         if !(time.is_finite() && time >= 0.0 && time > last) {
@@ -683,7 +659,13 @@ mod tests {
         let bone = |name: &str, parent: Option<usize>| character_bone(name, parent, 0.0, 0.0);
         CharacterParts {
             bones: vec![bone("root", None), bone("thigh", Some(0)), bone("shin", Some(1)), bone("target", Some(0))],
-            constraints: vec![spine_ik("leg", 0, IkBones::Two { parent: 1, child: 2 }, 3, IkSettings::default())],
+            constraints: vec![Constraint::Ik(spine_ik(
+                "leg",
+                0,
+                IkBones::Two { parent: 1, child: 2 },
+                3,
+                IkSettings::default(),
+            ))],
             ..CharacterParts::default()
         }
     }
@@ -705,13 +687,15 @@ mod tests {
         p.bones[2].setup.scale_x = f64::NAN;
         assert!(matches!(Character::new(p).unwrap_err(), CharacterError::NotFinite { bone: 2, field: "scaleX", .. }));
         let mut p = leg();
-        p.constraints[0].bones = IkBones::Two { parent: 0, child: 2 };
+        let Constraint::Ik(ik) = &mut p.constraints[0] else { panic!() };
+        ik.bones = IkBones::Two { parent: 0, child: 2 };
         assert_eq!(
             Character::new(p).unwrap_err(),
             CharacterError::NotParentChild { constraint: 0, parent: 0, child: 2 }
         );
         let mut p = leg();
-        p.constraints[0].setup.mix = 1.5;
+        let Constraint::Ik(ik) = &mut p.constraints[0] else { panic!() };
+        ik.setup.mix = 1.5;
         assert_eq!(Character::new(p).unwrap_err().to_string(), "ik[0].mix: out of range, got 1.5");
         let mut p = leg();
         p.clips.push(rotate_clip(1, [(0.5, 0.0), (0.5, 1.0)], Interpolation::Linear, vec![]));

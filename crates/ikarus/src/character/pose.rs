@@ -1,13 +1,12 @@
 //! Posing a character as its runtime does: the setup pose, then a clip at a time, then the
-//! targets moved, then the IK constraints one after another in their order.
+//! targets moved, then the constraints of every kind one after another in their order.
 
 use super::ik;
 use super::timeline;
 use super::timeline::Reader;
-use super::transform::{self, Step, TransformSettings};
-use super::transform_timeline::transform_settings_at;
+use super::transform::{self, TransformSettings};
 use super::world::{Affine, BoneTrig, Bones, Trig};
-use super::{Character, IkBones, IkRule, IkSettings, LocalTransform};
+use super::{Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, Settings};
 use crate::Interrupt;
 use thiserror::Error;
 
@@ -71,8 +70,8 @@ pub enum PoseError {
     /// The skin index is not one of the character's skins.
     #[error("skin: no skin {0}")]
     UnknownSkin(usize),
-    /// A bend names a constraint that does not exist.
-    #[error("bend: no constraint {0}")]
+    /// A bend names a constraint that does not exist or is not an IK constraint.
+    #[error("bend: no IK constraint {0}")]
     UnknownConstraint(usize),
     /// A target's bone has a parent whose world matrix is singular (scaled to nothing), so no
     /// local position puts it anywhere else.
@@ -93,9 +92,7 @@ pub struct Posed {
     world: Vec<Affine>,
     length: Vec<f64>,
     below: Vec<bool>,
-    settings: Vec<IkSettings>,
-    /// The transform constraints' mixes as the clip left them.
-    transform_settings: Vec<TransformSettings>,
+    settings: Vec<Settings>,
     /// Per bone, the sines and cosines its world transform last needed (kept across poses).
     trig: Vec<BoneTrig>,
     /// Which bones and constraints the skin turns on.
@@ -156,18 +153,18 @@ impl Posed {
     }
 
     /// Constraint `k`'s settings as the clip left them.
-    pub fn settings(&self, k: usize) -> IkSettings {
+    pub fn settings(&self, k: usize) -> Settings {
         self.settings[k]
     }
 
-    /// Transform constraint `k`'s mixes as the clip left them.
-    pub fn transform_settings(&self, k: usize) -> TransformSettings {
-        self.transform_settings[k]
+    /// Constraint `k`'s settings as the clip left them, if it is an IK constraint.
+    pub fn ik_settings(&self, k: usize) -> Option<IkSettings> {
+        self.settings.get(k).and_then(Settings::ik).copied()
     }
 
     /// The bones of `c` as posing left them, to change their local transforms (and the world
     /// transforms below), their lengths, and the constraints' settings.
-    pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [IkSettings]) {
+    pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings]) {
         let bones = Bones {
             bones: &c.bones,
             links: &c.flat.links,
@@ -221,8 +218,6 @@ impl Character {
         out.settings.extend_from_slice(&self.flat.settings);
         out.trig.resize(n, [Trig::ZERO; 3]);
         self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
-        out.transform_settings.clear();
-        out.transform_settings.extend(self.transforms.iter().map(|t| t.setup));
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -234,13 +229,17 @@ impl Character {
             }
             for (k, (t, last)) in clip.constraints.iter().zip(ik_keys).enumerate() {
                 let mut r = Reader { curves: &self.curves, clip: c, timeline: clip.bones.len() + k, last };
-                if let Some(s) = timeline::ik_settings_at(&mut r, &t.keys, time) {
-                    out.settings[t.constraint] = s;
-                }
-            }
-            for t in &clip.transforms {
-                if let Some(s) = transform_settings_at(&t.keys, time) {
-                    out.transform_settings[t.constraint] = s;
+                match &t.keys {
+                    ConstraintKeys::Ik(keys) => {
+                        if let Some(s) = timeline::ik_settings_at(&mut r, keys, time) {
+                            out.settings[t.constraint] = Settings::Ik(s);
+                        }
+                    }
+                    ConstraintKeys::Transform(keys) => {
+                        if let Some(v) = timeline::channels_at(&mut r, keys, 6, time) {
+                            out.settings[t.constraint] = Settings::Transform(TransformSettings::from_values(&v));
+                        }
+                    }
                 }
             }
         }
@@ -248,22 +247,13 @@ impl Character {
             out.local[bone].rotation = rotation;
         }
         for &(k, bend_positive) in request.bends {
-            out.settings[k].bend_positive = bend_positive;
+            if let Settings::Ik(s) = &mut out.settings[k] {
+                s.bend_positive = bend_positive;
+            }
         }
-        let transform_settings = &out.transform_settings;
-        let active = &out.active;
-        let (mut bones, _, settings) = {
-            let bones = Bones {
-                bones: &self.bones,
-                links: &self.flat.links,
-                placement: self.placement,
-                local: &mut out.local,
-                world: &mut out.world,
-                below: &mut out.below,
-                trig: &mut out.trig,
-            };
-            (bones, &out.length, &out.settings)
-        };
+        // Taken out of `out` while its bones are posed, put back at the end.
+        let active = std::mem::take(&mut out.active);
+        let (mut bones, _, settings) = out.bones(self);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
         } else {
@@ -275,57 +265,40 @@ impl Character {
             bones.local[bone].y = ly;
             bones.update_below(bone);
         }
-        for (pos, &step) in self.steps.iter().enumerate() {
+        for &k in &self.order {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
             }
-            if !active.steps[pos] {
+            if !self.is_active(k, &active) {
+                // It does nothing, but the bones the first pass left to its update are computed.
+                bones.update_subtree(self.flat.below(k));
                 continue;
             }
-            let k = match step {
-                Step::Ik(k) => {
-                    let c = &self.constraints[k];
-                    let (top, child) = match c.bones {
-                        IkBones::One(b) => (b, b),
-                        IkBones::Two { parent, child } => (parent, child),
-                    };
-                    if !(active.bones[c.target] && active.bones[top] && active.bones[child]) {
-                        continue;
+            match (&self.constraints[k], &settings[k]) {
+                (Constraint::Transform(c), Settings::Transform(s)) => transform::apply(&mut bones, c, s),
+                (Constraint::Ik(c), Settings::Ik(s)) => {
+                    let w = bones.world[c.target];
+                    let target = [w.x, w.y];
+                    match (c.bones, c.rule) {
+                        (IkBones::One(b), _) => {
+                            let s = if c.rule == IkRule::Spine {
+                                *s
+                            } else {
+                                IkSettings { compress: false, stretch: false, ..*s }
+                            };
+                            ik::spine_one(&mut bones, b, target, &s, c.uniform);
+                        }
+                        (IkBones::Two { parent, child }, IkRule::Spine) => {
+                            ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
+                        }
+                        (IkBones::Two { parent, child }, IkRule::DragonBones) => {
+                            ik::dragonbones_two(&mut bones, (parent, child), self.flat.below(k), target, s);
+                        }
                     }
-                    k
                 }
-                Step::Transform(k) => {
-                    let c = &self.transforms[k];
-                    if !(active.bones[c.target] && c.bones.iter().all(|&b| active.bones[b])) {
-                        continue;
-                    }
-                    transform::apply(&mut bones, c, &transform_settings[k]);
-                    for &b in &c.bones {
-                        bones.update_below(b);
-                    }
-                    continue;
-                }
-            };
-            let c = &self.constraints[k];
-            let s = &settings[k];
-            let w = bones.world[c.target];
-            let target = [w.x, w.y];
-            // The constraint's top bone and every bone below it, in update order.
-            let below = self.flat.below(k);
-            match (c.bones, c.rule) {
-                (IkBones::One(b), _) => {
-                    let s =
-                        if c.rule == IkRule::Spine { *s } else { IkSettings { compress: false, stretch: false, ..*s } };
-                    ik::spine_one(&mut bones, b, target, &s, c.uniform);
-                }
-                (IkBones::Two { parent, child }, IkRule::Spine) => {
-                    ik::spine_two(&mut bones, (parent, child), target, s, c.uniform);
-                }
-                (IkBones::Two { parent, child }, IkRule::DragonBones) => {
-                    ik::dragonbones_two(&mut bones, (parent, child), below, target, s);
-                }
+                (Constraint::Ik(_) | Constraint::Transform(_), _) => {}
             }
-            bones.update_subtree(below);
+            bones.update_subtree(self.flat.below(k));
         }
         if self.activity.any {
             // The runtime leaves an inactive bone unposed, at zeros.
@@ -334,7 +307,28 @@ impl Character {
                 *w = zero;
             }
         }
+        out.active = active;
         Ok(())
+    }
+
+    /// Whether constraint `k` takes part in a pose whose skin turned on `active`: the skin turns
+    /// it on and its target and bones are active (see [`super::skin`]).
+    fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
+        if !self.activity.any {
+            return true;
+        }
+        let on = |b: usize| active.bones[b];
+        active.constraints[k]
+            && match &self.constraints[k] {
+                Constraint::Ik(c) => {
+                    on(c.target)
+                        && match c.bones {
+                            IkBones::One(b) => on(b),
+                            IkBones::Two { parent, child } => on(parent) && on(child),
+                        }
+                }
+                Constraint::Transform(c) => on(c.target) && c.bones.iter().all(|&b| on(b)),
+            }
     }
 
     fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
@@ -365,7 +359,7 @@ impl Character {
                 return Err(PoseError::TurnRotation { bone, rotation });
             }
         }
-        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| *k >= self.constraints.len()) {
+        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| self.ik(*k).is_none()) {
             return Err(PoseError::UnknownConstraint(k));
         }
         Ok(())

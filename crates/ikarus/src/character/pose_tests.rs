@@ -28,7 +28,6 @@ fn character() -> Character {
                 keys: vec![key(0.0, 0.0), key(1.0, 1.0)],
             }],
             constraints: vec![],
-            transforms: vec![],
         }],
         ..CharacterParts::default()
     })
@@ -105,7 +104,7 @@ fn bad_requests_are_refused_by_name() {
     assert_eq!(
         bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)], turns: &[], skin: None }, &mut out)
             .to_string(),
-        format!("bend: no constraint {k}")
+        format!("bend: no IK constraint {k}")
     );
 }
 

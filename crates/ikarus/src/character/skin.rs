@@ -10,17 +10,7 @@
 //! - an inactive bone is not posed: its world transform is left at zeros (as the runtime leaves
 //!   it), and an inactive constraint does nothing.
 
-use super::CharacterBone;
-use super::transform::Step;
-
-/// A constraint of any kind, by its index in its kind's list.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SkinConstraint {
-    /// An IK constraint (index in [`super::Character::constraints`]).
-    Ik(usize),
-    /// A transform constraint (index in [`super::Character::transforms`]).
-    Transform(usize),
-}
+use super::{CharacterBone, CharacterError};
 
 /// A skin: its name and what it turns on (its attachments are not read here).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -29,8 +19,9 @@ pub struct Skin {
     pub name: String,
     /// The skin-required bones it turns on (Spine's `bones` of a skin).
     pub bones: Vec<usize>,
-    /// The skin-required constraints it turns on (Spine's `ik`, `transform` of a skin).
-    pub constraints: Vec<SkinConstraint>,
+    /// The skin-required constraints it turns on (Spine's `ik`, `transform`, … of a skin), by
+    /// index in [`super::Character::constraints`].
+    pub constraints: Vec<usize>,
 }
 
 /// What only a skin turns on: the bones and constraints marked `"skin": true`.
@@ -38,8 +29,8 @@ pub struct Skin {
 pub struct SkinRequired {
     /// The skin-required bones.
     pub bones: Vec<usize>,
-    /// The skin-required constraints.
-    pub constraints: Vec<SkinConstraint>,
+    /// The skin-required constraints, by index in [`super::Character::constraints`].
+    pub constraints: Vec<usize>,
 }
 
 impl SkinRequired {
@@ -54,8 +45,8 @@ impl SkinRequired {
 pub(crate) struct Active {
     /// Per bone.
     pub(crate) bones: Vec<bool>,
-    /// Per step (the constraints in update order), as the skin goes (not yet its bones).
-    pub(crate) steps: Vec<bool>,
+    /// Per constraint, as the skin goes (not yet its bones).
+    pub(crate) constraints: Vec<bool>,
     /// Scratch: the listed bones and their parents.
     listed: Vec<bool>,
 }
@@ -67,64 +58,37 @@ pub(crate) struct Activity {
     pub(crate) any: bool,
     /// Per bone, whether it is skin-required.
     bone_required: Vec<bool>,
-    /// Per step (the constraints in update order), whether it is skin-required.
-    step_required: Vec<bool>,
-    /// Each IK constraint's place in the steps.
-    ik_step: Vec<usize>,
-    /// Each transform constraint's place in the steps.
-    transform_step: Vec<usize>,
+    /// Per constraint, whether it is skin-required.
+    constraint_required: Vec<bool>,
 }
 
 impl Activity {
-    /// The activity rules of `bones` (count) and `steps` with `required` skin-required.
-    pub(crate) fn new(bones: usize, steps: &[Step], required: &SkinRequired) -> Activity {
-        let (mut ik_step, mut transform_step) = (Vec::new(), Vec::new());
-        for (pos, s) in steps.iter().enumerate() {
-            match *s {
-                Step::Ik(k) => {
-                    ik_step.resize(ik_step.len().max(k + 1), 0);
-                    ik_step[k] = pos;
-                }
-                Step::Transform(k) => {
-                    transform_step.resize(transform_step.len().max(k + 1), 0);
-                    transform_step[k] = pos;
-                }
-            }
-        }
+    /// The activity rules of `bones` bones and `constraints` constraints with `required`
+    /// skin-required (indices checked by [`check`]).
+    pub(crate) fn new(bones: usize, constraints: usize, required: &SkinRequired) -> Activity {
         let mut out = Activity {
             any: !required.is_empty(),
             bone_required: vec![false; bones],
-            step_required: vec![false; steps.len()],
-            ik_step,
-            transform_step,
+            constraint_required: vec![false; constraints],
         };
         for &b in &required.bones {
             out.bone_required[b] = true;
         }
         for &c in &required.constraints {
-            let pos = out.step(c);
-            out.step_required[pos] = true;
+            out.constraint_required[c] = true;
         }
         out
     }
 
-    /// The place of `c` in the steps.
-    fn step(&self, c: SkinConstraint) -> usize {
-        match c {
-            SkinConstraint::Ik(k) => self.ik_step[k],
-            SkinConstraint::Transform(k) => self.transform_step[k],
-        }
-    }
-
-    /// Which bones (`bones`) and steps are active with `skin` (`None`: no skin), into `out`: a
-    /// step here only as the skin goes; posing also checks the bones it reads. See the module's
-    /// doc.
+    /// Which bones (`bones`) and constraints are active with `skin` (`None`: no skin), into
+    /// `out`: a constraint here only as the skin goes; posing also checks the bones it reads. See
+    /// the module's doc.
     pub(crate) fn compute(&self, bones: &[CharacterBone], skin: Option<&Skin>, out: &mut Active) {
-        let Active { bones: bone_on, steps: step_on, listed } = out;
+        let Active { bones: bone_on, constraints: step_on, listed } = out;
         bone_on.clear();
         bone_on.resize(bones.len(), true);
         step_on.clear();
-        step_on.resize(self.step_required.len(), true);
+        step_on.resize(self.constraint_required.len(), true);
         if !self.any {
             return;
         }
@@ -150,37 +114,29 @@ impl Activity {
                 bone_on[i] &= bone_on[p];
             }
         }
-        for (on, &r) in step_on.iter_mut().zip(&self.step_required) {
+        for (on, &r) in step_on.iter_mut().zip(&self.constraint_required) {
             *on = !r;
         }
         for &c in skin.map_or(&[][..], |s| &s.constraints) {
-            step_on[self.step(c)] = true;
+            step_on[c] = true;
         }
     }
 }
 
-/// Checks `skins` and `required` against a character of `bones` bones, `ik` IK constraints and
-/// `transforms` transform ones: every index existing.
+/// Checks `skins` and `required` against a character of `bones` bones and `constraints`
+/// constraints: every index existing.
 pub(crate) fn check(
     skins: &[Skin],
     required: &SkinRequired,
-    [bones, ik, transforms]: [usize; 3],
-) -> Result<(), super::CharacterError> {
-    let missing =
-        |skin: Option<usize>, what: &'static str, index: usize| super::CharacterError::SkinIndex { skin, what, index };
+    [bones, constraints]: [usize; 2],
+) -> Result<(), CharacterError> {
     let lists = skins.iter().enumerate().map(|(i, s)| (Some(i), &s.bones, &s.constraints));
     for (skin, b, c) in lists.chain([(None, &required.bones, &required.constraints)]) {
-        if let Some(&i) = b.iter().find(|&&i| i >= bones) {
-            return Err(missing(skin, "bone", i));
+        if let Some(&index) = b.iter().find(|&&i| i >= bones) {
+            return Err(CharacterError::SkinIndex { skin, what: "bone", index });
         }
-        for &k in c {
-            match k {
-                SkinConstraint::Ik(i) if i >= ik => return Err(missing(skin, "IK constraint", i)),
-                SkinConstraint::Transform(i) if i >= transforms => {
-                    return Err(missing(skin, "transform constraint", i));
-                }
-                SkinConstraint::Ik(_) | SkinConstraint::Transform(_) => {}
-            }
+        if let Some(&index) = c.iter().find(|&&i| i >= constraints) {
+            return Err(CharacterError::SkinIndex { skin, what: "constraint", index });
         }
     }
     Ok(())

@@ -1,7 +1,7 @@
 use super::*;
 use crate::character::{
-    Character, CharacterParts, IkBones, IkSettings, PoseError, PoseRequest, Posed, TransformConstraint, TransformMode,
-    TransformOffsets, TransformSettings, TransformSpace,
+    Character, CharacterParts, Constraint, IkBones, IkSettings, PoseError, PoseRequest, Posed, TransformConstraint,
+    TransformMode, TransformOffsets, TransformSettings, TransformSpace,
 };
 use crate::fixtures::{character_bone, spine_ik};
 
@@ -34,13 +34,15 @@ fn dressed() -> Character {
                 aim
             },
         ],
-        constraints: vec![spine_ik("reach", 0, IkBones::One(1), 5, IkSettings::default())],
-        transforms: vec![transform],
+        constraints: vec![
+            Constraint::Ik(spine_ik("reach", 0, IkBones::One(1), 5, IkSettings::default())),
+            Constraint::Transform(transform),
+        ],
         skins: vec![
             Skin { name: "default".into(), ..Skin::default() },
-            Skin { name: "hero".into(), bones: vec![3], constraints: vec![SkinConstraint::Ik(0)] },
+            Skin { name: "hero".into(), bones: vec![3], constraints: vec![0] },
         ],
-        skin_required: SkinRequired { bones: vec![3], constraints: vec![SkinConstraint::Ik(0)] },
+        skin_required: SkinRequired { bones: vec![3], constraints: vec![0] },
         ..CharacterParts::default()
     })
     .unwrap()
@@ -112,8 +114,8 @@ fn unknown_skins_and_indices_are_refused() {
     assert_eq!(Character::new(parts).unwrap_err().to_string(), "skins[0]: bone 9 does not exist");
     let parts = CharacterParts {
         bones: c.bones().to_vec(),
-        skin_required: SkinRequired { bones: vec![], constraints: vec![SkinConstraint::Transform(0)] },
+        skin_required: SkinRequired { bones: vec![], constraints: vec![2] },
         ..CharacterParts::default()
     };
-    assert_eq!(Character::new(parts).unwrap_err().to_string(), "skin-required: transform constraint 0 does not exist");
+    assert_eq!(Character::new(parts).unwrap_err().to_string(), "skin-required: constraint 2 does not exist");
 }

@@ -8,7 +8,10 @@
 //! u = 0 and u = 1). Before the first key a timeline gives the setup value, after the last key
 //! the last key's value.
 
-use super::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, IkSettings, Interpolation, LocalTransform};
+use super::{
+    BoneKey, BoneProperty, BoneTimeline, ChannelKey, Clip, IkKey, IkSettings, Interpolation, LocalTransform,
+    MAX_CHANNELS,
+};
 
 /// A value rounded to the runtime's `f32`.
 fn f32ed(v: f64) -> f64 {
@@ -42,10 +45,10 @@ fn bezier_samples(p0: [f64; 2], c1: [f64; 2], c2: [f64; 2], p3: [f64; 2]) -> [[f
 /// character is made, exactly as [`bezier_samples`] computes them when a pose needs them.
 #[derive(Clone, Default, PartialEq)]
 pub(crate) struct Curves {
-    /// Per clip, per bone timeline then per IK timeline, per key and channel (`2·key + ch`):
-    /// the index of the segment's samples in `samples`, or `NONE` for a segment that is not a
-    /// Bézier one (and the last key's).
-    slots: Vec<Vec<Vec<u32>>>,
+    /// Per clip, per bone timeline then per constraint timeline: its channels per key and, per
+    /// key and channel (`channels·key + ch`), the index of the segment's samples in `samples`,
+    /// or `NONE` for a segment that is not a Bézier one (and the last key's).
+    slots: Vec<Vec<(usize, Vec<u32>)>>,
     samples: Vec<[[f64; 2]; 9]>,
 }
 
@@ -65,16 +68,16 @@ impl Curves {
         for clip in clips {
             let mut per_clip = Vec::with_capacity(clip.bones.len() + clip.constraints.len());
             for t in &clip.bones {
-                per_clip.push(out.timeline(t.keys.len(), |i, ch| {
+                per_clip.push(out.timeline(t.keys.len(), 2, |i, ch| {
                     let (k, n) = (&t.keys[i], &t.keys[i + 1]);
                     (k.curves[ch], [k.time, k.values[ch]], [n.time, n.values[ch]])
                 }));
             }
             for t in &clip.constraints {
-                per_clip.push(out.timeline(t.keys.len(), |i, ch| {
-                    let (k, n) = (&t.keys[i], &t.keys[i + 1]);
-                    let value = |s: &IkSettings| if ch == 0 { s.mix } else { s.softness };
-                    (k.curves[ch], [k.time, value(&k.settings)], [n.time, value(&n.settings)])
+                let keys = &t.keys;
+                per_clip.push(out.timeline(keys.len(), keys.channels(), |i, ch| {
+                    let ((curve, v0), (_, v1)) = (keys.channel(i, ch), keys.channel(i + 1, ch));
+                    (curve, [keys.time(i), v0], [keys.time(i + 1), v1])
                 }));
             }
             out.slots.push(per_clip);
@@ -87,25 +90,27 @@ impl Curves {
     fn timeline(
         &mut self,
         keys: usize,
+        channels: usize,
         segment: impl Fn(usize, usize) -> (Interpolation, [f64; 2], [f64; 2]),
-    ) -> Vec<u32> {
-        let mut slots = vec![NONE; 2 * keys];
+    ) -> (usize, Vec<u32>) {
+        let mut slots = vec![NONE; channels * keys];
         for i in 0..keys.saturating_sub(1) {
-            for ch in 0..2 {
+            for ch in 0..channels {
                 if let (Interpolation::Bezier { c1, c2 }, p0, p1) = segment(i, ch) {
-                    slots[2 * i + ch] = self.samples.len() as u32;
+                    slots[channels * i + ch] = self.samples.len() as u32;
                     let f = |p: [f64; 2]| [f32ed(p[0]), f32ed(p[1])];
                     self.samples.push(bezier_samples(f(p0), c1, c2, f(p1)));
                 }
             }
         }
-        slots
+        (channels, slots)
     }
 
     /// The samples of timeline `timeline` of clip `clip` (bone timelines first) from key `key`
     /// on channel `ch`, if that segment is a Bézier one.
     fn get(&self, clip: usize, timeline: usize, key: usize, ch: usize) -> Option<&[[f64; 2]; 9]> {
-        let slot = *self.slots.get(clip)?.get(timeline)?.get(2 * key + ch)?;
+        let (channels, slots) = self.slots.get(clip)?.get(timeline)?;
+        let slot = *slots.get(channels * key + ch)?;
         self.samples.get(slot as usize)
     }
 }
@@ -255,6 +260,26 @@ pub(crate) fn ik_settings_at(r: &mut Reader, keys: &[IkKey], time: f64) -> Optio
         s.softness = r.segment(i, 1, k.curves[1], (t0, s.softness), (t1, f32ed(n.settings.softness)), time);
     }
     Some(s)
+}
+
+/// A numeric constraint timeline's first `channels` values at `time`, each interpolated with
+/// its curve; `None` before the first key (the setup settings stay).
+pub(crate) fn channels_at(
+    r: &mut Reader,
+    keys: &[ChannelKey],
+    channels: usize,
+    time: f64,
+) -> Option<[f64; MAX_CHANNELS]> {
+    let i = r.key_at(|i| keys[i].time, keys.len(), time)?;
+    let k = &keys[i];
+    let mut values = k.values.map(f32ed);
+    if let Some(n) = keys.get(i + 1) {
+        let (t0, t1) = (f32ed(k.time), f32ed(n.time));
+        for (ch, v) in values.iter_mut().enumerate().take(channels) {
+            *v = r.segment(i, ch, k.curves[ch], (t0, *v), (t1, f32ed(n.values[ch])), time);
+        }
+    }
+    Some(values)
 }
 
 /// [`apply_bone_at`] without precomputed curves nor a cached key.

@@ -24,20 +24,26 @@ fn timeline() -> BoneTimeline {
 }
 
 fn clip(t: BoneTimeline) -> Clip {
-    let ik = IkTimeline {
+    let ik = ConstraintTimeline {
         constraint: 0,
-        keys: (0..5)
-            .map(|i| IkKey {
-                time: i as f64 * 0.8,
-                settings: IkSettings { mix: 0.2 * i as f64, softness: 3.0 - i as f64 * 0.5, ..IkSettings::default() },
-                curves: [Interpolation::Bezier { c1: [0.2, 0.1], c2: [0.5, 0.9] }; 2],
-            })
-            .collect(),
+        keys: ConstraintKeys::Ik(
+            (0..5)
+                .map(|i| IkKey {
+                    time: i as f64 * 0.8,
+                    settings: IkSettings {
+                        mix: 0.2 * i as f64,
+                        softness: 3.0 - i as f64 * 0.5,
+                        ..IkSettings::default()
+                    },
+                    curves: [Interpolation::Bezier { c1: [0.2, 0.1], c2: [0.5, 0.9] }; 2],
+                })
+                .collect(),
+        ),
     };
-    Clip { name: "c".to_owned(), duration: 4.0, bones: vec![t], constraints: vec![ik], transforms: vec![] }
+    Clip { name: "c".to_owned(), duration: 4.0, bones: vec![t], constraints: vec![ik] }
 }
 
-use super::super::IkTimeline;
+use super::super::{ConstraintKeys, ConstraintTimeline};
 
 #[test]
 fn cached_keys_and_precomputed_curves_give_the_same_bits() {
@@ -63,8 +69,9 @@ fn cached_keys_and_precomputed_curves_give_the_same_bits() {
         apply_bone(&c.bones[0], &setup, &mut plain, time);
         assert_eq!((cached.x.to_bits(), cached.y.to_bits()), (plain.x.to_bits(), plain.y.to_bits()), "time {time}");
         let mut r = Reader { curves: &curves, clip: 0, timeline: 1, last: &mut last_ik };
-        let a = ik_settings_at(&mut r, &c.constraints[0].keys, time);
-        let b = ik_settings(&c.constraints[0].keys, time);
+        let ConstraintKeys::Ik(keys) = &c.constraints[0].keys else { panic!() };
+        let a = ik_settings_at(&mut r, keys, time);
+        let b = ik_settings(keys, time);
         assert_eq!(
             a.map(|s| (s.mix.to_bits(), s.softness.to_bits())),
             b.map(|s| (s.mix.to_bits(), s.softness.to_bits()))

@@ -202,7 +202,11 @@ impl Character {
         self.check_together(rules)?;
         let interrupt = solver.options().interrupt.clone();
         self.pose_until(request, out, interrupt.as_ref())?;
-        let active: Vec<usize> = (0..self.constraints.len()).filter(|&k| out.settings(k).mix > 0.0).collect();
+        let active: Vec<usize> = self
+            .ik_constraints()
+            .map(|(k, _)| k)
+            .filter(|&k| out.ik_settings(k).is_some_and(|s| s.mix > 0.0))
+            .collect();
         let limb_rules = self.limb_rules(rules);
         let moving = self.moving(rules, &limb_rules, &active);
         let mut report = TogetherReport::default();
@@ -234,8 +238,9 @@ impl Character {
         for &k in &active {
             is_active[k] = true;
         }
-        report.limbs = (0..self.constraints.len())
-            .map(|k| {
+        report.limbs = self
+            .ik_constraints()
+            .map(|(k, _)| {
                 let on = is_active[k];
                 let error = if on && self.has_tip_goal(k) { self.miss(k, out) } else { 0.0 };
                 LimbEnd { constraint: k, active: on, error }
@@ -252,9 +257,8 @@ impl Character {
         let depths = self.depths();
         for r in &rules.limbs {
             let c = self
-                .constraints
-                .get(r.constraint)
-                .ok_or_else(|| TogetherError::Rule(format!("limb: no constraint {}", r.constraint)))?;
+                .ik(r.constraint)
+                .ok_or_else(|| TogetherError::Rule(format!("limb: no IK constraint {}", r.constraint)))?;
             if !(r.weight > 0.0 && r.weight.is_finite()) {
                 return Err(TogetherError::Rule(format!("limb {:?}: weight must be > 0, got {}", c.name, r.weight)));
             }
@@ -334,9 +338,10 @@ impl Character {
     /// Whether constraint `k` is a goal of the solve: every two-bone one, and a one-bone one on
     /// a bone with a length.
     fn has_tip_goal(&self, k: usize) -> bool {
-        match self.constraints[k].bones {
-            IkBones::One(b) => self.bones[b].length > 0.0,
-            IkBones::Two { .. } => true,
+        match self.ik(k).map(|c| c.bones) {
+            Some(IkBones::One(b)) => self.bones[b].length > 0.0,
+            Some(IkBones::Two { .. }) => true,
+            None => false,
         }
     }
 
@@ -345,7 +350,7 @@ impl Character {
     fn moving(&self, rules: &Together, limb_rules: &[Option<&LimbRule>], active: &[usize]) -> Vec<usize> {
         let mut on = vec![false; self.bones.len()];
         for &k in active.iter().filter(|&&k| self.has_tip_goal(k)) {
-            let c = &self.constraints[k];
+            let Some(c) = self.ik(k) else { continue };
             let own = match c.bones {
                 IkBones::One(_) => 1,
                 IkBones::Two { .. } => 2,
@@ -437,14 +442,13 @@ impl Character {
         // goes last, as a removal and a push would put it, without a scan of the goals.
         let mut slots = GoalSlots::new(frozen.bones.len());
         for &k in goals {
-            let c = &self.constraints[k];
+            let (Some(c), Some(settings)) = (self.ik(k), posed.ik_settings(k)) else { continue };
             let last = last_bone(c.bones);
             let Some(i) = index(last) else { continue };
             let [x, y] = posed.origin(c.target);
             let goal =
                 Goal::position(x, y).map_err(|e| TogetherError::Solve(format!("constraint {:?}: {e}", c.name)))?;
             let rule = limb_rules[k];
-            let settings = posed.settings(k);
             let mut g =
                 RigGoal::new(i, goal).with_weight(rule.map_or(1.0, |r| r.weight)).with_softness(settings.softness);
             if matches!(c.bones, IkBones::One(_)) || rule.is_some_and(|r| r.secondary) {
@@ -505,11 +509,14 @@ impl Character {
 
     /// The runtime's aim for the active one-bone constraints on bones of length 0.
     fn aim_zero_length(&self, active: &[usize], out: &mut Posed) {
-        let aims: Vec<(usize, IkSettings)> =
-            active.iter().filter(|&&k| !self.has_tip_goal(k)).map(|&k| (k, out.settings(k))).collect();
+        let aims: Vec<(usize, IkSettings)> = active
+            .iter()
+            .filter(|&&k| !self.has_tip_goal(k))
+            .filter_map(|&k| out.ik_settings(k).map(|s| (k, s)))
+            .collect();
         let (mut bones, ..) = out.bones(self);
         for (k, s) in aims {
-            let c = &self.constraints[k];
+            let Some(c) = self.ik(k) else { continue };
             if let IkBones::One(b) = c.bones {
                 let w = bones.world[c.target];
                 let s = if c.rule == IkRule::Spine { s } else { IkSettings { compress: false, stretch: false, ..s } };
@@ -523,7 +530,7 @@ impl Character {
     /// one-bone one (an aim: its tip reaches only by chance), the target's distance from the
     /// bone's ray (0 when it points right at it).
     fn miss(&self, k: usize, out: &Posed) -> f64 {
-        let c = &self.constraints[k];
+        let Some(c) = self.ik(k) else { return 0.0 };
         let [tx, ty] = out.origin(c.target);
         let b = last_bone(c.bones);
         match c.bones {

@@ -5,7 +5,7 @@
 
 use crate::character::{BoneRule, Placement};
 use crate::character::{
-    Character, CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LimbRule,
+    Character, CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LimbRule,
     LocalTransform, PoseRequest, Posed, Together,
 };
 use crate::math;
@@ -72,7 +72,7 @@ fn one_reachable_two_bone_limb_is_the_runtimes_answer_on_either_bend() {
         let mut parts = leg();
         let mut k = constraint("knee", 0, 2, 3, 5);
         k.setup.bend_positive = bend_positive;
-        parts.constraints = vec![k];
+        parts.constraints = [k].map(Constraint::from).into();
         let c = Character::new(parts).unwrap();
         for target in [[5.0, 8.0], [-6.0, 10.0], [3.0, 4.0]] {
             let (runtime, together) = both(&c, &[(5, target)], &Together::default());
@@ -92,7 +92,7 @@ fn two_constraints_that_fight_in_the_runtime_are_both_met() {
     // counter-clockwise from the shin (its direction worked out by the law of cosines).
     let mut parts = leg();
     // The ankle first, then the knee, which turns the shin and the foot with it.
-    parts.constraints = vec![constraint("knee", 1, 2, 3, 5), constraint("ankle", 0, 3, 4, 6)];
+    parts.constraints = [constraint("knee", 1, 2, 3, 5), constraint("ankle", 0, 3, 4, 6)].map(Constraint::from).into();
     let c = Character::new(parts).unwrap();
     let t1 = [6.0, 6.0];
     let (d, a, b) = (math::hypot(6.0, -14.0), 10.0, 8.0);
@@ -112,7 +112,7 @@ fn two_constraints_that_fight_in_the_runtime_are_both_met() {
 #[test]
 fn a_limb_of_three_bones_reaches_where_its_two_cannot() {
     let mut parts = leg();
-    parts.constraints = vec![constraint("ankle", 0, 3, 4, 6)];
+    parts.constraints = [constraint("ankle", 0, 3, 4, 6)].map(Constraint::from).into();
     let c = Character::new(parts).unwrap();
     // 14.1 from the shin's start (0, 10), beyond 8 + 4; 18.4 from the hip, within 10 + 8 + 4.
     let target = [14.0, 8.0];
@@ -131,7 +131,7 @@ fn a_limb_of_three_bones_reaches_where_its_two_cannot() {
 #[test]
 fn limits_on_a_local_rotation_hold_and_bind() {
     let mut parts = leg();
-    parts.constraints = vec![constraint("knee", 0, 2, 3, 5)];
+    parts.constraints = [constraint("knee", 0, 2, 3, 5)].map(Constraint::from).into();
     let c = Character::new(parts).unwrap();
     let target = [4.0, 8.0];
     let (_, free) = both(&c, &[(5, target)], &Together::default());
@@ -153,7 +153,7 @@ fn a_pinned_bone_keeps_its_tip_and_mix_zero_leaves_a_constraint_out() {
     let mut parts = leg();
     let mut ankle = constraint("ankle", 1, 3, 4, 6);
     ankle.setup.mix = 0.0;
-    parts.constraints = vec![constraint("knee", 0, 2, 3, 5), ankle];
+    parts.constraints = [constraint("knee", 0, 2, 3, 5), ankle].map(Constraint::from).into();
     let c = Character::new(parts).unwrap();
     let targets = [(5, [5.0, 9.0]), (6, [30.0, 30.0])];
     let (runtime, together) = both(&c, &targets, &Together::default());
@@ -185,7 +185,7 @@ fn a_parent_scaled_unevenly_is_solved_in_the_runtimes_own_world() {
     parts.bones[1].setup.scale_x = 1.15;
     parts.bones[1].setup.scale_y = 0.9;
     parts.bones[1].setup.rotation = 0.4;
-    parts.constraints = vec![constraint("ankle", 0, 3, 4, 6)];
+    parts.constraints = [constraint("ankle", 0, 3, 4, 6)].map(Constraint::from).into();
     parts.placement = Placement { position: [3.0, -2.0], scale: [1.0, 1.0] };
     let c = Character::new(parts.clone()).unwrap();
     let three = Together {
@@ -243,7 +243,7 @@ fn a_goal_on_two_bones_is_the_runtimes_two_bone_answer() {
         let mut parts = leg();
         let mut k = constraint("knee", 0, 2, 3, 5);
         k.setup.bend_positive = bend_positive;
-        parts.constraints = vec![k];
+        parts.constraints = [k].map(Constraint::from).into();
         let with_constraint = Character::new(parts).unwrap();
         let free = Character::new(leg()).unwrap();
         for target in [[5.0, 8.0], [-6.0, 10.0], [3.0, 4.0]] {
@@ -307,7 +307,7 @@ fn a_goals_bone_count_bounds_what_moves() {
     assert!(dist(placed.origin(2), setup.origin(2)) < 1e-12);
     // A goal on a constraint's last bone replaces the constraint's; another constraint stays met.
     let mut parts = leg();
-    parts.constraints = vec![constraint("knee", 0, 2, 3, 5)];
+    parts.constraints = [constraint("knee", 0, 2, 3, 5)].map(Constraint::from).into();
     let both_c = Character::new(parts).unwrap();
     let g = tip_goal(3, Goal::position(4.0, 9.0).unwrap(), 2);
     let rules = Together { goals: vec![g], ..Together::default() };

@@ -32,7 +32,7 @@
 //! 1`).
 
 use super::world::{Affine, Bones};
-use super::{CharacterError, Clip, IkConstraint, Inherit, LocalTransform, Placement};
+use super::{CharacterError, LocalTransform};
 use crate::math;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -71,6 +71,14 @@ impl TransformSettings {
     /// The mixes in the order clips key them: rotate, x, y, scaleX, scaleY, shearY.
     pub fn to_array(self) -> [f64; 6] {
         [self.mix_rotate, self.mix_x, self.mix_y, self.mix_scale_x, self.mix_scale_y, self.mix_shear_y]
+    }
+
+    /// The mixes from the first six of `values` ([`TransformSettings::to_array`]'s order, a
+    /// transform timeline's [`super::ChannelKey::values`]).
+    pub fn from_values(values: &[f64; super::MAX_CHANNELS]) -> Self {
+        let mut six = [0.0; 6];
+        six.copy_from_slice(&values[..6]);
+        TransformSettings::from_array(six)
     }
 
     /// The mixes from [`TransformSettings::to_array`]'s order.
@@ -273,102 +281,11 @@ pub fn local_relative(
     b
 }
 
-/// The local transform (shearX 0) whose world transform under `parent` (`None`: a root) with
-/// `inherit` is `w`: the inverse of [`super::world_transform`], exact up to rounding while the
-/// matrices are not singular (a singular one leaves `keep`, the bone's local transform before).
-pub fn local_from_world(
-    w: &Affine,
-    inherit: Inherit,
-    parent: Option<&Affine>,
-    placement: Placement,
-    keep: &LocalTransform,
-) -> LocalTransform {
-    let s = Affine::of_placement(placement);
-    let p = parent.copied().unwrap_or(s);
-    let Some([x, y]) = p.to_local(w.x, w.y) else { return *keep };
-    let m = Affine { x: 0.0, y: 0.0, ..*w };
-    let Some(inverse) = invert(&p) else { return *keep };
-    let s_inverse = invert(&Affine { x: 0.0, y: 0.0, ..s });
-    let unscaled = s_inverse.map(|si| si.times(&m));
-    let local = match (inherit, parent) {
-        (_, None) | (Inherit::Normal, _) => Some((inverse.times(&m), 0.0)),
-        (Inherit::OnlyTranslation, _) => unscaled.map(|l| (l, 0.0)),
-        (Inherit::NoRotationOrReflection, Some(p)) => {
-            let q = s_inverse.map(|si| si.times(p));
-            match (q, unscaled) {
-                (Some(q), Some(u)) => {
-                    let sx2 = q.a * q.a + q.c * q.c;
-                    let (frame, theta) = if sx2 > 1e-8 {
-                        let k = q.det().abs() / sx2;
-                        (Affine { a: q.a, b: -q.c * k, c: q.c, d: q.a * k, x: 0.0, y: 0.0 }, math::atan2(q.c, q.a))
-                    } else {
-                        (Affine { a: 0.0, b: 0.0, c: 0.0, d: math::hypot(q.b, q.d), x: 0.0, y: 0.0 }, 0.0)
-                    };
-                    invert(&frame).map(|f| (f.times(&u), theta))
-                }
-                _ => None,
-            }
-        }
-        (Inherit::NoScale | Inherit::NoScaleOrReflection, Some(p)) => {
-            // The world x axis's direction is Q·(cos r, sin r)'s: r from Q⁻¹ applied to it.
-            let q = s_inverse.map(|si| si.times(p));
-            match (q.and_then(|q| invert(&q).map(|qi| (q, qi))), unscaled) {
-                (Some((q, qi)), Some(u)) => {
-                    let [rx, ry] = qi.apply(u.a, u.c);
-                    let r = math::atan2(ry, rx);
-                    let (sin, cos) = math::sin_cos(r);
-                    let [zx, zy] = q.apply(cos, sin);
-                    let len = math::hypot(zx, zy);
-                    let (za, zc) = if len > 1e-12 { (zx / len, zy / len) } else { (1.0, 0.0) };
-                    let flip = if inherit == Inherit::NoScale && q.det() < 0.0 { -1.0 } else { 1.0 };
-                    let z = Affine { a: za, b: -zc * flip, c: zc, d: za * flip, x: 0.0, y: 0.0 };
-                    invert(&z).map(|zi| (zi.times(&u), r))
-                }
-                _ => None,
-            }
-        }
-    };
-    let Some((l, extra)) = local else { return *keep };
-    let mut out = decompose(&l);
-    out.rotation += extra;
-    LocalTransform { x, y, ..out }
-}
-
-/// The inverse of `m`'s matrix (origin 0), `None` when singular.
-fn invert(m: &Affine) -> Option<Affine> {
-    let det = m.det();
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    Some(Affine { a: m.d / det, b: -m.b / det, c: -m.c / det, d: m.a / det, x: 0.0, y: 0.0 })
-}
-
-/// Rotation, scales and y shear (shearX 0) of a local matrix `l`: the x axis gives the
-/// rotation and scaleX, the y axis's length scaleY (negative when `l` mirrors) and its angle
-/// from the x axis, less π/2, shearY. An x axis shorter than 1e-4 is taken as none: scaleX
-/// 0, the rotation from the y axis.
-fn decompose(l: &Affine) -> LocalTransform {
-    let sx = math::hypot(l.a, l.c);
-    let det = l.det();
-    if sx <= 1e-4 {
-        let sy = math::hypot(l.b, l.d);
-        return LocalTransform {
-            rotation: math::atan2(l.d, l.b) - FRAC_PI_2,
-            scale_x: 0.0,
-            scale_y: sy,
-            ..LocalTransform::default()
-        };
-    }
-    let rotation = math::atan2(l.c, l.a);
-    let sy = math::hypot(l.b, l.d) * if det < 0.0 { -1.0 } else { 1.0 };
-    let shear_y = if sy == 0.0 { 0.0 } else { wrap(math::atan2(l.d / sy, l.b / sy) - rotation - FRAC_PI_2) };
-    LocalTransform { x: 0.0, y: 0.0, rotation, scale_x: sx, scale_y: sy, shear_x: 0.0, shear_y }
-}
-
 /// Applies constraint `c` with mixes `m` to the bones being posed: each bone's transform changed
-/// (see the module's doc) and, in the world variants, its local transform recomputed from its
-/// new world one. The caller updates the world transforms below the bones afterwards (in the
-/// local variants, the bones' own too).
+/// (see the module's doc); in the world variants its world transform set and its applied local
+/// transform recomputed from it ([`Bones::set_world`]), in the local variants its local
+/// transform set and its world transform (and those below it) recomputed. The caller updates
+/// the bones strictly below them afterwards.
 pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSettings) {
     let o = &c.offsets;
     match c.space {
@@ -379,9 +296,7 @@ pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSetting
                     TransformMode::Absolute => world_absolute(&v.world[b], &t, o, m),
                     TransformMode::Relative => world_relative(&v.world[b], &t, o, m),
                 };
-                v.world[b] = w;
-                let parent = v.bones[b].parent.map(|p| v.world[p]);
-                v.local[b] = local_from_world(&w, v.bones[b].inherit, parent.as_ref(), v.placement, &v.local[b]);
+                v.set_world(b, w);
             }
         }
         TransformSpace::Local => {
@@ -391,47 +306,20 @@ pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSetting
                     TransformMode::Absolute => local_absolute(&v.local[b], &t, o, m),
                     TransformMode::Relative => local_relative(&v.local[b], &t, o, m),
                 };
+                v.update_below(b);
             }
         }
     }
 }
 
-/// One constraint of any kind, by its index in its kind's list.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Step {
-    /// An IK constraint.
-    Ik(usize),
-    /// A transform constraint.
-    Transform(usize),
-}
-
-/// Every constraint in the order they apply: by `order`, and for equal orders IK constraints
-/// first, then transform ones, each kind as listed (Spine's update order looks for the
-/// constraint of each order among its IK constraints first, then its transform ones).
-pub(crate) fn steps(ik: &[IkConstraint], transforms: &[TransformConstraint]) -> Vec<Step> {
-    let mut out: Vec<(u32, u8, usize, Step)> =
-        ik.iter().enumerate().map(|(i, c)| (c.order, 0, i, Step::Ik(i))).collect();
-    out.extend(transforms.iter().enumerate().map(|(i, c)| (c.order, 1, i, Step::Transform(i))));
-    out.sort_by_key(|&(order, kind, i, _)| (order, kind, i));
-    out.into_iter().map(|(.., s)| s).collect()
-}
-
-/// Checks the transform constraints of a character of `bones` bones and their timelines in
-/// `clips`: every bone and target existing, every offset and mix finite, keys in increasing
-/// finite time.
-pub(crate) fn check(transforms: &[TransformConstraint], bones: usize, clips: &[Clip]) -> Result<(), CharacterError> {
-    let finite = |constraint: usize, s: &TransformSettings| {
-        let names = ["mixRotate", "mixX", "mixY", "mixScaleX", "mixScaleY", "mixShearY"];
-        match names.iter().zip(s.to_array()).find(|(_, v)| !v.is_finite()) {
-            Some((field, value)) => Err(CharacterError::TransformSetting { constraint, field, value }),
-            None => Ok(()),
-        }
-    };
-    for (k, c) in transforms.iter().enumerate() {
-        if let Some(&bone) = c.bones.iter().chain([&c.target]).find(|&&b| b >= bones) {
+impl TransformConstraint {
+    /// Checks it against a character of `bones` bones (constraint `k` of the list): its bones
+    /// and target existing, every offset and mix finite.
+    pub(crate) fn check(&self, k: usize, bones: usize) -> Result<(), CharacterError> {
+        if let Some(&bone) = self.bones.iter().chain([&self.target]).find(|&&b| b >= bones) {
             return Err(CharacterError::TransformBone { constraint: k, bone });
         }
-        let o = &c.offsets;
+        let o = &self.offsets;
         let offsets = [
             ("rotation", o.rotation),
             ("x", o.x),
@@ -441,28 +329,21 @@ pub(crate) fn check(transforms: &[TransformConstraint], bones: usize, clips: &[C
             ("shearY", o.shear_y),
         ];
         if let Some(&(field, value)) = offsets.iter().find(|(_, v)| !v.is_finite()) {
-            return Err(CharacterError::TransformSetting { constraint: k, field, value });
+            return Err(CharacterError::NotFiniteSetting { constraint: k, field, value });
         }
-        finite(k, &c.setup)?;
+        check_mixes(k, &self.setup)
     }
-    for (ci, clip) in clips.iter().enumerate() {
-        for t in &clip.transforms {
-            if t.constraint >= transforms.len() {
-                return Err(CharacterError::MissingTarget {
-                    clip: ci,
-                    what: "transform constraint",
-                    index: t.constraint,
-                });
-            }
-            super::check_times(ci, t.keys.iter().map(|k| k.time))?;
-            for k in &t.keys {
-                if let Some(value) = k.settings.to_array().into_iter().find(|v| !v.is_finite()) {
-                    return Err(CharacterError::KeyValue { clip: ci, value });
-                }
-            }
-        }
+}
+
+/// The mixes' names in Spine's terms, in [`TransformSettings::to_array`]'s order.
+pub const MIX_NAMES: [&str; 6] = ["mixRotate", "mixX", "mixY", "mixScaleX", "mixScaleY", "mixShearY"];
+
+/// Checks that the mixes of constraint `k` are finite.
+pub(crate) fn check_mixes(k: usize, s: &TransformSettings) -> Result<(), CharacterError> {
+    match MIX_NAMES.iter().zip(s.to_array()).find(|(_, v)| !v.is_finite()) {
+        Some((&field, value)) => Err(CharacterError::NotFiniteSetting { constraint: k, field, value }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -3,8 +3,8 @@
 
 use crate::Interrupt;
 use crate::character::{
-    Character, CharacterBone, CharacterParts, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
-    PoseError, PoseRequest, Posed, Together, TogetherError,
+    Character, CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit,
+    LocalTransform, PoseError, PoseRequest, Posed, Together, TogetherError,
 };
 use crate::solve::{SolveOptions, Solver};
 
@@ -37,6 +37,7 @@ fn aimed_chain(n: usize) -> Character {
             uniform: false,
             rule: IkRule::Spine,
         })
+        .map(Constraint::from)
         .collect();
     Character::new(CharacterParts { bones, constraints, ..CharacterParts::default() }).unwrap()
 }

@@ -20,7 +20,7 @@
 //! A root bone's parent is the skeleton itself: `P = S`, `o` = the skeleton's position.
 
 use super::flat::{Link, ROOT};
-use super::{CharacterBone, IkBones, IkConstraint, Inherit, LocalTransform, Placement};
+use super::{CharacterBone, Constraint, IkBones, Inherit, LocalTransform, Placement};
 use crate::math;
 use std::f64::consts::FRAC_PI_2;
 
@@ -305,6 +305,25 @@ impl Bones<'_> {
         match subtree {
             super::flat::Subtree::Listed(bones) => self.update_listed(bones),
             super::flat::Subtree::Below(top) => self.update_below(top),
+            super::flat::Subtree::Under(tops) => self.update_under(tops),
+        }
+    }
+
+    /// Recomputes the world transforms of every bone strictly below one of `tops` (not `tops`
+    /// themselves, unless one is below another): [`super::flat::strictly_below`] by a scan.
+    fn update_under(&mut self, tops: &[u32]) {
+        let Some(&first) = tops.iter().min() else { return };
+        let first = first as usize;
+        self.below[first..].fill(false);
+        for &t in tops {
+            self.below[t as usize] = true;
+        }
+        for j in first + 1..self.links.len() {
+            let p = self.links[j].parent;
+            if p != ROOT && p as usize >= first && self.below[p as usize] {
+                self.below[j] = true;
+                self.update(j);
+            }
         }
     }
 
@@ -330,7 +349,7 @@ impl Bones<'_> {
 /// bones, the parent of its first bone) and no bone the first pass computes is its child. The
 /// pose's every number is then the same, bit for bit, with one update fewer per such bone.
 /// `order` is the constraints' indices in the order they apply.
-pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], order: &[usize]) -> Vec<bool> {
+pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[Constraint], order: &[usize]) -> Vec<bool> {
     let n = bones.len();
     // The first constraint (its place in `order`) whose update recomputes the bone, and the
     // first that reads it.
@@ -338,8 +357,13 @@ pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], or
     // first, the earliest of a bone's own and its parent's (a constraint's update recomputes its
     // top and every bone below it).
     let (mut fresh, mut read) = (vec![usize::MAX; n], vec![usize::MAX; n]);
+    let mut other = usize::MAX;
     for (pos, &k) in order.iter().enumerate() {
-        let c = &constraints[k];
+        let Some(c) = constraints[k].ik() else {
+            // Another kind may read any bone: nothing is skipped past the first one.
+            other = other.min(pos);
+            continue;
+        };
         let (top, child) = match c.bones {
             IkBones::One(b) => (b, None),
             IkBones::Two { parent, child } => (parent, Some(child)),
@@ -353,6 +377,7 @@ pub(crate) fn deferred(bones: &[CharacterBone], constraints: &[IkConstraint], or
         if let Some(p) = bones[j].parent {
             fresh[j] = fresh[j].min(fresh[p]);
         }
+        read[j] = read[j].min(other);
     }
     let mut deferred: Vec<bool> = (0..n).map(|j| fresh[j] != usize::MAX && read[j] > fresh[j]).collect();
     // A bone the first pass computes reads its parent: that one is computed too.

@@ -14,8 +14,8 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use ikarus::character::{
-    BoneKey, BoneProperty, BoneTimeline, CharacterBone, Clip, IkBones, IkConstraint, IkRule, IkSettings, IkTimeline,
-    Inherit, Interpolation, LocalTransform,
+    BoneKey, BoneProperty, BoneTimeline, CharacterBone, Clip, ConstraintTimeline, IkBones, IkConstraint, IkRule,
+    IkSettings, Inherit, Interpolation, LocalTransform,
 };
 use ikarus::kinematics::end_effector;
 use ikarus::rng::SplitMix64;
@@ -229,7 +229,12 @@ pub fn spine_ik(name: &str, order: u32, bones: IkBones, target: usize, setup: Ik
 
 /// A clip `walk` of 1 s: one rotate timeline on `bone` with a key at each `(time, value)` (both
 /// channels `value`, both curves `curve`), and the IK timelines `constraints`.
-pub fn rotate_clip(bone: usize, keys: [(f64, f64); 2], curve: Interpolation, constraints: Vec<IkTimeline>) -> Clip {
+pub fn rotate_clip(
+    bone: usize,
+    keys: [(f64, f64); 2],
+    curve: Interpolation,
+    constraints: Vec<ConstraintTimeline>,
+) -> Clip {
     Clip {
         name: "walk".into(),
         duration: 1.0,
@@ -239,6 +244,5 @@ pub fn rotate_clip(bone: usize, keys: [(f64, f64); 2], curve: Interpolation, con
             keys: keys.iter().map(|&(time, value)| BoneKey { time, values: [value; 2], curves: [curve; 2] }).collect(),
         }],
         constraints,
-        transforms: vec![],
     }
 }

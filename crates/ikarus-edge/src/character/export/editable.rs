@@ -172,7 +172,8 @@ impl<'a> Job<'_, '_, 'a> {
                 }
             }
             for (name, keys) in clip.get("ik").and_then(Value::as_object).into_iter().flatten() {
-                let setup = c.constraints().iter().find(|k| &k.name == name).map_or(json!({}), |k| settings(&k.setup));
+                let setup =
+                    c.ik_constraints().find(|(_, k)| &k.name == name).map_or(json!({}), |(_, k)| settings(&k.setup));
                 let keys = keys.as_array().map_or(&[][..], Vec::as_slice);
                 ik.insert(name.clone(), Value::Array(looped(keys, cycles, length, self.legacy, &setup)));
             }
@@ -214,7 +215,7 @@ impl<'a> Job<'_, '_, 'a> {
         }
         self.turns(&turned, &mut bones)?;
         for (k, bends) in self.motion.bend_keys().iter().filter(|(_, b)| !b.is_empty()) {
-            let name = self.character().constraints()[*k].name.clone();
+            let name = self.character().constraints()[*k].name().to_owned();
             let mut keys = match ik.remove(&name) {
                 Some(Value::Array(keys)) => keys,
                 _ => Vec::new(),

@@ -25,7 +25,7 @@ pub(super) fn settings(s: &IkSettings) -> Value {
 /// mix 0 a constraint leaves the bones where the keys put them.
 pub(super) fn switched_off(c: &Character) -> Map<String, Value> {
     let mut ik = Map::new();
-    for k in c.constraints() {
+    for (_, k) in c.ik_constraints() {
         let mut key = settings(&k.setup);
         key["time"] = json!(0.0);
         key["mix"] = json!(0.0);

@@ -21,7 +21,8 @@ pub(super) struct Snapshot {
     pub local: Vec<LocalTransform>,
     /// Every bone's world transform.
     pub world: Vec<Affine>,
-    /// Every constraint's settings as the clip and the bend keys left them.
+    /// Every IK constraint's settings as the clip and the bend keys left them (by constraint
+    /// index; the default for a constraint of another kind).
     pub settings: Vec<IkSettings>,
 }
 
@@ -97,7 +98,7 @@ impl<'m, 'a> Sampler<'m, 'a> {
         let s = Rc::new(Snapshot {
             local: (0..bones).map(|i| p.local(i)).collect(),
             world: (0..bones).map(|i| p.world(i)).collect(),
-            settings: (0..constraints).map(|k| p.settings(k)).collect(),
+            settings: (0..constraints).map(|k| p.ik_settings(k).unwrap_or_default()).collect(),
         });
         if (self.remembered.len() + 1) * bones.max(1) > MAX_REMEMBERED {
             self.remembered.clear();

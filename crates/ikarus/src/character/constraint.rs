@@ -1,0 +1,274 @@
+//! One constraint model for every kind a character file has: the constraints in one list,
+//! applied in one update order across kinds (by `order`, ties as listed), each kind's
+//! settings in one [`Settings`] the clips key through [`ConstraintKeys`].
+//!
+//! A new kind is a new file beside this one (its constraint, its settings, how it applies)
+//! plus one arm in each enum here; the compiler then shows every match that must learn it.
+//!
+//! How posing updates the bones after a constraint ([`Updates`]): an IK constraint sets its
+//! bones' local rotations (and scales) and recomputes its top bone and every bone below it
+//! from them; a kind that writes world transforms directly (transform, path, physics, as
+//! Spine's runtime does) sets its bones' world matrices, recomputes their applied local
+//! transforms from them ([`super::world::Bones::set_world`]), and leaves to posing the bones
+//! strictly below them.
+
+use super::transform::{TransformConstraint, TransformSettings, TransformSpace, check_mixes};
+use super::{CharacterBone, CharacterError, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
+
+/// A constraint of any kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Constraint {
+    /// Inverse kinematics: one bone aims, or two bones reach, for a target bone.
+    Ik(IkConstraint),
+    /// Transform: bones follow a target bone's rotation, translation, scale and shear by six
+    /// mixes.
+    Transform(TransformConstraint),
+}
+
+/// A constraint's settings that clips can key (its mixes and the like), of its kind.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Settings {
+    /// An IK constraint's.
+    Ik(IkSettings),
+    /// A transform constraint's mixes.
+    Transform(TransformSettings),
+}
+
+/// Which bones posing recomputes after a constraint has applied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Updates<'a> {
+    /// This bone and every bone below it (the constraint changed local transforms only).
+    Subtree(usize),
+    /// Every bone strictly below these (the constraint set these bones' world transforms).
+    Below(&'a [usize]),
+}
+
+impl Constraint {
+    /// Its name in the file.
+    pub fn name(&self) -> &str {
+        match self {
+            Constraint::Ik(c) => &c.name,
+            Constraint::Transform(c) => &c.name,
+        }
+    }
+
+    /// Constraints apply in increasing `order`; ties in the order they are listed.
+    pub fn order(&self) -> u32 {
+        match self {
+            Constraint::Ik(c) => c.order,
+            Constraint::Transform(c) => c.order,
+        }
+    }
+
+    /// The kind as the file names its list: `ik`, `transform`, `path`, `physics`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Constraint::Ik(_) => "ik",
+            Constraint::Transform(_) => "transform",
+        }
+    }
+
+    /// The IK constraint, if it is one.
+    pub fn ik(&self) -> Option<&IkConstraint> {
+        match self {
+            Constraint::Ik(c) => Some(c),
+            Constraint::Transform(_) => None,
+        }
+    }
+
+    /// The IK constraint, if it is one, to change.
+    pub fn ik_mut(&mut self) -> Option<&mut IkConstraint> {
+        match self {
+            Constraint::Ik(c) => Some(c),
+            Constraint::Transform(_) => None,
+        }
+    }
+
+    /// Its settings in the setup pose.
+    pub fn setup(&self) -> Settings {
+        match self {
+            Constraint::Ik(c) => Settings::Ik(c.setup),
+            Constraint::Transform(c) => Settings::Transform(c.setup),
+        }
+    }
+
+    /// The bones posing recomputes after it.
+    pub(crate) fn updates(&self) -> Updates<'_> {
+        match self {
+            Constraint::Ik(c) => Updates::Subtree(c.top()),
+            // Local or world, the constraint leaves its bones' world transforms up to date.
+            Constraint::Transform(c) => match c.space {
+                TransformSpace::World | TransformSpace::Local => Updates::Below(&c.bones),
+            },
+        }
+    }
+
+    /// Checks it against the character's `bones` (constraint `k` of the list).
+    pub(crate) fn check(&self, k: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
+        match self {
+            Constraint::Ik(c) => c.check(k, bones),
+            Constraint::Transform(c) => c.check(k, bones.len()),
+        }
+    }
+}
+
+impl From<IkConstraint> for Constraint {
+    fn from(c: IkConstraint) -> Self {
+        Constraint::Ik(c)
+    }
+}
+
+impl From<TransformConstraint> for Constraint {
+    fn from(c: TransformConstraint) -> Self {
+        Constraint::Transform(c)
+    }
+}
+
+impl Settings {
+    /// An IK constraint's settings, if these are.
+    pub fn ik(&self) -> Option<&IkSettings> {
+        match self {
+            Settings::Ik(s) => Some(s),
+            Settings::Transform(_) => None,
+        }
+    }
+
+    /// A transform constraint's mixes, if these are.
+    pub fn transform(&self) -> Option<&TransformSettings> {
+        match self {
+            Settings::Transform(s) => Some(s),
+            Settings::Ik(_) => None,
+        }
+    }
+}
+
+impl IkConstraint {
+    /// The constraint's top bone: its one bone, or the parent of its two.
+    pub(crate) fn top(&self) -> usize {
+        match self.bones {
+            IkBones::One(b) | IkBones::Two { parent: b, .. } => b,
+        }
+    }
+
+    fn check(&self, c: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
+        let n = bones.len();
+        let missing = |bone: usize| CharacterError::MissingBone { constraint: c, bone };
+        match self.bones {
+            IkBones::One(b) if b >= n => return Err(missing(b)),
+            IkBones::Two { parent, .. } if parent >= n => return Err(missing(parent)),
+            IkBones::Two { child, .. } if child >= n => return Err(missing(child)),
+            IkBones::Two { parent, child } if bones[child].parent != Some(parent) => {
+                return Err(CharacterError::NotParentChild { constraint: c, parent, child });
+            }
+            IkBones::One(_) | IkBones::Two { .. } => {}
+        }
+        if self.target >= n {
+            return Err(missing(self.target));
+        }
+        super::check_settings(c, &self.setup)
+    }
+}
+
+/// The most channels a key of a constraint timeline holds (a transform constraint's six mixes).
+pub const MAX_CHANNELS: usize = 6;
+
+/// One key of a constraint timeline whose values are numbers only (mixes, positions,
+/// strengths): `values[..channels]` are used, each with its curve toward the next key.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChannelKey {
+    /// Seconds from the clip's start.
+    pub time: f64,
+    /// The key's values.
+    pub values: [f64; MAX_CHANNELS],
+    /// Per channel, toward the next key (ignored on the last key).
+    pub curves: [Interpolation; MAX_CHANNELS],
+}
+
+/// A constraint timeline's keys, of the constraint's kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConstraintKeys {
+    /// An IK constraint's: mix and softness (curved), the flags (stepped).
+    Ik(Vec<IkKey>),
+    /// A transform constraint's: its six mixes in [`TransformSettings::to_array`]'s order.
+    Transform(Vec<ChannelKey>),
+}
+
+impl ConstraintKeys {
+    /// How many keys.
+    pub fn len(&self) -> usize {
+        match self {
+            ConstraintKeys::Ik(keys) => keys.len(),
+            ConstraintKeys::Transform(keys) => keys.len(),
+        }
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// An IK constraint's keys, if these are.
+    pub fn ik(&self) -> Option<&[IkKey]> {
+        match self {
+            ConstraintKeys::Ik(keys) => Some(keys),
+            ConstraintKeys::Transform(_) => None,
+        }
+    }
+
+    /// Key `i`'s time.
+    pub fn time(&self, i: usize) -> f64 {
+        match self {
+            ConstraintKeys::Ik(keys) => keys[i].time,
+            ConstraintKeys::Transform(keys) => keys[i].time,
+        }
+    }
+
+    /// How many curved channels a key has.
+    pub(crate) fn channels(&self) -> usize {
+        match self {
+            ConstraintKeys::Ik(_) => 2,
+            ConstraintKeys::Transform(_) => 6,
+        }
+    }
+
+    /// Key `i`'s curve and value on channel `ch`.
+    pub(crate) fn channel(&self, i: usize, ch: usize) -> (Interpolation, f64) {
+        match self {
+            ConstraintKeys::Ik(keys) => {
+                let k = &keys[i];
+                (k.curves[ch], if ch == 0 { k.settings.mix } else { k.settings.softness })
+            }
+            ConstraintKeys::Transform(keys) => (keys[i].curves[ch], keys[i].values[ch]),
+        }
+    }
+
+    /// Checks every key's values (the timeline of constraint `k`, which is `of`).
+    pub(crate) fn check(&self, k: usize, of: &Constraint) -> Result<(), CharacterError> {
+        match (self, of) {
+            (ConstraintKeys::Ik(keys), Constraint::Ik(_)) => {
+                keys.iter().try_for_each(|key| super::check_settings(k, &key.settings))
+            }
+            (ConstraintKeys::Transform(keys), Constraint::Transform(_)) => {
+                keys.iter().try_for_each(|key| check_mixes(k, &TransformSettings::from_values(&key.values)))
+            }
+            (keys, of) => Err(CharacterError::TimelineKind { constraint: k, keys: keys.kind(), kind: of.kind() }),
+        }
+    }
+
+    /// The kind of constraint whose settings these keys hold (`ik`, `transform`, …).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ConstraintKeys::Ik(_) => "ik",
+            ConstraintKeys::Transform(_) => "transform",
+        }
+    }
+}
+
+/// A constraint's timeline, keys in increasing time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstraintTimeline {
+    /// The constraint's index.
+    pub constraint: usize,
+    /// The keys, of the constraint's kind.
+    pub keys: ConstraintKeys,
+}
