@@ -130,7 +130,7 @@ fn measure(file: &'static str, c: &Character, poses: usize) -> Result<CharacterR
         }
         if let Some(k) = clip {
             let time = if duration > 0.0 { (i as f64 * STEP) % duration } else { 0.0 };
-            let request = PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[] };
+            let request = PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[], skin: None };
             let start = Instant::now();
             c.pose(&request, &mut animated_out).map_err(fail)?;
             let t = start.elapsed().as_secs_f64() * 1e6;

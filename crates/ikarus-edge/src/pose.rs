@@ -137,7 +137,7 @@ pub(crate) fn pose_into_until(
         }
         turns.push((bone, deg.to_radians()));
     }
-    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns };
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin: None };
     let report = match &ask.ik {
         IkChoice::Runtime => match interrupt {
             Some(token) => c.pose_watched(&request, out, token),

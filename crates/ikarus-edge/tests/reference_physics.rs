@@ -84,7 +84,7 @@ fn pose(r: &Rig, clip: Option<&str>, time: f64, physics: bool) -> Vec<Affine> {
             clock += 1.0 / 60.0;
         }
         let at = if physics { clock } else { time };
-        c.pose(&PoseRequest { clip: ci.map(|ci| (ci, at)), targets: &[], bends: &[], turns: &[] }, &mut posed).unwrap();
+        c.pose(&PoseRequest { clip: ci.map(|ci| (ci, at)), ..PoseRequest::default() }, &mut posed).unwrap();
         world = (0..c.bones().len()).map(|i| posed.world(i)).collect();
         let mut local: Vec<_> = (0..c.bones().len()).map(|i| posed.local(i)).collect();
         for (s, p) in settings.iter_mut().zip(&r.physics) {
@@ -228,7 +228,7 @@ fn the_library_plays_the_physics_constraints_as_the_runtime_does() {
     for case in reference["cases"].as_array().unwrap() {
         let k = &case["case"];
         let clip = k["animation"].as_str().map(|name| (r.c.clip_index(name).unwrap(), num(&k["time"])));
-        let request = PoseRequest { clip, targets: &[], bends: &[], turns: &[] };
+        let request = PoseRequest { clip, ..PoseRequest::default() };
         if k["physics"].as_bool().unwrap_or(false) {
             r.c.play(&request, &Play::default(), &mut posed).unwrap();
         } else {

@@ -55,7 +55,7 @@ fn apart(a: &Character, b: &Character, clip: Option<(&str, f64)>) -> (f64, f64) 
     let pose = |c: &Character| {
         let clip = clip.map(|(name, t)| (c.clip_index(name).unwrap(), t));
         let mut posed = Posed::default();
-        c.pose(&PoseRequest { clip, targets: &[], bends: &[], turns: &[] }, &mut posed).unwrap();
+        c.pose(&PoseRequest { clip, ..PoseRequest::default() }, &mut posed).unwrap();
         posed
     };
     let (p, q) = (pose(a), pose(b));

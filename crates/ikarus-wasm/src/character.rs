@@ -118,7 +118,7 @@ impl Character {
                 })?;
             self.targets.push((t[0] as usize, target_point(&bone.name, [t[1], t[2]]).map_err(invalid)?));
         }
-        c.pose(&PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[] }, &mut self.posed)
+        c.pose(&PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[], skin: None }, &mut self.posed)
             .map_err(|e| invalid(e.to_string()))?;
         for (i, bone) in self.numbers.chunks_exact_mut(PER_BONE).enumerate() {
             let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));

@@ -376,12 +376,16 @@ fn posing_a_character_allocates_nothing() {
     .unwrap();
     let mut out = Posed::default();
     let targets = [(4, [3.0, -12.0])];
-    c.pose(&PoseRequest { clip: Some((0, 0.1)), targets: &targets, bends: &[], turns: &[] }, &mut out).unwrap(); // warm-up
+    c.pose(&PoseRequest { clip: Some((0, 0.1)), targets: &targets, bends: &[], turns: &[], skin: None }, &mut out)
+        .unwrap(); // warm-up
     let (count, ()) = allocations_in(|| {
         for i in 0..100 {
             let time = i as f64 / 100.0;
-            c.pose(&PoseRequest { clip: Some((0, time)), targets: &targets, bends: &[], turns: &[] }, &mut out)
-                .unwrap();
+            c.pose(
+                &PoseRequest { clip: Some((0, time)), targets: &targets, bends: &[], turns: &[], skin: None },
+                &mut out,
+            )
+            .unwrap();
         }
     });
     assert_eq!(count, 0, "{count} allocations in 100 poses");
@@ -410,8 +414,8 @@ fn posing_the_shipped_characters_allocates_nothing() {
             let time = (i as f64 / 60.0) % duration;
             [
                 PoseRequest::default(),
-                PoseRequest { clip: Some((walk, time)), targets: &[], bends: &[], turns: &[] },
-                PoseRequest { clip: Some((walk, time)), targets: &targets, bends: &[], turns: &[] },
+                PoseRequest { clip: Some((walk, time)), targets: &[], bends: &[], turns: &[], skin: None },
+                PoseRequest { clip: Some((walk, time)), targets: &targets, bends: &[], turns: &[], skin: None },
             ]
         };
         for r in requests(0) {

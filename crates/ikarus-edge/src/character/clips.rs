@@ -3,6 +3,10 @@
 //! constraints' (`ik`); every other timeline (slots, deform, draw order, events, attachments,
 //! `inherit`, transform, path and physics constraints') is skipped.
 //!
+//! Transform constraints' timelines (`transform`) key the six mixes (`mixRotate`, `mixX`,
+//! `mixY`, `mixScaleX`, `mixScaleY`, `mixShearY`; 3.8: `rotateMix`, `translateMix`, `scaleMix`,
+//! `shearMix`) with the defaults of [`super::spine_transform`], a curve per mix.
+//!
 //! A key's `time` defaults to 0; its value is `value` (3.8: `angle` for a rotation) or `x`, `y`,
 //! defaulting to 1 for a scale and to 0 otherwise; an IK key's `mix` to 1, `softness` to 0,
 //! `bendPositive` to true, `compress` and `stretch` to false. `curve` is absent (linear),
@@ -16,7 +20,8 @@ use std::fmt;
 use std::marker::PhantomData;
 
 use ikarus::character::{
-    BoneKey, BoneProperty, BoneTimeline, Clip, ConstraintKeys, ConstraintTimeline, IkKey, IkSettings, Interpolation,
+    BoneKey, BoneProperty, BoneTimeline, ChannelKey, Clip, ConstraintKeys, ConstraintTimeline, IkKey, IkSettings,
+    Interpolation, MAX_CHANNELS,
 };
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
@@ -70,6 +75,8 @@ pub(super) struct Animation {
     bones: Ordered<Ordered<Vec<Key>>>,
     #[serde(default)]
     ik: Ordered<Vec<Key>>,
+    #[serde(default)]
+    transform: Ordered<Vec<Key>>,
 }
 
 /// A key of any timeline ikarus reads (the fields of the others are ignored).
@@ -92,6 +99,9 @@ struct Key {
     bend_positive: Option<bool>,
     compress: Option<bool>,
     stretch: Option<bool>,
+    /// A transform constraint key's mixes.
+    #[serde(flatten)]
+    mixes: super::spine_transform::MixesJson,
 }
 
 /// A key's `curve` as written.
@@ -144,6 +154,9 @@ pub(super) struct Names<'a> {
     pub bones: &'a HashMap<String, usize>,
     /// The IK constraints' names to indices (the first of a name listed twice, [`super::first_index`]).
     pub constraints: &'a HashMap<&'a str, usize>,
+    /// The transform constraints' names to their indices in the whole list of constraints (the
+    /// first of a name listed twice).
+    pub transforms: &'a HashMap<&'a str, usize>,
 }
 
 /// What a bone timeline's kind keys: the property, whether its values are angles (degrees in
@@ -222,15 +235,51 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
         }
         constraints.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Ik(keys) });
     }
+    constraints.extend(transform_timelines(a, names, &at, legacy)?);
     Ok(Clip { name: name.to_owned(), duration, bones, constraints })
+}
+
+/// The transform constraints' timelines of animation `a` (at `at`).
+fn transform_timelines(
+    a: &Animation,
+    names: &Names<'_>,
+    at: &str,
+    legacy: bool,
+) -> Result<Vec<ConstraintTimeline>, String> {
+    let mut out = Vec::new();
+    for (name, keys) in &a.transform.0 {
+        let constraint = names
+            .transforms
+            .get(name.as_str())
+            .copied()
+            .ok_or_else(|| format!("{at}.transform.{}: no transform constraint of that name", cell(name)))?;
+        let path = format!("{at}.transform.{}", cell(name));
+        for (i, k) in keys.iter().enumerate() {
+            k.mixes.settings(&format!("{path}[{i}]"))?;
+        }
+        // Every key's mixes were checked above.
+        let mixes = |k: &Key| {
+            let mut values = [0.0; MAX_CHANNELS];
+            values[..6].copy_from_slice(&k.mixes.settings("").map_or([0.0; 6], |m| m.to_array()));
+            values
+        };
+        let series = Series { path, channels: 6, unit: 1.0, legacy };
+        let keys = series
+            .read(keys, mixes)?
+            .into_iter()
+            .map(|Read { time, values, curves, .. }| ChannelKey { time, values, curves })
+            .collect();
+        out.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Transform(keys) });
+    }
+    Ok(out)
 }
 
 /// A key as read: its time, values in the model's units, curves toward the next key, and the
 /// key as written.
-struct Read<'k> {
+struct Read<'k, const N: usize> {
     time: f64,
-    values: [f64; 2],
-    curves: [Interpolation; 2],
+    values: [f64; N],
+    curves: [Interpolation; N],
     key: &'k Key,
 }
 
@@ -246,7 +295,11 @@ struct Series {
 impl Series {
     /// Each key's time, values (by `value`, in the model's units), curves toward the next key,
     /// and the key itself; times must be at least 0 and increasing.
-    fn read<'k>(&self, keys: &'k [Key], value: impl Fn(&Key) -> [f64; 2]) -> Result<Vec<Read<'k>>, String> {
+    fn read<'k, const N: usize>(
+        &self,
+        keys: &'k [Key],
+        value: impl Fn(&Key) -> [f64; N],
+    ) -> Result<Vec<Read<'k, N>>, String> {
         let mut out = Vec::with_capacity(keys.len());
         for (i, k) in keys.iter().enumerate() {
             if k.time < 0.0 {
@@ -266,21 +319,21 @@ impl Series {
     }
 
     /// Key `i`'s curves toward `next` (its time and values), per channel.
-    fn curves(
+    fn curves<const N: usize>(
         &self,
         i: usize,
         k: &Key,
-        here: [f64; 2],
-        next: Option<(f64, [f64; 2])>,
-    ) -> Result<[Interpolation; 2], String> {
+        here: [f64; N],
+        next: Option<(f64, [f64; N])>,
+    ) -> Result<[Interpolation; N], String> {
         // Spine 3.8's curve, normalised to the segment from this key to the next.
         let normalised = |p: [f64; 4]| match next {
-            None => [Interpolation::Linear; 2],
-            Some((t1, there)) => [0, 1].map(|c| unit_bezier([k.time, here[c]], [t1, there[c]], p)),
+            None => [Interpolation::Linear; N],
+            Some((t1, there)) => std::array::from_fn(|c| unit_bezier([k.time, here[c]], [t1, there[c]], p)),
         };
         Ok(match &k.curve {
-            None => [Interpolation::Linear; 2],
-            Some(Curve::Stepped) => [Interpolation::Stepped; 2],
+            None => [Interpolation::Linear; N],
+            Some(Curve::Stepped) => [Interpolation::Stepped; N],
             Some(Curve::Number(cx1)) => {
                 normalised([*cx1, k.c2.unwrap_or(0.0), k.c3.unwrap_or(1.0), k.c4.unwrap_or(1.0)])
             }
@@ -294,8 +347,8 @@ impl Series {
                         n.len()
                     ));
                 }
-                let mut curves = [Interpolation::Linear; 2];
-                for (c, p) in n.chunks(4).enumerate() {
+                let mut curves = [Interpolation::Linear; N];
+                for (c, p) in n.chunks(4).enumerate().take(N) {
                     curves[c] = Interpolation::Bezier { c1: [p[0], p[1] * self.unit], c2: [p[2], p[3] * self.unit] };
                 }
                 curves

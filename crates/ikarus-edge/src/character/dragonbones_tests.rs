@@ -20,7 +20,8 @@ fn file(extra_bones: &str, ik: &str, animation: &str) -> String {
 
 fn pose(c: &Character, clip: usize, time: f64) -> Posed {
     let mut out = Posed::default();
-    c.pose(&PoseRequest { clip: Some((clip, time)), targets: &[], bends: &[], turns: &[] }, &mut out).unwrap();
+    c.pose(&PoseRequest { clip: Some((clip, time)), targets: &[], bends: &[], turns: &[], skin: None }, &mut out)
+        .unwrap();
     out
 }
 
@@ -174,7 +175,7 @@ fn the_bend_side_is_the_formats_after_the_y_flip() {
         );
         let c = load(&text, "f").unwrap().character;
         let mut p = Posed::default();
-        c.pose(&PoseRequest { clip: None, targets: &[], bends: &[], turns: &[] }, &mut p).unwrap();
+        c.pose(&PoseRequest { clip: None, targets: &[], bends: &[], turns: &[], skin: None }, &mut p).unwrap();
         let (shin, goal) = (c.bone_index("shin").unwrap(), c.bone_index("goal").unwrap());
         let elbow = p.origin(shin);
         // The elbow: 10 from the root and from the target at (15, 0): (7.5, ±√(100 − 56.25)).
@@ -198,7 +199,8 @@ fn the_mechas_animations_pose_with_the_feet_on_their_targets() {
     for (k, clip) in c.clips().iter().enumerate() {
         for step in 0..=40 {
             let time = clip.duration * f64::from(step) / 40.0;
-            c.pose(&PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[] }, &mut p).unwrap();
+            c.pose(&PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[], skin: None }, &mut p)
+                .unwrap();
             for i in 0..c.bones().len() {
                 let (o, t) = (p.origin(i), p.tip(i));
                 assert!(o.iter().chain(&t).all(|v| v.is_finite()) && p.rotation(i).is_finite(), "{} {time}", clip.name);

@@ -29,6 +29,7 @@ mod spine_path;
 mod spine_path_clips;
 pub mod spine_physics;
 mod spine_slots;
+mod spine_transform;
 pub mod store;
 
 use std::collections::HashMap;
@@ -156,7 +157,7 @@ pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
         "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters",
         loaded.format.name(),
         c.bones().len(),
-        c.constraints().len()
+        c.ik_constraints().count()
     )))
 }
 
@@ -172,12 +173,6 @@ pub fn detect(value: &Value) -> Option<Format> {
         (false, true) => Some(Format::DragonBones),
         (false, false) => None,
     }
-}
-
-/// A constraint or animation ikarus does not read: only its name is.
-#[derive(serde::Deserialize)]
-struct Named {
-    name: String,
 }
 
 /// A boolean, or the string `"true"` or `"false"` (as some exports write `bendPositive`).
@@ -326,3 +321,6 @@ mod tests;
 
 #[cfg(test)]
 mod caps_tests;
+
+#[cfg(test)]
+mod transform_tests;

@@ -1,6 +1,7 @@
 //! Spine's JSON export (4.0–4.2; 3.8 names a bone's inherit mode `transform` and writes its
-//! curves normalised): bones, IK constraints, the transform, path and physics constraints'
-//! names (left inactive), and the animations ([`super::clips`]).
+//! curves normalised): bones, IK constraints, transform constraints
+//! ([`super::spine_transform`]), the path and physics constraints' names (left inactive), and
+//! the animations ([`super::clips`]).
 //!
 //! Defaults as the format has them: a bone's `length`, `x`, `y`, `rotation`, `shearX`,
 //! `shearY` 0, `scaleX`, `scaleY` 1, `inherit` `normal`; an IK constraint's `order` 0, `mix` 1,
@@ -29,7 +30,7 @@ struct SpineFile {
     #[serde(default)]
     ik: Vec<IkJson>,
     #[serde(default)]
-    transform: Vec<super::Named>,
+    transform: Vec<super::spine_transform::TransformJson>,
     #[serde(default)]
     path: Vec<super::spine_path::PathJson>,
     #[serde(default)]
@@ -145,6 +146,10 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         })
         .collect::<Result<Vec<_>, _>>()?;
     let mut constraints = constraints;
+    // The other kinds after the IK ones (whose indices the page and the API use), in the order
+    // the file lists its kinds (ties of `order` apply as listed).
+    let first_transform = constraints.len();
+    constraints.extend(super::spine_transform::read(&file.transform, &index)?.into_iter().map(Constraint::Transform));
     let slots = super::spine_slots::read(value, &index)?;
     let first_path = constraints.len();
     for (i, k) in file.path.iter().enumerate() {
@@ -163,12 +168,15 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let physics = super::spine_physics::read(value, &index)?;
     let first_physics = constraints.len();
     constraints.extend(physics.iter().cloned().map(Constraint::Physics));
-    let mut unsupported = Vec::new();
-    for (kind, list) in [("transform", &file.transform)] {
-        unsupported.extend(list.iter().map(|n| Unsupported { kind: kind.to_owned(), name: n.name.clone() }));
-    }
-    let names =
-        clips::Names { bones: &index, constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())) };
+    let unsupported: Vec<Unsupported> = Vec::new();
+    let names = clips::Names {
+        bones: &index,
+        constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())),
+        transforms: &super::first_index(file.transform.iter().map(|k| k.name.as_str()))
+            .into_iter()
+            .map(|(name, i)| (name, first_transform + i))
+            .collect(),
+    };
     let clips = file
         .animations
         .0

@@ -10,14 +10,14 @@ const RAPTOR: &str = include_str!("../../../../examples/characters/spine-raptor-
 const STRETCHYMAN: &str = include_str!("../../../../examples/characters/spine-stretchyman-pro.json");
 const MECHA: &str = include_str!("../../../../examples/characters/dragonbones-mecha_1406_ske.json");
 
-fn load_ok(text: &str) -> Loaded {
+pub(super) fn load_ok(text: &str) -> Loaded {
     match load(text, "f") {
         Ok(l) => l,
         Err(e) => panic!("refused: {e}"),
     }
 }
 
-fn refused(text: &str) -> String {
+pub(super) fn refused(text: &str) -> String {
     match load(text, "f") {
         Ok(_) => panic!("accepted: {text}"),
         Err(e) => {
@@ -54,12 +54,15 @@ fn every_shipped_character_loads_with_notes_counts() {
     let stretchy = load_ok(STRETCHYMAN);
     let transform = kinds(&stretchy.character).iter().filter(|(k, _)| k == "transform").count();
     let path = kinds(&stretchy.character).iter().filter(|(k, _)| k == "path").count();
-    // Its 4 path constraints are read (after the IK ones), not listed as unsupported.
-    assert_eq!((transform, path, stretchy.character.unsupported().len()), (2, 0, 2));
+    // Its 2 transform and 4 path constraints are read (after the IK ones), none unsupported.
+    assert_eq!((transform, path, stretchy.character.unsupported().len()), (0, 0, 0));
     let kinds: Vec<&str> = stretchy.character.constraints().iter().map(|k| k.kind()).collect();
-    assert_eq!(kinds, ["ik", "ik", "ik", "ik", "path", "path", "path", "path"]);
+    assert_eq!(kinds, ["ik", "ik", "ik", "ik", "transform", "transform", "path", "path", "path", "path"]);
     assert_eq!(stretchy.warnings.len(), 1);
-    assert!(stretchy.warnings[0].contains("transform \"back-foot-position\""), "{:?}", stretchy.warnings);
+    assert!(stretchy.warnings[0].contains("path \"back-leg-path\""), "{:?}", stretchy.warnings);
+    let boy = load_ok(SPINEBOY);
+    let transforms = boy.character.constraints().iter().filter(|c| c.kind() == "transform").count();
+    assert_eq!((transforms, boy.character.unsupported().len()), (8, 0));
     assert!(load_ok(RAPTOR).character.unsupported().is_empty() && load_ok(RAPTOR).warnings.is_empty());
     let mecha = load_ok(MECHA);
     assert_eq!(mecha.version, "5.5");

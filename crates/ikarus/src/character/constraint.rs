@@ -12,6 +12,7 @@
 //! transforms from them ([`super::world::Bones::set_world`]), and leaves to posing the bones
 //! strictly below them.
 
+use super::transform::{TransformConstraint, TransformSettings, TransformSpace, check_mixes};
 use super::{CharacterBone, CharacterError, DeformKey, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
 use super::{PathConstraint, PathSettings, PhysicsConstraint, PhysicsProperty, PhysicsSettings};
 
@@ -24,6 +25,9 @@ pub enum Constraint {
     Path(PathConstraint),
     /// Physics (Spine 4.2): one bone swings, lags and settles as a damped spring.
     Physics(PhysicsConstraint),
+    /// Transform: bones follow a target bone's rotation, translation, scale and shear by six
+    /// mixes.
+    Transform(TransformConstraint),
 }
 
 /// A constraint's settings that clips can key (its mixes and the like), of its kind.
@@ -35,6 +39,8 @@ pub enum Settings {
     Path(PathSettings),
     /// A physics constraint's.
     Physics(PhysicsSettings),
+    /// A transform constraint's mixes.
+    Transform(TransformSettings),
 }
 
 /// Which bones posing recomputes after a constraint has applied.
@@ -53,6 +59,7 @@ impl Constraint {
             Constraint::Ik(c) => &c.name,
             Constraint::Path(c) => &c.name,
             Constraint::Physics(c) => &c.name,
+            Constraint::Transform(c) => &c.name,
         }
     }
 
@@ -62,6 +69,7 @@ impl Constraint {
             Constraint::Ik(c) => c.order,
             Constraint::Path(c) => c.order,
             Constraint::Physics(c) => c.order,
+            Constraint::Transform(c) => c.order,
         }
     }
 
@@ -71,6 +79,7 @@ impl Constraint {
             Constraint::Ik(_) => "ik",
             Constraint::Path(_) => "path",
             Constraint::Physics(_) => "physics",
+            Constraint::Transform(_) => "transform",
         }
     }
 
@@ -80,6 +89,7 @@ impl Constraint {
             Constraint::Ik(c) => Some(c),
             Constraint::Path(_) => None,
             Constraint::Physics(_) => None,
+            Constraint::Transform(_) => None,
         }
     }
 
@@ -89,6 +99,7 @@ impl Constraint {
             Constraint::Ik(c) => Some(c),
             Constraint::Path(_) => None,
             Constraint::Physics(_) => None,
+            Constraint::Transform(_) => None,
         }
     }
 
@@ -98,6 +109,7 @@ impl Constraint {
             Constraint::Ik(c) => Settings::Ik(c.setup),
             Constraint::Path(c) => Settings::Path(c.setup),
             Constraint::Physics(c) => Settings::Physics(c.setup),
+            Constraint::Transform(c) => Settings::Transform(c.setup),
         }
     }
 
@@ -107,6 +119,10 @@ impl Constraint {
             Constraint::Ik(c) => Updates::Subtree(c.top()),
             Constraint::Path(c) => Updates::Below(&c.bones),
             Constraint::Physics(c) => Updates::Below(std::slice::from_ref(&c.bone)),
+            // Local or world, the constraint leaves its bones' world transforms up to date.
+            Constraint::Transform(c) => match c.space {
+                TransformSpace::World | TransformSpace::Local => Updates::Below(&c.bones),
+            },
         }
     }
 
@@ -116,6 +132,7 @@ impl Constraint {
             Constraint::Ik(c) => c.check(k, bones),
             Constraint::Path(c) => c.check(k, bones),
             Constraint::Physics(c) => c.check(k, bones),
+            Constraint::Transform(c) => c.check(k, bones.len()),
         }
     }
 }
@@ -126,6 +143,12 @@ impl From<IkConstraint> for Constraint {
     }
 }
 
+impl From<TransformConstraint> for Constraint {
+    fn from(c: TransformConstraint) -> Self {
+        Constraint::Transform(c)
+    }
+}
+
 impl Settings {
     /// An IK constraint's settings, if these are.
     pub fn ik(&self) -> Option<&IkSettings> {
@@ -133,6 +156,15 @@ impl Settings {
             Settings::Ik(s) => Some(s),
             Settings::Path(_) => None,
             Settings::Physics(_) => None,
+            Settings::Transform(_) => None,
+        }
+    }
+
+    /// A transform constraint's mixes, if these are.
+    pub fn transform(&self) -> Option<&TransformSettings> {
+        match self {
+            Settings::Transform(s) => Some(s),
+            _ => None,
         }
     }
 }
@@ -205,6 +237,8 @@ pub enum ConstraintKeys {
     /// A physics constraint's `reset` keys: the simulation restarts when a play passes one
     /// (times only, no channel).
     PhysicsReset(Vec<ChannelKey>),
+    /// A transform constraint's: its six mixes in [`TransformSettings::to_array`]'s order.
+    Transform(Vec<ChannelKey>),
 }
 
 impl ConstraintKeys {
@@ -217,6 +251,7 @@ impl ConstraintKeys {
             }
             ConstraintKeys::PathDeform(keys) => keys.len(),
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys.len(),
+            ConstraintKeys::Transform(keys) => keys.len(),
         }
     }
 
@@ -242,6 +277,7 @@ impl ConstraintKeys {
             }
             ConstraintKeys::PathDeform(keys) => keys[i].time,
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys[i].time,
+            ConstraintKeys::Transform(keys) => keys[i].time,
         }
     }
 
@@ -254,6 +290,7 @@ impl ConstraintKeys {
             ConstraintKeys::PathDeform(_) => 0,
             ConstraintKeys::Physics { .. } => 1,
             ConstraintKeys::PhysicsReset(_) => 0,
+            ConstraintKeys::Transform(_) => 6,
         }
     }
 
@@ -271,6 +308,7 @@ impl ConstraintKeys {
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => {
                 (keys[i].curves[ch], keys[i].values[ch])
             }
+            ConstraintKeys::Transform(keys) => (keys[i].curves[ch], keys[i].values[ch]),
         }
     }
 
@@ -297,7 +335,23 @@ impl ConstraintKeys {
                 }
             }),
             (ConstraintKeys::PhysicsReset(_), Constraint::Physics(_)) => Ok(()),
-            (_, of) => Err(CharacterError::TimelineKind { constraint: k, kind: of.kind() }),
+            (ConstraintKeys::Transform(keys), Constraint::Transform(_)) => {
+                keys.iter().try_for_each(|key| check_mixes(k, &TransformSettings::from_values(&key.values)))
+            }
+            (keys, of) => Err(CharacterError::TimelineKind { constraint: k, keys: keys.kind(), kind: of.kind() }),
+        }
+    }
+
+    /// The kind of constraint whose settings these keys hold (`ik`, `transform`, …).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ConstraintKeys::Ik(_) => "ik",
+            ConstraintKeys::Transform(_) => "transform",
+            ConstraintKeys::PathPosition(_)
+            | ConstraintKeys::PathSpacing(_)
+            | ConstraintKeys::PathMix(_)
+            | ConstraintKeys::PathDeform(_) => "path",
+            ConstraintKeys::Physics { .. } | ConstraintKeys::PhysicsReset(_) => "physics",
         }
     }
 }

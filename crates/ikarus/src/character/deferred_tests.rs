@@ -48,11 +48,13 @@ fn the_skip_gives_the_same_bits() {
         full.deferred.fill(false);
         skipped += c.deferred.iter().filter(|&&d| d).count();
         let (mut a, mut b) = (Posed::default(), Posed::default());
-        for request in
-            [PoseRequest::default(), PoseRequest { clip: Some((0, 0.4)), targets: &[], bends: &[], turns: &[] }]
-        {
+        for request in [
+            PoseRequest::default(),
+            PoseRequest { clip: Some((0, 0.4)), targets: &[], bends: &[], turns: &[], skin: None },
+        ] {
             // Poses before fill the buffers with other values, as a reused `Posed` has.
-            c.pose(&PoseRequest { clip: Some((0, 0.9)), targets: &[], bends: &[], turns: &[] }, &mut a).unwrap();
+            c.pose(&PoseRequest { clip: Some((0, 0.9)), targets: &[], bends: &[], turns: &[], skin: None }, &mut a)
+                .unwrap();
             c.pose(&request, &mut a).unwrap();
             full.pose(&request, &mut b).unwrap();
             for i in 0..c.bones.len() {

@@ -44,7 +44,7 @@ fn leg(settings: IkSettings, rule: IkRule, shin_y: f64) -> CharacterParts {
 fn pose(parts: &CharacterParts, x: f64, y: f64) -> Posed {
     let c = Character::new(parts.clone()).unwrap();
     let mut out = Posed::default();
-    c.pose(&PoseRequest { clip: None, targets: &[(3, [x, y])], bends: &[], turns: &[] }, &mut out).unwrap();
+    c.pose(&PoseRequest { clip: None, targets: &[(3, [x, y])], bends: &[], turns: &[], skin: None }, &mut out).unwrap();
     out
 }
 

@@ -23,8 +23,10 @@ mod physics;
 mod physics_timeline;
 mod play;
 mod pose;
+mod skin;
 mod timeline;
 mod together;
+mod transform;
 mod world;
 
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
@@ -39,8 +41,13 @@ pub use physics::{
 pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
 pub use play::{MAX_FRAMES, Play};
 pub use pose::{PoseError, PoseRequest, Posed};
+pub use skin::{Skin, SkinRequired};
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
+};
+pub use transform::{
+    MIX_NAMES, TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,
+    local_relative, world_absolute, world_relative,
 };
 pub use world::{Affine, world_transform};
 
@@ -53,6 +60,10 @@ pub struct Character {
     clips: Vec<Clip>,
     placement: Placement,
     unsupported: Vec<Unsupported>,
+    /// The skins.
+    skins: Vec<Skin>,
+    /// What only a skin turns on, as posing reads it.
+    activity: skin::Activity,
     /// The constraints' indices in the order they apply (by `order`, ties as listed).
     order: Vec<usize>,
     /// The clips' Bézier segments, sampled once.
@@ -403,14 +414,6 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
-    /// A constraint timeline keys what its constraint's kind does not have.
-    #[error("constraints[{constraint}] ({kind}): a clip's timeline of another kind keys it")]
-    TimelineKind {
-        /// The constraint's index.
-        constraint: usize,
-        /// The constraint's kind.
-        kind: &'static str,
-    },
     /// A path constraint names a bone that does not exist.
     #[error("path constraint {constraint}: bone {bone} does not exist")]
     PathBone {
@@ -446,6 +449,45 @@ pub enum CharacterError {
         clip: usize,
         /// The time found.
         time: f64,
+    },
+    /// A transform constraint names a bone that does not exist.
+    #[error("transform[{constraint}]: bone {bone} does not exist")]
+    TransformBone {
+        /// The constraint's index.
+        constraint: usize,
+        /// The bone index named.
+        bone: usize,
+    },
+    /// A constraint's offset or mix (of a kind that takes any number) is NaN or infinite.
+    #[error("constraints[{constraint}].{field}: must be finite, got {value}")]
+    NotFiniteSetting {
+        /// The constraint's index.
+        constraint: usize,
+        /// The field's name in Spine's terms.
+        field: &'static str,
+        /// The value found.
+        value: f64,
+    },
+    /// A constraint timeline's keys are of another kind than its constraint.
+    #[error("a timeline of constraint {constraint} keys {keys} settings, but it is a {kind} constraint")]
+    TimelineKind {
+        /// The constraint's index.
+        constraint: usize,
+        /// The keys' kind.
+        keys: &'static str,
+        /// The constraint's kind.
+        kind: &'static str,
+    },
+    /// A skin (or the list of what only a skin turns on) names a bone or constraint that does
+    /// not exist.
+    #[error("{}: {what} {index} does not exist", skin.map_or("skin-required".to_owned(), |s| format!("skins[{s}]")))]
+    SkinIndex {
+        /// The skin's index (`None`: the skin-required list).
+        skin: Option<usize>,
+        /// `bone` or `constraint`.
+        what: &'static str,
+        /// The index named.
+        index: usize,
     },
     /// A key's value is NaN or infinite.
     #[error("clips[{clip}]: a key's value must be finite, got {value}")]
@@ -488,6 +530,10 @@ pub struct CharacterParts {
     pub placement: Placement,
     /// The constraints left inactive.
     pub unsupported: Vec<Unsupported>,
+    /// The skins (what each turns on).
+    pub skins: Vec<Skin>,
+    /// The bones and constraints only a skin turns on.
+    pub skin_required: SkinRequired,
 }
 
 impl Character {
@@ -497,7 +543,7 @@ impl Character {
     /// and softness not negative, every timeline's bone or constraint existing and its keys
     /// in increasing finite time with finite values.
     pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
-        let CharacterParts { bones, constraints, clips, placement, unsupported } = parts;
+        let CharacterParts { bones, constraints, clips, placement, unsupported, skins, skin_required } = parts;
         if bones.is_empty() {
             return Err(CharacterError::NoBones);
         }
@@ -554,7 +600,21 @@ impl Character {
         let curves = timeline::Curves::of(&clips);
         let deferred = world::deferred(&bones, &constraints, &order);
         let flat = flat::Flat::of(&bones, &constraints);
-        Ok(Character { bones, constraints, clips, placement, unsupported, order, curves, deferred, flat })
+        skin::check(&skins, &skin_required, [bones.len(), constraints.len()])?;
+        let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
+        Ok(Character {
+            bones,
+            constraints,
+            clips,
+            placement,
+            unsupported,
+            skins,
+            activity,
+            order,
+            curves,
+            deferred,
+            flat,
+        })
     }
 
     /// The bones, parent first.
@@ -580,6 +640,21 @@ impl Character {
     /// The animation clips.
     pub fn clips(&self) -> &[Clip] {
         &self.clips
+    }
+
+    /// The skins, as listed in the file.
+    pub fn skins(&self) -> &[Skin] {
+        &self.skins
+    }
+
+    /// The index of the skin called `name`.
+    pub fn skin_index(&self, name: &str) -> Option<usize> {
+        self.skins.iter().position(|s| s.name == name)
+    }
+
+    /// The skin a pose takes unless told otherwise: the one called `default`, if any.
+    pub fn default_skin(&self) -> Option<usize> {
+        self.skin_index("default")
     }
 
     /// The skeleton's own position and scale.

@@ -6,6 +6,7 @@ use super::path;
 use super::path::apply::PathPose;
 use super::timeline;
 use super::timeline::Reader;
+use super::transform::{self, TransformSettings};
 use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{
     Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, PhysicsInput, PhysicsMode,
@@ -31,6 +32,10 @@ pub struct PoseRequest<'a> {
     /// setup pose's) in place of what the clip (or the setup pose) gives it, before the targets
     /// and the constraints, as a rotate key of the clip would set it: a bone turned by hand.
     pub turns: &'a [(usize, f64)],
+    /// The skin (its index in [`Character::skins`]) whose skin-required bones and constraints
+    /// take part; `None`: no skin, so only those not skin-required do (the edge asks for
+    /// [`Character::default_skin`] unless told otherwise). See [`super::skin`].
+    pub skin: Option<usize>,
 }
 
 /// A pose request the character cannot take.
@@ -78,6 +83,9 @@ pub enum PoseError {
         /// The rotation, radians.
         rotation: f64,
     },
+    /// The skin index is not one of the character's skins.
+    #[error("skin: no skin {0}")]
+    UnknownSkin(usize),
     /// A bend names a constraint that does not exist or is not an IK constraint.
     #[error("bend: no IK constraint {0}")]
     UnknownConstraint(usize),
@@ -103,6 +111,8 @@ pub struct Posed {
     settings: Vec<Settings>,
     /// Per bone, the sines and cosines its world transform last needed (kept across poses).
     trig: Vec<BoneTrig>,
+    /// Which bones and constraints the skin turns on.
+    active: super::skin::Active,
     /// Per timeline of the clip last posed (bone timelines first), the number of keys at or
     /// before the time last asked: where the next time's key is looked for first.
     keys: Vec<u32>,
@@ -112,6 +122,15 @@ pub struct Posed {
     pub(crate) physics: Vec<PhysicsState>,
     /// Per constraint, whether a `reset` key of the clip was passed in this frame.
     restart: Vec<bool>,
+}
+
+/// What posing keeps per constraint and per bone besides the bones, taken out of [`Posed`]
+/// while its bones are borrowed.
+struct Scratch<'a> {
+    physics: &'a mut [PhysicsState],
+    restart: &'a [bool],
+    path: &'a mut PathPose,
+    active: &'a super::skin::Active,
 }
 
 /// How a pose treats the physics constraints: left out (Spine's `Physics.none`: the bones stay
@@ -143,6 +162,12 @@ impl Posed {
     /// Whether there are no bones (before the first pose).
     pub fn is_empty(&self) -> bool {
         self.world.is_empty()
+    }
+
+    /// Whether bone `i` took part in the pose (see [`super::skin`]): an inactive bone is not
+    /// posed, its world transform all zeros. Panics if `i` is not a bone.
+    pub fn is_active(&self, i: usize) -> bool {
+        self.active.bones[i]
     }
 
     /// Bone `i`'s world origin. Panics if `i` is not a bone.
@@ -258,6 +283,7 @@ impl Character {
         out.physics.resize(self.constraints.len(), PhysicsState::default());
         out.restart.clear();
         out.restart.resize(self.constraints.len(), false);
+        self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -304,6 +330,11 @@ impl Character {
                             out.restart[t.constraint] |= passed;
                         }
                     }
+                    ConstraintKeys::Transform(keys) => {
+                        if let Some(v) = timeline::channels_at(&mut r, keys, 6, time) {
+                            out.settings[t.constraint] = Settings::Transform(TransformSettings::from_values(&v));
+                        }
+                    }
                 }
             }
         }
@@ -315,15 +346,18 @@ impl Character {
                 s.bend_positive = bend_positive;
             }
         }
-        // The physics states and path buffers are taken out while the bones are borrowed, and
-        // put back after.
+        // The physics states, path buffers and activity are taken out while the bones are
+        // borrowed, and put back after.
         let mut physics = std::mem::take(&mut out.physics);
         let restart = std::mem::take(&mut out.restart);
-        let mut path_pose = std::mem::take(&mut out.path);
-        let result = self.constrain(request, out, interrupt, frame, (&mut physics, &restart, &mut path_pose));
-        out.path = path_pose;
+        let mut path = std::mem::take(&mut out.path);
+        let active = std::mem::take(&mut out.active);
+        let scratch = Scratch { physics: &mut physics, restart: &restart, path: &mut path, active: &active };
+        let result = self.constrain(request, out, interrupt, frame, scratch);
+        out.path = path;
         out.physics = physics;
         out.restart = restart;
+        out.active = active;
         result
     }
 
@@ -334,7 +368,7 @@ impl Character {
         out: &mut Posed,
         interrupt: Option<&Interrupt>,
         frame: Frame,
-        (physics, restart, path_pose): (&mut [PhysicsState], &[bool], &mut PathPose),
+        Scratch { physics, restart, path: path_pose, active }: Scratch<'_>,
     ) -> Result<(), PoseError> {
         let (mut bones, length, settings) = out.bones(self);
         if request.targets.is_empty() {
@@ -351,6 +385,11 @@ impl Character {
         for &k in &self.order {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
+            }
+            if !self.is_active(k, active) {
+                // It does nothing, but the bones the first pass left to its update are computed.
+                bones.update_subtree(self.flat.below(k));
+                continue;
             }
             match (&self.constraints[k], &settings[k]) {
                 (Constraint::Ik(c), Settings::Ik(s)) => {
@@ -373,6 +412,7 @@ impl Character {
                         }
                     }
                 }
+                (Constraint::Transform(c), Settings::Transform(s)) => transform::apply(&mut bones, c, s),
                 (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, path_pose),
                 (Constraint::Physics(c), Settings::Physics(s)) => {
                     if let Frame::Play { mode, clock, world, .. } = frame {
@@ -388,10 +428,42 @@ impl Character {
             }
             bones.update_subtree(self.flat.below(k));
         }
+        if self.activity.any {
+            // The runtime leaves an inactive bone unposed, at zeros.
+            let zero = Affine { a: 0.0, b: 0.0, c: 0.0, d: 0.0, x: 0.0, y: 0.0 };
+            for (w, _) in bones.world.iter_mut().zip(&active.bones).filter(|(_, on)| !**on) {
+                *w = zero;
+            }
+        }
         Ok(())
     }
 
+    /// Whether constraint `k` takes part in a pose whose skin turned on `active`: the skin turns
+    /// it on and its target and bones are active (see [`super::skin`]).
+    fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
+        if !self.activity.any {
+            return true;
+        }
+        let on = |b: usize| active.bones[b];
+        active.constraints[k]
+            && match &self.constraints[k] {
+                Constraint::Ik(c) => {
+                    on(c.target)
+                        && match c.bones {
+                            IkBones::One(b) => on(b),
+                            IkBones::Two { parent, child } => on(parent) && on(child),
+                        }
+                }
+                Constraint::Transform(c) => on(c.target) && c.bones.iter().all(|&b| on(b)),
+                Constraint::Path(c) => on(c.slot_bone) && c.bones.iter().all(|&b| on(b)),
+                Constraint::Physics(c) => on(c.bone),
+            }
+    }
+
     fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
+        if let Some(s) = request.skin.filter(|&s| s >= self.skins.len()) {
+            return Err(PoseError::UnknownSkin(s));
+        }
         if let Some((c, time)) = request.clip {
             if c >= self.clips.len() {
                 return Err(PoseError::UnknownClip(c));

@@ -39,7 +39,13 @@ fn a_target_puts_the_bone_origin_on_the_point() {
     let c = character();
     let mut out = Posed::default();
     c.pose(
-        &PoseRequest { clip: Some((0, 0.5)), targets: &[(2, [7.0, 8.0]), (1, [-1.0, 0.5])], bends: &[], turns: &[] },
+        &PoseRequest {
+            clip: Some((0, 0.5)),
+            targets: &[(2, [7.0, 8.0]), (1, [-1.0, 0.5])],
+            bends: &[],
+            turns: &[],
+            skin: None,
+        },
         &mut out,
     )
     .unwrap();
@@ -57,7 +63,8 @@ fn the_clip_turns_the_bone_and_its_children_follow() {
     let mut still = Posed::default();
     let mut turned = Posed::default();
     c.pose(&PoseRequest::default(), &mut still).unwrap();
-    c.pose(&PoseRequest { clip: Some((0, 0.25)), targets: &[], bends: &[], turns: &[] }, &mut turned).unwrap();
+    c.pose(&PoseRequest { clip: Some((0, 0.25)), targets: &[], bends: &[], turns: &[], skin: None }, &mut turned)
+        .unwrap();
     assert!((turned.local(1).rotation - 0.35).abs() < 1e-7);
     assert_eq!(turned.origin(1), still.origin(1));
     assert_ne!(turned.origin(2), still.origin(2));
@@ -74,24 +81,29 @@ fn bad_requests_are_refused_by_name() {
     let mut out = Posed::default();
     let bad = |r: PoseRequest, out: &mut Posed| c.pose(&r, out).unwrap_err();
     assert_eq!(
-        bad(PoseRequest { clip: Some((1, 0.0)), targets: &[], bends: &[], turns: &[] }, &mut out),
+        bad(PoseRequest { clip: Some((1, 0.0)), targets: &[], bends: &[], turns: &[], skin: None }, &mut out),
         PoseError::UnknownClip(1)
     );
     assert_eq!(
-        bad(PoseRequest { clip: Some((0, f64::NAN)), targets: &[], bends: &[], turns: &[] }, &mut out).to_string(),
+        bad(PoseRequest { clip: Some((0, f64::NAN)), targets: &[], bends: &[], turns: &[], skin: None }, &mut out)
+            .to_string(),
         "time: must be finite, got NaN"
     );
     assert_eq!(
-        bad(PoseRequest { clip: None, targets: &[(3, [0.0, 0.0])], bends: &[], turns: &[] }, &mut out),
+        bad(PoseRequest { clip: None, targets: &[(3, [0.0, 0.0])], bends: &[], turns: &[], skin: None }, &mut out),
         PoseError::UnknownBone(3)
     );
     assert!(matches!(
-        bad(PoseRequest { clip: None, targets: &[(1, [f64::INFINITY, 0.0])], bends: &[], turns: &[] }, &mut out),
+        bad(
+            PoseRequest { clip: None, targets: &[(1, [f64::INFINITY, 0.0])], bends: &[], turns: &[], skin: None },
+            &mut out
+        ),
         PoseError::TargetPoint { bone: 1, .. }
     ));
     let k = c.constraints.len();
     assert_eq!(
-        bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)], turns: &[] }, &mut out).to_string(),
+        bad(PoseRequest { clip: None, targets: &[], bends: &[(k, true)], turns: &[], skin: None }, &mut out)
+            .to_string(),
         format!("bend: no IK constraint {k}")
     );
 }

@@ -58,7 +58,7 @@ fn dist(p: [f64; 2], q: [f64; 2]) -> f64 {
 }
 
 fn both(c: &Character, targets: &[(usize, [f64; 2])], rules: &Together) -> (Posed, Posed) {
-    let request = PoseRequest { clip: None, targets, bends: &[], turns: &[] };
+    let request = PoseRequest { clip: None, targets, bends: &[], turns: &[], skin: None };
     let mut runtime = Posed::default();
     c.pose(&request, &mut runtime).unwrap();
     let mut together = Posed::default();
@@ -162,7 +162,7 @@ fn a_pinned_bone_keeps_its_tip_and_mix_zero_leaves_a_constraint_out() {
     }
     let report = c
         .pose_together(
-            &PoseRequest { clip: None, targets: &targets, bends: &[], turns: &[] },
+            &PoseRequest { clip: None, targets: &targets, bends: &[], turns: &[], skin: None },
             &Together::default(),
             &mut solver(),
             &mut Posed::default(),
@@ -204,7 +204,8 @@ fn a_parent_scaled_unevenly_is_solved_in_the_runtimes_own_world() {
         Character::new(turned).unwrap().pose(&PoseRequest::default(), &mut there).unwrap();
         let target = there.tip(4);
         let mut runtime = Posed::default();
-        c.pose(&PoseRequest { clip: None, targets: &[(6, target)], bends: &[], turns: &[] }, &mut runtime).unwrap();
+        c.pose(&PoseRequest { clip: None, targets: &[(6, target)], bends: &[], turns: &[], skin: None }, &mut runtime)
+            .unwrap();
         (target, dist(runtime.tip(4), target))
     };
     let tries = [0.6, -0.6, 1.2, -1.2, 2.0, -2.0].map(reach);
@@ -212,7 +213,7 @@ fn a_parent_scaled_unevenly_is_solved_in_the_runtimes_own_world() {
     let mut out = Posed::default();
     let report = c
         .pose_together(
-            &PoseRequest { clip: None, targets: &[(6, target)], bends: &[], turns: &[] },
+            &PoseRequest { clip: None, targets: &[(6, target)], bends: &[], turns: &[], skin: None },
             &three,
             &mut solver(),
             &mut out,
@@ -253,7 +254,7 @@ fn a_goal_on_two_bones_is_the_runtimes_two_bone_answer() {
             let mut posed = Posed::default();
             let report = free
                 .pose_together(
-                    &PoseRequest { clip: None, targets: &[], bends: &[], turns: &[] },
+                    &PoseRequest { clip: None, targets: &[], bends: &[], turns: &[], skin: None },
                     &rules,
                     &mut solver(),
                     &mut posed,
@@ -275,13 +276,13 @@ fn a_goals_bone_count_bounds_what_moves() {
     use crate::goal::Goal;
     let c = Character::new(leg()).unwrap();
     let mut setup = Posed::default();
-    c.pose(&PoseRequest { clip: None, targets: &[], bends: &[], turns: &[] }, &mut setup).unwrap();
+    c.pose(&PoseRequest { clip: None, targets: &[], bends: &[], turns: &[], skin: None }, &mut setup).unwrap();
     let solve = |g: crate::character::TipGoal| {
         let mut posed = Posed::default();
         let rules = Together { goals: vec![g], ..Together::default() };
         let r = c
             .pose_together(
-                &PoseRequest { clip: None, targets: &[], bends: &[], turns: &[] },
+                &PoseRequest { clip: None, targets: &[], bends: &[], turns: &[], skin: None },
                 &rules,
                 &mut solver(),
                 &mut posed,
@@ -313,7 +314,7 @@ fn a_goals_bone_count_bounds_what_moves() {
     let mut posed = Posed::default();
     let r = both_c
         .pose_together(
-            &PoseRequest { clip: None, targets: &[(5, [-20.0, -20.0])], bends: &[], turns: &[] },
+            &PoseRequest { clip: None, targets: &[(5, [-20.0, -20.0])], bends: &[], turns: &[], skin: None },
             &rules,
             &mut solver(),
             &mut posed,
