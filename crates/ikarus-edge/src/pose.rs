@@ -363,7 +363,7 @@ impl PoseReport {
             );
         }
         for u in &self.unsupported {
-            let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, Quoted(&u.name));
+            let _ = writeln!(out, "unsupported {} {:?}: left out", u.kind, Quoted(&u.name));
         }
         for g in self.ik.iter().flat_map(|k| &k.goals) {
             let _ = write!(out, "goal on {:?}: tip {:.6} from its point", Quoted(&g.bone), g.error);

@@ -137,7 +137,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     for (b, parent) in armature.bone.iter().zip(parent_of.iter().copied()) {
         let (inherit, exact) = inherit(b);
         if !exact {
-            unsupported.push(Unsupported { kind: "inherit".to_owned(), name: b.name.clone() });
+            unsupported.push(Unsupported { kind: "inherit mode".to_owned(), name: b.name.clone() });
         }
         let t = &b.transform;
         let setup = LocalTransform {

@@ -30,6 +30,7 @@ mod spine_path_clips;
 pub mod spine_physics;
 mod spine_slots;
 mod spine_transform;
+mod spine_unsupported;
 pub mod store;
 
 use std::collections::HashMap;

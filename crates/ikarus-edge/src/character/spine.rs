@@ -168,7 +168,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let physics = super::spine_physics::read(value, &index)?;
     let first_physics = constraints.len();
     constraints.extend(physics.iter().cloned().map(Constraint::Physics));
-    let unsupported: Vec<Unsupported> = Vec::new();
+    let unsupported = super::spine_unsupported::features(value);
     let names = clips::Names {
         bones: &index,
         constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())),
@@ -201,10 +201,10 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
 }
 
-/// `left inactive: transform constraint "a", path constraint "b"`.
+/// `not used by ikarus (left out): clipping attachment "clip (skin default, slot hand)", …`.
 pub(super) fn inactive(unsupported: &[Unsupported]) -> String {
     let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, Quoted(&u.name))).collect();
-    format!("left inactive (ikarus does not apply them): {}", list.join(", "))
+    format!("not used by ikarus (left out): {}", list.join(", "))
 }
 
 fn bone(b: &BoneJson, parent: Option<usize>) -> CharacterBone {

@@ -236,13 +236,14 @@ pub struct IkConstraint {
     pub rule: IkRule,
 }
 
-/// A constraint the character's file has and that posing leaves inactive (transform, path,
-/// physics), reported to the user.
+/// A feature of the character's file that ikarus does not use (a clipping attachment, a
+/// sequence, a field of a later format, a DragonBones inherit combination no Spine mode
+/// matches), reported to the user so that nothing is dropped silently.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Unsupported {
-    /// `transform`, `path`, `physics`, …
+    /// What it is: `clipping attachment`, `sequence`, `field`, `timeline`, `inherit mode`.
     pub kind: String,
-    /// Its name in the file.
+    /// Its name in the file, with where it is when the name alone does not say.
     pub name: String,
 }
 

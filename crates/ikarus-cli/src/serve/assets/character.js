@@ -211,7 +211,7 @@ export function handleAt(handlesPx, px, py, radius = HANDLE_PIXELS) {
 
 /** The constraints ikarus leaves inactive, one line each: "transform constraint shoulder" (none: []). */
 export function unsupportedLines(character) {
-  return (character.unsupported || []).map((u) => `${u.kind} constraint ${u.name}`);
+  return (character.unsupported || []).map((u) => `${u.kind} ${u.name}`);
 }
 
 /**

@@ -1,0 +1,129 @@
+//! What a Spine file has that ikarus does not use, listed so that nothing is dropped silently:
+//! clipping attachments, sequences (an attachment's frames shown one after another), any
+//! top-level field the 4.2 format does not have (Spine 4.3's sliders, a later kind of
+//! constraint) and any animation timeline group it does not know.
+//!
+//! Everything that poses the bones (bones, every constraint kind, skins, the bone and
+//! constraint timelines) is read elsewhere; slots, region, mesh, bounding box, point and path
+//! attachments, draw order, deform, attachment and colour timelines and events describe the art
+//! and the game's events, which ikarus does not draw: they are not listed.
+
+use ikarus::character::Unsupported;
+use serde_json::Value;
+
+/// The top-level fields of a Spine 4.2 file.
+const FIELDS: [&str; 10] =
+    ["skeleton", "bones", "slots", "ik", "transform", "path", "physics", "skins", "events", "animations"];
+
+/// The timeline groups of an animation (`drawOrder` is also written `draworder`).
+const TIMELINES: [&str; 11] = [
+    "bones",
+    "slots",
+    "ik",
+    "transform",
+    "path",
+    "physics",
+    "attachments",
+    "deform",
+    "drawOrder",
+    "draworder",
+    "events",
+];
+
+/// The unsupported features of the file `value`, in the file's order.
+pub(super) fn features(value: &Value) -> Vec<Unsupported> {
+    let mut out = Vec::new();
+    let mut push = |kind: &str, name: String| out.push(Unsupported { kind: kind.to_owned(), name });
+    let Some(top) = value.as_object() else { return Vec::new() };
+    for key in top.keys().filter(|k| !FIELDS.contains(&k.as_str())) {
+        push("field", key.clone());
+    }
+    for (skin, slot, name, attachment) in attachments(value) {
+        let at = || format!("{name} (skin {skin}, slot {slot})");
+        if attachment.get("type").and_then(Value::as_str) == Some("clipping") {
+            push("clipping attachment", at());
+        }
+        if attachment.get("sequence").is_some() {
+            push("sequence", at());
+        }
+    }
+    for (name, animation) in value.get("animations").and_then(Value::as_object).into_iter().flatten() {
+        for group in animation.as_object().into_iter().flat_map(|a| a.keys()) {
+            if !TIMELINES.contains(&group.as_str()) {
+                push("timeline", format!("{group} (animation {name})"));
+            }
+        }
+    }
+    out
+}
+
+/// Every attachment of every skin: `(skin, slot, attachment name, attachment)`. Spine 4.x lists
+/// skins in an array of `{name, attachments}`; 3.8 writes an object of skins by name.
+fn attachments(value: &Value) -> Vec<(String, &str, &str, &Value)> {
+    let skins: Vec<(String, &Value)> = match value.get("skins") {
+        Some(Value::Array(list)) => list
+            .iter()
+            .map(|s| {
+                (
+                    s.get("name").and_then(Value::as_str).unwrap_or("").to_owned(),
+                    s.get("attachments").unwrap_or(&Value::Null),
+                )
+            })
+            .collect(),
+        Some(Value::Object(by_name)) => by_name.iter().map(|(n, s)| (n.clone(), s)).collect(),
+        _ => Vec::new(),
+    };
+    let mut out = Vec::new();
+    for (skin, slots) in skins {
+        for (slot, list) in slots.as_object().into_iter().flatten() {
+            for (name, attachment) in list.as_object().into_iter().flatten() {
+                out.push((skin.clone(), slot.as_str(), name.as_str(), attachment));
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn listed(value: &Value) -> Vec<(String, String)> {
+        features(value).into_iter().map(|u| (u.kind, u.name)).collect()
+    }
+
+    #[test]
+    fn clipping_sequences_unknown_fields_and_timelines_are_listed() {
+        let file = json!({
+            "skeleton": {"spine": "4.2.0"}, "bones": [{"name": "root"}],
+            "slider": [{"name": "s"}],
+            "skins": [{"name": "default", "attachments": {"hand": {
+                "clip": {"type": "clipping", "end": "hand", "vertexCount": 3, "vertices": [0, 0, 1, 0, 0, 1]},
+                "flame": {"sequence": {"count": 3}},
+                "arm": {"type": "mesh"}
+            }}}],
+            "animations": {"go": {"bones": {}, "sliders": {}, "drawOrder": []}}
+        });
+        assert_eq!(
+            listed(&file),
+            [
+                ("field".to_owned(), "slider".to_owned()),
+                ("clipping attachment".to_owned(), "clip (skin default, slot hand)".to_owned()),
+                ("sequence".to_owned(), "flame (skin default, slot hand)".to_owned()),
+                ("timeline".to_owned(), "sliders (animation go)".to_owned()),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_file_with_only_what_ikarus_reads_or_does_not_draw_lists_nothing() {
+        let file = json!({
+            "skeleton": {"spine": "4.2.0"}, "bones": [{"name": "root"}], "slots": [], "ik": [], "transform": [],
+            "path": [], "physics": [], "events": {},
+            "skins": {"default": {"hand": {"arm": {"type": "mesh"}, "p": {"type": "path"}}}},
+            "animations": {"go": {"bones": {}, "slots": {}, "deform": {}, "attachments": {}, "draworder": [], "events": []}}
+        });
+        assert!(features(&file).is_empty(), "{:?}", listed(&file));
+    }
+}
