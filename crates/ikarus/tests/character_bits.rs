@@ -98,10 +98,10 @@ fn digest(c: &Character) -> (u64, usize) {
 #[test]
 fn the_shipped_characters_pose_to_the_same_bits() {
     let want: [(&str, u64); 4] = [
-        ("spine-spineboy-pro.json", 0xfd71_f0a9_8902_aa53),
+        ("spine-spineboy-pro.json", 0xe231_6bc4_12c6_5888),
         ("spine-raptor-pro.json", 0xa0b3_f5a3_e482_055f),
         // Stretchyman: its transform and path constraints apply.
-        ("spine-stretchyman-pro.json", 0xcfbd_3a49_8cfb_7328),
+        ("spine-stretchyman-pro.json", 0x578f_6756_9730_91f7),
         ("dragonbones-mecha_1406_ske.json", 0x92a2_a4b3_fa42_f84f),
     ];
     let mut wrong = Vec::new();

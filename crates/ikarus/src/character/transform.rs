@@ -287,6 +287,11 @@ pub fn local_relative(
 /// transform set and its world transform (and those below it) recomputed. The caller updates
 /// the bones strictly below them afterwards.
 pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSettings) {
+    // With every mix 0 the constraint does nothing: its bones keep their local transforms to
+    // the bit (a world transform set and read back would round them).
+    if [m.mix_rotate, m.mix_x, m.mix_y, m.mix_scale_x, m.mix_scale_y, m.mix_shear_y] == [0.0; 6] {
+        return;
+    }
     let o = &c.offsets;
     match c.space {
         TransformSpace::World => {
