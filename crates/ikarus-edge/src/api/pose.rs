@@ -13,7 +13,7 @@ use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
 use crate::keys::BendName;
 use crate::keys::character::{bend_constraint, bend_positive};
-use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
+use crate::pose::{IkChoice, PhysicsAsk, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
 use ikarus::Interrupt;
 use ikarus::character::Character;
@@ -74,6 +74,7 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
         ik,
         bends: bends(loaded, &req.bends)?,
         turns: turns(loaded, &req.rotations)?,
+        physics: PhysicsAsk::default(),
     };
     let report = posed(loaded, &ask, interrupt);
     stopped(interrupt)?;
