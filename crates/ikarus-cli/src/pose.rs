@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ikarus::character::Character;
-use ikarus_edge::pose::{IkChoice, PoseAsk, PoseReport, pose};
+use ikarus_edge::pose::{IkChoice, PhysicsAsk, PoseAsk, PoseReport, pose};
 
 use crate::error::CliError;
 use crate::options::{parse_finite, parse_point};
@@ -104,6 +104,13 @@ pub struct PoseArgs {
     pub target: Vec<(String, [f64; 2])>,
     #[command(flatten)]
     pub ik: IkArgs,
+    /// Physics constraints: on plays the animation from 0 at --fps frames a second with them
+    /// stepping, as a game shows it; off leaves them out (Spine's Physics.none)
+    #[arg(long, value_enum, default_value_t = PhysicsSwitch::On)]
+    pub physics: PhysicsSwitch,
+    /// Frames a second of the play with physics
+    #[arg(long, value_name = "FPS", default_value_t = 60.0, value_parser = parse_finite)]
+    pub fps: f64,
     /// Output format [default: text on a terminal, json otherwise; from --out's extension for
     /// .svg and .png]
     #[arg(long, value_enum)]
@@ -113,6 +120,15 @@ pub struct PoseArgs {
     pub out: Option<PathBuf>,
     #[command(flatten)]
     pub size: crate::picture::SizeArgs,
+}
+
+/// `--physics on|off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PhysicsSwitch {
+    /// Played from 0 with the physics stepping.
+    On,
+    /// Left out.
+    Off,
 }
 
 /// `BONE=X,Y`: the name is everything before the last `=`.
@@ -149,6 +165,10 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         ik,
         bends: Vec::new(),
         turns: Vec::new(),
+        physics: match args.physics {
+            PhysicsSwitch::On => PhysicsAsk::Play { fps: args.fps },
+            PhysicsSwitch::Off => PhysicsAsk::Off,
+        },
     };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, &|| caption(args), &args.size)?;

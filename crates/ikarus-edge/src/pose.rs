@@ -7,7 +7,7 @@
 
 use ikarus::Point2;
 use ikarus::character::{
-    Character, GoalEnd, LimbEnd, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherReport,
+    Character, GoalEnd, LimbEnd, Play, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherReport,
 };
 use ikarus::{Interrupt, SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
@@ -37,6 +37,27 @@ pub struct PoseAsk {
     /// `(bone, rotation_deg)`: bones turned by hand, each one's local rotation in degrees in
     /// place of the clip's ([`ikarus::character::PoseRequest::turns`]).
     pub turns: Vec<(usize, f64)>,
+    /// What the physics constraints do (a character without any is posed the same either way).
+    pub physics: PhysicsAsk,
+}
+
+/// What a pose at a time does with the character's physics constraints (`--physics`, `--fps`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PhysicsAsk {
+    /// They do nothing (`--physics off`; Spine's `Physics.none`).
+    Off,
+    /// The animation is played from 0 at `fps` frames a second with them stepping, as a game
+    /// shows it ([`Character::play`]); the default, at 60.
+    Play {
+        /// Frames a second.
+        fps: f64,
+    },
+}
+
+impl Default for PhysicsAsk {
+    fn default() -> Self {
+        PhysicsAsk::Play { fps: 60.0 }
+    }
 }
 
 /// Whose rules solve a character's IK constraints.
@@ -139,9 +160,18 @@ pub(crate) fn pose_into_until(
     }
     let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin: None };
     let report = match &ask.ik {
-        IkChoice::Runtime => match interrupt {
-            Some(token) => c.pose_watched(&request, out, token),
-            None => c.pose(&request, out),
+        IkChoice::Runtime => match (ask.physics, c.constraints().iter().any(|k| k.kind() == "physics")) {
+            (PhysicsAsk::Play { fps }, true) => {
+                let play = Play { fps, ..Play::default() };
+                match interrupt {
+                    Some(token) => c.play_watched(&request, &play, out, token),
+                    None => c.play(&request, &play, out),
+                }
+            }
+            _ => match interrupt {
+                Some(token) => c.pose_watched(&request, out, token),
+                None => c.pose(&request, out),
+            },
         }
         .map(|()| None)
         .map_err(|e| e.to_string()),

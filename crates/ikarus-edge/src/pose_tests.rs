@@ -17,6 +17,7 @@ fn names_that_do_not_exist_are_refused_in_one_line() {
         ik: IkChoice::Runtime,
         bends: Vec::new(),
         turns: Vec::new(),
+        physics: PhysicsAsk::default(),
     };
     let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
     assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");

@@ -246,3 +246,28 @@ fn the_library_plays_the_physics_constraints_as_the_runtime_does() {
         assert!(position < 1e-3 && rotation < 1e-3, "{k}: {position} {rotation}°");
     }
 }
+
+#[test]
+fn the_pose_job_plays_physics_unless_it_is_off() {
+    use ikarus_edge::pose::{PhysicsAsk, PoseAsk, pose};
+    let path = format!("{}/../../examples/characters/{FILE}", env!("CARGO_MANIFEST_DIR"));
+    let loaded = ikarus_edge::character::load(&std::fs::read_to_string(path).unwrap(), FILE).unwrap();
+    let ask = |physics| PoseAsk { animation: Some("swing".into()), time: Some(1.0), physics, ..PoseAsk::default() };
+    let played = pose(&loaded, &ask(PhysicsAsk::default())).unwrap();
+    let still = pose(&loaded, &ask(PhysicsAsk::Off)).unwrap();
+    let path = format!("{}/tests/reference/spine-celestial-circus-pro-full.json", env!("CARGO_MANIFEST_DIR"));
+    let reference: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let case = reference["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["case"]["animation"] == "swing" && c["case"]["time"] == 1.0 && c["case"]["physics"] == true)
+        .unwrap();
+    let bench = |report: &ikarus_edge::pose::PoseReport| {
+        let b = report.bones.iter().find(|b| b.name == "bench-back").unwrap();
+        (b.x - num(&case["bones"]["bench-back"]["x"])).hypot(b.y - num(&case["bones"]["bench-back"]["y"]))
+    };
+    assert!(bench(&played) < 1e-3, "{}", bench(&played));
+    assert!(bench(&still) > 1.0, "{}", bench(&still));
+    assert!(loaded.warnings.iter().all(|w| !w.contains("physics")), "{:?}", loaded.warnings);
+}

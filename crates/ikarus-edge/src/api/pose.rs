@@ -13,7 +13,7 @@ use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
 use crate::keys::BendName;
 use crate::keys::character::{bend_constraint, bend_positive};
-use crate::pose::{IkChoice, PoseAsk, add_goals, pose_watched as posed};
+use crate::pose::{IkChoice, PhysicsAsk, PoseAsk, add_goals, pose_watched as posed};
 use crate::rig::BoneCap;
 use ikarus::Interrupt;
 use ikarus::character::Character;
@@ -28,6 +28,8 @@ request! {
     /// constraints whose lower bones it names, as a keys file's bend key does (the page poses a
     /// drag in Key mode with the bends in force at the playhead); `rotations` turns bones by hand
     /// (each one's local rotation, degrees, in place of the clip's), as a rotation key does.
+    /// `"physics": false` leaves a character's physics constraints out (`--physics off`);
+    /// otherwise the animation is played from 0 at `fps` frames a second (default 60) with them.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct PoseReq {
@@ -40,6 +42,8 @@ request! {
         pub targets: Vec<TargetReq>,
         pub bends: BTreeMap<String, BendName>,
         pub rotations: BTreeMap<String, f64>,
+        pub physics: Option<bool>,
+        pub fps: Option<f64>,
         ..ik_goals,
     }
 }
@@ -74,6 +78,10 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
         ik,
         bends: bends(loaded, &req.bends)?,
         turns: turns(loaded, &req.rotations)?,
+        physics: match req.physics {
+            Some(false) => PhysicsAsk::Off,
+            Some(true) | None => PhysicsAsk::Play { fps: req.fps.unwrap_or(60.0) },
+        },
     };
     let report = posed(loaded, &ask, interrupt);
     stopped(interrupt)?;

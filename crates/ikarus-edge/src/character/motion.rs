@@ -20,7 +20,7 @@ use crate::keys::KeysFile;
 use crate::keys::character::{bend_constraint, bend_positive};
 pub use crate::names::count_text;
 use crate::names::{Quoted, cell};
-use crate::pose::{IkChoice, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
+use crate::pose::{IkChoice, PhysicsAsk, PoseAsk, PoseReport, PosedBoneJson, pose_into, pose_into_until};
 use crate::report::character::UnsupportedJson;
 use ikarus::Interrupt;
 
@@ -334,6 +334,8 @@ impl<'a> Motion<'a> {
             ik: self.ik.clone(),
             bends: self.bends_at(time),
             turns: self.turns_at(time),
+            // A motion is sampled time by time, not played: physics is left out of it.
+            physics: PhysicsAsk::Off,
         }
     }
 

@@ -5,6 +5,7 @@
 
 use super::pose::Frame;
 use super::{Character, PhysicsMode, PhysicsWorld, PoseError, PoseRequest, Posed};
+use crate::Interrupt;
 
 /// How a clip is played with physics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,12 +35,34 @@ impl Character {
     /// pose is played for no time (the physics restarts and nothing moves). Targets, bends and
     /// turns apply at every frame. Same request, same bits.
     pub fn play(&self, request: &PoseRequest, play: &Play, out: &mut Posed) -> Result<(), PoseError> {
+        self.play_until(request, play, out, None)
+    }
+
+    /// [`Character::play`], stopped with [`PoseError::Interrupted`] once `interrupt` is set
+    /// (checked in every frame's pose).
+    pub fn play_watched(
+        &self,
+        request: &PoseRequest,
+        play: &Play,
+        out: &mut Posed,
+        interrupt: &Interrupt,
+    ) -> Result<(), PoseError> {
+        self.play_until(request, play, out, Some(interrupt))
+    }
+
+    fn play_until(
+        &self,
+        request: &PoseRequest,
+        play: &Play,
+        out: &mut Posed,
+        interrupt: Option<&Interrupt>,
+    ) -> Result<(), PoseError> {
         if !(play.fps.is_finite() && play.fps > 0.0) {
             return Err(PoseError::Fps(play.fps));
         }
         let Some((clip, end)) = request.clip else {
             let frame = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-            return self.pose_frame(request, out, None, frame);
+            return self.pose_frame(request, out, interrupt, frame);
         };
         if !(end.is_finite() && end >= 0.0) {
             return Err(PoseError::Time(end));
@@ -53,7 +76,7 @@ impl Character {
         let dt = 1.0 / play.fps;
         let at = |clock: f64| PoseRequest { clip: Some((clip, clock)), ..*request };
         let start = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-        self.pose_frame(&at(0.0), out, None, start)?;
+        self.pose_frame(&at(0.0), out, interrupt, start)?;
         let mut clock = 0.0;
         for f in 0..=frames {
             let from = clock;
@@ -65,8 +88,110 @@ impl Character {
                 break;
             }
             let frame = Frame::Play { mode: PhysicsMode::Update, clock, from, world: play.world };
-            self.pose_frame(&at(clock), out, None, frame)?;
+            self.pose_frame(&at(clock), out, interrupt, frame)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::{
+        BoneKey, BoneProperty, BoneTimeline, CharacterBone, CharacterParts, Clip, Constraint, Inherit, Interpolation,
+        LocalTransform, PhysicsConstraint, PhysicsGlobal, PhysicsSettings, PhysicsShares,
+    };
+
+    /// A root that slides 100 units along x in 1 s and a child the physics constraint moves.
+    fn slider(physics: bool) -> Character {
+        let bone = |name: &str, parent| CharacterBone {
+            name: name.into(),
+            parent,
+            length: 10.0,
+            setup: LocalTransform::default(),
+            inherit: Inherit::Normal,
+        };
+        let key = |time, x| BoneKey { time, values: [x, 0.0], curves: [Interpolation::Linear; 2] };
+        let clip = Clip {
+            name: "slide".into(),
+            duration: 1.0,
+            bones: vec![BoneTimeline {
+                bone: 0,
+                property: BoneProperty::Translate,
+                keys: vec![key(0.0, 0.0), key(1.0, 100.0)],
+            }],
+            constraints: vec![],
+        };
+        let constraints = if physics {
+            vec![Constraint::Physics(PhysicsConstraint {
+                name: "p".into(),
+                order: 0,
+                skin: false,
+                bone: 1,
+                shares: PhysicsShares { x: 1.0, y: 1.0, ..PhysicsShares::default() },
+                limit: 5000.0,
+                fps: 60.0,
+                setup: PhysicsSettings { inertia: 0.5, damping: 0.9, ..PhysicsSettings::default() },
+                global: PhysicsGlobal::default(),
+            })]
+        } else {
+            vec![]
+        };
+        let parts = CharacterParts {
+            bones: vec![bone("root", None), bone("tail", Some(0))],
+            constraints,
+            clips: vec![clip],
+            ..CharacterParts::default()
+        };
+        Character::new(parts).unwrap()
+    }
+
+    fn request(time: f64) -> PoseRequest<'static> {
+        PoseRequest { clip: Some((0, time)), targets: &[], bends: &[], turns: &[] }
+    }
+
+    #[test]
+    fn a_played_tail_lags_behind_its_posed_place_and_pose_leaves_it() {
+        let c = slider(true);
+        let (mut posed, mut played) = (Posed::default(), Posed::default());
+        c.pose(&request(0.5), &mut posed).unwrap();
+        assert_eq!(posed.origin(1), [50.0, 0.0]);
+        c.play(&request(0.5), &Play::default(), &mut played).unwrap();
+        let lag = posed.origin(1)[0] - played.origin(1)[0];
+        assert!(lag > 0.1 && lag < 50.0, "{lag}");
+        // The root is where the clip has it at the play's clock (30 sixtieths added up).
+        assert!((played.origin(0)[0] - 50.0).abs() < 1e-9, "{:?}", played.origin(0));
+    }
+
+    #[test]
+    fn without_physics_a_play_is_the_pose() {
+        let c = slider(false);
+        let (mut posed, mut played) = (Posed::default(), Posed::default());
+        for t in [0.0, 0.25, 0.2333, 1.0] {
+            c.pose(&request(t), &mut posed).unwrap();
+            c.play(&request(t), &Play::default(), &mut played).unwrap();
+            // The same but for the clock's sum of frame times.
+            assert!((posed.origin(1)[0] - played.origin(1)[0]).abs() < 1e-9, "{t}");
+        }
+    }
+
+    #[test]
+    fn a_time_off_the_frames_ends_with_a_shorter_frame_and_the_same_play_the_same_bits() {
+        let c = slider(true);
+        let (mut a, mut b) = (Posed::default(), Posed::default());
+        c.play(&request(0.2333), &Play::default(), &mut a).unwrap();
+        c.play(&request(0.2333), &Play::default(), &mut b).unwrap();
+        // The root is where the clip has it at 0.2333 s, not at the 14th frame (0.2333…).
+        assert!((a.origin(0)[0] - 23.33).abs() < 1e-4, "{:?}", a.origin(0));
+        assert_eq!(a.origin(1).map(f64::to_bits), b.origin(1).map(f64::to_bits));
+    }
+
+    #[test]
+    fn bad_plays_are_refused() {
+        let c = slider(true);
+        let mut p = Posed::default();
+        assert_eq!(c.play(&request(1.0), &Play { fps: 0.0, ..Play::default() }, &mut p), Err(PoseError::Fps(0.0)));
+        assert_eq!(c.play(&request(1e9), &Play::default(), &mut p), Err(PoseError::TooLong { time: 1e9, fps: 60.0 }));
+        assert_eq!(c.play(&request(-1.0), &Play::default(), &mut p), Err(PoseError::Time(-1.0)));
     }
 }
