@@ -7,8 +7,9 @@
 //! targets moved, into one reused `Posed` and into fresh ones — and every bone's local and
 //! world transform after every pose is folded into one digest. The digests were computed by
 //! the code before the change (main at 8ed0511) and are frozen here: any change to any bit of
-//! any pose fails this test. Issue 39 applied the transform constraints of spineboy and
-//! stretchyman, which changed their poses: their digests are those of that change.
+//! any pose fails this test. Applying the transform and path constraints changed spineboy's and
+//! stretchyman's poses: their digests are those of that change (checked against Spine's runtime
+//! by `reference_full.rs` in the edge).
 
 use ikarus::character::{Character, PoseRequest, Posed};
 

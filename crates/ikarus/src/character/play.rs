@@ -147,7 +147,7 @@ mod tests {
     }
 
     fn request(time: f64) -> PoseRequest<'static> {
-        PoseRequest { clip: Some((0, time)), targets: &[], bends: &[], turns: &[] }
+        PoseRequest { clip: Some((0, time)), ..PoseRequest::default() }
     }
 
     #[test]
