@@ -37,6 +37,9 @@ pub struct PoseAsk {
     /// `(bone, rotation_deg)`: bones turned by hand, each one's local rotation in degrees in
     /// place of the clip's ([`ikarus::character::PoseRequest::turns`]).
     pub turns: Vec<(usize, f64)>,
+    /// The skin whose skin-required bones and constraints take part, by name; `None`: the
+    /// skin called `default` if the file has one, else none.
+    pub skin: Option<String>,
 }
 
 /// Whose rules solve a character's IK constraints.
@@ -59,6 +62,13 @@ pub struct PosedBoneJson {
     pub y: f64,
     pub rotation_deg: f64,
     pub tip: [f64; 2],
+    /// `false` for a bone the skin does not turn on (not posed, at zeros); absent when active.
+    #[serde(skip_serializing_if = "is_true")]
+    pub active: bool,
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 /// `{"bones": [{"name", "x", "y", "rotation_deg", "tip"}, …], "unsupported": […]}`.
@@ -137,7 +147,8 @@ pub(crate) fn pose_into_until(
         }
         turns.push((bone, deg.to_radians()));
     }
-    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin: None };
+    let skin = skin_index(c, ask.skin.as_deref())?;
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin };
     let report = match &ask.ik {
         IkChoice::Runtime => match interrupt {
             Some(token) => c.pose_watched(&request, out, token),
@@ -171,6 +182,22 @@ pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Res
         }
         None if time.is_some() => Err("time: only with an animation".to_owned()),
         None => Ok(None),
+    }
+}
+
+/// The skin `name` names as the library's index (`None`: the one called `default`, if any), or
+/// `skin "x": no such skin (the file has: default, hero)`.
+pub fn skin_index(c: &Character, name: Option<&str>) -> Result<Option<usize>, String> {
+    match name {
+        None => Ok(c.default_skin()),
+        Some(name) => c.skin_index(name).map(Some).ok_or_else(|| {
+            let has = if c.skins().is_empty() {
+                "none".to_owned()
+            } else {
+                listed(c.skins().iter().map(|s| s.name.as_str()))
+            };
+            format!("skin {}: no such skin (the file has: {has})", Quoted(name))
+        }),
     }
 }
 
@@ -331,6 +358,7 @@ impl PoseReport {
                     y,
                     rotation_deg: posed.rotation(i).to_degrees(),
                     tip: posed.tip(i),
+                    active: posed.is_active(i),
                 }
             })
             .collect();

@@ -78,7 +78,7 @@ impl PyCharacter {
         };
         let ik = asked.choice(&self.loaded.character).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
-        let ask = PoseAsk { animation, time, targets, ik, bends: Vec::new(), turns: Vec::new() };
+        let ask = PoseAsk { animation, time, targets, ik, bends: Vec::new(), turns: Vec::new(), skin: None };
         // Off the calling thread, watching the token Ctrl-C sets (`signals`).
         let token = ikarus::Interrupt::new();
         let report = interruptible(py, &token, || pose_watched(&self.loaded, &ask, &token))?

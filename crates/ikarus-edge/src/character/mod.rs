@@ -23,6 +23,7 @@ pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
 mod spine;
+mod spine_skins;
 mod spine_transform;
 pub mod store;
 
@@ -296,3 +297,6 @@ mod caps_tests;
 
 #[cfg(test)]
 mod transform_tests;
+
+#[cfg(test)]
+mod skin_tests;

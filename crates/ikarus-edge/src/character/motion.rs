@@ -334,6 +334,7 @@ impl<'a> Motion<'a> {
             ik: self.ik.clone(),
             bends: self.bends_at(time),
             turns: self.turns_at(time),
+            skin: None,
         }
     }
 
