@@ -369,7 +369,8 @@ impl PoseReport {
     }
 
     /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
-    /// per unsupported constraint, then one per goal on a bone's tip (its miss).
+    /// per unsupported constraint, one per bone the skin leaves inactive, then one per goal on a
+    /// bone's tip (its miss).
     #[must_use]
     pub fn text(&self) -> String {
         use std::fmt::Write;
@@ -392,6 +393,9 @@ impl PoseReport {
         }
         for u in &self.unsupported {
             let _ = writeln!(out, "unsupported {} constraint {:?}: left inactive", u.kind, Quoted(&u.name));
+        }
+        for b in self.bones.iter().filter(|b| !b.active) {
+            let _ = writeln!(out, "inactive bone {:?}: the skin does not turn it on (not posed)", Quoted(&b.name));
         }
         for g in self.ik.iter().flat_map(|k| &k.goals) {
             let _ = write!(out, "goal on {:?}: tip {:.6} from its point", Quoted(&g.bone), g.error);

@@ -40,6 +40,7 @@ fn a_skin_chosen_by_name_turns_its_bones_and_constraints_on() {
     let json = serde_json::to_value(&plain).unwrap();
     assert_eq!(json["bones"][3]["active"], serde_json::Value::Bool(false));
     assert!(json["bones"][0].get("active").is_none());
+    assert!(plain.text().ends_with("inactive bone \"cape\": the skin does not turn it on (not posed)\ninactive bone \"tip\": the skin does not turn it on (not posed)\n"), "{}", plain.text());
 }
 
 #[test]
