@@ -102,6 +102,11 @@ pub struct PoseArgs {
     /// target bone moves its limb), BONE=X,Y (repeatable, applied in order)
     #[arg(long, value_name = "BONE=X,Y", allow_hyphen_values = true, value_parser = parse_target)]
     pub target: Vec<(String, [f64; 2])>,
+    /// The skin whose skin-required bones and constraints take part, by name [default: the skin
+    /// called `default`, if the file has one]; the bones it does not turn on are not posed
+    /// (`"active": false` in the JSON)
+    #[arg(long, value_name = "NAME")]
+    pub skin: Option<String>,
     #[command(flatten)]
     pub ik: IkArgs,
     /// Physics constraints: on plays the animation from 0 at --fps frames a second with them
@@ -169,6 +174,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
             PhysicsSwitch::On => PhysicsAsk::Play { fps: args.fps },
             PhysicsSwitch::Off => PhysicsAsk::Off,
         },
+        skin: args.skin.clone(),
     };
     let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let bytes = render(&report, format, &|| caption(args), &args.size)?;

@@ -115,6 +115,12 @@ fn bad_requests_are_one_line() {
     assert!(e.contains("pose takes a character file"), "{e}");
     let e = fails(&["pose", "--rig", RAPTOR, "--target", "toe"], 2);
     assert!(e.contains("BONE=X,Y"), "{e}");
+    let e = fails(&["pose", "--rig", RAPTOR, "--skin", "villain"], 2);
+    assert!(e.contains("skin \"villain\": no such skin (the file has: default)"), "{e}");
+    // The default skin by name poses as without one.
+    let (named, _) = pose(&["--rig", RAPTOR, "--skin", "default", "--format", "json"]);
+    let (unnamed, _) = pose(&["--rig", RAPTOR, "--format", "json"]);
+    assert_eq!(named, unnamed);
 }
 
 /// The bone `name` of a pose answer.

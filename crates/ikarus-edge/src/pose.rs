@@ -37,6 +37,9 @@ pub struct PoseAsk {
     /// `(bone, rotation_deg)`: bones turned by hand, each one's local rotation in degrees in
     /// place of the clip's ([`ikarus::character::PoseRequest::turns`]).
     pub turns: Vec<(usize, f64)>,
+    /// The skin whose skin-required bones and constraints take part, by name; `None`: the
+    /// skin called `default` if the file has one, else none.
+    pub skin: Option<String>,
     /// What the physics constraints do (a character without any is posed the same either way).
     pub physics: PhysicsAsk,
 }
@@ -80,6 +83,13 @@ pub struct PosedBoneJson {
     pub y: f64,
     pub rotation_deg: f64,
     pub tip: [f64; 2],
+    /// `false` for a bone the skin does not turn on (not posed, at zeros); absent when active.
+    #[serde(skip_serializing_if = "is_true")]
+    pub active: bool,
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 /// `{"bones": [{"name", "x", "y", "rotation_deg", "tip"}, …], "unsupported": […]}`.
@@ -158,7 +168,8 @@ pub(crate) fn pose_into_until(
         }
         turns.push((bone, deg.to_radians()));
     }
-    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin: None };
+    let skin = skin_index(c, ask.skin.as_deref())?;
+    let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin };
     let report = match &ask.ik {
         IkChoice::Runtime => match (ask.physics, c.constraints().iter().any(|k| k.kind() == "physics")) {
             (PhysicsAsk::Play { fps }, true) => {
@@ -201,6 +212,22 @@ pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Res
         }
         None if time.is_some() => Err("time: only with an animation".to_owned()),
         None => Ok(None),
+    }
+}
+
+/// The skin `name` names as the library's index (`None`: the one called `default`, if any), or
+/// `skin "x": no such skin (the file has: default, hero)`.
+pub fn skin_index(c: &Character, name: Option<&str>) -> Result<Option<usize>, String> {
+    match name {
+        None => Ok(c.default_skin()),
+        Some(name) => c.skin_index(name).map(Some).ok_or_else(|| {
+            let has = if c.skins().is_empty() {
+                "none".to_owned()
+            } else {
+                listed(c.skins().iter().map(|s| s.name.as_str()))
+            };
+            format!("skin {}: no such skin (the file has: {has})", Quoted(name))
+        }),
     }
 }
 
@@ -361,6 +388,7 @@ impl PoseReport {
                     y,
                     rotation_deg: posed.rotation(i).to_degrees(),
                     tip: posed.tip(i),
+                    active: posed.is_active(i),
                 }
             })
             .collect();
@@ -371,7 +399,8 @@ impl PoseReport {
     }
 
     /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
-    /// per unsupported constraint, then one per goal on a bone's tip (its miss).
+    /// per unsupported constraint, one per bone the skin leaves inactive, then one per goal on a
+    /// bone's tip (its miss).
     #[must_use]
     pub fn text(&self) -> String {
         use std::fmt::Write;
@@ -394,6 +423,9 @@ impl PoseReport {
         }
         for u in &self.unsupported {
             let _ = writeln!(out, "unsupported {} {:?}: left out", u.kind, Quoted(&u.name));
+        }
+        for b in self.bones.iter().filter(|b| !b.active) {
+            let _ = writeln!(out, "inactive bone {:?}: the skin does not turn it on (not posed)", Quoted(&b.name));
         }
         for g in self.ik.iter().flat_map(|k| &k.goals) {
             let _ = write!(out, "goal on {:?}: tip {:.6} from its point", Quoted(&g.bone), g.error);

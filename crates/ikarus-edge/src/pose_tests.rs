@@ -18,8 +18,11 @@ fn names_that_do_not_exist_are_refused_in_one_line() {
         bends: Vec::new(),
         turns: Vec::new(),
         physics: PhysicsAsk::default(),
+        skin: None,
     };
     let e = pose(&boy, &ask(Some("wlk"), None, vec![])).unwrap_err();
+    let villain = PoseAsk { skin: Some("villain".into()), ..PoseAsk::default() };
+    assert_eq!(pose(&boy, &villain).unwrap_err(), "skin \"villain\": no such skin (the file has: default)");
     assert!(e.starts_with("animation \"wlk\": no such animation (the file has: ") && e.contains("walk"), "{e}");
     let e = pose(&boy, &ask(None, Some(1.0), vec![])).unwrap_err();
     assert_eq!(e, "time: only with an animation");

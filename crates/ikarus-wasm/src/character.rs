@@ -118,8 +118,9 @@ impl Character {
                 })?;
             self.targets.push((t[0] as usize, target_point(&bone.name, [t[1], t[2]]).map_err(invalid)?));
         }
-        c.pose(&PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[], skin: None }, &mut self.posed)
-            .map_err(|e| invalid(e.to_string()))?;
+        // The default skin, as the edge's pose takes it unless told otherwise.
+        let request = PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[], skin: c.default_skin() };
+        c.pose(&request, &mut self.posed).map_err(|e| invalid(e.to_string()))?;
         for (i, bone) in self.numbers.chunks_exact_mut(PER_BONE).enumerate() {
             let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));
             bone.copy_from_slice(&[x, y, self.posed.rotation(i).to_degrees(), tx, ty]);

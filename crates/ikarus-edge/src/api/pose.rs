@@ -22,12 +22,14 @@ use std::sync::Arc;
 request! {
     /// `{"rig": "<the file's text>", "animation": "walk", "time": 0.4, "targets": [{"bone", "x",
     /// "y"}, …], "ik": "ikarus", "ik_file": "<TOML>", "goals": [{"bone", "x", "y", "bones", …}],
-    /// "pins": ["BONE", …], "bends": {"front-shin": "cw"}, "rotations": {"head": 30}}`: every
-    /// field but `rig` optional;
+    /// "pins": ["BONE", …], "bends": {"front-shin": "cw"}, "rotations": {"head": 30}, "skin":
+    /// "default"}`: every field but `rig` optional;
     /// `goals` and `pins` only with `"ik": "ikarus"`. `bends` sets the side of the two-bone IK
     /// constraints whose lower bones it names, as a keys file's bend key does (the page poses a
     /// drag in Key mode with the bends in force at the playhead); `rotations` turns bones by hand
-    /// (each one's local rotation, degrees, in place of the clip's), as a rotation key does.
+    /// (each one's local rotation, degrees, in place of the clip's), as a rotation key does;
+    /// `skin` chooses the skin whose skin-required bones and constraints take part (default: the
+    /// skin called `default`, if any), and the answer's inactive bones carry `"active": false`.
     /// `"physics": false` leaves a character's physics constraints out (`--physics off`);
     /// otherwise the animation is played from 0 at `fps` frames a second (default 60) with them.
     #[derive(Debug, Deserialize)]
@@ -44,6 +46,7 @@ request! {
         pub rotations: BTreeMap<String, f64>,
         pub physics: Option<bool>,
         pub fps: Option<f64>,
+        pub skin: Option<String>,
         ..ik_goals,
     }
 }
@@ -82,6 +85,7 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
             Some(false) => PhysicsAsk::Off,
             Some(true) | None => PhysicsAsk::Play { fps: req.fps.unwrap_or(60.0) },
         },
+        skin: req.skin,
     };
     let report = posed(loaded, &ask, interrupt);
     stopped(interrupt)?;

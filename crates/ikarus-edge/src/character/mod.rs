@@ -28,6 +28,7 @@ mod spine_deform;
 mod spine_path;
 mod spine_path_clips;
 pub mod spine_physics;
+mod spine_skins;
 mod spine_slots;
 mod spine_transform;
 mod spine_unsupported;
@@ -325,3 +326,6 @@ mod caps_tests;
 
 #[cfg(test)]
 mod transform_tests;
+
+#[cfg(test)]
+mod skin_tests;

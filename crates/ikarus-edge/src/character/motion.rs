@@ -336,6 +336,7 @@ impl<'a> Motion<'a> {
             turns: self.turns_at(time),
             // A motion is sampled time by time, not played: physics is left out of it.
             physics: PhysicsAsk::Off,
+            skin: None,
         }
     }
 

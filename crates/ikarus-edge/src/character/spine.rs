@@ -1,11 +1,12 @@
 //! Spine's JSON export (4.0–4.2; 3.8 names a bone's inherit mode `transform` and writes its
 //! curves normalised): bones, IK constraints, transform constraints
-//! ([`super::spine_transform`]), the path and physics constraints' names (left inactive), and
-//! the animations ([`super::clips`]).
+//! ([`super::spine_transform`]), the path and physics constraints' names (left inactive), the
+//! skins and what only a skin turns on (`"skin": true` on a bone or constraint,
+//! [`super::spine_skins`]), and the animations ([`super::clips`]).
 //!
 //! Defaults as the format has them: a bone's `length`, `x`, `y`, `rotation`, `shearX`,
 //! `shearY` 0, `scaleX`, `scaleY` 1, `inherit` `normal`; an IK constraint's `order` 0, `mix` 1,
-//! `softness` 0, `bendPositive` true, `compress`, `stretch`, `uniform` false. Degrees become
+//! `softness` 0, `bendPositive` true, `compress`, `stretch`, `uniform`, `skin` false. Degrees become
 //! radians. The `skeleton` object's `x`, `y`, `width` and `height` are the bounds of the setup
 //! pose's attachments, not a placement: the character is placed at the origin, unscaled.
 
@@ -13,7 +14,7 @@ use std::collections::HashMap;
 
 use ikarus::character::{
     CharacterBone, CharacterParts, Constraint, IkBones, IkConstraint, IkRule, IkSettings, Inherit, LocalTransform,
-    Unsupported,
+    SkinRequired, Unsupported,
 };
 use serde::Deserialize;
 use serde_json::Value;
@@ -35,6 +36,8 @@ struct SpineFile {
     path: Vec<super::spine_path::PathJson>,
     #[serde(default)]
     animations: Ordered<clips::Animation>,
+    #[serde(default)]
+    skins: super::spine_skins::SkinsJson,
 }
 
 #[derive(Deserialize)]
@@ -69,6 +72,9 @@ struct BoneJson {
     /// 3.8's name of `inherit`.
     #[serde(default)]
     transform: Option<InheritJson>,
+    /// Whether only a skin that lists it turns it on.
+    #[serde(default)]
+    skin: bool,
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -113,6 +119,9 @@ struct IkJson {
     stretch: bool,
     #[serde(default)]
     uniform: bool,
+    /// Whether only a skin that lists it turns it on.
+    #[serde(default)]
+    skin: bool,
 }
 
 /// Reads a Spine file (`value` is its text parsed, for the cap and the clips' durations).
@@ -168,13 +177,34 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let physics = super::spine_physics::read(value, &index)?;
     let first_physics = constraints.len();
     constraints.extend(physics.iter().cloned().map(Constraint::Physics));
+    let physics_names: HashMap<&str, usize> = super::first_index(physics.iter().map(|k| k.name.as_str()))
+        .into_iter()
+        .map(|(name, i)| (name, first_physics + i))
+        .collect();
     let unsupported = super::spine_unsupported::features(value);
-    let names = clips::Names {
+    let ik_names = super::first_index(file.ik.iter().map(|k| k.name.as_str()));
+    let transform_names: HashMap<&str, usize> = super::first_index(file.transform.iter().map(|k| k.name.as_str()))
+        .into_iter()
+        .map(|(name, i)| (name, first_transform + i))
+        .collect();
+    let names = clips::Names { bones: &index, constraints: &ik_names, transforms: &transform_names };
+    let skin_names = super::spine_skins::SkinNames {
         bones: &index,
-        constraints: &super::first_index(file.ik.iter().map(|k| k.name.as_str())),
-        transforms: &super::first_index(file.transform.iter().map(|k| k.name.as_str()))
-            .into_iter()
-            .map(|(name, i)| (name, first_transform + i))
+        ik: &ik_names,
+        transform: &transform_names,
+        path: &path_names,
+        physics: &physics_names,
+    };
+    let skins = super::spine_skins::read(&file.skins, &skin_names)?;
+    let skin_required = SkinRequired {
+        bones: file.bones.iter().enumerate().filter(|(_, b)| b.skin).map(|(i, _)| i).collect(),
+        constraints: (file.ik.iter().map(|k| k.skin))
+            .chain(file.transform.iter().map(|k| k.skin))
+            .chain(file.path.iter().map(|k| k.skin()))
+            .chain(physics.iter().map(|k| k.skin))
+            .enumerate()
+            .filter(|(_, skin)| *skin)
+            .map(|(k, _)| k)
             .collect(),
     };
     let clips = file
@@ -197,7 +227,8 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     if !unsupported.is_empty() {
         warnings.push(inactive(&unsupported));
     }
-    let parts = CharacterParts { bones, constraints, clips, unsupported, ..CharacterParts::default() };
+    let parts =
+        CharacterParts { bones, constraints, clips, unsupported, skins, skin_required, ..CharacterParts::default() };
     Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
 }
 

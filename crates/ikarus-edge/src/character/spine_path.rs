@@ -55,6 +55,11 @@ impl PathJson {
     pub(super) fn name(&self) -> &str {
         &self.name
     }
+
+    /// Whether it takes part only while a chosen skin lists it (`skin`).
+    pub(super) fn skin(&self) -> bool {
+        self.skin
+    }
 }
 
 /// Reads path constraint `i`, its path the target slot's setup attachment in skin `skin`.

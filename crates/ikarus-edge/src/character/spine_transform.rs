@@ -1,14 +1,14 @@
 //! Spine's transform constraints (the `transform` list), read into the library's
 //! [`TransformConstraint`]s.
 //!
-//! Fields and defaults as the JSON export format has them: `name`, `order` (0), `bones` (names, at least one), `target` (a bone), the offsets `rotation`, `x`, `y`, `scaleX`,
+//! Fields and defaults as the JSON export format has them: `name`, `order` (0), `skin` (false;
+//! see [`super::spine_skins`]), `bones` (names, at least one), `target` (a bone), the offsets `rotation`, `x`, `y`, `scaleX`,
 //! `scaleY`, `shearY` (0; degrees for the angles), `local` and `relative` (false), and the mixes
 //! `mixRotate` (1), `mixX` (1), `mixY` (`mixX`'s value), `mixScaleX` (1), `mixScaleY`
 //! (`mixScaleX`'s value), `mixShearY` (1). Spine 3.8 names the mixes `rotateMix`,
 //! `translateMix` (x and y), `scaleMix` (x and y) and `shearMix` (each 1 by default). A mix must
 //! be within −1 and 1 (a negative one moves away from the target); a bone may not be its own
-//! constraint's target. (`skin`, a constraint only a skin turns on, is not read yet: every
-//! transform constraint is active.)
+//! constraint's target.
 
 use std::collections::HashMap;
 
@@ -24,6 +24,9 @@ pub(super) struct TransformJson {
     pub(super) name: String,
     #[serde(default)]
     order: u32,
+    /// Whether only a skin that lists it turns it on (Spine's `skin`).
+    #[serde(default)]
+    pub(super) skin: bool,
     bones: Vec<String>,
     target: String,
     #[serde(default)]
