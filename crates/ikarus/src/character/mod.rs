@@ -36,7 +36,7 @@ pub use path::{
 };
 pub use physics::{
     MAX_STEPS, PhysicsConstraint, PhysicsGlobal, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsShares,
-    PhysicsState, PhysicsWorld, applied_local,
+    PhysicsState, PhysicsWorld,
 };
 pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
 pub use play::{MAX_FRAMES, Play};

@@ -375,50 +375,6 @@ impl PhysicsConstraint {
 /// The most steps one pose takes (a clock moved hours ahead at once is not replayed).
 pub const MAX_STEPS: u32 = 10_000;
 
-/// The local transform (normal inheritance) that gives `world` below `parent`'s world transform
-/// (`None`: a root, below the skeleton's frame `parent` = `Affine::of_placement`): the origin in
-/// the parent's frame, and the rotation, scales and y shear of `parent⁻¹·world` (x shear 0): the
-/// local transform a bone a constraint moved takes (Spine's applied transform). `None` when the parent's
-/// matrix is singular.
-pub fn applied_local(world: &Affine, parent: &Affine) -> Option<super::LocalTransform> {
-    let det = parent.det();
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let [x, y] = parent.to_local(world.x, world.y)?;
-    let (ia, ib, ic, id) = (parent.d / det, -parent.b / det, -parent.c / det, parent.a / det);
-    let ra = ia * world.a + ib * world.c;
-    let rb = ia * world.b + ib * world.d;
-    let rc = ic * world.a + id * world.c;
-    let rd = ic * world.b + id * world.d;
-    let sx = math::hypot(ra, rc);
-    let t = if sx > 1e-4 {
-        // The y axis is `sy·(cos(r + π/2 + shy), sin(r + π/2 + shy))`: its length is `sy`, its
-        // dot product with the x axis `−sx·sy·sin(shy)` and their cross product `sx·sy·cos(shy)`.
-        let det = ra * rd - rb * rc;
-        super::LocalTransform {
-            x,
-            y,
-            rotation: math::atan2(rc, ra),
-            scale_x: sx,
-            scale_y: math::hypot(rb, rd),
-            shear_x: 0.0,
-            shear_y: math::atan2(-(ra * rb + rc * rd), det),
-        }
-    } else {
-        super::LocalTransform {
-            x,
-            y,
-            rotation: PI / 2.0 - math::atan2(rd, rb),
-            scale_x: 0.0,
-            scale_y: math::hypot(rb, rd),
-            shear_x: 0.0,
-            shear_y: 0.0,
-        }
-    };
-    Some(t)
-}
-
 #[cfg(test)]
 #[path = "physics_tests.rs"]
 mod tests;

@@ -1,5 +1,4 @@
 use super::*;
-use crate::character::{Inherit, LocalTransform, Placement, world_transform};
 
 fn constraint(shares: PhysicsShares) -> PhysicsConstraint {
     PhysicsConstraint {
@@ -135,18 +134,4 @@ fn a_clock_far_ahead_takes_a_bounded_number_of_steps() {
     let mut bone = Affine { x: 1.0, ..Affine::default() };
     state.apply(&input(&c, c.setup, 1e12), PhysicsMode::Update, &mut bone);
     assert!(bone.x.is_finite());
-}
-
-#[test]
-fn the_applied_local_transform_gives_back_the_world_transform() {
-    let parent = Affine { a: 1.2, b: -0.3, c: 0.4, d: 0.9, x: 5.0, y: -2.0 };
-    let local =
-        LocalTransform { x: 3.0, y: 1.0, rotation: 0.7, scale_x: 1.3, scale_y: 0.8, shear_x: 0.0, shear_y: 0.2 };
-    let w = world_transform(&local, Inherit::Normal, Some(&parent), Placement::default());
-    let back = applied_local(&w, &parent).unwrap();
-    let again = world_transform(&back, Inherit::Normal, Some(&parent), Placement::default());
-    for (p, q) in [(w.a, again.a), (w.b, again.b), (w.c, again.c), (w.d, again.d), (w.x, again.x), (w.y, again.y)] {
-        assert!((p - q).abs() < 1e-12, "{w:?} {again:?}");
-    }
-    assert!(applied_local(&w, &Affine { a: 0.0, b: 0.0, c: 0.0, d: 0.0, x: 0.0, y: 0.0 }).is_none());
 }
