@@ -176,9 +176,9 @@ fn deform_keys_interpolate_and_hold() {
     let d = PathDeform {
         slot: 0,
         keys: vec![
-            DeformKey { time: 1.0, offsets: vec![0.0, 2.0], curve: Interpolation::Linear },
-            DeformKey { time: 2.0, offsets: vec![4.0, 2.0], curve: Interpolation::Stepped },
-            DeformKey { time: 3.0, offsets: vec![8.0, 8.0], curve: Interpolation::Linear },
+            DeformKey { time: 1.0, start: 1, offsets: vec![2.0], curve: Interpolation::Linear },
+            DeformKey { time: 2.0, start: 0, offsets: vec![4.0, 2.0], curve: Interpolation::Stepped },
+            DeformKey { time: 3.0, start: 0, offsets: vec![8.0, 8.0, 1.0], curve: Interpolation::Linear },
         ],
     };
     let mut out = Vec::new();
@@ -186,9 +186,9 @@ fn deform_keys_interpolate_and_hold() {
     assert!(d.at(1.5, &mut out));
     assert_eq!(out, vec![2.0, 2.0]);
     d.at(2.9, &mut out);
-    assert_eq!(out, vec![4.0, 2.0]);
+    assert_eq!(out, vec![4.0, 2.0, 0.0]);
     d.at(9.0, &mut out);
-    assert_eq!(out, vec![8.0, 8.0]);
+    assert_eq!(out, vec![8.0, 8.0, 1.0]);
 }
 
 /// A character of a root and two bones and one path constraint (index 0) on them.
