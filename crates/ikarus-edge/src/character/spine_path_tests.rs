@@ -161,3 +161,30 @@ fn bad_timelines_are_refused_naming_the_key() {
     let e = crate::character::load(&v.to_string(), "t.json").err().unwrap().to_string();
     assert!(e.ends_with("animations.\"m\".path.\"q\": no path constraint of that name"), "{e}");
 }
+
+#[test]
+fn extreme_and_degenerate_paths_pose_without_panicking() {
+    use ikarus::character::{PoseRequest, Posed};
+    let degenerate = [
+        json!({"type": "path", "lengths": [], "vertexCount": 0, "vertices": []}),
+        json!({"type": "path", "closed": true, "lengths": [0, 0], "vertexCount": 6, "vertices": vec![0; 12]}),
+        json!({"type": "path", "constantSpeed": false, "lengths": [0, 0], "vertexCount": 6, "vertices": vec![0; 12]}),
+        json!({"type": "path", "closed": true, "lengths": [1, 2], "vertexCount": 6,
+               "vertices": [-30, 0, 0, 0, 30, 0, 60, 0, 90, 0, 120, 0]}),
+    ];
+    for attachment in degenerate {
+        for (position, spacing) in [(0.0, 0.0), (1e300, -1e300), (-1e300, 1e300), (-0.5, 2.0)] {
+            for mode in ["tangent", "chain", "chainScale"] {
+                for spacing_mode in ["length", "fixed", "percent", "proportional"] {
+                    let text = file(
+                        json!([{"name": "p", "bones": ["a", "b"], "target": "s", "position": position, "spacing": spacing,
+                                "rotateMode": mode, "spacingMode": spacing_mode}]),
+                        Some(attachment.clone()),
+                    );
+                    let c = crate::character::load(&text, "t.json").unwrap().character;
+                    c.pose(&PoseRequest::default(), &mut Posed::default()).unwrap();
+                }
+            }
+        }
+    }
+}
