@@ -61,20 +61,21 @@ fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> Result<Vec<D
             return Err(format!("{at}.time = {time}: before the previous key's"));
         }
         let offset = number(k.get("offset"), 0.0, &format!("{at}.offset"))?;
-        let mut offsets = vec![0.0; len];
+        let mut offsets = Vec::new();
         if let Some(v) = k.get("vertices") {
             let Some(v) = v.as_array() else { return Err(format!("{at}.vertices: expected a list of numbers")) };
-            if offset < 0.0 || offset.fract() != 0.0 || offset as usize + v.len() > len {
+            if offset < 0.0 || offset.fract() != 0.0 || offset + v.len() as f64 > len as f64 {
                 return Err(format!(
                     "{at}.offset = {offset}: with {} vertices past the path's {len} coordinates",
                     v.len()
                 ));
             }
             for (j, x) in v.iter().enumerate() {
-                offsets[offset as usize + j] = number(Some(x), 0.0, &format!("{at}.vertices[{j}]"))?;
+                offsets.push(number(Some(x), 0.0, &format!("{at}.vertices[{j}]"))?);
             }
         }
-        out.push(DeformKey { time, offsets, curve: Interpolation::Linear });
+        let start = if offsets.is_empty() { 0 } else { offset as usize };
+        out.push(DeformKey { time, start, offsets, curve: Interpolation::Linear });
     }
     // Curves need the next key's time.
     for i in 0..out.len() {

@@ -5,6 +5,9 @@
 //! (1; 3.8 `rotateMix`), `mixX` (1; 3.8 `translateMix`), `mixY` (`mixX`'s value). Mixes are
 //! refused outside −1 … 1 (the runtime blends with them; the editor keeps them within 0 … 1,
 //! files have negative ones for other kinds).
+//!
+//! The path is the target slot's setup attachment in the default skin; a constraint marked
+//! `skin: true` follows no path (does nothing) unless that skin lists it in its own `path`.
 
 use std::collections::HashMap;
 
@@ -127,7 +130,8 @@ pub(super) fn constraint(
         bones: list,
         slot,
         slot_bone: slots.slots[slot].bone,
-        path: slots.setup_path(skin, slot).cloned(),
+        // A constraint only a skin turns on does nothing unless this skin lists it.
+        path: if k.skin && !slots.turns_on(skin, &k.name) { None } else { slots.setup_path(skin, slot).cloned() },
         position_mode,
         spacing_mode,
         rotate_mode,

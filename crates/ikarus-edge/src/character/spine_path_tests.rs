@@ -110,3 +110,90 @@ fn bad_fields_are_refused_naming_the_field_and_value() {
         "skins[0] (\"default\").attachments.s.p.vertexCount = 4: expected a whole number of vertices, at most 2"
     );
 }
+
+/// Bone `a` (at (0, 10)) on the straight path from (0, 0) to (90, 0), half way along it, and
+/// clips keying the constraint: `slide` its position, `mix` its mixes, `lift` the path's
+/// vertices (a deform timeline).
+fn keyed() -> ikarus::character::Character {
+    let mut v: Value = serde_json::from_str(&file(
+        json!([{"name": "p", "bones": ["a"], "target": "s", "position": 0.5, "spacingMode": "fixed"}]),
+        None,
+    ))
+    .unwrap();
+    v["bones"][1]["y"] = json!(10);
+    v["animations"] = json!({
+        "slide": {"path": {"p": {"position": [{"value": 0}, {"time": 1, "value": 0.5}]}}},
+        "mix": {"path": {"p": {"mix": [{"mixX": 0.5}]}}},
+        "lift": {"attachments": {"default": {"s": {"p": {"deform": [
+            {"vertices": [0, 5, 0, 5, 0, 5, 0, 5, 0, 5, 0, 5]}
+        ]}}}}},
+    });
+    crate::character::load(&v.to_string(), "t.json").unwrap().character
+}
+
+#[test]
+fn clips_key_the_position_the_mixes_and_the_path() {
+    use ikarus::character::{PoseRequest, Posed};
+    let c = keyed();
+    let mut posed = Posed::default();
+    let mut at = |clip: Option<&str>, time: f64| {
+        let clip = clip.map(|n| (c.clip_index(n).unwrap(), time));
+        c.pose(&PoseRequest { clip, ..PoseRequest::default() }, &mut posed).unwrap();
+        posed.origin(1)
+    };
+    let near = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]) < 1e-9;
+    assert!(near(at(None, 0.0), [45.0, 0.0]));
+    // Position 0.25 of the way at half time.
+    assert!(near(at(Some("slide"), 0.5), [22.5, 0.0]), "{:?}", at(Some("slide"), 0.5));
+    // mixX 0.5, and mixY as mixX.
+    assert!(near(at(Some("mix"), 0.0), [22.5, 5.0]), "{:?}", at(Some("mix"), 0.0));
+    assert!(near(at(Some("lift"), 0.0), [45.0, 5.0]), "{:?}", at(Some("lift"), 0.0));
+}
+
+#[test]
+fn bad_timelines_are_refused_naming_the_key() {
+    let mut v: Value =
+        serde_json::from_str(&file(json!([{"name": "p", "bones": ["a"], "target": "s"}]), None)).unwrap();
+    v["animations"] = json!({"m": {"path": {"p": {"mix": [{"mixRotate": 2}]}}}});
+    let e = crate::character::load(&v.to_string(), "t.json").err().unwrap().to_string();
+    assert!(e.ends_with("animations.\"m\".path.\"p\".mix[0].mixRotate = 2: must be within −1 and 1"), "{e}");
+    v["animations"] = json!({"m": {"path": {"q": {"mix": []}}}});
+    let e = crate::character::load(&v.to_string(), "t.json").err().unwrap().to_string();
+    assert!(e.ends_with("animations.\"m\".path.\"q\": no path constraint of that name"), "{e}");
+}
+
+#[test]
+fn extreme_and_degenerate_paths_pose_without_panicking() {
+    use ikarus::character::{PoseRequest, Posed};
+    let degenerate = [
+        json!({"type": "path", "lengths": [], "vertexCount": 0, "vertices": []}),
+        json!({"type": "path", "closed": true, "lengths": [0, 0], "vertexCount": 6, "vertices": vec![0; 12]}),
+        json!({"type": "path", "constantSpeed": false, "lengths": [0, 0], "vertexCount": 6, "vertices": vec![0; 12]}),
+        json!({"type": "path", "closed": true, "lengths": [1, 2], "vertexCount": 6,
+               "vertices": [-30, 0, 0, 0, 30, 0, 60, 0, 90, 0, 120, 0]}),
+    ];
+    for attachment in degenerate {
+        for (position, spacing) in [(0.0, 0.0), (1e300, -1e300), (-1e300, 1e300), (-0.5, 2.0)] {
+            for mode in ["tangent", "chain", "chainScale"] {
+                for spacing_mode in ["length", "fixed", "percent", "proportional"] {
+                    let text = file(
+                        json!([{"name": "p", "bones": ["a", "b"], "target": "s", "position": position, "spacing": spacing,
+                                "rotateMode": mode, "spacingMode": spacing_mode}]),
+                        Some(attachment.clone()),
+                    );
+                    let c = crate::character::load(&text, "t.json").unwrap().character;
+                    c.pose(&PoseRequest::default(), &mut Posed::default()).unwrap();
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_skin_only_constraint_follows_its_path_only_when_the_skin_lists_it() {
+    let mut v: Value =
+        serde_json::from_str(&file(json!([{"name": "p", "skin": true, "bones": ["a"], "target": "s"}]), None)).unwrap();
+    assert!(paths(&v.to_string())[0].path.is_none());
+    v["skins"][0]["path"] = json!(["p"]);
+    assert!(paths(&v.to_string())[0].path.is_some());
+}

@@ -34,6 +34,8 @@ pub(super) struct Skin {
     pub(super) name: String,
     /// `(slot, attachment name)` → the path.
     pub(super) paths: HashMap<(usize, String), PathShape>,
+    /// The path constraints it turns on (`path`: their names), those marked `skin: true`.
+    pub(super) path_constraints: Vec<String>,
 }
 
 /// The slots, their indices by name, and the skins.
@@ -45,6 +47,11 @@ pub(super) struct Slots {
 }
 
 impl Slots {
+    /// Whether skin `skin` (by name) turns on the path constraint `name`.
+    pub(super) fn turns_on(&self, skin: &str, name: &str) -> bool {
+        self.skins.iter().any(|s| s.name == skin && s.path_constraints.iter().any(|n| n == name))
+    }
+
     /// The path slot `slot` shows in the setup pose with skin `skin` (by name), if it is one.
     pub(super) fn setup_path(&self, skin: &str, slot: usize) -> Option<&PathShape> {
         let name = self.slots[slot].attachment.as_ref()?;
@@ -91,7 +98,9 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
                 }
             }
         }
-        out.skins.push(Skin { name, paths });
+        let listed = skin.get("path").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
+        let path_constraints = listed.iter().filter_map(|n| n.as_str().map(str::to_owned)).collect();
+        out.skins.push(Skin { name, paths, path_constraints });
     }
     Ok(out)
 }

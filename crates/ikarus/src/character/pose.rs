@@ -303,6 +303,10 @@ impl Character {
                     }
                     ConstraintKeys::PathDeform(keys) => {
                         let k = t.constraint;
+                        // Room for every coordinate at once, so that later times allocate nothing.
+                        if let Constraint::Path(c) = &self.constraints[k] {
+                            out.path.deform[k].reserve(c.path.as_ref().map_or(0, |p| p.vertices.deform_len()));
+                        }
                         out.path.deformed[k] = path::deform::at(keys, time, &mut out.path.deform[k]);
                     }
                     keys @ (ConstraintKeys::PathPosition(v)

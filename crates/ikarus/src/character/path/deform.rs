@@ -15,8 +15,10 @@ use super::super::timeline;
 pub struct DeformKey {
     /// Seconds from the clip's start (`time`, default 0).
     pub time: f64,
-    /// The offsets, two per point (x, y), every point's: the file's `vertices` placed at
-    /// `offset`, zeros elsewhere (a key without `vertices` is all zeros).
+    /// Where `offsets` start among the path's coordinates (`offset`, default 0).
+    pub start: usize,
+    /// The offsets, two per point (x, y), from `start` on (the file's `vertices`); every other
+    /// coordinate's offset is 0 (a key without `vertices` is all zeros).
     pub offsets: Vec<f64>,
     /// Toward the next key: from 0 to 1 (`curve`; linear when absent).
     pub curve: Interpolation,
@@ -44,23 +46,31 @@ impl PathDeform {
     }
 }
 
-/// The offsets of `keys` at `time` into `out` (cleared first); `false` (and `out` empty)
-/// before the first key.
+/// Key `k`'s offset of coordinate `j`.
+fn offset(k: &DeformKey, j: usize) -> f64 {
+    j.checked_sub(k.start).and_then(|i| k.offsets.get(i)).map_or(0.0, |&v| f32ed(v))
+}
+
+/// How many coordinates key `k` reaches.
+fn reach(k: &DeformKey) -> usize {
+    k.start.saturating_add(k.offsets.len())
+}
+
+/// The offsets of `keys` at `time` into `out` (cleared first; coordinates past its end have
+/// none); `false` (and `out` empty) before the first key.
 pub(crate) fn at(keys: &[DeformKey], time: f64, out: &mut Vec<f64>) -> bool {
     out.clear();
-    {
-        let i = keys.partition_point(|k| f32ed(k.time) <= time);
-        let Some(i) = i.checked_sub(1) else { return false };
-        let k = &keys[i];
-        let Some(next) = keys.get(i + 1) else {
-            out.extend(k.offsets.iter().map(|&v| f32ed(v)));
-            return true;
-        };
-        let p = timeline::segment(k.curve, (f32ed(k.time), 0.0), (f32ed(next.time), 1.0), time);
-        out.extend(k.offsets.iter().zip(&next.offsets).map(|(&a, &b)| {
-            let (a, b) = (f32ed(a), f32ed(b));
-            a + (b - a) * p
-        }));
-        true
-    }
+    let i = keys.partition_point(|k| f32ed(k.time) <= time);
+    let Some(i) = i.checked_sub(1) else { return false };
+    let k = &keys[i];
+    let Some(next) = keys.get(i + 1) else {
+        out.extend((0..reach(k)).map(|j| offset(k, j)));
+        return true;
+    };
+    let p = timeline::segment(k.curve, (f32ed(k.time), 0.0), (f32ed(next.time), 1.0), time);
+    out.extend((0..reach(k).max(reach(next))).map(|j| {
+        let (a, b) = (offset(k, j), offset(next, j));
+        a + (b - a) * p
+    }));
+    true
 }

@@ -176,9 +176,9 @@ fn deform_keys_interpolate_and_hold() {
     let d = PathDeform {
         slot: 0,
         keys: vec![
-            DeformKey { time: 1.0, offsets: vec![0.0, 2.0], curve: Interpolation::Linear },
-            DeformKey { time: 2.0, offsets: vec![4.0, 2.0], curve: Interpolation::Stepped },
-            DeformKey { time: 3.0, offsets: vec![8.0, 8.0], curve: Interpolation::Linear },
+            DeformKey { time: 1.0, start: 1, offsets: vec![2.0], curve: Interpolation::Linear },
+            DeformKey { time: 2.0, start: 0, offsets: vec![4.0, 2.0], curve: Interpolation::Stepped },
+            DeformKey { time: 3.0, start: 0, offsets: vec![8.0, 8.0, 1.0], curve: Interpolation::Linear },
         ],
     };
     let mut out = Vec::new();
@@ -186,7 +186,48 @@ fn deform_keys_interpolate_and_hold() {
     assert!(d.at(1.5, &mut out));
     assert_eq!(out, vec![2.0, 2.0]);
     d.at(2.9, &mut out);
-    assert_eq!(out, vec![4.0, 2.0]);
+    assert_eq!(out, vec![4.0, 2.0, 0.0]);
     d.at(9.0, &mut out);
-    assert_eq!(out, vec![8.0, 8.0]);
+    assert_eq!(out, vec![8.0, 8.0, 1.0]);
+}
+
+/// A character of a root and two bones and one path constraint (index 0) on them.
+fn character_parts() -> crate::character::CharacterParts {
+    use crate::character::{CharacterBone, Inherit, LocalTransform};
+    let bone = |name: &str, parent: Option<usize>| CharacterBone {
+        name: name.into(),
+        parent,
+        length: 10.0,
+        setup: LocalTransform::default(),
+        inherit: Inherit::Normal,
+    };
+    crate::character::CharacterParts {
+        bones: vec![bone("root", None), bone("a", Some(0)), bone("b", Some(1))],
+        constraints: vec![crate::character::Constraint::Path(constraint(2, RotateMode::Chain, SpacingMode::Length))],
+        ..Default::default()
+    }
+}
+
+#[test]
+fn the_model_refuses_missing_bones_bad_mixes_and_timelines_of_another_kind() {
+    use crate::character::{Character, CharacterError, Clip, Constraint, ConstraintKeys, ConstraintTimeline};
+    assert!(Character::new(character_parts()).is_ok());
+    let with = |f: &dyn Fn(&mut PathConstraint)| {
+        let mut p = character_parts();
+        let Constraint::Path(c) = &mut p.constraints[0] else { unreachable!() };
+        f(c);
+        Character::new(p).unwrap_err()
+    };
+    assert_eq!(with(&|c| c.bones[1] = 7), CharacterError::PathBone { constraint: 0, bone: 7 });
+    assert_eq!(with(&|c| c.slot_bone = 3), CharacterError::PathBone { constraint: 0, bone: 3 });
+    assert_eq!(with(&|c| c.setup.mix_x = 1.5).to_string(), "path constraint 0.mixX: out of range, got 1.5");
+    assert_eq!(with(&|c| c.setup.position = f64::NAN).to_string(), "path constraint 0.position: out of range, got NaN");
+    let mut p = character_parts();
+    p.clips.push(Clip {
+        name: "c".into(),
+        duration: 1.0,
+        bones: vec![],
+        constraints: vec![ConstraintTimeline { constraint: 0, keys: ConstraintKeys::Ik(vec![]) }],
+    });
+    assert_eq!(Character::new(p).unwrap_err(), CharacterError::TimelineKind { constraint: 0, kind: "path" });
 }

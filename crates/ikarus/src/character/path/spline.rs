@@ -4,10 +4,18 @@
 //! A path of `n` vertices is `n / 3` knots, each an in handle, the knot and an out handle; an
 //! open path's curves go from each knot to the next (`n / 3 − 1` curves; the first in handle
 //! and the last out handle are unused), a closed path's also from the last knot back to the
-//! first. With `constantSpeed` the distances are arc lengths measured in the world: each curve
-//! is cut into ten chords at the parameters 0, 0.1, …, 1 and a distance falls on a chord, whose
-//! parameter range is walked proportionally; without it, a distance picks a curve by the
-//! attachment's `lengths` and is a parameter proportionally within that curve.
+//! first. With `constantSpeed` the distances are arc lengths measured in the world each pose:
+//! a curve's length is that of the four chords between the cubic's points at the parameters
+//! 0, ¼, ½, ¾, 1 (the path's length their sum); a distance picks the first curve that ends at
+//! or after it, its fraction of that curve's length is taken along the ten chords at the
+//! parameters 0, 0.1, …, 1, and the parameter is walked proportionally on the chord it falls
+//! on. Without it, a distance picks a curve by the attachment's `lengths` and is a parameter
+//! proportionally within that curve.
+//!
+//! Inferred from Spine's runtime (4.2.119) posing stretchyman: with ten chords for the curves'
+//! lengths too, its bones land up to 2.5e-3 off the runtime's along the path (6e-3 in the middle
+//! of the legs), with the exact arc length 0.44; with four chords for the lengths and ten
+//! within a curve, 3e-5 (the runtime's f32 arithmetic).
 
 use super::super::world::Affine;
 use crate::math;
