@@ -1,25 +1,36 @@
 //! `ikarus bench --characters`: every shipped character (`examples/characters/`) posed as its
-//! runtime poses it (`Character::pose`, the default `--ik runtime`), one thread, into one reused
-//! `Posed` per kind of pose: the setup pose with its constraints, and its animation (`walk`
-//! where it has one, else its first) sampled at a time that advances by [`STEP`] each pose,
-//! wrapping at the clip's duration. The two kinds alternate pose by pose, so that both see the
-//! same load; each pose is timed alone, and the medians and 99th percentiles are reported.
+//! runtime poses it (the default `--ik runtime`, every constraint kind active), one thread, into
+//! one reused `Posed` per kind of pose: the setup pose with its constraints, and an animation
+//! (its row's clip) at a time that advances by [`STEP`] each pose, wrapping at the clip's
+//! duration — for a character with physics constraints, one frame of a game's loop
+//! (`Character::play_frame`: the physics stepping from the frame before, as a game calls it
+//! every frame). The two kinds alternate pose by pose, so that both see the same load; each pose
+//! is timed alone, and the medians and 99th percentiles are reported.
 
 use std::io::{self, Write};
 use std::time::Instant;
 
-use ikarus::character::{Character, PoseRequest, Posed};
+use ikarus::character::{Character, PhysicsWorld, PlayFrame, PoseRequest, Posed};
 use ikarus_edge::error::CliError;
 use serde::Serialize;
 
 use super::{BenchArgs, Sink};
 
-/// The shipped characters, by file name, with their text.
-const CHARACTERS: [(&str, &str); 4] = [
-    ("spine-spineboy-pro.json", include_str!("../../../examples/characters/spine-spineboy-pro.json")),
-    ("spine-raptor-pro.json", include_str!("../../../examples/characters/spine-raptor-pro.json")),
-    ("spine-stretchyman-pro.json", include_str!("../../../examples/characters/spine-stretchyman-pro.json")),
-    ("dragonbones-mecha_1406_ske.json", include_str!("../../../examples/characters/dragonbones-mecha_1406_ske.json")),
+/// The shipped characters, by file name, with their text and the clip each is animated by.
+const CHARACTERS: [(&str, &str, &str); 5] = [
+    ("spine-spineboy-pro.json", include_str!("../../../examples/characters/spine-spineboy-pro.json"), "walk"),
+    ("spine-raptor-pro.json", include_str!("../../../examples/characters/spine-raptor-pro.json"), "walk"),
+    ("spine-stretchyman-pro.json", include_str!("../../../examples/characters/spine-stretchyman-pro.json"), "sneak"),
+    (
+        "spine-celestial-circus-pro.json",
+        include_str!("../../../examples/characters/spine-celestial-circus-pro.json"),
+        "swing",
+    ),
+    (
+        "dragonbones-mecha_1406_ske.json",
+        include_str!("../../../examples/characters/dragonbones-mecha_1406_ske.json"),
+        "walk",
+    ),
 ];
 
 /// How far the animation's time advances from one pose to the next, seconds (a frame at 60 Hz).
@@ -35,7 +46,8 @@ pub struct CharacterRow {
     pub file: &'static str,
     /// How many bones.
     pub bones: usize,
-    /// The animation posed (`walk`, else the first), if the character has one.
+    /// The animation posed (one frame of a game's play with physics, for a character that has
+    /// physics constraints), if the character has it.
     pub clip: Option<String>,
     /// Median µs of the setup pose with its constraints.
     pub pose_us: f64,
@@ -82,9 +94,9 @@ struct Report {
 pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     let poses = args.poses as usize;
     let mut characters = Vec::new();
-    for (file, text) in CHARACTERS {
+    for (file, text, clip) in CHARACTERS {
         let loaded = ikarus_edge::character::load(text, file)?;
-        characters.push(measure(file, &loaded.character, poses)?);
+        characters.push(measure(file, &loaded.character, loaded.character.clip_index(clip), poses)?);
     }
     let header = CharactersHeader {
         command: super::command_line(),
@@ -109,14 +121,9 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     })
 }
 
-/// The clip a character is animated by: `walk`, else its first.
-fn clip_of(c: &Character) -> Option<usize> {
-    c.clip_index("walk").or(if c.clips().is_empty() { None } else { Some(0) })
-}
-
-/// Times `poses` setup poses and `poses` animated ones, alternating.
-fn measure(file: &'static str, c: &Character, poses: usize) -> Result<CharacterRow, CliError> {
-    let clip = clip_of(c);
+/// Times `poses` setup poses and `poses` animated ones (game frames with physics), alternating.
+fn measure(file: &'static str, c: &Character, clip: Option<usize>, poses: usize) -> Result<CharacterRow, CliError> {
+    let physics = c.constraints().iter().any(|k| k.kind() == "physics");
     let duration = clip.map_or(0.0, |k| c.clips()[k].duration);
     let (mut setup_out, mut animated_out) = (Posed::default(), Posed::default());
     let (mut setup, mut animated) = (Vec::with_capacity(poses), Vec::with_capacity(poses));
@@ -129,10 +136,17 @@ fn measure(file: &'static str, c: &Character, poses: usize) -> Result<CharacterR
             setup.push(t);
         }
         if let Some(k) = clip {
-            let time = if duration > 0.0 { (i as f64 * STEP) % duration } else { 0.0 };
-            let request = PoseRequest { clip: Some((k, time)), targets: &[], bends: &[], turns: &[], skin: None };
+            let clock = i as f64 * STEP;
+            let time = if duration > 0.0 { clock % duration } else { 0.0 };
+            let request = PoseRequest { clip: Some((k, time)), ..PoseRequest::default() };
+            let frame =
+                PlayFrame { clock, before: i.checked_sub(1).map(|j| j as f64 * STEP), world: PhysicsWorld::default() };
             let start = Instant::now();
-            c.pose(&request, &mut animated_out).map_err(fail)?;
+            if physics {
+                c.play_frame(&request, &frame, &mut animated_out).map_err(fail)?;
+            } else {
+                c.pose(&request, &mut animated_out).map_err(fail)?;
+            }
             let t = start.elapsed().as_secs_f64() * 1e6;
             if i >= WARMUP {
                 animated.push(t);
@@ -241,10 +255,9 @@ mod tests {
 
     #[test]
     fn every_shipped_character_is_read_and_has_its_clip() {
-        for (file, text) in CHARACTERS {
+        for (file, text, clip) in CHARACTERS {
             let c = ikarus_edge::character::load(text, file).unwrap().character;
-            let clip = clip_of(&c).map(|k| c.clips()[k].name.as_str());
-            assert_eq!(clip, Some(if file.contains("stretchyman") { "idle" } else { "walk" }), "{file}");
+            assert!(c.clip_index(clip).is_some(), "{file} has no {clip}");
         }
     }
 }

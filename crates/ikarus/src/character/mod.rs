@@ -39,7 +39,7 @@ pub use physics::{
     PhysicsState, PhysicsWorld,
 };
 pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
-pub use play::{MAX_FRAMES, Play};
+pub use play::{MAX_FRAMES, Play, PlayFrame};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use skin::{Skin, SkinRequired};
 pub use together::{

@@ -94,6 +94,38 @@ impl Character {
     }
 }
 
+/// One frame of a game's loop with physics ([`Character::play_frame`]): the skeleton's clock
+/// now and at the frame before (`None`: the first frame, where the physics restarts).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlayFrame {
+    /// The skeleton's clock now, seconds (it only grows in a game; the clip's time is the
+    /// request's, which a looping game wraps).
+    pub clock: f64,
+    /// The clock at the frame before, or `None` for the first frame (physics restarts).
+    pub before: Option<f64>,
+    /// The skeleton's wind, gravity and reference scale.
+    pub world: PhysicsWorld,
+}
+
+impl Character {
+    /// Poses one frame of a game's loop as Spine's runtime does it with physics: the clip at
+    /// the request's time, then every constraint, the physics constraints stepping from the
+    /// state `out` kept from the frame before up to `frame.clock` (restarting on the first
+    /// frame, or where a clip's `reset` key lies between the two clip times). What a game
+    /// calls every frame; [`Character::play`] is these frames from 0.
+    pub fn play_frame(&self, request: &PoseRequest, frame: &PlayFrame, out: &mut Posed) -> Result<(), PoseError> {
+        if !frame.clock.is_finite() || frame.before.is_some_and(|b| !(b.is_finite() && b <= frame.clock)) {
+            return Err(PoseError::Time(frame.clock));
+        }
+        let (mode, from) = match frame.before {
+            None => (PhysicsMode::Reset, frame.clock),
+            Some(before) => (PhysicsMode::Update, before),
+        };
+        let from = request.clip.map_or(from, |(_, t)| t - (frame.clock - from));
+        self.pose_frame(request, out, None, Frame::Play { mode, clock: frame.clock, from, world: frame.world })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -161,6 +193,28 @@ mod tests {
         assert!(lag > 0.1 && lag < 50.0, "{lag}");
         // The root is where the clip has it at the play's clock (30 sixtieths added up).
         assert!((played.origin(0)[0] - 50.0).abs() < 1e-9, "{:?}", played.origin(0));
+    }
+
+    #[test]
+    fn a_games_frames_one_by_one_are_the_play_to_the_bit() {
+        let c = slider(true);
+        let (mut played, mut framed) = (Posed::default(), Posed::default());
+        c.play(&request(0.5), &Play::default(), &mut played).unwrap();
+        let mut before = None;
+        let mut clock = 0.0;
+        for f in 0..=30 {
+            if f > 0 {
+                clock += 1.0 / 60.0;
+            }
+            let frame = PlayFrame { clock, before, world: PhysicsWorld::default() };
+            c.play_frame(&request(clock), &frame, &mut framed).unwrap();
+            before = Some(clock);
+        }
+        assert_eq!(played.origin(1).map(f64::to_bits), framed.origin(1).map(f64::to_bits));
+        assert_eq!(played.matrix(1).map(f64::to_bits), framed.matrix(1).map(f64::to_bits));
+        // A clock that goes back, or is not finite, is refused.
+        let back = PlayFrame { clock: 0.1, before: Some(0.2), world: PhysicsWorld::default() };
+        assert_eq!(c.play_frame(&request(0.1), &back, &mut framed), Err(PoseError::Time(0.1)));
     }
 
     #[test]

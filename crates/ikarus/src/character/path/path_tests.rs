@@ -229,5 +229,8 @@ fn the_model_refuses_missing_bones_bad_mixes_and_timelines_of_another_kind() {
         bones: vec![],
         constraints: vec![ConstraintTimeline { constraint: 0, keys: ConstraintKeys::Ik(vec![]) }],
     });
-    assert_eq!(Character::new(p).unwrap_err(), CharacterError::TimelineKind { constraint: 0, keys: "ik", kind: "path" });
+    assert_eq!(
+        Character::new(p).unwrap_err(),
+        CharacterError::TimelineKind { constraint: 0, keys: "ik", kind: "path" }
+    );
 }
