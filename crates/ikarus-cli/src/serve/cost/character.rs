@@ -280,4 +280,20 @@ mod tests {
         assert!(estimate(Endpoint::RigParse, big.as_bytes()) > QUICK_COST);
         assert_eq!(lane(Endpoint::RigParse, big.as_bytes()), Lane::Long);
     }
+
+    /// A `.skel`'s bytes are costed as the most JSON text they may decode into: never 0, never
+    /// less than the same bytes as text, and any `.skel` is long work (its strings may copy a
+    /// mebibyte).
+    #[test]
+    fn a_skel_is_costed_as_the_text_it_may_decode_into() {
+        use crate::api::rigs::FileBody;
+        use crate::serve::cost::{file_estimate, file_lane};
+        let skel = include_bytes!("../../../../../examples/characters/spine-spineboy-pro.skel");
+        let as_text = file_estimate(FileBody::Text, skel);
+        assert_eq!(as_text, estimate(Endpoint::RigParse, skel));
+        assert!(file_estimate(FileBody::Bytes, skel) > 16.0 * as_text, "{as_text}");
+        assert!(file_estimate(FileBody::Bytes, b"") > QUICK_COST);
+        assert_eq!(file_lane(FileBody::Bytes, &skel[..10]), Lane::Long);
+        assert_eq!(file_lane(FileBody::Text, SPINEBOY.as_bytes()), Lane::Quick);
+    }
 }
