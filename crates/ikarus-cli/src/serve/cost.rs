@@ -17,7 +17,7 @@
 //! - a character's job (`rig` a character file's text): reading the file, plus its poses (one
 //!   for `pose`, a frame's for `animate` and `render`, a sample's for `track`), each costed from
 //!   the file's bones and constraints ([`character`]); `rig/parse` and `arm/parse`: their bytes
-//!   (a `.skel`'s bytes as the JSON text they may decode into at most: [`SKEL_TEXT_BYTES`]).
+//!   (a `.skel`'s bytes as the JSON text they may decode into at most: [`character::SKEL_TEXT_BYTES`]).
 //!
 //! The body is read leniently: unknown fields are skipped, and a field of the wrong type counts
 //! as absent (the request is then refused when it runs, at once). A body that is not a JSON
@@ -32,6 +32,7 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use super::pool::Lane;
 use crate::api::Endpoint;
 use crate::api::rigs::FileBody;
+pub use character::{file_estimate, file_lane};
 
 mod character;
 mod keys;
@@ -58,27 +59,6 @@ const PLAN_SOLVES: f64 = 12.0;
 /// The lane of a computation of `endpoint` asked for by `body`.
 pub fn lane(endpoint: Endpoint, body: &[u8]) -> Lane {
     if estimate(endpoint, body) <= QUICK_COST { Lane::Quick } else { Lane::Long }
-}
-
-/// Bytes of JSON text a byte of a `.skel` may decode into at most, and the bytes any `.skel` may
-/// add: the decoder lets its string references copy up to 16 times the file and a mebibyte
-/// (`character::skel`), and writes a 4-byte float in at most about 17 characters.
-pub const SKEL_TEXT_BYTES: (f64, f64) = (16.0 + 5.0, (1 << 20) as f64);
-
-/// The lane of `/api/rig/parse` with a body held as `given`.
-pub fn file_lane(given: FileBody, body: &[u8]) -> Lane {
-    if file_estimate(given, body) <= QUICK_COST { Lane::Quick } else { Lane::Long }
-}
-
-/// The work of `/api/rig/parse` in link steps: reading its text, a `.skel`'s bytes as the most
-/// text they may decode into ([`SKEL_TEXT_BYTES`]).
-pub fn file_estimate(given: FileBody, body: &[u8]) -> f64 {
-    let bytes = body.len() as f64;
-    let text = match given {
-        FileBody::Text => bytes,
-        FileBody::Bytes => bytes * SKEL_TEXT_BYTES.0 + SKEL_TEXT_BYTES.1,
-    };
-    text * character::BYTE_STEPS
 }
 
 /// The request's worst-case work in link steps (see the module docs); 0 for a body that is not
