@@ -483,6 +483,30 @@ export const parseArm = (text) => JSON.parse(call("arm/parse", text));
 export const parseRig = (text) => JSON.parse(call("rig/parse", text));
 
 /**
+ * A character file's bytes (a Spine 4.2 binary export, `.skel`, or a JSON file's) as its JSON
+ * text, what `ikarus pose --rig FILE.skel` reads: the text `parseRig`, `call` and `Character`
+ * take. Bytes that are neither throw an IkarusError (422, the CLI's line).
+ * @param {Uint8Array | ArrayBuffer} bytes
+ * @returns {string}
+ */
+export function characterText(bytes) {
+  if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+  return guarded(full, () => full.api.characterText(new Uint8Array(bytes)));
+}
+
+/**
+ * Reads a file's bytes as POST /api/rig/parse?text=1 does with them as
+ * application/octet-stream: `{character, text}` (a `.skel`'s decoded JSON text as `text`), or
+ * `{rig}`; a file that cannot be read throws an IkarusError (422, the CLI's line).
+ * @param {Uint8Array | ArrayBuffer} bytes
+ * @returns {{character?: object, text?: string, rig?: object}}
+ */
+export function parseRigBytes(bytes) {
+  if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
+  return JSON.parse(guarded(full, () => full.api.parseRigBytes(new Uint8Array(bytes))));
+}
+
+/**
  * The arm file (TOML text) of an `arm` object (POST /api/arm/toml).
  * @param {object} arm
  * @returns {string}
