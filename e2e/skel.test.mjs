@@ -66,7 +66,8 @@ test("spineboy's .skel: loaded as bytes, the JSON's setup pose, walk played, exp
     await page.waitForFunction(() => !document.getElementById("error").hidden, null, { timeout: 15000 });
     assert.match(await page.textContent("#error"), /^rig file: skel: byte \d+: /);
     assert.equal(await page.evaluate(() => window.ikarus.state.character.name), "spineboy.skel");
-    assert.deepEqual(errors, []);
+    // Chromium logs the refused request (the 422) on the console; nothing else may be logged.
+    assert.deepEqual(errors.filter((e) => !/status of 422/.test(e)), []);
   } finally {
     await browser.close();
     child.kill();
