@@ -114,8 +114,13 @@ export const version = () => handles().api.version();
  * @returns {string}
  */
 export function call(path, body = "") {
+  return onFull(() => full.api.call(path, body));
+}
+
+/** `run` on the full module, guarded (see `failure`); throws when it is not loaded. */
+function onFull(run) {
   if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  return guarded(full, () => full.api.call(path, body));
+  return guarded(full, run);
 }
 
 /**
@@ -482,29 +487,10 @@ export const parseArm = (text) => JSON.parse(call("arm/parse", text));
  */
 export const parseRig = (text) => JSON.parse(call("rig/parse", text));
 
-/**
- * A character file's bytes (a Spine 4.2 binary export, `.skel`, or a JSON file's) as its JSON
- * text, what `ikarus pose --rig FILE.skel` reads: the text `parseRig`, `call` and `Character`
- * take. Bytes that are neither throw an IkarusError (422, the CLI's line).
- * @param {Uint8Array | ArrayBuffer} bytes
- * @returns {string}
- */
-export function characterText(bytes) {
-  if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  return guarded(full, () => full.api.characterText(new Uint8Array(bytes)));
-}
-
-/**
- * Reads a file's bytes as POST /api/rig/parse?text=1 does with them as
- * application/octet-stream: `{character, text}` (a `.skel`'s decoded JSON text as `text`), or
- * `{rig}`; a file that cannot be read throws an IkarusError (422, the CLI's line).
- * @param {Uint8Array | ArrayBuffer} bytes
- * @returns {{character?: object, text?: string, rig?: object}}
- */
-export function parseRigBytes(bytes) {
-  if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  return JSON.parse(guarded(full, () => full.api.parseRigBytes(new Uint8Array(bytes))));
-}
+/** A character file's bytes (Uint8Array, ArrayBuffer) as JSON text: a Spine `.skel`'s decoded as `ikarus pose --rig FILE.skel` reads it. */
+export const characterText = (bytes) => onFull(() => full.api.characterText(new Uint8Array(bytes)));
+/** A file's bytes read as POST /api/rig/parse?text=1 reads them (application/octet-stream): `{character, text}` or `{rig}`; a bad file throws (422). */
+export const parseRigBytes = (bytes) => JSON.parse(onFull(() => full.api.parseRigBytes(new Uint8Array(bytes))));
 
 /**
  * The arm file (TOML text) of an `arm` object (POST /api/arm/toml).
