@@ -2,7 +2,8 @@
 // WebAssembly module) and answers the page's api.js, so that a long job (a traced path, the
 // reachable region of a long arm) never freezes the page. Messages: it posts {ready: true} once
 // the module is initialised (or {ready: false, error}); then each {id, path, body} gets
-// {id, status, text}: 200 and the answer's text, or the server's status and `{"error": …}`. A
+// {id, status, text}: 200 and the answer's text, or the server's status and `{"error": …}` (a
+// body that is an ArrayBuffer is a file's bytes: /api/rig/parse?text=1's answer for them). A
 // reply with `restart: true` says the module trapped (out of memory, a panic): ikarus.js has
 // restarted it, but this worker's handles were made in the stopped one, so the page
 // (ikarus-thread.js) replaces the worker; it also replaces one whose job outlives its budget.
@@ -51,6 +52,19 @@ async function answer(path, body) {
   try {
     await ikarus.init();
     return { status: 200, text: ikarus.call(path, body) };
+  } catch (e) {
+    return failed(e);
+  }
+}
+
+/**
+ * {status, text} of POST /api/rig/parse?text=1 with `bytes` (an ArrayBuffer: a `.skel`, sent as
+ * application/octet-stream): the server's answer, or its status and line.
+ */
+async function answerBytes(bytes) {
+  try {
+    await ikarus.init();
+    return { status: 200, text: JSON.stringify(ikarus.parseRigBytes(bytes)) };
   } catch (e) {
     return failed(e);
   }
@@ -138,5 +152,5 @@ onmessage = async ({ data }) => {
     return;
   }
   const { id, path, body } = data;
-  postMessage({ id, ...(await answer(path, body)) });
+  postMessage({ id, ...(await (body instanceof ArrayBuffer ? answerBytes(body) : answer(path, body))) });
 };

@@ -114,8 +114,13 @@ export const version = () => handles().api.version();
  * @returns {string}
  */
 export function call(path, body = "") {
+  return onFull(() => full.api.call(path, body));
+}
+
+/** `run` on the full module, guarded (see `failure`); throws when it is not loaded. */
+function onFull(run) {
   if (!full.memory) throw new IkarusError(500, "ikarus.js: call init() (and await it) first");
-  return guarded(full, () => full.api.call(path, body));
+  return guarded(full, run);
 }
 
 /**
@@ -481,6 +486,11 @@ export const parseArm = (text) => JSON.parse(call("arm/parse", text));
  * @returns {{rig?: object, problem?: string}}
  */
 export const parseRig = (text) => JSON.parse(call("rig/parse", text));
+
+/** A character file's bytes (Uint8Array, ArrayBuffer) as JSON text: a Spine `.skel`'s decoded as `ikarus pose --rig FILE.skel` reads it. */
+export const characterText = (bytes) => onFull(() => full.api.characterText(new Uint8Array(bytes)));
+/** A file's bytes read as POST /api/rig/parse?text=1 reads them (application/octet-stream): `{character, text}` or `{rig}`; a bad file throws (422). */
+export const parseRigBytes = (bytes) => JSON.parse(onFull(() => full.api.parseRigBytes(new Uint8Array(bytes))));
 
 /**
  * The arm file (TOML text) of an `arm` object (POST /api/arm/toml).

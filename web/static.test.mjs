@@ -391,3 +391,40 @@ test("a job over the page's budget is stopped: answered 503 naming the budget, t
     host.child.kill();
   }
 });
+
+test("the static page loads a Spine .skel: decoded by the module, the character the native server reads from it", async () => {
+  const host = await staticServer();
+  const native = await startServer();
+  const browser = await launch();
+  try {
+    const { page, errors } = await openPage(browser);
+    const apiRequests = [];
+    page.on("request", (r) => new URL(r.url()).pathname.startsWith("/api/") && apiRequests.push(r.url()));
+    await page.goto(`${host.url}/`);
+    await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 20000 });
+    const skel = readFileSync(join(import.meta.dirname, "..", "examples", "characters", "spine-spineboy-pro.skel"));
+    await page.setInputFiles("#rig-file", { name: "spineboy.skel", mimeType: "application/octet-stream", buffer: skel });
+    await page.waitForFunction(() => window.ikarus.state.character && window.ikarus.state.character.posed && window.ikarus.characters.settled(), null, { timeout: 20000 });
+    const seen = await page.evaluate(() => ({ text: window.ikarus.state.character.text, character: window.ikarus.state.character.character, posed: window.ikarus.state.character.posed }));
+    assert.equal(seen.character.bones.length, 67);
+    assert.equal(seen.posed.length, 67);
+    // The native server decodes the same bytes into the same text and character, and poses it so.
+    const res = await fetch(`${native.url}/api/rig/parse?text=1`, { method: "POST", headers: { "content-type": "application/octet-stream" }, body: skel });
+    const parsed = await res.json();
+    assert.equal(seen.text, parsed.text);
+    assert.deepEqual(seen.character, parsed.character);
+    const posed = await fetch(`${native.url}/api/pose`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ rig: parsed.text }) });
+    assert.deepEqual(seen.posed, (await posed.json()).bones);
+    // A truncated one: the module's one line, as the server's.
+    await page.setInputFiles("#rig-file", { name: "cut.skel", mimeType: "application/octet-stream", buffer: skel.subarray(0, 2000) });
+    await page.waitForFunction(() => !document.getElementById("error").hidden, null, { timeout: 15000 });
+    const cut = await fetch(`${native.url}/api/rig/parse`, { method: "POST", headers: { "content-type": "application/octet-stream" }, body: skel.subarray(0, 2000) });
+    assert.equal(await page.textContent("#error"), (await cut.json()).error);
+    assert.deepEqual(apiRequests, [], "no request left the page");
+    assert.deepEqual(errors, []);
+  } finally {
+    await browser.close();
+    host.child.kill();
+    native.child.kill();
+  }
+});

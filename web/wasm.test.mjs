@@ -448,3 +448,21 @@ test("a call that runs out of memory is answered with a clear error and the modu
   assert.equal(ikarus.STATUS[after.solveHere(2, 3)], "reached");
   after.free();
 });
+
+test("a .skel's bytes: the module's answer is the server's /api/rig/parse?text=1, its text the decoded JSON", async () => {
+  const skel = readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.skel"));
+  const res = await fetch(`${server.url}/api/rig/parse?text=1`, { method: "POST", headers: { "content-type": "application/octet-stream" }, body: skel });
+  assert.equal(res.status, 200);
+  const served = await res.json();
+  assert.deepEqual(ikarus.parseRigBytes(skel), served);
+  assert.equal(ikarus.characterText(skel), served.text);
+  assert.equal(served.character.bones.length, 67);
+  const cut = skel.subarray(0, 2000);
+  const refused = await fetch(`${server.url}/api/rig/parse`, { method: "POST", headers: { "content-type": "application/octet-stream" }, body: cut });
+  assert.equal(refused.status, 422);
+  const { error } = await refused.json();
+  assert.match(error, /^rig file: skel: byte \d+: /);
+  for (const f of [ikarus.parseRigBytes, ikarus.characterText]) {
+    assert.throws(() => f(cut), (e) => e instanceof ikarus.IkarusError && e.status === 422 && e.message === error);
+  }
+});

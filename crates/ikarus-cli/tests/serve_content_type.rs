@@ -2,8 +2,9 @@
 //! asking (a CORS "simple request") only with a body of type `text/plain`,
 //! `application/x-www-form-urlencoded` or `multipart/form-data`. The server refuses every body
 //! that is not its endpoint's type (`application/json`, or `application/toml` for the arm and
-//! rig files' text) with 415 before reading it, a missing type included, and answers no CORS
-//! preflight, so such a page can make it do no work.
+//! rig files' text, `application/octet-stream` too for a character file's bytes) with 415 before
+//! reading it, a missing type included, and answers no CORS preflight, so such a page can make
+//! it do no work.
 
 mod common;
 
@@ -27,6 +28,9 @@ const JSON: [&str; 8] = [
 
 /// The endpoints that take a file's text.
 const TOML: [&str; 2] = ["/api/arm/parse", "/api/rig/parse"];
+
+/// What `/api/rig/parse` takes: a file's text or its bytes (a `.skel`).
+const RIG_FILE: &str = "application/toml or application/octet-stream";
 
 /// The types a page may send without a preflight, in the spellings browsers use, and no type.
 const SIMPLE: [Option<&str>; 6] = [
@@ -79,6 +83,7 @@ fn every_post_with_another_content_type_is_415_naming_the_header() {
                 let e = post(&s, path, content_type, body).error(415);
                 let named =
                     content_type.map_or("Content-Type: missing".to_owned(), |t| format!("Content-Type = {t:?}"));
+                let want = if *path == "/api/rig/parse" { RIG_FILE } else { want };
                 assert_eq!(e, format!("{named}: expected {want}"), "{path} with {content_type:?}");
             }
         }
@@ -90,7 +95,11 @@ fn every_post_with_another_content_type_is_415_naming_the_header() {
     );
     assert_eq!(
         post(&s, "/api/rig/parse", Some("application/json"), rig).error(415),
-        "Content-Type = \"application/json\": expected application/toml"
+        format!("Content-Type = \"application/json\": expected {RIG_FILE}")
+    );
+    assert_eq!(
+        post(&s, "/api/arm/parse", Some("application/octet-stream"), rig).error(415),
+        "Content-Type = \"application/octet-stream\": expected application/toml"
     );
     s.assert_healthy();
 }

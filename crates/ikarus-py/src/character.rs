@@ -7,8 +7,16 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::edge::{IkReq, Loaded, PoseAsk, load_character, parse_json, pose_watched};
+use crate::edge::{IkReq, Loaded, PoseAsk, character_text, load_character, parse_json, pose_watched};
 use crate::signals::interruptible;
+
+/// A character file's bytes as the JSON text ``_Character`` reads: a JSON file's text as is, a
+/// Spine binary export's (``.skel``) decoded, as ``--rig FILE`` reads them (``text_of``); bytes
+/// that are neither raise ``ValueError`` with the CLI's line after ``label``.
+#[pyfunction]
+pub(crate) fn _character_text(data: &[u8], label: &str) -> PyResult<String> {
+    character_text(data.to_vec(), label).map_err(|e| PyValueError::new_err(e.to_string()))
+}
 
 /// A character file, read: ``_Character(text, label)`` raises ``ValueError`` with the CLI's
 /// line (``label`` starts it, as ``rig file PATH`` does on the command line).

@@ -35,7 +35,7 @@ use pyo3::prelude::*;
 use crate::api::_call;
 use crate::batch::_status_names;
 use crate::chain::PyChain;
-use crate::character::PyCharacter;
+use crate::character::{_character_text, PyCharacter};
 use crate::easing::ease;
 use crate::outcome::{_solve_rig, PyEffector, PyOutcome};
 
@@ -49,6 +49,7 @@ fn _ikarus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_status_names, m)?)?;
     m.add_function(wrap_pyfunction!(_call, m)?)?;
     m.add_function(wrap_pyfunction!(_solve_rig, m)?)?;
+    m.add_function(wrap_pyfunction!(_character_text, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

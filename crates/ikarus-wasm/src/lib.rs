@@ -77,6 +77,42 @@ pub fn call(path: &str, body: &str) -> Result<String, Problem> {
     answer(path, body)
 }
 
+/// A character file's bytes as the JSON text [`call`] and [`Character`] read: a JSON file's text
+/// as is, a Spine 4.2 binary export's (`.skel`) decoded into the JSON tree Spine's JSON export
+/// of it has, by the function `ikarus pose --rig FILE.skel` reads it with; bytes that are
+/// neither are a 422 [`Problem`] with the command line's one line (`rig file: skel: byte …`).
+pub fn text_of(bytes: &[u8]) -> Result<String, Problem> {
+    ikarus_edge::character::text_of(bytes.to_vec(), "rig file")
+        .map_err(|e| Problem { status: 422, message: e.to_string() })
+}
+
+/// [`text_of`] for JavaScript (`characterText(bytes)` in `web/ikarus.js`): returns the JSON
+/// text, throws a [`Problem`].
+#[cfg(feature = "json")]
+#[wasm_bindgen(js_name = characterText)]
+pub fn character_text(bytes: &[u8]) -> Result<String, Problem> {
+    text_of(bytes)
+}
+
+/// What `ikarus serve` answers `POST /api/rig/parse?text=1` with these bytes as
+/// `application/octet-stream` (a `.skel`, or any character or rig file): `{"character": …,
+/// "text": "<its JSON text>"}` (the character kept under its id), `{"rig": …}`, or the
+/// [`Problem`] (422 for a file that cannot be read).
+pub fn parse_bytes(bytes: &[u8]) -> Result<String, Problem> {
+    use ikarus_edge::api::rigs::{Echo, FileBody, parse_file};
+    let reply = parse_file(bytes, FileBody::Bytes, Echo::Text, &Limits::default())
+        .map_err(|p| Problem { status: p.status, message: p.message })?;
+    String::from_utf8(reply.body)
+        .map_err(|e| Problem { status: 500, message: format!("/api/rig/parse: the answer is not text: {e}") })
+}
+
+/// [`parse_bytes`] for JavaScript (`parseRigBytes(bytes)` in `web/ikarus.js`).
+#[cfg(feature = "json")]
+#[wasm_bindgen(js_name = parseRigBytes)]
+pub fn parse_rig_bytes(bytes: &[u8]) -> Result<String, Problem> {
+    parse_bytes(bytes)
+}
+
 /// The version of ikarus this module was built from (the crate version, as `/api/health` says).
 #[wasm_bindgen]
 pub fn version() -> String {
@@ -123,6 +159,23 @@ mod tests {
 
         let nowhere = answer("nowhere", "{}").unwrap_err();
         assert_eq!((nowhere.status, nowhere.message.as_str()), (404, r#"no endpoint "nowhere""#));
+    }
+
+    /// A `.skel`'s bytes: its JSON text, which `rig/parse` reads as the answer for the bytes
+    /// says; bytes that are not a character are a 422 with the command line's line.
+    #[test]
+    fn a_skels_bytes_read_as_its_json_text() {
+        let skel = include_bytes!("../../../examples/characters/spine-spineboy-pro.skel");
+        let text = text_of(skel).unwrap();
+        let parsed: serde_json::Value = serde_json::from_str(&answer("rig/parse", &text).unwrap()).unwrap();
+        let from_bytes: serde_json::Value = serde_json::from_str(&parse_bytes(skel).unwrap()).unwrap();
+        assert_eq!(from_bytes["text"].as_str(), Some(text.as_str()));
+        assert_eq!(from_bytes["character"]["bones"], parsed["character"]["bones"]);
+        assert_eq!(parsed["character"]["bones"].as_array().unwrap().len(), 67);
+        let cut = text_of(&skel[..100]).unwrap_err();
+        assert_eq!(cut.status, 422);
+        assert!(cut.message.starts_with("rig file: skel: byte "), "{cut:?}");
+        assert_eq!(parse_bytes(&skel[..100]).unwrap_err(), cut);
     }
 
     /// The module answers under `ikarus serve`'s default caps: a request over one is refused as

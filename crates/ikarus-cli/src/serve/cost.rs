@@ -16,7 +16,8 @@
 //! - `render`: its pixels (times the frames of a GIF) plus the cost of what it draws;
 //! - a character's job (`rig` a character file's text): reading the file, plus its poses (one
 //!   for `pose`, a frame's for `animate` and `render`, a sample's for `track`), each costed from
-//!   the file's bones and constraints ([`character`]); `rig/parse` and `arm/parse`: their bytes.
+//!   the file's bones and constraints ([`character`]); `rig/parse` and `arm/parse`: their bytes
+//!   (a `.skel`'s bytes as the JSON text they may decode into at most: [`character::SKEL_TEXT_BYTES`]).
 //!
 //! The body is read leniently: unknown fields are skipped, and a field of the wrong type counts
 //! as absent (the request is then refused when it runs, at once). A body that is not a JSON
@@ -30,6 +31,8 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 
 use super::pool::Lane;
 use crate::api::Endpoint;
+use crate::api::rigs::FileBody;
+pub use character::{file_estimate, file_lane};
 
 mod character;
 mod keys;
@@ -62,7 +65,7 @@ pub fn lane(endpoint: Endpoint, body: &[u8]) -> Lane {
 /// a JSON object.
 pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
     if matches!(endpoint, Endpoint::RigParse | Endpoint::ArmParse) {
-        return body.len() as f64 * character::BYTE_STEPS;
+        return file_estimate(FileBody::Text, body);
     }
     let Ok(r) = serde_json::from_slice::<Shape>(body) else { return 0.0 };
     match endpoint {

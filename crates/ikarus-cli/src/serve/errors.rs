@@ -2,7 +2,8 @@
 //! field and the value; and the request bodies, read within the server's caps.
 //!
 //! A body is taken only with its endpoint's content type — `application/json` (or a
-//! `application/…+json` type), or `application/toml` for the arm and rig files' text — and
+//! `application/…+json` type), `application/toml` for the arm and rig files' text, or
+//! `application/octet-stream` for a character file's bytes (`/api/rig/parse`, a `.skel`) — and
 //! refused 415 otherwise, a missing type included. None of these is a CORS "simple request"
 //! type (`text/plain`, `application/x-www-form-urlencoded`, `multipart/form-data`), so a page
 //! on another site cannot post a body without a preflight, and the server answers no
@@ -74,6 +75,30 @@ impl MediaType for TomlType {
     }
 }
 
+/// A rig or character file for `/api/rig/parse`: its text (`application/toml`) or its bytes
+/// (`application/octet-stream`, a Spine binary export `.skel`).
+pub struct RigFileType;
+
+/// The media type of a character file's bytes.
+pub const OCTET_STREAM: &str = "application/octet-stream";
+
+impl MediaType for RigFileType {
+    const NAME: &'static str = "application/toml or application/octet-stream";
+    fn accepts(essence: &str) -> bool {
+        TomlType::accepts(essence) || essence == OCTET_STREAM
+    }
+    /// A file: `--max-file-bytes`.
+    fn cap(state: &AppState) -> (usize, &'static str) {
+        TomlType::cap(state)
+    }
+}
+
+/// The request's content type without its parameters, lowercase ("" when missing).
+pub fn essence(headers: &HeaderMap) -> String {
+    let text = headers.get(header::CONTENT_TYPE).map(|v| String::from_utf8_lossy(v.as_bytes()).into_owned());
+    text.unwrap_or_default().split(';').next().unwrap_or_default().trim().to_ascii_lowercase()
+}
+
 /// 415 unless the request's `Content-Type` is `T` (parameters such as `charset` aside).
 fn check_content_type<T: MediaType>(headers: &HeaderMap) -> Result<(), ApiError> {
     let refused = |what: String| ApiError {
@@ -82,8 +107,7 @@ fn check_content_type<T: MediaType>(headers: &HeaderMap) -> Result<(), ApiError>
     };
     let Some(value) = headers.get(header::CONTENT_TYPE) else { return Err(refused(": missing".to_owned())) };
     let text = String::from_utf8_lossy(value.as_bytes());
-    let essence = text.split(';').next().unwrap_or_default().trim().to_ascii_lowercase();
-    if T::accepts(&essence) { Ok(()) } else { Err(refused(format!(" = {text:?}"))) }
+    if T::accepts(&essence(headers)) { Ok(()) } else { Err(refused(format!(" = {text:?}"))) }
 }
 
 /// A request body of media type `T`, read within the server's caps: its content type checked
@@ -98,8 +122,10 @@ pub struct ApiBody<T> {
 
 /// A JSON body (every computation, `/api/arm/toml`).
 pub type JsonBody = ApiBody<JsonType>;
-/// An arm or rig file's text (`/api/arm/parse`, `/api/rig/parse`).
+/// An arm file's text (`/api/arm/parse`).
 pub type TomlBody = ApiBody<TomlType>;
+/// A rig or character file's text or bytes (`/api/rig/parse`).
+pub type RigFileBody = ApiBody<RigFileType>;
 
 impl<T: MediaType> FromRequest<AppState> for ApiBody<T> {
     type Rejection = Refusal;

@@ -2,13 +2,15 @@
 //! by [`JsonBody`]), runs [`api::call`] — the same function Python and WebAssembly call — on a
 //! worker of the pool for the computations, and answers its bytes.
 
-use axum::http::header;
+use axum::extract::RawQuery;
+use axum::http::{HeaderMap, header};
 use axum::response::{IntoResponse, Response};
 use ikarus::Interrupt;
 
 use super::AppState;
-use super::errors::{ApiBody, JsonBody, Refusal, TomlBody};
-use crate::api::{self, Endpoint, Reply};
+use super::errors::{ApiBody, JsonBody, OCTET_STREAM, Refusal, RigFileBody, TomlBody, essence};
+use crate::api::rigs::{Echo, FileBody};
+use crate::api::{self, Endpoint, Problem, Reply};
 
 /// An answer's bytes under its content type.
 fn answer(reply: Reply) -> Response {
@@ -42,12 +44,47 @@ pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Resp
     api::call(endpoint, body, &state.limits, &Interrupt::new()).map(answer).map_err(Refusal)
 }
 
-/// `/api/arm/parse` and `/api/rig/parse`: the body is a file's text, sent as `application/toml`.
+/// `/api/arm/parse`: the body is a file's text, sent as `application/toml`.
 /// Read on a worker of the pool, costed from its bytes ([`super::cost`]), under the time
 /// budget: a character file of a megabyte is real work, which on the runtime's own threads
 /// held `/api/health`, every other request and Ctrl-C for as long as it took.
 pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, Refusal> {
     on_pool(endpoint, state, body).await
+}
+
+/// `/api/rig/parse`: the body is a rig or character file's text (`application/toml`) or bytes
+/// (`application/octet-stream`: a Spine `.skel`, decoded into its JSON text), read on a worker
+/// of the pool as [`file_text`]; `?text=1` adds the kept JSON text to a character's answer
+/// ([`Echo::Text`]).
+pub async fn rig_file(
+    state: AppState,
+    headers: HeaderMap,
+    RawQuery(query): RawQuery,
+    body: RigFileBody,
+) -> Result<Response, Refusal> {
+    let echo = echo(query.as_deref())?;
+    let given = if essence(&headers) == OCTET_STREAM { FileBody::Bytes } else { FileBody::Text };
+    let pool = state.pool.clone();
+    let lane = super::cost::file_lane(given, &body.bytes);
+    pool.run(lane, move |_| api::rigs::parse_file(&body.bytes, given, echo, &state.limits))
+        .await
+        .map(answer)
+        .map_err(Refusal)
+}
+
+/// The `text` parameter of `/api/rig/parse`'s query: `1` to echo the text, `0` (or none) not to.
+fn echo(query: Option<&str>) -> Result<Echo, Problem> {
+    let mut echo = Echo::Without;
+    for (key, value) in query.unwrap_or_default().split('&').filter_map(|pair| pair.split_once('=')) {
+        if key == "text" {
+            echo = match value {
+                "1" => Echo::Text,
+                "0" => Echo::Without,
+                other => return Err(Problem::invalid(format!("query: text = {other:?}: expected 1 or 0"))),
+            };
+        }
+    }
+    Ok(echo)
 }
 
 /// `GET /api/health`.

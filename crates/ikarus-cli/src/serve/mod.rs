@@ -27,7 +27,7 @@ pub use crate::api::Limits;
 use crate::api::{Endpoint, status};
 use crate::error::CliError;
 use errors::{ApiError, JsonBody, Refusal};
-use handlers::{at_once, compute, file_text};
+use handlers::{at_once, compute, file_text, rig_file};
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -304,7 +304,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard, max_file_bytes:
         )
         .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
         .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)).layer(file_cap))
-        .route("/api/rig/parse", post(|State(s), b| file_text(Endpoint::RigParse, s, b)).layer(file_cap))
+        .route("/api/rig/parse", post(|State(s), h, q, b| rig_file(s, h, q, b)).layer(file_cap))
         .route(
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),

@@ -299,7 +299,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
-        Endpoint::RigParse => Reply::json(&rigs::parsed(text(body)?, limits)),
+        Endpoint::RigParse => rigs::parse_file(body, rigs::FileBody::Text, rigs::Echo::Without, limits),
         Endpoint::Solve => jobs::solve(SolveReq::parse(body)?.1, limits, interrupt),
         Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
         Endpoint::Animate if character_motion::is_character(body) => character_motion::animate(body, limits, interrupt),

@@ -1,12 +1,16 @@
 //! Rig files for the page: `GET /api/rigs` (the shipped rig files, embedded in the binary) and
 //! `POST /api/rig/parse` (rig-file text → `{"rig": …}`, a Spine or DragonBones file's JSON →
 //! `{"character": …}`, or `{"problem": "…"}`, as `/api/arm/parse`), in the shapes of
-//! `crate::report`.
+//! `crate::report`. A Spine binary export (`.skel`) is sent as its bytes ([`FileBody::Bytes`]):
+//! decoded into its JSON text by [`crate::character::text_of`], the function the command line
+//! reads a file with, then read and kept as that text; a file that cannot be read is then a
+//! 422 with its one line. Asked with [`Echo::Text`] (`?text=1`), a character's answer carries
+//! the JSON text that was kept (`"text"`), which is how the page gets a `.skel`'s JSON.
 
 use serde::Serialize;
 
 use super::fields::json_response;
-use super::{Limits, Problem, Reply};
+use super::{Limits, Problem, Reply, text};
 use crate::report::RigJson;
 use crate::report::character::CharacterJson;
 use crate::rig::BoneCap;
@@ -73,6 +77,58 @@ pub fn parsed(text: &str, limits: &Limits) -> Parsed {
     }
 }
 
+/// How the body of `POST /api/rig/parse` holds the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileBody {
+    /// The file's text, UTF-8 (`application/toml`): a rig file (TOML) or a character's JSON.
+    Text,
+    /// The file's bytes (`application/octet-stream`): a Spine binary export (`.skel`), or any
+    /// file [`FileBody::Text`] takes; a file that cannot be read is a 422, not a `problem`.
+    Bytes,
+}
+
+/// Whether a character's answer carries the JSON text the server keeps for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Echo {
+    /// `{"character": …}` alone (the default).
+    Without,
+    /// `{"character": …, "text": "…"}` (`?text=1`): the character file's JSON text, a `.skel`'s
+    /// decoded; a rig or a problem has no `text`.
+    Text,
+}
+
+/// The answer of `POST /api/rig/parse` with its echo of the text.
+#[derive(Serialize)]
+struct Answer<'a> {
+    #[serde(flatten)]
+    parsed: &'a Parsed,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    text: Option<&'a str>,
+}
+
+/// `POST /api/rig/parse` of `body` held as `given`: [`parsed`] of the file's text (a `.skel`'s
+/// bytes decoded first), its `text` added when `echo` asks and the file is a character's.
+pub fn parse_file(body: &[u8], given: FileBody, echo: Echo, limits: &Limits) -> Result<Reply, Problem> {
+    let owned;
+    let file = match given {
+        FileBody::Text => text(body)?,
+        FileBody::Bytes => {
+            owned =
+                crate::character::text_of(body.to_vec(), "rig file").map_err(|e| Problem::invalid(e.to_string()))?;
+            owned.as_str()
+        }
+    };
+    let parsed = parsed(file, limits);
+    if let (FileBody::Bytes, Parsed::Problem(problem)) = (given, &parsed) {
+        return Err(Problem::invalid(problem.clone()));
+    }
+    let text = match (&parsed, echo) {
+        (Parsed::Character(_), Echo::Text) => Some(file),
+        _ => None,
+    };
+    json_response(&Answer { parsed: &parsed, text })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,6 +188,37 @@ mod tests {
         let parsed = parsed("{\"skeleton\": {\"spine\": \"4.2\"}, \"bones\": [{\"name\": 1}]}", &Limits::default());
         let Parsed::Problem(p) = parsed else { panic!("{parsed:?}") };
         assert!(p.starts_with("rig file: bones[0].name: invalid type: integer `1`, expected a string"), "{p}");
+    }
+
+    /// A `.skel`'s bytes answer as its JSON export's text does, the decoded text echoed when
+    /// asked; bytes that are not a character are a 422 with the decoder's one line.
+    #[test]
+    fn a_skel_answers_as_its_json_and_bad_bytes_are_422() {
+        let skel = include_bytes!("../../../../examples/characters/spine-spineboy-pro.skel");
+        let limits = Limits::default();
+        let answer = |body: &[u8], given, echo| -> serde_json::Value {
+            serde_json::from_slice(&parse_file(body, given, echo, &limits).unwrap().body).unwrap()
+        };
+        let from_skel = answer(skel, FileBody::Bytes, Echo::Text);
+        let text = from_skel["text"].as_str().unwrap();
+        assert!(text.starts_with('{'), "{text:.40}");
+        let from_text = answer(text.as_bytes(), FileBody::Text, Echo::Without);
+        assert_eq!(from_text.get("text"), None);
+        assert_eq!(from_skel["character"]["bones"], from_text["character"]["bones"]);
+        assert_eq!(from_skel["character"]["bones"].as_array().unwrap().len(), 67);
+        let json = include_str!("../../../../examples/characters/spine-spineboy-pro.json");
+        let from_json = answer(json.as_bytes(), FileBody::Bytes, Echo::Text);
+        assert_eq!(from_json["text"].as_str(), Some(json));
+        let e = parse_file(&skel[..skel.len() / 2], FileBody::Bytes, Echo::Text, &limits).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.starts_with("rig file: skel: byte "), "{}", e.message);
+        assert!(!e.message.contains('\n'), "{}", e.message);
+        let e = parse_file(&[0x89, b'P', b'N', b'G', 0, 0, 0xff], FileBody::Bytes, Echo::Without, &limits).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.starts_with("rig file: "), "{}", e.message);
+        // The text route keeps answering a bad file with its problem, and refuses bytes that are not text.
+        assert!(answer(b"{\"bones\": 1}", FileBody::Text, Echo::Text)["problem"].is_string());
+        assert_eq!(parse_file(&skel[..], FileBody::Text, Echo::Without, &limits).unwrap_err().status, 400);
     }
 
     /// Every rig file in `examples/rigs/` is shipped, and reads.

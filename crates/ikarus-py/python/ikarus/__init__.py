@@ -382,9 +382,10 @@ class Rig(_CharacterRig, _Body):
     computes for chains alone (the exact region is a chain's; ``POST /api/solve/batch`` takes
     an arm).
 
-    A character (Spine or DragonBones JSON) is a rig too: ``Rig.from_json(text)`` reads one
-    from its text, ``Rig.from_file(path)`` from a file (a rig file or a character, told by
-    the content, as ``--rig FILE``); its :meth:`pose` poses it as its runtime does
+    A character (Spine or DragonBones JSON, or Spine's binary ``.skel``) is a rig too:
+    ``Rig.from_json(text)`` reads one from its text (or a file's ``bytes``, a ``.skel``'s
+    included), ``Rig.from_file(path)`` from a file (a rig file or a character, told by the
+    content, as ``--rig FILE``); its :meth:`pose` poses it as its runtime does
     (``ikarus pose``). Its other methods take rig files only, and say so."""
 
     def __init__(self, rig: dict) -> None:
@@ -414,14 +415,16 @@ class Rig(_CharacterRig, _Body):
 
     @classmethod
     def from_file(cls, path: "os.PathLike[str] | str") -> "Rig":
-        """Reads a rig file (TOML, as :meth:`from_toml`) or a character file (JSON, as
-        :meth:`from_json`), told by the content as ``--rig FILE`` tells it; messages start
-        ``rig file PATH:`` as the CLI's."""
+        """Reads a rig file (TOML, as :meth:`from_toml`) or a character file (JSON, or Spine's
+        binary ``.skel``, as :meth:`from_json`), told by the content as ``--rig FILE`` tells
+        it; messages start ``rig file PATH:`` as the CLI's."""
         path = _os.fspath(path)
-        with open(path, encoding="utf-8") as f:
-            text = f.read()
+        with open(path, "rb") as f:
+            data = f.read()
+        label = f"rig file {path}"
+        text = _ikarus._character_text(data, label)
         if text.lstrip("\ufeff").lstrip().startswith("{"):
-            return cls.from_json(text, label=f"rig file {path}")
+            return cls.from_json(text, label=label)
         return cls.from_toml(path)
 
     @classmethod

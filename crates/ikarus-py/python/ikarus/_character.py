@@ -1,4 +1,4 @@
-"""A character file (Spine, DragonBones JSON) as a :class:`~ikarus.Rig`: what a rig has when it
+"""A character file (Spine, DragonBones JSON; Spine's binary ``.skel``) as a :class:`~ikarus.Rig`: what a rig has when it
 holds a character (its reader, ``pose``, ``character_motion``, ``export_spine``, ``format``,
 ``animations``, pickling), mixed into
 ``Rig``, whose rig-file methods ask :meth:`_CharacterRig._rig_file` for the rig file and so
@@ -35,10 +35,14 @@ class _CharacterRig:
     _text: Optional[str] = None
 
     @classmethod
-    def from_json(cls: "type[C]", text: str, *, label: str = "rig") -> "C":
+    def from_json(cls: "type[C]", text: "Union[str, bytes]", *, label: str = "rig") -> "C":
         """A character from its file's text (Spine 4.0–4.2 or 3.8, DragonBones 5.x JSON, told
-        by the content); a bad one raises ``ValueError`` with the CLI's line, after ``label``
-        (``rig: bones[3] ("foot").parent = "hip": no bone of that name``)."""
+        by the content), or from its file's ``bytes``: a JSON file's, or a Spine 4.2 binary
+        export's (``.skel``), decoded into the JSON text Spine's JSON export of it has, as
+        ``ikarus pose --rig FILE.skel`` reads it; a bad one raises ``ValueError`` with the CLI's
+        line, after ``label`` (``rig: bones[3] ("foot").parent = "hip": no bone of that name``)."""
+        if isinstance(text, (bytes, bytearray, memoryview)):
+            text = _ikarus._character_text(bytes(text), label)
         rig = cls.__new__(cls)
         rig._character = _ikarus._Character(text, label)
         rig._text = text

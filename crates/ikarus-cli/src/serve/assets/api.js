@@ -85,7 +85,8 @@ const PICTURES_NEED_SERVER = "Pictures (PNG and GIF from /api/render) are drawn 
 async function wasmResponse(m, path, body) {
   const answer = (status, text, type = "application/json") => new Response(text, { status, headers: { "content-type": type } });
   if (path === "/api/render") return answer(501, JSON.stringify({ error: PICTURES_NEED_SERVER }));
-  const { status, text } = await m.ask(path, typeof body === "string" ? body : "");
+  // A file's bytes (an ArrayBuffer, a `.skel`) go as they are: the worker answers them as the server does.
+  const { status, text } = await m.ask(path, typeof body === "string" || body instanceof ArrayBuffer ? body : "");
   return answer(status, text, status === 200 && path === "/api/arm/toml" ? "application/toml" : "application/json");
 }
 
@@ -145,6 +146,21 @@ export async function postText(path, body, type) {
     }
   }
   return text;
+}
+
+/**
+ * POSTs a file's bytes (an ArrayBuffer: a Spine binary export, `.skel`) to /api/rig/parse as
+ * application/octet-stream, asking for the JSON text it decodes into (`?text=1`); resolves with
+ * the answer (`{character, text}`, or `{rig}`) and keeps `text` for the character's id as
+ * postText keeps a file's text. A file that cannot be read is a Notice with the server's line.
+ */
+export async function postFile(bytes) {
+  const init = { method: "POST", headers: { "content-type": "application/octet-stream" }, body: bytes };
+  const res = await send("/api/rig/parse?text=1", init);
+  if (!res.ok) throw await failure("/api/rig/parse", res);
+  const answer = await res.json();
+  if (answer.character && answer.character.id && typeof answer.text === "string") characterTexts.set(answer.character.id, answer.text);
+  return answer;
 }
 
 /** The names and defaults of the select lists: methods (with their limit modes), limit modes, eases. */

@@ -140,9 +140,13 @@ export function exportState(character, keys) {
   };
 }
 
-/** The download's name of a character file `name`'s export: `spineboy.json` → `spineboy-ikarus.json`. */
+/**
+ * The download's name of a character file `name`'s export: `spineboy.json` → `spineboy-ikarus.json`;
+ * a Spine binary export's too (`spineboy.skel` → `spineboy-ikarus.json`): ikarus writes JSON,
+ * which Spine's editor imports.
+ */
 export function exportName(name) {
-  const stem = String(name || "character").replace(/\.json$/i, "") || "character";
+  const stem = String(name || "character").replace(/\.(json|skel)$/i, "") || "character";
   return `${stem}-${EXPORT.animation_name}.json`;
 }
 

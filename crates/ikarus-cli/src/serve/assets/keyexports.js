@@ -17,7 +17,7 @@ const $ = (id) => document.getElementById(id);
  */
 export function wireKeyExports({ state, canvas, answer, branch, sent, showError, syncBar }) {
   /** The name of the files saved: the character's file without .json, the rig's or the arm's name. */
-  const bodyName = () => (state.character ? state.character.name.replace(/\.json$/i, "") : branch().name);
+  const bodyName = () => (state.character ? state.character.name.replace(/\.(json|skel)$/i, "") : branch().name);
   /** The keys' /api/animate body (the character's, or the rig's or arm's with the solver options), with the Length (`sent()`). */
   const request = (format) => (state.character ? characterAnimateRequest(state.character, sent(), format) : branch().request(sent(), state.options));
 

@@ -114,7 +114,7 @@ export function projectFile(snap, savedBy, character = {}, view = {}) {
 /** The file name a project is saved under: the character's, rig's or arm's name + ".ikarus.json". */
 export function projectName(snap) {
   const b = snap.body;
-  const name = b.kind === "character" ? b.character.name.replace(/\.json$/i, "") : b.kind === "rig" ? b.rig || (b.file && b.file.name) : snap.arm && snap.arm.name;
+  const name = b.kind === "character" ? b.character.name.replace(/\.(json|skel)$/i, "") : b.kind === "rig" ? b.rig || (b.file && b.file.name) : snap.arm && snap.arm.name;
   return `${String(name || "ikarus").replace(/[^A-Za-z0-9_-]+/g, "-")}.ikarus.json`;
 }
 

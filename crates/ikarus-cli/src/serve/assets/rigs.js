@@ -157,11 +157,25 @@ export function wireRigs(state, canvas, act) {
   /**
    * A rig file, a character file or a project file the reader picked or dropped: a project
    * (a JSON object with `ikarus_project`) goes to projects.js; the others are read by the server
-   * (the format told from the content); a bad one is its one-line problem.
+   * (the format told from the content); a bad one is its one-line problem. A Spine binary export
+   * (`.skel`, or any file that is not UTF-8 text) is sent as its bytes, and the character is
+   * then the JSON text the server decoded it into (what the page keeps, poses and exports).
    */
   async function loadFile(file) {
     try {
-      const text = await file.text();
+      const bytes = await file.arrayBuffer();
+      const text = fileText(file.name, bytes);
+      if (text === null) {
+        const answer = await api.postFile(bytes);
+        if (answer.character) {
+          if (state.rig) use("arm");
+          act.characters.enter(file.name, answer.text, answer.character);
+        } else {
+          useRigFile(answer.rig, file.name);
+        }
+        act.edited(`Load ${file.name}`);
+        return;
+      }
       if (act.project.isProject(text)) {
         await act.project.open(file.name, text);
         return;
@@ -177,6 +191,16 @@ export function wireRigs(state, canvas, act) {
       act.edited(`Load ${file.name}`);
     } catch (e) {
       act.showError(e);
+    }
+  }
+
+  /** A file's text, or null for a file sent as bytes: a `.skel`, or one that is not UTF-8 text. */
+  function fileText(name, bytes) {
+    if (/\.skel$/i.test(name)) return null;
+    try {
+      return new TextDecoder("utf-8", { fatal: true }).decode(bytes);
+    } catch (_) {
+      return null;
     }
   }
 

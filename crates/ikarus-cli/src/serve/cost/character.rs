@@ -15,11 +15,34 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
-use super::{Body, Count, Nested};
+use super::{Body, Count, Nested, QUICK_COST};
+use crate::api::rigs::FileBody;
+use crate::serve::pool::Lane;
 
 /// Link steps to read a byte of a character file (parse, check, index): a megabyte is about a
 /// tenth of a second, [`super::QUICK_COST`] about 600 kB.
 pub(super) const BYTE_STEPS: f64 = 4.0;
+
+/// Bytes of JSON text a byte of a `.skel` may decode into at most, and the bytes any `.skel` may
+/// add: the decoder lets its string references copy up to 16 times the file and a mebibyte
+/// (`ikarus_edge::character::skel`), and writes a 4-byte float in at most about 17 characters.
+pub const SKEL_TEXT_BYTES: (f64, f64) = (16.0 + 5.0, (1 << 20) as f64);
+
+/// The lane of `/api/rig/parse` with a body held as `given`.
+pub fn file_lane(given: FileBody, body: &[u8]) -> Lane {
+    if file_estimate(given, body) <= QUICK_COST { Lane::Quick } else { Lane::Long }
+}
+
+/// The work of `/api/rig/parse` in link steps: reading its text, a `.skel`'s bytes as the most
+/// text they may decode into ([`SKEL_TEXT_BYTES`]).
+pub fn file_estimate(given: FileBody, body: &[u8]) -> f64 {
+    let bytes = body.len() as f64;
+    let text = match given {
+        FileBody::Text => bytes,
+        FileBody::Bytes => bytes * SKEL_TEXT_BYTES.0 + SKEL_TEXT_BYTES.1,
+    };
+    text * BYTE_STEPS
+}
 
 /// How many times at most a solve together is run (`ikarus::character::ROUNDS`).
 const ROUNDS: f64 = ikarus::character::ROUNDS as f64;
@@ -279,5 +302,21 @@ mod tests {
         let big = " ".repeat(1 << 20);
         assert!(estimate(Endpoint::RigParse, big.as_bytes()) > QUICK_COST);
         assert_eq!(lane(Endpoint::RigParse, big.as_bytes()), Lane::Long);
+    }
+
+    /// A `.skel`'s bytes are costed as the most JSON text they may decode into: never 0, never
+    /// less than the same bytes as text, and any `.skel` is long work (its strings may copy a
+    /// mebibyte).
+    #[test]
+    fn a_skel_is_costed_as_the_text_it_may_decode_into() {
+        use crate::api::rigs::FileBody;
+        use crate::serve::cost::{file_estimate, file_lane};
+        let skel = include_bytes!("../../../../../examples/characters/spine-spineboy-pro.skel");
+        let as_text = file_estimate(FileBody::Text, skel);
+        assert_eq!(as_text, estimate(Endpoint::RigParse, skel));
+        assert!(file_estimate(FileBody::Bytes, skel) > 16.0 * as_text, "{as_text}");
+        assert!(file_estimate(FileBody::Bytes, b"") > QUICK_COST);
+        assert_eq!(file_lane(FileBody::Bytes, &skel[..10]), Lane::Long);
+        assert_eq!(file_lane(FileBody::Text, SPINEBOY.as_bytes()), Lane::Quick);
     }
 }
