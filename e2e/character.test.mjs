@@ -86,11 +86,17 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     // Every clip of the file is in the list, after the setup pose.
     const listed = await page.evaluate(() => [...document.getElementById("character-animation").options].map((o) => o.value));
     assert.deepEqual(listed, ["", ...Object.keys(file.animations)]);
-    // The constraints ikarus leaves inactive are listed, one line each.
-    assert.ok(character.unsupported.length > 0, "spineboy has transform constraints");
+    // What ikarus leaves out is listed, one line each: spineboy's clipping attachment (its eight
+    // transform constraints apply, listed among its constraints).
+    assert.deepEqual(character.unsupported, [{ kind: "clipping attachment", name: "clipping (skin default, slot clipping)" }]);
     const inactive = await page.$$eval("#character-unsupported li", (li) => li.map((l) => l.textContent));
-    assert.deepEqual(inactive, character.unsupported.map((u) => `${u.kind} constraint ${u.name}`));
+    assert.deepEqual(inactive, ["clipping attachment clipping (skin default, slot clipping)"]);
     assert.equal(await page.isVisible("#character-unsupported"), true);
+    assert.equal(character.constraints.filter((k) => k.kind === "transform").length, 8);
+    // One skin (default): no skin list; no physics constraints: no physics switch.
+    assert.deepEqual(character.skins, ["default"]);
+    assert.equal(await page.isVisible("#character-skin"), false);
+    assert.equal(await page.isVisible("#character-physics"), false);
     // The setup pose drawn is the one `ikarus pose` gives: no clip, no targets.
     const setup = await shown(page);
     assert.deepEqual(setup.request, { targets: [], rig: undefined, character: undefined });

@@ -35,7 +35,7 @@ const character = {
     { name: "walk", duration: 1.25 },
     { name: "still", duration: 0 },
   ],
-  unsupported: [{ kind: "transform", name: "shoulder" }],
+  unsupported: [{ kind: "clipping attachment", name: "clip (skin default, slot hand)" }],
 };
 
 test("the handles are the constraints' targets, each once, in file order", () => {
@@ -187,9 +187,18 @@ test("the solver's line: Spine's rules, or ikarus's status and the constraints i
   assert.equal(solverLine({ status: "reached", constraints: [] }), "ikarus solver reached");
 });
 
-test("the chip's line and the inactive constraints' lines", () => {
+test("the chip's line and the lines of what ikarus leaves out", () => {
   assert.equal(characterSummary("boy.json", character), "Spine character boy.json · 5 bones · 3 IK constraints");
   assert.equal(characterSummary("m", { format: "dragonbones", bones: [{}], ik: [{}] }), "DragonBones character m · 1 bone · 1 IK constraint");
-  assert.deepEqual(unsupportedLines(character), ["transform constraint shoulder"]);
+  assert.deepEqual(unsupportedLines(character), ["clipping attachment clip (skin default, slot hand)"]);
   assert.deepEqual(unsupportedLines({}), []);
+});
+
+test("the skin and physics choices travel with a pose only when they are not the defaults", () => {
+  const base = { text: "{}", character: { clips: [] }, animation: "", time: 0, targets: new Map(), ik: "runtime" };
+  assert.equal("skin" in poseRequest(base), false);
+  assert.equal("physics" in poseRequest(base), false);
+  assert.equal(poseRequest({ ...base, skin: "goblin" }).skin, "goblin");
+  assert.equal(poseRequest({ ...base, physics: false }).physics, false);
+  assert.equal("physics" in poseRequest({ ...base, physics: true }), false);
 });

@@ -6,10 +6,11 @@ mod common;
 
 use common::{fails, json, succeeds};
 
-const FILES: [(&str, u64, &str); 4] = [
+const FILES: [(&str, u64, &str); 5] = [
     ("spine-spineboy-pro.json", 67, "walk"),
     ("spine-raptor-pro.json", 76, "walk"),
-    ("spine-stretchyman-pro.json", 55, "idle"),
+    ("spine-stretchyman-pro.json", 55, "sneak"),
+    ("spine-celestial-circus-pro.json", 60, "swing"),
     ("dragonbones-mecha_1406_ske.json", 17, "walk"),
 ];
 

@@ -17,6 +17,11 @@ pub struct CharacterJson {
     pub bones: Vec<CharacterBoneJson>,
     pub ik: Vec<IkJson>,
     pub clips: Vec<ClipJson>,
+    /// Every constraint of every kind, in the order they apply (IK ones are also in `ik`, with
+    /// their settings).
+    pub constraints: Vec<ConstraintJson>,
+    /// The skins' names; a pose takes the one called `default` unless told otherwise.
+    pub skins: Vec<String>,
     pub unsupported: Vec<UnsupportedJson>,
     /// The lines a command prints on stderr for this file.
     pub warnings: Vec<String>,
@@ -61,6 +66,15 @@ pub struct IkJson {
     pub rule: &'static str,
 }
 
+/// A constraint of any kind: `{"kind": "transform", "name": "aim", "order": 9}`.
+#[derive(Debug, Serialize)]
+pub struct ConstraintJson {
+    /// `ik`, `transform`, `path` or `physics`.
+    pub kind: &'static str,
+    pub name: String,
+    pub order: u32,
+}
+
 /// A clip's name and duration, seconds.
 #[derive(Debug, Serialize)]
 pub struct ClipJson {
@@ -68,7 +82,7 @@ pub struct ClipJson {
     pub duration: f64,
 }
 
-/// What the file has and ikarus leaves inactive: `{"kind": "transform", "name": "…"}`.
+/// What the file has and ikarus does not use: `{"kind": "clipping attachment", "name": "…"}`.
 #[derive(Debug, Serialize)]
 pub struct UnsupportedJson {
     pub kind: String,
@@ -126,6 +140,15 @@ impl CharacterJson {
             bones,
             ik,
             clips: c.clips().iter().map(|k| ClipJson { name: k.name.clone(), duration: k.duration }).collect(),
+            constraints: c
+                .order()
+                .iter()
+                .map(|&k| {
+                    let k = &c.constraints()[k];
+                    ConstraintJson { kind: k.kind(), name: k.name().to_owned(), order: k.order() }
+                })
+                .collect(),
+            skins: c.skins().iter().map(|s| s.name.clone()).collect(),
             unsupported: c
                 .unsupported()
                 .iter()

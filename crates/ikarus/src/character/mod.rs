@@ -628,6 +628,12 @@ impl Character {
         &self.constraints
     }
 
+    /// The constraints' indices in the order they apply: by [`Constraint::order`], ties as
+    /// listed.
+    pub fn order(&self) -> &[usize] {
+        &self.order
+    }
+
     /// The IK constraints with their indices in [`Character::constraints`].
     pub fn ik_constraints(&self) -> impl Iterator<Item = (usize, &IkConstraint)> {
         self.constraints.iter().enumerate().filter_map(|(k, c)| c.ik().map(|c| (k, c)))

@@ -6,6 +6,7 @@
 // is characters.js; the drawing is drawchar.js.
 
 import { fitBox } from "./view.js";
+import { optionFields } from "./charoptions.js";
 
 /** A pointer press within this many CSS pixels of a target's handle grabs it. */
 export const HANDLE_PIXELS = 12;
@@ -76,9 +77,10 @@ export function characterRef({ text, character }) {
  * `rotations`), and `ik: "ikarus"` when the reader chose ikarus's solver (the runtime's rules are
  * the endpoint's default, so the field is left out for them).
  */
-export function poseRequest({ text, character, animation, time, targets, ik, bends, turns }) {
+export function poseRequest({ text, character, animation, time, targets, ik, bends, turns, skin, physics }) {
   return {
     ...characterRef({ text, character }),
+    ...optionFields({ skin, physics }),
     ...(animation ? { animation, time: clipTime(character, animation, time) } : {}),
     targets: [...targets].map(([bone, t]) => ({ bone, x: t.x, y: t.y })),
     ...(ik === "ikarus" ? { ik: "ikarus" } : {}),

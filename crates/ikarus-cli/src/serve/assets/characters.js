@@ -12,6 +12,7 @@
 import * as api from "./api.js";
 import { saveBlob } from "./files.js";
 import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, exportState, handleNotes, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
+import { showOptions, wireOptions } from "./charoptions.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
 import { localRotation } from "./keys.js";
 import { isDrag, toWorld } from "./view.js";
@@ -31,6 +32,7 @@ const $ = (id) => document.getElementById(id);
  *                that no IK constraint moves turns it about its origin; with keys, keyed.js puts
  *                the keyed ones of the frame shown here)
  *   ik           "runtime" (Spine's rules) or "ikarus" (ikarus's solver)
+ *   skin, physics  the skin chosen (null: the file's default) and whether physics plays (charoptions.js)
  *   posed        the last /api/pose answer's bones;  box  the setup pose's world box (the view fits it)
  *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
  *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
@@ -64,6 +66,8 @@ function newCharacterState(name, text, character) {
     bends: {},
     turns: new Map(),
     ik: "runtime",
+    skin: null,
+    physics: true,
     posed: null,
     box: null,
     clipBoxes: new Map(),
@@ -117,6 +121,7 @@ export function wireCharacters(state, canvas, act) {
     list.replaceChildren(new Option("Setup pose", ""), ...(c.character.clips || []).map((k) => new Option(`${k.name} (${k.duration.toFixed(2)} s)`, k.name)));
     list.value = c.animation;
     for (const radio of document.querySelectorAll('input[name="character-ik"]')) radio.checked = radio.value === c.ik;
+    showOptions(c);
     const lines = unsupportedLines(c.character);
     $("character-unsupported").replaceChildren(...lines.map((l) => Object.assign(document.createElement("li"), { textContent: l })));
     $("character-unsupported-box").hidden = lines.length === 0;
@@ -492,6 +497,7 @@ export function wireCharacters(state, canvas, act) {
     act.edited("Clear targets");
   });
   $("export-spine").addEventListener("click", exportSpine);
+  wireOptions(state, () => (state.keys ? act.keyed.resolve() : poseSoon()), act);
 
   const clipBack = () => state.character && playClip(state.character);
 

@@ -735,6 +735,8 @@ window.ikarus = {
   },
   /** The timeline's playback duration, seconds. */
   duration: () => timeline.duration(),
+  /** Puts the playhead at `t` seconds of the playback (a clip's own seconds for a character). */
+  seek: (t) => timeline.seek(t / timeline.duration()),
   /** Client coordinates of a world point, for clicking on it. */
   toClient(x, y) {
     const r = canvas.getBoundingClientRect();
