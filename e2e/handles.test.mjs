@@ -1,8 +1,8 @@
-// What a character's handles do, and posing by hand (issue 44, points 7, 8 and 9), in a real
-// browser. spineboy: the crosshair's handle is drawn inactive and says why (its IK constraint
-// aim-ik has mix 0; aim-torso-ik turns only a bone that feeds transform constraints ikarus leaves
-// inactive), a leg target's names the bones it drags; stretchyman's arm targets (IK bones that
-// only shape the paths of path constraints) are inactive too. A drag on spineboy's head (a bone
+// What a character's handles do, and posing by hand, in a real browser. spineboy: the crosshair's
+// handle names the bone it drags (aim-constraint-target, by aim-torso-ik; its transform
+// constraints then aim the torso, head and arms where the clip mixes them in), a leg target's names
+// the bones it drags; stretchyman's arm targets drag the IK bones that shape the paths of its path
+// constraints, and the arm follows the path. A drag on spineboy's head (a bone
 // no IK constraint moves) turns it about its origin and it keeps turned; in Key mode the turn is
 // keyed (at 0, then at the playhead at 0.3 s) (`keys.rotations`) and the keyed motion reproduces it, frame for frame the
 // CLI's. Export Spine JSON says it exports the keys; on a DragonBones character it is disabled
@@ -14,7 +14,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, binary, openPage, ready, withBrowser } from "./browser.mjs";
-import { characterSettled } from "./charpage.mjs";
+import { characterSettled, dragTarget } from "./charpage.mjs";
 
 const examples = join(import.meta.dirname, "..", "examples", "characters");
 
@@ -68,8 +68,8 @@ test("handles say what they drag or why they do nothing; a plain bone turns by h
 
     await load(page, "spine-spineboy-pro.json", "spineboy.json");
     const notes = await page.evaluate(() => Object.fromEntries([...window.ikarus.state.character.notes].map(([k, v]) => [k, v])));
-    assert.equal(notes.crosshair.inactive, true);
-    assert.match(notes.crosshair.note, /^crosshair: IK constraint aim-ik has mix 0, and aim-torso-ik turns only aim-constraint-target, .*transform constraint aim-head-transform.*: dragging it moves nothing you see$/);
+    assert.equal(notes.crosshair.inactive, false);
+    assert.equal(notes.crosshair.note, "crosshair: drags aim-constraint-target (IK constraint aim-torso-ik)");
     assert.equal(notes["front-leg-target"].inactive, false);
     assert.equal(notes["front-leg-target"].note, "front-leg-target: drags front-thigh, front-shin (IK constraint front-leg-ik)");
     // The hover text is the note; the crosshair drawn apart.
@@ -115,11 +115,18 @@ test("handles say what they drag or why they do nothing; a plain bone turns by h
     assert.match(await page.getAttribute("#export-spine", "title"), /made of your 2 keys \(2\.00 s, the Length, at 30 fps/);
     assert.equal(await page.isDisabled("#export-spine"), false);
 
-    // stretchyman: its arm and leg targets only shape paths ikarus does not apply.
+    // stretchyman: its arm targets drag the IK bones whose weights shape its arms' paths.
     await load(page, "spine-stretchyman-pro.json", "stretchyman.json");
     const stretchy = await page.evaluate(() => Object.fromEntries([...window.ikarus.state.character.notes].map(([k, v]) => [k, v])));
-    assert.equal(stretchy["back-arm-ik-target"].inactive, true);
-    assert.match(stretchy["back-arm-ik-target"].note, /back-arm-ik1, back-arm-ik2, bones with no art that feed only what ikarus does not apply yet \(path constraint back-arm-path\)/);
+    assert.equal(stretchy["back-arm-ik-target"].inactive, false);
+    assert.match(stretchy["back-arm-ik-target"].note, /^back-arm-ik-target: drags back-arm-ik1, back-arm-ik2 \(IK constraint /);
+    // Dragged, the arm (path-constrained bones) follows.
+    const arm = async () => (await page.evaluate(() => window.ikarus.state.character.posed.find((b) => b.name === "back-arm5")));
+    const before = await arm();
+    const at = await page.evaluate(() => { const b = window.ikarus.state.character.posed.find((x) => x.name === "back-arm-ik-target"); return [b.x, b.y]; });
+    await dragTarget(page, at, [at[0] - 60, at[1] + 40]);
+    const after = await arm();
+    assert.ok(Math.hypot(after.x - before.x, after.y - before.y) > 5, `the arm follows its path: ${JSON.stringify([before, after])}`);
     await page.screenshot({ path: join(artifacts, "handles-stretchyman.png") });
 
     // DragonBones: no Spine export, and why.

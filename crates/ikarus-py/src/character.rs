@@ -7,7 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::edge::{IkReq, Loaded, PoseAsk, character_text, load_character, parse_json, pose_watched};
+use crate::edge::{IkReq, Loaded, PhysicsAsk, PoseAsk, character_text, load_character, parse_json, pose_watched};
 use crate::signals::interruptible;
 
 /// A character file's bytes as the JSON text ``_Character`` reads: a JSON file's text as is, a
@@ -70,8 +70,10 @@ impl PyCharacter {
     /// the CLI's line. ``ik``: ``"runtime"`` (default) or ``"ikarus"`` (every constraint solved
     /// together, with the IK file's text ``ik_file``); with ``"ikarus"``, ``ik`` in the answer is
     /// the JSON's ``ik`` object as text. ``ik`` is the JSON text of ``POST /api/pose``'s IK
-    /// fields as one object: ``{"ik", "ik_file", "goals", "pins"}``, each optional.
-    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None))]
+    /// fields as one object: ``{"ik", "ik_file", "goals", "pins"}``, each optional. ``skin``
+    /// names the skin (default: the file's ``default``); ``fps`` plays the animation from 0 at
+    /// that many frames a second with the physics constraints (``None``: physics left out).
+    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None, skin=None, fps=Some(60.0)))]
     fn pose<'py>(
         &self,
         py: Python<'py>,
@@ -79,6 +81,8 @@ impl PyCharacter {
         time: Option<f64>,
         targets: Vec<(String, (f64, f64))>,
         ik: Option<&str>,
+        skin: Option<String>,
+        fps: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let asked: IkReq = match ik {
             Some(text) => parse_json(text.as_bytes()).map_err(|e| PyValueError::new_err(e.to_string()))?,
@@ -86,7 +90,8 @@ impl PyCharacter {
         };
         let ik = asked.choice(&self.loaded.character).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let targets = targets.into_iter().map(|(bone, (x, y))| (bone, [x, y])).collect();
-        let ask = PoseAsk { animation, time, targets, ik, ..PoseAsk::default() };
+        let physics = fps.map_or(PhysicsAsk::Off, |fps| PhysicsAsk::Play { fps });
+        let ask = PoseAsk { animation, time, targets, ik, skin, physics, ..PoseAsk::default() };
         // Off the calling thread, watching the token Ctrl-C sets (`signals`).
         let token = ikarus::Interrupt::new();
         let report = interruptible(py, &token, || pose_watched(&self.loaded, &ask, &token))?

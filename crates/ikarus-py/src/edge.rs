@@ -6,5 +6,5 @@ pub(crate) use ikarus_edge::api::parse_json;
 pub(crate) use ikarus_edge::api::pose::IkReq;
 pub(crate) use ikarus_edge::character::{Loaded, load as load_character, text_of as character_text};
 pub(crate) use ikarus_edge::edge::*;
-pub(crate) use ikarus_edge::pose::{PoseAsk, PosedBoneJson, pose_watched};
+pub(crate) use ikarus_edge::pose::{PhysicsAsk, PoseAsk, PosedBoneJson, pose_watched};
 pub(crate) use ikarus_edge::settings::DEFAULT_ITERATION_CAP;

@@ -184,3 +184,20 @@ def test_goals_on_bones_are_the_clis_solve_bit_for_bit() -> None:
         boy.pose(goals={"front-fist": (1.0, 2.0)})
     with pytest.raises(ValueError, match=r"^goals\[0\]\.bones: 10: must be from 1 \(the bone alone\) to 9"):
         boy.pose(ik="ikarus", goals={"front-fist": {"x": 1.0, "y": 2.0, "bones": 10}})
+
+
+@pytest.mark.parametrize("physics", [True, False])
+def test_physics_and_skin_are_the_clis_bit_for_bit(physics: bool) -> None:
+    # Celestial-circus swings under its physics constraints: played from 0 at 30 frames a second
+    # (or left out), with its one skin named, it is `ikarus pose`'s pose to the bit.
+    circus = ikarus.Rig.from_file(CHARACTERS / "spine-celestial-circus-pro.json")
+    pose = circus.pose("swing", 1.0, skin="default", physics=physics, fps=30.0)
+    args = ["--animation", "swing", "--time", "1", "--skin", "default", "--fps", "30"]
+    args += [] if physics else ["--physics", "off"]
+    out = run_cli("pose", "--rig", "examples/characters/spine-celestial-circus-pro.json", "--format", "json", *args).stdout
+    want = json.loads(out)["bones"]
+    assert pose.name == [b["name"] for b in want]
+    assert np.array_equal(pose.x, np.array([b["x"] for b in want]))
+    assert np.array_equal(pose.y, np.array([b["y"] for b in want]))
+    with pytest.raises(ValueError, match="no such skin"):
+        circus.pose(skin="villain")

@@ -49,6 +49,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("controls.js", JS, include_str!("assets/controls.js")),
     ("draw.js", JS, include_str!("assets/draw.js")),
     ("drawchar.js", JS, include_str!("assets/drawchar.js")),
+    ("charoptions.js", JS, include_str!("assets/charoptions.js")),
     ("drawkeys.js", JS, include_str!("assets/drawkeys.js")),
     ("drawrig.js", JS, include_str!("assets/drawrig.js")),
     ("export.js", JS, include_str!("assets/export.js")),

@@ -75,6 +75,9 @@ class _CharacterRig:
         ik_file: Optional[str] = None,
         goals: Optional[Mapping[str, Any]] = None,
         pins: Sequence[str] = (),
+        skin: Optional[str] = None,
+        physics: bool = True,
+        fps: float = 60.0,
     ) -> Pose:
         """A character posed as its runtime does (``ikarus pose``, ``POST /api/pose``, by the
         same code): the setup pose, then ``animation`` at ``time`` seconds, then each bone of
@@ -86,7 +89,11 @@ class _CharacterRig:
         CHARACTER.json`` does: ``{bone: (x, y[, angle_deg]) or {"x", "y", "bones", "weight",
         "priority", "bend", "softness", "angle_deg"}}``, ``bones`` how many bones the goal
         turns (2 by default, the bone and its parent); ``pins`` names bones held where they
-        start. Returns a :class:`Pose` (NumPy columns, the numbers of ``ikarus pose --format
+        start. ``skin`` names the skin whose skin-only bones and constraints take part (default:
+        the file's ``default``; inactive bones are left at zeros, as Spine's runtime leaves them);
+        a character with physics constraints is played from 0 at ``fps`` frames a second up to
+        ``time`` as a game shows it, unless ``physics=False`` leaves them out (``ikarus pose
+        --skin``, ``--physics``, ``--fps``). Returns a :class:`Pose` (NumPy columns, the numbers of ``ikarus pose --format
         json`` bit for bit); a bad name or value raises ``ValueError`` with the CLI's line."""
         if self._character is None:
             raise ValueError(
@@ -99,7 +106,9 @@ class _CharacterRig:
             pairs.append((bone, (float(x), float(y))))
         asked: dict = {"ik": ik, "ik_file": ik_file, "goals": self._goal_list(goals or {}), "pins": list(pins)}
         text = json.dumps({k: v for k, v in asked.items() if v is not None}, allow_nan=False)
-        answer = self._character.pose(animation, None if time is None else float(time), pairs, text)
+        answer = self._character.pose(
+            animation, None if time is None else float(time), pairs, text, skin, float(fps) if physics else None
+        )
         _refuse_non_finite(answer)
         if answer["ik"] is not None:
             answer["ik"] = json.loads(answer["ik"])

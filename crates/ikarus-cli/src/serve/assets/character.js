@@ -239,68 +239,25 @@ export function characterSummary(name, character) {
   return `${kind} character ${name} · ${n(character.bones.length, "bone")} · ${n((character.ik || []).length, "IK constraint")}`;
 }
 
-/** The bone indices a Spine attachment's weighted `vertices` name ([count, bone, x, y, weight, …] per vertex). */
-function weightedBones(att) {
-  const v = att.vertices || [];
-  const n = att.vertexCount ?? v.length / 2;
-  const bones = new Set();
-  if (v.length <= 2 * n) return bones;
-  for (let i = 0; i < v.length; ) {
-    const count = v[i++];
-    for (let k = 0; k < count && i < v.length; k++, i += 4) bones.add(v[i]);
-  }
-  return bones;
-}
-
 /**
- * What each target's handle does (`character` the /api/rig/parse answer, `file` the Spine file's
- * JSON, or null for another format): a Map target → {inactive, drives: [bone names], note}.
- * `note` is the handle's hover text: the bones it turns and by which constraint, or why dragging
- * it moves nothing: every IK constraint aiming at it has mix 0 (spineboy's crosshair), or the
- * bones it turns carry no art of their own and only feed constraints ikarus leaves inactive —
- * a transform constraint's target (spineboy's aim-constraint-target) or a path attachment's
- * weights under a path constraint (stretchyman's arm and leg IK bones).
+ * What each target's handle does (`character` the /api/rig/parse answer): a Map target →
+ * {inactive, drives: [bone names], note}. `note` is the handle's hover text: the bones it turns
+ * and by which IK constraint (every other constraint then follows them, as in Spine), or why
+ * dragging it moves nothing: every IK constraint aiming at it has mix 0 (spineboy's crosshair in
+ * the setup pose).
  */
-export function handleNotes(character, file) {
+export function handleNotes(character) {
   const iks = character.ik || [];
   const notes = new Map();
-  const spine = file && Array.isArray(file.bones) ? file : null;
-  const names = (character.bones || []).map((b) => b.name);
-  const parent = new Map((character.bones || []).map((b) => [b.name, b.parent]));
-  // Bones with art: a slot on them or below them.
-  const drawn = new Set();
-  for (const s of (spine && spine.slots) || []) for (let b = s.bone; b && !drawn.has(b); b = parent.get(b)) drawn.add(b);
-  // What an inactive constraint reads: a transform constraint's target bone, a path constraint's path's weighted bones.
-  const feeds = new Map();
-  const feed = (bone, what) => feeds.set(bone, [...(feeds.get(bone) || []), what]);
-  for (const t of (spine && spine.transform) || []) if (t.target) feed(t.target, `transform constraint ${t.name}`);
-  const skins = spine ? (Array.isArray(spine.skins) ? spine.skins : Object.values(spine.skins || {}).map((a) => ({ attachments: a }))) : [];
-  for (const p of (spine && spine.path) || []) {
-    for (const skin of skins) {
-      for (const att of Object.values((skin.attachments || {})[p.target] || {})) {
-        if (att.type === "path") for (const i of weightedBones(att)) if (names[i]) feed(names[i], `path constraint ${p.name}`);
-      }
-    }
-  }
   for (const target of ikTargets(character)) {
     const aiming = iks.filter((k) => k.target === target);
     const active = aiming.filter((k) => k.mix !== 0);
     const drives = [...new Set(active.flatMap((k) => k.bones))];
     const by = (list) => list.map((k) => k.name).join(", ");
-    let note;
-    let inactive = false;
-    if (!active.length) {
-      inactive = true;
-      note = `${target}: its IK constraint${aiming.length > 1 ? "s" : ""} ${by(aiming)} ${aiming.length > 1 ? "have" : "has"} mix 0: dragging it moves nothing`;
-    } else if (spine && drives.every((b) => !drawn.has(b) && feeds.has(b))) {
-      inactive = true;
-      const fed = [...new Set(drives.flatMap((b) => feeds.get(b)))].join(", ");
-      const zero = aiming.filter((k) => k.mix === 0);
-      const off = zero.length ? `IK constraint ${by(zero)} has mix 0, and ` : "";
-      note = `${target}: ${off}${by(active)} turns only ${drives.join(", ")}, bones with no art that feed only what ikarus does not apply yet (${fed}): dragging it moves nothing you see`;
-    } else {
-      note = `${target}: drags ${drives.join(", ")} (IK constraint ${by(active)})`;
-    }
+    const inactive = !active.length;
+    const note = inactive
+      ? `${target}: its IK constraint${aiming.length > 1 ? "s" : ""} ${by(aiming)} ${aiming.length > 1 ? "have" : "has"} mix 0: dragging it moves nothing`
+      : `${target}: drags ${drives.join(", ")} (IK constraint ${by(active)})`;
     notes.set(target, { inactive, drives, note });
   }
   return notes;

@@ -41,23 +41,13 @@ const $ = (id) => document.getElementById(id);
  *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
  *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
  */
-/** The Spine file's JSON (its slots, skins and unsupported constraints), or null (another format or unreadable). */
-function spineFile(character, text) {
-  if (character.format !== "spine") return null;
-  try {
-    return JSON.parse(text);
-  } catch (_) {
-    return null;
-  }
-}
-
 function newCharacterState(name, text, character) {
   return {
     name,
     text,
     character,
     targetNames: ikTargets(character),
-    notes: handleNotes(character, spineFile(character, text)),
+    notes: handleNotes(character),
     parentOf: new Map((character.bones || []).map((b) => [b.name, b.parent])),
     ikBones: new Set((character.ik || []).flatMap((k) => k.bones)),
     animation: "",
