@@ -63,11 +63,11 @@ pub fn read_text(path: &Path, label: &str) -> Result<String, CliError> {
     })
 }
 
-/// [`read`] as the text of a file that may be a character ([`crate::character::text_of`]): a
+/// [`read`] as the text of a file that may be a character ([`crate::character::skel::text_of`]): a
 /// Spine binary export (`.skel`) as the JSON text of the same skeleton, anything else as UTF-8
 /// text.
 pub fn read_character_text(path: &Path, label: &str) -> Result<String, CliError> {
-    crate::character::text_of(read(path, label)?, label)
+    crate::character::skel::text_of(read(path, label)?, label)
 }
 
 /// The OS reason without Rust's "(os error N)" suffix.

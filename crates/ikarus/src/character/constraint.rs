@@ -12,6 +12,7 @@
 //! transforms from them ([`super::world::Bones::set_world`]), and leaves to posing the bones
 //! strictly below them.
 
+use super::flat::Updates;
 use super::transform::{TransformConstraint, TransformSettings, TransformSpace, check_mixes};
 use super::{CharacterBone, CharacterError, DeformKey, IkBones, IkConstraint, IkKey, IkSettings, Interpolation};
 use super::{PathConstraint, PathSettings, PhysicsConstraint, PhysicsProperty, PhysicsSettings};
@@ -41,15 +42,6 @@ pub enum Settings {
     Physics(PhysicsSettings),
     /// A transform constraint's mixes.
     Transform(TransformSettings),
-}
-
-/// Which bones posing recomputes after a constraint has applied.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Updates<'a> {
-    /// This bone and every bone below it (the constraint changed local transforms only).
-    Subtree(usize),
-    /// Every bone strictly below these (the constraint set these bones' world transforms).
-    Below(&'a [usize]),
 }
 
 impl Constraint {

@@ -9,8 +9,7 @@
 //! all, a constraint's update scans the bones after its top instead, which is the same bones in
 //! the same order. Making the lists is linear in the bones and constraints.
 
-use super::constraint::Updates;
-use super::{CharacterBone, Constraint, Inherit, LocalTransform, Settings};
+use super::{CharacterBone, Inherit, LocalTransform};
 
 /// A root bone's parent.
 pub(crate) const ROOT: u32 = u32::MAX;
@@ -29,13 +28,21 @@ pub(crate) struct Flat {
     pub(crate) links: Vec<Link>,
     pub(crate) setup: Vec<LocalTransform>,
     pub(crate) length: Vec<f64>,
-    pub(crate) settings: Vec<Settings>,
     /// The subtrees, one after another.
     below: Vec<u32>,
     /// Per constraint, where the bones its update recomputes are in `below` (`None`: not kept).
     ranges: Vec<Option<(u32, u32)>>,
     /// Per constraint, the bones posing recomputes after it.
     updates: Vec<Scan>,
+}
+
+/// Which bones posing recomputes after a constraint has applied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Updates<'a> {
+    /// This bone and every bone below it (the constraint changed local transforms only).
+    Subtree(usize),
+    /// Every bone strictly below these (the constraint set these bones' world transforms).
+    Below(&'a [usize]),
 }
 
 /// A constraint's update found by a scan when its list is not kept: a top bone and the bones
@@ -62,12 +69,16 @@ pub(crate) enum Subtree<'a> {
 
 impl Flat {
     /// The flat view of `bones` (parent first) and `constraints`.
-    pub(crate) fn of(bones: &[CharacterBone], constraints: &[Constraint]) -> Flat {
-        Flat::within(bones, constraints, LISTED_PER_BONE * bones.len())
+    pub(crate) fn of<'a>(bones: &[CharacterBone], updates: impl IntoIterator<Item = Updates<'a>>) -> Flat {
+        Flat::within(bones, updates, LISTED_PER_BONE * bones.len())
     }
 
     /// [`Flat::of`] keeping at most `budget` subtree entries.
-    pub(crate) fn within(bones: &[CharacterBone], constraints: &[Constraint], budget: usize) -> Flat {
+    pub(crate) fn within<'a>(
+        bones: &[CharacterBone],
+        updates: impl IntoIterator<Item = Updates<'a>>,
+        budget: usize,
+    ) -> Flat {
         let mut flat = Flat {
             links: bones
                 .iter()
@@ -75,7 +86,6 @@ impl Flat {
                 .collect(),
             setup: bones.iter().map(|b| b.setup).collect(),
             length: bones.iter().map(|b| b.length).collect(),
-            settings: constraints.iter().map(Constraint::setup).collect(),
             ..Flat::default()
         };
         // Every bone's subtree size, children before parents.
@@ -87,8 +97,8 @@ impl Flat {
         }
         // Per bone, its subtree's range once listed; `Some(None)` once refused for the budget.
         let mut listed: Vec<Option<Option<(u32, u32)>>> = vec![None; bones.len()];
-        for k in constraints {
-            match k.updates() {
+        for update in updates {
+            match update {
                 Updates::Subtree(top) => {
                     let range = *listed[top].get_or_insert_with(|| {
                         (flat.below.len() + size[top] <= budget).then(|| {

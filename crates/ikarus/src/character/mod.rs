@@ -12,10 +12,10 @@
 //! radians, counter-clockwise positive, and lengths are in the file's own units. A bone's local
 //! transform is relative to its parent's frame (the skeleton's frame for a root bone).
 
-use thiserror::Error;
-
 mod applied;
+mod clip;
 mod constraint;
+mod error;
 mod flat;
 mod ik;
 mod path;
@@ -29,7 +29,9 @@ mod together;
 mod transform;
 mod world;
 
+pub use clip::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, Interpolation};
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
+pub use error::CharacterError;
 pub use path::{
     Chain, DeformKey, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices, PositionMode,
     RotateMode, SpacingMode, Weight, solve as solve_path,
@@ -72,6 +74,8 @@ pub struct Character {
     deferred: Vec<bool>,
     /// The bones and constraints as posing reads them.
     flat: flat::Flat,
+    /// Every constraint's settings in the setup pose (a pose starts by copying them).
+    setup: Vec<Settings>,
 }
 
 /// The skeleton's own position and scale: every world transform is the bones' own transform
@@ -247,277 +251,6 @@ pub struct Unsupported {
     pub name: String,
 }
 
-/// A named animation: timelines over the bones' local transforms and the constraints'
-/// settings. Times are seconds from the clip's start.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Clip {
-    /// Its name in the file.
-    pub name: String,
-    /// The latest key time of any timeline.
-    pub duration: f64,
-    /// The bones' timelines.
-    pub bones: Vec<BoneTimeline>,
-    /// The constraints' timelines.
-    pub constraints: Vec<ConstraintTimeline>,
-}
-
-/// What a bone timeline keys. Rotation, translation and shear keys add to the setup values;
-/// scale keys multiply the setup scale.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BoneProperty {
-    /// One channel: radians.
-    Rotate,
-    /// Two channels: x, y.
-    Translate,
-    /// One channel: x.
-    TranslateX,
-    /// One channel: y.
-    TranslateY,
-    /// Two channels: x, y.
-    Scale,
-    /// One channel: x.
-    ScaleX,
-    /// One channel: y.
-    ScaleY,
-    /// Two channels, radians: x, y.
-    Shear,
-    /// One channel, radians: x.
-    ShearX,
-    /// One channel, radians: y.
-    ShearY,
-}
-
-impl BoneProperty {
-    /// How many values a key of this property holds (1 or 2).
-    pub fn channels(self) -> usize {
-        match self {
-            BoneProperty::Translate | BoneProperty::Scale | BoneProperty::Shear => 2,
-            BoneProperty::Rotate
-            | BoneProperty::TranslateX
-            | BoneProperty::TranslateY
-            | BoneProperty::ScaleX
-            | BoneProperty::ScaleY
-            | BoneProperty::ShearX
-            | BoneProperty::ShearY => 1,
-        }
-    }
-}
-
-/// How a channel goes from a key to the next.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Interpolation {
-    /// A straight line to the next key's value.
-    Linear,
-    /// Holds the key's value until the next key.
-    Stepped,
-    /// A cubic Bézier from `(time, value)` of this key to that of the next, with these two
-    /// control points `[time, value]` in absolute units (Spine 4's `curve` numbers).
-    Bezier {
-        /// The first control point, `[time, value]`.
-        c1: [f64; 2],
-        /// The second control point, `[time, value]`.
-        c2: [f64; 2],
-    },
-}
-
-/// One key of a bone timeline: `values[..channels]` are used.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoneKey {
-    /// Seconds from the clip's start.
-    pub time: f64,
-    /// The key's values (`channels()` of them).
-    pub values: [f64; 2],
-    /// Per channel, toward the next key (ignored on the last key).
-    pub curves: [Interpolation; 2],
-}
-
-/// A bone's timeline for one property, keys in increasing time.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BoneTimeline {
-    /// The bone's index.
-    pub bone: usize,
-    /// What the keys hold.
-    pub property: BoneProperty,
-    /// The keys, in increasing time.
-    pub keys: Vec<BoneKey>,
-}
-
-/// One key of an IK constraint's timeline.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct IkKey {
-    /// Seconds from the clip's start.
-    pub time: f64,
-    /// The settings at this key.
-    pub settings: IkSettings,
-    /// Toward the next key, for `mix` and `softness` (the flags are stepped).
-    pub curves: [Interpolation; 2],
-}
-
-/// A character that breaks the model's rules. The edge reads files by name and words its own
-/// errors; these name indices.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum CharacterError {
-    /// The character has no bones.
-    #[error("bones: a character needs at least one bone, got none")]
-    NoBones,
-    /// A bone's parent is not listed before it.
-    #[error("bones[{bone}].parent: {parent} is not an earlier bone")]
-    ParentOrder {
-        /// The bone's index.
-        bone: usize,
-        /// Its parent's index.
-        parent: usize,
-    },
-    /// A bone's number is NaN or infinite.
-    #[error("bones[{bone}].{field}: must be finite, got {value}")]
-    NotFinite {
-        /// The bone's index.
-        bone: usize,
-        /// The field's name in Spine's terms.
-        field: &'static str,
-        /// The value found.
-        value: f64,
-    },
-    /// A bone's length is negative.
-    #[error("bones[{bone}].length: must not be negative, got {value}")]
-    NegativeLength {
-        /// The bone's index.
-        bone: usize,
-        /// The value found.
-        value: f64,
-    },
-    /// A constraint names a bone that does not exist.
-    #[error("ik[{constraint}]: bone {bone} does not exist")]
-    MissingBone {
-        /// The constraint's index.
-        constraint: usize,
-        /// The bone index named.
-        bone: usize,
-    },
-    /// A two-bone constraint's second bone is not the first one's child.
-    #[error("ik[{constraint}].bones: bone {child} is not a child of bone {parent}")]
-    NotParentChild {
-        /// The constraint's index.
-        constraint: usize,
-        /// The first bone's index.
-        parent: usize,
-        /// The second bone's index.
-        child: usize,
-    },
-    /// A constraint's mix is outside [0, 1] or its softness negative or not finite.
-    #[error("ik[{constraint}].{field}: out of range, got {value}")]
-    Setting {
-        /// The constraint's index.
-        constraint: usize,
-        /// `mix` or `softness`.
-        field: &'static str,
-        /// The value found.
-        value: f64,
-    },
-    /// A path constraint names a bone that does not exist.
-    #[error("path constraint {constraint}: bone {bone} does not exist")]
-    PathBone {
-        /// The constraint's index.
-        constraint: usize,
-        /// The bone's index.
-        bone: usize,
-    },
-    /// A path constraint's setting is out of range (a mix outside −1 … 1, a value not finite).
-    #[error("path constraint {constraint}.{field}: out of range, got {value}")]
-    PathSetting {
-        /// The constraint's index.
-        constraint: usize,
-        /// The field: `mixRotate`, `position`, …
-        field: &'static str,
-        /// The value found.
-        value: f64,
-    },
-    /// A timeline names a bone or constraint that does not exist.
-    #[error("clips[{clip}]: a timeline names {what} {index}, which does not exist")]
-    MissingTarget {
-        /// The clip's index.
-        clip: usize,
-        /// `bone` or `constraint`.
-        what: &'static str,
-        /// The index named.
-        index: usize,
-    },
-    /// A key's time is not finite, negative, or not after the previous key's.
-    #[error("clips[{clip}]: a key's time must be finite, at least 0 and after the previous key's, got {time}")]
-    KeyTime {
-        /// The clip's index.
-        clip: usize,
-        /// The time found.
-        time: f64,
-    },
-    /// A transform constraint names a bone that does not exist.
-    #[error("transform[{constraint}]: bone {bone} does not exist")]
-    TransformBone {
-        /// The constraint's index.
-        constraint: usize,
-        /// The bone index named.
-        bone: usize,
-    },
-    /// A constraint's offset or mix (of a kind that takes any number) is NaN or infinite.
-    #[error("constraints[{constraint}].{field}: must be finite, got {value}")]
-    NotFiniteSetting {
-        /// The constraint's index.
-        constraint: usize,
-        /// The field's name in Spine's terms.
-        field: &'static str,
-        /// The value found.
-        value: f64,
-    },
-    /// A constraint timeline's keys are of another kind than its constraint.
-    #[error("a timeline of constraint {constraint} keys {keys} settings, but it is a {kind} constraint")]
-    TimelineKind {
-        /// The constraint's index.
-        constraint: usize,
-        /// The keys' kind.
-        keys: &'static str,
-        /// The constraint's kind.
-        kind: &'static str,
-    },
-    /// A skin (or the list of what only a skin turns on) names a bone or constraint that does
-    /// not exist.
-    #[error("{}: {what} {index} does not exist", skin.map_or("skin-required".to_owned(), |s| format!("skins[{s}]")))]
-    SkinIndex {
-        /// The skin's index (`None`: the skin-required list).
-        skin: Option<usize>,
-        /// `bone` or `constraint`.
-        what: &'static str,
-        /// The index named.
-        index: usize,
-    },
-    /// A key's value is NaN or infinite.
-    #[error("clips[{clip}]: a key's value must be finite, got {value}")]
-    KeyValue {
-        /// The clip's index.
-        clip: usize,
-        /// The value found.
-        value: f64,
-    },
-    /// A physics constraint's bone does not exist.
-    #[error("physics constraints[{constraint}]: bone {bone} does not exist")]
-    PhysicsBone {
-        /// The constraint's index.
-        constraint: usize,
-        /// The bone named.
-        bone: usize,
-    },
-    /// A physics constraint's value (or a key of it) is out of range.
-    #[error("physics constraints[{constraint}].{field}: out of range, got {value}")]
-    PhysicsValue {
-        /// The constraint's index.
-        constraint: usize,
-        /// The field: `fps`, `mass`, `limit`, `strength`, …
-        field: &'static str,
-        /// The value found.
-        value: f64,
-    },
-}
-
 /// The parts of a character, checked by [`Character::new`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CharacterParts {
@@ -600,7 +333,8 @@ impl Character {
         order.sort_by_key(|&k| (constraints[k].order(), k));
         let curves = timeline::Curves::of(&clips);
         let deferred = world::deferred(&bones, &constraints, &order);
-        let flat = flat::Flat::of(&bones, &constraints);
+        let flat = flat::Flat::of(&bones, constraints.iter().map(Constraint::updates));
+        let setup = constraints.iter().map(Constraint::setup).collect();
         skin::check(&skins, &skin_required, [bones.len(), constraints.len()])?;
         let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
@@ -615,6 +349,7 @@ impl Character {
             curves,
             deferred,
             flat,
+            setup,
         })
     }
 

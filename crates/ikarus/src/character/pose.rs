@@ -277,7 +277,7 @@ impl Character {
         out.world.resize(n, Affine::default());
         out.below.resize(n, false);
         out.settings.clear();
-        out.settings.extend_from_slice(&self.flat.settings);
+        out.settings.extend_from_slice(&self.setup);
         out.trig.resize(n, [Trig::ZERO; 3]);
         out.path.reset(self.constraints.len());
         out.physics.resize(self.constraints.len(), PhysicsState::default());

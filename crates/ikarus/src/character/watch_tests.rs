@@ -84,7 +84,7 @@ fn a_constraint_on_every_bone_of_a_chain_keeps_linear_lists_and_the_same_bits() 
     assert!(c.flat.listed() <= LISTED_PER_BONE * bones, "{} entries for {bones} bones", c.flat.listed());
     let mut lean = Posed::default();
     c.pose(&PoseRequest::default(), &mut lean).unwrap();
-    c.flat = Flat::within(&c.bones, &c.constraints, usize::MAX);
+    c.flat = Flat::within(&c.bones, c.constraints.iter().map(Constraint::updates), usize::MAX);
     assert_eq!(c.flat.listed(), (1..=n).sum::<usize>(), "every subtree listed");
     let mut full = Posed::default();
     c.pose(&PoseRequest::default(), &mut full).unwrap();

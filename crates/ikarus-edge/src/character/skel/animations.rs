@@ -9,6 +9,7 @@
 use serde_json::{Map, Value};
 
 use super::Names;
+use super::keys::curve;
 use super::reader::Reader;
 use super::skeleton::pick;
 
@@ -29,7 +30,6 @@ const BONE_KINDS: [&str; 11] = [
 const PATH_KINDS: [&str; 3] = ["position", "spacing", "mix"];
 const PHYSICS_KINDS: [&str; 9] = ["inertia", "strength", "damping", "", "mass", "wind", "gravity", "mix", "reset"];
 const INHERIT: [&str; 5] = ["normal", "onlyTranslation", "noRotationOrReflection", "noScale", "noScaleOrReflection"];
-const SEQUENCE_MODES: [&str; 7] = ["hold", "once", "loop", "pingpong", "onceReverse", "loopReverse", "pingpongReverse"];
 
 type Frame<'f> = &'f mut dyn FnMut(&mut Reader<'_>) -> Result<Map<String, Value>, String>;
 
@@ -106,22 +106,6 @@ pub(super) fn curved(r: &mut Reader<'_>, frames: usize, channels: usize, frame: 
     }
     keys.push(Value::Object(key));
     Ok(Value::Array(keys))
-}
-
-/// The curve byte of a key, and its Bezier handles.
-pub(super) fn curve(r: &mut Reader<'_>, key: &mut Map<String, Value>, channels: usize) -> Result<(), String> {
-    let start = r.pos();
-    match r.byte("curve")? {
-        0 => {}
-        1 => {
-            key.insert("curve".into(), Value::from("stepped"));
-        }
-        2 => {
-            key.insert("curve".into(), Value::Array(r.floats("curve", channels * 4)?));
-        }
-        b => return Err(r.fail_at(start, "curve", &format!("an unknown curve type (got {b})"))),
-    }
-    Ok(())
 }
 
 /// One value per key, under `field`.
@@ -420,9 +404,4 @@ fn events(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, String> {
         keys.push(Value::Object(o));
     }
     Ok(Some(Value::Array(keys)))
-}
-
-/// A sequence key's mode name.
-pub(super) fn sequence_mode(r: &Reader<'_>, start: usize, mode: usize) -> Result<Value, String> {
-    pick(r, start, "mode", &SEQUENCE_MODES, mode)
 }

@@ -4,7 +4,7 @@
 use serde_json::{Map, Value};
 
 use super::Names;
-use super::animations::{curve, sequence_mode};
+use super::keys::{curve, sequence_mode};
 use super::reader::Reader;
 
 /// The `attachments` section of an animation.
