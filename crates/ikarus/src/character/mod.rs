@@ -76,6 +76,15 @@ pub struct Character {
     flat: flat::Flat,
     /// Every constraint's settings in the setup pose (a pose starts by copying them).
     setup: Vec<Settings>,
+    /// Which kinds with per-pose state the character has.
+    kinds: Kinds,
+}
+
+/// Whether a character has path and physics constraints (a pose keeps their buffers only then).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Kinds {
+    path: bool,
+    physics: bool,
 }
 
 /// The skeleton's own position and scale: every world transform is the bones' own transform
@@ -335,6 +344,10 @@ impl Character {
         let deferred = world::deferred(&bones, &constraints, &order);
         let flat = flat::Flat::of(&bones, constraints.iter().map(Constraint::updates));
         let setup = constraints.iter().map(Constraint::setup).collect();
+        let kinds = Kinds {
+            path: constraints.iter().any(|c| matches!(c, Constraint::Path(_))),
+            physics: constraints.iter().any(|c| matches!(c, Constraint::Physics(_))),
+        };
         skin::check(&skins, &skin_required, [bones.len(), constraints.len()])?;
         let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
@@ -350,6 +363,7 @@ impl Character {
             deferred,
             flat,
             setup,
+            kinds,
         })
     }
 

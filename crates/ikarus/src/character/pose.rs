@@ -279,10 +279,15 @@ impl Character {
         out.settings.clear();
         out.settings.extend_from_slice(&self.setup);
         out.trig.resize(n, [Trig::ZERO; 3]);
-        out.path.reset(self.constraints.len());
-        out.physics.resize(self.constraints.len(), PhysicsState::default());
-        out.restart.clear();
-        out.restart.resize(self.constraints.len(), false);
+        // What only path and physics constraints read, kept only for characters that have them.
+        if self.kinds.path {
+            out.path.reset(self.constraints.len());
+        }
+        if self.kinds.physics {
+            out.physics.resize(self.constraints.len(), PhysicsState::default());
+            out.restart.clear();
+            out.restart.resize(self.constraints.len(), false);
+        }
         self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
 
         if let Some((c, time)) = request.clip {

@@ -49,6 +49,9 @@ pub(crate) struct Active {
     pub(crate) constraints: Vec<bool>,
     /// Scratch: the listed bones and their parents.
     listed: Vec<bool>,
+    /// Whether `bones` and `constraints` are all on, for a character of their sizes (a pose of
+    /// a character without skin-required parts then leaves them as they are).
+    all_on: bool,
 }
 
 /// What posing needs to tell active bones and constraints apart, made once with the character.
@@ -84,11 +87,16 @@ impl Activity {
     /// `out`: a constraint here only as the skin goes; posing also checks the bones it reads. See
     /// the module's doc.
     pub(crate) fn compute(&self, bones: &[CharacterBone], skin: Option<&Skin>, out: &mut Active) {
-        let Active { bones: bone_on, constraints: step_on, listed } = out;
+        let Active { bones: bone_on, constraints: step_on, listed, all_on } = out;
+        let sized = bone_on.len() == bones.len() && step_on.len() == self.constraint_required.len();
+        if !self.any && *all_on && sized {
+            return;
+        }
         bone_on.clear();
         bone_on.resize(bones.len(), true);
         step_on.clear();
         step_on.resize(self.constraint_required.len(), true);
+        *all_on = !self.any;
         if !self.any {
             return;
         }
