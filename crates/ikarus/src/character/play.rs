@@ -39,7 +39,7 @@ impl Character {
         }
         let Some((clip, end)) = request.clip else {
             let frame = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-            return self.pose_frame(request, out, None, frame);
+            return self.pose_frame(request, out, None, (frame, &[]));
         };
         if !(end.is_finite() && end >= 0.0) {
             return Err(PoseError::Time(end));
@@ -53,7 +53,7 @@ impl Character {
         let dt = 1.0 / play.fps;
         let at = |clock: f64| PoseRequest { clip: Some((clip, clock)), ..*request };
         let start = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-        self.pose_frame(&at(0.0), out, None, start)?;
+        self.pose_frame(&at(0.0), out, None, (start, &[]))?;
         let mut clock = 0.0;
         for f in 0..=frames {
             let from = clock;
@@ -65,7 +65,7 @@ impl Character {
                 break;
             }
             let frame = Frame::Play { mode: PhysicsMode::Update, clock, from, world: play.world };
-            self.pose_frame(&at(clock), out, None, frame)?;
+            self.pose_frame(&at(clock), out, None, (frame, &[]))?;
         }
         Ok(())
     }

@@ -47,7 +47,8 @@ pub(super) fn switched_off(c: &Character, legacy: bool) -> Map<String, Value> {
                 json!([zeroed(names)])
             }
             Constraint::Path(_) => {
-                let names: &[&str] = if legacy { &["rotateMix", "translateMix"] } else { &["mixRotate", "mixX", "mixY"] };
+                let names: &[&str] =
+                    if legacy { &["rotateMix", "translateMix"] } else { &["mixRotate", "mixX", "mixY"] };
                 json!({"mix": [zeroed(names)]})
             }
             Constraint::Physics(_) => json!({"mix": [{"time": 0.0, "value": 0.0}]}),
