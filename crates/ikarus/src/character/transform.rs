@@ -285,8 +285,14 @@ pub fn local_relative(
 /// (see the module's doc); in the world variants its world transform set and its applied local
 /// transform recomputed from it ([`Bones::set_world`]), in the local variants its local
 /// transform set and its world transform (and those below it) recomputed. The caller updates
-/// the bones strictly below them afterwards.
+/// the bones strictly below them afterwards. With every mix 0 it does nothing, as an IK
+/// constraint at mix 0 does: the bones keep their local transforms bit for bit (a world one set
+/// to itself would recompute them with a rounding).
 pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSettings) {
+    let mixes = [m.mix_rotate, m.mix_x, m.mix_y, m.mix_scale_x, m.mix_scale_y, m.mix_shear_y];
+    if mixes.iter().all(|&x| x == 0.0) {
+        return;
+    }
     let o = &c.offsets;
     match c.space {
         TransformSpace::World => {
