@@ -62,7 +62,7 @@ impl Character {
         }
         let Some((clip, end)) = request.clip else {
             let frame = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-            return self.pose_frame(request, out, interrupt, frame);
+            return self.pose_frame(request, out, interrupt, (frame, &[]));
         };
         if !(end.is_finite() && end >= 0.0) {
             return Err(PoseError::Time(end));
@@ -76,7 +76,7 @@ impl Character {
         let dt = 1.0 / play.fps;
         let at = |clock: f64| PoseRequest { clip: Some((clip, clock)), ..*request };
         let start = Frame::Play { mode: PhysicsMode::Reset, clock: 0.0, from: 0.0, world: play.world };
-        self.pose_frame(&at(0.0), out, interrupt, start)?;
+        self.pose_frame(&at(0.0), out, interrupt, (start, &[]))?;
         let mut clock = 0.0;
         for f in 0..=frames {
             let from = clock;
@@ -88,7 +88,7 @@ impl Character {
                 break;
             }
             let frame = Frame::Play { mode: PhysicsMode::Update, clock, from, world: play.world };
-            self.pose_frame(&at(clock), out, interrupt, frame)?;
+            self.pose_frame(&at(clock), out, interrupt, (frame, &[]))?;
         }
         Ok(())
     }
@@ -122,7 +122,7 @@ impl Character {
             Some(before) => (PhysicsMode::Update, before),
         };
         let from = request.clip.map_or(from, |(_, t)| t - (frame.clock - from));
-        self.pose_frame(request, out, None, Frame::Play { mode, clock: frame.clock, from, world: frame.world })
+        self.pose_frame(request, out, None, (Frame::Play { mode, clock: frame.clock, from, world: frame.world }, &[]))
     }
 }
 

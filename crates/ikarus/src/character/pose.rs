@@ -239,7 +239,7 @@ impl Character {
     /// updated so far and followed by an update of the bones below its bones, so that a later
     /// constraint can undo what an earlier one did, as in the runtime.
     pub fn pose(&self, request: &PoseRequest, out: &mut Posed) -> Result<(), PoseError> {
-        self.pose_frame(request, out, None, Frame::Still)
+        self.pose_frame(request, out, None, (Frame::Still, &[]))
     }
 
     /// [`Character::pose`], stopped with [`PoseError::Interrupted`] once `interrupt` is set: it
@@ -247,17 +247,18 @@ impl Character {
     /// each costs at most its bones' subtree), so a server's deadline or a Ctrl-C ends even a
     /// pose of a hostile character soon.
     pub fn pose_watched(&self, request: &PoseRequest, out: &mut Posed, interrupt: &Interrupt) -> Result<(), PoseError> {
-        self.pose_frame(request, out, Some(interrupt), Frame::Still)
+        self.pose_frame(request, out, Some(interrupt), (Frame::Still, &[]))
     }
 
-    /// [`Character::pose`] watching `interrupt` when there is one.
+    /// [`Character::pose`] watching `interrupt` when there is one, the IK constraints `off` left
+    /// out (at mix 0, whatever the clip keys; their other settings as the clip has them).
     pub(crate) fn pose_until(
         &self,
         request: &PoseRequest,
         out: &mut Posed,
-        interrupt: Option<&Interrupt>,
+        (interrupt, off): (Option<&Interrupt>, &[usize]),
     ) -> Result<(), PoseError> {
-        self.pose_frame(request, out, interrupt, Frame::Still)
+        self.pose_frame(request, out, interrupt, (Frame::Still, off))
     }
 
     /// [`Character::pose_until`] with the physics constraints treated as `frame` says.
@@ -266,7 +267,7 @@ impl Character {
         request: &PoseRequest,
         out: &mut Posed,
         interrupt: Option<&Interrupt>,
-        frame: Frame,
+        (frame, off): (Frame, &[usize]),
     ) -> Result<(), PoseError> {
         self.check(request)?;
         let n = self.bones.len();
@@ -353,6 +354,11 @@ impl Character {
         for &(k, bend_positive) in request.bends {
             if let Settings::Ik(s) = &mut out.settings[k] {
                 s.bend_positive = bend_positive;
+            }
+        }
+        for &k in off {
+            if let Some(Settings::Ik(s)) = out.settings.get_mut(k) {
+                s.mix = 0.0;
             }
         }
         // The physics states, path buffers and activity are taken out while the bones are

@@ -14,22 +14,29 @@
 //!    pose: a bone's origin, world direction and world length as the runtime's world transforms
 //!    have them, its parent the nearest moving ancestor (the bones between are rigid).
 //! 3. After the solve, each moving bone's world direction is written back as the local rotation
-//!    that gives it under the bone's own inherit mode, parents first, and the world transforms
-//!    are recomputed as the runtime computes them. Where a parent's scale is not uniform, a
-//!    rotation is not rigid in the runtime's world; the skeleton is then rebuilt from the new
-//!    pose and solved again (at most [`ROUNDS`] times in all) until the two agree: under a mild
-//!    uneven scale (1.15 by 0.9) the gap shrinks about fourfold a round; under a strong one (1.6
-//!    by 0.6) a bone's world length changes so much with its rotation that the rounds need not
-//!    close it, and the report's per-constraint error says what is left.
+//!    that gives it under the bone's own inherit mode, parents first. Each moving bone's local
+//!    rotation is then held (as [`PoseRequest::turns`] holds a bone turned by hand, turned by
+//!    what the solve turned it) and the character is posed again from the request, the solved
+//!    IK constraints left out (as at mix 0) and every other constraint (transform, path, IK aims
+//!    on bones of length 0) applied in its order on top: the answer is a pose the constraints
+//!    produce, a transform constraint following a solved limb follows it. Where that pose is not
+//!    the solve's (a constraint reads a solved bone and moves the limb, or a parent's scale is
+//!    not uniform, so that a rotation is not rigid in the runtime's world), the skeleton is
+//!    rebuilt from it and solved again (at most [`ROUNDS`] times in all) until the two agree:
+//!    under a mild uneven scale (1.15 by 0.9) the gap shrinks about fourfold a round; under a
+//!    strong one (1.6 by 0.6) a bone's world length changes so much with its rotation that the
+//!    rounds need not close it. A constraint that itself turns or moves a goal's bones fights
+//!    the goal: a partial mix gives way a round at a time (the held rotation moves by what the
+//!    goal still needs), a full one does not; either way the report's errors are measured on
+//!    the final pose, and say what is left.
 //!
 //! What the runtime's rules have that this does not: `stretch` and `compress` (the solve turns
 //! bones; it never scales them) and a partial mix (a constraint with mix > 0 is solved fully;
 //! mix 0 leaves it out). A one-bone constraint is a secondary goal on its bone's tip (the least
 //! squares of a tip toward a point is the aim toward it), so that it turns its own bone in what
 //! the limbs above it leave free instead of pulling them; on a bone of length 0 it has no tip to
-//! aim, and the runtime's aim is applied after the solve instead.
+//! aim, and the runtime's aim applies in its order when the pose is made again.
 
-use super::ik;
 use super::pose::{PoseError, PoseRequest, Posed};
 use super::world::{Affine, world_transform};
 use super::{Character, IkBones, IkRule, IkSettings};
@@ -201,7 +208,7 @@ impl Character {
     ) -> Result<TogetherReport, TogetherError> {
         self.check_together(rules)?;
         let interrupt = solver.options().interrupt.clone();
-        self.pose_until(request, out, interrupt.as_ref())?;
+        self.pose_until(request, out, (interrupt.as_ref(), &[]))?;
         let active: Vec<usize> = self
             .ik_constraints()
             .map(|(k, _)| k)
@@ -213,6 +220,12 @@ impl Character {
         let goals: Vec<usize> = active.iter().copied().filter(|&k| self.has_tip_goal(k)).collect();
         let anything = !goals.is_empty() || !rules.goals.is_empty();
         if !moving.is_empty() && anything {
+            // The request's turns, then the moving bones' local rotations held as turns.
+            let mut held: Vec<(usize, f64)> = request.turns.to_vec();
+            let first = held.len();
+            held.extend(moving.iter().map(|&m| (m, out.local(m).rotation)));
+            let mut before = vec![0.0; moving.len()];
+            let mut points = vec![nalgebra::Point2::origin(); moving.len() + 1];
             for round in 1..=ROUNDS {
                 let frozen = self.freeze(out, &moving, rules)?;
                 let task = self.task(out, &frozen, (rules, &limb_rules), &goals)?;
@@ -225,7 +238,19 @@ impl Character {
                 if outcome.status == crate::Status::Interrupted || crate::interrupt::is_set(interrupt.as_ref()) {
                     return Err(TogetherError::Pose(PoseError::Interrupted));
                 }
-                let drift = self.thaw(out, &frozen, outcome.pose.angles());
+                for (b, &m) in before.iter_mut().zip(&moving) {
+                    *b = out.local(m).rotation;
+                }
+                self.thaw(out, &frozen, outcome.pose.angles(), &mut points);
+                // Each held rotation turned by what the solve turned its bone, and the pose made
+                // again from the request: the solved IK constraints left out, every other
+                // constraint applied in its order on top of the held rotations.
+                for (j, &m) in moving.iter().enumerate() {
+                    held[first + j].1 += wrap_angle(out.local(m).rotation - before[j]);
+                }
+                let again = PoseRequest { turns: &held, ..*request };
+                self.pose_until(&again, out, (interrupt.as_ref(), &goals))?;
+                let drift = self.drift(out, &frozen, &points);
                 report.rounds = round;
                 report.outcome = Some(outcome);
                 if drift <= 1e-9 * (1.0 + self.size(out)) {
@@ -233,7 +258,6 @@ impl Character {
                 }
             }
         }
-        self.aim_zero_length(&active, out);
         let mut is_active = vec![false; self.constraints.len()];
         for &k in &active {
             is_active[k] = true;
@@ -481,49 +505,33 @@ impl Character {
     }
 
     /// Writes the solved directions back as local rotations, parents first, recomputing the
-    /// world transforms as the runtime does. Returns how far the runtime's tips of the moving
-    /// bones ended from the skeleton's (0 when every rotation was rigid).
-    fn thaw(&self, out: &mut Posed, frozen: &Frozen, angles: &[f64]) -> f64 {
+    /// world transforms as the runtime does; `points` gets the skeleton's solved points (its
+    /// root's origin, then each bone's tip).
+    fn thaw(&self, out: &mut Posed, frozen: &Frozen, angles: &[f64], points: &mut [nalgebra::Point2<f64>]) {
         let n = frozen.bones.len();
-        let mut points = vec![nalgebra::Point2::origin(); n + 1];
         let mut directions = vec![0.0; n];
-        frozen.skeleton.points_into(angles, &mut points, &mut directions);
-        let (mut bones, length, _) = out.bones(self);
+        frozen.skeleton.points_into(angles, points, &mut directions);
+        let (mut bones, ..) = out.bones(self);
         for (k, &m) in frozen.bones.iter().enumerate() {
             let parent = self.bones[m].parent.map(|p| bones.world[p]);
             let r = rotation_for(&bones.local[m], &self.bones[m], parent.as_ref(), self.placement, directions[k]);
             bones.local[m].rotation = r;
             bones.update_below(m);
         }
+    }
+
+    /// How far the tips of the moving bones in `out` are from the skeleton's solved `points`
+    /// (0 when the pose the constraints make is the solve's).
+    fn drift(&self, out: &Posed, frozen: &Frozen, points: &[nalgebra::Point2<f64>]) -> f64 {
         let mut drift: f64 = 0.0;
         for (k, &m) in frozen.bones.iter().enumerate() {
-            let w = bones.world[m];
-            let tip = [w.x + w.a * length[m], w.y + w.c * length[m]];
+            let tip = out.tip(m);
             let p = points[k + 1];
             // A bone of length 0 was given a tiny length; its tip is its origin.
-            let d = if length[m] > 0.0 { math::distance(tip[0] - p.x, tip[1] - p.y) } else { 0.0 };
+            let d = if self.bones[m].length > 0.0 { math::distance(tip[0] - p.x, tip[1] - p.y) } else { 0.0 };
             drift = drift.max(d);
         }
         drift
-    }
-
-    /// The runtime's aim for the active one-bone constraints on bones of length 0.
-    fn aim_zero_length(&self, active: &[usize], out: &mut Posed) {
-        let aims: Vec<(usize, IkSettings)> = active
-            .iter()
-            .filter(|&&k| !self.has_tip_goal(k))
-            .filter_map(|&k| out.ik_settings(k).map(|s| (k, s)))
-            .collect();
-        let (mut bones, ..) = out.bones(self);
-        for (k, s) in aims {
-            let Some(c) = self.ik(k) else { continue };
-            if let IkBones::One(b) = c.bones {
-                let w = bones.world[c.target];
-                let s = if c.rule == IkRule::Spine { s } else { IkSettings { compress: false, stretch: false, ..s } };
-                ik::spine_one(&mut bones, b, [w.x, w.y], &s, c.uniform);
-                bones.update_below(b);
-            }
-        }
     }
 
     /// How far constraint `k` misses its target: a two-bone one, its tip's distance from it; a

@@ -285,7 +285,9 @@ pub fn local_relative(
 /// (see the module's doc); in the world variants its world transform set and its applied local
 /// transform recomputed from it ([`Bones::set_world`]), in the local variants its local
 /// transform set and its world transform (and those below it) recomputed. The caller updates
-/// the bones strictly below them afterwards.
+/// the bones strictly below them afterwards. With every mix 0 it does nothing, as an IK
+/// constraint at mix 0 does: the bones keep their local transforms bit for bit (a world one set
+/// to itself would recompute them with a rounding).
 pub(crate) fn apply(v: &mut Bones, c: &TransformConstraint, m: &TransformSettings) {
     // With every mix 0 the constraint does nothing: its bones keep their local transforms to
     // the bit (a world transform set and read back would round them).

@@ -5,9 +5,9 @@
 //! for a rotation, 4.x files `value`). Keys are linear: one per frame (posed at the frame's
 //! time, written at the 32-bit float nearest it), and more by bisection wherever a straight
 //! line between two keys would put a bone's world origin or tip more than the tolerance from
-//! the motion posed at that time. Every IK constraint of the file is keyed to mix 0 at time 0,
-//! so that the constraints leave the bones where the keys put them (at mix 0 a constraint does
-//! nothing).
+//! the motion posed at that time. Every constraint of the file (IK, transform, path, physics)
+//! is keyed to mix 0 at time 0, so that the constraints leave the bones where the keys put them
+//! (at mix 0 a constraint does nothing; the keys already hold what the constraints did).
 //!
 //! Memory: the keys hold every bone's local transform, so their number is bounded: at most
 //! [`MAX_REFINED`] keys between two frames and, over the whole motion, [`ADDED_PER_FRAME`] per
@@ -179,7 +179,7 @@ fn thinned(series: Vec<(f64, [f64; 2])>) -> Vec<(f64, [f64; 2])> {
     out
 }
 
-/// The animation's JSON: the bones' timelines (those that leave the setup pose) and every IK
+/// The animation's JSON: the bones' timelines (those that leave the setup pose) and every
 /// constraint at mix 0.
 fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
     const SAME: f64 = 1e-12;
@@ -243,5 +243,5 @@ fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
             bones.insert(bone.name.clone(), Value::Object(timelines));
         }
     }
-    Ok(super::ik_keys::animation(bones, super::ik_keys::switched_off(c)))
+    Ok(super::ik_keys::animation(bones, super::ik_keys::switched_off(c, legacy)))
 }

@@ -23,8 +23,10 @@
 //! every bone whose local transform the motion changes gets `rotate`, `translate`, `scale` and
 //! `shear` timelines (those that change) keyed at the course's and the clip's key times and at
 //! every frame (the solve is iterative, and its small frame-to-frame noise is not a curve) with
-//! fitted curves between, keys added where a fit strays; every IK constraint is keyed to mix 0 at time
-//! 0, since the solver replaces them all and would otherwise be undone by them.
+//! fitted curves between, keys added where a fit strays; every constraint of every kind is keyed
+//! to mix 0 at time 0: the solver replaces the IK constraints, which would otherwise undo it, and
+//! the keys already hold what the transform, path and physics constraints did to the pose (on,
+//! they would apply a second time).
 
 use ikarus::character::{Character, Interpolation, Posed};
 use serde_json::{Map, Value, json};
@@ -356,7 +358,7 @@ impl<'a> Job<'_, '_, 'a> {
                 bones.insert(bone.name.clone(), Value::Object(timelines));
             }
         }
-        Ok(animation_json(bones, switched_off(self.character())))
+        Ok(animation_json(bones, switched_off(self.character(), self.legacy)))
     }
 }
 

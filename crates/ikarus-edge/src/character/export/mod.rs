@@ -11,9 +11,10 @@
 //!   target bones get `translate` keys at the key times with Bézier curves fitted to ikarus's
 //!   tracks, and bend keys become `bendPositive` keys of the constraints' IK timelines. Under
 //!   ikarus's solver every bone the solve moves gets fitted keys at the key times (and the
-//!   clip's), and every IK constraint is keyed to mix 0 (the solver replaces them all).
+//!   clip's), and every constraint of every kind is keyed to mix 0 (the solver replaces the IK
+//!   ones; the keys hold what the others did).
 //! - [`Form::Bake`] ([`bake`]): every bone at every frame, linear keys, with bisection keys
-//!   where a line strays, and every IK constraint at mix 0.
+//!   where a line strays, and every constraint (IK, transform, path, physics) at mix 0.
 //!
 //! Either way every key time is written as the 32-bit float Spine's runtime reads
 //! ([`written_time`]), the keys are posed at that time, and a fit is accepted when the pose the
