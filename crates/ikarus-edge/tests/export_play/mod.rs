@@ -10,7 +10,7 @@ use ikarus::character::Posed;
 use ikarus_edge::character::export::{self, Export, Form};
 use ikarus_edge::character::motion::{Course, Motion};
 use ikarus_edge::character::{Loaded, load};
-use ikarus_edge::pose::{PoseAsk, pose, pose_into};
+use ikarus_edge::pose::{PhysicsAsk, PoseAsk, pose, pose_into};
 use serde_json::Value;
 
 pub fn text(file: &str) -> String {
@@ -117,10 +117,13 @@ pub fn played(file: &str, motion: &Motion<'_>, form: Form) -> Played {
         }
     }
     times.extend((0..600).map(|k| d * ((k as f64 * 0.618_033_988_75) % 1.0)));
+    // The motion is sampled with physics left out (Spine's `Physics.none`), and so is the
+    // exported file: physics constraints the editable form leaves on would play on top in a game.
     let (mut exported_pose, mut direct) = (Posed::default(), Posed::default());
     let mut worst: f64 = 0.0;
     for t in times.iter().map(|&t| f64::from(t as f32)).filter(|t| *t <= d) {
-        let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(t), ..PoseAsk::default() };
+        let ask =
+            PoseAsk { animation: Some("ikarus".into()), time: Some(t), physics: PhysicsAsk::Off, ..PoseAsk::default() };
         pose_into(&back, &ask, &mut exported_pose).unwrap();
         motion.pose_at(t, &mut direct).unwrap();
         worst = worst.max(distance(&exported_pose, &direct));
@@ -129,13 +132,19 @@ pub fn played(file: &str, motion: &Motion<'_>, form: Form) -> Played {
     // read as a 32-bit float.
     let mut frames: f64 = 0.0;
     for t in motion.frame_times() {
-        let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(f64::from(t as f32)), ..PoseAsk::default() };
+        let ask = PoseAsk {
+            animation: Some("ikarus".into()),
+            time: Some(f64::from(t as f32)),
+            physics: PhysicsAsk::Off,
+            ..PoseAsk::default()
+        };
         pose_into(&back, &ask, &mut exported_pose).unwrap();
         motion.pose_at(t, &mut direct).unwrap();
         frames = frames.max(distance(&exported_pose, &direct));
     }
     // At the last key: `ikarus pose --target …` at the end points.
-    let ask = PoseAsk { animation: Some("ikarus".into()), time: Some(d), ..PoseAsk::default() };
+    let ask =
+        PoseAsk { animation: Some("ikarus".into()), time: Some(d), physics: PhysicsAsk::Off, ..PoseAsk::default() };
     pose_into(&back, &ask, &mut exported_pose).unwrap();
     let end = motion.ask_at(d);
     pose_into(loaded, &end, &mut direct).unwrap();
