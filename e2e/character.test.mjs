@@ -105,7 +105,7 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     assert.match(byId.character, /^c[0-9a-f]{24}$/);
     assert.equal(byId.rig, undefined);
     assert.ok(JSON.stringify(byId).length < 1024, `${JSON.stringify(byId).length} bytes a pose`);
-    assert.match(await page.textContent("#stats"), /^Spine character spineboy\.json · 67 bones · 7 IK constraints · setup pose · Spine rules$/);
+    assert.match(await page.textContent("#stats"), /^Spine character spineboy\.json · 67 bones · 7 IK, 8 transform constraints · setup pose · Spine rules$/);
 
     // The pointer on a bone's middle names it.
     const torso = setup.bones.torso;

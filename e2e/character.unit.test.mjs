@@ -190,6 +190,9 @@ test("the solver's line: Spine's rules, or ikarus's status and the constraints i
 test("the chip's line and the lines of what ikarus leaves out", () => {
   assert.equal(characterSummary("boy.json", character), "Spine character boy.json · 5 bones · 3 IK constraints");
   assert.equal(characterSummary("m", { format: "dragonbones", bones: [{}], ik: [{}] }), "DragonBones character m · 1 bone · 1 IK constraint");
+  const kinds = ["ik", "transform", "transform", "physics"].map((kind) => ({ kind }));
+  assert.equal(characterSummary("c", { bones: [{}, {}], constraints: kinds }), "Spine character c · 2 bones · 1 IK, 2 transform, 1 physics constraints");
+  assert.equal(characterSummary("c", { bones: [{}], constraints: [] }), "Spine character c · 1 bone · no constraints");
   assert.deepEqual(unsupportedLines(character), ["clipping attachment clip (skin default, slot hand)"]);
   assert.deepEqual(unsupportedLines({}), []);
 });

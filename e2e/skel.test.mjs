@@ -33,7 +33,7 @@ test("spineboy's .skel: loaded as bytes, the JSON's setup pose, walk played, exp
     assert.equal(c.name, "spineboy.skel");
     assert.equal(c.bones, 67);
     assert.ok(c.text.startsWith("{"), "the page keeps the decoded JSON text");
-    assert.match(await page.textContent("#stats"), /^Spine character spineboy\.skel · 67 bones · 7 IK constraints · setup pose · Spine rules$/);
+    assert.match(await page.textContent("#stats"), /^Spine character spineboy\.skel · 67 bones · 7 IK, 8 transform constraints · setup pose · Spine rules$/);
 
     // The setup pose: the JSON export's (posed by the server from the JSON file) within 0.15.
     const json = readFileSync(join(characters, "spine-spineboy-pro.json"), "utf8");

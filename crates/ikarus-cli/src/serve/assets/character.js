@@ -232,11 +232,21 @@ export function solverLine(ik, tolerance = 1e-3) {
   return [`ikarus solver ${ik.status}`, ...missed.map((k) => `${k.name} ${Number(k.error.toPrecision(2))}`)].join(" · ");
 }
 
-/** The chip's line of a character: "Spine character spineboy · 67 bones · 7 IK constraints". */
+/**
+ * The chip's line of a character: "Spine character spineboy · 67 bones · 7 IK, 8 transform
+ * constraints" (its constraints counted by kind, in the order IK, transform, path, physics).
+ */
 export function characterSummary(name, character) {
   const kind = character.format === "dragonbones" ? "DragonBones" : "Spine";
-  const n = (k, one) => `${k} ${one}${k === 1 ? "" : "s"}`;
-  return `${kind} character ${name} · ${n(character.bones.length, "bone")} · ${n((character.ik || []).length, "IK constraint")}`;
+  const bones = character.bones.length;
+  const all = character.constraints || (character.ik || []).map(() => ({ kind: "ik" }));
+  const counts = ["ik", "transform", "path", "physics"]
+    .map((k) => [k, all.filter((c) => c.kind === k).length])
+    .filter(([, count]) => count > 0)
+    .map(([k, count]) => `${count} ${k === "ik" ? "IK" : k}`);
+  const total = all.length;
+  const constraints = total ? `${counts.join(", ")} constraint${total === 1 ? "" : "s"}` : "no constraints";
+  return `${kind} character ${name} · ${bones} bone${bones === 1 ? "" : "s"} · ${constraints}`;
 }
 
 /**
