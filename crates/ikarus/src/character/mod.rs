@@ -1,7 +1,7 @@
 //! Imported characters (Spine and DragonBones skeletons), held as their runtimes hold them:
 //! bones with a full affine local transform (translation, rotation, scale, shear) and an
 //! inherit mode, constraints of every kind in one list applied one after another in their
-//! order ([`constraint`]), and animation clips whose timelines key the bones' transforms and
+//! order (the `constraint` module), and animation clips whose timelines key the bones' transforms and
 //! the constraints' settings.
 //!
 //! This module is the model only: what a character *is*, validated once by [`Character::new`].

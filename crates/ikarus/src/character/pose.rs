@@ -34,7 +34,7 @@ pub struct PoseRequest<'a> {
     pub turns: &'a [(usize, f64)],
     /// The skin (its index in [`Character::skins`]) whose skin-required bones and constraints
     /// take part; `None`: no skin, so only those not skin-required do (the edge asks for
-    /// [`Character::default_skin`] unless told otherwise). See [`super::skin`].
+    /// [`Character::default_skin`] unless told otherwise; see [`Skin`](super::Skin)).
     pub skin: Option<usize>,
 }
 
@@ -164,7 +164,7 @@ impl Posed {
         self.world.is_empty()
     }
 
-    /// Whether bone `i` took part in the pose (see [`super::skin`]): an inactive bone is not
+    /// Whether bone `i` took part in the pose (see [`Skin`](super::Skin)): an inactive bone is not
     /// posed, its world transform all zeros. Panics if `i` is not a bone.
     pub fn is_active(&self, i: usize) -> bool {
         self.active.bones[i]
