@@ -4,7 +4,7 @@
 //! per bone into a `Float64Array` the caller owns, bit for bit those of `call("pose", …)` for
 //! the same file, animation, time and targets (the same library call).
 
-use ikarus::character::{PoseRequest, Posed};
+use ikarus::character::{Play, PoseRequest, Posed};
 use ikarus_edge::character::Loaded;
 use ikarus_edge::edge::Limits;
 use ikarus_edge::pose::{clip_at, finite_time, target_point};
@@ -118,9 +118,16 @@ impl Character {
                 })?;
             self.targets.push((t[0] as usize, target_point(&bone.name, [t[1], t[2]]).map_err(invalid)?));
         }
-        // The default skin, as the edge's pose takes it unless told otherwise.
+        // The default skin, and physics played from 0 at 60 frames a second, as the edge's pose
+        // takes them unless told otherwise.
         let request = PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[], skin: c.default_skin() };
-        c.pose(&request, &mut self.posed).map_err(|e| invalid(e.to_string()))?;
+        let physics = c.constraints().iter().any(|k| k.kind() == "physics");
+        let posed = if physics {
+            c.play(&request, &Play::default(), &mut self.posed)
+        } else {
+            c.pose(&request, &mut self.posed)
+        };
+        posed.map_err(|e| invalid(e.to_string()))?;
         for (i, bone) in self.numbers.chunks_exact_mut(PER_BONE).enumerate() {
             let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));
             bone.copy_from_slice(&[x, y, self.posed.rotation(i).to_degrees(), tx, ty]);
@@ -143,6 +150,23 @@ mod tests {
     fn spineboy() -> String {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
         std::fs::read_to_string(path).unwrap()
+    }
+
+    #[test]
+    fn a_character_with_physics_is_played_as_the_json_answer_plays_it() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-celestial-circus-pro.json");
+        let text = std::fs::read_to_string(path).unwrap();
+        let mut c = Character::new(&text).unwrap();
+        c.set_animation(Some("swing".to_owned())).unwrap();
+        let mut out = vec![0.0; c.pose_len()];
+        c.pose(1.0, &[], &mut out).unwrap();
+        let request = serde_json::json!({"rig": text, "animation": "swing", "time": 1.0});
+        let json: serde_json::Value =
+            serde_json::from_str(&crate::answer("pose", &request.to_string()).unwrap()).unwrap();
+        for (i, b) in json["bones"].as_array().unwrap().iter().enumerate() {
+            assert_eq!(out[PER_BONE * i].to_bits(), b["x"].as_f64().unwrap().to_bits(), "bone {i}");
+            assert_eq!(out[PER_BONE * i + 1].to_bits(), b["y"].as_f64().unwrap().to_bits(), "bone {i}");
+        }
     }
 
     #[test]

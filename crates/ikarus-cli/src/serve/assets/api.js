@@ -180,14 +180,16 @@ let workerRig = null;
 
 /**
  * A character posed (POST /api/pose's body and answer). In the static build, a pose by the
- * runtime's rules goes through the worker's typed path (the file sent once, then the clip, time
- * and targets; the answer's numbers bit for bit /api/pose's), anything else through /api/pose.
+ * runtime's rules with the default skin and physics goes through the worker's typed path (the
+ * file sent once, then the clip, time and targets; the answer's numbers bit for bit /api/pose's),
+ * anything else through /api/pose.
  */
 export async function pose(body) {
   const m = await wasm;
   const { rig: text, character, ...ask } = body;
   const rig = text ?? characterTexts.get(character);
-  if (!m || body.ik || body.goals || body.pins || body.bends || body.rotations || rig === undefined) return post("/api/pose", body);
+  const typedTakes = !(body.ik || body.goals || body.pins || body.bends || body.rotations || body.skin || body.physics === false);
+  if (!m || !typedTakes || rig === undefined) return post("/api/pose", body);
   const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
   if (reply.status === 200 && reply.typed) {
     workerRig = rig;
