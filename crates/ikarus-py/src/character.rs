@@ -70,10 +70,11 @@ impl PyCharacter {
     /// the CLI's line. ``ik``: ``"runtime"`` (default) or ``"ikarus"`` (every constraint solved
     /// together, with the IK file's text ``ik_file``); with ``"ikarus"``, ``ik`` in the answer is
     /// the JSON's ``ik`` object as text. ``ik`` is the JSON text of ``POST /api/pose``'s IK
-    /// fields as one object: ``{"ik", "ik_file", "goals", "pins"}``, each optional. ``skin``
-    /// names the skin (default: the file's ``default``); ``fps`` plays the animation from 0 at
-    /// that many frames a second with the physics constraints (``None``: physics left out).
-    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None, skin=None, fps=Some(60.0)))]
+    /// fields as one object: ``{"ik", "ik_file", "goals", "pins"}``, each optional. ``look`` is
+    /// ``(skin, fps)``: the skin's name (default: the file's ``default``) and the frames a second
+    /// the animation is played at from 0 with the physics constraints (``None``: physics left
+    /// out).
+    #[pyo3(signature = (animation=None, time=None, targets=Vec::new(), ik=None, look=(None, Some(60.0))))]
     fn pose<'py>(
         &self,
         py: Python<'py>,
@@ -81,9 +82,9 @@ impl PyCharacter {
         time: Option<f64>,
         targets: Vec<(String, (f64, f64))>,
         ik: Option<&str>,
-        skin: Option<String>,
-        fps: Option<f64>,
+        look: (Option<String>, Option<f64>),
     ) -> PyResult<Bound<'py, PyDict>> {
+        let (skin, fps) = look;
         let asked: IkReq = match ik {
             Some(text) => parse_json(text.as_bytes()).map_err(|e| PyValueError::new_err(e.to_string()))?,
             None => IkReq::default(),

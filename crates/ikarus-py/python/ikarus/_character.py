@@ -107,7 +107,7 @@ class _CharacterRig:
         asked: dict = {"ik": ik, "ik_file": ik_file, "goals": self._goal_list(goals or {}), "pins": list(pins)}
         text = json.dumps({k: v for k, v in asked.items() if v is not None}, allow_nan=False)
         answer = self._character.pose(
-            animation, None if time is None else float(time), pairs, text, skin, float(fps) if physics else None
+            animation, None if time is None else float(time), pairs, text, (skin, float(fps) if physics else None)
         )
         _refuse_non_finite(answer)
         if answer["ik"] is not None:

@@ -148,8 +148,7 @@ class _Character:
         time: Optional[float] = None,
         targets: Sequence[Tuple[str, Tuple[float, float]]] = ...,
         ik: Optional[str] = None,
-        skin: Optional[str] = None,
-        fps: Optional[float] = 60.0,
+        look: Tuple[Optional[str], Optional[float]] = (None, 60.0),
     ) -> dict[str, Any]: ...
 
 def ease(kind: EaseName, t: Union[float, npt.ArrayLike], k1: Optional[float] = None, k2: Optional[float] = None, velocity: bool = False) -> Any:
