@@ -151,16 +151,6 @@ fn wrap(r: f64) -> f64 {
     r - (r / (2.0 * PI) - 0.5).ceil() * (2.0 * PI)
 }
 
-/// `b`'s axes turned by `r`.
-fn turn(b: &mut Affine, r: f64) {
-    let (sin, cos) = math::sin_cos(r);
-    let (a, bb, c, d) = (b.a, b.b, b.c, b.d);
-    b.a = cos * a - sin * c;
-    b.b = cos * bb - sin * d;
-    b.c = sin * a + cos * c;
-    b.d = sin * bb + cos * d;
-}
-
 /// `b`'s y axis set to direction `r`, its length kept.
 fn aim_y(b: &mut Affine, r: f64) {
     let s = math::hypot(b.b, b.d);
@@ -181,7 +171,7 @@ pub fn world_absolute(b: &Affine, t: &Affine, o: &TransformOffsets, m: &Transfor
     let (off_rotation, off_shear) = (o.rotation * reflect, o.shear_y * reflect);
     if m.mix_rotate != 0.0 {
         let r = wrap(t.rotation() - b.rotation() + off_rotation) * m.mix_rotate;
-        turn(&mut b, r);
+        b.turn(r);
     }
     if m.mix_x != 0.0 || m.mix_y != 0.0 {
         let [px, py] = t.to_world(o.x, o.y);
@@ -218,7 +208,7 @@ pub fn world_relative(b: &Affine, t: &Affine, o: &TransformOffsets, m: &Transfor
     let reflect = if t.det() > 0.0 { 1.0 } else { -1.0 };
     let (off_rotation, off_shear) = (o.rotation * reflect, o.shear_y * reflect);
     if m.mix_rotate != 0.0 {
-        turn(&mut b, wrap(t.rotation() + off_rotation) * m.mix_rotate);
+        b.turn(wrap(t.rotation() + off_rotation) * m.mix_rotate);
     }
     if m.mix_x != 0.0 || m.mix_y != 0.0 {
         let [px, py] = t.to_world(o.x, o.y);

@@ -92,6 +92,16 @@ impl Affine {
         }
     }
 
+    /// The matrix turned by `r` radians (both axes; the origin stays).
+    pub(crate) fn turn(&mut self, r: f64) {
+        let (sin, cos) = math::sin_cos(r);
+        let (a, b, c, d) = (self.a, self.b, self.c, self.d);
+        self.a = cos * a - sin * c;
+        self.b = cos * b - sin * d;
+        self.c = sin * a + cos * c;
+        self.d = sin * b + cos * d;
+    }
+
     /// The direction of the x axis, radians: `atan2(c, a)`.
     pub fn rotation(&self) -> f64 {
         math::atan2(self.c, self.a)

@@ -234,12 +234,7 @@ pub fn solve(
             continue;
         }
         let r = wrap(goal - math::atan2(w.c, w.a) + c.rotation) * s.mix_rotate;
-        let (sin, cos) = math::sin_cos(r);
-        let (a, b, cc, d) = (w.a, w.b, w.c, w.d);
-        w.a = cos * a - sin * cc;
-        w.b = cos * b - sin * d;
-        w.c = sin * a + cos * cc;
-        w.d = sin * b + cos * d;
+        w.turn(r);
     }
 }
 
