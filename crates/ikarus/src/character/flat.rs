@@ -30,10 +30,20 @@ pub(crate) struct Flat {
     pub(crate) length: Vec<f64>,
     /// The subtrees, one after another.
     below: Vec<u32>,
-    /// Per constraint, where the bones its update recomputes are in `below` (`None`: not kept).
-    ranges: Vec<Option<(u32, u32)>>,
+    /// The top bones of the constraints whose updates are found by a scan of the bones strictly
+    /// below them, one list after another.
+    tops: Vec<u32>,
     /// Per constraint, the bones posing recomputes after it.
-    updates: Vec<Scan>,
+    steps: Vec<Step>,
+}
+
+/// Where a constraint's update is: its bones listed in `below[start..end]`, a top bone whose
+/// subtree is found by a scan, or the bones strictly below `tops[start..end]` found by a scan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Step {
+    Listed(u32, u32),
+    Subtree(u32),
+    Under(u32, u32),
 }
 
 /// Which bones posing recomputes after a constraint has applied.
@@ -43,14 +53,6 @@ pub(crate) enum Updates<'a> {
     Subtree(usize),
     /// Every bone strictly below these (the constraint set these bones' world transforms).
     Below(&'a [usize]),
-}
-
-/// A constraint's update found by a scan when its list is not kept: a top bone and the bones
-/// below it, or the bones strictly below a constraint's bones (their indices in `tops`).
-#[derive(Debug, Clone, PartialEq)]
-enum Scan {
-    Subtree(u32),
-    Below(Vec<u32>),
 }
 
 /// At most this many subtree entries a bone are kept (see the module's doc).
@@ -107,8 +109,7 @@ impl Flat {
                             (start, flat.below.len() as u32)
                         })
                     });
-                    flat.ranges.push(range);
-                    flat.updates.push(Scan::Subtree(top as u32));
+                    flat.steps.push(range.map_or(Step::Subtree(top as u32), |(a, b)| Step::Listed(a, b)));
                 }
                 Updates::Below(tops) => {
                     let under = strictly_below(&flat.links, tops);
@@ -117,8 +118,15 @@ impl Flat {
                         flat.below.extend(under);
                         (start, flat.below.len() as u32)
                     });
-                    flat.ranges.push(range);
-                    flat.updates.push(Scan::Below(tops.iter().map(|&b| b as u32).collect()));
+                    let step = range.map_or_else(
+                        || {
+                            let start = flat.tops.len() as u32;
+                            flat.tops.extend(tops.iter().map(|&b| b as u32));
+                            Step::Under(start, flat.tops.len() as u32)
+                        },
+                        |(a, b)| Step::Listed(a, b),
+                    );
+                    flat.steps.push(step);
                 }
             }
         }
@@ -134,11 +142,12 @@ impl Flat {
     /// The bones posing recomputes after constraint `k`, in update order: an IK constraint's
     /// top bone (its one bone, or the parent of its two) and every bone below it; for a kind
     /// that sets world transforms, the bones strictly below its bones.
+    #[inline]
     pub(crate) fn below(&self, k: usize) -> Subtree<'_> {
-        match (self.ranges[k], &self.updates[k]) {
-            (Some((start, end)), _) => Subtree::Listed(&self.below[start as usize..end as usize]),
-            (None, Scan::Subtree(top)) => Subtree::Below(*top as usize),
-            (None, Scan::Below(tops)) => Subtree::Under(tops),
+        match self.steps[k] {
+            Step::Listed(start, end) => Subtree::Listed(&self.below[start as usize..end as usize]),
+            Step::Subtree(top) => Subtree::Below(top as usize),
+            Step::Under(start, end) => Subtree::Under(&self.tops[start as usize..end as usize]),
         }
     }
 }

@@ -124,8 +124,7 @@ pub struct Posed {
     restart: Vec<bool>,
 }
 
-/// What posing keeps per constraint and per bone besides the bones, taken out of [`Posed`]
-/// while its bones are borrowed.
+/// What posing keeps per constraint and per bone besides the bones, borrowed beside them.
 struct Scratch<'a> {
     physics: &'a mut [PhysicsState],
     restart: &'a [bool],
@@ -216,6 +215,12 @@ impl Posed {
     /// The bones of `c` as posing left them, to change their local transforms (and the world
     /// transforms below), their lengths, and the constraints' settings.
     pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings]) {
+        let (bones, length, settings, _) = self.parts(c);
+        (bones, length, settings)
+    }
+
+    /// [`Posed::bones`] and what posing keeps besides the bones, borrowed side by side.
+    fn parts<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings], Scratch<'a>) {
         let bones = Bones {
             bones: &c.bones,
             links: &c.flat.links,
@@ -225,7 +230,9 @@ impl Posed {
             below: &mut self.below,
             trig: &mut self.trig,
         };
-        (bones, &self.length, &self.settings)
+        let scratch =
+            Scratch { physics: &mut self.physics, restart: &self.restart, path: &mut self.path, active: &self.active };
+        (bones, &self.length, &self.settings, scratch)
     }
 }
 
@@ -293,14 +300,15 @@ impl Character {
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
+            let curves = self.curves.clip(c);
             out.keys.resize(clip.bones.len() + clip.constraints.len(), 0);
             let (bone_keys, ik_keys) = out.keys.split_at_mut(clip.bones.len());
             for (k, (t, last)) in clip.bones.iter().zip(bone_keys).enumerate() {
-                let mut r = Reader { curves: &self.curves, clip: c, timeline: k, last };
+                let mut r = Reader::new(curves, k, last);
                 timeline::apply_bone_at(&mut r, t, &self.bones[t.bone].setup, &mut out.local[t.bone], time);
             }
             for (k, (t, last)) in clip.constraints.iter().zip(ik_keys).enumerate() {
-                let mut r = Reader { curves: &self.curves, clip: c, timeline: clip.bones.len() + k, last };
+                let mut r = Reader::new(curves, clip.bones.len() + k, last);
                 match &t.keys {
                     ConstraintKeys::Ik(keys) => {
                         if let Some(s) = timeline::ik_settings_at(&mut r, keys, time) {
@@ -361,19 +369,7 @@ impl Character {
                 s.mix = 0.0;
             }
         }
-        // The physics states, path buffers and activity are taken out while the bones are
-        // borrowed, and put back after.
-        let mut physics = std::mem::take(&mut out.physics);
-        let restart = std::mem::take(&mut out.restart);
-        let mut path = std::mem::take(&mut out.path);
-        let active = std::mem::take(&mut out.active);
-        let scratch = Scratch { physics: &mut physics, restart: &restart, path: &mut path, active: &active };
-        let result = self.constrain(request, out, interrupt, frame, scratch);
-        out.path = path;
-        out.physics = physics;
-        out.restart = restart;
-        out.active = active;
-        result
+        self.constrain(request, out, interrupt, frame)
     }
 
     /// The targets and the constraints of [`Character::pose_frame`], after the clip.
@@ -383,9 +379,8 @@ impl Character {
         out: &mut Posed,
         interrupt: Option<&Interrupt>,
         frame: Frame,
-        Scratch { physics, restart, path: path_pose, active }: Scratch<'_>,
     ) -> Result<(), PoseError> {
-        let (mut bones, length, settings) = out.bones(self);
+        let (mut bones, length, settings, Scratch { physics, restart, path: path_pose, active }) = out.parts(self);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
         } else {
@@ -397,19 +392,20 @@ impl Character {
             bones.local[bone].y = ly;
             bones.update_below(bone);
         }
+        let skins_matter = self.activity.any;
         for &k in &self.order {
             if crate::interrupt::is_set(interrupt) {
                 return Err(PoseError::Interrupted);
             }
-            if !self.is_active(k, active) {
+            if skins_matter && !self.is_active(k, active) {
                 // It does nothing, but the bones the first pass left to its update are computed.
                 bones.update_subtree(self.flat.below(k));
                 continue;
             }
-            match (&self.constraints[k], &settings[k]) {
-                (Constraint::Ik(c), Settings::Ik(s)) => {
-                    let w = bones.world[c.target];
-                    let target = [w.x, w.y];
+            match &self.constraints[k] {
+                Constraint::Ik(c) => {
+                    let Settings::Ik(s) = &settings[k] else { continue };
+                    let target = bones.world[c.target].origin();
                     match (c.bones, c.rule) {
                         (IkBones::One(b), _) => {
                             let s = if c.rule == IkRule::Spine {
@@ -427,19 +423,26 @@ impl Character {
                         }
                     }
                 }
-                (Constraint::Transform(c), Settings::Transform(s)) => transform::apply(&mut bones, c, s),
-                (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, path_pose),
-                (Constraint::Physics(c), Settings::Physics(s)) => {
-                    if let Frame::Play { mode, clock, world, .. } = frame {
-                        let mode = if restart[k] { PhysicsMode::Reset } else { mode };
-                        let input =
-                            PhysicsInput { constraint: c, settings: *s, world, time: clock, length: length[c.bone] };
-                        let mut w = bones.world[c.bone];
-                        physics[k].apply(&input, mode, &mut w);
-                        bones.set_world(c.bone, w);
-                    }
+                Constraint::Transform(c) => {
+                    let Settings::Transform(s) = &settings[k] else { continue };
+                    transform::apply(&mut bones, c, s);
                 }
-                _ => {}
+                Constraint::Path(c) => {
+                    let Settings::Path(s) = &settings[k] else { continue };
+                    path::apply::apply(&mut bones, k, c, s, path_pose);
+                }
+                Constraint::Physics(c) => {
+                    let (Settings::Physics(s), Frame::Play { mode, clock, world, .. }) = (&settings[k], frame) else {
+                        bones.update_subtree(self.flat.below(k));
+                        continue;
+                    };
+                    let mode = if restart[k] { PhysicsMode::Reset } else { mode };
+                    let input =
+                        PhysicsInput { constraint: c, settings: *s, world, time: clock, length: length[c.bone] };
+                    let mut w = bones.world[c.bone];
+                    physics[k].apply(&input, mode, &mut w);
+                    bones.set_world(c.bone, w);
+                }
             }
             bones.update_subtree(self.flat.below(k));
         }
@@ -454,11 +457,9 @@ impl Character {
     }
 
     /// Whether constraint `k` takes part in a pose whose skin turned on `active`: the skin turns
-    /// it on and its target and bones are active (see [`super::skin`]).
+    /// it on and its target and bones are active (see [`super::skin`]); only asked of a character
+    /// with skin-required parts.
     fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
-        if !self.activity.any {
-            return true;
-        }
         let on = |b: usize| active.bones[b];
         active.constraints[k]
             && match &self.constraints[k] {

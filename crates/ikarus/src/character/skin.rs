@@ -86,12 +86,18 @@ impl Activity {
     /// Which bones (`bones`) and constraints are active with `skin` (`None`: no skin), into
     /// `out`: a constraint here only as the skin goes; posing also checks the bones it reads. See
     /// the module's doc.
+    #[inline]
     pub(crate) fn compute(&self, bones: &[CharacterBone], skin: Option<&Skin>, out: &mut Active) {
-        let Active { bones: bone_on, constraints: step_on, listed, all_on } = out;
-        let sized = bone_on.len() == bones.len() && step_on.len() == self.constraint_required.len();
-        if !self.any && *all_on && sized {
+        let sized = out.bones.len() == bones.len() && out.constraints.len() == self.constraint_required.len();
+        if !self.any && out.all_on && sized {
             return;
         }
+        self.compute_all(bones, skin, out);
+    }
+
+    /// [`Activity::compute`] past its shortcut.
+    fn compute_all(&self, bones: &[CharacterBone], skin: Option<&Skin>, out: &mut Active) {
+        let Active { bones: bone_on, constraints: step_on, listed, all_on } = out;
         bone_on.clear();
         bone_on.resize(bones.len(), true);
         step_on.clear();

@@ -106,26 +106,46 @@ impl Curves {
         (channels, slots)
     }
 
-    /// The samples of timeline `timeline` of clip `clip` (bone timelines first) from key `key`
-    /// on channel `ch`, if that segment is a Bézier one.
-    fn get(&self, clip: usize, timeline: usize, key: usize, ch: usize) -> Option<&[[f64; 2]; 9]> {
-        let (channels, slots) = self.slots.get(clip)?.get(timeline)?;
-        let slot = *slots.get(channels * key + ch)?;
-        self.samples.get(slot as usize)
+    /// Clip `clip`'s curves (none for a clip the curves do not know).
+    pub(crate) fn clip(&self, clip: usize) -> ClipCurves<'_> {
+        ClipCurves { samples: &self.samples, slots: self.slots.get(clip).map_or(&[][..], |c| c.as_slice()) }
     }
+}
+
+/// One clip's curves: [`Curves`] with the clip looked up once.
+#[derive(Clone, Copy)]
+pub(crate) struct ClipCurves<'a> {
+    samples: &'a [[[f64; 2]; 9]],
+    /// Per timeline, its channels per key and its segments' slots.
+    slots: &'a [(usize, Vec<u32>)],
 }
 
 /// Where a timeline is read: the character's precomputed curves, the clip and the timeline's
 /// index in it (bone timelines first), and the timeline's last key, cached across poses (the
 /// number of keys at or before the last time asked, a hint checked before it is used).
 pub(crate) struct Reader<'a> {
-    pub(crate) curves: &'a Curves,
-    pub(crate) clip: usize,
-    pub(crate) timeline: usize,
-    pub(crate) last: &'a mut u32,
+    samples: &'a [[[f64; 2]; 9]],
+    /// The timeline's channels per key.
+    channels: usize,
+    /// Per key and channel, the index of its segment's samples (see [`Curves`]).
+    slots: &'a [u32],
+    last: &'a mut u32,
 }
 
-impl Reader<'_> {
+impl<'a> Reader<'a> {
+    /// The reader of timeline `timeline` of a clip (bone timelines first), its last key cached
+    /// in `last`: the timeline's slots are looked up once, not per segment.
+    pub(crate) fn new(curves: ClipCurves<'a>, timeline: usize, last: &'a mut u32) -> Reader<'a> {
+        let (channels, slots) = curves.slots.get(timeline).map_or((0, &[][..]), |(ch, s)| (*ch, s.as_slice()));
+        Reader { samples: curves.samples, channels, slots, last }
+    }
+
+    /// The samples of the timeline's segment from key `key` on channel `ch`, if that segment
+    /// is a Bézier one.
+    fn samples(&self, key: usize, ch: usize) -> Option<&'a [[f64; 2]; 9]> {
+        let slot = *self.slots.get(self.channels * key + ch)?;
+        self.samples.get(slot as usize)
+    }
     /// The index of the last key whose (f32) time is at or before `time`, or `None` before
     /// the first key: the cached key if it still is that key, else the next one if that is it,
     /// else by binary search (which the answer does not depend on: the number of keys at or
@@ -149,7 +169,7 @@ impl Reader<'_> {
     /// `(t1, v1)` (f32-rounded already), `t0 <= time < t1`.
     fn segment(&self, key: usize, ch: usize, curve: Interpolation, p0: (f64, f64), p1: (f64, f64), time: f64) -> f64 {
         match curve {
-            Interpolation::Bezier { .. } => match self.curves.get(self.clip, self.timeline, key, ch) {
+            Interpolation::Bezier { .. } => match self.samples(key, ch) {
                 Some(samples) => on_samples(samples, p0, p1, time),
                 None => segment(curve, p0, p1, time),
             },
@@ -287,7 +307,7 @@ pub(crate) fn channels_at(
 fn apply_bone(t: &BoneTimeline, setup: &LocalTransform, local: &mut LocalTransform, time: f64) {
     let mut last = 0;
     let curves = Curves::default();
-    apply_bone_at(&mut Reader { curves: &curves, clip: 0, timeline: 0, last: &mut last }, t, setup, local, time);
+    apply_bone_at(&mut Reader::new(curves.clip(0), 0, &mut last), t, setup, local, time);
 }
 
 /// [`ik_settings_at`] without precomputed curves nor a cached key.
@@ -295,7 +315,7 @@ fn apply_bone(t: &BoneTimeline, setup: &LocalTransform, local: &mut LocalTransfo
 fn ik_settings(keys: &[IkKey], time: f64) -> Option<IkSettings> {
     let mut last = 0;
     let curves = Curves::default();
-    ik_settings_at(&mut Reader { curves: &curves, clip: 0, timeline: 0, last: &mut last }, keys, time)
+    ik_settings_at(&mut Reader::new(curves.clip(0), 0, &mut last), keys, time)
 }
 
 #[cfg(test)]

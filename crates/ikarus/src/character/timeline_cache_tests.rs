@@ -64,11 +64,11 @@ fn cached_keys_and_precomputed_curves_give_the_same_bits() {
             _ => time + 0.0137,
         };
         let (mut cached, mut plain) = (setup, setup);
-        let mut r = Reader { curves: &curves, clip: 0, timeline: 0, last: &mut last_bone };
+        let mut r = Reader::new(curves.clip(0), 0, &mut last_bone);
         apply_bone_at(&mut r, &c.bones[0], &setup, &mut cached, time);
         apply_bone(&c.bones[0], &setup, &mut plain, time);
         assert_eq!((cached.x.to_bits(), cached.y.to_bits()), (plain.x.to_bits(), plain.y.to_bits()), "time {time}");
-        let mut r = Reader { curves: &curves, clip: 0, timeline: 1, last: &mut last_ik };
+        let mut r = Reader::new(curves.clip(0), 1, &mut last_ik);
         let keys = c.constraints[0].keys.ik().unwrap();
         let a = ik_settings_at(&mut r, keys, time);
         let b = ik_settings(keys, time);
@@ -86,7 +86,10 @@ fn the_samples_are_kept_for_bezier_segments_only() {
     // Bone timeline: channel 0 is a Bézier on keys 0 and 3 (not on the last, 6), channel 1 on
     // every key but the last; the IK timeline: both channels of its 4 segments.
     assert_eq!(curves.samples.len(), 2 + 6 + 8);
-    assert!(curves.get(0, 0, 0, 0).is_some() && curves.get(0, 0, 1, 0).is_none());
-    assert!(curves.get(0, 0, 6, 1).is_none() && curves.get(0, 1, 3, 1).is_some());
-    assert!(curves.get(1, 0, 0, 0).is_none());
+    let mut last = 0;
+    let mut get =
+        |clip, timeline, key, ch| Reader::new(curves.clip(clip), timeline, &mut last).samples(key, ch).is_some();
+    assert!(get(0, 0, 0, 0) && !get(0, 0, 1, 0));
+    assert!(!get(0, 0, 6, 1) && get(0, 1, 3, 1));
+    assert!(!get(1, 0, 0, 0));
 }

@@ -92,6 +92,12 @@ impl Affine {
         }
     }
 
+    /// The origin `[x, y]`.
+    #[inline]
+    pub(crate) fn origin(&self) -> [f64; 2] {
+        [self.x, self.y]
+    }
+
     /// The matrix turned by `r` radians (both axes; the origin stays).
     pub(crate) fn turn(&mut self, r: f64) {
         let (sin, cos) = math::sin_cos(r);
@@ -311,6 +317,7 @@ impl Bones<'_> {
     /// Recomputes a constraint's subtree: `top` and every bone below it, from its list when the
     /// character keeps one ([`super::flat::Subtree`]), else by [`Bones::update_below`]'s scan
     /// (the same bones in the same order).
+    #[inline]
     pub(crate) fn update_subtree(&mut self, subtree: super::flat::Subtree<'_>) {
         match subtree {
             super::flat::Subtree::Listed(bones) => self.update_listed(bones),
