@@ -313,8 +313,8 @@ fn without_constant_speed_a_position_is_a_curve_parameter_by_lengths() {
 #[test]
 fn a_weighted_path_follows_the_weighted_sum_of_its_bones() {
     // Each vertex: bone l (the origin, unturned) with the point (x, 0) weighted 1/4, bone r
-    // (at (0, 20), turned 90°) with the point (0, −x) weighted 3/4: r puts it at (x, 20).
-    // The path is the line y = 15 from x = 0 to 100; half way is (50, 15).
+    // (at (0, 20), turned 90°) with the point (0, −(x + 8)) weighted 3/4: r puts it at
+    // (x + 8, 20). The path is the line y = 15 from x = 6 to 106; half way is (56, 15).
     let bones = json!([
         {"name": "l", "parent": "root"},
         {"name": "r", "parent": "root", "y": 20, "rotation": 90},
@@ -324,11 +324,11 @@ fn a_weighted_path_follows_the_weighted_sum_of_its_bones() {
     let mut v = Vec::new();
     for x in xs {
         // Two bones: l (bone 1 of the file's list) and r (bone 2), each point and weight.
-        v.extend([2.0, 1.0, x, 0.0, 0.25, 2.0, 0.0, -x, 0.75]);
+        v.extend([2.0, 1.0, x, 0.0, 0.25, 2.0, 0.0, -(x + 8.0), 0.75]);
     }
     let path = json!({"type": "path", "lengths": [100], "vertexCount": 6, "vertices": v});
     let c = character(bones, "root", path, json!({"bones": ["a"], "position": 0.5}));
-    at(&c, &pose(&c), "a", 50.0, 15.0, 0.0);
+    at(&c, &pose(&c), "a", 56.0, 15.0, 0.0);
 }
 
 #[test]

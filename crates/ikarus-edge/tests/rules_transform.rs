@@ -155,6 +155,13 @@ fn local_absolute_copies_the_target_s_local_transform() {
     let (c, p) = pose(bones([1.0, 1.0], 1.0), half);
     let want = child(&p_world(), &local(22.5, 22.0, 27.5, 1.25, 1.0, 10.0));
     is(&c, &p, "b", &want);
+    // mixY apart from mixX (a quarter of the way to 44), mixScaleY apart from mixScaleX
+    // (all the way from 1 to the target's 1 + 0.5).
+    let apart = json!({"local": true, "y": 4, "scaleY": 0.5, "mixRotate": 0, "mixX": 0, "mixY": 0.25,
+        "mixScaleX": 0, "mixScaleY": 1, "mixShearY": 0});
+    let (c, p) = pose(bones([1.0, 1.0], 1.0), apart);
+    let want = child(&p_world(), &local(5.0, 11.0, 10.0, 1.0, 1.5, 0.0));
+    is(&c, &p, "b", &want);
 }
 
 #[test]
