@@ -10,7 +10,8 @@
 //!   `proportional` spaces them by a percentage of the path length shared out in proportion to
 //!   the bones' lengths;
 //! - rotate mode: `tangent` turns a bone to the path's tangent at its position, `chain` points
-//!   each bone at the next one's position (the last bone at where its tip goes on the path),
+//!   each bone at the next one's position (the last bone, which has no next, at the point one
+//!   more spacing on: ikarus's reading, the guide does not say),
 //!   `chainScale` also scales a bone along its x axis so that its tip reaches the next bone;
 //! - `rotation` (offset rotation) is added to each bone's rotation; the mixes apply the
 //!   constraint partially (0 none, 1 fully) for rotation, x and y;
@@ -191,7 +192,8 @@ fn tangent_chain_and_chain_scale_turn_as_documented() {
     let p = pose(&c);
     at(&c, &p, "a", 90.0, 0.0, 0.0);
     at(&c, &p, "b", 100.0, 10.0, 90.0);
-    // chain: a points at b's origin (45°); b at where its tip goes, 130: (100, 30), straight up.
+    // chain: a points at b's origin (45°); b at the point one more spacing on, 130: (100, 30),
+    // straight up.
     let c = character(bones.clone(), "root", corner(), k("chain"));
     let p = pose(&c);
     at(&c, &p, "a", 90.0, 0.0, 45.0);
