@@ -173,7 +173,7 @@ pub(crate) fn pose_into_until(
     let report = match &ask.ik {
         IkChoice::Runtime => match (ask.physics, c.constraints().iter().any(|k| k.kind() == "physics")) {
             (PhysicsAsk::Play { fps }, true) => {
-                let play = Play { fps, ..Play::default() };
+                let play = Play { fps, world: c.physics_world() };
                 match interrupt {
                     Some(token) => c.play_watched(&request, &play, out, token),
                     None => c.play(&request, &play, out),

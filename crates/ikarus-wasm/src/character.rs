@@ -123,7 +123,7 @@ impl Character {
         let request = PoseRequest { clip, targets: &self.targets, bends: &[], turns: &[], skin: c.default_skin() };
         let physics = c.constraints().iter().any(|k| k.kind() == "physics");
         let posed = if physics {
-            c.play(&request, &Play::default(), &mut self.posed)
+            c.play(&request, &Play { world: c.physics_world(), ..Play::default() }, &mut self.posed)
         } else {
             c.pose(&request, &mut self.posed)
         };

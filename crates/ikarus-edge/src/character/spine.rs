@@ -8,7 +8,8 @@
 //! `shearY` 0, `scaleX`, `scaleY` 1, `inherit` `normal`; an IK constraint's `order` 0, `mix` 1,
 //! `softness` 0, `bendPositive` true, `compress`, `stretch`, `uniform`, `skin` false. Degrees become
 //! radians. The `skeleton` object's `x`, `y`, `width` and `height` are the bounds of the setup
-//! pose's attachments, not a placement: the character is placed at the origin, unscaled.
+//! pose's attachments, not a placement: the character is placed at the origin, unscaled; its
+//! `referenceScale` (default 100) is the distance physics forces are given in.
 
 use std::collections::HashMap;
 
@@ -41,8 +42,12 @@ struct SpineFile {
 }
 
 #[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
 struct Skeleton {
     spine: String,
+    /// The distance physics forces are given in (absent: the runtime's 100).
+    #[serde(default)]
+    reference_scale: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -229,7 +234,11 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     }
     let parts =
         CharacterParts { bones, constraints, clips, unsupported, skins, skin_required, ..CharacterParts::default() };
-    Ok(Loaded { character: super::character(parts)?, format: Format::Spine, version, warnings })
+    let mut character = super::character(parts)?;
+    if let Some(r) = file.skeleton.reference_scale {
+        character = character.with_reference_scale(r).map_err(|e| e.to_string())?;
+    }
+    Ok(Loaded { character, format: Format::Spine, version, warnings })
 }
 
 /// `not used by ikarus (left out): clipping attachment "clip (skin default, slot hand)", …`.

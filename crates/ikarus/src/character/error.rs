@@ -29,6 +29,12 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// The skeleton's reference scale is not a positive finite number.
+    #[error("skeleton.referenceScale: must be positive and finite, got {value}")]
+    ReferenceScale {
+        /// The value found.
+        value: f64,
+    },
     /// A bone's length is negative.
     #[error("bones[{bone}].length: must not be negative, got {value}")]
     NegativeLength {

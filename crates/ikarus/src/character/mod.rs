@@ -78,6 +78,8 @@ pub struct Character {
     setup: Vec<Settings>,
     /// Which kinds with per-pose state the character has.
     kinds: Kinds,
+    /// The skeleton's reference scale for physics ([`Character::reference_scale`]).
+    reference_scale: f64,
 }
 
 /// Whether a character has path and physics constraints (a pose keeps their buffers only then).
@@ -364,6 +366,7 @@ impl Character {
             flat,
             setup,
             kinds,
+            reference_scale: PhysicsWorld::default().reference_scale,
         })
     }
 

@@ -31,9 +31,14 @@
 //!   times `inertia`, is taken from the scale offset `s` (a bone pulled along its length
 //!   stretches behind). Each step the spring above with the pull `(f · the shown direction) /
 //!   referenceScale`. The x axis is scaled by `1 + s·mix·scaleX`.
-//! - Which power of `referenceScale` divides the torque and the pull is a guess: the vectors
-//!   have only the default 100 (with it, the torque is the raw wind's `⟂`·length/100 and the
-//!   pull the raw wind's component along the bone).
+//! - The powers of `referenceScale` (the file's, [`super::Character::reference_scale`]) are
+//!   what the runtime API reference's words require: it is the "baseline scale factor for
+//!   applying physics and other effects based on distance to non-scalable properties, such as
+//!   angle or scale", so a skeleton drawn `k` times as large with `k` times the reference scale
+//!   must move the same, `k` times as large: forces give distances (× `referenceScale`), the
+//!   torque is an angle (÷ `referenceScale²` with the length), the pull a scale (÷
+//!   `referenceScale`). `tests/rules_physics.rs` in ikarus-edge checks it; the vectors have
+//!   only the default 100.
 //! - **Reset** (`Physics.reset`, a clip's `reset` key): offsets and velocities to 0, the
 //!   remembered points to the bone's as posed, the remainder to 0.
 //! - **None** (`Physics.none`): the bone is left as posed.

@@ -4,7 +4,7 @@
 //! then `update(dt)`, apply, `updateWorldTransform(Physics.update)`), up to the time asked.
 
 use super::pose::Frame;
-use super::{Character, PhysicsMode, PhysicsWorld, PoseError, PoseRequest, Posed};
+use super::{Character, CharacterError, PhysicsMode, PhysicsWorld, PoseError, PoseRequest, Posed};
 use crate::Interrupt;
 
 /// How a clip is played with physics.
@@ -13,7 +13,8 @@ pub struct Play {
     /// The game's frames a second (default 60): how often the clock advances and the clip and
     /// the physics are applied (each physics constraint steps at its own `fps` within).
     pub fps: f64,
-    /// The skeleton's wind, gravity and reference scale.
+    /// The skeleton's wind, gravity and reference scale (the default's is 100: a character's
+    /// own is [`Character::physics_world`]).
     pub world: PhysicsWorld,
 }
 
@@ -123,6 +124,33 @@ impl Character {
         };
         let from = request.clip.map_or(from, |(_, t)| t - (frame.clock - from));
         self.pose_frame(request, out, None, (Frame::Play { mode, clock: frame.clock, from, world: frame.world }, &[]))
+    }
+}
+
+impl Character {
+    /// The skeleton's reference scale for physics (Spine's `referenceScale` in the skeleton
+    /// object, default 100): the distance physics forces are given in ("baseline scale factor
+    /// for applying physics and other effects based on distance to non-scalable properties,
+    /// such as angle or scale", the runtime API reference).
+    pub fn reference_scale(&self) -> f64 {
+        self.reference_scale
+    }
+
+    /// The character with the skeleton's reference scale `r`; refused unless positive and
+    /// finite.
+    pub fn with_reference_scale(mut self, r: f64) -> Result<Self, CharacterError> {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(CharacterError::ReferenceScale { value: r });
+        }
+        self.reference_scale = r;
+        Ok(self)
+    }
+
+    /// The physics world a game plays this character in: the default wind and gravity
+    /// directions and the character's own [`Character::reference_scale`] (what [`Play::world`]
+    /// and [`PlayFrame::world`] should be for a file whose `referenceScale` is not 100).
+    pub fn physics_world(&self) -> PhysicsWorld {
+        PhysicsWorld { reference_scale: self.reference_scale, ..PhysicsWorld::default() }
     }
 }
 
