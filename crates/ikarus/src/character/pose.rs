@@ -86,6 +86,9 @@ pub enum PoseError {
     /// The skin index is not one of the character's skins.
     #[error("skin: no skin {0}")]
     UnknownSkin(usize),
+    /// A target names a bone the skin leaves inactive (not posed, so not movable).
+    #[error("target: bone {0} is inactive: the skin does not turn it on")]
+    InactiveTarget(usize),
     /// A bend names a constraint that does not exist or is not an IK constraint.
     #[error("bend: no IK constraint {0}")]
     UnknownConstraint(usize),
@@ -290,6 +293,9 @@ impl Character {
             out.restart.resize(self.constraints.len(), false);
         }
         self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
+        if let Some(&(bone, _)) = request.targets.iter().find(|(b, _)| !out.active.bones[*b]) {
+            return Err(PoseError::InactiveTarget(bone));
+        }
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -307,12 +313,15 @@ impl Character {
                             out.settings[t.constraint] = Settings::Ik(s);
                         }
                     }
-                    ConstraintKeys::PathDeform(keys) => {
+                    ConstraintKeys::PathDeform { skin, keys } => {
                         let k = t.constraint;
-                        // Room for every coordinate at once, so that later times allocate nothing.
-                        if let Constraint::Path(c) = &self.constraints[k] {
-                            out.path.deform[k].reserve(c.path.as_ref().map_or(0, |p| p.vertices.deform_len()));
+                        let Constraint::Path(c) = &self.constraints[k] else { continue };
+                        // Only the attachment the skin shows is deformed.
+                        if c.path_source(request.skin) != *skin {
+                            continue;
                         }
+                        // Room for every coordinate at once, so that later times allocate nothing.
+                        out.path.deform[k].reserve(c.path_for(request.skin).map_or(0, |p| p.vertices.deform_len()));
                         out.path.deformed[k] = path::deform::at(keys, time, &mut out.path.deform[k]);
                     }
                     keys @ (ConstraintKeys::PathPosition(v)
@@ -428,7 +437,9 @@ impl Character {
                     }
                 }
                 (Constraint::Transform(c), Settings::Transform(s)) => transform::apply(&mut bones, c, s),
-                (Constraint::Path(c), Settings::Path(s)) => path::apply::apply(&mut bones, k, c, s, path_pose),
+                (Constraint::Path(c), Settings::Path(s)) => {
+                    path::apply::apply(&mut bones, (k, c, request.skin), s, path_pose)
+                }
                 (Constraint::Physics(c), Settings::Physics(s)) => {
                     if let Frame::Play { mode, clock, world, .. } = frame {
                         let mode = if restart[k] { PhysicsMode::Reset } else { mode };
@@ -473,40 +484,6 @@ impl Character {
                 Constraint::Path(c) => on(c.slot_bone) && c.bones.iter().all(|&b| on(b)),
                 Constraint::Physics(c) => on(c.bone),
             }
-    }
-
-    fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
-        if let Some(s) = request.skin.filter(|&s| s >= self.skins.len()) {
-            return Err(PoseError::UnknownSkin(s));
-        }
-        if let Some((c, time)) = request.clip {
-            if c >= self.clips.len() {
-                return Err(PoseError::UnknownClip(c));
-            }
-            if !time.is_finite() {
-                return Err(PoseError::Time(time));
-            }
-        }
-        for &(bone, [x, y]) in request.targets {
-            if bone >= self.bones.len() {
-                return Err(PoseError::UnknownBone(bone));
-            }
-            if !(x.is_finite() && y.is_finite()) {
-                return Err(PoseError::TargetPoint { bone, x, y });
-            }
-        }
-        for &(bone, rotation) in request.turns {
-            if bone >= self.bones.len() {
-                return Err(PoseError::UnknownTurn(bone));
-            }
-            if !rotation.is_finite() {
-                return Err(PoseError::TurnRotation { bone, rotation });
-            }
-        }
-        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| self.ik(*k).is_none()) {
-            return Err(PoseError::UnknownConstraint(k));
-        }
-        Ok(())
     }
 }
 
