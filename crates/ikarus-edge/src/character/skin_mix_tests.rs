@@ -172,3 +172,41 @@ fn a_target_on_an_inactive_bone_is_refused_in_one_line() {
     };
     near(bone(&pose(&l, &ask).unwrap(), "dress").0, [5.0, 5.0]);
 }
+
+#[test]
+fn ikarus_solver_leaves_the_constraints_a_skin_turns_off_alone() {
+    let l = mix_and_match();
+    // Per skin, which IK constraints (dress-ik, reach-hat) the solver takes as goals: only
+    // those the runtime applies (the skin turns them on, their bones and target are active).
+    for (skin, on) in [("default", [false, false]), ("dress", [true, false]), ("hat", [false, true])] {
+        let ask = PoseAsk { skin: Some(skin.to_owned()), ik: IkChoice::Ikarus(Box::default()), ..PoseAsk::default() };
+        let solved = pose(&l, &ask).unwrap();
+        let limbs: Vec<bool> = solved.ik.as_ref().unwrap().constraints.iter().map(|c| c.active).collect();
+        assert_eq!(limbs, on, "{skin}");
+        assert_eq!(inactive(&solved), inactive(&posed(&l, skin)), "{skin}");
+    }
+}
+
+#[test]
+fn ikarus_solver_refuses_a_goal_or_pin_on_an_inactive_bone() {
+    use ikarus::character::{TipGoal, Together};
+    use ikarus::{Goal, RigGoal};
+    let l = mix_and_match();
+    let goal = |bone| TipGoal { goal: RigGoal::new(bone, Goal::position(1.0, 2.0).unwrap()), bones: 1 };
+    let ask = |skin: &str, rules: Together| PoseAsk {
+        skin: Some(skin.to_owned()),
+        ik: IkChoice::Ikarus(Box::new(rules)),
+        ..PoseAsk::default()
+    };
+    // dress (bone 5) and hat-top (bone 8) are off with the default skin.
+    let rules = Together { goals: vec![goal(5)], ..Together::default() };
+    assert_eq!(
+        pose(&l, &ask("default", rules.clone())).unwrap_err(),
+        "bone \"dress\": inactive with this skin (a skin-only bone, or below one, that it does not turn on): no goal or pin on it"
+    );
+    let pins = Together { pins: vec![8], ..Together::default() };
+    assert!(pose(&l, &ask("default", pins.clone())).unwrap_err().starts_with("bone \"hat-top\": inactive"));
+    // With the skins that turn them on, they are solved and held.
+    pose(&l, &ask("dress", rules)).unwrap();
+    pose(&l, &ask("hat", pins)).unwrap();
+}

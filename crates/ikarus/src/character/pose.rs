@@ -173,6 +173,11 @@ impl Posed {
         self.active.bones[i]
     }
 
+    /// Which bones and constraints the last pose's skin turned on.
+    pub(crate) fn activity(&self) -> &super::skin::Active {
+        &self.active
+    }
+
     /// Bone `i`'s world origin. Panics if `i` is not a bone.
     pub fn origin(&self, i: usize) -> [f64; 2] {
         [self.world[i].x, self.world[i].y]
@@ -466,7 +471,7 @@ impl Character {
 
     /// Whether constraint `k` takes part in a pose whose skin turned on `active`: the skin turns
     /// it on and its target and bones are active (see [`super::skin`]).
-    fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
+    pub(crate) fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
         if !self.activity.any {
             return true;
         }
