@@ -94,7 +94,7 @@ test("a snapshot is a copy: later edits of the state do not reach it", () => {
 });
 
 test("a character is embedded below the size limit and referenced above it", () => {
-  const state = { ...rigState(), rig: null, character: { name: "spineboy.json", text: '{"skeleton":{}}', character: { format: "spine" }, animation: "walk", time: 0.25, ik: "ikarus", targets: new Map([["front-foot-target", { x: 10, y: -3 }]]) } };
+  const state = { ...rigState(), rig: null, character: { name: "spineboy.json", text: '{"skeleton":{}}', character: { format: "spine" }, animation: "walk", time: 0.25, ik: "ikarus", targets: new Map([["front-foot-target", { x: 10, y: -3 }]]), skin: "hero", physics: false } };
   const snap = snapshot(state, SETTINGS);
   assert.equal(snap.body.character.parsed, state.character.character, "the parse answer is held, not copied");
   const small = projectFile(snap, "ikarus", { size: 15, sha256: "ab" });
@@ -102,7 +102,20 @@ test("a character is embedded below the size limit and referenced above it", () 
   const big = projectFile(snap, "ikarus", { size: EMBED_BYTES, sha256: "ab" });
   assert.equal(big.body.character.text, undefined);
   const { snap: back } = readProject(JSON.parse(JSON.stringify(small)), page);
-  assert.deepEqual(back.character, { animation: "walk", time: 0.25, ik: "ikarus", targets: [{ bone: "front-foot-target", x: 10, y: -3 }] });
+  assert.deepEqual(back.character, { animation: "walk", time: 0.25, ik: "ikarus", targets: [{ bone: "front-foot-target", x: 10, y: -3 }], skin: "hero", physics: false });
+  // A file saved before the skin and the physics switch were: the file's default skin, physics
+  // on, and neither named as defaulted.
+  const older = JSON.parse(JSON.stringify(small));
+  delete older.character.skin;
+  delete older.character.physics;
+  const { snap: old, defaulted } = readProject(older, page);
+  assert.deepEqual([old.character.skin, old.character.physics], [null, true]);
+  assert.deepEqual(defaulted, []);
+  for (const [field, value, why] of [["skin", 3, "is not a string"], ["physics", "off", "is not true or false"]]) {
+    const bad = JSON.parse(JSON.stringify(small));
+    bad.character[field] = value;
+    assert.throws(() => readProject(bad, page), { message: `project file: character.${field} = ${JSON.stringify(value)} ${why}` });
+  }
   assert.equal(back.body.character.text, '{"skeleton":{}}');
   assert.equal(projectName(snap), "spineboy.ikarus.json");
   // Two characters of one name are told apart by their text.

@@ -7,7 +7,8 @@
 
 use ikarus::Point2;
 use ikarus::character::{
-    Character, GoalEnd, LimbEnd, Play, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherReport,
+    Character, GoalEnd, LimbEnd, Play, PoseError, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherError,
+    TogetherReport,
 };
 use ikarus::{Interrupt, SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
@@ -185,17 +186,36 @@ pub(crate) fn pose_into_until(
             },
         }
         .map(|()| None)
-        .map_err(|e| e.to_string()),
+        .map_err(|e| refusal(c, skin, &e)),
         IkChoice::Ikarus(rules) => {
             let options = SolveOptions { interrupt: interrupt.cloned(), ..character_options() };
             let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
-            c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| e.to_string())
+            c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| match e {
+                TogetherError::Pose(e) => refusal(c, skin, &e),
+                e => e.to_string(),
+            })
         }
     }?;
     let asked =
         crate::pose_finite::Asked { targets: &ask.targets, animation: ask.animation.as_deref(), time: ask.time };
     crate::pose_finite::check(loaded, &asked, out)?;
     Ok(report)
+}
+
+/// A pose's refusal in one line, the library's indices named: a target on a bone the skin
+/// leaves inactive (not posed, so not movable) names the bone and the skin.
+fn refusal(c: &Character, skin: Option<usize>, e: &PoseError) -> String {
+    match e {
+        PoseError::InactiveTarget(b) => {
+            let bone = c.bones().get(*b).map_or("?", |b| b.name.as_str());
+            let skin = skin.map_or_else(|| "no skin".to_owned(), |s| format!("skin {}", Quoted(&c.skins()[s].name)));
+            format!(
+                "target {}: the bone is inactive with {skin} (a skin-only bone, or below one, that this skin does not turn on), so it cannot be moved",
+                Quoted(bone)
+            )
+        }
+        e => e.to_string(),
+    }
 }
 
 /// The clip `animation` names at `time` (seconds, 0 when not given) as the library's index, or
@@ -394,7 +414,12 @@ impl PoseReport {
             .collect();
         let unsupported =
             c.unsupported().iter().map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() }).collect();
-        let targets = c.ik_constraints().map(|(_, k)| posed.origin(k.target)).collect();
+        // A target the skin leaves inactive is not posed: not drawn.
+        let targets = c
+            .ik_constraints()
+            .filter(|(_, k)| posed.is_active(k.target))
+            .map(|(_, k)| posed.origin(k.target))
+            .collect();
         PoseReport { bones, unsupported, ik: None, targets }
     }
 
@@ -437,7 +462,8 @@ impl PoseReport {
         out
     }
 
-    /// The picture of the pose: every bone, and the IK targets as goals.
+    /// The picture of the pose: every active bone (an inactive one is not posed, so not drawn),
+    /// and the IK targets as goals.
     #[must_use]
     pub fn figure(&self, caption: Option<String>) -> CharacterFigure<'_> {
         let point = |p: [f64; 2]| Point2::new(p[0], p[1]);
@@ -445,6 +471,7 @@ impl PoseReport {
             bones: self
                 .bones
                 .iter()
+                .filter(|b| b.active)
                 .map(|b| PosedBone { name: &b.name, origin: Point2::new(b.x, b.y), tip: point(b.tip) })
                 .collect(),
             targets: self.targets.iter().copied().map(point).collect(),

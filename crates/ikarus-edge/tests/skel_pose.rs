@@ -129,3 +129,54 @@ fn stretchyman_skel_poses_as_its_json_but_for_the_jsons_rounding() {
 fn celestial_circus_skel_poses_as_its_json_but_for_the_jsons_rounding() {
     check("celestial-circus");
 }
+
+/// Every bone's world transform of `c` in `clip` at `t` with skin `skin` (by name).
+fn world(c: &Character, skin: &str, (clip, t): (&str, f64)) -> Vec<[f64; 6]> {
+    let request = PoseRequest {
+        clip: Some((c.clip_index(clip).unwrap(), t)),
+        skin: Some(c.skin_index(skin).unwrap()),
+        ..PoseRequest::default()
+    };
+    let mut posed = Posed::default();
+    c.pose(&request, &mut posed).unwrap();
+    (0..c.bones().len())
+        .map(|i| {
+            let w = posed.world(i);
+            [w.a, w.b, w.c, w.d, w.x, w.y]
+        })
+        .collect()
+}
+
+/// Stretchyman's `.skel` has its four paths in the default skin, and `sneak` deforms the front
+/// leg's. Skins added to the decoded tree, each with its own copy of that path: `same` with a
+/// copy of the deform timeline too poses as the default skin, bit for bit; `bare`, without one,
+/// poses as the default skin does once the default's deform of that path is taken out (a deform
+/// timeline changes only its own skin's attachment).
+#[test]
+fn stretchyman_skel_paths_come_from_the_chosen_skin_with_their_own_deforms() {
+    let mut tree = ikarus_edge::character::skel::to_json(&bytes("spine-stretchyman-pro.skel")).unwrap();
+    let slot = "front-leg-path";
+    let path = tree["skins"][0]["attachments"][slot][slot].clone();
+    assert_eq!(path["type"], "path");
+    for name in ["same", "bare"] {
+        let skin = serde_json::json!({"name": name, "attachments": {slot: {slot: path.clone()}}});
+        tree["skins"].as_array_mut().unwrap().push(skin);
+    }
+    let deform = tree["animations"]["sneak"]["attachments"]["default"][slot].clone();
+    assert!(deform[slot]["deform"].as_array().is_some_and(|k| !k.is_empty()));
+    tree["animations"]["sneak"]["attachments"]["same"] = serde_json::json!({ slot: deform });
+    let c = character(&tree);
+    let mut plain = tree.clone();
+    plain["animations"]["sneak"]["attachments"]["default"].as_object_mut().unwrap().remove(slot);
+    let plain = character(&plain);
+    let mut moved = false;
+    for t in [0.1, 0.4, 0.75, 1.3] {
+        let at = ("sneak", t);
+        let default = world(&c, "default", at);
+        assert_eq!(world(&c, "same", at), default, "same at {t}");
+        let bare = world(&c, "bare", at);
+        assert_eq!(bare, world(&plain, "default", at), "bare at {t}");
+        moved |= bare != default;
+    }
+    assert!(moved, "the deform moves no bone");
+}

@@ -438,6 +438,39 @@ fn posing_the_shipped_characters_allocates_nothing() {
     }
 }
 
+/// A path constraint follows the path the chosen skin gives it, and the deform timeline of that
+/// path: stretchyman with a skin `own` holding its own copy of the front leg's path and of its
+/// `sneak` deform, posed with that skin and with the default one in turns, allocates nothing
+/// once warmed up (the path is picked by the skin's index, no name looked up).
+#[test]
+fn posing_with_a_skins_own_path_allocates_nothing() {
+    use ikarus::character::{PoseRequest, Posed};
+    let path = format!("{}/../../examples/characters/spine-stretchyman-pro.json", env!("CARGO_MANIFEST_DIR"));
+    let mut tree: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let slot = "front-leg-path";
+    let own = tree["skins"][0]["attachments"][slot][slot].clone();
+    tree["skins"].as_array_mut().unwrap().push(serde_json::json!({"name": "own", "attachments": {slot: {slot: own}}}));
+    let deform = tree["animations"]["sneak"]["attachments"]["default"][slot].clone();
+    tree["animations"]["sneak"]["attachments"]["own"] = serde_json::json!({ slot: deform });
+    let c = ikarus_edge::character::load(&tree.to_string(), "own.json").unwrap().character;
+    let sneak = c.clip_index("sneak").unwrap();
+    let [default, own] = [c.skin_index("default"), c.skin_index("own")];
+    let request = |i: usize| PoseRequest {
+        clip: Some((sneak, (i as f64 / 60.0) % c.clips()[sneak].duration)),
+        skin: if i % 2 == 0 { own } else { default },
+        ..PoseRequest::default()
+    };
+    let mut out = Posed::default();
+    c.pose(&request(0), &mut out).unwrap();
+    c.pose(&request(1), &mut out).unwrap();
+    let (count, ()) = allocations_in(|| {
+        for i in 0..300 {
+            c.pose(&request(i), &mut out).unwrap();
+        }
+    });
+    assert_eq!(count, 0, "{count} allocations in 300 poses");
+}
+
 /// Issue 27: the shipped puppet (four limbs, stiff trunk: the rest pose's pull projects every
 /// step) and hand (five fingertips on one wrist), solved with the defaults — restarts, limits
 /// locked — for many reachable target sets in a row, allocate nothing once the solver and

@@ -302,3 +302,6 @@ mod transform_tests;
 
 #[cfg(test)]
 mod skin_tests;
+
+#[cfg(test)]
+mod skin_mix_tests;

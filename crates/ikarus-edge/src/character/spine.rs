@@ -167,7 +167,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let slots = super::spine_slots::read(value, &index)?;
     let first_path = constraints.len();
     for (i, k) in file.path.iter().enumerate() {
-        constraints.push(Constraint::Path(super::spine_path::constraint(i, k, &index, &slots, "default")?));
+        constraints.push(Constraint::Path(super::spine_path::constraint(i, k, &index, &slots)?));
     }
     let path_names: HashMap<&str, usize> =
         super::first_index(file.path.iter().map(|k| k.name())).into_iter().map(|(n, i)| (n, first_path + i)).collect();

@@ -15,6 +15,9 @@ use super::spine_slots::{Slots, number};
 pub(super) struct SkinDeform {
     /// The skin's name.
     pub(super) skin: String,
+    /// Whose attachment it deforms: `None` the default skin's, `Some(s)` skin `s`'s own (as
+    /// [`ikarus::character::PathConstraint::path_source`] tells them apart).
+    pub(super) source: Option<usize>,
     /// The attachment's name.
     pub(super) attachment: String,
     /// The timeline.
@@ -26,14 +29,16 @@ pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDe
     let (field, legacy) = if anim.get("attachments").is_some() { ("attachments", false) } else { ("deform", true) };
     let mut out = Vec::new();
     let Some(skins) = anim.get(field).and_then(Value::as_object) else { return Ok(out) };
+    let default = slots.default_skin();
     for (skin_name, by_slot) in skins {
-        let Some(skin) = slots.skins.iter().find(|s| &s.name == skin_name) else { continue };
+        let Some(index) = slots.skins.iter().position(|s| &s.name == skin_name) else { continue };
+        let skin = &slots.skins[index];
         let Some(by_slot) = by_slot.as_object() else { continue };
         for (slot_name, by_attachment) in by_slot {
             let Some(&slot) = slots.index.get(slot_name) else { continue };
             let Some(by_attachment) = by_attachment.as_object() else { continue };
             for (attachment, timelines) in by_attachment {
-                let Some(path) = skin.paths.get(&(slot, attachment.clone())) else { continue };
+                let Some(Some(path)) = skin.attachments.get(&(slot, attachment.clone())) else { continue };
                 let keys = if legacy { Some(timelines) } else { timelines.get("deform") };
                 let Some(keys) = keys.and_then(Value::as_array) else { continue };
                 let at = format!("animations.{name}.{field}.{skin_name}.{slot_name}.{attachment}");
@@ -42,6 +47,7 @@ pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDe
                 let keys = read_keys(keys, len, legacy, &at)?;
                 out.push(SkinDeform {
                     skin: skin_name.clone(),
+                    source: (Some(index) != default).then_some(index),
                     attachment: attachment.clone(),
                     deform: PathDeform { slot, keys },
                 });

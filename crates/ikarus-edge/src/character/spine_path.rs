@@ -6,12 +6,16 @@
 //! refused outside −1 … 1 (the runtime blends with them; the editor keeps them within 0 … 1,
 //! files have negative ones for other kinds).
 //!
-//! The path is the target slot's setup attachment in the default skin; a constraint marked
-//! `skin: true` follows no path (does nothing) unless that skin lists it in its own `path`.
+//! The path is the target slot's setup attachment as the chosen skin shows it: Spine looks it
+//! up by name in the chosen skin first, then in the default skin (the runtime guide's "Runtime
+//! Skins"; `Skeleton.getAttachment`). So the constraint carries the default skin's path and each
+//! other skin's own attachment of that name ([`ikarus::character::SkinPath`]), and a pose picks
+//! by the skin's index. Whether a constraint marked `skin: true` takes part is the skin's
+//! business ([`super::spine_skins`]), not its path's.
 
 use std::collections::HashMap;
 
-use ikarus::character::{PathConstraint, PathSettings, PositionMode, RotateMode, SpacingMode};
+use ikarus::character::{PathConstraint, PathSettings, PositionMode, RotateMode, SkinPath, SpacingMode};
 use serde::Deserialize;
 
 use super::spine_slots::Slots;
@@ -65,13 +69,13 @@ impl PathJson {
     }
 }
 
-/// Reads path constraint `i`, its path the target slot's setup attachment in skin `skin`.
+/// Reads path constraint `i`, its path the target slot's setup attachment in the default skin
+/// and in each skin that has its own.
 pub(super) fn constraint(
     i: usize,
     k: &PathJson,
     bones: &HashMap<String, usize>,
     slots: &Slots,
-    skin: &str,
 ) -> Result<PathConstraint, String> {
     let at = format!("path[{i}] ({:?})", Quoted(&k.name));
     if k.bones.is_empty() {
@@ -123,6 +127,12 @@ pub(super) fn constraint(
             return Err(format!("{at}.{field} = {v}: must be finite"));
         }
     }
+    let default = slots.default_skin();
+    let path = default.and_then(|d| slots.setup_attachment(d, slot)).cloned().flatten();
+    let skin_paths = (0..slots.skins.len())
+        .filter(|&s| Some(s) != default)
+        .filter_map(|s| slots.setup_attachment(s, slot).map(|p| SkinPath { skin: s, path: p.clone() }))
+        .collect();
     Ok(PathConstraint {
         name: k.name.clone(),
         order: k.order,
@@ -130,8 +140,8 @@ pub(super) fn constraint(
         bones: list,
         slot,
         slot_bone: slots.slots[slot].bone,
-        // A constraint only a skin turns on does nothing unless this skin lists it.
-        path: if k.skin && !slots.turns_on(skin, &k.name) { None } else { slots.setup_path(skin, slot).cloned() },
+        path,
+        skin_paths,
         position_mode,
         spacing_mode,
         rotate_mode,
@@ -152,3 +162,7 @@ fn mode<T: Copy + Default>(v: &Option<String>, at: &str, field: &str, modes: &[(
 #[cfg(test)]
 #[path = "spine_path_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "spine_path_skin_tests.rs"]
+mod skin_tests;

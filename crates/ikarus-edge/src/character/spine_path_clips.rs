@@ -30,8 +30,9 @@ const MIX: Kind = Kind {
 
 /// The path timelines of animation `anim` (its JSON, at `at`): `paths` maps the path
 /// constraints' names to their indices in the character's list, `targets` gives per path
-/// constraint its index, its slot and the attachment it follows, `deforms` the animation's
-/// deform timelines of the default skin.
+/// constraint its index, its slot and the attachment name it follows, `deforms` the
+/// animation's deform timelines of every skin (each applies only while the pose follows its
+/// skin's attachment).
 pub(super) fn read(
     anim: &Value,
     at: &str,
@@ -53,10 +54,11 @@ pub(super) fn read(
             }
         }
     }
-    for d in deforms.iter().filter(|d| d.skin == "default") {
+    for d in deforms {
         for &(constraint, slot, attachment) in targets {
             if slot == d.deform.slot && attachment == Some(d.attachment.as_str()) {
-                out.push(ConstraintTimeline { constraint, keys: ConstraintKeys::PathDeform(d.deform.keys.clone()) });
+                let keys = ConstraintKeys::PathDeform { skin: d.source, keys: d.deform.keys.clone() };
+                out.push(ConstraintTimeline { constraint, keys });
             }
         }
     }

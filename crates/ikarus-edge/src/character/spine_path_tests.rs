@@ -188,12 +188,3 @@ fn extreme_and_degenerate_paths_pose_without_panicking() {
         }
     }
 }
-
-#[test]
-fn a_skin_only_constraint_follows_its_path_only_when_the_skin_lists_it() {
-    let mut v: Value =
-        serde_json::from_str(&file(json!([{"name": "p", "skin": true, "bones": ["a"], "target": "s"}]), None)).unwrap();
-    assert!(paths(&v.to_string())[0].path.is_none());
-    v["skins"][0]["path"] = json!(["p"]);
-    assert!(paths(&v.to_string())[0].path.is_some());
-}

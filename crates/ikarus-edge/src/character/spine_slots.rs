@@ -1,6 +1,8 @@
 //! Spine's slots and the skins' attachments that posing needs: today the path attachments
 //! (path constraints follow them). Every skin's are kept, by skin, so that choosing a skin can
-//! select its paths.
+//! select its paths: Spine looks a slot's attachment up by name in the chosen skin first, then
+//! in the default skin, so every skin's attachment names are kept too (one of another type
+//! hides the default skin's path of that name).
 //!
 //! `slots[]`: `name`, `bone`, `attachment` (the setup pose's, none when absent). `skins[]`
 //! (4.x; 3.8 too): `name`, `attachments` = `{slot: {attachment name: attachment}}`; an
@@ -27,15 +29,13 @@ pub(super) struct Slot {
     pub(super) attachment: Option<String>,
 }
 
-/// A skin's path attachments, by slot index and attachment name.
+/// A skin's attachments, by slot index and attachment name: the paths read, the others `None`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct Skin {
     /// Its name in the file.
     pub(super) name: String,
-    /// `(slot, attachment name)` → the path.
-    pub(super) paths: HashMap<(usize, String), PathShape>,
-    /// The path constraints it turns on (`path`: their names), those marked `skin: true`.
-    pub(super) path_constraints: Vec<String>,
+    /// `(slot, attachment name)` → the path, `None` for an attachment of another type.
+    pub(super) attachments: HashMap<(usize, String), Option<PathShape>>,
 }
 
 /// The slots, their indices by name, and the skins.
@@ -47,16 +47,16 @@ pub(super) struct Slots {
 }
 
 impl Slots {
-    /// Whether skin `skin` (by name) turns on the path constraint `name`.
-    pub(super) fn turns_on(&self, skin: &str, name: &str) -> bool {
-        self.skins.iter().any(|s| s.name == skin && s.path_constraints.iter().any(|n| n == name))
+    /// The index of the skin called `default` (the one a slot's attachment falls back to).
+    pub(super) fn default_skin(&self) -> Option<usize> {
+        self.skins.iter().position(|s| s.name == "default")
     }
 
-    /// The path slot `slot` shows in the setup pose with skin `skin` (by name), if it is one.
-    pub(super) fn setup_path(&self, skin: &str, slot: usize) -> Option<&PathShape> {
+    /// Skin `skin`'s own attachment under the name slot `slot` shows in the setup pose: absent
+    /// when the skin has none of that name, `Some(None)` when it is not a path.
+    pub(super) fn setup_attachment(&self, skin: usize, slot: usize) -> Option<&Option<PathShape>> {
         let name = self.slots[slot].attachment.as_ref()?;
-        let skin = self.skins.iter().find(|s| s.name == skin)?;
-        skin.paths.get(&(slot, name.clone()))
+        self.skins[skin].attachments.get(&(slot, name.clone()))
     }
 }
 
@@ -82,7 +82,7 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
     for (k, skin) in skins.iter().enumerate() {
         let name = text(skin.get("name"), &format!("skins[{k}].name"))?;
         let at = format!("skins[{k}] ({:?}).attachments", Quoted(&name));
-        let mut paths = HashMap::new();
+        let mut kept = HashMap::new();
         if let Some(slots) = skin.get("attachments").and_then(Value::as_object) {
             for (slot_name, attachments) in slots {
                 let Some(&slot) = out.index.get(slot_name) else {
@@ -90,17 +90,16 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
                 };
                 let Some(attachments) = attachments.as_object() else { continue };
                 for (a_name, a) in attachments {
-                    if a.get("type").and_then(Value::as_str) != Some("path") {
-                        continue;
-                    }
-                    let at = format!("{at}.{slot_name}.{a_name}");
-                    paths.insert((slot, a_name.clone()), path(a, bones.len(), &at)?);
+                    let shape = if a.get("type").and_then(Value::as_str) == Some("path") {
+                        Some(path(a, bones.len(), &format!("{at}.{slot_name}.{a_name}"))?)
+                    } else {
+                        None
+                    };
+                    kept.insert((slot, a_name.clone()), shape);
                 }
             }
         }
-        let listed = skin.get("path").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
-        let path_constraints = listed.iter().filter_map(|n| n.as_str().map(str::to_owned)).collect();
-        out.skins.push(Skin { name, paths, path_constraints });
+        out.skins.push(Skin { name, attachments: kept });
     }
     Ok(out)
 }

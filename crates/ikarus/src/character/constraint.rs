@@ -85,6 +85,14 @@ impl Constraint {
         }
     }
 
+    /// The path constraint, if it is one.
+    pub fn path(&self) -> Option<&PathConstraint> {
+        match self {
+            Constraint::Path(c) => Some(c),
+            Constraint::Ik(_) | Constraint::Physics(_) | Constraint::Transform(_) => None,
+        }
+    }
+
     /// The IK constraint, if it is one, to change.
     pub fn ik_mut(&mut self) -> Option<&mut IkConstraint> {
         match self {
@@ -217,7 +225,14 @@ pub enum ConstraintKeys {
     /// The offsets a clip adds to the vertices of the path the constraint follows (a deform
     /// timeline of its slot's path attachment); its one curve goes from 0 to 1 between keys and
     /// is sampled when posing, not precomputed (no channel).
-    PathDeform(Vec<DeformKey>),
+    PathDeform {
+        /// Whose attachment it deforms: `Some(s)` skin `s`'s own, `None` the default skin's
+        /// ([`super::PathConstraint::path_source`]); it applies only while the pose follows
+        /// that attachment.
+        skin: Option<usize>,
+        /// The keys.
+        keys: Vec<DeformKey>,
+    },
     /// A physics constraint's: one setting (channel 0: its value; a mass for
     /// [`PhysicsProperty::Mass`]).
     Physics {
@@ -241,7 +256,7 @@ impl ConstraintKeys {
             ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
                 keys.len()
             }
-            ConstraintKeys::PathDeform(keys) => keys.len(),
+            ConstraintKeys::PathDeform { keys, .. } => keys.len(),
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys.len(),
             ConstraintKeys::Transform(keys) => keys.len(),
         }
@@ -267,7 +282,7 @@ impl ConstraintKeys {
             ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
                 keys[i].time
             }
-            ConstraintKeys::PathDeform(keys) => keys[i].time,
+            ConstraintKeys::PathDeform { keys, .. } => keys[i].time,
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => keys[i].time,
             ConstraintKeys::Transform(keys) => keys[i].time,
         }
@@ -279,7 +294,7 @@ impl ConstraintKeys {
             ConstraintKeys::Ik(_) => 2,
             ConstraintKeys::PathPosition(_) | ConstraintKeys::PathSpacing(_) => 1,
             ConstraintKeys::PathMix(_) => 3,
-            ConstraintKeys::PathDeform(_) => 0,
+            ConstraintKeys::PathDeform { .. } => 0,
             ConstraintKeys::Physics { .. } => 1,
             ConstraintKeys::PhysicsReset(_) => 0,
             ConstraintKeys::Transform(_) => 6,
@@ -296,7 +311,7 @@ impl ConstraintKeys {
             ConstraintKeys::PathPosition(keys) | ConstraintKeys::PathSpacing(keys) | ConstraintKeys::PathMix(keys) => {
                 (keys[i].curves[ch], keys[i].values[ch])
             }
-            ConstraintKeys::PathDeform(keys) => (keys[i].curve, 0.0),
+            ConstraintKeys::PathDeform { keys, .. } => (keys[i].curve, 0.0),
             ConstraintKeys::Physics { keys, .. } | ConstraintKeys::PhysicsReset(keys) => {
                 (keys[i].curves[ch], keys[i].values[ch])
             }
@@ -314,7 +329,7 @@ impl ConstraintKeys {
                 ConstraintKeys::PathPosition(_)
                 | ConstraintKeys::PathSpacing(_)
                 | ConstraintKeys::PathMix(_)
-                | ConstraintKeys::PathDeform(_),
+                | ConstraintKeys::PathDeform { .. },
                 Constraint::Path(_),
             ) => Ok(()),
             (ConstraintKeys::Physics { property, keys }, Constraint::Physics(_)) => keys.iter().try_for_each(|key| {
@@ -342,7 +357,7 @@ impl ConstraintKeys {
             ConstraintKeys::PathPosition(_)
             | ConstraintKeys::PathSpacing(_)
             | ConstraintKeys::PathMix(_)
-            | ConstraintKeys::PathDeform(_) => "path",
+            | ConstraintKeys::PathDeform { .. } => "path",
             ConstraintKeys::Physics { .. } | ConstraintKeys::PhysicsReset(_) => "physics",
         }
     }

@@ -89,6 +89,14 @@ pub enum CharacterError {
         /// The value found.
         value: f64,
     },
+    /// A path constraint has a path for a skin that does not exist.
+    #[error("path constraint {constraint}: a path for skin {skin}, which does not exist")]
+    PathSkin {
+        /// The constraint's index.
+        constraint: usize,
+        /// The skin's index.
+        skin: usize,
+    },
     /// A timeline names a bone or constraint that does not exist.
     #[error("clips[{clip}]: a timeline names {what} {index}, which does not exist")]
     MissingTarget {

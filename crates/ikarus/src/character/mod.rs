@@ -23,6 +23,7 @@ mod physics;
 mod physics_timeline;
 mod play;
 mod pose;
+mod pose_check;
 mod skin;
 mod timeline;
 mod together;
@@ -33,8 +34,8 @@ pub use clip::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, Interpolation};
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
 pub use error::CharacterError;
 pub use path::{
-    Chain, DeformKey, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices, PositionMode,
-    RotateMode, SpacingMode, Weight, solve as solve_path,
+    Chain, DeformKey, Followed, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices,
+    PositionMode, RotateMode, SkinPath, SpacingMode, Weight, solve as solve_path,
 };
 pub use physics::{
     MAX_STEPS, PhysicsConstraint, PhysicsGlobal, PhysicsInput, PhysicsMode, PhysicsSettings, PhysicsShares,
@@ -351,6 +352,11 @@ impl Character {
             physics: constraints.iter().any(|c| matches!(c, Constraint::Physics(_))),
         };
         skin::check(&skins, &skin_required, [bones.len(), constraints.len()])?;
+        for (k, c) in constraints.iter().enumerate() {
+            if let Some(p) = c.path().and_then(|p| p.skin_paths.iter().find(|p| p.skin >= skins.len())) {
+                return Err(CharacterError::PathSkin { constraint: k, skin: p.skin });
+            }
+        }
         let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
             bones,

@@ -86,6 +86,9 @@ pub enum PoseError {
     /// The skin index is not one of the character's skins.
     #[error("skin: no skin {0}")]
     UnknownSkin(usize),
+    /// A target names a bone the skin leaves inactive (not posed, so not movable).
+    #[error("target: bone {0} is inactive: the skin does not turn it on")]
+    InactiveTarget(usize),
     /// A bend names a constraint that does not exist or is not an IK constraint.
     #[error("bend: no IK constraint {0}")]
     UnknownConstraint(usize),
@@ -167,6 +170,11 @@ impl Posed {
     /// posed, its world transform all zeros. Panics if `i` is not a bone.
     pub fn is_active(&self, i: usize) -> bool {
         self.active.bones[i]
+    }
+
+    /// Which bones and constraints the last pose's skin turned on.
+    pub(crate) fn activity(&self) -> &super::skin::Active {
+        &self.active
     }
 
     /// Bone `i`'s world origin. Panics if `i` is not a bone.
@@ -297,6 +305,9 @@ impl Character {
             out.restart.resize(self.constraints.len(), false);
         }
         self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
+        if let Some(&(bone, _)) = request.targets.iter().find(|(b, _)| !out.active.bones[*b]) {
+            return Err(PoseError::InactiveTarget(bone));
+        }
 
         if let Some((c, time)) = request.clip {
             let clip = &self.clips[c];
@@ -315,12 +326,15 @@ impl Character {
                             out.settings[t.constraint] = Settings::Ik(s);
                         }
                     }
-                    ConstraintKeys::PathDeform(keys) => {
+                    ConstraintKeys::PathDeform { skin, keys } => {
                         let k = t.constraint;
-                        // Room for every coordinate at once, so that later times allocate nothing.
-                        if let Constraint::Path(c) = &self.constraints[k] {
-                            out.path.deform[k].reserve(c.path.as_ref().map_or(0, |p| p.vertices.deform_len()));
+                        let Constraint::Path(c) = &self.constraints[k] else { continue };
+                        // Only the attachment the skin shows is deformed.
+                        if c.path_source(request.skin) != *skin {
+                            continue;
                         }
+                        // Room for every coordinate at once, so that later times allocate nothing.
+                        out.path.deform[k].reserve(c.path_for(request.skin).map_or(0, |p| p.vertices.deform_len()));
                         out.path.deformed[k] = path::deform::at(keys, time, &mut out.path.deform[k]);
                     }
                     keys @ (ConstraintKeys::PathPosition(v)
@@ -429,7 +443,7 @@ impl Character {
                 }
                 Constraint::Path(c) => {
                     let Settings::Path(s) = &settings[k] else { continue };
-                    path::apply::apply(&mut bones, k, c, s, path_pose);
+                    path::apply::apply(&mut bones, (k, c, request.skin), s, path_pose);
                 }
                 Constraint::Physics(c) => {
                     let (Settings::Physics(s), Frame::Play { mode, clock, world, .. }) = (&settings[k], frame) else {
@@ -457,9 +471,11 @@ impl Character {
     }
 
     /// Whether constraint `k` takes part in a pose whose skin turned on `active`: the skin turns
-    /// it on and its target and bones are active (see [`super::skin`]); only asked of a character
-    /// with skin-required parts.
-    fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
+    /// it on and its target and bones are active (see [`super::skin`]).
+    pub(crate) fn is_active(&self, k: usize, active: &super::skin::Active) -> bool {
+        if !self.activity.any {
+            return true;
+        }
         let on = |b: usize| active.bones[b];
         active.constraints[k]
             && match &self.constraints[k] {
@@ -474,40 +490,6 @@ impl Character {
                 Constraint::Path(c) => on(c.slot_bone) && c.bones.iter().all(|&b| on(b)),
                 Constraint::Physics(c) => on(c.bone),
             }
-    }
-
-    fn check(&self, request: &PoseRequest) -> Result<(), PoseError> {
-        if let Some(s) = request.skin.filter(|&s| s >= self.skins.len()) {
-            return Err(PoseError::UnknownSkin(s));
-        }
-        if let Some((c, time)) = request.clip {
-            if c >= self.clips.len() {
-                return Err(PoseError::UnknownClip(c));
-            }
-            if !time.is_finite() {
-                return Err(PoseError::Time(time));
-            }
-        }
-        for &(bone, [x, y]) in request.targets {
-            if bone >= self.bones.len() {
-                return Err(PoseError::UnknownBone(bone));
-            }
-            if !(x.is_finite() && y.is_finite()) {
-                return Err(PoseError::TargetPoint { bone, x, y });
-            }
-        }
-        for &(bone, rotation) in request.turns {
-            if bone >= self.bones.len() {
-                return Err(PoseError::UnknownTurn(bone));
-            }
-            if !rotation.is_finite() {
-                return Err(PoseError::TurnRotation { bone, rotation });
-            }
-        }
-        if let Some(&(k, _)) = request.bends.iter().find(|(k, _)| self.ik(*k).is_none()) {
-            return Err(PoseError::UnknownConstraint(k));
-        }
-        Ok(())
     }
 }
 

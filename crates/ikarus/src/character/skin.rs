@@ -1,14 +1,20 @@
 //! Skins, as far as posing goes: which bones and constraints a skin turns on.
 //!
 //! A bone or constraint marked as skin-required (Spine's `"skin": true`) takes part in a pose
-//! only while the chosen skin lists it. Rules (Spine's user guide on skin bones and skin
-//! constraints; no reference case has an inactive bone, so the last two are inferred):
+//! only while the chosen skin lists it. Rules (Spine's user guide, "Skins": "skins are made up
+//! of attachments, bones, and constraints that are only active when the skin is visible"; the
+//! rest is not spelled out there, no reference case has an inactive bone, so the last three are
+//! inferred from what an inactive bone is — one the runtime does not update):
 //! - a bone is active when it is not skin-required or the skin lists it or a bone below it (a
-//!   listed bone turns its parents on), and its parent is active;
+//!   listed bone turns its parents on), and its parent is active (a plain bone below an inactive
+//!   one is inactive too);
 //! - a constraint is active when it is not skin-required or the skin lists it, and its target
-//!   and bones are active;
+//!   and bones (a path constraint's: its slot's bone) are active;
 //! - an inactive bone is not posed: its world transform is left at zeros (as the runtime leaves
-//!   it), and an inactive constraint does nothing.
+//!   it; the reference files list such bones with `active: false`), and an inactive constraint
+//!   does nothing;
+//! - a target on an inactive bone is refused ([`super::PoseError::InactiveTarget`]): the bone is
+//!   not posed, so it cannot be put anywhere.
 
 use super::{CharacterBone, CharacterError};
 

@@ -119,3 +119,19 @@ fn unknown_skins_and_indices_are_refused() {
     };
     assert_eq!(Character::new(parts).unwrap_err().to_string(), "skin-required: constraint 2 does not exist");
 }
+
+#[test]
+fn a_target_on_an_inactive_bone_is_refused() {
+    let c = dressed();
+    let mut out = Posed::default();
+    let targets = [(4, [1.0, 2.0])];
+    for skin in [None, Some(0)] {
+        let request = PoseRequest { targets: &targets, skin, ..PoseRequest::default() };
+        assert_eq!(c.pose(&request, &mut out), Err(PoseError::InactiveTarget(4)));
+    }
+    assert_eq!(PoseError::InactiveTarget(4).to_string(), "target: bone 4 is inactive: the skin does not turn it on");
+    // With the skin that turns it on, the target moves the cape's tip (before `follow` puts it on aim).
+    let request = PoseRequest { targets: &[(3, [1.0, 2.0])], skin: Some(1), ..PoseRequest::default() };
+    c.pose(&request, &mut out).unwrap();
+    assert_eq!(out.origin(3), [1.0, 2.0]);
+}

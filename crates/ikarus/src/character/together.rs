@@ -3,7 +3,8 @@
 //!
 //! The runtime applies its constraints in order, each on at most two bones, each blind to the
 //! others: a later constraint can undo an earlier one, and a limb of three bones cannot be
-//! solved at all. Here every active constraint (mix > 0) becomes a goal on its last bone's tip
+//! solved at all. Here every active constraint (mix > 0, and turned on by the skin with its bones
+//! and target: [`super::skin`]) becomes a goal on its last bone's tip
 //! at its target bone's world origin, and one weighted least-squares solve
 //! ([`Solver::solve_rig`]) moves every bone of every limb at once:
 //!
@@ -209,10 +210,19 @@ impl Character {
         self.check_together(rules)?;
         let interrupt = solver.options().interrupt.clone();
         self.pose_until(request, out, (interrupt.as_ref(), &[]))?;
+        // A goal or pin on a bone the skin leaves inactive (not posed) could only be met at a
+        // made-up place.
+        let goal_bones = rules.goals.iter().map(|g| g.goal.bone);
+        if let Some(b) = goal_bones.chain(rules.pins.iter().copied()).find(|&b| !out.is_active(b)) {
+            let name = &self.bones[b].name;
+            return Err(TogetherError::Rule(format!(
+                "bone {name:?}: inactive with this skin (a skin-only bone, or below one, that it does not turn on): no goal or pin on it"
+            )));
+        }
         let active: Vec<usize> = self
             .ik_constraints()
             .map(|(k, _)| k)
-            .filter(|&k| out.ik_settings(k).is_some_and(|s| s.mix > 0.0))
+            .filter(|&k| out.ik_settings(k).is_some_and(|s| s.mix > 0.0) && self.is_active(k, out.activity()))
             .collect();
         let limb_rules = self.limb_rules(rules);
         let moving = self.moving(rules, &limb_rules, &active);

@@ -140,12 +140,16 @@ export function wireCharacters(state, canvas, act) {
 
   /**
    * The character's work put back (an undo, a project opened): the clip `animation` at `time`,
-   * the IK switch `ik`, the placed `targets` [{bone, x, y}].
+   * the IK switch `ik`, the placed `targets` [{bone, x, y}], the skin (null: the file's
+   * default) and the physics switch (a snapshot without them: the default skin, physics on).
    */
-  function setWork({ animation, time, ik, targets }) {
+  function setWork({ animation, time, ik, targets, skin = null, physics = true }) {
     const c = state.character;
     if (!c) return;
     c.ik = ik;
+    c.skin = skin;
+    c.physics = physics;
+    showOptions(c);
     for (const radio of document.querySelectorAll('input[name="character-ik"]')) radio.checked = radio.value === ik;
     c.targets = new Map(targets.map((t) => [t.bone, { x: t.x, y: t.y }]));
     const known = animation === "" || (c.character.clips || []).some((k) => k.name === animation);

@@ -51,7 +51,7 @@ export function snapshot(state, settings, timing = {}) {
     goal: goal ? { x: goal.x, y: goal.y, ...(goal.angle_deg !== undefined ? { angle_deg: goal.angle_deg } : {}) } : null,
     via: state.via.map((p) => ({ x: p.x, y: p.y })),
     rig: r ? { goals: points(r.goals), pins: [...r.pins], pose_deg: r.pose_deg.slice() } : null,
-    character: c ? { animation: c.animation, time: c.time, ik: c.ik, targets: points(c.targets) } : null,
+    character: c ? { animation: c.animation, time: c.time, ik: c.ik, targets: points(c.targets), skin: c.skin, physics: c.physics } : null,
     keys: copy(state.keys),
     key_length: timing.key_length ?? DEFAULT_LENGTH,
     settings: { ...settings },
@@ -139,6 +139,11 @@ function num(v, path) {
 
 function str(v, path) {
   if (typeof v !== "string") throw refuse(path, v, "is not a string");
+  return v;
+}
+
+function bool(v, path) {
+  if (typeof v !== "boolean") throw refuse(path, v, "is not true or false");
   return v;
 }
 
@@ -317,6 +322,9 @@ export function readProject(file, page) {
       time: c.time === undefined ? 0 : num(c.time, "character.time"),
       ik: c.ik === undefined ? "runtime" : oneOf(c.ik, "character.ik", ["runtime", "ikarus"]),
       targets: c.targets === undefined ? [] : bonePoints(c.targets, "character.targets", null),
+      // A project saved before these were: the file's default skin, physics on (nothing to say).
+      skin: c.skin === undefined || c.skin === null ? null : str(c.skin, "character.skin"),
+      physics: c.physics === undefined ? true : bool(c.physics, "character.physics"),
     };
   }
   const keys = field("keys");

@@ -264,7 +264,13 @@ export function wireProject(state, act) {
         throw new Error(`project file: not JSON (${e.message})`);
       }
       const { snap, view, defaulted } = readProject(file, { defaults, rigs: act.rigs.shipped(), choices: choices() });
-      if (snap.body.kind === "character") await findCharacter(snap.body.character);
+      if (snap.body.kind === "character") {
+        await findCharacter(snap.body.character);
+        // The skin saved is one of the character's (a file of another character's is refused).
+        const skins = snap.body.character.parsed.skins || [];
+        const skin = snap.character.skin;
+        if (skin !== null && !skins.includes(skin)) throw new Error(`project file: character.skin = ${JSON.stringify(skin)} is not one of the character's skins (${skins.join(", ") || "none"})`);
+      }
       if (snap.rig && snap.rig.pose_deg === null) delete snap.rig.pose_deg;
       amend();
       restore(snap, view);

@@ -28,8 +28,14 @@ impl PathPose {
     }
 }
 
-/// Applies path constraint `k` (`c`, with settings `s`) to `bones`.
-pub(crate) fn apply(bones: &mut Bones, k: usize, c: &PathConstraint, s: &PathSettings, state: &mut PathPose) {
+/// Applies path constraint `k` (`c`, with settings `s`) to `bones`, along the path skin `skin`
+/// gives it ([`PathConstraint::path_for`]).
+pub(crate) fn apply(
+    bones: &mut Bones,
+    (k, c, skin): (usize, &PathConstraint, Option<usize>),
+    s: &PathSettings,
+    state: &mut PathPose,
+) {
     let PathPose { deform, deformed, scratch, world, length } = state;
     world.clear();
     world.extend(c.bones.iter().map(|&b| bones.world[b]));
@@ -37,7 +43,7 @@ pub(crate) fn apply(bones: &mut Bones, k: usize, c: &PathConstraint, s: &PathSet
     length.extend(c.bones.iter().map(|&b| bones.bones[b].length));
     let offsets = deformed.get(k).copied().unwrap_or(false).then(|| &deform[k][..]);
     let all = &*bones.world;
-    solve(c, s, &|i| all[i], offsets, Chain { world, length }, scratch);
+    solve(c, s, &|i| all[i], c.followed(skin, offsets), Chain { world, length }, scratch);
     for (&b, w) in c.bones.iter().zip(world.iter()) {
         bones.set_world(b, *w);
     }

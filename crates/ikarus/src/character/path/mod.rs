@@ -125,9 +125,15 @@ pub struct PathConstraint {
     /// The bone of the slot that holds the path (the `target` slot's `bone`): an unweighted
     /// path's vertices are in its frame.
     pub slot_bone: usize,
-    /// The path the target slot shows (its attachment in the skin), `None` when the slot shows
-    /// no path: then the constraint does nothing.
+    /// The path the target slot shows with the default skin (or with no skin): the default
+    /// skin's attachment of the slot's setup attachment name; `None` when that is not a path
+    /// (or there is none): then the constraint does nothing.
     pub path: Option<PathShape>,
+    /// The skins that have their own attachment of that name on the slot, and what it is: a
+    /// pose with one of these skins follows its path, a pose with any other skin the default
+    /// skin's ([`PathConstraint::path_for`]). Spine looks an attachment up in the chosen skin
+    /// first, then in the default skin.
+    pub skin_paths: Vec<SkinPath>,
     /// [`PositionMode`] (`positionMode`, default `percent`).
     pub position_mode: PositionMode,
     /// [`SpacingMode`] (`spacingMode`, default `length`).
@@ -145,10 +151,14 @@ impl PathConstraint {
     /// (constraint `k` of the list).
     pub(crate) fn check(&self, k: usize, bones: &[CharacterBone]) -> Result<(), CharacterError> {
         let n = bones.len();
-        let weighted = match self.path.as_ref().map(|p| &p.vertices) {
-            Some(PathVertices::Weighted(v)) => v.iter().flatten().map(|w| w.bone).collect(),
-            _ => Vec::new(),
-        };
+        let shapes = self.path.iter().chain(self.skin_paths.iter().filter_map(|p| p.path.as_ref()));
+        let weighted: Vec<usize> = shapes
+            .filter_map(|p| match &p.vertices {
+                PathVertices::Weighted(v) => Some(v.iter().flatten().map(|w| w.bone)),
+                PathVertices::Plain(_) => None,
+            })
+            .flatten()
+            .collect();
         if let Some(&bone) = self.bones.iter().chain([&self.slot_bone]).chain(&weighted).find(|&&b| b >= n) {
             return Err(CharacterError::PathBone { constraint: k, bone });
         }
@@ -166,6 +176,48 @@ impl PathConstraint {
             }
         }
         Ok(())
+    }
+}
+
+/// A skin's own attachment under the name of a path constraint's slot's setup attachment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SkinPath {
+    /// The skin's index in [`super::Character::skins`].
+    pub skin: usize,
+    /// The attachment, `None` when it is not a path (the constraint then does nothing with
+    /// this skin).
+    pub path: Option<PathShape>,
+}
+
+/// The path a pose follows: the shape the skin gives the slot, and the offsets a clip's deform
+/// timeline adds to its vertex coordinates, if any.
+#[derive(Debug, Clone, Copy)]
+pub struct Followed<'a> {
+    /// The shape, `None` when the slot shows no path (the constraint does nothing).
+    pub shape: Option<&'a PathShape>,
+    /// The deform offsets.
+    pub deform: Option<&'a [f64]>,
+}
+
+impl PathConstraint {
+    /// Whose attachment a pose with skin `skin` follows: `Some(s)` skin `s`'s own, `None` the
+    /// default skin's. A deform timeline changes only the attachment of its own skin.
+    pub fn path_source(&self, skin: Option<usize>) -> Option<usize> {
+        skin.filter(|&s| self.skin_paths.iter().any(|p| p.skin == s))
+    }
+
+    /// The path a pose with skin `skin` follows: the skin's own attachment if it has one, else
+    /// the default skin's. No allocation, no string compared.
+    pub fn path_for(&self, skin: Option<usize>) -> Option<&PathShape> {
+        match skin.and_then(|s| self.skin_paths.iter().find(|p| p.skin == s)) {
+            Some(own) => own.path.as_ref(),
+            None => self.path.as_ref(),
+        }
+    }
+
+    /// [`Followed`] for a pose with skin `skin`, with `deform`.
+    pub fn followed<'a>(&'a self, skin: Option<usize>, deform: Option<&'a [f64]>) -> Followed<'a> {
+        Followed { shape: self.path_for(skin), deform }
     }
 }
 
@@ -189,19 +241,18 @@ pub struct Chain<'a> {
     pub length: &'a [f64],
 }
 
-/// Moves the constraint's bones (`chain`). `bones_world` gives the world transform of any bone
-/// (for the path's vertices); `deform` the offsets a clip adds to the path's vertex
-/// coordinates, if any.
+/// Moves the constraint's bones (`chain`) along `followed`. `bones_world` gives the world
+/// transform of any bone (for the path's vertices).
 pub fn solve(
     c: &PathConstraint,
     s: &PathSettings,
     bones_world: &dyn Fn(usize) -> Affine,
-    deform: Option<&[f64]>,
+    followed: Followed<'_>,
     chain_bones: Chain<'_>,
     scratch: &mut PathScratch,
 ) {
     let Chain { world, length } = chain_bones;
-    let Some(path) = &c.path else { return };
+    let Followed { shape: Some(path), deform } = followed else { return };
     if (s.mix_rotate == 0.0 && s.mix_x == 0.0 && s.mix_y == 0.0) || world.is_empty() {
         return;
     }

@@ -18,6 +18,7 @@ fn constraint(bones: usize, rotate_mode: RotateMode, spacing_mode: SpacingMode) 
         slot: 0,
         slot_bone: 0,
         path: Some(straight(false)),
+        skin_paths: Vec::new(),
         position_mode: PositionMode::Percent,
         spacing_mode,
         rotate_mode,
@@ -86,7 +87,14 @@ fn chain_scale_places_each_bone_at_its_point_and_stretches_it_to_the_next() {
     c.setup.spacing = 0.5;
     let mut world = [bone(3.0, 4.0, 1.0, 1.0), bone(7.0, -2.0, -0.5, 2.0)];
     let mut scratch = PathScratch::default();
-    solve(&c, &c.setup, &|_| Affine::default(), None, Chain { world: &mut world, length: &[10.0, 10.0] }, &mut scratch);
+    solve(
+        &c,
+        &c.setup,
+        &|_| Affine::default(),
+        c.followed(None, None),
+        Chain { world: &mut world, length: &[10.0, 10.0] },
+        &mut scratch,
+    );
     close(world[0].x, 0.0);
     close(world[1].x, 45.0);
     close(world[1].y, 0.0);
@@ -104,7 +112,14 @@ fn mixes_blend_the_move_and_the_turn() {
     c.setup = PathSettings { position: 0.5, spacing: 0.0, mix_rotate: 0.5, mix_x: 0.5, mix_y: 0.25 };
     let mut world = [bone(10.0, 8.0, 1.0, 1.0)];
     let mut scratch = PathScratch::default();
-    solve(&c, &c.setup, &|_| Affine::default(), None, Chain { world: &mut world, length: &[10.0] }, &mut scratch);
+    solve(
+        &c,
+        &c.setup,
+        &|_| Affine::default(),
+        c.followed(None, None),
+        Chain { world: &mut world, length: &[10.0] },
+        &mut scratch,
+    );
     // The point is (45, 0); the tangent is along +x.
     close(world[0].x, 10.0 + 35.0 * 0.5);
     close(world[0].y, 8.0 - 8.0 * 0.25);
@@ -123,7 +138,7 @@ fn length_spacing_adds_the_bones_world_lengths() {
         &c,
         &c.setup,
         &|_| Affine::default(),
-        None,
+        c.followed(None, None),
         Chain { world: &mut world, length: &[10.0, 10.0, 10.0] },
         &mut scratch,
     );
@@ -164,7 +179,7 @@ fn a_path_without_a_curve_leaves_the_bones() {
         &c,
         &c.setup,
         &|_| Affine::default(),
-        None,
+        c.followed(None, None),
         Chain { world: &mut world, length: &[10.0] },
         &mut PathScratch::default(),
     );
@@ -233,4 +248,49 @@ fn the_model_refuses_missing_bones_bad_mixes_and_timelines_of_another_kind() {
         Character::new(p).unwrap_err(),
         CharacterError::TimelineKind { constraint: 0, keys: "ik", kind: "path" }
     );
+}
+
+#[test]
+fn a_pose_follows_the_skins_own_path_else_the_default_skins() {
+    use crate::character::{Character, CharacterParts, Constraint, PoseRequest, Posed, Skin};
+    use crate::fixtures::character_bone;
+    // The default skin's path runs along x; skin 1's own runs along y; skin 2 has a non-path
+    // attachment of that name; skin 3 none.
+    let v = vec![[0.0, -30.0], [0.0, 0.0], [0.0, 30.0], [0.0, 60.0], [0.0, 90.0], [0.0, 120.0]];
+    let up = PathShape { vertices: PathVertices::Plain(v), ..straight(false) };
+    let mut c = constraint(1, RotateMode::Tangent, SpacingMode::Length);
+    c.setup.position = 0.5;
+    c.skin_paths = vec![SkinPath { skin: 1, path: Some(up) }, SkinPath { skin: 2, path: None }];
+    let skins = (0..4).map(|i| Skin { name: format!("s{i}"), ..Skin::default() }).collect();
+    let parts = |c: PathConstraint, skins| CharacterParts {
+        bones: vec![character_bone("root", None, 0.0, 0.0), {
+            let mut a = character_bone("a", Some(0), 0.0, 0.0);
+            a.setup.y = 10.0;
+            a
+        }],
+        constraints: vec![Constraint::Path(c)],
+        skins,
+        ..CharacterParts::default()
+    };
+    let character = Character::new(parts(c.clone(), skins)).unwrap();
+    let mut out = Posed::default();
+    let mut at = |skin| {
+        character.pose(&PoseRequest { skin, ..PoseRequest::default() }, &mut out).unwrap();
+        out.origin(1)
+    };
+    let want = [
+        (None, [45.0, 0.0]),
+        (Some(0), [45.0, 0.0]),
+        (Some(1), [0.0, 45.0]),
+        (Some(2), [0.0, 10.0]),
+        (Some(3), [45.0, 0.0]),
+    ];
+    for (skin, [x, y]) in want {
+        let [gx, gy] = at(skin);
+        close(gx, x);
+        close(gy, y);
+    }
+    // A path for a skin the character does not have is refused.
+    let e = Character::new(parts(c, Vec::new())).unwrap_err();
+    assert_eq!(e.to_string(), "path constraint 0: a path for skin 1, which does not exist");
 }
