@@ -127,3 +127,30 @@ fn bad_requests_are_one_line_naming_the_field() {
         assert!(message.contains(start) && message.lines().count() == 1, "{message} (wanted {start})");
     }
 }
+
+#[test]
+fn a_motions_physics_plays_unless_physics_is_false_on_animate_and_track() {
+    let path = format!("{}/../../examples/characters/spine-celestial-circus-pro.json", env!("CARGO_MANIFEST_DIR"));
+    let rig = std::fs::read_to_string(path).unwrap();
+    let keys = json!({"fps": 30, "duration": 0.3, "tracks": {"face-control": [{"time": 0, "x": 30, "y": -110}]}});
+    let hair = |frames: &Value, k: usize| {
+        let bones = frames["frames"][k]["bones"].as_array().unwrap();
+        let b = bones.iter().find(|b| b["name"] == "hair-back").unwrap();
+        [b["tip"][0].as_f64().unwrap(), b["tip"][1].as_f64().unwrap()]
+    };
+    let swung =
+        |a: &Value, b: &Value| (0..10).map(|k| hair(a, k)).zip((0..10).map(|k| hair(b, k))).any(|(p, q)| p != q);
+    let mut body = json!({"rig": rig, "keys": keys, "animation": "swing"});
+    let played = ask(Endpoint::Animate, &body).unwrap();
+    body["physics"] = json!(true);
+    assert_eq!(ask(Endpoint::Animate, &body).unwrap(), played);
+    body["physics"] = json!(false);
+    let off = ask(Endpoint::Animate, &body).unwrap();
+    assert!(swung(&played, &off), "the hair swings the same with and without physics");
+
+    let mut body = json!({"rig": rig, "effector": "face-control", "line": [30, -110, 40, -100], "samples": 10});
+    let played = ask(Endpoint::Track, &body).unwrap();
+    body["physics"] = json!(false);
+    let off = ask(Endpoint::Track, &body).unwrap();
+    assert!(swung(&played, &off), "the hair swings the same with and without physics on a track");
+}
