@@ -304,6 +304,9 @@ test("a character's request: the file's text, the tracks only, the clip, the IK 
     format: "spine",
     animation_name: "ikarus",
   });
+  // The physics switch off goes as `"physics": false` (on, the default, is left out).
+  assert.equal(characterAnimateRequest({ ...c, physics: false }, keys).physics, false);
+  assert.equal("physics" in characterAnimateRequest({ ...c, physics: true }, keys), false);
   // Bends go with the tracks when there are some.
   const bent = { ...keys, bends: { shin: [{ time: 0, bend: "cw" }] } };
   assert.deepEqual(characterAnimateRequest(c, bent).keys, { fps: 30, tracks: keys.tracks, bends: bent.bends });

@@ -10,7 +10,7 @@
 use std::io::{self, Write};
 use std::time::Instant;
 
-use ikarus::character::{Character, PhysicsWorld, PlayFrame, PoseRequest, Posed};
+use ikarus::character::{Character, PlayFrame, PoseRequest, Posed};
 use ikarus_edge::error::CliError;
 use serde::Serialize;
 
@@ -140,7 +140,7 @@ fn measure(file: &'static str, c: &Character, clip: Option<usize>, poses: usize)
             let time = if duration > 0.0 { clock % duration } else { 0.0 };
             let request = PoseRequest { clip: Some((k, time)), ..PoseRequest::default() };
             let frame =
-                PlayFrame { clock, before: i.checked_sub(1).map(|j| j as f64 * STEP), world: PhysicsWorld::default() };
+                PlayFrame { clock, before: i.checked_sub(1).map(|j| j as f64 * STEP), world: c.physics_world() };
             let start = Instant::now();
             if physics {
                 c.play_frame(&request, &frame, &mut animated_out).map_err(fail)?;

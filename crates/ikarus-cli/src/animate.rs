@@ -154,6 +154,11 @@ pub struct AnimateArgs {
     /// time (looping when the keys run longer)
     #[arg(long, value_name = "NAME", requires = "keys")]
     pub animation: Option<String>,
+    /// With a character file: physics constraints on plays the frames as a game's frames at
+    /// --fps (the keys' fps with --keys), the physics stepping from one to the next; off leaves
+    /// them out (Spine's Physics.none) [default: on]
+    #[arg(long, value_enum)]
+    pub physics: Option<crate::pose::PhysicsSwitch>,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
@@ -274,6 +279,7 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         ("--animation", args.animation.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--bake", args.bake),
+        ("--physics", args.physics.is_some()),
         ("--format spine", args.format == Some(AnimateFormat::Spine)),
         ik,
         ik_file,

@@ -136,6 +136,20 @@ pub enum PhysicsSwitch {
     Off,
 }
 
+impl PhysicsSwitch {
+    /// What a character's motion does with its physics constraints (`animate`, `track` with
+    /// `--physics`; on when not given): its frames played as a game's frames, or posed each on
+    /// its own.
+    #[must_use]
+    pub fn motion(switch: Option<Self>) -> ikarus_edge::character::motion::Physics {
+        use ikarus_edge::character::motion::Physics;
+        match switch {
+            Some(PhysicsSwitch::Off) => Physics::Off,
+            Some(PhysicsSwitch::On) | None => Physics::Played,
+        }
+    }
+}
+
 /// `BONE=X,Y`: the name is everything before the last `=`.
 pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
     let (name, point) = s.rsplit_once('=').ok_or_else(|| format!("expected BONE=X,Y, got {s:?}"))?;

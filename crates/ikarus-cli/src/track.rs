@@ -114,6 +114,11 @@ pub struct TrackArgs {
     /// frame-by-frame bake), instead of the keys an animator edits
     #[arg(long)]
     pub bake: bool,
+    /// With a character file: physics constraints on plays the frames as a game's frames at
+    /// --fps, the physics stepping from one to the next; off leaves them out (Spine's
+    /// Physics.none) [default: on]
+    #[arg(long, value_enum)]
+    pub physics: Option<crate::pose::PhysicsSwitch>,
     #[command(flatten)]
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
@@ -146,6 +151,7 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
         ("--fps", args.fps.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--bake", args.bake),
+        ("--physics", args.physics.is_some()),
         ("--format spine", args.format == Some(TrackFormat::Spine)),
         ik,
         ik_file,
@@ -236,6 +242,7 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     let mut motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
         .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
+    motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),

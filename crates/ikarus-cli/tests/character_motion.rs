@@ -190,3 +190,24 @@ fn flags_that_do_not_apply_are_refused_naming_the_flag() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_characters_motion_plays_its_physics_unless_physics_is_off() {
+    const CIRCUS: &str = "../../examples/characters/spine-celestial-circus-pro.json";
+    let args = ["--rig", CIRCUS, "--target", "face-control=30,-110", "--duration", "0.2", "--format", "json"];
+    let animate = |physics: &[&str]| json(&[&["animate"][..], &args, physics].concat());
+    let (played, on, off) = (animate(&[]), animate(&["--physics", "on"]), animate(&["--physics", "off"]));
+    assert_eq!(played, on);
+    let hair = |v: &Value, k: usize| bone(&v["frames"][k], "hair-back")["tip"].clone();
+    assert!((0..7).any(|k| hair(&played, k) != hair(&off, k)), "the hair swings the same with physics off");
+    // Frame 0 restarts the physics: nothing has swung yet.
+    assert_eq!(hair(&played, 0), hair(&off, 0));
+    let track = |physics: &[&str]| {
+        let shape = ["track", "--rig", CIRCUS, "--effector", "face-control", "--line", "30,-110,40,-100"];
+        json(&[&shape[..], &["--samples", "8", "--format", "json"], physics].concat())
+    };
+    let (played, off) = (track(&[]), track(&["--physics", "off"]));
+    assert!((0..8).any(|k| hair(&played, k) != hair(&off, k)), "the hair swings the same on a track");
+    let e = fails(&["animate", "--rig", PUPPET, "--goal", "head=1,2", "--physics", "off"], 2);
+    assert!(e.contains("--physics: only with a character file"), "{e}");
+}

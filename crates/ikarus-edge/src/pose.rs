@@ -7,8 +7,8 @@
 
 use ikarus::Point2;
 use ikarus::character::{
-    Character, GoalEnd, LimbEnd, Play, PoseError, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherError,
-    TogetherReport,
+    Character, GoalEnd, LimbEnd, Play, PlayFrame, PoseError, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together,
+    TogetherError, TogetherReport,
 };
 use ikarus::{Interrupt, SolveOptions, Solver};
 use ikarus_render::{CharacterFigure, PosedBone};
@@ -154,6 +154,29 @@ pub(crate) fn pose_into_until(
     out: &mut Posed,
     interrupt: Option<&Interrupt>,
 ) -> Result<Option<TogetherReport>, String> {
+    pose_as(loaded, ask, out, (interrupt, None))
+}
+
+/// [`pose_into_until`] as one frame of a game's loop with physics (a motion's frame, played):
+/// the physics constraints step from the state `out` kept from the frame before `frame` (or
+/// restart on the first), whatever `ask.physics` says; under ikarus's solver, in every pose of
+/// its rounds ([`Character::pose_together_frame`]).
+pub(crate) fn pose_frame_into(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    out: &mut Posed,
+    (interrupt, frame): (Option<&Interrupt>, &PlayFrame),
+) -> Result<Option<TogetherReport>, String> {
+    pose_as(loaded, ask, out, (interrupt, Some(frame)))
+}
+
+/// The pose of [`pose_into_until`], or with `frame`, of [`pose_frame_into`].
+fn pose_as(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    out: &mut Posed,
+    (interrupt, frame): (Option<&Interrupt>, Option<&PlayFrame>),
+) -> Result<Option<TogetherReport>, String> {
     let c = &loaded.character;
     let clip = clip_at(c, ask.animation.as_deref(), ask.time)?;
     let mut targets = Vec::with_capacity(ask.targets.len());
@@ -172,8 +195,12 @@ pub(crate) fn pose_into_until(
     let skin = skin_index(c, ask.skin.as_deref())?;
     let request = PoseRequest { clip, targets: &targets, bends: &ask.bends, turns: &turns, skin };
     let report = match &ask.ik {
-        IkChoice::Runtime => match (ask.physics, c.constraints().iter().any(|k| k.kind() == "physics")) {
-            (PhysicsAsk::Play { fps }, true) => {
+        IkChoice::Runtime => match (frame, ask.physics, c.constraints().iter().any(|k| k.kind() == "physics")) {
+            (Some(frame), ..) => match interrupt {
+                Some(token) => c.play_frame_watched(&request, frame, out, token),
+                None => c.play_frame(&request, frame, out),
+            },
+            (None, PhysicsAsk::Play { fps }, true) => {
                 let play = Play { fps, world: c.physics_world() };
                 match interrupt {
                     Some(token) => c.play_watched(&request, &play, out, token),
@@ -190,7 +217,12 @@ pub(crate) fn pose_into_until(
         IkChoice::Ikarus(rules) => {
             let options = SolveOptions { interrupt: interrupt.cloned(), ..character_options() };
             let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
-            c.pose_together(&request, rules, &mut solver, out).map(Some).map_err(|e| match e {
+            match frame {
+                Some(frame) => c.pose_together_frame(&request, rules, &mut solver, frame, out),
+                None => c.pose_together(&request, rules, &mut solver, out),
+            }
+            .map(Some)
+            .map_err(|e| match e {
                 TogetherError::Pose(e) => refusal(c, skin, &e),
                 e => e.to_string(),
             })

@@ -9,7 +9,7 @@ use export_play::{moved, played, text};
 use ikarus::EaseKind;
 use ikarus_edge::character::export::Form;
 use ikarus_edge::character::load;
-use ikarus_edge::character::motion::{Course, Motion};
+use ikarus_edge::character::motion::{Course, Motion, Physics};
 use ikarus_edge::pose::IkChoice;
 use serde_json::Value;
 
@@ -103,4 +103,25 @@ fn celestial_circus_s_physics_are_switched_off_in_the_bake_and_read_back() {
     for (name, mix) in physics {
         assert_eq!(mix[0]["value"], 0.0, "{name}");
     }
+}
+
+#[test]
+fn celestial_circus_s_editable_export_keeps_its_physics_on_unless_the_motion_has_it_off() {
+    // On: the export plays its physics on top of the keys in a game, as the motion does
+    // (checked within 1e-2 at every frame, both played at the motion's clock); off: keyed to
+    // mix 0, as the motion leaves it out.
+    let file = "spine-celestial-circus-pro.json";
+    let loaded = load(&text(file), file).unwrap();
+    let targets = vec![moved(&loaded, "face-control", [6.0, -4.0])];
+    let course = Course::Eased { targets, ease: EaseKind::Sine.ease(None, None).unwrap(), duration: 0.6 };
+    let mut motion = Motion::new(&loaded, course, 30.0).unwrap();
+    let on = played(file, &motion, Form::Editable);
+    assert!(on.frames < 1e-2, "{}", on.frames);
+    assert!(on.animation.get("physics").is_none());
+    motion.physics = Physics::Off;
+    let off = played(file, &motion, Form::Editable);
+    assert!(off.frames < 1e-2 && off.last < 1e-2, "{} {}", off.frames, off.last);
+    let physics = keys(&off.animation, "physics");
+    assert_eq!(physics.len(), 30);
+    assert!(physics.iter().all(|(_, mix)| mix[0]["value"] == 0.0 && mix[0]["time"] == 0.0));
 }

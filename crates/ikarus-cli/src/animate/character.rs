@@ -47,6 +47,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         let mut motion =
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
+        motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
         let out = Output {
             written,
             animation_name: args.animation_name.as_deref(),
@@ -82,6 +83,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let mut motion =
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
+    motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),

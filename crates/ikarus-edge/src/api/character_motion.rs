@@ -16,7 +16,7 @@ use super::fields::{refuse_given, stopped, track_path};
 use super::pose::{TargetReq, stored_character};
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
-use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion};
+use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion, Physics};
 use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::pose::ik_choice;
@@ -29,7 +29,7 @@ pub const MAX_BONE_FRAMES: usize = 200_000;
 request! {
     /// `POST /api/animate` with a character: `{"rig": "<text>", "targets": [{"bone", "x", "y"}],
     /// "duration": 1.0, "fps": 30, "ease": "sine", "k1", "k2", "format": "json"|"csv"|"spine",
-    /// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>"}`, every field but
+    /// "animation_name": "ikarus", "ik": "runtime"|"ikarus", "ik_file": "<TOML>", "physics": true}`, every field but
     /// `rig` and `targets` optional.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
@@ -49,6 +49,10 @@ request! {
         pub ease: Option<EaseKind>,
         pub k1: Option<f64>,
         pub k2: Option<f64>,
+        /// `false` leaves the character's physics constraints out; otherwise the frames are
+        /// played as a game's frames at the motion's fps, the physics stepping (as `/api/pose`
+        /// plays a pose at a time).
+        pub physics: Option<bool>,
         ..export,
     }
 }
@@ -56,7 +60,7 @@ request! {
 request! {
     /// `POST /api/track` with a character: `{"rig": "<text>", "effector": "BONE"`, exactly one of
     /// `path`, `line`, `circle`, `figure8`, `"samples"`, `"fps": 30, "format", "animation_name", "ik",
-    /// "ik_file"}`.
+    /// "ik_file", "physics"}`.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct TrackCharacterReq {
@@ -71,6 +75,8 @@ request! {
         pub figure8: Option<[f64; 3]>,
         pub samples: Option<usize>,
         pub fps: Option<f64>,
+        /// As [`AnimateCharacterReq::physics`].
+        pub physics: Option<bool>,
         ..export,
     }
 }
@@ -122,8 +128,18 @@ pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Re
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
     let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    motion.physics = physics(req.physics);
     motion.interrupt = Some(interrupt.clone());
     answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
+}
+
+/// What a motion request's `physics` asks: `false`, [`Physics::Off`]; else [`Physics::Played`].
+#[must_use]
+pub fn physics(asked: Option<bool>) -> Physics {
+    match asked {
+        Some(false) => Physics::Off,
+        Some(true) | None => Physics::Played,
+    }
 }
 
 /// `POST /api/animate` with a character and `keys`: its target bones keyed, over the clip
@@ -145,7 +161,8 @@ fn keyed(
     ];
     refuse_given(&given, "not with keys (the keys give the targets, their eases and the fps)")?;
     let ik = (req.ik.as_deref(), req.ik_file.as_deref());
-    let motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
+    let mut motion = keyed_motion(loaded, keys, req.animation.clone(), ik, (limits, interrupt))?;
+    motion.physics = physics(req.physics);
     answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
 }
 
@@ -181,6 +198,7 @@ pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Repl
     let mut motion =
         Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
+    motion.physics = physics(req.physics);
     motion.interrupt = Some(interrupt.clone());
     answer(loaded, &motion, (req.format, req.animation_name.as_deref(), export::Form::asked(req.bake)), text, limits)
 }

@@ -155,6 +155,9 @@ request! {
         required keys: crate::keys::KeysFile,
         /// The clip posed under the keys, at the same time (looping).
         pub animation: Option<String>,
+        /// `false` leaves the character's physics constraints out; otherwise the frames are
+        /// played as a game's frames, as `/api/animate` plays them.
+        pub physics: Option<bool>,
         ..character_ik,
     }
 }

@@ -230,7 +230,8 @@ fn character_figure(
     let stored = super::pose::stored_character(r.rig.as_deref(), r.character.as_deref(), limits)?;
     let loaded = &stored.loaded;
     let ik = (r.ik.as_deref(), r.ik_file.as_deref());
-    let motion = keyed_motion(loaded, &r.keys, r.animation.clone(), ik, (limits, interrupt))?;
+    let mut motion = keyed_motion(loaded, &r.keys, r.animation.clone(), ik, (limits, interrupt))?;
+    motion.physics = super::character_motion::physics(r.physics);
     canvas.gif_within_cap(motion.frame_count())?;
     let poses = super::character_motion::posed(motion.poses(), &motion)?;
     canvas.draw(&motion_files::drawing(&motion, &poses), interrupt)

@@ -22,6 +22,7 @@ pub mod export;
 pub mod ik_file;
 pub mod motion;
 pub mod motion_files;
+pub mod motion_play;
 pub mod skel;
 pub use skel::text_of;
 mod spine;

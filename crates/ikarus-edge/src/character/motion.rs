@@ -9,6 +9,10 @@
 //! line between samples; [`Course::Keyed`], target bones on keyed tracks ([`crate::keys`]),
 //! optionally over a clip. The motion is sampled at the frame rate for its frames (JSON) and at
 //! any time for the Spine export ([`super::export`]).
+//!
+//! The frames are a game's frames: a character's physics constraints step from one frame to
+//! the next ([`super::motion_play`]; [`Motion::physics`] off poses each on its own, as
+//! [`Motion::pose_at`] poses any time).
 
 use ikarus::character::Posed;
 use ikarus::motion::KeyTrack;
@@ -16,6 +20,7 @@ use ikarus::{Bend, Ease};
 use serde::Serialize;
 
 use super::Loaded;
+pub use super::motion_play::{Physics, Playhead};
 use crate::keys::KeysFile;
 use crate::keys::character::{bend_constraint, bend_positive};
 pub use crate::names::count_text;
@@ -137,6 +142,9 @@ pub struct Motion<'a> {
     /// When set, every pose of the motion stops (refused `interrupted`): a server's deadline,
     /// Ctrl-C. `None` by default.
     pub interrupt: Option<Interrupt>,
+    /// What the frames do with the character's physics constraints: played as a game's frames
+    /// by default ([`super::motion_play`]).
+    pub physics: Physics,
 }
 
 /// One frame: the time and every bone as `ikarus pose --format json` gives it.
@@ -218,7 +226,8 @@ impl<'a> Motion<'a> {
                 count_text(n)
             ));
         }
-        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None })
+        let physics = Physics::default();
+        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None, physics })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
@@ -316,11 +325,16 @@ impl<'a> Motion<'a> {
     /// the keys run longer than it.
     fn clip_at(&self, time: f64) -> (Option<String>, Option<f64>) {
         let Course::Keyed { animation: Some(name), .. } = &self.course else { return (None, None) };
+        (Some(name.clone()), Some(self.clip_time(time.clamp(0.0, self.duration))))
+    }
+
+    /// The time of the clip under a keyed course at the motion's `time`: `time`, or past the
+    /// clip's end, looped (`time % length`).
+    pub(crate) fn clip_time(&self, time: f64) -> f64 {
+        let Course::Keyed { animation: Some(name), .. } = &self.course else { return time };
         let c = &self.loaded.character;
         let length = c.clip_index(name).map_or(0.0, |i| c.clips()[i].duration);
-        let time = time.clamp(0.0, self.duration);
-        let t = if length > 0.0 && time > length { time % length } else { time };
-        (Some(name.clone()), Some(t))
+        if length > 0.0 && time > length { time % length } else { time }
     }
 
     /// What posing the motion at `time` asks: `ikarus pose [--animation A --time T] --target …`.
@@ -334,7 +348,7 @@ impl<'a> Motion<'a> {
             ik: self.ik.clone(),
             bends: self.bends_at(time),
             turns: self.turns_at(time),
-            // A motion is sampled time by time, not played: physics is left out of it.
+            // One time on its own: physics is left out ([`Motion::play_at`] plays it).
             physics: PhysicsAsk::Off,
             skin: None,
         }
@@ -372,7 +386,8 @@ impl<'a> Motion<'a> {
         bends.iter().map(|(k, keys)| (*k, keys.iter().rev().find(|(t, _)| *t <= time).unwrap_or(&keys[0]).1)).collect()
     }
 
-    /// The character posed at `time` into `out`.
+    /// The character posed at `time` into `out`, on its own: physics left out (Spine's
+    /// `Physics.none`); [`Motion::play_at`] plays it.
     pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
         // Checked here too: a character without constraints never asks it while posing.
         if self.interrupt.as_ref().is_some_and(Interrupt::is_interrupted) {
@@ -391,21 +406,35 @@ impl<'a> Motion<'a> {
         sink: &mut dyn FnMut(usize, f64, &PoseReport) -> std::io::Result<()>,
     ) -> Result<(), StreamError> {
         let mut posed = Posed::default();
+        let mut clock = None;
         for k in 0..self.frame_count() {
             let time = self.frame_time(k);
-            self.pose_at(time, &mut posed).map_err(StreamError::Motion)?;
+            self.frame_into(k, &mut clock, &mut posed).map_err(StreamError::Motion)?;
             sink(k, time, &PoseReport::of(&self.loaded.character, &posed)).map_err(StreamError::Io)?;
         }
         Ok(())
     }
 
+    /// Frame `k` posed into `out`, the frames posed in order from 0 into the same `out`: with
+    /// [`Motion::plays_physics`], as the game's frame after the one at `clock` (`None` before
+    /// the first), which it advances; otherwise on its own ([`Motion::pose_at`]).
+    fn frame_into(&self, k: usize, clock: &mut Option<f64>, out: &mut Posed) -> Result<(), String> {
+        if self.plays_physics() {
+            *clock = Some(self.step(k, *clock, out)?);
+            Ok(())
+        } else {
+            self.pose_at(self.frame_time(k), out)
+        }
+    }
+
     /// Every frame posed (its time and report), for what needs them all at once (a picture).
     pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, String> {
         let mut posed = Posed::default();
+        let mut clock = None;
         (0..self.frame_count())
             .map(|k| {
                 let time = self.frame_time(k);
-                self.pose_at(time, &mut posed)?;
+                self.frame_into(k, &mut clock, &mut posed)?;
                 Ok((time, PoseReport::of(&self.loaded.character, &posed)))
             })
             .collect()

@@ -4,8 +4,11 @@
 //! then `update(dt)`, apply, `updateWorldTransform(Physics.update)`), up to the time asked.
 
 use super::pose::Frame;
-use super::{Character, CharacterError, PhysicsMode, PhysicsWorld, PoseError, PoseRequest, Posed};
-use crate::Interrupt;
+use super::{
+    Character, CharacterError, PhysicsMode, PhysicsWorld, PoseError, PoseRequest, Posed, Together, TogetherError,
+    TogetherReport,
+};
+use crate::{Interrupt, Solver};
 
 /// How a clip is played with physics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,15 +118,55 @@ impl Character {
     /// frame, or where a clip's `reset` key lies between the two clip times). What a game
     /// calls every frame; [`Character::play`] is these frames from 0.
     pub fn play_frame(&self, request: &PoseRequest, frame: &PlayFrame, out: &mut Posed) -> Result<(), PoseError> {
-        if !frame.clock.is_finite() || frame.before.is_some_and(|b| !(b.is_finite() && b <= frame.clock)) {
-            return Err(PoseError::Time(frame.clock));
+        self.pose_frame(request, out, None, (frame.of(request)?, &[]))
+    }
+
+    /// [`Character::play_frame`], stopped with [`PoseError::Interrupted`] once `interrupt` is
+    /// set (checked before each constraint, as [`Character::pose_watched`] does).
+    pub fn play_frame_watched(
+        &self,
+        request: &PoseRequest,
+        frame: &PlayFrame,
+        out: &mut Posed,
+        interrupt: &Interrupt,
+    ) -> Result<(), PoseError> {
+        self.pose_frame(request, out, Some(interrupt), (frame.of(request)?, &[]))
+    }
+}
+
+impl Character {
+    /// [`Character::pose_together`] as one frame of a game's loop with physics, as
+    /// [`Character::play_frame`] poses one: the physics constraints step (or restart on the
+    /// first frame) in every pose the solve makes, each round from the state `out` kept from
+    /// the frame before, so the goals are met on the pose the constraints produce, physics
+    /// included, at this frame; `out` keeps the last round's state for the next frame.
+    pub fn pose_together_frame(
+        &self,
+        request: &PoseRequest,
+        rules: &Together,
+        solver: &mut Solver,
+        frame: &PlayFrame,
+        out: &mut Posed,
+    ) -> Result<TogetherReport, TogetherError> {
+        let frame = frame.of(request)?;
+        self.together(request, (rules, solver), out, frame)
+    }
+}
+
+impl PlayFrame {
+    /// The pose's physics frame for `request` at this game frame: a restart on the first
+    /// frame, else a step from the frame before, the clip's time before being the request's
+    /// less the clock's advance. A clock that is not finite or goes back is refused.
+    pub(crate) fn of(&self, request: &PoseRequest) -> Result<Frame, PoseError> {
+        if !self.clock.is_finite() || self.before.is_some_and(|b| !(b.is_finite() && b <= self.clock)) {
+            return Err(PoseError::Time(self.clock));
         }
-        let (mode, from) = match frame.before {
-            None => (PhysicsMode::Reset, frame.clock),
+        let (mode, from) = match self.before {
+            None => (PhysicsMode::Reset, self.clock),
             Some(before) => (PhysicsMode::Update, before),
         };
-        let from = request.clip.map_or(from, |(_, t)| t - (frame.clock - from));
-        self.pose_frame(request, out, None, (Frame::Play { mode, clock: frame.clock, from, world: frame.world }, &[]))
+        let from = request.clip.map_or(from, |(_, t)| t - (self.clock - from));
+        Ok(Frame::Play { mode, clock: self.clock, from, world: self.world })
     }
 }
 
@@ -243,6 +286,31 @@ mod tests {
         // A clock that goes back, or is not finite, is refused.
         let back = PlayFrame { clock: 0.1, before: Some(0.2), world: PhysicsWorld::default() };
         assert_eq!(c.play_frame(&request(0.1), &back, &mut framed), Err(PoseError::Time(0.1)));
+    }
+
+    #[test]
+    fn a_solve_together_as_a_games_frames_steps_the_physics_as_play_frame_does() {
+        let c = slider(true);
+        let (mut framed, mut together) = (Posed::default(), Posed::default());
+        let mut solver = Solver::new(crate::SolveOptions::default()).unwrap();
+        let mut before = None;
+        for f in 0..=10 {
+            let clock = f as f64 / 60.0;
+            let frame = PlayFrame { clock, before, world: PhysicsWorld::default() };
+            c.play_frame(&request(clock), &frame, &mut framed).unwrap();
+            c.pose_together_frame(&request(clock), &Together::default(), &mut solver, &frame, &mut together).unwrap();
+            assert_eq!(framed.origin(1).map(f64::to_bits), together.origin(1).map(f64::to_bits), "frame {f}");
+            before = Some(clock);
+        }
+        // The tail lags: the physics stepped.
+        let mut posed = Posed::default();
+        c.pose(&request(10.0 / 60.0), &mut posed).unwrap();
+        assert!((posed.origin(1)[0] - together.origin(1)[0]).abs() > 0.1);
+        // A frame whose interrupt is set stops.
+        let stop = Interrupt::new();
+        stop.interrupt();
+        let frame = PlayFrame { clock: 0.0, before: None, world: PhysicsWorld::default() };
+        assert_eq!(c.play_frame_watched(&request(0.0), &frame, &mut framed, &stop), Err(PoseError::Interrupted));
     }
 
     #[test]

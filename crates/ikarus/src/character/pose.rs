@@ -266,17 +266,8 @@ impl Character {
     }
 
     /// [`Character::pose`] watching `interrupt` when there is one, the IK constraints `off` left
-    /// out (at mix 0, whatever the clip keys; their other settings as the clip has them).
-    pub(crate) fn pose_until(
-        &self,
-        request: &PoseRequest,
-        out: &mut Posed,
-        (interrupt, off): (Option<&Interrupt>, &[usize]),
-    ) -> Result<(), PoseError> {
-        self.pose_frame(request, out, interrupt, (Frame::Still, off))
-    }
-
-    /// [`Character::pose_until`] with the physics constraints treated as `frame` says.
+    /// out (at mix 0, whatever the clip keys; their other settings as the clip has them), the
+    /// physics constraints treated as `frame` says.
     pub(crate) fn pose_frame(
         &self,
         request: &PoseRequest,

@@ -38,7 +38,7 @@
 //! the limbs above it leave free instead of pulling them; on a bone of length 0 it has no tip to
 //! aim, and the runtime's aim applies in its order when the pose is made again.
 
-use super::pose::{PoseError, PoseRequest, Posed};
+use super::pose::{Frame, PoseError, PoseRequest, Posed};
 use super::world::{Affine, world_transform};
 use super::{Character, IkBones, IkRule, IkSettings};
 use crate::angle::wrap_angle;
@@ -207,9 +207,25 @@ impl Character {
         solver: &mut Solver,
         out: &mut Posed,
     ) -> Result<TogetherReport, TogetherError> {
+        self.together(request, (rules, solver), out, Frame::Still)
+    }
+
+    /// [`Character::pose_together`] with the physics constraints treated as `frame` says: as
+    /// one frame of a play, every pose of the rounds steps them from the state `out` kept
+    /// from the frame before (restored before each round), so that the goals are met on the
+    /// pose the constraints, physics included, produce at that frame.
+    pub(super) fn together(
+        &self,
+        request: &PoseRequest,
+        (rules, solver): (&Together, &mut Solver),
+        out: &mut Posed,
+        frame: Frame,
+    ) -> Result<TogetherReport, TogetherError> {
         self.check_together(rules)?;
         let interrupt = solver.options().interrupt.clone();
-        self.pose_until(request, out, (interrupt.as_ref(), &[]))?;
+        // The physics as the frame before left it: every round steps it from there.
+        let kept = matches!(frame, Frame::Play { .. }).then(|| out.physics.clone());
+        self.pose_frame(request, out, interrupt.as_ref(), (frame, &[]))?;
         // A goal or pin on a bone the skin leaves inactive (not posed) could only be met at a
         // made-up place.
         let goal_bones = rules.goals.iter().map(|g| g.goal.bone);
@@ -259,7 +275,10 @@ impl Character {
                     held[first + j].1 += wrap_angle(out.local(m).rotation - before[j]);
                 }
                 let again = PoseRequest { turns: &held, ..*request };
-                self.pose_until(&again, out, (interrupt.as_ref(), &goals))?;
+                if let Some(kept) = &kept {
+                    out.physics.clone_from(kept);
+                }
+                self.pose_frame(&again, out, interrupt.as_ref(), (frame, &goals))?;
                 let drift = self.drift(out, &frozen, &points);
                 report.rounds = round;
                 report.outcome = Some(outcome);

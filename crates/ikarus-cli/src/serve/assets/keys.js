@@ -383,8 +383,8 @@ export function rigMotion(rig, answer) {
  * text, the keys (tracks, and bends when there are: a bend keys a two-bone IK constraint's side;
  * a character has no pins; `duration` when the keys have it: keyed.js gives them the Length),
  * the clip posed under them (none: the setup pose), `ik: "ikarus"` when the reader chose
- * ikarus's solver, and the format: "json" (the frames) or "spine" (the file with the animation
- * `ikarus` added).
+ * ikarus's solver, `physics: false` when the physics switch is off, and the format: "json" (the
+ * frames) or "spine" (the file with the animation `ikarus` added).
  */
 export function characterAnimateRequest(c, keys, format = "json") {
   return {
@@ -398,6 +398,8 @@ export function characterAnimateRequest(c, keys, format = "json") {
     },
     ...(c.animation ? { animation: c.animation } : {}),
     ...(c.ik === "ikarus" ? { ik: "ikarus" } : {}),
+    // The physics switch off: the frames posed each on its own (on, they play as a game's).
+    ...(c.physics === false ? { physics: false } : {}),
     format,
     ...(format === "spine" ? { animation_name: "ikarus" } : {}),
   };

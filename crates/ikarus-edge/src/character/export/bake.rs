@@ -5,7 +5,9 @@
 //! for a rotation, 4.x files `value`). Keys are linear: one per frame (posed at the frame's
 //! time, written at the 32-bit float nearest it), and more by bisection wherever a straight
 //! line between two keys would put a bone's world origin or tip more than the tolerance from
-//! the motion posed at that time. Every constraint of the file (IK, transform, path, physics)
+//! the motion posed at that time. The motion is played as a game plays it ([`Motion::play_at`]:
+//! with its physics stepping frame by frame, unless it is asked off), so the keys hold what the
+//! physics did too. Every constraint of the file (IK, transform, path, physics)
 //! is keyed to mix 0 at time 0, so that the constraints leave the bones where the keys put them
 //! (at mix 0 a constraint does nothing; the keys already hold what the constraints did).
 //!
@@ -13,11 +15,11 @@
 //! [`MAX_REFINED`] keys between two frames and, over the whole motion, [`ADDED_PER_FRAME`] per
 //! frame (the motion's frames × bones is capped before it gets here).
 
-use ikarus::character::{Affine, Character, LocalTransform, Posed, world_transform};
+use ikarus::character::{Affine, Character, LocalTransform, world_transform};
 use serde_json::{Map, Value, json};
 
 use super::written_time;
-use crate::character::motion::Motion;
+use crate::character::motion::{Motion, Playhead};
 
 /// How many times an interval between two frames is halved at most (a key every
 /// 1 / (fps · 2¹⁶) s at the finest, 5·10⁻⁷ s at 30 fps: about the resolution of a key's time,
@@ -52,12 +54,12 @@ pub(super) fn animation(motion: &Motion<'_>, tolerance: f64, legacy: bool) -> Re
 /// The keys: one per frame, and the bisections that keep a straight line between two keys
 /// within the tolerance of the motion.
 fn keys(motion: &Motion<'_>, tolerance: f64) -> Result<Vec<Key>, String> {
-    let mut posed = Posed::default();
+    let mut head = Playhead::default();
     let mut pose = |time: f64| -> Result<Key, String> {
-        motion.pose_at(time, &mut posed)?;
+        let posed = motion.play_at(time, &mut head)?;
         Ok(Key { time, local: (0..posed.len()).map(|i| posed.local(i)).collect() })
     };
-    let mut check = Posed::default();
+    let mut check = Playhead::default();
     let mut world = Vec::new();
     let times = motion.frame_times();
     let mut out = vec![pose(times[0])?];
@@ -79,7 +81,7 @@ fn keys(motion: &Motion<'_>, tolerance: f64) -> Result<Vec<Key>, String> {
 /// `budget` keys left to add.
 fn refine(
     motion: &Motion<'_>,
-    (check, world): (&mut Posed, &mut Vec<Affine>),
+    (check, world): (&mut Playhead, &mut Vec<Affine>),
     end: &Key,
     out: &mut Vec<Key>,
     (depth, budget, tolerance): (u32, &mut usize, f64),
@@ -104,12 +106,17 @@ fn refine(
 
 /// The largest distance between a bone's origin or tip posed by the straight line between keys
 /// `a` and `b` and posed by the motion, at a quarter, half and three quarters of the way.
-fn stray(motion: &Motion<'_>, (check, world): (&mut Posed, &mut Vec<Affine>), a: &Key, b: &Key) -> Result<f64, String> {
+fn stray(
+    motion: &Motion<'_>,
+    (head, world): (&mut Playhead, &mut Vec<Affine>),
+    a: &Key,
+    b: &Key,
+) -> Result<f64, String> {
     let c = &motion.loaded.character;
     let mut worst: f64 = 0.0;
     for f in [0.25, 0.5, 0.75] {
         let time = a.time + (b.time - a.time) * f;
-        motion.pose_at(time, check)?;
+        let check = motion.play_at(time, head)?;
         let local: Vec<LocalTransform> = a.local.iter().zip(&b.local).map(|(p, q)| between(p, q, f)).collect();
         world_of(c, &local, world);
         for (i, bone) in c.bones().iter().enumerate() {

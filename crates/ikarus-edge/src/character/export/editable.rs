@@ -36,7 +36,7 @@ use super::curves::{FittedKey, Fitter, Sample, Shape, tenths};
 use super::ik_keys::{animation as animation_json, settings, switched_off};
 use super::sampler::Sampler;
 use super::{read_time, written_time};
-use crate::character::motion::Motion;
+use crate::character::motion::{Motion, Physics};
 use crate::pose::{IkChoice, PoseAsk, pose_into};
 
 /// How many keys a timeline's fit may add per frame of the motion.
@@ -236,6 +236,13 @@ impl<'a> Job<'_, '_, 'a> {
         out.insert("bones".to_owned(), Value::Object(bones));
         if !ik.is_empty() {
             out.insert("ik".to_owned(), Value::Object(ik));
+        }
+        if self.motion.physics == Physics::Off {
+            // A motion asked without physics: the game leaves it out too (every physics
+            // constraint keyed to mix 0; on, they play on top of the keys as on the motion).
+            if let Some(off) = switched_off(self.character(), self.legacy).remove("physics") {
+                out.insert("physics".to_owned(), off);
+            }
         }
         Ok(Value::Object(out))
     }

@@ -16,6 +16,13 @@
 //! - [`Form::Bake`] ([`bake`]): every bone at every frame, linear keys, with bisection keys
 //!   where a line strays, and every constraint (IK, transform, path, physics) at mix 0.
 //!
+//! Physics: the bake is made of the motion played as a game plays it
+//! ([`super::motion::Motion::play_at`]), so its keys hold what the physics did. The editable
+//! form is fitted to the motion without physics; under the runtime's rules its physics
+//! constraints stay on and play on top of the keys in a game as they play on the motion's
+//! frames (keyed to mix 0 when the motion has them off); under ikarus's solver they are
+//! switched off with the rest, and the export is the motion without physics.
+//!
 //! Either way every key time is written as the 32-bit float Spine's runtime reads
 //! ([`written_time`]), the keys are posed at that time, and a fit is accepted when the pose the
 //! keys give stays within [`tolerance`] of the motion's at every point checked. The keys added

@@ -2,6 +2,10 @@
 //! every timeline of an export reads the same times (the key times and the checks between
 //! them), so posing once per time and not once per timeline keeps an export's poses about
 //! (key times × checks) rather than (timelines × key times × checks).
+//!
+//! The editable form is fitted to the motion without physics ([`Motion::pose_at`]): under the
+//! runtime's rules its physics constraints stay on, and play on top of the keys in a game as
+//! they play on top of the motion's frames ([`Motion::play_at`]).
 
 use std::collections::HashMap;
 use std::rc::Rc;
