@@ -11,7 +11,7 @@
 //! any time for the Spine export ([`super::export`]).
 //!
 //! The frames are a game's frames: a character's physics constraints step from one frame to
-//! the next ([`super::motion_play`]; [`Motion::physics`] off poses each on its own, as
+//! the next (`motion_play.rs`; [`Motion::physics`] off poses each on its own, as
 //! [`Motion::pose_at`] poses any time).
 
 use ikarus::character::Posed;
@@ -20,7 +20,6 @@ use ikarus::{Bend, Ease};
 use serde::Serialize;
 
 use super::Loaded;
-pub use super::motion_play::{Physics, Playhead};
 use crate::keys::KeysFile;
 use crate::keys::character::{bend_constraint, bend_positive};
 pub use crate::names::count_text;
@@ -143,8 +142,36 @@ pub struct Motion<'a> {
     /// Ctrl-C. `None` by default.
     pub interrupt: Option<Interrupt>,
     /// What the frames do with the character's physics constraints: played as a game's frames
-    /// by default ([`super::motion_play`]).
+    /// by default (see `motion_play.rs`).
     pub physics: Physics,
+}
+
+/// What a motion does with the character's physics constraints (a character without any moves
+/// the same either way).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Physics {
+    /// The frames are a game's frames, the physics stepping from one to the next (the
+    /// default; `--physics on`, `"physics": true`).
+    #[default]
+    Played,
+    /// They do nothing: every frame is posed on its own (Spine's `Physics.none`; `--physics
+    /// off`, `"physics": false`).
+    Off,
+}
+
+/// A game's state along a motion, for posing it at any time in increasing order
+/// ([`Motion::play_at`]): the last frame played and the one before (a time between two
+/// frames is posed from the earlier one, even after the later one was played).
+#[derive(Debug, Default)]
+pub struct Playhead {
+    /// The last frame played: its index and clock.
+    pub(super) last: Option<(usize, f64)>,
+    pub(super) last_posed: Posed,
+    /// The frame before it.
+    pub(super) previous: Option<(usize, f64)>,
+    pub(super) previous_posed: Posed,
+    /// A pose between frames.
+    pub(super) between: Posed,
 }
 
 /// One frame: the time and every bone as `ikarus pose --format json` gives it.

@@ -18,36 +18,8 @@
 
 use ikarus::character::{PlayFrame, Posed};
 
-use super::motion::Motion;
+use super::motion::{Motion, Physics, Playhead};
 use crate::pose::pose_frame_into;
-
-/// What a motion does with the character's physics constraints (a character without any moves
-/// the same either way).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Physics {
-    /// The frames are a game's frames, the physics stepping from one to the next (the
-    /// default; `--physics on`, `"physics": true`).
-    #[default]
-    Played,
-    /// They do nothing: every frame is posed on its own (Spine's `Physics.none`; `--physics
-    /// off`, `"physics": false`).
-    Off,
-}
-
-/// A game's state along a motion, for posing it at any time in increasing order
-/// ([`Motion::play_at`]): the last frame played and the one before (a time between two
-/// frames is posed from the earlier one, even after the later one was played).
-#[derive(Debug, Default)]
-pub struct Playhead {
-    /// The last frame played: its index and clock.
-    last: Option<(usize, f64)>,
-    last_posed: Posed,
-    /// The frame before it.
-    previous: Option<(usize, f64)>,
-    previous_posed: Posed,
-    /// A pose between frames.
-    between: Posed,
-}
 
 impl Motion<'_> {
     /// Whether the frames play the character's physics constraints: [`Physics::Played`] and

@@ -28,7 +28,7 @@ pub struct BoneRule {
     pub bone: usize,
     /// The range of its local rotation, radians (the runtime's `rotation`), when it moves.
     pub limits: Option<[f64; 2]>,
-    /// How much it resists turning, ≥ 0 (see [`Bone::stiffness`]).
+    /// How much it resists turning, ≥ 0 (see [`crate::skeleton::Bone::stiffness`]).
     pub stiffness: f64,
 }
 
