@@ -17,7 +17,8 @@
 //! - [`PathLayer`]: a tracked path over either (the wanted path, the tip's trace, flips).
 //! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
 //! - [`draw_art`] / [`art_pixmap`]: a character's [`Art`] (atlas [`Page`]s and textured
-//!   [`ArtPiece`]s) rasterised into a premultiplied pixmap, under the bones' SVG.
+//!   [`ArtPiece`]s) rasterised into a premultiplied [`Pixmap`]; [`draw_svg_onto`] draws an SVG
+//!   (the bones) over it and [`pixmap_png`] encodes it.
 //!
 //! [`View`] maps world coordinates to pixels, for callers that want to find something on the
 //! picture.
@@ -51,8 +52,11 @@ pub use character_gif::{CharacterMotionFigure, character_gif, character_motion_s
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
-pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use raster::{MAX_SIDE, MIN_SIDE, draw_svg_onto, pixmap_png, svg_to_png};
 pub use reachable::Reachable;
+/// The premultiplied RGBA8 picture [`draw_art`] draws on and [`draw_svg_onto`] draws over
+/// (tiny-skia's, as resvg uses it).
+pub use resvg::tiny_skia::Pixmap;
 pub use scene::TrailStyle;
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use skeleton_gif::skeleton_gif;

@@ -2,8 +2,9 @@
 //! premultiplied and straight pages, determinism and bounded work. Synthetic art, expectations
 //! derived by hand from the rules in `art_raster.rs`.
 
-use ikarus_render::{Art, ArtPiece, Blend, Page, RenderError, WorldToPixel, art_pixmap, draw_art};
-use resvg::tiny_skia::Pixmap;
+use ikarus_render::{
+    Art, ArtPiece, Blend, Page, Pixmap, RenderError, WorldToPixel, art_pixmap, draw_art, draw_svg_onto, pixmap_png,
+};
 
 /// World y up to pixels y down on a picture `height` pixels tall: pixel (x, y) = world (x, height − y).
 fn flip(height: u32) -> WorldToPixel {
@@ -335,4 +336,23 @@ fn bad_art_is_an_error_and_draws_nothing() {
     assert_eq!(err.to_string(), "pieces[1].triangles[4]: indices [0, 1, 9] must be below the 5 positions");
     assert!(alphas(&pixmap).iter().all(|&a| a == 0));
     assert!(matches!(art_pixmap(&mesh_art(), &flip(32), 8, 32), Err(RenderError::Size { field: "width", value: 8 })));
+}
+
+#[test]
+fn an_svg_is_drawn_over_the_art_and_the_pair_encodes_as_png() {
+    // Art: an opaque red square over the whole 20 × 20 picture; then an SVG with a blue
+    // rectangle over its left half.
+    let corners = [[0.0, 20.0], [20.0, 20.0], [20.0, 0.0], [0.0, 0.0]];
+    let art = Art { pages: vec![page(1, 1, &[RED], false)], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
+    let mut pixmap = art_pixmap(&art, &flip(20), 20, 20).unwrap();
+    let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"20\">\
+               <rect x=\"0\" y=\"0\" width=\"10\" height=\"20\" fill=\"#0000ff\"/></svg>";
+    draw_svg_onto(svg, &mut pixmap).unwrap();
+    assert_eq!(pixel(&pixmap, 3, 10), BLUE);
+    assert_eq!(pixel(&pixmap, 16, 10), RED);
+    assert!(matches!(draw_svg_onto("not svg", &mut pixmap), Err(RenderError::Svg(_))));
+    let png = pixmap_png(&pixmap).unwrap();
+    let back = Page::decode_png(&png, "pair.png", false).unwrap();
+    assert_eq!((back.width, back.height), (20, 20));
+    assert_eq!(&back.rgba[..4], &BLUE);
 }
