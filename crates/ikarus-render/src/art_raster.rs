@@ -44,6 +44,29 @@ const MAX_COORD: f64 = (1u32 << 21) as f64;
 /// Draws `art`'s pieces in order onto `pixmap` (premultiplied RGBA8, over what is there),
 /// placing world points with `to_pixel`. See the module's rules.
 ///
+/// ```
+/// use ikarus_render::{Art, ArtPiece, Blend, Page, Pixmap, WorldToPixel, draw_art};
+///
+/// // A one-texel red page on a world square 0..10 × 0..10, drawn 2 px per unit on 20 × 20.
+/// let page = Page { width: 1, height: 1, rgba: vec![255, 0, 0, 255], pma: false };
+/// let square = ArtPiece {
+///     page: 0,
+///     positions: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]],
+///     uvs: vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]],
+///     triangles: vec![[0, 1, 2], [0, 2, 3]],
+///     color: [1.0, 1.0, 1.0, 0.5],
+///     dark: None,
+///     blend: Blend::Normal,
+/// };
+/// let art = Art { pages: vec![page], pieces: vec![square] };
+/// let to_pixel = WorldToPixel { xx: 2.0, xy: 0.0, yx: 0.0, yy: -2.0, tx: 0.0, ty: 20.0 };
+/// let mut pixmap = Pixmap::new(20, 20).unwrap();
+/// draw_art(&art, &to_pixel, &mut pixmap)?;
+/// // Every pixel is drawn once, the diagonal too: premultiplied half red.
+/// assert!(pixmap.data().chunks_exact(4).all(|p| p == [128, 0, 0, 128]));
+/// # Ok::<(), ikarus_render::RenderError>(())
+/// ```
+///
 /// # Errors
 /// [`RenderError::Art`] or [`RenderError::NonFinite`] when [`Art::check`] fails; nothing is
 /// drawn then.
