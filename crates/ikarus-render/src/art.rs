@@ -171,7 +171,8 @@ impl Art {
         bounds
     }
 
-    /// Checks that the art can be drawn: every page holds `width · height · 4` bytes, every
+    /// Checks that the art can be drawn: every page has sides of 1 to [`MAX_PAGE_SIDE`] pixels
+    /// and holds `width · height · 4` bytes, every
     /// piece names a page that exists, has one UV per position, triangles whose indices are
     /// positions, and a finite tint (and dark colour). Positions and UVs may be non-finite:
     /// such triangles are skipped when drawing.
@@ -180,6 +181,14 @@ impl Art {
     /// [`RenderError::Art`] naming the first offending field, e.g. `pieces[3].triangles[7]`.
     pub fn check(&self) -> Result<(), RenderError> {
         for (i, page) in self.pages.iter().enumerate() {
+            for (side, value) in [("width", page.width), ("height", page.height)] {
+                if value == 0 || value > MAX_PAGE_SIDE {
+                    return Err(art_error(
+                        format!("pages[{i}].{side}"),
+                        format!("must be between 1 and {MAX_PAGE_SIDE} pixels, got {value}"),
+                    ));
+                }
+            }
             let want = u64::from(page.width) * u64::from(page.height) * 4;
             if page.rgba.len() as u64 != want {
                 return Err(art_error(
@@ -358,6 +367,9 @@ mod tests {
         art.pieces[0].dark = None;
         art.pages[0].rgba.pop();
         assert_eq!(art.check().unwrap_err().to_string(), "pages[0].rgba: a 1×1 page needs 4 bytes, got 3");
+        // A page of no pixels has no texel to sample.
+        art.pages[0] = Page { width: 0, height: 1, rgba: vec![], pma: false };
+        assert_eq!(art.check().unwrap_err().to_string(), "pages[0].width: must be between 1 and 16384 pixels, got 0");
     }
 
     #[test]

@@ -336,6 +336,10 @@ fn bad_art_is_an_error_and_draws_nothing() {
     assert_eq!(err.to_string(), "pieces[1].triangles[4]: indices [0, 1, 9] must be below the 5 positions");
     assert!(alphas(&pixmap).iter().all(|&a| a == 0));
     assert!(matches!(art_pixmap(&mesh_art(), &flip(32), 8, 32), Err(RenderError::Size { field: "width", value: 8 })));
+    // A page without pixels is an error, not a panic when sampling.
+    let mut empty = mesh_art();
+    empty.pages[0] = page(0, 0, &[], false);
+    assert!(matches!(art_pixmap(&empty, &flip(32), 32, 32), Err(RenderError::Art { .. })));
 }
 
 #[test]
