@@ -56,6 +56,23 @@ pub enum RenderError {
     /// An animation without frames.
     #[error("animation.frames: an animation needs at least one frame, got none")]
     NoFrames,
+    /// A character's art cannot be drawn as given (a page of the wrong size, a piece naming a
+    /// page or a vertex that does not exist).
+    #[error("{field}: {problem}")]
+    Art {
+        /// Which field, e.g. `pieces[3].triangles[7]`.
+        field: String,
+        /// What is wrong with it, with the offending value.
+        problem: String,
+    },
+    /// An image file (an atlas page) cannot be decoded.
+    #[error("{file}: {message}")]
+    Image {
+        /// The file's name as the caller gave it.
+        file: String,
+        /// What is wrong, e.g. `not a PNG image: …`.
+        message: String,
+    },
     /// The SVG text could not be parsed.
     #[error("svg: cannot be parsed: {0}")]
     Svg(String),

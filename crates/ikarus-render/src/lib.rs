@@ -16,12 +16,17 @@
 //! - [`ease_svg`] / [`ease_png`]: an ease curve's position and velocity against time.
 //! - [`PathLayer`]: a tracked path over either (the wanted path, the tip's trace, flips).
 //! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
+//! - [`draw_art`] / [`art_pixmap`]: a character's [`Art`] (atlas [`Page`]s and textured
+//!   [`ArtPiece`]s) rasterised into a premultiplied [`Pixmap`]; [`draw_svg_onto`] draws an SVG
+//!   (the bones) over it and [`pixmap_png`] encodes it.
 //!
 //! [`View`] maps world coordinates to pixels, for callers that want to find something on the
 //! picture.
 
 mod animation;
 mod arm;
+mod art;
+mod art_raster;
 mod character;
 mod character_gif;
 mod ease_plot;
@@ -40,13 +45,18 @@ mod wedge;
 
 pub use animation::{MAX_FPS, Overlay, animation_gif, ghost_frames, with_interrupt};
 pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
+pub use art::{Art, ArtPiece, Blend, MAX_PAGE_SIDE, Page, WorldToPixel};
+pub use art_raster::{art_pixmap, draw_art};
 pub use character::{CharacterFigure, PosedBone, character_png, character_svg};
 pub use character_gif::{CharacterMotionFigure, character_gif, character_motion_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;
 pub use path::PathLayer;
-pub use raster::{MAX_SIDE, MIN_SIDE, svg_to_png};
+pub use raster::{MAX_SIDE, MIN_SIDE, draw_svg_onto, pixmap_png, svg_to_png};
 pub use reachable::Reachable;
+/// The premultiplied RGBA8 picture [`draw_art`] draws on and [`draw_svg_onto`] draws over
+/// (tiny-skia's, as resvg uses it).
+pub use resvg::tiny_skia::Pixmap;
 pub use scene::TrailStyle;
 pub use skeleton::{BoneGoal, SkeletonFigure, skeleton_png, skeleton_svg};
 pub use skeleton_gif::skeleton_gif;

@@ -92,7 +92,25 @@ pub(crate) fn new_pixmap(width: u32, height: u32) -> Result<Pixmap, RenderError>
 /// [`RenderError::Svg`] if the text is not SVG, [`RenderError::Size`] if a side (rounded up)
 /// lies outside [`MIN_SIDE`]`..=`[`MAX_SIDE`], [`RenderError::Encode`] if encoding fails.
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, RenderError> {
-    let pixmap = svg_to_pixmap(svg)?;
+    pixmap_png(&svg_to_pixmap(svg)?)
+}
+
+/// Draws SVG text over what `pixmap` already holds (a character's art, say), scaled so that the
+/// SVG's size fills the pixmap, with the embedded fonts.
+///
+/// # Errors
+/// [`RenderError::Svg`] if the text is not SVG.
+pub fn draw_svg_onto(svg: &str, pixmap: &mut Pixmap) -> Result<(), RenderError> {
+    let tree = parse(svg)?;
+    render_onto(&tree, pixmap);
+    Ok(())
+}
+
+/// A pixmap's PNG file bytes (8-bit RGBA, straight alpha as PNG wants it).
+///
+/// # Errors
+/// [`RenderError::Encode`] if encoding fails.
+pub fn pixmap_png(pixmap: &Pixmap) -> Result<Vec<u8>, RenderError> {
     pixmap.encode_png().map_err(|e| RenderError::Encode { format: "png", message: e.to_string() })
 }
 
