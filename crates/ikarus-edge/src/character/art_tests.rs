@@ -229,6 +229,10 @@ fn an_inactive_skin_bones_slot_is_not_drawn_and_a_skin_finds_its_own_attachments
     assert_eq!(body.color, [half, 0.0, 0.0, half * half]);
     assert_eq!(plain.vertices, [[-2.0, -1.0], [-2.0, 1.0], [2.0, 1.0], [2.0, -1.0]]);
     assert_eq!(plain.uvs, [[0.0, 1.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
+    let mut by_index = armed();
+    by_index["skins"][1]["attachments"]["arm"]["arm"]["skin"] = json!(0);
+    let same = load_ok(&by_index.to_string()).character;
+    assert_eq!(same.art(), c.art(), "a .skel's skin index finds the same parent");
     let armed = draw(c.skin_index("armed"));
     let slots: Vec<usize> = armed.items.iter().map(|i| i.slot).collect();
     assert_eq!(slots, [0, 1]);
@@ -257,6 +261,10 @@ fn bad_slots_and_attachments_are_refused_naming_field_and_value() {
     assert!(e.contains(".arm.arm.triangles[2] = 3: no vertex of that index (3 vertices)"), "{e}");
     let e = with(&|v| v["skins"][1]["attachments"]["arm"]["arm"]["parent"] = json!("leg"));
     assert!(e.contains(".arm.arm.parent = \"leg\": not a mesh of this slot in that skin"), "{e}");
+    let e = with(&|v| v["skins"][1]["attachments"]["arm"]["arm"]["skin"] = json!(2));
+    assert!(e.contains(".arm.arm.skin = 2: no such skin"), "{e}");
+    let e = with(&|v| v["skins"][1]["attachments"]["arm"]["arm"]["skin"] = json!("dressed"));
+    assert!(e.contains(".arm.arm.skin = \"dressed\": no such skin"), "{e}");
     let e = with(&|v| v["skins"][0]["attachments"]["arm"]["arm"]["type"] = json!("sprite"));
     assert!(e.contains(".arm.arm.type = \"sprite\": not an attachment type Spine writes"), "{e}");
 }

@@ -10,8 +10,9 @@
 //!   bone's frame when there are as many numbers as UVs, else per vertex a bone count then
 //!   `bone, x, y, weight` per bone), `hull` (0), `width`, `height` (32), `color`. `linkedmesh`:
 //!   `path`, `color`, `width`, `height`, `parent` (a mesh of the same slot), `skin` (the
-//!   parent's skin; the default skin unless given), `timelines`: it takes its parent's UVs,
-//!   triangles, vertices and hull. `path`, `point`, `boundingbox` and `clipping` are not drawn.
+//!   parent's skin by name, or by index as a `.skel` gives it; the default skin unless given),
+//!   `timelines` (not read: no deform timelines yet): it takes its parent's UVs, triangles,
+//!   vertices and hull. `path`, `point`, `boundingbox` and `clipping` are not drawn.
 //! - an attachment with a `sequence` (`start` 1, `digits` 0, `setup` 0) shows region `path`
 //!   followed by `start + setup` written with `digits` digits (its frames are not played; the
 //!   sequence is listed as unsupported).
@@ -84,9 +85,13 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
                         let parent_skin = match a.get("skin") {
                             None | Some(Value::Null) => slots.default_skin(),
                             Some(Value::String(s)) => skin_index.get(s.as_str()).copied(),
+                            // A `.skel` read into JSON names the skin by its index.
+                            Some(Value::Number(n)) => n.as_u64().and_then(|n| usize::try_from(n).ok()),
                             Some(other) => return Err(format!("{at}.skin = {other}: expected a skin's name")),
                         };
-                        let parent_skin = parent_skin.ok_or_else(|| format!("{at}.skin: no such skin"))?;
+                        let parent_skin = parent_skin.filter(|&p| p < skins.len()).ok_or_else(|| {
+                            format!("{at}.skin = {}: no such skin", a.get("skin").unwrap_or(&Value::Null))
+                        })?;
                         let Some(Value::String(parent)) = a.get("parent") else {
                             return Err(format!("{at}.parent: expected the name of a mesh of slot {slot_name:?}"));
                         };
