@@ -81,8 +81,8 @@ fn text_json_and_pictures_say_the_same_pose() {
 fn a_target_moves_a_limb_and_the_server_answers_the_same_bytes() {
     let args = ["--rig", SPINEBOY, "--animation", "walk", "--time", "0.25", "--target", "front-leg-target=60,20"];
     let (out, err) = pose(&[&args[..], &["--format", "json"]].concat());
-    // Spineboy's constraints are all applied (IK and transform); only its clipping attachment is
-    // left out, said on one line.
+    // Spineboy's constraints are all applied (IK and transform); only its clipping attachment and
+    // bounding box (not drawn) are left out, said on one line.
     assert_eq!(err.lines().filter(|l| l.contains("not used by ikarus")).count(), 1, "{err}");
     assert!(err.contains("clipping attachment"), "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
@@ -91,10 +91,13 @@ fn a_target_moves_a_limb_and_the_server_answers_the_same_bytes() {
         (bone("front-leg-target")["x"].as_f64(), bone("front-leg-target")["y"].as_f64()),
         (Some(60.0), Some(20.0))
     );
-    // What it has that ikarus leaves out: its clipping attachment.
+    // What it has that ikarus leaves out: its clipping attachment and bounding box.
     assert_eq!(
         v["unsupported"],
-        json!([{"kind": "clipping attachment", "name": "clipping (skin default, slot clipping)"}])
+        json!([
+            {"kind": "clipping attachment", "name": "clipping (skin default, slot clipping)"},
+            {"kind": "bounding box attachment", "name": "head (skin default, slot head-bb)"}
+        ])
     );
     let server = start(&[]);
     let text = std::fs::read_to_string(SPINEBOY).unwrap();

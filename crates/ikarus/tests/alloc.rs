@@ -524,3 +524,34 @@ fn the_shipped_rigs_solve_without_allocating() {
         assert_eq!(count, 0, "{} bones: {count} allocations in {} solves", n, tasks.len());
     }
 }
+
+/// Issue 40: drawing the shipped spineboy and raptor (world vertices, UVs, triangles of every
+/// slot) into a reused `DrawList` allocates nothing once it has grown.
+#[test]
+fn drawing_the_shipped_characters_allocates_nothing() {
+    use ikarus::character::{DrawList, PoseRequest, Posed};
+    let read = |file: &str| {
+        let path = format!("{}/../../examples/characters/{file}", env!("CARGO_MANIFEST_DIR"));
+        std::fs::read_to_string(&path).unwrap()
+    };
+    let mut list = DrawList::default();
+    let mut out = Posed::default();
+    for (skeleton, atlas) in [("spine-spineboy-pro.json", "spineboy.atlas"), ("spine-raptor-pro.json", "raptor.atlas")]
+    {
+        let c = ikarus_edge::character::load(&read(skeleton), skeleton).unwrap().character;
+        let regions = ikarus_edge::character::atlas::read(&read(atlas)).unwrap().lookup();
+        let walk = c.clip_index("walk").unwrap();
+        let skin = c.default_skin();
+        let request = |i: usize| PoseRequest { clip: Some((walk, i as f64 / 60.0)), skin, ..PoseRequest::default() };
+        c.pose(&request(0), &mut out).unwrap();
+        c.draw_list(&out, skin, &regions, &mut list); // warm-up: grows `list` to this character
+        let (count, ()) = allocations_in(|| {
+            for i in 0..60 {
+                c.pose(&request(i), &mut out).unwrap();
+                c.draw_list(&out, skin, &regions, &mut list);
+            }
+        });
+        assert_eq!(count, 0, "{skeleton}: {count} allocations in 60 drawings");
+        assert!(list.items.len() > 10 && list.vertices.iter().flatten().all(|v| v.is_finite()), "{skeleton}");
+    }
+}

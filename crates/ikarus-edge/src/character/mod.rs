@@ -10,9 +10,11 @@
 //!
 //! What is read: bones (local transforms, inherit modes), IK constraints with all their
 //! settings, and the animations' bone and IK timelines (Spine's by [`clips`], DragonBones' by
-//! [`dragonbones_clips`]). What is not: skins, slots, attachments, images, events, draw order,
-//! deform; transform, path and physics constraints are listed in [`Character::unsupported`]
-//! and left inactive.
+//! [`dragonbones_clips`]), Spine's slots and region, mesh and linked mesh attachments
+//! (`spine_art`, drawn by [`Character::draw_list`]) and texture atlases ([`atlas`]). What is
+//! not: images (the renderer reads the pages), events, and the slot timelines (attachment,
+//! colour, draw order, deform of meshes); what is not drawn or used is listed in
+//! [`Character::unsupported`].
 
 pub mod atlas;
 mod clips;
@@ -26,6 +28,7 @@ pub mod motion_play;
 pub mod skel;
 pub use skel::text_of;
 mod spine;
+mod spine_art;
 mod spine_deform;
 mod spine_path;
 mod spine_path_clips;
@@ -294,6 +297,9 @@ fn latest_time(value: &Value) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod art_tests;
 
 #[cfg(test)]
 mod caps_tests;

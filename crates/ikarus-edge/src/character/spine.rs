@@ -187,6 +187,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .map(|(name, i)| (name, first_physics + i))
         .collect();
     let unsupported = super::spine_unsupported::features(value);
+    let art = super::spine_art::read(value, &slots, index.len())?;
     let ik_names = super::first_index(file.ik.iter().map(|k| k.name.as_str()));
     let transform_names: HashMap<&str, usize> = super::first_index(file.transform.iter().map(|k| k.name.as_str()))
         .into_iter()
@@ -232,8 +233,16 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     if !unsupported.is_empty() {
         warnings.push(inactive(&unsupported));
     }
-    let parts =
-        CharacterParts { bones, constraints, clips, unsupported, skins, skin_required, ..CharacterParts::default() };
+    let parts = CharacterParts {
+        bones,
+        constraints,
+        clips,
+        unsupported,
+        skins,
+        skin_required,
+        art,
+        ..CharacterParts::default()
+    };
     let mut character = super::character(parts)?;
     if let Some(r) = file.skeleton.reference_scale {
         character = character.with_reference_scale(r).map_err(|e| e.to_string())?;

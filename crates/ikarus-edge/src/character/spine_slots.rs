@@ -131,7 +131,7 @@ fn boolean(v: Option<&Value>, default: bool, at: &str) -> Result<bool, String> {
 }
 
 /// A list of finite numbers.
-fn numbers(v: Option<&Value>, at: &str) -> Result<Vec<f64>, String> {
+pub(super) fn numbers(v: Option<&Value>, at: &str) -> Result<Vec<f64>, String> {
     let Some(list) = v.and_then(Value::as_array) else { return Err(format!("{at}: expected a list of numbers")) };
     list.iter().enumerate().map(|(i, x)| number(Some(x), 0.0, &format!("{at}[{i}]"))).collect()
 }
@@ -156,7 +156,7 @@ fn path(a: &Value, bone_count: usize, at: &str) -> Result<PathShape, String> {
 }
 
 /// Weighted vertices: per vertex a bone count, then `(bone, x, y, weight)` per bone.
-fn weighted(v: &[f64], count: usize, bone_count: usize, at: &str) -> Result<Vec<Vec<Weight>>, String> {
+pub(super) fn weighted(v: &[f64], count: usize, bone_count: usize, at: &str) -> Result<Vec<Vec<Weight>>, String> {
     let mut out = Vec::with_capacity(count);
     let mut i = 0;
     for _ in 0..count {

@@ -1,12 +1,13 @@
 //! What a Spine file has that ikarus does not use, listed so that nothing is dropped silently:
-//! clipping attachments, sequences (an attachment's frames shown one after another), any
+//! attachments that are not drawn (clipping, point, bounding box), sequences (an attachment's
+//! frames shown one after another; only the setup frame is drawn), any
 //! top-level field the 4.2 format does not have (Spine 4.3's sliders, a later kind of
 //! constraint) and any animation timeline group it does not know.
 //!
 //! Everything that poses the bones (bones, every constraint kind, skins, the bone and
-//! constraint timelines) is read elsewhere; slots, region, mesh, bounding box, point and path
-//! attachments, draw order, deform, attachment and colour timelines and events describe the art
-//! and the game's events, which ikarus does not draw: they are not listed.
+//! constraint timelines) is read elsewhere, and so are slots, region, mesh, linked mesh and path
+//! attachments (`spine_art`, `spine_slots`); draw order, deform, attachment and colour timelines
+//! and events are not listed (the slot timelines are next).
 
 use ikarus::character::Unsupported;
 use serde_json::Value;
@@ -40,8 +41,11 @@ pub(super) fn features(value: &Value) -> Vec<Unsupported> {
     }
     for (skin, slot, name, attachment) in attachments(value) {
         let at = || format!("{name} (skin {skin}, slot {slot})");
-        if attachment.get("type").and_then(Value::as_str) == Some("clipping") {
-            push("clipping attachment", at());
+        match attachment.get("type").and_then(Value::as_str) {
+            Some("clipping") => push("clipping attachment", at()),
+            Some("point") => push("point attachment", at()),
+            Some("boundingbox") => push("bounding box attachment", at()),
+            _ => {}
         }
         if attachment.get("sequence").is_some() {
             push("sequence", at());
@@ -101,6 +105,8 @@ mod tests {
             "skins": [{"name": "default", "attachments": {"hand": {
                 "clip": {"type": "clipping", "end": "hand", "vertexCount": 3, "vertices": [0, 0, 1, 0, 0, 1]},
                 "flame": {"sequence": {"count": 3}},
+                "bb": {"type": "boundingbox", "vertexCount": 3, "vertices": [0, 0, 1, 0, 0, 1]},
+                "tip": {"type": "point", "x": 1},
                 "arm": {"type": "mesh"}
             }}}],
             "animations": {"go": {"bones": {}, "sliders": {}, "drawOrder": []}}
@@ -109,8 +115,10 @@ mod tests {
             listed(&file),
             [
                 ("field".to_owned(), "slider".to_owned()),
+                ("bounding box attachment".to_owned(), "bb (skin default, slot hand)".to_owned()),
                 ("clipping attachment".to_owned(), "clip (skin default, slot hand)".to_owned()),
                 ("sequence".to_owned(), "flame (skin default, slot hand)".to_owned()),
+                ("point attachment".to_owned(), "tip (skin default, slot hand)".to_owned()),
                 ("timeline".to_owned(), "sliders (animation go)".to_owned()),
             ]
         );

@@ -8,6 +8,12 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum CharacterError {
+    /// The slots or attachments break a rule of [`super::Art`].
+    #[error("art: {what}")]
+    Art {
+        /// What is wrong, with where.
+        what: String,
+    },
     /// The character has no bones.
     #[error("bones: a character needs at least one bone, got none")]
     NoBones,

@@ -13,8 +13,10 @@
 //! transform is relative to its parent's frame (the skeleton's frame for a root bone).
 
 mod applied;
+mod art;
 mod clip;
 mod constraint;
+mod draw;
 mod error;
 mod flat;
 mod ik;
@@ -30,8 +32,12 @@ mod together;
 mod transform;
 mod world;
 
+pub use art::{
+    Art, AtlasRegion, Attachment, BlendMode, MeshAttachment, RegionAttachment, Regions, Rgba, SkinArt, Slot, WHITE,
+};
 pub use clip::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, Interpolation};
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
+pub use draw::{DrawItem, DrawList};
 pub use error::CharacterError;
 pub use path::{
     Chain, DeformKey, Followed, PathConstraint, PathDeform, PathScratch, PathSettings, PathShape, PathVertices,
@@ -81,6 +87,8 @@ pub struct Character {
     kinds: Kinds,
     /// The skeleton's reference scale for physics ([`Character::reference_scale`]).
     reference_scale: f64,
+    /// The slots and the skins' attachments (what is drawn).
+    art: Art,
 }
 
 /// Whether a character has path and physics constraints (a pose keeps their buffers only then).
@@ -280,6 +288,8 @@ pub struct CharacterParts {
     pub skins: Vec<Skin>,
     /// The bones and constraints only a skin turns on.
     pub skin_required: SkinRequired,
+    /// The slots and the skins' attachments (none for a character read without its art).
+    pub art: Art,
 }
 
 impl Character {
@@ -289,7 +299,7 @@ impl Character {
     /// and softness not negative, every timeline's bone or constraint existing and its keys
     /// in increasing finite time with finite values.
     pub fn new(parts: CharacterParts) -> Result<Self, CharacterError> {
-        let CharacterParts { bones, constraints, clips, placement, unsupported, skins, skin_required } = parts;
+        let CharacterParts { bones, constraints, clips, placement, unsupported, skins, skin_required, art } = parts;
         if bones.is_empty() {
             return Err(CharacterError::NoBones);
         }
@@ -357,6 +367,7 @@ impl Character {
                 return Err(CharacterError::PathSkin { constraint: k, skin: p.skin });
             }
         }
+        art.check(bones.len(), skins.len())?;
         let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
             bones,
@@ -373,6 +384,7 @@ impl Character {
             setup,
             kinds,
             reference_scale: PhysicsWorld::default().reference_scale,
+            art,
         })
     }
 
@@ -405,6 +417,11 @@ impl Character {
     /// The animation clips.
     pub fn clips(&self) -> &[Clip] {
         &self.clips
+    }
+
+    /// The slots (the setup draw order) and the skins' attachments.
+    pub fn art(&self) -> &Art {
+        &self.art
     }
 
     /// The skins, as listed in the file.
