@@ -103,10 +103,41 @@ pub(crate) fn character_svg_in(
     width: u32,
     height: u32,
 ) -> String {
+    character_layers(figure, ghosts, view, (width, height), Layers::All)
+}
+
+/// Which parts of a character's picture an SVG holds: all of them; the grid alone, or the
+/// bones, targets and caption alone on a transparent page (a picture with art drawn between);
+/// or all of them with an image (the art, a `data:` URL) over the grid.
+#[derive(Clone, Copy)]
+pub(crate) enum Layers<'a> {
+    All,
+    Grid,
+    Bones,
+    WithImage(&'a str),
+}
+
+/// [`character_svg_in`]'s picture, the `layers` asked for.
+pub(crate) fn character_layers(
+    figure: &CharacterFigure,
+    ghosts: &[&CharacterFigure],
+    view: View,
+    (width, height): (u32, u32),
+    layers: Layers<'_>,
+) -> String {
     let base = figure.bones.first().map_or_else(Point2::origin, |b| b.origin);
     let scene = Scene { base, max_reach: 0.0, min_reach: 0.0, view, goal: None, workspace: None, show_reach: false };
     let mut svg = Svg::new(width, height);
-    scene.background(&mut svg);
+    if !matches!(layers, Layers::Bones) {
+        scene.background(&mut svg);
+    }
+    if let Layers::WithImage(href) = layers {
+        svg.comment("art");
+        svg.image(0.0, 0.0, f64::from(width), f64::from(height), href);
+    }
+    if matches!(layers, Layers::Grid) {
+        return svg.finish();
+    }
     let u = scene.view.layout().unit;
     if !ghosts.is_empty() {
         svg.comment("ghosts");

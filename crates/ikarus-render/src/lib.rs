@@ -18,7 +18,9 @@
 //! - [`svg_to_png`]: any SVG to PNG with the embedded fonts.
 //! - [`draw_art`] / [`art_pixmap`]: a character's [`Art`] (atlas [`Page`]s and textured
 //!   [`ArtPiece`]s) rasterised into a premultiplied [`Pixmap`]; [`draw_svg_onto`] draws an SVG
-//!   (the bones) over it and [`pixmap_png`] encodes it.
+//!   (the bones) over it and [`pixmap_png`] encodes it. [`character_art_png`] /
+//!   [`character_art_svg`]: a posed character's art under its bones; [`art_only_png`] the art
+//!   alone, fitted as Spine's reference pictures are.
 //!
 //! [`View`] maps world coordinates to pixels, for callers that want to find something on the
 //! picture.
@@ -28,6 +30,7 @@ mod arm;
 mod art;
 mod art_raster;
 mod character;
+mod character_art;
 mod character_gif;
 mod ease_plot;
 mod error;
@@ -48,6 +51,7 @@ pub use arm::{ArmFigure, MAX_ANIMATION_GHOSTS, arm_png, arm_svg};
 pub use art::{Art, ArtPiece, Blend, MAX_PAGE_SIDE, Page, WorldToPixel};
 pub use art_raster::{art_pixmap, draw_art};
 pub use character::{CharacterFigure, PosedBone, character_png, character_svg};
+pub use character_art::{ART_FILL, art_only_pixmap, art_only_png, art_only_svg, character_art_png, character_art_svg};
 pub use character_gif::{CharacterMotionFigure, character_gif, character_motion_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;

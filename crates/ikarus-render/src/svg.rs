@@ -203,6 +203,22 @@ impl Svg {
         self.out.push_str("</text>\n");
     }
 
+    /// An `<image>` of `w` × `h` at `(x, y)` from `href` (a `data:` URL: no characters to escape).
+    pub(crate) fn image(&mut self, x: f64, y: f64, w: f64, h: f64, href: &str) {
+        debug_assert!(!href.contains(['"', '<', '&']));
+        self.out.push_str("<image x=\"");
+        push_num(&mut self.out, x);
+        self.out.push_str("\" y=\"");
+        push_num(&mut self.out, y);
+        self.out.push_str("\" width=\"");
+        push_num(&mut self.out, w);
+        self.out.push_str("\" height=\"");
+        push_num(&mut self.out, h);
+        self.out.push_str("\" href=\"");
+        self.out.push_str(href);
+        self.out.push_str("\"/>\n");
+    }
+
     /// A `<title>` (the tooltip of the element it sits in), escaped.
     pub(crate) fn title(&mut self, text: &str) {
         self.out.push_str("<title>");
