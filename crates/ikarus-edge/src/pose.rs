@@ -121,9 +121,22 @@ pub fn pose_watched(loaded: &Loaded, ask: &PoseAsk, interrupt: &Interrupt) -> Re
 }
 
 fn pose_until(loaded: &Loaded, ask: &PoseAsk, interrupt: Option<&Interrupt>) -> Result<PoseReport, String> {
-    let mut posed = Posed::default();
-    let together = pose_into_until(loaded, ask, &mut posed, interrupt)?;
-    let mut report = PoseReport::of(&loaded.character, &posed);
+    pose_keeping(loaded, ask, &mut Posed::default(), interrupt)
+}
+
+/// [`pose`], the pose itself left in `posed` (to draw the character's art from it).
+pub fn pose_kept(loaded: &Loaded, ask: &PoseAsk, posed: &mut Posed) -> Result<PoseReport, String> {
+    pose_keeping(loaded, ask, posed, None)
+}
+
+fn pose_keeping(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    posed: &mut Posed,
+    interrupt: Option<&Interrupt>,
+) -> Result<PoseReport, String> {
+    let together = pose_into_until(loaded, ask, posed, interrupt)?;
+    let mut report = PoseReport::of(&loaded.character, posed);
     report.ik = together.map(|t| IkJson::of(&loaded.character, &t));
     if let IkChoice::Ikarus(rules) = &ask.ik {
         report.targets.extend(rules.goals.iter().map(|g| [g.goal.goal.target().x, g.goal.goal.target().y]));

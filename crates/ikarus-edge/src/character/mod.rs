@@ -16,6 +16,7 @@
 //! colour, draw order, deform of meshes); what is not drawn or used is listed in
 //! [`Character::unsupported`].
 
+pub mod art_draw;
 pub mod atlas;
 mod clips;
 mod dragonbones;
