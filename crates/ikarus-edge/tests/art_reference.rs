@@ -10,8 +10,9 @@
 //! - colour: over the pixels opaque in both, the mean of |Δ| over R, G and B (straight, 0..1);
 //!   under 0.06.
 //!
-//! Our pictures are written to the test's temporary folder (`target/tmp/art_reference/`) to look
-//! at beside the references.
+//! Our pictures, and each comparison's picture (`*-diff.png`: grey where both are opaque, darker
+//! where the colours differ, red where only ours is, blue where only Spine's is), are written to
+//! the test's temporary folder (`target/tmp/art_reference/`) to look at beside the references.
 
 use ikarus::character::{DrawList, Posed};
 use ikarus_edge::character::art_draw::AtlasArt;
@@ -75,12 +76,15 @@ fn ours(pixmap: &ikarus_render::Pixmap) -> Picture {
     Picture { width: pixmap.width() as usize, rgba }
 }
 
-/// `(overlap, colour)`: see the module's doc.
-fn compare(a: &Picture, b: &Picture) -> (f64, f64) {
+/// `(overlap, colour)` (see the module's doc), and a picture of the crops' differences: grey
+/// where both are opaque (darker where the colours differ more), red where only `a` is, blue
+/// where only `b` is, as PNG bytes.
+fn compare(a: &Picture, b: &Picture) -> (f64, f64, Vec<u8>) {
     let (ba, bb) = (a.bounds(), b.bounds());
     let w = (ba[2] - ba[0]).max(bb[2] - bb[0]) + 1;
     let h = (ba[3] - ba[1]).max(bb[3] - bb[1]) + 1;
     let (mut both, mut either, mut diff) = (0usize, 0usize, 0.0);
+    let mut seen = vec![0u8; w * h * 3];
     for y in 0..h {
         for x in 0..w {
             let (p, q) = (a.at([ba[0], ba[1]], x, y), b.at([bb[0], bb[1]], x, y));
@@ -88,13 +92,26 @@ fn compare(a: &Picture, b: &Picture) -> (f64, f64) {
             if in_a || in_b {
                 either += 1;
             }
-            if in_a && in_b {
-                both += 1;
-                diff += (0..3).map(|c| (p[c] - q[c]).abs()).sum::<f64>() / 3.0;
-            }
+            let shade = match (in_a, in_b) {
+                (true, true) => {
+                    both += 1;
+                    let d = (0..3).map(|c| (p[c] - q[c]).abs()).sum::<f64>() / 3.0;
+                    diff += d;
+                    let g = (230.0 * (1.0 - 4.0 * d).max(0.0)) as u8;
+                    [g, g, g]
+                }
+                (true, false) => [255, 0, 0],
+                (false, true) => [0, 0, 255],
+                (false, false) => [255, 255, 255],
+            };
+            seen[(y * w + x) * 3..][..3].copy_from_slice(&shade);
         }
     }
-    (both as f64 / either as f64, diff / both as f64)
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, w as u32, h as u32);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.write_header().unwrap().write_image_data(&seen).unwrap();
+    (both as f64 / either as f64, diff / both as f64, png)
 }
 
 #[test]
@@ -128,7 +145,8 @@ fn the_art_agrees_with_spines_own_renderer() {
         let drawn = art.art(c, &posed, c.default_skin(), &mut DrawList::default()).unwrap();
         let pixmap = ikarus_render::art_only_pixmap(&drawn, 800, 800).unwrap();
         std::fs::write(out.join(picture), ikarus_render::pixmap_png(&pixmap).unwrap()).unwrap();
-        let (overlap, colour) = compare(&ours(&pixmap), &reference(picture));
+        let (overlap, colour, seen) = compare(&ours(&pixmap), &reference(picture));
+        std::fs::write(out.join(picture.replace(".png", "-diff.png")), seen).unwrap();
         println!("{picture}: overlap {overlap:.4}, mean colour difference {:.2} %", 100.0 * colour);
         if overlap < 0.95 || colour >= 0.06 {
             failed.push(picture);
