@@ -26,6 +26,7 @@ mod options;
 mod output;
 mod picture;
 mod pose;
+mod pose_art;
 mod reach;
 mod render;
 #[cfg(feature = "server")]

@@ -125,6 +125,15 @@ pub struct PoseArgs {
     pub out: Option<PathBuf>,
     #[command(flatten)]
     pub size: crate::picture::SizeArgs,
+    /// A Spine character's texture atlas (.atlas), its PNG pages beside it: the picture (.png,
+    /// .svg) draws the character's art under its bones (an SVG holds the art as one embedded
+    /// PNG image under the vector bones)
+    #[arg(long, value_name = "FILE")]
+    pub atlas: Option<PathBuf>,
+    /// With --atlas: the art alone on a transparent background, the box of its vertices filling
+    /// 90 % of --width × --height, centred (as Spine's own renderer fits a skeleton)
+    #[arg(long)]
+    pub art_only: bool,
 }
 
 /// `--physics on|off`.
@@ -175,6 +184,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         eprintln!("ikarus: {label}: {warning}");
     }
     let format = format_of(args)?;
+    let atlas = crate::pose_art::atlas_of(args, &loaded, format)?;
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
     let ik = args.ik.choice(&loaded.character)?;
     let ask = PoseAsk {
@@ -190,8 +200,13 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         },
         skin: args.skin.clone(),
     };
-    let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
-    let bytes = render(&report, format, &|| caption(args), &args.size)?;
+    let bytes = match &atlas {
+        Some(atlas) => crate::pose_art::draw(args, &loaded, &ask, atlas, format, &|| caption(args))?,
+        None => {
+            let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+            render(&report, format, &|| caption(args), &args.size)?
+        }
+    };
     match file {
         Some(file) => file.commit(&bytes),
         None => output::stdout(|w: &mut dyn Write| w.write_all(&bytes)),
@@ -239,14 +254,6 @@ pub fn render(
     caption: &dyn Fn() -> String,
     size: &crate::picture::SizeArgs,
 ) -> Result<Vec<u8>, CliError> {
-    // A number the picture cannot hold (a bone so far away that the view overflows) or a size
-    // out of range is the input's; anything else is the drawing's.
-    let drawn = |e: ikarus_render::RenderError| match e {
-        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
-            CliError::input(format!("cannot draw the pose: {e}"))
-        }
-        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
-    };
     Ok(match format {
         PoseFormat::Text => report.text().into_bytes(),
         PoseFormat::Json => {
@@ -261,6 +268,17 @@ pub fn render(
             ikarus_render::character_png(&report.figure(Some(caption())), size.width, size.height).map_err(drawn)?
         }
     })
+}
+
+/// A picture's failure: a number the picture cannot hold (a bone so far away that the view
+/// overflows) or a size out of range is the input's; anything else is the drawing's.
+pub(crate) fn drawn(e: ikarus_render::RenderError) -> CliError {
+    match e {
+        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
+            CliError::input(format!("cannot draw the pose: {e}"))
+        }
+        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,78 @@
+//! `ikarus pose --atlas FILE.atlas`: the character drawn with its art, under its bones or alone
+//! (`--art-only`). The atlas and its pages are read, and the pose turned into art, by the edge
+//! ([`AtlasArt`]); the pixels are the renderer's.
+//!
+//! Refused, in one line: `--art-only` without `--atlas`; `--atlas` with a DragonBones file
+//! (its art is not read), or with a report that is not a picture (text, JSON); an atlas or a
+//! page image that cannot be read (the page's name and the folder searched); an attachment the
+//! pose draws whose region is not in the atlas (its name and its slot).
+
+use ikarus::character::{DrawList, Posed};
+use ikarus_edge::character::Format;
+use ikarus_edge::character::Loaded;
+use ikarus_edge::character::art_draw::AtlasArt;
+use ikarus_edge::pose::{PoseAsk, pose_kept, skin_index};
+
+use crate::error::CliError;
+use crate::pose::{PoseArgs, PoseFormat, drawn};
+
+/// The atlas `--atlas` names, read with its pages, or `None` without it; the refusals of the
+/// module's doc that come before posing.
+pub fn atlas_of(args: &PoseArgs, loaded: &Loaded, format: PoseFormat) -> Result<Option<AtlasArt>, CliError> {
+    let Some(path) = &args.atlas else {
+        if args.art_only {
+            return Err(CliError::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
+        }
+        return Ok(None);
+    };
+    if loaded.format == Format::DragonBones {
+        return Err(CliError::input(format!(
+            "--atlas {}: DragonBones characters are drawn as bones only (their art is not read); leave out --atlas",
+            path.display()
+        )));
+    }
+    if !matches!(format, PoseFormat::Png | PoseFormat::Svg) {
+        return Err(CliError::input(format!(
+            "--atlas {}: the art is drawn in a picture: give --out FILE.png or FILE.svg (or --format png|svg)",
+            path.display()
+        )));
+    }
+    AtlasArt::read_file(path).map(Some)
+}
+
+/// The pose `ask` of `loaded` drawn with `atlas`'s art in `format` (PNG or SVG), at the size of
+/// `args`: the art alone with `--art-only`, else under the bones, captioned by `caption`.
+pub fn draw(
+    args: &PoseArgs,
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    atlas: &AtlasArt,
+    format: PoseFormat,
+    caption: &dyn Fn() -> String,
+) -> Result<Vec<u8>, CliError> {
+    let label = format!("rig file {}", args.rig.display());
+    let c = &loaded.character;
+    let mut posed = Posed::default();
+    let report = pose_kept(loaded, ask, &mut posed).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+    let skin = skin_index(c, ask.skin.as_deref()).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+    let atlas_label = args.atlas.as_deref().map_or_else(String::new, |p| format!("atlas file {}: ", p.display()));
+    let art = atlas
+        .art(c, &posed, skin, &mut DrawList::default())
+        .map_err(|m| CliError::input(format!("{atlas_label}{m}")))?;
+    let (width, height) = (args.size.width, args.size.height);
+    let bytes = match (format, args.art_only) {
+        (PoseFormat::Png, true) => ikarus_render::art_only_png(&art, width, height),
+        (PoseFormat::Svg, true) => ikarus_render::art_only_svg(&art, width, height).map(String::into_bytes),
+        (PoseFormat::Png, false) => {
+            ikarus_render::character_art_png(&report.figure(Some(caption())), &art, width, height)
+        }
+        (PoseFormat::Svg, false) => {
+            ikarus_render::character_art_svg(&report.figure(Some(caption())), &art, width, height)
+                .map(String::into_bytes)
+        }
+        (PoseFormat::Text | PoseFormat::Json, _) => {
+            return Err(CliError::input("--atlas: the art is drawn in a picture: give --out FILE.png or FILE.svg"));
+        }
+    };
+    bytes.map_err(drawn)
+}
