@@ -11,10 +11,10 @@
 //! What is read: bones (local transforms, inherit modes), IK constraints with all their
 //! settings, and the animations' bone and IK timelines (Spine's by [`clips`], DragonBones' by
 //! [`dragonbones_clips`]), Spine's slots and region, mesh and linked mesh attachments
-//! (`spine_art`, drawn by [`Character::draw_list`]) and texture atlases ([`atlas`]). What is
-//! not: images (the renderer reads the pages), events, and the slot timelines (attachment,
-//! colour, draw order, deform of meshes); what is not drawn or used is listed in
-//! [`Character::unsupported`].
+//! (`spine_art`, drawn by [`Character::draw_list`]) and texture atlases ([`atlas`]), with their
+//! pages' images made into the renderer's art by [`art_draw`]. What is not: events, and the
+//! slot timelines (attachment, colour, draw order, deform of meshes); what is not drawn or used
+//! is listed in [`Character::unsupported`].
 
 pub mod art_draw;
 pub mod atlas;
