@@ -146,7 +146,7 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
 }
 
 /// A colour written as `digits` hex digits (`RRGGBBAA` or `RRGGBB`), white when absent.
-fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, String> {
+pub(super) fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, String> {
     let Some(v) = v else { return Ok(WHITE) };
     let Some(hex) = v.as_str().filter(|s| s.len() == digits && s.chars().all(|c| c.is_ascii_hexdigit())) else {
         return Err(format!("{at} = {v}: expected {digits} hex digits ({})", &"RRGGBBAA"[..digits]));
