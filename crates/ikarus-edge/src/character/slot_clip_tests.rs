@@ -268,6 +268,45 @@ fn spine_4s_colour_curves_are_per_channel() {
     assert!(got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-6), "{got:?}");
 }
 
+/// A slot `a` showing mesh `m` (vertices (0, 0), (10, 0), (0, 10)) in skin `default`, and in
+/// skin `other` a linked mesh `m` of it (with `timelines` = `linked`, absent if `None`); the
+/// animation deforms the default skin's `m`: vertex 1 by (1, 2).
+fn linked_file(linked: Option<bool>) -> String {
+    let mut link = json!({"type": "linkedmesh", "parent": "m", "skin": "default"});
+    if let Some(t) = linked {
+        link["timelines"] = Value::Bool(t);
+    }
+    json!({
+        "skeleton": {"spine": "4.2.0"},
+        "bones": [{"name": "root"}],
+        "slots": [{"name": "a", "bone": "root", "attachment": "m"}],
+        "skins": [
+            {"name": "default", "attachments": {"a": {"m": {"type": "mesh", "uvs": [0, 0, 1, 0, 0, 1],
+                "triangles": [0, 1, 2], "vertices": [0, 0, 10, 0, 0, 10], "hull": 3}}}},
+            {"name": "other", "attachments": {"a": {"m": link}}}
+        ],
+        "animations": {"go": {"attachments": {"default": {"a": {"m": {"deform": [
+            {"time": 0, "offset": 2, "vertices": [1, 2]}
+        ]}}}}}}
+    })
+    .to_string()
+}
+
+#[test]
+fn a_linked_mesh_takes_its_parents_deform_unless_told_not_to() {
+    for (linked, moved) in [(None, true), (Some(true), true), (Some(false), false)] {
+        let c = load_ok(&linked_file(linked)).character;
+        let other = c.skins().iter().position(|s| s.name == "other");
+        let clip = Some((0, 0.5));
+        let mut posed = Posed::default();
+        c.pose(&PoseRequest { clip, skin: other, ..PoseRequest::default() }, &mut posed).unwrap();
+        let mut list = DrawList::default();
+        c.draw_list_at(&posed, other, clip, &Regions::default(), &mut list).unwrap();
+        let want = if moved { [11.0, 2.0] } else { [10.0, 0.0] };
+        assert_eq!(list.vertices[1], want, "timelines {linked:?}");
+    }
+}
+
 #[test]
 fn bad_slot_keys_are_refused_in_one_line() {
     let e = refused(&file("4.2.0", json!({"slots": {"c": {"rgba": []}}})));

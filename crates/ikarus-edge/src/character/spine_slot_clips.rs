@@ -11,7 +11,8 @@
 //!   slot order (absent: the setup order), turned into the whole order by
 //!   [`ikarus::character::draw_order_from_offsets`].
 //! - the deform timelines of meshes, found as the paths' ([`super::spine_deform`]): offsets
-//!   per vertex coordinate, per weight entry of a weighted mesh.
+//!   per vertex coordinate, per weight entry of a weighted mesh. A linked mesh whose
+//!   `timelines` is true (the default) is deformed by its parent's timelines, not its own.
 
 use ikarus::character::{
     Art, Attachment, AttachmentKey, AttachmentTimeline, COLOR_CHANNELS, ColorKey, ColorProperty, ColorTimeline,
@@ -19,7 +20,7 @@ use ikarus::character::{
 };
 use serde_json::Value;
 
-use super::spine_art::color;
+use super::spine_art::{Inherits, color};
 use super::spine_slots::{Slots, number};
 use crate::names::Quoted;
 
@@ -41,12 +42,13 @@ const COLORS: [(&str, ColorProperty, Fields); 7] = [
 pub(super) const KNOWN: [&str; 8] = ["attachment", "rgba", "color", "rgb", "alpha", "rgba2", "twoColor", "rgb2"];
 
 /// The slot timelines of animation `anim` (its JSON) named `name`, at `at`: slots by `slots`,
-/// meshes by `art`; `legacy` for a 3.8 file.
+/// meshes by `art`, `inherits` the linked meshes deformed by their parents' timelines; `legacy`
+/// for a 3.8 file.
 pub(super) fn read(
     anim: &Value,
     (name, at): (&str, &str),
     slots: &Slots,
-    art: &Art,
+    (art, inherits): (&Art, &[Inherits]),
     legacy: bool,
 ) -> Result<SlotClip, String> {
     let mut out = SlotClip::default();
@@ -70,10 +72,20 @@ pub(super) fn read(
         out.draw_order = draw_order(keys, slots, &format!("{at}.{field}"))?;
     }
     for f in super::spine_deform::found(anim, name, slots) {
+        // A linked mesh that takes its parent's timelines does not use its own.
+        if inherits.iter().any(|l| (l.skin, l.slot, l.name.as_str()) == (f.skin, f.slot, f.attachment)) {
+            continue;
+        }
         let Some(Attachment::Mesh(mesh)) = art.skins.get(f.skin).and_then(|s| s.get(f.slot, f.attachment)) else {
             continue;
         };
         let keys = super::spine_deform::read_keys(f.keys, mesh.vertices.deform_len(), f.legacy, &f.at)?;
+        let linked =
+            inherits.iter().filter(|l| (l.parent_skin, l.slot, l.parent.as_str()) == (f.skin, f.slot, f.attachment));
+        for l in linked {
+            let keys = keys.clone();
+            out.deforms.push(MeshDeform { skin: l.skin, slot: l.slot, attachment: l.name.clone(), keys });
+        }
         out.deforms.push(MeshDeform { skin: f.skin, slot: f.slot, attachment: f.attachment.to_owned(), keys });
     }
     Ok(out)
