@@ -15,7 +15,6 @@
 //!   weighted mesh), while the slot shows that mesh of that skin; sampled as a path's deform
 //!   ([`super::DeformKey`]).
 
-use super::art::Rgba;
 use super::path::deform;
 use super::timeline::{f32ed, key_at, segment};
 use super::{CharacterError, DeformKey, Interpolation};
@@ -149,8 +148,9 @@ impl ColorTimeline {
         Some(values)
     }
 
-    /// Sets `color` and `dark` from the values at `time`; before the first key leaves them.
-    pub fn apply(&self, time: f64, color: &mut Rgba, dark: &mut Option<[f64; 3]>) {
+    /// Sets `color` (straight RGBA, as [`super::Rgba`]) and `dark` from the values at `time`;
+    /// before the first key leaves them.
+    pub fn apply(&self, time: f64, color: &mut [f64; 4], dark: &mut Option<[f64; 3]>) {
         let Some(v) = self.at(time) else { return };
         match self.property {
             ColorProperty::Rgba => color.copy_from_slice(&v[..4]),
