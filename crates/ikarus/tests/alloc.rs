@@ -578,7 +578,7 @@ fn drawing_slot_timelines_allocates_nothing() {
         let index = c.clip_index(clip).unwrap();
         let skin = c.default_skin();
         let at = |i: usize| Some((index, i as f64 / 30.0));
-        let mut pass = |out: &mut Posed, list: &mut DrawList| {
+        let pass = |out: &mut Posed, list: &mut DrawList| {
             for i in 0..30 {
                 c.pose(&PoseRequest { clip: at(i), skin, ..PoseRequest::default() }, out).unwrap();
                 c.draw_list_at(out, skin, at(i), &regions, list).unwrap();
