@@ -83,10 +83,11 @@ impl Character {
         skin.and_then(find).or_else(|| self.default_skin().and_then(find))
     }
 
-    /// Fills `state` with the slots' state of clip `clip` at `time` (`None`: the setup state),
-    /// the attachments found as skin `skin` shows them. The clip must be one of the
-    /// character's (an unknown one gives the setup state).
-    pub(crate) fn slot_pose(&self, clip: Option<(usize, f64)>, skin: Option<usize>, state: &mut SlotPose) {
+    /// Fills `state` with the slots' state of clip `clip` at its time (`(clip, seconds)`;
+    /// `None`: the setup state), the attachments found as skin `skin` shows them: what
+    /// [`Character::draw_list_at`] draws with, for a caller that draws by itself. A clip the
+    /// character does not have gives the setup state ([`Character::draw_list_at`] refuses it).
+    pub fn slot_pose(&self, clip: Option<(usize, f64)>, skin: Option<usize>, state: &mut SlotPose) {
         let slots = &self.art().slots;
         let n = slots.len();
         state.clip = clip.map(|(c, _)| c);
