@@ -555,3 +555,38 @@ fn drawing_the_shipped_characters_allocates_nothing() {
         assert!(list.items.len() > 10 && list.vertices.iter().flatten().all(|v| v.is_finite()), "{skeleton}");
     }
 }
+
+/// Issue 40: drawing clips with slot timelines (spineboy's `shoot`: attachments and colours;
+/// `hoverboard`: mesh deforms; the raptor's `jump`: the draw order) with `draw_list_at` into a
+/// reused `DrawList` allocates nothing once a first pass over the same frames has grown it.
+#[test]
+fn drawing_slot_timelines_allocates_nothing() {
+    use ikarus::character::{DrawList, PoseRequest, Posed};
+    let read = |file: &str| {
+        let path = format!("{}/../../examples/characters/{file}", env!("CARGO_MANIFEST_DIR"));
+        std::fs::read_to_string(&path).unwrap()
+    };
+    let mut list = DrawList::default();
+    let mut out = Posed::default();
+    for (skeleton, atlas, clip) in [
+        ("spine-spineboy-pro.json", "spineboy.atlas", "shoot"),
+        ("spine-spineboy-pro.json", "spineboy.atlas", "hoverboard"),
+        ("spine-raptor-pro.json", "raptor.atlas", "jump"),
+    ] {
+        let c = ikarus_edge::character::load(&read(skeleton), skeleton).unwrap().character;
+        let regions = ikarus_edge::character::atlas::read(&read(atlas)).unwrap().lookup();
+        let index = c.clip_index(clip).unwrap();
+        let skin = c.default_skin();
+        let at = |i: usize| Some((index, i as f64 / 30.0));
+        let pass = |out: &mut Posed, list: &mut DrawList| {
+            for i in 0..30 {
+                c.pose(&PoseRequest { clip: at(i), skin, ..PoseRequest::default() }, out).unwrap();
+                c.draw_list_at(out, skin, at(i), &regions, list).unwrap();
+            }
+        };
+        pass(&mut out, &mut list); // warm-up over the same frames
+        let (count, ()) = allocations_in(|| pass(&mut out, &mut list));
+        assert_eq!(count, 0, "{skeleton} {clip}: {count} allocations in 30 drawings");
+        assert!(list.items.len() > 10, "{skeleton} {clip}");
+    }
+}

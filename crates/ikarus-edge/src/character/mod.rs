@@ -35,6 +35,7 @@ mod spine_path;
 mod spine_path_clips;
 pub mod spine_physics;
 mod spine_skins;
+mod spine_slot_clips;
 mod spine_slots;
 mod spine_transform;
 mod spine_unsupported;
@@ -310,6 +311,9 @@ mod transform_tests;
 
 #[cfg(test)]
 mod skin_tests;
+
+#[cfg(test)]
+mod slot_clip_tests;
 
 #[cfg(test)]
 mod skin_mix_tests;

@@ -187,7 +187,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .map(|(name, i)| (name, first_physics + i))
         .collect();
     let unsupported = super::spine_unsupported::features(value);
-    let art = super::spine_art::read(value, &slots, index.len())?;
+    let (mut art, inherits) = super::spine_art::read(value, &slots, index.len())?;
     let ik_names = super::first_index(file.ik.iter().map(|k| k.name.as_str()));
     let transform_names: HashMap<&str, usize> = super::first_index(file.transform.iter().map(|k| k.name.as_str()))
         .into_iter()
@@ -227,9 +227,12 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             clip.constraints.extend(paths);
             let keys = super::spine_physics::clip_timelines(json, &physics, first_physics, &at)?;
             clip.constraints.extend(keys);
-            Ok::<_, String>(clip)
+            let slot_clip = super::spine_slot_clips::read(json, (name, &at), &slots, (&art, &inherits), legacy)?;
+            Ok::<_, String>((clip, slot_clip))
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let (clips, slot_clips): (Vec<_>, Vec<_>) = clips.into_iter().unzip();
+    art.clips = slot_clips;
     if !unsupported.is_empty() {
         warnings.push(inactive(&unsupported));
     }

@@ -11,8 +11,8 @@
 //!   `bone, x, y, weight` per bone), `hull` (0), `width`, `height` (32), `color`. `linkedmesh`:
 //!   `path`, `color`, `width`, `height`, `parent` (a mesh of the same slot), `skin` (the
 //!   parent's skin by name, or by index as a `.skel` gives it; the default skin unless given),
-//!   `timelines` (not read: no deform timelines yet): it takes its parent's UVs, triangles,
-//!   vertices and hull. `path`, `point`, `boundingbox` and `clipping` are not drawn.
+//!   `timelines` (3.8 `deform`; true: it is deformed by its parent's deform timelines, not by
+//!   its own): it takes its parent's UVs, triangles, vertices and hull. `path`, `point`, `boundingbox` and `clipping` are not drawn.
 //! - an attachment with a `sequence` (`start` 1, `digits` 0, `setup` 0) shows region `path`
 //!   followed by `start + setup` written with `digits` digits (its frames are not played; the
 //!   sequence is listed as unsupported).
@@ -36,10 +36,23 @@ struct Link {
     parent: String,
     own: MeshAttachment,
     at: String,
+    inherits: bool,
 }
 
-/// Reads the art of a Spine file (parsed), whose slots and skins `slots` has read.
-pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Art, String> {
+/// A linked mesh that takes its parent's deform timelines (`timelines`, 3.8 `deform`: true
+/// unless given): where it is and where its parent is.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Inherits {
+    pub(super) skin: usize,
+    pub(super) slot: usize,
+    pub(super) name: String,
+    pub(super) parent_skin: usize,
+    pub(super) parent: String,
+}
+
+/// Reads the art of a Spine file (parsed), whose slots and skins `slots` has read, and the
+/// linked meshes that take their parents' deform timelines.
+pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(Art, Vec<Inherits>), String> {
     let mut art = Art::default();
     let list = value.get("slots").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
     for (s, (json, slot)) in list.iter().zip(&slots.slots).enumerate() {
@@ -95,6 +108,11 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
                         let Some(Value::String(parent)) = a.get("parent") else {
                             return Err(format!("{at}.parent: expected the name of a mesh of slot {slot_name:?}"));
                         };
+                        let inherits = match a.get("timelines").or_else(|| a.get("deform")) {
+                            None => true,
+                            Some(Value::Bool(b)) => *b,
+                            Some(other) => return Err(format!("{at}.timelines = {other}: expected true or false")),
+                        };
                         let own = MeshAttachment {
                             path: path(a, name, &at)?,
                             uvs: Vec::new(),
@@ -113,6 +131,7 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
                             parent: parent.clone(),
                             own,
                             at,
+                            inherits,
                         });
                         continue;
                     }
@@ -124,7 +143,17 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
         }
         art.skins.push(out);
     }
+    let mut inherits = Vec::new();
     for link in links {
+        if link.inherits {
+            inherits.push(Inherits {
+                skin: link.skin,
+                slot: link.slot,
+                name: link.name.clone(),
+                parent_skin: link.parent_skin,
+                parent: link.parent.clone(),
+            });
+        }
         let parent = art.skins[link.parent_skin].get(link.slot, &link.parent);
         let Some(Attachment::Mesh(p)) = parent else {
             return Err(format!(
@@ -142,11 +171,11 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<Ar
         };
         art.skins[link.skin].slots[link.slot].insert(link.name, Attachment::Mesh(mesh));
     }
-    Ok(art)
+    Ok((art, inherits))
 }
 
 /// A colour written as `digits` hex digits (`RRGGBBAA` or `RRGGBB`), white when absent.
-fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, String> {
+pub(super) fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, String> {
     let Some(v) = v else { return Ok(WHITE) };
     let Some(hex) = v.as_str().filter(|s| s.len() == digits && s.chars().all(|c| c.is_ascii_hexdigit())) else {
         return Err(format!("{at} = {v}: expected {digits} hex digits ({})", &"RRGGBBAA"[..digits]));

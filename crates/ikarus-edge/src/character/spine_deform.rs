@@ -1,9 +1,9 @@
-//! Spine's deform timelines of path attachments: in an animation, `attachments` = `{skin:
+//! Spine's deform timelines (of path attachments here): in an animation, `attachments` = `{skin:
 //! {slot: {attachment: {deform: [key…]}}}}` (4.x; 3.8 calls it `deform` = `{skin: {slot:
 //! {attachment: [key…]}}}`). A key: `time` (0), `offset` (0, where `vertices` start among the
 //! offsets), `vertices` (absent: all zeros), `curve` (absent: linear; `"stepped"`; 4.x
 //! `[cx1, cy1, cx2, cy2]` with values from 0 to 1; 3.8 `curve`, `c2`, `c3`, `c4` normalised).
-//! Deforms of attachments that are not paths (meshes) are not read.
+//! Meshes' deform timelines are read the same way by [`super::spine_slot_clips`].
 
 use ikarus::character::{DeformKey, Interpolation, PathDeform};
 use serde_json::Value;
@@ -24,41 +24,61 @@ pub(super) struct SkinDeform {
     pub(super) deform: PathDeform,
 }
 
-/// The path deform timelines of animation `anim` (its JSON) named `name`.
-pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDeform>, String> {
+/// One deform timeline of an animation, found in the file: its skin's index, slot's index,
+/// attachment's name, keys (JSON) and where they are.
+pub(super) struct Found<'a> {
+    pub(super) skin: usize,
+    pub(super) slot: usize,
+    pub(super) attachment: &'a str,
+    pub(super) keys: &'a [Value],
+    pub(super) at: String,
+    /// Whether 3.8's curve form is read.
+    pub(super) legacy: bool,
+}
+
+/// Every deform timeline of animation `anim` (its JSON) named `name` whose skin and slot exist.
+pub(super) fn found<'a>(anim: &'a Value, name: &str, slots: &Slots) -> Vec<Found<'a>> {
     let (field, legacy) = if anim.get("attachments").is_some() { ("attachments", false) } else { ("deform", true) };
     let mut out = Vec::new();
-    let Some(skins) = anim.get(field).and_then(Value::as_object) else { return Ok(out) };
-    let default = slots.default_skin();
+    let Some(skins) = anim.get(field).and_then(Value::as_object) else { return out };
     for (skin_name, by_slot) in skins {
-        let Some(index) = slots.skins.iter().position(|s| &s.name == skin_name) else { continue };
-        let skin = &slots.skins[index];
+        let Some(skin) = slots.skins.iter().position(|s| &s.name == skin_name) else { continue };
         let Some(by_slot) = by_slot.as_object() else { continue };
         for (slot_name, by_attachment) in by_slot {
             let Some(&slot) = slots.index.get(slot_name) else { continue };
             let Some(by_attachment) = by_attachment.as_object() else { continue };
             for (attachment, timelines) in by_attachment {
-                let Some(Some(path)) = skin.attachments.get(&(slot, attachment.clone())) else { continue };
                 let keys = if legacy { Some(timelines) } else { timelines.get("deform") };
                 let Some(keys) = keys.and_then(Value::as_array) else { continue };
                 let at = format!("animations.{name}.{field}.{skin_name}.{slot_name}.{attachment}");
                 let at = if legacy { at } else { format!("{at}.deform") };
-                let len = path.vertices.deform_len();
-                let keys = read_keys(keys, len, legacy, &at)?;
-                out.push(SkinDeform {
-                    skin: skin_name.clone(),
-                    source: (Some(index) != default).then_some(index),
-                    attachment: attachment.clone(),
-                    deform: PathDeform { slot, keys },
-                });
+                out.push(Found { skin, slot, attachment, keys, at, legacy });
             }
         }
+    }
+    out
+}
+
+/// The path deform timelines of animation `anim` (its JSON) named `name`.
+pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDeform>, String> {
+    let default = slots.default_skin();
+    let mut out = Vec::new();
+    for f in found(anim, name, slots) {
+        let skin = &slots.skins[f.skin];
+        let Some(Some(path)) = skin.attachments.get(&(f.slot, f.attachment.to_owned())) else { continue };
+        let keys = read_keys(f.keys, path.vertices.deform_len(), f.legacy, &f.at)?;
+        out.push(SkinDeform {
+            skin: skin.name.clone(),
+            source: (Some(f.skin) != default).then_some(f.skin),
+            attachment: f.attachment.to_owned(),
+            deform: PathDeform { slot: f.slot, keys },
+        });
     }
     Ok(out)
 }
 
 /// The keys of one deform timeline, `len` offsets each.
-fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> Result<Vec<DeformKey>, String> {
+pub(super) fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> Result<Vec<DeformKey>, String> {
     let mut out: Vec<DeformKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         let at = format!("{at}[{i}]");

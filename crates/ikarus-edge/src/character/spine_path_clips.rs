@@ -92,30 +92,35 @@ fn channel_keys(keys: &Value, kind: &Kind, legacy: bool, at: &str) -> Result<Vec
         let Some(next) = out.get(i + 1).copied() else { break };
         let at = format!("{at}[{i}].curve");
         let n = kind.fields.len();
-        out[i].curves = curves(&keys[i], (&out[i], &next), n, legacy, &at)?;
+        let this = out[i];
+        curves(&keys[i], (this.time, &this.values[..n]), (next.time, &next.values[..n]), legacy, &at)
+            .map(|c| out[i].curves[..n].copy_from_slice(&c))?;
     }
     Ok(out)
 }
 
-/// Key `k`'s curves toward the next key, per channel.
-fn curves(
+/// Key `k`'s curves toward the next key, one per channel: `from` and `to` are the two keys'
+/// times and values. 4.x: absent (linear), `"stepped"`, or `[cx1, cy1, cx2, cy2]` per channel in
+/// absolute units; 3.8: `curve`, `c2`, `c3`, `c4` in the unit square, the same for every channel.
+pub(super) fn curves(
     k: &Value,
-    (this, next): (&ChannelKey, &ChannelKey),
-    n: usize,
+    (t0, from): (f64, &[f64]),
+    (t1, to): (f64, &[f64]),
     legacy: bool,
     at: &str,
-) -> Result<[Interpolation; MAX_CHANNELS], String> {
-    let mut out = [Interpolation::Linear; MAX_CHANNELS];
+) -> Result<Vec<Interpolation>, String> {
+    let n = from.len();
+    let mut out = vec![Interpolation::Linear; n];
     match k.get("curve") {
         None => {}
-        Some(Value::String(s)) if s == "stepped" => out[..n].fill(Interpolation::Stepped),
+        Some(Value::String(s)) if s == "stepped" => out.fill(Interpolation::Stepped),
         Some(Value::Array(p)) if !legacy && p.len() == 4 * n => {
             let p = p
                 .iter()
                 .enumerate()
                 .map(|(j, x)| number(Some(x), 0.0, &format!("{at}[{j}]")))
                 .collect::<Result<Vec<_>, _>>()?;
-            for (ch, c) in out.iter_mut().enumerate().take(n) {
+            for (ch, c) in out.iter_mut().enumerate() {
                 let q = &p[4 * ch..4 * ch + 4];
                 *c = Interpolation::Bezier { c1: [q[0], q[1]], c2: [q[2], q[3]] };
             }
@@ -127,9 +132,8 @@ fn curves(
                 number(k.get("c3"), 1.0, &format!("{at}.c3"))?,
                 number(k.get("c4"), 1.0, &format!("{at}.c4"))?,
             ];
-            for (ch, c) in out.iter_mut().enumerate().take(n) {
-                let from = [this.time, this.values[ch]];
-                *c = super::clips::unit_bezier(from, [next.time, next.values[ch]], q);
+            for (ch, c) in out.iter_mut().enumerate() {
+                *c = super::clips::unit_bezier([t0, from[ch]], [t1, to[ch]], q);
             }
         }
         Some(other) => {

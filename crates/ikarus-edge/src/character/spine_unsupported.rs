@@ -6,8 +6,9 @@
 //!
 //! Everything that poses the bones (bones, every constraint kind, skins, the bone and
 //! constraint timelines) is read elsewhere, and so are slots, region, mesh, linked mesh and path
-//! attachments (`spine_art`, `spine_slots`); draw order, deform, attachment and colour timelines
-//! and events are not listed (the slot timelines are next).
+//! attachments (`spine_art`, `spine_slots`), and the attachment, colour, draw order and deform
+//! timelines (`spine_slot_clips`); events are not listed. A slot timeline of another name and an
+//! attachment's `sequence` timeline (its frames played over time) are listed.
 
 use ikarus::character::Unsupported;
 use serde_json::Value;
@@ -55,6 +56,26 @@ pub(super) fn features(value: &Value) -> Vec<Unsupported> {
         for group in animation.as_object().into_iter().flat_map(|a| a.keys()) {
             if !TIMELINES.contains(&group.as_str()) {
                 push("timeline", format!("{group} (animation {name})"));
+            }
+        }
+        for (slot, timelines) in animation.get("slots").and_then(Value::as_object).into_iter().flatten() {
+            for kind in timelines.as_object().into_iter().flat_map(|t| t.keys()) {
+                if !super::spine_slot_clips::KNOWN.contains(&kind.as_str()) {
+                    push("timeline", format!("{kind} (animation {name}, slot {slot})"));
+                }
+            }
+        }
+        let skins = animation.get("attachments").and_then(Value::as_object).into_iter().flatten();
+        for (skin, slots) in skins {
+            for (slot, list) in slots.as_object().into_iter().flatten() {
+                for (attachment, timelines) in list.as_object().into_iter().flatten() {
+                    for kind in timelines.as_object().into_iter().flat_map(|t| t.keys()).filter(|k| *k != "deform") {
+                        push(
+                            "timeline",
+                            format!("{kind} of {attachment} (animation {name}, skin {skin}, slot {slot})"),
+                        );
+                    }
+                }
             }
         }
     }
@@ -109,7 +130,9 @@ mod tests {
                 "tip": {"type": "point", "x": 1},
                 "arm": {"type": "mesh"}
             }}}],
-            "animations": {"go": {"bones": {}, "sliders": {}, "drawOrder": []}}
+            "animations": {"go": {"bones": {}, "sliders": {}, "drawOrder": [],
+                "slots": {"hand": {"rgba": [], "flash": []}},
+                "attachments": {"default": {"hand": {"flame": {"deform": [], "sequence": []}}}}}}
         });
         assert_eq!(
             listed(&file),
@@ -120,6 +143,8 @@ mod tests {
                 ("sequence".to_owned(), "flame (skin default, slot hand)".to_owned()),
                 ("point attachment".to_owned(), "tip (skin default, slot hand)".to_owned()),
                 ("timeline".to_owned(), "sliders (animation go)".to_owned()),
+                ("timeline".to_owned(), "flash (animation go, slot hand)".to_owned()),
+                ("timeline".to_owned(), "sequence of flame (animation go, skin default, slot hand)".to_owned()),
             ]
         );
     }

@@ -146,7 +146,7 @@ fn spineboys_values_read_as_the_file_writes_them() {
 
 const MINIMAL: &str = r#"{"skeleton": {"spine": "4.2.22", "x": -5, "y": 7, "width": 10, "height": 20},
   "bones": [{"name": "root"}, {"name": "a", "parent": "root"}, {"name": "b", "parent": "a"}, {"name": "t", "parent": "root"}],
-  "ik": [{"name": "k", "bones": ["a", "b"], "target": "t"}],
+  "ik": [{"name": "k", "bones": ["a", "b"], "target": "t"}], "slots": [{"name": "s", "bone": "root"}],
   "animations": {"go": {"bones": {"a": {"rotate": [{"value": 10}, {"time": 0.5, "curve": "stepped"}, {"time": 1}],
     "scale": [{}], "inherit": [{"inherit": "noScale"}]}},
     "ik": {"k": [{}]}, "slots": {"s": {"rgba": [{"time": 3, "color": "ffffffff"}]}}}}}"#;

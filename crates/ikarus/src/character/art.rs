@@ -145,14 +145,18 @@ pub struct Art {
     pub slots: Vec<Slot>,
     /// Per skin (as [`super::Character::skins`] lists them), its attachments.
     pub skins: Vec<SkinArt>,
+    /// Per clip (as [`super::Character::clips`] lists them; fewer: the rest have none), its
+    /// slot timelines.
+    pub clips: Vec<super::SlotClip>,
 }
 
 impl Art {
     /// Checks the art against a character of `bones` bones and `skins` skins: every slot's bone
     /// and every weight's bone exists, each skin's attachments are indexed by existing slots,
     /// numbers are finite, a mesh has one UV per vertex and whole triangles of existing
-    /// vertices, and its hull is not larger than it.
-    pub(crate) fn check(&self, bones: usize, skins: usize) -> Result<(), CharacterError> {
+    /// vertices, and its hull is not larger than it; the slot timelines of at most `clips`
+    /// clips follow [`super::slot_clip`]'s rules.
+    pub(crate) fn check(&self, bones: usize, skins: usize, clips: usize) -> Result<(), CharacterError> {
         let bad = |what: String| Err(CharacterError::Art { what });
         if self.skins.len() > skins {
             return bad(format!("{} skins of attachments for {skins} skins", self.skins.len()));
@@ -177,7 +181,7 @@ impl Art {
                 }
             }
         }
-        Ok(())
+        super::slot_clip::check(&self.clips, self.slots.len(), skins, clips)
     }
 }
 

@@ -3,10 +3,11 @@
 //!
 //! Rules (Spine's JSON export format, "Slots", "Skins", "Region attachments", "Mesh
 //! attachments"; its atlas format for the regions):
-//! - Slots are drawn in the order listed (the setup draw order); a slot is skipped when its bone
-//!   is inactive (the skin does not turn it on) or it shows no attachment, or its attachment is
-//!   not a region or a mesh. The attachment's name is the slot's setup `attachment`, looked up in
-//!   the chosen skin first, then in the skin called `default`.
+//! - Slots are drawn in the draw order (the setup order, or the clip's draw order key in force);
+//!   a slot is skipped when its bone is inactive (the skin does not turn it on) or it shows no
+//!   attachment, or its attachment is not a region or a mesh. The attachment's name is the
+//!   slot's setup `attachment` or the clip's attachment key in force, looked up in the chosen
+//!   skin first, then in the skin called `default`.
 //! - A region: the quad `width × height` centred on `(x, y)`, scaled by `scaleX`, `scaleY`,
 //!   rotated by `rotation`, in the slot bone's frame, then through the bone's world transform.
 //!   With whitespace stripped (atlas `offsets`), the quad shrinks to the packed image's part of
@@ -16,17 +17,20 @@
 //!   bottom-right; triangles `0 1 2`, `2 3 0`.
 //! - A mesh: unweighted vertices go through the slot bone's world transform; a weighted vertex
 //!   is `Σ weight · (bone's world transform applied to (x, y))`. Its UVs are in the original
-//!   image, mapped onto the packed image and the page.
-//! - Colour: the slot's times the attachment's, channel by channel; the dark colour is the
-//!   slot's.
+//!   image, mapped onto the packed image and the page. A deform timeline's offsets are added to
+//!   the vertex coordinates first (per weight entry of a weighted mesh).
+//! - Colour: the slot's (setup, or the clip's colour keys) times the attachment's, channel by
+//!   channel; the dark colour is the slot's.
 //!
-//! The pose's own slot changes (attachment, colour, draw order and deform timelines) are not
-//! applied yet: when [`Posed`] carries them, this is where they replace the setup values.
+//! The slots' state at the clip's time ([`SlotPose`], the `slot_pose` module) is computed here,
+//! not when the bones are posed, so a pose drawn without its art costs nothing more.
 
 use std::ops::Range;
 
 use super::art::{AtlasRegion, Attachment, BlendMode, MeshAttachment, RegionAttachment, Regions, Rgba};
-use super::{Affine, Character, PathVertices, Posed};
+use super::path::spline::extend_world;
+use super::slot_pose::SlotPose;
+use super::{Affine, Character, PoseError, Posed};
 
 /// One slot's drawing.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,6 +63,8 @@ pub struct DrawList {
     pub uvs: Vec<[f64; 2]>,
     /// Triangle indices, three per triangle, relative to their item's first vertex.
     pub triangles: Vec<u32>,
+    /// The slots' state the list was drawn with (attachments, colours, draw order, deforms).
+    pub slots: SlotPose,
 }
 
 impl DrawList {
@@ -83,15 +89,52 @@ impl Character {
         skin.and_then(find).or_else(|| self.default_skin().and_then(find))
     }
 
-    /// What pose `posed` draws with skin `skin` (the skin it was posed with), the images placed
-    /// by `regions`, into `out` (cleared first). See the module's doc for the rules.
+    /// What pose `posed` draws with skin `skin` (the skin it was posed with) in the setup
+    /// slot state, the images placed by `regions`, into `out` (cleared first). See the module's
+    /// doc for the rules.
     pub fn draw_list(&self, posed: &Posed, skin: Option<usize>, regions: &Regions, out: &mut DrawList) {
         out.clear();
-        for (i, slot) in self.art.slots.iter().enumerate() {
+        self.slot_pose(None, skin, &mut out.slots);
+        self.draw_slots(posed, skin, regions, out);
+    }
+
+    /// What pose `posed` draws with skin `skin`, the slots as clip `clip` sets them at its time
+    /// (`(clip, seconds)`, as the pose was asked; `None`: the setup slots): the attachment,
+    /// colour, draw order and deform timelines. The images are placed by `regions`; `out` is
+    /// cleared first and allocates nothing once it has grown. `Err` for a clip the character
+    /// does not have or a time that is not finite.
+    pub fn draw_list_at(
+        &self,
+        posed: &Posed,
+        skin: Option<usize>,
+        clip: Option<(usize, f64)>,
+        regions: &Regions,
+        out: &mut DrawList,
+    ) -> Result<(), PoseError> {
+        if let Some((c, time)) = clip {
+            if c >= self.clips().len() {
+                return Err(PoseError::UnknownClip(c));
+            }
+            if !time.is_finite() {
+                return Err(PoseError::Time(time));
+            }
+        }
+        out.clear();
+        self.slot_pose(clip, skin, &mut out.slots);
+        self.draw_slots(posed, skin, regions, out);
+        Ok(())
+    }
+
+    /// The drawing of every slot in `out.slots`' order and state.
+    fn draw_slots(&self, posed: &Posed, skin: Option<usize>, regions: &Regions, out: &mut DrawList) {
+        for k in 0..out.slots.order().len() {
+            let i = out.slots.order()[k];
+            let Some(slot) = self.art.slots.get(i) else { continue };
             if slot.bone >= posed.len() || !posed.is_active(slot.bone) {
                 continue;
             }
-            let Some(attachment) = self.setup_attachment(i, skin) else { continue };
+            let name = self.shown_attachment(&out.slots, i);
+            let Some((_, attachment)) = name.and_then(|name| self.find_attachment(i, name, skin)) else { continue };
             let (path, color) = match attachment {
                 Attachment::Region(r) => (&r.path, r.color),
                 Attachment::Mesh(m) => (&m.path, m.color),
@@ -107,19 +150,23 @@ impl Character {
                     out.triangles.extend_from_slice(&QUAD);
                 }
                 Attachment::Mesh(m) => {
-                    mesh_vertices(m, geometry, posed, posed.world(slot.bone), out);
+                    let bone = posed.world(slot.bone);
+                    let world = |b: usize| posed.world(b);
+                    extend_world(&m.vertices, &bone, &world, out.slots.deform(i), &mut out.vertices);
+                    mesh_uvs(m, geometry, out);
                     out.triangles.extend_from_slice(&m.triangles);
                 }
                 Attachment::NotDrawn => {}
             }
-            let color = std::array::from_fn(|c| slot.color[c] * color[c]);
+            let slot_color = out.slots.color(i);
+            let color = std::array::from_fn(|c| slot_color[c] * color[c]);
             out.items.push(DrawItem {
                 slot: i,
                 region,
                 vertices: start..out.vertices.len(),
                 triangles: first..out.triangles.len(),
                 color,
-                dark: slot.dark,
+                dark: out.slots.dark(i),
                 blend: slot.blend,
             });
         }
@@ -161,17 +208,8 @@ fn region_vertices(r: &RegionAttachment, geometry: Option<&AtlasRegion>, bone: A
     }
 }
 
-/// A mesh's vertices in the world and on the page.
-fn mesh_vertices(m: &MeshAttachment, geometry: Option<&AtlasRegion>, posed: &Posed, bone: Affine, out: &mut DrawList) {
-    match &m.vertices {
-        PathVertices::Plain(v) => out.vertices.extend(v.iter().map(|&p| apply(&bone, p))),
-        PathVertices::Weighted(v) => out.vertices.extend(v.iter().map(|weights| {
-            weights.iter().fold([0.0, 0.0], |acc, w| {
-                let p = apply(&posed.world(w.bone), w.point);
-                [acc[0] + p[0] * w.weight, acc[1] + p[1] * w.weight]
-            })
-        })),
-    }
+/// A mesh's vertices on the page.
+fn mesh_uvs(m: &MeshAttachment, geometry: Option<&AtlasRegion>, out: &mut DrawList) {
     match geometry {
         Some(g) => out.uvs.extend(m.uvs.iter().map(|&uv| g.page_uv(g.packed(uv)))),
         None => out.uvs.extend_from_slice(&m.uvs),

@@ -5,7 +5,9 @@
 use std::collections::HashMap;
 
 use super::*;
-use crate::character::{Art, AtlasRegion, CharacterParts, PoseRequest, Skin, SkinArt, Slot, WHITE, Weight};
+use crate::character::{
+    Art, AtlasRegion, CharacterParts, PathVertices, PoseRequest, Skin, SkinArt, Slot, WHITE, Weight,
+};
 use crate::fixtures::character_bone;
 
 fn region(name: &str, degrees: u16) -> AtlasRegion {
@@ -41,7 +43,7 @@ fn character(attachment: Attachment) -> (Character, Posed) {
     let parts = CharacterParts {
         bones: vec![bone],
         skins: vec![Skin { name: "default".into(), ..Skin::default() }],
-        art: Art { slots: vec![slot], skins: vec![skin] },
+        art: Art { slots: vec![slot], skins: vec![skin], ..Art::default() },
         ..CharacterParts::default()
     };
     let c = Character::new(parts).unwrap();
@@ -153,6 +155,7 @@ fn an_attachment_that_is_not_drawn_draws_nothing_and_bad_art_is_refused() {
         art: Art {
             slots: vec![],
             skins: vec![SkinArt { slots: vec![HashMap::from([("m".to_owned(), Attachment::Mesh(bad))])] }],
+            ..Art::default()
         },
         ..CharacterParts::default()
     };

@@ -27,6 +27,8 @@ mod play;
 mod pose;
 mod pose_check;
 mod skin;
+mod slot_clip;
+mod slot_pose;
 mod timeline;
 mod together;
 mod transform;
@@ -51,6 +53,11 @@ pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTim
 pub use play::{MAX_FRAMES, Play, PlayFrame};
 pub use pose::{PoseError, PoseRequest, Posed};
 pub use skin::{Skin, SkinRequired};
+pub use slot_clip::{
+    AttachmentKey, AttachmentTimeline, COLOR_CHANNELS, ColorKey, ColorProperty, ColorTimeline, DrawOrderKey,
+    MeshDeform, SlotClip, draw_order_at, draw_order_from_offsets,
+};
+pub use slot_pose::SlotPose;
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
 };
@@ -367,7 +374,7 @@ impl Character {
                 return Err(CharacterError::PathSkin { constraint: k, skin: p.skin });
             }
         }
-        art.check(bones.len(), skins.len())?;
+        art.check(bones.len(), skins.len(), clips.len())?;
         let activity = skin::Activity::new(bones.len(), constraints.len(), &skin_required);
         Ok(Character {
             bones,

@@ -96,10 +96,24 @@ pub(crate) fn world_vertices(
     out: &mut Vec<[f64; 2]>,
 ) {
     out.clear();
+    extend_world(&path.vertices, slot, world, deform, out);
+}
+
+/// Appends `vertices` in the world to `out`, `deform` added to the coordinates first (two per
+/// point, per weight entry of a weighted vertex; coordinates past its end get none): a plain
+/// vertex goes through `slot`, a weighted one is `Σ weight · world(bone)(x, y)`. A path's and a
+/// mesh's vertices alike.
+pub(crate) fn extend_world(
+    vertices: &PathVertices,
+    slot: &Affine,
+    world: &dyn Fn(usize) -> Affine,
+    deform: Option<&[f64]>,
+    out: &mut Vec<[f64; 2]>,
+) {
     let offset = |k: usize| {
         deform.map_or([0.0, 0.0], |d| [d.get(2 * k).copied().unwrap_or(0.0), d.get(2 * k + 1).copied().unwrap_or(0.0)])
     };
-    match &path.vertices {
+    match vertices {
         PathVertices::Plain(v) => {
             out.extend(v.iter().enumerate().map(|(k, p)| {
                 let o = offset(k);
