@@ -11,7 +11,7 @@ use ikarus::character::{DrawList, Posed};
 use ikarus_edge::character::Format;
 use ikarus_edge::character::Loaded;
 use ikarus_edge::character::art_draw::AtlasArt;
-use ikarus_edge::pose::{PoseAsk, pose_kept, skin_index};
+use ikarus_edge::pose::{PoseAsk, clip_at, pose_kept, skin_index};
 
 use crate::error::CliError;
 use crate::pose::{PoseArgs, PoseFormat, drawn};
@@ -56,8 +56,9 @@ pub fn draw(
     let report = pose_kept(loaded, ask, &mut posed).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let skin = skin_index(c, ask.skin.as_deref()).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let atlas_label = args.atlas.as_deref().map_or_else(String::new, |p| format!("atlas file {}: ", p.display()));
+    let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let art = atlas
-        .art(c, &posed, skin, &mut DrawList::default())
+        .art(c, &posed, (skin, clip), &mut DrawList::default())
         .map_err(|m| CliError::input(format!("{atlas_label}{m}")))?;
     let (width, height) = (args.size.width, args.size.height);
     let bytes = match (format, args.art_only) {

@@ -142,7 +142,8 @@ fn the_art_agrees_with_spines_own_renderer() {
         let mut posed = Posed::default();
         pose_kept(&loaded, &ask, &mut posed).unwrap();
         let c = &loaded.character;
-        let drawn = art.art(c, &posed, c.default_skin(), &mut DrawList::default()).unwrap();
+        let keyed = clip.map(|(name, time)| (c.clip_index(name).unwrap(), time));
+        let drawn = art.art(c, &posed, (c.default_skin(), keyed), &mut DrawList::default()).unwrap();
         let pixmap = ikarus_render::art_only_pixmap(&drawn, 800, 800).unwrap();
         std::fs::write(out.join(picture), ikarus_render::pixmap_png(&pixmap).unwrap()).unwrap();
         let (overlap, colour, seen) = compare(&ours(&pixmap), &reference(picture));

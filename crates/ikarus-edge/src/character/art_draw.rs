@@ -77,14 +77,23 @@ impl AtlasArt {
         Self::read(&text, &label, &mut image).map_err(CliError::input)
     }
 
-    /// The art pose `posed` of `c` draws with skin `skin` (the skin it was posed with), its
-    /// vertices computed into `list` (reused): the pages (copied) and one piece per drawn slot.
+    /// The art pose `posed` of `c` draws with skin `skin` (the skin it was posed with) and the
+    /// slots as clip `clip` keys them at its time (the clip it was posed with: its attachment,
+    /// colour, draw-order and deform keys), its vertices computed into `list` (reused): the
+    /// pages (copied) and one piece per drawn slot.
     ///
     /// # Errors
     /// One line naming the region and the slot when the atlas lacks a region the pose draws, or
-    /// an attachment has more vertices than a piece holds (65 536).
-    pub fn art(&self, c: &Character, posed: &Posed, skin: Option<usize>, list: &mut DrawList) -> Result<Art, String> {
-        c.draw_list(posed, skin, &self.regions, list);
+    /// an attachment has more vertices than a piece holds (65 536); a clip the character does
+    /// not have or a time that is not finite.
+    pub fn art(
+        &self,
+        c: &Character,
+        posed: &Posed,
+        (skin, clip): (Option<usize>, Option<(usize, f64)>),
+        list: &mut DrawList,
+    ) -> Result<Art, String> {
+        c.draw_list_at(posed, skin, clip, &self.regions, list).map_err(|e| e.to_string())?;
         let mut pieces = Vec::with_capacity(list.items.len());
         for item in &list.items {
             let slot = &c.art().slots[item.slot];
