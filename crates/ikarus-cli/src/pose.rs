@@ -13,6 +13,7 @@ use ikarus_edge::pose::{IkChoice, PhysicsAsk, PoseAsk, PoseReport, pose};
 use crate::error::CliError;
 use crate::options::{parse_finite, parse_point};
 use crate::output::{self, PendingFile};
+use crate::pose_art::{ArtAsk, drawn};
 
 /// Output format of `ikarus pose`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -184,7 +185,18 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         eprintln!("ikarus: {label}: {warning}");
     }
     let format = format_of(args)?;
-    let atlas = crate::pose_art::atlas_of(args, &loaded, format)?;
+    let art_ask = ArtAsk {
+        rig: &args.rig,
+        atlas: args.atlas.as_deref(),
+        art_only: args.art_only,
+        size: &args.size,
+        svg: match format {
+            PoseFormat::Svg => Some(true),
+            PoseFormat::Png => Some(false),
+            PoseFormat::Text | PoseFormat::Json => None,
+        },
+    };
+    let atlas = crate::pose_art::atlas_of(&art_ask, &loaded)?;
     let file = args.out.as_deref().map(|p| PendingFile::create(p, "--out")).transpose()?;
     let ik = args.ik.choice(&loaded.character)?;
     let ask = PoseAsk {
@@ -201,7 +213,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
         skin: args.skin.clone(),
     };
     let bytes = match &atlas {
-        Some(atlas) => crate::pose_art::draw(args, &loaded, &ask, atlas, format, &|| caption(args))?,
+        Some(atlas) => crate::pose_art::draw(&art_ask, &loaded, &ask, atlas, &|| caption(args))?,
         None => {
             let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
             render(&report, format, &|| caption(args), &args.size)?
@@ -268,17 +280,6 @@ pub fn render(
             ikarus_render::character_png(&report.figure(Some(caption())), size.width, size.height).map_err(drawn)?
         }
     })
-}
-
-/// A picture's failure: a number the picture cannot hold (a bone so far away that the view
-/// overflows) or a size out of range is the input's; anything else is the drawing's.
-pub(crate) fn drawn(e: ikarus_render::RenderError) -> CliError {
-    match e {
-        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
-            CliError::input(format!("cannot draw the pose: {e}"))
-        }
-        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
-    }
 }
 
 #[cfg(test)]

@@ -13,13 +13,30 @@ use ikarus_edge::character::Loaded;
 use ikarus_edge::character::art_draw::AtlasArt;
 use ikarus_edge::pose::{PoseAsk, clip_at, pose_kept, skin_index};
 
+use std::path::Path;
+
 use crate::error::CliError;
-use crate::pose::{PoseArgs, PoseFormat, drawn};
+use crate::picture::SizeArgs;
+
+/// What `ikarus pose --atlas` was asked to draw: the files, whether the art goes alone, the
+/// picture's size and format.
+pub struct ArtAsk<'a> {
+    /// `--rig`.
+    pub rig: &'a Path,
+    /// `--atlas`.
+    pub atlas: Option<&'a Path>,
+    /// `--art-only`.
+    pub art_only: bool,
+    /// `--width`, `--height`.
+    pub size: &'a SizeArgs,
+    /// An SVG picture, else a PNG; `None` for a report that is not a picture (text, JSON).
+    pub svg: Option<bool>,
+}
 
 /// The atlas `--atlas` names, read with its pages, or `None` without it; the refusals of the
 /// module's doc that come before posing.
-pub fn atlas_of(args: &PoseArgs, loaded: &Loaded, format: PoseFormat) -> Result<Option<AtlasArt>, CliError> {
-    let Some(path) = &args.atlas else {
+pub fn atlas_of(args: &ArtAsk, loaded: &Loaded) -> Result<Option<AtlasArt>, CliError> {
+    let Some(path) = args.atlas else {
         if args.art_only {
             return Err(CliError::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
         }
@@ -31,7 +48,7 @@ pub fn atlas_of(args: &PoseArgs, loaded: &Loaded, format: PoseFormat) -> Result<
             path.display()
         )));
     }
-    if !matches!(format, PoseFormat::Png | PoseFormat::Svg) {
+    if args.svg.is_none() {
         return Err(CliError::input(format!(
             "--atlas {}: the art is drawn in a picture: give --out FILE.png or FILE.svg (or --format png|svg)",
             path.display()
@@ -43,11 +60,10 @@ pub fn atlas_of(args: &PoseArgs, loaded: &Loaded, format: PoseFormat) -> Result<
 /// The pose `ask` of `loaded` drawn with `atlas`'s art in `format` (PNG or SVG), at the size of
 /// `args`: the art alone with `--art-only`, else under the bones, captioned by `caption`.
 pub fn draw(
-    args: &PoseArgs,
+    args: &ArtAsk,
     loaded: &Loaded,
     ask: &PoseAsk,
     atlas: &AtlasArt,
-    format: PoseFormat,
     caption: &dyn Fn() -> String,
 ) -> Result<Vec<u8>, CliError> {
     let label = format!("rig file {}", args.rig.display());
@@ -55,25 +71,32 @@ pub fn draw(
     let mut posed = Posed::default();
     let report = pose_kept(loaded, ask, &mut posed).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let skin = skin_index(c, ask.skin.as_deref()).map_err(|m| CliError::input(format!("{label}: {m}")))?;
-    let atlas_label = args.atlas.as_deref().map_or_else(String::new, |p| format!("atlas file {}: ", p.display()));
+    let atlas_label = args.atlas.map_or_else(String::new, |p| format!("atlas file {}: ", p.display()));
     let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(|m| CliError::input(format!("{label}: {m}")))?;
     let art = atlas
         .art(c, &posed, (skin, clip), &mut DrawList::default())
         .map_err(|m| CliError::input(format!("{atlas_label}{m}")))?;
     let (width, height) = (args.size.width, args.size.height);
-    let bytes = match (format, args.art_only) {
-        (PoseFormat::Png, true) => ikarus_render::art_only_png(&art, width, height),
-        (PoseFormat::Svg, true) => ikarus_render::art_only_svg(&art, width, height).map(String::into_bytes),
-        (PoseFormat::Png, false) => {
-            ikarus_render::character_art_png(&report.figure(Some(caption())), &art, width, height)
-        }
-        (PoseFormat::Svg, false) => {
-            ikarus_render::character_art_svg(&report.figure(Some(caption())), &art, width, height)
-                .map(String::into_bytes)
-        }
-        (PoseFormat::Text | PoseFormat::Json, _) => {
+    let bytes = match (args.svg, args.art_only) {
+        (Some(false), true) => ikarus_render::art_only_png(&art, width, height),
+        (Some(true), true) => ikarus_render::art_only_svg(&art, width, height).map(String::into_bytes),
+        (Some(false), false) => ikarus_render::character_art_png(&report.figure(Some(caption())), &art, width, height),
+        (Some(true), false) => ikarus_render::character_art_svg(&report.figure(Some(caption())), &art, width, height)
+            .map(String::into_bytes),
+        (None, _) => {
             return Err(CliError::input("--atlas: the art is drawn in a picture: give --out FILE.png or FILE.svg"));
         }
     };
     bytes.map_err(drawn)
+}
+
+/// A picture's failure: a number the picture cannot hold (a bone so far away that the view
+/// overflows) or a size out of range is the input's; anything else is the drawing's.
+pub(crate) fn drawn(e: ikarus_render::RenderError) -> CliError {
+    match e {
+        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
+            CliError::input(format!("cannot draw the pose: {e}"))
+        }
+        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+    }
 }
