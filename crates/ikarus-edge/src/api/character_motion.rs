@@ -13,7 +13,8 @@ use ikarus::{EaseKind, Interrupt};
 use serde::Deserialize;
 
 use super::fields::{refuse_given, stopped, track_path};
-use super::pose::{TargetReq, stored_character};
+use super::pose::stored_character;
+use super::requests::TargetReq;
 use super::requests::{MotionFormat, request};
 use super::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion, Physics};

@@ -46,15 +46,6 @@ request! {
     }
 }
 
-/// A bone's world origin put at (x, y).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TargetReq {
-    pub bone: String,
-    pub x: f64,
-    pub y: f64,
-}
-
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
 /// targets as it has bones; with `atlas`, the pose's drawing too.
 pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {

@@ -12,14 +12,13 @@ use ikarus::character::DrawList;
 use super::fields::picture;
 use super::figures::PoseFigureReq;
 use super::pose::Posing;
-use super::render::Canvas;
 use super::{Limits, Problem};
 use crate::picture::{PictureFormat, pose_drawn};
 
-/// The picture of `r` on `canvas`.
+/// The picture of `r` in `format`, `w` × `h` pixels.
 pub(super) fn pose_figure(
     r: PoseFigureReq,
-    canvas: Canvas,
+    (format, w, h): (PictureFormat, u32, u32),
     limits: &Limits,
     interrupt: &Interrupt,
 ) -> Result<Vec<u8>, Problem> {
@@ -40,9 +39,8 @@ pub(super) fn pose_figure(
     let drawn = posing.drawn(interrupt)?;
     let c = &posing.stored.loaded.character;
     let figure = || drawn.report.figure(None);
-    let (w, h) = (canvas.width, canvas.height);
     let bytes = match &posing.atlas {
-        None => match canvas.format {
+        None => match format {
             PictureFormat::Svg => ikarus_render::character_svg(&figure(), w, h).map(String::into_bytes),
             _ => ikarus_render::character_png(&figure(), w, h),
         },
@@ -51,7 +49,7 @@ pub(super) fn pose_figure(
                 .art
                 .art(c, &drawn.posed, (drawn.skin, drawn.clip), &mut DrawList::default())
                 .map_err(|e| Problem::invalid(format!("atlas: {e}")))?;
-            match (canvas.format, art_only) {
+            match (format, art_only) {
                 (PictureFormat::Svg, true) => ikarus_render::art_only_svg(&art, w, h).map(String::into_bytes),
                 (PictureFormat::Svg, false) => {
                     ikarus_render::character_art_svg(&figure(), &art, w, h).map(String::into_bytes)

@@ -130,7 +130,7 @@ macro_rules! request {
             pub character: Option<String>,
             pub animation: Option<String>,
             pub time: Option<f64>,
-            pub targets: Vec<$crate::api::pose::TargetReq>,
+            pub targets: Vec<$crate::api::requests::TargetReq>,
             pub bends: std::collections::BTreeMap<String, $crate::keys::BendName>,
             pub rotations: std::collections::BTreeMap<String, f64>,
             pub physics: Option<bool>,
@@ -356,4 +356,13 @@ pub enum MotionFormat {
     Spine,
     /// Its frames as CSV, one row per bone per frame ([`crate::character::motion_files`]).
     Csv,
+}
+
+/// A bone's world origin put at (x, y).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TargetReq {
+    pub bone: String,
+    pub x: f64,
+    pub y: f64,
 }
