@@ -45,6 +45,7 @@ pub mod picture;
 pub mod pose;
 #[doc(hidden)]
 pub mod pose_finite;
+pub mod pose_report;
 #[doc(hidden)]
 pub mod reach;
 #[doc(hidden)]

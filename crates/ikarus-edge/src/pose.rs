@@ -5,20 +5,17 @@
 //! Names are resolved here, once, into the library's indices; each refusal is one line naming
 //! the field and the value, and for a name that does not exist, the names that do.
 
-use ikarus::Point2;
 use ikarus::character::{
-    Character, GoalEnd, LimbEnd, Play, PlayFrame, PoseError, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together,
-    TogetherError, TogetherReport,
+    Character, Play, PlayFrame, PoseError, PoseRequest, Posed, TIP_GOAL_BONES, TipGoal, Together, TogetherError,
+    TogetherReport,
 };
 use ikarus::{Interrupt, SolveOptions, Solver};
-use ikarus_render::{CharacterFigure, PosedBone};
-use serde::Serialize;
 
 use crate::character::Loaded;
 use crate::error::CliError;
 use crate::goal::{Field, NamedGoal};
 use crate::names::{Quoted, cell, listed};
-use crate::report::character::UnsupportedJson;
+pub use crate::pose_report::{GoalJson, IkJson, LimbJson, PoseReport, PosedBoneJson};
 
 /// What to pose, by name, as the user gave it.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -73,38 +70,6 @@ pub enum IkChoice {
     /// ikarus's rig solver, every constraint at once ([`Character::pose_together`]), with the
     /// IK file's rules (an empty [`Together`] without one).
     Ikarus(Box<Together>),
-}
-
-/// One bone posed: world origin, the world direction of its x axis in degrees, and its tip
-/// (origin plus length along that axis), in the file's units, y up.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PosedBoneJson {
-    pub name: String,
-    pub x: f64,
-    pub y: f64,
-    pub rotation_deg: f64,
-    pub tip: [f64; 2],
-    /// `false` for a bone the skin does not turn on (not posed, at zeros); absent when active.
-    #[serde(skip_serializing_if = "is_true")]
-    pub active: bool,
-}
-
-fn is_true(b: &bool) -> bool {
-    *b
-}
-
-/// `{"bones": [{"name", "x", "y", "rotation_deg", "tip"}, …], "unsupported": […]}`.
-#[derive(Debug, Serialize)]
-pub struct PoseReport {
-    pub bones: Vec<PosedBoneJson>,
-    pub unsupported: Vec<UnsupportedJson>,
-    /// With `--ik ikarus`: what the solve did (absent under the runtime's rules).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub ik: Option<IkJson>,
-    /// The IK constraints' target bones' origins and the goals' points, for the picture (not in
-    /// the JSON).
-    #[serde(skip)]
-    targets: Vec<[f64; 2]>,
 }
 
 /// Poses `loaded` as `ask` says. Errors are one line without a label: `--animation "wlk": no
@@ -389,150 +354,6 @@ pub fn add_goals(
 #[must_use]
 pub fn character_options() -> SolveOptions {
     SolveOptions { restarts: None, max_iterations: 200, ..SolveOptions::default() }
-}
-
-/// What `--ik ikarus` did: `{"solver": "ikarus", "status", "rounds", "constraints": [{"name",
-/// "active", "error"}]}`, each constraint's error its last bone's tip's distance from its target.
-#[derive(Debug, Serialize)]
-pub struct IkJson {
-    pub solver: &'static str,
-    pub status: Option<String>,
-    pub rounds: usize,
-    pub constraints: Vec<LimbJson>,
-    /// The goals on bones' tips ([`add_goals`]), when there are any.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub goals: Vec<GoalJson>,
-}
-
-/// One goal's end: its bone's tip's distance from it, and with an angle, the bone's direction's
-/// difference from it, degrees.
-#[derive(Debug, Serialize)]
-pub struct GoalJson {
-    pub bone: String,
-    pub error: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub angle_error_deg: Option<f64>,
-}
-
-/// One constraint's end under `--ik ikarus`.
-#[derive(Debug, Serialize)]
-pub struct LimbJson {
-    pub name: String,
-    pub active: bool,
-    pub error: f64,
-}
-
-impl LimbJson {
-    fn of(c: &Character, l: &LimbEnd) -> Self {
-        LimbJson { name: c.constraints()[l.constraint].name().to_owned(), active: l.active, error: l.error }
-    }
-}
-
-impl GoalJson {
-    fn of(c: &Character, g: &GoalEnd) -> Self {
-        let bone = c.bones()[g.bone].name.clone();
-        GoalJson { bone, error: g.error, angle_error_deg: g.angle_error.map(f64::to_degrees) }
-    }
-}
-
-impl IkJson {
-    fn of(c: &Character, t: &TogetherReport) -> Self {
-        IkJson {
-            solver: "ikarus",
-            status: t.outcome.as_ref().map(|o| o.status.to_string()),
-            rounds: t.rounds,
-            constraints: t.limbs.iter().map(|l| LimbJson::of(c, l)).collect(),
-            goals: t.goals.iter().map(|g| GoalJson::of(c, g)).collect(),
-        }
-    }
-}
-
-impl PoseReport {
-    /// The report of a pose of `c`.
-    #[must_use]
-    pub fn of(c: &Character, posed: &Posed) -> Self {
-        let bones = c
-            .bones()
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let [x, y] = posed.origin(i);
-                PosedBoneJson {
-                    name: b.name.clone(),
-                    x,
-                    y,
-                    rotation_deg: posed.rotation(i).to_degrees(),
-                    tip: posed.tip(i),
-                    active: posed.is_active(i),
-                }
-            })
-            .collect();
-        let unsupported =
-            c.unsupported().iter().map(|u| UnsupportedJson { kind: u.kind.clone(), name: u.name.clone() }).collect();
-        // A target the skin leaves inactive is not posed: not drawn.
-        let targets = c
-            .ik_constraints()
-            .filter(|(_, k)| posed.is_active(k.target))
-            .map(|(_, k)| posed.origin(k.target))
-            .collect();
-        PoseReport { bones, unsupported, ik: None, targets }
-    }
-
-    /// One line per bone: `name  x  y  rotation_deg  tip_x  tip_y`, under a header, then one line
-    /// per unsupported constraint, one per bone the skin leaves inactive, then one per goal on a
-    /// bone's tip (its miss).
-    #[must_use]
-    pub fn text(&self) -> String {
-        use std::fmt::Write;
-        let width = self.bones.iter().map(|b| cell(&b.name).chars().count()).max().unwrap_or(4).max(4);
-        let mut out = format!(
-            "{:width$}  {:>12}  {:>12}  {:>12}  {:>12}  {:>12}\n",
-            "bone", "x", "y", "rotation_deg", "tip_x", "tip_y"
-        );
-        for b in &self.bones {
-            let _ = writeln!(
-                out,
-                "{:width$}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}  {:>12.4}",
-                cell(&b.name),
-                b.x,
-                b.y,
-                b.rotation_deg,
-                b.tip[0],
-                b.tip[1]
-            );
-        }
-        for u in &self.unsupported {
-            let _ = writeln!(out, "unsupported {} {:?}: left out", u.kind, Quoted(&u.name));
-        }
-        for b in self.bones.iter().filter(|b| !b.active) {
-            let _ = writeln!(out, "inactive bone {:?}: the skin does not turn it on (not posed)", Quoted(&b.name));
-        }
-        for g in self.ik.iter().flat_map(|k| &k.goals) {
-            let _ = write!(out, "goal on {:?}: tip {:.6} from its point", Quoted(&g.bone), g.error);
-            if let Some(a) = g.angle_error_deg {
-                let _ = write!(out, ", direction {a:.6}° from its angle");
-            }
-            out.push('\n');
-        }
-        out
-    }
-
-    /// The picture of the pose: every active bone (an inactive one is not posed, so not drawn),
-    /// and the IK targets as goals.
-    #[must_use]
-    pub fn figure(&self, caption: Option<String>) -> CharacterFigure<'_> {
-        let point = |p: [f64; 2]| Point2::new(p[0], p[1]);
-        CharacterFigure {
-            bones: self
-                .bones
-                .iter()
-                .filter(|b| b.active)
-                .map(|b| PosedBone { name: &b.name, origin: Point2::new(b.x, b.y), tip: point(b.tip) })
-                .collect(),
-            targets: self.targets.iter().copied().map(point).collect(),
-            caption,
-        }
-    }
 }
 
 #[cfg(test)]
