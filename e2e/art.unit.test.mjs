@@ -7,6 +7,7 @@ import assert from "node:assert/strict";
 import { artNotice, baseName, groupFiles, matchPages, pageImage } from "../crates/ikarus-cli/src/serve/assets/artfiles.js";
 import { BLENDS, clipTransform } from "../crates/ikarus-cli/src/serve/assets/artgl.js";
 import { toCanvas } from "../crates/ikarus-cli/src/serve/assets/view.js";
+import { compareArt, maskBounds } from "./artcompare.mjs";
 
 const f = (name) => ({ name });
 
@@ -67,4 +68,33 @@ test("the blend modes' factors are the premultiplied ones", () => {
   assert.deepEqual(BLENDS.additive, ["ONE", "ONE"]);
   assert.deepEqual(BLENDS.multiply, ["DST_COLOR", "ONE_MINUS_SRC_ALPHA"]);
   assert.deepEqual(BLENDS.screen, ["ONE", "ONE_MINUS_SRC_COLOR"]);
+});
+
+test("two pictures of the same art fitted differently agree; a moved or recoloured part does not", () => {
+  // A 40 × 20 two-colour bar at (5, 7) in a 60 × 40 picture, and twice as large elsewhere in a 120 × 80 one.
+  const picture = (width, height, [x0, y0], k, colourOf) => {
+    const data = new Uint8ClampedArray(width * height * 4);
+    for (let y = 0; y < 20 * k; y++) {
+      for (let x = 0; x < 40 * k; x++) {
+        const i = 4 * ((y0 + y) * width + x0 + x);
+        data.set([...colourOf(Math.floor(x / k), Math.floor(y / k)), 255], i);
+      }
+    }
+    return { width, height, data };
+  };
+  const colours = (x) => (x < 20 ? [200, 0, 0] : [0, 0, 200]);
+  const a = picture(60, 40, [5, 7], 1, colours);
+  const b = picture(120, 80, [30, 11], 2, colours);
+  assert.deepEqual(maskBounds(a), [5, 7, 44, 26]);
+  assert.deepEqual(maskBounds(b), [30, 11, 109, 50]);
+  const same = compareArt(a, b);
+  assert.deepEqual(same, { overlap: 1, colour: 0, size: [40, 20] });
+  // The halves' colours swapped: every pixel differs by 400/3 of 255.
+  const swapped = compareArt(a, picture(120, 80, [30, 11], 2, (x) => colours(39 - x)));
+  assert.ok(Math.abs(swapped.colour - 400 / 3 / 255) < 1e-12, String(swapped.colour));
+  // The top left quarter of the bar gone from b (its bounds the same): three quarters overlap.
+  const cut = picture(120, 80, [30, 11], 2, colours);
+  for (let y = 11; y < 31; y++) for (let x = 30; x < 70; x++) cut.data[4 * (y * 120 + x) + 3] = 0;
+  assert.deepEqual(compareArt(a, cut), { overlap: 0.75, colour: 0, size: [40, 20] });
+  assert.equal(compareArt(a, { width: 2, height: 2, data: new Uint8ClampedArray(16) }), null);
 });

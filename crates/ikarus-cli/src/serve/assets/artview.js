@@ -30,7 +30,7 @@ export function framePoseRequest(c, keys, f) {
  * Wires the art's canvas under `canvas` (the page's 2D canvas) and the bones switch. `act` is
  * {requestDraw(), repose() (characters.js's: pose the character shown again)}. Returns {draw(view)
  * (the art of `state.character` in `view`; whether any was drawn: the 2D canvas then leaves its
- * background to it), hide(), slots() (the slots last drawn)}.
+ * background to it), hide(), slots() (the slots last drawn), draws() (draws with art so far)}.
  */
 export function wireArt(state, canvas, act) {
   const layer = document.createElement("canvas");
@@ -41,6 +41,8 @@ export function wireArt(state, canvas, act) {
   /** The renderer, made with the first art (a page without a character makes no WebGL context). */
   let renderer;
   let drawn = 0;
+  /** Draws made with art (for the frame-rate script, e2e/art-fps.mjs). */
+  let draws = 0;
   /** The onion skins' art: of `motion` (with `atlas`), by frame index: the answer's art, or null while asked. */
   let onion = { motion: null, atlas: null, arts: new Map() };
   /** The frame whose art is being asked, or -1. */
@@ -104,9 +106,10 @@ export function wireArt(state, canvas, act) {
     layer.style.background = COLORS.plot;
     renderer.size(view.w, view.h, window.devicePixelRatio || 1);
     drawn = renderer.draw(view, layers);
+    draws++;
     layer.dataset.slots = String(drawn);
     return true;
   }
 
-  return { draw, hide, slots: () => drawn };
+  return { draw, hide, slots: () => drawn, draws: () => draws };
 }

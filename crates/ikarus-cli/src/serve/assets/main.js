@@ -734,8 +734,8 @@ window.ikarus = {
   keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles(), sent: () => keyed.sent() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
-  /** The slots of the character's art last drawn (artview.js). */
-  art: { slots: () => art.slots() },
+  /** The slots of the character's art last drawn, and the draws with art so far (artview.js). */
+  art: { slots: () => art.slots(), draws: () => art.draws() },
   /** Undo, redo, save and open (projects.js), the work as a snapshot, and whether it is unsaved. */
   project: {
     undo: () => project.undo(),
