@@ -47,6 +47,8 @@ export function wireArt(state, canvas, act) {
   let onion = { motion: null, atlas: null, arts: new Map() };
   /** The frame whose art is being asked, or -1. */
   let asking = -1;
+  /** The pose shown whose art was last asked (asked once: a refused pose is not asked again at each draw). */
+  let askedFor = null;
 
   $("show-bones").addEventListener("change", (ev) => {
     state.showBones = ev.target.checked;
@@ -94,7 +96,10 @@ export function wireArt(state, canvas, act) {
       return false;
     }
     // A keyed frame shown without its art: asked (the answer brings its bones and art together).
-    if (c.posed && c.artOf !== c.posed) act.repose();
+    if (c.posed && c.artOf !== c.posed && askedFor !== c.posed) {
+      askedFor = c.posed;
+      act.repose();
+    }
     const layers = onionLayers(c);
     if (c.art) layers.push({ art: c.art, alpha: 1, atlas: c.atlas });
     if (renderer === undefined) renderer = artRenderer(layer);
