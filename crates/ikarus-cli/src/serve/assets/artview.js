@@ -1,4 +1,5 @@
-// The character's art on the page: a WebGL canvas (artgl.js) laid under the page's 2D canvas,
+// The character's art on the page: a WebGL canvas (artgl.js) laid under the page's 2D canvas
+// (and over a 2D canvas of its own with the grid: the art hides the grid, the bones are drawn over it),
 // drawn in the same view (zoom, pan) with each draw of the character, the art of the pose shown
 // (the last /api/pose answer's `art`, characters.js) over the onion skins' art (the keyed
 // motion's frames before and after the playhead, onion.js's, each posed with the atlas once and
@@ -10,7 +11,7 @@
 import * as api from "./api.js";
 import { artRenderer } from "./artgl.js";
 import { poseRequest } from "./character.js";
-import { COLORS } from "./draw.js";
+import { drawGrid, fitCanvas } from "./draw.js";
 import { bendsAt, keyedTargets, localRotation } from "./keys.js";
 import { onionFrames, onionMotion } from "./onion.js";
 
@@ -29,15 +30,20 @@ export function framePoseRequest(c, keys, f) {
 /**
  * Wires the art's canvas under `canvas` (the page's 2D canvas) and the bones switch. `act` is
  * {requestDraw(), repose() (characters.js's: pose the character shown again)}. Returns {draw(view)
- * (the art of `state.character` in `view`; whether any was drawn: the 2D canvas then leaves its
- * background to it), hide(), slots() (the slots last drawn), draws() (draws with art so far)}.
+ * (the art of `state.character` in `view`; whether any was drawn: the 2D canvas then leaves the grid
+ * and background to it), hide(), slots() (the slots last drawn), draws() (draws with art so far)}.
  */
 export function wireArt(state, canvas, act) {
   const layer = document.createElement("canvas");
   layer.id = "art";
-  layer.setAttribute("aria-hidden", "true");
-  layer.hidden = true;
-  canvas.before(layer);
+  const backdrop = document.createElement("canvas");
+  backdrop.id = "art-grid";
+  for (const c of [backdrop, layer]) {
+    c.setAttribute("aria-hidden", "true");
+    c.hidden = true;
+    canvas.before(c);
+  }
+  const grid = backdrop.getContext("2d");
   /** The renderer, made with the first art (a page without a character makes no WebGL context). */
   let renderer;
   let drawn = 0;
@@ -86,6 +92,7 @@ export function wireArt(state, canvas, act) {
   function hide() {
     if (renderer) renderer.clear();
     layer.hidden = true;
+    backdrop.hidden = true;
     drawn = 0;
   }
 
@@ -108,7 +115,9 @@ export function wireArt(state, canvas, act) {
       return false;
     }
     layer.hidden = false;
-    layer.style.background = COLORS.plot;
+    backdrop.hidden = false;
+    fitCanvas(backdrop, grid);
+    drawGrid(grid, view);
     renderer.size(view.w, view.h, window.devicePixelRatio || 1);
     drawn = renderer.draw(view, layers);
     draws++;

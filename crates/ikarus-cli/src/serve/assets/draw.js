@@ -161,12 +161,13 @@ function drawVia(ctx, view, via) {
 
 export function drawGrid(ctx, view) {
   const { w, h } = view;
-  // Under a character's art (artview.js: `view.under` "art") the canvas is see-through: the art's canvas below has the background.
-  if (view.under === "art") ctx.clearRect(0, 0, w, h);
-  else {
-    ctx.fillStyle = COLORS.plot;
-    ctx.fillRect(0, 0, w, h);
+  // Over a character's art (artview.js: `view.under` "art") the canvas is see-through: the grid is drawn under the art.
+  if (view.under === "art") {
+    ctx.clearRect(0, 0, w, h);
+    return;
   }
+  ctx.fillStyle = COLORS.plot;
+  ctx.fillRect(0, 0, w, h);
   const [x0, y1] = toWorld(view, 0, 0);
   const [x1, y0] = toWorld(view, w, h);
   const step = niceStep(Math.min(x1 - x0, y1 - y0));
