@@ -14,7 +14,7 @@ import { writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, onPlayground } from "./browser.mjs";
 import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
-import { compareArt } from "./artcompare.mjs";
+import { compareArt, maskBounds } from "./artcompare.mjs";
 import { artPixels, cliArt, cliArtArgs, loadSpineboyArt, pngPixels, spineboyFiles } from "./artpage.mjs";
 
 const docs = join(import.meta.dirname, "..", "docs");
@@ -45,6 +45,17 @@ const artSettled = (page) =>
 
 /** A screenshot of the canvas's box only. */
 const shot = (page, path) => page.locator("#canvas-box").screenshot({ path });
+
+/**
+ * A README picture: the page from the left edge to `right` CSS pixels past the art's opaque
+ * bounds (the canvas with its chip, hint and timeline, the keys under it), the panel left out.
+ */
+async function docShot(page, path, right = 260) {
+  const [, , r] = maskBounds(await artPixels(page));
+  const box = await page.locator("#canvas-box").boundingBox();
+  const main = await page.locator("#stage").boundingBox();
+  await page.screenshot({ path, clip: { x: 0, y: 0, width: Math.min(box.x + box.width, box.x + r + right), height: main.y + main.height } });
+}
 
 test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and keyed with onion skins, and the CLI's picture of the pose", () =>
   onPlayground(async (page) => {
@@ -102,10 +113,10 @@ test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and
     await page.waitForFunction((n) => window.ikarus.art.slots() > n * 3, own, { timeout: 30000 });
     await shot(page, join(artifacts, "art-keys.png"));
     if (process.env.ART_DOCS) {
-      await shot(page, join(docs, "art-keys.png"));
+      await docShot(page, join(docs, "art-keys.png"));
       await page.uncheck("#onion");
       await artSettled(page);
-      await shot(page, join(docs, "art-page.png"));
+      await docShot(page, join(docs, "art-page.png"));
     }
     await page.uncheck("#onion");
 
