@@ -1,18 +1,18 @@
 // A character's art on the page (issue 40), in a real browser: spineboy's skeleton, atlas and
 // page picked together through *Load rig or character…*; the art is drawn (opaque pixels where
-// the torso is); `walk` plays with the art coming in each pose's answer; stopped at a time, the
+// the torso is), and zoomed in it follows the view; `walk` plays with the art coming in each pose's answer; stopped at a time, the
 // front foot's target dragged and keyed; onion skins of the keyed motion drawn as faded art;
 // then, the bones overlay off, the art's canvas is compared with the CLI's picture of the same
 // pose (`ikarus pose --atlas … --art-only`): alpha masks cropped to their bounds and scaled to one
-// size, overlap ≥ 0.95 and mean colour difference < 6 % (artcompare.mjs). A lone atlas is a
-// one-line notice. Screenshots: target/e2e/art-*.png; with ART_DOCS=1 the README's two
+// size, overlap ≥ 0.95 and mean colour difference < 6 % (artcompare.mjs). An atlas the backend
+// let go (404) is sent again once. A lone atlas, and a page image not given, are one-line notices. Screenshots: target/e2e/art-*.png; with ART_DOCS=1 the README's two
 // (docs/art-page.png, docs/art-keys.png) are written too.
 // Run by e2e/run (which builds the binary and installs playwright-core).
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, onPlayground } from "./browser.mjs";
+import { artifacts, onPlayground, openPage, ready, withBrowser } from "./browser.mjs";
 import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
 import { compareArt, maskBounds } from "./artcompare.mjs";
 import { artPixels, cliArt, cliArtArgs, loadSpineboyArt, pngPixels, spineboyFiles } from "./artpage.mjs";
@@ -83,6 +83,15 @@ test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and
     const opaque = setup.data.filter((v, i) => i % 4 === 3 && v > 127).length;
     assert.ok(opaque > 5000, `${opaque} opaque pixels`);
     await shot(page, join(artifacts, "art-setup.png"));
+    // Zoomed in about the torso (the wheel): the art follows the view, larger.
+    await page.mouse.move(...(await page.evaluate(([x, y]) => window.ikarus.toClient(x, y), [torso.x, torso.y])));
+    await page.mouse.wheel(0, -400);
+    await page.waitForFunction(() => Number(document.getElementById("plot").dataset.zoom) > 1.5);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    assert.ok((await alphaAt(page, (torso.x + torso.tip[0]) / 2, (torso.y + torso.tip[1]) / 2)) > 200, "the torso is drawn where the zoomed view has it");
+    const zoomed = (await artPixels(page)).data.filter((v, i) => i % 4 === 3 && v > 127).length;
+    assert.ok(zoomed > 2 * opaque, `zoomed in: ${zoomed} opaque pixels, ${opaque} before`);
+    await page.click("#fit");
 
     // walk plays: poses keep coming, each with its art (its slots' vertices move).
     await page.selectOption("#character-animation", "walk");
@@ -135,6 +144,36 @@ test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and
     writeFileSync(join(artifacts, "art-compare.json"), JSON.stringify({ request: { ...req, rig: undefined, character: undefined }, ...cmp }, null, 1));
     assert.ok(cmp.overlap >= 0.95, `overlap ${cmp.overlap}`);
     assert.ok(cmp.colour < 0.06, `colour ${cmp.colour}`);
+  }));
+
+test("an atlas the backend let go is sent again once, and the pose retried", () =>
+  withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
+    let parses = 0;
+    let refused = 0;
+    page.on("request", (r) => r.url().endsWith("/api/atlas/parse") && parses++);
+    await loadSpineboyArt(page);
+    await artSettled(page);
+    assert.equal(parses, 1);
+    // The next pose with the atlas answered 404 naming it (as a backend that let it go answers).
+    await page.route("**/api/pose", (route) => {
+      if (refused === 0 && JSON.parse(route.request().postData()).atlas) {
+        refused++;
+        return route.fulfill({ status: 404, contentType: "application/json", body: JSON.stringify({ error: "atlas: no atlas a0 kept; send it again" }) });
+      }
+      return route.continue();
+    });
+    await page.selectOption("#character-animation", "walk");
+    await page.evaluate(() => window.ikarus.seek(0.3));
+    await artSettled(page);
+    assert.equal(refused, 1);
+    assert.equal(parses, 2, "the atlas sent again");
+    assert.equal(await page.evaluate(() => document.getElementById("error").hidden), true);
+    assert.equal(await page.evaluate(() => window.ikarus.state.character.request.time), 0.3);
+    // The browser logs the refused request itself; nothing else.
+    assert.deepEqual(errors, ["Failed to load resource: the server responded with a status of 404 (Not Found)"]);
   }));
 
 test("an atlas without its skeleton is a one-line notice, and a missing page names the page", () =>
