@@ -10,12 +10,12 @@
 // Run by e2e/run (which builds the binary and installs playwright-core).
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { writeFileSync } from "node:fs";
+import { readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { artifacts, onPlayground, openPage, ready, withBrowser } from "./browser.mjs";
 import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
 import { compareArt, maskBounds } from "./artcompare.mjs";
-import { artPixels, cliArt, cliArtArgs, loadSpineboyArt, pngPixels, spineboyFiles } from "./artpage.mjs";
+import { artPixels, cliArt, cliArtArgs, examples, loadSpineboyArt, pngPixels, spineboyFiles } from "./artpage.mjs";
 
 const docs = join(import.meta.dirname, "..", "docs");
 
@@ -176,8 +176,11 @@ test("an atlas the backend let go is sent again once, and the pose retried", () 
     assert.deepEqual(errors, ["Failed to load resource: the server responded with a status of 404 (Not Found)"]);
   }));
 
-test("an atlas without its skeleton is a one-line notice, and a missing page names the page", () =>
-  onPlayground(async (page) => {
+test("an atlas without its skeleton, a page image not given, a region the atlas lacks: one-line notices, the character as bones", () =>
+  withBrowser(async ({ url, browser }) => {
+    const { page, errors } = await openPage(browser);
+    await page.goto(url);
+    await ready(page);
     const [png, json, atlas] = spineboyFiles();
     await page.setInputFiles("#rig-file", [atlas, png]);
     await page.waitForFunction(() => !document.getElementById("error").hidden);
@@ -190,4 +193,15 @@ test("an atlas without its skeleton is a one-line notice, and a missing page nam
     assert.match(await page.textContent("#error"), /^atlas spineboy\.atlas: page image spineboy\.png not given/);
     assert.equal(await page.evaluate(() => window.ikarus.art.slots()), 0);
     assert.ok(Number(await page.evaluate(() => document.getElementById("plot").dataset.bones)) > 0);
+    // The raptor with spineboy's atlas: the region it lacks named, the raptor posed as bones.
+    const raptor = { name: "spine-raptor-pro.json", mimeType: "application/json", buffer: readFileSync(join(examples, "spine-raptor-pro.json")) };
+    await page.setInputFiles("#rig-file", [raptor, atlas, png]);
+    await page.waitForFunction(() => /raptor/.test(window.ikarus.state.character.name) && window.ikarus.state.character.artNotice);
+    await characterSettled(page);
+    assert.match(await page.textContent("#error"), /^atlas: the atlas has no region "[^"]+" \(slot "[^"]+"'s attachment\)/);
+    assert.equal(await page.evaluate(() => window.ikarus.state.character.atlas), null);
+    assert.equal(await page.evaluate(() => document.body.dataset.status), "ready");
+    assert.ok(await page.evaluate(() => window.ikarus.state.character.posed.length > 0), "posed as bones");
+    // The browser logs the refused pose itself; nothing else.
+    assert.deepEqual(errors, ["Failed to load resource: the server responded with a status of 422 (Unprocessable Entity)"]);
   }));

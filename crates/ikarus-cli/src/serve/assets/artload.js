@@ -21,7 +21,11 @@ async function decodePage(file, pma) {
   }
   const image = new Image();
   image.src = URL.createObjectURL(file);
-  await image.decode();
+  try {
+    await image.decode();
+  } finally {
+    URL.revokeObjectURL(image.src);
+  }
   return image;
 }
 
@@ -38,6 +42,20 @@ export async function readAtlas(file, images) {
   const decoded = await Promise.all(match.matched.map((f, i) => (f ? decodePage(f, !!pages[i].pma) : null)));
   const atlas = { id: answer.id, name: file.name, pages, byFile: new Map(pages.map((p, i) => [p.file, i])), images: decoded, regions: answer.regions };
   return { atlas, match };
+}
+
+/**
+ * Whether the failure `e` of the pose request `req` of character `c` is its art's (the backend's
+ * line starts with `atlas: `: a region the atlas lacks, an atlas not kept even when sent again):
+ * then the character drops its atlas, keeps the line as its notice and is posed again as bones.
+ */
+export function artRefused(c, req, e) {
+  if (!req.atlas || !c.atlas || !/^atlas: /.test(e && e.message)) return false;
+  c.atlas = null;
+  c.art = null;
+  c.artNotice = e.message;
+  c.pending = true;
+  return true;
 }
 
 /**
@@ -65,6 +83,8 @@ export async function loadTogether(files, act) {
     if (c.artNotice) act.showError(new api.Notice(c.artNotice));
     if (act.state.character === c) act.characters.repose();
   } catch (e) {
+    // An atlas refused: its line stays on the chip while the character is shown.
+    c.artNotice = e.message;
     act.showError(e);
   }
 }

@@ -10,6 +10,7 @@
 // character.js; the drawing is drawchar.js. It writes `state.character` (below).
 
 import * as api from "./api.js";
+import { artRefused } from "./artload.js";
 import { saveBlob } from "./files.js";
 import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, exportState, handleNotes, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { showOptions, wireOptions } from "./charoptions.js";
@@ -253,7 +254,9 @@ export function wireCharacters(state, canvas, act) {
       if (state.character === c && s) surveyed(c, s, answer);
       else if (state.character === c) apply(c, req, answer);
     } catch (e) {
-      if (state.character === c) {
+      // Art the backend refuses (a region the atlas lacks): the character goes on as bones, the notice kept.
+      if (state.character === c && artRefused(c, req, e)) act.showError(e);
+      else if (state.character === c) {
         act.showError(e);
         act.setStatus("error");
       }
