@@ -107,6 +107,7 @@ test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and
     // Stopped at a time: the front foot's target dragged there, in Key mode (a key).
     await page.evaluate(() => window.ikarus.seek(0.4));
     await artSettled(page);
+    if (process.env.ART_DOCS) await docShot(page, join(docs, "art-page.png"));
     await page.click("#key-mode");
     const name = "front-foot-target";
     const at = await targetAt(page, name);
@@ -121,12 +122,7 @@ test("spineboy's art: loaded with its atlas and page, drawn, played, dragged and
     const own = await page.evaluate(() => window.ikarus.state.character.art.slots.length);
     await page.waitForFunction((n) => window.ikarus.art.slots() > n * 3, own, { timeout: 30000 });
     await shot(page, join(artifacts, "art-keys.png"));
-    if (process.env.ART_DOCS) {
-      await docShot(page, join(docs, "art-keys.png"));
-      await page.uncheck("#onion");
-      await artSettled(page);
-      await docShot(page, join(docs, "art-page.png"));
-    }
+    if (process.env.ART_DOCS) await docShot(page, join(docs, "art-keys.png"));
     await page.uncheck("#onion");
 
     // The bones overlay off: the art alone, against the CLI's picture of the same request.

@@ -98,6 +98,8 @@ export function wireArt(state, canvas, act) {
 
   function draw(view) {
     const c = state.character;
+    // The switch only where there is art to show under the bones.
+    $("show-bones").parentElement.hidden = !(c && c.atlas);
     if (!c || !c.atlas) {
       hide();
       return false;
