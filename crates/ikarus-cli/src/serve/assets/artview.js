@@ -89,6 +89,16 @@ export function wireArt(state, canvas, act) {
     act.requestDraw();
   }
 
+  /** The WebGL renderer, or null (no WebGL, or its shaders refused: the character is drawn as bones). */
+  function makeRenderer() {
+    try {
+      return artRenderer(layer);
+    } catch (e) {
+      console.warn("ikarus: the art cannot be drawn here:", e);
+      return null;
+    }
+  }
+
   function hide() {
     if (renderer) renderer.clear();
     layer.hidden = true;
@@ -111,8 +121,10 @@ export function wireArt(state, canvas, act) {
     }
     const layers = onionLayers(c);
     if (c.art) layers.push({ art: c.art, alpha: 1, atlas: c.atlas });
-    if (renderer === undefined) renderer = artRenderer(layer);
+    if (renderer === undefined) renderer = makeRenderer();
     if (!renderer) {
+      // Said once on the chip (with the next pose) and kept while the character is shown.
+      c.artNotice = c.artNotice || "atlas: this browser draws no WebGL, so the art is left out; the character is drawn as bones";
       hide();
       return false;
     }
