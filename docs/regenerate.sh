@@ -33,4 +33,6 @@ bash e2e/run > /dev/null
 cp target/e2e/playground.png docs/playground.png
 # The playground as an animation tool: the puppet's walk keyed, played with onion skins, a knee flipped, zoomed.
 (cd e2e && node record.mjs > /dev/null)
+# Spineboy's art on the page: walk with the bones over it, and a key dragged with onion skins of art.
+(cd e2e && ART_DOCS=1 node --test --test-name-pattern="spineboy's art" art.test.mjs > /dev/null)
 echo "docs/: $(ls docs/*.png docs/*.gif | tr '\n' ' ')"

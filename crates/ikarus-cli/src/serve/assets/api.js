@@ -120,12 +120,31 @@ export async function get(path) {
  */
 const characterTexts = new Map();
 
+/** The atlas texts /api/atlas/parse read, by the id it answered (sent again on a 404 as the characters are). */
+const atlasTexts = new Map();
+
+/**
+ * A texture atlas's text read by POST /api/atlas/parse (the page images stay in the page):
+ * resolves with the answer ({id, pages: [{file, width, height, pma, image}], regions}) and keeps
+ * the text for the id; a refusal is a Notice with the server's line.
+ */
+export async function parseAtlas(text) {
+  const res = await send("/api/atlas/parse", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ atlas: text }) });
+  if (!res.ok) throw await failure("/api/atlas/parse", res);
+  const answer = await res.json();
+  if (answer.id) atlasTexts.set(answer.id, text);
+  return answer;
+}
+
 /** POSTs `body` as JSON to `path`; resolves with the JSON answer, or a Blob when `as` is "blob". */
 export async function post(path, body, as = "json") {
   const init = { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) };
   let res = await send(path, init);
-  if (res.status === 404 && body && characterTexts.has(body.character)) {
-    await postText("/api/rig/parse", characterTexts.get(body.character), "application/toml");
+  const again = body && (characterTexts.has(body.character) || atlasTexts.has(body.atlas));
+  if (res.status === 404 && again) {
+    // The backend let the character file or the atlas go: both sent again (the ids are the same), then the request.
+    if (characterTexts.has(body.character)) await postText("/api/rig/parse", characterTexts.get(body.character), "application/toml");
+    if (atlasTexts.has(body.atlas)) await parseAtlas(atlasTexts.get(body.atlas));
     res = await send(path, init);
   }
   if (!res.ok) throw await failure(path, res);
@@ -188,7 +207,7 @@ export async function pose(body) {
   const m = await wasm;
   const { rig: text, character, ...ask } = body;
   const rig = text ?? characterTexts.get(character);
-  const typedTakes = !(body.ik || body.goals || body.pins || body.bends || body.rotations || body.skin || body.physics === false);
+  const typedTakes = !(body.atlas || body.ik || body.goals || body.pins || body.bends || body.rotations || body.skin || body.physics === false);
   if (!m || !typedTakes || rig === undefined) return post("/api/pose", body);
   const reply = await m.askPose(rig === workerRig ? ask : { rig, ...ask });
   if (reply.status === 200 && reply.typed) {

@@ -75,9 +75,10 @@ export function characterRef({ text, character }) {
  * keyed target too), the bends in force (`bends`, {lower bone: "ccw" | "cw"}, keys only), the
  * bones turned by hand (`turns`, a Map bone → its local rotation in degrees, sent as
  * `rotations`), and `ik: "ikarus"` when the reader chose ikarus's solver (the runtime's rules are
- * the endpoint's default, so the field is left out for them).
+ * the endpoint's default, so the field is left out for them), and `atlas` (its id, from
+ * /api/atlas/parse) when the character has art (`atlas`: {id, …}): the answer then has `art`.
  */
-export function poseRequest({ text, character, animation, time, targets, ik, bends, turns, skin, physics }) {
+export function poseRequest({ text, character, animation, time, targets, ik, bends, turns, skin, physics, atlas }) {
   return {
     ...characterRef({ text, character }),
     ...optionFields({ skin, physics }),
@@ -86,6 +87,7 @@ export function poseRequest({ text, character, animation, time, targets, ik, ben
     ...(ik === "ikarus" ? { ik: "ikarus" } : {}),
     ...(bends && Object.keys(bends).length ? { bends } : {}),
     ...(turns && turns.size ? { rotations: Object.fromEntries(turns) } : {}),
+    ...(atlas && atlas.id ? { atlas: atlas.id } : {}),
   };
 }
 

@@ -10,6 +10,7 @@
 // character.js; the drawing is drawchar.js. It writes `state.character` (below).
 
 import * as api from "./api.js";
+import { artRefused } from "./artload.js";
 import { saveBlob } from "./files.js";
 import { boneAt, characterRef, characterSummary, solverLine, clipSeconds, exportName, exportRequest, exportState, handleNotes, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { showOptions, wireOptions } from "./charoptions.js";
@@ -38,6 +39,8 @@ const $ = (id) => document.getElementById(id);
  *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
  *   request      the request of `posed`;  poses  answers received
  *   ikReport     what ikarus's solver said of `posed` (the answer's `ik`), or null under Spine's rules
+ *   atlas        the art's atlas (artload.js's: {id, name, pages, byFile, images}) or null;  art  the
+ *                last answer's `art` (drawn under the bones: artview.js), `artOf` its bones;  artNotice  what of it was left out
  *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
  *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
  */
@@ -65,6 +68,9 @@ function newCharacterState(name, text, character) {
     request: null,
     ikReport: null,
     poses: 0,
+    atlas: null,
+    art: null,
+    artNotice: null,
     busy: false,
     pending: false,
     hover: null,
@@ -78,7 +84,7 @@ function newCharacterState(name, text, character) {
  * mode; with keys the timeline plays them, and the export bakes them), requestDraw(),
  * showError(e), setStatus(s), say(text), edited(label) (an undo step)}. Returns {enter(name,
  * text, character), ensure(name, text, character), setWork(work), loaded(), resume(), leave(),
- * reset(), settled(), clipBack() (the clip on the timeline again)}.
+ * reset(), settled(), clipBack() (the clip on the timeline again), repose() (pose again: the art changed)}.
  */
 export function wireCharacters(state, canvas, act) {
   /** The last character loaded: the Body list's "Character: …" shows it again. */
@@ -248,7 +254,9 @@ export function wireCharacters(state, canvas, act) {
       if (state.character === c && s) surveyed(c, s, answer);
       else if (state.character === c) apply(c, req, answer);
     } catch (e) {
-      if (state.character === c) {
+      // Art the backend refuses (a region the atlas lacks): the character goes on as bones, the notice kept.
+      if (state.character === c && artRefused(c, req, e)) act.showError(e);
+      else if (state.character === c) {
         act.showError(e);
         act.setStatus("error");
       }
@@ -271,12 +279,14 @@ export function wireCharacters(state, canvas, act) {
 
   function apply(c, req, answer) {
     c.posed = answer.bones;
+    c.art = answer.art || null;
+    c.artOf = answer.bones;
     c.ikReport = answer.ik || null;
     // The view fits the first pose, the setup pose, and stays.
     if (!c.box) c.box = posedBox(answer.bones);
     c.request = req;
     c.poses++;
-    act.showError(null);
+    act.showError(c.artNotice ? new api.Notice(c.artNotice) : null);
     if (document.body.dataset.status === "error") act.setStatus("ready");
     say();
     act.requestDraw();
@@ -495,5 +505,5 @@ export function wireCharacters(state, canvas, act) {
 
   const clipBack = () => state.character && playClip(state.character);
 
-  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack };
+  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack, repose: poseSoon };
 }

@@ -161,6 +161,11 @@ function drawVia(ctx, view, via) {
 
 export function drawGrid(ctx, view) {
   const { w, h } = view;
+  // Over a character's art (artview.js: `view.under` "art") the canvas is see-through: the grid is drawn under the art.
+  if (view.under === "art") {
+    ctx.clearRect(0, 0, w, h);
+    return;
+  }
   ctx.fillStyle = COLORS.plot;
   ctx.fillRect(0, 0, w, h);
   const [x0, y1] = toWorld(view, 0, 0);

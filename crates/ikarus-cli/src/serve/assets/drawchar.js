@@ -48,15 +48,18 @@ export function handlesOnCanvas(view, c) {
   return out;
 }
 
-/** Draws `state.character` in `view`; returns how many bone shapes were drawn. */
+/** Draws `state.character` in `view` (its bones unless `state.showBones` is false); returns how many bones it has posed. */
 export function drawCharacterScene(ctx, view, state) {
   const c = state.character;
   drawGrid(ctx, view);
-  drawOnion(ctx, view, state);
+  // The bones overlay off (artview.js's switch): the art alone, with the targets' handles.
+  const bones = state.showBones !== false;
+  if (bones) drawOnion(ctx, view, state);
+  else view.onion = [0, 0];
   const px = bonesOnCanvas(view, c);
   const index = new Map(c.character.bones.map((b, i) => [b.name, i]));
   c.character.bones.forEach((bone, i) => {
-    if (!px[i]) return;
+    if (!px[i] || !bones) return;
     drawBone(ctx, boneShape(px[i].o, px[i].t, bone.length), c.ikBones.has(bone.name), c.hover === bone.name);
   });
   const handles = handlesOnCanvas(view, c);

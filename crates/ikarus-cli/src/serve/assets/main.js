@@ -21,6 +21,7 @@ import { wireArm } from "./links.js";
 import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
 import { characterView, drawCharacterScene } from "./drawchar.js";
+import { wireArt } from "./artview.js";
 import { wireCharacters } from "./characters.js";
 import { wireRigs } from "./rigs.js";
 import { wireKeyed } from "./keyed.js";
@@ -120,6 +121,8 @@ const state = {
   // The character (a Spine or DragonBones file) the canvas poses instead, or null
   // (characters.js's newCharacterState documents its fields).
   character: null,
+  // Whether the character's bones are drawn over its art (the switch *Bones over the art*, artview.js).
+  showBones: true,
   // Keyframes of the rig shown (keyed.js): the KEYS object of `ikarus animate --keys`, or null,
   // and the keyed motion played ({fps, duration, frames with `pose`}), or null.
   keys: null,
@@ -193,6 +196,9 @@ const keyed = wireKeyed(state, canvas, { ...bodyActs, timeline, draw, setPose, c
 /** A character: its clips on the timeline, its targets dragged, its export (characters.js). */
 const characters = wireCharacters(state, canvas, { ...bodyActs, forgetMotion, timeline, keyed });
 
+/** The character's art under the canvas (artview.js). */
+const art = wireArt(state, canvas, { requestDraw, repose: () => characters.repose() });
+
 /** The Body list and the rig's pointer (rigs.js). */
 const rigs = wireRigs(state, canvas, { ...bodyActs, characters, keyed, forgetMotion, controlsChanged, fieldsOk, draw, amend, project: projectFiles });
 
@@ -239,14 +245,18 @@ function draw() {
   state.view = views.look(fit);
   state.view.keepOut = overlays();
   if (state.character) {
+    // The art first, under the canvas: the canvas leaves it its background.
+    if (art.draw(state.view)) state.view.under = "art";
     // The bones drawn, for scripts and tests.
     canvas.dataset.bones = String(drawCharacterScene(ctx, state.view, state));
     keyed.drawOver(ctx);
   } else if (state.rig) {
+    art.hide();
     drawRigScene(ctx, state.view, state);
     keyed.drawOver(ctx);
     canvas.dataset.pose = state.rig.pose_deg.map((a) => a.toFixed(6)).join(" ");
   } else {
+    art.hide();
     drawScene(ctx, state.view, state);
     // The pose drawn, for scripts and tests: joint angles in degrees.
     canvas.dataset.pose = state.pose_deg.map((a) => a.toFixed(6)).join(" ");
@@ -724,6 +734,8 @@ window.ikarus = {
   keys: { apply: (k) => keyed.applyKeys(k), settled: () => keyed.settled(), mode: (on) => keyed.setMode(on), seek: (t) => keyed.seek(t), handles: () => keyed.handles(), sent: () => keyed.sent() },
   /** Whether no pose of the character shown is in flight or waiting. */
   characters: { settled: () => characters.settled() },
+  /** The slots of the character's art last drawn, and the draws with art so far (artview.js). */
+  art: { slots: () => art.slots(), draws: () => art.draws() },
   /** Undo, redo, save and open (projects.js), the work as a snapshot, and whether it is unsaved. */
   project: {
     undo: () => project.undo(),

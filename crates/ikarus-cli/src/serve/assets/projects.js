@@ -24,10 +24,10 @@ const SETTINGS = ["method", "limits", "limit-mode", "restarts", "lambda", "toler
 
 /**
  * Fields of the panel that are not settings: Key mode (the arm's), the body, files, a
- * character's clip, skin and physics switch (its state), the base (the arm's), and the onion skins (a view setting, like zoom: no
- * undo step).
+ * character's clip, skin and physics switch (its state), the base (the arm's), and the onion skins and the bones over a
+ * character's art (view settings, like zoom: no undo step).
  */
-const NOT_SETTINGS = new Set(["arm-key-mode", "body-kind", "rig-file", "arm-file", "project-file", "character-animation", "character-skin", "character-physics", "base-x", "base-y", "onion", "onion-count"]);
+const NOT_SETTINGS = new Set(["arm-key-mode", "body-kind", "rig-file", "arm-file", "project-file", "character-animation", "character-skin", "character-physics", "base-x", "base-y", "onion", "onion-count", "show-bones"]);
 
 /** Every setting's element: the known ones, then any other named field of the panel. */
 function settingFields() {

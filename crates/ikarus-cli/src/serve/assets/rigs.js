@@ -10,6 +10,7 @@
 
 import * as api from "./api.js";
 import { postText } from "./armfile.js";
+import { loadTogether } from "./artload.js";
 import { bodyForward, restValue } from "./body.js";
 import { dragGoal, answerPose, rigSolveRequest, rigSummary, shownEffectors, tipAt, togglePin } from "./rig.js";
 import { isDrag, toCanvas, toWorld } from "./view.js";
@@ -192,6 +193,15 @@ export function wireRigs(state, canvas, act) {
     } catch (e) {
       act.showError(e);
     }
+  }
+
+  /**
+   * Files picked or dropped together: one skeleton, rig or project file loads as it is
+   * (loadFile); a skeleton with its atlas and page images loads with its art (artload.js).
+   */
+  function loadFiles(files) {
+    if (files.length === 1 && !/\.(atlas|png|jpe?g|webp)$/i.test(files[0].name)) return loadFile(files[0]);
+    if (files.length) return loadTogether(files, { state, loadFile, characters: act.characters, showError: act.showError });
   }
 
   /** A file's text, or null for a file sent as bytes: a `.skel`, or one that is not UTF-8 text. */
@@ -421,19 +431,19 @@ export function wireRigs(state, canvas, act) {
   });
   $("load-rig").addEventListener("click", () => $("rig-file").click());
   $("rig-file").addEventListener("change", (ev) => {
-    const file = ev.target.files[0];
+    const files = [...ev.target.files];
     ev.target.value = "";
-    if (file) loadFile(file);
+    loadFiles(files);
   });
   // A file dropped anywhere on the page is loaded as if picked.
   document.addEventListener("dragover", (ev) => {
     if (ev.dataTransfer && [...ev.dataTransfer.types].includes("Files")) ev.preventDefault();
   });
   document.addEventListener("drop", (ev) => {
-    const file = ev.dataTransfer && ev.dataTransfer.files[0];
-    if (!file) return;
+    const files = ev.dataTransfer ? [...ev.dataTransfer.files] : [];
+    if (!files.length) return;
     ev.preventDefault();
-    loadFile(file);
+    loadFiles(files);
   });
   $("clear-goals").addEventListener("click", () => {
     clearGoals();
