@@ -240,6 +240,26 @@ test("a character posed by the module is the bytes of the server and of ikarus p
   assert.equal(wasm("pose", JSON.stringify({ rig: puppet })).status, 422);
 });
 
+test("a character's art: the module's atlas and its pose's drawing are the server's bytes", async () => {
+  const atlas = readFileSync(join(root, "examples", "characters", "spineboy.atlas"), "utf8");
+  const rig = readFileSync(join(root, "examples", "characters", "spine-spineboy-pro.json"), "utf8");
+  const parse = JSON.stringify({ atlas });
+  const [n, w] = [await native("atlas/parse", parse), wasm("atlas/parse", parse)];
+  assert.equal(n.status, 200, n.text);
+  assert.equal(w.text, n.text);
+  const id = JSON.parse(w.text).id;
+  for (const fields of [{}, { animation: "walk", time: 0.4, targets: [{ bone: "front-leg-target", x: 60, y: 20 }] }]) {
+    const body = JSON.stringify({ rig, atlas: id, ...fields });
+    const [pn, pw] = [await native("pose", body), wasm("pose", body)];
+    assert.equal(pn.status, 200, pn.text);
+    assert.ok(JSON.parse(pw.text).art.slots.length > 15, "the art is drawn");
+    assert.equal(pw.text, pn.text, `wasm vs server ${firstDifference(pw.text, pn.text)}`);
+  }
+  // An id neither keeps: the same 404 and line.
+  const unknown = JSON.stringify({ rig, atlas: "a0" });
+  assert.deepEqual(wasm("pose", unknown), await native("pose", unknown));
+});
+
 /** Whether two numbers are the same float64, bit for bit (Object.is tells 0 from -0, and NaN). */
 const sameBits = (a, b) => Object.is(a, b);
 
