@@ -130,7 +130,7 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     } else {
         None
     };
-    let atlas = crate::motion_art::atlas_of(output.art, file, picture.as_ref().map(|p| p.format))?;
+    let atlas = crate::motion_art::atlas_of(output.art, file.loaded.format, picture.as_ref().map(|p| p.format))?;
     let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
     if let Some(picture) = picture {
         let (frames, bones) = (motion.frame_count(), file.loaded.character.bones().len());
@@ -147,7 +147,7 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
         let bytes = match &atlas {
             Some(atlas) => {
                 let out = ArtOut { format: picture.format, picture: output.picture, fewer: output.fewer };
-                crate::motion_art::draw(file, motion, (output.art, atlas), &out)?
+                crate::motion_art::draw(&file.label, motion, (output.art, atlas), &out)?
             }
             None => {
                 let poses = motion.poses().map_err(fail)?;

@@ -17,7 +17,6 @@ use ikarus_edge::character::motion_art::{MotionArtError, art_drawing, posed_with
 use ikarus_edge::picture::PictureFormat;
 use ikarus_render::ArtPlacement;
 
-use crate::character_motion::CharacterFile;
 use crate::error::CliError;
 use crate::picture::{PictureArgs, draw_for_command};
 
@@ -53,10 +52,11 @@ impl MotionArtArgs {
 }
 
 /// The atlas `--atlas` names, read with its pages, or `None` without it; the refusals of the
-/// module's doc, `picture` the format `--out` asks for (`None`: no picture).
+/// module's doc, for a character file of `format`, `picture` the format `--out` asks for
+/// (`None`: no picture).
 pub fn atlas_of(
     args: &MotionArtArgs,
-    file: &CharacterFile,
+    format: Format,
     picture: Option<PictureFormat>,
 ) -> Result<Option<AtlasArt>, CliError> {
     let Some(path) = &args.atlas else {
@@ -65,7 +65,7 @@ pub fn atlas_of(
         }
         return Ok(None);
     };
-    if file.loaded.format == Format::DragonBones {
+    if format == Format::DragonBones {
         return Err(CliError::input(format!(
             "--atlas {}: DragonBones characters are drawn as bones only (their art is not read); leave out --atlas",
             path.display()
@@ -91,16 +91,17 @@ pub struct ArtOut<'a> {
     pub fewer: &'a str,
 }
 
-/// `motion` of `file` drawn with `atlas`'s art as `out` asks.
+/// `motion` drawn with `atlas`'s art as `out` asks; `label` names the character file in errors
+/// (`rig file s.json`).
 pub fn draw(
-    file: &CharacterFile,
+    label: &str,
     motion: &Motion<'_>,
     (args, atlas): (&MotionArtArgs, &AtlasArt),
     out: &ArtOut<'_>,
 ) -> Result<Vec<u8>, CliError> {
     let fewer = out.fewer;
     let drawn = posed_with_art(motion, atlas).map_err(|e| match e {
-        MotionArtError::Pose(m) => CliError::input(format!("{}: {m}", file.label)),
+        MotionArtError::Pose(m) => CliError::input(format!("{label}: {m}")),
         MotionArtError::Art(m) => {
             let path = args.atlas.as_ref().map_or_else(String::new, |p| p.display().to_string());
             CliError::input(format!("atlas file {path}: {m}"))
