@@ -17,6 +17,7 @@ use std::path::Path;
 
 use crate::error::CliError;
 use crate::picture::SizeArgs;
+pub(crate) use ikarus_edge::picture::pose_drawn as drawn;
 
 /// What `ikarus pose --atlas` was asked to draw: the files, whether the art goes alone, the
 /// picture's size and format.
@@ -88,15 +89,4 @@ pub fn draw(
         }
     };
     bytes.map_err(drawn)
-}
-
-/// A picture's failure: a number the picture cannot hold (a bone so far away that the view
-/// overflows) or a size out of range is the input's; anything else is the drawing's.
-pub(crate) fn drawn(e: ikarus_render::RenderError) -> CliError {
-    match e {
-        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
-            CliError::input(format!("cannot draw the pose: {e}"))
-        }
-        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
-    }
 }

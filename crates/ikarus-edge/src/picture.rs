@@ -299,3 +299,15 @@ pub fn workspace_caption(arm: &Arm, area: &ReachableArea) -> String {
 pub fn render_failed(e: &impl std::fmt::Display) -> CliError {
     CliError::runtime(format!("rendering failed: {e}"))
 }
+
+/// A pose picture's failure: a number the picture cannot hold (a bone so far away that the
+/// view overflows) or a size out of range is the input's; anything else is the drawing's.
+#[must_use]
+pub fn pose_drawn(e: ikarus_render::RenderError) -> CliError {
+    match e {
+        ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
+            CliError::input(format!("cannot draw the pose: {e}"))
+        }
+        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+    }
+}

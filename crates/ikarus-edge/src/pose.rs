@@ -129,6 +129,16 @@ pub fn pose_kept(loaded: &Loaded, ask: &PoseAsk, posed: &mut Posed) -> Result<Po
     pose_keeping(loaded, ask, posed, None)
 }
 
+/// [`pose_kept`], stopped as [`pose_watched`] is.
+pub fn pose_kept_watched(
+    loaded: &Loaded,
+    ask: &PoseAsk,
+    posed: &mut Posed,
+    interrupt: &Interrupt,
+) -> Result<PoseReport, String> {
+    pose_keeping(loaded, ask, posed, Some(interrupt))
+}
+
 fn pose_keeping(
     loaded: &Loaded,
     ask: &PoseAsk,

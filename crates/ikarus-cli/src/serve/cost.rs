@@ -17,7 +17,9 @@
 //! - a character's job (`rig` a character file's text): reading the file, plus its poses (one
 //!   for `pose`, a frame's for `animate` and `render`, a sample's for `track`), each costed from
 //!   the file's bones and constraints ([`character`]); `rig/parse` and `arm/parse`: their bytes
-//!   (a `.skel`'s bytes as the JSON text they may decode into at most: [`character::SKEL_TEXT_BYTES`]).
+//!   (a `.skel`'s bytes as the JSON text they may decode into at most: [`character::SKEL_TEXT_BYTES`]);
+//!   `atlas/parse`: [`ATLAS_BYTE_COST`] a byte of its body (its page images are decoded: an
+//!   atlas alone is quick, one with its images is long).
 //!
 //! The body is read leniently: unknown fields are skipped, and a field of the wrong type counts
 //! as absent (the request is then refused when it runs, at once). A body that is not a JSON
@@ -43,6 +45,10 @@ use character::Rules;
 /// worst case.
 pub const QUICK_COST: f64 = 2.5e6;
 
+/// Link steps a byte of `/api/atlas/parse`'s body counts for: a compressed PNG byte decodes
+/// into several pixels (a megabyte of images is far past [`QUICK_COST`]).
+pub const ATLAS_BYTE_COST: f64 = 10.0;
+
 /// The solver's defaults (`SolveOptions::default()`), as the estimate reads them.
 const ITERATIONS: f64 = 1000.0;
 const RESTARTS: f64 = 16.0;
@@ -66,6 +72,9 @@ pub fn lane(endpoint: Endpoint, body: &[u8]) -> Lane {
 pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
     if matches!(endpoint, Endpoint::RigParse | Endpoint::ArmParse) {
         return file_estimate(FileBody::Text, body);
+    }
+    if endpoint == Endpoint::AtlasParse {
+        return body.len() as f64 * ATLAS_BYTE_COST;
     }
     let Ok(r) = serde_json::from_slice::<Shape>(body) else { return 0.0 };
     match endpoint {

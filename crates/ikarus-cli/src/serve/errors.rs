@@ -75,6 +75,21 @@ impl MediaType for TomlType {
     }
 }
 
+/// A texture atlas with its page images for `/api/atlas/parse`: JSON, under `--max-file-bytes`
+/// (the images make it a file's size, not a request's).
+pub struct AtlasType;
+
+impl MediaType for AtlasType {
+    const NAME: &'static str = JsonType::NAME;
+    fn accepts(essence: &str) -> bool {
+        JsonType::accepts(essence)
+    }
+    /// A file: `--max-file-bytes`.
+    fn cap(state: &AppState) -> (usize, &'static str) {
+        TomlType::cap(state)
+    }
+}
+
 /// A rig or character file for `/api/rig/parse`: its text (`application/toml`) or its bytes
 /// (`application/octet-stream`, a Spine binary export `.skel`).
 pub struct RigFileType;
@@ -126,6 +141,8 @@ pub type JsonBody = ApiBody<JsonType>;
 pub type TomlBody = ApiBody<TomlType>;
 /// A rig or character file's text or bytes (`/api/rig/parse`).
 pub type RigFileBody = ApiBody<RigFileType>;
+/// A texture atlas and its page images (`/api/atlas/parse`).
+pub type AtlasBody = ApiBody<AtlasType>;
 
 impl<T: MediaType> FromRequest<AppState> for ApiBody<T> {
     type Rejection = Refusal;

@@ -8,7 +8,7 @@ use axum::response::{IntoResponse, Response};
 use ikarus::Interrupt;
 
 use super::AppState;
-use super::errors::{ApiBody, JsonBody, OCTET_STREAM, Refusal, RigFileBody, TomlBody, essence};
+use super::errors::{ApiBody, AtlasBody, JsonBody, OCTET_STREAM, Refusal, RigFileBody, TomlBody, essence};
 use crate::api::rigs::{Echo, FileBody};
 use crate::api::{self, Endpoint, Problem, Reply};
 
@@ -50,6 +50,12 @@ pub fn at_once(endpoint: Endpoint, state: &AppState, body: &[u8]) -> Result<Resp
 /// held `/api/health`, every other request and Ctrl-C for as long as it took.
 pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> Result<Response, Refusal> {
     on_pool(endpoint, state, body).await
+}
+
+/// `/api/atlas/parse`: a texture atlas and its page images (JSON under `--max-file-bytes`),
+/// read on a worker of the pool as [`compute`] does.
+pub async fn atlas_file(state: AppState, body: AtlasBody) -> Result<Response, Refusal> {
+    on_pool(Endpoint::AtlasParse, state, body).await
 }
 
 /// `/api/rig/parse`: the body is a rig or character file's text (`application/toml`) or bytes

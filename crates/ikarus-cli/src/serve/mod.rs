@@ -27,7 +27,7 @@ pub use crate::api::Limits;
 use crate::api::{Endpoint, status};
 use crate::error::CliError;
 use errors::{ApiError, JsonBody, Refusal};
-use handlers::{at_once, compute, file_text, rig_file};
+use handlers::{at_once, atlas_file, compute, file_text, rig_file};
 
 /// The playground page and its assets, embedded at compile time (no build step, nothing fetched).
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -146,10 +146,10 @@ pub struct AppState {
     pub max_file_bytes: usize,
 }
 
-/// Whether `path` takes a file's text (`/api/arm/parse`, `/api/rig/parse`), under
+/// Whether `path` takes a file (`/api/arm/parse`, `/api/rig/parse`, `/api/atlas/parse`), under
 /// `--max-file-bytes` rather than `--max-body-bytes`.
 pub fn is_file_path(path: &str) -> bool {
-    matches!(path, "/api/arm/parse" | "/api/rig/parse")
+    matches!(path, "/api/arm/parse" | "/api/rig/parse" | "/api/atlas/parse")
 }
 
 /// Bytes all the request bodies being received may hold at once.
@@ -306,6 +306,7 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard, max_file_bytes:
         .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
         .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)).layer(file_cap))
         .route("/api/rig/parse", post(|State(s), h, q, b| rig_file(s, h, q, b)).layer(file_cap))
+        .route("/api/atlas/parse", post(|State(s), b| atlas_file(s, b)).layer(file_cap))
         .route(
             "/api/arm/toml",
             post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),

@@ -22,6 +22,8 @@ pub enum RenderReq {
     Motion(Box<MotionFigureReq>),
     /// A character's keyed motion (figure `motion` with `rig` holding a character's text).
     CharacterMotion(Box<CharacterFigureReq>),
+    /// A character in one pose (figure `pose`), with its art given an atlas.
+    Pose(Box<PoseFigureReq>),
     /// The reachable area (the fields of `/api/workspace`).
     Workspace(Box<WorkspaceFigureReq>),
     /// An ease curve.
@@ -37,6 +39,7 @@ pub enum Figure {
     Workspace,
     Ease,
     Rig,
+    Pose,
 }
 
 /// The first pass over a render request: `figure` (required), other fields skipped. Its
@@ -62,6 +65,7 @@ impl RenderReq {
             Figure::Motion => RenderReq::Motion(parse_json(body)?),
             Figure::Workspace => RenderReq::Workspace(parse_json(body)?),
             Figure::Ease => RenderReq::Ease(parse_json(body)?),
+            Figure::Pose => RenderReq::Pose(parse_json(body)?),
         })
     }
 }
@@ -163,6 +167,68 @@ request! {
 }
 
 request! {
+    /// Figure `pose`: a character posed as `/api/pose` poses it (the same fields), drawn as
+    /// `ikarus pose --out x.png|svg` draws it: its bones and targets; with `atlas` (an atlas
+    /// sent to `/api/atlas/parse` with its page images) its art under them; with `art_only` the
+    /// art alone on a transparent background, fitted at 90 %.
+    #[derive(Debug, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct PoseFigureReq {
+        ..picture,
+        ..pose,
+        /// With `atlas`: the art alone [default: false].
+        pub art_only: Option<bool>,
+    }
+}
+
+impl PoseFigureReq {
+    /// The pose's request, and `art_only`.
+    #[must_use]
+    pub fn into_pose(self) -> (super::pose::PoseReq, bool) {
+        let Self {
+            _figure,
+            format: _,
+            width: _,
+            height: _,
+            rig,
+            character,
+            animation,
+            time,
+            targets,
+            bends,
+            rotations,
+            physics,
+            fps,
+            skin,
+            atlas,
+            ik,
+            ik_file,
+            goals,
+            pins,
+            art_only,
+        } = self;
+        let req = super::pose::PoseReq {
+            rig,
+            character,
+            animation,
+            time,
+            targets,
+            bends,
+            rotations,
+            physics,
+            fps,
+            skin,
+            atlas,
+            ik,
+            ik_file,
+            goals,
+            pins,
+        };
+        (req, art_only.unwrap_or(false))
+    }
+}
+
+request! {
     /// Figure `workspace`.
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
@@ -190,6 +256,7 @@ impl RenderReq {
             RenderReq::Body(_, r) => (r.format, r.width, r.height),
             RenderReq::Motion(r) => (r.format, r.width, r.height),
             RenderReq::CharacterMotion(r) => (r.format, r.width, r.height),
+            RenderReq::Pose(r) => (r.format, r.width, r.height),
             RenderReq::Workspace(r) => (r.format, r.width, r.height),
             RenderReq::Ease(r) => (r.format, r.width, r.height),
         }

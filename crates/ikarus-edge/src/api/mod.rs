@@ -11,6 +11,7 @@
 //! [`fields`].
 
 pub mod arm_files;
+pub mod atlases;
 pub mod bodies;
 pub mod character_motion;
 pub mod ease;
@@ -20,6 +21,8 @@ pub mod jobs;
 pub mod keyed;
 pub mod meta;
 pub mod pose;
+#[cfg(feature = "render")]
+pub mod pose_figure;
 pub mod regions;
 #[cfg(feature = "render")]
 pub mod render;
@@ -209,6 +212,8 @@ pub enum Endpoint {
     Rigs,
     /// `POST /api/rig/parse`: a rig file's text → `{rig}` or `{problem}`.
     RigParse,
+    /// `POST /api/atlas/parse`: a texture atlas (and its page images) → its id and pages.
+    AtlasParse,
     /// `POST /api/solve`: an arm's or a rig's solve.
     Solve,
     /// `POST /api/solve_batch`: many goals for one arm, through the library's batch path.
@@ -239,6 +244,7 @@ impl Endpoint {
         Endpoint::ArmToml,
         Endpoint::Rigs,
         Endpoint::RigParse,
+        Endpoint::AtlasParse,
         Endpoint::Solve,
         Endpoint::SolveBatch,
         Endpoint::Animate,
@@ -261,6 +267,7 @@ impl Endpoint {
             Endpoint::ArmToml => "/api/arm/toml",
             Endpoint::Rigs => "/api/rigs",
             Endpoint::RigParse => "/api/rig/parse",
+            Endpoint::AtlasParse => "/api/atlas/parse",
             Endpoint::Solve => "/api/solve",
             Endpoint::SolveBatch => "/api/solve_batch",
             Endpoint::Animate => "/api/animate",
@@ -300,6 +307,7 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::ArmToml => arm_files::toml(body),
         Endpoint::Rigs => rigs::list(),
         Endpoint::RigParse => rigs::parse_file(body, rigs::FileBody::Text, rigs::Echo::Without, limits),
+        Endpoint::AtlasParse => atlases::parse(body),
         Endpoint::Solve => jobs::solve(SolveReq::parse(body)?.1, limits, interrupt),
         Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
         Endpoint::Animate if character_motion::is_character(body) => character_motion::animate(body, limits, interrupt),

@@ -5,18 +5,23 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
+use super::atlases::KeptAtlas;
+
 use super::bodies::{effectors_within, field_name, named_goals};
 use super::fields::{json_response, stopped};
 use super::requests::request;
 use super::{Limits, Problem, Reply, parse_json, status};
+use crate::character::art_json::ArtJson;
 use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
 use crate::keys::BendName;
 use crate::keys::character::{bend_constraint, bend_positive};
-use crate::pose::{IkChoice, PhysicsAsk, PoseAsk, add_goals, pose_watched as posed};
+use crate::pose::{
+    IkChoice, PhysicsAsk, PoseAsk, PoseReport, add_goals, clip_at, pose_kept_watched, pose_watched as posed, skin_index,
+};
 use crate::rig::BoneCap;
 use ikarus::Interrupt;
-use ikarus::character::Character;
+use ikarus::character::{Character, DrawList, Posed};
 use std::sync::Arc;
 
 request! {
@@ -32,22 +37,12 @@ request! {
     /// skin called `default`, if any), and the answer's inactive bones carry `"active": false`.
     /// `"physics": false` leaves a character's physics constraints out (`--physics off`);
     /// otherwise the animation is played from 0 at `fps` frames a second (default 60) with them.
+    /// `"atlas": ID` (the id `/api/atlas/parse` answered) adds the pose's drawing, `"art"`
+    /// ([`crate::character::art_json`]).
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct PoseReq {
-        /// The character file's text; or `character`.
-        pub rig: Option<String>,
-        /// The id `/api/rig/parse` answered for the character ([`crate::character::store`]).
-        pub character: Option<String>,
-        pub animation: Option<String>,
-        pub time: Option<f64>,
-        pub targets: Vec<TargetReq>,
-        pub bends: BTreeMap<String, BendName>,
-        pub rotations: BTreeMap<String, f64>,
-        pub physics: Option<bool>,
-        pub fps: Option<f64>,
-        pub skin: Option<String>,
-        ..ik_goals,
+        ..pose,
     }
 }
 
@@ -61,36 +56,98 @@ pub struct TargetReq {
 }
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
-/// targets as it has bones.
+/// targets as it has bones; with `atlas`, the pose's drawing too.
 pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: PoseReq = parse_json(body)?;
-    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
-    let loaded = &stored.loaded;
-    let bones = loaded.character.bones().len();
-    if req.targets.len() > bones {
-        return Err(Problem::invalid(format!(
-            "targets: {} targets for {bones} bones; at most one per bone",
-            req.targets.len()
-        )));
-    }
-    let ik = IkReq { ik: req.ik, ik_file: req.ik_file, goals: req.goals, pins: req.pins }.choice(&loaded.character)?;
-    let ask = PoseAsk {
-        animation: req.animation,
-        time: req.time,
-        targets: req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect(),
-        ik,
-        bends: bends(loaded, &req.bends)?,
-        turns: turns(loaded, &req.rotations)?,
-        physics: match req.physics {
-            Some(false) => PhysicsAsk::Off,
-            Some(true) | None => PhysicsAsk::Play { fps: req.fps.unwrap_or(60.0) },
-        },
-        skin: req.skin,
+    let posing = Posing::of(parse_json(body)?, limits)?;
+    let Some(atlas) = &posing.atlas else {
+        let report = posed(&posing.stored.loaded, &posing.ask, interrupt);
+        stopped(interrupt)?;
+        return json_response(&report.map_err(Problem::invalid)?);
     };
-    let report = posed(loaded, &ask, interrupt);
-    stopped(interrupt)?;
-    let report = report.map_err(Problem::invalid)?;
-    json_response(&report)
+    let drawn = posing.drawn(interrupt)?;
+    let a = &atlas.art;
+    let c = &posing.stored.loaded.character;
+    let mut list = DrawList::default();
+    c.draw_list_at(&drawn.posed, drawn.skin, drawn.clip, &a.regions, &mut list)
+        .map_err(|e| Problem::invalid(e.to_string()))?;
+    let art = ArtJson::of(c, &list, &a.atlas, &a.regions).map_err(|e| Problem::invalid(format!("atlas: {e}")))?;
+    json_response(&PoseWithArt { report: drawn.report, art })
+}
+
+/// `/api/pose`'s answer with `"atlas"`: the pose and its drawing.
+#[derive(Debug, serde::Serialize)]
+struct PoseWithArt {
+    #[serde(flatten)]
+    report: PoseReport,
+    art: ArtJson,
+}
+
+/// A pose request read and checked: the character, what to pose, and the atlas to draw it with.
+pub struct Posing {
+    /// The character.
+    pub stored: Arc<Stored>,
+    /// The pose asked for.
+    pub ask: PoseAsk,
+    /// The atlas `atlas` names.
+    pub atlas: Option<Arc<KeptAtlas>>,
+}
+
+/// A pose, with what drawing its art takes.
+pub struct Drawn {
+    /// The pose's report (the bones, the solve).
+    pub report: PoseReport,
+    /// The pose itself.
+    pub posed: Posed,
+    /// The skin it was posed with.
+    pub skin: Option<usize>,
+    /// The clip at its time.
+    pub clip: Option<(usize, f64)>,
+}
+
+impl Posing {
+    /// The request `req` checked against its character (its targets at most one per bone, its
+    /// IK, bends and rotations naming what the character has) and its atlas looked up.
+    pub fn of(req: PoseReq, limits: &Limits) -> Result<Self, Problem> {
+        let atlas = req.atlas.as_deref().map(super::atlases::stored_atlas).transpose()?;
+        let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+        let loaded = &stored.loaded;
+        let bones = loaded.character.bones().len();
+        if req.targets.len() > bones {
+            return Err(Problem::invalid(format!(
+                "targets: {} targets for {bones} bones; at most one per bone",
+                req.targets.len()
+            )));
+        }
+        let ik =
+            IkReq { ik: req.ik, ik_file: req.ik_file, goals: req.goals, pins: req.pins }.choice(&loaded.character)?;
+        let ask = PoseAsk {
+            animation: req.animation,
+            time: req.time,
+            targets: req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect(),
+            ik,
+            bends: bends(loaded, &req.bends)?,
+            turns: turns(loaded, &req.rotations)?,
+            physics: match req.physics {
+                Some(false) => PhysicsAsk::Off,
+                Some(true) | None => PhysicsAsk::Play { fps: req.fps.unwrap_or(60.0) },
+            },
+            skin: req.skin,
+        };
+        Ok(Self { stored, ask, atlas })
+    }
+
+    /// The pose (kept, to draw its art from).
+    pub fn drawn(&self, interrupt: &Interrupt) -> Result<Drawn, Problem> {
+        let (loaded, ask) = (&self.stored.loaded, &self.ask);
+        let c = &loaded.character;
+        let mut posed = Posed::default();
+        let report = pose_kept_watched(loaded, ask, &mut posed, interrupt);
+        stopped(interrupt)?;
+        let report = report.map_err(Problem::invalid)?;
+        let skin = skin_index(c, ask.skin.as_deref()).map_err(Problem::invalid)?;
+        let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(Problem::invalid)?;
+        Ok(Drawn { report, posed, skin, clip })
+    }
 }
 
 /// The character of a request: `rig`, the file's text (read now), or `character`, the id

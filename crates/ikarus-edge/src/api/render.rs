@@ -86,6 +86,7 @@ fn render_figure(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Resu
         }
         RenderReq::Motion(r) => motion_figure(&r, canvas, limits, interrupt)?,
         RenderReq::CharacterMotion(r) => character_figure(&r, canvas, limits, interrupt)?,
+        RenderReq::Pose(r) => super::pose_figure::pose_figure(*r, canvas, limits, interrupt)?,
     };
     Ok((bytes, format))
 }

@@ -38,6 +38,8 @@ use crate::settings::SolverSettings;
 ///   sampled grid).
 /// - `..character_ik`: a character's `ik` (`"runtime"` or `"ikarus"`) and `ik_file` (TOML).
 /// - `..ik_goals`: `..character_ik`, then goals on bones' tips and pins (with `"ikarus"`).
+/// - `..pose`: a character's pose (`/api/pose`'s fields): `rig` or `character`, the clip and its
+///   time, targets, bends, rotations, physics, skin, atlas, then `..ik_goals`.
 /// - `..export`: a character's motion's `format`, `..character_ik`, `animation_name`, `bake`.
 ///
 /// A field written `required name: Type,` has no default: absent, it is refused.
@@ -117,6 +119,26 @@ macro_rules! request {
             pub ik: Option<String>,
             /// With `"ik": "ikarus"`: an IK file's text (TOML; see `ikarus pose --ik-file`).
             pub ik_file: Option<String>,
+            $($rest)*
+        );
+    };
+    (@fields $head:tt $done:tt ..pose, $($rest:tt)*) => {
+        $crate::api::requests::request!(@fields $head $done
+            /// The character file's text; or `character`.
+            pub rig: Option<String>,
+            /// The id `/api/rig/parse` answered for the character ([`crate::character::store`]).
+            pub character: Option<String>,
+            pub animation: Option<String>,
+            pub time: Option<f64>,
+            pub targets: Vec<$crate::api::pose::TargetReq>,
+            pub bends: std::collections::BTreeMap<String, $crate::keys::BendName>,
+            pub rotations: std::collections::BTreeMap<String, f64>,
+            pub physics: Option<bool>,
+            pub fps: Option<f64>,
+            pub skin: Option<String>,
+            /// The id `/api/atlas/parse` answered for the character's atlas.
+            pub atlas: Option<String>,
+            ..ik_goals,
             $($rest)*
         );
     };

@@ -17,6 +17,7 @@
 //! is listed in [`Character::unsupported`].
 
 pub mod art_draw;
+pub mod art_json;
 pub mod atlas;
 mod clips;
 mod dragonbones;

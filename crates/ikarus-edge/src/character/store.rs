@@ -34,13 +34,35 @@ pub struct Stored {
     pub text: String,
 }
 
-/// The characters kept, least recently used first.
-#[derive(Debug, Default)]
-pub struct Store {
-    kept: Mutex<Vec<(String, Arc<Stored>)>>,
+/// What a kept thing costs the store: the bytes counted against its bound.
+pub trait Weigh {
+    /// The bytes it holds, as the store counts them.
+    fn bytes(&self) -> usize;
 }
 
-/// The process's store.
+impl Weigh for Stored {
+    fn bytes(&self) -> usize {
+        self.text.len()
+    }
+}
+
+/// Things kept by id, least recently used first, at most `most` of them and `bytes` bytes
+/// ([`Weigh`]) over all.
+#[derive(Debug)]
+pub struct Store<T = Stored> {
+    kept: Mutex<Vec<(String, Arc<T>)>>,
+    most: usize,
+    bytes: usize,
+}
+
+impl Default for Store<Stored> {
+    /// The characters' bounds: [`MAX_CHARACTERS`], [`MAX_TEXT_BYTES`].
+    fn default() -> Self {
+        Self::new(MAX_CHARACTERS, MAX_TEXT_BYTES)
+    }
+}
+
+/// The process's store of characters.
 pub fn global() -> &'static Store {
     static STORE: OnceLock<Store> = OnceLock::new();
     STORE.get_or_init(Store::default)
@@ -49,33 +71,50 @@ pub fn global() -> &'static Store {
 /// The id of a file's text: its FNV-1a hash and length, in hex (`c` and 24 digits).
 #[must_use]
 pub fn id_of(text: &str) -> String {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for &b in text.as_bytes() {
-        hash ^= u64::from(b);
-        hash = hash.wrapping_mul(0x0100_0000_01b3);
-    }
-    format!("c{hash:016x}{:08x}", text.len() as u32)
+    format!("c{:016x}{:08x}", fnv(FNV_START, text.as_bytes()), text.len() as u32)
 }
 
-impl Store {
-    /// Keeps `loaded`, read from `text`, and answers its id (a character of the same id is
-    /// replaced), letting the least recently used go past the bounds.
-    pub fn put(&self, text: String, loaded: Loaded) -> (String, Arc<Stored>) {
-        let id = id_of(&text);
-        let stored = Arc::new(Stored { loaded, text });
-        let mut kept = self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        kept.retain(|(k, _)| *k != id);
-        kept.push((id.clone(), Arc::clone(&stored)));
-        let mut bytes: usize = kept.iter().map(|(_, s)| s.text.len()).sum();
-        while kept.len() > 1 && (kept.len() > MAX_CHARACTERS || bytes > MAX_TEXT_BYTES) {
-            bytes -= kept[0].1.text.len();
-            kept.remove(0);
-        }
-        (id, stored)
+/// `tag` and the FNV-1a hash and total length of `parts`, each part followed by a separator
+/// byte (moving bytes from one part to the next changes the id), in hex: the id of a thing made
+/// of several files (an atlas and its page images).
+#[must_use]
+pub fn hashed(tag: char, parts: &[&[u8]]) -> String {
+    let hash = parts.iter().fold(FNV_START, |h, part| fnv(fnv(h, part), &[0xff]));
+    let len: usize = parts.iter().map(|p| p.len()).sum();
+    format!("{tag}{hash:016x}{:08x}", len as u32)
+}
+
+const FNV_START: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// FNV-1a of `bytes` from `hash`.
+fn fnv(hash: u64, bytes: &[u8]) -> u64 {
+    bytes.iter().fold(hash, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+impl<T: Weigh> Store<T> {
+    /// An empty store keeping at most `most` things and `bytes` bytes of them.
+    #[must_use]
+    pub fn new(most: usize, bytes: usize) -> Self {
+        Self { kept: Mutex::new(Vec::new()), most, bytes }
     }
 
-    /// The character of `id`, now the most recently used; `None` when it is not kept.
-    pub fn get(&self, id: &str) -> Option<Arc<Stored>> {
+    /// Keeps `thing` under `id` (a thing of the same id is replaced), letting the least
+    /// recently used go past the bounds (never the one just kept).
+    pub fn keep(&self, id: String, thing: T) -> Arc<T> {
+        let thing = Arc::new(thing);
+        let mut kept = self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        kept.retain(|(k, _)| *k != id);
+        kept.push((id, Arc::clone(&thing)));
+        let mut bytes: usize = kept.iter().map(|(_, s)| s.bytes()).sum();
+        while kept.len() > 1 && (kept.len() > self.most || bytes > self.bytes) {
+            bytes -= kept[0].1.bytes();
+            kept.remove(0);
+        }
+        thing
+    }
+
+    /// The thing of `id`, now the most recently used; `None` when it is not kept.
+    pub fn get(&self, id: &str) -> Option<Arc<T>> {
         let mut kept = self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let at = kept.iter().position(|(k, _)| k == id)?;
         let entry = kept.remove(at);
@@ -84,7 +123,7 @@ impl Store {
         Some(stored)
     }
 
-    /// How many characters are kept.
+    /// How many things are kept.
     pub fn len(&self) -> usize {
         self.kept.lock().unwrap_or_else(std::sync::PoisonError::into_inner).len()
     }
@@ -92,6 +131,15 @@ impl Store {
     /// Whether none is kept.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+}
+
+impl Store<Stored> {
+    /// Keeps `loaded`, read from `text`, and answers its id ([`id_of`]).
+    pub fn put(&self, text: String, loaded: Loaded) -> (String, Arc<Stored>) {
+        let id = id_of(&text);
+        let stored = self.keep(id.clone(), Stored { loaded, text });
+        (id, stored)
     }
 }
 

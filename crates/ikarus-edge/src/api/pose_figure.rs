@@ -1,0 +1,69 @@
+//! Figure `pose` of `POST /api/render`: a character in one pose, drawn as `ikarus pose --out
+//! x.png|svg` draws it: its bones and targets, with an atlas its art under them, with
+//! `art_only` the art alone (transparent, the art's box fitted at 90 %).
+//!
+//! Refused, in one line: `art_only` without `atlas`; an atlas sent without its page images
+//! (the page draws the art itself from `/api/pose`'s `art`; a picture needs the images);
+//! `format` `gif` (one pose does not animate); and what `/api/pose` refuses.
+
+use ikarus::Interrupt;
+use ikarus::character::DrawList;
+
+use super::fields::picture;
+use super::figures::PoseFigureReq;
+use super::pose::Posing;
+use super::render::Canvas;
+use super::{Limits, Problem};
+use crate::picture::{PictureFormat, pose_drawn};
+
+/// The picture of `r` on `canvas`.
+pub(super) fn pose_figure(
+    r: PoseFigureReq,
+    canvas: Canvas,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Vec<u8>, Problem> {
+    let (req, art_only) = r.into_pose();
+    let posing = Posing::of(req, limits)?;
+    if art_only && posing.atlas.is_none() {
+        return Err(Problem::invalid(
+            "art_only: draws a character's art: give its atlas (\"atlas\": the id /api/atlas/parse answered)",
+        ));
+    }
+    if let Some(atlas) = posing.atlas.as_ref().filter(|a| !a.images) {
+        let pages: Vec<&str> = atlas.art.atlas.pages.iter().map(|p| p.file.as_str()).collect();
+        return Err(Problem::invalid(format!(
+            "atlas: sent without its page images ({}): send them to /api/atlas/parse as \"pages\" to draw the art",
+            pages.join(", ")
+        )));
+    }
+    let drawn = posing.drawn(interrupt)?;
+    let c = &posing.stored.loaded.character;
+    let figure = || drawn.report.figure(None);
+    let (w, h) = (canvas.width, canvas.height);
+    let bytes = match &posing.atlas {
+        None => match canvas.format {
+            PictureFormat::Svg => ikarus_render::character_svg(&figure(), w, h).map(String::into_bytes),
+            _ => ikarus_render::character_png(&figure(), w, h),
+        },
+        Some(atlas) => {
+            let art = atlas
+                .art
+                .art(c, &drawn.posed, (drawn.skin, drawn.clip), &mut DrawList::default())
+                .map_err(|e| Problem::invalid(format!("atlas: {e}")))?;
+            match (canvas.format, art_only) {
+                (PictureFormat::Svg, true) => ikarus_render::art_only_svg(&art, w, h).map(String::into_bytes),
+                (PictureFormat::Svg, false) => {
+                    ikarus_render::character_art_svg(&figure(), &art, w, h).map(String::into_bytes)
+                }
+                (_, true) => ikarus_render::art_only_png(&art, w, h),
+                (_, false) => ikarus_render::character_art_png(&figure(), &art, w, h),
+            }
+        }
+    };
+    picture(bytes.map_err(pose_drawn), interrupt)
+}
+
+#[cfg(test)]
+#[path = "pose_figure_tests.rs"]
+mod tests;
