@@ -3,13 +3,15 @@
 //! (the atlas page's, absent from the same GIF drawn as bones only), change as the walk moves,
 //! and alone (`--art-only`) share one fit (the box of every frame's art fills 90 % of the
 //! picture, centred, while single frames fill less); the PNG and SVG draw the last frame's art
-//! under the ghosts; the refusals are one line naming the flag or the file.
+//! under the ghosts; the server's GIF (`POST /api/render` figure `motion` with `"atlas"`) is the
+//! command line's, byte for byte; the refusals are one line naming the flag or the file.
 
 mod common;
 
 use std::collections::HashSet;
 
 use common::{SPINEBOY, fails, ikarus, spineboy_keys, stderr};
+use serde_json::json;
 
 const CHARACTERS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters");
 const SIDE: usize = 200;
@@ -236,4 +238,44 @@ fn refusals_are_one_line() {
     let e = fails(&["track", "--line", "0,0,1,1", "--art-only"], 2);
     assert!(e.contains("--art-only: only with a character file"), "{e}");
     assert!(!std::path::Path::new(gif).exists(), "nothing written");
+}
+
+/// Standard base64 (RFC 4648, padded), written here so the test does not lean on the server's
+/// own decoder's crate to make its input.
+fn b64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_servers_gif_with_the_art_is_the_command_lines() {
+    let (dir, keys) = setup("serve");
+    let atlas = file("spineboy.atlas");
+    let s = common::server::start(&[]);
+    let page = std::fs::read(file("spineboy.png")).unwrap();
+    let parse = json!({ "atlas": std::fs::read_to_string(&atlas).unwrap(), "pages": { "spineboy.png": b64(&page) } });
+    let id = s.post("/api/atlas/parse", &parse).json()["id"].clone();
+    let text = std::fs::read_to_string(SPINEBOY).unwrap();
+    for (name, more) in [("under.gif", &["--atlas", &atlas][..]), ("alone.gif", &["--atlas", &atlas, "--art-only"])] {
+        let cli = walk(&keys, &dir.path().join(name), more);
+        let body = json!({
+            "figure": "motion", "format": "gif", "rig": text, "keys": spineboy_keys(), "animation": "walk",
+            "atlas": id, "art_only": more.len() == 3, "width": SIDE, "height": SIDE,
+        });
+        let served = s.post("/api/render", &body);
+        assert_eq!(served.status, 200, "{}", served.text());
+        assert!(served.body == cli, "{name}: the API's GIF differs from the command line's");
+    }
 }
