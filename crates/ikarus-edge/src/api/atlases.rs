@@ -183,6 +183,7 @@ pub fn stored_atlas(id: &str) -> Result<Arc<KeptAtlas>, Problem> {
 
 /// Refuses, in one line, `art_only` without an atlas and an atlas sent without its page images
 /// (a picture needs them): what a picture with a character's art asks of its `atlas`.
+#[cfg(feature = "render")]
 pub(super) fn drawable(atlas: Option<&KeptAtlas>, art_only: bool) -> Result<(), Problem> {
     if art_only && atlas.is_none() {
         return Err(Problem::invalid(
