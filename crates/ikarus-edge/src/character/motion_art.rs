@@ -131,3 +131,52 @@ pub fn art_drawing<'a>(
     };
     Drawing::CharacterArtMotion { figure, fps: motion.fps }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::character::motion::{Physics, keyed};
+    use crate::keys::KeysFile;
+
+    /// Celestial circus's root held still for 1.2 s over its clip `stars` (0.7333 s, whose
+    /// slots show star attachments from 0.0667 s on): the frames' art is each frame's pose drawn
+    /// with the clip's slot keys at the clip's time, looped past its end as the bones' clip is.
+    #[test]
+    fn each_frame_draws_the_slot_keys_at_its_looped_clip_time() {
+        let text = include_str!("../../../../examples/characters/spine-celestial-circus-pro.json");
+        let loaded = crate::character::load(text, "circus").unwrap();
+        let c = &loaded.character;
+        let keys = KeysFile::parse(
+            r#"{"fps": 10, "tracks": {"root": [{"time": 0, "x": 0, "y": 0}, {"time": 1.2, "x": 0, "y": 0}]}}"#,
+        )
+        .unwrap();
+        let (course, fps) = keyed(&loaded, &keys, Some("stars".into()), 100, "cap").unwrap();
+        let mut motion = Motion::new(&loaded, course, fps).unwrap();
+        motion.physics = Physics::Off;
+        let atlas = AtlasArt::read_file(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/characters/celestial-circus.atlas"),
+        )
+        .unwrap();
+        let drawn = posed_with_art(&motion, &atlas).unwrap();
+        assert_eq!(drawn.arts.len(), 13);
+        let stars = c.clip_index("stars").unwrap();
+        let length = c.clips()[stars].duration;
+        assert!(length > 0.7 && length < 1.0, "{length}");
+        let mut posed = Posed::default();
+        let mut list = DrawList::default();
+        for (k, art) in drawn.arts.iter().enumerate() {
+            let time = motion.frame_time(k);
+            let clip_time = if time > length { time % length } else { time };
+            motion.pose_at(time, &mut posed).unwrap();
+            let expected = atlas.art(c, &posed, (c.default_skin(), Some((stars, clip_time))), &mut list).unwrap();
+            assert_eq!(art, &expected, "frame {k} at {time} s");
+        }
+        // The keys matter: at 0 s no star shows, at 0.2 s the first three do; near the clip's
+        // end (0.7 s) fewer show than after it, where the clip starts again.
+        let count = |k: usize| drawn.arts[k].pieces.len();
+        assert!(count(2) > count(0), "{} {}", count(2), count(0));
+        for k in 8..13 {
+            assert!(count(k) > count(7), "frame {k}: {} pieces, {} at 0.7 s", count(k), count(7));
+        }
+    }
+}
