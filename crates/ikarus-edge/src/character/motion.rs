@@ -256,18 +256,8 @@ impl<'a> Motion<'a> {
                 count_text(n)
             ));
         }
-        let physics = Physics::default();
-        Ok(Motion {
-            loaded,
-            fps,
-            duration,
-            starts,
-            course,
-            ik: IkChoice::Runtime,
-            interrupt: None,
-            physics,
-            skin: None,
-        })
+        let (physics, skin) = (Physics::default(), None);
+        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None, physics, skin })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
