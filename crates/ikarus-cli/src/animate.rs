@@ -163,6 +163,8 @@ pub struct AnimateArgs {
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
+    #[command(flatten)]
+    pub art: crate::motion_art::MotionArtArgs,
 }
 
 /// The flags `--keys` replaces: its file gives the targets, pins, bends and fps.
@@ -274,8 +276,12 @@ pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
         return character::run(args, &file?);
     }
     let [ik, ik_file] = args.ik.given();
+    let [atlas, art_only, skin] = args.art.given();
     crate::character_motion::refuse_without(&[
         ("--target", !args.target.is_empty()),
+        atlas,
+        art_only,
+        skin,
         ("--animation", args.animation.is_some()),
         ("--animation-name", args.animation_name.is_some()),
         ("--bake", args.bake),

@@ -3,7 +3,7 @@
 //! ([`ikarus_edge::character::motion`]) and write its frames (`--format json`, or `csv`), or the
 //! file with the motion added as a Spine animation (`--format spine`,
 //! [`ikarus_edge::character::export`]), or draw it (`--out x.svg|png|gif`,
-//! [`ikarus_edge::character::motion_files`]).
+//! [`ikarus_edge::character::motion_files`]; with its art, `--atlas`: [`crate::motion_art`]).
 
 use std::io::Write;
 use std::path::Path;
@@ -13,6 +13,7 @@ use ikarus_edge::character::motion::{Motion, StreamError};
 use ikarus_edge::character::{Loaded, is_json, load, motion_files};
 
 use crate::error::CliError;
+use crate::motion_art::{ArtOut, MotionArtArgs};
 use crate::output::{self, PendingFile};
 use crate::picture::{PictureArgs, PictureFormat, draw_for_command};
 
@@ -86,6 +87,8 @@ pub struct Output<'a> {
     /// How the command makes fewer frames, for the GIF cap's refusal (`a lower --fps or a
     /// shorter --duration`).
     pub fewer: &'a str,
+    /// `--atlas`, `--art-only`, `--skin`: the picture drawn with the character's art.
+    pub art: &'a MotionArtArgs,
 }
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
@@ -127,6 +130,7 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     } else {
         None
     };
+    let atlas = crate::motion_art::atlas_of(output.art, file.loaded.format, picture.as_ref().map(|p| p.format))?;
     let pending = if picture.is_some() { None } else { out.map(|p| PendingFile::create(p, "--out")).transpose()? };
     if let Some(picture) = picture {
         let (frames, bones) = (motion.frame_count(), file.loaded.character.bones().len());
@@ -140,9 +144,17 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
         if picture.format == PictureFormat::Gif {
             crate::picture::gif_within_cap(output.picture, motion.frame_count(), output.fewer)?;
         }
-        let poses = motion.poses().map_err(fail)?;
-        let drawing = motion_files::drawing(motion, &poses);
-        let bytes = draw_for_command(&drawing, picture.format, output.picture, poses.len())?;
+        let bytes = match &atlas {
+            Some(atlas) => {
+                let out = ArtOut { format: picture.format, picture: output.picture, fewer: output.fewer };
+                crate::motion_art::draw(&file.label, motion, (output.art, atlas), &out)?
+            }
+            None => {
+                let poses = motion.poses().map_err(fail)?;
+                let drawing = motion_files::drawing(motion, &poses);
+                draw_for_command(&drawing, picture.format, output.picture, poses.len())?
+            }
+        };
         picture.commit(&bytes)?;
         if output.written.is_none() {
             return Ok(());

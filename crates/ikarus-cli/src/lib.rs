@@ -22,6 +22,7 @@ mod columns;
 mod ease_args;
 mod goal_args;
 mod goals;
+mod motion_art;
 mod options;
 mod output;
 mod picture;

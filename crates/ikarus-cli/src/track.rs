@@ -123,6 +123,8 @@ pub struct TrackArgs {
     pub ik: crate::pose::IkArgs,
     #[command(flatten)]
     pub picture: PictureArgs,
+    #[command(flatten)]
+    pub art: crate::motion_art::MotionArtArgs,
 }
 
 /// The default cap of `--samples` (and of a `--path` file's rows): 10⁶ samples, about ten
@@ -147,8 +149,12 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
         return character(args, &file?);
     }
     let [ik, ik_file] = args.ik.given();
+    let [atlas, art_only, skin] = args.art.given();
     crate::character_motion::refuse_without(&[
         ("--fps", args.fps.is_some()),
+        atlas,
+        art_only,
+        skin,
         ("--animation-name", args.animation_name.is_some()),
         ("--bake", args.bake),
         ("--physics", args.physics.is_some()),
@@ -243,12 +249,14 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
         .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
     motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
+    motion.skin.clone_from(&args.art.skin);
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),
         form: ikarus_edge::character::export::Form::asked(args.bake),
         picture: &args.picture,
         fewer: "fewer --samples",
+        art: &args.art,
     };
     write(file, &motion, &out)
 }

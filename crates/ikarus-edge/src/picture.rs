@@ -71,6 +71,9 @@ pub enum Drawing<'a> {
     /// A character's motion: its frames overlaid, the earlier as ghosts (SVG, PNG), or
     /// animated (GIF) at `fps`.
     CharacterMotion { figure: ikarus_render::CharacterMotionFigure<'a>, fps: f64 },
+    /// A character's motion with its art (under the bones or alone): every frame animated
+    /// (GIF) at `fps`, or the last frame's art under every frame's bones (SVG, PNG).
+    CharacterArtMotion { figure: ikarus_render::CharacterArtMotion<'a>, fps: f64 },
 }
 
 /// What a motion's picture shows besides the arm and the goal. The command line's: no area,
@@ -182,6 +185,16 @@ pub fn draw(
             return ikarus_render::character_gif(figure, width, height, *fps, progress).map_err(|e| render_failed(&e));
         }
         Drawing::CharacterMotion { figure, .. } => ikarus_render::character_motion_svg(figure, width, height),
+        Drawing::CharacterArtMotion { figure, fps } => {
+            return match format {
+                PictureFormat::Gif => ikarus_render::character_art_gif(figure, width, height, *fps, progress),
+                PictureFormat::Png => ikarus_render::character_art_motion_png(figure, width, height),
+                PictureFormat::Svg => {
+                    ikarus_render::character_art_motion_svg(figure, width, height).map(String::into_bytes)
+                }
+            }
+            .map_err(|e| render_failed(&e));
+        }
         Drawing::RigMotion { figure, animation, .. } => match animation.frames.last() {
             Some(last) => ikarus_render::skeleton_svg(
                 &ikarus_render::SkeletonFigure { pose: &last.angles, ..figure.clone() },

@@ -14,7 +14,7 @@
 //! its outcomes), `outcome` (`Outcome` of a chain or a rig, `Effector`), `options` (keyword
 //! options as the API's JSON, this edge's caps), `goals` (goals and goal arrays), `batch`
 //! (`solve_batch`'s pools and status codes), `errors` (refusals as Python exceptions), `api`
-//! (requests without HTTP), `signals` (Ctrl-C during a long call), `easing` (`ease`), and `edge`, the one place that names the shared
+//! (requests without HTTP), `picture` (a PNG's pixels), `signals` (Ctrl-C during a long call), `easing` (`ease`), and `edge`, the one place that names the shared
 //! facade.
 
 mod api;
@@ -28,6 +28,7 @@ mod errors;
 mod goals;
 mod options;
 mod outcome;
+mod picture;
 mod signals;
 
 use pyo3::prelude::*;
@@ -38,6 +39,7 @@ use crate::chain::PyChain;
 use crate::character::{_character_text, PyCharacter};
 use crate::easing::ease;
 use crate::outcome::{_solve_rig, PyEffector, PyOutcome};
+use crate::picture::_png_rgba;
 
 #[pymodule]
 fn _ikarus(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -50,6 +52,7 @@ fn _ikarus(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_call, m)?)?;
     m.add_function(wrap_pyfunction!(_solve_rig, m)?)?;
     m.add_function(wrap_pyfunction!(_character_text, m)?)?;
+    m.add_function(wrap_pyfunction!(_png_rgba, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

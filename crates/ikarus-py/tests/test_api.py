@@ -139,7 +139,7 @@ def test_the_namespace_is_the_api():
     public = sorted(name for name in dir(ikarus) if not name.startswith("_"))
     assert public == sorted(name for name in ikarus.__all__ if not name.startswith("_")), public
     assert public == sorted(
-        ["Chain", "Rig", "Outcome", "Effector", "Motion", "MotionFrames", "Track", "TrackSamples", "Pose", "CharacterMotion", "call", "ease", "plot"]
+        ["Chain", "Rig", "Outcome", "Effector", "Motion", "MotionFrames", "Track", "TrackSamples", "Pose", "CharacterMotion", "Atlas", "call", "ease", "plot"]
         + ["SolveOptions", "TrackSolveOptions", "MotionOptions", "TrackOptions", "RigGoal", "MotionSolve", "TrackSummary"]
         + ["Method", "LimitMode"]
     )

@@ -84,10 +84,13 @@ pub struct ArtPiece {
 }
 
 /// A character's art: its atlas pages and its pieces in draw order (first drawn first).
+///
+/// The pages are borrowed: they are decoded once (an atlas's pages can be tens of megabytes)
+/// and every pose drawn with them, each frame of a motion, holds only its own pieces.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Art {
+pub struct Art<'a> {
     /// The atlas pages.
-    pub pages: Vec<Page>,
+    pub pages: &'a [Page],
     /// The pieces, back to front.
     pub pieces: Vec<ArtPiece>,
 }
@@ -152,7 +155,7 @@ fn to_rgba8(buf: &[u8], color: png::ColorType, line_size: usize, width: u32, hei
     Some(out)
 }
 
-impl Art {
+impl Art<'_> {
     /// The world bounding box `(min, max)` of every piece's finite positions, or `None` when
     /// there are none (no pieces, or no finite vertex).
     #[must_use]
@@ -336,7 +339,7 @@ mod tests {
     fn extent_covers_every_finite_position() {
         assert_eq!(Art::default().extent(), None);
         let art = Art {
-            pages: vec![],
+            pages: &[],
             pieces: vec![
                 piece(vec![[1.0, 2.0], [3.0, -1.0], [f32::NAN, 100.0]]),
                 piece(vec![[-4.0, 0.5], [0.0, 7.0], [2.0, 2.0]]),
@@ -348,7 +351,7 @@ mod tests {
     #[test]
     fn checks_name_the_field() {
         let page = Page { width: 1, height: 1, rgba: vec![0; 4], pma: false };
-        let mut art = Art { pages: vec![page], pieces: vec![piece(vec![[0.0; 2]; 3])] };
+        let mut art = Art { pages: &[page], pieces: vec![piece(vec![[0.0; 2]; 3])] };
         assert_eq!(art.check(), Ok(()));
         art.pieces[0].triangles.push([0, 3, 1]);
         assert_eq!(
@@ -365,10 +368,12 @@ mod tests {
         art.pieces[0].dark = Some([0.0, f32::INFINITY, 0.0]);
         assert_eq!(art.check().unwrap_err().to_string(), "pieces[0].color: must be a finite number, got inf");
         art.pieces[0].dark = None;
-        art.pages[0].rgba.pop();
+        let short = [Page { width: 1, height: 1, rgba: vec![0; 3], pma: false }];
+        art.pages = &short;
         assert_eq!(art.check().unwrap_err().to_string(), "pages[0].rgba: a 1×1 page needs 4 bytes, got 3");
         // A page of no pixels has no texel to sample.
-        art.pages[0] = Page { width: 0, height: 1, rgba: vec![], pma: false };
+        let empty = [Page { width: 0, height: 1, rgba: vec![], pma: false }];
+        art.pages = &empty;
         assert_eq!(art.check().unwrap_err().to_string(), "pages[0].width: must be between 1 and 16384 pixels, got 0");
     }
 

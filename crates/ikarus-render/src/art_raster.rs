@@ -58,7 +58,7 @@ const MAX_COORD: f64 = (1u32 << 21) as f64;
 ///     dark: None,
 ///     blend: Blend::Normal,
 /// };
-/// let art = Art { pages: vec![page], pieces: vec![square] };
+/// let art = Art { pages: &[page], pieces: vec![square] };
 /// let to_pixel = WorldToPixel { xx: 2.0, xy: 0.0, yx: 0.0, yy: -2.0, tx: 0.0, ty: 20.0 };
 /// let mut pixmap = Pixmap::new(20, 20).unwrap();
 /// draw_art(&art, &to_pixel, &mut pixmap)?;

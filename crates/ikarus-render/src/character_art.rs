@@ -102,7 +102,7 @@ pub fn art_only_svg(art: &Art, width: u32, height: u32) -> Result<String, Render
 }
 
 /// `data:image/png;base64,…` of PNG bytes (RFC 4648 base64, padded).
-fn png_data_url(png: &[u8]) -> String {
+pub(crate) fn png_data_url(png: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::with_capacity(22 + png.len().div_ceil(3) * 4);
     out.push_str("data:image/png;base64,");
@@ -133,8 +133,11 @@ mod tests {
         }
     }
 
-    fn square() -> Art {
-        let page = Page { width: 1, height: 1, rgba: vec![255, 0, 0, 255], pma: false };
+    fn red() -> [Page; 1] {
+        [Page { width: 1, height: 1, rgba: vec![255, 0, 0, 255], pma: false }]
+    }
+
+    fn square(pages: &[Page]) -> Art<'_> {
         let piece = ArtPiece {
             page: 0,
             positions: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 20.0], [0.0, 20.0]],
@@ -144,7 +147,7 @@ mod tests {
             dark: None,
             blend: Blend::Normal,
         };
-        Art { pages: vec![page], pieces: vec![piece] }
+        Art { pages, pieces: vec![piece] }
     }
 
     #[test]
@@ -152,7 +155,7 @@ mod tests {
         // A 10 × 20 box on 100 × 100: 4.5 px a unit, 45 × 90 px from (27.5, 5) to (72.5, 95):
         // pixel centres 27.5 (on the left edge, which owns it) to 71.5 across (72.5 is on the
         // right edge, which does not), 5.5 to 94.5 down.
-        let pixmap = art_only_pixmap(&square(), 100, 100).unwrap();
+        let pixmap = art_only_pixmap(&square(&red()), 100, 100).unwrap();
         let opaque = |i: u32, j: u32| pixmap.pixel(i, j).unwrap().alpha() == 255;
         let clear = |i: u32, j: u32| pixmap.pixel(i, j).unwrap().alpha() == 0;
         assert!(opaque(27, 5) && opaque(71, 94) && opaque(50, 50));
@@ -163,15 +166,15 @@ mod tests {
     fn the_bones_go_over_the_art_in_one_view() {
         let bones = vec![PosedBone { name: "b", origin: Point2::new(5.0, 10.0), tip: Point2::new(5.0, 40.0) }];
         let figure = CharacterFigure { bones, targets: vec![], caption: None };
-        let view = view_of(&figure, &square(), 200, 200);
+        let view = view_of(&figure, &square(&red()), 200, 200);
         for p in [Point2::new(0.0, 0.0), Point2::new(10.0, 40.0)] {
             let (x, y) = view.world_to_pixel(p);
             assert!(view.plot_area().contains(x, y), "{p:?}");
         }
-        let svg = character_art_svg(&figure, &square(), 200, 200).unwrap();
+        let svg = character_art_svg(&figure, &square(&red()), 200, 200).unwrap();
         let (art, bone) = (svg.find("<image").unwrap(), svg.find("<g class=\"bone\">").unwrap());
         assert!(art < bone && svg.find("<!-- grid -->").unwrap() < art);
-        assert!(character_art_png(&figure, &square(), 200, 200).unwrap().starts_with(b"\x89PNG"));
-        assert!(art_only_svg(&square(), 50, 50).unwrap().contains("href=\"data:image/png;base64,iVBOR"));
+        assert!(character_art_png(&figure, &square(&red()), 200, 200).unwrap().starts_with(b"\x89PNG"));
+        assert!(art_only_svg(&square(&red()), 50, 50).unwrap().contains("href=\"data:image/png;base64,iVBOR"));
     }
 }

@@ -39,8 +39,18 @@ impl CharacterMotionFigure<'_> {
         Ok(View::fitting(min, max, width, height))
     }
 
+    /// The last frame with the motion's caption, and every k-th earlier frame (at most
+    /// [`MAX_ANIMATION_GHOSTS`], the first always among them) to draw faded under it; the
+    /// motion has frames (checked by the caller).
+    pub(crate) fn last_with_ghosts(&self) -> (CharacterFigure<'_>, Vec<&CharacterFigure<'_>>) {
+        let n = self.frames.len();
+        let every = (n - 1).div_ceil(MAX_ANIMATION_GHOSTS).max(1);
+        let ghosts = self.frames[..n - 1].iter().step_by(every).collect();
+        (CharacterFigure { caption: self.caption.clone(), ..self.frames[n - 1].clone() }, ghosts)
+    }
+
     /// Frame `i` with its caption: the motion's, then the frame's time (`t = 0.50`).
-    fn frame(&self, i: usize) -> CharacterFigure<'_> {
+    pub(crate) fn frame(&self, i: usize) -> CharacterFigure<'_> {
         let clock = format!("t = {:.2}", self.times.get(i).copied().unwrap_or_default());
         let caption = match &self.caption {
             Some(c) => format!("{c} · {clock}"),
@@ -59,10 +69,7 @@ impl CharacterMotionFigure<'_> {
 /// [`RenderError::NonFinite`] for a point that is not finite.
 pub fn character_motion_svg(motion: &CharacterMotionFigure, width: u32, height: u32) -> Result<String, RenderError> {
     let view = motion.check(width, height)?;
-    let n = motion.frames.len();
-    let every = (n - 1).div_ceil(MAX_ANIMATION_GHOSTS).max(1);
-    let ghosts: Vec<&CharacterFigure> = motion.frames[..n - 1].iter().step_by(every).collect();
-    let last = CharacterFigure { caption: motion.caption.clone(), ..motion.frames[n - 1].clone() };
+    let (last, ghosts) = motion.last_with_ghosts();
     Ok(character_svg_in(&last, &ghosts, view, width, height))
 }
 

@@ -20,7 +20,10 @@
 //!   [`ArtPiece`]s) rasterised into a premultiplied [`Pixmap`]; [`draw_svg_onto`] draws an SVG
 //!   (the bones) over it and [`pixmap_png`] encodes it. [`character_art_png`] /
 //!   [`character_art_svg`]: a posed character's art under its bones; [`art_only_png`] the art
-//!   alone, fitted as Spine's reference pictures are.
+//!   alone, fitted as Spine's reference pictures are. [`character_art_gif`]: a character's
+//!   motion ([`CharacterArtMotion`]) with every frame's art, under the bones or alone;
+//!   [`character_art_motion_png`] / [`character_art_motion_svg`] its last frame's art in one
+//!   picture.
 //!
 //! [`View`] maps world coordinates to pixels, for callers that want to find something on the
 //! picture.
@@ -31,6 +34,7 @@ mod art;
 mod art_raster;
 mod character;
 mod character_art;
+mod character_art_motion;
 mod character_gif;
 mod ease_plot;
 mod error;
@@ -52,6 +56,9 @@ pub use art::{Art, ArtPiece, Blend, MAX_PAGE_SIDE, Page, WorldToPixel};
 pub use art_raster::{art_pixmap, draw_art};
 pub use character::{CharacterFigure, PosedBone, character_png, character_svg};
 pub use character_art::{ART_FILL, art_only_pixmap, art_only_png, art_only_svg, character_art_png, character_art_svg};
+pub use character_art_motion::{
+    ArtPlacement, CharacterArtMotion, character_art_gif, character_art_motion_png, character_art_motion_svg,
+};
 pub use character_gif::{CharacterMotionFigure, character_gif, character_motion_svg};
 pub use ease_plot::{ease_png, ease_svg};
 pub use error::RenderError;

@@ -53,8 +53,7 @@ fn a_square_of_two_triangles_covers_each_pixel_inside_once() {
     let to_y = |py: f32| h as f32 - py;
     let corners = [[2.5, to_y(2.5)], [12.5, to_y(2.5)], [12.5, to_y(12.5)], [2.5, to_y(12.5)]];
     for (tint_alpha, want) in [(1.0, 255u8), (0.6, 153)] {
-        let art =
-            Art { pages: vec![opaque_white()], pieces: vec![quad(corners, FULL_UV, [1.0, 1.0, 1.0, tint_alpha])] };
+        let art = Art { pages: &[opaque_white()], pieces: vec![quad(corners, FULL_UV, [1.0, 1.0, 1.0, tint_alpha])] };
         let pixmap = art_pixmap(&art, &flip(h), h, h).unwrap();
         for y in 0..h {
             for x in 0..h {
@@ -99,7 +98,7 @@ fn a_rotated_mesh_has_no_seams_and_no_pixel_drawn_twice() {
     let uvs = vec![[0.5, 0.5]; positions.len()];
     let piece =
         ArtPiece { page: 0, positions, uvs, triangles, color: [1.0, 1.0, 1.0, 0.6], dark: None, blend: Blend::Normal };
-    let art = Art { pages: vec![opaque_white()], pieces: vec![piece] };
+    let art = Art { pages: &[opaque_white()], pieces: vec![piece] };
     let side = 64;
     let pixmap = art_pixmap(&art, &flip(side), side, side).unwrap();
     let mut inside = 0;
@@ -136,7 +135,7 @@ fn uvs_put_each_colour_in_its_quarter() {
     // ¼ and ¾, so pixels whose centre has u, v < ¼ or > ¾ show one texel unmixed.
     let h = 16;
     let corners = [[0.0, 16.0], [16.0, 16.0], [16.0, 0.0], [0.0, 0.0]];
-    let art = Art { pages: vec![four_colours()], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
+    let art = Art { pages: &[four_colours()], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
     let pixmap = art_pixmap(&art, &flip(h), h, h).unwrap();
     for (x, y, want) in [(1, 1, RED), (3, 0, RED), (14, 1, GREEN), (12, 3, GREEN), (1, 14, BLUE), (15, 15, WHITE)] {
         assert_eq!(pixel(&pixmap, x, y), want, "pixel ({x}, {y})");
@@ -155,7 +154,7 @@ fn a_rotated_quad_carries_its_colours_with_it() {
         let local = [(-20.0, 20.0), (20.0, 20.0), (20.0, -20.0), (-20.0, -20.0)];
         let world = local.map(|(x, y)| rot(x, y));
         let corners = world.map(|(x, y)| [x as f32, y as f32]);
-        let art = Art { pages: vec![four_colours()], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
+        let art = Art { pages: &[four_colours()], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
         let side = 64;
         let pixmap = art_pixmap(&art, &flip(side), side, side).unwrap();
         for (u, v, want) in [(0.1, 0.1, RED), (0.9, 0.1, GREEN), (0.1, 0.9, BLUE), (0.9, 0.9, WHITE)] {
@@ -172,7 +171,7 @@ fn sampled_at(page: Page, u: f32, v: f32, color: [f32; 4], dark: Option<[f32; 3]
     let corners = [[0.0, 16.0], [16.0, 16.0], [16.0, 0.0], [0.0, 0.0]];
     let mut piece = quad(corners, [[u, v]; 4], color);
     piece.dark = dark;
-    let art = Art { pages: vec![page], pieces: vec![piece] };
+    let art = Art { pages: &[page], pieces: vec![piece] };
     let pixmap = art_pixmap(&art, &flip(16), 16, 16).unwrap();
     let first = pixel(&pixmap, 0, 0);
     assert!(pixmap.data().chunks_exact(4).all(|p| p == first), "every pixel samples the same point");
@@ -230,7 +229,7 @@ fn each_blend_mode_on_one_pixel() {
         let corners = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
         let mut piece = quad(corners, FULL_UV, [0.5, 0.25, 1.0, 0.8]);
         piece.blend = mode;
-        let art = Art { pages: vec![opaque_white()], pieces: vec![piece] };
+        let art = Art { pages: &[opaque_white()], pieces: vec![piece] };
         let mut pixmap = Pixmap::new(2, 2).unwrap();
         for p in pixmap.data_mut().chunks_exact_mut(4) {
             p.copy_from_slice(&[51, 102, 153, 255]);
@@ -250,7 +249,7 @@ fn straight_and_premultiplied_pages_draw_the_same_picture() {
         let corners = [[3.0, 5.0], [60.0, 12.0], [50.0, 61.0], [8.0, 40.0]];
         let mut piece = quad(corners, [[-0.1, 0.0], [1.2, 0.1], [0.9, 1.0], [0.0, 0.8]], [0.9, 0.7, 1.0, 0.6]);
         piece.blend = Blend::Screen;
-        let art = Art { pages: vec![page(2, 2, texels, pma)], pieces: vec![piece.clone(), piece] };
+        let art = Art { pages: &[page(2, 2, texels, pma)], pieces: vec![piece.clone(), piece] };
         art_pixmap(&art, &flip(64), 64, 64).unwrap().data().to_vec()
     };
     let a = draw(&straight, false);
@@ -260,7 +259,7 @@ fn straight_and_premultiplied_pages_draw_the_same_picture() {
     assert_ne!(a, draw(&straight, true));
 }
 
-fn mesh_art() -> Art {
+fn mesh_art(pages: &[Page]) -> Art<'_> {
     let positions = vec![[1.3, 2.7], [30.1, 4.4], [28.2, 29.9], [3.3, 31.7], [16.0, 16.5]];
     let uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0], [0.45, 0.55]];
     let triangles = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
@@ -274,14 +273,15 @@ fn mesh_art() -> Art {
         blend,
     };
     Art {
-        pages: vec![four_colours()],
+        pages,
         pieces: vec![piece(Blend::Normal, [1.0, 0.9, 0.8, 0.7]), piece(Blend::Multiply, [0.3, 1.0, 0.5, 0.9])],
     }
 }
 
 #[test]
 fn the_same_art_gives_the_same_bytes() {
-    let art = mesh_art();
+    let pages = [four_colours()];
+    let art = mesh_art(&pages);
     let first = art_pixmap(&art, &flip(32), 32, 32).unwrap();
     let second = art_pixmap(&art.clone(), &flip(32), 32, 32).unwrap();
     assert_eq!(first.data(), second.data());
@@ -302,7 +302,7 @@ fn huge_degenerate_and_broken_triangles_are_bounded_and_never_panic() {
             dark: None,
             blend: Blend::Normal,
         };
-        let art = Art { pages: vec![opaque_white()], pieces: vec![piece] };
+        let art = Art { pages: &[opaque_white()], pieces: vec![piece] };
         alphas(&art_pixmap(&art, &flip(side), side, side).unwrap()).iter().filter(|&&a| a > 0).count()
     };
     // A triangle a million pixels across covers the whole picture, visiting only its pixels.
@@ -321,24 +321,28 @@ fn huge_degenerate_and_broken_triangles_are_bounded_and_never_panic() {
     // A sliver thinner than a pixel covers at most the centres it contains.
     assert!(draw(vec![[0.0, 10.25], [64.0, 10.25], [64.0, 10.75]]) <= 64);
     // A non-finite view draws nothing rather than panicking.
-    let art = mesh_art();
+    let pages = [four_colours()];
+    let art = mesh_art(&pages);
     let bad = WorldToPixel { tx: f64::NAN, ..flip(side) };
     assert!(alphas(&art_pixmap(&art, &bad, side, side).unwrap()).iter().all(|&a| a == 0));
 }
 
 #[test]
 fn bad_art_is_an_error_and_draws_nothing() {
-    let mut art = mesh_art();
+    let pages = [four_colours()];
+    let mut art = mesh_art(&pages);
     art.pieces[1].triangles.push([0, 1, 9]);
     let mut pixmap = Pixmap::new(32, 32).unwrap();
     let err = draw_art(&art, &flip(32), &mut pixmap).unwrap_err();
     assert!(matches!(err, RenderError::Art { .. }), "{err:?}");
     assert_eq!(err.to_string(), "pieces[1].triangles[4]: indices [0, 1, 9] must be below the 5 positions");
     assert!(alphas(&pixmap).iter().all(|&a| a == 0));
-    assert!(matches!(art_pixmap(&mesh_art(), &flip(32), 8, 32), Err(RenderError::Size { field: "width", value: 8 })));
+    assert!(matches!(
+        art_pixmap(&mesh_art(&pages), &flip(32), 8, 32),
+        Err(RenderError::Size { field: "width", value: 8 })
+    ));
     // A page without pixels is an error, not a panic when sampling.
-    let mut empty = mesh_art();
-    empty.pages[0] = page(0, 0, &[], false);
+    let empty = Art { pages: &[page(0, 0, &[], false)], ..mesh_art(&pages) };
     assert!(matches!(art_pixmap(&empty, &flip(32), 32, 32), Err(RenderError::Art { .. })));
 }
 
@@ -347,7 +351,7 @@ fn an_svg_is_drawn_over_the_art_and_the_pair_encodes_as_png() {
     // Art: an opaque red square over the whole 20 × 20 picture; then an SVG with a blue
     // rectangle over its left half.
     let corners = [[0.0, 20.0], [20.0, 20.0], [20.0, 0.0], [0.0, 0.0]];
-    let art = Art { pages: vec![page(1, 1, &[RED], false)], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
+    let art = Art { pages: &[page(1, 1, &[RED], false)], pieces: vec![quad(corners, FULL_UV, [1.0; 4])] };
     let mut pixmap = art_pixmap(&art, &flip(20), 20, 20).unwrap();
     let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"20\">\
                <rect x=\"0\" y=\"0\" width=\"10\" height=\"20\" fill=\"#0000ff\"/></svg>";

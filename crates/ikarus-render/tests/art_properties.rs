@@ -69,7 +69,7 @@ proptest! {
             dark: None,
             blend: Blend::Normal,
         };
-        let art = Art { pages: vec![Page { width: 1, height: 1, rgba: vec![255; 4], pma: false }], pieces: vec![piece] };
+        let art = Art { pages: &[Page { width: 1, height: 1, rgba: vec![255; 4], pma: false }], pieces: vec![piece] };
         let to_pixel = WorldToPixel { xx: 1.0, xy: 0.0, yx: 0.0, yy: -1.0, tx: 0.0, ty: h };
         let pixmap = art_pixmap(&art, &to_pixel, SIDE, SIDE).unwrap();
         for y in 0..SIDE {

@@ -48,12 +48,14 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
             Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
         motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
+        motion.skin.clone_from(&args.art.skin);
         let out = Output {
             written,
             animation_name: args.animation_name.as_deref(),
             form: ikarus_edge::character::export::Form::asked(args.bake),
             picture: &args.picture,
             fewer: "keys that end sooner or a lower fps in the keys file",
+            art: &args.art,
         };
         return write(file, &motion, &out);
     }
@@ -84,12 +86,14 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
     motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
+    motion.skin.clone_from(&args.art.skin);
     let out = Output {
         written,
         animation_name: args.animation_name.as_deref(),
         form: ikarus_edge::character::export::Form::asked(args.bake),
         picture: &args.picture,
         fewer: "a lower --fps or a shorter --duration",
+        art: &args.art,
     };
     write(file, &motion, &out)
 }

@@ -181,6 +181,25 @@ pub fn stored_atlas(id: &str) -> Result<Arc<KeptAtlas>, Problem> {
     })
 }
 
+/// Refuses, in one line, `art_only` without an atlas and an atlas sent without its page images
+/// (a picture needs them): what a picture with a character's art asks of its `atlas`.
+#[cfg(feature = "render")]
+pub(super) fn drawable(atlas: Option<&KeptAtlas>, art_only: bool) -> Result<(), Problem> {
+    if art_only && atlas.is_none() {
+        return Err(Problem::invalid(
+            "art_only: draws a character's art: give its atlas (\"atlas\": the id /api/atlas/parse answered)",
+        ));
+    }
+    if let Some(atlas) = atlas.filter(|a| !a.images) {
+        let pages: Vec<&str> = atlas.art.atlas.pages.iter().map(|p| p.file.as_str()).collect();
+        return Err(Problem::invalid(format!(
+            "atlas: sent without its page images ({}): send them to /api/atlas/parse as \"pages\" to draw the art",
+            pages.join(", ")
+        )));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 #[path = "atlases_tests.rs"]
 mod tests;

@@ -162,6 +162,14 @@ request! {
         /// `false` leaves the character's physics constraints out; otherwise the frames are
         /// played as a game's frames, as `/api/animate` plays them.
         pub physics: Option<bool>,
+        /// The skin every frame is posed and drawn with, by name [default: `default`].
+        pub skin: Option<String>,
+        /// The id `/api/atlas/parse` answered for the character's atlas (sent with its page
+        /// images): every frame drawn with its art under its bones.
+        pub atlas: Option<String>,
+        /// With `atlas`: the art alone on a transparent background, one fit for the whole
+        /// motion [default: false].
+        pub art_only: Option<bool>,
         ..character_ik,
     }
 }

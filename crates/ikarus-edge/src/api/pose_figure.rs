@@ -9,6 +9,7 @@
 use ikarus::Interrupt;
 use ikarus::character::DrawList;
 
+use super::atlases::drawable;
 use super::fields::picture;
 use super::figures::PoseFigureReq;
 use super::pose::Posing;
@@ -24,18 +25,7 @@ pub(super) fn pose_figure(
 ) -> Result<Vec<u8>, Problem> {
     let (req, art_only) = r.into_pose();
     let posing = Posing::of(req, limits)?;
-    if art_only && posing.atlas.is_none() {
-        return Err(Problem::invalid(
-            "art_only: draws a character's art: give its atlas (\"atlas\": the id /api/atlas/parse answered)",
-        ));
-    }
-    if let Some(atlas) = posing.atlas.as_ref().filter(|a| !a.images) {
-        let pages: Vec<&str> = atlas.art.atlas.pages.iter().map(|p| p.file.as_str()).collect();
-        return Err(Problem::invalid(format!(
-            "atlas: sent without its page images ({}): send them to /api/atlas/parse as \"pages\" to draw the art",
-            pages.join(", ")
-        )));
-    }
+    drawable(posing.atlas.as_deref(), art_only)?;
     let drawn = posing.drawn(interrupt)?;
     let c = &posing.stored.loaded.character;
     let figure = || drawn.report.figure(None);

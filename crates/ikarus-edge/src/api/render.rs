@@ -12,12 +12,14 @@ use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
 use super::{Limits, Problem, Reply};
 use crate::body::Body;
+use crate::character::motion_art::{self, MotionArtError};
 use crate::character::motion_files;
 use crate::motion::DEFAULT_FPS;
 use crate::picture::{
     Drawing, MotionLayers, PictureFormat, arm_drawing, draw, motion_drawing, rig_figure, workspace_drawing,
 };
 use crate::rig::Rig;
+use ikarus_render::ArtPlacement;
 
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
@@ -220,8 +222,10 @@ fn keyed_figure(
 }
 
 /// Figure `motion` of `POST /api/render` with a character and its `keys`: the keyed motion
-/// drawn as `ikarus animate --rig FILE.json --keys KEYS.json [--animation A] --out` draws it,
-/// the same bytes.
+/// drawn as `ikarus animate --rig FILE.json --keys KEYS.json [--animation A] [--skin S] [--atlas
+/// FILE.atlas [--art-only]] --out` draws it, the same bytes: with `atlas` (sent with its page
+/// images), every frame's art under its bones, or alone with `art_only`
+/// ([`crate::character::motion_art`]).
 fn character_figure(
     r: &CharacterFigureReq,
     canvas: Canvas,
@@ -230,10 +234,29 @@ fn character_figure(
 ) -> Result<Vec<u8>, Problem> {
     let stored = super::pose::stored_character(r.rig.as_deref(), r.character.as_deref(), limits)?;
     let loaded = &stored.loaded;
+    let atlas = r.atlas.as_deref().map(super::atlases::stored_atlas).transpose()?;
+    let art_only = r.art_only.unwrap_or(false);
+    super::atlases::drawable(atlas.as_deref(), art_only)?;
     let ik = (r.ik.as_deref(), r.ik_file.as_deref());
     let mut motion = keyed_motion(loaded, &r.keys, r.animation.clone(), ik, (limits, interrupt))?;
     motion.physics = super::character_motion::physics(r.physics);
+    motion.skin.clone_from(&r.skin);
     canvas.gif_within_cap(motion.frame_count())?;
-    let poses = super::character_motion::posed(motion.poses(), &motion)?;
-    canvas.draw(&motion_files::drawing(&motion, &poses), interrupt)
+    let Some(atlas) = atlas else {
+        let poses = super::character_motion::posed(motion.poses(), &motion)?;
+        return canvas.draw(&motion_files::drawing(&motion, &poses), interrupt);
+    };
+    let drawn = motion_art::posed_with_art(&motion, &atlas.art).map_err(|e| match e {
+        MotionArtError::Pose(m) => {
+            motion.interrupt.as_ref().and_then(|i| stopped(i).err()).unwrap_or_else(|| Problem::invalid(m))
+        }
+        MotionArtError::Art(m) => Problem::invalid(format!("atlas: {m}")),
+        MotionArtError::Cap(m) => Problem::invalid(format!("keys: {m} (keys that end sooner or a lower fps)")),
+    })?;
+    let placement = if art_only { ArtPlacement::Alone } else { ArtPlacement::UnderBones };
+    canvas.draw(&motion_art::art_drawing(&motion, &drawn.poses, drawn.arts, placement), interrupt)
 }
+
+#[cfg(test)]
+#[path = "render_art_tests.rs"]
+mod art_tests;

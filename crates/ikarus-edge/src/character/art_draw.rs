@@ -80,7 +80,7 @@ impl AtlasArt {
     /// The art pose `posed` of `c` draws with skin `skin` (the skin it was posed with) and the
     /// slots as clip `clip` keys them at its time (the clip it was posed with: its attachment,
     /// colour, draw-order and deform keys), its vertices computed into `list` (reused): the
-    /// pages (copied) and one piece per drawn slot.
+    /// pages (borrowed, never copied) and one piece per drawn slot.
     ///
     /// # Errors
     /// One line naming the region and the slot when the atlas lacks a region the pose draws, or
@@ -92,7 +92,7 @@ impl AtlasArt {
         posed: &Posed,
         (skin, clip): (Option<usize>, Option<(usize, f64)>),
         list: &mut DrawList,
-    ) -> Result<Art, String> {
+    ) -> Result<Art<'_>, String> {
         c.draw_list_at(posed, skin, clip, &self.regions, list).map_err(|e| e.to_string())?;
         let mut pieces = Vec::with_capacity(list.items.len());
         for item in &list.items {
@@ -128,7 +128,7 @@ impl AtlasArt {
                 blend: blend(item.blend),
             });
         }
-        Ok(Art { pages: self.pages.clone(), pieces })
+        Ok(Art { pages: &self.pages, pieces })
     }
 }
 

@@ -25,6 +25,7 @@ mod dragonbones_clips;
 pub mod export;
 pub mod ik_file;
 pub mod motion;
+pub mod motion_art;
 pub mod motion_files;
 pub mod motion_play;
 pub mod skel;

@@ -144,6 +144,9 @@ pub struct Motion<'a> {
     /// What the frames do with the character's physics constraints: played as a game's frames
     /// by default (see `motion_play.rs`).
     pub physics: Physics,
+    /// The skin every frame is posed (and its art drawn) with, by name; `None`: the file's
+    /// `default` skin, if it has one.
+    pub skin: Option<String>,
 }
 
 /// What a motion does with the character's physics constraints (a character without any moves
@@ -253,8 +256,8 @@ impl<'a> Motion<'a> {
                 count_text(n)
             ));
         }
-        let physics = Physics::default();
-        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None, physics })
+        let (physics, skin) = (Physics::default(), None);
+        Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None, physics, skin })
     }
 
     /// The frame times: k / fps up to the duration, and the duration itself last.
@@ -377,7 +380,7 @@ impl<'a> Motion<'a> {
             turns: self.turns_at(time),
             // One time on its own: physics is left out ([`Motion::play_at`] plays it).
             physics: PhysicsAsk::Off,
-            skin: None,
+            skin: self.skin.clone(),
         }
     }
 
@@ -445,7 +448,7 @@ impl<'a> Motion<'a> {
     /// Frame `k` posed into `out`, the frames posed in order from 0 into the same `out`: with
     /// [`Motion::plays_physics`], as the game's frame after the one at `clock` (`None` before
     /// the first), which it advances; otherwise on its own ([`Motion::pose_at`]).
-    fn frame_into(&self, k: usize, clock: &mut Option<f64>, out: &mut Posed) -> Result<(), String> {
+    pub(super) fn frame_into(&self, k: usize, clock: &mut Option<f64>, out: &mut Posed) -> Result<(), String> {
         if self.plays_physics() {
             *clock = Some(self.step(k, *clock, out)?);
             Ok(())

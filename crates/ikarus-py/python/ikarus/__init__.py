@@ -33,6 +33,7 @@ import numpy as _np
 
 from . import _ikarus
 from ._ikarus import Effector, Outcome, ease
+from ._atlas import Atlas
 from ._character import _CharacterRig
 from ._results import CharacterMotion, Motion, MotionFrames, Pose, Track, TrackSamples
 from ._types import (
@@ -69,6 +70,7 @@ __all__ = [
     "TrackSamples",
     "Pose",
     "CharacterMotion",
+    "Atlas",
     "SolveOptions",
     "TrackSolveOptions",
     "MotionOptions",

@@ -25,6 +25,9 @@ boy = ikarus.Rig.from_file("spineboy.json")
 walked: ikarus.CharacterMotion = boy.character_motion(keys={"fps": 30, "tracks": {}}, animation="walk")
 rows: np.ndarray = walked.x
 posed: ikarus.Pose = walked.pose(0)
+atlas: ikarus.Atlas = ikarus.Atlas.read("spineboy.atlas")
+png: bytes = boy.picture(atlas, "walk", 0.4, {"front-leg-target": (60.0, 20.0)}, art_only=True, width=400)
+pixels: np.ndarray = boy.image(atlas, skin="default", physics=False)
 spine: str = boy.export_spine({"front-leg-target": (120.0, 40.0)}, duration=0.5, ease="sine", animation_name="ikarus")
 
 arm.solve((2.0, 3.0), method="lmm")  # type: ignore[arg-type]
@@ -38,3 +41,5 @@ arm.animate((2.0, 3.0), framez=3)  # type: ignore[call-arg]
 rig.track("right_hand", circle=(0.3, 0.8, 0.2), solver_max_step="10")  # type: ignore[call-arg]
 boy.character_motion({"front-leg-target": (120.0, 40.0)}, ease="bounce")  # type: ignore[arg-type]
 boy.export_spine({"front-leg-target": (120.0, 40.0)}, 0.5)  # type: ignore[misc, arg-type]
+boy.picture(atlas, art_onyl=True)  # type: ignore[call-arg]
+boy.image("spineboy.atlas")  # type: ignore[arg-type]
