@@ -13,7 +13,9 @@
 //!   region; without, the default skin's mesh;
 //! - a region with a `sequence` (`start` 1, `digits` 2, `setup` 1): it shows region
 //!   `flame02` (the path, then `start + setup` written with 2 digits);
-//! - a clipping attachment: listed as unsupported and not drawn, the rest drawn whole.
+//! - a clipping attachment (user guide, "Clipping attachments"): its concave polygon (an L)
+//!   cuts what is drawn from its slot to its end slot, inclusive (`middle`, whichever skin
+//!   shows it), and nothing after (`seq`); it is not listed as unsupported.
 //!
 //! The pictures are written to `target/tmp/art_features/` (`default.png`, `blue.png`).
 
@@ -21,14 +23,14 @@ use ikarus::character::{DrawList, Posed};
 use ikarus_edge::character::art_draw::AtlasArt;
 use ikarus_edge::pose::{IkChoice, PhysicsAsk, PoseAsk, pose_kept, skin_index};
 
-/// The skeleton: four slots on the root, left to right.
+/// The skeleton: four slots on the root (the clipping polygon's over `middle`).
 const SKELETON: &str = r#"{
   "skeleton": {"spine": "4.2.22"},
   "bones": [{"name": "root"}],
   "slots": [
     {"name": "left", "bone": "root", "attachment": "halves"},
-    {"name": "middle", "bone": "root", "attachment": "shape"},
     {"name": "clip", "bone": "root", "attachment": "clip"},
+    {"name": "middle", "bone": "root", "attachment": "shape"},
     {"name": "seq", "bone": "root", "attachment": "flame"}
   ],
   "skins": [
@@ -37,8 +39,8 @@ const SKELETON: &str = r#"{
       "middle": {"shape": {"type": "mesh", "path": "grey", "hull": 4,
         "uvs": [0, 1, 1, 1, 1, 0, 0, 0], "triangles": [0, 1, 2, 2, 3, 0],
         "vertices": [0, -5, 10, -5, 10, 5, 0, 5], "width": 10, "height": 10}},
-      "clip": {"clip": {"type": "clipping", "end": "seq", "vertexCount": 3,
-        "vertices": [-100, -100, -99, -100, -100, -99]}},
+      "clip": {"clip": {"type": "clipping", "end": "middle", "vertexCount": 6,
+        "vertices": [-1, -6, 11, -6, 11, 0, 5, 0, 5, 6, -1, 6]}},
       "seq": {"flame": {"x": 20, "width": 10, "height": 10,
         "sequence": {"count": 3, "start": 1, "digits": 2, "setup": 1}}}
     }},
@@ -169,18 +171,22 @@ fn a_hand_made_character_with_every_feature_draws_by_the_documented_rules() {
     assert_eq!(at(&plain, -18.0, 0.0), RED);
     assert_eq!(at(&plain, -12.0, 2.0), GREEN);
     assert_eq!(at(&plain, -12.0, -2.0), GREEN);
-    // The default skin's mesh shows region `grey` (page b).
-    assert_eq!(at(&plain, 5.0, 0.0), GREY);
+    // The default skin's mesh shows region `grey` (page b), cut to the L: its top right quarter
+    // (x > 5, y > 0) is gone.
+    assert_eq!(at(&plain, 2.5, 2.5), GREY);
+    assert_eq!(at(&plain, 7.5, -2.5), GREY);
+    assert_eq!(at(&plain, 7.5, 2.5)[3], 0);
     // Between the quads nothing is drawn.
     assert_eq!(at(&plain, 12.5, 0.0)[3], 0);
-    // The sequence shows its setup frame, `flame02`; the clipping attachment clips nothing.
+    // The sequence shows its setup frame, `flame02`, whole: clipping ended at `middle`.
     assert_eq!(at(&plain, 20.0, 0.0), FLAMES[1]);
-    assert!(unsupported.contains(&("clipping attachment".into(), "clip (skin default, slot clip)".into())));
-    assert!(unsupported.contains(&("sequence".into(), "flame (skin default, slot seq)".into())));
+    assert_eq!(at(&plain, 21.0, 1.0), FLAMES[1]);
+    assert_eq!(unsupported, [("sequence".to_owned(), "flame (skin default, slot seq)".to_owned())]);
     // With skin `blue` the linked mesh: its parent's geometry, its own region.
     let (blue, bounds, _) = draw(Some("blue"));
     assert_eq!(bounds, [-20.0, -5.0, 25.0, 5.0]);
-    assert_eq!(at(&blue, 5.0, 0.0), BLUE);
+    assert_eq!(at(&blue, 2.5, 2.5), BLUE);
+    assert_eq!(at(&blue, 7.5, 2.5)[3], 0);
     assert_eq!(at(&blue, -18.0, 0.0), RED);
     assert_eq!(at(&blue, 20.0, 0.0), FLAMES[1]);
 }
