@@ -86,17 +86,14 @@ test("spineboy: loaded, walk played, the front leg's target dragged, the solver 
     // Every clip of the file is in the list, after the setup pose.
     const listed = await page.evaluate(() => [...document.getElementById("character-animation").options].map((o) => o.value));
     assert.deepEqual(listed, ["", ...Object.keys(file.animations)]);
-    // What ikarus leaves out is listed, one line each: spineboy's clipping attachment and bounding
-    // box (its eight transform constraints apply, listed among its constraints).
+    // What ikarus leaves out is listed, one line each: spineboy's bounding box (its clipping
+    // attachment clips the art; its eight transform constraints apply, listed among its
+    // constraints).
     assert.deepEqual(character.unsupported, [
-      { kind: "clipping attachment", name: "clipping (skin default, slot clipping)" },
       { kind: "bounding box attachment", name: "head (skin default, slot head-bb)" },
     ]);
     const inactive = await page.$$eval("#character-unsupported li", (li) => li.map((l) => l.textContent));
-    assert.deepEqual(inactive, [
-      "clipping attachment clipping (skin default, slot clipping)",
-      "bounding box attachment head (skin default, slot head-bb)",
-    ]);
+    assert.deepEqual(inactive, ["bounding box attachment head (skin default, slot head-bb)"]);
     assert.equal(await page.isVisible("#character-unsupported"), true);
     assert.equal(character.constraints.filter((k) => k.kind === "transform").length, 8);
     // One skin (default): no skin list; no physics constraints: no physics switch.

@@ -81,23 +81,20 @@ fn text_json_and_pictures_say_the_same_pose() {
 fn a_target_moves_a_limb_and_the_server_answers_the_same_bytes() {
     let args = ["--rig", SPINEBOY, "--animation", "walk", "--time", "0.25", "--target", "front-leg-target=60,20"];
     let (out, err) = pose(&[&args[..], &["--format", "json"]].concat());
-    // Spineboy's constraints are all applied (IK and transform); only its clipping attachment and
-    // bounding box (not drawn) are left out, said on one line.
+    // Spineboy's constraints are all applied (IK and transform); only its bounding box (not
+    // drawn) is left out, said on one line.
     assert_eq!(err.lines().filter(|l| l.contains("not used by ikarus")).count(), 1, "{err}");
-    assert!(err.contains("clipping attachment"), "{err}");
+    assert!(err.contains("bounding box attachment"), "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
     let bone = |n: &str| v["bones"].as_array().unwrap().iter().find(|b| b["name"] == n).unwrap().clone();
     assert_eq!(
         (bone("front-leg-target")["x"].as_f64(), bone("front-leg-target")["y"].as_f64()),
         (Some(60.0), Some(20.0))
     );
-    // What it has that ikarus leaves out: its clipping attachment and bounding box.
+    // What it has that ikarus leaves out: its bounding box (its clipping attachment clips the art).
     assert_eq!(
         v["unsupported"],
-        json!([
-            {"kind": "clipping attachment", "name": "clipping (skin default, slot clipping)"},
-            {"kind": "bounding box attachment", "name": "head (skin default, slot head-bb)"}
-        ])
+        json!([{"kind": "bounding box attachment", "name": "head (skin default, slot head-bb)"}])
     );
     let server = start(&[]);
     let text = std::fs::read_to_string(SPINEBOY).unwrap();

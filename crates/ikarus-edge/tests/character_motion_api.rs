@@ -32,7 +32,7 @@ fn animate_answers_frames_or_the_spine_document() {
     let target =
         frames["frames"][30]["bones"].as_array().unwrap().iter().find(|b| b["name"] == "front-leg-target").unwrap();
     assert!((target["x"].as_f64().unwrap() - 10.0).abs() < 1e-9 && (target["y"].as_f64().unwrap() - 20.0).abs() < 1e-9);
-    assert_eq!(frames["unsupported"][0]["kind"], "clipping attachment");
+    assert_eq!(frames["unsupported"][0]["kind"], "bounding box attachment");
 
     body["format"] = json!("spine");
     body["animation_name"] = json!("reach");

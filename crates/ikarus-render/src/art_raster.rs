@@ -20,8 +20,15 @@
 //!   `src = (t.r·r·a, t.g·g·a, t.b·b·a, t.a·a)`. With a dark colour `D` (two-colour tinting),
 //!   the light colour `L = (r, g, b)` is what white becomes and `D` what black becomes, linearly
 //!   between: the straight colour `c` becomes `c·L + (1 − c)·D`, premultiplied
-//!   `src.rgb = a·(t.rgb·L + (t.a − t.rgb)·D)`. (Derived from that description; Spine's canvas
-//!   renderer, which drew the reference pictures, does not do two-colour tinting.)
+//!   `src.rgb = a·(t.rgb·L + (t.a − t.rgb)·D)`. No public Spine page writes the formula down;
+//!   it is derived from what they say: the slot's colour "is used as the light color for two
+//!   color tinting" beside the dark colour, whose alpha is not used (the runtime API
+//!   reference, `Slot.getColor`, `Slot.getDarkColor`); the feature is called *tint black* (the
+//!   colour black becomes) and Spine 3.6's announcement names its effects: solid colour
+//!   outlines (light = dark: every texel one colour), inverted colours (light black, dark
+//!   white), which this rule gives (tests below). Spine's canvas renderer, which drew the
+//!   reference pictures, does not do two-colour tinting (the same announcement), so no
+//!   picture checks it.
 //! - **Blending** onto the buffer with the piece's [`Blend`] (its formulas are on the type), in
 //!   0..1, the colour then clamped to `0..=alpha` and rounded to 8 bits.
 //!
@@ -319,6 +326,41 @@ mod tests {
         let d = [0.25, 0.0, 0.5, 0.5];
         near(blend(Blend::Multiply, s, d), [0.1 + 0.125 + 0.05, 0.2, 0.05 + 0.25 + 0.05, 0.75]);
         near(blend(Blend::Screen, s, d), [0.4, 0.4, 0.55, 0.75]);
+    }
+
+    /// The tinted colour of a one-texel straight page holding `texel` (RGBA8), with tint
+    /// `color` and dark colour `dark`, premultiplied, 0..1.
+    fn tinted(texel: [u8; 4], color: [f32; 4], dark: Option<[f32; 3]>) -> [f64; 4] {
+        let page = Page { width: 1, height: 1, rgba: texel.to_vec(), pma: false };
+        let piece =
+            ArtPiece { page: 0, positions: vec![], uvs: vec![], triangles: vec![], color, dark, blend: Blend::Normal };
+        Shade::new(&piece, &page).colour(0.5, 0.5)
+    }
+
+    #[test]
+    fn two_colour_tint_maps_white_to_the_light_colour_and_black_to_the_dark_one() {
+        let near = |got: [f64; 4], want: [f64; 4]| {
+            assert!(got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-12), "{got:?} vs {want:?}");
+        };
+        let c = |v: u8| f64::from(v) / 255.0;
+        // Spine 3.6's announcement of tint black names its effects: light = dark = one colour
+        // draws the image as that solid colour (solid outlines), whatever its texels.
+        for texel in [[0, 0, 0, 255], [255, 255, 255, 255], [10, 200, 90, 255]] {
+            near(tinted(texel, [0.25, 0.5, 1.0, 1.0], Some([0.25, 0.5, 1.0])), [0.25, 0.5, 1.0, 1.0]);
+        }
+        // Light black and dark white invert the colours.
+        near(tinted([10, 200, 90, 255], [0.0, 0.0, 0.0, 1.0], Some([1.0; 3])), [c(245), c(55), c(165), 1.0]);
+        // A black dark colour is the one-colour tint: the texel times the light colour.
+        near(tinted([10, 200, 90, 255], [0.5, 1.0, 0.0, 1.0], Some([0.0; 3])), [c(10) / 2.0, c(200), 0.0, 1.0]);
+        // Between, linearly: c·L + (1 − c)·D per channel (straight), here c = 0.2, L = 1, D = 0.5
+        // in red; then premultiplied by the texel's alpha (0.4) times the tint's alpha (0.5).
+        let (cr, a) = (c(51), c(102) * 0.5);
+        let straight = cr * 1.0 + (1.0 - cr) * 0.5;
+        let got = tinted([51, 0, 255, 102], [1.0, 1.0, 1.0, 0.5], Some([0.5, 0.0, 0.0]));
+        near(got, [a * straight, 0.0, a, a]);
+        // The dark colour's part is scaled by alpha like the rest: a transparent texel stays
+        // transparent, whatever the dark colour.
+        near(tinted([0, 0, 0, 0], [1.0; 4], Some([1.0; 3])), [0.0; 4]);
     }
 
     #[test]

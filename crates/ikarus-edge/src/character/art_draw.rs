@@ -147,6 +147,6 @@ fn attachment_path(a: &ikarus::character::Attachment) -> &str {
     match a {
         ikarus::character::Attachment::Region(r) => &r.path,
         ikarus::character::Attachment::Mesh(m) => &m.path,
-        ikarus::character::Attachment::NotDrawn => "?",
+        ikarus::character::Attachment::Clipping(_) | ikarus::character::Attachment::NotDrawn => "?",
     }
 }

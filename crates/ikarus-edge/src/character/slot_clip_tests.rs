@@ -1,7 +1,8 @@
 //! Slot timelines read from Spine files and drawn: spineboy's `shoot` (a muzzle's attachment
 //! and colour keys) and `hoverboard` (a weighted mesh's deform), the raptor's `walk` (a slot
 //! colour) and `jump` (the draw order), each worked by hand at one time; 3.8's spellings; a
-//! `.skel` reads the same timelines as its JSON; bad keys refused in one line.
+//! `.skel` reads the same timelines as its JSON; bad keys refused in one line; spineboy's
+//! `portal` clipped to its clipping polygon.
 
 use ikarus::character::{
     Character, DeformKey, DrawList, Interpolation, PathVertices, PoseRequest, Posed, Regions, SlotClip,
@@ -317,4 +318,70 @@ fn bad_slot_keys_are_refused_in_one_line() {
     assert!(e.contains(r#"animations."go".drawOrder[0].offsets[0].offset = 2"#), "{e}");
     let e = refused(&file("4.2.0", json!({"slots": {"a": {"attachment": [{"time": 1}, {"time": 0.5}]}}})));
     assert!(e.contains(r#"animations."go".slots."a".attachment[1].time = 0.5: before the previous key's"#), "{e}");
+}
+
+#[test]
+fn spineboys_portal_keeps_him_inside_its_clipping_polygon() {
+    // portal keys slot `clipping` to show its clipping attachment (9 unweighted vertices, end
+    // slot `head-bb`). The user guide's rule: every slot from `clipping` to `head-bb` in the
+    // draw order is cut to the polygon, so every vertex they draw is inside it or on its edge:
+    // at 1.1 s (his hand coming out of the portal) some lie on its edge (cut there), at 1.4 s
+    // (half of him out) his slots are drawn.
+    let c = load_ok(SPINEBOY).character;
+    let regions = atlas::read(SPINEBOY_ATLAS).unwrap().lookup();
+    let clipping = slot(&c, "clipping");
+    let local = [
+        [66.76, 509.48],
+        [19.98, 434.54],
+        [5.34, 336.28],
+        [22.19, 247.93],
+        [77.98, 159.54],
+        [182.21, -97.56],
+        [1452.26, -99.8],
+        [1454.33, 843.61],
+        [166.57, 841.02],
+    ];
+    let clipped_at = |time: f64| {
+        let (posed, list) = drawn(&c, "portal", time, &regions);
+        let bone = posed.world(c.art().slots[clipping].bone);
+        let polygon: Vec<[f64; 2]> = local.iter().map(|&[x, y]| bone.to_world(x, y)).collect();
+        let n = polygon.len();
+        let on_edge = |p: [f64; 2]| {
+            (0..n).any(|i| {
+                let (a, b) = (polygon[i], polygon[(i + 1) % n]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let t = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+                (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1]) < 1e-6
+            })
+        };
+        // Even-odd crossings of a ray to the right.
+        let inside = |p: [f64; 2]| {
+            (0..n)
+                .filter(|&i| {
+                    let (a, b) = (polygon[i], polygon[(i + 1) % n]);
+                    (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                })
+                .count()
+                % 2
+                == 1
+        };
+        let order = list.slots.order();
+        let from = order.iter().position(|&s| s == clipping).unwrap();
+        let to = order.iter().position(|&s| s == slot(&c, "head-bb")).unwrap();
+        let clipped = &order[from..=to];
+        let (mut items, mut cut) = (0, 0);
+        for item in list.items.iter().filter(|i| clipped.contains(&i.slot)) {
+            items += 1;
+            for &p in &list.vertices[item.vertices.clone()] {
+                let name = &c.art().slots[item.slot].name;
+                assert!(inside(p) || on_edge(p), "{time} s: slot {name} draws {p:?} outside the portal");
+                cut += usize::from(on_edge(p));
+            }
+        }
+        (items, cut)
+    };
+    let (items, cut) = clipped_at(1.1);
+    assert!(items > 0 && cut > 0, "1.1 s: {items} slots drawn, {cut} vertices on the polygon's edge");
+    let (items, _) = clipped_at(1.4);
+    assert!(items >= 10, "1.4 s: {items} slots drawn");
 }

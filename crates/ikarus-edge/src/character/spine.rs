@@ -253,7 +253,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     Ok(Loaded { character, format: Format::Spine, version, warnings })
 }
 
-/// `not used by ikarus (left out): clipping attachment "clip (skin default, slot hand)", …`.
+/// `not used by ikarus (left out): bounding box attachment "bb (skin default, slot hand)", …`.
 pub(super) fn inactive(unsupported: &[Unsupported]) -> String {
     let list: Vec<String> = unsupported.iter().map(|u| format!("{} {:?}", u.kind, Quoted(&u.name))).collect();
     format!("not used by ikarus (left out): {}", list.join(", "))

@@ -12,7 +12,11 @@
 //!   `path`, `color`, `width`, `height`, `parent` (a mesh of the same slot), `skin` (the
 //!   parent's skin by name, or by index as a `.skel` gives it; the default skin unless given),
 //!   `timelines` (3.8 `deform`; true: it is deformed by its parent's deform timelines, not by
-//!   its own): it takes its parent's UVs, triangles, vertices and hull. `path`, `point`, `boundingbox` and `clipping` are not drawn.
+//!   its own): it takes its parent's UVs, triangles, vertices and hull. `clipping`: `end` (a
+//!   slot's name), `vertexCount`, `vertices` (as a mesh's: unweighted when there are
+//!   `2·vertexCount` numbers); it clips what is drawn after it (a polygon of more than
+//!   [`MAX_CLIP_VERTICES`] vertices is not used, and listed as unsupported). `path`, `point`
+//!   and `boundingbox` are not drawn.
 //! - an attachment with a `sequence` (`start` 1, `digits` 0, `setup` 0) shows region `path`
 //!   followed by `start + setup` written with `digits` digits (its frames are not played; the
 //!   sequence is listed as unsupported).
@@ -20,7 +24,8 @@
 use std::collections::HashMap;
 
 use ikarus::character::{
-    Art, Attachment, BlendMode, MeshAttachment, PathVertices, RegionAttachment, Rgba, SkinArt, Slot, WHITE,
+    Art, Attachment, BlendMode, ClippingAttachment, MAX_CLIP_VERTICES, MeshAttachment, PathVertices, RegionAttachment,
+    Rgba, SkinArt, Slot, WHITE,
 };
 use serde_json::Value;
 
@@ -135,7 +140,8 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
                         });
                         continue;
                     }
-                    "path" | "point" | "boundingbox" | "clipping" => Attachment::NotDrawn,
+                    "clipping" => clipping(a, &slots.index, bone_count, &at)?,
+                    "path" | "point" | "boundingbox" => Attachment::NotDrawn,
                     other => return Err(format!("{at}.type = {other:?}: not an attachment type Spine writes")),
                 };
                 out.slots[slot].insert(name.clone(), attachment);
@@ -204,6 +210,34 @@ fn path(a: &Value, name: &str, at: &str) -> Result<String, String> {
     };
     let (start, digits, setup) = (whole("start", 1.0)?, whole("digits", 0.0)?, whole("setup", 0.0)?);
     Ok(format!("{base}{:0digits$}", start + setup, digits = digits.min(16)))
+}
+
+/// A clipping attachment (not used, [`Attachment::NotDrawn`], past [`MAX_CLIP_VERTICES`]).
+fn clipping(a: &Value, slots: &HashMap<String, usize>, bone_count: usize, at: &str) -> Result<Attachment, String> {
+    let end = match a.get("end") {
+        Some(Value::String(name)) => {
+            *slots.get(name.as_str()).ok_or_else(|| format!("{at}.end = {name:?}: no slot of that name"))?
+        }
+        other => {
+            let got = other.map_or("nothing".to_owned(), Value::to_string);
+            return Err(format!("{at}.end = {got}: expected the name of the slot where clipping ends"));
+        }
+    };
+    let count = number(a.get("vertexCount"), 0.0, &format!("{at}.vertexCount"))?;
+    if count < 3.0 || count.fract() != 0.0 {
+        return Err(format!("{at}.vertexCount = {count}: expected a whole number of vertices, at least 3"));
+    }
+    if count > MAX_CLIP_VERTICES as f64 {
+        return Ok(Attachment::NotDrawn);
+    }
+    let count = count as usize;
+    let v = numbers(a.get("vertices"), &format!("{at}.vertices"))?;
+    let vertices = if v.len() == 2 * count {
+        PathVertices::Plain(v.chunks(2).map(|p| [p[0], p[1]]).collect())
+    } else {
+        PathVertices::Weighted(weighted(&v, count, bone_count, &format!("{at}.vertices"))?)
+    };
+    Ok(Attachment::Clipping(ClippingAttachment { end, vertices }))
 }
 
 /// A region attachment.

@@ -10,8 +10,9 @@
 //! - `drawOrder` (also `draworder`) = `[key…]`: `time` (0), `offsets` = `[{slot, offset}…]` in
 //!   slot order (absent: the setup order), turned into the whole order by
 //!   [`ikarus::character::draw_order_from_offsets`].
-//! - the deform timelines of meshes, found as the paths' ([`super::spine_deform`]): offsets
-//!   per vertex coordinate, per weight entry of a weighted mesh. A linked mesh whose
+//! - the deform timelines of meshes and clipping polygons, found as the paths'
+//!   ([`super::spine_deform`]): offsets per vertex coordinate, per weight entry of a weighted
+//!   mesh. A linked mesh whose
 //!   `timelines` is true (the default) is deformed by its parent's timelines, not its own.
 
 use ikarus::character::{
@@ -76,10 +77,12 @@ pub(super) fn read(
         if inherits.iter().any(|l| (l.skin, l.slot, l.name.as_str()) == (f.skin, f.slot, f.attachment)) {
             continue;
         }
-        let Some(Attachment::Mesh(mesh)) = art.skins.get(f.skin).and_then(|s| s.get(f.slot, f.attachment)) else {
-            continue;
+        let vertices = match art.skins.get(f.skin).and_then(|s| s.get(f.slot, f.attachment)) {
+            Some(Attachment::Mesh(mesh)) => &mesh.vertices,
+            Some(Attachment::Clipping(clipping)) => &clipping.vertices,
+            _ => continue,
         };
-        let keys = super::spine_deform::read_keys(f.keys, mesh.vertices.deform_len(), f.legacy, &f.at)?;
+        let keys = super::spine_deform::read_keys(f.keys, vertices.deform_len(), f.legacy, &f.at)?;
         let linked =
             inherits.iter().filter(|l| (l.parent_skin, l.slot, l.parent.as_str()) == (f.skin, f.slot, f.attachment));
         for l in linked {

@@ -1,13 +1,14 @@
 //! What a Spine file has that ikarus does not use, listed so that nothing is dropped silently:
-//! attachments that are not drawn (clipping, point, bounding box), sequences (an attachment's
+//! attachments that are not drawn (point, bounding box, a clipping polygon of more than
+//! [`ikarus::character::MAX_CLIP_VERTICES`] vertices), sequences (an attachment's
 //! frames shown one after another; only the setup frame is drawn), any
 //! top-level field the 4.2 format does not have (Spine 4.3's sliders, a later kind of
 //! constraint) and any animation timeline group it does not know.
 //!
 //! Everything that poses the bones (bones, every constraint kind, skins, the bone and
-//! constraint timelines) is read elsewhere, and so are slots, region, mesh, linked mesh and path
-//! attachments (`spine_art`, `spine_slots`), and the attachment, colour, draw order and deform
-//! timelines (`spine_slot_clips`); events are not listed. A slot timeline of another name and an
+//! constraint timelines) is read elsewhere, and so are slots, region, mesh, linked mesh, path
+//! and clipping attachments (`spine_art`, `spine_slots`), and the attachment, colour, draw
+//! order and deform timelines (`spine_slot_clips`); events are not listed. A slot timeline of another name and an
 //! attachment's `sequence` timeline (its frames played over time) are listed.
 
 use ikarus::character::Unsupported;
@@ -43,7 +44,15 @@ pub(super) fn features(value: &Value) -> Vec<Unsupported> {
     for (skin, slot, name, attachment) in attachments(value) {
         let at = || format!("{name} (skin {skin}, slot {slot})");
         match attachment.get("type").and_then(Value::as_str) {
-            Some("clipping") => push("clipping attachment", at()),
+            Some("clipping")
+                if attachment.get("vertexCount").and_then(Value::as_f64).unwrap_or(0.0)
+                    > ikarus::character::MAX_CLIP_VERTICES as f64 =>
+            {
+                push(
+                    "clipping attachment",
+                    format!("{} (more than {} vertices)", at(), ikarus::character::MAX_CLIP_VERTICES),
+                );
+            }
             Some("point") => push("point attachment", at()),
             Some("boundingbox") => push("bounding box attachment", at()),
             _ => {}
@@ -125,6 +134,7 @@ mod tests {
             "slider": [{"name": "s"}],
             "skins": [{"name": "default", "attachments": {"hand": {
                 "clip": {"type": "clipping", "end": "hand", "vertexCount": 3, "vertices": [0, 0, 1, 0, 0, 1]},
+                "big": {"type": "clipping", "end": "hand", "vertexCount": 300},
                 "flame": {"sequence": {"count": 3}},
                 "bb": {"type": "boundingbox", "vertexCount": 3, "vertices": [0, 0, 1, 0, 0, 1]},
                 "tip": {"type": "point", "x": 1},
@@ -139,7 +149,7 @@ mod tests {
             [
                 ("field".to_owned(), "slider".to_owned()),
                 ("bounding box attachment".to_owned(), "bb (skin default, slot hand)".to_owned()),
-                ("clipping attachment".to_owned(), "clip (skin default, slot hand)".to_owned()),
+                ("clipping attachment".to_owned(), "big (skin default, slot hand) (more than 256 vertices)".to_owned()),
                 ("sequence".to_owned(), "flame (skin default, slot hand)".to_owned()),
                 ("point attachment".to_owned(), "tip (skin default, slot hand)".to_owned()),
                 ("timeline".to_owned(), "sliders (animation go)".to_owned()),

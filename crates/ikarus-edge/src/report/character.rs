@@ -82,7 +82,7 @@ pub struct ClipJson {
     pub duration: f64,
 }
 
-/// What the file has and ikarus does not use: `{"kind": "clipping attachment", "name": "…"}`.
+/// What the file has and ikarus does not use: `{"kind": "bounding box attachment", "name": "…"}`.
 #[derive(Debug, Serialize)]
 pub struct UnsupportedJson {
     pub kind: String,

@@ -111,6 +111,16 @@ pub struct MeshAttachment {
     pub color: Rgba,
 }
 
+/// A clipping attachment: a polygon that clips the region and mesh attachments of the slots
+/// from its own to its end slot in the draw order (see the `clipping` module's rules).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClippingAttachment {
+    /// The slot at which clipping ends, inclusive (its own slot: the end of the draw order).
+    pub end: usize,
+    /// The polygon's vertices: in the slot bone's frame, or weighted over several bones.
+    pub vertices: PathVertices,
+}
+
 /// An attachment as drawing sees it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Attachment {
@@ -118,8 +128,10 @@ pub enum Attachment {
     Region(RegionAttachment),
     /// A mesh (a linked mesh is read as a mesh with its parent's geometry).
     Mesh(MeshAttachment),
-    /// An attachment that is not drawn (path, point, bounding box, clipping): it still hides a
-    /// default skin's attachment of the same name.
+    /// A clipping polygon: not drawn, it clips what is drawn after it.
+    Clipping(ClippingAttachment),
+    /// An attachment that is not drawn (path, point, bounding box): it still hides a default
+    /// skin's attachment of the same name.
     NotDrawn,
 }
 
@@ -154,8 +166,9 @@ impl Art {
     /// Checks the art against a character of `bones` bones and `skins` skins: every slot's bone
     /// and every weight's bone exists, each skin's attachments are indexed by existing slots,
     /// numbers are finite, a mesh has one UV per vertex and whole triangles of existing
-    /// vertices, and its hull is not larger than it; the slot timelines of at most `clips`
-    /// clips follow [`super::slot_clip`]'s rules.
+    /// vertices, and its hull is not larger than it; a clipping polygon has 3 to
+    /// [`super::MAX_CLIP_VERTICES`] vertices and ends at an existing slot; the slot timelines
+    /// of at most `clips` clips follow [`super::slot_clip`]'s rules.
     pub(crate) fn check(&self, bones: usize, skins: usize, clips: usize) -> Result<(), CharacterError> {
         let bad = |what: String| Err(CharacterError::Art { what });
         if self.skins.len() > skins {
@@ -175,7 +188,7 @@ impl Art {
             }
             for (slot, map) in skin.slots.iter().enumerate() {
                 for (name, a) in map {
-                    check_attachment(a, bones).map_err(|e| CharacterError::Art {
+                    check_attachment(a, bones, self.slots.len()).map_err(|e| CharacterError::Art {
                         what: format!("skins[{k}], slot {slot}, attachment {name:?}: {e}"),
                     })?;
                 }
@@ -185,10 +198,33 @@ impl Art {
     }
 }
 
+/// Whether every vertex is finite and every weight's bone exists.
+fn finite(vertices: &PathVertices, bones: usize) -> bool {
+    match vertices {
+        PathVertices::Plain(v) => v.iter().flatten().all(|x| x.is_finite()),
+        PathVertices::Weighted(v) => {
+            v.iter().flatten().all(|w| w.bone < bones && w.point.iter().all(|x| x.is_finite()) && w.weight.is_finite())
+        }
+    }
+}
+
 /// One attachment's rules (see [`Art::check`]).
-fn check_attachment(a: &Attachment, bones: usize) -> Result<(), String> {
+fn check_attachment(a: &Attachment, bones: usize, slots: usize) -> Result<(), String> {
     match a {
         Attachment::NotDrawn => Ok(()),
+        Attachment::Clipping(c) => {
+            let n = c.vertices.len();
+            if !(3..=super::MAX_CLIP_VERTICES).contains(&n) {
+                return Err(format!("a clipping polygon of {n} vertices (3 to {})", super::MAX_CLIP_VERTICES));
+            }
+            if c.end >= slots {
+                return Err(format!("end slot {}: only {slots} slots", c.end));
+            }
+            if !finite(&c.vertices, bones) {
+                return Err("a vertex is not finite, or a weight's bone does not exist".into());
+            }
+            Ok(())
+        }
         Attachment::Region(r) => {
             let numbers = [r.x, r.y, r.rotation, r.scale_x, r.scale_y, r.width, r.height];
             if numbers.iter().any(|v| !v.is_finite()) {
@@ -210,14 +246,7 @@ fn check_attachment(a: &Attachment, bones: usize) -> Result<(), String> {
             if m.hull > n {
                 return Err(format!("hull {}: only {n} vertices", m.hull));
             }
-            let finite = match &m.vertices {
-                PathVertices::Plain(v) => v.iter().flatten().all(|x| x.is_finite()),
-                PathVertices::Weighted(v) => v
-                    .iter()
-                    .flatten()
-                    .all(|w| w.bone < bones && w.point.iter().all(|x| x.is_finite()) && w.weight.is_finite()),
-            };
-            if !finite || m.uvs.iter().flatten().any(|x| !x.is_finite()) {
+            if !finite(&m.vertices, bones) || m.uvs.iter().flatten().any(|x| !x.is_finite()) {
                 return Err("a vertex or uv is not finite, or a weight's bone does not exist".into());
             }
             Ok(())

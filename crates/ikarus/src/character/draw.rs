@@ -21,6 +21,9 @@
 //!   the vertex coordinates first (per weight entry of a weighted mesh).
 //! - Colour: the slot's (setup, or the clip's colour keys) times the attachment's, channel by
 //!   channel; the dark colour is the slot's.
+//! - A clipping attachment draws nothing; its polygon (its vertices as a mesh's, deform
+//!   included) cuts the triangles of the slots it clips (the `clipping` module's rules). A slot
+//!   whose triangles are all cut away is not drawn.
 //!
 //! The slots' state at the clip's time ([`SlotPose`], the `slot_pose` module) is computed here,
 //! not when the bones are posed, so a pose drawn without its art costs nothing more.
@@ -28,6 +31,7 @@
 use std::ops::Range;
 
 use super::art::{AtlasRegion, Attachment, BlendMode, MeshAttachment, RegionAttachment, Regions, Rgba};
+use super::clipping::Clipper;
 use super::path::spline::extend_world;
 use super::slot_pose::SlotPose;
 use super::{Affine, Character, PoseError, Posed};
@@ -65,6 +69,8 @@ pub struct DrawList {
     pub triangles: Vec<u32>,
     /// The slots' state the list was drawn with (attachments, colours, draw order, deforms).
     pub slots: SlotPose,
+    /// The clipping polygon in force while drawing, and its scratch buffers.
+    clipper: Clipper,
 }
 
 impl DrawList {
@@ -127,49 +133,80 @@ impl Character {
 
     /// The drawing of every slot in `out.slots`' order and state.
     fn draw_slots(&self, posed: &Posed, skin: Option<usize>, regions: &Regions, out: &mut DrawList) {
+        out.clipper.reset();
         for k in 0..out.slots.order().len() {
             let i = out.slots.order()[k];
-            let Some(slot) = self.art.slots.get(i) else { continue };
-            if slot.bone >= posed.len() || !posed.is_active(slot.bone) {
-                continue;
-            }
-            let name = self.shown_attachment(&out.slots, i);
-            let Some((_, attachment)) = name.and_then(|name| self.find_attachment(i, name, skin)) else { continue };
-            let (path, color) = match attachment {
-                Attachment::Region(r) => (&r.path, r.color),
-                Attachment::Mesh(m) => (&m.path, m.color),
-                Attachment::NotDrawn => continue,
-            };
-            let region = regions.index(path);
-            let geometry = region.and_then(|r| regions.get(r));
-            let start = out.vertices.len();
-            let first = out.triangles.len();
-            match attachment {
-                Attachment::Region(r) => {
-                    region_vertices(r, geometry, posed.world(slot.bone), out);
-                    out.triangles.extend_from_slice(&QUAD);
-                }
-                Attachment::Mesh(m) => {
+            self.draw_slot(posed, skin, regions, i, out);
+            out.clipper.passed(i);
+        }
+        out.clipper.reset();
+    }
+
+    /// The drawing of slot `i`, cut to the clipping polygon in force; a clipping attachment
+    /// starts clipping.
+    fn draw_slot(&self, posed: &Posed, skin: Option<usize>, regions: &Regions, i: usize, out: &mut DrawList) {
+        let Some(slot) = self.art.slots.get(i) else { return };
+        if slot.bone >= posed.len() || !posed.is_active(slot.bone) {
+            return;
+        }
+        let name = self.shown_attachment(&out.slots, i);
+        let Some((_, attachment)) = name.and_then(|name| self.find_attachment(i, name, skin)) else { return };
+        let (path, color) = match attachment {
+            Attachment::Region(r) => (&r.path, r.color),
+            Attachment::Mesh(m) => (&m.path, m.color),
+            Attachment::Clipping(c) => {
+                if !out.clipper.active() {
                     let bone = posed.world(slot.bone);
                     let world = |b: usize| posed.world(b);
-                    extend_world(&m.vertices, &bone, &world, out.slots.deform(i), &mut out.vertices);
-                    mesh_uvs(m, geometry, out);
-                    out.triangles.extend_from_slice(&m.triangles);
+                    out.clipper.polygon.clear();
+                    extend_world(&c.vertices, &bone, &world, out.slots.deform(i), &mut out.clipper.polygon);
+                    out.clipper.start(i, c.end);
                 }
-                Attachment::NotDrawn => {}
+                return;
             }
-            let slot_color = out.slots.color(i);
-            let color = std::array::from_fn(|c| slot_color[c] * color[c]);
-            out.items.push(DrawItem {
-                slot: i,
-                region,
-                vertices: start..out.vertices.len(),
-                triangles: first..out.triangles.len(),
-                color,
-                dark: out.slots.dark(i),
-                blend: slot.blend,
-            });
+            Attachment::NotDrawn => return,
+        };
+        let region = regions.index(path);
+        let geometry = region.and_then(|r| regions.get(r));
+        let start = out.vertices.len();
+        let first = out.triangles.len();
+        match attachment {
+            Attachment::Region(r) => {
+                region_vertices(r, geometry, posed.world(slot.bone), out);
+                out.triangles.extend_from_slice(&QUAD);
+            }
+            Attachment::Mesh(m) => {
+                let bone = posed.world(slot.bone);
+                let world = |b: usize| posed.world(b);
+                extend_world(&m.vertices, &bone, &world, out.slots.deform(i), &mut out.vertices);
+                mesh_uvs(m, geometry, out);
+                out.triangles.extend_from_slice(&m.triangles);
+            }
+            Attachment::Clipping(_) | Attachment::NotDrawn => {}
         }
+        if out.clipper.active() {
+            out.clipper.clip(&out.vertices[start..], &out.uvs[start..], &out.triangles[first..]);
+            out.vertices.truncate(start);
+            out.uvs.truncate(start);
+            out.triangles.truncate(first);
+            if out.clipper.triangles.is_empty() {
+                return;
+            }
+            out.vertices.extend_from_slice(&out.clipper.vertices);
+            out.uvs.extend_from_slice(&out.clipper.uvs);
+            out.triangles.extend_from_slice(&out.clipper.triangles);
+        }
+        let slot_color = out.slots.color(i);
+        let color = std::array::from_fn(|c| slot_color[c] * color[c]);
+        out.items.push(DrawItem {
+            slot: i,
+            region,
+            vertices: start..out.vertices.len(),
+            triangles: first..out.triangles.len(),
+            color,
+            dark: out.slots.dark(i),
+            blend: slot.blend,
+        });
     }
 }
 

@@ -1,12 +1,12 @@
 //! Drawing by hand-made characters: a region's quad shrunk to its packed image (whitespace
 //! offsets), the page UVs of every rotation, a mesh's UVs through offsets, colours, and a slot
-//! whose attachment is not drawn.
+//! whose attachment is not drawn, a clipping polygon.
 
 use std::collections::HashMap;
 
 use super::*;
 use crate::character::{
-    Art, AtlasRegion, CharacterParts, PathVertices, PoseRequest, Skin, SkinArt, Slot, WHITE, Weight,
+    Art, AtlasRegion, CharacterParts, ClippingAttachment, PathVertices, PoseRequest, Skin, SkinArt, Slot, WHITE, Weight,
 };
 use crate::fixtures::character_bone;
 
@@ -160,4 +160,77 @@ fn an_attachment_that_is_not_drawn_draws_nothing_and_bad_art_is_refused() {
         ..CharacterParts::default()
     };
     assert_eq!(Character::new(parts).unwrap_err().to_string(), "art: skins[0]: attachments for 1 slots of 0");
+}
+
+#[test]
+fn a_clipping_polygon_cuts_the_slots_after_it_through_its_bone() {
+    // Slot 0 shows a clipping polygon, the square 0..10 × 0..10 in the bone's frame, ending at
+    // slot 1; slot 1 a 20 × 20 region around the bone's origin (no atlas region: UVs 0 to 1).
+    let mut bone = character_bone("root", None, 0.0, 0.0);
+    (bone.setup.x, bone.setup.y, bone.setup.rotation) = (5.0, 7.0, std::f64::consts::FRAC_PI_2);
+    let slot = |name: &str| Slot {
+        name: name.into(),
+        bone: 0,
+        color: WHITE,
+        dark: None,
+        blend: BlendMode::Normal,
+        attachment: Some(name.into()),
+    };
+    let square = PathVertices::Plain(vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]);
+    let clip = |end: usize, vertices: PathVertices| Attachment::Clipping(ClippingAttachment { end, vertices });
+    let quad = RegionAttachment {
+        path: "q".into(),
+        x: 0.0,
+        y: 0.0,
+        rotation: 0.0,
+        scale_x: 1.0,
+        scale_y: 1.0,
+        width: 20.0,
+        height: 20.0,
+        color: WHITE,
+    };
+    let parts = |clipping: Attachment| CharacterParts {
+        bones: vec![bone.clone()],
+        skins: vec![Skin { name: "default".into(), ..Skin::default() }],
+        art: Art {
+            slots: vec![slot("c"), slot("q")],
+            skins: vec![SkinArt {
+                slots: vec![
+                    HashMap::from([("c".to_owned(), clipping)]),
+                    HashMap::from([("q".to_owned(), Attachment::Region(quad.clone()))]),
+                ],
+            }],
+            ..Art::default()
+        },
+        ..CharacterParts::default()
+    };
+    let c = Character::new(parts(clip(1, square.clone()))).unwrap();
+    let mut posed = Posed::default();
+    c.pose(&PoseRequest { skin: c.default_skin(), ..PoseRequest::default() }, &mut posed).unwrap();
+    let mut list = DrawList::default();
+    c.draw_list(&posed, c.default_skin(), &Regions::default(), &mut list);
+    assert_eq!(list.items.len(), 1, "the clipping slot draws nothing");
+    // What is kept is the square: a quarter of the quad, area 100, in the world (bone: (x, y) →
+    // (5 − y, 7 + x)) x −5 to 5, y 7 to 17. Each vertex keeps the quad's UVs at its place:
+    // local (lx, ly) = (Y − 7, 5 − X), u = (lx + 10)/20, v = (10 − ly)/20.
+    let area: f64 = list
+        .triangles
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [0, 1, 2].map(|k| list.vertices[t[k] as usize]);
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs()
+        })
+        .sum();
+    assert!((area - 100.0).abs() < 1e-9, "{area}");
+    for (p, uv) in list.vertices.iter().zip(&list.uvs) {
+        assert!((-5.0 - 1e-9..=5.0 + 1e-9).contains(&p[0]) && (7.0 - 1e-9..=17.0 + 1e-9).contains(&p[1]), "{p:?}");
+        let (lx, ly) = (p[1] - 7.0, 5.0 - p[0]);
+        assert!((uv[0] - (lx + 10.0) / 20.0).abs() < 1e-12 && (uv[1] - (10.0 - ly) / 20.0).abs() < 1e-12);
+    }
+    // A polygon of two vertices, or ending at a slot that does not exist, is refused.
+    let two = PathVertices::Plain(vec![[0.0, 0.0], [1.0, 0.0]]);
+    let e = Character::new(parts(clip(1, two))).unwrap_err().to_string();
+    assert!(e.contains("a clipping polygon of 2 vertices (3 to 256)"), "{e}");
+    let e = Character::new(parts(clip(2, square))).unwrap_err().to_string();
+    assert!(e.contains("end slot 2: only 2 slots"), "{e}");
 }

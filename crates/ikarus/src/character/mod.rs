@@ -15,6 +15,7 @@
 mod applied;
 mod art;
 mod clip;
+mod clipping;
 mod constraint;
 mod draw;
 mod error;
@@ -35,9 +36,11 @@ mod transform;
 mod world;
 
 pub use art::{
-    Art, AtlasRegion, Attachment, BlendMode, MeshAttachment, RegionAttachment, Regions, Rgba, SkinArt, Slot, WHITE,
+    Art, AtlasRegion, Attachment, BlendMode, ClippingAttachment, MeshAttachment, RegionAttachment, Regions, Rgba,
+    SkinArt, Slot, WHITE,
 };
 pub use clip::{BoneKey, BoneProperty, BoneTimeline, Clip, IkKey, Interpolation};
+pub use clipping::MAX_CLIP_VERTICES;
 pub use constraint::{ChannelKey, Constraint, ConstraintKeys, ConstraintTimeline, MAX_CHANNELS, Settings};
 pub use draw::{DrawItem, DrawList};
 pub use error::CharacterError;
