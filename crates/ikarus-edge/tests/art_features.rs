@@ -142,7 +142,8 @@ fn draw(skin: Option<&str>) -> (ikarus_render::Pixmap, [f64; 4], Vec<(String, St
     pose_kept(&loaded, &ask, &mut posed).unwrap();
     let skin_name = skin.unwrap_or("default");
     let skin = skin_index(c, skin).unwrap();
-    let art = atlas().art(c, &posed, (skin, None), &mut DrawList::default()).unwrap();
+    let atlas = atlas();
+    let art = atlas.art(c, &posed, (skin, None), &mut DrawList::default()).unwrap();
     let (lo, hi) = art.extent().unwrap();
     let pixmap = ikarus_render::art_only_pixmap(&art, 800, 800).unwrap();
     let picture = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("art_features/{}.png", skin_name));
