@@ -135,7 +135,8 @@ class _CharacterRig:
         (slot attachments, colours, draw order and deforms keyed by ``animation`` at ``time``),
         with ``art_only=True`` the art alone on a transparent background, the box of its
         vertices filling 90 % of ``width`` × ``height``, centred (as Spine's renderer fits a
-        skeleton). The bytes of ``ikarus pose --atlas FILE.atlas [--art-only] --out x.png``
+        skeleton). With ``art_only``, the bytes of ``ikarus pose --atlas FILE.atlas --art-only
+        --out x.png``; with the bones, the same picture without the command line's caption
         (``POST /api/render`` figure ``pose``, by the same code). A bad name or value raises
         ``ValueError`` with the API's line naming it (``atlas: the atlas has no region …``)."""
         if self._character is None:
