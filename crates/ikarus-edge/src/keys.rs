@@ -234,7 +234,7 @@ pub(crate) fn key_frames(
 impl KeysFile {
     /// Reads the KEYS JSON `text`; a problem names the field (`tracks.left_foot[0].ease: …`).
     pub fn parse(text: &str) -> Result<Self, String> {
-        crate::api::parse_json(text.as_bytes()).map_err(|p| p.message.replacen("request body: ", "", 1))
+        crate::api::wire::parse_json(text.as_bytes()).map_err(|p| p.message.replacen("request body: ", "", 1))
     }
 
     /// The plan of these keys on `skeleton`, at most `max_frames` frames (`cap` names the cap:

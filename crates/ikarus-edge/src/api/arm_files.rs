@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Problem, Reply, parse_json};
+use super::wire::{Problem, Reply, parse_json};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM, LinkFile};
 use crate::settings::SolverSettings;
 

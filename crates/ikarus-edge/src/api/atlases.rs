@@ -19,7 +19,7 @@ use std::sync::{Arc, OnceLock};
 use base64::Engine;
 use serde::{Deserialize, Serialize};
 
-use super::{Problem, Reply, parse_json, status};
+use super::wire::{Problem, Reply, parse_json, status};
 use crate::character::art_draw::AtlasArt;
 use crate::character::atlas;
 use crate::character::store::{Store, Weigh, hashed};

@@ -16,7 +16,7 @@ use super::fields::{refuse_given, stopped, track_path};
 use super::pose::stored_character;
 use super::requests::TargetReq;
 use super::requests::{MotionFormat, request};
-use super::{Limits, Problem, Reply, parse_json};
+use super::wire::{Limits, Problem, Reply, parse_json};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion, Physics};
 use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};

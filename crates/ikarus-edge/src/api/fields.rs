@@ -7,7 +7,7 @@ use ikarus::motion::Timing;
 use ikarus::{Ease, EaseKind, Goal, Interrupt, SolveOptions};
 
 use super::requests::{EaseReq, GoalReq};
-use super::{Limits, Problem, Reply, status};
+use super::wire::{Limits, Problem, Reply, status};
 use crate::arm::Arm;
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::motion::TimingProblem;

@@ -6,7 +6,7 @@ use serde::Deserialize;
 
 use super::bodies::{BodyKind, fields_of};
 use super::requests::{EaseReq, GoalReq, request};
-use super::{Problem, parse_json};
+use super::wire::{Problem, parse_json};
 use crate::arm::ArmFile;
 use crate::picture::PictureFormat;
 

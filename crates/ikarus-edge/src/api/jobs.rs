@@ -15,7 +15,7 @@ use super::fields::{
     max_step_deg, options_for, pose_from_degrees, recorded_values_cap, stopped, timing, track_path,
 };
 use super::requests::{AnimateReq, EaseReq, GoalReq, SolveReq, TrackReq};
-use super::{Limits, Problem, Reply};
+use super::wire::{Limits, Problem, Reply};
 use crate::arm::Arm;
 use crate::body::{Aimed, Body, Jointed};
 use crate::motion::{Motion, MotionBody, MotionPlan};

@@ -8,7 +8,7 @@ use ikarus::Interrupt;
 use super::character_motion::MAX_BONE_FRAMES;
 use super::fields::{RIG_KEYS_GIVE, json_response, options_for, refuse_given, stopped};
 use super::requests::AnimateReq;
-use super::{Limits, Problem, Reply};
+use super::wire::{Limits, Problem, Reply};
 use crate::keys::KeysFile;
 use crate::keys::motion::KeyedMotion;
 use crate::rig::Rig;

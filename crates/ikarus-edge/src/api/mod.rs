@@ -29,172 +29,13 @@ pub mod render;
 pub mod requests;
 pub mod rigs;
 pub mod solve_batch;
+pub mod wire;
 
-use std::fmt;
-
-use ikarus::Interrupt;
-use serde::de::DeserializeOwned;
-
-use crate::error::CliError;
 use bodies::AnimateBody;
+use ikarus::Interrupt;
 use requests::{SolveReq, TrackReq};
-
-/// The caps of every request: the server's flags, and the same defaults for the edges that
-/// have no flags (Python, WebAssembly).
-#[derive(Debug, Clone)]
-pub struct Limits {
-    /// Largest request body, in bytes (413 above it).
-    pub max_body_bytes: usize,
-    /// Most links an arm of a request may have.
-    pub max_links: usize,
-    /// Most bones a rig of a request may have (`/api/rig/parse` included), counted before any
-    /// bone is checked.
-    pub max_bones: usize,
-    /// Largest `options.max_iterations` of a request.
-    pub max_iterations: u32,
-    /// Most frames of a motion.
-    pub max_frames: usize,
-    /// Most samples of a path, or points of a reach request.
-    pub max_samples: usize,
-    /// Largest workspace resolution (cells per side).
-    pub max_resolution: u32,
-    /// Most restarts a request may ask for (each may run the full iteration cap).
-    pub max_restarts: u32,
-    /// Most goals of one `/api/solve_batch` request.
-    pub max_goals: usize,
-    /// Time a request has to send its body (the server's; unused elsewhere).
-    pub body_timeout: std::time::Duration,
-}
-
-impl Default for Limits {
-    /// The defaults of `ikarus serve`'s flags.
-    fn default() -> Self {
-        Self {
-            max_body_bytes: 1 << 20,
-            max_links: 64,
-            max_bones: 256,
-            max_iterations: crate::settings::DEFAULT_ITERATION_CAP,
-            max_frames: 2000,
-            max_samples: 5000,
-            max_resolution: 1024,
-            max_restarts: 64,
-            max_goals: 100_000,
-            body_timeout: std::time::Duration::from_millis(10_000),
-        }
-    }
-}
-
-/// A refused request: the HTTP status the server answers with, and the one-line message of
-/// its `{"error": …}` body, which names the field and the value.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Problem {
-    /// 400 malformed JSON, 413 too large, 415 not the endpoint's content type, 422 a bad value,
-    /// 500 internal, 503 interrupted or busy.
-    pub status: u16,
-    /// One line.
-    pub message: String,
-}
-
-/// Status codes the API answers with.
-pub mod status {
-    /// Malformed JSON, a body that is not text.
-    pub const BAD_REQUEST: u16 = 400;
-    /// The request's host is not accepted.
-    pub const FORBIDDEN: u16 = 403;
-    /// No such endpoint or file.
-    pub const NOT_FOUND: u16 = 404;
-    /// The body did not arrive in time.
-    pub const REQUEST_TIMEOUT: u16 = 408;
-    /// The body is over the cap.
-    pub const PAYLOAD_TOO_LARGE: u16 = 413;
-    /// The body's `Content-Type` is not the endpoint's (or is missing).
-    pub const UNSUPPORTED_MEDIA_TYPE: u16 = 415;
-    /// Well-formed JSON with a bad value.
-    pub const UNPROCESSABLE_ENTITY: u16 = 422;
-    /// A fault of ikarus.
-    pub const INTERNAL_SERVER_ERROR: u16 = 500;
-    /// Interrupted, over the time budget, or too busy.
-    pub const SERVICE_UNAVAILABLE: u16 = 503;
-}
-
-impl Problem {
-    /// 422: the request is well-formed JSON but a value is invalid.
-    pub fn invalid(message: impl Into<String>) -> Self {
-        Self { status: status::UNPROCESSABLE_ENTITY, message: message.into() }
-    }
-
-    /// 500: something failed inside ikarus. The detail goes to stderr, not to the client (it
-    /// may hold paths or panic text).
-    pub fn internal(message: impl Into<String>) -> Self {
-        eprintln!("ikarus: internal error: {}", message.into().replace(['\n', '\r'], " "));
-        Self {
-            status: status::INTERNAL_SERVER_ERROR,
-            message: "internal error (the details are in the server's log)".to_owned(),
-        }
-    }
-
-    /// The message on one line.
-    pub fn one_line(&self) -> String {
-        self.message.replace(['\n', '\r'], " ")
-    }
-}
-
-impl fmt::Display for Problem {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.one_line())
-    }
-}
-
-impl std::error::Error for Problem {}
-
-impl From<CliError> for Problem {
-    fn from(e: CliError) -> Self {
-        match e {
-            CliError::Input(m) => Self::invalid(m),
-            CliError::Runtime(m) => Self::internal(m),
-        }
-    }
-}
-
-/// A JSON body as a `T`, refused as the server refuses it: malformed JSON (or anything after
-/// the value) → 400, a value of the wrong type or an unknown field → 422, each message with the
-/// field's path (`links[0].length: invalid type: …`; with the `field-paths` feature) and the line
-/// and column.
-pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
-    let malformed = |e: &dyn fmt::Display| Problem {
-        status: status::BAD_REQUEST,
-        message: format!("request body: malformed JSON: {e}"),
-    };
-    let mut de = serde_json::Deserializer::from_slice(bytes);
-    #[cfg(feature = "field-paths")]
-    let (read, inner) = (serde_path_to_error::deserialize(&mut de), serde_path_to_error::Error::inner);
-    #[cfg(not(feature = "field-paths"))]
-    let (read, inner) = (serde::Deserialize::deserialize(&mut de), std::convert::identity::<&serde_json::Error>);
-    match read {
-        Ok(value) => de.end().map(|()| value).map_err(|e| malformed(&e)),
-        Err(e) => match inner(&e).classify() {
-            serde_json::error::Category::Data => Err(Problem::invalid(format!("request body: {e}"))),
-            _ => Err(malformed(&e)),
-        },
-    }
-}
-
-/// An answer: its content type and bytes.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Reply {
-    /// `application/json`, `image/png`, `image/svg+xml`, `image/gif` or `application/toml; charset=utf-8`.
-    pub content_type: &'static str,
-    /// The body.
-    pub body: Vec<u8>,
-}
-
-impl Reply {
-    /// `value` as JSON.
-    pub fn json(value: &impl serde::Serialize) -> Result<Reply, Problem> {
-        let body = serde_json::to_vec(value).map_err(|e| Problem::internal(format!("cannot write JSON: {e}")))?;
-        Ok(Reply { content_type: "application/json", body })
-    }
-}
+use wire::text;
+pub use wire::{Limits, Problem, Reply, parse_json, status};
 
 /// The endpoints of the API (`/api/<path>`), without HTTP.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -321,10 +162,4 @@ pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interr
         Endpoint::Render => render::render(body, limits, interrupt),
         Endpoint::Ease => ease::curve(body),
     }
-}
-
-/// A body that is a file's text.
-fn text(body: &[u8]) -> Result<&str, Problem> {
-    std::str::from_utf8(body)
-        .map_err(|e| Problem { status: status::BAD_REQUEST, message: format!("request body: not UTF-8 text ({e})") })
 }

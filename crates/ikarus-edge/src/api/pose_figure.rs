@@ -13,7 +13,7 @@ use super::atlases::drawable;
 use super::fields::picture;
 use super::figures::PoseFigureReq;
 use super::pose::Posing;
-use super::{Limits, Problem};
+use super::wire::{Limits, Problem};
 use crate::picture::{PictureFormat, pose_drawn};
 
 /// The picture of `r` in `format`, `w` × `h` pixels.

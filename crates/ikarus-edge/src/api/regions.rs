@@ -8,7 +8,7 @@ use ikarus::reach::WorkspaceOptions;
 use super::bodies::{load, load_arm};
 use super::fields::{json_response, stopped, watched};
 use super::requests::{ReachReq, WorkspaceReq};
-use super::{Limits, Problem, Reply, parse_json};
+use super::wire::{Limits, Problem, Reply, parse_json};
 use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
 use crate::reach::ReachRequest;

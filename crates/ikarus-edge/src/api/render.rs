@@ -10,7 +10,7 @@ use super::figures::{BodyFigureReq, CharacterFigureReq, MotionFigureReq, RenderR
 use super::jobs::{MotionFields, arm_motion};
 use super::regions::reachable_area;
 use super::requests::WorkspaceReq;
-use super::{Limits, Problem, Reply};
+use super::wire::{Limits, Problem, Reply};
 use crate::body::Body;
 use crate::character::motion_art::{self, MotionArtError};
 use crate::character::motion_files;
