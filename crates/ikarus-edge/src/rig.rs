@@ -36,7 +36,7 @@
 //! [`DEFAULT_MAX_BONES`] unless `ikarus --max-bones N` says otherwise, the server's
 //! `--max-bones`), counted in the file as read, before any bone is checked or built.
 //!
-//! This file reads a rig file (the reader, the caps, the loaded [`Rig`]); [`skeleton`] checks
+//! This file reads a rig file (the reader, the caps, the loaded [`Rig`]); `skeleton` checks
 //! its bones and converts them into the library's skeleton.
 
 mod skeleton;

@@ -9,7 +9,7 @@ pub const VIEW_PADDING: f64 = 1.12;
 /// drawn as an arrow at the edge of the plot instead.
 pub(crate) const MAX_GOAL_ZOOM_OUT: f64 = 3.0;
 
-/// The room [`View::fitting`] leaves on each side of what it fits, as a share of its larger side.
+/// The room `View::fitting` leaves on each side of what it fits, as a share of its larger side.
 pub const FIT_MARGIN: f64 = 0.12;
 
 /// A rectangle in pixels: `left ≤ x ≤ right`, `top ≤ y ≤ bottom` (y points down).

@@ -2,7 +2,7 @@
 //! `/api/track` and the figures `arm`/`rig` of `/api/render` take an arm (`arm`, or the
 //! built-in arm without one) or a rig (`rig`), in one request type per job
 //! ([`super::requests`], [`super::figures`]). A body is read once for its keys ([`Keys`]), then
-//! as the request, whose fields for the other body are refused by [`fields_of`], each in the words of a
+//! as the request, whose fields for the other body are refused by `fields_of`, each in the words of a
 //! field serde does not know (`pins: unknown field `pins`, …`). The bodies are loaded here too,
 //! under the server's caps ([`load`]), and a rig's goals and pins become its task ([`task`]).
 

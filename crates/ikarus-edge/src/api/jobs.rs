@@ -89,7 +89,7 @@ pub fn solve(req: SolveReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
 
 /// `POST /api/animate`: the JSON of `ikarus animate --format json` (with `--rig`, of a rig):
 /// the body's stops (an arm's via points and goal, a rig's via sets and goal set), then the
-/// one motion workflow ([`motion`]).
+/// one motion workflow (`motion`).
 pub fn animate(req: AnimateBody, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     match req {
         AnimateBody::Arm(req) => {

@@ -7,7 +7,7 @@
 //! [`bodies`]) use the names of the command line and the arm and rig files (degrees at the
 //! edge); answers are the objects the commands print (`crate::report`), made by the same
 //! workflows ([`jobs`]: `crate::settings`, `crate::motion`, `crate::track`; [`regions`]:
-//! `crate::area`, `crate::reach`; [`render`]: `crate::picture`), the request's fields checked by
+//! `crate::area`, `crate::reach`; `render`: `crate::picture`), the request's fields checked by
 //! [`fields`].
 
 pub mod arm_files;

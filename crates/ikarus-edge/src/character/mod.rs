@@ -5,12 +5,12 @@
 //! `skeleton` object with a `spine` version string and a `bones` array; a DragonBones file an
 //! `armature` array beside its `version` or `frameRate`. Every problem is one line naming the
 //! field's path and the value (`bones[3] ("foot").parent = "hip": no bone of that name`), after the label, as rig
-//! files' are. [`spine`] and [`dragonbones`] read their format; [`clips`] reads Spine's
+//! files' are. `spine` and `dragonbones` read their format; `clips` reads Spine's
 //! animations.
 //!
 //! What is read: bones (local transforms, inherit modes), IK constraints with all their
-//! settings, and the animations' bone and IK timelines (Spine's by [`clips`], DragonBones' by
-//! [`dragonbones_clips`]), Spine's slots and region, mesh and linked mesh attachments
+//! settings, and the animations' bone and IK timelines (Spine's by `clips`, DragonBones' by
+//! `dragonbones_clips`), Spine's slots and region, mesh and linked mesh attachments
 //! (`spine_art`, drawn by [`Character::draw_list`]) and texture atlases ([`atlas`]), with their
 //! pages' images made into the renderer's art by [`art_draw`]. What is not: events, and the
 //! slot timelines (attachment, colour, draw order, deform of meshes); what is not drawn or used

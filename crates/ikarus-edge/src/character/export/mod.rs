@@ -5,7 +5,7 @@
 //! (its text, byte for byte, in its order; only the whitespace between top-level fields is
 //! ours). The new animation comes in one of two forms ([`Form`]):
 //!
-//! - [`Form::Editable`] (the default, [`editable`]): what the animator keyed, as a Spine
+//! - [`Form::Editable`] (the default, `editable`): what the animator keyed, as a Spine
 //!   animator keys it. Under the runtime's rules the IK constraints stay on; the clip under the
 //!   keys is carried (its bone and IK timelines copied, looped as the motion loops it), the
 //!   target bones get `translate` keys at the key times with Bézier curves fitted to ikarus's
@@ -13,7 +13,7 @@
 //!   ikarus's solver every bone the solve moves gets fitted keys at the key times (and the
 //!   clip's), and every constraint of every kind is keyed to mix 0 (the solver replaces the IK
 //!   ones; the keys hold what the others did).
-//! - [`Form::Bake`] ([`bake`]): every bone at every frame, linear keys, with bisection keys
+//! - [`Form::Bake`] (`bake`): every bone at every frame, linear keys, with bisection keys
 //!   where a line strays, and every constraint (IK, transform, path, physics) at mix 0.
 //!
 //! Physics: the bake is made of the motion played as a game plays it

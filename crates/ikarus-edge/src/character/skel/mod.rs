@@ -1,5 +1,5 @@
 //! Spine's binary export (`.skel`, 4.2) decoded into the JSON tree Spine's JSON export of the
-//! same skeleton has, so that one reader ([`super::spine`]) serves both formats and their
+//! same skeleton has, so that one reader (`super::spine`) serves both formats and their
 //! problems read the same.
 //!
 //! The tree has JSON's field names and units: degrees, names in place of indices, colours as
