@@ -274,3 +274,61 @@ export function handleNotes(character) {
   }
   return notes;
 }
+
+/**
+ * A fresh `state.character` for the file `name` (its `text`) read as `character` (the
+ * /api/rig/parse answer's `character`: {format, bones, ik, clips, unsupported, …}):
+ *   targetNames  the bones the IK constraints aim at (the handles);  ikBones  the bones they move (a Set)
+ *   notes        Map target → {inactive, drives, note} (character.js's handleNotes): the handle's hover text
+ *   animation    the clip shown ("" for the setup pose);  time  its time, seconds
+ *   targets      Map bone → {x, y}, the targets the reader put somewhere (in the order first dragged;
+ *                with keys, keyed.js puts every keyed target of the frame shown here)
+ *   bends        with keys, the bends in force at the frame shown ({lower bone: "ccw" | "cw"}, keyed.js)
+ *   turns        Map bone → its local rotation (degrees): bones turned by hand (a drag on a bone
+ *                that no IK constraint moves turns it about its origin; with keys, keyed.js puts
+ *                the keyed ones of the frame shown here)
+ *   ik           "runtime" (Spine's rules) or "ikarus" (ikarus's solver)
+ *   skin, physics  the skin chosen (null: the file's default) and whether physics plays (charoptions.js)
+ *   posed        the last /api/pose answer's bones;  box  the setup pose's world box (the view fits it)
+ *   clipBoxes    Map clip → the world box of its poses at surveyTimes (the view fits it too)
+ *   survey       {name, times, box}: the clip being surveyed, the times still to ask, the box so far; or null
+ *   request      the request of `posed`;  poses  answers received
+ *   ikReport     what ikarus's solver said of `posed` (the answer's `ik`), or null under Spine's rules
+ *   atlas        the art's atlas (artload.js's: {id, name, pages, byFile, images}) or null;  art  the
+ *                last answer's `art` (drawn under the bones: artview.js), `artOf` its bones;  artNotice  what of it was left out
+ *   busy, pending  a pose is in flight; the choices changed since it left (ask again)
+ *   hover, grabbed the bone or target under the pointer, the target being dragged (names) or null
+ */
+export function newCharacterState(name, text, character) {
+  return {
+    name,
+    text,
+    character,
+    targetNames: ikTargets(character),
+    notes: handleNotes(character),
+    parentOf: new Map((character.bones || []).map((b) => [b.name, b.parent])),
+    ikBones: new Set((character.ik || []).flatMap((k) => k.bones)),
+    animation: "",
+    time: 0,
+    targets: new Map(),
+    bends: {},
+    turns: new Map(),
+    ik: "runtime",
+    skin: null,
+    physics: true,
+    posed: null,
+    box: null,
+    clipBoxes: new Map(),
+    survey: null,
+    request: null,
+    ikReport: null,
+    poses: 0,
+    atlas: null,
+    art: null,
+    artNotice: null,
+    busy: false,
+    pending: false,
+    hover: null,
+    grabbed: null,
+  };
+}
