@@ -62,7 +62,8 @@ pub use slot_clip::{
 };
 pub use slot_pose::SlotPose;
 pub use together::{
-    BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
+    BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, SPINE_BONE_NUMBERS, SpineBone, SpineFrame, SpineRig, TIP_GOAL_BONES,
+    TipGoal, Together, TogetherError, TogetherReport,
 };
 pub use transform::{
     MIX_NAMES, TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,

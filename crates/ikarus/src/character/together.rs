@@ -51,9 +51,12 @@ mod freeze;
 mod goal_slots;
 #[path = "together_rules.rs"]
 mod rules;
+#[path = "spine_rig.rs"]
+mod spine_rig;
 pub use rules::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
 };
+pub use spine_rig::{SPINE_BONE_NUMBERS, SpineBone, SpineFrame, SpineRig};
 
 /// How many times at most the skeleton is rebuilt and solved again (see the module docs).
 pub const ROUNDS: usize = 16;

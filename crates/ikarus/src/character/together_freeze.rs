@@ -4,7 +4,7 @@
 
 use super::super::pose::Posed;
 use super::super::world::{Affine, world_transform};
-use super::super::{Character, CharacterBone, IkBones, IkRule, IkSettings, LocalTransform, Placement};
+use super::super::{Character, IkBones, IkRule, IkSettings, Inherit, LocalTransform, Placement};
 use super::goal_slots::GoalSlots;
 use super::rules::{GoalEnd, LimbRule, Together, TogetherError};
 use crate::angle::wrap_angle;
@@ -22,57 +22,107 @@ pub(super) struct Frozen {
     pub(super) start: Vec<f64>,
 }
 
+/// What freezing reads of a posed skeleton: its tree and each bone's world placement and
+/// local rotation, from a [`Posed`] character or from a runtime's raw arrays.
+pub(super) trait PoseView {
+    /// Bone `i`'s parent.
+    fn parent(&self, i: usize) -> Option<usize>;
+    /// Bone `i`'s world origin.
+    fn origin(&self, i: usize) -> [f64; 2];
+    /// Bone `i`'s world direction, radians.
+    fn rotation(&self, i: usize) -> f64;
+    /// Bone `i`'s tip in the world.
+    fn tip(&self, i: usize) -> [f64; 2];
+    /// Bone `i`'s local rotation, radians.
+    fn local_rotation(&self, i: usize) -> f64;
+    /// Bone `i`'s name for the frozen skeleton.
+    fn name(&self, i: usize) -> String;
+}
+
+/// A posed character as a [`PoseView`].
+struct CharacterView<'a>(&'a Character, &'a Posed);
+
+impl PoseView for CharacterView<'_> {
+    fn parent(&self, i: usize) -> Option<usize> {
+        self.0.bones[i].parent
+    }
+    fn origin(&self, i: usize) -> [f64; 2] {
+        self.1.origin(i)
+    }
+    fn rotation(&self, i: usize) -> f64 {
+        self.1.rotation(i)
+    }
+    fn tip(&self, i: usize) -> [f64; 2] {
+        self.1.tip(i)
+    }
+    fn local_rotation(&self, i: usize) -> f64 {
+        self.1.local(i).rotation
+    }
+    fn name(&self, i: usize) -> String {
+        self.0.bones[i].name.clone()
+    }
+}
+
+/// The `moving` bones (ascending) of `view` frozen as an ikarus skeleton, each bone's
+/// `(limits of its local rotation, stiffness)` from `rule`.
+pub(super) fn freeze_view(
+    view: &impl PoseView,
+    moving: &[usize],
+    rule: impl Fn(usize) -> Option<(Option<[f64; 2]>, f64)>,
+) -> Result<Frozen, TogetherError> {
+    let index = |b: usize| moving.binary_search(&b).ok();
+    let mut bones = Vec::with_capacity(moving.len());
+    let mut start = Vec::with_capacity(moving.len());
+    for &m in moving {
+        let mut up = view.parent(m);
+        while let Some(p) = up.filter(|&p| index(p).is_none()) {
+            up = view.parent(p);
+        }
+        let [x, y] = view.origin(m);
+        let theta = view.rotation(m);
+        let [tx, ty] = view.tip(m);
+        // A bone of length 0 keeps a length (its children hang on offsets, not on its tip).
+        let length = math::distance(tx - x, ty - y).max(1e-9);
+        let (angle, offset) = match up {
+            Some(p) => {
+                let [px, py] = view.origin(p);
+                let tp = view.rotation(p);
+                let (s, c) = math::sin_cos(tp);
+                let (dx, dy) = (x - px, y - py);
+                (wrap_angle(theta - tp), [c * dx + s * dy, -s * dx + c * dy])
+            }
+            None => (theta, [x, y]),
+        };
+        let mut bone = Bone::new(view.name(m), length, angle).with_offset(offset);
+        if let Some(p) = up {
+            bone = bone.with_parent(view.name(p));
+        }
+        if let Some((limits, stiffness)) = rule(m) {
+            if let Some([lo, hi]) = limits {
+                // The limits are on the local rotation; the skeleton's angle differs from it
+                // by what the bones between (and the parent's shear) add, constant here.
+                let shift = angle - view.local_rotation(m);
+                let l = JointLimits::new(lo + shift, hi + shift).map_err(|e| TogetherError::Rule(e.to_string()))?;
+                bone = bone.with_limits(l);
+                bone.angle = angle.clamp(lo + shift, hi + shift);
+            }
+            bone = bone.with_stiffness(stiffness);
+        }
+        start.push(bone.angle);
+        bones.push(bone);
+    }
+    let skeleton = Skeleton::new([0.0, 0.0], &bones).map_err(|e| TogetherError::Solve(e.to_string()))?;
+    Ok(Frozen { skeleton, bones: moving.to_vec(), start })
+}
+
 impl Character {
     /// The moving bones frozen at `posed` as an ikarus skeleton.
     pub(super) fn freeze(&self, posed: &Posed, moving: &[usize], rules: &Together) -> Result<Frozen, TogetherError> {
-        let index = |b: usize| moving.binary_search(&b).ok();
         let mut bone_rules = vec![None; self.bones.len()];
         for r in rules.bones.iter().rev() {
             bone_rules[r.bone] = Some(r);
         }
-        let mut bones = Vec::with_capacity(moving.len());
-        let mut start = Vec::with_capacity(moving.len());
-        for &m in moving {
-            let mut up = self.bones[m].parent;
-            while let Some(p) = up.filter(|&p| index(p).is_none()) {
-                up = self.bones[p].parent;
-            }
-            let [x, y] = posed.origin(m);
-            let theta = posed.rotation(m);
-            let [tx, ty] = posed.tip(m);
-            // A bone of length 0 keeps a length (its children hang on offsets, not on its tip).
-            let length = math::distance(tx - x, ty - y).max(1e-9);
-            let (angle, offset) = match up {
-                Some(p) => {
-                    let [px, py] = posed.origin(p);
-                    let tp = posed.rotation(p);
-                    let (s, c) = math::sin_cos(tp);
-                    let (dx, dy) = (x - px, y - py);
-                    (wrap_angle(theta - tp), [c * dx + s * dy, -s * dx + c * dy])
-                }
-                None => (theta, [x, y]),
-            };
-            let b = &self.bones[m];
-            let mut bone = Bone::new(b.name.clone(), length, angle).with_offset(offset);
-            if let Some(p) = up {
-                bone = bone.with_parent(self.bones[p].name.clone());
-            }
-            if let Some(r) = bone_rules[m] {
-                if let Some([lo, hi]) = r.limits {
-                    // The limits are on the local rotation; the skeleton's angle differs from it
-                    // by what the bones between (and the parent's shear) add, constant here.
-                    let shift = angle - posed.local(m).rotation;
-                    let l = JointLimits::new(lo + shift, hi + shift).map_err(|e| TogetherError::Rule(e.to_string()))?;
-                    bone = bone.with_limits(l);
-                    bone.angle = angle.clamp(lo + shift, hi + shift);
-                }
-                bone = bone.with_stiffness(r.stiffness);
-            }
-            start.push(bone.angle);
-            bones.push(bone);
-        }
-        let skeleton = Skeleton::new([0.0, 0.0], &bones).map_err(|e| TogetherError::Solve(e.to_string()))?;
-        Ok(Frozen { skeleton, bones: moving.to_vec(), start })
+        freeze_view(&CharacterView(self, posed), moving, |m| bone_rules[m].map(|r| (r.limits, r.stiffness)))
     }
 
     pub(super) fn task(
@@ -136,7 +186,8 @@ impl Character {
         let (mut bones, ..) = out.bones(self);
         for (k, &m) in frozen.bones.iter().enumerate() {
             let parent = self.bones[m].parent.map(|p| bones.world[p]);
-            let r = rotation_for(&bones.local[m], &self.bones[m], parent.as_ref(), self.placement, directions[k]);
+            let r =
+                rotation_for(&bones.local[m], self.bones[m].inherit, parent.as_ref(), self.placement, directions[k]);
             bones.local[m].rotation = r;
             bones.update_below(m);
         }
@@ -222,16 +273,16 @@ fn bend_of(angle: f64, s: &IkSettings, posed: &Posed, bones: IkBones, rule: IkRu
 /// mode, from its current local transform: Newton's method on the world direction as a
 /// function of the rotation, its derivative by a central difference (±1 for a normal bone
 /// under a parent without shear; other modes and shears bend it).
-fn rotation_for(
+pub(super) fn rotation_for(
     local: &LocalTransform,
-    bone: &CharacterBone,
+    inherit: Inherit,
     parent: Option<&Affine>,
     placement: Placement,
     direction: f64,
 ) -> f64 {
     let world_dir = |r: f64| {
         let t = LocalTransform { rotation: r, ..*local };
-        world_transform(&t, bone.inherit, parent, placement).rotation()
+        world_transform(&t, inherit, parent, placement).rotation()
     };
     let mut r = local.rotation;
     for _ in 0..8 {
