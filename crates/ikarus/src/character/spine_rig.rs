@@ -16,7 +16,6 @@
 use super::super::world::{Affine, world_transform};
 use super::super::{Inherit, LocalTransform, Placement};
 use super::freeze::{Frozen, PoseView, freeze_view, rotation_for};
-use super::goal_slots::GoalSlots;
 use super::rules::{TipGoal, TogetherError};
 use crate::angle::wrap_angle;
 use crate::math;
@@ -69,6 +68,9 @@ pub struct SpineRig {
     /// next solve of the same bones starts there.
     last_moved: Vec<usize>,
     last: Vec<f64>,
+    /// The task and the outcome, their buffers kept from frame to frame.
+    task: RigTask,
+    outcome: Outcome,
 }
 
 impl SpineRig {
@@ -103,6 +105,8 @@ impl SpineRig {
             directions: Vec::with_capacity(n),
             last_moved: Vec::with_capacity(n),
             last: Vec::with_capacity(n),
+            task: RigTask::new(Vec::new(), Vec::new()),
+            outcome: Outcome::default(),
         })
     }
 
@@ -118,13 +122,13 @@ impl SpineRig {
 
     /// Solves `frame` with `solver` (a method that solves rigs) and writes every bone's local
     /// rotation, degrees, into `rotations` (one per bone: a moved bone's new one, the others
-    /// the runtime's); `None` outcome when there was nothing to solve.
+    /// the runtime's); the solve's outcome, `None` when there was no goal.
     pub fn solve(
         &mut self,
         frame: &SpineFrame,
         solver: &mut Solver,
         rotations: &mut [f64],
-    ) -> Result<Option<Outcome>, TogetherError> {
+    ) -> Result<Option<&Outcome>, TogetherError> {
         self.read(frame, rotations)?;
         // The runtime's own numbers, bit for bit, for every bone that does not move.
         for (r, v) in rotations.iter_mut().zip(frame.numbers.chunks_exact(SPINE_BONE_NUMBERS)) {
@@ -153,11 +157,13 @@ impl SpineRig {
             self.bones[m].limits_deg.map(|[lo, hi]| (Some([lo.to_radians(), hi.to_radians()]), 0.0))
         })?;
         self.warm_start(&mut frozen);
-        let task = self.task(&frozen, frame);
-        let outcome = solver
-            .solve_rig(&frozen.skeleton, &frozen.start, &task)
+        self.fill_task(&frozen, frame);
+        solver
+            .solve_rig_into(&frozen.skeleton, &frozen.start, &self.task, &mut self.outcome)
             .map_err(|e: SolveError| TogetherError::Solve(e.to_string()))?;
-        self.thaw(&frozen, outcome.pose.angles(), frame.placement);
+        let angles = std::mem::take(&mut self.outcome.pose);
+        self.thaw(&frozen, angles.angles(), frame.placement);
+        self.outcome.pose = angles;
         self.last_moved.clear();
         self.last_moved.extend_from_slice(&self.moving);
         self.last.clear();
@@ -171,7 +177,7 @@ impl SpineRig {
             let t = g.goal.goal.target();
             self.errors.push(math::distance(w.x + w.a * l - t.x, w.y + w.c * l - t.y));
         }
-        Ok(Some(outcome))
+        Ok(Some(&self.outcome))
     }
 
     /// Starts the solve from the answer of the solve before when it moved the same bones: each
@@ -238,28 +244,30 @@ impl SpineRig {
         Ok(())
     }
 
-    /// The goals and pins on the frozen skeleton's bones; a pin wins over a goal on its bone.
-    fn task(&self, frozen: &Frozen, frame: &SpineFrame) -> RigTask {
+    /// The goals and pins on the frozen skeleton's bones into the kept task: a later goal on a
+    /// bone replaces an earlier one, a pin wins over a goal on its bone.
+    fn fill_task(&mut self, frozen: &Frozen, frame: &SpineFrame) {
         let index = |b: usize| frozen.bones.binary_search(&b).ok();
-        let mut slots = GoalSlots::new(frozen.bones.len());
-        let mut task = RigTask::new(Vec::new(), Vec::new());
+        self.task.goals.clear();
+        self.task.pins.clear();
+        for &p in frame.pins {
+            if let Some(i) = index(p) {
+                self.task.pins.push(Pin::new(i));
+            }
+        }
         for g in frame.goals {
             let Some(i) = index(g.goal.bone) else { continue };
+            if frame.pins.contains(&g.goal.bone) {
+                continue;
+            }
+            self.task.goals.retain(|o| o.bone != i);
             let mut goal = g.goal.clone();
             goal.bone = i;
             if frozen.skeleton.parent(i).is_none() {
                 goal.bend = None;
             }
-            slots.put(i, goal);
+            self.task.goals.push(goal);
         }
-        for &p in frame.pins {
-            if let Some(i) = index(p) {
-                slots.clear(i);
-                task.pins.push(Pin::new(i));
-            }
-        }
-        task.goals = slots.goals();
-        task
     }
 
     /// The solved directions written back as local rotations, parents first; `solved` gets the
