@@ -195,3 +195,29 @@ fn bad_numbers_and_goals_are_refused_naming_them() {
     let e = SpineRig::new(vec![bad]).unwrap_err().to_string();
     assert_eq!(e, "bones[0].parent: must be below 0, got 0");
 }
+
+#[test]
+fn a_bone_moved_below_bones_that_do_not_move_is_carried_by_the_one_above_them() {
+    // The torso turns for its goal; the fist, five bones below it (torso2, torso3, the
+    // shoulder, the upper arm and the bracer do not move), turns for its own: its solved place
+    // carries it with the torso, and the errors the rig reports are those of the pose made again.
+    let c = spineboy();
+    let posed = walk(&c, 0.4, &[]);
+    let (torso, fist) = (bone(&c, "torso"), bone(&c, "front-fist"));
+    let mut rig = rig(&c, &[]);
+    let mut nums = Vec::new();
+    numbers(&posed, &mut nums);
+    let (t, f) = (posed.tip(torso), posed.tip(fist));
+    let goals = [goal(torso, t[0] - 20.0, t[1], 1), goal(fist, f[0] + 30.0, f[1] + 30.0, 1)];
+    let frame = SpineFrame { numbers: &nums, placement: Placement::default(), goals: &goals, pins: &[] };
+    let mut rotations = vec![0.0; c.bones().len()];
+    rig.solve(&frame, &mut solver(), &mut rotations).unwrap();
+    assert_eq!(rig.moved(), [torso, fist]);
+    let again = walk(&c, 0.4, &turns(&rig, &posed, &rotations));
+    for (k, (b, g)) in [(torso, [t[0] - 20.0, t[1]]), (fist, [f[0] + 30.0, f[1] + 30.0])].into_iter().enumerate() {
+        let error = dist(again.tip(b), g);
+        assert!((error - rig.errors()[k]).abs() < 1e-6, "bone {b}: {error} made again, {} solved", rig.errors()[k]);
+    }
+    assert!(dist(again.tip(torso), posed.tip(torso)) > 5.0, "the torso turned");
+    assert!(dist(again.tip(fist), f) > 5.0, "the fist moved");
+}
