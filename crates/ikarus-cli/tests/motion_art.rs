@@ -10,7 +10,7 @@ mod common;
 
 use std::collections::HashSet;
 
-use common::{SPINEBOY, fails, ikarus, spineboy_keys, stderr};
+use common::{SPINEBOY, b64, fails, ikarus, spineboy_keys, stderr};
 use serde_json::json;
 
 const CHARACTERS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters");
@@ -238,25 +238,6 @@ fn refusals_are_one_line() {
     let e = fails(&["track", "--line", "0,0,1,1", "--art-only"], 2);
     assert!(e.contains("--art-only: only with a character file"), "{e}");
     assert!(!std::path::Path::new(gif).exists(), "nothing written");
-}
-
-/// Standard base64 (RFC 4648, padded), written here so the test does not lean on the server's
-/// own decoder's crate to make its input.
-fn b64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 #[test]

@@ -6,31 +6,12 @@
 mod common;
 
 use common::server::start;
-use common::{ikarus, stdout};
+use common::{b64, ikarus, stdout};
 use serde_json::{Value, json};
 
 const JSON: &str = "../../examples/characters/spine-spineboy-pro.json";
 const ATLAS: &str = "../../examples/characters/spineboy.atlas";
 const PAGE: &str = "../../examples/characters/spineboy.png";
-
-/// Standard base64 (RFC 4648, padded), written here so the test does not lean on the server's
-/// own decoder's crate to make its input.
-fn b64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
 
 fn atlas_body() -> Value {
     let page = std::fs::read(PAGE).unwrap();

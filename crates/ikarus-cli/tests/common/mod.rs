@@ -145,3 +145,22 @@ pub fn spineboy_keys() -> Value {
     let key = |t: f64, dx: f64, dy: f64| serde_json::json!({"time": t, "x": x + dx, "y": y + dy});
     serde_json::json!({"fps": 30, "tracks": {"front-leg-target": [key(0.0, 0.0, 0.0), key(0.3, 40.0, 60.0), key(0.6, 80.0, 20.0), key(0.9, 20.0, 0.0)]}})
 }
+
+/// Standard base64 (RFC 4648, padded), written here so the test does not lean on the server's
+/// own decoder's crate to make its input.
+pub fn b64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
