@@ -9,6 +9,7 @@
 import init, { SpineRig } from "./ikarus_spine.js";
 
 const DEG = 180 / Math.PI;
+const NO_OPTIONS = Object.freeze({});
 const NUMBERS = 13; // per bone: world a b c d worldX worldY, local x y rotation scaleX scaleY shearX shearY
 const GOAL = 8; // per goal: bone, x, y, bones, angle, weight, priority, bend
 const INHERITS = ["normal", "onlytranslation", "norotationorreflection", "noscale", "noscaleorreflection"];
@@ -119,6 +120,7 @@ export class Ik {
     } catch (e) {
       throw fail(e && e.message ? e.message : String(e));
     }
+    this.fast = typeof this.rig.applyFrame === "function";
     this.memory = memory;
     this.buffer = null;
     this.max = this.rig.maxGoals;
@@ -184,28 +186,28 @@ export class Ik {
    * "secondary"), bend ("any" | "positive" | "negative").
    */
   goal(bone, x, y, options) {
-    const i = this.index(bone, "goal");
-    const name = this.names[i];
-    if (!finite(x)) throw fail(`goal(${name}): x: must be a finite number, got ${show(x)}`);
-    if (!finite(y)) throw fail(`goal(${name}): y: must be a finite number, got ${show(y)}`);
-    const o = options ?? {};
+    // Small, so that a hot caller's JIT can inline it (then its numbers are not boxed on the
+    // way in): the checks in one test, the messages in refuseGoal.
+    const i = typeof bone === "string" ? this.byName.get(bone) : this.byBone.get(bone);
+    const o = options ?? NO_OPTIONS;
     const bones = o.bones ?? DEFAULT_BONES;
-    if (!Number.isInteger(bones) || bones < 1) throw fail(`goal(${name}): bones: must be a whole number >= 1, got ${show(bones)}`);
-    if (bones > this.depths[i])
-      throw fail(`goal(${name}): bones: ${bones} goes past the root (${name} has ${this.depths[i]} bones up to it)`);
     const angle = o.angle ?? NaN;
-    if (o.angle !== undefined && !finite(angle)) throw fail(`goal(${name}): angle: must be a finite number of degrees, got ${show(angle)}`);
     const weight = o.weight ?? 1;
-    if (!finite(weight) || weight <= 0) throw fail(`goal(${name}): weight: must be a number > 0, got ${show(weight)}`);
     const priority = priorityOf(o.priority);
-    if (priority === -9)
-      throw fail(`goal(${name}): priority: must be "primary" or "secondary", got ${show(o.priority)}`);
     const bend = bendOf(o.bend);
-    if (bend === -9)
-      throw fail(`goal(${name}): bend: must be "any", "positive" or "negative", got ${show(o.bend)}`);
-    if (this.goalCount >= this.max) throw fail(`goal(${name}): too many goals this frame (at most ${this.max}, one per bone)`);
+    const k = this.goalCount;
+    if (
+      i === undefined ||
+      !(x - x === 0 && y - y === 0 && weight - weight === 0 && weight > 0) ||
+      !(bones >= 1 && bones <= this.depths[i] && bones % 1 === 0) ||
+      (o.angle !== undefined && !(angle - angle === 0)) ||
+      priority === -9 ||
+      bend === -9 ||
+      k >= this.max ||
+      this.bones[i].active === false
+    )
+      this.refuseGoal(bone, x, y, o);
     this.views();
-    const k = this.goalCount++;
     const g = this.goals;
     const at = k * GOAL;
     g[at] = i;
@@ -219,6 +221,25 @@ export class Ik {
     this.goalBone[k] = i;
     this.goalX[k] = x;
     this.goalY[k] = y;
+    this.goalCount = k + 1;
+  }
+
+  /** Throws the Error saying what of goal(bone, x, y, o) is wrong. */
+  refuseGoal(bone, x, y, o) {
+    const i = this.index(bone, "goal");
+    const name = this.names[i];
+    if (!finite(x)) throw fail(`goal(${name}): x: must be a finite number, got ${show(x)}`);
+    if (!finite(y)) throw fail(`goal(${name}): y: must be a finite number, got ${show(y)}`);
+    const bones = o.bones ?? DEFAULT_BONES;
+    if (!Number.isInteger(bones) || bones < 1) throw fail(`goal(${name}): bones: must be a whole number >= 1, got ${show(bones)}`);
+    if (bones > this.depths[i])
+      throw fail(`goal(${name}): bones: ${bones} goes past the root (${name} has ${this.depths[i]} bones up to it)`);
+    if (o.angle !== undefined && !finite(o.angle)) throw fail(`goal(${name}): angle: must be a finite number of degrees, got ${show(o.angle)}`);
+    const weight = o.weight ?? 1;
+    if (!finite(weight) || weight <= 0) throw fail(`goal(${name}): weight: must be a number > 0, got ${show(weight)}`);
+    if (priorityOf(o.priority) === -9) throw fail(`goal(${name}): priority: must be "primary" or "secondary", got ${show(o.priority)}`);
+    if (bendOf(o.bend) === -9) throw fail(`goal(${name}): bend: must be "any", "positive" or "negative", got ${show(o.bend)}`);
+    throw fail(`goal(${name}): too many goals this frame (at most ${this.max}, one per bone)`);
   }
 
   /** A pin: `bone`'s tip (position and direction) stays where the animation put it this frame. */
@@ -258,12 +279,7 @@ export class Ik {
       f[o + 11] = b.shearX;
       f[o + 12] = b.shearY;
     }
-    let m;
-    try {
-      m = this.rig.apply(skeleton.x ?? 0, skeleton.y ?? 0, skeleton.scaleX ?? 1, skeleton.scaleY ?? 1, this.goalCount, this.pinCount);
-    } catch (e) {
-      throw fail(e && e.message ? e.message : String(e));
-    }
+    const m = this.solve(skeleton.x ?? 0, skeleton.y ?? 0, skeleton.scaleX ?? 1, skeleton.scaleY ?? 1);
     this.views();
     const stamp = ++this.stamp;
     const movedAt = this.movedAt;
@@ -301,6 +317,25 @@ export class Ik {
       for (let c = 0; c < iks.length; c++) if (this.zeroed[c]) iks[c].mix = this.savedMix[c];
     }
     return this.reported();
+  }
+
+  /**
+   * The module's solve of the frame written at framePtr: how many bones moved. `applyFrame`
+   * (one plain number back, −1 on bad input) when the module has it: `apply`'s glue receives a
+   * `Result` as a wasm multi-value return, a fresh JS array every call.
+   */
+  solve(x, y, sx, sy) {
+    const rig = this.rig;
+    if (this.fast) {
+      const m = rig.applyFrame(x, y, sx, sy, this.goalCount, this.pinCount);
+      if (m < 0) throw fail(rig.lastError);
+      return m;
+    }
+    try {
+      return rig.apply(x, y, sx, sy, this.goalCount, this.pinCount);
+    } catch (e) {
+      throw fail(e && e.message ? e.message : String(e));
+    }
   }
 
   /**
@@ -342,7 +377,9 @@ export class Ik {
       const length = b.data.length ?? 0;
       const entry = this.pool[k];
       entry.bone = this.names[i];
-      entry.error = Math.hypot(b.worldX + b.a * length - this.goalX[k], b.worldY + b.c * length - this.goalY[k]);
+      const dx = b.worldX + b.a * length - this.goalX[k];
+      const dy = b.worldY + b.c * length - this.goalY[k];
+      entry.error = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a builtin call, its answer boxed
       goals[k] = entry;
     }
     return this.report;
