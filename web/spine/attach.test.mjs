@@ -178,10 +178,15 @@ test("no allocation per frame: nothing allocated by the package's code in 20000 
   const out = execFileSync(process.execPath, [fileURLToPath(new URL("alloc.mjs", import.meta.url))], { env: process.env, encoding: "utf8" });
   const r = JSON.parse(out);
   assert.equal(r.moduleMemoryGrew, 0, "the module's memory grew");
-  assert.equal(r.bytesPerFrame["index.js"] ?? 0, 0, `index.js allocated: ${out}`);
-  const glue = r.bytesPerFrame["ikarus_spine.js"] ?? 0;
-  if (r.applyFrame) assert.equal(glue, 0, `the wasm-bindgen glue allocated: ${out}`);
-  else console.log(`# the module has no applyFrame: wasm-bindgen's glue of apply() allocates ${glue.toFixed(1)} bytes a frame (its Result's multi-value return array)`);
+  // By the file of the function that allocated; the JIT may inline the glue into index.js, so
+  // the two count together.
+  const ours = (r.bytesPerFrame["index.js"] ?? 0) + (r.bytesPerFrame["ikarus_spine.js"] ?? 0);
+  if (r.applyFrame) assert.ok(ours < 1, `allocated per frame: ${out}`);
+  else {
+    // apply()'s glue: one array of 3 (its Result's multi-value return), 72 bytes; nothing more.
+    assert.ok(ours < 80, `allocated per frame: ${out}`);
+    console.log(`# the module has no applyFrame: wasm-bindgen's glue of apply() allocates ${ours.toFixed(1)} bytes a frame (its Result's multi-value return array)`);
+  }
 });
 
 test("index.d.ts declares every export of index.js, and nothing else", () => {
