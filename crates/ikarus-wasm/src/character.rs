@@ -29,7 +29,14 @@ pub struct Character {
     /// The numbers of the last [`pose_here`](Character::pose_here), read by JavaScript through
     /// a view over the module's memory at [`numbers_ptr`](Character::numbers_ptr).
     numbers: Vec<f64>,
+    /// The stand-in's buffers ([`given`]).
+    given: given::Given,
+    /// The pose the stand-in's calls sample into and pose into.
+    given_posed: Posed,
 }
+
+#[path = "character_given.rs"]
+mod given;
 
 /// A refusal of `/api/pose`'s job (a 422 with its line).
 fn invalid(message: String) -> Problem {
@@ -45,7 +52,15 @@ impl Character {
         let loaded = ikarus_edge::api::pose::character(text, &Limits::default())
             .map_err(|p| Problem { status: p.status, message: p.message })?;
         let numbers = vec![0.0; PER_BONE * loaded.character.bones().len()];
-        Ok(Character { loaded, clip: None, targets: Vec::new(), posed: Posed::default(), numbers })
+        Ok(Character {
+            loaded,
+            clip: None,
+            targets: Vec::new(),
+            posed: Posed::default(),
+            numbers,
+            given: given::Given::default(),
+            given_posed: Posed::default(),
+        })
     }
 
     /// The bones' names in the file's order (the pose's order).
@@ -144,13 +159,18 @@ impl Character {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn spineboy() -> String {
+mod tests_support {
+    /// The shipped spineboy's file.
+    pub(super) fn spineboy() -> String {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/characters/spine-spineboy-pro.json");
         std::fs::read_to_string(path).unwrap()
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tests_support::spineboy;
+    use super::*;
 
     #[test]
     fn a_character_with_physics_is_played_as_the_json_answer_plays_it() {

@@ -54,7 +54,7 @@ pub use physics::{
 };
 pub use physics_timeline::{PhysicsKey, PhysicsProperty, PhysicsReset, PhysicsTimeline, physics_settings_at};
 pub use play::{MAX_FRAMES, Play, PlayFrame};
-pub use pose::{PoseError, PoseRequest, Posed};
+pub use pose::{GivenPose, PoseError, PoseRequest, Posed};
 pub use skin::{Skin, SkinRequired};
 pub use slot_clip::{
     AttachmentKey, AttachmentTimeline, COLOR_CHANNELS, ColorKey, ColorProperty, ColorTimeline, DrawOrderKey,

@@ -10,10 +10,9 @@ use super::transform::{self, TransformSettings};
 use super::world::{Affine, BoneTrig, Bones, Trig};
 use super::{
     Character, Constraint, ConstraintKeys, IkBones, IkRule, IkSettings, LocalTransform, PhysicsInput, PhysicsMode,
-    PhysicsState, PhysicsWorld, Settings,
+    PhysicsState, PhysicsWorld, Placement, Settings,
 };
 use crate::Interrupt;
-use thiserror::Error;
 
 /// What to pose: a clip at a time (seconds), bones whose world origin is put at a point after
 /// the clip and before the constraints, and constraints' bend sides.
@@ -36,70 +35,6 @@ pub struct PoseRequest<'a> {
     /// take part; `None`: no skin, so only those not skin-required do (the edge asks for
     /// [`Character::default_skin`] unless told otherwise; see [`Skin`](super::Skin)).
     pub skin: Option<usize>,
-}
-
-/// A pose request the character cannot take.
-#[derive(Debug, Clone, PartialEq, Error)]
-#[non_exhaustive]
-pub enum PoseError {
-    /// The clip index is not one of the character's clips.
-    #[error("clip: no clip {0}")]
-    UnknownClip(usize),
-    /// The time is NaN or infinite.
-    #[error("time: must be finite, got {0}")]
-    Time(f64),
-    /// A play's frame rate is not a positive number.
-    #[error("fps: must be a positive number, got {0}")]
-    Fps(f64),
-    /// A play would take more than [`super::play::MAX_FRAMES`] frames.
-    #[error("time: {time} s at {fps} frames a second is more frames than a play takes")]
-    TooLong {
-        /// The time asked, seconds.
-        time: f64,
-        /// The frames a second.
-        fps: f64,
-    },
-    /// A target names a bone that does not exist.
-    #[error("target: no bone {0}")]
-    UnknownBone(usize),
-    /// A target's point is not finite.
-    #[error("target: bone {bone}'s point must be finite, got ({x}, {y})")]
-    TargetPoint {
-        /// The bone's index.
-        bone: usize,
-        /// The point's x.
-        x: f64,
-        /// The point's y.
-        y: f64,
-    },
-    /// A turn names a bone that does not exist.
-    #[error("turn: no bone {0}")]
-    UnknownTurn(usize),
-    /// A turn's rotation is not finite.
-    #[error("turn: bone {bone}'s rotation must be finite, got {rotation}")]
-    TurnRotation {
-        /// The bone's index.
-        bone: usize,
-        /// The rotation, radians.
-        rotation: f64,
-    },
-    /// The skin index is not one of the character's skins.
-    #[error("skin: no skin {0}")]
-    UnknownSkin(usize),
-    /// A target names a bone the skin leaves inactive (not posed, so not movable).
-    #[error("target: bone {0} is inactive: the skin does not turn it on")]
-    InactiveTarget(usize),
-    /// A bend names a constraint that does not exist or is not an IK constraint.
-    #[error("bend: no IK constraint {0}")]
-    UnknownConstraint(usize),
-    /// A target's bone has a parent whose world matrix is singular (scaled to nothing), so no
-    /// local position puts it anywhere else.
-    #[error("target: bone {0}'s parent is scaled to nothing, its origin cannot be placed")]
-    SingularParent(usize),
-    /// The pose's [`Interrupt`] was set ([`Character::pose_watched`]): `out` holds a pose half
-    /// done, to be thrown away.
-    #[error("interrupted")]
-    Interrupted,
 }
 
 /// A posed character: every bone's local transform as posing left it and its world transform.
@@ -223,16 +158,21 @@ impl Posed {
     /// The bones of `c` as posing left them, to change their local transforms (and the world
     /// transforms below), their lengths, and the constraints' settings.
     pub(crate) fn bones<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings]) {
-        let (bones, length, settings, _) = self.parts(c);
+        let (bones, length, settings, _) = self.parts(c, c.placement);
         (bones, length, settings)
     }
 
-    /// [`Posed::bones`] and what posing keeps besides the bones, borrowed side by side.
-    fn parts<'a>(&'a mut self, c: &'a Character) -> (Bones<'a>, &'a [f64], &'a [Settings], Scratch<'a>) {
+    /// [`Posed::bones`] (the skeleton placed at `placement`) and what posing keeps besides the
+    /// bones, borrowed side by side.
+    fn parts<'a>(
+        &'a mut self,
+        c: &'a Character,
+        placement: Placement,
+    ) -> (Bones<'a>, &'a [f64], &'a [Settings], Scratch<'a>) {
         let bones = Bones {
             bones: &c.bones,
             links: &c.flat.links,
-            placement: c.placement,
+            placement,
             local: &mut self.local,
             world: &mut self.world,
             below: &mut self.below,
@@ -275,27 +215,46 @@ impl Character {
         interrupt: Option<&Interrupt>,
         (frame, off): (Frame, &[usize]),
     ) -> Result<(), PoseError> {
-        self.check(request)?;
+        self.sample_frame(request, out, frame)?;
+        for &k in off {
+            if let Some(Settings::Ik(s)) = out.settings.get_mut(k) {
+                s.mix = 0.0;
+            }
+        }
+        self.constrain(request, out, interrupt, frame, self.placement)
+    }
+
+    /// Sizes `out`'s buffers for a pose with `skin` and finds what the skin turns on; the local
+    /// transforms, the settings and the paths' deforms are left to the caller.
+    fn begin(&self, out: &mut Posed, skin: Option<usize>) {
         let n = self.bones.len();
-        out.local.clear();
-        out.local.extend_from_slice(&self.flat.setup);
         out.length.clear();
         out.length.extend_from_slice(&self.flat.length);
         out.world.resize(n, Affine::default());
         out.below.resize(n, false);
-        out.settings.clear();
-        out.settings.extend_from_slice(&self.setup);
         out.trig.resize(n, [Trig::ZERO; 3]);
-        // What only path and physics constraints read, kept only for characters that have them.
-        if self.kinds.path {
-            out.path.reset(self.constraints.len());
-        }
+        // What only physics constraints read, kept only for characters that have them.
         if self.kinds.physics {
             out.physics.resize(self.constraints.len(), PhysicsState::default());
             out.restart.clear();
             out.restart.resize(self.constraints.len(), false);
         }
-        self.activity.compute(&self.bones, request.skin.map(|s| &self.skins[s]), &mut out.active);
+        self.activity.compute(&self.bones, skin.map(|s| &self.skins[s]), &mut out.active);
+    }
+
+    /// The first half of [`Character::pose_frame`]: the setup pose, the clip at its time, the
+    /// turns and the bends, into `out`'s local transforms and settings (no world transform).
+    fn sample_frame(&self, request: &PoseRequest, out: &mut Posed, frame: Frame) -> Result<(), PoseError> {
+        self.check(request)?;
+        out.local.clear();
+        out.local.extend_from_slice(&self.flat.setup);
+        out.settings.clear();
+        out.settings.extend_from_slice(&self.setup);
+        // What only path constraints read, kept only for characters that have them.
+        if self.kinds.path {
+            out.path.reset(self.constraints.len());
+        }
+        self.begin(out, request.skin);
         if let Some(&(bone, _)) = request.targets.iter().find(|(b, _)| !out.active.bones[*b]) {
             return Err(PoseError::InactiveTarget(bone));
         }
@@ -369,23 +328,21 @@ impl Character {
                 s.bend_positive = bend_positive;
             }
         }
-        for &k in off {
-            if let Some(Settings::Ik(s)) = out.settings.get_mut(k) {
-                s.mix = 0.0;
-            }
-        }
-        self.constrain(request, out, interrupt, frame)
+        Ok(())
     }
 
-    /// The targets and the constraints of [`Character::pose_frame`], after the clip.
+    /// The targets and the constraints of [`Character::pose_frame`], after the clip, the
+    /// skeleton placed at `placement`.
     fn constrain(
         &self,
         request: &PoseRequest,
         out: &mut Posed,
         interrupt: Option<&Interrupt>,
         frame: Frame,
+        placement: Placement,
     ) -> Result<(), PoseError> {
-        let (mut bones, length, settings, Scratch { physics, restart, path: path_pose, active }) = out.parts(self);
+        let (mut bones, length, settings, Scratch { physics, restart, path: path_pose, active }) =
+            out.parts(self, placement);
         if request.targets.is_empty() {
             bones.update_all_but(&self.deferred);
         } else {
@@ -483,6 +440,14 @@ impl Character {
             }
     }
 }
+
+#[path = "given.rs"]
+mod given;
+pub use given::GivenPose;
+
+#[path = "pose_error.rs"]
+mod pose_error;
+pub use pose_error::PoseError;
 
 #[cfg(test)]
 #[path = "pose_tests.rs"]
