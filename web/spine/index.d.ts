@@ -28,6 +28,8 @@ export interface SpineBone {
   worldX: number;
   worldY: number;
   active?: boolean;
+  /** The applied rotation (what constraints left); read for the bones of an IK constraint that steps aside. */
+  arotation?: number;
 }
 
 /** The part of a Spine 4.2 `IkConstraint` the add-on uses (it sets `mix` to 0 for one update). */

@@ -8,7 +8,6 @@
 // memory (made again only when that memory grows), the report object is the same every frame.
 import init, { SpineRig } from "./ikarus_spine.js";
 
-const DEG = 180 / Math.PI;
 const NO_OPTIONS = Object.freeze({});
 const NUMBERS = 13; // per bone: world a b c d worldX worldY, local x y rotation scaleX scaleY shearX shearY
 const GOAL = 8; // per goal: bone, x, y, bones, angle, weight, priority, bend
@@ -105,7 +104,6 @@ export class Ik {
       inherits[i] = inheritOf(b.data);
       this.depths[i] = p < 0 ? 1 : this.depths[p] + 1;
     }
-    this.inherits = inherits;
     const limits = new Float64Array(2 * n).fill(NaN);
     for (const [name, range] of Object.entries(options.limits ?? {})) {
       const i = this.byName.get(name);
@@ -115,6 +113,7 @@ export class Ik {
       limits[2 * i] = range[0];
       limits[2 * i + 1] = range[1];
     }
+    this.limits = limits;
     try {
       this.rig = new SpineRig(parents, lengths, inherits, limits);
     } catch (e) {
@@ -287,9 +286,18 @@ export class Ik {
     const rotations = this.rotations;
     const names = this.report.moved;
     let written = 0;
+    const limits = this.limits;
     for (let k = 0; k < m; k++) {
       const i = moved[k];
-      bones[i].rotation = rotations[i];
+      let r = rotations[i];
+      // The turn the limits name (the same pose, 360° apart) when the solve's is another.
+      const lo = limits[2 * i];
+      const hi = limits[2 * i + 1];
+      if (r < lo || r > hi) {
+        const w = r + 360 * Math.ceil((lo - r) / 360); // the first turn of r at or above lo
+        if (w <= hi) r = w;
+      }
+      bones[i].rotation = r;
       movedAt[i] = stamp;
       names[written++] = this.names[i];
     }
@@ -339,30 +347,15 @@ export class Ik {
   }
 
   /**
-   * Writes into `rotation` of bone `i` (normal inherit) the local rotation its world transform
-   * has relative to its parent's this frame, the one a Spine IK constraint applied: with the
-   * constraint's mix at 0 the update then gives the bone the same place relative to its parent.
-   * Returns whether it did (other inherit modes keep their rotation).
+   * Writes into `rotation` of bone `i` the local rotation a Spine IK constraint applied to it
+   * this frame (Spine's `Bone.arotation`), so that with the constraint's mix at 0 the update
+   * gives it the same place relative to its parent. Returns whether it wrote one (an object
+   * without `arotation` keeps its own rotation).
    */
   holdApplied(i) {
     const b = this.bones[i];
-    if (this.inherits[i] !== 0) return false;
-    const p = b.parent;
-    const s = this.skeleton;
-    const pa = p ? p.a : s.scaleX ?? 1;
-    const pb = p ? p.b : 0;
-    const pc = p ? p.c : 0;
-    const pd = p ? p.d : s.scaleY ?? 1;
-    const det = pa * pd - pb * pc;
-    let la = (pd * b.a - pb * b.c) / det;
-    let lc = (pa * b.c - pc * b.a) / det;
-    if (b.scaleX < 0) {
-      la = -la;
-      lc = -lc;
-    }
-    const r = Math.atan2(lc, la) * DEG - b.shearX;
-    if (!Number.isFinite(r)) return false;
-    b.rotation = r + 360 * Math.round((b.rotation - r) / 360);
+    if (typeof b.arotation !== "number") return false;
+    b.rotation = b.arotation;
     return true;
   }
 

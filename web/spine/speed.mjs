@@ -1,10 +1,11 @@
 // What ikarus-spine's apply() costs a frame in node, beside the runtime's own work of the frame:
 // spineboy walk, 600 frames at 60 Hz, a 3-bone goal on front-fist moving on a circle and rear-foot
-// pinned. Prints a table (median and p99 µs) and the JS heap's growth over the measured frames.
+// pinned. Prints a table (median and p99 µs) and what each file's code allocated per frame.
 // Not a test: nothing here asserts a time.
-//   IKARUS_SPINE_DIR=… IKARUS_WEB_DIR=… node --expose-gc web/spine/speed.mjs [frames]
+//   IKARUS_SPINE_DIR=… IKARUS_WEB_DIR=… node web/spine/speed.mjs [frames]
 // The runtime's work is the stand-in's (web/spine/standin/: spine-core's API, posed by ikarus's
 // own code in WebAssembly), not spine-core's, which the ikarus repository never installs.
+import { Session } from "node:inspector/promises";
 import { spinePackage, standIn, gameUpdate } from "./common.mjs";
 
 const frames = Number(process.argv[2] ?? 600);
@@ -55,22 +56,23 @@ function frame(f, record) {
   rows.own.push((a1 - a0 - inner) * 1000);
 }
 
-for (let f = 0; f < 600; f++) frame(f, false); // warm-up: the JIT's tiers
-globalThis.gc?.();
-const heap = process.memoryUsage().heapUsed;
+for (let f = 0; f < 3000; f++) frame(f, false); // warm-up: the JIT's tiers
 for (let f = 0; f < frames; f++) frame(600 + f, true);
-const grown = process.memoryUsage().heapUsed - heap;
-// The add-on alone: the same calls on a still pose (no stand-in work in between).
-globalThis.gc?.();
-const heapAlone = process.memoryUsage().heapUsed;
-for (let f = 0; f < frames; f++) {
-  const t = (2 * Math.PI * f) / 240;
-  ik.clear();
-  ik.goal("front-fist", cx + 0.55 * reach * Math.cos(t), cy + 0.55 * reach * Math.sin(t), three);
-  ik.pin("rear-foot");
-  ik.apply();
-}
-const grownAlone = process.memoryUsage().heapUsed - heapAlone;
+// Then what each file's functions allocate over as many frames again (V8's sampling heap
+// profiler, garbage included, about one sample per 64 bytes; not during the timed frames).
+const session = new Session();
+session.connect();
+await session.post("HeapProfiler.startSampling", { samplingInterval: 64, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
+for (let f = 0; f < frames; f++) frame(600 + frames + f, false);
+const { profile } = await session.post("HeapProfiler.stopSampling");
+session.disconnect();
+const allocated = new Map();
+const walk = (node) => {
+  const file = node.callFrame.url.split("/").slice(-2).join("/") || "(native)";
+  if (node.selfSize) allocated.set(file, (allocated.get(file) ?? 0) + node.selfSize);
+  node.children.forEach(walk);
+};
+walk(profile.head);
 
 const quantile = (xs, q) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -87,7 +89,6 @@ console.log(`spineboy walk, ${skeleton.bones.length} bones, ${frames} frames at 
 console.log("| what | median µs | p99 µs |");
 console.log("| --- | ---: | ---: |");
 for (const [what, xs] of table) console.log(`| ${what} | ${quantile(xs, 0.5).toFixed(2)} | ${quantile(xs, 0.99).toFixed(2)} |`);
-if (globalThis.gc) {
-  console.log(`JS heap growth, no gc in between: ${grownAlone} bytes over ${frames} frames of the add-on alone (clear, goal, pin, apply);`);
-  console.log(`  ${grown} bytes over ${frames} whole game frames (the stand-in's update included)`);
-} else console.log("(node --expose-gc for the heap growth)");
+console.log(`JS allocation per frame, by file of the allocating function (sampled), over ${frames} frames:`);
+for (const [file, bytes] of [...allocated].sort((x, y) => y[1] - x[1])) if (bytes / frames >= 1) console.log(`  ${(bytes / frames).toFixed(1)} bytes  ${file}`);
+console.log(`  (ikarus-spine: index.js, ikarus_spine.js (wasm-bindgen's glue); ${ik.rig.applyFrame ? "applyFrame" : "no applyFrame: apply's glue returns a 3-array"})`);
