@@ -114,6 +114,7 @@ export class Ik {
       limits[2 * i + 1] = range[1];
     }
     this.limits = limits;
+    this.parents = parents;
     try {
       this.rig = new SpineRig(parents, lengths, inherits, limits);
     } catch (e) {
@@ -129,9 +130,12 @@ export class Ik {
     this.ikBones = iks.map((c) => Int32Array.from(c.bones, (b) => this.byBone.get(b) ?? -1));
     this.savedMix = new Float64Array(iks.length);
     this.zeroed = new Uint8Array(iks.length);
-    // Per bone, the apply() whose solve last moved it / that last held its applied rotation.
+    // Per bone, the apply() that last marked it moving (goal chains, pins) / whose solve moved
+    // it / that gave it its applied transform (stepAside); the bones so held.
+    this.marked = new Uint32Array(n);
     this.movedAt = new Uint32Array(n);
     this.heldAt = new Uint32Array(n);
+    this.heldList = new Int32Array(n);
     this.stamp = 0;
     this.goalCount = 0;
     this.pinCount = 0;
@@ -261,6 +265,8 @@ export class Ik {
     const { skeleton, bones, iks, ikBones } = this;
     const n = bones.length;
     this.views();
+    const stamp = ++this.stamp;
+    const held = this.stepAside(stamp);
     const f = this.frame;
     for (let i = 0, o = 0; i < n; i++, o += NUMBERS) {
       const b = bones[i];
@@ -278,15 +284,18 @@ export class Ik {
       f[o + 11] = b.shearX;
       f[o + 12] = b.shearY;
     }
+    // A pinned bone the last solve moved: its rotation as that solve left it, so that the rig's
+    // warm start (which turns each moving bone by last answer − this frame's rotation, and pins
+    // where it starts) starts a pinned bone where the runtime has it this frame.
+    for (let k = 0; k < this.pinCount; k++) {
+      const i = this.pins[k];
+      if (this.movedAt[i] === stamp - 1) f[i * NUMBERS + 8] = this.rotations[i];
+    }
     const m = this.solve(skeleton.x ?? 0, skeleton.y ?? 0, skeleton.scaleX ?? 1, skeleton.scaleY ?? 1);
     this.views();
-    const stamp = ++this.stamp;
-    const movedAt = this.movedAt;
-    const moved = this.moved;
-    const rotations = this.rotations;
+    const { movedAt, heldAt, moved, rotations, limits, zeroed } = this;
     const names = this.report.moved;
     let written = 0;
-    const limits = this.limits;
     for (let k = 0; k < m; k++) {
       const i = moved[k];
       let r = rotations[i];
@@ -301,30 +310,61 @@ export class Ik {
       movedAt[i] = stamp;
       names[written++] = this.names[i];
     }
-    // Spine IK constraints on a moved bone step aside for this update (the goal wins there); their
-    // bones that did not move keep the rotation the constraint applied this frame.
+    for (let k = 0; k < held; k++) {
+      const i = this.heldList[k];
+      if (movedAt[i] !== stamp) names[written++] = this.names[i];
+    }
+    if (names.length !== written) names.length = written;
+    for (let c = 0; c < iks.length; c++) if (zeroed[c]) iks[c].mix = 0;
+    try {
+      skeleton.updateWorldTransform(this.physics);
+    } finally {
+      for (let c = 0; c < iks.length; c++) if (zeroed[c]) iks[c].mix = this.savedMix[c];
+    }
+    return this.reported();
+  }
+
+  /**
+   * Before the solve: marks the bones it moves (each goal's chain, each pin) and finds the Spine
+   * IK constraints on them, which step aside (mix 0) for this frame's update so that the goal
+   * wins there. Their bones take as local transform the applied one the constraint gave them
+   * this frame (Spine's `ax, ay, arotation, ascaleX, ascaleY, ashearX, ashearY`: a stretch
+   * included), so that with mix 0 the update puts the bones the solve leaves where the
+   * constraint had them, and the solve starts from that pose. Returns how many bones it so held
+   * (listed in heldList).
+   */
+  stepAside(stamp) {
+    const { iks, ikBones, marked, heldAt, parents, goals, pins, bones } = this;
+    for (let k = 0; k < this.goalCount; k++) {
+      let i = goals[k * GOAL];
+      for (let left = goals[k * GOAL + 3]; left > 0 && i >= 0; left--, i = parents[i]) marked[i] = stamp;
+    }
+    for (let k = 0; k < this.pinCount; k++) marked[pins[k]] = stamp;
+    let held = 0;
     for (let c = 0; c < iks.length; c++) {
       const list = ikBones[c];
       let touched = 0;
-      for (let j = 0; j < list.length; j++) if (list[j] >= 0 && movedAt[list[j]] === stamp) touched = 1;
+      for (let j = 0; j < list.length; j++) if (list[j] >= 0 && marked[list[j]] === stamp) touched = 1;
       this.zeroed[c] = touched;
       if (!touched) continue;
       this.savedMix[c] = iks[c].mix;
       for (let j = 0; j < list.length; j++) {
         const i = list[j];
-        if (i < 0 || movedAt[i] === stamp || this.heldAt[i] === stamp || !this.holdApplied(i)) continue;
-        this.heldAt[i] = stamp;
-        names[written++] = this.names[i];
+        if (i < 0 || heldAt[i] === stamp) continue;
+        const b = bones[i];
+        if (typeof b.arotation !== "number") continue; // not a Spine Bone: its own locals stay
+        b.x = b.ax;
+        b.y = b.ay;
+        b.rotation = b.arotation;
+        b.scaleX = b.ascaleX;
+        b.scaleY = b.ascaleY;
+        b.shearX = b.ashearX;
+        b.shearY = b.ashearY;
+        heldAt[i] = stamp;
+        this.heldList[held++] = i;
       }
     }
-    if (names.length !== written) names.length = written;
-    for (let c = 0; c < iks.length; c++) if (this.zeroed[c]) iks[c].mix = 0;
-    try {
-      skeleton.updateWorldTransform(this.physics);
-    } finally {
-      for (let c = 0; c < iks.length; c++) if (this.zeroed[c]) iks[c].mix = this.savedMix[c];
-    }
-    return this.reported();
+    return held;
   }
 
   /**
@@ -344,19 +384,6 @@ export class Ik {
     } catch (e) {
       throw fail(e && e.message ? e.message : String(e));
     }
-  }
-
-  /**
-   * Writes into `rotation` of bone `i` the local rotation a Spine IK constraint applied to it
-   * this frame (Spine's `Bone.arotation`), so that with the constraint's mix at 0 the update
-   * gives it the same place relative to its parent. Returns whether it wrote one (an object
-   * without `arotation` keeps its own rotation).
-   */
-  holdApplied(i) {
-    const b = this.bones[i];
-    if (typeof b.arotation !== "number") return false;
-    b.rotation = b.arotation;
-    return true;
   }
 
   /** Fills the report's goals from the skeleton's world numbers after the update. */
