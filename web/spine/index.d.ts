@@ -28,8 +28,14 @@ export interface SpineBone {
   worldX: number;
   worldY: number;
   active?: boolean;
-  /** The applied rotation (what constraints left); read for the bones of an IK constraint that steps aside. */
+  /** The applied transform (what constraints left): copied into the local one for the bones of an IK constraint that steps aside. */
+  ax?: number;
+  ay?: number;
   arotation?: number;
+  ascaleX?: number;
+  ascaleY?: number;
+  ashearX?: number;
+  ashearY?: number;
 }
 
 /** The part of a Spine 4.2 `IkConstraint` the add-on uses (it sets `mix` to 0 for one update). */
@@ -88,7 +94,7 @@ export interface GoalReport {
 export interface Report {
   /** The goals in the order given. */
   goals: GoalReport[];
-  /** The names of the bones whose `rotation` apply() wrote: those the solve moved (in bone order), then bones of stepped-aside IK constraints it held. */
+  /** The names of the bones whose local transform apply() wrote: those the solve moved (in bone order), then the other bones of stepped-aside IK constraints (given their applied transform). */
   moved: string[];
 }
 

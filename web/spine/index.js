@@ -256,10 +256,11 @@ export class Ik {
   /**
    * Solves this frame's goals and pins on the skeleton's current pose, writes the moved bones'
    * `rotation`, and runs `skeleton.updateWorldTransform(physics)` with the Spine IK constraints on
-   * moved bones at mix 0 (restored right after; their bones the solve did not move keep the
-   * rotation the constraint applied). Returns the report (the same object every frame): goals
-   * [{ bone, error }] (error: the distance of the bone's tip, on the skeleton's world numbers
-   * after the update, from its target), moved [names of the bones whose rotation it wrote].
+   * moved bones at mix 0 (restored right after; their bones first take the applied transform
+   * the constraint gave them, see stepAside). Returns the report (the same object every frame):
+   * goals [{ bone, error }] (error: the distance of the bone's tip, on the skeleton's world
+   * numbers after the update, from its target), moved [names of the bones whose local transform
+   * it wrote].
    */
   apply() {
     const { skeleton, bones, iks, ikBones } = this;
