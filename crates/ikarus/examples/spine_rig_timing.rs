@@ -1,6 +1,6 @@
-//! Throwaway (issue 41): how long [`SpineRig::solve`] takes per frame on spineboy's walk with a 3-bone goal on `front-fist` and a pin on `rear-foot`, 600
-//! frames. Prints the median and p99 µs; asserts nothing.
-//! `cargo run -p ikarus --example spine_rig_timing` (a debug build is far slower than release).
+//! Issue 41: how long [`SpineRig::solve`] takes per frame on spineboy's walk with a 3-bone goal
+//! on `front-fist` moving on a circle and a pin on `rear-foot`, 600 frames. Prints the median
+//! and p99 µs; asserts nothing (`cargo run --release -p ikarus --example spine_rig_timing`).
 
 use ikarus::Goal;
 use ikarus::character::{Placement, PoseRequest, Posed, SpineBone, SpineFrame, SpineRig, TipGoal};
@@ -35,9 +35,12 @@ fn main() {
             numbers.extend([w.a, w.b, w.c, w.d, w.x, w.y, l.x, l.y, l.rotation.to_degrees(), l.scale_x, l.scale_y]);
             numbers.extend([l.shear_x.to_degrees(), l.shear_y.to_degrees()]);
         }
+        // The goal on a circle of radius 100 around the shoulder, once round in the 600 frames
+        // (as the allocation test has it, tests/spine_rig_alloc.rs).
         let s = posed.origin(upper);
-        let goals =
-            [TipGoal { goal: RigGoal::new(fist, Goal::position(s[0] + 120.0, s[1] - 50.0).unwrap()), bones: 3 }];
+        let turn = frame as f64 / 600.0 * std::f64::consts::TAU;
+        let (x, y) = (s[0] + 100.0 * libm::cos(turn), s[1] + 100.0 * libm::sin(turn));
+        let goals = [TipGoal { goal: RigGoal::new(fist, Goal::position(x, y).unwrap()), bones: 3 }];
         let pins = [foot];
         let f = SpineFrame { numbers: &numbers, placement: Placement::default(), goals: &goals, pins: &pins };
         let start = Instant::now();

@@ -40,10 +40,12 @@ use tree::{children_of, cycle_error, depth_first, roots_of, subtrees_of};
 
 pub mod error;
 pub mod kinematics;
+mod refit;
 mod tree;
 
 pub use error::{BoneField, SkeletonError};
 pub use kinematics::Effector;
+pub(crate) use refit::Refit;
 
 /// The largest reach (sum of the lengths plus the base's distance from the origin) a body may
 /// have: its square, and so the areas of workspaces and the entries of `J Jᵀ`, stay far inside
@@ -221,6 +223,9 @@ pub struct Skeleton {
     leave: Vec<usize>,
     /// The root above each bone (a root's is itself).
     root: Vec<usize>,
+    /// The length of the path to each bone's tip (what `reach` is the largest of), kept so that
+    /// [`Skeleton::refit`] computes it again in place.
+    to_tip: Vec<f64>,
     reach: f64,
 }
 
@@ -286,38 +291,7 @@ impl Skeleton {
         let plain = offsets.iter().all(Option::is_none) && joints.iter().all(|j| *j == Joint::Revolute);
         let (enter, leave) = subtrees_of(&parents, &order);
         let root = roots_of(&parents, &order);
-        // The length of the path to each tip, summed root first in the order of a chain's
-        // `Σ lᵢ` (so that a chain's reach is its own, bit for bit).
-        // A bone with an offset or a slide adds, to the path to its parent's origin, the
-        // offset's length and the slide's largest travel (within its limits, or the nominal
-        // range of an unlimited slide: its start ± its length).
-        let mut to_tip = vec![0.0; n];
-        for &i in &order {
-            let above = parents[i].map_or(0.0, |p| to_tip[p]);
-            to_tip[i] = if offsets[i].is_none() && joints[i] == Joint::Revolute {
-                above + lengths[i]
-            } else {
-                let origin = match (parents[i], offsets[i]) {
-                    (Some(p), Some([x, y])) => above - lengths[p] + math::hypot(x, y),
-                    (None, Some([x, y])) => math::hypot(x, y),
-                    (_, None) => above,
-                };
-                let travel = match joints[i] {
-                    Joint::Revolute => 0.0,
-                    Joint::Prismatic { .. } => match limits[i] {
-                        Some(l) => l.min().abs().max(l.max().abs()),
-                        None => start[i].abs() + lengths[i],
-                    },
-                };
-                origin + travel + lengths[i]
-            };
-        }
-        let reach = to_tip.iter().copied().fold(0.0, f64::max);
-        let extent = math::hypot(x, y) + reach;
-        if extent.is_nan() || extent > MAX_REACH {
-            return Err(SkeletonError::ReachTooLarge { reach: extent });
-        }
-        Ok(Self {
+        Self {
             base: Point2::new(x, y),
             names,
             index,
@@ -338,8 +312,10 @@ impl Skeleton {
             enter,
             leave,
             root,
-            reach,
-        })
+            to_tip: vec![0.0; n],
+            reach: 0.0,
+        }
+        .with_reach()
     }
 
     /// Whether the skeleton has a chain's shape, so that it can be seen as a

@@ -5,25 +5,36 @@
 //! local rotation, degrees. Each frame ([`SpineRig::solve`]): per bone the world transform and the
 //! local transform the runtime left ([`SPINE_BONE_NUMBERS`] numbers, in the runtime's terms:
 //! degrees), the goals ([`TipGoal`]: a bone, its goal, how many bones up it moves) and the pins.
-//! The moving bones (each goal's bones, each pin) are frozen into an ikarus skeleton at the
-//! runtime's pose with the same code as [`Character::pose_together`](super::super::Character::pose_together)
-//! (`freeze_view`), solved by the rig solver warm-started from that pose (so that a limb keeps
-//! its bend side frame to frame), and thawed into local rotations under each bone's inherit mode
+//! The moving bones (each goal's bones, and each pin below one of them: a pin under no moving
+//! bone cannot move and stays out) are frozen into an ikarus skeleton at the runtime's pose
+//! with the same code as [`Character::pose_together`](super::super::Character::pose_together)
+//! (`freeze_view`; from the second frame with the same moving bones, the kept skeleton is
+//! refitted in place, `refreeze_view`, so that a frame allocates nothing), solved by the rig
+//! solver warm-started from that pose (so that a limb keeps its bend side frame to frame), and
+//! thawed into local rotations under each bone's inherit mode
 //! (`rotation_for`), parents first; a moving bone below bones that do not move is carried
 //! rigidly by its nearest moving ancestor, as the frozen skeleton has it. Bones that do not move
 //! keep their rotation.
 
 use super::super::world::{Affine, world_transform};
 use super::super::{Inherit, LocalTransform, Placement};
-use super::freeze::{Frozen, PoseView, freeze_view, rotation_for};
+use super::freeze::{Frozen, PoseView, freeze_view, refreeze_view, rotation_for};
 use super::rules::{TipGoal, TogetherError};
 use crate::angle::wrap_angle;
 use crate::math;
+use crate::skeleton::Refit;
 use crate::solve::{Outcome, Pin, RigTask, SolveError, Solver};
 
 /// Numbers per bone in a frame: world `a, b, c, d, worldX, worldY`, then local `x, y, rotation,
 /// scaleX, scaleY, shearX, shearY` (rotation and shears in degrees), as the runtime names them.
 pub const SPINE_BONE_NUMBERS: usize = 13;
+
+/// At most this many rounds of freeze, solve and thaw per frame (see [`SpineRig::solve`]).
+const ROUNDS: usize = 8;
+
+/// A round's pose is the frozen skeleton's when its moved tips are this close to the frozen
+/// ones (in the skeleton's units).
+const DRIFT: f64 = 1e-7;
 
 /// The runtime's names of a bone's [`SPINE_BONE_NUMBERS`] numbers, in their order.
 const SPINE_BONE_FIELDS: [&str; SPINE_BONE_NUMBERS] =
@@ -75,6 +86,10 @@ pub struct SpineRig {
     /// The task and the outcome, their buffers kept from frame to frame.
     task: RigTask,
     outcome: Outcome,
+    /// The frozen skeleton of the solve before, refitted when the same bones move, and the
+    /// scratch of its refit.
+    frozen: Option<Frozen>,
+    geometry: Vec<Refit>,
 }
 
 impl SpineRig {
@@ -111,6 +126,8 @@ impl SpineRig {
             last: Vec::with_capacity(n),
             task: RigTask::new(Vec::new(), Vec::new()),
             outcome: Outcome::default(),
+            frozen: None,
+            geometry: Vec::with_capacity(n),
         })
     }
 
@@ -147,8 +164,16 @@ impl SpineRig {
                 b = self.bones[i].parent;
             }
         }
+        // A pin under no moving bone cannot move (nothing above it turns, its own turn is
+        // held): it stays out of the solve.
         for &p in frame.pins {
-            self.on[p] = true;
+            let mut up = Some(p);
+            while let Some(q) = up.filter(|&q| !self.on[q]) {
+                up = self.bones[q].parent;
+            }
+            if up.is_some() {
+                self.on[p] = true;
+            }
         }
         self.moving.clear();
         self.moving.extend((0..self.on.len()).filter(|&i| self.on[i]));
@@ -157,17 +182,28 @@ impl SpineRig {
             self.moving.clear();
             return Ok(None);
         }
-        let mut frozen = freeze_view(&RawView(self), &self.moving, |m| {
-            self.bones[m].limits_deg.map(|[lo, hi]| (Some([lo.to_radians(), hi.to_radians()]), 0.0))
-        })?;
+        let mut frozen = self.freeze()?;
         self.warm_start(&mut frozen);
         self.fill_task(&frozen, frame);
-        solver
-            .solve_rig_into(&frozen.skeleton, &frozen.start, &self.task, &mut self.outcome)
-            .map_err(|e: SolveError| TogetherError::Solve(e.to_string()))?;
-        let angles = std::mem::take(&mut self.outcome.pose);
-        self.thaw(&frozen, angles.angles(), frame.placement);
-        self.outcome.pose = angles;
+        for round in 0..ROUNDS {
+            if round > 0 {
+                // The frozen skeleton is the runtime's pose to first order: where a bone's
+                // parent is scaled unevenly or sheared, or a bone does not take its parent's
+                // rotation, turning it does not carry what hangs on it rigidly. Solved again
+                // from the pose made, the error shrinks to second order each round.
+                self.refreeze_solved(&mut frozen)?;
+            }
+            solver
+                .solve_rig_into(&frozen.skeleton, &frozen.start, &self.task, &mut self.outcome)
+                .map_err(|e: SolveError| TogetherError::Solve(e.to_string()))?;
+            let angles = std::mem::take(&mut self.outcome.pose);
+            let drift = self.thaw(&frozen, angles.angles(), frame.placement);
+            self.outcome.pose = angles;
+            if drift <= DRIFT {
+                break;
+            }
+        }
+        self.frozen = Some(frozen);
         self.last_moved.clear();
         self.last_moved.extend_from_slice(&self.moving);
         self.last.clear();
@@ -182,6 +218,35 @@ impl SpineRig {
             self.errors.push(math::distance(w.x + w.a * l - t.x, w.y + w.c * l - t.y));
         }
         Ok(Some(&self.outcome))
+    }
+
+    /// The moving bones frozen at the frame's pose: the kept skeleton refitted when it has the
+    /// same bones (nothing allocated), else a new one.
+    fn freeze(&mut self) -> Result<Frozen, TogetherError> {
+        let limits =
+            |bones: &[SpineBone], m: usize| bones[m].limits_deg.map(|[lo, hi]| [lo.to_radians(), hi.to_radians()]);
+        if let Some(mut frozen) = self.frozen.take().filter(|f| f.bones == self.moving && f.skeleton.can_refit()) {
+            let mut geometry = std::mem::take(&mut self.geometry);
+            let view = RawView { rig: self, world: &self.world };
+            let refitted = refreeze_view(&view, &mut frozen, |m| limits(&self.bones, m), &mut geometry);
+            self.geometry = geometry;
+            refitted?;
+            return Ok(frozen);
+        }
+        freeze_view(&RawView { rig: self, world: &self.world }, &self.moving, |m| {
+            limits(&self.bones, m).map(|l| (Some(l), 0.0))
+        })
+    }
+
+    /// The kept frozen skeleton refitted at the pose the last round made.
+    fn refreeze_solved(&mut self, frozen: &mut Frozen) -> Result<(), TogetherError> {
+        let limits =
+            |bones: &[SpineBone], m: usize| bones[m].limits_deg.map(|[lo, hi]| [lo.to_radians(), hi.to_radians()]);
+        let mut geometry = std::mem::take(&mut self.geometry);
+        let view = RawView { rig: self, world: &self.solved };
+        let refitted = refreeze_view(&view, frozen, |m| limits(&self.bones, m), &mut geometry);
+        self.geometry = geometry;
+        refitted
     }
 
     /// Starts the solve from the answer of the solve before when it moved the same bones: each
@@ -275,20 +340,30 @@ impl SpineRig {
         }
     }
 
-    /// The solved directions written back as local rotations, parents first; `solved` gets the
-    /// moved bones' new world transforms.
-    fn thaw(&mut self, frozen: &Frozen, angles: &[f64], placement: Placement) {
+    /// The solved directions written back as local rotations (within the bones' limits),
+    /// parents first; `solved` gets the moved bones' new world transforms. Returns how far the
+    /// moved bones' tips in that pose are from the frozen skeleton's solved ones.
+    fn thaw(&mut self, frozen: &Frozen, angles: &[f64], placement: Placement) -> f64 {
         let n = frozen.bones.len();
         self.points.resize(n + 1, nalgebra::Point2::origin());
         self.directions.resize(n, 0.0);
         frozen.skeleton.points_into(angles, &mut self.points, &mut self.directions);
+        let mut drift: f64 = 0.0;
         for (k, &m) in frozen.bones.iter().enumerate() {
             let parent = self.bones[m].parent.map(|p| self.parent_world(p));
             let inherit = self.bones[m].inherit;
-            let r = rotation_for(&self.local[m], inherit, parent.as_ref(), placement, self.directions[k]);
+            let mut r = rotation_for(&self.local[m], inherit, parent.as_ref(), placement, self.directions[k]);
+            if let Some([lo, hi]) = self.bones[m].limits_deg {
+                r = r.clamp(lo.to_radians(), hi.to_radians());
+            }
             self.local[m].rotation = r;
-            self.solved[m] = world_transform(&self.local[m], inherit, parent.as_ref(), placement);
+            let w = world_transform(&self.local[m], inherit, parent.as_ref(), placement);
+            let l = self.bones[m].length;
+            let p = self.points[k + 1];
+            drift = drift.max(math::distance(w.x + w.a * l - p.x, w.y + w.c * l - p.y));
+            self.solved[m] = w;
         }
+        drift
     }
 
     /// Bone `p`'s world transform after the moved bones above it turned: its solved one if it
@@ -320,25 +395,29 @@ fn relative(q: &Affine, p: &Affine) -> Option<Affine> {
 }
 
 /// A rig's frame as a [`PoseView`].
-struct RawView<'a>(&'a SpineRig);
+struct RawView<'a> {
+    rig: &'a SpineRig,
+    /// The bones' world transforms: the frame's, or those of the pose a round made.
+    world: &'a [Affine],
+}
 
 impl PoseView for RawView<'_> {
     fn parent(&self, i: usize) -> Option<usize> {
-        self.0.bones[i].parent
+        self.rig.bones[i].parent
     }
     fn origin(&self, i: usize) -> [f64; 2] {
-        [self.0.world[i].x, self.0.world[i].y]
+        [self.world[i].x, self.world[i].y]
     }
     fn rotation(&self, i: usize) -> f64 {
-        self.0.world[i].rotation()
+        self.world[i].rotation()
     }
     fn tip(&self, i: usize) -> [f64; 2] {
-        let w = &self.0.world[i];
-        let l = self.0.bones[i].length;
+        let w = &self.world[i];
+        let l = self.rig.bones[i].length;
         [w.x + w.a * l, w.y + w.c * l]
     }
     fn local_rotation(&self, i: usize) -> f64 {
-        self.0.local[i].rotation
+        self.rig.local[i].rotation
     }
     fn name(&self, i: usize) -> String {
         i.to_string()

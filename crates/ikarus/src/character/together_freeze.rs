@@ -11,11 +11,12 @@ use crate::angle::wrap_angle;
 use crate::goal::Goal;
 use crate::limits::JointLimits;
 use crate::math;
-use crate::skeleton::{Bone, Skeleton};
+use crate::skeleton::{Bone, Refit, Skeleton};
 use crate::solve::{Bend, Pin, Priority, RigGoal, RigTask};
 
 /// The moving bones as an ikarus skeleton: `bones[k]` is the character's bone of the
 /// skeleton's bone `k`.
+#[derive(Debug, Clone)]
 pub(super) struct Frozen {
     pub(super) skeleton: Skeleton,
     pub(super) bones: Vec<usize>,
@@ -70,41 +71,17 @@ pub(super) fn freeze_view(
     moving: &[usize],
     rule: impl Fn(usize) -> Option<(Option<[f64; 2]>, f64)>,
 ) -> Result<Frozen, TogetherError> {
-    let index = |b: usize| moving.binary_search(&b).ok();
     let mut bones = Vec::with_capacity(moving.len());
     let mut start = Vec::with_capacity(moving.len());
     for &m in moving {
-        let mut up = view.parent(m);
-        while let Some(p) = up.filter(|&p| index(p).is_none()) {
-            up = view.parent(p);
-        }
-        let [x, y] = view.origin(m);
-        let theta = view.rotation(m);
-        let [tx, ty] = view.tip(m);
-        // A bone of length 0 keeps a length (its children hang on offsets, not on its tip).
-        let length = math::distance(tx - x, ty - y).max(1e-9);
-        let (angle, offset) = match up {
-            Some(p) => {
-                let [px, py] = view.origin(p);
-                let tp = view.rotation(p);
-                let (s, c) = math::sin_cos(tp);
-                let (dx, dy) = (x - px, y - py);
-                (wrap_angle(theta - tp), [c * dx + s * dy, -s * dx + c * dy])
-            }
-            None => (theta, [x, y]),
-        };
-        let mut bone = Bone::new(view.name(m), length, angle).with_offset(offset);
+        let (up, geometry) = frozen_bone(view, moving, m, rule(m).and_then(|(limits, _)| limits))?;
+        let mut bone = Bone::new(view.name(m), geometry.length, geometry.angle).with_offset(geometry.offset);
         if let Some(p) = up {
             bone = bone.with_parent(view.name(p));
         }
-        if let Some((limits, stiffness)) = rule(m) {
-            if let Some([lo, hi]) = limits {
-                // The limits are on the local rotation; the skeleton's angle differs from it
-                // by what the bones between (and the parent's shear) add, constant here.
-                let shift = angle - view.local_rotation(m);
-                let l = JointLimits::new(lo + shift, hi + shift).map_err(|e| TogetherError::Rule(e.to_string()))?;
+        if let Some((_, stiffness)) = rule(m) {
+            if let Some(l) = geometry.limits {
                 bone = bone.with_limits(l);
-                bone.angle = angle.clamp(lo + shift, hi + shift);
             }
             bone = bone.with_stiffness(stiffness);
         }
@@ -113,6 +90,68 @@ pub(super) fn freeze_view(
     }
     let skeleton = Skeleton::new([0.0, 0.0], &bones).map_err(|e| TogetherError::Solve(e.to_string()))?;
     Ok(Frozen { skeleton, bones: moving.to_vec(), start })
+}
+
+/// [`freeze_view`] again into `frozen`, a freeze of the same `moving` bones of the same tree
+/// without stiffness, in place: its skeleton refitted ([`Skeleton::refit`]), nothing
+/// allocated; `geometry` is scratch. The same skeleton and start as [`freeze_view`]'s, bit for
+/// bit.
+pub(super) fn refreeze_view(
+    view: &impl PoseView,
+    frozen: &mut Frozen,
+    limits: impl Fn(usize) -> Option<[f64; 2]>,
+    geometry: &mut Vec<Refit>,
+) -> Result<(), TogetherError> {
+    geometry.clear();
+    frozen.start.clear();
+    for &m in &frozen.bones {
+        let (_, g) = frozen_bone(view, &frozen.bones, m, limits(m))?;
+        frozen.start.push(g.angle);
+        geometry.push(g);
+    }
+    frozen.skeleton.refit([0.0, 0.0], |k| geometry[k]).map_err(|e| TogetherError::Solve(e.to_string()))
+}
+
+/// Moving bone `m` as the frozen skeleton has it: its parent there (its nearest moving
+/// ancestor) and its geometry, its angle clamped into `limits` (of its local rotation).
+fn frozen_bone(
+    view: &impl PoseView,
+    moving: &[usize],
+    m: usize,
+    limits: Option<[f64; 2]>,
+) -> Result<(Option<usize>, Refit), TogetherError> {
+    let index = |b: usize| moving.binary_search(&b).ok();
+    let mut up = view.parent(m);
+    while let Some(p) = up.filter(|&p| index(p).is_none()) {
+        up = view.parent(p);
+    }
+    let [x, y] = view.origin(m);
+    let theta = view.rotation(m);
+    let [tx, ty] = view.tip(m);
+    // A bone of length 0 keeps a length (its children hang on offsets, not on its tip).
+    let length = math::distance(tx - x, ty - y).max(1e-9);
+    let (mut angle, offset) = match up {
+        Some(p) => {
+            let [px, py] = view.origin(p);
+            let tp = view.rotation(p);
+            let (s, c) = math::sin_cos(tp);
+            let (dx, dy) = (x - px, y - py);
+            (wrap_angle(theta - tp), [c * dx + s * dy, -s * dx + c * dy])
+        }
+        None => (theta, [x, y]),
+    };
+    let limits = match limits {
+        Some([lo, hi]) => {
+            // The limits are on the local rotation; the skeleton's angle differs from it by
+            // what the bones between (and the parent's shear) add, constant here.
+            let shift = angle - view.local_rotation(m);
+            let l = JointLimits::new(lo + shift, hi + shift).map_err(|e| TogetherError::Rule(e.to_string()))?;
+            angle = angle.clamp(lo + shift, hi + shift);
+            Some(l)
+        }
+        None => None,
+    };
+    Ok((up, Refit { length, angle, offset, limits }))
 }
 
 impl Character {
