@@ -340,7 +340,13 @@ export class Ik {
       let i = goals[k * GOAL];
       for (let left = goals[k * GOAL + 3]; left > 0 && i >= 0; left--, i = parents[i]) marked[i] = stamp;
     }
-    for (let k = 0; k < this.pinCount; k++) marked[pins[k]] = stamp;
+    // A pin moves only under a moving bone (the rig's rule: nothing above it turns otherwise),
+    // and nothing moves without a goal.
+    for (let k = 0; k < this.pinCount && this.goalCount > 0; k++) {
+      let q = pins[k];
+      while (q >= 0 && marked[q] !== stamp) q = parents[q];
+      if (q >= 0) marked[pins[k]] = stamp;
+    }
     let held = 0;
     for (let c = 0; c < iks.length; c++) {
       const list = ikBones[c];
