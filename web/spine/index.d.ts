@@ -82,6 +82,12 @@ export interface GoalOptions {
   bend?: "any" | "positive" | "negative";
 }
 
+/** A pin's options. */
+export interface PinOptions {
+  /** How many bones, from the pinned one up, may move to keep its tip (default 1: the bone alone; a leg under a moving hip: 3). */
+  bones?: number;
+}
+
 /** One goal's outcome in a report. */
 export interface GoalReport {
   /** The goal's bone name. */
@@ -107,8 +113,8 @@ export declare class Ik {
   clear(): void;
   /** `bone`'s tip to (x, y), skeleton world coordinates. Throws an Error naming the field and the value on bad input. */
   goal(bone: string | SpineBone, x: number, y: number, options?: GoalOptions): void;
-  /** `bone`'s tip (position and direction) stays where the animation put it this frame. */
-  pin(bone: string | SpineBone): void;
+  /** `bone`'s tip (position and direction) stays where the animation put it this frame; `bones` (default 1) of it and above it may move to keep it there. */
+  pin(bone: string | SpineBone, options?: PinOptions): void;
   /** Solves, writes the moved bones' `rotation`, updates the skeleton's world transforms. */
   apply(): Report;
   /** Frees the module memory of this skeleton; the Ik is unusable afterwards. */

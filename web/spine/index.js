@@ -140,6 +140,7 @@ export class Ik {
     this.goalCount = 0;
     this.pinCount = 0;
     this.goalX = new Float64Array(this.max);
+    this.pinGoal = new Uint8Array(this.max); // 1: a goal that is a pin of several bones (not reported)
     this.goalY = new Float64Array(this.max);
     this.goalBone = new Int32Array(this.max);
     this.pool = Array.from({ length: this.max }, () => ({ bone: "", error: 0 }));
@@ -210,6 +211,12 @@ export class Ik {
       this.bones[i].active === false
     )
       this.refuseGoal(bone, x, y, o);
+    this.write(k, i, x, y, bones, angle, weight, priority, bend);
+    this.pinGoal[k] = 0;
+  }
+
+  /** Writes goal `k` (checked) into the module's goal buffer; the goals are then k + 1. */
+  write(k, i, x, y, bones, angle, weight, priority, bend) {
     this.views();
     const g = this.goals;
     const at = k * GOAL;
@@ -245,9 +252,33 @@ export class Ik {
     throw fail(`goal(${name}): too many goals this frame (at most ${this.max}, one per bone)`);
   }
 
-  /** A pin: `bone`'s tip (position and direction) stays where the animation put it this frame. */
-  pin(bone) {
+  /**
+   * A pin: `bone`'s tip (position and direction) stays where the animation put it this frame.
+   * options.bones (default 1): how many bones, from this one up, may move to keep it there (a
+   * foot kept on the ground by its leg while a goal moves the hip: 3). With 1 the bone alone
+   * turns (a rig pin); with more, the pin is a primary goal at the tip's place and direction.
+   */
+  pin(bone, options) {
     const i = this.index(bone, "pin");
+    const bones = options?.bones ?? 1;
+    if (!(bones >= 1 && bones <= this.depths[i] && bones % 1 === 0))
+      throw fail(
+        bones > this.depths[i]
+          ? `pin(${this.names[i]}): bones: ${bones} goes past the root (${this.names[i]} has ${this.depths[i]} bones up to it)`
+          : `pin(${this.names[i]}): bones: must be a whole number >= 1, got ${show(bones)}`,
+      );
+    if (bones > 1) {
+      const b = this.bones[i];
+      const length = b.data.length ?? 0;
+      const k = this.goalCount;
+      if (k >= this.max) throw fail(`pin(${this.names[i]}): too many goals and pins this frame (at most ${this.max}, one per bone)`);
+      const x = b.worldX + b.a * length;
+      const y = b.worldY + b.c * length;
+      if (!(x - x === 0 && y - y === 0)) throw fail(`pin(${this.names[i]}): the bone's tip is not finite (${x}, ${y})`);
+      this.write(k, i, x, y, bones, Math.atan2(b.c, b.a) * (180 / Math.PI), 1, 0, 0);
+      this.pinGoal[k] = 1;
+      return;
+    }
     if (this.pinCount >= this.max) throw fail(`pin(${this.names[i]}): too many pins this frame (at most ${this.max}, one per bone)`);
     this.views();
     this.pins[this.pinCount++] = i;
@@ -396,18 +427,20 @@ export class Ik {
   /** Fills the report's goals from the skeleton's world numbers after the update. */
   reported() {
     const goals = this.report.goals;
-    const count = this.goalCount;
+    let count = 0;
+    for (let k = 0; k < this.goalCount; k++) if (!this.pinGoal[k]) count++;
     if (goals.length !== count) goals.length = count;
-    for (let k = 0; k < count; k++) {
+    for (let k = 0, g = 0; k < this.goalCount; k++) {
+      if (this.pinGoal[k]) continue;
       const i = this.goalBone[k];
       const b = this.bones[i];
       const length = b.data.length ?? 0;
-      const entry = this.pool[k];
+      const entry = this.pool[g];
       entry.bone = this.names[i];
       const dx = b.worldX + b.a * length - this.goalX[k];
       const dy = b.worldY + b.c * length - this.goalY[k];
       entry.error = Math.sqrt(dx * dx + dy * dy); // not Math.hypot: a builtin call, its answer boxed
-      goals[k] = entry;
+      goals[g++] = entry;
     }
     return this.report;
   }

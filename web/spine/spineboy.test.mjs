@@ -122,6 +122,37 @@ test("spineboy walk: an unreachable goal ends at the nearest pose, with no flip 
   console.log(`# spineboy walk, unreachable goal: largest turn of an arm bone in one frame ${worstTurn.toFixed(3)} degrees`);
 });
 
+test("spineboy walk: a goal moving the hip (torso, 2 bones) with rear-foot pinned by its leg (3 bones): both within 1e-3 every frame", async () => {
+  const boy = await standIn("spine-spineboy-pro", "walk");
+  const { skeleton } = boy;
+  gameUpdate(boy, 0);
+  const ik = await attach(skeleton);
+  const torso = skeleton.findBone("torso");
+  const foot = skeleton.findBone("rear-foot");
+  const two = { bones: 2 };
+  const leg = { bones: 3 };
+  let worstGoal = 0;
+  let worstPin = 0;
+  for (let f = 0; f < FRAMES; f++) {
+    gameUpdate(boy, DT);
+    const hold = tip(foot);
+    const [tx, ty] = tip(torso);
+    ik.clear();
+    ik.goal("torso", tx + 3 * Math.sin(f / 20), ty - 2, two);
+    ik.pin("rear-foot", leg);
+    const report = ik.apply();
+    assert.equal(report.goals.length, 1, "a pin is not reported as a goal");
+    assert.ok(report.moved.includes("hip") && report.moved.includes("rear-thigh"), `frame ${f}: moved ${report.moved}`);
+    const [px, py] = tip(foot);
+    const drift = Math.hypot(px - hold[0], py - hold[1]);
+    assert.ok(report.goals[0].error <= 1e-3, `frame ${f}: the torso's tip is ${report.goals[0].error} from its goal`);
+    assert.ok(drift <= 1e-3, `frame ${f}: the pinned foot's tip moved ${drift}`);
+    worstGoal = Math.max(worstGoal, report.goals[0].error);
+    worstPin = Math.max(worstPin, drift);
+  }
+  console.log(`# spineboy walk, hip moved with the rear foot pinned by its leg: worst goal error ${worstGoal.toExponential(2)}, pin drift ${worstPin.toExponential(2)}`);
+});
+
 test("spineboy: bad input names the field and the value", async () => {
   const boy = await standIn("spine-spineboy-pro", "walk");
   gameUpdate(boy, 0);
@@ -130,5 +161,7 @@ test("spineboy: bad input names the field and the value", async () => {
   assert.throws(() => ik.goal("front-fist", 0, NaN, { bones: 3 }), /goal\(front-fist\): y: must be a finite number, got NaN/);
   assert.throws(() => ik.goal("front-fist", 0, 0, { bones: 12 }), /goal\(front-fist\): bones: 12 goes past the root \(front-fist has 9 bones up to it\)/);
   assert.throws(() => ik.pin("rear-fot"), /pin: bone: no bone named "rear-fot"/);
+  assert.throws(() => ik.pin("rear-foot", { bones: 0 }), /pin\(rear-foot\): bones: must be a whole number >= 1, got 0/);
+  assert.throws(() => ik.pin("rear-foot", { bones: 9 }), /pin\(rear-foot\): bones: 9 goes past the root \(rear-foot has 5 bones up to it\)/);
   await assert.rejects(attach(boy.skeleton, { limits: { "front-bracer": [120, -40] } }), /limits\["front-bracer"\]: must be \[minDeg, maxDeg\] with min <= max, got "\[120,-40\]"/);
 });

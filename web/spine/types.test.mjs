@@ -24,6 +24,7 @@ export async function frame(x: number, y: number): Promise<number> {
   ik.goal("front-fist", x, y, { bones: 3, angle: 10, weight: 2, priority: "secondary", bend: "positive" });
   ik.goal(skeleton.bones[0], x, y);
   ik.pin("rear-foot");
+  ik.pin("rear-foot", { bones: 3 });
   const report: Report = ik.apply();
   const first: GoalReport = report.goals[0];
   const moved: string[] = report.moved;
@@ -33,6 +34,8 @@ export async function frame(x: number, y: number): Promise<number> {
   ik.goal("front-fist", "1", y);
   // @ts-expect-error a limit is [min, max]
   await attach(skeleton, { limits: { "front-bracer": 40 } });
+  // @ts-expect-error a pin's bones is a number
+  ik.pin("rear-foot", { bones: "3" });
   // @ts-expect-error the report's goals are read, not replaced
   ik.report = report;
   ik.dispose();
