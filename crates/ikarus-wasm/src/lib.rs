@@ -19,11 +19,9 @@ use std::sync::Mutex;
 
 mod chain;
 mod character;
-mod spine_rig;
 
 pub use chain::{Chain, follow_status_name, status_name};
 pub use character::Character;
-pub use spine_rig::SpineRig;
 
 use ikarus::Interrupt;
 use ikarus_edge::edge::{self, Endpoint, Limits};

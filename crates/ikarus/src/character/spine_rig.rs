@@ -25,6 +25,10 @@ use crate::solve::{Outcome, Pin, RigTask, SolveError, Solver};
 /// scaleX, scaleY, shearX, shearY` (rotation and shears in degrees), as the runtime names them.
 pub const SPINE_BONE_NUMBERS: usize = 13;
 
+/// The runtime's names of a bone's [`SPINE_BONE_NUMBERS`] numbers, in their order.
+const SPINE_BONE_FIELDS: [&str; SPINE_BONE_NUMBERS] =
+    ["a", "b", "c", "d", "worldX", "worldY", "x", "y", "rotation", "scaleX", "scaleY", "shearX", "shearY"];
+
 /// One bone of a [`SpineRig`], as the runtime's bone data has it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpineBone {
@@ -227,8 +231,9 @@ impl SpineRig {
             return Err(TogetherError::Rule(format!("pin: no bone {p}")));
         }
         for (i, v) in frame.numbers.chunks_exact(SPINE_BONE_NUMBERS).enumerate() {
-            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-                return Err(TogetherError::Rule(format!("numbers[bone {i}]: must be finite, got {x}")));
+            if let Some((k, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                let field = SPINE_BONE_FIELDS[k];
+                return Err(TogetherError::Rule(format!("frame[{i}].{field}: must be finite, got {x}")));
             }
             self.world[i] = Affine { a: v[0], b: v[1], c: v[2], d: v[3], x: v[4], y: v[5] };
             self.local[i] = LocalTransform {
