@@ -50,6 +50,8 @@ canvas.addEventListener("pointerleave", () => (pointer = null));
 const rearFoot = skeleton.findBone("rear-foot");
 /** The rear foot's tip as the walk put it this frame, before the add-on. */
 const pinnedAt = [0, 0];
+/** Every bone's world numbers (a b c d worldX worldY) as the runtime left them this frame. */
+const before = new Float64Array(6 * skeleton.bones.length);
 const times = new Float64Array(300);
 let frames = 0;
 let report = null;
@@ -64,6 +66,10 @@ function step(dt) {
   if (pointer) ik.goal(fist, pointer[0], pointer[1], { bones: 3 });
   ik.pin(rearFoot);
   [pinnedAt[0], pinnedAt[1]] = tip(rearFoot);
+  for (let i = 0; i < skeleton.bones.length; i++) {
+    const b = skeleton.bones[i];
+    before.set([b.a, b.b, b.c, b.d, b.worldX, b.worldY], 6 * i);
+  }
   const t = performance.now();
   report = ik.apply();
   times[frames % times.length] = (performance.now() - t) * 1000;
@@ -168,5 +174,6 @@ window.spineDemo = {
   },
   times,
   pinnedAt,
+  before,
   ready: true,
 };
