@@ -283,3 +283,30 @@ fn bad_frames_and_goals_are_refused_in_one_line_naming_the_field_and_the_value()
     nums[3 * SPINE_BONE_NUMBERS + 12] = f64::INFINITY;
     assert_eq!(solve(&nums, &[goal(5, 2)], &[]), "frame[3].shearY: must be finite, got inf");
 }
+
+#[test]
+fn a_bend_picks_the_side_the_joint_bends_and_the_goal_is_met_on_either() {
+    // The bracer and the fist (2 bones) to a point 70% of their reach from the elbow: once
+    // bending counter-clockwise, once clockwise, measured on the pose made again.
+    let c = spineboy();
+    let (bones, locals) = spineboy_at(&c, 0.4);
+    let placement = c.placement();
+    let [bracer, fist] = ["front-bracer", "front-fist"].map(|n| named(&c, n));
+    let w = worlds(&bones, &locals, placement);
+    let nums = numbers(&w, &locals);
+    let elbow = [w[bracer].x, w[bracer].y];
+    let reach = dist([w[fist].x, w[fist].y], elbow) + bones[fist].length * libm::hypot(w[fist].a, w[fist].c);
+    let target = [elbow[0] + 0.5 * reach, elbow[1] - 0.5 * reach];
+    for (bend, sign) in [(ikarus::solve::Bend::Positive, 1.0), (ikarus::solve::Bend::Negative, -1.0)] {
+        let goal = RigGoal::new(fist, Goal::position(target[0], target[1]).unwrap()).with_bend(bend);
+        let goals = [TipGoal { goal, bones: 2 }];
+        let frame = SpineFrame { numbers: &nums, placement, goals: &goals, pins: &[] };
+        let mut rotations = vec![0.0; bones.len()];
+        SpineRig::new(bones.clone()).unwrap().solve(&frame, &mut solver(), &mut rotations).unwrap();
+        let again = worlds(&bones, &with_rotations(&locals, &rotations), placement);
+        let miss = dist(tip(&again[fist], bones[fist].length), target);
+        assert!(miss < 1e-3, "{bend:?}: missed by {miss}");
+        let turn = libm::remainder(again[fist].rotation() - again[bracer].rotation(), std::f64::consts::TAU);
+        assert!(turn * sign > 0.05, "{bend:?}: the fist turned {turn} from the bracer");
+    }
+}

@@ -16,7 +16,7 @@
 //! rigidly by its nearest moving ancestor, as the frozen skeleton has it. Bones that do not move
 //! keep their rotation.
 
-use super::super::world::{Affine, world_transform};
+use super::super::world::{Affine, aim_frame, world_transform};
 use super::super::{Inherit, LocalTransform, Placement};
 use super::freeze::{Frozen, PoseView, freeze_view, refreeze_view, rotation_for};
 use super::rules::{TipGoal, TogetherError};
@@ -352,7 +352,7 @@ impl SpineRig {
         for (k, &m) in frozen.bones.iter().enumerate() {
             let parent = self.bones[m].parent.map(|p| self.parent_world(p));
             let inherit = self.bones[m].inherit;
-            let mut r = rotation_for(&self.local[m], inherit, parent.as_ref(), placement, self.directions[k]);
+            let mut r = rotation_toward(&self.local[m], inherit, parent.as_ref(), placement, self.directions[k]);
             if let Some([lo, hi]) = self.bones[m].limits_deg {
                 r = r.clamp(lo.to_radians(), hi.to_radians());
             }
@@ -384,6 +384,38 @@ impl SpineRig {
         }
         self.world[p]
     }
+}
+
+/// The local rotation that points a bone's world x axis along `direction`: in closed form
+/// where its frame is a fixed matrix ([`aim_frame`]: the normal, onlyTranslation and
+/// noRotationOrReflection modes; a root under the placement), by [`rotation_for`]'s Newton
+/// steps for the noScale modes (or a singular frame). The nearest to its current rotation.
+fn rotation_toward(
+    local: &LocalTransform,
+    inherit: Inherit,
+    parent: Option<&Affine>,
+    placement: Placement,
+    direction: f64,
+) -> f64 {
+    let (frame, theta) = match (parent, inherit) {
+        (None, _) => (Affine::of_placement(placement), 0.0),
+        (Some(p), Inherit::Normal | Inherit::OnlyTranslation | Inherit::NoRotationOrReflection) => {
+            aim_frame(inherit, p, placement)
+        }
+        (Some(_), Inherit::NoScale | Inherit::NoScaleOrReflection) => {
+            return rotation_for(local, inherit, parent, placement, direction);
+        }
+    };
+    // The world x axis is `frame · (cos(r + shx − θ), sin(r + shx − θ)) · scaleX`.
+    let (s, c) = math::sin_cos(direction);
+    let Some([u, v]) = Affine { x: 0.0, y: 0.0, ..frame }.to_local(c, s) else {
+        return rotation_for(local, inherit, parent, placement, direction);
+    };
+    let mut r = math::atan2(v, u) + theta - local.shear_x;
+    if local.scale_x < 0.0 {
+        r += std::f64::consts::PI;
+    }
+    local.rotation + wrap_angle(r - local.rotation)
 }
 
 /// `p` in `q`'s frame: `q⁻¹ · p`, `None` when `q` is singular.
