@@ -1,17 +1,16 @@
 // The stand-in skeleton (web/spine/standin/) against Spine's own runtime: after `state.apply` and
 // `skeleton.updateWorldTransform`, every bone's world transform matches the runtime's output
-// (/work/shared/characters/reference/full/*-full.json, spine-core 4.2.119: its protocol is in each
+// (crates/ikarus-edge/tests/reference/*-full.json, spine-core 4.2.119: its protocol is in each
 // file) within 1e-3, for every case of spineboy, the raptor, stretchyman (paths) and
 // celestial-circus (physics stepped at 60 Hz); and the API's other promises (a mix written by
 // JavaScript is the one posed, the placement, worldToLocal/localToWorld, refusals).
 //
 //   IKARUS_WEB_DIR=DIR node --test web/spine/standin.test.mjs   (DIR: what `bash web/build DIR` wrote)
 //
-// IKARUS_REFERENCE_DIR: the reference files' directory (default /work/shared/characters/reference/full,
-// else examples/characters/reference/full); a character whose reference is missing is skipped, said so.
+// IKARUS_REFERENCE_DIR: the reference files' directory (default crates/ikarus-edge/tests/reference).
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, readFileSync } from "node:fs";
+import { readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
 import { loadStandIn, Physics, Inherit } from "./standin/index.js";
@@ -22,9 +21,8 @@ if (!dir) throw new Error("IKARUS_WEB_DIR: the directory `bash web/build DIR` wr
 const core = await import(pathToFileURL(join(dir, "ikarus_core.js")).href);
 await core.default({ module_or_path: readFileSync(join(dir, "ikarus_core_bg.wasm")) });
 
-const referenceDir = [process.env.IKARUS_REFERENCE_DIR, "/work/shared/characters/reference/full", join(root, "examples/characters/reference/full")]
-  .filter(Boolean)
-  .find((d) => existsSync(d));
+// The repository's copies of Spine's runtime output (the edge's reference tests read them too).
+const referenceDir = process.env.IKARUS_REFERENCE_DIR ?? join(root, "crates", "ikarus-edge", "tests", "reference");
 const character = (name) => readFileSync(join(root, "examples", "characters", `spine-${name}-pro.json`), "utf8");
 
 /** The largest difference of any bone's world numbers from the reference's, with where. */
@@ -71,8 +69,8 @@ function poseCase(skeleton, state, c) {
 }
 
 for (const name of ["spineboy", "raptor", "stretchyman", "celestial-circus"]) {
-  const file = referenceDir && join(referenceDir, `spine-${name}-pro-full.json`);
-  test(`${name}: every case of Spine's runtime reference, every bone's world within 1e-3`, { skip: !file || !existsSync(file) ? `no reference file for ${name}` : false }, async () => {
+  const file = join(referenceDir, `spine-${name}-pro-full.json`);
+  test(`${name}: every case of Spine's runtime reference, every bone's world within 1e-3`, async () => {
     const ref = JSON.parse(readFileSync(file, "utf8"));
     const { skeleton, state } = await loadStandIn(character(name), { core });
     let all = 0;
@@ -87,8 +85,7 @@ for (const name of ["spineboy", "raptor", "stretchyman", "celestial-circus"]) {
 }
 
 test("the raptor's walk at 0.4 s (the single-case reference) within 1e-3", async () => {
-  const file = join(dirname(referenceDir ?? ""), "ref-raptor-walk-t0.4-spinecore4.2.119.json");
-  if (!referenceDir || !existsSync(file)) return;
+  const file = join(referenceDir, "ref-raptor-walk-t0.4-spinecore4.2.119.json");
   const ref = JSON.parse(readFileSync(file, "utf8"));
   const { skeleton, state } = await loadStandIn(character("raptor"), { core });
   poseCase(skeleton, state, { animation: "walk", time: 0.4 });

@@ -29,9 +29,9 @@ pub const WORLD: usize = 13;
 pub(super) struct Given {
     /// [`LOCAL`] per bone, written by [`Character::sample_here`] and by JavaScript.
     local: Vec<f64>,
-    /// [`IK`] per IK constraint, written by [`Character::sample_here`] and by JavaScript.
+    /// 5 per IK constraint, written by [`Character::sample_here`] and by JavaScript.
     ik: Vec<f64>,
-    /// [`WORLD`] per bone, written by [`Character::world_here`].
+    /// 13 per bone, written by [`Character::world_here`].
     world: Vec<f64>,
     /// The IK constraints' indices among the character's constraints, in the file's order.
     iks: Vec<usize>,
@@ -105,7 +105,7 @@ impl Character {
             .collect()
     }
 
-    /// Per bone, [`LOCAL`] flags (1 or 0): whether the chosen animation keys that number (x, y,
+    /// Per bone, 7 flags (1 or 0): whether the chosen animation keys that number (x, y,
     /// rotation, scaleX, scaleY, shearX, shearY). A runtime's `AnimationState.apply` sets only
     /// those; a stand-in leaves the others as they are. All 0 without an animation.
     #[wasm_bindgen(js_name = keyedLocals)]
@@ -183,7 +183,7 @@ impl Character {
         self.keep_error(done)
     }
 
-    /// Where the locals buffer lies in the module's memory ([`LOCAL`] numbers per bone; a byte
+    /// Where the locals buffer lies in the module's memory (7 numbers per bone; a byte
     /// offset, fixed for the character's life once [`sample_here`](Character::sample_here) or
     /// [`world_here`](Character::world_here) has run).
     #[wasm_bindgen(getter, js_name = localsPtr)]
@@ -192,7 +192,7 @@ impl Character {
         self.given.local.as_ptr() as usize
     }
 
-    /// Where the IK buffer lies ([`IK`] numbers per IK constraint), as
+    /// Where the IK buffer lies (5 numbers per IK constraint), as
     /// [`locals_ptr`](Character::locals_ptr).
     #[wasm_bindgen(getter, js_name = ikPtr)]
     pub fn ik_ptr(&mut self) -> usize {
@@ -200,7 +200,7 @@ impl Character {
         self.given.ik.as_ptr() as usize
     }
 
-    /// Where the worlds buffer lies ([`WORLD`] numbers per bone), as
+    /// Where the worlds buffer lies (13 numbers per bone), as
     /// [`locals_ptr`](Character::locals_ptr).
     #[wasm_bindgen(getter, js_name = worldsPtr)]
     pub fn worlds_ptr(&mut self) -> usize {
