@@ -285,6 +285,28 @@ fn bad_frames_and_goals_are_refused_in_one_line_naming_the_field_and_the_value()
 }
 
 #[test]
+fn an_unevenly_scaled_skeleton_is_refused_naming_both_scales() {
+    let (bones, locals) = six_bones();
+    let placement = Placement { position: [0.0, 0.0], scale: [1.5, -0.75] };
+    let w = worlds(&bones, &locals, placement);
+    let mut rig = SpineRig::new(bones.clone()).unwrap();
+    let nums = numbers(&w, &locals);
+    let goals = [TipGoal { goal: RigGoal::new(5, Goal::position(1.0, 2.0).unwrap()), bones: 2 }];
+    let f = SpineFrame { numbers: &nums, placement, goals: &goals, pins: &[] };
+    let e = rig.solve(&f, &mut solver(), &mut [0.0; 6]).map(|_| ()).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "skeleton scale: must be even (|scaleX| = |scaleY|, either may be negative), got scaleX 1.5, scaleY -0.75"
+    );
+    // A flip is even: solved.
+    let placement = Placement { position: [0.0, 0.0], scale: [-1.25, 1.25] };
+    let w = worlds(&bones, &locals, placement);
+    let nums = numbers(&w, &locals);
+    let f = SpineFrame { numbers: &nums, placement, goals: &goals, pins: &[] };
+    assert!(rig.solve(&f, &mut solver(), &mut [0.0; 6]).is_ok());
+}
+
+#[test]
 fn a_bend_picks_the_side_the_joint_bends_and_the_goal_is_met_on_either() {
     // The bracer and the fist (2 bones) to a point 70% of their reach from the elbow: once
     // bending counter-clockwise, once clockwise, measured on the pose made again.

@@ -295,6 +295,15 @@ impl SpineRig {
         if let Some(&p) = frame.pins.iter().find(|&&p| p >= n) {
             return Err(TogetherError::Rule(format!("pin: no bone {p}")));
         }
+        // A skeleton scaled unevenly stretches each bone by its direction, which the frozen
+        // skeleton's rigid bones do not follow: the rounds then settle tens of units off the
+        // goal. Refused rather than answered wrong.
+        let [sx, sy] = frame.placement.scale;
+        if (sx.abs() - sy.abs()).abs() > 1e-9 * sx.abs().max(sy.abs()) {
+            return Err(TogetherError::Rule(format!(
+                "skeleton scale: must be even (|scaleX| = |scaleY|, either may be negative), got scaleX {sx}, scaleY {sy}"
+            )));
+        }
         for (i, v) in frame.numbers.chunks_exact(SPINE_BONE_NUMBERS).enumerate() {
             if let Some((k, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
                 let field = SPINE_BONE_FIELDS[k];
