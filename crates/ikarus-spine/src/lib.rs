@@ -50,6 +50,8 @@ pub struct SpineRig {
     errors: Vec<f64>,
     goals: Vec<TipGoal>,
     pins: Vec<usize>,
+    /// The message of the last refused [`SpineRig::apply_frame`].
+    last_error: String,
 }
 
 #[wasm_bindgen]
@@ -78,6 +80,28 @@ impl SpineRig {
     ) -> Result<usize, JsError> {
         let placement = Placement { position: [x, y], scale: [scale_x, scale_y] };
         self.solve(placement, goals, pins).map_err(|m| JsError::new(&m))
+    }
+
+    /// [`SpineRig::apply`] for every frame of a game: the same solve, answered as one plain
+    /// number, so that the call allocates nothing on the JavaScript side (a `Result` comes back
+    /// through wasm-bindgen as a fresh array): how many bones moved, or −1 when the input is
+    /// refused, its one-line message then in [`SpineRig::last_error`].
+    #[wasm_bindgen(js_name = applyFrame)]
+    pub fn apply_frame(&mut self, x: f64, y: f64, scale_x: f64, scale_y: f64, goals: f64, pins: f64) -> f64 {
+        let placement = Placement { position: [x, y], scale: [scale_x, scale_y] };
+        match self.solve(placement, goals, pins) {
+            Ok(moved) => moved as f64,
+            Err(message) => {
+                self.last_error = message;
+                -1.0
+            }
+        }
+    }
+
+    /// The message of the last input [`SpineRig::apply_frame`] refused (empty before any).
+    #[wasm_bindgen(getter, js_name = lastError)]
+    pub fn last_error(&self) -> String {
+        self.last_error.clone()
     }
 
     /// Byte offset of the frame's numbers ([`FRAME_NUMBERS`] per bone).
@@ -183,6 +207,7 @@ impl SpineRig {
             errors: vec![0.0; n],
             goals: Vec::with_capacity(n),
             pins: Vec::with_capacity(n),
+            last_error: String::new(),
         })
     }
 

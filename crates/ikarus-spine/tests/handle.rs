@@ -111,6 +111,11 @@ fn bad_input_is_one_line_naming_the_field_and_the_value() {
     rig.frame_mut()[3 * FRAME_NUMBERS + 8] = f64::NAN;
     let e = rig.solve(PLACED, 1.0, 0.0).unwrap_err();
     assert_eq!(e, "frame[3].rotation: must be finite, got NaN");
+    // applyFrame answers a refusal as −1 with the same line in lastError, and a solve as its count.
+    assert_eq!(rig.apply_frame(0.0, 0.0, 1.0, 1.0, 1.0, 0.0), -1.0);
+    assert_eq!(rig.last_error(), "frame[3].rotation: must be finite, got NaN");
+    write_frame(&c, &mut rig, 0.4);
+    assert_eq!(rig.apply_frame(0.0, 0.0, 1.0, 1.0, 1.0, 0.0), 3.0);
 }
 
 /// Parents, lengths, inherits, limits and the message they get.
