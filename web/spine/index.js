@@ -316,13 +316,6 @@ export class Ik {
       f[o + 11] = b.shearX;
       f[o + 12] = b.shearY;
     }
-    // A pinned bone the last solve moved: its rotation as that solve left it, so that the rig's
-    // warm start (which turns each moving bone by last answer − this frame's rotation, and pins
-    // where it starts) starts a pinned bone where the runtime has it this frame.
-    for (let k = 0; k < this.pinCount; k++) {
-      const i = this.pins[k];
-      if (this.movedAt[i] === stamp - 1) f[i * NUMBERS + 8] = this.rotations[i];
-    }
     const m = this.solve(skeleton.x ?? 0, skeleton.y ?? 0, skeleton.scaleX ?? 1, skeleton.scaleY ?? 1);
     this.views();
     const { movedAt, heldAt, moved, rotations, limits, zeroed } = this;

@@ -215,6 +215,33 @@ fn a_pin_holds_when_a_goal_turns_the_bones_above_it() {
 }
 
 #[test]
+fn a_pin_under_moving_bones_holds_where_each_frame_of_the_walk_puts_it() {
+    // Frame after frame of walk, the torso's goal turns the hip over the pinned rear foot: the
+    // foot stays where each frame has it, not where the solve before left it.
+    let c = spineboy();
+    let placement = c.placement();
+    let (torso, foot) = (named(&c, "torso"), named(&c, "rear-foot"));
+    let (bones, _) = spineboy_at(&c, 0.0);
+    let mut rig = SpineRig::new(bones.clone()).unwrap();
+    let mut rotations = vec![0.0; bones.len()];
+    let mut worst: f64 = 0.0;
+    for f in 0..30 {
+        let (_, locals) = spineboy_at(&c, f as f64 / 60.0);
+        let w = worlds(&bones, &locals, placement);
+        let nums = numbers(&w, &locals);
+        let t = tip(&w[torso], bones[torso].length);
+        let mut goal = RigGoal::new(torso, Goal::position(t[0] - 40.0, t[1] - 10.0).unwrap());
+        goal.priority = Priority::Secondary;
+        let goals = [TipGoal { goal, bones: 3 }];
+        let frame = SpineFrame { numbers: &nums, placement, goals: &goals, pins: &[foot] };
+        rig.solve(&frame, &mut solver(), &mut rotations).unwrap();
+        let again = worlds(&bones, &with_rotations(&locals, &rotations), placement);
+        worst = worst.max(dist(tip(&again[foot], bones[foot].length), tip(&w[foot], bones[foot].length)));
+    }
+    assert!(worst < 1e-3, "the pinned foot strayed {worst} from a frame's");
+}
+
+#[test]
 fn a_goal_out_of_reach_swept_around_ends_nearest_and_never_flips() {
     let c = spineboy();
     let (bones, locals) = spineboy_at(&c, 0.4);

@@ -183,7 +183,12 @@ impl SpineRig {
             return Ok(None);
         }
         let mut frozen = self.freeze()?;
-        self.warm_start(&mut frozen);
+        // A pin holds its bone's tip where the solve starts: started from the answer before,
+        // it would hold the foot where that frame had it, drifting frame by frame. With a pin
+        // in the solve it starts from this frame's pose.
+        if !frame.pins.iter().any(|&p| self.on[p]) {
+            self.warm_start(&mut frozen);
+        }
         self.fill_task(&frozen, frame);
         for round in 0..ROUNDS {
             if round > 0 {
