@@ -30,6 +30,28 @@ export function startServer() {
   });
 }
 
+/** `python3 -m http.server` on a free loopback port serving `dir` (static files, no ikarus
+ * server): {child, url}; kill `child` when done. */
+export function staticServer(dir) {
+  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], {
+    stdio: ["ignore", "pipe", "pipe"],
+  });
+  child.stderr.on("data", () => {}); // its request log
+  return new Promise((resolve, reject) => {
+    let out = "";
+    const timer = setTimeout(() => reject(new Error(`no address from http.server: ${out}`)), 15000);
+    child.on("error", reject);
+    child.stdout.on("data", (chunk) => {
+      out += chunk;
+      const m = out.match(/port (\d+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, url: `http://127.0.0.1:${m[1]}` });
+      }
+    });
+  });
+}
+
 export const launch = () =>
   chromium.launch({
     executablePath: browserPath,

@@ -10,40 +10,18 @@
 //   IKARUS_WEB_DIR=DIR node --test web/spine-demo.test.mjs
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
 import { copyFileSync, mkdirSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
-import { artifacts, launch, openPage } from "../e2e/browser.mjs";
+import { artifacts, launch, openPage, staticServer } from "../e2e/browser.mjs";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "..");
 const dir = process.env.IKARUS_WEB_DIR;
 if (!dir) throw new Error("IKARUS_WEB_DIR: the directory `bash web/build DIR` wrote");
 
-/** `python3 -m http.server` on a free loopback port serving `dir`: {child, url}. */
-function staticServer() {
-  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], {
-    stdio: ["ignore", "pipe", "pipe"],
-  });
-  child.stderr.on("data", () => {}); // its request log
-  return new Promise((resolve, reject) => {
-    let out = "";
-    const timer = setTimeout(() => reject(new Error(`no address from http.server: ${out}`)), 15000);
-    child.on("error", reject);
-    child.stdout.on("data", (chunk) => {
-      out += chunk;
-      const m = out.match(/port (\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolve({ child, url: `http://127.0.0.1:${m[1]}` });
-      }
-    });
-  });
-}
-
 test("the demo page: spineboy's fist follows the real pointer within 1e-3, the rest of the body as the walk left it", async () => {
   mkdirSync(artifacts, { recursive: true });
-  const host = await staticServer();
+  const host = await staticServer(dir);
   const browser = await launch();
   try {
     const { page, errors } = await openPage(browser, { width: 900, height: 800 });

@@ -11,38 +11,16 @@
 //   IKARUS_WEB_DIR=DIR node --test web/static.test.mjs    (web/test runs it after web/build)
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync } from "node:fs";
 import { join } from "node:path";
-import { artifacts, binary, launch, openPage, startServer } from "../e2e/browser.mjs";
+import { artifacts, binary, launch, openPage, startServer, staticServer } from "../e2e/browser.mjs";
 
 const dir = process.env.IKARUS_WEB_DIR;
 if (!dir) throw new Error("IKARUS_WEB_DIR: the directory `bash web/build DIR` wrote (web/test sets it)");
 
-/** `python3 -m http.server` on a free loopback port serving `dir`: {child, url}. */
-function staticServer() {
-  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", dir, "0"], {
-    stdio: ["ignore", "pipe", "pipe"],
-  });
-  child.stderr.on("data", () => {}); // its request log
-  return new Promise((resolve, reject) => {
-    let out = "";
-    const timer = setTimeout(() => reject(new Error(`no address from http.server: ${out}`)), 15000);
-    child.on("error", reject);
-    child.stdout.on("data", (chunk) => {
-      out += chunk;
-      const m = out.match(/port (\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolve({ child, url: `http://127.0.0.1:${m[1]}` });
-      }
-    });
-  });
-}
-
 test("the static build runs the playground with no ikarus server", async () => {
   mkdirSync(artifacts, { recursive: true });
-  const host = await staticServer();
+  const host = await staticServer(dir);
   const browser = await launch();
   const seen = {}; // what the page did, checked against the native server after the browser is closed
   try {
@@ -349,7 +327,7 @@ test("the static build runs the playground with no ikarus server", async () => {
 });
 
 test("a job over the page's budget is stopped: answered 503 naming the budget, the worker replaced, the next job answered", async () => {
-  const host = await staticServer();
+  const host = await staticServer(dir);
   const browser = await launch();
   try {
     const { page, errors } = await openPage(browser);
@@ -393,7 +371,7 @@ test("a job over the page's budget is stopped: answered 503 naming the budget, t
 });
 
 test("the static page loads a Spine .skel: decoded by the module, the character the native server reads from it", async () => {
-  const host = await staticServer();
+  const host = await staticServer(dir);
   const native = await startServer();
   const browser = await launch();
   try {

@@ -5,36 +5,14 @@
 //   IKARUS_SPINE_DIR=DIR node --test web/spine/browser.test.mjs   (needs Chromium and e2e's playwright-core)
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
 import { cpSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { fileURLToPath } from "node:url";
-import { launch, openPage } from "../../e2e/browser.mjs";
+import { launch, openPage, staticServer } from "../../e2e/browser.mjs";
 
 const dir = process.env.IKARUS_SPINE_DIR;
 if (!dir) throw new Error("IKARUS_SPINE_DIR: the directory `bash web/spine/build DIR` wrote (web/spine/test sets it)");
-
-/** `python3 -m http.server` on a free loopback port serving `root`: {child, url}. */
-function staticServer(root) {
-  const child = spawn("python3", ["-u", "-m", "http.server", "--bind", "127.0.0.1", "--directory", root, "0"], {
-    stdio: ["ignore", "pipe", "pipe"],
-  });
-  child.stderr.on("data", () => {}); // its request log
-  return new Promise((resolve, reject) => {
-    let out = "";
-    const timer = setTimeout(() => reject(new Error(`no address from http.server: ${out}`)), 15000);
-    child.on("error", reject);
-    child.stdout.on("data", (chunk) => {
-      out += chunk;
-      const m = out.match(/port (\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolve({ child, url: `http://127.0.0.1:${m[1]}` });
-      }
-    });
-  });
-}
 
 const page = `<!doctype html><meta charset="utf-8"><title>ikarus-spine</title><link rel="icon" href="data:,">
 <script type="module">
