@@ -1,7 +1,7 @@
 //! The handle's contract natively: the numbers JavaScript writes in, the numbers it reads out,
 //! and the one-line errors.
 
-use ikarus::character::{Character, Inherit, Placement, PoseRequest, Posed};
+use ikarus::character::{Character, Inherit, Placement, PoseRequest, Posed, spine_bone_numbers};
 use ikarus_spine::{FRAME_NUMBERS, GOAL_NUMBERS, SpineRig};
 
 fn spineboy() -> Character {
@@ -27,21 +27,7 @@ fn write_frame(c: &Character, rig: &mut SpineRig, time: f64) -> Posed {
     c.pose(&request, &mut posed).unwrap();
     for i in 0..posed.len() {
         let (w, l) = (posed.world(i), posed.local(i));
-        let v = [
-            w.a,
-            w.b,
-            w.c,
-            w.d,
-            w.x,
-            w.y,
-            l.x,
-            l.y,
-            l.rotation.to_degrees(),
-            l.scale_x,
-            l.scale_y,
-            l.shear_x.to_degrees(),
-            l.shear_y.to_degrees(),
-        ];
+        let v = spine_bone_numbers(&w, &l);
         rig.frame_mut()[i * FRAME_NUMBERS..(i + 1) * FRAME_NUMBERS].copy_from_slice(&v);
     }
     posed

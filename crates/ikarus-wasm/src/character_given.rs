@@ -8,7 +8,9 @@
 //! per bone); nothing is allocated per call once the character's buffers have grown.
 
 use ikarus::character::{BoneProperty, ConstraintKeys, PoseRequest, Settings};
-use ikarus::character::{Constraint, GivenPose, IkBones, IkSettings, LocalTransform, PhysicsMode, Placement};
+use ikarus::character::{
+    Constraint, GivenPose, IkBones, IkSettings, LocalTransform, PhysicsMode, Placement, spine_local_numbers,
+};
 use wasm_bindgen::prelude::*;
 
 use super::Character;
@@ -223,15 +225,7 @@ impl Character {
         let g = &mut self.given;
         for (i, out) in g.local.chunks_exact_mut(LOCAL).enumerate() {
             let l = self.given_posed.local(i);
-            out.copy_from_slice(&[
-                l.x,
-                l.y,
-                l.rotation.to_degrees(),
-                l.scale_x,
-                l.scale_y,
-                l.shear_x.to_degrees(),
-                l.shear_y.to_degrees(),
-            ]);
+            out.copy_from_slice(&spine_local_numbers(&l));
         }
         for (k, s) in g.settings.iter_mut().enumerate() {
             *s = self.given_posed.settings(k);

@@ -3,7 +3,7 @@
 //! and p99 µs; asserts nothing (`cargo run --release -p ikarus --example spine_rig_timing`).
 
 use ikarus::Goal;
-use ikarus::character::{Placement, PoseRequest, Posed, SpineBone, SpineFrame, SpineRig, TipGoal};
+use ikarus::character::{Placement, PoseRequest, Posed, SpineBone, SpineFrame, SpineRig, TipGoal, spine_bone_numbers};
 use ikarus::solve::{Method, RigGoal, SolveOptions, Solver};
 use std::time::Instant;
 
@@ -32,8 +32,7 @@ fn main() {
         numbers.clear();
         for i in 0..posed.len() {
             let (w, l) = (posed.world(i), posed.local(i));
-            numbers.extend([w.a, w.b, w.c, w.d, w.x, w.y, l.x, l.y, l.rotation.to_degrees(), l.scale_x, l.scale_y]);
-            numbers.extend([l.shear_x.to_degrees(), l.shear_y.to_degrees()]);
+            numbers.extend(spine_bone_numbers(&w, &l));
         }
         // The goal on a circle of radius 100 around the shoulder, once round in the 600 frames
         // (as the allocation test has it, tests/spine_rig_alloc.rs).

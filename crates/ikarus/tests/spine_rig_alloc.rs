@@ -4,7 +4,7 @@
 #![allow(unsafe_code)]
 
 use ikarus::Goal;
-use ikarus::character::{Placement, PoseRequest, Posed, SpineBone, SpineFrame, SpineRig, TipGoal};
+use ikarus::character::{Placement, PoseRequest, Posed, SpineBone, SpineFrame, SpineRig, TipGoal, spine_bone_numbers};
 use ikarus::solve::{Method, RigGoal, SolveOptions, Solver};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -77,8 +77,7 @@ fn six_hundred_frames_of_a_fist_on_a_circle_and_a_pinned_foot_allocate_nothing_a
         numbers.clear();
         for i in 0..posed.len() {
             let (w, l) = (posed.world(i), posed.local(i));
-            numbers.extend([w.a, w.b, w.c, w.d, w.x, w.y, l.x, l.y, l.rotation.to_degrees(), l.scale_x, l.scale_y]);
-            numbers.extend([l.shear_x.to_degrees(), l.shear_y.to_degrees()]);
+            numbers.extend(spine_bone_numbers(&w, &l));
         }
         let s = posed.origin(upper);
         let turn = frame as f64 / 600.0 * std::f64::consts::TAU;

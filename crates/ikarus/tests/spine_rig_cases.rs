@@ -7,7 +7,7 @@
 use ikarus::Goal;
 use ikarus::character::{
     Affine, Character, Inherit, LocalTransform, Placement, PoseRequest, Posed, SPINE_BONE_NUMBERS, SpineBone,
-    SpineFrame, SpineRig, TipGoal, world_transform,
+    SpineFrame, SpineRig, TipGoal, spine_bone_numbers, world_transform,
 };
 use ikarus::solve::{Method, Priority, RigGoal, SolveOptions, Solver};
 
@@ -29,8 +29,7 @@ fn worlds(bones: &[SpineBone], locals: &[LocalTransform], placement: Placement) 
 fn numbers(worlds: &[Affine], locals: &[LocalTransform]) -> Vec<f64> {
     let mut out = Vec::with_capacity(worlds.len() * SPINE_BONE_NUMBERS);
     for (w, l) in worlds.iter().zip(locals) {
-        out.extend([w.a, w.b, w.c, w.d, w.x, w.y, l.x, l.y, l.rotation.to_degrees(), l.scale_x, l.scale_y]);
-        out.extend([l.shear_x.to_degrees(), l.shear_y.to_degrees()]);
+        out.extend(spine_bone_numbers(w, l));
     }
     out
 }

@@ -63,7 +63,7 @@ pub use slot_clip::{
 pub use slot_pose::SlotPose;
 pub use together::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, ROUNDS, SPINE_BONE_NUMBERS, SpineBone, SpineFrame, SpineRig, TIP_GOAL_BONES,
-    TipGoal, Together, TogetherError, TogetherReport,
+    TipGoal, Together, TogetherError, TogetherReport, spine_bone_numbers, spine_local_numbers,
 };
 pub use transform::{
     MIX_NAMES, TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace, local_absolute,

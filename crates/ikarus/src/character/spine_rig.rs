@@ -29,6 +29,19 @@ use crate::solve::{Outcome, Pin, RigTask, SolveError, Solver};
 /// scaleX, scaleY, shearX, shearY` (rotation and shears in degrees), as the runtime names them.
 pub const SPINE_BONE_NUMBERS: usize = 13;
 
+/// A local transform as the runtime's 7 local numbers: `x, y, rotation, scaleX, scaleY,
+/// shearX, shearY` (rotation and shears in degrees).
+pub fn spine_local_numbers(l: &LocalTransform) -> [f64; 7] {
+    [l.x, l.y, l.rotation.to_degrees(), l.scale_x, l.scale_y, l.shear_x.to_degrees(), l.shear_y.to_degrees()]
+}
+
+/// A bone's [`SPINE_BONE_NUMBERS`] numbers in a frame's order: `world`'s `a, b, c, d, x, y`,
+/// then [`spine_local_numbers`] of `local`.
+pub fn spine_bone_numbers(world: &Affine, local: &LocalTransform) -> [f64; SPINE_BONE_NUMBERS] {
+    let l = spine_local_numbers(local);
+    [world.a, world.b, world.c, world.d, world.x, world.y, l[0], l[1], l[2], l[3], l[4], l[5], l[6]]
+}
+
 /// At most this many rounds of freeze, solve and thaw per frame (see [`SpineRig::solve`]).
 const ROUNDS: usize = 8;
 

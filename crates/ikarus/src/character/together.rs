@@ -56,7 +56,7 @@ mod spine_rig;
 pub use rules::{
     BoneRule, GoalEnd, LimbEnd, LimbRule, TIP_GOAL_BONES, TipGoal, Together, TogetherError, TogetherReport,
 };
-pub use spine_rig::{SPINE_BONE_NUMBERS, SpineBone, SpineFrame, SpineRig};
+pub use spine_rig::{SPINE_BONE_NUMBERS, SpineBone, SpineFrame, SpineRig, spine_bone_numbers, spine_local_numbers};
 
 /// How many times at most the skeleton is rebuilt and solved again (see the module docs).
 pub const ROUNDS: usize = 16;
