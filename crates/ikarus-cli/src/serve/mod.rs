@@ -76,6 +76,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("track.js", JS, include_str!("assets/track.js")),
     ("view.js", JS, include_str!("assets/view.js")),
     ("viewctl.js", JS, include_str!("assets/viewctl.js")),
+    ("bodyctl.js", JS, include_str!("assets/bodyctl.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)

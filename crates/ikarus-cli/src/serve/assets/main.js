@@ -8,7 +8,8 @@
 // the pointer and traces paths (track.js, with the pure parts in paths.js), edits the arm
 // (links.js, with arm files in armfile.js), shows and solves a rig instead of the arm (rigs.js,
 // with the pure parts in rig.js and the drawing in drawrig.js), poses a character (characters.js,
-// with the pure parts in character.js and the drawing in drawchar.js) or saves files (files.js,
+// with the pure parts in character.js and the drawing in drawchar.js; the pointer and the one
+// request in flight of both are bodyctl.js's) or saves files (files.js,
 // with the figures drawn by export.js). The view drawn and picked through is the body's fitted
 // view under the camera (camera.js: zoom and pan, moved by viewctl.js, which also holds the
 // onion skins' fields; onion.js draws them). The chip on the canvas (status, messages, bad
@@ -22,6 +23,7 @@ import { drawScene, fitCanvas, usePalette } from "./draw.js";
 import { drawRigScene, rigView } from "./drawrig.js";
 import { characterView, drawCharacterScene } from "./drawchar.js";
 import { wireArt } from "./artview.js";
+import { armHint, wireBodyPointer } from "./bodyctl.js";
 import { wireCharacters } from "./characters.js";
 import { wireRigs } from "./rigs.js";
 import { wireKeyed } from "./keyed.js";
@@ -201,6 +203,9 @@ const art = wireArt(state, canvas, { requestDraw, repose: () => characters.repos
 
 /** The Body list and the rig's pointer (rigs.js). */
 const rigs = wireRigs(state, canvas, { ...bodyActs, characters, keyed, forgetMotion, controlsChanged, fieldsOk, draw, amend, project: projectFiles });
+
+/** The canvas's pointer over a rig or a character: one set of handlers, each body saying its part (bodyctl.js). */
+wireBodyPointer(canvas, [characters.pointer, rigs.pointer], { keyed, requestDraw, edited });
 
 project = wireProject(state, {
   rigs,
@@ -501,8 +506,7 @@ function setDrawPath(on) {
   state.stroke = null;
   $("draw-path").setAttribute("aria-pressed", String(on));
   document.body.classList.toggle("drawing", on);
-  const hint = $("hint");
-  hint.textContent = on ? hint.dataset.drawing : hint.dataset.normal;
+  armHint(state);
   requestDraw();
 }
 
