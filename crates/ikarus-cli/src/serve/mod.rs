@@ -77,6 +77,10 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("view.js", JS, include_str!("assets/view.js")),
     ("viewctl.js", JS, include_str!("assets/viewctl.js")),
     ("bodyctl.js", JS, include_str!("assets/bodyctl.js")),
+    ("keybody.js", JS, include_str!("assets/keybody.js")),
+    ("keyplay.js", JS, include_str!("assets/keyplay.js")),
+    ("keymotion.js", JS, include_str!("assets/keymotion.js")),
+    ("keybar.js", JS, include_str!("assets/keybar.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)
