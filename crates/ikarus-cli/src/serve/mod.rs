@@ -81,6 +81,9 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("keyplay.js", JS, include_str!("assets/keyplay.js")),
     ("keymotion.js", JS, include_str!("assets/keymotion.js")),
     ("keybar.js", JS, include_str!("assets/keybar.js")),
+    ("state.js", JS, include_str!("assets/state.js")),
+    ("armmotion.js", JS, include_str!("assets/armmotion.js")),
+    ("workspace.js", JS, include_str!("assets/workspace.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)
