@@ -84,6 +84,7 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("state.js", JS, include_str!("assets/state.js")),
     ("armmotion.js", JS, include_str!("assets/armmotion.js")),
     ("workspace.js", JS, include_str!("assets/workspace.js")),
+    ("paint.js", JS, include_str!("assets/paint.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)

@@ -21,7 +21,8 @@ import { fillSelects, firstProblem, readControls, syncEnabled, syncLimitModes, s
 import { storedArm } from "./armfile.js";
 import { wireArm } from "./links.js";
 import { wireArmMotion } from "./armmotion.js";
-import { drawScene, fitCanvas, usePalette } from "./draw.js";
+import { drawScene } from "./draw.js";
+import { fitCanvas, usePalette } from "./paint.js";
 import { drawRigScene, rigView } from "./drawrig.js";
 import { characterView, drawCharacterScene } from "./drawchar.js";
 import { wireArt } from "./artview.js";
