@@ -254,9 +254,12 @@ test("the timeline plays, pauses, scrubs and replays; via points and the solver'
           look();
         }),
     );
+    // (A replay that never ends fails below instead of waiting for it: the clock stays held.)
+    replayed.catch(() => {});
     await page.clock.runFor(2900);
     assert.equal(await playback(), "playing", "still playing 2.9 s into the 3 s");
     await page.clock.runFor(200);
+    assert.equal(await playback(), "ended", "ended 3.1 s into the 3 s");
     const replay = await replayed;
     await page.clock.resume();
     assert.ok(replay.first < 0.05, `replay starts at the start: ${replay.first}`);
