@@ -92,7 +92,7 @@ test("downloads are the screen: ghosts, traces, ranges and area in one palette; 
   onPlayground(async (page, { url }) => {
     // One palette: the page draws with the pictures' colours (/api/meta's palette).
     const meta = await (await fetch(`${url}/api/meta`)).json();
-    const colors = await page.evaluate(async () => (await import("/draw.js")).COLORS);
+    const colors = await page.evaluate(async () => (await import("/paint.js")).COLORS);
     for (const [name, value] of Object.entries(meta.palette)) assert.deepEqual(colors[name], value, name);
 
     await page.check("#limits");

@@ -88,6 +88,8 @@ test("durations: a bad one is named and blocks the click and Play; a good one is
     const { page, errors } = await openPage(browser);
     const requests = [];
     page.on("request", (r) => r.url().includes("/api/") && requests.push(r.url()));
+    // The page's clock is the test's (it runs as the wall clock does until paused below).
+    await page.clock.install();
     await page.goto(url);
     await ready(page);
     await page.evaluate(() => window.ikarus.animateTo(2, 3));
@@ -109,10 +111,19 @@ test("durations: a bad one is named and blocks the click and Play; a good one is
     assert.equal(await page.getAttribute("#duration", "aria-invalid"), null);
     assert.equal(await page.evaluate(() => document.getElementById("chip").dataset.kind), "neutral");
     assert.equal(await page.evaluate(() => window.ikarus.duration()), 1.5);
-    const t0 = Date.now();
+    // The page's clock held still: the click's motion plays while the test moves the clock on,
+    // 1.5 s of it and not a frame less.
+    await page.clock.pauseAt((await page.evaluate(() => Date.now())) + 1000);
     await page.evaluate(() => window.ikarus.animateTo(1, 3));
-    await ended(page, 30000);
-    assert.ok(Date.now() - t0 >= 1400, "played for the 1.5 s chosen");
+    const playback = () => page.evaluate(() => ({ playback: document.body.dataset.playback, u: window.ikarus.state.playback.u }));
+    assert.deepEqual(await playback(), { playback: "playing", u: 0 }, "the motion starts at its first frame");
+    await page.clock.runFor(1400);
+    const at = await playback();
+    assert.equal(at.playback, "playing", "still playing after 1.4 s of the 1.5 s chosen");
+    assert.ok(Math.abs(at.u - 1400 / 1500) < 0.02, `the playhead at ${at.u}, 1.4 s of 1.5 s`);
+    await page.clock.runFor(200);
+    assert.equal((await playback()).playback, "ended", "ended once the 1.5 s have passed");
+    assert.equal(await page.evaluate(() => document.body.dataset.status), "reached");
     assert.deepEqual(errors, []);
   });
 });

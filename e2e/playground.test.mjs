@@ -170,6 +170,8 @@ test("the timeline plays, pauses, scrubs and replays; via points and the solver'
     const { page, errors } = await openPage(browser);
     const animates = [];
     page.on("request", (r) => r.url().endsWith("/api/animate") && animates.push(JSON.parse(r.postData())));
+    // The page's clock is the test's (it runs as the wall clock does until the replay holds it).
+    await page.clock.install();
     await page.goto(url);
     await page.waitForFunction(() => window.ikarus && window.ikarus.ready, null, { timeout: 15000 });
     assert.equal(await page.evaluate(() => document.body.dataset.playback), "none");
@@ -233,10 +235,12 @@ test("the timeline plays, pauses, scrubs and replays; via points and the solver'
     const [a, b] = [forward(SEED_ARM, between).at(-1), forward(SEED_ARM, await drawnPose()).at(-1)];
     assert.ok(Math.hypot(a[0] - b[0], a[1] - b[1]) > 0.05, "the tip moved with the scrubber");
 
-    // Replay: from the start, over the 3 s chosen, many more poses drawn than the 5 frames, and
-    // the end exactly on the last frame, the tip on the goal.
+    // Replay: from the start, over the 3 s chosen (the page's clock, held and moved on by the
+    // test), many more poses drawn than the 5 frames, and the end exactly on the last frame, the
+    // tip on the goal.
+    await page.clock.pauseAt((await page.evaluate(() => Date.now())) + 1000);
     await page.click("#replay");
-    const replay = await page.evaluate(
+    const replayed = page.evaluate(
       () =>
         new Promise((resolve) => {
           const poses = new Set();
@@ -250,8 +254,16 @@ test("the timeline plays, pauses, scrubs and replays; via points and the solver'
           look();
         }),
     );
+    // (A replay that never ends fails below instead of waiting for it: the clock stays held.)
+    replayed.catch(() => {});
+    await page.clock.runFor(2900);
+    assert.equal(await playback(), "playing", "still playing 2.9 s into the 3 s");
+    await page.clock.runFor(200);
+    assert.equal(await playback(), "ended", "ended 3.1 s into the 3 s");
+    const replay = await replayed;
+    await page.clock.resume();
     assert.ok(replay.first < 0.05, `replay starts at the start: ${replay.first}`);
-    assert.ok(replay.seconds > 2.6 && replay.seconds < 8, `the replay took ${replay.seconds} s for a 3 s duration`);
+    assert.ok(replay.seconds >= 3 && replay.seconds < 3.05, `the replay took ${replay.seconds} s of the page's clock for a 3 s duration`);
     assert.ok(replay.poses > 20, `${replay.poses} distinct poses drawn from 5 frames`);
     assert.equal(await u(), 1);
     assertPose(await drawnPose(), five.frames[4].angles_deg, "the end");

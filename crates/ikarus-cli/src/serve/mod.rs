@@ -76,6 +76,15 @@ const ASSETS: &[(&str, &str, &str)] = &[
     ("track.js", JS, include_str!("assets/track.js")),
     ("view.js", JS, include_str!("assets/view.js")),
     ("viewctl.js", JS, include_str!("assets/viewctl.js")),
+    ("bodyctl.js", JS, include_str!("assets/bodyctl.js")),
+    ("keybody.js", JS, include_str!("assets/keybody.js")),
+    ("keyplay.js", JS, include_str!("assets/keyplay.js")),
+    ("keymotion.js", JS, include_str!("assets/keymotion.js")),
+    ("keybar.js", JS, include_str!("assets/keybar.js")),
+    ("state.js", JS, include_str!("assets/state.js")),
+    ("armmotion.js", JS, include_str!("assets/armmotion.js")),
+    ("workspace.js", JS, include_str!("assets/workspace.js")),
+    ("paint.js", JS, include_str!("assets/paint.js")),
 ];
 
 /// Serve the JSON API on HTTP (loopback only unless --host says otherwise)

@@ -11,7 +11,7 @@
 import * as api from "./api.js";
 import { artRenderer } from "./artgl.js";
 import { poseRequest } from "./character.js";
-import { drawGrid, fitCanvas } from "./draw.js";
+import { drawGrid, fitCanvas } from "./paint.js";
 import { bendsAt, keyedTargets, localRotation } from "./keys.js";
 import { onionFrames, onionMotion } from "./onion.js";
 

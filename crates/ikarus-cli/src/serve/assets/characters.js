@@ -7,16 +7,18 @@
 // solver. The Character fieldset lists the clips, the constraints left inactive, the switch
 // between the two ways of solving, and *Export Spine JSON* (POST /api/animate: the file with one
 // added animation moving the targets from the setup pose to where they are). The pure parts are
-// character.js; the drawing is drawchar.js. It writes `state.character` (its fields: character.js's newCharacterState).
+// character.js; the drawing is drawchar.js; the pointer's handlers and the one request in flight
+// are bodyctl.js's, shared with rigs.js. It writes `state.character` (its fields: character.js's newCharacterState).
 
 import * as api from "./api.js";
 import { artRefused } from "./artload.js";
+import { armHint, canvasPoint, listBody, sendLatest } from "./bodyctl.js";
 import { saveBlob } from "./files.js";
 import { boneAt, characterRef, newCharacterState, characterSummary, solverLine, clipSeconds, exportName, exportRequest, exportState, handleNotes, handleAt, ikTargets, poseRequest, posedBox, surveyTimes, unionBox, unsupportedLines } from "./character.js";
 import { showOptions, wireOptions } from "./charoptions.js";
 import { bonesOnCanvas, handlesOnCanvas } from "./drawchar.js";
 import { localRotation } from "./keys.js";
-import { isDrag, toWorld } from "./view.js";
+import { toWorld } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -26,7 +28,8 @@ const $ = (id) => document.getElementById(id);
  * mode; with keys the timeline plays them, and the export bakes them), requestDraw(),
  * showError(e), setStatus(s), say(text), edited(label) (an undo step)}. Returns {enter(name,
  * text, character), ensure(name, text, character), setWork(work), loaded(), resume(), leave(),
- * reset(), settled(), clipBack() (the clip on the timeline again), repose() (pose again: the art changed)}.
+ * reset(), settled(), clipBack() (the clip on the timeline again), repose() (pose again: the art changed),
+ * pointer (the character's part of bodyctl.js's wireBodyPointer)}.
  */
 export function wireCharacters(state, canvas, act) {
   /** The last character loaded: the Body list's "Character: …" shows it again. */
@@ -47,14 +50,8 @@ export function wireCharacters(state, canvas, act) {
     act.keyed.enter();
     document.body.classList.add("character");
     $("hint").textContent = $("hint").dataset.character;
-    const select = $("body-kind");
-    let option = [...select.options].find((o) => o.value === "character");
-    if (!option) {
-      option = new Option("", "character");
-      select.append(option);
-    }
-    option.textContent = `Character: ${c.name}`;
-    select.value = "character";
+    listBody("character", `Character: ${c.name}`);
+    $("body-kind").value = "character";
     const list = $("character-animation");
     list.replaceChildren(new Option("Setup pose", ""), ...(c.character.clips || []).map((k) => new Option(`${k.name} (${k.duration.toFixed(2)} s)`, k.name)));
     list.value = c.animation;
@@ -124,8 +121,7 @@ export function wireCharacters(state, canvas, act) {
     act.keyed.leave();
     document.body.classList.remove("character");
     canvas.style.cursor = "";
-    const hint = $("hint");
-    hint.textContent = state.drawPath ? hint.dataset.drawing : hint.dataset.normal;
+    armHint(state);
     act.forgetMotion();
     act.requestDraw();
   }
@@ -173,42 +169,32 @@ export function wireCharacters(state, canvas, act) {
     const c = state.character;
     if (!c) return;
     c.pending = true;
-    pump();
+    sendLatest(poses);
   }
 
-  async function pump() {
-    const c = state.character;
-    if (!c || c.busy) return;
-    // A clip's survey goes first: the view is fitted to it before the clip is seen moving.
-    const s = c.survey && c.survey.times.length ? c.survey : null;
-    if (!s && !c.pending) return;
-    c.busy = true;
-    let req;
-    if (s) {
-      req = { ...characterRef(c), animation: s.name, time: s.times.shift(), targets: [] };
-    } else {
+  /**
+   * The character's poses, one in flight (bodyctl.js's sendLatest): a clip's survey goes first
+   * (the view is fitted to it before the clip is seen moving), then the latest choices.
+   */
+  const poses = {
+    shown: () => state.character,
+    next(c) {
+      const s = c.survey && c.survey.times.length ? c.survey : null;
+      if (s) return { s, req: { ...characterRef(c), animation: s.name, time: s.times.shift(), targets: [] } };
+      if (!c.pending) return null;
       c.pending = false;
       // A drag over keys poses with the bends in force (keyed.js keeps them), never without keys.
-      req = poseRequest({ ...c, bends: state.keys ? c.bends : null });
-    }
-    try {
-      const answer = await api.pose(req);
-      if (state.character === c && s) surveyed(c, s, answer);
-      else if (state.character === c) apply(c, req, answer);
-    } catch (e) {
+      return { s: null, req: poseRequest({ ...c, bends: state.keys ? c.bends : null }) };
+    },
+    send: ({ req }) => api.pose(req),
+    done: (c, { s, req }, answer) => (s ? surveyed(c, s, answer) : apply(c, req, answer)),
+    failed(c, { req }, e) {
       // Art the backend refuses (a region the atlas lacks): the character goes on as bones, the notice kept.
-      if (state.character === c && artRefused(c, req, e)) act.showError(e);
-      else if (state.character === c) {
-        act.showError(e);
-        act.setStatus("error");
-      }
-    }
-    // One answer per displayed frame: the next request leaves on the next one.
-    requestAnimationFrame(() => {
-      c.busy = false;
-      if (state.character === c) pump();
-    });
-  }
+      const refused = artRefused(c, req, e);
+      act.showError(e);
+      if (!refused) act.setStatus("error");
+    },
+  };
 
   /** A pose of the clip's survey: its box grows; the last one gives the view its box. */
   function surveyed(c, s, answer) {
@@ -280,12 +266,9 @@ export function wireCharacters(state, canvas, act) {
     }
   }
 
-  // ---- The pointer -------------------------------------------------------------------------
+  // ---- The pointer (bodyctl.js's wireBodyPointer) -----------------------------------------
 
-  const local = (ev) => {
-    const rect = canvas.getBoundingClientRect();
-    return [ev.clientX - rect.left, ev.clientY - rect.top];
-  };
+  const local = (ev) => canvasPoint(canvas, ev);
 
   /** The target whose handle is under the event, or null. */
   function handleUnder(ev) {
@@ -301,8 +284,6 @@ export function wireCharacters(state, canvas, act) {
     return i < 0 ? null : c.character.bones[i].name;
   }
 
-  let press = null;
-
   /** Whether a drag on bone `name` turns it: no IK constraint moves it and it is no target (those are dragged). */
   const turnable = (c, name) => !!name && !c.ikBones.has(name) && !c.targetNames.includes(name);
 
@@ -312,118 +293,77 @@ export function wireCharacters(state, canvas, act) {
     return (Math.atan2(y - o[1], x - o[0]) * 180) / Math.PI;
   };
 
-  canvas.addEventListener("pointerdown", (ev) => {
-    const c = state.character;
-    if (!c || !c.posed || ev.button !== 0 || act.keyed.bendPress(ev)) return;
-    const name = handleUnder(ev);
-    if (!name) {
-      // A plain bone: turned about its origin by the drag (forward kinematics).
-      const over = under(ev);
-      const bone = turnable(c, over) && c.posed.find((b) => b.name === over);
-      if (!bone) return;
-      const start = c.turns.has(over) ? c.turns.get(over) : localRotation(c.posed, (n) => c.parentOf.get(n), over);
-      press = { kind: "turn", x: ev.clientX, y: ev.clientY, name: over, origin: [bone.x, bone.y], a0: bearing([bone.x, bone.y], ev), start, dragging: false };
-      canvas.setPointerCapture(ev.pointerId);
-      return;
-    }
-    const bone = c.posed.find((b) => b.name === name);
-    press = { kind: "target", x: ev.clientX, y: ev.clientY, name, from: bone ? [bone.x, bone.y] : null, dragging: false };
-    canvas.setPointerCapture(ev.pointerId);
-  });
-
-  canvas.addEventListener("pointermove", (ev) => {
-    const c = state.character;
-    if (!c || !c.posed) return;
-    if (!press) {
-      // A bend handle (Key mode) first: ringed and named alone.
-      const bend = act.keyed.hoverBend(ev);
-      const hover = bend ? null : under(ev);
-      const note = hover && c.notes.get(hover);
-      const turns = !note && turnable(c, hover);
-      canvas.style.cursor = bend ? "pointer" : note ? (note.inactive ? "not-allowed" : "grab") : turns ? "alias" : "";
-      if (hover !== c.hover) {
-        c.hover = hover;
-        // A handle says what it drags (or why it moves nothing); a bone its name.
-        canvas.title = note ? note.note : turns ? `${hover}: drag to turn it about its origin (a click lets a turned bone go)` : hover ? `${hover}: moved by an IK constraint; drag its target` : "";
-        act.requestDraw();
+  /**
+   * The character's part of the canvas's pointer: a press on an IK target's handle drags the
+   * target, one on a bone no constraint moves turns it about its origin; a click lets either go.
+   */
+  const pointer = {
+    shown: () => state.character,
+    ready: (c) => !!c.posed,
+    grab(ev, c) {
+      const name = handleUnder(ev);
+      if (!name) {
+        // A plain bone: turned about its origin by the drag (forward kinematics).
+        const over = under(ev);
+        const bone = turnable(c, over) && c.posed.find((b) => b.name === over);
+        if (!bone) return null;
+        const start = c.turns.has(over) ? c.turns.get(over) : localRotation(c.posed, (n) => c.parentOf.get(n), over);
+        return { kind: "turn", name: over, origin: [bone.x, bone.y], a0: bearing([bone.x, bone.y], ev), start };
       }
-      return;
-    }
-    if (!press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
-      press.dragging = true;
-      c.grabbed = press.name;
-      canvas.style.cursor = "grabbing";
-    }
-    if (!press.dragging) return;
-    if (press.kind === "turn") {
-      const a = press.start + bearing(press.origin, ev) - press.a0;
-      c.turns = new Map(c.turns).set(press.name, a - 360 * Math.ceil((a - 180) / 360));
+      const bone = c.posed.find((b) => b.name === name);
+      return { kind: "target", name, from: bone ? [bone.x, bone.y] : null };
+    },
+    under: (ev) => under(ev),
+    cursor(name, c) {
+      const note = name && c.notes.get(name);
+      return note ? (note.inactive ? "not-allowed" : "grab") : turnable(c, name) ? "alias" : "";
+    },
+    hovered(name, c) {
+      // A handle says what it drags (or why it moves nothing); a bone its name.
+      const note = name && c.notes.get(name);
+      const turns = !note && turnable(c, name);
+      canvas.title = note ? note.note : turns ? `${name}: drag to turn it about its origin (a click lets a turned bone go)` : name ? `${name}: moved by an IK constraint; drag its target` : "";
+    },
+    drag(press, ev, c) {
+      if (press.kind === "turn") {
+        const a = press.start + bearing(press.origin, ev) - press.a0;
+        c.turns = new Map(c.turns).set(press.name, a - 360 * Math.ceil((a - 180) / 360));
+      } else {
+        const [x, y] = toWorld(state.view, ...local(ev));
+        c.targets = new Map(c.targets).set(press.name, { x, y });
+      }
       act.requestDraw();
       poseSoon();
-      return;
-    }
-    const [x, y] = toWorld(state.view, ...local(ev));
-    c.targets = new Map(c.targets).set(press.name, { x, y });
-    act.requestDraw();
-    poseSoon();
-  });
-
-  canvas.addEventListener("pointerup", () => {
-    const c = state.character;
-    if (!c || !press) return;
-    const { name, dragging, from, kind, start } = press;
-    press = null;
-    c.grabbed = null;
-    if (kind === "turn") {
-      if (dragging) {
-        act.keyed.turnEnded(name, c.turns.get(name), start);
-        act.edited(`Turn ${name}`);
-      } else if (c.turns.has(name)) {
-        // A click on a turned bone lets it go: the clip turns it again.
-        c.turns = new Map(c.turns);
-        c.turns.delete(name);
+    },
+    release({ name, dragging, from, kind, start }, ev, c) {
+      if (kind === "turn") {
+        if (dragging) {
+          act.keyed.turnEnded(name, c.turns.get(name), start);
+          act.edited(`Turn ${name}`);
+        } else if (c.turns.has(name)) {
+          // A click on a turned bone lets it go: the clip turns it again.
+          c.turns = new Map(c.turns);
+          c.turns.delete(name);
+          poseSoon();
+          act.edited(`Let ${name} go`);
+        }
+        canvas.style.cursor = "";
+        return;
+      }
+      if (dragging) act.keyed.dragEnded(name, c.targets.get(name), from);
+      canvas.style.cursor = "grab";
+      // A click (no drag) on a placed target lets it go: the clip and the constraints move it again.
+      if (!dragging && c.targets.has(name)) {
+        c.targets = new Map(c.targets);
+        c.targets.delete(name);
         poseSoon();
         act.edited(`Let ${name} go`);
       }
-      canvas.style.cursor = "";
-      act.requestDraw();
-      return;
-    }
-    if (dragging) act.keyed.dragEnded(name, c.targets.get(name), from);
-    canvas.style.cursor = "grab";
-    // A click (no drag) on a placed target lets it go: the clip and the constraints move it again.
-    if (!dragging && c.targets.has(name)) {
-      c.targets = new Map(c.targets);
-      c.targets.delete(name);
-      poseSoon();
-      act.edited(`Let ${name} go`);
-    }
-    if (dragging) act.edited(`Move ${name} target`);
-    act.requestDraw();
-  });
-
-  canvas.addEventListener("pointerleave", () => {
-    const c = state.character;
-    if (!c || press || !c.hover) return;
-    c.hover = null;
-    canvas.style.cursor = "";
-    act.requestDraw();
-  });
-
-  canvas.addEventListener("pointercancel", () => {
-    if (!state.character) return;
-    press = null;
-    state.character.grabbed = null;
-    act.requestDraw();
-  });
-
-  canvas.addEventListener("keydown", (ev) => {
-    if (state.character && ev.key === "Escape") {
-      ev.preventDefault();
-      clearTargets();
-      act.edited("Clear targets");
-    }
-  });
+      if (dragging) act.edited(`Move ${name} target`);
+    },
+    clear: clearTargets,
+    clearLabel: "Clear targets",
+  };
 
   $("character-animation").addEventListener("change", (ev) => {
     choose(ev.target.value);
@@ -447,5 +387,5 @@ export function wireCharacters(state, canvas, act) {
 
   const clipBack = () => state.character && playClip(state.character);
 
-  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack, repose: poseSoon };
+  return { enter, ensure, setWork, loaded, resume, leave, reset, settled, clipBack, repose: poseSoon, pointer };
 }

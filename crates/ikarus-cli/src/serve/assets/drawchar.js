@@ -7,7 +7,8 @@
 // pointer in a label. It reads the state and never writes it. The screen and the PNG and SVG
 // downloads (export.js) are drawn by the same drawCharacterScene.
 
-import { COLORS, drawGrid, drawLeash } from "./draw.js";
+import { drawLeash } from "./draw.js";
+import { COLORS, drawGrid } from "./paint.js";
 import { boneShape, fitCharacterView, unionBox } from "./character.js";
 import { drawOnion } from "./onion.js";
 import { toCanvas } from "./view.js";

@@ -4,7 +4,7 @@
 // (keys.js's bendHandles: a small half-moon beside each knee and elbow, on the side it bends).
 // It reads and never writes the state.
 
-import { COLORS, diamondPath, fitCanvas } from "./draw.js";
+import { COLORS, diamondPath, fitCanvas } from "./paint.js";
 import { drawRingLabel } from "./drawrig.js";
 
 /** A row's height, the names' column and the margin at the rows' right end, CSS pixels. */

@@ -8,7 +8,8 @@
 // limits as a bar. It reads the page's state and never writes it. The screen and the
 // PNG and SVG downloads (export.js) are drawn by the same drawRigScene.
 
-import { COLORS, drawBase, drawGoal, drawGrid, drawLeash, drawWedge } from "./draw.js";
+import { drawBase, drawGoal, drawLeash, drawWedge } from "./draw.js";
+import { COLORS, drawGrid } from "./paint.js";
 import { drawOnion } from "./onion.js";
 import { fitRigView, shownEffectors } from "./rig.js";
 import { toCanvas } from "./view.js";

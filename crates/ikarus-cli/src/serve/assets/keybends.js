@@ -4,6 +4,7 @@
 // keys the other side at the playhead (a bend key; with limits on, a rig's joint whose range
 // cannot reach the other side says so instead).
 import * as api from "./api.js";
+import { canvasPoint } from "./bodyctl.js";
 import { drawBendHandles } from "./drawkeys.js";
 import { setBend, sideOf } from "./keys.js";
 import { bendAllowed, bendHandleAt, bendHandles, characterBendHandles } from "./bendhandles.js";
@@ -24,10 +25,7 @@ export function wireBendHandles({ state, k, canvas, act, commit }) {
     return c && k.mode ? characterBendHandles(c.character.ik, c.posed, at) : [];
   };
 
-  const local = (ev) => {
-    const rect = canvas.getBoundingClientRect();
-    return [ev.clientX - rect.left, ev.clientY - rect.top];
-  };
+  const local = (ev) => canvasPoint(canvas, ev);
 
   /** A press on a bend handle flips that joint at the playhead (a bend key); true when it was on one. */
   function bendPress(ev) {

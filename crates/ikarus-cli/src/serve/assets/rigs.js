@@ -5,15 +5,17 @@
 // a click (no drag) pins or unpins the tip. Goals stay where they were dragged, so several
 // effectors hold their goals at once, until "Clear goals" (or Esc on the canvas) drops them;
 // pins stay until clicked again or "Unpin all". The pure parts are rig.js; the drawing is
-// drawrig.js. It writes `state.rig` (below) and tells main.js through `act`. A character file
+// drawrig.js; the pointer's handlers and the one request in flight are bodyctl.js's, shared with
+// characters.js. It writes `state.rig` (below) and tells main.js through `act`. A character file
 // (Spine, DragonBones), picked or dropped anywhere on the page, goes to characters.js.
 
 import * as api from "./api.js";
 import { postText } from "./armfile.js";
 import { loadTogether } from "./artload.js";
 import { bodyForward, restValue } from "./body.js";
+import { armHint, canvasPoint, listBody, sendLatest } from "./bodyctl.js";
 import { dragGoal, answerPose, rigSolveRequest, rigSummary, shownEffectors, tipAt, togglePin } from "./rig.js";
-import { isDrag, toCanvas, toWorld } from "./view.js";
+import { toCanvas, toWorld } from "./view.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -54,7 +56,7 @@ function newRigState(rig, source) {
  * say(text), edited(label) (an undo step), amend() (the last step settled), project
  * (projects.js's: a project file picked or dropped opens there)}. Returns {load() (the shipped
  * rigs into the list), use(value), useRig(value or rig JSON), shipped(), setWork(work), reset(),
- * resolve(), settled(), names()}.
+ * resolve(), settled(), names(), pointer (the rig's part of bodyctl.js's wireBodyPointer)}.
  */
 export function wireRigs(state, canvas, act) {
   /** The rigs the list offers by value ("rig:puppet", "file"). */
@@ -104,8 +106,7 @@ export function wireRigs(state, canvas, act) {
       delete document.body.dataset.failed;
       if (armLimits !== null) $("limits").checked = armLimits;
       armLimits = null;
-      const hint = $("hint");
-      hint.textContent = state.drawPath ? hint.dataset.drawing : hint.dataset.normal;
+      armHint(state);
       select.value = "arm";
       act.forgetMotion();
       act.showError(null);
@@ -168,13 +169,7 @@ export function wireRigs(state, canvas, act) {
       const text = fileText(file.name, bytes);
       if (text === null) {
         const answer = await api.postFile(bytes);
-        if (answer.character) {
-          if (state.rig) use("arm");
-          act.characters.enter(file.name, answer.text, answer.character);
-        } else {
-          useRigFile(answer.rig, file.name);
-        }
-        act.edited(`Load ${file.name}`);
+        useRead(file.name, answer, answer.text);
         return;
       }
       if (act.project.isProject(text)) {
@@ -183,16 +178,21 @@ export function wireRigs(state, canvas, act) {
       }
       const answer = JSON.parse(await postText("/api/rig/parse", text, "application/toml"));
       if (answer.problem) throw new api.Notice(api.forPeople(answer.problem));
-      if (answer.character) {
-        if (state.rig) use("arm");
-        act.characters.enter(file.name, text, answer.character);
-      } else {
-        useRigFile(answer.rig, file.name);
-      }
-      act.edited(`Load ${file.name}`);
+      useRead(file.name, answer, text);
     } catch (e) {
       act.showError(e);
     }
+  }
+
+  /** The file `name` as the server read it (`answer`: its `character` or `rig`; `text`: a character's JSON text) on the canvas: one undo step. */
+  function useRead(name, answer, text) {
+    if (answer.character) {
+      if (state.rig) use("arm");
+      act.characters.enter(name, text, answer.character);
+    } else {
+      useRigFile(answer.rig, name);
+    }
+    act.edited(`Load ${name}`);
   }
 
   /**
@@ -216,13 +216,7 @@ export function wireRigs(state, canvas, act) {
 
   /** A rig file's JSON (`name`: the file's, when the rig has none) shown as the list's "Rig file: …". */
   function useRigFile(rig, name = "rig") {
-    const select = $("body-kind");
-    let option = [...select.options].find((o) => o.value === "file");
-    if (!option) {
-      option = new Option("", "file");
-      select.append(option);
-    }
-    option.textContent = `Rig file: ${rig.name || name}`;
+    listBody("file", `Rig file: ${rig.name || name}`);
     rigs.set("file", rig);
     use("file");
   }
@@ -254,32 +248,25 @@ export function wireRigs(state, canvas, act) {
   /** The goals or pins changed: solve (now, or when the solve in flight is back). */
   function solveSoon() {
     state.rig.pending = true;
-    pump();
+    sendLatest(solves);
   }
 
-  async function pump() {
-    const r = state.rig;
-    if (!r || r.busy || !r.pending) return;
-    r.pending = false;
-    if (r.goals.size === 0 || !act.fieldsOk(false)) return;
-    r.busy = true;
-    const req = rigSolveRequest(r.rig, r.pose_deg, r.goals, r.pins, state.options);
-    try {
-      const answer = await api.solve(req);
-      // Dropped when another rig (or the arm) took the canvas meanwhile.
-      if (state.rig === r) apply(r, req, answer);
-    } catch (e) {
-      if (state.rig === r) {
-        act.showError(e);
-        act.setStatus("error");
-      }
-    }
-    // One answer per displayed frame: the next request leaves on the next one.
-    requestAnimationFrame(() => {
-      r.busy = false;
-      if (state.rig === r) pump();
-    });
-  }
+  /** The rig's solves, one in flight (bodyctl.js's sendLatest), always from the pose shown. */
+  const solves = {
+    shown: () => state.rig,
+    next(r) {
+      if (!r.pending) return null;
+      r.pending = false;
+      if (r.goals.size === 0 || !act.fieldsOk(false)) return null;
+      return rigSolveRequest(r.rig, r.pose_deg, r.goals, r.pins, state.options);
+    },
+    send: (req) => api.solve(req),
+    done: apply,
+    failed(r, req, e) {
+      act.showError(e);
+      act.setStatus("error");
+    },
+  };
 
   function apply(r, req, answer) {
     r.pose_deg = answerPose(r.rig, answer, r.pose_deg);
@@ -335,95 +322,50 @@ export function wireRigs(state, canvas, act) {
     clearGoals();
   }
 
-  // ---- The pointer -----------------------------------------------------------------------
+  // ---- The pointer (bodyctl.js's wireBodyPointer) ---------------------------------------
 
   /** The bone whose tip is under the event, effectors first. */
   function tipUnder(ev) {
     const r = state.rig;
-    const rect = canvas.getBoundingClientRect();
     const tipsPx = r.tips.map(([x, y]) => toCanvas(state.view, x, y));
-    return tipAt(r.rig, tipsPx, ev.clientX - rect.left, ev.clientY - rect.top, new Set(shownEffectors(r.rig, r.goals, r.pins)));
+    return tipAt(r.rig, tipsPx, ...canvasPoint(canvas, ev), new Set(shownEffectors(r.rig, r.goals, r.pins)));
   }
 
-  let press = null;
-
-  canvas.addEventListener("pointerdown", (ev) => {
-    if (!state.rig || ev.button !== 0 || act.keyed.bendPress(ev)) return;
-    const bone = tipUnder(ev);
-    if (!bone) return;
-    const from = state.rig.tips[names().indexOf(bone)];
-    press = { x: ev.clientX, y: ev.clientY, bone, from, dragging: false };
-    canvas.setPointerCapture(ev.pointerId);
-  });
-
-  canvas.addEventListener("pointermove", (ev) => {
-    const r = state.rig;
-    if (!r) return;
-    if (!press) {
-      const hover = act.keyed.hoverBend(ev) ? null : tipUnder(ev);
-      canvas.style.cursor = hover ? "grab" : act.keyed.hovering() ? "pointer" : "";
-      if (hover !== r.hover) {
-        r.hover = hover;
-        act.requestDraw();
+  /** The rig's part of the canvas's pointer: a press on a tip grabs its goal; a click pins it. */
+  const pointer = {
+    shown: () => state.rig,
+    ready: () => true,
+    grab(ev, r) {
+      const bone = tipUnder(ev);
+      return bone ? { name: bone, from: r.tips[names().indexOf(bone)] } : null;
+    },
+    under: (ev) => tipUnder(ev),
+    cursor: (bone) => (bone ? "grab" : ""),
+    hovered() {},
+    drag(press, ev, r) {
+      const [x, y] = toWorld(state.view, ...canvasPoint(canvas, ev));
+      setGoalsAndPins(dragGoal(r.goals, r.pins, press.name, x, y));
+      act.requestDraw();
+      solveSoon();
+    },
+    release({ name: bone, dragging, from }, ev, r) {
+      if (dragging) act.keyed.dragEnded(bone, r.goals.get(bone), from);
+      r.hover = tipUnder(ev);
+      canvas.style.cursor = r.hover ? "grab" : "";
+      if (dragging) {
+        act.edited(`Move ${bone} goal`);
+        return;
       }
-      return;
-    }
-    if (!press.dragging && isDrag(press, ev.clientX, ev.clientY)) {
-      press.dragging = true;
-      r.grabbed = press.bone;
-      canvas.style.cursor = "grabbing";
-    }
-    if (!press.dragging) return;
-    const rect = canvas.getBoundingClientRect();
-    const [x, y] = toWorld(state.view, ev.clientX - rect.left, ev.clientY - rect.top);
-    setGoalsAndPins(dragGoal(r.goals, r.pins, press.bone, x, y));
-    act.requestDraw();
-    solveSoon();
-  });
-
-  canvas.addEventListener("pointerup", (ev) => {
-    const r = state.rig;
-    if (!r || !press) return;
-    const { bone, dragging, from } = press;
-    press = null;
-    if (dragging) act.keyed.dragEnded(bone, r.goals.get(bone), from);
-    r.grabbed = null;
-    r.hover = tipUnder(ev);
-    canvas.style.cursor = r.hover ? "grab" : "";
-    if (dragging) act.edited(`Move ${bone} goal`);
-    else {
       setGoalsAndPins(togglePin(r.goals, r.pins, bone));
       act.keyed.pinToggled(bone);
       act.edited(`${r.pins.has(bone) ? "Pin" : "Unpin"} ${bone}`);
       show(`${bone} ${r.pins.has(bone) ? "pinned" : "unpinned"} · ${r.pins.size} pin${r.pins.size === 1 ? "" : "s"}, ${r.goals.size} goal${r.goals.size === 1 ? "" : "s"}`);
       // A pin dropped a goal: the others are solved again without it.
       if (r.goals.size) solveSoon();
-    }
-    act.requestDraw();
-  });
-
-  // The pointer left the canvas: no tip is under it (nor ringed on the screen or in a download).
-  canvas.addEventListener("pointerleave", () => {
-    if (!state.rig || press || !state.rig.hover) return;
-    state.rig.hover = null;
-    canvas.style.cursor = "";
-    act.requestDraw();
-  });
-
-  canvas.addEventListener("pointercancel", () => {
-    if (!state.rig) return;
-    press = null;
-    state.rig.grabbed = null;
-    act.requestDraw();
-  });
-
-  canvas.addEventListener("keydown", (ev) => {
-    if (state.rig && ev.key === "Escape") {
-      ev.preventDefault();
-      clearGoals();
-      act.edited("Clear goals");
-    }
-  });
+    },
+    clear: clearGoals,
+    clearLabel: "Clear goals",
+  };
 
   $("body-kind").addEventListener("change", (ev) => {
     use(ev.target.value);
@@ -454,5 +396,5 @@ export function wireRigs(state, canvas, act) {
     act.edited("Unpin all");
   });
 
-  return { load, use, useRig, shipped, setWork, reset, resolve, settled, names };
+  return { load, use, useRig, shipped, setWork, reset, resolve, settled, names, pointer };
 }

@@ -10,7 +10,7 @@
 // It owns `state.playback` (below) and reads `state.animation` and `state.animationRequest`;
 // everything else goes through main.js's actions.
 
-import { fitCanvas } from "./draw.js";
+import { fitCanvas } from "./paint.js";
 import * as api from "./api.js";
 import { ownsKeys } from "./input.js";
 import { autoDuration, easeAt, freeJoints, jointDistance, poseAt } from "./view.js";
