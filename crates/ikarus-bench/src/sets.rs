@@ -21,22 +21,21 @@ const BEYOND_MAX: f64 = 2.0;
 /// Goals in the inner hole lie at most this share of the minimal reach from the base.
 const HOLE_MAX: f64 = 0.95;
 
-/// The arms `ikarus bench` knows, embedded in the binary so that the command works from any
-/// directory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ArmName {
-    /// The built-in seed arm: 3 links of lengths 3, 2, 1.
-    Seed,
-    /// `examples/arms/seven.toml`: 7 tapering links.
-    Seven,
-    /// `examples/arms/tentacle.toml`: 20 short links.
-    Tentacle,
+ikarus::listed_enum! {
+    /// The arms `ikarus bench` knows, embedded in the binary so that the command works from any
+    /// directory.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+    pub enum ArmName {
+        /// The built-in seed arm: 3 links of lengths 3, 2, 1.
+        Seed,
+        /// `examples/arms/seven.toml`: 7 tapering links.
+        Seven,
+        /// `examples/arms/tentacle.toml`: 20 short links.
+        Tentacle,
+    }
 }
 
 impl ArmName {
-    /// Every arm, in the order of the output.
-    pub const ALL: [ArmName; 3] = [ArmName::Seed, ArmName::Seven, ArmName::Tentacle];
-
     /// The name used on the command line and in the output.
     pub fn name(self) -> &'static str {
         match self {
@@ -61,32 +60,25 @@ impl ArmName {
     }
 }
 
-/// The kinds of goal set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SetName {
-    /// Positions of configurations drawn with every joint free; limits off.
-    FreePosition,
-    /// The same, with the tip's orientation part of the goal.
-    FreeOriented,
-    /// Positions of configurations drawn inside the joint limits; limits enforced.
-    LimitsPosition,
-    /// The same, with the tip's orientation part of the goal.
-    LimitsOriented,
-    /// Positions no pose can reach (beyond the outer radius, or inside the inner hole);
-    /// limits off. "Reached" means the best pose: as close as the arm can get.
-    Unreachable,
+ikarus::listed_enum! {
+    /// The kinds of goal set.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+    pub enum SetName {
+        /// Positions of configurations drawn with every joint free; limits off.
+        FreePosition,
+        /// The same, with the tip's orientation part of the goal.
+        FreeOriented,
+        /// Positions of configurations drawn inside the joint limits; limits enforced.
+        LimitsPosition,
+        /// The same, with the tip's orientation part of the goal.
+        LimitsOriented,
+        /// Positions no pose can reach (beyond the outer radius, or inside the inner hole);
+        /// limits off. "Reached" means the best pose: as close as the arm can get.
+        Unreachable,
+    }
 }
 
 impl SetName {
-    /// Every set, in the order of the output.
-    pub const ALL: [SetName; 5] = [
-        SetName::FreePosition,
-        SetName::FreeOriented,
-        SetName::LimitsPosition,
-        SetName::LimitsOriented,
-        SetName::Unreachable,
-    ];
-
     /// The name used on the command line and in the output.
     pub fn name(self) -> &'static str {
         match self {

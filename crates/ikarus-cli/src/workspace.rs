@@ -83,7 +83,9 @@ impl AreaArgs {
                 bar.set_position(done);
             }
         };
-        let workspace = ikarus::reach::sample_with_progress(&arm.chain, &grid.options(limits), &report)
+        // The command line samples one grid at a time: on every core.
+        let options = WorkspaceOptions { parallel: true, ..grid.options(limits) };
+        let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &report)
             .map_err(|e| CliError::input(format!("--{e}")))?;
         if let Some(bar) = bar {
             bar.finish_and_clear();
@@ -206,7 +208,7 @@ fn run_sampled(args: &WorkspaceArgs, rig: &Rig, bone: usize) -> Result<(), CliEr
         )));
     }
     let limits = args.area.limits.asked().or(rig.solver.limits).unwrap_or(false);
-    let run = WorkspaceOptions { limits, ..WorkspaceOptions::default() };
+    let run = WorkspaceOptions { limits, parallel: true, ..WorkspaceOptions::default() };
     let workspace = area::sampled(rig, bone, args.area.grid()?, run).map_err(|e| CliError::input(format!("--{e}")))?;
     let Some(format) = report_format(args.format, false, WorkspaceFormat::Text, WorkspaceFormat::Json) else {
         return Ok(());

@@ -310,17 +310,15 @@ fn a_heavy_rig_solve_stops_at_its_budget() {
         .collect();
     let goals: Vec<Value> =
         (0..64).map(|i| json!({"bone": format!("b{}", 4 * i + 3), "x": f64::from(i % 9) * 50.0, "y": 500.0})).collect();
-    let began = std::time::Instant::now();
     let heavy =
         json!({"rig": {"bones": bones}, "goals": goals, "options": {"max_iterations": 100_000, "restarts": 64}});
     let e = s.post("/api/solve", &heavy).error(503);
     assert!(e.contains("budget of 1000 ms (--request-budget-ms)"), "{e}");
-    // The worker is free again: an ordinary rig solve answers (it would wait past its own
-    // budget behind a solve that ignored the interrupt).
+    // The event that shows the heavy solve stopped: the only worker is free again, and an
+    // ordinary rig solve answers (behind a solve that ignored the interrupt it would wait past
+    // its own budget and get 503). No clock: the order of the answers is the proof.
     let a = s.post("/api/solve", &puppet_solve(json!({})));
     assert_eq!(a.status, 200, "{}", a.text());
-    // Generous: two budgets of a second, not the minutes the heavy solve would take.
-    assert!(began.elapsed() < std::time::Duration::from_secs(30), "{:?}", began.elapsed());
 }
 
 /// A rig file of one chain of `n` bones, as text.

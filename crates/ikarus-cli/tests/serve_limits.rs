@@ -354,7 +354,9 @@ fn heavy_mix() -> Vec<(&'static str, Value)> {
 /// (endless solves, under the test server's hour-long budget), each request of the heavy mix is
 /// turned away as the long lane's (503 "server busy": it was costed as long work) and small
 /// solves are answered (the quick lane is free). Before the lanes a small solve waited behind
-/// heavy work; here that would be a hang, so no clock measures how fast this machine is.
+/// heavy work; here that would be a hang, so no clock measures how fast this machine is. The
+/// order of events is the proof: the long lane is seen busy before the small solves and again
+/// after their answers, so each quick answer came while the long work was still running.
 #[test]
 fn a_small_solve_is_answered_while_long_work_holds_every_long_worker() {
     let s = start(&["--workers", "2", "--long-workers", "1", "--max-queued", "0"]);
@@ -382,6 +384,10 @@ fn a_small_solve_is_answered_while_long_work_holds_every_long_worker() {
         let (status, v) = s.post_json("/api/solve", &small);
         assert_eq!(status, 200, "{v}");
     }
+    // The endless work still holds the long worker after the last quick answer: a brief long
+    // probe is still turned away.
+    let e = error(&s.post_json("/api/solve", &long_but_brief_solve()), 503);
+    assert!(e.contains("server busy"), "{e}");
 }
 
 #[test]

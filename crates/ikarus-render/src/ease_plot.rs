@@ -72,7 +72,7 @@ fn sample_times(ease: &Ease) -> (Vec<f64>, Vec<f64>) {
     let mut ts: Vec<f64> = (0..=SAMPLES).map(|i| f64::from(i) / f64::from(SAMPLES)).collect();
     let breaks = match ease {
         Ease::Parent(p) => vec![p.k1(), p.k2()],
-        _ => Vec::new(),
+        Ease::Linear | Ease::Sine | Ease::Smoothstep => Vec::new(),
     };
     ts.extend(&breaks);
     ts.sort_by(f64::total_cmp);

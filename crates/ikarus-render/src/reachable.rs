@@ -81,7 +81,7 @@ fn region_curves(svg: &mut Svg, view: &View, region: &Region) {
                 // A point: a dot, drawn as a stroke of no length with round caps.
                 d.line_to(x, y);
             }
-            _ => segment(&mut d, view, &seg),
+            BoundarySegment::Line { .. } | BoundarySegment::Arc { .. } => segment(&mut d, view, &seg),
         }
     }
     if d.is_empty() {

@@ -15,28 +15,14 @@ use crate::Problem;
 /// restarts, the status code.
 const TAIL: usize = 6;
 
-/// The statuses by code, the order of [`ikarus::Status`]: a record's last number.
-const STATUSES: [Status; 5] =
-    [Status::Reached, Status::Unreachable, Status::Stalled, Status::IterationLimit, Status::Interrupted];
-
-/// The statuses of a follow record's last number, the order of [`ikarus::SampleStatus`]
-/// (`off_path` never: it is the plan's).
-const FOLLOW_STATUSES: [SampleStatus; 7] = [
-    SampleStatus::Reached,
-    SampleStatus::Limited,
-    SampleStatus::Unreachable,
-    SampleStatus::Stalled,
-    SampleStatus::IterationLimit,
-    SampleStatus::Interrupted,
-    SampleStatus::OffPath,
-];
-
 /// Numbers of a follow record after the angles and the joints: the error, the step, the status code.
 const FOLLOW_TAIL: usize = 3;
 
-/// The code of `status` in a record (its index in [`STATUSES`]).
+/// The code of `status` in a record: its index in [`Status::ALL`], the order of
+/// [`ikarus::Status`]. (A follow record's code is the index of its status in
+/// [`SampleStatus::ALL`]; `off_path` never: it is the plan's.)
 fn status_code(status: Status) -> u32 {
-    STATUSES.iter().position(|&s| s == status).map_or(u32::MAX, |i| i as u32)
+    Status::ALL.iter().position(|&s| s == status).map_or(u32::MAX, |i| i as u32)
 }
 
 /// A chain to solve from JavaScript without JSON: `new Chain(armJson, optionsJson)`, then
@@ -195,7 +181,7 @@ impl Chain {
         {
             dst.copy_from_slice(&[p.x, p.y]);
         }
-        let code = FOLLOW_STATUSES.iter().position(|&s| s == step.status).map_or(u32::MAX, |i| i as u32);
+        let code = SampleStatus::ALL.iter().position(|&s| s == step.status).map_or(u32::MAX, |i| i as u32);
         tail.copy_from_slice(&[step.error, step.step.to_degrees(), f64::from(code)]);
         Ok(code)
     }
@@ -250,13 +236,13 @@ const SEED_ARM_JSON: &str = r#"{"name":"seed","base":[0.0,0.0],"links":[{"length
 /// The name of a record's status code (`reached`, …; `undefined` for another number).
 #[wasm_bindgen(js_name = statusName)]
 pub fn status_name(code: u32) -> Option<String> {
-    STATUSES.get(code as usize).map(|&s| edge::status_name(s).to_owned())
+    Status::ALL.get(code as usize).map(|&s| edge::status_name(s).to_owned())
 }
 
 /// The name of a follow record's status code (`reached`, `limited`, …; `undefined` for another number).
 #[wasm_bindgen(js_name = followStatusName)]
 pub fn follow_status_name(code: u32) -> Option<String> {
-    FOLLOW_STATUSES.get(code as usize).map(|&s| s.as_str().to_owned())
+    SampleStatus::ALL.get(code as usize).map(|&s| s.as_str().to_owned())
 }
 
 /// The message of a refused `arm` as `/api/solve` words it for `{"arm": …}`, less the position
@@ -402,7 +388,7 @@ mod tests {
         }
         assert!(["reached", "limited", "unreachable"].iter().all(|s| seen.contains(*s)), "{seen:?}");
         assert_eq!(Chain::new("", "").unwrap().follow_len(), 3 * 3 + 5);
-        for (code, status) in FOLLOW_STATUSES.iter().enumerate() {
+        for (code, status) in SampleStatus::ALL.iter().enumerate() {
             assert_eq!(follow_status_name(code as u32).as_deref(), Some(status.as_str()));
         }
         assert_eq!(follow_status_name(7), None);

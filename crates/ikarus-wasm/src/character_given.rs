@@ -315,7 +315,7 @@ impl Character {
     fn ik_constraints(&self) -> impl Iterator<Item = (usize, &ikarus::character::IkConstraint)> {
         self.loaded.character.constraints().iter().enumerate().filter_map(|(i, k)| match k {
             Constraint::Ik(c) => Some((i, c)),
-            _ => None,
+            Constraint::Path(_) | Constraint::Physics(_) | Constraint::Transform(_) => None,
         })
     }
 }

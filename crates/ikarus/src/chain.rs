@@ -84,7 +84,6 @@ impl std::fmt::Debug for Chain {
 
 /// Which number of a link an error is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
 pub enum LinkField {
     /// [`Link::length`].
     Length,

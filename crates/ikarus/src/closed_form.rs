@@ -92,7 +92,6 @@ pub fn three_link_oriented(lengths: [f64; 3], target: Vector2<f64>, phi: f64) ->
 
 /// What [`solve`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
 pub enum ClosedForm {
     /// The chain and goal have no closed form here: not 2 links with a position goal nor 3
     /// links with an orientation goal (or the slices have the wrong length).

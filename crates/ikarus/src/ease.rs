@@ -11,8 +11,8 @@
 //! | [`Ease::Smoothstep`] | 3t² − 2t³ | 0, 0 | C¹ |
 //! | [`Ease::Parent`] | sine pieces around a constant-velocity middle (below) | 0, 0 (if k1 > 0, k2 < 1) | C¹ |
 
+use crate::listed_enum;
 use crate::math;
-use crate::names::listed_enum;
 use crate::number::Num;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
@@ -20,7 +20,6 @@ use thiserror::Error;
 
 /// An easing curve. Build [`Ease::Parent`] with [`Ease::parent`], which validates k1 and k2.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
 pub enum Ease {
     /// Constant speed: `s = t`.
     Linear,

@@ -37,8 +37,8 @@
 //! ```
 //!
 //! Nothing here prints or reads files, and nothing starts threads unless asked to (workspace
-//! sampling runs on rayon's pool when [`WorkspaceOptions::parallel`] is set, its default). The
-//! same input gives the same output, bit for bit, whatever the number of threads.
+//! sampling runs on rayon's pool when [`WorkspaceOptions::parallel`] is set; it is off by
+//! default). The same input gives the same output, bit for bit, whatever the number of threads.
 
 // The library never prints: output belongs to the edges (CLI, server). Tests may print.
 #![cfg_attr(not(test), deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro))]

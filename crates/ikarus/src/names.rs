@@ -13,6 +13,29 @@ use thiserror::Error;
 /// can be left out of `ALL` (and so out of the edges' parsing, the tests' loops and
 /// `/api/meta`): a derived list, without a dependency (`strum`'s `VariantArray` would do the
 /// same with two crates more in every build of every edge).
+///
+/// Write the enum as usual inside the macro, its attributes (derives, docs, `#[default]`,
+/// `#[serde(…)]`, `#[value(…)]`) and its variants' attributes included; variants take neither
+/// fields nor explicit discriminants. The enum gets an inherent
+/// `pub const ALL: [Self; N]`, every variant once in the order declared. Adding a variant then
+/// needs no second edit; matching on the enum without a catch-all arm makes the compiler name
+/// every `match` the new variant must join.
+///
+/// ```
+/// ikarus::listed_enum! {
+///     /// A traffic light's colours.
+///     #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+///     pub enum Light {
+///         /// Go.
+///         Green,
+///         Amber,
+///         Red,
+///     }
+/// }
+///
+/// assert_eq!(Light::ALL, [Light::Green, Light::Amber, Light::Red]);
+/// ```
+#[macro_export]
 macro_rules! listed_enum {
     (
         $(#[$meta:meta])*
@@ -31,7 +54,6 @@ macro_rules! listed_enum {
         }
     };
 }
-pub(crate) use listed_enum;
 
 /// An enum whose variants are chosen by name at the edges (flags, files, requests).
 pub trait Named: Copy + Sized + 'static {
@@ -152,7 +174,7 @@ pub(crate) use by_name;
 
 #[cfg(test)]
 mod tests {
-    listed_enum! {
+    crate::listed_enum! {
         /// Three variants, one with attributes of its own.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
         enum Three {

@@ -32,24 +32,26 @@ pub const GEN_MAX_STEP_DEG: f64 = 4.0;
 /// `beyond` paths end this many reaches from the base.
 const BEYOND: f64 = 1.3;
 
-/// The kinds of path.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Kind {
-    /// Forward kinematics of three sinusoids per joint.
-    Wave,
-    /// Forward kinematics of a trajectory that stretches the arm straight at one sample.
-    Boundary,
-    /// Forward kinematics of a trajectory that touches joint limits.
-    Limits,
-    /// A short segment between the tips of two nearby poses.
-    Line,
-    /// A circle around the tip of a random pose.
-    Circle,
-    /// A figure-8 around the tip of a random pose.
-    Figure8,
-    /// A line out of the reachable region.
-    Beyond,
+ikarus::listed_enum! {
+    /// The kinds of path.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+    #[serde(rename_all = "lowercase")]
+    pub enum Kind {
+        /// Forward kinematics of three sinusoids per joint.
+        Wave,
+        /// Forward kinematics of a trajectory that stretches the arm straight at one sample.
+        Boundary,
+        /// Forward kinematics of a trajectory that touches joint limits.
+        Limits,
+        /// A short segment between the tips of two nearby poses.
+        Line,
+        /// A circle around the tip of a random pose.
+        Circle,
+        /// A figure-8 around the tip of a random pose.
+        Figure8,
+        /// A line out of the reachable region.
+        Beyond,
+    }
 }
 
 /// The kinds of paths `0, 1, 2, …` of a set, cyclically: six FK paths in ten.
@@ -67,10 +69,6 @@ pub const PATTERN: [Kind; 10] = [
 ];
 
 impl Kind {
-    /// Every kind, in the order of the output.
-    pub const ALL: [Kind; 7] =
-        [Kind::Wave, Kind::Boundary, Kind::Limits, Kind::Line, Kind::Circle, Kind::Figure8, Kind::Beyond];
-
     /// The kind's name in the output.
     pub fn name(self) -> &'static str {
         match self {

@@ -41,7 +41,7 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
         .map_err(|e| CliError::runtime(format!("cannot start {threads} threads: {e}")))?;
 
     let mut arms = Vec::new();
-    for arm in ReachArm::BUILT {
+    for arm in ReachArm::ALL {
         let chain = arm.chain()?;
         let region = Region::of(&chain, true);
         let pts = Points::new(arm.name(), &chain, args.seed);

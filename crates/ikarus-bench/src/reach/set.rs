@@ -18,21 +18,21 @@ const EIGHTH_LIMIT_DEG: f64 = 150.0;
 /// SplitMix64's increment: its state after `k` draws is the seed plus `k` times this.
 const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
 
-/// The arms of `ikarus bench --reach`, all with their limits enforced.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ReachArm {
-    /// The seed arm: 3 links.
-    Seed,
-    /// `examples/arms/seven.toml`: 7 links.
-    Seven,
-    /// The seven arm plus an eighth link of length 0.4 with a range of ±150°: 8 links, the
-    /// issue's largest chain (for the build time only).
-    Eight,
+ikarus::listed_enum! {
+    /// The arms of `ikarus bench --reach`, all with their limits enforced.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum ReachArm {
+        /// The seed arm: 3 links.
+        Seed,
+        /// `examples/arms/seven.toml`: 7 links.
+        Seven,
+        /// The seven arm plus an eighth link of length 0.4 with a range of ±150°: 8 links, the
+        /// issue's largest chain (for the build time only).
+        Eight,
+    }
 }
 
 impl ReachArm {
-    /// The arms whose region build is timed (3, 7 and 8 links).
-    pub const BUILT: [ReachArm; 3] = [ReachArm::Seed, ReachArm::Seven, ReachArm::Eight];
     /// The arms whose verdict is timed and checked against solving.
     pub const CHECKED: [ReachArm; 2] = [ReachArm::Seed, ReachArm::Seven];
 
@@ -201,7 +201,7 @@ mod tests {
         assert_eq!(eight.lengths()[..7], *seven.lengths());
         assert_eq!(eight.limits()[..7], *seven.limits());
         assert!(eight.limits()[7].is_some());
-        for arm in ReachArm::BUILT {
+        for arm in ReachArm::ALL {
             assert_eq!(arm.chain().unwrap().len(), arm.links(), "{}", arm.name());
         }
     }

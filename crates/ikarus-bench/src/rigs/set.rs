@@ -15,22 +15,21 @@ use ikarus_edge::rig::Rig;
 
 use crate::sets::{SplitMix64, stable_hash};
 
-/// The kinds of rig set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum RigSetName {
-    /// The puppet, 4 goals: both hands and both feet.
-    Puppet,
-    /// The puppet, 2 goals (the hands) and 2 pins (the feet, where they start): the generating
-    /// configuration keeps the legs at their start angles.
-    PuppetPins,
-    /// The hand, 5 goals: the fingertips (the bones without children).
-    Hand,
+ikarus::listed_enum! {
+    /// The kinds of rig set.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+    pub enum RigSetName {
+        /// The puppet, 4 goals: both hands and both feet.
+        Puppet,
+        /// The puppet, 2 goals (the hands) and 2 pins (the feet, where they start): the generating
+        /// configuration keeps the legs at their start angles.
+        PuppetPins,
+        /// The hand, 5 goals: the fingertips (the bones without children).
+        Hand,
+    }
 }
 
 impl RigSetName {
-    /// Every set, in the order of the output.
-    pub const ALL: [RigSetName; 3] = [RigSetName::Puppet, RigSetName::PuppetPins, RigSetName::Hand];
-
     /// The name used on the command line and in the output.
     pub fn name(self) -> &'static str {
         match self {

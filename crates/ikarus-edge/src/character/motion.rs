@@ -305,7 +305,7 @@ impl<'a> Motion<'a> {
     pub fn clip(&self) -> Option<&str> {
         match &self.course {
             Course::Keyed { animation, .. } => animation.as_deref(),
-            _ => None,
+            Course::Eased { .. } | Course::Path { .. } => None,
         }
     }
 
@@ -314,7 +314,7 @@ impl<'a> Motion<'a> {
     pub fn bend_keys(&self) -> &[(usize, Vec<(f64, bool)>)] {
         match &self.course {
             Course::Keyed { bends, .. } => bends,
-            _ => &[],
+            Course::Eased { .. } | Course::Path { .. } => &[],
         }
     }
 
@@ -389,7 +389,7 @@ impl<'a> Motion<'a> {
     pub fn turned_bones(&self) -> Vec<usize> {
         match &self.course {
             Course::Keyed { rotations, .. } => rotations.iter().map(|(bone, _)| *bone).collect(),
-            _ => Vec::new(),
+            Course::Eased { .. } | Course::Path { .. } => Vec::new(),
         }
     }
 

@@ -176,7 +176,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         .enumerate()
         .filter_map(|(i, c)| match c {
             Constraint::Path(p) => Some((first_path + i, p.slot, slots.slots[p.slot].attachment.as_deref())),
-            _ => None,
+            Constraint::Ik(_) | Constraint::Physics(_) | Constraint::Transform(_) => None,
         })
         .collect();
     let physics = super::spine_physics::read(value, &index)?;

@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 
 use super::{CharacterError, PathVertices};
-use crate::names::listed_enum;
+use crate::listed_enum;
 
 /// A straight RGBA colour, each channel 0 to 1.
 pub type Rgba = [f64; 4];

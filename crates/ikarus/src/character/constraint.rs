@@ -164,7 +164,7 @@ impl Settings {
     pub fn transform(&self) -> Option<&TransformSettings> {
         match self {
             Settings::Transform(s) => Some(s),
-            _ => None,
+            Settings::Ik(_) | Settings::Path(_) | Settings::Physics(_) => None,
         }
     }
 }
@@ -271,7 +271,13 @@ impl ConstraintKeys {
     pub fn ik(&self) -> Option<&[IkKey]> {
         match self {
             ConstraintKeys::Ik(keys) => Some(keys),
-            _ => None,
+            ConstraintKeys::PathPosition(_)
+            | ConstraintKeys::PathSpacing(_)
+            | ConstraintKeys::PathMix(_)
+            | ConstraintKeys::PathDeform { .. }
+            | ConstraintKeys::Physics { .. }
+            | ConstraintKeys::PhysicsReset(_)
+            | ConstraintKeys::Transform(_) => None,
         }
     }
 

@@ -167,33 +167,26 @@ impl Default for LocalTransform {
     }
 }
 
-/// What a bone takes from its parent's world transform (Spine's `inherit`, called `transform`
-/// in 3.8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Inherit {
-    /// Translation, rotation, scale, shear and reflection.
-    #[default]
-    Normal,
-    /// The parent's translation only.
-    OnlyTranslation,
-    /// Translation and scale; not rotation nor reflection.
-    NoRotationOrReflection,
-    /// Translation, rotation and reflection; not scale.
-    NoScale,
-    /// Translation and rotation; not scale nor reflection.
-    NoScaleOrReflection,
+crate::listed_enum! {
+    /// What a bone takes from its parent's world transform (Spine's `inherit`, called
+    /// `transform` in 3.8).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+    pub enum Inherit {
+        /// Translation, rotation, scale, shear and reflection.
+        #[default]
+        Normal,
+        /// The parent's translation only.
+        OnlyTranslation,
+        /// Translation and scale; not rotation nor reflection.
+        NoRotationOrReflection,
+        /// Translation, rotation and reflection; not scale.
+        NoScale,
+        /// Translation and rotation; not scale nor reflection.
+        NoScaleOrReflection,
+    }
 }
 
 impl Inherit {
-    /// Every mode, in the order above.
-    pub const ALL: [Inherit; 5] = [
-        Inherit::Normal,
-        Inherit::OnlyTranslation,
-        Inherit::NoRotationOrReflection,
-        Inherit::NoScale,
-        Inherit::NoScaleOrReflection,
-    ];
-
     /// Spine's name of the mode (`normal`, `onlyTranslation`, …).
     pub fn as_str(self) -> &'static str {
         match self {

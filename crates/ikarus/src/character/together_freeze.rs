@@ -303,7 +303,7 @@ fn bend_of(angle: f64, s: &IkSettings, posed: &Posed, bones: IkBones, rule: IkRu
             let [a, b, c, d] = posed.matrix(parent);
             s.bend_positive != (a * d - b * c < 0.0)
         }
-        _ => angle >= -1e-9,
+        (IkRule::Spine, IkBones::One(_)) | (IkRule::DragonBones, _) => angle >= -1e-9,
     };
     if positive { Bend::Positive } else { Bend::Negative }
 }

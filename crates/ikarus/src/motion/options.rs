@@ -3,7 +3,7 @@
 
 use super::Timing;
 use crate::ease::Ease;
-use crate::names::listed_enum;
+use crate::listed_enum;
 
 listed_enum! {
     /// How the joint-space path runs through the keyframes.

@@ -78,7 +78,9 @@ pub fn through_goals(
     let poses = solve_in_turn(start, goals, route, solve, record)?;
     let animation = match solver.options().limits {
         LimitMode::Ignore => animate_with(&chain.without_limits(), &poses, None, options)?,
-        _ => animate_with(chain, &poses, None, options)?,
+        LimitMode::Clamp | LimitMode::Lock | LimitMode::NullSpace | LimitMode::Weighted => {
+            animate_with(chain, &poses, None, options)?
+        }
     };
     Ok(GoalMotion { solves, animation })
 }

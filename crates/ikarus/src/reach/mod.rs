@@ -174,7 +174,9 @@ pub struct WorkspaceOptions {
     /// Shifts the quasi-random sequence used for five or more movable joints. Default 0.
     pub seed: u64,
     /// Spread the samples over rayon's global thread pool; `false` stays on the calling
-    /// thread. The result is identical either way. Default `true`.
+    /// thread. The result is identical either way. Default `false`: the library starts no
+    /// thread it was not asked for (a command line that samples one large grid asks; a server
+    /// whose workers already run side by side does not).
     pub parallel: bool,
     /// Stops the sampling when set (checked before every joint-space sample): [`sample`]
     /// returns [`ReachError::Interrupted`]. Default `None`.
@@ -242,7 +244,7 @@ impl WorkspaceOptions {
 
 impl Default for WorkspaceOptions {
     fn default() -> Self {
-        Self { resolution: 256, limits: true, samples: None, seed: 0, parallel: true, interrupt: None }
+        Self { resolution: 256, limits: true, samples: None, seed: 0, parallel: false, interrupt: None }
     }
 }
 

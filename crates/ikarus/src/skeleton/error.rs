@@ -9,7 +9,6 @@ use crate::number::Num;
 
 /// Which number of a bone an error is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
 pub enum BoneField {
     /// [`Bone::length`](super::Bone::length).
     Length,

@@ -22,6 +22,29 @@ use nalgebra::{Matrix3, Matrix3xX, Vector3};
 use super::step::{Rule, System, gram, method_step};
 use super::{SolveOptions, pinv};
 
+/// Which Jacobian a step works on: `J` itself, or `J` with its columns weighted by the limit
+/// mode or the rest-pose preference ([`Algebra::set_weighted`]). Until a joint is locked or
+/// weighted they are the same, and [`Columns::Plain`] skips the weighted copy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Columns {
+    /// `J` itself (every column's factor 1).
+    Plain,
+    /// The weighted `J` of [`Algebra::set_weighted`].
+    Weighted,
+}
+
+impl Columns {
+    /// `plain` or `weighted`, as these columns say (the two borrowed apart, so that the caller
+    /// may still change its other fields).
+    #[inline]
+    pub(super) fn pick<'a, M>(self, plain: &'a M, weighted: &'a M) -> &'a M {
+        match self {
+            Columns::Plain => plain,
+            Columns::Weighted => weighted,
+        }
+    }
+}
+
 /// Task-space state and kernels of the Jacobian methods (see the [module docs](self)).
 pub(super) trait Algebra: Default + Clone + std::fmt::Debug {
     /// Sizes the buffers for `n` joints; allocates only when they grow.
@@ -37,14 +60,14 @@ pub(super) trait Algebra: Default + Clone + std::fmt::Debug {
     fn reset_task(&mut self);
     /// Column `i` of the weighted Jacobian: `k Jᵢ`.
     fn set_weighted(&mut self, i: usize, k: f64);
-    /// `A` of `J` (`plain`) or of the weighted Jacobian.
-    fn gram(&mut self, plain: bool);
+    /// `A` of the Jacobian of `columns`.
+    fn gram(&mut self, columns: Columns);
     /// The step of `rule` for the current task, in weighted joint coordinates, into `out`
-    /// (`A` from [`Algebra::gram`] of the same `plain`).
-    fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]);
-    /// The null-space push: `delta += z − W A⁺ W z` over the free joints, `W` the (weighted)
-    /// Jacobian of `plain`, `z` one entry per joint.
-    fn project_push(&mut self, plain: bool, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]);
+    /// (`A` from [`Algebra::gram`] of the same `columns`).
+    fn method_step(&mut self, columns: Columns, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]);
+    /// The null-space push: `delta += z − W A⁺ W z` over the free joints, `W` the Jacobian of
+    /// `columns`, `z` one entry per joint.
+    fn project_push(&mut self, columns: Columns, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]);
     /// `task −= d Jᵢ` (a joint locked after moving by `d`).
     fn task_sub_column(&mut self, i: usize, d: f64);
     /// The line search's prediction starts as `e`.
@@ -75,8 +98,8 @@ pub(super) struct Fixed3 {
 
 impl Fixed3 {
     #[inline]
-    fn j(&self, plain: bool) -> &Matrix3xX<f64> {
-        if plain { &self.jacobian } else { &self.weighted }
+    fn j(&self, columns: Columns) -> &Matrix3xX<f64> {
+        columns.pick(&self.jacobian, &self.weighted)
     }
 }
 
@@ -115,19 +138,19 @@ impl Algebra for Fixed3 {
     }
 
     #[inline]
-    fn gram(&mut self, plain: bool) {
-        self.a = gram(self.j(plain), self.oriented);
+    fn gram(&mut self, columns: Columns) {
+        self.a = gram(self.j(columns), self.oriented);
     }
 
     #[inline]
-    fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
-        let sys = System { a: &self.a, weighted: self.j(plain), e: &self.task };
+    fn method_step(&mut self, columns: Columns, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
+        let sys = System { a: &self.a, weighted: self.j(columns), e: &self.task };
         method_step(rule, opts, self.oriented, sys, mu, out);
     }
 
     #[inline]
-    fn project_push(&mut self, plain: bool, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]) {
-        let weighted = self.j(plain);
+    fn project_push(&mut self, columns: Columns, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]) {
+        let weighted = self.j(columns);
         let mut jz = Vector3::zeros();
         for (i, &zi) in z.iter().enumerate() {
             jz += weighted.column(i) * zi;

@@ -19,7 +19,7 @@
 //! the rest angles in the null space of the task (see [`pull_to_rest`]).
 
 use super::LimitMode;
-use super::algebra::Algebra;
+use super::algebra::{Algebra, Columns};
 use super::model::Problem;
 use super::model::{Model, Posture, ScratchOf};
 use super::step::Rule;
@@ -76,15 +76,15 @@ pub(super) fn compute_delta<M: Model>(
     let fade = if pushing { (s.alg.e_norm() / (NULLSPACE_FADE * model.max_reach())).min(1.0) } else { 0.0 };
     for round in 0..=n {
         // Until a joint is locked or weighted, J itself is the weighted Jacobian.
-        let plain = round == 0 && !weighing && posture.is_none();
-        if !plain {
+        let columns = if round == 0 && !weighing && posture.is_none() { Columns::Plain } else { Columns::Weighted };
+        if columns == Columns::Weighted {
             for i in 0..n {
                 let k = if s.locked[i] { 0.0 } else { s.scale[i] };
                 s.alg.set_weighted(i, k);
             }
         }
-        s.alg.gram(plain);
-        s.alg.method_step(plain, rule, opts, mu, &mut s.step);
+        s.alg.gram(columns);
+        s.alg.method_step(columns, rule, opts, mu, &mut s.step);
         for i in 0..n {
             if !s.locked[i] {
                 let rate = opts.rates.get(i).copied().unwrap_or(1.0);
@@ -92,10 +92,10 @@ pub(super) fn compute_delta<M: Model>(
             }
         }
         if let (true, Some(post)) = (pull, posture) {
-            pull_to_rest(p, post, plain, angles, s);
+            pull_to_rest(p, post, columns, angles, s);
         }
         if pushing {
-            push_to_the_middle(p, fade, plain, angles, s);
+            push_to_the_middle(p, fade, columns, angles, s);
         }
         if !locking || !lock_crossing(model, angles, s) {
             break;
@@ -133,17 +133,17 @@ fn weigh<M: Model>(model: &M, angles: &[f64], s: &mut ScratchOf<M>) {
 }
 
 /// The null-space push: `z` pulls limited joints toward the middle; remove what the task would
-/// see of it ([`project_free`]) and add it to the step. `plain` says whether this round's
-/// weighted Jacobian is `J` itself, whose Gram matrix the algebra holds.
+/// see of it ([`project_free`]) and add it to the step. `columns` says whether this round's
+/// weighted Jacobian is `J` itself ([`Columns::Plain`]); the algebra holds its Gram matrix.
 #[inline]
-fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
+fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, columns: Columns, angles: &[f64], s: &mut ScratchOf<M>) {
     for (i, lim) in p.model.limits().iter().enumerate() {
         s.step[i] = match lim {
             Some(l) if !s.locked[i] => -NULLSPACE_GAIN * fade * (angles[i] - 0.5 * (l.min() + l.max())),
             _ => 0.0,
         };
     }
-    project_free(p, plain, s);
+    project_free(p, columns, s);
     for (d, (&q, &locked)) in s.delta.iter_mut().zip(s.pull.iter().zip(&s.locked)) {
         if !locked {
             *d += q;
@@ -156,13 +156,13 @@ fn push_to_the_middle<M: Model>(p: &Problem<'_, M>, fade: f64, plain: bool, angl
 /// `K (z' − Ĵᵀ (Ĵ Ĵᵀ)⁺ Ĵ z')` with `z' = K⁻¹ z`, so that `J` of it is 0; the locked joints (and
 /// those of weight 0) are left out. With every weight 1 this is `z − Jᵀ (J Jᵀ)⁺ J z`.
 #[inline]
-fn project_free<M: Model>(p: &Problem<'_, M>, plain: bool, s: &mut ScratchOf<M>) {
+fn project_free<M: Model>(p: &Problem<'_, M>, columns: Columns, s: &mut ScratchOf<M>) {
     for i in 0..s.step.len() {
         let k = s.scale[i];
         s.step[i] = if k > 0.0 && !s.locked[i] { s.step[i] / k } else { 0.0 };
     }
     s.pull.fill(0.0);
-    s.alg.project_push(plain, p.opts.singular_threshold, &s.step, &s.locked, &mut s.pull);
+    s.alg.project_push(columns, p.opts.singular_threshold, &s.step, &s.locked, &mut s.pull);
     for (q, &k) in s.pull.iter_mut().zip(&s.scale) {
         *q *= k;
     }
@@ -180,7 +180,13 @@ fn project_free<M: Model>(p: &Problem<'_, M>, plain: bool, s: &mut ScratchOf<M>)
 /// the goals, where the pull's second-order error outweighs the step's gain) is tried again
 /// without it, which keeps the final convergence the rule's own.
 #[inline]
-fn pull_to_rest<M: Model>(p: &Problem<'_, M>, post: Posture<'_>, plain: bool, angles: &[f64], s: &mut ScratchOf<M>) {
+fn pull_to_rest<M: Model>(
+    p: &Problem<'_, M>,
+    post: Posture<'_>,
+    columns: Columns,
+    angles: &[f64],
+    s: &mut ScratchOf<M>,
+) {
     let largest = s.delta.iter().zip(&s.locked).filter(|(_, l)| !**l).fold(0.0f64, |m, (d, _)| m.max(d.abs()));
     for (z, ((a, r), f)) in s.step.iter_mut().zip(angles.iter().zip(post.rest).zip(post.pull)) {
         *z = -REST_GAIN * f * (a - r);
@@ -188,7 +194,7 @@ fn pull_to_rest<M: Model>(p: &Problem<'_, M>, post: Posture<'_>, plain: bool, an
     if !(largest > 0.0 && largest.is_finite()) {
         return;
     }
-    project_free(p, plain, s);
+    project_free(p, columns, s);
     let size = s.pull.iter().fold(0.0f64, |m, q| m.max(q.abs()));
     if !(size > 0.0 && size.is_finite()) {
         return;

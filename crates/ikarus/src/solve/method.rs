@@ -1,8 +1,8 @@
 //! The step rules ([`Method`]) and the ways of enforcing joint limits ([`LimitMode`]), with
 //! their names at the edges and which rule supports which mode.
 
+use crate::listed_enum;
 use crate::names::by_name;
-use crate::names::listed_enum;
 use crate::skeleton::Joint;
 
 listed_enum! {

@@ -10,26 +10,27 @@ use super::task::{EffectorOutcome, RigTaskError};
 use crate::chain::Pose;
 use crate::kinematics::EndEffector;
 
-/// Why a solve ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Status {
-    /// The tip is within tolerance of the goal (and of its orientation, if any).
-    Reached,
-    /// No pose can reach the goal: it is out of reach even with limits ignored (the pose is
-    /// then the best found: for a position goal, the arm stretched towards it), or, with limits
-    /// enforced, outside the exact reachable region (the pose then reaches the nearest
-    /// reachable point, found at once without a search; see
-    /// [`SolveOptions::reach_verdict`](super::SolveOptions::reach_verdict)).
-    Unreachable,
-    /// The pose stopped moving before reaching the goal: a local minimum, or joints held at
-    /// their limits.
-    Stalled,
-    /// The iteration cap was hit while the pose was still moving.
-    IterationLimit,
-    /// The solve's [`interrupt`](super::SolveOptions::interrupt) was set; the pose is where
-    /// it stopped.
-    Interrupted,
+crate::listed_enum! {
+    /// Why a solve ended.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Status {
+        /// The tip is within tolerance of the goal (and of its orientation, if any).
+        Reached,
+        /// No pose can reach the goal: it is out of reach even with limits ignored (the pose is
+        /// then the best found: for a position goal, the arm stretched towards it), or, with limits
+        /// enforced, outside the exact reachable region (the pose then reaches the nearest
+        /// reachable point, found at once without a search; see
+        /// [`SolveOptions::reach_verdict`](super::SolveOptions::reach_verdict)).
+        Unreachable,
+        /// The pose stopped moving before reaching the goal: a local minimum, or joints held at
+        /// their limits.
+        Stalled,
+        /// The iteration cap was hit while the pose was still moving.
+        IterationLimit,
+        /// The solve's [`interrupt`](super::SolveOptions::interrupt) was set; the pose is where
+        /// it stopped.
+        Interrupted,
+    }
 }
 
 impl Status {

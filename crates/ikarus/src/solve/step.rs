@@ -90,7 +90,7 @@ pub(super) fn method_step(rule: Rule, opts: &SolveOptions, oriented: bool, sys: 
     let damping = match rule {
         Rule::DampedLeastSquares => Some(opts.lambda * opts.lambda),
         Rule::LevenbergMarquardt => Some(mu),
-        _ => None,
+        Rule::Transpose | Rule::PseudoInverse | Rule::SelectivelyDamped => None,
     };
     if let (false, Some(damping)) = (oriented, damping) {
         if let Some((y0, y1)) = damped_2x2(a[(0, 0)], a[(0, 1)], a[(1, 1)], e[0], e[1], damping) {

@@ -82,8 +82,8 @@ mod skeleton_tests;
 #[cfg(test)]
 mod tests;
 
+use crate::listed_enum;
 use crate::math;
-use crate::names::listed_enum;
 use crate::number::Num;
 use thiserror::Error;
 

@@ -5,33 +5,34 @@ use crate::goal::Goal;
 use crate::limits::Bounds;
 use crate::solve::Status;
 
-/// How one sample of a path ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum SampleStatus {
-    /// The tip is within tolerance of the sample's goal.
-    Reached,
-    /// [`follow`](super::follow) only: the goal needed a larger joint step than
-    /// [`TrackOptions::max_step`](super::TrackOptions::max_step), so the arm moved that far
-    /// toward it and catches up on later samples.
-    Limited,
-    /// The goal is out of reach even with the limits ignored; the pose is the best found
-    /// nearest the previous one.
-    Unreachable,
-    /// No solution was found near the previous pose (a local minimum, or joints held at their
-    /// limits); the pose is the best found.
-    Stalled,
-    /// The solver's iteration cap was hit while the pose was still moving.
-    IterationLimit,
-    /// The solve was interrupted ([`SolveOptions::interrupt`](crate::SolveOptions::interrupt)).
-    Interrupted,
-    /// [`plan`](super::plan) only: not one of the path's samples but a pose it inserted on the
-    /// way to the next one, where the chosen poses of two consecutive samples lie further apart
-    /// than [`TrackOptions::max_step`](super::TrackOptions::max_step) (where the path leaves
-    /// what the arm can follow, or the arm must change branch): the arm leaves the path there
-    /// and moves by a straight line in joint space, in steps within the bound. Its goal is the
-    /// next sample's.
-    OffPath,
+crate::listed_enum! {
+    /// How one sample of a path ended.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum SampleStatus {
+        /// The tip is within tolerance of the sample's goal.
+        Reached,
+        /// [`follow`](super::follow) only: the goal needed a larger joint step than
+        /// [`TrackOptions::max_step`](super::TrackOptions::max_step), so the arm moved that far
+        /// toward it and catches up on later samples.
+        Limited,
+        /// The goal is out of reach even with the limits ignored; the pose is the best found
+        /// nearest the previous one.
+        Unreachable,
+        /// No solution was found near the previous pose (a local minimum, or joints held at their
+        /// limits); the pose is the best found.
+        Stalled,
+        /// The solver's iteration cap was hit while the pose was still moving.
+        IterationLimit,
+        /// The solve was interrupted ([`SolveOptions::interrupt`](crate::SolveOptions::interrupt)).
+        Interrupted,
+        /// [`plan`](super::plan) only: not one of the path's samples but a pose it inserted on the
+        /// way to the next one, where the chosen poses of two consecutive samples lie further apart
+        /// than [`TrackOptions::max_step`](super::TrackOptions::max_step) (where the path leaves
+        /// what the arm can follow, or the arm must change branch): the arm leaves the path there
+        /// and moves by a straight line in joint space, in steps within the bound. Its goal is the
+        /// next sample's.
+        OffPath,
+    }
 }
 
 impl SampleStatus {

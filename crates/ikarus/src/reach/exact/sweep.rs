@@ -182,7 +182,7 @@ fn sweep_exactly(child: &Level, shift: P, range: Range, tol: Tol, work: &mut Wor
                 level.segs = copy;
                 (level, true)
             }
-            _ => (Level::curve(copy), true),
+            Kind::Point | Kind::Curve => (Level::curve(copy), true),
         });
     }
     // The child moved out along the link; each piece's radial parts remember the piece.

@@ -255,7 +255,7 @@ fn same_options_same_grid_with_or_without_threads() {
     four.push(Link::new(0.5, 0.0).with_limits(lim(-120.0, 120.0)));
     let four = Chain::new([1.0, 2.0], &four).unwrap();
     for chain in [seed_arm(), four, seven()] {
-        let opts = WorkspaceOptions { seed: 5, samples: Some(1000), ..options(160) };
+        let opts = WorkspaceOptions { seed: 5, samples: Some(1000), parallel: true, ..options(160) };
         let a = sample(&chain, &opts).unwrap();
         let b = sample(&chain, &opts).unwrap();
         let c = sample(&chain, &WorkspaceOptions { parallel: false, ..opts.clone() }).unwrap();

@@ -82,8 +82,8 @@ fn the_prr_arms_free_region_is_a_stadium() {
 fn monte_carlo_tips_within_the_limits_land_in_occupied_cells() {
     let s = prr();
     let ws = sample_skeleton(&s, 2, &WorkspaceOptions::default()).unwrap();
-    let serial = sample_skeleton(&s, 2, &WorkspaceOptions { parallel: false, ..WorkspaceOptions::default() });
-    assert_eq!(serial.unwrap(), ws);
+    let threaded = sample_skeleton(&s, 2, &WorkspaceOptions { parallel: true, ..WorkspaceOptions::default() });
+    assert_eq!(threaded.unwrap(), ws);
     let mut rng = Rng(7);
     let (mut points, mut dirs) = (vec![Point2::origin(); 4], vec![0.0; 3]);
     let draws = 200_000;

@@ -19,8 +19,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::Algebra;
 use super::kernels::{cholesky_solve, dot, pinv_apply, symmetric_eigen, transpose_apply};
+use super::{Algebra, Columns};
 use crate::math;
 use crate::solve::SolveOptions;
 use crate::solve::step::Rule;
@@ -148,10 +148,6 @@ impl Dynamic {
         self.eigen_of = Some(k);
     }
 
-    fn w(&self, plain: bool) -> &DMatrix<f64> {
-        if plain { &self.jacobian } else { &self.weighted }
-    }
-
     /// `y = rule(A_sub, v)` on the leading `k × k` block of `A` (copied to `self.block`), into
     /// `self.y`. SDLS is handled by the caller (it works in joint space).
     fn task_step(&mut self, k: usize, rule: Rule, opts: &SolveOptions, mu: f64, v_from_task: bool) {
@@ -186,7 +182,7 @@ impl Dynamic {
 
     /// Buss & Kim's selectively damped step of the leading `k` rows into `out` (see `sdls.rs`:
     /// the same rule, with the norms taken per effector block).
-    fn sdls_step(&mut self, plain: bool, k: usize, threshold: f64, out: &mut [f64]) {
+    fn sdls_step(&mut self, columns: Columns, k: usize, threshold: f64, out: &mut [f64]) {
         self.leading_eigen(k);
         out.fill(0.0);
         let floor = threshold * threshold;
@@ -206,7 +202,7 @@ impl Dynamic {
             }
             sum
         };
-        let w = if plain { &self.jacobian } else { &self.weighted };
+        let w = columns.pick(&self.jacobian, &self.weighted);
         for i in 0..k {
             let mu = self.eigen_values[i];
             if mu <= floor {
@@ -241,7 +237,7 @@ impl Dynamic {
 
     /// The second level: `out += P₁ W₂ᵀ y₂` with `y₂` the damped solve of `W₂ P₁ W₂ᵀ` against
     /// `r₂ = task₂ − W₂ out` (see the [module docs](self)).
-    fn secondary_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
+    fn secondary_step(&mut self, columns: Columns, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
         let m = self.e.len();
         let p = self.primary;
         let m2 = m - p;
@@ -249,7 +245,7 @@ impl Dynamic {
         // A₁⁺ by eigen-decomposition of the leading block.
         self.leading_eigen(p);
         let floor = opts.singular_threshold * opts.singular_threshold;
-        let w = if plain { &self.jacobian } else { &self.weighted };
+        let w = columns.pick(&self.jacobian, &self.weighted);
         // K = P₁ W₂ᵀ, one column per secondary row.
         for s in 0..m2 {
             let col = &mut self.k[s * n..(s + 1) * n];
@@ -345,14 +341,14 @@ impl Algebra for Dynamic {
         self.pending_k[i] = k;
     }
 
-    /// `A = Σ kᵢ² Jᵢ Jᵢᵀ` for the column factors `kᵢ` (1 for `plain`, else those of
+    /// `A = Σ kᵢ² Jᵢ Jᵢᵀ` for the column factors `kᵢ` (1 for [`Columns::Plain`], else those of
     /// [`Algebra::set_weighted`]). `A` is kept between calls for the same `J`: a call whose
     /// factors differ from the last ones in a few columns (a limit mode's next round, which
     /// locks a joint or two) only adds those columns' change, and one with the same factors
     /// (Levenberg–Marquardt's retry) costs nothing.
-    fn gram(&mut self, plain: bool) {
+    fn gram(&mut self, columns: Columns) {
         let m = self.e.len();
-        if plain {
+        if columns == Columns::Plain {
             self.pending_k.fill(1.0);
         }
         if self.gram_valid {
@@ -380,7 +376,7 @@ impl Algebra for Dynamic {
         self.eigen_of = None;
         let a = &mut self.a;
         a.fill(0.0);
-        let w = if plain { &self.jacobian } else { &self.weighted };
+        let w = columns.pick(&self.jacobian, &self.weighted);
         for (i, col) in w.column_iter().enumerate() {
             let col = col.as_slice();
             let rows = &self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]];
@@ -400,13 +396,13 @@ impl Algebra for Dynamic {
         self.gram_valid = true;
     }
 
-    fn method_step(&mut self, plain: bool, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
+    fn method_step(&mut self, columns: Columns, rule: Rule, opts: &SolveOptions, mu: f64, out: &mut [f64]) {
         let p = self.primary;
         if rule == Rule::SelectivelyDamped {
-            self.sdls_step(plain, p, opts.singular_threshold, out);
+            self.sdls_step(columns, p, opts.singular_threshold, out);
         } else {
             self.task_step(p, rule, opts, mu, true);
-            let w = self.w(plain);
+            let w = columns.pick(&self.jacobian, &self.weighted);
             for (i, (o, col)) in out.iter_mut().zip(w.column_iter()).enumerate() {
                 let col = col.as_slice();
                 *o = self.nz_rows[self.nz_start[i]..self.nz_start[i + 1]]
@@ -417,7 +413,7 @@ impl Algebra for Dynamic {
             }
         }
         if p < self.e.len() {
-            self.secondary_step(plain, rule, opts, mu, out);
+            self.secondary_step(columns, rule, opts, mu, out);
         }
     }
 
@@ -426,10 +422,10 @@ impl Algebra for Dynamic {
     /// or where that fails by the eigen-decomposition; then `delta += z − Wᵀ y`. (The
     /// factorisation is several times cheaper than the decomposition, and the rest pose's pull
     /// projects every step.)
-    fn project_push(&mut self, plain: bool, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]) {
+    fn project_push(&mut self, columns: Columns, threshold: f64, z: &[f64], locked: &[bool], delta: &mut [f64]) {
         let m = self.e.len();
         {
-            let w = if plain { &self.jacobian } else { &self.weighted };
+            let w = columns.pick(&self.jacobian, &self.weighted);
             for r in 0..m {
                 self.r[r] = (0..z.len()).map(|j| w[(r, j)] * z[j]).sum();
             }
@@ -440,7 +436,7 @@ impl Algebra for Dynamic {
             self.leading_eigen(m);
             pinv_apply(m, &self.eigen_values, &self.eigen_vectors, threshold * threshold, &self.r, &mut self.y);
         }
-        let w = if plain { &self.jacobian } else { &self.weighted };
+        let w = columns.pick(&self.jacobian, &self.weighted);
         for (i, d) in delta.iter_mut().enumerate() {
             if !locked[i] {
                 *d += z[i] - dot(w.column(i).as_slice(), &self.y[..m]);

@@ -22,9 +22,9 @@ fn step(d: &mut Dynamic, k: &[f64]) -> Vec<f64> {
     for (i, &f) in k.iter().enumerate() {
         d.set_weighted(i, f);
     }
-    d.gram(false);
+    d.gram(Columns::Weighted);
     let mut out = vec![0.0; k.len()];
-    d.method_step(false, Rule::LevenbergMarquardt, &SolveOptions::default(), 1e-30, &mut out);
+    d.method_step(Columns::Weighted, Rule::LevenbergMarquardt, &SolveOptions::default(), 1e-30, &mut out);
     out
 }
 
