@@ -49,12 +49,31 @@ pub const QUICK_COST: f64 = 2.5e6;
 /// into several pixels (a megabyte of images is far past [`QUICK_COST`]).
 pub const ATLAS_BYTE_COST: f64 = 10.0;
 
-/// The solver's defaults (`SolveOptions::default()`), as the estimate reads them.
-const ITERATIONS: f64 = 1000.0;
-const RESTARTS: f64 = 16.0;
-const BACKTRACK: f64 = 10.0;
+/// What a solve runs at most when neither the request nor its file says: the library's
+/// defaults (`ikarus::SolveOptions::default()`), as link-step factors.
+struct SolverDefaults {
+    iterations: f64,
+    restarts: f64,
+    backtrack: f64,
+}
+
+impl SolverDefaults {
+    fn get() -> Self {
+        let d = ikarus::SolveOptions::default();
+        SolverDefaults {
+            iterations: f64::from(d.max_iterations),
+            restarts: f64::from(d.restarts.map_or(0, |r| r.attempts)),
+            backtrack: f64::from(d.backtrack),
+        }
+    }
+}
+
 /// Links of the built-in arm (the seed's), when a request has no `arm`.
-const SEED_LINKS: f64 = 3.0;
+fn seed_links() -> f64 {
+    static LINKS: std::sync::LazyLock<f64> =
+        std::sync::LazyLock::new(|| ikarus_edge::edge::default_arm().chain().len() as f64);
+    *LINKS
+}
 /// Samples of a track's shape, frames of a motion, pixels of a picture side when not given.
 const TRACK_SAMPLES: f64 = 100.0;
 const FRAMES: f64 = 60.0;
@@ -70,24 +89,21 @@ pub fn lane(endpoint: Endpoint, body: &[u8]) -> Lane {
 /// The request's worst-case work in link steps (see the module docs); 0 for a body that is not
 /// a JSON object.
 pub fn estimate(endpoint: Endpoint, body: &[u8]) -> f64 {
-    if matches!(endpoint, Endpoint::RigParse | Endpoint::ArmParse) {
-        return file_estimate(FileBody::Text, body);
-    }
-    if endpoint == Endpoint::AtlasParse {
-        return body.len() as f64 * ATLAS_BYTE_COST;
-    }
-    let Ok(r) = serde_json::from_slice::<Shape>(body) else { return 0.0 };
+    let shape = |cost: fn(&Shape) -> f64| serde_json::from_slice::<Shape>(body).map_or(0.0, |r| cost(&r));
     match endpoint {
-        Endpoint::Solve => r.solve(),
-        Endpoint::SolveBatch => r.goals.0.max(1.0) * r.solve(),
-        Endpoint::Animate => r.animate(),
-        Endpoint::Track => r.track(),
-        Endpoint::Workspace => r.workspace(),
-        Endpoint::Reach => r.region() + r.points.0.max(1.0) * r.solve(),
-        Endpoint::Pose => r.character().map_or(0.0, |c| c.parse() + c.pose(r.rules())),
+        // Answered at once, never on the pool: nothing in them a request can lengthen.
+        Endpoint::Meta | Endpoint::ArmDefault | Endpoint::Rigs | Endpoint::ArmToml | Endpoint::Ease => 0.0,
+        Endpoint::ArmParse | Endpoint::RigParse => file_estimate(FileBody::Text, body),
+        Endpoint::AtlasParse => body.len() as f64 * ATLAS_BYTE_COST,
+        Endpoint::Solve => shape(Shape::solve),
+        Endpoint::SolveBatch => shape(|r| r.goals.0.max(1.0) * r.solve()),
+        Endpoint::Animate => shape(Shape::animate),
+        Endpoint::Track => shape(Shape::track),
+        Endpoint::Workspace => shape(Shape::workspace),
+        Endpoint::Reach => shape(|r| r.region() + r.points.0.max(1.0) * r.solve()),
+        Endpoint::Pose => shape(|r| r.character().map_or(0.0, |c| c.parse() + c.pose(r.rules()))),
         #[cfg(feature = "render")]
-        Endpoint::Render => r.render(),
-        _ => 0.0,
+        Endpoint::Render => shape(Shape::render),
     }
 }
 
@@ -161,7 +177,7 @@ impl Shape {
         match (&self.arm.0, &self.rig.body) {
             (_, Some(rig)) => rig.bones.0,
             (Some(arm), None) => arm.links.0,
-            (None, None) => SEED_LINKS,
+            (None, None) => seed_links(),
         }
         .max(1.0)
     }
@@ -180,9 +196,10 @@ impl Shape {
 
     /// One solve placing every joint for each of `targets`, worst case.
     fn solve_of(&self, targets: f64) -> f64 {
-        let iterations = self.option(|s| s.max_iterations.value(), ITERATIONS);
-        let restarts = self.option(|s| s.restarts.value(), RESTARTS);
-        let backtrack = self.option(|s| s.backtrack.value(), BACKTRACK);
+        let d = SolverDefaults::get();
+        let iterations = self.option(|s| s.max_iterations.value(), d.iterations);
+        let restarts = self.option(|s| s.restarts.value(), d.restarts);
+        let backtrack = self.option(|s| s.backtrack.value(), d.backtrack);
         self.joints() * targets * iterations.max(1.0) * (1.0 + restarts) * (1.0 + backtrack)
     }
 

@@ -54,8 +54,8 @@ pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> R
 
 /// `/api/atlas/parse`: a texture atlas and its page images (JSON under `--max-file-bytes`),
 /// read on a worker of the pool as [`compute`] does.
-pub async fn atlas_file(state: AppState, body: AtlasBody) -> Result<Response, Refusal> {
-    on_pool(Endpoint::AtlasParse, state, body).await
+pub async fn atlas_file(endpoint: Endpoint, state: AppState, body: AtlasBody) -> Result<Response, Refusal> {
+    on_pool(endpoint, state, body).await
 }
 
 /// `/api/rig/parse`: the body is a rig or character file's text (`application/toml`) or bytes

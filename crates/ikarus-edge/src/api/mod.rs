@@ -17,6 +17,7 @@ pub mod character_motion;
 pub mod ease;
 pub mod fields;
 pub mod figures;
+pub mod intake;
 pub mod jobs;
 pub mod keyed;
 pub mod meta;
@@ -33,95 +34,120 @@ pub mod wire;
 
 use bodies::AnimateBody;
 use ikarus::Interrupt;
+pub use intake::Intake;
 use requests::{SolveReq, TrackReq};
 use wire::text;
 pub use wire::{Limits, Problem, Reply, parse_json, status};
 
-/// The endpoints of the API (`/api/<path>`), without HTTP.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Endpoint {
+/// Declares the endpoints, each once: its doc, its variant, its path, what it reads
+/// ([`Intake`]: how the server takes its body and where it runs it) and its handler, a closure
+/// `|body, limits, interrupt|` answering the request's bytes. From it come [`Endpoint`],
+/// [`Endpoint::ALL`], [`Endpoint::path`], [`Endpoint::intake`] and [`call`]'s match, and from
+/// those the server's routes: an endpoint declared here is routed, served and costed, and one
+/// not declared does not exist.
+macro_rules! endpoints {
+    ($(
+        $(#[doc = $doc:literal])*
+        $(#[cfg($cfg:meta)])?
+        $variant:ident = $path:literal, $intake:ident, |$body:pat_param, $limits:pat_param, $interrupt:pat_param| $handler:expr;
+    )*) => {
+        /// The endpoints of the API (`/api/<path>`), without HTTP.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum Endpoint {
+            $(
+                $(#[doc = $doc])*
+                $(#[cfg($cfg)])?
+                $variant,
+            )*
+        }
+
+        impl Endpoint {
+            /// Every endpoint, in the order they are declared.
+            pub const ALL: &[Endpoint] = &[$($(#[cfg($cfg)])? Endpoint::$variant,)*];
+
+            /// Its path, `/api/solve`.
+            #[must_use]
+            pub fn path(self) -> &'static str {
+                match self {
+                    $($(#[cfg($cfg)])? Endpoint::$variant => concat!("/api/", $path),)*
+                }
+            }
+
+            /// What it reads, and so how the server takes its request and where it runs it.
+            #[must_use]
+            pub fn intake(self) -> Intake {
+                match self {
+                    $($(#[cfg($cfg)])? Endpoint::$variant => Intake::$intake,)*
+                }
+            }
+        }
+
+        /// Exactly what `ikarus serve` answers for `endpoint` with this body (the `GET` endpoints
+        /// ignore it): the same bytes, or the same status and message. Computations check
+        /// `interrupt` and stop with 503 when it is set.
+        pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
+            match endpoint {
+                $($(#[cfg($cfg)])? Endpoint::$variant => {
+                    let ($body, $limits, $interrupt) = (body, limits, interrupt);
+                    $handler
+                })*
+            }
+        }
+    };
+}
+
+endpoints! {
     /// `GET /api/meta`: the methods, limit modes, eases and defaults the page offers.
-    Meta,
+    Meta = "meta", Nothing, |_, _, _| Reply::json(&meta::meta());
     /// `GET /api/arm/default`: the built-in arm.
-    ArmDefault,
+    ArmDefault = "arm/default", Nothing, |_, _, _| arm_files::default_arm();
     /// `POST /api/arm/parse`: an arm file's text → `{arm}` or `{problem}`.
-    ArmParse,
+    ArmParse = "arm/parse", FileText, |body, _, _| Reply::json(&arm_files::parsed(text(body)?));
     /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.
-    ArmToml,
+    ArmToml = "arm/toml", Json, |body, _, _| arm_files::toml(body);
     /// `GET /api/rigs`: the shipped rigs.
-    Rigs,
-    /// `POST /api/rig/parse`: a rig file's text → `{rig}` or `{problem}`.
-    RigParse,
+    Rigs = "rigs", Nothing, |_, _, _| rigs::list();
+    /// `POST /api/rig/parse`: a rig file's text → `{rig}` or `{problem}` (the server also takes
+    /// a `.skel`'s bytes and `?text=1`: [`rigs::parse_file`]).
+    RigParse = "rig/parse", FileTextOrBytes, |body, limits, _| {
+        rigs::parse_file(body, rigs::FileBody::Text, rigs::Echo::Without, limits)
+    };
     /// `POST /api/atlas/parse`: a texture atlas (and its page images) → its id and pages.
-    AtlasParse,
+    AtlasParse = "atlas/parse", JsonFile, |body, _, _| atlases::parse(body);
     /// `POST /api/solve`: an arm's or a rig's solve.
-    Solve,
+    Solve = "solve", Computation, |body, limits, interrupt| jobs::solve(SolveReq::parse(body)?.1, limits, interrupt);
     /// `POST /api/solve_batch`: many goals for one arm, through the library's batch path.
-    SolveBatch,
+    SolveBatch = "solve_batch", Computation, |body, limits, interrupt| solve_batch::solve_batch(body, limits, interrupt);
     /// `POST /api/animate`: a motion.
-    Animate,
+    Animate = "animate", Computation, |body, limits, interrupt| {
+        if character_motion::is_character(body) {
+            character_motion::animate(body, limits, interrupt)
+        } else {
+            jobs::animate(AnimateBody::parse(body)?, limits, interrupt)
+        }
+    };
     /// `POST /api/track`: a path followed or planned.
-    Track,
+    Track = "track", Computation, |body, limits, interrupt| {
+        if character_motion::is_character(body) {
+            character_motion::track(body, limits, interrupt)
+        } else {
+            jobs::track(TrackReq::parse(body)?.1, limits, interrupt)
+        }
+    };
     /// `POST /api/workspace`: the reachable region.
-    Workspace,
+    Workspace = "workspace", Computation, |body, limits, interrupt| regions::workspace(body, limits, interrupt);
     /// `POST /api/reach`: the verdict on points.
-    Reach,
+    Reach = "reach", Computation, |body, limits, interrupt| regions::reach(body, limits, interrupt);
     /// `POST /api/pose`: a character file posed as its runtime does.
-    Pose,
+    Pose = "pose", Computation, |body, limits, interrupt| pose::pose(body, limits, interrupt);
     /// `POST /api/render`: a picture (PNG, SVG or GIF).
     #[cfg(feature = "render")]
-    Render,
+    Render = "render", Computation, |body, limits, interrupt| render::render(body, limits, interrupt);
     /// `POST /api/ease`: an ease curve's progress at evenly spaced times.
-    Ease,
+    Ease = "ease", Json, |body, _, _| ease::curve(body);
 }
 
 impl Endpoint {
-    /// Every endpoint.
-    pub const ALL: &[Endpoint] = &[
-        Endpoint::Meta,
-        Endpoint::ArmDefault,
-        Endpoint::ArmParse,
-        Endpoint::ArmToml,
-        Endpoint::Rigs,
-        Endpoint::RigParse,
-        Endpoint::AtlasParse,
-        Endpoint::Solve,
-        Endpoint::SolveBatch,
-        Endpoint::Animate,
-        Endpoint::Track,
-        Endpoint::Workspace,
-        Endpoint::Reach,
-        Endpoint::Pose,
-        #[cfg(feature = "render")]
-        Endpoint::Render,
-        Endpoint::Ease,
-    ];
-
-    /// Its path, `/api/solve`.
-    #[must_use]
-    pub fn path(self) -> &'static str {
-        match self {
-            Endpoint::Meta => "/api/meta",
-            Endpoint::ArmDefault => "/api/arm/default",
-            Endpoint::ArmParse => "/api/arm/parse",
-            Endpoint::ArmToml => "/api/arm/toml",
-            Endpoint::Rigs => "/api/rigs",
-            Endpoint::RigParse => "/api/rig/parse",
-            Endpoint::AtlasParse => "/api/atlas/parse",
-            Endpoint::Solve => "/api/solve",
-            Endpoint::SolveBatch => "/api/solve_batch",
-            Endpoint::Animate => "/api/animate",
-            Endpoint::Track => "/api/track",
-            Endpoint::Workspace => "/api/workspace",
-            Endpoint::Reach => "/api/reach",
-            Endpoint::Pose => "/api/pose",
-            #[cfg(feature = "render")]
-            Endpoint::Render => "/api/render",
-            Endpoint::Ease => "/api/ease",
-        }
-    }
-
     /// The endpoint at `path`: `/api/solve`, `api/solve` or `solve`.
     #[must_use]
     pub fn from_path(path: &str) -> Option<Endpoint> {
@@ -130,36 +156,15 @@ impl Endpoint {
         Self::ALL.iter().copied().find(|e| &e.path()["/api/".len()..] == path)
     }
 
+    /// The endpoint at exactly `path` (`/api/solve`), as the server routes it.
+    #[must_use]
+    pub fn at(path: &str) -> Option<Endpoint> {
+        Self::ALL.iter().copied().find(|e| e.path() == path)
+    }
+
     /// Whether the endpoint reads a body (`POST`); the others ignore it (`GET`).
     #[must_use]
     pub fn takes_body(self) -> bool {
-        !matches!(self, Endpoint::Meta | Endpoint::ArmDefault | Endpoint::Rigs)
-    }
-}
-
-/// Exactly what `ikarus serve` answers for `endpoint` with this body (the `GET` endpoints
-/// ignore it): the same bytes, or the same status and message. Computations check `interrupt`
-/// and stop with 503 when it is set.
-pub fn call(endpoint: Endpoint, body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    match endpoint {
-        Endpoint::Meta => Reply::json(&meta::meta()),
-        Endpoint::ArmDefault => arm_files::default_arm(),
-        Endpoint::ArmParse => Reply::json(&arm_files::parsed(text(body)?)),
-        Endpoint::ArmToml => arm_files::toml(body),
-        Endpoint::Rigs => rigs::list(),
-        Endpoint::RigParse => rigs::parse_file(body, rigs::FileBody::Text, rigs::Echo::Without, limits),
-        Endpoint::AtlasParse => atlases::parse(body),
-        Endpoint::Solve => jobs::solve(SolveReq::parse(body)?.1, limits, interrupt),
-        Endpoint::SolveBatch => solve_batch::solve_batch(body, limits, interrupt),
-        Endpoint::Animate if character_motion::is_character(body) => character_motion::animate(body, limits, interrupt),
-        Endpoint::Track if character_motion::is_character(body) => character_motion::track(body, limits, interrupt),
-        Endpoint::Animate => jobs::animate(AnimateBody::parse(body)?, limits, interrupt),
-        Endpoint::Track => jobs::track(TrackReq::parse(body)?.1, limits, interrupt),
-        Endpoint::Workspace => regions::workspace(body, limits, interrupt),
-        Endpoint::Reach => regions::reach(body, limits, interrupt),
-        Endpoint::Pose => pose::pose(body, limits, interrupt),
-        #[cfg(feature = "render")]
-        Endpoint::Render => render::render(body, limits, interrupt),
-        Endpoint::Ease => ease::curve(body),
+        self.intake().takes_body()
     }
 }

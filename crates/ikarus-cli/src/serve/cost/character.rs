@@ -7,8 +7,8 @@
 //! bones below the constraint's (at worst all of them): `bones + constraints × bones` bone
 //! updates, each about a link step. Under ikarus's rules (`"ik": "ikarus"`) it adds up to
 //! [`ROUNDS`] rig solves of the moving bones (at most two a constraint or goal, and the pins)
-//! toward every constraint, goal and pin, at most [`ITERATIONS`] iterations each, each halving
-//! its step up to [`BACKTRACK`] times (the edge's `character_options`).
+//! toward every constraint, goal and pin, at most the iterations of the edge's
+//! `character_options` each, each halving its step up to its `backtrack` times.
 
 use std::fmt;
 
@@ -46,9 +46,6 @@ pub fn file_estimate(given: FileBody, body: &[u8]) -> f64 {
 
 /// How many times at most a solve together is run (`ikarus::character::ROUNDS`).
 const ROUNDS: f64 = ikarus::character::ROUNDS as f64;
-/// The character solve's iteration cap and step halvings (`ikarus_edge::pose::character_options`).
-const ITERATIONS: f64 = 200.0;
-const BACKTRACK: f64 = 10.0;
 
 /// A character file's size and counts.
 #[derive(Debug, Default, Clone, Copy)]
@@ -124,7 +121,10 @@ impl Character {
             Rules::Ikarus { goals, pins } => {
                 let targets = self.constraints + goals + pins;
                 let moving = self.bones.min(2.0 * (self.constraints + goals) + pins).max(1.0);
-                runtime + ROUNDS * moving * (1.0 + targets) * ITERATIONS * (1.0 + BACKTRACK)
+                // The character solve's iteration cap and step halvings.
+                let options = ikarus_edge::pose::character_options();
+                let (iterations, backtrack) = (f64::from(options.max_iterations), f64::from(options.backtrack));
+                runtime + ROUNDS * moving * (1.0 + targets) * iterations * (1.0 + backtrack)
             }
         }
     }
