@@ -121,8 +121,9 @@ pub struct Area {
 
 /// Links of the built-in arm (the seed's), when a request has no body.
 fn seed_links() -> f64 {
-    static LINKS: std::sync::LazyLock<f64> =
-        std::sync::LazyLock::new(|| crate::edge::default_arm().chain().len() as f64);
+    static LINKS: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| {
+        crate::arm::Arm::parse(crate::arm::DEFAULT_ARM, "built-in arm").map_or(1.0, |arm| arm.chain.len() as f64)
+    });
     *LINKS
 }
 

@@ -45,6 +45,10 @@ impl PoseJob {
     }
 }
 
+/// What a character's request names: its `rig` (the file's text), `character` (a kept one's id)
+/// and `ik` (whose rules).
+type Names<'a> = (Option<&'a str>, Option<&'a str>, Option<&'a str>);
+
 /// A character's motion request (`/api/animate`'s or `/api/track`'s), its character read.
 pub struct CharacterMotion<R> {
     req: R,
@@ -55,12 +59,7 @@ pub struct CharacterMotion<R> {
 impl<R> CharacterMotion<R> {
     /// `req`'s character read (`names`: its `rig`, `character` and `ik`), and the cost of
     /// `poses` poses of it.
-    fn read(
-        req: R,
-        names: fn(&R) -> (Option<&str>, Option<&str>, Option<&str>),
-        poses: fn(&R) -> f64,
-        limits: &Limits,
-    ) -> Result<Self, Problem> {
+    fn read(req: R, names: fn(&R) -> Names<'_>, poses: fn(&R) -> f64, limits: &Limits) -> Result<Self, Problem> {
         let (rig, id, ik) = names(&req);
         let stored = stored_character(rig, id, limits)?;
         let character = Character::of_loaded(&stored.loaded, rig);
@@ -71,7 +70,7 @@ impl<R> CharacterMotion<R> {
 
 /// `/api/animate`'s request: a character's motion, or an arm's or a rig's.
 pub enum AnimateJob {
-    Character(CharacterMotion<AnimateCharacterReq>),
+    Character(Box<CharacterMotion<AnimateCharacterReq>>),
     Body(AnimateBody),
 }
 
@@ -91,7 +90,7 @@ impl AnimateJob {
             }
         };
         CharacterMotion::read(req, |r| (r.rig.as_deref(), r.character.as_deref(), r.ik.as_deref()), frames, limits)
-            .map(AnimateJob::Character)
+            .map(|c| AnimateJob::Character(Box::new(c)))
     }
 
     /// The work at most ([`cost`]).
@@ -107,7 +106,10 @@ impl AnimateJob {
     /// The answer.
     pub fn run(self, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
         match self {
-            AnimateJob::Character(c) => character_motion::animate(c.req, &c.stored, limits, interrupt),
+            AnimateJob::Character(c) => {
+                let CharacterMotion { req, stored, .. } = *c;
+                character_motion::animate(req, &stored, limits, interrupt)
+            }
             AnimateJob::Body(body) => jobs::animate(body, limits, interrupt),
         }
     }
@@ -115,15 +117,15 @@ impl AnimateJob {
 
 /// `/api/track`'s request: a character's path, or an arm's or a rig's.
 pub enum TrackJob {
-    Character(CharacterMotion<TrackCharacterReq>),
-    Body(TrackReq),
+    Character(Box<CharacterMotion<TrackCharacterReq>>),
+    Body(Box<TrackReq>),
 }
 
 impl TrackJob {
     /// The request in `body`, told apart as [`AnimateJob::parse`] tells it.
     pub fn parse(body: &[u8], limits: &Limits) -> Result<Self, Problem> {
         if !is_character(body) {
-            return TrackReq::parse(body).map(|(_, req)| TrackJob::Body(req));
+            return TrackReq::parse(body).map(|(_, req)| TrackJob::Body(Box::new(req)));
         }
         let req: TrackCharacterReq = parse_json(body)?;
         let samples = |r: &TrackCharacterReq| match &r.path {
@@ -131,7 +133,7 @@ impl TrackJob {
             _ => r.samples.unwrap_or(crate::track::DEFAULT_SAMPLES) as f64,
         };
         CharacterMotion::read(req, |r| (r.rig.as_deref(), r.character.as_deref(), r.ik.as_deref()), samples, limits)
-            .map(TrackJob::Character)
+            .map(|c| TrackJob::Character(Box::new(c)))
     }
 
     /// The work at most ([`cost`]).
@@ -146,8 +148,11 @@ impl TrackJob {
     /// The answer.
     pub fn run(self, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
         match self {
-            TrackJob::Character(c) => character_motion::track(c.req, &c.stored, limits, interrupt),
-            TrackJob::Body(req) => jobs::track(req, limits, interrupt),
+            TrackJob::Character(c) => {
+                let CharacterMotion { req, stored, .. } = *c;
+                character_motion::track(req, &stored, limits, interrupt)
+            }
+            TrackJob::Body(req) => jobs::track(*req, limits, interrupt),
         }
     }
 }
