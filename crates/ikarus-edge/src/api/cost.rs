@@ -1,5 +1,5 @@
 //! What a request's work costs at most, read from the typed request its job runs (one endpoint's
-//! [`super::job::Job::cost`]), so that a server can tell quick requests from long ones before
+//! [`super::Request::cost`]), so that a server can tell quick requests from long ones before
 //! the work starts.
 //!
 //! The estimate counts *link steps*: one link handled once in an iteration, tens of nanoseconds
