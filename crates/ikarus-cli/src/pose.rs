@@ -38,12 +38,12 @@ pub enum IkRules {
 }
 
 impl IkRules {
-    /// The name the edge takes.
+    /// The rules the edge takes.
     #[must_use]
-    pub fn name(self) -> &'static str {
+    pub fn rules(self) -> ikarus_edge::pose::IkRules {
         match self {
-            IkRules::Runtime => "runtime",
-            IkRules::Ikarus => "ikarus",
+            IkRules::Runtime => ikarus_edge::pose::IkRules::Runtime,
+            IkRules::Ikarus => ikarus_edge::pose::IkRules::Ikarus,
         }
     }
 }
@@ -77,7 +77,7 @@ impl IkArgs {
             Some((t, l)) => (Some(t.as_str()), l.as_str()),
             None => (None, "--ik-file"),
         };
-        ikarus_edge::pose::ik_choice(Some(self.ik.name()), file, label, character)
+        ikarus_edge::pose::rules_choice(self.ik.rules(), file, label, character)
     }
 
     /// `(flag, given)` for the refusals of flags that mean something only with a character.

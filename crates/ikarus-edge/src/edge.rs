@@ -18,7 +18,7 @@
 
 use ikarus::{Chain, Goal, SolveOptions, Status};
 
-pub use crate::api::{Endpoint, Limits, Problem, Reply, call, status};
+pub use crate::api::{Endpoint, Intake, Limits, Problem, Reply, call, status};
 use crate::arm::{ArmFile, DEFAULT_ARM};
 pub use crate::rig::DEFAULT_MAX_BONES;
 use crate::settings::SolverSettings;
@@ -142,6 +142,10 @@ mod tests {
             assert_eq!(Endpoint::from_path(&e.path()["/api/".len()..]), Some(e));
         }
         assert_eq!(Endpoint::from_path("/api/nothing"), None);
+        for &e in Endpoint::ALL {
+            assert_eq!(Endpoint::at(e.path()), Some(e));
+            assert_eq!(Endpoint::at(&e.path()["/api".len()..]), None, "only the whole path");
+        }
     }
 
     #[test]

@@ -289,12 +289,41 @@ pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], String> {
 /// The rules asked for: `ik` is `runtime` (the default) or `ikarus`; `ik_file` the text of an
 /// IK file (only with `ikarus`), named `label` in messages.
 pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
-    match (ik.unwrap_or("runtime"), ik_file) {
-        ("runtime", None) => Ok(IkChoice::Runtime),
-        ("runtime", Some(_)) => Err(CliError::input(format!("{label}: an IK file is read only with ik = \"ikarus\""))),
-        ("ikarus", None) => Ok(IkChoice::Ikarus(Box::default())),
-        ("ikarus", Some(text)) => Ok(IkChoice::Ikarus(Box::new(crate::character::ik_file::read(text, label, c)?))),
-        (other, _) => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
+    rules_choice(IkRules::named(ik)?, ik_file, label, c)
+}
+
+/// Whose rules solve a character's IK constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IkRules {
+    /// The runtime's: each constraint on its one or two bones, one after another.
+    Runtime,
+    /// ikarus's rig solver: every constraint at once.
+    Ikarus,
+}
+
+impl IkRules {
+    /// The rules a request names (`ik`: `"runtime"`, the default, or `"ikarus"`).
+    pub fn named(ik: Option<&str>) -> Result<Self, CliError> {
+        match ik.unwrap_or("runtime") {
+            "runtime" => Ok(IkRules::Runtime),
+            "ikarus" => Ok(IkRules::Ikarus),
+            other => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
+        }
+    }
+}
+
+/// The IK rules `rules` for `c`: with ikarus's, the IK file's text `ik_file` (`label` starts
+/// its problems) read and checked against it; an IK file with the runtime's rules is refused.
+pub fn rules_choice(rules: IkRules, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
+    match (rules, ik_file) {
+        (IkRules::Runtime, None) => Ok(IkChoice::Runtime),
+        (IkRules::Runtime, Some(_)) => {
+            Err(CliError::input(format!("{label}: an IK file is read only with ik = \"ikarus\"")))
+        }
+        (IkRules::Ikarus, None) => Ok(IkChoice::Ikarus(Box::default())),
+        (IkRules::Ikarus, Some(text)) => {
+            Ok(IkChoice::Ikarus(Box::new(crate::character::ik_file::read(text, label, c)?)))
+        }
     }
 }
 

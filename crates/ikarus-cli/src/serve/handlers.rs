@@ -9,6 +9,7 @@ use ikarus::Interrupt;
 
 use super::AppState;
 use super::errors::{ApiBody, AtlasBody, JsonBody, OCTET_STREAM, Refusal, RigFileBody, TomlBody, essence};
+use super::pool::Lane;
 use crate::api::rigs::{Echo, FileBody};
 use crate::api::{self, Endpoint, Problem, Reply};
 
@@ -24,18 +25,48 @@ pub async fn compute(endpoint: Endpoint, state: AppState, body: JsonBody) -> Res
     on_pool(endpoint, state, body).await
 }
 
+/// What the first step of a request on the pool ended with.
+enum Step {
+    /// Its answer: it was quick.
+    Answered(Reply),
+    /// Its request, read, whose work is long: to run on a long worker.
+    Long(api::Request),
+}
+
 /// [`api::call`] of `body` on a worker of the pool, in its lane, under the time budget.
+///
+/// The body is read into its typed request ([`Endpoint::parse`]) on a worker of the quick lane,
+/// never on the runtime's threads: a body of a megabyte (a character file's text in `rig`) is
+/// real work, and a reading that runs long moves to a long worker or is stopped as any quick
+/// computation is ([`super::pool`]), so it can neither stall the runtime nor hold a quick
+/// worker. A body that does not parse is refused there at once. The request read is costed
+/// ([`api::Request::cost`]); a quick one runs on in the same worker, a long one is handed back
+/// and runs on a long worker, under the same deadline. The request is read once: the same
+/// value is costed and run.
 async fn on_pool<T: Send + Sync + 'static>(
     endpoint: Endpoint,
     state: AppState,
     body: ApiBody<T>,
 ) -> Result<Response, Refusal> {
     let pool = state.pool.clone();
-    let lane = super::cost::lane(endpoint, &body.bytes);
-    pool.run(lane, move |interrupt| api::call(endpoint, &body.bytes, &state.limits, interrupt))
-        .await
-        .map(answer)
-        .map_err(Refusal)
+    let deadline = pool.deadline();
+    let limits = std::sync::Arc::clone(&state.limits);
+    let first = pool.run_by(deadline, Lane::Quick, move |interrupt| {
+        let request = endpoint.parse(&body.bytes, &limits)?;
+        drop(body);
+        match super::cost::lane(request.cost()) {
+            Lane::Quick => request.run(&limits, interrupt).map(Step::Answered),
+            Lane::Long => Ok(Step::Long(request)),
+        }
+    });
+    let reply = match first.await.map_err(Refusal)? {
+        Step::Answered(reply) => reply,
+        Step::Long(request) => pool
+            .run_by(deadline, Lane::Long, move |interrupt| request.run(&state.limits, interrupt))
+            .await
+            .map_err(Refusal)?,
+    };
+    Ok(answer(reply))
 }
 
 /// A quick answer (`/api/meta`, `arm/default`, `rigs`, `arm/toml`, `ease`): no solve, no loop
@@ -54,8 +85,8 @@ pub async fn file_text(endpoint: Endpoint, state: AppState, body: TomlBody) -> R
 
 /// `/api/atlas/parse`: a texture atlas and its page images (JSON under `--max-file-bytes`),
 /// read on a worker of the pool as [`compute`] does.
-pub async fn atlas_file(state: AppState, body: AtlasBody) -> Result<Response, Refusal> {
-    on_pool(Endpoint::AtlasParse, state, body).await
+pub async fn atlas_file(endpoint: Endpoint, state: AppState, body: AtlasBody) -> Result<Response, Refusal> {
+    on_pool(endpoint, state, body).await
 }
 
 /// `/api/rig/parse`: the body is a rig or character file's text (`application/toml`) or bytes

@@ -20,11 +20,11 @@ use axum::Router;
 use axum::extract::{DefaultBodyLimit, Path, State};
 use axum::http::{Method, Uri, header};
 use axum::response::{Html, IntoResponse};
-use axum::routing::{get, post};
+use axum::routing::{MethodRouter, get, post};
 use clap::Args;
 
 pub use crate::api::Limits;
-use crate::api::{Endpoint, status};
+use crate::api::{Endpoint, Intake, status};
 use crate::error::CliError;
 use errors::{ApiError, JsonBody, Refusal};
 use handlers::{at_once, atlas_file, compute, file_text, rig_file};
@@ -159,10 +159,10 @@ pub struct AppState {
     pub max_file_bytes: usize,
 }
 
-/// Whether `path` takes a file (`/api/arm/parse`, `/api/rig/parse`, `/api/atlas/parse`), under
-/// `--max-file-bytes` rather than `--max-body-bytes`.
+/// Whether `path` takes a file (`/api/arm/parse`, `/api/rig/parse`, `/api/atlas/parse`: their
+/// [`Intake`]), under `--max-file-bytes` rather than `--max-body-bytes`.
 pub fn is_file_path(path: &str) -> bool {
-    matches!(path, "/api/arm/parse" | "/api/rig/parse" | "/api/atlas/parse")
+    Endpoint::at(path).is_some_and(|e| e.intake().takes_file())
 }
 
 /// Bytes all the request bodies being received may hold at once.
@@ -307,39 +307,33 @@ fn router(limits: Limits, pool: pool::Pool, guard: guard::Guard, max_file_bytes:
     let bodies = Arc::new(tokio::sync::Semaphore::new(BODY_MEMORY.max(body_cap).max(max_file_bytes)));
     let state = AppState { limits: Arc::new(limits), pool, bodies, max_file_bytes };
     let file_cap = DefaultBodyLimit::max(max_file_bytes);
-    Router::new()
+    let mut routes = Router::new()
         .route("/", get(|| async { Html(INDEX_HTML) }))
         .route("/{asset}", get(asset))
-        .route("/api/health", get(handlers::health))
-        .route("/api/meta", get(|State(s): State<AppState>| async move { at_once(Endpoint::Meta, &s, b"") }))
-        .route(
-            "/api/arm/default",
-            get(|State(s): State<AppState>| async move { at_once(Endpoint::ArmDefault, &s, b"") }),
-        )
-        .route("/api/rigs", get(|State(s): State<AppState>| async move { at_once(Endpoint::Rigs, &s, b"") }))
-        .route("/api/arm/parse", post(|State(s), b| file_text(Endpoint::ArmParse, s, b)).layer(file_cap))
-        .route("/api/rig/parse", post(|State(s), h, q, b| rig_file(s, h, q, b)).layer(file_cap))
-        .route("/api/atlas/parse", post(|State(s), b| atlas_file(s, b)).layer(file_cap))
-        .route(
-            "/api/arm/toml",
-            post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::ArmToml, &s, &b.bytes) }),
-        )
-        .route(
-            "/api/ease",
-            post(|State(s): State<AppState>, b: JsonBody| async move { at_once(Endpoint::Ease, &s, &b.bytes) }),
-        )
-        .route("/api/solve", post(|State(s), b| compute(Endpoint::Solve, s, b)))
-        .route("/api/solve_batch", post(|State(s), b| compute(Endpoint::SolveBatch, s, b)))
-        .route("/api/animate", post(|State(s), b| compute(Endpoint::Animate, s, b)))
-        .route("/api/track", post(|State(s), b| compute(Endpoint::Track, s, b)))
-        .route("/api/workspace", post(|State(s), b| compute(Endpoint::Workspace, s, b)))
-        .route("/api/reach", post(|State(s), b| compute(Endpoint::Reach, s, b)))
-        .route("/api/pose", post(|State(s), b| compute(Endpoint::Pose, s, b)))
-        .route("/api/render", post(|State(s), b| compute(Endpoint::Render, s, b)))
+        .route("/api/health", get(handlers::health));
+    for &endpoint in Endpoint::ALL {
+        routes = routes.route(endpoint.path(), route(endpoint, file_cap));
+    }
+    routes
         .fallback(not_found)
         .layer(DefaultBodyLimit::max(body_cap))
         .layer(axum::middleware::from_fn_with_state(Arc::new(guard), guard::check))
         .with_state(state)
+}
+
+/// The route of `endpoint`, as its [`Intake`] says: `GET` answered at once, or `POST` with its
+/// body's content type and cap, answered at once or on the pool.
+fn route(endpoint: Endpoint, file_cap: DefaultBodyLimit) -> MethodRouter<AppState> {
+    match endpoint.intake() {
+        Intake::Nothing => get(move |State(s): State<AppState>| async move { at_once(endpoint, &s, b"") }),
+        Intake::Json => {
+            post(move |State(s): State<AppState>, b: JsonBody| async move { at_once(endpoint, &s, &b.bytes) })
+        }
+        Intake::Computation => post(move |State(s), b| compute(endpoint, s, b)),
+        Intake::FileText => post(move |State(s), b| file_text(endpoint, s, b)).layer(file_cap),
+        Intake::JsonFile => post(move |State(s), b| atlas_file(endpoint, s, b)).layer(file_cap),
+        Intake::FileTextOrBytes => post(|State(s), h, q, b| rig_file(s, h, q, b)).layer(file_cap),
+    }
 }
 
 /// One of the page's `ASSETS`, by name.

@@ -114,7 +114,22 @@ impl Pool {
         lane: Lane,
         work: impl FnOnce(&Interrupt) -> Result<T, ApiError> + Send + 'static,
     ) -> Result<T, ApiError> {
-        let deadline = Instant::now() + self.config.budget;
+        self.run_by(self.deadline(), lane, work).await
+    }
+
+    /// The deadline of a request that starts now: its budget from now.
+    pub fn deadline(&self) -> Instant {
+        Instant::now() + self.config.budget
+    }
+
+    /// [`Pool::run`] under a budget that ends at `deadline`: the second step of a request
+    /// (its work moved to the long lane once read) keeps the first step's deadline.
+    pub async fn run_by<T: Send + 'static>(
+        &self,
+        deadline: Instant,
+        lane: Lane,
+        work: impl FnOnce(&Interrupt) -> Result<T, ApiError> + Send + 'static,
+    ) -> Result<T, ApiError> {
         let token = Interrupt::new();
         let _guard = InterruptOnDrop(token.clone());
         let mut stopping = self.stopping.clone();

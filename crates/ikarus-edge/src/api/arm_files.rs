@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::wire::{Problem, Reply, parse_json};
+use super::wire::{Problem, Reply};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM, LinkFile};
 use crate::settings::SolverSettings;
 
@@ -149,8 +149,7 @@ pub fn parsed(text: &str) -> Parsed {
 }
 
 /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.
-pub fn toml(body: &[u8]) -> Result<Reply, Problem> {
-    let req: TomlReq = parse_json(body)?;
+pub fn toml(req: &TomlReq) -> Result<Reply, Problem> {
     let text = to_toml(&req.arm).map_err(Problem::invalid)?;
     Ok(Reply { content_type: "application/toml; charset=utf-8", body: text.into_bytes() })
 }

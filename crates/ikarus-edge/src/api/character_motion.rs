@@ -13,11 +13,11 @@ use ikarus::{EaseKind, Interrupt};
 use serde::Deserialize;
 
 use super::fields::{refuse_given, stopped, track_path};
-use super::pose::stored_character;
 use super::requests::TargetReq;
 use super::requests::{MotionFormat, request};
-use super::wire::{Limits, Problem, Reply, parse_json};
+use super::wire::{Limits, Problem, Reply};
 use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion, Physics};
+use crate::character::store::Stored;
 use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};
 use crate::pose::ik_choice;
@@ -98,10 +98,13 @@ pub fn is_character(body: &[u8]) -> bool {
         .is_some_and(|p| p.character.is_some() || p.rig.is_some_and(|r| r.as_str().is_some_and(is_json)))
 }
 
-/// `POST /api/animate` with a character.
-pub fn animate(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: AnimateCharacterReq = parse_json(body)?;
-    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+/// `POST /api/animate` with a character, `stored` the one `req` names.
+pub fn animate(
+    req: AnimateCharacterReq,
+    stored: &Stored,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Reply, Problem> {
     let (loaded, text) = (&stored.loaded, stored.text.as_str());
     if let Some(keys) = &req.keys {
         return keyed(loaded, keys, &req, (limits, interrupt), text);
@@ -185,10 +188,13 @@ pub(super) fn keyed_motion<'a>(
     Ok(motion)
 }
 
-/// `POST /api/track` with a character.
-pub fn track(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: TrackCharacterReq = parse_json(body)?;
-    let stored = stored_character(req.rig.as_deref(), req.character.as_deref(), limits)?;
+/// `POST /api/track` with a character, `stored` the one `req` names.
+pub fn track(
+    req: TrackCharacterReq,
+    stored: &Stored,
+    limits: &Limits,
+    interrupt: &Interrupt,
+) -> Result<Reply, Problem> {
     let (loaded, text) = (&stored.loaded, stored.text.as_str());
     let Some(bone) = req.effector else {
         return Err(Problem::invalid("effector: required with a character: the bone whose origin follows the path"));

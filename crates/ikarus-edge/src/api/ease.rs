@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::fields::ease;
 use super::requests::EaseReq;
-use super::wire::{Problem, Reply, parse_json};
+use super::wire::{Problem, Reply};
 
 /// Most samples of one curve.
 pub const MAX_SAMPLES: u32 = 10_001;
@@ -16,7 +16,7 @@ pub const MAX_SAMPLES: u32 = 10_001;
 /// least 2: the times `t_i = i / (samples − 1)`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct EaseCurveReq {
+pub struct EaseCurveReq {
     #[serde(default)]
     ease: Option<EaseReq>,
     samples: u32,
@@ -30,8 +30,7 @@ struct EaseCurve {
 }
 
 /// The curve of the request `body`.
-pub fn curve(body: &[u8]) -> Result<Reply, Problem> {
-    let req: EaseCurveReq = parse_json(body)?;
+pub fn curve(req: &EaseCurveReq) -> Result<Reply, Problem> {
     if !(2..=MAX_SAMPLES).contains(&req.samples) {
         return Err(Problem::invalid(format!("samples: {}, must be from 2 to {MAX_SAMPLES}", req.samples)));
     }

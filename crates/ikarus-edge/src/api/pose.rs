@@ -10,7 +10,7 @@ use super::atlases::KeptAtlas;
 use super::bodies::{effectors_within, field_name, named_goals};
 use super::fields::{json_response, stopped};
 use super::requests::request;
-use super::wire::{Limits, Problem, Reply, parse_json, status};
+use super::wire::{Limits, Problem, Reply, status};
 use crate::character::art_json::ArtJson;
 use crate::character::store::{self, Stored};
 use crate::character::{is_json, load_within};
@@ -48,8 +48,7 @@ request! {
 
 /// `POST /api/pose`: the character (at most `--max-bones` bones, counted first), at most as many
 /// targets as it has bones; with `atlas`, the pose's drawing too.
-pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let posing = Posing::of(parse_json(body)?, limits)?;
+pub fn pose(posing: &Posing, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let Some(atlas) = &posing.atlas else {
         let report = posed(&posing.stored.loaded, &posing.ask, interrupt);
         stopped(interrupt)?;

@@ -8,7 +8,7 @@ use ikarus::reach::WorkspaceOptions;
 use super::bodies::{load, load_arm};
 use super::fields::{json_response, stopped, watched};
 use super::requests::{ReachReq, WorkspaceReq};
-use super::wire::{Limits, Problem, Reply, parse_json};
+use super::wire::{Limits, Problem, Reply};
 use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
 use crate::reach::ReachRequest;
@@ -18,8 +18,7 @@ use crate::report::{self, VerdictJson};
 const MAX_SAMPLES: u32 = 1_000_000;
 
 /// `POST /api/workspace`: the JSON of `ikarus workspace --format json`.
-pub fn workspace(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: WorkspaceReq = parse_json(body)?;
+pub fn workspace(req: WorkspaceReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     if req.rig.is_some() || req.bone.is_some() || req.arm.as_ref().is_some_and(|a| a.joint_key().is_some()) {
         return body_workspace(req, limits, interrupt);
     }
@@ -78,8 +77,7 @@ fn grid_of(req: &WorkspaceReq, limits: &Limits) -> Result<Option<GridRequest>, P
 
 /// `POST /api/reach`: the verdict on `point`, or on each of `points` (at most `--max-samples`),
 /// read off the exact region built once, as `ikarus reach --format json` prints them.
-pub fn reach(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: ReachReq = parse_json(body)?;
+pub fn reach(req: ReachReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     {
         let arm = load_arm(req.arm, limits)?;
         if let Some(t) = req.tolerance {

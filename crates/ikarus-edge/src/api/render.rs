@@ -24,13 +24,12 @@ use ikarus_render::ArtPlacement;
 /// Largest GIF, in frames × width × height pixels, so that one request cannot render for minutes.
 const MAX_GIF_PIXELS: u64 = 100_000_000;
 /// Picture size when the request gives none, and its range (as the command line's).
-const DEFAULT_SIDE: u32 = 800;
+pub(super) const DEFAULT_SIDE: u32 = 800;
 const SIDE_RANGE: std::ops::RangeInclusive<u32> = 16..=4096;
 
 /// `POST /api/render`: a picture of `figure` (PNG, SVG or a GIF).
 #[cfg(feature = "render")]
-pub fn render(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req = RenderReq::parse(body)?;
+pub fn render(req: RenderReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     // A GIF being encoded checks the interrupt before each frame.
     let (bytes, format) = ikarus_render::with_interrupt(interrupt, || render_figure(req, limits, interrupt))?;
     Ok(Reply { content_type: format.content_type(), body: bytes })

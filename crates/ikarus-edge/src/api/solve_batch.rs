@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::bodies::load_arm;
 use super::fields::{json_response, options_for, start_pose, stopped};
-use super::wire::{Limits, Problem, Reply, parse_json};
+use super::wire::{Limits, Problem, Reply};
 use crate::arm::ArmFile;
 use crate::report::degrees;
 use crate::settings::{SolverSettings, solver};
@@ -59,8 +59,7 @@ fn goal(i: usize, g: &[f64]) -> Result<Goal, Problem> {
 }
 
 /// `POST /api/solve_batch`.
-pub fn solve_batch(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
-    let req: SolveBatchReq = parse_json(body)?;
+pub fn solve_batch(req: SolveBatchReq, limits: &Limits, interrupt: &Interrupt) -> Result<Reply, Problem> {
     if req.goals.len() > limits.max_goals {
         return Err(Problem::invalid(format!(
             "goals: {} goals, more than the cap of {}",
