@@ -6,7 +6,7 @@
 use clap::Args;
 use ikarus::{Bend, Priority, RigTask, Skeleton};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal::{self, Field, NamedGoal};
 use crate::options::{parse_finite, parse_non_negative, parse_point, parse_positive};
 use crate::rig::Rig;
@@ -140,7 +140,7 @@ pub struct Target {
 impl Target {
     /// The target of a `--goal` on `rig`, which must name its bone unless the rig has a tip
     /// (an arm file's rig: `--goal X,Y` is on its last link).
-    pub fn of(goal: &GoalArg, rig: &Rig) -> Result<Self, CliError> {
+    pub fn of(goal: &GoalArg, rig: &Rig) -> Result<Self, Error> {
         match goal {
             GoalArg::Named { bone, x, y, angle_deg } => {
                 Ok(Self { bone: bone.clone(), x: *x, y: *y, angle_deg: *angle_deg, source: goal.text() })
@@ -154,7 +154,7 @@ impl Target {
                     source: goal.text(),
                 }),
                 None => {
-                    Err(CliError::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
+                    Err(Error::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
                 }
             },
         }
@@ -164,7 +164,7 @@ impl Target {
 impl RigTaskArgs {
     /// Checks that every per-goal flag names a bone that has a goal among `bones` (the goals'
     /// bones, from --goal or a batch header): a weight for a bone without a goal is a mistake.
-    pub fn check_against(&self, bones: &[&str]) -> Result<(), CliError> {
+    pub fn check_against(&self, bones: &[&str]) -> Result<(), Error> {
         let flags = self.weight.iter().map(|(n, w)| (n, "--weight", format!("--weight {n}={w}")));
         let flags = flags.chain(self.secondary.iter().map(|n| (n, "--secondary", format!("--secondary {n}"))));
         let flags = flags.chain(self.bend.iter().map(|(n, b)| (n, "--bend", format!("--bend {n}={}", bend_name(*b)))));
@@ -172,10 +172,10 @@ impl RigTaskArgs {
         let mut seen: Vec<(&String, &str)> = Vec::new();
         for (name, kind, flag) in flags {
             if !bones.contains(&name.as_str()) {
-                return Err(CliError::input(format!("{flag}: no goal on bone {name:?} (give it a --goal NAME=X,Y)")));
+                return Err(Error::input(format!("{flag}: no goal on bone {name:?} (give it a --goal NAME=X,Y)")));
             }
             if seen.contains(&(name, kind)) {
-                return Err(CliError::input(format!("{flag}: {kind} given twice for bone {name:?}")));
+                return Err(Error::input(format!("{flag}: {kind} given twice for bone {name:?}")));
             }
             seen.push((name, kind));
         }
@@ -184,22 +184,22 @@ impl RigTaskArgs {
 
     /// The task of `targets` and the pins on `skeleton`, with these flags' controls; problems
     /// name the flag and its value.
-    pub fn task(&self, skeleton: &Skeleton, targets: &[Target]) -> Result<RigTask, CliError> {
+    pub fn task(&self, skeleton: &Skeleton, targets: &[Target]) -> Result<RigTask, Error> {
         let goals = self.named(targets)?;
         let field = |f: Field| self.field(targets, f);
         goal::build(skeleton, &goals, &self.pin, self.mix.unwrap_or(1.0), &field).map_err(|m| {
             // The library's words for a task of nothing, in the flags' words.
             if m.starts_with("goals: ") {
-                CliError::input("--goal: a rig solve needs at least one --goal NAME=X,Y or --pin NAME")
+                Error::input("--goal: a rig solve needs at least one --goal NAME=X,Y or --pin NAME")
             } else {
-                CliError::input(m)
+                Error::input(m)
             }
         })
     }
 
     /// The goals of `targets` with these flags' controls, each per-goal flag checked to name a
     /// goal's bone.
-    pub fn named(&self, targets: &[Target]) -> Result<Vec<NamedGoal>, CliError> {
+    pub fn named(&self, targets: &[Target]) -> Result<Vec<NamedGoal>, Error> {
         let bones: Vec<&str> = targets.iter().map(|t| t.bone.as_str()).collect();
         self.check_against(&bones)?;
         Ok(targets

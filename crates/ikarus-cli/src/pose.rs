@@ -10,7 +10,7 @@ use clap::{Args, ValueEnum};
 use ikarus::character::Character;
 use ikarus_edge::pose::{IkChoice, PhysicsAsk, PoseAsk, PoseReport, pose};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::options::{parse_finite, parse_point};
 use crate::output::{self, PendingFile};
 use crate::pose_art::{ArtAsk, drawn};
@@ -65,7 +65,7 @@ pub struct IkArgs {
 
 impl IkArgs {
     /// The rules for `character`, the IK file read and checked against it.
-    pub fn choice(&self, character: &Character) -> Result<IkChoice, CliError> {
+    pub fn choice(&self, character: &Character) -> Result<IkChoice, Error> {
         let text = match &self.ik_file {
             Some(p) => {
                 let label = format!("ik file {}", p.display());
@@ -169,14 +169,14 @@ pub fn parse_target(s: &str) -> Result<(String, [f64; 2]), String> {
     Ok((name.to_owned(), parse_point(point)?))
 }
 
-pub fn run(args: &PoseArgs) -> Result<(), CliError> {
+pub fn run(args: &PoseArgs) -> Result<(), Error> {
     let label = format!("rig file {}", args.rig.display());
     let text = crate::input::read_character_text(&args.rig, &label)?;
     if ikarus_edge::character::atlas::is_atlas(&text) {
-        return Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS)));
+        return Err(Error::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS)));
     }
     if !ikarus_edge::character::is_json(&text) {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{label}: pose takes a character file (Spine or DragonBones JSON, or a Spine .skel); a rig file (TOML) is posed by solve --rig"
         )));
     }
@@ -215,7 +215,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
     let bytes = match &atlas {
         Some(atlas) => crate::pose_art::draw(&art_ask, &loaded, &ask, atlas, &|| caption(args))?,
         None => {
-            let report = pose(&loaded, &ask).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+            let report = pose(&loaded, &ask).map_err(|m| Error::input(format!("{label}: {m}")))?;
             render(&report, format, &|| caption(args), &args.size)?
         }
     };
@@ -227,7 +227,7 @@ pub fn run(args: &PoseArgs) -> Result<(), CliError> {
 
 /// The format asked for; else from `--out`'s extension (.svg, .png, else json); else text on
 /// a terminal and json when piped.
-fn format_of(args: &PoseArgs) -> Result<PoseFormat, CliError> {
+fn format_of(args: &PoseArgs) -> Result<PoseFormat, Error> {
     if let Some(f) = args.format {
         return Ok(f);
     }
@@ -265,11 +265,11 @@ pub fn render(
     format: PoseFormat,
     caption: &dyn Fn() -> String,
     size: &crate::picture::SizeArgs,
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, Error> {
     Ok(match format {
         PoseFormat::Text => report.text().into_bytes(),
         PoseFormat::Json => {
-            let mut v = serde_json::to_vec(report).map_err(|e| CliError::runtime(format!("cannot write JSON: {e}")))?;
+            let mut v = serde_json::to_vec(report).map_err(|e| Error::runtime(format!("cannot write JSON: {e}")))?;
             v.push(b'\n');
             v
         }

@@ -6,6 +6,8 @@
 use ikarus::character::Character;
 use ikarus::{Bend, Goal, Pin, Priority, RigGoal, RigTask, Skeleton};
 
+use crate::error::FieldPath;
+
 /// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
 /// into (−180°, 180°] exactly before it becomes radians: 1e20° is the direction it names).
 pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
@@ -56,6 +58,23 @@ pub enum Field {
     Pin(usize),
     /// How many bones goal `i` turns (a character's goal).
     Bones(usize),
+}
+
+impl Field {
+    /// This field's path in a request whose goals are the list at `goals` (`goals`, or `via[1]`
+    /// for a set of via goals) and whose pins are `pins`: `goals[1].weight`, `via[1][0]`,
+    /// `pins[0]`.
+    #[must_use]
+    pub fn path_in(self, goals: FieldPath) -> FieldPath {
+        match self {
+            Field::Goal(i) => goals.index(i),
+            Field::Weight(i) => goals.index(i).field("weight"),
+            Field::Softness(i) => goals.index(i).field("softness"),
+            Field::Bend(i) => goals.index(i).field("bend"),
+            Field::Bones(i) => goals.index(i).field("bones"),
+            Field::Pin(i) => FieldPath::new().field("pins").index(i),
+        }
+    }
 }
 
 /// Bones known by name: a rig's skeleton, or a character's bones.

@@ -12,7 +12,7 @@ use ikarus::character::{
 use ikarus::{Interrupt, SolveOptions, Solver};
 
 use crate::character::Loaded;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal::{Field, NamedGoal};
 use crate::names::{Quoted, cell, listed};
 pub use crate::pose_report::{GoalJson, IkJson, LimbJson, PoseReport, PosedBoneJson};
@@ -288,13 +288,13 @@ pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], String> {
 
 /// The rules asked for: `ik` is `runtime` (the default) or `ikarus`; `ik_file` the text of an
 /// IK file (only with `ikarus`), named `label` in messages.
-pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
+pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, Error> {
     match (ik.unwrap_or("runtime"), ik_file) {
         ("runtime", None) => Ok(IkChoice::Runtime),
-        ("runtime", Some(_)) => Err(CliError::input(format!("{label}: an IK file is read only with ik = \"ikarus\""))),
+        ("runtime", Some(_)) => Err(Error::input(format!("{label}: an IK file is read only with ik = \"ikarus\""))),
         ("ikarus", None) => Ok(IkChoice::Ikarus(Box::default())),
         ("ikarus", Some(text)) => Ok(IkChoice::Ikarus(Box::new(crate::character::ik_file::read(text, label, c)?))),
-        (other, _) => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
+        (other, _) => Err(Error::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
     }
 }
 

@@ -8,7 +8,7 @@
 use ikarus::{LimitMode, Method, OptionsError, Restarts, SolveOptions, Solver, StallDetection};
 use serde::Deserialize;
 
-use crate::error::CliError;
+use crate::error::Error;
 
 /// Solver settings; every one is optional and falls back on the next source. Field names are
 /// the arm files' and the API's, and the flags' with `-` for `_`.
@@ -278,12 +278,12 @@ pub fn command_options(
     label: &str,
     joints: usize,
     record_every: Option<u32>,
-) -> Result<SolveOptions, CliError> {
+) -> Result<SolveOptions, Error> {
     let restarts = flags.restarts.or(file.restarts);
     if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
         let field =
             if flags.restarts.is_some() { "--restarts".to_owned() } else { format!("{label}: [solver].restarts") };
-        return Err(CliError::input(over_cap(
+        return Err(Error::input(over_cap(
             &format!("{field} {n}"),
             flags.max_restarts,
             "raise it with --max-restarts N",
@@ -296,7 +296,7 @@ pub fn command_options(
         } else {
             format!("{label}: [solver].max_iterations")
         };
-        return Err(CliError::input(over_cap(
+        return Err(Error::input(over_cap(
             &format!("{field} {n}"),
             flags.iteration_cap,
             "raise it with --iteration-cap N",
@@ -314,11 +314,11 @@ pub fn command_options(
                 format!("[solver].{field}")
             }
         });
-        CliError::input(if from_file.get() { format!("{label}: {message}") } else { message })
+        Error::input(if from_file.get() { format!("{label}: {message}") } else { message })
     })
 }
 
 /// A solver for options already checked by [`SolverSettings::to_options_for`].
-pub fn solver(options: SolveOptions) -> Result<Solver, CliError> {
-    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
+pub fn solver(options: SolveOptions) -> Result<Solver, Error> {
+    Solver::new(options).map_err(|e| Error::input(e.to_string()))
 }

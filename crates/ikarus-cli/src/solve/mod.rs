@@ -12,7 +12,7 @@ use clap::{Args, ValueEnum};
 
 use crate::body::Body;
 use crate::body_args::{BodyArgs, BodyHelp};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, parse_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::picture::StillArgs;
@@ -108,7 +108,7 @@ impl BodyHelp for SolveBody {
     const RIG: &'static str = "Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin NAME) are solved together; or a character file (Spine, DragonBones JSON): the goals solved with its IK constraints by ikarus's solver";
 }
 
-pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+pub fn run(args: &SolveArgs) -> Result<(), Error> {
     if let Some(file) = crate::character_motion::character(args.body.rig.as_deref()) {
         return character::run(args, &file?);
     }
@@ -118,13 +118,13 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     ])?;
     if args.batch.is_none() {
         if let Some(n) = args.threads {
-            return Err(CliError::input(format!("--threads {n}: only applies with --batch")));
+            return Err(Error::input(format!("--threads {n}: only applies with --batch")));
         }
         if let Some(p) = &args.summary_json {
-            return Err(CliError::input(format!("--summary-json {}: only applies with --batch", p.display())));
+            return Err(Error::input(format!("--summary-json {}: only applies with --batch", p.display())));
         }
     } else if let Some(p) = &args.picture.out {
-        return Err(CliError::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
+        return Err(Error::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
     }
     match (args.body.load()?, &args.batch) {
         (Body::Chain(arm), Some(path)) => batch::run_batch(args, &arm, path),

@@ -173,11 +173,13 @@ fn png_size(png: &[u8]) -> Option<[u32; 2]> {
 
 /// The atlas `/api/atlas/parse` answered `id` for; a 404 naming `atlas` when it is not kept.
 pub fn stored_atlas(id: &str) -> Result<Arc<KeptAtlas>, Problem> {
-    kept().get(id).ok_or_else(|| Problem {
-        status: status::NOT_FOUND,
-        message: format!(
-            "atlas: no atlas {id:?} on the server (never read, or let go for newer ones): send it to /api/atlas/parse again"
-        ),
+    kept().get(id).ok_or_else(|| {
+        Problem::new(
+            status::NOT_FOUND,
+            format!(
+                "atlas: no atlas {id:?} on the server (never read, or let go for newer ones): send it to /api/atlas/parse again"
+            ),
+        )
     })
 }
 

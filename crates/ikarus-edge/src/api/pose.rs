@@ -152,11 +152,13 @@ pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) ->
         (Some(text), None) => {
             Ok(Arc::new(Stored { loaded: character(text, limits)?, text: text.to_owned() }))
         }
-        (None, Some(id)) => store::global().get(id).ok_or_else(|| Problem {
-            status: status::NOT_FOUND,
-            message: format!(
-                "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
-            ),
+        (None, Some(id)) => store::global().get(id).ok_or_else(|| {
+            Problem::new(
+                status::NOT_FOUND,
+                format!(
+                    "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
+                ),
+            )
         }),
         (None, None) => Err(Problem::invalid(
             "rig: required: the character file's text (or character: the id /api/rig/parse answered for it)",

@@ -19,7 +19,7 @@ use ikarus::character::{BlendMode, Character, DrawList, Posed, Regions};
 use ikarus_render::{Art, ArtPiece, Blend, Page};
 
 use super::atlas::{self, Atlas};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// An atlas with its pages' images decoded: what drawing a character's art takes.
@@ -63,7 +63,7 @@ impl AtlasArt {
     /// An input error in one line: the atlas cannot be read (`atlas file x.atlas: cannot read:
     /// No such file or directory`), a page's image is not in the folder (naming the page and
     /// the folder), or [`AtlasArt::read`]'s.
-    pub fn read_file(path: &Path) -> Result<Self, CliError> {
+    pub fn read_file(path: &Path) -> Result<Self, Error> {
         let label = format!("atlas file {}", path.display());
         let text = crate::input::read_text(path, &label)?;
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
@@ -74,7 +74,7 @@ impl AtlasArt {
             }
             crate::input::read(&at, &at.display().to_string()).map_err(|e| e.to_string())
         };
-        Self::read(&text, &label, &mut image).map_err(CliError::input)
+        Self::read(&text, &label, &mut image).map_err(Error::input)
     }
 
     /// The art pose `posed` of `c` draws with skin `skin` (the skin it was posed with) and the

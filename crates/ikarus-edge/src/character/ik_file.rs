@@ -20,7 +20,7 @@ use ikarus::character::{BoneRule, Character, LimbRule, Together};
 use serde::Deserialize;
 
 use crate::arm::toml_error;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::{Quoted, cell, listed};
 
 #[derive(Debug, Default, Deserialize)]
@@ -60,9 +60,9 @@ fn one() -> f64 {
 
 /// Reads an IK file's `text` against `character`: names resolved into indices, values checked.
 /// `label` starts every message (`ik file legs.toml`).
-pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, CliError> {
-    let file: IkFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
-    let bad = |m: String| CliError::input(format!("{label}: {m}"));
+pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, Error> {
+    let file: IkFile = toml::from_str(text).map_err(|e| Error::input(toml_error(label, text, &e)))?;
+    let bad = |m: String| Error::input(format!("{label}: {m}"));
     let bone = |field: &str, name: &str| {
         character.bone_index(name).ok_or_else(|| bad(format!("{field} = {}: no bone of that name", Quoted(name))))
     };

@@ -49,7 +49,7 @@ use ikarus::character::{Character, CharacterError, CharacterParts};
 use serde::de::DeserializeOwned;
 use serde_json::Value;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::Quoted;
 use crate::rig::BoneCap;
 
@@ -106,14 +106,14 @@ pub fn is_json(text: &str) -> bool {
 
 /// Reads a character file's text under the command line's cap on bones; `label` starts every
 /// error message (`rig file spineboy.json`).
-pub fn load(text: &str, label: &str) -> Result<Loaded, CliError> {
+pub fn load(text: &str, label: &str) -> Result<Loaded, Error> {
     load_within(text, label, BoneCap::cli())
 }
 
 /// Reads a character file's text of at most `cap` bones (counted before any bone is read);
 /// `label` starts every error message.
-pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliError> {
-    let fail = |msg: String| CliError::input(format!("{label}: {msg}"));
+pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, Error> {
+    let fail = |msg: String| Error::input(format!("{label}: {msg}"));
     let text = text.trim_start_matches('\u{feff}');
     let value: Value = serde_json::from_str(text).map_err(|e| fail(format!("malformed JSON: {e}")))?;
     match detect(&value) {
@@ -130,13 +130,13 @@ pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliE
 
 /// For a rig's commands (`--rig FILE`): nothing for a rig file (not JSON); a character file is
 /// read (a bad one is its line) and refused saying what it is, since they take rig files.
-pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
+pub fn not_a_rig(text: &str, label: &str) -> Result<(), Error> {
     if !is_json(text) {
         return Ok(());
     }
     let loaded = load(text, label)?;
     let c = &loaded.character;
-    Err(CliError::input(format!(
+    Err(Error::input(format!(
         "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters",
         loaded.format.name(),
         c.bones().len(),

@@ -37,7 +37,7 @@ mod skins;
 
 use serde_json::{Map, Value};
 
-use crate::error::CliError;
+use crate::error::Error;
 
 use reader::Reader;
 
@@ -120,19 +120,19 @@ mod tests;
 /// UTF-8 text (a rig file, an atlas) as it is, and anything else is refused with what the
 /// binary reader found, after `label` (and that it is not UTF-8 either, when the binary
 /// reader stopped in the header).
-pub fn text_of(bytes: Vec<u8>, label: &str) -> Result<String, CliError> {
+pub fn text_of(bytes: Vec<u8>, label: &str) -> Result<String, Error> {
     let start = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(&bytes);
     if start.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{') {
         return String::from_utf8(bytes).map_err(|e| {
-            CliError::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+            Error::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
         });
     }
     match to_json(&bytes) {
-        Ok(tree) => serde_json::to_string(&tree).map_err(|e| CliError::input(format!("{label}: {e}"))),
+        Ok(tree) => serde_json::to_string(&tree).map_err(|e| Error::input(format!("{label}: {e}"))),
         Err(binary) => String::from_utf8(bytes).map_err(|e| {
             // A file whose header is not a 4.2 binary export's is more likely neither.
             let at = e.utf8_error().valid_up_to();
-            CliError::input(if binary.contains(": skeleton.") {
+            Error::input(if binary.contains(": skeleton.") {
                 format!("{label}: cannot read: not UTF-8 text (byte {at}), nor a Spine 4.2 binary export ({binary})")
             } else {
                 format!("{label}: {binary}")
