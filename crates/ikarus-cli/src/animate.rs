@@ -116,14 +116,14 @@ impl ViaArg {
 }
 
 /// Parses `X,Y`, or goals `NAME=X,Y[,DEG]` separated by `;`.
-pub fn parse_via(s: &str) -> Result<ViaArg, String> {
+pub fn parse_via(s: &str) -> Result<ViaArg, Error> {
     if !s.contains('=') {
         return parse_point(s).map(ViaArg::Point);
     }
     s.split(';')
         .map(|part| match parse_goal(part.trim())? {
             g @ GoalArg::Named { .. } => Ok(g),
-            GoalArg::Point(_) => Err(format!("'{}': expected NAME=X,Y[,DEG] in a goal set", part.trim())),
+            GoalArg::Point(_) => Err(Error::input(format!("'{}': expected NAME=X,Y[,DEG] in a goal set", part.trim()))),
         })
         .collect::<Result<Vec<_>, _>>()
         .map(ViaArg::Set)
@@ -356,8 +356,8 @@ mod tests {
         let set = parse_via("hand=1,2; foot=0,-1,90").unwrap();
         assert_eq!(set, ViaArg::Set(vec![named("hand", 1.0, 2.0, None), named("foot", 0.0, -1.0, Some(90.0))]));
         assert_eq!(set.text(), "--via hand=1,2;foot=0,-1,90");
-        assert_eq!(parse_via("1,2,3"), Err("expected two numbers X,Y, got 3 part(s)".into()));
-        assert_eq!(parse_via("hand=1,2;3,4"), Err("'3,4': expected NAME=X,Y[,DEG] in a goal set".into()));
-        assert_eq!(parse_via("hand=1,x"), Err("hand: y: 'x' is not a number".into()));
+        assert_eq!(parse_via("1,2,3"), Err(Error::input("expected two numbers X,Y, got 3 part(s)")));
+        assert_eq!(parse_via("hand=1,2;3,4"), Err(Error::input("'3,4': expected NAME=X,Y[,DEG] in a goal set")));
+        assert_eq!(parse_via("hand=1,x"), Err(Error::input("hand: y: 'x' is not a number")));
     }
 }

@@ -116,7 +116,7 @@ pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), Error> {
 /// (and the form asked for, if one is, on stdout); else the form to `--out` (whole or not at
 /// all) or stdout.
 pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> Result<(), Error> {
-    let fail = |m: String| Error::input(format!("{}: {m}", file.label));
+    let fail = |m: Error| Error::input(format!("{}: {m}", file.label));
     if output.animation_name.is_some() && output.written != Some(Written::Spine) {
         return Err(Error::input("--animation-name: only with --format spine"));
     }

@@ -203,7 +203,7 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), Error> {
     }
     let options = track_options(solve, args.max_step_deg, args.bound_first);
     let job = TrackJob { body, start: body.start().to_vec(), follower, path, options };
-    let t = job.run().map_err(Error::input)?;
+    let t = job.run()?;
     let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
@@ -406,7 +406,7 @@ impl Tracked for Rig {
         } else {
             args.rig_task.task(&self.skeleton, &targets)?
         };
-        let bone = effector_index(self, name, &task, "--effector").map_err(Error::input)?;
+        let bone = effector_index(self, name, &task, "--effector")?;
         Ok(RigFollower { bone, task })
     }
 

@@ -60,8 +60,7 @@ impl AreaArgs {
         let grid =
             GridRequest::of(self.grid.then_some(true), self.resolution, self.samples, self.seed, |field, value| {
                 format!("--{field} {value}")
-            })
-            .map_err(Error::input)?;
+            })?;
         if let Some(n) = self.samples.filter(|&n| n > self.max_samples) {
             return Err(Error::input(format!(
                 "--samples {n}: more than the cap of {} (raise it with --max-samples N)",

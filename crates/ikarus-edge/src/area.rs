@@ -92,11 +92,11 @@ impl Effector {
 /// The sampled region of the tip of `bone` of `rig` ([`ikarus::reach::sample_skeleton`]) with
 /// `grid`'s fields (the defaults without) over `run`'s other options (limits, threads,
 /// interrupt); an error names the option (`samples: …`).
-pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: WorkspaceOptions) -> Result<Workspace, String> {
+pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: WorkspaceOptions) -> Result<Workspace, Error> {
     let grid = grid.unwrap_or(GridRequest { resolution: default_resolution(), samples: None, seed: 0 });
     let options =
         WorkspaceOptions { resolution: grid.resolution, samples: grid.samples.map(u64::from), seed: grid.seed, ..run };
-    ikarus::reach::sample_skeleton(&rig.skeleton, bone, &options).map_err(|e| e.to_string())
+    ikarus::reach::sample_skeleton(&rig.skeleton, bone, &options).map_err(|e| Error::input(e.to_string()))
 }
 
 /// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).
@@ -118,7 +118,7 @@ impl GridRequest {
         samples: Option<u32>,
         seed: Option<u64>,
         name: impl Fn(&str, String) -> String,
-    ) -> Result<Option<GridRequest>, String> {
+    ) -> Result<Option<GridRequest>, Error> {
         let given = [
             resolution.map(|v| name("resolution", v.to_string())),
             samples.map(|v| name("samples", v.to_string())),
@@ -126,9 +126,9 @@ impl GridRequest {
         ];
         let sampling = given.iter().flatten().next();
         match (grid, sampling) {
-            (Some(false), Some(field)) => {
-                Err(format!("{field}: only applies to the sampled grid, and grid = false asks for the exact region"))
-            }
+            (Some(false), Some(field)) => Err(Error::input(format!(
+                "{field}: only applies to the sampled grid, and grid = false asks for the exact region"
+            ))),
             (Some(true), _) | (None, Some(_)) => Ok(Some(GridRequest {
                 resolution: resolution.unwrap_or_else(default_resolution),
                 samples,

@@ -197,19 +197,24 @@ impl ArmFile {
     }
 
     /// Builds the chain, describing any problem in the file's own names and numbers.
-    pub fn to_chain(&self) -> Result<Chain, String> {
+    pub fn to_chain(&self) -> Result<Chain, Error> {
         let mut links = Vec::with_capacity(self.links.len());
         for (i, l) in self.links.iter().enumerate() {
             let mut link = Link::new(l.length, start_angle(l.angle_deg, l.limits_deg).to_radians());
             if let Some([lo, hi]) = l.limits_deg {
                 let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
-                    format!("links[{i}].limits_deg = [{}, {}]: {}", Num(lo), Num(hi), limits_problem(lo, hi))
+                    Error::input(format!(
+                        "links[{i}].limits_deg = [{}, {}]: {}",
+                        Num(lo),
+                        Num(hi),
+                        limits_problem(lo, hi)
+                    ))
                 })?;
                 link = link.with_limits(limits);
             }
             links.push(link);
         }
-        Chain::new(self.base.unwrap_or([0.0, 0.0]), &links).map_err(|e| self.describe(&e))
+        Chain::new(self.base.unwrap_or([0.0, 0.0]), &links).map_err(|e| Error::input(self.describe(&e)))
     }
 
     fn describe(&self, e: &ChainError) -> String {

@@ -104,7 +104,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
 /// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
 /// --goal-angle DEG` makes it.
 pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
-    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::invalid)
+    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::from)
 }
 
 /// The pose `start_deg` (degrees, one per joint) of `arm` as `/api/track` and `/api/solve` read

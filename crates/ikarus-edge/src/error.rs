@@ -260,6 +260,27 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// An error equals the text it displays (`assert_eq!(e, "goal.x: must be finite")`).
+impl PartialEq<str> for Error {
+    fn eq(&self, text: &str) -> bool {
+        self.to_string() == text
+    }
+}
+
+/// An error equals the text it displays.
+impl PartialEq<&str> for Error {
+    fn eq(&self, text: &&str) -> bool {
+        self.to_string() == *text
+    }
+}
+
+/// An error equals the text it displays.
+impl PartialEq<String> for Error {
+    fn eq(&self, text: &String) -> bool {
+        self.to_string() == *text
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

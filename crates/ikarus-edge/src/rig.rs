@@ -129,9 +129,9 @@ impl BoneCap {
     }
 
     /// `bones: N bones exceed the cap of MAX (…)` when `count` is over the cap.
-    pub fn check(self, count: usize) -> Result<(), String> {
+    pub fn check(self, count: usize) -> Result<(), Error> {
         if count > self.max {
-            return Err(format!("bones: {count} bones exceed the cap of {} ({})", self.max, self.raise));
+            return Err(Error::input(format!("bones: {count} bones exceed the cap of {} ({})", self.max, self.raise)));
         }
         Ok(())
     }

@@ -236,10 +236,10 @@ impl SolverSettings {
 
     /// Range checks of values that did not come through the flags' parsers, naming the field;
     /// the caller prefixes `[solver].` or `options.`.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), Error> {
         use crate::options::{at_least_one, non_negative, positive};
-        let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
-        type Rule = fn(f64) -> Result<f64, String>;
+        let field = |name: &str, r: Result<f64, Error>| r.map(drop).map_err(|m| Error::input(format!("{name} = {m}")));
+        type Rule = fn(f64) -> Result<f64, Error>;
         let checks: [(&str, Option<f64>, Rule); 7] = [
             ("lambda", self.lambda, non_negative),
             ("tolerance", self.tolerance, positive),
@@ -255,10 +255,10 @@ impl SolverSettings {
             }
         }
         if let Some(v) = self.record_every {
-            at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
+            at_least_one(v).map_err(|m| Error::input(format!("record_every = {m}")))?;
         }
         if let Some(v) = self.stall_window {
-            at_least_one(v).map_err(|m| format!("stall_window = {m}"))?;
+            at_least_one(v).map_err(|m| Error::input(format!("stall_window = {m}")))?;
         }
         if let Some(rates) = &self.rates {
             for (i, &r) in rates.iter().enumerate() {

@@ -127,7 +127,7 @@ impl Animated for Arm {
 /// The one goal of an arm: `--goal X,Y` given once (with `--goal-angle`).
 fn arm_goal(args: &MotionArgs) -> Result<Goal, Error> {
     match &args.goal[..] {
-        [GoalArg::Point([x, y])] => crate::goals::make_goal(*x, *y, args.goal_angle).map_err(Error::input),
+        [GoalArg::Point([x, y])] => crate::goals::make_goal(*x, *y, args.goal_angle),
         [named @ GoalArg::Named { .. }] => {
             Err(Error::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
         }

@@ -35,7 +35,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), Error> {
         }
         let label = format!("--keys {}", keys.display());
         let text = crate::input::read_text(keys, &label)?;
-        let keys = KeysFile::parse(&text).map_err(|e| Error::input(format!("{label}: {e}")))?;
+        let keys = KeysFile::parse(&text).map_err(|e| e.from_source(label.clone()))?;
         let (course, fps) = ikarus_edge::character::motion::keyed(
             &file.loaded,
             &keys,

@@ -30,7 +30,7 @@ impl KeyedRun {
         let rig = args.body.load_as_rig()?;
         let label = format!("--keys {}", keys.display());
         let text = crate::input::read_text(keys, &label)?;
-        let file = KeysFile::parse(&text).map_err(|m| Error::input(format!("{label}: {m}")))?;
+        let file = KeysFile::parse(&text).map_err(|e| e.from_source(label.clone()))?;
         let s = &rig.skeleton;
         let plan = file
             .check(s, ikarus::motion::MAX_FRAMES, "the most frames of a motion")

@@ -115,7 +115,7 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
 
     // Each row's values, checked as targets here (so that a bad one is named by its line); each
     // worker fills its own copy of the task with a row's targets.
-    let targets = |task: &mut RigTask, values: &[f64]| -> Result<(), (String, String)> {
+    let targets = |task: &mut RigTask, values: &[f64]| -> Result<(), (String, Error)> {
         for (goal, c) in task.goals.iter_mut().zip(&columns) {
             goal.goal =
                 make_goal(values[c.x], values[c.y], c.angle.map(|a| values[a])).map_err(|m| (c.bone.clone(), m))?;

@@ -85,18 +85,18 @@ pub struct SolveArgs {
 }
 
 /// `NAME=N`, N ≥ 1.
-fn parse_bones(s: &str) -> Result<(String, usize), String> {
-    let (name, n) = s.rsplit_once('=').ok_or_else(|| format!("expected NAME=N, got {s:?}"))?;
+fn parse_bones(s: &str) -> Result<(String, usize), Error> {
+    let (name, n) = s.rsplit_once('=').ok_or_else(|| Error::input(format!("expected NAME=N, got {s:?}")))?;
     if name.trim().is_empty() {
-        return Err("NAME=N: the bone's name is empty".to_owned());
+        return Err(Error::input("NAME=N: the bone's name is empty"));
     }
-    let n = parse_at_least_one(n).map_err(|m| format!("{name}: {m}"))?;
+    let n = parse_at_least_one(n).map_err(|m| Error::input(format!("{name}: {m}")))?;
     Ok((name.trim().to_owned(), n as usize))
 }
 
-fn parse_threads(s: &str) -> Result<usize, String> {
+fn parse_threads(s: &str) -> Result<usize, Error> {
     let n = parse_at_least_one(s)? as usize;
-    if n > 1024 { Err(format!("{n}: must be at most 1024")) } else { Ok(n) }
+    if n > 1024 { Err(Error::input(format!("{n}: must be at most 1024"))) } else { Ok(n) }
 }
 
 /// The help of `ikarus solve`'s `--arm` and `--rig`.

@@ -54,7 +54,7 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), Error> {
         }
     };
     let started = Instant::now();
-    let outcome = job.solve(&mut solver).map_err(Error::input)?;
+    let outcome = job.solve(&mut solver)?;
     let micros = started.elapsed().as_secs_f64() * 1e6;
     let options = solver.options();
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
@@ -75,12 +75,12 @@ fn draw_picture(drawing: &Drawing, out: PictureOut, args: &SolveArgs) -> Result<
 
 impl Single<'_> {
     /// The solve from the body's start pose; a refusal of the solver as its one line.
-    fn solve(&self, solver: &mut Solver) -> Result<Outcome, String> {
+    fn solve(&self, solver: &mut Solver) -> Result<Outcome, Error> {
         let solved = match self {
             Single::Chain { arm, goal } => solver.solve(&arm.chain, arm.chain.start_pose(), goal),
             Single::Rig { rig, task } => solver.solve_rig(&rig.skeleton, rig.skeleton.start_angles(), task),
         };
-        solved.map_err(|e| e.to_string())
+        solved.map_err(|e| Error::input(e.to_string()))
     }
 
     /// The answer in `format`: pretty JSON, the CSV of the frames (a rig's: its pose), or the
@@ -132,7 +132,7 @@ fn pretty(w: &mut dyn Write, value: &impl serde::Serialize) -> std::io::Result<(
 /// The one goal of an arm: `--goal X,Y` given once.
 fn arm_goal(args: &SolveArgs) -> Result<Goal, Error> {
     match &args.goal[..] {
-        [GoalArg::Point([x, y])] => make_goal(*x, *y, args.goal_angle).map_err(Error::input),
+        [GoalArg::Point([x, y])] => make_goal(*x, *y, args.goal_angle),
         [named @ GoalArg::Named { .. }] => {
             Err(Error::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
         }

@@ -236,7 +236,7 @@ pub(super) fn task_named(
         )));
     }
     let goals = named_goals(goals);
-    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), field).map_err(Problem::invalid)
+    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), field).map_err(Problem::from)
 }
 
 /// How many goals and pins there are together, refused over [`MAX_EFFECTORS`].

@@ -160,7 +160,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     match (&loaded, rig) {
         (_, Some((rig, (bone, task)))) => {
             let job = TrackJob { body: &**rig, start, follower: RigFollower { bone, task }, path, options };
-            let t = job.run().map_err(Problem::invalid)?;
+            let t = job.run().map_err(Problem::from)?;
             stopped(interrupt)?;
             json_response(&job.json(&t))
         }
@@ -170,7 +170,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
                 return Err(Problem::invalid("bound_first: only applies with mode follow"));
             }
             let job = TrackJob { body: &**arm, start, follower: mode, path, options };
-            let t = job.run().map_err(Problem::invalid)?;
+            let t = job.run().map_err(Problem::from)?;
             stopped(interrupt)?;
             json_response(&TrackJson::new(&job, &t))
         }
@@ -202,7 +202,7 @@ fn rig_follower(rig: &crate::rig::Rig, req: &TrackReq) -> Result<(usize, RigTask
     }
     let task = task(rig, goals, pins, req.mix, false)?;
     let task = RigTask { mix: req.mix.unwrap_or(1.0), ..task };
-    let bone = effector_index(rig, name, &task, "effector").map_err(Problem::invalid)?;
+    let bone = effector_index(rig, name, &task, "effector").map_err(Problem::from)?;
     Ok((bone, task))
 }
 

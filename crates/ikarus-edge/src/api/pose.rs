@@ -53,7 +53,7 @@ pub fn pose(body: &[u8], limits: &Limits, interrupt: &Interrupt) -> Result<Reply
     let Some(atlas) = &posing.atlas else {
         let report = posed(&posing.stored.loaded, &posing.ask, interrupt);
         stopped(interrupt)?;
-        return json_response(&report.map_err(Problem::invalid)?);
+        return json_response(&report.map_err(Problem::from)?);
     };
     let drawn = posing.drawn(interrupt)?;
     let a = &atlas.art;
@@ -134,9 +134,9 @@ impl Posing {
         let mut posed = Posed::default();
         let report = pose_kept_watched(loaded, ask, &mut posed, interrupt);
         stopped(interrupt)?;
-        let report = report.map_err(Problem::invalid)?;
-        let skin = skin_index(c, ask.skin.as_deref()).map_err(Problem::invalid)?;
-        let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(Problem::invalid)?;
+        let report = report.map_err(Problem::from)?;
+        let skin = skin_index(c, ask.skin.as_deref()).map_err(Problem::from)?;
+        let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(Problem::from)?;
         Ok(Drawn { report, posed, skin, clip })
     }
 }
@@ -172,7 +172,7 @@ fn bends(loaded: &crate::character::Loaded, bends: &BTreeMap<String, BendName>) 
     bends
         .iter()
         .map(|(name, side)| {
-            let k = bend_constraint(loaded, &format!("bends.{name}"), name).map_err(Problem::invalid)?;
+            let k = bend_constraint(loaded, &format!("bends.{name}"), name).map_err(Problem::from)?;
             Ok((k, bend_positive(loaded, side.bend())))
         })
         .collect()
@@ -228,7 +228,7 @@ impl IkReq {
             IkChoice::Ikarus(rules) => {
                 let bones: Vec<Option<usize>> = self.goals.iter().map(|g| g.bones).collect();
                 add_goals(rules, c, &named_goals(&self.goals), &bones, &self.pins, &field_name)
-                    .map_err(Problem::invalid)?;
+                    .map_err(Problem::from)?;
             }
             IkChoice::Runtime if !self.goals.is_empty() || !self.pins.is_empty() => {
                 let which = if self.goals.is_empty() { "pins" } else { "goals" };

@@ -98,15 +98,15 @@ pub const MAX_LIMIT_DEG: f64 = 360.0;
 
 /// `[lo, hi]` as an IK file gives a bone's limits, in degrees, checked in degrees (the solver's
 /// own check sees radians, and would print them): finite, within ±[`MAX_LIMIT_DEG`], `lo ≤ hi`.
-fn limits_in_degrees([lo, hi]: [f64; 2]) -> Result<(), String> {
+fn limits_in_degrees([lo, hi]: [f64; 2]) -> Result<(), Error> {
     if !(lo.is_finite() && hi.is_finite()) {
-        return Err("the limits must be finite numbers of degrees".to_owned());
+        return Err(Error::input("the limits must be finite numbers of degrees"));
     }
     if lo.abs() > MAX_LIMIT_DEG || hi.abs() > MAX_LIMIT_DEG {
-        return Err(format!("each limit must be within -{MAX_LIMIT_DEG} and {MAX_LIMIT_DEG} degrees"));
+        return Err(Error::input(format!("each limit must be within -{MAX_LIMIT_DEG} and {MAX_LIMIT_DEG} degrees")));
     }
     if lo > hi {
-        return Err("the lower limit must not exceed the upper (degrees)".to_owned());
+        return Err(Error::input("the lower limit must not exceed the upper (degrees)"));
     }
     Ok(())
 }
