@@ -263,21 +263,30 @@ impl std::error::Error for Error {}
 /// An error equals the text it displays (`assert_eq!(e, "goal.x: must be finite")`).
 impl PartialEq<str> for Error {
     fn eq(&self, text: &str) -> bool {
-        self.to_string() == text
+        /// What is left of the text once the error's parts are matched against its start.
+        struct Rest<'a>(&'a str);
+        impl fmt::Write for Rest<'_> {
+            fn write_str(&mut self, part: &str) -> fmt::Result {
+                self.0 = self.0.strip_prefix(part).ok_or(fmt::Error)?;
+                Ok(())
+            }
+        }
+        let mut rest = Rest(text);
+        fmt::write(&mut rest, format_args!("{self}")).is_ok() && rest.0.is_empty()
     }
 }
 
 /// An error equals the text it displays.
 impl PartialEq<&str> for Error {
     fn eq(&self, text: &&str) -> bool {
-        self.to_string() == *text
+        self == *text
     }
 }
 
 /// An error equals the text it displays.
 impl PartialEq<String> for Error {
     fn eq(&self, text: &String) -> bool {
-        self.to_string() == *text
+        self == text.as_str()
     }
 }
 
@@ -307,6 +316,14 @@ mod tests {
         let e = Error::malformed("malformed JSON: x").from_source("request body");
         assert_eq!(e.clone().from_source("arm").to_string(), "arm: malformed JSON: x");
         assert_eq!(e.without_source().to_string(), "malformed JSON: x");
+    }
+
+    #[test]
+    fn an_error_equals_its_text_and_nothing_else() {
+        let e = Error::input("bad").in_field("x").from_source("arm");
+        assert_eq!(e, "arm: x: bad");
+        assert_eq!(e, "arm: x: bad".to_owned());
+        assert!(e != "arm: x: ba" && e != "arm: x: bad!" && e != "");
     }
 
     #[test]

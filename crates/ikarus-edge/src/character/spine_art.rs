@@ -153,7 +153,9 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
                     "clipping" => clipping(a, &slots.index, bone_count, &at)?,
                     "path" | "point" | "boundingbox" => Attachment::NotDrawn,
                     other => {
-                        return Err(Error::input(format!("{at}.type = {other:?}: not an attachment type Spine writes")));
+                        return Err(Error::input(format!(
+                            "{at}.type = {other:?}: not an attachment type Spine writes"
+                        )));
                     }
                 };
                 out.slots[slot].insert(name.clone(), attachment);
