@@ -11,7 +11,7 @@ use std::io::{self, Write};
 use std::time::Instant;
 
 use ikarus::character::{Character, PlayFrame, PoseRequest, Posed};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use serde::Serialize;
 
 use super::{BenchArgs, Sink};
@@ -91,7 +91,7 @@ struct Report {
 }
 
 /// Runs `ikarus bench --characters`.
-pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), Error> {
     let poses = args.poses as usize;
     let mut characters = Vec::new();
     for (file, text, clip) in CHARACTERS {
@@ -122,12 +122,12 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
 }
 
 /// Times `poses` setup poses and `poses` animated ones (game frames with physics), alternating.
-fn measure(file: &'static str, c: &Character, clip: Option<usize>, poses: usize) -> Result<CharacterRow, CliError> {
+fn measure(file: &'static str, c: &Character, clip: Option<usize>, poses: usize) -> Result<CharacterRow, Error> {
     let physics = c.constraints().iter().any(|k| k.kind() == "physics");
     let duration = clip.map_or(0.0, |k| c.clips()[k].duration);
     let (mut setup_out, mut animated_out) = (Posed::default(), Posed::default());
     let (mut setup, mut animated) = (Vec::with_capacity(poses), Vec::with_capacity(poses));
-    let fail = |e: ikarus::character::PoseError| CliError::runtime(format!("{file}: {e}"));
+    let fail = |e: ikarus::character::PoseError| Error::runtime(format!("{file}: {e}"));
     for i in 0..WARMUP + poses {
         let start = Instant::now();
         c.pose(&PoseRequest::default(), &mut setup_out).map_err(fail)?;

@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 use ikarus::{Chain, SolveOptions};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use ikarus_edge::input::io_reason;
 
 use super::judge::judge;
@@ -201,26 +201,26 @@ fn shorten(s: &str) -> String {
 }
 
 /// Checks `--kdl PATH` before any work: a path that does not exist is bad input (exit 2).
-pub fn check(path: &Path) -> Result<(), CliError> {
+pub fn check(path: &Path) -> Result<(), Error> {
     match std::fs::metadata(path) {
         Ok(m) if m.is_file() => Ok(()),
-        Ok(_) => Err(CliError::input(format!("--kdl {}: not a file", path.display()))),
-        Err(e) => Err(CliError::input(format!("--kdl {}: {}", path.display(), io_reason(&e)))),
+        Ok(_) => Err(Error::input(format!("--kdl {}: not a file", path.display()))),
+        Err(e) => Err(Error::input(format!("--kdl {}: {}", path.display(), io_reason(&e)))),
     }
 }
 
 /// Writes the goal file of `set` into `dir`, runs `path` on it and parses its output. Any
 /// failure is one line naming `--kdl` and the path (exit 1).
-pub fn run(path: &Path, set: &GoalSet, dir: &Path, comment: &str) -> Result<KdlRun, CliError> {
+pub fn run(path: &Path, set: &GoalSet, dir: &Path, comment: &str) -> Result<KdlRun, Error> {
     let text = run_file(path, &dir.join(format!("{}.goals", set.name())), &goal_file(set, comment), &set.name())?;
     parse_output(&text, set)
-        .map_err(|m| CliError::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
+        .map_err(|m| Error::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
 }
 
 /// Writes `contents` to `file`, runs `path` on it and returns its stdout. Any failure is one
 /// line naming `--kdl`, the path and the set `name` (exit 1).
-pub(crate) fn run_file(path: &Path, file: &Path, contents: &str, name: &str) -> Result<String, CliError> {
-    let fail = |what: String| CliError::runtime(format!("--kdl {}: {what}", path.display()));
+pub(crate) fn run_file(path: &Path, file: &Path, contents: &str, name: &str) -> Result<String, Error> {
+    let fail = |what: String| Error::runtime(format!("--kdl {}: {what}", path.display()));
     std::fs::write(file, contents)
         .map_err(|e| fail(format!("cannot write the goal file {}: {}", file.display(), io_reason(&e))))?;
     let output = Command::new(path)

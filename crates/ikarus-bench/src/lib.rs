@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use clap::builder::PossibleValuesParser;
 use ikarus::{LimitMode, Method, SolveOptions};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use ikarus_edge::input::io_reason;
 use ikarus_edge::options::parse_at_least_one;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -149,14 +149,14 @@ fn mode_names() -> PossibleValuesParser {
 /// terminal).
 pub trait Sink {
     /// Runs `write` against stdout.
-    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError>;
+    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), Error>;
     /// Writes every `(path, text)` of `files`, each whole or not at all, every file created
     /// before any is written; `flag` names the option in messages.
-    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), CliError>;
+    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), Error>;
 }
 
 /// Runs `ikarus bench`, writing its results to `sink`.
-pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), Error> {
     if args.paths {
         return paths::run(args, sink);
     }
@@ -218,7 +218,7 @@ fn plan<'c>(
     arms: &[ArmName],
     set_names: &[SetName],
     configs: &'c [Config],
-) -> Result<Vec<Planned<'c>>, CliError> {
+) -> Result<Vec<Planned<'c>>, Error> {
     let filter = Filter { methods: args.methods.clone(), modes: args.limit_modes.clone() };
     let mut plan: Vec<Planned<'c>> = Vec::new();
     for &arm in arms {
@@ -237,7 +237,7 @@ fn plan<'c>(
         if let Some(m) = &args.limit_modes {
             flags.push(format!("--limit-modes {}", m.join(",")));
         }
-        return Err(CliError::input(format!("{}: no benchmark row matches on the sets chosen", flags.join(" "))));
+        return Err(Error::input(format!("{}: no benchmark row matches on the sets chosen", flags.join(" "))));
     }
     Ok(plan)
 }
@@ -256,7 +256,7 @@ fn goal_file_comment(args: &BenchArgs, set: &GoalSet) -> String {
 
 /// `--write-goals DIR`: every set's goal file, written by `sink` (every file created before
 /// any is written).
-fn write_goal_files(args: &BenchArgs, dir: &Path, plan: &[Planned], sink: &dyn Sink) -> Result<(), CliError> {
+fn write_goal_files(args: &BenchArgs, dir: &Path, plan: &[Planned], sink: &dyn Sink) -> Result<(), Error> {
     let files: Vec<(PathBuf, String)> = plan
         .iter()
         .map(|(set, _)| (dir.join(format!("{}.goals", set.name())), kdl::goal_file(set, &goal_file_comment(args, set))))
@@ -270,9 +270,9 @@ fn run_kdl(
     path: &Path,
     plan: &[Planned],
     progress: Option<&ProgressBar>,
-) -> Result<(Option<String>, Vec<Vec<RowResult>>), CliError> {
+) -> Result<(Option<String>, Vec<Vec<RowResult>>), Error> {
     let dir = tempfile::tempdir().map_err(|e| {
-        CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
+        Error::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
     })?;
     let mut version = None;
     let mut rows = Vec::new();
@@ -348,11 +348,11 @@ fn header(args: &BenchArgs, arms: &[ArmName], set_names: &[SetName], kdl_version
 
 /// `--write-goals DIR` must be an existing directory (bad input, exit 2, otherwise); whether
 /// files can be created in it shows when they are (exit 1, as for every output file).
-fn check_dir(dir: &Path) -> Result<(), CliError> {
+fn check_dir(dir: &Path) -> Result<(), Error> {
     match std::fs::metadata(dir) {
         Ok(m) if m.is_dir() => Ok(()),
-        Ok(_) => Err(CliError::input(format!("--write-goals {}: not a directory", dir.display()))),
-        Err(e) => Err(CliError::input(format!("--write-goals {}: {}", dir.display(), io_reason(&e)))),
+        Ok(_) => Err(Error::input(format!("--write-goals {}: not a directory", dir.display()))),
+        Err(e) => Err(Error::input(format!("--write-goals {}: {}", dir.display(), io_reason(&e)))),
     }
 }
 

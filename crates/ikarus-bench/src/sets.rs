@@ -12,7 +12,7 @@ use ikarus::kinematics::end_effector;
 use ikarus::solve::wrap_angle;
 use ikarus::{Chain, Goal};
 use ikarus_edge::arm::{Arm, DEFAULT_ARM};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 
 /// Goals of the `unreachable` set lie this many maximal reaches from the base, at the least…
 const BEYOND_MIN: f64 = 1.05;
@@ -55,7 +55,7 @@ impl ArmName {
     }
 
     /// Loads the embedded arm.
-    pub fn load(self) -> Result<Arm, CliError> {
+    pub fn load(self) -> Result<Arm, Error> {
         Arm::parse(self.text(), &format!("built-in arm {}", self.name()))
     }
 }

@@ -13,7 +13,7 @@ use ikarus::{EaseKind, LimitMode};
 use crate::body::Body;
 use crate::body_args::{BodyArgs, BodyHelp};
 use crate::ease_args::EaseArgs;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, parse_goal};
 use crate::motion::{DEFAULT_FPS, Motion, MotionBody, MotionPlan, TimingProblem};
 use crate::options::{named, parse_angle, parse_at_least_one, parse_finite, parse_point};
@@ -116,14 +116,14 @@ impl ViaArg {
 }
 
 /// Parses `X,Y`, or goals `NAME=X,Y[,DEG]` separated by `;`.
-pub fn parse_via(s: &str) -> Result<ViaArg, String> {
+pub fn parse_via(s: &str) -> Result<ViaArg, Error> {
     if !s.contains('=') {
         return parse_point(s).map(ViaArg::Point);
     }
     s.split(';')
         .map(|part| match parse_goal(part.trim())? {
             g @ GoalArg::Named { .. } => Ok(g),
-            GoalArg::Point(_) => Err(format!("'{}': expected NAME=X,Y[,DEG] in a goal set", part.trim())),
+            GoalArg::Point(_) => Err(Error::input(format!("'{}': expected NAME=X,Y[,DEG] in a goal set", part.trim()))),
         })
         .collect::<Result<Vec<_>, _>>()
         .map(ViaArg::Set)
@@ -199,10 +199,10 @@ pub struct MotionRun<B: MotionBody> {
 
 impl MotionArgs {
     /// The timing the flags ask for ([`crate::motion::timing`]).
-    pub fn timing(&self) -> Result<Timing, CliError> {
+    pub fn timing(&self) -> Result<Timing, Error> {
         crate::motion::timing(self.frames, self.duration, self.fps).map_err(|p| match p {
-            TimingProblem::Value { field, value, message } => CliError::input(format!("--{field} {value}: {message}")),
-            TimingProblem::Both => CliError::input("--frames, --duration: give one or the other, not both"),
+            TimingProblem::Value { field, value, message } => Error::input(format!("--{field} {value}: {message}")),
+            TimingProblem::Both => Error::input("--frames, --duration: give one or the other, not both"),
         })
     }
 }
@@ -211,7 +211,7 @@ impl<B: Animated> MotionRun<B> {
     /// Solves `body` for each stop of the flags (an arm's via points and goal, a rig's via sets
     /// and goal set), each from the previous pose, and eases the poses into a motion; an
     /// unreached stop is reported on stderr (the motion goes on from the best pose found).
-    pub fn of(args: &MotionArgs, body: B) -> Result<Self, CliError> {
+    pub fn of(args: &MotionArgs, body: B) -> Result<Self, Error> {
         let timing = args.timing()?;
         let ease = args.ease.resolve(EaseKind::Sine)?;
         let record = if args.from_solve { Some(args.record_every.unwrap_or(1)) } else { None };
@@ -239,7 +239,7 @@ pub trait ShownMotion {
 
 /// The motion the flags ask for: keyed (`--keys`), of the rig (`--rig FILE`), or of the arm
 /// (`--arm`, or the built-in arm).
-pub fn motion(args: &MotionArgs) -> Result<Box<dyn ShownMotion>, CliError> {
+pub fn motion(args: &MotionArgs) -> Result<Box<dyn ShownMotion>, Error> {
     if let Some(keys) = &args.keys {
         return Ok(Box::new(keyed::KeyedRun::of(args, keys)?));
     }
@@ -271,7 +271,7 @@ impl<B: Animated> ShownMotion for MotionRun<B> {
     }
 }
 
-pub fn run(args: &AnimateArgs) -> Result<(), CliError> {
+pub fn run(args: &AnimateArgs) -> Result<(), Error> {
     if let Some(file) = crate::character_motion::character(args.motion.body.rig.as_deref()) {
         return character::run(args, &file?);
     }
@@ -356,8 +356,8 @@ mod tests {
         let set = parse_via("hand=1,2; foot=0,-1,90").unwrap();
         assert_eq!(set, ViaArg::Set(vec![named("hand", 1.0, 2.0, None), named("foot", 0.0, -1.0, Some(90.0))]));
         assert_eq!(set.text(), "--via hand=1,2;foot=0,-1,90");
-        assert_eq!(parse_via("1,2,3"), Err("expected two numbers X,Y, got 3 part(s)".into()));
-        assert_eq!(parse_via("hand=1,2;3,4"), Err("'3,4': expected NAME=X,Y[,DEG] in a goal set".into()));
-        assert_eq!(parse_via("hand=1,x"), Err("hand: y: 'x' is not a number".into()));
+        assert_eq!(parse_via("1,2,3"), Err(Error::input("expected two numbers X,Y, got 3 part(s)")));
+        assert_eq!(parse_via("hand=1,2;3,4"), Err(Error::input("'3,4': expected NAME=X,Y[,DEG] in a goal set")));
+        assert_eq!(parse_via("hand=1,x"), Err(Error::input("hand: y: 'x' is not a number")));
     }
 }

@@ -17,7 +17,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::output::{self, PendingFile};
 use ikarus_edge::stats::{median, nearest_rank};
 
@@ -143,24 +143,24 @@ pub struct Batch {
 
 impl Batch {
     /// `threads` workers (all cores by default) and the `--summary-json` file, if any.
-    pub fn new(threads: Option<usize>, summary_json: Option<&Path>) -> Result<Self, CliError> {
+    pub fn new(threads: Option<usize>, summary_json: Option<&Path>) -> Result<Self, Error> {
         let summary = summary_json.map(|p| PendingFile::create(p, "--summary-json")).transpose()?;
         Ok(Self { summary, ..Self::threads(threads)? })
     }
 
     /// `threads` workers (all cores by default), to read the goals on; the summary file comes
     /// later ([`Batch::summary_json`]), so that bad goals are reported before it.
-    pub fn threads(threads: Option<usize>) -> Result<Self, CliError> {
+    pub fn threads(threads: Option<usize>) -> Result<Self, Error> {
         let threads = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from));
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .map_err(|e| CliError::runtime(format!("cannot start {threads} threads: {e}")))?;
+            .map_err(|e| Error::runtime(format!("cannot start {threads} threads: {e}")))?;
         Ok(Self { threads, pool, summary: None })
     }
 
     /// Prepares the `--summary-json` file, if any.
-    pub fn summary_json(&mut self, path: Option<&Path>) -> Result<(), CliError> {
+    pub fn summary_json(&mut self, path: Option<&Path>) -> Result<(), Error> {
         self.summary = path.map(|p| PendingFile::create(p, "--summary-json")).transpose()?;
         Ok(())
     }
@@ -178,7 +178,7 @@ impl Batch {
         items: &[I],
         init: impl Fn() -> S + Sync + Send,
         solve: impl Fn(&mut S, &I) -> Result<(Status, R), E> + Sync + Send,
-    ) -> Result<(Vec<Solved<R>>, Tally), CliError>
+    ) -> Result<(Vec<Solved<R>>, Tally), Error>
     where
         I: Sync,
         R: Send,
@@ -202,7 +202,7 @@ impl Batch {
                     })
                     .collect::<Result<Vec<_>, E>>()
             })
-            .map_err(|e| CliError::input(e.to_string()))?;
+            .map_err(|e| Error::input(e.to_string()))?;
         let wall_s = started.elapsed().as_secs_f64();
         if let Some(bar) = progress {
             bar.finish_and_clear();
@@ -238,7 +238,7 @@ impl Batch {
         solve: impl Fn(&mut S, usize, Range<usize>) -> Result<usize, E> + Sync + Send,
         format: impl Fn(&mut S, usize, Range<usize>, &mut Vec<u8>) + Sync + Send,
         rows: Rows<'_>,
-    ) -> Result<Tally, CliError>
+    ) -> Result<Tally, Error>
     where
         E: std::fmt::Display + Send,
     {
@@ -318,7 +318,7 @@ impl Batch {
             }
         });
         if let Some(e) = error {
-            return Err(CliError::input(e.to_string()));
+            return Err(Error::input(e.to_string()));
         }
         output::written(written.and_then(|()| out.flush()))?;
         if let Some(bar) = progress {
@@ -340,7 +340,7 @@ impl Batch {
 
     /// Reports the summary of a batch (solved with `method`): a line on stderr, and the JSON
     /// file if one was asked for.
-    pub fn finish(self, tally: Tally, method: &'static str) -> Result<(), CliError> {
+    pub fn finish(self, tally: Tally, method: &'static str) -> Result<(), Error> {
         let summary = summarise(tally, self.threads, method);
         // Truncated, not rounded: 9999 of 10000 must not read as 100%.
         let percent = (summary.reached_percent * 100.0).floor() / 100.0;

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use crate::body::Body;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::RigTaskArgs;
 use crate::settings::SolverFlags;
 
@@ -38,12 +38,12 @@ pub struct BodyArgs<H: BodyHelp + Send + Sync + 'static> {
 
 impl<H: BodyHelp + Send + Sync + 'static> BodyArgs<H> {
     /// The body the flags name: `--rig FILE`, else `--arm FILE`, else the built-in seed arm.
-    pub fn load(&self) -> Result<Body, CliError> {
+    pub fn load(&self) -> Result<Body, Error> {
         Body::load(self.arm.as_deref(), self.rig.as_deref())
     }
 
     /// The body as a rig: `--rig FILE`, else the one-branch rig of the arm (bones `link0`, …).
-    pub fn load_as_rig(&self) -> Result<ikarus_edge::rig::Rig, CliError> {
+    pub fn load_as_rig(&self) -> Result<ikarus_edge::rig::Rig, Error> {
         Body::load_as_rig(self.arm.as_deref(), self.rig.as_deref())
     }
 }

@@ -12,7 +12,7 @@ use ikarus_edge::character::export;
 use ikarus_edge::character::motion::{Motion, StreamError};
 use ikarus_edge::character::{Loaded, is_json, load, motion_files};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::motion_art::{ArtOut, MotionArtArgs};
 use crate::output::{self, PendingFile};
 use crate::picture::{PictureArgs, PictureFormat, draw_for_command};
@@ -27,7 +27,7 @@ pub struct CharacterFile {
 /// The character file `--rig` names, read (its warnings on stderr); `None` without `--rig`, or
 /// for a file that cannot be read or is not JSON (a Spine `.skel` is read as its JSON) (the rig's own reader says what it says of it); a
 /// Spine texture atlas is refused as one ([`ikarus_edge::character::atlas`]).
-pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> {
+pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, Error>> {
     let path = rig?;
     let label = format!("rig file {}", path.display());
     let bytes = crate::input::read(path, &label).ok()?;
@@ -38,7 +38,7 @@ pub fn character(rig: Option<&Path>) -> Option<Result<CharacterFile, CliError>> 
         Err(e) => return Some(Err(e)),
     };
     if ikarus_edge::character::atlas::is_atlas(&text) {
-        return Some(Err(CliError::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS))));
+        return Some(Err(Error::input(format!("{label}: {}", ikarus_edge::character::atlas::ATLAS))));
     }
     let text = Some(text).filter(|t| is_json(t))?;
     Some(load(&text, &label).map(|loaded| {
@@ -63,14 +63,14 @@ pub enum Written {
 /// What `--format` asks a character's motion to be written as: the frames (`json`), their CSV
 /// (`csv`) or the file with a Spine animation (`spine`); `None` without `--format`; any other
 /// format is refused.
-pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Option<Written>, CliError> {
+pub fn written<F: clap::ValueEnum>(format: Option<F>) -> Result<Option<Written>, Error> {
     let name = format.and_then(|f| f.to_possible_value()).map(|v| v.get_name().to_owned());
     match name.as_deref() {
         None => Ok(None),
         Some("json") => Ok(Some(Written::Frames)),
         Some("csv") => Ok(Some(Written::Csv)),
         Some("spine") => Ok(Some(Written::Spine)),
-        Some(other) => Err(CliError::input(format!(
+        Some(other) => Err(Error::input(format!(
             "--format {other}: a character's motion is written as json (its frames), csv or spine"
         ))),
     }
@@ -93,20 +93,20 @@ pub struct Output<'a> {
 
 /// The first flag of `given` (`(flag, given)`) that is given: refused in one line, since it means
 /// something only for an ikarus rig or arm.
-pub fn refuse_foreign(given: &[(&str, bool)]) -> Result<(), CliError> {
+pub fn refuse_foreign(given: &[(&str, bool)]) -> Result<(), Error> {
     match given.iter().find(|(_, g)| *g) {
         Some((flag, _)) => {
-            Err(CliError::input(format!("{flag}: not with a character file (it is for rig files and arms)")))
+            Err(Error::input(format!("{flag}: not with a character file (it is for rig files and arms)")))
         }
         None => Ok(()),
     }
 }
 
 /// The flags of a character's motion given without a character file: refused in one line.
-pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), CliError> {
+pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), Error> {
     match given.iter().find(|(_, g)| *g) {
         Some((flag, _)) => {
-            Err(CliError::input(format!("{flag}: only with a character file (--rig FILE.json, Spine or DragonBones)")))
+            Err(Error::input(format!("{flag}: only with a character file (--rig FILE.json, Spine or DragonBones)")))
         }
         None => Ok(()),
     }
@@ -115,13 +115,13 @@ pub fn refuse_without(given: &[(&str, bool)]) -> Result<(), CliError> {
 /// Writes `motion` of `file` as `output` says: with `--out x.svg|png|gif` its picture there
 /// (and the form asked for, if one is, on stdout); else the form to `--out` (whole or not at
 /// all) or stdout.
-pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> Result<(), CliError> {
-    let fail = |m: String| CliError::input(format!("{}: {m}", file.label));
+pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> Result<(), Error> {
+    let fail = |m: Error| Error::input(format!("{}: {m}", file.label));
     if output.animation_name.is_some() && output.written != Some(Written::Spine) {
-        return Err(CliError::input("--animation-name: only with --format spine"));
+        return Err(Error::input("--animation-name: only with --format spine"));
     }
     if output.form == export::Form::Bake && output.written != Some(Written::Spine) {
-        return Err(CliError::input("--bake: only with --format spine"));
+        return Err(Error::input("--bake: only with --format spine"));
     }
     let out = output.picture.out.as_ref();
     let ext = out.and_then(|p| p.extension()).and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
@@ -135,7 +135,7 @@ pub fn write(file: &CharacterFile, motion: &Motion<'_>, output: &Output<'_>) -> 
     if let Some(picture) = picture {
         let (frames, bones) = (motion.frame_count(), file.loaded.character.bones().len());
         if frames.saturating_mul(bones) > motion_files::MAX_DRAWN_BONES {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "--out: a picture of {frames} frames × {bones} bones draws more than the cap of {} bones ({})",
                 motion_files::MAX_DRAWN_BONES,
                 output.fewer

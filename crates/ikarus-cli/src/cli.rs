@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::{CommandFactory, Parser, Subcommand};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::{animate, bench, input, output, pose, reach, render, rig, serve, shell, solve, track, workspace};
 
 /// Inverse kinematics for planar chains: move an arm's tip to a goal.
@@ -89,7 +89,7 @@ pub fn main() -> ExitCode {
     if !matches!(cli.command, Command::Serve(_)) {
         output::handle_interrupts();
     }
-    let result: Result<(), CliError> = match &cli.command {
+    let result: Result<(), Error> = match &cli.command {
         Command::Solve(args) => solve::run(args),
         Command::Animate(args) => animate::run(args),
         Command::Track(args) => track::run(args),
@@ -106,9 +106,15 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("ikarus: {e}");
-            ExitCode::from(e.exit_code() as u8)
+            ExitCode::from(exit_code(&e))
         }
     }
+}
+
+/// The exit code of a failed command: 2 for the user's input (a flag, a file, a value), 1 for a
+/// failure at run time.
+fn exit_code(e: &Error) -> u8 {
+    if e.kind().is_input() { 2 } else { 1 }
 }
 
 /// Help and version go out as clap renders them; every other parse error becomes one line.

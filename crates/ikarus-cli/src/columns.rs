@@ -8,7 +8,7 @@ use ikarus::SolveOptions;
 
 use crate::arm::Arm;
 use crate::body::Jointed;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::rig::Rig;
 use crate::settings::SolverSettings;
 use crate::solve::write_pose;
@@ -16,7 +16,7 @@ use crate::solve::write_pose;
 /// A body as the command line's workflows and writers see it.
 pub trait BodyColumns: Jointed {
     /// The options of a command: `flags` over the file's `[solver]` table over the defaults.
-    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, CliError>;
+    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, Error>;
     /// The pose's CSV columns.
     fn pose_columns(&self) -> Vec<String>;
     /// `,value` for every pose column at joint values `q`.
@@ -24,7 +24,7 @@ pub trait BodyColumns: Jointed {
 }
 
 impl BodyColumns for Arm {
-    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, CliError> {
+    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, Error> {
         self.options(flags, record_every)
     }
     fn pose_columns(&self) -> Vec<String> {
@@ -36,7 +36,7 @@ impl BodyColumns for Arm {
 }
 
 impl BodyColumns for Rig {
-    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, CliError> {
+    fn solve_options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<SolveOptions, Error> {
         self.options(flags, record_every)
     }
     fn pose_columns(&self) -> Vec<String> {

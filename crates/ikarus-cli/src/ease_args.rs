@@ -5,7 +5,7 @@ use clap::Args;
 use ikarus::{Ease, EaseKind};
 pub use ikarus_edge::ease_args::*;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::options::{named, parse_finite};
 
 #[derive(Debug, Clone, Args)]
@@ -23,13 +23,13 @@ pub struct EaseArgs {
 
 impl EaseArgs {
     /// The ease the flags ask for; `default` when none is named.
-    pub fn resolve(&self, default: EaseKind) -> Result<Ease, CliError> {
+    pub fn resolve(&self, default: EaseKind) -> Result<Ease, Error> {
         choose_ease(self.ease, self.k1, self.k2, default).map_err(|p| match p {
             EaseProblem::KWithoutParent { k1 } => {
                 let flag = if k1 { "--k1" } else { "--k2" };
-                CliError::input(format!("{flag}: only applies with --ease parent"))
+                Error::input(format!("{flag}: only applies with --ease parent"))
             }
-            EaseProblem::Invalid(e) => CliError::input(format!("--{e}")),
+            EaseProblem::Invalid(e) => Error::input(format!("--{e}")),
         })
     }
 }

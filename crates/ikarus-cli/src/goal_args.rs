@@ -6,7 +6,7 @@
 use clap::Args;
 use ikarus::{Bend, Priority, RigTask, Skeleton};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal::{self, Field, NamedGoal};
 use crate::options::{parse_finite, parse_non_negative, parse_point, parse_positive};
 use crate::rig::Rig;
@@ -32,58 +32,69 @@ impl GoalArg {
 }
 
 /// Parses `X,Y` or `NAME=X,Y[,DEG]`.
-pub fn parse_goal(s: &str) -> Result<GoalArg, String> {
+pub fn parse_goal(s: &str) -> Result<GoalArg, Error> {
     let Some((bone, rest)) = s.split_once('=') else { return parse_point(s).map(GoalArg::Point) };
     let bone = bone.trim();
     if bone.is_empty() {
-        return Err("NAME=X,Y[,DEG]: the bone's name is empty".to_owned());
+        return Err(Error::input("NAME=X,Y[,DEG]: the bone's name is empty"));
     }
     let parts: Vec<&str> = rest.split(',').collect();
     let (x, y, angle) = match parts[..] {
         [x, y] => (x, y, None),
         [x, y, a] => (x, y, Some(a)),
-        _ => return Err(format!("{bone}=: expected X,Y or X,Y,DEG after the name, got {} part(s)", parts.len())),
+        _ => {
+            return Err(Error::input(format!(
+                "{bone}=: expected X,Y or X,Y,DEG after the name, got {} part(s)",
+                parts.len()
+            )));
+        }
     };
-    let x = parse_finite(x).map_err(|m| format!("{bone}: x: {m}"))?;
-    let y = parse_finite(y).map_err(|m| format!("{bone}: y: {m}"))?;
-    let angle_deg = angle.map(parse_finite).transpose().map_err(|m| format!("{bone}: angle: {m}"))?;
+    let x = parse_finite(x).map_err(|m| Error::input(format!("{bone}: x: {m}")))?;
+    let y = parse_finite(y).map_err(|m| Error::input(format!("{bone}: y: {m}")))?;
+    let angle_deg = angle.map(parse_finite).transpose().map_err(|m| Error::input(format!("{bone}: angle: {m}")))?;
     Ok(GoalArg::Named { bone: bone.to_owned(), x, y, angle_deg })
 }
 
 /// `NAME=VALUE` with VALUE parsed by `value`.
-fn named<T>(s: &str, value: impl Fn(&str) -> Result<T, String>) -> Result<(String, T), String> {
-    let Some((name, v)) = s.split_once('=') else { return Err(format!("expected NAME=VALUE, got '{s}'")) };
+fn named<T>(s: &str, value: impl Fn(&str) -> Result<T, Error>) -> Result<(String, T), Error> {
+    let Some((name, v)) = s.split_once('=') else {
+        return Err(Error::input(format!("expected NAME=VALUE, got '{s}'")));
+    };
     let name = name.trim();
     if name.is_empty() {
-        return Err("NAME=VALUE: the bone's name is empty".to_owned());
+        return Err(Error::input("NAME=VALUE: the bone's name is empty"));
     }
-    Ok((name.to_owned(), value(v).map_err(|m| format!("{name}: {m}"))?))
+    Ok((name.to_owned(), value(v).map_err(|m| Error::input(format!("{name}: {m}")))?))
 }
 
-fn parse_weight(s: &str) -> Result<(String, f64), String> {
+fn parse_weight(s: &str) -> Result<(String, f64), Error> {
     named(s, parse_positive)
 }
 
-fn parse_softness(s: &str) -> Result<(String, f64), String> {
+fn parse_softness(s: &str) -> Result<(String, f64), Error> {
     named(s, parse_non_negative)
 }
 
-fn parse_bend(s: &str) -> Result<(String, Bend), String> {
+fn parse_bend(s: &str) -> Result<(String, Bend), Error> {
     named(s, |v| match v.trim() {
         "ccw" => Ok(Bend::Positive),
         "cw" => Ok(Bend::Negative),
-        other => Err(format!("'{other}': expected ccw (counter-clockwise) or cw (clockwise)")),
+        other => Err(Error::input(format!("'{other}': expected ccw (counter-clockwise) or cw (clockwise)"))),
     })
 }
 
 /// `NAME=DEG`: a bone's angle, degrees.
-pub fn parse_bone_angle(s: &str) -> Result<(String, f64), String> {
+pub fn parse_bone_angle(s: &str) -> Result<(String, f64), Error> {
     named(s, parse_finite)
 }
 
-fn parse_mix(s: &str) -> Result<f64, String> {
+fn parse_mix(s: &str) -> Result<f64, Error> {
     let v = parse_finite(s)?;
-    if (0.0..=1.0).contains(&v) { Ok(v) } else { Err(format!("{}: must be from 0 to 1", ikarus::number::Num(v))) }
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(Error::input(format!("{}: must be from 0 to 1", ikarus::number::Num(v))))
+    }
 }
 
 /// The flags of a rig's task besides `--goal` (each only with `--rig`).
@@ -140,7 +151,7 @@ pub struct Target {
 impl Target {
     /// The target of a `--goal` on `rig`, which must name its bone unless the rig has a tip
     /// (an arm file's rig: `--goal X,Y` is on its last link).
-    pub fn of(goal: &GoalArg, rig: &Rig) -> Result<Self, CliError> {
+    pub fn of(goal: &GoalArg, rig: &Rig) -> Result<Self, Error> {
         match goal {
             GoalArg::Named { bone, x, y, angle_deg } => {
                 Ok(Self { bone: bone.clone(), x: *x, y: *y, angle_deg: *angle_deg, source: goal.text() })
@@ -154,7 +165,7 @@ impl Target {
                     source: goal.text(),
                 }),
                 None => {
-                    Err(CliError::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
+                    Err(Error::input(format!("{}: a rig's goal names its bone: --goal NAME=X,Y[,DEG]", goal.text())))
                 }
             },
         }
@@ -164,7 +175,7 @@ impl Target {
 impl RigTaskArgs {
     /// Checks that every per-goal flag names a bone that has a goal among `bones` (the goals'
     /// bones, from --goal or a batch header): a weight for a bone without a goal is a mistake.
-    pub fn check_against(&self, bones: &[&str]) -> Result<(), CliError> {
+    pub fn check_against(&self, bones: &[&str]) -> Result<(), Error> {
         let flags = self.weight.iter().map(|(n, w)| (n, "--weight", format!("--weight {n}={w}")));
         let flags = flags.chain(self.secondary.iter().map(|n| (n, "--secondary", format!("--secondary {n}"))));
         let flags = flags.chain(self.bend.iter().map(|(n, b)| (n, "--bend", format!("--bend {n}={}", bend_name(*b)))));
@@ -172,10 +183,10 @@ impl RigTaskArgs {
         let mut seen: Vec<(&String, &str)> = Vec::new();
         for (name, kind, flag) in flags {
             if !bones.contains(&name.as_str()) {
-                return Err(CliError::input(format!("{flag}: no goal on bone {name:?} (give it a --goal NAME=X,Y)")));
+                return Err(Error::input(format!("{flag}: no goal on bone {name:?} (give it a --goal NAME=X,Y)")));
             }
             if seen.contains(&(name, kind)) {
-                return Err(CliError::input(format!("{flag}: {kind} given twice for bone {name:?}")));
+                return Err(Error::input(format!("{flag}: {kind} given twice for bone {name:?}")));
             }
             seen.push((name, kind));
         }
@@ -184,22 +195,22 @@ impl RigTaskArgs {
 
     /// The task of `targets` and the pins on `skeleton`, with these flags' controls; problems
     /// name the flag and its value.
-    pub fn task(&self, skeleton: &Skeleton, targets: &[Target]) -> Result<RigTask, CliError> {
+    pub fn task(&self, skeleton: &Skeleton, targets: &[Target]) -> Result<RigTask, Error> {
         let goals = self.named(targets)?;
         let field = |f: Field| self.field(targets, f);
         goal::build(skeleton, &goals, &self.pin, self.mix.unwrap_or(1.0), &field).map_err(|m| {
             // The library's words for a task of nothing, in the flags' words.
-            if m.starts_with("goals: ") {
-                CliError::input("--goal: a rig solve needs at least one --goal NAME=X,Y or --pin NAME")
+            if m.to_string().starts_with("goals: ") {
+                Error::input("--goal: a rig solve needs at least one --goal NAME=X,Y or --pin NAME")
             } else {
-                CliError::input(m)
+                m
             }
         })
     }
 
     /// The goals of `targets` with these flags' controls, each per-goal flag checked to name a
     /// goal's bone.
-    pub fn named(&self, targets: &[Target]) -> Result<Vec<NamedGoal>, CliError> {
+    pub fn named(&self, targets: &[Target]) -> Result<Vec<NamedGoal>, Error> {
         let bones: Vec<&str> = targets.iter().map(|t| t.bone.as_str()).collect();
         self.check_against(&bones)?;
         Ok(targets
@@ -249,17 +260,20 @@ mod tests {
             parse_goal("foot=1,2,-90"),
             Ok(GoalArg::Named { bone: "foot".into(), x: 1.0, y: 2.0, angle_deg: Some(-90.0) })
         );
-        assert_eq!(parse_goal("foot=1"), Err("foot=: expected X,Y or X,Y,DEG after the name, got 1 part(s)".into()));
-        assert_eq!(parse_goal("foot=1,nan"), Err("foot: y: must be a finite number, got nan".into()));
-        assert_eq!(parse_goal("foot=1,2,x"), Err("foot: angle: 'x' is not a number".into()));
-        assert_eq!(parse_goal("=1,2"), Err("NAME=X,Y[,DEG]: the bone's name is empty".into()));
+        assert_eq!(
+            parse_goal("foot=1"),
+            Err(Error::input("foot=: expected X,Y or X,Y,DEG after the name, got 1 part(s)"))
+        );
+        assert_eq!(parse_goal("foot=1,nan"), Err(Error::input("foot: y: must be a finite number, got nan")));
+        assert_eq!(parse_goal("foot=1,2,x"), Err(Error::input("foot: angle: 'x' is not a number")));
+        assert_eq!(parse_goal("=1,2"), Err(Error::input("NAME=X,Y[,DEG]: the bone's name is empty")));
     }
 
     #[test]
     fn controls_parse() {
         assert_eq!(parse_bend("knee=cw"), Ok(("knee".into(), Bend::Negative)));
-        assert!(parse_bend("knee=left").unwrap_err().contains("expected ccw"));
-        assert!(parse_weight("hand=0").unwrap_err().starts_with("hand: 0: must be"));
+        assert!(parse_bend("knee=left").unwrap_err().to_string().contains("expected ccw"));
+        assert!(parse_weight("hand=0").unwrap_err().to_string().starts_with("hand: 0: must be"));
         assert!(parse_softness("hand=-1").is_err());
         assert_eq!(parse_mix("0.25"), Ok(0.25));
         assert!(parse_mix("1.5").is_err());

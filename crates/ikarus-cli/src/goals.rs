@@ -8,7 +8,7 @@ use std::path::Path;
 
 use ikarus::Goal;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::options::parse_finite;
 
 pub use ikarus_edge::goal::make_goal;
@@ -44,7 +44,7 @@ const GOAL_HEADERS: &[&[&str]] = &[&["x", "y"], &["x", "y", "angle_deg"]];
 /// trimmed as the `csv` crate trims it: exactly what the `csv` reader reads in it, at a third of
 /// the cost. Any other file, a bad one included, is read by the `csv` reader, whose errors name
 /// the line, the column and the value: the same messages as ever.
-pub fn read(file: &Path, label: &str) -> Result<Goals, CliError> {
+pub fn read(file: &Path, label: &str) -> Result<Goals, Error> {
     let text = crate::input::read(file, label)?;
     match plain::pieces(&text, false) {
         Some(pieces) => {
@@ -59,7 +59,7 @@ pub fn read(file: &Path, label: &str) -> Result<Goals, CliError> {
 /// [`read`] for `ikarus solve --batch`: the goals in pieces, in order. A plain file's pieces
 /// are parsed in parallel on the current rayon pool (the batch's threads) and kept apart, as
 /// the batch solves them: joining them cost 3 ms of serial copying on 100,000 goals.
-pub fn read_pieces(file: &Path, label: &str) -> Result<Vec<Goals>, CliError> {
+pub fn read_pieces(file: &Path, label: &str) -> Result<Vec<Goals>, Error> {
     let text = crate::input::read(file, label)?;
     match plain::pieces(&text, true) {
         Some(pieces) => Ok(pieces),
@@ -68,14 +68,14 @@ pub fn read_pieces(file: &Path, label: &str) -> Result<Vec<Goals>, CliError> {
 }
 
 /// The goals of `text` as the `csv` reader reads them; errors name the line and the column.
-fn by_csv(text: &[u8], label: &str) -> Result<Goals, CliError> {
+fn by_csv(text: &[u8], label: &str) -> Result<Goals, Error> {
     let (header, rows) = read_numbers(text, label, GOAL_HEADERS)?;
     let with_angle = header == 1;
     let mut goals = Goals::default();
     for (line, v) in rows {
         let (x, y) = (v[0], v[1]);
         let angle = if with_angle { Some(v[2]) } else { None };
-        let goal = make_goal(x, y, angle).map_err(|m| CliError::input(format!("{label}: line {line}: {m}")))?;
+        let goal = make_goal(x, y, angle).map_err(|m| Error::input(format!("{label}: line {line}: {m}")))?;
         goals.push(x, y, goal);
     }
     Ok(goals)
@@ -166,11 +166,11 @@ mod plain {
 
 /// Reads the point file `file` (header `x,y`, then one point per row: `ikarus reach --batch`);
 /// errors start with `label`. A file without points is an error.
-pub fn read_points(file: &Path, label: &str) -> Result<Vec<[f64; 2]>, CliError> {
+pub fn read_points(file: &Path, label: &str) -> Result<Vec<[f64; 2]>, Error> {
     let text = crate::input::read(file, label)?;
     let (_, rows) = read_numbers(&text, label, &[&["x", "y"]])?;
     if rows.is_empty() {
-        return Err(CliError::input(format!("{label}: no points (expected a header `x,y` and one point per row)")));
+        return Err(Error::input(format!("{label}: no points (expected a header `x,y` and one point per row)")));
     }
     Ok(rows.into_iter().map(|(_, v)| [v[0], v[1]]).collect())
 }
@@ -180,13 +180,13 @@ type NumberRows = Vec<(u64, Vec<f64>)>;
 
 /// Reads a CSV file of finite numbers (its bytes, `text`) whose header is one of `headers`: which
 /// one, and its rows. Errors start with `label` and name the line and the column.
-fn read_numbers(text: &[u8], label: &str, headers: &[&[&str]]) -> Result<(usize, NumberRows), CliError> {
+fn read_numbers(text: &[u8], label: &str, headers: &[&[&str]]) -> Result<(usize, NumberRows), Error> {
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text);
-    let found = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
+    let found = reader.headers().map_err(|e| Error::input(format!("{label}: {e}")))?.clone();
     let names: Vec<&str> = found.iter().collect();
     let Some(header) = headers.iter().position(|h| *h == names.as_slice()) else {
         let wanted: Vec<String> = headers.iter().map(|h| format!("`{}`", h.join(","))).collect();
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{label}: line 1: header must be {}, got `{}`",
             wanted.join(" or "),
             names.join(",")
@@ -195,15 +195,15 @@ fn read_numbers(text: &[u8], label: &str, headers: &[&[&str]]) -> Result<(usize,
     let columns = headers[header];
     let mut rows = Vec::new();
     for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let record = record.map_err(|e| Error::input(format!("{label}: {e}")))?;
         let line = record.position().map_or(0, csv::Position::line);
         let values = columns
             .iter()
             .enumerate()
             .map(|(i, name)| {
-                parse_finite(&record[i]).map_err(|m| CliError::input(format!("{label}: line {line}: {name}: {m}")))
+                parse_finite(&record[i]).map_err(|m| Error::input(format!("{label}: line {line}: {name}: {m}")))
             })
-            .collect::<Result<Vec<f64>, CliError>>()?;
+            .collect::<Result<Vec<f64>, Error>>()?;
         rows.push((line, values));
     }
     Ok((header, rows))

@@ -17,7 +17,7 @@ use ikarus_edge::character::motion_art::{MotionArtError, art_drawing, posed_with
 use ikarus_edge::picture::PictureFormat;
 use ikarus_render::ArtPlacement;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::picture::{PictureArgs, draw_for_command};
 
 /// The art of a character's motion: its atlas, alone or under the bones, and the skin.
@@ -58,21 +58,21 @@ pub fn atlas_of(
     args: &MotionArtArgs,
     format: Format,
     picture: Option<PictureFormat>,
-) -> Result<Option<AtlasArt>, CliError> {
+) -> Result<Option<AtlasArt>, Error> {
     let Some(path) = &args.atlas else {
         if args.art_only {
-            return Err(CliError::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
+            return Err(Error::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
         }
         return Ok(None);
     };
     if format == Format::DragonBones {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--atlas {}: DragonBones characters are drawn as bones only (their art is not read); leave out --atlas",
             path.display()
         )));
     }
     if picture.is_none() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--atlas {}: the art is drawn in a picture: give --out FILE.gif, FILE.png or FILE.svg",
             path.display()
         )));
@@ -98,15 +98,15 @@ pub fn draw(
     motion: &Motion<'_>,
     (args, atlas): (&MotionArtArgs, &AtlasArt),
     out: &ArtOut<'_>,
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, Error> {
     let fewer = out.fewer;
     let drawn = posed_with_art(motion, atlas).map_err(|e| match e {
-        MotionArtError::Pose(m) => CliError::input(format!("{label}: {m}")),
+        MotionArtError::Pose(m) => Error::input(format!("{label}: {m}")),
         MotionArtError::Art(m) => {
             let path = args.atlas.as_ref().map_or_else(String::new, |p| p.display().to_string());
-            CliError::input(format!("atlas file {path}: {m}"))
+            Error::input(format!("atlas file {path}: {m}"))
         }
-        MotionArtError::Cap(m) => CliError::input(format!("--out: {m} ({fewer})")),
+        MotionArtError::Cap(m) => Error::input(format!("--out: {m} ({fewer})")),
     })?;
     let frames = drawn.poses.len();
     let drawing = art_drawing(motion, &drawn.poses, drawn.arts, args.placement());

@@ -17,22 +17,22 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, Once};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::input::io_reason;
 
 /// Runs `write` against a buffered, locked stdout. A reader that went away (`| head`) is not
 /// an error.
-pub fn stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
+pub fn stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), Error> {
     let out = io::stdout();
     let mut w = io::BufWriter::new(out.lock());
     written(write(&mut w).and_then(|()| w.flush()))
 }
 
 /// The outcome of writing stdout: a reader that went away (`| head`) is not an error.
-pub fn written(result: io::Result<()>) -> Result<(), CliError> {
+pub fn written(result: io::Result<()>) -> Result<(), Error> {
     match result {
         Err(e) if e.kind() != io::ErrorKind::BrokenPipe => {
-            Err(CliError::runtime(format!("cannot write to stdout: {}", io_reason(&e))))
+            Err(Error::runtime(format!("cannot write to stdout: {}", io_reason(&e))))
         }
         _ => Ok(()),
     }
@@ -139,11 +139,11 @@ fn halfway(v: f64, text: &[u8]) -> bool {
 pub fn write_files<P: AsRef<Path>, B: AsRef<[u8]>>(
     flag: &'static str,
     files: impl IntoIterator<Item = (P, B)>,
-) -> Result<(), CliError> {
+) -> Result<(), Error> {
     let pending = files
         .into_iter()
         .map(|(path, bytes)| Ok((PendingFile::create(path.as_ref(), flag)?, bytes)))
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     for (file, bytes) in pending {
         file.commit(bytes.as_ref())?;
     }
@@ -154,11 +154,11 @@ pub fn write_files<P: AsRef<Path>, B: AsRef<[u8]>>(
 pub struct Terminal;
 
 impl crate::bench::Sink for Terminal {
-    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
+    fn stdout(&self, write: &mut dyn FnMut(&mut dyn Write) -> io::Result<()>) -> Result<(), Error> {
         stdout(write)
     }
 
-    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), CliError> {
+    fn files(&self, flag: &'static str, files: &[(PathBuf, String)]) -> Result<(), Error> {
         write_files(flag, files.iter().map(|(path, text)| (path, text.as_bytes())))
     }
 }
@@ -197,9 +197,9 @@ pub struct PendingFile {
 
 impl PendingFile {
     /// Prepares to write `target`; `flag` names the option in error messages.
-    pub fn create(target: &Path, flag: &'static str) -> Result<Self, CliError> {
+    pub fn create(target: &Path, flag: &'static str) -> Result<Self, Error> {
         let unwritable =
-            |reason: String| CliError::runtime(format!("{flag} {}: cannot write: {reason}", target.display()));
+            |reason: String| Error::runtime(format!("{flag} {}: cannot write: {reason}", target.display()));
         let (resolved, mode) = match std::fs::metadata(target) {
             Ok(m) if m.is_dir() => return Err(unwritable("is a directory".to_owned())),
             Ok(m) if !m.is_file() => {
@@ -232,16 +232,15 @@ impl PendingFile {
     }
 
     /// Writes `bytes` and renames the file into place (or writes them through to a device).
-    pub fn commit(self, bytes: &[u8]) -> Result<(), CliError> {
+    pub fn commit(self, bytes: &[u8]) -> Result<(), Error> {
         self.commit_with(|w: &mut dyn Write| w.write_all(bytes))
     }
 
     /// Writes what `write` writes, as it writes it (buffered), and renames the file into place
     /// (or writes it through to a device); an error of `write` leaves nothing behind.
-    pub fn commit_with(mut self, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), CliError> {
+    pub fn commit_with(mut self, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<(), Error> {
         let (path, flag) = (self.path.clone(), self.flag);
-        let fail =
-            |e: io::Error| CliError::runtime(format!("{flag} {}: cannot write: {}", path.display(), io_reason(&e)));
+        let fail = |e: io::Error| Error::runtime(format!("{flag} {}: cannot write: {}", path.display(), io_reason(&e)));
         match &mut self.sink {
             Sink::Direct => {
                 let file = std::fs::OpenOptions::new().write(true).open(&path).map_err(fail)?;

@@ -9,7 +9,7 @@ use clap::Args;
 pub use ikarus_edge::picture::*;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::output::PendingFile;
 
 /// A picture's size in pixels: `--width`, `--height`.
@@ -49,7 +49,7 @@ pub struct StillArgs {
 
 impl StillArgs {
     /// Checks the extension and prepares the file; `None` without `--out`.
-    pub fn prepare(&self) -> Result<Option<PictureOut>, CliError> {
+    pub fn prepare(&self) -> Result<Option<PictureOut>, Error> {
         let Some(path) = &self.out else { return Ok(None) };
         let format = format_of(path, &[PictureFormat::Svg, PictureFormat::Png])?;
         let file = PendingFile::create(path, "--out")?;
@@ -83,7 +83,7 @@ pub struct PictureOut {
 
 impl PictureArgs {
     /// Checks the extension against `allowed` and prepares the file; `None` without `--out`.
-    pub fn prepare(&self, allowed: &[PictureFormat]) -> Result<Option<PictureOut>, CliError> {
+    pub fn prepare(&self, allowed: &[PictureFormat]) -> Result<Option<PictureOut>, Error> {
         let Some(path) = &self.out else { return Ok(None) };
         let format = format_of(path, allowed)?;
         let file = PendingFile::create(path, "--out")?;
@@ -93,12 +93,12 @@ impl PictureArgs {
 
 impl PictureOut {
     /// Writes the bytes and renames the file into place.
-    pub fn commit(self, bytes: &[u8]) -> Result<(), CliError> {
+    pub fn commit(self, bytes: &[u8]) -> Result<(), Error> {
         self.file.commit(bytes)
     }
 }
 
-fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, CliError> {
+fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, Error> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let format = match ext.as_deref() {
         Some("svg") => Some(PictureFormat::Svg),
@@ -109,7 +109,7 @@ fn format_of(path: &Path, allowed: &[PictureFormat]) -> Result<PictureFormat, Cl
     let names: Vec<&str> = allowed.iter().map(|f| f.extension()).collect();
     match format {
         Some(f) if allowed.contains(&f) => Ok(f),
-        _ => Err(CliError::input(format!(
+        _ => Err(Error::input(format!(
             "--out {}: unsupported picture format (use {})",
             path.display(),
             names.join(", ")
@@ -125,7 +125,7 @@ pub fn draw_for_command(
     format: PictureFormat,
     picture: &PictureArgs,
     frames: usize,
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, Error> {
     let SizeArgs { width, height } = picture.size;
     if format == PictureFormat::Gif {
         gif_within_cap(picture, frames, "fewer --frames")?;
@@ -147,11 +147,11 @@ pub fn draw_for_command(
 /// A GIF of `frames` frames at `--width` × `--height` within `--max-gif-pixels`, checked before
 /// any frame is made; else the one-line refusal, `fewer` saying how the command makes fewer
 /// frames (`fewer --frames`; a character's motion: `a lower --fps or a shorter --duration`).
-pub fn gif_within_cap(picture: &PictureArgs, frames: usize, fewer: &str) -> Result<(), CliError> {
+pub fn gif_within_cap(picture: &PictureArgs, frames: usize, fewer: &str) -> Result<(), Error> {
     let SizeArgs { width, height } = picture.size;
     let pixels = (frames as u64).saturating_mul(u64::from(width) * u64::from(height));
     if pixels > picture.max_gif_pixels {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--out: a GIF of {frames} frames of {width}×{height} is {pixels} pixels, more than the cap of {} ({fewer}, a smaller --width/--height, or raise it with --max-gif-pixels N)",
             picture.max_gif_pixels
         )));

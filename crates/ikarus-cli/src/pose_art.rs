@@ -15,7 +15,7 @@ use ikarus_edge::pose::{PoseAsk, clip_at, pose_kept, skin_index};
 
 use std::path::Path;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::picture::SizeArgs;
 pub(crate) use ikarus_edge::picture::pose_drawn as drawn;
 
@@ -36,21 +36,21 @@ pub struct ArtAsk<'a> {
 
 /// The atlas `--atlas` names, read with its pages, or `None` without it; the refusals of the
 /// module's doc that come before posing.
-pub fn atlas_of(args: &ArtAsk, loaded: &Loaded) -> Result<Option<AtlasArt>, CliError> {
+pub fn atlas_of(args: &ArtAsk, loaded: &Loaded) -> Result<Option<AtlasArt>, Error> {
     let Some(path) = args.atlas else {
         if args.art_only {
-            return Err(CliError::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
+            return Err(Error::input("--art-only draws a character's art: give its atlas with --atlas FILE.atlas"));
         }
         return Ok(None);
     };
     if loaded.format == Format::DragonBones {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--atlas {}: DragonBones characters are drawn as bones only (their art is not read); leave out --atlas",
             path.display()
         )));
     }
     if args.svg.is_none() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--atlas {}: the art is drawn in a picture: give --out FILE.png or FILE.svg (or --format png|svg)",
             path.display()
         )));
@@ -66,17 +66,17 @@ pub fn draw(
     ask: &PoseAsk,
     atlas: &AtlasArt,
     caption: &dyn Fn() -> String,
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, Error> {
     let label = format!("rig file {}", args.rig.display());
     let c = &loaded.character;
     let mut posed = Posed::default();
-    let report = pose_kept(loaded, ask, &mut posed).map_err(|m| CliError::input(format!("{label}: {m}")))?;
-    let skin = skin_index(c, ask.skin.as_deref()).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+    let report = pose_kept(loaded, ask, &mut posed).map_err(|m| Error::input(format!("{label}: {m}")))?;
+    let skin = skin_index(c, ask.skin.as_deref()).map_err(|m| Error::input(format!("{label}: {m}")))?;
     let atlas_label = args.atlas.map_or_else(String::new, |p| format!("atlas file {}: ", p.display()));
-    let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+    let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(|m| Error::input(format!("{label}: {m}")))?;
     let art = atlas
         .art(c, &posed, (skin, clip), &mut DrawList::default())
-        .map_err(|m| CliError::input(format!("{atlas_label}{m}")))?;
+        .map_err(|m| Error::input(format!("{atlas_label}{m}")))?;
     let (width, height) = (args.size.width, args.size.height);
     let bytes = match (args.svg, args.art_only) {
         (Some(false), true) => ikarus_render::art_only_png(&art, width, height),
@@ -85,7 +85,7 @@ pub fn draw(
         (Some(true), false) => ikarus_render::character_art_svg(&report.figure(Some(caption())), &art, width, height)
             .map(String::into_bytes),
         (None, _) => {
-            return Err(CliError::input("--atlas: the art is drawn in a picture: give --out FILE.png or FILE.svg"));
+            return Err(Error::input("--atlas: the art is drawn in a picture: give --out FILE.png or FILE.svg"));
         }
     };
     bytes.map_err(drawn)

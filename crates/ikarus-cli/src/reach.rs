@@ -11,7 +11,7 @@ use ikarus::reach::Verdict;
 pub use ikarus_edge::reach::*;
 
 use crate::arm::Arm;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::options::{parse_point, parse_positive};
 use crate::output::{self, PendingFile};
 use crate::report::VerdictJson;
@@ -56,16 +56,16 @@ pub struct ReachArgs {
     pub out: Option<PathBuf>,
 }
 
-pub fn run(args: &ReachArgs) -> Result<(), CliError> {
+pub fn run(args: &ReachArgs) -> Result<(), Error> {
     let arm = Arm::load(args.arm.as_deref())?;
     let (points, single) = match (&args.batch, args.point) {
         (Some(path), _) => (crate::goals::read_points(path, &format!("batch file {}", path.display()))?, false),
         (None, Some(p)) => (vec![p], true),
-        (None, None) => return Err(CliError::input("--point X,Y or --batch POINTS.csv: give one")),
+        (None, None) => return Err(Error::input("--point X,Y or --batch POINTS.csv: give one")),
     };
     let format = match args.format {
         Some(ReachFormat::Text) if !single => {
-            return Err(CliError::input("--format text: only for a single --point (use csv or json with --batch)"));
+            return Err(Error::input("--format text: only for a single --point (use csv or json with --batch)"));
         }
         Some(f) => f,
         None if !single => ReachFormat::Csv,
@@ -81,7 +81,7 @@ pub fn run(args: &ReachArgs) -> Result<(), CliError> {
     match file {
         Some(file) => {
             let mut bytes = Vec::new();
-            write(&mut bytes).map_err(|e| CliError::runtime(format!("cannot format the output: {e}")))?;
+            write(&mut bytes).map_err(|e| Error::runtime(format!("cannot format the output: {e}")))?;
             file.commit(&bytes)
         }
         None => output::stdout(write),

@@ -10,7 +10,7 @@ use ikarus::{EaseKind, RigTask};
 use crate::animate::MotionArgs;
 use crate::arm::Arm;
 use crate::ease_args::EaseArgs;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_bone_angle, parse_goal};
 use crate::options::{parse_finite, parse_point};
 use crate::picture::{
@@ -109,7 +109,7 @@ pub struct RenderEaseArgs {
     pub picture: PictureArgs,
 }
 
-pub fn run(command: &RenderCommand) -> Result<(), CliError> {
+pub fn run(command: &RenderCommand) -> Result<(), Error> {
     let still = [PictureFormat::Svg, PictureFormat::Png];
     match command {
         RenderCommand::Arm(args) => {
@@ -158,34 +158,34 @@ pub fn run(command: &RenderCommand) -> Result<(), CliError> {
 }
 
 /// `--out`, which every figure needs, checked against the formats it can be drawn in.
-fn required_out(picture: &PictureArgs, allowed: &[PictureFormat]) -> Result<PictureOut, CliError> {
+fn required_out(picture: &PictureArgs, allowed: &[PictureFormat]) -> Result<PictureOut, Error> {
     let names: Vec<&str> = allowed.iter().map(|f| f.extension()).collect();
     picture
         .prepare(allowed)?
-        .ok_or_else(|| CliError::input(format!("--out: required: the file to draw to ({})", names.join(", "))))
+        .ok_or_else(|| Error::input(format!("--out: required: the file to draw to ({})", names.join(", "))))
 }
 
-fn still_picture(drawing: &Drawing<'_>, out: PictureOut, picture: &PictureArgs) -> Result<(), CliError> {
+fn still_picture(drawing: &Drawing<'_>, out: PictureOut, picture: &PictureArgs) -> Result<(), Error> {
     let bytes = draw(drawing, out.format, picture.size.width, picture.size.height, &|_, _| {})?;
     out.commit(&bytes)
 }
 
 /// The rig's start pose with the angles of `--pose-deg NAME=DEG` (normalised as a rig file's
 /// start angles), in radians.
-fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
+fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, Error> {
     let s = &rig.skeleton;
     let mut pose = s.start_angles().to_vec();
     let mut given = vec![false; s.len()];
     for (name, deg) in angles {
         let flag = format!("--pose-deg {name}={deg}");
-        let i = crate::goal::index(s, name).map_err(|m| CliError::input(format!("{flag}: {m}")))?;
+        let i = crate::goal::index(s, name).map_err(|m| Error::input(format!("{flag}: {m}")))?;
         if std::mem::replace(&mut given[i], true) {
-            return Err(CliError::input(format!("{flag}: bone {name:?} given twice")));
+            return Err(Error::input(format!("{flag}: bone {name:?} given twice")));
         }
         match s.joints()[i] {
             ikarus::Joint::Revolute => {}
             ikarus::Joint::Prismatic { .. } => {
-                return Err(CliError::input(format!(
+                return Err(Error::input(format!(
                     "{flag}: bone {name:?} is prismatic (its value is a length, not an angle); set its extension in the rig file"
                 )));
             }
@@ -198,11 +198,11 @@ fn rig_pose(rig: &Rig, angles: &[(String, f64)]) -> Result<Vec<f64>, CliError> {
 
 /// The pose of `--pose-deg` in radians (one angle per joint, within any ranges the arm has),
 /// or the arm's start pose.
-fn pose(arm: &Arm, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, CliError> {
+fn pose(arm: &Arm, pose_deg: Option<&[f64]>) -> Result<Vec<f64>, Error> {
     let Some(deg) = pose_deg else { return Ok(arm.chain.start_pose().angles().to_vec()) };
     let n = arm.chain.len();
     if deg.len() != n {
-        return Err(CliError::input(format!("--pose-deg: expected {n} angles (one per joint), got {}", deg.len())));
+        return Err(Error::input(format!("--pose-deg: expected {n} angles (one per joint), got {}", deg.len())));
     }
     Ok(deg.iter().map(|a| a.to_radians()).collect())
 }

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::Args;
 use clap_complete::Shell;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::input::io_reason;
 use crate::output;
 
@@ -31,7 +31,7 @@ pub struct ManArgs {
 }
 
 /// Prints the completion script of `command` for the shell asked for.
-pub fn completions(args: &CompletionsArgs, mut command: clap::Command) -> Result<(), CliError> {
+pub fn completions(args: &CompletionsArgs, mut command: clap::Command) -> Result<(), Error> {
     let name = command.get_name().to_owned();
     // Made in memory first: clap_complete panics on a failed write (a reader gone, `| head`).
     let mut script = Vec::new();
@@ -41,15 +41,14 @@ pub fn completions(args: &CompletionsArgs, mut command: clap::Command) -> Result
 
 /// Prints the main manual page of `command` (roff), or writes every command's page to
 /// `--out DIR`, each whole or not at all.
-pub fn man(args: &ManArgs, command: clap::Command) -> Result<(), CliError> {
-    let pages = pages(command).map_err(|e| CliError::runtime(format!("cannot make the manual: {}", io_reason(&e))))?;
+pub fn man(args: &ManArgs, command: clap::Command) -> Result<(), Error> {
+    let pages = pages(command).map_err(|e| Error::runtime(format!("cannot make the manual: {}", io_reason(&e))))?;
     let Some(dir) = &args.out else {
         let main = pages.into_iter().last().map(|(_, roff)| roff).unwrap_or_default();
         return output::stdout(|w| w.write_all(&main));
     };
-    std::fs::create_dir_all(dir).map_err(|e| {
-        CliError::runtime(format!("--out {}: cannot create the folder: {}", dir.display(), io_reason(&e)))
-    })?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Error::runtime(format!("--out {}: cannot create the folder: {}", dir.display(), io_reason(&e))))?;
     output::write_files("--out", pages.into_iter().map(|(name, roff)| (dir.join(name), roff)))
 }
 

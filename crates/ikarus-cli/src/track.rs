@@ -16,7 +16,7 @@ pub use ikarus_edge::track::*;
 use crate::arm::Arm;
 use crate::body::Body;
 use crate::columns::BodyColumns;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, RigTaskArgs, Target, parse_goal};
 use crate::motion::poses_animation;
 use crate::options::{named, parse_finite, parse_positive};
@@ -144,7 +144,7 @@ fn parse_numbers<const N: usize>(s: &str) -> Result<[f64; N], String> {
     Ok(out)
 }
 
-pub fn run(args: &TrackArgs) -> Result<(), CliError> {
+pub fn run(args: &TrackArgs) -> Result<(), Error> {
     if let Some(file) = crate::character_motion::character(args.rig.as_deref()) {
         return character(args, &file?);
     }
@@ -172,11 +172,11 @@ pub fn run(args: &TrackArgs) -> Result<(), CliError> {
 /// flags), its picture, its JSON, and the lines of its report that name the body.
 trait Tracked: TrackBody + BodyColumns + Sized {
     /// The flags checked before the picture's: a rig's effector and mode.
-    fn check(&self, args: &TrackArgs) -> Result<(), CliError>;
+    fn check(&self, args: &TrackArgs) -> Result<(), Error>;
     /// Who follows the path, from the flags.
-    fn follower(&self, args: &TrackArgs) -> Result<Self::Follower, CliError>;
+    fn follower(&self, args: &TrackArgs) -> Result<Self::Follower, Error>;
     /// The picture of the track, the bytes `draw` makes of its drawing.
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError>;
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, Error>;
     /// The JSON object of the track.
     fn json(job: &TrackJob<Self>, t: &Track, w: &mut dyn Write) -> serde_json::Result<()>;
     /// The report's first lines: the body, who follows and how.
@@ -188,22 +188,22 @@ trait Tracked: TrackBody + BodyColumns + Sized {
 }
 
 /// The bytes of a drawing of `n` frames.
-type Draw<'a> = &'a dyn Fn(&Drawing, usize) -> Result<Vec<u8>, CliError>;
+type Draw<'a> = &'a dyn Fn(&Drawing, usize) -> Result<Vec<u8>, Error>;
 
 /// The one track workflow: the flags checked, the path tracked, the picture drawn and the
 /// report written, for an arm or a rig.
-fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
+fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), Error> {
     body.check(args)?;
     let picture = args.picture.prepare(&[PictureFormat::Svg, PictureFormat::Png, PictureFormat::Gif])?;
     let path = cli_path(args)?;
     let follower = body.follower(args)?;
     let solve = body.solve_options(&args.solver.settings(), None)?;
     if args.bound_first && args.mode.unwrap_or(B::MODE) != TrackMode::Follow {
-        return Err(CliError::input("--bound-first: only applies with --mode follow"));
+        return Err(Error::input("--bound-first: only applies with --mode follow"));
     }
     let options = track_options(solve, args.max_step_deg, args.bound_first);
     let job = TrackJob { body, start: body.start().to_vec(), follower, path, options };
-    let t = job.run().map_err(CliError::input)?;
+    let t = job.run()?;
     let drew = picture.is_some();
     if let Some(out) = picture {
         let poses: Vec<Vec<f64>> = t.samples.iter().map(|s| s.angles.clone()).collect();
@@ -225,7 +225,7 @@ fn track<B: Tracked>(args: &TrackArgs, body: &B) -> Result<(), CliError> {
 
 /// `ikarus track --rig FILE.json --effector BONE …`: the bone's world origin follows the path,
 /// one sample per pose at --fps, the file's IK constraints posing the rest.
-fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) -> Result<(), CliError> {
+fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) -> Result<(), Error> {
     use crate::character_motion::{Output, refuse_foreign, write};
     use ikarus_edge::character::motion::{Course, DEFAULT_FPS, Motion};
     let mut foreign =
@@ -236,17 +236,17 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
     refuse_foreign(&foreign)?;
     let written = crate::character_motion::written(args.format)?;
     let Some(bone) = args.effector.clone() else {
-        return Err(CliError::input(
+        return Err(Error::input(
             "--effector: required with a character file (the bone whose origin follows the path)",
         ));
     };
     let fps = args.fps.unwrap_or(DEFAULT_FPS);
     if fps <= 0.0 {
-        return Err(CliError::input(format!("--fps {fps}: must be positive")));
+        return Err(Error::input(format!("--fps {fps}: must be positive")));
     }
     let points = cli_path(args)?.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
     let mut motion = Motion::new(&file.loaded, Course::Path { bone, points }, fps)
-        .map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+        .map_err(|e| Error::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
     motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
     motion.skin.clone_from(&args.art.skin);
@@ -262,11 +262,11 @@ fn character(args: &TrackArgs, file: &crate::character_motion::CharacterFile) ->
 }
 
 /// The path the flags ask for: a CSV file or a sampled shape.
-pub fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
+pub fn cli_path(args: &TrackArgs) -> Result<Path, Error> {
     if let Some(file) = &args.path {
         let path = read_path(file)?;
         if path.len() > args.max_samples {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "--path {}: {} samples, more than the cap of {} (raise it with --max-samples N)",
                 file.display(),
                 path.len(),
@@ -283,23 +283,23 @@ pub fn cli_path(args: &TrackArgs) -> Result<Path, CliError> {
     };
     let samples = args.samples.unwrap_or(DEFAULT_SAMPLES);
     if samples > args.max_samples {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--samples {samples}: more than the cap of {} (raise it with --max-samples N)",
             args.max_samples
         )));
     }
     shape.path(samples).map_err(|e| match e {
-        PathError::Samples { value } => CliError::input(format!("--samples {value}: must be at least 2")),
-        other => CliError::input(format!("--{} {other}", shape.name())),
+        PathError::Samples { value } => Error::input(format!("--samples {value}: must be at least 2")),
+        other => Error::input(format!("--{} {other}", shape.name())),
     })
 }
 
 /// A path CSV: header `x,y` or `x,y,angle_deg`, one sample per row; errors name the line and
 /// the column.
-fn read_path(file: &std::path::Path) -> Result<Path, CliError> {
+fn read_path(file: &std::path::Path) -> Result<Path, Error> {
     let label = format!("--path {}", file.display());
     Path::new(crate::goals::read(file, &label)?.goals)
-        .map_err(|_| CliError::input(format!("{label}: no samples (expected a header and one sample per row)")))
+        .map_err(|_| Error::input(format!("{label}: no samples (expected a header and one sample per row)")))
 }
 
 /// How a sample's pose is written: `,value` for each of the pose's columns.
@@ -353,15 +353,15 @@ fn text<B: Tracked>(w: &mut dyn Write, job: &TrackJob<B>, t: &Track) -> std::io:
 }
 
 impl Tracked for Arm {
-    fn check(&self, _: &TrackArgs) -> Result<(), CliError> {
+    fn check(&self, _: &TrackArgs) -> Result<(), Error> {
         Ok(())
     }
 
-    fn follower(&self, args: &TrackArgs) -> Result<TrackMode, CliError> {
+    fn follower(&self, args: &TrackArgs) -> Result<TrackMode, Error> {
         Ok(args.mode.unwrap_or(Self::MODE))
     }
 
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, Error> {
         let layer = job.layer(t);
         let drawing =
             Drawing::Track { chain: &job.body.chain, poses, layer: &layer, caption: job.caption(t), fps: TRACK_FPS };
@@ -382,13 +382,13 @@ impl Tracked for Arm {
 }
 
 impl Tracked for Rig {
-    fn check(&self, args: &TrackArgs) -> Result<(), CliError> {
+    fn check(&self, args: &TrackArgs) -> Result<(), Error> {
         // An arm file's rig: its last link's tip follows the path unless --effector says otherwise.
         if args.effector.is_none() && self.tip.is_none() {
-            return Err(CliError::input("--effector: required with --rig: the bone whose tip follows the path"));
+            return Err(Error::input("--effector: required with --rig: the bone whose tip follows the path"));
         }
         if let Some(mode) = args.mode.filter(|&m| m != TrackMode::Follow) {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "--mode {}: a rig's effector is followed online only (--mode follow, the default with --rig)",
                 mode.name()
             )));
@@ -396,7 +396,7 @@ impl Tracked for Rig {
         Ok(())
     }
 
-    fn follower(&self, args: &TrackArgs) -> Result<RigFollower, CliError> {
+    fn follower(&self, args: &TrackArgs) -> Result<RigFollower, Error> {
         let tip = self.tip.map(|t| self.skeleton.name(t));
         let name = args.effector.as_deref().or(tip).unwrap_or_default();
         let targets = args.goal.iter().map(|g| Target::of(g, self)).collect::<Result<Vec<_>, _>>()?;
@@ -406,11 +406,11 @@ impl Tracked for Rig {
         } else {
             args.rig_task.task(&self.skeleton, &targets)?
         };
-        let bone = effector_index(self, name, &task, "--effector").map_err(CliError::input)?;
+        let bone = effector_index(self, name, &task, "--effector")?;
         Ok(RigFollower { bone, task })
     }
 
-    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, CliError> {
+    fn draw(job: &TrackJob<Self>, t: &Track, poses: &[Vec<f64>], draw: Draw) -> Result<Vec<u8>, Error> {
         let animation = poses_animation(job.body, poses);
         let last = poses.last().map_or(job.start.as_slice(), Vec::as_slice);
         let ranges = job.options.solve.limits != LimitMode::Ignore;

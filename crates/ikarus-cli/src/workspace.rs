@@ -10,7 +10,7 @@ use ikarus::reach::{Annulus, BoundarySegment, WorkspaceOptions};
 use crate::area::{self, Effector, GridRequest, ReachableArea};
 use crate::arm::Arm;
 use crate::body::Body;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::options::parse_at_least_one;
 use crate::picture::{PictureArgs, PictureFormat, draw, progress_bar, report_format, workspace_drawing};
 use crate::rig::Rig;
@@ -56,14 +56,13 @@ pub const DEFAULT_MAX_SAMPLES: u32 = 1_000_000;
 impl AreaArgs {
     /// The grid the flags ask for (`None`: the exact region): `--grid`, or any sampling flag;
     /// an error for `--samples` over its cap.
-    pub fn grid(&self) -> Result<Option<GridRequest>, CliError> {
+    pub fn grid(&self) -> Result<Option<GridRequest>, Error> {
         let grid =
             GridRequest::of(self.grid.then_some(true), self.resolution, self.samples, self.seed, |field, value| {
                 format!("--{field} {value}")
-            })
-            .map_err(CliError::input)?;
+            })?;
         if let Some(n) = self.samples.filter(|&n| n > self.max_samples) {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "--samples {n}: more than the cap of {} (raise it with --max-samples N)",
                 self.max_samples
             )));
@@ -73,7 +72,7 @@ impl AreaArgs {
 
     /// `arm`'s reachable area as the flags say: the exact region, or the grid sampled in
     /// parallel with a progress bar on a terminal.
-    pub fn area(&self, arm: &Arm) -> Result<ReachableArea, CliError> {
+    pub fn area(&self, arm: &Arm) -> Result<ReachableArea, Error> {
         let limits = arm.limits(self.limits.asked());
         let Some(grid) = self.grid()? else { return area::exact(arm, limits, None) };
         let bar = progress_bar(100, "sampling the workspace");
@@ -86,7 +85,7 @@ impl AreaArgs {
         // The command line samples one grid at a time: on every core.
         let options = WorkspaceOptions { parallel: true, ..grid.options(limits) };
         let workspace = ikarus::reach::sample_with_progress(&arm.chain, &options, &report)
-            .map_err(|e| CliError::input(format!("--{e}")))?;
+            .map_err(|e| Error::input(format!("--{e}")))?;
         if let Some(bar) = bar {
             bar.finish_and_clear();
         }
@@ -116,7 +115,7 @@ pub struct WorkspaceArgs {
     pub picture: PictureArgs,
 }
 
-pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
+pub fn run(args: &WorkspaceArgs) -> Result<(), Error> {
     let body = Body::load(args.arm.as_deref(), args.rig.as_deref())?;
     let arm = match Effector::of(body, args.bone.as_deref(), |name| format!("--bone {name}"))? {
         Effector::Chain(arm) => *arm,
@@ -200,16 +199,16 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 
 /// The sampled region of the tip of `bone` of a rig the exact region cannot take (offsets,
 /// slides, a fork): [`ikarus::reach::sample_skeleton`], `"exact": false`.
-fn run_sampled(args: &WorkspaceArgs, rig: &Rig, bone: usize) -> Result<(), CliError> {
+fn run_sampled(args: &WorkspaceArgs, rig: &Rig, bone: usize) -> Result<(), Error> {
     if let Some(p) = &args.picture.out {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--out {}: the sampled region of a rig's bone is not drawn yet (JSON and text only)",
             p.display()
         )));
     }
     let limits = args.area.limits.asked().or(rig.solver.limits).unwrap_or(false);
     let run = WorkspaceOptions { limits, parallel: true, ..WorkspaceOptions::default() };
-    let workspace = area::sampled(rig, bone, args.area.grid()?, run).map_err(|e| CliError::input(format!("--{e}")))?;
+    let workspace = area::sampled(rig, bone, args.area.grid()?, run).map_err(|e| Error::input(format!("--{e}")))?;
     let Some(format) = report_format(args.format, false, WorkspaceFormat::Text, WorkspaceFormat::Json) else {
         return Ok(());
     };

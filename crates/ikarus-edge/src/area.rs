@@ -7,7 +7,7 @@ use ikarus::reach::{Region, RegionError, RegionOptions, Workspace, WorkspaceOpti
 
 use crate::arm::Arm;
 use crate::body::Body;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::rig::Rig;
 
 /// The default of `--resolution` and of a request's `resolution`: the library's.
@@ -61,10 +61,10 @@ impl Effector {
     /// chain, at its last bone, is that chain (its exact region, as an arm file's); `bone` for
     /// an arm is refused. `field` words the bone's field as the edge does (`--bone nose`,
     /// `bone = "nose"`).
-    pub fn of(body: Body, bone: Option<&str>, field: impl Fn(&str) -> String) -> Result<Self, CliError> {
+    pub fn of(body: Body, bone: Option<&str>, field: impl Fn(&str) -> String) -> Result<Self, Error> {
         match body {
             Body::Chain(arm) => match bone {
-                Some(name) => Err(CliError::input(format!(
+                Some(name) => Err(Error::input(format!(
                     "{}: only for a rig or an arm with slides (an arm's region is its tip's)",
                     field(name)
                 ))),
@@ -74,7 +74,7 @@ impl Effector {
                 let last = rig.skeleton.len() - 1;
                 let bone = match bone {
                     Some(name) => crate::goal::index(&rig.skeleton, name)
-                        .map_err(|m| CliError::input(format!("{}: {m}", field(name))))?,
+                        .map_err(|m| Error::input(format!("{}: {m}", field(name))))?,
                     None => last,
                 };
                 let rig = *rig;
@@ -92,11 +92,11 @@ impl Effector {
 /// The sampled region of the tip of `bone` of `rig` ([`ikarus::reach::sample_skeleton`]) with
 /// `grid`'s fields (the defaults without) over `run`'s other options (limits, threads,
 /// interrupt); an error names the option (`samples: …`).
-pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: WorkspaceOptions) -> Result<Workspace, String> {
+pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: WorkspaceOptions) -> Result<Workspace, Error> {
     let grid = grid.unwrap_or(GridRequest { resolution: default_resolution(), samples: None, seed: 0 });
     let options =
         WorkspaceOptions { resolution: grid.resolution, samples: grid.samples.map(u64::from), seed: grid.seed, ..run };
-    ikarus::reach::sample_skeleton(&rig.skeleton, bone, &options).map_err(|e| e.to_string())
+    ikarus::reach::sample_skeleton(&rig.skeleton, bone, &options).map_err(|e| Error::input(e.to_string()))
 }
 
 /// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).
@@ -118,7 +118,7 @@ impl GridRequest {
         samples: Option<u32>,
         seed: Option<u64>,
         name: impl Fn(&str, String) -> String,
-    ) -> Result<Option<GridRequest>, String> {
+    ) -> Result<Option<GridRequest>, Error> {
         let given = [
             resolution.map(|v| name("resolution", v.to_string())),
             samples.map(|v| name("samples", v.to_string())),
@@ -126,9 +126,9 @@ impl GridRequest {
         ];
         let sampling = given.iter().flatten().next();
         match (grid, sampling) {
-            (Some(false), Some(field)) => {
-                Err(format!("{field}: only applies to the sampled grid, and grid = false asks for the exact region"))
-            }
+            (Some(false), Some(field)) => Err(Error::input(format!(
+                "{field}: only applies to the sampled grid, and grid = false asks for the exact region"
+            ))),
             (Some(true), _) | (None, Some(_)) => Ok(Some(GridRequest {
                 resolution: resolution.unwrap_or_else(default_resolution),
                 samples,
@@ -158,13 +158,13 @@ impl GridRequest {
 /// of 5 and 11 links; the edges answer it as a failure, never as an empty region). The server
 /// reads an interrupted build as its interrupt ([`RegionError::Interrupted`] is a run-time
 /// error here).
-pub fn exact_region(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<Region, CliError> {
+pub fn exact_region(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<Region, Error> {
     let options = RegionOptions { limits, interrupt: interrupt.cloned(), ..RegionOptions::default() };
     let region = Region::try_of(&arm.chain, &options).map_err(|e| match e {
         RegionError::TooComplex { .. } => {
-            CliError::input(format!("{}: {e} (`--grid`, \"grid\": true, samples it)", arm.label))
+            Error::input(format!("{}: {e} (`--grid`, \"grid\": true, samples it)", arm.label))
         }
-        e => CliError::runtime(format!("{}: the exact region: {e}", arm.label)),
+        e => Error::runtime(format!("{}: the exact region: {e}", arm.label)),
     })?;
     let moving = arm
         .chain
@@ -179,7 +179,7 @@ pub fn exact_region(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> R
     // sweep nothing wider than a rounding error: such a region is a curve, and it passed its
     // self-check (the sampled tips lie on it).
     if region.pieces() == 0 || (moving >= 2 && !region.has_area() && !region.is_checked()) {
-        return Err(CliError::runtime(format!(
+        return Err(Error::runtime(format!(
             "{}: the library could not build the exact region{} (a bug: its boundary came out empty); `--grid` (\"grid\": true) samples it instead",
             arm.label,
             if limits { " within the joint ranges" } else { "" }
@@ -189,6 +189,6 @@ pub fn exact_region(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> R
 }
 
 /// [`exact_region`] as a reachable area.
-pub fn exact(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<ReachableArea, CliError> {
+pub fn exact(arm: &Arm, limits: bool, interrupt: Option<&Interrupt>) -> Result<ReachableArea, Error> {
     exact_region(arm, limits, interrupt).map(ReachableArea::Exact)
 }

@@ -24,7 +24,7 @@ use ikarus::number::Num;
 use ikarus::{Chain, ChainError, JointLimits, Link};
 use serde::Deserialize;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::settings::SolverSettings;
 
 /// The built-in default arm: the seed program's, shipped as `examples/arms/seed.toml`.
@@ -137,7 +137,7 @@ impl Arm {
     /// The options of a command: `flags` over this arm file's `[solver]` table over the
     /// defaults, for the arm's chain; problems name the flag, or the arm file's `[solver]`
     /// field a setting came from.
-    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
+    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, Error> {
         crate::settings::command_options(flags, &self.solver, &self.label, self.chain.len(), record_every)
     }
 
@@ -148,7 +148,7 @@ impl Arm {
     }
 
     /// Loads `path`, or the built-in seed arm when `None`.
-    pub fn load(path: Option<&Path>) -> Result<Self, CliError> {
+    pub fn load(path: Option<&Path>) -> Result<Self, Error> {
         match path {
             None => Self::parse(DEFAULT_ARM, "built-in arm"),
             Some(p) => {
@@ -160,7 +160,7 @@ impl Arm {
     }
 
     /// Parses and validates arm-file text; `label` starts every error message.
-    pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
+    pub fn parse(text: &str, label: &str) -> Result<Self, Error> {
         Self::from_file(ArmFile::read(text, label)?, label)
     }
 
@@ -169,16 +169,16 @@ impl Arm {
     ///
     /// A link with joint keys is refused here, naming the first: such an arm is read as a body
     /// ([`crate::body::Body::from_arm_file`]) by the commands that take one.
-    pub fn from_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
+    pub fn from_file(file: ArmFile, label: &str) -> Result<Self, Error> {
         if let Some((i, key)) = file.joint_key() {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "{label}: links[{i}].{key}: an arm with offsets or slides is a one-branch rig, which this \
                  command does not take (solve, animate, track and workspace do; in the API solve, track \
                  and workspace)"
             )));
         }
-        let chain = file.to_chain().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
-        file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
+        let chain = file.to_chain().map_err(|msg| Error::input(format!("{label}: {msg}")))?;
+        file.solver.check().map_err(|msg| Error::input(format!("{label}: [solver].{msg}")))?;
         let name = file.name.clone().unwrap_or_else(|| "arm".to_owned());
         Ok(Self { name, label: label.to_owned(), chain, solver: file.solver })
     }
@@ -186,8 +186,8 @@ impl Arm {
 
 impl ArmFile {
     /// Reads arm-file text (TOML), unchecked otherwise; `label` starts every error message.
-    pub fn read(text: &str, label: &str) -> Result<Self, CliError> {
-        toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))
+    pub fn read(text: &str, label: &str) -> Result<Self, Error> {
+        toml::from_str(text).map_err(|e| Error::input(toml_error(label, text, &e)))
     }
 
     /// The first link that gives a joint key a chain cannot hold, and the key.
@@ -197,19 +197,24 @@ impl ArmFile {
     }
 
     /// Builds the chain, describing any problem in the file's own names and numbers.
-    pub fn to_chain(&self) -> Result<Chain, String> {
+    pub fn to_chain(&self) -> Result<Chain, Error> {
         let mut links = Vec::with_capacity(self.links.len());
         for (i, l) in self.links.iter().enumerate() {
             let mut link = Link::new(l.length, start_angle(l.angle_deg, l.limits_deg).to_radians());
             if let Some([lo, hi]) = l.limits_deg {
                 let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
-                    format!("links[{i}].limits_deg = [{}, {}]: {}", Num(lo), Num(hi), limits_problem(lo, hi))
+                    Error::input(format!(
+                        "links[{i}].limits_deg = [{}, {}]: {}",
+                        Num(lo),
+                        Num(hi),
+                        limits_problem(lo, hi)
+                    ))
                 })?;
                 link = link.with_limits(limits);
             }
             links.push(link);
         }
-        Chain::new(self.base.unwrap_or([0.0, 0.0]), &links).map_err(|e| self.describe(&e))
+        Chain::new(self.base.unwrap_or([0.0, 0.0]), &links).map_err(|e| Error::input(self.describe(&e)))
     }
 
     fn describe(&self, e: &ChainError) -> String {

@@ -8,7 +8,7 @@ use std::path::Path;
 use ikarus::{Goal, JointLimits, Outcome, RigTask, SolveError, Solver};
 
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::rig::Rig;
 use crate::settings::SolverSettings;
 
@@ -24,7 +24,7 @@ pub enum Body {
 impl Body {
     /// `--rig FILE` when given, else `--arm FILE`, else the built-in seed arm; messages name the
     /// file as each reader does (`rig file r.toml: …`, `arm file a.toml: …`).
-    pub fn load(arm: Option<&Path>, rig: Option<&Path>) -> Result<Self, CliError> {
+    pub fn load(arm: Option<&Path>, rig: Option<&Path>) -> Result<Self, Error> {
         match rig {
             Some(path) => Ok(Self::Rig(Box::new(load_rig(path)?))),
             None => {
@@ -36,7 +36,7 @@ impl Body {
 
     /// The body as a rig: `--rig FILE`, else the one-branch rig of `--arm FILE` or of the
     /// built-in seed arm ([`Rig::from_arm`]: bones `link0`, `link1`, …), as keyed motion takes it.
-    pub fn load_as_rig(arm: Option<&Path>, rig: Option<&Path>) -> Result<Rig, CliError> {
+    pub fn load_as_rig(arm: Option<&Path>, rig: Option<&Path>) -> Result<Rig, Error> {
         match rig {
             Some(path) => load_rig(path),
             None => {
@@ -51,7 +51,7 @@ impl Body {
     /// it; else the one-branch rig of its links ([`Rig::from_arm`]: bones `link0`, `link1`, …, a
     /// goal without a bone's name on the last). `label` starts every message, which names the
     /// link as an arm file does (`links[2].limits = [1, 0]: …`).
-    pub fn from_arm_file(file: ArmFile, label: &str) -> Result<Self, CliError> {
+    pub fn from_arm_file(file: ArmFile, label: &str) -> Result<Self, Error> {
         match file.joint_key() {
             None => Ok(Self::Chain(Box::new(Arm::from_file(file, label)?))),
             Some(_) => Ok(Self::Rig(Box::new(Rig::from_arm(&file, label)?))),
@@ -69,7 +69,7 @@ impl Body {
 }
 
 /// The arm file at `arm`, else the built-in seed arm's, with the label its messages start with.
-fn read_arm_file(arm: Option<&Path>) -> Result<(ArmFile, String), CliError> {
+fn read_arm_file(arm: Option<&Path>) -> Result<(ArmFile, String), Error> {
     let (text, label) = match arm {
         None => (DEFAULT_ARM.to_owned(), "built-in arm".to_owned()),
         Some(p) => {
@@ -82,7 +82,7 @@ fn read_arm_file(arm: Option<&Path>) -> Result<(ArmFile, String), CliError> {
 
 /// The rig file at `path` (`--rig FILE`), a character file refused in one line that says what it
 /// is and which commands take it ([`crate::character::not_a_rig`]).
-pub fn load_rig(path: &Path) -> Result<Rig, CliError> {
+pub fn load_rig(path: &Path) -> Result<Rig, Error> {
     let label = format!("rig file {}", path.display());
     let text = crate::input::read_character_text(path, &label)?;
     crate::character::not_a_rig(&text, &label)?;

@@ -20,6 +20,7 @@ use ikarus::{Chain, Goal, SolveOptions, Status};
 
 pub use crate::api::{Endpoint, Intake, Limits, Problem, Reply, call, status};
 use crate::arm::{ArmFile, DEFAULT_ARM};
+pub use crate::error::{Error, ErrorKind, FieldPath, Segment};
 pub use crate::rig::DEFAULT_MAX_BONES;
 use crate::settings::SolverSettings;
 
@@ -66,8 +67,7 @@ pub fn arm_from_toml(text: &str, label: &str) -> Result<Arm, Problem> {
 /// The API's `arm` object (`{"links": [{"length", "angle_deg", "limits_deg"}], "solver": {…}}`);
 /// messages start with `arm:` and name the field (`arm: links[0].length = -1: …`).
 pub fn arm_from_json(arm: &str) -> Result<Arm, Problem> {
-    let file: ArmFile = crate::api::parse_json(arm.as_bytes())
-        .map_err(|p| Problem { message: p.message.replacen("request body: ", "arm: ", 1), ..p })?;
+    let file: ArmFile = crate::api::wire::read_json(arm.as_bytes()).map_err(|e| e.from_source("arm"))?;
     Ok(Arm(crate::arm::Arm::from_file(file, "arm")?))
 }
 
@@ -86,10 +86,9 @@ pub fn default_arm() -> Arm {
 pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveOptions, Problem> {
     // A value of the wrong kind is named by its path (`method: unknown variant …`), without
     // the position in a JSON text the caller did not write.
-    let table: SolverSettings = crate::api::parse_json(options.as_bytes()).map_err(|p| {
-        let message = p.message.strip_prefix("request body: ").unwrap_or(&p.message);
-        let message = message.rfind(" at line ").map_or(message, |at| &message[..at]);
-        Problem { message: message.to_owned(), ..p }
+    let table: SolverSettings = crate::api::wire::read_json(options.as_bytes()).map_err(|e| {
+        let message = e.message().rfind(" at line ").map_or(e.message(), |at| &e.message()[..at]);
+        Error::new(e.kind(), message).within(e.path().clone())
     })?;
     let arm = &arm.0;
     crate::api::fields::settings_options(
@@ -105,7 +104,7 @@ pub fn solve_options(arm: &Arm, options: &str, limits: &Limits) -> Result<SolveO
 /// A goal at (`x`, `y`), the last link at `angle_deg` (degrees) when given, as `--goal X,Y
 /// --goal-angle DEG` makes it.
 pub fn goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Problem> {
-    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::invalid)
+    crate::goal::make_goal(x, y, angle_deg).map_err(Problem::from)
 }
 
 /// The pose `start_deg` (degrees, one per joint) of `arm` as `/api/track` and `/api/solve` read

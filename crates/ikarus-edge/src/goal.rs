@@ -6,15 +6,18 @@
 use ikarus::character::Character;
 use ikarus::{Bend, Goal, Pin, Priority, RigGoal, RigTask, Skeleton};
 
+use crate::error::Error;
+use crate::error::FieldPath;
+
 /// A goal at `(x, y)`, with the last link's orientation when `angle_deg` is given (wrapped
 /// into (−180°, 180°] exactly before it becomes radians: 1e20° is the direction it names).
-pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, String> {
+pub fn make_goal(x: f64, y: f64, angle_deg: Option<f64>) -> Result<Goal, Error> {
     match angle_deg {
         None => Goal::position(x, y),
         Some(a) if !a.is_finite() => Goal::with_orientation(x, y, a),
         Some(a) => Goal::with_orientation(x, y, ikarus::angle::radians_from_degrees(a)),
     }
-    .map_err(|e| e.to_string())
+    .map_err(|e| Error::input(e.to_string()))
 }
 
 /// Most bone names listed in a message about an unknown bone.
@@ -58,10 +61,27 @@ pub enum Field {
     Bones(usize),
 }
 
+impl Field {
+    /// This field's path in a request whose goals are the list at `goals` (`goals`, or `via[1]`
+    /// for a set of via goals) and whose pins are `pins`: `goals[1].weight`, `via[1][0]`,
+    /// `pins[0]`.
+    #[must_use]
+    pub fn path_in(self, goals: FieldPath) -> FieldPath {
+        match self {
+            Field::Goal(i) => goals.index(i),
+            Field::Weight(i) => goals.index(i).field("weight"),
+            Field::Softness(i) => goals.index(i).field("softness"),
+            Field::Bend(i) => goals.index(i).field("bend"),
+            Field::Bones(i) => goals.index(i).field("bones"),
+            Field::Pin(i) => FieldPath::new().field("pins").index(i),
+        }
+    }
+}
+
 /// Bones known by name: a rig's skeleton, or a character's bones.
 pub trait BoneNames {
     /// The index of the bone `name`, or a message listing the bones there are.
-    fn index(&self, name: &str) -> Result<usize, String>;
+    fn index(&self, name: &str) -> Result<usize, Error>;
     /// How many bones there are.
     fn count(&self) -> usize;
     /// The name of bone `i`.
@@ -71,7 +91,7 @@ pub trait BoneNames {
 }
 
 impl BoneNames for Skeleton {
-    fn index(&self, name: &str) -> Result<usize, String> {
+    fn index(&self, name: &str) -> Result<usize, Error> {
         index_among(self.index_of(name), self.names().iter().map(String::as_str), name)
     }
     fn count(&self) -> usize {
@@ -86,7 +106,7 @@ impl BoneNames for Skeleton {
 }
 
 impl BoneNames for Character {
-    fn index(&self, name: &str) -> Result<usize, String> {
+    fn index(&self, name: &str) -> Result<usize, Error> {
         index_among(self.bone_index(name), self.bones().iter().map(|b| b.name.as_str()), name)
     }
     fn count(&self) -> usize {
@@ -109,11 +129,11 @@ pub fn build(
     pins: &[String],
     mix: f64,
     field: &dyn Fn(Field) -> String,
-) -> Result<RigTask, String> {
+) -> Result<RigTask, Error> {
     let (goals, pins) = goals_and_pins(skeleton, goals, pins, field)?;
     let task = RigTask { goals, pins: pins.into_iter().map(Pin::new).collect(), mix, bends: Vec::new() };
     // The library's own check last: what is left (no goal and no pin, a mix out of range).
-    task.validate(skeleton).map_err(|e| e.to_string())?;
+    task.validate(skeleton).map_err(|e| Error::input(e.to_string()))?;
     Ok(task)
 }
 
@@ -124,17 +144,17 @@ pub fn goals_and_pins(
     goals: &[NamedGoal],
     pins: &[String],
     field: &dyn Fn(Field) -> String,
-) -> Result<(Vec<RigGoal>, Vec<usize>), String> {
+) -> Result<(Vec<RigGoal>, Vec<usize>), Error> {
     // Which goal or pin took each bone first.
     let mut taken: Vec<Option<Field>> = vec![None; bones.count()];
     let mut claim = |bone: usize, by: Field| match taken[bone] {
-        Some(first) => Err(format!(
+        Some(first) => Err(Error::input(format!(
             "{}: bone {:?} already has a {} ({}); one goal or pin per bone",
             field(by),
             crate::names::Quoted(bones.name_of(bone)),
             if matches!(first, Field::Pin(_)) { "pin" } else { "goal" },
             field(first)
-        )),
+        ))),
         None => {
             taken[bone] = Some(by);
             Ok(())
@@ -142,23 +162,24 @@ pub fn goals_and_pins(
     };
     let mut solved = Vec::with_capacity(goals.len());
     for (i, g) in goals.iter().enumerate() {
-        let bone = bones.index(&g.bone).map_err(|m| format!("{}: {m}", field(Field::Goal(i))))?;
+        let bone = bones.index(&g.bone).map_err(|m| Error::input(format!("{}: {m}", field(Field::Goal(i)))))?;
         claim(bone, Field::Goal(i))?;
-        let goal = make_goal(g.x, g.y, g.angle_deg).map_err(|m| format!("{}: {m}", field(Field::Goal(i))))?;
+        let goal =
+            make_goal(g.x, g.y, g.angle_deg).map_err(|m| Error::input(format!("{}: {m}", field(Field::Goal(i)))))?;
         if !(g.weight.is_finite() && g.weight > 0.0) {
             let value = ikarus::number::Num(g.weight);
-            return Err(format!("{}: {value}: must be a finite number > 0", field(Field::Weight(i))));
+            return Err(Error::input(format!("{}: {value}: must be a finite number > 0", field(Field::Weight(i)))));
         }
         if !(g.softness.is_finite() && g.softness >= 0.0) {
             let value = ikarus::number::Num(g.softness);
-            return Err(format!("{}: {value}: must be a finite number ≥ 0", field(Field::Softness(i))));
+            return Err(Error::input(format!("{}: {value}: must be a finite number ≥ 0", field(Field::Softness(i)))));
         }
         if g.bend.is_some() && !bones.has_parent(bone) {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{}: bone {:?} has no parent, so no joint to bend (bend applies to the second bone of a limb)",
                 field(Field::Bend(i)),
                 crate::names::Quoted(&g.bone)
-            ));
+            )));
         }
         let mut goal =
             RigGoal::new(bone, goal).with_weight(g.weight).with_priority(g.priority).with_softness(g.softness);
@@ -167,7 +188,7 @@ pub fn goals_and_pins(
     }
     let mut pinned = Vec::with_capacity(pins.len());
     for (i, name) in pins.iter().enumerate() {
-        let bone = bones.index(name).map_err(|m| format!("{}: {m}", field(Field::Pin(i))))?;
+        let bone = bones.index(name).map_err(|m| Error::input(format!("{}: {m}", field(Field::Pin(i)))))?;
         claim(bone, Field::Pin(i))?;
         pinned.push(bone);
     }
@@ -175,7 +196,7 @@ pub fn goals_and_pins(
 }
 
 /// The index of the bone `name`, or a message listing the rig's bones.
-pub fn index(skeleton: &Skeleton, name: &str) -> Result<usize, String> {
+pub fn index(skeleton: &Skeleton, name: &str) -> Result<usize, Error> {
     skeleton.index(name)
 }
 
@@ -184,14 +205,16 @@ fn index_among<'a>(
     found: Option<usize>,
     names: impl ExactSizeIterator<Item = &'a str>,
     name: &str,
-) -> Result<usize, String> {
+) -> Result<usize, Error> {
     found.ok_or_else(|| {
-        let n = names.len();
-        let mut listed = names.take(LISTED_NAMES).map(crate::names::cell).collect::<Vec<_>>().join(", ");
-        if n > LISTED_NAMES {
-            listed.push_str(&format!(", … ({n} in all)"));
-        }
-        format!("no bone named {} in the rig (its bones: {listed})", crate::names::Quoted(name))
+        Error::input({
+            let n = names.len();
+            let mut listed = names.take(LISTED_NAMES).map(crate::names::cell).collect::<Vec<_>>().join(", ");
+            if n > LISTED_NAMES {
+                listed.push_str(&format!(", … ({n} in all)"));
+            }
+            format!("no bone named {} in the rig (its bones: {listed})", crate::names::Quoted(name))
+        })
     })
 }
 
@@ -258,7 +281,7 @@ mod tests {
         ];
         for (goals, pins, want) in cases {
             let got = build(&s, &goals, &pins, 1.0, &name).unwrap_err();
-            assert!(got.starts_with(want), "got {got:?}, want {want:?}");
+            assert!(got.to_string().starts_with(want), "got {got:?}, want {want:?}");
         }
         let e = build(&s, &[goal("trunk")], &[], 1.5, &name).unwrap_err();
         assert_eq!(e, "mix: must be from 0 to 1, got 1.5");

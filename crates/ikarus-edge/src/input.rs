@@ -7,7 +7,7 @@ use std::io::Read;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::error::CliError;
+use crate::error::Error;
 
 /// The default cap of an input file: far beyond any arm or goal file (a million goals of CSV
 /// is about 30 MB).
@@ -27,8 +27,8 @@ pub fn max_bytes() -> u64 {
 
 /// Reads the regular file `path` whole, refusing other kinds of file and anything larger than
 /// [`max_bytes`]; errors start with `label` (e.g. `arm file a.toml`).
-pub fn read(path: &Path, label: &str) -> Result<Vec<u8>, CliError> {
-    let cannot = |reason: String| CliError::input(format!("{label}: cannot read: {reason}"));
+pub fn read(path: &Path, label: &str) -> Result<Vec<u8>, Error> {
+    let cannot = |reason: String| Error::input(format!("{label}: cannot read: {reason}"));
     // The kind is checked before opening: opening a FIFO for reading blocks until a writer comes.
     let meta = std::fs::metadata(path).map_err(|e| cannot(io_reason(&e)))?;
     if meta.is_dir() {
@@ -39,7 +39,7 @@ pub fn read(path: &Path, label: &str) -> Result<Vec<u8>, CliError> {
     }
     let cap = max_bytes();
     let too_big = || {
-        CliError::input(format!(
+        Error::input(format!(
             "{label}: larger than the cap of {cap} bytes on input files (raise it with ikarus --max-input-bytes N)"
         ))
     };
@@ -57,16 +57,16 @@ pub fn read(path: &Path, label: &str) -> Result<Vec<u8>, CliError> {
 }
 
 /// [`read`] as UTF-8 text.
-pub fn read_text(path: &Path, label: &str) -> Result<String, CliError> {
+pub fn read_text(path: &Path, label: &str) -> Result<String, Error> {
     String::from_utf8(read(path, label)?).map_err(|e| {
-        CliError::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+        Error::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
     })
 }
 
 /// [`read`] as the text of a file that may be a character ([`crate::character::skel::text_of`]): a
 /// Spine binary export (`.skel`) as the JSON text of the same skeleton, anything else as UTF-8
 /// text.
-pub fn read_character_text(path: &Path, label: &str) -> Result<String, CliError> {
+pub fn read_character_text(path: &Path, label: &str) -> Result<String, Error> {
     crate::character::skel::text_of(read(path, label)?, label)
 }
 

@@ -27,6 +27,7 @@ use ikarus::{Bend, Ease, EaseKind, Joint, Skeleton};
 use serde::Deserialize;
 
 use crate::ease_args::{EaseProblem, choose_ease};
+use crate::error::Error;
 use crate::names::cell;
 
 pub mod character;
@@ -182,7 +183,7 @@ impl KeyPlan {
 
 /// The index of the frame at `time` if the time lies on one at `fps`:
 /// `|time·fps − round(time·fps)| ≤ 1e-9·max(1, time·fps)`; else the message after the value.
-fn frame_of(time: f64, fps: f64) -> Result<usize, String> {
+fn frame_of(time: f64, fps: f64) -> Result<usize, Error> {
     let f = time * fps;
     let k = f.round();
     if (f - k).abs() <= 1e-9 * f.max(1.0) {
@@ -190,7 +191,7 @@ fn frame_of(time: f64, fps: f64) -> Result<usize, String> {
     }
     let (below, above) = (f.floor() / fps, f.ceil() / fps);
     let nearest = if f - f.floor() <= f.ceil() - f { below } else { above };
-    Err(format!("not on a frame at {} fps (nearest frame time {})", Num(fps), Num(nearest)))
+    Err(Error::input(format!("not on a frame at {} fps (nearest frame time {})", Num(fps), Num(nearest))))
 }
 
 /// Checks the key times of one track (`field` is `keys.tracks.NAME` or `keys.bends.NAME`): at
@@ -200,30 +201,30 @@ pub(crate) fn key_frames(
     field: &str,
     times: impl ExactSizeIterator<Item = f64>,
     fps: f64,
-) -> Result<Vec<usize>, String> {
+) -> Result<Vec<usize>, Error> {
     let n = times.len();
     if n == 0 {
-        return Err(format!("{field}: a track needs at least one key, at time 0"));
+        return Err(Error::input(format!("{field}: a track needs at least one key, at time 0")));
     }
     if n > MAX_KEYS {
-        return Err(format!("{field}: {n} keys, more than the cap of {MAX_KEYS}"));
+        return Err(Error::input(format!("{field}: {n} keys, more than the cap of {MAX_KEYS}")));
     }
     let mut frames = Vec::with_capacity(n);
     let mut previous = f64::NEG_INFINITY;
     for (i, time) in times.enumerate() {
         let at = || format!("{field}[{i}].time = {}", Num(time));
         if !time.is_finite() || time < 0.0 {
-            return Err(format!("{}: must be a finite number of seconds >= 0", at()));
+            return Err(Error::input(format!("{}: must be a finite number of seconds >= 0", at())));
         }
         if i == 0 && time != 0.0 {
-            return Err(format!("{}: a track's first key is at time 0", at()));
+            return Err(Error::input(format!("{}: a track's first key is at time 0", at())));
         }
         if time <= previous {
-            return Err(format!("{}: must be after the previous key's time {}", at(), Num(previous)));
+            return Err(Error::input(format!("{}: must be after the previous key's time {}", at(), Num(previous))));
         }
-        let frame = frame_of(time, fps).map_err(|m| format!("{}: {m}", at()))?;
+        let frame = frame_of(time, fps).map_err(|m| Error::input(format!("{}: {m}", at())))?;
         if frames.last() == Some(&frame) {
-            return Err(format!("{}: on the same frame at {} fps as the previous key", at(), Num(fps)));
+            return Err(Error::input(format!("{}: on the same frame at {} fps as the previous key", at(), Num(fps))));
         }
         frames.push(frame);
         previous = time;
@@ -233,29 +234,31 @@ pub(crate) fn key_frames(
 
 impl KeysFile {
     /// Reads the KEYS JSON `text`; a problem names the field (`tracks.left_foot[0].ease: …`).
-    pub fn parse(text: &str) -> Result<Self, String> {
-        crate::api::wire::parse_json(text.as_bytes()).map_err(|p| p.message.replacen("request body: ", "", 1))
+    pub fn parse(text: &str) -> Result<Self, Error> {
+        crate::api::wire::read_json(text.as_bytes())
     }
 
     /// The plan of these keys on `skeleton`, at most `max_frames` frames (`cap` names the cap:
     /// `--max-frames`); every problem names its field (`keys.tracks.left_foot[2].x`) and value.
-    pub fn check(&self, skeleton: &Skeleton, max_frames: usize, cap: &str) -> Result<KeyPlan, String> {
-        let bone = |field: &str, name: &str| -> Result<usize, String> {
-            crate::goal::index(skeleton, name).map_err(|m| format!("{field}: {m}"))
+    pub fn check(&self, skeleton: &Skeleton, max_frames: usize, cap: &str) -> Result<KeyPlan, Error> {
+        let bone = |field: &str, name: &str| -> Result<usize, Error> {
+            crate::goal::index(skeleton, name).map_err(|m| Error::input(format!("{field}: {m}")))
         };
         if !self.rotations.is_empty() {
-            return Err(
-                "keys.rotations: for a character only (a rig's bones are turned by its solve; key their tips in keys.tracks)".into(),
-            );
+            return Err(Error::input(
+                "keys.rotations: for a character only (a rig's bones are turned by its solve; key their tips in keys.tracks)",
+            ));
         }
         let (fps, mut last, tracks) = self.tracks(&bone)?;
-        let joint = |field: &str, name: &str| -> Result<usize, String> {
+        let joint = |field: &str, name: &str| -> Result<usize, Error> {
             let index = bone(field, name)?;
             if skeleton.parent(index).is_none() {
-                return Err(format!("{field}: the bone has no parent, so no joint to bend"));
+                return Err(Error::input(format!("{field}: the bone has no parent, so no joint to bend")));
             }
             if let Joint::Prismatic { .. } = skeleton.joint(index) {
-                return Err(format!("{field}: the bone's joint is prismatic; a bend needs a revolute joint"));
+                return Err(Error::input(format!(
+                    "{field}: the bone's joint is prismatic; a bend needs a revolute joint"
+                )));
             }
             Ok(index)
         };
@@ -265,13 +268,13 @@ impl KeysFile {
             let field = format!("keys.pins[{i}]");
             let index = bone(&field, name)?;
             if self.tracks.contains_key(name) {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "{field} = {}: the bone is also keyed in keys.tracks; a pinned tip holds still",
                     cell(name)
-                ));
+                )));
             }
             if pins.contains(&index) {
-                return Err(format!("{field} = {}: pinned twice", cell(name)));
+                return Err(Error::input(format!("{field} = {}: pinned twice", cell(name))));
             }
             pins.push(index);
         }
@@ -284,10 +287,10 @@ impl KeysFile {
     /// `(index, [(first frame, bend)])`; `last` raised to their last key's frame.
     fn bend_keys(
         &self,
-        joint: &dyn Fn(&str, &str) -> Result<usize, String>,
+        joint: &dyn Fn(&str, &str) -> Result<usize, Error>,
         fps: f64,
         last: &mut usize,
-    ) -> Result<Bends, String> {
+    ) -> Result<Bends, Error> {
         let mut bends = Vec::with_capacity(self.bends.len());
         for (name, keys) in &self.bends {
             let field = format!("keys.bends.{}", cell(name));
@@ -304,22 +307,22 @@ impl KeysFile {
     /// (`constraint` finds the one whose lower bone a bend names); pins refused.
     pub fn check_character(
         &self,
-        bone: &dyn Fn(&str, &str) -> Result<usize, String>,
-        constraint: &dyn Fn(&str, &str) -> Result<usize, String>,
+        bone: &dyn Fn(&str, &str) -> Result<usize, Error>,
+        constraint: &dyn Fn(&str, &str) -> Result<usize, Error>,
         max_frames: usize,
         cap: &str,
-    ) -> Result<CharacterKeys, String> {
+    ) -> Result<CharacterKeys, Error> {
         if !self.pins.is_empty() {
-            return Err(
-                "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)".into(),
-            );
+            return Err(Error::input(
+                "keys.pins: not for a character (pins hold a rig's tips; a character's target bones are keyed)",
+            ));
         }
         let (fps, mut last, tracks) = self.tracks(bone)?;
         if let Some((name, _)) = self.tracks.iter().find(|(_, keys)| keys.iter().any(|k| k.angle_deg.is_some())) {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "keys.tracks.{}: angle_deg is not for a character (a target is a bone's origin)",
                 cell(name)
-            ));
+            )));
         }
         let bends = self.bend_keys(constraint, fps, &mut last)?;
         let rotations = rotations::check(&self.rotations, bone, fps, &mut last)?;
@@ -330,44 +333,44 @@ impl KeysFile {
 
     /// The motion's last frame: `duration`'s when given (finite, on a frame, not before the last
     /// key's frame `last`), else `last`.
-    fn length(&self, fps: f64, last: usize) -> Result<usize, String> {
+    fn length(&self, fps: f64, last: usize) -> Result<usize, Error> {
         let Some(d) = self.duration else { return Ok(last) };
         let at = || format!("keys.duration = {}", Num(d));
         if !d.is_finite() || d < 0.0 {
-            return Err(format!("{}: must be a finite number of seconds >= 0", at()));
+            return Err(Error::input(format!("{}: must be a finite number of seconds >= 0", at())));
         }
-        let frame = frame_of(d, fps).map_err(|m| format!("{}: {m}", at()))?;
+        let frame = frame_of(d, fps).map_err(|m| Error::input(format!("{}: {m}", at())))?;
         if frame < last {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{}: before the last key's time {}; the motion runs at least to its last key",
                 at(),
                 Num(last as f64 / fps)
-            ));
+            )));
         }
         Ok(frame)
     }
 
     /// The fps, the last key's frame over the tracks, and the tracks (bones found by `bone`);
     /// at most [`MAX_TRACKS`] tracks and pins together.
-    fn tracks(
-        &self,
-        bone: &dyn Fn(&str, &str) -> Result<usize, String>,
-    ) -> Result<(f64, usize, Vec<KeyedBone>), String> {
+    fn tracks(&self, bone: &dyn Fn(&str, &str) -> Result<usize, Error>) -> Result<(f64, usize, Vec<KeyedBone>), Error> {
         // A character's keys may turn bones alone; anything else keys a track.
         if self.tracks.is_empty() && self.rotations.is_empty() {
-            return Err(
-                "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]".into()
-            );
+            return Err(Error::input(
+                "keys.tracks: at least one track, bone name → keys [{\"time\": 0, \"x\": …, \"y\": …}, …]",
+            ));
         }
         let fps = self.fps.unwrap_or(DEFAULT_KEY_FPS);
         if !(fps > 0.0 && fps <= MAX_KEY_FPS) {
-            return Err(format!("keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}", Num(fps)));
+            return Err(Error::input(format!(
+                "keys.fps = {}: must be greater than 0 and at most {MAX_KEY_FPS}",
+                Num(fps)
+            )));
         }
         let effectors = self.tracks.len() + self.pins.len();
         if effectors > MAX_TRACKS {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "keys.tracks, keys.pins: {effectors} tracks and pins, more than the cap of {MAX_TRACKS}"
-            ));
+            )));
         }
         let mut last = 0;
         let mut tracks = Vec::with_capacity(self.tracks.len());
@@ -383,42 +386,47 @@ impl KeysFile {
 }
 
 /// At most `max_frames` frames `0..=last`.
-fn frames_within(last: usize, max_frames: usize, cap: &str) -> Result<(), String> {
+fn frames_within(last: usize, max_frames: usize, cap: &str) -> Result<(), Error> {
     if last >= max_frames {
-        return Err(format!("keys: {} frames, more than the cap of {max_frames} ({cap})", last.saturating_add(1)));
+        return Err(Error::input(format!(
+            "keys: {} frames, more than the cap of {max_frames} ({cap})",
+            last.saturating_add(1)
+        )));
     }
     Ok(())
 }
 
 /// A key's ease by the one rule of `--ease/--k1/--k2` ([`choose_ease`], sine by default); a
 /// problem names the key's field `at` (`keys.tracks.foot[2]`).
-pub(crate) fn key_ease(at: &str, ease: Option<EaseKind>, k1: Option<f64>, k2: Option<f64>) -> Result<Ease, String> {
-    choose_ease(ease, k1, k2, EaseKind::Sine).map_err(|p| match p {
-        EaseProblem::KWithoutParent { k1 } => {
-            format!("{at}.{}: only applies with \"ease\": \"parent\"", if k1 { "k1" } else { "k2" })
-        }
-        EaseProblem::Invalid(e) => format!("{at}.{e}"),
+pub(crate) fn key_ease(at: &str, ease: Option<EaseKind>, k1: Option<f64>, k2: Option<f64>) -> Result<Ease, Error> {
+    choose_ease(ease, k1, k2, EaseKind::Sine).map_err(|p| {
+        Error::input(match p {
+            EaseProblem::KWithoutParent { k1 } => {
+                format!("{at}.{}: only applies with \"ease\": \"parent\"", if k1 { "k1" } else { "k2" })
+            }
+            EaseProblem::Invalid(e) => format!("{at}.{e}"),
+        })
     })
 }
 
 /// The track of one bone's keys: finite values, the direction on every key or none, each key's
 /// ease by the one rule of `--ease/--k1/--k2` ([`choose_ease`]); its knots at the keys' frame
 /// times `frame / fps`, so that a frame on a key takes the key bit for bit.
-fn keyed_bone(field: &str, bone: usize, keys: &[KeyReq], frames: &[usize], fps: f64) -> Result<KeyedBone, String> {
+fn keyed_bone(field: &str, bone: usize, keys: &[KeyReq], frames: &[usize], fps: f64) -> Result<KeyedBone, Error> {
     let oriented = keys[0].angle_deg.is_some();
     let mut values = Vec::with_capacity(keys.len() * 3);
     let mut eases = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         for (name, v) in [("x", k.x), ("y", k.y)].into_iter().chain(k.angle_deg.map(|a| ("angle_deg", a))) {
             if !v.is_finite() {
-                return Err(format!("{field}[{i}].{name} = {}: must be a finite number", Num(v)));
+                return Err(Error::input(format!("{field}[{i}].{name} = {}: must be a finite number", Num(v))));
             }
         }
         if k.angle_deg.is_some() != oriented {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{field}[{i}].angle_deg: give it on every key of a track or on none (key 0 {} one)",
                 if oriented { "has" } else { "has no" }
-            ));
+            )));
         }
         values.extend([k.x, k.y]);
         values.extend(k.angle_deg.map(f64::to_radians));
@@ -426,6 +434,6 @@ fn keyed_bone(field: &str, bone: usize, keys: &[KeyReq], frames: &[usize], fps: 
     }
     let n = if oriented { 3 } else { 2 };
     let times = frames.iter().map(|&f| f as f64 / fps).collect();
-    let track = KeyTrack::new(n, times, values, eases).map_err(|e| format!("{field}: {e}"))?;
+    let track = KeyTrack::new(n, times, values, eases).map_err(|e| Error::input(format!("{field}: {e}")))?;
     Ok(KeyedBone { bone, track, oriented })
 }

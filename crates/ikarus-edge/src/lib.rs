@@ -27,6 +27,8 @@ pub mod character;
 pub mod ease_args;
 #[doc(hidden)]
 pub mod error;
+
+pub use error::{Error, ErrorKind};
 #[doc(hidden)]
 pub mod goal;
 #[doc(hidden)]

@@ -15,7 +15,7 @@ use ikarus::number::Num;
 use ikarus::{Ease, Goal, GoalError, RigTask, SolveOptions, Solver};
 
 use crate::arm::Arm;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::picture::{Drawing, rig_figure};
 use crate::rig::Rig;
 
@@ -86,7 +86,7 @@ pub trait MotionBody {
         stops: &[Self::Stop],
         route: Route,
         options: MotionOptions,
-    ) -> Result<Self::Solved, CliError>;
+    ) -> Result<Self::Solved, Error>;
 }
 
 impl MotionBody for Arm {
@@ -100,9 +100,9 @@ impl MotionBody for Arm {
         goals: &[Goal],
         route: Route,
         options: MotionOptions,
-    ) -> Result<GoalMotion, CliError> {
+    ) -> Result<GoalMotion, Error> {
         through_goals(solver, &self.chain, start, goals, route, options)
-            .map_err(|e| CliError::input(describe(&e, |joint| format!("joint {}", joint + 1))))
+            .map_err(|e| Error::input(describe(&e, |joint| format!("joint {}", joint + 1))))
     }
 }
 
@@ -117,10 +117,10 @@ impl MotionBody for Rig {
         tasks: &[RigTask],
         route: Route,
         options: MotionOptions,
-    ) -> Result<ikarus::motion::RigMotion, CliError> {
+    ) -> Result<ikarus::motion::RigMotion, Error> {
         let names = self.skeleton.names();
         through_rig_tasks(solver, &self.skeleton, start, tasks, route, options)
-            .map_err(|e| CliError::input(describe(&e, |b| format!("bone {} ({:?})", b + 1, names[b]))))
+            .map_err(|e| Error::input(describe(&e, |b| format!("bone {} ({:?})", b + 1, names[b]))))
     }
 }
 
@@ -151,8 +151,8 @@ impl<B: MotionBody> MotionPlan<'_, B> {
     /// Solves for each stop, each from the previous pose, and eases the poses into a motion,
     /// with the same interpolation whether the poses are the solved ones or every pose the
     /// solver recorded; a problem (a method that solves chains only, a bad stop) is bad input.
-    pub fn run(self) -> Result<Motion<B>, CliError> {
-        let mut solver = Solver::new(self.options).map_err(|e| CliError::input(e.to_string()))?;
+    pub fn run(self) -> Result<Motion<B>, Error> {
+        let mut solver = Solver::new(self.options).map_err(|e| Error::input(e.to_string()))?;
         let route = if self.from_solve { Route::Recorded } else { Route::Keyframes };
         let options = MotionOptions::new(self.timing, self.ease).with_interpolation(self.interpolation);
         let motion = self.body.through(&mut solver, &self.start, &self.stops, route, options)?;

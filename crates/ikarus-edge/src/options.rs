@@ -1,58 +1,60 @@
 //! Parsers and checks of the edges' values, shared by the flags, the files and the API: numbers in range, points, angles, and
 //! the names of the library's choice enums.
 
+use crate::error::Error;
+
 /// Parses a finite float, naming what was wrong with the text.
-pub fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() { Ok(v) } else { Err(format!("must be a finite number, got {s}")) }
+pub fn parse_finite(s: &str) -> Result<f64, Error> {
+    let v: f64 = s.trim().parse().map_err(|_| Error::input(format!("'{s}' is not a number")))?;
+    if v.is_finite() { Ok(v) } else { Err(Error::input(format!("must be a finite number, got {s}"))) }
 }
 
-pub fn positive(v: f64) -> Result<f64, String> {
+pub fn positive(v: f64) -> Result<f64, Error> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(format!("{}: must be a finite number greater than 0", ikarus::number::Num(v)))
+        Err(Error::input(format!("{}: must be a finite number greater than 0", ikarus::number::Num(v))))
     }
 }
 
-pub fn non_negative(v: f64) -> Result<f64, String> {
+pub fn non_negative(v: f64) -> Result<f64, Error> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
-        Err(format!("{}: must be a finite number ≥ 0", ikarus::number::Num(v)))
+        Err(Error::input(format!("{}: must be a finite number ≥ 0", ikarus::number::Num(v))))
     }
 }
 
-pub fn at_least_one(v: u32) -> Result<u32, String> {
-    if v >= 1 { Ok(v) } else { Err(format!("{v}: must be at least 1")) }
+pub fn at_least_one(v: u32) -> Result<u32, Error> {
+    if v >= 1 { Ok(v) } else { Err(Error::input(format!("{v}: must be at least 1"))) }
 }
 
-pub fn parse_positive(s: &str) -> Result<f64, String> {
+pub fn parse_positive(s: &str) -> Result<f64, Error> {
     positive(parse_finite(s)?)
 }
 
-pub fn parse_non_negative(s: &str) -> Result<f64, String> {
+pub fn parse_non_negative(s: &str) -> Result<f64, Error> {
     non_negative(parse_finite(s)?)
 }
 
-pub fn parse_at_least_one(s: &str) -> Result<u32, String> {
-    let v: u32 = s.trim().parse().map_err(|_| format!("'{s}' is not a whole number"))?;
+pub fn parse_at_least_one(s: &str) -> Result<u32, Error> {
+    let v: u32 = s.trim().parse().map_err(|_| Error::input(format!("'{s}' is not a whole number")))?;
     at_least_one(v)
 }
 
 /// Parses `X,Y` into two finite numbers.
-pub fn parse_point(s: &str) -> Result<[f64; 2], String> {
+pub fn parse_point(s: &str) -> Result<[f64; 2], Error> {
     let parts: Vec<&str> = s.split(',').collect();
     let [x, y] = parts[..] else {
-        return Err(format!("expected two numbers X,Y, got {} part(s)", parts.len()));
+        return Err(Error::input(format!("expected two numbers X,Y, got {} part(s)", parts.len())));
     };
-    let x = parse_finite(x).map_err(|m| format!("x: {m}"))?;
-    let y = parse_finite(y).map_err(|m| format!("y: {m}"))?;
+    let x = parse_finite(x).map_err(|m| Error::input(format!("x: {m}")))?;
+    let y = parse_finite(y).map_err(|m| Error::input(format!("y: {m}")))?;
     Ok([x, y])
 }
 
 /// Parses an angle in degrees (finite).
-pub fn parse_angle(s: &str) -> Result<f64, String> {
+pub fn parse_angle(s: &str) -> Result<f64, Error> {
     parse_finite(s)
 }
 
@@ -64,11 +66,11 @@ mod tests {
     fn points_parse_and_name_the_bad_part() {
         assert_eq!(parse_point("1.5,-2"), Ok([1.5, -2.0]));
         assert_eq!(parse_point(" 3 , 4 "), Ok([3.0, 4.0]));
-        assert_eq!(parse_point("1,nan"), Err("y: must be a finite number, got nan".to_owned()));
-        assert_eq!(parse_point("inf,1"), Err("x: must be a finite number, got inf".to_owned()));
-        assert_eq!(parse_point("a,1"), Err("x: 'a' is not a number".to_owned()));
-        assert_eq!(parse_point("1"), Err("expected two numbers X,Y, got 1 part(s)".to_owned()));
-        assert_eq!(parse_point("1,2,3"), Err("expected two numbers X,Y, got 3 part(s)".to_owned()));
+        assert_eq!(parse_point("1,nan"), Err(Error::input("y: must be a finite number, got nan")));
+        assert_eq!(parse_point("inf,1"), Err(Error::input("x: must be a finite number, got inf")));
+        assert_eq!(parse_point("a,1"), Err(Error::input("x: 'a' is not a number")));
+        assert_eq!(parse_point("1"), Err(Error::input("expected two numbers X,Y, got 1 part(s)")));
+        assert_eq!(parse_point("1,2,3"), Err(Error::input("expected two numbers X,Y, got 3 part(s)")));
     }
 
     #[test]

@@ -7,7 +7,7 @@ use serde::Deserialize;
 
 use crate::area::ReachableArea;
 use crate::arm::Arm;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::rig::Rig;
 
 /// What a picture holds: from a file's extension, or a request's `format`.
@@ -116,7 +116,7 @@ pub fn draw(
     width: u32,
     height: u32,
     progress: &dyn Fn(usize, usize),
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, Error> {
     let svg = match drawing {
         Drawing::Motion { chain, animation, goal, caption, fps, layers } if format == PictureFormat::Gif => {
             let overlay = ikarus_render::Overlay {
@@ -296,18 +296,18 @@ pub fn workspace_caption(arm: &Arm, area: &ReachableArea) -> String {
 }
 
 /// Maps a render error to the CLI's run-time error.
-pub fn render_failed(e: &impl std::fmt::Display) -> CliError {
-    CliError::runtime(format!("rendering failed: {e}"))
+pub fn render_failed(e: &impl std::fmt::Display) -> Error {
+    Error::runtime(format!("rendering failed: {e}"))
 }
 
 /// A pose picture's failure: a number the picture cannot hold (a bone so far away that the
 /// view overflows) or a size out of range is the input's; anything else is the drawing's.
 #[must_use]
-pub fn pose_drawn(e: ikarus_render::RenderError) -> CliError {
+pub fn pose_drawn(e: ikarus_render::RenderError) -> Error {
     match e {
         ikarus_render::RenderError::NonFinite { .. } | ikarus_render::RenderError::Size { .. } => {
-            CliError::input(format!("cannot draw the pose: {e}"))
+            Error::input(format!("cannot draw the pose: {e}"))
         }
-        _ => CliError::runtime(format!("cannot draw the pose: {e}")),
+        _ => Error::runtime(format!("cannot draw the pose: {e}")),
     }
 }

@@ -12,7 +12,7 @@ use ikarus::character::{
 use ikarus::{Interrupt, SolveOptions, Solver};
 
 use crate::character::Loaded;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal::{Field, NamedGoal};
 use crate::names::{Quoted, cell, listed};
 pub use crate::pose_report::{GoalJson, IkJson, LimbJson, PoseReport, PosedBoneJson};
@@ -74,23 +74,23 @@ pub enum IkChoice {
 
 /// Poses `loaded` as `ask` says. Errors are one line without a label: `--animation "wlk": no
 /// such animation; spineboy has: aim, death, …`.
-pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, String> {
+pub fn pose(loaded: &Loaded, ask: &PoseAsk) -> Result<PoseReport, Error> {
     pose_until(loaded, ask, None)
 }
 
 /// [`pose`], stopped once `interrupt` is set (a server's deadline, Ctrl-C): the pose checks it
 /// before each IK constraint, ikarus's solver as it iterates. An interrupted pose is refused
 /// with `interrupted`; the caller tells that from a bad request by the token.
-pub fn pose_watched(loaded: &Loaded, ask: &PoseAsk, interrupt: &Interrupt) -> Result<PoseReport, String> {
+pub fn pose_watched(loaded: &Loaded, ask: &PoseAsk, interrupt: &Interrupt) -> Result<PoseReport, Error> {
     pose_until(loaded, ask, Some(interrupt))
 }
 
-fn pose_until(loaded: &Loaded, ask: &PoseAsk, interrupt: Option<&Interrupt>) -> Result<PoseReport, String> {
+fn pose_until(loaded: &Loaded, ask: &PoseAsk, interrupt: Option<&Interrupt>) -> Result<PoseReport, Error> {
     pose_keeping(loaded, ask, &mut Posed::default(), interrupt)
 }
 
 /// [`pose`], the pose itself left in `posed` (to draw the character's art from it).
-pub fn pose_kept(loaded: &Loaded, ask: &PoseAsk, posed: &mut Posed) -> Result<PoseReport, String> {
+pub fn pose_kept(loaded: &Loaded, ask: &PoseAsk, posed: &mut Posed) -> Result<PoseReport, Error> {
     pose_keeping(loaded, ask, posed, None)
 }
 
@@ -100,7 +100,7 @@ pub fn pose_kept_watched(
     ask: &PoseAsk,
     posed: &mut Posed,
     interrupt: &Interrupt,
-) -> Result<PoseReport, String> {
+) -> Result<PoseReport, Error> {
     pose_keeping(loaded, ask, posed, Some(interrupt))
 }
 
@@ -109,7 +109,7 @@ fn pose_keeping(
     ask: &PoseAsk,
     posed: &mut Posed,
     interrupt: Option<&Interrupt>,
-) -> Result<PoseReport, String> {
+) -> Result<PoseReport, Error> {
     let together = pose_into_until(loaded, ask, posed, interrupt)?;
     let mut report = PoseReport::of(&loaded.character, posed);
     report.ik = together.map(|t| IkJson::of(&loaded.character, &t));
@@ -121,7 +121,7 @@ fn pose_keeping(
 
 /// Poses `loaded` as `ask` says into `out` (reuse one `out` across poses: a motion's frames),
 /// refusing what [`pose`] refuses; with [`IkChoice::Ikarus`], what the solve did.
-pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Option<TogetherReport>, String> {
+pub fn pose_into(loaded: &Loaded, ask: &PoseAsk, out: &mut Posed) -> Result<Option<TogetherReport>, Error> {
     pose_into_until(loaded, ask, out, None)
 }
 
@@ -131,7 +131,7 @@ pub fn pose_into_watched(
     ask: &PoseAsk,
     out: &mut Posed,
     interrupt: &Interrupt,
-) -> Result<Option<TogetherReport>, String> {
+) -> Result<Option<TogetherReport>, Error> {
     pose_into_until(loaded, ask, out, Some(interrupt))
 }
 
@@ -141,7 +141,7 @@ pub(crate) fn pose_into_until(
     ask: &PoseAsk,
     out: &mut Posed,
     interrupt: Option<&Interrupt>,
-) -> Result<Option<TogetherReport>, String> {
+) -> Result<Option<TogetherReport>, Error> {
     pose_as(loaded, ask, out, (interrupt, None))
 }
 
@@ -154,7 +154,7 @@ pub(crate) fn pose_frame_into(
     ask: &PoseAsk,
     out: &mut Posed,
     (interrupt, frame): (Option<&Interrupt>, &PlayFrame),
-) -> Result<Option<TogetherReport>, String> {
+) -> Result<Option<TogetherReport>, Error> {
     pose_as(loaded, ask, out, (interrupt, Some(frame)))
 }
 
@@ -164,19 +164,20 @@ fn pose_as(
     ask: &PoseAsk,
     out: &mut Posed,
     (interrupt, frame): (Option<&Interrupt>, Option<&PlayFrame>),
-) -> Result<Option<TogetherReport>, String> {
+) -> Result<Option<TogetherReport>, Error> {
     let c = &loaded.character;
     let clip = clip_at(c, ask.animation.as_deref(), ask.time)?;
     let mut targets = Vec::with_capacity(ask.targets.len());
     for (name, [x, y]) in &ask.targets {
-        let bone = c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)))?;
+        let bone =
+            c.bone_index(name).ok_or_else(|| Error::input(format!("target {}: no bone of that name", Quoted(name))))?;
         targets.push((bone, target_point(name, [*x, *y])?));
     }
     let mut turns = Vec::with_capacity(ask.turns.len());
     for &(bone, deg) in &ask.turns {
         if !deg.is_finite() {
             let name = c.bones().get(bone).map_or("?", |b| b.name.as_str());
-            return Err(format!("rotations.{}: the angle must be finite, got {deg}", cell(name)));
+            return Err(Error::input(format!("rotations.{}: the angle must be finite, got {deg}", cell(name))));
         }
         turns.push((bone, deg.to_radians()));
     }
@@ -201,18 +202,20 @@ fn pose_as(
             },
         }
         .map(|()| None)
-        .map_err(|e| refusal(c, skin, &e)),
+        .map_err(|e| Error::input(refusal(c, skin, &e))),
         IkChoice::Ikarus(rules) => {
             let options = SolveOptions { interrupt: interrupt.cloned(), ..character_options() };
-            let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
+            let mut solver = Solver::new(options).map_err(|e| Error::input(e.to_string()))?;
             match frame {
                 Some(frame) => c.pose_together_frame(&request, rules, &mut solver, frame, out),
                 None => c.pose_together(&request, rules, &mut solver, out),
             }
             .map(Some)
-            .map_err(|e| match e {
-                TogetherError::Pose(e) => refusal(c, skin, &e),
-                e => e.to_string(),
+            .map_err(|e| {
+                Error::input(match e {
+                    TogetherError::Pose(e) => refusal(c, skin, &e),
+                    e => e.to_string(),
+                })
             })
         }
     }?;
@@ -241,54 +244,62 @@ fn refusal(c: &Character, skin: Option<usize>, e: &PoseError) -> String {
 /// The clip `animation` names at `time` (seconds, 0 when not given) as the library's index, or
 /// `None` for the setup pose; the one-line refusals of [`pose`] (an unknown name lists the
 /// file's animations; a time without an animation, or not finite).
-pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Result<Option<(usize, f64)>, String> {
+pub fn clip_at(c: &Character, animation: Option<&str>, time: Option<f64>) -> Result<Option<(usize, f64)>, Error> {
     match animation {
         Some(name) => {
             let i = c.clip_index(name).ok_or_else(|| {
-                let has = listed(c.clips().iter().map(|k| k.name.as_str()));
-                format!("animation {}: no such animation (the file has: {has})", Quoted(name))
+                Error::input({
+                    let has = listed(c.clips().iter().map(|k| k.name.as_str()));
+                    format!("animation {}: no such animation (the file has: {has})", Quoted(name))
+                })
             })?;
             Ok(Some((i, finite_time(time.unwrap_or(0.0))?)))
         }
-        None if time.is_some() => Err("time: only with an animation".to_owned()),
+        None if time.is_some() => Err(Error::input("time: only with an animation")),
         None => Ok(None),
     }
 }
 
 /// The skin `name` names as the library's index (`None`: the one called `default`, if any), or
 /// `skin "x": no such skin (the file has: default, hero)`.
-pub fn skin_index(c: &Character, name: Option<&str>) -> Result<Option<usize>, String> {
+pub fn skin_index(c: &Character, name: Option<&str>) -> Result<Option<usize>, Error> {
     match name {
         None => Ok(c.default_skin()),
         Some(name) => c.skin_index(name).map(Some).ok_or_else(|| {
-            let has = if c.skins().is_empty() {
-                "none".to_owned()
-            } else {
-                listed(c.skins().iter().map(|s| s.name.as_str()))
-            };
-            format!("skin {}: no such skin (the file has: {has})", Quoted(name))
+            Error::input({
+                let has = if c.skins().is_empty() {
+                    "none".to_owned()
+                } else {
+                    listed(c.skins().iter().map(|s| s.name.as_str()))
+                };
+                format!("skin {}: no such skin (the file has: {has})", Quoted(name))
+            })
         }),
     }
 }
 
 /// `time` if it is a finite number of seconds, else [`pose`]'s refusal.
-pub fn finite_time(time: f64) -> Result<f64, String> {
-    if time.is_finite() { Ok(time) } else { Err(format!("time: must be a finite number of seconds, got {time}")) }
+pub fn finite_time(time: f64) -> Result<f64, Error> {
+    if time.is_finite() {
+        Ok(time)
+    } else {
+        Err(Error::input(format!("time: must be a finite number of seconds, got {time}")))
+    }
 }
 
 /// The point of the target on bone `name` if both its coordinates are finite, else [`pose`]'s
 /// refusal.
-pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], String> {
+pub fn target_point(name: &str, [x, y]: [f64; 2]) -> Result<[f64; 2], Error> {
     if x.is_finite() && y.is_finite() {
         Ok([x, y])
     } else {
-        Err(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name)))
+        Err(Error::input(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name))))
     }
 }
 
 /// The rules asked for: `ik` is `runtime` (the default) or `ikarus`; `ik_file` the text of an
 /// IK file (only with `ikarus`), named `label` in messages.
-pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
+pub fn ik_choice(ik: Option<&str>, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, Error> {
     rules_choice(IkRules::named(ik)?, ik_file, label, c)
 }
 
@@ -303,22 +314,22 @@ pub enum IkRules {
 
 impl IkRules {
     /// The rules a request names (`ik`: `"runtime"`, the default, or `"ikarus"`).
-    pub fn named(ik: Option<&str>) -> Result<Self, CliError> {
+    pub fn named(ik: Option<&str>) -> Result<Self, Error> {
         match ik.unwrap_or("runtime") {
             "runtime" => Ok(IkRules::Runtime),
             "ikarus" => Ok(IkRules::Ikarus),
-            other => Err(CliError::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
+            other => Err(Error::input(format!("ik = {other:?}: expected \"runtime\" or \"ikarus\""))),
         }
     }
 }
 
 /// The IK rules `rules` for `c`: with ikarus's, the IK file's text `ik_file` (`label` starts
 /// its problems) read and checked against it; an IK file with the runtime's rules is refused.
-pub fn rules_choice(rules: IkRules, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, CliError> {
+pub fn rules_choice(rules: IkRules, ik_file: Option<&str>, label: &str, c: &Character) -> Result<IkChoice, Error> {
     match (rules, ik_file) {
         (IkRules::Runtime, None) => Ok(IkChoice::Runtime),
         (IkRules::Runtime, Some(_)) => {
-            Err(CliError::input(format!("{label}: an IK file is read only with ik = \"ikarus\"")))
+            Err(Error::input(format!("{label}: an IK file is read only with ik = \"ikarus\"")))
         }
         (IkRules::Ikarus, None) => Ok(IkChoice::Ikarus(Box::default())),
         (IkRules::Ikarus, Some(text)) => {
@@ -339,7 +350,7 @@ pub fn add_goals(
     bones: &[Option<usize>],
     pins: &[String],
     field: &dyn Fn(Field) -> String,
-) -> Result<(), String> {
+) -> Result<(), Error> {
     let (solved, pinned) = crate::goal::goals_and_pins(c, goals, pins, field)?;
     for (i, goal) in solved.into_iter().enumerate() {
         let mut depth = 1;
@@ -350,21 +361,21 @@ pub fn add_goals(
         }
         let count = match bones.get(i).copied().flatten() {
             Some(n) if n == 0 || n > depth => {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "{}: {n}: must be from 1 (the bone alone) to {depth} (bone {:?} and all above it)",
                     field(Field::Bones(i)),
                     Quoted(&c.bones()[goal.bone].name)
-                ));
+                )));
             }
             Some(n) => n,
             None => TIP_GOAL_BONES.min(depth),
         };
         if goal.bend.is_some() && count < 2 {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{}: the goal on {:?} turns one bone, so no joint to bend (give it 2 bones or more)",
                 field(Field::Bend(i)),
                 Quoted(&c.bones()[goal.bone].name)
-            ));
+            )));
         }
         rules.goals.push(TipGoal { goal, bones: count });
     }

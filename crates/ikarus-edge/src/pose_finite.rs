@@ -10,6 +10,7 @@
 use ikarus::character::{Character, IkBones, Posed};
 
 use crate::character::{Format, Loaded};
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// What a pose was asked for, as far as a refusal tells its cause: the pose's targets, and the
@@ -27,10 +28,10 @@ pub struct Asked<'a> {
 /// `Ok` if every bone of `posed` has a finite world transform and tip; else the one-line
 /// refusal naming the first bone that has not, and the input that made it so where it can be
 /// told.
-pub fn check(loaded: &Loaded, ask: &Asked<'_>, posed: &Posed) -> Result<(), String> {
+pub fn check(loaded: &Loaded, ask: &Asked<'_>, posed: &Posed) -> Result<(), Error> {
     match (0..posed.len()).find(|&i| what_is_not_finite(posed, i).is_some()) {
         None => Ok(()),
-        Some(i) => Err(cause(loaded, ask, posed, i)),
+        Some(i) => Err(Error::input(cause(loaded, ask, posed, i))),
     }
 }
 

@@ -6,7 +6,7 @@ use ikarus::Point2;
 use ikarus::reach::{Region, Verdict};
 
 use crate::arm::Arm;
-use crate::error::CliError;
+use crate::error::Error;
 
 /// What a reach request asks, from the flags or the API: `limits` over the arm file's
 /// `[solver] limits` (off when neither says), and the tolerance over the arm file's
@@ -24,7 +24,7 @@ impl ReachRequest {
 
     /// The exact region of `arm` the verdicts are read from ([`crate::area::exact_region`]),
     /// stopping when `interrupt` is set.
-    pub fn region(&self, arm: &Arm, interrupt: Option<&ikarus::Interrupt>) -> Result<Region, CliError> {
+    pub fn region(&self, arm: &Arm, interrupt: Option<&ikarus::Interrupt>) -> Result<Region, Error> {
         crate::area::exact_region(arm, arm.limits(self.limits), interrupt)
     }
 }

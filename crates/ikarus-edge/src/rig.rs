@@ -49,7 +49,7 @@ use serde::Deserialize;
 
 pub use crate::arm::JointFile;
 use crate::arm::{ArmFile, part_file, toml_error};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::settings::SolverSettings;
 
 /// A rig as written in a file: names and units of the edge (degrees).
@@ -129,9 +129,9 @@ impl BoneCap {
     }
 
     /// `bones: N bones exceed the cap of MAX (…)` when `count` is over the cap.
-    pub fn check(self, count: usize) -> Result<(), String> {
+    pub fn check(self, count: usize) -> Result<(), Error> {
         if count > self.max {
-            return Err(format!("bones: {count} bones exceed the cap of {} ({})", self.max, self.raise));
+            return Err(Error::input(format!("bones: {count} bones exceed the cap of {} ({})", self.max, self.raise)));
         }
         Ok(())
     }
@@ -154,13 +154,13 @@ impl Rig {
     /// The options of a command: `flags` over this rig file's `[solver]` table over the
     /// defaults, `rates` one per bone; problems name the flag, or the file's `[solver]` field a
     /// setting came from (as [`crate::arm::Arm::options`]).
-    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, CliError> {
+    pub fn options(&self, flags: &SolverSettings, record_every: Option<u32>) -> Result<ikarus::SolveOptions, Error> {
         crate::settings::command_options(flags, &self.solver, &self.label, self.skeleton.len(), record_every)
     }
 
     /// Loads the rig file `path` (a regular file within the input cap, as every input file)
     /// under the command line's cap on bones.
-    pub fn load(path: &Path) -> Result<Self, CliError> {
+    pub fn load(path: &Path) -> Result<Self, Error> {
         let label = format!("rig file {}", path.display());
         let text = crate::input::read_text(path, &label)?;
         Self::parse(&text, &label)
@@ -168,22 +168,22 @@ impl Rig {
 
     /// Parses and validates rig-file text under the command line's cap on bones
     /// ([`BoneCap::cli`]); `label` starts every error message.
-    pub fn parse(text: &str, label: &str) -> Result<Self, CliError> {
+    pub fn parse(text: &str, label: &str) -> Result<Self, Error> {
         Self::parse_within(text, label, BoneCap::cli())
     }
 
     /// Parses and validates rig-file text of at most `cap` bones; `label` starts every error
     /// message.
-    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {
+    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, Error> {
         Self::from_file(RigFile::read(text, label, cap)?, label, cap)
     }
 
     /// Validates a rig already read (from a file or a JSON request) of at most `cap` bones (the
     /// first check, before any bone is looked at); `label` starts every error message.
-    pub fn from_file(file: RigFile, label: &str, cap: BoneCap) -> Result<Self, CliError> {
-        cap.check(file.bones.len()).map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
-        let skeleton = file.to_skeleton().map_err(|msg| CliError::input(format!("{label}: {msg}")))?;
-        file.solver.check().map_err(|msg| CliError::input(format!("{label}: [solver].{msg}")))?;
+    pub fn from_file(file: RigFile, label: &str, cap: BoneCap) -> Result<Self, Error> {
+        cap.check(file.bones.len()).map_err(|msg| Error::input(format!("{label}: {msg}")))?;
+        let skeleton = file.to_skeleton().map_err(|msg| Error::input(format!("{label}: {msg}")))?;
+        file.solver.check().map_err(|msg| Error::input(format!("{label}: [solver].{msg}")))?;
         let name = file.name.clone().unwrap_or_else(|| "rig".to_owned());
         Ok(Self { name, label: label.to_owned(), skeleton, solver: file.solver, tip: None })
     }
@@ -192,7 +192,7 @@ impl Rig {
     /// [`Skeleton::from_chain`] names them) on bone `link{i-1}`, with the link's joint keys; its
     /// name is the arm's (`arm` without one), a goal without a bone's name is on the last link,
     /// and every problem is named as in an arm file (`arm file a.toml: links[2].limits_deg = …`).
-    pub fn from_arm(file: &ArmFile, label: &str) -> Result<Self, CliError> {
+    pub fn from_arm(file: &ArmFile, label: &str) -> Result<Self, Error> {
         let mut rig = Self::from_file(RigFile::from_arm(file), label, BoneCap::cli())?;
         rig.tip = rig.skeleton.len().checked_sub(1);
         Ok(rig)
@@ -229,17 +229,17 @@ impl RigFile {
 
     /// Reads rig-file text (TOML) of at most `cap` bones, unchecked otherwise; `label` starts
     /// every error message.
-    pub fn read(text: &str, label: &str, cap: BoneCap) -> Result<Self, CliError> {
-        let over = |count: usize| cap.check(count).map_err(|msg| CliError::input(format!("{label}: {msg}")));
+    pub fn read(text: &str, label: &str, cap: BoneCap) -> Result<Self, Error> {
+        let over = |count: usize| cap.check(count).map_err(|msg| Error::input(format!("{label}: {msg}")));
         // Bones written as `[[bones]]` tables are counted on the text first, so that a file far
         // over the cap is refused before the TOML parser holds it (some 40 times its size in
         // memory, seconds for a few MB); bones in an inline array are counted once parsed. (A
         // `[[bones]]` line inside a multi-line string would be counted too: no rig has one.)
         over(text.lines().filter(|l| is_bones_header(l)).count())?;
         if crate::character::atlas::is_atlas(text) {
-            return Err(CliError::input(format!("{label}: {}", crate::character::atlas::ATLAS)));
+            return Err(Error::input(format!("{label}: {}", crate::character::atlas::ATLAS)));
         }
-        let file: RigFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
+        let file: RigFile = toml::from_str(text).map_err(|e| Error::input(toml_error(label, text, &e)))?;
         over(file.bones.len())?;
         Ok(file)
     }

@@ -8,7 +8,7 @@
 use ikarus::{LimitMode, Method, OptionsError, Restarts, SolveOptions, Solver, StallDetection};
 use serde::Deserialize;
 
-use crate::error::CliError;
+use crate::error::Error;
 
 /// Solver settings; every one is optional and falls back on the next source. Field names are
 /// the arm files' and the API's, and the flags' with `-` for `_`.
@@ -236,10 +236,10 @@ impl SolverSettings {
 
     /// Range checks of values that did not come through the flags' parsers, naming the field;
     /// the caller prefixes `[solver].` or `options.`.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), Error> {
         use crate::options::{at_least_one, non_negative, positive};
-        let field = |name: &str, r: Result<f64, String>| r.map(drop).map_err(|m| format!("{name} = {m}"));
-        type Rule = fn(f64) -> Result<f64, String>;
+        let field = |name: &str, r: Result<f64, Error>| r.map(drop).map_err(|m| Error::input(format!("{name} = {m}")));
+        type Rule = fn(f64) -> Result<f64, Error>;
         let checks: [(&str, Option<f64>, Rule); 7] = [
             ("lambda", self.lambda, non_negative),
             ("tolerance", self.tolerance, positive),
@@ -255,10 +255,10 @@ impl SolverSettings {
             }
         }
         if let Some(v) = self.record_every {
-            at_least_one(v).map_err(|m| format!("record_every = {m}"))?;
+            at_least_one(v).map_err(|m| Error::input(format!("record_every = {m}")))?;
         }
         if let Some(v) = self.stall_window {
-            at_least_one(v).map_err(|m| format!("stall_window = {m}"))?;
+            at_least_one(v).map_err(|m| Error::input(format!("stall_window = {m}")))?;
         }
         if let Some(rates) = &self.rates {
             for (i, &r) in rates.iter().enumerate() {
@@ -278,12 +278,12 @@ pub fn command_options(
     label: &str,
     joints: usize,
     record_every: Option<u32>,
-) -> Result<SolveOptions, CliError> {
+) -> Result<SolveOptions, Error> {
     let restarts = flags.restarts.or(file.restarts);
     if let Some(n) = restarts.filter(|&n| n > flags.max_restarts) {
         let field =
             if flags.restarts.is_some() { "--restarts".to_owned() } else { format!("{label}: [solver].restarts") };
-        return Err(CliError::input(over_cap(
+        return Err(Error::input(over_cap(
             &format!("{field} {n}"),
             flags.max_restarts,
             "raise it with --max-restarts N",
@@ -296,7 +296,7 @@ pub fn command_options(
         } else {
             format!("{label}: [solver].max_iterations")
         };
-        return Err(CliError::input(over_cap(
+        return Err(Error::input(over_cap(
             &format!("{field} {n}"),
             flags.iteration_cap,
             "raise it with --iteration-cap N",
@@ -314,11 +314,11 @@ pub fn command_options(
                 format!("[solver].{field}")
             }
         });
-        CliError::input(if from_file.get() { format!("{label}: {message}") } else { message })
+        Error::input(if from_file.get() { format!("{label}: {message}") } else { message })
     })
 }
 
 /// A solver for options already checked by [`SolverSettings::to_options_for`].
-pub fn solver(options: SolveOptions) -> Result<Solver, CliError> {
-    Solver::new(options).map_err(|e| CliError::input(e.to_string()))
+pub fn solver(options: SolveOptions) -> Result<Solver, Error> {
+    Solver::new(options).map_err(|e| Error::input(e.to_string()))
 }

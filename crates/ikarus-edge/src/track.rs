@@ -11,6 +11,7 @@ use ikarus::{Goal, RigTask, SolveOptions};
 use serde::Serialize;
 
 use crate::arm::Arm;
+use crate::error::Error;
 use crate::report::{ByName, Extensions, degrees, points, relative_degrees};
 use crate::rig::Rig;
 
@@ -59,22 +60,22 @@ pub trait TrackBody {
         follower: &Self::Follower,
         path: &Path,
         options: &TrackOptions,
-    ) -> Result<Track, String>;
+    ) -> Result<Track, Error>;
 }
 
 impl TrackBody for Arm {
     type Follower = TrackMode;
 
     /// The bound in a problem is in the edge's degrees, `max_step_deg`.
-    fn follow(&self, start: &[f64], mode: &TrackMode, path: &Path, options: &TrackOptions) -> Result<Track, String> {
-        track::track(&self.chain, start, path, *mode, options).map_err(|e| match e {
+    fn follow(&self, start: &[f64], mode: &TrackMode, path: &Path, options: &TrackOptions) -> Result<Track, Error> {
+        track::track(&self.chain, start, path, *mode, options).map_err(|e| Error::input(match e {
             TrackError::OffPathCap { max_step, needed, cap } => format!(
                 "max_step_deg = {}: bridging the plan's gaps in steps this small needs {needed} poses off the path, more than the cap of {cap} ({} per sample); raise it or sample the path more finely",
                 Num(max_step.to_degrees()),
                 track::MAX_OFF_PATH_PER_SAMPLE
             ),
             other => other.to_string(),
-        })
+        }))
     }
 }
 
@@ -89,8 +90,9 @@ pub struct RigFollower {
 impl TrackBody for Rig {
     type Follower = RigFollower;
 
-    fn follow(&self, start: &[f64], f: &RigFollower, path: &Path, options: &TrackOptions) -> Result<Track, String> {
-        track::follow_rig(&self.skeleton, start, f.bone, &f.task, path, options).map_err(|e| e.to_string())
+    fn follow(&self, start: &[f64], f: &RigFollower, path: &Path, options: &TrackOptions) -> Result<Track, Error> {
+        track::follow_rig(&self.skeleton, start, f.bone, &f.task, path, options)
+            .map_err(|e| Error::input(e.to_string()))
     }
 }
 
@@ -111,7 +113,7 @@ pub fn track_options(solve: SolveOptions, max_step_deg: f64, bound_first: bool) 
 
 impl<B: TrackBody> TrackJob<'_, B> {
     /// Tracks the path; a problem is bad input, in the library's words.
-    pub fn run(&self) -> Result<Track, String> {
+    pub fn run(&self) -> Result<Track, Error> {
         self.body.follow(&self.start, &self.follower, &self.path, &self.options)
     }
 }
@@ -234,13 +236,15 @@ impl TrackSummaryJson {
 
 /// The index of the effector bone `name`, which must exist and have neither a goal nor a pin
 /// in `task`; a problem starts with `field` and the name (`--effector hand`).
-pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Result<usize, String> {
-    let bone = crate::goal::index(&rig.skeleton, name).map_err(|m| format!("{field} {name}: {m}"))?;
+pub fn effector_index(rig: &Rig, name: &str, task: &RigTask, field: &str) -> Result<usize, Error> {
+    let bone = crate::goal::index(&rig.skeleton, name).map_err(|m| Error::input(format!("{field} {name}: {m}")))?;
     if task.goals.iter().any(|g| g.bone == bone) {
-        return Err(format!("{field} {name}: the bone also has a goal; the effector's goal is the path"));
+        return Err(Error::input(format!("{field} {name}: the bone also has a goal; the effector's goal is the path")));
     }
     if task.pins.iter().any(|p| p.bone == bone) {
-        return Err(format!("{field} {name}: the bone is also pinned; a pinned tip cannot follow a path"));
+        return Err(Error::input(format!(
+            "{field} {name}: the bone is also pinned; a pinned tip cannot follow a path"
+        )));
     }
     Ok(bone)
 }

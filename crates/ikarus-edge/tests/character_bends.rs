@@ -118,5 +118,5 @@ fn a_bend_on_a_bone_that_is_not_a_two_bone_limbs_lower_bone_is_refused_naming_th
     let keys = json!({"fps": 10, "tracks": {"front-leg-target": [{"time": 0, "x": 0, "y": 0}]},
         "bends": {"toe": [{"time": 0, "bend": "cw"}]}});
     let e = keyed(&loaded, &KeysFile::parse(&keys.to_string()).unwrap(), None, 1000, "cap").unwrap_err();
-    assert!(e.starts_with("keys.bends.toe: no bone named \"toe\""), "{e}");
+    assert!(e.to_string().starts_with("keys.bends.toe: no bone named \"toe\""), "{e}");
 }

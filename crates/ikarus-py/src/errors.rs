@@ -7,8 +7,12 @@ use pyo3::prelude::*;
 use crate::edge::Problem;
 
 /// A refused request as Python sees it: a bad value (422) or malformed request (400) is a
-/// `ValueError` with the facade's one line; anything else (500) a `RuntimeError`.
+/// `ValueError` with the facade's one line; anything else (500) a `RuntimeError`, whose detail
+/// goes to stderr as the server logs it.
 pub(crate) fn problem(p: Problem) -> PyErr {
+    if let Some(detail) = p.internal_detail() {
+        eprintln!("ikarus: internal error: {detail}");
+    }
     if (400..500).contains(&p.status) { PyValueError::new_err(p.message) } else { PyRuntimeError::new_err(p.message) }
 }
 
@@ -31,7 +35,7 @@ fn without_position(message: &str) -> &str {
 /// made from the keywords), so that it names the keyword and the value.
 pub(crate) fn option_problem(p: Problem) -> PyErr {
     let message = without_position(p.message.strip_prefix("options: ").unwrap_or(&p.message)).to_owned();
-    problem(Problem { message, ..p })
+    problem(p.with_message(message))
 }
 
 /// A refused request of a body's method (a rig's `solve`, `animate`, `track`): a line about
@@ -43,7 +47,7 @@ pub(crate) fn request_problem(p: Problem) -> PyErr {
     match line.strip_prefix("options.").or_else(|| line.strip_prefix("options: ")) {
         Some(field) => {
             let message = without_position(field).to_owned();
-            problem(Problem { message, ..p })
+            problem(p.with_message(message))
         }
         None => problem(p),
     }
@@ -61,5 +65,5 @@ pub(crate) fn goal_problem(p: Problem, row: Option<usize>) -> PyErr {
             None => format!("goals[{i}]: {detail}"),
         },
     };
-    problem(Problem { message, ..p })
+    problem(p.with_message(message))
 }

@@ -39,8 +39,8 @@ pub struct Character {
 mod given;
 
 /// A refusal of `/api/pose`'s job (a 422 with its line).
-fn invalid(message: String) -> Problem {
-    Problem { status: 422, message }
+fn invalid(message: impl std::fmt::Display) -> Problem {
+    Problem { status: 422, message: message.to_string() }
 }
 
 #[wasm_bindgen]
@@ -142,7 +142,7 @@ impl Character {
         } else {
             c.pose(&request, &mut self.posed)
         };
-        posed.map_err(|e| invalid(e.to_string()))?;
+        posed.map_err(invalid)?;
         for (i, bone) in self.numbers.chunks_exact_mut(PER_BONE).enumerate() {
             let ([x, y], [tx, ty]) = (self.posed.origin(i), self.posed.tip(i));
             bone.copy_from_slice(&[x, y, self.posed.rotation(i).to_degrees(), tx, ty]);

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 
 use super::measure::Answer;
 use super::set::{PathSet, points};
@@ -50,11 +50,10 @@ pub fn parse(text: &str, set: &PathSet) -> Result<(String, Vec<Answer>), String>
 }
 
 /// Writes the path file of `set` into `dir`, runs `kdl_bench` on it and reads its answers.
-pub fn run(path: &Path, set: &PathSet, dir: &Path, comment: &str) -> Result<(String, Vec<Answer>), CliError> {
+pub fn run(path: &Path, set: &PathSet, dir: &Path, comment: &str) -> Result<(String, Vec<Answer>), Error> {
     let file = dir.join(format!("{}.paths", set.name()));
     let text = run_file(path, &file, &path_file(set, comment), &set.name())?;
-    parse(&text, set)
-        .map_err(|m| CliError::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
+    parse(&text, set).map_err(|m| Error::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ pub(super) mod set;
 mod table;
 
 use ikarus::track::TrackOptions;
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
@@ -26,7 +26,7 @@ use set::{Kind, PathSet};
 use table::PathsHeader;
 
 /// Runs `ikarus bench --paths`.
-pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), Error> {
     if let Some(path) = &args.kdl {
         super::kdl::check(path)?;
     }
@@ -50,7 +50,7 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     let mut kdl_answers: Vec<Vec<Answer>> = Vec::new();
     if let Some(path) = &args.kdl {
         let dir = tempfile::tempdir().map_err(|e| {
-            CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
+            Error::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
         })?;
         for s in &sets {
             if let Some(bar) = &progress {

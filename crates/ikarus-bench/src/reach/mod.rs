@@ -17,7 +17,7 @@ use std::io::IsTerminal;
 
 use ikarus::reach::Region;
 use ikarus::{Chain, SolveOptions};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::{BenchArgs, Sink};
@@ -30,7 +30,7 @@ use timing::GoalKind;
 const THREADS: usize = 2;
 
 /// Runs `ikarus bench --reach`.
-pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), Error> {
     let tolerance = SolveOptions::default().tolerance;
     let points = args.points;
     let goals = args.goals as usize;
@@ -38,7 +38,7 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .map_err(|e| CliError::runtime(format!("cannot start {threads} threads: {e}")))?;
+        .map_err(|e| Error::runtime(format!("cannot start {threads} threads: {e}")))?;
 
     let mut arms = Vec::new();
     for arm in ReachArm::ALL {

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use ikarus::reach::{BoundarySegment, Region};
 use ikarus::{Chain, JointLimits, Link, Point2};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 
 use crate::sets::{ArmName, SplitMix64, stable_hash};
 
@@ -55,18 +55,18 @@ impl ReachArm {
     }
 
     /// The arm's chain, with its limits.
-    pub fn chain(self) -> Result<Chain, CliError> {
+    pub fn chain(self) -> Result<Chain, Error> {
         match self {
             ReachArm::Seed => Ok(ArmName::Seed.load()?.chain),
             ReachArm::Seven => Ok(ArmName::Seven.load()?.chain),
             ReachArm::Eight => {
                 let seven = ArmName::Seven.load()?.chain;
                 let m = EIGHTH_LIMIT_DEG.to_radians();
-                let limits = JointLimits::new(-m, m).map_err(|e| CliError::runtime(format!("eight arm: {e}")))?;
+                let limits = JointLimits::new(-m, m).map_err(|e| Error::runtime(format!("eight arm: {e}")))?;
                 let mut links = seven.links();
                 links.push(Link::new(EIGHTH_LENGTH, 0.0).with_limits(limits));
                 let b = seven.base();
-                Chain::new([b.x, b.y], &links).map_err(|e| CliError::runtime(format!("eight arm: {e}")))
+                Chain::new([b.x, b.y], &links).map_err(|e| Error::runtime(format!("eight arm: {e}")))
             }
         }
     }

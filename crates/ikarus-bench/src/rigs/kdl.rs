@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use ikarus::SolveOptions;
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 
 use super::judge::Judge;
 use super::rows::{RigRow, RigTally};
@@ -158,11 +158,11 @@ fn shorten(s: &str) -> String {
 
 /// Writes the rig goal file of `set` into `dir`, runs `kdl_bench` on it and parses its output.
 /// Any failure is one line naming `--kdl` and the path (exit 1).
-pub fn run(path: &Path, set: &RigSet, dir: &Path, comment: &str) -> Result<KdlRigRun, CliError> {
+pub fn run(path: &Path, set: &RigSet, dir: &Path, comment: &str) -> Result<KdlRigRun, Error> {
     let file = dir.join(format!("{}.rig-goals", set.name()));
     let text = run_file(path, &file, &rig_file(set, comment), set.name())?;
     parse_output(&text, set)
-        .map_err(|m| CliError::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
+        .map_err(|m| Error::runtime(format!("--kdl {}: set {}: output {m}", path.display(), set.name())))
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ pub(super) mod set;
 mod table;
 
 use ikarus::SolveOptions;
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use ikarus_edge::input::io_reason;
 use indicatif::ProgressBar;
 
@@ -27,7 +27,7 @@ use set::RigSet;
 use table::{RigsHeader, SetInfo};
 
 /// Runs `ikarus bench --rigs`.
-pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
+pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), Error> {
     if let Some(path) = &args.kdl {
         super::kdl::check(path)?;
     }
@@ -41,7 +41,7 @@ pub fn run(args: &BenchArgs, sink: &dyn Sink) -> Result<(), CliError> {
     let mut kdl_rows: Vec<RigRow> = Vec::new();
     if let Some(path) = &args.kdl {
         let dir = tempfile::tempdir().map_err(|e| {
-            CliError::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
+            Error::runtime(format!("--kdl {}: cannot make a temporary directory: {}", path.display(), io_reason(&e)))
         })?;
         let comment = format!(
             "written by ikarus {} bench --rigs --seed {} --goals {goals}",

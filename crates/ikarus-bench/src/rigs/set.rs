@@ -10,7 +10,7 @@ use std::f64::consts::{PI, TAU};
 
 use clap::ValueEnum;
 use ikarus::{Goal, Pin, Point2, RigGoal, RigTask, Skeleton};
-use ikarus_edge::error::CliError;
+use ikarus_edge::error::Error;
 use ikarus_edge::rig::Rig;
 
 use crate::sets::{SplitMix64, stable_hash};
@@ -56,7 +56,7 @@ impl RigSetName {
     }
 
     /// Loads the embedded rig.
-    pub fn load(self) -> Result<Rig, CliError> {
+    pub fn load(self) -> Result<Rig, Error> {
         Rig::parse(self.text(), &format!("built-in rig {}", self.rig()))
     }
 
@@ -131,7 +131,7 @@ pub fn forward(skeleton: &Skeleton, angles: &[f64]) -> (Vec<Point2<f64>>, Vec<f6
 }
 
 /// Generates `count` target sets of `set`.
-pub fn generate(set: RigSetName, count: usize, seed: u64) -> Result<RigSet, CliError> {
+pub fn generate(set: RigSetName, count: usize, seed: u64) -> Result<RigSet, Error> {
     let skeleton = set.load()?.skeleton;
     Ok(generate_on(set, skeleton, count, seed))
 }

@@ -11,7 +11,7 @@ use ikarus::{Goal, RigTask};
 use super::{MotionArgs, MotionRun, ViaArg};
 use crate::arm::Arm;
 use crate::columns::BodyColumns;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, RigTaskArgs, Target};
 use crate::motion::MotionBody;
 use crate::picture::{Drawing, MotionLayers, motion_drawing};
@@ -23,7 +23,7 @@ pub trait Animated: MotionBody + BodyColumns + Sized {
     /// The first of the animation's points in the CSV: an arm's base (0), a rig's first tip (1).
     const FIRST_POINT: usize;
     /// The stops the flags ask for.
-    fn stops(&self, args: &MotionArgs) -> Result<Vec<Self::Stop>, CliError>;
+    fn stops(&self, args: &MotionArgs) -> Result<Vec<Self::Stop>, Error>;
     /// The animation of the library's motion.
     fn animation(motion: &Self::Solved) -> &Animation;
     /// Reports each unreached stop on stderr.
@@ -47,7 +47,7 @@ pub trait Animated: MotionBody + BodyColumns + Sized {
 impl Animated for Arm {
     const FIRST_POINT: usize = 0;
 
-    fn stops(&self, args: &MotionArgs) -> Result<Vec<Goal>, CliError> {
+    fn stops(&self, args: &MotionArgs) -> Result<Vec<Goal>, Error> {
         let goal = arm_goal(args)?;
         let via = args
             .via
@@ -55,11 +55,11 @@ impl Animated for Arm {
             .map(|v| match v {
                 ViaArg::Point(p) => Ok(*p),
                 ViaArg::Set(_) => {
-                    Err(CliError::input(format!("{}: a goal set on named bones needs --rig FILE", v.text())))
+                    Err(Error::input(format!("{}: a goal set on named bones needs --rig FILE", v.text())))
                 }
             })
             .collect::<Result<Vec<_>, _>>()?;
-        crate::motion::goals(&via, goal).map_err(|(i, e)| CliError::input(format!("--via #{}: {e}", i + 1)))
+        crate::motion::goals(&via, goal).map_err(|(i, e)| Error::input(format!("--via #{}: {e}", i + 1)))
     }
 
     fn animation(motion: &Self::Solved) -> &Animation {
@@ -125,13 +125,13 @@ impl Animated for Arm {
 }
 
 /// The one goal of an arm: `--goal X,Y` given once (with `--goal-angle`).
-fn arm_goal(args: &MotionArgs) -> Result<Goal, CliError> {
+fn arm_goal(args: &MotionArgs) -> Result<Goal, Error> {
     match &args.goal[..] {
-        [GoalArg::Point([x, y])] => crate::goals::make_goal(*x, *y, args.goal_angle).map_err(CliError::input),
+        [GoalArg::Point([x, y])] => crate::goals::make_goal(*x, *y, args.goal_angle),
         [named @ GoalArg::Named { .. }] => {
-            Err(CliError::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
+            Err(Error::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
         }
-        goals => Err(CliError::input(format!(
+        goals => Err(Error::input(format!(
             "--goal: an arm has one tip, so one --goal X,Y, got {} (points on the way are --via X,Y; several goals need --rig FILE)",
             goals.len()
         ))),
@@ -143,13 +143,13 @@ impl Animated for Rig {
 
     /// Each `--via` set (with the pins and the mix), then the `--goal` set (with every per-goal
     /// control).
-    fn stops(&self, args: &MotionArgs) -> Result<Vec<RigTask>, CliError> {
+    fn stops(&self, args: &MotionArgs) -> Result<Vec<RigTask>, Error> {
         let plain =
             RigTaskArgs { pin: args.body.rig_task.pin.clone(), mix: args.body.rig_task.mix, ..RigTaskArgs::default() };
         let mut tasks = Vec::with_capacity(args.via.len() + 1);
         for via in &args.via {
             let ViaArg::Set(goals) = via else {
-                return Err(CliError::input(format!(
+                return Err(Error::input(format!(
                     "{}: a rig's via is a goal set on named bones: --via NAME=X,Y[,DEG][;NAME=X,Y…]",
                     via.text()
                 )));

@@ -11,10 +11,10 @@ use ikarus_edge::keys::KeysFile;
 
 use super::AnimateArgs;
 use crate::character_motion::{CharacterFile, Output, refuse_foreign, write};
-use crate::error::CliError;
+use crate::error::Error;
 
 /// The motion of the character `file` the flags ask for, written.
-pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
+pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), Error> {
     let m = &args.motion;
     let mut foreign = vec![
         ("--goal", !m.goal.is_empty()),
@@ -31,11 +31,11 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let written = crate::character_motion::written(args.format)?;
     if let Some(keys) = &m.keys {
         if !args.target.is_empty() {
-            return Err(CliError::input("--target: not with --keys (the keys give the targets)"));
+            return Err(Error::input("--target: not with --keys (the keys give the targets)"));
         }
         let label = format!("--keys {}", keys.display());
         let text = crate::input::read_text(keys, &label)?;
-        let keys = KeysFile::parse(&text).map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let keys = KeysFile::parse(&text).map_err(|e| e.from_source(label.clone()))?;
         let (course, fps) = ikarus_edge::character::motion::keyed(
             &file.loaded,
             &keys,
@@ -43,9 +43,9 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
             ikarus::motion::MAX_FRAMES,
             "the most frames of a motion",
         )
-        .map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        .map_err(|e| Error::input(format!("{label}: {e}")))?;
         let mut motion =
-            Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+            Motion::new(&file.loaded, course, fps).map_err(|e| Error::input(format!("{}: {e}", file.label)))?;
         motion.ik = args.ik.choice(&file.loaded.character)?;
         motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
         motion.skin.clone_from(&args.art.skin);
@@ -60,20 +60,20 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
         return write(file, &motion, &out);
     }
     if args.target.is_empty() {
-        return Err(CliError::input(
+        return Err(Error::input(
             "--target: give at least one BONE=X,Y with a character file (the bone's world origin at the end)",
         ));
     }
     let duration = m.duration.unwrap_or(DEFAULT_DURATION);
     if duration <= 0.0 {
-        return Err(CliError::input(format!("--duration {duration}: must be positive")));
+        return Err(Error::input(format!("--duration {duration}: must be positive")));
     }
     let fps = m.fps.unwrap_or(DEFAULT_FPS);
     if fps <= 0.0 {
-        return Err(CliError::input(format!("--fps {fps}: must be positive")));
+        return Err(Error::input(format!("--fps {fps}: must be positive")));
     }
     if let Err(n) = frames_within(duration, fps, MAX_FRAMES) {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "--duration {}, --fps {}: {} frames, more than the cap of {MAX_FRAMES}",
             count_text(duration),
             count_text(fps),
@@ -83,7 +83,7 @@ pub fn run(args: &AnimateArgs, file: &CharacterFile) -> Result<(), CliError> {
     let ease = m.ease.resolve(EaseKind::Sine)?;
     let course = Course::Eased { targets: args.target.clone(), ease, duration };
     let mut motion =
-        Motion::new(&file.loaded, course, fps).map_err(|e| CliError::input(format!("{}: {e}", file.label)))?;
+        Motion::new(&file.loaded, course, fps).map_err(|e| Error::input(format!("{}: {e}", file.label)))?;
     motion.ik = args.ik.choice(&file.loaded.character)?;
     motion.physics = crate::pose::PhysicsSwitch::motion(args.physics);
     motion.skin.clone_from(&args.art.skin);

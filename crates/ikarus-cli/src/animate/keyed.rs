@@ -11,7 +11,7 @@ use ikarus_edge::keys::motion::KeyedMotion;
 
 use super::{AnimateFormat, MotionArgs, ShownMotion};
 use crate::columns::BodyColumns;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::picture::Drawing;
 use crate::rig::Rig;
 
@@ -26,20 +26,19 @@ pub struct KeyedRun {
 impl KeyedRun {
     /// The motion of the rig of `--rig` (or the one-branch rig of `--arm` or the built-in
     /// arm: bones `link0`, `link1`, …) keyed by the file `keys`.
-    pub fn of(args: &MotionArgs, keys: &Path) -> Result<Self, CliError> {
+    pub fn of(args: &MotionArgs, keys: &Path) -> Result<Self, Error> {
         let rig = args.body.load_as_rig()?;
         let label = format!("--keys {}", keys.display());
         let text = crate::input::read_text(keys, &label)?;
-        let file = KeysFile::parse(&text).map_err(|m| CliError::input(format!("{label}: {m}")))?;
+        let file = KeysFile::parse(&text).map_err(|e| e.from_source(label.clone()))?;
         let s = &rig.skeleton;
         let plan = file
             .check(s, ikarus::motion::MAX_FRAMES, "the most frames of a motion")
-            .map_err(|m| CliError::input(format!("{label}: {m}")))?;
+            .map_err(|m| Error::input(format!("{label}: {m}")))?;
         let options = rig.solve_options(&args.body.solver.settings(), None)?;
         let limits = options.limits != ikarus::LimitMode::Ignore;
-        let motion = plan
-            .run(&rig, s.start_angles(), options, &|| Ok(()))
-            .map_err(|m| CliError::input(format!("{label}: {m}")))?;
+        let motion =
+            plan.run(&rig, s.start_angles(), options, &|| Ok(())).map_err(|m| Error::input(format!("{label}: {m}")))?;
         let names = plan.track_names(s);
         let unreached = motion.frames.len() - motion.reached();
         if unreached > 0 {

@@ -34,6 +34,9 @@ impl From<ApiError> for Refusal {
 
 impl IntoResponse for Refusal {
     fn into_response(self) -> Response {
+        if let Some(detail) = self.0.internal_detail() {
+            eprintln!("ikarus: internal error: {detail}");
+        }
         let status = StatusCode::from_u16(self.0.status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
         (status, Json(serde_json::json!({ "error": self.0.one_line() }))).into_response()
     }
@@ -116,9 +119,8 @@ pub fn essence(headers: &HeaderMap) -> String {
 
 /// 415 unless the request's `Content-Type` is `T` (parameters such as `charset` aside).
 fn check_content_type<T: MediaType>(headers: &HeaderMap) -> Result<(), ApiError> {
-    let refused = |what: String| ApiError {
-        status: status::UNSUPPORTED_MEDIA_TYPE,
-        message: format!("Content-Type{what}: expected {}", T::NAME),
+    let refused = |what: String| {
+        ApiError::new(status::UNSUPPORTED_MEDIA_TYPE, format!("Content-Type{what}: expected {}", T::NAME))
     };
     let Some(value) = headers.get(header::CONTENT_TYPE) else { return Err(refused(": missing".to_owned())) };
     let text = String::from_utf8_lossy(value.as_bytes());
@@ -167,23 +169,23 @@ impl<T: MediaType> ApiBody<T> {
             .map_or(max_body_bytes, |n| n.min(max_body_bytes));
         let share = u32::try_from(declared.max(1)).unwrap_or(u32::MAX);
         let Ok(memory) = std::sync::Arc::clone(&state.bodies).try_acquire_many_owned(share) else {
-            return Err(ApiError {
-                status: status::SERVICE_UNAVAILABLE,
-                message: format!(
+            return Err(ApiError::new(
+                status::SERVICE_UNAVAILABLE,
+                format!(
                     "server busy: receiving too many request bodies at once (at most {} MB); try again later",
                     super::BODY_MEMORY >> 20
                 ),
-            });
+            ));
         };
         // A client trickling its body holds a connection and a buffer: bounded in time.
         let timeout = state.limits.body_timeout;
         match tokio::time::timeout(timeout, Bytes::from_request(req, state)).await {
             Ok(Ok(bytes)) => Ok(Self { bytes, _memory: memory, _type: PhantomData }),
             Ok(Err(rejection)) => Err(rejected(&rejection.into(), (max_body_bytes, flag))),
-            Err(_) => Err(ApiError {
-                status: status::REQUEST_TIMEOUT,
-                message: format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
-            }),
+            Err(_) => Err(ApiError::new(
+                status::REQUEST_TIMEOUT,
+                format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
+            )),
         }
     }
 }
@@ -200,16 +202,15 @@ fn rejected(rejection: &JsonRejection, (max_body_bytes, flag): (usize, &str)) ->
     match rejection {
         JsonRejection::JsonDataError(_) => ApiError::invalid(format!("request body: {}", detail())),
         JsonRejection::JsonSyntaxError(_) => {
-            ApiError { status: status::BAD_REQUEST, message: format!("request body: malformed JSON: {}", detail()) }
+            ApiError::new(status::BAD_REQUEST, format!("request body: malformed JSON: {}", detail()))
         }
-        JsonRejection::MissingJsonContentType(_) => ApiError {
-            status: status::UNSUPPORTED_MEDIA_TYPE,
-            message: format!("Content-Type: expected {}", JsonType::NAME),
-        },
-        other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError {
-            status: status::PAYLOAD_TOO_LARGE,
-            message: format!("request body: larger than the cap of {max_body_bytes} bytes ({flag})"),
-        },
-        other => ApiError { status: other.status().as_u16(), message: format!("request body: {}", other.body_text()) },
+        JsonRejection::MissingJsonContentType(_) => {
+            ApiError::new(status::UNSUPPORTED_MEDIA_TYPE, format!("Content-Type: expected {}", JsonType::NAME))
+        }
+        other if other.status() == StatusCode::PAYLOAD_TOO_LARGE => ApiError::new(
+            status::PAYLOAD_TOO_LARGE,
+            format!("request body: larger than the cap of {max_body_bytes} bytes ({flag})"),
+        ),
+        other => ApiError::new(other.status().as_u16(), format!("request body: {}", other.body_text())),
     }
 }

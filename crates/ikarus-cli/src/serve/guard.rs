@@ -58,12 +58,9 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
     if let Some(host) = req.headers().get(header::HOST) {
         let host = String::from_utf8_lossy(host.as_bytes()).into_owned();
         if !guard.any_host && !guard.host_allowed(&host) {
-            return Refusal(ApiError {
-                status: crate::api::status::FORBIDDEN,
-                message: format!(
+            return Refusal(ApiError::new(crate::api::status::FORBIDDEN, format!(
                     "Host: {host:?} is not a loopback name; this server answers only localhost, 127.0.0.1 and [::1] (add names with --allow-host)"
-                ),
-            })
+                )))
             .into_response();
         }
     }
@@ -79,12 +76,10 @@ pub async fn check(State(guard): State<Arc<Guard>>, req: Request, next: Next) ->
                 let drain = axum::body::to_bytes(req.into_body(), DRAIN_BYTES as usize);
                 let _ = tokio::time::timeout(DRAIN_TIME, drain).await;
             }
-            return Refusal(ApiError {
-                status: crate::api::status::PAYLOAD_TOO_LARGE,
-                message: format!(
-                    "request body: Content-Length {length} is larger than the cap of {cap} bytes ({flag})"
-                ),
-            })
+            return Refusal(ApiError::new(
+                crate::api::status::PAYLOAD_TOO_LARGE,
+                format!("request body: Content-Length {length} is larger than the cap of {cap} bytes ({flag})"),
+            ))
             .into_response();
         }
     }

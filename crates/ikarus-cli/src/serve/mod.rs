@@ -25,7 +25,7 @@ use clap::Args;
 
 pub use crate::api::Limits;
 use crate::api::{Endpoint, Intake, status};
-use crate::error::CliError;
+use crate::error::Error;
 use errors::{ApiError, JsonBody, Refusal};
 use handlers::{at_once, atlas_file, compute, file_text, rig_file};
 
@@ -168,7 +168,7 @@ pub fn is_file_path(path: &str) -> bool {
 /// Bytes all the request bodies being received may hold at once.
 pub const BODY_MEMORY: usize = 64 << 20;
 
-pub fn run(args: &ServeArgs) -> Result<(), CliError> {
+pub fn run(args: &ServeArgs) -> Result<(), Error> {
     let limits = Limits {
         max_body_bytes: usize::try_from(args.max_body_bytes).unwrap_or(usize::MAX),
         max_links: usize::try_from(args.max_links).unwrap_or(usize::MAX),
@@ -202,7 +202,7 @@ pub fn run(args: &ServeArgs) -> Result<(), CliError> {
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
-        .map_err(|e| CliError::runtime(format!("cannot start the server's runtime: {e}")))?;
+        .map_err(|e| Error::runtime(format!("cannot start the server's runtime: {e}")))?;
     let result = runtime.block_on(serve(SocketAddr::new(args.host, args.port), limits, settings));
     // Computations still running were interrupted and answered; do not wait for them (a
     // blocking task is not cancellable), the process ends here.
@@ -218,7 +218,7 @@ struct Settings {
     max_file_bytes: usize,
 }
 
-async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(), CliError> {
+async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(), Error> {
     // `::ffff:127.0.0.1` is loopback too.
     let loopback = addr.ip().to_canonical().is_loopback();
     if !loopback {
@@ -228,9 +228,9 @@ async fn serve(addr: SocketAddr, limits: Limits, settings: Settings) -> Result<(
         );
     }
     let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| {
-        CliError::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::input::io_reason(&e)))
+        Error::runtime(format!("--port {}: cannot listen on {addr}: {}", addr.port(), crate::input::io_reason(&e)))
     })?;
-    let bound = listener.local_addr().map_err(|e| CliError::runtime(format!("cannot read the bound address: {e}")))?;
+    let bound = listener.local_addr().map_err(|e| Error::runtime(format!("cannot read the bound address: {e}")))?;
     // The Ctrl-C handler is installed before the address is printed, so that a Ctrl-C sent
     // as soon as the server says it listens stops it cleanly.
     let mut signals = Signals::install()?;
@@ -273,11 +273,11 @@ struct Signals {
 }
 
 impl Signals {
-    fn install() -> Result<Self, CliError> {
+    fn install() -> Result<Self, Error> {
         #[cfg(unix)]
         {
             use tokio::signal::unix::{SignalKind, signal};
-            let failed = |e: std::io::Error| CliError::runtime(format!("cannot install the Ctrl-C handler: {e}"));
+            let failed = |e: std::io::Error| Error::runtime(format!("cannot install the Ctrl-C handler: {e}"));
             Ok(Self {
                 interrupt: signal(SignalKind::interrupt()).map_err(failed)?,
                 terminate: signal(SignalKind::terminate()).map_err(failed)?,
@@ -345,5 +345,5 @@ async fn asset(Path(name): Path<String>, method: Method, uri: Uri) -> Result<imp
 }
 
 async fn not_found(method: Method, uri: Uri) -> Refusal {
-    Refusal(ApiError { status: status::NOT_FOUND, message: format!("{method} {}: no such endpoint", uri.path()) })
+    Refusal(ApiError::new(status::NOT_FOUND, format!("{method} {}: no such endpoint", uri.path())))
 }

@@ -220,39 +220,39 @@ impl Pool {
             Lane::Quick => ("computations", self.config.workers, "--workers"),
             Lane::Long => ("long computations", self.config.long_workers, "--long-workers"),
         };
-        ApiError {
-            status: crate::api::status::SERVICE_UNAVAILABLE,
-            message: format!(
+        ApiError::new(
+            crate::api::status::SERVICE_UNAVAILABLE,
+            format!(
                 "server busy: {running} {what} running and {} waiting ({flag}, --max-queued); try again later",
                 self.config.max_queued
             ),
-        }
+        )
     }
 
     fn too_many_long(&self) -> ApiError {
-        ApiError {
-            status: crate::api::status::SERVICE_UNAVAILABLE,
-            message: format!(
+        ApiError::new(
+            crate::api::status::SERVICE_UNAVAILABLE,
+            format!(
                 "server busy: {} long computations already running (--long-workers); this one was stopped after {} ms, try again later or ask for less work",
                 self.config.long_workers,
                 LONG_AFTER.as_millis()
             ),
-        }
+        )
     }
 
     fn over_budget(&self) -> ApiError {
-        ApiError {
-            status: crate::api::status::SERVICE_UNAVAILABLE,
-            message: format!(
+        ApiError::new(
+            crate::api::status::SERVICE_UNAVAILABLE,
+            format!(
                 "request stopped: it took longer than the budget of {} ms (--request-budget-ms); ask for less work (fewer iterations, restarts, samples, frames)",
                 self.config.budget.as_millis()
             ),
-        }
+        )
     }
 }
 
 fn stopping_error() -> ApiError {
-    ApiError { status: crate::api::status::SERVICE_UNAVAILABLE, message: "server stopping".to_owned() }
+    ApiError::new(crate::api::status::SERVICE_UNAVAILABLE, "server stopping".to_owned())
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use super::columns::goal_columns;
 use super::write::{angle_columns, write_pose};
 use crate::arm::Arm;
 use crate::batch::{BLOCK_GOALS, Batch, Rows, TASK_GOALS, Tally, time_alone};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::Target;
 use crate::goals::{self, Goals, make_goal};
 use crate::options::parse_finite;
@@ -21,21 +21,21 @@ use crate::output;
 use crate::rig::Rig;
 use crate::settings::solver;
 
-pub(super) fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), CliError> {
+pub(super) fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), Error> {
     // The threads first, to parse the goals on; then the errors in the order of the work: the
     // goals, the options, the summary file.
     let mut batch = Batch::threads(args.threads)?;
     let label = format!("batch file {}", path.display());
     let pieces = batch.install(|| goals::read_pieces(path, &label))?;
     if pieces.iter().all(|p| p.goals.is_empty()) {
-        return Err(CliError::input(format!("{label}: no goals (expected a header and one goal per row)")));
+        return Err(Error::input(format!("{label}: no goals (expected a header and one goal per row)")));
     }
     let solver = solver(arm.options(&args.body.solver.settings(), None)?)?;
     batch.summary_json(args.summary_json.as_deref())?;
     let chain = &arm.chain;
     let start = chain.start_pose().angles();
     // What can fail in a solve (the start pose, the options) fails here, before any row.
-    solver.clone().solve_batch(chain, start, &[], &mut Vec::new()).map_err(|e| CliError::input(e.to_string()))?;
+    solver.clone().solve_batch(chain, start, &[], &mut Vec::new()).map_err(|e| Error::input(e.to_string()))?;
     let thetas: Vec<String> = (1..=chain.len()).map(|i| format!("theta{i}_deg")).collect();
     let header = format!("x,y,status,error,iterations,{}\n", thetas.join(","));
     let stdout = std::io::stdout();
@@ -61,7 +61,7 @@ pub(super) fn run_batch(args: &SolveArgs, arm: &Arm, path: &Path) -> Result<(), 
     let goals: Vec<&Goal> = pieces.iter().flat_map(|p| &p.goals).collect();
     let (mut alone, mut outcome) = (solver.clone(), Outcome::default());
     let timed = time_alone(goals.len(), |i| alone.solve_into(chain, start, goals[i], &mut outcome));
-    let tally = Tally { alone: timed.map_err(|e| CliError::input(e.to_string()))?, ..tally };
+    let tally = Tally { alone: timed.map_err(|e| Error::input(e.to_string()))?, ..tally };
     batch.finish(tally, solver.options().method.name())
 }
 
@@ -87,15 +87,15 @@ fn row(buf: &mut Vec<u8>, x: f64, y: f64, o: &Outcome) {
 // A rig's batch (`--rig FILE --batch GOALS.csv`): one target set per row, each solved from the
 // rig's start pose (the `--pin`s and the per-goal flags apply to every row); one CSV row per set
 // on stdout, the batch summary on stderr (shared with an arm's batch, [`crate::batch`]).
-pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), CliError> {
+pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<(), Error> {
     let label = format!("batch file {}", path.display());
     let bytes = crate::input::read(path, &label)?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(bytes.as_slice());
-    let header = reader.headers().map_err(|e| CliError::input(format!("{label}: {e}")))?.clone();
+    let header = reader.headers().map_err(|e| Error::input(format!("{label}: {e}")))?.clone();
     let cells: Vec<&str> = header.iter().collect();
     let columns = goal_columns(rig, &cells, &label)?;
     if columns.is_empty() {
-        return Err(CliError::input(format!(
+        return Err(Error::input(format!(
             "{label}: line 1: no goal columns (expected NAME.x,NAME.y for each goal bone)"
         )));
     }
@@ -115,7 +115,7 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
 
     // Each row's values, checked as targets here (so that a bad one is named by its line); each
     // worker fills its own copy of the task with a row's targets.
-    let targets = |task: &mut RigTask, values: &[f64]| -> Result<(), (String, String)> {
+    let targets = |task: &mut RigTask, values: &[f64]| -> Result<(), (String, Error)> {
         for (goal, c) in task.goals.iter_mut().zip(&columns) {
             goal.goal =
                 make_goal(values[c.x], values[c.y], c.angle.map(|a| values[a])).map_err(|m| (c.bone.clone(), m))?;
@@ -125,20 +125,18 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let mut check = template.clone();
     for record in reader.records() {
-        let record = record.map_err(|e| CliError::input(format!("{label}: {e}")))?;
+        let record = record.map_err(|e| Error::input(format!("{label}: {e}")))?;
         let line = record.position().map_or(0, csv::Position::line);
         let values = (0..cells.len())
             .map(|i| {
-                parse_finite(&record[i])
-                    .map_err(|m| CliError::input(format!("{label}: line {line}: {}: {m}", cells[i])))
+                parse_finite(&record[i]).map_err(|m| Error::input(format!("{label}: line {line}: {}: {m}", cells[i])))
             })
             .collect::<Result<Vec<f64>, _>>()?;
-        targets(&mut check, &values)
-            .map_err(|(bone, m)| CliError::input(format!("{label}: line {line}: {bone}: {m}")))?;
+        targets(&mut check, &values).map_err(|(bone, m)| Error::input(format!("{label}: line {line}: {bone}: {m}")))?;
         rows.push(values);
     }
     if rows.is_empty() {
-        return Err(CliError::input(format!("{label}: no target sets (expected a header and one target set per row)")));
+        return Err(Error::input(format!("{label}: no target sets (expected a header and one target set per row)")));
     }
 
     let solver = solver(rig.options(&args.body.solver.settings(), None)?)?;
@@ -162,7 +160,7 @@ pub(super) fn run_rig_batch(args: &SolveArgs, rig: &Rig, path: &Path) -> Result<
             targets(&mut task, &rows[i]).map_err(|(bone, m)| format!("{bone}: {m}"))?;
             alone.solve_rig_into(skeleton, skeleton.start_angles(), &task, &mut out).map_err(|e| e.to_string())
         })
-        .map_err(CliError::input)?
+        .map_err(Error::input)?
     };
     let tally = Tally { alone, ..tally };
     output::stdout(|w| {

@@ -6,13 +6,13 @@ use ikarus_edge::pose::{IkChoice, PoseAsk, add_goals, pose};
 
 use super::{Format, SolveArgs};
 use crate::character_motion::{CharacterFile, refuse_foreign};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, Target};
 use crate::output;
 use crate::picture::{PictureFormat, report_format};
 use crate::pose::{IkArgs, IkRules, PoseFormat, render};
 
-pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), CliError> {
+pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), Error> {
     let mut foreign = vec![
         ("--goal-angle", args.goal_angle.is_some()),
         ("--batch", args.batch.is_some()),
@@ -24,7 +24,7 @@ pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), CliError
     foreign.extend(args.body.solver.given());
     refuse_foreign(&foreign)?;
     if args.format == Some(Format::Csv) {
-        return Err(CliError::input("--format csv: a character's solve is written as json or text"));
+        return Err(Error::input("--format csv: a character's solve is written as json or text"));
     }
     let c = &file.loaded.character;
     let targets = args
@@ -35,7 +35,7 @@ pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), CliError
                 Ok(Target { bone: bone.clone(), x: *x, y: *y, angle_deg: *angle_deg, source: g.text() })
             }
             GoalArg::Point(_) => {
-                Err(CliError::input(format!("{}: a character's goal names its bone: --goal BONE=X,Y[,DEG]", g.text())))
+                Err(Error::input(format!("{}: a character's goal names its bone: --goal BONE=X,Y[,DEG]", g.text())))
             }
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -44,10 +44,10 @@ pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), CliError
     let mut counts = vec![None; targets.len()];
     for (name, n) in &args.bones {
         let i = targets.iter().position(|t| t.bone == *name).ok_or_else(|| {
-            CliError::input(format!("--bones {name}={n}: no goal on bone {name:?} (give it a --goal NAME=X,Y)"))
+            Error::input(format!("--bones {name}={n}: no goal on bone {name:?} (give it a --goal NAME=X,Y)"))
         })?;
         if counts[i].replace(*n).is_some() {
-            return Err(CliError::input(format!("--bones {name}={n}: --bones given twice for bone {name:?}")));
+            return Err(Error::input(format!("--bones {name}={n}: --bones given twice for bone {name:?}")));
         }
     }
     let IkChoice::Ikarus(mut rules) = (IkArgs { ik: IkRules::Ikarus, ik_file: args.ik_file.clone() }).choice(c)? else {
@@ -55,10 +55,10 @@ pub(super) fn run(args: &SolveArgs, file: &CharacterFile) -> Result<(), CliError
     };
     let field = |f| task.field(&targets, f);
     add_goals(&mut rules, c, &goals, &counts, &task.pin, &field)
-        .map_err(|m| CliError::input(format!("{}: {m}", file.label)))?;
+        .map_err(|m| Error::input(format!("{}: {m}", file.label)))?;
     let picture = args.picture.prepare()?;
     let ask = PoseAsk { ik: IkChoice::Ikarus(rules), ..PoseAsk::default() };
-    let report = pose(&file.loaded, &ask).map_err(|m| CliError::input(format!("{}: {m}", file.label)))?;
+    let report = pose(&file.loaded, &ask).map_err(|m| Error::input(format!("{}: {m}", file.label)))?;
     let caption = || {
         let name = args.body.rig.as_deref().and_then(|p| p.file_name()).map(|f| f.to_string_lossy().into_owned());
         let n = targets.len();

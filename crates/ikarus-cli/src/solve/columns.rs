@@ -2,7 +2,7 @@
 //! optionally `NAME.angle_deg`, per goal bone, in any order. A header is split at its last `.`,
 //! since bone names may hold dots (`arm.l.x` is the x of bone `arm.l`).
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal;
 use crate::rig::Rig;
 
@@ -36,17 +36,17 @@ fn split(cell: &str) -> Option<(&str, Part)> {
 }
 
 /// The goals a header names, in the order of their first column; problems name the column.
-pub(super) fn goal_columns(rig: &Rig, cells: &[&str], label: &str) -> Result<Vec<GoalColumns>, CliError> {
+pub(super) fn goal_columns(rig: &Rig, cells: &[&str], label: &str) -> Result<Vec<GoalColumns>, Error> {
     let column = |i: usize| format!("{label}: line 1: column {} `{}`", i + 1, cells[i]);
     let mut found: Vec<(String, [Option<usize>; 3])> = Vec::new();
     for (i, cell) in cells.iter().enumerate() {
         let Some((name, part)) = split(cell) else {
-            return Err(CliError::input(format!(
+            return Err(Error::input(format!(
                 "{}: expected NAME.x, NAME.y or NAME.angle_deg (NAME a bone of the rig)",
                 column(i)
             )));
         };
-        goal::index(&rig.skeleton, name).map_err(|m| CliError::input(format!("{}: {m}", column(i))))?;
+        goal::index(&rig.skeleton, name).map_err(|m| Error::input(format!("{}: {m}", column(i))))?;
         let k = match found.iter().position(|(n, _)| n == name) {
             Some(k) => k,
             None => {
@@ -56,7 +56,7 @@ pub(super) fn goal_columns(rig: &Rig, cells: &[&str], label: &str) -> Result<Vec
         };
         let slot = &mut found[k].1[part as usize];
         if let Some(first) = *slot {
-            return Err(CliError::input(format!("{}: the same as column {}", column(i), first + 1)));
+            return Err(Error::input(format!("{}: the same as column {}", column(i), first + 1)));
         }
         *slot = Some(i);
     }
@@ -67,7 +67,7 @@ pub(super) fn goal_columns(rig: &Rig, cells: &[&str], label: &str) -> Result<Vec
             _ => {
                 let given = [x, y, angle].into_iter().flatten().min().expect("a goal is found by one of its columns");
                 let missing = if x.is_none() { "x" } else { "y" };
-                Err(CliError::input(format!("{}: no `{bone}.{missing}` column", column(given))))
+                Err(Error::input(format!("{}: no `{bone}.{missing}` column", column(given))))
             }
         })
         .collect()

@@ -12,7 +12,7 @@ use clap::{Args, ValueEnum};
 
 use crate::body::Body;
 use crate::body_args::{BodyArgs, BodyHelp};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, parse_goal};
 use crate::options::{parse_angle, parse_at_least_one};
 use crate::picture::StillArgs;
@@ -85,18 +85,18 @@ pub struct SolveArgs {
 }
 
 /// `NAME=N`, N ≥ 1.
-fn parse_bones(s: &str) -> Result<(String, usize), String> {
-    let (name, n) = s.rsplit_once('=').ok_or_else(|| format!("expected NAME=N, got {s:?}"))?;
+fn parse_bones(s: &str) -> Result<(String, usize), Error> {
+    let (name, n) = s.rsplit_once('=').ok_or_else(|| Error::input(format!("expected NAME=N, got {s:?}")))?;
     if name.trim().is_empty() {
-        return Err("NAME=N: the bone's name is empty".to_owned());
+        return Err(Error::input("NAME=N: the bone's name is empty"));
     }
-    let n = parse_at_least_one(n).map_err(|m| format!("{name}: {m}"))?;
+    let n = parse_at_least_one(n).map_err(|m| Error::input(format!("{name}: {m}")))?;
     Ok((name.trim().to_owned(), n as usize))
 }
 
-fn parse_threads(s: &str) -> Result<usize, String> {
+fn parse_threads(s: &str) -> Result<usize, Error> {
     let n = parse_at_least_one(s)? as usize;
-    if n > 1024 { Err(format!("{n}: must be at most 1024")) } else { Ok(n) }
+    if n > 1024 { Err(Error::input(format!("{n}: must be at most 1024"))) } else { Ok(n) }
 }
 
 /// The help of `ikarus solve`'s `--arm` and `--rig`.
@@ -108,7 +108,7 @@ impl BodyHelp for SolveBody {
     const RIG: &'static str = "Rig file (TOML): a tree of named bones; its goals (--goal NAME=X,Y) and pins (--pin NAME) are solved together; or a character file (Spine, DragonBones JSON): the goals solved with its IK constraints by ikarus's solver";
 }
 
-pub fn run(args: &SolveArgs) -> Result<(), CliError> {
+pub fn run(args: &SolveArgs) -> Result<(), Error> {
     if let Some(file) = crate::character_motion::character(args.body.rig.as_deref()) {
         return character::run(args, &file?);
     }
@@ -118,13 +118,13 @@ pub fn run(args: &SolveArgs) -> Result<(), CliError> {
     ])?;
     if args.batch.is_none() {
         if let Some(n) = args.threads {
-            return Err(CliError::input(format!("--threads {n}: only applies with --batch")));
+            return Err(Error::input(format!("--threads {n}: only applies with --batch")));
         }
         if let Some(p) = &args.summary_json {
-            return Err(CliError::input(format!("--summary-json {}: only applies with --batch", p.display())));
+            return Err(Error::input(format!("--summary-json {}: only applies with --batch", p.display())));
         }
     } else if let Some(p) = &args.picture.out {
-        return Err(CliError::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
+        return Err(Error::input(format!("--out {}: only applies to a single solve, not --batch", p.display())));
     }
     match (args.body.load()?, &args.batch) {
         (Body::Chain(arm), Some(path)) => batch::run_batch(args, &arm, path),

@@ -11,7 +11,7 @@ use super::write::{ChainReport, rig_csv, rig_text};
 use super::{Format, SolveArgs};
 use crate::arm::Arm;
 use crate::body::Body;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::goal_args::{GoalArg, Target};
 use crate::goals::make_goal;
 use crate::output;
@@ -31,7 +31,7 @@ enum Single<'a> {
 /// Solves the goal(s) of the flags on `body` and writes the answer (and the picture of
 /// `--out`). The checks come in each body's order: an arm's goal, the picture, the options; a
 /// rig's goals, the options, the picture.
-pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
+pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), Error> {
     let (job, mut solver, picture) = match body {
         Body::Chain(arm) => {
             let goal = arm_goal(args)?;
@@ -54,7 +54,7 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
         }
     };
     let started = Instant::now();
-    let outcome = job.solve(&mut solver).map_err(CliError::input)?;
+    let outcome = job.solve(&mut solver)?;
     let micros = started.elapsed().as_secs_f64() * 1e6;
     let options = solver.options();
     // With --out the picture is the result: stdout stays quiet unless a format is asked for.
@@ -68,19 +68,19 @@ pub(super) fn run(args: &SolveArgs, body: &Body) -> Result<(), CliError> {
 }
 
 /// Draws `drawing` into the prepared `--out` file.
-fn draw_picture(drawing: &Drawing, out: PictureOut, args: &SolveArgs) -> Result<(), CliError> {
+fn draw_picture(drawing: &Drawing, out: PictureOut, args: &SolveArgs) -> Result<(), Error> {
     let bytes = draw(drawing, out.format, args.picture.size.width, args.picture.size.height, &|_, _| {})?;
     out.commit(&bytes)
 }
 
 impl Single<'_> {
     /// The solve from the body's start pose; a refusal of the solver as its one line.
-    fn solve(&self, solver: &mut Solver) -> Result<Outcome, String> {
+    fn solve(&self, solver: &mut Solver) -> Result<Outcome, Error> {
         let solved = match self {
             Single::Chain { arm, goal } => solver.solve(&arm.chain, arm.chain.start_pose(), goal),
             Single::Rig { rig, task } => solver.solve_rig(&rig.skeleton, rig.skeleton.start_angles(), task),
         };
-        solved.map_err(|e| e.to_string())
+        solved.map_err(|e| Error::input(e.to_string()))
     }
 
     /// The answer in `format`: pretty JSON, the CSV of the frames (a rig's: its pose), or the
@@ -130,13 +130,13 @@ fn pretty(w: &mut dyn Write, value: &impl serde::Serialize) -> std::io::Result<(
 }
 
 /// The one goal of an arm: `--goal X,Y` given once.
-fn arm_goal(args: &SolveArgs) -> Result<Goal, CliError> {
+fn arm_goal(args: &SolveArgs) -> Result<Goal, Error> {
     match &args.goal[..] {
-        [GoalArg::Point([x, y])] => make_goal(*x, *y, args.goal_angle).map_err(CliError::input),
+        [GoalArg::Point([x, y])] => make_goal(*x, *y, args.goal_angle),
         [named @ GoalArg::Named { .. }] => {
-            Err(CliError::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
+            Err(Error::input(format!("{}: a goal on a named bone needs --rig FILE", named.text())))
         }
-        goals => Err(CliError::input(format!(
+        goals => Err(Error::input(format!(
             "--goal: an arm has one tip, so one --goal X,Y, got {} (several goals need --rig FILE)",
             goals.len()
         ))),

@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::wire::{Problem, Reply};
 use crate::arm::{Arm, ArmFile, DEFAULT_ARM, LinkFile};
+use crate::error::Error;
 use crate::settings::SolverSettings;
 
 /// The arm as the page holds it: the arm file's fields, and each joint's rate.
@@ -48,10 +49,10 @@ pub struct TomlReq {
 const LABEL: &str = "arm file";
 
 /// Arm-file text → the page's arm; a bad file is the CLI's one-line error.
-pub fn parse(text: &str) -> Result<PageArm, String> {
+pub fn parse(text: &str) -> Result<PageArm, Error> {
     // The CLI's reading and checks first, so that the messages are the CLI's.
-    Arm::parse(text, LABEL).map_err(|e| e.to_string())?;
-    let file: ArmFile = toml::from_str(text).map_err(|e| format!("{LABEL}: {e}"))?;
+    Arm::parse(text, LABEL).map_err(|e| Error::input(e.to_string()))?;
+    let file: ArmFile = toml::from_str(text).map_err(|e| Error::input(format!("{LABEL}: {e}")))?;
     let rates = file.solver.rates.clone();
     Ok(PageArm {
         name: file.name.clone().unwrap_or_else(|| "arm".to_owned()),
@@ -71,7 +72,7 @@ pub fn parse(text: &str) -> Result<PageArm, String> {
 }
 
 /// The page's arm → arm-file text (checked as the CLI would read it).
-pub fn to_toml(arm: &PageArm) -> Result<String, String> {
+pub fn to_toml(arm: &PageArm) -> Result<String, Error> {
     let rates: Vec<f64> = arm.links.iter().map(|l| l.rate.unwrap_or(1.0)).collect();
     let file = ArmFile {
         name: Some(arm.name.clone()),
@@ -88,8 +89,9 @@ pub fn to_toml(arm: &PageArm) -> Result<String, String> {
             .collect(),
         solver: SolverSettings { rates: rates.iter().any(|&r| r != 1.0).then_some(rates), ..SolverSettings::default() },
     };
-    Arm::from_file(file, "arm").map_err(|e| e.to_string())?;
-    let text = toml::to_string(&FileOut::of(arm)).map_err(|e| format!("arm: cannot write it as TOML: {e}"))?;
+    Arm::from_file(file, "arm").map_err(|e| Error::input(e.to_string()))?;
+    let text =
+        toml::to_string(&FileOut::of(arm)).map_err(|e| Error::input(format!("arm: cannot write it as TOML: {e}")))?;
     Ok(format!("# An arm saved by the ikarus playground; load it with `ikarus solve --arm FILE`.\n{text}"))
 }
 
@@ -144,13 +146,13 @@ pub enum Parsed {
 pub fn parsed(text: &str) -> Parsed {
     match parse(text) {
         Ok(arm) => Parsed::Arm(arm),
-        Err(problem) => Parsed::Problem(problem),
+        Err(problem) => Parsed::Problem(problem.to_string()),
     }
 }
 
 /// `POST /api/arm/toml`: `{"arm": …}` → the file's text.
 pub fn toml(req: &TomlReq) -> Result<Reply, Problem> {
-    let text = to_toml(&req.arm).map_err(Problem::invalid)?;
+    let text = to_toml(&req.arm).map_err(Problem::from)?;
     Ok(Reply { content_type: "application/toml; charset=utf-8", body: text.into_bytes() })
 }
 
@@ -208,7 +210,10 @@ mod tests {
             // in the CLI's one line naming the first joint key.
             if let Some((i, key)) = ArmFile::read(&text, "x").unwrap().joint_key() {
                 let e = parse(&text).unwrap_err();
-                assert!(e.starts_with(&format!("arm file: links[{i}].{key}: an arm with offsets")), "{path}: {e}");
+                assert!(
+                    e.to_string().starts_with(&format!("arm file: links[{i}].{key}: an arm with offsets")),
+                    "{path}: {e}"
+                );
                 continue;
             }
             let arm = parse(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
@@ -232,15 +237,15 @@ mod tests {
     #[test]
     fn a_bad_file_is_the_clis_one_line_error() {
         let e = parse("[[links]]\nlength = -1.0\n").unwrap_err();
-        assert!(e.starts_with("arm file: "), "{e}");
-        assert!(!e.contains('\n'), "{e}");
-        assert!(e.contains("length"), "{e}");
+        assert!(e.to_string().starts_with("arm file: "), "{e}");
+        assert!(!e.to_string().contains('\n'), "{e}");
+        assert!(e.to_string().contains("length"), "{e}");
         let e = to_toml(&PageArm {
             name: "x".into(),
             base: [0.0, 0.0],
             links: vec![PageLink { length: 1.0, angle_deg: 50.0, limits_deg: Some([10.0, 45.0]), rate: None }],
         })
         .unwrap_err();
-        assert!(e.contains("limits"), "{e}");
+        assert!(e.to_string().contains("limits"), "{e}");
     }
 }

@@ -23,6 +23,7 @@ use super::wire::{Problem, Reply, parse_json, status};
 use crate::character::art_draw::AtlasArt;
 use crate::character::atlas;
 use crate::character::store::{Store, Weigh, hashed};
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// Largest side of a page image, in pixels (Spine's packer goes to 4096 by default).
@@ -155,8 +156,8 @@ fn read(req: &AtlasReq) -> Result<(String, Arc<KeptAtlas>), Problem> {
         parts.push(png);
     }
     let id = hashed('a', &parts);
-    let mut image = |file: &str| bytes.get(file).cloned().ok_or_else(|| "not given".to_owned());
-    let art = AtlasArt::read(text, "atlas", &mut image).map_err(Problem::invalid)?;
+    let mut image = |file: &str| bytes.get(file).cloned().ok_or_else(|| Error::input("not given"));
+    let art = AtlasArt::read(text, "atlas", &mut image).map_err(Problem::from)?;
     Ok((id.clone(), kept().keep(id, KeptAtlas { art, images: true, text_bytes: text.len() })))
 }
 
@@ -173,11 +174,13 @@ fn png_size(png: &[u8]) -> Option<[u32; 2]> {
 
 /// The atlas `/api/atlas/parse` answered `id` for; a 404 naming `atlas` when it is not kept.
 pub fn stored_atlas(id: &str) -> Result<Arc<KeptAtlas>, Problem> {
-    kept().get(id).ok_or_else(|| Problem {
-        status: status::NOT_FOUND,
-        message: format!(
-            "atlas: no atlas {id:?} on the server (never read, or let go for newer ones): send it to /api/atlas/parse again"
-        ),
+    kept().get(id).ok_or_else(|| {
+        Problem::new(
+            status::NOT_FOUND,
+            format!(
+                "atlas: no atlas {id:?} on the server (never read, or let go for newer ones): send it to /api/atlas/parse again"
+            ),
+        )
     })
 }
 

@@ -14,6 +14,7 @@ use super::requests::{AnimateReq, BendReq, PriorityReq, RigGoalReq, SolveReq, Tr
 use super::wire::{Limits, Problem, parse_json};
 use crate::arm::{Arm, ArmFile};
 use crate::body::Body;
+use crate::error::FieldPath;
 use crate::goal::{self, Field, NamedGoal};
 use crate::rig::{BoneCap, Rig, RigFile};
 
@@ -211,17 +212,31 @@ pub fn task(
     mix: Option<f64>,
     need_one: bool,
 ) -> Result<RigTask, Problem> {
+    task_named(rig, goals, pins, mix, need_one, &field_name)
+}
+
+/// [`task`] of `goals` and `pins` whose problems name the fields with `field` (a set of `via`
+/// goals: `via[1][0].bone`).
+pub(super) fn task_named(
+    rig: &Rig,
+    goals: &[RigGoalReq],
+    pins: &[String],
+    mix: Option<f64>,
+    need_one: bool,
+    field: &dyn Fn(Field) -> String,
+) -> Result<RigTask, Problem> {
     let effectors = effectors_within(goals, pins)?;
     if !need_one && effectors == 0 {
         return Ok(RigTask::default());
     }
     if let Some(i) = goals.iter().position(|g| g.bones.is_some()) {
         return Err(Problem::invalid(format!(
-            "goals[{i}].bones: only for a character's goal (/api/pose); a rig's goal turns every bone above it"
+            "{}: only for a character's goal (/api/pose); a rig's goal turns every bone above it",
+            field(Field::Bones(i))
         )));
     }
     let goals = named_goals(goals);
-    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), &field_name).map_err(Problem::invalid)
+    goal::build(&rig.skeleton, &goals, pins, mix.unwrap_or(1.0), field).map_err(Problem::from)
 }
 
 /// How many goals and pins there are together, refused over [`MAX_EFFECTORS`].
@@ -257,14 +272,7 @@ pub(super) fn named_goals(goals: &[RigGoalReq]) -> Vec<NamedGoal> {
 
 /// A goal's or a pin's field as a request names it (`goals[1].weight`, `pins[0]`).
 pub(super) fn field_name(f: Field) -> String {
-    match f {
-        Field::Goal(i) => format!("goals[{i}]"),
-        Field::Weight(i) => format!("goals[{i}].weight"),
-        Field::Softness(i) => format!("goals[{i}].softness"),
-        Field::Bend(i) => format!("goals[{i}].bend"),
-        Field::Bones(i) => format!("goals[{i}].bones"),
-        Field::Pin(i) => format!("pins[{i}]"),
-    }
+    f.path_in(FieldPath::new().field("goals")).to_string()
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@ use crate::character::motion::{Course, DEFAULT_DURATION, DEFAULT_FPS, Motion, Ph
 use crate::character::store::Stored;
 use crate::character::{Loaded, export, is_json};
 use crate::ease_args::{EaseProblem, choose_ease};
+use crate::error::Error;
 use crate::pose::ik_choice;
 use crate::track::Shape;
 
@@ -130,7 +131,7 @@ pub fn animate(
     })?;
     let targets = req.targets.into_iter().map(|t| (t.bone, [t.x, t.y])).collect();
     let course = Course::Eased { targets, ease, duration: req.duration.unwrap_or(DEFAULT_DURATION) };
-    let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+    let mut motion = Motion::new(loaded, course, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::from)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.physics = physics(req.physics);
     motion.interrupt = Some(interrupt.clone());
@@ -180,8 +181,8 @@ pub(super) fn keyed_motion<'a>(
     (limits, interrupt): (&Limits, &Interrupt),
 ) -> Result<Motion<'a>, Problem> {
     let (course, fps) = crate::character::motion::keyed(loaded, keys, animation, limits.max_frames, "--max-frames")
-        .map_err(Problem::invalid)?;
-    let mut motion = Motion::new(loaded, course, fps).map_err(Problem::invalid)?;
+        .map_err(Problem::from)?;
+    let mut motion = Motion::new(loaded, course, fps).map_err(Problem::from)?;
     motion.ik = ik_choice(ik, ik_file, "ik_file", &loaded.character)?;
     motion.interrupt = Some(interrupt.clone());
     within_caps(loaded, &motion, limits)?;
@@ -203,7 +204,7 @@ pub fn track(
     let path = track_path(req.path.as_deref(), shapes, req.samples, limits)?;
     let points = path.goals().iter().map(|g| [g.target().x, g.target().y]).collect();
     let mut motion =
-        Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::invalid)?;
+        Motion::new(loaded, Course::Path { bone, points }, req.fps.unwrap_or(DEFAULT_FPS)).map_err(Problem::from)?;
     motion.ik = ik_choice(req.ik.as_deref(), req.ik_file.as_deref(), "ik_file", &loaded.character)?;
     motion.physics = physics(req.physics);
     motion.interrupt = Some(interrupt.clone());
@@ -244,11 +245,11 @@ fn answer(
 
 /// What posing `motion`'s frames gave: 503 when its interrupt was set (an `interrupted`
 /// refusal is the deadline's, not the request's fault), else the result, a refusal a 422.
-pub(super) fn posed<T>(result: Result<T, String>, motion: &Motion<'_>) -> Result<T, Problem> {
+pub(super) fn posed<T>(result: Result<T, Error>, motion: &Motion<'_>) -> Result<T, Problem> {
     if let Some(interrupt) = &motion.interrupt {
         stopped(interrupt)?;
     }
-    result.map_err(Problem::invalid)
+    result.map_err(Problem::from)
 }
 
 /// The motion's frames within `--max-frames` and frames × bones within [`MAX_BONE_FRAMES`].

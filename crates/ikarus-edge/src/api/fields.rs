@@ -31,16 +31,13 @@ pub(super) fn refuse_given(given: &[(&str, bool)], why: &str) -> Result<(), Prob
 
 #[cfg(feature = "render")]
 /// A picture, or the interruption that stopped its drawing (not an internal error).
-pub(super) fn picture(
-    drawn: Result<Vec<u8>, crate::error::CliError>,
-    interrupt: &Interrupt,
-) -> Result<Vec<u8>, Problem> {
+pub(super) fn picture(drawn: Result<Vec<u8>, crate::error::Error>, interrupt: &Interrupt) -> Result<Vec<u8>, Problem> {
     watched(drawn, interrupt)
 }
 
 /// The result of a computation that watches `interrupt`: 503 if the interrupt was set (an
 /// error it caused is not the caller's fault nor ours), else the result as it is.
-pub(super) fn watched<T>(result: Result<T, crate::error::CliError>, interrupt: &Interrupt) -> Result<T, Problem> {
+pub(super) fn watched<T>(result: Result<T, crate::error::Error>, interrupt: &Interrupt) -> Result<T, Problem> {
     stopped(interrupt)?;
     Ok(result?)
 }
@@ -48,11 +45,7 @@ pub(super) fn watched<T>(result: Result<T, crate::error::CliError>, interrupt: &
 /// Ends a computation whose interrupt was set before it writes its answer (the pool answers
 /// 503 for it; writing a large answer nobody reads would only hold the worker).
 pub(super) fn stopped(interrupt: &Interrupt) -> Result<(), Problem> {
-    if interrupt.is_interrupted() {
-        Err(Problem { status: status::SERVICE_UNAVAILABLE, message: "interrupted".to_owned() })
-    } else {
-        Ok(())
-    }
+    if interrupt.is_interrupted() { Err(Problem::new(status::SERVICE_UNAVAILABLE, "interrupted")) } else { Ok(()) }
 }
 
 pub(super) fn json_response(value: &impl serde::Serialize) -> Result<Reply, Problem> {

@@ -9,7 +9,7 @@ use ikarus::motion::Interpolation;
 use ikarus::{EaseKind, Interrupt, Outcome, RigTask, TrackMode};
 use web_time::Instant;
 
-use super::bodies::{self, AnimateBody, ArmVia, RigVia, load, task};
+use super::bodies::{self, AnimateBody, ArmVia, RigVia, load, task, task_named};
 use super::fields::{
     MAX_RECORDED_VALUES, MAX_SOLVE_RECORDED_VALUES, MAX_VIA, default_record_every, ease, goal, json_response,
     max_step_deg, options_for, pose_from_degrees, recorded_values_cap, stopped, timing, track_path,
@@ -18,6 +18,8 @@ use super::requests::{AnimateReq, EaseReq, GoalReq, SolveReq, TrackReq};
 use super::wire::{Limits, Problem, Reply};
 use crate::arm::Arm;
 use crate::body::{Aimed, Body, Jointed};
+use crate::error::FieldPath;
+use crate::goal::Field;
 use crate::motion::{Motion, MotionBody, MotionPlan};
 use crate::report::{AnimateJson, RigSolveReport, SolveReport};
 use crate::settings::{DEFAULT_RECORD_EVERY, SolverSettings, solver};
@@ -126,8 +128,8 @@ fn tasks(rig: &crate::rig::Rig, req: &AnimateReq<RigVia>) -> Result<Vec<RigTask>
     let pins = req.pins.as_deref().unwrap_or_default();
     let mut tasks = Vec::with_capacity(req.via.len() + 1);
     for (i, set) in req.via.iter().enumerate() {
-        let t = task(rig, set, pins, req.mix, true)
-            .map_err(|e| Problem { message: e.message.replacen("goals[", &format!("via[{i}]["), 1), ..e })?;
+        let via = |f: Field| f.path_in(FieldPath::new().field("via").index(i)).to_string();
+        let t = task_named(rig, set, pins, req.mix, true, &via)?;
         tasks.push(t);
     }
     tasks.push(task(rig, req.goals.as_deref().unwrap_or_default(), pins, req.mix, true)?);
@@ -158,7 +160,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
     match (&loaded, rig) {
         (_, Some((rig, (bone, task)))) => {
             let job = TrackJob { body: &**rig, start, follower: RigFollower { bone, task }, path, options };
-            let t = job.run().map_err(Problem::invalid)?;
+            let t = job.run().map_err(Problem::from)?;
             stopped(interrupt)?;
             json_response(&job.json(&t))
         }
@@ -168,7 +170,7 @@ pub fn track(req: TrackReq, limits: &Limits, interrupt: &Interrupt) -> Result<Re
                 return Err(Problem::invalid("bound_first: only applies with mode follow"));
             }
             let job = TrackJob { body: &**arm, start, follower: mode, path, options };
-            let t = job.run().map_err(Problem::invalid)?;
+            let t = job.run().map_err(Problem::from)?;
             stopped(interrupt)?;
             json_response(&TrackJson::new(&job, &t))
         }
@@ -200,7 +202,7 @@ fn rig_follower(rig: &crate::rig::Rig, req: &TrackReq) -> Result<(usize, RigTask
     }
     let task = task(rig, goals, pins, req.mix, false)?;
     let task = RigTask { mix: req.mix.unwrap_or(1.0), ..task };
-    let bone = effector_index(rig, name, &task, "effector").map_err(Problem::invalid)?;
+    let bone = effector_index(rig, name, &task, "effector").map_err(Problem::from)?;
     Ok((bone, task))
 }
 

@@ -9,6 +9,7 @@ use super::character_motion::MAX_BONE_FRAMES;
 use super::fields::{RIG_KEYS_GIVE, json_response, options_for, refuse_given, stopped};
 use super::requests::AnimateReq;
 use super::wire::{Limits, Problem, Reply};
+use crate::error::Error;
 use crate::keys::KeysFile;
 use crate::keys::motion::KeyedMotion;
 use crate::rig::Rig;
@@ -54,7 +55,7 @@ pub(super) fn keyed_motion(
     let s = &rig.skeleton;
     let options = options_for(&rig.solver, s.len(), options, None, limits, interrupt)?;
     let limits_on = options.limits != ikarus::LimitMode::Ignore;
-    let plan = keys.check(s, limits.max_frames, "--max-frames").map_err(Problem::invalid)?;
+    let plan = keys.check(s, limits.max_frames, "--max-frames").map_err(Problem::from)?;
     if plan.frames() * s.len() > MAX_BONE_FRAMES {
         return Err(Problem::invalid(format!(
             "keys: {} frames × {} bones, more than the cap of {MAX_BONE_FRAMES}",
@@ -62,9 +63,9 @@ pub(super) fn keyed_motion(
             s.len()
         )));
     }
-    let stop = || if interrupt.is_interrupted() { Err("interrupted".to_owned()) } else { Ok(()) };
+    let stop = || if interrupt.is_interrupted() { Err(Error::input("interrupted")) } else { Ok(()) };
     let motion = plan.run(rig, s.start_angles(), options, &stop);
     stopped(interrupt)?;
-    let motion = motion.map_err(Problem::invalid)?;
+    let motion = motion.map_err(Problem::from)?;
     Ok((motion, plan.track_names(s), limits_on))
 }

@@ -52,7 +52,7 @@ pub fn pose(posing: &Posing, interrupt: &Interrupt) -> Result<Reply, Problem> {
     let Some(atlas) = &posing.atlas else {
         let report = posed(&posing.stored.loaded, &posing.ask, interrupt);
         stopped(interrupt)?;
-        return json_response(&report.map_err(Problem::invalid)?);
+        return json_response(&report.map_err(Problem::from)?);
     };
     let drawn = posing.drawn(interrupt)?;
     let a = &atlas.art;
@@ -133,9 +133,9 @@ impl Posing {
         let mut posed = Posed::default();
         let report = pose_kept_watched(loaded, ask, &mut posed, interrupt);
         stopped(interrupt)?;
-        let report = report.map_err(Problem::invalid)?;
-        let skin = skin_index(c, ask.skin.as_deref()).map_err(Problem::invalid)?;
-        let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(Problem::invalid)?;
+        let report = report.map_err(Problem::from)?;
+        let skin = skin_index(c, ask.skin.as_deref()).map_err(Problem::from)?;
+        let clip = clip_at(c, ask.animation.as_deref(), ask.time).map_err(Problem::from)?;
         Ok(Drawn { report, posed, skin, clip })
     }
 }
@@ -151,11 +151,13 @@ pub fn stored_character(rig: Option<&str>, id: Option<&str>, limits: &Limits) ->
         (Some(text), None) => {
             Ok(Arc::new(Stored { loaded: character(text, limits)?, text: text.to_owned() }))
         }
-        (None, Some(id)) => store::global().get(id).ok_or_else(|| Problem {
-            status: status::NOT_FOUND,
-            message: format!(
-                "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
-            ),
+        (None, Some(id)) => store::global().get(id).ok_or_else(|| {
+            Problem::new(
+                status::NOT_FOUND,
+                format!(
+                    "character: no character {id:?} on the server (never read, or let go for newer ones): send its file to /api/rig/parse again"
+                ),
+            )
         }),
         (None, None) => Err(Problem::invalid(
             "rig: required: the character file's text (or character: the id /api/rig/parse answered for it)",
@@ -169,7 +171,7 @@ fn bends(loaded: &crate::character::Loaded, bends: &BTreeMap<String, BendName>) 
     bends
         .iter()
         .map(|(name, side)| {
-            let k = bend_constraint(loaded, &format!("bends.{name}"), name).map_err(Problem::invalid)?;
+            let k = bend_constraint(loaded, &format!("bends.{name}"), name).map_err(Problem::from)?;
             Ok((k, bend_positive(loaded, side.bend())))
         })
         .collect()
@@ -225,7 +227,7 @@ impl IkReq {
             IkChoice::Ikarus(rules) => {
                 let bones: Vec<Option<usize>> = self.goals.iter().map(|g| g.bones).collect();
                 add_goals(rules, c, &named_goals(&self.goals), &bones, &self.pins, &field_name)
-                    .map_err(Problem::invalid)?;
+                    .map_err(Problem::from)?;
             }
             IkChoice::Runtime if !self.goals.is_empty() || !self.pins.is_empty() => {
                 let which = if self.goals.is_empty() { "pins" } else { "goals" };

@@ -51,7 +51,7 @@ fn body_workspace(req: WorkspaceReq, limits: &Limits, interrupt: &Interrupt) -> 
         interrupt: Some(interrupt.clone()),
         ..WorkspaceOptions::default()
     };
-    let workspace = area::sampled(&rig, bone, grid, run).map_err(Problem::invalid)?;
+    let workspace = area::sampled(&rig, bone, grid, run).map_err(Problem::from)?;
     stopped(interrupt)?;
     json_response(&report::rig_workspace_json(&rig, bone, workspace))
 }
@@ -60,7 +60,7 @@ fn body_workspace(req: WorkspaceReq, limits: &Limits, interrupt: &Interrupt) -> 
 fn grid_of(req: &WorkspaceReq, limits: &Limits) -> Result<Option<GridRequest>, Problem> {
     let grid =
         GridRequest::of(req.grid, req.resolution, req.samples, req.seed, |field, value| format!("{field} = {value}"))
-            .map_err(Problem::invalid)?;
+            .map_err(Problem::from)?;
     if let Some(grid) = &grid {
         if grid.resolution > limits.max_resolution {
             return Err(Problem::invalid(format!(

@@ -247,7 +247,7 @@ fn character_figure(
     };
     let drawn = motion_art::posed_with_art(&motion, &atlas.art).map_err(|e| match e {
         MotionArtError::Pose(m) => {
-            motion.interrupt.as_ref().and_then(|i| stopped(i).err()).unwrap_or_else(|| Problem::invalid(m))
+            motion.interrupt.as_ref().and_then(|i| stopped(i).err()).unwrap_or_else(|| Problem::from(m))
         }
         MotionArtError::Art(m) => Problem::invalid(format!("atlas: {m}")),
         MotionArtError::Cap(m) => Problem::invalid(format!("keys: {m} (keys that end sooner or a lower fps)")),

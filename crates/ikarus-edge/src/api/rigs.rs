@@ -38,7 +38,8 @@ pub fn list() -> Result<Reply, Problem> {
     let rigs = SHIPPED
         .iter()
         .map(|(name, text)| {
-            let rig = RigJson::parse(text, &format!("examples/rigs/{name}.toml")).map_err(Problem::internal)?;
+            let rig = RigJson::parse(text, &format!("examples/rigs/{name}.toml"))
+                .map_err(|e| Problem::internal(e.to_string()))?;
             Ok(Shipped { name, rig })
         })
         .collect::<Result<Vec<_>, Problem>>()?;
@@ -73,7 +74,7 @@ pub fn parsed(text: &str, limits: &Limits) -> Parsed {
     }
     match RigJson::parse_within(text, "rig file", cap) {
         Ok(rig) => Parsed::Rig(rig),
-        Err(problem) => Parsed::Problem(problem),
+        Err(problem) => Parsed::Problem(problem.to_string()),
     }
 }
 

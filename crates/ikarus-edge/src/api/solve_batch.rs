@@ -4,6 +4,8 @@
 //! for each goal alone.
 
 use ikarus::{Goal, Interrupt, Outcome};
+
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
 
 use super::bodies::load_arm;
@@ -53,7 +55,7 @@ fn goal(i: usize, g: &[f64]) -> Result<Goal, Problem> {
     let made = match *g {
         [x, y] => crate::goal::make_goal(x, y, None),
         [x, y, angle_deg] => crate::goal::make_goal(x, y, Some(angle_deg)),
-        _ => Err(format!("expected [x, y] or [x, y, angle_deg], got {} numbers", g.len())),
+        _ => Err(Error::input(format!("expected [x, y] or [x, y, angle_deg], got {} numbers", g.len()))),
     };
     made.map_err(|m| Problem::invalid(format!("{field}: {m}")))
 }

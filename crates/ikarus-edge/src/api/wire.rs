@@ -6,7 +6,7 @@ use std::fmt;
 
 use serde::de::DeserializeOwned;
 
-use crate::error::CliError;
+use crate::error::{Error, ErrorKind};
 
 /// The caps of every request: the server's flags, and the same defaults for the edges that
 /// have no flags (Python, WebAssembly).
@@ -54,7 +54,8 @@ impl Default for Limits {
 }
 
 /// A refused request: the HTTP status the server answers with, and the one-line message of
-/// its `{"error": …}` body, which names the field and the value.
+/// its `{"error": …}` body, which names the field and the value. Made from the edge's
+/// [`Error`] (`From`), whose kind picks the status, or by the constructors here.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Problem {
     /// 400 malformed JSON, 413 too large, 415 not the endpoint's content type, 422 a bad value,
@@ -62,6 +63,8 @@ pub struct Problem {
     pub status: u16,
     /// One line.
     pub message: String,
+    /// What went wrong inside ikarus, for a 500: the server's log line, never the client's.
+    detail: Option<String>,
 }
 
 /// Status codes the API answers with.
@@ -87,19 +90,39 @@ pub mod status {
 }
 
 impl Problem {
-    /// 422: the request is well-formed JSON but a value is invalid.
-    pub fn invalid(message: impl Into<String>) -> Self {
-        Self { status: status::UNPROCESSABLE_ENTITY, message: message.into() }
+    /// A refusal with `status` and the one-line `message` the client reads.
+    pub fn new(status: u16, message: impl Into<String>) -> Self {
+        Self { status, message: message.into(), detail: None }
     }
 
-    /// 500: something failed inside ikarus. The detail goes to stderr, not to the client (it
-    /// may hold paths or panic text).
-    pub fn internal(message: impl Into<String>) -> Self {
-        eprintln!("ikarus: internal error: {}", message.into().replace(['\n', '\r'], " "));
+    /// 422: the request is well-formed JSON but a value is invalid.
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Self::new(status::UNPROCESSABLE_ENTITY, message)
+    }
+
+    /// 500: something failed inside ikarus. The client reads only that the details are in the
+    /// server's log; `detail` (which may hold paths or panic text) is kept for that log
+    /// ([`internal_detail`](Self::internal_detail)).
+    pub fn internal(detail: impl Into<String>) -> Self {
         Self {
             status: status::INTERNAL_SERVER_ERROR,
             message: "internal error (the details are in the server's log)".to_owned(),
+            detail: Some(detail.into().replace(['\n', '\r'], " ")),
         }
+    }
+
+    /// What failed inside ikarus, on one line, if this is an [`internal`](Self::internal)
+    /// error: what the server writes to its log (`ikarus: internal error: {detail}`).
+    #[must_use]
+    pub fn internal_detail(&self) -> Option<&str> {
+        self.detail.as_deref()
+    }
+
+    /// This refusal with another message for the client (the status and any internal detail
+    /// kept), for an edge that names a field in its own words.
+    #[must_use]
+    pub fn with_message(self, message: impl Into<String>) -> Self {
+        Self { message: message.into(), ..self }
     }
 
     /// The message on one line.
@@ -116,36 +139,70 @@ impl fmt::Display for Problem {
 
 impl std::error::Error for Problem {}
 
-impl From<CliError> for Problem {
-    fn from(e: CliError) -> Self {
-        match e {
-            CliError::Input(m) => Self::invalid(m),
-            CliError::Runtime(m) => Self::internal(m),
-        }
+impl From<Error> for Problem {
+    /// The status of the error's kind (422 bad input, 400 malformed, 413 too large, 503 cut
+    /// short, 500 at run time) and its text; a run-time error's text becomes the
+    /// [`internal_detail`](Self::internal_detail).
+    fn from(e: Error) -> Self {
+        let status = match e.kind() {
+            ErrorKind::Input => status::UNPROCESSABLE_ENTITY,
+            ErrorKind::Malformed => status::BAD_REQUEST,
+            ErrorKind::TooLarge => status::PAYLOAD_TOO_LARGE,
+            ErrorKind::Unavailable => status::SERVICE_UNAVAILABLE,
+            ErrorKind::Runtime => return Self::internal(e.to_string()),
+        };
+        Self::new(status, e.to_string())
     }
 }
 
 /// A JSON body as a `T`, refused as the server refuses it: malformed JSON (or anything after
 /// the value) → 400, a value of the wrong type or an unknown field → 422, each message with the
 /// field's path (`links[0].length: invalid type: …`; with the `field-paths` feature) and the line
-/// and column.
+/// and column, after `request body: `.
 pub fn parse_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Problem> {
-    let malformed = |e: &dyn fmt::Display| Problem {
-        status: status::BAD_REQUEST,
-        message: format!("request body: malformed JSON: {e}"),
-    };
+    read_json(bytes).map_err(|e| Problem::from(e.from_source("request body")))
+}
+
+/// A JSON document as a `T`, without naming the document: malformed JSON (or anything after
+/// the value) is [`ErrorKind::Malformed`] (`malformed JSON: …`), a value of the wrong type or an
+/// unknown field [`ErrorKind::Input`] with the field's path (with the `field-paths` feature)
+/// and serde_json's message with the line and column.
+pub fn read_json<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, Error> {
+    let malformed = |e: &dyn fmt::Display| Error::malformed(format!("malformed JSON: {e}"));
     let mut de = serde_json::Deserializer::from_slice(bytes);
     #[cfg(feature = "field-paths")]
-    let (read, inner) = (serde_path_to_error::deserialize(&mut de), serde_path_to_error::Error::inner);
+    let read = serde_path_to_error::deserialize(&mut de);
     #[cfg(not(feature = "field-paths"))]
-    let (read, inner) = (serde::Deserialize::deserialize(&mut de), std::convert::identity::<&serde_json::Error>);
+    let read: Result<T, serde_json::Error> = serde::Deserialize::deserialize(&mut de);
     match read {
         Ok(value) => de.end().map(|()| value).map_err(|e| malformed(&e)),
-        Err(e) => match inner(&e).classify() {
-            serde_json::error::Category::Data => Err(Problem::invalid(format!("request body: {e}"))),
+        #[cfg(feature = "field-paths")]
+        Err(e) => match e.inner().classify() {
+            serde_json::error::Category::Data => Err(Error::input(e.inner().to_string()).within(field_path(e.path()))),
+            _ => Err(malformed(&e)),
+        },
+        #[cfg(not(feature = "field-paths"))]
+        Err(e) => match e.classify() {
+            serde_json::error::Category::Data => Err(Error::input(e.to_string())),
             _ => Err(malformed(&e)),
         },
     }
+}
+
+/// serde_path_to_error's path as a [`FieldPath`], written as it writes it (a path of unknown
+/// steps only is written as nothing).
+#[cfg(feature = "field-paths")]
+fn field_path(path: &serde_path_to_error::Path) -> crate::error::FieldPath {
+    use serde_path_to_error::Segment as S;
+    if path.iter().all(|s| matches!(s, S::Unknown)) {
+        return crate::error::FieldPath::new();
+    }
+    path.iter().fold(crate::error::FieldPath::new(), |p, s| match s {
+        S::Seq { index } => p.index(*index),
+        S::Map { key } => p.field(key.clone()),
+        S::Enum { variant } => p.field(variant.clone()),
+        S::Unknown => p.field("?"),
+    })
 }
 
 /// An answer: its content type and bytes.
@@ -168,5 +225,5 @@ impl Reply {
 /// A body that is a file's text.
 pub(crate) fn text(body: &[u8]) -> Result<&str, Problem> {
     std::str::from_utf8(body)
-        .map_err(|e| Problem { status: status::BAD_REQUEST, message: format!("request body: not UTF-8 text ({e})") })
+        .map_err(|e| Problem::new(status::BAD_REQUEST, format!("request body: not UTF-8 text ({e})")))
 }

@@ -19,7 +19,7 @@ use ikarus::character::{BlendMode, Character, DrawList, Posed, Regions};
 use ikarus_render::{Art, ArtPiece, Blend, Page};
 
 use super::atlas::{self, Atlas};
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// An atlas with its pages' images decoded: what drawing a character's art takes.
@@ -40,17 +40,14 @@ impl AtlasArt {
     ///
     /// # Errors
     /// One line: a bad atlas line, a page whose image cannot be had or is not a PNG image.
-    pub fn read(
-        text: &str,
-        label: &str,
-        image: &mut dyn FnMut(&str) -> Result<Vec<u8>, String>,
-    ) -> Result<Self, String> {
-        let atlas = atlas::read(text).map_err(|e| format!("{label}: {e}"))?;
+    pub fn read(text: &str, label: &str, image: &mut dyn FnMut(&str) -> Result<Vec<u8>, Error>) -> Result<Self, Error> {
+        let atlas = atlas::read(text).map_err(|e| Error::input(format!("{label}: {e}")))?;
         let mut pages = Vec::with_capacity(atlas.pages.len());
         for (i, page) in atlas.pages.iter().enumerate() {
-            let bytes = image(&page.file).map_err(|e| format!("{label}: page {i} {}: {e}", Quoted(&page.file)))?;
-            let decoded =
-                Page::decode_png(&bytes, &page.file, page.pma).map_err(|e| format!("{label}: page {i} {e}"))?;
+            let bytes = image(&page.file)
+                .map_err(|e| Error::input(format!("{label}: page {i} {}: {e}", Quoted(&page.file))))?;
+            let decoded = Page::decode_png(&bytes, &page.file, page.pma)
+                .map_err(|e| Error::input(format!("{label}: page {i} {e}")))?;
             pages.push(decoded);
         }
         let regions = atlas.lookup();
@@ -63,18 +60,18 @@ impl AtlasArt {
     /// An input error in one line: the atlas cannot be read (`atlas file x.atlas: cannot read:
     /// No such file or directory`), a page's image is not in the folder (naming the page and
     /// the folder), or [`AtlasArt::read`]'s.
-    pub fn read_file(path: &Path) -> Result<Self, CliError> {
+    pub fn read_file(path: &Path) -> Result<Self, Error> {
         let label = format!("atlas file {}", path.display());
         let text = crate::input::read_text(path, &label)?;
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let mut image = |file: &str| {
             let at = folder.join(file);
             if !at.is_file() {
-                return Err(format!("no such image in {}", folder.display()));
+                return Err(Error::input(format!("no such image in {}", folder.display())));
             }
-            crate::input::read(&at, &at.display().to_string()).map_err(|e| e.to_string())
+            crate::input::read(&at, &at.display().to_string()).map_err(|e| Error::input(e.to_string()))
         };
-        Self::read(&text, &label, &mut image).map_err(CliError::input)
+        Self::read(&text, &label, &mut image)
     }
 
     /// The art pose `posed` of `c` draws with skin `skin` (the skin it was posed with) and the
@@ -92,26 +89,26 @@ impl AtlasArt {
         posed: &Posed,
         (skin, clip): (Option<usize>, Option<(usize, f64)>),
         list: &mut DrawList,
-    ) -> Result<Art<'_>, String> {
-        c.draw_list_at(posed, skin, clip, &self.regions, list).map_err(|e| e.to_string())?;
+    ) -> Result<Art<'_>, Error> {
+        c.draw_list_at(posed, skin, clip, &self.regions, list).map_err(|e| Error::input(e.to_string()))?;
         let mut pieces = Vec::with_capacity(list.items.len());
         for item in &list.items {
             let slot = &c.art().slots[item.slot];
             let Some(region) = item.region.and_then(|r| self.regions.get(r)) else {
                 let name = c.setup_attachment(item.slot, skin).map_or("?", attachment_path);
-                return Err(format!(
+                return Err(Error::input(format!(
                     "the atlas has no region {} (slot {}'s attachment): give the atlas exported with this skeleton",
                     Quoted(name),
                     Quoted(&slot.name)
-                ));
+                )));
             };
             let vertices = &list.vertices[item.vertices.clone()];
             if vertices.len() > usize::from(u16::MAX) + 1 {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "slot {}: {} vertices, more than a piece holds (65536)",
                     Quoted(&slot.name),
                     vertices.len()
-                ));
+                )));
             }
             let to32 = |p: &[f64; 2]| [p[0] as f32, p[1] as f32];
             let triangles = list.triangles[item.triangles.clone()]

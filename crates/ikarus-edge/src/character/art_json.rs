@@ -8,6 +8,7 @@ use ikarus::character::{AtlasRegion, BlendMode, Character, DrawItem, DrawList, R
 use serde::Serialize;
 
 use super::atlas::Atlas;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// The pose's drawing.
@@ -63,15 +64,17 @@ pub fn region_of<'r>(
     list: &DrawList,
     item: &DrawItem,
     regions: &'r Regions,
-) -> Result<&'r AtlasRegion, String> {
+) -> Result<&'r AtlasRegion, Error> {
     item.region.and_then(|r| regions.get(r)).ok_or_else(|| {
-        let slot = &c.art().slots[item.slot].name;
-        let name = c.shown_attachment(&list.slots, item.slot).unwrap_or("?");
-        format!(
-            "the atlas has no region {} (slot {}'s attachment): give the atlas exported with this skeleton",
-            Quoted(name),
-            Quoted(slot)
-        )
+        Error::input({
+            let slot = &c.art().slots[item.slot].name;
+            let name = c.shown_attachment(&list.slots, item.slot).unwrap_or("?");
+            format!(
+                "the atlas has no region {} (slot {}'s attachment): give the atlas exported with this skeleton",
+                Quoted(name),
+                Quoted(slot)
+            )
+        })
     })
 }
 
@@ -80,7 +83,7 @@ impl ArtJson {
     ///
     /// # Errors
     /// [`region_of`]'s, for the first slot whose region the atlas lacks.
-    pub fn of(c: &Character, list: &DrawList, atlas: &Atlas, regions: &Regions) -> Result<Self, String> {
+    pub fn of(c: &Character, list: &DrawList, atlas: &Atlas, regions: &Regions) -> Result<Self, Error> {
         let flat = |points: &[[f64; 2]]| points.iter().flatten().copied().collect::<Vec<f64>>();
         let slots = list
             .items
@@ -99,7 +102,7 @@ impl ArtJson {
                     triangles: list.triangles[item.triangles.clone()].to_vec(),
                 })
             })
-            .collect::<Result<Vec<_>, String>>()?;
+            .collect::<Result<Vec<_>, Error>>()?;
         Ok(Self { pages: atlas.pages.iter().map(|p| p.file.clone()).collect(), slots })
     }
 }

@@ -42,6 +42,7 @@ pub fn is_atlas(text: &str) -> bool {
 pub const ATLAS: &str =
     "this is a Spine texture atlas (.atlas), not a skeleton: pass the skeleton's .json (or .skel) exported beside it";
 
+use crate::error::Error;
 use ikarus::character::{AtlasRegion, Regions};
 
 /// An atlas page: its image and how it is stored.
@@ -90,7 +91,7 @@ struct Pending {
 }
 
 /// Reads an atlas's text. A bad line is refused naming its number (from 1), field and value.
-pub fn read(text: &str) -> Result<Atlas, String> {
+pub fn read(text: &str) -> Result<Atlas, Error> {
     let mut atlas = Atlas::default();
     let mut new_page = true;
     let mut region: Option<Pending> = None;
@@ -113,20 +114,20 @@ pub fn read(text: &str) -> Result<Atlas, String> {
             continue;
         };
         let (key, value) = (key.trim(), value.trim());
-        let at = |what: &str| format!("atlas line {n}: {key}: {value:?}: {what}");
+        let at = |what: &str| Error::input(format!("atlas line {n}: {key}: {value:?}: {what}"));
         let Some(page) = atlas.pages.last_mut() else { return Err(at("a setting before any page's image name")) };
         match region.as_mut() {
             None => match key {
                 "size" => {
-                    let [w, h] = numbers::<2>(value).map_err(|e| at(&e))?;
+                    let [w, h] = numbers::<2>(value).map_err(|e| at(e.message()))?;
                     if w < 1.0 || h < 1.0 || w.fract() != 0.0 || h.fract() != 0.0 || w > 65536.0 || h > 65536.0 {
                         return Err(at("expected two whole numbers of pixels, 1 to 65536"));
                     }
                     page.size = [w as u32, h as u32];
                 }
-                "pma" => page.pma = flag(value).map_err(|e| at(&e))?,
+                "pma" => page.pma = flag(value).map_err(|e| at(e.message()))?,
                 "scale" => {
-                    let list = list(value).map_err(|e| at(&e))?;
+                    let list = list(value).map_err(|e| at(e.message()))?;
                     page.scale = match list[..] {
                         [s] if s > 0.0 => [s, s],
                         [x, y] if x > 0.0 && y > 0.0 => [x, y],
@@ -138,17 +139,17 @@ pub fn read(text: &str) -> Result<Atlas, String> {
             },
             Some(r) => match key {
                 "bounds" => {
-                    let [x, y, w, h] = numbers::<4>(value).map_err(|e| at(&e))?;
+                    let [x, y, w, h] = numbers::<4>(value).map_err(|e| at(e.message()))?;
                     (r.xy, r.size) = (Some([x, y]), Some([w, h]));
                 }
-                "xy" => r.xy = Some(numbers::<2>(value).map_err(|e| at(&e))?),
-                "size" => r.size = Some(numbers::<2>(value).map_err(|e| at(&e))?),
+                "xy" => r.xy = Some(numbers::<2>(value).map_err(|e| at(e.message()))?),
+                "size" => r.size = Some(numbers::<2>(value).map_err(|e| at(e.message()))?),
                 "offsets" => {
-                    let [x, y, w, h] = numbers::<4>(value).map_err(|e| at(&e))?;
+                    let [x, y, w, h] = numbers::<4>(value).map_err(|e| at(e.message()))?;
                     (r.offset, r.orig) = (Some([x, y]), Some([w, h]));
                 }
-                "offset" => r.offset = Some(numbers::<2>(value).map_err(|e| at(&e))?),
-                "orig" => r.orig = Some(numbers::<2>(value).map_err(|e| at(&e))?),
+                "offset" => r.offset = Some(numbers::<2>(value).map_err(|e| at(e.message()))?),
+                "orig" => r.orig = Some(numbers::<2>(value).map_err(|e| at(e.message()))?),
                 "rotate" => {
                     r.degrees = match value {
                         "true" => 90,
@@ -169,9 +170,9 @@ pub fn read(text: &str) -> Result<Atlas, String> {
 }
 
 /// Adds a region read to its page, once its fields are checked.
-fn finish(atlas: &mut Atlas, region: Option<Pending>) -> Result<(), String> {
+fn finish(atlas: &mut Atlas, region: Option<Pending>) -> Result<(), Error> {
     let Some(r) = region else { return Ok(()) };
-    let at = |what: &str| format!("atlas line {} (region {:?}): {what}", r.line, r.name);
+    let at = |what: &str| Error::input(format!("atlas line {} (region {:?}): {what}", r.line, r.name));
     let page = atlas.pages.len() - 1;
     let p = &atlas.pages[page];
     if p.size[0] == 0 {
@@ -208,7 +209,7 @@ fn finish(atlas: &mut Atlas, region: Option<Pending>) -> Result<(), String> {
 }
 
 /// Comma-separated finite numbers.
-fn list(value: &str) -> Result<Vec<f64>, String> {
+fn list(value: &str) -> Result<Vec<f64>, Error> {
     value
         .split(',')
         .map(|v| {
@@ -216,23 +217,23 @@ fn list(value: &str) -> Result<Vec<f64>, String> {
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| format!("{:?} is not a number", v.trim()))
+                .ok_or_else(|| Error::input(format!("{:?} is not a number", v.trim())))
         })
         .collect()
 }
 
 /// Exactly `N` comma-separated numbers.
-fn numbers<const N: usize>(value: &str) -> Result<[f64; N], String> {
+fn numbers<const N: usize>(value: &str) -> Result<[f64; N], Error> {
     let list = list(value)?;
-    list.try_into().map_err(|l: Vec<f64>| format!("expected {N} numbers, got {}", l.len()))
+    list.try_into().map_err(|l: Vec<f64>| Error::input(format!("expected {N} numbers, got {}", l.len())))
 }
 
 /// `true` or `false`.
-fn flag(value: &str) -> Result<bool, String> {
+fn flag(value: &str) -> Result<bool, Error> {
     match value {
         "true" => Ok(true),
         "false" => Ok(false),
-        _ => Err("expected true or false".into()),
+        _ => Err(Error::input("expected true or false")),
     }
 }
 

@@ -26,6 +26,7 @@ use ikarus::character::{
 use serde::Deserialize;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 
+use crate::error::Error;
 use crate::names::cell;
 
 /// A JSON object's entries in the file's order (`serde_json` keeps no order of its own here).
@@ -178,7 +179,7 @@ fn property(kind: &str) -> Option<(BoneProperty, bool, f64)> {
 }
 
 /// The clip of animation `name`, `duration` long; `legacy` for a 3.8 file.
-pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, legacy: bool) -> Result<Clip, String> {
+pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, legacy: bool) -> Result<Clip, Error> {
     let at = format!("animations.{}", cell(name));
     let mut bones = Vec::new();
     for (bone_name, timelines) in &a.bones.0 {
@@ -186,7 +187,7 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
             .bones
             .get(bone_name)
             .copied()
-            .ok_or_else(|| format!("{at}.bones.{}: no bone of that name", cell(bone_name)))?;
+            .ok_or_else(|| Error::input(format!("{at}.bones.{}: no bone of that name", cell(bone_name))))?;
         for (kind, keys) in &timelines.0 {
             let Some((property, angle, default)) = property(kind) else { continue };
             let unit = if angle { 1f64.to_radians() } else { 1.0 };
@@ -210,7 +211,7 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
             .constraints
             .get(ik_name.as_str())
             .copied()
-            .ok_or_else(|| format!("{at}.ik.{}: no IK constraint of that name", cell(ik_name)))?;
+            .ok_or_else(|| Error::input(format!("{at}.ik.{}: no IK constraint of that name", cell(ik_name))))?;
         let series = Series { path: format!("{at}.ik.{}", cell(ik_name)), channels: 2, unit: 1.0, legacy };
         let value = |k: &Key| [k.mix.unwrap_or(1.0), k.softness.unwrap_or(0.0)];
         let keys = series
@@ -228,10 +229,13 @@ pub(super) fn clip(name: &str, a: &Animation, duration: f64, names: &Names<'_>, 
             })
             .collect::<Vec<_>>();
         if let Some((i, k)) = keys.iter().enumerate().find(|(_, k)| !(0.0..=1.0).contains(&k.settings.mix)) {
-            return Err(format!("{}[{i}].mix = {}: must be within 0 and 1", series.path, k.settings.mix));
+            return Err(Error::input(format!("{}[{i}].mix = {}: must be within 0 and 1", series.path, k.settings.mix)));
         }
         if let Some((i, k)) = keys.iter().enumerate().find(|(_, k)| k.settings.softness < 0.0) {
-            return Err(format!("{}[{i}].softness = {}: must not be negative", series.path, k.settings.softness));
+            return Err(Error::input(format!(
+                "{}[{i}].softness = {}: must not be negative",
+                series.path, k.settings.softness
+            )));
         }
         constraints.push(ConstraintTimeline { constraint, keys: ConstraintKeys::Ik(keys) });
     }
@@ -245,14 +249,12 @@ fn transform_timelines(
     names: &Names<'_>,
     at: &str,
     legacy: bool,
-) -> Result<Vec<ConstraintTimeline>, String> {
+) -> Result<Vec<ConstraintTimeline>, Error> {
     let mut out = Vec::new();
     for (name, keys) in &a.transform.0 {
-        let constraint = names
-            .transforms
-            .get(name.as_str())
-            .copied()
-            .ok_or_else(|| format!("{at}.transform.{}: no transform constraint of that name", cell(name)))?;
+        let constraint = names.transforms.get(name.as_str()).copied().ok_or_else(|| {
+            Error::input(format!("{at}.transform.{}: no transform constraint of that name", cell(name)))
+        })?;
         let path = format!("{at}.transform.{}", cell(name));
         for (i, k) in keys.iter().enumerate() {
             k.mixes.settings(&format!("{path}[{i}]"))?;
@@ -299,17 +301,17 @@ impl Series {
         &self,
         keys: &'k [Key],
         value: impl Fn(&Key) -> [f64; N],
-    ) -> Result<Vec<Read<'k, N>>, String> {
+    ) -> Result<Vec<Read<'k, N>>, Error> {
         let mut out = Vec::with_capacity(keys.len());
         for (i, k) in keys.iter().enumerate() {
             if k.time < 0.0 {
-                return Err(format!("{}[{i}].time = {}: must not be negative", self.path, k.time));
+                return Err(Error::input(format!("{}[{i}].time = {}: must not be negative", self.path, k.time)));
             }
             if let Some(prev) = keys.get(i.wrapping_sub(1)).filter(|p| p.time >= k.time) {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "{}[{i}].time = {}: must be after the previous key's, {}",
                     self.path, k.time, prev.time
-                ));
+                )));
             }
             let next = keys.get(i + 1).map(|n| (n.time, value(n)));
             let curves = self.curves(i, k, value(k), next)?;
@@ -325,7 +327,7 @@ impl Series {
         k: &Key,
         here: [f64; N],
         next: Option<(f64, [f64; N])>,
-    ) -> Result<[Interpolation; N], String> {
+    ) -> Result<[Interpolation; N], Error> {
         // Spine 3.8's curve, normalised to the segment from this key to the next.
         let normalised = |p: [f64; 4]| match next {
             None => [Interpolation::Linear; N],
@@ -341,11 +343,11 @@ impl Series {
             Some(Curve::Numbers(n)) => {
                 let want = 4 * self.channels;
                 if n.len() != want {
-                    return Err(format!(
+                    return Err(Error::input(format!(
                         "{}[{i}].curve: {} numbers, expected {want} ([cx1, cy1, cx2, cy2] per channel)",
                         self.path,
                         n.len()
-                    ));
+                    )));
                 }
                 let mut curves = [Interpolation::Linear; N];
                 for (c, p) in n.chunks(4).enumerate().take(N) {

@@ -24,6 +24,7 @@ use serde_json::Value;
 
 use super::dragonbones_clips::{self, AnimationJson, Context, Notes};
 use super::{Format, Loaded};
+use crate::error::Error;
 use crate::names::Quoted;
 use crate::rig::BoneCap;
 
@@ -109,7 +110,7 @@ struct IkJson {
 
 /// Reads a DragonBones file's first armature (`value` is its text parsed, for the caps: the
 /// bones and constraints of every armature count, since every armature is parsed).
-pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, String> {
+pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, Error> {
     let armatures = value.get("armature").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
     let bones = armatures.iter().map(|a| super::length(a.get("bone"))).sum();
     cap.check(bones)?;
@@ -123,14 +124,19 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             .push(format!("version: {:?} is not a version ikarus was made for (5.x); read as 5.5", Quoted(&version)));
     }
     let Some(armature) = file.armature.into_iter().next() else {
-        return Err("armature: expected at least one armature, got none".to_owned());
+        return Err(Error::input("armature: expected at least one armature, got none"));
     };
     let named: Vec<(&str, Option<&str>)> =
         armature.bone.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
     let at = |i: usize| format!("armature[0].bone[{i}]");
     let super::Tree { parents: parent_of, index } = super::parents(&named, at)?;
     if let Some((i, b)) = armature.bone.iter().enumerate().find(|(_, b)| b.length < 0.0) {
-        return Err(format!("{} ({:?}).length = {}: must not be negative", at(i), Quoted(&b.name), b.length));
+        return Err(Error::input(format!(
+            "{} ({:?}).length = {}: must not be negative",
+            at(i),
+            Quoted(&b.name),
+            b.length
+        )));
     }
     let mut unsupported = Vec::new();
     let mut bones = Vec::with_capacity(armature.bone.len());
@@ -158,12 +164,12 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
         let bones = match (k.chain, parent_of[end]) {
             (0, _) => IkBones::One(end),
             (1, Some(parent)) => IkBones::Two { parent, child: end },
-            (1, None) => return Err(format!("{at}.chain = 1: bone {:?} has no parent", Quoted(&k.bone))),
-            (n, _) => return Err(format!("{at}.chain = {n}: expected 0 (one bone) or 1 (two bones)")),
+            (1, None) => return Err(Error::input(format!("{at}.chain = 1: bone {:?} has no parent", Quoted(&k.bone)))),
+            (n, _) => return Err(Error::input(format!("{at}.chain = {n}: expected 0 (one bone) or 1 (two bones)"))),
         };
         let target = super::bone(&index, &k.target, &format!("{at}.target"))?;
         if !(0.0..=1.0).contains(&k.weight) {
-            return Err(format!("{at}.weight = {}: must be within 0 and 1", k.weight));
+            return Err(Error::input(format!("{at}.weight = {}: must be within 0 and 1", k.weight)));
         }
         let setup = IkSettings { mix: k.weight, bend_positive: k.bend_positive, ..IkSettings::default() };
         let order = u32::try_from(i).unwrap_or(u32::MAX);
@@ -179,7 +185,9 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     }
     let frame_rate = armature.frame_rate.or(file.frame_rate).unwrap_or(24.0);
     if !(frame_rate > 0.0 && frame_rate.is_finite()) {
-        return Err(format!("armature[0].frameRate = {frame_rate}: must be a number of frames per second above 0"));
+        return Err(Error::input(format!(
+            "armature[0].frameRate = {frame_rate}: must be a number of frames per second above 0"
+        )));
     }
     let names = super::first_index(armature.ik.iter().map(|k| k.name.as_str()));
     let cx = Context { bones: &index, constraints: &names, frame_rate };

@@ -28,6 +28,7 @@ use ikarus::character::{
 use serde::{Deserialize, Deserializer};
 
 use super::clips::unit_bezier;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// One animation as written.
@@ -104,7 +105,7 @@ pub(super) struct Notes {
 }
 
 /// The clip of animation `i`.
-pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut Notes) -> Result<Clip, String> {
+pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut Notes) -> Result<Clip, Error> {
     let at = format!("armature[0].animation[{i}] ({:?})", Quoted(&a.name));
     let mut bones = Vec::new();
     let mut latest = 0.0f64;
@@ -118,7 +119,7 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
                 .collect();
             latest = keys.iter().map(|k| k.time).fold(latest, f64::max);
             bones.push(BoneTimeline { bone, property, keys });
-            Ok::<(), String>(())
+            Ok::<(), Error>(())
         };
         if !t.translate_frame.is_empty() {
             push(BoneProperty::Translate, &t.translate_frame, "translateFrame", &|_, f| {
@@ -141,18 +142,16 @@ pub(super) fn clip(i: usize, a: &AnimationJson, cx: &Context<'_>, notes: &mut No
     let mut constraints = Vec::new();
     for (j, t) in a.ik.iter().enumerate() {
         let here = format!("{at}.ik[{j}] ({:?})", Quoted(&t.name));
-        let constraint = cx
-            .constraints
-            .get(t.name.as_str())
-            .copied()
-            .ok_or_else(|| format!("{here}.name = {:?}: no IK constraint of that name", Quoted(&t.name)))?;
+        let constraint = cx.constraints.get(t.name.as_str()).copied().ok_or_else(|| {
+            Error::input(format!("{here}.name = {:?}: no IK constraint of that name", Quoted(&t.name)))
+        })?;
         let path = format!("{here}.frame");
         let read = keys(&t.frame, &path, cx.frame_rate, notes, &|_, f| [f.weight.unwrap_or(100.0) / 100.0, 0.0])?;
         let mut out = Vec::with_capacity(read.len());
         for (k, key) in read {
             let mix = key.values[0];
             if !(0.0..=1.0).contains(&mix) {
-                return Err(format!("{path}[{k}].weight = {}: must be within 0 and 100", mix * 100.0));
+                return Err(Error::input(format!("{path}[{k}].weight = {}: must be within 0 and 100", mix * 100.0)));
             }
             let bend_positive = t.frame[k].bend_positive.unwrap_or(true);
             let settings = IkSettings { mix, bend_positive, ..IkSettings::default() };
@@ -201,12 +200,15 @@ fn keys(
     rate: f64,
     notes: &mut Notes,
     value: &dyn Fn(usize, &FrameJson) -> [f64; 2],
-) -> Result<Vec<(usize, BoneKey)>, String> {
+) -> Result<Vec<(usize, BoneKey)>, Error> {
     let mut out = Vec::with_capacity(frames.len());
     let mut start = 0.0;
     for (k, f) in frames.iter().enumerate() {
         if !(f.duration >= 0.0 && f.duration.is_finite()) {
-            return Err(format!("{path}[{k}].duration = {}: must be a number of frames, at least 0", f.duration));
+            return Err(Error::input(format!(
+                "{path}[{k}].duration = {}: must be a number of frames, at least 0",
+                f.duration
+            )));
         }
         let time = start / rate;
         start += f.duration;
@@ -240,10 +242,13 @@ enum Ease {
 }
 
 /// The easing of frame `f` (at `path`).
-fn easing(f: &FrameJson, path: &str, notes: &mut Notes) -> Result<Ease, String> {
+fn easing(f: &FrameJson, path: &str, notes: &mut Notes) -> Result<Ease, Error> {
     if let Some(c) = &f.curve {
         let [x1, y1, x2, y2] = <[f64; 4]>::try_from(c.as_slice()).map_err(|_| {
-            format!("{path}.curve: {} numbers, expected 4 ([x1, y1, x2, y2] of one cubic Bezier)", c.len())
+            Error::input(format!(
+                "{path}.curve: {} numbers, expected 4 ([x1, y1, x2, y2] of one cubic Bezier)",
+                c.len()
+            ))
         })?;
         notes.approximated += 1;
         return Ok(Ease::Unit([x1, y1, x2, y2]));
@@ -251,7 +256,9 @@ fn easing(f: &FrameJson, path: &str, notes: &mut Notes) -> Result<Ease, String> 
     Ok(match f.tween_easing {
         None => Ease::Exact(Interpolation::Stepped),
         Some(0.0) => Ease::Exact(Interpolation::Linear),
-        Some(e) if !e.is_finite() => return Err(format!("{path}.tweenEasing = {e}: must be a finite number")),
+        Some(e) if !e.is_finite() => {
+            return Err(Error::input(format!("{path}.tweenEasing = {e}: must be a finite number")));
+        }
         Some(e) => {
             notes.approximated += 1;
             if e <= 1.0 {

@@ -20,7 +20,7 @@ use ikarus::character::{BoneRule, Character, LimbRule, Together};
 use serde::Deserialize;
 
 use crate::arm::toml_error;
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::{Quoted, cell, listed};
 
 #[derive(Debug, Default, Deserialize)]
@@ -60,9 +60,9 @@ fn one() -> f64 {
 
 /// Reads an IK file's `text` against `character`: names resolved into indices, values checked.
 /// `label` starts every message (`ik file legs.toml`).
-pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, CliError> {
-    let file: IkFile = toml::from_str(text).map_err(|e| CliError::input(toml_error(label, text, &e)))?;
-    let bad = |m: String| CliError::input(format!("{label}: {m}"));
+pub fn read(text: &str, label: &str, character: &Character) -> Result<Together, Error> {
+    let file: IkFile = toml::from_str(text).map_err(|e| Error::input(toml_error(label, text, &e)))?;
+    let bad = |m: String| Error::input(format!("{label}: {m}"));
     let bone = |field: &str, name: &str| {
         character.bone_index(name).ok_or_else(|| bad(format!("{field} = {}: no bone of that name", Quoted(name))))
     };
@@ -98,15 +98,15 @@ pub const MAX_LIMIT_DEG: f64 = 360.0;
 
 /// `[lo, hi]` as an IK file gives a bone's limits, in degrees, checked in degrees (the solver's
 /// own check sees radians, and would print them): finite, within ±[`MAX_LIMIT_DEG`], `lo ≤ hi`.
-fn limits_in_degrees([lo, hi]: [f64; 2]) -> Result<(), String> {
+fn limits_in_degrees([lo, hi]: [f64; 2]) -> Result<(), Error> {
     if !(lo.is_finite() && hi.is_finite()) {
-        return Err("the limits must be finite numbers of degrees".to_owned());
+        return Err(Error::input("the limits must be finite numbers of degrees"));
     }
     if lo.abs() > MAX_LIMIT_DEG || hi.abs() > MAX_LIMIT_DEG {
-        return Err(format!("each limit must be within -{MAX_LIMIT_DEG} and {MAX_LIMIT_DEG} degrees"));
+        return Err(Error::input(format!("each limit must be within -{MAX_LIMIT_DEG} and {MAX_LIMIT_DEG} degrees")));
     }
     if lo > hi {
-        return Err("the lower limit must not exceed the upper (degrees)".to_owned());
+        return Err(Error::input("the lower limit must not exceed the upper (degrees)"));
     }
     Ok(())
 }

@@ -49,7 +49,7 @@ use ikarus::character::{Character, CharacterError, CharacterParts};
 use serde::de::DeserializeOwned;
 use serde_json::Value;
 
-use crate::error::CliError;
+use crate::error::Error;
 use crate::names::Quoted;
 use crate::rig::BoneCap;
 
@@ -106,21 +106,21 @@ pub fn is_json(text: &str) -> bool {
 
 /// Reads a character file's text under the command line's cap on bones; `label` starts every
 /// error message (`rig file spineboy.json`).
-pub fn load(text: &str, label: &str) -> Result<Loaded, CliError> {
+pub fn load(text: &str, label: &str) -> Result<Loaded, Error> {
     load_within(text, label, BoneCap::cli())
 }
 
 /// Reads a character file's text of at most `cap` bones (counted before any bone is read);
 /// `label` starts every error message.
-pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliError> {
-    let fail = |msg: String| CliError::input(format!("{label}: {msg}"));
+pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, Error> {
+    let fail = |msg: &dyn std::fmt::Display| Error::input(format!("{label}: {msg}"));
     let text = text.trim_start_matches('\u{feff}');
-    let value: Value = serde_json::from_str(text).map_err(|e| fail(format!("malformed JSON: {e}")))?;
+    let value: Value = serde_json::from_str(text).map_err(|e| fail(&format!("malformed JSON: {e}")))?;
     match detect(&value) {
-        Some(Format::Spine) => spine::read(text, &value, cap).map_err(fail),
-        Some(Format::DragonBones) => dragonbones::read(text, &value, cap).map_err(fail),
+        Some(Format::Spine) => spine::read(text, &value, cap).map_err(|e| fail(&e)),
+        Some(Format::DragonBones) => dragonbones::read(text, &value, cap).map_err(|e| fail(&e)),
         None => Err(fail(
-            "not a character file: expected a Spine skeleton (a \"skeleton\" object with a \"spine\" version \
+            &"not a character file: expected a Spine skeleton (a \"skeleton\" object with a \"spine\" version \
              and a \"bones\" array) or a DragonBones 5 file (an \"armature\" array beside \"version\" or \
              \"frameRate\")"
                 .to_owned(),
@@ -130,13 +130,13 @@ pub fn load_within(text: &str, label: &str, cap: BoneCap) -> Result<Loaded, CliE
 
 /// For a rig's commands (`--rig FILE`): nothing for a rig file (not JSON); a character file is
 /// read (a bad one is its line) and refused saying what it is, since they take rig files.
-pub fn not_a_rig(text: &str, label: &str) -> Result<(), CliError> {
+pub fn not_a_rig(text: &str, label: &str) -> Result<(), Error> {
     if !is_json(text) {
         return Ok(());
     }
     let loaded = load(text, label)?;
     let c = &loaded.character;
-    Err(CliError::input(format!(
+    Err(Error::input(format!(
         "{label}: a {} character ({} bones, {} IK constraints), which this command does not take: it takes rig files (TOML); pose, solve, animate and track take characters",
         loaded.format.name(),
         c.bones().len(),
@@ -181,25 +181,27 @@ fn yes() -> bool {
 /// The text as a `T`, each refusal naming the field's path and the value
 /// (`bones[3].rotation: invalid type: string "x", expected f64 at line 9 column 22`).
 #[cfg(feature = "field-paths")]
-fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
-    serde_path_to_error::deserialize(&mut serde_json::Deserializer::from_str(text)).map_err(|e| e.to_string())
+fn typed<T: DeserializeOwned>(text: &str) -> Result<T, Error> {
+    serde_path_to_error::deserialize(&mut serde_json::Deserializer::from_str(text))
+        .map_err(|e| Error::input(e.to_string()))
 }
 
 /// The text as a `T`, each refusal serde_json's line (without the `field-paths` feature).
 #[cfg(not(feature = "field-paths"))]
-fn typed<T: DeserializeOwned>(text: &str) -> Result<T, String> {
-    serde::Deserialize::deserialize(&mut serde_json::Deserializer::from_str(text)).map_err(|e| e.to_string())
+fn typed<T: DeserializeOwned>(text: &str) -> Result<T, Error> {
+    serde::Deserialize::deserialize(&mut serde_json::Deserializer::from_str(text))
+        .map_err(|e| Error::input(e.to_string()))
 }
 
 /// The bones' names to their indices, each parent resolved to an earlier bone: `names[i]` is
 /// bone `i`'s name and parent's name, `at(i)` its path in the file (`bones[3]`). Refused: a
 /// name used twice, a parent that is not a bone, a parent listed after its child.
-fn parents(bones: &[(&str, Option<&str>)], at: impl Fn(usize) -> String) -> Result<Tree, String> {
+fn parents(bones: &[(&str, Option<&str>)], at: impl Fn(usize) -> String) -> Result<Tree, Error> {
     let mut index: HashMap<String, usize> = HashMap::new();
     let mut out = Vec::with_capacity(bones.len());
     for (i, (name, _)) in bones.iter().enumerate() {
         if let Some(first) = index.insert((*name).to_owned(), i) {
-            return Err(format!("{}.name = {:?}: also the name of {}", at(i), Quoted(name), at(first)));
+            return Err(Error::input(format!("{}.name = {:?}: also the name of {}", at(i), Quoted(name), at(first))));
         }
     }
     for (i, (_, parent)) in bones.iter().enumerate() {
@@ -208,14 +210,14 @@ fn parents(bones: &[(&str, Option<&str>)], at: impl Fn(usize) -> String) -> Resu
             Some(p) => match index.get(*p) {
                 None => {
                     let (child, p) = (Quoted(bones[i].0), Quoted(p));
-                    return Err(format!("{} ({child:?}).parent = {p:?}: no bone of that name", at(i)));
+                    return Err(Error::input(format!("{} ({child:?}).parent = {p:?}: no bone of that name", at(i))));
                 }
                 Some(&j) if j >= i => {
                     let (child, p) = (Quoted(bones[i].0), Quoted(p));
-                    return Err(format!(
+                    return Err(Error::input(format!(
                         "{} ({child:?}).parent = {p:?}: listed after this bone (a parent comes first)",
                         at(i)
-                    ));
+                    )));
                 }
                 Some(&j) => Some(j),
             },
@@ -232,8 +234,8 @@ struct Tree {
 }
 
 /// The index of bone `name`, or `path = "name": no bone of that name`.
-fn bone(index: &HashMap<String, usize>, name: &str, path: &str) -> Result<usize, String> {
-    index.get(name).copied().ok_or_else(|| format!("{path} = {:?}: no bone of that name", Quoted(name)))
+fn bone(index: &HashMap<String, usize>, name: &str, path: &str) -> Result<usize, Error> {
+    index.get(name).copied().ok_or_else(|| Error::input(format!("{path} = {:?}: no bone of that name", Quoted(name))))
 }
 
 /// Names to the index of their first occurrence, in one pass (a lookup per timeline was a scan
@@ -247,7 +249,7 @@ fn first_index<'a>(names: impl Iterator<Item = &'a str>) -> HashMap<&'a str, usi
 }
 
 /// The bone count of a `bones` array, checked against the cap before anything is read.
-fn count(bones: Option<&Value>, cap: BoneCap) -> Result<(), String> {
+fn count(bones: Option<&Value>, cap: BoneCap) -> Result<(), Error> {
     cap.check(length(bones))
 }
 
@@ -269,21 +271,21 @@ fn length(value: Option<&Value>) -> usize {
 /// `constraints` constraints for `bones` bones, refused past [`CONSTRAINTS_PER_BONE`] a bone
 /// before anything is read: `fields: N constraints for B bones, more than the cap of C (4 a
 /// bone, at least 64)`.
-fn constraints_within(fields: &str, constraints: usize, bones: usize) -> Result<(), String> {
+fn constraints_within(fields: &str, constraints: usize, bones: usize) -> Result<(), Error> {
     let cap = bones.saturating_mul(CONSTRAINTS_PER_BONE).max(MIN_CONSTRAINT_CAP);
     if constraints > cap {
-        return Err(format!(
+        return Err(Error::input(format!(
             "{fields}: {constraints} constraints for {bones} bones, more than the cap of {cap} \
              ({CONSTRAINTS_PER_BONE} a bone, at least {MIN_CONSTRAINT_CAP})"
-        ));
+        )));
     }
     Ok(())
 }
 
 /// The character of checked parts; what the model still refuses (its messages name indices)
 /// is said as it says it.
-fn character(parts: CharacterParts) -> Result<Character, String> {
-    Character::new(parts).map_err(|e: CharacterError| e.to_string())
+fn character(parts: CharacterParts) -> Result<Character, Error> {
+    Character::new(parts).map_err(|e: CharacterError| Error::input(e.to_string()))
 }
 
 /// The latest `time` of any key anywhere under `value` (an animation): its duration as Spine's

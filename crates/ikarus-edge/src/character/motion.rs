@@ -20,6 +20,7 @@ use ikarus::{Bend, Ease};
 use serde::Serialize;
 
 use super::Loaded;
+use crate::error::Error;
 use crate::keys::KeysFile;
 use crate::keys::character::{bend_constraint, bend_positive};
 pub use crate::names::count_text;
@@ -101,10 +102,11 @@ pub fn keyed(
     animation: Option<String>,
     max_frames: usize,
     cap: &str,
-) -> Result<(Course, f64), String> {
+) -> Result<(Course, f64), Error> {
     let c = &loaded.character;
     let bone = |field: &str, name: &str| {
-        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))
+        c.bone_index(name)
+            .ok_or_else(|| Error::input(format!("{field}: no bone named {} in the character", Quoted(name))))
     };
     let constraint = |field: &str, name: &str| bend_constraint(loaded, field, name);
     let checked = keys.check_character(&bone, &constraint, max_frames, cap)?;
@@ -189,7 +191,7 @@ pub struct FrameJson {
 #[derive(Debug)]
 pub enum StreamError {
     /// A frame could not be posed.
-    Motion(String),
+    Motion(Error),
     /// The writer failed.
     Io(std::io::Error),
 }
@@ -204,39 +206,45 @@ pub struct FramesJson {
 impl<'a> Motion<'a> {
     /// The motion of `loaded` along `course` at `fps` frames per second. Refusals are one line
     /// naming the field (`fps`, `duration`, `target "toe"`, `path`), without a label.
-    pub fn new(loaded: &'a Loaded, course: Course, fps: f64) -> Result<Self, String> {
+    pub fn new(loaded: &'a Loaded, course: Course, fps: f64) -> Result<Self, Error> {
         if !(fps.is_finite() && fps > 0.0) {
-            return Err(format!("fps: must be a positive number, got {fps}"));
+            return Err(Error::input(format!("fps: must be a positive number, got {fps}")));
         }
         let c = &loaded.character;
         let mut setup = Posed::default();
         pose_into(loaded, &PoseAsk::default(), &mut setup)?;
-        let bone =
-            |name: &str| c.bone_index(name).ok_or_else(|| format!("target {}: no bone of that name", Quoted(name)));
+        let bone = |name: &str| {
+            c.bone_index(name).ok_or_else(|| Error::input(format!("target {}: no bone of that name", Quoted(name))))
+        };
         let (starts, duration) = match &course {
             Course::Eased { targets, duration, .. } => {
                 if !(duration.is_finite() && *duration > 0.0) {
-                    return Err(format!("duration: must be a positive number of seconds, got {duration}"));
+                    return Err(Error::input(format!(
+                        "duration: must be a positive number of seconds, got {duration}"
+                    )));
                 }
                 if targets.is_empty() {
-                    return Err("target: give at least one BONE=X,Y".to_owned());
+                    return Err(Error::input("target: give at least one BONE=X,Y"));
                 }
                 let mut starts = Vec::with_capacity(targets.len());
                 for (name, [x, y]) in targets {
                     if !(x.is_finite() && y.is_finite()) {
-                        return Err(format!("target {}: the point must be finite, got ({x}, {y})", Quoted(name)));
+                        return Err(Error::input(format!(
+                            "target {}: the point must be finite, got ({x}, {y})",
+                            Quoted(name)
+                        )));
                     }
                     starts.push(setup.origin(bone(name)?));
                 }
                 (starts, *duration)
             }
             Course::Path { bone: name, points } => {
-                bone(name).map_err(|_| format!("effector {}: no bone of that name", Quoted(name)))?;
+                bone(name).map_err(|_| Error::input(format!("effector {}: no bone of that name", Quoted(name))))?;
                 if points.is_empty() {
-                    return Err("path: no samples".to_owned());
+                    return Err(Error::input("path: no samples"));
                 }
                 if let Some((k, p)) = points.iter().enumerate().find(|(_, p)| !(p[0].is_finite() && p[1].is_finite())) {
-                    return Err(format!("path[{k}]: the point must be finite, got ({}, {})", p[0], p[1]));
+                    return Err(Error::input(format!("path[{k}]: the point must be finite, got ({}, {})", p[0], p[1])));
                 }
                 (Vec::new(), (points.len() - 1) as f64 / fps)
             }
@@ -249,12 +257,12 @@ impl<'a> Motion<'a> {
             Course::Eased { .. } | Course::Keyed { .. } => MAX_FRAMES,
         };
         if let Err(n) = frames_within(duration, fps, cap) {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "duration, fps: {} s at {} fps is {} frames, more than the cap of {cap}",
                 count_text(duration),
                 count_text(fps),
                 count_text(n)
-            ));
+            )));
         }
         let (physics, skin) = (Physics::default(), None);
         Ok(Motion { loaded, fps, duration, starts, course, ik: IkChoice::Runtime, interrupt: None, physics, skin })
@@ -418,10 +426,10 @@ impl<'a> Motion<'a> {
 
     /// The character posed at `time` into `out`, on its own: physics left out (Spine's
     /// `Physics.none`); [`Motion::play_at`] plays it.
-    pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), String> {
+    pub fn pose_at(&self, time: f64, out: &mut Posed) -> Result<(), Error> {
         // Checked here too: a character without constraints never asks it while posing.
         if self.interrupt.as_ref().is_some_and(Interrupt::is_interrupted) {
-            return Err("interrupted".to_owned());
+            return Err(Error::input("interrupted"));
         }
         pose_into_until(self.loaded, &self.ask_at(time), out, self.interrupt.as_ref()).map(|_| ())
     }
@@ -448,7 +456,7 @@ impl<'a> Motion<'a> {
     /// Frame `k` posed into `out`, the frames posed in order from 0 into the same `out`: with
     /// [`Motion::plays_physics`], as the game's frame after the one at `clock` (`None` before
     /// the first), which it advances; otherwise on its own ([`Motion::pose_at`]).
-    pub(super) fn frame_into(&self, k: usize, clock: &mut Option<f64>, out: &mut Posed) -> Result<(), String> {
+    pub(super) fn frame_into(&self, k: usize, clock: &mut Option<f64>, out: &mut Posed) -> Result<(), Error> {
         if self.plays_physics() {
             *clock = Some(self.step(k, *clock, out)?);
             Ok(())
@@ -458,7 +466,7 @@ impl<'a> Motion<'a> {
     }
 
     /// Every frame posed (its time and report), for what needs them all at once (a picture).
-    pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, String> {
+    pub fn poses(&self) -> Result<Vec<(f64, PoseReport)>, Error> {
         let mut posed = Posed::default();
         let mut clock = None;
         (0..self.frame_count())
@@ -471,7 +479,7 @@ impl<'a> Motion<'a> {
     }
 
     /// Every frame posed, as JSON.
-    pub fn frames(&self) -> Result<FramesJson, String> {
+    pub fn frames(&self) -> Result<FramesJson, Error> {
         let mut unsupported = Vec::new();
         let mut frames = Vec::new();
         for (time, report) in self.poses()? {

@@ -11,6 +11,7 @@ use ikarus_render::{Art, ArtPlacement, CharacterArtMotion, CharacterMotionFigure
 
 use super::art_draw::AtlasArt;
 use super::motion::Motion;
+use crate::error::Error;
 use crate::picture::Drawing;
 use crate::pose::{PoseReport, skin_index};
 
@@ -36,7 +37,7 @@ pub struct PosedFrame<'a> {
 impl Motion<'_> {
     /// Every frame posed in order into one `Posed`, handed to `sink`. Stops at the first frame
     /// that cannot be posed, or at `sink`'s first error.
-    pub fn each_posed(&self, sink: &mut dyn FnMut(&PosedFrame) -> Result<(), String>) -> Result<(), String> {
+    pub fn each_posed(&self, sink: &mut dyn FnMut(&PosedFrame) -> Result<(), Error>) -> Result<(), Error> {
         let c = &self.loaded.character;
         let clip = self.clip().and_then(|name| c.clip_index(name));
         let mut posed = Posed::default();
@@ -64,9 +65,9 @@ pub struct MotionArt<'p> {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum MotionArtError {
     /// The character's: a frame that cannot be posed, a skin the file does not have.
-    Pose(String),
+    Pose(Error),
     /// The atlas's: a region the motion draws that it lacks (naming the region and its slot).
-    Art(String),
+    Art(Error),
     /// The picture's: more art vertices over the frames than [`MAX_DRAWN_VERTICES`].
     Cap(String),
 }
@@ -88,7 +89,7 @@ pub fn posed_with_art<'p>(motion: &Motion<'_>, atlas: &'p AtlasArt) -> Result<Mo
             Ok(art) => art,
             Err(m) => {
                 failed = Some(MotionArtError::Art(m));
-                return Err(String::new());
+                return Err(Error::input(""));
             }
         };
         vertices = vertices.saturating_add(art.pieces.iter().map(|p| p.positions.len()).sum());
@@ -97,7 +98,7 @@ pub fn posed_with_art<'p>(motion: &Motion<'_>, atlas: &'p AtlasArt) -> Result<Mo
                 "the art of the first {} frames has more than the cap of {MAX_DRAWN_VERTICES} vertices to draw",
                 frame.index + 1
             )));
-            return Err(String::new());
+            return Err(Error::input(""));
         }
         poses.push((frame.time, PoseReport::of(c, frame.posed)));
         arts.push(art);

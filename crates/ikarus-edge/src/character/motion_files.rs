@@ -8,6 +8,7 @@ use std::io::Write;
 use serde::Serialize;
 
 use super::motion::{Motion, StreamError};
+use crate::error::Error;
 use crate::picture::Drawing;
 use crate::pose::{PoseReport, PosedBoneJson};
 
@@ -45,7 +46,7 @@ pub fn write_csv(motion: &Motion<'_>, w: &mut dyn Write) -> Result<(), StreamErr
 }
 
 /// The motion's frames as CSV bytes ([`write_csv`]).
-pub fn csv(motion: &Motion<'_>) -> Result<Vec<u8>, String> {
+pub fn csv(motion: &Motion<'_>) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();
     write_csv(motion, &mut bytes).map_err(message)?;
     Ok(bytes)
@@ -81,7 +82,7 @@ pub fn write_json(motion: &Motion<'_>, w: &mut dyn Write) -> Result<(), StreamEr
 }
 
 /// The motion's frames as JSON bytes ([`write_json`]).
-pub fn json(motion: &Motion<'_>) -> Result<Vec<u8>, String> {
+pub fn json(motion: &Motion<'_>) -> Result<Vec<u8>, Error> {
     let mut bytes = Vec::new();
     write_json(motion, &mut bytes).map_err(message)?;
     Ok(bytes)
@@ -89,10 +90,10 @@ pub fn json(motion: &Motion<'_>) -> Result<Vec<u8>, String> {
 
 /// A [`StreamError`] into memory as one line: a frame's refusal (writing to memory does not
 /// fail otherwise).
-fn message(e: StreamError) -> String {
+fn message(e: StreamError) -> Error {
     match e {
         StreamError::Motion(m) => m,
-        StreamError::Io(e) => format!("cannot write: {e}"),
+        StreamError::Io(e) => Error::input(format!("cannot write: {e}")),
     }
 }
 

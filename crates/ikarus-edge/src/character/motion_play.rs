@@ -19,6 +19,7 @@
 use ikarus::character::{PlayFrame, Posed};
 
 use super::motion::{Motion, Physics, Playhead};
+use crate::error::Error;
 use crate::pose::pose_frame_into;
 
 impl Motion<'_> {
@@ -38,7 +39,7 @@ impl Motion<'_> {
 
     /// Frame `k` posed into `out` as the game's frame after the one `out` holds (at clock
     /// `before`), or as the first (`None`: the physics restarts, the clock at 0): its clock.
-    pub(crate) fn step(&self, k: usize, before: Option<f64>, out: &mut Posed) -> Result<f64, String> {
+    pub(crate) fn step(&self, k: usize, before: Option<f64>, out: &mut Posed) -> Result<f64, Error> {
         let clock = before.map_or(0.0, |b| self.clock_after(k, b));
         self.pose_played(
             self.frame_time(k),
@@ -50,9 +51,9 @@ impl Motion<'_> {
 
     /// The motion's pose at `time` (its targets, bends and turns) as the game's `frame`: the
     /// clip under the keys at the frame's clock.
-    fn pose_played(&self, time: f64, frame: &PlayFrame, out: &mut Posed) -> Result<(), String> {
+    fn pose_played(&self, time: f64, frame: &PlayFrame, out: &mut Posed) -> Result<(), Error> {
         if self.interrupt.as_ref().is_some_and(ikarus::Interrupt::is_interrupted) {
-            return Err("interrupted".to_owned());
+            return Err(Error::input("interrupted"));
         }
         let mut ask = self.ask_at(time);
         if ask.animation.is_some() {
@@ -81,7 +82,7 @@ impl Motion<'_> {
     /// [`Motion::pose_at`]. `head` keeps the game between calls: times asked in increasing
     /// order (or between the last two frames played) cost one pose a frame; an earlier time
     /// plays again from 0.
-    pub fn play_at<'h>(&self, time: f64, head: &'h mut Playhead) -> Result<&'h Posed, String> {
+    pub fn play_at<'h>(&self, time: f64, head: &'h mut Playhead) -> Result<&'h Posed, Error> {
         let time = time.clamp(0.0, self.duration);
         if !self.plays_physics() {
             self.pose_at(time, &mut head.between)?;

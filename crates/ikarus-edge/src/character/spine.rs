@@ -22,6 +22,7 @@ use serde_json::Value;
 
 use super::clips::{self, Ordered};
 use super::{Format, Loaded};
+use crate::error::Error;
 use crate::names::Quoted;
 use crate::rig::BoneCap;
 
@@ -130,7 +131,7 @@ struct IkJson {
 }
 
 /// Reads a Spine file (`value` is its text parsed, for the cap and the clips' durations).
-pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, String> {
+pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, Error> {
     super::count(value.get("bones"), cap)?;
     let constraints = ["ik", "transform", "path", "physics"].map(|k| super::length(value.get(k))).iter().sum();
     super::constraints_within("ik, transform, path, physics", constraints, super::length(value.get("bones")))?;
@@ -148,7 +149,11 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     let named: Vec<(&str, Option<&str>)> = file.bones.iter().map(|b| (b.name.as_str(), b.parent.as_deref())).collect();
     let super::Tree { parents: parent_of, index } = super::parents(&named, |i| format!("bones[{i}]"))?;
     if let Some((i, b)) = file.bones.iter().enumerate().find(|(_, b)| b.length < 0.0) {
-        return Err(format!("bones[{i}] ({:?}).length = {}: must not be negative", Quoted(&b.name), b.length));
+        return Err(Error::input(format!(
+            "bones[{i}] ({:?}).length = {}: must not be negative",
+            Quoted(&b.name),
+            b.length
+        )));
     }
     let bones = file.bones.iter().zip(parent_of.iter().copied()).map(|(b, parent)| bone(b, parent)).collect();
     let constraints = file
@@ -228,7 +233,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
             let keys = super::spine_physics::clip_timelines(json, &physics, first_physics, &at)?;
             clip.constraints.extend(keys);
             let slot_clip = super::spine_slot_clips::read(json, (name, &at), &slots, (&art, &inherits), legacy)?;
-            Ok::<_, String>((clip, slot_clip))
+            Ok::<_, Error>((clip, slot_clip))
         })
         .collect::<Result<Vec<_>, _>>()?;
     let (clips, slot_clips): (Vec<_>, Vec<_>) = clips.into_iter().unzip();
@@ -248,7 +253,7 @@ pub(super) fn read(text: &str, value: &Value, cap: BoneCap) -> Result<Loaded, St
     };
     let mut character = super::character(parts)?;
     if let Some(r) = file.skeleton.reference_scale {
-        character = character.with_reference_scale(r).map_err(|e| e.to_string())?;
+        character = character.with_reference_scale(r).map_err(|e| Error::input(e.to_string()))?;
     }
     Ok(Loaded { character, format: Format::Spine, version, warnings })
 }
@@ -282,25 +287,29 @@ fn constraint(
     index: &HashMap<String, usize>,
     at: &str,
     parent_of: &[Option<usize>],
-) -> Result<IkConstraint, String> {
+) -> Result<IkConstraint, Error> {
     let bones = match k.bones.as_slice() {
         [one] => IkBones::One(super::bone(index, one, &format!("{at}.bones[0]"))?),
         [first, second] => {
             let parent = super::bone(index, first, &format!("{at}.bones[0]"))?;
             let child = super::bone(index, second, &format!("{at}.bones[1]"))?;
             if parent_of[child] != Some(parent) {
-                return Err(format!("{at}.bones[1] = {:?}: not a child of {:?}", Quoted(second), Quoted(first)));
+                return Err(Error::input(format!(
+                    "{at}.bones[1] = {:?}: not a child of {:?}",
+                    Quoted(second),
+                    Quoted(first)
+                )));
             }
             IkBones::Two { parent, child }
         }
-        other => return Err(format!("{at}.bones: expected one or two bones, got {}", other.len())),
+        other => return Err(Error::input(format!("{at}.bones: expected one or two bones, got {}", other.len()))),
     };
     let target = super::bone(index, &k.target, &format!("{at}.target"))?;
     if !(0.0..=1.0).contains(&k.mix) {
-        return Err(format!("{at}.mix = {}: must be within 0 and 1", k.mix));
+        return Err(Error::input(format!("{at}.mix = {}: must be within 0 and 1", k.mix)));
     }
     if k.softness < 0.0 {
-        return Err(format!("{at}.softness = {}: must not be negative", k.softness));
+        return Err(Error::input(format!("{at}.softness = {}: must not be negative", k.softness)));
     }
     Ok(IkConstraint {
         name: k.name.clone(),

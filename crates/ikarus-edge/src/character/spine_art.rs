@@ -30,6 +30,7 @@ use ikarus::character::{
 use serde_json::Value;
 
 use super::spine_slots::{Slots, number, numbers, weighted};
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// A linked mesh waiting for its parent: where it is, where its parent is, and its own fields.
@@ -57,16 +58,17 @@ pub(super) struct Inherits {
 
 /// Reads the art of a Spine file (parsed), whose slots and skins `slots` has read, and the
 /// linked meshes that take their parents' deform timelines.
-pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(Art, Vec<Inherits>), String> {
+pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(Art, Vec<Inherits>), Error> {
     let mut art = Art::default();
     let list = value.get("slots").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
     for (s, (json, slot)) in list.iter().zip(&slots.slots).enumerate() {
         let at = format!("slots[{s}] ({:?})", Quoted(&slot.name));
         let blend = match json.get("blend") {
             None => BlendMode::Normal,
-            Some(Value::String(b)) => BlendMode::from_name(b)
-                .ok_or_else(|| format!("{at}.blend = {b:?}: expected normal, additive, multiply or screen"))?,
-            Some(other) => return Err(format!("{at}.blend = {other}: expected a string")),
+            Some(Value::String(b)) => BlendMode::from_name(b).ok_or_else(|| {
+                Error::input(format!("{at}.blend = {b:?}: expected normal, additive, multiply or screen"))
+            })?,
+            Some(other) => return Err(Error::input(format!("{at}.blend = {other}: expected a string"))),
         };
         let dark = match json.get("dark") {
             None | Some(Value::Null) => None,
@@ -105,18 +107,26 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
                             Some(Value::String(s)) => skin_index.get(s.as_str()).copied(),
                             // A `.skel` read into JSON names the skin by its index.
                             Some(Value::Number(n)) => n.as_u64().and_then(|n| usize::try_from(n).ok()),
-                            Some(other) => return Err(format!("{at}.skin = {other}: expected a skin's name")),
+                            Some(other) => {
+                                return Err(Error::input(format!("{at}.skin = {other}: expected a skin's name")));
+                            }
                         };
                         let parent_skin = parent_skin.filter(|&p| p < skins.len()).ok_or_else(|| {
-                            format!("{at}.skin = {}: no such skin", a.get("skin").unwrap_or(&Value::Null))
+                            Error::input({
+                                format!("{at}.skin = {}: no such skin", a.get("skin").unwrap_or(&Value::Null))
+                            })
                         })?;
                         let Some(Value::String(parent)) = a.get("parent") else {
-                            return Err(format!("{at}.parent: expected the name of a mesh of slot {slot_name:?}"));
+                            return Err(Error::input(format!(
+                                "{at}.parent: expected the name of a mesh of slot {slot_name:?}"
+                            )));
                         };
                         let inherits = match a.get("timelines").or_else(|| a.get("deform")) {
                             None => true,
                             Some(Value::Bool(b)) => *b,
-                            Some(other) => return Err(format!("{at}.timelines = {other}: expected true or false")),
+                            Some(other) => {
+                                return Err(Error::input(format!("{at}.timelines = {other}: expected true or false")));
+                            }
                         };
                         let own = MeshAttachment {
                             path: path(a, name, &at)?,
@@ -142,7 +152,11 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
                     }
                     "clipping" => clipping(a, &slots.index, bone_count, &at)?,
                     "path" | "point" | "boundingbox" => Attachment::NotDrawn,
-                    other => return Err(format!("{at}.type = {other:?}: not an attachment type Spine writes")),
+                    other => {
+                        return Err(Error::input(format!(
+                            "{at}.type = {other:?}: not an attachment type Spine writes"
+                        )));
+                    }
                 };
                 out.slots[slot].insert(name.clone(), attachment);
             }
@@ -162,11 +176,11 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
         }
         let parent = art.skins[link.parent_skin].get(link.slot, &link.parent);
         let Some(Attachment::Mesh(p)) = parent else {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{}.parent = {:?}: not a mesh of this slot in that skin",
                 link.at,
                 Quoted(&link.parent)
-            ));
+            )));
         };
         let mesh = MeshAttachment {
             uvs: p.uvs.clone(),
@@ -181,10 +195,10 @@ pub(super) fn read(value: &Value, slots: &Slots, bone_count: usize) -> Result<(A
 }
 
 /// A colour written as `digits` hex digits (`RRGGBBAA` or `RRGGBB`), white when absent.
-pub(super) fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, String> {
+pub(super) fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, Error> {
     let Some(v) = v else { return Ok(WHITE) };
     let Some(hex) = v.as_str().filter(|s| s.len() == digits && s.chars().all(|c| c.is_ascii_hexdigit())) else {
-        return Err(format!("{at} = {v}: expected {digits} hex digits ({})", &"RRGGBBAA"[..digits]));
+        return Err(Error::input(format!("{at} = {v}: expected {digits} hex digits ({})", &"RRGGBBAA"[..digits])));
     };
     let mut out = WHITE;
     for (i, c) in out.iter_mut().enumerate().take(digits / 2) {
@@ -194,17 +208,17 @@ pub(super) fn color(v: Option<&Value>, digits: usize, at: &str) -> Result<Rgba, 
 }
 
 /// The region an attachment shows: `path` (else its name), with a sequence's setup frame.
-fn path(a: &Value, name: &str, at: &str) -> Result<String, String> {
+fn path(a: &Value, name: &str, at: &str) -> Result<String, Error> {
     let base = match a.get("path") {
         None | Some(Value::Null) => name.to_owned(),
         Some(Value::String(p)) => p.clone(),
-        Some(other) => return Err(format!("{at}.path = {other}: expected a string")),
+        Some(other) => return Err(Error::input(format!("{at}.path = {other}: expected a string"))),
     };
     let Some(sequence) = a.get("sequence") else { return Ok(base) };
     let whole = |field: &str, default: f64| {
         let v = number(sequence.get(field), default, &format!("{at}.sequence.{field}"))?;
         if v < 0.0 || v.fract() != 0.0 || v > 1e6 {
-            return Err(format!("{at}.sequence.{field} = {v}: expected a whole number from 0"));
+            return Err(Error::input(format!("{at}.sequence.{field} = {v}: expected a whole number from 0")));
         }
         Ok(v as usize)
     };
@@ -213,19 +227,21 @@ fn path(a: &Value, name: &str, at: &str) -> Result<String, String> {
 }
 
 /// A clipping attachment (not used, [`Attachment::NotDrawn`], past [`MAX_CLIP_VERTICES`]).
-fn clipping(a: &Value, slots: &HashMap<String, usize>, bone_count: usize, at: &str) -> Result<Attachment, String> {
+fn clipping(a: &Value, slots: &HashMap<String, usize>, bone_count: usize, at: &str) -> Result<Attachment, Error> {
     let end = match a.get("end") {
-        Some(Value::String(name)) => {
-            *slots.get(name.as_str()).ok_or_else(|| format!("{at}.end = {name:?}: no slot of that name"))?
-        }
+        Some(Value::String(name)) => *slots
+            .get(name.as_str())
+            .ok_or_else(|| Error::input(format!("{at}.end = {name:?}: no slot of that name")))?,
         other => {
             let got = other.map_or("nothing".to_owned(), Value::to_string);
-            return Err(format!("{at}.end = {got}: expected the name of the slot where clipping ends"));
+            return Err(Error::input(format!("{at}.end = {got}: expected the name of the slot where clipping ends")));
         }
     };
     let count = number(a.get("vertexCount"), 0.0, &format!("{at}.vertexCount"))?;
     if count < 3.0 || count.fract() != 0.0 {
-        return Err(format!("{at}.vertexCount = {count}: expected a whole number of vertices, at least 3"));
+        return Err(Error::input(format!(
+            "{at}.vertexCount = {count}: expected a whole number of vertices, at least 3"
+        )));
     }
     if count > MAX_CLIP_VERTICES as f64 {
         return Ok(Attachment::NotDrawn);
@@ -241,7 +257,7 @@ fn clipping(a: &Value, slots: &HashMap<String, usize>, bone_count: usize, at: &s
 }
 
 /// A region attachment.
-fn region(a: &Value, name: &str, at: &str) -> Result<RegionAttachment, String> {
+fn region(a: &Value, name: &str, at: &str) -> Result<RegionAttachment, Error> {
     let n = |field: &str, default: f64| number(a.get(field), default, &format!("{at}.{field}"));
     Ok(RegionAttachment {
         path: path(a, name, at)?,
@@ -257,10 +273,10 @@ fn region(a: &Value, name: &str, at: &str) -> Result<RegionAttachment, String> {
 }
 
 /// A mesh attachment.
-fn mesh(a: &Value, name: &str, bone_count: usize, at: &str) -> Result<MeshAttachment, String> {
+fn mesh(a: &Value, name: &str, bone_count: usize, at: &str) -> Result<MeshAttachment, Error> {
     let uvs = numbers(a.get("uvs"), &format!("{at}.uvs"))?;
     if uvs.len() % 2 != 0 {
-        return Err(format!("{at}.uvs: {} numbers, expected u, v pairs", uvs.len()));
+        return Err(Error::input(format!("{at}.uvs: {} numbers, expected u, v pairs", uvs.len())));
     }
     let count = uvs.len() / 2;
     let v = numbers(a.get("vertices"), &format!("{at}.vertices"))?;
@@ -273,16 +289,16 @@ fn mesh(a: &Value, name: &str, bone_count: usize, at: &str) -> Result<MeshAttach
     let mut indices = Vec::with_capacity(triangles.len());
     for (i, &t) in triangles.iter().enumerate() {
         if t < 0.0 || t.fract() != 0.0 || t >= count as f64 {
-            return Err(format!("{at}.triangles[{i}] = {t}: no vertex of that index ({count} vertices)"));
+            return Err(Error::input(format!("{at}.triangles[{i}] = {t}: no vertex of that index ({count} vertices)")));
         }
         indices.push(t as u32);
     }
     if indices.len() % 3 != 0 {
-        return Err(format!("{at}.triangles: {} indices, expected three per triangle", indices.len()));
+        return Err(Error::input(format!("{at}.triangles: {} indices, expected three per triangle", indices.len())));
     }
     let hull = number(a.get("hull"), 0.0, &format!("{at}.hull"))?;
     if hull < 0.0 || hull.fract() != 0.0 || hull > count as f64 {
-        return Err(format!("{at}.hull = {hull}: expected a whole number of vertices, at most {count}"));
+        return Err(Error::input(format!("{at}.hull = {hull}: expected a whole number of vertices, at most {count}")));
     }
     Ok(MeshAttachment {
         path: path(a, name, at)?,

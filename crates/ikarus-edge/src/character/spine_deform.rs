@@ -9,6 +9,7 @@ use ikarus::character::{DeformKey, Interpolation, PathDeform};
 use serde_json::Value;
 
 use super::spine_slots::{Slots, number};
+use crate::error::Error;
 
 /// A path's deform timeline and the skin it belongs to.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,7 +61,7 @@ pub(super) fn found<'a>(anim: &'a Value, name: &str, slots: &Slots) -> Vec<Found
 }
 
 /// The path deform timelines of animation `anim` (its JSON) named `name`.
-pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDeform>, String> {
+pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDeform>, Error> {
     let default = slots.default_skin();
     let mut out = Vec::new();
     for f in found(anim, name, slots) {
@@ -78,23 +79,25 @@ pub(super) fn read(anim: &Value, name: &str, slots: &Slots) -> Result<Vec<SkinDe
 }
 
 /// The keys of one deform timeline, `len` offsets each.
-pub(super) fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> Result<Vec<DeformKey>, String> {
+pub(super) fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> Result<Vec<DeformKey>, Error> {
     let mut out: Vec<DeformKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         let at = format!("{at}[{i}]");
         let time = number(k.get("time"), 0.0, &format!("{at}.time"))?;
         if out.last().is_some_and(|p| p.time > time) {
-            return Err(format!("{at}.time = {time}: before the previous key's"));
+            return Err(Error::input(format!("{at}.time = {time}: before the previous key's")));
         }
         let offset = number(k.get("offset"), 0.0, &format!("{at}.offset"))?;
         let mut offsets = Vec::new();
         if let Some(v) = k.get("vertices") {
-            let Some(v) = v.as_array() else { return Err(format!("{at}.vertices: expected a list of numbers")) };
+            let Some(v) = v.as_array() else {
+                return Err(Error::input(format!("{at}.vertices: expected a list of numbers")));
+            };
             if offset < 0.0 || offset.fract() != 0.0 || offset + v.len() as f64 > len as f64 {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "{at}.offset = {offset}: with {} vertices past the path's {len} coordinates",
                     v.len()
-                ));
+                )));
             }
             for (j, x) in v.iter().enumerate() {
                 offsets.push(number(Some(x), 0.0, &format!("{at}.vertices[{j}]"))?);
@@ -112,7 +115,7 @@ pub(super) fn read_keys(keys: &[Value], len: usize, legacy: bool, at: &str) -> R
 }
 
 /// A key's curve from 0 at `times[0]` to 1 at `times[1]`.
-fn curve(k: &Value, times: [f64; 2], legacy: bool, at: &str) -> Result<Interpolation, String> {
+fn curve(k: &Value, times: [f64; 2], legacy: bool, at: &str) -> Result<Interpolation, Error> {
     match k.get("curve") {
         None => Ok(Interpolation::Linear),
         Some(Value::String(s)) if s == "stepped" => Ok(Interpolation::Stepped),
@@ -131,6 +134,6 @@ fn curve(k: &Value, times: [f64; 2], legacy: bool, at: &str) -> Result<Interpola
             let cy2 = number(k.get("c4"), 1.0, &format!("{at}.c4"))?;
             Ok(super::clips::unit_bezier([times[0], 0.0], [times[1], 1.0], [cx1, cy1, cx2, cy2]))
         }
-        Some(other) => Err(format!("{at} = {other}: expected \"stepped\" or [cx1, cy1, cx2, cy2]")),
+        Some(other) => Err(Error::input(format!("{at} = {other}: expected \"stepped\" or [cx1, cy1, cx2, cy2]"))),
     }
 }

@@ -19,6 +19,7 @@ use ikarus::character::{PathConstraint, PathSettings, PositionMode, RotateMode, 
 use serde::Deserialize;
 
 use super::spine_slots::Slots;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// One entry of `path`.
@@ -76,10 +77,10 @@ pub(super) fn constraint(
     k: &PathJson,
     bones: &HashMap<String, usize>,
     slots: &Slots,
-) -> Result<PathConstraint, String> {
+) -> Result<PathConstraint, Error> {
     let at = format!("path[{i}] ({:?})", Quoted(&k.name));
     if k.bones.is_empty() {
-        return Err(format!("{at}.bones: expected at least one bone, got none"));
+        return Err(Error::input(format!("{at}.bones: expected at least one bone, got none")));
     }
     let list = k
         .bones
@@ -90,7 +91,7 @@ pub(super) fn constraint(
     let slot = *slots
         .index
         .get(&k.target)
-        .ok_or_else(|| format!("{at}.target = {:?}: no slot of that name", Quoted(&k.target)))?;
+        .ok_or_else(|| Error::input(format!("{at}.target = {:?}: no slot of that name", Quoted(&k.target))))?;
     let position_mode = mode(
         &k.position_mode,
         &at,
@@ -119,12 +120,12 @@ pub(super) fn constraint(
     let mix_y = k.mix_y.or(k.translate_mix).unwrap_or(mix_x);
     for (field, v) in [("mixRotate", mix_rotate), ("mixX", mix_x), ("mixY", mix_y)] {
         if !(-1.0..=1.0).contains(&v) {
-            return Err(format!("{at}.{field} = {v}: must be within −1 and 1"));
+            return Err(Error::input(format!("{at}.{field} = {v}: must be within −1 and 1")));
         }
     }
     for (field, v) in [("rotation", k.rotation), ("position", k.position), ("spacing", k.spacing)] {
         if !v.is_finite() {
-            return Err(format!("{at}.{field} = {v}: must be finite"));
+            return Err(Error::input(format!("{at}.{field} = {v}: must be finite")));
         }
     }
     let default = slots.default_skin();
@@ -151,11 +152,13 @@ pub(super) fn constraint(
 }
 
 /// A mode by its Spine name (the default when absent).
-fn mode<T: Copy + Default>(v: &Option<String>, at: &str, field: &str, modes: &[(&str, T)]) -> Result<T, String> {
+fn mode<T: Copy + Default>(v: &Option<String>, at: &str, field: &str, modes: &[(&str, T)]) -> Result<T, Error> {
     let Some(name) = v else { return Ok(T::default()) };
     modes.iter().find(|(n, _)| n == name).map(|(_, m)| *m).ok_or_else(|| {
-        let names: Vec<&str> = modes.iter().map(|(n, _)| *n).collect();
-        format!("{at}.{field} = {:?}: expected one of {}", Quoted(name), names.join(", "))
+        Error::input({
+            let names: Vec<&str> = modes.iter().map(|(n, _)| *n).collect();
+            format!("{at}.{field} = {:?}: expected one of {}", Quoted(name), names.join(", "))
+        })
     })
 }
 

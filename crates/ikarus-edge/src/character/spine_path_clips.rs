@@ -13,6 +13,7 @@ use serde_json::Value;
 
 use super::spine_deform::SkinDeform;
 use super::spine_slots::number;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// What a path timeline keys: its kind, its channels' fields (4.x, 3.8) and defaults.
@@ -40,13 +41,14 @@ pub(super) fn read(
     targets: &[(usize, usize, Option<&str>)],
     deforms: &[SkinDeform],
     legacy: bool,
-) -> Result<Vec<ConstraintTimeline>, String> {
+) -> Result<Vec<ConstraintTimeline>, Error> {
     let mut out = Vec::new();
     if let Some(by_name) = anim.get("path").and_then(Value::as_object) {
         for (name, timelines) in by_name {
             let at = format!("{at}.path.{:?}", Quoted(name));
-            let &constraint =
-                paths.get(name.as_str()).ok_or_else(|| format!("{at}: no path constraint of that name"))?;
+            let &constraint = paths
+                .get(name.as_str())
+                .ok_or_else(|| Error::input(format!("{at}: no path constraint of that name")))?;
             for (field, kind) in [("position", POSITION), ("spacing", SPACING), ("mix", MIX)] {
                 let Some(keys) = timelines.get(field) else { continue };
                 let keys = channel_keys(keys, &kind, legacy, &format!("{at}.{field}"))?;
@@ -66,8 +68,8 @@ pub(super) fn read(
 }
 
 /// The keys of one numeric path timeline.
-fn channel_keys(keys: &Value, kind: &Kind, legacy: bool, at: &str) -> Result<Vec<ChannelKey>, String> {
-    let keys = keys.as_array().ok_or_else(|| format!("{at}: expected a list of keys"))?;
+fn channel_keys(keys: &Value, kind: &Kind, legacy: bool, at: &str) -> Result<Vec<ChannelKey>, Error> {
+    let keys = keys.as_array().ok_or_else(|| Error::input(format!("{at}: expected a list of keys")))?;
     let mut out: Vec<ChannelKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         let at = format!("{at}[{i}]");
@@ -82,7 +84,7 @@ fn channel_keys(keys: &Value, kind: &Kind, legacy: bool, at: &str) -> Result<Vec
         if kind.fields.len() == 3 {
             for (ch, (field, _, _)) in kind.fields.iter().enumerate() {
                 if !(-1.0..=1.0).contains(&values[ch]) {
-                    return Err(format!("{at}.{field} = {}: must be within −1 and 1", values[ch]));
+                    return Err(Error::input(format!("{at}.{field} = {}: must be within −1 and 1", values[ch])));
                 }
             }
         }
@@ -108,7 +110,7 @@ pub(super) fn curves(
     (t1, to): (f64, &[f64]),
     legacy: bool,
     at: &str,
-) -> Result<Vec<Interpolation>, String> {
+) -> Result<Vec<Interpolation>, Error> {
     let n = from.len();
     let mut out = vec![Interpolation::Linear; n];
     match k.get("curve") {
@@ -137,10 +139,10 @@ pub(super) fn curves(
             }
         }
         Some(other) => {
-            return Err(format!(
+            return Err(Error::input(format!(
                 "{at} = {other}: expected \"stepped\" or {} numbers ([cx1, cy1, cx2, cy2] per channel)",
                 4 * n
-            ));
+            )));
         }
     }
     Ok(out)

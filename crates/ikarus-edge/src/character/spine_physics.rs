@@ -12,6 +12,7 @@ use ikarus::character::{
 use serde::Deserialize;
 use serde_json::Value;
 
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// One entry of the file's `physics` list.
@@ -83,29 +84,30 @@ fn strength() -> f64 {
 
 /// The physics constraints of a Spine skeleton (the JSON value of the whole file), their bones
 /// found by name in `bones` (name → index).
-pub fn read(file: &Value, bones: &HashMap<String, usize>) -> Result<Vec<PhysicsConstraint>, String> {
+pub fn read(file: &Value, bones: &HashMap<String, usize>) -> Result<Vec<PhysicsConstraint>, Error> {
     let Some(list) = file.get("physics") else { return Ok(Vec::new()) };
-    let Some(list) = list.as_array() else { return Err("physics: must be a list".to_owned()) };
+    let Some(list) = list.as_array() else { return Err(Error::input("physics: must be a list")) };
     list.iter()
         .enumerate()
         .map(|(i, v)| {
             let name = v.get("name").and_then(Value::as_str).unwrap_or("");
             let at = format!("physics[{i}] ({:?})", Quoted(name));
-            let p: PhysicsJson = serde_json::from_value(v.clone()).map_err(|e| format!("{at}: {e}"))?;
+            let p: PhysicsJson = serde_json::from_value(v.clone()).map_err(|e| Error::input(format!("{at}: {e}")))?;
             constraint(&p, bones, &at)
         })
         .collect()
 }
 
-fn constraint(p: &PhysicsJson, bones: &HashMap<String, usize>, at: &str) -> Result<PhysicsConstraint, String> {
-    let bone = *bones.get(&p.bone).ok_or_else(|| format!("{at}.bone = {:?}: no such bone", Quoted(&p.bone)))?;
+fn constraint(p: &PhysicsJson, bones: &HashMap<String, usize>, at: &str) -> Result<PhysicsConstraint, Error> {
+    let bone =
+        *bones.get(&p.bone).ok_or_else(|| Error::input(format!("{at}.bone = {:?}: no such bone", Quoted(&p.bone))))?;
     let positive = [("fps", p.fps), ("mass", p.mass)];
     if let Some((field, value)) = positive.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
-        return Err(format!("{at}.{field} = {value}: must be positive"));
+        return Err(Error::input(format!("{at}.{field} = {value}: must be positive")));
     }
     let not_negative = [("limit", p.limit), ("strength", p.strength)];
     if let Some((field, value)) = not_negative.iter().find(|(_, v)| !(v.is_finite() && *v >= 0.0)) {
-        return Err(format!("{at}.{field} = {value}: must not be negative"));
+        return Err(Error::input(format!("{at}.{field} = {value}: must not be negative")));
     }
     let finite = [
         ("x", p.x),
@@ -120,7 +122,7 @@ fn constraint(p: &PhysicsJson, bones: &HashMap<String, usize>, at: &str) -> Resu
         ("mix", p.mix),
     ];
     if let Some((field, value)) = finite.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(format!("{at}.{field} = {value}: must be finite"));
+        return Err(Error::input(format!("{at}.{field} = {value}: must be finite")));
     }
     Ok(PhysicsConstraint {
         name: p.name.clone(),
@@ -158,23 +160,25 @@ pub fn read_timelines(
     animation: &Value,
     constraints: &[PhysicsConstraint],
     at: &str,
-) -> Result<(Vec<PhysicsTimeline>, Vec<PhysicsReset>), String> {
+) -> Result<(Vec<PhysicsTimeline>, Vec<PhysicsReset>), Error> {
     let (mut timelines, mut resets) = (Vec::new(), Vec::new());
     let Some(physics) = animation.get("physics") else { return Ok((timelines, resets)) };
-    let Some(physics) = physics.as_object() else { return Err(format!("{at}.physics: must be an object")) };
+    let Some(physics) = physics.as_object() else {
+        return Err(Error::input(format!("{at}.physics: must be an object")));
+    };
     for (name, props) in physics {
         let at = format!("{at}.physics.{:?}", Quoted(name));
         let constraint = if name.is_empty() {
             None
         } else {
             let k = constraints.iter().position(|c| c.name == *name);
-            Some(k.ok_or_else(|| format!("{at}: no physics constraint {:?}", Quoted(name)))?)
+            Some(k.ok_or_else(|| Error::input(format!("{at}: no physics constraint {:?}", Quoted(name))))?)
         };
-        let Some(props) = props.as_object() else { return Err(format!("{at}: must be an object")) };
+        let Some(props) = props.as_object() else { return Err(Error::input(format!("{at}: must be an object"))) };
         for (prop, keys) in props {
             let at = format!("{at}.{prop}");
             let Some(keys) = keys.as_array().filter(|k| !k.is_empty()) else {
-                return Err(format!("{at}: must be a list of keys"));
+                return Err(Error::input(format!("{at}: must be a list of keys")));
             };
             let property = match prop.as_str() {
                 "reset" => {
@@ -189,14 +193,14 @@ pub fn read_timelines(
                 "wind" => PhysicsProperty::Wind,
                 "gravity" => PhysicsProperty::Gravity,
                 "mix" => PhysicsProperty::Mix,
-                other => return Err(format!("{at}: no physics timeline {:?}", Quoted(other))),
+                other => return Err(Error::input(format!("{at}: no physics timeline {:?}", Quoted(other)))),
             };
             let keys =
                 keys.iter().enumerate().map(|(i, k)| key(k, &format!("{at}[{i}]"))).collect::<Result<Vec<_>, _>>()?;
             increasing(keys.iter().map(|k| k.time).collect(), &at)?;
             if property == PhysicsProperty::Mass {
                 if let Some((i, k)) = keys.iter().enumerate().find(|(_, k)| k.value <= 0.0) {
-                    return Err(format!("{at}[{i}].value = {}: a mass must be positive", k.value));
+                    return Err(Error::input(format!("{at}[{i}].value = {}: a mass must be positive", k.value)));
                 }
             }
             timelines.push(PhysicsTimeline { constraint, property, keys });
@@ -214,7 +218,7 @@ pub fn clip_timelines(
     physics: &[PhysicsConstraint],
     first: usize,
     at: &str,
-) -> Result<Vec<ConstraintTimeline>, String> {
+) -> Result<Vec<ConstraintTimeline>, Error> {
     let (timelines, resets) = read_timelines(animation, physics, at)?;
     let mut out = Vec::new();
     for t in timelines {
@@ -252,16 +256,19 @@ pub fn clip_timelines(
 }
 
 /// A finite number field of a key (`default` when absent).
-fn number(k: &Value, field: &str, default: f64, at: &str) -> Result<f64, String> {
+fn number(k: &Value, field: &str, default: f64, at: &str) -> Result<f64, Error> {
     match k.get(field) {
         None => Ok(default),
-        Some(v) => v.as_f64().filter(|v| v.is_finite()).ok_or_else(|| format!("{at}.{field} = {v}: must be a number")),
+        Some(v) => v
+            .as_f64()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| Error::input(format!("{at}.{field} = {v}: must be a number"))),
     }
 }
 
 /// One key: `time` (0), `value` (0) and `curve` (absent: linear; `"stepped"`; or `[cx1, cy1,
 /// cx2, cy2]`).
-fn key(k: &Value, at: &str) -> Result<PhysicsKey, String> {
+fn key(k: &Value, at: &str) -> Result<PhysicsKey, Error> {
     let time = number(k, "time", 0.0, at)?;
     let value = number(k, "value", 0.0, at)?;
     let curve = match k.get("curve") {
@@ -271,15 +278,21 @@ fn key(k: &Value, at: &str) -> Result<PhysicsKey, String> {
             let c: Vec<f64> = c.iter().filter_map(Value::as_f64).collect();
             Interpolation::Bezier { c1: [c[0], c[1]], c2: [c[2], c[3]] }
         }
-        Some(other) => return Err(format!("{at}.curve = {other}: expected \"stepped\" or [cx1, cy1, cx2, cy2]")),
+        Some(other) => {
+            return Err(Error::input(format!("{at}.curve = {other}: expected \"stepped\" or [cx1, cy1, cx2, cy2]")));
+        }
     };
     Ok(PhysicsKey { time, value, curve })
 }
 
 /// `times` when they do not decrease.
-fn increasing(times: Vec<f64>, at: &str) -> Result<Vec<f64>, String> {
+fn increasing(times: Vec<f64>, at: &str) -> Result<Vec<f64>, Error> {
     if let Some(i) = (1..times.len()).find(|&i| times[i] < times[i - 1]) {
-        return Err(format!("{at}[{i}].time = {}: before the key before it ({})", times[i], times[i - 1]));
+        return Err(Error::input(format!(
+            "{at}[{i}].time = {}: before the key before it ({})",
+            times[i],
+            times[i - 1]
+        )));
     }
     Ok(times)
 }

@@ -14,6 +14,7 @@ use serde::Deserialize;
 use serde::de::IgnoredAny;
 
 use super::clips::Ordered;
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// The file's `skins`: a list (4.x, 3.8) or an object by name (older).
@@ -60,7 +61,7 @@ pub(super) struct SkinNames<'a> {
 
 /// The skins of `skins`, names resolved: `skins[1] ("hero").bones[0] = "cape": no bone of that
 /// name`, and the like for `ik` and `transform`.
-pub(super) fn read(skins: &SkinsJson, names: &SkinNames<'_>) -> Result<Vec<Skin>, String> {
+pub(super) fn read(skins: &SkinsJson, names: &SkinNames<'_>) -> Result<Vec<Skin>, Error> {
     let list = match skins {
         SkinsJson::Object(by_name) => {
             return Ok(by_name.0.iter().map(|(name, _)| Skin { name: name.clone(), ..Skin::default() }).collect());
@@ -85,9 +86,9 @@ pub(super) fn read(skins: &SkinsJson, names: &SkinNames<'_>) -> Result<Vec<Skin>
                 ("physics", &s.physics, names.physics, "physics constraint"),
             ] {
                 for (j, name) in list.iter().enumerate() {
-                    let k = index
-                        .get(name.as_str())
-                        .ok_or_else(|| format!("{at}.{field}[{j}] = {:?}: no {kind} of that name", Quoted(name)))?;
+                    let k = index.get(name.as_str()).ok_or_else(|| {
+                        Error::input(format!("{at}.{field}[{j}] = {:?}: no {kind} of that name", Quoted(name)))
+                    })?;
                     constraints.push(*k);
                 }
             }

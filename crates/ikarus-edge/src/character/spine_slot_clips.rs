@@ -23,6 +23,7 @@ use serde_json::Value;
 
 use super::spine_art::{Inherits, color};
 use super::spine_slots::{Slots, number};
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// A colour key's hex fields and their digits, in the order of the values.
@@ -51,14 +52,14 @@ pub(super) fn read(
     slots: &Slots,
     (art, inherits): (&Art, &[Inherits]),
     legacy: bool,
-) -> Result<SlotClip, String> {
+) -> Result<SlotClip, Error> {
     let mut out = SlotClip::default();
     for (slot_name, timelines) in anim.get("slots").and_then(Value::as_object).into_iter().flatten() {
         let at = format!("{at}.slots.{:?}", Quoted(slot_name));
-        let &slot = slots.index.get(slot_name).ok_or_else(|| format!("{at}: no slot of that name"))?;
+        let &slot = slots.index.get(slot_name).ok_or_else(|| Error::input(format!("{at}: no slot of that name")))?;
         for (kind, keys) in timelines.as_object().into_iter().flatten() {
             let at = format!("{at}.{kind}");
-            let keys = keys.as_array().ok_or_else(|| format!("{at}: expected a list of keys"))?;
+            let keys = keys.as_array().ok_or_else(|| Error::input(format!("{at}: expected a list of keys")))?;
             if kind == "attachment" {
                 out.attachments.push(AttachmentTimeline { slot, keys: attachment_keys(keys, &at)? });
             } else if let Some(&(_, property, fields)) = COLORS.iter().find(|c| c.0 == kind) {
@@ -95,16 +96,16 @@ pub(super) fn read(
 }
 
 /// A key's time, not before the previous key's.
-fn time(k: &Value, previous: Option<f64>, at: &str) -> Result<f64, String> {
+fn time(k: &Value, previous: Option<f64>, at: &str) -> Result<f64, Error> {
     let time = number(k.get("time"), 0.0, &format!("{at}.time"))?;
     if previous.is_some_and(|p| p > time) {
-        return Err(format!("{at}.time = {time}: before the previous key's"));
+        return Err(Error::input(format!("{at}.time = {time}: before the previous key's")));
     }
     Ok(time)
 }
 
 /// An attachment timeline's keys.
-fn attachment_keys(keys: &[Value], at: &str) -> Result<Vec<AttachmentKey>, String> {
+fn attachment_keys(keys: &[Value], at: &str) -> Result<Vec<AttachmentKey>, Error> {
     let mut out: Vec<AttachmentKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         let at = format!("{at}[{i}]");
@@ -112,7 +113,9 @@ fn attachment_keys(keys: &[Value], at: &str) -> Result<Vec<AttachmentKey>, Strin
         let name = match k.get("name") {
             None | Some(Value::Null) => None,
             Some(Value::String(s)) => Some(s.clone()),
-            Some(other) => return Err(format!("{at}.name = {other}: expected an attachment's name or null")),
+            Some(other) => {
+                return Err(Error::input(format!("{at}.name = {other}: expected an attachment's name or null")));
+            }
         };
         out.push(AttachmentKey { time, name });
     }
@@ -126,7 +129,7 @@ fn color_keys(
     (property, fields): (ColorProperty, &[(&str, usize)]),
     legacy: bool,
     at: &str,
-) -> Result<Vec<ColorKey>, String> {
+) -> Result<Vec<ColorKey>, Error> {
     let n = property.channels();
     let mut out: Vec<ColorKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
@@ -134,13 +137,13 @@ fn color_keys(
         let time = time(k, out.last().map(|k| k.time), &at)?;
         let mut values = Vec::with_capacity(COLOR_CHANNELS);
         for &(field, digits) in fields {
-            let v = k.get(field).ok_or_else(|| format!("{at}.{field}: expected {digits} hex digits"))?;
+            let v = k.get(field).ok_or_else(|| Error::input(format!("{at}.{field}: expected {digits} hex digits")))?;
             values.extend_from_slice(&color(Some(v), digits, &format!("{at}.{field}"))?[..digits / 2]);
         }
         if fields.is_empty() {
             let v = number(k.get("value"), 0.0, &format!("{at}.value"))?;
             if !(0.0..=1.0).contains(&v) {
-                return Err(format!("{at}.value = {v}: expected an alpha from 0 to 1"));
+                return Err(Error::input(format!("{at}.value = {v}: expected an alpha from 0 to 1")));
             }
             values.push(v);
         }
@@ -164,8 +167,8 @@ fn color_keys(
 }
 
 /// The draw order keys.
-fn draw_order(keys: &Value, slots: &Slots, at: &str) -> Result<Vec<DrawOrderKey>, String> {
-    let keys = keys.as_array().ok_or_else(|| format!("{at}: expected a list of keys"))?;
+fn draw_order(keys: &Value, slots: &Slots, at: &str) -> Result<Vec<DrawOrderKey>, Error> {
+    let keys = keys.as_array().ok_or_else(|| Error::input(format!("{at}: expected a list of keys")))?;
     let mut out: Vec<DrawOrderKey> = Vec::with_capacity(keys.len());
     for (i, k) in keys.iter().enumerate() {
         let at = format!("{at}[{i}]");
@@ -174,21 +177,25 @@ fn draw_order(keys: &Value, slots: &Slots, at: &str) -> Result<Vec<DrawOrderKey>
             out.push(DrawOrderKey { time, order: None });
             continue;
         };
-        let offsets = offsets.as_array().ok_or_else(|| format!("{at}.offsets: expected a list"))?;
+        let offsets = offsets.as_array().ok_or_else(|| Error::input(format!("{at}.offsets: expected a list")))?;
         let mut pairs = Vec::with_capacity(offsets.len());
         for (j, o) in offsets.iter().enumerate() {
             let at = format!("{at}.offsets[{j}]");
             let Some(Value::String(name)) = o.get("slot") else {
-                return Err(format!("{at}.slot: expected a slot's name"));
+                return Err(Error::input(format!("{at}.slot: expected a slot's name")));
             };
-            let &slot = slots.index.get(name).ok_or_else(|| format!("{at}.slot = {:?}: no such slot", Quoted(name)))?;
+            let &slot = slots
+                .index
+                .get(name)
+                .ok_or_else(|| Error::input(format!("{at}.slot = {:?}: no such slot", Quoted(name))))?;
             let offset = number(o.get("offset"), 0.0, &format!("{at}.offset"))?;
             if offset.fract() != 0.0 || offset.abs() > slots.slots.len() as f64 {
-                return Err(format!("{at}.offset = {offset}: expected a whole number of places"));
+                return Err(Error::input(format!("{at}.offset = {offset}: expected a whole number of places")));
             }
             pairs.push((slot, offset as i64));
         }
-        let order = draw_order_from_offsets(slots.slots.len(), &pairs).map_err(|e| format!("{at}.{e}"))?;
+        let order =
+            draw_order_from_offsets(slots.slots.len(), &pairs).map_err(|e| Error::input(format!("{at}.{e}")))?;
         out.push(DrawOrderKey { time, order: Some(order) });
     }
     Ok(out)

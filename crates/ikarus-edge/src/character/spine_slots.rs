@@ -16,6 +16,7 @@ use std::collections::HashMap;
 use ikarus::character::{PathShape, PathVertices, Weight};
 use serde_json::Value;
 
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// A slot: its bone and the attachment it shows in the setup pose.
@@ -61,7 +62,7 @@ impl Slots {
 }
 
 /// Reads `slots` and `skins` of a Spine file (parsed), bones resolved by `bones`.
-pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slots, String> {
+pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slots, Error> {
     let mut out = Slots::default();
     for (i, s) in value.get("slots").and_then(Value::as_array).map_or(&[][..], Vec::as_slice).iter().enumerate() {
         let at = format!("slots[{i}]");
@@ -74,7 +75,7 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
             Some(a) => Some(text(Some(a), &format!("{at}.attachment"))?),
         };
         if let Some(first) = out.index.insert(name.clone(), i) {
-            return Err(format!("{at}.name = {:?}: also the name of slots[{first}]", Quoted(&name)));
+            return Err(Error::input(format!("{at}.name = {:?}: also the name of slots[{first}]", Quoted(&name))));
         }
         out.slots.push(Slot { name, bone, attachment });
     }
@@ -86,7 +87,7 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
         if let Some(slots) = skin.get("attachments").and_then(Value::as_object) {
             for (slot_name, attachments) in slots {
                 let Some(&slot) = out.index.get(slot_name) else {
-                    return Err(format!("{at}: {:?} is not a slot", Quoted(slot_name)));
+                    return Err(Error::input(format!("{at}: {:?} is not a slot", Quoted(slot_name))));
                 };
                 let Some(attachments) = attachments.as_object() else { continue };
                 for (a_name, a) in attachments {
@@ -105,46 +106,54 @@ pub(super) fn read(value: &Value, bones: &HashMap<String, usize>) -> Result<Slot
 }
 
 /// A string field.
-fn text(v: Option<&Value>, at: &str) -> Result<String, String> {
+fn text(v: Option<&Value>, at: &str) -> Result<String, Error> {
     match v {
         Some(Value::String(s)) => Ok(s.clone()),
-        Some(other) => Err(format!("{at} = {other}: expected a string")),
-        None => Err(format!("{at}: missing")),
+        Some(other) => Err(Error::input(format!("{at} = {other}: expected a string"))),
+        None => Err(Error::input(format!("{at}: missing"))),
     }
 }
 
 /// A finite number, or `default` when absent.
-pub(super) fn number(v: Option<&Value>, default: f64, at: &str) -> Result<f64, String> {
+pub(super) fn number(v: Option<&Value>, default: f64, at: &str) -> Result<f64, Error> {
     match v {
         None => Ok(default),
-        Some(x) => x.as_f64().filter(|x| x.is_finite()).ok_or_else(|| format!("{at} = {x}: expected a finite number")),
+        Some(x) => x
+            .as_f64()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| Error::input(format!("{at} = {x}: expected a finite number"))),
     }
 }
 
 /// A boolean, or `default` when absent.
-fn boolean(v: Option<&Value>, default: bool, at: &str) -> Result<bool, String> {
+fn boolean(v: Option<&Value>, default: bool, at: &str) -> Result<bool, Error> {
     match v {
         None => Ok(default),
         Some(Value::Bool(b)) => Ok(*b),
-        Some(other) => Err(format!("{at} = {other}: expected true or false")),
+        Some(other) => Err(Error::input(format!("{at} = {other}: expected true or false"))),
     }
 }
 
 /// A list of finite numbers.
-pub(super) fn numbers(v: Option<&Value>, at: &str) -> Result<Vec<f64>, String> {
-    let Some(list) = v.and_then(Value::as_array) else { return Err(format!("{at}: expected a list of numbers")) };
+pub(super) fn numbers(v: Option<&Value>, at: &str) -> Result<Vec<f64>, Error> {
+    let Some(list) = v.and_then(Value::as_array) else {
+        return Err(Error::input(format!("{at}: expected a list of numbers")));
+    };
     list.iter().enumerate().map(|(i, x)| number(Some(x), 0.0, &format!("{at}[{i}]"))).collect()
 }
 
 /// A path attachment.
-fn path(a: &Value, bone_count: usize, at: &str) -> Result<PathShape, String> {
+fn path(a: &Value, bone_count: usize, at: &str) -> Result<PathShape, Error> {
     let closed = boolean(a.get("closed"), false, &format!("{at}.closed"))?;
     let constant_speed = boolean(a.get("constantSpeed"), true, &format!("{at}.constantSpeed"))?;
     let lengths = numbers(a.get("lengths"), &format!("{at}.lengths"))?;
     let count = number(a.get("vertexCount"), 0.0, &format!("{at}.vertexCount"))?;
     let v = numbers(a.get("vertices"), &format!("{at}.vertices"))?;
     if count < 0.0 || count.fract() != 0.0 || count > v.len() as f64 {
-        return Err(format!("{at}.vertexCount = {count}: expected a whole number of vertices, at most {}", v.len()));
+        return Err(Error::input(format!(
+            "{at}.vertexCount = {count}: expected a whole number of vertices, at most {}",
+            v.len()
+        )));
     }
     let count = count as usize;
     let vertices = if v.len() == 2 * count {
@@ -156,20 +165,22 @@ fn path(a: &Value, bone_count: usize, at: &str) -> Result<PathShape, String> {
 }
 
 /// Weighted vertices: per vertex a bone count, then `(bone, x, y, weight)` per bone.
-pub(super) fn weighted(v: &[f64], count: usize, bone_count: usize, at: &str) -> Result<Vec<Vec<Weight>>, String> {
+pub(super) fn weighted(v: &[f64], count: usize, bone_count: usize, at: &str) -> Result<Vec<Vec<Weight>>, Error> {
     let mut out = Vec::with_capacity(count);
     let mut i = 0;
     for _ in 0..count {
-        let n = *v.get(i).ok_or_else(|| format!("{at}: ends at {i}, before vertex {} of {count}", out.len()))?;
+        let n = *v
+            .get(i)
+            .ok_or_else(|| Error::input(format!("{at}: ends at {i}, before vertex {} of {count}", out.len())))?;
         if n < 1.0 || n.fract() != 0.0 || (i + 1) as f64 + 4.0 * n > v.len() as f64 {
-            return Err(format!("{at}[{i}] = {n}: expected a bone count that the numbers after it hold"));
+            return Err(Error::input(format!("{at}[{i}] = {n}: expected a bone count that the numbers after it hold")));
         }
         let mut vertex = Vec::with_capacity(n as usize);
         for k in 0..n as usize {
             let j = i + 1 + 4 * k;
             let b = v[j];
             if b < 0.0 || b.fract() != 0.0 || b >= bone_count as f64 {
-                return Err(format!("{at}[{j}] = {b}: no bone of that index ({bone_count} bones)"));
+                return Err(Error::input(format!("{at}[{j}] = {b}: no bone of that index ({bone_count} bones)")));
             }
             vertex.push(Weight { bone: b as usize, point: [v[j + 1], v[j + 2]], weight: v[j + 3] });
         }
@@ -177,7 +188,7 @@ pub(super) fn weighted(v: &[f64], count: usize, bone_count: usize, at: &str) -> 
         out.push(vertex);
     }
     if i != v.len() {
-        return Err(format!("{at}: {} numbers, {count} weighted vertices end at {i}", v.len()));
+        return Err(Error::input(format!("{at}: {} numbers, {count} weighted vertices end at {i}", v.len())));
     }
     Ok(out)
 }

@@ -15,6 +15,7 @@ use std::collections::HashMap;
 use ikarus::character::{TransformConstraint, TransformMode, TransformOffsets, TransformSettings, TransformSpace};
 use serde::Deserialize;
 
+use crate::error::Error;
 use crate::names::Quoted;
 
 /// One entry of the `transform` list as written.
@@ -71,7 +72,7 @@ pub(super) const MIX_NAMES: [&str; 6] = ["mixRotate", "mixX", "mixY", "mixScaleX
 impl MixesJson {
     /// The mixes with their defaults: 1, `mixY` as `mixX`, `mixScaleY` as `mixScaleX`, the 3.8
     /// names where the 4.x ones are absent. Each must be within −1 and 1 (`at.mixX = 3: …`).
-    pub(super) fn settings(&self, at: &str) -> Result<TransformSettings, String> {
+    pub(super) fn settings(&self, at: &str) -> Result<TransformSettings, Error> {
         let rotate = self.mix_rotate.or(self.rotate_mix).unwrap_or(1.0);
         let x = self.mix_x.or(self.translate_mix).unwrap_or(1.0);
         let y = self.mix_y.or(self.translate_mix).unwrap_or(x);
@@ -80,23 +81,23 @@ impl MixesJson {
         let shear_y = self.mix_shear_y.or(self.shear_mix).unwrap_or(1.0);
         let mixes = [rotate, x, y, scale_x, scale_y, shear_y];
         if let Some((name, v)) = MIX_NAMES.iter().zip(mixes).find(|(_, v)| !(-1.0..=1.0).contains(v)) {
-            return Err(format!("{at}.{name} = {v}: must be within -1 and 1"));
+            return Err(Error::input(format!("{at}.{name} = {v}: must be within -1 and 1")));
         }
         Ok(TransformSettings::from_array(mixes))
     }
 }
 
 /// Reads `list` (the file's `transform`), with `index` the bones' indices by name.
-pub(super) fn read(list: &[TransformJson], index: &HashMap<String, usize>) -> Result<Vec<TransformConstraint>, String> {
+pub(super) fn read(list: &[TransformJson], index: &HashMap<String, usize>) -> Result<Vec<TransformConstraint>, Error> {
     list.iter()
         .enumerate()
         .map(|(i, k)| constraint(k, index, &format!("transform[{i}] ({:?})", Quoted(&k.name))))
         .collect()
 }
 
-fn constraint(k: &TransformJson, index: &HashMap<String, usize>, at: &str) -> Result<TransformConstraint, String> {
+fn constraint(k: &TransformJson, index: &HashMap<String, usize>, at: &str) -> Result<TransformConstraint, Error> {
     if k.bones.is_empty() {
-        return Err(format!("{at}.bones: expected at least one bone, got none"));
+        return Err(Error::input(format!("{at}.bones: expected at least one bone, got none")));
     }
     let bones = k
         .bones
@@ -106,7 +107,7 @@ fn constraint(k: &TransformJson, index: &HashMap<String, usize>, at: &str) -> Re
         .collect::<Result<Vec<_>, _>>()?;
     let target = super::bone(index, &k.target, &format!("{at}.target"))?;
     if let Some(j) = bones.iter().position(|&b| b == target) {
-        return Err(format!("{at}.bones[{j}] = {:?}: the constraint's target too", Quoted(&k.target)));
+        return Err(Error::input(format!("{at}.bones[{j}] = {:?}: the constraint's target too", Quoted(&k.target))));
     }
     Ok(TransformConstraint {
         name: k.name.clone(),
@@ -135,7 +136,7 @@ mod tests {
         ["root", "arm", "aim"].iter().enumerate().map(|(i, n)| ((*n).to_owned(), i)).collect()
     }
 
-    fn one(json: &str) -> Result<TransformConstraint, String> {
+    fn one(json: &str) -> Result<TransformConstraint, Error> {
         let list: Vec<TransformJson> = serde_json::from_str(&format!("[{json}]")).unwrap();
         read(&list, &names()).map(|mut v| v.remove(0))
     }

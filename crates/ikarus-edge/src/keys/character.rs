@@ -7,24 +7,28 @@ use ikarus::Bend;
 use ikarus::character::IkBones;
 
 use crate::character::{Format, Loaded};
+use crate::error::Error;
 use crate::names::{Quoted, listed};
 
 /// The index of the two-bone IK constraint whose lower bone is `name`; else the problem after
 /// `field` (naming the character's lower bones).
-pub fn bend_constraint(loaded: &Loaded, field: &str, name: &str) -> Result<usize, String> {
+pub fn bend_constraint(loaded: &Loaded, field: &str, name: &str) -> Result<usize, Error> {
     let c = &loaded.character;
-    let index =
-        c.bone_index(name).ok_or_else(|| format!("{field}: no bone named {} in the character", Quoted(name)))?;
+    let index = c
+        .bone_index(name)
+        .ok_or_else(|| Error::input(format!("{field}: no bone named {} in the character", Quoted(name))))?;
     let two = |k: &&ikarus::character::IkConstraint| matches!(k.bones, IkBones::Two { child, .. } if child == index);
     c.ik_constraints().find(|(_, k)| two(k)).map(|(k, _)| k).ok_or_else(|| {
-        let has = listed(c.ik_constraints().filter_map(|(_, k)| match k.bones {
-            IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
-            IkBones::One(_) => None,
-        }));
-        format!(
-            "{field}: {} is not the lower bone of a two-bone IK constraint (the character's are: {has})",
-            Quoted(name)
-        )
+        Error::input({
+            let has = listed(c.ik_constraints().filter_map(|(_, k)| match k.bones {
+                IkBones::Two { child, .. } => Some(c.bones()[child].name.as_str()),
+                IkBones::One(_) => None,
+            }));
+            format!(
+                "{field}: {} is not the lower bone of a two-bone IK constraint (the character's are: {has})",
+                Quoted(name)
+            )
+        })
     })
 }
 

@@ -9,6 +9,7 @@ use ikarus::{BoneBend, Ease, Goal, Outcome, Point2, RigGoal, RigTask, RigTaskErr
 use serde::Serialize;
 
 use super::KeyPlan;
+use crate::error::Error;
 use crate::report::ByName;
 use crate::report::motion::RigFrameJson;
 use crate::rig::Rig;
@@ -61,10 +62,10 @@ impl KeyPlan {
         rig: &Rig,
         start: &[f64],
         options: SolveOptions,
-        stop: &dyn Fn() -> Result<(), String>,
-    ) -> Result<KeyedMotion, String> {
+        stop: &dyn Fn() -> Result<(), Error>,
+    ) -> Result<KeyedMotion, Error> {
         let s = &rig.skeleton;
-        let mut solver = Solver::new(options).map_err(|e| e.to_string())?;
+        let mut solver = Solver::new(options).map_err(|e| Error::input(e.to_string()))?;
         let mut task = RigTask::default();
         // The pins: goals at their tips' places and directions in the start pose, held over
         // the whole motion (a [`ikarus::Pin`] would hold a tip where each solve starts, and
@@ -117,15 +118,17 @@ impl KeyPlan {
 
     /// A solve's problem at frame `k` in the keys' words: a bend outside its joint's limits
     /// names the bend key in force.
-    fn problem(&self, s: &ikarus::Skeleton, k: usize, e: SolveError) -> String {
+    fn problem(&self, s: &ikarus::Skeleton, k: usize, e: SolveError) -> Error {
         if let SolveError::Rig(RigTaskError::BendOutsideLimits { name }) = &e {
             if let Some((_, keys)) = self.bends.iter().find(|(b, _)| s.name(*b) == name) {
                 let i = keys.iter().rposition(|(f, _)| *f <= k).unwrap_or(0);
                 let side = if keys[i].1 == ikarus::Bend::Positive { "ccw" } else { "cw" };
-                return format!("keys.bends.{name}[{i}].bend = {side}: the joint's limits leave no angle on that side");
+                return Error::input(format!(
+                    "keys.bends.{name}[{i}].bend = {side}: the joint's limits leave no angle on that side"
+                ));
             }
         }
-        format!("keys: frame {k}: {e}")
+        Error::input(format!("keys: frame {k}: {e}"))
     }
 }
 

@@ -20,6 +20,7 @@ use ikarus::number::Num;
 use serde::Deserialize;
 
 use super::{KeyedBone, key_ease, key_frames};
+use crate::error::Error;
 
 /// One rotation key: the bone's local rotation at `time`, and the ease from this key to the next.
 #[derive(Debug, Clone, Deserialize)]
@@ -41,10 +42,10 @@ pub struct RotationKeyReq {
 /// their last key's frame. Every problem names `keys.rotations.BONE[i].…` and the value.
 pub(super) fn check(
     rotations: &BTreeMap<String, Vec<RotationKeyReq>>,
-    bone: &dyn Fn(&str, &str) -> Result<usize, String>,
+    bone: &dyn Fn(&str, &str) -> Result<usize, Error>,
     fps: f64,
     last: &mut usize,
-) -> Result<Vec<KeyedBone>, String> {
+) -> Result<Vec<KeyedBone>, Error> {
     let mut out = Vec::with_capacity(rotations.len());
     for (name, keys) in rotations {
         let field = format!("keys.rotations.{name}");
@@ -55,13 +56,16 @@ pub(super) fn check(
         let mut eases = Vec::with_capacity(keys.len());
         for (i, k) in keys.iter().enumerate() {
             if !k.angle_deg.is_finite() {
-                return Err(format!("{field}[{i}].angle_deg = {}: must be a finite number", Num(k.angle_deg)));
+                return Err(Error::input(format!(
+                    "{field}[{i}].angle_deg = {}: must be a finite number",
+                    Num(k.angle_deg)
+                )));
             }
             values.push(k.angle_deg);
             eases.push(key_ease(&format!("{field}[{i}]"), k.ease, k.k1, k.k2)?);
         }
         let times = frames.iter().map(|&f| f as f64 / fps).collect();
-        let track = KeyTrack::new(1, times, values, eases).map_err(|e| format!("{field}: {e}"))?;
+        let track = KeyTrack::new(1, times, values, eases).map_err(|e| Error::input(format!("{field}: {e}")))?;
         out.push(KeyedBone { bone: index, track, oriented: false });
     }
     Ok(out)

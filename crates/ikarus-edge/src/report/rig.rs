@@ -1,5 +1,6 @@
 //! A rig file as JSON (`GET /api/rigs`, `POST /api/rig/parse`, the requests' `rig`).
 
+use crate::error::Error;
 use crate::rig::{BoneCap, Rig, RigFile};
 
 /// A rig file's fields as JSON (the requests' `rig`): `name`, `base`, `bones` (each with
@@ -44,17 +45,17 @@ impl RigJson {
     /// The rig of rig-file `text` as JSON, after the CLI's checks (whose one-line message it
     /// returns for a bad file, starting with `label`), under the command line's cap on bones.
     /// The `[solver]` table is carried as written.
-    pub fn parse(text: &str, label: &str) -> Result<Self, String> {
+    pub fn parse(text: &str, label: &str) -> Result<Self, Error> {
         Self::parse_within(text, label, BoneCap::cli())
     }
 
     /// [`RigJson::parse`] of a rig of at most `cap` bones (counted before anything else).
-    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, String> {
-        let file = RigFile::read(text, label, cap).map_err(|e| e.to_string())?;
-        Rig::from_file(file.clone(), label, cap).map_err(|e| e.to_string())?;
-        let table: toml::Table = toml::from_str(text).map_err(|e| format!("{label}: {e}"))?;
+    pub fn parse_within(text: &str, label: &str, cap: BoneCap) -> Result<Self, Error> {
+        let file = RigFile::read(text, label, cap).map_err(|e| Error::input(e.to_string()))?;
+        Rig::from_file(file.clone(), label, cap).map_err(|e| Error::input(e.to_string()))?;
+        let table: toml::Table = toml::from_str(text).map_err(|e| Error::input(format!("{label}: {e}")))?;
         let solver = match table.get("solver") {
-            Some(t) => Some(serde_json::to_value(t).map_err(|e| format!("{label}: [solver]: {e}"))?),
+            Some(t) => Some(serde_json::to_value(t).map_err(|e| Error::input(format!("{label}: [solver]: {e}")))?),
             None => None,
         };
         Ok(Self {

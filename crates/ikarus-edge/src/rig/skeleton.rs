@@ -7,19 +7,20 @@ use ikarus::{Bone, BoneField, JointLimits, Skeleton, SkeletonError};
 
 use super::{JointFile, RigFile};
 use crate::arm::{limits_problem, start_angle};
+use crate::error::Error;
 
 impl RigFile {
     /// Builds the skeleton, describing any problem in the file's own names and numbers.
-    pub fn to_skeleton(&self) -> Result<Skeleton, String> {
+    pub fn to_skeleton(&self) -> Result<Skeleton, Error> {
         let mut bones = Vec::with_capacity(self.bones.len());
         for (i, b) in self.bones.iter().enumerate() {
             if let Some(c) = b.name.chars().find(|&c| !name_char(c)) {
-                return Err(format!(
+                return Err(Error::input(format!(
                     "{}.name = {:?}: must not contain {c:?} (no spaces, control characters, commas, '=' or quotes: \
                      names are written in --goal NAME=X,Y and in CSV headers NAME.x)",
                     self.bone(i),
                     b.name
-                ));
+                )));
             }
             let mut bone = Bone::new(b.name.clone(), b.length, start_angle(b.angle_deg, b.limits_deg).to_radians());
             bone.parent.clone_from(&b.parent);
@@ -27,7 +28,13 @@ impl RigFile {
             bone = self.joint(i, bone)?;
             if let Some([lo, hi]) = b.limits_deg {
                 let limits = JointLimits::new(lo.to_radians(), hi.to_radians()).map_err(|_| {
-                    format!("{}.limits_deg = [{}, {}]: {}", self.bone(i), Num(lo), Num(hi), limits_problem(lo, hi))
+                    Error::input(format!(
+                        "{}.limits_deg = [{}, {}]: {}",
+                        self.bone(i),
+                        Num(lo),
+                        Num(hi),
+                        limits_problem(lo, hi)
+                    ))
                 })?;
                 bone = bone.with_limits(limits);
             }
@@ -35,14 +42,14 @@ impl RigFile {
             bone.rest = b.rest_deg.map(f64::to_radians);
             bones.push(bone);
         }
-        Skeleton::new(self.base.unwrap_or([0.0, 0.0]), &bones).map_err(|e| self.describe(&e))
+        Skeleton::new(self.base.unwrap_or([0.0, 0.0]), &bones).map_err(|e| Error::input(self.describe(&e)))
     }
 
     /// Bone `i`'s joint from its `joint`, `slide`, `extension` and `limits` keys: a revolute
     /// joint takes none of the last three, a prismatic one no `limits_deg` or `rest_deg`.
-    fn joint(&self, i: usize, bone: Bone) -> Result<Bone, String> {
+    fn joint(&self, i: usize, bone: Bone) -> Result<Bone, Error> {
         let b = &self.bones[i];
-        let refuse = |key: &str, kind: &str| Err(format!("{}.{key}: not for a {kind}", self.bone(i)));
+        let refuse = |key: &str, kind: &str| Err(Error::input(format!("{}.{key}: not for a {kind}", self.bone(i))));
         match b.joint.unwrap_or(JointFile::Revolute) {
             JointFile::Revolute => {
                 for (key, given) in
@@ -70,7 +77,13 @@ impl RigFile {
                 }
                 if let Some([lo, hi]) = b.limits {
                     let limits = JointLimits::new(lo, hi).map_err(|_| {
-                        format!("{}.limits = [{}, {}]: {}", self.bone(i), Num(lo), Num(hi), limits_problem(lo, hi))
+                        Error::input(format!(
+                            "{}.limits = [{}, {}]: {}",
+                            self.bone(i),
+                            Num(lo),
+                            Num(hi),
+                            limits_problem(lo, hi)
+                        ))
                     })?;
                     bone = bone.with_limits(limits);
                 }

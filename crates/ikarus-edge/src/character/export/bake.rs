@@ -20,6 +20,7 @@ use serde_json::{Map, Value, json};
 
 use super::written_time;
 use crate::character::motion::{Motion, Playhead};
+use crate::error::Error;
 
 /// How many times an interval between two frames is halved at most (a key every
 /// 1 / (fps · 2¹⁶) s at the finest, 5·10⁻⁷ s at 30 fps: about the resolution of a key's time,
@@ -46,16 +47,16 @@ struct Key {
 }
 
 /// The baked animation's JSON (see the module's doc), fitted to `tolerance`.
-pub(super) fn animation(motion: &Motion<'_>, tolerance: f64, legacy: bool) -> Result<Value, String> {
+pub(super) fn animation(motion: &Motion<'_>, tolerance: f64, legacy: bool) -> Result<Value, Error> {
     let keys = keys(motion, tolerance)?;
     json_of(&motion.loaded.character, &keys, legacy)
 }
 
 /// The keys: one per frame, and the bisections that keep a straight line between two keys
 /// within the tolerance of the motion.
-fn keys(motion: &Motion<'_>, tolerance: f64) -> Result<Vec<Key>, String> {
+fn keys(motion: &Motion<'_>, tolerance: f64) -> Result<Vec<Key>, Error> {
     let mut head = Playhead::default();
-    let mut pose = |time: f64| -> Result<Key, String> {
+    let mut pose = |time: f64| -> Result<Key, Error> {
         let posed = motion.play_at(time, &mut head)?;
         Ok(Key { time, local: (0..posed.len()).map(|i| posed.local(i)).collect() })
     };
@@ -85,8 +86,8 @@ fn refine(
     end: &Key,
     out: &mut Vec<Key>,
     (depth, budget, tolerance): (u32, &mut usize, f64),
-    pose: &mut dyn FnMut(f64) -> Result<Key, String>,
-) -> Result<(), String> {
+    pose: &mut dyn FnMut(f64) -> Result<Key, Error>,
+) -> Result<(), Error> {
     let start = out.last().expect("a first key");
     if depth >= MAX_DEPTH || *budget == 0 || stray(motion, (check, world), start, end)? <= tolerance {
         return Ok(());
@@ -111,7 +112,7 @@ fn stray(
     (head, world): (&mut Playhead, &mut Vec<Affine>),
     a: &Key,
     b: &Key,
-) -> Result<f64, String> {
+) -> Result<f64, Error> {
     let c = &motion.loaded.character;
     let mut worst: f64 = 0.0;
     for f in [0.25, 0.5, 0.75] {
@@ -188,7 +189,7 @@ fn thinned(series: Vec<(f64, [f64; 2])>) -> Vec<(f64, [f64; 2])> {
 
 /// The animation's JSON: the bones' timelines (those that leave the setup pose) and every
 /// constraint at mix 0.
-fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
+fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, Error> {
     const SAME: f64 = 1e-12;
     let mut bones = Map::new();
     for (i, bone) in c.bones().iter().enumerate() {
@@ -231,10 +232,10 @@ fn json_of(c: &Character, keys: &[Key], legacy: bool) -> Result<Value, String> {
         if moved(&|l| [l.scale_x, l.scale_y]) {
             for (setup, axis) in [(s.scale_x, "scaleX"), (s.scale_y, "scaleY")] {
                 if setup == 0.0 {
-                    return Err(format!(
+                    return Err(Error::input(format!(
                         "bone {:?}: its setup {axis} is 0, and the motion scales it (a scale key multiplies the setup's)",
                         bone.name
-                    ));
+                    )));
                 }
             }
             two("scale", &|l| [l.scale_x / s.scale_x, l.scale_y / s.scale_y], &mut timelines);

@@ -15,6 +15,7 @@
 use serde_json::{Map, Value, json};
 
 use super::written_time;
+use crate::error::Error;
 
 /// The most keys the copied clip may hold (its keys × the cycles the motion runs it for).
 pub const MAX_COPIED_KEYS: usize = 1 << 20;
@@ -26,12 +27,12 @@ pub(super) fn time_of(key: &Value) -> f64 {
 
 /// How many cycles of a clip of `length` seconds a motion of `duration` runs, and the refusal
 /// when `keys` keys in that many cycles would pass [`MAX_COPIED_KEYS`].
-pub(super) fn cycles(length: f64, duration: f64, keys: usize, clip: &str) -> Result<usize, String> {
+pub(super) fn cycles(length: f64, duration: f64, keys: usize, clip: &str) -> Result<usize, Error> {
     let cycles = if length > 0.0 && duration > length { (duration / length).ceil() } else { 1.0 };
     if cycles * keys as f64 > MAX_COPIED_KEYS as f64 {
-        return Err(format!(
+        return Err(Error::input(format!(
             "animation {clip:?}: its {keys} keys over {cycles} cycles of the motion are more than the export's cap of {MAX_COPIED_KEYS} keys"
-        ));
+        )));
     }
     Ok(cycles as usize)
 }

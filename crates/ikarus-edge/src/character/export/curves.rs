@@ -12,6 +12,7 @@
 //! channel, get straight lines only (split as needed).
 
 use super::read_time;
+use crate::error::Error;
 
 /// Times checked inside a segment (evenly spread, the keys excluded).
 pub(super) const CHECKS: usize = 29;
@@ -71,8 +72,8 @@ impl Fitter<'_> {
     pub(super) fn fit(
         &mut self,
         anchors: &[f64],
-        sample: &mut dyn FnMut(f64) -> Result<Sample, String>,
-    ) -> Result<Vec<FittedKey>, String> {
+        sample: &mut dyn FnMut(f64) -> Result<Sample, Error>,
+    ) -> Result<Vec<FittedKey>, Error> {
         let mut out: Vec<FittedKey> = Vec::with_capacity(anchors.len());
         let mut last: Option<(f64, [f64; 2])> = None;
         for &t in anchors {
@@ -105,9 +106,9 @@ impl Fitter<'_> {
         a: (f64, [f64; 2]),
         b: (f64, [f64; 2]),
         depth: u32,
-        sample: &mut dyn FnMut(f64) -> Result<Sample, String>,
+        sample: &mut dyn FnMut(f64) -> Result<Sample, Error>,
         out: &mut Vec<FittedKey>,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let h = b.0 - a.0;
         let mut checks = Vec::with_capacity(CHECKS);
         for j in 1..=CHECKS {
@@ -155,11 +156,11 @@ impl Fitter<'_> {
         &mut self,
         a: (f64, [f64; 2]),
         b: (f64, [f64; 2]),
-        sample: &mut dyn FnMut(f64) -> Result<Sample, String>,
-    ) -> Result<[[f64; 4]; 2], String> {
+        sample: &mut dyn FnMut(f64) -> Result<Sample, Error>,
+    ) -> Result<[[f64; 4]; 2], Error> {
         let h = b.0 - a.0;
         let e = h / 64.0;
-        let mut at = |t: f64, near: [f64; 2]| -> Result<[f64; 2], String> {
+        let mut at = |t: f64, near: [f64; 2]| -> Result<[f64; 2], Error> {
             let s = sample(t)?;
             Ok(self.unwrapped(s.values, near))
         };

@@ -37,6 +37,7 @@ use super::ik_keys::{animation as animation_json, settings, switched_off};
 use super::sampler::Sampler;
 use super::{read_time, written_time};
 use crate::character::motion::{Motion, Physics};
+use crate::error::Error;
 use crate::pose::{IkChoice, PoseAsk, pose_into};
 
 /// How many keys a timeline's fit may add per frame of the motion.
@@ -54,7 +55,7 @@ pub(super) fn animation(
     clip: Option<&Value>,
     tolerance: f64,
     legacy: bool,
-) -> Result<Value, String> {
+) -> Result<Value, Error> {
     // Keys added where a fit strays: at most a few per frame per timeline (the keys' memory
     // stays within timelines × frames, and timelines are at most four per bone).
     let budget = ADDED_PER_FRAME * motion.frame_count();
@@ -84,10 +85,10 @@ impl<'a> Job<'_, '_, 'a> {
     }
 
     /// The clip's index, its length, and how many cycles the motion runs it for.
-    fn clip(&self, clip_json: Option<&Value>) -> Result<Option<(usize, f64, usize)>, String> {
+    fn clip(&self, clip_json: Option<&Value>) -> Result<Option<(usize, f64, usize)>, Error> {
         let Some(name) = self.motion.clip() else { return Ok(None) };
         let c = self.character();
-        let i = c.clip_index(name).ok_or_else(|| format!("animation {name:?}: not in the character"))?;
+        let i = c.clip_index(name).ok_or_else(|| Error::input(format!("animation {name:?}: not in the character")))?;
         let length = c.clips()[i].duration;
         let keys = clip_json.map_or(0, count_keys).max(1);
         Ok(Some((i, length, cycles(length, self.motion.duration, keys, name)?)))
@@ -95,7 +96,7 @@ impl<'a> Job<'_, '_, 'a> {
 
     /// The course's key times and the clip's key times on the timelines `on` picks, as the
     /// runtime reads times, increasing, within the motion.
-    fn anchors(&self, on: &dyn Fn(usize) -> bool) -> Result<Vec<f64>, String> {
+    fn anchors(&self, on: &dyn Fn(usize) -> bool) -> Result<Vec<f64>, Error> {
         let end = read_time(self.motion.duration);
         let mut times: Vec<f64> = self.motion.key_times().into_iter().map(read_time).collect();
         if let Some((i, length, _)) = self.clip(None)? {
@@ -132,7 +133,7 @@ impl<'a> Job<'_, '_, 'a> {
         anchors: &[f64],
         (channels, period): (usize, Option<f64>),
         value: &dyn Fn(&super::sampler::Snapshot) -> Sample,
-    ) -> Result<Vec<FittedKey>, String> {
+    ) -> Result<Vec<FittedKey>, Error> {
         let mut budget = self.budget;
         let mut fitter =
             Fitter { channels, period, shape: self.shape, tolerance: self.tolerance * FIT_SHARE, budget: &mut budget };
@@ -141,7 +142,7 @@ impl<'a> Job<'_, '_, 'a> {
     }
 
     /// The runtime's rules: the clip carried, the targets keyed, the bends merged.
-    fn spine_rules(&mut self, clip_json: Option<&Value>) -> Result<Value, String> {
+    fn spine_rules(&mut self, clip_json: Option<&Value>) -> Result<Value, Error> {
         let c = self.character();
         let targets: Vec<usize> =
             self.motion.targets_at(0.0).iter().filter_map(|(name, _)| c.bone_index(name)).collect();
@@ -251,7 +252,7 @@ impl<'a> Job<'_, '_, 'a> {
     /// the clip's, as the runtime's rotate timeline sets it before the constraints), relative to
     /// the setup's, fitted between the course's key times (every frame too for 3.8's straight
     /// keys), its error weighed by how far a turn of the bone swings its subtree.
-    fn turns(&mut self, turned: &[usize], bones: &mut Map<String, Value>) -> Result<(), String> {
+    fn turns(&mut self, turned: &[usize], bones: &mut Map<String, Value>) -> Result<(), Error> {
         if turned.is_empty() {
             return Ok(());
         }
@@ -287,7 +288,7 @@ impl<'a> Job<'_, '_, 'a> {
     }
 
     /// ikarus's solver: every bone the motion moves keyed, every constraint at mix 0.
-    fn solved(&mut self) -> Result<Value, String> {
+    fn solved(&mut self) -> Result<Value, Error> {
         let c = self.character();
         let reach = reach(self.motion)?;
         // What moves: every bone's local transform at every frame and key time.
@@ -338,10 +339,10 @@ impl<'a> Job<'_, '_, 'a> {
             if m[2] {
                 for (setup, axis) in [(s0.scale_x, "scaleX"), (s0.scale_y, "scaleY")] {
                     if setup == 0.0 {
-                        return Err(format!(
+                        return Err(Error::input(format!(
                             "bone {:?}: its setup {axis} is 0, and the motion scales it (a scale key multiplies the setup's)",
                             bone.name
-                        ));
+                        )));
                     }
                 }
                 let w = r * s0.scale_x.abs().max(s0.scale_y.abs());
@@ -391,7 +392,7 @@ fn norm(w: &ikarus::character::Affine) -> f64 {
 
 /// Per bone, the farthest its own or a descendant's origin or tip is from its origin in the
 /// setup pose (what a turn of the bone swings), at least 1e-9 of the character's units.
-fn reach(motion: &Motion<'_>) -> Result<Vec<f64>, String> {
+fn reach(motion: &Motion<'_>) -> Result<Vec<f64>, Error> {
     let c = &motion.loaded.character;
     let mut setup = Posed::default();
     pose_into(motion.loaded, &PoseAsk::default(), &mut setup)?;

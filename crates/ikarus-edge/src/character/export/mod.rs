@@ -43,6 +43,7 @@ use serde_json::value::RawValue;
 use super::Format;
 use super::clips::Ordered;
 use super::motion::Motion;
+use crate::error::Error;
 use crate::pose::{PoseAsk, pose_into};
 
 /// The largest distance, in the file's units, between a bone's world origin or tip as the keys
@@ -90,26 +91,27 @@ pub struct Export<'a> {
 
 /// `text` (the Spine file `motion` was loaded from) with the motion added as the animation
 /// `export` names, in its form. Refusals are one line naming the field.
-pub fn spine(motion: &Motion<'_>, text: &str, export: &Export<'_>) -> Result<String, String> {
+pub fn spine(motion: &Motion<'_>, text: &str, export: &Export<'_>) -> Result<String, Error> {
     let loaded = motion.loaded;
     let name = export.name;
     if loaded.format != Format::Spine {
-        return Err(format!(
+        return Err(Error::input(format!(
             "format spine: the Spine export takes a Spine file, and this is a {} file",
             loaded.format.name()
-        ));
+        )));
     }
     if name.is_empty() {
-        return Err("animation name: must not be empty".to_owned());
+        return Err(Error::input("animation name: must not be empty"));
     }
     let text = text.trim_start_matches('\u{feff}');
-    let top: Ordered<Box<RawValue>> = serde_json::from_str(text).map_err(|e| format!("malformed JSON: {e}"))?;
+    let top: Ordered<Box<RawValue>> =
+        serde_json::from_str(text).map_err(|e| Error::input(format!("malformed JSON: {e}")))?;
     let mut animations: Ordered<Box<RawValue>> = match top.0.iter().find(|(k, _)| k == "animations") {
-        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| format!("animations: {e}"))?,
+        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| Error::input(format!("animations: {e}")))?,
         None => Ordered::default(),
     };
     if animations.0.iter().any(|(k, _)| k == name) {
-        return Err(format!("animation name {name:?}: the file already has an animation of that name"));
+        return Err(Error::input(format!("animation name {name:?}: the file already has an animation of that name")));
     }
     let legacy = loaded.version.starts_with("3.");
     let tolerance = tolerance(motion)?;
@@ -123,10 +125,11 @@ pub fn spine(motion: &Motion<'_>, text: &str, export: &Export<'_>) -> Result<Str
             editable::animation(motion, clip.as_ref(), tolerance, legacy)?
         }
     };
-    let raw = RawValue::from_string(animation.to_string()).map_err(|e| format!("cannot write JSON: {e}"))?;
+    let raw =
+        RawValue::from_string(animation.to_string()).map_err(|e| Error::input(format!("cannot write JSON: {e}")))?;
     animations.0.push((name.to_owned(), raw));
-    let animations =
-        RawValue::from_string(object(&animations, "    ")).map_err(|e| format!("cannot write JSON: {e}"))?;
+    let animations = RawValue::from_string(object(&animations, "    "))
+        .map_err(|e| Error::input(format!("cannot write JSON: {e}")))?;
     let mut out = top;
     match out.0.iter_mut().find(|(k, _)| k == "animations") {
         Some((_, v)) => *v = animations,
@@ -138,10 +141,10 @@ pub fn spine(motion: &Motion<'_>, text: &str, export: &Export<'_>) -> Result<Str
 }
 
 /// The clip `name`'s JSON, as the file has it (the last of that name, as the reader takes it).
-fn clip_json(animations: &Ordered<Box<RawValue>>, name: &str) -> Result<Value, String> {
+fn clip_json(animations: &Ordered<Box<RawValue>>, name: &str) -> Result<Value, Error> {
     match animations.0.iter().rev().find(|(k, _)| k == name) {
-        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| format!("animations.{name}: {e}")),
-        None => Err(format!("animation {name:?}: not in the file")),
+        Some((_, raw)) => serde_json::from_str(raw.get()).map_err(|e| Error::input(format!("animations.{name}: {e}"))),
+        None => Err(Error::input(format!("animation {name:?}: not in the file"))),
     }
 }
 
@@ -156,7 +159,7 @@ fn object(entries: &Ordered<Box<RawValue>>, indent: &str) -> String {
 /// The tolerance of `motion`'s character: [`TOLERANCE`], or [`RELATIVE_TOLERANCE`] of its
 /// size, whichever is larger (the size: the diagonal of the box around every bone's origin
 /// and tip in the setup pose).
-pub fn tolerance(motion: &Motion<'_>) -> Result<f64, String> {
+pub fn tolerance(motion: &Motion<'_>) -> Result<f64, Error> {
     let mut setup = Posed::default();
     pose_into(motion.loaded, &PoseAsk::default(), &mut setup)?;
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);

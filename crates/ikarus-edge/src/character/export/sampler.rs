@@ -13,6 +13,7 @@ use std::rc::Rc;
 use ikarus::character::{Affine, IkSettings, LocalTransform, Posed};
 
 use crate::character::motion::Motion;
+use crate::error::Error;
 use crate::pose::pose_into;
 
 /// How many bone poses (times × bones) are remembered at most; past it the memory is cleared
@@ -58,7 +59,7 @@ impl<'m, 'a> Sampler<'m, 'a> {
     /// costs once the IK constraints have carried it (about 1, more near a limb's full reach).
     /// All targets at once (two poses a time, whatever their number): a bone moved by two
     /// targets counts both, which errs on the close side.
-    pub(super) fn gain(&mut self, time: f64, step: f64) -> Result<f64, String> {
+    pub(super) fn gain(&mut self, time: f64, step: f64) -> Result<f64, Error> {
         if let Some(g) = self.gains.get(&time.to_bits()) {
             return Ok(*g);
         }
@@ -90,7 +91,7 @@ impl<'m, 'a> Sampler<'m, 'a> {
     }
 
     /// The motion at `time`.
-    pub(super) fn at(&mut self, time: f64) -> Result<Rc<Snapshot>, String> {
+    pub(super) fn at(&mut self, time: f64) -> Result<Rc<Snapshot>, Error> {
         if let Some(s) = self.remembered.get(&time.to_bits()) {
             return Ok(Rc::clone(s));
         }

@@ -12,6 +12,7 @@ use super::Names;
 use super::keys::curve;
 use super::reader::Reader;
 use super::skeleton::pick;
+use crate::error::Error;
 
 const SLOT_KINDS: [&str; 6] = ["attachment", "rgba", "rgb", "rgba2", "rgb2", "alpha"];
 const BONE_KINDS: [&str; 11] = [
@@ -31,10 +32,10 @@ const PATH_KINDS: [&str; 3] = ["position", "spacing", "mix"];
 const PHYSICS_KINDS: [&str; 9] = ["inertia", "strength", "damping", "", "mass", "wind", "gravity", "mix", "reset"];
 const INHERIT: [&str; 5] = ["normal", "onlyTranslation", "noRotationOrReflection", "noScale", "noScaleOrReflection"];
 
-type Frame<'f> = &'f mut dyn FnMut(&mut Reader<'_>) -> Result<Map<String, Value>, String>;
+type Frame<'f> = &'f mut dyn FnMut(&mut Reader<'_>) -> Result<Map<String, Value>, Error>;
 
 /// The animations, keyed by name.
-pub(super) fn animations(r: &mut Reader<'_>, names: &Names) -> Result<Value, String> {
+pub(super) fn animations(r: &mut Reader<'_>, names: &Names) -> Result<Value, Error> {
     r.at = "animations".to_owned();
     let n = r.count("count", 10)?;
     let mut out = Map::new();
@@ -48,7 +49,7 @@ pub(super) fn animations(r: &mut Reader<'_>, names: &Names) -> Result<Value, Str
     Ok(Value::Object(out))
 }
 
-fn animation(r: &mut Reader<'_>, names: &Names) -> Result<Value, String> {
+fn animation(r: &mut Reader<'_>, names: &Names) -> Result<Value, Error> {
     let at = r.at.clone();
     let mut o = Map::new();
     // The number of timelines, which the sections below count again.
@@ -85,14 +86,14 @@ fn insert(o: &mut Map<String, Value>, key: &str, v: Map<String, Value>) {
 }
 
 /// A key's time.
-fn time(r: &mut Reader<'_>) -> Result<Map<String, Value>, String> {
+fn time(r: &mut Reader<'_>) -> Result<Map<String, Value>, Error> {
     let mut o = Map::new();
     o.insert("time".into(), r.number("time")?);
     Ok(o)
 }
 
 /// A curve timeline of `frames` keys read by `frame`, with `channels` Bezier channels.
-pub(super) fn curved(r: &mut Reader<'_>, frames: usize, channels: usize, frame: Frame<'_>) -> Result<Value, String> {
+pub(super) fn curved(r: &mut Reader<'_>, frames: usize, channels: usize, frame: Frame<'_>) -> Result<Value, Error> {
     let mut keys = Vec::with_capacity(frames);
     if frames == 0 {
         return Ok(Value::Array(keys));
@@ -109,7 +110,7 @@ pub(super) fn curved(r: &mut Reader<'_>, frames: usize, channels: usize, frame: 
 }
 
 /// One value per key, under `field`.
-fn values(r: &mut Reader<'_>, frames: usize, fields: &[&str]) -> Result<Value, String> {
+fn values(r: &mut Reader<'_>, frames: usize, fields: &[&str]) -> Result<Value, Error> {
     curved(r, frames, fields.len(), &mut |r| {
         let mut o = time(r)?;
         for f in fields {
@@ -120,12 +121,12 @@ fn values(r: &mut Reader<'_>, frames: usize, fields: &[&str]) -> Result<Value, S
 }
 
 /// Colour channels as bytes, written as hex.
-fn color_bytes(r: &mut Reader<'_>, field: &str, n: usize) -> Result<String, String> {
+fn color_bytes(r: &mut Reader<'_>, field: &str, n: usize) -> Result<String, Error> {
     let b = r.take_bytes(n, field)?;
     Ok(b.iter().map(|b| format!("{b:02x}")).collect())
 }
 
-fn slots(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn slots(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -153,7 +154,7 @@ fn slots(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String
                             }
                             Ok(Value::Object(o))
                         })
-                        .collect::<Result<_, String>>()?,
+                        .collect::<Result<_, Error>>()?,
                 ),
                 _ => {
                     r.unsigned("bezierCount")?;
@@ -183,7 +184,7 @@ fn slots(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String
     Ok(out)
 }
 
-fn bones(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn bones(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -221,7 +222,7 @@ fn bones(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String
     Ok(out)
 }
 
-fn ik(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn ik(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -251,7 +252,7 @@ fn ik(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
 
 /// An IK key: its flags byte (which values follow, the booleans, and the curve of the key
 /// before: 64 stepped, 128 Bezier), time, mix and softness.
-fn ik_key(r: &mut Reader<'_>) -> Result<(u8, Map<String, Value>), String> {
+fn ik_key(r: &mut Reader<'_>) -> Result<(u8, Map<String, Value>), Error> {
     let flags = r.byte("flags")?;
     let mut o = time(r)?;
     let mix = match (flags & 1 != 0, flags & 2 != 0) {
@@ -269,14 +270,14 @@ fn ik_key(r: &mut Reader<'_>) -> Result<(u8, Map<String, Value>), String> {
 }
 
 /// A constraint's index among `list`, its name, and `at` moved under it.
-fn constraint(r: &mut Reader<'_>, at: &str, list: &[String], what: &str) -> Result<String, String> {
+fn constraint(r: &mut Reader<'_>, at: &str, list: &[String], what: &str) -> Result<String, Error> {
     r.at = at.to_owned();
     let c = r.index("constraint", what, list.len())?;
     r.at = format!("{at}[{:?}]", list[c]);
     Ok(list[c].clone())
 }
 
-fn transform(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn transform(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -290,7 +291,7 @@ fn transform(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, St
     Ok(out)
 }
 
-fn path(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn path(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -312,7 +313,7 @@ fn path(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String>
     Ok(out)
 }
 
-fn physics(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+fn physics(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -351,7 +352,7 @@ fn physics(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Stri
     Ok(out)
 }
 
-fn draw_order(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, String> {
+fn draw_order(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, Error> {
     let n = r.count("count", 5)?;
     if n == 0 {
         return Ok(None);
@@ -377,7 +378,7 @@ fn draw_order(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, String
     Ok(Some(Value::Array(keys)))
 }
 
-fn events(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, String> {
+fn events(r: &mut Reader<'_>, names: &Names) -> Result<Option<Value>, Error> {
     let n = r.count("count", 7)?;
     if n == 0 {
         return Ok(None);

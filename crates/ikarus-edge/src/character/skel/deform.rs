@@ -6,9 +6,10 @@ use serde_json::{Map, Value};
 use super::Names;
 use super::keys::{curve, sequence_mode};
 use super::reader::Reader;
+use crate::error::Error;
 
 /// The `attachments` section of an animation.
-pub(super) fn attachments(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, String> {
+pub(super) fn attachments(r: &mut Reader<'_>, names: &Names) -> Result<Map<String, Value>, Error> {
     let at = r.at.clone();
     let n = r.count("count", 2)?;
     let mut out = Map::new();
@@ -58,7 +59,7 @@ pub(super) fn attachments(r: &mut Reader<'_>, names: &Names) -> Result<Map<Strin
     Ok(out)
 }
 
-fn deform(r: &mut Reader<'_>, frames: usize) -> Result<Value, String> {
+fn deform(r: &mut Reader<'_>, frames: usize) -> Result<Value, Error> {
     r.unsigned("bezierCount")?;
     let mut keys: Vec<Map<String, Value>> = Vec::with_capacity(frames);
     // Each key: its offsets (a count, 0 for none, then the first index and the floats); every
@@ -85,7 +86,7 @@ fn deform(r: &mut Reader<'_>, frames: usize) -> Result<Value, String> {
     Ok(Value::Array(keys.into_iter().map(Value::Object).collect()))
 }
 
-fn sequence(r: &mut Reader<'_>, frames: usize) -> Result<Value, String> {
+fn sequence(r: &mut Reader<'_>, frames: usize) -> Result<Value, Error> {
     let mut keys = Vec::with_capacity(frames);
     for _ in 0..frames {
         let mut o = Map::new();

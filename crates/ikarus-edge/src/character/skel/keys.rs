@@ -4,11 +4,12 @@ use serde_json::{Map, Value};
 
 use super::reader::Reader;
 use super::skeleton::pick;
+use crate::error::Error;
 
 const SEQUENCE_MODES: [&str; 7] = ["hold", "once", "loop", "pingpong", "onceReverse", "loopReverse", "pingpongReverse"];
 
 /// The curve byte of a key, and its Bezier handles.
-pub(super) fn curve(r: &mut Reader<'_>, key: &mut Map<String, Value>, channels: usize) -> Result<(), String> {
+pub(super) fn curve(r: &mut Reader<'_>, key: &mut Map<String, Value>, channels: usize) -> Result<(), Error> {
     let start = r.pos();
     match r.byte("curve")? {
         0 => {}
@@ -24,6 +25,6 @@ pub(super) fn curve(r: &mut Reader<'_>, key: &mut Map<String, Value>, channels: 
 }
 
 /// A sequence key's mode name.
-pub(super) fn sequence_mode(r: &Reader<'_>, start: usize, mode: usize) -> Result<Value, String> {
+pub(super) fn sequence_mode(r: &Reader<'_>, start: usize, mode: usize) -> Result<Value, Error> {
     pick(r, start, "mode", &SEQUENCE_MODES, mode)
 }

@@ -37,7 +37,7 @@ mod skins;
 
 use serde_json::{Map, Value};
 
-use crate::error::CliError;
+use crate::error::Error;
 
 use reader::Reader;
 
@@ -58,7 +58,7 @@ struct Names {
 
 /// Decodes a `.skel` file into the JSON tree of Spine's JSON export; a problem is one line
 /// (`skel: byte N: <what>: <problem>`).
-pub fn to_json(bytes: &[u8]) -> Result<Value, String> {
+pub fn to_json(bytes: &[u8]) -> Result<Value, Error> {
     let mut r = Reader::new(bytes);
     let mut names = Names::default();
     let (header, nonessential) = skeleton::header(&mut r)?;
@@ -86,7 +86,7 @@ pub fn to_json(bytes: &[u8]) -> Result<Value, String> {
 
 /// A linked mesh's `skin` is an index into the skins, read before the later skins are: named
 /// once all are read.
-fn name_linked_skins(skins: &mut Value, names: &[String], at: usize) -> Result<(), String> {
+fn name_linked_skins(skins: &mut Value, names: &[String], at: usize) -> Result<(), Error> {
     let Value::Array(list) = skins else { return Ok(()) };
     for skin in list {
         let Some(Value::Object(slots)) = skin.get_mut("attachments") else { continue };
@@ -98,10 +98,12 @@ fn name_linked_skins(skins: &mut Value, names: &[String], at: usize) -> Result<(
                 }
                 let i = a.get("skin").and_then(Value::as_u64).unwrap_or_default();
                 let name = usize::try_from(i).ok().and_then(|i| names.get(i)).ok_or_else(|| {
-                    format!(
-                        "skel: byte {at}: skins: attachments[{slot:?}][{key:?}].skin: skin index {i} out of {}",
-                        names.len()
-                    )
+                    Error::input({
+                        format!(
+                            "skel: byte {at}: skins: attachments[{slot:?}][{key:?}].skin: skin index {i} out of {}",
+                            names.len()
+                        )
+                    })
                 })?;
                 a["skin"] = Value::from(name.clone());
             }
@@ -120,19 +122,19 @@ mod tests;
 /// UTF-8 text (a rig file, an atlas) as it is, and anything else is refused with what the
 /// binary reader found, after `label` (and that it is not UTF-8 either, when the binary
 /// reader stopped in the header).
-pub fn text_of(bytes: Vec<u8>, label: &str) -> Result<String, CliError> {
+pub fn text_of(bytes: Vec<u8>, label: &str) -> Result<String, Error> {
     let start = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(&bytes);
     if start.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{') {
         return String::from_utf8(bytes).map_err(|e| {
-            CliError::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
+            Error::input(format!("{label}: cannot read: not UTF-8 text (byte {})", e.utf8_error().valid_up_to()))
         });
     }
     match to_json(&bytes) {
-        Ok(tree) => serde_json::to_string(&tree).map_err(|e| CliError::input(format!("{label}: {e}"))),
+        Ok(tree) => serde_json::to_string(&tree).map_err(|e| Error::input(format!("{label}: {e}"))),
         Err(binary) => String::from_utf8(bytes).map_err(|e| {
             // A file whose header is not a 4.2 binary export's is more likely neither.
             let at = e.utf8_error().valid_up_to();
-            CliError::input(if binary.contains(": skeleton.") {
+            Error::input(if binary.to_string().contains(": skeleton.") {
                 format!("{label}: cannot read: not UTF-8 text (byte {at}), nor a Spine 4.2 binary export ({binary})")
             } else {
                 format!("{label}: {binary}")

@@ -4,6 +4,7 @@
 //! `skel: byte N: <what was being read>: <problem> (got V)`, the byte being where the value
 //! starts.
 
+use crate::error::Error;
 use serde_json::Value;
 
 /// A cursor over a `.skel` file's bytes, with the file's strings table once read and the path
@@ -32,7 +33,7 @@ impl<'a> Reader<'a> {
     }
 
     /// `n` bytes as they are.
-    pub fn take_bytes(&mut self, n: usize, field: &str) -> Result<&'a [u8], String> {
+    pub fn take_bytes(&mut self, n: usize, field: &str) -> Result<&'a [u8], Error> {
         self.take(n, field)
     }
 
@@ -43,21 +44,21 @@ impl<'a> Reader<'a> {
 
     /// The message of a problem with the value `field` (under [`Reader::at`]) that starts at
     /// byte `start`.
-    pub fn fail_at(&self, start: usize, field: &str, problem: &str) -> String {
+    pub fn fail_at(&self, start: usize, field: &str, problem: &str) -> Error {
         let path = match (self.at.is_empty(), field.is_empty()) {
             (true, _) => field.to_owned(),
             (false, true) => self.at.clone(),
             (false, false) => format!("{}.{field}", self.at),
         };
-        format!("skel: byte {start}: {path}: {problem}")
+        Error::input(format!("skel: byte {start}: {path}: {problem}"))
     }
 
     /// [`Reader::fail_at`] at the current byte.
-    pub fn fail(&self, field: &str, problem: &str) -> String {
+    pub fn fail(&self, field: &str, problem: &str) -> Error {
         self.fail_at(self.pos, field, problem)
     }
 
-    fn take(&mut self, n: usize, field: &str) -> Result<&'a [u8], String> {
+    fn take(&mut self, n: usize, field: &str) -> Result<&'a [u8], Error> {
         if self.left() < n {
             return Err(self.fail(field, &format!("the file ends: {n} bytes needed (got {})", self.left())));
         }
@@ -67,12 +68,12 @@ impl<'a> Reader<'a> {
     }
 
     /// One byte.
-    pub fn byte(&mut self, field: &str) -> Result<u8, String> {
+    pub fn byte(&mut self, field: &str) -> Result<u8, Error> {
         Ok(self.take(1, field)?[0])
     }
 
     /// A boolean: one byte, 0 or 1.
-    pub fn bool(&mut self, field: &str) -> Result<bool, String> {
+    pub fn bool(&mut self, field: &str) -> Result<bool, Error> {
         let start = self.pos;
         match self.byte(field)? {
             0 => Ok(false),
@@ -82,13 +83,13 @@ impl<'a> Reader<'a> {
     }
 
     /// A 32-bit big-endian int.
-    pub fn int(&mut self, field: &str) -> Result<i32, String> {
+    pub fn int(&mut self, field: &str) -> Result<i32, Error> {
         let b = self.take(4, field)?;
         Ok(i32::from_be_bytes([b[0], b[1], b[2], b[3]]))
     }
 
     /// A 32-bit big-endian float, widened to f64 exactly; NaN and the infinities are refused.
-    pub fn float(&mut self, field: &str) -> Result<f64, String> {
+    pub fn float(&mut self, field: &str) -> Result<f64, Error> {
         let start = self.pos;
         let b = self.take(4, field)?;
         let f = f32::from_be_bytes([b[0], b[1], b[2], b[3]]);
@@ -99,13 +100,13 @@ impl<'a> Reader<'a> {
     }
 
     /// A float as a JSON number.
-    pub fn number(&mut self, field: &str) -> Result<Value, String> {
+    pub fn number(&mut self, field: &str) -> Result<Value, Error> {
         Ok(Value::from(self.float(field)?))
     }
 
     /// A varint of 1 to 5 bytes (7 bits each, low first, the high bit saying another follows);
     /// `optimize_positive` false undoes the zigzag of varint-.
-    pub fn varint(&mut self, field: &str, optimize_positive: bool) -> Result<i32, String> {
+    pub fn varint(&mut self, field: &str, optimize_positive: bool) -> Result<i32, Error> {
         let start = self.pos;
         let mut value: u32 = 0;
         for i in 0..5 {
@@ -127,7 +128,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A varint+ that must be at least 0.
-    pub fn unsigned(&mut self, field: &str) -> Result<usize, String> {
+    pub fn unsigned(&mut self, field: &str) -> Result<usize, Error> {
         let start = self.pos;
         let v = self.varint(field, true)?;
         usize::try_from(v).map_err(|_| self.fail_at(start, field, &format!("a negative count or index (got {v})")))
@@ -135,7 +136,7 @@ impl<'a> Reader<'a> {
 
     /// A count of items of at least `min_bytes` each, refused beyond what the bytes left can
     /// hold (so no count makes a reader allocate more than the file's size allows).
-    pub fn count(&mut self, field: &str, min_bytes: usize) -> Result<usize, String> {
+    pub fn count(&mut self, field: &str, min_bytes: usize) -> Result<usize, Error> {
         let start = self.pos;
         let n = self.unsigned(field)?;
         if n.saturating_mul(min_bytes.max(1)) > self.left() {
@@ -149,7 +150,7 @@ impl<'a> Reader<'a> {
     }
 
     /// An index below `len` (`what` names the list, `bone` in `bone index 9 out of 4`).
-    pub fn index(&mut self, field: &str, what: &str, len: usize) -> Result<usize, String> {
+    pub fn index(&mut self, field: &str, what: &str, len: usize) -> Result<usize, Error> {
         let start = self.pos;
         let i = self.unsigned(field)?;
         if i >= len {
@@ -159,7 +160,7 @@ impl<'a> Reader<'a> {
     }
 
     /// A string: a varint+ length (0: none, 1: empty, else the byte count + 1), then UTF-8.
-    pub fn string(&mut self, field: &str) -> Result<Option<String>, String> {
+    pub fn string(&mut self, field: &str) -> Result<Option<String>, Error> {
         let start = self.pos;
         let n = self.unsigned(field)?;
         if n == 0 {
@@ -177,13 +178,13 @@ impl<'a> Reader<'a> {
     }
 
     /// A string that must be there (not the null string).
-    pub fn name(&mut self, field: &str) -> Result<String, String> {
+    pub fn name(&mut self, field: &str) -> Result<String, Error> {
         let start = self.pos;
         self.string(field)?.ok_or_else(|| self.fail_at(start, field, "a name is missing (got the null string)"))
     }
 
     /// A reference into the strings table: a varint+, 0 for none, else the index + 1.
-    pub fn string_ref(&mut self, field: &str) -> Result<Option<String>, String> {
+    pub fn string_ref(&mut self, field: &str) -> Result<Option<String>, Error> {
         let start = self.pos;
         let i = self.unsigned(field)?;
         if i == 0 {
@@ -213,12 +214,12 @@ impl<'a> Reader<'a> {
     }
 
     /// A colour stored as a 32-bit int, `rrggbbaa` in hex as JSON writes it.
-    pub fn rgba(&mut self, field: &str) -> Result<String, String> {
+    pub fn rgba(&mut self, field: &str) -> Result<String, Error> {
         Ok(format!("{:08x}", self.int(field)? as u32))
     }
 
     /// `n` floats.
-    pub fn floats(&mut self, field: &str, n: usize) -> Result<Vec<Value>, String> {
+    pub fn floats(&mut self, field: &str, n: usize) -> Result<Vec<Value>, Error> {
         if n.saturating_mul(4) > self.left() {
             return Err(self.fail(field, &format!("the file ends: {n} floats needed (got {} bytes)", self.left())));
         }

@@ -6,6 +6,7 @@ use serde_json::{Map, Value, json};
 
 use super::Names;
 use super::reader::Reader;
+use crate::error::Error;
 
 /// Bones' inherit modes, by their number in the file.
 const INHERIT: [&str; 5] = ["normal", "onlyTranslation", "noRotationOrReflection", "noScale", "noScaleOrReflection"];
@@ -23,14 +24,14 @@ pub(super) fn pick(
     field: &str,
     names: &[&'static str],
     i: usize,
-) -> Result<Value, String> {
+) -> Result<Value, Error> {
     names
         .get(i)
         .map(|s| Value::from(*s))
         .ok_or_else(|| r.fail_at(start, field, &format!("an unknown {field} (got {i})")))
 }
 
-fn enum_varint(r: &mut Reader<'_>, field: &str, names: &[&'static str]) -> Result<Value, String> {
+fn enum_varint(r: &mut Reader<'_>, field: &str, names: &[&'static str]) -> Result<Value, Error> {
     let start = r.pos();
     let i = r.unsigned(field)?;
     pick(r, start, field, names, i)
@@ -38,7 +39,7 @@ fn enum_varint(r: &mut Reader<'_>, field: &str, names: &[&'static str]) -> Resul
 
 /// The header: hash, version, bounds, reference scale, and the nonessential fps, images and
 /// audio; returns the `skeleton` object and whether nonessential data follows in the file.
-pub(super) fn header(r: &mut Reader<'_>) -> Result<(Value, bool), String> {
+pub(super) fn header(r: &mut Reader<'_>) -> Result<(Value, bool), Error> {
     r.at = "skeleton".to_owned();
     let hash = r.take_bytes(8, "hash")?;
     let mut o = Map::new();
@@ -79,7 +80,7 @@ fn base64(bytes: &[u8]) -> String {
 }
 
 /// The strings table that attachment names, paths and keys refer to.
-pub(super) fn strings(r: &mut Reader<'_>) -> Result<(), String> {
+pub(super) fn strings(r: &mut Reader<'_>) -> Result<(), Error> {
     r.at = "strings".to_owned();
     let n = r.count("count", 1)?;
     let mut table = Vec::with_capacity(n);
@@ -92,7 +93,7 @@ pub(super) fn strings(r: &mut Reader<'_>) -> Result<(), String> {
 }
 
 /// The bones, parent first.
-pub(super) fn bones(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, String> {
+pub(super) fn bones(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, Error> {
     r.at = "bones".to_owned();
     let n = r.count("count", 35)?;
     let mut out = Vec::with_capacity(n);
@@ -124,7 +125,7 @@ pub(super) fn bones(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -
 }
 
 /// The slots, in setup draw order.
-pub(super) fn slots(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, String> {
+pub(super) fn slots(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, Error> {
     r.at = "slots".to_owned();
     let n = r.count("count", 11)?;
     let mut out = Vec::with_capacity(n);
@@ -154,7 +155,7 @@ pub(super) fn slots(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -
 }
 
 /// A constraint's `order` and constrained bones.
-fn order_and_bones(r: &mut Reader<'_>, names: &Names, o: &mut Map<String, Value>) -> Result<(), String> {
+fn order_and_bones(r: &mut Reader<'_>, names: &Names, o: &mut Map<String, Value>) -> Result<(), Error> {
     o.insert("order".into(), Value::from(r.unsigned("order")?));
     let n = r.count("bones", 1)?;
     let mut bones = Vec::with_capacity(n);
@@ -166,14 +167,14 @@ fn order_and_bones(r: &mut Reader<'_>, names: &Names, o: &mut Map<String, Value>
     Ok(())
 }
 
-fn target_bone(r: &mut Reader<'_>, names: &Names, o: &mut Map<String, Value>) -> Result<(), String> {
+fn target_bone(r: &mut Reader<'_>, names: &Names, o: &mut Map<String, Value>) -> Result<(), Error> {
     let t = r.index("target", "bone", names.bones.len())?;
     o.insert("target".into(), Value::from(names.bones[t].clone()));
     Ok(())
 }
 
 /// The IK constraints.
-pub(super) fn ik(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String> {
+pub(super) fn ik(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Error> {
     r.at = "ik".to_owned();
     let n = r.count("count", 5)?;
     let mut out = Vec::with_capacity(n);
@@ -206,7 +207,7 @@ pub(super) fn ik(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String>
 }
 
 /// The transform constraints.
-pub(super) fn transform(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String> {
+pub(super) fn transform(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Error> {
     r.at = "transform".to_owned();
     let n = r.count("count", 6)?;
     let mut out = Vec::with_capacity(n);
@@ -245,7 +246,7 @@ pub(super) fn transform(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, 
 }
 
 /// The path constraints.
-pub(super) fn path(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String> {
+pub(super) fn path(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Error> {
     r.at = "path".to_owned();
     let n = r.count("count", 26)?;
     let mut out = Vec::with_capacity(n);
@@ -283,7 +284,7 @@ pub(super) fn path(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Strin
 }
 
 /// The physics constraints.
-pub(super) fn physics(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String> {
+pub(super) fn physics(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Error> {
     r.at = "physics".to_owned();
     let n = r.count("count", 30)?;
     let mut out = Vec::with_capacity(n);

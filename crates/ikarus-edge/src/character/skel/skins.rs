@@ -6,12 +6,13 @@ use serde_json::{Map, Value};
 
 use super::Names;
 use super::reader::Reader;
+use crate::error::Error;
 
 /// Attachment types, by their number in the file.
 const TYPES: [&str; 7] = ["region", "boundingbox", "mesh", "linkedmesh", "path", "point", "clipping"];
 
 /// The skins: the default skin first (when the file has one), then the named ones.
-pub(super) fn skins(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, String> {
+pub(super) fn skins(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -> Result<Value, Error> {
     let mut out = Vec::new();
     r.at = "skins[\"default\"]".to_owned();
     let slots = r.count("slots", 2)?;
@@ -59,7 +60,7 @@ pub(super) fn skins(r: &mut Reader<'_>, names: &mut Names, nonessential: bool) -
 }
 
 /// A skin's attachments: per slot, per placeholder name.
-fn attachments(r: &mut Reader<'_>, names: &Names, slots: usize, nonessential: bool) -> Result<Value, String> {
+fn attachments(r: &mut Reader<'_>, names: &Names, slots: usize, nonessential: bool) -> Result<Value, Error> {
     let skin = r.at.clone();
     let mut by_slot = Map::new();
     for _ in 0..slots {
@@ -82,7 +83,7 @@ fn attachments(r: &mut Reader<'_>, names: &Names, slots: usize, nonessential: bo
 }
 
 /// One attachment, from its flags byte on.
-fn attachment(r: &mut Reader<'_>, names: &Names, key: &str, nonessential: bool) -> Result<Value, String> {
+fn attachment(r: &mut Reader<'_>, names: &Names, key: &str, nonessential: bool) -> Result<Value, Error> {
     let start = r.pos();
     let flags = r.byte("type")?;
     let kind = usize::from(flags & 7);
@@ -90,7 +91,7 @@ fn attachment(r: &mut Reader<'_>, names: &Names, key: &str, nonessential: bool) 
     o.insert("type".into(), super::skeleton::pick(r, start, "type", &TYPES, kind)?);
     let name = if flags & 8 != 0 { r.string_ref("name")? } else { None }.unwrap_or_else(|| key.to_owned());
     o.insert("name".into(), Value::from(name.clone()));
-    let textured = |r: &mut Reader<'_>, o: &mut Map<String, Value>| -> Result<(), String> {
+    let textured = |r: &mut Reader<'_>, o: &mut Map<String, Value>| -> Result<(), Error> {
         let path = if flags & 16 != 0 { r.string_ref("path")? } else { None }.unwrap_or_else(|| name.clone());
         o.insert("path".into(), Value::from(path));
         if flags & 32 != 0 {
@@ -168,7 +169,7 @@ fn attachment(r: &mut Reader<'_>, names: &Names, key: &str, nonessential: bool) 
     Ok(Value::Object(o))
 }
 
-fn color(r: &mut Reader<'_>, o: &mut Map<String, Value>, nonessential: bool) -> Result<(), String> {
+fn color(r: &mut Reader<'_>, o: &mut Map<String, Value>, nonessential: bool) -> Result<(), Error> {
     if nonessential {
         o.insert("color".into(), Value::from(r.rgba("color")?));
     }
@@ -176,7 +177,7 @@ fn color(r: &mut Reader<'_>, o: &mut Map<String, Value>, nonessential: bool) -> 
 }
 
 /// A sequence: count, start, digits, setup index.
-fn sequence(r: &mut Reader<'_>) -> Result<Value, String> {
+fn sequence(r: &mut Reader<'_>) -> Result<Value, Error> {
     let mut o = Map::new();
     for f in ["count", "start", "digits", "setup"] {
         o.insert(f.into(), Value::from(r.unsigned(f)?));
@@ -185,7 +186,7 @@ fn sequence(r: &mut Reader<'_>) -> Result<Value, String> {
 }
 
 /// `n` varint+ indices.
-fn shorts(r: &mut Reader<'_>, field: &str, n: usize) -> Result<Value, String> {
+fn shorts(r: &mut Reader<'_>, field: &str, n: usize) -> Result<Value, Error> {
     if n > r.left() {
         return Err(r.fail(field, &format!("a count beyond the {} bytes left (got {n})", r.left())));
     }
@@ -195,7 +196,7 @@ fn shorts(r: &mut Reader<'_>, field: &str, n: usize) -> Result<Value, String> {
 /// Vertices: their count, then (x, y) pairs, or per vertex its bones (count, then index, x, y,
 /// weight each) when `weighted`; writes `vertexCount` and `vertices` as JSON does and returns
 /// the count.
-fn vertices(r: &mut Reader<'_>, o: &mut Map<String, Value>, weighted: bool) -> Result<usize, String> {
+fn vertices(r: &mut Reader<'_>, o: &mut Map<String, Value>, weighted: bool) -> Result<usize, Error> {
     let count = r.count("vertexCount", if weighted { 1 } else { 8 })?;
     o.insert("vertexCount".into(), Value::from(count));
     let values = if weighted {
@@ -218,7 +219,7 @@ fn vertices(r: &mut Reader<'_>, o: &mut Map<String, Value>, weighted: bool) -> R
 
 /// The events: name, int, float, string and audio path (with volume and balance when there is
 /// one), keyed by name.
-pub(super) fn events(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, String> {
+pub(super) fn events(r: &mut Reader<'_>, names: &mut Names) -> Result<Value, Error> {
     r.at = "events".to_owned();
     let n = r.count("count", 8)?;
     let mut out = Map::new();

@@ -2,6 +2,7 @@
 //! and with bytes flipped (every outcome a value or a one-line message, never a panic).
 
 use super::to_json;
+use crate::error::Error;
 
 /// A file built byte by byte.
 #[derive(Default)]
@@ -99,7 +100,7 @@ fn bad_files_are_one_line_naming_the_byte_and_the_field() {
         ),
     ];
     for (bytes, message) in cases {
-        assert_eq!(to_json(&bytes).err().as_deref(), Some(message));
+        assert_eq!(to_json(&bytes).err().map(|e| e.to_string()).as_deref(), Some(message));
     }
     // An unknown attachment type (7) in the default skin.
     let mut bad = small(&[0, 0]);
@@ -107,7 +108,7 @@ fn bad_files_are_one_line_naming_the_byte_and_the_field() {
     let at = bad.len() - 2 - 1 - 24 - 1;
     bad[at] = 7;
     assert_eq!(
-        to_json(&bad).err(),
+        to_json(&bad).err().map(|e| e.to_string()),
         Some(format!(
             "skel: byte {at}: skins[\"default\"].attachments[\"arm\"][\"arm-image\"].type: an unknown type (got 7)"
         ))
@@ -125,10 +126,10 @@ fn examples() -> Vec<Vec<u8>> {
 }
 
 /// Ok, or one line of the form `skel: byte N: …`.
-fn outcome(bytes: &[u8]) -> Result<(), String> {
+fn outcome(bytes: &[u8]) -> Result<(), Error> {
     match to_json(bytes) {
         Ok(_) => Ok(()),
-        Err(e) if e.starts_with("skel: byte ") && !e.contains('\n') => Ok(()),
+        Err(e) if e.to_string().starts_with("skel: byte ") && !e.to_string().contains('\n') => Ok(()),
         Err(e) => Err(e),
     }
 }
@@ -140,7 +141,7 @@ fn every_example_cut_short_is_refused_in_one_line() {
         let step = (file.len() / 250).max(1);
         for len in (0..file.len()).step_by(step).chain(0..64) {
             let e = to_json(&file[..len]).expect_err("a file cut short is refused");
-            assert!(e.starts_with("skel: byte ") && !e.contains('\n'), "cut at {len}: {e}");
+            assert!(e.to_string().starts_with("skel: byte ") && !e.to_string().contains('\n'), "cut at {len}: {e}");
         }
     }
 }
@@ -186,9 +187,9 @@ fn a_string_referred_to_over_and_over_is_refused_past_the_cap() {
         f = f.floats(&[0.0]).bytes(&[1]);
     }
     let bytes = f.bytes(&[0; 8]).0;
-    let e = to_json(&bytes).err().unwrap_or_default();
+    let e = to_json(&bytes).err().map(|e| e.to_string()).unwrap_or_default();
     let cap = bytes.len() * 16 + (1 << 20);
-    assert!(e.contains(&format!("the strings referred to exceed {cap} bytes in all")), "{e}");
+    assert!(e.to_string().contains(&format!("the strings referred to exceed {cap} bytes in all")), "{e}");
 }
 
 /// The kinds the four example files do not hold, read as the format page describes them: a
