@@ -385,6 +385,27 @@ fn readme_and_book_examples_match_their_outputs() {
     );
 }
 
+/// Every page with Rust blocks is compiled as doctests by the library
+/// (`crates/ikarus/src/book.rs`, one `include_str!` per page).
+#[test]
+fn every_page_with_rust_blocks_is_a_doctest() {
+    let book = std::fs::read_to_string(root().join("crates/ikarus/src/book.rs")).unwrap();
+    let pages = pages();
+    let mut missing = Vec::new();
+    for (page, text) in &pages {
+        if text.lines().any(|l| l.trim_end() == "```rust")
+            && !book.contains(&format!("include_str!(\"../../../{page}\")"))
+        {
+            missing.push(page.as_str());
+        }
+    }
+    assert!(pages.len() > 10, "the book's pages were found: {}", pages.len());
+    assert!(
+        missing.is_empty(),
+        "pages with ```rust blocks that crates/ikarus/src/book.rs does not include: {missing:?}"
+    );
+}
+
 #[test]
 fn the_convention_itself() {
     assert_eq!(split(r#"a 'b c' "d\"e" f"#), ["a", "b c", "d\"e", "f"]);
