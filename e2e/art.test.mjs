@@ -6,7 +6,7 @@
 // pose (`ikarus pose --atlas … --art-only`): alpha masks cropped to their bounds and scaled to one
 // size, overlap ≥ 0.95 and mean colour difference < 6 % (artcompare.mjs). An atlas the backend
 // let go (404) is sent again once. A lone atlas, and a page image not given, are one-line notices. Screenshots: target/e2e/art-*.png; with ART_DOCS=1 the README's two
-// (docs/art-page.png, docs/art-keys.png) are written too.
+// (docs/src/images/art-page.png, docs/src/images/art-keys.png) are written too.
 // Run by e2e/run (which builds the binary and installs playwright-core).
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -17,7 +17,7 @@ import { characterSettled, dragTarget, targetAt } from "./charpage.mjs";
 import { compareArt, maskBounds } from "./artcompare.mjs";
 import { artPixels, cliArt, cliArtArgs, examples, loadSpineboyArt, pngPixels, spineboyFiles } from "./artpage.mjs";
 
-const docs = join(import.meta.dirname, "..", "docs");
+const docs = join(import.meta.dirname, "..", "docs", "src", "images");
 
 /** The pixel's alpha of the art's canvas at the world point (x, y). */
 const alphaAt = (page, x, y) =>

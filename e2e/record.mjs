@@ -1,7 +1,7 @@
-// The README's screen recording of the playground as an animation tool, docs/keys.gif: run by
+// The README's screen recording of the playground as an animation tool, docs/src/images/keys.gif: run by
 // hand (not in CI), after `cargo build --release`, with ImageMagick's `convert` on the PATH:
 //
-//     cd e2e && node record.mjs            # writes ../docs/keys.gif (frames in a temporary folder)
+//     cd e2e && node record.mjs            # writes ../docs/src/images/keys.gif (frames in a temporary folder)
 //
 // It drives the page in headless Chromium: the puppet, Key mode on, the walk keyed by dragging
 // both feet and both hands at four key times (e2e/rigpage.mjs's WALK, the test's); the keyed
@@ -16,7 +16,7 @@ import { join } from "node:path";
 import { openPage, ready, withBrowser } from "./browser.mjs";
 import { flipBend, keyWalk, keysSettled, seek } from "./rigpage.mjs";
 
-const out = join(import.meta.dirname, "..", "docs", "keys.gif");
+const out = join(import.meta.dirname, "..", "docs", "src", "images", "keys.gif");
 const dir = mkdtempSync(join(tmpdir(), "ikarus-keys-"));
 let n = 0;
 

@@ -5,7 +5,7 @@
 // world numbers, not the add-on's report), the rear foot's tip (pinned) within 1e-3 of where the
 // walk put it, every bone outside the moved limbs exactly as the walk left it; an unreachable
 // pointer is reported at its distance; the page logs no error. Saves target/e2e/spine-demo.png,
-// and docs/spine-demo.png with IKARUS_DOCS_PICTURES=1.
+// and docs/src/images/spine-demo.png with IKARUS_DOCS_PICTURES=1.
 //
 //   IKARUS_WEB_DIR=DIR node --test web/spine-demo.test.mjs
 import { test } from "node:test";
@@ -108,7 +108,7 @@ test("the demo page: spineboy's fist follows the real pointer within 1e-3, the r
     });
     const shot = join(artifacts, "spine-demo.png");
     await page.screenshot({ path: shot });
-    if (process.env.IKARUS_DOCS_PICTURES) copyFileSync(shot, join(root, "docs", "spine-demo.png"));
+    if (process.env.IKARUS_DOCS_PICTURES) copyFileSync(shot, join(root, "docs", "src", "images", "spine-demo.png"));
     console.log(`spine demo: ${checked} reachable pointer positions, fist off the pointer at most ${worst.fist.toExponential(2)}, rear foot ${worst.foot.toExponential(2)}; readout: ${readout}`);
     assert.deepEqual(errors, []);
   } finally {

@@ -235,7 +235,7 @@ fn raptor_miss(args: &[&str], bone: &str, goal: [f64; 2]) -> f64 {
     (tip[0].as_f64().unwrap() - goal[0]).hypot(tip[1].as_f64().unwrap() - goal[1])
 }
 
-/// The README's Spine tour, step 3 and the paragraph under it: at walk 0.4 s the runtime's rules
+/// The book's Spine tour (docs/src/guide/characters.md), step 3 and the paragraph under it: at walk 0.4 s the runtime's rules
 /// leave the raptor's front foot 6.8 units short of (520, 80) and ikarus's four-bone limb puts
 /// it on; in the setup pose the runtime leaves it 3.5 units short of (460, 80). (At walk 0.4 s
 /// both put it exactly on (460, 80), which the tour once claimed the runtime missed.)

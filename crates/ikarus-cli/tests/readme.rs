@@ -1,6 +1,7 @@
-//! The README's examples, run and compared with what they show, so that they cannot drift.
+//! The examples of the README and of every page of the book (`docs/src/**/*.md`), run and
+//! compared with what they show, so that they cannot drift.
 //!
-//! The convention (also stated in the README, under "Examples are tested"):
+//! The convention (also stated in the book, under "Developing", "Examples are tested"):
 //!
 //! - Every ```` ```console ```` block is checked unless the line just before it is
 //!   `<!-- readme-test: not run (REASON) -->`. In a checked block every line starting with `$ `
@@ -15,7 +16,7 @@
 //!   started for the test on a free port (GET without `-d`, POST with it). With `-o` the block
 //!   shows no output, and the answer must be a picture.
 //! - Comparison: `…` in the shown output matches any text (an elided part). Output that starts
-//!   with `{` is JSON and is compared with all whitespace removed, so that the README may lay
+//!   with `{` is JSON and is compared with all whitespace removed, so that a page may lay
 //!   it out for reading; other output is compared line by line, trailing spaces ignored.
 //! - Timing is the only thing allowed to differ, through [`normalise`]: a number followed by
 //!   `µs` or `ms`, and the value of a JSON key ending in `_us`, `_ms` or `_s` or named
@@ -31,18 +32,46 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
 }
 
+/// Every page the examples are read from: README.md, then the book's pages in path order,
+/// each as (its path from the repository's root, its text).
+fn pages() -> Vec<(String, String)> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
+    let mut book = Vec::new();
+    walk(&root().join("docs/src"), &mut book);
+    book.sort();
+    let root = root();
+    std::iter::once(root.join("README.md"))
+        .chain(book)
+        .map(|path| {
+            let name = path.strip_prefix(&root).unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(&path).unwrap())
+        })
+        .collect()
+}
+
 /// One command of a block and the output shown under it.
 #[derive(Debug)]
 struct Example {
-    /// Line of the command in the README, from 1.
+    /// The page, from the repository's root.
+    page: String,
+    /// Line of the command in the page, from 1.
     line: usize,
     command: String,
     shown: String,
 }
 
-/// The examples of every checked console block, and the number of blocks marked not run.
-fn examples(readme: &str) -> (Vec<Example>, usize) {
-    let lines: Vec<&str> = readme.lines().collect();
+/// The examples of every checked console block of `page`, and the number of blocks marked not run.
+fn examples(page: &str, text: &str) -> (Vec<Example>, usize) {
+    let lines: Vec<&str> = text.lines().collect();
     let mut out = Vec::new();
     let mut skipped = 0;
     let mut i = 0;
@@ -63,7 +92,7 @@ fn examples(readme: &str) -> (Vec<Example>, usize) {
             let mut k = start;
             assert!(
                 k < end && lines[k].starts_with("$ "),
-                "README line {}: a console block must start with a command, or be marked not run",
+                "{page}:{}: a console block must start with a command, or be marked not run",
                 k + 1
             );
             while k < end {
@@ -84,7 +113,7 @@ fn examples(readme: &str) -> (Vec<Example>, usize) {
                 while shown.last().is_some_and(|l| l.trim().is_empty()) {
                     shown.pop();
                 }
-                out.push(Example { line, command, shown: shown.join("\n") });
+                out.push(Example { page: page.to_owned(), line, command, shown: shown.join("\n") });
             }
         }
         i = end + 1;
@@ -92,7 +121,7 @@ fn examples(readme: &str) -> (Vec<Example>, usize) {
     (out, skipped)
 }
 
-/// Splits a command line as a shell would, for the quoting the README uses.
+/// Splits a command line as a shell would, for the quoting the pages use.
 fn split(command: &str) -> Vec<String> {
     let mut words = Vec::new();
     let mut word = String::new();
@@ -223,7 +252,7 @@ fn matches(pattern: &str, text: &str) -> bool {
     true
 }
 
-/// Whether the output `actual` is what the README shows as `shown`.
+/// Whether the output `actual` is what the page shows as `shown`.
 fn agrees(shown: &str, actual: &str) -> bool {
     let (shown, actual) = (normalise(shown), normalise(actual));
     if shown.trim_start().starts_with('{') {
@@ -264,7 +293,7 @@ impl Drop for Server {
 }
 
 impl Server {
-    /// The README's server, with an hour's budget: its examples are checked for what they
+    /// The examples' server, with an hour's budget: its examples are checked for what they
     /// answer, never for how fast this machine draws them.
     fn start() -> Self {
         let mut child = Command::new(env!("CARGO_BIN_EXE_ikarus"))
@@ -318,10 +347,14 @@ impl Server {
 }
 
 #[test]
-fn readme_examples_match_their_outputs() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let (examples, skipped) = examples(&readme);
-    assert!(examples.len() >= 10, "the README's examples were found: {}", examples.len());
+fn readme_and_book_examples_match_their_outputs() {
+    let (mut examples, mut skipped) = (Vec::new(), 0);
+    for (page, text) in pages() {
+        let (found, marked) = self::examples(&page, &text);
+        examples.extend(found);
+        skipped += marked;
+    }
+    assert!(examples.len() >= 10, "the examples were found: {}", examples.len());
     assert!(skipped <= 4, "few blocks are exempt: {skipped}");
     let mut server: Option<Server> = None;
     let mut failures = Vec::new();
@@ -330,11 +363,12 @@ fn readme_examples_match_their_outputs() {
         let actual = match words.first().map(String::as_str) {
             Some("ikarus") => run_ikarus(&words[1..]),
             Some("curl") => server.get_or_insert_with(Server::start).curl(&words[1..]),
-            _ => panic!("README line {}: `{}` is neither ikarus nor curl: mark the block not run", e.line, e.command),
+            _ => panic!("{}:{}: `{}` is neither ikarus nor curl: mark the block not run", e.page, e.line, e.command),
         };
         if !agrees(&e.shown, &actual) {
             failures.push(format!(
-                "README line {}: $ {}\n--- shown ---\n{}\n--- actual ---\n{}",
+                "{}:{}: $ {}\n--- shown ---\n{}\n--- actual ---\n{}",
+                e.page,
                 e.line,
                 e.command,
                 e.shown,
@@ -348,6 +382,27 @@ fn readme_examples_match_their_outputs() {
         failures.len(),
         examples.len(),
         failures.join("\n\n")
+    );
+}
+
+/// Every page with Rust blocks is compiled as doctests by the library
+/// (`crates/ikarus/src/book.rs`, one `include_str!` per page).
+#[test]
+fn every_page_with_rust_blocks_is_a_doctest() {
+    let book = std::fs::read_to_string(root().join("crates/ikarus/src/book.rs")).unwrap();
+    let pages = pages();
+    let mut missing = Vec::new();
+    for (page, text) in &pages {
+        if text.lines().any(|l| l.trim_end() == "```rust")
+            && !book.contains(&format!("include_str!(\"../../../{page}\")"))
+        {
+            missing.push(page.as_str());
+        }
+    }
+    assert!(pages.len() > 10, "the book's pages were found: {}", pages.len());
+    assert!(
+        missing.is_empty(),
+        "pages with ```rust blocks that crates/ikarus/src/book.rs does not include: {missing:?}"
     );
 }
 

@@ -89,7 +89,7 @@ fn a_motion_solved_by_ikarus_plays_back_too() {
     // constraints it replaces at mix 0; the bake keys every frame.
     assert!(mix_zero(&editable.animation) && mix_zero(&bake.animation));
     assert!(editable.keys * 3 < bake.keys, "{} editable keys, {} baked", editable.keys, bake.keys);
-    // The README's tour: carried to (460, 80), beyond the leg constraint's reach, the limb passes
+    // The book's Spine tour (docs/src/guide/characters.md): carried to (460, 80), beyond the leg constraint's reach, the limb passes
     // full reach near 0.84 s and swings there like the square root of the time left (3 units in
     // 1/3000 s), then jumps; the bake follows the swing by halving down to 1/(30 · 2¹²) s there.
     let targets = vec![("front-foot-target".to_owned(), [460.0, 80.0])];

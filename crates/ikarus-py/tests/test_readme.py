@@ -1,7 +1,8 @@
-"""The README's Python examples, run as doctests against the installed package, so that they
-cannot drift (as ``crates/ikarus-cli/tests/readme.rs`` runs its console examples).
+"""The Python examples of the README and of every page of the book (``docs/src/**/*.md``), run as
+doctests against the installed package, so that they cannot drift (as
+``crates/ikarus-cli/tests/readme.rs`` runs their console examples).
 
-The convention: every ```` ```python ```` block of README.md that holds ``>>>`` lines is run,
+The convention: every ```` ```python ```` block of a page that holds ``>>>`` lines is run,
 unless the line just before it is ``<!-- readme-test: not run (REASON) -->``. Each block is one
 doctest, run from the repository's root (so that ``examples/…`` paths resolve) and compared
 exactly as doctest compares. An expected exception is written as Python's last line shows it
@@ -17,7 +18,7 @@ import pytest
 
 from conftest import ROOT
 
-README = ROOT / "README.md"
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs" / "src").rglob("*.md"))]
 NOT_RUN = "<!-- readme-test: not run ("
 # The last line of a traceback: an exception's name, a colon and its message.
 EXCEPTION = re.compile(r"^[A-Za-z_][\w.]*(Error|Exception|Warning|Interrupt|Exit): ")
@@ -54,12 +55,17 @@ def as_doctest(lines: list[str]) -> str:
     return "\n".join(out) + "\n"
 
 
-BLOCKS = blocks(README.read_text(encoding="utf-8"))
+# (page, its path from the root, line of the block's first line, the block's lines)
+BLOCKS = [
+    (page, page.relative_to(ROOT).as_posix(), line, lines)
+    for page in PAGES
+    for line, lines in blocks(page.read_text(encoding="utf-8"))
+]
 
 
-def test_the_readme_has_python_examples():
+def test_the_pages_have_python_examples():
     # The test below must not pass by finding nothing.
-    assert BLOCKS, "no ```python block with >>> lines in README.md"
+    assert BLOCKS, "no ```python block with >>> lines in README.md or the book"
 
 
 def test_an_expected_exception_gets_its_header():
@@ -67,12 +73,12 @@ def test_an_expected_exception_gets_its_header():
     assert text.splitlines() == [">>> f()", "Traceback (most recent call last):", "ValueError: x: bad", ">>> g()", "done: ValueError: not one"]
 
 
-@pytest.mark.parametrize("line,lines", BLOCKS, ids=[f"README.md:{line}" for line, _ in BLOCKS])
-def test_readme_python_block(line, lines, monkeypatch):
+@pytest.mark.parametrize("page,name,line,lines", BLOCKS, ids=[f"{name}:{line}" for _, name, line, _ in BLOCKS])
+def test_page_python_block(page, name, line, lines, monkeypatch):
     if any("ikarus.plot(" in l for l in lines):
         pytest.importorskip("matplotlib")
     monkeypatch.chdir(ROOT)
-    test = doctest.DocTestParser().get_doctest(as_doctest(lines), {}, f"README.md:{line}", str(README), line - 1)
+    test = doctest.DocTestParser().get_doctest(as_doctest(lines), {}, f"{name}:{line}", str(page), line - 1)
     report: list[str] = []
     runner = doctest.DocTestRunner(optionflags=doctest.REPORT_NDIFF)
     runner.run(test, out=report.append)

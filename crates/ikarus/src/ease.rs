@@ -32,7 +32,7 @@ pub enum Ease {
 }
 
 /// Parent's sine ease-in/ease-out with a constant-velocity middle (*Computer Animation*, 3rd
-/// ed., eq. 3.19), with the seed report's errors corrected: `docs/ease.md` derives it.
+/// ed., eq. 3.19), with the seed report's errors corrected: `docs/src/solving/ease.md` derives it.
 ///
 /// Accelerate along a quarter sine until `k1`, cruise at constant speed until `k2`, decelerate
 /// along a quarter sine until 1. Before normalisation:
@@ -288,7 +288,7 @@ mod tests {
         }
     }
 
-    /// The reference values of `docs/ease.md`, computed there from the formulas.
+    /// The reference values of `docs/src/solving/ease.md`, computed there from the formulas.
     #[test]
     fn errata_reference_values() {
         let e = Ease::parent(0.3, 0.75).unwrap();

@@ -89,7 +89,10 @@ extern crate self as ikarus;
 #[path = "../tests/common/fixtures.rs"]
 mod fixtures;
 
-/// The README's Rust examples, compiled and run as doctests.
+/// The Rust examples of the README and of the book (`docs/src`), compiled and run as doctests:
+/// one item per page that has ```` ```rust ```` blocks, named after the page
+/// (`crates/ikarus-cli/tests/readme.rs` fails when such a page is missing). Every item stands on
+/// the first line of `book.rs`, so that rustdoc's line of a failing block is its line in the page.
 #[cfg(doctest)]
-#[doc = include_str!("../../../README.md")]
-pub struct ReadmeDoctests;
+#[rustfmt::skip]
+mod book;
