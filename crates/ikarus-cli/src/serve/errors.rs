@@ -159,7 +159,10 @@ impl<T: MediaType> ApiBody<T> {
     async fn read(req: Request, state: &AppState) -> Result<Self, ApiError> {
         let (max_body_bytes, flag) = T::cap(state);
         // The content type before the size and before the body is read.
-        check_content_type::<T>(req.headers())?;
+        if let Err(refusal) = check_content_type::<T>(req.headers()) {
+            drain_small(req, state).await;
+            return Err(refusal);
+        }
         // The memory the body may take (its declared length, or the cap) is reserved before
         // it is read: past the server's body memory the answer is 503 at once.
         let declared = req
@@ -187,6 +190,25 @@ impl<T: MediaType> ApiBody<T> {
                 format!("request body: not received within {} ms (--body-timeout-ms)", timeout.as_millis()),
             )),
         }
+    }
+}
+
+/// Most bytes of a refused request's body read and dropped before the refusal is sent.
+const DRAIN_BYTES: usize = 64 << 10;
+
+/// Reads and drops the body of a request refused before its body was read, when it declares at
+/// most [`DRAIN_BYTES`], within the body timeout. The connection is closed after a refusal; a
+/// socket closed with unread bytes in its buffer is reset, and a client still sending or not yet
+/// reading then loses the answer ("connection reset") instead of reading the refusal.
+async fn drain_small(req: Request, state: &AppState) {
+    let small = req
+        .headers()
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok()?.trim().parse::<usize>().ok())
+        .is_some_and(|n| n <= DRAIN_BYTES);
+    if small {
+        let body = axum::body::to_bytes(req.into_body(), DRAIN_BYTES);
+        let _ = tokio::time::timeout(state.limits.body_timeout, body).await;
     }
 }
 
