@@ -161,7 +161,7 @@ pub struct TrackSampleJson {
     /// The goal's orientation, degrees; only when the path gives one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
-    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, ... or `off_path`.
+    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, … or `off_path`.
     pub status: &'static str,
     /// Distance from the tip to the goal's position.
     pub error: f64,
@@ -337,7 +337,7 @@ pub struct RigTrackSampleJson<'a> {
     /// The goal's orientation, degrees; only when the path gives one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
-    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, ...
+    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, …
     pub status: &'static str,
     /// The largest effector error: the followed tip's, the held goals' and the pins'.
     pub error: f64,

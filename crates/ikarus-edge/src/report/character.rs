@@ -77,7 +77,7 @@ pub struct IkJson {
     pub mix: f64,
     /// The distance from the target at which the two bones start to straighten softly; 0 off.
     pub softness: f64,
-    /// Which way a two-bone chain bends: `true` positive (counter-clockwise), `false` the other.
+    /// Which way a two-bone chain bends: `true` for the positive bend direction.
     pub bend_positive: bool,
     /// Whether a bone shrinks when the target is nearer than it reaches.
     pub compress: bool,
@@ -112,7 +112,7 @@ pub struct ClipJson {
 /// What the file has and ikarus does not use: `{"kind": "bounding box attachment", "name": "…"}`.
 #[derive(Debug, Serialize)]
 pub struct UnsupportedJson {
-    /// What it is: an attachment or a constraint kind ikarus leaves out.
+    /// What kind of thing it is (`bounding box attachment`, …).
     pub kind: String,
     /// Its name in the file.
     pub name: String,

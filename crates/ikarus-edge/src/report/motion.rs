@@ -14,7 +14,8 @@ use crate::rig::Rig;
 pub struct MotionSolveJson {
     /// The goal's position.
     pub goal: [f64; 2],
-    /// How its solve ended: `reached`, `limited`, `unreachable`, ...
+    /// How its solve ended: `reached`, `unreachable`, `stalled`, `iteration_limit` or
+    /// `interrupted`.
     pub status: &'static str,
     /// Iterations of its solve, over all its attempts.
     pub iterations: u32,

@@ -24,7 +24,7 @@ pub struct WorkspaceJson<'a> {
     pub exact: bool,
     /// The inner radius of the ring the tip reaches with every joint free.
     pub inner_radius: f64,
-    /// The outer radius of that ring: the arm's full length.
+    /// The outer radius of that ring.
     pub outer_radius: f64,
     /// The area of that ring.
     pub annulus_area: f64,
