@@ -74,8 +74,11 @@ pub struct KeysFile {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct KeyReq {
+    /// When the target holds, seconds: 0 for a track's first key, on a frame, increasing.
     pub time: f64,
+    /// The target's x.
     pub x: f64,
+    /// The target's y.
     pub y: f64,
     /// The bone's absolute direction at the key, degrees (on every key of a track or on none).
     #[serde(default)]
@@ -83,9 +86,10 @@ pub struct KeyReq {
     /// `linear`, `sine` (the default), `parent` or `smoothstep`.
     #[serde(default)]
     pub ease: Option<EaseKind>,
-    /// Parent's ease's end of acceleration and start of deceleration.
+    /// The `parent` ease's end of acceleration (see `k2`).
     #[serde(default)]
     pub k1: Option<f64>,
+    /// The `parent` ease's start of deceleration (with `k1`: `0 ≤ k1 ≤ k2 ≤ 1`).
     #[serde(default)]
     pub k2: Option<f64>,
 }
@@ -94,7 +98,9 @@ pub struct KeyReq {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BendKeyReq {
+    /// The time the bend takes effect, seconds: 0 for a bone's first key, on a frame, increasing.
     pub time: f64,
+    /// Which way the joint bends from then on.
     pub bend: BendName,
 }
 
@@ -102,7 +108,9 @@ pub struct BendKeyReq {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum BendName {
+    /// Counter-clockwise: the joint's angle in [0°, 180°].
     Ccw,
+    /// Clockwise: the joint's angle in [−180°, 0°].
     Cw,
 }
 
@@ -128,8 +136,12 @@ impl BendName {
 /// keys give one).
 #[derive(Debug, Clone)]
 pub struct KeyedBone {
+    /// The bone's index in the skeleton.
     pub bone: usize,
+    /// Its keys' values with their eases: per key `x`, `y` (and the direction, radians) for a
+    /// tracked tip; the local rotation, degrees, for a bone turned by hand.
     pub track: KeyTrack,
+    /// Whether its keys give a direction (`angle_deg`).
     pub oriented: bool,
 }
 
@@ -139,6 +151,7 @@ pub type Bends = Vec<(usize, Vec<(usize, Bend)>)>;
 /// The checked keys of a character ([`KeysFile::check_character`]).
 #[derive(Debug, Clone)]
 pub struct CharacterKeys {
+    /// Frames per second, in (0, 240].
     pub fps: f64,
     /// The target bones' tracks.
     pub tracks: Vec<KeyedBone>,
@@ -153,6 +166,7 @@ pub struct CharacterKeys {
 /// The checked keys of a rig: what each frame solves.
 #[derive(Debug, Clone)]
 pub struct KeyPlan {
+    /// Frames per second, in (0, 240].
     pub fps: f64,
     /// Frames `0..=last` at `k / fps` seconds.
     pub last: usize,

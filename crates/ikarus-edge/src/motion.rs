@@ -28,7 +28,14 @@ pub const DEFAULT_FPS: f64 = 30.0;
 #[derive(Debug)]
 pub enum TimingProblem {
     /// `field` = `value` breaks the rule `message`.
-    Value { field: &'static str, value: String, message: &'static str },
+    Value {
+        /// The value's name: `frames`, `duration` or `fps`.
+        field: &'static str,
+        /// The value as given, written for a message.
+        value: String,
+        /// The rule it breaks (`must be greater than 0`).
+        message: &'static str,
+    },
     /// Both frames and a duration were given.
     Both,
 }
@@ -126,13 +133,17 @@ impl MotionBody for Rig {
 
 /// What a motion request asks for once its values are checked.
 pub struct MotionPlan<'a, B: MotionBody> {
+    /// The arm or rig that moves.
     pub body: &'a B,
     /// The pose the motion starts from, radians, one value per joint.
     pub start: Vec<f64>,
     /// The stops in order: an arm's via points then its goal, a rig's via sets then its goal set.
     pub stops: Vec<B::Stop>,
+    /// The solver's options for every stop's solve.
     pub options: SolveOptions,
+    /// How many frames, or how long at what frame rate ([`timing`]).
     pub timing: Timing,
+    /// The easing of time between the poses.
     pub ease: Ease,
     /// The path through the poses: spline (the default) or polyline.
     pub interpolation: Interpolation,
@@ -142,8 +153,11 @@ pub struct MotionPlan<'a, B: MotionBody> {
 
 /// A computed motion, with the options and the stops it was solved with.
 pub struct Motion<B: MotionBody> {
+    /// The options the stops were solved with.
     pub options: SolveOptions,
+    /// The stops in order, as in the plan.
     pub stops: Vec<B::Stop>,
+    /// The library's motion: each stop's solve and the eased frames.
     pub motion: B::Solved,
 }
 

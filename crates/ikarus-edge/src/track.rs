@@ -22,8 +22,11 @@ pub const DEFAULT_MAX_STEP_DEG: f64 = 10.0;
 /// A shape sampled into a path.
 #[derive(Debug, Clone, Copy)]
 pub enum Shape {
+    /// A straight line `[x0, y0, x1, y1]`, from the first point to the second.
     Line([f64; 4]),
+    /// A circle `[cx, cy, r]`: centre and radius.
     Circle([f64; 3]),
+    /// A figure-8 lying on its side `[cx, cy, a]`: centre, and `a` for `2a` wide and `a` high.
     Figure8([f64; 3]),
 }
 
@@ -98,10 +101,15 @@ impl TrackBody for Rig {
 
 /// One track: the workflow of `ikarus track` and `POST /api/track`.
 pub struct TrackJob<'a, B: TrackBody> {
+    /// The arm or rig that follows the path.
     pub body: &'a B,
+    /// The pose it starts from, radians, one angle per joint.
     pub start: Vec<f64>,
+    /// Who follows: the arm's mode, or the rig's effector bone and the goals it holds.
     pub follower: B::Follower,
+    /// The goals to follow, one per sample.
     pub path: Path,
+    /// The solver's options and the bound on a step between samples (radians inside).
     pub options: TrackOptions,
 }
 
@@ -145,50 +153,75 @@ impl TrackJob<'_, Arm> {
     }
 }
 
+/// One sample of an arm track in JSON: the goal, how it ended, the pose and the step.
 #[derive(Serialize)]
 pub struct TrackSampleJson {
+    /// The sample's goal position.
     pub goal: [f64; 2],
+    /// The goal's orientation, degrees; only when the path gives one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
+    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, … or `off_path`.
     pub status: &'static str,
+    /// Distance from the tip to the goal's position.
     pub error: f64,
+    /// The pose, degrees, one angle per joint (free joints unwrapped along the path).
     pub angles_deg: Vec<f64>,
+    /// The joint positions of the pose, base first, tip last.
     pub joints: Vec<[f64; 2]>,
+    /// The largest joint change from the previous sample, degrees; 0 for the first.
     pub step_deg: f64,
 }
 
+/// The summary of a track in JSON: counts by status, flips, the largest step, error and rates.
 #[derive(Serialize)]
 pub struct TrackSummaryJson {
+    /// Samples in the path (the off-path poses not counted).
     pub samples: usize,
+    /// Samples that reached their goal.
     pub reached: usize,
+    /// Samples that stopped at a joint limit.
     pub limited: usize,
+    /// Samples out of reach.
     pub unreachable: usize,
     /// Stalled or at the iteration cap.
     pub stalled: usize,
     /// Poses plan inserted off the path, between two samples whose poses lie further apart
     /// than the bound (status `off_path`; not counted in `samples`).
     pub off_path: usize,
+    /// The number of flips: steps larger than `step_bound_deg`.
     pub flips: usize,
+    /// The indices of the samples whose step is a flip.
     pub flip_samples: Vec<usize>,
     /// The bound: a larger step is a flip.
     pub step_bound_deg: f64,
+    /// The largest step of the track, degrees.
     pub max_step_deg: f64,
+    /// The largest position error of the path's samples.
     pub max_error: f64,
+    /// The largest joint velocity, degrees per sample.
     pub max_velocity_deg_per_sample: f64,
+    /// The largest joint acceleration, degrees per sample².
     pub max_acceleration_deg_per_sample2: f64,
+    /// The largest joint jerk, degrees per sample³.
     pub max_jerk_deg_per_sample3: f64,
 }
 
 /// A track: `ikarus track --format json` and `POST /api/track`.
 #[derive(Serialize)]
 pub struct TrackJson<'a> {
+    /// The arm's name.
     pub arm: &'a str,
+    /// How it tracked: `follow` (online) or `plan`.
     pub mode: &'static str,
+    /// Every sample in order, with the poses `plan` inserted off the path.
     pub samples: Vec<TrackSampleJson>,
+    /// Flips, errors and rates.
     pub summary: TrackSummaryJson,
 }
 
 impl<'a> TrackJson<'a> {
+    /// The JSON of `t`, tracked by `job`: angles and steps in degrees.
     pub fn new(job: &TrackJob<'a, Arm>, t: &Track) -> Self {
         let chain = &job.body.chain;
         let samples = t
@@ -299,9 +332,12 @@ impl TrackJob<'_, Rig> {
 /// One sample of a rig track: as an arm's, with angles and tips keyed by bone name.
 #[derive(Serialize)]
 pub struct RigTrackSampleJson<'a> {
+    /// The sample's goal position.
     pub goal: [f64; 2],
+    /// The goal's orientation, degrees; only when the path gives one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
+    /// How the sample ended: `reached`, `limited`, `unreachable`, `stalled`, …
     pub status: &'static str,
     /// The largest effector error: the followed tip's, the held goals' and the pins'.
     pub error: f64,
@@ -310,17 +346,23 @@ pub struct RigTrackSampleJson<'a> {
     /// Prismatic bone name → its displacement; only when the rig has prismatic joints.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extensions: Option<Extensions<'a>>,
+    /// Bone name → the position of its tip.
     pub joints: ByName<'a, [f64; 2]>,
+    /// The largest joint change from the previous sample, degrees; 0 for the first.
     pub step_deg: f64,
 }
 
 /// A rig track: `ikarus track --rig --format json` and `POST /api/track` with `rig`.
 #[derive(Serialize)]
 pub struct RigTrackJson<'a> {
+    /// The rig's name.
     pub rig: &'a str,
     /// The bone whose tip followed the path.
     pub effector: &'a str,
+    /// How it tracked: always `follow` (a rig follows online).
     pub mode: &'static str,
+    /// Every sample in order.
     pub samples: Vec<RigTrackSampleJson<'a>>,
+    /// Flips, errors and rates.
     pub summary: TrackSummaryJson,
 }

@@ -17,6 +17,7 @@ use crate::rig::Rig;
 /// One solved frame: how its solve ended and where its tracks aimed.
 #[derive(Debug, Clone)]
 pub struct KeyedFrame {
+    /// How the frame's solve ended: `reached` only if every track and pin is.
     pub status: ikarus::Status,
     /// The largest effector error of the frame's solve (the tracks' and the pins').
     pub error: f64,
@@ -27,8 +28,11 @@ pub struct KeyedFrame {
 /// A keyed motion: the frames' solves and the animation of their poses (times in seconds).
 #[derive(Debug, Clone)]
 pub struct KeyedMotion {
+    /// Frames per second.
     pub fps: f64,
+    /// One per frame, in time order.
     pub frames: Vec<KeyedFrame>,
+    /// The frames' poses and joint positions, times in seconds, eased linearly.
     pub animation: Animation,
     /// The last frame's task, for the picture.
     pub last_task: RigTask,
@@ -136,9 +140,12 @@ impl KeyPlan {
 /// tips by bone name), its solve's status and largest error, and each track's target.
 #[derive(Serialize)]
 pub struct KeyedFrameJson<'a> {
+    /// The frame's time, pose and tips, written as this object's own fields.
     #[serde(flatten)]
     pub frame: RigFrameJson<'a>,
+    /// How the frame's solve ended: `reached` only if every track and pin is.
     pub status: &'static str,
+    /// The largest effector error of the frame's solve (the tracks' and the pins').
     pub error: f64,
     /// Tracked bone → its target at this frame.
     pub targets: ByName<'a, [f64; 2]>,
@@ -148,9 +155,13 @@ pub struct KeyedFrameJson<'a> {
 /// `POST /api/animate` with `keys`.
 #[derive(Serialize)]
 pub struct KeyedJson<'a> {
+    /// The rig's name.
     pub rig: &'a str,
+    /// Frames per second.
     pub fps: f64,
+    /// The motion's length, seconds: the last frame's time.
     pub duration: f64,
+    /// One per frame, frame `k` at `k / fps` seconds.
     pub frames: Vec<KeyedFrameJson<'a>>,
 }
 

@@ -26,13 +26,17 @@ use crate::error::Error;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RotationKeyReq {
+    /// When the bone is at `angle_deg`, seconds: 0 for a bone's first key, on a frame, increasing.
     pub time: f64,
+    /// The bone's local rotation, degrees, relative to its parent (replacing the clip's).
     pub angle_deg: f64,
     /// `linear`, `sine` (the default), `parent` or `smoothstep`.
     #[serde(default)]
     pub ease: Option<EaseKind>,
+    /// The `parent` ease's end of acceleration (see `k2`).
     #[serde(default)]
     pub k1: Option<f64>,
+    /// The `parent` ease's start of deceleration (with `k1`: `0 ≤ k1 ≤ k2 ≤ 1`).
     #[serde(default)]
     pub k2: Option<f64>,
 }

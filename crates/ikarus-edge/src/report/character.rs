@@ -14,14 +14,18 @@ pub struct CharacterJson {
     pub format: &'static str,
     /// The version the file names.
     pub version: String,
+    /// Every bone's setup pose, parents before children.
     pub bones: Vec<CharacterBoneJson>,
+    /// The IK constraints, with their bones, target and settings.
     pub ik: Vec<IkJson>,
+    /// The animation clips.
     pub clips: Vec<ClipJson>,
     /// Every constraint of every kind, in the order they apply (IK ones are also in `ik`, with
     /// their settings).
     pub constraints: Vec<ConstraintJson>,
     /// The skins' names; a pose takes the one called `default` unless told otherwise.
     pub skins: Vec<String>,
+    /// What the file has that ikarus does not use.
     pub unsupported: Vec<UnsupportedJson>,
     /// The lines a command prints on stderr for this file.
     pub warnings: Vec<String>,
@@ -34,15 +38,25 @@ pub struct CharacterJson {
 /// A bone's setup pose in its parent's frame, y up, angles in degrees.
 #[derive(Debug, Serialize)]
 pub struct CharacterBoneJson {
+    /// The bone's name.
     pub name: String,
+    /// Its parent's name; `null` for a root.
     pub parent: Option<String>,
+    /// Its length.
     pub length: f64,
+    /// Its x in its parent's frame.
     pub x: f64,
+    /// Its y in its parent's frame, y up.
     pub y: f64,
+    /// Its rotation from its parent's direction, degrees.
     pub rotation_deg: f64,
+    /// Its scale along its own x.
     pub scale_x: f64,
+    /// Its scale along its own y.
     pub scale_y: f64,
+    /// Its shear of x, degrees.
     pub shear_x_deg: f64,
+    /// Its shear of y, degrees.
     pub shear_y_deg: f64,
     /// Spine's name of the mode (`normal`, `noScale`, …).
     pub inherit: &'static str,
@@ -51,16 +65,25 @@ pub struct CharacterBoneJson {
 /// An IK constraint, its bones and target by name.
 #[derive(Debug, Serialize)]
 pub struct IkJson {
+    /// The constraint's name.
     pub name: String,
+    /// Where it applies among all the constraints (lower first).
     pub order: u32,
     /// One bone, or the parent then the child.
     pub bones: Vec<String>,
+    /// The bone its chain reaches for.
     pub target: String,
+    /// How much of the solved rotation it applies: 0 none, 1 all.
     pub mix: f64,
+    /// The distance from the target at which the two bones start to straighten softly; 0 off.
     pub softness: f64,
+    /// Which way a two-bone chain bends: `true` for the positive bend direction.
     pub bend_positive: bool,
+    /// Whether a bone shrinks when the target is nearer than it reaches.
     pub compress: bool,
+    /// Whether a bone stretches when the target is further than it reaches.
     pub stretch: bool,
+    /// Whether a stretching or compressing bone scales in y too.
     pub uniform: bool,
     /// Whose rules it follows: `spine` or `dragonbones`.
     pub rule: &'static str,
@@ -71,21 +94,27 @@ pub struct IkJson {
 pub struct ConstraintJson {
     /// `ik`, `transform`, `path` or `physics`.
     pub kind: &'static str,
+    /// The constraint's name.
     pub name: String,
+    /// Where it applies among all the constraints (lower first).
     pub order: u32,
 }
 
 /// A clip's name and duration, seconds.
 #[derive(Debug, Serialize)]
 pub struct ClipJson {
+    /// The clip's name.
     pub name: String,
+    /// Its duration, seconds.
     pub duration: f64,
 }
 
 /// What the file has and ikarus does not use: `{"kind": "bounding box attachment", "name": "…"}`.
 #[derive(Debug, Serialize)]
 pub struct UnsupportedJson {
+    /// What kind of thing it is (`bounding box attachment`, …).
     pub kind: String,
+    /// Its name in the file.
     pub name: String,
 }
 

@@ -23,10 +23,12 @@ pub use rig::*;
 pub use solve::*;
 pub use workspace::*;
 
+/// Angles in radians as degrees, in the same order.
 pub fn degrees(angles: &[f64]) -> Vec<f64> {
     angles.iter().map(|a| a.to_degrees()).collect()
 }
 
+/// Points as `[x, y]` pairs, in the same order.
 pub fn points(joints: &[ikarus::Point2<f64>]) -> Vec<[f64; 2]> {
     joints.iter().map(|p| [p.x, p.y]).collect()
 }
@@ -47,7 +49,9 @@ pub fn deg_text(radians: f64, decimals: usize) -> String {
 /// Values keyed by bone name, written as a JSON object in the rig's order (a map type would
 /// sort the names).
 pub struct ByName<'a, T> {
+    /// The rig's bone names, in its file's order.
     pub names: &'a [String],
+    /// One value per bone, in the same order.
     pub values: Vec<T>,
 }
 
@@ -70,6 +74,7 @@ pub fn relative_degrees(s: &ikarus::Skeleton, q: &[f64]) -> Vec<f64> {
 
 /// The displacements of a rig's prismatic bones, keyed by name in the rig's order.
 pub struct Extensions<'a> {
+    /// The skeleton whose prismatic bones are written, and whose names key them.
     pub skeleton: &'a ikarus::Skeleton,
     /// Every bone's joint value.
     pub values: Vec<f64>,

@@ -12,26 +12,40 @@ use crate::rig::Rig;
 /// One goal of a motion: where it was, and how its solve ended.
 #[derive(Serialize)]
 pub struct MotionSolveJson {
+    /// The goal's position.
     pub goal: [f64; 2],
+    /// How its solve ended: `reached`, `unreachable`, `stalled`, `iteration_limit` or
+    /// `interrupted`.
     pub status: &'static str,
+    /// Iterations of its solve, over all its attempts.
     pub iterations: u32,
+    /// The distance from the tip to the goal after its solve.
     pub error: f64,
 }
 
+/// One eased frame of an arm motion: its time, pose and joint positions.
 #[derive(Serialize)]
 pub struct MotionFrameJson {
+    /// When the frame is shown: seconds with a duration, else normalised time in [0, 1].
     pub time: f64,
+    /// The pose, degrees, one angle per joint.
     pub angles_deg: Vec<f64>,
+    /// The joint positions of the pose, base first, tip last.
     pub joints: Vec<[f64; 2]>,
 }
 
 /// A motion: `ikarus animate` (JSON) and `POST /api/animate`.
 #[derive(Serialize)]
 pub struct AnimateJson<'a> {
+    /// The arm's name.
     pub arm: &'a str,
+    /// The easing between the poses (`ikarus animate --help` lists them).
     pub ease: &'static str,
+    /// The time of the last frame: the seconds with a duration, else 1.
     pub duration: f64,
+    /// One per goal: the vias, then the final goal.
     pub solves: Vec<MotionSolveJson>,
+    /// The eased frames, in time order.
     pub frames: Vec<MotionFrameJson>,
 }
 
@@ -95,6 +109,7 @@ impl Motion<Rig> {
 pub struct RigMotionSolveJson<'a> {
     /// `reached` only if every effector is.
     pub status: &'static str,
+    /// Iterations of the set's solve, over all its attempts.
     pub iterations: u32,
     /// The largest effector error.
     pub error: f64,
@@ -106,10 +121,14 @@ pub struct RigMotionSolveJson<'a> {
 /// bone name → displacement (only when the rig has prismatic joints), bone name → tip.
 #[derive(Serialize)]
 pub struct RigFrameJson<'a> {
+    /// When the frame is shown: seconds with a duration, else normalised time in [0, 1].
     pub time: f64,
+    /// Bone name → its angle from its parent's direction, degrees.
     pub angles_deg: ByName<'a, f64>,
+    /// Prismatic bone name → its displacement; only when the rig has prismatic joints.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extensions: Option<Extensions<'a>>,
+    /// Bone name → its tip.
     pub joints: ByName<'a, [f64; 2]>,
 }
 
@@ -129,10 +148,14 @@ impl<'a> RigFrameJson<'a> {
 /// A rig motion: `ikarus animate --rig` (JSON) and `POST /api/animate` with `rig`.
 #[derive(Serialize)]
 pub struct RigAnimateJson<'a> {
+    /// The rig's name.
     pub rig: &'a str,
+    /// The easing between the poses (`ikarus animate --help` lists them).
     pub ease: &'static str,
+    /// The time of the last frame: the seconds with a duration, else 1.
     pub duration: f64,
     /// One per goal set: the via sets, then the final one.
     pub solves: Vec<RigMotionSolveJson<'a>>,
+    /// The eased frames, in time order.
     pub frames: Vec<RigFrameJson<'a>>,
 }

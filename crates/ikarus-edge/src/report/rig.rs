@@ -9,34 +9,51 @@ use crate::rig::{BoneCap, Rig, RigFile};
 /// and, when the file has one, `solver`.
 #[derive(Debug, serde::Serialize)]
 pub struct RigJson {
+    /// The file's `name`; `rig` when it has none.
     pub name: String,
+    /// Where every root bone starts; the origin when the file has no `base`.
     pub base: [f64; 2],
+    /// The bones, in the file's order.
     pub bones: Vec<BoneJson>,
+    /// The file's `[solver]` table as written; only when it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solver: Option<serde_json::Value>,
 }
 
+/// One `[[bones]]` entry as JSON, angles in degrees.
 #[derive(Debug, serde::Serialize)]
 pub struct BoneJson {
+    /// The bone's name, unique in the rig.
     pub name: String,
+    /// Its parent's name; `null` for a bone that starts at the base.
     pub parent: Option<String>,
+    /// Its length.
     pub length: f64,
+    /// Its start angle, degrees, from its parent's direction (a root bone's from +x).
     pub angle_deg: f64,
+    /// Its `[min, max]` joint angle range, degrees; only when it has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limits_deg: Option<[f64; 2]>,
+    /// How much it resists turning away from its rest angle; only when the file gives it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
+    /// The angle it is pulled back to, degrees; only when the file gives it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rest_deg: Option<f64>,
-    /// The file's joint keys, each only when it has it (so a rig without them reads as before).
+    /// The joint's origin in its parent's frame. This and the joint keys below appear only when
+    /// the file has them (so a rig without them reads as before).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub offset: Option<[f64; 2]>,
+    /// The joint's kind, `revolute` or `prismatic`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<crate::rig::JointFile>,
+    /// A prismatic joint's direction in its parent's frame.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slide: Option<[f64; 2]>,
+    /// A prismatic joint's start displacement.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extension: Option<f64>,
+    /// A prismatic joint's `[min, max]` displacement, length units.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub limits: Option<[f64; 2]>,
 }

@@ -9,40 +9,55 @@ use super::{ByName, Extensions, degrees, points, relative_degrees, tips};
 use crate::arm::Arm;
 use crate::rig::Rig;
 
+/// The goal of an arm solve: its position, and its orientation in degrees if it has one.
 #[derive(Serialize)]
 pub struct GoalJson {
+    /// The goal's x.
     pub x: f64,
+    /// The goal's y.
     pub y: f64,
+    /// The tip's wanted direction, degrees; `null` for a position-only goal.
     pub angle_deg: Option<f64>,
 }
 
+/// Where the tip ended: its position and direction.
 #[derive(Serialize)]
 pub struct TipJson {
+    /// The tip's x.
     pub x: f64,
+    /// The tip's y.
     pub y: f64,
+    /// The tip's direction, degrees.
     pub angle_deg: f64,
 }
 
+/// One recorded iteration of a solve: the pose and where its joints were.
 #[derive(Serialize)]
 pub struct FrameJson<'a> {
+    /// The solver's iteration this frame was recorded at.
     pub iteration: u32,
+    /// The pose, degrees: an arm's one angle per joint, a rig's per bone relative to its parent.
     pub angles_deg: Vec<f64>,
     /// A rig's prismatic bones' displacements at this frame; only when it has any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extensions: Option<Extensions<'a>>,
+    /// The joint positions: an arm's base first and tip last; a rig's base, then every bone's tip.
     pub joints: Vec<[f64; 2]>,
 }
 
 /// What a solve ran with, in every solve's answer (an arm's and a rig's).
 #[derive(Serialize)]
 pub struct RunJson {
+    /// The solver's name (`ikarus methods` lists them).
     pub method: &'static str,
+    /// Whether joint limits were applied.
     pub limits: bool,
     /// `ignore` when limits are off.
     pub limit_mode: &'static str,
 }
 
 impl RunJson {
+    /// What `options` says a solve runs with.
     pub fn of(options: &SolveOptions) -> Self {
         RunJson {
             method: options.method.name(),
@@ -57,6 +72,7 @@ impl RunJson {
 pub struct EndJson {
     /// A rig's is `reached` only if every effector is.
     pub status: &'static str,
+    /// Iterations the solver ran, over every attempt.
     pub iterations: u32,
     /// Restarts used (0 when the first attempt ended the solve).
     pub restarts: u32,
@@ -64,10 +80,12 @@ pub struct EndJson {
     pub error: f64,
     /// The orientation error, degrees (a rig's: the largest effector's).
     pub angle_error_deg: f64,
+    /// The largest error that counts as reached.
     pub tolerance: f64,
 }
 
 impl EndJson {
+    /// How `o` ended, with the tolerance from `options`.
     pub fn of(options: &SolveOptions, o: &Outcome) -> Self {
         EndJson {
             status: o.status.as_str(),
@@ -102,28 +120,41 @@ fn frames_of<'a>(
 /// [`RunJson`] and [`EndJson`] are written as if their fields were this object's own.
 #[derive(Serialize)]
 pub struct SolveJson<'a> {
+    /// The arm's name.
     pub arm: &'a str,
+    /// The solver and the limits it ran with.
     #[serde(flatten)]
     pub run: RunJson,
+    /// The goal aimed at.
     pub goal: GoalJson,
+    /// How the solve ended: status, iterations, restarts, errors and the tolerance.
     #[serde(flatten)]
     pub end: EndJson,
     /// With limits on: the distance from the goal to the exact reachable region (0 inside);
     /// `null` when no verdict was made.
     pub reach_distance: Option<f64>,
+    /// How long the solve took, microseconds.
     pub solve_us: f64,
+    /// Where the tip ended.
     pub end_effector: TipJson,
+    /// The pose, degrees, one angle per joint.
     pub angles_deg: Vec<f64>,
+    /// The joint positions of the pose, base first, tip last.
     pub joints: Vec<[f64; 2]>,
+    /// The recorded frames; empty unless recording is asked.
     pub frames: Vec<FrameJson<'a>>,
 }
 
 /// A finished solve of `body` and what it needs to be described: an arm and its goal
 /// ([`SolveReport`]) or a rig ([`RigSolveReport`], whose goals are in the outcome's effectors).
 pub struct Solved<'a, B> {
+    /// The arm and its goal, or the rig.
     pub body: B,
+    /// The options the solve ran with.
     pub options: &'a SolveOptions,
+    /// What the solver returned.
     pub outcome: &'a Outcome,
+    /// How long the solve took, microseconds.
     pub micros: f64,
 }
 
@@ -162,12 +193,19 @@ impl<'a> SolveReport<'a> {
 /// One effector of a rig solve: a goal, or a pin (held where it started).
 #[derive(serde::Serialize)]
 pub struct EffectorJson<'a> {
+    /// The bone's name.
     pub name: &'a str,
+    /// Whether it is a pin (held where it started) rather than a goal.
     pub pinned: bool,
+    /// How it ended: `reached` when its tip is within tolerance of its target.
     pub status: &'static str,
+    /// The distance from its tip to its target.
     pub error: f64,
+    /// Its orientation error, degrees; 0 without an orientation goal.
     pub angle_error_deg: f64,
+    /// Where its tip ended.
     pub tip: [f64; 2],
+    /// Where it was wanted: the goal's position, or the pin's start.
     pub target: [f64; 2],
 }
 
@@ -189,11 +227,15 @@ impl<'a> EffectorJson<'a> {
 /// One rig solve: `ikarus solve --rig … --format json` and `POST /api/solve` with `rig`.
 #[derive(serde::Serialize)]
 pub struct RigSolveJson<'a> {
+    /// The rig's name.
     pub rig: &'a str,
+    /// The solver and the limits it ran with.
     #[serde(flatten)]
     pub run: RunJson,
+    /// How the solve ended: status (`reached` only if every effector is), iterations, errors.
     #[serde(flatten)]
     pub end: EndJson,
+    /// How long the solve took, microseconds.
     pub solve_us: f64,
     /// Goals in the task's order, then pins.
     pub effectors: Vec<EffectorJson<'a>>,

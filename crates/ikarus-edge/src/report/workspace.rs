@@ -13,16 +13,22 @@ use crate::rig::Rig;
 /// gives `resolution`, `cell_size`, `origin` and `grid` instead.
 #[derive(Serialize)]
 pub struct WorkspaceJson<'a> {
+    /// The arm's (or rig's) name.
     pub arm: &'a str,
     /// A rig's (or an arm with slides') effector bone, whose tip's region is sampled.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bone: Option<&'a str>,
+    /// Whether the joint limits bound the region.
     pub limits: bool,
     /// Whether `area` and the boundary are the exact region's (not a sampled grid's).
     pub exact: bool,
+    /// The inner radius of the ring the tip reaches with every joint free.
     pub inner_radius: f64,
+    /// The outer radius of that ring.
     pub outer_radius: f64,
+    /// The area of that ring.
     pub annulus_area: f64,
+    /// The region's area: the exact region's, or the sampled grid's reachable cells'.
     pub area: f64,
     /// Closed loops of segments, outer boundaries counter-clockwise, holes clockwise.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -30,10 +36,13 @@ pub struct WorkspaceJson<'a> {
     /// The curves a region without area is made of (empty for a region with area).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub curves: Option<Vec<SegmentJson>>,
+    /// The grid's cells along each side.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resolution: Option<u32>,
+    /// The side of a cell.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cell_size: Option<f64>,
+    /// The lower-left corner of the bottom-left cell.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub origin: Option<[f64; 2]>,
     /// One string per row of cells, bottom row first, `1` for reachable and `0` for not.
@@ -46,15 +55,22 @@ pub struct WorkspaceJson<'a> {
 #[derive(Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SegmentJson {
+    /// A straight segment `[[x0, y0], [x1, y1]]`.
     Line([[f64; 2]; 2]),
+    /// An arc of a circle.
     Arc(ArcJson),
 }
 
+/// An arc: its circle and the angles it runs between, degrees.
 #[derive(Serialize)]
 pub struct ArcJson {
+    /// The circle's centre.
     pub center: [f64; 2],
+    /// The circle's radius.
     pub radius: f64,
+    /// The angle it starts at, degrees from +x.
     pub from_deg: f64,
+    /// The angle it ends at, degrees from +x.
     pub to_deg: f64,
 }
 
