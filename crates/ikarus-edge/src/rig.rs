@@ -110,6 +110,7 @@ pub fn set_max_bones(bones: usize) {
 /// The most bones a rig may have, and how to raise the cap (said in the message).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BoneCap {
+    /// The most bones.
     pub max: usize,
     /// How the cap is raised, in the message's parentheses (`--max-bones`).
     pub raise: &'static str,
@@ -140,10 +141,13 @@ impl BoneCap {
 /// A loaded rig: the validated skeleton, its name, and the file's solver defaults.
 #[derive(Debug, Clone)]
 pub struct Rig {
+    /// The rig's name, shown in outputs.
     pub name: String,
     /// Where the rig came from, as error messages start (`rig file puppet.toml`).
     pub label: String,
+    /// The validated skeleton, start angles in radians.
     pub skeleton: Skeleton,
+    /// The file's `[solver]` table, under any flag or request field.
     pub solver: SolverSettings,
     /// The bone a goal without a bone's name is on (`--goal X,Y`, a request's `goal`): an arm
     /// file's last link; `None` for a rig file, whose goals name their bones.
