@@ -193,7 +193,7 @@ impl Rig {
     }
 
     /// The one-branch rig of an arm file: link `i` is bone `link{i}` (as
-    /// [`Skeleton::from_chain`] names them) on bone `link{i-1}`, with the link's joint keys; its
+    /// [`ikarus::Chain::new`] names them) on bone `link{i-1}`, with the link's joint keys; its
     /// name is the arm's (`arm` without one), a goal without a bone's name is on the last link,
     /// and every problem is named as in an arm file (`arm file a.toml: links[2].limits_deg = …`).
     pub fn from_arm(file: &ArmFile, label: &str) -> Result<Self, Error> {
