@@ -71,7 +71,7 @@ pub struct Meta {
     pub default_method: &'static str,
     /// Every limit mode.
     pub limit_modes: Vec<Choice>,
-    /// The limit mode of a method that supports it, when a request names none.
+    /// The library's default limit mode; a method's own is its entry's `default_limit_mode`.
     pub default_limit_mode: &'static str,
     /// The ease curves of a motion.
     pub eases: Vec<Choice>,
