@@ -52,7 +52,9 @@ impl ReachableArea {
 /// Whose region a job computes: an arm's tip (a chain, the exact region by default), or the tip
 /// of one bone of a rig the exact region cannot take (sampled, [`sampled`]).
 pub enum Effector {
+    /// An arm's tip.
     Chain(Box<Arm>),
+    /// The tip of a rig's bone, by its index in the rig.
     Bone(Box<Rig>, usize),
 }
 
@@ -102,8 +104,11 @@ pub fn sampled(rig: &Rig, bone: usize, grid: Option<GridRequest>, run: Workspace
 /// How to sample a grid: `--resolution`, `--samples`, `--seed` (or the request's fields).
 #[derive(Debug, Clone, Copy)]
 pub struct GridRequest {
+    /// The grid's cells per side.
     pub resolution: u32,
+    /// The random poses sampled [default: the library's, by the number of joints].
     pub samples: Option<u32>,
+    /// The seed of the sampled poses (the same seed gives the same grid).
     pub seed: u64,
 }
 

@@ -119,17 +119,22 @@ impl LinkFile {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum JointFile {
+    /// A revolute joint: the link turns about it (the default).
     Revolute,
+    /// A prismatic joint: the link slides along `slide` (a rig's joint, not a chain's).
     Prismatic,
 }
 
 /// A loaded arm: the validated chain, its name, and the file's solver defaults.
 #[derive(Debug, Clone)]
 pub struct Arm {
+    /// The arm's name, shown in outputs (the file's `name`, else `arm`).
     pub name: String,
     /// Where the arm came from, as error messages start (`arm file a.toml`, `built-in arm`).
     pub label: String,
+    /// The links, base to tip, start angles in radians.
     pub chain: Chain,
+    /// The file's `[solver]` table, under any flag or request field.
     pub solver: SolverSettings,
 }
 

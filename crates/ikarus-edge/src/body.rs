@@ -151,7 +151,9 @@ impl Jointed for Rig {
 /// A body and what a solve aims it at: an arm's tip at a goal, a rig's goals and pins. The
 /// solver's entry point is the one thing a solve does differently for the two.
 pub enum Aimed<'a> {
+    /// An arm, its tip aimed at the goal (radians).
     Chain(&'a Arm, Goal),
+    /// A rig, with its goals and pins.
     Rig(&'a Rig, RigTask),
 }
 

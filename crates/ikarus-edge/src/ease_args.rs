@@ -6,7 +6,10 @@ use ikarus::{Ease, EaseKind};
 #[derive(Debug)]
 pub enum EaseProblem {
     /// k1 (`true`) or k2 (`false`) was given for a curve other than Parent's.
-    KWithoutParent { k1: bool },
+    KWithoutParent {
+        /// `true` when k1 was given, `false` when only k2 was.
+        k1: bool,
+    },
     /// Parent's parameters are invalid.
     Invalid(ikarus::EaseError),
 }

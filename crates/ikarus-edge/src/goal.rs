@@ -26,14 +26,21 @@ const LISTED_NAMES: usize = 24;
 /// A goal on the tip of a bone named in the rig, in the edge's units (degrees).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedGoal {
+    /// The bone whose tip should reach the goal, by name.
     pub bone: String,
+    /// The goal's x.
     pub x: f64,
+    /// The goal's y.
     pub y: f64,
     /// The bone's absolute direction wanted, degrees from +x.
     pub angle_deg: Option<f64>,
+    /// Its weight when goals conflict, > 0: the heavier is met more closely.
     pub weight: f64,
+    /// Primary (solved first, with the pins) or secondary (in what they leave free).
     pub priority: Priority,
+    /// Which way the joint between the bone and its parent bends (`None`: either).
     pub bend: Option<Bend>,
+    /// How far short of full stretch, in length units, the goal starts to be drawn in smoothly (0: none).
     pub softness: f64,
 }
 

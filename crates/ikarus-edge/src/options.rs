@@ -9,6 +9,7 @@ pub fn parse_finite(s: &str) -> Result<f64, Error> {
     if v.is_finite() { Ok(v) } else { Err(Error::input(format!("must be a finite number, got {s}"))) }
 }
 
+/// `v` if it is finite and greater than 0; otherwise refused, naming the value.
 pub fn positive(v: f64) -> Result<f64, Error> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -17,6 +18,7 @@ pub fn positive(v: f64) -> Result<f64, Error> {
     }
 }
 
+/// `v` if it is finite and ≥ 0; otherwise refused, naming the value.
 pub fn non_negative(v: f64) -> Result<f64, Error> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
@@ -25,18 +27,22 @@ pub fn non_negative(v: f64) -> Result<f64, Error> {
     }
 }
 
+/// `v` if it is at least 1; otherwise refused, naming the value.
 pub fn at_least_one(v: u32) -> Result<u32, Error> {
     if v >= 1 { Ok(v) } else { Err(Error::input(format!("{v}: must be at least 1"))) }
 }
 
+/// Parses a finite number greater than 0 ([`parse_finite`], then [`positive`]).
 pub fn parse_positive(s: &str) -> Result<f64, Error> {
     positive(parse_finite(s)?)
 }
 
+/// Parses a finite number ≥ 0 ([`parse_finite`], then [`non_negative`]).
 pub fn parse_non_negative(s: &str) -> Result<f64, Error> {
     non_negative(parse_finite(s)?)
 }
 
+/// Parses a whole number of at least 1, refusing text that is not one.
 pub fn parse_at_least_one(s: &str) -> Result<u32, Error> {
     let v: u32 = s.trim().parse().map_err(|_| Error::input(format!("'{s}' is not a whole number")))?;
     at_least_one(v)

@@ -14,8 +14,11 @@ use crate::rig::Rig;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PictureFormat {
+    /// A PNG image.
     Png,
+    /// An SVG drawing.
     Svg,
+    /// An animated GIF: a motion's frames in turn.
     Gif,
 }
 
@@ -43,37 +46,76 @@ impl PictureFormat {
 pub enum Drawing<'a> {
     /// An arm in one pose, with an optional goal, shaded reachable area and caption.
     Arm {
+        /// The arm.
         chain: &'a Chain,
+        /// Its joint angles, radians.
         pose: &'a [f64],
+        /// The goal, marked.
         goal: Option<Point2<f64>>,
+        /// The reachable area, shaded under the arm.
         workspace: Option<ikarus_render::Reachable<'a>>,
+        /// A line of text under the figure.
         caption: Option<String>,
     },
     /// A motion: its poses overlaid (SVG, PNG), or animated (GIF) at `fps`, with `layers`.
     Motion {
+        /// The arm.
         chain: &'a Chain,
+        /// Its frames, joint angles in radians.
         animation: &'a Animation,
+        /// The final goal, marked.
         goal: Option<Point2<f64>>,
+        /// A line of text under the figure.
         caption: String,
+        /// The GIF's frames a second.
         fps: f64,
+        /// What is drawn besides the arm and the goal.
         layers: MotionLayers<'a>,
     },
     /// A tracked path: the wanted path, the tip's trace, flips, and the poses as ghosts (SVG,
     /// PNG) or animated one per sample (GIF) at `fps`.
-    Track { chain: &'a Chain, poses: &'a [Vec<f64>], layer: &'a ikarus_render::PathLayer, caption: String, fps: f64 },
+    Track {
+        /// The arm.
+        chain: &'a Chain,
+        /// One pose per sample, joint angles in radians.
+        poses: &'a [Vec<f64>],
+        /// The wanted path, the tip's trace and the flips.
+        layer: &'a ikarus_render::PathLayer,
+        /// A line of text under the figure.
+        caption: String,
+        /// The GIF's frames a second.
+        fps: f64,
+    },
     /// An ease curve's position and velocity.
     Ease(Ease),
     /// A rig in one pose, with its goals, pins and (optionally) limit wedges.
     Skeleton(ikarus_render::SkeletonFigure<'a>),
     /// A rig's motion or track: the figure (its goals, pins, ranges) at the last frame's pose
     /// (SVG, PNG), or at every frame's (GIF) at `fps`.
-    RigMotion { figure: ikarus_render::SkeletonFigure<'a>, animation: &'a Animation, fps: f64 },
+    RigMotion {
+        /// The rig with its goals, pins and ranges, drawn in the frames' poses.
+        figure: ikarus_render::SkeletonFigure<'a>,
+        /// Its frames, one angle per bone in radians.
+        animation: &'a Animation,
+        /// The GIF's frames a second.
+        fps: f64,
+    },
     /// A character's motion: its frames overlaid, the earlier as ghosts (SVG, PNG), or
     /// animated (GIF) at `fps`.
-    CharacterMotion { figure: ikarus_render::CharacterMotionFigure<'a>, fps: f64 },
+    CharacterMotion {
+        /// The character's frames.
+        figure: ikarus_render::CharacterMotionFigure<'a>,
+        /// The GIF's frames a second.
+        fps: f64,
+    },
     /// A character's motion with its art (under the bones or alone): every frame animated
     /// (GIF) at `fps`, or the last frame's art under every frame's bones (SVG, PNG).
-    CharacterArtMotion { figure: ikarus_render::CharacterArtMotion<'a>, fps: f64 },
+    CharacterArtMotion {
+        /// The character's frames and art.
+        figure: ikarus_render::CharacterArtMotion<'a>,
+        /// The GIF's frames a second.
+        fps: f64,
+    },
 }
 
 /// What a motion's picture shows besides the arm and the goal. The command line's: no area,

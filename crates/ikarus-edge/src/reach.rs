@@ -12,7 +12,9 @@ use crate::error::Error;
 /// `[solver] limits` (off when neither says), and the tolerance over the arm file's
 /// `[solver] tolerance` over the solver's default.
 pub struct ReachRequest {
+    /// Whether the joint limits bound the region [default: the arm file's `[solver] limits`, else off].
     pub limits: Option<bool>,
+    /// The distance from the region that still counts as reachable [default: the arm file's `[solver] tolerance`, else the solver's].
     pub tolerance: Option<f64>,
 }
 

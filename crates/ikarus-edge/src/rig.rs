@@ -110,6 +110,7 @@ pub fn set_max_bones(bones: usize) {
 /// The most bones a rig may have, and how to raise the cap (said in the message).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BoneCap {
+    /// The most bones.
     pub max: usize,
     /// How the cap is raised, in the message's parentheses (`--max-bones`).
     pub raise: &'static str,
@@ -140,10 +141,13 @@ impl BoneCap {
 /// A loaded rig: the validated skeleton, its name, and the file's solver defaults.
 #[derive(Debug, Clone)]
 pub struct Rig {
+    /// The rig's name, shown in outputs.
     pub name: String,
     /// Where the rig came from, as error messages start (`rig file puppet.toml`).
     pub label: String,
+    /// The validated skeleton, start angles in radians.
     pub skeleton: Skeleton,
+    /// The file's `[solver]` table, under any flag or request field.
     pub solver: SolverSettings,
     /// The bone a goal without a bone's name is on (`--goal X,Y`, a request's `goal`): an arm
     /// file's last link; `None` for a rig file, whose goals name their bones.
@@ -189,7 +193,7 @@ impl Rig {
     }
 
     /// The one-branch rig of an arm file: link `i` is bone `link{i}` (as
-    /// [`Skeleton::from_chain`] names them) on bone `link{i-1}`, with the link's joint keys; its
+    /// [`ikarus::Chain::new`] names them) on bone `link{i-1}`, with the link's joint keys; its
     /// name is the arm's (`arm` without one), a goal without a bone's name is on the last link,
     /// and every problem is named as in an arm file (`arm file a.toml: links[2].limits_deg = …`).
     pub fn from_arm(file: &ArmFile, label: &str) -> Result<Self, Error> {

@@ -99,9 +99,19 @@ pub enum SettingsError {
     /// The options are invalid on their own.
     Options(OptionsError),
     /// `rates` does not have one value per joint.
-    Rates { expected: usize, got: usize },
+    Rates {
+        /// The chain's joints.
+        expected: usize,
+        /// The values given.
+        got: usize,
+    },
     /// Limits are enforced in a mode the method does not support.
-    Unsupported { method: Method, mode: LimitMode },
+    Unsupported {
+        /// The method asked for.
+        method: Method,
+        /// The limit mode it does not support.
+        mode: LimitMode,
+    },
 }
 
 impl SettingsError {

@@ -19,8 +19,11 @@ use crate::settings::SolverSettings;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PageArm {
+    /// The arm's name, shown in outputs.
     pub name: String,
+    /// The base's position, `[x, y]`.
     pub base: [f64; 2],
+    /// The links, base to tip.
     pub links: Vec<PageLink>,
 }
 
@@ -28,9 +31,12 @@ pub struct PageArm {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PageLink {
+    /// The link's length.
     pub length: f64,
+    /// The joint's start angle, degrees, relative to the link before; 0 when absent.
     #[serde(default)]
     pub angle_deg: f64,
+    /// The joint's limits, `[min, max]` degrees; none when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub limits_deg: Option<[f64; 2]>,
     /// The joint's step multiplier (`[solver].rates`); 1 when absent.
@@ -42,6 +48,7 @@ pub struct PageLink {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TomlReq {
+    /// The arm to write as arm-file text.
     pub arm: PageArm,
 }
 
@@ -138,7 +145,9 @@ impl<'a> FileOut<'a> {
 #[derive(Debug, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Parsed {
+    /// `{"arm": …}`: the file's arm, as the page edits it.
     Arm(PageArm),
+    /// `{"problem": "…"}`: the one-line error that says why the text is not an arm file.
     Problem(String),
 }
 

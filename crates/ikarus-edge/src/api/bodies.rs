@@ -24,7 +24,9 @@ pub const MAX_EFFECTORS: usize = 64;
 /// Which body a request is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BodyKind {
+    /// An arm (`arm`, or the built-in arm when the request has neither body).
     Arm,
+    /// A rig (`rig`).
     Rig,
 }
 
@@ -32,12 +34,16 @@ pub enum BodyKind {
 #[derive(Debug, Deserialize)]
 #[serde(expecting = "struct SolveReq")]
 pub struct Keys {
+    /// Whether the request has `arm`.
     #[serde(default)]
     pub arm: Option<IgnoredAny>,
+    /// Whether the request has `rig`.
     #[serde(default)]
     pub rig: Option<IgnoredAny>,
+    /// Whether the request has `goal` (an arm's).
     #[serde(default)]
     pub goal: Option<IgnoredAny>,
+    /// Whether the request has `goals` (a rig's).
     #[serde(default)]
     pub goals: Option<IgnoredAny>,
 }
@@ -112,7 +118,9 @@ pub type RigVia = Vec<RigGoalReq>;
 /// The body of `POST /api/animate`, read with the `via` entries of its body.
 #[derive(Debug)]
 pub enum AnimateBody {
+    /// An arm's motion: each `via` entry a point `[x, y]`.
     Arm(Box<AnimateReq<ArmVia>>),
+    /// A rig's motion: each `via` entry a goal set.
     Rig(Box<AnimateReq<RigVia>>),
 }
 

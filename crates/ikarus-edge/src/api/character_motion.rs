@@ -46,10 +46,15 @@ request! {
         pub keys: Option<crate::keys::KeysFile>,
         /// With `keys`: the clip posed under them, at the same time (looping).
         pub animation: Option<String>,
+        /// The motion's length, seconds [default: 1].
         pub duration: Option<f64>,
+        /// Frames a second [default: 30].
         pub fps: Option<f64>,
+        /// The targets' ease from the pose to their points [default: sine].
         pub ease: Option<EaseKind>,
+        /// The ease's `k1` (the parent curve's end of acceleration).
         pub k1: Option<f64>,
+        /// The ease's `k2` (the parent curve's start of deceleration).
         pub k2: Option<f64>,
         /// `false` leaves the character's physics constraints out; otherwise the frames are
         /// played as a game's frames at the motion's fps, the physics stepping (as `/api/pose`
@@ -70,12 +75,19 @@ request! {
         pub rig: Option<String>,
         /// The id `/api/rig/parse` answered.
         pub character: Option<String>,
+        /// The bone whose origin follows the path (required).
         required effector: Option<String>,
+        /// The samples, `[[x, y], …]`, used as given.
         pub path: Option<Vec<[f64; 2]>>,
+        /// `[x0, y0, x1, y1]`.
         pub line: Option<[f64; 4]>,
+        /// `[cx, cy, r]`.
         pub circle: Option<[f64; 3]>,
+        /// `[cx, cy, a]`.
         pub figure8: Option<[f64; 3]>,
+        /// Samples of a shape [default: 100].
         pub samples: Option<usize>,
+        /// Frames a second, one sample a frame [default: 30].
         pub fps: Option<f64>,
         /// As [`AnimateCharacterReq::physics`].
         pub physics: Option<bool>,

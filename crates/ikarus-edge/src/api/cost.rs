@@ -113,9 +113,13 @@ impl<'a> Body<'a> {
 /// A reachable area's fields (`..area` of the requests).
 #[derive(Debug, Clone, Copy)]
 pub struct Area {
+    /// The area within the joint limits.
     pub limits: Option<bool>,
+    /// The sampled grid instead of the exact region.
     pub grid: Option<bool>,
+    /// The grid's cells per side.
     pub resolution: Option<u32>,
+    /// The random poses sampled.
     pub samples: Option<u32>,
 }
 

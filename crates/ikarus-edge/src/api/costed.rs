@@ -70,7 +70,9 @@ impl<R> CharacterMotion<R> {
 
 /// `/api/animate`'s request: a character's motion, or an arm's or a rig's.
 pub enum AnimateJob {
+    /// A character's motion (`rig` holding a character file's text, or `character`).
     Character(Box<CharacterMotion<AnimateCharacterReq>>),
+    /// An arm's or a rig's motion.
     Body(AnimateBody),
 }
 
@@ -117,7 +119,9 @@ impl AnimateJob {
 
 /// `/api/track`'s request: a character's path, or an arm's or a rig's.
 pub enum TrackJob {
+    /// A character's path, followed by its `effector`'s tip.
     Character(Box<CharacterMotion<TrackCharacterReq>>),
+    /// An arm's or a rig's path.
     Body(Box<TrackReq>),
 }
 

@@ -34,11 +34,17 @@ pub enum RenderReq {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Figure {
+    /// `arm`: an arm or a rig in one pose.
     Arm,
+    /// `motion`: a body's or a character's motion, its frames overlaid.
     Motion,
+    /// `workspace`: an arm's or a rig bone's reachable area.
     Workspace,
+    /// `ease`: an ease curve.
     Ease,
+    /// `rig`: figure `arm`, its body read as a rig.
     Rig,
+    /// `pose`: a character posed as `/api/pose` poses it.
     Pose,
 }
 
@@ -47,6 +53,7 @@ pub enum Figure {
 #[derive(Debug, Deserialize)]
 #[serde(expecting = "struct RenderReq")]
 pub struct FigureTag {
+    /// Which figure the request draws.
     pub figure: Figure,
 }
 
@@ -125,15 +132,20 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct MotionFigureReq {
         ..picture,
+        /// The arm [default: the built-in arm].
         pub arm: Option<ArmFile>,
         /// A rig, drawn in its keyed motion (with `keys`, as `/api/animate` takes them).
         pub rig: Option<crate::rig::RigFile>,
         /// A rig's keyframes per effector ([`crate::keys`]).
         pub keys: Option<crate::keys::KeysFile>,
+        /// One start angle per joint, degrees [default: the arm's start pose].
         pub start_deg: Option<Vec<f64>>,
+        /// The arm's goal (required with an arm).
         pub goal: Option<GoalReq>,
+        /// Points the tip passes through first, in order.
         pub via: Vec<[f64; 2]>,
         ..motion,
+        /// Shade the reachable area behind the motion.
         pub workspace: bool,
         ..area,
         /// Draw the joints' traces, as lines as the playground's screen does [default: true].
@@ -156,6 +168,7 @@ request! {
         pub rig: Option<String>,
         /// The id `/api/rig/parse` answered ([`crate::character::store`]).
         pub character: Option<String>,
+        /// The target bones' keys ([`crate::keys`]; required).
         required keys: crate::keys::KeysFile,
         /// The clip posed under the keys, at the same time (looping).
         pub animation: Option<String>,
@@ -242,6 +255,7 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct WorkspaceFigureReq {
         ..picture,
+        /// The arm whose reachable area is drawn [default: the built-in arm].
         pub arm: Option<ArmFile>,
         ..area,
     }
@@ -253,6 +267,7 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct EaseFigureReq {
         ..picture,
+        /// The curve drawn [default: parent, with its default `k1` and `k2`].
         pub ease: Option<EaseReq>,
     }
 }

@@ -9,8 +9,11 @@ use serde::Serialize;
 /// One choice of a select list.
 #[derive(Debug, Serialize)]
 pub struct Choice {
+    /// The name a request gives (`"dls"`, `"sine"`, …).
     pub name: &'static str,
+    /// The name the page shows in the list.
     pub label: &'static str,
+    /// One line on what it does, shown as the choice's hint.
     pub summary: &'static str,
 }
 
@@ -23,9 +26,12 @@ impl Choice {
 /// A method, with the limit modes it supports and the one it uses when none is named.
 #[derive(Debug, Serialize)]
 pub struct MethodChoice {
+    /// The method's name, label and summary.
     #[serde(flatten)]
     pub choice: Choice,
+    /// The names of the limit modes the method supports.
     pub limit_modes: Vec<&'static str>,
+    /// The limit mode it uses when a request names none.
     pub default_limit_mode: &'static str,
     /// Whether it solves rigs (skeletons) too: CCD, FABRIK and the closed form solve chains
     /// only.
@@ -46,25 +52,40 @@ pub struct MethodChoice {
 pub struct Defaults {
     /// `ikarus solve` enforces no joint limits unless `--limits` is given.
     pub limits: bool,
+    /// Restarts from other start poses when a solve stalls; 0 solves once.
     pub restarts: u32,
+    /// The damping λ of the damped methods.
     pub lambda: f64,
+    /// The distance from the goal that counts as reached.
     pub tolerance: f64,
+    /// The most iterations of one solve.
     pub max_iterations: u32,
 }
 
 /// The answer of `GET /api/meta`.
 #[derive(Debug, Serialize)]
 pub struct Meta {
+    /// The solver methods, in the order the page lists them.
     pub methods: Vec<MethodChoice>,
+    /// The method a request uses when it names none.
     pub default_method: &'static str,
+    /// Every limit mode.
     pub limit_modes: Vec<Choice>,
+    /// The library's default limit mode; a method's own is its entry's `default_limit_mode`.
     pub default_limit_mode: &'static str,
+    /// The ease curves of a motion.
     pub eases: Vec<Choice>,
+    /// The ease of a motion that names none.
     pub default_ease: &'static str,
+    /// The default ease's first shape parameter (`k1`).
     pub default_k1: f64,
+    /// The default ease's second shape parameter (`k2`).
     pub default_k2: f64,
+    /// How a motion's frames are interpolated between its solves.
     pub interpolations: Vec<Choice>,
+    /// The interpolation of a motion that names none.
     pub default_interpolation: &'static str,
+    /// The solver settings of a request that names none.
     pub defaults: Defaults,
     /// The colours of the pictures (ikarus-render's palette), which the page draws with too.
     pub palette: ikarus_render::Colours,

@@ -52,7 +52,9 @@ macro_rules! request {
     };
     (@fields $head:tt $done:tt ..body, $($rest:tt)*) => {
         $crate::api::requests::request!(@fields $head $done
+            /// An arm file, in its TOML fields as JSON [default: the built-in arm].
             pub arm: Option<$crate::arm::ArmFile>,
+            /// A rig file, in its TOML fields as JSON, in place of `arm`.
             pub rig: Option<$crate::rig::RigFile>,
             $($rest)*
         );
@@ -81,12 +83,19 @@ macro_rules! request {
     };
     (@fields $head:tt $done:tt ..motion, $($rest:tt)*) => {
         $crate::api::requests::request!(@fields $head $done
+            /// The solver's settings, as `ikarus solve`'s flags name them.
             pub options: Option<$crate::settings::SolverSettings>,
+            /// The ease of the motion between its stops.
             pub ease: Option<$crate::api::requests::EaseReq>,
+            /// How many frames the motion has; or `duration` and `fps`.
             pub frames: Option<u32>,
+            /// The motion's length, seconds (with `fps`, in place of `frames`).
             pub duration: Option<f64>,
+            /// Frames per second (with `duration`).
             pub fps: Option<f64>,
+            /// The path through the poses: `spline` (the default) or `polyline`.
             pub interpolation: Option<ikarus::motion::Interpolation>,
+            /// Follow the solver's recorded path instead of moving straight between solved poses.
             pub from_solve: bool,
             $($rest)*
         );
@@ -96,8 +105,11 @@ macro_rules! request {
             /// Read by the first pass.
             #[serde(rename = "figure")]
             pub _figure: serde::de::IgnoredAny,
+            /// `png` (the default), `svg`, or `gif` (a motion's figure, animated).
             pub format: Option<$crate::picture::PictureFormat>,
+            /// The picture's width, pixels [default: 800].
             pub width: Option<u32>,
+            /// The picture's height, pixels [default: 800].
             pub height: Option<u32>,
             $($rest)*
         );
@@ -106,9 +118,13 @@ macro_rules! request {
         $crate::api::requests::request!(@fields $head $done
             /// The area within the limits (a rig figure's: its limit wedges).
             pub limits: Option<bool>,
+            /// The sampled grid instead of the exact region.
             pub grid: Option<bool>,
+            /// The grid's cells per side.
             pub resolution: Option<u32>,
+            /// The random poses sampled for the grid.
             pub samples: Option<u32>,
+            /// The seed of the sampled poses (the same seed gives the same grid).
             pub seed: Option<u64>,
             $($rest)*
         );
@@ -128,13 +144,21 @@ macro_rules! request {
             pub rig: Option<String>,
             /// The id `/api/rig/parse` answered for the character ([`crate::character::store`]).
             pub character: Option<String>,
+            /// The clip the pose is taken from [default: the setup pose].
             pub animation: Option<String>,
+            /// Seconds into the clip [default: 0].
             pub time: Option<f64>,
+            /// Bones' world origins put at points after the clip and before the constraints, in order.
             pub targets: Vec<$crate::api::requests::TargetReq>,
+            /// Which way a two-bone IK constraint bends (`cw` or `ccw`), by the name of its lower bone.
             pub bends: std::collections::BTreeMap<String, $crate::keys::BendName>,
+            /// Bones' local rotations, degrees, in place of the clip's, by the bone's name.
             pub rotations: std::collections::BTreeMap<String, f64>,
+            /// Whether the clip is played from 0 with the physics constraints stepping [default: true].
             pub physics: Option<bool>,
+            /// Frames a second of the play with physics [default: 60].
             pub fps: Option<f64>,
+            /// The skin whose bones and constraints take part, by name [default: `default`, if any].
             pub skin: Option<String>,
             /// The id `/api/atlas/parse` answered for the character's atlas.
             pub atlas: Option<String>,
@@ -180,8 +204,11 @@ pub(super) use request;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GoalReq {
+    /// The goal's x.
     pub x: f64,
+    /// The goal's y.
     pub y: f64,
+    /// The last link's absolute direction wanted, degrees from +x; position only when absent.
     #[serde(default)]
     pub angle_deg: Option<f64>,
 }
@@ -190,7 +217,9 @@ pub struct GoalReq {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PriorityReq {
+    /// Solved first, together with the pins.
     Primary,
+    /// Solved in what the primary goals and pins leave free, never pulling them away.
     Secondary,
 }
 
@@ -198,7 +227,9 @@ pub enum PriorityReq {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum BendReq {
+    /// Counterclockwise.
     Ccw,
+    /// Clockwise.
     Cw,
 }
 
@@ -206,17 +237,26 @@ pub enum BendReq {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RigGoalReq {
+    /// The bone whose tip should reach the goal, by name.
     pub bone: String,
+    /// The goal's x.
     pub x: f64,
+    /// The goal's y.
     pub y: f64,
+    /// The bone's absolute direction wanted, degrees from +x; position only when absent.
     #[serde(default)]
     pub angle_deg: Option<f64>,
+    /// Its weight when goals conflict, > 0: the heavier is met more closely [default: 1].
     #[serde(default)]
     pub weight: Option<f64>,
+    /// [default: primary].
     #[serde(default)]
     pub priority: Option<PriorityReq>,
+    /// Which way the joint between the bone and its parent bends [default: either].
     #[serde(default)]
     pub bend: Option<BendReq>,
+    /// How far short of full stretch, in length units, the goal starts to be drawn in smoothly,
+    /// ≥ 0 [default: 0, none].
     #[serde(default)]
     pub softness: Option<f64>,
     /// A character's goal (`/api/pose`): how many bones it turns, counted up from its bone.
@@ -231,6 +271,7 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct SolveReq {
         ..aim,
+        /// The solver's settings, as `ikarus solve`'s flags name them.
         pub options: Option<SolverSettings>,
     }
 }
@@ -239,10 +280,13 @@ request! {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EaseReq {
+    /// The curve, as `GET /api/meta` lists the eases.
     #[serde(default)]
     pub kind: Option<EaseKind>,
+    /// The parent curve's end of acceleration, a fraction of the time.
     #[serde(default)]
     pub k1: Option<f64>,
+    /// The parent curve's start of deceleration, a fraction of the time.
     #[serde(default)]
     pub k2: Option<f64>,
 }
@@ -273,10 +317,13 @@ request! {
     #[serde(deny_unknown_fields)]
     pub struct TrackReq {
         ..body,
+        /// One angle per joint, degrees (a rig's bones in its order) [default: the body's start
+        /// pose].
         pub start_deg: Option<Vec<f64>>,
         /// A rig's bone whose tip follows the path (required with a rig).
         pub effector: Option<String>,
         ..rig_goals,
+        /// A rig's mix, from 0 to 1 [default: 1].
         pub mix: Option<f64>,
         /// The samples, `[[x, y], …]`, used as given.
         pub path: Option<Vec<[f64; 2]>>,
@@ -296,6 +343,7 @@ request! {
         /// later one (a pointer followed one request at a time) [default: false, the first sample
         /// is placed on the path].
         pub bound_first: bool,
+        /// The solver's settings, as `ikarus solve`'s flags name them.
         pub options: Option<SolverSettings>,
     }
 }
@@ -333,7 +381,10 @@ request! {
     #[derive(Debug, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct ReachReq {
+        /// The arm [default: the built-in arm].
         pub arm: Option<ArmFile>,
+        /// Whether the joint limits bound the reach [default: the arm file's `[solver] limits`,
+        /// else off].
         pub limits: Option<bool>,
         /// Distance that still counts as reachable [default: the arm's `solver.tolerance`, else
         /// 1e-6].
@@ -362,7 +413,10 @@ pub enum MotionFormat {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TargetReq {
+    /// The bone, by name.
     pub bone: String,
+    /// Where its origin goes, x in world units.
     pub x: f64,
+    /// Where its origin goes, y in world units.
     pub y: f64,
 }

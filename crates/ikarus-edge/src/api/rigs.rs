@@ -51,8 +51,11 @@ pub fn list() -> Result<Reply, Problem> {
 #[derive(Debug, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Parsed {
+    /// `{"rig": …}`: a rig file's rig.
     Rig(RigJson),
+    /// `{"character": …}`: a character file's skeleton, with the `id` it is kept under.
     Character(Box<CharacterJson>),
+    /// `{"problem": "…"}`: why the text is neither.
     Problem(String),
 }
 

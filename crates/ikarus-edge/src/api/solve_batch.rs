@@ -22,12 +22,15 @@ const BLOCK: usize = 1024;
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolveBatchReq {
+    /// The arm [default: the built-in arm].
     #[serde(default)]
     pub arm: Option<ArmFile>,
+    /// One start angle per joint, degrees [default: the arm's start pose].
     #[serde(default)]
     pub start_deg: Option<Vec<f64>>,
     /// Required: `[[x, y] | [x, y, angle_deg], …]`, at most `Limits::max_goals`.
     pub goals: Vec<Vec<f64>>,
+    /// The solver's settings, as `/api/solve` takes them.
     #[serde(default)]
     pub options: Option<SolverSettings>,
 }

@@ -182,7 +182,9 @@ pub struct Playhead {
 /// One frame: the time and every bone as `ikarus pose --format json` gives it.
 #[derive(Debug, Serialize)]
 pub struct FrameJson {
+    /// The frame's time, seconds from the motion's start.
     pub time: f64,
+    /// Every bone, posed.
     pub bones: Vec<PosedBoneJson>,
 }
 
@@ -199,7 +201,9 @@ pub enum StreamError {
 /// `{"frames": [{"time", "bones": […]}, …], "unsupported": […]}`.
 #[derive(Debug, Serialize)]
 pub struct FramesJson {
+    /// The motion's frames, in time order.
     pub frames: Vec<FrameJson>,
+    /// What the file has and ikarus does not use.
     pub unsupported: Vec<UnsupportedJson>,
 }
 

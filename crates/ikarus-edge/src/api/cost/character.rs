@@ -116,7 +116,12 @@ pub enum Rules {
     /// The runtime's (the default).
     Runtime,
     /// ikarus's solver, with the request's goals and pins.
-    Ikarus { goals: f64, pins: f64 },
+    Ikarus {
+        /// How many goals the request has.
+        goals: f64,
+        /// How many pins the request has.
+        pins: f64,
+    },
 }
 
 impl Rules {
