@@ -8,55 +8,37 @@
 //! draws no progress bars. Feature `render` adds pictures to [`edge::call`]
 //! (`POST /api/render`). It builds for `wasm32-unknown-unknown`.
 //!
-//! [`edge`] is the stable face for Python and WebAssembly; the other modules are the pieces
-//! the command line shares with it (hidden from the docs).
+//! [`edge`] gathers what Python and WebAssembly call (the API without HTTP, the arm and rig
+//! files, the errors); the other modules, each documented, are the pieces the command line
+//! uses beside it: the files and their checks ([`arm`], [`rig`], [`keys`], [`character`]), the
+//! settings ([`settings`], [`options`], [`goal`]), the jobs ([`motion`], [`track`], [`area`],
+//! [`reach`], [`pose`]), the answers ([`report`], [`pose_report`]) and the one error type
+//! ([`error`]).
 
 pub mod edge;
 
-#[doc(hidden)]
 pub mod api;
-#[doc(hidden)]
 pub mod area;
-#[doc(hidden)]
 pub mod arm;
-#[doc(hidden)]
 pub mod body;
-#[doc(hidden)]
 pub mod character;
-#[doc(hidden)]
 pub mod ease_args;
-#[doc(hidden)]
 pub mod error;
 
 pub use error::{Error, ErrorKind};
-#[doc(hidden)]
 pub mod goal;
-#[doc(hidden)]
 pub mod input;
-#[doc(hidden)]
 pub mod keys;
-#[doc(hidden)]
 pub mod motion;
-#[doc(hidden)]
 pub mod names;
-#[doc(hidden)]
 pub mod options;
-#[doc(hidden)]
 pub mod picture;
-#[doc(hidden)]
 pub mod pose;
-#[doc(hidden)]
 pub mod pose_finite;
 pub mod pose_report;
-#[doc(hidden)]
 pub mod reach;
-#[doc(hidden)]
 pub mod report;
-#[doc(hidden)]
 pub mod rig;
-#[doc(hidden)]
 pub mod settings;
-#[doc(hidden)]
 pub mod stats;
-#[doc(hidden)]
 pub mod track;
